@@ -1,0 +1,1 @@
+"""Performance bounds: (posterior) Cramer-Rao bounds for the measurement models."""

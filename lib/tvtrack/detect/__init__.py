@@ -1,0 +1,1 @@
+"""Detectors and decision statistics (maneuver detection, loss of lock)."""

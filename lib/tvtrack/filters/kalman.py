@@ -1,0 +1,144 @@
+"""A linear Kalman filter batched over leading axes (trials, channels).
+
+Shapes: state ``x`` (..., n), covariance ``P`` (..., n, n), measurement ``z`` (..., m);
+model matrices ``F`` (n, n), ``H`` (m, n), ``Q`` (n, n), ``R`` (m, m), or with leading batch
+axes that broadcast. Covariance updates use the Joseph form and are symmetrised, so ``P``
+stays symmetric positive definite for any gain.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
+
+
+def _sym(P: np.ndarray) -> np.ndarray:
+    return 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def kf_predict(x, P, F, Q):
+    """Time update: ``x <- F x``, ``P <- F P F^T + Q``.
+
+    Returns
+    -------
+    x, P : ndarray, shapes (..., n) and (..., n, n)
+    """
+    F = np.asarray(F, dtype=float)
+    x = np.einsum("...ij,...j->...i", F, x)
+    P = _sym(F @ P @ np.swapaxes(F, -1, -2) + Q)
+    return x, P
+
+
+def kf_update(x, P, z, H, R, mask=None):
+    """Measurement update in Joseph form.
+
+    Parameters
+    ----------
+    x : ndarray, shape (..., n)
+    P : ndarray, shape (..., n, n)
+    z : ndarray, shape (..., m)
+    H : ndarray, shape (m, n) or (..., m, n)
+    R : ndarray, shape (m, m) or (..., m, m)
+    mask : ndarray of bool, shape (...), optional
+        Where False, the measurement is absent and the prior is kept.
+
+    Returns
+    -------
+    x, P : updated state and covariance
+    innovation : ndarray, shape (..., m)  (``z - H x`` before the update)
+    S : ndarray, shape (..., m, m)        innovation covariance ``H P H^T + R``
+    """
+    H = np.asarray(H, dtype=float)
+    Ht = np.swapaxes(H, -1, -2)
+    innovation = np.asarray(z, dtype=float) - np.einsum("...ij,...j->...i", H, x)
+    S = _sym(H @ P @ Ht + R)
+    K = np.swapaxes(np.linalg.solve(S, H @ np.swapaxes(P, -1, -2)), -1, -2)  # P H^T S^-1
+    n = x.shape[-1]
+    IKH = np.eye(n) - K @ H
+    x_new = x + np.einsum("...ij,...j->...i", K, innovation)
+    P_new = _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2))
+    if mask is not None:
+        m = np.asarray(mask, dtype=bool)
+        x_new = np.where(m[..., None], x_new, x)
+        P_new = np.where(m[..., None, None], P_new, np.broadcast_to(P, P_new.shape))
+    return x_new, P_new, innovation, S
+
+
+@dataclass(frozen=True)
+class KalmanOutput:
+    """Filter history; time is the axis after the batch axes.
+
+    Attributes
+    ----------
+    x_prior, x : ndarray, shape (..., T, n)   predicted and updated states
+    P_prior, P : ndarray, shape (..., T, n, n)
+    innovation : ndarray, shape (..., T, m)   NaN where the measurement was absent
+    S : ndarray, shape (..., T, m, m)
+    nis : ndarray, shape (..., T)             normalised innovation squared
+    """
+
+    x_prior: np.ndarray
+    P_prior: np.ndarray
+    x: np.ndarray
+    P: np.ndarray
+    innovation: np.ndarray
+    S: np.ndarray
+    nis: np.ndarray
+
+
+@dataclass
+class KalmanFilter:
+    """Time-invariant linear Kalman filter, run over a whole batch of sequences at once.
+
+    Parameters
+    ----------
+    F : ndarray, shape (n, n)   state transition per step
+    H : ndarray, shape (m, n)   observation matrix
+    Q : ndarray, shape (n, n)   process noise covariance per step
+    R : ndarray, shape (m, m)   measurement noise covariance
+    """
+
+    F: np.ndarray
+    H: np.ndarray
+    Q: np.ndarray
+    R: np.ndarray
+
+    def __post_init__(self):
+        self.F, self.H, self.Q, self.R = (np.asarray(a, dtype=float) for a in (self.F, self.H, self.Q, self.R))
+        n, m = self.F.shape[-1], self.H.shape[-2]
+        if self.F.shape[-2:] != (n, n) or self.H.shape[-1] != n or self.Q.shape[-2:] != (n, n) \
+                or self.R.shape[-2:] != (m, m):
+            raise ValueError(f"inconsistent shapes F{self.F.shape} H{self.H.shape} Q{self.Q.shape} R{self.R.shape}")
+
+    def run(self, zs, x0, P0) -> KalmanOutput:
+        """Filter measurements ``zs`` (..., T, m); NaN rows are treated as missing (coast).
+
+        The first step is an update of ``(x0, P0)`` with ``zs[..., 0, :]`` (``x0`` is the prior
+        for time 0), then predict/update alternate.
+        """
+        zs = np.asarray(zs, dtype=float)
+        T = zs.shape[-2]
+        batch = zs.shape[:-2]
+        n = self.F.shape[-1]
+        x = np.broadcast_to(np.asarray(x0, dtype=float), batch + (n,)).copy()
+        P = np.broadcast_to(np.asarray(P0, dtype=float), batch + (n, n)).copy()
+        out = {k: [] for k in ("x_prior", "P_prior", "x", "P", "innovation", "S", "nis")}
+        for t in range(T):
+            if t > 0:
+                x, P = kf_predict(x, P, self.F, self.Q)
+            out["x_prior"].append(x)
+            out["P_prior"].append(P)
+            z = zs[..., t, :]
+            present = np.all(np.isfinite(z), axis=-1)
+            x, P, nu, S = kf_update(x, P, np.where(present[..., None], z, 0.0), self.H, self.R, present)
+            nu = np.where(present[..., None], nu, np.nan)
+            out["innovation"].append(nu)
+            out["S"].append(S)
+            out["nis"].append(np.einsum("...i,...i->...", nu, np.linalg.solve(S, nu[..., None])[..., 0]))
+            out["x"].append(x)
+            out["P"].append(P)
+        axis = len(batch)
+        return KalmanOutput(**{k: np.stack(v, axis=axis) for k, v in out.items()})

@@ -1,0 +1,173 @@
+"""Running notebooks through papermill, one run per output directory.
+
+A run executes a notebook with some parameters into its own directory. The directory appears
+only when the run has ended: the notebook runs in ``<parent>/.tmp-<name>-<random>`` with the
+kernel's working directory there and ``output_dir = "."``, and the directory is renamed into
+place at the end. Every run directory holds:
+
+- ``run.json``: notebook, profile, parameters as injected, status (``"ok"`` or ``"failed"``),
+  error and traceback for a failure, runtime;
+- ``notebook.ipynb``: the executed copy;
+- what the notebook wrote: ``results.json``, figures, ``recording.rrd``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import time
+import tomllib
+import traceback
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .paths import NOTEBOOK_DIR, PROFILE_DIR
+
+__all__ = [
+    "find_notebook", "list_notebooks", "load_profile", "RunOutcome", "run_notebook", "read_run",
+    "remove_stale_temporaries",
+]
+
+KERNEL_NAME = os.environ.get("TVTRACK_KERNEL", "python3")
+
+
+def list_notebooks() -> list[Path]:
+    """The paper notebooks, in name order."""
+    return sorted(NOTEBOOK_DIR.glob("*.ipynb"))
+
+
+def find_notebook(name: str | Path) -> Path:
+    """Resolve a notebook given as a path, a file name or a name without ``.ipynb``
+    (looked up in ``notebooks/``)."""
+    p = Path(name)
+    candidates = [p, p.with_suffix(".ipynb"), NOTEBOOK_DIR / p.name, NOTEBOOK_DIR / f"{p.name}.ipynb"]
+    for c in candidates:
+        if c.is_file() and c.suffix == ".ipynb":
+            return c.resolve()
+    known = ", ".join(n.stem for n in list_notebooks()) or "none"
+    raise FileNotFoundError(f"no notebook {str(name)!r}; notebooks here: {known}")
+
+
+def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
+    """Parameters of a named profile, from ``papermill_runs/profiles/<stem>.<profile>.toml``
+    (or, for notebooks outside ``notebooks/``, ``<stem>.<profile>.toml`` beside the notebook).
+    ``None`` or ``"paper"`` is the notebook's own defaults: no overrides."""
+    if profile in (None, "paper"):
+        return {}
+    for folder in (PROFILE_DIR, notebook.parent):
+        path = folder / f"{notebook.stem}.{profile}.toml"
+        if path.is_file():
+            with path.open("rb") as fh:
+                return dict(tomllib.load(fh))
+    raise FileNotFoundError(f"no profile {profile!r} for {notebook.stem} "
+                            f"(looked for {PROFILE_DIR / f'{notebook.stem}.{profile}.toml'})")
+
+
+@dataclass
+class RunOutcome:
+    """What became of one run."""
+
+    run_dir: Path
+    status: str
+    runtime_s: float
+    error: str | None = None
+    record: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+
+def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str, Any] | None = None,
+                 profile: str | None = None, *, kernel_name: str | None = None,
+                 timeout_s: float | None = None, progress: bool = False,
+                 extra_record: dict | None = None) -> RunOutcome:
+    """Execute ``notebook`` into ``run_dir`` (which must not exist yet).
+
+    Parameters
+    ----------
+    notebook : str or Path
+        Name in ``notebooks/`` or a path.
+    run_dir : str or Path
+        Final directory of the run; created by an atomic rename when the run ends.
+    parameters : dict, optional
+        Overrides on top of the profile; ``output_dir`` is always set to ``"."`` (the run dir).
+    profile : str, optional
+        Profile name (``"smoke"``); ``None`` runs the notebook's defaults (paper scale).
+    timeout_s : float, optional
+        Per-cell execution timeout.
+
+    Returns
+    -------
+    RunOutcome
+        ``status`` is ``"failed"`` (with the error) if the notebook raised; this function
+        itself raises only if the run directory cannot be written.
+    """
+    import papermill as pm  # heavy import, only when running
+
+    nb = find_notebook(notebook)
+    run_dir = Path(run_dir).resolve()
+    if run_dir.exists():
+        raise FileExistsError(f"run directory {run_dir} exists already")
+    params = {**load_profile(nb, profile), **(parameters or {}), "output_dir": "."}
+    run_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
+    tmp.mkdir()
+    record = {"notebook": nb.stem, "notebook_path": str(nb), "profile": profile or "paper",
+              "parameters": params, **(extra_record or {})}
+    t0 = time.perf_counter()
+    error = tb = None
+    try:
+        pm.execute_notebook(
+            str(nb), str(tmp / "notebook.ipynb"), parameters=params, cwd=str(tmp),
+            kernel_name=kernel_name or KERNEL_NAME, progress_bar=progress,
+            execution_timeout=timeout_s, log_output=False,
+        )
+        status = "ok"
+        if not (tmp / "results.json").is_file():
+            status, error = "failed", "the notebook finished without writing results.json"
+    except Exception as exc:  # noqa: BLE001 - a failed run is recorded, never raised
+        status = "failed"
+        error = _short_error(exc)
+        tb = traceback.format_exc()
+    runtime = time.perf_counter() - t0
+    record.update(status=status, error=error, runtime_s=runtime,
+                  finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
+    (tmp / "run.json").write_text(json.dumps(record, indent=2, default=str))
+    if tb:
+        (tmp / "error.txt").write_text(tb)
+    os.replace(tmp, run_dir)
+    return RunOutcome(run_dir=run_dir, status=status, runtime_s=runtime, error=error, record=record)
+
+
+def _short_error(exc: Exception) -> str:
+    """The notebook's own exception line (papermill wraps it in PapermillExecutionError)."""
+    ename = getattr(exc, "ename", None)
+    evalue = getattr(exc, "evalue", None)
+    if ename:
+        return f"{ename}: {evalue}"
+    return f"{type(exc).__name__}: {exc}"
+
+
+def read_run(run_dir: str | Path) -> dict | None:
+    """``run.json`` of a finished run directory, or ``None`` if there is none."""
+    path = Path(run_dir) / "run.json"
+    if not path.is_file():
+        return None
+    try:
+        return json.loads(path.read_text())
+    except json.JSONDecodeError:
+        return None
+
+
+def remove_stale_temporaries(parent: Path) -> int:
+    """Delete ``.tmp-*`` directories left by runs that were killed; returns how many."""
+    n = 0
+    for tmp in Path(parent).glob(".tmp-*"):
+        if tmp.is_dir():
+            shutil.rmtree(tmp, ignore_errors=True)
+            n += 1
+    return n

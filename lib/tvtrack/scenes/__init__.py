@@ -1,0 +1,1 @@
+"""Scene generators: object motion and what the sensor sees, built on :mod:`tvtrack.render`."""
