@@ -1,0 +1,93 @@
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report}``."""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import sys
+import time
+from pathlib import Path
+
+from .paths import RUNS_DIR
+
+
+def _parse_value(text: str):
+    """A ``-p NAME VALUE`` value: a Python literal (number, string in quotes, list, bool),
+    else the plain string."""
+    try:
+        return ast.literal_eval(text)
+    except (ValueError, SyntaxError):
+        return text
+
+
+def _cmd_run(args) -> int:
+    from .runner import find_notebook, run_notebook
+
+    nb = find_notebook(args.notebook)
+    params = {name: _parse_value(value) for name, value in args.parameter}
+    out = Path(args.output) if args.output else \
+        RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}"
+    outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet)
+    if outcome.ok:
+        print(f"ok: {nb.stem} in {outcome.runtime_s:.1f} s -> {outcome.run_dir}")
+        return 0
+    print(f"FAILED: {nb.stem}: {outcome.error}\n  details: {outcome.run_dir / 'error.txt'}", file=sys.stderr)
+    return 1
+
+
+def _cmd_sweep(args) -> int:
+    from .sweep import run_sweep
+
+    summary = run_sweep(args.spec, jobs=args.jobs, output=args.output, executor=args.executor,
+                        scheduler=args.scheduler)
+    return 0 if summary.n_failed == 0 else 1
+
+
+def _cmd_reproduce(args) -> int:
+    from .report import reproduce
+
+    return reproduce(profile=args.profile, only=args.only)
+
+
+def _cmd_report(args) -> int:
+    from .report import write_report
+
+    path = write_report()
+    print(f"wrote {path}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python -m tvtrack", description=__doc__)
+    sub = p.add_subparsers(dest="command", required=True)
+
+    r = sub.add_parser("run", help="execute one notebook through papermill into its own directory")
+    r.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
+    r.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                   help="override a parameter (VALUE is a Python literal or a plain string)")
+    r.add_argument("--profile", default=None, help="parameter profile, e.g. 'smoke' (default: paper)")
+    r.add_argument("-o", "--output", default=None, help="run directory (must not exist)")
+    r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    r.set_defaults(func=_cmd_run)
+
+    s = sub.add_parser("sweep", help="run a TOML sweep spec (grid x repeats) in a process pool")
+    s.add_argument("spec", help="sweep spec TOML (see README, 'Sweeps')")
+    s.add_argument("--jobs", type=int, default=1, help="parallel runs (local executor)")
+    s.add_argument("-o", "--output", default=None, help="sweep directory (default papermill_runs/<spec name>)")
+    s.add_argument("--executor", choices=["local", "dask"], default="local")
+    s.add_argument("--scheduler", default=None, help="Dask scheduler address, with --executor dask")
+    s.set_defaults(func=_cmd_sweep)
+
+    rp = sub.add_parser("reproduce", help="run every notebook, then write REPRODUCTION.md")
+    rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
+    rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
+    rp.set_defaults(func=_cmd_reproduce)
+
+    rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
+    rep.set_defaults(func=_cmd_report)
+    return p
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    return args.func(args)
