@@ -1,0 +1,448 @@
+"""Open recordings in the real Rerun viewer, headless on the CPU, and look at what a user sees.
+
+The native viewer (``rerun --headless``) renders through Vulkan; on a machine without a GPU it
+runs on Mesa's software rasteriser (llvmpipe, package ``mesa-vulkan-drivers``). Without any
+Vulkan driver it cannot start, and :class:`HeadlessViewer` raises :class:`ViewerUnavailable`
+with the exact package to install.
+
+The viewer is driven through ``rerun.experimental.ViewerClient`` (pinned rerun-sdk): open a
+file, wait until it has loaded, move the time cursor, read the blueprint's views and their
+reports, the recording's entity paths, and take per-view screenshots. What an overlay draws is
+measured by *ablation*: the view is shot once as the blueprint has it and once with the
+overlay's entities excluded from the view's query, and the pixels that differ are the overlay.
+Counting the coloured ones among them (chroma above a threshold) is a coarse, colour-agnostic
+check that the gate, the truth or the estimate is visible; no golden images are involved.
+
+Pitfalls handled here (``shared/notes/rerun-viewer-check.md``): ``rerun`` defers silently to
+whatever already listens on its port, so every viewer gets a fresh free port and its own
+process is checked to be alive; ``rerun`` is a Python wrapper around the real binary, so the
+viewer runs in its own process group and the whole group is ended.
+
+Example
+-------
+>>> with HeadlessViewer() as viewer:                       # doctest: +SKIP
+...     rec = viewer.open("run/recording.rrd")
+...     viewer.set_time("frame", rec.timeline("frame").end // 2)
+...     views = viewer.views()
+...     shot = viewer.screenshot(views[0].view_id)
+"""
+
+from __future__ import annotations
+
+import copy
+import ctypes
+import glob
+import io
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+__all__ = [
+    "INSTALL_HINT", "ViewerUnavailable", "vulkan_problem", "rerun_executable", "verify_rrd",
+    "free_port", "coloured_mask", "dominant_colours", "LoadedRecording", "OverlayPixels",
+    "HeadlessViewer", "entities_under",
+]
+
+INSTALL_HINT = "apt-get install -y mesa-vulkan-drivers"
+"""What makes the viewer run on a machine without a GPU (Debian/Ubuntu: Mesa's llvmpipe Vulkan)."""
+
+# Vulkan loader search path for installable client drivers (ICDs), Linux.
+_ICD_DIRS = ("/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d", "/usr/local/share/vulkan/icd.d")
+
+
+class ViewerUnavailable(RuntimeError):
+    """The headless viewer cannot run on this machine; the message says why and what to install."""
+
+
+def vulkan_problem() -> str | None:
+    """Why the headless viewer cannot render here, or ``None`` if a Vulkan driver is present.
+
+    Checks the Vulkan loader (``libvulkan.so.1``) and at least one installable client driver
+    (ICD manifest in the loader's search path, or named by ``VK_ICD_FILENAMES`` /
+    ``VK_DRIVER_FILES``). Linux only; elsewhere returns ``None`` and lets the viewer decide.
+    """
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        ctypes.CDLL("libvulkan.so.1")
+    except OSError:
+        return f"no Vulkan loader (libvulkan.so.1); install a software Vulkan driver: {INSTALL_HINT}"
+    named = os.environ.get("VK_DRIVER_FILES") or os.environ.get("VK_ICD_FILENAMES")
+    if named:
+        manifests = [p for p in named.split(os.pathsep) if p]
+        if not any(Path(p).exists() for p in manifests):
+            return (f"VK_DRIVER_FILES/VK_ICD_FILENAMES name no existing driver manifest ({named}); "
+                    f"unset it or install a software Vulkan driver: {INSTALL_HINT}")
+        return None
+    if not any(glob.glob(os.path.join(d, "*.json")) for d in _ICD_DIRS):
+        return ("the Vulkan loader is installed but no Vulkan driver is (no ICD manifest in "
+                f"{', '.join(_ICD_DIRS)}); install a software Vulkan driver: {INSTALL_HINT}")
+    return None
+
+
+def rerun_executable() -> str:
+    """The ``rerun`` command of the running interpreter's environment (matches the SDK version)."""
+    beside = Path(sys.executable).parent / "rerun"
+    if beside.is_file():
+        return str(beside)
+    found = shutil.which("rerun")
+    if found is None:
+        raise FileNotFoundError("no 'rerun' command beside the Python interpreter or on PATH "
+                                "(it comes with rerun-sdk)")
+    return found
+
+
+def verify_rrd(path: str | Path, timeout_s: float = 60.0) -> str:
+    """Run ``rerun rrd verify`` on a file; returns its report, raises ``ValueError`` if it fails."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no recording at {path}")
+    proc = subprocess.run([rerun_executable(), "rrd", "verify", str(path)], capture_output=True,
+                          text=True, timeout=timeout_s)
+    report = (proc.stdout + proc.stderr).strip()
+    if proc.returncode != 0:
+        raise ValueError(f"rerun rrd verify {path} failed (exit {proc.returncode}): {report}")
+    return report
+
+
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that nothing listens on right now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def coloured_mask(image: np.ndarray, min_chroma: int = 60) -> np.ndarray:
+    """Pixels whose colour is clearly not grey.
+
+    Parameters
+    ----------
+    image : ndarray, shape (H, W, 3), uint8
+        RGB screenshot.
+    min_chroma : int
+        Threshold on ``max(R,G,B) - min(R,G,B)``, in 8-bit levels (0..255). Grey images,
+        text, axes and grid lines stay below ~20; the viewer's palette colours are above 80.
+
+    Returns
+    -------
+    ndarray of bool, shape (H, W)
+    """
+    rgb = np.asarray(image, dtype=np.int16)[..., :3]
+    return (rgb.max(axis=-1) - rgb.min(axis=-1)) >= min_chroma
+
+
+def dominant_colours(image: np.ndarray, mask: np.ndarray, n: int = 3, quantum: int = 32) -> list[tuple]:
+    """The ``n`` most frequent colours among ``image[mask]``, each channel rounded to the middle
+    of a ``quantum``-wide bin, as ``((r, g, b), count)`` (for messages, not for asserting)."""
+    pixels = np.asarray(image)[..., :3][mask].astype(np.int32)
+    if pixels.size == 0:
+        return []
+    binned = (pixels // quantum) * quantum + quantum // 2
+    colours, counts = np.unique(binned, axis=0, return_counts=True)
+    order = np.argsort(-counts)[:n]
+    return [(tuple(int(c) for c in colours[i]), int(counts[i])) for i in order]
+
+
+def _decode_png(png: bytes) -> np.ndarray:
+    from PIL import Image
+
+    with Image.open(io.BytesIO(png)) as im:
+        return np.asarray(im.convert("RGB"))
+
+
+@dataclass
+class LoadedRecording:
+    """A recording open in the viewer (the active one)."""
+
+    path: Path
+    store_id: str
+    timelines: dict = field(default_factory=dict)   # name -> rerun Timeline (start, end)
+    load_s: float = 0.0
+
+    def timeline(self, name: str):
+        if name not in self.timelines:
+            raise KeyError(f"recording {self.path} has no timeline {name!r}; it has {sorted(self.timelines)}")
+        return self.timelines[name]
+
+
+@dataclass
+class OverlayPixels:
+    """What excluding some entities from a view changed in its screenshot."""
+
+    view_name: str
+    entities: list[str]
+    changed: int            # pixels that differ between shown and hidden
+    coloured: int           # of those, pixels whose shown colour is not grey
+    colours: list[tuple]    # dominant shown colours among the changed coloured pixels
+
+
+class HeadlessViewer:
+    """A native Rerun viewer running headless, in its own process group, on a fresh port.
+
+    Parameters
+    ----------
+    window_size : (int, int)
+        Viewer window in logical pixels (width, height); screenshots of views are cut from it.
+    startup_timeout_s : float
+        How long to wait for the viewer to answer after launch.
+    log_path : str or Path, optional
+        Where the viewer's own stdout/stderr go (default: a temporary file, removed on close).
+
+    Use as a context manager; :meth:`close` ends the whole process group.
+    """
+
+    def __init__(self, window_size: tuple[int, int] = (1200, 700), startup_timeout_s: float = 30.0,
+                 log_path: str | Path | None = None):
+        w, h = (int(v) for v in window_size)
+        if not (200 <= w <= 4000 and 200 <= h <= 4000):
+            raise ValueError(f"parameter 'window_size' = {window_size!r}; both sides must be in [200, 4000] px")
+        if not startup_timeout_s > 0:
+            raise ValueError(f"parameter 'startup_timeout_s' = {startup_timeout_s!r}; it must be > 0 s")
+        self.window_size = (w, h)
+        self.startup_timeout_s = float(startup_timeout_s)
+        self._own_log = log_path is None
+        self.log_path = Path(log_path) if log_path else Path(tempfile.mkstemp(prefix="rerun-viewer-", suffix=".log")[1])
+        self.port: int | None = None
+        self.started_at: float | None = None
+        self._proc: subprocess.Popen | None = None
+        self._client = None
+        self.recording: LoadedRecording | None = None
+
+    # -- life cycle -------------------------------------------------------------------------
+    def __enter__(self) -> "HeadlessViewer":
+        self.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def start(self) -> None:
+        """Launch the viewer and connect; raises :class:`ViewerUnavailable` if it cannot render."""
+        import rerun as rr
+        from rerun.experimental import ViewerClient
+
+        problem = vulkan_problem()
+        if problem:
+            raise ViewerUnavailable(problem)
+        self.port = free_port()
+        w, h = self.window_size
+        cmd = [rerun_executable(), "--headless", "--bind", "127.0.0.1", "--port", str(self.port),
+               "--window-size", f"{w}x{h}", "--hide-welcome-screen"]
+        with open(self.log_path, "wb") as log:
+            self._proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                          start_new_session=True)
+        self.started_at = time.monotonic()
+        url = f"rerun+http://127.0.0.1:{self.port}/proxy"
+        deadline = self.started_at + self.startup_timeout_s
+        last_error: Exception | None = None
+        while time.monotonic() < deadline:
+            if self._proc.poll() is not None:
+                self._raise_start_failure(f"the viewer exited with code {self._proc.returncode} while starting")
+            try:
+                client = ViewerClient.connect(url)
+                state = client.get_state()
+            except (ConnectionError, RuntimeError, OSError) as exc:
+                last_error = exc
+                time.sleep(0.1)
+                continue
+            self._client = client
+            break
+        if self._client is None:
+            self.close()
+            raise RuntimeError(f"the headless viewer did not answer on {url} within {self.startup_timeout_s:.0f} s "
+                               f"(last error: {last_error}); log: {self._log_tail()}")
+        # the gRPC server answers before the renderer exists: paint one small frame to be sure it
+        # renders, then check that our own process is the one answering (rerun defers silently
+        # to an existing listener on its port and exits)
+        try:
+            self._client.take_screenshot(max_size=64)
+        except (ConnectionError, RuntimeError, OSError) as exc:
+            try:  # a viewer that cannot render panics; give it a moment to exit
+                self._proc.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                pass
+            if self._proc.poll() is not None:
+                self._raise_start_failure(f"the viewer exited with code {self._proc.returncode} on its first frame")
+            tail = self._log_tail()
+            self.close()
+            raise RuntimeError(f"the headless viewer cannot take a screenshot ({exc}); log: {tail}") from exc
+        if self._proc.poll() is not None:
+            self._raise_start_failure("the viewer process exited although something answers on its port")
+        if state.viewer_version and state.viewer_version.split("+")[0] != rr.__version__:
+            self.close()
+            raise RuntimeError(f"viewer {state.viewer_version} answers but rerun-sdk is {rr.__version__}")
+
+    def _raise_start_failure(self, what: str):
+        try:
+            log = self.log_path.read_text(errors="replace")
+        except OSError:
+            log = ""
+        panic = next((line.strip() for line in log.splitlines() if "panicked" in line), "")
+        tail = self._log_tail()
+        self.close()
+        # without Vulkan, wgpu falls back to GL, which lacks a render target the viewer needs
+        no_renderer = ("graphics adapter", "render context", "backend: gl", "no suitable adapter")
+        if any(sign in log.lower() for sign in no_renderer):
+            raise ViewerUnavailable(f"{what} ({panic or 'no usable graphics adapter'}); install a software "
+                                    f"Vulkan driver: {INSTALL_HINT}")
+        raise RuntimeError(f"{what}. Viewer log: {tail}")
+
+    def _log_tail(self, n_chars: int = 1500) -> str:
+        try:
+            return self.log_path.read_text(errors="replace")[-n_chars:]
+        except OSError:
+            return "(no log)"
+
+    @property
+    def alive(self) -> bool:
+        return self._proc is not None and self._proc.poll() is None
+
+    def close(self) -> None:
+        """End the viewer's whole process group (wrapper and binary) and wait for it."""
+        self._client = None
+        proc, self._proc = self._proc, None
+        if proc is not None and proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGTERM)
+                proc.wait(timeout=5)
+            except ProcessLookupError:
+                pass
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait(timeout=5)
+        if self._own_log:
+            self.log_path.unlink(missing_ok=True)
+
+    @property
+    def client(self):
+        """The connected ``rerun.experimental.ViewerClient``."""
+        if self._client is None or not self.alive:
+            raise RuntimeError("the headless viewer is not running" +
+                               (f"; log: {self._log_tail()}" if self._proc is not None else ""))
+        return self._client
+
+    # -- recordings -------------------------------------------------------------------------
+    def open(self, path: str | Path, timeout_s: float = 60.0) -> LoadedRecording:
+        """Open an ``.rrd`` file (closing whatever was open) and wait until it has fully loaded:
+        nothing loading and the timeline ranges unchanged over two consecutive polls."""
+        path = Path(path).resolve()
+        if not path.is_file():
+            raise FileNotFoundError(f"no recording at {path}")
+        client = self.client
+        if client.get_state().recordings:
+            client.close("all")
+        t0 = time.monotonic()
+        opened = client.open(str(path))
+        if not opened.store_ids:
+            raise RuntimeError(f"the viewer opened no recording from {path}")
+        store_id = opened.store_ids[0]
+        previous = None
+        while True:
+            state = client.get_state()
+            rec = next((r for r in state.recordings if r.store_id == store_id), None)
+            ranges = None if rec is None else tuple((t.name, t.start, t.end) for t in rec.timelines)
+            if not state.loading and ranges and all(t[2] is not None for t in ranges) and ranges == previous:
+                break
+            if time.monotonic() - t0 > timeout_s:
+                raise TimeoutError(f"{path} did not finish loading in {timeout_s:.0f} s "
+                                   f"(still loading: {[s.status for s in state.loading]})")
+            previous = ranges
+            time.sleep(0.1)
+        self.recording = LoadedRecording(path=path, store_id=store_id,
+                                         timelines={t.name: t for t in rec.timelines},
+                                         load_s=time.monotonic() - t0)
+        return self.recording
+
+    def set_time(self, timeline: str, sequence: int) -> None:
+        """Pause the active recording at ``sequence`` on a sequence timeline (e.g. ``frame``)."""
+        self.client.set_time(timeline, sequence=int(sequence), play_state="paused")
+
+    def state(self):
+        """``ViewerState`` of the viewer (views with their reports, recordings, loading)."""
+        return self.client.get_state()
+
+    def views(self):
+        """The active blueprint's views (``view_id``, ``view_class``, ``name``, ``origin``, ``reports``)."""
+        return self.client.get_state().views
+
+    def entity_paths(self) -> list[str]:
+        """Entity paths of the active recording (``/camera/image`` ...), without ``/__properties``."""
+        schema = self.client.get_recording_schema(paths_only=True, max_entities=10_000)
+        return [e.entity_path for e in schema.entities if not e.entity_path.startswith("/__")]
+
+    def archetypes(self) -> dict[str, set[str]]:
+        """Archetype short names logged per entity path, e.g. ``{"/camera/image": {"Image"}}``."""
+        schema = self.client.get_recording_schema(max_entities=10_000)
+        return {e.entity_path: {c.archetype.rsplit(".", 1)[-1] for c in e.components if c.archetype}
+                for e in schema.entities if not e.entity_path.startswith("/__")}
+
+    def blueprint(self) -> dict:
+        """The active recording's blueprint, keyed by blueprint entity path, archetype, field."""
+        return self.client.get_blueprint(store_id=self._store_id()).blueprint
+
+    def _store_id(self) -> str:
+        if self.recording is None:
+            raise RuntimeError("no recording is open; call open() first")
+        return self.recording.store_id
+
+    # -- pixels -----------------------------------------------------------------------------
+    def screenshot_png(self, view_id: str | None = None, max_size: int | None = None) -> bytes:
+        """PNG of one view (by ``view_id``) or of the whole viewer."""
+        return self.client.take_screenshot(view_id=view_id, max_size=max_size)
+
+    def screenshot(self, view_id: str | None = None) -> np.ndarray:
+        """RGB array (H, W, 3) uint8 of one view or of the whole viewer."""
+        return _decode_png(self.screenshot_png(view_id))
+
+    def overlay_pixels(self, view, entities: Sequence[str], shown: np.ndarray | None = None,
+                       min_chroma: int = 60) -> OverlayPixels:
+        """Pixels that ``entities`` (and everything below them) draw in ``view``.
+
+        The view is shot as the blueprint has it (or ``shown`` is used) and again with the
+        entities excluded from its query; the blueprint is restored afterwards.
+        """
+        if not entities:
+            raise ValueError("parameter 'entities' is empty; name at least one entity path")
+        if shown is None:
+            shown = self.screenshot(view.view_id)
+        original = self.blueprint()
+        hidden_bp = copy.deepcopy(original)
+        key = f"/view/{view.view_id}/ViewContents"
+        contents = hidden_bp.setdefault(key, {}).setdefault("ViewContents", {})
+        query = contents.get("query", "$origin/**")
+        rules = [query] if isinstance(query, str) else list(query)
+        # a multi-rule query must be a list of expressions (a newline-joined string matches nothing)
+        rules = [r for rule in rules for r in rule.splitlines() if r.strip()]
+        contents["query"] = rules + [f"- {e.rstrip('/')}/**" for e in entities]
+        store_id = self._store_id()
+        try:
+            self.client.set_blueprint(hidden_bp, store_id=store_id)
+            hidden = self.screenshot(view.view_id)
+        finally:
+            self.client.set_blueprint(original, store_id=store_id)
+        if hidden.shape != shown.shape:
+            raise RuntimeError(f"view {view.name!r} changed size between screenshots: {shown.shape} vs {hidden.shape}")
+        changed = (shown != hidden).any(axis=-1)
+        coloured = changed & coloured_mask(shown, min_chroma)
+        return OverlayPixels(view_name=view.name, entities=list(entities), changed=int(changed.sum()),
+                             coloured=int(coloured.sum()), colours=dominant_colours(shown, coloured))
+
+    def seconds_since_start(self) -> float:
+        return 0.0 if self.started_at is None else time.monotonic() - self.started_at
+
+
+def entities_under(paths: Iterable[str], origin: str) -> list[str]:
+    """Entity paths at or below ``origin`` (both with a leading ``/``)."""
+    root = "/" + origin.strip("/")
+    return [p for p in paths if p == root or p.startswith(root + "/")]
+
