@@ -1,0 +1,158 @@
+"""Interacting multiple model (IMM) estimator batched over trials, built on
+:mod:`tvtrack.filters.kalman` (Joseph-form updates).
+
+Standard IMM cycle (Bar-Shalom, Li & Kirubarajan 2001, §11.6.6), the same order as
+``filterpy.kalman.IMMEstimator`` (``predict`` then ``update`` each frame):
+
+1. mixing: ``cbar_j = sum_i mu_i M_ij``, ``omega_ij = mu_i M_ij / cbar_j``,
+   ``x0_j = sum_i omega_ij x_i``, ``P0_j = sum_i omega_ij (P_i + (x_i - x0_j)(x_i - x0_j)^T)``;
+2. mode-matched prediction ``x_j, P_j <- F_j x0_j, F_j P0_j F_j^T + Q_j``;
+3. mode-matched update and likelihood ``L_j = N(nu_j; 0, S_j)``;
+4. ``mu_j = cbar_j L_j / sum``; combined ``x = sum mu_j x_j``, ``P = sum mu_j (P_j + dx dx^T)``.
+
+A missing measurement (NaN) skips steps 3-4's update: ``mu = cbar`` and the priors are kept.
+All models share one state space (e.g. ``(x, v, a)`` with the constant-velocity model zeroing
+``a``), see :func:`cv_ca_models`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kalman import kf_predict, kf_update
+from .polynomial import taylor_transition
+
+__all__ = ["IMMOutput", "imm_run", "cv_ca_models"]
+
+
+def cv_ca_models(q_cv: float, q_ca: float):
+    """Constant-velocity and constant-acceleration models in the state ``(x, v, a)``, unit step.
+
+    CV: ``F`` of order 1 padded with ``a <- 0``; discrete white-acceleration noise
+    ``q_cv (dt^4/4, dt^3/2; dt^3/2, dt^2)``. CA: ``F`` of order 2 with discrete white-jerk
+    noise ``q_ca (dt^4/4, dt^3/2, dt^2/2; ...; dt^2/2, dt, 1)`` (Bar-Shalom et al. §6.3).
+
+    Parameters
+    ----------
+    q_cv : float
+        Variance of the per-frame acceleration noise of CV, elements^2/frame^4 (>= 0).
+    q_ca : float
+        Variance of the per-frame acceleration increment of CA, elements^2/frame^4 (>= 0).
+
+    Returns
+    -------
+    Fs : ndarray, shape (2, 3, 3)
+    Qs : ndarray, shape (2, 3, 3)
+    """
+    if not (q_cv >= 0 and q_ca >= 0):
+        raise ValueError(f"process noises q_cv = {q_cv!r}, q_ca = {q_ca!r}; both must be >= 0")
+    F_cv = np.zeros((3, 3))
+    F_cv[:2, :2] = taylor_transition(1)
+    g_cv = np.array([0.5, 1.0, 0.0])
+    g_ca = np.array([0.5, 1.0, 1.0])
+    Fs = np.stack([F_cv, taylor_transition(2)])
+    Qs = np.stack([q_cv * np.outer(g_cv, g_cv), q_ca * np.outer(g_ca, g_ca)])
+    return Fs, Qs
+
+
+@dataclass(frozen=True)
+class IMMOutput:
+    """History; time after the batch axes.
+
+    Attributes
+    ----------
+    x : ndarray, shape (..., T, n)       combined posterior (prior where the measurement is missing)
+    P : ndarray, shape (..., T, n, n)
+    mu : ndarray, shape (..., T, r)      mode probabilities
+    x_prior : ndarray, shape (..., T, n) combined prior before each frame's measurement
+    P_prior : ndarray, shape (..., T, n, n)
+    """
+
+    x: np.ndarray
+    P: np.ndarray
+    mu: np.ndarray
+    x_prior: np.ndarray
+    P_prior: np.ndarray
+
+
+def _combine(xs, Ps, w):
+    """``sum_j w_j x_j`` and ``sum_j w_j (P_j + d d^T)``; xs (..., r, n), w (..., r)."""
+    x = np.einsum("...j,...ji->...i", w, xs)
+    d = xs - x[..., None, :]
+    P = np.einsum("...j,...jab->...ab", w, Ps + d[..., :, None] * d[..., None, :])
+    return x, 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
+    """Run the IMM over measurements ``zs``.
+
+    Parameters
+    ----------
+    zs : array_like, shape (..., T, m)
+        Measurements; a row with a NaN is missing.
+    Fs, Qs : array_like, shape (r, n, n)
+        Mode transition matrices and process noise covariances.
+    H : array_like, shape (m, n)
+    R : array_like, shape (m, m)
+    transition : array_like, shape (r, r)
+        Markov mode transition matrix, ``transition[i, j] = P(mode j next | mode i now)``; rows sum to 1.
+    x0 : array_like, shape (n,) or (..., n)
+        Initial estimate (the same for every mode), treated as the posterior before frame 0.
+    P0 : array_like, shape (n, n) or (..., n, n)
+    mu0 : array_like, shape (r,)
+        Initial mode probabilities.
+
+    Returns
+    -------
+    IMMOutput
+    """
+    zs = np.asarray(zs, dtype=float)
+    Fs, Qs = np.asarray(Fs, float), np.asarray(Qs, float)
+    M = np.asarray(transition, dtype=float)
+    r, n = Fs.shape[0], Fs.shape[-1]
+    if Qs.shape != Fs.shape or M.shape != (r, r):
+        raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
+    if np.any(M < 0) or not np.allclose(M.sum(axis=1), 1.0):
+        raise ValueError("parameter 'transition' must be a row-stochastic matrix")
+    mu0 = np.asarray(mu0, dtype=float)
+    if mu0.shape != (r,) or np.any(mu0 < 0) or not np.isclose(mu0.sum(), 1.0):
+        raise ValueError(f"parameter 'mu0' = {mu0}; it must be {r} probabilities summing to 1")
+    batch, T = zs.shape[:-2], zs.shape[-2]
+    xs = np.broadcast_to(np.asarray(x0, float), batch + (n,))[..., None, :].repeat(r, axis=-2)
+    Ps = np.broadcast_to(np.asarray(P0, float), batch + (n, n))[..., None, :, :].repeat(r, axis=-3)
+    mu = np.broadcast_to(mu0, batch + (r,)).copy()
+    out = {k: [] for k in ("x", "P", "mu", "x_prior", "P_prior")}
+    for t in range(T):
+        # 1. mixing
+        cbar = mu @ M                                                     # (..., r)
+        omega = mu[..., :, None] * M / cbar[..., None, :]                 # (..., i, j)
+        x_mix = np.einsum("...ij,...ia->...ja", omega, xs)
+        d = xs[..., :, None, :] - x_mix[..., None, :, :]                  # (..., i, j, n)
+        P_mix = np.einsum("...ij,...ijab->...jab", omega,
+                          Ps[..., :, None, :, :] + d[..., :, None] * d[..., None, :])
+        # 2. mode-matched prediction
+        xs, Ps = kf_predict(x_mix, P_mix, Fs, Qs)
+        xp, Pp = _combine(xs, Ps, cbar)
+        out["x_prior"].append(xp)
+        out["P_prior"].append(Pp)
+        # 3. mode-matched update with likelihoods
+        z = zs[..., t, :]
+        present = np.all(np.isfinite(z), axis=-1)
+        zz = np.where(present[..., None], z, 0.0)[..., None, :]
+        xs_u, Ps_u, nu, S = kf_update(xs, Ps, zz, H, R, present[..., None])
+        m = nu.shape[-1]
+        maha = np.einsum("...i,...i->...", nu, np.linalg.solve(S, nu[..., None])[..., 0])
+        loglik = -0.5 * (maha + np.linalg.slogdet(S)[1] + m * np.log(2 * np.pi))
+        # 4. mode probabilities (log domain, normalised) and combination
+        logw = np.log(cbar) + loglik
+        w = np.exp(logw - logw.max(axis=-1, keepdims=True))
+        mu = np.where(present[..., None], w / w.sum(axis=-1, keepdims=True), cbar)
+        xs, Ps = xs_u, Ps_u
+        x, P = _combine(xs, Ps, mu)
+        out["x"].append(x)
+        out["P"].append(P)
+        out["mu"].append(mu)
+    axis = len(batch)
+    return IMMOutput(**{k: np.stack(v, axis=axis) for k, v in out.items()})
