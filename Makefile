@@ -1,0 +1,36 @@
+# tvtrack-repro: `make reproduce` (the main job) and `make test`. See README.md.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+
+.PHONY: reproduce test bench report kernel sweep clean-runs
+
+$(STAMP): environment.txt pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q -r environment.txt
+	$(BIN)/python -m pip install -q --no-deps -e .
+	touch $(STAMP)
+
+kernel: $(STAMP)
+	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null
+
+reproduce: $(STAMP) kernel
+	$(BIN)/python -m tvtrack reproduce
+
+report: $(STAMP)
+	$(BIN)/python -m tvtrack report
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+bench: $(STAMP)
+	mkdir -p benchmarks/results
+	$(BIN)/python -m pytest benchmarks -q --benchmark-only --benchmark-json=benchmarks/results/benchmarks.json
+
+# make sweep SPEC=papermill_runs/sweeps/004_horizon.toml JOBS=2
+sweep: $(STAMP)
+	$(BIN)/python -m tvtrack sweep $(SPEC) --jobs $(or $(JOBS),2)
+
+clean-runs:
+	rm -rf papermill_runs/reproduce papermill_runs/runs papermill_runs/interactive

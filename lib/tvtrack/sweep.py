@@ -1,0 +1,309 @@
+"""Parameter sweeps: a TOML spec -> many notebook runs -> ``summary.csv`` (+ a plot).
+
+Spec format (see README, "Sweeps")::
+
+    notebook = "004_laser_spot_prediction"   # name in notebooks/ or a path relative to the spec
+    profile = "smoke"                          # optional base profile (default: paper defaults)
+    repeats = 2                                # distinct seeds seed, seed+1, ... (default 1)
+    [fixed]    n_trials = 20                   # set in every run
+    [grid]     horizon_frames = [1, 2, 5]      # cartesian product
+    [zip]      a = [1, 2]; b = [10, 20]        # varied together (equal lengths)
+    [summary]  x = "horizon_frames"; y = "rms_px.value"; hue = "noise"
+
+Each run's directory is ``<sweep dir>/runs/<hash>``, the hash a stable digest of the notebook
+and its parameters, so a sweep started again skips the runs already finished (resume). A run
+that fails is recorded in its directory (``run.json`` with the error, ``error.txt``) and never
+stops the others; the sweep exits non-zero if any run failed. A run's directory appears only
+when the run has ended (see :mod:`tvtrack.runner`).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import itertools
+import json
+import shutil
+import tomllib
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from multiprocessing import get_context
+from pathlib import Path
+from typing import Any
+
+from .paths import RUNS_DIR
+from .runner import find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
+
+__all__ = ["SweepSpec", "RunSpec", "SweepSummary", "load_spec", "expand", "run_hash", "run_sweep",
+           "collect_summary"]
+
+_SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One run of a sweep: the notebook, the full parameter overrides and the run's id."""
+
+    notebook: str
+    profile: str | None
+    parameters: dict
+    run_id: str
+
+
+@dataclass
+class SweepSpec:
+    name: str
+    notebook: Path
+    profile: str | None
+    repeats: int
+    fixed: dict
+    grid: dict
+    zipped: dict
+    summary: dict = field(default_factory=dict)
+
+
+def load_spec(path: str | Path) -> SweepSpec:
+    """Read and check a sweep spec; raises ``ValueError`` naming the bad key."""
+    path = Path(path)
+    with path.open("rb") as fh:
+        raw = tomllib.load(fh)
+    unknown = set(raw) - _SPEC_KEYS
+    if unknown:
+        raise ValueError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS)}")
+    if "notebook" not in raw:
+        raise ValueError(f"{path}: 'notebook' is required")
+    nb_name = raw["notebook"]
+    nb = find_notebook(path.parent / nb_name) if (path.parent / nb_name).exists() else find_notebook(nb_name)
+    repeats = raw.get("repeats", 1)
+    if not isinstance(repeats, int) or repeats < 1:
+        raise ValueError(f"{path}: 'repeats' = {repeats!r}; it must be an integer >= 1")
+    grid, zipped = raw.get("grid", {}), raw.get("zip", {})
+    for key, values in {**grid, **zipped}.items():
+        if not isinstance(values, list) or not values:
+            raise ValueError(f"{path}: grid/zip entry {key!r} must be a non-empty list")
+    if len({len(v) for v in zipped.values()}) > 1:
+        raise ValueError(f"{path}: all [zip] lists must have the same length, got "
+                         f"{ {k: len(v) for k, v in zipped.items()} }")
+    overlap = (set(grid) & set(zipped)) | ((set(grid) | set(zipped)) & set(raw.get("fixed", {})))
+    if overlap:
+        raise ValueError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
+    summary = raw.get("summary", {})
+    if summary and not {"x", "y"} <= set(summary):
+        raise ValueError(f"{path}: [summary] needs both 'x' and 'y'")
+    return SweepSpec(name=path.stem, notebook=nb, profile=raw.get("profile"), repeats=repeats,
+                     fixed=dict(raw.get("fixed", {})), grid=dict(grid), zipped=dict(zipped), summary=summary)
+
+
+def run_hash(notebook: str, profile: str | None, parameters: dict) -> str:
+    """Stable 12-hex-digit id of a run (independent of dict order)."""
+    blob = json.dumps({"notebook": notebook, "profile": profile, "parameters": parameters},
+                      sort_keys=True, default=str)
+    return hashlib.sha256(blob.encode()).hexdigest()[:12]
+
+
+def expand(spec: SweepSpec) -> list[RunSpec]:
+    """All runs of a spec: grid product x zipped rows x repeats (seeds base, base+1, ...).
+
+    The base seed is the spec's ``fixed.seed`` if given, else the profile's, else the
+    notebook's default (read from the run's injected parameters, so it is set explicitly here
+    to keep run ids stable: default 0 when nothing names it)."""
+    base_params = {**load_profile(spec.notebook, spec.profile), **spec.fixed}
+    base_seed = base_params.get("seed", _default_seed(spec.notebook))
+    grid_keys = list(spec.grid)
+    grid_rows = [dict(zip(grid_keys, combo)) for combo in itertools.product(*(spec.grid[k] for k in grid_keys))]
+    zip_keys = list(spec.zipped)
+    n_zip = len(next(iter(spec.zipped.values()))) if zip_keys else 1
+    zip_rows = [{k: spec.zipped[k][i] for k in zip_keys} for i in range(n_zip)]
+    runs = []
+    for g in grid_rows:
+        for z in zip_rows:
+            for r in range(spec.repeats):
+                params = {**spec.fixed, **g, **z, "seed": int(base_seed) + r}
+                runs.append(RunSpec(spec.notebook.stem, spec.profile, params,
+                                    run_hash(spec.notebook.stem, spec.profile, params)))
+    return runs
+
+
+def _default_seed(notebook: Path) -> int:
+    """The ``seed`` default in the notebook's parameters cell."""
+    import ast
+
+    import nbformat
+
+    nb = nbformat.read(notebook, as_version=4)
+    for cell in nb.cells:
+        if cell.cell_type == "code" and "parameters" in cell.metadata.get("tags", []):
+            for node in ast.parse(cell.source).body:
+                if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "seed" for t in node.targets):
+                    return int(ast.literal_eval(node.value))
+    return 0
+
+
+def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str, str | None, float]:
+    """Worker: one run (top-level so process pools and Dask can pickle it)."""
+    outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
+                           extra_record={"run_id": run.run_id})
+    return run.run_id, outcome.status, outcome.error, outcome.runtime_s
+
+
+@dataclass
+class SweepSummary:
+    sweep_dir: Path
+    n_runs: int
+    n_skipped: int
+    n_ok: int
+    n_failed: int
+    summary_csv: Path
+    plot: Path | None
+
+
+def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = None,
+              executor: str = "local", scheduler: str | None = None, progress: bool = True) -> SweepSummary:
+    """Run every run of a spec that has not finished yet, then write the summary.
+
+    Parameters
+    ----------
+    jobs : int
+        Parallel runs in the local process pool (>= 1).
+    output : path, optional
+        Sweep directory (default ``papermill_runs/<spec name>``).
+    executor : {"local", "dask"}
+        ``"dask"`` submits the runs to an existing Dask cluster at ``scheduler``.
+    """
+    if jobs < 1:
+        raise ValueError(f"parameter 'jobs' = {jobs}; it must be an integer >= 1")
+    if executor == "dask" and not scheduler:
+        raise ValueError("executor 'dask' needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    spec = load_spec(spec_path)
+    sweep_dir = Path(output) if output else RUNS_DIR / spec.name
+    runs_dir = sweep_dir / "runs"
+    runs_dir.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(runs_dir)
+    (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
+    runs = expand(spec)
+    todo = []
+    for run in runs:
+        record = read_run(runs_dir / run.run_id)
+        if record and record.get("status") == "ok":
+            continue
+        if (runs_dir / run.run_id).exists():  # a failed run is tried again
+            shutil.rmtree(runs_dir / run.run_id)
+        todo.append(run)
+    n_skipped = len(runs) - len(todo)
+
+    from tqdm import tqdm
+
+    bar = tqdm(total=len(runs), initial=n_skipped, desc=spec.name, disable=not progress, unit="run")
+    failed = 0
+    nb_path = str(spec.notebook)
+
+    def tick(status: str) -> None:
+        nonlocal failed
+        failed += status != "ok"
+        bar.update(1)
+        bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
+
+    if executor == "dask":
+        from distributed import Client, as_completed as dask_completed
+
+        with Client(scheduler) as client:
+            futures = [client.submit(_execute, r, nb_path, str(runs_dir), pure=False) for r in todo]
+            for fut in dask_completed(futures):
+                tick(fut.result()[1])
+    elif jobs == 1:
+        for r in todo:
+            tick(_execute(r, nb_path, str(runs_dir))[1])
+    else:
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn")) as pool:
+            futures = [pool.submit(_execute, r, nb_path, str(runs_dir)) for r in todo]
+            for fut in as_completed(futures):
+                tick(fut.result()[1])
+    bar.close()
+    csv_path, plot = collect_summary(sweep_dir, runs, spec.summary)
+    records = [read_run(runs_dir / r.run_id) or {} for r in runs]
+    n_ok = sum(rec.get("status") == "ok" for rec in records)
+    n_failed = len(runs) - n_ok
+    print(f"{spec.name}: {n_ok} ok, {n_failed} failed, {n_skipped} skipped (already done) -> {sweep_dir}")
+    for r, rec in zip(runs, records):
+        if rec.get("status") != "ok":
+            print(f"  failed {r.run_id} {r.parameters}: {rec.get('error')}")
+    return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, n_failed, csv_path, plot)
+
+
+def _flatten_metrics(metrics: dict) -> dict[str, Any]:
+    """Scalars as they are; Estimate-like dicts as NAME.value / NAME.ci_low / NAME.ci_high;
+    lists and other nested values are left out of the table."""
+    out: dict[str, Any] = {}
+    for name, value in metrics.items():
+        if isinstance(value, (int, float, bool)) or value is None:
+            out[name] = value
+        elif isinstance(value, dict) and "value" in value:
+            for key in ("value", "ci_low", "ci_high"):
+                out[f"{name}.{key}"] = value.get(key)
+    return out
+
+
+def collect_summary(sweep_dir: Path, runs: list[RunSpec], summary: dict | None = None) -> tuple[Path, Path | None]:
+    """Write ``summary.csv`` (one row per run: id, status, error, parameters, metrics, verdicts)
+    and, if ``summary`` names ``x`` and ``y``, ``summary.png``."""
+    rows = []
+    for run in runs:
+        run_dir = sweep_dir / "runs" / run.run_id
+        rec = read_run(run_dir) or {"status": "missing"}
+        row: dict[str, Any] = {"run_id": run.run_id, "status": rec.get("status"), "error": rec.get("error") or "",
+                               "runtime_s": rec.get("runtime_s")}
+        row.update(run.parameters)
+        res = run_dir / "results.json"
+        if res.is_file():
+            data = json.loads(res.read_text())
+            row.update(_flatten_metrics(data.get("metrics", {})))
+            row.update({f"verdict {c['id']}": c["verdict"] for c in data.get("claims", [])})
+        rows.append(row)
+    columns: list[str] = []
+    for row in rows:
+        columns += [k for k in row if k not in columns]
+    csv_path = sweep_dir / "summary.csv"
+    with csv_path.open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=columns)
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in row.items()})
+    plot = _summary_plot(sweep_dir, rows, summary) if summary else None
+    return csv_path, plot
+
+
+def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    x, y, hue = summary["x"], summary["y"], summary.get("hue")
+    ok = [r for r in rows if r.get("status") == "ok" and r.get(y) is not None and x in r]
+    if not ok:
+        return None
+    groups: dict[Any, list[dict]] = {}
+    for r in ok:
+        groups.setdefault(r.get(hue) if hue else None, []).append(r)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    base = y[:-len(".value")] if y.endswith(".value") else None
+    for key, items in groups.items():
+        xs = sorted({r[x] for r in items})
+        mean = [np.mean([r[y] for r in items if r[x] == v]) for v in xs]
+        label = f"{hue} = {key}" if hue else None
+        line, = ax.plot(xs, mean, marker="o", label=label)
+        if base and all(f"{base}.ci_low" in r for r in items):
+            lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
+            hi = [np.mean([r[f"{base}.ci_high"] for r in items if r[x] == v]) for v in xs]
+            ax.fill_between(xs, lo, hi, alpha=0.2, color=line.get_color())
+    ax.set_xlabel(summary.get("xlabel", x))
+    ax.set_ylabel(summary.get("ylabel", y))
+    ax.set_title(summary.get("title", sweep_dir.name))
+    if hue:
+        ax.legend()
+    ax.grid(alpha=0.3)
+    path = sweep_dir / "summary.png"
+    fig.savefig(path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    return path

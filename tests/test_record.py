@@ -1,0 +1,73 @@
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from rerun.chunk import RrdReader
+
+from tvtrack.record import Recorder, ellipse_outline, image_and_series_blueprint
+
+
+def rerun_cli() -> str:
+    return str(Path(sys.executable).parent / "rerun")
+
+
+def write_recording(tmp_path, n=6):
+    rec = Recorder(tmp_path, "file", "tvtrack-test", blueprint=image_and_series_blueprint("camera", ["errors"]),
+                   frame_interval_s=0.04)
+    for k in range(n):
+        rec.set_frame(k)
+        rec.image("camera/image", np.full((8, 10), k, dtype=np.uint8))
+        rec.boxes("camera/gate", [[4.0, 3.0]], [[2.0, 2.0]])
+        rec.points("camera/truth", [[4.0, 3.0]])
+        rec.lines("camera/covariance", ellipse_outline([4.0, 3.0], np.eye(2)))
+    rec.series("errors/x", np.r_[np.nan, np.arange(n - 1.0)])
+    path = rec.close()
+    return path
+
+
+def test_recording_has_entities_archetypes_and_rows(tmp_path):
+    path = write_recording(tmp_path)
+    assert path == tmp_path / "recording.rrd"
+    store = RrdReader(path).store()
+    summary = {line.split()[0]: line for line in store.summary().splitlines()}
+    assert "rows=6" in summary["/camera/image"]
+    assert "rows=6" in summary["/camera/gate"]
+    assert "rows=5" in summary["/errors/x"]  # the NaN sample is dropped
+    names = str(store.schema())
+    for archetype in ("Boxes2D", "Scalars", "LineStrips2D", "Image", "Points2D"):
+        assert f"rerun.archetypes.{archetype}" in names
+    assert [b.kind for b in RrdReader(path).blueprints()] == ["blueprint"]
+
+
+def test_positions_are_shifted_to_pixel_centres(tmp_path):
+    path = write_recording(tmp_path, n=1)
+    chunks = [c for c in RrdReader(path).store().stream().to_chunks() if c.entity_path == "/camera/truth"]
+    batch = chunks[0].to_record_batch()
+    positions = batch.column(batch.schema.names.index("Points2D:positions")).to_pylist()
+    assert positions == [[[4.5, 3.5]]]  # library pixel centre (4, 3) drawn at Rerun's (4.5, 3.5)
+
+
+def test_rerun_verifies_the_file(tmp_path):
+    path = write_recording(tmp_path)
+    out = subprocess.run([rerun_cli(), "rrd", "verify", str(path)], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+
+
+def test_off_mode_writes_nothing(tmp_path):
+    rec = Recorder(tmp_path, "off")
+    rec.set_frame(0)
+    rec.points("camera/truth", [[1, 2]])
+    assert rec.close() is None
+    assert not any(tmp_path.iterdir())
+    with pytest.raises(ValueError, match="rerun_mode"):
+        Recorder(tmp_path, "web")
+
+
+def test_ellipse_outline_lies_on_the_mahalanobis_contour():
+    cov = np.array([[4.0, 1.0], [1.0, 2.0]])
+    pts = ellipse_outline([1.0, -1.0], cov, n_sigma=2.0)
+    d = pts - [1.0, -1.0]
+    m = np.einsum("ni,ij,nj->n", d, np.linalg.inv(cov), d)
+    assert np.allclose(m, 4.0)

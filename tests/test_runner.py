@@ -1,0 +1,154 @@
+"""Runner, sweeps, resume after SIGKILL, failure isolation, determinism and the Dask executor,
+all on the fixture notebook (tests/fixtures/fixture_centroid.ipynb)."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import FIXTURE_NOTEBOOK, FIXTURE_SWEEP
+from tvtrack.runner import read_run, run_notebook
+from tvtrack.sweep import expand, load_spec, run_sweep
+
+SWEEP_PARAMS = {"n_trials": 20, "n_frames": 5, "rerun_mode": "off"}
+
+
+def metrics(run_dir: Path) -> dict:
+    return json.loads((run_dir / "results.json").read_text())["metrics"]
+
+
+def write_spec(path: Path, body: str) -> Path:
+    path.write_text(f'notebook = "{FIXTURE_NOTEBOOK}"\n' + body)
+    return path
+
+
+@pytest.fixture(scope="module")
+def sweep_two_jobs(tmp_path_factory):
+    out = tmp_path_factory.mktemp("sweep") / "fixture"
+    return run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
+
+
+def test_run_writes_results_figure_recording_and_record(tmp_path):
+    outcome = run_notebook(FIXTURE_NOTEBOOK, tmp_path / "run", {"n_trials": 20})
+    assert outcome.ok, outcome.error
+    names = {p.name for p in (tmp_path / "run").iterdir()}
+    assert {"results.json", "run.json", "notebook.ipynb", "recording.rrd", "centroid_errors.png"} <= names
+    record = read_run(tmp_path / "run")
+    assert record["status"] == "ok" and record["parameters"]["n_trials"] == 20
+    assert not list(tmp_path.glob(".tmp-*"))
+
+
+def test_invalid_parameter_fails_with_the_validation_message(tmp_path):
+    outcome = run_notebook(FIXTURE_NOTEBOOK, tmp_path / "bad", {"spot_sigma_px": -1.0})
+    assert not outcome.ok
+    assert "parameter 'spot_sigma_px' = -1.0 is out of range" in outcome.error
+    assert read_run(tmp_path / "bad")["status"] == "failed"
+    assert "ValueError" in (tmp_path / "bad" / "error.txt").read_text()
+    assert not (tmp_path / "bad" / "results.json").exists()
+
+
+def test_cli_run_exit_codes(tmp_path):
+    cmd = [sys.executable, "-m", "tvtrack", "run", str(FIXTURE_NOTEBOOK), "-q", "-p", "n_trials", "5"]
+    ok = subprocess.run(cmd + ["-o", str(tmp_path / "a")], capture_output=True, text=True)
+    assert ok.returncode == 0 and "ok: fixture_centroid" in ok.stdout
+    bad = subprocess.run(cmd + ["-p", "gate_size_px", "99", "-o", str(tmp_path / "b")], capture_output=True, text=True)
+    assert bad.returncode == 1 and "parameter 'gate_size_px' = 99" in bad.stderr
+
+
+def test_spec_expansion_and_stable_ids():
+    runs = expand(load_spec(FIXTURE_SWEEP))
+    assert len(runs) == 8 and len({r.run_id for r in runs}) == 8
+    assert sorted({r.parameters["seed"] for r in runs}) == [1, 2]
+    assert [r.run_id for r in runs] == [r.run_id for r in expand(load_spec(FIXTURE_SWEEP))]
+
+
+def test_bad_specs_are_refused(tmp_path):
+    with pytest.raises(ValueError, match="unknown keys"):
+        load_spec(write_spec(tmp_path / "a.toml", "gird = 1\n"))
+    with pytest.raises(ValueError, match="same length"):
+        load_spec(write_spec(tmp_path / "b.toml", "[zip]\na = [1, 2]\nb = [1]\n"))
+    with pytest.raises(ValueError, match="more than one"):
+        load_spec(write_spec(tmp_path / "c.toml", "[fixed]\na = 1\n[grid]\na = [1, 2]\n"))
+
+
+def test_sweep_of_eight_runs_with_two_jobs(sweep_two_jobs):
+    s = sweep_two_jobs
+    assert (s.n_runs, s.n_ok, s.n_failed) == (8, 8, 0)
+    lines = s.summary_csv.read_text().splitlines()
+    assert len(lines) == 9 and "centroid_rms_px.value" in lines[0] and "verdict C900-1" in lines[0]
+    assert s.plot is not None and s.plot.stat().st_size > 0
+    again = run_sweep(FIXTURE_SWEEP, jobs=2, output=s.sweep_dir, progress=False)
+    assert again.n_skipped == 8 and again.n_ok == 8
+
+
+def test_same_seed_gives_identical_metrics_alone_and_in_sweeps(sweep_two_jobs, tmp_path):
+    target = next(r for r in expand(load_spec(FIXTURE_SWEEP))
+                  if r.parameters["spot_sigma_px"] == 1.5 and r.parameters["seed"] == 2)
+    in_two_jobs = metrics(sweep_two_jobs.sweep_dir / "runs" / target.run_id)
+    alone = run_notebook(FIXTURE_NOTEBOOK, tmp_path / "alone", target.parameters)
+    spec = write_spec(tmp_path / "one.toml", "[fixed]\n" + "".join(
+        f"{k} = {json.dumps(v)}\n" for k, v in target.parameters.items() if k != "seed")
+        + f"seed = {target.parameters['seed']}\n")
+    one_job = run_sweep(spec, jobs=1, output=tmp_path / "one", progress=False)
+    assert one_job.n_ok == 1
+    (run_dir,) = [p for p in (tmp_path / "one" / "runs").iterdir()]
+    assert metrics(tmp_path / "alone") == in_two_jobs == metrics(run_dir)
+    assert alone.ok
+
+
+def test_failed_run_is_isolated_and_recorded(tmp_path):
+    spec = write_spec(tmp_path / "mixed.toml",
+                      "[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n[grid]\nspot_sigma_px = [1.0, -2.0, 2.0]\n")
+    s = run_sweep(spec, jobs=2, output=tmp_path / "mixed", progress=False)
+    assert (s.n_ok, s.n_failed) == (2, 1)
+    rows = s.summary_csv.read_text().splitlines()
+    failed = [r for r in rows if ",failed," in r]
+    assert len(failed) == 1 and "parameter 'spot_sigma_px' = -2.0 is out of range" in failed[0]
+    cli = subprocess.run([sys.executable, "-m", "tvtrack", "sweep", str(spec), "-o", str(tmp_path / "mixed")],
+                         capture_output=True, text=True)
+    assert cli.returncode == 1  # any failed run makes the sweep exit non-zero
+    assert "2 ok, 1 failed, 2 skipped" in cli.stdout
+
+
+def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
+    out = tmp_path / "killed"
+    proc = subprocess.Popen([sys.executable, "-m", "tvtrack", "sweep", str(FIXTURE_SWEEP), "--jobs", "2",
+                             "-o", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    runs = out / "runs"
+    deadline = time.time() + 240
+    while time.time() < deadline:
+        done = [p for p in runs.glob("[0-9a-f]*")] if runs.exists() else []
+        if len(done) >= 2:
+            break
+        time.sleep(0.2)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    finished = {p.name for p in runs.iterdir() if not p.name.startswith(".tmp-")}
+    assert 2 <= len(finished) < 8
+    for name in finished:  # no half-written run directory
+        assert read_run(runs / name)["status"] == "ok"
+        assert (runs / name / "results.json").is_file()
+    resumed = run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
+    assert resumed.n_skipped == len(finished)
+    assert resumed.n_ok == 8 and not list(runs.glob(".tmp-*"))
+
+
+def test_dask_executor_on_a_local_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    spec = write_spec(tmp_path / "dask.toml",
+                      "repeats = 2\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n"
+                      "[grid]\nspot_sigma_px = [1.0, 2.0]\n")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        s = run_sweep(spec, output=tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address,
+                      progress=False)
+    assert (s.n_runs, s.n_ok) == (4, 4)
+    local = run_sweep(spec, jobs=1, output=tmp_path / "local", progress=False)
+    for run in expand(load_spec(spec)):
+        assert metrics(s.sweep_dir / "runs" / run.run_id) == metrics(local.sweep_dir / "runs" / run.run_id)
