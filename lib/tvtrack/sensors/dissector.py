@@ -1,0 +1,399 @@
+"""Image-dissector micro-raster tracker on one axis (Martyshevsky 1995, paper card 000).
+
+The dissector aperture sweeps a micro-raster across a point object; within each scan interval
+``T`` the object coordinate ``x`` is the time shift of a Gaussian video pulse. Time is normalised
+to ``T = 1`` and the coordinate is in units of ``T`` (micro-raster size). The dissector current is
+
+    Y(t) = A S(x, t) + sqrt(N(t)) n0(t),   N(t) = N0 (1 + P/(1-P) S(x, t))          (eqs. (2), (5))
+
+with unit-intensity white noise ``n0``; sampled with interval ``dt`` this is
+``Y(k) = A S(x_k, t_k) + sqrt(N(t_k)/dt) xi_k``, ``xi_k ~ N(0, 1)``. The message ``x`` is a
+first-order Gauss-Markov process (eqs. (3), (4)).
+
+Two filters of the paper:
+
+- variant 1 (:func:`variant1_filter`): state ``[X1, X2]``; the signal noise is modelled by the
+  coloured process ``X2`` entering as ``sqrt(c_s S) X2`` (eqs. (6)-(8), (E1)-(E8));
+- variant 2 (:func:`variant2_filter`): scalar state; the noise intensity of eq. (2) evaluated at
+  the estimate (eq. (9)).
+
+The stationary-noise reference is variant 2 with ``P = 0`` on data with ``P = 0``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..filters.ekf import ExtendedKalmanFilter
+
+__all__ = [
+    "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
+    "background_intensity", "draw_noises", "simulate", "simulate_two_rates", "variant1_filter", "variant2_filter",
+    "run_variant1", "run_variant2", "fisher_information", "lock_lost",
+]
+
+#: Readings of the paper's ``sigma_sh`` in ``psi_A = A / sigma_sh``.
+SIGMA_SH_DEFINITIONS = ("per_sample", "unit_bandwidth")
+#: Readings of the signal-noise scale ``c_s`` of variant 1: eq. (2)-consistent or the literal ``A``.
+SIGNAL_NOISE_SCALES = ("consistent", "literal")
+#: Readings of ``G22`` (process-noise variance of ``X2`` per step).
+G22_MODES = ("paper", "euler", "matched")
+
+
+def _check_real(name, value, low=None, high=None, low_open=False, high_open=False):
+    ok = np.isfinite(value)
+    if ok and low is not None:
+        ok = value > low if low_open else value >= low
+    if ok and high is not None:
+        ok = value < high if high_open else value <= high
+    if not ok:
+        left = "(" if low_open else "["
+        right = ")" if high_open else "]"
+        raise ValueError(f"parameter {name!r} = {value!r}; it must be in {left}{low}, {high}{right}")
+
+
+def _check_choice(name, value, options):
+    if value not in options:
+        raise ValueError(f"parameter {name!r} = {value!r}; it must be one of {options}")
+
+
+def background_intensity(psi_a: float, amplitude: float, dt: float, sigma_sh: str = "per_sample") -> float:
+    """Background noise intensity ``N0`` that gives ``psi_A = A / sigma_sh``.
+
+    Parameters
+    ----------
+    psi_a : float          signal-to-noise ratio ``psi_A`` (> 0)
+    amplitude : float      pulse peak ``A``
+    dt : float             sampling interval (units of ``T``)
+    sigma_sh : {"per_sample", "unit_bandwidth"}
+        ``"per_sample"``: ``sigma_sh = sqrt(N0/dt)``, the RMS of one sample, so ``N0 = dt (A/psi)^2``;
+        ``"unit_bandwidth"``: ``sigma_sh = sqrt(N0)``, the RMS in a unit (1/T) bandwidth, so
+        ``N0 = (A/psi)^2``.
+    """
+    _check_real("psi_a", psi_a, 0.0, None, low_open=True)
+    _check_real("amplitude", amplitude, 0.0, None, low_open=True)
+    _check_real("dt", dt, 0.0, None, low_open=True)
+    _check_choice("sigma_sh", sigma_sh, SIGMA_SH_DEFINITIONS)
+    n0 = (amplitude / psi_a) ** 2
+    return n0 * dt if sigma_sh == "per_sample" else n0
+
+
+@dataclass(frozen=True)
+class DissectorScan:
+    """Sampled micro-raster scan of one axis.
+
+    Parameters
+    ----------
+    n0 : float              background noise intensity ``N0`` (per unit time, units of ``A^2 T``)
+    contrast : float        electrical contrast ``P`` in [0, 1)
+    amplitude : float       pulse peak ``A``
+    dt : float              sampling interval, units of ``T`` (``1/dt`` samples per scan)
+    pulse_sigma : float     pulse standard deviation ``sigma_t = T_u / 2`` (``T_u`` at level 0.606 A)
+    pulse_centre : float    scan phase of the pulse for ``x = 0`` (``tau_c``)
+    time_offset : float     time of sample ``k`` is ``t_k = k dt + time_offset`` (units of ``T``)
+    """
+
+    n0: float
+    contrast: float = 0.0
+    amplitude: float = 1.0
+    dt: float = 0.05
+    pulse_sigma: float = 0.25
+    pulse_centre: float = 0.5
+    time_offset: float = 0.0
+
+    def __post_init__(self):
+        _check_real("n0", self.n0, 0.0, None, low_open=True)
+        _check_real("contrast", self.contrast, 0.0, 1.0, high_open=True)
+        _check_real("amplitude", self.amplitude, 0.0, None, low_open=True)
+        _check_real("dt", self.dt, 0.0, 1.0, low_open=True)
+        _check_real("pulse_sigma", self.pulse_sigma, 0.0, None, low_open=True)
+        _check_real("pulse_centre", self.pulse_centre, 0.0, 1.0)
+        _check_real("time_offset", self.time_offset, -1.0, 1.0)
+
+    @property
+    def signal_noise_ratio(self) -> float:
+        """``P / (1 - P)``: signal-noise intensity per unit ``S`` relative to ``N0`` (eq. (2))."""
+        return self.contrast / (1.0 - self.contrast)
+
+    def phase(self, k):
+        """Scan phase ``tau = t mod T`` of sample ``k`` (``t_k = k dt + time_offset``)."""
+        return np.mod(np.asarray(k) * self.dt + self.time_offset, 1.0)
+
+    def offset(self, x, k):
+        """``u = tau_k - tau_c - x``, the pulse argument (units of ``T``)."""
+        return self.phase(k) - self.pulse_centre - x
+
+    def shape(self, x, k):
+        """Normalised pulse ``S(x, t_k) = exp(-u^2 / (2 sigma_t^2))`` (peak 1)."""
+        u = self.offset(x, k)
+        return np.exp(-0.5 * (u / self.pulse_sigma) ** 2)
+
+    def shape_derivative(self, x, k):
+        """``dS/dx = S u / sigma_t^2``."""
+        u = self.offset(x, k)
+        return np.exp(-0.5 * (u / self.pulse_sigma) ** 2) * u / self.pulse_sigma ** 2
+
+    def noise_intensity(self, x, k, contrast: float | None = None):
+        """``N(t_k) = N0 (1 + P/(1-P) S(x, t_k))`` (eq. (2)); ``contrast`` overrides ``P``."""
+        p = self.contrast if contrast is None else contrast
+        return self.n0 * (1.0 + p / (1.0 - p) * self.shape(x, k))
+
+    def sample_variance(self, x, k, contrast: float | None = None):
+        """Variance of one sample's noise, ``N(t_k) / dt``."""
+        return self.noise_intensity(x, k, contrast) / self.dt
+
+
+@dataclass(frozen=True)
+class GaussMarkovMessage:
+    """Stationary first-order Gauss-Markov coordinate (eqs. (3), (4)).
+
+    Parameters
+    ----------
+    sigma : float   standard deviation ``sigma_1`` (units of ``T``)
+    alpha : float   inverse correlation time ``alpha_0`` (units of ``1/T``)
+    """
+
+    sigma: float = 0.1
+    alpha: float = 0.15
+
+    def __post_init__(self):
+        _check_real("sigma", self.sigma, 0.0, None, low_open=True)
+        _check_real("alpha", self.alpha, 0.0, None, low_open=True)
+
+    def euler(self, dt):
+        """Euler discretisation used by the paper's filters: ``(1 - alpha dt, 2 alpha sigma^2 dt)``
+        (eqs. (E4), (E8))."""
+        return 1.0 - self.alpha * dt, 2.0 * self.alpha * self.sigma ** 2 * dt
+
+    def exact(self, dt):
+        """Exact discretisation ``(exp(-alpha dt), sigma^2 (1 - exp(-2 alpha dt)))``."""
+        f = np.exp(-self.alpha * dt)
+        return f, self.sigma ** 2 * (1.0 - f * f)
+
+
+def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int) -> dict:
+    """Unit normal draws for one Monte Carlo experiment (common random numbers).
+
+    Returns
+    -------
+    dict with ``x0`` (n_trials,), ``w`` (n_trials, n_steps) process noise, ``xi`` (n_trials, n_steps)
+    observation noise, ``init`` (n_trials, 2) for random initial estimates.
+    """
+    if n_trials < 1 or n_steps < 1:
+        raise ValueError(f"parameters 'n_trials' = {n_trials}, 'n_steps' = {n_steps}; both must be >= 1")
+    return {
+        "x0": rng.standard_normal(n_trials),
+        "w": rng.standard_normal((n_trials, n_steps)),
+        "xi": rng.standard_normal((n_trials, n_steps)),
+        "init": rng.standard_normal((n_trials, 2)),
+    }
+
+
+def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+    """Truth and sampled observations (eq. (5)), exact discretisation of the message.
+
+    Parameters
+    ----------
+    noises : dict from :func:`draw_noises` (``x0``, ``w``, ``xi``)
+
+    Returns
+    -------
+    x : ndarray, shape (n_trials, n_steps + 1)   coordinate ``X1(k)``, ``k = 0..n_steps``
+    y : ndarray, shape (n_trials, n_steps + 1)   samples ``Y(k)``; ``y[:, 0]`` is NaN (no sample at k=0)
+    """
+    f, q = message.exact(scan.dt)
+    w, xi = noises["w"], noises["xi"]
+    n_trials, n_steps = w.shape
+    x = np.empty((n_trials, n_steps + 1))
+    x[:, 0] = message.sigma * noises["x0"]
+    for k in range(n_steps):
+        x[:, k + 1] = f * x[:, k] + np.sqrt(q) * w[:, k]
+    k = np.arange(1, n_steps + 1)
+    y = np.full_like(x, np.nan)
+    y[:, 1:] = scan.amplitude * scan.shape(x[:, 1:], k) \
+        + np.sqrt(scan.sample_variance(x[:, 1:], k)) * xi                  # (eq. 5)
+    return x, y
+
+
+def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
+                       rng: np.random.Generator, n_trials: int, n_steps: int):
+    """The same continuous-time experiment sampled at ``dt`` and at ``dt_f = dt / factor`` (claim C000-8).
+
+    The message is simulated exactly on a grid of step ``dt_f / 2``. Fine sample ``j`` is the
+    observation integrated over ``(j dt_f, (j+1) dt_f]`` (midpoint rule: pulse and noise intensity
+    at the interval centre, noise variance ``N / dt_f``); the coarse sample ``k`` is the mean of
+    the ``factor`` fine samples in ``((k-1) dt, k dt]``, i.e. integrate-and-dump of the same
+    continuous observation, with noise variance ``N / dt``. Both filters model the pulse at the
+    centre of their sample's interval (``time_offset = -dt/2`` for the coarse scan), and each
+    estimate is compared with the message at the end of its interval (the time of the newest
+    datum: a filtered, not a smoothed, estimate). The coarse results therefore differ from the fine
+    ones only by discretisation (pulse, noise intensity and message averaged over the interval,
+    Euler transitions of the filters).
+
+    Parameters
+    ----------
+    scan : DissectorScan   the coarse scan; ``time_offset`` must be ``-dt / 2``
+    factor : int           integer >= 2
+    n_steps : int          coarse steps; coarse samples ``k = 1..n_steps``
+
+    Returns
+    -------
+    dict with ``x_coarse``, ``y_coarse`` (n_trials, n_steps + 1; column 0 is the start, ``y`` NaN),
+    ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``t_coarse``, ``t_fine`` (times the estimates
+    refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
+    """
+    if isinstance(factor, bool) or int(factor) != factor or factor < 2:
+        raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
+    if not np.isclose(scan.time_offset, -0.5 * scan.dt):
+        raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
+    factor = int(factor)
+    dt_f = scan.dt / factor
+    scan_fine = DissectorScan(scan.n0, scan.contrast, scan.amplitude, dt_f, scan.pulse_sigma,
+                              scan.pulse_centre, time_offset=0.5 * dt_f)
+    n_fine = n_steps * factor
+    f, q = message.exact(0.5 * dt_f)
+    w = rng.standard_normal((n_trials, 2 * n_fine))
+    x_half = np.empty((n_trials, 2 * n_fine + 1))                          # times i dt_f / 2
+    x_half[:, 0] = message.sigma * rng.standard_normal(n_trials)
+    for i in range(2 * n_fine):
+        x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
+    x_mid = x_half[:, 1::2]                                                # centres (j + 1/2) dt_f
+    j = np.arange(n_fine)
+    y_fine = scan.amplitude * scan_fine.shape(x_mid, j) \
+        + np.sqrt(scan_fine.sample_variance(x_mid, j)) * rng.standard_normal((n_trials, n_fine))
+    y_coarse = np.full((n_trials, n_steps + 1), np.nan)
+    y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)   # integrate and dump
+    return {"x_coarse": x_half[:, ::2 * factor], "y_coarse": y_coarse,             # times k dt
+            "x_fine": x_half[:, 2::2], "y_fine": y_fine,                             # times (j + 1) dt_f
+            "t_coarse": np.arange(n_steps + 1) * scan.dt, "t_fine": (j + 1) * dt_f, "scan_fine": scan_fine}
+
+
+def _g22(mode: str, beta: float, dt: float) -> float:
+    """Process-noise variance of ``X2`` per step (eq. (E8) and its alternatives)."""
+    _check_choice("g22", mode, G22_MODES)
+    if mode == "paper":
+        return 2.0 * beta * dt                      # (E8) as printed: unit-variance X2
+    if mode == "euler":
+        return beta ** 2 * dt                       # Euler of eq. (8): unit-intensity X2
+    return (1.0 - (1.0 - beta * dt) ** 2) / dt      # stationary variance 1/dt: sampled white noise
+
+
+def variant1_filter(scan: DissectorScan, message: GaussMarkovMessage, beta: float = 15.0,
+                    signal_noise_scale: str = "consistent", g22: str = "paper") -> ExtendedKalmanFilter:
+    """Two-state EKF of variant 1 (eqs. (7), (8), (E1)-(E8), corrected (E5), (E6)).
+
+    Parameters
+    ----------
+    beta : float   ``beta_0`` of the signal-noise process ``X2`` (units of ``1/T``)
+    signal_noise_scale : {"consistent", "literal"}
+        ``c_s`` in ``sqrt(c_s S) X2``: ``N0 P/(1-P)`` (consistent with eq. (2)) or ``A`` (eq. (6) as printed).
+    g22 : {"paper", "euler", "matched"}
+        ``G22``: ``2 beta dt`` (printed), ``beta^2 dt`` (Euler of (8)), or ``(1-(1-beta dt)^2)/dt``
+        (discrete ``X2`` of stationary variance ``1/dt``).
+    """
+    _check_real("beta", beta, 0.0, 1.0 / scan.dt, low_open=True, high_open=True)
+    _check_choice("signal_noise_scale", signal_noise_scale, SIGNAL_NOISE_SCALES)
+    a, dt = scan.amplitude, scan.dt
+    c_s = scan.n0 * scan.signal_noise_ratio if signal_noise_scale == "consistent" else a
+    f1, q1 = message.euler(dt)
+    F = np.diag([f1, 1.0 - beta * dt])                                          # (E4)
+    Q = np.diag([q1, _g22(g22, beta, dt)])                                      # (E8)
+    sqrt_c = np.sqrt(c_s)
+
+    def h(x, k):                                                                # (E3)
+        s = scan.shape(x[..., 0], k)
+        return (a * s + sqrt_c * np.sqrt(s) * x[..., 1])[..., None]
+
+    def jacobian(x, k):
+        u = scan.offset(x[..., 0], k)
+        s = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
+        root_s = np.sqrt(s)
+        d1 = a * s * u / scan.pulse_sigma ** 2 \
+            + sqrt_c * root_s * u / (2.0 * scan.pulse_sigma ** 2) * x[..., 1]   # d sqrt(c S)/dx without 0/0
+        return np.stack([d1, sqrt_c * root_s], axis=-1)[..., None, :]
+
+    R = np.array([[scan.n0 / dt]])                                              # background only
+    return ExtendedKalmanFilter(F, Q, h, jacobian, R)
+
+
+def variant2_filter(scan: DissectorScan, message: GaussMarkovMessage, assumed_contrast: float | None = None,
+                    noise_iterations: int = 0) -> ExtendedKalmanFilter:
+    """Scalar EKF of variant 2: noise intensity of eq. (2) at the estimate (eq. (9)).
+
+    Parameters
+    ----------
+    assumed_contrast : float, optional
+        Contrast the filter assumes (default: the scan's); ``0`` gives the stationary-noise filter
+        (used as the mismatched baseline on non-stationary data).
+    noise_iterations : int
+        0: intensity at the predicted estimate; 1: re-evaluated once at the updated estimate.
+    """
+    p = scan.contrast if assumed_contrast is None else assumed_contrast
+    _check_real("assumed_contrast", p, 0.0, 1.0, high_open=True)
+    a, dt = scan.amplitude, scan.dt
+    f1, q1 = message.euler(dt)
+
+    def h(x, k):
+        return a * scan.shape(x, k)
+
+    def jacobian(x, k):
+        return a * scan.shape_derivative(x, k)[..., None]
+
+    def noise_cov(x, k):                                                        # (eq. 9)
+        return scan.sample_variance(x, k, p)[..., None]
+
+    return ExtendedKalmanFilter(np.array([[f1]]), np.array([[q1]]), h, jacobian, noise_cov, noise_iterations)
+
+
+def run_variant1(filt: ExtendedKalmanFilter, y, d0=(0.2, 1.0), init=None):
+    """Run variant 1 on samples ``y`` (n_trials, K); ``init`` (n_trials, 2) are initial estimates
+    (default: the process means, zero). Returns (estimate of X1 (n_trials, K), its variance D11 (n_trials, K))."""
+    x0 = np.zeros(2) if init is None else init
+    out = filt.run(y[..., None], x0, np.diag(d0))
+    return out.x[..., 0], out.P[..., 0, 0]
+
+
+def run_variant2(filt: ExtendedKalmanFilter, y, d0: float = 0.2, init=None):
+    """Run variant 2 (or the stationary filter) on ``y`` (n_trials, K); ``init`` (n_trials,) initial
+    estimates. Returns (estimate (n_trials, K), its variance (n_trials, K))."""
+    x0 = np.zeros(1) if init is None else np.asarray(init)[..., None]
+    out = filt.run(y[..., None], x0, np.array([[d0]]))
+    return out.x[..., 0], out.P[..., 0, 0]
+
+
+def fisher_information(scan: DissectorScan, x, k):
+    """Fisher information about ``x`` in one sample ``Y(k)`` (eq. (5)), mean and variance both
+    depending on ``x``:  ``J = (A S')^2 / R + R'^2 / (2 R^2)``, ``R = N(t_k)/dt``.
+
+    Returns
+    -------
+    total, mean_part : ndarrays broadcast from ``x`` and ``k`` (units of ``1/T^2``)
+    """
+    ds = scan.shape_derivative(x, k)
+    r = scan.sample_variance(x, k)
+    dr = scan.n0 * scan.signal_noise_ratio * ds / scan.dt
+    mean_part = (scan.amplitude * ds) ** 2 / r
+    return mean_part + 0.5 * (dr / r) ** 2, mean_part
+
+
+def lock_lost(error, threshold: float, min_steps: int):
+    """Trials whose ``|error|`` exceeds ``threshold`` for at least ``min_steps`` consecutive steps.
+
+    Parameters
+    ----------
+    error : ndarray, shape (n_trials, K)
+    Returns
+    -------
+    ndarray of bool, shape (n_trials,)
+    """
+    if min_steps < 1:
+        raise ValueError(f"parameter 'min_steps' = {min_steps}; it must be >= 1")
+    big = (np.abs(error) > threshold).astype(np.int32)
+    run = np.zeros(big.shape[0], dtype=np.int32)
+    longest = np.zeros_like(run)
+    for k in range(big.shape[1]):
+        run = (run + 1) * big[:, k]
+        longest = np.maximum(longest, run)
+    return longest >= min_steps

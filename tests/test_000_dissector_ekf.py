@@ -1,0 +1,276 @@
+"""Tests for notebook 000 (dissector tracker): EKF, grid filter, PCRLB, dissector scan model."""
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from tvtrack.bounds.pcrlb import expected_over_gaussian, gaussian_fisher_information, pcrlb_recursion
+from tvtrack.filters.ekf import ExtendedKalmanFilter, ekf_update, joseph_update_scalar
+from tvtrack.filters.grid import GridFilter
+from tvtrack.filters.kalman import KalmanFilter, kf_update
+from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
+                                       fisher_information, lock_lost, run_variant1, run_variant2, simulate,
+                                       simulate_two_rates, variant1_filter, variant2_filter)
+
+MSG = GaussMarkovMessage(0.1, 0.15)
+
+
+def _scan(contrast, psi=20.0, dt=0.05):
+    return DissectorScan(background_intensity(psi, 1.0, dt), contrast, time_offset=-0.5 * dt, dt=dt)
+
+
+def _linear_model(rng, n=2, m=1):
+    F = np.eye(n) + 0.1 * rng.standard_normal((n, n))
+    A = rng.standard_normal((n, n))
+    Q = 0.01 * (A @ A.T + np.eye(n))
+    H = rng.standard_normal((m, n))
+    B = rng.standard_normal((m, m))
+    R = 0.1 * (B @ B.T + np.eye(m))
+    return F, Q, H, R
+
+
+@pytest.mark.parametrize("m", [1, 2])
+def test_ekf_equals_kalman_filter_in_linear_gaussian_limit(m):
+    rng = np.random.default_rng(0)
+    F, Q, H, R = _linear_model(rng, 2, m)
+    zs = rng.standard_normal((30, 50, m))
+    zs[:, 0] = np.nan                                   # a missing first sample, as in the notebook
+    x0, P0 = np.array([0.3, -0.2]), np.diag([0.5, 0.2])
+    kf = KalmanFilter(F, H, Q, R).run(zs, x0, P0)
+    ekf = ExtendedKalmanFilter(F, Q, lambda x, k: np.einsum("ij,...j->...i", H, x),
+                               lambda x, k: np.broadcast_to(H, x.shape[:-1] + H.shape), R).run(zs, x0, P0)
+    np.testing.assert_allclose(ekf.x, kf.x, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(ekf.P, kf.P, rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(ekf.x_prior, kf.x_prior, rtol=1e-10, atol=1e-12)
+
+
+def test_scalar_joseph_update_matches_kf_update_for_any_gain_and_mask():
+    rng = np.random.default_rng(1)
+    A = rng.standard_normal((20, 3, 3))
+    P = A @ np.swapaxes(A, -1, -2) + 0.1 * np.eye(3)
+    x = rng.standard_normal((20, 3))
+    H = rng.standard_normal((20, 1, 3))
+    R = rng.uniform(0.1, 2.0, (20, 1, 1))
+    z = rng.standard_normal((20, 1))
+    mask = rng.random(20) > 0.3
+    xk, Pk, nu, Sk = kf_update(x, P, z, H, R, mask)
+    xj, Pj, Sj = joseph_update_scalar(x, P, nu, H, R, mask)
+    np.testing.assert_allclose(xj, xk, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(Pj, Pk, rtol=1e-9, atol=1e-12)
+    assert np.all(np.linalg.eigvalsh(Pj) > 0)
+
+
+def test_ekf_matches_filterpy_on_a_nonlinear_model_with_state_dependent_noise():
+    """Independent implementation: filterpy's ExtendedKalmanFilter, one trial at a time."""
+    from filterpy.kalman import ExtendedKalmanFilter as FPEKF
+
+    scan, dt = _scan(0.7), 0.05
+    filt = variant2_filter(scan, MSG)
+    noises = draw_noises(np.random.default_rng(2), 3, 80)
+    _, y = simulate(scan, MSG, noises)
+    est, var = run_variant2(filt, y)
+    f1, q1 = MSG.euler(dt)
+    for i in range(3):
+        fp = FPEKF(dim_x=1, dim_z=1)
+        fp.x = np.array([[0.0]])
+        fp.P = np.array([[0.2]])
+        fp.F = np.array([[f1]])
+        fp.Q = np.array([[q1]])
+        for k in range(1, y.shape[1]):
+            fp.predict()
+            xp = float(fp.x[0, 0])
+            fp.R = np.array([[scan.sample_variance(xp, k)]])
+            fp.update(np.array([[y[i, k]]]), lambda s, k=k: np.array([[scan.amplitude * scan.shape_derivative(s[0, 0], k)]]),
+                      lambda s, k=k: np.array([[scan.amplitude * scan.shape(s[0, 0], k)]]))
+            assert est[i, k] == pytest.approx(fp.x[0, 0], rel=1e-9, abs=1e-12)
+            assert var[i, k] == pytest.approx(fp.P[0, 0], rel=1e-7)
+
+
+def test_both_variants_reduce_to_the_stationary_filter_at_zero_contrast():
+    scan = _scan(0.0)
+    noises = draw_noises(np.random.default_rng(3), 50, 200)
+    x, y = simulate(scan, MSG, noises)
+    stationary, d_st = run_variant2(variant2_filter(scan, MSG, assumed_contrast=0.0), y)
+    v2, d2 = run_variant2(variant2_filter(scan, MSG), y)
+    for g22 in ("paper", "euler", "matched"):
+        v1, d1 = run_variant1(variant1_filter(scan, MSG, g22=g22), y)
+        np.testing.assert_allclose(v1, stationary, rtol=1e-9, atol=1e-13)
+        np.testing.assert_allclose(d1, d_st, rtol=1e-9)
+    np.testing.assert_allclose(v2, stationary, rtol=0, atol=0)
+    np.testing.assert_allclose(d2, d_st, rtol=0, atol=0)
+
+
+def test_signal_dependent_noise_matches_eq2_and_sample_statistics():
+    scan = _scan(0.8)
+    k = np.arange(1, 21)
+    s = scan.shape(0.0, k)
+    np.testing.assert_allclose(scan.noise_intensity(0.0, k), scan.n0 * (1 + 4.0 * s))
+    noises = draw_noises(np.random.default_rng(4), 20000, 20)
+    x, y = simulate(scan, MSG, noises)
+    resid = (y[:, 1:] - scan.shape(x[:, 1:], k)) / np.sqrt(scan.sample_variance(x[:, 1:], k))
+    assert abs(resid.mean()) < 0.01 and abs(resid.var() - 1) < 0.01
+
+
+def test_per_sample_snr_definition():
+    dt = 0.05
+    n0 = background_intensity(20.0, 1.0, dt, "per_sample")
+    assert 1.0 / np.sqrt(n0 / dt) == pytest.approx(20.0)
+    assert background_intensity(20.0, 1.0, dt, "unit_bandwidth") == pytest.approx(n0 / dt)
+    with pytest.raises(ValueError, match="sigma_sh"):
+        background_intensity(20.0, 1.0, dt, "rms")
+    with pytest.raises(ValueError, match="contrast"):
+        DissectorScan(1e-3, 1.0)
+
+
+def test_variant1_jacobian_matches_finite_differences():
+    scan = _scan(0.6)
+    filt = variant1_filter(scan, MSG, signal_noise_scale="consistent", g22="paper")
+    rng = np.random.default_rng(5)
+    x = np.stack([0.1 * rng.standard_normal(10), rng.standard_normal(10)], axis=-1)
+    for k in (3, 9, 10, 14):
+        J = filt.jacobian(x, k)[:, 0, :]
+        eps = 1e-6
+        for i in range(2):
+            dx = np.zeros(2)
+            dx[i] = eps
+            fd = (filt.h(x + dx, k) - filt.h(x - dx, k))[:, 0] / (2 * eps)
+            np.testing.assert_allclose(J[:, i], fd, rtol=1e-5, atol=1e-8)
+
+
+def test_pcrlb_equals_kalman_covariance_for_a_linear_model():
+    rng = np.random.default_rng(6)
+    F, Q, H, R = _linear_model(rng, 2, 1)
+    T = 40
+    P0 = np.diag([0.5, 0.2])
+    zs = np.zeros((1, T, 1))
+    kf = KalmanFilter(F, H, Q, R).run(zs, np.zeros(2), P0)
+    Jz = np.broadcast_to(H.T @ np.linalg.inv(R) @ H, (T, 2, 2))
+    bound = pcrlb_recursion(F, Q, np.linalg.inv(P0), Jz)
+    np.testing.assert_allclose(bound, kf.P[0], rtol=1e-9)
+
+
+def test_fisher_information_of_the_signal_dependent_variance():
+    # Monte Carlo score variance for a Gaussian sample with mean mu(x) and variance R(x)
+    scan = _scan(0.9)
+    x0, k = 0.03, 8
+    J, J_mean = fisher_information(scan, x0, k)
+    mu = lambda x: scan.amplitude * scan.shape(x, k)
+    var = lambda x: scan.sample_variance(x, k)
+    y = mu(x0) + np.sqrt(var(x0)) * np.random.default_rng(7).standard_normal(400_000)
+    eps = 1e-6
+    loglik = lambda x: stats.norm.logpdf(y, mu(x), np.sqrt(var(x)))
+    score = (loglik(x0 + eps) - loglik(x0 - eps)) / (2 * eps)
+    assert score.var() == pytest.approx(J, rel=0.02)
+    assert J > J_mean
+    dmu = scan.amplitude * scan.shape_derivative(x0, k)
+    assert J_mean == pytest.approx(gaussian_fisher_information(dmu, var(x0)))
+
+
+def test_expected_over_gaussian_moments():
+    m, v = np.array([0.0, 1.0]), np.array([1.0, 4.0])
+    np.testing.assert_allclose(expected_over_gaussian(lambda x: x ** 2, m, v), m ** 2 + v)
+    np.testing.assert_allclose(expected_over_gaussian(np.cos, 0.0, 1.0), np.exp(-0.5))
+
+
+def _grid_linear(n_points, f, q, h, r):
+    return GridFilter(-1.0, 1.0, n_points, f, q,
+                      lambda z, k: -0.5 * (z[:, None] - h * np.linspace(-1, 1, n_points)) ** 2 / r)
+
+
+def test_grid_filter_converges_to_kalman_filter_on_a_linear_model():
+    rng = np.random.default_rng(8)
+    f, q, h, r = 0.99, 1e-3, 1.0, 0.02
+    n_trials, T = 20, 60
+    x = np.zeros((n_trials, T))
+    x[:, 0] = 0.1 * rng.standard_normal(n_trials)
+    for k in range(1, T):
+        x[:, k] = f * x[:, k - 1] + np.sqrt(q) * rng.standard_normal(n_trials)
+    z = h * x + np.sqrt(r) * rng.standard_normal((n_trials, T))
+    kf = KalmanFilter([[f]], [[h]], [[q]], [[r]]).run(z[..., None], [0.0], [[0.01]])
+    errors = []
+    for n_points in (51, 201, 801):
+        out = _grid_linear(n_points, f, q, h, r).run(z, 0.0, 0.01)
+        errors.append(np.abs(out.mean - kf.x[..., 0]).max())
+    assert errors[2] < errors[1] < errors[0]
+    assert errors[2] < 1e-4
+    np.testing.assert_allclose(out.var[:, -1], kf.P[:, -1, 0, 0], rtol=1e-2)
+
+
+def test_grid_filter_posterior_mean_converges_on_the_dissector_model():
+    scan = _scan(0.9)
+    noises = draw_noises(np.random.default_rng(9), 20, 200)
+    x, y = simulate(scan, MSG, noises)
+    f, q = MSG.exact(scan.dt)
+
+    def make(n):
+        grid = np.linspace(-0.6, 0.6, n)
+
+        def loglik(z, k):
+            v = scan.sample_variance(grid, k)
+            return -0.5 * (z[:, None] - scan.amplitude * scan.shape(grid, k)) ** 2 / v - 0.5 * np.log(v)
+        return GridFilter(-0.6, 0.6, n, f, q, loglik)
+
+    means = [make(n).run(y, 0.0, MSG.sigma ** 2).mean for n in (151, 301, 601, 1201)]
+    diffs = [np.abs(a - b).max() for a, b in zip(means[:-1], means[1:])]
+    assert diffs[2] < diffs[1] < diffs[0]
+    assert diffs[2] < 2e-3
+
+
+def test_pcrlb_lies_below_the_grid_filter_mse():
+    scan = _scan(0.5)
+    noises = draw_noises(np.random.default_rng(10), 150, 250)
+    x, y = simulate(scan, MSG, noises)
+    f, q = MSG.exact(scan.dt)
+    grid = np.linspace(-0.5, 0.5, 401)
+
+    def loglik(z, k):
+        v = scan.sample_variance(grid, k)
+        return -0.5 * (z[:, None] - scan.shape(grid, k)) ** 2 / v - 0.5 * np.log(v)
+    mean = GridFilter(-0.5, 0.5, 401, f, q, loglik).run(y, 0.0, MSG.sigma ** 2).mean
+    k = np.arange(y.shape[1])
+    Jz = expected_over_gaussian(lambda s: fisher_information(scan, s, k)[0], np.zeros(k.size),
+                                np.full(k.size, MSG.sigma ** 2))
+    Jz[0] = 0.0
+    bound = pcrlb_recursion([[f]], [[q]], [[1 / MSG.sigma ** 2]], Jz[:, None, None])[:, 0, 0]
+    mse = ((x - mean) ** 2)[:, 150:].mean(axis=0)
+    assert mse.mean() > bound[150:].mean()
+    assert mse.mean() < 1.5 * bound[150:].mean()
+
+
+def test_two_rate_simulation_is_consistent():
+    scan = _scan(0.5)
+    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(11), 3000, 3)
+    # coarse noise variance is N/dt: residual variance of the averaged samples
+    k = np.arange(4)
+    resid = d["y_coarse"][:, 1:] - d["y_fine"].reshape(3000, 3, 10).mean(axis=2)
+    assert np.allclose(resid, 0.0)
+    assert d["x_fine"].shape == (3000, 30) and d["x_coarse"].shape == (3000, 4)
+    np.testing.assert_allclose(d["x_fine"][:, 9::10], d["x_coarse"][:, 1:])
+    with pytest.raises(ValueError, match="factor"):
+        simulate_two_rates(scan, MSG, 1, np.random.default_rng(0), 2, 2)
+    del k
+
+
+def test_lock_lost_counts_long_excursions_only():
+    err = np.zeros((3, 50))
+    err[1, 10:31] = 0.6          # 21 steps
+    err[2, 10:15] = 0.6          # 5 steps
+    np.testing.assert_array_equal(lock_lost(err, 0.5, 20), [False, True, False])
+
+
+def test_seed_reproduces_results():
+    scan = _scan(0.5)
+    a = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
+    b = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
+    np.testing.assert_array_equal(a[0], b[0])
+
+
+def test_ekf_rejects_bad_input():
+    with pytest.raises(ValueError, match="noise_iterations"):
+        ExtendedKalmanFilter(np.eye(1), np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1),
+                             noise_iterations=-1)
+    with pytest.raises(ValueError, match="Q"):
+        ExtendedKalmanFilter(np.eye(1), -np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1))
+    with pytest.raises(ValueError, match="noise_iterations"):
+        ekf_update(np.zeros(1), np.eye(1), np.zeros(1), lambda x, k: x, lambda x, k: x[..., None],
+                   lambda x, k: np.eye(1), 0, noise_iterations=-2)
