@@ -1,0 +1,89 @@
+"""Tests of tvtrack.detect.maneuver (notebook 001): statistic, thresholds, false-alarm rate."""
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from tvtrack.detect.maneuver import (calibrate_threshold, scheduled_statistic_std, statistic_std,
+                                     threshold_from_std, variance_independent, variance_stationary,
+                                     window_statistic)
+from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter
+
+
+def test_window_statistic_matches_direct_sums_and_is_invariant():
+    rng = np.random.default_rng(0)
+    v = rng.standard_normal((3, 40))
+    n = 6
+    S = window_statistic(v, n)
+    assert np.all(np.isnan(S[:, :2 * n - 1]))
+    for t in range(2 * n - 1, 40):
+        np.testing.assert_allclose(S[:, t], v[:, t - 2 * n + 1:t - n + 1].sum(1) - v[:, t - n + 1:t + 1].sum(1))
+    delta = 100 * rng.standard_normal((3, n))
+    shifted = v.copy()
+    shifted[:, -2 * n:] += np.concatenate([delta, delta], axis=1)
+    np.testing.assert_allclose(window_statistic(shifted, n)[:, -1], S[:, -1], atol=1e-11)
+
+
+def test_raw_differences_telescope_to_six_sigma2():
+    # r(0) = 2, r(1) = -1 for first differences of unit white noise: var S = 6 for every n
+    for n in (1, 3, 25):
+        r = np.zeros(2 * n)
+        r[0] = 2.0
+        if 2 * n > 1:
+            r[1] = -1.0
+        assert variance_stationary(r, n) == pytest.approx(6.0)
+        assert variance_independent(n, np.sqrt(2.0)) == pytest.approx(4.0 * n)
+
+
+def test_correlated_variance_ratio_and_exact_limit():
+    K = gain_schedule(1, 50)[-1]
+    s_c, s_i = statistic_std(K, 1.0, 25), statistic_std(K, 1.0, 25, "independent")
+    assert (s_c / s_i) ** 2 == pytest.approx(12.35, abs=0.01)
+    exact = scheduled_statistic_std(gain_schedule(1, 50, 600), 25, 1.0)
+    assert exact[-1] == pytest.approx(s_c, rel=1e-6)
+
+
+def test_exact_std_matches_simulation_in_transient():
+    G = gain_schedule(1, 50, 130)
+    exact = scheduled_statistic_std(G, 25, 2.0)
+    rng = np.random.default_rng(8)
+    S = window_statistic(scheduled_filter(2.0 * rng.standard_normal((20000, 130)), G)[..., 1], 25)
+    for t in (49, 99, 129):
+        assert np.std(S[:, t]) == pytest.approx(exact[t], rel=0.03)
+
+
+@pytest.mark.parametrize("alpha", [1e-2, 1e-3])
+def test_correlated_threshold_gives_nominal_false_alarm_rate(alpha):
+    """One test per run (independent Bernoulli trials), >= 20,000 runs, at the stationary and at the
+    arming frame; the rate must lie in the two-sided 99.9 % binomial interval of alpha."""
+    n_runs, n, kb = 40000, 25, 50
+    T = 2 * kb + 2 * n
+    G = gain_schedule(1, kb, T)
+    rng = np.random.default_rng(2024)
+    S = window_statistic(scheduled_filter(rng.standard_normal((n_runs, T)), G)[..., 1], n)
+    c = threshold_from_std(alpha, scheduled_statistic_std(G, n, 1.0))
+    lo, hi = stats.binom.ppf([0.0005, 0.9995], n_runs, alpha)
+    for t in (kb + 2 * n - 1, T - 1):
+        k = int(np.sum(np.abs(S[:, t]) > c[t]))
+        assert lo <= k <= hi, (t, k, lo, hi)
+    # the paper's independence threshold is far too low at the stationary frame
+    c_ind = threshold_from_std(alpha, statistic_std(G[-1], 1.0, n, "independent"))
+    assert np.mean(np.abs(S[:, -1]) > c_ind) > 20 * alpha
+
+
+def test_calibration_by_simulation_brackets_exact_threshold():
+    G = gain_schedule(1, 30, 200)
+    est = calibrate_threshold(G, 10, 0.05, [199], 20000, np.random.default_rng(1), 1.0)
+    exact = threshold_from_std(0.05, scheduled_statistic_std(G, 10, 1.0)[199])
+    assert est.ci_low <= exact <= est.ci_high
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="window"):
+        window_statistic(np.zeros(10), 0)
+    with pytest.raises(ValueError, match="alpha"):
+        threshold_from_std(1.5, 1.0)
+    with pytest.raises(ValueError, match="method"):
+        statistic_std([0.1, 0.01], 1.0, 5, "bogus")
+    with pytest.raises(ValueError, match="lags"):
+        variance_stationary(np.ones(3), 5)
