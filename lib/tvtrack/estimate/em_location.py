@@ -1,0 +1,565 @@
+"""Unified location algorithm (ULA): multi-frame EM for the linear motion of close objects.
+
+Savanevich (1999) estimates the linear-motion states ``theta_j = (x0_j, y0_j, Vx_j, Vy_j)``
+of ``Q`` objects directly from the photon counts of ``T`` CCD frames. The pixel probability
+(U1, with the card's normalisation of eq. (2)) is
+
+    v_ikl = p_o / M + sum_j p_j F_xji(mu_xjl) F_yjk(mu_yjl),   mu_xjl = x0_j + Vx_j t_l,
+
+and the maximum-likelihood equations (3) are solved by the "splitting" iteration of eqs. (9)-(11),
+which is the EM algorithm for binned Gaussian-mixture data:
+
+* E-step: ``lambda_jikl = p_j F_jikl / v_ikl`` (the posterior probability that a photon counted
+  in pixel (i, k) of frame l came from object j; eqs. (10) text) and the *local means* (U6),
+  the truncated-normal means of the landing coordinate inside the pixel;
+* M-step: per object and axis the weighted least-squares line through the local means, eq. (11),
+  with the card's corrections: the sign in (10) is ``D - x0 A - V B = 0`` and the velocity row of
+  (11) uses the *new* ``x0``.
+
+Counts ``n_ikl`` are used in place of the frequencies ``v*_ikl`` (card, note under (3)); the two
+coincide when every frame holds the same number of photons.
+
+Only pixels with a non-zero count enter the sums, so the work per iteration is proportional to the
+number of non-zero pixels, not to the window size. Trials are independent and vectorised: every
+pixel entry carries its trial index; sums per trial use :func:`numpy.add.reduceat` over the
+trial-sorted entries, and converged trials are dropped from the working set.
+
+Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row)
+and frames, as in :mod:`tvtrack.scenes.linear_motion`.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.special import ndtr
+
+from ..scenes.linear_motion import pixel_probabilities
+
+__all__ = [
+    "PixelEntries", "pixel_entries", "per_frame_entries", "EMResult", "unified_location_em",
+    "match_labels", "responsibility_maps", "log_likelihood",
+]
+
+_SQRT_2PI = np.sqrt(2.0 * np.pi)
+_TINY = 1e-300
+
+
+@dataclass(frozen=True)
+class PixelEntries:
+    """The non-zero pixels of a count tensor, sorted by trial.
+
+    Attributes
+    ----------
+    trial, frame : ndarray of int64, shape (nnz,)
+    row, col : ndarray of float, shape (nnz,)
+        Pixel-centre coordinates ``y`` and ``x`` (px).
+    count : ndarray of float, shape (nnz,)
+    n_trials, n_frames : int
+    shape : (int, int)
+        Window (rows, cols); ``M = rows * cols``.
+    """
+
+    trial: np.ndarray
+    frame: np.ndarray
+    row: np.ndarray
+    col: np.ndarray
+    count: np.ndarray
+    n_trials: int
+    n_frames: int
+    shape: tuple[int, int]
+
+    @property
+    def n_pixels(self) -> int:
+        return int(self.shape[0] * self.shape[1])
+
+    def photons_per_trial(self) -> np.ndarray:
+        """Total count of each trial, shape (n_trials,)."""
+        return np.bincount(self.trial, weights=self.count, minlength=self.n_trials)
+
+
+def pixel_entries(counts) -> PixelEntries:
+    """Sparse form of a count tensor ``(n_trials, T, rows, cols)`` (non-negative integers)."""
+    counts = np.asarray(counts)
+    if counts.ndim != 4:
+        raise ValueError(f"counts has shape {counts.shape}; it must be (n_trials, T, rows, cols)")
+    if counts.size and counts.min() < 0:
+        raise ValueError(f"counts has a negative value {counts.min()}; counts must be >= 0")
+    n, t, r, c = np.nonzero(counts)
+    return PixelEntries(trial=n, frame=t, row=r.astype(float), col=c.astype(float),
+                        count=counts[n, t, r, c].astype(float), n_trials=counts.shape[0],
+                        n_frames=counts.shape[1], shape=counts.shape[2:])
+
+
+def per_frame_entries(entries: PixelEntries) -> PixelEntries:
+    """Treat every (trial, frame) as its own one-frame trial ``trial * T + frame`` (for marks)."""
+    return PixelEntries(trial=entries.trial * entries.n_frames + entries.frame,
+                        frame=np.zeros_like(entries.frame), row=entries.row, col=entries.col,
+                        count=entries.count, n_trials=entries.n_trials * entries.n_frames,
+                        n_frames=1, shape=entries.shape)
+
+
+@dataclass
+class EMResult:
+    """Output of :func:`unified_location_em`; every array has trials on the leading axis.
+
+    Attributes
+    ----------
+    theta : ndarray, shape (N, Q, 4)
+        Estimates ``(x0, y0, Vx, Vy)`` (px, px/frame); never NaN (a failed trial keeps its last
+        finite iterate and carries a flag).
+    p : ndarray, shape (N, Q)
+        Object weights (given, or estimated when ``estimate_weights``).
+    p_noise : ndarray, shape (N,)
+    sigma : ndarray, shape (N, Q)
+        PSF standard deviations (px; given, or estimated when ``estimate_sigma``).
+    loglik : ndarray, shape (N,)
+        ``sum n_ikl ln v_ikl`` at ``theta`` (multinomial log-likelihood up to a constant).
+    n_iter : ndarray of int, shape (N,)
+        EM steps (E+M evaluations) taken, accelerated or not.
+    converged : ndarray of bool, shape (N,)
+        The stopping rule was met.
+    cap_hit : ndarray of bool
+        ``max_iter`` reached without meeting the stopping rule.
+    degenerate : ndarray of bool
+        No photons, or an object got no weight, or the line fit is singular (all weight in one
+        frame): the estimate stays at the last good iterate.
+    merged : ndarray of bool
+        Two objects closer than ``merge_px`` at the middle epoch (includes coincident
+        designations, which EM can never split: the posterior shares stay equal).
+    swapped : ndarray of bool
+        The estimates match the *initial* labels better in another order (label swap relative
+        to the designation; a swap relative to the truth is found with :func:`match_labels`).
+    left_frame : ndarray of bool
+        An estimated object keeps less than ``min_in_frame_mass`` of its PSF inside the window in
+        some frame (the closed form (11) assumes the whole PSF is observed).
+    history_theta, history_loglik : list of ndarray
+        Per iteration (only with ``history=True``): theta (N, Q, 4) and the log-likelihood at
+        the theta used in that E-step (N,); converged trials repeat their last value.
+    """
+
+    theta: np.ndarray
+    p: np.ndarray
+    p_noise: np.ndarray
+    sigma: np.ndarray
+    loglik: np.ndarray
+    n_iter: np.ndarray
+    converged: np.ndarray
+    cap_hit: np.ndarray
+    degenerate: np.ndarray
+    merged: np.ndarray
+    swapped: np.ndarray
+    left_frame: np.ndarray
+    history_theta: list = field(default_factory=list)
+    history_loglik: list = field(default_factory=list)
+
+    @property
+    def failed(self) -> np.ndarray:
+        """Any flag raised, shape (N,)."""
+        return self.cap_hit | self.degenerate | self.merged | self.swapped | self.left_frame
+
+
+class _Work:
+    """Entries of the trials still iterating, with their segment starts for reduceat."""
+
+    def __init__(self, entries: PixelEntries, trials: np.ndarray):
+        keep = np.isin(entries.trial, trials)
+        self.trials = trials
+        g = entries.trial[keep]
+        self.loc = np.searchsorted(trials, g)
+        self.starts = np.searchsorted(self.loc, np.arange(trials.size))
+        self.frame = entries.frame[keep]
+        self.row = entries.row[keep]
+        self.col = entries.col[keep]
+        self.count = entries.count[keep]
+        self.n_frames = entries.n_frames
+        self._index = {}
+
+    def index(self, q: int, n_cells: int, rows: bool = False) -> np.ndarray:
+        """Flat index (nnz, Q) into a per-(trial, frame, object, pixel) table of one axis."""
+        key = (q, n_cells, rows)
+        if key not in self._index:
+            cell = (self.row if rows else self.col).astype(np.int64)
+            base = (self.loc * self.n_frames + self.frame) * q
+            self._index[key] = (base[:, None] + np.arange(q)) * n_cells + cell[:, None]
+        return self._index[key]
+
+
+def _axis_tables(mu, s, n_cells: int, second: bool):
+    """1-D pixel fractions (U3), local means (U6) and ``E[z^2 | pixel]`` for every pixel of one
+    axis, evaluated once per (trial, frame, object) from the ``n_cells + 1`` pixel edges.
+
+    Parameters
+    ----------
+    mu : ndarray, shape (n, T, Q)
+        Object coordinate in each frame (px).
+    s : ndarray, shape (n, 1, Q)
+        PSF standard deviation (px).
+
+    Returns
+    -------
+    F, mean[, ez2] : ndarray, shape (n, T, Q, n_cells)
+    """
+    edges = np.arange(n_cells + 1) - 0.5
+    # standardised edges, clipped where the Gaussian tail is below double precision
+    # (exp(-37^2/2) ~ 1e-298 is still a normal number: no slow denormal arithmetic)
+    z = np.clip((edges - mu[..., None]) / s[..., None], -37.0, 37.0)
+    G = ndtr(-np.abs(z))                            # tail mass beyond each edge: no cancellation
+    phi = np.exp(-0.5 * z * z) / _SQRT_2PI
+    a, b = z[..., :-1], z[..., 1:]
+    Ga, Gb = G[..., :-1], G[..., 1:]
+    F = np.where(b <= 0, Gb - Ga, np.where(a >= 0, Ga - Gb, 1.0 - Ga - Gb))   # (U3)
+    ok = F > _TINY
+    Fs = np.where(ok, F, 1.0)
+    m = mu[..., None]
+    sd = s[..., None]
+    centre = edges[:-1] + 0.5
+    dphi = (phi[..., :-1] - phi[..., 1:]) / Fs
+    mean = np.clip(np.where(ok, m + sd * dphi, centre), centre - 0.5, centre + 0.5)   # (U6)
+    if not second:
+        return F, mean, None
+    za, zb = a * phi[..., :-1], b * phi[..., 1:]
+    var_mu = sd * sd * (1.0 + (za - zb) / Fs)                          # E[(z - mu)^2 | pixel]
+    ez2 = np.where(ok, var_mu + 2 * m * (mean - m) + m * m, centre * centre + 1.0 / 12.0)
+    return F, np.asarray(mean), np.maximum(ez2, mean * mean)
+
+
+def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
+    """E-step sums per active trial and object.
+
+    Returns
+    -------
+    sums : (n_act, Q, 7 or 9) = A, B, C, Dx, Dtx, Dy, Dty [, Sxx, Syy]  (eq. (10))
+    loglik : (n_act,)  sum n ln v at ``theta``
+    """
+    rows, cols = shape
+    t = times[None, :, None]
+    s = sigma[:, None, :]
+    Fx, mx, sx = _axis_tables(theta[:, None, :, 0] + theta[:, None, :, 2] * t, s, cols, second)
+    Fy, my, sy = _axis_tables(theta[:, None, :, 1] + theta[:, None, :, 3] * t, s, rows, second)
+    ix, iy = work.index(theta.shape[1], cols), work.index(theta.shape[1], rows, rows=True)
+    fx, fy = Fx.ravel()[ix], Fy.ravel()[iy]                           # (nnz, Q)
+    pv = p[work.loc] * (fx * fy)                                      # p_j F_jikl
+    v = np.maximum(p_noise[work.loc] / (rows * cols) + pv.sum(axis=1), _TINY)   # (U1)
+    w = pv * (work.count / v)[:, None]                                # n_ikl lambda_jikl
+    te = times[work.frame][:, None]
+    wt = w * te
+    ex, ey = mx.ravel()[ix], my.ravel()[iy]
+    cols_ = [w, wt, wt * te, w * ex, wt * ex, w * ey, wt * ey]
+    if second:
+        cols_ += [w * sx.ravel()[ix], w * sy.ravel()[iy]]
+    sums = np.add.reduceat(np.stack(cols_, axis=-1), work.starts, axis=0)
+    loglik = np.add.reduceat(work.count * np.log(v), work.starts)
+    return sums, loglik
+
+
+def _m_step(sums, theta, static: bool):
+    """Closed-form M-step (11) per object and axis; returns new theta and a degenerate flag."""
+    A, B, C, Dx, Dtx, Dy, Dty = (sums[..., k] for k in range(7))
+    new = np.empty_like(theta)
+    if static:
+        bad = A <= 1e-12
+        As = np.where(bad, 1.0, A)
+        new[..., 0] = Dx / As
+        new[..., 1] = Dy / As
+        new[..., 2:] = 0.0
+    else:
+        det = A * C - B * B
+        bad = (A <= 1e-12) | (det <= 1e-9 * np.maximum(A * C, 1e-300))
+        ds = np.where(bad, 1.0, det)
+        new[..., 0] = (C * Dx - B * Dtx) / ds                        # (11) x0
+        new[..., 1] = (C * Dy - B * Dty) / ds                        # (11) y0
+        new[..., 2] = (A * Dtx - B * Dx) / ds                        # (11) Vx with the new x0
+        new[..., 3] = (A * Dty - B * Dy) / ds
+    bad = bad | ~np.isfinite(new).all(axis=-1)
+    new = np.where(bad[..., None], theta, new)
+    return new, bad.any(axis=-1)
+
+
+def _sigma_update(sums, theta_new, sigma, bad):
+    """sigma_j^2 = sum_pixels w E[(z - mu_new)^2 | pixel] over both axes / (2 A) (card 8.4)."""
+    A, B, C, Dx, Dtx, Dy, Dty, Sxx, Syy = (sums[..., k] for k in range(9))
+    x0, y0, vx, vy = (theta_new[..., k] for k in range(4))
+    qx = Sxx - 2 * x0 * Dx - 2 * vx * Dtx + x0 * x0 * A + 2 * x0 * vx * B + vx * vx * C
+    qy = Syy - 2 * y0 * Dy - 2 * vy * Dty + y0 * y0 * A + 2 * y0 * vy * B + vy * vy * C
+    s2 = (qx + qy) / (2 * np.maximum(A, 1e-300))
+    ok = ~bad[:, None] & (s2 > 0) & np.isfinite(s2)
+    return np.where(ok, np.sqrt(np.where(ok, s2, 1.0)), sigma)
+
+
+def match_labels(estimate, reference, times=None):
+    """Label order of ``estimate`` that best matches ``reference`` (minimum summed squared
+    distance of the positions at the middle epoch over all ``Q!`` orders).
+
+    Parameters
+    ----------
+    estimate, reference : ndarray, shape (N, Q, 4)
+    times : ndarray, shape (T,), optional
+        Frame times; the positions are compared at their mean (default ``t = 0``).
+
+    Returns
+    -------
+    perm : ndarray of int, shape (N, Q)
+        ``estimate[n, perm[n]]`` is matched to ``reference[n]``.
+    identity : ndarray of bool, shape (N,)
+        The best order is the given one.
+    """
+    est = np.asarray(estimate, dtype=float)
+    ref = np.asarray(reference, dtype=float)
+    if est.shape != ref.shape or est.ndim != 3 or est.shape[-1] != 4:
+        raise ValueError(f"estimate {est.shape} and reference {ref.shape} must both be (N, Q, 4)")
+    q = est.shape[1]
+    if q > 7:
+        raise ValueError(f"Q = {q} objects; label matching enumerates Q! orders and allows Q <= 7")
+    tm = 0.0 if times is None else float(np.mean(times))
+    pe = est[..., :2] + tm * est[..., 2:]
+    pr = ref[..., :2] + tm * ref[..., 2:]
+    perms = np.array(list(itertools.permutations(range(q))))           # (P, Q), identity first
+    cost = ((pe[:, perms] - pr[:, None]) ** 2).sum(axis=(-1, -2))      # (N, P)
+    best = cost.argmin(axis=1)
+    # ties (e.g. merged objects) keep the given order
+    best = np.where(cost[np.arange(len(best)), best] < cost[:, 0], best, 0)
+    return perms[best], best == 0
+
+
+def _in_frame_mass(theta, sigma, times, shape):
+    """Smallest in-window PSF mass over objects and frames, shape (N,)."""
+    rows, cols = shape
+    t = times[None, None, :]
+    s = sigma[..., None]
+    mux = theta[..., 0:1] + theta[..., 2:3] * t
+    muy = theta[..., 1:2] + theta[..., 3:4] * t
+    fx = ndtr((cols - 0.5 - mux) / s) - ndtr((-0.5 - mux) / s)
+    fy = ndtr((rows - 0.5 - muy) / s) - ndtr((-0.5 - muy) / s)
+    return (fx * fy).min(axis=(1, 2))
+
+
+def _broadcast(value, shape, name, positive: bool):
+    arr = np.asarray(value, dtype=float)
+    try:
+        arr = np.broadcast_to(arr, shape).copy()
+    except ValueError:
+        raise ValueError(f"{name} has shape {arr.shape}; it must broadcast to {shape}") from None
+    bad_sign = (arr <= 0).any() if positive else (arr < 0).any()
+    if not np.isfinite(arr).all() or bad_sign:
+        raise ValueError(f"{name} = {value!r} must be finite and {'> 0' if positive else '>= 0'}")
+    return arr
+
+
+def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, times=None,
+                        motion: str = "linear", tol_px: float = 1e-6, max_iter: int = 5000,
+                        accelerate: str | None = None, estimate_weights: bool = False,
+                        estimate_sigma: bool = False, merge_px: float = 0.05,
+                        min_in_frame_mass: float = 0.99, history: bool = False) -> EMResult:
+    """Maximum-likelihood linear-motion states of ``Q`` objects from all ``T`` frames at once.
+
+    Parameters
+    ----------
+    entries : PixelEntries
+        Non-zero pixels of the count tensor (:func:`pixel_entries`; for per-frame marks use
+        :func:`per_frame_entries` with ``motion="static"``).
+    theta0 : array_like, shape (N, Q, 4)
+        Initialisation (the target designation), px and px/frame.
+    sigma_px : float or array_like, shape (Q,) or (N, Q)
+        PSF standard deviations (px, > 0); the starting values when ``estimate_sigma``.
+    p : array_like, shape (Q,) or (N, Q)
+        Object weights ``p_j`` (> 0), with ``p_noise + sum_j p_j = 1``.
+    p_noise : float or array_like, shape (N,)
+        Noise weight ``p_o`` (>= 0).
+    times : array_like, shape (T,), optional
+        Frame times (default ``0..T-1``).
+    motion : {"linear", "static"}
+        ``"static"`` fits positions only (``V = 0``): the iterative mark formation of ref. [5]
+        when applied to one frame.
+    tol_px : float
+        Stop a trial when no position changes by more than ``tol_px`` and no velocity by more
+        than ``tol_px / (t_max - t_min)`` in one EM step (also ``sigma`` and ``p`` when they are
+        estimated). > 0.
+    max_iter : int
+        Cap on EM steps per trial (>= 1).
+    accelerate : {None, "squarem"}
+        SQUAREM (Varadhan & Roland 2008, scheme S3 with a monotone safeguard): two EM steps,
+        a quadratic extrapolation and a stabilising EM step, kept only where the
+        log-likelihood did not fall; otherwise the plain two-step result is kept. Only for the
+        motion parameters (not with ``estimate_weights``/``estimate_sigma``).
+    estimate_weights, estimate_sigma : bool
+        Also update ``p_j`` (``sum w_j / sum n``) and ``sigma_j`` (truncated second moments),
+        the extension the paper calls feasible (card 8.4).
+    merge_px : float
+        Distance (px) below which two estimated objects count as merged (>= 0).
+    min_in_frame_mass : float
+        In-window PSF mass below which an object counts as having left the frame, in (0, 1].
+    history : bool
+        Keep theta and the log-likelihood of every iteration (for tests and recordings).
+
+    Returns
+    -------
+    EMResult
+    """
+    theta0 = np.asarray(theta0, dtype=float)
+    if theta0.ndim != 3 or theta0.shape[-1] != 4 or theta0.shape[0] != entries.n_trials:
+        raise ValueError(f"theta0 has shape {theta0.shape}; it must be ({entries.n_trials}, Q, 4)")
+    if not np.isfinite(theta0).all():
+        raise ValueError("theta0 must be finite")
+    if motion not in ("linear", "static"):
+        raise ValueError(f"motion = {motion!r} must be 'linear' or 'static'")
+    if not tol_px > 0:
+        raise ValueError(f"tol_px = {tol_px} must be > 0")
+    if max_iter < 1:
+        raise ValueError(f"max_iter = {max_iter} must be >= 1")
+    if accelerate not in (None, "squarem"):
+        raise ValueError(f"accelerate = {accelerate!r} must be None or 'squarem'")
+    if accelerate and (estimate_weights or estimate_sigma):
+        raise ValueError("accelerate = 'squarem' extrapolates the motion states only; it cannot be "
+                         "combined with estimate_weights or estimate_sigma")
+    if merge_px < 0:
+        raise ValueError(f"merge_px = {merge_px} must be >= 0")
+    if not 0 < min_in_frame_mass <= 1:
+        raise ValueError(f"min_in_frame_mass = {min_in_frame_mass} must be in (0, 1]")
+    n, q = theta0.shape[:2]
+    times = np.arange(entries.n_frames, dtype=float) if times is None else np.asarray(times, float)
+    if times.shape != (entries.n_frames,):
+        raise ValueError(f"times has shape {times.shape}; it must be ({entries.n_frames},)")
+    static = motion == "static"
+    sigma = _broadcast(sigma_px, (n, q), "sigma_px", positive=True)
+    pw = _broadcast(p, (n, q), "p", positive=True)
+    p0 = _broadcast(p_noise, (n,), "p_noise", positive=False)
+    if np.any(np.abs(pw.sum(axis=1) + p0 - 1.0) > 1e-9):
+        raise ValueError("weights must satisfy p_noise + sum(p) = 1")
+    span = max(float(times.max() - times.min()), 1.0)
+    second = estimate_sigma
+
+    theta = theta0.copy()
+    if static:
+        theta[..., 2:] = 0.0
+    photons = entries.photons_per_trial()
+    loglik = np.zeros(n)
+    n_iter = np.zeros(n, dtype=np.int64)
+    converged = np.zeros(n, dtype=bool)
+    degenerate = photons <= 0
+    hist_t, hist_l = [], []
+
+    def step(work, th, pw_, p0_, sg_):
+        sums, ll = _e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
+        new, bad = _m_step(sums, th, static)
+        if estimate_sigma:
+            sg_ = _sigma_update(sums, new, sg_, bad)
+        if estimate_weights:
+            tot = np.add.reduceat(work.count, work.starts)[:, None]
+            pw_ = np.where(bad[:, None], pw_, np.maximum(sums[..., 0] / tot, 1e-12))
+            p0_ = np.clip(1.0 - pw_.sum(axis=1), 0.0, 1.0)
+        return new, pw_, p0_, sg_, ll, bad
+
+    def change(a, b):
+        d = np.abs(a - b)
+        return np.maximum(d[..., :2].max(axis=(1, 2)), span * d[..., 2:].max(axis=(1, 2)))
+
+    # the working set holds the trials still iterating plus a few that stopped recently; it is
+    # rebuilt (entries regrouped) only when fewer than 60 % of it still iterate
+    active = np.flatnonzero(~degenerate)
+    work = _Work(entries, active)
+    live = np.ones(active.size, dtype=bool)
+    while live.any():
+        th, pw_a, p0_a, sg_a = theta[active], pw[active], p0[active], sigma[active]
+        if accelerate is None:
+            new, pw_n, p0_n, sg_n, ll, bad = step(work, th, pw_a, p0_a, sg_a)
+            delta = change(new, th)
+            if estimate_sigma:
+                delta = np.maximum(delta, np.abs(sg_n - sg_a).max(axis=1))
+            if estimate_weights:
+                delta = np.maximum(delta, np.abs(pw_n - pw_a).max(axis=1))
+            taken = 1
+        else:
+            t1, *_, l0, bad1 = step(work, th, pw_a, p0_a, sg_a)
+            t2, *_, l1, bad2 = step(work, t1, pw_a, p0_a, sg_a)
+            r = t1 - th
+            v = t2 - t1 - r
+            nr = np.sqrt((r ** 2).sum(axis=(1, 2)))
+            nv = np.sqrt((v ** 2).sum(axis=(1, 2)))
+            alpha = np.where(nv > 0, np.minimum(-nr / np.where(nv > 0, nv, 1.0), -1.0), -1.0)
+            tx = th - 2 * alpha[:, None, None] * r + alpha[:, None, None] ** 2 * v
+            t3, *_, lx, bad3 = step(work, tx, pw_a, p0_a, sg_a)
+            ok = (lx >= l0) & np.isfinite(lx) & ~bad3
+            new = np.where(ok[:, None, None], t3, t2)
+            delta = np.where(ok, change(t3, tx), change(t2, t1))
+            ll, bad = l0, bad1 | bad2
+            pw_n, p0_n, sg_n = pw_a, p0_a, sg_a
+            taken = 3
+        upd = active[live]
+        loglik[upd] = ll[live]
+        theta[upd] = np.where(bad[live, None, None], th[live], new[live])
+        pw[upd], p0[upd], sigma[upd] = pw_n[live], p0_n[live], sg_n[live]
+        n_iter[upd] += taken
+        conv = (delta < tol_px) & ~bad & live
+        converged[active[conv]] = True
+        degenerate[active[bad & live]] = True
+        if history:
+            hist_t.append(theta.copy())
+            hist_l.append(loglik.copy())
+        live &= ~conv & ~bad & (n_iter[active] < max_iter)
+        if live.sum() < 0.6 * live.size:
+            active = active[live]
+            work = _Work(entries, active)
+            live = np.ones(active.size, dtype=bool)
+
+    # final log-likelihood at the returned estimate
+    live = np.flatnonzero(photons > 0)
+    if live.size:
+        _, loglik[live] = _e_step(_Work(entries, live), theta[live], pw[live], p0[live], sigma[live],
+                                  times, entries.shape, False)
+    cap_hit = ~converged & ~degenerate & (n_iter >= max_iter)
+    tm = float(times.mean())
+    pos = theta[..., :2] + tm * theta[..., 2:]
+    iu = np.triu_indices(q, 1)
+    dist = np.linalg.norm(pos[:, :, None] - pos[:, None, :], axis=-1)[:, iu[0], iu[1]]
+    merged = (dist < merge_px).any(axis=1) if q > 1 else np.zeros(n, dtype=bool)
+    if q > 1:
+        _, same = match_labels(theta, theta0, times)
+        swapped = ~same & ~merged
+    else:
+        swapped = np.zeros(n, dtype=bool)
+    left = _in_frame_mass(theta, sigma, times, entries.shape) < min_in_frame_mass
+    return EMResult(theta=theta, p=pw, p_noise=p0, sigma=sigma, loglik=loglik, n_iter=n_iter,
+                    converged=converged, cap_hit=cap_hit, degenerate=degenerate, merged=merged,
+                    swapped=swapped, left_frame=left, history_theta=hist_t, history_loglik=hist_l)
+
+
+def log_likelihood(counts, theta, times, sigma_px, p, p_noise) -> np.ndarray:
+    """Dense ``sum n_ikl ln v_ikl`` (eq. (3)'s objective) for one or more trials.
+
+    Parameters
+    ----------
+    counts : ndarray, shape (N, T, rows, cols)
+    theta : ndarray, shape (N, Q, 4)
+    p : array_like, shape (Q,) ; p_noise : float
+
+    Returns
+    -------
+    ndarray, shape (N,)
+    """
+    counts = np.asarray(counts, dtype=float)
+    F = pixel_probabilities(theta, times, counts.shape[-2:], sigma_px)  # (N, Q, T, R, C)
+    v = p_noise / (counts.shape[-1] * counts.shape[-2]) + np.einsum("q,nqtrc->ntrc", np.asarray(p, float), F)
+    return (counts * np.log(np.maximum(v, _TINY))).sum(axis=(1, 2, 3))
+
+
+def responsibility_maps(theta, times, shape, sigma_px, p, p_noise) -> np.ndarray:
+    """Posterior shares ``lambda_jikl`` (objects first, noise last) of one trial, as images.
+
+    Parameters
+    ----------
+    theta : ndarray, shape (Q, 4)
+
+    Returns
+    -------
+    ndarray, shape (Q + 1, T, rows, cols)
+        Sums to 1 over the first axis in every pixel.
+    """
+    theta = np.asarray(theta, dtype=float)
+    F = pixel_probabilities(theta, times, shape, sigma_px)             # (Q, T, R, C)
+    pv = np.asarray(p, dtype=float)[:, None, None, None] * F
+    noise = np.full((1,) + F.shape[1:], p_noise / (shape[0] * shape[1]))
+    parts = np.concatenate([pv, noise], axis=0)
+    return parts / parts.sum(axis=0, keepdims=True)

@@ -1,0 +1,233 @@
+"""Two-stage ("trajectory") processing: per-frame marks, then least-squares straight lines.
+
+This is the baseline of Savanevich (1999, Figs 3-6): primary processing forms a *mark* (position
+estimate) for each object in each frame on its own; secondary processing fits the linear-motion
+model (1) to the marks by ordinary least squares, i.e. eq. (11) with unit weights.
+
+Marks (paper card 002, section 4.4):
+
+* :func:`centre_of_region_marks` -- "by the centre of the region" (Fig. 3a, curve 1): the
+  count-weighted centroid of the pixel centres inside a square gate around the designated
+  position in that frame (the paper does not define the region; this is the card's choice).
+* :func:`em_marks` -- the iterative mark formation of ref. [5] (Fig. 3a curve 2, Figs 4-6
+  curve 1): the EM of :func:`tvtrack.estimate.em_location.unified_location_em` applied to one
+  frame with a static model, ``x = D_x / A``.
+
+Association rule (not stated in the paper; both variants are parameters):
+
+* ``"designation"``: labels are carried by the initialisation -- mark ``j`` of frame ``l`` is
+  object ``j``'s because it was started from object ``j``'s designated (or previous) position;
+* ``"assignment"``: after forming the marks, reorder them in each frame by the minimum-cost
+  assignment (summed squared distances, all ``Q!`` orders) to the designated positions
+  propagated to that frame.
+
+Units: pixels and frames (see :mod:`tvtrack.scenes.linear_motion`).
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..measure import crop
+from ..render import gate_origin
+from .em_location import per_frame_entries, pixel_entries, unified_location_em
+
+__all__ = ["Marks", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines"]
+
+
+@dataclass
+class Marks:
+    """Per-frame position marks.
+
+    Attributes
+    ----------
+    xy : ndarray, shape (N, T, Q, 2)
+        Mark positions (px); where ``valid`` is False the value is the initialisation and must
+        not be used.
+    valid : ndarray of bool, shape (N, T, Q)
+        A mark was formed (the gate or the frame held photons and the fit was not singular).
+    n_iter : ndarray of int, shape (N, T)
+        EM steps per frame (zeros for centroid marks).
+    cap_hit : ndarray of bool, shape (N, T)
+        The per-frame EM reached its iteration cap.
+    """
+
+    xy: np.ndarray
+    valid: np.ndarray
+    n_iter: np.ndarray
+    cap_hit: np.ndarray
+
+
+def propagate(theta, times) -> np.ndarray:
+    """Positions ``(N, T, Q, 2)`` of linear-motion states ``(N, Q, 4)`` at ``times`` (T,)."""
+    theta = np.asarray(theta, dtype=float)
+    t = np.asarray(times, dtype=float)[None, :, None, None]
+    return theta[:, None, :, :2] + t * theta[:, None, :, 2:]
+
+
+def centre_of_region_marks(counts, predicted, half_gate_px: float) -> Marks:
+    """Count-weighted centroid of the pixel centres in a square gate per object and frame.
+
+    Parameters
+    ----------
+    counts : ndarray, shape (N, T, rows, cols)
+    predicted : ndarray, shape (N, T, Q, 2)
+        Gate centres (px), e.g. the designation propagated with :func:`propagate`.
+    half_gate_px : float
+        The gate holds the pixels whose centres lie within ``half_gate_px`` of the nearest
+        pixel centre to the prediction (> 0); gates leaving the window are shifted inside.
+    """
+    counts = np.asarray(counts, dtype=float)
+    predicted = np.asarray(predicted, dtype=float)
+    if half_gate_px <= 0:
+        raise ValueError(f"half_gate_px = {half_gate_px} must be > 0")
+    if counts.ndim != 4 or predicted.shape[:2] != counts.shape[:2] or predicted.shape[-1] != 2:
+        raise ValueError(f"counts {counts.shape} must be (N, T, rows, cols) and predicted "
+                         f"{predicted.shape} (N, T, Q, 2)")
+    rows, cols = counts.shape[-2:]
+    g = 2 * int(np.floor(half_gate_px)) + 1
+    size = (min(g, rows), min(g, cols))
+    origin = gate_origin(predicted, size)
+    origin = np.stack([np.clip(origin[..., 0], 0, cols - size[1]),
+                       np.clip(origin[..., 1], 0, rows - size[0])], axis=-1)
+    q = predicted.shape[2]
+    gates = crop(np.repeat(counts[:, :, None], q, axis=2), origin, size)   # (N, T, Q, g, g)
+    total = gates.sum(axis=(-1, -2))
+    sx = (gates.sum(axis=-2) * np.arange(size[1])).sum(axis=-1)
+    sy = (gates.sum(axis=-1) * np.arange(size[0])).sum(axis=-1)
+    valid = total > 0
+    ts = np.where(valid, total, 1.0)
+    xy = np.where(valid[..., None], origin + np.stack([sx, sy], axis=-1) / ts[..., None], predicted)
+    n, t = counts.shape[:2]
+    return Marks(xy=xy, valid=valid, n_iter=np.zeros((n, t), dtype=np.int64),
+                 cap_hit=np.zeros((n, t), dtype=bool))
+
+
+def associate(marks: Marks, predicted) -> Marks:
+    """Reorder the marks of each frame by the minimum-cost assignment to ``predicted``
+    (N, T, Q, 2): the order of all ``Q!`` that minimises the summed squared distance."""
+    predicted = np.asarray(predicted, dtype=float)
+    q = predicted.shape[2]
+    if q > 7:
+        raise ValueError(f"Q = {q}; the assignment enumerates Q! orders and allows Q <= 7")
+    perms = np.array(list(itertools.permutations(range(q))))          # (P, Q)
+    cost = ((marks.xy[:, :, perms] - predicted[:, :, None]) ** 2).sum(axis=(-1, -2))  # (N, T, P)
+    best = perms[cost.argmin(axis=-1)]                                 # (N, T, Q)
+    xy = np.take_along_axis(marks.xy, best[..., None], axis=2)
+    valid = np.take_along_axis(marks.valid, best, axis=2)
+    return Marks(xy=xy, valid=valid, n_iter=marks.n_iter, cap_hit=marks.cap_hit)
+
+
+def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "designation",
+             association: str = "designation", tol_px: float = 1e-6, max_iter: int = 5000,
+             accelerate: str | None = None) -> Marks:
+    """Marks from the iterative per-frame EM ("mark formation", ref. [5]).
+
+    Parameters
+    ----------
+    counts : ndarray, shape (N, T, rows, cols)
+    designation : ndarray, shape (N, Q, 4)
+        Target designation (px, px/frame); it gives each frame's initial positions.
+    times : ndarray, shape (T,)
+    sigma_px, p, p_noise
+        PSF width and mixture weights as in :func:`unified_location_em`.
+    init : {"designation", "previous"}
+        Start frame ``l`` from the designation propagated to ``t_l``, or (``"previous"``) from
+        the previous frame's marks moved by the designated velocity (frame 0 from the
+        designation); ``"previous"`` runs the frames in sequence.
+    association : {"designation", "assignment"}
+        See the module docstring.
+    tol_px, max_iter, accelerate
+        Stopping rule and acceleration of the per-frame EM.
+    """
+    counts = np.asarray(counts)
+    designation = np.asarray(designation, dtype=float)
+    times = np.asarray(times, dtype=float)
+    if init not in ("designation", "previous"):
+        raise ValueError(f"init = {init!r} must be 'designation' or 'previous'")
+    if association not in ("designation", "assignment"):
+        raise ValueError(f"association = {association!r} must be 'designation' or 'assignment'")
+    n, t = counts.shape[:2]
+    q = designation.shape[1]
+    predicted = propagate(designation, times)                          # (N, T, Q, 2)
+
+    def frame_state(xy):
+        th = np.zeros(xy.shape[:-1] + (4,))
+        th[..., :2] = xy
+        return th
+
+    if init == "designation":
+        ent = per_frame_entries(pixel_entries(counts))
+        res = unified_location_em(ent, frame_state(predicted).reshape(n * t, q, 4), sigma_px, p,
+                                  p_noise, times=np.zeros(1), motion="static", tol_px=tol_px,
+                                  max_iter=max_iter, accelerate=accelerate)
+        xy = res.theta[..., :2].reshape(n, t, q, 2)
+        valid = ~res.degenerate.reshape(n, t)[..., None] & np.ones(q, dtype=bool)
+        n_iter = res.n_iter.reshape(n, t)
+        cap = res.cap_hit.reshape(n, t)
+    else:
+        xy = np.empty((n, t, q, 2))
+        valid = np.empty((n, t, q), dtype=bool)
+        n_iter = np.empty((n, t), dtype=np.int64)
+        cap = np.empty((n, t), dtype=bool)
+        start = predicted[:, 0]
+        for l in range(t):                                             # loop over frames only
+            ent = pixel_entries(counts[:, l:l + 1])
+            res = unified_location_em(ent, frame_state(start), sigma_px, p, p_noise,
+                                      times=np.zeros(1), motion="static", tol_px=tol_px,
+                                      max_iter=max_iter, accelerate=accelerate)
+            xy[:, l] = res.theta[..., :2]
+            valid[:, l] = ~res.degenerate[:, None]
+            n_iter[:, l] = res.n_iter
+            cap[:, l] = res.cap_hit
+            if l + 1 < t:
+                step = (times[l + 1] - times[l]) * designation[..., 2:]
+                start = np.where(valid[:, l, :, None], xy[:, l], start) + step
+    marks = Marks(xy=xy, valid=valid, n_iter=n_iter, cap_hit=cap)
+    return associate(marks, predicted) if association == "assignment" else marks
+
+
+@dataclass
+class LineFit:
+    """Least-squares straight lines through marks.
+
+    Attributes
+    ----------
+    theta : ndarray, shape (N, Q, 4)
+        ``(x0, y0, Vx, Vy)``; where ``valid`` is False, the designation is returned.
+    valid : ndarray of bool, shape (N, Q)
+        At least two frames with distinct times held valid marks.
+    """
+
+    theta: np.ndarray
+    valid: np.ndarray
+
+
+def fit_lines(marks: Marks, times, fallback) -> LineFit:
+    """Ordinary least squares ``x_l = x0 + Vx t_l`` per object and axis over the valid marks
+    (eq. (11) with unit weights: ``A' = sum 1``, ``B' = sum t``, ``C' = sum t^2``).
+
+    Parameters
+    ----------
+    marks : Marks
+    times : ndarray, shape (T,)
+    fallback : ndarray, shape (N, Q, 4)
+        Returned for objects with fewer than two usable marks (flagged invalid).
+    """
+    t = np.asarray(times, dtype=float)[None, :, None]
+    w = marks.valid.astype(float)                                      # (N, T, Q)
+    A = w.sum(axis=1)
+    B = (w * t).sum(axis=1)
+    C = (w * t * t).sum(axis=1)
+    Dx = (w[..., None] * marks.xy).sum(axis=1)                         # (N, Q, 2)
+    Dt = (w[..., None] * t[..., None] * marks.xy).sum(axis=1)
+    det = A * C - B * B
+    ok = det > 1e-9 * np.maximum(A * C, 1e-300)
+    ds = np.where(ok, det, 1.0)[..., None]
+    x0 = (C[..., None] * Dx - B[..., None] * Dt) / ds
+    v = (A[..., None] * Dt - B[..., None] * Dx) / ds
+    theta = np.where(ok[..., None], np.concatenate([x0, v], axis=-1), np.asarray(fallback, float))
+    return LineFit(theta=theta, valid=ok)
