@@ -1,0 +1,368 @@
+"""Causal ``m``-step-ahead predictors of a measured coordinate sequence, for comparisons.
+
+Every predictor takes measurements ``z`` of shape ``(..., T)`` (one scalar series per leading
+index, e.g. ``(paths, trials, axes, T)``; time step = one frame) and returns ``forecast`` of the
+same shape, where ``forecast[..., n]`` is the prediction of ``z[..., n + steps]`` made from
+``z[..., :n+1]`` only (NaN while a method has too few samples). :func:`forecast_errors`
+aligns forecasts with a reference.
+
+Methods (Kokryatska & Hrynchyshyn 2005 name them as baselines, Sect. "results"):
+
+- :func:`growing_memory_forecast`: the paper's filter (eqs. (2)-(6)), via
+  :func:`tvtrack.filters.polynomial.growing_memory_filter`, with the frozen-gain floor;
+- :func:`g1_floor_filter`: the card's *variant* floor (only ``g_1`` floored, ``g_2, g_3`` scaled
+  by the same factor), which the core filter does not offer;
+- :func:`sliding_regression_forecast`: least-squares polynomial of degree ``d`` on the last ``L``
+  samples, extrapolated; ``L = d + 1`` is finite-difference (Newton) extrapolation;
+- :func:`spline_forecast`: not-a-knot cubic spline (scipy) through the last ``L`` samples;
+- :func:`fit_learned_predictor` / :func:`learned_forecast`: an MLP trained by back-propagation
+  and an RBF network (Gaussian units at data points via Nystroem, ridge read-out; Orr 1996),
+  scikit-learn, on ``L`` lagged increments;
+- :func:`kalman_forecast` with :func:`constant_acceleration_model`: a constant-acceleration
+  Kalman filter with white-jerk process noise, built on :mod:`tvtrack.filters.kalman`, and
+  :func:`fit_constant_acceleration` choosing its noise levels by maximum likelihood.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+from scipy.interpolate import CubicSpline
+
+from .filters.kalman import kf_predict, kf_update
+from .filters.polynomial import (growing_memory_filter, growing_memory_gains, polynomial_observation_row,
+                                 predict_ahead, taylor_transition)
+
+__all__ = [
+    "forecast_errors", "growing_memory_forecast", "g1_floor_gains", "g1_floor_filter",
+    "sliding_regression_forecast", "spline_forecast", "lag_features", "fit_learned_predictor",
+    "learned_forecast", "constant_acceleration_model", "kalman_forecast", "fit_constant_acceleration",
+    "path_folds",
+]
+
+
+def _check_steps(steps) -> int:
+    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
+        raise ValueError(f"parameter 'steps' = {steps!r}; it must be an integer >= 1 (frames ahead)")
+    return int(steps)
+
+
+def _check_z(z) -> np.ndarray:
+    z = np.asarray(z, dtype=float)
+    if z.ndim < 1 or z.shape[-1] < 2:
+        raise ValueError(f"parameter 'z' has shape {z.shape}; it needs a time axis (last) of length >= 2")
+    return z
+
+
+def forecast_errors(forecast, reference, steps: int) -> np.ndarray:
+    """Errors ``e[..., n] = forecast[..., n - steps] - reference[..., n]`` (NaN for ``n < steps``).
+
+    Parameters
+    ----------
+    forecast : ndarray, shape (..., T)
+        ``forecast[..., n]`` predicts frame ``n + steps``.
+    reference : ndarray, broadcastable to (..., T)
+        Measured or true coordinate per frame, px.
+    """
+    steps = _check_steps(steps)
+    f = np.asarray(forecast, dtype=float)
+    r = np.broadcast_to(np.asarray(reference, dtype=float), f.shape)
+    e = np.full(f.shape, np.nan)
+    e[..., steps:] = f[..., :-steps] - r[..., steps:]
+    return e
+
+
+# -- the paper's filter and the floor variant ---------------------------------------------------
+def growing_memory_forecast(z, steps: int = 1, order: int = 2, floor_memory: int | None = None) -> np.ndarray:
+    """Growing-memory polynomial filter (eqs. (5)-(6)) and its ``steps``-ahead prediction.
+
+    ``floor_memory`` = ``N_f``: gains frozen at ``g_{N_f}`` (``None`` = no floor).
+    """
+    steps = _check_steps(steps)
+    states = growing_memory_filter(_check_z(z), order, floor_memory)
+    return predict_ahead(states, steps)
+
+
+def g1_floor_gains(order: int, n_frames: int, g1_min: float) -> np.ndarray:
+    """Gain table of the *variant* floor: where ``g_{N,1} < g1_min``, ``g_N`` is scaled by
+    ``g1_min / g_{N,1}`` (all components by the same factor), so ``g_1`` never drops below
+    ``g1_min`` while ``g_2, g_3`` keep decaying (as ``~ g1_min / N`` and ``g1_min / N^2``).
+
+    Returns
+    -------
+    ndarray, shape (n_frames, order+1)
+        Row ``N-1`` is the gain for the ``N``-th sample; NaN for ``N <= order``.
+    """
+    if not (0 < g1_min <= 1):
+        raise ValueError(f"parameter 'g1_min' = {g1_min!r}; it must be in (0, 1]")
+    g = growing_memory_gains(order, n_frames)
+    scale = np.where(g[:, 0] < g1_min, g1_min / g[:, 0], 1.0)
+    return g * scale[:, None]
+
+
+def g1_floor_filter(z, g1_min: float, order: int = 2) -> np.ndarray:
+    """Polynomial filter with the variant floor of :func:`g1_floor_gains`.
+
+    Starts like the core filter (exact polynomial through the first ``order+1`` samples,
+    eq. (4)), then ``X <- F X; X <- X + g_N (z - x)`` (eqs. (5)-(6)).
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Measurements, px; all finite (this variant does not coast over gaps).
+
+    Returns
+    -------
+    ndarray, shape (..., T, order+1)
+        States; NaN for the first ``order`` samples.
+    """
+    z = _check_z(z)
+    if not np.all(np.isfinite(z)):
+        raise ValueError("parameter 'z' holds NaN; g1_floor_filter needs complete sequences")
+    n = order + 1
+    T = z.shape[-1]
+    if T < n:
+        raise ValueError(f"parameter 'z' has {T} samples; it needs >= order+1 = {n}")
+    gains = g1_floor_gains(order, T, g1_min)
+    F = taylor_transition(order)
+    H = polynomial_observation_row(order, np.arange(n - 1, -1, -1.0))  # lags n-1..0 back from t = n-1
+    states = np.full(z.shape + (n,), np.nan)
+    x = np.linalg.solve(H, z[..., :n][..., None])[..., 0]  # (eq. 4) on the first n samples
+    states[..., n - 1, :] = x
+    for t in range(n, T):
+        x = x @ F.T  # (eq. 5)
+        x = x + gains[t] * (z[..., t] - x[..., 0])[..., None]  # (eq. 6), gain for N = t+1
+        states[..., t, :] = x
+    return states
+
+
+# -- window methods -------------------------------------------------------------------------------
+def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> np.ndarray:
+    """Least-squares polynomial of ``degree`` on the last ``window`` samples, evaluated
+    ``steps`` ahead. Linear in the data, so it is one fixed FIR filter applied to all windows;
+    ``window = degree + 1`` is exact finite-difference (Newton) extrapolation.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not (isinstance(degree, (int, np.integer)) and 0 <= degree <= 5):
+        raise ValueError(f"parameter 'degree' = {degree!r}; it must be an integer in [0, 5]")
+    if not (isinstance(window, (int, np.integer)) and degree + 1 <= window <= z.shape[-1]):
+        raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in "
+                         f"[degree+1, T] = [{degree + 1}, {z.shape[-1]}]")
+    t = np.arange(window, dtype=float) - (window - 1)  # 0 = newest sample
+    V = np.vander(t, degree + 1, increasing=True)
+    w = np.vander(np.array([float(steps)]), degree + 1, increasing=True) @ np.linalg.pinv(V)  # (1, window)
+    out = np.full(z.shape, np.nan)
+    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w[0]
+    return out
+
+
+def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
+    """Not-a-knot cubic spline (``scipy.interpolate.CubicSpline``) through the last ``window``
+    samples, extrapolated ``steps`` ahead (``window >= 4``)."""
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
+        raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
+    win = sliding_window_view(z, window, axis=-1)  # (..., T-window+1, window)
+    spl = CubicSpline(np.arange(window, dtype=float), win, axis=-1, extrapolate=True)
+    out = np.full(z.shape, np.nan)
+    out[..., window - 1:] = spl(window - 1.0 + steps)
+    return out
+
+
+# -- learned predictors (scikit-learn) --------------------------------------------------------------
+def lag_features(z, n_lags: int, steps: int = 1):
+    """Translation-invariant inputs and targets for learned predictors.
+
+    Inputs at frame ``n``: ``z[n-j] - z[n]`` for ``j = 1..n_lags`` (increments to the newest
+    sample, px); target: ``z[n+steps] - z[n]``.
+
+    Returns
+    -------
+    X : ndarray, shape (..., T, n_lags)
+        NaN rows where fewer than ``n_lags+1`` samples exist.
+    y : ndarray, shape (..., T)
+        NaN where ``n + steps >= T``.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not (isinstance(n_lags, (int, np.integer)) and 1 <= n_lags < z.shape[-1]):
+        raise ValueError(f"parameter 'n_lags' = {n_lags!r}; it must be an integer in [1, T-1]")
+    T = z.shape[-1]
+    X = np.full(z.shape + (n_lags,), np.nan)
+    win = sliding_window_view(z, n_lags + 1, axis=-1)  # (..., T-n_lags, n_lags+1), newest last
+    X[..., n_lags:, :] = win[..., -2::-1] - win[..., -1:]
+    y = np.full(z.shape, np.nan)
+    y[..., :T - steps] = z[..., steps:] - z[..., :T - steps]
+    return X, y
+
+
+def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hidden_units: int = 16,
+                          rbf_centres: int = 200, seed: int = 0):
+    """Train a learned ``steps``-ahead predictor on the series in ``z_train``.
+
+    Parameters
+    ----------
+    kind : {"mlp", "rbf"}
+        ``"mlp"``: ``StandardScaler -> MLPRegressor`` (one tanh hidden layer of ``hidden_units``,
+        back-propagation with Adam, early stopping). ``"rbf"``: ``StandardScaler ->
+        Nystroem(rbf, rbf_centres units centred on training points, gamma = 1/n_lags) -> RidgeCV``.
+    z_train : ndarray, shape (..., T)
+        Training series (whole paths; keep test paths out).
+    seed : int
+        For the network's initial weights and the choice of RBF centres.
+
+    Returns
+    -------
+    sklearn Pipeline, with attribute ``n_lags_`` and ``steps_`` set.
+    """
+    from sklearn.kernel_approximation import Nystroem
+    from sklearn.linear_model import RidgeCV
+    from sklearn.neural_network import MLPRegressor
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+
+    if kind not in ("mlp", "rbf"):
+        raise ValueError(f"parameter 'kind' = {kind!r}; it must be 'mlp' or 'rbf'")
+    X, y = lag_features(z_train, n_lags, steps)
+    X = X.reshape(-1, n_lags)
+    y = y.reshape(-1)
+    ok = np.all(np.isfinite(X), axis=1) & np.isfinite(y)
+    if ok.sum() < 10 * n_lags:
+        raise ValueError(f"only {ok.sum()} training samples for {n_lags} lags; give longer or more series")
+    if kind == "mlp":
+        model = make_pipeline(StandardScaler(), MLPRegressor(
+            hidden_layer_sizes=(hidden_units,), activation="tanh", solver="adam", alpha=1e-4,
+            learning_rate_init=1e-3, max_iter=300, early_stopping=True, n_iter_no_change=15,
+            random_state=seed))
+    else:
+        model = make_pipeline(StandardScaler(), Nystroem(kernel="rbf", gamma=1.0 / n_lags,
+                                                         n_components=rbf_centres, random_state=seed),
+                              RidgeCV(alphas=np.logspace(-6, 2, 9)))
+    model.fit(X[ok], y[ok])
+    model.n_lags_ = n_lags
+    model.steps_ = steps
+    return model
+
+
+def learned_forecast(model, z) -> np.ndarray:
+    """Apply a model from :func:`fit_learned_predictor`: ``forecast = z + model(lags)``."""
+    z = _check_z(z)
+    X, _ = lag_features(z, model.n_lags_, model.steps_)
+    flat = X.reshape(-1, model.n_lags_)
+    ok = np.all(np.isfinite(flat), axis=1)
+    out = np.full(flat.shape[0], np.nan)
+    out[ok] = model.predict(flat[ok])
+    return z + out.reshape(z.shape)
+
+
+def path_folds(n_paths: int, n_folds: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Split path indices ``0..n_paths-1`` into ``n_folds`` contiguous (train, test) folds."""
+    if not (2 <= n_folds <= n_paths):
+        raise ValueError(f"parameter 'n_folds' = {n_folds!r}; it must be in [2, n_paths={n_paths}]")
+    idx = np.arange(n_paths)
+    return [(np.setdiff1d(idx, test), test) for test in np.array_split(idx, n_folds)]
+
+
+# -- Kalman filters -------------------------------------------------------------------------------
+def constant_acceleration_model(jerk_psd, meas_var):
+    """Constant-acceleration model per frame (state ``(x, x', x'')``, px, px/frame, px/frame^2).
+
+    Process noise from white jerk of spectral density ``q`` (px^2/frame^5):
+    ``Q = q [[1/20, 1/8, 1/6], [1/8, 1/3, 1/2], [1/6, 1/2, 1]]`` (Bar-Shalom et al. 2001, 6.2.3).
+
+    Parameters
+    ----------
+    jerk_psd : float or ndarray, shape (...)
+    meas_var : float or ndarray, shape (...)
+        Measurement noise variance, px^2.
+
+    Returns
+    -------
+    F (3, 3), Q (..., 3, 3), H (1, 3), R (..., 1, 1)
+    """
+    q = np.asarray(jerk_psd, dtype=float)
+    r = np.asarray(meas_var, dtype=float)
+    if np.any(q < 0) or np.any(r <= 0):
+        raise ValueError(f"jerk_psd must be >= 0 and meas_var > 0; got {q!r}, {r!r}")
+    base = np.array([[1 / 20, 1 / 8, 1 / 6], [1 / 8, 1 / 3, 1 / 2], [1 / 6, 1 / 2, 1.0]])
+    return taylor_transition(2), q[..., None, None] * base, np.array([[1.0, 0.0, 0.0]]), r[..., None, None]
+
+
+def kalman_forecast(z, F, Q, H, R, x0, P0, steps: int = 1, burn_in: int = 0):
+    """Kalman filter over scalar series and its ``steps``-ahead forecast of ``H x``.
+
+    The covariance does not depend on the data, so it is carried with only the batch axes of
+    ``Q, R, P0`` (not one per series), which keeps long runs cheap.
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Measurements (all finite), px.
+    F : ndarray, shape (n, n); Q : (..., n, n); H : (1, n); R : (..., 1, 1)
+    x0 : ndarray, shape (..., n)
+        Prior mean for frame 0; P0 : (..., n, n) its covariance.
+    burn_in : int
+        Frames whose innovations are left out of the log-likelihood (diffuse start).
+
+    Returns
+    -------
+    forecast : ndarray, shape (..., T)
+    loglik : ndarray, shape (...)
+        Gaussian log-likelihood of the innovations after ``burn_in``, summed over time.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not np.all(np.isfinite(z)):
+        raise ValueError("parameter 'z' holds NaN; kalman_forecast needs complete sequences")
+    T = z.shape[-1]
+    F = np.asarray(F, dtype=float)
+    Fm = np.linalg.matrix_power(F, steps)
+    H = np.asarray(H, dtype=float)
+    Q = np.asarray(Q, dtype=float)
+    R = np.asarray(R, dtype=float)
+    x0 = np.asarray(x0, dtype=float)
+    P0 = np.asarray(P0, dtype=float)
+    n = F.shape[-1]
+    cov_batch = np.broadcast_shapes(P0.shape[:-2], Q.shape[:-2], R.shape[:-2])
+    P = np.broadcast_to(P0, cov_batch + (n, n)).copy()
+    x = np.broadcast_to(x0, np.broadcast_shapes(z.shape[:-1], x0.shape[:-1], cov_batch) + (n,)).copy()
+    forecast = []
+    loglik = 0.0
+    for t in range(T):
+        if t > 0:
+            x, P = kf_predict(x, P, F, Q)
+        x, P, nu, S = kf_update(x, P, z[..., t, None], H, R)
+        if t >= burn_in:
+            s = S[..., 0, 0]
+            loglik = loglik - 0.5 * (nu[..., 0] ** 2 / s + np.log(2 * np.pi * s))
+        forecast.append(np.einsum("j,...j->...", (H @ Fm)[0], x))
+    forecast = np.stack(forecast, axis=-1)
+    return forecast, np.broadcast_to(loglik, forecast.shape[:-1])
+
+
+def fit_constant_acceleration(z, jerk_grid, meas_var_grid, burn_in: int = 10):
+    """Maximum-likelihood white-jerk density and measurement variance on a grid.
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Training series.
+    jerk_grid, meas_var_grid : array_like, shapes (A,), (B,)
+
+    Returns
+    -------
+    (jerk_psd, meas_var) : floats at the grid maximum of the summed log-likelihood
+    loglik : ndarray, shape (A, B)
+    """
+    z = _check_z(z).reshape(-1, np.shape(z)[-1])
+    q = np.asarray(jerk_grid, dtype=float)[:, None, None]
+    r = np.asarray(meas_var_grid, dtype=float)[None, :, None]
+    F, Q, H, R = constant_acceleration_model(q, r)  # Q (A,1,1,3,3), R (A,B,1,1,1)
+    x0 = np.zeros(3)
+    P0 = np.diag([1e4, 1e2, 1e1])
+    _, ll = kalman_forecast(z, F, Q, H, R, x0, P0, burn_in=burn_in)
+    ll = ll.sum(axis=-1)
+    a, b = np.unravel_index(np.argmax(ll), ll.shape)
+    return (float(q[a, 0, 0]), float(r[0, b, 0])), ll

@@ -1,0 +1,438 @@
+"""Synthetic beam-wander trajectories of a laser spot on a camera sensor.
+
+Model (per image axis, x and y independent and alike)::
+
+    c(t) = c0 + v_d (t - t_mid) + sum_k s_k(t)
+
+- ``s_k``: stationary, critically damped 2nd-order Gauss-Markov processes
+  ``s'' + 2 w_k s' + w_k^2 s = q_k xi(t)`` with white ``xi`` and ``q_k = 2 sigma_k w_k^(3/2)``,
+  so that ``Var s_k = sigma_k^2`` and ``PSD_k(f) ~ 1/(1 + (f/f_k)^2)^2`` (corner ``f_k = w_k/2pi``).
+  Paths are smooth (differentiable), as atmospheric beam wander is after aperture averaging.
+- The component variances follow a power law, ``sigma_k^2 ~ f_k^(1 - alpha)``: the summed
+  spectrum then has the envelope ``PSD(f) ~ f^(-alpha)`` between the corners and falls as
+  ``f^-4`` above the highest one. The default ``alpha = 2/3`` is the low-frequency slope of the
+  Kolmogorov tilt spectrum (Tyler 1994); above the tilt corner real spectra fall as
+  ``f^(-11/3)``..``f^(-17/3)``, bracketing the model's ``f^-4``.
+- ``v_d``: a slow linear drift (mount or alignment), uniform direction, speed uniform in
+  ``[0, drift_max]``, centred on the middle of the trace.
+- Total intensity (scintillation): i.i.d. log-normal per frame, ``ln I ~ N(-s^2/2, s^2)`` (mean 1).
+
+Each path draws its own total wander RMS per axis, log-uniform in ``[rms_min, rms_max]`` (the
+paper's 15 "laser paths" were different recordings), split over the components as above.
+The processes are sampled exactly at the frame interval (matrix exponential and Van Loan's
+integral for the discrete process noise), so no discretisation error depends on the frame rate.
+
+Command line (writes the data set shipped in ``data/laser_traces``)::
+
+    python -m tvtrack.scenes.beam_wander --out data/laser_traces --seed 20050110
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.linalg import block_diag, expm
+
+from ..measure import centroid
+from ..render import gate_origin, gaussian_spot, sensor_readout
+from ..traces import TraceSet, save_traces, sha256_file
+
+__all__ = ["BeamWanderConfig", "component_sigmas", "gauss_markov_discrete", "generate_traces",
+           "wander_state_space", "SpotCamera", "GateTrack", "track_spot"]
+
+
+@dataclass(frozen=True)
+class BeamWanderConfig:
+    """Parameters of the beam-wander generator (units in the names).
+
+    Attributes
+    ----------
+    n_paths : int
+        Number of independent traces (default 15, as the paper's data base).
+    n_frames : int
+        Frames per trace (default 1000).
+    frame_rate_hz : float
+        Camera frame rate, frames/s (default 25, the paper's).
+    image_size_px : int
+        Side of the square sensor, px (default 128, the paper's).
+    corner_frequencies_hz : tuple of float
+        Corner frequency ``f_k`` of each Gauss-Markov component, Hz (default 0.02, 0.1, 0.5:
+        the card's 0.5 Hz as the fastest, with slower wander a factor 5 and 25 below it; the
+        trace length, 40 s, is about one period of the slowest).
+    spectral_index : float
+        ``alpha`` of the spectral envelope ``PSD ~ f^-alpha`` between the corners (default 2/3).
+    rms_min_px, rms_max_px : float
+        Range of the per-path total wander RMS per axis, px, drawn log-uniformly
+        (default 3..8 px around the card's 5 px).
+    drift_max_px_per_frame : float
+        Largest drift speed, px/frame (default 0.02, i.e. <= 20 px over 1000 frames).
+    scintillation_sigma_ln : float
+        Standard deviation of ln(total intensity) (default 0.3, the card's).
+    """
+
+    n_paths: int = 15
+    n_frames: int = 1000
+    frame_rate_hz: float = 25.0
+    image_size_px: int = 128
+    corner_frequencies_hz: tuple = (0.02, 0.1, 0.5)
+    spectral_index: float = 2.0 / 3.0
+    rms_min_px: float = 3.0
+    rms_max_px: float = 8.0
+    drift_max_px_per_frame: float = 0.02
+    scintillation_sigma_ln: float = 0.3
+
+    def __post_init__(self):
+        object.__setattr__(self, "corner_frequencies_hz", tuple(float(f) for f in self.corner_frequencies_hz))
+        checks = [
+            ("n_paths", self.n_paths, self.n_paths >= 1, ">= 1"),
+            ("n_frames", self.n_frames, self.n_frames >= 2, ">= 2"),
+            ("frame_rate_hz", self.frame_rate_hz, self.frame_rate_hz > 0, "> 0"),
+            ("image_size_px", self.image_size_px, self.image_size_px >= 8, ">= 8"),
+            ("corner_frequencies_hz", self.corner_frequencies_hz,
+             len(self.corner_frequencies_hz) >= 1 and all(0 < f < self.frame_rate_hz / 2
+                                                          for f in self.corner_frequencies_hz),
+             "a non-empty list of values in (0, frame_rate_hz/2)"),
+            ("spectral_index", self.spectral_index, -2.0 <= self.spectral_index <= 4.0, "in [-2, 4]"),
+            ("rms_min_px", self.rms_min_px, 0 <= self.rms_min_px <= self.rms_max_px, "in [0, rms_max_px]"),
+            ("rms_max_px", self.rms_max_px, self.rms_max_px <= self.image_size_px / 6,
+             f"<= image_size_px/6 = {self.image_size_px / 6:g}"),
+            ("drift_max_px_per_frame", self.drift_max_px_per_frame,
+             0 <= self.drift_max_px_per_frame * self.n_frames <= self.image_size_px / 4,
+             f"in [0, image_size_px/(4 n_frames)] = [0, {self.image_size_px / 4 / self.n_frames:g}]"),
+            ("scintillation_sigma_ln", self.scintillation_sigma_ln, 0 <= self.scintillation_sigma_ln <= 2,
+             "in [0, 2]"),
+        ]
+        for name, value, ok, allowed in checks:
+            if not ok:
+                raise ValueError(f"parameter {name!r} = {value!r}; it must be {allowed}")
+
+
+def component_sigmas(config: BeamWanderConfig, rms_px) -> np.ndarray:
+    """RMS of each Gauss-Markov component for a total RMS ``rms_px`` (per axis).
+
+    ``sigma_k^2 = rms^2 w_k / sum w``, ``w_k = f_k^(1-alpha)`` (envelope ``PSD ~ f^-alpha``).
+
+    Returns
+    -------
+    ndarray, shape (..., K), px
+    """
+    f = np.asarray(config.corner_frequencies_hz)
+    w = f ** (1.0 - config.spectral_index)
+    return np.asarray(rms_px, dtype=float)[..., None] * np.sqrt(w / w.sum())
+
+
+def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarray]:
+    """Exact discrete model of critically damped Gauss-Markov processes.
+
+    State ``(s, s')``; continuous ``A = [[0, 1], [-w^2, -2w]]``, noise input ``(0, q)``,
+    ``q = 2 sigma w^(3/2)``.
+
+    Parameters
+    ----------
+    omega : array_like, shape (K,)
+        Angular corner frequencies, rad/s.
+    sigma : array_like, shape (..., K)
+        Stationary RMS of ``s``, px.
+    dt : float
+        Sampling interval, s.
+
+    Returns
+    -------
+    Phi : ndarray, shape (K, 2, 2)
+        Transition over ``dt``.
+    Qd : ndarray, shape (..., K, 2, 2)
+        Discrete process-noise covariance, px^2 and (px/s)^2 (Van Loan 1978).
+    """
+    omega = np.asarray(omega, dtype=float)
+    sigma = np.asarray(sigma, dtype=float)
+    Phi = np.empty(omega.shape + (2, 2))
+    Q1 = np.empty(omega.shape + (2, 2))  # for q = 1
+    for k, w in enumerate(omega):
+        A = np.array([[0.0, 1.0], [-w * w, -2.0 * w]])
+        G = np.array([[0.0, 0.0], [0.0, 1.0]])
+        vl = expm(np.block([[-A, G], [np.zeros((2, 2)), A.T]]) * dt)  # Van Loan
+        Phi[k] = vl[2:, 2:].T
+        Q1[k] = Phi[k] @ vl[:2, 2:]
+        Q1[k] = 0.5 * (Q1[k] + Q1[k].T)
+    q2 = (2.0 * sigma * omega ** 1.5) ** 2
+    return Phi, q2[..., None, None] * Q1
+
+
+def _stationary_cov(omega, sigma) -> np.ndarray:
+    """Stationary covariance ``diag(sigma^2, sigma^2 w^2)`` of ``(s, s')``, shape (..., K, 2, 2)."""
+    omega = np.asarray(omega, dtype=float)
+    sigma = np.asarray(sigma, dtype=float)
+    P = np.zeros(sigma.shape + (2, 2))
+    P[..., 0, 0] = sigma ** 2
+    P[..., 1, 1] = (sigma * omega) ** 2
+    return P
+
+
+def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0) -> TraceSet:
+    """Draw ``config.n_paths`` beam-wander traces.
+
+    The draws come from ``numpy.random.default_rng(seed)`` in a fixed order (per-path RMS,
+    drift, initial states, process noise, scintillation), so a seed gives the same traces on
+    every machine.
+
+    Returns
+    -------
+    TraceSet
+        ``centres_px`` (n_paths, n_frames, 2) and ``intensity`` (n_paths, n_frames); metadata
+        holds the config, the seed and the per-path draws (``wander_rms_px`` (n_paths,),
+        ``drift_px_per_frame`` (n_paths, 2)).
+    """
+    if not (isinstance(seed, (int, np.integer)) and seed >= 0):
+        raise ValueError(f"parameter 'seed' = {seed!r}; it must be an integer >= 0")
+    c = config
+    rng = np.random.default_rng(seed)
+    P, T = c.n_paths, c.n_frames
+    dt = 1.0 / c.frame_rate_hz
+    omega = 2 * np.pi * np.asarray(c.corner_frequencies_hz)
+    K = omega.size
+    rms = np.exp(rng.uniform(np.log(max(c.rms_min_px, 1e-12)), np.log(max(c.rms_max_px, 1e-12)), size=P))
+    if c.rms_max_px == 0:
+        rms[:] = 0.0
+    speed = c.drift_max_px_per_frame * rng.uniform(0.0, 1.0, size=P)
+    angle = rng.uniform(0.0, 2 * np.pi, size=P)
+    drift = speed[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)  # (P, 2) px/frame
+    sig = component_sigmas(c, rms)  # (P, K)
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt)  # (K,2,2), (P,K,2,2)
+    L0 = np.linalg.cholesky(_stationary_cov(omega, sig) + 1e-300 * np.eye(2))  # (P,K,2,2)
+    Lq = np.linalg.cholesky(Qd + 1e-300 * np.eye(2))
+    s = np.einsum("pkij,pakj->pakj", L0, rng.standard_normal((P, 2, K, 2)))  # (P, axis, K, 2)
+    noise = rng.standard_normal((T, P, 2, K, 2))
+    wander = np.empty((P, T, 2))
+    for t in range(T):
+        if t > 0:
+            s = np.einsum("kij,pakj->paki", Phi, s) + np.einsum("pkij,pakj->paki", Lq, noise[t])
+        wander[:, t, :] = s[..., 0].sum(axis=-1)
+    centre = (c.image_size_px - 1) / 2.0
+    t_rel = np.arange(T) - (T - 1) / 2.0
+    centres = centre + drift[:, None, :] * t_rel[None, :, None] + wander
+    sl = c.scintillation_sigma_ln
+    intensity = np.exp(rng.normal(-0.5 * sl * sl, sl, size=(P, T)))
+    cfg = asdict(c)
+    cfg["corner_frequencies_hz"] = list(c.corner_frequencies_hz)
+    metadata = {
+        "generator": "tvtrack.scenes.beam_wander.generate_traces",
+        "config": cfg,
+        "seed": int(seed),
+        "wander_rms_px": rms.tolist(),
+        "drift_px_per_frame": drift.tolist(),
+        "units": {"centres_px": "px (pixel centres at integers; x = column, y = row)",
+                  "intensity": "dimensionless total-intensity factor, mean 1"},
+    }
+    return TraceSet(centres, intensity, c.frame_rate_hz, c.image_size_px, metadata)
+
+
+def wander_state_space(config: BeamWanderConfig, rms_px, drift_prior_px_per_frame: float | None = None):
+    """Per-axis linear-Gaussian model of the generator, for the optimal (Kalman) predictor.
+
+    State ``(s_1, s_1', ..., s_K, s_K', offset, drift)``; ``offset`` = centre of the path at the
+    current frame without wander (``c0 + v_d (t - t_mid)``), ``drift`` in px/frame. Time step =
+    one frame; derivatives ``s_k'`` in px/s.
+
+    Parameters
+    ----------
+    config : BeamWanderConfig
+    rms_px : array_like, shape (P,)
+        Total wander RMS of each path (the generator's per-path draws).
+    drift_prior_px_per_frame : float, optional
+        Prior RMS of the drift speed per axis (default ``drift_max/sqrt(3)``).
+
+    Returns
+    -------
+    F : ndarray, shape (n, n)
+    Q : ndarray, shape (P, n, n)
+    H : ndarray, shape (1, n)
+    P0 : ndarray, shape (P, n, n)
+        Stationary prior of the wander, diffuse (100^2 px^2) offset, drift prior.
+    """
+    c = config
+    dt = 1.0 / c.frame_rate_hz
+    omega = 2 * np.pi * np.asarray(c.corner_frequencies_hz)
+    sig = component_sigmas(c, rms_px)
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt)
+    Pst = _stationary_cov(omega, sig)
+    K = omega.size
+    n = 2 * K + 2
+    F = block_diag(*Phi, np.array([[1.0, 1.0], [0.0, 1.0]]))
+    npath = sig.shape[0]
+    Q = np.zeros((npath, n, n))
+    P0 = np.zeros((npath, n, n))
+    for k in range(K):
+        Q[:, 2 * k:2 * k + 2, 2 * k:2 * k + 2] = Qd[:, k]
+        P0[:, 2 * k:2 * k + 2, 2 * k:2 * k + 2] = Pst[:, k]
+    d = c.drift_max_px_per_frame / np.sqrt(3.0) if drift_prior_px_per_frame is None else drift_prior_px_per_frame
+    P0[:, -2, -2] = 100.0 ** 2
+    P0[:, -1, -1] = max(d, 1e-9) ** 2
+    H = np.zeros((1, n))
+    H[0, 0:2 * K:2] = 1.0
+    H[0, -2] = 1.0
+    return F, Q, H, P0
+
+
+@dataclass(frozen=True)
+class SpotCamera:
+    """How the laser spot is imaged (the card's suggested defaults; the paper states none).
+
+    Attributes
+    ----------
+    spot_sigma_px : float
+        Gaussian standard deviation, px (default 4 = 1/e^2 radius 8 px).
+    peak_dn : float
+        Peak pixel value of the spot at intensity factor 1, DN (default 200).
+    background_dn : float
+        Background level, DN (default 10).
+    read_noise_dn : float
+        Gaussian read noise RMS, DN (default 2).
+    gain_e_per_dn : float
+        Electrons per DN (default 1; Poisson noise on signal + background).
+    bit_depth : int
+        Quantisation and saturation (default 8).
+    gate_size_px : int
+        Side of the square measurement gate, px, odd (default 31, about +-4 sigma).
+    threshold_sigma : float
+        Centroid threshold in robust border RMS above the border median (default 3).
+    """
+
+    spot_sigma_px: float = 4.0
+    peak_dn: float = 200.0
+    background_dn: float = 10.0
+    read_noise_dn: float = 2.0
+    gain_e_per_dn: float = 1.0
+    bit_depth: int = 8
+    gate_size_px: int = 31
+    threshold_sigma: float = 3.0
+
+    def __post_init__(self):
+        checks = [
+            ("spot_sigma_px", self.spot_sigma_px, 0 < self.spot_sigma_px <= 32, "in (0, 32]"),
+            ("peak_dn", self.peak_dn, self.peak_dn > 0, "> 0"),
+            ("background_dn", self.background_dn, self.background_dn >= 0, ">= 0"),
+            ("read_noise_dn", self.read_noise_dn, self.read_noise_dn >= 0, ">= 0"),
+            ("gain_e_per_dn", self.gain_e_per_dn, self.gain_e_per_dn > 0, "> 0"),
+            ("bit_depth", self.bit_depth, 1 <= self.bit_depth <= 16, "in [1, 16]"),
+            ("gate_size_px", self.gate_size_px, self.gate_size_px >= 5 and self.gate_size_px % 2 == 1,
+             "an odd integer >= 5"),
+            ("threshold_sigma", self.threshold_sigma, self.threshold_sigma >= 0, ">= 0"),
+        ]
+        for name, value, ok, allowed in checks:
+            if not ok:
+                raise ValueError(f"parameter {name!r} = {value!r}; it must be {allowed}")
+
+    @property
+    def flux_e(self) -> float:
+        """Total spot signal at intensity 1, electrons (``2 pi sigma^2 peak gain``)."""
+        return 2 * np.pi * self.spot_sigma_px ** 2 * self.peak_dn * self.gain_e_per_dn
+
+
+@dataclass(frozen=True)
+class GateTrack:
+    """Result of :func:`track_spot`.
+
+    Attributes
+    ----------
+    xy : ndarray, shape (..., T, 2)
+        Measured energy centres, px (NaN where nothing passed the threshold).
+    origin : ndarray of int64, shape (..., T, 2)
+        First pixel ``(x0, y0)`` of each frame's gate.
+    gates : ndarray or None, shape (T, rows, cols)
+        Gate images (DN) of the batch element ``keep``, if asked for.
+    """
+
+    xy: np.ndarray
+    origin: np.ndarray
+    gates: np.ndarray | None
+
+
+def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCamera = SpotCamera(),
+               image_size_px: int = 128, keep: tuple | None = None) -> GateTrack:
+    """Render each frame's gate crop and measure the spot's energy centre, frame by frame.
+
+    The gate of frame ``n`` is centred on the centre measured in frame ``n-1`` (frame 0: on the
+    true centre, i.e. after acquisition) and kept inside the sensor. Only the gate's pixels
+    are rendered (pixel-integrated Gaussian), read out with Poisson + read noise, quantised to
+    ``bit_depth``, and measured with :func:`tvtrack.measure.centroid` (border-median
+    background, ``threshold_sigma`` robust RMS threshold).
+
+    Parameters
+    ----------
+    centres_px : ndarray, shape (..., T, 2)
+        True centres, px (any leading batch axes, e.g. (trials, paths)).
+    intensity : ndarray, shape (..., T)
+        Total-intensity factor per frame.
+    rng : numpy.random.Generator
+    camera : SpotCamera
+    image_size_px : int
+        Sensor side, px.
+    keep : tuple of int, optional
+        Index into the batch axes whose gate images to return.
+
+    Returns
+    -------
+    GateTrack
+    """
+    c = np.asarray(centres_px, dtype=float)
+    inten = np.broadcast_to(np.asarray(intensity, dtype=float), c.shape[:-1])
+    g = camera.gate_size_px
+    if g > image_size_px:
+        raise ValueError(f"parameter 'gate_size_px' = {g}; it must be <= image_size_px = {image_size_px}")
+    T = c.shape[-2]
+    xy = np.full(c.shape, np.nan)
+    origin = np.zeros(c.shape, dtype=np.int64)
+    gates = None if keep is None else np.empty((T, g, g))
+    aim = c[..., 0, :]
+    for t in range(T):
+        o = np.clip(gate_origin(aim, (g, g)), 0, image_size_px - g)
+        signal = gaussian_spot(c[..., t, :], (g, g), camera.spot_sigma_px,
+                               camera.flux_e * inten[..., t], origin=o)
+        img = sensor_readout(signal, rng, background=camera.background_dn * camera.gain_e_per_dn,
+                             photon_noise=True, read_noise=camera.read_noise_dn * camera.gain_e_per_dn,
+                             gain=camera.gain_e_per_dn, bit_depth=camera.bit_depth)
+        m = centroid(img, o, background="border", threshold_sigma=camera.threshold_sigma)
+        xy[..., t, :] = m.xy
+        origin[..., t, :] = o
+        if keep is not None:
+            gates[t] = img[keep]
+        aim = np.where(m.valid[..., None], m.xy, aim)  # a lost frame keeps the old gate
+    return GateTrack(xy, origin, gates)
+
+
+def main(argv=None) -> int:
+    """Write a trace data set: ``traces.npz`` plus ``checksums.sha256``."""
+    ap = argparse.ArgumentParser(prog="python -m tvtrack.scenes.beam_wander",
+                                 description="Generate synthetic laser beam-wander traces (true centres).")
+    ap.add_argument("--out", required=True, help="output folder")
+    ap.add_argument("--seed", type=int, required=True, help="random seed (integer >= 0)")
+    d = BeamWanderConfig()
+    ap.add_argument("--n-paths", type=int, default=d.n_paths)
+    ap.add_argument("--n-frames", type=int, default=d.n_frames)
+    ap.add_argument("--frame-rate-hz", type=float, default=d.frame_rate_hz)
+    ap.add_argument("--image-size-px", type=int, default=d.image_size_px)
+    ap.add_argument("--corner-frequencies-hz", type=float, nargs="+", default=list(d.corner_frequencies_hz))
+    ap.add_argument("--spectral-index", type=float, default=d.spectral_index)
+    ap.add_argument("--rms-min-px", type=float, default=d.rms_min_px)
+    ap.add_argument("--rms-max-px", type=float, default=d.rms_max_px)
+    ap.add_argument("--drift-max-px-per-frame", type=float, default=d.drift_max_px_per_frame)
+    ap.add_argument("--scintillation-sigma-ln", type=float, default=d.scintillation_sigma_ln)
+    a = ap.parse_args(argv)
+    cfg = BeamWanderConfig(a.n_paths, a.n_frames, a.frame_rate_hz, a.image_size_px,
+                           tuple(a.corner_frequencies_hz), a.spectral_index, a.rms_min_px, a.rms_max_px,
+                           a.drift_max_px_per_frame, a.scintillation_sigma_ln)
+    traces = generate_traces(cfg, a.seed)
+    out = Path(a.out)
+    path = save_traces(out / "traces.npz", traces)
+    (out / "checksums.sha256").write_text(f"{sha256_file(path)}  {path.name}\n")
+    print(json.dumps({"file": str(path), "sha256": sha256_file(path), "n_paths": cfg.n_paths,
+                      "n_frames": cfg.n_frames}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

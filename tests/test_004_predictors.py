@@ -1,0 +1,120 @@
+"""Notebook 004: baseline predictors (exactness on polynomials, Kalman equivalences, learned models)."""
+
+import numpy as np
+import pytest
+
+from tvtrack import predictors as pr
+from tvtrack.filters.polynomial import growing_memory_filter, predict_ahead
+
+
+def test_forecast_errors_alignment():
+    f = np.arange(10.0)
+    e = pr.forecast_errors(f, np.arange(10.0) + 100, 2)
+    assert np.all(np.isnan(e[:2]))
+    np.testing.assert_allclose(e[2:], f[:-2] - (np.arange(2, 10) + 100))
+
+
+@pytest.mark.parametrize("degree, window", [(1, 2), (2, 3), (2, 8), (3, 9)])
+def test_sliding_regression_exact_on_polynomials(degree, window):
+    t = np.arange(60.0)
+    z = 1 + 0.3 * t - 0.02 * t ** 2 * (degree >= 2) + 1e-4 * t ** 3 * (degree >= 3)
+    for steps in (1, 4):
+        f = pr.sliding_regression_forecast(z, window, degree, steps)
+        np.testing.assert_allclose(f[window - 1:-steps], z[window - 1 + steps:], atol=1e-8)
+        assert np.all(np.isnan(f[:window - 1]))
+
+
+def test_finite_difference_formula():
+    z = np.array([0.0, 1.0, 4.0, 2.0])
+    np.testing.assert_allclose(pr.sliding_regression_forecast(z, 2, 1, 1)[1:], 2 * z[1:] - z[:-1], atol=1e-12)
+    np.testing.assert_allclose(pr.sliding_regression_forecast(z, 3, 2, 1)[2:], 3 * z[2:] - 3 * z[1:-1] + z[:-2], atol=1e-12)
+
+
+def test_spline_extrapolation_exact_on_cubics_and_batched():
+    t = np.arange(40.0)
+    z = np.stack([2 - t + 0.01 * t ** 3, 5 + 0.5 * t])
+    f = pr.spline_forecast(z, 6, 2)
+    np.testing.assert_allclose(f[:, 5:-2], z[:, 7:], rtol=1e-9)
+
+
+def test_ca_kalman_without_process_noise_equals_growing_memory():
+    """The card's equivalent form: zero process noise + diffuse prior = growing-memory LS."""
+    rng = np.random.default_rng(0)
+    z = np.cumsum(rng.normal(0, 1, (2, 60)), axis=-1)
+    F, Q, H, R = pr.constant_acceleration_model(0.0, 1.0)
+    f_kf, _ = pr.kalman_forecast(z, F, Q, H, R, np.zeros(3), np.diag([1e12, 1e10, 1e8]), 1)
+    f_gm = predict_ahead(growing_memory_filter(z, 2, None), 1)
+    np.testing.assert_allclose(f_kf[:, 5:], f_gm[:, 5:], atol=1e-5)
+
+
+def test_kalman_forecast_matches_filterpy():
+    filterpy = pytest.importorskip("filterpy.kalman")
+    rng = np.random.default_rng(1)
+    z = np.cumsum(rng.normal(0, 1, 40))
+    F, Q, H, R = pr.constant_acceleration_model(0.05, 0.3)
+    x0, P0 = np.zeros(3), np.diag([100.0, 10.0, 1.0])
+    ours, ll = pr.kalman_forecast(z, F, Q, H, R, x0, P0, 2)
+    kf = filterpy.KalmanFilter(dim_x=3, dim_z=1)
+    kf.x, kf.P, kf.F, kf.Q, kf.H, kf.R = x0.copy(), P0.copy(), F, Q, H, R
+    ref, ll_ref = [], 0.0
+    for t, zt in enumerate(z):
+        if t > 0:
+            kf.predict()
+        kf.update(np.array([zt]))
+        ll_ref += kf.log_likelihood
+        ref.append((H @ np.linalg.matrix_power(F, 2) @ kf.x)[0])
+    np.testing.assert_allclose(ours, ref, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(ll, ll_ref, rtol=1e-9)
+
+
+def test_ml_fit_recovers_noise_levels_roughly():
+    """White-jerk data with known q, r: the grid maximum lands on the true cell or a neighbour."""
+    rng = np.random.default_rng(3)
+    q_true, r_true, T = 1e-2, 0.25, 600
+    F, Q, H, R = pr.constant_acceleration_model(q_true, r_true)
+    L = np.linalg.cholesky(Q)
+    x = np.zeros((6, 3))
+    zs = []
+    for _ in range(T):
+        x = x @ F.T + rng.standard_normal((6, 3)) @ L.T
+        zs.append(x[:, 0] + np.sqrt(r_true) * rng.standard_normal(6))
+    z = np.stack(zs, axis=-1)
+    grid_q, grid_r = np.logspace(-4, 0, 9), np.logspace(-2, 0, 5)
+    (q, r), ll = pr.fit_constant_acceleration(z, grid_q, grid_r)
+    assert ll.shape == (9, 5)
+    assert abs(np.log10(q / q_true)) <= 0.51 and abs(np.log10(r / r_true)) <= 0.51
+
+
+@pytest.mark.parametrize("kind", ["mlp", "rbf"])
+def test_learned_predictors_beat_last_value_on_smooth_series(kind):
+    rng = np.random.default_rng(4)
+    t = np.arange(400)
+    phases = rng.uniform(0, 2 * np.pi, (6, 1))
+    z = 10 * np.sin(2 * np.pi * t / 60 + phases) + rng.normal(0, 0.01, (6, 400))
+    model = pr.fit_learned_predictor(kind, z[:4], 5, 1, hidden_units=8, rbf_centres=50, seed=0)
+    f = pr.learned_forecast(model, z[4:])
+    e = pr.forecast_errors(f, z[4:], 1)[:, 10:]
+    naive = np.diff(z[4:], axis=-1)[:, 9:]
+    assert np.sqrt(np.nanmean(e ** 2)) < 0.3 * np.sqrt(np.mean(naive ** 2))
+
+
+def test_lag_features_and_folds():
+    z = np.arange(10.0) ** 2
+    X, y = pr.lag_features(z, 3, 2)
+    np.testing.assert_allclose(X[5], [16 - 25, 9 - 25, 4 - 25])
+    assert y[5] == 49 - 25 and np.isnan(y[-1]) and np.all(np.isnan(X[:3]))
+    folds = pr.path_folds(15, 3)
+    assert sorted(np.concatenate([te for _, te in folds]).tolist()) == list(range(15))
+    assert all(np.intersect1d(tr, te).size == 0 for tr, te in folds)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: pr.sliding_regression_forecast(np.arange(10.0), 2, 2), "window"),
+    (lambda: pr.spline_forecast(np.arange(10.0), 3), "window"),
+    (lambda: pr.growing_memory_forecast(np.arange(10.0), 0), "steps"),
+    (lambda: pr.fit_learned_predictor("svm", np.zeros((2, 50)), 3), "kind"),
+    (lambda: pr.path_folds(3, 5), "n_folds"),
+])
+def test_bad_arguments_name_the_parameter(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
