@@ -1,0 +1,299 @@
+"""Discriminators of the generalised Stratonovich tracker (Yukhno 2025), with the corrections
+of the paper card (003, section 3).
+
+All discriminators here return ``+grad Pi`` (up to the positive factor ``d / N``): positive when
+the true spot lies at larger ``x`` (``y``) than the gate centre, so loops use *positive* gains.
+The printed eqs. (6), (20)-(23), (26) and the quadrant set (Q1)-(Q5) have the opposite sign
+(the chain-rule minus of ``dh(z - lambda)/dlambda = -h'`` is dropped), (27)-(28) also have a
+wrong relative sign, and (Q3) a misplaced bracket.
+
+Edge form (eqs. (22), (23), corrected)::
+
+    Delta_x = u_dx(x_m + a) - u_dx(x_m - a),   u_dx(x) = int u_d(x, y) h(y - y_m) dy      (21), (24)
+
+Quadrant (integral) form, used in the paper's simulation::
+
+    Delta_x = (u2 + u4) - (u1 + u3),   Delta_y = (u1 + u2) - (u3 + u4)
+
+with ``u1`` = left-"upper" quadrant, where "upper" means ``y > y_m`` (defined by the inequality,
+not by the screen display; ``y`` is the row coordinate here). Polar outputs (26)-(28),
+corrected: ``e_r = Delta_x cos th + Delta_y sin th`` and ``e_th = -Delta_x sin th + Delta_y cos th``
+(``dPi/dphi = r e_th``, ``dPi/domega = r t e_th``).
+
+Coordinates follow :mod:`tvtrack.render`; crops carry leading batch axes ``(n, rows, cols)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+__all__ = [
+    "interval_weights", "quadrant_weights", "quadrant_noise", "quadrant_sums", "quadrant_discriminator", "edge_discriminator",
+    "polar_errors", "static_characteristic", "two_emitter_discriminator", "FORMS",
+]
+
+FORMS = ("quadrant", "edge")
+
+
+def _coverage(p, n: int, origin) -> np.ndarray:
+    """Length of each pixel ``[e, e + 1]`` lying below ``p``: ``clip(p - e, 0, 1)``, shape (..., n)."""
+    edges = np.asarray(origin, dtype=float)[..., None] + np.arange(n) - 0.5
+    return np.clip(np.asarray(p, dtype=float)[..., None] - edges, 0.0, 1.0)
+
+
+def interval_weights(lo, hi, n: int, origin) -> np.ndarray:
+    """Overlap length (px) of ``[lo, hi]`` with each of ``n`` pixels starting at ``origin``
+    (the pixel-fraction weights of :func:`tvtrack.render.pixel_fractions_box` times ``hi - lo``).
+
+    Parameters
+    ----------
+    lo, hi : array_like, shape (...)
+        Interval ends (px), ``hi >= lo``.
+    origin : array_like of int, shape (...)
+        Centre of the first pixel.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+    """
+    return _coverage(hi, n, origin) - _coverage(lo, n, origin)
+
+
+def _halves(center, half, n, origin):
+    """Lower and upper half-gate weights, each (..., n)."""
+    c = np.asarray(center, dtype=float)
+    mid = _coverage(c, n, origin)
+    return mid - _coverage(c - half, n, origin), _coverage(c + half, n, origin) - mid
+
+
+def quadrant_weights(origin, center, half, shape, dtype=np.float64):
+    """Weights of the quadrant discriminator as two matrices.
+
+    Returns
+    -------
+    wy : ndarray, shape (n, 2, rows)
+        Rows: ``[lower + upper, upper - lower]`` half-gate row weights.
+    wx : ndarray, shape (n, cols, 2)
+        Columns: ``[left + right, right - left]`` half-gate column weights.
+        ``wy @ u @ wx = [[energy, Delta_x], [Delta_y, cross]]``.
+    """
+    o = np.asarray(origin)
+    c = np.asarray(center, dtype=float)
+    rows, cols = shape
+    xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
+    yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
+    return (np.stack([yl + yu, yu - yl], axis=-2).astype(dtype),
+            np.stack([xl + xr, xr - xl], axis=-1).astype(dtype))
+
+
+def quadrant_noise(wy, wx, sigma: float, rng: np.random.Generator) -> np.ndarray:
+    """Draw the white-noise part of ``(Delta_x, Delta_y)`` directly (exact in distribution).
+
+    The quadrant discriminator is linear in the pixels, so white Gaussian pixel noise of standard
+    deviation ``sigma`` enters it as a zero-mean Gaussian pair with covariance
+    ``sigma^2 [[|a|^2 |b|^2, (a.c)(b.e)], [., |c|^2 |e|^2]]`` (``a, c``: row weights full/diff,
+    ``b, e``: column weights diff/full). Costs two draws per gate instead of one per pixel.
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+    """
+    a, c = wy[:, 0], wy[:, 1]
+    e, b = wx[..., 0], wx[..., 1]
+    vxx = np.einsum("ny,ny->n", a, a) * np.einsum("nx,nx->n", b, b)
+    vyy = np.einsum("ny,ny->n", c, c) * np.einsum("nx,nx->n", e, e)
+    vxy = np.einsum("ny,ny->n", a, c) * np.einsum("nx,nx->n", b, e)
+    l11 = np.sqrt(vxx)
+    l21 = vxy / np.where(l11 > 0, l11, 1.0)
+    l22 = np.sqrt(np.clip(vyy - l21**2, 0.0, None))
+    z = rng.standard_normal((wy.shape[0], 2))
+    return sigma * np.stack([l11 * z[:, 0], l21 * z[:, 0] + l22 * z[:, 1]], axis=1)
+
+
+def quadrant_sums(crops, origin, center, half) -> np.ndarray:
+    """The four quadrant integrals ``u1..u4`` of the paper (pixel-fractional weights).
+
+    Parameters
+    ----------
+    crops : ndarray, shape (n, rows, cols)
+        Compensated signal ``u_d`` in crops.
+    origin : array_like of int, shape (n, 2)
+        ``(x0, y0)`` of each crop's first pixel.
+    center : array_like, shape (n, 2)
+        Gate centre ``(x_m_hat, y_m_hat)``.
+    half : float
+        Gate half-size ``A`` (px); each quadrant is ``A x A``.
+
+    Returns
+    -------
+    ndarray, shape (n, 4)
+        ``u1`` (x < x_m, y > y_m), ``u2`` (x > x_m, y > y_m), ``u3`` (x < x_m, y < y_m),
+        ``u4`` (x > x_m, y < y_m).
+    """
+    u = np.asarray(crops)
+    o = np.asarray(origin)
+    c = np.asarray(center, dtype=float)
+    rows, cols = u.shape[-2:]
+    xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
+    yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
+    sums = [np.einsum("...y,...yx,...x->...", wy, u, wx) for wy, wx in ((yu, xl), (yu, xr), (yl, xl), (yl, xr))]
+    return np.stack(sums, axis=-1)
+
+
+def quadrant_discriminator(crops, origin, center, half):
+    """Quadrant (integral) discriminator, corrected sign: ``(Delta_x, Delta_y, energy)``.
+
+    Computed as two bilinear forms per crop (a batched matrix product), equal to
+    ``(u2 + u4) - (u1 + u3)``, ``(u1 + u2) - (u3 + u4)`` and ``u1 + u2 + u3 + u4``.
+
+    Parameters
+    ----------
+    crops : ndarray, shape (n, rows, cols)
+    origin : array_like of int, shape (n, 2)
+    center : array_like, shape (n, 2)
+        Gate centre (px).
+    half : float
+        Gate half-size ``A`` (px).
+
+    Returns
+    -------
+    dx, dy, energy : ndarray, shape (n,)
+        In (signal units) x px^2. For a uniform spot of brightness ``d`` and diameter ``D``
+        inside the gate, offset by ``delta``: ``Delta ~= 2 d D delta`` for ``|delta| < D/2``.
+    """
+    u = np.asarray(crops)
+    wy, wx = quadrant_weights(origin, center, half, u.shape[-2:], u.dtype)
+    m = wy @ (u @ wx)                                                 # (n, 2, 2)
+    return m[..., 0, 1], m[..., 1, 0], m[..., 0, 0]
+
+
+def edge_discriminator(crops, origin, center, a: float):
+    """Edge discriminator, corrected eqs. (22)-(24): ``u_dx(x_m + a) - u_dx(x_m - a)`` and the
+    same in ``y``, with ``u_dx`` the column profile inside the selection window of side ``2a``
+    (rows ``[y_m - a, y_m + a]``, fractional weights), linearly interpolated between pixel centres.
+
+    Returns
+    -------
+    dx, dy : ndarray, shape (n,)
+    """
+    u = np.asarray(crops, dtype=float)
+    o = np.asarray(origin)
+    c = np.asarray(center, dtype=float)
+    rows, cols = u.shape[-2:]
+    hy = interval_weights(c[..., 1] - a, c[..., 1] + a, rows, o[..., 1])
+    hx = interval_weights(c[..., 0] - a, c[..., 0] + a, cols, o[..., 0])
+    u_dx = np.einsum("...y,...yx->...x", hy, u)   # (24)-type profile along x
+    u_dy = np.einsum("...yx,...x->...y", u, hx)
+    return (_interp(u_dx, o[..., 0], c[..., 0] + a) - _interp(u_dx, o[..., 0], c[..., 0] - a),
+            _interp(u_dy, o[..., 1], c[..., 1] + a) - _interp(u_dy, o[..., 1], c[..., 1] - a))
+
+
+def _interp(profile, origin, x):
+    """Linear interpolation of ``profile`` (..., n) sampled at ``origin + i`` at points ``x`` (...)."""
+    n = profile.shape[-1]
+    pos = np.clip(np.asarray(x, dtype=float) - origin, 0, n - 1)
+    i0 = np.minimum(np.floor(pos).astype(int), n - 2)
+    f = pos - i0
+    p0 = np.take_along_axis(profile, i0[..., None], -1)[..., 0]
+    p1 = np.take_along_axis(profile, i0[..., None] + 1, -1)[..., 0]
+    return (1 - f) * p0 + f * p1
+
+
+def polar_errors(dx, dy, theta):
+    """Radial and tangential discriminator outputs (corrected (26)-(28) without the ``r``, ``r t``
+    factors): ``e_r = dx cos th + dy sin th``, ``e_th = -dx sin th + dy cos th``."""
+    c, s = np.cos(theta), np.sin(theta)
+    return dx * c + dy * s, -dx * s + dy * c
+
+
+def static_characteristic(render, offsets, *, form: str = "quadrant", half: float, a: float | None = None,
+                          axis: int = 0, extra=None, gate_center=(0.3, -0.2)) -> np.ndarray:
+    """Noise-free discriminator output against the spot's offset from the gate centre (S-curve).
+
+    Parameters
+    ----------
+    render : callable
+        ``render(centers (m, 2), shape (rows, cols), origin (m, 2)) -> (m, rows, cols)``: any spot
+        shape (e.g. ``functools.partial(render_spot, "disc", diameter=8)`` adapted to this call).
+    offsets : array_like, shape (m,)
+        Offsets (px) of the spot from the gate centre along ``axis``.
+    form : {"quadrant", "edge"}
+    half : float
+        Gate half-size ``A`` for the quadrant form (the crop covers the gate).
+    a : float, optional
+        Edge half-width for the edge form (the spot half-size).
+    axis : {0, 1}
+        0: offset in ``x`` and return ``Delta_x``; 1: ``y`` and ``Delta_y``.
+    extra : ndarray, shape (rows, cols), optional
+        Static addition to every crop (an interferer, background), same crop geometry.
+    gate_center : (float, float)
+        Gate centre (px); its sub-pixel position sets the pixel-grid asymmetry.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+    """
+    if form not in FORMS:
+        raise ValueError(f"parameter 'form' = {form!r}; it must be one of {FORMS}")
+    off = np.asarray(offsets, dtype=float)
+    reach = max(half, (a or 0.0)) + np.abs(off).max() + 8
+    size = int(2 * np.ceil(reach)) + 3
+    centre = np.asarray(gate_center, dtype=float)
+    origin = np.broadcast_to(np.floor(centre - (size - 1) / 2).astype(int), (off.size, 2))
+    pos = np.tile(centre, (off.size, 1))
+    pos[:, axis] += off
+    crops = render(pos, (size, size), origin)
+    if extra is not None:
+        crops = crops + extra
+    gate = np.tile(centre, (off.size, 1))
+    if form == "quadrant":
+        d = quadrant_discriminator(crops, origin, gate, half)[:2]
+    else:
+        if a is None:
+            raise ValueError("parameter 'a' is required for the edge form")
+        d = edge_discriminator(crops, origin, gate, a)
+    return d[axis]
+
+
+def two_emitter_discriminator(line, origin, lam_hat, *, beta: float, a: float, c1, c2,
+                              form: str = "edge", half_gate: float | None = None):
+    """1-D two-emitter discriminator, corrected eq. (6) (emitter 1 at ``lambda - beta``).
+
+    Edge form: ``c1 [u(l - b + a) - u(l - b - a)] + c2 [u(l + b + a) - u(l + b - a)]``
+    (``u`` linearly interpolated). Integral form (the 1-D analogue of the quadrant form): each
+    edge difference replaced by ``int_{p}^{p + A1} u - int_{p - A1}^{p} u`` around ``p = l -+ b``.
+
+    Parameters
+    ----------
+    line : ndarray, shape (n, L)
+        Observed line ``u(z)`` per trial.
+    origin : int
+        Coordinate of the first pixel centre.
+    lam_hat : ndarray, shape (n,)
+        Current estimate.
+    c1, c2 : float or ndarray, shape (n,)
+        Brightness laws at this time.
+    half_gate : float, optional
+        ``A1`` for the integral form.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+    """
+    u = np.asarray(line, dtype=float)
+    lam = np.asarray(lam_hat, dtype=float)
+    o = np.full(lam.shape, origin)
+    if form == "edge":
+        diff = lambda p: _interp(u, o, p + a) - _interp(u, o, p - a)
+    elif form == "integral":
+        if half_gate is None:
+            raise ValueError("parameter 'half_gate' is required for the integral form")
+        n = u.shape[-1]
+
+        def diff(p):
+            lo, hi = _halves(p, half_gate, n, o)
+            return np.einsum("...z,...z->...", hi - lo, u)
+    else:
+        raise ValueError(f"parameter 'form' = {form!r}; it must be 'edge' or 'integral'")
+    return c1 * diff(lam - beta) + c2 * diff(lam + beta)

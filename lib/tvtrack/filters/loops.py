@@ -1,0 +1,359 @@
+"""Closed-loop trackers of Yukhno 2025: the five-state rotating-marker tracker, its discrete EKF
+form, and the 1-D two-emitter tracker.
+
+Five-state tracker (eq. (16) with diagonal gains, "chosen by classical automatic-control
+methods"; paper card, section 4.3). With normalised discriminator outputs
+``eps_x = Delta_x / S``, ``eps_y = Delta_y / S``, ``eps_r = e_r / S``, ``eps_th = e_th / (S r_hat)``
+(``S`` = discriminator slope, e.g. ``2 d D`` for the quadrant form), per frame of length ``dt``::
+
+    x_r += dt K_xy eps_x          y_r += dt K_xy eps_y          r += dt K_r eps_r
+    variant "S" (phase state, type-2 PLL):   th += dt (om + K1 eps_th),   om += dt K2 eps_th
+    variant "P" (literal (16), (27), (28)):  phi += dt K_phi eps_th,  om += dt K_om tau eps_th,
+                                             th = om tau + phi, tau re-referenced every revolution
+
+``K = 2 pi B`` for the first-order loops (closed-loop -3 dB bandwidth ``B``); the PLL has
+``K1 = 2 zeta w_n``, ``K2 = w_n^2``, ``w_n = 2 pi B_om / sqrt(1 + 2 zeta^2 + sqrt((1 + 2 zeta^2)^2 + 1))``.
+Everything is batched over a leading trials axis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..discriminators import edge_discriminator, polar_errors, quadrant_noise, \
+    quadrant_weights, two_emitter_discriminator
+from ..render import pixel_fractions_box
+
+__all__ = [
+    "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
+    "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d",
+]
+
+VARIANTS = ("S", "P")
+
+
+@dataclass(frozen=True)
+class LoopGains:
+    """Loop gains (1/s): ``k_xy``, ``k_r``; PLL ``k1``, ``k2`` (variant S); ``k_phi``, ``k_om``
+    (variant P, ``k_om`` in 1/s^3)."""
+
+    k_xy: float
+    k_r: float
+    k1: float
+    k2: float
+    k_phi: float
+    k_om: float
+
+
+def loop_gains(b_xy: float = 10.0, b_r: float = 0.2, b_omega: float = 6.0, zeta: float = 0.707,
+               rotation_hz: float = 8.0) -> LoopGains:
+    """Gains from closed-loop -3 dB bandwidths (Hz): 10 / 0.2 / 6 Hz in the paper.
+
+    Variant P uses ``k_phi = 2 pi B_om`` and ``k_om = k_phi / T_rot^2`` (card, section 4.3).
+    """
+    for name, v in (("b_xy", b_xy), ("b_r", b_r), ("b_omega", b_omega), ("zeta", zeta), ("rotation_hz", rotation_hz)):
+        if not v > 0:
+            raise ValueError(f"parameter '{name}' = {v}; it must be > 0")
+    z2 = 1 + 2 * zeta**2
+    wn = 2 * np.pi * b_omega / np.sqrt(z2 + np.sqrt(z2**2 + 1))
+    k_phi = 2 * np.pi * b_omega
+    return LoopGains(2 * np.pi * b_xy, 2 * np.pi * b_r, 2 * zeta * wn, wn**2, k_phi, k_phi * rotation_hz**2)
+
+
+class RotatingGateTracker:
+    """Batched five-state loop tracker ``(x_r, y_r, r, theta/phi, omega)``.
+
+    Parameters
+    ----------
+    x0 : ndarray, shape (n, 5)
+        Initial estimates ``(x_r, y_r, r, theta_0, omega)`` (px, px, px, rad, rad/s).
+    gains : LoopGains
+    slope : float
+        Discriminator slope ``S`` (output per px of marker offset).
+    variant : {"S", "P"}
+    rotating : bool
+        False: static (non-modulated) marker baseline; the gate sits on ``(x_r, y_r)`` and only
+        the coordinate loops run.
+    """
+
+    def __init__(self, x0, gains: LoopGains, slope: float, variant: str = "S", rotating: bool = True):
+        if variant not in VARIANTS:
+            raise ValueError(f"parameter 'variant' = {variant!r}; it must be one of {VARIANTS}")
+        if not slope > 0:
+            raise ValueError(f"parameter 'slope' = {slope}; it must be > 0")
+        self.state = np.array(x0, dtype=float, copy=True)
+        if self.state.ndim != 2 or self.state.shape[1] != 5:
+            raise ValueError(f"parameter 'x0' has shape {self.state.shape}; it must be (n, 5)")
+        self.g, self.slope, self.variant, self.rotating = gains, float(slope), variant, rotating
+        self.phi = self.state[:, 3].copy()        # variant P: phase at the reference time
+        self.tau = 0.0                           # variant P: time since the reference
+
+    @property
+    def theta(self) -> np.ndarray:
+        """Current phase estimate (rad), shape (n,)."""
+        return self.state[:, 3]
+
+    def gate_center(self) -> np.ndarray:
+        """Predicted marker position (eq. (8) with the estimates), shape (n, 2)."""
+        s = self.state
+        if not self.rotating:
+            return s[:, :2].copy()
+        return np.stack([s[:, 0] + s[:, 2] * np.cos(s[:, 3]), s[:, 1] + s[:, 2] * np.sin(s[:, 3])], axis=1)
+
+    def update(self, dx, dy, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """One frame of the loops from the Cartesian discriminator outputs; returns ``(e_r, e_th)``."""
+        s, g, S = self.state, self.g, self.slope
+        s[:, 0] += dt * g.k_xy * dx / S
+        s[:, 1] += dt * g.k_xy * dy / S
+        if not self.rotating:
+            return np.zeros_like(dx), np.zeros_like(dx)
+        e_r, e_th = polar_errors(dx, dy, s[:, 3])                    # corrected (26)-(28)
+        eps_th = e_th / (S * np.maximum(s[:, 2], 1.0))
+        s[:, 2] += dt * g.k_r * e_r / S
+        if self.variant == "S":
+            s[:, 3] += dt * (s[:, 4] + g.k1 * eps_th)
+            s[:, 4] += dt * g.k2 * eps_th
+        else:
+            self.phi += dt * g.k_phi * eps_th                        # (28): dPi/dphi = r e_th
+            s[:, 4] += dt * g.k_om * self.tau * eps_th               # (27): dPi/domega = r t e_th
+            self.tau += dt
+            period = 2 * np.pi / max(float(np.mean(np.abs(s[:, 4]))), 1e-9)
+            if self.tau >= period:                                   # re-reference the time origin
+                self.phi += s[:, 4] * self.tau
+                self.tau = 0.0
+            s[:, 3] = self.phi + s[:, 4] * self.tau
+        return e_r, e_th
+
+
+@dataclass
+class TrackHistory:
+    """Per-frame histories of a closed-loop run (trials first).
+
+    Attributes
+    ----------
+    estimate : (n, T, 5) float32 or None, state estimates used for frame k's gate.
+    gate : (n, T, 2) float32, gate centres.
+    disc : (n, T, 4) float32 or None, ``(Delta_x, Delta_y, e_r, e_th)`` normalised by ``S`` (px).
+    miss : (n, T) float32, marker miss distance ``|gate - marker|`` (px).
+    inside : (n, T) bool, gate centre inside the image.
+    """
+
+    estimate: np.ndarray | None
+    gate: np.ndarray
+    disc: np.ndarray | None
+    miss: np.ndarray
+    inside: np.ndarray
+
+
+def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generator | None, *, gate_half: float,
+                    form: str = "quadrant", edge_a: float | None = None, noise: str = "pixel",
+                    keep_full: bool = True, crop_callback=None) -> TrackHistory:
+    """Render gate crops, discriminate and update the loops frame by frame (batched over trials).
+
+    Parameters
+    ----------
+    scene : tvtrack.scenes.rotating_marker.RotatingMarkerScene
+    tracker : RotatingGateTracker or EKFTracker
+        Anything with ``state`` (n, 5), ``slope``, ``gate_center()`` and ``update(dx, dy, dt)``.
+    rng : numpy.random.Generator or None
+        Sensor-noise generator (None: noise-free).
+    gate_half : float
+        Gate half-size ``A`` (px).
+    form : {"quadrant", "edge"}
+    edge_a : float, optional
+        Edge-form half-width (spot half-size).
+    noise : {"pixel", "projected"}
+        ``"pixel"`` adds white noise to every crop pixel; ``"projected"`` (quadrant form only)
+        draws its exact effect on ``(Delta_x, Delta_y)`` instead (:func:`quadrant_noise`), two
+        draws per gate: the same distribution of discriminator outputs, much faster. The crops
+        passed to ``crop_callback`` are then noise-free.
+    keep_full : bool
+        Keep estimates and discriminator outputs (memory ``n T 9`` floats); else only gate, miss.
+    crop_callback : callable, optional
+        ``f(k, crops, origin)`` called each frame (e.g. to record trial 0's gate crop).
+    """
+    from ..scenes.rotating_marker import gate_crop_size
+
+    if form not in ("quadrant", "edge"):
+        raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant' or 'edge'")
+    if noise not in ("pixel", "projected") or (noise == "projected" and form != "quadrant"):
+        raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'pixel', or 'projected' with the quadrant form")
+    n, T = scene.n, scene.truth.n_frames
+    dt = float(scene.truth.t[1] - scene.truth.t[0]) if T > 1 else 1.0
+    size = gate_crop_size(gate_half if form == "quadrant" else max(edge_a or 0.0, gate_half))
+    est = np.empty((n, T, 5), np.float32) if keep_full else None
+    disc = np.empty((n, T, 4), np.float32) if keep_full else None
+    gate = np.empty((n, T, 2), np.float32)
+    inside = np.empty((n, T), bool)
+    pixel_rng = rng if noise == "pixel" else None
+    for k in range(T):
+        c = tracker.gate_center()
+        if keep_full:
+            est[:, k] = tracker.state
+        crops, origin, inside[:, k] = scene.gate_crops(k, c, size, pixel_rng)
+        if crop_callback is not None:
+            crop_callback(k, crops, origin)
+        if form == "quadrant":
+            wy, wx = quadrant_weights(origin, c, gate_half, (size, size), np.float32)
+            m = wy @ (crops @ wx)
+            dx, dy = m[:, 0, 1].astype(float), m[:, 1, 0].astype(float)
+            if noise == "projected" and rng is not None and scene.noise_std > 0:
+                w = quadrant_noise(wy, wx, scene.noise_std, rng)
+                dx, dy = dx + w[:, 0], dy + w[:, 1]
+        else:
+            dx, dy = edge_discriminator(crops, origin, c, edge_a)
+        e_r, e_th = tracker.update(dx, dy, dt)
+        gate[:, k] = c
+        if keep_full:
+            disc[:, k] = np.stack([dx, dy, e_r, e_th], axis=1) / tracker.slope
+    miss = np.linalg.norm(gate - scene.truth.marker, axis=-1).astype(np.float32)
+    return TrackHistory(est, gate, disc, miss, inside)
+
+
+def loop_poles(gains: LoopGains, omega: float, r: float) -> np.ndarray:
+    """Closed-loop poles (1/s) of the linearised variant-S loop for a uniform rotation.
+
+    In the frame rotating with the marker the error dynamics are time-invariant. With
+    ``q = R(-theta) (x_r err, y_r err)`` and marker error ``e = q + (dr, r dtheta)`` (radial,
+    tangential), the linear discriminator gives ``eps = -e``; the states
+    ``(q_rad, q_tan, dr, dtheta, domega)`` obey ``d/dt = A (...)`` with the rotation ``-omega J``
+    acting on ``q``.
+
+    Returns
+    -------
+    ndarray of complex, shape (5,)
+    """
+    g = gains
+    A = np.zeros((5, 5))
+    # e_rad = q0 + dr,  e_tan = q1 + r dth
+    A[0, :] = [-g.k_xy, omega, -g.k_xy, 0, 0]                     # dq/dt = -omega J q - K_xy R(-th) e
+    A[1, :] = [-omega, -g.k_xy, 0, -g.k_xy * r, 0]
+    A[2, :] = [-g.k_r, 0, -g.k_r, 0, 0]
+    A[3, :] = [0, -g.k1 / r, 0, -g.k1, 1]
+    A[4, :] = [0, -g.k2 / r, 0, -g.k2, 0]
+    return np.linalg.eigvals(A)
+
+
+def ekf_noise_from_bandwidths(meas_var: float, dt: float, r: float, b_xy: float, b_r: float,
+                              b_omega: float) -> np.ndarray:
+    """Process-noise densities ``N_0`` (diagonal, per second) giving the EKF the stated bandwidths.
+
+    A random-walk state measured every ``dt`` with variance ``meas_var`` (information rate
+    ``J = 1 / (meas_var dt)``) has the steady-state Kalman-Bucy bandwidth ``sqrt(q J)``; a double
+    integrator (phase, rate) has ``w_n = (q J_th)^(1/4)``, ``zeta = 0.707``, with the phase
+    information ``J_th = r^2 J``.
+
+    Returns
+    -------
+    ndarray, shape (5,)
+        ``(q_x, q_y, q_r, q_theta, q_omega)``.
+    """
+    info = 1.0 / (meas_var * dt)
+    wxy, wr, wn = 2 * np.pi * b_xy, 2 * np.pi * b_r, 2 * np.pi * b_omega / 2.058
+    return np.array([wxy**2 / info, wxy**2 / info, wr**2 / info, 0.0, wn**4 / (info * r**2)])
+
+
+class EKFTracker:
+    """Discrete EKF form of eqs. (16)-(17) (corrected Riccati sign; card, section 4.4) on the
+    quadrant discriminator.
+
+    State ``(x_r, y_r, r, theta, omega)`` with ``theta' = omega``. The measurement is the marker
+    offset from the gate read by the normalised quadrant discriminator,
+    ``z = (Delta_x, Delta_y) / S ~= m(lambda) - m(lambda_hat)``, with ``m`` the marker position
+    of eq. (8); ``H = dm/dlambda`` (rows ``[1, 0, cos th, -r sin th, 0]`` and
+    ``[0, 1, sin th, r cos th, 0]``). The update is the information form of the corrected (17),
+    ``R = (R^-^-1 + H^T H / s^2)^-1``, and the estimate moves by ``R H^T z / s^2`` (eq. (16)).
+    (The pixel-level form, ``sum_p H_p^T H_p``, is dominated by the spot's sharp edge and its
+    linearisation holds only within a pixel of the truth, so it diverges from the paper's
+    initial errors; the discriminator form keeps the quadrant form's +-D/2 linear range.)
+
+    Parameters
+    ----------
+    x0 : ndarray, shape (n, 5)
+    P0 : ndarray, shape (5, 5)
+    q : ndarray, shape (5,)
+        Process-noise densities (per second), e.g. from :func:`ekf_noise_from_bandwidths`.
+    meas_var : float
+        Variance (px^2) of each normalised discriminator output.
+    slope : float
+        Discriminator slope ``S``.
+    """
+
+    def __init__(self, x0, P0, q, meas_var: float, slope: float):
+        if not meas_var > 0:
+            raise ValueError(f"parameter 'meas_var' = {meas_var}; it must be > 0")
+        if not slope > 0:
+            raise ValueError(f"parameter 'slope' = {slope}; it must be > 0")
+        self.state = np.array(x0, dtype=float, copy=True)
+        n = self.state.shape[0]
+        self.P = np.broadcast_to(np.asarray(P0, dtype=float), (n, 5, 5)).copy()
+        self.q = np.asarray(q, dtype=float)
+        self.meas_var, self.slope = float(meas_var), float(slope)
+
+    def gate_center(self) -> np.ndarray:
+        """Predicted marker position, shape (n, 2)."""
+        x = self.state
+        return np.stack([x[:, 0] + x[:, 2] * np.cos(x[:, 3]), x[:, 1] + x[:, 2] * np.sin(x[:, 3])], axis=1)
+
+    def update(self, dx, dy, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """Update with frame k's discriminator outputs, then predict to k+1; returns ``(e_r, e_th)``."""
+        x, P = self.state, self.P
+        n = x.shape[0]
+        polar = polar_errors(dx, dy, x[:, 3])
+        cs, sn, r = np.cos(x[:, 3]), np.sin(x[:, 3]), x[:, 2]
+        z = np.stack([dx, dy], axis=1) / self.slope
+        H = np.zeros((n, 2, 5))
+        H[:, 0, 0] = H[:, 1, 1] = 1.0
+        H[:, 0, 2], H[:, 1, 2] = cs, sn
+        H[:, 0, 3], H[:, 1, 3] = -r * sn, r * cs
+        info = np.einsum("nki,nkj->nij", H, H) / self.meas_var
+        P_new = np.linalg.inv(np.linalg.inv(P) + info)                                # corrected (17)
+        x += np.einsum("nij,nkj,nk->ni", P_new, H, z) / self.meas_var                  # (16)
+        F = np.eye(5)
+        F[3, 4] = dt
+        x[:, 3] += dt * x[:, 4]
+        self.P = F @ P_new @ F.T + np.diag(self.q * dt)
+        return polar
+
+
+def simulate_two_emitter_1d(rng: np.random.Generator, lam, *, dt: float, beta: float, a: float, f_c: float,
+                            noise_std: float, form: str, bandwidth: float, unit_slope: float,
+                            half_gate: float | None = None, line_length: int = 256, lam0=None) -> np.ndarray:
+    """1-D two-emitter tracker, eqs. (1)-(6) with the corrected (6), batched over trials.
+
+    Emitters of half-width ``a`` at ``lambda -+ beta`` with anti-phase laws
+    ``c1 = (1 + cos 2 pi f_c t) / 2``, ``c2 = (1 - cos 2 pi f_c t) / 2``; the loop is
+    ``lam_hat += dt K e / (S1 (c1^2 + c2^2))``, ``K = 2 pi B`` (eq. (5), ``g = 0``).
+
+    Parameters
+    ----------
+    lam : ndarray, shape (n, T)
+        True object coordinate (px).
+    unit_slope : float
+        Discriminator slope per px for ``c1^2 + c2^2 = 1`` (2 for the integral form).
+    lam0 : ndarray, shape (n,), optional
+        Initial estimate (default: the truth).
+
+    Returns
+    -------
+    ndarray, shape (n, T)
+        Estimates ``lam_hat`` used at each frame.
+    """
+    lam = np.asarray(lam, dtype=float)
+    n, T = lam.shape
+    est = np.empty_like(lam)
+    lh = lam[:, 0].copy() if lam0 is None else np.array(lam0, dtype=float)
+    K = 2 * np.pi * bandwidth
+    for k in range(T):
+        t = k * dt
+        c1 = 0.5 * (1 + np.cos(2 * np.pi * f_c * t))
+        c2 = 1.0 - c1
+        line = (c1 * pixel_fractions_box(lam[:, k] - beta, a, line_length) +
+                c2 * pixel_fractions_box(lam[:, k] + beta, a, line_length)) * 2 * a          # (2), (3)
+        line += noise_std * rng.standard_normal(line.shape)                                # (4)
+        est[:, k] = lh
+        e = two_emitter_discriminator(line, 0, lh, beta=beta, a=a, c1=c1, c2=c2, form=form, half_gate=half_gate)
+        lh = lh + dt * K * e / (unit_slope * (c1**2 + c2**2))                             # (5)
+    return est

@@ -1,0 +1,567 @@
+"""TV scene of an object carrying a rotating-emitter marker, seen through interference.
+
+Model (Yukhno 2025, eqs. (7)-(13), with the compensation model of the paper card, section 4.2)::
+
+    u_d(x, y, t) = s(x - x_m(t), y - y_m(t)) + kappa * f(x, y) + sum_q (d / SIR) * spot(x - x_q, y - y_q) + n
+
+- ``s``: the marker spot (uniform disc of diameter ``D`` or square of side ``D``), brightness ``d``
+  per fully covered pixel, centred on the marker ``x_m = x_r + r cos(theta)``,
+  ``y_m = y_r + r sin(theta)``, ``theta = phi + int omega dt`` (eq. (8), exact phase integral).
+- ``f``: zero-mean Gaussian random background with a Gaussian correlation function
+  ``exp(-(tau / l_c)^2)`` (``l_c`` = correlation length, px); after compensation only
+  ``kappa * f`` remains (``kappa`` = compensation residual factor; 1 = no compensation).
+- stationary interferers, same spot as the marker, *residual* brightness ``d / SIR`` after
+  compensation (SIR is defined after compensation; before it the ratio is ``SIR_0 = kappa SIR``).
+- ``n``: white Gaussian sensor noise, ``noise_std`` per pixel per frame (eq. (U4)).
+
+The static part (background residual and interferers) is rendered once per trial as a full
+image; each frame only the gate crop is read out and the moving marker rendered into it, so
+the per-frame cost is that of the gate (about 26 x 26 px), batched over trials.
+
+Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = column, ``y`` = row.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+from scipy.signal import lfilter
+
+from ..render import box_spot
+
+__all__ = [
+    "disc_spot", "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
+    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
+    "scenario_truth", "run_scenario", "RotatingMarkerScene", "gate_crop_size",
+]
+
+SPOTS = ("disc", "square")
+
+
+def _check_spot(spot: str) -> None:
+    if spot not in SPOTS:
+        raise ValueError(f"parameter 'spot' = {spot!r}; it must be one of {SPOTS}")
+
+
+def disc_spot(centers, shape, diameter, brightness=1.0, origin=(0, 0), dtype=np.float64) -> np.ndarray:
+    """Uniform disc integrated over square pixels (anti-aliased coverage).
+
+    The covered fraction of a pixel at distance ``rho`` from the disc centre is approximated by
+    ``clip(R + 1/2 - rho, 0, 1)`` (a unit-width ramp across the edge), ``R = diameter / 2``:
+    exact for pixels well inside or outside, and within a few percent of the pixel area on the
+    edge; the total flux agrees with ``brightness * pi R^2`` to better than 1 % for ``D >= 4``.
+
+    Parameters
+    ----------
+    centers : array_like, shape (..., 2)
+        Disc centres ``(x, y)`` in pixels.
+    shape : (int, int)
+        Window size ``(rows, cols)``.
+    diameter : float
+        Disc diameter ``D`` in pixels (> 0).
+    brightness : float or array_like, shape (...)
+        Value of a fully covered pixel.
+    origin : array_like, shape (2,) or (..., 2)
+        ``(x0, y0)`` of the window's first pixel centre.
+
+    Returns
+    -------
+    ndarray, shape (..., rows, cols)
+    """
+    if not diameter > 0:
+        raise ValueError(f"parameter 'diameter' = {diameter}; it must be > 0")
+    c = np.asarray(centers, dtype=float)
+    o = np.asarray(origin, dtype=float)
+    rows, cols = shape
+    dx = (o[..., 0, None] + np.arange(cols) - c[..., 0, None]).astype(dtype)
+    dy = (o[..., 1, None] + np.arange(rows) - c[..., 1, None]).astype(dtype)
+    rho = np.sqrt(dy[..., :, None] ** 2 + dx[..., None, :] ** 2)
+    cover = np.clip(dtype(diameter / 2 + 0.5) - rho, 0.0, 1.0)
+    return np.asarray(brightness, dtype=dtype)[..., None, None] * cover
+
+
+def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
+    """A marker or interferer spot: ``"disc"`` (diameter ``D``) or ``"square"`` (side ``D``),
+    ``brightness`` per fully covered pixel; shape ``(..., rows, cols)``."""
+    _check_spot(spot)
+    if spot == "disc":
+        return disc_spot(centers, shape, diameter, brightness, origin)
+    b = np.asarray(brightness, dtype=float)
+    return box_spot(centers, shape, diameter / 2, b * diameter**2, origin)
+
+
+def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, std) -> np.ndarray:
+    """Zero-mean Gaussian random fields with correlation ``exp(-(tau / corr_length)^2)``.
+
+    White noise is filtered by a Gaussian kernel of standard deviation ``corr_length / 2``
+    (periodic boundary), then each field is scaled to the exact sample standard deviation ``std``.
+
+    Returns
+    -------
+    ndarray, shape (n, rows, cols), float32
+    """
+    if not corr_length > 0:
+        raise ValueError(f"parameter 'corr_length' = {corr_length}; it must be > 0")
+    if std < 0:
+        raise ValueError(f"parameter 'std' = {std}; it must be >= 0")
+    white = rng.standard_normal((n, *shape))
+    field = ndimage.gaussian_filter(white, sigma=(0, corr_length / 2, corr_length / 2), mode="wrap")
+    field -= field.mean(axis=(1, 2), keepdims=True)
+    scale = field.std(axis=(1, 2), keepdims=True)
+    return (std * field / np.where(scale > 0, scale, 1.0)).astype(np.float32)
+
+
+def ornstein_uhlenbeck(rng: np.random.Generator, n: int, n_frames: int, dt: float, std: float, tau: float) -> np.ndarray:
+    """Stationary Ornstein-Uhlenbeck paths (exact discretisation), shape (n, n_frames), zero mean."""
+    if not tau > 0:
+        raise ValueError(f"parameter 'tau' = {tau}; it must be > 0")
+    a = np.exp(-dt / tau)
+    w = rng.standard_normal((n, n_frames)) * std * np.sqrt(1 - a * a)
+    w[:, 0] = rng.standard_normal(n) * std
+    return lfilter([1.0], [1.0, -a], w, axis=1)
+
+
+@dataclass
+class MarkerTruth:
+    """True state histories, each shape (n_trials, n_frames).
+
+    Attributes
+    ----------
+    xr, yr : object centre (px); r : rotation radius (px); theta : marker phase (rad);
+    omega : angular rate (rad/s); t : frame times (s), shape (n_frames,).
+    """
+
+    xr: np.ndarray
+    yr: np.ndarray
+    r: np.ndarray
+    theta: np.ndarray
+    omega: np.ndarray
+    t: np.ndarray
+
+    @property
+    def marker(self) -> np.ndarray:
+        """Marker positions ``(x_m, y_m)`` from eq. (8), shape (n_trials, n_frames, 2)."""
+        return np.stack([self.xr + self.r * np.cos(self.theta), self.yr + self.r * np.sin(self.theta)], axis=-1)
+
+    @property
+    def center(self) -> np.ndarray:
+        """Object centres, shape (n_trials, n_frames, 2)."""
+        return np.stack([self.xr, self.yr], axis=-1)
+
+    @property
+    def n_frames(self) -> int:
+        return self.t.size
+
+
+def marker_truth(xr, yr, r, omega, phi, dt: float) -> MarkerTruth:
+    """Assemble truth from state histories; the phase is the exact integral of ``omega``.
+
+    Parameters
+    ----------
+    xr, yr, r, omega : array_like, shape (n, T) (or broadcastable)
+        Object centre (px), radius (px), angular rate (rad/s) at the frame times ``k dt``.
+    phi : array_like, shape (n,)
+        Initial phase (rad).
+    dt : float
+        Frame interval (s).
+    """
+    xr, yr, r, omega = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (xr, yr, r, omega)))
+    # theta_k = phi + sum_{j<k} omega_j dt (eq. (8) with the exact phase, not (U3))
+    theta = np.asarray(phi, dtype=float)[:, None] + np.concatenate(
+        [np.zeros_like(omega[:, :1]), np.cumsum(omega[:, :-1], axis=1) * dt], axis=1)
+    t = np.arange(xr.shape[1]) * dt
+    return MarkerTruth(xr.copy(), yr.copy(), r.copy(), theta, omega.copy(), t)
+
+
+def place_interferers(rng: np.random.Generator, n: int, count: int, center, radius: float,
+                      radial_jitter: float = 0.0) -> np.ndarray:
+    """Stationary interferers on a circle (the area swept by the marker).
+
+    One interferer sits at a uniformly random angle; several are equally spaced with a common
+    random angular offset. ``radial_jitter`` > 0 draws each radius uniformly in
+    ``[radius - jitter, radius + jitter]``.
+
+    Returns
+    -------
+    ndarray, shape (n, count, 2)
+        Positions ``(x, y)`` in px.
+    """
+    if count < 0:
+        raise ValueError(f"parameter 'count' = {count}; it must be >= 0")
+    offset = rng.uniform(0, 2 * np.pi, size=(n, 1))
+    ang = offset + 2 * np.pi * np.arange(count) / max(count, 1)
+    rad = radius + rng.uniform(-radial_jitter, radial_jitter, size=(n, count))
+    c = np.broadcast_to(np.asarray(center, dtype=float), (n, 2))
+    return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
+
+
+def gate_crop_size(gate_half: float) -> int:
+    """Side (px) of the square crop that holds a gate ``[c - A, c + A]`` at any sub-pixel
+    position: ``ceil(2 A) + 2``."""
+    return int(np.ceil(2 * gate_half)) + 2
+
+
+def add_spots(images, centers, brightness, spot: str, diameter: float) -> None:
+    """Add spots to images in place, each rendered only in a small patch around it.
+
+    Parameters
+    ----------
+    images : ndarray, shape (n, rows, cols)
+    centers : ndarray, shape (n, q, 2)
+        Spot centres (px); parts falling outside the image are dropped.
+    brightness : ndarray, shape (n, q)
+    """
+    n, rows, cols = images.shape
+    size = int(np.ceil(diameter)) + 4
+    trial = np.arange(n)[:, None, None]
+    ar = np.arange(size)
+    for j in range(np.asarray(centers).shape[1]):
+        c = centers[:, j]
+        origin = np.floor(c - (size - 1) / 2).astype(np.int64)
+        patch = render_spot(spot, c, (size, size), diameter, brightness[:, j], origin)
+        ys = origin[:, 1, None] + ar
+        xs = origin[:, 0, None] + ar
+        ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+        yi = np.clip(ys, 0, rows - 1)[:, :, None]
+        xi = np.clip(xs, 0, cols - 1)[:, None, :]
+        images[trial, yi, xi] += np.where(ok, patch, 0.0).astype(images.dtype)
+
+
+class RotatingMarkerScene:
+    """Static compensated scene per trial plus the moving marker, read out as gate crops.
+
+    Parameters
+    ----------
+    truth : MarkerTruth
+        Marker and object truth, shape (n, T) per state.
+    image_shape : (int, int)
+        Sensor size ``(rows, cols)``.
+    spot : {"disc", "square"}
+        Marker and interferer shape.
+    diameter : float
+        Spot diameter (disc) or side (square), px.
+    brightness : float
+        Marker brightness ``d`` per fully covered pixel.
+    residual : ndarray, shape (n, rows, cols), optional
+        Static residual after compensation, ``kappa f + interferers``; see :meth:`static_residual`.
+    noise_std : float
+        Sensor noise per pixel per frame (>= 0).
+    interferers : ndarray, shape (n, q, 2), optional
+        Interferer positions (kept for plotting and capture tagging).
+    decoys : ndarray, shape (n, T, 2), optional
+        Paths of a moving imitating interferer (e.g. an emitter rotating like the marker about
+        another centre), rendered into every frame with the marker's spot.
+    decoy_brightness : float
+        Decoy brightness per fully covered pixel.
+    """
+
+    MARGIN = 40  # px of zero padding around the image so that gates may leave it
+
+    def __init__(self, truth: MarkerTruth, image_shape, spot: str, diameter: float, brightness: float,
+                 residual=None, noise_std: float = 0.0, interferers=None, decoys=None,
+                 decoy_brightness: float = 0.0):
+        _check_spot(spot)
+        if noise_std < 0:
+            raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
+        self.truth = truth
+        self.n = truth.xr.shape[0]
+        self.image_shape = tuple(image_shape)
+        self.spot = spot
+        self.diameter = float(diameter)
+        self.brightness = float(brightness)
+        self.noise_std = float(noise_std)
+        self.interferers = np.zeros((self.n, 0, 2)) if interferers is None else np.asarray(interferers, float)
+        self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
+        self.decoy_brightness = float(decoy_brightness)
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
+        if residual is not None:
+            self._padded[:, m:m + rows, m:m + cols] = residual
+        self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+
+    @staticmethod
+    def static_residual(rng: np.random.Generator, n: int, image_shape, *, kappa: float, background_std: float,
+                        corr_length: float, interferers, interferer_brightness, spot: str, diameter: float) -> np.ndarray:
+        """``kappa * f + sum_q b_q spot(. - x_q)``: what compensation leaves of the static scene.
+
+        Parameters
+        ----------
+        kappa : float
+            Compensation residual factor in [0, 1] (0 = perfect estimate of the background).
+        background_std : float
+            Standard deviation of ``f`` before compensation.
+        interferers : ndarray, shape (n, q, 2)
+        interferer_brightness : float or ndarray, shape (n,) or (n, q)
+            Residual brightness (after compensation) of each interferer, ``d / SIR``.
+
+        Returns
+        -------
+        ndarray, shape (n, rows, cols), float32
+        """
+        if not 0 <= kappa <= 1:
+            raise ValueError(f"parameter 'kappa' = {kappa}; it must be in [0, 1]")
+        out = kappa * correlated_background(rng, n, image_shape, corr_length, background_std)
+        q = np.asarray(interferers, dtype=float)
+        b = np.asarray(interferer_brightness, dtype=float)
+        b = np.broadcast_to(b[:, None] if b.ndim == 1 else b, q.shape[:2])
+        add_spots(out, q, b, spot, diameter)
+        return out
+
+    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None):
+        """Compensated signal ``u_d`` in square crops of side ``size`` around ``centres`` at frame ``k``.
+
+        Parameters
+        ----------
+        k : int
+            Frame index.
+        centres : ndarray, shape (n, 2)
+            Gate centres (px).
+        size : int
+            Crop side (px), e.g. :func:`gate_crop_size`.
+        rng : numpy.random.Generator or None
+            Draws the sensor noise (None: noise-free).
+
+        Returns
+        -------
+        crops : ndarray, shape (n, size, size), float32
+        origin : ndarray of int, shape (n, 2)
+            ``(x0, y0)`` of each crop's first pixel.
+        inside : ndarray of bool, shape (n,)
+            Whether the gate centre is inside the image.
+        """
+        c = np.asarray(centres, dtype=float)
+        origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        inside = (c[:, 0] >= 0) & (c[:, 0] <= cols - 1) & (c[:, 1] >= 0) & (c[:, 1] <= rows - 1)
+        ox = np.clip(origin[:, 0] + m, 0, cols + 2 * m - size)
+        oy = np.clip(origin[:, 1] + m, 0, rows + 2 * m - size)
+        origin = np.stack([ox - m, oy - m], axis=1)
+        H, W = self._padded.shape[1:]
+        ar = np.arange(size)
+        flat = (self._base + oy * W + ox)[:, None, None] + (ar[:, None] * W + ar)[None]
+        crops = self._padded.reshape(-1).take(flat)
+        marker = np.stack([self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
+                           self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k])], axis=1)
+        crops += self._spot(marker, size, origin, self.brightness)
+        if self.decoys is not None:
+            crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        if rng is not None and self.noise_std > 0:
+            crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
+        return crops, origin, inside
+
+    def _spot(self, centers, size, origin, brightness) -> np.ndarray:
+        if self.spot == "disc":
+            return disc_spot(centers, (size, size), self.diameter, brightness, origin, dtype=np.float32)
+        return render_spot("square", centers, (size, size), self.diameter, brightness, origin).astype(np.float32)
+
+    def frame(self, trial: int, k: int, rng: np.random.Generator | None = None) -> np.ndarray:
+        """Full compensated frame ``u_d`` of one trial at frame ``k``, shape (rows, cols), float32."""
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        img = self._padded[trial, m:m + rows, m:m + cols].copy()
+        img += render_spot(self.spot, self.truth.marker[trial, k], self.image_shape, self.diameter,
+                           self.brightness).astype(np.float32)
+        if self.decoys is not None:
+            img += render_spot(self.spot, self.decoys[trial, k], self.image_shape, self.diameter,
+                               self.decoy_brightness).astype(np.float32)
+        if rng is not None and self.noise_std > 0:
+            img += self.noise_std * rng.standard_normal(img.shape, dtype=np.float32)
+        return img
+
+
+def object_motion(rng: np.random.Generator, n: int, n_frames: int, dt: float, *, center=(128.0, 128.0),
+                  x_std: float = 10.0, x_tau: float = 1.0, x_smooth: float = 0.05, y_amplitude: float = 20.0,
+                  y_freq: float = 0.5):
+    """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
+    at ``y_freq`` Hz.
+
+    ``x`` is an Ornstein-Uhlenbeck process (time constant ``x_tau`` s) passed through a first-order
+    low-pass of time constant ``x_smooth`` s (so that the path has a finite velocity, as a real
+    object's does) and scaled to the stationary standard deviation ``x_std`` px.
+
+    Returns
+    -------
+    xr, yr : ndarray, shape (n, n_frames)
+    """
+    t = np.arange(n_frames) * dt
+    xr = np.zeros((n, n_frames))
+    if x_std > 0:
+        ou = ornstein_uhlenbeck(rng, n, n_frames, dt, 1.0, x_tau)
+        if x_smooth > 0:
+            b = np.exp(-dt / x_smooth)
+            ou = lfilter([1 - b], [1.0, -b], ou, axis=1, zi=b * ou[:, :1])[0]
+            ou *= np.sqrt((x_tau + x_smooth) / x_tau)
+        xr = x_std * ou
+    yr = y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
+    return center[0] + xr, center[1] + yr
+
+
+def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(256, 256), spot: str = "disc",
+                diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
+                background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
+                interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
+                decoys=None, decoy_brightness: float = 0.0):
+    """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
+    ``SIR = d / b_q`` (scalar or one value per trial), placed by :func:`place_interferers`
+    around ``interferer_center`` (default: the object's initial centre).
+
+    Returns
+    -------
+    RotatingMarkerScene
+    """
+    n = truth.xr.shape[0]
+    centre = truth.center[:, 0] if interferer_center is None else interferer_center
+    q = place_interferers(rng, n, n_interferers, centre, interferer_radius, radial_jitter)
+    sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
+    if np.any(sir <= 0):
+        raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
+    residual = RotatingMarkerScene.static_residual(
+        rng, n, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
+        interferers=q, interferer_brightness=brightness / sir, spot=spot, diameter=diameter)
+    return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
+                               decoys, decoy_brightness)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """One tracking experiment (defaults: the paper card's choices, sections 4.2-4.5 and 5).
+
+    Units: px, s, Hz; brightness in units of the marker brightness ``d``.
+    ``kappa`` = compensation residual (1 = none); ``noise_std`` and ``background_std`` are
+    per pixel (the background before compensation). ``omega_mod``/``radius_mod`` are relative
+    sinusoidal modulation depths of the rotation rate and radius (Fig. 2). ``decoy_offset`` > 0
+    adds an imitating interferer rotating like the marker about a centre displaced by that many px
+    (brightness ``d / decoy_sir``).
+    """
+
+    fps: float = 500.0
+    duration_s: float = 10.0
+    image_size: int = 256
+    spot: str = "disc"
+    diameter: float = 8.0
+    brightness: float = 1.0
+    noise_std: float = 0.02
+    background_std: float = 0.2
+    corr_length: float = 8.0
+    kappa: float = 0.1
+    rotating: bool = True
+    radius: float = 12.0
+    rotation_hz: float = 8.0
+    omega_mod: float = 0.0
+    omega_mod_hz: float = 0.5
+    radius_mod: float = 0.0
+    radius_mod_hz: float = 0.05
+    x_std: float = 10.0
+    x_tau: float = 1.0
+    x_smooth: float = 0.05
+    y_amplitude: float = 20.0
+    y_freq: float = 0.5
+    n_interferers: int = 0
+    interferer_jitter: float = 0.0
+    decoy_offset: float = 0.0
+    decoy_sir: float = 1.0
+    gate_half: float = 12.0
+    b_xy: float = 10.0
+    b_r: float = 0.2
+    b_omega: float = 6.0
+    variant: str = "S"
+    form: str = "quadrant"
+    init_offset: tuple = (3.0, -3.0)
+    init_radius_factor: float = 0.85
+    init_phase: float = 0.2
+
+    @property
+    def n_frames(self) -> int:
+        return int(round(self.duration_s * self.fps))
+
+    @property
+    def omega0(self) -> float:
+        return 2 * np.pi * self.rotation_hz
+
+    def slope(self) -> float:
+        """Discriminator slope ``S`` per px: ``2 d D`` for the quadrant form; for the edge form
+        the numerical slope of its static characteristic at zero error."""
+        if self.form == "quadrant":
+            return 2 * self.brightness * self.diameter
+        from ..discriminators import static_characteristic
+        f = static_characteristic(self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half,
+                                  a=self.diameter / 2)
+        return float((f[1] - f[0]) / 0.5)
+
+    def spot_renderer(self):
+        """``render(centers, shape, origin)`` for this scenario's spot."""
+        return lambda c, shape, origin: render_spot(self.spot, c, shape, self.diameter, self.brightness, origin)
+
+
+def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTruth:
+    """Truth of a scenario: Fig. 1 motion, rotation with optional Fig. 2 modulation, random phase."""
+    T, dt = sc.n_frames, 1.0 / sc.fps
+    t = np.arange(T) * dt
+    c = sc.image_size / 2
+    xr, yr = object_motion(rng, n, T, dt, center=(c, c), x_std=sc.x_std, x_tau=sc.x_tau, x_smooth=sc.x_smooth,
+                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq)
+    if not sc.rotating:
+        return marker_truth(xr, yr, np.zeros((n, T)), np.zeros((n, T)), np.zeros(n), dt)
+    omega = sc.omega0 * (1 + sc.omega_mod * np.sin(2 * np.pi * sc.omega_mod_hz * t)) * np.ones((n, 1))
+    r = sc.radius * (1 + sc.radius_mod * np.sin(2 * np.pi * sc.radius_mod_hz * t)) * np.ones((n, 1))
+    return marker_truth(xr, yr, r, omega, rng.uniform(0, 2 * np.pi, n), dt)
+
+
+def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, tracker: str = "loops",
+                 ekf_meas_var: float = 0.05, noise: str = "projected", keep_full: bool = True,
+                 crop_callback=None):
+    """Simulate ``n`` trials of a scenario end to end (truth, scene, tracker, closed loop).
+
+    Parameters
+    ----------
+    sir : float or ndarray, shape (n,)
+        Post-compensation signal-to-interference ratio of the stationary interferers.
+    tracker : {"loops", "ekf"}
+        Fixed-bandwidth loops (variant ``sc.variant``) or the discrete EKF of eqs. (16)-(17).
+    noise : {"projected", "pixel"}
+        See :func:`tvtrack.filters.loops.run_closed_loop` (the edge form always uses pixel noise).
+
+    Returns
+    -------
+    truth : MarkerTruth
+    scene : RotatingMarkerScene
+    history : tvtrack.filters.loops.TrackHistory
+    """
+    from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
+        run_closed_loop
+
+    truth = scenario_truth(rng, n, sc)
+    decoys = None
+    if sc.decoy_offset > 0:
+        ang = rng.uniform(0, 2 * np.pi, n)[:, None]
+        dphi = rng.uniform(0, 2 * np.pi, n)[:, None]
+        decoys = np.stack([truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
+                           truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi)], axis=-1)
+    c = sc.image_size / 2
+    scene = build_scene(rng, truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
+                        brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
+                        background_std=sc.background_std, corr_length=sc.corr_length,
+                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius,
+                        interferer_center=np.array([c, c]), radial_jitter=sc.interferer_jitter,
+                        decoys=decoys, decoy_brightness=sc.brightness / sc.decoy_sir)
+    x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
+                   sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,
+                   np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
+    slope = sc.slope()
+    if tracker == "loops":
+        trk = RotatingGateTracker(x0, loop_gains(sc.b_xy, sc.b_r, sc.b_omega, rotation_hz=sc.rotation_hz), slope,
+                                  sc.variant, sc.rotating)
+    elif tracker == "ekf":
+        q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
+        P0 = np.diag([9.0, 9.0, 4.0, 0.04, 1.0])
+        trk = EKFTracker(x0, P0, q, ekf_meas_var, slope)
+    else:
+        raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
+    hist = run_closed_loop(scene, trk, rng, gate_half=sc.gate_half, form=sc.form, edge_a=sc.diameter / 2,
+                           noise=noise if sc.form == "quadrant" else "pixel", keep_full=keep_full,
+                           crop_callback=crop_callback)
+    return truth, scene, hist

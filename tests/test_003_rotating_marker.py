@@ -1,0 +1,251 @@
+"""Tests of notebook 003's library: rotating-marker scene, discriminators, loops, loss of lock."""
+
+import numpy as np
+import pytest
+from scipy import signal
+
+from tvtrack.detect.lock import LossCriterion, first_loss, tag_capture
+from tvtrack.discriminators import (edge_discriminator, interval_weights, polar_errors, quadrant_discriminator,
+                                    quadrant_noise, quadrant_sums, quadrant_weights, static_characteristic,
+                                    two_emitter_discriminator)
+from tvtrack.filters.loops import (RotatingGateTracker, loop_gains, loop_poles, run_closed_loop,
+                                   simulate_two_emitter_1d)
+from tvtrack.render import box_spot, pixel_fractions_box
+from tvtrack.scenes.rotating_marker import (RotatingMarkerScene, Scenario, correlated_background, disc_spot,
+                                            gate_crop_size, marker_truth, place_interferers, render_spot,
+                                            run_scenario)
+
+D, A = 8.0, 12.0
+
+
+def _renderer(spot):
+    return lambda c, shape, origin: render_spot(spot, c, shape, D, 1.0, origin)
+
+
+@pytest.mark.parametrize("spot", ["disc", "square"])
+def test_quadrant_discriminator_odd_and_linear_with_predicted_slope(spot):
+    offsets = np.array([0.25, 0.5, 1.0, 2.0, 3.0])
+    for axis in (0, 1):
+        # gate on a pixel centre: the pixel grid is symmetric and the S-curve exactly odd
+        pos = static_characteristic(_renderer(spot), offsets, half=A, axis=axis, gate_center=(0.0, 0.0))
+        neg = static_characteristic(_renderer(spot), -offsets, half=A, axis=axis, gate_center=(0.0, 0.0))
+        assert np.all(pos > 0)                                             # corrected sign: +grad Pi
+        np.testing.assert_allclose(neg, -pos, rtol=1e-9)
+        # at a sub-pixel gate position the pixel grid breaks oddness only slightly
+        pos = static_characteristic(_renderer(spot), offsets, half=A, axis=axis)
+        neg = static_characteristic(_renderer(spot), -offsets, half=A, axis=axis)
+        np.testing.assert_allclose(neg, -pos, rtol=0.04)
+        slope = pos / offsets
+        np.testing.assert_allclose(slope[:3], 2 * D, rtol=0.05)           # linear, slope 2 d D
+    # saturates (relay zone) beyond D/2 and vanishes once the spot leaves the gate
+    far = static_characteristic(_renderer(spot), [5.0, 7.5, 20.0], half=A)
+    assert abs(far[0] - far[1]) < 0.05 * far[0] and abs(far[2]) < 1e-9
+
+
+def test_quadrant_sums_match_bilinear_form_and_card_layout():
+    rng = np.random.default_rng(0)
+    crops = rng.normal(size=(6, 26, 26))
+    origin = rng.integers(-5, 5, size=(6, 2))
+    centre = origin + 12.5 + rng.uniform(-0.5, 0.5, size=(6, 2))
+    u = quadrant_sums(crops, origin, centre, A)
+    dx, dy, e = quadrant_discriminator(crops, origin, centre, A)
+    np.testing.assert_allclose(dx, (u[:, 1] + u[:, 3]) - (u[:, 0] + u[:, 2]))
+    np.testing.assert_allclose(dy, (u[:, 0] + u[:, 1]) - (u[:, 2] + u[:, 3]))
+    np.testing.assert_allclose(e, u.sum(axis=1))
+    # u1 is left, y > y_m: a spot there lights u1 only
+    spot = box_spot(centre + [-5.0, 5.0], (26, 26), 2.0, 16.0, origin)
+    q = quadrant_sums(spot, origin, centre, A)
+    assert np.all(q[:, 0] > 15.9) and np.all(q[:, 1:] < 1e-9)
+
+
+def test_interval_weights_are_overlaps():
+    w = interval_weights(np.array([0.2]), np.array([3.7]), 6, np.array([0]))
+    np.testing.assert_allclose(w[0], [0.3, 1, 1, 1, 0.2, 0])
+    np.testing.assert_allclose(w.sum(), 3.5)
+
+
+def test_projected_noise_has_the_pixel_noise_covariance():
+    rng = np.random.default_rng(1)
+    n, size, sigma = 20000, 26, 0.3
+    origin = np.zeros((n, 2), int)
+    centre = np.tile([12.8, 12.3], (n, 1))
+    pix = sigma * rng.standard_normal((n, size, size))
+    dx, dy, _ = quadrant_discriminator(pix, origin, centre, A)
+    wy, wx = quadrant_weights(origin, centre, A, (size, size))
+    proj = quadrant_noise(wy, wx, sigma, rng)
+    c_pix, c_proj = np.cov(np.stack([dx, dy])), np.cov(proj.T)
+    np.testing.assert_allclose(np.diag(c_proj), np.diag(c_pix), rtol=0.05)
+
+
+def test_perfect_background_compensation_leaves_discriminator_unchanged():
+    rng = np.random.default_rng(2)
+    n, size = 8, gate_crop_size(A)
+    origin = rng.integers(20, 40, size=(n, 2))
+    centre = origin + 12.3
+    s = disc_spot(centre + rng.uniform(-2, 2, (n, 2)), (size, size), D, 1.0, origin)
+    noise = 0.02 * rng.standard_normal(s.shape)
+    F = correlated_background(rng, n, (size, size), 8.0, 0.2)               # background f
+    u = s + F + noise
+    u_d = u - F                                                           # (19) with f_hat = f
+    for form in ("quadrant", "edge"):
+        if form == "quadrant":
+            a, b = quadrant_discriminator(u_d, origin, centre, A)[:2], quadrant_discriminator(s + noise, origin, centre, A)[:2]
+        else:
+            a, b = edge_discriminator(u_d, origin, centre, D / 2), edge_discriminator(s + noise, origin, centre, D / 2)
+        np.testing.assert_allclose(a, b, atol=1e-5)
+    # in the scene: kappa = 0 (perfect estimate) gives exactly the scene without background
+    T = 3
+    truth = marker_truth(np.full((n, T), 60.0), np.full((n, T), 60.0), np.full((n, T), 12.0),
+                         np.full((n, T), 50.0), np.zeros(n), 0.002)
+    res = RotatingMarkerScene.static_residual(rng, n, (128, 128), kappa=0.0, background_std=0.5, corr_length=8,
+                                              interferers=np.zeros((n, 0, 2)), interferer_brightness=1.0,
+                                              spot="disc", diameter=D)
+    with_bg = RotatingMarkerScene(truth, (128, 128), "disc", D, 1.0, res)
+    without = RotatingMarkerScene(truth, (128, 128), "disc", D, 1.0)
+    c = truth.marker[:, 1] + 1.3
+    np.testing.assert_array_equal(with_bg.gate_crops(1, c, 26, None)[0], without.gate_crops(1, c, 26, None)[0])
+
+
+def test_edge_discriminator_is_relay_like_for_a_square_and_nonlinear_for_a_disc():
+    sq = static_characteristic(_renderer("square"), [1.5, 2.5, 3.5], form="edge", half=A, a=D / 2)
+    assert np.all(sq > 0) and np.ptp(sq) < 0.02 * sq.mean()                 # constant: a relay
+    disc = static_characteristic(_renderer("disc"), [0.5, 1.5, 3.5], form="edge", half=A, a=D / 2)
+    assert np.all(np.diff(disc) > 0) and disc[2] / disc[1] < 1.5            # chord law, far from linear (2.33)
+
+
+def test_polar_errors_rotate():
+    th = np.linspace(0, 6, 7)
+    e_r, e_t = polar_errors(np.cos(th), np.sin(th), th)
+    np.testing.assert_allclose(e_r, 1.0)
+    np.testing.assert_allclose(e_t, 0.0, atol=1e-12)
+
+
+def test_loop_gains_give_stated_bandwidths_and_stable_poles():
+    g = loop_gains(10.0, 0.2, 6.0)
+    assert g.k_xy == pytest.approx(2 * np.pi * 10)
+    w = 2 * np.pi * 6.0
+    h = (g.k1 * 1j * w + g.k2) / (-(w**2) + g.k1 * 1j * w + g.k2)        # type-2 PLL
+    assert abs(h) == pytest.approx(1 / np.sqrt(2), rel=1e-3)
+    poles = loop_poles(g, 2 * np.pi * 8, 12.0)
+    assert np.all(poles.real < 0)
+    # without rotation coupling the r loop pole is -K_r
+    slow = np.sort(np.abs(poles.real))[0]
+    assert slow == pytest.approx(g.k_r, rel=0.1)
+
+
+def test_noise_free_tracker_locks_static_object_below_0p1_px():
+    n, T, dt = 6, 2000, 0.002
+    rng = np.random.default_rng(3)
+    truth = marker_truth(np.full((n, T), 128.3), np.full((n, T), 127.6), np.full((n, T), 12.0),
+                         np.full((n, T), 2 * np.pi * 8), rng.uniform(0, 2 * np.pi, n), dt)
+    for spot in ("disc", "square"):
+        scene = RotatingMarkerScene(truth, (256, 256), spot, D, 1.0)
+        x0 = np.stack([truth.xr[:, 0] + 3, truth.yr[:, 0] - 3, 0.85 * truth.r[:, 0], truth.theta[:, 0] + 0.2,
+                       truth.omega[:, 0]], axis=1)
+        h = run_closed_loop(scene, RotatingGateTracker(x0, loop_gains(), 2 * D), None, gate_half=A)
+        assert h.miss[:, -500:].max() < 0.1
+        centre_err = np.hypot(h.estimate[:, -500:, 0] - 128.3, h.estimate[:, -500:, 1] - 127.6)
+        assert centre_err.max() < 0.1
+        assert np.abs(h.estimate[:, -1, 2] - 12.0).max() < 0.1
+
+
+def test_variant_p_also_locks():
+    n, T, dt = 4, 2000, 0.002
+    truth = marker_truth(np.full((n, T), 128.0), np.full((n, T), 128.0), np.full((n, T), 12.0),
+                         np.full((n, T), 2 * np.pi * 8), np.zeros(n), dt)
+    scene = RotatingMarkerScene(truth, (256, 256), "disc", D, 1.0)
+    x0 = np.tile([129.0, 127.0, 11.0, 0.1, 2 * np.pi * 8], (n, 1))
+    h = run_closed_loop(scene, RotatingGateTracker(x0, loop_gains(), 2 * D, variant="P"), None, gate_half=A)
+    assert h.miss[:, -500:].max() < 0.2
+
+
+def test_loss_criterion_window_catches_capture_that_consecutive_misses():
+    T = 1000
+    miss = np.zeros((3, T))
+    miss[1, 300:] = 30.0
+    miss[1, 300::60] = 0.0            # the marker crosses the captured gate once per revolution
+    miss[2, 500:520] = 30.0           # a short excursion, not a loss
+    win = first_loss(miss, LossCriterion(12.0, 250, 0.5, "window"))
+    assert win[0] == -1 and win[2] == -1 and 300 < win[1] < 600
+    cons = first_loss(miss, LossCriterion(12.0, 100, kind="consecutive"))
+    assert cons[1] == -1                                                  # reset every revolution
+    inside = np.ones((3, T), bool)
+    inside[0, 700] = False
+    assert first_loss(miss, LossCriterion(12.0, 250), inside)[0] == 700
+    with pytest.raises(ValueError, match="fraction"):
+        LossCriterion(12.0, 250, 1.5)
+
+
+def test_strong_interferers_cause_a_detected_loss_and_capture():
+    rng = np.random.default_rng(4)
+    sc = Scenario(duration_s=2.0, n_interferers=5, x_std=0.0, y_amplitude=0.0)
+    sir = np.array([0.2] * 4 + [50.0] * 4)
+    truth, scene, h = run_scenario(rng, 8, sc, sir, keep_full=False)
+    crit = LossCriterion(sc.gate_half, 125)
+    loss = first_loss(h.miss, crit, h.inside)
+    assert np.all(loss[:4] >= 0) and np.all(loss[4:] == -1)
+    captured = tag_capture(h.gate, scene.interferers, loss, 125, sc.diameter)
+    assert captured[:4].any() and not captured[4:].any()
+
+
+def test_seed_reproduces_and_interferers_sit_on_circle():
+    sc = Scenario(duration_s=0.2, n_interferers=1)
+    a = run_scenario(np.random.default_rng(5), 3, sc, 2.0)[2].miss
+    b = run_scenario(np.random.default_rng(5), 3, sc, 2.0)[2].miss
+    np.testing.assert_array_equal(a, b)
+    q = place_interferers(np.random.default_rng(0), 4, 5, (100.0, 90.0), 12.0)
+    np.testing.assert_allclose(np.hypot(q[..., 0] - 100, q[..., 1] - 90), 12.0)
+    ang = np.sort(np.mod(np.arctan2(q[0, :, 1] - 90, q[0, :, 0] - 100), 2 * np.pi))
+    np.testing.assert_allclose(np.diff(ang), 2 * np.pi / 5)
+
+
+def test_disc_flux_and_background_correlation():
+    img = disc_spot(np.array([10.3, 9.8]), (24, 24), D)
+    assert img.sum() == pytest.approx(np.pi * D**2 / 4, rel=0.01)
+    f = correlated_background(np.random.default_rng(6), 4, (128, 128), 8.0, 2.0)
+    assert f.std() == pytest.approx(2.0, rel=1e-3)
+    rho = np.mean(f[:, :, :-8] * f[:, :, 8:]) / f.var()                    # at tau = l_c: exp(-1)
+    assert rho == pytest.approx(np.exp(-1), abs=0.08)
+
+
+def test_two_emitter_1d_tracker_follows_and_integral_slope_is_2_sum_c2():
+    n, L, beta, a = 3, 256, 12.0, 4.0
+    lam = np.array([120.3, 128.0, 131.7])
+    line = lambda l: 2 * a * (0.7 * pixel_fractions_box(l - beta, a, L) + 0.4 * pixel_fractions_box(l + beta, a, L))
+    # a displacement of 1 px moves each box by 1 px inside its gate: 2 (c1^2 + c2^2) per px
+    e = two_emitter_discriminator(line(lam + 1.0), 0, lam + 0.0, beta=beta, a=a, c1=0.7, c2=0.4,
+                                  form="integral", half_gate=12.0)
+    np.testing.assert_allclose(e, 2 * (0.7**2 + 0.4**2) * 1.0, rtol=0.05)
+    e_edge = two_emitter_discriminator(line(lam + 1.0), 0, lam, beta=beta, a=a, c1=0.7, c2=0.4, form="edge")
+    assert np.all(e_edge > 0)                                            # corrected (6) pulls toward truth
+    rng = np.random.default_rng(7)
+    T, dt = 1500, 0.002
+    truth = 128 + 10 * np.sin(2 * np.pi * 0.5 * np.arange(T) * dt) * np.ones((n, 1))
+    est = simulate_two_emitter_1d(rng, truth, dt=dt, beta=beta, a=a, f_c=8.0, noise_std=0.02, form="integral",
+                                  bandwidth=5.0, unit_slope=2.0, half_gate=12.0, lam0=truth[:, 0] + 3)
+    assert np.sqrt(np.mean((est[:, 500:] - truth[:, 500:]) ** 2)) < 1.0
+
+
+def test_bad_inputs_raise_value_errors_naming_the_parameter():
+    with pytest.raises(ValueError, match="spot"):
+        render_spot("star", np.zeros(2), (4, 4), 2.0)
+    with pytest.raises(ValueError, match="kappa"):
+        RotatingMarkerScene.static_residual(np.random.default_rng(0), 1, (8, 8), kappa=2.0, background_std=1,
+                                            corr_length=2, interferers=np.zeros((1, 0, 2)),
+                                            interferer_brightness=1, spot="disc", diameter=2)
+    with pytest.raises(ValueError, match="b_xy"):
+        loop_gains(b_xy=0.0)
+    with pytest.raises(ValueError, match="variant"):
+        RotatingGateTracker(np.zeros((1, 5)), loop_gains(), 1.0, variant="Q")
+
+
+def test_rotation_synchronous_error_component():
+    """Errors of the wide coordinate loops carry a component at the rotation rate (Fig. 1 text)."""
+    rng = np.random.default_rng(8)
+    sc = Scenario(duration_s=3.0, x_std=0.0, y_amplitude=0.0)
+    truth, scene, h = run_scenario(rng, 6, sc)
+    err = h.estimate[:, 500:, 0] - truth.xr[:, 500:]
+    f, p = signal.welch(err, fs=sc.fps, nperseg=500, axis=-1)
+    p = p.mean(axis=0)
+    band = (f > 7) & (f < 9)
+    assert p[band].max() > 3 * np.median(p[(f > 2) & (f < 30)])
