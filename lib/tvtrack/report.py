@@ -82,9 +82,12 @@ def _cell(text: Any) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
-def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH) -> Path:
-    """Rebuild ``REPRODUCTION.md`` from the run directories under ``reproduce_dir``."""
-    notebooks = [nb.stem for nb in list_notebooks()]
+def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
+                 notebooks: list[str] | None = None) -> Path:
+    """Rebuild ``REPRODUCTION.md`` from the run directories under ``reproduce_dir``
+    (one section per notebook of ``notebooks``, default: all in ``notebooks/``)."""
+    if notebooks is None:
+        notebooks = [nb.stem for nb in list_notebooks()]
     sections, counts = [], Counter()
     for name in notebooks:
         run_dir = reproduce_dir / name

@@ -1,0 +1,125 @@
+"""The notebook contract (README, "Writing a notebook"), checked on every notebook in notebooks/:
+the committed file, then an execution of its smoke profile."""
+
+from __future__ import annotations
+
+import ast
+import io
+import json
+import subprocess
+import sys
+import tokenize
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from conftest import NOTEBOOK_NAMES
+from tvtrack.paths import NOTEBOOK_DIR, PROFILE_DIR, SWEEP_DIR
+from tvtrack.results import VERDICTS, load_results
+from tvtrack.sweep import load_spec
+
+COMMON = ("seed", "n_trials", "output_dir", "rerun_mode")
+
+
+def read(name: str) -> nbformat.NotebookNode:
+    return nbformat.read(NOTEBOOK_DIR / f"{name}.ipynb", as_version=4)
+
+
+def parameters_cell(nb) -> nbformat.NotebookNode:
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    assert code, "notebook has no code cell"
+    assert "parameters" in code[0].metadata.get("tags", []), "the first code cell must be tagged 'parameters'"
+    return code[0]
+
+
+def assigned_names(source: str) -> list[str]:
+    return [t.id for node in ast.parse(source).body if isinstance(node, ast.Assign)
+            for t in node.targets if isinstance(t, ast.Name)]
+
+
+def test_there_are_notebooks_or_the_report_says_so():
+    # with no notebooks the suite still runs the fixture; this documents the expectation
+    assert all(Path(NOTEBOOK_DIR, f"{n}.ipynb").is_file() for n in NOTEBOOK_NAMES)
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_committed_notebook_has_no_outputs(name):
+    nb = read(name)
+    nbformat.validate(nb)
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            assert not cell.outputs and cell.execution_count is None, f"{name}: code cells must carry no outputs"
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_parameters_cell_follows_the_contract(name):
+    cell = parameters_cell(read(name))
+    names = assigned_names(cell.source)
+    for required in COMMON:
+        assert required in names, f"{name}: the parameters cell lacks {required!r}"
+    # one parameter per line, each with a comment (unit and allowed range)
+    tokens = list(tokenize.generate_tokens(io.StringIO(cell.source).readline))
+    comment_lines = {t.start[0] for t in tokens if t.type == tokenize.COMMENT}
+    for node in ast.parse(cell.source).body:
+        assert isinstance(node, ast.Assign), f"{name}: the parameters cell may hold only assignments"
+        assert node.end_lineno in comment_lines or node.lineno in comment_lines, \
+            f"{name}: parameter on line {node.lineno} has no comment giving its unit and range"
+    rerun_mode = next(n.value for n in ast.parse(cell.source).body if n.targets[0].id == "rerun_mode")
+    assert ast.literal_eval(rerun_mode) == "file"
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_validation_is_the_next_code_cell(name):
+    code = [c for c in read(name).cells if c.cell_type == "code"]
+    assert "validate_parameters(globals()" in code[1].source, \
+        f"{name}: the cell after the parameters must validate them with validate_parameters(globals(), ...)"
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_smoke_profile_exists_and_names_known_parameters(name):
+    import tomllib
+
+    path = PROFILE_DIR / f"{name}.smoke.toml"
+    assert path.is_file(), f"{name}: no smoke profile {path}"
+    with path.open("rb") as fh:
+        profile = tomllib.load(fh)
+    unknown = set(profile) - set(assigned_names(parameters_cell(read(name)).source))
+    assert not unknown, f"{name}: smoke profile sets unknown parameters {sorted(unknown)}"
+
+
+@pytest.mark.parametrize("spec", sorted(SWEEP_DIR.glob("*.toml")), ids=lambda p: p.stem)
+def test_sweep_specs_parse_and_name_known_parameters(spec):
+    s = load_spec(spec)
+    known = set(assigned_names(parameters_cell(nbformat.read(s.notebook, as_version=4)).source))
+    unknown = (set(s.fixed) | set(s.grid) | set(s.zipped)) - known
+    assert not unknown, f"{spec.name}: unknown parameters {sorted(unknown)}"
+
+
+@pytest.mark.notebook
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
+    outcome = smoke_run(name)
+    assert outcome.ok, f"{name} failed: {outcome.error}\n{(outcome.run_dir / 'error.txt').read_text()}"
+    data = load_results(outcome.run_dir / "results.json")
+    assert data["notebook"] == name
+    params = data["parameters"]
+    for key in assigned_names(parameters_cell(read(name)).source):
+        assert key in params, f"{name}: parameter {key!r} missing from results.json (not validated?)"
+    assert data["claims"], f"{name}: no claims checked"
+    prefix = "C" + name[:3] + "-"
+    for claim in data["claims"]:
+        assert claim["id"].startswith(prefix) and claim["verdict"] in VERDICTS
+        assert claim["acceptance"] and claim["statement"]
+        if claim["verdict"] != "not checkable":
+            assert claim["measured"] is not None, f"{claim['id']}: a verdict needs a measured value"
+    for fig in data["figures"]:
+        assert (outcome.run_dir / fig["file"]).is_file() and fig["caption"]
+    written = {p.name for p in outcome.run_dir.iterdir()}
+    assert written <= {"results.json", "run.json", "notebook.ipynb", "recording.rrd", "error.txt"} | \
+        {f["file"] for f in data["figures"]}, f"{name}: unexpected outputs {sorted(written)}"
+    rrd = outcome.run_dir / "recording.rrd"
+    assert data["recording"] == "recording.rrd" and rrd.is_file()
+    verify = subprocess.run([str(Path(sys.executable).parent / "rerun"), "rrd", "verify", str(rrd)],
+                            capture_output=True, text=True, timeout=120)
+    assert verify.returncode == 0, verify.stderr
