@@ -96,3 +96,14 @@ def test_prediction_and_transition_agree():
     assert np.allclose(taylor_transition(2, -1), np.linalg.inv(taylor_transition(2, 1)))
     with pytest.raises(ValueError, match="order"):
         taylor_transition(4)
+
+
+def test_first_estimate_skips_missing_samples():
+    # with a gap before the filter starts, the first estimate is the exact quadratic through
+    # the first three *present* samples (eq. 4), placed at the time of the third
+    t = np.arange(10.0)
+    z = 2.0 - 0.5 * t + 0.25 * t**2
+    z[1] = np.nan
+    s = growing_memory_filter(z[None], 2)[0]
+    assert np.isnan(s[:3]).all()
+    assert np.allclose(s[3], [z[3], -0.5 + 0.5 * 3, 0.5])

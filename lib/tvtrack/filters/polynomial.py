@@ -117,32 +117,26 @@ def growing_memory_filter(z, order: int = 2, floor_memory: int | None = None) ->
     gains = growing_memory_gains(order, max(n_max, n))
     F = taylor_transition(order)
     batch = z.shape[:-1]
+    present = np.isfinite(z)
+    count_after = np.cumsum(present, axis=-1)  # samples received up to and including t
+    # (eq. 4) the first estimate: the exact polynomial through the first order+1 samples
+    first_times = np.stack([np.argmax(present & (count_after == k + 1), axis=-1) for k in range(n)], -1)
+    start = first_times[..., -1]
+    ready = count_after[..., -1] >= n
+    lags = start[..., None] - first_times
+    H0 = polynomial_observation_row(order, np.where(ready[..., None], lags, np.arange(n)[::-1]))
+    z0 = np.where(ready[..., None], np.take_along_axis(z, first_times, axis=-1), 0.0)
+    x = np.linalg.solve(H0, z0[..., None])[..., 0]
     states = np.full(batch + (T, n), np.nan)
-    x = np.zeros(batch + (n,))
-    count = np.zeros(batch, dtype=np.int64)
-    # the first order+1 samples: collect, then solve the square system of eq. (4)
-    first = np.full(batch + (n,), np.nan)
-    first_lag = np.zeros(batch + (n,))
     for t in range(T):
-        zt = z[..., t]
-        present = np.isfinite(zt)
-        started = count >= n
-        x = np.where(started[..., None], x @ F.T, x)  # (eq. 5) predict
-        # (eq. 6) correct the started filters
-        g = gains[np.clip(count, n - 1, gains.shape[0] - 1)]  # gain for N = count + 1
-        upd = present & started
-        x = np.where(upd[..., None], x + g * np.where(upd, zt - x[..., 0], 0.0)[..., None], x)
-        # filling phase: remember sample times, solve when order+1 samples are in
-        filling = present & ~started
-        slot = np.clip(count, 0, n - 1)
-        np.put_along_axis(first, slot[..., None], np.where(filling, zt, np.take_along_axis(first, slot[..., None], -1)[..., 0])[..., None], -1)
-        np.put_along_axis(first_lag, slot[..., None], np.where(filling, float(t), np.take_along_axis(first_lag, slot[..., None], -1)[..., 0])[..., None], -1)
-        count = count + present
-        just = filling & (count == n)
-        if np.any(just):
-            H = polynomial_observation_row(order, t - first_lag[just])  # rows for lags back from t
-            x[just] = np.linalg.solve(H, first[just][..., None])[..., 0]
-        states[..., t, :] = np.where((count >= n)[..., None], x, np.nan)
+        running = ready & (t > start)
+        x = np.where(running[..., None], x @ F.T, x)  # (eq. 5) predict
+        # (eq. 6) correct with the gain for N = samples so far, frozen at the floor
+        g = gains[np.minimum(count_after[..., t], gains.shape[0]) - 1]
+        upd = running & present[..., t]
+        innovation = np.where(upd, z[..., t] - x[..., 0], 0.0)
+        x = x + np.where(upd[..., None], g, 0.0) * innovation[..., None]
+        states[..., t, :] = np.where((ready & (t >= start))[..., None], x, np.nan)
     return states
 
 
