@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture"]
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold"]
 
 KINDS = ("window", "consecutive")
 
@@ -116,3 +116,25 @@ def tag_capture(gate, interferers, loss_frame, window: int, radius: float, fract
     seg = gate[np.arange(n)[:, None], frames]                                  # (n, window, 2)
     near = np.linalg.norm(seg[:, :, None, :] - q[:, None, :, :], axis=-1) < radius
     return (loss >= 0) & (near.mean(axis=1) > fraction).any(axis=1)
+
+
+def loss_threshold(sir_values, losses) -> float:
+    """Loss-free threshold on a grid: the smallest SIR such that it and every larger SIR of the
+    grid had no loss; NaN if the largest SIR had losses.
+
+    Parameters
+    ----------
+    sir_values : array_like, shape (m,)
+        Grid of signal-to-interference ratios (any order).
+    losses : array_like of int, shape (m,)
+        Number of losses at each SIR.
+    """
+    s = np.asarray(sir_values, dtype=float)
+    n = np.asarray(losses)
+    order = np.argsort(s)[::-1]
+    thr = float("nan")
+    for i in order:
+        if n[i] > 0:
+            break
+        thr = float(s[i])
+    return thr
