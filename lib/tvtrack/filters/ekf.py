@@ -199,9 +199,14 @@ class ExtendedKalmanFilter:
             out["P_prior"][t] = P
             z = zs_t[t]
             present = np.all(np.isfinite(z), axis=-1)
-            x, P, nu, S = ekf_update(x, P, np.where(present[..., None], z, 0.0), self.h, self.jacobian,
-                                     self.noise_cov, t, present, self.noise_iterations)
-            out["innovation"][t] = np.where(present[..., None], nu, np.nan)
+            if present.all():                                            # no masking needed (fast path)
+                x, P, nu, S = ekf_update(x, P, z, self.h, self.jacobian, self.noise_cov, t, None,
+                                         self.noise_iterations)
+            else:
+                x, P, nu, S = ekf_update(x, P, np.where(present[..., None], z, 0.0), self.h, self.jacobian,
+                                         self.noise_cov, t, present, self.noise_iterations)
+                nu = np.where(present[..., None], nu, np.nan)
+            out["innovation"][t] = nu
             out["S"][t] = S
             out["x"][t] = x
             out["P"][t] = P
