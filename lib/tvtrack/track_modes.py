@@ -21,8 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .detect.maneuver import window_statistic
-from .filters.alphabeta import filter_step, gain_schedule, observation_row
+from .filters.alphabeta import gain_schedule, observation_row
 from .filters.polynomial import polynomial_observation_row, taylor_transition
 
 __all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes"]
@@ -129,7 +128,8 @@ def _quadratic_fit(z_window, sigma_eps):
     return z_window @ pinv.T, sigma_eps**2 * pinv @ pinv.T
 
 
-def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0) -> TrackModeOutput:
+def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
+                    covariance: bool = True) -> TrackModeOutput:
     """Run the mode logic on measurements of independent channels.
 
     Parameters
@@ -141,6 +141,9 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0)
     config : TrackModeConfig
     sigma_eps : float
         Measurement noise RMS, elements, for the covariance (and restart B).
+    covariance : bool
+        Propagate the noise-driven covariance (``var``, ``gate_var``); when False those
+        outputs are NaN and the run is faster.
 
     Returns
     -------
@@ -149,7 +152,6 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0)
     z = np.asarray(z, dtype=float)
     T = z.shape[-1]
     batch = z.shape[:-1]
-    vis = np.broadcast_to(np.asarray(visible, dtype=bool), z.shape)
     if not sigma_eps > 0:
         raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
     cfg = config
@@ -157,77 +159,149 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0)
     arm_k = cfg.k_bound2 + 2 * n if cfg.arm_k is None else cfg.arm_k
     rearm = 2 * n if cfg.rearm_after_gap is None else cfg.rearm_after_gap
     thr = np.atleast_1d(np.asarray(cfg.threshold, dtype=float))
+    forced = cfg.force_switch_k is not None
+    detect3 = bool(cfg.detect_in_track3)
 
-    K2 = np.zeros((cfg.k_bound2, 3))
-    K2[:, :2] = gain_schedule(1, cfg.k_bound2)
-    K3 = gain_schedule(2, cfg.k_bound3)
+    # time-major, flat batch: every per-frame operation works on contiguous (B,) arrays
+    B = int(np.prod(batch, dtype=np.int64))
+    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))                        # (T, B)
+    vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(np.asarray(visible, dtype=bool), z.shape)
+                                           .reshape(B, T), -1, 0))
+    # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
+    # row = in3 * kmax + min(k, bound) - 1
+    kmax = max(cfg.k_bound2, cfg.k_bound3)
+    table = np.zeros((2 * kmax, 3))
+    table[:kmax, :2] = gain_schedule(1, cfg.k_bound2, kmax)
+    table[kmax:] = gain_schedule(2, cfg.k_bound3, kmax)
+    cols = [np.ascontiguousarray(table[:, i]) for i in range(3)]
     F = taylor_transition(2)
     h = observation_row(2)
+    all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
 
-    x = np.zeros(batch + (3,))
-    P = np.zeros(batch + (3, 3))
-    k = np.zeros(batch, dtype=np.int64)
-    mode = np.full(batch, TRACK2, dtype=np.int8)
-    since_visible = np.zeros(batch, dtype=np.int64)
-    detected_at = np.full(batch, -1, dtype=np.int64)
-    vhist = np.full(batch + (T,), np.nan)
+    x0, x1, x2 = np.zeros(B), np.zeros(B), np.zeros(B)
+    P = np.zeros((B, 3, 3))
+    # per-trial counters start as scalars shared by all trials (lockstep) and become arrays
+    # at the first frame where trials differ (partial visibility, a detection)
+    k = np.int64(0)                                 # measurements since the (re)start
+    row = np.int64(-1)                              # gain-table row = in3 kmax + min(k, bound) - 1
+    cap = np.int64(cfg.k_bound2 - 1)
+    in3 = np.int64(0)                               # 0 = TRACK2, 1 = TRACK3
+    had_gap = False
+    since_visible = np.int64(0)
+    detected_at = np.full(B, -1, dtype=np.int64)
+    detector_on = not forced
+    sum_old = sum_new = None                        # running window sums of output velocities
 
-    out_x = np.empty(batch + (T, 3))
-    out_var = np.empty(batch + (T, 3))
-    out_gate = np.empty(batch + (T,))
-    out_K = np.empty(batch + (T, 3))
-    out_mode = np.empty(batch + (T,), dtype=np.int8)
-    out_S = np.full(batch + (T,), np.nan)
-    out_c = np.full(batch + (T,), np.nan)
+    out_x = np.empty((T, 3, B))
+    out_var = np.full((T, 3, B), np.nan)
+    out_gate = np.full((T, B), np.nan)
+    out_row = np.empty((T, B), dtype=np.int64)      # gain-table row in force
+    out_in3 = np.empty((T, B), dtype=np.int8)
+    out_S = np.full((T, B), np.nan)
+    out_c = np.full((T, B), np.nan)
+    out_test = np.zeros((T, B), dtype=bool)
 
     for t in range(T):
-        seen = vis[..., t]
-        k = k + seen
-        since_visible = np.where(seen, since_visible + 1, 0)
-        track3 = mode == TRACK3
-        K = np.where(track3[..., None], K3[np.clip(k, 1, cfg.k_bound3) - 1],
-                     K2[np.clip(k, 1, cfg.k_bound2) - 1])
-        K = np.where(seen[..., None], K, 0.0)
-        # noise-driven covariance: predict, then correct with the gains in force (card §4.5)
-        Pp = F @ P @ F.T
-        out_gate[..., t] = Pp[..., 0, 0] + sigma_eps**2
-        IKh = np.eye(3) - K[..., :, None] * h
-        P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * K[..., :, None] * K[..., None, :]
-        P = 0.5 * (P + np.swapaxes(P, -1, -2))
-        x, _ = filter_step(x, np.where(seen, z[..., t], np.nan), K, F)  # (eq. 1) / (E1) when lost
-        vhist[..., t] = x[..., 1]
-
-        # detector (eq. 14) on the last 2n output velocities
-        if t >= 2 * n - 1:
-            S = window_statistic(vhist[..., t - 2 * n + 1:t + 1], n)[..., -1]
-            c = thr[np.clip(k, 1, thr.size) - 1]
-            testing = seen & (k >= arm_k) & (since_visible >= rearm) & (cfg.force_switch_k is None)
-            testing &= (mode == TRACK2) | ((mode == TRACK3) & cfg.detect_in_track3)
-            out_S[..., t] = np.where(testing, S, np.nan)
-            out_c[..., t] = np.where(testing, c, np.nan)
-            alarm = testing & (np.abs(S) > c)
+        seen = vis[t]
+        if all_seen[t]:
+            k += 1
+            row = np.minimum(row + 1, cap)
+            if had_gap:
+                since_visible += 1
+        elif none_seen[t]:
+            since_visible = since_visible * 0
+            had_gap = True
         else:
-            alarm = np.zeros(batch, dtype=bool)
-        if cfg.force_switch_k is not None:
-            alarm = seen & (mode == TRACK2) & (k == cfg.force_switch_k)
-        detected_at = np.where(alarm & (detected_at < 0), t, detected_at)
+            if not had_gap:
+                since_visible = k + 0
+            had_gap = True
+            k += seen
+            row = np.minimum(row + seen, cap)
+            since_visible = np.where(seen, since_visible + 1, 0)
+        out_row[t] = row
+        K0, K1, K2 = cols[0].take(row), cols[1].take(row), cols[2].take(row)
+        if covariance:
+            # noise-driven covariance: predict, then correct with the gains in force (card §4.5)
+            Kc = np.stack([K0, K1, K2], axis=-1) * seen[:, None]
+            Pp = F @ P @ F.T
+            out_gate[t] = Pp[:, 0, 0] + sigma_eps**2
+            IKh = np.eye(3) - Kc[:, :, None] * h
+            P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * Kc[:, :, None] * Kc[:, None, :]
+            P = 0.5 * (P + np.swapaxes(P, -1, -2))
+        # (eq. 1) predict and correct; (E1) zero gains while lost
+        x0 = x0 + x1 + 0.5 * x2
+        x1 = x1 + x2
+        if not none_seen[t]:
+            innov = zt[t] - x0
+            if not all_seen[t]:
+                innov = np.where(seen, innov, 0.0)
+            x0 += K0 * innov
+            x1 += K1 * innov
+            if in3.any():
+                x2 = x2 + K2 * innov
+        out_x[t, 1] = x1
 
-        # switch to TRACK3 with raised gains (card §4.4 step 4)
-        if np.any(alarm):
-            if cfg.restart == "A":
-                x = np.where(alarm[..., None], x * np.array([1.0, 1.0, 0.0]), x)
-                P = np.where(alarm[..., None, None], P * np.outer([1, 1, 0], [1, 1, 0]), P)
-                k = np.where(alarm, cfg.restart_k, k)
+        # detector (eq. 14) on the last 2n output velocities, sums kept running
+        alarm = None
+        if forced:
+            alarm = seen & (in3 == 0) & (k == cfg.force_switch_k)
+        elif detector_on and t >= 2 * n - 1:
+            if sum_old is None:
+                sum_old = out_x[t - 2 * n + 1:t - n + 1, 1].sum(axis=0)
+                sum_new = out_x[t - n + 1:t + 1, 1].sum(axis=0)
             else:
-                zw = z[..., max(t - n + 1, 0):t + 1]
+                mid = out_x[t - n, 1]
+                sum_old += mid - out_x[t - 2 * n, 1]
+                sum_new += x1 - mid
+            testing = k >= arm_k
+            if not all_seen[t]:
+                testing &= seen
+            if had_gap:
+                testing &= since_visible >= rearm
+            if not detect3:
+                testing &= in3 == 0
+            if testing.any():
+                S = sum_old - sum_new
+                c = thr.take(np.clip(k, 1, thr.size) - 1)
+                out_S[t] = S
+                out_c[t] = c
+                out_test[t] = testing
+                alarm = testing & (np.abs(S) > c)
+        # switch to TRACK3 with raised gains (card §4.4 step 4)
+        if alarm is not None and alarm.any():
+            detected_at = np.where(alarm & (detected_at < 0), t, detected_at)
+            if cfg.restart == "A":
+                x2 = np.where(alarm, 0.0, x2)
+                if covariance:
+                    P = np.where(alarm[:, None, None], P * np.outer([1, 1, 0], [1, 1, 0]), P)
+                k = np.where(alarm, cfg.restart_k, k)
+                row = np.where(alarm, kmax + min(cfg.restart_k, cfg.k_bound3) - 1, row)
+            else:
+                zw = zt[max(t - n + 1, 0):t + 1].T
                 xb, Pb = _quadratic_fit(zw, sigma_eps)
-                x = np.where(alarm[..., None], xb, x)
-                P = np.where(alarm[..., None, None], Pb, P)
+                x0, x1, x2 = (np.where(alarm, xb[:, i], v) for i, v in enumerate((x0, x1, x2)))
+                if covariance:
+                    P = np.where(alarm[:, None, None], Pb, P)
                 k = np.where(alarm, zw.shape[-1], k)
-            mode = np.where(alarm, TRACK3, mode)
+                row = np.where(alarm, kmax + min(zw.shape[-1], cfg.k_bound3) - 1, row)
+            in3 = np.where(alarm, 1, in3)
+            cap = np.where(alarm, kmax + cfg.k_bound3 - 1, cap)
+            if not detect3 and in3.all():
+                detector_on = False
 
-        out_x[..., t, :] = x
-        out_var[..., t, :] = np.diagonal(P, axis1=-2, axis2=-1)
-        out_K[..., t, :] = K
-        out_mode[..., t] = np.where(seen, mode, COAST)
-    return TrackModeOutput(out_x, out_var, out_gate, out_K, out_mode, out_S, out_c, detected_at)
+        out_x[t, 0], out_x[t, 1], out_x[t, 2] = x0, x1, x2
+        if covariance:
+            out_var[t] = np.diagonal(P, axis1=-2, axis2=-1).T
+        out_in3[t] = in3
+
+    out_K = np.moveaxis(table[out_row], -1, 1) * vis[:, None, :]                           # (T, 3, B)
+    out_mode = np.where(vis, np.where(out_in3 == 1, TRACK3, TRACK2), COAST).astype(np.int8)
+    out_S = np.where(out_test, out_S, np.nan)
+    out_c = np.where(out_test, out_c, np.nan)
+
+    def back(a, extra=()):
+        """(T, [3,] B) -> (..., T[, 3])"""
+        return np.moveaxis(a, -1, 0).reshape(batch + (T,) + extra)
+
+    return TrackModeOutput(back(out_x, (3,)), back(out_var, (3,)), back(out_gate), back(out_K, (3,)),
+                           back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
