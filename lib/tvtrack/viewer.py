@@ -50,7 +50,8 @@ import numpy as np
 __all__ = [
     "INSTALL_HINT", "ViewerUnavailable", "vulkan_problem", "rerun_executable", "verify_rrd",
     "free_port", "coloured_mask", "dominant_colours", "LoadedRecording", "OverlayPixels",
-    "HeadlessViewer", "entities_under",
+    "HeadlessViewer", "entities_under", "plays_role", "Expectation", "RecordingCheck",
+    "check_recording",
 ]
 
 INSTALL_HINT = "apt-get install -y mesa-vulkan-drivers"
@@ -308,18 +309,30 @@ class HeadlessViewer:
         return self._proc is not None and self._proc.poll() is None
 
     def close(self) -> None:
-        """End the viewer's whole process group (wrapper and binary) and wait for it."""
+        """End the viewer's whole process group (wrapper and binary) and wait until every
+        process of it has exited."""
+        import psutil  # a dependency of rerun-sdk
+
         self._client = None
         proc, self._proc = self._proc, None
         if proc is not None and proc.poll() is None:
             try:
+                group = psutil.Process(proc.pid).children(recursive=True)
+            except psutil.NoSuchProcess:
+                group = []
+            try:
                 os.killpg(proc.pid, signal.SIGTERM)
-                proc.wait(timeout=5)
             except ProcessLookupError:
                 pass
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
+            try:
                 proc.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait(timeout=5)
+            _, alive = psutil.wait_procs(group, timeout=5)
+            for child in alive:
+                child.kill()
+            psutil.wait_procs(alive, timeout=5)
         if self._own_log:
             self.log_path.unlink(missing_ok=True)
 
@@ -333,8 +346,9 @@ class HeadlessViewer:
 
     # -- recordings -------------------------------------------------------------------------
     def open(self, path: str | Path, timeout_s: float = 60.0) -> LoadedRecording:
-        """Open an ``.rrd`` file (closing whatever was open) and wait until it has fully loaded:
-        nothing loading and the timeline ranges unchanged over two consecutive polls."""
+        """Open an ``.rrd`` file (closing whatever was open), wait until it has fully loaded
+        (nothing loading, timeline ranges unchanged over two consecutive polls) and show it on
+        its own default blueprint."""
         path = Path(path).resolve()
         if not path.is_file():
             raise FileNotFoundError(f"no recording at {path}")
@@ -358,6 +372,10 @@ class HeadlessViewer:
                                    f"(still loading: {[s.status for s in state.loading]})")
             previous = ranges
             time.sleep(0.1)
+        # the viewer keeps a blueprint per application id across files: show this file's own
+        # default blueprint, as a user opening it for the first time sees it
+        client.run_command("recording.reset_blueprint_to_default", store_id=store_id)
+        client.take_screenshot(max_size=64)   # one painted frame applies the queued command
         self.recording = LoadedRecording(path=path, store_id=store_id,
                                          timelines={t.name: t for t in rec.timelines},
                                          load_s=time.monotonic() - t0)
@@ -445,4 +463,135 @@ def entities_under(paths: Iterable[str], origin: str) -> list[str]:
     """Entity paths at or below ``origin`` (both with a leading ``/``)."""
     root = "/" + origin.strip("/")
     return [p for p in paths if p == root or p.startswith(root + "/")]
+
+
+def plays_role(path: str, origin: str, role: str) -> bool:
+    """Whether an entity below ``origin`` plays ``role``: one of its path parts below the origin
+    starts with the role's name (``/camera/gate``, ``/camera/gate_rotated``, ``/camera/estimates/obj1``
+    all play ``gate`` or ``estimate`` under origin ``/camera``)."""
+    below = path[len("/" + origin.strip("/")):].strip("/").split("/")
+    return any(part.startswith(role) for part in below if part)
+
+
+IMAGE_ARCHETYPES = frozenset({"Image", "EncodedImage", "DepthImage", "SegmentationImage"})
+REPORT_SEVERITIES = frozenset({"error", "warning"})
+
+
+@dataclass(frozen=True)
+class Expectation:
+    """What a tracking recording must show in the viewer.
+
+    Attributes
+    ----------
+    overlays : tuple of str
+        Roles drawn over the image in a 2-D view (see :func:`plays_role`).
+    series_root : str
+        Entity root of the error series (``errors`` for ``errors/x`` ...), which must be plotted
+        in a time-series view.
+    timeline : str
+        Sequence timeline; the screenshots are taken at the middle of its range.
+    min_overlay_px : int
+        Coloured pixels each overlay role must change in its view (a small dot is ~5).
+    min_line_px : int
+        Coloured pixels the series must draw in each time-series view showing them.
+    min_image_fraction : float
+        Fraction of its view's pixels the image must change.
+    """
+
+    overlays: tuple[str, ...] = ("gate", "truth", "estimate")
+    series_root: str = "errors"
+    timeline: str = "frame"
+    min_overlay_px: int = 3
+    min_line_px: int = 150
+    min_image_fraction: float = 0.01
+
+
+@dataclass
+class RecordingCheck:
+    """What :func:`check_recording` saw; ``problems`` is empty when the recording looks right."""
+
+    path: Path
+    frame: int | None = None
+    views: list = field(default_factory=list)
+    entity_paths: list[str] = field(default_factory=list)
+    pixels: dict[str, OverlayPixels] = field(default_factory=dict)   # role or view name -> pixels
+    problems: list[str] = field(default_factory=list)
+    load_s: float = 0.0
+    check_s: float = 0.0
+
+
+def check_recording(viewer: HeadlessViewer, path: str | Path,
+                    expect: Expectation = Expectation()) -> RecordingCheck:
+    """Open ``path`` in ``viewer`` and check what a user looks for.
+
+    At the middle frame: the blueprint has a 2-D view and a time-series view, all visible; an
+    image and every overlay role of ``expect`` are under a 2-D view's origin and draw pixels
+    there (coloured ones for the overlays); scalar series under ``expect.series_root`` are in a
+    time-series view and draw coloured lines; after painting, no view reports an error or a
+    warning. Problems are collected, not raised, so one run lists them all.
+    """
+    t0 = time.monotonic()
+    rec = viewer.open(path)
+    check = RecordingCheck(path=Path(path), load_s=rec.load_s)
+    problems = check.problems
+    if expect.timeline not in rec.timelines:
+        problems.append(f"no {expect.timeline!r} timeline; timelines: {sorted(rec.timelines)}")
+        return check
+    line = rec.timeline(expect.timeline)
+    check.frame = frame = (line.start + line.end) // 2
+    viewer.set_time(expect.timeline, frame)
+
+    views = check.views = viewer.views()
+    spatial = [v for v in views if v.view_class == "2D"]
+    series_views = [v for v in views if v.view_class == "TimeSeries"]
+    if not spatial or not series_views:
+        problems.append(f"blueprint views {sorted(v.view_class for v in views)}: need a 2-D image view "
+                        "('2D') and a time series ('TimeSeries')")
+    problems += [f"view {v.name!r} ({v.view_class}) is not visible" for v in views if not v.visible]
+    paths = check.entity_paths = viewer.entity_paths()
+    archetypes = viewer.archetypes()
+    shots = {v.view_id: viewer.screenshot(v.view_id) for v in views}   # paints every view once
+
+    images = [(v, p) for v in spatial for p in entities_under(paths, v.origin)
+              if archetypes.get(p, set()) & IMAGE_ARCHETYPES]
+    if not images:
+        problems.append(f"no image entity in the 2-D views {[v.origin for v in spatial]}; entities: {paths}")
+    for view, image_path in images[:1]:
+        shown = shots[view.view_id]
+        px = check.pixels["image"] = viewer.overlay_pixels(view, [image_path], shown=shown)
+        area = shown.shape[0] * shown.shape[1]
+        if px.changed < expect.min_image_fraction * area:
+            problems.append(f"image {image_path} covers only {px.changed} of {area} px of view {view.name!r}")
+    for role in expect.overlays:
+        found = [(v, [p for p in entities_under(paths, v.origin) if plays_role(p, v.origin, role)])
+                 for v in spatial]
+        found = [(v, ps) for v, ps in found if ps]
+        if not found:
+            problems.append(f"no {role!r} entity in the 2-D views {[v.origin for v in spatial]}; entities: {paths}")
+            continue
+        view, role_paths = found[0]
+        px = check.pixels[role] = viewer.overlay_pixels(view, role_paths, shown=shots[view.view_id])
+        if px.coloured < expect.min_overlay_px:
+            problems.append(f"{role} {role_paths} draws {px.coloured} coloured px in view {view.name!r} at "
+                            f"{expect.timeline} {frame} ({px.changed} changed); need >= {expect.min_overlay_px}")
+
+    series = [p for p in entities_under(paths, expect.series_root) if "Scalars" in archetypes.get(p, set())]
+    if not series:
+        problems.append(f"no scalar series under /{expect.series_root}; entities: {paths}")
+    plotting = [v for v in series_views if entities_under(series, v.origin)]
+    if series and not plotting:
+        problems.append(f"series {series} are in no time-series view (origins {[v.origin for v in series_views]})")
+    for view in plotting:
+        in_view = entities_under(series, view.origin)
+        total = int(coloured_mask(shots[view.view_id]).sum())
+        px = check.pixels[f"series:{view.name}"] = viewer.overlay_pixels(view, in_view, shown=shots[view.view_id])
+        if min(total, px.coloured) < expect.min_line_px:
+            problems.append(f"time-series view {view.name!r}: {total} coloured px, {px.coloured} of them from "
+                            f"{in_view}; need >= {expect.min_line_px} (a plotted line)")
+
+    for view in viewer.views():   # reports describe the last paint
+        problems += [f"view {view.name!r} reports {r.severity}: {r.summary} {r.details or ''}".strip()
+                     for r in view.reports if r.severity.lower() in REPORT_SEVERITIES]
+    check.check_s = time.monotonic() - t0
+    return check
 

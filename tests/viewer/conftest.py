@@ -1,24 +1,54 @@
-"""Shared fixtures: one smoke-profile run per notebook per test session, and one headless viewer.
-
-``smoke_run(notebook)`` executes a notebook's smoke profile the first time it is asked for and
-returns the cached :class:`tvtrack.runner.RunOutcome` afterwards, so every test that needs a
-notebook's smoke output (the viewer check here, the generic notebook test) shares one run.
-Test fixtures that have no ``smoke`` profile are listed in ``smoke_runs.SMOKE_SETTINGS``.
+"""Fixtures of the viewer check: one headless Rerun viewer per session, and smoke runs of the
+test-fixture notebooks (which have no smoke profile). Paper notebooks' smoke runs come from the
+session-wide ``smoke_run`` fixture in ``tests/conftest.py``, shared with the generic notebook test,
+so no notebook runs twice.
 """
 
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import pytest
 
-from smoke_runs import SmokeRuns
+from tvtrack.paths import REPO_ROOT
+from tvtrack.runner import list_notebooks, run_notebook
+
+# test-fixture notebook -> parameter overrides that make it a smoke run
+FIXTURE_RUNS = {REPO_ROOT / "tests" / "fixtures" / "fixture_centroid.ipynb": {"n_trials": 20}}
+
+
+def viewer_notebooks() -> list[Path]:
+    """Every paper notebook in ``notebooks/`` plus the fixture notebooks, in name order."""
+    return list_notebooks() + [nb for nb in FIXTURE_RUNS if nb.is_file()]
+
+
+def pytest_generate_tests(metafunc):
+    """Parametrise ``viewer_notebook`` over :func:`viewer_notebooks`."""
+    if "viewer_notebook" in metafunc.fixturenames:
+        notebooks = viewer_notebooks()
+        metafunc.parametrize("viewer_notebook", notebooks, ids=[nb.stem for nb in notebooks])
 
 
 @pytest.fixture(scope="session")
-def smoke_run(tmp_path_factory) -> SmokeRuns:
-    """``smoke_run(notebook) -> RunOutcome``: the notebook's smoke run, executed once per session."""
-    return SmokeRuns(tmp_path_factory.mktemp("smoke_runs"))
+def fixture_smoke_run(tmp_path_factory):
+    """``fixture_smoke_run(path) -> RunOutcome`` for a notebook of ``FIXTURE_RUNS``, run once."""
+    cache = {}
+    root = tmp_path_factory.mktemp("viewer_fixture_runs")
+
+    def get(notebook: Path):
+        if notebook not in cache:
+            cache[notebook] = run_notebook(notebook, root / notebook.stem, FIXTURE_RUNS[notebook])
+        return cache[notebook]
+
+    return get
+
+
+@pytest.fixture
+def notebook_run(smoke_run, fixture_smoke_run):
+    """``notebook_run(path) -> RunOutcome``: the shared smoke run of a paper notebook, or the
+    fixture notebook's own run."""
+    return lambda nb: fixture_smoke_run(nb) if nb in FIXTURE_RUNS else smoke_run(nb.stem)
 
 
 @pytest.fixture(scope="session")
