@@ -101,3 +101,14 @@ def test_variant_rejects_bad_input():
         g1_floor_filter(np.arange(10.0), 1.5)
     with pytest.raises(ValueError, match="NaN"):
         g1_floor_filter(np.array([1.0, np.nan, 2, 3, 4]), 0.5)
+
+
+@pytest.mark.parametrize("order, nf", [(1, 2), (2, 3), (2, 10), (3, 30)])
+def test_fast_floored_forecast_equals_core_filter(order, nf):
+    rng = np.random.default_rng(order * 100 + nf)
+    z = np.cumsum(rng.normal(0, 1, (4, 2, 300)), axis=-1)
+    for steps in (1, 4):
+        fast = growing_memory_forecast(z, steps, order, nf)
+        core = predict_ahead(growing_memory_filter(z, order, nf), steps)
+        np.testing.assert_array_equal(np.isnan(fast), np.isnan(core))
+        np.testing.assert_allclose(fast, core, rtol=1e-9, atol=1e-9)

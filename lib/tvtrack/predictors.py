@@ -77,10 +77,48 @@ def growing_memory_forecast(z, steps: int = 1, order: int = 2, floor_memory: int
     """Growing-memory polynomial filter (eqs. (5)-(6)) and its ``steps``-ahead prediction.
 
     ``floor_memory`` = ``N_f``: gains frozen at ``g_{N_f}`` (``None`` = no floor).
+
+    For complete series (no NaN) with a floor, the first ``N_f`` samples run through
+    :func:`tvtrack.filters.polynomial.growing_memory_filter` and the fixed-gain remainder, a
+    linear time-invariant system, through :func:`scipy.signal.lfilter` started from the filter's
+    state (same result to rounding: ~1e-12 relative for N_f <= 30, ~1e-8 for N_f = 200; much
+    faster than a Python loop over frames).
     """
     steps = _check_steps(steps)
-    states = growing_memory_filter(_check_z(z), order, floor_memory)
-    return predict_ahead(states, steps)
+    z = _check_z(z)
+    T = z.shape[-1]
+    if floor_memory is None or floor_memory >= T or not np.all(np.isfinite(z)):
+        return predict_ahead(growing_memory_filter(z, order, floor_memory), steps)
+    head = growing_memory_filter(z[..., :floor_memory], order, floor_memory)
+    out = np.empty(z.shape)
+    out[..., :floor_memory] = predict_ahead(head, steps)
+    out[..., floor_memory:] = _fixed_gain_forecast(z[..., floor_memory:], head[..., -1, :], order,
+                                                   growing_memory_gains(order, floor_memory)[-1], steps)
+    return out
+
+
+def _fixed_gain_forecast(z, x0, order: int, gain, steps: int) -> np.ndarray:
+    """Forecasts of the fixed-gain filter ``X_t = A X_{t-1} + g z_t``, ``A = (I - g h_0) F``,
+    from the state ``x0`` (..., n) before ``z[..., 0]``, as an IIR filter with initial conditions.
+
+    As a state-space system in ``s_t = X_{t-1}``: ``s_{t+1} = A s_t + g z_t``,
+    ``y_t = c A s_t + c g z_t`` with ``c`` the prediction row ``(steps^k / k!)``; its transfer
+    function runs in ``lfilter``, and the initial conditions ``zi`` are chosen so that the
+    zero-input response equals ``c A^(k+1) x0`` for the first ``n`` samples (then for all).
+    """
+    from scipy.signal import lfilter, ss2tf
+
+    n = order + 1
+    F = taylor_transition(order)
+    A = (np.eye(n) - np.outer(gain, np.eye(n)[0])) @ F
+    c = predict_ahead(np.eye(n), steps)  # (n,): row mapping a state to its forecast
+    b, a = ss2tf(A, gain[:, None], (c @ A)[None, :], np.array([[c @ gain]]))
+    b = b[0]
+    # zero-input response of lfilter for unit initial conditions, first n samples: M (n, n)
+    M = np.stack([lfilter(b, a, np.zeros(n), zi=np.eye(n)[i])[0] for i in range(n)], axis=1)
+    O = np.stack([c @ np.linalg.matrix_power(A, k + 1) for k in range(n)])  # (n, n)
+    zi = x0 @ np.linalg.solve(M, O).T
+    return lfilter(b, a, z, axis=-1, zi=zi)[0]
 
 
 def g1_floor_gains(order: int, n_frames: int, g1_min: float) -> np.ndarray:
@@ -159,15 +197,19 @@ def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> 
 
 def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     """Not-a-knot cubic spline (``scipy.interpolate.CubicSpline``) through the last ``window``
-    samples, extrapolated ``steps`` ahead (``window >= 4``)."""
+    samples, extrapolated ``steps`` ahead (``window >= 4``).
+
+    The spline is linear in its data, so its extrapolation is one FIR filter: the weights are
+    the spline's extrapolations of the ``window`` unit vectors, applied to every window.
+    """
     steps = _check_steps(steps)
     z = _check_z(z)
     if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
         raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
-    win = sliding_window_view(z, window, axis=-1)  # (..., T-window+1, window)
-    spl = CubicSpline(np.arange(window, dtype=float), win, axis=-1, extrapolate=True)
+    spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, extrapolate=True)
+    w = spl(window - 1.0 + steps)  # (window,): weight of each sample, oldest first
     out = np.full(z.shape, np.nan)
-    out[..., window - 1:] = spl(window - 1.0 + steps)
+    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w
     return out
 
 
@@ -199,7 +241,7 @@ def lag_features(z, n_lags: int, steps: int = 1):
 
 
 def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hidden_units: int = 16,
-                          rbf_centres: int = 200, seed: int = 0):
+                          rbf_centres: int = 100, max_samples: int | None = 4000, seed: int = 0):
     """Train a learned ``steps``-ahead predictor on the series in ``z_train``.
 
     Parameters
@@ -210,8 +252,11 @@ def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hi
         Nystroem(rbf, rbf_centres units centred on training points, gamma = 1/n_lags) -> RidgeCV``.
     z_train : ndarray, shape (..., T)
         Training series (whole paths; keep test paths out).
+    max_samples : int, optional
+        Train on at most this many (input, target) pairs, drawn at random without replacement
+        (``None`` = all).
     seed : int
-        For the network's initial weights and the choice of RBF centres.
+        For the sample draw, the network's initial weights and the choice of RBF centres.
 
     Returns
     -------
@@ -231,16 +276,19 @@ def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hi
     ok = np.all(np.isfinite(X), axis=1) & np.isfinite(y)
     if ok.sum() < 10 * n_lags:
         raise ValueError(f"only {ok.sum()} training samples for {n_lags} lags; give longer or more series")
+    idx = np.flatnonzero(ok)
+    if max_samples is not None and idx.size > max_samples:
+        idx = np.sort(np.random.default_rng(seed).choice(idx, max_samples, replace=False))
     if kind == "mlp":
         model = make_pipeline(StandardScaler(), MLPRegressor(
             hidden_layer_sizes=(hidden_units,), activation="tanh", solver="adam", alpha=1e-4,
-            learning_rate_init=1e-3, max_iter=300, early_stopping=True, n_iter_no_change=15,
+            learning_rate_init=1e-3, max_iter=200, early_stopping=True, n_iter_no_change=10,
             random_state=seed))
     else:
         model = make_pipeline(StandardScaler(), Nystroem(kernel="rbf", gamma=1.0 / n_lags,
                                                          n_components=rbf_centres, random_state=seed),
                               RidgeCV(alphas=np.logspace(-6, 2, 9)))
-    model.fit(X[ok], y[ok])
+    model.fit(X[idx], y[idx])
     model.n_lags_ = n_lags
     model.steps_ = steps
     return model

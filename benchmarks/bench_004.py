@@ -1,0 +1,68 @@
+"""Speed of notebook 004: measurement + filter + prediction on gate crops, and the paper profile.
+
+Work (issue 3): 15 paths x 1000 frames of 31 x 31 gate crops (rendered and read out beforehand,
+not timed): energy centre with border-median background and 3-sigma threshold
+(:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y
+(:func:`tvtrack.filters.polynomial.growing_memory_filter`), one-frame prediction.
+Targets: >= 50,000 gate-crop frames/s on one core; the notebook's paper profile < 2 minutes.
+"""
+
+import time
+
+import numpy as np
+
+from tvtrack.filters.polynomial import growing_memory_filter, predict_ahead
+from tvtrack.measure import centroid
+from tvtrack.paths import DATA_DIR
+from tvtrack.render import gate_origin, gaussian_spot, sensor_readout
+from tvtrack.runner import run_notebook
+from tvtrack.scenes.beam_wander import SpotCamera
+from tvtrack.traces import load_traces
+
+TARGET_FRAMES_PER_S = 50_000
+TARGET_PAPER_PROFILE_S = 120.0
+
+
+def gate_crops():
+    tr = load_traces(DATA_DIR / "laser_traces" / "traces.npz")
+    cam = SpotCamera()
+    g = cam.gate_size_px
+    aim = np.concatenate([tr.centres_px[:, :1], tr.centres_px[:, :-1]], axis=1)  # previous frame
+    origin = gate_origin(aim, (g, g))
+    signal = gaussian_spot(tr.centres_px, (g, g), cam.spot_sigma_px, cam.flux_e * tr.intensity, origin=origin)
+    crops = sensor_readout(signal, np.random.default_rng(0), background=cam.background_dn,
+                           read_noise=cam.read_noise_dn, bit_depth=cam.bit_depth)
+    return crops, origin, tr.centres_px
+
+
+def measure_filter_predict(crops, origin):
+    c = centroid(crops, origin, background="border", threshold_sigma=3.0)
+    z = np.moveaxis(c.xy, -1, -2)  # (paths, axis, T)
+    return predict_ahead(growing_memory_filter(z, 2, 10), 1)
+
+
+def test_gate_crop_pipeline_frames_per_s(benchmark):
+    crops, origin, truth = gate_crops()
+    n_frames = crops.shape[0] * crops.shape[1]
+    pred = benchmark.pedantic(measure_filter_predict, args=(crops, origin), rounds=5, iterations=1,
+                              warmup_rounds=1)
+    e = pred[..., :-1] - np.moveaxis(truth, -1, -2)[..., 1:]
+    assert np.sqrt(np.nanmean(e ** 2)) < 2.0  # sane output, not only fast
+    rate = n_frames / benchmark.stats.stats.min
+    benchmark.extra_info["frames_per_s"] = rate
+    assert rate >= TARGET_FRAMES_PER_S, f"{rate:.0f} frames/s < {TARGET_FRAMES_PER_S}"
+
+
+def test_paper_profile_runtime(benchmark, tmp_path):
+    counter = iter(range(100))
+
+    def one_run():
+        outcome = run_notebook("004_laser_spot_prediction", tmp_path / f"run{next(counter)}", {})
+        assert outcome.ok, outcome.error
+        return outcome
+
+    t0 = time.perf_counter()
+    benchmark.pedantic(one_run, rounds=1, iterations=1)
+    elapsed = time.perf_counter() - t0
+    benchmark.extra_info["paper_profile_s"] = elapsed
+    assert elapsed < TARGET_PAPER_PROFILE_S, f"paper profile {elapsed:.0f} s >= {TARGET_PAPER_PROFILE_S:.0f} s"
