@@ -77,9 +77,12 @@ def disc_spot(centers, shape, diameter, brightness=1.0, origin=(0, 0), dtype=np.
     rows, cols = shape
     dx = (o[..., 0, None] + np.arange(cols) - c[..., 0, None]).astype(dtype)
     dy = (o[..., 1, None] + np.arange(rows) - c[..., 1, None]).astype(dtype)
-    rho = np.sqrt(dy[..., :, None] ** 2 + dx[..., None, :] ** 2)
-    cover = np.clip(dtype(diameter / 2 + 0.5) - rho, 0.0, 1.0)
-    return np.asarray(brightness, dtype=dtype)[..., None, None] * cover
+    cover = np.square(dx)[..., None, :] + np.square(dy)[..., :, None]
+    np.sqrt(cover, out=cover)
+    np.subtract(dtype(diameter / 2 + 0.5), cover, out=cover)
+    np.clip(cover, 0.0, 1.0, out=cover)
+    cover *= np.asarray(brightness, dtype=dtype)[..., None, None]
+    return cover
 
 
 def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
@@ -96,7 +99,8 @@ def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, 
     """Zero-mean Gaussian random fields with correlation ``exp(-(tau / corr_length)^2)``.
 
     White noise is filtered by a Gaussian kernel of standard deviation ``corr_length / 2``
-    (periodic boundary), then each field is scaled to the exact sample standard deviation ``std``.
+    (periodic boundary) and divided by the filter's exact output standard deviation (the root
+    sum of squares of the discrete kernel), so every pixel has standard deviation ``std``.
 
     Returns
     -------
@@ -106,11 +110,14 @@ def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, 
         raise ValueError(f"parameter 'corr_length' = {corr_length}; it must be > 0")
     if std < 0:
         raise ValueError(f"parameter 'std' = {std}; it must be >= 0")
-    white = rng.standard_normal((n, *shape))
-    field = ndimage.gaussian_filter(white, sigma=(0, corr_length / 2, corr_length / 2), mode="wrap")
-    field -= field.mean(axis=(1, 2), keepdims=True)
-    scale = field.std(axis=(1, 2), keepdims=True)
-    return (std * field / np.where(scale > 0, scale, 1.0)).astype(np.float32)
+    sigma = corr_length / 2
+    field = rng.standard_normal((n, *shape), dtype=np.float32)
+    ndimage.gaussian_filter(field, sigma=(0, sigma, sigma), mode="wrap", output=field)
+    impulse = np.zeros(2 * int(4 * sigma + 0.5) + 1)
+    impulse[impulse.size // 2] = 1.0
+    gain = np.sum(ndimage.gaussian_filter1d(impulse, sigma, mode="constant") ** 2)   # per axis
+    field *= np.float32(std / gain)
+    return field
 
 
 def ornstein_uhlenbeck(rng: np.random.Generator, n: int, n_frames: int, dt: float, std: float, tau: float) -> np.ndarray:
