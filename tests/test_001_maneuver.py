@@ -6,7 +6,7 @@ from scipy import stats
 
 from tvtrack.detect.maneuver import (calibrate_threshold, scheduled_statistic_std, statistic_std,
                                      threshold_from_std, variance_independent, variance_stationary,
-                                     window_statistic)
+                                     window_statistic, window_sum_of_squares)
 from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter
 
 
@@ -87,3 +87,18 @@ def test_bad_input():
         statistic_std([0.1, 0.01], 1.0, 5, "bogus")
     with pytest.raises(ValueError, match="lags"):
         variance_stationary(np.ones(3), 5)
+
+
+def test_sum_of_squares_statistic_matches_direct_sums_and_is_invariant():
+    rng = np.random.default_rng(4)
+    v = rng.standard_normal((2, 30))
+    n = 5
+    Q = window_sum_of_squares(v, n)
+    assert np.all(np.isnan(Q[:, :2 * n - 1]))
+    for t in range(2 * n - 1, 30):
+        z = v[:, t - 2 * n + 1:t - n + 1] - v[:, t - n + 1:t + 1]
+        np.testing.assert_allclose(Q[:, t], np.sum(z**2, axis=1), rtol=1e-12)
+    delta = 10 * rng.standard_normal((2, n))
+    shifted = v.copy()
+    shifted[:, -2 * n:] += np.concatenate([delta, delta], axis=1)
+    np.testing.assert_allclose(window_sum_of_squares(shifted, n)[:, -1], Q[:, -1], rtol=1e-10)

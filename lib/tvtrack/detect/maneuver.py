@@ -28,7 +28,7 @@ from scipy import stats
 from ..filters.alphabeta import lagged_covariances, scheduled_filter
 from ..montecarlo import Estimate, quantile_ci
 
-__all__ = ["window_statistic", "threshold_from_std", "variance_independent", "variance_stationary",
+__all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
            "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold"]
 
 
@@ -70,6 +70,25 @@ def window_statistic(v, n: int) -> np.ndarray:
         newer = c[..., t + 1] - c[..., t - n + 1]
         S[..., t] = older - newer
     return S
+
+
+def window_sum_of_squares(v, n: int) -> np.ndarray:
+    """``Q_t = sum_k (v_1k - v_2k)^2`` over the two windows ending at ``t`` (last axis).
+
+    The invariant GLR statistic against an *arbitrary* offset vector between the windows
+    (card §3, "gap in the derivation"), for comparison with :func:`window_statistic`, which
+    is optimal only against a common offset. NaN for ``t < 2n-1``.
+    """
+    n = _check_window(n)
+    v = np.asarray(v, dtype=float)
+    T = v.shape[-1]
+    Q = np.full(v.shape, np.nan)
+    if T >= 2 * n:
+        d2 = (v[..., n:] - v[..., :-n]) ** 2                      # d2[j] = (v[j+n] - v[j])^2
+        c = np.concatenate([np.zeros(v.shape[:-1] + (1,)), np.cumsum(d2, axis=-1)], axis=-1)
+        t = np.arange(2 * n - 1, T)
+        Q[..., t] = c[..., t - n + 1] - c[..., t - 2 * n + 1]
+    return Q
 
 
 def threshold_from_std(alpha: float, sigma_S) -> np.ndarray:
