@@ -2,17 +2,22 @@
 
 Work (issue 3): 15 paths x 1000 frames of 31 x 31 gate crops (rendered and read out beforehand,
 not timed): energy centre with border-median background and 3-sigma threshold
-(:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y
-(:func:`tvtrack.filters.polynomial.growing_memory_filter`), one-frame prediction.
+(:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y and
+its one-frame prediction (:func:`tvtrack.predictors.growing_memory_forecast`: the core filter for
+the first N_f frames, then the fixed-gain filter as an IIR filter).
 Targets: >= 50,000 gate-crop frames/s on one core; the notebook's paper profile < 2 minutes.
+
+The frame rate is asserted on process CPU time (best of 5; numpy here runs on one core), because
+the development machine is shared and wall time there measures the other users; the wall-clock
+rate is reported beside it (``extra_info``).
 """
 
 import time
 
 import numpy as np
 
-from tvtrack.filters.polynomial import growing_memory_filter, predict_ahead
 from tvtrack.measure import centroid
+from tvtrack.predictors import growing_memory_forecast
 from tvtrack.paths import DATA_DIR
 from tvtrack.render import gate_origin, gaussian_spot, sensor_readout
 from tvtrack.runner import run_notebook
@@ -38,7 +43,7 @@ def gate_crops():
 def measure_filter_predict(crops, origin):
     c = centroid(crops, origin, background="border", threshold_sigma=3.0)
     z = np.moveaxis(c.xy, -1, -2)  # (paths, axis, T)
-    return predict_ahead(growing_memory_filter(z, 2, 10), 1)
+    return growing_memory_forecast(z, 1, 2, 10)
 
 
 def test_gate_crop_pipeline_frames_per_s(benchmark):
@@ -48,12 +53,20 @@ def test_gate_crop_pipeline_frames_per_s(benchmark):
                               warmup_rounds=1)
     e = pred[..., :-1] - np.moveaxis(truth, -1, -2)[..., 1:]
     assert np.sqrt(np.nanmean(e ** 2)) < 2.0  # sane output, not only fast
-    rate = n_frames / benchmark.stats.stats.min
-    benchmark.extra_info["frames_per_s"] = rate
-    assert rate >= TARGET_FRAMES_PER_S, f"{rate:.0f} frames/s < {TARGET_FRAMES_PER_S}"
+    cpu = []
+    for _ in range(5):
+        t0 = time.process_time()
+        measure_filter_predict(crops, origin)
+        cpu.append(time.process_time() - t0)
+    rate = n_frames / min(cpu)
+    benchmark.extra_info["frames_per_cpu_s"] = rate
+    benchmark.extra_info["frames_per_wall_s"] = n_frames / benchmark.stats.stats.min
+    assert rate >= TARGET_FRAMES_PER_S, f"{rate:.0f} frames per CPU second < {TARGET_FRAMES_PER_S}"
 
 
 def test_paper_profile_runtime(benchmark, tmp_path):
+    """Wall time of the paper profile (meaningful on an otherwise idle 2-core machine); the
+    notebook also records its CPU seconds per section in ``results.json`` (``section_cpu_s``)."""
     counter = iter(range(100))
 
     def one_run():
