@@ -18,7 +18,7 @@ from tvtrack.scenes.linear_motion import (designate, draw_truth, expected_counts
 def _batch(seed, n, q=2, T=5, d=3.0, pix=1.0, m=20, rho=0.01, dsd=0.3, model="fixed"):
     rng = np.random.default_rng(seed)
     g = scene_geometry(q, T, d, pix)
-    noise = rho * g.sigma_px ** 2
+    noise = rho / g.sigma_px ** 2                      # photons per sigma^2 -> per pixel
     b = next(scene_batches(rng, g, n, T, m, noise, dsd * g.sigma_px, photon_model=model, batch_size=n))
     p, p0 = mixture_weights(m, noise, g.n_pixels, q)
     return g, b, p, p0, noise
