@@ -274,3 +274,16 @@ def test_ekf_rejects_bad_input():
     with pytest.raises(ValueError, match="noise_iterations"):
         ekf_update(np.zeros(1), np.eye(1), np.zeros(1), lambda x, k: x, lambda x, k: x[..., None],
                    lambda x, k: np.eye(1), 0, noise_iterations=-2)
+
+
+def test_discretisation_error_dt_005_vs_0005_is_within_3_percent_for_variant2():
+    """Claim C000-8 measured on a small scale: one continuous experiment, integrated samples at dt and dt/10."""
+    scan = _scan(0.5)
+    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(13), 150, 400)
+    coarse, _ = run_variant2(variant2_filter(scan, MSG), d["y_coarse"])
+    fine, _ = run_variant2(variant2_filter(d["scan_fine"], MSG), d["y_fine"])
+    a = ((d["x_coarse"] - coarse)[:, d["t_coarse"] > 10] ** 2).mean(axis=1)
+    b = ((d["x_fine"] - fine)[:, d["t_fine"] > 10] ** 2).mean(axis=1)
+    rel = a.mean() / b.mean() - 1
+    se = np.std(a / b.mean() - b / b.mean(), ddof=1) / np.sqrt(a.size)
+    assert abs(rel) < 0.03 + 2 * se, f"discretisation error {rel:.3f} +- {se:.3f}"
