@@ -26,6 +26,10 @@ UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
 DEFAULT = Expectation()
 # Per-notebook deviations from DEFAULT, each with its reason.
 EXPECT: dict[str, Expectation] = {
+    # an image dissector delivers a 1-D scan: the 2-D view plots samples and pulses against phase
+    "000_dissector_ekf": Expectation(image=False),
+    # batch EM location: no gate; the series are the EM log-likelihood and parameters per iteration
+    "002_unified_location_em": Expectation(overlays=("truth", "estimate"), series_root="em"),
     # the paper's estimates are the measured spot centre and the centre predicted ahead
     "004_laser_spot_prediction": Expectation(overlays=("gate", "truth", "measured", "predicted")),
 }
