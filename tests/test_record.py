@@ -71,3 +71,12 @@ def test_ellipse_outline_lies_on_the_mahalanobis_contour():
     d = pts - [1.0, -1.0]
     m = np.einsum("ni,ij,nj->n", d, np.linalg.inv(cov), d)
     assert np.allclose(m, 4.0)
+
+
+def test_non_image_spaces_are_logged_unshifted(tmp_path):
+    rec = Recorder(tmp_path, "file", "tvtrack-test")
+    rec.set_frame(0)
+    rec.points("plot/samples", [[10.0, 20.0]], image_space=False)
+    chunks = [c for c in RrdReader(rec.close()).store().stream().to_chunks() if c.entity_path == "/plot/samples"]
+    batch = chunks[0].to_record_batch()
+    assert batch.column(batch.schema.names.index("Points2D:positions")).to_pylist() == [[[10.0, 20.0]]]

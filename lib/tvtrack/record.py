@@ -4,6 +4,8 @@ Coordinates: the library puts pixel *centres* at integer coordinates (pixel ``(r
 spans ``x in [u-1/2, u+1/2]``, ``y in [v-1/2, v+1/2]``). Rerun draws pixel ``u`` over
 ``[u, u+1]``, so :class:`Recorder` shifts every 2-D position by +1/2 when it logs; positions
 passed in are always in the library's convention and land on the right pixel in the viewer.
+For 2-D spaces that are not images (a scan-phase plot, a trajectory in metres) pass
+``image_space=False`` to the geometry methods and positions are logged as they are.
 
 Time lines: ``frame`` (sequence number) and ``time`` (seconds since the start of the run).
 
@@ -29,8 +31,9 @@ RECORDING_FILE = "recording.rrd"
 _PIXEL_CENTRE_SHIFT = 0.5
 
 
-def _xy(points) -> np.ndarray:
-    return np.asarray(points, dtype=np.float32).reshape(-1, 2) + _PIXEL_CENTRE_SHIFT
+def _xy(points, image_space: bool = True) -> np.ndarray:
+    xy = np.asarray(points, dtype=np.float32).reshape(-1, 2)
+    return xy + _PIXEL_CENTRE_SHIFT if image_space else xy
 
 
 def ellipse_outline(center, covariance, n_sigma: float = 1.0, n_points: int = 48) -> np.ndarray:
@@ -157,26 +160,26 @@ class Recorder:
             self._rec.log(path, rr.Transform3D(translation=[x0, y0, 0.0]))
 
     # -- geometry -------------------------------------------------------------------------
-    def points(self, path: str, xy, *, radii=None, colors=None, labels=None) -> None:
+    def points(self, path: str, xy, *, radii=None, colors=None, labels=None, image_space: bool = True) -> None:
         """Log 2-D points (N, 2) in pixels at the current frame."""
         if self.enabled:
-            self._rec.log(path, rr.Points2D(_xy(xy), radii=radii, colors=colors, labels=labels))
+            self._rec.log(path, rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels))
 
-    def boxes(self, path: str, centers, half_sizes, *, colors=None, labels=None) -> None:
+    def boxes(self, path: str, centers, half_sizes, *, colors=None, labels=None, image_space: bool = True) -> None:
         """Log axis-aligned gates (N, 2) centres and half-sizes in pixels."""
         if self.enabled:
-            self._rec.log(path, rr.Boxes2D(centers=_xy(centers),
+            self._rec.log(path, rr.Boxes2D(centers=_xy(centers, image_space),
                                            half_sizes=np.asarray(half_sizes, dtype=np.float32).reshape(-1, 2),
                                            colors=colors, labels=labels))
 
-    def lines(self, path: str, strips, *, colors=None, radii=None, labels=None) -> None:
+    def lines(self, path: str, strips, *, colors=None, radii=None, labels=None, image_space: bool = True) -> None:
         """Log polylines: one (N, 2) array or a list of them (trajectories, rotated gates,
         ellipses from :func:`ellipse_outline`)."""
         if not self.enabled:
             return
         if isinstance(strips, np.ndarray) and strips.ndim == 2:
             strips = [strips]
-        self._rec.log(path, rr.LineStrips2D([_xy(s) for s in strips], colors=colors, radii=radii,
+        self._rec.log(path, rr.LineStrips2D([_xy(s, image_space) for s in strips], colors=colors, radii=radii,
                                             labels=labels))
 
     # -- scalars --------------------------------------------------------------------------
