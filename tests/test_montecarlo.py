@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from tvtrack.montecarlo import make_rng, mean_ci, proportion_ci, quantile_ci, rms_ci, spawn_rngs
+from tvtrack.montecarlo import make_rng, mean_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci, spawn_rngs
 
 
 def test_mean_ci_matches_scipy_t_interval():
@@ -48,3 +48,17 @@ def test_seeds_reproduce_and_spawned_streams_differ():
     a, b = spawn_rngs(7, 2)
     assert not np.array_equal(a.normal(size=5), b.normal(size=5))
     assert np.array_equal(spawn_rngs(7, 2)[1].normal(size=5), spawn_rngs(7, 2)[1].normal(size=5))
+
+
+def test_ratio_ci_uses_the_pairing():
+    rng = make_rng(4)
+    common = rng.chisquare(3, size=2000)
+    a, b = 2.0 * common + 0.1 * rng.normal(size=2000), common
+    paired = ratio_ci(a, b)
+    assert paired.value == pytest.approx(a.mean() / b.mean())
+    assert paired.ci_low < 2.0 < paired.ci_high
+    # the same marginals without the pairing give a much wider interval
+    unpaired = ratio_ci(rng.permutation(a), b)
+    assert (paired.ci_high - paired.ci_low) < 0.2 * (unpaired.ci_high - unpaired.ci_low)
+    with pytest.raises(ValueError, match="paired samples"):
+        ratio_ci([1.0], [1.0])

@@ -11,7 +11,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy import stats
 
-__all__ = ["make_rng", "spawn_rngs", "Estimate", "mean_ci", "rms_ci", "proportion_ci", "quantile_ci"]
+__all__ = ["make_rng", "spawn_rngs", "Estimate", "mean_ci", "rms_ci", "ratio_ci", "proportion_ci", "quantile_ci"]
 
 
 def make_rng(seed: int) -> np.random.Generator:
@@ -98,6 +98,32 @@ def rms_ci(errors, axis_trials: int = 0, confidence: float = 0.95) -> Estimate:
     value = root(ms.value)
     se = ms.stderr / (2 * value) if value > 0 else float("nan")
     return Estimate(value, se, root(ms.ci_low), root(ms.ci_high), ms.n, confidence)
+
+
+def ratio_ci(numerator, denominator, confidence: float = 0.95) -> Estimate:
+    """``mean(numerator) / mean(denominator)`` with a delta-method normal interval.
+
+    The samples are paired per trial (e.g. the squared errors of two filters on the same
+    runs, common random numbers), so their covariance narrows the interval.
+
+    Parameters
+    ----------
+    numerator, denominator : array_like, shape (n,)
+        One value per independent trial each; ``mean(denominator)`` must not be 0.
+    """
+    a = np.asarray(numerator, dtype=float).ravel()
+    b = np.asarray(denominator, dtype=float).ravel()
+    if a.size != b.size or a.size < 2:
+        raise ValueError(f"ratio_ci needs paired samples of equal size >= 2, got {a.size} and {b.size}")
+    ma, mb = a.mean(), b.mean()
+    if mb == 0:
+        raise ValueError("ratio_ci: the denominator's mean is 0")
+    r = ma / mb
+    (va, cab), (_, vb) = np.cov(a, b)
+    # delta method: Var(r) ~ (Var a - 2 r Cov(a, b) + r^2 Var b) / (n mb^2)
+    se = float(np.sqrt(max(va - 2 * r * cab + r**2 * vb, 0.0) / a.size) / abs(mb))
+    z = float(stats.norm.ppf(0.5 + confidence / 2))
+    return Estimate(float(r), se, float(r - z * se), float(r + z * se), int(a.size), confidence)
 
 
 def proportion_ci(successes: int, n: int, confidence: float = 0.95) -> Estimate:
