@@ -93,7 +93,9 @@ def growing_memory_filter(z, order: int = 2, floor_memory: int | None = None) ->
     ----------
     z : array_like, shape (..., T)
         Measurements, one per sample; NaN marks a missing sample (the filter coasts: it
-        predicts, and the memory count does not grow).
+        predicts, and the memory count does not grow). After a gap the gains are those of
+        consecutive samples, so the estimate is then close to, but not exactly, the least-squares
+        fit over the samples present; without gaps after the start it is exact.
     order : int
         Polynomial order ``r`` in [0, 3] (2 = the paper's constant-acceleration model).
     floor_memory : int, optional
