@@ -93,7 +93,6 @@ def ekf_update(x_prior, P_prior, z, h, jacobian, noise_cov, k, mask=None, noise_
         raise ValueError(f"parameter 'noise_iterations' = {noise_iterations!r}; it must be an integer >= 0")
     hx = h(x_prior, k)
     H = jacobian(x_prior, k)
-    z_lin = z - hx + np.einsum("...ij,...j->...i", H, x_prior)   # innovation of the linearised model
     if hx.shape[-1] == 1:
         nu = z - hx
         x, P, S = joseph_update_scalar(x_prior, P_prior, nu, H, noise_cov(x_prior, k), mask)
