@@ -249,3 +249,27 @@ def test_rotation_synchronous_error_component():
     p = p.mean(axis=0)
     band = (f > 7) & (f < 9)
     assert p[band].max() > 3 * np.median(p[(f > 2) & (f < 30)])
+
+
+def test_ekf_step_matches_filterpy():
+    from filterpy.kalman import ExtendedKalmanFilter
+
+    from tvtrack.filters.loops import EKFTracker
+
+    x0 = np.array([[100.0, 90.0, 12.0, 0.7, 50.0]])
+    P0 = np.diag([4.0, 3.0, 2.0, 0.05, 1.0])
+    q, mv, S, dt = np.array([0.1, 0.1, 0.01, 0.0, 0.5]), 0.05, 16.0, 0.002
+    ekf = EKFTracker(x0, P0, q, mv, S)
+    dx, dy = np.array([8.0]), np.array([-5.0])
+    ekf.update(dx, dy, dt)
+    ref = ExtendedKalmanFilter(dim_x=5, dim_z=2)
+    ref.x, ref.P, ref.R = x0[0].copy(), P0.copy(), mv * np.eye(2)
+    th, r = x0[0, 3], x0[0, 2]
+    H = np.array([[1, 0, np.cos(th), -r * np.sin(th), 0], [0, 1, np.sin(th), r * np.cos(th), 0]])
+    ref.update(np.array([8.0, -5.0]) / S, HJacobian=lambda x: H, Hx=lambda x: np.zeros(2))
+    ref.F = np.eye(5)
+    ref.F[3, 4] = dt
+    ref.Q = np.diag(q * dt)
+    ref.predict()
+    np.testing.assert_allclose(ekf.state[0], ref.x, rtol=1e-10)
+    np.testing.assert_allclose(ekf.P[0], ref.P, rtol=1e-8, atol=1e-12)

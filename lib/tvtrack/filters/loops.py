@@ -90,11 +90,6 @@ class RotatingGateTracker:
         self.phi = self.state[:, 3].copy()        # variant P: phase at the reference time
         self.tau = 0.0                           # variant P: time since the reference
 
-    @property
-    def theta(self) -> np.ndarray:
-        """Current phase estimate (rad), shape (n,)."""
-        return self.state[:, 3]
-
     def gate_center(self) -> np.ndarray:
         """Predicted marker position (eq. (8) with the estimates), shape (n, 2)."""
         s = self.state
