@@ -4,9 +4,12 @@ and clean up its viewer process group."""
 
 from __future__ import annotations
 
+import uuid
+
 import numpy as np
 import psutil
 import pytest
+import rerun as rr
 import rerun.blueprint as rrb
 
 from tvtrack.record import Recorder, image_and_series_blueprint
@@ -103,6 +106,20 @@ def test_missing_gate_and_series_view_are_reported(headless_viewer, tmp_path):
     text = "\n".join(check.problems)
     assert "no 'gate' entity" in text
     assert "TimeSeries" in text and "in no time-series view" in text
+
+
+def test_view_error_report_is_reported(headless_viewer, tmp_path):
+    """An image whose buffer is shorter than its format says makes the 2-D view report an error."""
+    path = tmp_path / "broken.rrd"
+    rec = rr.RecordingStream("tvtrack-viewer-test-broken", recording_id=str(uuid.uuid4()))
+    rec.save(path, default_blueprint=rrb.Blueprint(rrb.Spatial2DView(origin="camera"), auto_views=False))
+    for k in range(3):
+        rec.set_time("frame", sequence=k)
+        rec.log("camera/broken", rr.Image(bytes=bytes(10), width=32, height=32, color_model="L", datatype="u8"))
+    rec.flush()
+    rec.disconnect()
+    check = check_recording(headless_viewer, path)
+    assert any("reports error" in p and "/camera/broken" in p for p in check.problems), check.problems
 
 
 def test_overlay_outside_the_image_view_is_reported(headless_viewer, tmp_path):
