@@ -4,9 +4,9 @@
   over trials (200 runs of 1 s, five interferers, static scene set-up included), >= 20,000
   frames/s on one core.
 - SIR sweep at the paper profile (2 compensations x 2 interferer counts x 2 marker types x 8 SIR x
-  20 runs of 10 s at 500 frames/s = 3.2 M gate frames) under 6 minutes on a 2-core machine: measured
-  on a 1-s slice of one condition (160 runs) and scaled by frames, divided by the two cores that
-  run conditions in parallel (the sweep's ``--jobs 2``).
+  20 runs of 10 s at 500 frames/s = 3.2 M gate frames, batched per condition as the notebook runs
+  it) under 6 minutes: measured on a 1-s slice of one condition (160 runs) and scaled by frames,
+  on ONE core (the notebook is a single process; a 2-core machine only helps the TOML sweeps).
 """
 
 import time
@@ -39,6 +39,6 @@ def test_sir_sweep_paper_profile_under_6_minutes(benchmark):
     frames = benchmark.pedantic(_batch, args=(160, 1.0), rounds=1, iterations=1)
     elapsed = time.perf_counter() - t0
     paper_frames = 2 * 2 * 2 * len(SIRS) * 20 * 10 * 500
-    projected = elapsed * paper_frames / frames / 2
-    benchmark.extra_info["projected_sweep_s_on_2_cores"] = projected
+    projected = elapsed * paper_frames / frames
+    benchmark.extra_info["projected_sweep_s_one_core"] = projected
     assert projected < 360, f"projected SIR sweep {projected:.0f} s > 360 s"
