@@ -80,3 +80,12 @@ def test_non_image_spaces_are_logged_unshifted(tmp_path):
     chunks = [c for c in RrdReader(rec.close()).store().stream().to_chunks() if c.entity_path == "/plot/samples"]
     batch = chunks[0].to_record_batch()
     assert batch.column(batch.schema.names.index("Points2D:positions")).to_pylist() == [[[10.0, 20.0]]]
+
+
+def test_notebook_mode_still_writes_the_whole_file(tmp_path):
+    # outside Jupyter the widget cannot display, but the file must hold the data either way
+    rec = Recorder(tmp_path, "notebook", "tvtrack-test")
+    rec.set_frame(0)
+    rec.points("camera/truth", [[1.0, 2.0]])
+    path = rec.close()
+    assert "/camera/truth rows=1" in RrdReader(path).store().summary()

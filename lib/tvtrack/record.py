@@ -88,8 +88,8 @@ class Recorder:
     output_dir : str or Path
         The run's output directory; the recording is ``output_dir/recording.rrd``.
     mode : {"file", "off", "notebook"}
-        ``"off"`` makes every method a no-op; ``"notebook"`` also shows the viewer inline
-        (needs rerun's notebook extra) and still writes the file.
+        ``"off"`` makes every method a no-op; ``"notebook"`` writes the file and, on
+        :meth:`close`, shows it in an inline viewer (rerun's notebook extra, pinned).
     application_id : str
         Rerun application id, e.g. ``"tvtrack-004_laser_spot_prediction"`` (other characters
         are replaced by ``-``).
@@ -112,10 +112,9 @@ class Recorder:
         self.path = Path(output_dir) / RECORDING_FILE
         # Rerun application ids are entry names: letters, digits, '-' and '_' only
         app = re.sub(r"[^A-Za-z0-9_-]+", "-", application_id)
+        self._app = app
         self._rec = rr.RecordingStream(app, recording_id=uuid.uuid4())
         self._rec.save(self.path, default_blueprint=blueprint)
-        if mode == "notebook":
-            self._rec.notebook_show()
 
     @property
     def enabled(self) -> bool:
@@ -227,4 +226,16 @@ class Recorder:
         self._rec.flush()
         self._rec.disconnect()
         self._rec = None
+        if self.mode == "notebook":
+            self._show_inline()
         return self.path
+
+    def _show_inline(self) -> None:
+        """Replay the finished file into an inline viewer widget. (In rerun 0.41 showing a live
+        stream inline takes the stream away from its file sink, so the file would stay empty.)"""
+        from rerun.notebook import Viewer
+
+        replay = rr.RecordingStream(self._app, recording_id=uuid.uuid4())
+        Viewer(recording=replay).display()
+        replay.log_file_from_path(self.path)
+        replay.flush()
