@@ -19,10 +19,12 @@ which is the EM algorithm for binned Gaussian-mixture data:
 Counts ``n_ikl`` are used in place of the frequencies ``v*_ikl`` (card, note under (3)); the two
 coincide when every frame holds the same number of photons.
 
-Only pixels with a non-zero count enter the sums, so the work per iteration is proportional to the
-number of non-zero pixels, not to the window size. Trials are independent and vectorised: every
-pixel entry carries its trial index; sums per trial use :func:`numpy.add.reduceat` over the
-trial-sorted entries, and converged trials are dropped from the working set.
+The 1-D pixel fractions and local means are tabulated once per (trial, frame, object) from the pixel
+edges (``Q T (rows + cols)`` normal-CDF evaluations), and only pixels with a non-zero count enter the
+splitting and the sums, so the work per iteration is ``O(Q T (rows + cols) + Q nnz)``, not
+``O(Q T rows cols)``. Trials are independent and vectorised: every pixel entry carries its trial
+index; sums per trial use :func:`numpy.add.reduceat` over the trial-sorted entries, and converged
+trials are dropped from the working set.
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row)
 and frames, as in :mod:`tvtrack.scenes.linear_motion`.

@@ -35,7 +35,7 @@ from ..measure import crop
 from ..render import gate_origin
 from .em_location import per_frame_entries, pixel_entries, unified_location_em
 
-__all__ = ["Marks", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines"]
+__all__ = ["Marks", "LineFit", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines"]
 
 
 @dataclass
