@@ -89,3 +89,11 @@ def test_notebook_mode_still_writes_the_whole_file(tmp_path):
     rec.points("camera/truth", [[1.0, 2.0]])
     path = rec.close()
     assert "/camera/truth rows=1" in RrdReader(path).store().summary()
+
+
+def test_series_on_another_timeline(tmp_path):
+    rec = Recorder(tmp_path, "file", "tvtrack-test", frame_interval_s=0.04)
+    rec.series("em/loglik", [-10.0, -5.0, -4.5], timeline="iteration")
+    store = RrdReader(rec.close()).store()
+    line = next(l for l in store.summary().splitlines() if l.startswith("/em/loglik"))
+    assert "rows=3" in line and "timelines=['iteration']" in line

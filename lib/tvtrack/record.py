@@ -187,7 +187,7 @@ class Recorder:
         if self.enabled:
             self._rec.log(path, rr.Scalars(float(value)))
 
-    def series(self, path: str, values, frames=None, times_s=None) -> None:
+    def series(self, path: str, values, frames=None, times_s=None, *, timeline: str = "frame") -> None:
         """Log a whole scalar series at once (column logging).
 
         Parameters
@@ -195,18 +195,24 @@ class Recorder:
         values : array_like, shape (T,)
             NaN entries are dropped (e.g. before a filter has an estimate).
         frames : array_like of int, shape (T,), optional
-            Frame numbers; default ``0..T-1``.
+            Frame numbers (or indices on ``timeline``); default ``0..T-1``.
         times_s : array_like, shape (T,), optional
             Times in seconds; default ``frames * frame_interval_s`` if that is set.
+        timeline : str
+            ``"frame"`` (with ``time``), or another sequence time line for series that are not
+            indexed by frame, e.g. ``"iteration"`` for an iterative estimator's history.
         """
         if not self.enabled:
             return
         v = np.asarray(values, dtype=float).ravel()
         f = np.arange(v.size) if frames is None else np.asarray(frames).ravel()
         keep = np.isfinite(v)
-        t = None if times_s is None else np.asarray(times_s, dtype=float).ravel()[keep]
-        self._rec.send_columns(path, indexes=self._time_columns(f[keep], t),
-                               columns=rr.Scalars.columns(scalars=v[keep]))
+        if timeline == "frame":
+            t = None if times_s is None else np.asarray(times_s, dtype=float).ravel()[keep]
+            indexes = self._time_columns(f[keep], t)
+        else:
+            indexes = [rr.TimeColumn(timeline, sequence=np.asarray(f[keep], dtype=np.int64))]
+        self._rec.send_columns(path, indexes=indexes, columns=rr.Scalars.columns(scalars=v[keep]))
 
     def series_style(self, path: str, *, name: str | None = None, color=None, width: float | None = None) -> None:
         """Give a series a display name, colour and line width (static)."""
