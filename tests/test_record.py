@@ -97,3 +97,11 @@ def test_series_on_another_timeline(tmp_path):
     store = RrdReader(rec.close()).store()
     line = next(l for l in store.summary().splitlines() if l.startswith("/em/loglik"))
     assert "rows=3" in line and "timelines=['iteration']" in line
+
+
+@pytest.mark.parametrize("jpeg_quality", [None, 80])
+def test_image_draw_order_is_kept(tmp_path, jpeg_quality):
+    rec = Recorder(tmp_path, "file", "tvtrack-test")
+    rec.set_frame(0)
+    rec.image("camera/gate_crop", np.full((8, 8), 100, dtype=np.uint8), jpeg_quality=jpeg_quality, draw_order=5.0)
+    assert "draw_order" in str(RrdReader(rec.close()).store().schema())

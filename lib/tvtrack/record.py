@@ -141,18 +141,22 @@ class Recorder:
         return cols
 
     # -- images ---------------------------------------------------------------------------
-    def image(self, path: str, image, *, offset=None, jpeg_quality: int | None = None) -> None:
+    def image(self, path: str, image, *, offset=None, jpeg_quality: int | None = None,
+              draw_order: float | None = None) -> None:
         """Log an image (rows x cols, or rows x cols x 3) at the current frame.
 
         ``offset`` = (x0, y0), the integer pixel of the full frame where a gate crop's first
         pixel lies, places a crop in the full frame's coordinates. ``jpeg_quality`` compresses
-        8-bit images to keep the file small.
+        8-bit images to keep the file small. ``draw_order`` puts one image above another
+        (higher is drawn on top, e.g. a gate crop over a decimated full frame).
         """
         if not self.enabled:
             return
-        img = rr.Image(np.asarray(image))
+        img = rr.Image(np.asarray(image), draw_order=draw_order)
         if jpeg_quality is not None:
-            img = img.compress(jpeg_quality=jpeg_quality)
+            img = img.compress(jpeg_quality=jpeg_quality)  # drops draw_order: logged again below
+            if draw_order is not None and isinstance(img, rr.EncodedImage):
+                self._rec.log(path, rr.EncodedImage.from_fields(draw_order=draw_order))
         self._rec.log(path, img)
         if offset is not None:
             x0, y0 = (float(v) for v in offset)
