@@ -9,8 +9,9 @@ from tvtrack.filters.ekf import ExtendedKalmanFilter, ekf_update, joseph_update_
 from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
 from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
-                                       fisher_information, lock_lost, run_variant1, run_variant2, simulate,
-                                       simulate_two_rates, variant1_filter, variant2_filter)
+                                       fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
+                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_two_rates,
+                                       variant1_filter, variant2_filter)
 
 MSG = GaussMarkovMessage(0.1, 0.15)
 
@@ -200,17 +201,7 @@ def test_grid_filter_posterior_mean_converges_on_the_dissector_model():
     scan = _scan(0.9)
     noises = draw_noises(np.random.default_rng(9), 20, 200)
     x, y = simulate(scan, MSG, noises)
-    f, q = MSG.exact(scan.dt)
-
-    def make(n):
-        grid = np.linspace(-0.6, 0.6, n)
-
-        def loglik(z, k):
-            v = scan.sample_variance(grid, k)
-            return -0.5 * (z[:, None] - scan.amplitude * scan.shape(grid, k)) ** 2 / v - 0.5 * np.log(v)
-        return GridFilter(-0.6, 0.6, n, f, q, loglik)
-
-    means = [make(n).run(y, 0.0, MSG.sigma ** 2).mean for n in (151, 301, 601, 1201)]
+    means = [grid_filter(scan, MSG, 0.6, n).run(y, 0.0, MSG.sigma ** 2).mean for n in (151, 301, 601, 1201)]
     diffs = [np.abs(a - b).max() for a, b in zip(means[:-1], means[1:])]
     assert diffs[2] < diffs[1] < diffs[0]
     assert diffs[2] < 2e-3
@@ -220,18 +211,8 @@ def test_pcrlb_lies_below_the_grid_filter_mse():
     scan = _scan(0.5)
     noises = draw_noises(np.random.default_rng(10), 150, 250)
     x, y = simulate(scan, MSG, noises)
-    f, q = MSG.exact(scan.dt)
-    grid = np.linspace(-0.5, 0.5, 401)
-
-    def loglik(z, k):
-        v = scan.sample_variance(grid, k)
-        return -0.5 * (z[:, None] - scan.shape(grid, k)) ** 2 / v - 0.5 * np.log(v)
-    mean = GridFilter(-0.5, 0.5, 401, f, q, loglik).run(y, 0.0, MSG.sigma ** 2).mean
-    k = np.arange(y.shape[1])
-    Jz = expected_over_gaussian(lambda s: fisher_information(scan, s, k)[0], np.zeros(k.size),
-                                np.full(k.size, MSG.sigma ** 2))
-    Jz[0] = 0.0
-    bound = pcrlb_recursion([[f]], [[q]], [[1 / MSG.sigma ** 2]], Jz[:, None, None])[:, 0, 0]
+    mean = grid_filter(scan, MSG, 0.5, 401).run(y, 0.0, MSG.sigma ** 2).mean
+    bound = pcrlb_variance(scan, MSG, y.shape[1] - 1)
     mse = ((x - mean) ** 2)[:, 150:].mean(axis=0)
     assert mse.mean() > bound[150:].mean()
     assert mse.mean() < 1.5 * bound[150:].mean()
@@ -287,3 +268,21 @@ def test_discretisation_error_dt_005_vs_0005_is_within_3_percent_for_variant2():
     rel = a.mean() / b.mean() - 1
     se = np.std(a / b.mean() - b / b.mean(), ddof=1) / np.sqrt(a.size)
     assert abs(rel) < 0.03 + 2 * se, f"discretisation error {rel:.3f} +- {se:.3f}"
+
+
+def test_scan_at_snr_sets_background_and_sample_phase():
+    sc = scan_at_snr(20.0, 0.5, 0.05, pulse_duration=0.5)
+    assert sc.n0 == background_intensity(20.0, 1.0, 0.05) and sc.pulse_sigma == 0.25
+    np.testing.assert_allclose(sc.phase(1), 0.025)                       # centre of the first interval
+    assert scan_at_snr(20.0, 0.5, 0.05, sample_at="interval_end").time_offset == 0.0
+    with pytest.raises(ValueError, match="sample_at"):
+        scan_at_snr(20.0, 0.5, 0.05, sample_at="start")
+
+
+def test_scan_crlb_is_the_inverse_of_the_summed_sample_information():
+    sc = _scan(0.0)
+    # P = 0, x = 0: J = sum_k (A S')^2 / (N0/dt); S' = S u / sigma_t^2
+    u = sc.phase(np.arange(1, 21)) - 0.5
+    s_prime = np.exp(-0.5 * (u / 0.25) ** 2) * u / 0.25 ** 2
+    np.testing.assert_allclose(scan_crlb(sc), 1.0 / np.sum(s_prime ** 2 / (sc.n0 / sc.dt)), rtol=1e-12)
+    assert scan_crlb(_scan(0.9)) > scan_crlb(sc)                         # signal noise costs information

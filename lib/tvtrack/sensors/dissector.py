@@ -26,12 +26,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..bounds.pcrlb import expected_over_gaussian, pcrlb_recursion
 from ..filters.ekf import ExtendedKalmanFilter
+from ..filters.grid import GridFilter
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "background_intensity", "draw_noises", "simulate", "simulate_two_rates", "variant1_filter", "variant2_filter",
-    "run_variant1", "run_variant2", "fisher_information", "lock_lost",
+    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_two_rates",
+    "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "grid_filter", "fisher_information",
+    "pcrlb_variance", "scan_crlb", "lock_lost",
 ]
 
 #: Readings of the paper's ``sigma_sh`` in ``psi_A = A / sigma_sh``.
@@ -40,6 +43,8 @@ SIGMA_SH_DEFINITIONS = ("per_sample", "unit_bandwidth")
 SIGNAL_NOISE_SCALES = ("consistent", "literal")
 #: Readings of ``G22`` (process-noise variance of ``X2`` per step).
 G22_MODES = ("paper", "euler", "matched")
+#: Where in its interval a sample sees the pulse: the centre ``(k - 1/2) dt`` or the end ``k dt``.
+SAMPLE_PHASES = ("interval_centre", "interval_end")
 
 
 def _check_real(name, value, low=None, high=None, low_open=False, high_open=False):
@@ -171,6 +176,32 @@ class GaussMarkovMessage:
         """Exact discretisation ``(exp(-alpha dt), sigma^2 (1 - exp(-2 alpha dt)))``."""
         f = np.exp(-self.alpha * dt)
         return f, self.sigma ** 2 * (1.0 - f * f)
+
+
+def scan_at_snr(psi_a: float, contrast: float, dt: float, pulse_duration: float = 0.5,
+                sigma_sh: str = "per_sample", sample_at: str = "interval_centre",
+                amplitude: float = 1.0) -> DissectorScan:
+    """The scan of an operating point given by its SNR ``psi_A`` and contrast ``P``.
+
+    Parameters
+    ----------
+    psi_a : float            ``psi_A = A / sigma_sh`` (> 0); sets ``N0`` via :func:`background_intensity`
+    contrast : float         electrical contrast ``P`` in [0, 1)
+    dt : float               sampling interval, units of ``T``
+    pulse_duration : float   pulse duration ``T_u`` at level 0.606 A, units of ``T`` (pulse sigma ``T_u / 2``)
+    sigma_sh : {"per_sample", "unit_bandwidth"}   reading of ``sigma_sh`` (see :func:`background_intensity`)
+    sample_at : {"interval_centre", "interval_end"}
+        Pulse phase seen by sample ``k``: ``(k - 1/2) dt`` (the centre of its integration interval) or ``k dt``.
+    amplitude : float        pulse peak ``A``
+
+    Returns
+    -------
+    DissectorScan  with the pulse centred in the scan (``tau_c = T/2``)
+    """
+    _check_choice("sample_at", sample_at, SAMPLE_PHASES)
+    offset = -0.5 * dt if sample_at == "interval_centre" else 0.0
+    return DissectorScan(background_intensity(psi_a, amplitude, dt, sigma_sh), contrast, amplitude, dt,
+                         0.5 * pulse_duration, 0.5, offset)
 
 
 def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int) -> dict:
@@ -363,6 +394,31 @@ def run_variant2(filt: ExtendedKalmanFilter, y, d0: float = 0.2, init=None):
     return out.x[..., 0], out.P[..., 0, 0]
 
 
+def grid_filter(scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5,
+                n_points: int = 401) -> GridFilter:
+    """Point-mass Bayesian filter of ``X1`` with the exact likelihood of eq. (5) (near-optimal reference).
+
+    The likelihood includes the signal-dependent variance, ``log p(z | x) = -(z - A S)^2 / (2 R) - log(R) / 2``
+    with ``R = N(t_k) / dt``; the transition is the message's exact discretisation.
+
+    Parameters
+    ----------
+    half_width : float   the grid covers ``[-half_width, half_width]`` (units of ``T``)
+    n_points : int       number of grid nodes
+
+    Returns
+    -------
+    GridFilter  whose ``run(y, 0.0, sigma_1**2)`` filters samples ``y`` (n_trials, K) from :func:`simulate`
+    """
+    f, q = message.exact(scan.dt)
+    nodes = np.linspace(-half_width, half_width, n_points)
+
+    def loglik(z, k):
+        var = scan.sample_variance(nodes, k)
+        return -0.5 * (z[:, None] - scan.amplitude * scan.shape(nodes, k)) ** 2 / var - 0.5 * np.log(var)
+    return GridFilter(-half_width, half_width, n_points, f, q, loglik)
+
+
 def fisher_information(scan: DissectorScan, x, k):
     """Fisher information about ``x`` in one sample ``Y(k)`` (eq. (5)), mean and variance both
     depending on ``x``:  ``J = (A S')^2 / R + R'^2 / (2 R^2)``, ``R = N(t_k)/dt``.
@@ -376,6 +432,34 @@ def fisher_information(scan: DissectorScan, x, k):
     dr = scan.n0 * scan.signal_noise_ratio * ds / scan.dt
     mean_part = (scan.amplitude * ds) ** 2 / r
     return mean_part + 0.5 * (dr / r) ** 2, mean_part
+
+
+def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: int):
+    """Posterior Cramer-Rao bound on the mean-square error of ``X1`` at every step ``k = 0..n_steps``.
+
+    The true model (exact message discretisation, stationary prior ``N(0, sigma_1^2)``, samples of
+    eq. (5) from ``k = 1``); the per-sample information :func:`fisher_information` (mean and
+    signal-dependent variance) is averaged over the prior of ``X1`` by Gauss-Hermite quadrature.
+
+    Returns
+    -------
+    ndarray, shape (n_steps + 1,)   bound on ``E[(X1 - X1_hat)^2]`` (units of ``T^2``)
+    """
+    f, q = message.exact(scan.dt)
+    kk = np.arange(n_steps + 1)
+    jz = expected_over_gaussian(lambda s: fisher_information(scan, s, kk)[0], np.zeros(kk.size),
+                                np.full(kk.size, message.sigma ** 2))
+    jz[0] = 0.0                                                                 # no sample at k = 0
+    return pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma ** 2]], jz[:, None, None])[:, 0, 0]
+
+
+def scan_crlb(scan: DissectorScan) -> float:
+    """Cramer-Rao bound of one scan's measurement of ``X1`` at ``x = 0`` (no dynamics, no prior).
+
+    ``1 / sum_k J(0, k)`` over the ``round(1/dt)`` samples of the scan (units of ``T^2``).
+    """
+    kk = np.arange(1, int(round(1.0 / scan.dt)) + 1)
+    return 1.0 / fisher_information(scan, 0.0, kk)[0].sum()
 
 
 def lock_lost(error, threshold: float, min_steps: int):
