@@ -1,0 +1,412 @@
+"""Monte Carlo study of close-object location: ULA vs two-stage trajectory algorithms.
+
+One *configuration* (:class:`Config`) is ``(Q, d/sigma, Delta/sigma, m_k, T)`` plus the algorithms
+to run, the designation errors, the mark initialisation/association and the number of trials. A
+:class:`LocationStudy` draws each configuration's scenes from its own seed (derived from the run
+seed and the configuration values, so results do not depend on the number of workers or on which
+other configurations are computed), runs the unified location EM
+(:func:`tvtrack.estimate.em_location.unified_location_em`), the two-stage algorithms of
+:mod:`tvtrack.estimate.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb` on the
+same samples, and caches the per-trial errors. Configurations that differ only in their algorithm
+letters share one simulation.
+
+Units: errors are in sigma (the PSF standard deviation), after matching the estimated labels to
+the truth (all ``Q!`` orders, :func:`~tvtrack.estimate.em_location.match_labels`).
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import time
+import zlib
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from functools import partial
+from typing import NamedTuple
+
+import numpy as np
+
+from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
+from tvtrack.estimate.em_location import match_labels, pixel_entries, unified_location_em
+from tvtrack.estimate.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
+from tvtrack.montecarlo import Estimate, mean_ci, proportion_ci
+from tvtrack.scenes.linear_motion import (draw_truth, frame_times, mixture_weights, scene_batches,
+                                          scene_geometry)
+
+#: Algorithm letters of :attr:`Config.algs`.
+ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteration counts)",
+              "e": "two-stage, iterative (per-frame EM) marks", "c": "two-stage, centre-of-region marks",
+              "b": "BIC fits with Q' = 1, 2, 3"}
+#: Columns of the per-trial flag arrays ``ula_flags``, ``em_flags`` and ``cr_flags``.
+FLAG_NAMES = {"ula": ("swap", "merge", "cap_hit", "degenerate", "left_frame"),
+              "em": ("swap", "line_fit_invalid", "cap_hit", "missing_marks"),
+              "cr": ("swap", "line_fit_invalid")}
+
+
+@dataclass(frozen=True)
+class StudySettings:
+    """Everything a configuration's simulation needs besides the :class:`Config` itself.
+
+    Attributes
+    ----------
+    seed : int
+        Run seed; every configuration's generator derives from it.
+    velocity_sigma : (float, float)
+        Common velocity ``(Vx, Vy)`` of the objects, sigma per frame.
+    noise_density : float
+        Uniform noise photons per sigma^2 per frame.
+    photon_model : {"fixed", "poisson"}
+        Target photons per object per frame: fixed count or Poisson with that mean.
+    margin_sigma : float
+        Empty window border around all trajectories, sigma.
+    designation_sd_sigma, designation_velocity_sd : float
+        Default designation errors (position sigma; velocity sigma per frame).
+    tol_sigma : float
+        EM stopping tolerance on position-equivalent change, sigma.
+    max_iter : int
+        EM iteration cap (ULA and per-frame marks).
+    merge_sigma : float
+        Two ULA estimates closer than this count as merged, sigma.
+    accelerate : {"squarem", "none"}
+        EM variant of the "u" algorithm.
+    mark_init, mark_association : str
+        Defaults of :func:`~tvtrack.estimate.two_stage.em_marks` ``init`` and ``association``.
+    gate_half_sigma : float
+        Centre-of-region gate half-size, sigma (at least 1.5 px).
+    bic_max_iter : int
+        Iteration cap of the BIC fits.
+    crb_phases : int
+        Sub-pixel phases averaged in each CRB value.
+    n_trials : int
+        Default trials per configuration.
+    n_bootstrap : int
+        Bootstrap resamples of :meth:`LocationStudy.variance_ratio`.
+    """
+
+    seed: int
+    velocity_sigma: tuple[float, float]
+    noise_density: float
+    photon_model: str
+    margin_sigma: float
+    designation_sd_sigma: float
+    designation_velocity_sd: float
+    tol_sigma: float
+    max_iter: int
+    merge_sigma: float
+    accelerate: str
+    mark_init: str
+    mark_association: str
+    gate_half_sigma: float
+    bic_max_iter: int
+    crb_phases: int
+    n_trials: int
+    n_bootstrap: int
+
+
+class Config(NamedTuple):
+    """One configuration (a point of a curve).
+
+    ``algs`` is a string of letters from :data:`ALGORITHMS`; ``init``/``assoc`` of ``None`` mean
+    the settings' defaults; ``tag`` separates otherwise equal configurations drawn for different
+    studies (different seeds).
+    """
+
+    q: int
+    d: float
+    pix: float
+    m: int
+    T: int
+    algs: str
+    dsd: float
+    init: str | None
+    assoc: str | None
+    n: int
+    tag: str
+    vsd: float
+
+
+def seed_sequence(seed: int, values) -> np.random.SeedSequence:
+    """Seed sequence from the run seed and a tuple of values (numbers to 1e-3, ``None`` as 0,
+    strings hashed with CRC-32, which, unlike ``hash()``, does not change between processes)."""
+    def word(v):
+        if v is None:
+            return 0
+        if isinstance(v, str):
+            return zlib.crc32(v.encode())
+        return int(round(1000 * v)) & 0xFFFFFFFF
+    return np.random.SeedSequence([seed, *[word(v) for v in values]])
+
+
+def base(c) -> tuple:
+    """A configuration without its algorithm letters (the scene draws do not depend on them)."""
+    return tuple(c[:5]) + ("",) + tuple(c[6:])
+
+
+def errors_vs_truth(theta, truth, sigma_px: float, times):
+    """Errors after the best label order, and the swap flag.
+
+    Parameters
+    ----------
+    theta, truth : ndarray, shape (n, Q, 4)
+        Estimated and true states ``(x0, y0, Vx, Vy)``, px and px/frame.
+    sigma_px : float
+        PSF standard deviation, px (the unit of the errors).
+    times : ndarray, shape (T,)
+
+    Returns
+    -------
+    errors : ndarray, shape (n, Q, 4)
+        In sigma and sigma/frame.
+    swapped : ndarray of bool, shape (n,)
+        The best order is not the identity.
+    """
+    perm, same = match_labels(theta, truth, times)
+    est = np.take_along_axis(theta, perm[..., None], axis=1)
+    return (est - truth) / sigma_px, ~same
+
+
+def bic_orders(settings: StudySettings, entries, designation, sigma_px: float, photons: float,
+               noise_per_pixel: float, n_pixels: int) -> np.ndarray:
+    """BIC ``-2 L + 5 Q' ln(n_photons)`` of ULA fits with ``Q' = 1, 2, 3`` (weights estimated,
+    plain EM, at most ``settings.bic_max_iter`` steps); returns shape (n, 3)."""
+    n = designation.shape[0]
+    n_photons = entries.photons_per_trial()
+    d2 = designation[:, :2]
+    starts = {1: d2.mean(axis=1, keepdims=True),
+              2: d2,
+              3: np.concatenate([d2, d2.mean(axis=1, keepdims=True) + [sigma_px, 0, 0, 0]], axis=1)}
+    out = np.empty((n, 3))
+    for k, th0 in starts.items():
+        p, p0 = mixture_weights(photons, noise_per_pixel, n_pixels, k)
+        r = unified_location_em(entries, th0, sigma_px, p, p0, tol_px=1e-4 * sigma_px,
+                                max_iter=settings.bic_max_iter, estimate_weights=True)
+        n_par = 5 * k                                        # motion (4) and weight (1) per object
+        out[:, k - 1] = -2 * r.loglik + n_par * np.log(np.maximum(n_photons, 1))
+    return out
+
+
+def run_config(settings: StudySettings, cfg: Config) -> dict:
+    """Monte Carlo of one configuration.
+
+    Returns
+    -------
+    dict
+        Per algorithm letter run: ``ula``/``plain``/``em``/``cr`` errors (n, Q, 4) in sigma,
+        ``*_flags`` (n, k) bool with columns :data:`FLAG_NAMES`, ``*_iter`` (n,) EM steps
+        (``em_iter``: summed over frames), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
+        ``timing`` (wall seconds per algorithm), ``crb_pos`` / ``crb_vel`` (trace of the position /
+        velocity block of the CRB, sigma^2, averaged over the sub-pixel phase) and ``shape``.
+    """
+    s_ = settings
+    q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd = cfg
+    accel = None if s_.accelerate == "none" else "squarem"
+    rng = np.random.default_rng(seed_sequence(s_.seed, base(cfg)))
+    g = scene_geometry(q, T, d, pix, s_.velocity_sigma, s_.margin_sigma)
+    s = g.sigma_px
+    noise_pp = s_.noise_density / s ** 2                 # photons per pixel = density x pixel area
+    times = frame_times(T)
+    p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
+    tol = s_.tol_sigma * s
+    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "em", "em_flags",
+                           "em_iter", "cr", "cr_flags", "bic", "ula_loglik")}
+    timing = {"ula": 0.0, "plain": 0.0, "em": 0.0, "cr": 0.0}
+    for b in scene_batches(rng, g, n, T, m, noise_pp, dsd * s, vsd * s, s_.photon_model,
+                           batch_size=max(1, int(4e6 // (T * g.n_pixels)))):
+        out["truth"].append(b.truth)
+        ent = pixel_entries(b.counts)
+        if "u" in algs:
+            t0 = time.perf_counter()
+            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
+                                    accelerate=accel, merge_px=s_.merge_sigma * s)
+            timing["ula"] += time.perf_counter() - t0
+            e, sw = errors_vs_truth(r.theta, b.truth, s, times)
+            out["ula"].append(e)
+            out["ula_iter"].append(r.n_iter)
+            out["ula_loglik"].append(r.loglik)
+            out["ula_flags"].append(np.stack([sw, r.merged, r.cap_hit, r.degenerate, r.left_frame], axis=1))
+        if "p" in algs:
+            t0 = time.perf_counter()
+            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter)
+            timing["plain"] += time.perf_counter() - t0
+            out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+            out["plain_iter"].append(r.n_iter)
+        if "e" in algs:
+            t0 = time.perf_counter()
+            mk = em_marks(b.counts, b.designation, times, s, p, p0,
+                          init=s_.mark_init if init is None else init,
+                          association=s_.mark_association if assoc is None else assoc, tol_px=tol,
+                          max_iter=s_.max_iter, accelerate=accel)
+            fit = fit_lines(mk, times, b.designation)
+            timing["em"] += time.perf_counter() - t0
+            e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
+            out["em"].append(e)
+            out["em_iter"].append(mk.n_iter.sum(axis=1))
+            out["em_flags"].append(np.stack([sw, (~fit.valid).any(axis=1), mk.cap_hit.any(axis=1),
+                                             (~mk.valid).any(axis=(1, 2))], axis=1))
+        if "c" in algs:
+            t0 = time.perf_counter()
+            mk = centre_of_region_marks(b.counts, propagate(b.designation, times),
+                                        max(s_.gate_half_sigma * s, 1.5))
+            fit = fit_lines(mk, times, b.designation)
+            timing["cr"] += time.perf_counter() - t0
+            e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
+            out["cr"].append(e)
+            out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
+        if "b" in algs:
+            out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
+    res = {k: np.concatenate(v) for k, v in out.items() if v}
+    res["timing"] = timing
+    # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
+    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, base(cfg) + ("crb",))), s_.crb_phases, g)
+    crb = crb_linear_motion(th, times, g.shape, s, m, noise_pp)
+    res["crb_pos"] = float(np.mean(position_crb_sum(crb))) / s ** 2
+    vel = np.diagonal(crb, axis1=-2, axis2=-1).reshape(-1, q, 4)[..., 2:].sum(axis=(1, 2))
+    res["crb_vel"] = float(np.mean(vel)) / s ** 2
+    res["shape"] = g.shape
+    return res
+
+
+class LocationStudy:
+    """Cache of configuration results, computed in parallel on demand.
+
+    ``study[c]`` returns the result dict of :func:`run_config` for ``c`` whatever algorithms
+    ``c`` names (the simulation ran with the union of those asked for its scenes).
+    """
+
+    def __init__(self, settings: StudySettings, n_workers: int = 1):
+        if n_workers < 1:
+            raise ValueError(f"n_workers = {n_workers}; it must be >= 1")
+        self.settings = settings
+        self.n_workers = n_workers
+        self._cache: dict[tuple, dict] = {}
+
+    def config(self, q, d, pix, m, T, algs="uec", dsd=None, init=None, assoc=None, n=None, tag="main",
+               vsd=None) -> Config:
+        """A :class:`Config` with the settings' defaults filled in (``dsd``, ``vsd``, ``n``)."""
+        st = self.settings
+        return Config(int(q), float(d), float(pix), int(m), int(T), algs,
+                      float(st.designation_sd_sigma if dsd is None else dsd), init, assoc,
+                      int(n or st.n_trials), tag, float(st.designation_velocity_sd if vsd is None else vsd))
+
+    def __getitem__(self, c) -> dict:
+        return self._cache[base(c)]
+
+    def __contains__(self, c) -> bool:
+        return base(c) in self._cache
+
+    def __len__(self) -> int:
+        return len(self._cache)
+
+    def compute(self, configs) -> None:
+        """Run every configuration not yet cached, each scene set once with the union of the
+        algorithms asked for it (longest first, in ``n_workers`` forked processes)."""
+        union: dict[tuple, str] = {}
+        for c in configs:
+            if c not in self:
+                union[base(c)] = "".join(sorted(set(union.get(base(c), "")) | set(c[5])))
+        todo = [Config(*k[:5], a, *k[6:]) for k, a in union.items()]
+        todo.sort(key=lambda c: -c.T * c.n * (1 + 2 * ("e" in c.algs) + 3 * ("p" in c.algs)))
+        run = partial(run_config, self.settings)
+        if self.n_workers > 1 and len(todo) > 1:
+            with ProcessPoolExecutor(self.n_workers, mp_context=multiprocessing.get_context("fork")) as pool:
+                for c, r in zip(todo, pool.map(run, todo)):
+                    self._cache[base(c)] = r
+        else:
+            for c in todo:
+                self._cache[base(c)] = run(c)
+
+    def variance_ratio(self, e_num, e_den, paired=True, mse=False, sqrt=False) -> Estimate:
+        """:func:`variance_ratio_ci` with this run's bootstrap generator (the same draws on every
+        call) and ``settings.n_bootstrap`` resamples."""
+        rng = np.random.default_rng(seed_sequence(self.settings.seed, ("bootstrap",)))
+        return variance_ratio_ci(e_num, e_den, rng, self.settings.n_bootstrap, paired=paired, mse=mse, sqrt=sqrt)
+
+
+# -- summaries ------------------------------------------------------------------------------------
+
+def position_errors(result: dict, alg: str) -> np.ndarray:
+    """Position errors ``(x0_1, y0_1, x0_2, ...)`` of one algorithm, shape (n, 2Q), sigma."""
+    return result[alg][..., :2].reshape(len(result[alg]), -1)
+
+
+def variance_sum(e) -> Estimate:
+    """Sum of the variances of the columns of ``e`` (n, k) with a CI: t-interval of the per-trial
+    sums of centred squares (the mean's own uncertainty is second order)."""
+    c = ((e - e.mean(axis=0)) ** 2).sum(axis=1) * len(e) / (len(e) - 1)
+    return mean_ci(c)
+
+
+def mse_sum(e) -> Estimate:
+    """Sum of the mean squared values of the columns of ``e`` (n, k), with a t-interval."""
+    return mean_ci((e ** 2).sum(axis=1))
+
+
+def variance_ratio_ci(e_num, e_den, rng: np.random.Generator, n_bootstrap: int, paired: bool = True,
+                      mse: bool = False, sqrt: bool = False) -> Estimate:
+    """Ratio of summed column variances (or MSEs) of two error samples, with a percentile
+    bootstrap CI.
+
+    Unlike :func:`tvtrack.montecarlo.ratio_ci` (a ratio of means), this is a ratio of variance
+    *sums*, e.g. the gain ``rho = Sigma^2_traj / Sigma^2_ULA``.
+
+    Parameters
+    ----------
+    e_num, e_den : ndarray, shape (n1, k) and (n2, k)
+        Per-trial errors (any unit; the ratio is unit-free).
+    rng : numpy.random.Generator
+        Draws the resample indices.
+    n_bootstrap : int
+        Number of resamples.
+    paired : bool
+        Resample trials jointly (same samples for both, requires ``n1 == n2``; otherwise
+        independent resamples).
+    mse : bool
+        Ratio of summed mean squares instead of variances.
+    sqrt : bool
+        Report the square root (ratio of RMS / standard deviations).
+
+    Returns
+    -------
+    Estimate
+        Point ratio, bootstrap standard deviation, 2.5 % and 97.5 % quantiles, ``min(n1, n2)``.
+    """
+    n1, n2 = len(e_num), len(e_den)
+    i1 = rng.integers(0, n1, size=(n_bootstrap, n1))
+    i2 = i1 if paired and n1 == n2 else rng.integers(0, n2, size=(n_bootstrap, n2))
+    if mse:
+        def stat(e, i):
+            return (e[i] ** 2).mean(axis=1).sum(axis=-1)
+        point = (e_num ** 2).mean(0).sum() / (e_den ** 2).mean(0).sum()
+    else:
+        def stat(e, i):
+            return e[i].var(axis=1, ddof=1).sum(axis=-1)
+        point = e_num.var(0, ddof=1).sum() / e_den.var(0, ddof=1).sum()
+    boot = stat(e_num, i1) / stat(e_den, i2)
+    if sqrt:
+        point, boot = np.sqrt(point), np.sqrt(boot)
+    lo, hi = np.quantile(boot, [0.025, 0.975])
+    return Estimate(float(point), float(boot.std()), float(lo), float(hi), int(min(n1, n2)))
+
+
+def failure_rate(flags) -> Estimate:
+    """Proportion of true flags with a Clopper-Pearson interval."""
+    return proportion_ci(int(np.sum(flags)), len(flags))
+
+
+def gross_errors(result: dict, alg: str, limit_sigma: float = 2.0) -> np.ndarray:
+    """Trials (n,) in which some position error exceeds ``limit_sigma``."""
+    return (np.abs(result[alg][..., :2]) > limit_sigma).any(axis=(1, 2))
+
+
+def failure_metrics(result: dict, algs=("ula", "em")) -> dict[str, Estimate]:
+    """Failure rates of one configuration: ``<alg>/gross_rate`` and ``<alg>/<flag>_rate`` for the
+    flags of :data:`FLAG_NAMES` (ULA and iterative marks)."""
+    out = {}
+    for a in algs:
+        if a not in result:
+            continue
+        out[f"{a}/gross_rate"] = failure_rate(gross_errors(result, a))
+        if a in ("ula", "em"):
+            for k, name in enumerate(FLAG_NAMES[a]):
+                out[f"{a}/{name}_rate"] = failure_rate(result[f"{a}_flags"][:, k])
+    return out
