@@ -9,6 +9,7 @@ import pytest
 from tvtrack.filters.polynomial import (growing_memory_filter, growing_memory_gains, predict_ahead,
                                         taylor_transition)
 from tvtrack.predictors import g1_floor_filter, g1_floor_gains, growing_memory_forecast
+from tvtrack.predictors import batch_least_squares_states as pr_batch
 
 
 def _batch_ls(z_present, t_present, t_now, order):
@@ -112,3 +113,17 @@ def test_fast_floored_forecast_equals_core_filter(order, nf):
         core = predict_ahead(growing_memory_filter(z, order, nf), steps)
         np.testing.assert_array_equal(np.isnan(fast), np.isnan(core))
         np.testing.assert_allclose(fast, core, rtol=1e-9, atol=1e-9)
+
+
+def test_batch_least_squares_states_exact_on_a_quadratic():
+    t = np.arange(12.0)
+    z = 3.0 - 0.5 * t + 0.1 * t ** 2
+    states = pr_batch(z, 2)
+    assert np.all(np.isnan(states[:2]))
+    np.testing.assert_allclose(states[2:, 0], z[2:], atol=1e-10)
+    np.testing.assert_allclose(states[2:, 1], -0.5 + 0.2 * t[2:], atol=1e-10)  # px per sample
+    np.testing.assert_allclose(states[2:, 2], 0.2, atol=1e-10)
+    noisy = z + np.random.default_rng(1).normal(0, 0.5, z.size)
+    np.testing.assert_allclose(pr_batch(noisy, 2)[2:], growing_memory_filter(noisy, 2, None)[2:], rtol=1e-9, atol=1e-9)
+    with pytest.raises(ValueError, match="'z'"):
+        pr_batch(np.array([1.0, np.nan, 3.0, 4.0]), 2)

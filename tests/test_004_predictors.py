@@ -118,3 +118,50 @@ def test_lag_features_and_folds():
 def test_bad_arguments_name_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_hold_last_fills_gaps_forward_and_leading_gaps_backward():
+    z = np.array([[np.nan, 1.0, np.nan, np.nan, 4.0, np.nan], [np.nan] * 6])
+    out = pr.hold_last(z)
+    np.testing.assert_array_equal(out[0], [1.0, 1.0, 1.0, 1.0, 4.0, 4.0])
+    assert np.all(np.isnan(out[1]))
+
+
+def test_error_summary_of_a_known_error_pattern():
+    # trials x paths x axes x T; forecast = reference shifted by one frame plus a path-dependent error
+    T = 30
+    ref = np.zeros((2, 3, 2, T))
+    fc = ref + np.array([0.5, 1.0, 2.0])[None, :, None, None]
+    fc[0, 2, 0, 10] = 7.0  # one outlier on path 3
+    s = pr.error_summary(fc, ref, 1, start=5)
+    np.testing.assert_allclose(s["per_path_rms"][:2], [0.5, 1.0])
+    n3 = 2 * 2 * (T - 5)
+    np.testing.assert_allclose(s["per_path_rms"][2], np.sqrt(((n3 - 1) * 4.0 + 49.0) / n3))
+    assert s["max"] == 7.0
+    np.testing.assert_allclose(s["per_path_p95"], [0.5, 1.0, 2.0])
+    assert s["rms"].n == 3 and s["rms"] == pr.forecast_rms_ci(fc, ref, 1, start=5)
+    assert pr.errors_by_path(pr.forecast_errors(fc, ref, 1), 5).shape == (3, n3)
+
+
+def test_constant_acceleration_forecast_uses_each_folds_fit_on_its_test_paths():
+    rng = np.random.default_rng(3)
+    z = np.cumsum(np.cumsum(rng.normal(0, 0.05, (2, 6, 80)), -1), -1) + rng.normal(0, 0.1, (2, 6, 80))
+    folds = pr.path_folds(6, 2)
+    fits = [(1e-3, 1e-2), (1e-1, 1e-3)]
+    out = pr.constant_acceleration_forecast(z, fits, folds, 2)
+    for (q, r), (_, test) in zip(fits, folds):
+        F, Q, H, R = pr.constant_acceleration_model(q, r)
+        ref = pr.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), np.diag([1e4, 1e2, 1e1]), 2)[0]
+        np.testing.assert_array_equal(out[:, test], ref)
+    fitted = pr.fit_constant_acceleration_folds(z[0], folds, [1e-4, 1e-2], [1e-2, 1e-1])
+    assert len(fitted) == 2 and all(q in (1e-4, 1e-2) and r in (1e-2, 1e-1) for q, r in fitted)
+
+
+def test_cross_validated_learned_forecast_is_reproducible_and_complete():
+    rng = np.random.default_rng(4)
+    z = np.cumsum(rng.normal(0, 1, (1, 4, 200)), -1)
+    folds = pr.path_folds(4, 2)
+    a = pr.cross_validated_learned_forecast("rbf", z, folds, 4, 1, np.random.default_rng(9), rbf_centres=20)
+    b = pr.cross_validated_learned_forecast("rbf", z, folds, 4, 1, np.random.default_rng(9), rbf_centres=20)
+    np.testing.assert_array_equal(a, b)
+    assert np.all(np.isfinite(a[..., 4:])) and np.all(np.isnan(a[..., :4]))

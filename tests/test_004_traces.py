@@ -9,7 +9,8 @@ import pytest
 
 from tvtrack.paths import DATA_DIR
 from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, gauss_markov_discrete,
-                                        generate_traces, wander_state_space)
+                                        generate_traces, optimal_wander_forecast, scaled_config,
+                                        wander_state_space)
 from tvtrack.traces import TraceSet, load_traces, save_traces, sha256_file
 
 SHIPPED = DATA_DIR / "laser_traces" / "traces.npz"
@@ -141,3 +142,25 @@ def test_seed_reproduces_and_differs():
     assert not np.array_equal(a.centres_px, c.centres_px)
     with pytest.raises(ValueError, match="seed"):
         generate_traces(BeamWanderConfig(), seed=-1)
+
+
+def test_scaled_config_scales_amplitude_and_bandwidth():
+    cfg = BeamWanderConfig()
+    c = scaled_config(cfg, 2.0, 3.0)
+    assert (c.rms_min_px, c.rms_max_px) == (6.0, 16.0)
+    np.testing.assert_allclose(c.corner_frequencies_hz, [0.06, 0.3, 1.5])
+    assert scaled_config(cfg) == cfg
+    with pytest.raises(ValueError, match="wander_scale"):
+        scaled_config(cfg, 0.0)
+
+
+def test_optimal_wander_forecast_beats_the_paper_filter_and_last_value():
+    from tvtrack.predictors import forecast_errors, growing_memory_forecast
+
+    cfg = BeamWanderConfig(n_paths=3, n_frames=400)
+    tr = generate_traces(cfg, 11)
+    truth = np.moveaxis(tr.centres_px, -1, -2)[None]  # (1, P, 2, T)
+    z = truth + 0.05 * np.random.default_rng(2).standard_normal(truth.shape)
+    rms = lambda fc: np.sqrt(np.nanmean(forecast_errors(fc, truth, 1)[..., 50:] ** 2))
+    opt = rms(optimal_wander_forecast(z, cfg, np.asarray(tr.metadata["wander_rms_px"]), 0.05 ** 2, 1))
+    assert opt < rms(growing_memory_forecast(z, 1, 2, 10)) and opt < rms(z)

@@ -31,18 +31,19 @@ from __future__ import annotations
 
 import argparse
 import json
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
 from scipy.linalg import block_diag, expm
 
 from ..measure import centroid
+from ..predictors import kalman_forecast
 from ..render import gate_origin, gaussian_spot, sensor_readout
 from ..traces import TraceSet, save_traces, sha256_file
 
-__all__ = ["BeamWanderConfig", "component_sigmas", "gauss_markov_discrete", "generate_traces",
-           "wander_state_space", "SpotCamera", "GateTrack", "track_spot"]
+__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "gauss_markov_discrete", "generate_traces",
+           "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
 
 
 @dataclass(frozen=True)
@@ -109,6 +110,17 @@ class BeamWanderConfig:
         for name, value, ok, allowed in checks:
             if not ok:
                 raise ValueError(f"parameter {name!r} = {value!r}; it must be {allowed}")
+
+
+def scaled_config(config: BeamWanderConfig, wander_scale: float = 1.0,
+                  bandwidth_scale: float = 1.0) -> BeamWanderConfig:
+    """``config`` with the wander RMS range multiplied by ``wander_scale`` and every corner
+    frequency by ``bandwidth_scale`` (with the same seed, the same paths, louder or faster)."""
+    if not (wander_scale > 0 and bandwidth_scale > 0):
+        raise ValueError(f"parameters 'wander_scale' = {wander_scale!r} and 'bandwidth_scale' = "
+                         f"{bandwidth_scale!r}; both must be > 0")
+    return replace(config, rms_min_px=config.rms_min_px * wander_scale, rms_max_px=config.rms_max_px * wander_scale,
+                   corner_frequencies_hz=tuple(f * bandwidth_scale for f in config.corner_frequencies_hz))
 
 
 def component_sigmas(config: BeamWanderConfig, rms_px) -> np.ndarray:
@@ -275,6 +287,30 @@ def wander_state_space(config: BeamWanderConfig, rms_px, drift_prior_px_per_fram
     H[0, 0:2 * K:2] = 1.0
     H[0, -2] = 1.0
     return F, Q, H, P0
+
+
+def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float, steps: int = 1) -> np.ndarray:
+    """Kalman ``steps``-ahead forecast with the generator's own model (:func:`wander_state_space`,
+    known per-path RMS) and white measurement noise: the optimal linear predictor, a lower bound
+    for every method on these traces.
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., P, A, T)
+        Complete measured series of ``P`` paths, ``A`` axes each, px.
+    rms_px : array_like, shape (P,)
+        Wander RMS of each path, px.
+    meas_var : float
+        Measurement noise variance per axis, px^2.
+
+    Returns
+    -------
+    ndarray, shape like ``z``
+    """
+    F, Q, H, P0 = wander_state_space(config, rms_px)
+    x0 = np.zeros(F.shape[0])
+    x0[-2] = (config.image_size_px - 1) / 2.0
+    return kalman_forecast(z, F, Q[:, None], H, np.array([[meas_var]]), x0, P0[:, None], steps)[0]
 
 
 @dataclass(frozen=True)
