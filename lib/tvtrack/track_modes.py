@@ -24,7 +24,7 @@ import numpy as np
 from .filters.alphabeta import gain_schedule, observation_row
 from .filters.polynomial import polynomial_observation_row, taylor_transition
 
-__all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes"]
+__all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes", "manoeuvre_truth"]
 
 #: Mode codes in :attr:`TrackModeOutput.mode`.
 COAST, TRACK2, TRACK3 = 0, 2, 3
@@ -305,3 +305,27 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
 
     return TrackModeOutput(back(out_x, (3,)), back(out_var, (3,)), back(out_gate), back(out_K, (3,)),
                            back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
+
+
+def manoeuvre_truth(v0: float, accel: float, onset_frame: int, n_frames: int) -> np.ndarray:
+    """True ``(x, v, a)`` per frame: uniform motion from ``x = 0``, constant acceleration from the onset.
+
+    Parameters
+    ----------
+    v0 : float
+        Initial velocity, elements/frame.
+    accel : float
+        Acceleration from ``onset_frame`` on, elements/frame².
+    onset_frame, n_frames : int
+
+    Returns
+    -------
+    ndarray, shape (n_frames, 3)
+        Position (elements), velocity (elements/frame), acceleration (elements/frame²).
+    """
+    if n_frames < 1:
+        raise ValueError(f"parameter 'n_frames' = {n_frames}; it must be >= 1")
+    f = np.arange(n_frames)
+    d = np.clip(f - onset_frame, 0, None)
+    a = np.where(f >= onset_frame, accel, 0.0)
+    return np.stack([v0 * f + 0.5 * accel * d**2, v0 + accel * d, a], axis=-1)

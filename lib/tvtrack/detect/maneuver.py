@@ -26,10 +26,11 @@ import numpy as np
 from scipy import stats
 
 from ..filters.alphabeta import lagged_covariances, scheduled_filter
-from ..montecarlo import Estimate, quantile_ci
+from ..montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
 
 __all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
-           "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold"]
+           "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",
+           "false_alarm_rates", "detection_time_summary", "first_detection_roc"]
 
 
 def _check_window(n) -> int:
@@ -211,3 +212,111 @@ def calibrate_threshold(gains, n: int, alpha: float, frames, n_sims: int, rng: n
     v = scheduled_filter(eps, np.asarray(gains, dtype=float)[:T])[..., 1]
     S = window_statistic(v, n)[:, frames]
     return quantile_ci(np.abs(S), 1 - alpha, confidence)
+
+
+def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming_frame: int) -> dict:
+    """False-alarm rates of ``|S| > c`` on no-manoeuvre runs, per test and per run.
+
+    Parameters
+    ----------
+    S : array_like, shape (runs, T)
+        Detector statistic of independent no-manoeuvre runs.
+    threshold : array_like, shape (T,) or scalar
+        ``c(alpha)`` per frame.
+    armed, before_onset : array_like of bool, shape (T,)
+        Frames at which the detector tests, and the armed frames before the manoeuvre onset.
+    test_frame, arming_frame : int
+        A fixed frame for a per-test rate independent across runs (exact binomial interval), and
+        the first armed frame.
+
+    Returns
+    -------
+    dict of Estimate (or None)
+        ``per_test_fixed_frame``, ``per_test_at_arming``, ``per_test_pooled`` (mean over the armed
+        frames of each run, interval from the per-run rates), ``per_run_before_onset`` (at least one
+        alarm before the onset; None when no frame is armed before it) and ``per_run_whole``.
+    """
+    S = np.asarray(S, dtype=float)
+    armed, before_onset = np.asarray(armed, bool), np.asarray(before_onset, bool)
+    if S.ndim != 2 or armed.shape != (S.shape[1],) or before_onset.shape != armed.shape:
+        raise ValueError(f"parameter 'S' has shape {S.shape}; it must be (runs, T) with 'armed' of shape (T,)")
+    runs = S.shape[0]
+    alarm = np.abs(S) > threshold
+    return {
+        "per_test_fixed_frame": proportion_ci(int(alarm[:, test_frame].sum()), runs),
+        "per_test_at_arming": proportion_ci(int(alarm[:, arming_frame].sum()), runs),
+        "per_test_pooled": mean_ci(alarm[:, armed].mean(axis=1)),
+        "per_run_before_onset": (proportion_ci(int(alarm[:, before_onset].any(axis=1).sum()), runs)
+                                 if before_onset.any() else None),
+        "per_run_whole": proportion_ci(int(alarm[:, armed].any(axis=1).sum()), runs),
+    }
+
+
+def detection_time_summary(detection_frames, onset: int, loss_frame: int, frame_rate_hz: float) -> dict:
+    """Distribution of the first detection time over runs (and channels).
+
+    Parameters
+    ----------
+    detection_frames : array_like of int, any shape
+        First detection frame per run and channel; negative = never detected.
+    onset, loss_frame : int
+        Manoeuvre onset frame and the frame at which the object is lost.
+    frame_rate_hz : float
+
+    Returns
+    -------
+    dict
+        ``median_s``, ``q05_s``, ``q95_s`` (quantiles of the detection time in s, detections at or
+        after the onset; None with fewer than two), ``mean_s``, ``false_alarm_before_onset``
+        (fraction of runs first detecting before the onset) and ``missed_by_loss`` (no detection
+        before the loss).
+    """
+    d = np.asarray(detection_frames).ravel()
+    hit = d >= onset
+    early = (d >= 0) & (d < onset)
+    missed = d < 0
+    t_det = d[hit] / frame_rate_hz
+    enough = hit.sum() > 1
+    return {
+        "median_s": quantile_ci(t_det, 0.5) if enough else None,
+        "q05_s": quantile_ci(t_det, 0.05) if enough else None,
+        "q95_s": quantile_ci(t_det, 0.95) if enough else None,
+        "mean_s": mean_ci(t_det) if enough else None,
+        "false_alarm_before_onset": proportion_ci(int(early.sum()), d.size),
+        "missed_by_loss": proportion_ci(int((missed | (d >= loss_frame)).sum()), d.size),
+    }
+
+
+def first_detection_roc(stat_alt, stat_null, armed, onset: int, pfa_targets):
+    """ROC of a first-detection rule: detect within ``[onset, T)`` with no alarm before the onset.
+
+    Both statistics must already be normalised by their null scale per frame, so one threshold
+    applies to every frame. Thresholds are the ``1 - pfa`` quantiles of the null statistic pooled
+    over the armed frames.
+
+    Parameters
+    ----------
+    stat_alt : array_like, shape (..., T)
+        Statistic on manoeuvre runs, frames 0..T-1 (onset + allowed delay = T - 1); NaN = not yet
+        defined.
+    stat_null : array_like, shape (runs, T)
+        Statistic on independent no-manoeuvre runs.
+    armed : array_like of bool, shape (T,)
+    onset : int
+    pfa_targets : array_like, shape (m,)
+        Per-test false-alarm probabilities at which to set the thresholds.
+
+    Returns
+    -------
+    pfa, pd : ndarray, shape (m,)
+        Empirical per-test false-alarm rate of each threshold, and the fraction of manoeuvre
+        runs whose first alarm falls in ``[onset, T)``.
+    """
+    armed = np.asarray(armed, bool)
+    m_ = np.where(armed, np.nan_to_num(np.asarray(stat_alt, dtype=float), nan=0.0), 0.0)
+    null = np.asarray(stat_null, dtype=float)[:, armed].ravel()
+    before = m_[..., :onset].max(axis=-1).ravel()
+    within = m_.max(axis=-1).ravel()
+    g_ = np.quantile(null, 1 - np.asarray(pfa_targets, dtype=float))
+    return (np.array([np.mean(null > g) for g in g_]),
+            np.array([np.mean((before <= g) & (within > g)) for g in g_]))
