@@ -28,6 +28,8 @@ DEFAULT = Expectation()
 EXPECT: dict[str, Expectation] = {
     # an image dissector delivers a 1-D scan: the 2-D view plots samples and pulses against phase
     "000_dissector_ekf": Expectation(image=False),
+    # truth ring and estimate dot are sized in screen points: each must stay clearly visible (was 9-35 px)
+    "001_maneuver_occlusion_kf": Expectation(min_overlay_px=30),
     # batch EM location: no gate; the series are the EM log-likelihood and parameters per iteration
     "002_unified_location_em": Expectation(overlays=("truth", "estimate"), series_root="em"),
     # the paper's estimates are the measured spot centre and the centre predicted ahead
