@@ -11,7 +11,7 @@ from tvtrack.discriminators import (edge_discriminator, interval_weights, polar_
 from tvtrack.filters.loops import (RotatingGateTracker, loop_gains, loop_poles, run_closed_loop,
                                    simulate_two_emitter_1d)
 from tvtrack.render import box_spot, pixel_fractions_box
-from tvtrack.scenes.rotating_marker import (RotatingMarkerScene, Scenario, correlated_background, disc_spot,
+from tvtrack.scenes.rotating_marker import (RotatingMarkerScene, Scenario, correlated_background,
                                             gate_crop_size, marker_truth, place_interferers, render_spot,
                                             run_scenario)
 
@@ -82,7 +82,7 @@ def test_perfect_background_compensation_leaves_discriminator_unchanged():
     n, size = 8, gate_crop_size(A)
     origin = rng.integers(20, 40, size=(n, 2))
     centre = origin + 12.3
-    s = disc_spot(centre + rng.uniform(-2, 2, (n, 2)), (size, size), D, 1.0, origin)
+    s = render_spot("disc", centre + rng.uniform(-2, 2, (n, 2)), (size, size), D, 1.0, origin)
     noise = 0.02 * rng.standard_normal(s.shape)
     F = correlated_background(rng, n, (size, size), 8.0, 0.2)               # background f
     u = s + F + noise
@@ -199,9 +199,10 @@ def test_seed_reproduces_and_interferers_sit_on_circle():
     np.testing.assert_allclose(np.diff(ang), 2 * np.pi / 5)
 
 
-def test_disc_flux_and_background_correlation():
-    img = disc_spot(np.array([10.3, 9.8]), (24, 24), D)
-    assert img.sum() == pytest.approx(np.pi * D**2 / 4, rel=0.01)
+def test_render_spot_brightness_per_covered_pixel_and_background_correlation():
+    for spot in ("disc", "square"):
+        img = render_spot(spot, np.array([10.3, 9.8]), (24, 24), D, 2.5)
+        assert img.max() == pytest.approx(2.5, rel=1e-12)
     f = correlated_background(np.random.default_rng(6), 4, (128, 128), 8.0, 2.0)
     assert f.std() == pytest.approx(2.0, rel=0.05)
     rho = np.mean(f[:, :, :-8] * f[:, :, 8:]) / f.var()                    # at tau = l_c: exp(-1)

@@ -4,7 +4,7 @@ from scipy import integrate, stats
 
 from tvtrack.measure import centroid, crop
 from tvtrack.montecarlo import make_rng
-from tvtrack.render import box_spot, gate_origin, gaussian_spot, pixel_fractions_gaussian, sensor_readout
+from tvtrack.render import box_spot, disc_area, disc_spot, gate_origin, gaussian_spot, pixel_fractions_gaussian, sensor_readout
 
 
 def test_pixel_fractions_equal_numerical_integrals():
@@ -35,6 +35,28 @@ def test_box_spot_centroid_exact_on_symmetric_positions_and_biased_between():
     bias = centroid(box_spot((7.25, 7.0), (15, 15), 2.3, 1.0), background=None).xy[0] - 7.25
     assert 1e-3 < abs(bias) < 0.1
 
+
+
+@pytest.mark.parametrize("diameter, tolerance", [(4.0, 0.05), (6.5, 0.05), (8.0, 0.01), (16.0, 0.01)])
+def test_disc_spot_conserves_flux_within_stated_tolerance(diameter, tolerance):
+    # any sub-pixel position, disc wholly inside the window: 5 % for D >= 4 px, 1 % for D >= 8 px
+    rng = make_rng(1)
+    centers = 20.0 + rng.uniform(-0.5, 0.5, (200, 2))
+    img = disc_spot(centers, (41, 41), diameter, flux=250.0)
+    assert np.all(np.abs(img.sum(axis=(-2, -1)) / 250.0 - 1) < tolerance)
+    # a fully covered pixel reads flux / (pi R^2); the float32 path agrees with float64
+    assert img[0].max() == pytest.approx(250.0 / disc_area(diameter), rel=1e-12)
+    img32 = disc_spot(centers, (41, 41), diameter, flux=250.0, dtype=np.float32)
+    assert img32.dtype == np.float32 and np.allclose(img32, img, atol=1e-4)
+
+
+@pytest.mark.parametrize("center", [(7.0, 7.0), (7.5, 6.5), (7.5, 7.5)])
+def test_centred_disc_spot_centroid_is_exact(center):
+    # centred on a pixel centre, edge or corner the coverage is mirror-symmetric: centroid exact
+    c = centroid(disc_spot(center, (15, 15), 8.0, 100.0), background=None)
+    assert np.allclose(c.xy, center, atol=1e-12)
+    with pytest.raises(ValueError, match="diameter"):
+        disc_spot(center, (15, 15), 0.0)
 
 def test_gate_crop_renders_the_same_pixels_as_the_full_frame():
     centers = np.array([[[20.3, 11.7], [3.0, 4.2]]])

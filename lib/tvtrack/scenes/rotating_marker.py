@@ -29,12 +29,13 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
-from ..render import box_spot
+from ..render import box_spot, disc_area, disc_spot
 
 __all__ = [
-    "disc_spot", "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
+    "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
     "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
-    "scenario_truth", "run_scenario", "RotatingMarkerScene", "gate_crop_size",
+    "scenario_truth", "run_scenario", "RotatingMarkerScene", "gate_crop_size", "state_errors",
+    "interference_runs",
 ]
 
 SPOTS = ("disc", "square")
@@ -45,53 +46,13 @@ def _check_spot(spot: str) -> None:
         raise ValueError(f"parameter 'spot' = {spot!r}; it must be one of {SPOTS}")
 
 
-def disc_spot(centers, shape, diameter, brightness=1.0, origin=(0, 0), dtype=np.float64) -> np.ndarray:
-    """Uniform disc integrated over square pixels (anti-aliased coverage).
-
-    The covered fraction of a pixel at distance ``rho`` from the disc centre is approximated by
-    ``clip(R + 1/2 - rho, 0, 1)`` (a unit-width ramp across the edge), ``R = diameter / 2``:
-    exact for pixels well inside or outside, and within a few percent of the pixel area on the
-    edge; the total flux agrees with ``brightness * pi R^2`` to better than 1 % for ``D >= 4``.
-
-    Parameters
-    ----------
-    centers : array_like, shape (..., 2)
-        Disc centres ``(x, y)`` in pixels.
-    shape : (int, int)
-        Window size ``(rows, cols)``.
-    diameter : float
-        Disc diameter ``D`` in pixels (> 0).
-    brightness : float or array_like, shape (...)
-        Value of a fully covered pixel.
-    origin : array_like, shape (2,) or (..., 2)
-        ``(x0, y0)`` of the window's first pixel centre.
-
-    Returns
-    -------
-    ndarray, shape (..., rows, cols)
-    """
-    if not diameter > 0:
-        raise ValueError(f"parameter 'diameter' = {diameter}; it must be > 0")
-    c = np.asarray(centers, dtype=float)
-    o = np.asarray(origin, dtype=float)
-    rows, cols = shape
-    dx = (o[..., 0, None] + np.arange(cols) - c[..., 0, None]).astype(dtype)
-    dy = (o[..., 1, None] + np.arange(rows) - c[..., 1, None]).astype(dtype)
-    cover = np.square(dx)[..., None, :] + np.square(dy)[..., :, None]
-    np.sqrt(cover, out=cover)
-    np.subtract(dtype(diameter / 2 + 0.5), cover, out=cover)
-    np.clip(cover, 0.0, 1.0, out=cover)
-    cover *= np.asarray(brightness, dtype=dtype)[..., None, None]
-    return cover
-
-
 def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
     """A marker or interferer spot: ``"disc"`` (diameter ``D``) or ``"square"`` (side ``D``),
     ``brightness`` per fully covered pixel; shape ``(..., rows, cols)``."""
     _check_spot(spot)
-    if spot == "disc":
-        return disc_spot(centers, shape, diameter, brightness, origin)
     b = np.asarray(brightness, dtype=float)
+    if spot == "disc":
+        return disc_spot(centers, shape, diameter, b * disc_area(diameter), origin)
     return box_spot(centers, shape, diameter / 2, b * diameter**2, origin)
 
 
@@ -362,7 +323,8 @@ class RotatingMarkerScene:
 
     def _spot(self, centers, size, origin, brightness) -> np.ndarray:
         if self.spot == "disc":
-            return disc_spot(centers, (size, size), self.diameter, brightness, origin, dtype=np.float32)
+            flux = np.asarray(brightness, dtype=float) * disc_area(self.diameter)
+            return disc_spot(centers, (size, size), self.diameter, flux, origin, dtype=np.float32)
         return render_spot("square", centers, (size, size), self.diameter, brightness, origin).astype(np.float32)
 
     def frame(self, trial: int, k: int, rng: np.random.Generator | None = None) -> np.ndarray:
@@ -572,3 +534,46 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
                            noise=noise if sc.form == "quadrant" else "pixel", keep_full=keep_full,
                            crop_callback=crop_callback)
     return truth, scene, hist
+
+
+def state_errors(truth: MarkerTruth, history) -> np.ndarray:
+    """Estimate minus truth of a closed-loop run, phase wrapped to ``(-pi, pi]``.
+
+    Parameters
+    ----------
+    truth : MarkerTruth
+        Per-trial truth, arrays of shape (n, T).
+    history : tvtrack.filters.loops.TrackHistory
+        Run with ``keep_full=True`` (``history.estimate`` of shape (n, T, 5)).
+
+    Returns
+    -------
+    ndarray, shape (n, T, 5)
+        Errors of ``x_r, y_r, r`` (px), ``theta`` (rad) and ``omega`` (rad/s).
+    """
+    tr = np.stack([truth.xr, truth.yr, truth.r, truth.theta, truth.omega], axis=-1)
+    e = history.estimate - tr
+    e[..., 3] = np.angle(np.exp(1j * e[..., 3]))
+    return e
+
+
+def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values) -> dict:
+    """Batched interference runs, ``n`` trials per SIR, keeping only what loss detection needs.
+
+    Parameters
+    ----------
+    n : int
+        Trials per SIR value.
+    sc : Scenario
+    sir_values : array_like, shape (m,)
+        Post-compensation signal-to-interference ratios.
+
+    Returns
+    -------
+    dict
+        ``sir`` (m n,) per-trial SIR (trials of one SIR contiguous), ``miss`` (m n, T) px,
+        ``inside`` (m n, T) bool, ``gate`` (m n, T, 2) px, ``interferers`` (m n, q, 2) px.
+    """
+    sir = np.repeat(np.asarray(sir_values, float), n)
+    _, scene, h = run_scenario(rng, sir.size, sc, sir, keep_full=False)
+    return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers)
