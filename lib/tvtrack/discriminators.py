@@ -27,10 +27,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from .render import pixel_fractions_box
+
 
 __all__ = [
     "interval_weights", "quadrant_weights", "quadrant_noise", "quadrant_sums", "quadrant_discriminator", "edge_discriminator",
-    "polar_errors", "static_characteristic", "two_emitter_discriminator", "FORMS",
+    "polar_errors", "static_characteristic", "quadrant_slope_fit", "two_emitter_discriminator",
+    "two_emitter_slope", "FORMS",
 ]
 
 FORMS = ("quadrant", "edge")
@@ -256,6 +259,36 @@ def static_characteristic(render, offsets, *, form: str = "quadrant", half: floa
     return d[axis]
 
 
+
+def quadrant_slope_fit(render, diameter: float, half: float) -> dict:
+    """Slope of the quadrant S-curve at zero error and its straight-line fit over ``+-D/2``.
+
+    Parameters
+    ----------
+    render : callable
+        Spot renderer as in :func:`static_characteristic`.
+    diameter : float
+        Spot diameter or side ``D`` (px).
+    half : float
+        Gate half-size ``A`` (px).
+
+    Returns
+    -------
+    dict
+        ``slope_at_zero``: least-squares slope over offsets ``+-D/8, +-D/4`` (output per px);
+        ``fit_slope_halfD``: slope of the line fitted over 9 offsets in ``[-D/2, D/2]``;
+        ``max_dev_from_line``: largest deviation from that line over the fitted line's value at
+        ``D/2`` (0 for a perfectly linear S-curve). The prediction is ``2 d D`` (section 3).
+    """
+    D = diameter
+    small = np.array([-1.0, -0.5, 0.5, 1.0]) * D / 4
+    f = static_characteristic(render, small, form="quadrant", half=half)
+    grid = np.linspace(-D / 2, D / 2, 9)
+    g = static_characteristic(render, grid, form="quadrant", half=half)
+    lin = np.polyfit(grid, g, 1)
+    return dict(slope_at_zero=float(np.polyfit(small, f, 1)[0]), fit_slope_halfD=float(lin[0]),
+                max_dev_from_line=float(np.max(np.abs(g - np.polyval(lin, grid))) / (lin[0] * D / 2)))
+
 def two_emitter_discriminator(line, origin, lam_hat, *, beta: float, a: float, c1, c2,
                               form: str = "edge", half_gate: float | None = None):
     """1-D two-emitter discriminator, corrected eq. (6) (emitter 1 at ``lambda - beta``).
@@ -297,3 +330,27 @@ def two_emitter_discriminator(line, origin, lam_hat, *, beta: float, a: float, c
     else:
         raise ValueError(f"parameter 'form' = {form!r}; it must be 'edge' or 'integral'")
     return c1 * diff(lam - beta) + c2 * diff(lam + beta)
+
+
+
+def two_emitter_slope(*, beta: float, a: float, form: str = "edge", half_gate: float | None = None,
+                      n: int = 256, step: float = 0.5) -> float:
+    """Numerical slope (output per px of error) of the 1-D two-emitter discriminator at zero error.
+
+    Emitter 1 alone (``c1 = 1``, ``c2 = 0``), a box of half-width ``a`` and unit brightness per
+    fully covered pixel on a line of ``n`` pixels, estimate at the line's centre; central
+    difference over ``step`` px. Used to normalise the discriminator into a pixel error.
+
+    Parameters
+    ----------
+    beta, a : float
+        Emitter half-spacing and half-width (px), as in :func:`two_emitter_discriminator`.
+    form : {"edge", "integral"}
+    half_gate : float, optional
+        Gate half-width of the integral form (px).
+    """
+    c = n / 2
+    vals = [two_emitter_discriminator(2 * a * pixel_fractions_box(np.array([lam - beta]), a, n), 0, np.array([c]),
+                                      beta=beta, a=a, c1=1.0, c2=0.0, form=form, half_gate=half_gate)[0]
+            for lam in (c - step / 2, c + step / 2)]
+    return (vals[1] - vals[0]) / step

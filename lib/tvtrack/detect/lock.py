@@ -19,7 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold"]
+from ..montecarlo import proportion_ci
+
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve"]
 
 KINDS = ("window", "consecutive")
 
@@ -138,3 +140,52 @@ def loss_threshold(sir_values, losses) -> float:
             break
         thr = float(s[i])
     return thr
+
+
+def losses_by_sir(loss_frame, sir, sir_values) -> np.ndarray:
+    """Number of runs that lost lock at each SIR of a grid.
+
+    Parameters
+    ----------
+    loss_frame : ndarray of int, shape (n,)
+        First loss frame per run, -1 if none (:func:`first_loss`).
+    sir : ndarray, shape (n,)
+        Each run's SIR.
+    sir_values : array_like, shape (m,)
+
+    Returns
+    -------
+    ndarray of int, shape (m,)
+    """
+    lost = np.asarray(loss_frame) >= 0
+    return np.array([lost[sir == s].sum() for s in sir_values])
+
+
+def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius: float) -> dict:
+    """Loss-of-lock probability against SIR, with its threshold and the captures.
+
+    Parameters
+    ----------
+    runs : dict
+        ``sir`` (n,), ``miss`` (n, T) px, ``inside`` (n, T) bool, ``gate`` (n, T, 2) px and
+        ``interferers`` (n, q, 2) px, e.g. from
+        :func:`tvtrack.scenes.rotating_marker.interference_runs`; equally many runs per SIR.
+    sir_values : ndarray, shape (m,)
+        The SIR grid.
+    criterion : LossCriterion
+    capture_radius : float
+        Distance (px) from an interferer within which a lost gate counts as captured.
+
+    Returns
+    -------
+    dict
+        ``p``: list of m :class:`tvtrack.montecarlo.Estimate` (Clopper-Pearson), ``losses`` (m,),
+        ``n`` runs per SIR, ``threshold`` (:func:`loss_threshold`), ``captures`` (m,).
+    """
+    loss = first_loss(runs["miss"], criterion, runs["inside"])
+    capt = tag_capture(runs["gate"], runs["interferers"], loss, criterion.window, capture_radius, criterion.fraction)
+    counts = losses_by_sir(loss, runs["sir"], sir_values)
+    n = int((runs["sir"] == sir_values[0]).sum())
+    return dict(p=[proportion_ci(int(c), n) for c in counts], losses=counts, n=n,
+                threshold=loss_threshold(sir_values, counts),
+                captures=np.array([capt[runs["sir"] == s].sum() for s in sir_values]))
