@@ -274,3 +274,51 @@ def test_ekf_step_matches_filterpy():
     ref.predict()
     np.testing.assert_allclose(ekf.state[0], ref.x, rtol=1e-10)
     np.testing.assert_allclose(ekf.P[0], ref.P, rtol=1e-8, atol=1e-12)
+
+
+def test_state_errors_wrap_the_phase():
+    from types import SimpleNamespace
+    from tvtrack.scenes.rotating_marker import state_errors
+    z = np.zeros((1, 2))
+    truth = SimpleNamespace(xr=z + 1, yr=z, r=z + 12, theta=np.array([[3.1, -3.1]]), omega=z + 50)
+    est = np.stack([z + 1.5, z - 2, z + 11, np.array([[-3.1, 3.1]]), z + 51], axis=-1)
+    e = state_errors(truth, SimpleNamespace(estimate=est))
+    np.testing.assert_allclose(e[0, :, [0, 1, 2, 4]].T, [[0.5, -2, -1, 1]] * 2)
+    np.testing.assert_allclose(e[0, :, 3], [2 * np.pi - 6.2, 6.2 - 2 * np.pi], atol=1e-12)
+
+
+def test_loss_curve_counts_losses_threshold_and_captures():
+    from tvtrack.detect.lock import loss_curve
+    T, crit = 100, LossCriterion(12.0, 10, 0.5)
+    sir = np.repeat([1.0, 2.0, 4.0], 2)
+    miss = np.zeros((6, T))
+    miss[:3, 40:] = 20.0                                   # both runs at SIR 1 and one at SIR 2 lose lock
+    q = np.array([[[50.0, 50.0]]] * 6)
+    gate = np.full((6, T, 2), 80.0)
+    gate[0, 40:] = 50.0                                    # run 0 sits on the interferer: a capture
+    runs = dict(sir=sir, miss=miss, inside=np.ones((6, T), bool), gate=gate, interferers=q)
+    c = loss_curve(runs, np.array([1.0, 2.0, 4.0]), crit, capture_radius=4.5)
+    assert c["losses"].tolist() == [2, 1, 0] and c["captures"].tolist() == [1, 0, 0] and c["n"] == 2
+    assert c["threshold"] == 4.0 and c["p"][0].value == 1.0 and c["p"][2].value == 0.0
+
+
+def test_band_power_share_of_a_tone_and_of_white_noise():
+    from tvtrack.filters.loops import band_power_share
+    fs, t = 500.0, np.arange(4000) / 500.0
+    rng = np.random.default_rng(8)
+    tone = np.sin(2 * np.pi * 8.0 * t) + 0.01 * rng.standard_normal((3, t.size))
+    share, f, p = band_power_share(tone, fs, 7.0, 9.0)
+    assert np.all(share > 0.85) and p.shape == (3, f.size)   # the Hann window leaks ~10 % out of the band
+    white, _, _ = band_power_share(rng.standard_normal((3, t.size)), fs, 7.0, 9.0)
+    in_band = np.sum((f >= 7.0) & (f <= 9.0))                # a flat PSD: the band's share of the bins
+    assert np.all(np.abs(white - in_band / f.size) < 0.006)
+
+
+def test_slope_helpers_match_the_predicted_slopes():
+    from tvtrack.discriminators import quadrant_slope_fit, two_emitter_slope
+    sq = quadrant_slope_fit(_renderer("square"), D, A)
+    assert sq["slope_at_zero"] == pytest.approx(2 * D, rel=1e-9)   # pixel edges soften only the ends of +-D/2
+    assert sq["fit_slope_halfD"] == pytest.approx(2 * D, rel=0.03) and sq["max_dev_from_line"] < 0.03
+    assert quadrant_slope_fit(_renderer("disc"), D, A)["slope_at_zero"] == pytest.approx(2 * D, rel=0.05)
+    # integral form: a box of unit brightness moving by one px shifts 2 units across the gate centre
+    assert two_emitter_slope(beta=12.0, a=4.0, form="integral", half_gate=12.0) == pytest.approx(2.0, rel=0.05)
