@@ -30,8 +30,8 @@ EXPECT: dict[str, Expectation] = {
     "000_dissector_ekf": Expectation(image=False),
     # truth ring and estimate dot are sized in screen points: each must stay clearly visible (was 9-35 px)
     "001_maneuver_occlusion_kf": Expectation(min_overlay_px=30),
-    # batch EM location: no gate; the series are the EM log-likelihood and parameters per iteration
-    "002_unified_location_em": Expectation(overlays=("truth", "estimate"), series_root="em"),
+    # batch EM location: no gate (per-frame errors under errors/; EM history on the "iteration" line)
+    "002_unified_location_em": Expectation(overlays=("truth", "estimate")),
     # the paper's estimates are the measured spot centre and the centre predicted ahead
     "004_laser_spot_prediction": Expectation(overlays=("gate", "truth", "measured", "predicted")),
 }
