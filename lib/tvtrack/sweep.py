@@ -9,6 +9,7 @@ Spec format (see README, "Sweeps")::
     [grid]     horizon_frames = [1, 2, 5]      # cartesian product
     [zip]      a = [1, 2]; b = [10, 20]        # varied together (equal lengths)
     [summary]  x = "horizon_frames"; y = "rms_px.value"; hue = "noise"
+               # optional: xlabel, ylabel, title, xscale/yscale = "log"
 
 Each run's directory is ``<sweep dir>/runs/<hash>``, the hash a stable digest of the notebook
 and its parameters, so a sweep started again skips the runs already finished (resume). A run
@@ -297,6 +298,8 @@ def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | No
             lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
             hi = [np.mean([r[f"{base}.ci_high"] for r in items if r[x] == v]) for v in xs]
             ax.fill_between(xs, lo, hi, alpha=0.2, color=line.get_color())
+    ax.set_xscale(summary.get("xscale", "linear"))
+    ax.set_yscale(summary.get("yscale", "linear"))
     ax.set_xlabel(summary.get("xlabel", x))
     ax.set_ylabel(summary.get("ylabel", y))
     ax.set_title(summary.get("title", sweep_dir.name))
