@@ -1,6 +1,6 @@
 import pytest
 
-from tvtrack.parameters import (Boolean, Choice, Integer, IntegerList, OutputDir, Real, RealList,
+from tvtrack.parameters import (Boolean, Choice, ChoiceList, Integer, IntegerList, OutputDir, Real, RealList,
                                 validate_parameters)
 
 
@@ -27,6 +27,9 @@ def test_valid_parameters_are_returned_normalised(tmp_path):
     ("mode", "x", {"mode": Choice("a", "b")}, "parameter 'mode' = 'x' is out of range; it must be one of 'a', 'b'"),
     ("w", [0.5, 3.0], {"w": RealList(0, 2)}, "parameter 'w' = [0.5, 3.0]"),
     ("w", [], {"w": RealList(0, 2)}, "a list of 1..any real numbers"),
+    ("figs", ["fig1", "fig9"], {"figs": ChoiceList("fig1", "fig2")}, "distinct values from 'fig1', 'fig2'"),
+    ("figs", ["fig1", "fig1"], {"figs": ChoiceList("fig1", "fig2")}, "parameter 'figs' = ['fig1', 'fig1']"),
+    ("figs", [], {"figs": ChoiceList("fig1")}, "at least 1 distinct"),
 ])
 def test_bad_value_names_parameter_value_and_range(tmp_path, name, value, rules, expected):
     with pytest.raises(ValueError) as err:

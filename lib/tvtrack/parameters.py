@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 __all__ = [
-    "Rule", "Integer", "Real", "Choice", "Boolean", "OutputDir", "RealList", "IntegerList",
+    "Rule", "Integer", "Real", "Choice", "Boolean", "OutputDir", "RealList", "IntegerList", "ChoiceList",
     "validate_parameters", "COMMON_RULES",
 ]
 
@@ -170,6 +170,29 @@ class IntegerList(Rule):
     def describe(self) -> str:
         size = f"{self.min_len}..{self.max_len if self.max_len is not None else 'any'}"
         return f"a list of {size} integers, each in {_interval(self.low, self.high, False, False)}"
+
+
+@dataclass(frozen=True)
+class ChoiceList(Rule):
+    """A list of distinct values, each one of a fixed set (e.g. which figures to compute)."""
+
+    options: tuple
+    min_len: int = 1
+
+    def __init__(self, *options, min_len: int = 1):
+        object.__setattr__(self, "options", tuple(options))
+        object.__setattr__(self, "min_len", min_len)
+
+    def check(self, value):
+        if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) < self.min_len:
+            raise TypeError
+        if any(v not in self.options for v in value) or len(set(value)) != len(value):
+            raise TypeError
+        return list(value)
+
+    def describe(self) -> str:
+        return (f"a list of at least {self.min_len} distinct values from "
+                + ", ".join(repr(o) for o in self.options))
 
 
 @dataclass(frozen=True)
