@@ -163,19 +163,24 @@ class Recorder:
             self._rec.log(path, rr.Transform3D(translation=[x0, y0, 0.0]))
 
     # -- geometry -------------------------------------------------------------------------
-    def points(self, path: str, xy, *, radii=None, colors=None, labels=None, image_space: bool = True) -> None:
-        """Log 2-D points (N, 2) in pixels at the current frame."""
+    def points(self, path: str, xy, *, radii=None, colors=None, labels=None, image_space: bool = True,
+               draw_order: float | None = None) -> None:
+        """Log 2-D points (N, 2) in pixels at the current frame (higher ``draw_order`` on top;
+        negative ``radii`` are in screen points, so markers keep their size when zoomed)."""
         if self.enabled:
-            self._rec.log(path, rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels))
+            self._rec.log(path, rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels,
+                                            draw_order=draw_order))
 
-    def boxes(self, path: str, centers, half_sizes, *, colors=None, labels=None, image_space: bool = True) -> None:
+    def boxes(self, path: str, centers, half_sizes, *, colors=None, labels=None, image_space: bool = True,
+              draw_order: float | None = None) -> None:
         """Log axis-aligned gates (N, 2) centres and half-sizes in pixels."""
         if self.enabled:
             self._rec.log(path, rr.Boxes2D(centers=_xy(centers, image_space),
                                            half_sizes=np.asarray(half_sizes, dtype=np.float32).reshape(-1, 2),
-                                           colors=colors, labels=labels))
+                                           colors=colors, labels=labels, draw_order=draw_order))
 
-    def lines(self, path: str, strips, *, colors=None, radii=None, labels=None, image_space: bool = True) -> None:
+    def lines(self, path: str, strips, *, colors=None, radii=None, labels=None, image_space: bool = True,
+              draw_order: float | None = None) -> None:
         """Log polylines: one (N, 2) array or a list of them (trajectories, rotated gates,
         ellipses from :func:`ellipse_outline`)."""
         if not self.enabled:
@@ -183,7 +188,7 @@ class Recorder:
         if isinstance(strips, np.ndarray) and strips.ndim == 2:
             strips = [strips]
         self._rec.log(path, rr.LineStrips2D([_xy(s, image_space) for s in strips], colors=colors, radii=radii,
-                                            labels=labels))
+                                            labels=labels, draw_order=draw_order))
 
     # -- scalars --------------------------------------------------------------------------
     def scalar(self, path: str, value: float) -> None:

@@ -32,6 +32,8 @@ __all__ = [
 ]
 
 KERNEL_NAME = os.environ.get("TVTRACK_KERNEL", "python3")
+# papermill's 60 s default is too short for a kernel to start while a sweep loads every core
+KERNEL_START_TIMEOUT_S = 300
 
 
 def list_notebooks() -> list[Path]:
@@ -125,6 +127,7 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
             str(nb), str(tmp / "notebook.ipynb"), parameters=params, cwd=str(tmp),
             kernel_name=kernel_name or KERNEL_NAME, progress_bar=progress,
             execution_timeout=timeout_s, log_output=False,
+            start_timeout=KERNEL_START_TIMEOUT_S,
         )
         status = "ok"
         if not (tmp / "results.json").is_file():
