@@ -27,9 +27,9 @@ from typing import Callable
 
 import numpy as np
 
-from .kalman import kf_predict, kf_update
+from .kalman import KalmanOutput, kf_predict, kf_update
 
-__all__ = ["ExtendedKalmanFilter", "EKFOutput", "ekf_update", "joseph_update_scalar"]
+__all__ = ["ExtendedKalmanFilter", "ekf_update", "joseph_update_scalar"]
 
 
 def joseph_update_scalar(x, P, nu, H, R, mask=None):
@@ -106,26 +106,6 @@ def ekf_update(x_prior, P_prior, z, h, jacobian, noise_cov, k, mask=None, noise_
     return x, P, nu, S
 
 
-@dataclass(frozen=True)
-class EKFOutput:
-    """Filter history; time is the axis after the batch axes.
-
-    Attributes
-    ----------
-    x_prior, x : ndarray, shape (..., T, n)    predicted and updated states
-    P_prior, P : ndarray, shape (..., T, n, n)
-    innovation : ndarray, shape (..., T, m)    NaN where the measurement was absent
-    S : ndarray, shape (..., T, m, m)          innovation covariance
-    """
-
-    x_prior: np.ndarray
-    P_prior: np.ndarray
-    x: np.ndarray
-    P: np.ndarray
-    innovation: np.ndarray
-    S: np.ndarray
-
-
 @dataclass
 class ExtendedKalmanFilter:
     """EKF with linear dynamics and a nonlinear observation whose noise may depend on the state.
@@ -165,7 +145,7 @@ class ExtendedKalmanFilter:
             R = np.asarray(self.noise_cov, dtype=float)
             self.noise_cov = lambda x, k, _R=R: _R
 
-    def run(self, zs, x0, P0) -> EKFOutput:
+    def run(self, zs, x0, P0) -> KalmanOutput:
         """Filter measurements ``zs`` (..., T, m); NaN rows are missing (the filter coasts).
 
         As in :meth:`tvtrack.filters.kalman.KalmanFilter.run`, ``(x0, P0)`` is the prior for
@@ -210,4 +190,7 @@ class ExtendedKalmanFilter:
             out["x"][t] = x
             out["P"][t] = P
         axis = len(batch)
-        return EKFOutput(**{key: np.moveaxis(v, 0, axis) for key, v in out.items()})
+        hist = {key: np.moveaxis(v, 0, axis) for key, v in out.items()}
+        nu = hist["innovation"]
+        hist["nis"] = np.einsum("...i,...i->...", nu, np.linalg.solve(hist["S"], nu[..., None])[..., 0])
+        return KalmanOutput(**hist)
