@@ -33,8 +33,8 @@ def test_both_variants_1000_trials_600_steps(benchmark, data):
 
 @pytest.mark.parametrize("spec", ["000_fig2_psi", "000_fig3_contrast"])
 def test_figure_sweeps_at_paper_profile(benchmark, spec, tmp_path):
-    from tvtrack.paths import SWEEP_DIR
-    from tvtrack.sweep import run_sweep
+    from tvtrack.pipeline.paths import SWEEP_DIR
+    from tvtrack.pipeline.sweep import run_sweep
 
     t0 = time.perf_counter()
     summary = benchmark.pedantic(lambda: run_sweep(Path(SWEEP_DIR) / f"{spec}.toml", jobs=2,

@@ -34,7 +34,7 @@ def test_one_em_iteration_2_objects_50_frames_64x64(benchmark):
 
 
 def test_figure_set_at_paper_profile(benchmark, tmp_path):
-    from tvtrack.runner import run_notebook
+    from tvtrack.pipeline.runner import run_notebook
 
     t0 = time.perf_counter()
     outcome = benchmark.pedantic(lambda: run_notebook("002_unified_location_em", tmp_path / "run",

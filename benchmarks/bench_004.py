@@ -18,9 +18,9 @@ import numpy as np
 
 from tvtrack.measure import centroid
 from tvtrack.predictors import growing_memory_forecast
-from tvtrack.paths import DATA_DIR
+from tvtrack.traces import DATA_DIR
 from tvtrack.render import gate_origin, gaussian_spot, sensor_readout
-from tvtrack.runner import run_notebook
+from tvtrack.pipeline.runner import run_notebook
 from tvtrack.scenes.beam_wander import SpotCamera
 from tvtrack.traces import load_traces
 

@@ -7,9 +7,9 @@ import os
 import shutil
 import time
 
-from tvtrack.paths import REPO_ROOT
-from tvtrack.runner import run_notebook
-from tvtrack.sweep import run_sweep
+from tvtrack.pipeline.paths import REPO_ROOT
+from tvtrack.pipeline.runner import run_notebook
+from tvtrack.pipeline.sweep import run_sweep
 
 FIXTURE_NOTEBOOK = REPO_ROOT / "tests" / "fixtures" / "fixture_centroid.ipynb"
 FIXTURE_SWEEP = REPO_ROOT / "tests" / "fixtures" / "fixture_sweep.toml"

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tvtrack.runner import list_notebooks, run_notebook
+from tvtrack.pipeline.runner import list_notebooks, run_notebook
 
 FIXTURES = Path(__file__).parent / "fixtures"
 FIXTURE_NOTEBOOK = FIXTURES / "fixture_centroid.ipynb"

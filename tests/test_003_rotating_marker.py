@@ -11,9 +11,9 @@ from tvtrack.discriminators import (edge_discriminator, interval_weights, polar_
 from tvtrack.filters.loops import (RotatingGateTracker, loop_gains, loop_poles, run_closed_loop,
                                    simulate_two_emitter_1d)
 from tvtrack.render import box_spot, pixel_fractions_box
+from tvtrack.measure import gate_crop_size
 from tvtrack.scenes.rotating_marker import (RotatingMarkerScene, Scenario, correlated_background,
-                                            gate_crop_size, marker_truth, place_interferers, render_spot,
-                                            run_scenario)
+                                            marker_truth, place_interferers, render_spot, run_scenario)
 
 D, A = 8.0, 12.0
 

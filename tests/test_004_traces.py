@@ -7,7 +7,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from tvtrack.paths import DATA_DIR
+from tvtrack.traces import DATA_DIR
 from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, gauss_markov_discrete,
                                         generate_traces, optimal_wander_forecast, scaled_config,
                                         wander_state_space)

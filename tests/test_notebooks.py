@@ -15,9 +15,9 @@ import nbformat
 import pytest
 
 from conftest import NOTEBOOK_NAMES
-from tvtrack.paths import NOTEBOOK_DIR, PROFILE_DIR, SWEEP_DIR
+from tvtrack.pipeline.paths import NOTEBOOK_DIR, PROFILE_DIR, SWEEP_DIR
 from tvtrack.results import VERDICTS, load_results
-from tvtrack.sweep import load_spec
+from tvtrack.pipeline.sweep import load_spec
 
 COMMON = ("seed", "n_trials", "output_dir", "rerun_mode")
 

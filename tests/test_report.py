@@ -1,8 +1,8 @@
 import pytest
 
 from conftest import FIXTURE_NOTEBOOK
-from tvtrack.report import format_measured, write_report
-from tvtrack.runner import run_notebook
+from tvtrack.pipeline.report import format_measured, write_report
+from tvtrack.pipeline.runner import run_notebook
 
 
 @pytest.fixture(scope="module")

@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURE_NOTEBOOK, FIXTURE_SWEEP
-from tvtrack.runner import read_run, run_notebook
-from tvtrack.sweep import expand, load_spec, run_sweep
+from tvtrack.pipeline.runner import read_run, run_notebook
+from tvtrack.pipeline.sweep import expand, load_spec, run_sweep
 
 SWEEP_PARAMS = {"n_trials": 20, "n_frames": 5, "rerun_mode": "off"}
 

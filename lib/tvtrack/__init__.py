@@ -9,7 +9,7 @@ Modules are named for what they do:
 - :mod:`tvtrack.render`      pixel-integrated scene rendering and sensor read-out
 - :mod:`tvtrack.measure`     gates and measurements inside them (centroids)
 - :mod:`tvtrack.filters`     batched Kalman and polynomial (growing-memory) filters
-- :mod:`tvtrack.runner`, :mod:`tvtrack.sweep`, :mod:`tvtrack.report`  running notebooks and sweeps
+- :mod:`tvtrack.pipeline.runner`, :mod:`tvtrack.pipeline.sweep`, :mod:`tvtrack.pipeline.report`  running notebooks and sweeps
 """
 
 __version__ = "0.1.0"

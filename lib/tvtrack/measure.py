@@ -10,7 +10,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["crop", "border_statistics", "Centroid", "centroid"]
+__all__ = ["gate_crop_size", "crop", "border_statistics", "Centroid", "centroid"]
+
+
+def gate_crop_size(gate_half: float) -> int:
+    """Side (px) of the square crop that holds a gate ``[c - A, c + A]`` at any sub-pixel
+    position: ``ceil(2 A) + 2``."""
+    return int(np.ceil(2 * gate_half)) + 2
 
 
 def crop(images, origin, size) -> np.ndarray:

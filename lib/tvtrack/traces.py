@@ -29,9 +29,12 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["TraceSet", "save_traces", "load_traces", "sha256_file", "FORMAT_TAG"]
+__all__ = ["TraceSet", "save_traces", "load_traces", "sha256_file", "FORMAT_TAG", "DATA_DIR"]
 
 FORMAT_TAG = "tvtrack-traces-v1"
+
+#: The repository's ``data/`` folder with the shipped data sets (the package is installed editable from ``lib/``).
+DATA_DIR = Path(__file__).resolve().parents[2] / "data"
 
 _REQUIRED = ("centres_px", "intensity", "frame_rate_hz", "image_size_px", "metadata_json", "format")
 

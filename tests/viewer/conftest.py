@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from tvtrack.paths import REPO_ROOT
-from tvtrack.runner import list_notebooks, run_notebook
+from tvtrack.pipeline.paths import REPO_ROOT
+from tvtrack.pipeline.runner import list_notebooks, run_notebook
 
 # test-fixture notebook -> parameter overrides that make it a smoke run
 FIXTURE_RUNS = {REPO_ROOT / "tests" / "fixtures" / "fixture_centroid.ipynb": {"n_trials": 20}}
@@ -58,7 +58,7 @@ def headless_viewer():
     Skips (with the reason and what to install) where no Vulkan driver is present, unless
     ``TVTRACK_REQUIRE_VIEWER=1`` (set in CI, where the driver is installed), which fails instead.
     """
-    from tvtrack.viewer import HeadlessViewer, ViewerUnavailable
+    from tvtrack.pipeline.viewer import HeadlessViewer, ViewerUnavailable
 
     viewer = HeadlessViewer()
     try:

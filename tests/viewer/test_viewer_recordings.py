@@ -1,5 +1,5 @@
 """Every notebook's smoke-profile recording opens in the real Rerun viewer and shows what a user
-looks for (:func:`tvtrack.viewer.check_recording`): the blueprint's 2-D image view and
+looks for (:func:`tvtrack.pipeline.viewer.check_recording`): the blueprint's 2-D image view and
 time-series view, the image, gate, truth and estimate entities and the error series, no view
 reporting an error or warning, and per-view screenshots in which the gate, the truth, the
 estimate and a plotted line are visible (coarse coloured-pixel counts by ablation; no golden
@@ -17,8 +17,8 @@ import time
 
 import pytest
 
-from tvtrack.paths import REPO_ROOT
-from tvtrack.viewer import Expectation, check_recording, verify_rrd
+from tvtrack.pipeline.paths import REPO_ROOT
+from tvtrack.pipeline.viewer import Expectation, check_recording, verify_rrd
 
 SCREENSHOT_DIR = REPO_ROOT / "docs" / "screenshots"
 UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"

@@ -13,7 +13,7 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from tvtrack.record import Recorder, image_and_series_blueprint
-from tvtrack.viewer import (INSTALL_HINT, Expectation, HeadlessViewer, ViewerUnavailable, check_recording,
+from tvtrack.pipeline.viewer import (INSTALL_HINT, Expectation, HeadlessViewer, ViewerUnavailable, check_recording,
                             coloured_mask, dominant_colours, entities_under, plays_role, verify_rrd,
                             vulkan_problem)
 

@@ -25,6 +25,7 @@ from scipy import signal
 
 from ..discriminators import edge_discriminator, polar_errors, quadrant_noise, \
     quadrant_weights, two_emitter_discriminator
+from ..measure import gate_crop_size
 from ..render import pixel_fractions_box
 
 __all__ = [
@@ -170,8 +171,6 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
     crop_callback : callable, optional
         ``f(k, crops, origin)`` called each frame (e.g. to record trial 0's gate crop).
     """
-    from ..scenes.rotating_marker import gate_crop_size
-
     if form not in ("quadrant", "edge"):
         raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant' or 'edge'")
     if noise not in ("pixel", "projected") or (noise == "projected" and form != "quadrant"):

@@ -34,7 +34,7 @@ from ..render import box_spot, disc_area, disc_spot
 __all__ = [
     "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
     "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
-    "scenario_truth", "run_scenario", "RotatingMarkerScene", "gate_crop_size", "state_errors",
+    "scenario_truth", "run_scenario", "RotatingMarkerScene", "state_errors",
     "interference_runs",
 ]
 
@@ -165,12 +165,6 @@ def place_interferers(rng: np.random.Generator, n: int, count: int, center, radi
     return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
 
 
-def gate_crop_size(gate_half: float) -> int:
-    """Side (px) of the square crop that holds a gate ``[c - A, c + A]`` at any sub-pixel
-    position: ``ceil(2 A) + 2``."""
-    return int(np.ceil(2 * gate_half)) + 2
-
-
 def add_spots(images, centers, brightness, spot: str, diameter: float) -> None:
     """Add spots to images in place, each rendered only in a small patch around it.
 
@@ -288,7 +282,7 @@ class RotatingMarkerScene:
         centres : ndarray, shape (n, 2)
             Gate centres (px).
         size : int
-            Crop side (px), e.g. :func:`gate_crop_size`.
+            Crop side (px), e.g. :func:`tvtrack.measure.gate_crop_size`.
         rng : numpy.random.Generator or None
             Draws the sensor noise (None: noise-free).
 

@@ -2,9 +2,8 @@
 
 from pathlib import Path
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
+REPO_ROOT = Path(__file__).resolve().parents[3]
 NOTEBOOK_DIR = REPO_ROOT / "notebooks"
-DATA_DIR = REPO_ROOT / "data"
 RUNS_DIR = REPO_ROOT / "papermill_runs"
 PROFILE_DIR = RUNS_DIR / "profiles"
 SWEEP_DIR = RUNS_DIR / "sweeps"

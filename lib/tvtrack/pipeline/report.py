@@ -1,6 +1,6 @@
 """``make reproduce``: run every notebook at paper scale, then write ``REPRODUCTION.md``.
 
-Outputs: ``papermill_runs/reproduce/<notebook>/`` (a run directory, see :mod:`tvtrack.runner`)
+Outputs: ``papermill_runs/reproduce/<notebook>/`` (a run directory, see :mod:`tvtrack.pipeline.runner`)
 and ``REPRODUCTION.md`` at the repository root, rebuilt from those directories by
 :func:`write_report` (``python -m tvtrack report``).
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from .paths import REPO_ROOT, RUNS_DIR
-from .results import VERDICTS
+from ..results import VERDICTS
 from .runner import list_notebooks, read_run, run_notebook
 
 __all__ = ["REPRODUCE_DIR", "REPORT_PATH", "reproduce", "write_report", "format_measured"]

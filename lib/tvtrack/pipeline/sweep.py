@@ -15,7 +15,7 @@ Each run's directory is ``<sweep dir>/runs/<hash>``, the hash a stable digest of
 and its parameters, so a sweep started again skips the runs already finished (resume). A run
 that fails is recorded in its directory (``run.json`` with the error, ``error.txt``) and never
 stops the others; the sweep exits non-zero if any run failed. A run's directory appears only
-when the run has ended (see :mod:`tvtrack.runner`).
+when the run has ended (see :mod:`tvtrack.pipeline.runner`).
 """
 
 from __future__ import annotations

@@ -1,0 +1,77 @@
+"""The library's two layers: science modules never import the pipeline, and no import circle."""
+
+import ast
+from pathlib import Path
+
+import tvtrack
+
+PKG = Path(tvtrack.__file__).resolve().parent
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(PKG.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _resolve(module: str, node: ast.ImportFrom, is_package: bool) -> list[str]:
+    if node.level == 0:
+        base = node.module or ""
+    else:
+        pkg = module.split(".") if is_package else module.split(".")[:-1]
+        pkg = pkg[: len(pkg) - (node.level - 1)]
+        base = ".".join(pkg + ([node.module] if node.module else []))
+    names = [f"{base}.{a.name}" for a in node.names]
+    return [base] + names
+
+
+def import_graph() -> dict[str, set[str]]:
+    """``module -> tvtrack modules it imports`` (at any depth of the file, lazy imports included)."""
+    files = {_module_name(p): p for p in PKG.rglob("*.py")}
+    graph = {}
+    for name, path in files.items():
+        deps = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                targets = _resolve(name, node, path.name == "__init__.py")
+            elif isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            else:
+                continue
+            deps |= {t for t in targets if t in files and t != name}
+        graph[name] = deps
+    return graph
+
+
+def test_science_modules_import_nothing_from_the_pipeline():
+    offenders = {m: sorted(d for d in deps if d.startswith("tvtrack.pipeline"))
+                 for m, deps in import_graph().items()
+                 if not m.startswith("tvtrack.pipeline") and m != "tvtrack.__main__"}  # `python -m tvtrack` is the CLI
+    assert {m: d for m, d in offenders.items() if d} == {}
+
+
+def test_import_graph_has_no_circle():
+    graph = import_graph()
+    # a package's __init__ importing nothing of its children keeps edges child -> parent harmless
+    state: dict[str, int] = {}
+    cycle: list[str] = []
+
+    def visit(node, stack):
+        state[node] = 1
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == 1:
+                cycle.extend(stack[stack.index(nxt):] + [node, nxt] if nxt in stack else [node, nxt])
+                return True
+            if state.get(nxt) is None and visit(nxt, stack + [node]):
+                return True
+        state[node] = 2
+        return False
+
+    for start in sorted(graph):
+        if state.get(start) is None and visit(start, []):
+            break
+    assert cycle == []
+
+
+def test_graph_sees_the_lazy_import_of_the_loops_from_the_scene():
+    # guards the test itself: a lazy import inside a function counts as an edge
+    assert "tvtrack.filters.loops" in import_graph()["tvtrack.scenes.rotating_marker"]
