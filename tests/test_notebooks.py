@@ -4,8 +4,11 @@ the committed file, then an execution of its smoke profile."""
 from __future__ import annotations
 
 import ast
+import base64
+import hashlib
 import io
 import json
+import re
 import subprocess
 import sys
 import tokenize
@@ -110,9 +113,10 @@ def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
     prefix = "C" + name[:3] + "-"
     for claim in data["claims"]:
         assert claim["id"].startswith(prefix) and claim["verdict"] in VERDICTS
-        assert claim["acceptance"] and claim["statement"]
+        assert claim["acceptance"] == claim["rule"]["text"] and claim["statement"]
         if claim["verdict"] != "not checkable":
             assert claim["measured"] is not None, f"{claim['id']}: a verdict needs a measured value"
+            assert claim["robustness"]["label"] in ("robust", "depends", "unstable"), claim["id"]
     for fig in data["figures"]:
         assert (outcome.run_dir / fig["file"]).is_file() and fig["caption"]
     written = {p.name for p in outcome.run_dir.iterdir()}
@@ -123,3 +127,59 @@ def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
     verify = subprocess.run([str(Path(sys.executable).parent / "rerun"), "rrd", "verify", str(rrd)],
                             capture_output=True, text=True, timeout=120)
     assert verify.returncode == 0, verify.stderr
+
+
+# An output that is only a bare repr: a text/plain result with no richer form, e.g. PosixPath('x'),
+# Claim(id=...), np.False_, <Figure size ...>, [<matplotlib.lines.Line2D ...>].
+BARE_REPR = re.compile(r"^(\w+(\.\w+)*\(.*\)|np\.\w+_?(\(.*\))?|<[\w.]+ .*>|\[<[\w.]+ .*>\]|Text\(.*\))$", re.S)
+
+
+def _outputs(nb):
+    for i, cell in enumerate(nb.cells):
+        if cell.cell_type == "code":
+            for out in cell.outputs:
+                yield i, out
+
+
+@pytest.mark.notebook
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_executed_notebook_shows_every_figure_inline_with_its_caption(name, smoke_run):
+    outcome = smoke_run(name)
+    assert outcome.ok, outcome.error
+    data = load_results(outcome.run_dir / "results.json")
+    nb = nbformat.read(outcome.run_dir / "notebook.ipynb", as_version=4)
+    shown = {hashlib.sha256(base64.b64decode(out["data"]["image/png"])).hexdigest()
+             for _, out in _outputs(nb) if "data" in out and "image/png" in out["data"]}
+    markdown = "\n".join(out["data"]["text/markdown"] for _, out in _outputs(nb)
+                         if "data" in out and "text/markdown" in out["data"])
+    for fig in data["figures"]:
+        digest = hashlib.sha256((outcome.run_dir / fig["file"]).read_bytes()).hexdigest()
+        assert digest in shown, f"{name}: {fig['file']} is saved but not shown inline"
+        assert fig["caption"] in markdown, f"{name}: the caption of {fig['file']} is not shown"
+
+
+@pytest.mark.notebook
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_executed_notebook_has_no_bare_reprs_or_warnings(name, smoke_run):
+    outcome = smoke_run(name)
+    assert outcome.ok, outcome.error
+    nb = nbformat.read(outcome.run_dir / "notebook.ipynb", as_version=4)
+    for i, out in _outputs(nb):
+        if out["output_type"] == "stream":
+            assert out["name"] != "stderr", f"{name} cell {i}: stderr output {out['text'][:200]!r}"
+            assert "Warning" not in out["text"], f"{name} cell {i}: a warning in the output {out['text'][:200]!r}"
+        elif out["output_type"] in ("execute_result", "display_data"):
+            data = out["data"]
+            if set(data) == {"text/plain"}:
+                text = data["text/plain"].strip()
+                assert not BARE_REPR.match(text), f"{name} cell {i}: bare repr {text[:120]!r}"
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_no_verdict_is_typed_in_a_code_cell(name):
+    for cell in read(name).cells:
+        if cell.cell_type == "code":
+            strings = [node.value for node in ast.walk(ast.parse(cell.source))
+                       if isinstance(node, ast.Constant) and isinstance(node.value, str)]
+            typed = [s for s in strings if s.strip() in ("reproduced", "partly", "not reproduced")]
+            assert not typed, f"{name}: a verdict typed in code {typed}; a rule object decides verdicts"

@@ -3,12 +3,17 @@
 A notebook builds one :class:`Results`, adds metrics, figures and claim verdicts while it runs,
 and calls :meth:`Results.write` at the end. Notebooks never write JSON by hand.
 
-Schema (``schema_version`` 1)::
+A claim's verdict is decided by a rule object (:mod:`tvtrack.verdicts`) from the measured value,
+never typed; every claim that is not ``not checkable`` carries a robustness record.
+
+Schema (``schema_version`` 2)::
 
     notebook, citation, parameters, seed, versions {python, packages...}, git_commit,
     runtime_s, started_utc, metrics {name: number | Estimate-dict | list | dict},
     figures [{file, caption}], recording (file name or null),
-    claims [{id, statement, paper_value, acceptance, measured, verdict, note}]
+    claims [{id, statement, paper_value, rule {kind, text, ...}, acceptance (= rule text), measured,
+             verdict, decision (the rule's sentence with the numbers), note,
+             robustness {label, where, choices, conditions, seeds, deterministic, note} or null}]
 """
 
 from __future__ import annotations
@@ -28,11 +33,11 @@ from typing import Any
 import numpy as np
 
 from .montecarlo import Estimate
+from .verdicts import LABELS, VERDICTS, Robustness, Rule
 
-__all__ = ["VERDICTS", "Claim", "Results", "judge_interval", "load_results", "to_jsonable"]
+__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION"]
 
-#: The only verdicts a claim may carry.
-VERDICTS = ("reproduced", "partly", "not reproduced", "not checkable")
+SCHEMA_VERSION = 2
 
 _CLAIM_ID = re.compile(r"^C\d{3}-[0-9A-Za-z.]+$")
 
@@ -62,28 +67,9 @@ def to_jsonable(value: Any) -> Any:
     return value
 
 
-def judge_interval(estimate: Estimate, low: float | None = None, high: float | None = None) -> str:
-    """Verdict for a claim of the form "the quantity lies in [low, high]".
-
-    ``reproduced`` when the whole confidence interval lies inside, ``not reproduced`` when
-    the whole interval lies outside, ``partly`` when the interval straddles a bound (the
-    Monte Carlo cannot decide at this sample size; the note should say so).
-    """
-    lo = -math.inf if low is None else low
-    hi = math.inf if high is None else high
-    a, b = estimate.ci_low, estimate.ci_high
-    if not (math.isfinite(a) and math.isfinite(b)):
-        a = b = estimate.value
-    if lo <= a and b <= hi:
-        return "reproduced"
-    if b < lo or a > hi:
-        return "not reproduced"
-    return "partly"
-
-
 @dataclass
 class Claim:
-    """One claim of the paper, checked.
+    """One claim of the paper, checked (as stored in ``results.json``).
 
     Attributes
     ----------
@@ -93,30 +79,52 @@ class Claim:
         What the paper claims, in words.
     paper_value : str
         The paper's number(s), as printed.
+    rule : dict
+        The acceptance rule (:meth:`tvtrack.verdicts.Rule.to_dict`): its kind, parameters and text.
     acceptance : str
-        The rule applied, fixed before the run (the card's, or tightened).
+        The rule's text.
     measured : Any
-        What was measured, with Monte Carlo uncertainty where it applies
-        (an :class:`Estimate`, a dict of them, or plain numbers).
+        What was measured, with Monte Carlo uncertainty where it applies.
     verdict : str
-        One of :data:`VERDICTS`.
+        One of :data:`VERDICTS`, decided by the rule.
+    decision : str
+        The rule's sentence saying why, with the numbers.
     note : str
-        Why, in one or two sentences; for a claim that did not reproduce, the likely reason.
+        What the numbers alone do not say; for a claim that did not reproduce, the likely reason.
+    robustness : dict or None
+        The robustness record (:meth:`tvtrack.verdicts.Robustness.record`); None only when not checkable.
     """
 
     id: str
     statement: str
     paper_value: str
+    rule: dict
     acceptance: str
     measured: Any
     verdict: str
+    decision: str = ""
     note: str = ""
+    robustness: dict | None = None
 
     def __post_init__(self):
         if not _CLAIM_ID.match(self.id):
             raise ValueError(f"claim id {self.id!r} must look like 'C004-1'")
         if self.verdict not in VERDICTS:
             raise ValueError(f"claim {self.id}: verdict {self.verdict!r} must be one of {VERDICTS}")
+        if self.acceptance != self.rule.get("text"):
+            raise ValueError(f"claim {self.id}: the acceptance text is not the rule's text")
+        if self.verdict != "not checkable":
+            if not self.robustness:
+                raise ValueError(f"claim {self.id}: a checkable claim needs a robustness record (or a note why "
+                                 f"no unstated choice matters)")
+            if self.robustness.get("label") not in LABELS:
+                raise ValueError(f"claim {self.id}: robustness label {self.robustness.get('label')!r} "
+                                 f"must be one of {LABELS}")
+
+    def _repr_markdown_(self) -> str:
+        label = f", {self.robustness['label']}" if self.robustness else ""
+        where = f" ({'; '.join(self.robustness['where'])})" if self.robustness and self.robustness["where"] else ""
+        return f"**{self.id}: {self.verdict}{label}**{where}. {self.decision}"
 
 
 @dataclass
@@ -161,26 +169,55 @@ class Results:
         self.metrics[name] = value
         return value
 
-    def claim(self, **fields) -> Claim:
-        """Record a claim's verdict; see :class:`Claim` for the fields. Ids must be unique."""
-        c = Claim(**fields)
+    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any, note: str = "",
+              robustness: Robustness | None = None) -> Claim:
+        """Record a claim; ``rule`` decides its verdict from ``measured``.
+
+        Parameters
+        ----------
+        id, statement, paper_value, note
+            See :class:`Claim`.
+        rule : tvtrack.verdicts.Rule
+            The acceptance rule, fixed before the run.
+        measured : Estimate, number, or what ``rule`` reads (a list for :class:`~tvtrack.verdicts.Monotone`,
+            a dict of parts for :class:`~tvtrack.verdicts.AllOf`)
+            The claim at the default reading (pooled over seeds, or the first seed).
+        robustness : tvtrack.verdicts.Robustness
+            Required unless the verdict is ``not checkable``.
+
+        Returns
+        -------
+        Claim
+            Shown in a notebook as one line: verdict, robustness label, the rule's reason.
+        """
+        if not isinstance(rule, Rule):
+            raise TypeError(f"claim {id}: rule must be a tvtrack.verdicts.Rule, got {type(rule).__name__}")
+        verdict, decision = rule.explain(measured)
+        record = robustness.record(rule, verdict) if robustness is not None else None
+        c = Claim(id=id, statement=statement, paper_value=paper_value, rule=to_jsonable(rule.to_dict()),
+                  acceptance=rule.text(), measured=measured, verdict=verdict, decision=decision, note=note,
+                  robustness=record)
         if any(existing.id == c.id for existing in self.claims):
             raise ValueError(f"claim {c.id} recorded twice")
         self.claims.append(c)
         return c
 
     def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> Path:
-        """Save a matplotlib figure as ``output_dir/<name>.png`` and list it with its caption."""
+        """Save a matplotlib figure as ``output_dir/<name>.png``, list it with its caption and,
+        inside a notebook, show it inline with the caption under it (then close it, so the
+        backend does not show it twice).
+        """
         if not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
             raise ValueError(f"figure name {name!r} may hold only letters, digits, '_', '.', '-'")
         path = self.output_dir / f"{name}.png"
         fig.savefig(path, dpi=dpi, bbox_inches="tight")
         self.figures.append({"file": path.name, "caption": caption})
+        _show_inline(path, caption, fig)
         return path
 
     def to_dict(self) -> dict:
         return to_jsonable({
-            "schema_version": 1,
+            "schema_version": SCHEMA_VERSION,
             "notebook": self.notebook,
             "citation": self.citation,
             "parameters": self.parameters,
@@ -212,9 +249,27 @@ def load_results(path: str | Path) -> dict:
     missing = [k for k in required if k not in data]
     if missing:
         raise ValueError(f"{path}: results.json lacks {missing}")
+    if data.get("schema_version") != SCHEMA_VERSION:
+        raise ValueError(f"{path}: schema_version {data.get('schema_version')!r}, this library reads {SCHEMA_VERSION}")
     for c in data["claims"]:
-        Claim(**c)  # re-validates id and verdict
+        Claim(**c)  # re-validates id, verdict, rule text and robustness label
     return data
+
+
+def _show_inline(path: Path, caption: str, fig) -> None:
+    """Display a saved figure and its caption in the running notebook (nothing outside IPython)."""
+    try:
+        from IPython import get_ipython
+        from IPython.display import Image, Markdown, display
+    except ImportError:
+        return
+    if get_ipython() is None:
+        return
+    import matplotlib.pyplot as plt
+
+    display(Image(filename=str(path)))
+    display(Markdown(f"*Figure ({path.stem}).* {caption}"))
+    plt.close(fig)
 
 
 def _versions() -> dict:

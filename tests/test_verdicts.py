@@ -1,0 +1,107 @@
+"""Rule objects decide what their text says; robustness labels follow the verdicts."""
+
+import math
+
+import pytest
+
+from tvtrack.montecarlo import Estimate
+from tvtrack.verdicts import (AllOf, Choice, Condition, InBand, Monotone, NotCheckable, Ordering, Robustness,
+                              WithinFactor, as_estimate, robustness_label)
+
+
+def est(lo, hi, value=None):
+    return Estimate((lo + hi) / 2 if value is None else value, 0.1, lo, hi, 100)
+
+
+@pytest.mark.parametrize("ci, expected", [((1.2, 1.8), "reproduced"), ((0.8, 1.2), "partly"),
+                                          ((1.8, 2.3), "partly"), ((2.1, 2.5), "not reproduced"),
+                                          ((0.2, 0.5), "not reproduced")])
+def test_in_band_is_two_sided(ci, expected):
+    assert InBand("rms", 1.0, 2.0, "px").decide(est(*ci)) == expected
+
+
+def test_better_than_the_paper_is_partly_not_reproduced():
+    rule = InBand("rms", 1.0, 2.0, "px", better="lower")
+    verdict, why = rule.explain(est(0.4, 0.6))
+    assert verdict == "partly" and "better than the paper" in why
+    assert rule.decide(est(2.1, 2.5)) == "not reproduced"     # worse stays a failure
+    assert "(better than the paper) is partly" in rule.text()
+
+
+def test_one_sided_band_and_exact_numbers():
+    rule = InBand("relative difference", high=1e-10)
+    assert rule.decide(3e-14) == "reproduced" and rule.decide(1e-6) == "not reproduced"
+    assert "at most 1e-10" in rule.text()
+    assert as_estimate(2.0).ci_low == 2.0 and as_estimate({"value": 1.0, "ci_low": None, "ci_high": None}).value == 1.0
+
+
+def test_within_factor_band_and_text():
+    rule = WithinFactor("gain", 4.0, 1.5)
+    assert (rule.low, rule.high) == pytest.approx((4 / 1.5, 6.0))
+    assert rule.decide(est(3.0, 5.0)) == "reproduced"
+    assert rule.decide(est(0.7, 0.9)) == "not reproduced"
+    assert rule.decide(est(2.0, 3.0)) == "partly"
+    assert "factor 1.5 of the paper's 4" in rule.text()
+    d = rule.to_dict()
+    assert d["kind"] == "within_factor" and d["paper_value"] == 4.0 and d["text"] == rule.text()
+
+
+def test_ordering_uses_the_interval_of_the_paired_difference():
+    rule = Ordering("error of A", "error of B", "<")
+    assert rule.decide(est(-0.5, -0.1)) == "reproduced"
+    assert rule.decide(est(-0.1, 0.2)) == "partly"
+    assert rule.decide(est(0.1, 0.2)) == "not reproduced"
+    ratio = Ordering("A", "B", ">", measure="ratio")
+    assert ratio.decide(est(1.1, 1.3)) == "reproduced" and ratio.decide(est(0.9, 1.3)) == "partly"
+    # a point difference without an interval is no evidence of an ordering
+    assert rule.decide(Estimate(-0.3, float("nan"), float("nan"), float("nan"), 1)) == "reproduced"
+
+
+def test_monotone_needs_separated_ends_and_no_contrary_step():
+    rule = Monotone("gain", "separation", "decreasing")
+    down = [est(4, 5), est(3, 4.2), est(2, 3), est(1, 1.5)]
+    assert rule.decide(down) == "reproduced"
+    assert rule.decide(down[::-1]) == "not reproduced"
+    flat = [est(1, 2), est(1.1, 2.1), est(0.9, 1.9)]
+    assert rule.decide(flat) == "not reproduced"
+    wiggle = [est(4, 5), est(5.5, 6), est(1, 2)]          # ends separated but one step up
+    assert rule.decide(wiggle) == "partly"
+
+
+def test_all_of_combines_parts():
+    rule = AllOf({"a": InBand("a", 0, 1), "b": Ordering("x", "y", ">")})
+    assert rule.decide({"a": 0.5, "b": est(0.1, 0.2)}) == "reproduced"
+    assert rule.decide({"a": 0.5, "b": est(-0.2, -0.1)}) == "partly"
+    assert rule.decide({"a": 2.0, "b": est(-0.2, -0.1)}) == "not reproduced"
+    with pytest.raises(ValueError, match="lacks the parts"):
+        rule.decide({"a": 0.5})
+    assert "(a)" in rule.text() and "(b)" in rule.text()
+
+
+def test_not_checkable_says_why():
+    rule = NotCheckable("SIR0 = kappa SIR by construction")
+    assert rule.decide(None) == "not checkable" and "by construction" in rule.text()
+
+
+def test_robustness_labels():
+    rule = InBand("ratio", 3.6, 5.4)
+    rob = Robustness(
+        choices=[Choice("epoch", "first", ["first", "mid", "last"], "the paper does not say"),
+                 Choice("designation_sd", 0.3, [0.3, 1.0], "not given")],
+        conditions=[Condition({"epoch": "mid"}, est(0.5, 0.9)),
+                    Condition({"epoch": "last", "designation_sd": 1.0}, est(4.0, 5.0))],
+        seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)})
+    rec = rob.record(rule, "not reproduced")
+    assert rec["label"] == "depends"
+    assert rec["where"] == ["reproduced when epoch = last, designation_sd = 1.0"]
+    assert [c["verdict"] for c in rec["conditions"]] == ["not reproduced", "reproduced"]
+    rob.seeds = {1: est(0.6, 0.9), 2: est(3.0, 4.0), 3: est(0.5, 0.8)}
+    assert rob.record(rule, "not reproduced")["label"] == "unstable"
+    assert robustness_label("partly", [], [{"seed": 1, "verdict": "partly"}] * 3) == ("robust", [])
+    with pytest.raises(ValueError, match="not among"):
+        Choice("epoch", "middle", ["first", "last"], "")
+    with pytest.raises(ValueError, match="not among"):
+        Robustness([Choice("e", 1, [1, 2], "w")], [Condition({"e": 3}, 1.0)], {1: 1, 2: 1, 3: 1}).validate()
+    with pytest.raises(ValueError, match="needs a note"):
+        Robustness(seeds={1: 1, 2: 1, 3: 1}).validate()
+    assert math.isfinite(rob.record(rule, "not reproduced")["conditions"][0]["measured"].value)
