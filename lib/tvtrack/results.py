@@ -202,10 +202,10 @@ class Results:
         self.claims.append(c)
         return c
 
-    def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> Path:
+    def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> None:
         """Save a matplotlib figure as ``output_dir/<name>.png``, list it with its caption and,
         inside a notebook, show it inline with the caption under it (then close it, so the
-        backend does not show it twice).
+        backend does not show it twice). Returns nothing, so a cell ending with it echoes nothing.
         """
         if not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
             raise ValueError(f"figure name {name!r} may hold only letters, digits, '_', '.', '-'")
@@ -213,7 +213,6 @@ class Results:
         fig.savefig(path, dpi=dpi, bbox_inches="tight")
         self.figures.append({"file": path.name, "caption": caption})
         _show_inline(path, caption, fig)
-        return path
 
     def to_dict(self) -> dict:
         return to_jsonable({
