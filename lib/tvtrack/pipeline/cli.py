@@ -50,9 +50,9 @@ def _cmd_reproduce(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from .report import write_report
+    from .report import README_PATH, write_report
 
-    path = write_report()
+    path = write_report(readme=README_PATH)
     print(f"wrote {path}")
     return 0
 
