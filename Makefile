@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report kernel sweep clean-runs
+.PHONY: reproduce test bench report site kernel sweep clean-runs
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -20,6 +20,10 @@ reproduce: $(STAMP) kernel
 
 report: $(STAMP)
 	$(BIN)/python -m tvtrack report
+
+# offline HTML site from papermill_runs/ (after make reproduce): papermill_runs/site/index.html
+site: $(STAMP)
+	$(BIN)/python -m tvtrack site
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

@@ -1,4 +1,4 @@
-"""Command line: ``python -m tvtrack {run, sweep, reproduce, report}``."""
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, view}``."""
 
 from __future__ import annotations
 
@@ -57,6 +57,21 @@ def _cmd_report(args) -> int:
     return 0
 
 
+def _cmd_site(args) -> int:
+    from .site import build_site
+
+    index = build_site(Path(args.runs), Path(args.output) if args.output else None)
+    print(f"wrote {index} (open it in a browser; no network needed)")
+    return 0
+
+
+def _cmd_view(args) -> int:
+    from .webview import serve
+
+    return serve(args.target, host=args.host, port=args.port, grpc_port=args.grpc_port,
+                 open_browser=not args.no_browser)
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m tvtrack", description=__doc__)
     sub = p.add_subparsers(dest="command", required=True)
@@ -85,6 +100,21 @@ def build_parser() -> argparse.ArgumentParser:
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
     rep.set_defaults(func=_cmd_report)
+
+    st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
+    st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
+    st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
+    st.set_defaults(func=_cmd_site)
+
+    from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
+    v = sub.add_parser("view", help="serve a run's recording in the Rerun web viewer (Ctrl-C stops)")
+    v.add_argument("target", help="run directory holding recording.rrd, or an .rrd file")
+    v.add_argument("--host", default=DEFAULT_HOST, help=f"address to bind (default {DEFAULT_HOST}, this machine only)")
+    v.add_argument("--port", type=int, default=DEFAULT_WEB_PORT, help=f"web viewer port (default {DEFAULT_WEB_PORT})")
+    v.add_argument("--grpc-port", type=int, default=DEFAULT_GRPC_PORT,
+                   help=f"port the recording is streamed from (default {DEFAULT_GRPC_PORT})")
+    v.add_argument("--no-browser", action="store_true", help="only print the URL")
+    v.set_defaults(func=_cmd_view)
     return p
 
 

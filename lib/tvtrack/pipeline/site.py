@@ -1,0 +1,320 @@
+"""``python -m tvtrack site`` (``make site``): a static, offline HTML site built from the runs.
+
+Reads the paper runs under ``papermill_runs/reproduce/<notebook>/`` (what ``make reproduce`` leaves)
+and the sweeps under ``papermill_runs/<spec>/`` (directories holding ``summary.csv``), and writes
+``papermill_runs/site/``:
+
+- ``index.html``: one card per paper run (citation, run date, commit, runtime, claims by verdict and
+  robustness label, the recording's still image and the command that serves it), then the sweeps;
+- ``ledger.html``: every claim of every ``results.json``, filterable and sortable by a small inline
+  script, each linking to the notebook cell that decided it;
+- ``notebooks/<name>.html``: the executed notebook through nbconvert with this package's template
+  (``site_templates/notebook``), figures inline, math converted to MathML at build time
+  (``latex2mathml``), no script or style loaded from anywhere;
+- ``sweeps/<name>.html``: the sweep's summary table and plot.
+
+Nothing is fetched at build or view time: the page styles are inline, nbconvert's require.js, MathJax,
+Mermaid and widget loaders are left out (the notebooks use none of them), and math is MathML, which
+browsers render natively.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import json
+import re
+import shutil
+import time
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .paths import RUNS_DIR
+from .report import REPRODUCE_DIR, format_measured, robustness_label, robustness_where
+from .runner import read_run
+from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
+from ..results import VERDICTS
+from ..verdicts import LABELS
+
+__all__ = ["SITE_DIR", "PaperRun", "find_paper_runs", "find_sweeps", "tex_to_html", "claim_cells",
+           "recording_still", "render_notebook", "build_site"]
+
+SITE_DIR = RUNS_DIR / "site"
+TEMPLATE_DIR = Path(__file__).with_name("site_templates")
+NOTEBOOK_TEMPLATE = "notebook"
+NOT_SWEEPS = {"reproduce", "runs", "interactive", "site", "profiles", "sweeps"}
+STILL_MIN_SIDE_PX = 320
+
+
+@dataclass
+class PaperRun:
+    """One notebook's run directory: ``run.json`` and, when it succeeded, ``results.json``."""
+
+    name: str
+    run_dir: Path
+    record: dict
+    results: dict | None = None
+    cells: dict = field(default_factory=dict)    # claim id -> notebook cell id
+
+    @property
+    def ok(self) -> bool:
+        return self.results is not None
+
+
+def find_paper_runs(reproduce_dir: Path = REPRODUCE_DIR) -> list[PaperRun]:
+    """The run directories under ``reproduce_dir``, in name order (failed runs included)."""
+    runs = []
+    for run_dir in sorted(p for p in Path(reproduce_dir).glob("*") if p.is_dir() and not p.name.startswith(".")):
+        record = read_run(run_dir)
+        if record is None:
+            continue
+        results = None
+        if record.get("status") == "ok" and (run_dir / "results.json").is_file():
+            results = json.loads((run_dir / "results.json").read_text())
+        runs.append(PaperRun(run_dir.name, run_dir, record, results))
+    return runs
+
+
+def find_sweeps(runs_dir: Path = RUNS_DIR) -> list[Path]:
+    """Sweep directories (holding ``summary.csv``) directly under ``runs_dir``."""
+    return sorted(p for p in Path(runs_dir).glob("*/summary.csv") if p.parent.name not in NOT_SWEEPS)
+
+
+# --- math --------------------------------------------------------------------------------------------
+
+def tex_to_html(tex: str, display: bool) -> str:
+    """MathML for a TeX formula (``latex2mathml``); a formula it cannot parse stays readable as TeX."""
+    from latex2mathml.converter import convert
+
+    try:
+        return convert(tex, display="block" if display else "inline")
+    except Exception:  # noqa: BLE001 - any parser failure: show the source rather than lose the formula
+        delim = "$$" if display else "$"
+        return f'<code class="tex">{html.escape(delim + tex + delim)}</code>'
+
+
+def _markdown_exporter_class():
+    """nbconvert's HTMLExporter whose Markdown renderer writes MathML instead of MathJax input."""
+    from jinja2 import pass_context
+    from nbconvert.exporters import HTMLExporter
+    from nbconvert.filters.markdown_mistune import IPythonRenderer, MarkdownWithMath
+
+    class MathMLRenderer(IPythonRenderer):
+        def block_math(self, body: str) -> str:
+            return tex_to_html(body, display=True)
+
+        def inline_math(self, body: str) -> str:
+            return tex_to_html(body, display=False)
+
+        def latex_environment(self, name: str, body: str) -> str:
+            return tex_to_html(f"\\begin{{{name}}}{body}\\end{{{name}}}", display=True)
+
+    class SiteExporter(HTMLExporter):
+        @pass_context
+        def markdown2html(self, context, source):
+            cell = context.get("cell", {})
+            renderer = MathMLRenderer(escape=False, attachments=cell.get("attachments", {}),
+                                      anchor_link_text=self.anchor_link_text)
+            return MarkdownWithMath(renderer=renderer).render(source)
+
+    return SiteExporter
+
+
+# --- notebooks ---------------------------------------------------------------------------------------
+
+def claim_cells(notebook: dict, claim_ids: list[str]) -> dict[str, str]:
+    """``{claim id: cell id}``: the code cell that decided each claim (its source names the id in quotes,
+    or its output shows the claim's verdict line)."""
+    found = {}
+    for cell in notebook["cells"]:
+        if cell["cell_type"] != "code" or "id" not in cell:
+            continue
+        source = "".join(cell["source"])
+        shown = "".join("".join(o.get("data", {}).get("text/markdown", "")) for o in cell.get("outputs", []))
+        for cid in claim_ids:
+            if cid in found:
+                continue
+            if re.search(rf"""["']{re.escape(cid)}["']""", source) or f"**{cid}:" in shown:
+                found[cid] = cell["id"]
+    return found
+
+
+def render_notebook(notebook_path: Path, out: Path, title: str, recording: dict | None = None) -> dict:
+    """Write the executed notebook as one offline HTML page; returns the notebook (for cell lookups)."""
+    import nbformat
+
+    nb = nbformat.read(notebook_path, as_version=4)
+    exporter = _markdown_exporter_class()(template_name=NOTEBOOK_TEMPLATE,
+                                          extra_template_basedirs=[str(TEMPLATE_DIR)],
+                                          extra_template_paths=[str(TEMPLATE_DIR)])
+    body, _ = exporter.from_notebook_node(nb, resources={"site": {"title": title, "recording": recording},
+                                                         "metadata": {"name": title}})
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(body)
+    return nb
+
+
+# --- recordings --------------------------------------------------------------------------------------
+
+_CHANNEL_DTYPES = {6: "u1", 7: "i1", 8: "u2", 9: "i2", 10: "u4", 11: "i4", 12: "u8", 13: "i8",
+                   33: "f2", 34: "f4", 35: "f8"}   # rerun.datatypes.ChannelDatatype values
+_CHANNELS = {1: 1, 2: 3, 3: 4}                      # rerun.datatypes.ColorModel: L, RGB, RGBA
+
+
+def _decode_images(batch):
+    """Yield ``(frame, entity-local row, ndarray)`` for each image row of a chunk's record batch."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    names = batch.schema.names
+    frames = batch.column("frame").to_pylist() if "frame" in names else list(range(batch.num_rows))
+    if "Image:buffer" in names:
+        buffers, formats = batch.column("Image:buffer").to_pylist(), batch.column("Image:format").to_pylist()
+        for k, (buf, fmt) in enumerate(zip(buffers, formats)):
+            if not buf or not fmt or fmt[0].get("channel_datatype") not in _CHANNEL_DTYPES:
+                continue
+            f = fmt[0]
+            channels = _CHANNELS.get(f.get("color_model") or 1)
+            if channels is None:
+                continue
+            arr = np.frombuffer(bytes(buf[0]), dtype=_CHANNEL_DTYPES[f["channel_datatype"]])
+            shape = (f["height"], f["width"]) + ((channels,) if channels > 1 else ())
+            yield frames[k], arr.reshape(shape)
+    elif "EncodedImage:blob" in names:
+        for k, blob in enumerate(batch.column("EncodedImage:blob").to_pylist()):
+            if blob:
+                yield frames[k], np.asarray(Image.open(io.BytesIO(bytes(blob[0]))))
+
+
+def recording_still(rrd: Path, out_png: Path) -> bool:
+    """Save the first useful frame of the recording's largest image stream as a PNG.
+
+    "Useful": the earliest frame whose image is not constant. Grey images are stretched between their
+    0.5 and 99.5 percentiles (as a viewer's auto-range would) and enlarged with nearest-neighbour
+    pixels to at least :data:`STILL_MIN_SIDE_PX`. Returns ``False`` if the recording has no image.
+    """
+    import numpy as np
+    from PIL import Image
+    from rerun.chunk import RrdReader
+
+    best = {}   # entity -> (frame, image)
+    for chunk in RrdReader(rrd).stream():
+        batch = chunk.to_record_batch()
+        if "Image:buffer" not in batch.schema.names and "EncodedImage:blob" not in batch.schema.names:
+            continue
+        for frame, image in sorted(_decode_images(batch), key=lambda fi: fi[0]):
+            if np.ptp(image) > 0:
+                if chunk.entity_path not in best or frame < best[chunk.entity_path][0]:
+                    best[chunk.entity_path] = (frame, image)
+                break
+    if not best:
+        return False
+    _, image = max(best.values(), key=lambda fi: fi[1].shape[0] * fi[1].shape[1])
+    if image.ndim == 2:
+        lo, hi = np.percentile(image, [0.5, 99.5])
+        image = np.clip((image.astype(float) - lo) / max(hi - lo, 1e-12) * 255, 0, 255).astype(np.uint8)
+    scale = max(1, -(-STILL_MIN_SIDE_PX // min(image.shape[:2])))
+    still = Image.fromarray(image.astype(np.uint8)).resize((image.shape[1] * scale, image.shape[0] * scale),
+                                                          Image.NEAREST)
+    out_png.parent.mkdir(parents=True, exist_ok=True)
+    still.save(out_png)
+    return True
+
+
+def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
+    """Still image (relative to the site root), the serving command and the URL it serves at."""
+    name = (run.results or {}).get("recording")
+    rrd = run.run_dir / name if name else None
+    if rrd is None or not rrd.is_file():
+        return None
+    still = site / "runs" / run.name / "recording.png"
+    has_still = recording_still(rrd, still)
+    try:
+        shown = run.run_dir.resolve().relative_to(runs_dir.resolve().parent)
+    except ValueError:
+        shown = run.run_dir.resolve()
+    return {"still": f"runs/{run.name}/recording.png" if has_still else None,
+            "command": f"python -m tvtrack view {shown}",
+            "url": viewer_url(DEFAULT_HOST, DEFAULT_WEB_PORT, DEFAULT_GRPC_PORT)}
+
+
+# --- pages -------------------------------------------------------------------------------------------
+
+def _environment():
+    from jinja2 import Environment, FileSystemLoader, select_autoescape
+
+    env = Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
+    env.filters["measured"] = format_measured
+    return env
+
+
+def _counts(claims: list[dict]) -> dict:
+    verdicts = Counter(c["verdict"] for c in claims)
+    labels = Counter(robustness_label(c) for c in claims)
+    return {"verdicts": [(v, verdicts[v]) for v in VERDICTS],
+            "labels": [(lab, labels[lab]) for lab in (*LABELS, "—") if labels[lab]]}
+
+
+def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
+    rows = []
+    for run in runs:
+        for c in (run.results or {}).get("claims", []):
+            cell = run.cells.get(c["id"])
+            rows.append({"paper": run.name, "id": c["id"], "statement": c["statement"],
+                         "paper_value": c["paper_value"], "rule": c.get("acceptance", ""),
+                         "measured": format_measured(c["measured"]), "verdict": c["verdict"],
+                         "label": robustness_label(c), "where": robustness_where(c), "note": c.get("note", ""),
+                         "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else "")})
+    return rows
+
+
+def _sweep_page(env, sweep_csv: Path, site: Path) -> dict:
+    name = sweep_csv.parent.name
+    with sweep_csv.open(newline="") as fh:
+        rows = list(csv.reader(fh))
+    plot = None
+    if (sweep_csv.parent / "summary.png").is_file():
+        plot = f"{name}.png"
+        shutil.copy2(sweep_csv.parent / "summary.png", site / "sweeps" / plot)
+    failed = sum(1 for r in rows[1:] if "status" in rows[0] and r[rows[0].index("status")] != "ok")
+    info = {"name": name, "header": rows[0] if rows else [], "rows": rows[1:], "plot": plot, "failed": failed}
+    (site / "sweeps" / f"{name}.html").write_text(env.get_template("sweep.html").render(sweep=info, root="../"))
+    return info
+
+
+def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
+    """Build the site from ``runs_dir/reproduce`` and the sweeps in ``runs_dir``; returns ``index.html``."""
+    runs_dir = Path(runs_dir)
+    site = Path(out) if out is not None else runs_dir / "site"
+    if site.exists():
+        shutil.rmtree(site)
+    (site / "notebooks").mkdir(parents=True)
+    (site / "sweeps").mkdir()
+    env = _environment()
+    runs = find_paper_runs(runs_dir / "reproduce")
+    cards = []
+    for run in runs:
+        card = {"run": run, "recording": None, "counts": None, "date": run.record.get("finished_utc", "")}
+        if run.ok:
+            card["recording"] = _recording_info(run, site, runs_dir)
+            card["counts"] = _counts(run.results["claims"])
+            nb = render_notebook(run.run_dir / "notebook.ipynb", site / "notebooks" / f"{run.name}.html",
+                                 run.name, card["recording"] and {**card["recording"], "root": "../"})
+            run.cells = claim_cells(nb, [c["id"] for c in run.results["claims"]])
+            (site / "runs" / run.name).mkdir(parents=True, exist_ok=True)
+            shutil.copy2(run.run_dir / "results.json", site / "runs" / run.name / "results.json")
+        cards.append(card)
+    sweeps = [_sweep_page(env, csv_path, site) for csv_path in find_sweeps(runs_dir)]
+    rows = _ledger_rows(runs)
+    built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    (site / "ledger.html").write_text(env.get_template("ledger.html").render(
+        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=VERDICTS, labels=(*LABELS, "—"), root="",
+        built=built))
+    index = site / "index.html"
+    index.write_text(env.get_template("index.html").render(
+        cards=cards, sweeps=sweeps, totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
+        n_claims=len(rows), root="", built=built))
+    return index
