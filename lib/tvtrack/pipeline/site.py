@@ -192,7 +192,8 @@ def _decode_images(batch):
 def recording_still(rrd: Path, out_png: Path) -> bool:
     """Save the first useful frame of the recording's largest image stream as a PNG.
 
-    "Useful": the earliest frame whose image is not constant. Grey images are stretched between their
+    "Useful": the earliest frame whose image is not constant (searched in each image entity's first
+    chunk that has one, so a long recording is not decoded whole). Grey images are stretched between their
     0.5 and 99.5 percentiles (as a viewer's auto-range would) and enlarged with nearest-neighbour
     pixels to at least :data:`STILL_MIN_SIDE_PX`. Returns ``False`` if the recording has no image.
     """
@@ -200,15 +201,14 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
     from PIL import Image
     from rerun.chunk import RrdReader
 
-    best = {}   # entity -> (frame, image)
-    for chunk in RrdReader(rrd).stream():
-        batch = chunk.to_record_batch()
-        if "Image:buffer" not in batch.schema.names and "EncodedImage:blob" not in batch.schema.names:
-            continue
-        for frame, image in sorted(_decode_images(batch), key=lambda fi: fi[0]):
+    best = {}   # entity -> (frame, image): the earliest useful frame of the entity's first chunk holding one
+    stream = RrdReader(rrd).stream().filter(components=["Image:buffer", "Image:format", "EncodedImage:blob"])
+    for chunk in stream:
+        if chunk.entity_path in best:
+            continue    # chunks come in time order: later ones cannot hold an earlier frame worth decoding
+        for frame, image in sorted(_decode_images(chunk.to_record_batch()), key=lambda fi: fi[0]):
             if np.ptp(image) > 0:
-                if chunk.entity_path not in best or frame < best[chunk.entity_path][0]:
-                    best[chunk.entity_path] = (frame, image)
+                best[chunk.entity_path] = (frame, image)
                 break
     if not best:
         return False
@@ -224,6 +224,14 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
     return True
 
 
+def _shown(run_dir: Path, runs_dir: Path) -> Path:
+    """A run directory as a reader types it: relative to the folder holding ``papermill_runs/``."""
+    try:
+        return run_dir.resolve().relative_to(runs_dir.resolve().parent)
+    except ValueError:
+        return run_dir.resolve()
+
+
 def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
     """Still image (relative to the site root), the serving command and the URL it serves at."""
     name = (run.results or {}).get("recording")
@@ -232,12 +240,8 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
         return None
     still = site / "runs" / run.name / "recording.png"
     has_still = recording_still(rrd, still)
-    try:
-        shown = run.run_dir.resolve().relative_to(runs_dir.resolve().parent)
-    except ValueError:
-        shown = run.run_dir.resolve()
     return {"still": f"runs/{run.name}/recording.png" if has_still else None,
-            "command": f"python -m tvtrack view {shown}",
+            "command": f"python -m tvtrack view {_shown(run.run_dir, runs_dir)}",
             "url": viewer_url(DEFAULT_HOST, DEFAULT_WEB_PORT, DEFAULT_GRPC_PORT)}
 
 
@@ -297,7 +301,8 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
     runs = find_paper_runs(runs_dir / "reproduce")
     cards = []
     for run in runs:
-        card = {"run": run, "recording": None, "counts": None, "date": run.record.get("finished_utc", "")}
+        card = {"run": run, "recording": None, "counts": None, "date": run.record.get("finished_utc", ""),
+                "shown": _shown(run.run_dir, runs_dir)}
         if run.ok:
             card["recording"] = _recording_info(run, site, runs_dir)
             card["counts"] = _counts(run.results["claims"])

@@ -1,0 +1,209 @@
+"""The site and the web viewer, checked in a real browser: headless Debian Chromium driven by Playwright.
+
+Skipped (with the install command) when Chromium or Playwright is missing, unless
+``TVTRACK_REQUIRE_BROWSER=1`` (set by ``.ci/run``), which makes a missing browser a failure.
+``TVTRACK_UPDATE_SCREENSHOTS=1`` also writes the README's screenshots to ``docs/screenshots/``.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import time
+from pathlib import Path
+from urllib.parse import urlparse
+
+import numpy as np
+import pytest
+
+from conftest import NOTEBOOK_NAMES, REPO
+from site_fixtures import make_runs_dir
+from tvtrack.pipeline.viewer import coloured_mask, free_port
+
+CHROMIUM = "/usr/bin/chromium"
+INSTALL = "apt-get install -y chromium && pip install playwright==1.65.2 (Playwright never downloads a browser here)"
+# Flags measured to work for Rerun's web viewer on CPU-only machines (shared/notes/web-viewer-in-browser.md).
+FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
+SCREENSHOTS = REPO / "docs" / "screenshots"
+UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
+
+
+def _browser_problem() -> str | None:
+    try:
+        import playwright.sync_api  # noqa: F401
+    except ImportError:
+        return f"Playwright is not installed ({INSTALL})"
+    if not Path(CHROMIUM).is_file():
+        return f"no Chromium at {CHROMIUM} ({INSTALL})"
+    return None
+
+
+@pytest.fixture(scope="module")
+def browser():
+    problem = _browser_problem()
+    if problem:
+        if os.environ.get("TVTRACK_REQUIRE_BROWSER") == "1":
+            pytest.fail(f"TVTRACK_REQUIRE_BROWSER=1 but {problem}")
+        pytest.skip(problem)
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield b
+        b.close()
+
+
+class Watched:
+    """A page whose console errors and non-loopback requests are recorded (and the requests refused)."""
+
+    def __init__(self, browser, viewport=(1200, 800)):
+        self.context = browser.new_context(viewport={"width": viewport[0], "height": viewport[1]})
+        self.errors, self.outside = [], []
+        self.context.route("**/*", self._route)
+        self.page = self.context.new_page()
+        self.page.on("console", lambda m: m.type == "error" and self.errors.append(m.text))
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+
+    def _route(self, route):
+        url = urlparse(route.request.url)
+        if url.scheme in ("http", "https", "ws", "wss") and url.hostname not in LOOPBACK:
+            self.outside.append(route.request.url)
+            return route.abort()
+        return route.continue_()
+
+    def open(self, url: str):
+        self.page.goto(url, wait_until="load")
+        return self.page
+
+    def images_decoded(self) -> list[tuple[str, int]]:
+        return self.page.evaluate("Array.from(document.images).map(i => [i.src.slice(0, 60), i.naturalWidth])")
+
+    def close(self):
+        self.context.close()
+
+
+@pytest.fixture(scope="module")
+def smoke_site(tmp_path_factory, smoke_run):
+    """The site built from the fixture runs plus every notebook's smoke run (shared with the other tests)."""
+    from tvtrack.pipeline.site import build_site
+
+    root = make_runs_dir(tmp_path_factory.mktemp("browser-runs"))
+    for name in NOTEBOOK_NAMES:
+        shutil.copytree(smoke_run(name).run_dir, root / "reproduce" / name)
+    t0 = time.perf_counter()
+    index = build_site(root)
+    return index.parent, time.perf_counter() - t0
+
+
+def _shot(page, name: str):
+    if UPDATE_SCREENSHOTS:
+        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(SCREENSHOTS / name))
+
+
+def test_site_in_browser(browser, smoke_site):
+    site, build_s = smoke_site
+    assert build_s < 60, f"site build took {build_s:.0f} s"
+    w = Watched(browser)
+    try:
+        page = w.open((site / "index.html").as_uri())
+        cards = page.locator("article.card").count()
+        assert cards == len(NOTEBOOK_NAMES) + 3
+        images = w.images_decoded()
+        assert images and all(width > 0 for _, width in images), images
+        _shot(page, "site_index.png")
+
+        ok_notebooks = [n for n in [*NOTEBOOK_NAMES, "fixture_centroid"] if (site / "notebooks" / f"{n}.html").is_file()]
+        for name in (ok_notebooks[0], "old_schema"):
+            page = w.open((site / "notebooks" / f"{name}.html").as_uri())
+            images = w.images_decoded()
+            assert all(width > 0 for _, width in images), (name, images)
+        assert page.locator("math").count() == 2 and page.locator("math").first.bounding_box()["width"] > 0
+        page = w.open((site / "notebooks" / "fixture_centroid.html").as_uri())
+        assert len(w.images_decoded()) >= 2          # the figure inline and the recording's still
+
+        page = w.open((site / "ledger.html").as_uri())
+        rows = page.locator("#ledger tbody tr[data-paper]")
+        visible = page.locator("#ledger tbody tr[data-paper]:visible")
+        total = rows.count()
+        assert total >= 2 and visible.count() == total
+        page.select_option("#f-verdict", "partly")
+        assert visible.count() == sum(1 for v in rows.evaluate_all("rs => rs.map(r => r.dataset.verdict)")
+                                      if v == "partly") >= 1
+        page.select_option("#f-label", "—")
+        assert "C911-1" in visible.first.inner_text()
+        page.select_option("#f-verdict", "")
+        page.select_option("#f-label", "")
+        page.fill("#f-text", "centroid error is below")
+        assert visible.count() == 1 and "C900-1" in visible.first.inner_text()
+        page.fill("#f-text", "")
+        page.click("th:has-text('claim')")
+        ids = [t.strip() for t in page.locator("#ledger tbody tr td:nth-child(2)").all_inner_texts()]
+        assert ids == sorted(ids, key=lambda s: [int(x) if x.isdigit() else x for x in s.replace("-", " ").split()])
+        _shot(page, "site_ledger.png")
+        page = w.open((site / "ledger.html").as_uri() + "#paper=old_schema")
+        assert visible.count() == 1
+        assert w.errors == [], w.errors
+        assert w.outside == [], w.outside
+    finally:
+        w.close()
+
+
+def _viewer_drawn(png: bytes) -> dict:
+    """Coarse measures of a web-viewer screenshot: grey levels and coloured pixels in the left (image)
+    view, and coloured pixels in the right (plot) view."""
+    import io
+
+    from PIL import Image
+
+    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
+    body = img[60:-60]
+    left, right = body[:, : body.shape[1] // 2], body[:, body.shape[1] // 2:]
+    grey = left[(np.ptp(left.astype(int), axis=-1) < 8)]
+    return {"grey_levels": len(np.unique(grey[:, 0])), "left_colour": int(coloured_mask(left).sum()),
+            "right_colour": int(coloured_mask(right).sum())}
+
+
+def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_for_viewer):
+    from tvtrack.pipeline.webview import WebViewer
+
+    w = Watched(browser, viewport=(1200, 700))
+    try:
+        with WebViewer(runs_dir_for_viewer, web_port=free_port(), grpc_port=free_port()) as viewer:
+            assert urlparse(viewer.url).hostname == "127.0.0.1"
+            page = w.open(viewer.url)
+            deadline, seen = time.monotonic() + 45, {}
+            while time.monotonic() < deadline:
+                png = page.screenshot()
+                seen = _viewer_drawn(png)
+                # the recording's frame (many grey levels), its gate/points, and the plotted lines
+                if seen["grey_levels"] > 20 and seen["left_colour"] > 100 and seen["right_colour"] > 100:
+                    break
+                time.sleep(0.5)
+            assert seen["grey_levels"] > 20 and seen["left_colour"] > 100 and seen["right_colour"] > 100, seen
+            assert viewer.process.poll() is None          # our own server answered, not a stale one
+            if UPDATE_SCREENSHOTS:
+                SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+                (SCREENSHOTS / "web_viewer.png").write_bytes(png)
+        # the viewer asks for fonts, an examples manifest, its latest release and telemetry on the internet:
+        # all refused here, and it draws the recording without them
+        assert all(urlparse(u).hostname in {"fonts.googleapis.com", "fonts.gstatic.com", "app.rerun.io",
+                                            "tel.rerun.io", "api.github.com"} for u in w.outside), w.outside
+    finally:
+        w.close()
+
+
+@pytest.fixture(scope="module")
+def runs_dir_for_viewer(smoke_run, tmp_path_factory):
+    """003's smoke recording when that notebook runs, else the fixture notebook's (image + gate + series)."""
+    outcome = smoke_run("003_rotating_marker_tracker")
+    if outcome.ok and (outcome.run_dir / "recording.rrd").is_file():
+        return outcome.run_dir
+    from conftest import FIXTURE_NOTEBOOK
+    from tvtrack.pipeline.runner import run_notebook
+
+    run = run_notebook(FIXTURE_NOTEBOOK, tmp_path_factory.mktemp("viewer") / "fixture", {"n_trials": 5, "n_frames": 10})
+    assert run.ok
+    return run.run_dir
