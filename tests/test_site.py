@@ -2,6 +2,7 @@
 
 import json
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -81,3 +82,46 @@ def test_cli_has_site_and_view(argv, capsys):
     with pytest.raises(SystemExit) as exc:
         main(argv)
     assert exc.value.code == 0 and "usage" in capsys.readouterr().out
+
+
+def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import urllib.request
+
+    from tvtrack.pipeline.viewer import free_port
+
+    web, grpc = free_port(), free_port()
+    proc = subprocess.Popen([sys.executable, "-m", "tvtrack", "view", str(runs_dir / "reproduce/fixture_centroid"),
+                             "--port", str(web), "--grpc-port", str(grpc), "--no-browser"],
+                            stdout=subprocess.PIPE, text=True, env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+    try:
+        lines = [proc.stdout.readline() for _ in range(2)]
+        url = lines[1].removeprefix("open ").strip()
+        assert url == (f"http://127.0.0.1:{web}/?url=rerun%2Bhttp%3A%2F%2F127.0.0.1%3A{grpc}%2Fproxy"), lines
+        assert urllib.request.urlopen(url, timeout=10).status == 200
+        children = subprocess.run(["pgrep", "-f", "--", f"web-viewer-port {web}"], capture_output=True, text=True).stdout
+        assert children.split()
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(20) == 0 and "stopped" in proc.stdout.read()
+        alive = [pid for pid in children.split() if Path(f"/proc/{pid}/stat").is_file()
+                 and Path(f"/proc/{pid}/stat").read_text().split()[2] != "Z"]
+        assert alive == []
+    finally:
+        proc.kill()
+
+
+def test_view_refuses_a_taken_port(runs_dir):
+    import socket
+
+    from tvtrack.pipeline.webview import WebViewer
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        with pytest.raises(OSError, match=f"--port {taken.getsockname()[1]}: something already listens"):
+            WebViewer(runs_dir / "reproduce/fixture_centroid", web_port=taken.getsockname()[1]).start()
+    with pytest.raises(FileNotFoundError, match="no recording at"):
+        WebViewer(runs_dir / "reproduce/old_schema")

@@ -134,11 +134,16 @@ class WebViewer:
         self.stop()
 
 
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
 def serve(target: str | Path, host: str = DEFAULT_HOST, port: int = DEFAULT_WEB_PORT,
           grpc_port: int = DEFAULT_GRPC_PORT, open_browser: bool = True) -> int:
     """Serve ``target``'s recording until Ctrl-C; print the URL and open it in a browser where there is one
     (never under CI). Returns the exit code."""
     viewer = WebViewer(target, host, port, grpc_port)
+    signal.signal(signal.SIGTERM, _interrupt)   # a plain kill also ends the viewer's process group
     with viewer:
         print(f"serving {viewer.recording}\nopen {viewer.url}\n(Ctrl-C stops)", flush=True)
         if open_browser and not os.environ.get("CI"):
