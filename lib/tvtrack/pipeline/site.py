@@ -163,7 +163,7 @@ _CHANNELS = {1: 1, 2: 3, 3: 4}                      # rerun.datatypes.ColorModel
 
 
 def _decode_images(batch):
-    """Yield ``(frame, entity-local row, ndarray)`` for each image row of a chunk's record batch."""
+    """Yield ``(frame, image)`` for each image row of a chunk's record batch (raw buffers or encoded blobs)."""
     import io
 
     import numpy as np
@@ -193,8 +193,8 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
     """Save the first useful frame of the recording's largest image stream as a PNG.
 
     "Useful": the earliest frame whose image is not constant (searched in each image entity's first
-    chunk that has one, so a long recording is not decoded whole). Grey images are stretched between their
-    0.5 and 99.5 percentiles (as a viewer's auto-range would) and enlarged with nearest-neighbour
+    chunk that has one, so a long recording is not decoded whole). Images that are not 8-bit are stretched
+    between their 0.5 and 99.5 percentiles (as the viewer's auto-range would); all are enlarged with nearest-neighbour
     pixels to at least :data:`STILL_MIN_SIDE_PX`. Returns ``False`` if the recording has no image.
     """
     import numpy as np
@@ -213,7 +213,7 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
     if not best:
         return False
     _, image = max(best.values(), key=lambda fi: fi[1].shape[0] * fi[1].shape[1])
-    if image.ndim == 2:
+    if image.dtype != np.uint8:
         lo, hi = np.percentile(image, [0.5, 99.5])
         image = np.clip((image.astype(float) - lo) / max(hi - lo, 1e-12) * 255, 0, 255).astype(np.uint8)
     scale = max(1, -(-STILL_MIN_SIDE_PX // min(image.shape[:2])))
