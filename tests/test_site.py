@@ -116,12 +116,13 @@ def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):
 def test_view_refuses_a_taken_port(runs_dir):
     import socket
 
+    from tvtrack.pipeline.preflight import UsageError
     from tvtrack.pipeline.webview import WebViewer
 
     with socket.socket() as taken:
         taken.bind(("127.0.0.1", 0))
         taken.listen()
-        with pytest.raises(OSError, match=f"--port {taken.getsockname()[1]}: something already listens"):
+        with pytest.raises(UsageError, match=f"--port {taken.getsockname()[1]}: something already listens"):
             WebViewer(runs_dir / "reproduce/fixture_centroid", web_port=taken.getsockname()[1]).start()
-    with pytest.raises(FileNotFoundError, match="no recording at"):
+    with pytest.raises(UsageError, match="no recording at"):
         WebViewer(runs_dir / "reproduce/old_schema")

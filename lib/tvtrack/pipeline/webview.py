@@ -22,6 +22,7 @@ import webbrowser
 from pathlib import Path
 from urllib.parse import quote
 
+from .preflight import UsageError
 from .viewer import rerun_executable
 
 __all__ = ["DEFAULT_HOST", "DEFAULT_WEB_PORT", "DEFAULT_GRPC_PORT", "find_recording", "viewer_url", "port_free",
@@ -39,7 +40,7 @@ def find_recording(target: str | Path) -> Path:
     if path.is_dir():
         path = path / "recording.rrd"
     if path.suffix != ".rrd" or not path.is_file():
-        raise FileNotFoundError(f"no recording at {target}: give a run directory holding recording.rrd, or an .rrd file")
+        raise UsageError(f"no recording at {target}: give a run directory holding recording.rrd, or an .rrd file")
     return path.resolve()
 
 
@@ -92,7 +93,7 @@ class WebViewer:
         """Start the servers and wait until the viewer app answers; raises with the reason if not."""
         for name, port in (("--port", self.web_port), ("--grpc-port", self.grpc_port)):
             if not port_free(self.host, port):
-                raise OSError(f"{name} {port}: something already listens on {self.host}:{port}; pick another port")
+                raise UsageError(f"{name} {port}: something already listens on {self.host}:{port}; pick another port")
         # BROWSER=/bin/true: rerun must not open a browser itself (serve() decides that).
         env = {**os.environ, "BROWSER": "/bin/true", "RERUN_ANALYTICS": "0"}
         self.process = subprocess.Popen(
