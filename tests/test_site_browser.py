@@ -174,7 +174,7 @@ def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_
         with WebViewer(runs_dir_for_viewer, web_port=free_port(), grpc_port=free_port()) as viewer:
             assert urlparse(viewer.url).hostname == "127.0.0.1"
             page = w.open(viewer.url)
-            deadline, seen = time.monotonic() + 45, {}
+            deadline, seen = time.monotonic() + 90, {}   # ~20 s on an idle 2-core machine
             while time.monotonic() < deadline:
                 png = page.screenshot()
                 seen = _viewer_drawn(png)
