@@ -28,7 +28,12 @@ def make_runs_dir(root):
                                               "runtime_s": 3.0, "finished_utc": "2026-11-20T09:00:00Z"}))
     (old / "results.json").write_text(json.dumps({"notebook": "old_schema", "citation": "Old: a paper", "seed": 1,
                                                   "runtime_s": 2.0, "git_commit": None, "claims": [OLD_CLAIM],
-                                                  "figures": [], "recording": None}))
+                                                  "figures": [{"file": "old.png", "caption": "An old figure."}],
+                                                  "recording": None}))
+    fig, ax = plt.subplots(figsize=(3, 2))
+    ax.plot([0, 1], [1, 0])
+    fig.savefig(old / "old.png")
+    plt.close(fig)
     (old / "notebook.ipynb").write_text(json.dumps({
         "nbformat": 4, "nbformat_minor": 5, "metadata": {},
         "cells": [{"cell_type": "markdown", "id": "m1", "metadata": {},

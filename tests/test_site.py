@@ -52,6 +52,10 @@ def test_notebook_page_has_figures_math_and_recording(built_site):
     assert 'class="still" src="../runs/fixture_centroid/recording.png"' in html
     old = (built_site / "notebooks/old_schema.html").read_text()
     assert old.count("<math") == 2 and "<mfrac>" in old and 'display="block"' in old
+    # a run from before the verdict standard shows no figure inline: the page adds its saved figures
+    assert '<img alt="An old figure." src="../runs/old_schema/old.png"' in old
+    assert (built_site / "runs/old_schema/old.png").is_file()
+    assert "Figures saved by this run" not in html
 
 
 def test_sweep_page_has_table_and_plot(built_site):

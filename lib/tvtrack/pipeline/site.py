@@ -140,16 +140,26 @@ def claim_cells(notebook: dict, claim_ids: list[str]) -> dict[str, str]:
     return found
 
 
-def render_notebook(notebook_path: Path, out: Path, title: str, recording: dict | None = None) -> dict:
-    """Write the executed notebook as one offline HTML page; returns the notebook (for cell lookups)."""
+def has_inline_images(notebook: dict) -> bool:
+    """Whether any output of the notebook is an image (runs from before the verdict standard have none)."""
+    return any(key.startswith("image/") for cell in notebook["cells"] for out in cell.get("outputs", [])
+               for key in out.get("data", {}))
+
+
+def render_notebook(notebook_path: Path, out: Path, title: str, recording: dict | None = None,
+                    figures: list[dict] | None = None) -> dict:
+    """Write the executed notebook as one offline HTML page; returns the notebook (for cell lookups).
+
+    ``figures`` (``[{src, caption}]``, ``src`` relative to the page) are shown after the notebook, for
+    runs whose notebook does not show its figures inline."""
     import nbformat
 
     nb = nbformat.read(notebook_path, as_version=4)
     exporter = _markdown_exporter_class()(template_name=NOTEBOOK_TEMPLATE,
                                           extra_template_basedirs=[str(TEMPLATE_DIR)],
                                           extra_template_paths=[str(TEMPLATE_DIR)])
-    body, _ = exporter.from_notebook_node(nb, resources={"site": {"title": title, "recording": recording},
-                                                         "metadata": {"name": title}})
+    site = {"title": title, "recording": recording, "figures": figures or []}
+    body, _ = exporter.from_notebook_node(nb, resources={"site": site, "metadata": {"name": title}})
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(body)
     return nb
@@ -289,6 +299,20 @@ def _sweep_page(env, sweep_csv: Path, site: Path) -> dict:
     return info
 
 
+def _figures_not_inline(run: PaperRun, notebook_path: Path, assets: Path) -> list[dict]:
+    """The run's saved figures, copied beside the site, when its notebook does not show them inline."""
+    import nbformat
+
+    if has_inline_images(nbformat.read(notebook_path, as_version=4)):
+        return []
+    shown = []
+    for fig in run.results.get("figures", []):
+        if (run.run_dir / fig["file"]).is_file():
+            shutil.copy2(run.run_dir / fig["file"], assets / fig["file"])
+            shown.append({"src": f"../runs/{run.name}/{fig['file']}", "caption": fig["caption"]})
+    return shown
+
+
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
     """Build the site from ``runs_dir/reproduce`` and the sweeps in ``runs_dir``; returns ``index.html``."""
     runs_dir = Path(runs_dir)
@@ -306,11 +330,13 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
         if run.ok:
             card["recording"] = _recording_info(run, site, runs_dir)
             card["counts"] = _counts(run.results["claims"])
-            nb = render_notebook(run.run_dir / "notebook.ipynb", site / "notebooks" / f"{run.name}.html",
-                                 run.name, card["recording"] and {**card["recording"], "root": "../"})
+            assets = site / "runs" / run.name
+            assets.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(run.run_dir / "results.json", assets / "results.json")
+            notebook_path = run.run_dir / "notebook.ipynb"
+            nb = render_notebook(notebook_path, site / "notebooks" / f"{run.name}.html", run.name,
+                                 card["recording"], _figures_not_inline(run, notebook_path, assets))
             run.cells = claim_cells(nb, [c["id"] for c in run.results["claims"]])
-            (site / "runs" / run.name).mkdir(parents=True, exist_ok=True)
-            shutil.copy2(run.run_dir / "results.json", site / "runs" / run.name / "results.json")
         cards.append(card)
     sweeps = [_sweep_page(env, csv_path, site) for csv_path in find_sweeps(runs_dir)]
     rows = _ledger_rows(runs)
