@@ -130,3 +130,15 @@ def test_view_refuses_a_taken_port(runs_dir):
             WebViewer(runs_dir / "reproduce/fixture_centroid", web_port=taken.getsockname()[1]).start()
     with pytest.raises(UsageError, match="no recording at"):
         WebViewer(runs_dir / "reproduce/old_schema")
+
+
+def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path):
+    from tvtrack.pipeline.preflight import UsageError
+    from tvtrack.pipeline.site import build_site
+
+    precious = tmp_path / "precious"
+    precious.mkdir()
+    (precious / "thesis.tex").write_text("keep me")
+    with pytest.raises(UsageError, match="not a site built here"):
+        build_site(runs_dir, precious)
+    assert (precious / "thesis.tex").read_text() == "keep me"

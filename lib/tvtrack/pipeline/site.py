@@ -31,7 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .paths import RUNS_DIR
-from .report import REPRODUCE_DIR, format_measured, robustness_label, robustness_where
+from .preflight import UsageError
+from .report import NO_LABEL, REPRODUCE_DIR, format_measured, robustness_label, robustness_where
 from .runner import read_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import VERDICTS
@@ -146,15 +147,12 @@ def has_inline_images(notebook: dict) -> bool:
                for key in out.get("data", {}))
 
 
-def render_notebook(notebook_path: Path, out: Path, title: str, recording: dict | None = None,
-                    figures: list[dict] | None = None) -> dict:
-    """Write the executed notebook as one offline HTML page; returns the notebook (for cell lookups).
+def render_notebook(nb, out: Path, title: str, recording: dict | None = None,
+                    figures: list[dict] | None = None) -> None:
+    """Write the executed notebook (an ``nbformat`` node) as one offline HTML page.
 
     ``figures`` (``[{src, caption}]``, ``src`` relative to the page) are shown after the notebook, for
     runs whose notebook does not show its figures inline."""
-    import nbformat
-
-    nb = nbformat.read(notebook_path, as_version=4)
     exporter = _markdown_exporter_class()(template_name=NOTEBOOK_TEMPLATE,
                                           extra_template_basedirs=[str(TEMPLATE_DIR)],
                                           extra_template_paths=[str(TEMPLATE_DIR)])
@@ -162,7 +160,6 @@ def render_notebook(notebook_path: Path, out: Path, title: str, recording: dict 
     body, _ = exporter.from_notebook_node(nb, resources={"site": site, "metadata": {"name": title}})
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(body)
-    return nb
 
 
 # --- recordings --------------------------------------------------------------------------------------
@@ -260,16 +257,14 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
 def _environment():
     from jinja2 import Environment, FileSystemLoader, select_autoescape
 
-    env = Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
-    env.filters["measured"] = format_measured
-    return env
+    return Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
 
 
 def _counts(claims: list[dict]) -> dict:
     verdicts = Counter(c["verdict"] for c in claims)
     labels = Counter(robustness_label(c) for c in claims)
     return {"verdicts": [(v, verdicts[v]) for v in VERDICTS],
-            "labels": [(lab, labels[lab]) for lab in (*LABELS, "—") if labels[lab]]}
+            "labels": [(lab, labels[lab]) for lab in (*LABELS, NO_LABEL) if labels[lab]]}
 
 
 def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
@@ -299,11 +294,9 @@ def _sweep_page(env, sweep_csv: Path, site: Path) -> dict:
     return info
 
 
-def _figures_not_inline(run: PaperRun, notebook_path: Path, assets: Path) -> list[dict]:
+def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
     """The run's saved figures, copied beside the site, when its notebook does not show them inline."""
-    import nbformat
-
-    if has_inline_images(nbformat.read(notebook_path, as_version=4)):
+    if has_inline_images(nb):
         return []
     shown = []
     for fig in run.results.get("figures", []):
@@ -315,9 +308,13 @@ def _figures_not_inline(run: PaperRun, notebook_path: Path, assets: Path) -> lis
 
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
     """Build the site from ``runs_dir/reproduce`` and the sweeps in ``runs_dir``; returns ``index.html``."""
+    import nbformat
+
     runs_dir = Path(runs_dir)
     site = Path(out) if out is not None else runs_dir / "site"
     if site.exists():
+        if any(site.iterdir()) and not (site / "index.html").is_file():
+            raise UsageError(f"{site} exists and is not a site built here (no index.html): give an empty or new folder")
         shutil.rmtree(site)
     (site / "notebooks").mkdir(parents=True)
     (site / "sweeps").mkdir()
@@ -333,16 +330,16 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
             assets = site / "runs" / run.name
             assets.mkdir(parents=True, exist_ok=True)
             shutil.copy2(run.run_dir / "results.json", assets / "results.json")
-            notebook_path = run.run_dir / "notebook.ipynb"
-            nb = render_notebook(notebook_path, site / "notebooks" / f"{run.name}.html", run.name,
-                                 card["recording"], _figures_not_inline(run, notebook_path, assets))
+            nb = nbformat.read(run.run_dir / "notebook.ipynb", as_version=4)
+            render_notebook(nb, site / "notebooks" / f"{run.name}.html", run.name, card["recording"],
+                            _figures_not_inline(run, nb, assets))
             run.cells = claim_cells(nb, [c["id"] for c in run.results["claims"]])
         cards.append(card)
     sweeps = [_sweep_page(env, csv_path, site) for csv_path in find_sweeps(runs_dir)]
     rows = _ledger_rows(runs)
     built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     (site / "ledger.html").write_text(env.get_template("ledger.html").render(
-        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=VERDICTS, labels=(*LABELS, "—"), root="",
+        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=VERDICTS, labels=(*LABELS, NO_LABEL), root="",
         built=built))
     index = site / "index.html"
     index.write_text(env.get_template("index.html").render(
