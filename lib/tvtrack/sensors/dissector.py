@@ -272,8 +272,9 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     Returns
     -------
     dict with ``x_coarse``, ``y_coarse`` (n_trials, n_steps + 1; column 0 is the start, ``y`` NaN),
-    ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``t_coarse``, ``t_fine`` (times the estimates
-    refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
+    ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``x_mid`` (n_trials, n_steps factor: the message
+    at the centre of each fine interval, where the pulse and noise intensity are evaluated),
+    ``t_coarse``, ``t_fine`` (times the estimates refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
     """
     if isinstance(factor, bool) or int(factor) != factor or factor < 2:
         raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
@@ -297,7 +298,7 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     y_coarse = np.full((n_trials, n_steps + 1), np.nan)
     y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)   # integrate and dump
     return {"x_coarse": x_half[:, ::2 * factor], "y_coarse": y_coarse,             # times k dt
-            "x_fine": x_half[:, 2::2], "y_fine": y_fine,                             # times (j + 1) dt_f
+            "x_fine": x_half[:, 2::2], "y_fine": y_fine, "x_mid": x_mid,                            # times (j + 1) dt_f
             "t_coarse": np.arange(n_steps + 1) * scan.dt, "t_fine": (j + 1) * dt_f, "scan_fine": scan_fine}
 
 
