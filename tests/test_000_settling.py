@@ -55,7 +55,7 @@ def test_acquisition_time_is_the_end_of_the_last_scan_out_of_lock():
     sq[2, 1:5] = 1.0
     sq[2, 13:17] = 1.0                                          # re-acquires, loses lock in scan 4, back in scan 5
     sq[3, 9:] = 1.0                                             # lost from scan 3 to the end
-    np.testing.assert_allclose(acquisition_times(sq, 0.1, sps, dt), [0.0, 2.0, 4.0, np.inf])
+    np.testing.assert_allclose(acquisition_times(sq, 0.1, sps, dt), [1.0, 2.0, 4.0, np.inf])
     with pytest.raises(ValueError, match="threshold_ms"):
         acquisition_times(sq, 0.0, sps, dt)
 

@@ -112,7 +112,8 @@ def settle_time_ci(sq_error, steady_mask, steps_per_scan: int, dt: float, rng: n
 
 def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: float):
     """Time each trial acquires the object for good: the end of its last scan whose mean squared
-    error exceeds ``threshold_ms`` (0 if none does, ``inf`` if the last scan of the run does).
+    error exceeds ``threshold_ms`` (the end of the first scan if none does: lock is known only once a
+    scan has been seen; ``inf`` if the last scan of the run is out of lock).
 
     A run that re-acquires late and a run in a false lock (its filter confident, its error tens of
     sigma) both show here, unlike in the ensemble mean where they are averaged away or dominate.
@@ -132,7 +133,7 @@ def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: fl
     out = scan_averages(sq_error, steps_per_scan) > threshold_ms        # (n_trials, n_scans)
     n_scans = out.shape[1]
     last_out = n_scans - 1 - np.argmax(out[:, ::-1], axis=1)            # index of the last scan out of lock
-    t = np.where(out.any(axis=1), (last_out + 1) * steps_per_scan * dt, 0.0)
+    t = np.where(out.any(axis=1), last_out + 1, 1) * steps_per_scan * dt
     return np.where(out[:, -1], np.inf, t)
 
 
