@@ -10,7 +10,8 @@ from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
 from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
                                        fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
-                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_two_rates,
+                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
+                                       simulate_two_rates,
                                        variant1_filter, variant2_filter)
 
 MSG = GaussMarkovMessage(0.1, 0.15)
@@ -251,6 +252,25 @@ def test_variant1_models_the_true_signal_noise_only_with_the_consistent_scale_an
             gain = (filt.h(np.array([x1[0], 1.0]), k) - filt.h(np.array([x1[0], 0.0]), k))[0]   # sqrt(c_s S)
             x2_var = filt.Q[1, 1] / (1.0 - filt.F[1, 1] ** 2)
             np.testing.assert_allclose(gain ** 2 * x2_var * factor, truth_signal_noise, rtol=1e-9)
+
+
+def test_integrated_samples_average_the_pulse_and_the_noise_intensity_over_the_interval():
+    """With the object at rest (x = 0), sample k has mean A mean_j S(0, t_j) over the m sub-interval centres and
+    variance mean_j N(0, t_j) / dt; the pulse peak is lower than the point-sampled one (averaging over dt)."""
+    scan, m, n_trials, n_steps = _scan(0.8), 8, 20000, 20
+    still = GaussMarkovMessage(1e-9, 0.15)
+    x, y = simulate_integrated(scan, still, draw_noises(np.random.default_rng(15), n_trials, n_steps, substeps=m))
+    t = ((np.arange(m * n_steps) + 0.5) * scan.dt / m).reshape(n_steps, m)
+    s = np.exp(-0.5 * ((t - 0.5) / scan.pulse_sigma) ** 2)
+    mean = s.mean(axis=1)
+    var = (scan.n0 * (1 + 4.0 * s)).mean(axis=1) / scan.dt
+    se_mean = np.sqrt(var / n_trials)
+    np.testing.assert_array_less(np.abs(y[:, 1:].mean(axis=0) - mean), 4 * se_mean)
+    np.testing.assert_allclose(y[:, 1:].var(axis=0) / var, 1.0, atol=4 * np.sqrt(2 / n_trials))
+    k_peak = 10                                                        # interval (0.45, 0.5]: centre 0.475
+    assert mean[k_peak - 1] < scan.shape(0.0, k_peak)                  # averaging lowers the sampled pulse
+    with pytest.raises(ValueError, match="w_sub"):
+        simulate_integrated(scan, MSG, draw_noises(np.random.default_rng(0), 2, 3))
 
 
 def _steady_ratio_v1_to_v2(g22, contrast=0.9, n_trials=400, seed=21):

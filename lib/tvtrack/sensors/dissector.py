@@ -32,7 +32,8 @@ from ..filters.grid import GridFilter
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_two_rates",
+    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "simulate_two_rates",
     "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "grid_filter", "fisher_information",
     "pcrlb_variance", "scan_crlb", "lock_lost",
 ]
@@ -204,22 +205,34 @@ def scan_at_snr(psi_a: float, contrast: float, dt: float, pulse_duration: float 
                          0.5 * pulse_duration, 0.5, offset)
 
 
-def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int) -> dict:
+def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps: int = 0) -> dict:
     """Unit normal draws for one Monte Carlo experiment (common random numbers).
+
+    Parameters
+    ----------
+    substeps : int
+        With ``substeps >= 1`` also draws ``w_sub`` for :func:`simulate_integrated` (after the other
+        draws, so they do not change).
 
     Returns
     -------
     dict with ``x0`` (n_trials,), ``w`` (n_trials, n_steps) process noise, ``xi`` (n_trials, n_steps)
-    observation noise, ``init`` (n_trials, 2) for random initial estimates.
+    observation noise, ``init`` (n_trials, 2) for random initial estimates, and with ``substeps``
+    ``w_sub`` (n_trials, 2 substeps n_steps) process noise on half sub-steps.
     """
     if n_trials < 1 or n_steps < 1:
         raise ValueError(f"parameters 'n_trials' = {n_trials}, 'n_steps' = {n_steps}; both must be >= 1")
-    return {
+    if isinstance(substeps, bool) or int(substeps) != substeps or substeps < 0:
+        raise ValueError(f"parameter 'substeps' = {substeps!r}; it must be an integer >= 0")
+    out = {
         "x0": rng.standard_normal(n_trials),
         "w": rng.standard_normal((n_trials, n_steps)),
         "xi": rng.standard_normal((n_trials, n_steps)),
         "init": rng.standard_normal((n_trials, 2)),
     }
+    if substeps:
+        out["w_sub"] = rng.standard_normal((n_trials, 2 * int(substeps) * n_steps))
+    return out
 
 
 def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
@@ -246,6 +259,54 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     y[:, 1:] = scan.amplitude * scan.shape(x[:, 1:], k) \
         + np.sqrt(scan.sample_variance(x[:, 1:], k)) * xi                  # (eq. 5)
     return x, y
+
+
+def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+    """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
+
+    The message is simulated exactly on half sub-steps of ``dt / m`` (``m`` from the shape of
+    ``noises["w_sub"]``); the pulse and the noise intensity are evaluated at the centres of the ``m``
+    sub-intervals (midpoint rule) while the message moves, so
+
+        Y(k) = mean_j A S(x_j, t_j) + sqrt(mean_j N(x_j, t_j) / dt) xi_k,
+
+    which is exactly the mean of ``m`` integrated sub-samples of noise variance ``N_j m / dt`` (a sum
+    of independent Gaussians). The truth returned is the message at ``k dt``, the time of the newest
+    datum of a filtered estimate.
+
+    Parameters
+    ----------
+    scan : DissectorScan   ``time_offset`` must be ``-dt / 2`` (filters model the pulse at the interval centre)
+    noises : dict from :func:`draw_noises` with ``substeps >= 1`` (``x0``, ``xi``, ``w_sub``)
+
+    Returns
+    -------
+    x : ndarray, shape (n_trials, n_steps + 1)   coordinate ``X1(k dt)``
+    y : ndarray, shape (n_trials, n_steps + 1)   samples; ``y[:, 0]`` is NaN
+    """
+    if "w_sub" not in noises:
+        raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
+    if not np.isclose(scan.time_offset, -0.5 * scan.dt):
+        raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
+    xi, w = noises["xi"], noises["w_sub"]
+    n_trials, n_steps = xi.shape
+    m = w.shape[1] // (2 * n_steps)
+    if m < 1 or w.shape[1] != 2 * m * n_steps:
+        raise ValueError(f"noises['w_sub'] has {w.shape[1]} columns; it must be 2 m n_steps = 2 m {n_steps}")
+    f, q = message.exact(0.5 * scan.dt / m)
+    x_half = np.empty((n_trials, w.shape[1] + 1))                          # times i dt / (2 m)
+    x_half[:, 0] = message.sigma * noises["x0"]
+    for i in range(w.shape[1]):
+        x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
+    x_mid = x_half[:, 1::2]                                                # sub-interval centres
+    t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
+    u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
+    shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
+    intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
+    y = np.full((n_trials, n_steps + 1), np.nan)
+    y[:, 1:] = scan.amplitude * shape.reshape(n_trials, n_steps, m).mean(axis=2) \
+        + np.sqrt(intensity.reshape(n_trials, n_steps, m).mean(axis=2) / scan.dt) * xi
+    return x_half[:, ::2 * m], y
 
 
 def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
