@@ -11,6 +11,7 @@ from tvtrack.filters.kalman import KalmanFilter, kf_update
 from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
                                        fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
                                        run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
+                                       simulate_photon_counts,
                                        simulate_two_rates,
                                        variant1_filter, variant2_filter)
 
@@ -271,6 +272,24 @@ def test_integrated_samples_average_the_pulse_and_the_noise_intensity_over_the_i
     assert mean[k_peak - 1] < scan.shape(0.0, k_peak)                  # averaging lowers the sampled pulse
     with pytest.raises(ValueError, match="w_sub"):
         simulate_integrated(scan, MSG, draw_noises(np.random.default_rng(0), 2, 3))
+
+
+def test_photon_counts_have_the_gaussian_models_mean_and_variance():
+    """Poisson counts with N0 = q I_b and P/(1-P) = A/I_b: the same mean A S and variance N / dt per sample as the
+    Gaussian integrated model (moments, not shape), for the same truth."""
+    scan, m, n_trials, n_steps = _scan(0.5, psi=3.0), 4, 20000, 20
+    still = GaussMarkovMessage(1e-9, 0.15)
+    noises = draw_noises(np.random.default_rng(16), n_trials, n_steps, substeps=m)
+    xg, yg = simulate_integrated(scan, still, noises)
+    xp, yp, background = simulate_photon_counts(scan, still, noises, np.random.default_rng(17))
+    np.testing.assert_array_equal(xp, xg)
+    assert background == pytest.approx(9.0)          # I_b dt / q = ((1-P)/P)^2 psi_A^2 (per-sample sigma_sh)
+    se_var = np.sqrt(2 / n_trials) * yg[:, 1:].var(axis=0)
+    np.testing.assert_array_less(np.abs(yp[:, 1:].mean(axis=0) - yg[:, 1:].mean(axis=0)),
+                                 4 * np.sqrt(2 * yg[:, 1:].var(axis=0) / n_trials))
+    np.testing.assert_array_less(np.abs(yp[:, 1:].var(axis=0) - yg[:, 1:].var(axis=0)), 6 * se_var)
+    with pytest.raises(ValueError, match="contrast"):
+        simulate_photon_counts(_scan(0.0), still, noises, np.random.default_rng(0))
 
 
 def _steady_ratio_v1_to_v2(g22, contrast=0.9, n_trials=400, seed=21):

@@ -33,6 +33,7 @@ from ..filters.grid import GridFilter
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
     "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "simulate_photon_counts",
     "simulate_two_rates",
     "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "grid_filter", "fisher_information",
     "pcrlb_variance", "scan_crlb", "lock_lost",
@@ -261,6 +262,35 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     return x, y
 
 
+def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+    """The message on half sub-steps and each sample's pulse and noise intensity averaged over its interval.
+
+    Returns ``x`` (n_trials, n_steps + 1) at ``k dt``, ``shape`` and ``intensity`` (n_trials, n_steps): the
+    means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``.
+    """
+    if "w_sub" not in noises:
+        raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
+    if not np.isclose(scan.time_offset, -0.5 * scan.dt):
+        raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
+    w = noises["w_sub"]
+    n_trials, n_steps = noises["xi"].shape
+    m = w.shape[1] // (2 * n_steps)
+    if m < 1 or w.shape[1] != 2 * m * n_steps:
+        raise ValueError(f"noises['w_sub'] has {w.shape[1]} columns; it must be 2 m n_steps = 2 m {n_steps}")
+    f, q = message.exact(0.5 * scan.dt / m)
+    x_half = np.empty((n_trials, w.shape[1] + 1))                          # times i dt / (2 m)
+    x_half[:, 0] = message.sigma * noises["x0"]
+    for i in range(w.shape[1]):
+        x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
+    x_mid = x_half[:, 1::2]                                                # sub-interval centres
+    t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
+    u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
+    shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
+    intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
+    mean = lambda a: a.reshape(n_trials, n_steps, m).mean(axis=2)
+    return x_half[:, ::2 * m], mean(shape), mean(intensity)
+
+
 def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
 
@@ -284,29 +314,44 @@ def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises
     x : ndarray, shape (n_trials, n_steps + 1)   coordinate ``X1(k dt)``
     y : ndarray, shape (n_trials, n_steps + 1)   samples; ``y[:, 0]`` is NaN
     """
-    if "w_sub" not in noises:
-        raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
-    if not np.isclose(scan.time_offset, -0.5 * scan.dt):
-        raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
-    xi, w = noises["xi"], noises["w_sub"]
-    n_trials, n_steps = xi.shape
-    m = w.shape[1] // (2 * n_steps)
-    if m < 1 or w.shape[1] != 2 * m * n_steps:
-        raise ValueError(f"noises['w_sub'] has {w.shape[1]} columns; it must be 2 m n_steps = 2 m {n_steps}")
-    f, q = message.exact(0.5 * scan.dt / m)
-    x_half = np.empty((n_trials, w.shape[1] + 1))                          # times i dt / (2 m)
-    x_half[:, 0] = message.sigma * noises["x0"]
-    for i in range(w.shape[1]):
-        x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
-    x_mid = x_half[:, 1::2]                                                # sub-interval centres
-    t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
-    u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
-    shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
-    intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
-    y = np.full((n_trials, n_steps + 1), np.nan)
-    y[:, 1:] = scan.amplitude * shape.reshape(n_trials, n_steps, m).mean(axis=2) \
-        + np.sqrt(intensity.reshape(n_trials, n_steps, m).mean(axis=2) / scan.dt) * xi
-    return x_half[:, ::2 * m], y
+    x, shape, intensity = _integrated_path(scan, message, noises)
+    y = np.full_like(x, np.nan)
+    y[:, 1:] = scan.amplitude * shape + np.sqrt(intensity / scan.dt) * noises["xi"]
+    return x, y
+
+
+def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
+                           rng: np.random.Generator):
+    """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
+
+    Shot noise is the count statistics of the photo-electrons: with background current ``I_b`` and
+    charge ``q`` per electron, ``N0 = q I_b`` and ``P / (1-P) = A / I_b`` (eq. (2)), so
+    ``I_b = A (1-P)/P`` and ``q = N0 / I_b``. Sample ``k`` counts ``n_k ~ Poisson((I_b + A S_k) dt / q)``
+    electrons over its interval (``S_k`` the pulse averaged over the interval as in
+    :func:`simulate_integrated`) and reports the current less the known background,
+    ``Y(k) = q n_k / dt - I_b``: the same mean ``A S_k`` and variance ``N_k / dt`` as the Gaussian
+    model, with the Poisson shape (skewed at low counts).
+
+    Parameters
+    ----------
+    scan : DissectorScan   contrast ``P > 0`` (no signal current at ``P = 0``); ``time_offset = -dt / 2``
+    noises : dict          as for :func:`simulate_integrated` (``xi`` is not used)
+    rng : numpy.random.Generator   draws the counts
+
+    Returns
+    -------
+    x, y : as :func:`simulate_integrated`
+    background_counts : float   mean background electrons per sample, ``I_b dt / q``
+    """
+    if not scan.contrast > 0:
+        raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
+    x, shape, _ = _integrated_path(scan, message, noises)
+    i_b = scan.amplitude / scan.signal_noise_ratio
+    charge = scan.n0 / i_b
+    counts = rng.poisson((i_b + scan.amplitude * shape) * scan.dt / charge)
+    y = np.full_like(x, np.nan)
+    y[:, 1:] = charge * counts / scan.dt - i_b
+    return x, y, i_b * scan.dt / charge
 
 
 def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
