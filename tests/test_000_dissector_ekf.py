@@ -11,7 +11,7 @@ from tvtrack.filters.kalman import KalmanFilter, kf_update
 from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
                                        fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
                                        run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
-                                       simulate_photon_counts,
+                                       simulate_photon_counts, scan_centroids, fixed_gain_track, tune_fixed_gain,
                                        simulate_two_rates,
                                        variant1_filter, variant2_filter)
 
@@ -389,3 +389,20 @@ def test_scan_crlb_is_the_inverse_of_the_summed_sample_information():
     s_prime = np.exp(-0.5 * (u / 0.25) ** 2) * u / 0.25 ** 2
     np.testing.assert_allclose(scan_crlb(sc), 1.0 / np.sum(s_prime ** 2 / (sc.n0 / sc.dt)), rtol=1e-12)
     assert scan_crlb(_scan(0.9)) > scan_crlb(sc)                         # signal noise costs information
+
+
+def test_scan_centroid_is_unbiased_for_a_centred_pulse_without_noise_and_the_smoother_is_exact_at_gain_one():
+    scan = _scan(0.0, psi=1e6)
+    still = GaussMarkovMessage(1e-9, 0.15)
+    x, y = simulate(scan, still, draw_noises(np.random.default_rng(18), 3, 60))
+    z = scan_centroids(scan, y)
+    assert z.shape == (3, 3)
+    np.testing.assert_allclose(z, 0.0, atol=1e-4)                       # symmetric samples about the pulse centre
+    shifted = DissectorScan(scan.n0 * 1e-12, 0.0, time_offset=-0.025)
+    xs, ys = simulate(shifted, GaussMarkovMessage(1e-9, 1e-9), {**draw_noises(np.random.default_rng(19), 2, 20),
+                                                                   "x0": np.full(2, 0.01 / 1e-9)})
+    assert scan_centroids(shifted, ys)[0, 0] == pytest.approx(0.01, rel=0.01)   # calibrated: linear near 0
+    zz = np.random.default_rng(20).standard_normal((4, 10))
+    np.testing.assert_allclose(fixed_gain_track(zz, 0.9, 1.0), zz)
+    truth = np.zeros((4, 10))
+    assert tune_fixed_gain(zz, truth, 0.9, [0.05, 0.5, 1.0], np.ones(10, bool)) == 0.05   # pure noise: smooth most
