@@ -10,7 +10,9 @@ from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
 from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
                                        fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
-                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_two_rates,
+                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
+                                       simulate_photon_counts, scan_centroids, fixed_gain_track, tune_fixed_gain,
+                                       simulate_two_rates,
                                        variant1_filter, variant2_filter)
 
 MSG = GaussMarkovMessage(0.1, 0.15)
@@ -218,18 +220,119 @@ def test_pcrlb_lies_below_the_grid_filter_mse():
     assert mse.mean() < 1.5 * bound[150:].mean()
 
 
-def test_two_rate_simulation_is_consistent():
-    scan = _scan(0.5)
-    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(11), 3000, 3)
-    # coarse noise variance is N/dt: residual variance of the averaged samples
-    k = np.arange(4)
-    resid = d["y_coarse"][:, 1:] - d["y_fine"].reshape(3000, 3, 10).mean(axis=2)
-    assert np.allclose(resid, 0.0)
-    assert d["x_fine"].shape == (3000, 30) and d["x_coarse"].shape == (3000, 4)
-    np.testing.assert_allclose(d["x_fine"][:, 9::10], d["x_coarse"][:, 1:])
+def test_coarse_samples_carry_the_noise_variance_of_integrate_and_dump():
+    """A coarse sample is the integral of the current over dt divided by dt: its noise variance is
+    mean_j N(t_j) / dt over the fine intervals it covers (not N / dt_f, not the variance of one fine sample)."""
+    factor, n_trials, n_steps = 10, 4000, 3
+    scan = _scan(0.8)
+    d = simulate_two_rates(scan, MSG, factor, np.random.default_rng(11), n_trials, n_steps)
+    j = np.arange(n_steps * factor)
+    fine = d["scan_fine"]
+    signal = (scan.amplitude * fine.shape(d["x_mid"], j)).reshape(n_trials, n_steps, factor).mean(axis=2)
+    expected_var = fine.noise_intensity(d["x_mid"], j).reshape(n_trials, n_steps, factor).mean(axis=2) / scan.dt
+    z = (d["y_coarse"][:, 1:] - signal) / np.sqrt(expected_var)       # standardised coarse noise
+    se = np.sqrt(2.0 / z.size)                                          # standard error of a unit variance
+    assert abs(z.var() - 1.0) < 4 * se, f"coarse noise variance / (mean N / dt) = {z.var():.4f} +- {se:.4f}"
+    assert abs(z.mean()) < 4 / np.sqrt(z.size)
+    np.testing.assert_allclose(d["x_fine"][:, factor - 1::factor], d["x_coarse"][:, 1:])
     with pytest.raises(ValueError, match="factor"):
         simulate_two_rates(scan, MSG, 1, np.random.default_rng(0), 2, 2)
-    del k
+
+
+def test_variant1_models_the_true_signal_noise_only_with_the_consistent_scale_and_matched_g22():
+    """sqrt(c_s S) X2 with X2 at its stationary variance G22 / (1 - (1 - beta dt)^2) must carry the truth's
+    signal-noise variance N0 P/(1-P) S / dt (eq. (2)) for c_s = N0 P/(1-P) and the matched G22; the
+    printed G22 under-states it by (1 - beta dt / 2) / dt (12.5-fold at the paper's beta dt = 0.75)."""
+    beta = 15.0
+    for contrast in (0.5, 0.9):
+        scan = _scan(contrast)
+        x1, k = np.array([0.02]), 9
+        truth_signal_noise = scan.sample_variance(x1, k) - scan.n0 / scan.dt
+        for g22, factor in (("matched", 1.0), ("paper", (1 - beta * scan.dt / 2) / scan.dt)):
+            filt = variant1_filter(scan, MSG, beta, "consistent", g22)
+            gain = (filt.h(np.array([x1[0], 1.0]), k) - filt.h(np.array([x1[0], 0.0]), k))[0]   # sqrt(c_s S)
+            x2_var = filt.Q[1, 1] / (1.0 - filt.F[1, 1] ** 2)
+            np.testing.assert_allclose(gain ** 2 * x2_var * factor, truth_signal_noise, rtol=1e-9)
+
+
+def test_integrated_samples_average_the_pulse_and_the_noise_intensity_over_the_interval():
+    """With the object at rest (x = 0), sample k has mean A mean_j S(0, t_j) over the m sub-interval centres and
+    variance mean_j N(0, t_j) / dt; the pulse peak is lower than the point-sampled one (averaging over dt)."""
+    scan, m, n_trials, n_steps = _scan(0.8), 8, 20000, 20
+    still = GaussMarkovMessage(1e-9, 0.15)
+    x, y = simulate_integrated(scan, still, draw_noises(np.random.default_rng(15), n_trials, n_steps, substeps=m))
+    t = ((np.arange(m * n_steps) + 0.5) * scan.dt / m).reshape(n_steps, m)
+    s = np.exp(-0.5 * ((t - 0.5) / scan.pulse_sigma) ** 2)
+    mean = s.mean(axis=1)
+    var = (scan.n0 * (1 + 4.0 * s)).mean(axis=1) / scan.dt
+    se_mean = np.sqrt(var / n_trials)
+    np.testing.assert_array_less(np.abs(y[:, 1:].mean(axis=0) - mean), 4 * se_mean)
+    np.testing.assert_allclose(y[:, 1:].var(axis=0) / var, 1.0, atol=4 * np.sqrt(2 / n_trials))
+    k_peak = 10                                                        # interval (0.45, 0.5]: centre 0.475
+    assert mean[k_peak - 1] < scan.shape(0.0, k_peak)                  # averaging lowers the sampled pulse
+    with pytest.raises(ValueError, match="w_sub"):
+        simulate_integrated(scan, MSG, draw_noises(np.random.default_rng(0), 2, 3))
+
+
+def test_photon_counts_have_the_gaussian_models_mean_and_variance():
+    """Poisson counts with N0 = q I_b and P/(1-P) = A/I_b: the same mean A S and variance N / dt per sample as the
+    Gaussian integrated model (moments, not shape), for the same truth."""
+    scan, m, n_trials, n_steps = _scan(0.5, psi=3.0), 4, 20000, 20
+    still = GaussMarkovMessage(1e-9, 0.15)
+    noises = draw_noises(np.random.default_rng(16), n_trials, n_steps, substeps=m)
+    xg, yg = simulate_integrated(scan, still, noises)
+    xp, yp, background = simulate_photon_counts(scan, still, noises, np.random.default_rng(17))
+    np.testing.assert_array_equal(xp, xg)
+    assert background == pytest.approx(9.0)          # I_b dt / q = ((1-P)/P)^2 psi_A^2 (per-sample sigma_sh)
+    se_var = np.sqrt(2 / n_trials) * yg[:, 1:].var(axis=0)
+    np.testing.assert_array_less(np.abs(yp[:, 1:].mean(axis=0) - yg[:, 1:].mean(axis=0)),
+                                 4 * np.sqrt(2 * yg[:, 1:].var(axis=0) / n_trials))
+    np.testing.assert_array_less(np.abs(yp[:, 1:].var(axis=0) - yg[:, 1:].var(axis=0)), 6 * se_var)
+    with pytest.raises(ValueError, match="contrast"):
+        simulate_photon_counts(_scan(0.0), still, noises, np.random.default_rng(0))
+
+
+def _steady_ratio_v1_to_v2(g22, contrast=0.9, n_trials=400, seed=21):
+    scan = _scan(contrast)
+    x, y = simulate(scan, MSG, draw_noises(np.random.default_rng(seed), n_trials, 400))
+    window = np.arange(401) * scan.dt > 12.0
+    mse = lambda e: ((x - e)[:, window] ** 2).mean(axis=1)
+    from tvtrack.montecarlo import ratio_ci
+    return ratio_ci(mse(run_variant1(variant1_filter(scan, MSG, g22=g22), y)[0]),
+                    mse(run_variant2(variant2_filter(scan, MSG), y)[0]))
+
+
+def test_claim_level_variant1_with_matched_g22_equals_variant2():
+    """C000-3 at P = 0.9 (400 runs, 20 T): with the matched G22 the two filters model the same noise, and
+    their paired steady-variance ratio is 1.02 (paper profile: 1.02); a wrong signal-noise scale in
+    variant 1 (e.g. dropping 1/(1-P)) moves it far outside."""
+    r = _steady_ratio_v1_to_v2("matched")
+    assert 0.97 < r.ci_low and r.ci_high < 1.05, f"v1 (matched G22) / v2 = {r:.4g}"
+
+
+def test_claim_level_variant1_with_the_printed_g22_loses_about_30_percent_at_p09():
+    """C000-3 at P = 0.9 with the printed G22 = 2 beta dt, point-sampled model: v1 / v2 = 1.31 [1.30, 1.33] at the
+    paper profile (1000 runs); at 400 runs the standard error is about 0.012, so the band [1.25, 1.38] is about
+    +-5 standard errors. Halving G22 (or dropping 1/(1-P) from c_s) moves it outside."""
+    r = _steady_ratio_v1_to_v2("paper")
+    assert 1.25 < r.value < 1.38 and r.stderr < 0.02, f"v1 (printed G22) / v2 = {r:.4g}"
+
+
+def test_pcrlb_averages_the_information_over_the_stationary_prior():
+    """Independent implementation: E[J(x, k)] over x ~ N(0, sigma_1^2) by Monte Carlo sampling, then the
+    scalar recursion J_k = 1 / (q + f^2 / J_{k-1}) + E[J_z]; a prior of the wrong width changes the bound."""
+    scan = _scan(0.9)
+    n_steps = 60
+    xs = MSG.sigma * np.random.default_rng(14).standard_normal(400_000)
+    k = np.arange(1, n_steps + 1)
+    jz = np.array([fisher_information(scan, xs, kk)[0].mean() for kk in k])
+    f, q = MSG.exact(scan.dt)
+    j = 1.0 / MSG.sigma ** 2
+    bound = [1.0 / j]
+    for jk in jz:
+        j = 1.0 / (q + f * f / j) + jk
+        bound.append(1.0 / j)
+    np.testing.assert_allclose(pcrlb_variance(scan, MSG, n_steps), bound, rtol=5e-3)
 
 
 def test_lock_lost_counts_long_excursions_only():
@@ -286,3 +389,20 @@ def test_scan_crlb_is_the_inverse_of_the_summed_sample_information():
     s_prime = np.exp(-0.5 * (u / 0.25) ** 2) * u / 0.25 ** 2
     np.testing.assert_allclose(scan_crlb(sc), 1.0 / np.sum(s_prime ** 2 / (sc.n0 / sc.dt)), rtol=1e-12)
     assert scan_crlb(_scan(0.9)) > scan_crlb(sc)                         # signal noise costs information
+
+
+def test_scan_centroid_is_unbiased_for_a_centred_pulse_without_noise_and_the_smoother_is_exact_at_gain_one():
+    scan = _scan(0.0, psi=1e6)
+    still = GaussMarkovMessage(1e-9, 0.15)
+    x, y = simulate(scan, still, draw_noises(np.random.default_rng(18), 3, 60))
+    z = scan_centroids(scan, y)
+    assert z.shape == (3, 3)
+    np.testing.assert_allclose(z, 0.0, atol=1e-4)                       # symmetric samples about the pulse centre
+    shifted = DissectorScan(scan.n0 * 1e-12, 0.0, time_offset=-0.025)
+    xs, ys = simulate(shifted, GaussMarkovMessage(1e-9, 1e-9), {**draw_noises(np.random.default_rng(19), 2, 20),
+                                                                   "x0": np.full(2, 0.01 / 1e-9)})
+    assert scan_centroids(shifted, ys)[0, 0] == pytest.approx(0.01, rel=0.01)   # calibrated: linear near 0
+    zz = np.random.default_rng(20).standard_normal((4, 10))
+    np.testing.assert_allclose(fixed_gain_track(zz, 0.9, 1.0), zz)
+    truth = np.zeros((4, 10))
+    assert tune_fixed_gain(zz, truth, 0.9, [0.05, 0.5, 1.0], np.ones(10, bool)) == 0.05   # pure noise: smooth most

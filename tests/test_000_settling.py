@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tvtrack.settling import per_trial_mse, scan_averages, settle_time, settle_time_ci
+from tvtrack.settling import acquisition_times, median_ratio_ci, per_trial_mse, scan_averages, settle_time, settle_time_ci
 
 
 def test_per_trial_mse_uses_the_window_only():
@@ -46,3 +46,25 @@ def test_settle_time_ci_interval_covers_the_value_and_reproduces_with_the_seed()
     b = settle_time_ci(sq, t > 10.0, 20, 0.05, np.random.default_rng(2), n_boot=200)
     assert a == b
     assert a.ci_low <= a.value <= a.ci_high and np.isfinite(a.stderr)
+
+
+def test_acquisition_time_is_the_end_of_the_last_scan_out_of_lock():
+    sps, dt = 4, 0.25                                           # scans of 1 time unit
+    sq = np.full((4, 1 + 5 * sps), 0.01)
+    sq[1, 1:9] = 1.0                                            # out for two scans, then in lock
+    sq[2, 1:5] = 1.0
+    sq[2, 13:17] = 1.0                                          # re-acquires, loses lock in scan 4, back in scan 5
+    sq[3, 9:] = 1.0                                             # lost from scan 3 to the end
+    np.testing.assert_allclose(acquisition_times(sq, 0.1, sps, dt), [1.0, 2.0, 4.0, np.inf])
+    with pytest.raises(ValueError, match="threshold_ms"):
+        acquisition_times(sq, 0.0, sps, dt)
+
+
+def test_median_ratio_ignores_a_few_diverged_runs():
+    rng = np.random.default_rng(3)
+    b = rng.exponential(size=400)
+    a = 2.0 * b
+    a[:8] = 1e4                                                 # 2 % diverged runs
+    r = median_ratio_ci(a, b)
+    assert a.mean() / b.mean() > 100                            # the mean ratio is dominated by the 8 runs
+    assert 0 < r.ci_low < 2.0 * 1.05 and 2.0 < r.ci_high < 2.4  # the median ratio is about 2 (1.03 x 2 expected)

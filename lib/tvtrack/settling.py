@@ -11,9 +11,10 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from .montecarlo import Estimate
+from .montecarlo import Estimate, bootstrap_ci
 
-__all__ = ["per_trial_mse", "scan_averages", "settle_time", "settle_time_ci"]
+__all__ = ["per_trial_mse", "scan_averages", "settle_time", "settle_time_ci", "acquisition_times",
+           "median_ratio_ci"]
 
 
 def per_trial_mse(truth, estimate, mask):
@@ -72,7 +73,7 @@ def settle_time(per_scan, steady, scan_duration: float, tolerance: float = 0.10)
 
 
 def settle_time_ci(sq_error, steady_mask, steps_per_scan: int, dt: float, rng: np.random.Generator,
-                   n_boot: int = 400, tolerance: float = 0.10, confidence: float = 0.95) -> Estimate:
+                   n_boot: int = 2000, tolerance: float = 0.10, confidence: float = 0.95) -> Estimate:
     """Settling time (:func:`settle_time`) with a percentile bootstrap over trials.
 
     Trials are resampled with replacement (``scipy.stats.bootstrap``); each resample recomputes the
@@ -107,3 +108,44 @@ def settle_time_ci(sq_error, steady_mask, steps_per_scan: int, dt: float, rng: n
     spread = float(boots.std()) if np.all(np.isfinite(boots)) else float("nan")
     return Estimate(value, spread, float(res.confidence_interval.low), float(res.confidence_interval.high),
                     n_trials, confidence)
+
+
+def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: float):
+    """Time each trial acquires the object for good: the end of its last scan whose mean squared
+    error exceeds ``threshold_ms`` (the end of the first scan if none does: lock is known only once a
+    scan has been seen; ``inf`` if the last scan of the run is out of lock).
+
+    A run that re-acquires late and a run in a false lock (its filter confident, its error tens of
+    sigma) both show here, unlike in the ensemble mean where they are averaged away or dominate.
+
+    Parameters
+    ----------
+    sq_error : ndarray, shape (n_trials, K + 1)   squared errors, column 0 at the start (dropped)
+    threshold_ms : float                          in-lock bound on a scan's mean squared error
+    steps_per_scan : int;  dt : float             steps per scan and step length (time units)
+
+    Returns
+    -------
+    ndarray, shape (n_trials,)   acquisition time (time units of ``dt``); ``inf``: not acquired by the end
+    """
+    if not threshold_ms > 0:
+        raise ValueError(f"parameter 'threshold_ms' = {threshold_ms}; it must be > 0")
+    out = scan_averages(sq_error, steps_per_scan) > threshold_ms        # (n_trials, n_scans)
+    n_scans = out.shape[1]
+    last_out = n_scans - 1 - np.argmax(out[:, ::-1], axis=1)            # index of the last scan out of lock
+    t = np.where(out.any(axis=1), last_out + 1, 1) * steps_per_scan * dt
+    return np.where(out[:, -1], np.inf, t)
+
+
+def median_ratio_ci(numerator, denominator, confidence: float = 0.95) -> Estimate:
+    """``median(numerator) / median(denominator)`` of paired per-trial values with a BCa bootstrap
+    interval (trials resampled jointly): the robust companion of a variance ratio whose mean a few
+    diverged runs can dominate.
+
+    Parameters
+    ----------
+    numerator, denominator : array_like, shape (n_trials,)
+        Per-trial steady-state mean squared errors of two filters on the same runs.
+    """
+    return bootstrap_ci((numerator, denominator),
+                        lambda a, b, axis: np.median(a, axis=axis) / np.median(b, axis=axis), confidence=confidence)

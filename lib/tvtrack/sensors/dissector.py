@@ -32,9 +32,11 @@ from ..filters.grid import GridFilter
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_two_rates",
+    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "simulate_photon_counts",
+    "simulate_two_rates",
     "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "grid_filter", "fisher_information",
-    "pcrlb_variance", "scan_crlb", "lock_lost",
+    "pcrlb_variance", "scan_crlb", "lock_lost", "scan_centroids", "fixed_gain_track", "tune_fixed_gain",
 ]
 
 #: Readings of the paper's ``sigma_sh`` in ``psi_A = A / sigma_sh``.
@@ -204,22 +206,34 @@ def scan_at_snr(psi_a: float, contrast: float, dt: float, pulse_duration: float 
                          0.5 * pulse_duration, 0.5, offset)
 
 
-def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int) -> dict:
+def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps: int = 0) -> dict:
     """Unit normal draws for one Monte Carlo experiment (common random numbers).
+
+    Parameters
+    ----------
+    substeps : int
+        With ``substeps >= 1`` also draws ``w_sub`` for :func:`simulate_integrated` (after the other
+        draws, so they do not change).
 
     Returns
     -------
     dict with ``x0`` (n_trials,), ``w`` (n_trials, n_steps) process noise, ``xi`` (n_trials, n_steps)
-    observation noise, ``init`` (n_trials, 2) for random initial estimates.
+    observation noise, ``init`` (n_trials, 2) for random initial estimates, and with ``substeps``
+    ``w_sub`` (n_trials, 2 substeps n_steps) process noise on half sub-steps.
     """
     if n_trials < 1 or n_steps < 1:
         raise ValueError(f"parameters 'n_trials' = {n_trials}, 'n_steps' = {n_steps}; both must be >= 1")
-    return {
+    if isinstance(substeps, bool) or int(substeps) != substeps or substeps < 0:
+        raise ValueError(f"parameter 'substeps' = {substeps!r}; it must be an integer >= 0")
+    out = {
         "x0": rng.standard_normal(n_trials),
         "w": rng.standard_normal((n_trials, n_steps)),
         "xi": rng.standard_normal((n_trials, n_steps)),
         "init": rng.standard_normal((n_trials, 2)),
     }
+    if substeps:
+        out["w_sub"] = rng.standard_normal((n_trials, 2 * int(substeps) * n_steps))
+    return out
 
 
 def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
@@ -248,6 +262,98 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     return x, y
 
 
+def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+    """The message on half sub-steps and each sample's pulse and noise intensity averaged over its interval.
+
+    Returns ``x`` (n_trials, n_steps + 1) at ``k dt``, ``shape`` and ``intensity`` (n_trials, n_steps): the
+    means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``.
+    """
+    if "w_sub" not in noises:
+        raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
+    if not np.isclose(scan.time_offset, -0.5 * scan.dt):
+        raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
+    w = noises["w_sub"]
+    n_trials, n_steps = noises["xi"].shape
+    m = w.shape[1] // (2 * n_steps)
+    if m < 1 or w.shape[1] != 2 * m * n_steps:
+        raise ValueError(f"noises['w_sub'] has {w.shape[1]} columns; it must be 2 m n_steps = 2 m {n_steps}")
+    f, q = message.exact(0.5 * scan.dt / m)
+    x_half = np.empty((n_trials, w.shape[1] + 1))                          # times i dt / (2 m)
+    x_half[:, 0] = message.sigma * noises["x0"]
+    for i in range(w.shape[1]):
+        x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
+    x_mid = x_half[:, 1::2]                                                # sub-interval centres
+    t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
+    u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
+    shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
+    intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
+    mean = lambda a: a.reshape(n_trials, n_steps, m).mean(axis=2)
+    return x_half[:, ::2 * m], mean(shape), mean(intensity)
+
+
+def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+    """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
+
+    The message is simulated exactly on half sub-steps of ``dt / m`` (``m`` from the shape of
+    ``noises["w_sub"]``); the pulse and the noise intensity are evaluated at the centres of the ``m``
+    sub-intervals (midpoint rule) while the message moves, so
+
+        Y(k) = mean_j A S(x_j, t_j) + sqrt(mean_j N(x_j, t_j) / dt) xi_k,
+
+    which is exactly the mean of ``m`` integrated sub-samples of noise variance ``N_j m / dt`` (a sum
+    of independent Gaussians). The truth returned is the message at ``k dt``, the time of the newest
+    datum of a filtered estimate.
+
+    Parameters
+    ----------
+    scan : DissectorScan   ``time_offset`` must be ``-dt / 2`` (filters model the pulse at the interval centre)
+    noises : dict from :func:`draw_noises` with ``substeps >= 1`` (``x0``, ``xi``, ``w_sub``)
+
+    Returns
+    -------
+    x : ndarray, shape (n_trials, n_steps + 1)   coordinate ``X1(k dt)``
+    y : ndarray, shape (n_trials, n_steps + 1)   samples; ``y[:, 0]`` is NaN
+    """
+    x, shape, intensity = _integrated_path(scan, message, noises)
+    y = np.full_like(x, np.nan)
+    y[:, 1:] = scan.amplitude * shape + np.sqrt(intensity / scan.dt) * noises["xi"]
+    return x, y
+
+
+def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
+                           rng: np.random.Generator):
+    """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
+
+    Shot noise is the count statistics of the photo-electrons: with background current ``I_b`` and
+    charge ``q`` per electron, ``N0 = q I_b`` and ``P / (1-P) = A / I_b`` (eq. (2)), so
+    ``I_b = A (1-P)/P`` and ``q = N0 / I_b``. Sample ``k`` counts ``n_k ~ Poisson((I_b + A S_k) dt / q)``
+    electrons over its interval (``S_k`` the pulse averaged over the interval as in
+    :func:`simulate_integrated`) and reports the current less the known background,
+    ``Y(k) = q n_k / dt - I_b``: the same mean ``A S_k`` and variance ``N_k / dt`` as the Gaussian
+    model, with the Poisson shape (skewed at low counts).
+
+    Parameters
+    ----------
+    scan : DissectorScan   contrast ``P > 0`` (no signal current at ``P = 0``); ``time_offset = -dt / 2``
+    noises : dict          as for :func:`simulate_integrated` (``xi`` is not used)
+    rng : numpy.random.Generator   draws the counts
+
+    Returns
+    -------
+    x, y : as :func:`simulate_integrated`
+    background_counts : float   mean background electrons per sample, ``I_b dt / q``
+    """
+    if not scan.contrast > 0:
+        raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
+    x, shape, _ = _integrated_path(scan, message, noises)
+    i_b = scan.amplitude / scan.signal_noise_ratio
+    charge = scan.n0 / i_b
+    counts = rng.poisson((i_b + scan.amplitude * shape) * scan.dt / charge)
+    y = np.full_like(x, np.nan)
+    y[:, 1:] = charge * counts / scan.dt - i_b
+    return x, y, i_b * scan.dt / charge
+
+
 def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
                        rng: np.random.Generator, n_trials: int, n_steps: int):
     """The same continuous-time experiment sampled at ``dt`` and at ``dt_f = dt / factor`` (claim C000-8).
@@ -272,8 +378,9 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     Returns
     -------
     dict with ``x_coarse``, ``y_coarse`` (n_trials, n_steps + 1; column 0 is the start, ``y`` NaN),
-    ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``t_coarse``, ``t_fine`` (times the estimates
-    refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
+    ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``x_mid`` (n_trials, n_steps factor: the message
+    at the centre of each fine interval, where the pulse and noise intensity are evaluated),
+    ``t_coarse``, ``t_fine`` (times the estimates refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
     """
     if isinstance(factor, bool) or int(factor) != factor or factor < 2:
         raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
@@ -297,7 +404,7 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     y_coarse = np.full((n_trials, n_steps + 1), np.nan)
     y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)   # integrate and dump
     return {"x_coarse": x_half[:, ::2 * factor], "y_coarse": y_coarse,             # times k dt
-            "x_fine": x_half[:, 2::2], "y_fine": y_fine,                             # times (j + 1) dt_f
+            "x_fine": x_half[:, 2::2], "y_fine": y_fine, "x_mid": x_mid,                            # times (j + 1) dt_f
             "t_coarse": np.arange(n_steps + 1) * scan.dt, "t_fine": (j + 1) * dt_f, "scan_fine": scan_fine}
 
 
@@ -481,3 +588,60 @@ def lock_lost(error, threshold: float, min_steps: int):
         run = (run + 1) * big[:, k]
         longest = np.maximum(longest, run)
     return longest >= min_steps
+
+
+def scan_centroids(scan: DissectorScan, y):
+    """Classical time-of-arrival discriminator: the centroid of each scan's samples (card, beyond the paper, item 6).
+
+    ``z_j = sum_k u_k Y_k / sum_k Y_k`` over the ``round(1/dt)`` samples of scan ``j`` (``u_k = tau_k - tau_c``,
+    the pulse offset the sample sees for ``x = 0``), divided by the discriminator slope at ``x = 0``,
+    ``sum u^2 S / (sigma_t^2 sum S)`` (the scan truncates the pulse's tails, which pulls the raw centroid
+    toward the centre: slope 0.71 for the paper's pulse). It uses no model of the noise.
+
+    Parameters
+    ----------
+    y : ndarray, shape (n_trials, n_steps + 1)   samples from :func:`simulate` (column 0 NaN)
+
+    Returns
+    -------
+    ndarray, shape (n_trials, n_scans)   one measurement per complete scan, referred to the scan's end
+    """
+    per_scan = int(round(1.0 / scan.dt))
+    n_scans = (y.shape[1] - 1) // per_scan
+    k = np.arange(1, 1 + n_scans * per_scan)
+    u = scan.offset(0.0, k).reshape(n_scans, per_scan)
+    blocks = y[:, 1:1 + n_scans * per_scan].reshape(y.shape[0], n_scans, per_scan)
+    s0 = scan.shape(0.0, k[:per_scan])
+    slope = np.sum(u[0] ** 2 * s0) / (scan.pulse_sigma ** 2 * np.sum(s0))
+    return (blocks * u).sum(axis=2) / blocks.sum(axis=2) / slope
+
+
+def fixed_gain_track(z, transition: float, gain: float):
+    """Fixed-gain (alpha) smoother of scan measurements: ``x_j = f x_{j-1} + g (z_j - f x_{j-1})``, ``x_0 = 0``.
+
+    Parameters
+    ----------
+    z : ndarray, shape (n_trials, n_scans)   measurements
+    transition : float                        ``f`` per scan (``exp(-alpha_0 T)``)
+    gain : float                              ``g`` in (0, 1]
+
+    Returns
+    -------
+    ndarray, shape (n_trials, n_scans)   estimates at the scan ends
+    """
+    if not 0 < gain <= 1:
+        raise ValueError(f"parameter 'gain' = {gain!r}; it must be in (0, 1]")
+    out = np.empty_like(z)
+    x = np.zeros(z.shape[0])
+    for j in range(z.shape[1]):
+        x = transition * x + gain * (z[:, j] - transition * x)
+        out[:, j] = x
+    return out
+
+
+def tune_fixed_gain(z, truth, transition: float, gains, mask):
+    """The gain of :func:`fixed_gain_track` with the least mean squared error over the scans in ``mask``,
+    on training runs (``z``, ``truth`` at the scan ends, shape (n_trials, n_scans)); the least-squares
+    tuning the EKF gets for free from its model."""
+    errors = [np.nanmean((fixed_gain_track(z, transition, g) - truth)[:, mask] ** 2) for g in gains]
+    return float(np.asarray(gains)[int(np.nanargmin(errors))])
