@@ -32,7 +32,8 @@ from ..montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
 
 __all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
            "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",
-           "false_alarm_rates", "detection_time_summary", "first_detection_roc"]
+           "false_alarm_rates", "detection_time_summary", "first_detection_roc", "null_quantile_threshold",
+           "first_alarm_within"]
 
 
 def _check_window(n) -> int:
@@ -354,3 +355,40 @@ def first_detection_roc(stat_alt, stat_null, armed, onset: int, pfa_targets):
     g_ = np.quantile(null, 1 - np.asarray(pfa_targets, dtype=float))
     return (np.array([np.mean(null > g) for g in g_]),
             np.array([np.mean((before <= g) & (within > g)) for g in g_]))
+
+
+def null_quantile_threshold(stat_null, armed, pfa: float) -> float:
+    """The threshold whose per-test false-alarm rate is ``pfa``: the ``1 - pfa`` quantile of a
+    normalised null statistic pooled over the armed frames.
+
+    Parameters
+    ----------
+    stat_null : array_like, shape (runs, T)
+    armed : array_like of bool, shape (T,)
+    pfa : float
+        Per-test false-alarm probability, in (0, 1).
+    """
+    _check_alpha(pfa)
+    null = np.asarray(stat_null, dtype=float)[:, np.asarray(armed, bool)]
+    return float(np.quantile(null[np.isfinite(null)], 1 - pfa))
+
+
+def first_alarm_within(stat, threshold: float, armed, onset: int) -> np.ndarray:
+    """Per run: the first alarm of ``stat > threshold`` on the armed frames falls in ``[onset, T)``
+    (no alarm before the onset, one after it).
+
+    Parameters
+    ----------
+    stat : array_like, shape (..., T)
+        Normalised statistic; NaN = not tested.
+    threshold : float
+    armed : array_like of bool, shape (T,)
+    onset : int
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+    """
+    armed = np.asarray(armed, bool)
+    m = np.where(armed, np.nan_to_num(np.asarray(stat, dtype=float), nan=-np.inf), -np.inf)
+    return (m[..., :onset].max(axis=-1, initial=-np.inf) <= threshold) & (m.max(axis=-1) > threshold)
