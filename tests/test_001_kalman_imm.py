@@ -153,5 +153,9 @@ def test_imm_frozen_coast_keeps_mode_probabilities_and_the_ca_acceleration():
     mixed = imm_run(zs[:, None], *args)
     np.testing.assert_allclose(frozen.mu[200:], np.broadcast_to(frozen.mu[199], (100, 2)), rtol=1e-12)
     assert abs(frozen.x[-1, 2] - 0.2) < 0.05 < abs(mixed.x[-1, 2] - 0.2)       # true acceleration 0.2
+    mode = imm_run(zs[:, None], *args, coast="mode")             # the CA mode is the most probable at the loss
+    assert mode.mu[199, 1] > 0.5
+    np.testing.assert_allclose(mode.mu[200:], np.broadcast_to([0.0, 1.0], (100, 2)))
+    assert abs(mode.x[-1, 2] - 0.2) < 0.05
     with pytest.raises(ValueError, match="coast"):
         imm_run(zs[:, None], *args, coast="bogus")

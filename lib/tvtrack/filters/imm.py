@@ -14,7 +14,9 @@ A missing measurement (NaN) skips steps 3-4's update: ``mu = cbar`` and the prio
 (``coast="mix"``, the textbook cycle), or, with ``coast="frozen"``, skips the mixing too while
 the measurement is missing: each mode predicts on its own and ``mu`` stays as it was, so the
 constant-acceleration estimate is not pulled toward the constant-velocity mode's zero during an
-occlusion. ``loglik`` is the log of the predictive density of each present measurement,
+occlusion; with ``coast="mode"`` the most probable mode at the last measurement takes all the
+probability while the measurement is missing (no mixing), so the combined prediction is that
+mode's own (e.g. CA-conditioned coasting after a manoeuvre). ``loglik`` is the log of the predictive density of each present measurement,
 ``log sum_j cbar_j L_j``, summed over frames (for tuning by maximum likelihood).
 All models share one state space (e.g. ``(x, v, a)`` with the constant-velocity model zeroing
 ``a``), see :func:`cv_ca_models`.
@@ -110,9 +112,9 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
     P0 : array_like, shape (n, n) or (..., n, n)
     mu0 : array_like, shape (r,)
         Initial mode probabilities.
-    coast : {"mix", "frozen"}
-        While a measurement is missing: the textbook cycle ("mix") or no mixing and frozen mode
-        probabilities ("frozen").
+    coast : {"mix", "frozen", "mode"}
+        While a measurement is missing: the textbook cycle ("mix"), no mixing and frozen mode
+        probabilities ("frozen"), or no mixing and the most probable mode only ("mode").
 
     Returns
     -------
@@ -126,8 +128,8 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
         raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
     if np.any(M < 0) or not np.allclose(M.sum(axis=1), 1.0):
         raise ValueError("parameter 'transition' must be a row-stochastic matrix")
-    if coast not in ("mix", "frozen"):
-        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix' or 'frozen'")
+    if coast not in ("mix", "frozen", "mode"):
+        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")
     mu0 = np.asarray(mu0, dtype=float)
     if mu0.shape != (r,) or np.any(mu0 < 0) or not np.isclose(mu0.sum(), 1.0):
         raise ValueError(f"parameter 'mu0' = {mu0}; it must be {r} probabilities summing to 1")
@@ -143,8 +145,12 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
         present = np.all(np.isfinite(z), axis=-1)
         # 1. mixing (none while coasting with frozen mode probabilities)
         Mt = M if coast == "mix" else np.where(present[..., None, None], M, eye)
+        if coast == "mode":
+            top_mode = eye[np.argmax(mu, axis=-1)]
+            mu = np.where(present[..., None], mu, top_mode)
         cbar = np.einsum("...i,...ij->...j", mu, Mt)                      # (..., r)
-        omega = mu[..., :, None] * Mt / cbar[..., None, :]                # (..., i, j)
+        live = cbar > 0                                                   # a mode with no probability keeps its own state
+        omega = np.where(live[..., None, :], mu[..., :, None] * Mt / np.where(live, cbar, 1.0)[..., None, :], eye)
         x_mix = np.einsum("...ij,...ia->...ja", omega, xs)
         d = xs[..., :, None, :] - x_mix[..., None, :, :]                  # (..., i, j, n)
         P_mix = np.einsum("...ij,...ijab->...jab", omega,
@@ -161,7 +167,7 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
         maha = np.einsum("...i,...i->...", nu, np.linalg.solve(S, nu[..., None])[..., 0])
         loglik = -0.5 * (maha + np.linalg.slogdet(S)[1] + m * np.log(2 * np.pi))
         # 4. mode probabilities (log domain, normalised) and combination
-        logw = np.log(cbar) + loglik
+        logw = np.log(np.maximum(cbar, 1e-300)) + loglik
         top = logw.max(axis=-1, keepdims=True)
         w = np.exp(logw - top)
         loglik_total += np.where(present, top[..., 0] + np.log(w.sum(axis=-1)), 0.0)
