@@ -189,8 +189,11 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     # time-major, flat batch: every per-frame operation works on contiguous (B,) arrays
     B = int(np.prod(batch, dtype=np.int64))
     zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))                        # (T, B)
-    vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(np.asarray(visible, dtype=bool), z.shape)
-                                           .reshape(B, T), -1, 0))
+    visible = np.asarray(visible, dtype=bool)
+    if visible.ndim == 1:                           # one visibility for every trial: (T, 1) broadcasts
+        vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
+    else:
+        vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
     # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
     # row = in3 * kmax + min(k, bound) - 1
     kmax = max(cfg.k_bound2, cfg.k_bound3)
@@ -220,13 +223,13 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     sum_old = sum_new = None                        # running window sums of output velocities
 
     out_x = np.empty((T, 3, B))
-    out_var = np.full((T, 3, B), np.nan)
-    out_gate = np.full((T, B), np.nan)
+    out_var = np.full((T, 3, B), np.nan) if covariance else None
+    out_gate = np.full((T, B), np.nan) if covariance else None
     out_row = np.empty((T, B), dtype=np.int64)      # gain-table row in force
     out_kalman_K = {}                               # frame -> (mask, gains (3, B)) where restart C's gains ruled
     out_in3 = np.empty((T, B), dtype=np.int8)
-    out_S = np.full((T, B), np.nan)
-    out_c = np.full((T, B), np.nan)
+    out_S = np.empty((T, B))                        # masked by out_test at the end
+    out_c = np.empty((T, B))
     out_test = np.zeros((T, B), dtype=bool)
 
     for t in range(T):
@@ -263,16 +266,20 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
             IKh = np.eye(3) - Kc[:, :, None] * h
             P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * Kc[:, :, None] * Kc[:, None, :]
             P = 0.5 * (P + np.swapaxes(P, -1, -2))
-        # (eq. 1) predict and correct; (E1) zero gains while lost
-        x0 = x0 + x1 + 0.5 * x2
-        x1 = x1 + x2
+        # (eq. 1) predict and correct; (E1) zero gains while lost (a = 0 in every TRACK2 trial)
+        any3 = bool(np.any(in3))
+        if any3:
+            x0 = x0 + x1 + 0.5 * x2
+            x1 = x1 + x2
+        else:
+            x0 = x0 + x1
         if not none_seen[t]:
             innov = zt[t] - x0
             if not all_seen[t]:
                 innov = np.where(seen, innov, 0.0)
             x0 += K0 * innov
             x1 += K1 * innov
-            if in3.any():
+            if any3:
                 x2 = x2 + K2 * innov
         out_x[t, 1] = x1
 
@@ -336,15 +343,17 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
             if not detect3 and in3.all():
                 detector_on = False
 
-        out_x[t, 0], out_x[t, 1], out_x[t, 2] = x0, x1, x2
+        out_x[t, 0], out_x[t, 2] = x0, x2
+        if alarm is not None and alarm.any():
+            out_x[t, 1] = x1                            # a restart may have changed the velocity
         if covariance:
             out_var[t] = np.diagonal(P, axis1=-2, axis2=-1).T
         out_in3[t] = in3
 
-    out_K = np.moveaxis(table[out_row], -1, 1)                                             # (T, 3, B)
+    out_K = table[out_row.T]                                                               # (B, T, 3)
     for t, (mask, Kt) in out_kalman_K.items():
-        out_K[t] = np.where(mask, Kt, out_K[t])
-    out_K *= vis[:, None, :]
+        out_K[:, t] = np.where(mask[:, None], Kt.T, out_K[:, t])
+    out_K *= vis.T[:, :, None]
     out_mode = np.where(vis, np.where(out_in3 == 1, TRACK3, TRACK2), COAST).astype(np.int8)
     out_S = np.where(out_test, out_S, np.nan)
     out_c = np.where(out_test, out_c, np.nan)
@@ -353,7 +362,12 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         """(T, [3,] B) -> (..., T[, 3])"""
         return np.moveaxis(a, -1, 0).reshape(batch + (T,) + extra)
 
-    return TrackModeOutput(back(out_x, (3,)), back(out_var, (3,)), back(out_gate), back(out_K, (3,)),
+    if covariance:
+        out_var, out_gate = back(out_var, (3,)), back(out_gate)
+    else:                                           # NaN, without allocating (read-only views)
+        out_var = np.broadcast_to(np.nan, batch + (T, 3))
+        out_gate = np.broadcast_to(np.nan, batch + (T,))
+    return TrackModeOutput(back(out_x, (3,)), out_var, out_gate, out_K.reshape(batch + (T, 3)),
                            back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
 
 
