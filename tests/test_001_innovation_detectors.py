@@ -68,5 +68,7 @@ def test_delay_false_alarm_curve_on_a_known_case():
     np.testing.assert_allclose(out["per_run_false_alarm"], [0.05, 0.5], atol=0.01)
     assert out["median_delay_s"][0] == 0.0 and out["p_detect_within"][0] > 0.8
     assert out["early_alarm"][1] > out["early_alarm"][0]
+    fixed = delay_false_alarm_curve(alt, null, np.ones(60, bool), armed, 30, None, 10.0, 0.5, thresholds=out["threshold"])
+    np.testing.assert_allclose(fixed["per_run_false_alarm"], out["per_run_false_alarm"])
     with pytest.raises(ValueError, match="targets"):
         delay_false_alarm_curve(alt, null, np.ones(60, bool), armed, 30, [1.5], 10.0, 0.5)

@@ -146,7 +146,7 @@ def glr_velocity_jump(u, signature) -> np.ndarray:
 
 
 def delay_false_alarm_curve(stat_alt, stat_null, armed_alt, armed_null, onset: int, targets, frame_rate_hz: float,
-                            delay_limit_s: float) -> dict:
+                            delay_limit_s: float, thresholds=None) -> dict:
     """Detection delay against the per-run false-alarm probability, thresholds set on null runs.
 
     For each target per-run false-alarm probability ``p`` the threshold is the ``1 - p`` quantile
@@ -166,6 +166,9 @@ def delay_false_alarm_curve(stat_alt, stat_null, armed_alt, armed_null, onset: i
         Per-run false-alarm probabilities in (0, 1).
     frame_rate_hz, delay_limit_s : float
         For the delay in seconds and the detection-within-limit probability.
+    thresholds : array_like, shape (m,), optional
+        Fixed thresholds instead of the null quantiles (e.g. a rule's nominal threshold); the
+        targets are then ignored.
 
     Returns
     -------
@@ -174,14 +177,14 @@ def delay_false_alarm_curve(stat_alt, stat_null, armed_alt, armed_null, onset: i
         (inf if fewer than half the runs detect), ``p_detect_within`` (first alarm within
         ``delay_limit_s`` of the onset, none before) and ``early_alarm`` (alarm before the onset).
     """
-    targets = np.asarray(targets, dtype=float)
+    targets = np.asarray(targets if thresholds is None else np.full(np.size(thresholds), 0.5), dtype=float)
     if np.any((targets <= 0) | (targets >= 1)):
         raise ValueError("parameter 'targets' must hold probabilities in (0, 1)")
     null = np.where(np.asarray(armed_null, bool), np.nan_to_num(np.asarray(stat_null, float), nan=-np.inf), -np.inf)
     alt = np.where(np.asarray(armed_alt, bool), np.nan_to_num(np.asarray(stat_alt, float), nan=-np.inf), -np.inf)
     alt = alt.reshape(-1, alt.shape[-1])
     null_max = null.max(axis=-1)
-    thr = np.quantile(null_max, 1 - targets)
+    thr = np.quantile(null_max, 1 - targets) if thresholds is None else np.asarray(thresholds, dtype=float)
     out = {k: np.empty(targets.size) for k in ("threshold", "per_run_false_alarm", "median_delay_s",
                                                  "p_detect_within", "early_alarm")}
     limit = int(round(delay_limit_s * frame_rate_hz))
