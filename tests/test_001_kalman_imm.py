@@ -120,3 +120,42 @@ def test_imm_bad_input():
         imm_run(np.zeros((5, 1)), Fs, Qs, np.array([[1.0, 0, 0]]), np.eye(1), np.eye(2) * 0.5, np.zeros(3), np.eye(3), [0.5, 0.5])
     with pytest.raises(ValueError, match="q_cv"):
         cv_ca_models(-1.0, 0.0)
+
+
+def test_imm_loglik_of_one_mode_is_the_kalman_innovation_likelihood():
+    rng = np.random.default_rng(3)
+    F = taylor_transition(2)
+    H, R = np.array([[1.0, 0, 0]]), np.array([[1.5]])
+    Q = 1e-4 * np.outer([0.5, 1, 1], [0.5, 1, 1])
+    zs = _data(rng, 120)
+    zs[50:60] = np.nan
+    x0, P0 = np.zeros(3), np.diag([1e4, 1e2, 1.0])
+    imm = imm_run(zs[:, None], F[None], Q[None], H, R, np.eye(1), x0, P0, [1.0])
+    kf = FKalman(dim_x=3, dim_z=1)
+    kf.F, kf.H, kf.Q, kf.R, kf.x, kf.P = F, H, Q, R, x0.copy(), P0.copy()
+    ll = 0.0
+    for z in zs:
+        kf.predict()
+        if np.isfinite(z):
+            kf.update(z)
+            ll += kf.log_likelihood
+    assert float(imm.loglik) == pytest.approx(ll, rel=1e-9)
+
+
+def test_imm_frozen_coast_keeps_mode_probabilities_and_the_ca_acceleration():
+    rng = np.random.default_rng(4)
+    zs = _data(rng, 300)
+    zs[200:] = np.nan
+    Fs, Qs = cv_ca_models(1e-6, 1e-5)
+    M = np.array([[0.98, 0.02], [0.02, 0.98]])
+    args = (Fs, Qs, np.array([[1.0, 0, 0]]), np.array([[1.0]]), M, np.zeros(3), np.diag([1e6, 1e4, 1.0]), [0.5, 0.5])
+    frozen = imm_run(zs[:, None], *args, coast="frozen")
+    mixed = imm_run(zs[:, None], *args)
+    np.testing.assert_allclose(frozen.mu[200:], np.broadcast_to(frozen.mu[199], (100, 2)), rtol=1e-12)
+    assert abs(frozen.x[-1, 2] - 0.2) < 0.05 < abs(mixed.x[-1, 2] - 0.2)       # true acceleration 0.2
+    mode = imm_run(zs[:, None], *args, coast="mode")             # the CA mode is the most probable at the loss
+    assert mode.mu[199, 1] > 0.5
+    np.testing.assert_allclose(mode.mu[200:], np.broadcast_to([0.0, 1.0], (100, 2)))
+    assert abs(mode.x[-1, 2] - 0.2) < 0.05
+    with pytest.raises(ValueError, match="coast"):
+        imm_run(zs[:, None], *args, coast="bogus")

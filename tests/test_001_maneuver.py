@@ -102,3 +102,36 @@ def test_sum_of_squares_statistic_matches_direct_sums_and_is_invariant():
     shifted = v.copy()
     shifted[:, -2 * n:] += np.concatenate([delta, delta], axis=1)
     np.testing.assert_allclose(window_sum_of_squares(shifted, n)[:, -1], Q[:, -1], rtol=1e-10)
+
+
+def _impulse_response_std(G, n, sigma_eps):
+    """Reference: sigma_S(t) from the filter's responses to unit impulses (quadratic memory; small T only)."""
+    T = G.shape[0]
+    responses = scheduled_filter(np.eye(T), G)[..., 1]          # (j, t): velocity at t from an impulse at j
+    W = window_statistic(responses, n)                          # (j, t): weight of eps_j in S_t
+    return sigma_eps * np.sqrt(np.sum(W**2, axis=0))
+
+
+@pytest.mark.parametrize("order, kb, n, T", [(1, 50, 25, 300), (2, 30, 10, 200), (1, 5, 3, 40)])
+def test_exact_std_recursion_equals_impulse_responses(order, kb, n, T):
+    G = gain_schedule(order, kb, T)
+    np.testing.assert_allclose(scheduled_statistic_std(G, n, 1.7), _impulse_response_std(G, n, 1.7), rtol=1e-10)
+
+
+def _peak_bytes(T, n):
+    import tracemalloc
+    G = gain_schedule(1, 50, T)
+    tracemalloc.start()
+    scheduled_statistic_std(G, n, 1.0)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak
+
+
+def test_exact_std_memory_is_linear_in_run_length():
+    """B3: the exact threshold once built an identity of the run length (memory ~ T^2: gigabytes at
+    200 Hz x 60 s). Doubling T must at most about double the peak, and the 200 Hz x 60 s run with the
+    largest window the notebook allows must stay under 200 MB."""
+    small, large = _peak_bytes(1500, 25), _peak_bytes(3000, 25)
+    assert large / small < 2.5, (small, large)
+    assert _peak_bytes(200 * 60, 200) < 200e6

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tvtrack.detect.maneuver import scheduled_statistic_std, threshold_from_std
+from tvtrack.detect.maneuver import scheduled_statistic_std, threshold_from_std, window_statistic
 from tvtrack.filters.alphabeta import error_covariance_sequence, gain_schedule, scheduled_filter
 from tvtrack.filters.polynomial import polynomial_observation_row, taylor_transition
 from tvtrack.track_modes import COAST, TRACK2, TRACK3, TrackModeConfig, run_track_modes
@@ -82,10 +82,76 @@ def test_detector_fires_after_onset_with_correlated_threshold():
 
 def test_bad_config():
     with pytest.raises(ValueError, match="restart"):
-        TrackModeConfig(restart="C")
+        TrackModeConfig(restart="D")
     with pytest.raises(ValueError, match="k_bound3"):
         TrackModeConfig(k_bound3=2)
     with pytest.raises(ValueError, match="threshold"):
         TrackModeConfig(threshold=-1.0)
     with pytest.raises(ValueError, match="sigma_eps"):
         run_track_modes(np.zeros((1, 10)), np.ones(10, bool), TrackModeConfig(), 0.0)
+
+
+def _low_threshold_run(restart, **cfg):
+    """Detector kept on in TRACK3 with a low threshold, so that it restarts the 3rd-order law many times."""
+    _, z = _z(6, seed=3)
+    return run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=1.0, detect_in_track3=True, arm_k=30,
+                                                                restart=restart, **cfg), 1.0)
+
+
+@pytest.mark.parametrize("restart", ["A", "B", "C"])
+def test_detector_statistic_is_the_window_statistic_of_the_output_velocities(restart):
+    """B1: with the detector on in TRACK3, a restart that changes the velocity estimate must not leave
+    the running window sums holding the pre-restart value (S drifted from the true window statistic)."""
+    out = _low_threshold_run(restart)
+    S, c = out.statistic, out.threshold
+    ref = window_statistic(out.x[..., 1], 25)
+    tested = np.isfinite(S) & ~(np.abs(S) > c)            # frames with a test and no restart at that frame
+    assert tested.sum() > 20 and np.all((out.mode == TRACK3).sum(1) > 0)
+    np.testing.assert_allclose(S[tested], ref[tested], atol=1e-8)
+
+
+def test_track3_tests_use_the_track3_threshold():
+    """B2: in TRACK3 the threshold in force comes from ``threshold_track3`` indexed by the TRACK3 count,
+    not from the TRACK2 array indexed by the TRACK3 counter."""
+    _, z = _z(4, seed=5)
+    thr2 = np.linspace(50.0, 3.0, 400)                       # a TRACK2 array that varies with k
+    thr3 = np.linspace(2.0, 9.0, 300)
+    out = run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=thr2, threshold_track3=thr3,
+                                                                detect_in_track3=True, arm_k=60), 1.0)
+    was3 = np.concatenate([np.zeros((4, 1), bool), out.mode[:, :-1] == TRACK3], axis=1)   # tested in TRACK3
+    in3 = was3 & np.isfinite(out.threshold)
+    in2 = ~was3 & np.isfinite(out.threshold)
+    assert in3.sum() > 10 and in2.sum() > 10
+    assert np.all(np.isin(out.threshold[in3], thr3)) and not np.any(np.isin(out.threshold[in3], thr2))
+    assert np.all(np.isin(out.threshold[in2], thr2))
+    with pytest.raises(ValueError, match="threshold_track3"):
+        TrackModeConfig(threshold=thr2, detect_in_track3=True)
+
+
+def test_restart_c_is_a_kalman_reset_from_the_track2_covariance():
+    """Restart C: at the switch keep (x, v) and their TRACK2 noise covariance, set a = 0 with a diffuse
+    variance, run Kalman gains (no process noise) until kappa1 reaches the bound, then the bound."""
+    _, z = _z(3, seed=11)
+    ks, kb3, var_a = 138, 60, 1e4
+    out = run_track_modes(z, np.ones(T, bool), TrackModeConfig(k_bound2=50, k_bound3=kb3, force_switch_k=ks,
+                                                                restart="C", restart_accel_var=var_a), 1.0)
+    G2 = gain_schedule(1, 50, ks)
+    x = np.c_[scheduled_filter(z[:, :ks], G2)[:, -1], np.zeros(3)]
+    P2 = error_covariance_sequence(G2, 1.0)[-1]
+    P = np.zeros((3, 3))
+    P[:2, :2] = P2
+    P[2, 2] = var_a
+    F, h = taylor_transition(2), np.array([1.0, 0, 0])
+    bound = gain_schedule(2, kb3)[-1]
+    kalman = True
+    for t in range(ks, T):
+        Pp = F @ P @ F.T
+        K = Pp @ h / (h @ Pp @ h + 1.0) if kalman else bound
+        if kalman and K[0] <= bound[0]:
+            kalman, K = False, bound
+        x = x @ F.T + (z[:, t] - x @ F.T @ h)[:, None] * K
+        IKh = np.eye(3) - np.outer(K, h)
+        P = IKh @ Pp @ IKh.T + np.outer(K, K)
+        np.testing.assert_allclose(out.x[:, t], x, rtol=1e-9, atol=1e-7)
+        np.testing.assert_allclose(out.gains[0, t], K, rtol=1e-9, atol=1e-12)
+    assert not kalman                                                   # reached the bound in the run

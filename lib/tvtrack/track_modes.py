@@ -5,7 +5,7 @@ on a manoeuvre detection with raised gains decaying to a lower bound) and ``COAS
 zero gains, pure prediction (E1)). Every frame::
 
     visible, TRACK2: k += 1; x = F x + K2(min(k, kb2)) (Z - h F x)   (eq. 1), push v into the
-                     detector window; if armed and |S| > c: switch to TRACK3 (restart A or B)
+                     detector window; if armed and |S| > c: switch to TRACK3 (restart A, B or C)
     visible, TRACK3: k += 1; x = F x + K3(min(k, kb3)) (Z - h F x)
     lost:            x = F x                                           (E1), k unchanged
 
@@ -45,14 +45,24 @@ class TrackModeConfig:
         the last entry for larger ``k``), for thresholds computed for the time-varying gains.
     arm_k : int or None
         The detector tests once ``k >= arm_k`` in TRACK2; default ``k_bound2 + 2 window``.
-    restart : {"A", "B"}
+    restart : {"A", "B", "C"}
         On detection: "A" keeps ``x, v``, sets ``a = 0`` and restarts the 3rd-order law at
         ``restart_k``; "B" fits a quadratic to the last ``window`` measurements by least
-        squares and continues the law at ``k = window``.
+        squares and continues the law at ``k = window``; "C" (covariance-consistent) keeps
+        ``x, v`` with their TRACK2 noise covariance, sets ``a = 0`` with variance
+        ``restart_accel_var`` (a diffuse prior) and runs the Kalman gains of that covariance
+        (no process noise, ``K = P^- h^T / (h P^- h^T + sigma^2)``) until ``kappa1`` falls to the
+        3rd-order bound's, then the bound's gains. "C" needs the covariance.
     restart_k : int
         Restart index for option A (>= 1).
+    restart_accel_var : float
+        Prior variance of the acceleration at restart C, elements²/frame⁴.
     detect_in_track3 : bool
         Keep testing in TRACK3 (a new detection restarts the 3rd-order law again).
+    threshold_track3 : float or array_like, shape (K3,), or None
+        The threshold for tests in TRACK3, an array indexed by the TRACK3 count. Required with
+        ``detect_in_track3`` when ``threshold`` is an array (a TRACK2 array does not apply to the
+        3rd-order filter); with a scalar ``threshold`` and None, the scalar applies in TRACK3.
     rearm_after_gap : int or None
         After an occlusion the detector waits this many visible frames before testing again
         (the window must not span predicted velocities); default ``2 window``.
@@ -68,7 +78,9 @@ class TrackModeConfig:
     arm_k: int | None = None
     restart: str = "A"
     restart_k: int = 3
+    restart_accel_var: float = 1e4
     detect_in_track3: bool = False
+    threshold_track3: float | np.ndarray | None = None
     rearm_after_gap: int | None = None
     force_switch_k: int | None = None
 
@@ -79,13 +91,22 @@ class TrackModeConfig:
                 raise ValueError(f"parameter '{name}' = {v!r}; it must be an integer >= 1")
         if self.k_bound3 < 3:
             raise ValueError(f"parameter 'k_bound3' = {self.k_bound3}; it must be >= 3")
-        if self.restart not in ("A", "B"):
-            raise ValueError(f"parameter 'restart' = {self.restart!r}; it must be 'A' or 'B'")
+        if self.restart not in ("A", "B", "C"):
+            raise ValueError(f"parameter 'restart' = {self.restart!r}; it must be 'A', 'B' or 'C'")
+        if not self.restart_accel_var > 0:
+            raise ValueError(f"parameter 'restart_accel_var' = {self.restart_accel_var!r}; it must be > 0")
         if self.restart == "B" and self.window < 3:
             raise ValueError(f"parameter 'window' = {self.window}; restart 'B' needs >= 3")
         th = np.atleast_1d(np.asarray(self.threshold, dtype=float))
         if th.ndim != 1 or np.any(~(th > 0)):
             raise ValueError("parameter 'threshold' must be a positive number or a 1-D array of them")
+        if self.threshold_track3 is not None:
+            th3 = np.atleast_1d(np.asarray(self.threshold_track3, dtype=float))
+            if th3.ndim != 1 or np.any(~(th3 > 0)):
+                raise ValueError("parameter 'threshold_track3' must be None, a positive number or a 1-D array of them")
+        elif self.detect_in_track3 and th.size > 1:
+            raise ValueError("parameter 'threshold_track3' is required with detect_in_track3 and a threshold array "
+                             "(the TRACK2 array, indexed by the TRACK2 count, does not apply in TRACK3)")
         for name in ("arm_k", "rearm_after_gap", "force_switch_k"):
             v = getattr(self, name)
             if v is not None and not (isinstance(v, (int, np.integer)) and v >= 0):
@@ -143,7 +164,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         Measurement noise RMS, elements, for the covariance (and restart B).
     covariance : bool
         Propagate the noise-driven covariance (``var``, ``gate_var``); when False those
-        outputs are NaN and the run is faster.
+        outputs are NaN and the run is faster. Restart "C" needs it.
 
     Returns
     -------
@@ -155,18 +176,24 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     if not sigma_eps > 0:
         raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
     cfg = config
+    if cfg.restart == "C" and not covariance:
+        raise ValueError("parameter 'covariance' = False; restart 'C' needs the covariance (covariance=True)")
     n = cfg.window
     arm_k = cfg.k_bound2 + 2 * n if cfg.arm_k is None else cfg.arm_k
     rearm = 2 * n if cfg.rearm_after_gap is None else cfg.rearm_after_gap
     thr = np.atleast_1d(np.asarray(cfg.threshold, dtype=float))
+    thr3 = thr if cfg.threshold_track3 is None else np.atleast_1d(np.asarray(cfg.threshold_track3, dtype=float))
     forced = cfg.force_switch_k is not None
     detect3 = bool(cfg.detect_in_track3)
 
     # time-major, flat batch: every per-frame operation works on contiguous (B,) arrays
     B = int(np.prod(batch, dtype=np.int64))
     zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))                        # (T, B)
-    vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(np.asarray(visible, dtype=bool), z.shape)
-                                           .reshape(B, T), -1, 0))
+    visible = np.asarray(visible, dtype=bool)
+    if visible.ndim == 1:                           # one visibility for every trial: (T, 1) broadcasts
+        vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
+    else:
+        vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
     # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
     # row = in3 * kmax + min(k, bound) - 1
     kmax = max(cfg.k_bound2, cfg.k_bound3)
@@ -174,6 +201,8 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     table[:kmax, :2] = gain_schedule(1, cfg.k_bound2, kmax)
     table[kmax:] = gain_schedule(2, cfg.k_bound3, kmax)
     cols = [np.ascontiguousarray(table[:, i]) for i in range(3)]
+    bound3_row = kmax + cfg.k_bound3 - 1
+    kappa1_bound3 = table[bound3_row, 0]
     F = taylor_transition(2)
     h = observation_row(2)
     all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
@@ -186,6 +215,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     row = np.int64(-1)                              # gain-table row = in3 kmax + min(k, bound) - 1
     cap = np.int64(cfg.k_bound2 - 1)
     in3 = np.int64(0)                               # 0 = TRACK2, 1 = TRACK3
+    kalman = np.zeros(B, dtype=bool)                # restart C: Kalman gains until kappa1 reaches the bound
     had_gap = False
     since_visible = np.int64(0)
     detected_at = np.full(B, -1, dtype=np.int64)
@@ -193,12 +223,13 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     sum_old = sum_new = None                        # running window sums of output velocities
 
     out_x = np.empty((T, 3, B))
-    out_var = np.full((T, 3, B), np.nan)
-    out_gate = np.full((T, B), np.nan)
+    out_var = np.full((T, 3, B), np.nan) if covariance else None
+    out_gate = np.full((T, B), np.nan) if covariance else None
     out_row = np.empty((T, B), dtype=np.int64)      # gain-table row in force
+    out_kalman_K = {}                               # frame -> (mask, gains (3, B)) where restart C's gains ruled
     out_in3 = np.empty((T, B), dtype=np.int8)
-    out_S = np.full((T, B), np.nan)
-    out_c = np.full((T, B), np.nan)
+    out_S = np.empty((T, B))                        # masked by out_test at the end
+    out_c = np.empty((T, B))
     out_test = np.zeros((T, B), dtype=bool)
 
     for t in range(T):
@@ -222,22 +253,33 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         K0, K1, K2 = cols[0].take(row), cols[1].take(row), cols[2].take(row)
         if covariance:
             # noise-driven covariance: predict, then correct with the gains in force (card §4.5)
-            Kc = np.stack([K0, K1, K2], axis=-1) * seen[:, None]
             Pp = F @ P @ F.T
             out_gate[t] = Pp[:, 0, 0] + sigma_eps**2
+            if kalman.any():
+                # restart C: Kalman gains of the propagated covariance, until kappa1 reaches the bound
+                Kk = Pp[:, :, 0] / (Pp[:, 0, 0] + sigma_eps**2)[:, None]
+                reached = kalman & seen & (Kk[:, 0] <= kappa1_bound3)
+                kalman = kalman & ~reached
+                K0, K1, K2 = (np.where(kalman, Kk[:, i], Ki) for i, Ki in enumerate((K0, K1, K2)))
+                out_kalman_K[t] = (kalman & seen, np.stack([K0, K1, K2]))
+            Kc = np.stack([K0, K1, K2], axis=-1) * seen[:, None]
             IKh = np.eye(3) - Kc[:, :, None] * h
             P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * Kc[:, :, None] * Kc[:, None, :]
             P = 0.5 * (P + np.swapaxes(P, -1, -2))
-        # (eq. 1) predict and correct; (E1) zero gains while lost
-        x0 = x0 + x1 + 0.5 * x2
-        x1 = x1 + x2
+        # (eq. 1) predict and correct; (E1) zero gains while lost (a = 0 in every TRACK2 trial)
+        any3 = bool(np.any(in3))
+        if any3:
+            x0 = x0 + x1 + 0.5 * x2
+            x1 = x1 + x2
+        else:
+            x0 = x0 + x1
         if not none_seen[t]:
             innov = zt[t] - x0
             if not all_seen[t]:
                 innov = np.where(seen, innov, 0.0)
             x0 += K0 * innov
             x1 += K1 * innov
-            if in3.any():
+            if any3:
                 x2 = x2 + K2 * innov
         out_x[t, 1] = x1
 
@@ -254,15 +296,16 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 sum_old += mid - out_x[t - 2 * n, 1]
                 sum_new += x1 - mid
             testing = k >= arm_k
+            testing = testing & (in3 == 0) if not detect3 else testing
             if not all_seen[t]:
                 testing &= seen
             if had_gap:
                 testing &= since_visible >= rearm
-            if not detect3:
-                testing &= in3 == 0
             if testing.any():
                 S = sum_old - sum_new
                 c = thr.take(np.clip(k, 1, thr.size) - 1)
+                if detect3 and np.any(in3):
+                    c = np.where(in3 == 1, thr3.take(np.clip(k, 1, thr3.size) - 1), c)
                 out_S[t] = S
                 out_c[t] = c
                 out_test[t] = testing
@@ -270,7 +313,16 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         # switch to TRACK3 with raised gains (card §4.4 step 4)
         if alarm is not None and alarm.any():
             detected_at = np.where(alarm & (detected_at < 0), t, detected_at)
-            if cfg.restart == "A":
+            x1_before = x1
+            if cfg.restart == "C":
+                x2 = np.where(alarm, 0.0, x2)
+                prior = P * np.outer([1, 1, 0], [1, 1, 0])
+                prior[:, 2, 2] = cfg.restart_accel_var
+                P = np.where(alarm[:, None, None], prior, P)
+                kalman = kalman | alarm
+                k = np.where(alarm, 0, k)                    # measurements since the restart
+                row = np.where(alarm, bound3_row, row)
+            elif cfg.restart == "A":
                 x2 = np.where(alarm, 0.0, x2)
                 if covariance:
                     P = np.where(alarm[:, None, None], P * np.outer([1, 1, 0], [1, 1, 0]), P)
@@ -284,17 +336,24 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                     P = np.where(alarm[:, None, None], Pb, P)
                 k = np.where(alarm, zw.shape[-1], k)
                 row = np.where(alarm, kmax + min(zw.shape[-1], cfg.k_bound3) - 1, row)
+            if sum_new is not None:
+                sum_new = sum_new + (x1 - x1_before)     # the window holds the restarted velocity (B1)
             in3 = np.where(alarm, 1, in3)
             cap = np.where(alarm, kmax + cfg.k_bound3 - 1, cap)
             if not detect3 and in3.all():
                 detector_on = False
 
-        out_x[t, 0], out_x[t, 1], out_x[t, 2] = x0, x1, x2
+        out_x[t, 0], out_x[t, 2] = x0, x2
+        if alarm is not None and alarm.any():
+            out_x[t, 1] = x1                            # a restart may have changed the velocity
         if covariance:
             out_var[t] = np.diagonal(P, axis1=-2, axis2=-1).T
         out_in3[t] = in3
 
-    out_K = np.moveaxis(table[out_row], -1, 1) * vis[:, None, :]                           # (T, 3, B)
+    out_K = table[out_row.T]                                                               # (B, T, 3)
+    for t, (mask, Kt) in out_kalman_K.items():
+        out_K[:, t] = np.where(mask[:, None], Kt.T, out_K[:, t])
+    out_K *= vis.T[:, :, None]
     out_mode = np.where(vis, np.where(out_in3 == 1, TRACK3, TRACK2), COAST).astype(np.int8)
     out_S = np.where(out_test, out_S, np.nan)
     out_c = np.where(out_test, out_c, np.nan)
@@ -303,7 +362,12 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         """(T, [3,] B) -> (..., T[, 3])"""
         return np.moveaxis(a, -1, 0).reshape(batch + (T,) + extra)
 
-    return TrackModeOutput(back(out_x, (3,)), back(out_var, (3,)), back(out_gate), back(out_K, (3,)),
+    if covariance:
+        out_var, out_gate = back(out_var, (3,)), back(out_gate)
+    else:                                           # NaN, without allocating (read-only views)
+        out_var = np.broadcast_to(np.nan, batch + (T, 3))
+        out_gate = np.broadcast_to(np.nan, batch + (T,))
+    return TrackModeOutput(back(out_x, (3,)), out_var, out_gate, out_K.reshape(batch + (T, 3)),
                            back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
 
 

@@ -15,7 +15,8 @@ Under no manoeuvre ``S ~ N(0, sigma_S^2)`` and ``c(alpha) = sigma_S Phi^{-1}(1 -
   the card's factor-2 correction), :func:`variance_independent`;
 * correctly, from the autocovariance ``r(m)`` of the stationary velocity error,
   :func:`variance_stationary` (``r`` from :func:`tvtrack.filters.alphabeta.lagged_covariances`);
-* exactly for a time-varying gain schedule from the filter's impulse responses,
+* exactly for a time-varying gain schedule by a state-space recursion on the filter's error
+  augmented with the two window sums (memory linear in the run length),
   :func:`scheduled_statistic_std`;
 * or by simulation under no manoeuvre, :func:`calibrate_threshold`.
 """
@@ -25,12 +26,14 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from ..filters.alphabeta import lagged_covariances, scheduled_filter
+from ..filters.alphabeta import error_covariance_sequence, lagged_covariances, observation_row, scheduled_filter
+from ..filters.polynomial import taylor_transition
 from ..montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
 
 __all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
            "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",
-           "false_alarm_rates", "detection_time_summary", "first_detection_roc"]
+           "false_alarm_rates", "detection_time_summary", "first_detection_roc", "null_quantile_threshold",
+           "first_alarm_within"]
 
 
 def _check_window(n) -> int:
@@ -153,10 +156,16 @@ def statistic_std(K, sigma_eps: float, n: int, method: str = "correlated") -> fl
 def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     """Exact ``sigma_S(t)`` for a filter with time-varying gains started at frame 0.
 
-    The velocity noise is linear in the measurement noise, ``v_t = sum_j G[t, j] eps_j``; the
-    columns of ``G`` are the filter's responses to unit impulses (run batched). Then
-    ``S_t = u_t^T G eps`` and ``sigma_S(t)^2 = sigma_eps^2 |G^T u_t|^2`` (card §4.3,
-    "time-varying gains").
+    The noise part of the filter's error obeys ``e_k = A_k e_{k-1} + K_k eps_k`` with
+    ``A_k = (I - K_k h) F`` (card §4.5), and ``P_k = cov(e_k)`` follows the covariance recursion
+    (:func:`tvtrack.filters.alphabeta.error_covariance_sequence`). For each window end ``t`` the
+    state is augmented with the two running window sums of the output velocity,
+    ``y = (e, s_old, s_new)``; starting from ``cov(y) = blockdiag(P_{t-2n}, 0, 0)`` the ``2n``
+    frames of the windows propagate ``cov(y) <- M cov(y) M^T + sigma_eps^2 L L^T`` (``M`` adds
+    the new velocity ``[A e]_v`` to the sum whose window the frame belongs to), and then
+    ``sigma_S(t)^2 = var(s_old - s_new)`` (card §4.3, "time-varying gains"). All window ends are
+    propagated together, so memory is linear in the run length (``T (d+2)^2`` numbers) and the
+    work is ``2n`` batched steps.
 
     Parameters
     ----------
@@ -171,10 +180,36 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     """
     n = _check_window(n)
     G = np.asarray(gains, dtype=float)
-    T = G.shape[0]
-    responses = scheduled_filter(np.eye(T), G)[..., 1]     # (j, t): velocity at t from impulse at j
-    W = window_statistic(responses, n)                      # (j, t): weight of eps_j in S_t
-    return sigma_eps * np.sqrt(np.sum(W**2, axis=0))
+    if G.ndim != 2 or G.shape[1] < 2:
+        raise ValueError(f"parameter 'gains' has shape {G.shape}; it must be (T, order+1) with order >= 1")
+    T, d = G.shape
+    out = np.full(T, np.nan)
+    if T < 2 * n:
+        return out
+    P = error_covariance_sequence(G, sigma_eps)                     # (T, d, d) after each frame
+    ends = np.arange(2 * n - 1, T)
+    starts = ends - 2 * n + 1                                       # first frame of the older window
+    m = d + 2
+    Y = np.zeros((ends.size, m, m))
+    Y[starts > 0, :d, :d] = P[starts[starts > 0] - 1]
+    F = taylor_transition(d - 1)
+    h = observation_row(d - 1)
+    M = np.broadcast_to(np.eye(m), Y.shape).copy()
+    L = np.zeros((ends.size, m))
+    for s in range(2 * n):
+        K = G[starts + s]                                           # (B, d)
+        A = (np.eye(d) - K[:, :, None] * h) @ F                     # (B, d, d)
+        col, other = (d, d + 1) if s < n else (d + 1, d)
+        M[:, :d, :d] = A
+        M[:, col, :d] = A[:, 1, :]                                  # the sum gains the new velocity error
+        M[:, other, :d] = 0.0
+        L[:, :d] = K
+        L[:, col] = K[:, 1]
+        L[:, other] = 0.0
+        Y = M @ Y @ np.swapaxes(M, -1, -2) + sigma_eps**2 * L[:, :, None] * L[:, None, :]
+    var = Y[:, d, d] + Y[:, d + 1, d + 1] - 2 * Y[:, d, d + 1]
+    out[ends] = np.sqrt(np.maximum(var, 0.0))
+    return out
 
 
 def calibrate_threshold(gains, n: int, alpha: float, frames, n_sims: int, rng: np.random.Generator,
@@ -320,3 +355,40 @@ def first_detection_roc(stat_alt, stat_null, armed, onset: int, pfa_targets):
     g_ = np.quantile(null, 1 - np.asarray(pfa_targets, dtype=float))
     return (np.array([np.mean(null > g) for g in g_]),
             np.array([np.mean((before <= g) & (within > g)) for g in g_]))
+
+
+def null_quantile_threshold(stat_null, armed, pfa: float) -> float:
+    """The threshold whose per-test false-alarm rate is ``pfa``: the ``1 - pfa`` quantile of a
+    normalised null statistic pooled over the armed frames.
+
+    Parameters
+    ----------
+    stat_null : array_like, shape (runs, T)
+    armed : array_like of bool, shape (T,)
+    pfa : float
+        Per-test false-alarm probability, in (0, 1).
+    """
+    _check_alpha(pfa)
+    null = np.asarray(stat_null, dtype=float)[:, np.asarray(armed, bool)]
+    return float(np.quantile(null[np.isfinite(null)], 1 - pfa))
+
+
+def first_alarm_within(stat, threshold: float, armed, onset: int) -> np.ndarray:
+    """Per run: the first alarm of ``stat > threshold`` on the armed frames falls in ``[onset, T)``
+    (no alarm before the onset, one after it).
+
+    Parameters
+    ----------
+    stat : array_like, shape (..., T)
+        Normalised statistic; NaN = not tested.
+    threshold : float
+    armed : array_like of bool, shape (T,)
+    onset : int
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+    """
+    armed = np.asarray(armed, bool)
+    m = np.where(armed, np.nan_to_num(np.asarray(stat, dtype=float), nan=-np.inf), -np.inf)
+    return (m[..., :onset].max(axis=-1, initial=-np.inf) <= threshold) & (m.max(axis=-1) > threshold)

@@ -10,7 +10,14 @@ Standard IMM cycle (Bar-Shalom, Li & Kirubarajan 2001, §11.6.6), the same order
 3. mode-matched update and likelihood ``L_j = N(nu_j; 0, S_j)``;
 4. ``mu_j = cbar_j L_j / sum``; combined ``x = sum mu_j x_j``, ``P = sum mu_j (P_j + dx dx^T)``.
 
-A missing measurement (NaN) skips steps 3-4's update: ``mu = cbar`` and the priors are kept.
+A missing measurement (NaN) skips steps 3-4's update: ``mu = cbar`` and the priors are kept
+(``coast="mix"``, the textbook cycle), or, with ``coast="frozen"``, skips the mixing too while
+the measurement is missing: each mode predicts on its own and ``mu`` stays as it was, so the
+constant-acceleration estimate is not pulled toward the constant-velocity mode's zero during an
+occlusion; with ``coast="mode"`` the most probable mode at the last measurement takes all the
+probability while the measurement is missing (no mixing), so the combined prediction is that
+mode's own (e.g. CA-conditioned coasting after a manoeuvre). ``loglik`` is the log of the predictive density of each present measurement,
+``log sum_j cbar_j L_j``, summed over frames (for tuning by maximum likelihood).
 All models share one state space (e.g. ``(x, v, a)`` with the constant-velocity model zeroing
 ``a``), see :func:`cv_ca_models`.
 """
@@ -68,6 +75,7 @@ class IMMOutput:
     mu : ndarray, shape (..., T, r)      mode probabilities
     x_prior : ndarray, shape (..., T, n) combined prior before each frame's measurement
     P_prior : ndarray, shape (..., T, n, n)
+    loglik : ndarray, shape (...)        log predictive likelihood of the present measurements
     """
 
     x: np.ndarray
@@ -75,6 +83,7 @@ class IMMOutput:
     mu: np.ndarray
     x_prior: np.ndarray
     P_prior: np.ndarray
+    loglik: np.ndarray
 
 
 def _combine(xs, Ps, w):
@@ -85,7 +94,7 @@ def _combine(xs, Ps, w):
     return x, 0.5 * (P + np.swapaxes(P, -1, -2))
 
 
-def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
+def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IMMOutput:
     """Run the IMM over measurements ``zs``.
 
     Parameters
@@ -103,6 +112,9 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
     P0 : array_like, shape (n, n) or (..., n, n)
     mu0 : array_like, shape (r,)
         Initial mode probabilities.
+    coast : {"mix", "frozen", "mode"}
+        While a measurement is missing: the textbook cycle ("mix"), no mixing and frozen mode
+        probabilities ("frozen"), or no mixing and the most probable mode only ("mode").
 
     Returns
     -------
@@ -116,6 +128,8 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
         raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
     if np.any(M < 0) or not np.allclose(M.sum(axis=1), 1.0):
         raise ValueError("parameter 'transition' must be a row-stochastic matrix")
+    if coast not in ("mix", "frozen", "mode"):
+        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")
     mu0 = np.asarray(mu0, dtype=float)
     if mu0.shape != (r,) or np.any(mu0 < 0) or not np.isclose(mu0.sum(), 1.0):
         raise ValueError(f"parameter 'mu0' = {mu0}; it must be {r} probabilities summing to 1")
@@ -124,10 +138,19 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
     Ps = np.broadcast_to(np.asarray(P0, float), batch + (n, n))[..., None, :, :].repeat(r, axis=-3)
     mu = np.broadcast_to(mu0, batch + (r,)).copy()
     out = {k: [] for k in ("x", "P", "mu", "x_prior", "P_prior")}
+    loglik_total = np.zeros(batch)
+    eye = np.eye(r)
     for t in range(T):
-        # 1. mixing
-        cbar = mu @ M                                                     # (..., r)
-        omega = mu[..., :, None] * M / cbar[..., None, :]                 # (..., i, j)
+        z = zs[..., t, :]
+        present = np.all(np.isfinite(z), axis=-1)
+        # 1. mixing (none while coasting with frozen mode probabilities)
+        Mt = M if coast == "mix" else np.where(present[..., None, None], M, eye)
+        if coast == "mode":
+            top_mode = eye[np.argmax(mu, axis=-1)]
+            mu = np.where(present[..., None], mu, top_mode)
+        cbar = np.einsum("...i,...ij->...j", mu, Mt)                      # (..., r)
+        live = cbar > 0                                                   # a mode with no probability keeps its own state
+        omega = np.where(live[..., None, :], mu[..., :, None] * Mt / np.where(live, cbar, 1.0)[..., None, :], eye)
         x_mix = np.einsum("...ij,...ia->...ja", omega, xs)
         d = xs[..., :, None, :] - x_mix[..., None, :, :]                  # (..., i, j, n)
         P_mix = np.einsum("...ij,...ijab->...jab", omega,
@@ -138,16 +161,16 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
         out["x_prior"].append(xp)
         out["P_prior"].append(Pp)
         # 3. mode-matched update with likelihoods
-        z = zs[..., t, :]
-        present = np.all(np.isfinite(z), axis=-1)
         zz = np.where(present[..., None], z, 0.0)[..., None, :]
         xs_u, Ps_u, nu, S = kf_update(xs, Ps, zz, H, R, present[..., None])
         m = nu.shape[-1]
         maha = np.einsum("...i,...i->...", nu, np.linalg.solve(S, nu[..., None])[..., 0])
         loglik = -0.5 * (maha + np.linalg.slogdet(S)[1] + m * np.log(2 * np.pi))
         # 4. mode probabilities (log domain, normalised) and combination
-        logw = np.log(cbar) + loglik
-        w = np.exp(logw - logw.max(axis=-1, keepdims=True))
+        logw = np.log(np.maximum(cbar, 1e-300)) + loglik
+        top = logw.max(axis=-1, keepdims=True)
+        w = np.exp(logw - top)
+        loglik_total += np.where(present, top[..., 0] + np.log(w.sum(axis=-1)), 0.0)
         mu = np.where(present[..., None], w / w.sum(axis=-1, keepdims=True), cbar)
         xs, Ps = xs_u, Ps_u
         x, P = _combine(xs, Ps, mu)
@@ -155,4 +178,4 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0) -> IMMOutput:
         out["P"].append(P)
         out["mu"].append(mu)
     axis = len(batch)
-    return IMMOutput(**{k: np.stack(v, axis=axis) for k, v in out.items()})
+    return IMMOutput(**{k: np.stack(v, axis=axis) for k, v in out.items()}, loglik=loglik_total)
