@@ -204,6 +204,14 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
             yield b, seed + k
 
 
+def _fallback(marks, designation, init: str) -> np.ndarray:
+    """The state a line fit returns where it has too few marks (flagged invalid): the designation,
+    or for the designation-free start (``init = "moments"``) a still object at the mean mark."""
+    if init != "moments":
+        return designation
+    return np.concatenate([marks.xy.mean(axis=1), np.zeros_like(marks.xy[:, 0])], axis=-1)
+
+
 def run_config(settings: StudySettings, cfg: Config) -> dict:
     """Monte Carlo of one configuration.
 
@@ -256,7 +264,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
                           init=s_.mark_init if init is None else init,
                           association=s_.mark_association if assoc is None else assoc, tol_px=tol,
                           max_iter=s_.max_iter, accelerate=accel)
-            fit = fit_lines(mk, times, b.designation)
+            fit = fit_lines(mk, times, _fallback(mk, b.designation, s_.mark_init if init is None else init))
             timing["em"] += time.perf_counter() - t0
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["em"].append(e)
