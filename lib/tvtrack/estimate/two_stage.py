@@ -207,10 +207,9 @@ def _gate_moments(counts, py, px, half: int):
     """Count-weighted centroid (N, T, 2) and second-moment matrix (N, T, 2, 2) of each frame inside
     the square gate of half-size ``half`` px around pixel ``(py, px)`` (N, T)."""
     rows, cols = counts.shape[-2:]
-    yy = np.arange(rows)[:, None] + 0.5
-    xx = np.arange(cols)[None, :] + 0.5
-    inside = ((np.abs(yy - (py[..., None, None] + 0.5)) <= half)
-              & (np.abs(xx - (px[..., None, None] + 0.5)) <= half))
+    yy = np.arange(rows, dtype=float)[:, None]                             # pixel centres, px
+    xx = np.arange(cols, dtype=float)[None, :]
+    inside = (np.abs(yy - py[..., None, None]) <= half) & (np.abs(xx - px[..., None, None]) <= half)
     w = counts * inside
     tot = np.maximum(w.sum(axis=(-1, -2)), 1e-12)
     mx = (w * xx).sum(axis=(-1, -2)) / tot
