@@ -335,3 +335,23 @@ def test_crb_single_object_fine_pixels_matches_continuous_bound():
     np.testing.assert_allclose(fim, np.swapaxes(fim, -1, -2))
     bad = crb_linear_motion(np.array([[5.0, 5, 0, 0], [5, 5, 0, 0]]), times, (11, 11), 1.0, 10.0, 0.01)
     assert np.isinf(np.diag(bad)).all()
+
+
+def test_map_ula_limits_and_monotone_posterior():
+    g, b, p, p0, _ = _batch(16, 20, T=6, d=1.5, pix=1.0, m=20, dsd=0.3)
+    ent = pixel_entries(b.counts)
+    ml = unified_location_em(ent, b.designation, g.sigma_px, p, p0, tol_px=1e-9)
+    flat = unified_location_em(ent, b.designation, g.sigma_px, p, p0, tol_px=1e-9, prior_sd=(1e6, 1e6))
+    np.testing.assert_allclose(flat.theta, ml.theta, atol=1e-5)          # a flat prior is ML
+    tight = unified_location_em(ent, b.designation, g.sigma_px, p, p0, tol_px=1e-9, prior_sd=(1e-6, 0.0))
+    np.testing.assert_allclose(tight.theta, b.designation, atol=1e-6)    # a sharp prior keeps the designation
+    # velocity sd 0 fixes the velocity; the log posterior never decreases over the EM steps
+    mp = unified_location_em(ent, b.designation, g.sigma_px, p, p0, tol_px=1e-9, prior_sd=(0.3 * g.sigma_px, 0.0),
+                             history=True)
+    np.testing.assert_allclose(mp.theta[..., 2:], b.designation[..., 2:], atol=1e-6)
+    post = np.array(mp.history_loglik)
+    assert np.diff(post, axis=0).min() > -1e-9 * np.abs(post).max()
+    # the MAP estimate lies between the designation and the ML estimate in the summed sense
+    assert np.abs(mp.theta - b.designation).sum() < np.abs(ml.theta - b.designation).sum()
+    with pytest.raises(ValueError, match="prior_sd"):
+        unified_location_em(ent, b.designation, g.sigma_px, p, p0, prior_sd=(0.0, 0.0))
