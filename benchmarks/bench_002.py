@@ -1,6 +1,7 @@
 """Speed targets of notebook 002 (issue 6): one unified-location EM iteration on 2 objects x 50 frames
-x 64 x 64 pixels in <= 2 ms on one core; the whole figure set at the paper profile in < 6 minutes on a
-2-core machine."""
+x 64 x 64 pixels in <= 2 ms on one core; the whole figure set at the paper profile in < 8 minutes on a
+2-core machine (issue 16's budget: the seed blocks, the headline map, the baselines and the MAP-ULA
+raised it from issue 6's 6 minutes)."""
 
 import time
 
@@ -42,4 +43,4 @@ def test_figure_set_at_paper_profile(benchmark, tmp_path):
                                  rounds=1, iterations=1)
     elapsed = time.perf_counter() - t0
     assert outcome.ok, outcome.error
-    assert elapsed < 360.0, f"the paper-profile figure set took {elapsed:.0f} s (target < 360 s on 2 cores)"
+    assert elapsed < 480.0, f"the paper-profile figure set took {elapsed:.0f} s (target < 480 s on 2 cores)"

@@ -3,15 +3,15 @@
 import numpy as np
 import pytest
 
-from tvtrack.estimate.location_study import (Config, LocationStudy, StudySettings, failure_metrics,
-                                             position_errors, seed_sequence, variance_ratio_ci,
-                                             variance_sum)
+from tvtrack.estimate.location_study import (Config, LocationStudy, StudySettings, bootstrap_groups,
+                                             failure_metrics, position_errors, seed_blocks, seed_sequence,
+                                             variance_ratio_ci, variance_sum)
 
 SETTINGS = StudySettings(seed=7, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
                          margin_sigma=6.0, designation_sd_sigma=0.3, designation_velocity_sd=0.0,
                          tol_sigma=1e-5, max_iter=500, merge_sigma=0.1, accelerate="squarem",
                          mark_init="designation", mark_association="designation", gate_half_sigma=3.0,
-                         bic_max_iter=20, crb_phases=2, n_trials=24, n_bootstrap=200)
+                         bic_max_iter=20, crb_phases=2, n_trials=24, n_bootstrap=2000)
 
 
 def test_variance_ratio_ci_matches_closed_form_and_covers_truth():
@@ -28,6 +28,29 @@ def test_variance_ratio_ci_matches_closed_form_and_covers_truth():
     # paired resampling of identical samples gives exactly 1 in every resample
     same = variance_ratio_ci(a, a, np.random.default_rng(2), 50)
     assert same.value == same.ci_low == same.ci_high == pytest.approx(1.0)
+    # robust spreads: one gross error moves the variance ratio a lot, the trimmed and median ones little
+    a_gross = a.copy()
+    a_gross[0] = 200.0
+    plain = variance_ratio_ci(a_gross, b, np.random.default_rng(1), 300, paired=False)
+    trimmed = variance_ratio_ci(a_gross, b, np.random.default_rng(1), 300, paired=False, spread="trimmed_variance")
+    median = variance_ratio_ci(a_gross, b, np.random.default_rng(1), 300, paired=False, spread="median_square")
+    assert plain.value > 8.0
+    assert 3.0 < trimmed.value < 5.0 and 3.0 < median.value < 5.0   # scale ratio 4 of two normal samples
+
+
+def test_bootstrap_groups_resamples_groups_independently_and_rows_jointly():
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=(500, 2))
+    # a statistic of one group's paired columns: identical columns give exactly 0 in every resample
+    d = bootstrap_groups([np.hstack([x, x])], lambda g: (g[..., :2] - g[..., 2:]).mean(axis=(1, 2)),
+                         np.random.default_rng(4), 2000)
+    assert d.value == d.ci_low == d.ci_high == 0.0 and d.n == 500
+    # two independent groups: the difference of means has the standard error sqrt(1/n1 + 1/n2)
+    y = rng.normal(size=(300, 1)) + 1.0
+    diff = bootstrap_groups([x[:, :1], y], lambda a, b: b.mean(axis=(1, 2)) - a.mean(axis=(1, 2)),
+                            np.random.default_rng(5), 2000)
+    assert diff.stderr == pytest.approx(np.sqrt(1 / 500 + 1 / 300), rel=0.15)
+    assert diff.ci_low < 1.0 < diff.ci_high
 
 
 def test_seed_sequence_depends_on_values_only():
@@ -46,6 +69,12 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     assert len(study) == 1 and c_e in study
     r = study[c_u]
     assert r["ula"].shape == (24, 2, 4) and r["em"].shape == (24, 2, 4)
+    blocks = seed_blocks(r)
+    assert sorted(blocks) == [7, 8, 9] and all(m.sum() == 8 for m in blocks.values())
+    # epochs: the mid-frame error is the first-frame error plus (T-1)/2 velocity errors
+    mid = position_errors(r, "ula", "mid")
+    np.testing.assert_allclose(mid, (r["ula"][..., :2] + 1.5 * r["ula"][..., 2:]).reshape(24, -1))
+    assert position_errors(r, "ula", "velocity", blocks[8]).shape == (8, 4)
     assert np.isfinite(r["crb_pos"]) and r["crb_pos"] > 0
     # the ULA on well-separated objects is near its CRB (loose: 24 trials)
     v = variance_sum(position_errors(r, "ula"))
@@ -54,7 +83,8 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     again.compute([c_u])
     np.testing.assert_array_equal(again[c_u]["ula"], r["ula"])
     rates = failure_metrics(r)
-    assert set(rates) >= {"ula/gross_rate", "ula/swap_rate", "em/gross_rate", "em/missing_marks_rate"}
+    assert set(rates) >= {"ula/gross_rate", "ula/merge_rate", "em/gross_rate", "em/missing_marks_rate"}
+    assert not any("swap" in k for k in rates)           # a label swap costs nothing: not a failure
 
 
 def test_bad_workers_raise():

@@ -257,10 +257,20 @@ def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
     return sums, loglik
 
 
-def _m_step(sums, theta, static: bool):
-    """Closed-form M-step (11) per object and axis; returns new theta and a degenerate flag."""
+def _m_step(sums, theta, static: bool, prior=None):
+    """Closed-form M-step (11) per object and axis; returns new theta and a degenerate flag.
+
+    ``prior = (mean (N, Q, 4), a (N, Q), c (N, Q))`` adds a Gaussian prior (MAP-EM): ``a`` and ``c``
+    are sigma^2 times the prior precisions of the initial position and of the velocity, which
+    enter the normal equations of (10) as ``(A + a) x0 + B V = D_x + a x0_prior`` and
+    ``B x0 + (C + c) V = D_tx + c V_prior``."""
     A, B, C, Dx, Dtx, Dy, Dty = (sums[..., k] for k in range(7))
     new = np.empty_like(theta)
+    if prior is not None and not static:
+        mean, a, c = prior
+        A, C = A + a, C + c
+        Dx, Dy = Dx + a * mean[..., 0], Dy + a * mean[..., 1]
+        Dtx, Dty = Dtx + c * mean[..., 2], Dty + c * mean[..., 3]
     if static:
         bad = A <= 1e-12
         As = np.where(bad, 1.0, A)
@@ -354,7 +364,8 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
                         motion: str = "linear", tol_px: float = 1e-6, max_iter: int = 5000,
                         accelerate: str | None = None, estimate_weights: bool = False,
                         estimate_sigma: bool = False, merge_px: float = 0.05,
-                        min_in_frame_mass: float = 0.99, history: bool = False) -> EMResult:
+                        min_in_frame_mass: float = 0.99, history: bool = False,
+                        prior_sd=None) -> EMResult:
     """Maximum-likelihood linear-motion states of ``Q`` objects from all ``T`` frames at once.
 
     Parameters
@@ -395,6 +406,11 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
         In-window PSF mass below which an object counts as having left the frame, in (0, 1].
     history : bool
         Keep theta and the log-likelihood of every iteration (for tests and recordings).
+    prior_sd : (float, float), optional
+        MAP-EM: a Gaussian prior centred on ``theta0`` (the designation) with standard deviations
+        ``(position px, velocity px/frame)`` per coordinate; a velocity sd of 0 fixes the velocity
+        at ``theta0``'s (up to 1e-9 px/frame). The SQUAREM safeguard and ``history`` then use the log
+        posterior; the returned ``loglik`` is the log-likelihood. Linear motion with fixed sigma only.
 
     Returns
     -------
@@ -432,6 +448,21 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
         raise ValueError("weights must satisfy p_noise + sum(p) = 1")
     span = max(float(times.max() - times.min()), 1.0)
     second = estimate_sigma
+    prior = None
+    if prior_sd is not None:
+        sd_x, sd_v = (float(v) for v in prior_sd)
+        if not (sd_x > 0 and sd_v >= 0) or static or estimate_sigma:
+            raise ValueError(f"prior_sd = {prior_sd}: needs position sd > 0, velocity sd >= 0, linear motion "
+                             f"and fixed sigma")
+        prior = (theta0, sigma ** 2 / sd_x ** 2, sigma ** 2 / max(sd_v, 1e-9) ** 2)
+
+    def log_prior(th, rows):
+        if prior is None:
+            return 0.0
+        mean, a, c = (x[rows] for x in prior)
+        sg2 = sigma[rows] ** 2
+        return -0.5 * ((a / sg2)[..., None] * (th[..., :2] - mean[..., :2]) ** 2
+                       + (c / sg2)[..., None] * (th[..., 2:] - mean[..., 2:]) ** 2).sum(axis=(1, 2))
 
     theta = theta0.copy()
     if static:
@@ -445,7 +476,9 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
 
     def step(work, th, pw_, p0_, sg_):
         sums, ll = _e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
-        new, bad = _m_step(sums, th, static)
+        pr = None if prior is None else tuple(x[work.trials] for x in prior)
+        new, bad = _m_step(sums, th, static, pr)
+        ll = ll + log_prior(th, work.trials)
         if estimate_sigma:
             sg_ = _sigma_update(sums, new, sg_, bad)
         if estimate_weights:

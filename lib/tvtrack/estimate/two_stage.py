@@ -13,13 +13,20 @@ Marks (paper card 002, section 4.4):
   curve 1): the EM of :func:`tvtrack.estimate.em_location.unified_location_em` applied to one
   frame with a static model, ``x = D_x / A``.
 
-Association rule (not stated in the paper; both variants are parameters):
+Start of the per-frame EM (``init``): the designation propagated to the frame, the previous
+frame's marks, or (``"moments"``, designation-free) :func:`moment_starts`, a split of the frame's
+brightest region along its principal axis.
+
+Association rule (not stated in the paper; all variants are parameters):
 
 * ``"designation"``: labels are carried by the initialisation -- mark ``j`` of frame ``l`` is
   object ``j``'s because it was started from object ``j``'s designated (or previous) position;
 * ``"assignment"``: after forming the marks, reorder them in each frame by the minimum-cost
   assignment (summed squared distances, all ``Q!`` orders) to the designated positions
-  propagated to that frame.
+  propagated to that frame;
+* ``"lines"`` (designation-free, gate-free, multi-frame, in the spirit of ref. [4]):
+  :func:`associate_by_lines`, the per-frame orders that (locally) minimise the total residual of
+  the straight-line fits.
 
 Units: pixels and frames (see :mod:`tvtrack.scenes.linear_motion`).
 """
@@ -30,12 +37,14 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import uniform_filter
 
 from ..measure import crop
 from ..render import gate_origin
 from .em_location import per_frame_entries, pixel_entries, unified_location_em
 
-__all__ = ["Marks", "LineFit", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines"]
+__all__ = ["Marks", "LineFit", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines",
+           "moment_starts", "associate_by_lines"]
 
 
 @dataclass
@@ -134,22 +143,23 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
     times : ndarray, shape (T,)
     sigma_px, p, p_noise
         PSF width and mixture weights as in :func:`unified_location_em`.
-    init : {"designation", "previous"}
+    init : {"designation", "previous", "moments"}
         Start frame ``l`` from the designation propagated to ``t_l``, or (``"previous"``) from
         the previous frame's marks moved by the designated velocity (frame 0 from the
-        designation); ``"previous"`` runs the frames in sequence.
-    association : {"designation", "assignment"}
-        See the module docstring.
+        designation; the frames run in sequence), or (``"moments"``) from :func:`moment_starts`
+        (no designation).
+    association : {"designation", "assignment", "lines"}
+        See the module docstring; ``"lines"`` uses no designation.
     tol_px, max_iter, accelerate
         Stopping rule and acceleration of the per-frame EM.
     """
     counts = np.asarray(counts)
     designation = np.asarray(designation, dtype=float)
     times = np.asarray(times, dtype=float)
-    if init not in ("designation", "previous"):
-        raise ValueError(f"init = {init!r} must be 'designation' or 'previous'")
-    if association not in ("designation", "assignment"):
-        raise ValueError(f"association = {association!r} must be 'designation' or 'assignment'")
+    if init not in ("designation", "previous", "moments"):
+        raise ValueError(f"init = {init!r} must be 'designation', 'previous' or 'moments'")
+    if association not in ("designation", "assignment", "lines"):
+        raise ValueError(f"association = {association!r} must be 'designation', 'assignment' or 'lines'")
     n, t = counts.shape[:2]
     q = designation.shape[1]
     predicted = propagate(designation, times)                          # (N, T, Q, 2)
@@ -159,9 +169,10 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
         th[..., :2] = xy
         return th
 
-    if init == "designation":
+    if init in ("designation", "moments"):
+        starts = predicted if init == "designation" else moment_starts(counts, sigma_px, q)
         ent = per_frame_entries(pixel_entries(counts))
-        res = unified_location_em(ent, frame_state(predicted).reshape(n * t, q, 4), sigma_px, p,
+        res = unified_location_em(ent, frame_state(starts).reshape(n * t, q, 4), sigma_px, p,
                                   p_noise, times=np.zeros(1), motion="static", tol_px=tol_px,
                                   max_iter=max_iter, accelerate=accelerate)
         xy = res.theta[..., :2].reshape(n, t, q, 2)
@@ -187,7 +198,115 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
                 step = (times[l + 1] - times[l]) * designation[..., 2:]
                 start = np.where(valid[:, l, :, None], xy[:, l], start) + step
     marks = Marks(xy=xy, valid=valid, n_iter=n_iter, cap_hit=cap)
+    if association == "lines":
+        return associate_by_lines(marks, times)
     return associate(marks, predicted) if association == "assignment" else marks
+
+
+def _gate_moments(counts, py, px, half: int):
+    """Count-weighted centroid (N, T, 2) and second-moment matrix (N, T, 2, 2) of each frame inside
+    the square gate of half-size ``half`` px around pixel ``(py, px)`` (N, T)."""
+    rows, cols = counts.shape[-2:]
+    yy = np.arange(rows, dtype=float)[:, None]                             # pixel centres, px
+    xx = np.arange(cols, dtype=float)[None, :]
+    inside = (np.abs(yy - py[..., None, None]) <= half) & (np.abs(xx - px[..., None, None]) <= half)
+    w = counts * inside
+    tot = np.maximum(w.sum(axis=(-1, -2)), 1e-12)
+    mx = (w * xx).sum(axis=(-1, -2)) / tot
+    my = (w * yy).sum(axis=(-1, -2)) / tot
+    dx, dy = xx - mx[..., None, None], yy - my[..., None, None]
+    sxx, sxy, syy = ((w * a * b).sum(axis=(-1, -2)) / tot for a, b in ((dx, dx), (dx, dy), (dy, dy)))
+    cov = np.stack([np.stack([sxx, sxy], -1), np.stack([sxy, syy], -1)], -2)
+    return np.stack([mx, my], axis=-1), cov
+
+
+def moment_starts(counts, sigma_px: float, q: int, half_gate_sigma: float = 3.0,
+                  peak_fraction: float = 0.5) -> np.ndarray:
+    """Designation-free starting positions of the per-frame EM, shape (N, T, Q, 2), px.
+
+    In each frame the count image is box-filtered over a gate ``2 * ceil(half_gate_sigma * sigma)
+    + 1`` px wide and its ``Q`` brightest regions are found greedily (each found region masks a
+    square twice the gate's half-size around it). If every one of them holds at least
+    ``peak_fraction`` of the brightest one's counts, the objects are resolved: the starts are the
+    regions' centroids. Otherwise they overlap: inside the brightest region, the count-weighted
+    centroid ``c`` and the principal axis ``u`` (largest eigenvalue ``lam``) of the second moments
+    give ``Q`` starts on ``u`` through ``c``, equally spaced with the spread that explains the
+    excess ``lam - sigma^2 - 1/12`` (PSF and pixel variance removed; at least ``(sigma / 2)^2`` so
+    that the EM's symmetric start is broken).
+
+    Parameters
+    ----------
+    counts : ndarray, shape (N, T, rows, cols)
+    sigma_px : float
+        PSF standard deviation, px.
+    q : int
+        Number of objects.
+    half_gate_sigma : float
+        Half-size of a region, in sigma.
+    peak_fraction : float
+        A region this bright relative to the brightest counts as a separate object.
+    """
+    counts = np.asarray(counts, dtype=float)
+    n, t, rows, cols = counts.shape
+    half = int(np.ceil(half_gate_sigma * sigma_px))
+    smooth = uniform_filter(counts, size=(1, 1, 2 * half + 1, 2 * half + 1), mode="constant")
+    yy, xx = np.arange(rows)[:, None], np.arange(cols)[None, :]
+    peaks, heights = [], []
+    for _ in range(q):
+        k = smooth.reshape(n, t, -1).argmax(axis=-1)
+        py, px = np.unravel_index(k, (rows, cols))
+        peaks.append((py, px))
+        heights.append(np.take_along_axis(smooth.reshape(n, t, -1), k[..., None], axis=-1)[..., 0])
+        near = ((np.abs(yy - py[..., None, None]) <= 2 * half) & (np.abs(xx - px[..., None, None]) <= 2 * half))
+        smooth = np.where(near, -np.inf, smooth)
+    resolved = np.all([h >= peak_fraction * heights[0] for h in heights], axis=0)       # (N, T)
+    centres = np.stack([_gate_moments(counts, py, px, half)[0] for py, px in peaks], axis=2)  # (N, T, Q, 2)
+    c, cov = _gate_moments(counts, *peaks[0], half)
+    lam, vec = np.linalg.eigh(cov)
+    u = vec[..., :, -1]                                                    # (N, T, 2)
+    excess = np.maximum(lam[..., -1] - sigma_px ** 2 - 1 / 12, (sigma_px / 2) ** 2)
+    spacing = np.sqrt(12 * excess / (q * q - 1)) if q > 1 else np.zeros_like(excess)
+    offsets = (np.arange(q) - (q - 1) / 2)[None, None, :, None]
+    split = c[:, :, None, :] + offsets * spacing[..., None, None] * u[:, :, None, :]
+    return np.where(resolved[..., None, None], centres, split)
+
+
+def associate_by_lines(marks: Marks, times, max_rounds: int = 20) -> Marks:
+    """Gate-free multi-frame association without a designation: per-frame orders of the marks
+    that (locally) minimise the total squared residual of the ``Q`` straight-line fits.
+
+    Start: in each frame, order the marks by their projection on the principal direction of all
+    the trial's marks about their frame means (the direction that separates the objects). Then
+    alternate a least-squares line fit (:func:`fit_lines`) and a per-frame minimum-cost
+    re-assignment to the lines (:func:`associate`) until no order changes (coordinate descent
+    on the total residual; each round cannot increase it).
+
+    Parameters
+    ----------
+    marks : Marks
+    times : ndarray, shape (T,)
+    max_rounds : int
+        Cap on the fit/re-assign rounds.
+    """
+    xy = marks.xy
+    n, t, q, _ = xy.shape
+    w = marks.valid[..., None].astype(float)
+    frame_mean = (w * xy).sum(axis=2, keepdims=True) / np.maximum(w.sum(axis=2, keepdims=True), 1)
+    c = (xy - frame_mean) * w
+    cov = np.einsum("ntqi,ntqj->nij", c, c)
+    u = np.linalg.eigh(cov)[1][..., -1]                                     # (N, 2)
+    order = np.argsort(np.einsum("ntqi,ni->ntq", xy - frame_mean, u), axis=2)
+    current = Marks(xy=np.take_along_axis(xy, order[..., None], axis=2),
+                    valid=np.take_along_axis(marks.valid, order, axis=2), n_iter=marks.n_iter,
+                    cap_hit=marks.cap_hit)
+    fallback = np.concatenate([current.xy.mean(axis=1), np.zeros((n, q, 2))], axis=-1)
+    for _ in range(max_rounds):
+        fit = fit_lines(current, times, fallback)
+        new = associate(current, propagate(fit.theta, times))
+        if np.array_equal(new.xy, current.xy):
+            break
+        current = new
+    return current
 
 
 @dataclass
