@@ -77,6 +77,29 @@ def test_projected_noise_has_the_pixel_noise_covariance():
     np.testing.assert_allclose(np.diag(c_proj), np.diag(c_pix), rtol=0.05)
 
 
+def test_projected_noise_has_the_full_pixel_noise_covariance_off_the_diagonal_too():
+    """A gate clipped by its crop has correlated Delta_x, Delta_y noise; the projection must
+    reproduce the whole 2x2 covariance sigma^2 [sum Wx Wx, sum Wx Wy; ., sum Wy Wy]."""
+    rng = np.random.default_rng(11)
+    n, size, sigma = 100000, 26, 0.3
+    origin = np.zeros((n, 2), int)
+    centre = np.tile([5.3, 6.7], (n, 1))                                     # left and lower halves clipped
+    wy, wx = quadrant_weights(origin[:1], centre[:1], A, (size, size))
+    w_dx = np.outer(wy[0, 0], wx[0, :, 1])                                   # full rows x (right - left)
+    w_dy = np.outer(wy[0, 1], wx[0, :, 0])                                   # (upper - lower) x full columns
+    exact = sigma**2 * np.array([[np.sum(w_dx * w_dx), np.sum(w_dx * w_dy)],
+                                 [np.sum(w_dx * w_dy), np.sum(w_dy * w_dy)]])
+    assert abs(exact[0, 1]) > 0.05 * np.sqrt(exact[0, 0] * exact[1, 1])       # a real correlation to test
+    wy, wx = quadrant_weights(origin, centre, A, (size, size))
+    c_proj = np.cov(quadrant_noise(wy, wx, sigma, rng).T)
+    pix = sigma * rng.standard_normal((20000, size, size))
+    dx, dy, _ = quadrant_discriminator(pix, origin[:20000], centre[:20000], A)
+    c_pix = np.cov(np.stack([dx, dy]))
+    scale = np.sqrt(exact[0, 0] * exact[1, 1])
+    np.testing.assert_allclose(c_proj, exact, atol=0.01 * scale)          # a sign error would miss by 0.17
+    np.testing.assert_allclose(c_pix, exact, atol=0.04 * scale)
+
+
 def test_perfect_background_compensation_leaves_discriminator_unchanged():
     rng = np.random.default_rng(2)
     n, size = 8, gate_crop_size(A)
@@ -186,6 +209,36 @@ def test_strong_interferers_cause_a_detected_loss_and_capture():
     assert np.all(loss[:4] >= 0) and np.all(loss[4:] == -1)
     captured = tag_capture(h.gate, scene.interferers, loss, 125, sc.diameter)
     assert captured[:4].any() and not captured[4:].any()
+
+
+def test_decoy_brightness_follows_the_sir_of_the_run():
+    """The decoy is an interferer: its brightness is d / SIR with the SIR the run was given
+    (it used to stay at the scenario's fixed decoy_sir whatever SIR the loss curve asked for)."""
+    sc = Scenario(duration_s=0.02, decoy_offset=3 * D, noise_std=0.0, kappa=0.0)
+    sir = np.array([1.0, 2.0, 4.0])
+    truth, scene, _ = run_scenario(np.random.default_rng(9), 3, sc, sir, keep_full=False)
+    for i, s in enumerate(sir):
+        img = scene.frame(i, 0)
+        yx = np.round(scene.decoys[i, 0, ::-1]).astype(int)
+        assert img[yx[0], yx[1]] == pytest.approx(1.0 / s, rel=1e-6)
+        ym = np.round(truth.marker[i, 0, ::-1]).astype(int)
+        assert img[ym[0], ym[1]] == pytest.approx(1.0, rel=1e-6)
+
+
+def test_interference_runs_share_their_draws_across_sir_and_markers():
+    """Common random numbers: the same trials at every SIR; rotating and static share the motion."""
+    from tvtrack.scenes.rotating_marker import interference_runs
+    sc = Scenario(duration_s=0.3, n_interferers=1)
+    runs = interference_runs(np.random.default_rng(3), 4, sc, [1e9, 1e9, 0.5])
+    np.testing.assert_array_equal(runs["miss"][:4], runs["miss"][4:8])     # same SIR, same draws: identical
+    assert not np.array_equal(runs["miss"][:4], runs["miss"][8:])            # the SIR does act
+    np.testing.assert_array_equal(runs["interferers"][:4], runs["interferers"][8:])
+    np.testing.assert_array_equal(runs["trial"], np.tile(np.arange(4), 3))
+    rot = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[0]
+    sta = run_scenario(np.random.default_rng(3), 4, Scenario(duration_s=0.3, n_interferers=1, rotating=False), 2.0)[0]
+    np.testing.assert_array_equal(rot.xr, sta.xr)
+    q = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[1].interferers
+    np.testing.assert_allclose(np.hypot(*(q[:, 0] - rot.center[:, 0]).T), sc.radius)   # around the object
 
 
 def test_seed_reproduces_and_interferers_sit_on_circle():
