@@ -375,3 +375,36 @@ def test_slope_helpers_match_the_predicted_slopes():
     assert quadrant_slope_fit(_renderer("disc"), D, A)["slope_at_zero"] == pytest.approx(2 * D, rel=0.05)
     # integral form: a box of unit brightness moving by one px shifts 2 units across the gate centre
     assert two_emitter_slope(beta=12.0, a=4.0, form="integral", half_gate=12.0) == pytest.approx(2.0, rel=0.05)
+
+
+def test_logistic_loss_fit_recovers_a_known_curve_and_its_5_percent_sir():
+    from tvtrack.detect.lock import fit_loss_curve, sir_at_loss
+    rng = np.random.default_rng(12)
+    s50, beta = 1.2, 6.0
+    grid = np.arange(0.5, 2.01, 0.125)
+    C = 400                                                                  # trials, each run at every SIR
+    p = 1 / (1 + np.exp(-beta * (np.log(s50) - np.log(grid))))
+    lost = rng.random((C, grid.size)) < p
+    loss_frame = np.where(lost, 10, -1).ravel()
+    fit = fit_loss_curve(loss_frame, np.tile(grid, C), np.repeat(np.arange(C), grid.size), grid,
+                         dt=0.01, n_frames=100, rng=rng, n_boot=100)
+    true05 = sir_at_loss(s50, beta, 0.05)
+    assert true05 == pytest.approx(s50 * np.exp(np.log(19) / beta))
+    assert fit.sir_50.ci_low < s50 < fit.sir_50.ci_high
+    assert fit.sir_05.ci_low < true05 < fit.sir_05.ci_high
+    assert abs(fit.sir_50.value / s50 - 1) < 0.05 and abs(fit.beta / beta - 1) < 0.25
+    assert fit.p_at(s50) == pytest.approx(0.5, abs=0.05)
+    none = fit_loss_curve(np.full(grid.size * 5, -1), np.tile(grid, 5), np.repeat(np.arange(5), grid.size), grid,
+                          dt=0.01, n_frames=100, rng=rng, n_boot=10)
+    assert np.isnan(none.sir_50.value)                                       # no transition on the grid
+
+
+def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
+    from tvtrack.detect.lock import loss_rate
+    rng = np.random.default_rng(13)
+    T, dt, lam = 1000, 0.01, 0.2                                             # 10 s runs, 0.2 losses/s
+    t = rng.exponential(1 / lam, 4000)
+    frame = np.where(t < T * dt, np.floor(t / dt), -1).astype(int)
+    r = loss_rate(frame, dt, T)
+    assert r.ci_low < lam < r.ci_high and r.value == pytest.approx(lam, rel=0.08)
+    assert loss_rate(np.full(50, -1), dt, T).ci_low == 0.0

@@ -19,9 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..montecarlo import proportion_ci
+from ..montecarlo import Estimate, proportion_ci
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve"]
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve",
+           "fit_logistic_loss", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
 
 KINDS = ("window", "consecutive")
 
@@ -189,3 +190,168 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
     return dict(p=[proportion_ci(int(c), n) for c in counts], losses=counts, n=n,
                 threshold=loss_threshold(sir_values, counts),
                 captures=np.array([capt[runs["sir"] == s].sum() for s in sir_values]))
+
+
+# --- loss of lock as a fitted curve of SIR ------------------------------------------------------
+
+LOGIT_5 = float(np.log(0.05 / 0.95))
+
+
+def _negloglik(theta, log_s, k, n):
+    """Binomial negative log-likelihood of ``logit p = beta (log s50 - log s)``, ``theta = (log s50, log beta)``."""
+    z = np.exp(theta[1]) * (theta[0] - log_s)
+    # log p = -log(1 + e^-z), log(1 - p) = -log(1 + e^z), computed stably
+    return float(np.sum(k * np.logaddexp(0.0, -z) + (n - k) * np.logaddexp(0.0, z)))
+
+
+def fit_logistic_loss(sir, k, n, max_log_slope: float = np.log(200.0)) -> tuple[float, float]:
+    """Maximum-likelihood fit of ``P(loss) = 1 / (1 + exp(-beta (log SIR_50 - log SIR)))``.
+
+    Parameters
+    ----------
+    sir : ndarray, shape (m,)
+        SIR grid (> 0).
+    k, n : ndarray, shape (m,)
+        Losses and runs at each SIR.
+    max_log_slope : float
+        Upper bound of ``log beta`` (a grid that separates perfectly has no finite MLE).
+
+    Returns
+    -------
+    (sir_50, beta) : SIR of 50 % loss and the slope in log SIR; ``(nan, nan)`` when every run
+        lost or none did (no transition on the grid).
+    """
+    from scipy.optimize import minimize
+
+    k, n = np.asarray(k, float), np.asarray(n, float)
+    log_s = np.log(np.asarray(sir, float))
+    if k.sum() == 0 or k.sum() == n.sum():
+        return float("nan"), float("nan")
+    p = k / np.maximum(n, 1)
+    start = (log_s[np.argmin(np.abs(p - 0.5))], np.log(5.0))
+    lo, hi = log_s.min() - 3.0, log_s.max() + 3.0
+    res = minimize(_negloglik, start, args=(log_s, k, n), method="L-BFGS-B",
+                   bounds=[(lo, hi), (np.log(0.05), max_log_slope)])
+    return float(np.exp(res.x[0])), float(np.exp(res.x[1]))
+
+
+def sir_at_loss(sir_50: float, beta: float, level: float = 0.05) -> float:
+    """SIR at which the fitted curve gives ``P(loss) = level``: ``SIR_50 exp(-logit(level) / beta)``."""
+    return float(sir_50 * np.exp(-np.log(level / (1 - level)) / beta))
+
+
+@dataclass
+class LossFit:
+    """A loss curve fitted over seeds (see :func:`fit_loss_curve`).
+
+    Attributes
+    ----------
+    sir : (m,) grid; k, n : (m,) losses and runs per SIR (pooled over seeds)
+    sir_50, sir_05 : Estimate, SIR of 50 % and 5 % loss within the run length (cluster bootstrap)
+    beta : float, fitted slope in log SIR
+    boot_50, boot_05 : (B,) bootstrap replicates (NaN where a resample had no transition)
+    rate : list of m Estimate, losses per second of tracking before the loss (Poisson interval)
+    duration_s : float, run length
+    """
+
+    sir: np.ndarray
+    k: np.ndarray
+    n: np.ndarray
+    sir_50: Estimate
+    sir_05: Estimate
+    beta: float
+    boot_50: np.ndarray
+    boot_05: np.ndarray
+    rate: list
+    duration_s: float
+
+    def p_at(self, s: float) -> float:
+        """Fitted P(loss) at SIR ``s``."""
+        return float(1.0 / (1.0 + np.exp(-self.beta * (np.log(self.sir_50.value) - np.log(s)))))
+
+    def summary(self) -> dict:
+        """What results.json keeps per condition."""
+        return dict(sir=self.sir, losses=self.k, runs=self.n, sir_50=self.sir_50, sir_05=self.sir_05,
+                    slope_log_sir=self.beta, loss_rate_per_s=dict(zip(map(lambda v: f"{v:g}", self.sir), self.rate)),
+                    duration_s=self.duration_s)
+
+
+def _boot_estimate(value: float, boot: np.ndarray, n: int, confidence: float = 0.95) -> Estimate:
+    ok = boot[np.isfinite(boot)]
+    a = (1 - confidence) / 2
+    lo, hi = (np.quantile(ok, [a, 1 - a]) if ok.size >= 0.9 * boot.size else (np.nan, np.nan))
+    return Estimate(float(value), float(np.std(ok)) if ok.size else float("nan"), float(lo), float(hi), n,
+                    confidence, f"cluster bootstrap percentile ({boot.size} resamples of the trials)")
+
+
+def loss_rate(loss_frame, dt: float, n_frames: int, confidence: float = 0.95) -> Estimate:
+    """Losses per second of locked tracking: ``k / sum(time to loss or end)``, exact Poisson interval."""
+    from scipy.stats import chi2
+
+    loss = np.asarray(loss_frame)
+    k = int((loss >= 0).sum())
+    exposure = float(np.where(loss >= 0, loss + 1, n_frames).sum() * dt)
+    a = 1 - confidence
+    lo = chi2.ppf(a / 2, 2 * k) / 2 / exposure if k > 0 else 0.0
+    hi = chi2.ppf(1 - a / 2, 2 * k + 2) / 2 / exposure
+    return Estimate(k / exposure, np.sqrt(k) / exposure, float(lo), float(hi), loss.size, confidence,
+                    "exact Poisson (chi-square)")
+
+
+def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames: int,
+                   rng: np.random.Generator, n_boot: int = 300, level: float = 0.05, boot_index=None) -> LossFit:
+    """Fit P(loss within the run) against log SIR and bootstrap SIR_50 and the SIR at ``level``.
+
+    Parameters
+    ----------
+    loss_frame : ndarray of int, shape (N,)
+        First loss frame per run (-1: kept lock), :func:`first_loss`.
+    sir : ndarray, shape (N,)
+        Each run's SIR (values from ``sir_values``).
+    cluster : ndarray of int, shape (N,)
+        Runs that share their random draws (the same trial at every SIR, common random numbers)
+        carry the same cluster id; the bootstrap resamples clusters, keeping the pairing.
+    sir_values : ndarray, shape (m,)
+    dt, n_frames : frame interval (s) and run length (frames), for the loss rate.
+    rng : numpy.random.Generator
+        Draws the bootstrap resamples (ignored when ``boot_index`` is given).
+    boot_index : ndarray of int, shape (B, C), optional
+        Resampled cluster positions (into the sorted unique cluster ids) to reuse, so that
+        curves on the same clusters are bootstrapped jointly (paired ratios).
+
+    Returns
+    -------
+    LossFit
+    """
+    sir_values = np.asarray(sir_values, float)
+    lost = np.asarray(loss_frame) >= 0
+    ids, cl = np.unique(np.asarray(cluster), return_inverse=True)
+    col = np.searchsorted(sir_values, np.asarray(sir, float)) if np.all(np.diff(sir_values) > 0) else \
+        np.array([int(np.flatnonzero(sir_values == s)[0]) for s in sir])
+    C, m = ids.size, sir_values.size
+    lost_cm = np.zeros((C, m))
+    runs_cm = np.zeros((C, m))
+    np.add.at(lost_cm, (cl, col), lost)
+    np.add.at(runs_cm, (cl, col), 1)
+    k, n = lost_cm.sum(0), runs_cm.sum(0)
+    s50, beta = fit_logistic_loss(sir_values, k, n)
+    s05 = sir_at_loss(s50, beta, level) if np.isfinite(s50) else float("nan")
+    if boot_index is None:
+        boot_index = rng.integers(0, C, size=(n_boot, C))
+    b50 = np.full(len(boot_index), np.nan)
+    b05 = np.full(len(boot_index), np.nan)
+    for b, idx in enumerate(boot_index):
+        w = np.bincount(idx, minlength=C).astype(float)
+        sb, bb = fit_logistic_loss(sir_values, w @ lost_cm, w @ runs_cm)
+        if np.isfinite(sb):
+            b50[b], b05[b] = sb, sir_at_loss(sb, bb, level)
+    rate = [loss_rate(np.asarray(loss_frame)[col == j], dt, n_frames) for j in range(m)]
+    return LossFit(sir_values, k.astype(int), n.astype(int), _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C),
+                   beta, b50, b05, rate, n_frames * dt)
+
+
+def ratio_of_fits(a: np.ndarray, b: np.ndarray, value: float, n: int, confidence: float = 0.95) -> Estimate:
+    """Ratio of two fitted thresholds from jointly (paired) or independently resampled bootstrap
+    replicates ``a``, ``b`` (same length): percentile interval of ``a / b``."""
+    r = np.asarray(a) / np.asarray(b)
+    return _boot_estimate(value, r, n, confidence)
