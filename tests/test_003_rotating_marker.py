@@ -408,3 +408,15 @@ def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
     r = loss_rate(frame, dt, T)
     assert r.ci_low < lam < r.ci_high and r.value == pytest.approx(lam, rel=0.08)
     assert loss_rate(np.full(50, -1), dt, T).ci_low == 0.0
+
+
+def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequencies():
+    from tvtrack.filters.loops import phase_locked_amplitude
+    rng = np.random.default_rng(14)
+    t = np.arange(5000) / 500.0
+    theta = 2 * np.pi * 8 * t + rng.uniform(0, 2 * np.pi, (50, 1))
+    err = 0.3 * np.cos(theta - 0.7) + 2.0 + rng.standard_normal((50, t.size))
+    a = phase_locked_amplitude(err, theta)
+    assert a.mean() == pytest.approx(0.3, abs=0.03)
+    control = phase_locked_amplitude(err, 2 * np.pi * 12 * t)   # noise only: a, b ~ N(0, 2/T), Rayleigh mean sqrt(pi/T)
+    assert control.mean() == pytest.approx(np.sqrt(np.pi / t.size), rel=0.2)

@@ -199,9 +199,13 @@ LOGIT_5 = float(np.log(0.05 / 0.95))
 
 def _negloglik(theta, log_s, k, n):
     """Binomial negative log-likelihood of ``logit p = beta (log s50 - log s)``, ``theta = (log s50, log beta)``."""
-    z = np.exp(theta[1]) * (theta[0] - log_s)
-    # log p = -log(1 + e^-z), log(1 - p) = -log(1 + e^z), computed stably
-    return float(np.sum(k * np.logaddexp(0.0, -z) + (n - k) * np.logaddexp(0.0, z)))
+    beta = np.exp(theta[1])
+    z = beta * (theta[0] - log_s)
+    # log p = -log(1 + e^-z), log(1 - p) = -log(1 + e^z), computed stably; and the gradient
+    f = float(np.sum(k * np.logaddexp(0.0, -z) + (n - k) * np.logaddexp(0.0, z)))
+    p = 0.5 * (1.0 + np.tanh(0.5 * z))
+    g = n * p - k                                                              # d f / d z
+    return f, np.array([np.sum(g) * beta, np.sum(g * z)])
 
 
 def fit_logistic_loss(sir, k, n, max_log_slope: float = np.log(200.0)) -> tuple[float, float]:
@@ -230,7 +234,7 @@ def fit_logistic_loss(sir, k, n, max_log_slope: float = np.log(200.0)) -> tuple[
     p = k / np.maximum(n, 1)
     start = (log_s[np.argmin(np.abs(p - 0.5))], np.log(5.0))
     lo, hi = log_s.min() - 3.0, log_s.max() + 3.0
-    res = minimize(_negloglik, start, args=(log_s, k, n), method="L-BFGS-B",
+    res = minimize(_negloglik, start, args=(log_s, k, n), method="L-BFGS-B", jac=True,
                    bounds=[(lo, hi), (np.log(0.05), max_log_slope)])
     return float(np.exp(res.x[0])), float(np.exp(res.x[1]))
 
@@ -249,7 +253,7 @@ class LossFit:
     sir : (m,) grid; k, n : (m,) losses and runs per SIR (pooled over seeds)
     sir_50, sir_05 : Estimate, SIR of 50 % and 5 % loss within the run length (cluster bootstrap)
     beta : float, fitted slope in log SIR
-    boot_50, boot_05 : (B,) bootstrap replicates (NaN where a resample had no transition)
+    boot_50, boot_05, boot_beta : (B,) bootstrap replicates (NaN where a resample had no transition)
     rate : list of m Estimate, losses per second of tracking before the loss (Poisson interval)
     duration_s : float, run length
     """
@@ -262,12 +266,25 @@ class LossFit:
     beta: float
     boot_50: np.ndarray
     boot_05: np.ndarray
+    boot_beta: np.ndarray
     rate: list
     duration_s: float
 
     def p_at(self, s: float) -> float:
-        """Fitted P(loss) at SIR ``s``."""
+        """Fitted P(loss) at SIR ``s`` (0 or 1 where the grid had no transition)."""
+        if not np.isfinite(self.sir_50.value):
+            return 0.0 if self.k.sum() == 0 else 1.0
         return float(1.0 / (1.0 + np.exp(-self.beta * (np.log(self.sir_50.value) - np.log(s)))))
+
+    def p_estimate(self, s: float) -> Estimate:
+        """Fitted P(loss) at SIR ``s`` with its bootstrap interval."""
+        ok = np.isfinite(self.boot_50)
+        boot = 1.0 / (1.0 + np.exp(-self.boot_beta[ok] * (np.log(self.boot_50[ok]) - np.log(s))))
+        if not np.isfinite(self.sir_50.value):
+            return Estimate(self.p_at(s), float("nan"), 0.0, float(self.n.min() and 3.0 / self.n.sum()), int(self.n.sum()),
+                            0.95, "no loss on the grid (rule of three over all runs)") if self.k.sum() == 0 else \
+                Estimate(1.0, float("nan"), 1.0, 1.0, int(self.n.sum()), 0.95, "every run lost")
+        return _boot_estimate(self.p_at(s), np.concatenate([boot, np.full((~ok).sum(), np.nan)]), self.sir_50.n)
 
     def summary(self) -> dict:
         """What results.json keeps per condition."""
@@ -340,14 +357,22 @@ def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames:
         boot_index = rng.integers(0, C, size=(n_boot, C))
     b50 = np.full(len(boot_index), np.nan)
     b05 = np.full(len(boot_index), np.nan)
+    bbeta = np.full(len(boot_index), np.nan)
     for b, idx in enumerate(boot_index):
         w = np.bincount(idx, minlength=C).astype(float)
         sb, bb = fit_logistic_loss(sir_values, w @ lost_cm, w @ runs_cm)
         if np.isfinite(sb):
-            b50[b], b05[b] = sb, sir_at_loss(sb, bb, level)
+            b50[b], b05[b], bbeta[b] = sb, sir_at_loss(sb, bb, level), bb
     rate = [loss_rate(np.asarray(loss_frame)[col == j], dt, n_frames) for j in range(m)]
-    return LossFit(sir_values, k.astype(int), n.astype(int), _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C),
-                   beta, b50, b05, rate, n_frames * dt)
+    if np.isfinite(s50):
+        e50, e05 = _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C)
+    elif k.sum() == 0:   # no loss anywhere: the thresholds lie below the grid
+        e50 = e05 = Estimate(float("nan"), float("nan"), 0.0, float(sir_values.min()), C, 0.95,
+                             "no loss on the grid: below its smallest SIR")
+    else:                # every run lost: above the grid
+        e50 = e05 = Estimate(float("inf"), float("nan"), float(sir_values.max()), float("inf"), C, 0.95,
+                             "every run lost: above the largest SIR of the grid")
+    return LossFit(sir_values, k.astype(int), n.astype(int), e50, e05, beta, b50, b05, bbeta, rate, n_frames * dt)
 
 
 def ratio_of_fits(a: np.ndarray, b: np.ndarray, value: float, n: int, confidence: float = 0.95) -> Estimate:

@@ -1,0 +1,138 @@
+"""Loss-of-lock studies of the rotating-marker tracker: loss curves over seeds, fitted against SIR.
+
+A *study* runs one :class:`~tvtrack.scenes.rotating_marker.Scenario` at every SIR of a grid for
+``n`` trials per seed and seed (common random numbers across the SIR grid, and across scenarios
+run with the same ``stream`` and seeds: the same object motion, background, interferer placement
+and noise), detects the first loss of each run and fits P(loss within the run) against log SIR
+(:func:`tvtrack.detect.lock.fit_loss_curve`), pooled over seeds and per seed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..detect.lock import LossCriterion, LossFit, fit_loss_curve, first_loss, tag_capture
+from .rotating_marker import Scenario, interference_runs
+
+__all__ = ["LossStudy", "study_rng", "bootstrap_index", "loss_study", "plot_loss_fit"]
+
+
+@dataclass
+class LossStudy:
+    """A loss study's outcome.
+
+    Attributes
+    ----------
+    fit : LossFit, pooled over seeds
+    seeds : dict seed -> LossFit
+    captures : (m,) int, losses tagged as capture by a stationary interferer, per SIR
+    loss_frame, sir, cluster : (N,) per run (cluster = seed position * n + trial)
+    by_criterion : dict name -> LossFit, the pooled fit under other loss criteria (same runs)
+    """
+
+    fit: LossFit
+    seeds: dict
+    captures: np.ndarray
+    loss_frame: np.ndarray
+    sir: np.ndarray
+    cluster: np.ndarray
+    by_criterion: dict
+
+    def within(self, n_frames: int, dt: float, boot_index: np.ndarray) -> LossFit:
+        """The pooled fit of P(loss within the first ``n_frames`` frames) (losses later are censored)."""
+        fl = np.where(self.loss_frame < n_frames, self.loss_frame, -1)
+        return fit_loss_curve(fl, self.sir, self.cluster, self.fit.sir, dt=dt, n_frames=n_frames, rng=None,
+                              boot_index=boot_index)
+
+
+def study_rng(stream: int, seed: int) -> np.random.Generator:
+    """The generator of one seed of one family of studies: studies that share ``stream`` share draws."""
+    return np.random.default_rng([int(stream), int(seed)])
+
+
+def bootstrap_index(rng: np.random.Generator, n_clusters: int, n_boot: int) -> np.ndarray:
+    """Cluster resamples, shape (n_boot, n_clusters), shared by studies on the same clusters (paired)."""
+    return rng.integers(0, n_clusters, size=(n_boot, n_clusters))
+
+
+def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterion: LossCriterion,
+               capture_radius: float, boot_index: np.ndarray, seed_boot: int = 100,
+               other_criteria: dict | None = None) -> LossStudy:
+    """Run ``sc`` at every SIR for ``n`` trials per seed and fit the loss curve.
+
+    Parameters
+    ----------
+    sc : Scenario
+    sir_values : array_like, shape (m,), increasing
+    n : int
+        Trials per seed (the same trials at every SIR).
+    seeds : sequence of int
+        At least one; the pooled fit concatenates them.
+    stream : int
+        Family of the draws (:func:`study_rng`): equal streams give common random numbers.
+    criterion : LossCriterion
+    capture_radius : float
+        Distance (px) from an interferer within which a lost gate counts as captured.
+    boot_index : ndarray of int, shape (B, n * len(seeds))
+        Cluster resamples for the pooled fit (:func:`bootstrap_index`); reuse it across studies
+        on the same clusters for paired comparisons.
+    seed_boot : int
+        Bootstrap resamples of each per-seed fit: the first ``seed_boot`` rows of ``boot_index``
+        reduced modulo ``n`` (uniform resamples of that seed's trials, paired across studies too).
+    other_criteria : dict name -> LossCriterion, optional
+        Further loss criteria applied to the same runs (pooled fits only).
+
+    Returns
+    -------
+    LossStudy
+    """
+    sirs = np.asarray(sir_values, float)
+    if np.any(np.diff(sirs) <= 0):
+        raise ValueError("parameter 'sir_values' must be strictly increasing")
+    other_criteria = other_criteria or {}
+    loss, sir, cluster, capt = [], [], [], []
+    other = {name: [] for name in other_criteria}
+    per_seed = {}
+    for j, seed in enumerate(seeds):
+        runs = interference_runs(study_rng(stream, seed), n, sc, sirs)
+        fl = first_loss(runs["miss"], criterion, runs["inside"])
+        capt.append(tag_capture(runs["gate"], runs["interferers"], fl, criterion.window, capture_radius,
+                                criterion.fraction))
+        per_seed[int(seed)] = fit_loss_curve(fl, runs["sir"], runs["trial"], sirs, dt=runs["dt"], n_frames=sc.n_frames,
+                                             rng=None, boot_index=boot_index[:seed_boot] % n)
+        loss.append(fl)
+        for name, crit in other_criteria.items():
+            other[name].append(first_loss(runs["miss"], crit, runs["inside"]))
+        sir.append(runs["sir"])
+        cluster.append(j * n + runs["trial"])
+        del runs
+    loss, sir, cluster, capt = (np.concatenate(v) for v in (loss, sir, cluster, capt))
+    pooled = fit_loss_curve(loss, sir, cluster, sirs, dt=1.0 / sc.fps, n_frames=sc.n_frames, rng=None,
+                            boot_index=boot_index)
+    captures = np.array([capt[sir == s].sum() for s in sirs])
+    by_criterion = {name: fit_loss_curve(np.concatenate(v), sir, cluster, sirs, dt=1.0 / sc.fps, n_frames=sc.n_frames,
+                                         rng=None, boot_index=boot_index) for name, v in other.items()}
+    return LossStudy(pooled, per_seed, captures, loss, sir, cluster, by_criterion)
+
+
+def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):
+    """Observed loss share per SIR with 95 % Clopper-Pearson bars and the fitted logistic curve
+    with its 95 % bootstrap band, on a log SIR axis. Returns the fitted line."""
+    from ..montecarlo import proportion_ci
+
+    grid = np.exp(np.linspace(np.log(fit.sir.min()), np.log(fit.sir.max()), 120))
+    ok = np.isfinite(fit.boot_50)
+    if ok.any():
+        z = fit.boot_beta[ok, None] * (np.log(fit.boot_50[ok, None]) - np.log(grid))
+        band = np.quantile(1 / (1 + np.exp(-z)), [0.025, 0.975], axis=0)
+    line, = ax.plot(grid, [fit.p_at(s) for s in grid], label=label, **line_kw)
+    if ok.any():
+        ax.fill_between(grid, band[0], band[1], color=line.get_color(), alpha=0.12, lw=0)
+    ci = [proportion_ci(int(k), int(n)) for k, n in zip(fit.k, fit.n)]
+    p = fit.k / fit.n
+    ax.errorbar(fit.sir, p, yerr=[p - [c.ci_low for c in ci], [c.ci_high for c in ci] - p], fmt="o", ms=3,
+                color=line.get_color(), lw=0.8, capsize=0)
+    ax.set_xscale("log")
+    return line
