@@ -420,3 +420,27 @@ def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequ
     assert a.mean() == pytest.approx(0.3, abs=0.03)
     control = phase_locked_amplitude(err, 2 * np.pi * 12 * t)   # noise only: a, b ~ N(0, 2/T), Rayleigh mean sqrt(pi/T)
     assert control.mean() == pytest.approx(np.sqrt(np.pi / t.size), rel=0.2)
+
+
+def test_seeds_batched_together_give_the_same_runs_as_alone():
+    from tvtrack.scenes.rotating_marker import interference_runs
+    sc = Scenario(duration_s=0.3, n_interferers=5, decoy_offset=16.0)
+    g = lambda s: np.random.default_rng([7, s])
+    both = interference_runs([g(1), g(2)], 3, sc, [0.7, 2.0])
+    for b, s in enumerate((1, 2)):
+        alone = interference_runs(g(s), 3, sc, [0.7, 2.0])
+        np.testing.assert_array_equal(both["miss"][both["block"] == b], alone["miss"])
+        np.testing.assert_array_equal(both["interferers"][both["block"] == b], alone["interferers"])
+
+
+def test_newton_logistic_fit_matches_a_generic_optimiser():
+    from scipy.optimize import minimize
+    from tvtrack.detect.lock import fit_logistic_loss
+    sir = np.arange(0.5, 2.01, 0.125)
+    k = np.array([20, 19, 18, 15, 12, 9, 5, 4, 2, 1, 0, 1, 0])
+    n = np.full(sir.size, 20)
+    nll = lambda th: np.sum(k * np.logaddexp(0, -th[1] * (th[0] - np.log(sir)))
+                            + (n - k) * np.logaddexp(0, th[1] * (th[0] - np.log(sir))))
+    ref = minimize(nll, [0.0, 3.0], method="Nelder-Mead", options=dict(xatol=1e-10, fatol=1e-12, maxiter=5000)).x
+    s50, beta = fit_logistic_loss(sir, k, n)
+    assert np.log(s50) == pytest.approx(ref[0], abs=1e-5) and beta == pytest.approx(ref[1], rel=1e-4)

@@ -22,7 +22,7 @@ import numpy as np
 from ..montecarlo import Estimate, proportion_ci
 
 __all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve",
-           "fit_logistic_loss", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
+           "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
 
 KINDS = ("window", "consecutive")
 
@@ -194,49 +194,60 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
 
 # --- loss of lock as a fitted curve of SIR ------------------------------------------------------
 
-LOGIT_5 = float(np.log(0.05 / 0.95))
 
 
-def _negloglik(theta, log_s, k, n):
-    """Binomial negative log-likelihood of ``logit p = beta (log s50 - log s)``, ``theta = (log s50, log beta)``."""
-    beta = np.exp(theta[1])
-    z = beta * (theta[0] - log_s)
-    # log p = -log(1 + e^-z), log(1 - p) = -log(1 + e^z), computed stably; and the gradient
-    f = float(np.sum(k * np.logaddexp(0.0, -z) + (n - k) * np.logaddexp(0.0, z)))
-    p = 0.5 * (1.0 + np.tanh(0.5 * z))
-    g = n * p - k                                                              # d f / d z
-    return f, np.array([np.sum(g) * beta, np.sum(g * z)])
+def fit_logistic_loss_batch(sir, k, n, max_slope: float = 200.0, iterations: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Maximum-likelihood fits of ``P(loss) = 1 / (1 + exp(-beta (log SIR_50 - log SIR)))``, many at once.
 
-
-def fit_logistic_loss(sir, k, n, max_log_slope: float = np.log(200.0)) -> tuple[float, float]:
-    """Maximum-likelihood fit of ``P(loss) = 1 / (1 + exp(-beta (log SIR_50 - log SIR)))``.
+    Newton's method (iteratively reweighted least squares) on ``logit p = a + b (log SIR - mean)``
+    for every row, steps limited to 5 logit units, ``beta = -b`` kept in ``[0.05, max_slope]`` (a
+    grid that separates perfectly has no finite maximum; the slope then stops at ``max_slope``).
 
     Parameters
     ----------
     sir : ndarray, shape (m,)
         SIR grid (> 0).
-    k, n : ndarray, shape (m,)
-        Losses and runs at each SIR.
-    max_log_slope : float
-        Upper bound of ``log beta`` (a grid that separates perfectly has no finite MLE).
+    k, n : ndarray, shape (B, m) or (m,)
+        Losses and runs at each SIR, one row per fit.
 
     Returns
     -------
-    (sir_50, beta) : SIR of 50 % loss and the slope in log SIR; ``(nan, nan)`` when every run
-        lost or none did (no transition on the grid).
+    sir_50, beta : ndarray, shape (B,)
+        SIR of 50 % loss and the slope in log SIR; NaN where every run lost or none did.
     """
-    from scipy.optimize import minimize
+    k = np.atleast_2d(np.asarray(k, float))
+    n = np.atleast_2d(np.asarray(n, float))
+    x = np.log(np.asarray(sir, float))
+    xm = x.mean()
+    xc = x - xm
+    tot_k, tot_n = k.sum(1), n.sum(1)
+    ok = (tot_k > 0) & (tot_k < tot_n)
+    p0 = np.clip(tot_k / np.maximum(tot_n, 1), 0.02, 0.98)
+    a = np.log(p0 / (1 - p0))
+    b = np.full(k.shape[0], -5.0)
+    for _ in range(iterations):
+        eta = a[:, None] + b[:, None] * xc
+        p = 0.5 * (1.0 + np.tanh(0.5 * eta))
+        r = k - n * p
+        w = n * p * (1 - p) + 1e-9
+        ga, gb = r.sum(1), (r * xc).sum(1)
+        haa, hab, hbb = w.sum(1), (w * xc).sum(1), (w * xc * xc).sum(1)
+        det = haa * hbb - hab**2
+        da = (hbb * ga - hab * gb) / det
+        db = (haa * gb - hab * ga) / det
+        scale = np.minimum(1.0, 5.0 / np.maximum(np.abs(da), np.abs(db)).clip(1e-12))
+        a = a + scale * da
+        b = np.clip(b + scale * db, -max_slope, -0.05)
+    beta = -b
+    s50 = np.exp(xm + a / beta)
+    return np.where(ok, s50, np.nan), np.where(ok, beta, np.nan)
 
-    k, n = np.asarray(k, float), np.asarray(n, float)
-    log_s = np.log(np.asarray(sir, float))
-    if k.sum() == 0 or k.sum() == n.sum():
-        return float("nan"), float("nan")
-    p = k / np.maximum(n, 1)
-    start = (log_s[np.argmin(np.abs(p - 0.5))], np.log(5.0))
-    lo, hi = log_s.min() - 3.0, log_s.max() + 3.0
-    res = minimize(_negloglik, start, args=(log_s, k, n), method="L-BFGS-B", jac=True,
-                   bounds=[(lo, hi), (np.log(0.05), max_log_slope)])
-    return float(np.exp(res.x[0])), float(np.exp(res.x[1]))
+
+def fit_logistic_loss(sir, k, n, max_slope: float = 200.0) -> tuple[float, float]:
+    """One fit of :func:`fit_logistic_loss_batch`: ``(sir_50, beta)``, ``(nan, nan)`` when every
+    run lost or none did (no transition on the grid)."""
+    s50, beta = fit_logistic_loss_batch(sir, k, n, max_slope)
+    return float(s50[0]), float(beta[0])
 
 
 def sir_at_loss(sir_50: float, beta: float, level: float = 0.05) -> float:
@@ -355,14 +366,9 @@ def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames:
     s05 = sir_at_loss(s50, beta, level) if np.isfinite(s50) else float("nan")
     if boot_index is None:
         boot_index = rng.integers(0, C, size=(n_boot, C))
-    b50 = np.full(len(boot_index), np.nan)
-    b05 = np.full(len(boot_index), np.nan)
-    bbeta = np.full(len(boot_index), np.nan)
-    for b, idx in enumerate(boot_index):
-        w = np.bincount(idx, minlength=C).astype(float)
-        sb, bb = fit_logistic_loss(sir_values, w @ lost_cm, w @ runs_cm)
-        if np.isfinite(sb):
-            b50[b], b05[b], bbeta[b] = sb, sir_at_loss(sb, bb, level), bb
+    W = np.stack([np.bincount(idx, minlength=C) for idx in boot_index]).astype(float)    # (B, C) resample weights
+    b50, bbeta = fit_logistic_loss_batch(sir_values, W @ lost_cm, W @ runs_cm)
+    b05 = b50 * np.exp(-np.log(level / (1 - level)) / bbeta)
     rate = [loss_rate(np.asarray(loss_frame)[col == j], dt, n_frames) for j in range(m)]
     if np.isfinite(s50):
         e50, e05 = _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C)

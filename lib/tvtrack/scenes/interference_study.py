@@ -13,10 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..detect.lock import LossCriterion, LossFit, fit_loss_curve, first_loss, tag_capture
+from ..detect.lock import LossCriterion, LossFit, fit_loss_curve, first_loss, ratio_of_fits, tag_capture
+from ..montecarlo import Estimate
 from .rotating_marker import Scenario, interference_runs
 
-__all__ = ["LossStudy", "study_rng", "bootstrap_index", "loss_study", "plot_loss_fit"]
+__all__ = ["LossStudy", "study_rng", "bootstrap_index", "loss_study", "plot_loss_fit", "threshold_ratio", "seed_ratios"]
 
 
 @dataclass
@@ -59,7 +60,7 @@ def bootstrap_index(rng: np.random.Generator, n_clusters: int, n_boot: int) -> n
 
 def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterion: LossCriterion,
                capture_radius: float, boot_index: np.ndarray, seed_boot: int = 100,
-               other_criteria: dict | None = None) -> LossStudy:
+               other_criteria: dict | None = None, max_batch: int = 256) -> LossStudy:
     """Run ``sc`` at every SIR for ``n`` trials per seed and fit the loss curve.
 
     Parameters
@@ -83,6 +84,9 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
         reduced modulo ``n`` (uniform resamples of that seed's trials, paired across studies too).
     other_criteria : dict name -> LossCriterion, optional
         Further loss criteria applied to the same runs (pooled fits only).
+    max_batch : int
+        Seeds are batched together in one closed-loop run while the batch holds at most this
+        many runs (each seed's draws are the same batched or alone; memory ~0.45 MB per run).
 
     Returns
     -------
@@ -95,18 +99,27 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
     loss, sir, cluster, capt = [], [], [], []
     other = {name: [] for name in other_criteria}
     per_seed = {}
-    for j, seed in enumerate(seeds):
-        runs = interference_runs(study_rng(stream, seed), n, sc, sirs)
-        fl = first_loss(runs["miss"], criterion, runs["inside"])
-        capt.append(tag_capture(runs["gate"], runs["interferers"], fl, criterion.window, capture_radius,
-                                criterion.fraction))
-        per_seed[int(seed)] = fit_loss_curve(fl, runs["sir"], runs["trial"], sirs, dt=runs["dt"], n_frames=sc.n_frames,
-                                             rng=None, boot_index=boot_index[:seed_boot] % n)
-        loss.append(fl)
-        for name, crit in other_criteria.items():
-            other[name].append(first_loss(runs["miss"], crit, runs["inside"]))
-        sir.append(runs["sir"])
-        cluster.append(j * n + runs["trial"])
+    seeds = [int(x) for x in seeds]
+    per_batch = max(1, max_batch // (n * sirs.size))
+    for first in range(0, len(seeds), per_batch):
+        group = seeds[first:first + per_batch]
+        runs = interference_runs([study_rng(stream, x) for x in group], n, sc, sirs)
+        fl_all = first_loss(runs["miss"], criterion, runs["inside"])
+        capt_all = tag_capture(runs["gate"], runs["interferers"], fl_all, criterion.window, capture_radius,
+                               criterion.fraction)
+        other_all = {name: first_loss(runs["miss"], crit, runs["inside"]) for name, crit in other_criteria.items()}
+        for b, x in enumerate(group):
+            sel = runs["block"] == b
+            j = first + b
+            fl = fl_all[sel]
+            per_seed[x] = fit_loss_curve(fl, runs["sir"][sel], runs["trial"][sel], sirs, dt=runs["dt"],
+                                         n_frames=sc.n_frames, rng=None, boot_index=boot_index[:seed_boot] % n)
+            loss.append(fl)
+            capt.append(capt_all[sel])
+            sir.append(runs["sir"][sel])
+            cluster.append(j * n + runs["trial"][sel])
+            for name in other_criteria:
+                other[name].append(other_all[name][sel])
         del runs
     loss, sir, cluster, capt = (np.concatenate(v) for v in (loss, sir, cluster, capt))
     pooled = fit_loss_curve(loss, sir, cluster, sirs, dt=1.0 / sc.fps, n_frames=sc.n_frames, rng=None,
@@ -136,3 +149,14 @@ def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):
                 color=line.get_color(), lw=0.8, capsize=0)
     ax.set_xscale("log")
     return line
+
+
+def threshold_ratio(a: LossFit, b: LossFit) -> Estimate:
+    """``SIR_5%(a) / SIR_5%(b)`` with the percentile interval of the replicate ratios (paired when
+    both fits used the same cluster resamples, independent otherwise)."""
+    return ratio_of_fits(a.boot_05, b.boot_05, a.sir_05.value / b.sir_05.value, min(a.sir_05.n, b.sir_05.n))
+
+
+def seed_ratios(a: LossStudy, b: LossStudy) -> dict:
+    """:func:`threshold_ratio` per seed (the seeds both studies ran)."""
+    return {s: threshold_ratio(a.seeds[s], b.seeds[s]) for s in a.seeds if s in b.seeds}

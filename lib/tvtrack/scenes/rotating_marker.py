@@ -385,6 +385,21 @@ class CommonNormal:
         return np.tile(z, (shape[0] // self.n_common,) + (1,) * (len(shape) - 1))
 
 
+class BlockNormal:
+    """Standard normal draws made block by block from several sources (one per seed), concatenated
+    along the leading axis; each source is a generator or a :class:`CommonNormal`."""
+
+    def __init__(self, sources, block: int):
+        self.sources = list(sources)
+        self.block = int(block)
+
+    def standard_normal(self, shape, dtype=np.float64):
+        shape = tuple(np.atleast_1d(shape))
+        if shape[0] != self.block * len(self.sources):
+            raise ValueError(f"leading size {shape[0]} is not {len(self.sources)} blocks of {self.block}")
+        return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
+
+
 def _tile(a, n: int):
     """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
     a = np.asarray(a)
@@ -402,24 +417,34 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
 
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
     repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
-    independent).
+    independent). ``rng`` may be a list of generators: each draws for its own consecutive block
+    of ``n / len(rng)`` trials (several seeds in one batch).
 
     Returns
     -------
     RotatingMarkerScene
     """
     n = truth.xr.shape[0]
-    n_common = n if n_common is None else int(n_common)
-    if n_common < 1 or n % n_common:
-        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the number of trials {n}")
-    centre = truth.center[:n_common, 0] if interferer_center is None else interferer_center
-    q = _tile(place_interferers(rng, n_common, n_interferers, centre, interferer_radius, radial_jitter), n)
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+                         f"{len(rngs)} generators)")
+    q, residual = [], []
+    for j, g in enumerate(rngs):
+        first = j * n_block
+        centre = truth.center[first:first + n_common, 0] if interferer_center is None else interferer_center
+        q.append(_tile(place_interferers(g, n_common, n_interferers, centre, interferer_radius, radial_jitter), n_block))
+        residual.append(_tile(RotatingMarkerScene.static_residual(
+            g, n_common, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
+            interferers=np.zeros((n_common, 0, 2)), interferer_brightness=np.zeros(n_common), spot=spot,
+            diameter=diameter), n_block))
+    q = np.concatenate(q)
+    residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    residual = _tile(RotatingMarkerScene.static_residual(
-        rng, n_common, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
-        interferers=np.zeros((n_common, 0, 2)), interferer_brightness=np.zeros(n_common), spot=spot, diameter=diameter), n)
     add_spots(residual, q, np.broadcast_to((brightness / sir)[:, None], q.shape[:2]), spot, diameter)
     return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
                                decoys, decoy_brightness)
@@ -535,8 +560,11 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     noise : {"projected", "pixel"}
         See :func:`tvtrack.filters.loops.run_closed_loop` (the edge form always uses pixel noise).
     n_common : int, optional
-        Common random numbers: trial ``j n_common + i`` repeats every draw of trial ``i``
-        (e.g. ``n_common`` trials at each of several SIR values); must divide ``n``.
+        Common random numbers: within a generator's block, trial ``j n_common + i`` repeats every
+        draw of trial ``i`` (e.g. ``n_common`` trials at each of several SIR values).
+
+    ``rng`` may be a list of generators (e.g. one per seed): each draws for its own consecutive
+    block of ``n / len(rng)`` trials, exactly as it would alone, so seeds can share one batch.
 
     Returns
     -------
@@ -547,24 +575,28 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
         run_closed_loop
 
-    n_common = n if n_common is None else int(n_common)
-    if n_common < 1 or n % n_common:
-        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide n = {n}")
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+                         f"{len(rngs)} generators)")
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
-    rng_truth, rng_decoy, rng_scene, rng_noise = rng.spawn(4)
-    base = scenario_truth(rng_truth, n_common, sc)
-    truth = MarkerTruth(*(_tile(getattr(base, f), n) for f in ("xr", "yr", "r", "theta", "omega")), base.t)
+    streams = [g.spawn(4) for g in rngs]                                       # truth, decoy, scene, noise
+    bases = [scenario_truth(st[0], n_common, sc) for st in streams]
+    truth = MarkerTruth(*(np.concatenate([_tile(getattr(b, f), n_block) for b in bases])
+                          for f in ("xr", "yr", "r", "theta", "omega")), bases[0].t)
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     decoys = None
     if sc.decoy_offset > 0:
-        ang = _tile(rng_decoy.uniform(0, 2 * np.pi, n_common), n)[:, None]
-        dphi = _tile(rng_decoy.uniform(0, 2 * np.pi, n_common), n)[:, None] if sc.decoy_phase is None \
-            else np.full((n, 1), float(sc.decoy_phase))
+        ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+        dphi = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None] \
+            if sc.decoy_phase is None else np.full((n, 1), float(sc.decoy_phase))
         decoys = np.stack([truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
                            truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi)], axis=-1)
     c = sc.image_size / 2
-    scene = build_scene(rng_scene, truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
+    scene = build_scene([st[2] for st in streams], truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
                         brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
                         background_std=sc.background_std, corr_length=sc.corr_length,
                         n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius,
@@ -584,7 +616,8 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
         trk = EKFTracker(x0, P0, q, ekf_meas_var, slope)
     else:
         raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
-    noise_rng = rng_noise if n_common == n else CommonNormal(rng_noise, n_common)
+    noise_rng = streams[0][3] if n_common == n else \
+        BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
     hist = run_closed_loop(scene, trk, noise_rng, gate_half=sc.gate_half, form=sc.form, edge_a=sc.diameter / 2,
                            noise=noise if sc.form == "quadrant" else "pixel", keep_full=keep_full,
                            crop_callback=crop_callback)
@@ -632,10 +665,12 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
     dict
         ``sir`` (m n,) per-trial SIR (trials of one SIR contiguous), ``miss`` (m n, T) px,
         ``inside`` (m n, T) bool, ``gate`` (m n, T, 2) px, ``interferers`` (m n, q, 2) px,
-        ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s).
+        ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s). With a list
+        of generators the blocks follow each other: ``block`` (k m n,) says which generator.
     """
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
     m = np.asarray(sir_values, float).size
-    sir = np.repeat(np.asarray(sir_values, float), n)
-    _, scene, h = run_scenario(rng, sir.size, sc, sir, keep_full=False, n_common=n)
+    sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
+    _, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
     return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,
-                trial=np.tile(np.arange(n), m), dt=1.0 / sc.fps)
+                trial=np.tile(np.arange(n), m * len(rngs)), block=np.repeat(np.arange(len(rngs)), m * n), dt=1.0 / sc.fps)
