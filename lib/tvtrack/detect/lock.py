@@ -292,7 +292,7 @@ class LossFit:
         ok = np.isfinite(self.boot_50)
         boot = 1.0 / (1.0 + np.exp(-self.boot_beta[ok] * (np.log(self.boot_50[ok]) - np.log(s))))
         if not np.isfinite(self.sir_50.value):
-            return Estimate(self.p_at(s), float("nan"), 0.0, float(self.n.min() and 3.0 / self.n.sum()), int(self.n.sum()),
+            return Estimate(self.p_at(s), float("nan"), 0.0, 3.0 / float(self.n.sum()), int(self.n.sum()),
                             0.95, "no loss on the grid (rule of three over all runs)") if self.k.sum() == 0 else \
                 Estimate(1.0, float("nan"), 1.0, 1.0, int(self.n.sum()), 0.95, "every run lost")
         return _boot_estimate(self.p_at(s), np.concatenate([boot, np.full((~ok).sum(), np.nan)]), self.sir_50.n)

@@ -153,8 +153,13 @@ def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):
 
 def threshold_ratio(a: LossFit, b: LossFit) -> Estimate:
     """``SIR_5%(a) / SIR_5%(b)`` with the percentile interval of the replicate ratios (paired when
-    both fits used the same cluster resamples, independent otherwise)."""
-    return ratio_of_fits(a.boot_05, b.boot_05, a.sir_05.value / b.sir_05.value, min(a.sir_05.n, b.sir_05.n))
+    both fits used the same cluster resamples, independent otherwise). Where ``a`` saw no loss at
+    all, its threshold lies below its grid and the ratio gets the interval ``[0, bound]``."""
+    n = min(a.sir_05.n, b.sir_05.n)
+    if a.k.sum() == 0 and b.k.sum() > 0:     # no loss against a: its threshold lies below its grid
+        return Estimate(float("nan"), float("nan"), 0.0, a.sir_05.ci_high / b.sir_05.ci_low, n, 0.95,
+                        "no loss in the numerator's runs: bound from its grid's smallest SIR")
+    return ratio_of_fits(a.boot_05, b.boot_05, a.sir_05.value / b.sir_05.value, n)
 
 
 def seed_ratios(a: LossStudy, b: LossStudy) -> dict:
