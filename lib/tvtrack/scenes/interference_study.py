@@ -148,6 +148,10 @@ def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):
     ax.errorbar(fit.sir, p, yerr=[p - [c.ci_low for c in ci], [c.ci_high for c in ci] - p], fmt="o", ms=3,
                 color=line.get_color(), lw=0.8, capsize=0)
     ax.set_xscale("log")
+    from matplotlib.ticker import FormatStrFormatter, LogLocator
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 1.5, 2.0, 3.0, 5.0, 7.0)))
+    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_formatter(FormatStrFormatter(""))
     return line
 
 
