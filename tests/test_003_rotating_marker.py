@@ -77,6 +77,29 @@ def test_projected_noise_has_the_pixel_noise_covariance():
     np.testing.assert_allclose(np.diag(c_proj), np.diag(c_pix), rtol=0.05)
 
 
+def test_projected_noise_has_the_full_pixel_noise_covariance_off_the_diagonal_too():
+    """A gate clipped by its crop has correlated Delta_x, Delta_y noise; the projection must
+    reproduce the whole 2x2 covariance sigma^2 [sum Wx Wx, sum Wx Wy; ., sum Wy Wy]."""
+    rng = np.random.default_rng(11)
+    n, size, sigma = 100000, 26, 0.3
+    origin = np.zeros((n, 2), int)
+    centre = np.tile([5.3, 6.7], (n, 1))                                     # left and lower halves clipped
+    wy, wx = quadrant_weights(origin[:1], centre[:1], A, (size, size))
+    w_dx = np.outer(wy[0, 0], wx[0, :, 1])                                   # full rows x (right - left)
+    w_dy = np.outer(wy[0, 1], wx[0, :, 0])                                   # (upper - lower) x full columns
+    exact = sigma**2 * np.array([[np.sum(w_dx * w_dx), np.sum(w_dx * w_dy)],
+                                 [np.sum(w_dx * w_dy), np.sum(w_dy * w_dy)]])
+    assert abs(exact[0, 1]) > 0.05 * np.sqrt(exact[0, 0] * exact[1, 1])       # a real correlation to test
+    wy, wx = quadrant_weights(origin, centre, A, (size, size))
+    c_proj = np.cov(quadrant_noise(wy, wx, sigma, rng).T)
+    pix = sigma * rng.standard_normal((20000, size, size))
+    dx, dy, _ = quadrant_discriminator(pix, origin[:20000], centre[:20000], A)
+    c_pix = np.cov(np.stack([dx, dy]))
+    scale = np.sqrt(exact[0, 0] * exact[1, 1])
+    np.testing.assert_allclose(c_proj, exact, atol=0.01 * scale)          # a sign error would miss by 0.17
+    np.testing.assert_allclose(c_pix, exact, atol=0.04 * scale)
+
+
 def test_perfect_background_compensation_leaves_discriminator_unchanged():
     rng = np.random.default_rng(2)
     n, size = 8, gate_crop_size(A)
@@ -186,6 +209,36 @@ def test_strong_interferers_cause_a_detected_loss_and_capture():
     assert np.all(loss[:4] >= 0) and np.all(loss[4:] == -1)
     captured = tag_capture(h.gate, scene.interferers, loss, 125, sc.diameter)
     assert captured[:4].any() and not captured[4:].any()
+
+
+def test_decoy_brightness_follows_the_sir_of_the_run():
+    """The decoy is an interferer: its brightness is d / SIR with the SIR the run was given
+    (it used to stay at the scenario's fixed decoy_sir whatever SIR the loss curve asked for)."""
+    sc = Scenario(duration_s=0.02, decoy_offset=3 * D, noise_std=0.0, kappa=0.0)
+    sir = np.array([1.0, 2.0, 4.0])
+    truth, scene, _ = run_scenario(np.random.default_rng(9), 3, sc, sir, keep_full=False)
+    for i, s in enumerate(sir):
+        img = scene.frame(i, 0)
+        yx = np.round(scene.decoys[i, 0, ::-1]).astype(int)
+        assert img[yx[0], yx[1]] == pytest.approx(1.0 / s, rel=1e-6)
+        ym = np.round(truth.marker[i, 0, ::-1]).astype(int)
+        assert img[ym[0], ym[1]] == pytest.approx(1.0, rel=1e-6)
+
+
+def test_interference_runs_share_their_draws_across_sir_and_markers():
+    """Common random numbers: the same trials at every SIR; rotating and static share the motion."""
+    from tvtrack.scenes.rotating_marker import interference_runs
+    sc = Scenario(duration_s=0.3, n_interferers=1)
+    runs = interference_runs(np.random.default_rng(3), 4, sc, [1e9, 1e9, 0.5])
+    np.testing.assert_array_equal(runs["miss"][:4], runs["miss"][4:8])     # same SIR, same draws: identical
+    assert not np.array_equal(runs["miss"][:4], runs["miss"][8:])            # the SIR does act
+    np.testing.assert_array_equal(runs["interferers"][:4], runs["interferers"][8:])
+    np.testing.assert_array_equal(runs["trial"], np.tile(np.arange(4), 3))
+    rot = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[0]
+    sta = run_scenario(np.random.default_rng(3), 4, Scenario(duration_s=0.3, n_interferers=1, rotating=False), 2.0)[0]
+    np.testing.assert_array_equal(rot.xr, sta.xr)
+    q = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[1].interferers
+    np.testing.assert_allclose(np.hypot(*(q[:, 0] - rot.center[:, 0]).T), sc.radius)   # around the object
 
 
 def test_seed_reproduces_and_interferers_sit_on_circle():
@@ -322,3 +375,72 @@ def test_slope_helpers_match_the_predicted_slopes():
     assert quadrant_slope_fit(_renderer("disc"), D, A)["slope_at_zero"] == pytest.approx(2 * D, rel=0.05)
     # integral form: a box of unit brightness moving by one px shifts 2 units across the gate centre
     assert two_emitter_slope(beta=12.0, a=4.0, form="integral", half_gate=12.0) == pytest.approx(2.0, rel=0.05)
+
+
+def test_logistic_loss_fit_recovers_a_known_curve_and_its_5_percent_sir():
+    from tvtrack.detect.lock import fit_loss_curve, sir_at_loss
+    rng = np.random.default_rng(12)
+    s50, beta = 1.2, 6.0
+    grid = np.arange(0.5, 2.01, 0.125)
+    C = 400                                                                  # trials, each run at every SIR
+    p = 1 / (1 + np.exp(-beta * (np.log(s50) - np.log(grid))))
+    lost = rng.random((C, grid.size)) < p
+    loss_frame = np.where(lost, 10, -1).ravel()
+    fit = fit_loss_curve(loss_frame, np.tile(grid, C), np.repeat(np.arange(C), grid.size), grid,
+                         dt=0.01, n_frames=100, rng=rng, n_boot=100)
+    true05 = sir_at_loss(s50, beta, 0.05)
+    assert true05 == pytest.approx(s50 * np.exp(np.log(19) / beta))
+    assert fit.sir_50.ci_low < s50 < fit.sir_50.ci_high
+    assert fit.sir_05.ci_low < true05 < fit.sir_05.ci_high
+    assert abs(fit.sir_50.value / s50 - 1) < 0.05 and abs(fit.beta / beta - 1) < 0.25
+    assert fit.p_at(s50) == pytest.approx(0.5, abs=0.05)
+    none = fit_loss_curve(np.full(grid.size * 5, -1), np.tile(grid, 5), np.repeat(np.arange(5), grid.size), grid,
+                          dt=0.01, n_frames=100, rng=rng, n_boot=10)
+    assert np.isnan(none.sir_50.value)                                       # no transition on the grid
+
+
+def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
+    from tvtrack.detect.lock import loss_rate
+    rng = np.random.default_rng(13)
+    T, dt, lam = 1000, 0.01, 0.2                                             # 10 s runs, 0.2 losses/s
+    t = rng.exponential(1 / lam, 4000)
+    frame = np.where(t < T * dt, np.floor(t / dt), -1).astype(int)
+    r = loss_rate(frame, dt, T)
+    assert r.ci_low < lam < r.ci_high and r.value == pytest.approx(lam, rel=0.08)
+    assert loss_rate(np.full(50, -1), dt, T).ci_low == 0.0
+
+
+def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequencies():
+    from tvtrack.filters.loops import phase_locked_amplitude
+    rng = np.random.default_rng(14)
+    t = np.arange(5000) / 500.0
+    theta = 2 * np.pi * 8 * t + rng.uniform(0, 2 * np.pi, (50, 1))
+    err = 0.3 * np.cos(theta - 0.7) + 2.0 + rng.standard_normal((50, t.size))
+    a = phase_locked_amplitude(err, theta)
+    assert a.mean() == pytest.approx(0.3, abs=0.03)
+    control = phase_locked_amplitude(err, 2 * np.pi * 12 * t)   # noise only: a, b ~ N(0, 2/T), Rayleigh mean sqrt(pi/T)
+    assert control.mean() == pytest.approx(np.sqrt(np.pi / t.size), rel=0.2)
+
+
+def test_seeds_batched_together_give_the_same_runs_as_alone():
+    from tvtrack.scenes.rotating_marker import interference_runs
+    sc = Scenario(duration_s=0.3, n_interferers=5, decoy_offset=16.0)
+    g = lambda s: np.random.default_rng([7, s])
+    both = interference_runs([g(1), g(2)], 3, sc, [0.7, 2.0])
+    for b, s in enumerate((1, 2)):
+        alone = interference_runs(g(s), 3, sc, [0.7, 2.0])
+        np.testing.assert_array_equal(both["miss"][both["block"] == b], alone["miss"])
+        np.testing.assert_array_equal(both["interferers"][both["block"] == b], alone["interferers"])
+
+
+def test_newton_logistic_fit_matches_a_generic_optimiser():
+    from scipy.optimize import minimize
+    from tvtrack.detect.lock import fit_logistic_loss
+    sir = np.arange(0.5, 2.01, 0.125)
+    k = np.array([20, 19, 18, 15, 12, 9, 5, 4, 2, 1, 0, 1, 0])
+    n = np.full(sir.size, 20)
+    nll = lambda th: np.sum(k * np.logaddexp(0, -th[1] * (th[0] - np.log(sir)))
+                            + (n - k) * np.logaddexp(0, th[1] * (th[0] - np.log(sir))))
+    ref = minimize(nll, [0.0, 3.0], method="Nelder-Mead", options=dict(xatol=1e-10, fatol=1e-12, maxiter=5000)).x
+    s50, beta = fit_logistic_loss(sir, k, n)
+    assert np.log(s50) == pytest.approx(ref[0], abs=1e-5) and beta == pytest.approx(ref[1], rel=1e-4)

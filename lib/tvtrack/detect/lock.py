@@ -19,9 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..montecarlo import proportion_ci
+from ..montecarlo import Estimate, proportion_ci
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve"]
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve",
+           "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
 
 KINDS = ("window", "consecutive")
 
@@ -189,3 +190,199 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
     return dict(p=[proportion_ci(int(c), n) for c in counts], losses=counts, n=n,
                 threshold=loss_threshold(sir_values, counts),
                 captures=np.array([capt[runs["sir"] == s].sum() for s in sir_values]))
+
+
+# --- loss of lock as a fitted curve of SIR ------------------------------------------------------
+
+
+
+def fit_logistic_loss_batch(sir, k, n, max_slope: float = 200.0, iterations: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Maximum-likelihood fits of ``P(loss) = 1 / (1 + exp(-beta (log SIR_50 - log SIR)))``, many at once.
+
+    Newton's method (iteratively reweighted least squares) on ``logit p = a + b (log SIR - mean)``
+    for every row, steps limited to 5 logit units, ``beta = -b`` kept in ``[0.05, max_slope]`` (a
+    grid that separates perfectly has no finite maximum; the slope then stops at ``max_slope``).
+
+    Parameters
+    ----------
+    sir : ndarray, shape (m,)
+        SIR grid (> 0).
+    k, n : ndarray, shape (B, m) or (m,)
+        Losses and runs at each SIR, one row per fit.
+
+    Returns
+    -------
+    sir_50, beta : ndarray, shape (B,)
+        SIR of 50 % loss and the slope in log SIR; NaN where every run lost or none did.
+    """
+    k = np.atleast_2d(np.asarray(k, float))
+    n = np.atleast_2d(np.asarray(n, float))
+    x = np.log(np.asarray(sir, float))
+    xm = x.mean()
+    xc = x - xm
+    tot_k, tot_n = k.sum(1), n.sum(1)
+    ok = (tot_k > 0) & (tot_k < tot_n)
+    p0 = np.clip(tot_k / np.maximum(tot_n, 1), 0.02, 0.98)
+    a = np.log(p0 / (1 - p0))
+    b = np.full(k.shape[0], -5.0)
+    for _ in range(iterations):
+        eta = a[:, None] + b[:, None] * xc
+        p = 0.5 * (1.0 + np.tanh(0.5 * eta))
+        r = k - n * p
+        w = n * p * (1 - p) + 1e-9
+        ga, gb = r.sum(1), (r * xc).sum(1)
+        haa, hab, hbb = w.sum(1), (w * xc).sum(1), (w * xc * xc).sum(1)
+        det = haa * hbb - hab**2
+        da = (hbb * ga - hab * gb) / det
+        db = (haa * gb - hab * ga) / det
+        scale = np.minimum(1.0, 5.0 / np.maximum(np.abs(da), np.abs(db)).clip(1e-12))
+        a = a + scale * da
+        b = np.clip(b + scale * db, -max_slope, -0.05)
+    beta = -b
+    s50 = np.exp(xm + a / beta)
+    return np.where(ok, s50, np.nan), np.where(ok, beta, np.nan)
+
+
+def fit_logistic_loss(sir, k, n, max_slope: float = 200.0) -> tuple[float, float]:
+    """One fit of :func:`fit_logistic_loss_batch`: ``(sir_50, beta)``, ``(nan, nan)`` when every
+    run lost or none did (no transition on the grid)."""
+    s50, beta = fit_logistic_loss_batch(sir, k, n, max_slope)
+    return float(s50[0]), float(beta[0])
+
+
+def sir_at_loss(sir_50: float, beta: float, level: float = 0.05) -> float:
+    """SIR at which the fitted curve gives ``P(loss) = level``: ``SIR_50 exp(-logit(level) / beta)``."""
+    return float(sir_50 * np.exp(-np.log(level / (1 - level)) / beta))
+
+
+@dataclass
+class LossFit:
+    """A loss curve fitted over seeds (see :func:`fit_loss_curve`).
+
+    Attributes
+    ----------
+    sir : (m,) grid; k, n : (m,) losses and runs per SIR (pooled over seeds)
+    sir_50, sir_05 : Estimate, SIR of 50 % and 5 % loss within the run length (cluster bootstrap)
+    beta : float, fitted slope in log SIR
+    boot_50, boot_05, boot_beta : (B,) bootstrap replicates (NaN where a resample had no transition)
+    rate : list of m Estimate, losses per second of tracking before the loss (Poisson interval)
+    duration_s : float, run length
+    """
+
+    sir: np.ndarray
+    k: np.ndarray
+    n: np.ndarray
+    sir_50: Estimate
+    sir_05: Estimate
+    beta: float
+    boot_50: np.ndarray
+    boot_05: np.ndarray
+    boot_beta: np.ndarray
+    rate: list
+    duration_s: float
+
+    def p_at(self, s: float) -> float:
+        """Fitted P(loss) at SIR ``s`` (0 or 1 where the grid had no transition)."""
+        if not np.isfinite(self.sir_50.value):
+            return 0.0 if self.k.sum() == 0 else 1.0
+        return float(1.0 / (1.0 + np.exp(-self.beta * (np.log(self.sir_50.value) - np.log(s)))))
+
+    def p_estimate(self, s: float) -> Estimate:
+        """Fitted P(loss) at SIR ``s`` with its bootstrap interval."""
+        ok = np.isfinite(self.boot_50)
+        boot = 1.0 / (1.0 + np.exp(-self.boot_beta[ok] * (np.log(self.boot_50[ok]) - np.log(s))))
+        if not np.isfinite(self.sir_50.value):
+            return Estimate(self.p_at(s), float("nan"), 0.0, 3.0 / float(self.n.sum()), int(self.n.sum()),
+                            0.95, "no loss on the grid (rule of three over all runs)") if self.k.sum() == 0 else \
+                Estimate(1.0, float("nan"), 1.0, 1.0, int(self.n.sum()), 0.95, "every run lost")
+        return _boot_estimate(self.p_at(s), np.concatenate([boot, np.full((~ok).sum(), np.nan)]), self.sir_50.n)
+
+    def summary(self) -> dict:
+        """What results.json keeps per condition."""
+        return dict(sir=self.sir, losses=self.k, runs=self.n, sir_50=self.sir_50, sir_05=self.sir_05,
+                    slope_log_sir=self.beta, loss_rate_per_s=dict(zip(map(lambda v: f"{v:g}", self.sir), self.rate)),
+                    duration_s=self.duration_s)
+
+
+def _boot_estimate(value: float, boot: np.ndarray, n: int, confidence: float = 0.95) -> Estimate:
+    ok = boot[np.isfinite(boot)]
+    a = (1 - confidence) / 2
+    lo, hi = (np.quantile(ok, [a, 1 - a]) if ok.size >= 0.9 * boot.size else (np.nan, np.nan))
+    return Estimate(float(value), float(np.std(ok)) if ok.size else float("nan"), float(lo), float(hi), n,
+                    confidence, f"cluster bootstrap percentile ({boot.size} resamples of the trials)")
+
+
+def loss_rate(loss_frame, dt: float, n_frames: int, confidence: float = 0.95) -> Estimate:
+    """Losses per second of locked tracking: ``k / sum(time to loss or end)``, exact Poisson interval."""
+    from scipy.stats import chi2
+
+    loss = np.asarray(loss_frame)
+    k = int((loss >= 0).sum())
+    exposure = float(np.where(loss >= 0, loss + 1, n_frames).sum() * dt)
+    a = 1 - confidence
+    lo = chi2.ppf(a / 2, 2 * k) / 2 / exposure if k > 0 else 0.0
+    hi = chi2.ppf(1 - a / 2, 2 * k + 2) / 2 / exposure
+    return Estimate(k / exposure, np.sqrt(k) / exposure, float(lo), float(hi), loss.size, confidence,
+                    "exact Poisson (chi-square)")
+
+
+def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames: int,
+                   rng: np.random.Generator, n_boot: int = 300, level: float = 0.05, boot_index=None) -> LossFit:
+    """Fit P(loss within the run) against log SIR and bootstrap SIR_50 and the SIR at ``level``.
+
+    Parameters
+    ----------
+    loss_frame : ndarray of int, shape (N,)
+        First loss frame per run (-1: kept lock), :func:`first_loss`.
+    sir : ndarray, shape (N,)
+        Each run's SIR (values from ``sir_values``).
+    cluster : ndarray of int, shape (N,)
+        Runs that share their random draws (the same trial at every SIR, common random numbers)
+        carry the same cluster id; the bootstrap resamples clusters, keeping the pairing.
+    sir_values : ndarray, shape (m,)
+    dt, n_frames : frame interval (s) and run length (frames), for the loss rate.
+    rng : numpy.random.Generator
+        Draws the bootstrap resamples (ignored when ``boot_index`` is given).
+    boot_index : ndarray of int, shape (B, C), optional
+        Resampled cluster positions (into the sorted unique cluster ids) to reuse, so that
+        curves on the same clusters are bootstrapped jointly (paired ratios).
+
+    Returns
+    -------
+    LossFit
+    """
+    sir_values = np.asarray(sir_values, float)
+    lost = np.asarray(loss_frame) >= 0
+    ids, cl = np.unique(np.asarray(cluster), return_inverse=True)
+    col = np.searchsorted(sir_values, np.asarray(sir, float)) if np.all(np.diff(sir_values) > 0) else \
+        np.array([int(np.flatnonzero(sir_values == s)[0]) for s in sir])
+    C, m = ids.size, sir_values.size
+    lost_cm = np.zeros((C, m))
+    runs_cm = np.zeros((C, m))
+    np.add.at(lost_cm, (cl, col), lost)
+    np.add.at(runs_cm, (cl, col), 1)
+    k, n = lost_cm.sum(0), runs_cm.sum(0)
+    s50, beta = fit_logistic_loss(sir_values, k, n)
+    s05 = sir_at_loss(s50, beta, level) if np.isfinite(s50) else float("nan")
+    if boot_index is None:
+        boot_index = rng.integers(0, C, size=(n_boot, C))
+    W = np.stack([np.bincount(idx, minlength=C) for idx in boot_index]).astype(float)    # (B, C) resample weights
+    b50, bbeta = fit_logistic_loss_batch(sir_values, W @ lost_cm, W @ runs_cm)
+    b05 = b50 * np.exp(-np.log(level / (1 - level)) / bbeta)
+    rate = [loss_rate(np.asarray(loss_frame)[col == j], dt, n_frames) for j in range(m)]
+    if np.isfinite(s50):
+        e50, e05 = _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C)
+    elif k.sum() == 0:   # no loss anywhere: the thresholds lie below the grid
+        e50 = e05 = Estimate(float("nan"), float("nan"), 0.0, float(sir_values.min()), C, 0.95,
+                             "no loss on the grid: below its smallest SIR")
+    else:                # every run lost: above the grid
+        e50 = e05 = Estimate(float("inf"), float("nan"), float(sir_values.max()), float("inf"), C, 0.95,
+                             "every run lost: above the largest SIR of the grid")
+    return LossFit(sir_values, k.astype(int), n.astype(int), e50, e05, beta, b50, b05, bbeta, rate, n_frames * dt)
+
+
+def ratio_of_fits(a: np.ndarray, b: np.ndarray, value: float, n: int, confidence: float = 0.95) -> Estimate:
+    """Ratio of two fitted thresholds from jointly (paired) or independently resampled bootstrap
+    replicates ``a``, ``b`` (same length): percentile interval of ``a / b``."""
+    r = np.asarray(a) / np.asarray(b)
+    return _boot_estimate(value, r, n, confidence)

@@ -31,6 +31,7 @@ from ..render import pixel_fractions_box
 __all__ = [
     "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
     "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d", "band_power_share",
+    "phase_locked_amplitude",
 ]
 
 VARIANTS = ("S", "P")
@@ -380,3 +381,30 @@ def band_power_share(err, fs: float, f_lo: float, f_hi: float, nperseg: int = 51
     f, p = signal.welch(err, fs=fs, nperseg=min(nperseg, err.shape[-1]), axis=-1, detrend="constant")
     band = (f >= f_lo) & (f <= f_hi)
     return p[:, band].sum(axis=1) / p.sum(axis=1), f, p
+
+
+def phase_locked_amplitude(err, phase) -> np.ndarray:
+    """Amplitude of the component of an error locked to a phase (synchronous demodulation).
+
+    Per trial, least squares ``err ~ c0 + a cos(phase) + b sin(phase)``; the amplitude is
+    ``sqrt(a^2 + b^2)``. With the marker's true phase it measures the error that varies "in step
+    with the rotation"; with an unrelated phase (a control frequency) it measures how much a
+    broadband error leaks into such a fit.
+
+    Parameters
+    ----------
+    err : ndarray, shape (n, T)
+        Error series per trial (e.g. px).
+    phase : ndarray, shape (n, T) or (T,)
+        Reference phase (rad).
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Amplitudes, units of ``err``.
+    """
+    e = np.asarray(err, float)
+    ph = np.broadcast_to(np.asarray(phase, float), e.shape)
+    X = np.stack([np.ones_like(ph), np.cos(ph), np.sin(ph)], axis=-1)              # (n, T, 3)
+    coef = np.linalg.solve(np.einsum("ntk,ntl->nkl", X, X), np.einsum("ntk,nt->nk", X, e)[..., None])[..., 0]
+    return np.hypot(coef[:, 1], coef[:, 2])

@@ -35,7 +35,7 @@ __all__ = [
     "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
     "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
     "scenario_truth", "run_scenario", "RotatingMarkerScene", "state_errors",
-    "interference_runs",
+    "interference_runs", "CommonNormal", "PLACEMENTS",
 ]
 
 SPOTS = ("disc", "square")
@@ -215,15 +215,15 @@ class RotatingMarkerScene:
     decoys : ndarray, shape (n, T, 2), optional
         Paths of a moving imitating interferer (e.g. an emitter rotating like the marker about
         another centre), rendered into every frame with the marker's spot.
-    decoy_brightness : float
-        Decoy brightness per fully covered pixel.
+    decoy_brightness : float or ndarray, shape (n,)
+        Decoy brightness per fully covered pixel (one value per trial allowed).
     """
 
     MARGIN = 40  # px of zero padding around the image so that gates may leave it
 
     def __init__(self, truth: MarkerTruth, image_shape, spot: str, diameter: float, brightness: float,
                  residual=None, noise_std: float = 0.0, interferers=None, decoys=None,
-                 decoy_brightness: float = 0.0):
+                 decoy_brightness=0.0):
         _check_spot(spot)
         if noise_std < 0:
             raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
@@ -236,7 +236,7 @@ class RotatingMarkerScene:
         self.noise_std = float(noise_std)
         self.interferers = np.zeros((self.n, 0, 2)) if interferers is None else np.asarray(interferers, float)
         self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
-        self.decoy_brightness = float(decoy_brightness)
+        self.decoy_brightness = np.broadcast_to(np.asarray(decoy_brightness, dtype=float), (self.n,))
         m = self.MARGIN
         rows, cols = self.image_shape
         self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
@@ -330,7 +330,7 @@ class RotatingMarkerScene:
                            self.brightness).astype(np.float32)
         if self.decoys is not None:
             img += render_spot(self.spot, self.decoys[trial, k], self.image_shape, self.diameter,
-                               self.decoy_brightness).astype(np.float32)
+                               self.decoy_brightness[trial]).astype(np.float32)
         if rng is not None and self.noise_std > 0:
             img += self.noise_std * rng.standard_normal(img.shape, dtype=np.float32)
         return img
@@ -363,28 +363,89 @@ def object_motion(rng: np.random.Generator, n: int, n_frames: int, dt: float, *,
     return center[0] + xr, center[1] + yr
 
 
+class CommonNormal:
+    """Standard normal draws shared by blocks of trials (common random numbers).
+
+    Wraps a generator; ``standard_normal(shape)`` with ``shape[0] = blocks * n_common`` draws
+    ``n_common`` rows and repeats them, so trial ``j n_common + i`` gets the draws of trial ``i``.
+    Used to run one set of trials at several SIR values (or markers) on the same noise.
+    """
+
+    def __init__(self, rng: np.random.Generator, n_common: int):
+        if n_common < 1:
+            raise ValueError(f"parameter 'n_common' = {n_common}; it must be >= 1")
+        self.rng = rng
+        self.n_common = int(n_common)
+
+    def standard_normal(self, shape, dtype=np.float64):
+        shape = tuple(np.atleast_1d(shape))
+        if shape[0] % self.n_common:
+            raise ValueError(f"leading size {shape[0]} is not a multiple of n_common = {self.n_common}")
+        z = self.rng.standard_normal((self.n_common, *shape[1:]), dtype=dtype)
+        return np.tile(z, (shape[0] // self.n_common,) + (1,) * (len(shape) - 1))
+
+
+class BlockNormal:
+    """Standard normal draws made block by block from several sources (one per seed), concatenated
+    along the leading axis; each source is a generator or a :class:`CommonNormal`."""
+
+    def __init__(self, sources, block: int):
+        self.sources = list(sources)
+        self.block = int(block)
+
+    def standard_normal(self, shape, dtype=np.float64):
+        shape = tuple(np.atleast_1d(shape))
+        if shape[0] != self.block * len(self.sources):
+            raise ValueError(f"leading size {shape[0]} is not {len(self.sources)} blocks of {self.block}")
+        return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
+
+
+def _tile(a, n: int):
+    """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
+    a = np.asarray(a)
+    return np.tile(a, (n // a.shape[0],) + (1,) * (a.ndim - 1))
+
+
 def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(256, 256), spot: str = "disc",
                 diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
                 background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
                 interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
-                decoys=None, decoy_brightness: float = 0.0):
+                decoys=None, decoy_brightness=0.0, n_common: int | None = None):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial), placed by :func:`place_interferers`
     around ``interferer_center`` (default: the object's initial centre).
+
+    ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
+    repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
+    independent). ``rng`` may be a list of generators: each draws for its own consecutive block
+    of ``n / len(rng)`` trials (several seeds in one batch).
 
     Returns
     -------
     RotatingMarkerScene
     """
     n = truth.xr.shape[0]
-    centre = truth.center[:, 0] if interferer_center is None else interferer_center
-    q = place_interferers(rng, n, n_interferers, centre, interferer_radius, radial_jitter)
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+                         f"{len(rngs)} generators)")
+    q, residual = [], []
+    for j, g in enumerate(rngs):
+        first = j * n_block
+        centre = truth.center[first:first + n_common, 0] if interferer_center is None else interferer_center
+        q.append(_tile(place_interferers(g, n_common, n_interferers, centre, interferer_radius, radial_jitter), n_block))
+        residual.append(_tile(RotatingMarkerScene.static_residual(
+            g, n_common, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
+            interferers=np.zeros((n_common, 0, 2)), interferer_brightness=np.zeros(n_common), spot=spot,
+            diameter=diameter), n_block))
+    q = np.concatenate(q)
+    residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    residual = RotatingMarkerScene.static_residual(
-        rng, n, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
-        interferers=q, interferer_brightness=brightness / sir, spot=spot, diameter=diameter)
+    add_spots(residual, q, np.broadcast_to((brightness / sir)[:, None], q.shape[:2]), spot, diameter)
     return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
                                decoys, decoy_brightness)
 
@@ -397,8 +458,9 @@ class Scenario:
     ``kappa`` = compensation residual (1 = none); ``noise_std`` and ``background_std`` are
     per pixel (the background before compensation). ``omega_mod``/``radius_mod`` are relative
     sinusoidal modulation depths of the rotation rate and radius (Fig. 2). ``decoy_offset`` > 0
-    adds an imitating interferer rotating like the marker about a centre displaced by that many px
-    (brightness ``d / decoy_sir``).
+    adds an imitating interferer rotating like the marker about a centre displaced by that many px,
+    at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness is
+    ``d / SIR`` with the SIR passed to :func:`run_scenario`, like a stationary interferer's.
     """
 
     fps: float = 500.0
@@ -425,8 +487,9 @@ class Scenario:
     y_freq: float = 0.5
     n_interferers: int = 0
     interferer_jitter: float = 0.0
+    interferer_centre: str = "object"
     decoy_offset: float = 0.0
-    decoy_sir: float = 1.0
+    decoy_phase: float | None = None
     gate_half: float = 12.0
     b_xy: float = 10.0
     b_r: float = 0.2
@@ -474,19 +537,34 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
     return marker_truth(xr, yr, r, omega, rng.uniform(0, 2 * np.pi, n), dt)
 
 
+PLACEMENTS = ("object", "image")
+
+
 def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, tracker: str = "loops",
                  ekf_meas_var: float = 0.05, noise: str = "projected", keep_full: bool = True,
-                 crop_callback=None):
+                 crop_callback=None, n_common: int | None = None):
     """Simulate ``n`` trials of a scenario end to end (truth, scene, tracker, closed loop).
+
+    The truth, the decoy, the scene and the sensor noise draw from four generators spawned from
+    ``rng``, so two scenarios that differ only in what a draw does not depend on (SIR, rotating or
+    static marker, gate, loop gains) see the same object motion, background, interferer
+    placement and noise.
 
     Parameters
     ----------
     sir : float or ndarray, shape (n,)
-        Post-compensation signal-to-interference ratio of the stationary interferers.
+        Post-compensation signal-to-interference ratio of the stationary interferers and of the
+        decoy (brightness ``d / SIR`` each).
     tracker : {"loops", "ekf"}
         Fixed-bandwidth loops (variant ``sc.variant``) or the discrete EKF of eqs. (16)-(17).
     noise : {"projected", "pixel"}
         See :func:`tvtrack.filters.loops.run_closed_loop` (the edge form always uses pixel noise).
+    n_common : int, optional
+        Common random numbers: within a generator's block, trial ``j n_common + i`` repeats every
+        draw of trial ``i`` (e.g. ``n_common`` trials at each of several SIR values).
+
+    ``rng`` may be a list of generators (e.g. one per seed): each draws for its own consecutive
+    block of ``n / len(rng)`` trials, exactly as it would alone, so seeds can share one batch.
 
     Returns
     -------
@@ -497,20 +575,34 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
         run_closed_loop
 
-    truth = scenario_truth(rng, n, sc)
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+                         f"{len(rngs)} generators)")
+    if sc.interferer_centre not in PLACEMENTS:
+        raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
+    streams = [g.spawn(4) for g in rngs]                                       # truth, decoy, scene, noise
+    bases = [scenario_truth(st[0], n_common, sc) for st in streams]
+    truth = MarkerTruth(*(np.concatenate([_tile(getattr(b, f), n_block) for b in bases])
+                          for f in ("xr", "yr", "r", "theta", "omega")), bases[0].t)
+    sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     decoys = None
     if sc.decoy_offset > 0:
-        ang = rng.uniform(0, 2 * np.pi, n)[:, None]
-        dphi = rng.uniform(0, 2 * np.pi, n)[:, None]
+        ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+        dphi = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None] \
+            if sc.decoy_phase is None else np.full((n, 1), float(sc.decoy_phase))
         decoys = np.stack([truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
                            truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi)], axis=-1)
     c = sc.image_size / 2
-    scene = build_scene(rng, truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
+    scene = build_scene([st[2] for st in streams], truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
                         brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
                         background_std=sc.background_std, corr_length=sc.corr_length,
                         n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius,
-                        interferer_center=np.array([c, c]), radial_jitter=sc.interferer_jitter,
-                        decoys=decoys, decoy_brightness=sc.brightness / sc.decoy_sir)
+                        interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
+                        radial_jitter=sc.interferer_jitter, decoys=decoys, decoy_brightness=sc.brightness / sir,
+                        n_common=n_common)
     x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
                    sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,
                    np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
@@ -524,7 +616,9 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
         trk = EKFTracker(x0, P0, q, ekf_meas_var, slope)
     else:
         raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
-    hist = run_closed_loop(scene, trk, rng, gate_half=sc.gate_half, form=sc.form, edge_a=sc.diameter / 2,
+    noise_rng = streams[0][3] if n_common == n else \
+        BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
+    hist = run_closed_loop(scene, trk, noise_rng, gate_half=sc.gate_half, form=sc.form, edge_a=sc.diameter / 2,
                            noise=noise if sc.form == "quadrant" else "pixel", keep_full=keep_full,
                            crop_callback=crop_callback)
     return truth, scene, hist
@@ -554,6 +648,10 @@ def state_errors(truth: MarkerTruth, history) -> np.ndarray:
 def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values) -> dict:
     """Batched interference runs, ``n`` trials per SIR, keeping only what loss detection needs.
 
+    The ``n`` trials are the same at every SIR (common random numbers: motion, background,
+    interferer placement, decoy and noise), so loss curves against SIR are paired, and two
+    scenarios run from the same ``rng`` state (e.g. rotating and static markers) share them too.
+
     Parameters
     ----------
     n : int
@@ -566,8 +664,13 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
     -------
     dict
         ``sir`` (m n,) per-trial SIR (trials of one SIR contiguous), ``miss`` (m n, T) px,
-        ``inside`` (m n, T) bool, ``gate`` (m n, T, 2) px, ``interferers`` (m n, q, 2) px.
+        ``inside`` (m n, T) bool, ``gate`` (m n, T, 2) px, ``interferers`` (m n, q, 2) px,
+        ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s). With a list
+        of generators the blocks follow each other: ``block`` (k m n,) says which generator.
     """
-    sir = np.repeat(np.asarray(sir_values, float), n)
-    _, scene, h = run_scenario(rng, sir.size, sc, sir, keep_full=False)
-    return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers)
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    m = np.asarray(sir_values, float).size
+    sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
+    _, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
+    return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,
+                trial=np.tile(np.arange(n), m * len(rngs)), block=np.repeat(np.arange(len(rngs)), m * n), dt=1.0 / sc.fps)
