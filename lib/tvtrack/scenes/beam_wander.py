@@ -43,7 +43,8 @@ from ..predictors import kalman_forecast
 from ..render import gate_origin, gaussian_spot, sensor_readout
 from ..traces import TraceSet, save_traces, sha256_file
 
-__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "gauss_markov_discrete", "generate_traces",
+__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "component_table", "one_frame_motion_rms",
+           "with_frame_jitter", "gauss_markov_discrete", "generate_traces",
            "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
 
 
@@ -74,6 +75,11 @@ class BeamWanderConfig:
         Largest drift speed, px/frame (default 0.02, i.e. <= 20 px over 1000 frames).
     scintillation_sigma_ln : float
         Standard deviation of ln(total intensity) (default 0.3, the card's).
+    aliased_corners : bool
+        Allow corners at or above the Nyquist frequency ``frame_rate_hz / 2`` (default False). The
+        exact discretisation holds for any corner; such a component is nearly uncorrelated from
+        frame to frame (aliased fast tilt). Recorded in the metadata only when True, so data sets
+        made before the option existed regenerate byte for byte.
     """
 
     n_paths: int = 15
@@ -86,6 +92,7 @@ class BeamWanderConfig:
     rms_max_px: float = 8.0
     drift_max_px_per_frame: float = 0.02
     scintillation_sigma_ln: float = 0.3
+    aliased_corners: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "corner_frequencies_hz", tuple(float(f) for f in self.corner_frequencies_hz))
@@ -95,9 +102,9 @@ class BeamWanderConfig:
             ("frame_rate_hz", self.frame_rate_hz, self.frame_rate_hz > 0, "> 0"),
             ("image_size_px", self.image_size_px, self.image_size_px >= 8, ">= 8"),
             ("corner_frequencies_hz", self.corner_frequencies_hz,
-             len(self.corner_frequencies_hz) >= 1 and all(0 < f < self.frame_rate_hz / 2
+             len(self.corner_frequencies_hz) >= 1 and all(0 < f and (self.aliased_corners or f < self.frame_rate_hz / 2)
                                                           for f in self.corner_frequencies_hz),
-             "a non-empty list of values in (0, frame_rate_hz/2)"),
+             "a non-empty list of values in (0, frame_rate_hz/2) (any value > 0 with aliased_corners=True)"),
             ("spectral_index", self.spectral_index, -2.0 <= self.spectral_index <= 4.0, "in [-2, 4]"),
             ("rms_min_px", self.rms_min_px, 0 <= self.rms_min_px <= self.rms_max_px, "in [0, rms_max_px]"),
             ("rms_max_px", self.rms_max_px, self.rms_max_px <= self.image_size_px / 6,
@@ -136,6 +143,72 @@ def component_sigmas(config: BeamWanderConfig, rms_px) -> np.ndarray:
     f = np.asarray(config.corner_frequencies_hz)
     w = f ** (1.0 - config.spectral_index)
     return np.asarray(rms_px, dtype=float)[..., None] * np.sqrt(w / w.sum())
+
+
+def component_table(config: BeamWanderConfig) -> list[dict]:
+    """Spectrum and variance share of each wander component, for data sheets.
+
+    Component ``k`` has the one-sided PSD ``S_k(f) = (4 sigma_k^2 / (pi f_k)) / (1 + (f/f_k)^2)^2``
+    (px^2/Hz; it integrates to ``sigma_k^2``) and the autocorrelation
+    ``rho_k(tau) = (1 + w_k tau) exp(-w_k tau)``.
+
+    Returns
+    -------
+    list of dict
+        Per component: ``corner_hz``, ``variance_share`` (of the total wander variance),
+        ``frame_correlation`` (``rho_k`` at one frame).
+    """
+    f = np.asarray(config.corner_frequencies_hz)
+    share = component_sigmas(config, 1.0) ** 2
+    wt = 2 * np.pi * f / config.frame_rate_hz
+    rho = (1 + wt) * np.exp(-wt)
+    return [{"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
+            for fk, sk, rk in zip(f, share, rho)]
+
+
+def one_frame_motion_rms(config: BeamWanderConfig, rms_px) -> np.ndarray:
+    """RMS per axis of the wander's change over one frame, ``sqrt(sum_k 2 sigma_k^2 (1 - rho_k(dt)))``
+    (stationary part; the drift adds at most ``drift_max_px_per_frame``), px.
+
+    Parameters
+    ----------
+    rms_px : array_like, shape (...)
+        Total wander RMS per axis.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    sig = component_sigmas(config, rms_px)
+    rho = np.array([c["frame_correlation"] for c in component_table(config)])
+    return np.sqrt(np.sum(2 * sig ** 2 * (1 - rho), axis=-1))
+
+
+def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> TraceSet:
+    """A named variant of a trace set: the centres plus frame-uncorrelated jitter.
+
+    Real tilt at 25 frames/s has content far above the frame rate (frozen-flow tilt time scales of
+    tens to hundreds of Hz), which the frames sample as jitter uncorrelated from frame to frame;
+    speckle moves the centroid the same way. Per path and axis the jitter is white Gaussian with
+    RMS ``jitter_over_step`` times the path's one-frame motion RMS (:func:`one_frame_motion_rms`),
+    drawn from ``numpy.random.default_rng(seed)``.
+
+    Returns
+    -------
+    TraceSet
+        Same intensity; metadata adds ``variant`` = {``frame_jitter_over_step``, ``jitter_seed``,
+        ``jitter_rms_px`` (n_paths,)}.
+    """
+    if not (jitter_over_step >= 0):
+        raise ValueError(f"parameter 'jitter_over_step' = {jitter_over_step!r}; it must be >= 0")
+    meta = dict(traces.metadata)
+    cfg = BeamWanderConfig(**{**meta["config"], "corner_frequencies_hz": tuple(meta["config"]["corner_frequencies_hz"])})
+    step = one_frame_motion_rms(cfg, np.asarray(meta["wander_rms_px"]))
+    sd = jitter_over_step * step
+    jitter = sd[:, None, None] * np.random.default_rng(seed).standard_normal(traces.centres_px.shape)
+    meta["variant"] = {"frame_jitter_over_step": float(jitter_over_step), "jitter_seed": int(seed),
+                       "jitter_rms_px": sd.tolist()}
+    return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
 
 
 def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -231,6 +304,8 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     intensity = np.exp(rng.normal(-0.5 * sl * sl, sl, size=(P, T)))
     cfg = asdict(c)
     cfg["corner_frequencies_hz"] = list(c.corner_frequencies_hz)
+    if not c.aliased_corners:
+        del cfg["aliased_corners"]
     metadata = {
         "generator": "tvtrack.scenes.beam_wander.generate_traces",
         "config": cfg,
@@ -301,8 +376,9 @@ def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float
         Complete measured series of ``P`` paths, ``A`` axes each, px.
     rms_px : array_like, shape (P,)
         Wander RMS of each path, px.
-    meas_var : float
-        Measurement noise variance per axis, px^2.
+    meas_var : float or array_like, shape (P,)
+        White measurement noise variance per axis, px^2 (per path: e.g. centroid noise plus a
+        path's frame jitter, :func:`with_frame_jitter`).
 
     Returns
     -------
@@ -311,7 +387,8 @@ def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float
     F, Q, H, P0 = wander_state_space(config, rms_px)
     x0 = np.zeros(F.shape[0])
     x0[-2] = (config.image_size_px - 1) / 2.0
-    return kalman_forecast(z, F, Q[:, None], H, np.array([[meas_var]]), x0, P0[:, None], steps)[0]
+    R = np.broadcast_to(np.asarray(meas_var, dtype=float), (Q.shape[0],))[:, None, None, None]
+    return kalman_forecast(z, F, Q[:, None], H, R, x0, P0[:, None], steps)[0]
 
 
 @dataclass(frozen=True)
