@@ -165,3 +165,13 @@ def test_cross_validated_learned_forecast_is_reproducible_and_complete():
     b = pr.cross_validated_learned_forecast("rbf", z, folds, 4, 1, np.random.default_rng(9), rbf_centres=20)
     np.testing.assert_array_equal(a, b)
     assert np.all(np.isfinite(a[..., 4:])) and np.all(np.isnan(a[..., :4]))
+
+
+def test_cross_validated_pick_never_uses_the_test_path():
+    from tvtrack.predictors import cross_validated_pick, path_folds
+
+    # candidate 1 is best on paths 0-3, candidate 0 on paths 4-5; a fold picks from its training paths only,
+    # so paths 0-3 get candidate 0 (their training sets include 4-5) and paths 4-5 get candidate 1
+    loss = np.array([[2.0, 2, 2, 2, 0, 0], [1.0, 1, 1, 1, 9, 9]])
+    folds = path_folds(6, 3)  # tests {0,1}, {2,3}, {4,5}
+    np.testing.assert_array_equal(cross_validated_pick(loss, folds), [0, 0, 0, 0, 1, 1])

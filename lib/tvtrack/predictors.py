@@ -44,7 +44,7 @@ __all__ = [
     "forecast_errors", "growing_memory_forecast", "g1_floor_gains", "g1_floor_filter",
     "sliding_regression_forecast", "spline_forecast", "lag_features", "fit_learned_predictor",
     "learned_forecast", "constant_acceleration_model", "kalman_forecast", "fit_constant_acceleration",
-    "path_folds", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
+    "path_folds", "cross_validated_pick", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
     "cross_validated_learned_forecast", "fit_constant_acceleration_folds", "constant_acceleration_forecast",
 ]
 
@@ -411,6 +411,33 @@ def path_folds(n_paths: int, n_folds: int) -> list[tuple[np.ndarray, np.ndarray]
         raise ValueError(f"parameter 'n_folds' = {n_folds!r}; it must be in [2, n_paths={n_paths}]")
     idx = np.arange(n_paths)
     return [(np.setdiff1d(idx, test), test) for test in np.array_split(idx, n_folds)]
+
+
+def cross_validated_pick(per_path_loss, folds) -> np.ndarray:
+    """Tuning by cross-validation over paths: for each fold, the candidate with the smallest mean
+    loss over the fold's *training* paths is used on its test paths.
+
+    Parameters
+    ----------
+    per_path_loss : ndarray, shape (C, P)
+        Loss (e.g. mean squared prediction error) of each of ``C`` candidate settings on each path.
+    folds : list of (train, test) index arrays
+        :func:`path_folds`.
+
+    Returns
+    -------
+    ndarray of int, shape (P,)
+        Index of the candidate applied to each path (chosen without that path).
+    """
+    loss = np.asarray(per_path_loss, dtype=float)
+    if loss.ndim != 2:
+        raise ValueError(f"parameter 'per_path_loss' has shape {loss.shape}; it must be (candidates, paths)")
+    pick = np.full(loss.shape[1], -1)
+    for train, test in folds:
+        pick[test] = int(np.argmin(loss[:, train].mean(axis=1)))
+    if np.any(pick < 0):
+        raise ValueError("the folds do not cover every path")
+    return pick
 
 
 def cross_validated_learned_forecast(kind: str, z, folds, n_lags: int, steps: int, rng: np.random.Generator,
