@@ -22,7 +22,7 @@ import numpy as np
 
 from ..measure import Centroid, border_statistics
 
-__all__ = ["soft_window", "windowed_centroid"]
+__all__ = ["soft_window", "windowed_centroid", "centroid_mask"]
 
 
 def soft_window(centre, half: float, n: int) -> np.ndarray:
@@ -96,3 +96,28 @@ def windowed_centroid(images, origin=(0, 0), *, window_px: float, threshold_sigm
     o = np.asarray(origin, dtype=float)
     xy = np.stack([cx + o[..., 0], cy + o[..., 1]], axis=-1)
     return Centroid(xy=np.where(valid[..., None], xy, np.nan), mass=mass, valid=valid)
+
+
+def centroid_mask(images, origin, xy, *, window_px: float, threshold_sigma: float = 3.0) -> np.ndarray:
+    """Pixels that weigh in :func:`windowed_centroid`'s final step: above the threshold and inside
+    the window centred on the measured centre ``xy`` (for display).
+
+    Parameters
+    ----------
+    images : ndarray, shape (..., rows, cols)
+    origin : array_like, shape (..., 2)
+    xy : ndarray, shape (..., 2)
+        Measured centres, full-frame px (NaN: empty mask).
+
+    Returns
+    -------
+    ndarray of bool, shape (..., rows, cols)
+    """
+    a = np.asarray(images, dtype=float)
+    rows, cols = a.shape[-2:]
+    level, rms = border_statistics(a)
+    above = a - level[..., None, None] > (threshold_sigma * rms)[..., None, None]
+    c = np.asarray(xy, dtype=float) - np.asarray(origin, dtype=float)
+    wx = soft_window(np.nan_to_num(c[..., 0], nan=-1e9), window_px / 2.0, cols) > 0
+    wy = soft_window(np.nan_to_num(c[..., 1], nan=-1e9), window_px / 2.0, rows) > 0
+    return above & wy[..., :, None] & wx[..., None, :]
