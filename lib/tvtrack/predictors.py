@@ -382,7 +382,7 @@ def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hi
     if kind == "mlp":
         model = make_pipeline(StandardScaler(), MLPRegressor(
             hidden_layer_sizes=(hidden_units,), activation="tanh", solver="adam", alpha=1e-4,
-            learning_rate_init=1e-3, max_iter=200, early_stopping=True, n_iter_no_change=10,
+            learning_rate_init=1e-3, max_iter=2000, early_stopping=True, n_iter_no_change=10,
             random_state=seed))
     else:
         model = make_pipeline(StandardScaler(), Nystroem(kernel="rbf", gamma=1.0 / n_lags,
