@@ -10,7 +10,9 @@ scored on:
 - finite differences (2 and 3 points): nothing to tune;
 - MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold;
 - constant-acceleration Kalman filter: its two noise levels by maximum likelihood on the
-  training paths of each fold.
+  training paths of each fold;
+- Morrison's fading-memory quadratic filter (a principled floor, not a baseline of the paper):
+  its discount ``theta`` from a grid.
 
 The "fixed" reading uses ``N_f`` = ``fixed_floor`` and ``L`` = ``fixed_window`` for all paths,
 as the first version of the notebook did.
@@ -27,7 +29,7 @@ import numpy as np
 
 from . import predictors as pr
 
-__all__ = ["PAPER", "CLASSICAL", "FITTED", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
+__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
            "fit_learned_folds", "apply_learned_folds", "radial_error_summary"]
 
 #: The paper's filter.
@@ -35,6 +37,8 @@ PAPER = "growing memory (paper)"
 #: Baselines the paper names whose errors it quotes as 2-10 px (finite differences, splines, regression).
 CLASSICAL = ("finite differences, 2 points", "finite differences, 3 points", "cubic spline",
              "linear regression deg 1", "linear regression deg 2")
+#: Principled counterpart of the floor (not a baseline of the paper): Morrison's fading-memory filter.
+FADING = "fading memory (Morrison)"
 #: Baselines fitted to data: back-propagation MLP and RBF network (the paper names both, 2-3 and
 #: 2-4 px), and a constant-acceleration Kalman filter with ML noise levels (an added comparator).
 FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise")
@@ -84,6 +88,7 @@ class ComparisonSetup:
     order: int = 2
     floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
     window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
+    theta_grid: tuple = (0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
     fixed_floor: int = 10
     fixed_window: int = 10
     learned_lags: int = 10
@@ -182,6 +187,9 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
     for name, make in windowed.items():
         fcs[name], mse[name], chosen[name], _, _ = _tuned(s.window_grid, make, z, reference, folds, s)
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
+    fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
+        s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s)
+    fixed[FADING] = mse[FADING]
     models = {}
     if learned:
         for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):

@@ -41,7 +41,7 @@ from .filters.polynomial import (growing_memory_filter, growing_memory_gains, po
                                  predict_ahead, taylor_transition)
 
 __all__ = [
-    "forecast_errors", "growing_memory_forecast", "g1_floor_gains", "g1_floor_filter",
+    "forecast_errors", "growing_memory_forecast", "fading_memory_gains", "fading_memory_forecast", "g1_floor_gains", "g1_floor_filter",
     "sliding_regression_forecast", "spline_forecast", "lag_features", "fit_learned_predictor",
     "learned_forecast", "constant_acceleration_model", "kalman_forecast", "fit_constant_acceleration",
     "path_folds", "cross_validated_pick", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
@@ -219,6 +219,40 @@ def _fixed_gain_forecast(z, x0, order: int, gain, steps: int) -> np.ndarray:
     O = np.stack([c @ np.linalg.matrix_power(A, k + 1) for k in range(n)])  # (n, n)
     zi = x0 @ np.linalg.solve(M, O).T
     return lfilter(b, a, z, axis=-1, zi=zi)[0]
+
+
+def fading_memory_gains(theta: float) -> np.ndarray:
+    """Steady-state gains of Morrison's 2nd-degree fading-memory polynomial filter, for the state
+    ``(x, x', x'')`` per frame: ``(1 - theta^3, 1.5 (1 - theta)^2 (1 + theta), (1 - theta)^3)``
+    (the g-h-k form ``g = 1 - theta^3``, ``h = 1.5 (1 - theta^2)(1 - theta)``, ``k = (1 - theta)^3 / 2``
+    with ``x'' += 2k e``; Morrison 1969, Brookner 1998 Table 7.2-2). It is the least-squares
+    quadratic fit with weights ``theta^j`` on the sample ``j`` frames back: a principled
+    counterpart of the paper's frozen-gain floor.
+    """
+    if not (0 < theta < 1):
+        raise ValueError(f"parameter 'theta' = {theta!r}; it must be in (0, 1)")
+    return np.array([1 - theta ** 3, 1.5 * (1 - theta) ** 2 * (1 + theta), (1 - theta) ** 3])
+
+
+def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
+    """Morrison's fading-memory quadratic filter (:func:`fading_memory_gains`) and its
+    ``steps``-ahead prediction. Starts from the exact quadratic through the first three samples
+    (eq. (4)), then runs with the fixed gains (the start-up transient decays as ``theta^n``).
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Complete measurements, px.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not np.all(np.isfinite(z)) or z.shape[-1] < 4:
+        raise ValueError("parameter 'z' must be complete (no NaN) with at least 4 samples")
+    head = growing_memory_filter(z[..., :3], 2, None)
+    out = np.empty(z.shape)
+    out[..., :3] = predict_ahead(head, steps)
+    out[..., 3:] = _fixed_gain_forecast(z[..., 3:], head[..., -1, :], 2, fading_memory_gains(theta), steps)
+    return out
 
 
 def g1_floor_gains(order: int, n_frames: int, g1_min: float) -> np.ndarray:
