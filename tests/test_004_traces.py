@@ -21,6 +21,7 @@ def _small(n_paths=2, n_frames=50):
     return generate_traces(BeamWanderConfig(n_paths=n_paths, n_frames=n_frames), seed=4)
 
 
+@pytest.mark.determinism
 def test_roundtrip_and_deterministic_bytes(tmp_path):
     tr = _small()
     p1 = save_traces(tmp_path / "a.npz", tr)
@@ -85,6 +86,12 @@ def test_traceset_validates_in_memory():
         TraceSet(np.zeros((2, 5)), np.ones((2, 5)), 25.0, 128)
 
 
+# Regenerating on another machine may differ in the last bits: NumPy and its BLAS pick kernels by CPU.
+# The file is pinned by its checksum; the regeneration must agree to this relative tolerance.
+REGENERATION_RTOL = 1e-12
+
+
+@pytest.mark.determinism
 def test_shipped_data_set_matches_checksum_and_regenerates():
     expected = (SHIPPED.parent / "checksums.sha256").read_text().split()[0]
     assert sha256_file(SHIPPED) == expected
@@ -95,8 +102,8 @@ def test_shipped_data_set_matches_checksum_and_regenerates():
     cfg = dict(tr.metadata["config"])
     cfg["corner_frequencies_hz"] = tuple(cfg["corner_frequencies_hz"])
     again = generate_traces(BeamWanderConfig(**cfg), tr.metadata["seed"])
-    np.testing.assert_array_equal(again.centres_px, tr.centres_px)
-    np.testing.assert_array_equal(again.intensity, tr.intensity)
+    np.testing.assert_allclose(again.centres_px, tr.centres_px, rtol=REGENERATION_RTOL, atol=0)
+    np.testing.assert_allclose(again.intensity, tr.intensity, rtol=REGENERATION_RTOL, atol=0)
 
 
 def test_generator_statistics():

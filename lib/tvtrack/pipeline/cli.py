@@ -1,4 +1,9 @@
-"""Command line: ``python -m tvtrack {run, sweep, reproduce, report}``."""
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report}``.
+
+A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
+directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
+with status 2 before any kernel starts; ``--debug`` shows the traceback instead.
+"""
 
 from __future__ import annotations
 
@@ -9,6 +14,14 @@ import time
 from pathlib import Path
 
 from .paths import RUNS_DIR
+from .preflight import NotebookBug, UsageError, check_names, check_values
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line, like the rest of the command line."""
+
+    def error(self, message: str):
+        self.exit(2, f"error: {message} (see {self.prog} --help)\n")
 
 
 def _parse_value(text: str):
@@ -20,13 +33,37 @@ def _parse_value(text: str):
         return text
 
 
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer >= 1")
+    return value
+
+
+def _fresh_directory(path: Path) -> Path:
+    """A run directory that does not exist yet and whose parent can be created."""
+    if path.exists():
+        raise UsageError(f"output directory {path} exists already; choose another -o or remove it")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"cannot create the output directory {path}: {exc.strerror}") from exc
+    return path
+
+
 def _cmd_run(args) -> int:
-    from .runner import find_notebook, run_notebook
+    from .runner import find_notebook, load_profile, run_notebook
 
     nb = find_notebook(args.notebook)
     params = {name: _parse_value(value) for name, value in args.parameter}
-    out = Path(args.output) if args.output else \
-        RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}"
+    check_names(nb, params)
+    profile = load_profile(nb, args.profile)
+    check_values(nb, {**profile, **params})
+    out = _fresh_directory(Path(args.output) if args.output else
+                           RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}")
     outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet)
     if outcome.ok:
         print(f"ok: {nb.stem} in {outcome.runtime_s:.1f} s -> {outcome.run_dir}")
@@ -44,9 +81,9 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_reproduce(args) -> int:
-    from .report import reproduce
+    from .reproduce import reproduce
 
-    return reproduce(profile=args.profile, only=args.only)
+    return reproduce(profile=args.profile, only=args.only, jobs=args.jobs)
 
 
 def _cmd_report(args) -> int:
@@ -58,8 +95,9 @@ def _cmd_report(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m tvtrack", description=__doc__)
-    sub = p.add_subparsers(dest="command", required=True)
+    p = _Parser(prog="python -m tvtrack", description=__doc__)
+    p.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     r = sub.add_parser("run", help="execute one notebook through papermill into its own directory")
     r.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
@@ -72,15 +110,17 @@ def build_parser() -> argparse.ArgumentParser:
 
     s = sub.add_parser("sweep", help="run a TOML sweep spec (grid x repeats) in a process pool")
     s.add_argument("spec", help="sweep spec TOML (see README, 'Sweeps')")
-    s.add_argument("--jobs", type=int, default=1, help="parallel runs (local executor)")
+    s.add_argument("--jobs", type=_positive_int, default=1, help="parallel runs (local executor)")
     s.add_argument("-o", "--output", default=None, help="sweep directory (default papermill_runs/<spec name>)")
     s.add_argument("--executor", choices=["local", "dask"], default="local")
     s.add_argument("--scheduler", default=None, help="Dask scheduler address, with --executor dask")
     s.set_defaults(func=_cmd_sweep)
 
-    rp = sub.add_parser("reproduce", help="run every notebook, then write REPRODUCTION.md")
+    rp = sub.add_parser("reproduce", help="run every notebook side by side, then write REPRODUCTION.md")
     rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
     rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
+    rp.add_argument("--jobs", type=_positive_int, default=None,
+                    help="notebooks at once (default: the usable cores)")
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
@@ -90,4 +130,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    return args.func(args)
+    try:
+        return args.func(args)
+    except (UsageError, NotebookBug) as exc:
+        if args.debug:
+            raise
+        print(f"error: {exc}", file=sys.stderr)
+        return 2 if isinstance(exc, UsageError) else 1

@@ -1,6 +1,6 @@
-"""``make reproduce``: run every notebook at paper scale, then write ``REPRODUCTION.md``.
+"""``REPRODUCTION.md`` from the runs of ``make reproduce`` (:mod:`tvtrack.pipeline.reproduce`).
 
-Outputs: ``papermill_runs/reproduce/<notebook>/`` (a run directory, see :mod:`tvtrack.pipeline.runner`)
+Inputs: ``papermill_runs/reproduce/<notebook>/`` (a run directory, see :mod:`tvtrack.pipeline.runner`)
 and ``REPRODUCTION.md`` at the repository root, rebuilt from those directories by
 :func:`write_report` (``python -m tvtrack report``).
 """
@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import time
 from collections import Counter
 from pathlib import Path
@@ -17,43 +16,12 @@ from typing import Any
 
 from .paths import REPO_ROOT, RUNS_DIR
 from ..results import VERDICTS
-from .runner import list_notebooks, read_run, run_notebook
+from .runner import list_notebooks, read_run
 
-__all__ = ["REPRODUCE_DIR", "REPORT_PATH", "reproduce", "write_report", "format_measured"]
+__all__ = ["REPRODUCE_DIR", "REPORT_PATH", "write_report", "format_measured"]
 
 REPRODUCE_DIR = RUNS_DIR / "reproduce"
 REPORT_PATH = REPO_ROOT / "REPRODUCTION.md"
-
-
-def reproduce(profile: str | None = None, only: list[str] | None = None) -> int:
-    """Run the notebooks (all, or ``only``) into ``papermill_runs/reproduce/<name>/``, replacing
-    earlier runs of the same notebooks, then write the report. Returns the exit code
-    (1 if any notebook failed; the others still run and are reported)."""
-    notebooks = list_notebooks()
-    if only:
-        wanted = {Path(n).stem for n in only}
-        unknown = wanted - {nb.stem for nb in notebooks}
-        if unknown:
-            raise ValueError(f"unknown notebooks {sorted(unknown)}; known: {[nb.stem for nb in notebooks]}")
-        notebooks = [nb for nb in notebooks if nb.stem in wanted]
-    REPRODUCE_DIR.mkdir(parents=True, exist_ok=True)
-    failed = 0
-    for nb in notebooks:
-        print(f"running {nb.stem} ({profile or 'paper'} profile) ...", flush=True)
-        fresh = REPRODUCE_DIR / f".new-{nb.stem}"
-        if fresh.exists():
-            shutil.rmtree(fresh)
-        outcome = run_notebook(nb, fresh, profile=profile, progress=False)
-        final = REPRODUCE_DIR / nb.stem
-        if final.exists():
-            shutil.rmtree(final)
-        os.replace(fresh, final)
-        failed += not outcome.ok
-        status = "ok" if outcome.ok else f"FAILED: {outcome.error}"
-        print(f"  {status} ({outcome.runtime_s:.0f} s)", flush=True)
-    path = write_report()
-    print(f"wrote {path}")
-    return 1 if failed else 0
 
 
 def format_measured(value: Any) -> str:

@@ -25,9 +25,10 @@ from pathlib import Path
 from typing import Any
 
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
+from .preflight import UsageError
 
 __all__ = [
-    "find_notebook", "list_notebooks", "load_profile", "RunOutcome", "run_notebook", "read_run",
+    "find_notebook", "list_notebooks", "load_profile", "read_toml", "RunOutcome", "run_notebook", "read_run",
     "remove_stale_temporaries",
 ]
 
@@ -50,7 +51,7 @@ def find_notebook(name: str | Path) -> Path:
         if c.is_file() and c.suffix == ".ipynb":
             return c.resolve()
     known = ", ".join(n.stem for n in list_notebooks()) or "none"
-    raise FileNotFoundError(f"no notebook {str(name)!r}; notebooks here: {known}")
+    raise UsageError(f"no notebook {str(name)!r}; notebooks here: {known}")
 
 
 def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
@@ -62,10 +63,19 @@ def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
     for folder in (PROFILE_DIR, notebook.parent):
         path = folder / f"{notebook.stem}.{profile}.toml"
         if path.is_file():
-            with path.open("rb") as fh:
-                return dict(tomllib.load(fh))
-    raise FileNotFoundError(f"no profile {profile!r} for {notebook.stem} "
-                            f"(looked for {PROFILE_DIR / f'{notebook.stem}.{profile}.toml'})")
+            return read_toml(path)
+    known = sorted({p.name.split(".")[1] for folder in (PROFILE_DIR, notebook.parent)
+                    for p in folder.glob(f"{notebook.stem}.*.toml")} | {"paper"})
+    raise UsageError(f"no profile {profile!r} for {notebook.stem}; its profiles: {', '.join(known)}")
+
+
+def read_toml(path: Path) -> dict[str, Any]:
+    """A TOML file as a dict; a syntax error is a :class:`UsageError` naming the file and line."""
+    try:
+        with path.open("rb") as fh:
+            return dict(tomllib.load(fh))
+    except tomllib.TOMLDecodeError as exc:
+        raise UsageError(f"{path}: invalid TOML: {exc}") from exc
 
 
 @dataclass

@@ -25,7 +25,6 @@ import hashlib
 import itertools
 import json
 import shutil
-import tomllib
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from multiprocessing import get_context
@@ -33,11 +32,13 @@ from pathlib import Path
 from typing import Any
 
 from .paths import RUNS_DIR
-from .runner import find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
+from .preflight import UsageError, check_names
+from .runner import read_toml, find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
 
 __all__ = ["SweepSpec", "RunSpec", "SweepSummary", "load_spec", "expand", "run_hash", "run_sweep",
            "collect_summary"]
 
+DASK_CONNECT_TIMEOUT_S = 10
 _SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
 
 
@@ -64,33 +65,40 @@ class SweepSpec:
 
 
 def load_spec(path: str | Path) -> SweepSpec:
-    """Read and check a sweep spec; raises ``ValueError`` naming the bad key."""
+    """Read and check a sweep spec; raises :class:`UsageError` naming the file and the bad key,
+    a parameter the notebook does not define, or the TOML line with a syntax error."""
     path = Path(path)
-    with path.open("rb") as fh:
-        raw = tomllib.load(fh)
+    if not path.is_file():
+        raise UsageError(f"no sweep spec {str(path)!r}")
+    raw = read_toml(path)
     unknown = set(raw) - _SPEC_KEYS
     if unknown:
-        raise ValueError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS)}")
+        raise UsageError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS)}")
     if "notebook" not in raw:
-        raise ValueError(f"{path}: 'notebook' is required")
+        raise UsageError(f"{path}: 'notebook' is required")
     nb_name = raw["notebook"]
     nb = find_notebook(path.parent / nb_name) if (path.parent / nb_name).exists() else find_notebook(nb_name)
     repeats = raw.get("repeats", 1)
     if not isinstance(repeats, int) or repeats < 1:
-        raise ValueError(f"{path}: 'repeats' = {repeats!r}; it must be an integer >= 1")
+        raise UsageError(f"{path}: 'repeats' = {repeats!r}; it must be an integer >= 1")
     grid, zipped = raw.get("grid", {}), raw.get("zip", {})
     for key, values in {**grid, **zipped}.items():
         if not isinstance(values, list) or not values:
-            raise ValueError(f"{path}: grid/zip entry {key!r} must be a non-empty list")
+            raise UsageError(f"{path}: grid/zip entry {key!r} must be a non-empty list")
     if len({len(v) for v in zipped.values()}) > 1:
-        raise ValueError(f"{path}: all [zip] lists must have the same length, got "
+        raise UsageError(f"{path}: all [zip] lists must have the same length, got "
                          f"{ {k: len(v) for k, v in zipped.items()} }")
     overlap = (set(grid) & set(zipped)) | ((set(grid) | set(zipped)) & set(raw.get("fixed", {})))
     if overlap:
-        raise ValueError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
+        raise UsageError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
     summary = raw.get("summary", {})
     if summary and not {"x", "y"} <= set(summary):
-        raise ValueError(f"{path}: [summary] needs both 'x' and 'y'")
+        raise UsageError(f"{path}: [summary] needs both 'x' and 'y'")
+    for table, names in (("[fixed]", raw.get("fixed", {})), ("[grid]", grid), ("[zip]", zipped),
+                         ("[summary] x/hue", [summary[k] for k in ("x", "hue") if k in summary])):
+        check_names(nb, names, where=f"{path}: {table}: ")
+    if "y" in summary and not isinstance(summary["y"], str):
+        raise UsageError(f"{path}: [summary] y = {summary['y']!r}; it must be a metric name (a string)")
     return SweepSpec(name=path.stem, notebook=nb, profile=raw.get("profile"), repeats=repeats,
                      fixed=dict(raw.get("fixed", {})), grid=dict(grid), zipped=dict(zipped), summary=summary)
 
@@ -172,13 +180,16 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         ``"dask"`` submits the runs to an existing Dask cluster at ``scheduler``.
     """
     if jobs < 1:
-        raise ValueError(f"parameter 'jobs' = {jobs}; it must be an integer >= 1")
+        raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
     if executor == "dask" and not scheduler:
-        raise ValueError("executor 'dask' needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+        raise UsageError("executor 'dask' needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
     spec = load_spec(spec_path)
     sweep_dir = Path(output) if output else RUNS_DIR / spec.name
     runs_dir = sweep_dir / "runs"
-    runs_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        runs_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
     remove_stale_temporaries(runs_dir)
     (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
     runs = expand(spec)
@@ -194,6 +205,7 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
 
     from tqdm import tqdm
 
+    client = _dask_client(scheduler) if executor == "dask" else None
     bar = tqdm(total=len(runs), initial=n_skipped, desc=spec.name, disable=not progress, unit="run")
     failed = 0
     nb_path = str(spec.notebook)
@@ -205,9 +217,9 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
 
     if executor == "dask":
-        from distributed import Client, as_completed as dask_completed
+        from distributed import as_completed as dask_completed
 
-        with Client(scheduler) as client:
+        with client:
             futures = [client.submit(_execute, r, nb_path, str(runs_dir), pure=False) for r in todo]
             for fut in dask_completed(futures):
                 tick(fut.result()[1])
@@ -229,6 +241,17 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         if rec.get("status") != "ok":
             print(f"  failed {r.run_id} {r.parameters}: {rec.get('error')}")
     return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, n_failed, csv_path, plot)
+
+
+def _dask_client(scheduler: str):
+    """A client of the running Dask scheduler at ``scheduler``, or a :class:`UsageError` saying how to start one."""
+    from distributed import Client
+
+    try:
+        return Client(scheduler, timeout=DASK_CONNECT_TIMEOUT_S)
+    except (OSError, TimeoutError) as exc:
+        raise UsageError(f"cannot reach the Dask scheduler at {scheduler} within {DASK_CONNECT_TIMEOUT_S} s; start "
+                         f"one with `dask scheduler` (and `dask worker ADDRESS`), or use --executor local") from exc
 
 
 def _flatten_metrics(metrics: dict) -> dict[str, Any]:

@@ -1,0 +1,109 @@
+"""Checks made before any kernel starts: parameter names against the notebook's ``parameters``
+cell, and parameter values through the notebook's own validation cell.
+
+A notebook's first code cell (tagged ``parameters``) holds one assignment per parameter; the next
+code cell imports the library and calls ``validate_parameters(globals(), ...)`` together with any
+cross-parameter check, raising ``ValueError`` that names the parameters. That cell must be cheap
+and do no simulation (README, "Writing a notebook"), so it can run here, in a subprocess with a
+throw-away ``output_dir``, before a run starts.
+"""
+
+from __future__ import annotations
+
+import ast
+import difflib
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+from typing import Any, Iterable
+
+__all__ = ["UsageError", "NotebookBug", "parameter_defaults", "check_names", "check_values"]
+
+
+class UsageError(ValueError):
+    """A mistake in what the user asked for: shown as one line ``error: ...``, exit status 2."""
+
+
+class NotebookBug(RuntimeError):
+    """A notebook's validation cell failed other than with ``ValueError``: a bug in the notebook
+    (shown as one line, exit status 1)."""
+
+
+def _code_cells(notebook: Path) -> list[str]:
+    """Sources of the code cells (read as plain JSON: nbformat's import alone takes seconds)."""
+    cells = [c for c in json.loads(Path(notebook).read_text())["cells"] if c["cell_type"] == "code"]
+    if not cells or "parameters" not in cells[0].get("metadata", {}).get("tags", []):
+        raise UsageError(f"{notebook.name}: the first code cell is not tagged 'parameters'")
+    return ["".join(c["source"]) if isinstance(c["source"], list) else c["source"] for c in cells]
+
+
+def parameter_defaults(notebook: Path) -> dict[str, Any]:
+    """``{name: default}`` from the notebook's ``parameters`` cell (literal values only)."""
+    out = {}
+    for node in ast.parse(_code_cells(notebook)[0]).body:
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                if isinstance(target, ast.Name):
+                    try:
+                        out[target.id] = ast.literal_eval(node.value)
+                    except ValueError:
+                        out[target.id] = None
+    return out
+
+
+def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
+    """Raise :class:`UsageError` for a name the notebook's ``parameters`` cell does not define,
+    suggesting the closest names."""
+    known = parameter_defaults(notebook)
+    for name in names:
+        if name not in known:
+            close = difflib.get_close_matches(name, list(known), n=3, cutoff=0.6)
+            hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else \
+                f"; its parameters are {', '.join(sorted(known))}"
+            raise UsageError(f"{where}{notebook.stem} has no parameter {name!r}{hint}")
+
+
+_PREFLIGHT = r"""
+import json, sys
+cells, overrides = json.loads(sys.stdin.read())
+namespace = {"__name__": "__preflight__"}
+exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
+namespace.update(overrides)
+try:
+    exec(compile(cells[1], "<validation cell>", "exec"), namespace)
+except ValueError as exc:
+    print(json.dumps({"user_error": str(exc)}))
+    sys.exit(0)
+print(json.dumps({"user_error": None}))
+"""
+
+
+def check_values(notebook: Path, overrides: dict[str, Any], timeout_s: float = 120) -> None:
+    """Run the notebook's parameters and validation cells with ``overrides`` in a subprocess.
+
+    Raises
+    ------
+    UsageError
+        The validation cell raised ``ValueError`` (a bad value or an inconsistent combination);
+        the message is the notebook's own.
+    NotebookBug
+        The validation cell failed otherwise: a bug in the notebook, not in the user's input.
+    """
+    cells = _code_cells(notebook)
+    if len(cells) < 2:
+        raise UsageError(f"{notebook.name}: no validation cell after the parameters cell")
+    with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
+        payload = json.dumps([cells[:2], {**overrides, "output_dir": scratch}], default=str)
+        env = {**os.environ, "MPLBACKEND": "Agg"}
+        proc = subprocess.run([sys.executable, "-c", _PREFLIGHT], input=payload, capture_output=True, text=True,
+                              cwd=scratch, env=env, timeout=timeout_s)
+    if proc.returncode != 0:
+        last = (proc.stderr.strip().splitlines() or ["(no message)"])[-1]
+        raise NotebookBug(f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
+                          f"--debug shows the traceback)")
+    verdict = json.loads(proc.stdout.strip().splitlines()[-1])
+    if verdict["user_error"]:
+        raise UsageError(f"{notebook.stem}: {verdict['user_error']}")

@@ -1,0 +1,122 @@
+"""``make reproduce``: every paper notebook at paper scale, side by side, then the report.
+
+Notebooks run in a process pool of ``jobs`` workers, longest first (by the runtime of their last
+reproduce run, else a fixed order), each into ``papermill_runs/reproduce/<name>/`` (replacing the
+earlier run only when the new one has ended). So that ``jobs`` notebooks do not oversubscribe the
+machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
+parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
+goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from multiprocessing import get_context
+from pathlib import Path
+
+from .preflight import UsageError, parameter_defaults
+from .report import REPRODUCE_DIR, write_report
+from .runner import list_notebooks, run_notebook
+
+__all__ = ["usable_cores", "reproduce"]
+
+# without a previous run to time, the heaviest notebooks start first
+_DEFAULT_ORDER = ("002", "003", "004", "000", "001")
+_THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def usable_cores() -> int:
+    """Cores this process may run on (``os.sched_getaffinity``)."""
+    return len(os.sched_getaffinity(0))
+
+
+def _last_runtime(name: str) -> float | None:
+    try:
+        return float(json.loads((REPRODUCE_DIR / name / "run.json").read_text())["runtime_s"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _order(notebooks: list[Path]) -> list[Path]:
+    def key(nb: Path):
+        t = _last_runtime(nb.stem)
+        rank = next((i for i, p in enumerate(_DEFAULT_ORDER) if nb.stem.startswith(p)), len(_DEFAULT_ORDER))
+        return (0, -t) if t is not None else (1, rank)
+    return sorted(notebooks, key=key)
+
+
+def _worker_init(threads: int, log_path: str) -> None:
+    for var in _THREAD_VARS:
+        os.environ[var] = str(threads)
+    log = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+    os.dup2(log, 2)   # kernels inherit this stderr: their transport warnings land in the log
+
+
+def _run_one(nb: str, profile: str | None, parameters: dict) -> tuple[str, bool, str | None, float]:
+    name = Path(nb).stem
+    fresh = REPRODUCE_DIR / f".new-{name}"
+    if fresh.exists():
+        shutil.rmtree(fresh)
+    outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
+    final = REPRODUCE_DIR / name
+    if final.exists():
+        shutil.rmtree(final)
+    os.replace(fresh, final)
+    return name, outcome.ok, outcome.error, outcome.runtime_s
+
+
+def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: int | None = None) -> int:
+    """Run the notebooks (all, or ``only``) side by side, then write the report.
+
+    Parameters
+    ----------
+    profile : str, optional
+        Profile for every notebook (default: paper scale).
+    only : list of str, optional
+        Notebook names to run.
+    jobs : int, optional
+        Notebooks at once (default: :func:`usable_cores`).
+
+    Returns
+    -------
+    int
+        Exit status: 1 if any notebook failed (the others still run and are reported).
+    """
+    from tqdm import tqdm
+
+    jobs = usable_cores() if jobs is None else jobs
+    if jobs < 1:
+        raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
+    notebooks = list_notebooks()
+    if only:
+        wanted = {Path(n).stem for n in only}
+        unknown = wanted - {nb.stem for nb in notebooks}
+        if unknown:
+            raise UsageError(f"unknown notebooks {sorted(unknown)}; known: {', '.join(nb.stem for nb in notebooks)}")
+        notebooks = [nb for nb in notebooks if nb.stem in wanted]
+    notebooks = _order(notebooks)
+    jobs = min(jobs, len(notebooks))
+    threads = max(1, usable_cores() // jobs)
+    REPRODUCE_DIR.mkdir(parents=True, exist_ok=True)
+    log = REPRODUCE_DIR / "kernels.log"
+    failures = []
+    bar = tqdm(total=len(notebooks), desc=f"reproduce ({jobs} at once)", unit="notebook")
+    with ProcessPoolExecutor(jobs, mp_context=get_context("spawn"), initializer=_worker_init,
+                             initargs=(threads, str(log))) as pool:
+        futures = {}
+        for nb in notebooks:
+            params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
+            futures[pool.submit(_run_one, str(nb), profile, params)] = nb.stem
+        for fut in as_completed(futures):
+            name, ok, error, runtime = fut.result()
+            bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s)")
+            if not ok:
+                failures.append(name)
+            bar.update(1)
+    bar.close()
+    path = write_report()
+    print(f"wrote {path}" + (f"; failed: {', '.join(failures)}" if failures else ""))
+    return 1 if failures else 0

@@ -1,0 +1,99 @@
+"""User errors on the command line: one line ``error: ...`` on stderr, exit status 2, no traceback,
+before any kernel starts."""
+
+import socket
+import subprocess
+import sys
+
+import pytest
+
+from conftest import FIXTURE_NOTEBOOK, FIXTURE_SWEEP
+
+
+def tvtrack(*args, timeout=60):
+    return subprocess.run([sys.executable, "-m", "tvtrack", *map(str, args)], capture_output=True, text=True,
+                          timeout=timeout)
+
+
+def assert_one_line_error(proc, *fragments):
+    assert proc.returncode == 2, (proc.returncode, proc.stderr)
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout
+    for f in fragments:
+        assert f in lines[0], (f, lines[0])
+    return lines[0]
+
+
+def spec(tmp_path, body, name="spec.toml"):
+    path = tmp_path / name
+    path.write_text(f'notebook = "{FIXTURE_NOTEBOOK}"\n{body}')
+    return path
+
+
+def test_typo_in_a_parameter_name_suggests_the_closest_and_starts_nothing(tmp_path):
+    proc = tvtrack("run", "004_laser_spot_prediction", "-p", "n_trails", "3", "-o", tmp_path / "r", timeout=5)
+    assert_one_line_error(proc, "'n_trails'", "'n_trials'", "004_laser_spot_prediction")
+    assert not (tmp_path / "r").exists()
+
+
+def test_bad_value_is_refused_by_the_notebooks_own_validation(tmp_path):
+    proc = tvtrack("run", FIXTURE_NOTEBOOK, "-p", "gate_size_px", "99", "-o", tmp_path / "r")
+    assert_one_line_error(proc, "gate_size_px", "99", "[5, 31]")
+    assert not (tmp_path / "r").exists()
+
+
+def test_missing_notebook_and_profile():
+    assert_one_line_error(tvtrack("run", "no_such_notebook"), "no_such_notebook", "004_laser_spot_prediction")
+    assert_one_line_error(tvtrack("run", "004_laser_spot_prediction", "--profile", "smok"), "'smok'", "smoke")
+
+
+def test_output_directory_that_exists_or_cannot_be_created(tmp_path):
+    (tmp_path / "taken").mkdir()
+    assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-o", tmp_path / "taken"), "exists already")
+    (tmp_path / "file").write_text("x")
+    assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-o", tmp_path / "file" / "sub" / "run"),
+                          "cannot create")
+    assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "-o", tmp_path / "file" / "sweep"), "cannot create")
+
+
+def test_bad_jobs():
+    assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--jobs", "0"), "--jobs", "'0'")
+    assert_one_line_error(tvtrack("reproduce", "--jobs", "-1"), "--jobs")
+    assert_one_line_error(tvtrack("reproduce", "--only", "999_nothing"), "999_nothing")
+
+
+def test_invalid_specs_name_the_file_and_what_is_wrong(tmp_path):
+    broken = spec(tmp_path, "[grid]\nspot_sigma_px = = [1.0]\n[fixed]\nn_trials = 5\n", "broken.toml")
+    assert_one_line_error(tvtrack("sweep", broken), "broken.toml", "line")
+    uneven = spec(tmp_path, "[zip]\nspot_sigma_px = [1.0, 2.0]\nread_noise_e = [1.0]\n", "uneven.toml")
+    assert_one_line_error(tvtrack("sweep", uneven), "uneven.toml", "same length")
+    typo = spec(tmp_path, "[grid]\nspot_sigma = [1.0, 2.0]\n", "typo.toml")
+    assert_one_line_error(tvtrack("sweep", typo), "typo.toml", "[grid]", "'spot_sigma'", "'spot_sigma_px'")
+    bad_x = spec(tmp_path, "[grid]\nspot_sigma_px = [1.0]\n[summary]\nx = \"sigma\"\ny = \"centroid_rms_px.value\"\n",
+                 "bad_x.toml")
+    assert_one_line_error(tvtrack("sweep", bad_x), "bad_x.toml", "[summary]", "'sigma'")
+    assert_one_line_error(tvtrack("sweep", tmp_path / "missing.toml"), "missing.toml")
+
+
+def test_unreachable_scheduler_names_the_address_and_how_to_start_one(tmp_path):
+    with socket.socket() as s:          # a loopback port with nothing listening
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    line = assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
+                                         "-o", tmp_path / "s", timeout=120), address)
+    assert "dask scheduler" in line
+
+
+def test_debug_shows_the_traceback():
+    proc = tvtrack("--debug", "run", "no_such_notebook")
+    assert proc.returncode != 0 and "Traceback" in proc.stderr and "UsageError" in proc.stderr
+
+
+@pytest.mark.parametrize("notebook, parameter, value, names", [
+    ("000_dissector_ekf", "dt", "0", ["dt"]),
+])
+def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, parameter, value, names):
+    proc = tvtrack("run", notebook, "-p", parameter, value)
+    assert_one_line_error(proc, *names)
