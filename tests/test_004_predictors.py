@@ -165,3 +165,28 @@ def test_cross_validated_learned_forecast_is_reproducible_and_complete():
     b = pr.cross_validated_learned_forecast("rbf", z, folds, 4, 1, np.random.default_rng(9), rbf_centres=20)
     np.testing.assert_array_equal(a, b)
     assert np.all(np.isfinite(a[..., 4:])) and np.all(np.isnan(a[..., :4]))
+
+
+def test_cross_validated_pick_never_uses_the_test_path():
+    from tvtrack.predictors import cross_validated_pick, path_folds
+
+    # candidate 1 is best on paths 0-3, candidate 0 on paths 4-5; a fold picks from its training paths only,
+    # so paths 0-3 get candidate 0 (their training sets include 4-5) and paths 4-5 get candidate 1
+    loss = np.array([[2.0, 2, 2, 2, 0, 0], [1.0, 1, 1, 1, 9, 9]])
+    folds = path_folds(6, 3)  # tests {0,1}, {2,3}, {4,5}
+    np.testing.assert_array_equal(cross_validated_pick(loss, folds), [0, 0, 0, 0, 1, 1])
+
+
+def test_fading_memory_filter_is_the_discounted_least_squares_quadratic():
+    """Morrison's gains give, after the start-up has faded, the quadratic that minimises
+    sum_j theta^j (z_{n-j} - h_j X)^2 (checked against numpy lstsq on the last 400 samples)."""
+    from tvtrack.predictors import fading_memory_forecast
+
+    theta, T = 0.8, 600
+    z = np.cumsum(np.random.default_rng(4).standard_normal(T))
+    fc = fading_memory_forecast(z, theta, 1)
+    lags = np.arange(400.0)
+    H = np.stack([np.ones_like(lags), -lags, lags ** 2 / 2], axis=1)
+    w = np.sqrt(theta ** lags)
+    X = np.linalg.lstsq(H * w[:, None], z[::-1][:400] * w, rcond=None)[0]
+    np.testing.assert_allclose(fc[-1], X[0] + X[1] + X[2] / 2, rtol=1e-9)

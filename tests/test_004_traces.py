@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 
 from tvtrack.traces import DATA_DIR
-from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, gauss_markov_discrete,
-                                        generate_traces, optimal_wander_forecast, scaled_config,
+from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
+                                        generate_traces, one_frame_motion_rms, optimal_wander_forecast, scaled_config,
+                                        with_frame_jitter,
                                         wander_state_space)
 from tvtrack.traces import TraceSet, load_traces, save_traces, sha256_file
 
@@ -171,3 +172,41 @@ def test_optimal_wander_forecast_beats_the_paper_filter_and_last_value():
     rms = lambda fc: np.sqrt(np.nanmean(forecast_errors(fc, truth, 1)[..., 50:] ** 2))
     opt = rms(optimal_wander_forecast(z, cfg, np.asarray(tr.metadata["wander_rms_px"]), 0.05 ** 2, 1))
     assert opt < rms(growing_memory_forecast(z, 1, 2, 10)) and opt < rms(z)
+
+
+def test_one_frame_motion_matches_the_generated_increments():
+    cfg = BeamWanderConfig(n_paths=200, n_frames=300, rms_min_px=5.0, rms_max_px=5.0, drift_max_px_per_frame=0.0)
+    tr = generate_traces(cfg, 3)
+    d = np.diff(tr.centres_px, axis=1)
+    expected = float(one_frame_motion_rms(cfg, 5.0))
+    assert abs(np.sqrt(np.mean(d ** 2)) / expected - 1) < 0.03  # 120k increments, correlated over ~1 s
+    shares = [c["variance_share"] for c in component_table(cfg)]
+    np.testing.assert_allclose(sum(shares), 1.0)
+
+
+def test_frame_jitter_variant_is_white_with_the_stated_rms_and_leaves_the_data_alone():
+    tr = _small(n_paths=3, n_frames=800)
+    before = tr.centres_px.copy()
+    v = with_frame_jitter(tr, 2.0, seed=9)
+    np.testing.assert_array_equal(tr.centres_px, before)
+    j = v.centres_px - tr.centres_px
+    sd = np.asarray(v.metadata["variant"]["jitter_rms_px"])
+    cfg = BeamWanderConfig(n_paths=3, n_frames=800)
+    np.testing.assert_allclose(sd, 2.0 * one_frame_motion_rms(cfg, np.asarray(tr.metadata["wander_rms_px"])))
+    np.testing.assert_allclose(j.std(axis=1) / sd[:, None], 1.0, atol=0.1)  # 1600 draws per path: sd 1.8 %
+    r1 = np.mean(j[:, 1:] * j[:, :-1]) / np.mean(j * j)
+    assert abs(r1) < 0.03
+    np.testing.assert_array_equal(with_frame_jitter(tr, 2.0, seed=9).centres_px, v.centres_px)
+
+
+def test_aliased_corners_only_on_request_and_not_recorded_by_default():
+    with pytest.raises(ValueError, match="corner_frequencies_hz"):
+        BeamWanderConfig(corner_frequencies_hz=(0.5, 30.0))
+    cfg = BeamWanderConfig(n_paths=50, n_frames=400, corner_frequencies_hz=(30.0,), aliased_corners=True)
+    tr = generate_traces(cfg, 2)
+    d = tr.centres_px - tr.centres_px.mean(axis=1, keepdims=True)
+    rho = component_table(cfg)[0]["frame_correlation"]
+    assert rho < 0.01
+    assert abs(np.mean(d[:, 1:] * d[:, :-1]) / np.mean(d * d)) < 0.05  # nearly white at 25 frames/s
+    assert tr.metadata["config"]["aliased_corners"] is True
+    assert "aliased_corners" not in generate_traces(BeamWanderConfig(n_paths=1, n_frames=5), 0).metadata["config"]

@@ -41,10 +41,10 @@ from .filters.polynomial import (growing_memory_filter, growing_memory_gains, po
                                  predict_ahead, taylor_transition)
 
 __all__ = [
-    "forecast_errors", "growing_memory_forecast", "g1_floor_gains", "g1_floor_filter",
+    "forecast_errors", "growing_memory_forecast", "fading_memory_gains", "fading_memory_forecast", "g1_floor_gains", "g1_floor_filter",
     "sliding_regression_forecast", "spline_forecast", "lag_features", "fit_learned_predictor",
     "learned_forecast", "constant_acceleration_model", "kalman_forecast", "fit_constant_acceleration",
-    "path_folds", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
+    "path_folds", "cross_validated_pick", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
     "cross_validated_learned_forecast", "fit_constant_acceleration_folds", "constant_acceleration_forecast",
 ]
 
@@ -221,6 +221,40 @@ def _fixed_gain_forecast(z, x0, order: int, gain, steps: int) -> np.ndarray:
     return lfilter(b, a, z, axis=-1, zi=zi)[0]
 
 
+def fading_memory_gains(theta: float) -> np.ndarray:
+    """Steady-state gains of Morrison's 2nd-degree fading-memory polynomial filter, for the state
+    ``(x, x', x'')`` per frame: ``(1 - theta^3, 1.5 (1 - theta)^2 (1 + theta), (1 - theta)^3)``
+    (the g-h-k form ``g = 1 - theta^3``, ``h = 1.5 (1 - theta^2)(1 - theta)``, ``k = (1 - theta)^3 / 2``
+    with ``x'' += 2k e``; Morrison 1969, Brookner 1998 Table 7.2-2). It is the least-squares
+    quadratic fit with weights ``theta^j`` on the sample ``j`` frames back: a principled
+    counterpart of the paper's frozen-gain floor.
+    """
+    if not (0 < theta < 1):
+        raise ValueError(f"parameter 'theta' = {theta!r}; it must be in (0, 1)")
+    return np.array([1 - theta ** 3, 1.5 * (1 - theta) ** 2 * (1 + theta), (1 - theta) ** 3])
+
+
+def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
+    """Morrison's fading-memory quadratic filter (:func:`fading_memory_gains`) and its
+    ``steps``-ahead prediction. Starts from the exact quadratic through the first three samples
+    (eq. (4)), then runs with the fixed gains (the start-up transient decays as ``theta^n``).
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Complete measurements, px.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not np.all(np.isfinite(z)) or z.shape[-1] < 4:
+        raise ValueError("parameter 'z' must be complete (no NaN) with at least 4 samples")
+    head = growing_memory_filter(z[..., :3], 2, None)
+    out = np.empty(z.shape)
+    out[..., :3] = predict_ahead(head, steps)
+    out[..., 3:] = _fixed_gain_forecast(z[..., 3:], head[..., -1, :], 2, fading_memory_gains(theta), steps)
+    return out
+
+
 def g1_floor_gains(order: int, n_frames: int, g1_min: float) -> np.ndarray:
     """Gain table of the *variant* floor: where ``g_{N,1} < g1_min``, ``g_N`` is scaled by
     ``g1_min / g_{N,1}`` (all components by the same factor), so ``g_1`` never drops below
@@ -382,7 +416,7 @@ def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hi
     if kind == "mlp":
         model = make_pipeline(StandardScaler(), MLPRegressor(
             hidden_layer_sizes=(hidden_units,), activation="tanh", solver="adam", alpha=1e-4,
-            learning_rate_init=1e-3, max_iter=200, early_stopping=True, n_iter_no_change=10,
+            learning_rate_init=1e-3, max_iter=2000, early_stopping=True, n_iter_no_change=10,
             random_state=seed))
     else:
         model = make_pipeline(StandardScaler(), Nystroem(kernel="rbf", gamma=1.0 / n_lags,
@@ -411,6 +445,33 @@ def path_folds(n_paths: int, n_folds: int) -> list[tuple[np.ndarray, np.ndarray]
         raise ValueError(f"parameter 'n_folds' = {n_folds!r}; it must be in [2, n_paths={n_paths}]")
     idx = np.arange(n_paths)
     return [(np.setdiff1d(idx, test), test) for test in np.array_split(idx, n_folds)]
+
+
+def cross_validated_pick(per_path_loss, folds) -> np.ndarray:
+    """Tuning by cross-validation over paths: for each fold, the candidate with the smallest mean
+    loss over the fold's *training* paths is used on its test paths.
+
+    Parameters
+    ----------
+    per_path_loss : ndarray, shape (C, P)
+        Loss (e.g. mean squared prediction error) of each of ``C`` candidate settings on each path.
+    folds : list of (train, test) index arrays
+        :func:`path_folds`.
+
+    Returns
+    -------
+    ndarray of int, shape (P,)
+        Index of the candidate applied to each path (chosen without that path).
+    """
+    loss = np.asarray(per_path_loss, dtype=float)
+    if loss.ndim != 2:
+        raise ValueError(f"parameter 'per_path_loss' has shape {loss.shape}; it must be (candidates, paths)")
+    pick = np.full(loss.shape[1], -1)
+    for train, test in folds:
+        pick[test] = int(np.argmin(loss[:, train].mean(axis=1)))
+    if np.any(pick < 0):
+        raise ValueError("the folds do not cover every path")
+    return pick
 
 
 def cross_validated_learned_forecast(kind: str, z, folds, n_lags: int, steps: int, rng: np.random.Generator,

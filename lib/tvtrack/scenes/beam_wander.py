@@ -37,12 +37,14 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import block_diag, expm
 
+from ..estimate.spot_centre import windowed_centroid
 from ..measure import centroid
 from ..predictors import kalman_forecast
 from ..render import gate_origin, gaussian_spot, sensor_readout
 from ..traces import TraceSet, save_traces, sha256_file
 
-__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "gauss_markov_discrete", "generate_traces",
+__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "component_table", "one_frame_motion_rms",
+           "with_frame_jitter", "gauss_markov_discrete", "generate_traces",
            "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
 
 
@@ -73,6 +75,11 @@ class BeamWanderConfig:
         Largest drift speed, px/frame (default 0.02, i.e. <= 20 px over 1000 frames).
     scintillation_sigma_ln : float
         Standard deviation of ln(total intensity) (default 0.3, the card's).
+    aliased_corners : bool
+        Allow corners at or above the Nyquist frequency ``frame_rate_hz / 2`` (default False). The
+        exact discretisation holds for any corner; such a component is nearly uncorrelated from
+        frame to frame (aliased fast tilt). Recorded in the metadata only when True, so data sets
+        made before the option existed regenerate byte for byte.
     """
 
     n_paths: int = 15
@@ -85,6 +92,7 @@ class BeamWanderConfig:
     rms_max_px: float = 8.0
     drift_max_px_per_frame: float = 0.02
     scintillation_sigma_ln: float = 0.3
+    aliased_corners: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "corner_frequencies_hz", tuple(float(f) for f in self.corner_frequencies_hz))
@@ -94,9 +102,9 @@ class BeamWanderConfig:
             ("frame_rate_hz", self.frame_rate_hz, self.frame_rate_hz > 0, "> 0"),
             ("image_size_px", self.image_size_px, self.image_size_px >= 8, ">= 8"),
             ("corner_frequencies_hz", self.corner_frequencies_hz,
-             len(self.corner_frequencies_hz) >= 1 and all(0 < f < self.frame_rate_hz / 2
+             len(self.corner_frequencies_hz) >= 1 and all(0 < f and (self.aliased_corners or f < self.frame_rate_hz / 2)
                                                           for f in self.corner_frequencies_hz),
-             "a non-empty list of values in (0, frame_rate_hz/2)"),
+             "a non-empty list of values in (0, frame_rate_hz/2) (any value > 0 with aliased_corners=True)"),
             ("spectral_index", self.spectral_index, -2.0 <= self.spectral_index <= 4.0, "in [-2, 4]"),
             ("rms_min_px", self.rms_min_px, 0 <= self.rms_min_px <= self.rms_max_px, "in [0, rms_max_px]"),
             ("rms_max_px", self.rms_max_px, self.rms_max_px <= self.image_size_px / 6,
@@ -135,6 +143,72 @@ def component_sigmas(config: BeamWanderConfig, rms_px) -> np.ndarray:
     f = np.asarray(config.corner_frequencies_hz)
     w = f ** (1.0 - config.spectral_index)
     return np.asarray(rms_px, dtype=float)[..., None] * np.sqrt(w / w.sum())
+
+
+def component_table(config: BeamWanderConfig) -> list[dict]:
+    """Spectrum and variance share of each wander component, for data sheets.
+
+    Component ``k`` has the one-sided PSD ``S_k(f) = (4 sigma_k^2 / (pi f_k)) / (1 + (f/f_k)^2)^2``
+    (px^2/Hz; it integrates to ``sigma_k^2``) and the autocorrelation
+    ``rho_k(tau) = (1 + w_k tau) exp(-w_k tau)``.
+
+    Returns
+    -------
+    list of dict
+        Per component: ``corner_hz``, ``variance_share`` (of the total wander variance),
+        ``frame_correlation`` (``rho_k`` at one frame).
+    """
+    f = np.asarray(config.corner_frequencies_hz)
+    share = component_sigmas(config, 1.0) ** 2
+    wt = 2 * np.pi * f / config.frame_rate_hz
+    rho = (1 + wt) * np.exp(-wt)
+    return [{"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
+            for fk, sk, rk in zip(f, share, rho)]
+
+
+def one_frame_motion_rms(config: BeamWanderConfig, rms_px) -> np.ndarray:
+    """RMS per axis of the wander's change over one frame, ``sqrt(sum_k 2 sigma_k^2 (1 - rho_k(dt)))``
+    (stationary part; the drift adds at most ``drift_max_px_per_frame``), px.
+
+    Parameters
+    ----------
+    rms_px : array_like, shape (...)
+        Total wander RMS per axis.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    sig = component_sigmas(config, rms_px)
+    rho = np.array([c["frame_correlation"] for c in component_table(config)])
+    return np.sqrt(np.sum(2 * sig ** 2 * (1 - rho), axis=-1))
+
+
+def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> TraceSet:
+    """A named variant of a trace set: the centres plus frame-uncorrelated jitter.
+
+    Real tilt at 25 frames/s has content far above the frame rate (frozen-flow tilt time scales of
+    tens to hundreds of Hz), which the frames sample as jitter uncorrelated from frame to frame;
+    speckle moves the centroid the same way. Per path and axis the jitter is white Gaussian with
+    RMS ``jitter_over_step`` times the path's one-frame motion RMS (:func:`one_frame_motion_rms`),
+    drawn from ``numpy.random.default_rng(seed)``.
+
+    Returns
+    -------
+    TraceSet
+        Same intensity; metadata adds ``variant`` = {``frame_jitter_over_step``, ``jitter_seed``,
+        ``jitter_rms_px`` (n_paths,)}.
+    """
+    if not (jitter_over_step >= 0):
+        raise ValueError(f"parameter 'jitter_over_step' = {jitter_over_step!r}; it must be >= 0")
+    meta = dict(traces.metadata)
+    cfg = BeamWanderConfig(**{**meta["config"], "corner_frequencies_hz": tuple(meta["config"]["corner_frequencies_hz"])})
+    step = one_frame_motion_rms(cfg, np.asarray(meta["wander_rms_px"]))
+    sd = jitter_over_step * step
+    jitter = sd[:, None, None] * np.random.default_rng(seed).standard_normal(traces.centres_px.shape)
+    meta["variant"] = {"frame_jitter_over_step": float(jitter_over_step), "jitter_seed": int(seed),
+                       "jitter_rms_px": sd.tolist()}
+    return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
 
 
 def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -230,6 +304,8 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     intensity = np.exp(rng.normal(-0.5 * sl * sl, sl, size=(P, T)))
     cfg = asdict(c)
     cfg["corner_frequencies_hz"] = list(c.corner_frequencies_hz)
+    if not c.aliased_corners:
+        del cfg["aliased_corners"]
     metadata = {
         "generator": "tvtrack.scenes.beam_wander.generate_traces",
         "config": cfg,
@@ -300,8 +376,9 @@ def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float
         Complete measured series of ``P`` paths, ``A`` axes each, px.
     rms_px : array_like, shape (P,)
         Wander RMS of each path, px.
-    meas_var : float
-        Measurement noise variance per axis, px^2.
+    meas_var : float or array_like, shape (P,)
+        White measurement noise variance per axis, px^2 (per path: e.g. centroid noise plus a
+        path's frame jitter, :func:`with_frame_jitter`).
 
     Returns
     -------
@@ -310,7 +387,8 @@ def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float
     F, Q, H, P0 = wander_state_space(config, rms_px)
     x0 = np.zeros(F.shape[0])
     x0[-2] = (config.image_size_px - 1) / 2.0
-    return kalman_forecast(z, F, Q[:, None], H, np.array([[meas_var]]), x0, P0[:, None], steps)[0]
+    R = np.broadcast_to(np.asarray(meas_var, dtype=float), (Q.shape[0],))[:, None, None, None]
+    return kalman_forecast(z, F, Q[:, None], H, R, x0, P0[:, None], steps)[0]
 
 
 @dataclass(frozen=True)
@@ -335,6 +413,16 @@ class SpotCamera:
         Side of the square measurement gate, px, odd (default 31, about +-4 sigma).
     threshold_sigma : float
         Centroid threshold in robust border RMS above the border median (default 3).
+    centroid_mode : {"windowed", "gate"}
+        ``"windowed"`` (default): :func:`tvtrack.estimate.spot_centre.windowed_centroid`, a soft
+        window of ``centroid_window_px`` re-centred on the estimate (no pull toward the gate
+        centre); ``"gate"``: the thresholded centroid over the whole gate
+        (:func:`tvtrack.measure.centroid`), whose noise pixels pull the centre toward the previous
+        measurement at high read noise (kept to show that bias).
+    centroid_window_px : float or None
+        Side of the windowed centroid's window, px; ``None`` (default) = 2/3 of the gate (21 px in
+        the 31 px gate: about +-2.6 spot sigma, and the gate's remaining +-5 px leave room for the
+        one-frame motion).
     """
 
     spot_sigma_px: float = 4.0
@@ -345,9 +433,15 @@ class SpotCamera:
     bit_depth: int = 8
     gate_size_px: int = 31
     threshold_sigma: float = 3.0
+    centroid_mode: str = "windowed"
+    centroid_window_px: float | None = None
 
     def __post_init__(self):
         checks = [
+            ("centroid_mode", self.centroid_mode, self.centroid_mode in ("windowed", "gate"), "'windowed' or 'gate'"),
+            ("centroid_window_px", self.centroid_window_px,
+             self.centroid_window_px is None or 0 < self.centroid_window_px <= self.gate_size_px,
+             f"None or in (0, gate_size_px = {self.gate_size_px}]"),
             ("spot_sigma_px", self.spot_sigma_px, 0 < self.spot_sigma_px <= 32, "in (0, 32]"),
             ("peak_dn", self.peak_dn, self.peak_dn > 0, "> 0"),
             ("background_dn", self.background_dn, self.background_dn >= 0, ">= 0"),
@@ -361,6 +455,11 @@ class SpotCamera:
         for name, value, ok, allowed in checks:
             if not ok:
                 raise ValueError(f"parameter {name!r} = {value!r}; it must be {allowed}")
+
+    @property
+    def window_px(self) -> float:
+        """Side of the windowed centroid's window, px."""
+        return 2.0 * self.gate_size_px / 3.0 if self.centroid_window_px is None else float(self.centroid_window_px)
 
     @property
     def flux_e(self) -> float:
@@ -394,8 +493,8 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
     The gate of frame ``n`` is centred on the centre measured in frame ``n-1`` (frame 0: on the
     true centre, i.e. after acquisition) and kept inside the sensor. Only the gate's pixels
     are rendered (pixel-integrated Gaussian), read out with Poisson + read noise, quantised to
-    ``bit_depth``, and measured with :func:`tvtrack.measure.centroid` (border-median
-    background, ``threshold_sigma`` robust RMS threshold).
+    ``bit_depth``, and measured by ``camera.centroid_mode`` (border-median background,
+    ``threshold_sigma`` robust RMS threshold; by default a window re-centred on the estimate).
 
     Parameters
     ----------
@@ -431,7 +530,10 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
         img = sensor_readout(signal, rng, background=camera.background_dn * camera.gain_e_per_dn,
                              photon_noise=True, read_noise=camera.read_noise_dn * camera.gain_e_per_dn,
                              gain=camera.gain_e_per_dn, bit_depth=camera.bit_depth)
-        m = centroid(img, o, background="border", threshold_sigma=camera.threshold_sigma)
+        if camera.centroid_mode == "windowed":
+            m = windowed_centroid(img, o, window_px=camera.window_px, threshold_sigma=camera.threshold_sigma)
+        else:
+            m = centroid(img, o, background="border", threshold_sigma=camera.threshold_sigma)
         xy[..., t, :] = m.xy
         origin[..., t, :] = o
         if keep is not None:

@@ -1,0 +1,205 @@
+"""The prediction comparison of notebook 004, with every method tuned the same way.
+
+Every method sees the same measured series and predicts ``steps`` frames ahead; each method's
+free setting is chosen by cross-validation over paths (:func:`tvtrack.predictors.cross_validated_pick`:
+the setting with the smallest error on the *other* paths of the fold), never on the paths it is
+scored on:
+
+- the paper's growing-memory filter: its floor ``N_f`` from a grid;
+- sliding regression (degree 1, 2) and the cubic spline: their window ``L`` from a grid;
+- finite differences (2 and 3 points): nothing to tune;
+- MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold;
+- constant-acceleration Kalman filter: its two noise levels by maximum likelihood on the
+  training paths of each fold;
+- Morrison's fading-memory quadratic filter (a principled floor, not a baseline of the paper):
+  its discount ``theta`` from a grid.
+
+The "fixed" reading uses ``N_f`` = ``fixed_floor`` and ``L`` = ``fixed_window`` for all paths,
+as the first version of the notebook did.
+
+Scores are per-trial, per-path mean squared errors of the ``steps``-ahead prediction against a
+reference (the next measured centre, or the truth), over frames ``>= start`` and both axes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import predictors as pr
+
+__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
+           "fit_learned_folds", "apply_learned_folds", "radial_error_summary"]
+
+#: The paper's filter.
+PAPER = "growing memory (paper)"
+#: Baselines the paper names whose errors it quotes as 2-10 px (finite differences, splines, regression).
+CLASSICAL = ("finite differences, 2 points", "finite differences, 3 points", "cubic spline",
+             "linear regression deg 1", "linear regression deg 2")
+#: Principled counterpart of the floor (not a baseline of the paper): Morrison's fading-memory filter.
+FADING = "fading memory (Morrison)"
+#: Baselines fitted to data: back-propagation MLP and RBF network (the paper names both, 2-3 and
+#: 2-4 px), and a constant-acceleration Kalman filter with ML noise levels (an added comparator).
+FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise")
+
+
+def per_trial_path_mse(forecast, reference, steps: int, start: int) -> np.ndarray:
+    """Mean squared ``steps``-ahead error per trial and path, px^2.
+
+    Parameters
+    ----------
+    forecast : ndarray, shape (trials, paths, axes, T)
+    reference : ndarray, broadcastable to ``forecast``; NaN (lost frames) are skipped
+
+    Returns
+    -------
+    ndarray, shape (trials, paths)
+    """
+    e = pr.forecast_errors(forecast, reference, steps)[..., start:]
+    return np.nanmean(e.reshape(e.shape[0], e.shape[1], -1) ** 2, axis=-1)
+
+
+def radial_error_summary(forecast, reference, steps: int, start: int) -> dict:
+    """Radial ``steps``-ahead error ``|e| = sqrt(e_x^2 + e_y^2)`` over frames ``>= start``, px.
+
+    Parameters
+    ----------
+    forecast, reference : ndarray, shape (trials, paths, 2, T) (reference broadcastable)
+
+    Returns
+    -------
+    dict
+        ``rms`` (RMS over all trials, paths, frames), ``p95`` (95th percentile), ``max``, and
+        ``per_path_rms`` (paths,); NaN (lost frames) skipped.
+    """
+    e = pr.forecast_errors(forecast, reference, steps)[..., start:]
+    r = np.hypot(e[:, :, 0], e[:, :, 1])  # (trials, paths, T)
+    return {"rms": float(np.sqrt(np.nanmean(r ** 2))), "p95": float(np.nanquantile(r, 0.95)),
+            "max": float(np.nanmax(r)), "per_path_rms": np.sqrt(np.nanmean(r ** 2, axis=(0, 2)))}
+
+
+@dataclass(frozen=True)
+class ComparisonSetup:
+    """How the comparison is run (units: frames; see the module text)."""
+
+    steps: int = 1
+    start: int = 20
+    order: int = 2
+    floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
+    window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
+    theta_grid: tuple = (0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
+    fixed_floor: int = 10
+    fixed_window: int = 10
+    learned_lags: int = 10
+    learned_kw: dict = field(default_factory=dict)
+    jerk_grid: tuple = tuple(np.logspace(-7, 1, 17))
+    meas_var_grid: tuple = tuple(np.logspace(-4, 0, 5))
+
+
+@dataclass
+class Comparison:
+    """Result of :func:`compare_methods`.
+
+    Attributes
+    ----------
+    mse : dict name -> ndarray (trials, paths)
+        Cross-validated reading (every method tuned on the other paths), px^2.
+    mse_fixed : dict name -> ndarray (trials, paths)
+        Fixed reading (``N_f`` = ``fixed_floor``, ``L`` = ``fixed_window``) for the tuned methods.
+    chosen : dict name -> ndarray (paths,)
+        The setting each tuned method used on each path (``N_f`` or ``L``).
+    forecasts : dict name -> ndarray like ``z``
+        Cross-validated forecasts (for figures).
+    learned_models : dict kind -> list of fitted models per fold
+    """
+
+    mse: dict
+    mse_fixed: dict
+    chosen: dict
+    forecasts: dict
+    learned_models: dict
+
+
+def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup):
+    """Forecast with every candidate setting, pick per fold on the training paths (pooled
+    trials), and assemble the cross-validated forecast and per-trial-path MSE."""
+    fcs = [make(c) for c in candidates]
+    mse = np.stack([per_trial_path_mse(f, ref, s.steps, s.start) for f in fcs])  # (C, trials, P)
+    pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+    P = z.shape[1]
+    fc = np.stack([fcs[pick[p]][:, p] for p in range(P)], axis=1)
+    return fc, mse[pick, :, np.arange(P)].T, np.asarray(candidates)[pick], fcs, mse
+
+
+def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Generator) -> list:
+    """One learned predictor per fold, trained on the first trial of its training paths."""
+    return [pr.fit_learned_predictor(kind, z[0, train], s.learned_lags, s.steps, seed=int(rng.integers(2**31)),
+                                     **s.learned_kw) for train, _ in folds]
+
+
+def apply_learned_folds(models, z, folds) -> np.ndarray:
+    """Forecasts of each fold's model on its test paths (all trials)."""
+    out = np.full(z.shape, np.nan)
+    for model, (_, test) in zip(models, folds):
+        out[:, test] = pr.learned_forecast(model, z[:, test])
+    return out
+
+
+def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.Generator,
+                    learned_models: dict | None = None, learned: bool = True) -> Comparison:
+    """Every method on the same series, tuned by cross-validation over paths.
+
+    Parameters
+    ----------
+    z : ndarray, shape (trials, paths, axes, T)
+        Complete measured series (lost frames held), px.
+    reference : ndarray, broadcastable to ``z``
+        What the predictions are scored against (measured centres with NaN for lost frames, or truth).
+    folds : list of (train, test)
+        :func:`tvtrack.predictors.path_folds`.
+    rng : numpy.random.Generator
+        Seeds of the learned models.
+    learned_models : dict, optional
+        Pre-trained ``{"mlp": [...], "rbf": [...]}`` per fold to apply instead of training here
+        (train/test mismatch: models trained in another regime).
+    learned : bool
+        Include the MLP and RBF network.
+
+    Returns
+    -------
+    Comparison
+    """
+    s = setup
+    m = s.steps
+    mse, fixed, chosen, fcs = {}, {}, {}, {}
+    fc, mse[PAPER], chosen[PAPER], all_fc, all_mse = _tuned(
+        s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s)
+    fcs[PAPER] = fc
+    fixed[PAPER] = per_trial_path_mse(pr.growing_memory_forecast(z, m, s.order, s.fixed_floor), reference, m, s.start)
+    fcs["finite differences, 2 points"] = pr.sliding_regression_forecast(z, 2, 1, m)
+    fcs["finite differences, 3 points"] = pr.sliding_regression_forecast(z, 3, 2, m)
+    for name in ("finite differences, 2 points", "finite differences, 3 points"):
+        mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)
+    windowed = {"cubic spline": lambda L: pr.spline_forecast(z, L, m),
+                "linear regression deg 1": lambda L: pr.sliding_regression_forecast(z, L, 1, m),
+                "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m)}
+    for name, make in windowed.items():
+        fcs[name], mse[name], chosen[name], _, _ = _tuned(s.window_grid, make, z, reference, folds, s)
+        fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
+    fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
+        s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s)
+    fixed[FADING] = mse[FADING]
+    models = {}
+    if learned:
+        for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):
+            models[kind] = (learned_models[kind] if learned_models is not None
+                            else fit_learned_folds(kind, z, folds, s, rng))
+            fcs[name] = apply_learned_folds(models[kind], z, folds)
+            mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)
+    fits = pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid)
+    fcs["CA Kalman, ML noise"] = pr.constant_acceleration_forecast(z, fits, folds, m)
+    mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(fcs["CA Kalman, ML noise"],
+                                                                                   reference, m, s.start)
+    chosen["CA Kalman, ML noise"] = np.array(fits)
+    return Comparison(mse, fixed, chosen, fcs, models)
