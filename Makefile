@@ -15,8 +15,9 @@ $(STAMP): environment.txt pyproject.toml
 kernel: $(STAMP)
 	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null
 
+# all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
 reproduce: $(STAMP) kernel
-	$(BIN)/python -m tvtrack reproduce
+	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE))
 
 report: $(STAMP)
 	$(BIN)/python -m tvtrack report

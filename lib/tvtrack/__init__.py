@@ -1,15 +1,15 @@
 """tvtrack: a small library for reproducing papers on optical / television target tracking.
 
-Modules are named for what they do:
+Two layers. The science never imports the machinery (``tests/test_layout.py`` checks it):
 
-- :mod:`tvtrack.parameters`  validating a notebook's parameters before any work starts
-- :mod:`tvtrack.montecarlo`  seeded generators and Monte Carlo summaries (trials on the leading axis)
-- :mod:`tvtrack.results`     the ``results.json`` every run writes (metrics, claims with verdicts)
-- :mod:`tvtrack.record`      Rerun recordings (images, gates, truth, estimates, series, blueprints)
-- :mod:`tvtrack.render`      pixel-integrated scene rendering and sensor read-out
-- :mod:`tvtrack.measure`     gates and measurements inside them (centroids)
-- :mod:`tvtrack.filters`     batched Kalman and polynomial (growing-memory) filters
-- :mod:`tvtrack.pipeline.runner`, :mod:`tvtrack.pipeline.sweep`, :mod:`tvtrack.pipeline.report`  running notebooks and sweeps
+- the science: :mod:`tvtrack.scenes`, :mod:`tvtrack.render` and :mod:`tvtrack.sensors` (what the camera
+  sees), :mod:`tvtrack.measure` (gates and centroids), :mod:`tvtrack.filters` (Kalman, polynomial and
+  tracking-loop filters), :mod:`tvtrack.detect`, :mod:`tvtrack.estimate`, :mod:`tvtrack.bounds`,
+  :mod:`tvtrack.montecarlo` (seeded generators, intervals), :mod:`tvtrack.verdicts` (acceptance rules
+  and robustness records), :mod:`tvtrack.results` (``results.json``) and :mod:`tvtrack.record`
+  (Rerun recordings), with the paper-specific modules beside them;
+- the machinery: :mod:`tvtrack.pipeline` runs notebooks with papermill (runner, preflight, sweep,
+  reproduce, report, site, viewer, cli).
 """
 
 __version__ = "0.1.0"

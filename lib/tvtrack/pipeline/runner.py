@@ -93,6 +93,11 @@ class RunOutcome:
         return self.status == "ok"
 
 
+# The kernel's own log (e.g. "Kernel is running over TCP without encryption") is not the user's business;
+# errors still reach stderr, and the notebook's outputs and exceptions are in the executed copy.
+KERNEL_ARGUMENTS = ["--IPKernelApp.log_level=ERROR"]
+
+
 def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str, Any] | None = None,
                  profile: str | None = None, *, kernel_name: str | None = None,
                  timeout_s: float | None = None, progress: bool = False,
@@ -137,7 +142,7 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
             str(nb), str(tmp / "notebook.ipynb"), parameters=params, cwd=str(tmp),
             kernel_name=kernel_name or KERNEL_NAME, progress_bar=progress,
             execution_timeout=timeout_s, log_output=False,
-            start_timeout=KERNEL_START_TIMEOUT_S,
+            start_timeout=KERNEL_START_TIMEOUT_S, extra_arguments=KERNEL_ARGUMENTS,
         )
         status = "ok"
         if not (tmp / "results.json").is_file():
