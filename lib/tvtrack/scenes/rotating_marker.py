@@ -29,6 +29,8 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
+from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
+    run_closed_loop
 from ..render import box_spot, disc_area, disc_spot
 
 __all__ = [
@@ -406,6 +408,20 @@ def _tile(a, n: int):
     return np.tile(a, (n // a.shape[0],) + (1,) * (a.ndim - 1))
 
 
+def _generator_blocks(rng, n: int, n_common: int | None):
+    """Split ``n`` trials into one consecutive block per generator (``rng`` one or a list), and check
+    that ``n_common`` (trials sharing common random numbers; default: the whole block) divides a block.
+
+    Returns ``(generators, trials per generator, n_common)``."""
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+                         f"{len(rngs)} generators)")
+    return rngs, n_block, n_common
+
+
 def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(256, 256), spot: str = "disc",
                 diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
                 background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
@@ -425,12 +441,7 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     RotatingMarkerScene
     """
     n = truth.xr.shape[0]
-    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
-    n_block = n // len(rngs)
-    n_common = n_block if n_common is None else int(n_common)
-    if n % len(rngs) or n_common < 1 or n_block % n_common:
-        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
-                         f"{len(rngs)} generators)")
+    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     q, residual = [], []
     for j, g in enumerate(rngs):
         first = j * n_block
@@ -572,15 +583,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     scene : RotatingMarkerScene
     history : tvtrack.filters.loops.TrackHistory
     """
-    from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
-        run_closed_loop
-
-    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
-    n_block = n // len(rngs)
-    n_common = n_block if n_common is None else int(n_common)
-    if n % len(rngs) or n_common < 1 or n_block % n_common:
-        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
-                         f"{len(rngs)} generators)")
+    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
     streams = [g.spawn(4) for g in rngs]                                       # truth, decoy, scene, noise
