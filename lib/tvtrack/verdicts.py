@@ -23,6 +23,7 @@ independent seeds; :func:`robustness_label` derives ``robust``, ``depends`` or `
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
@@ -73,21 +74,22 @@ def _show(e: Estimate, unit: str = "") -> str:
     return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}"
 
 
-class Rule:
+class Rule(ABC):
     """An acceptance rule: renders its text and decides a verdict from a measured value."""
 
     kind = "rule"
 
+    @abstractmethod
     def text(self) -> str:
-        raise NotImplementedError  # every concrete rule defines its text
+        """The acceptance criterion in words, with its numbers."""
 
     def decide(self, measured: Any) -> str:
         """One of :data:`VERDICTS`."""
         return self.explain(measured)[0]
 
+    @abstractmethod
     def explain(self, measured: Any) -> tuple[str, str]:
         """``(verdict, one sentence saying why, with the numbers)``."""
-        raise NotImplementedError  # every concrete rule defines its decision
 
     def params(self) -> dict:
         return {}
