@@ -155,3 +155,70 @@ def test_restart_c_is_a_kalman_reset_from_the_track2_covariance():
         np.testing.assert_allclose(out.x[:, t], x, rtol=1e-9, atol=1e-7)
         np.testing.assert_allclose(out.gains[0, t], K, rtol=1e-9, atol=1e-12)
     assert not kalman                                                   # reached the bound in the run
+
+
+def _per_trial_reference(z, vis, thr, kb2, kb3, n, restart):
+    """The mode logic written the straightforward way: one sequence at a time, filterpy's g-h-k
+    filter (its ``k`` is kappa3/2) with the gains overridden per update, the detector statistic
+    summed afresh over both windows at every test, restart A (k = 3, a = 0) or B (window LS fit)."""
+    from filterpy.gh import GHKFilter
+
+    T = z.size
+    G2, G3 = gain_schedule(1, kb2), gain_schedule(2, kb3)
+    flt = GHKFilter(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0)
+    k, in3, since, had_gap, det = 0, False, 0, False, -1
+    xs, gains = np.empty((T, 3)), np.zeros((T, 3))
+    S, mode = np.full(T, np.nan), np.zeros(T, int)
+    for t in range(T):
+        if vis[t]:
+            k += 1
+            since += 1
+            gains[t] = G3[min(k, kb3) - 1] if in3 else np.r_[G2[min(k, kb2) - 1], 0.0]
+            flt.update(z[t], g=gains[t, 0], h=gains[t, 1], k=gains[t, 2] / 2)
+            mode[t] = TRACK3 if in3 else TRACK2
+        else:
+            since, had_gap = 0, True
+            flt.update(0.0, g=0.0, h=0.0, k=0.0)
+        xs[t] = flt.x, flt.dx, flt.ddx
+        if not in3 and vis[t] and k >= kb2 + 2 * n and (since >= 2 * n or not had_gap):
+            S[t] = xs[t - 2 * n + 1:t - n + 1, 1].sum() - xs[t - n + 1:t + 1, 1].sum()
+            if abs(S[t]) > thr[min(k, thr.size) - 1]:
+                det, in3, mode[t] = t, True, TRACK3                  # the switch frame counts as TRACK3
+                if restart == "A":
+                    k, flt.ddx = 3, 0.0
+                else:
+                    H = polynomial_observation_row(2, np.arange(n - 1, -1, -1))
+                    k, (flt.x, flt.dx, flt.ddx) = n, np.linalg.lstsq(H, z[t - n + 1:t + 1], rcond=None)[0]
+                xs[t] = flt.x, flt.dx, flt.ddx
+    return xs, S, gains, mode, det
+
+
+@pytest.mark.parametrize("restart", ["A", "B"])
+def test_batched_run_equals_the_per_trial_filterpy_loop(restart):
+    """The batched, in-place implementation (frame-by-frame output buffers, counters shared while
+    the trials run in lockstep) against the straightforward per-trial loop, with per-trial gaps,
+    trials without a manoeuvre and the exact time-varying threshold."""
+    kb2, kb3, n, n_trials = 20, 40, 10, 12
+    _, z = _z(n_trials, seed=13, onset=150)
+    z[::3] = 10.0 * np.arange(T) + np.random.default_rng(14).standard_normal((4, T))  # no manoeuvre
+    vis = np.ones((n_trials, T), bool)
+    for i in range(n_trials):
+        vis[i, 190 + 7 * i:230 + 9 * i] = False                                                 # gaps differ per trial
+    z = np.where(vis, z, np.nan)
+    c = threshold_from_std(1e-2, scheduled_statistic_std(gain_schedule(1, kb2, T), n, 1.0))
+    thr = np.where(np.isfinite(c), c, np.inf)
+    cfg = TrackModeConfig(k_bound2=kb2, k_bound3=kb3, window=n, threshold=thr, restart=restart)
+    out = run_track_modes(z.reshape(3, 4, T), vis.reshape(3, 4, T), cfg, 1.0, covariance=False)
+    refs = [_per_trial_reference(z[i], vis[i], thr, kb2, kb3, n, restart) for i in range(n_trials)]
+    xs, S, gains, mode, det = (np.stack(r) for r in zip(*refs))
+    assert 0 < np.sum(det >= 0) < n_trials                                                      # both kinds of trial
+    np.testing.assert_array_equal(out.detection_frame.reshape(-1), det)
+    np.testing.assert_array_equal(out.mode.reshape(n_trials, T), mode)
+    np.testing.assert_array_equal(out.gains.reshape(n_trials, T, 3), gains)
+    x = out.x.reshape(n_trials, T, 3)
+    for i in range(3):                        # 1e-12 of each component's scale (a's is set by its restart)
+        np.testing.assert_allclose(x[..., i], xs[..., i], rtol=0, atol=1e-12 * np.abs(xs[..., i]).max())
+    # running window sums vs sums taken afresh: agreement to 1e-12 of the sums' magnitude
+    np.testing.assert_array_equal(np.isnan(out.statistic.reshape(n_trials, T)), np.isnan(S))
+    np.testing.assert_allclose(out.statistic.reshape(n_trials, T), S, rtol=0,
+                               atol=1e-12 * n * np.abs(xs[..., 1]).max(), equal_nan=True)

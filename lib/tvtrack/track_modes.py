@@ -186,7 +186,8 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     forced = cfg.force_switch_k is not None
     detect3 = bool(cfg.detect_in_track3)
 
-    # time-major, flat batch: every per-frame operation works on contiguous (B,) arrays
+    # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
+    # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
     B = int(np.prod(batch, dtype=np.int64))
     zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))                        # (T, B)
     visible = np.asarray(visible, dtype=bool)
@@ -194,6 +195,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
         vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
     else:
         vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
+    hidden = ~vis
     # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
     # row = in3 * kmax + min(k, bound) - 1
     kmax = max(cfg.k_bound2, cfg.k_bound3)
@@ -206,8 +208,13 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     F = taylor_transition(2)
     h = observation_row(2)
     all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
+    # thresholds indexed directly by the count k (entry k-1 of the array, its last entry beyond it)
+    counts = np.maximum(np.arange(T + max(cfg.restart_k, n) + 1), 1) - 1
+    thr_by_k = thr[np.minimum(counts, thr.size - 1)]
+    thr3_by_k = thr3[np.minimum(counts, thr3.size - 1)]
 
     x0, x1, x2 = np.zeros(B), np.zeros(B), np.zeros(B)
+    innov, tmp = np.empty(B), np.empty(B)
     P = np.zeros((B, 3, 3))
     # per-trial counters start as scalars shared by all trials (lockstep) and become arrays
     # at the first frame where trials differ (partial visibility, a detection)
@@ -215,6 +222,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     row = np.int64(-1)                              # gain-table row = in3 kmax + min(k, bound) - 1
     cap = np.int64(cfg.k_bound2 - 1)
     in3 = np.int64(0)                               # 0 = TRACK2, 1 = TRACK3
+    any3 = False                                    # some trial is in TRACK3
     kalman = np.zeros(B, dtype=bool)                # restart C: Kalman gains until kappa1 reaches the bound
     had_gap = False
     since_visible = np.int64(0)
@@ -225,18 +233,20 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     out_x = np.empty((T, 3, B))
     out_var = np.full((T, 3, B), np.nan) if covariance else None
     out_gate = np.full((T, B), np.nan) if covariance else None
-    out_row = np.empty((T, B), dtype=np.int64)      # gain-table row in force
-    out_kalman_K = {}                               # frame -> (mask, gains (3, B)) where restart C's gains ruled
-    out_in3 = np.empty((T, B), dtype=np.int8)
-    out_S = np.empty((T, B))                        # masked by out_test at the end
-    out_c = np.empty((T, B))
-    out_test = np.zeros((T, B), dtype=bool)
+    out_K = np.zeros((T, 3, B))                     # gains used (0 while lost)
+    out_mode = np.zeros((T, B), dtype=np.int8)      # COAST unless written
+    out_S = np.full((T, B), np.nan)                 # NaN unless tested
+    out_c = np.full((T, B), np.nan)
 
     for t in range(T):
         seen = vis[t]
         if all_seen[t]:
             k += 1
-            row = np.minimum(row + 1, cap)
+            if isinstance(row, np.ndarray):
+                row += 1
+                np.minimum(row, cap, out=row)
+            else:
+                row = np.minimum(row + 1, cap)
             if had_gap:
                 since_visible += 1
         elif none_seen[t]:
@@ -246,10 +256,9 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
             if not had_gap:
                 since_visible = k + 0
             had_gap = True
-            k += seen
+            k = k + seen
             row = np.minimum(row + seen, cap)
             since_visible = np.where(seen, since_visible + 1, 0)
-        out_row[t] = row
         K0, K1, K2 = cols[0].take(row), cols[1].take(row), cols[2].take(row)
         if covariance:
             # noise-driven covariance: predict, then correct with the gains in force (card §4.5)
@@ -261,26 +270,32 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 reached = kalman & seen & (Kk[:, 0] <= kappa1_bound3)
                 kalman = kalman & ~reached
                 K0, K1, K2 = (np.where(kalman, Kk[:, i], Ki) for i, Ki in enumerate((K0, K1, K2)))
-                out_kalman_K[t] = (kalman & seen, np.stack([K0, K1, K2]))
-            Kc = np.stack([K0, K1, K2], axis=-1) * seen[:, None]
+            Kc = np.stack(np.broadcast_arrays(K0, K1, K2), axis=-1) * seen[:, None]
             IKh = np.eye(3) - Kc[:, :, None] * h
             P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * Kc[:, :, None] * Kc[:, None, :]
             P = 0.5 * (P + np.swapaxes(P, -1, -2))
+        if all_seen[t]:
+            out_K[t, 0], out_K[t, 1], out_K[t, 2] = K0, K1, K2
+        elif not none_seen[t]:
+            for i, Ki in enumerate((K0, K1, K2)):
+                np.multiply(Ki, seen, out=out_K[t, i])
         # (eq. 1) predict and correct; (E1) zero gains while lost (a = 0 in every TRACK2 trial)
-        any3 = bool(np.any(in3))
+        x0 += x1
         if any3:
-            x0 = x0 + x1 + 0.5 * x2
-            x1 = x1 + x2
-        else:
-            x0 = x0 + x1
+            np.multiply(x2, 0.5, out=tmp)
+            x0 += tmp
+            x1 += x2
         if not none_seen[t]:
-            innov = zt[t] - x0
+            np.subtract(zt[t], x0, out=innov)
             if not all_seen[t]:
-                innov = np.where(seen, innov, 0.0)
-            x0 += K0 * innov
-            x1 += K1 * innov
+                np.copyto(innov, 0.0, where=hidden[t])
+            np.multiply(K0, innov, out=tmp)
+            x0 += tmp
+            np.multiply(K1, innov, out=tmp)
+            x1 += tmp
             if any3:
-                x2 = x2 + K2 * innov
+                np.multiply(K2, innov, out=tmp)
+                x2 += tmp
         out_x[t, 1] = x1
 
         # detector (eq. 14) on the last 2n output velocities, sums kept running
@@ -293,8 +308,10 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 sum_new = out_x[t - n + 1:t + 1, 1].sum(axis=0)
             else:
                 mid = out_x[t - n, 1]
-                sum_old += mid - out_x[t - 2 * n, 1]
-                sum_new += x1 - mid
+                np.subtract(mid, out_x[t - 2 * n, 1], out=tmp)
+                sum_old += tmp
+                np.subtract(x1, mid, out=tmp)
+                sum_new += tmp
             testing = k >= arm_k
             testing = testing & (in3 == 0) if not detect3 else testing
             if not all_seen[t]:
@@ -303,12 +320,11 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 testing &= since_visible >= rearm
             if testing.any():
                 S = sum_old - sum_new
-                c = thr.take(np.clip(k, 1, thr.size) - 1)
-                if detect3 and np.any(in3):
-                    c = np.where(in3 == 1, thr3.take(np.clip(k, 1, thr3.size) - 1), c)
-                out_S[t] = S
-                out_c[t] = c
-                out_test[t] = testing
+                c = thr_by_k.take(k)
+                if detect3 and any3:
+                    c = np.where(in3 == 1, thr3_by_k.take(k), c)
+                np.copyto(out_S[t], S, where=testing)
+                np.copyto(out_c[t], c, where=testing)
                 alarm = testing & (np.abs(S) > c)
         # switch to TRACK3 with raised gains (card §4.4 step 4)
         if alarm is not None and alarm.any():
@@ -339,27 +355,22 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
             if sum_new is not None:
                 sum_new = sum_new + (x1 - x1_before)     # the window holds the restarted velocity (B1)
             in3 = np.where(alarm, 1, in3)
+            any3 = True
             cap = np.where(alarm, kmax + cfg.k_bound3 - 1, cap)
             if not detect3 and in3.all():
                 detector_on = False
+            out_x[t, 1] = x1                            # a restart may have changed the velocity
 
         out_x[t, 0], out_x[t, 2] = x0, x2
-        if alarm is not None and alarm.any():
-            out_x[t, 1] = x1                            # a restart may have changed the velocity
         if covariance:
             out_var[t] = np.diagonal(P, axis1=-2, axis2=-1).T
-        out_in3[t] = in3
-
-    out_K = table[out_row.T]                                                               # (B, T, 3)
-    for t, (mask, Kt) in out_kalman_K.items():
-        out_K[:, t] = np.where(mask[:, None], Kt.T, out_K[:, t])
-    out_K *= vis.T[:, :, None]
-    out_mode = np.where(vis, np.where(out_in3 == 1, TRACK3, TRACK2), COAST).astype(np.int8)
-    out_S = np.where(out_test, out_S, np.nan)
-    out_c = np.where(out_test, out_c, np.nan)
+        if all_seen[t]:
+            out_mode[t] = in3 + TRACK2
+        elif not none_seen[t]:
+            out_mode[t] = np.where(seen, in3 + TRACK2, COAST)
 
     def back(a, extra=()):
-        """(T, [3,] B) -> (..., T[, 3])"""
+        """(T, [3,] B) -> (..., T[, 3]), a view"""
         return np.moveaxis(a, -1, 0).reshape(batch + (T,) + extra)
 
     if covariance:
@@ -367,7 +378,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     else:                                           # NaN, without allocating (read-only views)
         out_var = np.broadcast_to(np.nan, batch + (T, 3))
         out_gate = np.broadcast_to(np.nan, batch + (T,))
-    return TrackModeOutput(back(out_x, (3,)), out_var, out_gate, out_K.reshape(batch + (T, 3)),
+    return TrackModeOutput(back(out_x, (3,)), out_var, out_gate, back(out_K, (3,)),
                            back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
 
 
