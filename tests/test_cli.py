@@ -93,6 +93,8 @@ def test_debug_shows_the_traceback():
 
 @pytest.mark.parametrize("notebook, parameter, value, names", [
     ("000_dissector_ekf", "dt", "0", ["dt"]),
+    # a bound computed from another parameter must not crash when that parameter is not a number
+    ("001_maneuver_occlusion_kf", "duration_s", "abc", ["duration_s"]),
 ])
 def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, parameter, value, names):
     proc = tvtrack("run", notebook, "-p", parameter, value)
