@@ -729,8 +729,10 @@ def singer_model(tau_frames, accel_var, meas_var):
     F[..., 0, 2] = np.where(a < 1e-3, 0.5 - a / 6 + a ** 2 / 24, (a - 1 + e1) / np.maximum(a, 1e-3) ** 2)  # series: no cancellation
     F[..., 1, 2] = -np.expm1(-a) / a
     F[..., 2, 2] = e1
-    Q_unit = np.where((tau <= _SINGER_CLOSED_FORM_MAX_TAU)[..., None, None], _singer_q_closed_form(np.minimum(a, 1e3)),
-                      _singer_q_van_loan(np.minimum(tau, 1e12)))
+    short = tau <= _SINGER_CLOSED_FORM_MAX_TAU
+    Q_unit = np.empty(tau.shape + (3, 3))
+    Q_unit[short] = _singer_q_closed_form(a[short])
+    Q_unit[~short] = _singer_q_van_loan(tau[~short])
     Q = (2 * s2 * a)[..., None, None] * Q_unit
     return F, 0.5 * (Q + np.swapaxes(Q, -1, -2)), np.array([[1.0, 0.0, 0.0]]), r[..., None, None]
 
