@@ -94,7 +94,7 @@ class ComparisonSetup:
     order: int = 2
     floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
     window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
-    theta_grid: tuple = (0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
+    theta_grid: tuple = (0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
     fixed_floor: int = 10
     fixed_window: int = 10
     learned_lags: int = 10
