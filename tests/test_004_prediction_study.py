@@ -9,7 +9,8 @@ from tvtrack.prediction_study import (CLASSICAL, FADING, FITTED, PAPER, Comparis
 
 SETUP = ComparisonSetup(floor_grid=(3, 5, 10, 30), window_grid=(4, 8, 16), start=30,
                         learned_kw=dict(hidden_units=4, rbf_centres=20, max_samples=600),
-                        jerk_grid=(1e-6, 1e-4, 1e-2), meas_var_grid=(1e-4, 1e-2))
+                        jerk_grid=(1e-6, 1e-4, 1e-2), meas_var_grid=(1e-4, 1e-2),
+                        singer_tau_grid=(1.0, 10.0), singer_ratio_grid=(1e-2, 1e2))
 
 
 def _series(n_paths=6, T=200, noise=0.0, seed=0):

@@ -190,3 +190,74 @@ def test_fading_memory_filter_is_the_discounted_least_squares_quadratic():
     w = np.sqrt(theta ** lags)
     X = np.linalg.lstsq(H * w[:, None], z[::-1][:400] * w, rcond=None)[0]
     np.testing.assert_allclose(fc[-1], X[0] + X[1] + X[2] / 2, rtol=1e-9)
+
+
+def test_singer_model_is_the_exact_discretisation_and_batches():
+    """F = expm(A) and Q = 2 accel_var / tau * int_0^1 e^{As} G G^T e^{A^T s} ds (adaptive quadrature,
+    independent of the library's closed form and Van Loan branches) over short to long tau."""
+    from scipy.integrate import quad_vec
+    from scipy.linalg import expm
+
+    taus, s2 = np.array([0.01, 0.3, 3.0, 10.0, 30.0, 1000.0, 1e5]), 0.2
+    F, Q, H, R = pr.singer_model(taus, s2, 0.01)
+    assert F.shape == Q.shape == (7, 3, 3) and R.shape == (1, 1)
+    for i, tau in enumerate(taus):
+        A = np.array([[0, 1, 0], [0, 0, 1], [0, 0, -1 / tau]])
+        Q_ref = quad_vec(lambda s: np.outer(*(2 * [expm(A * s)[:, 2]])), 0, 1, epsabs=0, epsrel=1e-12)[0]
+        np.testing.assert_allclose(F[i], expm(A), rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(Q[i], 2 * s2 / tau * Q_ref, rtol=1e-9)
+    np.testing.assert_allclose(Q[:, 2, 2], s2 * -np.expm1(-2 / taus), rtol=1e-12)  # stationary acceleration variance
+
+
+def test_singer_model_tends_to_white_jerk_for_long_correlation_times():
+    """tau -> inf with 2 accel_var / tau = q fixed: the constant-acceleration white-jerk model."""
+    q, tau = 0.03, 1e5
+    F, Q, _, _ = pr.singer_model(tau, q * tau / 2, 1.0)
+    F_ca, Q_ca, _, _ = pr.constant_acceleration_model(q, 1.0)
+    np.testing.assert_allclose(F, F_ca, atol=1e-4)
+    np.testing.assert_allclose(Q, Q_ca, rtol=1e-4)
+
+
+def _simulate_singer(tau, accel_var, meas_var, n_series, T, rng):
+    F, Q, _, _ = pr.singer_model(tau, accel_var, meas_var)
+    L = np.linalg.cholesky(Q)
+    x = np.zeros((n_series, 3))
+    x[:, 2] = np.sqrt(accel_var) * rng.standard_normal(n_series)
+    zs = []
+    for _ in range(T):
+        x = x @ F.T + rng.standard_normal((n_series, 3)) @ L.T
+        zs.append(x[:, 0] + np.sqrt(meas_var) * rng.standard_normal(n_series))
+    return np.stack(zs, axis=-1)
+
+
+def test_singer_ml_fit_recovers_parameters_and_its_likelihood_is_the_full_one():
+    """Simulated Singer data: the grid maximum is the true tau (or a neighbour), the variances
+    within 30 %; the concentrated log-likelihood at the maximum equals the full likelihood of
+    :func:`kalman_forecast` with the fitted (tau, accel_var, meas_var) and the scaled prior."""
+    rng = np.random.default_rng(11)
+    tau, s2, r = 5.0, 0.01, 0.04
+    z = _simulate_singer(tau, s2, r, 8, 800, rng)
+    tau_grid, ratio_grid = np.array([1.0, 2.5, 5.0, 10.0, 20.0]), np.logspace(-2, 1, 13)
+    (tau_f, s2_f, r_f), ll = pr.fit_singer(z, tau_grid, ratio_grid)
+    assert ll.shape == (5, 13)
+    assert tau_f in (2.5, 5.0, 10.0)
+    assert abs(s2_f / s2 - 1) < 0.3 and abs(r_f / r - 1) < 0.3
+    F, Q, H, R = pr.singer_model(tau_f, s2_f, r_f)
+    _, ll_full = pr.kalman_forecast(z, F, Q, H, R, np.zeros(3), r_f * np.diag([1e4, 1e2, 1e1]), burn_in=10)
+    assert ll_full.sum() == pytest.approx(ll.max(), rel=1e-10)
+
+
+def test_singer_forecast_uses_each_folds_fit_and_beats_constant_acceleration_on_singer_data():
+    rng = np.random.default_rng(12)
+    z = _simulate_singer(2.0, 0.05, 0.01, 12, 500, rng).reshape(2, 6, 500)
+    folds = pr.path_folds(6, 2)
+    fits = pr.fit_singer_folds(z[0], folds, [0.5, 2.0, 8.0], np.logspace(-1, 2, 7))
+    out = pr.singer_forecast(z, fits, folds, 1)
+    for (tau, s2, r), (_, test) in zip(fits, folds):
+        F, Q, H, R = pr.singer_model(tau, s2, r)
+        ref = pr.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), r * np.diag([1e4, 1e2, 1e1]), 1)[0]
+        np.testing.assert_array_equal(out[:, test], ref)
+    ca = pr.constant_acceleration_forecast(z, pr.fit_constant_acceleration_folds(
+        z[0], folds, np.logspace(-5, 0, 11), np.logspace(-3, 0, 7)), folds, 1)
+    mse = lambda f: np.mean(pr.forecast_errors(f, z, 1)[..., 20:-1] ** 2)
+    assert mse(out) < mse(ca)

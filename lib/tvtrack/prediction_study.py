@@ -11,6 +11,9 @@ scored on:
 - MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold;
 - constant-acceleration Kalman filter: its two noise levels by maximum likelihood on the
   training paths of each fold;
+- Singer-model Kalman filter (exponentially correlated acceleration): its correlation time,
+  acceleration variance and measurement variance by maximum likelihood on the training paths
+  of each fold;
 - Morrison's fading-memory quadratic filter (a principled floor, not a baseline of the paper):
   its discount ``theta`` from a grid.
 
@@ -29,7 +32,7 @@ import numpy as np
 
 from . import predictors as pr
 
-__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
+__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "SINGER", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
            "fit_learned_folds", "apply_learned_folds", "radial_error_summary"]
 
 #: The paper's filter.
@@ -39,9 +42,12 @@ CLASSICAL = ("finite differences, 2 points", "finite differences, 3 points", "cu
              "linear regression deg 1", "linear regression deg 2")
 #: Principled counterpart of the floor (not a baseline of the paper): Morrison's fading-memory filter.
 FADING = "fading memory (Morrison)"
+#: Singer-model Kalman filter with ML parameters (a Kalman filter whose memory is set by a motion model).
+SINGER = "Singer Kalman, ML"
 #: Baselines fitted to data: back-propagation MLP and RBF network (the paper names both, 2-3 and
-#: 2-4 px), and a constant-acceleration Kalman filter with ML noise levels (an added comparator).
-FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise")
+#: 2-4 px), and two Kalman filters with ML parameters standing in for the paper's "Kalman filters"
+#: (1-2 px): constant acceleration with white jerk, and Singer's correlated acceleration.
+FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise", SINGER)
 
 
 def per_trial_path_mse(forecast, reference, steps: int, start: int) -> np.ndarray:
@@ -88,13 +94,15 @@ class ComparisonSetup:
     order: int = 2
     floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
     window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
-    theta_grid: tuple = (0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
+    theta_grid: tuple = (0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
     fixed_floor: int = 10
     fixed_window: int = 10
     learned_lags: int = 10
     learned_kw: dict = field(default_factory=dict)
     jerk_grid: tuple = tuple(np.logspace(-7, 1, 17))
     meas_var_grid: tuple = tuple(np.logspace(-4, 0, 5))
+    singer_tau_grid: tuple = tuple(np.logspace(-2, 3, 11))
+    singer_ratio_grid: tuple = tuple(np.logspace(-4, 8, 13))
 
 
 @dataclass
@@ -107,8 +115,9 @@ class Comparison:
         Cross-validated reading (every method tuned on the other paths), px^2.
     mse_fixed : dict name -> ndarray (trials, paths)
         Fixed reading (``N_f`` = ``fixed_floor``, ``L`` = ``fixed_window``) for the tuned methods.
-    chosen : dict name -> ndarray (paths,)
-        The setting each tuned method used on each path (``N_f`` or ``L``).
+    chosen : dict name -> ndarray (paths,) or (folds, k)
+        The setting each tuned method used on each path (``N_f``, ``L`` or ``theta``); per fold,
+        the CA Kalman ``(jerk_psd, meas_var)`` and the Singer ``(tau, accel_var, meas_var)``.
     forecasts : dict name -> ndarray like ``z``
         Cross-validated forecasts (for figures).
     learned_models : dict kind -> list of fitted models per fold
@@ -202,4 +211,8 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
     mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(fcs["CA Kalman, ML noise"],
                                                                                    reference, m, s.start)
     chosen["CA Kalman, ML noise"] = np.array(fits)
+    singer_fits = pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid)
+    fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)
+    mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
+    chosen[SINGER] = np.array(singer_fits)
     return Comparison(mse, fixed, chosen, fcs, models)
