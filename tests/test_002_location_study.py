@@ -90,3 +90,21 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
 def test_bad_workers_raise():
     with pytest.raises(ValueError, match="n_workers"):
         LocationStudy(SETTINGS, n_workers=0)
+
+
+def test_settings_variant_redraws_the_default_scenes_and_applies_its_settings():
+    study = LocationStudy(SETTINGS, n_workers=1)
+    default = study.config(2, 1.0, 3.0, 20, 6, "ue")
+    capped = study.config(2, 1.0, 3.0, 20, 6, "ue", variant={"max_iter": 1, "accelerate": "none"})
+    same = study.config(2, 1.0, 3.0, 20, 6, "ue", variant={"max_iter": SETTINGS.max_iter})
+    study.compute([default, capped, same])
+    assert len(study) == 3
+    # common random numbers: the same truth, and a variant equal to the settings gives the same estimates
+    np.testing.assert_array_equal(study[capped]["truth"], study[default]["truth"])
+    np.testing.assert_array_equal(study[same]["ula"], study[default]["ula"])
+    # the cap applies: one plain EM step per ULA fit (and per frame for the marks), so the estimates differ
+    assert study[capped]["ula_iter"].max() == 1 and study[default]["ula_iter"].max() > 1
+    assert study[capped]["em_iter"].max() <= 6
+    assert not np.array_equal(study[capped]["ula"], study[default]["ula"])
+    with pytest.raises(ValueError, match="variant"):
+        study.config(2, 1.0, 3.0, 20, 6, variant={"max_iterations": 3})

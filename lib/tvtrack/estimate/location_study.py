@@ -20,7 +20,7 @@ import multiprocessing
 import time
 import zlib
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from functools import partial
 from typing import NamedTuple
 
@@ -116,7 +116,9 @@ class Config(NamedTuple):
 
     ``algs`` is a string of letters from :data:`ALGORITHMS`; ``init``/``assoc`` of ``None`` mean
     the settings' defaults; ``tag`` separates otherwise equal configurations drawn for different
-    studies (different seeds).
+    studies (different seeds). ``variant`` overrides :class:`StudySettings` fields for this
+    configuration alone, as sorted ``(name, value)`` pairs (e.g. ``(("max_iter", 30),)``); it does not
+    enter the scene seed, so a variant sees the same draws as its default (common random numbers).
     """
 
     q: int
@@ -131,6 +133,7 @@ class Config(NamedTuple):
     n: int
     tag: str
     vsd: float
+    variant: tuple = ()
 
 
 def seed_sequence(seed: int, values) -> np.random.SeedSequence:
@@ -148,6 +151,12 @@ def seed_sequence(seed: int, values) -> np.random.SeedSequence:
 def base(c) -> tuple:
     """A configuration without its algorithm letters (the scene draws do not depend on them)."""
     return tuple(c[:5]) + ("",) + tuple(c[6:])
+
+
+def _scene_key(c: Config) -> tuple:
+    """What a configuration's scene seed derives from: everything but the algorithm letters and the
+    settings variant, so a variant redraws exactly its default's scenes."""
+    return base(c)[:-1]
 
 
 def errors_vs_truth(theta, truth, sigma_px: float, times):
@@ -199,7 +208,7 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
     s, seed = g.sigma_px, settings.seed
     sizes = np.diff(np.linspace(0, cfg.n, N_SEED_BLOCKS + 1).round().astype(int))
     for k, n_k in enumerate(sizes):
-        rng = np.random.default_rng(seed_sequence(seed + k, base(cfg)))
+        rng = np.random.default_rng(seed_sequence(seed + k, _scene_key(cfg)))
         for b in scene_batches(rng, g, int(n_k), cfg.T, cfg.m, noise_pp, cfg.dsd * s, cfg.vsd * s,
                                settings.photon_model, batch_size=max(1, int(4e6 // (cfg.T * g.n_pixels)))):
             yield b, seed + k
@@ -226,8 +235,8 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         velocity block of the CRB, sigma^2, averaged over the sub-pixel phase), ``crb_x0`` (the bound
         on x_o of the first object alone), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
     """
-    s_ = settings
-    q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd = cfg
+    s_ = replace(settings, **dict(cfg.variant))
+    q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd, _ = cfg
     accel = None if s_.accelerate == "none" else "squarem"
     g = scene_geometry(q, T, d, pix, s_.velocity_sigma, s_.margin_sigma)
     s = g.sigma_px
@@ -302,7 +311,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     res["T"] = T
     res["timing"] = timing
     # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
-    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, base(cfg) + ("crb",))), s_.crb_phases, g)
+    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, _scene_key(cfg) + ("crb",))), s_.crb_phases, g)
     crb = crb_linear_motion(th, times, g.shape, s, m, noise_pp)
     res["crb_pos"] = float(np.mean(position_crb_sum(crb))) / s ** 2
     diag = np.diagonal(crb, axis1=-2, axis2=-1).reshape(-1, q, 4)
@@ -327,12 +336,17 @@ class LocationStudy:
         self._cache: dict[tuple, dict] = {}
 
     def config(self, q, d, pix, m, T, algs="uec", dsd=None, init=None, assoc=None, n=None, tag="main",
-               vsd=None) -> Config:
-        """A :class:`Config` with the settings' defaults filled in (``dsd``, ``vsd``, ``n``)."""
+               vsd=None, variant: dict | None = None) -> Config:
+        """A :class:`Config` with the settings' defaults filled in (``dsd``, ``vsd``, ``n``);
+        ``variant`` maps :class:`StudySettings` field names to this configuration's own values."""
         st = self.settings
+        unknown = set(variant or {}) - {f.name for f in fields(StudySettings)}
+        if unknown:
+            raise ValueError(f"variant names {sorted(unknown)}; it may override only StudySettings fields")
         return Config(int(q), float(d), float(pix), int(m), int(T), algs,
                       float(st.designation_sd_sigma if dsd is None else dsd), init, assoc,
-                      int(n or st.n_trials), tag, float(st.designation_velocity_sd if vsd is None else vsd))
+                      int(n or st.n_trials), tag, float(st.designation_velocity_sd if vsd is None else vsd),
+                      tuple(sorted((variant or {}).items())))
 
     def __getitem__(self, c) -> dict:
         return self._cache[base(c)]
