@@ -8,7 +8,7 @@ from tvtrack.bounds.pcrlb import expected_over_gaussian, gaussian_fisher_informa
 from tvtrack.filters.ekf import ExtendedKalmanFilter, ekf_update, joseph_update_scalar
 from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
-from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
+from tvtrack.sensors.dissector import (DissectorScan, consistency, GaussMarkovMessage, background_intensity, draw_noises,
                                        fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
                                        run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
                                        simulate_photon_counts, scan_centroids, fixed_gain_track, tune_fixed_gain,
@@ -406,3 +406,22 @@ def test_scan_centroid_is_unbiased_for_a_centred_pulse_without_noise_and_the_smo
     np.testing.assert_allclose(fixed_gain_track(zz, 0.9, 1.0), zz)
     truth = np.zeros((4, 10))
     assert tune_fixed_gain(zz, truth, 0.9, [0.05, 0.5, 1.0], np.ones(10, bool)) == 0.05   # pure noise: smooth most
+
+
+def test_consistency_matches_the_filter_outputs_and_flags_the_filter_that_ignores_the_signal_noise():
+    scan = _scan(0.9)
+    noises = draw_noises(np.random.default_rng(21), 400, 300)
+    x, y = simulate(scan, MSG, noises)
+    window = slice(100, None)
+    # NEES from the same run as run_variant2, to the last bit
+    est, var = run_variant2(variant2_filter(scan, MSG), y)
+    nees, nis = consistency(variant2_filter(scan, MSG), y, x, 0.2, window)
+    np.testing.assert_array_equal(nees, ((x - est) ** 2 / var)[:, window].mean(axis=1))
+    # variant 2 models the noise it sees: its mean NIS is near 1 (400 runs x 200 correlated samples)
+    assert 0.9 < nis.mean() < 1.1
+    # the filter that assumes P = 0 under-states S where the pulse is bright: NIS well above 1
+    _, nis_ignoring = consistency(variant2_filter(scan, MSG, assumed_contrast=0.0), y, x, 0.2, window)
+    assert nis_ignoring.mean() > 1.5 * nis.mean()
+    # variant 1 takes the (D11, D22) pair
+    nees1, nis1 = consistency(variant1_filter(scan, MSG, g22="matched"), y, x, (0.2, 1.0), window)
+    assert nees1.shape == nis1.shape == (400,) and np.all(np.isfinite(nees1))

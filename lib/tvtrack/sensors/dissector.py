@@ -35,7 +35,7 @@ __all__ = [
     "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
     "simulate_photon_counts",
     "simulate_two_rates",
-    "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "grid_filter", "fisher_information",
+    "variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "consistency", "grid_filter", "fisher_information",
     "pcrlb_variance", "scan_crlb", "lock_lost", "scan_centroids", "fixed_gain_track", "tune_fixed_gain",
 ]
 
@@ -499,6 +499,37 @@ def run_variant2(filt: ExtendedKalmanFilter, y, d0: float = 0.2, init=None):
     x0 = np.zeros(1) if init is None else np.asarray(init)[..., None]
     out = filt.run(y[..., None], x0, np.array([[d0]]))
     return out.x[..., 0], out.P[..., 0, 0]
+
+
+def consistency(filt: ExtendedKalmanFilter, y, x, d0, window: slice, init=None):
+    """Per-run time-averaged NEES and NIS of variant 1 or 2 (the state size of ``filt`` says which) over
+    ``window`` of the samples.
+
+    Parameters
+    ----------
+    filt : ExtendedKalmanFilter
+        From :func:`variant1_filter` (2 states) or :func:`variant2_filter` (1 state).
+    y, x : ndarray, shape (n_trials, K)
+        Samples and the true X1 they were drawn with.
+    d0 : float or (float, float)
+        Initial variance(s), as for :func:`run_variant2` / :func:`run_variant1`.
+    window : slice or bool ndarray, shape (K,)
+        Samples averaged (the steady state).
+    init : ndarray, optional
+        Initial estimates, as for the ``run_variant*`` functions.
+
+    Returns
+    -------
+    nees, nis : ndarray, shape (n_trials,)
+        Mean over the window of (x - X1_hat)^2 / D11 and of nu^2 / S (both 1 in expectation for a
+        consistent filter; NEES here is the coordinate's, not the full state's).
+    """
+    n_states = filt.F.shape[0]
+    P0 = np.diag(np.broadcast_to(np.asarray(d0, dtype=float), (n_states,)))
+    x0 = np.zeros(n_states) if init is None else np.asarray(init).reshape(len(y), n_states)
+    out = filt.run(y[..., None], x0, P0)
+    nees = (x - out.x[..., 0]) ** 2 / out.P[..., 0, 0]
+    return nees[:, window].mean(axis=1), out.nis[:, window].mean(axis=1)
 
 
 def grid_filter(scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5,
