@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from tvtrack.detect.lock import LossCriterion, first_loss, tag_capture
+from tvtrack.detect.lock import MECHANISMS, LossCriterion, classify_losses, first_loss, omega_alarm, tag_capture
 from tvtrack.discriminators import (edge_discriminator, interval_weights, polar_errors, quadrant_discriminator,
                                     quadrant_noise, quadrant_sums, quadrant_weights, static_characteristic,
                                     two_emitter_discriminator)
@@ -444,3 +444,32 @@ def test_newton_logistic_fit_matches_a_generic_optimiser():
     ref = minimize(nll, [0.0, 3.0], method="Nelder-Mead", options=dict(xatol=1e-10, fatol=1e-12, maxiter=5000)).x
     s50, beta = fit_logistic_loss(sir, k, n)
     assert np.log(s50) == pytest.approx(ref[0], abs=1e-5) and beta == pytest.approx(ref[1], rel=1e-4)
+
+
+def test_loss_mechanisms_are_told_apart_on_constructed_histories():
+    T, w, radius = 100, 10, 4.0
+    q = np.array([[[30.0, 0.0], [-30.0, 0.0], [0.0, 30.0]]] * 5)            # three interferers, five runs
+    gate = np.zeros((5, T, 2))
+    omega_err = np.zeros((5, T))
+    loss = np.array([60, 60, 60, 60, -1])
+    gate[0, 50:] = q[0, 0] + 1.0                                           # sits on one interferer
+    gate[1, 50:55] = q[1, 0]                                               # passed from one to another
+    gate[1, 55:60] = q[1, 1]
+    omega_err[2, 45:] = 0.5                                                 # rotation lost, no interferer near
+    gate[3, 50:] = [10.0, 10.0]                                             # slid off, rotation held
+    codes = classify_losses(loss, gate, q, omega_err, w, radius)
+    assert [MECHANISMS[c] for c in codes[:4]] == ["capture", "drift among several", "frequency", "drift"]
+    assert codes[4] == -1
+    # a static marker (omega error NaN) is never a frequency loss
+    nan_err = np.full((5, T), np.nan)
+    assert MECHANISMS[classify_losses(loss, gate, q, nan_err, w, radius)[2]] == "drift"
+
+
+def test_omega_alarm_fires_when_the_moving_mean_deviation_crosses_the_tolerance():
+    omega0, w = 10.0, 4
+    hat = np.full((3, 50), omega0)
+    hat[1, 20:] = 1.5 * omega0                                                # deviation 0.5 from frame 20
+    hat[2, 20:22] = 3.0 * omega0                                              # a 2-frame spike: mean 1.0 over 4 frames
+    alarm = omega_alarm(hat, omega0, w, tol=0.2)
+    # frame 20 + k has moving mean 0.5 (k + 1) / 4 > 0.2 first at k = 1
+    assert alarm.tolist() == [-1, 21, 20]

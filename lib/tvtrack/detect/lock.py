@@ -21,7 +21,7 @@ import numpy as np
 
 from ..montecarlo import Estimate, proportion_ci
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "loss_threshold", "losses_by_sir", "loss_curve",
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "MECHANISMS", "classify_losses", "omega_alarm", "loss_threshold", "losses_by_sir", "loss_curve",
            "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
 
 KINDS = ("window", "consecutive")
@@ -119,6 +119,79 @@ def tag_capture(gate, interferers, loss_frame, window: int, radius: float, fract
     seg = gate[np.arange(n)[:, None], frames]                                  # (n, window, 2)
     near = np.linalg.norm(seg[:, :, None, :] - q[:, None, :, :], axis=-1) < radius
     return (loss >= 0) & (near.mean(axis=1) > fraction).any(axis=1)
+
+
+MECHANISMS = ("capture", "drift among several", "frequency", "drift")
+
+
+def classify_losses(loss_frame, gate, interferers, omega_error, window: int, radius: float,
+                    fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
+    """How each loss of lock happened, from the ``window`` frames that end at the loss frame.
+
+    The rule, in order (index into :data:`MECHANISMS`; -1 = no loss):
+
+    0. *capture*: the gate stays within ``radius`` of one interferer for more than ``fraction`` of
+       the window (:func:`tag_capture`);
+    1. *drift among several*: the gate comes within ``radius`` of at least two different
+       interferers during the window (it is passed from one to another, the five-interferer mode);
+    2. *frequency*: the relative angular-velocity error exceeds ``omega_tol`` for more than
+       ``fraction`` of the window (the phase loop lost the rotation; never for a static marker,
+       whose ``omega_error`` is NaN);
+    3. *drift*: none of these (the gate slid off with the rotation held and no interferer near).
+
+    Parameters
+    ----------
+    loss_frame : ndarray of int, shape (n,)
+        From :func:`first_loss`.
+    gate : ndarray, shape (n, T, 2)
+    interferers : ndarray, shape (n, q, 2)
+    omega_error : ndarray, shape (n, T)
+        ``omega_hat / omega - 1``.
+    window : int
+    radius : float
+        px.
+
+    Returns
+    -------
+    ndarray of int8, shape (n,)
+    """
+    loss = np.asarray(loss_frame)
+    gate, q = np.asarray(gate), np.asarray(interferers)
+    n = gate.shape[0]
+    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)           # (n, window)
+    rows = np.arange(n)[:, None]
+    out = np.full(n, 3, np.int8)
+    with np.errstate(invalid="ignore"):
+        freq = (np.abs(np.asarray(omega_error)[rows, frames]) > omega_tol).mean(axis=1) > fraction
+    out[freq] = 2
+    if q.shape[1]:
+        near = np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius
+        out[near.any(axis=1).sum(axis=1) >= 2] = 1
+        out[(near.mean(axis=1) > fraction).any(axis=1)] = 0
+    out[loss < 0] = -1
+    return out
+
+
+def omega_alarm(omega_hat, omega_nominal: float, window: int, tol: float = 0.2) -> np.ndarray:
+    """A lock detector that needs no truth: the first frame at which the moving mean over ``window``
+    frames of ``|omega_hat / omega_nominal - 1|`` exceeds ``tol`` (-1 = never).
+
+    Parameters
+    ----------
+    omega_hat : ndarray, shape (n, T)
+        The tracker's angular-velocity estimate (rad/s).
+    omega_nominal : float
+        The marker's design rotation rate (rad/s), which the tracker knows.
+
+    Returns
+    -------
+    ndarray of int, shape (n,)
+    """
+    dev = np.abs(np.asarray(omega_hat, float) / omega_nominal - 1.0)
+    c = np.cumsum(np.pad(dev, ((0, 0), (1, 0))), axis=1)
+    mean = (c[:, window:] - c[:, :-window]) / window                            # frames window-1 .. T-1
+    hit = mean > tol
+    return np.where(hit.any(axis=1), hit.argmax(axis=1) + window - 1, -1)
 
 
 def loss_threshold(sir_values, losses) -> float:

@@ -136,6 +136,8 @@ class TrackHistory:
     disc : (n, T, 4) float32 or None, ``(Delta_x, Delta_y, e_r, e_th)`` normalised by ``S`` (px).
     miss : (n, T) float32, marker miss distance ``|gate - marker|`` (px).
     inside : (n, T) bool, gate centre inside the image.
+    omega : (n, T) float32, the angular-velocity estimate used for frame k (rad/s); kept even
+        without ``keep_full``, since it is what a tracker can watch for its own loss of lock.
     """
 
     estimate: np.ndarray | None
@@ -143,6 +145,7 @@ class TrackHistory:
     disc: np.ndarray | None
     miss: np.ndarray
     inside: np.ndarray
+    omega: np.ndarray
 
 
 def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generator | None, *, gate_half: float,
@@ -183,9 +186,11 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
     disc = np.empty((n, T, 4), np.float32) if keep_full else None
     gate = np.empty((n, T, 2), np.float32)
     inside = np.empty((n, T), bool)
+    omega = np.empty((n, T), np.float32)
     pixel_rng = rng if noise == "pixel" else None
     for k in range(T):
         c = tracker.gate_center()
+        omega[:, k] = tracker.state[:, 4]
         if keep_full:
             est[:, k] = tracker.state
         crops, origin, inside[:, k] = scene.gate_crops(k, c, size, pixel_rng)
@@ -205,7 +210,7 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
         if keep_full:
             disc[:, k] = np.stack([dx, dy, e_r, e_th], axis=1) / tracker.slope
     miss = np.linalg.norm(gate - scene.truth.marker, axis=-1).astype(np.float32)
-    return TrackHistory(est, gate, disc, miss, inside)
+    return TrackHistory(est, gate, disc, miss, inside, omega)
 
 
 def loop_poles(gains: LoopGains, omega: float, r: float) -> np.ndarray:

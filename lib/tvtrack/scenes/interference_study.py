@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..detect.lock import LossCriterion, LossFit, fit_loss_curve, first_loss, ratio_of_fits, tag_capture
+from ..detect.lock import (LossCriterion, LossFit, classify_losses, fit_loss_curve, first_loss, omega_alarm,
+                           ratio_of_fits, tag_capture)
 from ..montecarlo import Estimate
 from .rotating_marker import Scenario, interference_runs
 
@@ -31,6 +32,9 @@ class LossStudy:
     captures : (m,) int, losses tagged as capture by a stationary interferer, per SIR
     loss_frame, sir, cluster : (N,) per run (cluster = seed position * n + trial)
     by_criterion : dict name -> LossFit, the pooled fit under other loss criteria (same runs)
+    mechanism : (N,) int8, how each run lost lock (index into ``tvtrack.detect.lock.MECHANISMS``, -1 none)
+    alarm_frame : (N,) int, first alarm of the truth-free omega lock detector (-1 none; -1 everywhere
+        for a static marker, which has no rotation to watch)
     """
 
     fit: LossFit
@@ -40,6 +44,8 @@ class LossStudy:
     sir: np.ndarray
     cluster: np.ndarray
     by_criterion: dict
+    mechanism: np.ndarray
+    alarm_frame: np.ndarray
 
     def within(self, n_frames: int, dt: float, boot_index: np.ndarray) -> LossFit:
         """The pooled fit of P(loss within the first ``n_frames`` frames) (losses later are censored)."""
@@ -60,7 +66,7 @@ def bootstrap_index(rng: np.random.Generator, n_clusters: int, n_boot: int) -> n
 
 def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterion: LossCriterion,
                capture_radius: float, boot_index: np.ndarray, seed_boot: int = 100,
-               other_criteria: dict | None = None, max_batch: int = 256) -> LossStudy:
+               other_criteria: dict | None = None, max_batch: int = 256, omega_tol: float = 0.2) -> LossStudy:
     """Run ``sc`` at every SIR for ``n`` trials per seed and fit the loss curve.
 
     Parameters
@@ -87,6 +93,9 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
     max_batch : int
         Seeds are batched together in one closed-loop run while the batch holds at most this
         many runs (each seed's draws are the same batched or alone; memory ~0.45 MB per run).
+    omega_tol : float
+        Relative angular-velocity error that counts as a lost rotation, both in the loss
+        classification and in the omega lock detector (over the criterion's window).
 
     Returns
     -------
@@ -96,7 +105,7 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
     if np.any(np.diff(sirs) <= 0):
         raise ValueError("parameter 'sir_values' must be strictly increasing")
     other_criteria = other_criteria or {}
-    loss, sir, cluster, capt = [], [], [], []
+    loss, sir, cluster, capt, mech, alarm = [], [], [], [], [], []
     other = {name: [] for name in other_criteria}
     per_seed = {}
     seeds = [int(x) for x in seeds]
@@ -108,6 +117,10 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
         capt_all = tag_capture(runs["gate"], runs["interferers"], fl_all, criterion.window, capture_radius,
                                criterion.fraction)
         other_all = {name: first_loss(runs["miss"], crit, runs["inside"]) for name, crit in other_criteria.items()}
+        mech_all = classify_losses(fl_all, runs["gate"], runs["interferers"], runs["omega_error"], criterion.window,
+                                   capture_radius, criterion.fraction, omega_tol)
+        alarm_all = (omega_alarm(runs["omega_hat"], sc.omega0, criterion.window, omega_tol) if sc.rotating
+                     else np.full(fl_all.shape, -1))
         for b, x in enumerate(group):
             sel = runs["block"] == b
             j = first + b
@@ -116,18 +129,20 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
                                          n_frames=sc.n_frames, rng=None, boot_index=boot_index[:seed_boot] % n)
             loss.append(fl)
             capt.append(capt_all[sel])
+            mech.append(mech_all[sel])
+            alarm.append(alarm_all[sel])
             sir.append(runs["sir"][sel])
             cluster.append(j * n + runs["trial"][sel])
             for name in other_criteria:
                 other[name].append(other_all[name][sel])
         del runs
-    loss, sir, cluster, capt = (np.concatenate(v) for v in (loss, sir, cluster, capt))
+    loss, sir, cluster, capt, mech, alarm = (np.concatenate(v) for v in (loss, sir, cluster, capt, mech, alarm))
     pooled = fit_loss_curve(loss, sir, cluster, sirs, dt=1.0 / sc.fps, n_frames=sc.n_frames, rng=None,
                             boot_index=boot_index)
     captures = np.array([capt[sir == s].sum() for s in sirs])
     by_criterion = {name: fit_loss_curve(np.concatenate(v), sir, cluster, sirs, dt=1.0 / sc.fps, n_frames=sc.n_frames,
                                          rng=None, boot_index=boot_index) for name, v in other.items()}
-    return LossStudy(pooled, per_seed, captures, loss, sir, cluster, by_criterion)
+    return LossStudy(pooled, per_seed, captures, loss, sir, cluster, by_criterion, mech, alarm)
 
 
 def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):

@@ -668,12 +668,17 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
     dict
         ``sir`` (m n,) per-trial SIR (trials of one SIR contiguous), ``miss`` (m n, T) px,
         ``inside`` (m n, T) bool, ``gate`` (m n, T, 2) px, ``interferers`` (m n, q, 2) px,
-        ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s). With a list
+        ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s),
+        ``omega_hat`` (m n, T) the tracker's angular-velocity estimate (rad/s), ``omega_error``
+        (m n, T) its relative error against the truth (NaN for a static marker). With a list
         of generators the blocks follow each other: ``block`` (k m n,) says which generator.
     """
     rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
     m = np.asarray(sir_values, float).size
     sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
-    _, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
+    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        omega_error = np.where(truth.omega != 0, h.omega / truth.omega - 1, np.nan).astype(np.float32)
     return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,
+                omega_hat=h.omega, omega_error=omega_error,
                 trial=np.tile(np.arange(n), m * len(rngs)), block=np.repeat(np.arange(len(rngs)), m * n), dt=1.0 / sc.fps)
