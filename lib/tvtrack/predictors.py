@@ -638,6 +638,16 @@ def fit_constant_acceleration_folds(z, folds, jerk_grid, meas_var_grid) -> list[
     return [fit_constant_acceleration(z[train], jerk_grid, meas_var_grid)[0] for train, _ in folds]
 
 
+def _fold_forecasts(z, models, folds, steps: int) -> np.ndarray:
+    """Kalman forecasts of each fold's test paths with that fold's ``(F, Q, H, R, P0)``;
+    ``z`` (trials, paths, ..., T) px, the result shaped like ``z`` (NaN where not forecast)."""
+    z = _check_z(z)
+    out = np.full(z.shape, np.nan)
+    for (F, Q, H, R, P0), (_, test) in zip(models, folds):
+        out[:, test] = kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), P0, steps)[0]
+    return out
+
+
 def constant_acceleration_forecast(z, fits, folds, steps: int = 1) -> np.ndarray:
     """Constant-acceleration Kalman forecasts of the test paths of each fold, with that fold's
     noise levels from :func:`fit_constant_acceleration_folds` (prior as in the fit).
@@ -651,12 +661,7 @@ def constant_acceleration_forecast(z, fits, folds, steps: int = 1) -> np.ndarray
     -------
     ndarray, shape like ``z``
     """
-    z = _check_z(z)
-    out = np.full(z.shape, np.nan)
-    for (q, r), (_, test) in zip(fits, folds):
-        F, Q, H, R = constant_acceleration_model(q, r)
-        out[:, test] = kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), _KALMAN_P0, steps)[0]
-    return out
+    return _fold_forecasts(z, [(*constant_acceleration_model(q, r), _KALMAN_P0) for q, r in fits], folds, steps)
 
 
 #: Correlation time (frames) up to which Singer's closed-form Q is used (Van Loan above).
@@ -776,36 +781,13 @@ def fit_singer(z, tau_grid, ratio_grid, burn_in: int = 10):
 
 
 def fit_singer_folds(z, folds, tau_grid, ratio_grid) -> list[tuple[float, float, float]]:
-    """:func:`fit_singer` on the training paths of each fold.
-
-    Parameters
-    ----------
-    z : ndarray, shape (paths, ..., T)
-        Training series (one trial), px.
-
-    Returns
-    -------
-    list of (tau_frames, accel_var, meas_var), one per fold
-    """
+    """:func:`fit_singer` on the training paths of each fold (``z`` as for
+    :func:`fit_constant_acceleration_folds`); one ``(tau_frames, accel_var, meas_var)`` per fold."""
     return [fit_singer(z[train], tau_grid, ratio_grid)[0] for train, _ in folds]
 
 
 def singer_forecast(z, fits, folds, steps: int = 1) -> np.ndarray:
     """Singer-model Kalman forecasts of the test paths of each fold, with that fold's parameters
-    from :func:`fit_singer_folds` (prior as in the fit: ``meas_var`` times the unit-scale prior).
-
-    Parameters
-    ----------
-    z : ndarray, shape (trials, paths, ..., T)
-        Complete measured series, px.
-
-    Returns
-    -------
-    ndarray, shape like ``z``
-    """
-    z = _check_z(z)
-    out = np.full(z.shape, np.nan)
-    for (tau, s2, r), (_, test) in zip(fits, folds):
-        F, Q, H, R = singer_model(tau, s2, r)
-        out[:, test] = kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), r * _KALMAN_P0, steps)[0]
-    return out
+    from :func:`fit_singer_folds` (prior as in the fit: ``meas_var`` times the unit-scale prior);
+    ``z`` as for :func:`constant_acceleration_forecast`, the result shaped like it."""
+    return _fold_forecasts(z, [(*singer_model(tau, s2, r), r * _KALMAN_P0) for tau, s2, r in fits], folds, steps)
