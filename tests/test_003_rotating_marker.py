@@ -457,12 +457,17 @@ def test_loss_mechanisms_are_told_apart_on_constructed_histories():
     gate[1, 55:60] = q[1, 1]
     omega_err[2, 45:] = 0.5                                                 # rotation lost, no interferer near
     gate[3, 50:] = [10.0, 10.0]                                             # slid off, rotation held
-    codes = classify_losses(loss, gate, q, omega_err, w, radius)
+    miss = np.full((5, T), 20.0)                                            # off the marker in every window
+    codes = classify_losses(loss, gate, q, miss, omega_err, w, radius)
     assert [MECHANISMS[c] for c in codes[:4]] == ["capture", "drift among several", "frequency", "drift"]
     assert codes[4] == -1
     # a static marker (omega error NaN) is never a frequency loss
     nan_err = np.full((5, T), np.nan)
-    assert MECHANISMS[classify_losses(loss, gate, q, nan_err, w, radius)[2]] == "drift"
+    assert MECHANISMS[classify_losses(loss, gate, q, miss, nan_err, w, radius)[2]] == "drift"
+    # a gate still on a marker that passes over two interferers is not "among several"
+    on_marker = miss.copy()
+    on_marker[1] = 0.5
+    assert MECHANISMS[classify_losses(loss, gate, q, on_marker, omega_err, w, radius)[1]] == "drift"
 
 
 def test_omega_alarm_fires_when_the_moving_mean_deviation_crosses_the_tolerance():

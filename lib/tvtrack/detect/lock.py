@@ -124,16 +124,18 @@ def tag_capture(gate, interferers, loss_frame, window: int, radius: float, fract
 MECHANISMS = ("capture", "drift among several", "frequency", "drift")
 
 
-def classify_losses(loss_frame, gate, interferers, omega_error, window: int, radius: float,
+def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: int, radius: float,
                     fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
     """How each loss of lock happened, from the ``window`` frames that end at the loss frame.
 
+    A frame counts as *near* an interferer when the gate is within ``radius`` of it while more
+    than ``radius`` from the marker: a gate that follows a rotating marker passes over interferers
+    on the marker's circle without leaving the marker, and that is not a loss mechanism.
     The rule, in order (index into :data:`MECHANISMS`; -1 = no loss):
 
-    0. *capture*: the gate stays within ``radius`` of one interferer for more than ``fraction`` of
-       the window (:func:`tag_capture`);
-    1. *drift among several*: the gate comes within ``radius`` of at least two different
-       interferers during the window (it is passed from one to another, the five-interferer mode);
+    0. *capture*: near one interferer for more than ``fraction`` of the window;
+    1. *drift among several*: near at least two different interferers during the window (it is
+       passed from one to another, the five-interferer mode);
     2. *frequency*: the relative angular-velocity error exceeds ``omega_tol`` for more than
        ``fraction`` of the window (the phase loop lost the rotation; never for a static marker,
        whose ``omega_error`` is NaN);
@@ -145,6 +147,8 @@ def classify_losses(loss_frame, gate, interferers, omega_error, window: int, rad
         From :func:`first_loss`.
     gate : ndarray, shape (n, T, 2)
     interferers : ndarray, shape (n, q, 2)
+    miss : ndarray, shape (n, T)
+        Distance of the gate centre from the marker (px).
     omega_error : ndarray, shape (n, T)
         ``omega_hat / omega - 1``.
     window : int
@@ -165,7 +169,9 @@ def classify_losses(loss_frame, gate, interferers, omega_error, window: int, rad
         freq = (np.abs(np.asarray(omega_error)[rows, frames]) > omega_tol).mean(axis=1) > fraction
     out[freq] = 2
     if q.shape[1]:
-        near = np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius
+        off_marker = np.asarray(miss)[rows, frames] > radius                      # (n, window)
+        near = (np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius) \
+            & off_marker[:, :, None]
         out[near.any(axis=1).sum(axis=1) >= 2] = 1
         out[(near.mean(axis=1) > fraction).any(axis=1)] = 0
     out[loss < 0] = -1

@@ -117,8 +117,8 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
         capt_all = tag_capture(runs["gate"], runs["interferers"], fl_all, criterion.window, capture_radius,
                                criterion.fraction)
         other_all = {name: first_loss(runs["miss"], crit, runs["inside"]) for name, crit in other_criteria.items()}
-        mech_all = classify_losses(fl_all, runs["gate"], runs["interferers"], runs["omega_error"], criterion.window,
-                                   capture_radius, criterion.fraction, omega_tol)
+        mech_all = classify_losses(fl_all, runs["gate"], runs["interferers"], runs["miss"], runs["omega_error"],
+                                   criterion.window, capture_radius, criterion.fraction, omega_tol)
         alarm_all = (omega_alarm(runs["omega_hat"], sc.omega0, criterion.window, omega_tol) if sc.rotating
                      else np.full(fl_all.shape, -1))
         for b, x in enumerate(group):
