@@ -15,9 +15,9 @@ import time
 import numpy as np
 from filterpy.gh import GHKFilter
 
-from tvtrack.detect.maneuver import scheduled_statistic_std, threshold_from_std
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import scheduled_statistic_std, threshold_from_std
 from tvtrack.filters.alphabeta import gain_schedule
-from tvtrack.track_modes import TrackModeConfig, run_track_modes
+from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import TrackModeConfig, run_track_modes
 
 N_TRIALS, N_CH, FPS, T = 1000, 2, 25.0, 625
 KB2, KB3, N_WIN, ALPHA = 50, 100, 25, 1e-3

@@ -1,12 +1,12 @@
-"""Tests of tvtrack.track_modes (notebook 001): mode logic against hand-built runs."""
+"""Tests of tvtrack.papers.p001_maneuver_occlusion_kf.track_modes (notebook 001): mode logic against hand-built runs."""
 
 import numpy as np
 import pytest
 
-from tvtrack.detect.maneuver import scheduled_statistic_std, threshold_from_std, window_statistic
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import scheduled_statistic_std, threshold_from_std, window_statistic
 from tvtrack.filters.alphabeta import error_covariance_sequence, gain_schedule, scheduled_filter
 from tvtrack.filters.polynomial import polynomial_observation_row, taylor_transition
-from tvtrack.track_modes import COAST, TRACK2, TRACK3, TrackModeConfig, run_track_modes
+from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import COAST, TRACK2, TRACK3, TrackModeConfig, run_track_modes
 
 T = 400
 

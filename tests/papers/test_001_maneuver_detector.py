@@ -1,10 +1,10 @@
-"""Tests of tvtrack.detect.maneuver (notebook 001): statistic, thresholds, false-alarm rate."""
+"""Tests of tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector (notebook 001): statistic, thresholds, false-alarm rate."""
 
 import numpy as np
 import pytest
 from scipy import stats
 
-from tvtrack.detect.maneuver import (calibrate_threshold, scheduled_statistic_std, statistic_std,
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (calibrate_threshold, scheduled_statistic_std, statistic_std,
                                      threshold_from_std, variance_independent, variance_stationary,
                                      window_statistic, window_sum_of_squares)
 from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter

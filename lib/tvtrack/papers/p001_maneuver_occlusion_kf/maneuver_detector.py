@@ -26,9 +26,9 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from ..filters.alphabeta import error_covariance_sequence, lagged_covariances, observation_row, scheduled_filter
-from ..filters.polynomial import taylor_transition
-from ..montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
+from ...filters.alphabeta import error_covariance_sequence, lagged_covariances, observation_row, scheduled_filter
+from ...filters.polynomial import taylor_transition
+from ...montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
 
 __all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
            "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",

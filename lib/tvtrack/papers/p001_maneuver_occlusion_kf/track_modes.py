@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .filters.alphabeta import gain_schedule, observation_row
-from .filters.polynomial import polynomial_observation_row, taylor_transition
+from ...filters.alphabeta import gain_schedule, observation_row
+from ...filters.polynomial import polynomial_observation_row, taylor_transition
 
 __all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes", "manoeuvre_truth"]
 

@@ -1,10 +1,10 @@
-"""Tests of the detector summaries in tvtrack.detect.maneuver and of manoeuvre_truth (notebook 001)."""
+"""Tests of the detector summaries in tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector and of manoeuvre_truth (notebook 001)."""
 
 import numpy as np
 import pytest
 
-from tvtrack.detect.maneuver import detection_time_summary, false_alarm_rates, first_detection_roc
-from tvtrack.track_modes import manoeuvre_truth
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import detection_time_summary, false_alarm_rates, first_detection_roc
+from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import manoeuvre_truth
 
 
 def test_false_alarm_rates_count_alarms_per_test_and_per_run():
