@@ -94,7 +94,7 @@ def test_bad_config():
 def _low_threshold_run(restart, **cfg):
     """Detector kept on in TRACK3 with a low threshold, so that it restarts the 3rd-order law many times."""
     _, z = _z(6, seed=3)
-    return run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=1.0, detect_in_track3=True, arm_k=30,
+    return run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=1.0, detect_in_track3=True, arm_k=51,
                                                                 restart=restart, **cfg), 1.0)
 
 

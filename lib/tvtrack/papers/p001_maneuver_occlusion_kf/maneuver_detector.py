@@ -26,14 +26,20 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from ...filters.alphabeta import error_covariance_sequence, lagged_covariances, observation_row, scheduled_filter
+from ...filters.alphabeta import (
+    error_covariance_sequence,
+    gain_schedule,
+    lagged_covariances,
+    observation_row,
+    scheduled_filter,
+)
 from ...filters.polynomial import taylor_transition
-from ...montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci
+from ...montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci, zero_events_bound
 
 __all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
            "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",
            "false_alarm_rates", "detection_time_summary", "first_detection_roc", "null_quantile_threshold",
-           "first_alarm_within"]
+           "first_alarm_within", "track2_thresholds"]
 
 
 def _check_window(n) -> int:
@@ -212,6 +218,42 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     return out
 
 
+def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: float = 1.0) -> np.ndarray:
+    """Exact ``c(alpha)`` per *frame* for the TRACK2 filter of a run with losses (card §4.3, time-varying gains).
+
+    While lost the filter coasts (zero gains, (E1)) and its error grows; after re-arming the window sums carry
+    that error for many frames, so a threshold computed for a run without loss (indexed by the measurement count)
+    is far too low there (after a 10 s loss at alpha = 1e-3 the per-test rate is tens of times alpha). Here the
+    gain sequence of the run itself, ``K_2(min(k_t, k_b2))`` on visible frames and 0 on lost ones, goes through
+    :func:`scheduled_statistic_std`, so ``sigma_S(t)`` includes the coast.
+
+    Parameters
+    ----------
+    visible : array_like of bool, shape (T,)
+        Visibility shared by every run (the TRACK2 filter is then the same in every run).
+    k_bound2, n : int
+        TRACK2 gain bound and detector half-window, frames.
+    alpha : float
+        Per-test false-alarm probability.
+    sigma_eps : float
+        Measurement noise RMS, elements.
+
+    Returns
+    -------
+    ndarray, shape (T,)
+        Threshold per frame (elements/frame); inf where the windows are not full.
+    """
+    _check_alpha(alpha)
+    vis = np.asarray(visible, dtype=bool)
+    if vis.ndim != 1:
+        raise ValueError(f"parameter 'visible' has shape {vis.shape}; it must be (T,)")
+    k = np.cumsum(vis)
+    G = gain_schedule(1, k_bound2, max(int(k[-1]), 1))[np.maximum(k, 1) - 1] * vis[:, None]
+    sig = scheduled_statistic_std(G, n, sigma_eps)
+    c = threshold_from_std(alpha, np.where(np.isfinite(sig), sig, np.inf))
+    return np.where(np.isfinite(c), c, np.inf)
+
+
 def calibrate_threshold(gains, n: int, alpha: float, frames, n_sims: int, rng: np.random.Generator,
                         sigma_eps: float = 1.0, confidence: float = 0.95) -> Estimate:
     """Threshold by simulation under no manoeuvre: the ``1 - alpha`` quantile of ``|S_t|``.
@@ -268,7 +310,8 @@ def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming
     -------
     dict of Estimate (or None)
         ``per_test_fixed_frame``, ``per_test_at_arming``, ``per_test_pooled`` (mean over the armed
-        frames of each run, interval from the per-run rates), ``per_run_before_onset`` (at least one
+        frames of each run, interval from the per-run rates; with no alarm at all, 0 with the zero-events
+        bound over the independent runs as its upper limit), ``per_run_before_onset`` (at least one
         alarm before the onset; None when no frame is armed before it) and ``per_run_whole``.
     """
     S = np.asarray(S, dtype=float)
@@ -280,11 +323,20 @@ def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming
     return {
         "per_test_fixed_frame": proportion_ci(int(alarm[:, test_frame].sum()), runs),
         "per_test_at_arming": proportion_ci(int(alarm[:, arming_frame].sum()), runs),
-        "per_test_pooled": mean_ci(alarm[:, armed].mean(axis=1)),
+        "per_test_pooled": _pooled_rate(alarm[:, armed]),
         "per_run_before_onset": (proportion_ci(int(alarm[:, before_onset].any(axis=1).sum()), runs)
                                  if before_onset.any() else None),
         "per_run_whole": proportion_ci(int(alarm[:, armed].any(axis=1).sum()), runs),
     }
+
+
+def _pooled_rate(alarm) -> Estimate:
+    """Per-test rate pooled over the tested frames of independent runs, ``alarm`` (runs, tests)."""
+    runs = alarm.shape[0]
+    if not alarm.any():                     # zero events: the bound they certify, never [0, 0]
+        return Estimate(0.0, float("nan"), 0.0, zero_events_bound(runs), runs, 0.95,
+                        f"zero-events bound over {runs} independent runs")
+    return mean_ci(alarm.mean(axis=1))
 
 
 def detection_time_summary(detection_frames, onset: int, loss_frame: int, frame_rate_hz: float) -> dict:

@@ -42,9 +42,15 @@ class TrackModeConfig:
         Detector half-window ``n``, frames.
     threshold : float or array_like, shape (K,)
         ``c(alpha)``; an array is indexed by the TRACK2 measurement count ``k`` (entry ``k-1``,
-        the last entry for larger ``k``), for thresholds computed for the time-varying gains.
+        the last entry for larger ``k``), for thresholds computed for the time-varying gains, or by the
+        frame (``threshold_index="frame"``).
+    threshold_index : {"count", "frame"}
+        How an array ``threshold`` is read: by the TRACK2 count ``k`` (entry ``k-1``), or by the frame ``t``
+        (entry ``t``), for thresholds that include a coast (``maneuver_detector.track2_thresholds``).
     arm_k : int or None
-        The detector tests once ``k >= arm_k`` in TRACK2; default ``k_bound2 + 2 window``.
+        The detector tests once ``k >= arm_k`` in TRACK2; default ``k_bound2 + 2 window``. At least
+        ``2 window + 1``: the velocity after the first measurement (``3 Z_1``) carries no velocity information,
+        so a window holding it alarms in every run.
     restart : {"A", "B", "C"}
         On detection: "A" keeps ``x, v``, sets ``a = 0`` and restarts the 3rd-order law at
         ``restart_k``; "B" fits a quadratic to the last ``window`` measurements by least
@@ -75,6 +81,7 @@ class TrackModeConfig:
     k_bound3: int = 100
     window: int = 25
     threshold: float | np.ndarray = np.inf
+    threshold_index: str = "count"
     arm_k: int | None = None
     restart: str = "A"
     restart_k: int = 3
@@ -97,6 +104,11 @@ class TrackModeConfig:
             raise ValueError(f"parameter 'restart_accel_var' = {self.restart_accel_var!r}; it must be > 0")
         if self.restart == "B" and self.window < 3:
             raise ValueError(f"parameter 'window' = {self.window}; restart 'B' needs >= 3")
+        if self.threshold_index not in ("count", "frame"):
+            raise ValueError(f"parameter 'threshold_index' = {self.threshold_index!r}; it must be 'count' or 'frame'")
+        if self.arm_k is not None and self.arm_k < 2 * self.window + 1:
+            raise ValueError(f"parameter 'arm_k' = {self.arm_k}; it must be >= 2 window + 1 = {2 * self.window + 1} "
+                             f"(a window holding the first measurement's velocity 3 Z_1 alarms in every run)")
         th = np.atleast_1d(np.asarray(self.threshold, dtype=float))
         if th.ndim != 1 or np.any(~(th > 0)):
             raise ValueError("parameter 'threshold' must be a positive number or a 1-D array of them")
@@ -185,6 +197,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     thr3 = thr if cfg.threshold_track3 is None else np.atleast_1d(np.asarray(cfg.threshold_track3, dtype=float))
     forced = cfg.force_switch_k is not None
     detect3 = bool(cfg.detect_in_track3)
+    by_frame = cfg.threshold_index == "frame"
 
     # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
     # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
@@ -320,7 +333,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 testing &= since_visible >= rearm
             if testing.any():
                 S = sum_old - sum_new
-                c = thr_by_k.take(k)
+                c = thr[min(t, thr.size - 1)] if by_frame else thr_by_k.take(k)
                 if detect3 and any3:
                     c = np.where(in3 == 1, thr3_by_k.take(k), c)
                 np.copyto(out_S[t], S, where=testing)
