@@ -7,7 +7,6 @@ import ast
 import base64
 import hashlib
 import io
-import json
 import re
 import subprocess
 import sys
