@@ -241,7 +241,8 @@ def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: f
     Returns
     -------
     ndarray, shape (T,)
-        Threshold per frame (elements/frame); inf where the windows are not full.
+        Threshold per frame (elements/frame); inf where the windows are not full or hold only predicted
+        velocities (sigma_S = 0: no test is possible there).
     """
     _check_alpha(alpha)
     vis = np.asarray(visible, dtype=bool)
@@ -250,7 +251,7 @@ def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: f
     k = np.cumsum(vis)
     G = gain_schedule(1, k_bound2, max(int(k[-1]), 1))[np.maximum(k, 1) - 1] * vis[:, None]
     sig = scheduled_statistic_std(G, n, sigma_eps)
-    c = threshold_from_std(alpha, np.where(np.isfinite(sig), sig, np.inf))
+    c = threshold_from_std(alpha, np.where(np.isfinite(sig) & (sig > 0), sig, np.inf))
     return np.where(np.isfinite(c), c, np.inf)
 
 

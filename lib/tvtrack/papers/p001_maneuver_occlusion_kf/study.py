@@ -4,7 +4,9 @@ the tuned comparators and the deterministic curves of Fig. 4 and the loss-time s
 A measurement function is ``measure(config, seed, sizes) -> {claim id: measured}``: one full-size run of the
 study at ``config`` (a dict with every register entry of :mod:`.register`), every random draw from
 ``np.random.default_rng(seed)``, the same noise streams whatever the configuration (common random numbers).
-``sizes`` holds the notebook's sample sizes (bind it with ``functools.partial``, which stays picklable).
+``sizes`` holds the notebook's sample sizes and, under ``"defaults"``, the register's default configuration, which
+completes a configuration that names only the entries of one exploration (bind ``sizes`` with
+``functools.partial``, which stays picklable).
 
 Units: positions in raster elements, velocities in elements/frame, accelerations in elements/frame²; the motion is
 fixed in elements/s (the paper's values at 25 Hz), so another frame rate rescales the per-frame values.
@@ -156,18 +158,39 @@ def arming_count(rule: str, k_bound2: int, n: int, onset: int) -> tuple[int, str
     return arm, rule
 
 
+def _full(config: dict, sizes: dict) -> dict:
+    """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
+    return {**sizes.get("defaults", {}), **config}
+
+
 def _missing(what: str) -> Estimate:
     return Estimate(float("nan"), float("nan"), float("nan"), float("nan"), 0, 0.95, what)
 
 
+def _frame_resolution(e: Estimate, fps: float) -> Estimate:
+    """A detection-time quantile with its order-statistic interval widened by half a frame each side: a detection
+    at frame f means the statistic crossed the threshold within the frame interval, so time is known to a frame
+    (the interval of a quantile of frame-quantised times is otherwise often one frame wide, i.e. degenerate)."""
+    h = 0.5 / fps
+    return Estimate(e.value, e.stderr, e.ci_low - h, e.ci_high + h, e.n, e.confidence,
+                    f"{e.method}, widened by half a frame each side (time resolution)")
+
+
+def _per_alpha(e: Estimate, alpha: float) -> Estimate:
+    """A per-test rate in units of alpha (so one rule serves every alpha of the register)."""
+    return Estimate(e.value / alpha, e.stderr / alpha, e.ci_low / alpha, e.ci_high / alpha, e.n, e.confidence,
+                    f"{e.method}, divided by alpha")
+
+
 def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     """C001-1 (detection time), C001-2 (size, invariance, unbiasedness, optimality) and C001-3 (the paper's
-    independence threshold) from one full-size run.
+    independence threshold) from one full-size run. Per-test rates are in units of the configuration's alpha.
 
     Config entries read: ``frame_rate_hz``, ``window_n``, ``k_bound2``, ``alpha``, ``arming``, ``threshold``,
     ``paper_sigma``, ``noise``, ``alternative``. Sizes: ``n_trials`` (scenario runs, both channels),
     ``n_fa_runs`` (no-manoeuvre runs), ``fa_duration_s``, ``roc_delay_s``, ``step_dv``, ``sigma_eps``.
     """
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
@@ -192,7 +215,8 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     cfg = TrackModeConfig(k_bound2=kb2, window=n, threshold=c1, threshold_index="frame", arm_k=arm_k)
     det = run_track_modes(z, np.ones(Tl, bool), cfg, sigma, covariance=False).detection_frame
     s = detection_time_summary(det, sc.onset, Tl, sc.fps)
-    c001_1 = {"median": s["median_s"] or _missing("fewer than two detections"),
+    c001_1 = {"median": _frame_resolution(s["median_s"], sc.fps) if s["median_s"] else _missing("fewer than two "
+                                                                                                  "detections"),
               "early": s["false_alarm_before_onset"], "missed": s["missed_by_loss"]}
     # C001-2: size with the exact sigma_S; unbiasedness and power against Q on the TRACK2 filter (no switch)
     c_exact0 = detector_threshold("exact", np.ones(T0, bool), kb2, n, alpha, sigma)
@@ -221,12 +245,12 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     v_test = v0_hat[:5, -2 * n:]
     invariance = float(np.max(np.abs(window_statistic(v_test + np.concatenate([shift, shift], axis=1), n)[:, -1]
                                      - window_statistic(v_test, n)[:, -1])))
-    c001_2 = {"size": size, "invariance": invariance, "unbiased": unbiased,
+    c001_2 = {"size": _per_alpha(size, alpha), "invariance": invariance, "unbiased": _per_alpha(unbiased, alpha),
               "UMP": paired_difference(hits_S.reshape(-1).astype(float), hits_Q.reshape(-1).astype(float))}
     # C001-3: the paper's independence threshold, sigma read as the filter-output or the raw-increment RMS
     reading = "independent" if config["paper_sigma"] == "filter-output velocity" else "raw increments"
     c_paper = detector_threshold(reading, np.ones(T0, bool), kb2, n, alpha, sigma)
-    c001_3 = false_alarm_rates(S0, c_paper, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"]
+    c001_3 = _per_alpha(false_alarm_rates(S0, c_paper, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"], alpha)
     return {"C001-1": c001_1, "C001-2": c001_2, "C001-3": c001_3}
 
 
@@ -357,6 +381,7 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
         switch"`` (the scheme's own TRACK2 filter, never switching) and each comparator tuned for the config's
         ``rms_span``; ``tuning`` (settings, training RMS, on-edge flags); ``z`` the measurements.
     """
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
@@ -382,6 +407,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     """C001-4 in parts: ``faster compensation`` (mean-square error from the onset to ``compensation_end_s`` of the
     2nd-order filter without the switch over the scheme's, paired ratio) and ``min RMS vs <comparator>`` (ratio
     of the comparator's mean-square error over the span to the scheme's, each comparator tuned for that span)."""
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     sigma, n, fps = sizes["sigma_eps"], sizes["n_tradeoff_trials"], float(config["frame_rate_hz"])
     z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
@@ -464,6 +490,7 @@ def c8_parts(cur: dict) -> dict:
 
 def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
     """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw)."""
+    config = _full(config, sizes)
     return {"C001-7": c7_parts(loss_sweep(config, sizes)), "C001-8": c8_parts(fig4_curves(config, sizes))}
 
 
@@ -544,6 +571,7 @@ def spherical_deviations(ranges_m, speeds, headings_deg, elevations_deg, horizon
 def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
     """C001-9: the fraction of the geometries within ±20° whose 10 s extrapolation stays within the tolerance
     (``extrapolation``: quadratic/linear; ``tolerance``: "1 element" or "prediction RMS at k_b3")."""
+    config = _full(config, sizes)
     rows = spherical_deviations(sizes["ranges_m"], sizes["speeds_ms"], sizes["headings_deg"],
                                 sizes["elevations_deg"])
     inside = rows[rows[:, 4] > 0]

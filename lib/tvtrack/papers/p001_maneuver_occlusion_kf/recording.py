@@ -1,0 +1,89 @@
+"""Rerun layout of notebook 001: run 0 of the scenario, both channels: a rendered crop around the object with the
+predicted gate, truth, measurement and estimate (the prediction while lost); the trajectory; series of errors,
+velocity, acceleration, detector statistic and threshold, kappa1 and the mode."""
+
+from __future__ import annotations
+
+import numpy as np
+import rerun.blueprint as rrb
+
+from ...filters.polynomial import predict_ahead
+from ...plotting import ROLE_COLOURS, rgb
+from ...recordings import Recorder, ellipse_outline
+from ...render import gate_origin, gaussian_spot
+
+__all__ = ["blueprint", "record_run"]
+
+
+def blueprint() -> rrb.Blueprint:
+    """Crop and trajectory on the left, the time series stacked on the right."""
+    return rrb.Blueprint(
+        rrb.Horizontal(
+            rrb.Vertical(rrb.Spatial2DView(origin="camera", name="Crop around the object (elements)"),
+                         rrb.Spatial2DView(origin="trajectory", name="Trajectory (elements)")),
+            rrb.Vertical(rrb.TimeSeriesView(origin="errors", name="Coordinate error (elements)"),
+                         rrb.TimeSeriesView(origin="velocity", name="Velocity x (elements/frame)"),
+                         rrb.TimeSeriesView(origin="acceleration", name="Acceleration x (elements/frame²)"),
+                         rrb.TimeSeriesView(origin="detector", name="Detector x: S and ±c"),
+                         rrb.TimeSeriesView(origin="gain", name="κ1"),
+                         rrb.TimeSeriesView(origin="mode", name="Mode (0 coast, 2, 3)")),
+            column_shares=[0.45, 0.55]),
+        rrb.TimePanel(timeline="frame", play_state="paused"),
+        collapse_panels=True)
+
+
+def record_run(rec: Recorder, out, z, truth, visible, rng: np.random.Generator, *, gate_sigma: float = 3.0,
+               every: int = 2, crop_px: int = 64, spot_sigma_px: float = 1.5) -> None:
+    """Log run 0 of a :class:`~.track_modes.TrackModeOutput` ``out`` (batch axes (runs, 2)).
+
+    Parameters
+    ----------
+    z : ndarray, shape (2, T)    measurements of run 0, elements
+    truth : ndarray, shape (2, T, 3)
+    visible : ndarray of bool, shape (T,)
+    rng : numpy.random.Generator   the crop's pixel noise
+    every : int                  log every ``every``-th frame's crop
+    """
+    if not rec.enabled:
+        return
+    T = truth.shape[1]
+    true_xy, meas_xy, est_xy = truth[:, :, 0].T, z.T, out.x[0, :, :, 0].T
+    gate_sd = np.sqrt(out.gate_var[0]).T
+    prev = np.concatenate([np.zeros((2, 1, 3)), out.x[0, :, :-1]], axis=1)
+    pred_xy = predict_ahead(prev, 1).T
+    size = (crop_px, crop_px)
+    origins = gate_origin(true_xy, size)
+    none = np.zeros((0, 2))
+    for f in range(0, T, every):
+        rec.set_frame(f)
+        o = origins[f]
+        if visible[f]:
+            img = 20 + gaussian_spot(true_xy[f], size, spot_sigma_px, 2 * np.pi * spot_sigma_px**2 * 200, origin=o)
+        else:
+            img = np.full(size, 90.0)                       # the cloud: object not visible
+        rec.image("camera/image", np.clip(img + rng.normal(0, 3, size), 0, 255).astype(np.uint8))
+        rec.boxes("camera/gate", pred_xy[f] - o, gate_sigma * gate_sd[f], colors=[rgb(ROLE_COLOURS["gate"])])
+        rec.lines("camera/truth", ellipse_outline(true_xy[f] - o, 4.0 * np.eye(2)),
+                  colors=[rgb(ROLE_COLOURS["truth"])], radii=-1.5)
+        rec.points("camera/estimate", est_xy[f] - o, colors=[rgb(ROLE_COLOURS["estimate"])], radii=-4.0)
+        rec.points("camera/measured", meas_xy[f] - o if visible[f] else none,
+                   colors=[rgb(ROLE_COLOURS["measurement"])], radii=-3.0)
+        rec.points("camera/predicted", none if visible[f] else est_xy[f] - o,
+                   colors=[rgb(ROLE_COLOURS["prediction"])], radii=-4.0)
+    rec.set_frame(0)
+    rec.lines("trajectory/truth", true_xy[::5], colors=[rgb(ROLE_COLOURS["truth"])], image_space=False)
+    rec.lines("trajectory/estimate", est_xy[::5], colors=[rgb(ROLE_COLOURS["estimate"])], image_space=False)
+    for c, nm in enumerate(("x", "y")):
+        rec.series(f"errors/{nm}", out.x[0, c, :, 0] - truth[c, :, 0])
+        rec.series(f"gain/kappa1_{nm}", out.gains[0, c, :, 0])
+        rec.series(f"mode/{nm}", out.mode[0, c].astype(float))
+    rec.series("velocity/true", truth[0, :, 1])
+    rec.series("velocity/estimate", out.x[0, 0, :, 1])
+    rec.series("acceleration/true", truth[0, :, 2])
+    rec.series("acceleration/estimate", out.x[0, 0, :, 2])
+    rec.series("detector/S", out.statistic[0, 0])
+    rec.series("detector/threshold_plus", out.threshold[0, 0])
+    rec.series("detector/threshold_minus", -out.threshold[0, 0])
+    for f in np.where(np.diff(out.mode[0, 0].astype(int)) != 0)[0] + 1:
+        rec.set_frame(int(f))
+        rec.text("log/mode_x", f"channel x: mode {out.mode[0, 0, f - 1]} -> {out.mode[0, 0, f]}")
