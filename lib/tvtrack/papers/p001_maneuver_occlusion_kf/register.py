@@ -9,7 +9,7 @@ of Fig. 4 within the detection spread, an RMS span that includes reacquisition, 
 from __future__ import annotations
 
 from ...register import Entry, Register
-from .study import ARMING_RULES, NOISE_MODELS, RMS_SPANS, THRESHOLD_READINGS
+from .study import ARMING_RULES, NOISE_MODELS, RMS_SPANS, TARGET_SETS, THRESHOLD_READINGS
 
 __all__ = ["ENTRIES", "GROUPS", "DEPENDS", "build_register", "group_register"]
 
@@ -58,6 +58,9 @@ ENTRIES = (
           "detection times", "adversarial"),
     Entry("extrapolation", "reading", "quadratic", ("quadratic", "linear"),
           "C001-9: the paper coasts with the 3rd-order filter (quadratic); 'linear' is its own word"),
+    Entry("targets", "regime", "2-20 km, 100-300 m/s", tuple(TARGET_SETS),
+          "C001-9: the paper names no target; aircraft-like crossings at 2-20 km, or distant slow ones (20-100 km), "
+          "where the angular motion curves least", "adversarial"),
     Entry("tolerance", "reading", "1 element", ("1 element", "prediction RMS at k_b3"),
           "'accuracy acceptable for prediction': the measurement error (1 element) or the random prediction "
           "error at reappearance"),
@@ -71,7 +74,7 @@ DEPENDS = {
     "C001-4": ["restart", "k_bound3", "rms_span", "compensation_end_s", "threshold", "k_bound2", "noise"],
     "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz"],
     "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz"],
-    "C001-9": ["extrapolation", "tolerance"],
+    "C001-9": ["extrapolation", "tolerance", "targets"],
 }
 
 #: Claims measured together by one measurement function (one exploration each).

@@ -313,30 +313,33 @@ def _span_ms(xhat, sc: Scenario, channel_truth) -> dict:
 
 
 @functools.lru_cache(maxsize=4)
-def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha: float,
-                      sigma_eps: float = 1.0) -> dict:
+def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha: float, sigma_eps: float = 1.0,
+                      grids: tuple = ()) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
     ``{span: {comparator: (setting, training RMS, on_edge)}}``.
 
     The same effort for every comparator: a grid over its parameters (``FIXED2_GRID``, ``FIXED3_GRID``,
     ``IMM_Q_CA_GRID`` x ``IMM_P_STAY_GRID`` and the best of three ways to coast, ``VDF_Q_CA_GRID`` x
-    ``VDF_WINDOWS``); ``on_edge`` flags an optimum on a grid edge that is not a physical floor (``FLOORS``).
+    ``VDF_WINDOWS``; ``grids`` overrides them: pairs (name, values) with names ``fixed2``, ``fixed3``,
+    ``imm_q_ca``, ``imm_p_stay``, ``vdf_q_ca``, ``vdf_windows``); ``on_edge`` flags an optimum on a grid edge that is not a physical floor (``FLOORS``).
     Like the paper's scheme, whose thresholds assume white Gaussian errors, the comparators are tuned once for
     white Gaussian errors and then face every measurement-error model untuned. The VD filter's threshold is the
     ``1 - alpha`` quantile of its statistic before the onset (per-test rate alpha, as the paper's detector).
     """
+    g = {"fixed2": FIXED2_GRID, "fixed3": FIXED3_GRID, "imm_q_ca": IMM_Q_CA_GRID, "imm_p_stay": IMM_P_STAY_GRID,
+         "vdf_q_ca": VDF_Q_CA_GRID, "vdf_windows": VDF_WINDOWS} | dict(grids)
     sc = scenario(frame_rate_hz)
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
     truth = sc.truth[None, :, :, 0]
-    cand = {"fixed 2nd order": [(kb,) for kb in FIXED2_GRID], "fixed 3rd order": [(kb,) for kb in FIXED3_GRID]}
-    cand["IMM"] = [(q, p, "mix") for q, p in itertools.product(IMM_Q_CA_GRID, IMM_P_STAY_GRID)]
+    cand = {"fixed 2nd order": [(kb,) for kb in g["fixed2"]], "fixed 3rd order": [(kb,) for kb in g["fixed3"]]}
+    cand["IMM"] = [(q, p, "mix") for q, p in itertools.product(g["imm_q_ca"], g["imm_p_stay"])]
     vd_thr = {}
-    for w in VDF_WINDOWS:                                    # CV only (no detection): rho does not depend on q_CA
-        rho = vd_filter_run(z, sc.visible, 0.0, VDF_Q_CA_GRID[0], sigma_eps, w, np.inf).rho[..., w + 1:sc.onset]
+    for w in g["vdf_windows"]:                               # CV only (no detection): rho does not depend on q_CA
+        rho = vd_filter_run(z, sc.visible, 0.0, g["vdf_q_ca"][0], sigma_eps, w, np.inf).rho[..., w + 1:sc.onset]
         vd_thr[w] = float(np.quantile(rho, 1 - alpha))
-    cand["VD filter"] = [(q, w, vd_thr[w]) for q, w in itertools.product(VDF_Q_CA_GRID, VDF_WINDOWS)]
+    cand["VD filter"] = [(q, w, vd_thr[w]) for q, w in itertools.product(g["vdf_q_ca"], g["vdf_windows"])]
 
     def score(name, setting):
         return {k: float(v.mean()) for k, v in _span_ms(comparator_positions(name, setting, z, sc, sigma_eps), sc,
@@ -351,14 +354,20 @@ def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha
         out[span] = {}
         for name, sc_ in scores.items():
             best = min(sc_, key=lambda st: sc_[st][span])
-            out[span][name] = (best, float(np.sqrt(sc_[best][span])), _on_edge(name, best))
+            out[span][name] = (best, float(np.sqrt(sc_[best][span])), _on_edge(name, best, g))
     return out
 
 
-def _on_edge(name: str, best: tuple) -> bool:
-    grids = {"fixed 2nd order": (FIXED2_GRID,), "fixed 3rd order": (FIXED3_GRID,),
-             "IMM": (IMM_Q_CA_GRID, IMM_P_STAY_GRID), "VD filter": (VDF_Q_CA_GRID, VDF_WINDOWS)}[name]
-    return any(len(g) > 1 and v in (min(g), max(g)) and v not in FLOORS[name] for g, v in zip(grids, best))
+def _on_edge(name: str, best: tuple, g: dict) -> bool:
+    grids = {"fixed 2nd order": (g["fixed2"],), "fixed 3rd order": (g["fixed3"],),
+             "IMM": (g["imm_q_ca"], g["imm_p_stay"]), "VD filter": (g["vdf_q_ca"], g["vdf_windows"])}[name]
+    return any(len(v_) > 1 and v in (min(v_), max(v_)) and v not in FLOORS[name] for v_, v in zip(grids, best))
+
+
+def _tuning(config: dict, sizes: dict) -> dict:
+    grids = tuple((k, tuple(v)) for k, v in sizes.get("grids", {}).items())
+    return tuned_comparators(float(config["frame_rate_hz"]), sizes["n_train"], sizes["train_seed"],
+                             float(config["alpha"]), sizes["sigma_eps"], grids)
 
 
 @functools.lru_cache(maxsize=64)
@@ -386,14 +395,72 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
-    tuning = tuned_comparators(float(config["frame_rate_hz"]), sizes["n_train"], sizes["train_seed"],
-                               float(config["alpha"]), sigma)[config["rms_span"]]
+    tuning = _tuning(config, sizes)[config["rms_span"]]
     pos = {"adaptive": run_scheme(z, sc, config, sizes, covariance=False).x[..., 0],
            "2nd order without the switch": comparator_positions("fixed 2nd order", (int(config["k_bound2"]),), z,
                                                                sc, sigma)}
     for name, (setting, _, _) in tuning.items():
         pos[name] = comparator_positions(name, setting, z, sc, sigma)
     return {"scenario": sc, "positions": pos, "tuning": tuning, "z": z}
+
+
+def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")) -> dict:
+    """The paper's scenario (both channels, ``sizes["n_trials"]`` runs) through the scheme under each restart rule,
+    with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
+    config = _full(config, sizes)
+    sc = scenario(config["frame_rate_hz"])
+    z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed),
+                     sizes["sigma_eps"])
+    return {"scenario": sc, "z": z, "outs": {r: run_scheme(z, sc, config | {"restart": r}, sizes) for r in restarts}}
+
+
+def gain_checks(out, sc: Scenario, k_bound3: int) -> dict:
+    """C001-5's implementation checks: increases of kappa1 on consecutive visible frames outside the order switches,
+    and the runs x channels that switched at least ``k_bound3`` frames before the loss and sit at the 3rd-order
+    bound's kappa1 at the last frame before it."""
+    k1 = out.gains[..., 0]
+    both = sc.visible[1:] & sc.visible[:-1]
+    dk = np.diff(k1, axis=-1)
+    det = out.detection_frame
+    switch = np.zeros(dk.shape, bool)
+    hit = det >= 0
+    idx = np.nonzero(hit)
+    switch[idx + (np.clip(det[hit], 0, sc.T - 2),)] = True
+    increases = int(np.sum((dk > 1e-15) & both & ~switch))
+    long_enough = hit & (sc.f_loss - 1 - det >= k_bound3)
+    at_bound = np.isclose(k1[..., sc.f_loss - 1], gain_schedule(2, k_bound3)[-1, 0])
+    return {"increases_outside_switches": increases, "long_enough": int(long_enough.sum()),
+            "at_bound": int((at_bound & long_enough).sum())}
+
+
+def coast_check(out, sc: Scenario) -> dict:
+    """C001-6: the largest difference between the actual error while lost and ``F^m`` times the error at the last
+    seen frame (E2), and the size of the errors, elements."""
+    from ...filters.polynomial import taylor_transition
+
+    err = out.x - sc.truth[None]
+    m = np.arange(1, sc.f_back - sc.f_loss + 1)
+    Fm = np.stack([np.linalg.matrix_power(taylor_transition(2), int(k)) for k in m])
+    pred = np.einsum("mij,...j->...mi", Fm, err[..., sc.f_loss - 1, :])
+    actual = err[..., sc.f_loss:sc.f_back, :]
+    return {"max_abs_deviation": float(np.max(np.abs(pred - actual))), "error_scale": float(np.max(np.abs(actual)))}
+
+
+def sigma_s_readings(config: dict, sizes: dict) -> dict:
+    """sigma_S (elements/frame) at the detector's arming under each threshold reading, the lag-1 correlation of the
+    frozen TRACK2 filter's output velocity, and the per-test rate the paper's independence threshold gives at
+    stationarity (Gaussian: 2 Phi(-c_ind / sigma_S))."""
+    from ...filters.alphabeta import lagged_covariances
+
+    config = _full(config, sizes)
+    n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
+    K2 = gain_schedule(1, kb2)[-1]
+    C = lagged_covariances(K2, sizes["sigma_eps"], 2)
+    z_a = stats.norm.isf(alpha / 2)
+    sig = {r: float(detector_threshold(r, np.ones(kb2 + 2 * n + 1, bool), kb2, n, alpha, sizes["sigma_eps"])[-1]
+                    / z_a) for r in THRESHOLD_READINGS}
+    return {"sigma_S": sig, "rho_v1": float(C[1, 1, 1] / C[0, 1, 1]),
+            "pfa_independent": float(2 * stats.norm.sf(sig["independent"] / sig["stationary"] * z_a))}
 
 
 def compensation_ms(xhat, sc: Scenario, end_s: float) -> np.ndarray:
@@ -417,7 +484,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     parts = {"faster compensation": ratio_ci(compensation_ms(without, sc, end), compensation_ms(adaptive, sc, end))}
     span = config["rms_span"]
     ms_adaptive = _span_ms(adaptive, sc, sc.truth[None, :, :, 0])[span]
-    tuning = tuned_comparators(fps, sizes["n_train"], sizes["train_seed"], float(config["alpha"]), sigma)[span]
+    tuning = _tuning(config, sizes)[span]
     for name in COMPARATORS:
         ms = _comparator_ms(name, tuning[name][0], seed, config["noise"], fps, n, sigma)[span]
         parts[f"min RMS vs {name}"] = ratio_ci(ms, ms_adaptive)
@@ -456,6 +523,7 @@ def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
 
 def fig4_curves(config: dict, sizes: dict) -> dict:
     """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     fl, fb = occlusion_frames(config["occlusion"], sc)
     dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
@@ -464,6 +532,7 @@ def fig4_curves(config: dict, sizes: dict) -> dict:
 
 def loss_sweep(config: dict, sizes: dict) -> dict:
     """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     rows = [prediction_error(sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)),
                              int(round((s + 10.0) * sc.fps))) for s in sizes["loss_grid_s"]]
@@ -496,6 +565,7 @@ def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
 
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
     """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
+    config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
     fl, fb = occlusion_frames(config["occlusion"], sc)
     vis = (sc.frames < fl) | (sc.frames >= fb)
@@ -568,13 +638,22 @@ def spherical_deviations(ranges_m, speeds, headings_deg, elevations_deg, horizon
     return np.array(rows)
 
 
+#: The target sets of C001-9: ranges m, speeds m/s, headings deg, initial elevations deg.
+TARGET_SETS = {
+    "2-20 km, 100-300 m/s": ((2e3, 5e3, 10e3, 20e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+    "20-100 km, 50-250 m/s": ((20e3, 50e3, 100e3), (50.0, 250.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+}
+
+
 def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
     """C001-9: the fraction of the geometries within ±20° whose 10 s extrapolation stays within the tolerance
-    (``extrapolation``: quadratic/linear; ``tolerance``: "1 element" or "prediction RMS at k_b3")."""
+    (``extrapolation``: quadratic/linear; ``tolerance``: "1 element" or "prediction RMS at k_b3"; ``targets``: a
+    key of :data:`TARGET_SETS`; NaN when no geometry stays within ±20°)."""
     config = _full(config, sizes)
-    rows = spherical_deviations(sizes["ranges_m"], sizes["speeds_ms"], sizes["headings_deg"],
-                                sizes["elevations_deg"])
+    rows = spherical_deviations(*TARGET_SETS[config["targets"]])
     inside = rows[rows[:, 4] > 0]
+    if inside.size == 0:
+        return {"C001-9": float("nan")}
     tol = 1.0 if config["tolerance"] == "1 element" else float(sizes["prediction_rms"])
     col = 5 if config["extrapolation"] == "linear" else 6
     return {"C001-9": float(np.mean(inside[:, col] < tol))}

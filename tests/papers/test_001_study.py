@@ -1,0 +1,174 @@
+"""Tests of paper 001's study functions (the measurements the explorer calls and the curves the verdicts rest
+on): closed forms, independent computations and limits."""
+
+import functools
+
+import numpy as np
+import pytest
+
+from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter
+from tvtrack.papers.p001_maneuver_occlusion_kf import study
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
+    statistic_std,
+    threshold_from_std,
+    track2_thresholds,
+)
+from tvtrack.papers.p001_maneuver_occlusion_kf.params import RULES
+from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
+
+REG = build_register()
+SIZES = dict(n_trials=200, n_fa_runs=3000, fa_duration_s=12.0, roc_delay_s=0.5, step_dv=1.0, sigma_eps=1.0,
+             n_tradeoff_trials=20, n_train=6, train_seed=5, kb3_grid=[20, 50, 100, 200], loss_grid_s=[6.0, 8.0, 12.0],
+             n_fig4_trials=200, defaults=REG.default(),
+             grids=dict(fixed2=(2, 10, 50), fixed3=(3, 20, 100), imm_q_ca=(1e-4, 1e-3), imm_p_stay=(0.99,),
+                        vdf_q_ca=(1e-6, 1e-5), vdf_windows=(5,)))
+
+
+@pytest.mark.parametrize("model", study.NOISE_MODELS)
+def test_measurement_models_have_the_stated_rms(model):
+    z = study.measurements(np.zeros(400), model, 400, np.random.default_rng(1), sigma_eps=1.5)
+    if model == "quantised":                           # rounding of a zero truth: RMS of round(N(0, s^2 - 1/12))
+        assert np.sqrt(np.mean(z**2)) == pytest.approx(1.5, rel=0.03)
+    else:
+        assert np.sqrt(np.mean(z**2)) == pytest.approx(1.5, rel=0.05 if "Student" in model else 0.01)
+    if model.startswith("AR(1)"):
+        assert np.mean(z[:, 1:] * z[:, :-1]) / np.mean(z**2) == pytest.approx(0.5, abs=0.01)
+        assert np.std(z[:, 0]) == pytest.approx(1.5, rel=0.05)       # stationary from the first frame
+
+
+def test_measurement_models_share_their_normal_draws():
+    a = study.measurements(np.zeros(50), "white Gaussian", 3, np.random.default_rng(2))
+    b = study.measurements(np.zeros(50), "AR(1), rho = 0.5", 3, np.random.default_rng(2))
+    np.testing.assert_array_equal(a[:, 0], b[:, 0])
+
+
+def test_threshold_readings():
+    vis = np.ones(300, bool)
+    K2 = gain_schedule(1, 50)[-1]
+    z = threshold_from_std(1e-3, 1.0)
+    np.testing.assert_array_equal(study.detector_threshold("exact", vis, 50, 25, 1e-3), track2_thresholds(vis, 50, 25,
+                                                                                                        1e-3))
+    assert study.detector_threshold("stationary", vis, 50, 25, 1e-3)[0] == pytest.approx(
+        z * statistic_std(K2, 1.0, 25, "correlated"))
+    assert study.detector_threshold("raw increments", vis, 50, 25, 1e-3)[0] == pytest.approx(z * 10.0)
+    with pytest.raises(ValueError, match="threshold reading"):
+        study.detector_threshold("paper", vis, 50, 25, 1e-3)
+
+
+def test_arming_rules_and_the_onset_fallback():
+    assert study.arming_count("gains at bound", 50, 25, 125) == (100, "gains at bound")
+    assert study.arming_count("windows full", 50, 25, 125) == (51, "windows full")
+    arm, rule = study.arming_count("gains at bound", 100, 25, 125)      # 150 would test after the onset
+    assert arm == 51 and rule.startswith("windows full")
+
+
+def test_detection_measurement_matches_the_closed_forms():
+    m = study.measure_detection({}, 3, SIZES)
+    # the paper's independence threshold at stationarity: 2 Phi(-c_ind / sigma_S) per test (Gaussian)
+    expected = study.sigma_s_readings({}, SIZES)["pfa_independent"] / 1e-3
+    assert m["C001-3"].value == pytest.approx(expected, rel=0.05)
+    assert 0.6 < m["C001-2"]["size"].value < 1.5
+    assert m["C001-2"]["invariance"] < 1e-9
+    assert m["C001-1"]["median"].ci_high - m["C001-1"]["median"].ci_low >= 1 / 25 - 1e-9   # a frame of resolution
+    assert 5.0 < m["C001-1"]["median"].value < 6.0
+
+
+def test_tradeoff_measurement_uses_the_same_runs_as_the_figure_study():
+    cfg = {"rms_span": "onset to loss"}
+    tr = study.tradeoff_runs(cfg, 4, SIZES)
+    sc = tr["scenario"]
+    mask = study.span_mask("onset to loss", sc)
+    ms = {k: ((p - sc.truth[None, :, :, 0]) ** 2)[..., mask].mean(axis=(-1, -2)) for k, p in tr["positions"].items()}
+    m = study.measure_tradeoff(cfg, 4, SIZES)["C001-4"]
+    for name in study.COMPARATORS:
+        assert m[f"min RMS vs {name}"].value == pytest.approx(ms[name].mean() / ms["adaptive"].mean(), rel=1e-9)
+
+
+def test_tuning_picks_the_grid_minimum():
+    t = study.tuned_comparators(25.0, 6, 5, 1e-3, 1.0, tuple((k, tuple(v)) for k, v in SIZES["grids"].items()))
+    sc = study.scenario()
+    z = study.measurements(sc.truth[:, :, 0], "white Gaussian", 6, np.random.default_rng(5))
+    mask = study.span_mask("4 s to loss", sc)
+    rms = {kb: np.sqrt(np.mean(((study.comparator_positions("fixed 3rd order", (kb,), z, sc, 1.0)
+                                 - sc.truth[None, :, :, 0]) ** 2)[..., mask])) for kb in (3, 20, 100)}
+    best, train_rms, _ = t["4 s to loss"]["fixed 3rd order"]
+    assert best == (min(rms, key=rms.get),) and train_rms == pytest.approx(min(rms.values()))
+
+
+def test_unbiased_bound_at_zero_lead_is_the_growing_memory_variance():
+    sc = study.scenario()
+    for n in (5, 40, 150):
+        b = study.unbiased_prediction_bound(sc, 0, n - 1, n - 1)
+        assert b**2 == pytest.approx(3 * (3 * n**2 - 3 * n + 2) / (n * (n + 1) * (n + 2)), rel=1e-9)
+    # one frame ahead: the growing-memory 3rd-order filter's own prediction variance (independent recursion)
+    G = gain_schedule(2, 10_000, 60)
+    e = scheduled_filter(np.random.default_rng(0).standard_normal((20000, 60)), G)
+    pred = e[:, -1, 0] + e[:, -1, 1] + 0.5 * e[:, -1, 2]
+    assert np.std(pred) == pytest.approx(study.unbiased_prediction_bound(sc, 0, 59, 60), rel=0.03)
+
+
+def test_curve_agreement_and_its_word():
+    cur = {"dyn": np.array([1.0, 2.0]), "rms": np.array([1.0, 1.0])}
+    mc = {"mean": np.array([1.0, 2.0]), "se": np.array([0.1, 0.1]), "sd": np.array([1.0, 1.0])}
+    a = study.curve_agreement(cur, mc, 1000)
+    assert a["p_mean"] == 1.0 and a["p_var"] > 0.5
+    mc["mean"] = np.array([2.0, 3.0])
+    assert study.curve_agreement(cur, mc, 1000)["p_mean"] < 1e-6
+    assert study.agreement_word(0.2) == "agree with" and study.agreement_word(0.01) == "differ from"
+
+
+def test_curve_parts_on_a_constructed_curve():
+    cur = {"dyn": np.array([0.0, 1.0, 2.0, 4.0]), "rms": np.array([9.0, 4.0, 2.0, 1.0])}
+    cur["sum"] = np.abs(cur["dyn"]) + cur["rms"]
+    p = study.c8_parts(cur)
+    assert p["interior minimum"] == pytest.approx(min(9.0, 5.0) - 4.0)
+    assert p["dynamic grows beyond the optimum"] == [2.0, 4.0]
+
+
+def test_fig4_monte_carlo_checks_the_noise_free_curve():
+    cfg = {"restart": "A"}
+    cur = study.fig4_curves(cfg, SIZES)
+    mc = study.fig4_monte_carlo(cfg, SIZES, np.random.default_rng(9))
+    a = study.curve_agreement(cur, mc, SIZES["n_fig4_trials"])
+    assert a["p_mean"] > 1e-3 and a["p_var"] > 1e-3
+
+
+def test_scenario_checks_hold_for_every_restart():
+    r = study.scenario_runs({}, 1, SIZES | {"n_trials": 20})
+    for o in r["outs"].values():
+        assert study.gain_checks(o, r["scenario"], 100)["increases_outside_switches"] == 0
+        c = study.coast_check(o, r["scenario"])
+        assert c["max_abs_deviation"] < 1e-8 * max(c["error_scale"], 1.0)
+
+
+def test_every_claim_depends_on_register_entries_and_the_rules_name_the_notebook_parameters():
+    for group, ids in GROUPS.items():
+        names = group_register(REG, group).names
+        assert all(set(DEPENDS[c]) <= set(names) for c in ids)
+    import ast
+    from pathlib import Path
+
+    import nbformat
+
+    nb = nbformat.read(Path(__file__).parents[2] / "notebooks" / "001_maneuver_occlusion_kf.ipynb", as_version=4)
+    cell = next(c for c in nb.cells if "parameters" in c.metadata.get("tags", []))
+    assigned = {n.targets[0].id for n in ast.parse(cell.source).body}
+    assert set(RULES) <= assigned
+
+
+def test_spherical_measurement_by_target_set():
+    sz = SIZES | {"prediction_rms": 4.0}
+    near = study.measure_spherical({}, 0, sz)["C001-9"]
+    far = study.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]
+    assert 0 <= near < far <= 1                               # farther, slower targets curve less in angle
+
+
+def test_explorer_runs_the_curves_group():
+    from tvtrack.explore import explore
+    from tvtrack.verdicts import AllOf, Monotone
+
+    ex = explore(functools.partial(study.measure_curves, sizes=SIZES), group_register(REG, "curves"),
+                 {"C001-8": AllOf({"RMS decreasing": Monotone("RMS", "k_b3", "decreasing")})}, seed=1, joint=0,
+                 depends={"C001-8": DEPENDS["C001-8"]})
+    rec = ex.record("C001-8")
+    assert len(ex.replicates()) == 3 and rec["conditions"]
