@@ -7,7 +7,14 @@ The reference runs the same logic one trial-channel at a time with ``filterpy.gh
 (gain overrides per update; its ``k`` is kappa3/2). It is timed on a subset of trial-channels in
 the same benchmark run and scaled linearly (a per-trial loop's cost is linear in the number of
 trials); the subset's detections and states must equal the batched ones.
-Target (issue 4): >= 100x faster.
+Targets: >= 100x (issue 4, asserted); >= 400x (issue 30, reported as ``target_400x_met``). Where the time
+goes (profiled 2026-11-25): the batched run is one Python loop over the 625 frames of about 25 in-place NumPy
+operations on (2000,) arrays (filter update, running window sums, the per-channel gain gathers after the switch),
+i.e. about 100 us per frame, which is NumPy's per-call overhead, not arithmetic. On this shared 2-core machine the
+ratio measures 200-240x. A fast path that runs TRACK2 for every channel first and TRACK3 shifted by each channel's
+detection frame (tested equal to the general loop) was no faster under load: the loops are overhead-bound and the
+assembly of the (T, 3, B) outputs costs as much as it saves. Reaching 400x needs the frame loop compiled (numba,
+not in environment.txt) or the fixed-gain segments as ``scipy.signal.lfilter`` calls; see the 001 report.
 """
 
 import time
@@ -72,7 +79,8 @@ def test_full_scenario_speedup(benchmark):
     np.testing.assert_array_equal(det, [d for _, d in ref])
     np.testing.assert_allclose(out.x.reshape(-1, T, 3)[:N_REF], np.stack([x for x, _ in ref]), rtol=1e-9, atol=1e-6)
     speedup = t_ref / t_batched
-    benchmark.extra_info.update(batched_s=t_batched, filterpy_loop_s_extrapolated=t_ref, speedup=speedup)
+    benchmark.extra_info.update(batched_s=t_batched, filterpy_loop_s_extrapolated=t_ref, speedup=speedup,
+                                target_400x_met=bool(speedup >= 400))
     print(f"\nbatched {t_batched:.2f} s; filterpy per-trial loop {t_ref:.1f} s (from {N_REF} trial-channels); "
           f"speed-up {speedup:.0f}x")
     assert speedup >= 100, f"speed-up {speedup:.0f}x < 100x"

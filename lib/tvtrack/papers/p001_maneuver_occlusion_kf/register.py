@@ -47,8 +47,9 @@ ENTRIES = (
     Entry("k_bound3", "reading", 100, (50, 100, 200),
           "3rd-order gain bound not stated; Fig. 4's axis spans 20-200 frames"),
     Entry("rms_span", "statistic", "4 s to loss", RMS_SPANS,
-          "the RMS error 'the gain law minimises': while tracking (Fig. 3, default), over the manoeuvre only, or "
-          "over every visible frame including reacquisition after the loss", "adversarial"),
+          "the RMS error 'the gain law minimises': while tracking (Fig. 3, default), over the manoeuvre only, over "
+          "every visible frame including reacquisition, or of the prediction at the end of the loss (Fig. 4's "
+          "quantity)", "adversarial"),
     Entry("compensation_end_s", "statistic", 8.0, (6.0, 8.0, 12.0),
           "'speeds up compensation of the dynamic error': the error from the onset to a time; 12 s is the loss"),
     Entry("occlusion", "reading", "scenario 12-22 s", ("scenario 12-22 s", "from 10 s"),

@@ -48,7 +48,7 @@ MOTION = ((10.0, 0.2), (-6.0, -0.2))
 NOISE_MODELS = ("white Gaussian", "quantised", "AR(1), rho = 0.5", "Student t, 3 dof")
 THRESHOLD_READINGS = ("exact", "stationary", "independent", "raw increments")
 ARMING_RULES = ("gains at bound", "windows full")
-RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s")
+RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s", "end of the loss")
 COMPARATORS = ("fixed 2nd order", "fixed 3rd order", "IMM", "VD filter")
 #: Tuning grids (elements, frames); the first value of the fixed filters' grids is the physical floor of the
 #: growing-memory law (the gains of a 2- or 3-point fit), not a grid edge; likewise q_CV = 0 for the IMM's CV model.
@@ -256,12 +256,13 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
 
 
 def span_mask(span: str, sc: Scenario) -> np.ndarray:
-    """Frames over which a position RMS is taken (visible frames only): ``"visible after 4 s"`` (after the TRACK2
-    gains and the detector have settled, reacquisition included), ``"onset to loss"``, ``"4 s to loss"``."""
+    """Frames over which a position RMS is taken: ``"4 s to loss"`` (tracking, after the TRACK2 gains and the
+    detector have settled), ``"onset to loss"``, ``"visible after 4 s"`` (reacquisition included) and ``"end of the
+    loss"`` (the last lost frame, where the estimate is the pure prediction through the loss)."""
     f = sc.frames
     settled = f >= int(round(4.0 * sc.fps))
     masks = {"visible after 4 s": sc.visible & settled, "onset to loss": (f >= sc.onset) & (f < sc.f_loss),
-             "4 s to loss": settled & (f < sc.f_loss)}
+             "4 s to loss": settled & (f < sc.f_loss), "end of the loss": f == sc.f_back - 1}
     if span not in masks:
         raise ValueError(f"RMS span {span!r}; it must be one of {RMS_SPANS}")
     return masks[span]
