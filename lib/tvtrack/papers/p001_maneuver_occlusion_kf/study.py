@@ -54,9 +54,9 @@ COMPARATORS = ("fixed 2nd order", "fixed 3rd order", "IMM", "VD filter")
 #: growing-memory law (the gains of a 2- or 3-point fit), not a grid edge; likewise q_CV = 0 for the IMM's CV model.
 FIXED2_GRID = (2, 5, 10, 20, 50, 100, 200, 400)
 FIXED3_GRID = (3, 5, 10, 20, 30, 50, 100, 200, 400)
-IMM_Q_CA_GRID = (1e-5, 1e-4, 1e-3, 1e-2)
-IMM_P_STAY_GRID = (0.9, 0.99, 0.999, 0.9999)
-VDF_Q_CA_GRID = (1e-8, 1e-7, 1e-6, 1e-5, 1e-4)
+IMM_Q_CA_GRID = (1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2)
+IMM_P_STAY_GRID = (0.9, 0.99, 0.999, 0.9999, 0.99999)
+VDF_Q_CA_GRID = (1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2)
 VDF_WINDOWS = (2, 5, 10, 25)
 #: grid values that are physical floors (an optimum there is not an edge effect)
 FLOORS = {"fixed 2nd order": (2,), "fixed 3rd order": (3,), "IMM": (), "VD filter": (2,)}
