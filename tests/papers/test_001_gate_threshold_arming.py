@@ -61,7 +61,7 @@ def test_gate_matches_the_empirical_innovation_variance_at_reappearance(restart)
     vis = np.ones(T, bool)
     vis[250:330] = False
     out = run_track_modes(z, vis, TrackModeConfig(k_bound3=60, force_switch_k=140, restart=restart), 1.0)
-    for t in (330, 331, 360):                                   # the first frames back: filtered != predicted
+    for t in (330, 331, 360):  # the first frames back: filtered != predicted
         innov = z[:, t] - (taylor_transition(2) @ out.x[:, t - 1].T)[0]
         assert np.var(innov) == pytest.approx(out.gate_var[0, t], rel=0.07)
 
@@ -81,7 +81,7 @@ def test_threshold_array_is_read_at_the_current_count():
 def test_frame_indexed_threshold_is_read_at_the_current_frame():
     _, z = _z(3, seed=2)
     vis = np.ones(T, bool)
-    vis[100:120] = False                                       # count and frame differ after the gap
+    vis[100:120] = False  # count and frame differ after the gap
     f0 = 230
     thr = np.full(T, np.inf)
     thr[f0] = 1e-12
@@ -98,8 +98,8 @@ def test_detection_in_the_onset_frame_is_a_hit():
     assert s["missed_by_loss"].value == 0.25
     assert s["median_s"].value == pytest.approx(1.0)
     stat = np.zeros((2, 15))
-    stat[0, onset] = 5.0                                       # an alarm exactly at the onset frame
-    stat[1, onset - 1] = 5.0                                   # an alarm one frame before it
+    stat[0, onset] = 5.0  # an alarm exactly at the onset frame
+    stat[1, onset - 1] = 5.0  # an alarm one frame before it
     armed = np.ones(15, bool)
     np.testing.assert_array_equal(first_alarm_within(stat, 1.0, armed, onset), [True, False])
     null = np.random.default_rng(0).standard_normal((2000, 15)) * 0.1
@@ -123,7 +123,7 @@ def test_earliest_valid_arming_has_the_nominal_false_alarm_rate():
     c = threshold_from_std(alpha, scheduled_statistic_std(gain_schedule(1, 50, Tn), n, 1.0))
     c = np.where(np.isfinite(c), c, np.inf)
     out = run_track_modes(z, np.ones(Tn, bool), TrackModeConfig(threshold=c, arm_k=2 * n + 1), 1.0, covariance=False)
-    first = 2 * n                                             # frame of count 2n + 1
+    first = 2 * n  # frame of count 2n + 1
     rate = np.mean(out.detection_frame == first)
     assert alpha / 1.4 < rate < alpha * 1.4
 
@@ -136,7 +136,7 @@ def test_exact_threshold_after_a_coast_keeps_the_nominal_rate():
     vis = np.ones(Tn, bool)
     vis[300:550] = False
     z = np.random.default_rng(1).standard_normal((3000, Tn))
-    out = run_track_modes(z, vis, TrackModeConfig(threshold=np.inf), 1.0, covariance=False)   # never switches
+    out = run_track_modes(z, vis, TrackModeConfig(threshold=np.inf), 1.0, covariance=False)  # never switches
     S = out.statistic
     after = np.isfinite(S[0]) & (np.arange(Tn) >= 550)
     assert after.sum() >= 20
@@ -145,9 +145,9 @@ def test_exact_threshold_after_a_coast_keeps_the_nominal_rate():
     rate_count = np.mean(np.abs(S[:, after]) > c_count[k - 1][after])
     c_frame = track2_thresholds(vis, 50, 25, alpha, 1.0)
     rate_frame = np.mean(np.abs(S[:, after]) > c_frame[after])
-    assert rate_count > 5 * alpha                                # the bug this guards against
+    assert rate_count > 5 * alpha  # the bug this guards against
     assert alpha / 1.4 < rate_frame < alpha * 1.4
-    before = np.isfinite(S[0]) & (np.arange(Tn) < 300)           # and the same thresholds before the loss
+    before = np.isfinite(S[0]) & (np.arange(Tn) < 300)  # and the same thresholds before the loss
     np.testing.assert_allclose(c_frame[before], c_count[before], rtol=1e-12)
 
 
@@ -159,7 +159,7 @@ def test_frame_threshold_in_the_scheme_keeps_runs_in_track2_after_a_coast():
     cfg = TrackModeConfig(threshold=track2_thresholds(vis, 50, 25, alpha, 1.0), threshold_index="frame")
     d = run_track_modes(z, vis, cfg, 1.0, covariance=False).detection_frame
     switched_after = np.mean(d >= 550)
-    assert switched_after < 0.05                                 # about 30 % with the count-indexed threshold
+    assert switched_after < 0.05  # about 30 % with the count-indexed threshold
 
 
 def test_pooled_false_alarm_rate_with_zero_events_gives_the_zero_events_bound():

@@ -17,23 +17,41 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.params import RULES
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
 
 REG = build_register()
-SIZES = dict(n_trials=200, n_fa_runs=3000, fa_duration_s=12.0, roc_delay_s=0.5, step_dv=1.0, sigma_eps=1.0,
-             n_tradeoff_trials=20, n_train=6, train_seed=5, kb3_grid=[20, 50, 100, 200], loss_grid_s=[6.0, 8.0, 12.0],
-             n_fig4_trials=200, defaults=REG.default(),
-             grids=dict(fixed2=(2, 10, 50), fixed3=(3, 20, 100), imm_q_ca=(1e-4, 1e-3), imm_p_stay=(0.99,),
-                        vdf_q_ca=(1e-6, 1e-5), vdf_windows=(5,)))
+SIZES = dict(
+    n_trials=200,
+    n_fa_runs=3000,
+    fa_duration_s=12.0,
+    roc_delay_s=0.5,
+    step_dv=1.0,
+    sigma_eps=1.0,
+    n_tradeoff_trials=20,
+    n_train=6,
+    train_seed=5,
+    kb3_grid=[20, 50, 100, 200],
+    loss_grid_s=[6.0, 8.0, 12.0],
+    n_fig4_trials=200,
+    defaults=REG.default(),
+    grids=dict(
+        fixed2=(2, 10, 50),
+        fixed3=(3, 20, 100),
+        imm_q_ca=(1e-4, 1e-3),
+        imm_p_stay=(0.99,),
+        vdf_q_ca=(1e-6, 1e-5),
+        vdf_windows=(5,),
+    ),
+)
 
 
 @pytest.mark.parametrize("model", study.NOISE_MODELS)
 def test_measurement_models_have_the_stated_rms(model):
     z = study.measurements(np.zeros(400), model, 400, np.random.default_rng(1), sigma_eps=1.5)
-    if model == "quantised":                           # rounding of a zero truth: RMS of round(N(0, s^2 - 1/12))
+    if model == "quantised":  # rounding of a zero truth: RMS of round(N(0, s^2 - 1/12))
         assert np.sqrt(np.mean(z**2)) == pytest.approx(1.5, rel=0.03)
     else:
         assert np.sqrt(np.mean(z**2)) == pytest.approx(1.5, rel=0.05 if "Student" in model else 0.01)
     if model.startswith("AR(1)"):
         assert np.mean(z[:, 1:] * z[:, :-1]) / np.mean(z**2) == pytest.approx(0.5, abs=0.01)
-        assert np.std(z[:, 0]) == pytest.approx(1.5, rel=0.05)       # stationary from the first frame
+        assert np.std(z[:, 0]) == pytest.approx(1.5, rel=0.05)  # stationary from the first frame
 
 
 def test_measurement_models_share_their_normal_draws():
@@ -46,10 +64,12 @@ def test_threshold_readings():
     vis = np.ones(300, bool)
     K2 = gain_schedule(1, 50)[-1]
     z = threshold_from_std(1e-3, 1.0)
-    np.testing.assert_array_equal(study.detector_threshold("exact", vis, 50, 25, 1e-3), track2_thresholds(vis, 50, 25,
-                                                                                                        1e-3))
+    np.testing.assert_array_equal(
+        study.detector_threshold("exact", vis, 50, 25, 1e-3), track2_thresholds(vis, 50, 25, 1e-3)
+    )
     assert study.detector_threshold("stationary", vis, 50, 25, 1e-3)[0] == pytest.approx(
-        z * statistic_std(K2, 1.0, 25, "correlated"))
+        z * statistic_std(K2, 1.0, 25, "correlated")
+    )
     assert study.detector_threshold("raw increments", vis, 50, 25, 1e-3)[0] == pytest.approx(z * 10.0)
     with pytest.raises(ValueError, match="threshold reading"):
         study.detector_threshold("paper", vis, 50, 25, 1e-3)
@@ -58,7 +78,7 @@ def test_threshold_readings():
 def test_arming_rules_and_the_onset_fallback():
     assert study.arming_count("gains at bound", 50, 25, 125) == (100, "gains at bound")
     assert study.arming_count("windows full", 50, 25, 125) == (51, "windows full")
-    arm, rule = study.arming_count("gains at bound", 100, 25, 125)      # 150 would test after the onset
+    arm, rule = study.arming_count("gains at bound", 100, 25, 125)  # 150 would test after the onset
     assert arm == 51 and rule.startswith("windows full")
 
 
@@ -69,7 +89,7 @@ def test_detection_measurement_matches_the_closed_forms():
     assert m["C001-3"].value == pytest.approx(expected, rel=0.05)
     assert 0.6 < m["C001-2"]["size"].value < 1.5
     assert m["C001-2"]["invariance"] < 1e-9
-    assert m["C001-1"]["median"].ci_high - m["C001-1"]["median"].ci_low >= 1 / 25 - 1e-9   # a frame of resolution
+    assert m["C001-1"]["median"].ci_high - m["C001-1"]["median"].ci_low >= 1 / 25 - 1e-9  # a frame of resolution
     assert 5.0 < m["C001-1"]["median"].value < 6.0
 
 
@@ -89,8 +109,16 @@ def test_tuning_picks_the_grid_minimum():
     sc = study.scenario()
     z = study.measurements(sc.truth[:, :, 0], "white Gaussian", 6, np.random.default_rng(5))
     mask = study.span_mask("4 s to loss", sc)
-    rms = {kb: np.sqrt(np.mean(((study.comparator_positions("fixed 3rd order", (kb,), z, sc, 1.0)
-                                 - sc.truth[None, :, :, 0]) ** 2)[..., mask])) for kb in (3, 20, 100)}
+    rms = {
+        kb: np.sqrt(
+            np.mean(
+                ((study.comparator_positions("fixed 3rd order", (kb,), z, sc, 1.0) - sc.truth[None, :, :, 0]) ** 2)[
+                    ..., mask
+                ]
+            )
+        )
+        for kb in (3, 20, 100)
+    }
     best, train_rms, _ = t["4 s to loss"]["fixed 3rd order"]
     assert best == (min(rms, key=rms.get),) and train_rms == pytest.approx(min(rms.values()))
 
@@ -160,15 +188,20 @@ def test_spherical_measurement_by_target_set():
     sz = SIZES | {"prediction_rms": 4.0}
     near = study.measure_spherical({}, 0, sz)["C001-9"]
     far = study.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]
-    assert 0 <= near < far <= 1                               # farther, slower targets curve less in angle
+    assert 0 <= near < far <= 1  # farther, slower targets curve less in angle
 
 
 def test_explorer_runs_the_curves_group():
     from tvtrack.explore import explore
     from tvtrack.verdicts import AllOf, Monotone
 
-    ex = explore(functools.partial(study.measure_curves, sizes=SIZES), group_register(REG, "curves"),
-                 {"C001-8": AllOf({"RMS decreasing": Monotone("RMS", "k_b3", "decreasing")})}, seed=1, joint=0,
-                 depends={"C001-8": DEPENDS["C001-8"]})
+    ex = explore(
+        functools.partial(study.measure_curves, sizes=SIZES),
+        group_register(REG, "curves"),
+        {"C001-8": AllOf({"RMS decreasing": Monotone("RMS", "k_b3", "decreasing")})},
+        seed=1,
+        joint=0,
+        depends={"C001-8": DEPENDS["C001-8"]},
+    )
     rec = ex.record("C001-8")
     assert len(ex.replicates()) == 3 and rec["conditions"]

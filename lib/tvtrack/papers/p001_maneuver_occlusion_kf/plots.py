@@ -8,8 +8,15 @@ import numpy as np
 
 from ...plotting import colour, use_style
 
-__all__ = ["block_diagram", "detection_histogram", "velocity_acceleration", "error_and_gain", "figure4",
-           "loss_sweep_plot", "comparators_plot"]
+__all__ = [
+    "block_diagram",
+    "detection_histogram",
+    "velocity_acceleration",
+    "error_and_gain",
+    "figure4",
+    "loss_sweep_plot",
+    "comparators_plot",
+]
 
 RESTART_COLOURS = {"A": colour(0), "B": colour(1), "C": colour(2)}
 LOSS_SHADE = dict(color="0.92", zorder=0)
@@ -19,18 +26,32 @@ def block_diagram():
     """Fig. 1 redrawn from the paper's description (measurer, switch, filter, detector, loss flag)."""
     use_style()
     fig, ax = plt.subplots(figsize=(8, 2.6))
-    boxes = {"TV coordinate\nmeasurer": (0.02, 0.55), "switch\n(commutator)": (0.24, 0.55),
-             "Kalman filter\n2nd / 3rd order,\ngain table": (0.46, 0.55), "output\ncoordinates": (0.80, 0.55),
-             "manoeuvre\ndetector |S| > c(α)": (0.46, 0.05), "loss flag\n(oracle here)": (0.24, 0.05)}
+    boxes = {
+        "TV coordinate\nmeasurer": (0.02, 0.55),
+        "switch\n(commutator)": (0.24, 0.55),
+        "Kalman filter\n2nd / 3rd order,\ngain table": (0.46, 0.55),
+        "output\ncoordinates": (0.80, 0.55),
+        "manoeuvre\ndetector |S| > c(α)": (0.46, 0.05),
+        "loss flag\n(oracle here)": (0.24, 0.05),
+    }
     for text, (x, y) in boxes.items():
         ax.add_patch(plt.Rectangle((x, y), 0.17, 0.36, fill=False, lw=1.2))
         ax.text(x + 0.085, y + 0.18, text, ha="center", va="center", fontsize=8)
-    for (x1, y1), (x2, y2) in [((0.19, 0.73), (0.24, 0.73)), ((0.41, 0.73), (0.46, 0.73)),
-                               ((0.63, 0.73), (0.80, 0.73)), ((0.59, 0.55), (0.59, 0.41)),
-                               ((0.50, 0.41), (0.50, 0.55)), ((0.325, 0.41), (0.325, 0.55))]:
+    for (x1, y1), (x2, y2) in [
+        ((0.19, 0.73), (0.24, 0.73)),
+        ((0.41, 0.73), (0.46, 0.73)),
+        ((0.63, 0.73), (0.80, 0.73)),
+        ((0.59, 0.55), (0.59, 0.41)),
+        ((0.50, 0.41), (0.50, 0.55)),
+        ((0.325, 0.41), (0.325, 0.55)),
+    ]:
         ax.annotate("", (x2, y2), (x1, y1), arrowprops=dict(arrowstyle="->", lw=1.0))
-    ax.annotate("", (0.36, 0.91), (0.70, 0.91), arrowprops=dict(arrowstyle="->", lw=1.0, ls="--",
-                                                              connectionstyle="arc3,rad=0.25"))
+    ax.annotate(
+        "",
+        (0.36, 0.91),
+        (0.70, 0.91),
+        arrowprops=dict(arrowstyle="->", lw=1.0, ls="--", connectionstyle="arc3,rad=0.25"),
+    )
     ax.text(0.53, 0.99, "predicted coordinate fed back while lost (zero gains)", ha="center", fontsize=7)
     ax.text(0.60, 0.47, "velocity", fontsize=7)
     ax.text(0.49, 0.47, "order, gains", fontsize=7, ha="right")
@@ -55,8 +76,7 @@ def detection_histogram(det_frames, fps: float, onset_s: float, paper_s: float =
     return fig
 
 
-def velocity_acceleration(t_s, truth, mean_v, sd_v, mean_a, sd_a, p_detected, loss, selected: str,
-                          zoom=(4.5, 6.5)):
+def velocity_acceleration(t_s, truth, mean_v, sd_v, mean_a, sd_a, p_detected, loss, selected: str, zoom=(4.5, 6.5)):
     """Fig. 2 for one channel: velocity (a) with a zoom on ``zoom`` (b), acceleration and the detector output (c).
 
     ``mean_v``, ``mean_a``: {restart: (T,)} Monte Carlo means; ``sd_v``, ``sd_a``: (T,) SD of the selected rule;
@@ -67,14 +87,23 @@ def velocity_acceleration(t_s, truth, mean_v, sd_v, mean_a, sd_a, p_detected, lo
     for ax, (lo, hi) in zip(axs[:2], ((t_s[0], t_s[-1]), zoom)):
         m = (t_s >= lo) & (t_s <= hi)
         ax.axvspan(*loss, **LOSS_SHADE, label="object lost")
-        ax.fill_between(t_s[m], (mean_v[selected] - sd_v)[m], (mean_v[selected] + sd_v)[m], color="0.6", alpha=0.4,
-                        zorder=1, label=f"± SD (restart {selected})")
+        ax.fill_between(
+            t_s[m],
+            (mean_v[selected] - sd_v)[m],
+            (mean_v[selected] + sd_v)[m],
+            color="0.6",
+            alpha=0.4,
+            zorder=1,
+            label=f"± SD (restart {selected})",
+        )
         ax.plot(t_s[m], truth[m, 1], "k", lw=1.5, label="1: true")
         for r, v in mean_v.items():
             ax.plot(t_s[m], v[m], color=RESTART_COLOURS[r], lw=1.0, label=f"2: filter output, mean (restart {r})")
         ax.set(ylabel="velocity (elements/frame)", xlim=(lo, hi))
-    axs[1].set_ylim(truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].min() - 0.6,
-                    truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].max() + 0.6)
+    axs[1].set_ylim(
+        truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].min() - 0.6,
+        truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].max() + 0.6,
+    )
     axs[0].set_title("(a) velocity")
     axs[1].set_title(f"(b) velocity, zoom on {zoom[0]:g}-{zoom[1]:g} s")
     axs[0].legend(loc="upper left", fontsize=7)
@@ -98,8 +127,15 @@ def error_and_gain(t_s, mean_err, sd_err, kappa1, loss, selected: str):
     fig, axs = plt.subplots(2, 1, figsize=(7.5, 5.6), sharex=True, height_ratios=[1.6, 1])
     ax = axs[0]
     ax.axvspan(*loss, **LOSS_SHADE, label="object lost (prediction error)")
-    ax.fill_between(t_s, mean_err[selected] - sd_err, mean_err[selected] + sd_err, color="0.55", alpha=0.5,
-                    zorder=2, label=f"± SD (restart {selected})")
+    ax.fill_between(
+        t_s,
+        mean_err[selected] - sd_err,
+        mean_err[selected] + sd_err,
+        color="0.55",
+        alpha=0.5,
+        zorder=2,
+        label=f"± SD (restart {selected})",
+    )
     for r, e in mean_err.items():
         ax.plot(t_s, e, color=RESTART_COLOURS[r], lw=1.2, zorder=3, label=f"1: mean error (restart {r})")
     ax.set_yscale("symlog", linthresh=1.0)
@@ -123,20 +159,27 @@ def figure4(curves: dict, mc: dict, bound_sd: float, by_reading: dict, title: st
     kb = curves["kb3"]
     ax = axs[0]
     ax.plot(kb, curves["dyn"], "o-", color=colour(0), label="1: dynamic error (noise-free, signed)")
-    ax.errorbar(kb, mc["mean"], yerr=1.96 * mc["se"], fmt="none", color=colour(0), capsize=3,
-                label="Monte Carlo mean ± 95 % CI")
+    ax.errorbar(
+        kb, mc["mean"], yerr=1.96 * mc["se"], fmt="none", color=colour(0), capsize=3, label="Monte Carlo mean ± 95 % CI"
+    )
     ax.plot(kb, curves["rms"], "s-", color=colour(1), label="2: RMS (covariance recursion)")
     ax.plot(kb, mc["sd"], "x", color=colour(1), label="Monte Carlo SD")
     ax.plot(kb, curves["sum"], "^-", color=colour(2), label="3: |dynamic| + RMS")
     ax.axhline(bound_sd, color="k", ls="--", lw=0.8, label="SD bound of unbiased predictors")
     ax.set_yscale("symlog", linthresh=1.0)
-    ax.set(xlabel="k_b3: frame at which the gain lower bound is set", ylabel="prediction error (elements)",
-           title=title)
+    ax.set(xlabel="k_b3: frame at which the gain lower bound is set", ylabel="prediction error (elements)", title=title)
     ax.legend(fontsize=7, loc="upper right")
     ax = axs[1]
     for (r, occ), cur in by_reading.items():
-        ax.plot(kb, cur["sum"], ls="-" if occ.startswith("scenario") else ":", color=RESTART_COLOURS[r], marker="^",
-                ms=3, label=f"restart {r}, loss {occ}")
+        ax.plot(
+            kb,
+            cur["sum"],
+            ls="-" if occ.startswith("scenario") else ":",
+            color=RESTART_COLOURS[r],
+            marker="^",
+            ms=3,
+            label=f"restart {r}, loss {occ}",
+        )
     ax.set_yscale("log")
     ax.set(xlabel="k_b3 (frames)", ylabel="|dynamic| + RMS (elements)", title="(b) curve 3 by reading")
     ax.legend(fontsize=7)

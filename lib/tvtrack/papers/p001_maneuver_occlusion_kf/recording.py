@@ -19,21 +19,38 @@ def blueprint() -> rrb.Blueprint:
     """Crop and trajectory on the left, the time series stacked on the right."""
     return rrb.Blueprint(
         rrb.Horizontal(
-            rrb.Vertical(rrb.Spatial2DView(origin="camera", name="Crop around the object (elements)"),
-                         rrb.Spatial2DView(origin="trajectory", name="Trajectory (elements)")),
-            rrb.Vertical(rrb.TimeSeriesView(origin="errors", name="Coordinate error (elements)"),
-                         rrb.TimeSeriesView(origin="velocity", name="Velocity x (elements/frame)"),
-                         rrb.TimeSeriesView(origin="acceleration", name="Acceleration x (elements/frame²)"),
-                         rrb.TimeSeriesView(origin="detector", name="Detector x: S and ±c"),
-                         rrb.TimeSeriesView(origin="gain", name="κ1"),
-                         rrb.TimeSeriesView(origin="mode", name="Mode (0 coast, 2, 3)")),
-            column_shares=[0.45, 0.55]),
+            rrb.Vertical(
+                rrb.Spatial2DView(origin="camera", name="Crop around the object (elements)"),
+                rrb.Spatial2DView(origin="trajectory", name="Trajectory (elements)"),
+            ),
+            rrb.Vertical(
+                rrb.TimeSeriesView(origin="errors", name="Coordinate error (elements)"),
+                rrb.TimeSeriesView(origin="velocity", name="Velocity x (elements/frame)"),
+                rrb.TimeSeriesView(origin="acceleration", name="Acceleration x (elements/frame²)"),
+                rrb.TimeSeriesView(origin="detector", name="Detector x: S and ±c"),
+                rrb.TimeSeriesView(origin="gain", name="κ1"),
+                rrb.TimeSeriesView(origin="mode", name="Mode (0 coast, 2, 3)"),
+            ),
+            column_shares=[0.45, 0.55],
+        ),
         rrb.TimePanel(timeline="frame", play_state="paused"),
-        collapse_panels=True)
+        collapse_panels=True,
+    )
 
 
-def record_run(rec: Recorder, out, z, truth, visible, rng: np.random.Generator, *, gate_sigma: float = 3.0,
-               every: int = 2, crop_px: int = 64, spot_sigma_px: float = 1.5) -> None:
+def record_run(
+    rec: Recorder,
+    out,
+    z,
+    truth,
+    visible,
+    rng: np.random.Generator,
+    *,
+    gate_sigma: float = 3.0,
+    every: int = 2,
+    crop_px: int = 64,
+    spot_sigma_px: float = 1.5,
+) -> None:
     """Log run 0 of a :class:`~.track_modes.TrackModeOutput` ``out`` (batch axes (runs, 2)).
 
     Parameters
@@ -60,16 +77,28 @@ def record_run(rec: Recorder, out, z, truth, visible, rng: np.random.Generator, 
         if visible[f]:
             img = 20 + gaussian_spot(true_xy[f], size, spot_sigma_px, 2 * np.pi * spot_sigma_px**2 * 200, origin=o)
         else:
-            img = np.full(size, 90.0)                       # the cloud: object not visible
+            img = np.full(size, 90.0)  # the cloud: object not visible
         rec.image("camera/image", np.clip(img + rng.normal(0, 3, size), 0, 255).astype(np.uint8))
         rec.boxes("camera/gate", pred_xy[f] - o, gate_sigma * gate_sd[f], colors=[rgb(ROLE_COLOURS["gate"])])
-        rec.lines("camera/truth", ellipse_outline(true_xy[f] - o, 4.0 * np.eye(2)),
-                  colors=[rgb(ROLE_COLOURS["truth"])], radii=-1.5)
+        rec.lines(
+            "camera/truth",
+            ellipse_outline(true_xy[f] - o, 4.0 * np.eye(2)),
+            colors=[rgb(ROLE_COLOURS["truth"])],
+            radii=-1.5,
+        )
         rec.points("camera/estimate", est_xy[f] - o, colors=[rgb(ROLE_COLOURS["estimate"])], radii=-4.0)
-        rec.points("camera/measured", meas_xy[f] - o if visible[f] else none,
-                   colors=[rgb(ROLE_COLOURS["measurement"])], radii=-3.0)
-        rec.points("camera/predicted", none if visible[f] else est_xy[f] - o,
-                   colors=[rgb(ROLE_COLOURS["prediction"])], radii=-4.0)
+        rec.points(
+            "camera/measured",
+            meas_xy[f] - o if visible[f] else none,
+            colors=[rgb(ROLE_COLOURS["measurement"])],
+            radii=-3.0,
+        )
+        rec.points(
+            "camera/predicted",
+            none if visible[f] else est_xy[f] - o,
+            colors=[rgb(ROLE_COLOURS["prediction"])],
+            radii=-4.0,
+        )
     rec.set_frame(0)
     rec.lines("trajectory/truth", true_xy[::5], colors=[rgb(ROLE_COLOURS["truth"])], image_space=False)
     rec.lines("trajectory/estimate", est_xy[::5], colors=[rgb(ROLE_COLOURS["estimate"])], image_space=False)

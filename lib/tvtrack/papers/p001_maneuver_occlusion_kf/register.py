@@ -14,57 +14,148 @@ from .study import ARMING_RULES, NOISE_MODELS, RMS_SPANS, TARGET_SETS, THRESHOLD
 __all__ = ["ENTRIES", "GROUPS", "DEPENDS", "build_register", "group_register"]
 
 ENTRIES = (
-    Entry("threshold", "reading", "exact", THRESHOLD_READINGS,
-          "c(alpha) from sigma_S: the paper assumes independent samples with sigma 'the RMS velocity error at the "
-          "filter output' (independent) or of the raw increments its independence argument is about; the "
-          "correlated values (stationary Lyapunov; exact for the time-varying gains and coasts) are what (14) needs"),
-    Entry("alpha", "reading", 1e-3, (1e-4, 1e-3, 1e-2),
-          "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (card) gives few false alarms in the "
-          "5 s before the manoeuvre; a decade either side"),
-    Entry("arming", "reading", "gains at bound", ARMING_RULES,
-          "not stated; sigma 'known and the same for all samples' needs both windows at the frozen gains "
-          "(k_b2 + 2n); the earliest valid test has two windows of least-squares velocities (2n + 1) with the "
-          "exact threshold; a rule that would first test after the onset arms when its windows are full (the "
-          "paper's detector runs before the manoeuvre, Fig. 2)"),
-    Entry("window_n", "reading", 25, (10, 25, 50),
-          "half-window n = T f not stated; 25 frames (1 s, card) matches the 0.5 s delay; 0.4 s and 2 s"),
-    Entry("k_bound2", "reading", 50, (30, 50, 100),
-          "2nd-order gain bound not stated ('narrow band'); 50 frames (card) matches the 0.5 s delay"),
-    Entry("frame_rate_hz", "regime", 25.0, (25.0, 50.0),
-          "not stated; TV frame (25 Hz) or field (50 Hz) rate; motion fixed in elements/s", "adversarial"),
-    Entry("noise", "model", "white Gaussian", NOISE_MODELS,
-          "the paper: Gaussian, zero mean, 1 element RMS; a TV coordinate measurer quantises to whole elements, "
-          "its errors correlate between frames and it has outliers (same RMS)", "adversarial"),
-    Entry("alternative", "reading", "ramp", ("ramp", "step"),
-          "hypotheses (5) compare the window means: (14) is UMP for a common offset (a velocity step); the "
-          "paper's manoeuvre is a constant acceleration (a ramp)"),
-    Entry("paper_sigma", "reading", "filter-output velocity", ("filter-output velocity", "raw increments"),
-          "the sigma of (4) is 'the RMS velocity error at the filter output', while the independence argument "
-          "before it is about the raw increments at the filter input"),
-    Entry("restart", "reading", "A", ("A", "B", "C"),
-          "'the coefficients are increased' at the switch, no rule given: A restarts the 3rd-order law at k = 3 "
-          "with a = 0; B fits a quadratic to the window; C is a covariance-consistent Kalman reset"),
-    Entry("k_bound3", "reading", 100, (50, 100, 200),
-          "3rd-order gain bound not stated; Fig. 4's axis spans 20-200 frames"),
-    Entry("rms_span", "statistic", "4 s to loss", RMS_SPANS,
-          "the RMS error 'the gain law minimises': while tracking (Fig. 3, default), over the manoeuvre only, over "
-          "every visible frame including reacquisition, or of the prediction at the end of the loss (Fig. 4's "
-          "quantity)", "adversarial"),
-    Entry("compensation_end_s", "statistic", 8.0, (6.0, 8.0, 12.0),
-          "'speeds up compensation of the dynamic error': the error from the onset to a time; 12 s is the loss"),
-    Entry("occlusion", "reading", "scenario 12-22 s", ("scenario 12-22 s", "from 10 s"),
-          "Fig. 4: 'disappearance at the 10th second' against the scenario's loss at 12 s and return at 22 s"),
-    Entry("switch_s", "operating point", 5.5, (5.3, 5.5, 6.0),
-          "Fig. 4 and C001-7 force the switch at the paper's detection time 5.5 s; 5.3-6.0 s spans the measured "
-          "detection times", "adversarial"),
-    Entry("extrapolation", "reading", "quadratic", ("quadratic", "linear"),
-          "C001-9: the paper coasts with the 3rd-order filter (quadratic); 'linear' is its own word"),
-    Entry("targets", "regime", "2-20 km, 100-300 m/s", tuple(TARGET_SETS),
-          "C001-9: the paper names no target; aircraft-like crossings at 2-20 km, or distant slow ones (20-100 km), "
-          "where the angular motion curves least", "adversarial"),
-    Entry("tolerance", "reading", "1 element", ("1 element", "prediction RMS at k_b3"),
-          "'accuracy acceptable for prediction': the measurement error (1 element) or the random prediction "
-          "error at reappearance"),
+    Entry(
+        "threshold",
+        "reading",
+        "exact",
+        THRESHOLD_READINGS,
+        "c(alpha) from sigma_S: the paper assumes independent samples with sigma 'the RMS velocity error at the "
+        "filter output' (independent) or of the raw increments its independence argument is about; the "
+        "correlated values (stationary Lyapunov; exact for the time-varying gains and coasts) are what (14) needs",
+    ),
+    Entry(
+        "alpha",
+        "reading",
+        1e-3,
+        (1e-4, 1e-3, 1e-2),
+        "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (card) gives few false alarms in the "
+        "5 s before the manoeuvre; a decade either side",
+    ),
+    Entry(
+        "arming",
+        "reading",
+        "gains at bound",
+        ARMING_RULES,
+        "not stated; sigma 'known and the same for all samples' needs both windows at the frozen gains "
+        "(k_b2 + 2n); the earliest valid test has two windows of least-squares velocities (2n + 1) with the "
+        "exact threshold; a rule that would first test after the onset arms when its windows are full (the "
+        "paper's detector runs before the manoeuvre, Fig. 2)",
+    ),
+    Entry(
+        "window_n",
+        "reading",
+        25,
+        (10, 25, 50),
+        "half-window n = T f not stated; 25 frames (1 s, card) matches the 0.5 s delay; 0.4 s and 2 s",
+    ),
+    Entry(
+        "k_bound2",
+        "reading",
+        50,
+        (30, 50, 100),
+        "2nd-order gain bound not stated ('narrow band'); 50 frames (card) matches the 0.5 s delay",
+    ),
+    Entry(
+        "frame_rate_hz",
+        "regime",
+        25.0,
+        (25.0, 50.0),
+        "not stated; TV frame (25 Hz) or field (50 Hz) rate; motion fixed in elements/s",
+        "adversarial",
+    ),
+    Entry(
+        "noise",
+        "model",
+        "white Gaussian",
+        NOISE_MODELS,
+        "the paper: Gaussian, zero mean, 1 element RMS; a TV coordinate measurer quantises to whole elements, "
+        "its errors correlate between frames and it has outliers (same RMS)",
+        "adversarial",
+    ),
+    Entry(
+        "alternative",
+        "reading",
+        "ramp",
+        ("ramp", "step"),
+        "hypotheses (5) compare the window means: (14) is UMP for a common offset (a velocity step); the "
+        "paper's manoeuvre is a constant acceleration (a ramp)",
+    ),
+    Entry(
+        "paper_sigma",
+        "reading",
+        "filter-output velocity",
+        ("filter-output velocity", "raw increments"),
+        "the sigma of (4) is 'the RMS velocity error at the filter output', while the independence argument "
+        "before it is about the raw increments at the filter input",
+    ),
+    Entry(
+        "restart",
+        "reading",
+        "A",
+        ("A", "B", "C"),
+        "'the coefficients are increased' at the switch, no rule given: A restarts the 3rd-order law at k = 3 "
+        "with a = 0; B fits a quadratic to the window; C is a covariance-consistent Kalman reset",
+    ),
+    Entry(
+        "k_bound3", "reading", 100, (50, 100, 200), "3rd-order gain bound not stated; Fig. 4's axis spans 20-200 frames"
+    ),
+    Entry(
+        "rms_span",
+        "statistic",
+        "4 s to loss",
+        RMS_SPANS,
+        "the RMS error 'the gain law minimises': while tracking (Fig. 3, default), over the manoeuvre only, over "
+        "every visible frame including reacquisition, or of the prediction at the end of the loss (Fig. 4's "
+        "quantity)",
+        "adversarial",
+    ),
+    Entry(
+        "compensation_end_s",
+        "statistic",
+        8.0,
+        (6.0, 8.0, 12.0),
+        "'speeds up compensation of the dynamic error': the error from the onset to a time; 12 s is the loss",
+    ),
+    Entry(
+        "occlusion",
+        "reading",
+        "scenario 12-22 s",
+        ("scenario 12-22 s", "from 10 s"),
+        "Fig. 4: 'disappearance at the 10th second' against the scenario's loss at 12 s and return at 22 s",
+    ),
+    Entry(
+        "switch_s",
+        "operating point",
+        5.5,
+        (5.3, 5.5, 6.0),
+        "Fig. 4 and C001-7 force the switch at the paper's detection time 5.5 s; 5.3-6.0 s spans the measured "
+        "detection times",
+        "adversarial",
+    ),
+    Entry(
+        "extrapolation",
+        "reading",
+        "quadratic",
+        ("quadratic", "linear"),
+        "C001-9: the paper coasts with the 3rd-order filter (quadratic); 'linear' is its own word",
+    ),
+    Entry(
+        "targets",
+        "regime",
+        "2-20 km, 100-300 m/s",
+        tuple(TARGET_SETS),
+        "C001-9: the paper names no target; aircraft-like crossings at 2-20 km, or distant slow ones (20-100 km), "
+        "where the angular motion curves least",
+        "adversarial",
+    ),
+    Entry(
+        "tolerance",
+        "reading",
+        "1 element",
+        ("1 element", "prediction RMS at k_b3"),
+        "'accuracy acceptable for prediction': the measurement error (1 element) or the random prediction "
+        "error at reappearance",
+    ),
 )
 
 #: The entries each claim depends on (every entry that can change what the claim's measurement reads).
@@ -79,8 +170,12 @@ DEPENDS = {
 }
 
 #: Claims measured together by one measurement function (one exploration each).
-GROUPS = {"detection": ("C001-1", "C001-2", "C001-3"), "tradeoff": ("C001-4",), "curves": ("C001-7", "C001-8"),
-          "spherical": ("C001-9",)}
+GROUPS = {
+    "detection": ("C001-1", "C001-2", "C001-3"),
+    "tradeoff": ("C001-4",),
+    "curves": ("C001-7", "C001-8"),
+    "spherical": ("C001-9",),
+}
 
 
 def build_register(**defaults) -> Register:

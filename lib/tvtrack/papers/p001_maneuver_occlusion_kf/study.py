@@ -87,8 +87,14 @@ class Scenario:
         return np.arange(self.T)
 
 
-def scenario(frame_rate_hz: float = 25.0, duration_s: float = 25.0, maneuver_s: float = 5.0, loss_s: float = 12.0,
-             reappear_s: float = 22.0, motion=MOTION) -> Scenario:
+def scenario(
+    frame_rate_hz: float = 25.0,
+    duration_s: float = 25.0,
+    maneuver_s: float = 5.0,
+    loss_s: float = 12.0,
+    reappear_s: float = 22.0,
+    motion=MOTION,
+) -> Scenario:
     """Uniform motion, constant acceleration from ``maneuver_s``, lost from ``loss_s`` to ``reappear_s``."""
     fps = float(frame_rate_hz)
     T = int(round(duration_s * fps))
@@ -134,9 +140,11 @@ def detector_threshold(reading: str, visible, k_bound2: int, n: int, alpha: floa
     if reading == "exact":
         return track2_thresholds(visible, k_bound2, n, alpha, sigma_eps)
     K2 = gain_schedule(1, k_bound2)[-1]
-    sig = {"stationary": lambda: statistic_std(K2, sigma_eps, n, "correlated"),
-           "independent": lambda: statistic_std(K2, sigma_eps, n, "independent"),
-           "raw increments": lambda: np.sqrt(4 * n) * sigma_eps}
+    sig = {
+        "stationary": lambda: statistic_std(K2, sigma_eps, n, "correlated"),
+        "independent": lambda: statistic_std(K2, sigma_eps, n, "independent"),
+        "raw increments": lambda: np.sqrt(4 * n) * sigma_eps,
+    }
     if reading not in sig:
         raise ValueError(f"threshold reading {reading!r}; it must be one of {THRESHOLD_READINGS}")
     return np.full(visible.size, float(threshold_from_std(alpha, sig[reading]())))
@@ -173,14 +181,28 @@ def _frame_resolution(e: Estimate, fps: float) -> Estimate:
     at frame f means the statistic crossed the threshold within the frame interval, so time is known to a frame
     (the interval of a quantile of frame-quantised times is otherwise often one frame wide, i.e. degenerate)."""
     h = 0.5 / fps
-    return Estimate(e.value, e.stderr, e.ci_low - h, e.ci_high + h, e.n, e.confidence,
-                    f"{e.method}, widened by half a frame each side (time resolution)")
+    return Estimate(
+        e.value,
+        e.stderr,
+        e.ci_low - h,
+        e.ci_high + h,
+        e.n,
+        e.confidence,
+        f"{e.method}, widened by half a frame each side (time resolution)",
+    )
 
 
 def _per_alpha(e: Estimate, alpha: float) -> Estimate:
     """A per-test rate in units of alpha (so one rule serves every alpha of the register)."""
-    return Estimate(e.value / alpha, e.stderr / alpha, e.ci_low / alpha, e.ci_high / alpha, e.n, e.confidence,
-                    f"{e.method}, divided by alpha")
+    return Estimate(
+        e.value / alpha,
+        e.stderr / alpha,
+        e.ci_low / alpha,
+        e.ci_high / alpha,
+        e.n,
+        e.confidence,
+        f"{e.method}, divided by alpha",
+    )
 
 
 def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
@@ -199,7 +221,7 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     scale = FPS_REF / sc.fps
     # the scenario runs up to the loss, both channels
     Tl = sc.f_loss
-    z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)      # (runs, 2, Tl)
+    z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)  # (runs, 2, Tl)
     # no-manoeuvre runs: uniform motion of channel x
     d_roc = int(round(sizes["roc_delay_s"] * sc.fps))
     Tr = sc.onset + d_roc + 1
@@ -216,18 +238,24 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     cfg = TrackModeConfig(k_bound2=kb2, window=n, threshold=c1, threshold_index="frame", arm_k=arm_k)
     det = run_track_modes(z, np.ones(Tl, bool), cfg, sigma, covariance=False).detection_frame
     s = detection_time_summary(det, sc.onset, Tl, sc.fps)
-    c001_1 = {"median": _frame_resolution(s["median_s"], sc.fps) if s["median_s"] else _missing("fewer than two "
-                                                                                                  "detections"),
-              "early": s["false_alarm_before_onset"], "missed": s["missed_by_loss"]}
+    c001_1 = {
+        "median": _frame_resolution(s["median_s"], sc.fps) if s["median_s"] else _missing("fewer than two detections"),
+        "early": s["false_alarm_before_onset"],
+        "missed": s["missed_by_loss"],
+    }
     # C001-2: size with the exact sigma_S; unbiasedness and power against Q on the TRACK2 filter (no switch)
     c_exact0 = detector_threshold("exact", np.ones(T0, bool), kb2, n, alpha, sigma)
     size = false_alarm_rates(S0, c_exact0, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"]
     if config["alternative"] == "ramp":
         za = z[..., :Tr]
-    else:                                   # a velocity step of step_dv at the onset, both channels
+    else:  # a velocity step of step_dv at the onset, both channels
         t = np.arange(Tr)
-        steps = np.stack([v0 * scale * t + np.sign(a) * sizes["step_dv"] * scale * np.clip(t - sc.onset, 0, None)
-                          for v0, a in MOTION])
+        steps = np.stack(
+            [
+                v0 * scale * t + np.sign(a) * sizes["step_dv"] * scale * np.clip(t - sc.onset, 0, None)
+                for v0, a in MOTION
+            ]
+        )
         za = measurements(steps, config["noise"], sizes["n_trials"], rng, sigma)
     va = scheduled_filter(za, G0[:Tr])[..., 1]
     sig_t = scheduled_statistic_std(G0[:Tr], n, sigma)
@@ -243,11 +271,21 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     post = arm_r & (np.arange(Tr) >= sc.onset)
     unbiased = mean_ci((stat_S[..., post] > stats.norm.isf(alpha / 2)).mean(axis=-1).reshape(-1))
     shift = 50 * rng.standard_normal((5, n))
-    v_test = v0_hat[:5, -2 * n:]
-    invariance = float(np.max(np.abs(window_statistic(v_test + np.concatenate([shift, shift], axis=1), n)[:, -1]
-                                     - window_statistic(v_test, n)[:, -1])))
-    c001_2 = {"size": _per_alpha(size, alpha), "invariance": invariance, "unbiased": _per_alpha(unbiased, alpha),
-              "UMP": paired_difference(hits_S.reshape(-1).astype(float), hits_Q.reshape(-1).astype(float))}
+    v_test = v0_hat[:5, -2 * n :]
+    invariance = float(
+        np.max(
+            np.abs(
+                window_statistic(v_test + np.concatenate([shift, shift], axis=1), n)[:, -1]
+                - window_statistic(v_test, n)[:, -1]
+            )
+        )
+    )
+    c001_2 = {
+        "size": _per_alpha(size, alpha),
+        "invariance": invariance,
+        "unbiased": _per_alpha(unbiased, alpha),
+        "UMP": paired_difference(hits_S.reshape(-1).astype(float), hits_Q.reshape(-1).astype(float)),
+    }
     # C001-3: the paper's independence threshold, sigma read as the filter-output or the raw-increment RMS
     reading = "independent" if config["paper_sigma"] == "filter-output velocity" else "raw increments"
     c_paper = detector_threshold(reading, np.ones(T0, bool), kb2, n, alpha, sigma)
@@ -261,8 +299,12 @@ def span_mask(span: str, sc: Scenario) -> np.ndarray:
     loss"`` (the last lost frame, where the estimate is the pure prediction through the loss)."""
     f = sc.frames
     settled = f >= int(round(4.0 * sc.fps))
-    masks = {"visible after 4 s": sc.visible & settled, "onset to loss": (f >= sc.onset) & (f < sc.f_loss),
-             "4 s to loss": settled & (f < sc.f_loss), "end of the loss": f == sc.f_back - 1}
+    masks = {
+        "visible after 4 s": sc.visible & settled,
+        "onset to loss": (f >= sc.onset) & (f < sc.f_loss),
+        "4 s to loss": settled & (f < sc.f_loss),
+        "end of the loss": f == sc.f_back - 1,
+    }
     if span not in masks:
         raise ValueError(f"RMS span {span!r}; it must be one of {RMS_SPANS}")
     return masks[span]
@@ -272,8 +314,16 @@ def _scheme_config(config: dict, sc: Scenario, sizes: dict, **over) -> TrackMode
     n, kb2 = int(config["window_n"]), int(config["k_bound2"])
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     thr = detector_threshold(config["threshold"], sc.visible, kb2, n, float(config["alpha"]), sizes["sigma_eps"])
-    kw = dict(k_bound2=kb2, k_bound3=int(config["k_bound3"]), window=n, threshold=thr, threshold_index="frame",
-              arm_k=arm_k, restart=config["restart"], restart_accel_var=sizes.get("restart_accel_var", 1e4))
+    kw = dict(
+        k_bound2=kb2,
+        k_bound3=int(config["k_bound3"]),
+        window=n,
+        threshold=thr,
+        threshold_index="frame",
+        arm_k=arm_k,
+        restart=config["restart"],
+        restart_accel_var=sizes.get("restart_accel_var", 1e4),
+    )
     return TrackModeConfig(**(kw | over))
 
 
@@ -287,8 +337,18 @@ def _imm(z, sc, q_ca, p_stay, coast, sigma):
     Fs, Qs = cv_ca_models(0.0, q_ca)
     M = np.array([[p_stay, 1 - p_stay], [1 - p_stay, p_stay]])
     zz = np.where(sc.visible, z, np.nan)[..., None]
-    return imm_run(zz, Fs, Qs, np.array([[1.0, 0, 0]]), np.array([[sigma**2]]), M, np.zeros(3),
-                   np.diag([1e6, 1e4, 1.0]), [0.5, 0.5], coast=coast)
+    return imm_run(
+        zz,
+        Fs,
+        Qs,
+        np.array([[1.0, 0, 0]]),
+        np.array([[sigma**2]]),
+        M,
+        np.zeros(3),
+        np.diag([1e6, 1e4, 1.0]),
+        [0.5, 0.5],
+        coast=coast,
+    )
 
 
 def comparator_positions(name: str, setting: tuple, z, sc: Scenario, sigma: float) -> np.ndarray:
@@ -315,8 +375,9 @@ def _span_ms(xhat, sc: Scenario, channel_truth) -> dict:
 
 
 @functools.lru_cache(maxsize=4)
-def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha: float, sigma_eps: float = 1.0,
-                      grids: tuple = ()) -> dict:
+def tuned_comparators(
+    frame_rate_hz: float, n_train: int, train_seed: int, alpha: float, sigma_eps: float = 1.0, grids: tuple = ()
+) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
     ``{span: {comparator: (setting, training RMS, on_edge)}}``.
@@ -329,8 +390,14 @@ def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha
     white Gaussian errors and then face every measurement-error model untuned. The VD filter's threshold is the
     ``1 - alpha`` quantile of its statistic before the onset (per-test rate alpha, as the paper's detector).
     """
-    g = {"fixed2": FIXED2_GRID, "fixed3": FIXED3_GRID, "imm_q_ca": IMM_Q_CA_GRID, "imm_p_stay": IMM_P_STAY_GRID,
-         "vdf_q_ca": VDF_Q_CA_GRID, "vdf_windows": VDF_WINDOWS} | dict(grids)
+    g = {
+        "fixed2": FIXED2_GRID,
+        "fixed3": FIXED3_GRID,
+        "imm_q_ca": IMM_Q_CA_GRID,
+        "imm_p_stay": IMM_P_STAY_GRID,
+        "vdf_q_ca": VDF_Q_CA_GRID,
+        "vdf_windows": VDF_WINDOWS,
+    } | dict(grids)
     sc = scenario(frame_rate_hz)
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
@@ -338,18 +405,20 @@ def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha
     cand = {"fixed 2nd order": [(kb,) for kb in g["fixed2"]], "fixed 3rd order": [(kb,) for kb in g["fixed3"]]}
     cand["IMM"] = [(q, p, "mix") for q, p in itertools.product(g["imm_q_ca"], g["imm_p_stay"])]
     vd_thr = {}
-    for w in g["vdf_windows"]:                               # CV only (no detection): rho does not depend on q_CA
-        rho = vd_filter_run(z, sc.visible, 0.0, g["vdf_q_ca"][0], sigma_eps, w, np.inf).rho[..., w + 1:sc.onset]
+    for w in g["vdf_windows"]:  # CV only (no detection): rho does not depend on q_CA
+        rho = vd_filter_run(z, sc.visible, 0.0, g["vdf_q_ca"][0], sigma_eps, w, np.inf).rho[..., w + 1 : sc.onset]
         vd_thr[w] = float(np.quantile(rho, 1 - alpha))
     cand["VD filter"] = [(q, w, vd_thr[w]) for q, w in itertools.product(g["vdf_q_ca"], g["vdf_windows"])]
 
     def score(name, setting):
-        return {k: float(v.mean()) for k, v in _span_ms(comparator_positions(name, setting, z, sc, sigma_eps), sc,
-                                                          truth).items()}
+        return {
+            k: float(v.mean())
+            for k, v in _span_ms(comparator_positions(name, setting, z, sc, sigma_eps), sc, truth).items()
+        }
 
     scores = {name: {st: score(name, st) for st in settings} for name, settings in cand.items()}
     for q, p, _ in {min(scores["IMM"], key=lambda st: scores["IMM"][st][span]) for span in RMS_SPANS}:
-        for coast in ("frozen", "mode"):                   # three ways to coast at each best process noise
+        for coast in ("frozen", "mode"):  # three ways to coast at each best process noise
             scores["IMM"][(q, p, coast)] = score("IMM", (q, p, coast))
     out = {}
     for span in RMS_SPANS:
@@ -361,20 +430,31 @@ def tuned_comparators(frame_rate_hz: float, n_train: int, train_seed: int, alpha
 
 
 def _on_edge(name: str, best: tuple, g: dict) -> bool:
-    grids = {"fixed 2nd order": (g["fixed2"],), "fixed 3rd order": (g["fixed3"],),
-             "IMM": (g["imm_q_ca"], g["imm_p_stay"]), "VD filter": (g["vdf_q_ca"], g["vdf_windows"])}[name]
+    grids = {
+        "fixed 2nd order": (g["fixed2"],),
+        "fixed 3rd order": (g["fixed3"],),
+        "IMM": (g["imm_q_ca"], g["imm_p_stay"]),
+        "VD filter": (g["vdf_q_ca"], g["vdf_windows"]),
+    }[name]
     return any(len(v_) > 1 and v in (min(v_), max(v_)) and v not in FLOORS[name] for v_, v in zip(grids, best))
 
 
 def _tuning(config: dict, sizes: dict) -> dict:
     grids = tuple((k, tuple(v)) for k, v in sizes.get("grids", {}).items())
-    return tuned_comparators(float(config["frame_rate_hz"]), sizes["n_train"], sizes["train_seed"],
-                             float(config["alpha"]), sizes["sigma_eps"], grids)
+    return tuned_comparators(
+        float(config["frame_rate_hz"]),
+        sizes["n_train"],
+        sizes["train_seed"],
+        float(config["alpha"]),
+        sizes["sigma_eps"],
+        grids,
+    )
 
 
 @functools.lru_cache(maxsize=64)
-def _comparator_ms(name: str, setting: tuple, seed: int, noise: str, frame_rate_hz: float, n: int,
-                   sigma_eps: float) -> dict:
+def _comparator_ms(
+    name: str, setting: tuple, seed: int, noise: str, frame_rate_hz: float, n: int, sigma_eps: float
+) -> dict:
     """Per-run mean-square position error of a comparator over each span on the test runs of ``seed`` (the same
     draws as :func:`tradeoff_runs`), cached: the scheme's own entries (restart, k_b3 ...) do not change it."""
     sc = scenario(frame_rate_hz)
@@ -398,9 +478,12 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
     tuning = _tuning(config, sizes)[config["rms_span"]]
-    pos = {"adaptive": run_scheme(z, sc, config, sizes, covariance=False).x[..., 0],
-           "2nd order without the switch": comparator_positions("fixed 2nd order", (int(config["k_bound2"]),), z,
-                                                               sc, sigma)}
+    pos = {
+        "adaptive": run_scheme(z, sc, config, sizes, covariance=False).x[..., 0],
+        "2nd order without the switch": comparator_positions(
+            "fixed 2nd order", (int(config["k_bound2"]),), z, sc, sigma
+        ),
+    }
     for name, (setting, _, _) in tuning.items():
         pos[name] = comparator_positions(name, setting, z, sc, sigma)
     return {"scenario": sc, "positions": pos, "tuning": tuning, "z": z}
@@ -411,8 +494,9 @@ def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")
     with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
     config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
-    z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed),
-                     sizes["sigma_eps"])
+    z = measurements(
+        sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
+    )
     return {"scenario": sc, "z": z, "outs": {r: run_scheme(z, sc, config | {"restart": r}, sizes) for r in restarts}}
 
 
@@ -431,8 +515,11 @@ def gain_checks(out, sc: Scenario, k_bound3: int) -> dict:
     increases = int(np.sum((dk > 1e-15) & both & ~switch))
     long_enough = hit & (sc.f_loss - 1 - det >= k_bound3)
     at_bound = np.isclose(k1[..., sc.f_loss - 1], gain_schedule(2, k_bound3)[-1, 0])
-    return {"increases_outside_switches": increases, "long_enough": int(long_enough.sum()),
-            "at_bound": int((at_bound & long_enough).sum())}
+    return {
+        "increases_outside_switches": increases,
+        "long_enough": int(long_enough.sum()),
+        "at_bound": int((at_bound & long_enough).sum()),
+    }
 
 
 def coast_check(out, sc: Scenario) -> dict:
@@ -444,7 +531,7 @@ def coast_check(out, sc: Scenario) -> dict:
     m = np.arange(1, sc.f_back - sc.f_loss + 1)
     Fm = np.stack([np.linalg.matrix_power(taylor_transition(2), int(k)) for k in m])
     pred = np.einsum("mij,...j->...mi", Fm, err[..., sc.f_loss - 1, :])
-    actual = err[..., sc.f_loss:sc.f_back, :]
+    actual = err[..., sc.f_loss : sc.f_back, :]
     return {"max_abs_deviation": float(np.max(np.abs(pred - actual))), "error_scale": float(np.max(np.abs(actual)))}
 
 
@@ -459,10 +546,15 @@ def sigma_s_readings(config: dict, sizes: dict) -> dict:
     K2 = gain_schedule(1, kb2)[-1]
     C = lagged_covariances(K2, sizes["sigma_eps"], 2)
     z_a = stats.norm.isf(alpha / 2)
-    sig = {r: float(detector_threshold(r, np.ones(kb2 + 2 * n + 1, bool), kb2, n, alpha, sizes["sigma_eps"])[-1]
-                    / z_a) for r in THRESHOLD_READINGS}
-    return {"sigma_S": sig, "rho_v1": float(C[1, 1, 1] / C[0, 1, 1]),
-            "pfa_independent": float(2 * stats.norm.sf(sig["independent"] / sig["stationary"] * z_a))}
+    sig = {
+        r: float(detector_threshold(r, np.ones(kb2 + 2 * n + 1, bool), kb2, n, alpha, sizes["sigma_eps"])[-1] / z_a)
+        for r in THRESHOLD_READINGS
+    }
+    return {
+        "sigma_S": sig,
+        "rho_v1": float(C[1, 1, 1] / C[0, 1, 1]),
+        "pfa_independent": float(2 * stats.norm.sf(sig["independent"] / sig["stationary"] * z_a)),
+    }
 
 
 def compensation_ms(xhat, sc: Scenario, end_s: float) -> np.ndarray:
@@ -477,9 +569,16 @@ def _ms_ratio(a, b) -> Estimate:
     never switched, so it is the filter it is compared with) have no interval: NaN, i.e. undecided."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     if np.array_equal(a, b):
-        return Estimate(1.0, float("nan"), float("nan"), float("nan"), a.size, 0.95,
-                        "identical per-run values (the scheme did not switch): no comparison")
-    with warnings.catch_warnings():                 # a degenerate bootstrap gives NaN bounds: undecided, not silent
+        return Estimate(
+            1.0,
+            float("nan"),
+            float("nan"),
+            float("nan"),
+            a.size,
+            0.95,
+            "identical per-run values (the scheme did not switch): no comparison",
+        )
+    with warnings.catch_warnings():  # a degenerate bootstrap gives NaN bounds: undecided, not silent
         warnings.simplefilter("ignore", RuntimeWarning)
         warnings.simplefilter("ignore", getattr(stats, "DegenerateDataWarning", RuntimeWarning))
         return ratio_ci(a, b)
@@ -510,9 +609,14 @@ def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=
     """The scheme with the switch forced at ``switch_s`` (the filter is then linear, card §4.5), on the noise-free
     truth of channel x (``z=None``) or on measurements ``z``."""
     k_switch = int(round(float(config["switch_s"]) * sc.fps)) + 1
-    cfg = TrackModeConfig(k_bound2=int(config["k_bound2"]), k_bound3=int(kb3), window=int(config["window_n"]),
-                          restart=config["restart"], restart_accel_var=sizes.get("restart_accel_var", 1e4),
-                          force_switch_k=k_switch)
+    cfg = TrackModeConfig(
+        k_bound2=int(config["k_bound2"]),
+        k_bound3=int(kb3),
+        window=int(config["window_n"]),
+        restart=config["restart"],
+        restart_accel_var=sizes.get("restart_accel_var", 1e4),
+        force_switch_k=k_switch,
+    )
     zz = sc.truth[0, :, 0] if z is None else z
     return run_track_modes(zz, visible, cfg, sizes["sigma_eps"], covariance=covariance or cfg.restart == "C")
 
@@ -524,7 +628,7 @@ def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: 
     o = forced_output(sc, config, sizes, kb3, vis)
     dyn = float(predict_ahead(o.x[f_back - 1], 1) - sc.truth[0, f_back, 0])
     rms = float(np.sqrt(o.gate_var[f_back] - sizes["sigma_eps"] ** 2))
-    return round(dyn, 6), round(rms, 6)                      # float noise off the deterministic curves
+    return round(dyn, 6), round(rms, 6)  # float noise off the deterministic curves
 
 
 def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
@@ -549,16 +653,22 @@ def loss_sweep(config: dict, sizes: dict) -> dict:
     """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
     config = _full(config, sizes)
     sc = scenario(config["frame_rate_hz"])
-    rows = [prediction_error(sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)),
-                             int(round((s + 10.0) * sc.fps))) for s in sizes["loss_grid_s"]]
+    rows = [
+        prediction_error(
+            sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + 10.0) * sc.fps))
+        )
+        for s in sizes["loss_grid_s"]
+    ]
     dyn, rms = np.array(rows).T
     return {"loss_s": np.asarray(sizes["loss_grid_s"]), "dyn": dyn, "rms": rms}
 
 
 def c7_parts(sweep: dict) -> dict:
     """C001-7's parts: |dynamic| decreasing with the loss time; |dynamic| / RMS for the earliest loss."""
-    return {"decreasing": [float(v) for v in np.abs(sweep["dyn"])],
-            "dominates early": float(abs(sweep["dyn"][0]) / sweep["rms"][0])}
+    return {
+        "decreasing": [float(v) for v in np.abs(sweep["dyn"])],
+        "dominates early": float(abs(sweep["dyn"][0]) / sweep["rms"][0]),
+    }
 
 
 def c8_parts(cur: dict) -> dict:
@@ -567,9 +677,11 @@ def c8_parts(cur: dict) -> dict:
     s = cur["sum"]
     ib = int(np.argmin(s))
     tail = [float(v) for v in np.abs(cur["dyn"])[ib:]]
-    return {"RMS decreasing": [float(v) for v in cur["rms"]],
-            "interior minimum": float(min(s[0], s[-1]) - s[1:-1].min()),
-            "dynamic grows beyond the optimum": tail if len(tail) >= 2 else [tail[0], tail[0]]}
+    return {
+        "RMS decreasing": [float(v) for v in cur["rms"]],
+        "interior minimum": float(min(s[0], s[-1]) - s[1:-1].min()),
+        "dynamic grows beyond the optimum": tail if len(tail) >= 2 else [tail[0], tail[0]],
+    }
 
 
 def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
@@ -619,8 +731,9 @@ def unbiased_prediction_bound(sc: Scenario, f_first: int, f_last: int, f_pred: i
     return float(sigma_eps * np.sqrt(u @ np.linalg.solve(H.T @ H, u)))
 
 
-def spherical_deviations(ranges_m, speeds, headings_deg, elevations_deg, horizon_s: float = 10.0,
-                         deg_per_element: float = 6.0 / 712) -> np.ndarray:
+def spherical_deviations(
+    ranges_m, speeds, headings_deg, elevations_deg, horizon_s: float = 10.0, deg_per_element: float = 6.0 / 712
+) -> np.ndarray:
     """Targets in uniform Cartesian motion seen in azimuth/elevation: the largest deviation (elements) over
     ``horizon_s`` of a linear and of a quadratic extrapolation of the exact angular state at the start.
 
@@ -634,7 +747,8 @@ def spherical_deviations(ranges_m, speeds, headings_deg, elevations_deg, horizon
 
     def angles(R, V, h, e0, t):
         p = R * np.array([np.cos(e0), 0.0, np.sin(e0)]) + V * np.asarray(t)[:, None] * np.array(
-            [np.cos(h), np.sin(h), 0.0])
+            [np.cos(h), np.sin(h), 0.0]
+        )
         return np.degrees(np.arctan2(p[:, 1], p[:, 0])), np.degrees(np.arctan2(p[:, 2], np.hypot(p[:, 0], p[:, 1])))
 
     rows = []
