@@ -205,3 +205,18 @@ def test_explorer_runs_the_curves_group():
     )
     rec = ex.record("C001-8")
     assert len(ex.replicates()) == 3 and rec["conditions"]
+
+
+def test_detector_benchmark_arms_every_detector_before_the_onset():
+    """Issue 25 item 1: with the stated arming k_b2 + 2n, the n = 50 window first tested after the onset and its
+    delay row was flat (every run 'detected' at the first test). Each detector now tests before the onset, and a
+    higher false-alarm target never lengthens the median delay."""
+    sz = SIZES | {"n_trials": 150, "n_fa_runs": 1500}
+    b = study.detector_benchmark({}, 2, sz)
+    onset = study.scenario().onset
+    assert all(f < onset for f in b["arming_frame"].values())
+    for name, cur in b.items():
+        if name != "arming_frame":
+            d = cur["median_delay_s"]
+            assert np.all(np.diff(d) <= 1e-12), name
+    assert np.ptp(b["|S|, n=50"]["median_delay_s"]) > 0

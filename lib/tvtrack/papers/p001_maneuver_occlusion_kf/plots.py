@@ -223,3 +223,23 @@ def comparators_plot(t_s, rms_t: dict, ratios: dict, loss):
     ax.set_yticks(y, names, fontsize=8)
     ax.set(xlabel="MS error ratio to the scheme (> 1: scheme better)", title="(b) the C001-4 parts")
     return fig
+
+
+def detector_benchmark_plot(bench: dict, fa_label: str):
+    """Median detection delay against the per-run false-alarm probability, one curve per detector."""
+    use_style()
+    fig, ax = plt.subplots(figsize=(7, 4.0))
+    for i, (name, cur) in enumerate((k, v) for k, v in bench.items() if k != "arming_frame"):
+        fin = np.isfinite(cur["median_delay_s"])
+        ax.plot(
+            cur["per_run_false_alarm"][fin],
+            cur["median_delay_s"][fin],
+            marker="osd^v<>p"[i % 7],
+            ms=4,
+            color=colour(i),
+            label=name,
+        )
+    ax.set_xscale("log")
+    ax.set(xlabel=f"per-run false-alarm probability ({fa_label})", ylabel="median detection delay (s)")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
