@@ -11,9 +11,10 @@ Targets: >= 100x (issue 4, asserted); >= 400x (issue 30, reported as ``target_40
 goes (profiled 2026-11-25): the batched run is one Python loop over the 625 frames of about 25 in-place NumPy
 operations on (2000,) arrays (filter update, running window sums, the per-channel gain gathers after the switch),
 i.e. about 100 us per frame, which is NumPy's per-call overhead, not arithmetic. On this shared 2-core machine the
-ratio measures 200-240x. A fast path that runs TRACK2 for every channel first and TRACK3 shifted by each channel's
-detection frame (tested equal to the general loop) was no faster under load: the loops are overhead-bound and the
-assembly of the (T, 3, B) outputs costs as much as it saves. Reaching 400x needs the frame loop compiled (numba,
+ratio measures 140-240x (it moves with the load of the other jobs). Two specialised paths, both tested equal to the
+general loop and then dropped, were not measurably faster under that load: TRACK2 for every channel first and
+TRACK3 shifted by each channel's detection frame (the (T, 3, B) assembly cost what the loops saved), and a lockstep
+loop with the state as one (3, B) array (45-80 ms against the general loop's 55-70 ms). Reaching 400x needs the frame loop compiled (numba,
 not in environment.txt) or the fixed-gain segments as ``scipy.signal.lfilter`` calls; see the 001 report.
 """
 

@@ -220,3 +220,12 @@ def test_detector_benchmark_arms_every_detector_before_the_onset():
             d = cur["median_delay_s"]
             assert np.all(np.diff(d) <= 1e-12), name
     assert np.ptp(b["|S|, n=50"]["median_delay_s"]) > 0
+
+
+def test_replicates_measure_every_part_afresh():
+    """Issue 25 item 4: C001-2's 'unbiased' replicate entries reused the pooled value. Each replicate is now a
+    full run of its own seed: every random part differs between seeds and repeats for the same seed."""
+    sz = SIZES | {"n_trials": 60, "n_fa_runs": 600}
+    a, b, a2 = (study.measure_detection({}, s, sz)["C001-2"] for s in (11, 12, 11))
+    for part in ("size", "unbiased", "UMP"):
+        assert a[part].value != b[part].value and a[part].value == a2[part].value, part
