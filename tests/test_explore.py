@@ -181,3 +181,16 @@ def test_executor_for_refuses_an_address_without_port_in_one_line():
     assert executor_for("") is None
     with pytest.raises(ValueError, match="has no port"):
         executor_for("localhost")
+
+
+def test_shares_from_counts_pool_as_counts():
+    from tvtrack.explore import pool
+    from tvtrack.montecarlo import Estimate, proportion_ci, zero_events_bound
+
+    zero = Estimate(0.0, float("nan"), 0.0, zero_events_bound(8), 8, 0.95, "count: zero events")
+    p = pool([zero, zero, zero])
+    assert (p.value, p.ci_low, p.n) == (0.0, 0.0, 24)
+    assert p.ci_high == pytest.approx(zero_events_bound(24))     # averaging the intervals would give ~0.10
+    mixed = pool([proportion_ci(2, 10), proportion_ci(0, 10), proportion_ci(1, 10)])
+    ref = proportion_ci(3, 30)
+    assert (mixed.value, mixed.ci_low, mixed.ci_high) == pytest.approx((ref.value, ref.ci_low, ref.ci_high))
