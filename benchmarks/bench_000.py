@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tvtrack.sensors.dissector import (DissectorScan, GaussMarkovMessage, background_intensity, draw_noises,
-                                       run_variant1, run_variant2, simulate, variant1_filter, variant2_filter)
+from tvtrack.papers.p000_dissector_ekf.model import (background_intensity, DissectorScan, draw_noises, GaussMarkovMessage, simulate)
+from tvtrack.papers.p000_dissector_ekf.ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 
 MSG = GaussMarkovMessage(0.1, 0.15)
 

@@ -8,12 +8,11 @@ from tvtrack.bounds.pcrlb import expected_over_gaussian, gaussian_fisher_informa
 from tvtrack.filters.ekf import ExtendedKalmanFilter, ekf_update, joseph_update_scalar
 from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
-from tvtrack.sensors.dissector import (DissectorScan, consistency, GaussMarkovMessage, background_intensity, draw_noises,
-                                       fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
-                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
-                                       simulate_photon_counts, scan_centroids, fixed_gain_track, tune_fixed_gain,
-                                       simulate_two_rates,
-                                       variant1_filter, variant2_filter)
+from tvtrack.papers.p000_dissector_ekf.model import (background_intensity, DissectorScan, draw_noises, GaussMarkovMessage, scan_at_snr, simulate, simulate_integrated, simulate_photon_counts, simulate_two_rates)
+from tvtrack.papers.p000_dissector_ekf.ekf import (consistency, run_variant1, run_variant2, variant1_filter, variant2_filter)
+from tvtrack.papers.p000_dissector_ekf.reference import fisher_information, grid_filter, pcrlb_variance, scan_crlb
+from tvtrack.papers.p000_dissector_ekf.baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
+from tvtrack.papers.p000_dissector_ekf.settling import lock_lost
 
 MSG = GaussMarkovMessage(0.1, 0.15)
 

@@ -1,9 +1,9 @@
-"""Tests for tvtrack.settling (steady-state MSE and settling time of Monte Carlo runs, notebook 000)."""
+"""Tests for the steady-state, settling and acquisition helpers of paper 000 (tvtrack.papers.p000_dissector_ekf.settling)."""
 
 import numpy as np
 import pytest
 
-from tvtrack.settling import acquisition_times, median_ratio_ci, per_trial_mse, scan_averages, settle_time, settle_time_ci
+from tvtrack.papers.p000_dissector_ekf.settling import (acquisition_times, median_ratio_ci, per_trial_mse, scan_averages, settle_time, settle_time_ci)
 
 
 def test_per_trial_mse_uses_the_window_only():

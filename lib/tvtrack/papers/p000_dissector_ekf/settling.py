@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from .montecarlo import Estimate, bootstrap_ci
+from ...montecarlo import Estimate, bootstrap_ci
 
-__all__ = ["per_trial_mse", "scan_averages", "settle_time", "settle_time_ci", "acquisition_times",
+__all__ = ["lock_lost", "per_trial_mse", "scan_averages", "settle_time", "settle_time_ci", "acquisition_times",
            "median_ratio_ci"]
 
 
@@ -149,3 +149,24 @@ def median_ratio_ci(numerator, denominator, confidence: float = 0.95) -> Estimat
     """
     return bootstrap_ci((numerator, denominator),
                         lambda a, b, axis: np.median(a, axis=axis) / np.median(b, axis=axis), confidence=confidence)
+
+
+def lock_lost(error, threshold: float, min_steps: int):
+    """Trials whose ``|error|`` exceeds ``threshold`` for at least ``min_steps`` consecutive steps.
+
+    Parameters
+    ----------
+    error : ndarray, shape (n_trials, K)
+    Returns
+    -------
+    ndarray of bool, shape (n_trials,)
+    """
+    if min_steps < 1:
+        raise ValueError(f"parameter 'min_steps' = {min_steps}; it must be >= 1")
+    big = (np.abs(error) > threshold).astype(np.int32)
+    run = np.zeros(big.shape[0], dtype=np.int32)
+    longest = np.zeros_like(run)
+    for k in range(big.shape[1]):
+        run = (run + 1) * big[:, k]
+        longest = np.maximum(longest, run)
+    return longest >= min_steps
