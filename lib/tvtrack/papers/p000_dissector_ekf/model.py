@@ -22,7 +22,7 @@ import numpy as np
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "SCORING_TIMES", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "SAMPLE_PHASES", "SCORING_TIMES", "SAMPLE_MODELS", "truth_and_pulse", "samples_from_pulse", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
     "simulate_photon_counts", "simulate_two_rates",
 ]
 
@@ -37,6 +37,8 @@ SAMPLE_PHASES = ("interval_centre", "interval_end")
 #: The time an integrated sample's truth is scored at: the interval centre (where the filters, the grid filter and
 #: the PCRLB evaluate the pulse: the time their model of the sample refers to) or its end (the newest datum).
 SCORING_TIMES = ("interval_centre", "interval_end")
+#: What one sample is: the current integrated over its interval (integrate and dump) or one instant of it.
+SAMPLE_MODELS = ("integrated", "point")
 
 
 def _check_real(name, value, low=None, high=None, low_open=False, high_open=False):
@@ -284,6 +286,45 @@ def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: d
     if score_at == "interval_centre":
         x[:, 1:] = x_half[:, m::2 * m]                                     # times (k - 1/2) dt
     return x, mean(shape), mean(intensity)
+
+
+def truth_and_pulse(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, sample_model: str = "integrated",
+                    score_at: str = "interval_centre"):
+    """The truth and the mean pulse ``S`` each sample sees, under either sample model (common draws ``noises``).
+
+    The pulse does not depend on ``psi_A`` or ``P``, so one call serves every operating point: the samples of a
+    point are :func:`samples_from_pulse` of it. ``"integrated"``: as :func:`simulate_integrated` (pulse averaged
+    over the interval; truth at ``score_at``); ``"point"``: as :func:`simulate` (pulse and truth at ``k dt``).
+
+    Returns
+    -------
+    x : ndarray, shape (n_trials, n_steps + 1)     truth (column 0: ``X1(0)``)
+    pulse : ndarray, shape (n_trials, n_steps)     mean normalised pulse of samples ``k = 1..n_steps``
+    """
+    _check_choice("sample_model", sample_model, SAMPLE_MODELS)
+    if sample_model == "integrated":
+        x, pulse, _ = _integrated_path(scan, message, noises, score_at)
+        return x, pulse
+    x, _ = simulate(scan, message, {**noises, "xi": np.zeros_like(noises["xi"])})
+    return x, scan.shape(x[:, 1:], np.arange(1, x.shape[1]))
+
+
+def samples_from_pulse(scan: DissectorScan, pulse, xi):
+    """Samples ``Y(k) = A S_k + sqrt(N0 (1 + P/(1-P) S_k) / dt) xi_k`` (eqs. (2), (5)) from mean pulses ``S_k``.
+
+    The noise intensity is linear in ``S``, so its interval mean is the intensity of the mean pulse.
+
+    Parameters
+    ----------
+    pulse, xi : ndarray, shape (n_trials, n_steps)
+
+    Returns
+    -------
+    ndarray, shape (n_trials, n_steps + 1)   column 0 NaN (no sample at ``k = 0``)
+    """
+    y = np.full((pulse.shape[0], pulse.shape[1] + 1), np.nan)
+    y[:, 1:] = scan.amplitude * pulse + np.sqrt(scan.n0 * (1.0 + scan.signal_noise_ratio * pulse) / scan.dt) * xi
+    return y
 
 
 def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
