@@ -121,3 +121,11 @@ def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
 def test_the_recording_is_off_when_asked(tmp_path):
     scan, x, pulse, xi = study.record_inputs(DEFAULT, 2, SMALL)
     assert record_trial(tmp_path, "off", scan, x, pulse, xi, n_scans=2) is None
+
+
+def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
+    from tvtrack.papers.p000_dissector_ekf.findings import reproduced_where
+    band = vd.InBand("ratio", low=20.0)
+    assert reproduced_where(band, {"a": 25.0, "b": 3.0}) == ["a"]
+    both = vd.AllOf({"x": vd.InBand("x", high=1.0), "y": vd.InBand("y", low=1.0)})
+    assert reproduced_where(both, {"x": 0.5, "y": 0.5}) == ["x"]

@@ -10,7 +10,7 @@ from typing import Any
 
 from ...verdicts import as_estimate
 
-__all__ = ["summary", "findings_table", "claim_details", "conclusions"]
+__all__ = ["summary", "findings_table", "claim_details", "conclusions", "reproduced_where", "condition_rows"]
 
 
 def _one(m: Any) -> str:
@@ -78,3 +78,18 @@ def conclusions(claims, ex) -> str:
         label = f", {c.robustness['label']}" if c.robustness else ""
         lines.append(f"- **{c.id}** {c.verdict}{label}{where}.")
     return "\n".join(lines)
+
+
+def reproduced_where(rule, named: dict) -> list:
+    """The names whose measured value the rule judges ``reproduced``: ``named`` maps a name (a condition, or a part
+    of an :class:`~tvtrack.verdicts.AllOf` rule when ``rule`` is one) to what the rule (or that part's rule) reads."""
+    parts = getattr(rule, "parts", None)
+    return [k for k, m in named.items() if (parts[k] if parts else rule).decide(m) == "reproduced"]
+
+
+def condition_rows(ex, claim_id: str) -> list:
+    """``(description, measured)`` of the claim pooled at the default, then under each condition of its exploration."""
+    rows = [("default (pooled replicates)", ex.measured(claim_id))]
+    for c in ex.record(claim_id)["conditions"]:
+        rows.append((", ".join(f"{k} = {v}" for k, v in c["changed"].items()), c["measured"]))
+    return rows
