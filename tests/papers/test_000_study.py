@@ -7,7 +7,7 @@ import pytest
 from tvtrack.explore import explore
 from tvtrack.montecarlo import zero_events_bound
 from tvtrack.papers.p000_dissector_ekf import study
-from tvtrack.papers.p000_dissector_ekf.findings import conclusions, findings_table, summary
+from tvtrack.papers.p000_dissector_ekf.findings import claim_details, conclusions
 from tvtrack.papers.p000_dissector_ekf.recording import record_trial
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
 from tvtrack.results import Results
@@ -111,11 +111,12 @@ def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
     results = Results(notebook="000_dissector_ekf", citation="x", parameters={"seed": 1, "output_dir": str(tmp_path)})
     for cid, rule in rules.items():
         results.claim(id=cid, statement=cid, paper_value="-", rule=rule, exploration=ex)
-    table = findings_table(results.claims)
-    assert table.count("\n") == 3 and results.claims[0].verdict in table
+    details = claim_details(results, ex, "C000-2")
+    assert all(part in details for part in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2"))
+    assert f"Verdict: {results.claims[1].verdict}" in details
     text = conclusions(results.claims, ex)
     assert f"{ex.settings['replicates']} independent replicates" in text
-    assert summary([1.0, 2.0]) == "1 ... 2 (2 points)"
+    assert "Of 2 checkable claims" in text
 
 
 def test_the_recording_is_off_when_asked(tmp_path):

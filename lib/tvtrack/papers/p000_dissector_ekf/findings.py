@@ -1,4 +1,5 @@
-"""The generated prose of paper 000's notebook: the findings table at the top, one claim's details, the conclusions.
+"""The generated prose of paper 000's notebook: one claim's details, the conclusions, the conditions a figure shows
+(the findings table at the top is the core's :func:`tvtrack.results.claims_table`).
 
 Every number and every interpretive word comes from the claims' rules and the exploration's records.
 """
@@ -6,45 +7,8 @@ Every number and every interpretive word comes from the claims' rules and the ex
 from __future__ import annotations
 
 from collections import Counter
-from typing import Any
 
-from ...verdicts import as_estimate
-
-__all__ = ["summary", "findings_table", "claim_details", "conclusions", "reproduced_where", "condition_rows"]
-
-
-def _one(m: Any) -> str:
-    e = as_estimate(m)
-    if e.ci_low == e.ci_high:
-        return f"{e.value:.3g}"
-    return f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]"
-
-
-def summary(measured: Any, limit: int = 3) -> str:
-    """A measured value in a few words: an estimate with its interval; a list by its ends; parts by name (the first
-    ``limit``, then the range of the rest)."""
-    if measured is None:
-        return "-"
-    if isinstance(measured, (list, tuple)):
-        return f"{_one(measured[0])} ... {_one(measured[-1])} ({len(measured)} points)"
-    if isinstance(measured, dict) and "value" not in measured:
-        items = list(measured.items())
-        text = "; ".join(f"{k}: {summary(v)}" for k, v in items[:limit])
-        rest = [as_estimate(v).value for _, v in items[limit:] if not isinstance(v, (list, tuple))]
-        if rest:
-            text += f"; {len(rest)} more in {min(rest):.3g}-{max(rest):.3g}"
-        return text
-    return _one(measured)
-
-
-def findings_table(claims) -> str:
-    """One line per claim: what the paper said, what was measured (pooled replicates), verdict and label."""
-    rows = ["| claim | paper | measured (default register, pooled replicates) | verdict | label |",
-            "|---|---|---|---|---|"]
-    for c in sorted(claims, key=lambda c: int(c.id.split("-")[1])):
-        label = c.robustness["label"] if c.robustness else "-"
-        rows.append(f"| **{c.id}** {c.statement} | {c.paper_value} | {summary(c.measured)} | {c.verdict} | {label} |")
-    return "\n".join(rows)
+__all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows"]
 
 
 def claim_details(results, ex, claim_id: str) -> str:
@@ -73,10 +37,12 @@ def conclusions(claims, ex) -> str:
              f"{sum(r.stage == 'single' for r in ex.runs)} one-at-a-time and {sum(r.stage == 'joint' for r in ex.runs)} "
              f"joint configurations over {len(ex.register)} register entries"
              + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."), ""]
-    for c in sorted(claims, key=lambda c: int(c.id.split("-")[1])):
-        where = f"; differs: {'; '.join(c.robustness['where'][:3])}" if c.robustness and c.robustness["where"] else ""
-        label = f", {c.robustness['label']}" if c.robustness else ""
-        lines.append(f"- **{c.id}** {c.verdict}{label}{where}.")
+    open_ = [c for c in checkable if c.verdict != "reproduced" or (c.robustness or {}).get("label") != "robust"]
+    if open_:
+        lines.append("Where a claim is not reproduced, or its verdict moves with the register (first conditions):")
+    for c in sorted(open_, key=lambda c: int(c.id.split("-")[1])):
+        where = f": {'; '.join(c.robustness['where'][:2])}" if c.robustness and c.robustness["where"] else ""
+        lines.append(f"- **{c.id}** {c.verdict}, {c.robustness['label']}{where}.")
     return "\n".join(lines)
 
 
