@@ -130,3 +130,13 @@ def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
     assert reproduced_where(band, {"a": 25.0, "b": 3.0}) == ["a"]
     both = vd.AllOf({"x": vd.InBand("x", high=1.0), "y": vd.InBand("y", low=1.0)})
     assert reproduced_where(both, {"x": 0.5, "y": 0.5}) == ["x"]
+
+
+def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_counts_change_the_data():
+    x, _, _, _ = study._path(DEFAULT, 9, SMALL, "uniform")
+    assert np.all(np.abs(x[:, 0]) <= 0.5) and x[:, 0].std() > 0.2         # uniform on [-1/2, 1/2]: sd 0.29
+    gauss = study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "v2")
+    counts = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "v2")
+    assert not np.allclose(gauss, counts)
+    ref = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "stationary")
+    np.testing.assert_array_equal(ref, study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "stationary"))

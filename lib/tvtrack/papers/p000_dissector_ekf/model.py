@@ -22,7 +22,7 @@ import numpy as np
 
 __all__ = [
     "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "SCORING_TIMES", "SAMPLE_MODELS", "truth_and_pulse", "samples_from_pulse", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
+    "SAMPLE_PHASES", "SCORING_TIMES", "SAMPLE_MODELS", "truth_and_pulse", "samples_from_pulse", "counts_from_pulse", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
     "simulate_photon_counts", "simulate_two_rates",
 ]
 
@@ -359,6 +359,25 @@ def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises
     return x, y
 
 
+def counts_from_pulse(scan: DissectorScan, pulse, rng: np.random.Generator):
+    """Samples from photo-electron counts with the mean pulses ``pulse`` (n_trials, n_steps) (card, beyond the
+    paper, item 5): ``n_k ~ Poisson((I_b + A S_k) dt / q)``, ``Y(k) = q n_k / dt - I_b`` with ``I_b = A (1-P)/P``
+    and ``q = N0 / I_b`` (the Gaussian model's mean ``A S_k`` and variance ``N_k / dt``, the Poisson shape).
+
+    Returns
+    -------
+    y : ndarray, shape (n_trials, n_steps + 1)   column 0 NaN
+    background_counts : float                    mean background electrons per sample, ``I_b dt / q``
+    """
+    if not scan.contrast > 0:
+        raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
+    i_b = scan.amplitude / scan.signal_noise_ratio
+    charge = scan.n0 / i_b
+    y = np.full((pulse.shape[0], pulse.shape[1] + 1), np.nan)
+    y[:, 1:] = charge * rng.poisson((i_b + scan.amplitude * pulse) * scan.dt / charge) / scan.dt - i_b
+    return y, i_b * scan.dt / charge
+
+
 def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
                            rng: np.random.Generator, score_at: str = "interval_centre"):
     """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
@@ -385,12 +404,7 @@ def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noi
     if not scan.contrast > 0:
         raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
     x, shape, _ = _integrated_path(scan, message, noises, score_at)
-    i_b = scan.amplitude / scan.signal_noise_ratio
-    charge = scan.n0 / i_b
-    counts = rng.poisson((i_b + scan.amplitude * shape) * scan.dt / charge)
-    y = np.full_like(x, np.nan)
-    y[:, 1:] = charge * counts / scan.dt - i_b
-    return x, y, i_b * scan.dt / charge
+    return (x, *counts_from_pulse(scan, shape, rng))
 
 
 def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,

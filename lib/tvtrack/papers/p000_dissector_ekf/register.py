@@ -20,13 +20,13 @@ REGISTER = Register([
     Entry("scoring time", "model", "interval centre", ("interval centre", "interval end"),
           "the filters model an integrated sample by the pulse at its interval centre, so their estimate refers to "
           "that time; the interval end is the time of the newest datum (a point sample is scored at its instant)"),
+    Entry("photon model", "model", "Gaussian", ("Gaussian", "Poisson counts"), origin="adversarial",
+          why="eq. (1) models the shot noise as white Gaussian; it is the count statistics of photo-electrons, skewed "
+              "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)"),
     # ---- readings of the paper's ambiguous or inconsistent sentences
     Entry("sigma_sh", "reading", "per sample", ("per sample", "unit bandwidth"),
           "psi_A = A / sigma_sh: the RMS of the background noise in one sample sqrt(N0/dt), or in a 1/T bandwidth "
           "sqrt(N0) (4.5 times more noise per sample at the same psi_A)"),
-    Entry("c_s", "reading", "consistent", ("consistent", "literal"),
-          "eq. (6) writes the signal-noise intensity as A S, eq. (2) as N0 P/(1-P) S; they agree only for one unit "
-          "of current (the literal A S changes with the unit, so it is kept only as a reading)"),
     Entry("G22", "reading", "paper", ("paper", "euler", "matched"),
           "(E8) prints 2 beta_0 dt (a unit-variance X2); Euler on eq. (8) gives beta_0^2 dt; the matched value makes "
           "sqrt(c_s S) X2 carry the truth's per-sample signal-noise variance"),
@@ -36,6 +36,10 @@ REGISTER = Register([
     Entry("initial estimate", "reading", "process means", ("process means", "random N(0, D11(0))"),
           "the paper's solid curves start at the process means; its dashed curves from normally distributed initial "
           "estimates of unstated variance (read as D(0))"),
+    Entry("initial position", "reading", "stationary N(0, sigma_1^2)", ("stationary N(0, sigma_1^2)",
+                                                                       "uniform in the micro-raster"), origin="adversarial",
+          why="'the image is within the micro-raster' (the paper's motivation of D11(0) = 0.2): the message's own law, "
+              "or anywhere in the raster with equal probability"),
     Entry("convergence criterion", "reading", "90 % of runs acquired", ("90 % of runs acquired",
                                                                         "ensemble mean within 10 %"),
           "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
@@ -63,16 +67,17 @@ REGISTER = Register([
           "runs that lose lock"),
 ])
 
-_DATA = ["sample model", "scoring time", "sigma_sh"]
+_DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).
 DEPENDS = {
-    "C000-1": _DATA + ["c_s", "G22", "v2 noise at", "initial estimate", "convergence criterion", "psi_A", "contrast"],
-    "C000-2": _DATA + ["c_s", "G22", "v2 noise at", "micro-raster size"],
-    "C000-3": _DATA + ["c_s", "G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic"],
+    "C000-1": _DATA + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A",
+                       "contrast"],
+    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size"],
+    "C000-3": _DATA + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic"],
     "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
-    "C000-6": _DATA + ["c_s", "G22", "v2 noise at", "C000-6 filter", "potentially achievable", "psi_A",
+    "C000-6": _DATA + ["G22", "v2 noise at", "C000-6 filter", "potentially achievable", "psi_A",
                        "contrast convention", "statistic"],
     "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
-    "C000-8": ["sigma_sh", "c_s", "G22", "v2 noise at", "contrast convention"],
-    "C000-9": _DATA + ["c_s", "G22", "v2 noise at", "contrast"],
+    "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
+    "C000-9": _DATA + ["G22", "v2 noise at", "contrast"],
 }

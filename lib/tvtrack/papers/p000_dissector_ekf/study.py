@@ -17,11 +17,13 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import stats
 
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
+    counts_from_pulse,
     draw_noises,
     samples_from_pulse,
     scan_at_snr,
@@ -120,17 +122,17 @@ def _data_key(cfg):
     return (cfg["sample model"], cfg["scoring time"])
 
 
-def _draws(seed, sizes, start="paper"):
-    rng = np.random.default_rng(seed)
-    noises = draw_noises(rng, sizes.n_trials, sizes.n_steps, sizes.substeps)
-    return noises
-
-
 def _path(cfg, seed, sizes, offset=None):
-    """Truth and mean pulses of the common draws (one per data model, seed and start)."""
+    """Truth and mean pulses of the common draws (one per data model, seed and start).
+
+    ``offset``: None (the truth from its stationary law), a number (every truth starts there, T) or "uniform" (the
+    truth uniform over the micro-raster, [-T/2, T/2], from the same normal draws through their CDF).
+    """
     def compute():
-        noises = _draws(seed, sizes)
-        if offset is not None:                                              # truth starts at a fixed offset
+        noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
+        if offset == "uniform":
+            noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / MESSAGE.sigma}
+        elif offset is not None:                                            # truth starts at a fixed offset
             noises = {**noises, "x0": np.full_like(noises["x0"], offset / MESSAGE.sigma)}
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
@@ -144,24 +146,32 @@ def _scan(cfg, psi, contrast, sizes):
     return scan_at_snr(psi, contrast, sizes.dt, PULSE_DURATION, sig)
 
 
+def _samples(cfg, seed, scan, pulse, xi):
+    """The samples of one operating point under the photon model (Gaussian noise, or photo-electron counts where
+    there is a signal current to count, P > 0)."""
+    if cfg["photon model"] == "Poisson counts" and scan.contrast > 0:
+        return counts_from_pulse(scan, pulse, np.random.default_rng([seed, 31]))[0]
+    return samples_from_pulse(scan, pulse, xi)
+
+
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
     """Squared errors (n_trials, n_steps + 1) and the filter's D11 of one filter at one operating point.
 
     ``filt``: "v1", "v2", "ignoring" (variant 2 assuming P = 0) or "stationary" (variant 2 on P = 0 data).
     """
-    reads = {"v1": ("sigma_sh", "c_s", "G22"), "v2": ("sigma_sh", "v2 noise at"), "ignoring": ("sigma_sh",),
-             "stationary": ("sigma_sh",)}[filt]
+    reads = {"v1": ("sigma_sh", "G22", "photon model"), "v2": ("sigma_sh", "v2 noise at", "photon model"),
+             "ignoring": ("sigma_sh", "photon model"), "stationary": ("sigma_sh",)}[filt]
     key = ("err", _data_key(cfg), tuple(cfg[r] for r in reads), seed, sizes, psi, contrast, filt, offset, init)
 
     def compute():
         x, pulse, xi, draws_init = _path(cfg, seed, sizes, offset)
         scan = _scan(cfg, psi, 0.0 if filt == "stationary" else contrast, sizes)
-        y = samples_from_pulse(scan, pulse, xi)
+        y = _samples(cfg, seed, scan, pulse, xi)
         random_init = init != "process means"
         if filt == "v1":
             start = np.stack([np.sqrt(D11_0) * draws_init[:, 0], np.sqrt(D22_0) * draws_init[:, 1]], 1) \
                 if random_init else None
-            f = variant1_filter(scan, MESSAGE, BETA_0, cfg["c_s"], cfg["G22"])
+            f = variant1_filter(scan, MESSAGE, BETA_0, "consistent", cfg["G22"])
             e, d = run_variant1(f, y, (D11_0, D22_0), start)
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
@@ -201,7 +211,9 @@ def _c1(cfg, seed, sizes):
     parts = {}
     k_end = int(round(sizes.acquire_by_T / sizes.dt))
     for filt in ("v1", "v2"):
-        sq, _ = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, init=cfg["initial estimate"])
+        start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
+        sq, _ = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start,
+                        init=cfg["initial estimate"])
         steady = sq[:, sizes.window()].mean(axis=1)
         if cfg["convergence criterion"] == "ensemble mean within 10 %":
             parts[f"variant {filt[1]}"] = ratio_ci(sq[:, k_end - sizes.steps_per_scan + 1:k_end + 1].mean(axis=1), steady)
@@ -267,10 +279,10 @@ def _c6(cfg, seed, sizes):
     def grid():
         x, pulse, xi, _ = _path(cfg, seed, sizes)
         scan = _scan(cfg, psi, 0.9, sizes)
-        y = samples_from_pulse(scan, pulse[:m], xi[:m])
+        y = _samples(cfg, seed, scan, pulse, xi)[:m]
         mean = grid_filter(scan, MESSAGE, 0.5, sizes.grid_points).run(y, 0.0, MESSAGE.sigma ** 2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
-    g = _memo(("grid", _data_key(cfg), cfg["sigma_sh"], seed, sizes, psi), grid)
+    g = _memo(("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], seed, sizes, psi), grid)
     return _ratio(a[:m], g, cfg["statistic"])
 
 
@@ -296,13 +308,13 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y):
                     if name == "v1":
-                        return run_variant1(variant1_filter(s, MESSAGE, BETA_0, cfg["c_s"], cfg["G22"]), y)[0]
+                        return run_variant1(variant1_filter(s, MESSAGE, BETA_0, "consistent", cfg["G22"]), y)[0]
                     return run_variant2(variant2_filter(s, MESSAGE, None, iterations), y)[0]
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
                 r = ratio_ci(a, b)
                 return Estimate(r.value - 1, r.stderr, r.ci_low - 1, r.ci_high - 1, r.n, r.confidence, r.method)
-            reads = (cfg["c_s"], cfg["G22"]) if name == "v1" else (iterations,)
+            reads = (cfg["G22"],) if name == "v1" else (iterations,)
             parts[f"variant {name[1]} at psi_A={psi:g}, P={p:g}"] = _memo(data_key + (name, reads), compute)
     return parts
 
