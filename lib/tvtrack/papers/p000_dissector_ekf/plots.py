@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import textwrap
+
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -83,12 +85,14 @@ def fig3(contrast_grid, ratios, title: str):
 
 def conditions(labels, ests, line: float, xlabel: str, title: str):
     """One claim's measured value under every condition of its exploration (horizontal error bars, log x)."""
-    fig, ax = plt.subplots(figsize=(8, 0.28 * len(labels) + 1.2))
+    labels = [textwrap.fill(str(t), 70) for t in labels]
+    fig, ax = plt.subplots(figsize=(9, 0.3 * sum(t.count("\n") + 1 for t in labels) + 1.2))
     es = [as_estimate(e) for e in ests]
     y = np.arange(len(es))
     v = np.array([e.value for e in es])
     ax.errorbar(v, y, xerr=[v - [e.ci_low for e in es], [e.ci_high for e in es] - v], fmt="o", ms=3, capsize=2)
     ax.axvline(line, color="k", lw=1)
+    ax.set_xlim(min(0.5 * min(e.ci_low for e in es if e.ci_low > 0), 0.5 * line), 2 * max(line, max(e.ci_high for e in es)))
     ax.set_yticks(y, labels, fontsize=7)
     ax.set(xscale="log", xlabel=xlabel, title=title)
     ax.grid(alpha=0.3, which="both", axis="x")
