@@ -48,7 +48,7 @@ def acquisition(offsets, acq: dict, acquire_by: float):
     ax.axhline(acquire_by, color="k", lw=0.8, ls="--", label=f"{acquire_by:g} T")
     ax.axvline(0.5, color="grey", lw=0.8, ls=":")
     ax.set_ylabel("90 % of runs acquired by (T)")
-    ax.set_yscale("log")
+    ax.set_ylim(bottom=0)
     ax.legend(fontsize=8)
     axl.axvline(0.5, color="grey", lw=0.8, ls=":")
     axl.set_xlabel(r"initial offset of the object $X_1(0)$ (T; micro-raster edge at 0.5)")
