@@ -140,3 +140,12 @@ def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_c
     assert not np.allclose(gauss, counts)
     ref = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "stationary")
     np.testing.assert_array_equal(ref, study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "stationary"))
+
+
+def test_the_joint_reading_of_c000_6_is_the_ignoring_filter_at_fixed_background_current():
+    joint = study.measure({**DEFAULT, "C000-6 joint reading": study.JOINT_READING_C6}, 4, SMALL)["C000-6"]
+    both = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise",
+                          "contrast convention": "fixed background"}, 4, SMALL)["C000-6"]
+    assert joint.value == both.value
+    a = study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "ignoring")
+    assert joint.value == pytest.approx(a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean())
