@@ -19,10 +19,12 @@ __all__ = ["grid_filter", "fisher_information", "pcrlb_variance", "scan_crlb"]
 
 def grid_filter(scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5,
                 n_points: int = 401) -> GridFilter:
-    """Point-mass Bayesian filter of ``X1`` with the exact likelihood of eq. (5) (near-optimal reference).
+    """Point-mass Bayesian filter of ``X1`` with the likelihood of one sample of eq. (5) (near-optimal reference).
 
     The likelihood includes the signal-dependent variance, ``log p(z | x) = -(z - A S)^2 / (2 R) - log(R) / 2``
-    with ``R = N(t_k) / dt``; the transition is the message's exact discretisation.
+    with ``R = N(t_k) / dt``; the transition is the message's exact discretisation. The filter is the exact
+    posterior (up to the grid) for point samples; for integrate-and-dump samples its likelihood is the midpoint
+    rule (the message held at the interval centre), so it is near-optimal, not exact.
 
     Parameters
     ----------
@@ -60,8 +62,8 @@ def fisher_information(scan: DissectorScan, x, k):
 def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: int):
     """Posterior Cramer-Rao bound on the mean-square error of ``X1`` at every step ``k = 0..n_steps``.
 
-    The true model (exact message discretisation, stationary prior ``N(0, sigma_1^2)``, samples of
-    eq. (5) from ``k = 1``); the per-sample information :func:`fisher_information` (mean and
+    The model of point samples (exact message discretisation, stationary prior ``N(0, sigma_1^2)``, samples
+    of eq. (5) from ``k = 1``; for integrated samples the midpoint rule, scored at the interval centre); the per-sample information :func:`fisher_information` (mean and
     signal-dependent variance) is averaged over the prior of ``X1`` by Gauss-Hermite quadrature.
 
     Returns
