@@ -38,6 +38,7 @@ def test_both_variants_vectorise_over_trials(benchmark, data):
     def both(rows):
         run_variant1(f1, y[rows])
         run_variant2(f2, y[rows])
+
     batch = benchmark.pedantic(lambda: _cpu(lambda: both(slice(None))), rounds=1, iterations=1)
     one = _cpu(lambda: both(slice(0, 1)))
     speedup = 1000 * one / batch
@@ -48,8 +49,14 @@ def test_both_variants_vectorise_over_trials(benchmark, data):
 
 def test_variant1_costs_more_than_variant2_but_less_than_four_times(benchmark, data):
     scan, y = data
-    ratio = benchmark.pedantic(lambda: _cpu(lambda: run_variant1(variant1_filter(scan, study.MESSAGE), y))
-                               / _cpu(lambda: run_variant2(variant2_filter(scan, study.MESSAGE), y)), rounds=1, iterations=1)
+    ratio = benchmark.pedantic(
+        lambda: (
+            _cpu(lambda: run_variant1(variant1_filter(scan, study.MESSAGE), y))
+            / _cpu(lambda: run_variant2(variant2_filter(scan, study.MESSAGE), y))
+        ),
+        rounds=1,
+        iterations=1,
+    )
     benchmark.extra_info["v1_over_v2"] = ratio
     assert 1.0 < ratio < 4.0, f"variant 1 / variant 2 CPU time {ratio:.2f}"
 
@@ -61,7 +68,10 @@ def test_a_one_at_a_time_configuration_reuses_the_default_runs(benchmark):
     default = REGISTER.default()
     study._MEMO.clear()
     first = _cpu(lambda: study.measure(default, 1, sizes), repeats=1)
-    again = benchmark.pedantic(lambda: _cpu(lambda: study.measure({**default, "statistic": "median"}, 1, sizes),
-                                            repeats=1), rounds=1, iterations=1)
+    again = benchmark.pedantic(
+        lambda: _cpu(lambda: study.measure({**default, "statistic": "median"}, 1, sizes), repeats=1),
+        rounds=1,
+        iterations=1,
+    )
     benchmark.extra_info["oat_over_first"] = again / first
     assert again < 0.35 * first, f"a statistic-only configuration cost {again / first:.0%} of a full measurement"

@@ -30,9 +30,10 @@ def test_grid_likelihood_is_the_gaussian_log_density_up_to_a_constant():
     gf = grid_filter(scan, MSG, 0.5, 201)
     z = np.array([0.3, 1.1, -0.2])
     for k in (3, 10, 14):
-        mine = gf.log_likelihood(z, k)                                       # (n_trials, n_points)
-        exact = stats.norm.logpdf(z[:, None], scan.amplitude * scan.shape(gf.nodes, k),
-                                  np.sqrt(scan.sample_variance(gf.nodes, k)))
+        mine = gf.log_likelihood(z, k)  # (n_trials, n_points)
+        exact = stats.norm.logpdf(
+            z[:, None], scan.amplitude * scan.shape(gf.nodes, k), np.sqrt(scan.sample_variance(gf.nodes, k))
+        )
         diff = mine - exact
         np.testing.assert_allclose(diff - diff[:, :1], 0.0, atol=1e-9)
 
@@ -42,8 +43,8 @@ def test_grid_prediction_keeps_the_stationary_variance_of_the_message():
     started from the stationary prior N(0, sigma_1^2) must keep it: the exact transition preserves it."""
     scan = _scan(0.5)
     gf = grid_filter(scan, MSG, 0.6, 601)
-    out = gf.run(np.full((2, 400), np.nan), 0.0, MSG.sigma ** 2)
-    np.testing.assert_allclose(out.var[:, [0, 100, 399]], MSG.sigma ** 2, rtol=0.01)
+    out = gf.run(np.full((2, 400), np.nan), 0.0, MSG.sigma**2)
+    np.testing.assert_allclose(out.var[:, [0, 100, 399]], MSG.sigma**2, rtol=0.01)
     np.testing.assert_allclose(out.mean, 0.0, atol=1e-9)
 
 
@@ -53,12 +54,12 @@ def test_updated_noise_reevaluation_redoes_the_update_with_the_noise_at_the_upda
     scan = _scan(0.9)
     d0, x0, z = 0.2, np.array([0.05, -0.1]), np.array([[np.nan, 0.8], [np.nan, 0.1]])
     f1, q1 = MSG.euler(scan.dt)
-    xp, dp = f1 * x0, f1 ** 2 * d0 + q1
+    xp, dp = f1 * x0, f1**2 * d0 + q1
     h, H = scan.amplitude * scan.shape(xp, 1), scan.amplitude * scan.shape_derivative(xp, 1)
 
     def update(r):
-        gain = dp * H / (H ** 2 * dp + r)
-        return xp + gain * (z[:, 1] - h), dp * r / (H ** 2 * dp + r)
+        gain = dp * H / (H**2 * dp + r)
+        return xp + gain * (z[:, 1] - h), dp * r / (H**2 * dp + r)
 
     first, _ = update(scan.sample_variance(xp, 1))
     second, var2 = update(scan.sample_variance(first, 1))
@@ -67,7 +68,7 @@ def test_updated_noise_reevaluation_redoes_the_update_with_the_noise_at_the_upda
     np.testing.assert_allclose(est0[:, 1], first, rtol=1e-12)
     np.testing.assert_allclose(est1[:, 1], second, rtol=1e-12)
     np.testing.assert_allclose(var1[:, 1], var2, rtol=1e-12)
-    assert np.all(np.abs(second - first) > 1e-4)                           # the two readings differ here
+    assert np.all(np.abs(second - first) > 1e-4)  # the two readings differ here
 
 
 def test_integrated_truth_is_scored_at_the_interval_centre():
@@ -93,9 +94,9 @@ def test_two_rate_truths_are_scored_at_their_interval_centres():
     np.testing.assert_allclose(d["t_fine"], (np.arange(24) + 0.5) * scan.dt / factor)
     np.testing.assert_array_equal(d["x_fine"], d["x_mid"])
     e = simulate_two_rates(scan, MSG, factor, np.random.default_rng(5), 3, 6, score_at="interval_end")
-    np.testing.assert_allclose(e["x_fine"][:, factor - 1::factor], e["x_coarse"][:, 1:])
+    np.testing.assert_allclose(e["x_fine"][:, factor - 1 :: factor], e["x_coarse"][:, 1:])
     # the same path: the coarse centre (k - 1/2) dt is the end of fine sample (k - 1) factor + factor/2 - 1
-    np.testing.assert_array_equal(d["x_coarse"][:, 1:], e["x_fine"][:, factor // 2 - 1::factor])
+    np.testing.assert_array_equal(d["x_coarse"][:, 1:], e["x_fine"][:, factor // 2 - 1 :: factor])
     assert np.abs(d["x_coarse"][:, 1:] - e["x_coarse"][:, 1:]).min() > 0
 
 
@@ -111,7 +112,7 @@ def test_integrated_sample_mean_of_a_still_object_is_the_pulse_integral_over_the
     c = 1.0 / (np.sqrt(2.0) * scan.pulse_sigma)
     closed = scan.pulse_sigma * np.sqrt(np.pi / 2) / scan.dt * np.diff(special.erf(c * edges))
     np.testing.assert_allclose(y[0, 1:], closed, rtol=2e-5)
-    assert abs(y[0, 10] - 0.9933738) < 1e-6                                # interval (0.45, 0.5], ending at the peak
+    assert abs(y[0, 10] - 0.9933738) < 1e-6  # interval (0.45, 0.5], ending at the peak
 
 
 def test_a_seed_reproduces_a_run_and_another_seed_does_not():

@@ -13,16 +13,30 @@ from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
 from tvtrack.results import Results
 from tvtrack import verdicts as vd
 
-SMALL = study.Sizes(n_trials=40, duration_T=8.0, window_T=3.0, substeps=2, psi_grid=(5.0, 50.0),
-                    contrast_grid=(0.0, 0.5, 0.9), dt_points=((20.0, 0.5),), dt_factor=2, dt_trials=20,
-                    dt_duration_T=6.0, grid_trials=10, grid_points=61, acquire_by_T=3.0)
+SMALL = study.Sizes(
+    n_trials=40,
+    duration_T=8.0,
+    window_T=3.0,
+    substeps=2,
+    psi_grid=(5.0, 50.0),
+    contrast_grid=(0.0, 0.5, 0.9),
+    dt_points=((20.0, 0.5),),
+    dt_factor=2,
+    dt_trials=20,
+    dt_duration_T=6.0,
+    grid_trials=10,
+    grid_points=61,
+    acquire_by_T=3.0,
+)
 DEFAULT = REGISTER.default()
 
 
 def test_psi_at_follows_each_contrast_convention():
     assert study.psi_at(20.0, 0.9, "fixed N0") == 20.0
     # fixed total current: psi ~ P / sqrt(1 - P); fixed background: psi ~ P / (1 - P), anchored at P = 0.5
-    assert study.psi_at(20.0, 0.9, "fixed total current") == pytest.approx(20.0 * (0.9 / np.sqrt(0.1)) / (0.5 / np.sqrt(0.5)))
+    assert study.psi_at(20.0, 0.9, "fixed total current") == pytest.approx(
+        20.0 * (0.9 / np.sqrt(0.1)) / (0.5 / np.sqrt(0.5))
+    )
     assert study.psi_at(20.0, 0.9, "fixed background") == pytest.approx(180.0)
     assert study.psi_at(20.0, 0.5, "fixed background") == pytest.approx(20.0)
     assert study.psi_at(20.0, 0.0, "fixed total current") == 20.0
@@ -45,7 +59,7 @@ def test_measure_returns_every_claim_with_the_parts_its_rule_reads_and_reproduce
     assert set(a["C000-8"]) == {"variant 1 at psi_A=20, P=0.5", "variant 2 at psi_A=20, P=0.5"}
     assert len(a["C000-7"]["trend"]) == 3 and len(a["C000-9"]["variant 2"]) == 2
     assert a["C000-6"].value == b["C000-6"].value
-    study._MEMO.clear()                                                  # recomputed, not remembered
+    study._MEMO.clear()  # recomputed, not remembered
     c = study.measure(DEFAULT, 7, SMALL)
     assert c["C000-6"].value == a["C000-6"].value
     assert study.measure(DEFAULT, 8, SMALL)["C000-6"].value != a["C000-6"].value
@@ -69,8 +83,9 @@ def test_c000_6_readings_use_their_reference_and_common_random_numbers():
     by_bound = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 4, SMALL)["C000-6"]
     assert by_bound.value == pytest.approx(a.mean() / bound, rel=1e-12)
     ignoring = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 4, SMALL)["C000-6"]
-    assert ignoring.value == pytest.approx(study.steady_runs(DEFAULT, 4, SMALL, 20.0, 0.9, "ignoring").mean()
-                                           / ref.mean(), rel=1e-12)
+    assert ignoring.value == pytest.approx(
+        study.steady_runs(DEFAULT, 4, SMALL, 20.0, 0.9, "ignoring").mean() / ref.mean(), rel=1e-12
+    )
     grid = study.measure({**DEFAULT, "potentially achievable": "grid filter"}, 4, SMALL)["C000-6"]
     assert grid.n == SMALL.grid_trials and np.isfinite(grid.value)
     # fixed background current: the P = 0.9 point sits at psi_A = 9 x 20
@@ -94,7 +109,7 @@ def test_scoring_at_the_interval_end_adds_the_half_interval_diffusion():
     sizes = study.Sizes(n_trials=200, duration_T=10.0, window_T=4.0, substeps=3)
     centre = study.steady_runs(DEFAULT, 6, sizes, 100.0, 0.5, "v2").mean()
     end = study.steady_runs({**DEFAULT, "scoring time": "interval end"}, 6, sizes, 100.0, 0.5, "v2").mean()
-    diffusion = 2 * study.MESSAGE.alpha * study.MESSAGE.sigma ** 2 * sizes.dt / 2
+    diffusion = 2 * study.MESSAGE.alpha * study.MESSAGE.sigma**2 * sizes.dt / 2
     assert 0.3 * diffusion < end - centre < diffusion
     assert end / centre > 1.3
 
@@ -105,8 +120,11 @@ def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
 
     def measure(config, seed):
         return study.measure({**DEFAULT, **config}, seed, SMALL)
-    rules = {"C000-6": vd.InBand("ratio", low=20.0), "C000-2": vd.AllOf({k: vd.InBand(k, 0.01, 0.03) for k in
-                                                                            ("P=0", "P=0.5 variant 1", "P=0.5 variant 2")})}
+
+    rules = {
+        "C000-6": vd.InBand("ratio", low=20.0),
+        "C000-2": vd.AllOf({k: vd.InBand(k, 0.01, 0.03) for k in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2")}),
+    }
     ex = explore(measure, small, rules, seed=1, replicates=3, depends=depends)
     results = Results(notebook="000_dissector_ekf", citation="x", parameters={"seed": 1, "output_dir": str(tmp_path)})
     for cid, rule in rules.items():
@@ -126,6 +144,7 @@ def test_the_recording_is_off_when_asked(tmp_path):
 
 def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
     from tvtrack.papers.p000_dissector_ekf.findings import reproduced_where
+
     band = vd.InBand("ratio", low=20.0)
     assert reproduced_where(band, {"a": 25.0, "b": 3.0}) == ["a"]
     both = vd.AllOf({"x": vd.InBand("x", high=1.0), "y": vd.InBand("y", low=1.0)})
@@ -134,7 +153,7 @@ def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
 
 def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_counts_change_the_data():
     x, _, _, _ = study._path(DEFAULT, 9, SMALL, "uniform")
-    assert np.all(np.abs(x[:, 0]) <= 0.5) and x[:, 0].std() > 0.2         # uniform on [-1/2, 1/2]: sd 0.29
+    assert np.all(np.abs(x[:, 0]) <= 0.5) and x[:, 0].std() > 0.2  # uniform on [-1/2, 1/2]: sd 0.29
     gauss = study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "v2")
     counts = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "v2")
     assert not np.allclose(gauss, counts)
@@ -144,8 +163,11 @@ def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_c
 
 def test_the_joint_reading_of_c000_6_is_the_ignoring_filter_at_fixed_background_current():
     joint = study.measure({**DEFAULT, "C000-6 joint reading": study.JOINT_READING_C6}, 4, SMALL)["C000-6"]
-    both = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise",
-                          "contrast convention": "fixed background"}, 4, SMALL)["C000-6"]
+    both = study.measure(
+        {**DEFAULT, "C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}, 4, SMALL
+    )["C000-6"]
     assert joint.value == both.value
     a = study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "ignoring")
-    assert joint.value == pytest.approx(a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean())
+    assert joint.value == pytest.approx(
+        a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean()
+    )

@@ -30,9 +30,9 @@ def scan_centroids(scan: DissectorScan, y):
     n_scans = (y.shape[1] - 1) // per_scan
     k = np.arange(1, 1 + n_scans * per_scan)
     u = scan.offset(0.0, k).reshape(n_scans, per_scan)
-    blocks = y[:, 1:1 + n_scans * per_scan].reshape(y.shape[0], n_scans, per_scan)
+    blocks = y[:, 1 : 1 + n_scans * per_scan].reshape(y.shape[0], n_scans, per_scan)
     s0 = scan.shape(0.0, k[:per_scan])
-    slope = np.sum(u[0] ** 2 * s0) / (scan.pulse_sigma ** 2 * np.sum(s0))
+    slope = np.sum(u[0] ** 2 * s0) / (scan.pulse_sigma**2 * np.sum(s0))
     return (blocks * u).sum(axis=2) / blocks.sum(axis=2) / slope
 
 

@@ -23,14 +23,19 @@ def _g22(mode: str, beta: float, dt: float) -> float:
     """Process-noise variance of ``X2`` per step (eq. (E8) and its alternatives)."""
     _check_choice("g22", mode, G22_MODES)
     if mode == "paper":
-        return 2.0 * beta * dt                      # (E8) as printed: unit-variance X2
+        return 2.0 * beta * dt  # (E8) as printed: unit-variance X2
     if mode == "euler":
-        return beta ** 2 * dt                       # Euler of eq. (8): unit-intensity X2
-    return (1.0 - (1.0 - beta * dt) ** 2) / dt      # stationary variance 1/dt: sampled white noise
+        return beta**2 * dt  # Euler of eq. (8): unit-intensity X2
+    return (1.0 - (1.0 - beta * dt) ** 2) / dt  # stationary variance 1/dt: sampled white noise
 
 
-def variant1_filter(scan: DissectorScan, message: GaussMarkovMessage, beta: float = 15.0,
-                    signal_noise_scale: str = "consistent", g22: str = "paper") -> ExtendedKalmanFilter:
+def variant1_filter(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    beta: float = 15.0,
+    signal_noise_scale: str = "consistent",
+    g22: str = "paper",
+) -> ExtendedKalmanFilter:
     """Two-state EKF of variant 1 (eqs. (7), (8), (E1)-(E8), corrected (E5), (E6)).
 
     Parameters
@@ -47,11 +52,11 @@ def variant1_filter(scan: DissectorScan, message: GaussMarkovMessage, beta: floa
     a, dt = scan.amplitude, scan.dt
     c_s = scan.n0 * scan.signal_noise_ratio if signal_noise_scale == "consistent" else a
     f1, q1 = message.euler(dt)
-    F = np.diag([f1, 1.0 - beta * dt])                                          # (E4)
-    Q = np.diag([q1, _g22(g22, beta, dt)])                                      # (E8)
+    F = np.diag([f1, 1.0 - beta * dt])  # (E4)
+    Q = np.diag([q1, _g22(g22, beta, dt)])  # (E8)
     sqrt_c = np.sqrt(c_s)
 
-    def h(x, k):                                                                # (E3)
+    def h(x, k):  # (E3)
         s = scan.shape(x[..., 0], k)
         return (a * s + sqrt_c * np.sqrt(s) * x[..., 1])[..., None]
 
@@ -59,16 +64,18 @@ def variant1_filter(scan: DissectorScan, message: GaussMarkovMessage, beta: floa
         u = scan.offset(x[..., 0], k)
         s = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
         root_s = np.sqrt(s)
-        d1 = a * s * u / scan.pulse_sigma ** 2 \
-            + sqrt_c * root_s * u / (2.0 * scan.pulse_sigma ** 2) * x[..., 1]   # d sqrt(c S)/dx without 0/0
+        d1 = (
+            a * s * u / scan.pulse_sigma**2 + sqrt_c * root_s * u / (2.0 * scan.pulse_sigma**2) * x[..., 1]
+        )  # d sqrt(c S)/dx without 0/0
         return np.stack([d1, sqrt_c * root_s], axis=-1)[..., None, :]
 
-    R = np.array([[scan.n0 / dt]])                                              # background only
+    R = np.array([[scan.n0 / dt]])  # background only
     return ExtendedKalmanFilter(F, Q, h, jacobian, R)
 
 
-def variant2_filter(scan: DissectorScan, message: GaussMarkovMessage, assumed_contrast: float | None = None,
-                    noise_iterations: int = 0) -> ExtendedKalmanFilter:
+def variant2_filter(
+    scan: DissectorScan, message: GaussMarkovMessage, assumed_contrast: float | None = None, noise_iterations: int = 0
+) -> ExtendedKalmanFilter:
     """Scalar EKF of variant 2: noise intensity of eq. (2) at the estimate (eq. (9)).
 
     Parameters
@@ -90,7 +97,7 @@ def variant2_filter(scan: DissectorScan, message: GaussMarkovMessage, assumed_co
     def jacobian(x, k):
         return a * scan.shape_derivative(x, k)[..., None]
 
-    def noise_cov(x, k):                                                        # (eq. 9)
+    def noise_cov(x, k):  # (eq. 9)
         return scan.sample_variance(x, k, p)[..., None]
 
     return ExtendedKalmanFilter(np.array([[f1]]), np.array([[q1]]), h, jacobian, noise_cov, noise_iterations)

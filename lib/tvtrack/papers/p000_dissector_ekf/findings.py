@@ -15,9 +15,14 @@ def claim_details(results, ex, claim_id: str) -> str:
     """The claim's rule, its verdict and label per part, the coverage and where a condition changes a part."""
     c = next(c for c in results.claims if c.id == claim_id)
     rec = c.robustness
-    lines = [f"**{c.id}** ({c.statement}) **Rule:** {c.acceptance}.", "",
-             f"**Verdict: {c.verdict}; label: {rec['coverage']}.**", "",
-             "| part | verdict | label | replicates |", "|---|---|---|---|"]
+    lines = [
+        f"**{c.id}** ({c.statement}) **Rule:** {c.acceptance}.",
+        "",
+        f"**Verdict: {c.verdict}; label: {rec['coverage']}.**",
+        "",
+        "| part | verdict | label | replicates |",
+        "|---|---|---|---|",
+    ]
     for name, p in rec["parts"].items():
         lines.append(f"| {name} | {p['verdict']} | {p['label']} | {', '.join(p['replicate_verdicts'])} |")
     if rec["where"]:
@@ -31,12 +36,18 @@ def conclusions(claims, ex) -> str:
     verdicts = Counter(c.verdict for c in checkable)
     labels = Counter(c.robustness["label"] for c in checkable if c.robustness)
     adversarial = [e.name for e in ex.register if e.origin == "adversarial"]
-    lines = [f"Of {len(checkable)} checkable claims: " + ", ".join(f"{n} {v}" for v, n in verdicts.most_common())
-             + "; labels " + ", ".join(f"{n} {lab}" for lab, n in labels.most_common()) + ".",
-             f"The exploration ran {ex.settings['replicates']} independent replicates, "
-             f"{sum(r.stage == 'single' for r in ex.runs)} one-at-a-time and {sum(r.stage == 'joint' for r in ex.runs)} "
-             f"joint configurations over {len(ex.register)} register entries"
-             + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."), ""]
+    lines = [
+        f"Of {len(checkable)} checkable claims: "
+        + ", ".join(f"{n} {v}" for v, n in verdicts.most_common())
+        + "; labels "
+        + ", ".join(f"{n} {lab}" for lab, n in labels.most_common())
+        + ".",
+        f"The exploration ran {ex.settings['replicates']} independent replicates, "
+        f"{sum(r.stage == 'single' for r in ex.runs)} one-at-a-time and {sum(r.stage == 'joint' for r in ex.runs)} "
+        f"joint configurations over {len(ex.register)} register entries"
+        + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."),
+        "",
+    ]
     open_ = [c for c in checkable if c.verdict != "reproduced" or (c.robustness or {}).get("label") != "robust"]
     if open_:
         lines.append("Where a claim is not reproduced, or its verdict moves with the register (first conditions):")

@@ -21,9 +21,24 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = [
-    "DissectorScan", "GaussMarkovMessage", "SIGMA_SH_DEFINITIONS", "SIGNAL_NOISE_SCALES", "G22_MODES",
-    "SAMPLE_PHASES", "SCORING_TIMES", "SAMPLE_MODELS", "truth_and_pulse", "samples_from_pulse", "counts_from_pulse", "background_intensity", "scan_at_snr", "draw_noises", "simulate", "simulate_integrated",
-    "simulate_photon_counts", "simulate_two_rates",
+    "DissectorScan",
+    "GaussMarkovMessage",
+    "SIGMA_SH_DEFINITIONS",
+    "SIGNAL_NOISE_SCALES",
+    "G22_MODES",
+    "SAMPLE_PHASES",
+    "SCORING_TIMES",
+    "SAMPLE_MODELS",
+    "truth_and_pulse",
+    "samples_from_pulse",
+    "counts_from_pulse",
+    "background_intensity",
+    "scan_at_snr",
+    "draw_noises",
+    "simulate",
+    "simulate_integrated",
+    "simulate_photon_counts",
+    "simulate_two_rates",
 ]
 
 #: Readings of the paper's ``sigma_sh`` in ``psi_A = A / sigma_sh``.
@@ -132,7 +147,7 @@ class DissectorScan:
     def shape_derivative(self, x, k):
         """``dS/dx = S u / sigma_t^2``."""
         u = self.offset(x, k)
-        return np.exp(-0.5 * (u / self.pulse_sigma) ** 2) * u / self.pulse_sigma ** 2
+        return np.exp(-0.5 * (u / self.pulse_sigma) ** 2) * u / self.pulse_sigma**2
 
     def noise_intensity(self, x, k, contrast: float | None = None):
         """``N(t_k) = N0 (1 + P/(1-P) S(x, t_k))`` (eq. (2)); ``contrast`` overrides ``P``."""
@@ -164,17 +179,23 @@ class GaussMarkovMessage:
     def euler(self, dt):
         """Euler discretisation used by the paper's filters: ``(1 - alpha dt, 2 alpha sigma^2 dt)``
         (eqs. (E4), (E8))."""
-        return 1.0 - self.alpha * dt, 2.0 * self.alpha * self.sigma ** 2 * dt
+        return 1.0 - self.alpha * dt, 2.0 * self.alpha * self.sigma**2 * dt
 
     def exact(self, dt):
         """Exact discretisation ``(exp(-alpha dt), sigma^2 (1 - exp(-2 alpha dt)))``."""
         f = np.exp(-self.alpha * dt)
-        return f, self.sigma ** 2 * (1.0 - f * f)
+        return f, self.sigma**2 * (1.0 - f * f)
 
 
-def scan_at_snr(psi_a: float, contrast: float, dt: float, pulse_duration: float = 0.5,
-                sigma_sh: str = "per_sample", sample_at: str = "interval_centre",
-                amplitude: float = 1.0) -> DissectorScan:
+def scan_at_snr(
+    psi_a: float,
+    contrast: float,
+    dt: float,
+    pulse_duration: float = 0.5,
+    sigma_sh: str = "per_sample",
+    sample_at: str = "interval_centre",
+    amplitude: float = 1.0,
+) -> DissectorScan:
     """The scan of an operating point given by its SNR ``psi_A`` and contrast ``P``.
 
     Parameters
@@ -194,8 +215,9 @@ def scan_at_snr(psi_a: float, contrast: float, dt: float, pulse_duration: float 
     """
     _check_choice("sample_at", sample_at, SAMPLE_PHASES)
     offset = -0.5 * dt if sample_at == "interval_centre" else 0.0
-    return DissectorScan(background_intensity(psi_a, amplitude, dt, sigma_sh), contrast, amplitude, dt,
-                         0.5 * pulse_duration, 0.5, offset)
+    return DissectorScan(
+        background_intensity(psi_a, amplitude, dt, sigma_sh), contrast, amplitude, dt, 0.5 * pulse_duration, 0.5, offset
+    )
 
 
 def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps: int = 0) -> dict:
@@ -249,8 +271,7 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
         x[:, k + 1] = f * x[:, k] + np.sqrt(q) * w[:, k]
     k = np.arange(1, n_steps + 1)
     y = np.full_like(x, np.nan)
-    y[:, 1:] = scan.amplitude * scan.shape(x[:, 1:], k) \
-        + np.sqrt(scan.sample_variance(x[:, 1:], k)) * xi                  # (eq. 5)
+    y[:, 1:] = scan.amplitude * scan.shape(x[:, 1:], k) + np.sqrt(scan.sample_variance(x[:, 1:], k)) * xi  # (eq. 5)
     return x, y
 
 
@@ -272,24 +293,29 @@ def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: d
     if m < 1 or w.shape[1] != 2 * m * n_steps:
         raise ValueError(f"noises['w_sub'] has {w.shape[1]} columns; it must be 2 m n_steps = 2 m {n_steps}")
     f, q = message.exact(0.5 * scan.dt / m)
-    x_half = np.empty((n_trials, w.shape[1] + 1))                          # times i dt / (2 m)
+    x_half = np.empty((n_trials, w.shape[1] + 1))  # times i dt / (2 m)
     x_half[:, 0] = message.sigma * noises["x0"]
     for i in range(w.shape[1]):
         x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
-    x_mid = x_half[:, 1::2]                                                # sub-interval centres
+    x_mid = x_half[:, 1::2]  # sub-interval centres
     t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
     u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
     shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
     intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
     mean = lambda a: a.reshape(n_trials, n_steps, m).mean(axis=2)
-    x = x_half[:, ::2 * m].copy()
+    x = x_half[:, :: 2 * m].copy()
     if score_at == "interval_centre":
-        x[:, 1:] = x_half[:, m::2 * m]                                     # times (k - 1/2) dt
+        x[:, 1:] = x_half[:, m :: 2 * m]  # times (k - 1/2) dt
     return x, mean(shape), mean(intensity)
 
 
-def truth_and_pulse(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, sample_model: str = "integrated",
-                    score_at: str = "interval_centre"):
+def truth_and_pulse(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    noises: dict,
+    sample_model: str = "integrated",
+    score_at: str = "interval_centre",
+):
     """The truth and the mean pulse ``S`` each sample sees, under either sample model (common draws ``noises``).
 
     The pulse does not depend on ``psi_A`` or ``P``, so one call serves every operating point: the samples of a
@@ -327,8 +353,9 @@ def samples_from_pulse(scan: DissectorScan, pulse, xi):
     return y
 
 
-def simulate_integrated(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
-                        score_at: str = "interval_centre"):
+def simulate_integrated(
+    scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str = "interval_centre"
+):
     """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
 
     The message is simulated exactly on half sub-steps of ``dt / m`` (``m`` from the shape of
@@ -378,8 +405,13 @@ def counts_from_pulse(scan: DissectorScan, pulse, rng: np.random.Generator):
     return y, i_b * scan.dt / charge
 
 
-def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noises: dict,
-                           rng: np.random.Generator, score_at: str = "interval_centre"):
+def simulate_photon_counts(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    noises: dict,
+    rng: np.random.Generator,
+    score_at: str = "interval_centre",
+):
     """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
 
     Shot noise is the count statistics of the photo-electrons: with background current ``I_b`` and
@@ -407,8 +439,15 @@ def simulate_photon_counts(scan: DissectorScan, message: GaussMarkovMessage, noi
     return (x, *counts_from_pulse(scan, shape, rng))
 
 
-def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor: int,
-                       rng: np.random.Generator, n_trials: int, n_steps: int, score_at: str = "interval_centre"):
+def simulate_two_rates(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    factor: int,
+    rng: np.random.Generator,
+    n_trials: int,
+    n_steps: int,
+    score_at: str = "interval_centre",
+):
     """The same continuous-time experiment sampled at ``dt`` and at ``dt_f = dt / factor`` (claim C000-8).
 
     The message is simulated exactly on a grid of step ``dt_f / 2``. Fine sample ``j`` is the
@@ -443,30 +482,38 @@ def simulate_two_rates(scan: DissectorScan, message: GaussMarkovMessage, factor:
         raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
     factor = int(factor)
     dt_f = scan.dt / factor
-    scan_fine = DissectorScan(scan.n0, scan.contrast, scan.amplitude, dt_f, scan.pulse_sigma,
-                              scan.pulse_centre, time_offset=0.5 * dt_f)
+    scan_fine = DissectorScan(
+        scan.n0, scan.contrast, scan.amplitude, dt_f, scan.pulse_sigma, scan.pulse_centre, time_offset=0.5 * dt_f
+    )
     n_fine = n_steps * factor
     f, q = message.exact(0.5 * dt_f)
     w = rng.standard_normal((n_trials, 2 * n_fine))
-    x_half = np.empty((n_trials, 2 * n_fine + 1))                          # times i dt_f / 2
+    x_half = np.empty((n_trials, 2 * n_fine + 1))  # times i dt_f / 2
     x_half[:, 0] = message.sigma * rng.standard_normal(n_trials)
     for i in range(2 * n_fine):
         x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
-    x_mid = x_half[:, 1::2]                                                # centres (j + 1/2) dt_f
+    x_mid = x_half[:, 1::2]  # centres (j + 1/2) dt_f
     j = np.arange(n_fine)
-    y_fine = scan.amplitude * scan_fine.shape(x_mid, j) \
-        + np.sqrt(scan_fine.sample_variance(x_mid, j)) * rng.standard_normal((n_trials, n_fine))
+    y_fine = scan.amplitude * scan_fine.shape(x_mid, j) + np.sqrt(
+        scan_fine.sample_variance(x_mid, j)
+    ) * rng.standard_normal((n_trials, n_fine))
     y_coarse = np.full((n_trials, n_steps + 1), np.nan)
-    y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)   # integrate and dump
-    x_coarse = x_half[:, ::2 * factor].copy()                             # times k dt
+    y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)  # integrate and dump
+    x_coarse = x_half[:, :: 2 * factor].copy()  # times k dt
     t_coarse = np.arange(n_steps + 1) * scan.dt
     if score_at == "interval_centre":
-        x_coarse[:, 1:] = x_half[:, factor::2 * factor]                     # times (k - 1/2) dt
+        x_coarse[:, 1:] = x_half[:, factor :: 2 * factor]  # times (k - 1/2) dt
         t_coarse[1:] -= 0.5 * scan.dt
         x_fine, t_fine = x_mid, (j + 0.5) * dt_f
     else:
         x_fine, t_fine = x_half[:, 2::2], (j + 1) * dt_f
-    return {"x_coarse": x_coarse, "y_coarse": y_coarse, "x_fine": x_fine, "y_fine": y_fine, "x_mid": x_mid,
-            "t_coarse": t_coarse, "t_fine": t_fine, "scan_fine": scan_fine}
-
-
+    return {
+        "x_coarse": x_coarse,
+        "y_coarse": y_coarse,
+        "x_fine": x_fine,
+        "y_fine": y_fine,
+        "x_mid": x_mid,
+        "t_coarse": t_coarse,
+        "t_fine": t_fine,
+        "scan_fine": scan_fine,
+    }

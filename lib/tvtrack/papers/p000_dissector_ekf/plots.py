@@ -23,9 +23,15 @@ def fig1(curves: dict, dt: float, title: str):
     """Fig. 1: sigma_x^2(t) (T^2) of both variants from both starts, their own D11 and the PCRLB."""
     t = np.arange(next(iter(curves.values())).size) * dt
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), width_ratios=[1, 2], sharey=True)
-    styles = {"v1, process means": ("C0", "-"), "v2, process means": ("C1", "-"),
-              "v1, random N(0, D11(0))": ("C0", "--"), "v2, random N(0, D11(0))": ("C1", "--"),
-              "v1 own D11": ("C0", ":"), "v2 own D11": ("C1", ":"), "PCRLB": ("k", "-")}
+    styles = {
+        "v1, process means": ("C0", "-"),
+        "v2, process means": ("C1", "-"),
+        "v1, random N(0, D11(0))": ("C0", "--"),
+        "v2, random N(0, D11(0))": ("C1", "--"),
+        "v1 own D11": ("C0", ":"),
+        "v2 own D11": ("C1", ":"),
+        "PCRLB": ("k", "-"),
+    }
     for ax in axes:
         for name, (colour, ls) in styles.items():
             ax.semilogy(t, curves[name], color=colour, ls=ls, lw=0.8 if name == "PCRLB" else 1.2, label=name)
@@ -42,8 +48,16 @@ def acquisition(offsets, acq: dict, acquire_by: float):
     """90 % acquisition time (T) and fraction of runs not in lock at the end against the initial offset (T)."""
     fig, (ax, axl) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True, height_ratios=[2, 1])
     for i, (name, a) in enumerate(acq.items()):
-        errorbars(ax, np.asarray(offsets) + 0.004 * i, a["q90"], color=f"C{i}", marker="o", ms=3, capsize=2,
-                  label=f"variant {name[1]}")
+        errorbars(
+            ax,
+            np.asarray(offsets) + 0.004 * i,
+            a["q90"],
+            color=f"C{i}",
+            marker="o",
+            ms=3,
+            capsize=2,
+            label=f"variant {name[1]}",
+        )
         axl.plot(offsets, a["lost"], f"C{i}o-", ms=3, label=f"variant {name[1]}")
     ax.axhline(acquire_by, color="k", lw=0.8, ls="--", label=f"{acquire_by:g} T")
     ax.axvline(0.5, color="grey", lw=0.8, ls=":")
@@ -62,10 +76,12 @@ def fig2(psi_grid, by_variant: dict, title: str):
     """Fig. 2: steady sigma_x^2 (T^2) against psi_A, log-log, one curve per variant."""
     fig, ax = plt.subplots(figsize=(7, 4))
     for i, (name, ests) in enumerate(by_variant.items()):
-        errorbars(ax, np.asarray(psi_grid) * (1 + 0.03 * i), ests, color=f"C{i}", marker="o", ms=3, capsize=2,
-                  label=name)
-    ax.set(xscale="log", yscale="log", xlabel=r"$\psi_A = A/\sigma_ш$", ylabel=r"steady $\sigma_x^2$  ($T^2$)",
-           title=title)
+        errorbars(
+            ax, np.asarray(psi_grid) * (1 + 0.03 * i), ests, color=f"C{i}", marker="o", ms=3, capsize=2, label=name
+        )
+    ax.set(
+        xscale="log", yscale="log", xlabel=r"$\psi_A = A/\sigma_ш$", ylabel=r"steady $\sigma_x^2$  ($T^2$)", title=title
+    )
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
     return fig
@@ -92,7 +108,9 @@ def conditions(labels, ests, line: float, xlabel: str, title: str):
     v = np.array([e.value for e in es])
     ax.errorbar(v, y, xerr=[v - [e.ci_low for e in es], [e.ci_high for e in es] - v], fmt="o", ms=3, capsize=2)
     ax.axvline(line, color="k", lw=1)
-    ax.set_xlim(min(0.5 * min(e.ci_low for e in es if e.ci_low > 0), 0.5 * line), 2 * max(line, max(e.ci_high for e in es)))
+    ax.set_xlim(
+        min(0.5 * min(e.ci_low for e in es if e.ci_low > 0), 0.5 * line), 2 * max(line, max(e.ci_high for e in es))
+    )
     ax.set_yticks(y, labels, fontsize=7)
     ax.set(xscale="log", xlabel=xlabel, title=title)
     ax.grid(alpha=0.3, which="both", axis="x")

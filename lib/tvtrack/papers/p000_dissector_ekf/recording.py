@@ -24,10 +24,18 @@ def record_trial(output_dir, mode: str, scan: DissectorScan, x, pulse, xi, n_sca
     y = samples_from_pulse(scan, pulse[:1], xi[:1])
     est, var = run_variant2(variant2_filter(scan, MESSAGE), y, D11_0)
     x, est, var, y = x[0], est[0], var[0], y[0]
-    rec = Recorder(output_dir, mode, "tvtrack-000_dissector_ekf",
-                   blueprint=image_and_series_blueprint("scan", ("track", "noise", "errors"), image_name="Scan: samples vs phase",
-                                                        series_names=("Coordinate (T)", "Noise intensity N/N0", "Error (T)")),
-                   frame_interval_s=scan.dt)
+    rec = Recorder(
+        output_dir,
+        mode,
+        "tvtrack-000_dissector_ekf",
+        blueprint=image_and_series_blueprint(
+            "scan",
+            ("track", "noise", "errors"),
+            image_name="Scan: samples vs phase",
+            series_names=("Coordinate (T)", "Noise intensity N/N0", "Error (T)"),
+        ),
+        frame_interval_s=scan.dt,
+    )
     n_rec = min(n_scans * int(round(1.0 / scan.dt)), x.size - 1)
     phase_axis = np.linspace(0.0, 1.0, 101)
     x_pred = np.concatenate([[0.0], MESSAGE.euler(scan.dt)[0] * est[:-1]])
@@ -38,17 +46,32 @@ def record_trial(output_dir, mode: str, scan: DissectorScan, x, pulse, xi, n_sca
         for name, centre, colour in (("true_pulse", x[k], [0, 200, 0]), ("predicted_pulse", x_pred[k], [255, 140, 0])):
             shape = np.exp(-0.5 * ((phase_axis - scan.pulse_centre - centre) / scan.pulse_sigma) ** 2)
             rec.lines(f"scan/{name}", to_view(phase_axis, shape), colors=colour, image_space=False)
-        rec.boxes("scan/gate", to_view([0.5], [0.5]), [[50.0, 80.0]], colors=[120, 120, 255], labels=["micro-raster"],
-                  image_space=False)
+        rec.boxes(
+            "scan/gate",
+            to_view([0.5], [0.5]),
+            [[50.0, 80.0]],
+            colors=[120, 120, 255],
+            labels=["micro-raster"],
+            image_space=False,
+        )
         rec.lines("scan/truth", to_view([0.5 + x[k]] * 2, [-0.2, 1.25]), colors=[0, 200, 0], image_space=False)
-        rec.boxes("scan/estimate", to_view([0.5 + est[k]], [0.5]), [[100 * np.sqrt(var[k]), 75.0]], colors=[255, 60, 60],
-                  labels=["estimate ±σ"], image_space=False)
+        rec.boxes(
+            "scan/estimate",
+            to_view([0.5 + est[k]], [0.5]),
+            [[100 * np.sqrt(var[k]), 75.0]],
+            colors=[255, 60, 60],
+            labels=["estimate ±σ"],
+            image_space=False,
+        )
     kr = np.arange(n_rec + 1)
-    series = {"track/truth": (x[kr], "truth X1", [0, 200, 0]), "track/estimate": (est[kr], "variant 2", [255, 60, 60]),
-              "track/plus_sigma": (est[kr] + np.sqrt(var[kr]), "+σ", [255, 160, 160]),
-              "track/minus_sigma": (est[kr] - np.sqrt(var[kr]), "-σ", [255, 160, 160]),
-              "noise/intensity": (scan.noise_intensity(x[kr], kr) / scan.n0, "N / N0", [200, 200, 80]),
-              "errors/x": (x[kr] - est[kr], "X1 - estimate", [255, 60, 60])}
+    series = {
+        "track/truth": (x[kr], "truth X1", [0, 200, 0]),
+        "track/estimate": (est[kr], "variant 2", [255, 60, 60]),
+        "track/plus_sigma": (est[kr] + np.sqrt(var[kr]), "+σ", [255, 160, 160]),
+        "track/minus_sigma": (est[kr] - np.sqrt(var[kr]), "-σ", [255, 160, 160]),
+        "noise/intensity": (scan.noise_intensity(x[kr], kr) / scan.n0, "N / N0", [200, 200, 80]),
+        "errors/x": (x[kr] - est[kr], "X1 - estimate", [255, 60, 60]),
+    }
     for path, (values, name, colour) in series.items():
         rec.series(path, values)
         rec.series_style(path, name=name, color=colour)

@@ -17,8 +17,9 @@ from .model import DissectorScan, GaussMarkovMessage
 __all__ = ["grid_filter", "fisher_information", "pcrlb_variance", "scan_crlb"]
 
 
-def grid_filter(scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5,
-                n_points: int = 401) -> GridFilter:
+def grid_filter(
+    scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5, n_points: int = 401
+) -> GridFilter:
     """Point-mass Bayesian filter of ``X1`` with the likelihood of one sample of eq. (5) (near-optimal reference).
 
     The likelihood includes the signal-dependent variance, ``log p(z | x) = -(z - A S)^2 / (2 R) - log(R) / 2``
@@ -41,6 +42,7 @@ def grid_filter(scan: DissectorScan, message: GaussMarkovMessage, half_width: fl
     def loglik(z, k):
         var = scan.sample_variance(nodes, k)
         return -0.5 * (z[:, None] - scan.amplitude * scan.shape(nodes, k)) ** 2 / var - 0.5 * np.log(var)
+
     return GridFilter(-half_width, half_width, n_points, f, q, loglik)
 
 
@@ -72,10 +74,11 @@ def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: in
     """
     f, q = message.exact(scan.dt)
     kk = np.arange(n_steps + 1)
-    jz = expected_over_gaussian(lambda s: fisher_information(scan, s, kk)[0], np.zeros(kk.size),
-                                np.full(kk.size, message.sigma ** 2))
-    jz[0] = 0.0                                                                 # no sample at k = 0
-    return pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma ** 2]], jz[:, None, None])[:, 0, 0]
+    jz = expected_over_gaussian(
+        lambda s: fisher_information(scan, s, kk)[0], np.zeros(kk.size), np.full(kk.size, message.sigma**2)
+    )
+    jz[0] = 0.0  # no sample at k = 0
+    return pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma**2]], jz[:, None, None])[:, 0, 0]
 
 
 def scan_crlb(scan: DissectorScan) -> float:

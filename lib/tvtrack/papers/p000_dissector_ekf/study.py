@@ -33,8 +33,18 @@ from .model import (
 from .reference import grid_filter, pcrlb_variance, scan_crlb
 from .settling import acquisition_times, median_ratio_ci
 
-__all__ = ["Sizes", "MESSAGE", "psi_at", "measure", "steady_runs", "fig1_curves", "acquisition_vs_offset",
-           "CONTRAST_CONVENTIONS", "cost_ratio", "record_inputs"]
+__all__ = [
+    "Sizes",
+    "MESSAGE",
+    "psi_at",
+    "measure",
+    "steady_runs",
+    "fig1_curves",
+    "acquisition_vs_offset",
+    "CONTRAST_CONVENTIONS",
+    "cost_ratio",
+    "record_inputs",
+]
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
 MESSAGE = GaussMarkovMessage(0.1, 0.15)
@@ -131,16 +141,18 @@ def _path(cfg, seed, sizes, offset=None):
     ``offset``: None (the truth from its stationary law), a number (every truth starts there, T) or "uniform" (the
     truth uniform over the micro-raster, [-T/2, T/2], from the same normal draws through their CDF).
     """
+
     def compute():
         noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
         if offset == "uniform":
             noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / MESSAGE.sigma}
-        elif offset is not None:                                            # truth starts at a fixed offset
+        elif offset is not None:  # truth starts at a fixed offset
             noises = {**noises, "x0": np.full_like(noises["x0"], offset / MESSAGE.sigma)}
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
         x, pulse = truth_and_pulse(geometry, MESSAGE, noises, cfg["sample model"], score)
         return x, pulse, noises["xi"], noises["init"]
+
     return _memo(("path", _data_key(cfg), seed, sizes, offset), compute)
 
 
@@ -162,8 +174,12 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
 
     ``filt``: "v1", "v2", "ignoring" (variant 2 assuming P = 0) or "stationary" (variant 2 on P = 0 data).
     """
-    reads = {"v1": ("sigma_sh", "G22", "photon model"), "v2": ("sigma_sh", "v2 noise at", "photon model"),
-             "ignoring": ("sigma_sh", "photon model"), "stationary": ("sigma_sh",)}[filt]
+    reads = {
+        "v1": ("sigma_sh", "G22", "photon model"),
+        "v2": ("sigma_sh", "v2 noise at", "photon model"),
+        "ignoring": ("sigma_sh", "photon model"),
+        "stationary": ("sigma_sh",),
+    }[filt]
     key = ("err", _data_key(cfg), tuple(cfg[r] for r in reads), seed, sizes, psi, contrast, filt, offset, init)
 
     def compute():
@@ -172,8 +188,11 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         y = _samples(cfg, seed, scan, pulse, xi)
         random_init = init != "process means"
         if filt == "v1":
-            start = np.stack([np.sqrt(D11_0) * draws_init[:, 0], np.sqrt(D22_0) * draws_init[:, 1]], 1) \
-                if random_init else None
+            start = (
+                np.stack([np.sqrt(D11_0) * draws_init[:, 0], np.sqrt(D22_0) * draws_init[:, 1]], 1)
+                if random_init
+                else None
+            )
             f = variant1_filter(scan, MESSAGE, BETA_0, "consistent", cfg["G22"])
             e, d = run_variant1(f, y, (D11_0, D22_0), start)
         else:
@@ -182,6 +201,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
             e, d = run_variant2(variant2_filter(scan, MESSAGE, assumed, iterations), y, D11_0, start)
         return (x - e) ** 2, d
+
     return _memo(key, compute)
 
 
@@ -193,7 +213,7 @@ def steady_runs(cfg, seed, sizes, psi, contrast, filt):
 
 def _ratio(a, b, statistic):
     if np.allclose(a, b, rtol=1e-9, atol=0.0):
-        return Estimate(1.0, 0.0, 1.0, 1.0, a.size, 0.95, "exact")            # the same filter on the same runs
+        return Estimate(1.0, 0.0, 1.0, 1.0, a.size, 0.95, "exact")  # the same filter on the same runs
     return ratio_ci(a, b) if statistic == "mean" else median_ratio_ci(a, b)
 
 
@@ -215,14 +235,17 @@ def _c1(cfg, seed, sizes):
     k_end = int(round(sizes.acquire_by_T / sizes.dt))
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
-        sq, _ = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start,
-                        init=cfg["initial estimate"])
+        sq, _ = _errors(
+            cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"]
+        )
         steady = sq[:, sizes.window()].mean(axis=1)
         if cfg["convergence criterion"] == "ensemble mean within 10 %":
-            parts[f"variant {filt[1]}"] = ratio_ci(sq[:, k_end - sizes.steps_per_scan + 1:k_end + 1].mean(axis=1), steady)
+            parts[f"variant {filt[1]}"] = ratio_ci(
+                sq[:, k_end - sizes.steps_per_scan + 1 : k_end + 1].mean(axis=1), steady
+            )
             continue
         ref, _ = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)
-        threshold = sizes.lock_factor ** 2 * ref[:, sizes.window()].mean()
+        threshold = sizes.lock_factor**2 * ref[:, sizes.window()].mean()
         t = acquisition_times(sq, threshold, sizes.steps_per_scan, sizes.dt)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
     return parts
@@ -235,8 +258,9 @@ def _c2(cfg, seed, sizes):
     for name, p, filt in (("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")):
         sq, _ = _errors(cfg, seed, sizes, 20.0, p, filt)
         e = rms_ci(np.sqrt(sq[:, sizes.window()]))
-        out[name] = Estimate(e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence,
-                             e.method)
+        out[name] = Estimate(
+            e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
+        )
     return out
 
 
@@ -245,11 +269,15 @@ def _c3(cfg, seed, sizes):
     parts = {}
     for p in sizes.contrast_grid:
         psi = psi_at(cfg["psi_A"], p, cfg["contrast convention"])
-        parts[f"P={p:g}"] = _ratio(steady_runs(cfg, seed, sizes, psi, p, "v1"),
-                                   steady_runs(cfg, seed, sizes, psi, p, "v2"), cfg["statistic"])
+        parts[f"P={p:g}"] = _ratio(
+            steady_runs(cfg, seed, sizes, psi, p, "v1"), steady_runs(cfg, seed, sizes, psi, p, "v2"), cfg["statistic"]
+        )
     for psi in sizes.psi_grid:
-        parts[f"psi_A={psi:g}"] = _ratio(steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v1"),
-                                         steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v2"), cfg["statistic"])
+        parts[f"psi_A={psi:g}"] = _ratio(
+            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v1"),
+            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v2"),
+            cfg["statistic"],
+        )
     return parts
 
 
@@ -277,16 +305,24 @@ def _c6(cfg, seed, sizes):
     if reference == "PCRLB":
         bound = float(pcrlb_variance(_scan(cfg, psi, 0.9, sizes), MESSAGE, sizes.n_steps)[sizes.window()].mean())
         e = mean_square_ci(a) if cfg["statistic"] == "mean" else quantile_ci(a, 0.5)
-        return Estimate(e.value / bound, e.stderr / bound, e.ci_low / bound, e.ci_high / bound, e.n, e.confidence,
-                        e.method + " over the PCRLB (exact)")
+        return Estimate(
+            e.value / bound,
+            e.stderr / bound,
+            e.ci_low / bound,
+            e.ci_high / bound,
+            e.n,
+            e.confidence,
+            e.method + " over the PCRLB (exact)",
+        )
     m = sizes.grid_trials
 
     def grid():
         x, pulse, xi, _ = _path(cfg, seed, sizes)
         scan = _scan(cfg, psi, 0.9, sizes)
         y = _samples(cfg, seed, scan, pulse, xi)[:m]
-        mean = grid_filter(scan, MESSAGE, 0.5, sizes.grid_points).run(y, 0.0, MESSAGE.sigma ** 2).mean
+        mean = grid_filter(scan, MESSAGE, 0.5, sizes.grid_points).run(y, 0.0, MESSAGE.sigma**2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
+
     g = _memo(("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], seed, sizes, psi), grid)
     return _ratio(a[:m], g, cfg["statistic"])
 
@@ -302,10 +338,19 @@ def _c8(cfg, seed, sizes):
         def data(psi_p=psi_p, p=p):
             scan = _scan(cfg, psi_p, p, sizes)
             n_steps = int(round(sizes.dt_duration_T / sizes.dt))
-            return scan, simulate_two_rates(scan, MESSAGE, sizes.dt_factor, np.random.default_rng([seed, 8]),
-                                            sizes.dt_trials, n_steps, score_at="interval_end")
+            return scan, simulate_two_rates(
+                scan,
+                MESSAGE,
+                sizes.dt_factor,
+                np.random.default_rng([seed, 8]),
+                sizes.dt_trials,
+                n_steps,
+                score_at="interval_end",
+            )
+
         data_key = ("dt data", cfg["sigma_sh"], seed, sizes, psi_p, p)
         for name in ("v1", "v2"):
+
             def compute(name=name, data_key=data_key, data=data):
                 scan, d = _memo(data_key, data)
                 win_c = d["t_coarse"] > 2 * sizes.dt_duration_T / 3
@@ -315,18 +360,24 @@ def _c8(cfg, seed, sizes):
                     if name == "v1":
                         return run_variant1(variant1_filter(s, MESSAGE, BETA_0, "consistent", cfg["G22"]), y)[0]
                     return run_variant2(variant2_filter(s, MESSAGE, None, iterations), y)[0]
+
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
                 r = ratio_ci(a, b)
                 return Estimate(r.value - 1, r.stderr, r.ci_low - 1, r.ci_high - 1, r.n, r.confidence, r.method)
+
             reads = (cfg["G22"],) if name == "v1" else (iterations,)
             parts[f"variant {name[1]} at psi_A={psi:g}, P={p:g}"] = _memo(data_key + (name, reads), compute)
     return parts
 
 
 def _c9(cfg, seed, sizes):
-    return {f"variant {f[1]}": [mean_square_ci(steady_runs(cfg, seed, sizes, psi, cfg["contrast"], f))
-                                for psi in sizes.psi_grid] for f in ("v1", "v2")}
+    return {
+        f"variant {f[1]}": [
+            mean_square_ci(steady_runs(cfg, seed, sizes, psi, cfg["contrast"], f)) for psi in sizes.psi_grid
+        ]
+        for f in ("v1", "v2")
+    }
 
 
 def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
@@ -338,9 +389,16 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     list of Estimates, as the claim's rule in the notebook reads it)
     """
     c5, c7 = _c5_c7(config, seed, sizes)
-    return {"C000-1": _c1(config, seed, sizes), "C000-2": _c2(config, seed, sizes), "C000-3": _c3(config, seed, sizes),
-            "C000-5": c5, "C000-6": _c6(config, seed, sizes), "C000-7": c7, "C000-8": _c8(config, seed, sizes),
-            "C000-9": _c9(config, seed, sizes)}
+    return {
+        "C000-1": _c1(config, seed, sizes),
+        "C000-2": _c2(config, seed, sizes),
+        "C000-3": _c3(config, seed, sizes),
+        "C000-5": c5,
+        "C000-6": _c6(config, seed, sizes),
+        "C000-7": c7,
+        "C000-8": _c8(config, seed, sizes),
+        "C000-9": _c9(config, seed, sizes),
+    }
 
 
 def fig1_curves(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
@@ -369,7 +427,7 @@ def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dic
     out = {}
     for filt in ("v1", "v2"):
         ref, _ = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt)
-        threshold = sizes.lock_factor ** 2 * ref[:, sizes.window()].mean()
+        threshold = sizes.lock_factor**2 * ref[:, sizes.window()].mean()
         q90, late, lost = [], [], []
         for off in offsets:
             sq, _ = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
@@ -396,8 +454,10 @@ def cost_ratio(n_trials: int, n_steps: int, seed: int, repeats: int = 5) -> floa
             run()
             times.append(time.process_time() - t0)
         return min(times)
+
     return best(lambda: run_variant1(variant1_filter(scan, MESSAGE), y)) / best(
-        lambda: run_variant2(variant2_filter(scan, MESSAGE), y))
+        lambda: run_variant2(variant2_filter(scan, MESSAGE), y)
+    )
 
 
 def record_inputs(config: dict, seed: int, sizes: Sizes):
