@@ -20,6 +20,7 @@ __all__ = [
     "settle_time",
     "settle_time_ci",
     "acquisition_times",
+    "acquisition_times_from_scans",
     "median_ratio_ci",
 ]
 
@@ -152,12 +153,24 @@ def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: fl
     -------
     ndarray, shape (n_trials,)   acquisition time (time units of ``dt``); ``inf``: not acquired by the end
     """
+    return acquisition_times_from_scans(scan_averages(sq_error, steps_per_scan), threshold_ms, steps_per_scan * dt)
+
+
+def acquisition_times_from_scans(per_scan_ms, threshold_ms: float, scan_duration: float):
+    """:func:`acquisition_times` from the per-trial mean squared error of every scan.
+
+    Parameters
+    ----------
+    per_scan_ms : ndarray, shape (n_trials, n_scans)   from :func:`scan_averages`
+    threshold_ms : float                               in-lock bound on a scan's mean squared error
+    scan_duration : float                              duration of one scan (time units of the result)
+    """
     if not threshold_ms > 0:
         raise ValueError(f"parameter 'threshold_ms' = {threshold_ms}; it must be > 0")
-    out = scan_averages(sq_error, steps_per_scan) > threshold_ms  # (n_trials, n_scans)
+    out = np.asarray(per_scan_ms) > threshold_ms  # (n_trials, n_scans)
     n_scans = out.shape[1]
     last_out = n_scans - 1 - np.argmax(out[:, ::-1], axis=1)  # index of the last scan out of lock
-    t = np.where(out.any(axis=1), last_out + 1, 1) * steps_per_scan * dt
+    t = np.where(out.any(axis=1), last_out + 1, 1) * scan_duration
     return np.where(out[:, -1], np.inf, t)
 
 

@@ -31,7 +31,7 @@ from .model import (
     truth_and_pulse,
 )
 from .reference import grid_filter, pcrlb_variance, scan_crlb
-from .settling import acquisition_times, median_ratio_ci
+from .settling import acquisition_times_from_scans, median_ratio_ci, scan_averages
 
 __all__ = [
     "Sizes",
@@ -170,9 +170,14 @@ def _samples(cfg, seed, scan, pulse, xi):
 
 
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
-    """Squared errors (n_trials, n_steps + 1) and the filter's D11 of one filter at one operating point.
+    """One filter at one operating point, summarised (the memo keeps summaries, not the (n_trials, K) histories).
 
     ``filt``: "v1", "v2", "ignoring" (variant 2 assuming P = 0) or "stationary" (variant 2 on P = 0 data).
+
+    Returns
+    -------
+    dict  ``steady`` (n_trials,) steady-window mean squared error; ``scans`` (n_trials, n_scans) each scan's mean
+    squared error; ``curve`` and ``d_curve`` (n_steps + 1,) the ensemble mean squared error and mean D11 (T^2)
     """
     reads = {
         "v1": ("sigma_sh", "G22", "photon model"),
@@ -200,15 +205,20 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
             e, d = run_variant2(variant2_filter(scan, MESSAGE, assumed, iterations), y, D11_0, start)
-        return (x - e) ** 2, d
+        sq = (x - e) ** 2
+        return {
+            "steady": sq[:, sizes.window()].mean(axis=1),
+            "scans": scan_averages(sq, sizes.steps_per_scan),
+            "curve": sq.mean(axis=0),
+            "d_curve": d.mean(axis=0),
+        }
 
     return _memo(key, compute)
 
 
 def steady_runs(cfg, seed, sizes, psi, contrast, filt):
     """Per-trial steady-state mean squared error, shape (n_trials,), of one filter at one point (T^2)."""
-    sq, _ = _errors(cfg, seed, sizes, psi, contrast, filt)
-    return sq[:, sizes.window()].mean(axis=1)
+    return _errors(cfg, seed, sizes, psi, contrast, filt)["steady"]
 
 
 def _ratio(a, b, statistic):
@@ -232,23 +242,23 @@ def _c1(cfg, seed, sizes):
     ``acquire_by_T`` over the steady sigma_x^2 (paired ratio over runs).
     """
     parts = {}
-    k_end = int(round(sizes.acquire_by_T / sizes.dt))
+    scan_end = int(round(sizes.acquire_by_T * sizes.steps_per_scan * sizes.dt))  # scans up to acquire_by_T
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
-        sq, _ = _errors(
-            cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"]
-        )
-        steady = sq[:, sizes.window()].mean(axis=1)
+        run = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"])
         if cfg["convergence criterion"] == "ensemble mean within 10 %":
-            parts[f"variant {filt[1]}"] = ratio_ci(
-                sq[:, k_end - sizes.steps_per_scan + 1 : k_end + 1].mean(axis=1), steady
-            )
+            parts[f"variant {filt[1]}"] = ratio_ci(run["scans"][:, scan_end - 1], run["steady"])
             continue
-        ref, _ = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)
-        threshold = sizes.lock_factor**2 * ref[:, sizes.window()].mean()
-        t = acquisition_times(sq, threshold, sizes.steps_per_scan, sizes.dt)
+        t = _acquired_at(cfg, seed, sizes, filt, run)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
     return parts
+
+
+def _acquired_at(cfg, seed, sizes, filt, run):
+    """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
+    square of the same filter from the paper's start."""
+    ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
+    return acquisition_times_from_scans(run["scans"], sizes.lock_factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
 
 def _c2(cfg, seed, sizes):
@@ -256,8 +266,7 @@ def _c2(cfg, seed, sizes):
     size = 1.0 if cfg["micro-raster size"] == "T" else PULSE_DURATION
     out = {}
     for name, p, filt in (("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")):
-        sq, _ = _errors(cfg, seed, sizes, 20.0, p, filt)
-        e = rms_ci(np.sqrt(sq[:, sizes.window()]))
+        e = rms_ci(np.sqrt(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"])[:, None])
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
@@ -329,34 +338,34 @@ def _c6(cfg, seed, sizes):
 
 def _c8(cfg, seed, sizes):
     """C000-8: sigma_x^2(dt) / sigma_x^2(dt / factor) - 1 over the Figs. 2-3 range, both variants, one continuous
-    experiment (integrated samples at both rates, each estimate scored at its newest datum: the same information)."""
+    experiment (integrated samples at both rates, each estimate scored at its newest datum: the same information).
+
+    The memo keeps each variant's result, not the two-rate data (regenerated from the same seed when a reading of
+    one variant changes)."""
     parts = {}
     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
+    reads = {"v1": (cfg["G22"],), "v2": (iterations,)}
     for psi, p in sizes.dt_points:
         psi_p = psi_at(psi, p, cfg["contrast convention"]) if p else psi
-
-        def data(psi_p=psi_p, p=p):
+        keys = {name: ("dt", cfg["sigma_sh"], seed, sizes, psi_p, p, name, reads[name]) for name in ("v1", "v2")}
+        got = {name: _MEMO[key] for name, key in keys.items() if key in _MEMO}
+        missing = [name for name in keys if name not in got]
+        if missing:
             scan = _scan(cfg, psi_p, p, sizes)
-            n_steps = int(round(sizes.dt_duration_T / sizes.dt))
-            return scan, simulate_two_rates(
+            d = simulate_two_rates(
                 scan,
                 MESSAGE,
                 sizes.dt_factor,
                 np.random.default_rng([seed, 8]),
                 sizes.dt_trials,
-                n_steps,
+                int(round(sizes.dt_duration_T / sizes.dt)),
                 score_at="interval_end",
             )
+            win_c = d["t_coarse"] > 2 * sizes.dt_duration_T / 3
+            win_f = d["t_fine"] > 2 * sizes.dt_duration_T / 3
+            for name in missing:
 
-        data_key = ("dt data", cfg["sigma_sh"], seed, sizes, psi_p, p)
-        for name in ("v1", "v2"):
-
-            def compute(name=name, data_key=data_key, data=data):
-                scan, d = _memo(data_key, data)
-                win_c = d["t_coarse"] > 2 * sizes.dt_duration_T / 3
-                win_f = d["t_fine"] > 2 * sizes.dt_duration_T / 3
-
-                def run(s, y):
+                def run(s, y, name=name):
                     if name == "v1":
                         return run_variant1(variant1_filter(s, MESSAGE, BETA_0, "consistent", cfg["G22"]), y)[0]
                     return run_variant2(variant2_filter(s, MESSAGE, None, iterations), y)[0]
@@ -364,10 +373,14 @@ def _c8(cfg, seed, sizes):
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
                 r = ratio_ci(a, b)
-                return Estimate(r.value - 1, r.stderr, r.ci_low - 1, r.ci_high - 1, r.n, r.confidence, r.method)
-
-            reads = (cfg["G22"],) if name == "v1" else (iterations,)
-            parts[f"variant {name[1]} at psi_A={psi:g}, P={p:g}"] = _memo(data_key + (name, reads), compute)
+                got[name] = _memo(
+                    keys[name],
+                    lambda r=r: Estimate(
+                        r.value - 1, r.stderr, r.ci_low - 1, r.ci_high - 1, r.n, r.confidence, r.method
+                    ),
+                )
+        for name in ("v1", "v2"):
+            parts[f"variant {name[1]} at psi_A={psi:g}, P={p:g}"] = got[name]
     return parts
 
 
@@ -407,10 +420,10 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     out = {}
     for filt in ("v1", "v2"):
         for init in ("process means", "random N(0, D11(0))"):
-            sq, d = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
-            out[f"{filt}, {init}"] = sq.mean(axis=0)
+            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
+            out[f"{filt}, {init}"] = run["curve"]
             if init == "process means":
-                out[f"{filt} own D11"] = d.mean(axis=0)
+                out[f"{filt} own D11"] = run["d_curve"]
     out["PCRLB"] = pcrlb_variance(_scan(config, config["psi_A"], config["contrast"], sizes), MESSAGE, sizes.n_steps)
     return out
 
@@ -426,12 +439,10 @@ def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dic
     """
     out = {}
     for filt in ("v1", "v2"):
-        ref, _ = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt)
-        threshold = sizes.lock_factor**2 * ref[:, sizes.window()].mean()
         q90, late, lost = [], [], []
         for off in offsets:
-            sq, _ = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
-            t = acquisition_times(sq, threshold, sizes.steps_per_scan, sizes.dt)
+            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
+            t = _acquired_at(config, seed, sizes, filt, run)
             q90.append(quantile_ci(np.where(np.isfinite(t), t, 2 * sizes.duration_T), 0.9))
             late.append(proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size))
             lost.append(float(np.mean(~np.isfinite(t))))
