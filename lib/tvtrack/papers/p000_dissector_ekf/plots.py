@@ -9,7 +9,7 @@ import numpy as np
 
 from ...verdicts import as_estimate
 
-__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation"]
+__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency"]
 
 
 def errorbars(ax, x, ests, **style):
@@ -134,3 +134,26 @@ def discretisation(parts: dict, band: float, title: str):
 def _scaled(e, factor):
     e = as_estimate(e)
     return {"value": e.value * factor, "ci_low": e.ci_low * factor, "ci_high": e.ci_high * factor}
+
+
+def consistency(psi_grid, nees: dict):
+    """Mean steady NEES (1 = consistent) against psi_A, per scoring time (solid: interval centre) and variant."""
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for j, (scoring, by_variant) in enumerate(nees.items()):
+        for i, (name, ests) in enumerate(by_variant.items()):
+            errorbars(
+                ax,
+                np.asarray(psi_grid) * (1 + 0.03 * (2 * j + i)),
+                ests,
+                color=f"C{i}",
+                ls="-" if j == 0 else "--",
+                marker="o",
+                ms=3,
+                capsize=2,
+                label=f"{name}, scored at the {scoring}",
+            )
+    ax.axhline(1.0, color="k", lw=0.8)
+    ax.set(xscale="log", xlabel=r"$\psi_A = A/\sigma_ш$", ylabel="mean steady NEES (1 = consistent)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    return fig

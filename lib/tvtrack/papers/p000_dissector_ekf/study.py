@@ -20,7 +20,7 @@ import numpy as np
 from scipy import stats
 
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
-from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
+from .ekf import consistency, run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -44,6 +44,7 @@ __all__ = [
     "CONTRAST_CONVENTIONS",
     "cost_ratio",
     "record_inputs",
+    "consistency_over_psi",
 ]
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
@@ -475,3 +476,32 @@ def record_inputs(config: dict, seed: int, sizes: Sizes):
     """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`)."""
     x, pulse, xi, _ = _path(config, seed, sizes)
     return _scan(config, config["psi_A"], config["contrast"], sizes), x, pulse, xi
+
+
+def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
+    """Mean steady-state NEES of both variants over the Fig. 2 SNRs, with the truth scored at the interval centre
+    (the time the filters' model of a sample refers to) and at its end: 1 for a filter whose D11 describes its error.
+
+    Returns
+    -------
+    dict  {scoring time: {"variant 1" | "variant 2": [Estimate per psi_A]}}
+    """
+    out = {}
+    for scoring in ("interval centre", "interval end"):
+        cfg = {**config, "scoring time": scoring}
+        x, pulse, xi, _ = _path(cfg, seed, sizes)
+        out[scoring] = {}
+        for name in ("v1", "v2"):
+            ests = []
+            for psi in sizes.psi_grid:
+                scan = _scan(cfg, psi, cfg["contrast"], sizes)
+                y = _samples(cfg, seed, scan, pulse, xi)
+                if name == "v1":
+                    filt, d0 = variant1_filter(scan, MESSAGE, BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
+                else:
+                    iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
+                    filt, d0 = variant2_filter(scan, MESSAGE, None, iterations), D11_0
+                nees, _ = consistency(filt, y, x, d0, sizes.window())
+                ests.append(mean_square_ci(nees))
+            out[scoring][f"variant {name[1]}"] = ests
+    return out
