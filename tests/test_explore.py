@@ -194,3 +194,11 @@ def test_shares_from_counts_pool_as_counts():
     mixed = pool([proportion_ci(2, 10), proportion_ci(0, 10), proportion_ci(1, 10)])
     ref = proportion_ci(3, 30)
     assert (mixed.value, mixed.ci_low, mixed.ci_high) == pytest.approx((ref.value, ref.ci_low, ref.ci_high))
+
+
+def test_a_joint_condition_is_described_by_the_entries_the_claim_reads():
+    ex = explore(measure_joint_only, REG, RULES, seed=7, replicates=3, joint=40,
+                 depends={"X": ["a", "b"], "Y": ["a", "c"]})
+    joint = [c for c in ex.record("X")["conditions"] if c["kind"] == "joint"]
+    assert joint and all(set(c["changed"]) <= {"a", "b"} for c in joint)
+    assert any(r.changed(ex.default).get("c") == "y" for r in ex.runs if r.stage == "joint")  # c did vary

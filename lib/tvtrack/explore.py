@@ -206,7 +206,9 @@ class Exploration:
         rule = rule or self.rules[claim_id]
         entries = [self.register[k] for k in self.depends[claim_id]]
         reps = [{"seed": r.seed, "measured": r.outputs[claim_id]} for r in self.replicates() if claim_id in r.outputs]
-        conds = [{"changed": r.changed(self.default), "kind": r.stage, "measured": r.outputs[claim_id]}
+        reads = set(self.depends[claim_id])   # a joint sample is described by the entries this claim reads
+        conds = [{"changed": {k: v for k, v in r.changed(self.default).items() if k in reads}, "kind": r.stage,
+                  "measured": r.outputs[claim_id]}
                  for r in self.runs if r.stage != "replicate" and self._relevant(claim_id, r)]
         out = label_parts(rule, self.measured(claim_id), reps, conds, entries)
         out["register"] = [e.to_dict() for e in entries]

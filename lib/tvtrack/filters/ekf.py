@@ -190,5 +190,8 @@ class ExtendedKalmanFilter:
         axis = len(batch)
         hist = {key: np.moveaxis(v, 0, axis) for key, v in out.items()}
         nu = hist["innovation"]
-        hist["nis"] = np.einsum("...i,...i->...", nu, np.linalg.solve(hist["S"], nu[..., None])[..., 0])
+        if m == 1:                                                       # scalar measurement: nu^2 / S, no solve
+            hist["nis"] = nu[..., 0] ** 2 / hist["S"][..., 0, 0]
+        else:
+            hist["nis"] = np.einsum("...i,...i->...", nu, np.linalg.solve(hist["S"], nu[..., None])[..., 0])
         return KalmanOutput(**hist)

@@ -21,11 +21,18 @@ def test_defaults_pass(tmp_path):
     assert _validate(tmp_path)["params"]["dt"] == 0.05
 
 
-@pytest.mark.parametrize("overrides, named", [
-    ({"dt": 0}, "dt"),
-    ({"dt": 0.1, "beta_0": 15.0}, "beta_0"),
-    ({"steady_window_T": 40.0}, "steady_window_T"),
-])
+@pytest.mark.parametrize(
+    "overrides, named",
+    [
+        ({"dt": 0}, "dt"),
+        ({"steady_window_T": 40.0}, "steady_window_T"),
+        ({"acquire_by_T": 25.0}, "acquire_by_T"),
+        ({"contrast_grid": [0.0, 0.5]}, "contrast_grid"),
+        ({"max_replicates": 3, "replicates": 4}, "max_replicates"),
+        ({"dt_check_T": 1.0}, "dt_check_T"),
+        ({"joint": -1}, "joint"),
+    ],
+)
 def test_bad_values_name_the_parameter(tmp_path, overrides, named):
     with pytest.raises(ValueError, match=named):
         _validate(tmp_path, **overrides)

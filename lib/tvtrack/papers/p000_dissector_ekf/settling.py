@@ -11,10 +11,18 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from .montecarlo import Estimate, bootstrap_ci
+from ...montecarlo import Estimate, bootstrap_ci
 
-__all__ = ["per_trial_mse", "scan_averages", "settle_time", "settle_time_ci", "acquisition_times",
-           "median_ratio_ci"]
+__all__ = [
+    "lock_lost",
+    "per_trial_mse",
+    "scan_averages",
+    "settle_time",
+    "settle_time_ci",
+    "acquisition_times",
+    "acquisition_times_from_scans",
+    "median_ratio_ci",
+]
 
 
 def per_trial_mse(truth, estimate, mask):
@@ -48,7 +56,7 @@ def scan_averages(sq_error, steps_per_scan: int):
         raise ValueError(f"parameter 'steps_per_scan' = {steps_per_scan}; it must be >= 1")
     n_trials = sq_error.shape[0]
     n_scans = (sq_error.shape[1] - 1) // steps_per_scan
-    return sq_error[:, 1: 1 + n_scans * steps_per_scan].reshape(n_trials, n_scans, steps_per_scan).mean(axis=2)
+    return sq_error[:, 1 : 1 + n_scans * steps_per_scan].reshape(n_trials, n_scans, steps_per_scan).mean(axis=2)
 
 
 def settle_time(per_scan, steady, scan_duration: float, tolerance: float = 0.10) -> float:
@@ -72,8 +80,16 @@ def settle_time(per_scan, steady, scan_duration: float, tolerance: float = 0.10)
     return (np.argmax(inside) + 1) * scan_duration if inside.any() else np.inf
 
 
-def settle_time_ci(sq_error, steady_mask, steps_per_scan: int, dt: float, rng: np.random.Generator,
-                   n_boot: int = 2000, tolerance: float = 0.10, confidence: float = 0.95) -> Estimate:
+def settle_time_ci(
+    sq_error,
+    steady_mask,
+    steps_per_scan: int,
+    dt: float,
+    rng: np.random.Generator,
+    n_boot: int = 2000,
+    tolerance: float = 0.10,
+    confidence: float = 0.95,
+) -> Estimate:
     """Settling time (:func:`settle_time`) with a percentile bootstrap over trials.
 
     Trials are resampled with replacement (``scipy.stats.bootstrap``); each resample recomputes the
@@ -98,16 +114,25 @@ def settle_time_ci(sq_error, steady_mask, steps_per_scan: int, dt: float, rng: n
 
     def statistic(idx, axis=-1):
         idx = np.atleast_2d(idx)
-        return np.array([settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance)
-                         for i in idx])
+        return np.array(
+            [settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance) for i in idx]
+        )
 
     value = float(settle_time(per_scan.mean(axis=0), steady.mean(), scan_duration, tolerance))
-    res = stats.bootstrap((np.arange(n_trials),), statistic, vectorized=True, n_resamples=n_boot,
-                          confidence_level=confidence, method="percentile", rng=rng)
+    res = stats.bootstrap(
+        (np.arange(n_trials),),
+        statistic,
+        vectorized=True,
+        n_resamples=n_boot,
+        confidence_level=confidence,
+        method="percentile",
+        rng=rng,
+    )
     boots = res.bootstrap_distribution
     spread = float(boots.std()) if np.all(np.isfinite(boots)) else float("nan")
-    return Estimate(value, spread, float(res.confidence_interval.low), float(res.confidence_interval.high),
-                    n_trials, confidence)
+    return Estimate(
+        value, spread, float(res.confidence_interval.low), float(res.confidence_interval.high), n_trials, confidence
+    )
 
 
 def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: float):
@@ -128,12 +153,24 @@ def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: fl
     -------
     ndarray, shape (n_trials,)   acquisition time (time units of ``dt``); ``inf``: not acquired by the end
     """
+    return acquisition_times_from_scans(scan_averages(sq_error, steps_per_scan), threshold_ms, steps_per_scan * dt)
+
+
+def acquisition_times_from_scans(per_scan_ms, threshold_ms: float, scan_duration: float):
+    """:func:`acquisition_times` from the per-trial mean squared error of every scan.
+
+    Parameters
+    ----------
+    per_scan_ms : ndarray, shape (n_trials, n_scans)   from :func:`scan_averages`
+    threshold_ms : float                               in-lock bound on a scan's mean squared error
+    scan_duration : float                              duration of one scan (time units of the result)
+    """
     if not threshold_ms > 0:
         raise ValueError(f"parameter 'threshold_ms' = {threshold_ms}; it must be > 0")
-    out = scan_averages(sq_error, steps_per_scan) > threshold_ms        # (n_trials, n_scans)
+    out = np.asarray(per_scan_ms) > threshold_ms  # (n_trials, n_scans)
     n_scans = out.shape[1]
-    last_out = n_scans - 1 - np.argmax(out[:, ::-1], axis=1)            # index of the last scan out of lock
-    t = np.where(out.any(axis=1), last_out + 1, 1) * steps_per_scan * dt
+    last_out = n_scans - 1 - np.argmax(out[:, ::-1], axis=1)  # index of the last scan out of lock
+    t = np.where(out.any(axis=1), last_out + 1, 1) * scan_duration
     return np.where(out[:, -1], np.inf, t)
 
 
@@ -147,5 +184,29 @@ def median_ratio_ci(numerator, denominator, confidence: float = 0.95) -> Estimat
     numerator, denominator : array_like, shape (n_trials,)
         Per-trial steady-state mean squared errors of two filters on the same runs.
     """
-    return bootstrap_ci((numerator, denominator),
-                        lambda a, b, axis: np.median(a, axis=axis) / np.median(b, axis=axis), confidence=confidence)
+    return bootstrap_ci(
+        (numerator, denominator),
+        lambda a, b, axis: np.median(a, axis=axis) / np.median(b, axis=axis),
+        confidence=confidence,
+    )
+
+
+def lock_lost(error, threshold: float, min_steps: int):
+    """Trials whose ``|error|`` exceeds ``threshold`` for at least ``min_steps`` consecutive steps.
+
+    Parameters
+    ----------
+    error : ndarray, shape (n_trials, K)
+    Returns
+    -------
+    ndarray of bool, shape (n_trials,)
+    """
+    if min_steps < 1:
+        raise ValueError(f"parameter 'min_steps' = {min_steps}; it must be >= 1")
+    big = (np.abs(error) > threshold).astype(np.int32)
+    run = np.zeros(big.shape[0], dtype=np.int32)
+    longest = np.zeros_like(run)
+    for k in range(big.shape[1]):
+        run = (run + 1) * big[:, k]
+        longest = np.maximum(longest, run)
+    return longest >= min_steps

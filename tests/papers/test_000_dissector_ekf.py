@@ -8,12 +8,27 @@ from tvtrack.bounds.pcrlb import expected_over_gaussian, gaussian_fisher_informa
 from tvtrack.filters.ekf import ExtendedKalmanFilter, ekf_update, joseph_update_scalar
 from tvtrack.filters.grid import GridFilter
 from tvtrack.filters.kalman import KalmanFilter, kf_update
-from tvtrack.sensors.dissector import (DissectorScan, consistency, GaussMarkovMessage, background_intensity, draw_noises,
-                                       fisher_information, grid_filter, lock_lost, pcrlb_variance, run_variant1,
-                                       run_variant2, scan_at_snr, scan_crlb, simulate, simulate_integrated,
-                                       simulate_photon_counts, scan_centroids, fixed_gain_track, tune_fixed_gain,
-                                       simulate_two_rates,
-                                       variant1_filter, variant2_filter)
+from tvtrack.papers.p000_dissector_ekf.model import (
+    background_intensity,
+    DissectorScan,
+    draw_noises,
+    GaussMarkovMessage,
+    scan_at_snr,
+    simulate,
+    simulate_integrated,
+    simulate_photon_counts,
+    simulate_two_rates,
+)
+from tvtrack.papers.p000_dissector_ekf.ekf import (
+    consistency,
+    run_variant1,
+    run_variant2,
+    variant1_filter,
+    variant2_filter,
+)
+from tvtrack.papers.p000_dissector_ekf.reference import fisher_information, grid_filter, pcrlb_variance, scan_crlb
+from tvtrack.papers.p000_dissector_ekf.baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
+from tvtrack.papers.p000_dissector_ekf.settling import lock_lost
 
 MSG = GaussMarkovMessage(0.1, 0.15)
 
@@ -37,11 +52,12 @@ def test_ekf_equals_kalman_filter_in_linear_gaussian_limit(m):
     rng = np.random.default_rng(0)
     F, Q, H, R = _linear_model(rng, 2, m)
     zs = rng.standard_normal((30, 50, m))
-    zs[:, 0] = np.nan                                   # a missing first sample, as in the notebook
+    zs[:, 0] = np.nan  # a missing first sample, as in the notebook
     x0, P0 = np.array([0.3, -0.2]), np.diag([0.5, 0.2])
     kf = KalmanFilter(F, H, Q, R).run(zs, x0, P0)
-    ekf = ExtendedKalmanFilter(F, Q, lambda x, k: np.einsum("ij,...j->...i", H, x),
-                               lambda x, k: np.broadcast_to(H, x.shape[:-1] + H.shape), R).run(zs, x0, P0)
+    ekf = ExtendedKalmanFilter(
+        F, Q, lambda x, k: np.einsum("ij,...j->...i", H, x), lambda x, k: np.broadcast_to(H, x.shape[:-1] + H.shape), R
+    ).run(zs, x0, P0)
     np.testing.assert_allclose(ekf.x, kf.x, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(ekf.P, kf.P, rtol=1e-10, atol=1e-14)
     np.testing.assert_allclose(ekf.x_prior, kf.x_prior, rtol=1e-10, atol=1e-12)
@@ -83,8 +99,11 @@ def test_ekf_matches_filterpy_on_a_nonlinear_model_with_state_dependent_noise():
             fp.predict()
             xp = float(fp.x[0, 0])
             fp.R = np.array([[scan.sample_variance(xp, k)]])
-            fp.update(np.array([[y[i, k]]]), lambda s, k=k: np.array([[scan.amplitude * scan.shape_derivative(s[0, 0], k)]]),
-                      lambda s, k=k: np.array([[scan.amplitude * scan.shape(s[0, 0], k)]]))
+            fp.update(
+                np.array([[y[i, k]]]),
+                lambda s, k=k: np.array([[scan.amplitude * scan.shape_derivative(s[0, 0], k)]]),
+                lambda s, k=k: np.array([[scan.amplitude * scan.shape(s[0, 0], k)]]),
+            )
             assert est[i, k] == pytest.approx(fp.x[0, 0], rel=1e-9, abs=1e-12)
             assert var[i, k] == pytest.approx(fp.P[0, 0], rel=1e-7)
 
@@ -171,13 +190,14 @@ def test_fisher_information_of_the_signal_dependent_variance():
 
 def test_expected_over_gaussian_moments():
     m, v = np.array([0.0, 1.0]), np.array([1.0, 4.0])
-    np.testing.assert_allclose(expected_over_gaussian(lambda x: x ** 2, m, v), m ** 2 + v)
+    np.testing.assert_allclose(expected_over_gaussian(lambda x: x**2, m, v), m**2 + v)
     np.testing.assert_allclose(expected_over_gaussian(np.cos, 0.0, 1.0), np.exp(-0.5))
 
 
 def _grid_linear(n_points, f, q, h, r):
-    return GridFilter(-1.0, 1.0, n_points, f, q,
-                      lambda z, k: -0.5 * (z[:, None] - h * np.linspace(-1, 1, n_points)) ** 2 / r)
+    return GridFilter(
+        -1.0, 1.0, n_points, f, q, lambda z, k: -0.5 * (z[:, None] - h * np.linspace(-1, 1, n_points)) ** 2 / r
+    )
 
 
 def test_grid_filter_converges_to_kalman_filter_on_a_linear_model():
@@ -203,7 +223,7 @@ def test_grid_filter_posterior_mean_converges_on_the_dissector_model():
     scan = _scan(0.9)
     noises = draw_noises(np.random.default_rng(9), 20, 200)
     x, y = simulate(scan, MSG, noises)
-    means = [grid_filter(scan, MSG, 0.6, n).run(y, 0.0, MSG.sigma ** 2).mean for n in (151, 301, 601, 1201)]
+    means = [grid_filter(scan, MSG, 0.6, n).run(y, 0.0, MSG.sigma**2).mean for n in (151, 301, 601, 1201)]
     diffs = [np.abs(a - b).max() for a, b in zip(means[:-1], means[1:])]
     assert diffs[2] < diffs[1] < diffs[0]
     assert diffs[2] < 2e-3
@@ -213,7 +233,7 @@ def test_pcrlb_lies_below_the_grid_filter_mse():
     scan = _scan(0.5)
     noises = draw_noises(np.random.default_rng(10), 150, 250)
     x, y = simulate(scan, MSG, noises)
-    mean = grid_filter(scan, MSG, 0.5, 401).run(y, 0.0, MSG.sigma ** 2).mean
+    mean = grid_filter(scan, MSG, 0.5, 401).run(y, 0.0, MSG.sigma**2).mean
     bound = pcrlb_variance(scan, MSG, y.shape[1] - 1)
     mse = ((x - mean) ** 2)[:, 150:].mean(axis=0)
     assert mse.mean() > bound[150:].mean()
@@ -230,11 +250,11 @@ def test_coarse_samples_carry_the_noise_variance_of_integrate_and_dump():
     fine = d["scan_fine"]
     signal = (scan.amplitude * fine.shape(d["x_mid"], j)).reshape(n_trials, n_steps, factor).mean(axis=2)
     expected_var = fine.noise_intensity(d["x_mid"], j).reshape(n_trials, n_steps, factor).mean(axis=2) / scan.dt
-    z = (d["y_coarse"][:, 1:] - signal) / np.sqrt(expected_var)       # standardised coarse noise
-    se = np.sqrt(2.0 / z.size)                                          # standard error of a unit variance
+    z = (d["y_coarse"][:, 1:] - signal) / np.sqrt(expected_var)  # standardised coarse noise
+    se = np.sqrt(2.0 / z.size)  # standard error of a unit variance
     assert abs(z.var() - 1.0) < 4 * se, f"coarse noise variance / (mean N / dt) = {z.var():.4f} +- {se:.4f}"
     assert abs(z.mean()) < 4 / np.sqrt(z.size)
-    np.testing.assert_allclose(d["x_fine"][:, factor - 1::factor], d["x_coarse"][:, 1:])
+    np.testing.assert_allclose(d["x_mid"][:, factor // 2 :: factor], d["x_coarse"][:, 1:], atol=0.02)  # near the centre
     with pytest.raises(ValueError, match="factor"):
         simulate_two_rates(scan, MSG, 1, np.random.default_rng(0), 2, 2)
 
@@ -250,9 +270,9 @@ def test_variant1_models_the_true_signal_noise_only_with_the_consistent_scale_an
         truth_signal_noise = scan.sample_variance(x1, k) - scan.n0 / scan.dt
         for g22, factor in (("matched", 1.0), ("paper", (1 - beta * scan.dt / 2) / scan.dt)):
             filt = variant1_filter(scan, MSG, beta, "consistent", g22)
-            gain = (filt.h(np.array([x1[0], 1.0]), k) - filt.h(np.array([x1[0], 0.0]), k))[0]   # sqrt(c_s S)
+            gain = (filt.h(np.array([x1[0], 1.0]), k) - filt.h(np.array([x1[0], 0.0]), k))[0]  # sqrt(c_s S)
             x2_var = filt.Q[1, 1] / (1.0 - filt.F[1, 1] ** 2)
-            np.testing.assert_allclose(gain ** 2 * x2_var * factor, truth_signal_noise, rtol=1e-9)
+            np.testing.assert_allclose(gain**2 * x2_var * factor, truth_signal_noise, rtol=1e-9)
 
 
 def test_integrated_samples_average_the_pulse_and_the_noise_intensity_over_the_interval():
@@ -268,8 +288,8 @@ def test_integrated_samples_average_the_pulse_and_the_noise_intensity_over_the_i
     se_mean = np.sqrt(var / n_trials)
     np.testing.assert_array_less(np.abs(y[:, 1:].mean(axis=0) - mean), 4 * se_mean)
     np.testing.assert_allclose(y[:, 1:].var(axis=0) / var, 1.0, atol=4 * np.sqrt(2 / n_trials))
-    k_peak = 10                                                        # interval (0.45, 0.5]: centre 0.475
-    assert mean[k_peak - 1] < scan.shape(0.0, k_peak)                  # averaging lowers the sampled pulse
+    k_peak = 10  # interval (0.45, 0.5]: centre 0.475
+    assert mean[k_peak - 1] < scan.shape(0.0, k_peak)  # averaging lowers the sampled pulse
     with pytest.raises(ValueError, match="w_sub"):
         simulate_integrated(scan, MSG, draw_noises(np.random.default_rng(0), 2, 3))
 
@@ -283,10 +303,11 @@ def test_photon_counts_have_the_gaussian_models_mean_and_variance():
     xg, yg = simulate_integrated(scan, still, noises)
     xp, yp, background = simulate_photon_counts(scan, still, noises, np.random.default_rng(17))
     np.testing.assert_array_equal(xp, xg)
-    assert background == pytest.approx(9.0)          # I_b dt / q = ((1-P)/P)^2 psi_A^2 (per-sample sigma_sh)
+    assert background == pytest.approx(9.0)  # I_b dt / q = ((1-P)/P)^2 psi_A^2 (per-sample sigma_sh)
     se_var = np.sqrt(2 / n_trials) * yg[:, 1:].var(axis=0)
-    np.testing.assert_array_less(np.abs(yp[:, 1:].mean(axis=0) - yg[:, 1:].mean(axis=0)),
-                                 4 * np.sqrt(2 * yg[:, 1:].var(axis=0) / n_trials))
+    np.testing.assert_array_less(
+        np.abs(yp[:, 1:].mean(axis=0) - yg[:, 1:].mean(axis=0)), 4 * np.sqrt(2 * yg[:, 1:].var(axis=0) / n_trials)
+    )
     np.testing.assert_array_less(np.abs(yp[:, 1:].var(axis=0) - yg[:, 1:].var(axis=0)), 6 * se_var)
     with pytest.raises(ValueError, match="contrast"):
         simulate_photon_counts(_scan(0.0), still, noises, np.random.default_rng(0))
@@ -298,8 +319,11 @@ def _steady_ratio_v1_to_v2(g22, contrast=0.9, n_trials=400, seed=21):
     window = np.arange(401) * scan.dt > 12.0
     mse = lambda e: ((x - e)[:, window] ** 2).mean(axis=1)
     from tvtrack.montecarlo import ratio_ci
-    return ratio_ci(mse(run_variant1(variant1_filter(scan, MSG, g22=g22), y)[0]),
-                    mse(run_variant2(variant2_filter(scan, MSG), y)[0]))
+
+    return ratio_ci(
+        mse(run_variant1(variant1_filter(scan, MSG, g22=g22), y)[0]),
+        mse(run_variant2(variant2_filter(scan, MSG), y)[0]),
+    )
 
 
 def test_claim_level_variant1_with_matched_g22_equals_variant2():
@@ -327,7 +351,7 @@ def test_pcrlb_averages_the_information_over_the_stationary_prior():
     k = np.arange(1, n_steps + 1)
     jz = np.array([fisher_information(scan, xs, kk)[0].mean() for kk in k])
     f, q = MSG.exact(scan.dt)
-    j = 1.0 / MSG.sigma ** 2
+    j = 1.0 / MSG.sigma**2
     bound = [1.0 / j]
     for jk in jz:
         j = 1.0 / (q + f * f / j) + jk
@@ -337,33 +361,36 @@ def test_pcrlb_averages_the_information_over_the_stationary_prior():
 
 def test_lock_lost_counts_long_excursions_only():
     err = np.zeros((3, 50))
-    err[1, 10:31] = 0.6          # 21 steps
-    err[2, 10:15] = 0.6          # 5 steps
+    err[1, 10:31] = 0.6  # 21 steps
+    err[2, 10:15] = 0.6  # 5 steps
     np.testing.assert_array_equal(lock_lost(err, 0.5, 20), [False, True, False])
-
-
-def test_seed_reproduces_results():
-    scan = _scan(0.5)
-    a = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
-    b = run_variant1(variant1_filter(scan, MSG), simulate(scan, MSG, draw_noises(np.random.default_rng(12), 5, 50))[1])
-    np.testing.assert_array_equal(a[0], b[0])
 
 
 def test_ekf_rejects_bad_input():
     with pytest.raises(ValueError, match="noise_iterations"):
-        ExtendedKalmanFilter(np.eye(1), np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1),
-                             noise_iterations=-1)
+        ExtendedKalmanFilter(
+            np.eye(1), np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1), noise_iterations=-1
+        )
     with pytest.raises(ValueError, match="Q"):
         ExtendedKalmanFilter(np.eye(1), -np.eye(1), lambda x, k: x, lambda x, k: x[..., None], np.eye(1))
     with pytest.raises(ValueError, match="noise_iterations"):
-        ekf_update(np.zeros(1), np.eye(1), np.zeros(1), lambda x, k: x, lambda x, k: x[..., None],
-                   lambda x, k: np.eye(1), 0, noise_iterations=-2)
+        ekf_update(
+            np.zeros(1),
+            np.eye(1),
+            np.zeros(1),
+            lambda x, k: x,
+            lambda x, k: x[..., None],
+            lambda x, k: np.eye(1),
+            0,
+            noise_iterations=-2,
+        )
 
 
 def test_discretisation_error_dt_005_vs_0005_is_within_3_percent_for_variant2():
-    """Claim C000-8 measured on a small scale: one continuous experiment, integrated samples at dt and dt/10."""
+    """Claim C000-8 measured on a small scale: one continuous experiment, integrated samples at dt and dt/10, both
+    estimates scored at their newest datum (the same information)."""
     scan = _scan(0.5)
-    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(13), 150, 400)
+    d = simulate_two_rates(scan, MSG, 10, np.random.default_rng(13), 150, 400, score_at="interval_end")
     coarse, _ = run_variant2(variant2_filter(scan, MSG), d["y_coarse"])
     fine, _ = run_variant2(variant2_filter(d["scan_fine"], MSG), d["y_fine"])
     a = ((d["x_coarse"] - coarse)[:, d["t_coarse"] > 10] ** 2).mean(axis=1)
@@ -376,7 +403,7 @@ def test_discretisation_error_dt_005_vs_0005_is_within_3_percent_for_variant2():
 def test_scan_at_snr_sets_background_and_sample_phase():
     sc = scan_at_snr(20.0, 0.5, 0.05, pulse_duration=0.5)
     assert sc.n0 == background_intensity(20.0, 1.0, 0.05) and sc.pulse_sigma == 0.25
-    np.testing.assert_allclose(sc.phase(1), 0.025)                       # centre of the first interval
+    np.testing.assert_allclose(sc.phase(1), 0.025)  # centre of the first interval
     assert scan_at_snr(20.0, 0.5, 0.05, sample_at="interval_end").time_offset == 0.0
     with pytest.raises(ValueError, match="sample_at"):
         scan_at_snr(20.0, 0.5, 0.05, sample_at="start")
@@ -386,9 +413,9 @@ def test_scan_crlb_is_the_inverse_of_the_summed_sample_information():
     sc = _scan(0.0)
     # P = 0, x = 0: J = sum_k (A S')^2 / (N0/dt); S' = S u / sigma_t^2
     u = sc.phase(np.arange(1, 21)) - 0.5
-    s_prime = np.exp(-0.5 * (u / 0.25) ** 2) * u / 0.25 ** 2
-    np.testing.assert_allclose(scan_crlb(sc), 1.0 / np.sum(s_prime ** 2 / (sc.n0 / sc.dt)), rtol=1e-12)
-    assert scan_crlb(_scan(0.9)) > scan_crlb(sc)                         # signal noise costs information
+    s_prime = np.exp(-0.5 * (u / 0.25) ** 2) * u / 0.25**2
+    np.testing.assert_allclose(scan_crlb(sc), 1.0 / np.sum(s_prime**2 / (sc.n0 / sc.dt)), rtol=1e-12)
+    assert scan_crlb(_scan(0.9)) > scan_crlb(sc)  # signal noise costs information
 
 
 def test_scan_centroid_is_unbiased_for_a_centred_pulse_without_noise_and_the_smoother_is_exact_at_gain_one():
@@ -397,15 +424,18 @@ def test_scan_centroid_is_unbiased_for_a_centred_pulse_without_noise_and_the_smo
     x, y = simulate(scan, still, draw_noises(np.random.default_rng(18), 3, 60))
     z = scan_centroids(scan, y)
     assert z.shape == (3, 3)
-    np.testing.assert_allclose(z, 0.0, atol=1e-4)                       # symmetric samples about the pulse centre
+    np.testing.assert_allclose(z, 0.0, atol=1e-4)  # symmetric samples about the pulse centre
     shifted = DissectorScan(scan.n0 * 1e-12, 0.0, time_offset=-0.025)
-    xs, ys = simulate(shifted, GaussMarkovMessage(1e-9, 1e-9), {**draw_noises(np.random.default_rng(19), 2, 20),
-                                                                   "x0": np.full(2, 0.01 / 1e-9)})
-    assert scan_centroids(shifted, ys)[0, 0] == pytest.approx(0.01, rel=0.01)   # calibrated: linear near 0
+    xs, ys = simulate(
+        shifted,
+        GaussMarkovMessage(1e-9, 1e-9),
+        {**draw_noises(np.random.default_rng(19), 2, 20), "x0": np.full(2, 0.01 / 1e-9)},
+    )
+    assert scan_centroids(shifted, ys)[0, 0] == pytest.approx(0.01, rel=0.01)  # calibrated: linear near 0
     zz = np.random.default_rng(20).standard_normal((4, 10))
     np.testing.assert_allclose(fixed_gain_track(zz, 0.9, 1.0), zz)
     truth = np.zeros((4, 10))
-    assert tune_fixed_gain(zz, truth, 0.9, [0.05, 0.5, 1.0], np.ones(10, bool)) == 0.05   # pure noise: smooth most
+    assert tune_fixed_gain(zz, truth, 0.9, [0.05, 0.5, 1.0], np.ones(10, bool)) == 0.05  # pure noise: smooth most
 
 
 def test_consistency_matches_the_filter_outputs_and_flags_the_filter_that_ignores_the_signal_noise():

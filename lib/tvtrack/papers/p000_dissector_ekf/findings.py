@@ -1,0 +1,72 @@
+"""The generated prose of paper 000's notebook: one claim's details, the conclusions, the conditions a figure shows
+(the findings table at the top is the core's :func:`tvtrack.results.claims_table`).
+
+Every number and every interpretive word comes from the claims' rules and the exploration's records.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+__all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows"]
+
+
+def claim_details(results, ex, claim_id: str) -> str:
+    """The claim's rule, its verdict and label per part, the coverage and where a condition changes a part."""
+    c = next(c for c in results.claims if c.id == claim_id)
+    rec = c.robustness
+    lines = [
+        f"**{c.id}** ({c.statement}) **Rule:** {c.acceptance}.",
+        "",
+        f"**Verdict: {c.verdict}; label: {rec['coverage']}.**",
+        "",
+        "| part | verdict | label | replicates |",
+        "|---|---|---|---|",
+    ]
+    for name, p in rec["parts"].items():
+        lines.append(f"| {name} | {p['verdict']} | {p['label']} | {', '.join(p['replicate_verdicts'])} |")
+    if rec["where"]:
+        lines += ["", "Where a verdict differs: " + "; ".join(rec["where"]) + "."]
+    return "\n".join(lines)
+
+
+def conclusions(claims, ex) -> str:
+    """The closing section: the verdicts and labels counted, each claim in one line, and what the register tried."""
+    checkable = [c for c in claims if c.verdict != "not checkable"]
+    verdicts = Counter(c.verdict for c in checkable)
+    labels = Counter(c.robustness["label"] for c in checkable if c.robustness)
+    adversarial = [e.name for e in ex.register if e.origin == "adversarial"]
+    lines = [
+        f"Of {len(checkable)} checkable claims: "
+        + ", ".join(f"{n} {v}" for v, n in verdicts.most_common())
+        + "; labels "
+        + ", ".join(f"{n} {lab}" for lab, n in labels.most_common())
+        + ".",
+        f"The exploration ran {ex.settings['replicates']} independent replicates, "
+        f"{sum(r.stage == 'single' for r in ex.runs)} one-at-a-time and {sum(r.stage == 'joint' for r in ex.runs)} "
+        f"joint configurations over {len(ex.register)} register entries"
+        + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."),
+        "",
+    ]
+    open_ = [c for c in checkable if c.verdict != "reproduced" or (c.robustness or {}).get("label") != "robust"]
+    if open_:
+        lines.append("Where a claim is not reproduced, or its verdict moves with the register (first conditions):")
+    for c in sorted(open_, key=lambda c: int(c.id.split("-")[1])):
+        where = f": {'; '.join(c.robustness['where'][:2])}" if c.robustness and c.robustness["where"] else ""
+        lines.append(f"- **{c.id}** {c.verdict}, {c.robustness['label']}{where}.")
+    return "\n".join(lines)
+
+
+def reproduced_where(rule, named: dict) -> list:
+    """The names whose measured value the rule judges ``reproduced``: ``named`` maps a name (a condition, or a part
+    of an :class:`~tvtrack.verdicts.AllOf` rule when ``rule`` is one) to what the rule (or that part's rule) reads."""
+    parts = getattr(rule, "parts", None)
+    return [k for k, m in named.items() if (parts[k] if parts else rule).decide(m) == "reproduced"]
+
+
+def condition_rows(ex, claim_id: str) -> list:
+    """``(description, measured)`` of the claim pooled at the default, then under each condition of its exploration."""
+    rows = [("default (pooled replicates)", ex.measured(claim_id))]
+    for c in ex.record(claim_id)["conditions"]:
+        rows.append((", ".join(f"{k} = {v}" for k, v in c["changed"].items()), c["measured"]))
+    return rows

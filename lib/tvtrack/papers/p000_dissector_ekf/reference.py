@@ -1,0 +1,90 @@
+"""Bayesian references for paper 000: a grid (point-mass) filter with the likelihood of one sample, the
+Fisher information of a sample, the posterior Cramer-Rao bound, and one scan's Cramer-Rao bound.
+
+All of them model a sample as the pulse and noise intensity at one instant (the sample's phase) with noise
+variance ``N / dt``: exact for point samples; for integrate-and-dump samples they are the midpoint rule
+(the pulse and intensity at the interval centre), whose error is second order in ``dt``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...bounds.pcrlb import expected_over_gaussian, pcrlb_recursion
+from ...filters.grid import GridFilter
+from .model import DissectorScan, GaussMarkovMessage
+
+__all__ = ["grid_filter", "fisher_information", "pcrlb_variance", "scan_crlb"]
+
+
+def grid_filter(
+    scan: DissectorScan, message: GaussMarkovMessage, half_width: float = 0.5, n_points: int = 401
+) -> GridFilter:
+    """Point-mass Bayesian filter of ``X1`` with the likelihood of one sample of eq. (5) (near-optimal reference).
+
+    The likelihood includes the signal-dependent variance, ``log p(z | x) = -(z - A S)^2 / (2 R) - log(R) / 2``
+    with ``R = N(t_k) / dt``; the transition is the message's exact discretisation. The filter is the exact
+    posterior (up to the grid) for point samples; for integrate-and-dump samples its likelihood is the midpoint
+    rule (the message held at the interval centre), so it is near-optimal, not exact.
+
+    Parameters
+    ----------
+    half_width : float   the grid covers ``[-half_width, half_width]`` (units of ``T``)
+    n_points : int       number of grid nodes
+
+    Returns
+    -------
+    GridFilter  whose ``run(y, 0.0, sigma_1**2)`` filters samples ``y`` (n_trials, K) from :func:`simulate`
+    """
+    f, q = message.exact(scan.dt)
+    nodes = np.linspace(-half_width, half_width, n_points)
+
+    def loglik(z, k):
+        var = scan.sample_variance(nodes, k)
+        return -0.5 * (z[:, None] - scan.amplitude * scan.shape(nodes, k)) ** 2 / var - 0.5 * np.log(var)
+
+    return GridFilter(-half_width, half_width, n_points, f, q, loglik)
+
+
+def fisher_information(scan: DissectorScan, x, k):
+    """Fisher information about ``x`` in one sample ``Y(k)`` (eq. (5)), mean and variance both
+    depending on ``x``:  ``J = (A S')^2 / R + R'^2 / (2 R^2)``, ``R = N(t_k)/dt``.
+
+    Returns
+    -------
+    total, mean_part : ndarrays broadcast from ``x`` and ``k`` (units of ``1/T^2``)
+    """
+    ds = scan.shape_derivative(x, k)
+    r = scan.sample_variance(x, k)
+    dr = scan.n0 * scan.signal_noise_ratio * ds / scan.dt
+    mean_part = (scan.amplitude * ds) ** 2 / r
+    return mean_part + 0.5 * (dr / r) ** 2, mean_part
+
+
+def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: int):
+    """Posterior Cramer-Rao bound on the mean-square error of ``X1`` at every step ``k = 0..n_steps``.
+
+    The model of point samples (exact message discretisation, stationary prior ``N(0, sigma_1^2)``, samples
+    of eq. (5) from ``k = 1``; for integrated samples the midpoint rule, scored at the interval centre); the per-sample information :func:`fisher_information` (mean and
+    signal-dependent variance) is averaged over the prior of ``X1`` by Gauss-Hermite quadrature.
+
+    Returns
+    -------
+    ndarray, shape (n_steps + 1,)   bound on ``E[(X1 - X1_hat)^2]`` (units of ``T^2``)
+    """
+    f, q = message.exact(scan.dt)
+    kk = np.arange(n_steps + 1)
+    jz = expected_over_gaussian(
+        lambda s: fisher_information(scan, s, kk)[0], np.zeros(kk.size), np.full(kk.size, message.sigma**2)
+    )
+    jz[0] = 0.0  # no sample at k = 0
+    return pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma**2]], jz[:, None, None])[:, 0, 0]
+
+
+def scan_crlb(scan: DissectorScan) -> float:
+    """Cramer-Rao bound of one scan's measurement of ``X1`` at ``x = 0`` (no dynamics, no prior).
+
+    ``1 / sum_k J(0, k)`` over the ``round(1/dt)`` samples of the scan (units of ``T^2``).
+    """
+    kk = np.arange(1, int(round(1.0 / scan.dt)) + 1)
+    return 1.0 / fisher_information(scan, 0.0, kk)[0].sum()

@@ -1,0 +1,186 @@
+"""The register of what paper 000 (Martyshevsky 1995) leaves unstated, and which claims read which entries.
+
+Every entry names its default, its defensible values and why; :func:`tvtrack.explore.explore` measures every
+claim over it (:func:`.study.measure` reads the configuration). Rows with ``origin="adversarial"`` were added
+while trying to flip a label.
+"""
+
+from __future__ import annotations
+
+from ...register import Entry, Register
+from .study import JOINT_READING_C6
+
+__all__ = ["REGISTER", "DEPENDS"]
+
+REGISTER = Register(
+    [
+        # ---- the data model: decided once, the filters, the grid likelihood and the PCRLB model the same sample
+        Entry(
+            "sample model",
+            "model",
+            "integrated",
+            ("integrated", "point"),
+            "a sampled tracker integrates the current over each dt (integrate and dump: the noise variance N/dt of the "
+            "paper's (E5), (E6)); the point sample is the textbook idealisation the filters, grid filter and PCRLB model "
+            "exactly",
+        ),
+        Entry(
+            "scoring time",
+            "model",
+            "interval centre",
+            ("interval centre", "interval end"),
+            "the filters model an integrated sample by the pulse at its interval centre, so their estimate refers to "
+            "that time; the interval end is the time of the newest datum (a point sample is scored at its instant)",
+        ),
+        Entry(
+            "photon model",
+            "model",
+            "Gaussian",
+            ("Gaussian", "Poisson counts"),
+            origin="adversarial",
+            why="eq. (1) models the shot noise as white Gaussian; it is the count statistics of photo-electrons, skewed "
+            "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)",
+        ),
+        # ---- readings of the paper's ambiguous or inconsistent sentences
+        Entry(
+            "sigma_sh",
+            "reading",
+            "per sample",
+            ("per sample", "unit bandwidth"),
+            "psi_A = A / sigma_sh: the RMS of the background noise in one sample sqrt(N0/dt), or in a 1/T bandwidth "
+            "sqrt(N0) (4.5 times more noise per sample at the same psi_A)",
+        ),
+        Entry(
+            "G22",
+            "reading",
+            "paper",
+            ("paper", "euler", "matched"),
+            "(E8) prints 2 beta_0 dt (a unit-variance X2); Euler on eq. (8) gives beta_0^2 dt; the matched value makes "
+            "sqrt(c_s S) X2 carry the truth's per-sample signal-noise variance",
+        ),
+        Entry(
+            "v2 noise at",
+            "reading",
+            "predicted estimate",
+            ("predicted estimate", "updated estimate"),
+            "eq. (9) evaluates the noise intensity at 'the estimate': the prediction is the only one before the update; "
+            "one re-evaluation at the updated estimate is the other reading",
+        ),
+        Entry(
+            "initial estimate",
+            "reading",
+            "process means",
+            ("process means", "random N(0, D11(0))"),
+            "the paper's solid curves start at the process means; its dashed curves from normally distributed initial "
+            "estimates of unstated variance (read as D(0))",
+        ),
+        Entry(
+            "initial position",
+            "reading",
+            "stationary N(0, sigma_1^2)",
+            ("stationary N(0, sigma_1^2)", "uniform in the micro-raster"),
+            origin="adversarial",
+            why="'the image is within the micro-raster' (the paper's motivation of D11(0) = 0.2): the message's own law, "
+            "or anywhere in the raster with equal probability",
+        ),
+        Entry(
+            "convergence criterion",
+            "reading",
+            "90 % of runs acquired",
+            ("90 % of runs acquired", "ensemble mean within 10 %"),
+            "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
+            "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
+        ),
+        Entry(
+            "C000-6 filter",
+            "reading",
+            "variant 2",
+            ("variant 2", "variant 1", "ignoring the signal noise"),
+            "the sentence's opening is lost at a page break: 'accounting for' (a matched variant) or 'ignoring' (the "
+            "filter that assumes P = 0) the non-stationary component",
+        ),
+        Entry(
+            "potentially achievable",
+            "comparator",
+            "sigma_x^2*",
+            ("sigma_x^2*", "PCRLB", "grid filter"),
+            "'potentially achievable' is undefined: the stationary-noise accuracy of Fig. 3 (the paper's own "
+            "reference), the posterior Cramer-Rao bound, or the near-optimal grid (point-mass) filter",
+        ),
+        Entry(
+            "C000-6 joint reading",
+            "reading",
+            "the entries above",
+            ("the entries above", JOINT_READING_C6),
+            origin="adversarial",
+            why="a flip the joint samples can miss: 'ignoring' the component, with the background current held fixed "
+            "(psi_A = 180 at P = 0.9); its ensemble mean is carried by the 3-4 % of runs that lose lock",
+        ),
+        Entry(
+            "micro-raster size",
+            "reading",
+            "T",
+            ("T", "T_u"),
+            origin="adversarial",
+            why="'2 % of the micro-raster size': the coordinate is a time shift within the scan interval T; the pulse "
+            "duration T_u = T/2 is the other length a reader could take",
+        ),
+        # ---- operating points of the figures the claims come from
+        Entry(
+            "psi_A",
+            "operating point",
+            20.0,
+            (2.0, 5.0, 10.0, 20.0, 50.0, 100.0),
+            "Figs. 1 and 3 do not state psi_A; 20 is the only SNR the paper quotes; Fig. 2 spans 2-100 (2 added by the "
+            "adversarial pass: there C000-5 and C000-7 turn partly)",
+        ),
+        Entry(
+            "contrast",
+            "operating point",
+            0.5,
+            (0.0, 0.5, 0.9),
+            "Figs. 1 and 2 do not state P; 0.5 is the paper's boundary, 0.9 its high-contrast example",
+        ),
+        Entry(
+            "contrast convention",
+            "operating point",
+            "fixed N0",
+            ("fixed N0", "fixed total current", "fixed background"),
+            "what is held fixed as P varies in Fig. 3 is unstated: N0 (only P/(1-P) changes), the total current or the "
+            "background current (psi_A then moves with P, anchored at psi_A at P = 0.5)",
+        ),
+        # ---- statistics
+        Entry(
+            "statistic",
+            "statistic",
+            "mean",
+            ("mean", "median"),
+            "the paper's sigma_x^2 is an ensemble mean (E9); the median of per-run variances is not carried by the few "
+            "runs that lose lock",
+        ),
+    ]
+)
+
+_DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
+#: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).
+DEPENDS = {
+    "C000-1": _DATA
+    + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"],
+    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size"],
+    "C000-3": _DATA + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic"],
+    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
+    "C000-6": _DATA
+    + [
+        "G22",
+        "v2 noise at",
+        "C000-6 filter",
+        "C000-6 joint reading",
+        "potentially achievable",
+        "psi_A",
+        "contrast convention",
+        "statistic",
+    ],
+    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
+    "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
+    "C000-9": _DATA + ["G22", "v2 noise at", "contrast"],
+}

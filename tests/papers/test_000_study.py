@@ -1,0 +1,181 @@
+"""The study functions of paper 000 that the verdicts rest on: the measurement function, the contrast conventions,
+the generated prose."""
+
+import numpy as np
+import pytest
+
+from tvtrack.explore import explore
+from tvtrack.montecarlo import zero_events_bound
+from tvtrack.papers.p000_dissector_ekf import study
+from tvtrack.papers.p000_dissector_ekf.findings import claim_details, conclusions
+from tvtrack.papers.p000_dissector_ekf.recording import record_trial
+from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
+from tvtrack.results import Results
+from tvtrack import verdicts as vd
+
+SMALL = study.Sizes(
+    n_trials=40,
+    duration_T=8.0,
+    window_T=3.0,
+    substeps=2,
+    psi_grid=(5.0, 50.0),
+    contrast_grid=(0.0, 0.5, 0.9),
+    dt_points=((20.0, 0.5),),
+    dt_factor=2,
+    dt_trials=20,
+    dt_duration_T=6.0,
+    grid_trials=10,
+    grid_points=61,
+    acquire_by_T=3.0,
+)
+DEFAULT = REGISTER.default()
+
+
+def test_psi_at_follows_each_contrast_convention():
+    assert study.psi_at(20.0, 0.9, "fixed N0") == 20.0
+    # fixed total current: psi ~ P / sqrt(1 - P); fixed background: psi ~ P / (1 - P), anchored at P = 0.5
+    assert study.psi_at(20.0, 0.9, "fixed total current") == pytest.approx(
+        20.0 * (0.9 / np.sqrt(0.1)) / (0.5 / np.sqrt(0.5))
+    )
+    assert study.psi_at(20.0, 0.9, "fixed background") == pytest.approx(180.0)
+    assert study.psi_at(20.0, 0.5, "fixed background") == pytest.approx(20.0)
+    assert study.psi_at(20.0, 0.0, "fixed total current") == 20.0
+    with pytest.raises(ValueError, match="convention"):
+        study.psi_at(20.0, 0.5, "fixed nothing")
+
+
+def test_every_register_entry_and_dependency_is_read_by_the_measurement():
+    assert set(DEPENDS) == {"C000-1", "C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-8", "C000-9"}
+    used = {name for names in DEPENDS.values() for name in names}
+    assert used == set(REGISTER.names)
+
+
+def test_measure_returns_every_claim_with_the_parts_its_rule_reads_and_reproduces_with_the_seed():
+    a = study.measure(DEFAULT, 7, SMALL)
+    b = study.measure(DEFAULT, 7, SMALL)
+    assert set(a) == set(DEPENDS)
+    assert set(a["C000-2"]) == {"P=0", "P=0.5 variant 1", "P=0.5 variant 2"}
+    assert set(a["C000-3"]) == {"P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"}
+    assert set(a["C000-8"]) == {"variant 1 at psi_A=20, P=0.5", "variant 2 at psi_A=20, P=0.5"}
+    assert len(a["C000-7"]["trend"]) == 3 and len(a["C000-9"]["variant 2"]) == 2
+    assert a["C000-6"].value == b["C000-6"].value
+    study._MEMO.clear()  # recomputed, not remembered
+    c = study.measure(DEFAULT, 7, SMALL)
+    assert c["C000-6"].value == a["C000-6"].value
+    assert study.measure(DEFAULT, 8, SMALL)["C000-6"].value != a["C000-6"].value
+
+
+def test_at_zero_contrast_the_variants_are_the_same_filter_and_the_ratio_is_exact():
+    m = study.measure(DEFAULT, 3, SMALL)
+    e = m["C000-3"]["P=0"]
+    assert (e.value, e.ci_low, e.ci_high, e.method) == (1.0, 1.0, 1.0, "exact")
+    assert m["C000-7"]["trend"][0].method == "exact"
+    assert not vd.is_undecided(e)
+
+
+def test_c000_6_readings_use_their_reference_and_common_random_numbers():
+    a = study.steady_runs(DEFAULT, 4, SMALL, 20.0, 0.9, "v2")
+    ref = study.steady_runs(DEFAULT, 4, SMALL, 20.0, 0.9, "stationary")
+    star = study.measure(DEFAULT, 4, SMALL)["C000-6"]
+    assert star.value == pytest.approx(a.mean() / ref.mean(), rel=1e-12)
+    scan = study.scan_at_snr(20.0, 0.9, SMALL.dt, 0.5)
+    bound = study.pcrlb_variance(scan, study.MESSAGE, SMALL.n_steps)[SMALL.window()].mean()
+    by_bound = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 4, SMALL)["C000-6"]
+    assert by_bound.value == pytest.approx(a.mean() / bound, rel=1e-12)
+    ignoring = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 4, SMALL)["C000-6"]
+    assert ignoring.value == pytest.approx(
+        study.steady_runs(DEFAULT, 4, SMALL, 20.0, 0.9, "ignoring").mean() / ref.mean(), rel=1e-12
+    )
+    grid = study.measure({**DEFAULT, "potentially achievable": "grid filter"}, 4, SMALL)["C000-6"]
+    assert grid.n == SMALL.grid_trials and np.isfinite(grid.value)
+    # fixed background current: the P = 0.9 point sits at psi_A = 9 x 20
+    far = study.measure({**DEFAULT, "contrast convention": "fixed background"}, 4, SMALL)["C000-6"]
+    a9 = study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "v2")
+    assert far.value == pytest.approx(a9.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean())
+
+
+def test_c000_1_counts_runs_not_acquired_with_the_bound_zero_events_certify():
+    m = study.measure(DEFAULT, 5, SMALL)["C000-1"]
+    for part in m.values():
+        assert part.ci_low >= 0
+        if part.value == 0:
+            assert part.ci_high == pytest.approx(zero_events_bound(SMALL.n_trials), rel=0.35)
+
+
+def test_scoring_at_the_interval_end_adds_the_half_interval_diffusion():
+    """At high SNR the estimate of the interval-centre message scored against the interval end carries the message's
+    diffusion over dt/2, at most 2 alpha sigma^2 dt/2 = 7.5e-5 T^2 (less by what the second half of the interval's
+    data anticipate): about as large as the error itself at psi_A = 100."""
+    sizes = study.Sizes(n_trials=200, duration_T=10.0, window_T=4.0, substeps=3)
+    centre = study.steady_runs(DEFAULT, 6, sizes, 100.0, 0.5, "v2").mean()
+    end = study.steady_runs({**DEFAULT, "scoring time": "interval end"}, 6, sizes, 100.0, 0.5, "v2").mean()
+    diffusion = 2 * study.MESSAGE.alpha * study.MESSAGE.sigma**2 * sizes.dt / 2
+    assert 0.3 * diffusion < end - centre < diffusion
+    assert end / centre > 1.3
+
+
+def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
+    small = REGISTER.subset(["sigma_sh", "statistic", "psi_A"])
+    depends = {cid: [n for n in names if n in small.names] for cid, names in DEPENDS.items()}
+
+    def measure(config, seed):
+        return study.measure({**DEFAULT, **config}, seed, SMALL)
+
+    rules = {
+        "C000-6": vd.InBand("ratio", low=20.0),
+        "C000-2": vd.AllOf({k: vd.InBand(k, 0.01, 0.03) for k in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2")}),
+    }
+    ex = explore(measure, small, rules, seed=1, replicates=3, depends=depends)
+    results = Results(notebook="000_dissector_ekf", citation="x", parameters={"seed": 1, "output_dir": str(tmp_path)})
+    for cid, rule in rules.items():
+        results.claim(id=cid, statement=cid, paper_value="-", rule=rule, exploration=ex)
+    details = claim_details(results, ex, "C000-2")
+    assert all(part in details for part in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2"))
+    assert f"Verdict: {results.claims[1].verdict}" in details
+    text = conclusions(results.claims, ex)
+    assert f"{ex.settings['replicates']} independent replicates" in text
+    assert "Of 2 checkable claims" in text
+
+
+def test_the_recording_is_off_when_asked(tmp_path):
+    scan, x, pulse, xi = study.record_inputs(DEFAULT, 2, SMALL)
+    assert record_trial(tmp_path, "off", scan, x, pulse, xi, n_scans=2) is None
+
+
+def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
+    from tvtrack.papers.p000_dissector_ekf.findings import reproduced_where
+
+    band = vd.InBand("ratio", low=20.0)
+    assert reproduced_where(band, {"a": 25.0, "b": 3.0}) == ["a"]
+    both = vd.AllOf({"x": vd.InBand("x", high=1.0), "y": vd.InBand("y", low=1.0)})
+    assert reproduced_where(both, {"x": 0.5, "y": 0.5}) == ["x"]
+
+
+def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_counts_change_the_data():
+    x, _, _, _ = study._path(DEFAULT, 9, SMALL, "uniform")
+    assert np.all(np.abs(x[:, 0]) <= 0.5) and x[:, 0].std() > 0.2  # uniform on [-1/2, 1/2]: sd 0.29
+    gauss = study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "v2")
+    counts = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "v2")
+    assert not np.allclose(gauss, counts)
+    ref = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "stationary")
+    np.testing.assert_array_equal(ref, study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "stationary"))
+
+
+def test_the_joint_reading_of_c000_6_is_the_ignoring_filter_at_fixed_background_current():
+    joint = study.measure({**DEFAULT, "C000-6 joint reading": study.JOINT_READING_C6}, 4, SMALL)["C000-6"]
+    both = study.measure(
+        {**DEFAULT, "C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}, 4, SMALL
+    )["C000-6"]
+    assert joint.value == both.value
+    a = study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "ignoring")
+    assert joint.value == pytest.approx(
+        a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean()
+    )
+
+
+def test_nees_is_near_one_at_the_time_the_model_refers_to_and_grows_when_scored_at_the_interval_end():
+    sizes = study.Sizes(n_trials=200, duration_T=10.0, window_T=4.0, substeps=3, psi_grid=(5.0, 100.0))
+    nees = study.consistency_over_psi(DEFAULT, 3, sizes)
+    centre, end = nees["interval centre"]["variant 2"], nees["interval end"]["variant 2"]
+    assert 0.85 < centre[0].value < 1.2
+    assert end[1].value > 1.5 * centre[1].value  # psi_A = 100: the half-interval lag
