@@ -41,8 +41,11 @@ MEAN_SQUARE_CASES = {
 
 #: Paired positive per-trial values: name -> (draw(rng, shape) -> (a, b), true mean(a) / mean(b), heavy?)
 RATIO_CASES = {
-    "common exponential, a = 1.5 c + exp(0.5)":
-        (lambda rng, s: (lambda c: (1.5 * c + rng.exponential(0.5, s), c))(rng.exponential(1.0, s)), 2.0, False),
+    "common exponential, a = 1.5 c + exp(0.5)": (
+        lambda rng, s: (lambda c: (1.5 * c + rng.exponential(0.5, s), c))(rng.exponential(1.0, s)),
+        2.0,
+        False,
+    ),
     "path scale log-normal 0.5 x gamma(4)": (lambda rng, s: _scaled(rng, s, 0.5, _gamma4), 1.3, False),
     "path scale log-normal 1 x gamma(4)": (lambda rng, s: _scaled(rng, s, 1.0, _gamma4), 1.3, True),
     "path scale log-normal 1 x squared t3": (lambda rng, s: _scaled(rng, s, 1.0, _sq_t3), 1.3, True),
@@ -85,12 +88,23 @@ def intervals(helper: str, data, method: str = "new"):
         return x.mean(axis=1) - half, x.mean(axis=1) + half
     # the BCa interval the helpers used before (scipy.stats.bootstrap on a batch of experiments)
     samples = (data,) if helper == "mean_square" else data
-    stat = (lambda x, axis: x.mean(axis=axis)) if helper == "mean_square" else \
-        (lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis))
+    stat = (
+        (lambda x, axis: x.mean(axis=axis))
+        if helper == "mean_square"
+        else (lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis))
+    )
     lo, hi = [], []
     for r0 in range(0, samples[0].shape[0], 200):
-        res = stats.bootstrap(tuple(x[r0:r0 + 200] for x in samples), stat, paired=True, vectorized=True, axis=-1,
-                              n_resamples=mc.N_BOOTSTRAP, method="BCa", rng=rng)
+        res = stats.bootstrap(
+            tuple(x[r0 : r0 + 200] for x in samples),
+            stat,
+            paired=True,
+            vectorized=True,
+            axis=-1,
+            n_resamples=mc.N_BOOTSTRAP,
+            method="BCa",
+            rng=rng,
+        )
         lo.append(res.confidence_interval.low)
         hi.append(res.confidence_interval.high)
     return np.concatenate(lo), np.concatenate(hi)
@@ -102,8 +116,9 @@ def coverage(helper: str, case: str, n: int, method: str = "new") -> float:
     return float(np.mean((lo <= truth) & (truth <= hi)))
 
 
-if __name__ == "__main__":          # prints the coverage table (helper, n, case, before, after)
+if __name__ == "__main__":  # prints the coverage table (helper, n, case, before, after)
     import sys
+
     helpers = sys.argv[1:] or list(CASES)
     for h in helpers:
         for case, (_, _, heavy) in CASES[h].items():

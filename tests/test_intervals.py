@@ -15,13 +15,30 @@ import pytest
 from scipy import stats
 
 from interval_cases import CASES, SIZES, coverage, draw, intervals
-from tvtrack.montecarlo import (COVERAGE, COVERAGE_FLOOR, bootstrap_ci, coverage_at, coverage_reached, events_statement,
-                                mean_ci, mean_square_ci, paired_difference, paired_test, proportion_ci, quantile_ci,
-                                ratio_ci, rms_ci, robust_summary, stated_coverage, variance_ci, zero_events_bound)
+from tvtrack.montecarlo import (
+    COVERAGE,
+    COVERAGE_FLOOR,
+    bootstrap_ci,
+    coverage_at,
+    coverage_reached,
+    events_statement,
+    mean_ci,
+    mean_square_ci,
+    paired_difference,
+    paired_test,
+    proportion_ci,
+    quantile_ci,
+    ratio_ci,
+    rms_ci,
+    robust_summary,
+    stated_coverage,
+    variance_ci,
+    zero_events_bound,
+)
 
 N_EXPERIMENTS = 2000
 BAND = (0.93, 0.97)
-TABLE_TOLERANCE = 0.006        # a few experiments of 2000: BLAS summation order may move a borderline interval
+TABLE_TOLERANCE = 0.006  # a few experiments of 2000: BLAS summation order may move a borderline interval
 
 
 def cover(intervals_, truth):
@@ -43,7 +60,7 @@ def test_mean_square_bootstrap_t_covers_at_the_sizes_used(n):
     skewed, cov = _table_row("mean_square", n, "mean_square")
     assert skewed >= BAND[0], cov
     assert max(cov.values()) <= BAND[1]
-    if n <= 30:              # the BCa interval it replaces under-covers skewed squares at these sizes
+    if n <= 30:  # the BCa interval it replaces under-covers skewed squares at these sizes
         bca = min(coverage("mean_square", c, n, "BCa") for c in CASES["mean_square"] if not CASES["mean_square"][c][2])
         assert bca < skewed - 0.01 and bca < 0.935, (bca, skewed)
 
@@ -52,7 +69,7 @@ def test_mean_square_bootstrap_t_covers_at_the_sizes_used(n):
 def test_ratio_expanded_percentile_covers_at_the_sizes_used(n):
     skewed, cov = _table_row("ratio", n, "ratio")
     assert skewed >= BAND[0], cov
-    assert min(cov.values()) >= 0.92, cov          # heavy path scales too, where BCa gave 0.81-0.90
+    assert min(cov.values()) >= 0.92, cov  # heavy path scales too, where BCa gave 0.81-0.90
     if n <= 30:
         bca = min(coverage("ratio", c, n, "BCa") for c in CASES["ratio"])
         assert bca < 0.91, bca
@@ -62,8 +79,8 @@ def test_ratio_expanded_percentile_covers_at_the_sizes_used(n):
 def test_mean_intervals_state_their_measured_coverage(n):
     t_skewed, _ = _table_row("mean", n, "mean t", method="t")
     boot_skewed, cov = _table_row("mean", n, "mean bootstrap-t")
-    assert boot_skewed >= BAND[0], cov               # the bootstrap-t option reaches the band at every size
-    assert coverage("mean", "normal", n, "t") == pytest.approx(0.95, abs=0.012)    # exact for normal samples
+    assert boot_skewed >= BAND[0], cov  # the bootstrap-t option reaches the band at every size
+    assert coverage("mean", "normal", n, "t") == pytest.approx(0.95, abs=0.012)  # exact for normal samples
     # the Student-t interval on skewed samples below 48 trials is flagged by the coverage it states
     x, _ = draw("mean", "exponential", n, r=1)
     est = mean_ci(x[0])
@@ -71,8 +88,10 @@ def test_mean_intervals_state_their_measured_coverage(n):
 
 
 def test_public_helpers_equal_the_batched_intervals_they_are_tested_through():
-    (x, _), ((a, b), _) = draw("mean_square", "exponential", 15, r=3), draw("ratio", "path scale log-normal 1 x gamma(4)",
-                                                                           15, r=3)
+    (x, _), ((a, b), _) = (
+        draw("mean_square", "exponential", 15, r=3),
+        draw("ratio", "path scale log-normal 1 x gamma(4)", 15, r=3),
+    )
     lo, hi = intervals("mean_square", x[:1])
     est = mean_square_ci(x[0])
     assert (est.ci_low, est.ci_high) == pytest.approx((lo[0], hi[0]), rel=1e-12)
@@ -90,16 +109,16 @@ def test_helpers_state_coverage_and_the_flag_reads_it():
     ms = mean_square_ci(x)
     assert "coverage 0.936 at n = 15" in ms.method and stated_coverage(ms) == 0.936 and coverage_reached(ms)
     r = rms_ci(np.sqrt(x)[:, None])
-    assert stated_coverage(r) == 0.936 and r.ci_low ** 2 == pytest.approx(ms.ci_low)
+    assert stated_coverage(r) == 0.936 and r.ci_low**2 == pytest.approx(ms.ci_low)
     assert coverage_at("mean t", 12) == COVERAGE["mean t"][10] and coverage_at("ratio", 5) == COVERAGE["ratio"][10]
     t = mean_ci(x)
     assert t.method.startswith("Student t; coverage 0.913 at n = 15") and not coverage_reached(t)
-    assert mean_ci(np.r_[x, x, x, x, x, x, x]).method == "Student t"            # n >= 100: no statement
+    assert mean_ci(np.r_[x, x, x, x, x, x, x]).method == "Student t"  # n >= 100: no statement
     assert coverage_reached(proportion_ci(3, 20)) and stated_coverage(proportion_ci(3, 20)) == 0.95
 
 
 def test_rms_interval_is_the_root_of_the_mean_square_interval():
-    e = np.random.default_rng(2).standard_t(3, size=(40, 25))         # heavy tails: t intervals went below 0
+    e = np.random.default_rng(2).standard_t(3, size=(40, 25))  # heavy tails: t intervals went below 0
     r = rms_ci(e)
     ms = mean_square_ci(np.mean(e**2, axis=1))
     assert (r.ci_low**2, r.value**2, r.ci_high**2) == pytest.approx((ms.ci_low, ms.value, ms.ci_high))
@@ -107,7 +126,7 @@ def test_rms_interval_is_the_root_of_the_mean_square_interval():
 
 
 def test_mean_square_interval_never_goes_below_zero():
-    x = np.random.default_rng(4).exponential(size=(300, 10)) ** 3         # very skewed: lower ends near 0
+    x = np.random.default_rng(4).exponential(size=(300, 10)) ** 3  # very skewed: lower ends near 0
     assert min(mean_square_ci(row).ci_low for row in x) >= 0
 
 
@@ -190,8 +209,14 @@ def _clustered(rng, r, c, m):
     return x.reshape(r, c * m), 1.0
 
 
-@pytest.mark.parametrize("c, m, method", [(15, 4, "expanded percentile"), (15, 4, "BCa"),
-                                          pytest.param(48, 15, "expanded percentile", marks=pytest.mark.slow)])
+@pytest.mark.parametrize(
+    "c, m, method",
+    [
+        (15, 4, "expanded percentile"),
+        (15, 4, "BCa"),
+        pytest.param(48, 15, "expanded percentile", marks=pytest.mark.slow),
+    ],
+)
 def test_grouped_bootstrap_covers_where_the_trial_bootstrap_does_not(c, m, method):
     """Clustered trials (004: 4 noise draws of each of 15 paths; 003: 48 runs, each at 15 SIRs): resampling
     whole clusters covers the mean; resampling trials as if independent does not (its interval is too
@@ -211,10 +236,9 @@ def test_grouped_bootstrap_covers_where_the_trial_bootstrap_does_not(c, m, metho
 def test_grouped_bootstrap_with_unequal_clusters_resamples_whole_clusters():
     rng = np.random.default_rng(5)
     x = rng.normal(size=9)
-    groups = np.array([2, 2, 7, 7, 7, 1, 1, 1, 1])        # sizes 2, 3, 4; labels in any order
-    est = bootstrap_ci((x,), np.mean, groups=groups, method="percentile", n_resamples=400,
-                       rng=np.random.default_rng(1))
-    members = [np.flatnonzero(groups == g) for g in (2, 7, 1)]   # order of first appearance
+    groups = np.array([2, 2, 7, 7, 7, 1, 1, 1, 1])  # sizes 2, 3, 4; labels in any order
+    est = bootstrap_ci((x,), np.mean, groups=groups, method="percentile", n_resamples=400, rng=np.random.default_rng(1))
+    members = [np.flatnonzero(groups == g) for g in (2, 7, 1)]  # order of first appearance
     picks = np.random.default_rng(1).integers(0, 3, size=(400, 3))
     boot = np.array([x[np.concatenate([members[k] for k in row])].mean() for row in picks])
     assert (est.ci_low, est.ci_high) == pytest.approx(tuple(np.quantile(boot, [0.025, 0.975])))
@@ -234,9 +258,42 @@ def test_grouped_bootstrap_keeps_the_pairing_of_several_samples():
     path = rng.lognormal(0, 1, size=(15, 1))
     a, b = (2.0 * path * rng.gamma(20, 0.05, (15, 4))).ravel(), (path * rng.gamma(20, 0.05, (15, 4))).ravel()
     groups = np.repeat(np.arange(15), 4)
-    est = bootstrap_ci((a, b), lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis), groups=groups,
-                       method="expanded percentile")
-    assert est.ci_low < 2.0 < est.ci_high and est.ci_high - est.ci_low < 0.3     # paired: the path scale cancels
+    est = bootstrap_ci(
+        (a, b), lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis), groups=groups, method="expanded percentile"
+    )
+    assert est.ci_low < 2.0 < est.ci_high and est.ci_high - est.ci_low < 0.3  # paired: the path scale cancels
+
+
+def test_grouped_bootstrap_of_independent_samples_resamples_rows_of_each():
+    """Row bootstrap of per-trial error vectors (n, k) of two independent configurations: the ratio of
+    summed column variances (the unified-location gain of 002), each sample's rows resampled apart."""
+    rng = np.random.default_rng(7)
+    e1, e2 = rng.normal(0, 2.0, size=(40, 3)), rng.normal(0, 1.0, size=(30, 3))
+
+    def vsum(x, k=3):
+        return x.reshape(*x.shape[:-1], -1, k).var(axis=-2, ddof=1).sum(axis=-1)
+
+    est = bootstrap_ci(
+        (e1.ravel(), e2.ravel()),
+        lambda a, b, axis: vsum(a) / vsum(b),
+        paired=False,
+        groups=[np.repeat(np.arange(40), 3), np.repeat(np.arange(30), 3)],
+        method="percentile",
+        rng=np.random.default_rng(2),
+    )
+    draws = np.random.default_rng(2)
+    i1, i2 = draws.integers(0, 40, size=(2000, 40)), draws.integers(0, 30, size=(2000, 30))
+    boot = e1[i1].var(axis=1, ddof=1).sum(axis=-1) / e2[i2].var(axis=1, ddof=1).sum(axis=-1)
+    assert est.value == pytest.approx(e1.var(axis=0, ddof=1).sum() / e2.var(axis=0, ddof=1).sum())
+    assert (est.ci_low, est.ci_high) == pytest.approx(tuple(np.quantile(boot, [0.025, 0.975])))
+    assert est.n == 30 and "40/30 clusters" in est.method
+    with pytest.raises(ValueError, match="BCa"):
+        bootstrap_ci(
+            (e1.ravel(), e2.ravel()),
+            lambda a, b, axis: vsum(a) / vsum(b),
+            paired=False,
+            groups=[np.repeat(np.arange(40), 3), np.repeat(np.arange(30), 3)],
+        )
 
 
 def test_robust_summary_counts_divergence_by_its_rule():

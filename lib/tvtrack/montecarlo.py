@@ -225,35 +225,44 @@ def _cluster_members(groups: np.ndarray) -> list[np.ndarray]:
     return [np.flatnonzero(inverse == k) for k in order]
 
 
-def _cluster_statistics(data, statistic, members, picks: np.ndarray) -> np.ndarray:
-    """``statistic`` on the trials of the clusters in each row of ``picks`` (B, c) -> (B,).
-
-    Equal cluster sizes are evaluated in one vectorised call; unequal sizes row by row."""
-    sizes = {len(m) for m in members}
-    if len(sizes) == 1:
-        table = np.stack(members)                                      # (C, m)
-        idx = table[picks].reshape(len(picks), -1)                     # (B, c * m)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.asarray(statistic(*(x[idx] for x in data), axis=-1), dtype=float)
-    out = np.empty(len(picks))
-    for j, row in enumerate(picks):
-        idx = np.concatenate([members[k] for k in row])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out[j] = float(statistic(*(x[idx] for x in data), axis=-1))
-    return out
+def _cluster_indices(members: list[np.ndarray], picks: np.ndarray) -> np.ndarray | list[np.ndarray]:
+    """Trial indices of the clusters picked in each row of ``picks`` (B, c): an array (B, c * m) for
+    clusters of equal size m (cluster order and trial order kept), else a list of B index arrays."""
+    if len({len(m) for m in members}) == 1:
+        return np.stack(members)[picks].reshape(len(picks), -1)
+    return [np.concatenate([members[k] for k in row]) for row in picks]
 
 
-def _grouped_bootstrap(data, statistic, value: float, groups, n_resamples: int, confidence: float,
+def _cluster_statistics(data, statistic, members, picks) -> np.ndarray:
+    """``statistic`` on the picked clusters of each sample (B,): ``members`` and ``picks`` hold one
+    entry per sample (the same entry for paired samples). Equal cluster sizes are evaluated in one
+    vectorised call, unequal sizes resample by resample."""
+    idx = [_cluster_indices(m, p) for m, p in zip(members, picks)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if all(isinstance(i, np.ndarray) for i in idx):
+            return np.asarray(statistic(*(x[i] for x, i in zip(data, idx)), axis=-1), dtype=float)
+        return np.array([float(statistic(*(x[i[j]] for x, i in zip(data, idx)), axis=-1))
+                         for j in range(len(picks[0]))])
+
+
+def _grouped_bootstrap(data, statistic, value: float, groups, paired: bool, n_resamples: int, confidence: float,
                        rng: np.random.Generator, method: str) -> Estimate:
-    """Cluster bootstrap of :func:`bootstrap_ci`: whole clusters resampled with replacement."""
-    groups = np.asarray(groups).ravel()
-    if any(x.size != groups.size for x in data):
-        raise ValueError(f"bootstrap_ci: 'groups' has {groups.size} labels, the samples {[x.size for x in data]} trials")
-    members = _cluster_members(groups)
-    C = len(members)
+    """Cluster bootstrap of :func:`bootstrap_ci`: whole clusters resampled with replacement, jointly
+    across paired samples (one label array) or independently per sample (one label array each)."""
+    labels = [np.asarray(groups).ravel()] * len(data) if paired or np.ndim(groups[0]) == 0 else \
+        [np.asarray(g).ravel() for g in groups]
+    if len(labels) != len(data) or any(x.size != g.size for x, g in zip(data, labels)):
+        raise ValueError(f"bootstrap_ci: 'groups' has {[g.size for g in labels]} labels, "
+                         f"the samples {[x.size for x in data]} trials")
+    members = [_cluster_members(g) for g in labels]
+    sizes = [len(m) for m in members]
+    C = min(sizes)
     if C < 2:
         return Estimate(value, float("nan"), float("nan"), float("nan"), C, confidence, "none (fewer than 2 clusters)")
-    picks = rng.integers(0, C, size=(n_resamples, C))
+    if paired:
+        picks = [rng.integers(0, C, size=(n_resamples, C))] * len(data)
+    else:
+        picks = [rng.integers(0, c, size=(n_resamples, c)) for c in sizes]
     boot = _cluster_statistics(data, statistic, members, picks)
     boot = boot[np.isfinite(boot)]
     a = 1 - confidence
@@ -263,8 +272,10 @@ def _grouped_bootstrap(data, statistic, value: float, groups, n_resamples: int, 
         a2 = _expanded_alpha(a, C) / 2
         probs = [a2, 1 - a2]
     elif method == "BCa":
-        jack = _cluster_statistics(data, statistic, members,
-                                   np.array([[k for k in range(C) if k != i] for i in range(C)]))
+        if not paired:
+            raise ValueError("bootstrap_ci: BCa with clusters needs paired samples; use 'expanded percentile'")
+        leave_one_out = np.array([[k for k in range(C) if k != i] for i in range(C)])
+        jack = _cluster_statistics(data, statistic, members, [leave_one_out] * len(data))
         z0 = stats.norm.ppf(np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size,
                                     1 / boot.size, 1 - 1 / boot.size))
         d = jack.mean() - jack
@@ -274,8 +285,9 @@ def _grouped_bootstrap(data, statistic, value: float, groups, n_resamples: int, 
     else:
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
     lo, hi = (np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan))
+    what = f"{C} clusters" if paired or len(set(sizes)) == 1 else f"{'/'.join(map(str, sizes))} clusters"
     return Estimate(value, float(boot.std(ddof=1)) if boot.size > 1 else float("nan"), float(lo), float(hi), C,
-                    confidence, f"cluster {method} bootstrap ({n_resamples} resamples of {C} clusters)")
+                    confidence, f"cluster {method} bootstrap ({n_resamples} resamples of {what})")
 
 
 def mean_ci(samples, confidence: float = 0.95, method: str = "t",
@@ -338,12 +350,18 @@ def bootstrap_ci(samples, statistic, *, paired: bool = True, n_resamples: int = 
         ``"BCa"`` (bias-corrected and accelerated) corrects the skew of ratios and mean squares;
         ``"expanded percentile"`` widens the percentile interval for small n (Hesterberg 2015),
         which covers better than BCa below about 50 trials or clusters (``tests/test_intervals.py``).
-    groups : array_like, shape (n_trials,), optional
-        Cluster label of each trial (e.g. the seed, path or scene it was drawn with), shared by all
-        samples (paired). Whole clusters are resampled with replacement (cluster bootstrap), so trials
-        that share a cluster are not treated as independent; ``n`` is then the number of clusters. BCa
-        takes its acceleration from the leave-one-cluster-out jackknife. Equal cluster sizes are
-        vectorised; unequal sizes evaluate the statistic once per resample.
+    groups : array_like, shape (n_trials,), or a sequence of them (one per sample), optional
+        Cluster label of each trial (e.g. the seed, path or scene it was drawn with). Whole clusters are
+        resampled with replacement (cluster bootstrap), so trials that share a cluster are not treated
+        as independent; ``n`` is then the (smallest) number of clusters. Paired: one label array shared
+        by all samples, clusters resampled jointly. Not paired: each sample's clusters resampled
+        independently (one label array per sample, or one for all). BCa (paired only) takes its
+        acceleration from the leave-one-cluster-out jackknife; ``"expanded percentile"`` covers better
+        with few clusters (``tests/test_intervals.py``: 0.95 at 15 clusters where BCa gives 0.92).
+        Equal cluster sizes are vectorised and keep the trial order, so a statistic of per-trial
+        vectors can reshape: flatten rows ``e`` (n, k) with ``groups=np.repeat(np.arange(n), k)`` and
+        reshape ``x.reshape(*x.shape[:-1], -1, k)`` inside the statistic (a row bootstrap). Unequal
+        sizes evaluate the statistic once per resample.
 
     Returns
     -------
@@ -360,9 +378,7 @@ def bootstrap_ci(samples, statistic, *, paired: bool = True, n_resamples: int = 
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant sample)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     if groups is not None:
-        if not paired:
-            raise ValueError("bootstrap_ci: 'groups' resamples clusters of paired trials; it needs paired=True")
-        return _grouped_bootstrap(data, statistic, value, groups, n_resamples, confidence, rng, method)
+        return _grouped_bootstrap(data, statistic, value, groups, paired, n_resamples, confidence, rng, method)
     level = confidence
     if method == "expanded percentile":
         level = 1 - _expanded_alpha(1 - confidence, n)
