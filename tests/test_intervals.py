@@ -15,7 +15,11 @@ import pytest
 from scipy import stats
 
 from interval_cases import CASES, SIZES, coverage, draw, intervals
+from tvtrack.verdicts import is_undecided
 from tvtrack.montecarlo import (
+    Estimate,
+    mark_extrapolated,
+    rate_from_counts,
     COVERAGE,
     COVERAGE_FLOOR,
     bootstrap_ci,
@@ -165,6 +169,18 @@ def test_zero_events_bound_is_the_one_sided_bound_it_certifies(n):
     k = np.random.default_rng(n).binomial(n, b, size=40000)
     assert abs(np.mean(k == 0) - 0.05) < 4 * np.sqrt(0.05 * 0.95 / 40000)
     assert events_statement(0, n).startswith(f"0 of {n} runs: rate < {b:.3g}")
+
+
+def test_rates_decide_from_counts_and_unsupported_tails_are_extrapolated():
+    zero = rate_from_counts(0, 48)
+    assert (zero.value, zero.ci_low, zero.ci_high) == (0.0, 0.0, pytest.approx(1 - 0.05 ** (1 / 48)))
+    assert rate_from_counts(5, 48).ci_low == proportion_ci(5, 48).ci_low
+    tail = Estimate(1e-13, float("nan"), 1e-15, 1e-11, 48, 0.95, "logistic fit")  # a fitted tail at a high SIR
+    assert mark_extrapolated(tail, 0, 48).extrapolated and "0 of 48 runs" in mark_extrapolated(tail, 0, 48).method
+    assert mark_extrapolated(tail, 1, 48).extrapolated  # below what 48 runs resolve
+    fit = Estimate(0.3, 0.05, 0.2, 0.4, 48, 0.95, "logistic fit")
+    assert mark_extrapolated(fit, 14, 48) is fit
+    assert is_undecided(mark_extrapolated(tail, 0, 48)) and not is_undecided(zero)
 
 
 def test_events_statement_gives_the_interval_when_events_happened():

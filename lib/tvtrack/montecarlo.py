@@ -7,7 +7,7 @@ random draw comes from a :class:`numpy.random.Generator` made from the run's ``s
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 from scipy import stats
@@ -15,7 +15,8 @@ from scipy import stats
 __all__ = ["make_rng", "spawn_rngs", "Estimate", "mean_ci", "bootstrap_ci", "mean_square_ci", "variance_ci",
            "rms_ci", "ratio_ci", "paired_difference", "paired_test", "robust_summary", "proportion_ci",
            "zero_events_bound", "events_statement", "quantile_ci", "N_BOOTSTRAP", "BOOTSTRAP_SEED",
-           "COVERAGE", "COVERAGE_FLOOR", "coverage_at", "stated_coverage", "coverage_reached"]
+           "COVERAGE", "COVERAGE_FLOOR", "coverage_at", "stated_coverage", "coverage_reached", "rate_from_counts",
+           "mark_extrapolated"]
 
 #: Bootstrap resamples by default (intervals at the 2.5 % / 97.5 % tails need thousands).
 N_BOOTSTRAP = 2000
@@ -608,6 +609,32 @@ def zero_events_bound(n: int, confidence: float = 0.95) -> float:
     if n <= 0:
         raise ValueError(f"zero_events_bound needs n >= 1, got n={n}")
     return float(1 - (1 - confidence) ** (1 / n))
+
+
+def rate_from_counts(k: int, n: int, confidence: float = 0.95) -> Estimate:
+    """A probability as the direct counts support it: ``k`` events in ``n`` independent runs.
+
+    ``k > 0``: :func:`proportion_ci` (Clopper-Pearson). ``k = 0``: the interval ``[0, b]`` with ``b`` the
+    bound zero events certify (:func:`zero_events_bound`, one-sided), so a rule can decide "the rate is
+    below a target" from the counts alone and never from a model's tail.
+    """
+    if k > 0:
+        return proportion_ci(k, n, confidence)
+    b = zero_events_bound(n, confidence)
+    return Estimate(0.0, float("nan"), 0.0, b, n, confidence,
+                    f"zero events in {n} runs: rate < {b:.3g}, one-sided bound 1 - (1 - confidence)^(1/n)")
+
+
+def mark_extrapolated(fitted: Estimate, k: int, n: int, confidence: float = 0.95) -> Estimate:
+    """A fitted probability (e.g. a logistic loss curve read at one SIR) marked ``extrapolated`` where
+    the ``k`` of ``n`` direct counts behind it cannot resolve it: zero events, or a fitted value below
+    the bound zero events would certify (``1 - 0.05^(1/n)``: the runs would most likely see nothing).
+    An extrapolated estimate is shown but never decides (:func:`tvtrack.verdicts.is_undecided`); use
+    :func:`rate_from_counts` to decide."""
+    if k > 0 and fitted.value >= zero_events_bound(n, confidence):
+        return fitted
+    return replace(fitted, extrapolated=True,
+                   method=f"{fitted.method}; extrapolated: {events_statement(k, n, confidence)}".lstrip("; "))
 
 
 def events_statement(k: int, n: int, confidence: float = 0.95) -> str:
