@@ -58,7 +58,7 @@ def reference_one(z, visible, thr):
     return xs, det
 
 
-def test_full_scenario_speedup(benchmark):
+def test_full_scenario_speedup(benchmark, figure):
     z, visible, thr = scenario()
     cfg = TrackModeConfig(k_bound2=KB2, k_bound3=KB3, window=N_WIN, threshold=thr)
     out = benchmark.pedantic(run_track_modes, args=(z, visible, cfg, 1.0, False), rounds=5, iterations=1)
@@ -75,4 +75,5 @@ def test_full_scenario_speedup(benchmark):
     benchmark.extra_info.update(batched_s=t_batched, filterpy_loop_s_extrapolated=t_ref, speedup=speedup)
     print(f"\nbatched {t_batched:.2f} s; filterpy per-trial loop {t_ref:.1f} s (from {N_REF} trial-channels); "
           f"speed-up {speedup:.0f}x")
-    assert speedup >= 100, f"speed-up {speedup:.0f}x < 100x"
+    fig = figure("001 batched scenario over per-trial filterpy loop (same run)", speedup, 100, at_least=True, unit="x")
+    assert fig.passed, fig.message()
