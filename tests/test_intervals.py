@@ -181,6 +181,7 @@ def test_rates_decide_from_counts_and_unsupported_tails_are_extrapolated():
     fit = Estimate(0.3, 0.05, 0.2, 0.4, 48, 0.95, "logistic fit")
     assert mark_extrapolated(fit, 14, 48) is fit
     assert is_undecided(mark_extrapolated(tail, 0, 48)) and not is_undecided(zero)
+    assert zero.method.startswith("count")  # tvtrack.explore pools replicates of counts as summed counts
 
 
 def test_events_statement_gives_the_interval_when_events_happened():

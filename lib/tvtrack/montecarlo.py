@@ -616,13 +616,14 @@ def rate_from_counts(k: int, n: int, confidence: float = 0.95) -> Estimate:
 
     ``k > 0``: :func:`proportion_ci` (Clopper-Pearson). ``k = 0``: the interval ``[0, b]`` with ``b`` the
     bound zero events certify (:func:`zero_events_bound`, one-sided), so a rule can decide "the rate is
-    below a target" from the counts alone and never from a model's tail.
+    below a target" from the counts alone and never from a model's tail. Both methods read as counts
+    to :mod:`tvtrack.explore`, which pools replicates as summed counts.
     """
     if k > 0:
         return proportion_ci(k, n, confidence)
     b = zero_events_bound(n, confidence)
     return Estimate(0.0, float("nan"), 0.0, b, n, confidence,
-                    f"zero events in {n} runs: rate < {b:.3g}, one-sided bound 1 - (1 - confidence)^(1/n)")
+                    f"count: 0 of {n} runs, rate < {b:.3g} (one-sided bound 1 - (1 - confidence)^(1/n))")
 
 
 def mark_extrapolated(fitted: Estimate, k: int, n: int, confidence: float = 0.95) -> Estimate:
