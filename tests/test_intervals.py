@@ -226,9 +226,25 @@ def test_paired_difference_covers_and_the_paired_tests_agree():
 
 
 def test_paired_difference_of_outcomes_that_never_differ_is_degenerate():
-    d = paired_difference(np.zeros(30), np.zeros(30))
+    d = paired_difference(np.full(30, 2.5), np.full(30, 2.5))
     assert d.ci_low == d.ci_high == 0 and "degenerate" in d.method
     assert "degenerate" in mean_ci(np.ones(10)).method
+
+
+@pytest.mark.parametrize("n", [10, 30, 48])
+def test_paired_difference_of_0_1_outcomes_covers_with_the_zero_discordance_bound(n):
+    """Paired loss / no-loss outcomes (003's compensation comparison: 10 runs per seed, 30 pooled): with rare
+    discordance most experiments have no discordant pair; their interval is the zero-events bound."""
+    rng = np.random.default_rng(n)
+    for p_plus, p_minus in ((0.05, 0.0), (0.1, 0.02), (0.3, 0.1)):
+        u = rng.random((N_EXPERIMENTS, n))
+        both = (u >= p_plus + p_minus) & (u < p_plus + p_minus + 0.2)  # concordant losses; the rest neither
+        a = ((u < p_plus) | both).astype(float)  # discordant (1, 0) pairs with probability p_plus ...
+        b = (((u >= p_plus) & (u < p_plus + p_minus)) | both).astype(float)  # ... and (0, 1) with p_minus
+        cov, _ = cover([paired_difference(x, y) for x, y in zip(a, b)], p_plus - p_minus)
+        assert cov >= 0.93, (p_plus, p_minus, cov)
+    z = paired_difference(np.zeros(n), np.zeros(n))
+    assert (z.ci_low, z.ci_high) == (-zero_events_bound(n), zero_events_bound(n)) and not is_undecided(z)
 
 
 @pytest.mark.parametrize("n, q", [(101, 0.5), (15, 0.5), (30, 0.9), (10, 0.95)])
