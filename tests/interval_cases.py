@@ -11,7 +11,7 @@ from scipy import stats
 
 from tvtrack import montecarlo as mc
 
-SIZES = (10, 15, 30, 48, 100)
+SIZES = (5, 10, 15, 30, 48, 100)
 N_EXPERIMENTS = 2000
 
 

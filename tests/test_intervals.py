@@ -73,8 +73,11 @@ def test_mean_square_bootstrap_t_covers_at_the_sizes_used(n):
 @pytest.mark.parametrize("n", SIZES)
 def test_ratio_expanded_percentile_covers_at_the_sizes_used(n):
     skewed, cov = _table_row("ratio", n, "ratio")
-    assert skewed >= BAND[0], cov
-    assert min(cov.values()) >= 0.92, cov  # heavy path scales too, where BCa gave 0.81-0.90
+    if n >= 10:  # 5 paths: 0.92, short of the band, and stated so (the flag is False)
+        assert skewed >= BAND[0], cov
+        assert min(cov.values()) >= 0.92, cov  # heavy path scales too, where BCa gave 0.81-0.90
+    else:
+        assert skewed < COVERAGE_FLOOR and not coverage_reached(ratio_ci(*draw("ratio", next(iter(cov)), n, r=1)[0]))
     if n <= 30:
         bca = min(coverage("ratio", c, n, "BCa") for c in CASES["ratio"])
         assert bca < 0.91, bca
@@ -115,7 +118,10 @@ def test_helpers_state_coverage_and_the_flag_reads_it():
     assert "coverage 0.936 at n = 15" in ms.method and stated_coverage(ms) == 0.936 and coverage_reached(ms)
     r = rms_ci(np.sqrt(x)[:, None])
     assert stated_coverage(r) == 0.936 and r.ci_low**2 == pytest.approx(ms.ci_low)
-    assert coverage_at("mean t", 12) == COVERAGE["mean t"][10] and coverage_at("ratio", 5) == COVERAGE["ratio"][10]
+    assert coverage_at("mean t", 12) == COVERAGE["mean t"][10] and coverage_at("ratio", 7) == COVERAGE["ratio"][5]
+    few = mean_square_ci(x[:3])  # below the smallest size measured: unmeasured, flag False, not widened
+    assert "coverage unmeasured at n = 3" in few.method and np.isnan(stated_coverage(few))
+    assert not coverage_reached(few) and widen_to_nominal(few) is few
     t = mean_ci(x)
     assert t.method.startswith("Student t; coverage 0.913 at n = 15") and not coverage_reached(t)
     assert mean_ci(np.r_[x, x, x, x, x, x, x]).method == "Student t"  # n >= 100: no statement
