@@ -30,7 +30,7 @@ def data():
     return scan, samples_from_pulse(scan, pulse, noises["xi"])
 
 
-def test_both_variants_vectorise_over_trials(benchmark, data):
+def test_both_variants_vectorise_over_trials(benchmark, data, figure):
     """1000 trials in one batch cost far less than 1000 times one trial (trial-steps per CPU second)."""
     scan, y = data
     f1, f2 = variant1_filter(scan, study.MESSAGE), variant2_filter(scan, study.MESSAGE)
@@ -44,10 +44,13 @@ def test_both_variants_vectorise_over_trials(benchmark, data):
     speedup = 1000 * one / batch
     benchmark.extra_info["trial_steps_per_cpu_s"] = 1000 * 600 / batch
     benchmark.extra_info["vectorisation_speedup"] = speedup
-    assert speedup > 50, f"batching 1000 trials is only {speedup:.0f} x cheaper per trial than one at a time"
+    figure("000 filter steps per CPU s (both variants, 1000 trials x 600 steps)", 2 * 1000 * 600 / batch, 1.2e6,
+           at_least=True)
+    fig = figure("000 batching 1000 trials vs one at a time (per-trial CPU ratio)", speedup, 50, at_least=True)
+    assert fig.passed, fig.message()
 
 
-def test_variant1_costs_more_than_variant2_but_less_than_four_times(benchmark, data):
+def test_variant1_costs_more_than_variant2_but_less_than_four_times(benchmark, data, figure):
     scan, y = data
     ratio = benchmark.pedantic(
         lambda: (
@@ -58,10 +61,11 @@ def test_variant1_costs_more_than_variant2_but_less_than_four_times(benchmark, d
         iterations=1,
     )
     benchmark.extra_info["v1_over_v2"] = ratio
+    figure("000 variant 1 / variant 2 CPU time", ratio, 4.0, at_least=False)
     assert 1.0 < ratio < 4.0, f"variant 1 / variant 2 CPU time {ratio:.2f}"
 
 
-def test_a_one_at_a_time_configuration_reuses_the_default_runs(benchmark):
+def test_a_one_at_a_time_configuration_reuses_the_default_runs(benchmark, figure):
     """The exploration's one-at-a-time runs share the first replicate's seed: a reading that only changes how the
     claims are read (the statistic) recomputes no filter run."""
     sizes = study.Sizes(n_trials=300)
@@ -74,4 +78,5 @@ def test_a_one_at_a_time_configuration_reuses_the_default_runs(benchmark):
         iterations=1,
     )
     benchmark.extra_info["oat_over_first"] = again / first
+    figure("000 statistic-only configuration / full measurement (CPU)", again / first, 0.35, at_least=False)
     assert again < 0.35 * first, f"a statistic-only configuration cost {again / first:.0%} of a full measurement"

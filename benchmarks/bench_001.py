@@ -66,7 +66,7 @@ def reference_one(z, visible, thr):
     return xs, det
 
 
-def test_full_scenario_speedup(benchmark):
+def test_full_scenario_speedup(benchmark, figure):
     z, visible, thr = scenario()
     cfg = TrackModeConfig(k_bound2=KB2, k_bound3=KB3, window=N_WIN, threshold=thr)
     out = benchmark.pedantic(run_track_modes, args=(z, visible, cfg, 1.0, False), rounds=5, iterations=1)
@@ -84,4 +84,5 @@ def test_full_scenario_speedup(benchmark):
                                 target_400x_met=bool(speedup >= 400))
     print(f"\nbatched {t_batched:.2f} s; filterpy per-trial loop {t_ref:.1f} s (from {N_REF} trial-channels); "
           f"speed-up {speedup:.0f}x")
-    assert speedup >= 100, f"speed-up {speedup:.0f}x < 100x"
+    fig = figure("001 batched scenario over per-trial filterpy loop (same run)", speedup, 100, at_least=True, unit="x")
+    assert fig.passed, fig.message()

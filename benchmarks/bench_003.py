@@ -2,7 +2,7 @@
 
 - Gate-crop tracking throughput: rendering + quadrant discriminator + five-state loops, batched
   over trials (200 runs of 1 s, five interferers, static scene set-up included), >= 20,000
-  frames/s on one core.
+  frames per CPU second (process CPU time, not wall time: issue 30).
 - The paper profile's loss studies under 6 minutes on ONE core: headline 4 conditions x 15 SIR x
   48 runs of 10 s, geometry/motion 12 x 15 x 15 x 10 s, ablations 5 x 15 x 18 x 5 s, no
   compensation 5 x 18 x 10 s, decoy 5 x 8 x 60 x 5 s at 500 frames/s (about 38 M gate frames,
@@ -29,13 +29,21 @@ def _batch(n_trials: int, duration_s: float, n_interferers: int = 5):
     return n_trials * sc.n_frames
 
 
-def test_gate_crop_frames_per_second(benchmark):
+def test_gate_crop_frames_per_second(benchmark, figure):
     frames = 200 * 500
-    result = benchmark.pedantic(_batch, args=(200, 1.0), rounds=3, iterations=1)
+    cpu = []
+
+    def batch():
+        t0 = time.process_time()
+        out = _batch(200, 1.0)
+        cpu.append(time.process_time() - t0)
+        return out
+
+    result = benchmark.pedantic(batch, rounds=3, iterations=1)
     assert result == frames
-    rate = frames / benchmark.stats.stats.min
-    benchmark.extra_info["frames_per_s"] = rate
-    assert rate >= 20_000, f"{rate:.0f} gate-crop frames/s < 20,000"
+    benchmark.extra_info["frames_per_wall_s"] = frames / benchmark.stats.stats.min
+    fig = figure("003 gate-crop frames per CPU s", frames / min(cpu), 20_000, at_least=True)
+    assert fig.passed, fig.message()
 
 
 def _loss_batch_cpu(duration_s: float) -> float:
@@ -47,9 +55,10 @@ def _loss_batch_cpu(duration_s: float) -> float:
     return time.process_time() - t0
 
 
-def test_loss_studies_paper_profile_under_6_minutes(benchmark):
+def test_loss_studies_paper_profile_under_6_minutes(benchmark, figure):
     short, long_ = benchmark.pedantic(lambda: (_loss_batch_cpu(0.5), _loss_batch_cpu(1.0)), rounds=1, iterations=1)
     per_frame = (long_ - short) / (3 * len(SIRS) * 5 * 0.5 * 500)
     projected = per_frame * PAPER_LOSS_FRAMES
     benchmark.extra_info["projected_loss_studies_cpu_s"] = projected
-    assert projected < 360, f"projected loss studies {projected:.0f} CPU s > 360 s"
+    fig = figure("003 loss studies, projected CPU s", projected, 360, at_least=False, unit="s")
+    assert fig.passed, fig.message()

@@ -5,7 +5,8 @@ not timed): energy centre with border-median background and 3-sigma threshold
 (:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y and
 its one-frame prediction (:func:`tvtrack.predictors.growing_memory_forecast`: the core filter for
 the first N_f frames, then the fixed-gain filter as an IIR filter).
-Targets: >= 50,000 gate-crop frames/s on one core; the notebook's paper profile < 5 minutes.
+Targets: >= 50,000 gate-crop frames per CPU second; the notebook's paper profile in <= 300 CPU s of its
+kernel (the old "< 5 minutes" wall; the notebook runs on one core).
 
 The frame rate is asserted on process CPU time (best of 5; numpy here runs on one core), because
 the development machine is shared and wall time there measures the other users; the wall-clock
@@ -15,6 +16,7 @@ rate is reported beside it (``extra_info``).
 import time
 
 import numpy as np
+from figures import CpuClock
 
 from tvtrack.estimate.spot_centre import windowed_centroid
 from tvtrack.predictors import growing_memory_forecast
@@ -25,7 +27,7 @@ from tvtrack.scenes.beam_wander import SpotCamera
 from tvtrack.traces import load_traces
 
 TARGET_FRAMES_PER_S = 50_000
-TARGET_PAPER_PROFILE_S = 300.0  # issue 18: under 5 minutes on 2 cores
+TARGET_PAPER_PROFILE_S = 300.0  # CPU s (issue 18: under 5 minutes; one core)
 
 
 def gate_crops():
@@ -46,7 +48,7 @@ def measure_filter_predict(crops, origin):
     return growing_memory_forecast(z, 1, 2, 10)
 
 
-def test_gate_crop_pipeline_frames_per_s(benchmark):
+def test_gate_crop_pipeline_frames_per_s(benchmark, figure):
     crops, origin, truth = gate_crops()
     n_frames = crops.shape[0] * crops.shape[1]
     pred = benchmark.pedantic(measure_filter_predict, args=(crops, origin), rounds=5, iterations=1,
@@ -61,12 +63,14 @@ def test_gate_crop_pipeline_frames_per_s(benchmark):
     rate = n_frames / min(cpu)
     benchmark.extra_info["frames_per_cpu_s"] = rate
     benchmark.extra_info["frames_per_wall_s"] = n_frames / benchmark.stats.stats.min
-    assert rate >= TARGET_FRAMES_PER_S, f"{rate:.0f} frames per CPU second < {TARGET_FRAMES_PER_S}"
+    fig = figure("004 gate-crop frames per CPU s", rate, TARGET_FRAMES_PER_S, at_least=True)
+    assert fig.passed, fig.message()
 
 
-def test_paper_profile_runtime(benchmark, tmp_path):
-    """Wall time of the paper profile (meaningful on an otherwise idle 2-core machine); the
-    notebook also records its CPU seconds per section in ``results.json`` (``section_cpu_s``)."""
+def test_paper_profile_runtime(benchmark, tmp_path, figure):
+    """CPU time of the paper profile (kernel and its children; wall time depends on the machine's load
+    and is reported beside it); the notebook also records its CPU seconds per section in
+    ``results.json`` (``section_cpu_s``)."""
     counter = iter(range(100))
 
     def one_run():
@@ -74,8 +78,8 @@ def test_paper_profile_runtime(benchmark, tmp_path):
         assert outcome.ok, outcome.error
         return outcome
 
-    t0 = time.perf_counter()
-    benchmark.pedantic(one_run, rounds=1, iterations=1)
-    elapsed = time.perf_counter() - t0
-    benchmark.extra_info["paper_profile_s"] = elapsed
-    assert elapsed < TARGET_PAPER_PROFILE_S, f"paper profile {elapsed:.0f} s >= {TARGET_PAPER_PROFILE_S:.0f} s"
+    with CpuClock() as clock:
+        benchmark.pedantic(one_run, rounds=1, iterations=1)
+    benchmark.extra_info.update(paper_profile_wall_s=clock.wall_s, paper_profile_cpu_s=clock.cpu_s)
+    fig = figure("004 paper profile CPU s", clock.cpu_s, TARGET_PAPER_PROFILE_S, at_least=False, unit="s")
+    assert fig.passed, fig.message()

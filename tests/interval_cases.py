@@ -1,0 +1,128 @@
+"""Simulated experiments for the coverage of the interval helpers (``tests/test_intervals.py``).
+
+Each case draws ``(R, n)`` per-trial values of known mean (or ratio of means) at the sample sizes the
+notebooks use the helpers at: 10 and 30 trials (003: 10 runs per seed, 3 seeds), 15 paths (004), 16-48
+trials or clusters per grid point (003), 100 trials (002 headline sweeps). The experiments are vectorised:
+one call resamples all ``R`` experiments at once through the helpers' own batched interval code.
+"""
+
+import numpy as np
+from scipy import stats
+
+from tvtrack import montecarlo as mc
+
+SIZES = (5, 10, 15, 30, 48, 100)
+N_EXPERIMENTS = 2000
+
+
+def _scaled(rng, s, sigma, noise, ratio=1.3):
+    """Per-path mean squares of two methods on the same paths: a path's scale (log-normal ``sigma``,
+    paths of different wander amplitude) times each method's own noise of mean 1."""
+    scale = rng.lognormal(0.0, sigma, s)
+    return ratio * scale * noise(rng, s), scale * noise(rng, s)
+
+
+def _gamma4(rng, s):
+    return rng.gamma(4.0, 0.25, s)
+
+
+def _sq_t3(rng, s):
+    return (rng.standard_t(3, s + (20,)) ** 2).mean(axis=-1) / 3.0
+
+
+#: Positive per-trial values (mean squares): name -> (draw(rng, shape), true mean, heavy tail?)
+MEAN_SQUARE_CASES = {
+    "mean of 20 squared normals": (lambda rng, s: rng.chisquare(20, s) / 20, 1.0, False),
+    "exponential": (lambda rng, s: rng.exponential(1.0, s), 1.0, False),
+    "log-normal sigma 0.5": (lambda rng, s: rng.lognormal(0.0, 0.5, s), np.exp(0.125), False),
+    "log-normal sigma 1": (lambda rng, s: rng.lognormal(0.0, 1.0, s), np.exp(0.5), True),
+    "mean of 20 squared t3": (lambda rng, s: (rng.standard_t(3, s + (20,)) ** 2).mean(axis=-1), 3.0, True),
+}
+
+#: Paired positive per-trial values: name -> (draw(rng, shape) -> (a, b), true mean(a) / mean(b), heavy?)
+RATIO_CASES = {
+    "common exponential, a = 1.5 c + exp(0.5)": (
+        lambda rng, s: (lambda c: (1.5 * c + rng.exponential(0.5, s), c))(rng.exponential(1.0, s)),
+        2.0,
+        False,
+    ),
+    "path scale log-normal 0.5 x gamma(4)": (lambda rng, s: _scaled(rng, s, 0.5, _gamma4), 1.3, False),
+    "path scale log-normal 1 x gamma(4)": (lambda rng, s: _scaled(rng, s, 1.0, _gamma4), 1.3, True),
+    "path scale log-normal 1 x squared t3": (lambda rng, s: _scaled(rng, s, 1.0, _sq_t3), 1.3, True),
+}
+
+#: Real-valued samples for the Student-t mean: name -> (draw, true mean, heavy?)
+MEAN_CASES = {
+    "normal": (lambda rng, s: rng.normal(1.0, 1.0, s), 1.0, False),
+    "exponential": (lambda rng, s: rng.exponential(1.0, s), 1.0, False),
+    "log-normal sigma 0.5": (lambda rng, s: rng.lognormal(0.0, 0.5, s), np.exp(0.125), False),
+    "Student t3": (lambda rng, s: rng.standard_t(3, s), 0.0, True),
+    "log-normal sigma 1": (lambda rng, s: rng.lognormal(0.0, 1.0, s), np.exp(0.5), True),
+}
+
+CASES = {"mean_square": MEAN_SQUARE_CASES, "ratio": RATIO_CASES, "mean": MEAN_CASES}
+
+
+def draw(helper: str, case: str, n: int, r: int = N_EXPERIMENTS):
+    f, truth, _ = CASES[helper][case]
+    rng = np.random.default_rng([20261125, list(CASES[helper]).index(case), n])
+    return f(rng, (r, n)), truth
+
+
+def intervals(helper: str, data, method: str = "new"):
+    """Lower and upper 95 % bounds (R,) of every experiment, by the helper's interval (``"new"``) or by
+    the interval it used before (``"BCa"`` bootstrap via scipy, batched; for ``"mean"`` Student t)."""
+    rng = np.random.default_rng(mc.BOOTSTRAP_SEED)
+    if method == "new" and helper == "mean_square":
+        lo, hi, _ = mc._studentized_mean_interval(data, 0.95, mc.N_BOOTSTRAP, rng)
+        return np.maximum(lo, 0.0), hi
+    if method == "new" and helper == "ratio":
+        lo, hi, _ = mc._expanded_percentile_ratio(data[0], data[1], 0.95, True, mc.N_BOOTSTRAP, rng)
+        return lo, hi
+    if helper == "mean":
+        x = data
+        if method == "new":
+            lo, hi, _ = mc._studentized_mean_interval(x, 0.95, mc.N_BOOTSTRAP, rng)
+            return lo, hi
+        half = stats.t.ppf(0.975, x.shape[1] - 1) * x.std(axis=1, ddof=1) / np.sqrt(x.shape[1])
+        return x.mean(axis=1) - half, x.mean(axis=1) + half
+    # the BCa interval the helpers used before (scipy.stats.bootstrap on a batch of experiments)
+    samples = (data,) if helper == "mean_square" else data
+    stat = (
+        (lambda x, axis: x.mean(axis=axis))
+        if helper == "mean_square"
+        else (lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis))
+    )
+    lo, hi = [], []
+    for r0 in range(0, samples[0].shape[0], 200):
+        res = stats.bootstrap(
+            tuple(x[r0 : r0 + 200] for x in samples),
+            stat,
+            paired=True,
+            vectorized=True,
+            axis=-1,
+            n_resamples=mc.N_BOOTSTRAP,
+            method="BCa",
+            rng=rng,
+        )
+        lo.append(res.confidence_interval.low)
+        hi.append(res.confidence_interval.high)
+    return np.concatenate(lo), np.concatenate(hi)
+
+
+def coverage(helper: str, case: str, n: int, method: str = "new") -> float:
+    data, truth = draw(helper, case, n)
+    lo, hi = intervals(helper, data, method)
+    return float(np.mean((lo <= truth) & (truth <= hi)))
+
+
+if __name__ == "__main__":  # prints the coverage table (helper, n, case, before, after)
+    import sys
+
+    helpers = sys.argv[1:] or list(CASES)
+    for h in helpers:
+        for case, (_, _, heavy) in CASES[h].items():
+            for n in SIZES:
+                before = coverage(h, case, n, "BCa" if h != "mean" else "t")
+                after = coverage(h, case, n)
+                print(f"| {h} | {n} | {case}{' (heavy)' if heavy else ''} | {before:.3f} | {after:.3f} |", flush=True)

@@ -1,0 +1,34 @@
+"""The benchmark table writer (benchmarks/figures.py): one row per figure, pass computed from the target's
+direction, rows of figures not measured in a run kept, re-measured rows replaced."""
+
+import importlib.util
+import sys
+from pathlib import Path
+
+_spec = importlib.util.spec_from_file_location("bench_figures", Path(__file__).parents[1] / "benchmarks" / "figures.py")
+figures = importlib.util.module_from_spec(_spec)
+sys.modules["bench_figures"] = figures  # dataclasses resolve their module while it executes
+_spec.loader.exec_module(figures)
+
+
+def test_figures_pass_by_their_direction_and_merge_into_one_table(tmp_path):
+    table = tmp_path / "table.md"
+    floor = figures.Figure("001 speed-up", 412.0, 400, at_least=True, unit="x")
+    ceiling = figures.Figure("runner overhead", 1.8, 1.5, at_least=False, unit="s")
+    assert floor.passed and not ceiling.passed and ">= 400" in floor.row() and "<= 1.5 s" in ceiling.message()
+    figures.write_table([floor, ceiling], table)
+    figures.write_table([figures.Figure("runner overhead", 1.2, 1.5, at_least=False, unit="s")], table)
+    rows = figures.read_table(table)
+    assert set(rows) == {"001 speed-up", "runner overhead"}
+    assert rows["runner overhead"] == "| runner overhead | 1.2 s | <= 1.5 s | yes |"
+    assert rows["001 speed-up"] == "| 001 speed-up | 412 x | >= 400 x | yes |"
+    assert table.read_text().count("| figure | value | target | pass |") == 1
+
+
+def test_cpu_clock_counts_cpu_not_sleep():
+    import time
+
+    with figures.CpuClock() as c:
+        time.sleep(0.2)
+        sum(i * i for i in range(300_000))
+    assert c.wall_s >= 0.2 and 0 < c.cpu_s < c.wall_s - 0.15
