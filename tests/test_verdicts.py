@@ -128,3 +128,14 @@ def test_undecided_never_decides():
     mono = Monotone("g", "x", "increasing")
     assert mono.decide([nan, est(2, 3), est(4, 5)]) == "undecided"
     assert mono.decide([est(0, 1), nan, est(4, 5)]) == "reproduced"
+
+
+def test_an_interval_short_of_its_coverage_is_widened_before_it_decides():
+    # a Student-t interval over 10 skewed samples covers about 0.90 (tvtrack.montecarlo.COVERAGE): the rule widens it
+    short = Estimate(1.0, 0.05, 0.9, 1.1, 10, method="Student t; coverage 0.904 at n = 10 (skewed samples)")
+    rule = InBand("q", 0.0, 1.105)
+    assert rule.decide(Estimate(1.0, 0.05, 0.9, 1.1, 10, method="Student t")) == "reproduced"
+    assert rule.decide(short) == "partly"  # widened past 1.105
+    assert "widened" in rule.explain(short)[1]
+    unmeasured = Estimate(1.0, 0.05, 0.9, 1.1, 3, method="bootstrap-t; coverage unmeasured at n = 3")
+    assert rule.decide(unmeasured) == "undecided"

@@ -35,7 +35,7 @@ from scipy import stats
 
 from .montecarlo import Estimate
 from .register import Register
-from .verdicts import Rule, as_estimate, label_parts
+from .verdicts import Rule, calibrated, label_parts
 
 __all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
 
@@ -163,7 +163,7 @@ def pool(measured: Sequence[Any]) -> Any:
         return ms[0]
     first = ms[0]
     if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
-        es = [as_estimate(m) for m in ms]
+        es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
         return _pool_estimates(es)
     if isinstance(first, Mapping):
         keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]

@@ -35,7 +35,7 @@ from typing import Any, Mapping, Sequence
 
 from .montecarlo import Estimate
 
-__all__ = ["VERDICTS", "LABELS", "as_estimate", "is_undecided", "Judgement", "Rule", "InBand", "WithinFactor",
+__all__ = ["VERDICTS", "LABELS", "as_estimate", "calibrated", "is_undecided", "Judgement", "Rule", "InBand", "WithinFactor",
            "Ordering", "Monotone", "AllOf", "NotCheckable", "Choice", "Condition", "Robustness", "rule_parts",
            "label_parts", "weakest_label"]
 
@@ -67,11 +67,29 @@ def _is_exact(e: Estimate) -> bool:
     return e.method == "exact"
 
 
+def calibrated(measured: Any) -> Estimate:
+    """The estimate a rule decides on: an interval whose helper states a measured coverage short of its
+    nominal level at this sample size (:func:`tvtrack.montecarlo.coverage_reached`) is widened to it
+    (:func:`tvtrack.montecarlo.widen_to_nominal`; the method says so); others are returned as they are."""
+    from .montecarlo import coverage_reached, stated_coverage, widen_to_nominal
+
+    e = as_estimate(measured)
+    s = stated_coverage(e)
+    if math.isfinite(s) and not coverage_reached(e):
+        return widen_to_nominal(e)
+    return e
+
+
 def is_undecided(measured: Any) -> bool:
     """True when an estimate cannot decide anything: NaN value, NaN interval or a degenerate interval
-    (``ci_low == ci_high``) of a random quantity, or a value extrapolated beyond the data."""
+    (``ci_low == ci_high``) of a random quantity, a value extrapolated beyond the data, or an interval
+    whose coverage at its sample size was never measured ("coverage unmeasured")."""
+    from .montecarlo import stated_coverage
+
     e = as_estimate(measured)
     if getattr(e, "extrapolated", False) or math.isnan(e.value):
+        return True
+    if not _is_exact(e) and math.isnan(stated_coverage(e)):
         return True
     if _is_exact(e):
         return False
@@ -93,6 +111,8 @@ def _why_undecided(e: Estimate) -> str:
         return "extrapolated beyond the data"
     if math.isnan(e.value):
         return "not measured (NaN)"
+    if "coverage unmeasured" in (e.method or ""):
+        return "its interval's coverage at this sample size is unmeasured"
     return "its interval is undefined or degenerate"
 
 
@@ -105,7 +125,8 @@ def _show(e: Estimate, unit: str = "") -> str:
     u = f" {unit}" if unit else ""
     if math.isnan(a) or math.isnan(b) or a == b == e.value:
         return f"{_g(e.value)}{u}"
-    return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}"
+    widened = " (interval widened to its nominal coverage)" if "widened" in (e.method or "") else ""
+    return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}{widened}"
 
 
 @dataclass(frozen=True)
@@ -201,7 +222,7 @@ class InBand(Rule):
                 "better": self.better}
 
     def judge(self, measured):
-        e = as_estimate(measured)
+        e = calibrated(measured)
         m = _show(e, self.unit)
         if is_undecided(e):
             return Judgement("undecided", f"{self.quantity} = {m}: {_why_undecided(e)}, so it cannot decide", False)
@@ -284,7 +305,7 @@ class Ordering(Rule):
         return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure}
 
     def judge(self, measured):
-        e = as_estimate(measured)
+        e = calibrated(measured)
         m = f"{self._what()} = {_show(e)}"
         if is_undecided(e):
             return Judgement("undecided", f"{m}: {_why_undecided(e)}, so it cannot decide", False)
@@ -338,7 +359,7 @@ class Monotone(Rule):
         return s if self.direction == "increasing" else -s
 
     def judge(self, measured: Sequence):
-        es = [as_estimate(m) for m in measured]
+        es = [calibrated(m) for m in measured]
         if len(es) < 2:
             raise ValueError("Monotone needs at least two points")
         bad = [i for i, e in enumerate(es) if is_undecided(e)]
