@@ -3,7 +3,7 @@
 Work (issue 3): 15 paths x 1000 frames of 31 x 31 gate crops (rendered and read out beforehand,
 not timed): energy centre with border-median background and 3-sigma threshold
 (:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y and
-its one-frame prediction (:func:`tvtrack.predictors.growing_memory_forecast`: the core filter for
+its one-frame prediction (:func:`tvtrack.papers.p004_laser_spot_prediction.predictors.growing_memory_forecast`: the core filter for
 the first N_f frames, then the fixed-gain filter as an IIR filter).
 Targets: >= 50,000 gate-crop frames/s on one core; the notebook's paper profile < 5 minutes.
 
@@ -16,13 +16,13 @@ import time
 
 import numpy as np
 
-from tvtrack.estimate.spot_centre import windowed_centroid
-from tvtrack.predictors import growing_memory_forecast
-from tvtrack.traces import DATA_DIR
+from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
+from tvtrack.papers.p004_laser_spot_prediction.predictors import growing_memory_forecast
+from tvtrack.papers.p004_laser_spot_prediction.traces import DATA_DIR
 from tvtrack.render import gate_origin, gaussian_spot, sensor_readout
 from tvtrack.pipeline.runner import run_notebook
-from tvtrack.scenes.beam_wander import SpotCamera
-from tvtrack.traces import load_traces
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import SpotCamera
+from tvtrack.papers.p004_laser_spot_prediction.traces import load_traces
 
 TARGET_FRAMES_PER_S = 50_000
 TARGET_PAPER_PROFILE_S = 300.0  # issue 18: under 5 minutes on 2 cores

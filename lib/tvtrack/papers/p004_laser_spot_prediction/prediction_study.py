@@ -1,7 +1,7 @@
 """The prediction comparison of notebook 004, with every method tuned the same way.
 
 Every method sees the same measured series and predicts ``steps`` frames ahead; each method's
-free setting is chosen by cross-validation over paths (:func:`tvtrack.predictors.cross_validated_pick`:
+free setting is chosen by cross-validation over paths (:func:`tvtrack.papers.p004_laser_spot_prediction.predictors.cross_validated_pick`:
 the setting with the smallest error on the *other* paths of the fold), never on the paths it is
 scored on:
 
@@ -166,7 +166,7 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
     reference : ndarray, broadcastable to ``z``
         What the predictions are scored against (measured centres with NaN for lost frames, or truth).
     folds : list of (train, test)
-        :func:`tvtrack.predictors.path_folds`.
+        :func:`tvtrack.papers.p004_laser_spot_prediction.predictors.path_folds`.
     rng : numpy.random.Generator
         Seeds of the learned models.
     learned_models : dict, optional

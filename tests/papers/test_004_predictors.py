@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tvtrack import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.filters.polynomial import growing_memory_filter, predict_ahead
 
 
@@ -168,7 +168,7 @@ def test_cross_validated_learned_forecast_is_reproducible_and_complete():
 
 
 def test_cross_validated_pick_never_uses_the_test_path():
-    from tvtrack.predictors import cross_validated_pick, path_folds
+    from tvtrack.papers.p004_laser_spot_prediction.predictors import cross_validated_pick, path_folds
 
     # candidate 1 is best on paths 0-3, candidate 0 on paths 4-5; a fold picks from its training paths only,
     # so paths 0-3 get candidate 0 (their training sets include 4-5) and paths 4-5 get candidate 1
@@ -180,7 +180,7 @@ def test_cross_validated_pick_never_uses_the_test_path():
 def test_fading_memory_filter_is_the_discounted_least_squares_quadratic():
     """Morrison's gains give, after the start-up has faded, the quadratic that minimises
     sum_j theta^j (z_{n-j} - h_j X)^2 (checked against numpy lstsq on the last 400 samples)."""
-    from tvtrack.predictors import fading_memory_forecast
+    from tvtrack.papers.p004_laser_spot_prediction.predictors import fading_memory_forecast
 
     theta, T = 0.8, 600
     z = np.cumsum(np.random.default_rng(4).standard_normal(T))

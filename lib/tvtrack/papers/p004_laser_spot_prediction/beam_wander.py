@@ -24,7 +24,7 @@ integral for the discrete process noise), so no discretisation error depends on 
 
 Command line (writes the data set shipped in ``data/laser_traces``)::
 
-    python -m tvtrack.scenes.beam_wander --out data/laser_traces --seed 20050110
+    python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander --out data/laser_traces --seed 20050110
 """
 
 from __future__ import annotations
@@ -37,15 +37,21 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import block_diag, expm
 
-from ..estimate.spot_centre import windowed_centroid
-from ..measure import centroid
-from ..predictors import kalman_forecast
-from ..render import gate_origin, gaussian_spot, sensor_readout
-from ..traces import TraceSet, save_traces, sha256_file
+from .spot_centre import windowed_centroid
+from ...measure import centroid
+from .predictors import kalman_forecast
+from ...render import gate_origin, gaussian_spot, sensor_readout
+from .traces import TraceSet, save_traces, sha256_file
 
 __all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "component_table", "one_frame_motion_rms",
            "with_frame_jitter", "gauss_markov_discrete", "generate_traces",
            "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
+
+#: The generator's name as the shipped data set records it (``metadata["generator"]``). The module has
+#: since moved into the paper package; the recorded name stays so that regenerating the data set with
+#: ``python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander`` writes the same metadata (the
+#: arrays agree to the last bits the machine's floating point allows; ``tests/papers/test_004_traces.py``).
+GENERATOR_RECORDED_NAME = "tvtrack.scenes.beam_wander.generate_traces"
 
 
 @dataclass(frozen=True)
@@ -307,7 +313,7 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     if not c.aliased_corners:
         del cfg["aliased_corners"]
     metadata = {
-        "generator": "tvtrack.scenes.beam_wander.generate_traces",
+        "generator": GENERATOR_RECORDED_NAME,
         "config": cfg,
         "seed": int(seed),
         "wander_rms_px": rms.tolist(),
@@ -414,7 +420,7 @@ class SpotCamera:
     threshold_sigma : float
         Centroid threshold in robust border RMS above the border median (default 3).
     centroid_mode : {"windowed", "gate"}
-        ``"windowed"`` (default): :func:`tvtrack.estimate.spot_centre.windowed_centroid`, a soft
+        ``"windowed"`` (default): :func:`tvtrack.papers.p004_laser_spot_prediction.spot_centre.windowed_centroid`, a soft
         window of ``centroid_window_px`` re-centred on the estimate (no pull toward the gate
         centre); ``"gate"``: the thresholded centroid over the whole gate
         (:func:`tvtrack.measure.centroid`), whose noise pixels pull the centre toward the previous
@@ -544,7 +550,7 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
 
 def main(argv=None) -> int:
     """Write a trace data set: ``traces.npz`` plus ``checksums.sha256``."""
-    ap = argparse.ArgumentParser(prog="python -m tvtrack.scenes.beam_wander",
+    ap = argparse.ArgumentParser(prog="python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander",
                                  description="Generate synthetic laser beam-wander traces (true centres).")
     ap.add_argument("--out", required=True, help="output folder")
     ap.add_argument("--seed", type=int, required=True, help="random seed (integer >= 0)")

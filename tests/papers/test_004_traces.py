@@ -7,12 +7,12 @@ import zipfile
 import numpy as np
 import pytest
 
-from tvtrack.traces import DATA_DIR
-from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
+from tvtrack.papers.p004_laser_spot_prediction.traces import DATA_DIR
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
                                         generate_traces, one_frame_motion_rms, optimal_wander_forecast, scaled_config,
                                         with_frame_jitter,
                                         wander_state_space)
-from tvtrack.traces import TraceSet, load_traces, save_traces, sha256_file
+from tvtrack.papers.p004_laser_spot_prediction.traces import TraceSet, load_traces, save_traces, sha256_file
 
 SHIPPED = DATA_DIR / "laser_traces" / "traces.npz"
 
@@ -163,7 +163,7 @@ def test_scaled_config_scales_amplitude_and_bandwidth():
 
 
 def test_optimal_wander_forecast_beats_the_paper_filter_and_last_value():
-    from tvtrack.predictors import forecast_errors, growing_memory_forecast
+    from tvtrack.papers.p004_laser_spot_prediction.predictors import forecast_errors, growing_memory_forecast
 
     cfg = BeamWanderConfig(n_paths=3, n_frames=400)
     tr = generate_traces(cfg, 11)
