@@ -485,11 +485,14 @@ class GateTrack:
         First pixel ``(x0, y0)`` of each frame's gate.
     gates : ndarray or None, shape (T, rows, cols)
         Gate images (DN) of the batch element ``keep``, if asked for.
+    clipped : ndarray of bool or None, shape (..., T)
+        Whether the gate held a pixel at the sensor's full scale (``2**bit_depth - 1``): saturation.
     """
 
     xy: np.ndarray
     origin: np.ndarray
     gates: np.ndarray | None
+    clipped: np.ndarray | None = None
 
 
 def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCamera = SpotCamera(),
@@ -528,6 +531,8 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
     xy = np.full(c.shape, np.nan)
     origin = np.zeros(c.shape, dtype=np.int64)
     gates = None if keep is None else np.empty((T, g, g))
+    clipped = np.zeros(c.shape[:-1], dtype=bool)
+    full_scale = 2 ** camera.bit_depth - 1
     aim = c[..., 0, :]
     for t in range(T):
         o = np.clip(gate_origin(aim, (g, g)), 0, image_size_px - g)
@@ -542,10 +547,11 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
             m = centroid(img, o, background="border", threshold_sigma=camera.threshold_sigma)
         xy[..., t, :] = m.xy
         origin[..., t, :] = o
+        clipped[..., t] = np.any(img >= full_scale, axis=(-2, -1))
         if keep is not None:
             gates[t] = img[keep]
         aim = np.where(m.valid[..., None], m.xy, aim)  # a lost frame keeps the old gate
-    return GateTrack(xy, origin, gates)
+    return GateTrack(xy, origin, gates, clipped)
 
 
 def main(argv=None) -> int:
