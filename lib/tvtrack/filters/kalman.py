@@ -12,11 +12,48 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
+__all__ = ["joseph_covariance", "kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
 
 
 def _sym(P: np.ndarray) -> np.ndarray:
     return 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def joseph_covariance(P, K, H, R):
+    """The Joseph-form covariance update, for any gain: the one used by every filter in the library.
+
+    ``P+ = (I - K H) P (I - K H)^T + K R K^T``, symmetrised. Valid for a suboptimal gain (bounded,
+    floored or fixed gains of the alpha-beta and growing-memory filters), not only the Kalman gain.
+    For a scalar measurement (``m = 1``) it is evaluated with outer products only,
+    ``P - K b^T - b K^T + (h^T b + R) K K^T`` with ``b = P h`` (the same matrix, about three times
+    faster than the matrix products for small ``n``).
+
+    Parameters
+    ----------
+    P : ndarray, shape (..., n, n)      prior covariance
+    K : ndarray, shape (..., n, m)      gain (any)
+    H : ndarray, shape (m, n) or (..., m, n)
+    R : float or ndarray, shape (m, m) or (..., m, m)   measurement-noise covariance
+
+    Returns
+    -------
+    ndarray, shape (..., n, n)
+    """
+    P = np.asarray(P, dtype=float)
+    K = np.asarray(K, dtype=float)
+    H = np.asarray(H, dtype=float)
+    R = np.asarray(R, dtype=float)
+    if K.shape[-1] == 1:
+        h = H[..., 0, :]
+        k = K[..., 0]
+        b = np.einsum("...ij,...j->...i", P, h)
+        s = np.einsum("...i,...i->...", h, b) + (R.reshape(R.shape[:-2]) if R.ndim >= 2 else R)
+        kb = k[..., :, None] * b[..., None, :]
+        P_new = P - kb - np.swapaxes(kb, -1, -2) + s[..., None, None] * (k[..., :, None] * k[..., None, :])
+        return _sym(P_new)
+    n = P.shape[-1]
+    IKH = np.eye(n) - K @ H
+    return _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2))
 
 
 def kf_predict(x, P, F, Q):
@@ -56,10 +93,8 @@ def kf_update(x, P, z, H, R, mask=None):
     innovation = np.asarray(z, dtype=float) - np.einsum("...ij,...j->...i", H, x)
     S = _sym(H @ P @ Ht + R)
     K = np.swapaxes(np.linalg.solve(S, H @ np.swapaxes(P, -1, -2)), -1, -2)  # P H^T S^-1
-    n = x.shape[-1]
-    IKH = np.eye(n) - K @ H
     x_new = x + np.einsum("...ij,...j->...i", K, innovation)
-    P_new = _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2))
+    P_new = joseph_covariance(P, K, H, R)
     if mask is not None:
         m = np.asarray(mask, dtype=bool)
         x_new = np.where(m[..., None], x_new, x)
