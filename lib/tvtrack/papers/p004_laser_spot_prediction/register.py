@@ -14,7 +14,7 @@ register class; :func:`build` makes the :class:`tvtrack.register.Register`.
 
 from __future__ import annotations
 
-__all__ = ["ROWS", "DEFAULT", "DEPENDS", "build"]
+__all__ = ["ROWS", "DEFAULT", "DEPENDS", "NAMES", "build", "explored"]
 
 #: (name, kind, default, values, why, origin)
 ROWS = (
@@ -64,6 +64,8 @@ ROWS = (
 
 #: {name: default}.
 DEFAULT = {name: default for name, _, default, *_ in ROWS}
+#: Entry names in register order.
+NAMES = tuple(DEFAULT)
 
 _WORLD = ("spectral index", "bandwidth", "amplitude", "jitter", "frame rate", "read noise", "saturation",
           "scintillation", "energy centre")
@@ -86,3 +88,12 @@ def build():
     from ...register import Entry, Register
 
     return Register([Entry(name=n, kind=k, default=d, values=v, why=w, origin=o) for n, k, d, v, w, o in ROWS])
+
+
+def explored(names=()):
+    """The register and the claims' dependencies restricted to the entries ``names`` (all if empty):
+    a smaller exploration (the smoke profile); the other entries stay at their defaults."""
+    reg = build()
+    if not names:
+        return reg, {c: list(d) for c, d in DEPENDS.items()}
+    return reg.subset(list(names)), {c: [e for e in d if e in names] for c, d in DEPENDS.items()}

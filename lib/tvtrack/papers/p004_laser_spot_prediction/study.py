@@ -34,7 +34,7 @@ from .traces import TraceSet
 
 __all__ = ["ENTRIES", "NETWORKS", "OPTIMAL", "StudySize", "StudyRun", "scene_config", "camera_for", "run_study",
            "claim_values", "measure", "measure_batch", "late_rms_ratio", "recursion_vs_batch", "variance_ratios",
-           "model_order_summary", "horizon_study", "clear_cache"]
+           "model_order_summary", "horizon_study", "clear_cache", "scores", "single_values", "grid_edge_report"]
 
 #: Register entry names the study reads (the configuration dict's keys).
 ENTRIES = ("spectral index", "bandwidth", "amplitude", "jitter", "frame rate", "read noise", "saturation",
@@ -301,12 +301,10 @@ def _key(config: dict, names) -> tuple:
     return tuple((n, config[n]) for n in names)
 
 
-def measure_batch(configs, seeds, size: StudySize = StudySize()) -> list[dict]:
-    """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
-    and seed share one rendered scene, and those that also share the horizon and the networks' lags
-    share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it)."""
+def _measure_group(items, size: StudySize) -> list[dict]:
+    """Claim values of (configuration, seed) pairs that share one scene (same scene entries and seed)."""
     out = []
-    for config, seed in zip(configs, seeds):
+    for config, seed in items:
         sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
         if sk not in _CACHE:
             _CACHE[sk] = _scene(config, seed, size)
@@ -317,10 +315,85 @@ def measure_batch(configs, seeds, size: StudySize = StudySize()) -> list[dict]:
     return out
 
 
+def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1) -> list[dict]:
+    """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
+    and seed share one rendered scene, and those that also share the horizon and the networks' lags
+    share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it).
+
+    Parameters
+    ----------
+    workers : int
+        Processes the scene groups are spread over (1: this process, whose cache then also serves
+        later calls, e.g. the adaptive replicates).
+    """
+    from .register import DEFAULT
+
+    configs = [{**DEFAULT, **c} for c in configs]  # entries left out of a smaller exploration stay at their defaults
+    groups: dict = {}
+    for i, (config, seed) in enumerate(zip(configs, seeds)):
+        groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
+    items = [[(dict(configs[i]), int(seeds[i])) for i in idx] for idx in groups.values()]
+    if workers > 1 and len(items) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        ctx = multiprocessing.get_context("fork")
+        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+            results = list(pool.map(_measure_group, items, [size] * len(items)))
+    else:
+        results = [_measure_group(batch, size) for batch in items]
+    out: list = [None] * len(configs)
+    for idx, res in zip(groups.values(), results):
+        for i, r in zip(idx, res):
+            out[i] = r
+    return out
+
+
 def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
     """The explorer's measurement function: one full-size run at ``config`` with all random draws
     from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`)."""
-    return claim_values(run_study(config, seed, size), seed)
+    from .register import DEFAULT
+
+    return claim_values(run_study({**DEFAULT, **config}, seed, size), seed)
+
+
+def scores(run: StudyRun) -> tuple[dict, dict]:
+    """Per method: RMS error against the measured centre (px, bootstrap-t over paths), and the paired
+    ratio of its per-path MSE to the paper filter's (bootstrap-t)."""
+    m = int(run.config["horizon"])
+    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
+    rms = {n: root_mean_ci(v) for n, v in mse.items()}
+    return rms, {n: ratio_of_means_ci(v, mse[PAPER]) for n, v in mse.items() if n != PAPER}
+
+
+def grid_edge_report(run: StudyRun) -> dict:
+    """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
+    an edge may be the grid's limit rather than the method's optimum)."""
+    from .prediction_study import MIN_WINDOW, grid_edges, window_candidates
+
+    s = _setup(run.config, run.size)
+    ch = run.comparison.chosen
+    out = {PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) != 0)),
+           FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0))}
+    for name, lo in MIN_WINDOW.items():
+        out[name] = float(np.mean(grid_edges(ch[name], window_candidates(lo, s.window_grid)) == 1))  # degree+1 is a true limit
+    ca = np.asarray(ch["CA Kalman, ML noise"])
+    out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
+    out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
+    sg = np.asarray(ch[SINGER])
+    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) != 0))
+    return out
+
+
+def single_values(exploration, claim_id: str, entry: str) -> dict:
+    """The claim's measured value at each value of ``entry`` (one at a time; the default pooled)."""
+    from .register import DEFAULT
+
+    out = {exploration.default.get(entry, DEFAULT[entry]): exploration.measured(claim_id)}
+    for r in exploration.runs:
+        if r.stage == "single" and list(r.changed(exploration.default)) == [entry]:
+            out[r.config[entry]] = r.outputs[claim_id]
+    return dict(sorted(out.items()))
 
 
 def model_order_summary(run: StudyRun) -> dict:
