@@ -11,10 +11,16 @@ import pytest
 from tvtrack.papers.p004_laser_spot_prediction import prediction_study as ps
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 
-SETUP = ps.ComparisonSetup(floor_grid=(3, 10), window_grid=(4, 8, 16), start=30,
-                           learned_kw=dict(hidden_units=4, rbf_centres=20, max_samples=600),
-                           jerk_grid=(1e-6, 1e-2), meas_var_grid=(1e-4, 1e-2),
-                           singer_tau_grid=(1.0, 10.0), singer_ratio_grid=(1e-2, 1e2))
+SETUP = ps.ComparisonSetup(
+    floor_grid=(3, 10),
+    window_grid=(4, 8, 16),
+    start=30,
+    learned_kw=dict(hidden_units=4, rbf_centres=20, max_samples=600),
+    jerk_grid=(1e-6, 1e-2),
+    meas_var_grid=(1e-4, 1e-2),
+    singer_tau_grid=(1.0, 10.0),
+    singer_ratio_grid=(1e-2, 1e2),
+)
 
 
 def test_window_candidates_start_at_degree_plus_one():

@@ -7,8 +7,12 @@ the measurement standard deviation passed where its square belongs moves the err
 import numpy as np
 import pytest
 
-from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (BeamWanderConfig, generate_traces,
-                                                                   optimal_wander_forecast, wander_state_space)
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (
+    BeamWanderConfig,
+    generate_traces,
+    optimal_wander_forecast,
+    wander_state_space,
+)
 from tvtrack.papers.p004_laser_spot_prediction.predictors import forecast_errors
 
 SD = 0.1  # px: sd and sd^2 differ tenfold
@@ -36,14 +40,16 @@ def wander():
 def test_optimal_forecast_error_equals_the_riccati_innovation_variance(wander):
     cfg, rms, z = wander
     F, Q, H, P0 = wander_state_space(cfg, rms[:1])
-    S = _riccati_innovation_variance(F, Q[0], H, P0[0], SD ** 2, 400)
-    e = forecast_errors(optimal_wander_forecast(z, cfg, rms, SD ** 2, 1), z, 1)[..., 100:]
+    S = _riccati_innovation_variance(F, Q[0], H, P0[0], SD**2, 400)
+    e = forecast_errors(optimal_wander_forecast(z, cfg, rms, SD**2, 1), z, 1)[..., 100:]
     # 40 paths x 2 axes x 299 white innovations: relative standard error of the mean square ~ 0.8 %
-    assert np.mean(e ** 2) / S == pytest.approx(1.0, abs=0.04)
+    assert np.mean(e**2) / S == pytest.approx(1.0, abs=0.04)
 
 
 def test_the_bound_is_below_a_mismatched_filter(wander):
     cfg, rms, z = wander
-    mse = {r: np.mean(forecast_errors(optimal_wander_forecast(z, cfg, rms, r, 1), z, 1)[..., 100:] ** 2)
-           for r in (SD ** 2, SD, SD ** 2 / 10)}
-    assert mse[SD ** 2] < 0.9 * mse[SD] and mse[SD ** 2] < mse[SD ** 2 / 10]
+    mse = {
+        r: np.mean(forecast_errors(optimal_wander_forecast(z, cfg, rms, r, 1), z, 1)[..., 100:] ** 2)
+        for r in (SD**2, SD, SD**2 / 10)
+    }
+    assert mse[SD**2] < 0.9 * mse[SD] and mse[SD**2] < mse[SD**2 / 10]

@@ -205,7 +205,7 @@ def test_singer_model_is_the_exact_discretisation_and_batches():
     assert F.shape == Q.shape == (7, 3, 3) and R.shape == (1, 1)
     for i, tau in enumerate(taus):
         A = np.array([[0, 1, 0], [0, 0, 1], [0, 0, -1 / tau]])
-        Q_ref = quad_vec(lambda s: np.outer(*(2 * [expm(A * s)[:, 2]])), 0, 1, epsabs=0, epsrel=1e-12)[0]
+        Q_ref = quad_vec(lambda s, A=A: np.outer(*(2 * [expm(A * s)[:, 2]])), 0, 1, epsabs=0, epsrel=1e-12)[0]
         np.testing.assert_allclose(F[i], expm(A), rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose(Q[i], 2 * s2 / tau * Q_ref, rtol=1e-9)
     np.testing.assert_allclose(Q[:, 2, 2], s2 * -np.expm1(-2 / taus), rtol=1e-12)  # stationary acceleration variance

@@ -12,8 +12,18 @@ from ...montecarlo import Estimate
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER
 from .study import NETWORKS, OPTIMAL
 
-__all__ = ["compare_word", "fmt", "claim_line", "findings", "model_order_sentence", "horizon_sentence",
-           "comparison_table", "ranking_sentence", "clip_sentence", "amplitude_sentence"]
+__all__ = [
+    "compare_word",
+    "fmt",
+    "claim_line",
+    "findings",
+    "model_order_sentence",
+    "horizon_sentence",
+    "comparison_table",
+    "ranking_sentence",
+    "clip_sentence",
+    "amplitude_sentence",
+]
 
 
 def fmt(e: Estimate, spec: str = ".2f", unit: str = "") -> str:
@@ -22,8 +32,13 @@ def fmt(e: Estimate, spec: str = ".2f", unit: str = "") -> str:
     return f"{e.value:{spec}} [{e.ci_low:{spec}}, {e.ci_high:{spec}}]{u}"
 
 
-def compare_word(e: Estimate, reference: float = 1.0, above: str = "larger", below: str = "smaller",
-                 same: str = "indistinguishable from") -> str:
+def compare_word(
+    e: Estimate,
+    reference: float = 1.0,
+    above: str = "larger",
+    below: str = "smaller",
+    same: str = "indistinguishable from",
+) -> str:
     """The word a 95 % interval supports against ``reference``: ``above`` if it lies wholly above,
     ``below`` if wholly below, ``same`` if it contains the reference (or is undefined)."""
     if np.isfinite(e.ci_low) and e.ci_low > reference:
@@ -64,13 +79,21 @@ def findings(rules: dict, exploration, paper_values: dict, extra: dict | None = 
 def comparison_table(run, rms: dict, ratios: dict) -> str:
     """Markdown table: method, tuned setting, RMS (px, 95 % CI over paths), paired MSE ratio to the filter."""
     ch = run.comparison.chosen
-    rows = ["| method | tuned setting | RMS one-step error vs measured (px) | MSE / filter's MSE |", "|---|---|---|---|"]
+    rows = [
+        "| method | tuned setting | RMS one-step error vs measured (px) | MSE / filter's MSE |",
+        "|---|---|---|---|",
+    ]
     for name, e in rms.items():
         c = ch.get(name)
-        setting = ("-" if c is None or name.startswith("CA") else
-                   f"tau {np.min(c[:, 0]):.2g}..{np.max(c[:, 0]):.2g} frames" if name == SINGER else
-                   f"theta {np.min(c):g}..{np.max(c):g}" if name == FADING else
-                   f"{'N_f' if name == PAPER else 'L'} {int(np.min(c))}..{int(np.max(c))}")
+        setting = (
+            "-"
+            if c is None or name.startswith("CA")
+            else f"tau {np.min(c[:, 0]):.2g}..{np.max(c[:, 0]):.2g} frames"
+            if name == SINGER
+            else f"theta {np.min(c):g}..{np.max(c):g}"
+            if name == FADING
+            else f"{'N_f' if name == PAPER else 'L'} {int(np.min(c))}..{int(np.max(c))}"
+        )
         r = ratios.get(name)
         rows.append(f"| {name} | {setting} | {fmt(e, '.3f')} | {fmt(r) if r is not None else '-'} |")
     return "\n".join(rows)
@@ -78,26 +101,38 @@ def comparison_table(run, rms: dict, ratios: dict) -> str:
 
 def ranking_sentence(ratios: dict) -> str:
     """Per baseline of the paper's claim: better, worse or indistinguishable, from the paired ratio."""
-    words = {b: compare_word(ratios[b], above="the filter is better", below="the baseline is better",
-                             same="no measurable difference") for b in CLASSICAL + NETWORKS}
-    return ("Paired per-path MSE ratios, baseline over filter (above 1: the filter is better): "
-            + "; ".join(f"{b} {fmt(ratios[b])}: {w}" for b, w in words.items()) + ".")
+    words = {
+        b: compare_word(
+            ratios[b], above="the filter is better", below="the baseline is better", same="no measurable difference"
+        )
+        for b in CLASSICAL + NETWORKS
+    }
+    return (
+        "Paired per-path MSE ratios, baseline over filter (above 1: the filter is better): "
+        + "; ".join(f"{b} {fmt(ratios[b])}: {w}" for b, w in words.items())
+        + "."
+    )
 
 
 def model_order_sentence(summary: dict) -> str:
     """Which model order wins and why (the fitted Singer time constant against the horizon)."""
     r = summary["ratio_2_over_1"]
-    winner = compare_word(r, above="first order (a line)", below="second order (a quadratic)",
-                          same="neither order measurably")
+    winner = compare_word(
+        r, above="first order (a line)", below="second order (a quadratic)", same="neither order measurably"
+    )
     tau = summary["singer_tau_frames"]
-    memory = ("shorter than" if summary["tau_over_horizon"] < 1 else "longer than")
-    return (f"Model order: the best first-order predictor ({summary['best_order1']}) against the best second-order "
-            f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
-            f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames, "
-            f"{memory} the horizon: the acceleration the quadratic extrapolates has "
-            + ("decorrelated before the prediction lands, so the acceleration term adds noise more than it removes "
-               "bias." if summary["tau_over_horizon"] < 1 else
-               "not yet decorrelated when the prediction lands, so the acceleration term carries information."))
+    memory = "shorter than" if summary["tau_over_horizon"] < 1 else "longer than"
+    return (
+        f"Model order: the best first-order predictor ({summary['best_order1']}) against the best second-order "
+        f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
+        f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames, "
+        f"{memory} the horizon: the acceleration the quadratic extrapolates has "
+        + (
+            "decorrelated before the prediction lands, so the acceleration term adds noise more than it removes bias."
+            if summary["tau_over_horizon"] < 1
+            else "not yet decorrelated when the prediction lands, so the acceleration term carries information."
+        )
+    )
 
 
 def horizon_sentence(hz: dict) -> str:
@@ -107,29 +142,44 @@ def horizon_sentence(hz: dict) -> str:
     if not s:
         return "One horizon only: no slope."
     opt = s[OPTIMAL]
-    law = ("close to" if abs(opt - 1.5) < 0.15 else "below" if opt < 1.5 else "above")
+    law = "close to" if abs(opt - 1.5) < 0.15 else "below" if opt < 1.5 else "above"
     floors = ", ".join(f"{h}: {v:g}" for h, v in hz["floor"].items())
-    return (f"Log-log slopes of the RMS error over the horizons: " + ", ".join(f"{n} {v:.2f}" for n, v in s.items())
-            + f". The optimal predictor's own slope, {opt:.2f}, is {law} the 3/2 of a white-acceleration motion "
-              f"(within 0.15 counts as close), so the m^(3/2) law "
-            + ("describes the predictable part of this wander." if law == "close to" else
-               "does not describe this wander over these horizons (its fast component decorrelates within a few "
-               "frames).")
-            + f" The filter's floor was re-tuned at every horizon (median cross-validated N_f per horizon: {floors}).")
+    return (
+        "Log-log slopes of the RMS error over the horizons: "
+        + ", ".join(f"{n} {v:.2f}" for n, v in s.items())
+        + f". The optimal predictor's own slope, {opt:.2f}, is {law} the 3/2 of a white-acceleration motion "
+        f"(within 0.15 counts as close), so the m^(3/2) law "
+        + (
+            "describes the predictable part of this wander."
+            if law == "close to"
+            else "does not describe this wander over these horizons (its fast component decorrelates within a few "
+            "frames)."
+        )
+        + f" The filter's floor was re-tuned at every horizon (median cross-validated N_f per horizon: {floors})."
+    )
 
 
 def clip_sentence(run) -> str:
     """The share of gates that clip at the sensor's full scale."""
-    return (f"Saturation: {run.clipped_share:.0%} of the gates hold a pixel at the {run.camera.bit_depth}-bit full "
-            f"scale (the {run.camera.peak_dn:g} DN peak times the scintillation); the centroid is "
-            f"{run.centroid_rms:.3f} px RMS per axis and {run.lost_share:.1%} of the frames are lost.")
+    return (
+        f"Saturation: {run.clipped_share:.0%} of the gates hold a pixel at the {run.camera.bit_depth}-bit full "
+        f"scale (the {run.camera.peak_dn:g} DN peak times the scintillation); the centroid is "
+        f"{run.centroid_rms:.3f} px RMS per axis and {run.lost_share:.1%} of the frames are lost."
+    )
 
 
 def amplitude_sentence(values: dict) -> str:
     """The filter's RMS at each wander amplitude of the exploration, and whether it lies in 1-2 px."""
     parts = []
     for a, e in values.items():
-        where = "below" if e.ci_high < 1 else "above" if e.ci_low > 2 else "inside" if (e.ci_low >= 1 and e.ci_high <= 2) \
+        where = (
+            "below"
+            if e.ci_high < 1
+            else "above"
+            if e.ci_low > 2
+            else "inside"
+            if (e.ci_low >= 1 and e.ci_high <= 2)
             else "straddling"
+        )
         parts.append(f"amplitude x{a:g}: {fmt(e)} px ({where} 1-2 px)")
     return "The filter's RMS one-step error over the wander amplitudes of the register: " + "; ".join(parts) + "."

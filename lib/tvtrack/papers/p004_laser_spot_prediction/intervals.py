@@ -105,12 +105,20 @@ def root_mean_ci(mean_squares, confidence: float = 0.95, n_resamples: int = N_RE
         raise ValueError("parameter 'mean_squares' must be positive")
     v, se, lo, hi = _bootstrap_t(_log_mean_stat, (m,), confidence, n_resamples, rng)
     root = lambda x: float(np.exp(x / 2))
-    return Estimate(root(v), se * root(v) / 2, root(lo), root(hi), m.size, confidence,
-                    f"square root of the bootstrap-t interval (log scale) of the mean square ({n_resamples} resamples)")
+    return Estimate(
+        root(v),
+        se * root(v) / 2,
+        root(lo),
+        root(hi),
+        m.size,
+        confidence,
+        f"square root of the bootstrap-t interval (log scale) of the mean square ({n_resamples} resamples)",
+    )
 
 
-def ratio_of_means_ci(numerator, denominator, confidence: float = 0.95, n_resamples: int = N_RESAMPLES,
-                      rng=None) -> Estimate:
+def ratio_of_means_ci(
+    numerator, denominator, confidence: float = 0.95, n_resamples: int = N_RESAMPLES, rng=None
+) -> Estimate:
     """``mean(numerator) / mean(denominator)`` of paired positive values (the same paths under two
     methods): bootstrap-t interval of the log ratio on the linearised standard error (positive bounds).
 
@@ -126,5 +134,12 @@ def ratio_of_means_ci(numerator, denominator, confidence: float = 0.95, n_resamp
         raise ValueError("ratio_of_means_ci needs positive values")
     v, se, lo, hi = _bootstrap_t(_log_ratio_stat, (a, b), confidence, n_resamples, rng)
     r = float(np.exp(v))
-    return Estimate(r, se * r, float(np.exp(lo)), float(np.exp(hi)), a.size, confidence,
-                    f"paired bootstrap-t, log scale ({n_resamples} resamples)")
+    return Estimate(
+        r,
+        se * r,
+        float(np.exp(lo)),
+        float(np.exp(hi)),
+        a.size,
+        confidence,
+        f"paired bootstrap-t, log scale ({n_resamples} resamples)",
+    )

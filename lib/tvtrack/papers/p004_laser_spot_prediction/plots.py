@@ -14,11 +14,32 @@ from .prediction_study import PAPER, per_trial_path_mse
 from .spot_centre import centroid_mask
 from .study import OPTIMAL
 
-__all__ = ["plain_log", "errorbars", "measurement_figure", "prediction_figure", "comparison_figure",
-           "horizon_figure", "floor_figure", "gains_figure", "ranking_figure"]
+__all__ = [
+    "plain_log",
+    "errorbars",
+    "measurement_figure",
+    "prediction_figure",
+    "comparison_figure",
+    "horizon_figure",
+    "floor_figure",
+    "gains_figure",
+    "ranking_figure",
+]
 
-_STYLES = [("o", "-"), ("s", "--"), ("^", ":"), ("v", "-."), ("D", "-"), ("x", "--"), ("+", ":"), ("*", "-."),
-           ("<", "-"), (">", "--"), ("p", ":"), ("h", "-.")]
+_STYLES = [
+    ("o", "-"),
+    ("s", "--"),
+    ("^", ":"),
+    ("v", "-."),
+    ("D", "-"),
+    ("x", "--"),
+    ("+", ":"),
+    ("*", "-."),
+    ("<", "-"),
+    (">", "--"),
+    ("p", ":"),
+    ("h", "-."),
+]
 
 
 def plain_log(ax, which: str = "xy") -> None:
@@ -50,8 +71,9 @@ def measurement_figure(run, frame: int):
     mask = centroid_mask(img, o, xy[frame], window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
     fig, axs = plt.subplots(1, 2, figsize=(10, 3.8), width_ratios=[1, 1.6])
     axs[0].imshow(img, cmap="gray", extent=(o[0] - 0.5, o[0] + g - 0.5, o[1] + g - 0.5, o[1] - 0.5))
-    axs[0].contour(np.arange(g) + o[0], np.arange(g) + o[1], mask.astype(float), levels=[0.5], colors="c",
-                   linewidths=0.8)
+    axs[0].contour(
+        np.arange(g) + o[0], np.arange(g) + o[1], mask.astype(float), levels=[0.5], colors="c", linewidths=0.8
+    )
     hw = cam.window_px / 2
     axs[0].add_patch(plt.Rectangle(xy[frame] - hw, 2 * hw, 2 * hw, fill=False, color=colour("gate")))
     axs[0].plot(*xy[frame], "+", color=colour("measurement"), ms=12, label="energy centre")
@@ -82,7 +104,7 @@ def prediction_figure(run, name: str = PAPER, zoom: int = 120):
     axs[0].set(xlabel="frame number", ylabel="x centre (px)", title="Fig. 3 redrawn: measured and predicted, path 1")
     axs[0].legend(fontsize=8)
     axs[1].plot(k[lo:hi], z[0, lo:hi], "o-", ms=3, lw=0.8, color=colour("measurement"), label="measured x")
-    axs[1].plot(k[lo:hi], fc[0, lo - m:hi - m], "s--", ms=3, lw=0.8, color=colour("prediction"), label="predicted x")
+    axs[1].plot(k[lo:hi], fc[0, lo - m : hi - m], "s--", ms=3, lw=0.8, color=colour("prediction"), label="predicted x")
     axs[1].set(xlabel="frame number", ylabel="x centre (px)", title="Fig. 4 redrawn: zoom")
     axs[1].legend(fontsize=8)
     axs[2].plot(k, e[0], lw=0.6, label="x")
@@ -115,8 +137,18 @@ def horizon_figure(hz: dict, horizons):
     for j, (name, d) in enumerate(hz["rms"].items()):
         mk, ls = _STYLES[j % len(_STYLES)]
         shift = 1 + 0.012 * (j - len(hz["rms"]) / 2)  # a small offset keeps identical curves apart
-        errorbars(ax, np.asarray(horizons, float) * shift, [d[h] for h in horizons], marker=mk, ls=ls, ms=4,
-                  capsize=2, lw=2.0 if name == PAPER else 1.0, color="k" if name == OPTIMAL else colour(j), label=name)
+        errorbars(
+            ax,
+            np.asarray(horizons, float) * shift,
+            [d[h] for h in horizons],
+            marker=mk,
+            ls=ls,
+            ms=4,
+            capsize=2,
+            lw=2.0 if name == PAPER else 1.0,
+            color="k" if name == OPTIMAL else colour(j),
+            label=name,
+        )
     ax.axhspan(1, 2, color="g", alpha=0.12, label="1-2 px (paper)")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -132,8 +164,10 @@ def floor_figure(run, floor_grid, late_start: int):
     against the frame, without and with the cross-validated floor (C004-6)."""
     m = int(run.config["horizon"])
     s = run.size.eval_start
-    rms = [np.sqrt(per_trial_path_mse(pr.growing_memory_forecast(run.z, m, 2, nf), run.z_meas, m, s)[0].mean())
-           for nf in floor_grid]
+    rms = [
+        np.sqrt(per_trial_path_mse(pr.growing_memory_forecast(run.z, m, 2, nf), run.z_meas, m, s)[0].mean())
+        for nf in floor_grid
+    ]
     opt = np.sqrt(per_trial_path_mse(run.forecasts[OPTIMAL], run.z_meas, m, s)[0].mean())
     fig, axs = plt.subplots(1, 2, figsize=(10, 3.6))
     axs[0].plot(floor_grid, rms, "o-", label="growing memory, frozen gains g_{N_f}")
@@ -144,7 +178,10 @@ def floor_figure(run, floor_grid, late_start: int):
     axs[0].set(xlabel="floor N_f (samples)", ylabel=f"RMS {m}-frame prediction error (px)")
     axs[0].legend(fontsize=8)
     k = np.arange(run.z.shape[-1])
-    for fc, lab in ((pr.growing_memory_forecast(run.z, m, 2, None), "no floor"), (run.forecasts[PAPER], "floor (cross-validated)")):
+    for fc, lab in (
+        (pr.growing_memory_forecast(run.z, m, 2, None), "no floor"),
+        (run.forecasts[PAPER], "floor (cross-validated)"),
+    ):
         e = np.nan_to_num(pr.forecast_errors(fc, run.z_meas, m)[0])
         axs[1].plot(k[s:], np.sqrt(np.mean(e[..., s:] ** 2, axis=(0, 1))), lw=0.6, label=lab)
     axs[1].axvline(late_start, color="gray", ls="--", lw=0.8, label="late half starts")
@@ -187,8 +224,9 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     default = exploration.default
     for r in exploration.runs:
         if r.stage == "single":
-            label = ", ".join(f"{k} = {v:.3g}" if isinstance(v, float) else f"{k} = {v}" for k, v in
-                              r.changed(default).items())
+            label = ", ".join(
+                f"{k} = {v:.3g}" if isinstance(v, float) else f"{k} = {v}" for k, v in r.changed(default).items()
+            )
             rows.append((label, {b: e for c in claim_ids for b, e in r.outputs[c].items()}))
     names = list(rows[0][1])
     fig, ax = plt.subplots(figsize=(8, 0.28 * len(rows) + 1.5))
@@ -197,8 +235,17 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
         mk, _ = _STYLES[j % len(_STYLES)]
         est = [row[b] for _, row in rows]
         v = np.array([e.value for e in est])
-        ax.errorbar(v, y + 0.1 * (j - len(names) / 2), xerr=[v - [e.ci_low for e in est], [e.ci_high for e in est] - v],
-                    fmt=mk, ms=4, capsize=1.5, lw=0.8, color=colour(j), label=b)
+        ax.errorbar(
+            v,
+            y + 0.1 * (j - len(names) / 2),
+            xerr=[v - [e.ci_low for e in est], [e.ci_high for e in est] - v],
+            fmt=mk,
+            ms=4,
+            capsize=1.5,
+            lw=0.8,
+            color=colour(j),
+            label=b,
+        )
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
     plain_log(ax, "x")
@@ -207,4 +254,3 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     ax.set_xlabel("baseline MSE / filter MSE (paired over paths, 95 % CI); above 1: the filter is better")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
-

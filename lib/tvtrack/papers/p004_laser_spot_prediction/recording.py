@@ -16,10 +16,12 @@ __all__ = ["blueprint", "gain_used", "record_run"]
 
 def blueprint():
     """Camera on the left; errors, centres and the filter's position gain stacked on the right."""
-    return image_and_series_blueprint("camera", ("errors", "centre", "filter"),
-                                      image_name="camera (gate, mask, truth, measured, predicted)",
-                                      series_names=("prediction error (px)", "centre x and y (px)",
-                                                    "position gain g1 used"))
+    return image_and_series_blueprint(
+        "camera",
+        ("errors", "centre", "filter"),
+        image_name="camera (gate, mask, truth, measured, predicted)",
+        series_names=("prediction error (px)", "centre x and y (px)", "position gain g1 used"),
+    )
 
 
 def gain_used(floor: int, n_frames: int, order: int = 2) -> np.ndarray:
@@ -39,19 +41,23 @@ def record_run(rec: Recorder, run, every: int = 1) -> None:
     fc = run.forecasts[PAPER][0, 0]
     T = meas.shape[0]
     half = (cam.gate_size_px - 1) / 2
-    full = 2 ** cam.bit_depth - 1
-    masks = centroid_mask(trk.gates, trk.origin[0, 0], meas, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
+    full = 2**cam.bit_depth - 1
+    masks = centroid_mask(
+        trk.gates, trk.origin[0, 0], meas, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma
+    )
     for t in range(0, T, every):
         rec.set_frame(t)
         g8 = np.clip(trk.gates[t] * 255.0 / full, 0, 255).astype(np.uint8)
         img = np.stack([g8, g8, g8], axis=-1)
         img[masks[t], 0] //= 3  # weighted pixels tinted cyan
         rec.image("camera/gate", img, offset=trk.origin[0, 0, t])
-        rec.boxes("camera/gate_box", trk.origin[0, 0, t] + half, [cam.gate_size_px / 2] * 2, colors=[rgb(colour("gate"))])
+        rec.boxes(
+            "camera/gate_box", trk.origin[0, 0, t] + half, [cam.gate_size_px / 2] * 2, colors=[rgb(colour("gate"))]
+        )
         if np.all(np.isfinite(meas[t])):
             rec.boxes("camera/centroid_window", meas[t], [cam.window_px / 2] * 2, colors=[[0, 255, 255]])
             rec.points("camera/measured", meas[t], colors=[rgb(colour("measurement"))], radii=0.9)
-        rec.lines("camera/trail", meas[max(0, t - 25):t + 1], colors=[rgb(colour("measurement"))], radii=0.08)
+        rec.lines("camera/trail", meas[max(0, t - 25) : t + 1], colors=[rgb(colour("measurement"))], radii=0.08)
         rec.points("camera/truth", truth[t], colors=[rgb(colour("truth"))], radii=0.4, draw_order=40.0)
         if t >= m and np.all(np.isfinite(fc[:, t - m])):
             rec.points("camera/predicted", fc[:, t - m], colors=[rgb(colour("prediction"))], radii=0.6)

@@ -18,48 +18,126 @@ __all__ = ["ROWS", "DEFAULT", "DEPENDS", "NAMES", "build", "explored"]
 
 #: (name, kind, default, values, why, origin)
 ROWS = (
-    ("spectral index", "regime", 2 / 3, (0.0, 2 / 3, 5 / 3),
-     "slope alpha of the wander envelope f^-alpha between the corners; 2/3 is the shipped set, 0 puts 80 % of "
-     "the variance in the fastest (0.5 Hz) component, 5/3 (Kolmogorov-like) 69 % in the slowest", "author"),
-    ("bandwidth", "regime", 1.0, (0.5, 1.0, 4.0),
-     "every corner frequency x this; the paper gives no turbulence strength, range or wind speed, so the "
-     "wander time scale W0/V_perp is unknown within an order of magnitude", "author"),
-    ("amplitude", "regime", 1.0, (0.5, 1.0, 2.0),
-     "wander RMS range (3-8 px per axis) x this; the paper shows no trace, only that the spot stays in 128 px",
-     "author"),
-    ("jitter", "regime", 0.0, (0.0, 1.0, 4.0),
-     "frame-uncorrelated tilt (content above the frame rate, speckle) with RMS this x each path's one-frame "
-     "motion; real tilt at 25 frames/s has it, the shipped set does not", "author"),
-    ("frame rate", "regime", 25.0, (25.0, 200.0),
-     "25 frames/s is stated; the centres are also said to be measured 'every 5 ms' (200 frames/s); "
-     "1000 images per path either way ('up to 1000 images')", "author"),
-    ("read noise", "model", 2.0, (2.0, 16.0, 64.0),
-     "camera read noise RMS in DN (8-bit, 200 DN peak); not stated; 64 DN is a spot barely above the noise",
-     "author"),
-    ("saturation", "model", "8-bit", ("8-bit", "none"),
-     "an 8-bit sensor clips a scintillating 200 DN peak in about a quarter of the gates; 'none' reads the "
-     "same photons without full scale (a 16-bit converter)", "adversarial"),
-    ("scintillation", "regime", 0.3, (0.3, 0.8),
-     "standard deviation of ln(total intensity) per frame; the card's 0.3, 0.8 for strong turbulence",
-     "author"),
-    ("energy centre", "reading", "windowed", ("windowed", "whole gate"),
-     "the paper's energy-centre algorithm (its ref. [1]) is not described; the whole-gate thresholded "
-     "centroid is the plainest reading, the window re-centred on the estimate removes its pull", "author"),
-    ("horizon", "scale", 1, (1, 3, 10),
-     "the prediction horizon is not stated: one frame is the natural reading of 'prediction mode', 10 frames "
-     "(0.4 s) the card's upper end; every method re-tuned at each horizon", "author"),
-    ("network lags", "comparator", 10, (4, 10, 20),
-     "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9])",
-     "author"),
-    ("tuning", "reading", "cross-validated", ("cross-validated", "fixed"),
-     "the paper gives no floor value and no windows; cross-validated over paths, or fixed N_f = 10, L = 10",
-     "author"),
-    ("reference", "statistic", "measured centre", ("measured centre", "true centre"),
-     "the paper could only score against the next measured centre; the synthetic truth is the other reading",
-     "author"),
-    ("C004-1 statistic", "statistic", "95th percentile", ("95th percentile", "99th percentile"),
-     "'does not exceed 2 pixels' read as the 95th percentile of |e| (the card's); the 99th is a stricter "
-     "reading short of the noise-dominated maximum", "adversarial"),
+    (
+        "spectral index",
+        "regime",
+        2 / 3,
+        (0.0, 2 / 3, 5 / 3),
+        "slope alpha of the wander envelope f^-alpha between the corners; 2/3 is the shipped set, 0 puts 80 % of "
+        "the variance in the fastest (0.5 Hz) component, 5/3 (Kolmogorov-like) 69 % in the slowest",
+        "author",
+    ),
+    (
+        "bandwidth",
+        "regime",
+        1.0,
+        (0.5, 1.0, 4.0),
+        "every corner frequency x this; the paper gives no turbulence strength, range or wind speed, so the "
+        "wander time scale W0/V_perp is unknown within an order of magnitude",
+        "author",
+    ),
+    (
+        "amplitude",
+        "regime",
+        1.0,
+        (0.5, 1.0, 2.0),
+        "wander RMS range (3-8 px per axis) x this; the paper shows no trace, only that the spot stays in 128 px",
+        "author",
+    ),
+    (
+        "jitter",
+        "regime",
+        0.0,
+        (0.0, 1.0, 4.0),
+        "frame-uncorrelated tilt (content above the frame rate, speckle) with RMS this x each path's one-frame "
+        "motion; real tilt at 25 frames/s has it, the shipped set does not",
+        "author",
+    ),
+    (
+        "frame rate",
+        "regime",
+        25.0,
+        (25.0, 200.0),
+        "25 frames/s is stated; the centres are also said to be measured 'every 5 ms' (200 frames/s); "
+        "1000 images per path either way ('up to 1000 images')",
+        "author",
+    ),
+    (
+        "read noise",
+        "model",
+        2.0,
+        (2.0, 16.0, 64.0),
+        "camera read noise RMS in DN (8-bit, 200 DN peak); not stated; 64 DN is a spot barely above the noise",
+        "author",
+    ),
+    (
+        "saturation",
+        "model",
+        "8-bit",
+        ("8-bit", "none"),
+        "an 8-bit sensor clips a scintillating 200 DN peak in about a quarter of the gates; 'none' reads the "
+        "same photons without full scale (a 16-bit converter)",
+        "adversarial",
+    ),
+    (
+        "scintillation",
+        "regime",
+        0.3,
+        (0.3, 0.8),
+        "standard deviation of ln(total intensity) per frame; the card's 0.3, 0.8 for strong turbulence",
+        "author",
+    ),
+    (
+        "energy centre",
+        "reading",
+        "windowed",
+        ("windowed", "whole gate"),
+        "the paper's energy-centre algorithm (its ref. [1]) is not described; the whole-gate thresholded "
+        "centroid is the plainest reading, the window re-centred on the estimate removes its pull",
+        "author",
+    ),
+    (
+        "horizon",
+        "scale",
+        1,
+        (1, 3, 10),
+        "the prediction horizon is not stated: one frame is the natural reading of 'prediction mode', 10 frames "
+        "(0.4 s) the card's upper end; every method re-tuned at each horizon",
+        "author",
+    ),
+    (
+        "network lags",
+        "comparator",
+        10,
+        (4, 10, 20),
+        "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9])",
+        "author",
+    ),
+    (
+        "tuning",
+        "reading",
+        "cross-validated",
+        ("cross-validated", "fixed"),
+        "the paper gives no floor value and no windows; cross-validated over paths, or fixed N_f = 10, L = 10",
+        "author",
+    ),
+    (
+        "reference",
+        "statistic",
+        "measured centre",
+        ("measured centre", "true centre"),
+        "the paper could only score against the next measured centre; the synthetic truth is the other reading",
+        "author",
+    ),
+    (
+        "C004-1 statistic",
+        "statistic",
+        "95th percentile",
+        ("95th percentile", "99th percentile"),
+        "'does not exceed 2 pixels' read as the 95th percentile of |e| (the card's); the 99th is a stricter "
+        "reading short of the noise-dominated maximum",
+        "adversarial",
+    ),
 )
 
 #: {name: default}.
@@ -67,8 +145,17 @@ DEFAULT = {name: default for name, _, default, *_ in ROWS}
 #: Entry names in register order.
 NAMES = tuple(DEFAULT)
 
-_WORLD = ("spectral index", "bandwidth", "amplitude", "jitter", "frame rate", "read noise", "saturation",
-          "scintillation", "energy centre")
+_WORLD = (
+    "spectral index",
+    "bandwidth",
+    "amplitude",
+    "jitter",
+    "frame rate",
+    "read noise",
+    "saturation",
+    "scintillation",
+    "energy centre",
+)
 
 #: Entries each claim depends on, with the reason for every entry left out.
 DEPENDS = {

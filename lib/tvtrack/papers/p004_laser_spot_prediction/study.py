@@ -25,27 +25,74 @@ from ...measure import centroid
 from ...montecarlo import Estimate, variance_ci
 from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
-from .beam_wander import (BeamWanderConfig, SpotCamera, generate_traces, one_frame_motion_rms,
-                          optimal_wander_forecast, track_spot)
+from .beam_wander import (
+    BeamWanderConfig,
+    SpotCamera,
+    generate_traces,
+    one_frame_motion_rms,
+    optimal_wander_forecast,
+    track_spot,
+)
 from .intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
-from .prediction_study import (CLASSICAL, FADING, PAPER, SINGER, ComparisonSetup, compare_methods,
-                               per_trial_path_mse)
+from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, ComparisonSetup, compare_methods, per_trial_path_mse
 from .traces import TraceSet
 
-__all__ = ["ENTRIES", "NETWORKS", "OPTIMAL", "StudySize", "StudyRun", "scene_config", "camera_for", "run_study",
-           "claim_values", "measure", "measure_batch", "late_rms_ratio", "recursion_vs_batch", "variance_ratios",
-           "model_order_summary", "horizon_study", "clear_cache", "scores", "single_values", "grid_edge_report"]
+__all__ = [
+    "ENTRIES",
+    "NETWORKS",
+    "OPTIMAL",
+    "StudySize",
+    "StudyRun",
+    "scene_config",
+    "camera_for",
+    "run_study",
+    "claim_values",
+    "measure",
+    "measure_batch",
+    "late_rms_ratio",
+    "recursion_vs_batch",
+    "variance_ratios",
+    "model_order_summary",
+    "horizon_study",
+    "clear_cache",
+    "scores",
+    "single_values",
+    "grid_edge_report",
+]
 
 #: Register entry names the study reads (the configuration dict's keys).
-ENTRIES = ("spectral index", "bandwidth", "amplitude", "jitter", "frame rate", "read noise", "saturation",
-           "scintillation", "energy centre", "horizon", "network lags", "tuning", "reference", "C004-1 statistic")
+ENTRIES = (
+    "spectral index",
+    "bandwidth",
+    "amplitude",
+    "jitter",
+    "frame rate",
+    "read noise",
+    "saturation",
+    "scintillation",
+    "energy centre",
+    "horizon",
+    "network lags",
+    "tuning",
+    "reference",
+    "C004-1 statistic",
+)
 #: The two networks of C004-3b (the paper's back-propagation and RBF networks).
 NETWORKS = ("MLP back-prop", "RBF network")
 #: The optimal predictor of the generator's own model: a bound, not a method.
 OPTIMAL = "optimal (true model)"
 
-_SCENE_KEYS = ("spectral index", "bandwidth", "amplitude", "jitter", "frame rate", "read noise", "saturation",
-               "scintillation", "energy centre")
+_SCENE_KEYS = (
+    "spectral index",
+    "bandwidth",
+    "amplitude",
+    "jitter",
+    "frame rate",
+    "read noise",
+    "saturation",
+    "scintillation",
+    "energy centre",
+)
 _CHECK_N = (3, 5, 10, 20, 50, 100)
 
 
@@ -89,7 +136,12 @@ class StudySize:
     timing_frames: int = 200
 
 
-def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BeamWanderConfig()) -> BeamWanderConfig:
+#: The shipped data set's generator configuration and the card's camera (21 px centroid window).
+BASE_SCENE = BeamWanderConfig()
+BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
+
+
+def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
     """The generator's configuration at a register configuration.
 
     ``bandwidth`` scales every corner frequency, ``amplitude`` the wander RMS range; ``frame rate``
@@ -97,20 +149,29 @@ def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BeamWan
     kept in px/s.
     """
     fs = float(config["frame rate"])
-    return replace(base, n_paths=size.n_paths, n_frames=size.n_frames, frame_rate_hz=fs,
-                   corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
-                   spectral_index=float(config["spectral index"]),
-                   rms_min_px=base.rms_min_px * config["amplitude"], rms_max_px=base.rms_max_px * config["amplitude"],
-                   drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
-                   scintillation_sigma_ln=float(config["scintillation"]))
+    return replace(
+        base,
+        n_paths=size.n_paths,
+        n_frames=size.n_frames,
+        frame_rate_hz=fs,
+        corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
+        spectral_index=float(config["spectral index"]),
+        rms_min_px=base.rms_min_px * config["amplitude"],
+        rms_max_px=base.rms_max_px * config["amplitude"],
+        drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
+        scintillation_sigma_ln=float(config["scintillation"]),
+    )
 
 
-def camera_for(config: dict, base: SpotCamera = SpotCamera(centroid_window_px=21.0)) -> SpotCamera:
+def camera_for(config: dict, base: SpotCamera = BASE_CAMERA) -> SpotCamera:
     """The camera at a register configuration: read noise, saturation (8-bit full scale or none) and
     the energy-centre algorithm."""
-    return replace(base, read_noise_dn=float(config["read noise"]),
-                   bit_depth=8 if config["saturation"] == "8-bit" else 16,
-                   centroid_mode="windowed" if config["energy centre"] == "windowed" else "gate")
+    return replace(
+        base,
+        read_noise_dn=float(config["read noise"]),
+        bit_depth=8 if config["saturation"] == "8-bit" else 16,
+        centroid_mode="windowed" if config["energy centre"] == "windowed" else "gate",
+    )
 
 
 @dataclass
@@ -157,18 +218,37 @@ def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = N
     z_meas = np.moveaxis(trk.xy, -1, -2)
     truth = np.moveaxis(xy, -1, -2)[None]
     err = z_meas - truth
-    return StudyRun(config=dict(config), size=size, scene=scene, camera=cam, truth=truth, z_meas=z_meas,
-                    z=pr.hold_last(z_meas), path_rms=rms, jitter_rms=jit,
-                    centroid_rms=float(np.sqrt(np.nanmean(err ** 2))), lost_share=float(np.mean(~np.isfinite(err))),
-                    clipped_share=float(np.mean(trk.clipped)), intensity=intensity, track=trk)
+    return StudyRun(
+        config=dict(config),
+        size=size,
+        scene=scene,
+        camera=cam,
+        truth=truth,
+        z_meas=z_meas,
+        z=pr.hold_last(z_meas),
+        path_rms=rms,
+        jitter_rms=jit,
+        centroid_rms=float(np.sqrt(np.nanmean(err**2))),
+        lost_share=float(np.mean(~np.isfinite(err))),
+        clipped_share=float(np.mean(trk.clipped)),
+        intensity=intensity,
+        track=trk,
+    )
 
 
 def _setup(config: dict, size: StudySize) -> ComparisonSetup:
-    return ComparisonSetup(steps=int(config["horizon"]), start=size.eval_start, floor_grid=tuple(size.floor_grid),
-                           window_grid=tuple(size.window_grid), fixed_floor=size.fixed_floor,
-                           fixed_window=size.fixed_window, learned_lags=int(config["network lags"]),
-                           learned_kw=dict(hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres,
-                                           max_samples=size.train_samples))
+    return ComparisonSetup(
+        steps=int(config["horizon"]),
+        start=size.eval_start,
+        floor_grid=tuple(size.floor_grid),
+        window_grid=tuple(size.window_grid),
+        fixed_floor=size.fixed_floor,
+        fixed_window=size.fixed_window,
+        learned_lags=int(config["network lags"]),
+        learned_kw=dict(
+            hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres, max_samples=size.train_samples
+        ),
+    )
 
 
 def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
@@ -181,7 +261,7 @@ def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
     folds = pr.path_folds(size.n_paths, size.n_folds)
     cmp = compare_methods(run.z, run.z_meas, folds, s, np.random.default_rng(_streams(seed)[3]))
     fc = dict(cmp.forecasts)
-    fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, run.centroid_rms ** 2 + run.jitter_rms ** 2, m)
+    fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, m)
     fixed = dict(fc)
     fixed[PAPER] = pr.growing_memory_forecast(run.z, m, s.order, s.fixed_floor)
     fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
@@ -190,8 +270,9 @@ def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
     return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
 
 
-def run_study(config: dict, seed: int, size: StudySize = StudySize(), traces: TraceSet | None = None,
-              keep=None) -> StudyRun:
+def run_study(
+    config: dict, seed: int, size: StudySize = StudySize(), traces: TraceSet | None = None, keep=None
+) -> StudyRun:
     """One full-size run of the study at ``config`` (every register entry), all draws from ``seed``.
 
     Parameters
@@ -210,8 +291,15 @@ def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int)
     a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
     b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
     r = ratio_of_means_ci(a, b)
-    return Estimate(float(np.sqrt(r.value)), r.stderr / (2 * np.sqrt(r.value)), float(np.sqrt(r.ci_low)),
-                    float(np.sqrt(r.ci_high)), r.n, r.confidence, "square root of the " + r.method)
+    return Estimate(
+        float(np.sqrt(r.value)),
+        r.stderr / (2 * np.sqrt(r.value)),
+        float(np.sqrt(r.ci_low)),
+        float(np.sqrt(r.ci_high)),
+        r.n,
+        r.confidence,
+        "square root of the " + r.method,
+    )
 
 
 def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
@@ -229,7 +317,7 @@ def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N) -
     largest step of ``g_N1`` over ``N >= 3`` (C004-5)."""
     nmax = max(check_n)
     t = np.arange(nmax)
-    quad = 5.0 + 0.3 * t - 0.01 * t ** 2
+    quad = 5.0 + 0.3 * t - 0.01 * t**2
     g1 = growing_memory_gains(2, nmax)[:, 0]
     est = growing_memory_filter(quad + rng.standard_normal((n_series, nmax)), 2, None)[..., 0]
     conf = 1 - 0.05 / len(check_n)
@@ -237,7 +325,9 @@ def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N) -
     for n in check_n:
         v = variance_ci(est[:, n - 1] - quad[n - 1], confidence=conf, method="chi2")
         p = g1[n - 1]
-        out[f"variance at N={n}"] = Estimate(v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method)
+        out[f"variance at N={n}"] = Estimate(
+            v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method
+        )
     return out
 
 
@@ -246,8 +336,13 @@ def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
     nt = min(run.size.timing_frames, run.truth.shape[-1])
     cam = run.camera
     xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
-    frames = sensor_readout(gaussian_spot(xy, (run.scene.image_size_px,) * 2, cam.spot_sigma_px, cam.flux_e), rng,
-                            background=cam.background_dn, read_noise=cam.read_noise_dn, bit_depth=cam.bit_depth)
+    frames = sensor_readout(
+        gaussian_spot(xy, (run.scene.image_size_px,) * 2, cam.spot_sigma_px, cam.flux_e),
+        rng,
+        background=cam.background_dn,
+        read_noise=cam.read_noise_dn,
+        bit_depth=cam.bit_depth,
+    )
     t0 = time.process_time()
     cm = centroid(frames, background="border", threshold_sigma=cam.threshold_sigma)
     predict_ahead(growing_memory_filter(np.moveaxis(cm.xy, -1, 0), 2, run.size.fixed_floor), 1)
@@ -282,7 +377,7 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         "C004-2": root_mean_ci(mse[PAPER]),
         "C004-3": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in CLASSICAL},
         "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": recursion_vs_batch(run.z[0, 0, 0, :min(T, 200)])[0],
+        "C004-4": recursion_vs_batch(run.z[0, 0, 0, : min(T, 200)])[0],
         "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance),
         "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
         "C004-8": _time_per_frame(run, rng_t) / (1e3 / run.scene.frame_rate_hz),
@@ -373,10 +468,14 @@ def grid_edge_report(run: StudyRun) -> dict:
 
     s = _setup(run.config, run.size)
     ch = run.comparison.chosen
-    out = {PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) != 0)),
-           FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0))}
+    out = {
+        PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) != 0)),
+        FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
+    }
     for name, lo in MIN_WINDOW.items():
-        out[name] = float(np.mean(grid_edges(ch[name], window_candidates(lo, s.window_grid)) == 1))  # degree+1 is a true limit
+        out[name] = float(
+            np.mean(grid_edges(ch[name], window_candidates(lo, s.window_grid)) == 1)
+        )  # degree+1 is a true limit
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
@@ -417,9 +516,15 @@ def model_order_summary(run: StudyRun) -> dict:
     b1 = min(order1, key=rms.get)
     b2 = min(order2, key=rms.get)
     tau = np.asarray(run.comparison.chosen[SINGER])[:, 0]
-    return {"rms": rms, "best": min((n for n in rms if n != OPTIMAL), key=rms.get), "best_order1": b1,
-            "best_order2": b2, "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
-            "singer_tau_frames": tau, "tau_over_horizon": float(np.median(tau) / m)}
+    return {
+        "rms": rms,
+        "best": min((n for n in rms if n != OPTIMAL), key=rms.get),
+        "best_order1": b1,
+        "best_order2": b2,
+        "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
+        "singer_tau_frames": tau,
+        "tau_over_horizon": float(np.median(tau) / m),
+    }
 
 
 def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
@@ -438,12 +543,16 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
         s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
         cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
         fcs = dict(cmp.forecasts)
-        fcs[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms,
-                                               run.centroid_rms ** 2 + run.jitter_rms ** 2, h)
+        fcs[OPTIMAL] = optimal_wander_forecast(
+            run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, h
+        )
         for name, f in fcs.items():
             rms.setdefault(name, {})[h] = root_mean_ci(per_trial_path_mse(f, run.z_meas, h, run.size.eval_start)[0])
         floors[h] = float(np.median(cmp.chosen[PAPER]))
     hs = np.log(np.asarray(horizons, dtype=float))
-    slopes = ({n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
-              if len(horizons) > 1 else {})
+    slopes = (
+        {n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
+        if len(horizons) > 1
+        else {}
+    )
     return {"rms": rms, "floor": floors, "slopes": slopes}
