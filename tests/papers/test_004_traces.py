@@ -210,3 +210,22 @@ def test_aliased_corners_only_on_request_and_not_recorded_by_default():
     assert abs(np.mean(d[:, 1:] * d[:, :-1]) / np.mean(d * d)) < 0.05  # nearly white at 25 frames/s
     assert tr.metadata["config"]["aliased_corners"] is True
     assert "aliased_corners" not in generate_traces(BeamWanderConfig(n_paths=1, n_frames=5), 0).metadata["config"]
+
+
+def test_first_order_rolloff_is_an_ornstein_uhlenbeck_process_and_stays_out_of_the_default_metadata():
+    """roll-off f^-2: each component is first-order (lag-one correlation exp(-w dt), stationary variance
+    sigma^2); the optimal model's wander block keeps that variance; the default records nothing new."""
+    cfg = BeamWanderConfig(n_paths=400, n_frames=300, rms_min_px=4.0, rms_max_px=4.0, drift_max_px_per_frame=0.0,
+                           corner_frequencies_hz=(0.5,), rolloff="f^-2")
+    tr = generate_traces(cfg, seed=2)
+    d = tr.centres_px - 63.5
+    assert abs(np.var(d[:, -1]) / 16 - 1) < 0.1
+    rho = np.exp(-2 * np.pi * 0.5 / 25)
+    r1 = np.mean(d[:, 1:] * d[:, :-1]) / np.mean(d * d)
+    assert abs(r1 - rho) < 0.01 and component_table(cfg)[0]["frame_correlation"] == pytest.approx(rho)
+    F, Q, H, P0 = wander_state_space(cfg, np.array([4.0]))
+    Pw = P0[0, :2, :2]
+    np.testing.assert_allclose(F[:2, :2] @ Pw @ F[:2, :2].T + Q[0, :2, :2], Pw, rtol=1e-9, atol=1e-12)
+    assert "rolloff" in tr.metadata["config"] and "rolloff" not in generate_traces(BeamWanderConfig(), 1).metadata["config"]
+    with pytest.raises(ValueError, match="rolloff"):
+        BeamWanderConfig(rolloff="f^-3")

@@ -86,6 +86,11 @@ class BeamWanderConfig:
         exact discretisation holds for any corner; such a component is nearly uncorrelated from
         frame to frame (aliased fast tilt). Recorded in the metadata only when True, so data sets
         made before the option existed regenerate byte for byte.
+    rolloff : {"f^-4", "f^-2"}
+        Spectrum of each component above its corner (default ``"f^-4"``): a critically damped
+        second-order Gauss-Markov process (smooth paths with a velocity), or a first-order one
+        (Ornstein-Uhlenbeck, PSD ``~ 1 / (1 + (f/f_k)^2)``: continuous paths without a velocity).
+        Recorded in the metadata only when not the default, like ``aliased_corners``.
     """
 
     n_paths: int = 15
@@ -99,6 +104,7 @@ class BeamWanderConfig:
     drift_max_px_per_frame: float = 0.02
     scintillation_sigma_ln: float = 0.3
     aliased_corners: bool = False
+    rolloff: str = "f^-4"
 
     def __post_init__(self):
         object.__setattr__(self, "corner_frequencies_hz", tuple(float(f) for f in self.corner_frequencies_hz))
@@ -120,6 +126,7 @@ class BeamWanderConfig:
              f"in [0, image_size_px/(4 n_frames)] = [0, {self.image_size_px / 4 / self.n_frames:g}]"),
             ("scintillation_sigma_ln", self.scintillation_sigma_ln, 0 <= self.scintillation_sigma_ln <= 2,
              "in [0, 2]"),
+            ("rolloff", self.rolloff, self.rolloff in ("f^-4", "f^-2"), "'f^-4' or 'f^-2'"),
         ]
         for name, value, ok, allowed in checks:
             if not ok:
@@ -167,7 +174,7 @@ def component_table(config: BeamWanderConfig) -> list[dict]:
     f = np.asarray(config.corner_frequencies_hz)
     share = component_sigmas(config, 1.0) ** 2
     wt = 2 * np.pi * f / config.frame_rate_hz
-    rho = (1 + wt) * np.exp(-wt)
+    rho = np.exp(-wt) if config.rolloff == "f^-2" else (1 + wt) * np.exp(-wt)
     return [{"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
             for fk, sk, rk in zip(f, share, rho)]
 
@@ -217,7 +224,7 @@ def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> T
     return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
 
 
-def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarray]:
+def gauss_markov_discrete(omega, sigma, dt: float, order: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Exact discrete model of critically damped Gauss-Markov processes.
 
     State ``(s, s')``; continuous ``A = [[0, 1], [-w^2, -2w]]``, noise input ``(0, q)``,
@@ -231,6 +238,9 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
         Stationary RMS of ``s``, px.
     dt : float
         Sampling interval, s.
+    order : {2, 1}
+        2: critically damped (PSD ``~ f^-4`` above the corner); 1: Ornstein-Uhlenbeck in ``s``
+        (``s' = -w s + noise``, PSD ``~ f^-2``), the second state held at 0.
 
     Returns
     -------
@@ -241,6 +251,13 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
     """
     omega = np.asarray(omega, dtype=float)
     sigma = np.asarray(sigma, dtype=float)
+    if order == 1:  # Ornstein-Uhlenbeck in the first state; the second state stays 0
+        a = np.exp(-omega * dt)
+        Phi = np.zeros(omega.shape + (2, 2))
+        Phi[:, 0, 0] = a
+        Qd = np.zeros(sigma.shape + (2, 2))
+        Qd[..., 0, 0] = sigma ** 2 * (1 - a ** 2)
+        return Phi, Qd
     Phi = np.empty(omega.shape + (2, 2))
     Q1 = np.empty(omega.shape + (2, 2))  # for q = 1
     for k, w in enumerate(omega):
@@ -254,13 +271,13 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
     return Phi, q2[..., None, None] * Q1
 
 
-def _stationary_cov(omega, sigma) -> np.ndarray:
+def _stationary_cov(omega, sigma, order: int = 2) -> np.ndarray:
     """Stationary covariance ``diag(sigma^2, sigma^2 w^2)`` of ``(s, s')``, shape (..., K, 2, 2)."""
     omega = np.asarray(omega, dtype=float)
     sigma = np.asarray(sigma, dtype=float)
     P = np.zeros(sigma.shape + (2, 2))
     P[..., 0, 0] = sigma ** 2
-    P[..., 1, 1] = (sigma * omega) ** 2
+    P[..., 1, 1] = 0.0 if order == 1 else (sigma * omega) ** 2
     return P
 
 
@@ -293,8 +310,9 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     angle = rng.uniform(0.0, 2 * np.pi, size=P)
     drift = speed[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)  # (P, 2) px/frame
     sig = component_sigmas(c, rms)  # (P, K)
-    Phi, Qd = gauss_markov_discrete(omega, sig, dt)  # (K,2,2), (P,K,2,2)
-    L0 = np.linalg.cholesky(_stationary_cov(omega, sig) + 1e-300 * np.eye(2))  # (P,K,2,2)
+    order = 1 if c.rolloff == "f^-2" else 2
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt, order)  # (K,2,2), (P,K,2,2)
+    L0 = np.linalg.cholesky(_stationary_cov(omega, sig, order) + 1e-300 * np.eye(2))  # (P,K,2,2)
     Lq = np.linalg.cholesky(Qd + 1e-300 * np.eye(2))
     s = np.einsum("pkij,pakj->pakj", L0, rng.standard_normal((P, 2, K, 2)))  # (P, axis, K, 2)
     noise = rng.standard_normal((T, P, 2, K, 2))
@@ -312,6 +330,8 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     cfg["corner_frequencies_hz"] = list(c.corner_frequencies_hz)
     if not c.aliased_corners:
         del cfg["aliased_corners"]
+    if c.rolloff == "f^-4":
+        del cfg["rolloff"]
     metadata = {
         "generator": GENERATOR_RECORDED_NAME,
         "config": cfg,
@@ -351,8 +371,9 @@ def wander_state_space(config: BeamWanderConfig, rms_px, drift_prior_px_per_fram
     dt = 1.0 / c.frame_rate_hz
     omega = 2 * np.pi * np.asarray(c.corner_frequencies_hz)
     sig = component_sigmas(c, rms_px)
-    Phi, Qd = gauss_markov_discrete(omega, sig, dt)
-    Pst = _stationary_cov(omega, sig)
+    order = 1 if c.rolloff == "f^-2" else 2
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt, order)
+    Pst = _stationary_cov(omega, sig, order)
     K = omega.size
     n = 2 * K + 2
     F = block_diag(*Phi, np.array([[1.0, 1.0], [0.0, 1.0]]))

@@ -28,6 +28,16 @@ ROWS = (
         "author",
     ),
     (
+        "roll-off",
+        "regime",
+        "f^-4",
+        ("f^-4", "f^-2"),
+        "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model) or a "
+        "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum, which falls "
+        "between f^-8/3 and f^-17/3 (Tyler's G-tilt)); the paper shows no spectrum",
+        "adversarial",
+    ),
+    (
         "bandwidth",
         "regime",
         1.0,
@@ -147,6 +157,7 @@ NAMES = tuple(DEFAULT)
 
 _WORLD = (
     "spectral index",
+    "roll-off",
     "bandwidth",
     "amplitude",
     "jitter",

@@ -63,6 +63,7 @@ __all__ = [
 #: Register entry names the study reads (the configuration dict's keys).
 ENTRIES = (
     "spectral index",
+    "roll-off",
     "bandwidth",
     "amplitude",
     "jitter",
@@ -84,6 +85,7 @@ OPTIMAL = "optimal (true model)"
 
 _SCENE_KEYS = (
     "spectral index",
+    "roll-off",
     "bandwidth",
     "amplitude",
     "jitter",
@@ -156,6 +158,7 @@ def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BASE_SC
         frame_rate_hz=fs,
         corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
         spectral_index=float(config["spectral index"]),
+        rolloff=config["roll-off"],
         rms_min_px=base.rms_min_px * config["amplitude"],
         rms_max_px=base.rms_max_px * config["amplitude"],
         drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
