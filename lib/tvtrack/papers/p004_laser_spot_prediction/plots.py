@@ -217,6 +217,22 @@ def gains_figure(ratios: dict, floor: int):
     return fig
 
 
+def budget_figure(budget: dict):
+    """Centre error of the windowed centroid and of the Gaussian-fit MLE (static spots) against the
+    Cramer-Rao bound, versus read noise."""
+    lv = list(budget)
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    ax.plot(lv, [budget[v]["centroid"] for v in lv], "o-", label="windowed centroid (used)")
+    ax.plot(lv, [budget[v]["mle"] for v in lv], "^--", label="Gaussian-fit MLE")
+    ax.plot(lv, [budget[v]["crb"] for v in lv], "k:", label="Cramer-Rao bound (one frame)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    plain_log(ax)
+    ax.set(xlabel="read noise (DN RMS)", ylabel="centre error RMS per axis (px)")
+    ax.legend(fontsize=8)
+    return fig
+
+
 def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     """The paired MSE ratio (baseline / filter) of every baseline of the ranking claims, at the default
     (replicates pooled) and under every one-at-a-time condition of the register; above 1: the filter is better."""

@@ -498,6 +498,55 @@ def single_values(exploration, claim_id: str, entry: str) -> dict:
     return dict(sorted(out.items()))
 
 
+def spot_position_crb(camera: SpotCamera, read_noise_dn: float) -> float:
+    """Per-axis Cramer-Rao bound of the spot position in one gate at intensity 1 (Poisson counts, read
+    noise and quantisation as Poisson-equivalent variance per pixel), px."""
+    from ...bounds.poisson_crb import fisher_linear_motion
+
+    g = camera.gate_size_px
+    theta = np.array([[(g - 1) / 2, (g - 1) / 2, 0.0, 0.0]])
+    noise = camera.background_dn + read_noise_dn**2 + 1 / 12
+    fim = fisher_linear_motion(theta, np.array([0.0]), (g, g), camera.spot_sigma_px, camera.flux_e, noise)[:2, :2]
+    return float(np.sqrt(np.linalg.inv(fim)[0, 0]))  # one frame: only the position block is informative
+
+
+def measurement_budget(
+    read_noise_levels, n_gates: int, rng: np.random.Generator, camera: SpotCamera = BASE_CAMERA
+) -> dict:
+    """Error of the windowed centroid and of a Gaussian-fit MLE on static spots (random sub-pixel
+    positions, intensity 1) against the Cramer-Rao bound, per read-noise level.
+
+    Returns
+    -------
+    dict
+        {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
+    """
+    from ...render import gaussian_spot, sensor_readout
+    from .spot_centre import gaussian_fit_centre, windowed_centroid
+
+    g = camera.gate_size_px
+    out = {}
+    for rn in read_noise_levels:
+        c_true = (g - 1) / 2 + rng.uniform(-2, 2, (n_gates, 2))
+        img = sensor_readout(
+            gaussian_spot(c_true, (g, g), camera.spot_sigma_px, camera.flux_e),
+            rng,
+            background=camera.background_dn,
+            read_noise=rn,
+            bit_depth=camera.bit_depth,
+        )
+        wc = windowed_centroid(img, (0, 0), window_px=camera.window_px, threshold_sigma=camera.threshold_sigma).xy
+        ok = np.all(np.isfinite(wc), axis=-1)
+        ml = gaussian_fit_centre(img[ok], np.zeros((ok.sum(), 2)), wc[ok], sigma_px=camera.spot_sigma_px, read_noise=rn)
+        out[float(rn)] = {
+            "centroid": float(np.sqrt(np.mean((wc[ok] - c_true[ok]) ** 2))),
+            "mle": float(np.sqrt(np.mean((ml - c_true[ok]) ** 2))),
+            "crb": spot_position_crb(camera, rn),
+            "lost": float(np.mean(~ok)),
+        }
+    return out
+
+
 def model_order_summary(run: StudyRun) -> dict:
     """Which model order predicts best, and the fitted Singer time constant that says why.
 
