@@ -82,7 +82,14 @@ def test_readings_of_one_run(run):
     truth = study.claim_values(study.replace(run, config=dict(DEFAULT, reference="true centre")))
     mse_t = per_trial_path_mse(run.forecasts[PAPER], run.truth, m, s)[0]
     assert truth["C004-2"].value == pytest.approx(np.sqrt(mse_t.mean()))
+    lsq = study.claim_values(study.replace(run, config=dict(DEFAULT, spline="least-squares cubic")))
+    r_lsq = (
+        per_trial_path_mse(run.forecasts[study.LSQ_CUBIC], run.z_meas, m, s)[0].mean()
+        / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
+    )
+    assert lsq["C004-3"]["cubic spline"].value == pytest.approx(r_lsq)
     base = study.claim_values(run)
+    assert base["C004-3"]["cubic spline"].value != pytest.approx(r_lsq)
     for b in CLASSICAL:
         ratio = (
             per_trial_path_mse(run.forecasts[b], run.z_meas, m, s)[0].mean()

@@ -148,6 +148,15 @@ ROWS = (
         "reading short of the noise-dominated maximum",
         "adversarial",
     ),
+    (
+        "spline",
+        "comparator",
+        "interpolating",
+        ("interpolating", "least-squares cubic"),
+        "'spline extrapolation' [5] read as the not-a-knot cubic spline through the last L samples, or as a "
+        "least-squares cubic over them (smoother; its window also cross-validated from 4)",
+        "adversarial",
+    ),
 )
 
 #: {name: default}.
@@ -172,7 +181,7 @@ _WORLD = (
 DEPENDS = {
     "C004-1": list(_WORLD) + ["horizon", "tuning", "reference", "C004-1 statistic"],  # not the networks' lags
     "C004-2": list(_WORLD) + ["horizon", "tuning", "reference"],
-    "C004-3": list(_WORLD) + ["horizon", "tuning", "reference"],
+    "C004-3": list(_WORLD) + ["horizon", "tuning", "reference", "spline"],
     "C004-3b": list(_WORLD) + ["horizon", "tuning", "reference", "network lags"],
     "C004-4": [],  # exact algebra on any series: nothing in the register can change it
     "C004-5": [],  # the model's own signal (quadratic + white noise): nothing in the register enters
