@@ -23,6 +23,7 @@ __all__ = [
     "ranking_sentence",
     "clip_sentence",
     "amplitude_sentence",
+    "adversarial_summary",
 ]
 
 
@@ -69,8 +70,15 @@ def findings(rules: dict, exploration, paper_values: dict, extra: dict | None = 
         if cid in exploration.rules:
             m = exploration.measured(cid)
             verdict = rule.decide(m)
-            label = exploration.record(cid, rule)["label"]
-            lines.append(claim_line(cid, paper_values[cid], _measured_text(m), verdict, label))
+            rec = exploration.record(cid, rule)
+            text = _measured_text(m)
+            if isinstance(m, dict) and len(rec["parts"]) > 1:  # one verdict and label per part
+                text = "; ".join(
+                    f"{p} {_measured_text(m[p])} ({v['verdict']}, {v['label']})"
+                    for p, v in rec["parts"].items()
+                    if p in m
+                )
+            lines.append(claim_line(cid, paper_values[cid], text, verdict, rec["label"]))
         else:
             lines.append(claim_line(cid, paper_values[cid], "-", rule.decide(None), "not explored"))
     return "\n".join(lines + [f"- {t}" for t in (extra or {}).values()])
@@ -122,10 +130,16 @@ def model_order_sentence(summary: dict) -> str:
     )
     tau = summary["singer_tau_frames"]
     memory = "shorter than" if summary["tau_over_horizon"] < 1 else "longer than"
+    edge = (
+        f" (at the lowest value of its grid, {summary['tau_grid_min']:g} frames: the acceleration is uncorrelated "
+        "from one frame to the next)"
+        if np.min(tau) <= summary["tau_grid_min"]
+        else ""
+    )
     return (
         f"Model order: the best first-order predictor ({summary['best_order1']}) against the best second-order "
         f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
-        f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames, "
+        f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames{edge}, "
         f"{memory} the horizon: the acceleration the quadratic extrapolates has "
         + (
             "decorrelated before the prediction lands, so the acceleration term adds noise more than it removes bias."
@@ -183,3 +197,26 @@ def amplitude_sentence(values: dict) -> str:
         )
         parts.append(f"amplitude x{a:g}: {fmt(e)} px ({where} 1-2 px)")
     return "The filter's RMS one-step error over the wander amplitudes of the register: " + "; ".join(parts) + "."
+
+
+def adversarial_summary(exploration, rules: dict) -> str:
+    """What each entry added by the adversarial pass did: the claim parts whose verdict differs from the
+    first replicate's (same random numbers) when that entry alone is changed, or that none did."""
+    lines = []
+    for entry in exploration.register:
+        if entry.origin != "adversarial":
+            continue
+        flips = []
+        for cid, rule in rules.items():
+            if entry.name not in exploration.depends.get(cid, ()):
+                continue
+            rec = exploration.record(cid, rule)
+            ref = {p: v["replicate_verdicts"][0] for p, v in rec["parts"].items() if v["replicate_verdicts"]}
+            for c in rec["conditions"]:
+                if c["kind"] == "single" and list(c["changed"]) == [entry.name]:
+                    for p, v in c["parts"].items():
+                        if p in ref and v != ref[p]:
+                            where = cid if p == "claim" else f"{cid} ({p})"
+                            flips.append(f"{where} {ref[p]} -> {v} at {c['changed'][entry.name]}")
+        lines.append(f"- `{entry.name}`: " + ("; ".join(flips) if flips else "no verdict changed") + ".")
+    return "\n".join(lines) if lines else "- no entry was added by the adversarial pass."

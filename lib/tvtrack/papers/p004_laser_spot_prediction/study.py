@@ -596,6 +596,7 @@ def model_order_summary(run: StudyRun) -> dict:
         "best_order2": b2,
         "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
         "singer_tau_frames": tau,
+        "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
         "tau_over_horizon": float(np.median(tau) / m),
     }
 
