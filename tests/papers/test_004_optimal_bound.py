@@ -28,9 +28,11 @@ def _riccati_innovation_variance(F, Q, H, P0, R, n):
     return S
 
 
-@pytest.fixture(scope="module")
-def wander():
-    cfg = BeamWanderConfig(n_paths=40, n_frames=400, rms_min_px=5.0, rms_max_px=5.0, drift_max_px_per_frame=0.0)
+@pytest.fixture(scope="module", params=["f^-4", "f^-2"])
+def wander(request):
+    cfg = BeamWanderConfig(
+        n_paths=40, n_frames=400, rms_min_px=5.0, rms_max_px=5.0, drift_max_px_per_frame=0.0, rolloff=request.param
+    )
     tr = generate_traces(cfg, 21)
     truth = np.moveaxis(tr.centres_px, -1, -2)[None]  # (1, P, 2, T)
     z = truth + SD * np.random.default_rng(3).standard_normal(truth.shape)
@@ -52,4 +54,6 @@ def test_the_bound_is_below_a_mismatched_filter(wander):
         r: np.mean(forecast_errors(optimal_wander_forecast(z, cfg, rms, r, 1), z, 1)[..., 100:] ** 2)
         for r in (SD**2, SD, SD**2 / 10)
     }
-    assert mse[SD**2] < 0.9 * mse[SD] and mse[SD**2] < mse[SD**2 / 10]
+    assert mse[SD**2] < 1.005 * min(mse[SD], mse[SD**2 / 10])  # optimal, up to the sample
+    if cfg.rolloff == "f^-4":  # smooth wander: the measurement noise is a large part of the error
+        assert mse[SD**2] < 0.9 * mse[SD]
