@@ -24,6 +24,7 @@ __all__ = [
     "clip_sentence",
     "amplitude_sentence",
     "adversarial_summary",
+    "edge_sentence",
 ]
 
 
@@ -220,3 +221,16 @@ def adversarial_summary(exploration, rules: dict) -> str:
                             flips.append(f"{where} {ref[p]} -> {v} at {c['changed'][entry.name]}")
         lines.append(f"- `{entry.name}`: " + ("; ".join(flips) if flips else "no verdict changed") + ".")
     return "\n".join(lines) if lines else "- no entry was added by the adversarial pass."
+
+
+def edge_sentence(report: dict) -> str:
+    """Which tuned settings sit on an edge of their grid (share of paths or folds), from
+    :func:`.study.grid_edge_report`."""
+    on = {k: v for k, v in report.items() if v > 0}
+    if not on:
+        return "Every tuned setting lies inside its grid."
+    return (
+        "Tuned settings on an edge of their grid (share of paths or folds): "
+        + ", ".join(f"{k} {v:.0%}" for k, v in on.items())
+        + "."
+    )

@@ -493,7 +493,7 @@ def grid_edge_report(run: StudyRun) -> dict:
     s = _setup(run.config, run.size)
     ch = run.comparison.chosen
     out = {
-        PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) != 0)),
+        PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) == 1)),  # N_f = 3 (order + 1) is a true limit
         FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
     }
     for name, lo in MIN_WINDOW.items():
@@ -504,7 +504,7 @@ def grid_edge_report(run: StudyRun) -> dict:
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
     sg = np.asarray(ch[SINGER])
-    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) != 0))
+    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
     return out
 
 
