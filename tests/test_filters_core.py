@@ -130,3 +130,17 @@ def test_one_joseph_update_for_any_gain_matches_the_textbook_form():
         S = H @ P @ H.T + R
         K_opt = P @ H.T @ np.linalg.inv(S)
         np.testing.assert_allclose(joseph_covariance(P, K_opt, H, R), (np.eye(3) - K_opt @ H) @ P, atol=1e-10)
+
+
+def test_joseph_update_keeps_its_digits_under_a_diffuse_prior():
+    """A 1e12 prior measured with 1e-6 noise: the posterior variance is the measurement's, 1e-6. The
+    expanded (outer-product) Joseph form cancels to 0 here; the factored form keeps it."""
+    import numpy as np
+
+    from tvtrack.filters.kalman import joseph_covariance
+
+    P = np.diag([1e12, 1e12])[None]
+    H = np.array([[1.0, 0.0]])
+    K = (P[:, :, 0] / (P[:, 0, 0, None] + 1e-6))[..., None]
+    out = joseph_covariance(P, K, H, 1e-6)[0]
+    np.testing.assert_allclose(out, np.diag([1e-6, 1e12]), rtol=1e-6)

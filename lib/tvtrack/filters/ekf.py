@@ -49,7 +49,7 @@ def joseph_update_scalar(x, P, nu, H, R, mask=None):
     Notes
     -----
     ``K = P h / S`` with ``S = h^T P h + R``; the covariance by
-    :func:`tvtrack.filters.kalman.joseph_covariance` (its outer-product form for ``m = 1``).
+    :func:`tvtrack.filters.kalman.joseph_covariance`.
     """
     h = H[..., 0, :]
     b = np.einsum("...ij,...j->...i", P, h)

@@ -24,9 +24,8 @@ def joseph_covariance(P, K, H, R):
 
     ``P+ = (I - K H) P (I - K H)^T + K R K^T``, symmetrised. Valid for a suboptimal gain (bounded,
     floored or fixed gains of the alpha-beta and growing-memory filters), not only the Kalman gain.
-    For a scalar measurement (``m = 1``) it is evaluated with outer products only,
-    ``P - K b^T - b K^T + (h^T b + R) K K^T`` with ``b = P h`` (the same matrix, about three times
-    faster than the matrix products for small ``n``).
+    ``I - K H`` is formed first, so a huge prior (a diffuse start, 1e12) loses no digits: the expanded
+    form ``P - K b^T - b K^T + S K K^T`` cancels to zero there (``tests/test_filters_core.py``).
 
     Parameters
     ----------
@@ -43,17 +42,9 @@ def joseph_covariance(P, K, H, R):
     K = np.asarray(K, dtype=float)
     H = np.asarray(H, dtype=float)
     R = np.asarray(R, dtype=float)
-    if K.shape[-1] == 1:
-        h = H[..., 0, :]
-        k = K[..., 0]
-        b = np.einsum("...ij,...j->...i", P, h)
-        s = np.einsum("...i,...i->...", h, b) + (R.reshape(R.shape[:-2]) if R.ndim >= 2 else R)
-        kb = k[..., :, None] * b[..., None, :]
-        P_new = P - kb - np.swapaxes(kb, -1, -2) + s[..., None, None] * (k[..., :, None] * k[..., None, :])
-        return _sym(P_new)
-    n = P.shape[-1]
-    IKH = np.eye(n) - K @ H
-    return _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2))
+    KRK = K @ (R if R.ndim >= 2 else R[..., None, None]) @ np.swapaxes(K, -1, -2)
+    IKH = np.eye(P.shape[-1]) - K @ H
+    return _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + KRK)
 
 
 def kf_predict(x, P, F, Q):
