@@ -167,8 +167,7 @@ def horizon_sentence(hz: dict) -> str:
         + (
             "describes the predictable part of this wander."
             if law == "close to"
-            else "does not describe this wander over these horizons (its fast component decorrelates within a few "
-            "frames)."
+            else "does not describe this wander over these horizons."
         )
         + f" The filter's floor was re-tuned at every horizon (median cross-validated N_f per horizon: {floors})."
     )
