@@ -17,10 +17,10 @@ $(STAMP): environment.txt pyproject.toml
 # and running a notebook in JupyterLab never dirties a tracked file
 hooks:
 	@if git rev-parse --git-dir >/dev/null 2>&1; then \
-	  git config filter.nbstripout.clean "$(abspath $(BIN))/python -m nbstripout"; \
+	  git config filter.nbstripout.clean "$(abspath $(BIN))/python -m nbstripout --keep-id"; \
 	  git config filter.nbstripout.smudge cat; \
 	  git config filter.nbstripout.required true; \
-	  git config diff.ipynb.textconv "$(abspath $(BIN))/python -m nbstripout -t"; \
+	  git config diff.ipynb.textconv "$(abspath $(BIN))/python -m nbstripout -t --keep-id"; \
 	fi
 
 lint: $(STAMP)

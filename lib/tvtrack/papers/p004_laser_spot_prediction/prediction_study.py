@@ -1,16 +1,19 @@
 """The prediction comparison of notebook 004, with every method tuned the same way.
 
 Every method sees the same measured series and predicts ``steps`` frames ahead; each method's
-free setting is chosen by cross-validation over paths (:func:`tvtrack.predictors.cross_validated_pick`:
+free setting is chosen by cross-validation over paths (:func:`tvtrack.papers.p004_laser_spot_prediction.predictors.cross_validated_pick`:
 the setting with the smallest error on the *other* paths of the fold), never on the paths it is
 scored on:
 
 - the paper's growing-memory filter: its floor ``N_f`` from a grid;
-- sliding regression (degree 1, 2) and the cubic spline: their window ``L`` from a grid;
+- sliding regression (degree 1, 2) and the cubic spline: their window ``L`` from a grid that starts
+  at the method's degree + 1 (the fewest samples it can fit: 2 for a line, 3 for a quadratic, 4 for
+  the cubic spline; :func:`window_candidates`);
 - finite differences (2 and 3 points): nothing to tune;
 - MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold;
 - constant-acceleration Kalman filter: its two noise levels by maximum likelihood on the
-  training paths of each fold;
+  training paths of each fold (grids wide enough that the optimum lies inside; :func:`grid_edges`
+  reports a fit on an edge);
 - Singer-model Kalman filter (exponentially correlated acceleration): its correlation time,
   acceleration variance and measurement variance by maximum likelihood on the training paths
   of each fold;
@@ -32,8 +35,9 @@ import numpy as np
 
 from . import predictors as pr
 
-__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "SINGER", "ComparisonSetup", "Comparison", "compare_methods", "per_trial_path_mse",
-           "fit_learned_folds", "apply_learned_folds", "radial_error_summary"]
+__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "SINGER", "MIN_WINDOW", "ComparisonSetup", "Comparison",
+           "compare_methods", "per_trial_path_mse", "fit_learned_folds", "apply_learned_folds", "radial_error_summary",
+           "window_candidates", "grid_edges"]
 
 #: The paper's filter.
 PAPER = "growing memory (paper)"
@@ -48,6 +52,29 @@ SINGER = "Singer Kalman, ML"
 #: 2-4 px), and two Kalman filters with ML parameters standing in for the paper's "Kalman filters"
 #: (1-2 px): constant acceleration with white jerk, and Singer's correlated acceleration.
 FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise", SINGER)
+#: The fewest samples each windowed baseline can fit (its degree + 1): where its window search starts.
+MIN_WINDOW = {"cubic spline": 4, "linear regression deg 1": 2, "linear regression deg 2": 3}
+
+
+def window_candidates(min_window: int, grid) -> tuple:
+    """Windows a baseline's search tries: every integer from ``min_window`` (its degree + 1) up to
+    the grid's smallest value, then the grid values above ``min_window``.
+
+    A grid that starts above a baseline's degree + 1 would deny it its shortest memory, which is
+    its optimum when the motion is fast and the measurement clean (a degree-1 fit on 2 samples).
+    """
+    grid = sorted(int(g) for g in grid)
+    return tuple(sorted(set(range(int(min_window), max(grid[0], int(min_window)) + 1)) | {g for g in grid if g >= min_window}))
+
+
+def grid_edges(chosen, grid) -> np.ndarray:
+    """Where a tuned setting sits on its grid's edge (``-1``: lowest value, ``+1``: highest, 0: inside).
+
+    A fit on an edge may be the grid's limit rather than the method's optimum; the notebook reports it.
+    """
+    g = np.asarray(grid, dtype=float)
+    c = np.asarray(chosen, dtype=float)
+    return np.where(np.isclose(c, g.max()), 1, np.where(np.isclose(c, g.min()), -1, 0))
 
 
 def per_trial_path_mse(forecast, reference, steps: int, start: int) -> np.ndarray:
@@ -100,7 +127,7 @@ class ComparisonSetup:
     learned_lags: int = 10
     learned_kw: dict = field(default_factory=dict)
     jerk_grid: tuple = tuple(np.logspace(-7, 1, 17))
-    meas_var_grid: tuple = tuple(np.logspace(-4, 0, 5))
+    meas_var_grid: tuple = tuple(np.logspace(-4, 2, 7))  # px^2: up to 10 px RMS, past any jitter of the register
     singer_tau_grid: tuple = tuple(np.logspace(-2, 3, 11))
     singer_ratio_grid: tuple = tuple(np.logspace(-4, 8, 13))
 
@@ -166,7 +193,7 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
     reference : ndarray, broadcastable to ``z``
         What the predictions are scored against (measured centres with NaN for lost frames, or truth).
     folds : list of (train, test)
-        :func:`tvtrack.predictors.path_folds`.
+        :func:`tvtrack.papers.p004_laser_spot_prediction.predictors.path_folds`.
     rng : numpy.random.Generator
         Seeds of the learned models.
     learned_models : dict, optional
@@ -194,7 +221,8 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
                 "linear regression deg 1": lambda L: pr.sliding_regression_forecast(z, L, 1, m),
                 "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m)}
     for name, make in windowed.items():
-        fcs[name], mse[name], chosen[name], _, _ = _tuned(s.window_grid, make, z, reference, folds, s)
+        fcs[name], mse[name], chosen[name], _, _ = _tuned(window_candidates(MIN_WINDOW[name], s.window_grid), make, z,
+                                                          reference, folds, s)
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
     fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
         s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s)

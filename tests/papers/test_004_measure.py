@@ -5,7 +5,7 @@ import pytest
 
 from tvtrack.measure import centroid
 from tvtrack.render import gaussian_spot, gate_origin, sensor_readout
-from tvtrack.scenes.beam_wander import SpotCamera, track_spot
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import SpotCamera, track_spot
 
 
 @pytest.mark.parametrize("cx, cy", [(31.0, 31.0), (20.37, 41.81), (33.5, 28.5), (30.5, 30.0)])
@@ -61,7 +61,7 @@ def test_camera_rejects_bad_parameters():
 
 
 def test_soft_window_covers_exactly_its_width():
-    from tvtrack.estimate.spot_centre import soft_window
+    from tvtrack.papers.p004_laser_spot_prediction.spot_centre import soft_window
 
     w = soft_window(np.array([10.3, 4.0]), 3.5, 21)
     np.testing.assert_allclose(w.sum(axis=-1), 7.0)
@@ -72,7 +72,7 @@ def test_windowed_centroid_noiseless_off_centre_spot_exact():
     """A spot 4 px off the gate centre: the re-centred window is symmetric about it. A gate-centred
     window that cuts the wings is biased by ~0.9 px here; the iteration removes that. What remains
     (< 0.015 px) is the partial edge pixels weighted as points at their centres, 2.6 sigma out."""
-    from tvtrack.estimate.spot_centre import windowed_centroid
+    from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
     img = 10.0 + gaussian_spot([19.3, 11.6], (31, 31), 4.0, 2e4)
     img[0, :] = img[-1, :] = img[:, 0] = img[:, -1] = 10.0  # flat border: known background, zero RMS
@@ -123,7 +123,7 @@ def test_gaussian_fit_reaches_the_cramer_rao_bound(read_noise_dn):
     one-frame Poisson CRB (read noise and quantisation as Poisson-equivalent variance) within 10 %
     (1000 gates: the RMS has ~2.3 % standard error); the thresholded windowed centroid is worse."""
     from tvtrack.bounds.poisson_crb import fisher_linear_motion
-    from tvtrack.estimate.spot_centre import gaussian_fit_centre, windowed_centroid
+    from tvtrack.papers.p004_laser_spot_prediction.spot_centre import gaussian_fit_centre, windowed_centroid
 
     rng = np.random.default_rng(11)
     n, g, flux = 1000, 31, 2 * np.pi * 16 * 200

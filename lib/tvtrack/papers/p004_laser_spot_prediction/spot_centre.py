@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..measure import Centroid, border_statistics
-from ..render import pixel_fractions_gaussian
+from ...measure import Centroid, border_statistics
+from ...render import pixel_fractions_gaussian
 
 __all__ = ["soft_window", "windowed_centroid", "centroid_mask", "gaussian_fit_centre"]
 

@@ -40,9 +40,9 @@ from numpy.lib.stride_tricks import sliding_window_view
 from scipy.interpolate import CubicSpline
 from scipy.linalg import expm
 
-from .filters.kalman import kf_predict, kf_update
-from .montecarlo import mean_ci, rms_ci
-from .filters.polynomial import (growing_memory_filter, growing_memory_gains, polynomial_observation_row,
+from ...filters.kalman import kf_predict, kf_update
+from ...montecarlo import mean_ci, rms_ci
+from ...filters.polynomial import (growing_memory_filter, growing_memory_gains, polynomial_observation_row,
                                  predict_ahead, taylor_transition)
 
 __all__ = [

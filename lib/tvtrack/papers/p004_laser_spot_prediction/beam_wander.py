@@ -24,7 +24,7 @@ integral for the discrete process noise), so no discretisation error depends on 
 
 Command line (writes the data set shipped in ``data/laser_traces``)::
 
-    python -m tvtrack.scenes.beam_wander --out data/laser_traces --seed 20050110
+    python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander --out data/laser_traces --seed 20050110
 """
 
 from __future__ import annotations
@@ -37,15 +37,21 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import block_diag, expm
 
-from ..estimate.spot_centre import windowed_centroid
-from ..measure import centroid
-from ..predictors import kalman_forecast
-from ..render import gate_origin, gaussian_spot, sensor_readout
-from ..traces import TraceSet, save_traces, sha256_file
+from .spot_centre import windowed_centroid
+from ...measure import centroid
+from .predictors import kalman_forecast
+from ...render import gate_origin, gaussian_spot, sensor_readout
+from .traces import TraceSet, save_traces, sha256_file
 
 __all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "component_table", "one_frame_motion_rms",
            "with_frame_jitter", "gauss_markov_discrete", "generate_traces",
            "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
+
+#: The generator's name as the shipped data set records it (``metadata["generator"]``). The module has
+#: since moved into the paper package; the recorded name stays so that regenerating the data set with
+#: ``python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander`` writes the same metadata (the
+#: arrays agree to the last bits the machine's floating point allows; ``tests/papers/test_004_traces.py``).
+GENERATOR_RECORDED_NAME = "tvtrack.scenes.beam_wander.generate_traces"
 
 
 @dataclass(frozen=True)
@@ -80,6 +86,11 @@ class BeamWanderConfig:
         exact discretisation holds for any corner; such a component is nearly uncorrelated from
         frame to frame (aliased fast tilt). Recorded in the metadata only when True, so data sets
         made before the option existed regenerate byte for byte.
+    rolloff : {"f^-4", "f^-2"}
+        Spectrum of each component above its corner (default ``"f^-4"``): a critically damped
+        second-order Gauss-Markov process (smooth paths with a velocity), or a first-order one
+        (Ornstein-Uhlenbeck, PSD ``~ 1 / (1 + (f/f_k)^2)``: continuous paths without a velocity).
+        Recorded in the metadata only when not the default, like ``aliased_corners``.
     """
 
     n_paths: int = 15
@@ -93,6 +104,7 @@ class BeamWanderConfig:
     drift_max_px_per_frame: float = 0.02
     scintillation_sigma_ln: float = 0.3
     aliased_corners: bool = False
+    rolloff: str = "f^-4"
 
     def __post_init__(self):
         object.__setattr__(self, "corner_frequencies_hz", tuple(float(f) for f in self.corner_frequencies_hz))
@@ -114,6 +126,7 @@ class BeamWanderConfig:
              f"in [0, image_size_px/(4 n_frames)] = [0, {self.image_size_px / 4 / self.n_frames:g}]"),
             ("scintillation_sigma_ln", self.scintillation_sigma_ln, 0 <= self.scintillation_sigma_ln <= 2,
              "in [0, 2]"),
+            ("rolloff", self.rolloff, self.rolloff in ("f^-4", "f^-2"), "'f^-4' or 'f^-2'"),
         ]
         for name, value, ok, allowed in checks:
             if not ok:
@@ -161,7 +174,7 @@ def component_table(config: BeamWanderConfig) -> list[dict]:
     f = np.asarray(config.corner_frequencies_hz)
     share = component_sigmas(config, 1.0) ** 2
     wt = 2 * np.pi * f / config.frame_rate_hz
-    rho = (1 + wt) * np.exp(-wt)
+    rho = np.exp(-wt) if config.rolloff == "f^-2" else (1 + wt) * np.exp(-wt)
     return [{"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
             for fk, sk, rk in zip(f, share, rho)]
 
@@ -211,7 +224,7 @@ def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> T
     return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
 
 
-def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarray]:
+def gauss_markov_discrete(omega, sigma, dt: float, order: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Exact discrete model of critically damped Gauss-Markov processes.
 
     State ``(s, s')``; continuous ``A = [[0, 1], [-w^2, -2w]]``, noise input ``(0, q)``,
@@ -225,6 +238,9 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
         Stationary RMS of ``s``, px.
     dt : float
         Sampling interval, s.
+    order : {2, 1}
+        2: critically damped (PSD ``~ f^-4`` above the corner); 1: Ornstein-Uhlenbeck in ``s``
+        (``s' = -w s + noise``, PSD ``~ f^-2``), the second state held at 0.
 
     Returns
     -------
@@ -235,6 +251,13 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
     """
     omega = np.asarray(omega, dtype=float)
     sigma = np.asarray(sigma, dtype=float)
+    if order == 1:  # Ornstein-Uhlenbeck in the first state; the second state stays 0
+        a = np.exp(-omega * dt)
+        Phi = np.zeros(omega.shape + (2, 2))
+        Phi[:, 0, 0] = a
+        Qd = np.zeros(sigma.shape + (2, 2))
+        Qd[..., 0, 0] = sigma ** 2 * (1 - a ** 2)
+        return Phi, Qd
     Phi = np.empty(omega.shape + (2, 2))
     Q1 = np.empty(omega.shape + (2, 2))  # for q = 1
     for k, w in enumerate(omega):
@@ -248,13 +271,13 @@ def gauss_markov_discrete(omega, sigma, dt: float) -> tuple[np.ndarray, np.ndarr
     return Phi, q2[..., None, None] * Q1
 
 
-def _stationary_cov(omega, sigma) -> np.ndarray:
+def _stationary_cov(omega, sigma, order: int = 2) -> np.ndarray:
     """Stationary covariance ``diag(sigma^2, sigma^2 w^2)`` of ``(s, s')``, shape (..., K, 2, 2)."""
     omega = np.asarray(omega, dtype=float)
     sigma = np.asarray(sigma, dtype=float)
     P = np.zeros(sigma.shape + (2, 2))
     P[..., 0, 0] = sigma ** 2
-    P[..., 1, 1] = (sigma * omega) ** 2
+    P[..., 1, 1] = 0.0 if order == 1 else (sigma * omega) ** 2
     return P
 
 
@@ -287,8 +310,9 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     angle = rng.uniform(0.0, 2 * np.pi, size=P)
     drift = speed[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)  # (P, 2) px/frame
     sig = component_sigmas(c, rms)  # (P, K)
-    Phi, Qd = gauss_markov_discrete(omega, sig, dt)  # (K,2,2), (P,K,2,2)
-    L0 = np.linalg.cholesky(_stationary_cov(omega, sig) + 1e-300 * np.eye(2))  # (P,K,2,2)
+    order = 1 if c.rolloff == "f^-2" else 2
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt, order)  # (K,2,2), (P,K,2,2)
+    L0 = np.linalg.cholesky(_stationary_cov(omega, sig, order) + 1e-300 * np.eye(2))  # (P,K,2,2)
     Lq = np.linalg.cholesky(Qd + 1e-300 * np.eye(2))
     s = np.einsum("pkij,pakj->pakj", L0, rng.standard_normal((P, 2, K, 2)))  # (P, axis, K, 2)
     noise = rng.standard_normal((T, P, 2, K, 2))
@@ -306,8 +330,10 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     cfg["corner_frequencies_hz"] = list(c.corner_frequencies_hz)
     if not c.aliased_corners:
         del cfg["aliased_corners"]
+    if c.rolloff == "f^-4":
+        del cfg["rolloff"]
     metadata = {
-        "generator": "tvtrack.scenes.beam_wander.generate_traces",
+        "generator": GENERATOR_RECORDED_NAME,
         "config": cfg,
         "seed": int(seed),
         "wander_rms_px": rms.tolist(),
@@ -345,8 +371,9 @@ def wander_state_space(config: BeamWanderConfig, rms_px, drift_prior_px_per_fram
     dt = 1.0 / c.frame_rate_hz
     omega = 2 * np.pi * np.asarray(c.corner_frequencies_hz)
     sig = component_sigmas(c, rms_px)
-    Phi, Qd = gauss_markov_discrete(omega, sig, dt)
-    Pst = _stationary_cov(omega, sig)
+    order = 1 if c.rolloff == "f^-2" else 2
+    Phi, Qd = gauss_markov_discrete(omega, sig, dt, order)
+    Pst = _stationary_cov(omega, sig, order)
     K = omega.size
     n = 2 * K + 2
     F = block_diag(*Phi, np.array([[1.0, 1.0], [0.0, 1.0]]))
@@ -414,7 +441,7 @@ class SpotCamera:
     threshold_sigma : float
         Centroid threshold in robust border RMS above the border median (default 3).
     centroid_mode : {"windowed", "gate"}
-        ``"windowed"`` (default): :func:`tvtrack.estimate.spot_centre.windowed_centroid`, a soft
+        ``"windowed"`` (default): :func:`tvtrack.papers.p004_laser_spot_prediction.spot_centre.windowed_centroid`, a soft
         window of ``centroid_window_px`` re-centred on the estimate (no pull toward the gate
         centre); ``"gate"``: the thresholded centroid over the whole gate
         (:func:`tvtrack.measure.centroid`), whose noise pixels pull the centre toward the previous
@@ -479,11 +506,14 @@ class GateTrack:
         First pixel ``(x0, y0)`` of each frame's gate.
     gates : ndarray or None, shape (T, rows, cols)
         Gate images (DN) of the batch element ``keep``, if asked for.
+    clipped : ndarray of bool or None, shape (..., T)
+        Whether the gate held a pixel at the sensor's full scale (``2**bit_depth - 1``): saturation.
     """
 
     xy: np.ndarray
     origin: np.ndarray
     gates: np.ndarray | None
+    clipped: np.ndarray | None = None
 
 
 def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCamera = SpotCamera(),
@@ -522,6 +552,8 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
     xy = np.full(c.shape, np.nan)
     origin = np.zeros(c.shape, dtype=np.int64)
     gates = None if keep is None else np.empty((T, g, g))
+    clipped = np.zeros(c.shape[:-1], dtype=bool)
+    full_scale = 2 ** camera.bit_depth - 1
     aim = c[..., 0, :]
     for t in range(T):
         o = np.clip(gate_origin(aim, (g, g)), 0, image_size_px - g)
@@ -536,15 +568,16 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
             m = centroid(img, o, background="border", threshold_sigma=camera.threshold_sigma)
         xy[..., t, :] = m.xy
         origin[..., t, :] = o
+        clipped[..., t] = np.any(img >= full_scale, axis=(-2, -1))
         if keep is not None:
             gates[t] = img[keep]
         aim = np.where(m.valid[..., None], m.xy, aim)  # a lost frame keeps the old gate
-    return GateTrack(xy, origin, gates)
+    return GateTrack(xy, origin, gates, clipped)
 
 
 def main(argv=None) -> int:
     """Write a trace data set: ``traces.npz`` plus ``checksums.sha256``."""
-    ap = argparse.ArgumentParser(prog="python -m tvtrack.scenes.beam_wander",
+    ap = argparse.ArgumentParser(prog="python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander",
                                  description="Generate synthetic laser beam-wander traces (true centres).")
     ap.add_argument("--out", required=True, help="output folder")
     ap.add_argument("--seed", type=int, required=True, help="random seed (integer >= 0)")

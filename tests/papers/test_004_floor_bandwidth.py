@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tvtrack import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.filters.alphabeta import (abg_variance_reduction, closed_form_gains, floor_bandwidth_map,
                                        floor_variance_reduction, steady_state_covariance)
 from tvtrack.filters.polynomial import growing_memory_filter, taylor_transition

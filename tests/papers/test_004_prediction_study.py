@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from tvtrack import predictors as pr
-from tvtrack.prediction_study import (CLASSICAL, FADING, FITTED, PAPER, ComparisonSetup, compare_methods,
+from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (CLASSICAL, FADING, FITTED, PAPER, ComparisonSetup, compare_methods,
                                       per_trial_path_mse, radial_error_summary)
 
 SETUP = ComparisonSetup(floor_grid=(3, 5, 10, 30), window_grid=(4, 8, 16), start=30,

@@ -8,8 +8,8 @@ import pytest
 
 from tvtrack.filters.polynomial import (growing_memory_filter, growing_memory_gains, predict_ahead,
                                         taylor_transition)
-from tvtrack.predictors import g1_floor_filter, g1_floor_gains, growing_memory_forecast
-from tvtrack.predictors import batch_least_squares_states as pr_batch
+from tvtrack.papers.p004_laser_spot_prediction.predictors import g1_floor_filter, g1_floor_gains, growing_memory_forecast
+from tvtrack.papers.p004_laser_spot_prediction.predictors import batch_least_squares_states as pr_batch
 
 
 def _batch_ls(z_present, t_present, t_now, order):

@@ -7,12 +7,12 @@ import zipfile
 import numpy as np
 import pytest
 
-from tvtrack.traces import DATA_DIR
-from tvtrack.scenes.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
+from tvtrack.papers.p004_laser_spot_prediction.traces import DATA_DIR
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
                                         generate_traces, one_frame_motion_rms, optimal_wander_forecast, scaled_config,
                                         with_frame_jitter,
                                         wander_state_space)
-from tvtrack.traces import TraceSet, load_traces, save_traces, sha256_file
+from tvtrack.papers.p004_laser_spot_prediction.traces import TraceSet, load_traces, save_traces, sha256_file
 
 SHIPPED = DATA_DIR / "laser_traces" / "traces.npz"
 
@@ -163,7 +163,7 @@ def test_scaled_config_scales_amplitude_and_bandwidth():
 
 
 def test_optimal_wander_forecast_beats_the_paper_filter_and_last_value():
-    from tvtrack.predictors import forecast_errors, growing_memory_forecast
+    from tvtrack.papers.p004_laser_spot_prediction.predictors import forecast_errors, growing_memory_forecast
 
     cfg = BeamWanderConfig(n_paths=3, n_frames=400)
     tr = generate_traces(cfg, 11)
@@ -210,3 +210,22 @@ def test_aliased_corners_only_on_request_and_not_recorded_by_default():
     assert abs(np.mean(d[:, 1:] * d[:, :-1]) / np.mean(d * d)) < 0.05  # nearly white at 25 frames/s
     assert tr.metadata["config"]["aliased_corners"] is True
     assert "aliased_corners" not in generate_traces(BeamWanderConfig(n_paths=1, n_frames=5), 0).metadata["config"]
+
+
+def test_first_order_rolloff_is_an_ornstein_uhlenbeck_process_and_stays_out_of_the_default_metadata():
+    """roll-off f^-2: each component is first-order (lag-one correlation exp(-w dt), stationary variance
+    sigma^2); the optimal model's wander block keeps that variance; the default records nothing new."""
+    cfg = BeamWanderConfig(n_paths=400, n_frames=300, rms_min_px=4.0, rms_max_px=4.0, drift_max_px_per_frame=0.0,
+                           corner_frequencies_hz=(0.5,), rolloff="f^-2")
+    tr = generate_traces(cfg, seed=2)
+    d = tr.centres_px - 63.5
+    assert abs(np.var(d[:, -1]) / 16 - 1) < 0.1
+    rho = np.exp(-2 * np.pi * 0.5 / 25)
+    r1 = np.mean(d[:, 1:] * d[:, :-1]) / np.mean(d * d)
+    assert abs(r1 - rho) < 0.01 and component_table(cfg)[0]["frame_correlation"] == pytest.approx(rho)
+    F, Q, H, P0 = wander_state_space(cfg, np.array([4.0]))
+    Pw = P0[0, :2, :2]
+    np.testing.assert_allclose(F[:2, :2] @ Pw @ F[:2, :2].T + Q[0, :2, :2], Pw, rtol=1e-9, atol=1e-12)
+    assert "rolloff" in tr.metadata["config"] and "rolloff" not in generate_traces(BeamWanderConfig(), 1).metadata["config"]
+    with pytest.raises(ValueError, match="rolloff"):
+        BeamWanderConfig(rolloff="f^-3")

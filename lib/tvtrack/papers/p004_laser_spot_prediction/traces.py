@@ -34,7 +34,7 @@ __all__ = ["TraceSet", "save_traces", "load_traces", "sha256_file", "FORMAT_TAG"
 FORMAT_TAG = "tvtrack-traces-v1"
 
 #: The repository's ``data/`` folder with the shipped data sets (the package is installed editable from ``lib/``).
-DATA_DIR = Path(__file__).resolve().parents[2] / "data"
+DATA_DIR = Path(__file__).resolve().parents[4] / "data"
 
 _REQUIRED = ("centres_px", "intensity", "frame_rate_hz", "image_size_px", "metadata_json", "format")
 

@@ -1,0 +1,272 @@
+"""Figures of paper 004. Each function takes study results and returns a matplotlib figure (axes
+labelled with units); the notebook saves it with its caption."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import matplotlib.ticker
+import numpy as np
+
+from ...filters.polynomial import growing_memory_gains
+from ...plotting import colour
+from . import predictors as pr
+from .prediction_study import PAPER, per_trial_path_mse
+from .spot_centre import centroid_mask
+from .study import OPTIMAL
+
+__all__ = [
+    "plain_log",
+    "errorbars",
+    "measurement_figure",
+    "prediction_figure",
+    "comparison_figure",
+    "horizon_figure",
+    "floor_figure",
+    "gains_figure",
+    "ranking_figure",
+]
+
+_STYLES = [
+    ("o", "-"),
+    ("s", "--"),
+    ("^", ":"),
+    ("v", "-."),
+    ("D", "-"),
+    ("x", "--"),
+    ("+", ":"),
+    ("*", "-."),
+    ("<", "-"),
+    (">", "--"),
+    ("p", ":"),
+    ("h", "-."),
+]
+
+
+def plain_log(ax, which: str = "xy") -> None:
+    """Log axes with plain-number tick labels (1, 2, 5 x 10^k written out, no 10^x)."""
+    for name in which:
+        axis = getattr(ax, f"{name}axis")
+        axis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
+def errorbars(ax, x, estimates, **kw):
+    """Estimates (value and 95 % interval) against ``x``."""
+    v = np.array([e.value for e in estimates])
+    lo = np.array([e.ci_low for e in estimates])
+    hi = np.array([e.ci_high for e in estimates])
+    return ax.errorbar(x, v, yerr=[v - lo, hi - v], **kw)
+
+
+def measurement_figure(run, frame: int):
+    """Fig. 1-2 redrawn: the gate of path 1 at ``frame`` (window, weighted pixels, measured and true
+    centre) and the measured x, y of path 1 against the frame number."""
+    trk, cam = run.track, run.camera
+    o = trk.origin[0, 0, frame]
+    img = trk.gates[frame]
+    xy = np.moveaxis(run.z_meas[0, 0], 0, -1)
+    truth = np.moveaxis(run.truth[0, 0], 0, -1)
+    g = cam.gate_size_px
+    mask = centroid_mask(img, o, xy[frame], window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
+    fig, axs = plt.subplots(1, 2, figsize=(10, 3.8), width_ratios=[1, 1.6])
+    axs[0].imshow(img, cmap="gray", extent=(o[0] - 0.5, o[0] + g - 0.5, o[1] + g - 0.5, o[1] - 0.5))
+    axs[0].contour(
+        np.arange(g) + o[0], np.arange(g) + o[1], mask.astype(float), levels=[0.5], colors="c", linewidths=0.8
+    )
+    hw = cam.window_px / 2
+    axs[0].add_patch(plt.Rectangle(xy[frame] - hw, 2 * hw, 2 * hw, fill=False, color=colour("gate")))
+    axs[0].plot(*xy[frame], "+", color=colour("measurement"), ms=12, label="energy centre")
+    axs[0].plot(*truth[frame], "x", color=colour("truth"), ms=8, label="true centre")
+    axs[0].set(xlabel="x (px)", ylabel="y (px)", title=f"frame {frame}: gate, window, weighted pixels")
+    axs[0].legend(loc="lower left", fontsize=8)
+    k = np.arange(xy.shape[0])
+    axs[1].plot(k, xy[:, 0], label="x (curve 1)")
+    axs[1].plot(k, xy[:, 1], label="y (curve 2)")
+    axs[1].set(xlabel="frame number", ylabel="measured centre (px)", title="energy-centre coordinates, path 1")
+    axs[1].legend(fontsize=8)
+    return fig
+
+
+def prediction_figure(run, name: str = PAPER, zoom: int = 120):
+    """Figs. 3-4 redrawn: measured and predicted x of path 1, a zoom, and the prediction error with
+    the paper's +-2 px band."""
+    m = int(run.config["horizon"])
+    fc = run.forecasts[name][0, 0]
+    z = run.z[0, 0]
+    k = np.arange(z.shape[-1])
+    e = pr.forecast_errors(run.forecasts[name], run.z_meas, m)[0, 0]
+    lo = max(run.size.eval_start, z.shape[-1] // 2 - zoom // 2)
+    hi = min(z.shape[-1] - m, lo + zoom)
+    fig, axs = plt.subplots(3, 1, figsize=(9, 7.5))
+    axs[0].plot(k, z[0], lw=0.8, color=colour("measurement"), label="measured x")
+    axs[0].plot(k + m, fc[0], lw=0.8, ls="--", color=colour("prediction"), label=f"predicted {m} frame(s) ahead")
+    axs[0].set(xlabel="frame number", ylabel="x centre (px)", title="Fig. 3 redrawn: measured and predicted, path 1")
+    axs[0].legend(fontsize=8)
+    axs[1].plot(k[lo:hi], z[0, lo:hi], "o-", ms=3, lw=0.8, color=colour("measurement"), label="measured x")
+    axs[1].plot(k[lo:hi], fc[0, lo - m : hi - m], "s--", ms=3, lw=0.8, color=colour("prediction"), label="predicted x")
+    axs[1].set(xlabel="frame number", ylabel="x centre (px)", title="Fig. 4 redrawn: zoom")
+    axs[1].legend(fontsize=8)
+    axs[2].plot(k, e[0], lw=0.6, label="x")
+    axs[2].plot(k, e[1], lw=0.6, label="y")
+    axs[2].axhspan(-2, 2, color="g", alpha=0.12, label="+-2 px (paper)")
+    axs[2].set(xlabel="frame number", ylabel="prediction error (px)", title="prediction error, path 1")
+    axs[2].legend(fontsize=8, ncol=3)
+    return fig
+
+
+def comparison_figure(run, names):
+    """Per-path RMS one-step error of each method (box over paths), with the paper's 1-2 px band."""
+    m = int(run.config["horizon"])
+    data = [np.sqrt(per_trial_path_mse(run.forecasts[n], run.z_meas, m, run.size.eval_start)[0]) for n in names]
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.boxplot(data, orientation="horizontal", tick_labels=list(names), showmeans=True)
+    ax.axvspan(1, 2, color="g", alpha=0.12, label="paper's claim: 1-2 px")
+    ax.set_xscale("log")
+    plain_log(ax, "x")
+    ax.set_xlabel(f"per-path RMS of the {m}-frame prediction error per axis (px)")
+    ax.invert_yaxis()
+    ax.legend(loc="lower right")
+    return fig
+
+
+def horizon_figure(hz: dict, horizons):
+    """RMS error against the horizon for every method (re-tuned per horizon), distinct marker and line
+    style per method so coinciding curves stay visible."""
+    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    for j, (name, d) in enumerate(hz["rms"].items()):
+        mk, ls = _STYLES[j % len(_STYLES)]
+        shift = 1 + 0.012 * (j - len(hz["rms"]) / 2)  # a small offset keeps identical curves apart
+        errorbars(
+            ax,
+            np.asarray(horizons, float) * shift,
+            [d[h] for h in horizons],
+            marker=mk,
+            ls=ls,
+            ms=4,
+            capsize=2,
+            lw=2.0 if name == PAPER else 1.0,
+            color="k" if name == OPTIMAL else colour(j),
+            label=name,
+        )
+    ax.axhspan(1, 2, color="g", alpha=0.12, label="1-2 px (paper)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    plain_log(ax)
+    ax.set_xlabel("prediction horizon m (frames)")
+    ax.set_ylabel("RMS prediction error per axis (px)")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+def floor_figure(run, floor_grid, late_start: int):
+    """Left: RMS error against the floor N_f (all paths) and the optimal predictor; right: RMS over paths
+    against the frame, without and with the cross-validated floor (C004-6)."""
+    m = int(run.config["horizon"])
+    s = run.size.eval_start
+    rms = [
+        np.sqrt(per_trial_path_mse(pr.growing_memory_forecast(run.z, m, 2, nf), run.z_meas, m, s)[0].mean())
+        for nf in floor_grid
+    ]
+    opt = np.sqrt(per_trial_path_mse(run.forecasts[OPTIMAL], run.z_meas, m, s)[0].mean())
+    fig, axs = plt.subplots(1, 2, figsize=(10, 3.6))
+    axs[0].plot(floor_grid, rms, "o-", label="growing memory, frozen gains g_{N_f}")
+    axs[0].axhline(opt, color="k", ls=":", label="optimal predictor")
+    axs[0].set_xscale("log")
+    axs[0].set_yscale("log")
+    plain_log(axs[0])
+    axs[0].set(xlabel="floor N_f (samples)", ylabel=f"RMS {m}-frame prediction error (px)")
+    axs[0].legend(fontsize=8)
+    k = np.arange(run.z.shape[-1])
+    for fc, lab in (
+        (pr.growing_memory_forecast(run.z, m, 2, None), "no floor"),
+        (run.forecasts[PAPER], "floor (cross-validated)"),
+    ):
+        e = np.nan_to_num(pr.forecast_errors(fc, run.z_meas, m)[0])
+        axs[1].plot(k[s:], np.sqrt(np.mean(e[..., s:] ** 2, axis=(0, 1))), lw=0.6, label=lab)
+    axs[1].axvline(late_start, color="gray", ls="--", lw=0.8, label="late half starts")
+    axs[1].set_yscale("log")
+    plain_log(axs[1], "y")
+    axs[1].set(xlabel="frame number", ylabel="RMS error over paths and axes (px)")
+    axs[1].legend(fontsize=8)
+    return fig
+
+
+def gains_figure(ratios: dict, floor: int):
+    """Left: growing-memory gains g_N against N with the 9/N law; right: the measured filtered-position
+    variance over sigma^2 g_N1 at the checked N (C004-5)."""
+    fig, axs = plt.subplots(1, 2, figsize=(9, 3.3))
+    nn = np.arange(1, 201)
+    g = growing_memory_gains(2, 200)
+    for i, lab in enumerate(["g1 (position)", "g2 (velocity)", "g3 (acceleration)"]):
+        axs[0].plot(nn, g[:, i], label=lab)
+    axs[0].plot(nn, 9 / nn, "k:", label="9/N")
+    axs[0].axvline(floor, color="gray", ls="--", label=f"floor N_f = {floor}")
+    axs[0].set_xscale("log")
+    axs[0].set_yscale("log")
+    plain_log(axs[0])
+    axs[0].set(xlabel="samples used N", ylabel="gain g_N")
+    axs[0].legend(fontsize=7)
+    keys = [k for k in ratios if k.startswith("variance at N=")]
+    n = [int(k.split("=")[1]) for k in keys]
+    errorbars(axs[1], n, [ratios[k] for k in keys], fmt="o")
+    axs[1].axhline(1.0, color="k", ls=":")
+    axs[1].set_xscale("log")
+    plain_log(axs[1], "x")
+    axs[1].set(xlabel="samples used N", ylabel="Var(x_est) / (sigma^2 g_N1)")
+    return fig
+
+
+def budget_figure(budget: dict):
+    """Centre error of the windowed centroid and of the Gaussian-fit MLE (static spots) against the
+    Cramer-Rao bound, versus read noise."""
+    lv = list(budget)
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    ax.plot(lv, [budget[v]["centroid"] for v in lv], "o-", label="windowed centroid (used)")
+    ax.plot(lv, [budget[v]["mle"] for v in lv], "^--", label="Gaussian-fit MLE")
+    ax.plot(lv, [budget[v]["crb"] for v in lv], "k:", label="Cramer-Rao bound (one frame)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    plain_log(ax)
+    ax.set(xlabel="read noise (DN RMS)", ylabel="centre error RMS per axis (px)")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
+    """The paired MSE ratio (baseline / filter) of every baseline of the ranking claims, at the default
+    (replicates pooled) and under every one-at-a-time condition of the register; above 1: the filter is better."""
+    rows = [("default (pooled replicates)", {b: e for c in claim_ids for b, e in exploration.measured(c).items()})]
+    default = exploration.default
+    for r in exploration.runs:
+        if r.stage == "single":
+            label = ", ".join(
+                f"{k} = {v:.3g}" if isinstance(v, float) else f"{k} = {v}" for k, v in r.changed(default).items()
+            )
+            rows.append((label, {b: e for c in claim_ids for b, e in r.outputs[c].items()}))
+    names = list(rows[0][1])
+    fig, ax = plt.subplots(figsize=(8, 0.28 * len(rows) + 1.5))
+    y = np.arange(len(rows))
+    for j, b in enumerate(names):
+        mk, _ = _STYLES[j % len(_STYLES)]
+        est = [row[b] for _, row in rows]
+        v = np.array([e.value for e in est])
+        ax.errorbar(
+            v,
+            y + 0.1 * (j - len(names) / 2),
+            xerr=[v - [e.ci_low for e in est], [e.ci_high for e in est] - v],
+            fmt=mk,
+            ms=4,
+            capsize=1.5,
+            lw=0.8,
+            color=colour(j),
+            label=b,
+        )
+    ax.axvline(1.0, color="k", lw=0.8)
+    ax.set_xscale("log")
+    plain_log(ax, "x")
+    ax.set_yticks(y, [lab for lab, _ in rows], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("baseline MSE / filter MSE (paired over paths, 95 % CI); above 1: the filter is better")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig

@@ -1,0 +1,632 @@
+"""The study of paper 004 as functions of (configuration, seed): what the explorer calls.
+
+One run (:func:`run_study`) draws ``n_paths`` beam-wander paths from the generator at the
+configuration's regime, renders and measures the spot frame by frame, runs the paper's filter and
+every baseline (each tuned by cross-validation over paths, :mod:`.prediction_study`) at the
+configuration's horizon, and the optimal predictor of the generator's own model. :func:`claim_values`
+reduces a run to what each claim's rule reads; :func:`measure` is the explorer's measurement function
+and :func:`measure_batch` its batched form, which shares a rendered scene between configurations that
+differ only in the horizon, the networks' lags or a statistic (common random numbers: every stream is
+drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
+
+The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
+Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...filters.polynomial import growing_memory_filter, growing_memory_gains, predict_ahead
+from ...measure import centroid
+from ...montecarlo import Estimate, variance_ci
+from ...render import gaussian_spot, sensor_readout
+from . import predictors as pr
+from .beam_wander import (
+    BeamWanderConfig,
+    SpotCamera,
+    generate_traces,
+    one_frame_motion_rms,
+    optimal_wander_forecast,
+    track_spot,
+)
+from .intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
+from .prediction_study import (
+    CLASSICAL,
+    FADING,
+    PAPER,
+    SINGER,
+    ComparisonSetup,
+    compare_methods,
+    per_trial_path_mse,
+    window_candidates,
+)
+from .traces import TraceSet
+
+__all__ = [
+    "ENTRIES",
+    "NETWORKS",
+    "OPTIMAL",
+    "StudySize",
+    "StudyRun",
+    "scene_config",
+    "camera_for",
+    "run_study",
+    "claim_values",
+    "measure",
+    "measure_batch",
+    "late_rms_ratio",
+    "recursion_vs_batch",
+    "variance_ratios",
+    "model_order_summary",
+    "horizon_study",
+    "clear_cache",
+    "scores",
+    "single_values",
+    "grid_edge_report",
+]
+
+#: Register entry names the study reads (the configuration dict's keys).
+ENTRIES = (
+    "spectral index",
+    "roll-off",
+    "bandwidth",
+    "amplitude",
+    "jitter",
+    "frame rate",
+    "read noise",
+    "saturation",
+    "scintillation",
+    "energy centre",
+    "horizon",
+    "network lags",
+    "tuning",
+    "reference",
+    "C004-1 statistic",
+    "spline",
+)
+#: The two networks of C004-3b (the paper's back-propagation and RBF networks).
+NETWORKS = ("MLP back-prop", "RBF network")
+#: The least-squares cubic over a window: the other reading of the paper's "spline extrapolation".
+LSQ_CUBIC = "least-squares cubic"
+#: The optimal predictor of the generator's own model: a bound, not a method.
+OPTIMAL = "optimal (true model)"
+
+_SCENE_KEYS = (
+    "spectral index",
+    "roll-off",
+    "bandwidth",
+    "amplitude",
+    "jitter",
+    "frame rate",
+    "read noise",
+    "saturation",
+    "scintillation",
+    "energy centre",
+)
+_CHECK_N = (3, 5, 10, 20, 50, 100)
+
+
+@dataclass(frozen=True)
+class StudySize:
+    """Sizes of one run (fixed for a notebook run; the register varies the world, not these).
+
+    Attributes
+    ----------
+    n_paths, n_frames : int
+        Paths per run and frames per path (the paper: 15 paths of up to 1000 images).
+    eval_start : int
+        First frame scored for every method (start-up excluded), frames.
+    n_folds : int
+        Cross-validation folds over paths.
+    floor_grid, window_grid : tuple of int
+        Candidates of the floor ``N_f`` and of the windows (each baseline's search starts at its
+        degree + 1, :func:`.prediction_study.window_candidates`).
+    fixed_floor, fixed_window : int
+        The "fixed" tuning reading.
+    mlp_hidden_units, rbf_centres, train_samples : int
+        Network sizes and training pairs per fold.
+    n_mc_variance : int
+        Monte Carlo series of the C004-5 variance check.
+    timing_frames : int
+        Full frames timed for C004-8.
+    """
+
+    n_paths: int = 15
+    n_frames: int = 1000
+    eval_start: int = 40
+    n_folds: int = 3
+    floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
+    window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
+    fixed_floor: int = 10
+    fixed_window: int = 10
+    mlp_hidden_units: int = 16
+    rbf_centres: int = 100
+    train_samples: int = 4000
+    n_mc_variance: int = 20000
+    timing_frames: int = 200
+
+
+#: The shipped data set's generator configuration and the card's camera (21 px centroid window).
+BASE_SCENE = BeamWanderConfig()
+BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
+
+
+def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
+    """The generator's configuration at a register configuration.
+
+    ``bandwidth`` scales every corner frequency, ``amplitude`` the wander RMS range; ``frame rate``
+    changes the sampling at ``n_frames`` images per path (the paper: "up to 1000 images"), the drift
+    kept in px/s.
+    """
+    fs = float(config["frame rate"])
+    return replace(
+        base,
+        n_paths=size.n_paths,
+        n_frames=size.n_frames,
+        frame_rate_hz=fs,
+        corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
+        spectral_index=float(config["spectral index"]),
+        rolloff=config["roll-off"],
+        rms_min_px=base.rms_min_px * config["amplitude"],
+        rms_max_px=base.rms_max_px * config["amplitude"],
+        drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
+        scintillation_sigma_ln=float(config["scintillation"]),
+    )
+
+
+def camera_for(config: dict, base: SpotCamera = BASE_CAMERA) -> SpotCamera:
+    """The camera at a register configuration: read noise, saturation (8-bit full scale or none) and
+    the energy-centre algorithm."""
+    return replace(
+        base,
+        read_noise_dn=float(config["read noise"]),
+        bit_depth=8 if config["saturation"] == "8-bit" else 16,
+        centroid_mode="windowed" if config["energy centre"] == "windowed" else "gate",
+    )
+
+
+@dataclass
+class StudyRun:
+    """One full-size run (see :func:`run_study`); arrays per (trial=1, path, axis, frame), px."""
+
+    config: dict
+    size: StudySize
+    scene: BeamWanderConfig
+    camera: SpotCamera
+    truth: np.ndarray  # (1, P, 2, T) true centres (frame jitter included: the spot really moved)
+    z_meas: np.ndarray  # (1, P, 2, T) measured centres, NaN where lost
+    z: np.ndarray  # (1, P, 2, T) what the predictors see (lost frames held)
+    path_rms: np.ndarray  # (P,) wander RMS per axis
+    jitter_rms: np.ndarray  # (P,)
+    centroid_rms: float
+    lost_share: float
+    clipped_share: float
+    intensity: np.ndarray  # (P, T)
+    track: object = None  # GateTrack of path 0 (figures, recording)
+    comparison: object = None
+    forecasts: dict | None = None  # cross-validated forecasts, OPTIMAL and the fixed-tuning ones
+    fixed_forecasts: dict | None = None
+    folds: list | None = None
+
+
+def _streams(seed: int):
+    """Independent streams (traces, jitter, sensor, models, Monte Carlo, timing) of one run."""
+    return np.random.SeedSequence(int(seed)).spawn(6)
+
+
+def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
+    s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
+    scene = scene_config(config, size)
+    if traces is None:
+        traces = generate_traces(scene, int(s_tr.generate_state(1)[0]))
+    xy = traces.centres_px[: size.n_paths, : size.n_frames]
+    intensity = traces.intensity[: size.n_paths, : size.n_frames]
+    rms = np.asarray(traces.metadata["wander_rms_px"])[: size.n_paths]
+    jit = float(config["jitter"]) * one_frame_motion_rms(scene, rms)
+    xy = xy + jit[:, None, None] * np.random.default_rng(s_jit).standard_normal(xy.shape)
+    cam = camera_for(config)
+    trk = track_spot(xy[None], intensity, np.random.default_rng(s_sens), cam, scene.image_size_px, keep=keep)
+    z_meas = np.moveaxis(trk.xy, -1, -2)
+    truth = np.moveaxis(xy, -1, -2)[None]
+    err = z_meas - truth
+    return StudyRun(
+        config=dict(config),
+        size=size,
+        scene=scene,
+        camera=cam,
+        truth=truth,
+        z_meas=z_meas,
+        z=pr.hold_last(z_meas),
+        path_rms=rms,
+        jitter_rms=jit,
+        centroid_rms=float(np.sqrt(np.nanmean(err**2))),
+        lost_share=float(np.mean(~np.isfinite(err))),
+        clipped_share=float(np.mean(trk.clipped)),
+        intensity=intensity,
+        track=trk,
+    )
+
+
+def _setup(config: dict, size: StudySize) -> ComparisonSetup:
+    return ComparisonSetup(
+        steps=int(config["horizon"]),
+        start=size.eval_start,
+        floor_grid=tuple(size.floor_grid),
+        window_grid=tuple(size.window_grid),
+        fixed_floor=size.fixed_floor,
+        fixed_window=size.fixed_window,
+        learned_lags=int(config["network lags"]),
+        learned_kw=dict(
+            hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres, max_samples=size.train_samples
+        ),
+    )
+
+
+def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
+    """Every method on ``run``'s measured series at ``config``'s horizon and lags (re-tuned for it)."""
+    if not np.all(np.isfinite(run.z)):
+        raise ValueError("the spot was never measured on some path: nothing to predict")
+    size = run.size
+    s = _setup(config, size)
+    m = s.steps
+    folds = pr.path_folds(size.n_paths, size.n_folds)
+    cmp = compare_methods(run.z, run.z_meas, folds, s, np.random.default_rng(_streams(seed)[3]))
+    fc = dict(cmp.forecasts)
+    fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, m)
+    fixed = dict(fc)
+    fixed[PAPER] = pr.growing_memory_forecast(run.z, m, s.order, s.fixed_floor)
+    fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
+    fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
+    fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
+    # the other reading of "spline extrapolation": a least-squares cubic over the window (not interpolating)
+    lsq = lambda L: pr.sliding_regression_forecast(run.z, L, 3, m)  # noqa: E731
+    cands = window_candidates(4, s.window_grid)
+    loss = np.stack([per_trial_path_mse(lsq(L), run.z_meas, m, s.start).mean(axis=0) for L in cands])
+    pick = pr.cross_validated_pick(loss, folds)
+    fc[LSQ_CUBIC] = np.stack([lsq(cands[pick[p]])[:, p] for p in range(run.z.shape[1])], axis=1)
+    fixed[LSQ_CUBIC] = lsq(s.fixed_window)
+    return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
+
+
+def run_study(
+    config: dict, seed: int, size: StudySize = StudySize(), traces: TraceSet | None = None, keep=None
+) -> StudyRun:
+    """One full-size run of the study at ``config`` (every register entry), all draws from ``seed``.
+
+    Parameters
+    ----------
+    traces : TraceSet, optional
+        True centres to use instead of drawing them (the shipped data set, at the default regime).
+    keep : tuple, optional
+        Batch index whose gate images to keep (figures, recording), e.g. ``(0, 0)``.
+    """
+    return _methods(_scene(config, seed, size, traces, keep), config, seed)
+
+
+def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
+    """RMS over the late frames without / with the floor: square root of the paired ratio of per-path
+    mean squares (bootstrap-t over paths)."""
+    a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
+    b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
+    r = ratio_of_means_ci(a, b)
+    return Estimate(
+        float(np.sqrt(r.value)),
+        r.stderr / (2 * np.sqrt(r.value)),
+        float(np.sqrt(r.ci_low)),
+        float(np.sqrt(r.ci_high)),
+        r.n,
+        r.confidence,
+        "square root of the " + r.method,
+    )
+
+
+def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
+    """Largest relative deviation of the recursion (5)-(6) from eq. (4) solved by ``lstsq`` at every
+    sample, and the first sample with an estimate (C004-4, C004-7)."""
+    rec = growing_memory_filter(series, order, None)
+    batch = pr.batch_least_squares_states(series, order)
+    dev = float(np.nanmax(np.abs(rec - batch) / np.maximum(np.abs(batch), 1.0)))
+    return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
+
+
+def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N) -> dict:
+    """``Var(x_est) / (sigma^2 g_N1)`` at each checked ``N`` on an exact quadratic plus unit white noise,
+    with Bonferroni-adjusted chi-square intervals (95 % family-wise; the errors are Gaussian), and the
+    largest step of ``g_N1`` over ``N >= 3`` (C004-5)."""
+    nmax = max(check_n)
+    t = np.arange(nmax)
+    quad = 5.0 + 0.3 * t - 0.01 * t**2
+    g1 = growing_memory_gains(2, nmax)[:, 0]
+    est = growing_memory_filter(quad + rng.standard_normal((n_series, nmax)), 2, None)[..., 0]
+    conf = 1 - 0.05 / len(check_n)
+    out = {"g1 decreasing": float(np.max(np.diff(g1[2:])))}
+    for n in check_n:
+        v = variance_ci(est[:, n - 1] - quad[n - 1], confidence=conf, method="chi2")
+        p = g1[n - 1]
+        out[f"variance at N={n}"] = Estimate(
+            v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method
+        )
+    return out
+
+
+def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
+    """CPU ms per full 128 x 128 frame: centroid, filter update and one-step prediction."""
+    nt = min(run.size.timing_frames, run.truth.shape[-1])
+    cam = run.camera
+    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
+    frames = sensor_readout(
+        gaussian_spot(xy, (run.scene.image_size_px,) * 2, cam.spot_sigma_px, cam.flux_e),
+        rng,
+        background=cam.background_dn,
+        read_noise=cam.read_noise_dn,
+        bit_depth=cam.bit_depth,
+    )
+    t0 = time.process_time()
+    cm = centroid(frames, background="border", threshold_sigma=cam.threshold_sigma)
+    predict_ahead(growing_memory_filter(np.moveaxis(cm.xy, -1, 0), 2, run.size.fixed_floor), 1)
+    return (time.process_time() - t0) / nt * 1e3
+
+
+def claim_values(run: StudyRun, seed: int = 0) -> dict:
+    """What each claim's rule reads, from one run at its configuration.
+
+    Returns
+    -------
+    dict
+        ``C004-1`` (mean per-path quantile of the per-axis ``|e|``, px), ``C004-2`` (RMS, px),
+        ``C004-3`` / ``C004-3b`` (per baseline: paired ratio of its MSE to the filter's), ``C004-4``
+        (recursion vs lstsq), ``C004-5`` (gains and variance), ``C004-6`` (late RMS ratio without / with
+        the floor), ``C004-8`` (CPU time per frame / frame interval).
+    """
+    c = run.config
+    m = int(c["horizon"])
+    start = run.size.eval_start
+    fc = dict(run.forecasts if c["tuning"] == "cross-validated" else run.fixed_forecasts)
+    if c["spline"] == "least-squares cubic":
+        fc["cubic spline"] = fc[LSQ_CUBIC]
+    ref = run.z_meas if c["reference"] == "measured centre" else run.truth
+    mse = {name: per_trial_path_mse(f, ref, m, start)[0] for name, f in fc.items()}
+    e = np.abs(pr.forecast_errors(fc[PAPER], ref, m)[0, ..., start:])  # (P, 2, T')
+    q = 0.99 if c["C004-1 statistic"] == "99th percentile" else 0.95
+    per_path_q = np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
+    T = run.truth.shape[-1]
+    late = max(T // 2, start)
+    rng_mc, rng_t = (np.random.default_rng(s) for s in _streams(seed)[4:6])
+    return {
+        "C004-1": mean_ci_t(per_path_q),
+        "C004-2": root_mean_ci(mse[PAPER]),
+        "C004-3": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in CLASSICAL},
+        "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
+        "C004-4": recursion_vs_batch(run.z[0, 0, 0, : min(T, 200)])[0],
+        "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance),
+        "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
+        "C004-8": _time_per_frame(run, rng_t) / (1e3 / run.scene.frame_rate_hz),
+    }
+
+
+_CACHE: dict = {}
+
+
+def clear_cache() -> None:
+    """Forget the scenes and runs :func:`measure_batch` keeps between calls of one exploration."""
+    _CACHE.clear()
+
+
+def _key(config: dict, names) -> tuple:
+    return tuple((n, config[n]) for n in names)
+
+
+def _measure_group(items, size: StudySize) -> list[dict]:
+    """Claim values of (configuration, seed) pairs that share one scene (same scene entries and seed)."""
+    out = []
+    for config, seed in items:
+        sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
+        if sk not in _CACHE:
+            _CACHE[sk] = _scene(config, seed, size)
+        rk = sk + _key(config, ("horizon", "network lags"))
+        if rk not in _CACHE:
+            _CACHE[rk] = _methods(_CACHE[sk], config, seed)
+        out.append(claim_values(replace(_CACHE[rk], config=dict(config)), seed))
+    return out
+
+
+def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1) -> list[dict]:
+    """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
+    and seed share one rendered scene, and those that also share the horizon and the networks' lags
+    share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it).
+
+    Parameters
+    ----------
+    workers : int
+        Processes the scene groups are spread over (1: this process, whose cache then also serves
+        later calls, e.g. the adaptive replicates).
+    """
+    from .register import DEFAULT
+
+    configs = [{**DEFAULT, **c} for c in configs]  # entries left out of a smaller exploration stay at their defaults
+    groups: dict = {}
+    for i, (config, seed) in enumerate(zip(configs, seeds)):
+        groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
+    items = [[(dict(configs[i]), int(seeds[i])) for i in idx] for idx in groups.values()]
+    if workers > 1 and len(items) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        ctx = multiprocessing.get_context("fork")
+        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+            results = list(pool.map(_measure_group, items, [size] * len(items)))
+    else:
+        results = [_measure_group(batch, size) for batch in items]
+    out: list = [None] * len(configs)
+    for idx, res in zip(groups.values(), results):
+        for i, r in zip(idx, res):
+            out[i] = r
+    return out
+
+
+def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
+    """The explorer's measurement function: one full-size run at ``config`` with all random draws
+    from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`)."""
+    from .register import DEFAULT
+
+    return claim_values(run_study({**DEFAULT, **config}, seed, size), seed)
+
+
+def scores(run: StudyRun) -> tuple[dict, dict]:
+    """Per method: RMS error against the measured centre (px, bootstrap-t over paths), and the paired
+    ratio of its per-path MSE to the paper filter's (bootstrap-t)."""
+    m = int(run.config["horizon"])
+    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
+    rms = {n: root_mean_ci(v) for n, v in mse.items()}
+    return rms, {n: ratio_of_means_ci(v, mse[PAPER]) for n, v in mse.items() if n != PAPER}
+
+
+def grid_edge_report(run: StudyRun) -> dict:
+    """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
+    an edge may be the grid's limit rather than the method's optimum)."""
+    from .prediction_study import MIN_WINDOW, grid_edges, window_candidates
+
+    s = _setup(run.config, run.size)
+    ch = run.comparison.chosen
+    out = {
+        PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) == 1)),  # N_f = 3 (order + 1) is a true limit
+        FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
+    }
+    for name, lo in MIN_WINDOW.items():
+        out[name] = float(
+            np.mean(grid_edges(ch[name], window_candidates(lo, s.window_grid)) == 1)
+        )  # degree+1 is a true limit
+    ca = np.asarray(ch["CA Kalman, ML noise"])
+    out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
+    out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
+    sg = np.asarray(ch[SINGER])
+    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
+    return out
+
+
+def single_values(exploration, claim_id: str, entry: str) -> dict:
+    """The claim's measured value at each value of ``entry`` (one at a time; the default pooled)."""
+    from .register import DEFAULT
+
+    out = {exploration.default.get(entry, DEFAULT[entry]): exploration.measured(claim_id)}
+    for r in exploration.runs:
+        if r.stage == "single" and list(r.changed(exploration.default)) == [entry]:
+            out[r.config[entry]] = r.outputs[claim_id]
+    return dict(sorted(out.items()))
+
+
+def spot_position_crb(camera: SpotCamera, read_noise_dn: float) -> float:
+    """Per-axis Cramer-Rao bound of the spot position in one gate at intensity 1 (Poisson counts, read
+    noise and quantisation as Poisson-equivalent variance per pixel), px."""
+    from ...bounds.poisson_crb import fisher_linear_motion
+
+    g = camera.gate_size_px
+    theta = np.array([[(g - 1) / 2, (g - 1) / 2, 0.0, 0.0]])
+    noise = camera.background_dn + read_noise_dn**2 + 1 / 12
+    fim = fisher_linear_motion(theta, np.array([0.0]), (g, g), camera.spot_sigma_px, camera.flux_e, noise)[:2, :2]
+    return float(np.sqrt(np.linalg.inv(fim)[0, 0]))  # one frame: only the position block is informative
+
+
+def measurement_budget(
+    read_noise_levels, n_gates: int, rng: np.random.Generator, camera: SpotCamera = BASE_CAMERA
+) -> dict:
+    """Error of the windowed centroid and of a Gaussian-fit MLE on static spots (random sub-pixel
+    positions, intensity 1) against the Cramer-Rao bound, per read-noise level.
+
+    Returns
+    -------
+    dict
+        {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
+    """
+    from ...render import gaussian_spot, sensor_readout
+    from .spot_centre import gaussian_fit_centre, windowed_centroid
+
+    g = camera.gate_size_px
+    out = {}
+    for rn in read_noise_levels:
+        c_true = (g - 1) / 2 + rng.uniform(-2, 2, (n_gates, 2))
+        img = sensor_readout(
+            gaussian_spot(c_true, (g, g), camera.spot_sigma_px, camera.flux_e),
+            rng,
+            background=camera.background_dn,
+            read_noise=rn,
+            bit_depth=camera.bit_depth,
+        )
+        wc = windowed_centroid(img, (0, 0), window_px=camera.window_px, threshold_sigma=camera.threshold_sigma).xy
+        ok = np.all(np.isfinite(wc), axis=-1)
+        ml = gaussian_fit_centre(img[ok], np.zeros((ok.sum(), 2)), wc[ok], sigma_px=camera.spot_sigma_px, read_noise=rn)
+        out[float(rn)] = {
+            "centroid": float(np.sqrt(np.mean((wc[ok] - c_true[ok]) ** 2))),
+            "mle": float(np.sqrt(np.mean((ml - c_true[ok]) ** 2))),
+            "crb": spot_position_crb(camera, rn),
+            "lost": float(np.mean(~ok)),
+        }
+    return out
+
+
+def model_order_summary(run: StudyRun) -> dict:
+    """Which model order predicts best, and the fitted Singer time constant that says why.
+
+    Returns
+    -------
+    dict
+        ``rms`` per method (px), ``best`` (name), ``best_order1`` / ``best_order2`` (names of the best
+        first-order predictor: 2-point differences or degree-1 regression; and second-order: the paper's
+        filter, 3-point differences, degree-2 regression, Morrison), ``ratio_2_over_1`` (paired MSE ratio,
+        best second order over best first order; below 1: the acceleration term pays),
+        ``singer_tau_frames`` (per fold) and ``tau_over_horizon``.
+    """
+    c = run.config
+    m = int(c["horizon"])
+    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
+    rms = {n: float(np.sqrt(v.mean())) for n, v in mse.items()}
+    order1 = ("finite differences, 2 points", "linear regression deg 1")
+    order2 = (PAPER, "finite differences, 3 points", "linear regression deg 2", FADING)
+    b1 = min(order1, key=rms.get)
+    b2 = min(order2, key=rms.get)
+    tau = np.asarray(run.comparison.chosen[SINGER])[:, 0]
+    return {
+        "rms": rms,
+        "best": min((n for n in rms if n != OPTIMAL), key=rms.get),
+        "best_order1": b1,
+        "best_order2": b2,
+        "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
+        "singer_tau_frames": tau,
+        "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
+        "tau_over_horizon": float(np.median(tau) / m),
+    }
+
+
+def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
+    """RMS error versus horizon, every method re-tuned at each horizon (the floor and windows chosen
+    by cross-validation for that horizon; the Kalman filters re-fitted; networks left out for cost),
+    and the optimal predictor.
+
+    Returns
+    -------
+    dict
+        ``rms``: {method: {horizon: Estimate (px)}}; ``floor``: {horizon: median cross-validated N_f};
+        ``slopes``: {method: log-log slope of RMS over the horizons}.
+    """
+    rms, floors = {}, {}
+    for h in horizons:
+        s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
+        cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
+        fcs = dict(cmp.forecasts)
+        fcs[OPTIMAL] = optimal_wander_forecast(
+            run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, h
+        )
+        for name, f in fcs.items():
+            rms.setdefault(name, {})[h] = root_mean_ci(per_trial_path_mse(f, run.z_meas, h, run.size.eval_start)[0])
+        floors[h] = float(np.median(cmp.chosen[PAPER]))
+    hs = np.log(np.asarray(horizons, dtype=float))
+    slopes = (
+        {n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
+        if len(horizons) > 1
+        else {}
+    )
+    return {"rms": rms, "floor": floors, "slopes": slopes}

@@ -1,0 +1,192 @@
+"""Paper 004: the study functions the verdicts rest on (measurement function, batching, readings)."""
+
+import numpy as np
+import pytest
+
+from tvtrack.filters.polynomial import growing_memory_gains
+from tvtrack.montecarlo import Estimate
+from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import recording, study
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import one_frame_motion_rms
+from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL, PAPER, per_trial_path_mse
+from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, NAMES, ROWS, build, explored
+
+SIZE = study.StudySize(
+    n_paths=6,
+    n_frames=200,
+    floor_grid=(3, 5, 10, 30),
+    window_grid=(4, 10),
+    mlp_hidden_units=8,
+    rbf_centres=20,
+    train_samples=300,
+    n_mc_variance=1000,
+    timing_frames=20,
+)
+
+
+@pytest.fixture(scope="module")
+def run():
+    return study.run_study(dict(DEFAULT), 7, SIZE)
+
+
+def _same(a, b):
+    if isinstance(a, dict):
+        assert a.keys() == b.keys()
+        for k in a:
+            _same(a[k], b[k])
+    elif isinstance(a, Estimate):
+        assert (a.value, a.ci_low, a.ci_high) == (b.value, b.ci_low, b.ci_high)
+    else:
+        assert a == b
+
+
+def test_register_rows_are_complete_and_the_study_reads_every_entry():
+    reg = build()
+    assert tuple(reg.names) == NAMES == study.ENTRIES
+    assert all(set(d) <= set(NAMES) for d in DEPENDS.values())
+    assert {o for *_, o in ROWS} <= {"author", "adversarial"}
+    small, dep = explored(["jitter", "horizon"])
+    assert small.names == ["jitter", "horizon"] and dep["C004-4"] == [] and dep["C004-2"] == ["jitter", "horizon"]
+
+
+def test_measure_is_a_function_of_config_and_seed_and_batching_changes_nothing():
+    """The batched form shares scenes and runs between configurations; the claim values must be those
+    of one run per configuration (C004-8, a CPU time, aside)."""
+    configs = [
+        dict(DEFAULT),
+        dict(DEFAULT, tuning="fixed"),
+        dict(DEFAULT, reference="true centre"),
+        dict(DEFAULT, horizon=3),
+        dict(DEFAULT, jitter=1.0),
+    ]
+    study.clear_cache()
+    batch = study.measure_batch(configs, [7] * len(configs), SIZE)
+    for cfg, got in zip(configs, batch):
+        one = study.measure(cfg, 7, SIZE)
+        assert set(one) == {"C004-1", "C004-2", "C004-3", "C004-3b", "C004-4", "C004-5", "C004-6", "C004-8"}
+        for cid in one:
+            if cid != "C004-8":
+                _same(one[cid], got[cid])
+    study.clear_cache()
+    assert batch[0]["C004-2"].value != batch[3]["C004-2"].value  # the horizon is another run
+    assert batch[0]["C004-2"].value != study.measure(dict(DEFAULT), 8, SIZE)["C004-2"].value  # another seed
+
+
+def test_readings_of_one_run(run):
+    """tuning = fixed is the floor N_f = fixed_floor; reference = true centre scores against the truth."""
+    m, s = 1, SIZE.eval_start
+    fixed = study.claim_values(study.replace(run, config=dict(DEFAULT, tuning="fixed")))
+    mse = per_trial_path_mse(pr.growing_memory_forecast(run.z, m, 2, SIZE.fixed_floor), run.z_meas, m, s)[0]
+    assert fixed["C004-2"].value == pytest.approx(np.sqrt(mse.mean()))
+    truth = study.claim_values(study.replace(run, config=dict(DEFAULT, reference="true centre")))
+    mse_t = per_trial_path_mse(run.forecasts[PAPER], run.truth, m, s)[0]
+    assert truth["C004-2"].value == pytest.approx(np.sqrt(mse_t.mean()))
+    lsq = study.claim_values(study.replace(run, config=dict(DEFAULT, spline="least-squares cubic")))
+    r_lsq = (
+        per_trial_path_mse(run.forecasts[study.LSQ_CUBIC], run.z_meas, m, s)[0].mean()
+        / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
+    )
+    assert lsq["C004-3"]["cubic spline"].value == pytest.approx(r_lsq)
+    base = study.claim_values(run)
+    assert base["C004-3"]["cubic spline"].value != pytest.approx(r_lsq)
+    for b in CLASSICAL:
+        ratio = (
+            per_trial_path_mse(run.forecasts[b], run.z_meas, m, s)[0].mean()
+            / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
+        )
+        assert base["C004-3"][b].value == pytest.approx(ratio)
+
+
+def test_the_bound_gets_the_measurement_variance_not_its_square_root(monkeypatch):
+    """The optimal predictor is given the centroid variance plus the jitter variance (planted bug: the
+    standard deviations where the variances belong)."""
+    seen = {}
+    real = study.optimal_wander_forecast
+
+    def spy(z, scene, rms, meas_var, steps):
+        seen["meas_var"] = np.asarray(meas_var)
+        return real(z, scene, rms, meas_var, steps)
+
+    monkeypatch.setattr(study, "optimal_wander_forecast", spy)
+    r = study.run_study(dict(DEFAULT, jitter=1.0), 3, SIZE)
+    np.testing.assert_allclose(seen["meas_var"], r.centroid_rms**2 + r.jitter_rms**2)
+
+
+def test_scene_jitter_and_saturation():
+    r = study._scene(dict(DEFAULT, jitter=2.0), 5, SIZE)
+    np.testing.assert_allclose(r.jitter_rms, 2.0 * one_frame_motion_rms(r.scene, r.path_rms))
+    assert 0.05 < study._scene(dict(DEFAULT), 5, SIZE).clipped_share < 0.6  # 200 DN peak x scintillation, 8 bits
+    assert study._scene(dict(DEFAULT, saturation="none"), 5, SIZE).clipped_share == 0.0
+    assert study.scene_config(dict(DEFAULT, **{"frame rate": 200.0}), SIZE).drift_max_px_per_frame == pytest.approx(
+        0.02 * 25 / 200
+    )
+
+
+def test_horizon_study_retunes_the_floor_at_every_horizon(run):
+    """The floor reported at each horizon is the one cross-validation picks for that horizon (the old
+    study kept the one-frame floor at every horizon)."""
+    hz = study.horizon_study(run, (1, 10), seed=0)
+    for h in (1, 10):
+        loss = np.stack(
+            [
+                per_trial_path_mse(pr.growing_memory_forecast(run.z, h, 2, nf), run.z_meas, h, SIZE.eval_start).mean(
+                    axis=0
+                )
+                for nf in SIZE.floor_grid
+            ]
+        )
+        pick = np.asarray(SIZE.floor_grid)[pr.cross_validated_pick(loss, run.folds)]
+        assert hz["floor"][h] == float(np.median(pick))
+    assert hz["rms"][PAPER][10].value > hz["rms"][PAPER][1].value
+    assert set(hz["slopes"]) == set(hz["rms"])
+
+
+def test_late_rms_ratio_is_the_root_of_the_mean_square_ratio():
+    rng = np.random.default_rng(1)
+    ref = np.zeros((1, 5, 2, 100))
+    a = 3.0 * rng.standard_normal(ref.shape)
+    b = 1.0 * rng.standard_normal(ref.shape)
+    e = study.late_rms_ratio(a, b, ref, 1, 50)
+    ma = per_trial_path_mse(a, ref, 1, 50)[0].mean()
+    mb = per_trial_path_mse(b, ref, 1, 50)[0].mean()
+    assert e.value == pytest.approx(np.sqrt(ma / mb)) and e.ci_low < e.value < e.ci_high
+
+
+def test_variance_ratios_are_one_for_the_model_and_the_gain_falls():
+    v = study.variance_ratios(np.random.default_rng(2), 20000)
+    assert v["g1 decreasing"] < 0
+    for k, e in v.items():
+        if k.startswith("variance"):
+            assert e.ci_low < 1.0 < e.ci_high and abs(e.value - 1) < 0.05
+
+
+def test_recursion_vs_batch_is_exact_and_starts_at_three():
+    dev, first = study.recursion_vs_batch(np.cumsum(np.random.default_rng(3).standard_normal(80)))
+    assert dev < 1e-9 and first == 3
+
+
+def test_gain_used_is_the_floored_gain():
+    g = growing_memory_gains(2, 7)[:, 0]
+    np.testing.assert_array_equal(recording.gain_used(7, 12), np.r_[g, [g[-1]] * 5])
+
+
+def test_words_follow_the_interval():
+    e = lambda lo, hi: Estimate(1.0, 0.1, lo, hi, 15)
+    assert fd.compare_word(e(1.1, 1.5)) == "larger"
+    assert fd.compare_word(e(0.5, 0.9)) == "smaller"
+    assert fd.compare_word(e(0.9, 1.1)) == "indistinguishable from"
+    assert fd.compare_word(Estimate(1.0, np.nan, np.nan, np.nan, 15)) == "indistinguishable from"
+
+
+def test_model_order_summary_names_the_better_order(run):
+    s = study.model_order_summary(run)
+    ratio = s["ratio_2_over_1"]
+    text = fd.model_order_sentence(s)
+    if ratio.ci_low > 1:
+        assert "first order (a line) wins" in text
+    elif ratio.ci_high < 1:
+        assert "second order (a quadratic) wins" in text
+    assert s["rms"][s["best_order1"]] <= min(
+        s["rms"][n] for n in ("finite differences, 2 points", "linear regression deg 1")
+    )
