@@ -19,6 +19,7 @@ rate is reported beside it (``extra_info``).
 import time
 
 import numpy as np
+from figures import CpuClock
 
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 from tvtrack.papers.p004_laser_spot_prediction.predictors import growing_memory_forecast
