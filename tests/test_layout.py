@@ -72,6 +72,7 @@ def test_import_graph_has_no_circle():
     assert cycle == []
 
 
-def test_graph_sees_the_lazy_import_of_the_loops_from_the_scene():
+def test_graph_sees_the_lazy_import_of_the_discriminators_from_the_scene():
     # guards the test itself: a lazy import inside a function counts as an edge
-    assert "tvtrack.filters.loops" in import_graph()["tvtrack.scenes.rotating_marker"]
+    assert "tvtrack.papers.p003_rotating_marker_tracker.discriminators" in import_graph()[
+        "tvtrack.papers.p003_rotating_marker_tracker.scene"]

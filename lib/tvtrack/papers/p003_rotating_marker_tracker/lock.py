@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..montecarlo import Estimate, proportion_ci
+from ...montecarlo import Estimate, proportion_ci
 
 __all__ = ["LossCriterion", "first_loss", "tag_capture", "MECHANISMS", "classify_losses", "omega_alarm", "loss_threshold", "losses_by_sir", "loss_curve",
            "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
@@ -249,7 +249,7 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
     runs : dict
         ``sir`` (n,), ``miss`` (n, T) px, ``inside`` (n, T) bool, ``gate`` (n, T, 2) px and
         ``interferers`` (n, q, 2) px, e.g. from
-        :func:`tvtrack.scenes.rotating_marker.interference_runs`; equally many runs per SIR.
+        :func:`tvtrack.papers.p003_rotating_marker_tracker.scene.interference_runs`; equally many runs per SIR.
     sir_values : ndarray, shape (m,)
         The SIR grid.
     criterion : LossCriterion

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .render import pixel_fractions_box
+from ...render import pixel_fractions_box
 
 
 __all__ = [

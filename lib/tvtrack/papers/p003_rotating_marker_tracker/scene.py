@@ -29,9 +29,9 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
-from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
+from .loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
     run_closed_loop
-from ..render import box_spot, disc_area, disc_spot
+from ...render import box_spot, disc_area, disc_spot
 
 __all__ = [
     "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
@@ -524,7 +524,7 @@ class Scenario:
         the numerical slope of its static characteristic at zero error."""
         if self.form == "quadrant":
             return 2 * self.brightness * self.diameter
-        from ..discriminators import static_characteristic
+        from .discriminators import static_characteristic
         f = static_characteristic(self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half,
                                   a=self.diameter / 2)
         return float((f[1] - f[0]) / 0.5)
@@ -569,7 +569,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     tracker : {"loops", "ekf"}
         Fixed-bandwidth loops (variant ``sc.variant``) or the discrete EKF of eqs. (16)-(17).
     noise : {"projected", "pixel"}
-        See :func:`tvtrack.filters.loops.run_closed_loop` (the edge form always uses pixel noise).
+        See :func:`tvtrack.papers.p003_rotating_marker_tracker.loops.run_closed_loop` (the edge form always uses pixel noise).
     n_common : int, optional
         Common random numbers: within a generator's block, trial ``j n_common + i`` repeats every
         draw of trial ``i`` (e.g. ``n_common`` trials at each of several SIR values).
@@ -581,7 +581,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     -------
     truth : MarkerTruth
     scene : RotatingMarkerScene
-    history : tvtrack.filters.loops.TrackHistory
+    history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
     """
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
@@ -634,7 +634,7 @@ def state_errors(truth: MarkerTruth, history) -> np.ndarray:
     ----------
     truth : MarkerTruth
         Per-trial truth, arrays of shape (n, T).
-    history : tvtrack.filters.loops.TrackHistory
+    history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
         Run with ``keep_full=True`` (``history.estimate`` of shape (n, T, 5)).
 
     Returns

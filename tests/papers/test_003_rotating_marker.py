@@ -1,19 +1,20 @@
-"""Tests of notebook 003's library: rotating-marker scene, discriminators, loops, loss of lock."""
+"""Tests of paper 003's package: rotating-marker scene, discriminators, loops, loss of lock."""
 
 import numpy as np
 import pytest
 from scipy import signal
 
-from tvtrack.detect.lock import MECHANISMS, LossCriterion, classify_losses, first_loss, omega_alarm, tag_capture
-from tvtrack.discriminators import (edge_discriminator, interval_weights, polar_errors, quadrant_discriminator,
-                                    quadrant_noise, quadrant_sums, quadrant_weights, static_characteristic,
-                                    two_emitter_discriminator)
-from tvtrack.filters.loops import (RotatingGateTracker, loop_gains, loop_poles, run_closed_loop,
-                                   simulate_two_emitter_1d)
-from tvtrack.render import box_spot, pixel_fractions_box
 from tvtrack.measure import gate_crop_size
-from tvtrack.scenes.rotating_marker import (RotatingMarkerScene, Scenario, correlated_background,
-                                            marker_truth, place_interferers, render_spot, run_scenario)
+from tvtrack.papers.p003_rotating_marker_tracker.discriminators import (
+    edge_discriminator, interval_weights, polar_errors, quadrant_discriminator, quadrant_noise, quadrant_sums,
+    quadrant_weights, static_characteristic, two_emitter_discriminator)
+from tvtrack.papers.p003_rotating_marker_tracker.lock import (
+    MECHANISMS, LossCriterion, classify_losses, first_loss, omega_alarm, tag_capture)
+from tvtrack.papers.p003_rotating_marker_tracker.loops import (
+    RotatingGateTracker, loop_gains, loop_poles, run_closed_loop, simulate_two_emitter_1d)
+from tvtrack.papers.p003_rotating_marker_tracker.scene import (
+    RotatingMarkerScene, Scenario, correlated_background, marker_truth, place_interferers, render_spot, run_scenario)
+from tvtrack.render import box_spot, pixel_fractions_box
 
 D, A = 8.0, 12.0
 
@@ -227,7 +228,7 @@ def test_decoy_brightness_follows_the_sir_of_the_run():
 
 def test_interference_runs_share_their_draws_across_sir_and_markers():
     """Common random numbers: the same trials at every SIR; rotating and static share the motion."""
-    from tvtrack.scenes.rotating_marker import interference_runs
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
     sc = Scenario(duration_s=0.3, n_interferers=1)
     runs = interference_runs(np.random.default_rng(3), 4, sc, [1e9, 1e9, 0.5])
     np.testing.assert_array_equal(runs["miss"][:4], runs["miss"][4:8])     # same SIR, same draws: identical
@@ -308,7 +309,7 @@ def test_rotation_synchronous_error_component():
 def test_ekf_step_matches_filterpy():
     from filterpy.kalman import ExtendedKalmanFilter
 
-    from tvtrack.filters.loops import EKFTracker
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import EKFTracker
 
     x0 = np.array([[100.0, 90.0, 12.0, 0.7, 50.0]])
     P0 = np.diag([4.0, 3.0, 2.0, 0.05, 1.0])
@@ -331,7 +332,7 @@ def test_ekf_step_matches_filterpy():
 
 def test_state_errors_wrap_the_phase():
     from types import SimpleNamespace
-    from tvtrack.scenes.rotating_marker import state_errors
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import state_errors
     z = np.zeros((1, 2))
     truth = SimpleNamespace(xr=z + 1, yr=z, r=z + 12, theta=np.array([[3.1, -3.1]]), omega=z + 50)
     est = np.stack([z + 1.5, z - 2, z + 11, np.array([[-3.1, 3.1]]), z + 51], axis=-1)
@@ -341,7 +342,7 @@ def test_state_errors_wrap_the_phase():
 
 
 def test_loss_curve_counts_losses_threshold_and_captures():
-    from tvtrack.detect.lock import loss_curve
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import loss_curve
     T, crit = 100, LossCriterion(12.0, 10, 0.5)
     sir = np.repeat([1.0, 2.0, 4.0], 2)
     miss = np.zeros((6, T))
@@ -356,7 +357,7 @@ def test_loss_curve_counts_losses_threshold_and_captures():
 
 
 def test_band_power_share_of_a_tone_and_of_white_noise():
-    from tvtrack.filters.loops import band_power_share
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import band_power_share
     fs, t = 500.0, np.arange(4000) / 500.0
     rng = np.random.default_rng(8)
     tone = np.sin(2 * np.pi * 8.0 * t) + 0.01 * rng.standard_normal((3, t.size))
@@ -368,7 +369,7 @@ def test_band_power_share_of_a_tone_and_of_white_noise():
 
 
 def test_slope_helpers_match_the_predicted_slopes():
-    from tvtrack.discriminators import quadrant_slope_fit, two_emitter_slope
+    from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_slope_fit, two_emitter_slope
     sq = quadrant_slope_fit(_renderer("square"), D, A)
     assert sq["slope_at_zero"] == pytest.approx(2 * D, rel=1e-9)   # pixel edges soften only the ends of +-D/2
     assert sq["fit_slope_halfD"] == pytest.approx(2 * D, rel=0.03) and sq["max_dev_from_line"] < 0.03
@@ -378,7 +379,7 @@ def test_slope_helpers_match_the_predicted_slopes():
 
 
 def test_logistic_loss_fit_recovers_a_known_curve_and_its_5_percent_sir():
-    from tvtrack.detect.lock import fit_loss_curve, sir_at_loss
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import fit_loss_curve, sir_at_loss
     rng = np.random.default_rng(12)
     s50, beta = 1.2, 6.0
     grid = np.arange(0.5, 2.01, 0.125)
@@ -400,7 +401,7 @@ def test_logistic_loss_fit_recovers_a_known_curve_and_its_5_percent_sir():
 
 
 def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
-    from tvtrack.detect.lock import loss_rate
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import loss_rate
     rng = np.random.default_rng(13)
     T, dt, lam = 1000, 0.01, 0.2                                             # 10 s runs, 0.2 losses/s
     t = rng.exponential(1 / lam, 4000)
@@ -411,7 +412,7 @@ def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
 
 
 def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequencies():
-    from tvtrack.filters.loops import phase_locked_amplitude
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import phase_locked_amplitude
     rng = np.random.default_rng(14)
     t = np.arange(5000) / 500.0
     theta = 2 * np.pi * 8 * t + rng.uniform(0, 2 * np.pi, (50, 1))
@@ -423,7 +424,7 @@ def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequ
 
 
 def test_seeds_batched_together_give_the_same_runs_as_alone():
-    from tvtrack.scenes.rotating_marker import interference_runs
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
     sc = Scenario(duration_s=0.3, n_interferers=5, decoy_offset=16.0)
     g = lambda s: np.random.default_rng([7, s])
     both = interference_runs([g(1), g(2)], 3, sc, [0.7, 2.0])
@@ -435,7 +436,7 @@ def test_seeds_batched_together_give_the_same_runs_as_alone():
 
 def test_newton_logistic_fit_matches_a_generic_optimiser():
     from scipy.optimize import minimize
-    from tvtrack.detect.lock import fit_logistic_loss
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import fit_logistic_loss
     sir = np.arange(0.5, 2.01, 0.125)
     k = np.array([20, 19, 18, 15, 12, 9, 5, 4, 2, 1, 0, 1, 0])
     n = np.full(sir.size, 20)

@@ -23,10 +23,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal
 
-from ..discriminators import edge_discriminator, polar_errors, quadrant_noise, \
+from .discriminators import edge_discriminator, polar_errors, quadrant_noise, \
     quadrant_weights, two_emitter_discriminator
-from ..measure import gate_crop_size
-from ..render import pixel_fractions_box
+from ...measure import gate_crop_size
+from ...render import pixel_fractions_box
 
 __all__ = [
     "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
@@ -155,7 +155,7 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
 
     Parameters
     ----------
-    scene : tvtrack.scenes.rotating_marker.RotatingMarkerScene
+    scene : tvtrack.papers.p003_rotating_marker_tracker.scene.RotatingMarkerScene
     tracker : RotatingGateTracker or EKFTracker
         Anything with ``state`` (n, 5), ``slope``, ``gate_center()`` and ``update(dx, dy, dt)``.
     rng : numpy.random.Generator or None

@@ -1,10 +1,10 @@
 """Loss-of-lock studies of the rotating-marker tracker: loss curves over seeds, fitted against SIR.
 
-A *study* runs one :class:`~tvtrack.scenes.rotating_marker.Scenario` at every SIR of a grid for
+A *study* runs one :class:`~tvtrack.papers.p003_rotating_marker_tracker.scene.Scenario` at every SIR of a grid for
 ``n`` trials per seed and seed (common random numbers across the SIR grid, and across scenarios
 run with the same ``stream`` and seeds: the same object motion, background, interferer placement
 and noise), detects the first loss of each run and fits P(loss within the run) against log SIR
-(:func:`tvtrack.detect.lock.fit_loss_curve`), pooled over seeds and per seed.
+(:func:`tvtrack.papers.p003_rotating_marker_tracker.lock.fit_loss_curve`), pooled over seeds and per seed.
 """
 
 from __future__ import annotations
@@ -13,10 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..detect.lock import (LossCriterion, LossFit, classify_losses, fit_loss_curve, first_loss, omega_alarm,
+from .lock import (LossCriterion, LossFit, classify_losses, fit_loss_curve, first_loss, omega_alarm,
                            ratio_of_fits, tag_capture)
-from ..montecarlo import Estimate
-from .rotating_marker import Scenario, interference_runs
+from ...montecarlo import Estimate
+from .scene import Scenario, interference_runs
 
 __all__ = ["LossStudy", "study_rng", "bootstrap_index", "loss_study", "plot_loss_fit", "threshold_ratio", "seed_ratios"]
 
@@ -32,7 +32,7 @@ class LossStudy:
     captures : (m,) int, losses tagged as capture by a stationary interferer, per SIR
     loss_frame, sir, cluster : (N,) per run (cluster = seed position * n + trial)
     by_criterion : dict name -> LossFit, the pooled fit under other loss criteria (same runs)
-    mechanism : (N,) int8, how each run lost lock (index into ``tvtrack.detect.lock.MECHANISMS``, -1 none)
+    mechanism : (N,) int8, how each run lost lock (index into ``tvtrack.papers.p003_rotating_marker_tracker.lock.MECHANISMS``, -1 none)
     alarm_frame : (N,) int, first alarm of the truth-free omega lock detector (-1 none; -1 everywhere
         for a static marker, which has no rotation to watch)
     """
@@ -148,7 +148,7 @@ def loss_study(sc: Scenario, sir_values, *, n: int, seeds, stream: int, criterio
 def plot_loss_fit(ax, fit: LossFit, label: str, **line_kw):
     """Observed loss share per SIR with 95 % Clopper-Pearson bars and the fitted logistic curve
     with its 95 % bootstrap band, on a log SIR axis. Returns the fitted line."""
-    from ..montecarlo import proportion_ci
+    from ...montecarlo import proportion_ci
 
     grid = np.exp(np.linspace(np.log(fit.sir.min()), np.log(fit.sir.max()), 120))
     ok = np.isfinite(fit.boot_50)
