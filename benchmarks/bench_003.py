@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from tvtrack.scenes.rotating_marker import Scenario, run_scenario
+from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, run_scenario
 
 SIRS = np.array([0.5, 0.625, 0.75, 0.875, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875, 2.0, 2.5, 3.0])
 PAPER_LOSS_FRAMES = 500 * (4 * 15 * 48 * 10 + 12 * 15 * 15 * 10 + 5 * 15 * 18 * 5 + 5 * 18 * 10 + 5 * 8 * 60 * 5)
