@@ -479,3 +479,95 @@ def test_omega_alarm_fires_when_the_moving_mean_deviation_crosses_the_tolerance(
     alarm = omega_alarm(hat, omega0, w, tol=0.2)
     # frame 20 + k has moving mean 0.5 (k + 1) / 4 > 0.2 first at k = 1
     assert alarm.tolist() == [-1, 21, 20]
+
+
+def _phase_response_simulated(freqs, r, gains, a=0.02, T=6000, dt=0.002, w=2 * np.pi * 8):
+    """|theta_hat| response at each frequency of a sinusoidal true-phase perturbation, with a linear
+    discriminator (Delta = S (marker - gate)) driving the tracker's own update (batched over freqs)."""
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import RotatingGateTracker
+
+    f = np.asarray(freqs, float)
+    n, S = f.size, 16.0
+    x0 = np.tile([128.0, 128.0, r, 0.0, w], (n, 1))
+    trk = RotatingGateTracker(x0, gains, S)
+    t = np.arange(T) * dt
+    p = a * np.sin(2 * np.pi * f[:, None] * t)
+    th_true = w * t + p
+    th_hat = np.empty((n, T))
+    for k in range(T):
+        g = trk.gate_center()
+        m = 128.0 + r * np.stack([np.cos(th_true[:, k]), np.sin(th_true[:, k])], axis=1)
+        th_hat[:, k] = trk.state[:, 3]
+        trk.update(S * (m[:, 0] - g[:, 0]), S * (m[:, 1] - g[:, 1]), dt)
+    dev = th_hat - w * t                      # estimate of p (plus a transient)
+    k0 = T // 3
+    z = np.mean(dev[:, k0:] * np.exp(-2j * np.pi * f[:, None] * t[k0:]), axis=1) * 2
+    return np.abs(z) / a
+
+
+@pytest.mark.parametrize("r", [6.0, 24.0])
+def test_tracker_phase_response_matches_the_coupled_loop_analysis(r):
+    # kills the mutation "phase-loop error not divided by the radius estimate": the simulated tracker's
+    # phase response must equal the analytic coupled response, whose tangential loop is radius-free in px
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import phase_response
+
+    g = loop_gains()
+    freqs = [0.5, 1.5, 3.0, 6.0, 12.0]
+    sim = _phase_response_simulated(freqs, r, g)
+    ana = np.abs(phase_response(g, 2 * np.pi * 8, r, freqs))
+    np.testing.assert_allclose(sim, ana, rtol=0.06, atol=0.01)
+
+
+def test_coupled_phase_loop_realises_less_than_its_design_and_the_retuned_gains_realise_it():
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import (gains_realising, phase_response,
+                                                                   realised_phase_bandwidth)
+
+    w = 2 * np.pi * 8
+    # uncoupled (K_xy -> 0) the response is the type-2 PLL's closed form, -3 dB at the design 6 Hz
+    g0 = loop_gains(b_xy=1e-9)
+    f = np.array([1.0, 4.0, 6.0, 15.0])
+    s = 2j * np.pi * f
+    pll = (g0.k1 * s + g0.k2) / (s**2 + g0.k1 * s + g0.k2)
+    np.testing.assert_allclose(phase_response(g0, w, 12.0, f), pll, rtol=1e-3, atol=1e-4)
+    assert realised_phase_bandwidth(g0, w, 12.0)["bandwidth_hz"] == pytest.approx(6.0, abs=0.05)
+    coupled = realised_phase_bandwidth(loop_gains(), w, 12.0)
+    assert coupled["bandwidth_hz"] < 4.0 and coupled["peak_gain"] > 1.3
+    g6 = gains_realising(10.0, 0.2, 6.0)
+    assert realised_phase_bandwidth(g6, w, 12.0)["bandwidth_hz"] == pytest.approx(6.0, abs=0.05)
+    sim = _phase_response_simulated([6.0], 12.0, g6)
+    assert sim[0] == pytest.approx(1 / np.sqrt(2), abs=0.05)
+
+
+def test_truth_phase_is_the_integral_of_a_varying_rotation_rate():
+    # kills the mutation "truth phase by the omega(t) t approximation" (U3 belongs to the paper's
+    # phase loop, never to the truth): theta = phi + int_0^t omega, closed form for the Fig. 2 modulation
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import scenario_truth
+
+    sc = Scenario(duration_s=4.0, omega_mod=0.1, omega_mod_hz=0.5, x_std=0.0, y_amplitude=0.0)
+    tr = scenario_truth(np.random.default_rng(0), 3, sc)
+    w0, m, fm, t = sc.omega0, 0.1, 0.5, tr.t
+    exact = tr.theta[:, :1] + w0 * (t + m / (2 * np.pi * fm) * (1 - np.cos(2 * np.pi * fm * t)))
+    # the left Riemann sum of the frames differs from the integral by at most max|omega'| t dt / 2
+    np.testing.assert_allclose(tr.theta, exact, atol=w0 * m * 2 * np.pi * fm * t[-1] / sc.fps / 2 + 1e-9)
+    np.testing.assert_allclose(np.diff(tr.theta, axis=1) * sc.fps, tr.omega[:, :-1], rtol=1e-12)
+
+
+@pytest.mark.parametrize("phase", [0.0, np.pi, np.pi / 2])
+def test_decoy_rotates_at_its_phase_offset_from_the_marker(phase):
+    # kills the mutation "the decoy phase ignored": decoy - (its circle's centre) = r e^{i(theta + phase)},
+    # so decoy - marker - r (e^{i(theta + phase)} - e^{i theta}) is the constant offset vector of length decoy_offset
+    sc = Scenario(duration_s=0.1, decoy_offset=16.0, decoy_phase=phase, x_std=0.0, y_amplitude=0.0)
+    tr, scene, _ = run_scenario(np.random.default_rng(1), 2, sc, 2.0, keep_full=False)
+    z_marker = (tr.marker[..., 0] - tr.xr) + 1j * (tr.marker[..., 1] - tr.yr)
+    z = (scene.decoys[..., 0] - tr.marker[..., 0]) + 1j * (scene.decoys[..., 1] - tr.marker[..., 1])
+    off = z - z_marker * (np.exp(1j * phase) - 1)
+    np.testing.assert_allclose(np.abs(off), 16.0, atol=1e-6)
+    np.testing.assert_allclose(off, off[:, :1] * np.ones_like(off), atol=1e-6)
+
+
+def test_scenario_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
+    with pytest.raises(ValueError, match="Nyquist"):
+        Scenario(fps=500.0, rotation_hz=250.0)
+    with pytest.raises(ValueError, match="Nyquist"):
+        Scenario(fps=100.0, rotation_hz=60.0)
+    Scenario(fps=500.0, rotation_hz=249.0)

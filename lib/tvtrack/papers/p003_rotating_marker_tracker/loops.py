@@ -30,6 +30,7 @@ from ...render import pixel_fractions_box
 
 __all__ = [
     "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
+    "phase_response", "realised_phase_bandwidth", "gains_realising",
     "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d", "band_power_share",
     "phase_locked_amplitude",
 ]
@@ -226,15 +227,93 @@ def loop_poles(gains: LoopGains, omega: float, r: float) -> np.ndarray:
     -------
     ndarray of complex, shape (5,)
     """
+    A = _loop_matrix(gains, omega, r)
+    return np.linalg.eigvals(A)
+
+
+def _loop_matrix(gains: LoopGains, omega: float, r: float) -> np.ndarray:
+    """State matrix of :func:`loop_poles` (errors ``q_rad, q_tan, dr, dtheta, domega``)."""
     g = gains
     A = np.zeros((5, 5))
-    # e_rad = q0 + dr,  e_tan = q1 + r dth
-    A[0, :] = [-g.k_xy, omega, -g.k_xy, 0, 0]                     # dq/dt = -omega J q - K_xy R(-th) e
+    A[0, :] = [-g.k_xy, omega, -g.k_xy, 0, 0]
     A[1, :] = [-omega, -g.k_xy, 0, -g.k_xy * r, 0]
     A[2, :] = [-g.k_r, 0, -g.k_r, 0, 0]
     A[3, :] = [0, -g.k1 / r, 0, -g.k1, 1]
     A[4, :] = [0, -g.k2 / r, 0, -g.k2, 0]
-    return np.linalg.eigvals(A)
+    return A
+
+
+def phase_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.ndarray:
+    """Frequency response of the coupled variant-S loop from the true marker phase to its estimate.
+
+    With a phase perturbation ``p(t)`` of the uniform rotation (true phase ``theta_0 + omega t + p``),
+    the error state of :func:`loop_poles` obeys ``x' = A x + b p'`` with ``b = -e_dtheta``, so
+    ``theta_hat - theta_0 - omega t = p + dtheta`` and
+
+    ``H(s) = 1 + s e_dtheta^T (s I - A)^{-1} b``  (card item 5; the loops of eq. (16) linearised).
+
+    Uncoupled (``K_xy = 0``) this is the type-2 PLL ``(K1 s + K2) / (s^2 + K1 s + K2)`` with its
+    design -3 dB bandwidth; the coordinate loops also correct the tangential error and lower it.
+
+    Parameters
+    ----------
+    gains : LoopGains
+    omega : float
+        Rotation rate (rad/s).
+    r : float
+        Rotation radius (px).
+    freqs_hz : array_like, shape (m,)
+
+    Returns
+    -------
+    ndarray of complex, shape (m,)
+    """
+    A = _loop_matrix(gains, omega, r)
+    b = np.zeros(5)
+    b[3] = -1.0
+    s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
+    eye = np.eye(5)
+    return np.array([1 + sk * np.linalg.solve(sk * eye - A, b)[3] for sk in s])
+
+
+def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: float = 100.0) -> dict:
+    """-3 dB bandwidth (Hz) and peak gain of :func:`phase_response` (coupled loop), on a 0.01 Hz grid.
+
+    Returns
+    -------
+    dict
+        ``bandwidth_hz`` (first frequency where ``|H|`` falls below ``1/sqrt 2``; NaN if none below
+        ``f_max``), ``peak_gain`` (max ``|H|``), ``peak_hz``.
+    """
+    f = np.arange(0.01, f_max, 0.01)
+    mag = np.abs(phase_response(gains, omega, r, f))
+    below = np.flatnonzero(mag < 1 / np.sqrt(2))
+    return dict(bandwidth_hz=float(f[below[0]]) if below.size else float("nan"), peak_gain=float(mag.max()),
+                peak_hz=float(f[np.argmax(mag)]))
+
+
+def gains_realising(b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707, rotation_hz: float = 8.0,
+                    r: float = 12.0) -> LoopGains:
+    """Loop gains whose *coupled* phase loop realises the -3 dB bandwidth ``b_omega`` (Hz).
+
+    :func:`loop_gains` designs the PLL alone; the coordinate loops take up part of the tangential error,
+    so the coupled loop realises less. Here the PLL's design bandwidth is raised (bisection on the
+    realised bandwidth, monotone in it) until the coupled loop realises ``b_omega``; ``k_xy``, ``k_r`` unchanged.
+    """
+    from scipy.optimize import brentq
+
+    omega = 2 * np.pi * rotation_hz
+
+    def gap(b):
+        return realised_phase_bandwidth(loop_gains(b_xy, b_r, b, zeta, rotation_hz), omega, r)["bandwidth_hz"] - b_omega
+
+    hi = b_omega
+    while gap(hi) < 0:
+        hi *= 2
+        if hi > 1e3:
+            raise ValueError(f"no PLL design realises {b_omega} Hz with b_xy = {b_xy} Hz")
+    b = brentq(gap, b_omega / 4, hi, xtol=1e-3)
+    return loop_gains(b_xy, b_r, b, zeta, rotation_hz)
 
 
 def ekf_noise_from_bandwidths(meas_var: float, dt: float, r: float, b_xy: float, b_r: float,

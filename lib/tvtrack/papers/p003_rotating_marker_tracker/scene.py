@@ -511,6 +511,11 @@ class Scenario:
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
 
+    def __post_init__(self):
+        if not 0 < self.rotation_hz < self.fps / 2:
+            raise ValueError(f"parameter 'rotation_hz' = {self.rotation_hz}; it must be > 0 and below the frame-rate "
+                             f"Nyquist fps / 2 = {self.fps / 2:g} Hz (the gate samples the rotation once a frame)")
+
     @property
     def n_frames(self) -> int:
         return int(round(self.duration_s * self.fps))
