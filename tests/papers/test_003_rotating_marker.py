@@ -571,3 +571,28 @@ def test_scenario_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
     with pytest.raises(ValueError, match="Nyquist"):
         Scenario(fps=100.0, rotation_hz=60.0)
     Scenario(fps=500.0, rotation_hz=249.0)
+
+
+def test_motion_kinds_share_the_rms_and_the_card_draws():
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import object_motion
+
+    out = {k: object_motion(np.random.default_rng(4), 400, 5000, 0.002, kind=k) for k in ("card", "sinusoids", "random")}
+    for k, (x, y) in out.items():
+        assert np.sqrt(np.mean((x - 128) ** 2)) == pytest.approx(10.0, rel=0.15), k
+        assert np.sqrt(np.mean((y - 128) ** 2)) == pytest.approx(20 / np.sqrt(2), rel=0.15), k
+    np.testing.assert_array_equal(out["card"][0], out["random"][0])      # x: the same OU draws
+    with pytest.raises(ValueError, match="motion"):
+        Scenario(motion="zigzag")
+
+
+def test_edge_slew_normalisation_matches_the_quadrant_saturation():
+    from tvtrack.papers.p003_rotating_marker_tracker.discriminators import static_characteristic
+
+    for spot in ("disc", "square"):
+        sc = Scenario(spot=spot, form="edge", edge_norm="slew")
+        q = Scenario(spot=spot)
+        off = np.linspace(0, sc.gate_half, 49)
+        e = static_characteristic(sc.spot_renderer(), off, form="edge", half=sc.gate_half, a=sc.diameter / 2)
+        qq = static_characteristic(q.spot_renderer(), off, form="quadrant", half=q.gate_half)
+        assert np.max(e) / sc.slope() == pytest.approx(np.max(qq) / q.slope(), rel=1e-9)
+        assert sc.slope() < Scenario(spot=spot, form="edge").slope()

@@ -29,13 +29,13 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
-from .loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
+from .loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, gains_realising, loop_gains, \
     run_closed_loop
 from ...render import box_spot, disc_area, disc_spot
 
 __all__ = [
     "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
-    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
+    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "MOTIONS", "build_scene", "Scenario",
     "scenario_truth", "run_scenario", "RotatingMarkerScene", "state_errors",
     "interference_runs", "CommonNormal", "PLACEMENTS",
 ]
@@ -338,30 +338,46 @@ class RotatingMarkerScene:
         return img
 
 
+MOTIONS = ("card", "sinusoids", "random")
+
+
 def object_motion(rng: np.random.Generator, n: int, n_frames: int, dt: float, *, center=(128.0, 128.0),
                   x_std: float = 10.0, x_tau: float = 1.0, x_smooth: float = 0.05, y_amplitude: float = 20.0,
-                  y_freq: float = 0.5):
+                  y_freq: float = 0.5, kind: str = "card"):
     """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
-    at ``y_freq`` Hz.
+    at ``y_freq`` Hz (``kind = "card"``).
 
     ``x`` is an Ornstein-Uhlenbeck process (time constant ``x_tau`` s) passed through a first-order
     low-pass of time constant ``x_smooth`` s (so that the path has a finite velocity, as a real
-    object's does) and scaled to the stationary standard deviation ``x_std`` px.
+    object's does) and scaled to the stationary standard deviation ``x_std`` px. Other kinds (the
+    paper gives no amplitudes and no law for the interference runs): ``"sinusoids"``, ``x`` a
+    sinusoid of amplitude ``sqrt 2 x_std`` (the same RMS) at ``0.7 y_freq`` Hz with a random phase;
+    ``"random"``, ``y`` also such a smoothed OU process, of standard deviation ``y_amplitude / sqrt 2``
+    (the sinusoid's RMS). Every kind first draws the card's ``x`` (common random numbers across kinds).
 
     Returns
     -------
     xr, yr : ndarray, shape (n, n_frames)
     """
+    if kind not in MOTIONS:
+        raise ValueError(f"parameter 'kind' = {kind!r}; it must be one of {MOTIONS}")
     t = np.arange(n_frames) * dt
-    xr = np.zeros((n, n_frames))
-    if x_std > 0:
+
+    def smoothed_ou(std):
         ou = ornstein_uhlenbeck(rng, n, n_frames, dt, 1.0, x_tau)
         if x_smooth > 0:
             b = np.exp(-dt / x_smooth)
             ou = lfilter([1 - b], [1.0, -b], ou, axis=1, zi=b * ou[:, :1])[0]
             ou *= np.sqrt((x_tau + x_smooth) / x_tau)
-        xr = x_std * ou
-    yr = y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
+        return std * ou
+
+    ou_x = smoothed_ou(x_std) if x_std > 0 else np.zeros((n, n_frames))
+    ou_y = smoothed_ou(y_amplitude / np.sqrt(2)) if kind == "random" and y_amplitude > 0 else None
+    if kind == "sinusoids":
+        xr = np.sqrt(2) * x_std * np.sin(2 * np.pi * 0.7 * y_freq * t + rng.uniform(0, 2 * np.pi, size=(n, 1)))
+    else:
+        xr = ou_x
+    yr = ou_y if ou_y is not None else y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
     return center[0] + xr, center[1] + yr
 
 
@@ -491,6 +507,7 @@ class Scenario:
     omega_mod_hz: float = 0.5
     radius_mod: float = 0.0
     radius_mod_hz: float = 0.05
+    motion: str = "card"
     x_std: float = 10.0
     x_tau: float = 1.0
     x_smooth: float = 0.05
@@ -498,6 +515,7 @@ class Scenario:
     y_freq: float = 0.5
     n_interferers: int = 0
     interferer_jitter: float = 0.0
+    interferer_radius_offset: float = 0.0
     interferer_centre: str = "object"
     decoy_offset: float = 0.0
     decoy_phase: float | None = None
@@ -506,7 +524,9 @@ class Scenario:
     b_r: float = 0.2
     b_omega: float = 6.0
     variant: str = "S"
+    realise_phase_bandwidth: bool = False
     form: str = "quadrant"
+    edge_norm: str = "slope"
     init_offset: tuple = (3.0, -3.0)
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
@@ -515,6 +535,10 @@ class Scenario:
         if not 0 < self.rotation_hz < self.fps / 2:
             raise ValueError(f"parameter 'rotation_hz' = {self.rotation_hz}; it must be > 0 and below the frame-rate "
                              f"Nyquist fps / 2 = {self.fps / 2:g} Hz (the gate samples the rotation once a frame)")
+        if self.motion not in MOTIONS:
+            raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
+        if self.edge_norm not in ("slope", "slew"):
+            raise ValueError(f"parameter 'edge_norm' = {self.edge_norm!r}; it must be 'slope' or 'slew'")
 
     @property
     def n_frames(self) -> int:
@@ -530,9 +554,23 @@ class Scenario:
         if self.form == "quadrant":
             return 2 * self.brightness * self.diameter
         from .discriminators import static_characteristic
+        if self.edge_norm == "slew":
+            # matched slew: the normalised edge output saturates where the quadrant form's does
+            off = np.linspace(0.0, self.gate_half, 49)
+            quad = static_characteristic(self.spot_renderer(), off, form="quadrant", half=self.gate_half)
+            edge = static_characteristic(self.spot_renderer(), off, form="edge", half=self.gate_half,
+                                         a=self.diameter / 2)
+            return float(np.max(edge) / (np.max(quad) / (2 * self.brightness * self.diameter)))
         f = static_characteristic(self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half,
                                   a=self.diameter / 2)
         return float((f[1] - f[0]) / 0.5)
+
+    def gains(self):
+        """Loop gains: the stated bandwidths as designed loop by loop (:func:`loop_gains`), or with
+        ``realise_phase_bandwidth`` the PLL retuned so that the coupled loop realises ``b_omega``."""
+        if self.realise_phase_bandwidth and self.rotating:
+            return gains_realising(self.b_xy, self.b_r, self.b_omega, rotation_hz=self.rotation_hz, r=self.radius)
+        return loop_gains(self.b_xy, self.b_r, self.b_omega, rotation_hz=self.rotation_hz)
 
     def spot_renderer(self):
         """``render(centers, shape, origin)`` for this scenario's spot."""
@@ -545,7 +583,7 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
     t = np.arange(T) * dt
     c = sc.image_size / 2
     xr, yr = object_motion(rng, n, T, dt, center=(c, c), x_std=sc.x_std, x_tau=sc.x_tau, x_smooth=sc.x_smooth,
-                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq)
+                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq, kind=sc.motion)
     if not sc.rotating:
         return marker_truth(xr, yr, np.zeros((n, T)), np.zeros((n, T)), np.zeros(n), dt)
     omega = sc.omega0 * (1 + sc.omega_mod * np.sin(2 * np.pi * sc.omega_mod_hz * t)) * np.ones((n, 1))
@@ -607,7 +645,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     scene = build_scene([st[2] for st in streams], truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
                         brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
                         background_std=sc.background_std, corr_length=sc.corr_length,
-                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius,
+                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius + sc.interferer_radius_offset,
                         interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
                         radial_jitter=sc.interferer_jitter, decoys=decoys, decoy_brightness=sc.brightness / sir,
                         n_common=n_common)
@@ -616,7 +654,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
                    np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
     slope = sc.slope()
     if tracker == "loops":
-        trk = RotatingGateTracker(x0, loop_gains(sc.b_xy, sc.b_r, sc.b_omega, rotation_hz=sc.rotation_hz), slope,
+        trk = RotatingGateTracker(x0, sc.gains(), slope,
                                   sc.variant, sc.rotating)
     elif tracker == "ekf":
         q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
