@@ -146,3 +146,16 @@ def test_bad_designs_are_refused():
 def test_ordering_undecided_on_extrapolated_estimate():
     e = Estimate(1e-13, 0.0, 1e-14, 1e-12, 50, method="logistic fit", extrapolated=True)
     assert Ordering("a", "b", "<", measure="difference").decide(e) == "undecided"
+
+
+def test_shares_from_counts_pool_as_counts():
+    from tvtrack.explore import pool
+    from tvtrack.montecarlo import Estimate, proportion_ci, zero_events_bound
+
+    zero = Estimate(0.0, float("nan"), 0.0, zero_events_bound(8), 8, 0.95, "count: zero events")
+    p = pool([zero, zero, zero])
+    assert (p.value, p.ci_low, p.n) == (0.0, 0.0, 24)
+    assert p.ci_high == pytest.approx(zero_events_bound(24))     # averaging the intervals would give ~0.10
+    mixed = pool([proportion_ci(2, 10), proportion_ci(0, 10), proportion_ci(1, 10)])
+    ref = proportion_ci(3, 30)
+    assert (mixed.value, mixed.ci_low, mixed.ci_high) == pytest.approx((ref.value, ref.ci_low, ref.ci_high))

@@ -91,12 +91,33 @@ def _z(conf: float) -> float:
     return float(stats.norm.ppf(0.5 + conf / 2))
 
 
+def _is_count(e: Estimate) -> bool:
+    return e.method == "Clopper-Pearson" or e.method.startswith("count")
+
+
+def _pool_counts(es: list[Estimate]) -> Estimate:
+    """Shares from direct counts pool as counts: ``sum k`` of ``sum n``, with the Clopper-Pearson interval (zero or
+    all events: the one-sided bound they certify), never by averaging intervals (which under-covers for zero events)."""
+    from .montecarlo import proportion_ci, zero_events_bound
+
+    n = int(sum(e.n for e in es))
+    k = int(sum(round(e.value * e.n) for e in es))
+    conf = es[0].confidence
+    if 0 < k < n:
+        return proportion_ci(k, n, conf)
+    b = zero_events_bound(n, conf)
+    lo, hi = (0.0, b) if k == 0 else (1.0 - b, 1.0)
+    return Estimate(k / n, math.nan, lo, hi, n, conf, f"count over {len(es)} replicates: {k} of {n}, one-sided bound")
+
+
 def _pool_estimates(es: list[Estimate]) -> Estimate:
     k = len(es)
     conf = es[0].confidence
     z = _z(conf)
     n = int(sum(e.n for e in es))
     extrap = any(e.extrapolated for e in es)
+    if all(_is_count(e) for e in es) and not extrap:
+        return _pool_counts(es)
     vals = np.array([e.value for e in es], float)
     if all(e.method == "exact" for e in es):
         if np.all(vals == vals[0]):
