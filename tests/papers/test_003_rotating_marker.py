@@ -1,5 +1,7 @@
 """Tests of paper 003's package: rotating-marker scene, discriminators, loops, loss of lock."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from scipy import signal
@@ -596,3 +598,29 @@ def test_edge_slew_normalisation_matches_the_quadrant_saturation():
         qq = static_characteristic(q.spot_renderer(), off, form="quadrant", half=q.gate_half)
         assert np.max(e) / sc.slope() == pytest.approx(np.max(qq) / q.slope(), rel=1e-9)
         assert sc.slope() < Scenario(spot=spot, form="edge").slope()
+
+
+def test_per_trial_gains_batch_equals_separate_runs():
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import stack_gains
+
+    sc = Scenario(duration_s=0.3)
+    gs = [loop_gains(b_xy=b) for b in (5.0, 20.0)]
+    _, _, hb = run_scenario([np.random.default_rng(7), np.random.default_rng(7)], 4, sc, gains=stack_gains(gs, 2),
+                            n_common=2)
+    for j, g in enumerate(gs):
+        _, _, h = run_scenario(np.random.default_rng(7), 2, sc, gains=g)
+        np.testing.assert_allclose(hb.estimate[2 * j:2 * j + 2], h.estimate, rtol=1e-5, atol=1e-4)
+
+
+def test_scene_blocks_in_one_batch_equal_separate_runs():
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
+
+    sc = Scenario(duration_s=0.3)
+    sirs = [1.0, 3.0]
+    both = interference_runs([np.random.default_rng(5), np.random.default_rng(5)], 2, sc, sirs,
+                             blocks=[{"n_interferers": 1}, {"n_interferers": 5, "kappa": 0.2}])
+    for b, over in enumerate(({"n_interferers": 1}, {"n_interferers": 5, "kappa": 0.2})):
+        alone = interference_runs(np.random.default_rng(5), 2, replace(sc, **over), sirs)
+        sel = both["block"] == b
+        np.testing.assert_allclose(both["miss"][sel], alone["miss"], rtol=1e-4, atol=1e-3)
+        np.testing.assert_allclose(both["interferers"][sel][:, :over["n_interferers"]], alone["interferers"])

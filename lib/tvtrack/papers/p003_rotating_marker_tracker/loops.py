@@ -30,7 +30,7 @@ from ...render import pixel_fractions_box
 
 __all__ = [
     "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
-    "phase_response", "realised_phase_bandwidth", "gains_realising",
+    "phase_response", "realised_phase_bandwidth", "gains_realising", "stack_gains",
     "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d", "band_power_share",
     "phase_locked_amplitude",
 ]
@@ -49,6 +49,12 @@ class LoopGains:
     k2: float
     k_phi: float
     k_om: float
+
+
+def stack_gains(gains, n_each: int) -> LoopGains:
+    """Per-trial gains: each of ``gains`` repeated for ``n_each`` consecutive trials (fields of shape (k n_each,))."""
+    return LoopGains(*(np.repeat([getattr(g, f) for g in gains], n_each).astype(float)
+                       for f in ("k_xy", "k_r", "k1", "k2", "k_phi", "k_om")))
 
 
 def loop_gains(b_xy: float = 10.0, b_r: float = 0.2, b_omega: float = 6.0, zeta: float = 0.707,

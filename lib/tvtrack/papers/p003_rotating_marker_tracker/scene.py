@@ -442,7 +442,7 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
                 diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
                 background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
                 interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
-                decoys=None, decoy_brightness=0.0, n_common: int | None = None):
+                decoys=None, decoy_brightness=0.0, n_common: int | None = None, blocks=None):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial), placed by :func:`place_interferers`
     around ``interferer_center`` (default: the object's initial centre).
@@ -450,7 +450,10 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
     repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
     independent). ``rng`` may be a list of generators: each draws for its own consecutive block
-    of ``n / len(rng)`` trials (several seeds in one batch).
+    of ``n / len(rng)`` trials (several seeds in one batch). ``blocks``, one dict per generator,
+    overrides ``kappa``, ``background_std``, ``corr_length`` or ``n_interferers`` block by block
+    (several scene settings in one batch; a block with fewer interferers is padded with dark ones
+    far outside the image).
 
     Returns
     -------
@@ -458,21 +461,28 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     """
     n = truth.xr.shape[0]
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    blocks = [{}] * len(rngs) if blocks is None else list(blocks)
+    if len(blocks) != len(rngs) or any(set(b) - {"kappa", "background_std", "corr_length", "n_interferers"}
+                                       for b in blocks):
+        raise ValueError("parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
+                         "corr_length, n_interferers")
     q, residual = [], []
-    for j, g in enumerate(rngs):
+    for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         centre = truth.center[first:first + n_common, 0] if interferer_center is None else interferer_center
-        q.append(_tile(place_interferers(g, n_common, n_interferers, centre, interferer_radius, radial_jitter), n_block))
+        q.append(_tile(place_interferers(g, n_common, b.get("n_interferers", n_interferers), centre,
+                                         interferer_radius, radial_jitter), n_block))
         residual.append(_tile(RotatingMarkerScene.static_residual(
-            g, n_common, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
-            interferers=np.zeros((n_common, 0, 2)), interferer_brightness=np.zeros(n_common), spot=spot,
-            diameter=diameter), n_block))
-    q = np.concatenate(q)
+            g, n_common, image_shape, kappa=b.get("kappa", kappa), background_std=b.get("background_std", background_std),
+            corr_length=b.get("corr_length", corr_length), interferers=np.zeros((n_common, 0, 2)),
+            interferer_brightness=np.zeros(n_common), spot=spot, diameter=diameter), n_block))
+    n_q = max(x.shape[1] for x in q)
+    q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    add_spots(residual, q, np.broadcast_to((brightness / sir)[:, None], q.shape[:2]), spot, diameter)
+    add_spots(residual, q, np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0), spot, diameter)
     return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
                                decoys, decoy_brightness)
 
@@ -596,7 +606,7 @@ PLACEMENTS = ("object", "image")
 
 def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, tracker: str = "loops",
                  ekf_meas_var: float = 0.05, noise: str = "projected", keep_full: bool = True,
-                 crop_callback=None, n_common: int | None = None):
+                 crop_callback=None, n_common: int | None = None, gains=None, blocks=None):
     """Simulate ``n`` trials of a scenario end to end (truth, scene, tracker, closed loop).
 
     The truth, the decoy, the scene and the sensor noise draw from four generators spawned from
@@ -616,6 +626,11 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     n_common : int, optional
         Common random numbers: within a generator's block, trial ``j n_common + i`` repeats every
         draw of trial ``i`` (e.g. ``n_common`` trials at each of several SIR values).
+    blocks : list of dict, optional
+        Scene settings per generator block (see :func:`build_scene`).
+    gains : LoopGains, optional
+        Loop gains instead of ``sc.gains()``; fields may be arrays of shape (n,) (per-trial gains, e.g. several
+        bandwidths run as one batch on common draws).
 
     ``rng`` may be a list of generators (e.g. one per seed): each draws for its own consecutive
     block of ``n / len(rng)`` trials, exactly as it would alone, so seeds can share one batch.
@@ -648,13 +663,13 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
                         n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius + sc.interferer_radius_offset,
                         interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
                         radial_jitter=sc.interferer_jitter, decoys=decoys, decoy_brightness=sc.brightness / sir,
-                        n_common=n_common)
+                        n_common=n_common, blocks=blocks)
     x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
                    sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,
                    np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
     slope = sc.slope()
     if tracker == "loops":
-        trk = RotatingGateTracker(x0, sc.gains(), slope,
+        trk = RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope,
                                   sc.variant, sc.rotating)
     elif tracker == "ekf":
         q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
@@ -691,7 +706,7 @@ def state_errors(truth: MarkerTruth, history) -> np.ndarray:
     return e
 
 
-def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values) -> dict:
+def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values, blocks=None) -> dict:
     """Batched interference runs, ``n`` trials per SIR, keeping only what loss detection needs.
 
     The ``n`` trials are the same at every SIR (common random numbers: motion, background,
@@ -714,12 +729,13 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
         ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s),
         ``omega_hat`` (m n, T) the tracker's angular-velocity estimate (rad/s), ``omega_error``
         (m n, T) its relative error against the truth (NaN for a static marker). With a list
-        of generators the blocks follow each other: ``block`` (k m n,) says which generator.
+        of generators the blocks follow each other: ``block`` (k m n,) says which generator
+        (``blocks``: scene settings per generator, see :func:`build_scene`).
     """
     rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
     m = np.asarray(sir_values, float).size
     sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
-    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
+    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n, blocks=blocks)
     with np.errstate(divide="ignore", invalid="ignore"):
         omega_error = np.where(truth.omega != 0, h.omega / truth.omega - 1, np.nan).astype(np.float32)
     return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,

@@ -19,7 +19,6 @@ where it kept it), with a Student-t interval widened by half the grid step, and 
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -27,7 +26,7 @@ import numpy as np
 from ...montecarlo import Estimate, mean_ci, proportion_ci, ratio_ci, rms_ci, zero_events_bound
 from .discriminators import quadrant_slope_fit
 from .lock import LossCriterion, first_loss, tag_capture
-from .loops import phase_locked_amplitude
+from .loops import phase_locked_amplitude, stack_gains
 from .scene import Scenario, interference_runs, run_scenario, state_errors
 
 __all__ = ["SIR_GRID", "UNCOMPENSATED_GRID", "BXY_GRID", "Sizes", "scenario", "criterion", "loss_share",
@@ -51,19 +50,25 @@ class Sizes:
         Run lengths of the Fig. 1 and Fig. 2 configurations (s).
     transient_s : float
         Transient excluded from steady-state statistics (s).
+    rotation_hz : float
+        Marker rotation rate (rev/s; the paper's 8).
+    horizon_s : float
+        Run length T of the interference runs (s); the register's ``horizon`` entry doubles it.
     """
 
     trials: int = 5
     fig1_s: float = 5.0
     fig2_s: float = 12.0
     transient_s: float = 2.0
+    rotation_hz: float = 8.0
+    horizon_s: float = 5.0
 
 
-def scenario(config: dict, **over) -> Scenario:
+def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``interferer_radius``, ``placement``, ``horizon_s``, ``edge_norm``.
+    ``noise``, ``fps``, ``spot``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
     """
     c = config
     base = Scenario()
@@ -75,10 +80,12 @@ def scenario(config: dict, **over) -> Scenario:
               realise_phase_bandwidth=c.get("phase_loop", "designed") == "realised",
               background_std=1.0 / (kappa * float(c.get("residual_background", 50.0))),
               noise_std=float(c.get("noise", base.noise_std)), fps=float(c.get("fps", base.fps)),
-              spot=c.get("spot", base.spot), duration_s=float(c.get("horizon_s", 5.0)),
+              spot=c.get("spot", base.spot),
+              duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
               interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
               interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
-              interferer_centre=c.get("placement", "object"), edge_norm=c.get("edge_norm", "slope"))
+              interferer_centre=c.get("placement", "object"), edge_norm=c.get("edge_norm", "slope"),
+              rotation_hz=sizes.rotation_hz)
     kw.update(over)
     return Scenario(**kw)
 
@@ -91,8 +98,7 @@ def criterion(config: dict, sc: Scenario) -> LossCriterion:
 
 
 def _estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
-    kw = {"extrapolated": bool(extrapolated)} if "extrapolated" in {f.name for f in dataclasses.fields(Estimate)} else {}
-    return Estimate(float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, **kw)
+    return Estimate(float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, bool(extrapolated))
 
 
 def loss_share(events) -> Estimate:
@@ -108,9 +114,9 @@ def loss_share(events) -> Estimate:
     e = np.asarray(events, bool).ravel()
     n, k = e.size, int(e.sum())
     if k == 0:
-        return _estimate(0.0, 0.0, zero_events_bound(n), n, "zero events: one-sided 95 % bound")
+        return _estimate(0.0, 0.0, zero_events_bound(n), n, "count: zero events, one-sided 95 % bound")
     if k == n:
-        return _estimate(1.0, 1 - zero_events_bound(n), 1.0, n, "all events: one-sided 95 % bound")
+        return _estimate(1.0, 1 - zero_events_bound(n), 1.0, n, "count: all events, one-sided 95 % bound")
     return proportion_ci(k, n)
 
 
@@ -198,31 +204,37 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     Returns
     -------
     dict
-        ``{"C003-1": {"x_r", "y_r", "kept"}, "C003-2": {"far", "near", "wide_loops"}, "C003-3": {"omega", "r"},
-        "C003-4": {"spread", "compensation"}, "C003-9": {...}}``; the values are Estimates (``wide_loops`` a list
-        over :data:`BXY_GRID`), and ``"_figure"`` holds arrays for the notebook's figures (first trials only).
+        ``{"C003-1": {"x_r", "y_r", "lost"}, "C003-2": {"far", "near", "wide_loops"}, "C003-3": {"omega", "r"},
+        (``far``, ``near``: rotation-locked amplitude of the x_r error over the amplitude locked to a control phase at
+        1.5 f_rot and at f_rot + 1 Hz; ``wide_loops``: the near ratio at each bandwidth of :data:`BXY_GRID`)
+        "C003-4": {"spread", "compensation"}, "C003-9": {"square_linear", "disc_linear", "edge_square",
+        "edge_disc"}}``; Estimates (``wide_loops`` a list over :data:`BXY_GRID`, the slopes exact numbers), and
+        ``"_figure"`` with arrays of the first run for the notebook's figures.
     """
     n = sizes.trials
-    sc1 = scenario(config, duration_s=sizes.fig1_s)
+    sc1 = scenario(config, sizes, duration_s=sizes.fig1_s)
     k0 = int(round(sizes.transient_s * sc1.fps))
     crit = criterion(config, sc1)
     out, fig = {}, {}
-    # Fig. 1 and the rotation-locked error over the coordinate-loop bandwidth (same draws: stream 1)
-    locked, far, near = {}, None, None
+    # Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1)
+    gains = [sc1.gains() if b == sc1.b_xy else replace(sc1, b_xy=b).gains() for b in BXY_GRID]
+    tr, _, h = run_scenario([_rng(1, seed) for _ in BXY_GRID], n * len(BXY_GRID), sc1,
+                            gains=stack_gains(gains, n), n_common=n)
+    e = state_errors(tr, h)
+    ex, th = e[:, k0:, 0], tr.theta[:, k0:]
     f_near = (sc1.rotation_hz + 1.0) / sc1.rotation_hz
-    for b in BXY_GRID:
-        tr, _, h = run_scenario(_rng(1, seed), n, replace(sc1, b_xy=b))
-        e = state_errors(tr, h)
-        ex, th = e[:, k0:, 0], tr.theta[:, k0:]
-        locked[b] = phase_locked_amplitude(ex, th)
-        if b == sc1.b_xy:
-            out["C003-1"] = {"x_r": rms_ci(e[:, k0:, 0]), "y_r": rms_ci(e[:, k0:, 1]),
-                             "lost": loss_share(first_loss(h.miss, crit, h.inside) >= 0)}
-            far = ratio_ci(locked[b], phase_locked_amplitude(ex, 1.5 * th))
-            near = ratio_ci(locked[b], phase_locked_amplitude(ex, f_near * th))
-            fig.update(t=tr.t, xr=tr.xr[0], yr=tr.yr[0], est=h.estimate[0, :, :2], err=e[0, :, :2])
-    out["C003-2"] = {"far": far, "near": near, "wide_loops": [mean_ci(locked[b]) for b in BXY_GRID]}
-    fig["locked_by_bxy"] = {b: float(np.mean(v)) for b, v in locked.items()}
+    locked = phase_locked_amplitude(ex, th).reshape(len(BXY_GRID), n)
+    near_ctl = phase_locked_amplitude(ex, f_near * th).reshape(len(BXY_GRID), n)
+    j = BXY_GRID.index(sc1.b_xy) if sc1.b_xy in BXY_GRID else 0
+    sel = slice(j * n, (j + 1) * n)
+    out["C003-1"] = {"x_r": rms_ci(e[sel, k0:, 0]), "y_r": rms_ci(e[sel, k0:, 1]),
+                     "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0)}
+    out["C003-2"] = {"far": ratio_ci(locked[j], phase_locked_amplitude(ex[sel], 1.5 * th[sel])),
+                     "near": ratio_ci(locked[j], near_ctl[j]),
+                     "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)]}
+    quad_ms = {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)}
+    fig.update(t=tr.t, xr=tr.xr[j * n], yr=tr.yr[j * n], est=h.estimate[j * n, :, :2], err=e[j * n, :, :2],
+               locked=locked.mean(axis=1))
     # Fig. 2: varying rotation rate and radius
     sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=0.1, radius_mod=0.15)
     tr, _, h = run_scenario(_rng(2, seed), n, sc2)
@@ -230,29 +242,31 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     e = state_errors(tr, h)[:, k2:]
     out["C003-3"] = {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])}
     fig.update(t2=tr.t, omega=tr.omega[0], omega_hat=h.estimate[0, :, 4], r=tr.r[0], r_hat=h.estimate[0, :, 2])
-    # C003-4: background sweep (compensated) and the ablation without compensation, same draws (stream 3)
-    rms, lost = [], {}
-    for ratio in (50.0, 100.0):
-        for corr in (4.0, 8.0, 16.0):
-            sc = replace(sc1, background_std=1.0 / (sc1.kappa * ratio), corr_length=corr)
-            ms, lo = _miss_stats(run_scenario(_rng(3, seed), n, sc, keep_full=False)[2], k0, crit)
-            rms.append(mean_ci(np.sqrt(ms)))
-            lost[ratio, corr] = lo
-    sc = replace(sc1, kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0)
-    _, lost_none = _miss_stats(run_scenario(_rng(3, seed), n, sc, keep_full=False)[2], k0, crit)
+    # C003-4: background sweep (compensated) and the ablation without compensation, one batch on the same draws
+    cases = ((50.0, 8.0), (100.0, 8.0), (50.0, 4.0), (50.0, 16.0))
+    blocks = [dict(kappa=sc1.kappa, background_std=1.0 / (sc1.kappa * r), corr_length=c) for r, c in cases]
+    blocks.append(dict(kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0))
+    h = run_scenario([_rng(3, seed) for _ in blocks], n * len(blocks), sc1, keep_full=False, n_common=n,
+                     blocks=blocks)[2]
+    ms, lo = _miss_stats(h, k0, crit)
+    ms, lo = ms.reshape(len(blocks), n), lo.reshape(len(blocks), n)
+    rms = [mean_ci(np.sqrt(m)) for m in ms[:-1]]
+    lost = {"compensated": lo[0], "none": lo[-1]}
     hi, lo = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
     spread = _estimate(hi.value / lo.value, max(hi.ci_low / lo.ci_high, 0.0), hi.ci_high / max(lo.ci_low, 1e-12),
                        hi.n, "max/min of per-case RMS miss; interval from the per-case 95 % bounds (conservative)")
-    out["C003-4"] = {"spread": spread, "compensation": _share_difference(lost_none, lost[50.0, 8.0])}
-    # C003-9: static slopes (deterministic) and edge vs quadrant in closed loop (pixel noise, stream 4)
+    out["C003-4"] = {"spread": spread, "compensation": _share_difference(lost["none"], lost["compensated"])}
+    fig["background_rms"] = [r.value for r in rms]
+    # C003-9: static slopes (deterministic) and edge vs quadrant in closed loop on the Fig. 1 draws (stream 1)
     part9 = {}
     for spot in ("square", "disc"):
         s = replace(sc1, spot=spot)
-        slope = quadrant_slope_fit(s.spot_renderer(), s.diameter, s.gate_half)["fit_slope_halfD"] / s.slope()
-        part9[f"{spot}_linear"] = _estimate(slope, slope, slope, 1, "noise-free S-curve (deterministic)")
-        ms = {form: _miss_stats(run_scenario(_rng(4, seed), n, replace(s, form=form), noise="pixel",
-                                             keep_full=False)[2], k0, crit)[0] for form in ("quadrant", "edge")}
-        part9[f"edge_{spot}"] = ratio_ci(ms["edge"], ms["quadrant"])
+        part9[f"{spot}_linear"] = quadrant_slope_fit(s.spot_renderer(), s.diameter, s.gate_half)["fit_slope_halfD"] \
+            / s.slope()
+        if spot not in quad_ms:
+            quad_ms[spot] = _miss_stats(run_scenario(_rng(1, seed), n, s, keep_full=False)[2], k0, crit)[0]
+        edge = _miss_stats(run_scenario(_rng(1, seed), n, replace(s, form="edge"), keep_full=False)[2], k0, crit)[0]
+        part9[f"edge_{spot}"] = ratio_ci(edge, quad_ms[spot])
     out["C003-9"] = part9
     out["_figure"] = fig
     return out
@@ -275,15 +289,19 @@ def _share_difference(a, b) -> Estimate:
 # interference claims
 
 
-def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, capture: bool = False):
-    """Loss (and capture) indicators, shape (m, n), of ``n`` runs at each SIR (stream 10: common draws)."""
-    runs = interference_runs([_rng(10, seed)], n, sc, sirs)
+def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=None, capture: bool = False):
+    """Loss (and capture) indicators of ``n`` runs at each SIR (stream 10: common draws), shape (m, n); with
+    ``counts`` (interferer numbers) one batch of blocks, shape (len(counts), m, n)."""
+    k = 1 if counts is None else len(counts)
+    blocks = None if counts is None else [{"n_interferers": c} for c in counts]
+    runs = interference_runs([_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
     fl = first_loss(runs["miss"], crit, runs["inside"])
-    lost = (fl >= 0).reshape(len(sirs), n)
+    shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
+    lost = (fl >= 0).reshape(shape)
     if not capture:
         return lost, None
     capt = tag_capture(runs["gate"], runs["interferers"], fl, crit.window, sc.diameter / 2 + 0.5, crit.fraction)
-    return lost, capt.reshape(len(sirs), n)
+    return lost, capt.reshape(shape)
 
 
 def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
@@ -295,21 +313,19 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         ``{"C003-5": {"no_loss", "no_capture"}, "C003-6": {"finite", "loss_free", "not_lower"},
         "C003-7": {"loss_free", "not_lower", "rise"}, "C003-10": {"gate", "compensation"},
         "C003-11": {"dynamics", "selection", "bandwidth"} (mean-square miss without interferers,
-        B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}`` and
-        ``"_curves"``: the loss indicators of every curve (for figures and tables).
+        B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}``, ``"_map"`` (the thresholds of the
+        rotating and static markers with one and five interferers) and ``"_curves"`` (the loss indicators).
     """
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
     at = {s: i for i, s in enumerate(SIR_GRID)}
-    base = scenario(config)
+    base = scenario(config, sizes)
     D = base.diameter
     crit = criterion(config, base)
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
-    curves, capt = {}, None
-    for n_i in (1, 5):
-        curves["rotating", n_i], c = _curve(replace(base, n_interferers=n_i), sirs, n, seed, crit, capture=n_i == 5)
-        capt = c if n_i == 5 else capt
-        st = replace(base, n_interferers=n_i, rotating=False, gate_half=static_half)
-        curves["static", n_i], _ = _curve(st, sirs, n, seed, criterion(config, st))
+    curves = {}
+    (curves["rotating", 1], curves["rotating", 5]), (_, capt) = _curve(base, sirs, n, seed, crit, (1, 5), True)
+    st = replace(base, rotating=False, gate_half=static_half)
+    (curves["static", 1], curves["static", 5]), _ = _curve(st, sirs, n, seed, criterion(config, st), (1, 5))
     for gf in (1.5, 5.0):
         g = replace(base, n_interferers=5, gate_half=gf * D / 2)
         curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
@@ -317,8 +333,10 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     usirs = np.asarray(UNCOMPENSATED_GRID)
     curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
     k0 = int(round(sizes.transient_s * base.fps))
-    ms = {b: _miss_stats(run_scenario(_rng(1, seed), n, replace(base, b_xy=b), keep_full=False)[2], k0, crit)[0]
-          for b in (5.0, 20.0)}
+    bw = (5.0, 20.0)
+    h = run_scenario([_rng(1, seed) for _ in bw], 2 * n, base, keep_full=False, n_common=n,
+                     gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n))[2]
+    ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
     r1, r5 = curves["rotating", 1], curves["rotating", 5]
     out = {
         "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
@@ -331,31 +349,33 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
                     "compensation": _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa)},
         "C003-11": {"dynamics": loss_share(curves["gate", 1.5][-1]),
                     "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
-                    "bandwidth": ratio_ci(ms[20.0], ms[5.0])},
+                    "bandwidth": ratio_ci(ms[1], ms[0])},
         "C003-12": {"one": threshold_ratio(curves["static", 1], r1, sirs),
                     "five": threshold_ratio(curves["static", 5], r5, sirs),
                     "imitator": threshold_ratio(curves["decoy"], r1, sirs)},
     }
+    out["_map"] = {f"{m} {k}": threshold(curves[m, k], sirs) for m in ("rotating", "static") for k in (1, 5)}
     out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
     return out
 
 
 def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
-    """Uncompensated SIR_0 threshold over the compensated one in SIR_0 terms (``kappa`` x its SIR threshold).
+    """Compensated SIR_0 threshold (``kappa`` x its SIR threshold) over the uncompensated SIR_0 threshold: about
+    ``kappa`` if compensation is worth its 1/kappa background reduction (C003-10), 0 if the raw background alone
+    breaks lock.
 
-    When a run without compensation lost lock at every grid SIR_0, its threshold lies above the grid: the factor
-    is then bounded below by the grid's top over the compensated threshold's upper bound (a direct-count bound,
-    reported as ``[bound, inf]``); a run that broke below the grid leaves the factor undecided (extrapolated).
+    When a run without compensation lost lock at every grid SIR_0, its threshold lies above the grid: the ratio is
+    then bounded above by the compensated threshold's upper bound over the grid's top (a direct-count bound,
+    reported as ``[0, bound]``); a run that broke below the grid leaves the ratio undecided (extrapolated).
     """
     unc = np.asarray(lost_unc, bool)
     comp = threshold(lost_comp, sirs)
-    tau_u, cens_u = log_thresholds(unc, usirs)
     if unc[-1].any():
-        lo = float(usirs[-1]) / (kappa * comp.ci_high)
-        return _estimate(float("inf"), lo, float("inf"), unc.shape[1],
-                         f"{int(unc[-1].sum())} of {unc.shape[1]} uncompensated runs lost even at SIR_0 "
-                         f"{usirs[-1]:g}: lower bound from the grid's top")
+        hi = kappa * comp.ci_high / float(usirs[-1])
+        return _estimate(0.0, 0.0, hi, unc.shape[1], f"{int(unc[-1].sum())} of {unc.shape[1]} uncompensated runs "
+                         f"lost even at SIR_0 {usirs[-1]:g}: bound from the grid's top",
+                         extrapolated=comp.extrapolated)
     u = threshold(unc, usirs)
-    return _estimate(u.value / (kappa * comp.value), u.ci_low / (kappa * comp.ci_high),
-                     u.ci_high / (kappa * comp.ci_low), u.n, "ratio of thresholds, interval from their bounds",
-                     extrapolated=bool(cens_u.any() or getattr(comp, "extrapolated", False)))
+    return _estimate(kappa * comp.value / u.value, kappa * comp.ci_low / u.ci_high, kappa * comp.ci_high / u.ci_low,
+                     u.n, "ratio of thresholds, interval from their bounds",
+                     extrapolated=bool(u.extrapolated or comp.extrapolated))

@@ -1,0 +1,75 @@
+"""Generated prose of notebook 003: every number and every interpretive word comes from a computed test."""
+
+from __future__ import annotations
+
+import math
+
+from ...montecarlo import Estimate
+from ...verdicts import as_estimate, is_undecided
+
+__all__ = ["show", "relation", "findings", "dependence"]
+
+
+def show(e, digits: int = 3) -> str:
+    """``value [low, high]`` of an estimate (a bare number for an exact one)."""
+    e = as_estimate(e)
+    if e.method == "exact":
+        return f"{e.value:.{digits}g}"
+    tail = " (extrapolated)" if e.extrapolated else ""
+    return f"{e.value:.{digits}g} [{e.ci_low:.{digits}g}, {e.ci_high:.{digits}g}]{tail}"
+
+
+def relation(e, ref: float, above: str = "above", below: str = "below", same: str = "indistinguishable from") -> str:
+    """The word for where an estimate's 95 % interval lies relative to ``ref`` (``undecided`` when it cannot say)."""
+    e = as_estimate(e)
+    if is_undecided(e):
+        return "undecided against"
+    if e.ci_low > ref:
+        return above
+    if e.ci_high < ref:
+        return below
+    return same
+
+
+def _measured(m) -> str:
+    if m is None:
+        return "-"
+    if isinstance(m, dict) and "value" not in m:
+        return "; ".join(f"{k} {_measured(v)}" for k, v in m.items())
+    if isinstance(m, (list, tuple)):
+        return " -> ".join(_measured(v) for v in m)
+    if isinstance(m, (Estimate, dict, int, float)):
+        return show(m)
+    return str(m)
+
+
+def findings(claims) -> str:
+    """One Markdown line per claim: the paper's statement and value, what was measured, verdict and label."""
+    lines = []
+    for c in claims:
+        label = (c.robustness or {}).get("label", "-") if c.verdict != "not checkable" else "-"
+        lines.append(f"- **{c.id}** {c.statement} Paper: {c.paper_value}. Measured: {_measured(c.measured)}. "
+                     f"**{c.verdict}** ({label}).")
+    return "\n".join(lines)
+
+
+def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
+    """Which parts of which claims change verdict under the named register entries, from the records' ``where``."""
+    explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
+    if not explored:
+        return f"{', '.join(entries)} not explored in this run"
+    entries = [k for k in entries if k in explored]
+    hits = []
+    for cid, rec in records.items():
+        for name, part in rec["parts"].items():
+            w = [x for x in part.get("where", []) if any(f"{k} =" in x for k in entries)]
+            if w:
+                hits.append(f"{cid} ({name}): {'; '.join(w)}")
+    if not hits:
+        return f"no part of these claims changed verdict under {', '.join(entries)}"
+    return "the verdict changes with " + ", ".join(entries) + " for " + " | ".join(hits)
+
+
+def fmt(x: float, digits: int = 3) -> str:
+    """A number for prose (``nan`` as an en dash)."""
+    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}g}"
