@@ -121,7 +121,7 @@ def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "in
     rows += [(", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r) for r in ex.runs
              if r.stage == "single" and set(r.changed(ex.default)) & set(entries)]
     fig, ax = plt.subplots(figsize=(7.5, 0.42 * len(rows) + 1.2))
-    for j, (label, r) in enumerate(rows):
+    for j, (_, r) in enumerate(rows):
         for key, dy, mk in (("rotating 1", -0.15, "o"), ("rotating 5", 0.15, "s")):
             e = r.outputs["_map"][key]
             ax.errorbar(e.value, j + dy, xerr=[[e.value - e.ci_low], [e.ci_high - e.value]], fmt=mk,
