@@ -107,3 +107,18 @@ def test_measurement_functions_return_every_part_their_rules_read():
     # common random numbers: the same seed gives the same runs
     again = study.measure_interference(REGISTER.default(), 1, sz)
     np.testing.assert_array_equal(again["_curves"]["rotating/5"], i["_curves"]["rotating/5"])
+
+
+def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
+    from tvtrack.papers.p003_rotating_marker_tracker.params import RULES, check_consistency
+    from tvtrack.parameters import validate_parameters
+
+    ns = dict(seed=3, n_trials=5, loss_trials=6, replicates=3, max_replicates=5, joint=3, workers=2, rotation_hz=8.0,
+              transient_s=2.0, fig1_duration_s=5.0, fig2_duration_s=10.0, loss_duration_s=5.0, probe_sir=2.0,
+              probe_n_interferers=1, probe_kappa=0.1, probe_marker="rotating", full_analysis=True, record_seconds=1.0,
+              record_full_every=10, output_dir="/tmp/x", rerun_mode="off")
+    lowest = min(REGISTER["fps"].values)
+    check_consistency(validate_parameters(ns, RULES), lowest)
+    for f in (lowest / 2, lowest / 2 + 1, 300.0):
+        with pytest.raises(ValueError, match="Nyquist"):
+            check_consistency(validate_parameters({**ns, "rotation_hz": f}, RULES), lowest)

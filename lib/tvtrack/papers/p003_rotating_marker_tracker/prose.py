@@ -7,7 +7,7 @@ import math
 from ...montecarlo import Estimate
 from ...verdicts import as_estimate, is_undecided
 
-__all__ = ["show", "relation", "findings", "dependence"]
+__all__ = ["show", "relation", "compare", "findings", "dependence", "fmt"]
 
 
 def show(e, digits: int = 3) -> str:
@@ -73,3 +73,16 @@ def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
 def fmt(x: float, digits: int = 3) -> str:
     """A number for prose (``nan`` as an en dash)."""
     return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}g}"
+
+
+def compare(a, b) -> str:
+    """Where the interval of ``a`` lies against that of ``b``: "above", "below" or "overlapping" ("undecided"
+    when either cannot decide)."""
+    a, b = as_estimate(a), as_estimate(b)
+    if is_undecided(a) or is_undecided(b):
+        return "undecided against"
+    if a.ci_low > b.ci_high:
+        return "above"
+    if a.ci_high < b.ci_low:
+        return "below"
+    return "overlapping"
