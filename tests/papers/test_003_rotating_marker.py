@@ -624,3 +624,24 @@ def test_scene_blocks_in_one_batch_equal_separate_runs():
         sel = both["block"] == b
         np.testing.assert_allclose(both["miss"][sel], alone["miss"], rtol=1e-4, atol=1e-3)
         np.testing.assert_allclose(both["interferers"][sel][:, :over["n_interferers"]], alone["interferers"])
+
+
+def test_loss_criteria_do_not_depend_on_an_order_and_capture_is_counted_once():
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import CRITERIA, loss_criteria
+
+    T, w, radius = 100, 10, 4.0
+    q = np.array([[[30.0, 0.0], [-30.0, 0.0]]] * 3)
+    gate = np.zeros((3, T, 2))
+    omega_err = np.zeros((3, T))
+    loss = np.array([60, 60, -1])
+    gate[0, 50:] = q[0, 0]                      # sits on an interferer ...
+    omega_err[0, 45:] = 0.5                     # ... and has lost the rotation: both criteria
+    gate[1, 50:] = q[1, 0]
+    miss = np.full((3, T), 20.0)
+    met = loss_criteria(loss, gate, q, miss, omega_err, w, radius)
+    assert dict(zip(CRITERIA, met[0])) == {"capture": True, "drift among several": False, "frequency": True}
+    assert met[1].tolist() == [True, False, False] and not met[2].any()
+    # the single label keeps its precedence, the criteria keep both; the order of the columns changes nothing
+    assert MECHANISMS[classify_losses(loss, gate, q, miss, omega_err, w, radius)[0]] == "capture"
+    flipped = loss_criteria(loss, gate, q[:, ::-1], miss, omega_err, w, radius)
+    np.testing.assert_array_equal(flipped, met)

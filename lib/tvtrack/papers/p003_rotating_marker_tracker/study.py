@@ -25,7 +25,7 @@ import numpy as np
 
 from ...montecarlo import Estimate, mean_ci, proportion_ci, ratio_ci, rms_ci, zero_events_bound
 from .discriminators import quadrant_slope_fit
-from .lock import LossCriterion, first_loss, tag_capture
+from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
 from .scene import Scenario, interference_runs, run_scenario, state_errors
 
@@ -289,19 +289,21 @@ def _share_difference(a, b) -> Estimate:
 # interference claims
 
 
-def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=None, capture: bool = False):
-    """Loss (and capture) indicators of ``n`` runs at each SIR (stream 10: common draws), shape (m, n); with
-    ``counts`` (interferer numbers) one batch of blocks, shape (len(counts), m, n)."""
+def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=None, criteria: bool = False):
+    """Loss indicators of ``n`` runs at each SIR (stream 10: common draws), shape (m, n); with ``counts``
+    (interferer numbers) one batch of blocks, shape (len(counts), m, n). With ``criteria`` also the loss criteria
+    each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker), shape (..., m, n, 3)."""
     k = 1 if counts is None else len(counts)
     blocks = None if counts is None else [{"n_interferers": c} for c in counts]
     runs = interference_runs([_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
     fl = first_loss(runs["miss"], crit, runs["inside"])
     shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
     lost = (fl >= 0).reshape(shape)
-    if not capture:
+    if not criteria:
         return lost, None
-    capt = tag_capture(runs["gate"], runs["interferers"], fl, crit.window, sc.diameter / 2 + 0.5, crit.fraction)
-    return lost, capt.reshape(shape)
+    met = loss_criteria(fl, runs["gate"], runs["interferers"], runs["miss"], runs["omega_error"], crit.window,
+                        sc.diameter / 2 + 0.5, crit.fraction)
+    return lost, met.reshape(shape + (3,))
 
 
 def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
@@ -314,7 +316,8 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-7": {"loss_free", "not_lower", "rise"}, "C003-10": {"gate", "compensation"},
         "C003-11": {"dynamics", "selection", "bandwidth"} (mean-square miss without interferers,
         B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}``, ``"_map"`` (the thresholds of the
-        rotating and static markers with one and five interferers) and ``"_curves"`` (the loss indicators).
+        rotating and static markers with one and five interferers), ``"_mechanisms"`` (counts of the losses meeting
+        each loss criterion) and ``"_curves"`` (the loss indicators).
     """
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
     at = {s: i for i, s in enumerate(SIR_GRID)}
@@ -323,9 +326,10 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     crit = criterion(config, base)
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
     curves = {}
-    (curves["rotating", 1], curves["rotating", 5]), (_, capt) = _curve(base, sirs, n, seed, crit, (1, 5), True)
+    (curves["rotating", 1], curves["rotating", 5]), met_r = _curve(base, sirs, n, seed, crit, (1, 5), True)
     st = replace(base, rotating=False, gate_half=static_half)
-    (curves["static", 1], curves["static", 5]), _ = _curve(st, sirs, n, seed, criterion(config, st), (1, 5))
+    (curves["static", 1], curves["static", 5]), met_s = _curve(st, sirs, n, seed, criterion(config, st), (1, 5), True)
+    capt = met_r[1, :, :, 0]
     for gf in (1.5, 5.0):
         g = replace(base, n_interferers=5, gate_half=gf * D / 2)
         curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
@@ -354,9 +358,20 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
                     "five": threshold_ratio(curves["static", 5], r5, sirs),
                     "imitator": threshold_ratio(curves["decoy"], r1, sirs)},
     }
+    out["_mechanisms"] = {f"{m} {k}": _mechanisms(curves[m, k], met[j]) for m, met in (("rotating", met_r),
+                                                                                      ("static", met_s))
+                          for j, k in enumerate((1, 5))}
     out["_map"] = {f"{m} {k}": threshold(curves[m, k], sirs) for m in ("rotating", "static") for k in (1, 5)}
     out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
     return out
+
+
+def _mechanisms(lost, met) -> dict:
+    """Counts of the losses (all SIRs) and of those meeting each loss criterion (a loss may meet several)."""
+    lost = np.asarray(lost, bool)
+    m = np.asarray(met, bool)[lost]
+    return {"losses": int(lost.sum()), **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
+            "none (drift)": int((~m.any(axis=1)).sum())}
 
 
 def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
