@@ -645,3 +645,16 @@ def test_loss_criteria_do_not_depend_on_an_order_and_capture_is_counted_once():
     assert MECHANISMS[classify_losses(loss, gate, q, miss, omega_err, w, radius)[0]] == "capture"
     flipped = loss_criteria(loss, gate, q[:, ::-1], miss, omega_err, w, radius)
     np.testing.assert_array_equal(flipped, met)
+
+
+def test_interferer_size_scales_its_flux_at_the_same_sir():
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import build_scene
+
+    truth = marker_truth(np.full((1, 3), 128.0), np.full((1, 3), 128.0), np.full((1, 3), 12.0),
+                         np.full((1, 3), 50.0), np.zeros(1), 0.002)
+    flux = {}
+    for d in (None, 16.0):
+        sc = build_scene(np.random.default_rng(2), truth, kappa=0.0, n_interferers=1, sir=2.0, interferer_diameter=d)
+        flux[d] = sc._padded.sum()
+    assert flux[None] == pytest.approx(np.pi * 16 / 2.0, rel=0.02)      # disc D = 8 at brightness 1/2
+    assert flux[16.0] / flux[None] == pytest.approx(4.0, rel=0.03)

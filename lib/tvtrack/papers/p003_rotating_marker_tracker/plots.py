@@ -114,7 +114,8 @@ def loss_curves_figure(curves: list, sirs, horizon_s: float):
                  "thresholds 2 and 3.")
 
 
-def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "interferer_radius", "placement")):
+def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "interferer_radius", "interferer_size",
+                                                   "placement")):
     """The rotating marker's thresholds (one and five interferers) at the default and under each value of the
     motion and geometry entries (one at a time, first replicate's draws)."""
     rows = [("default", next(r for r in ex.runs if r.stage == "replicate"))]

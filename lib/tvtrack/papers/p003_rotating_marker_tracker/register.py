@@ -36,6 +36,10 @@ REGISTER = Register([
     Entry("interferer_radius", "regime", "r0", ("r0", "r0 - D/2", "r0 + D/2", "jitter D/2"),
           "Fig. 3: interferers 'in the area swept by the marker': on its circle, half a spot inside or outside it, "
           "or scattered within half a spot of it", origin="adversarial"),
+    Entry("interferer_size", "regime", "D", ("D", "2D"),
+          "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
+          "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux)",
+          origin="adversarial"),
     Entry("placement", "regime", "object", ("object", "image"),
           "the circle of interferers about the object's initial centre (card) or about the image centre"),
     Entry("loss_window_s", "statistic", 0.5, (0.25, 0.5, 1.0),
@@ -57,8 +61,8 @@ REGISTER = Register([
 
 TRACKING = ("motion", "motion_scale", "rotation_rate", "phase_loop", "noise", "fps", "spot", "edge_norm")
 INTERFERENCE = ("motion", "motion_scale", "rotation_rate", "phase_loop", "noise", "fps", "spot",
-                "residual_background", "interferer_radius", "placement", "loss_window_s", "loss_radius", "horizon",
-                "static_gate")
+                "residual_background", "interferer_radius", "interferer_size", "placement", "loss_window_s",
+                "loss_radius", "horizon", "static_gate")
 
 _NO_EDGE = tuple(k for k in TRACKING if k != "edge_norm")          # only C003-9 runs the edge form
 _NO_STATIC = tuple(k for k in INTERFERENCE if k != "static_gate")  # only C003-12 runs the static marker

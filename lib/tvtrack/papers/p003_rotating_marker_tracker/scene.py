@@ -442,10 +442,12 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
                 diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
                 background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
                 interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
+                interferer_diameter: float | None = None,
                 decoys=None, decoy_brightness=0.0, n_common: int | None = None, blocks=None):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
-    ``SIR = d / b_q`` (scalar or one value per trial), placed by :func:`place_interferers`
-    around ``interferer_center`` (default: the object's initial centre).
+    ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
+    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre), with the
+    marker's spot or one of ``interferer_diameter``.
 
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
     repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
@@ -482,7 +484,8 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    add_spots(residual, q, np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0), spot, diameter)
+    add_spots(residual, q, np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0), spot,
+              diameter if interferer_diameter is None else interferer_diameter)
     return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
                                decoys, decoy_brightness)
 
@@ -525,6 +528,7 @@ class Scenario:
     y_freq: float = 0.5
     n_interferers: int = 0
     interferer_jitter: float = 0.0
+    interferer_diameter: float | None = None
     interferer_radius_offset: float = 0.0
     interferer_centre: str = "object"
     decoy_offset: float = 0.0
@@ -662,7 +666,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
                         background_std=sc.background_std, corr_length=sc.corr_length,
                         n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius + sc.interferer_radius_offset,
                         interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
-                        radial_jitter=sc.interferer_jitter, decoys=decoys, decoy_brightness=sc.brightness / sir,
+                        radial_jitter=sc.interferer_jitter, interferer_diameter=sc.interferer_diameter, decoys=decoys, decoy_brightness=sc.brightness / sir,
                         n_common=n_common, blocks=blocks)
     x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
                    sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,

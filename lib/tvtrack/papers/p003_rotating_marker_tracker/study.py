@@ -85,6 +85,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
               interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
               interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
               interferer_centre=c.get("placement", "object"), edge_norm=c.get("edge_norm", "slope"),
+              interferer_diameter={"D": None, "2D": 2 * base.diameter}[c.get("interferer_size", "D")],
               rotation_hz=sizes.rotation_hz)
     kw.update(over)
     return Scenario(**kw)
