@@ -32,7 +32,7 @@ from .scene import Scenario, interference_runs, run_scenario, state_errors
 __all__ = ["SIR_GRID", "UNCOMPENSATED_GRID", "BXY_GRID", "Sizes", "scenario", "criterion", "loss_share",
            "log_thresholds", "threshold", "threshold_ratio", "measure_tracking", "measure_interference"]
 
-SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5)        # post-compensation SIR, steps of 1.33-1.5
+SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
 UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)         # SIR_0 without compensation (kappa = 1)
 BXY_GRID = (2.0, 5.0, 10.0, 20.0)                       # coordinate-loop bandwidths of the C003-2 mechanism, Hz
 RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}   # interferer radius, offsets in units of D
