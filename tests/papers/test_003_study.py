@@ -122,3 +122,16 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
     for f in (lowest / 2, lowest / 2 + 1, 300.0):
         with pytest.raises(ValueError, match="Nyquist"):
             check_consistency(validate_parameters({**ns, "rotation_hz": f}, RULES), lowest)
+
+
+def test_prose_words_follow_the_intervals():
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    e = lambda v, lo, hi, x=False: Estimate(v, float("nan"), lo, hi, 10, 0.95, "t", x)
+    assert prose.relation(e(1.0, 0.8, 1.2), 2.0) == "below"
+    assert prose.relation(e(3.0, 2.5, 3.5), 2.0) == "above"
+    assert prose.relation(e(2.0, 1.5, 2.5), 2.0) == "indistinguishable from"
+    assert prose.relation(e(3.0, 2.5, 3.5, True), 2.0) == "undecided against"
+    assert prose.compare(e(1.0, 0.9, 1.1), e(2.0, 1.9, 2.1)) == "below"
+    assert prose.compare(e(1.0, 0.9, 1.1), e(1.05, 0.95, 1.2)) == "overlapping"

@@ -7,7 +7,7 @@ import math
 from ...montecarlo import Estimate
 from ...verdicts import as_estimate, is_undecided
 
-__all__ = ["show", "relation", "compare", "findings", "dependence", "fmt"]
+__all__ = ["show", "relation", "compare", "findings", "dependence", "threshold_conditions", "fmt"]
 
 
 def show(e, digits: int = 3) -> str:
@@ -86,3 +86,20 @@ def compare(a, b) -> str:
     if a.ci_high < b.ci_low:
         return "below"
     return "overlapping"
+
+
+def threshold_conditions(ex, key: str, paper: float) -> str:
+    """The register conditions (one at a time and joint) under which the threshold ``key`` of the ``_map`` output
+    (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none."""
+    hits = []
+    for r in ex.runs:
+        if r.stage == "replicate":
+            continue
+        e = r.outputs["_map"][key]
+        word = relation(e, paper)
+        if word != "below":
+            cond = ", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items())
+            hits.append(f"{cond} ({show(e)}, {word} {paper:g})")
+    if not hits:
+        return f"under no condition tried is the {key} threshold other than below the paper's {paper:g}"
+    return f"the {key} threshold is not below the paper's {paper:g} under " + "; ".join(hits)
