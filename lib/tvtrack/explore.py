@@ -37,7 +37,7 @@ from .montecarlo import Estimate
 from .register import Register
 from .verdicts import Rule, as_estimate, label_parts
 
-__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool"]
+__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
 
 
 @dataclass
@@ -335,3 +335,28 @@ def explore(measure: Callable, register: Register, rules: Mapping[str, Rule], *,
     settings = {"replicates": n, "min_replicates": replicates, "max_replicates": cap, "joint": joint,
                 "one_at_a_time": one_at_a_time, "seed": seed}
     return Exploration(register, rules, depends, runs, settings)
+
+
+def executor_for(address: str | None, timeout_s: float = 10.0) -> Any:
+    """An executor for :func:`explore`: ``None`` (in process) for an empty address, else a
+    ``dask.distributed.Client`` connected to the scheduler at ``address`` (``host:port`` or
+    ``tcp://host:port``) within ``timeout_s``.
+
+    Raises
+    ------
+    ValueError
+        One line naming the address when it has no port or no scheduler answers in time.
+    """
+    if not address:
+        return None
+    addr = address if "://" in address else f"tcp://{address}"
+    hostport = addr.split("://", 1)[1]
+    if ":" not in hostport or not hostport.rsplit(":", 1)[1].isdigit():
+        raise ValueError(f"scheduler address {address!r} has no port; give host:port, e.g. 127.0.0.1:8786")
+    from distributed import Client
+
+    try:
+        return Client(addr, timeout=timeout_s)
+    except (OSError, TimeoutError) as exc:
+        raise ValueError(f"no Dask scheduler answered at {address!r} within {timeout_s:g} s ({exc.__class__.__name__})"
+                         ) from None
