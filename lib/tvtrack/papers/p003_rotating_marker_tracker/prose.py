@@ -2,12 +2,9 @@
 
 from __future__ import annotations
 
-import math
-
-from ...montecarlo import Estimate
 from ...verdicts import as_estimate, is_undecided
 
-__all__ = ["show", "relation", "compare", "findings", "dependence", "threshold_conditions", "fmt"]
+__all__ = ["show", "relation", "compare", "dependence", "threshold_conditions"]
 
 
 def show(e, digits: int = 3) -> str:
@@ -31,28 +28,6 @@ def relation(e, ref: float, above: str = "above", below: str = "below", same: st
     return same
 
 
-def _measured(m) -> str:
-    if m is None:
-        return "-"
-    if isinstance(m, dict) and "value" not in m:
-        return "; ".join(f"{k} {_measured(v)}" for k, v in m.items())
-    if isinstance(m, (list, tuple)):
-        return " -> ".join(_measured(v) for v in m)
-    if isinstance(m, (Estimate, dict, int, float)):
-        return show(m)
-    return str(m)
-
-
-def findings(claims) -> str:
-    """One Markdown line per claim: the paper's statement and value, what was measured, verdict and label."""
-    lines = []
-    for c in claims:
-        label = (c.robustness or {}).get("label", "-") if c.verdict != "not checkable" else "-"
-        lines.append(f"- **{c.id}** {c.statement} Paper: {c.paper_value}. Measured: {_measured(c.measured)}. "
-                     f"**{c.verdict}** ({label}).")
-    return "\n".join(lines)
-
-
 def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
     """Which parts of which claims change verdict under the named register entries, from the records' ``where``."""
     explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
@@ -68,11 +43,6 @@ def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
     if not hits:
         return f"no part of these claims changed verdict under {', '.join(entries)}"
     return "the verdict changes with " + ", ".join(entries) + " for " + " | ".join(hits)
-
-
-def fmt(x: float, digits: int = 3) -> str:
-    """A number for prose (``nan`` as an en dash)."""
-    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}g}"
 
 
 def compare(a, b) -> str:
