@@ -18,6 +18,7 @@ Everything is batched over a leading trials axis.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -278,8 +279,8 @@ def phase_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.nda
     b = np.zeros(5)
     b[3] = -1.0
     s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
-    eye = np.eye(5)
-    return np.array([1 + sk * np.linalg.solve(sk * eye - A, b)[3] for sk in s])
+    x = np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[..., 0]
+    return 1 + s * x[:, 3]
 
 
 def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: float = 100.0) -> dict:
@@ -298,6 +299,7 @@ def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: fl
                 peak_hz=float(f[np.argmax(mag)]))
 
 
+@functools.lru_cache(maxsize=64)
 def gains_realising(b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707, rotation_hz: float = 8.0,
                     r: float = 12.0) -> LoopGains:
     """Loop gains whose *coupled* phase loop realises the -3 dB bandwidth ``b_omega`` (Hz).
