@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from tvtrack.explore import pool
-from tvtrack.montecarlo import zero_events_bound
+from tvtrack.montecarlo import Estimate, zero_events_bound
 from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.verdicts import InBand, is_undecided
@@ -125,7 +125,6 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
 
 
 def test_prose_words_follow_the_intervals():
-    from tvtrack.montecarlo import Estimate
     from tvtrack.papers.p003_rotating_marker_tracker import prose
 
     e = lambda v, lo, hi, x=False: Estimate(v, float("nan"), lo, hi, 10, 0.95, "t", x)
@@ -135,3 +134,29 @@ def test_prose_words_follow_the_intervals():
     assert prose.relation(e(3.0, 2.5, 3.5, True), 2.0) == "undecided against"
     assert prose.compare(e(1.0, 0.9, 1.1), e(2.0, 1.9, 2.1)) == "below"
     assert prose.compare(e(1.0, 0.9, 1.1), e(1.05, 0.95, 1.2)) == "overlapping"
+
+
+def _toy(config, seed):
+    v = {"gentle": 1.0, "fast": 3.0}[config["motion"]] + (0.5 if config["radius"] == "outside" else 0.0)
+    e = Estimate(v, 0.01, v - 0.05, v + 0.05, 30, 0.95, "toy")
+    return {"C": {"value": e, "other": e}, "_map": {"rotating 5": e}}
+
+
+def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
+    from tvtrack.explore import explore
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+    from tvtrack.register import Entry, Register
+    from tvtrack.verdicts import AllOf
+
+    reg = Register([Entry("motion", "regime", "gentle", ("gentle", "fast"), "toy"),
+                    Entry("radius", "regime", "on", ("on", "outside"), "toy")])
+    rule = AllOf({"value": InBand("v", high=2.0), "other": InBand("v", high=1.2)})
+    ex = explore(_toy, reg, {"C": rule}, seed=1, replicates=3, joint=4)
+    rec = {"C": ex.record("C")}
+    assert prose.dependence(rec, ("motion",)) == ("under motion alone the verdict changes for C (value): not "
+                                                 "reproduced when motion = fast | C (other): not reproduced when "
+                                                 "motion = fast")
+    assert prose.dependence(rec, ("radius",)) == ("under radius alone the verdict changes for C (other): not "
+                                                 "reproduced when radius = outside")
+    assert prose.dependence(rec, ("placement",)) == "placement not explored in this run"
+    assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)

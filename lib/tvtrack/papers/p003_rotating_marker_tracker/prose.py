@@ -29,33 +29,22 @@ def relation(e, ref: float, above: str = "above", below: str = "below", same: st
 
 
 def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
-    """Which parts of which claims change verdict under the named register entries, from the records' ``where``."""
+    """Which parts of which claims change verdict when one of the named register entries alone changes (the
+    one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records."""
     explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
     if not explored:
         return f"{', '.join(entries)} not explored in this run"
-    entries = [k for k in entries if k in explored]
     hits = []
     for cid, rec in records.items():
-        for name, part in rec["parts"].items():
-            w = [x for x in part.get("where", []) if any(f"{k} =" in x for k in entries)]
-            if w:
-                hits.append(f"{cid} ({name}): {'; '.join(w)}")
+        ref = rec["replicates"][0]["parts"] if rec.get("replicates") else {}
+        for name in rec["parts"]:
+            flips = [f"{c['parts'][name]} when {k} = {v}" for c in rec["conditions"] if c["kind"] == "single"
+                     for k, v in c["changed"].items() if k in explored and c["parts"].get(name) != ref.get(name)]
+            if flips:
+                hits.append(f"{cid} ({name}): {'; '.join(flips)}")
     if not hits:
-        return f"no part of these claims changed verdict under {', '.join(entries)}"
-    return "the verdict changes with " + ", ".join(entries) + " for " + " | ".join(hits)
-
-
-def compare(a, b) -> str:
-    """Where the interval of ``a`` lies against that of ``b``: "above", "below" or "overlapping" ("undecided"
-    when either cannot decide)."""
-    a, b = as_estimate(a), as_estimate(b)
-    if is_undecided(a) or is_undecided(b):
-        return "undecided against"
-    if a.ci_low > b.ci_high:
-        return "above"
-    if a.ci_high < b.ci_low:
-        return "below"
-    return "overlapping"
+        return f"no part of these claims changed verdict under {', '.join(sorted(explored))} alone"
+    return f"under {', '.join(sorted(explored))} alone the verdict changes for " + " | ".join(hits)
 
 
 def threshold_conditions(ex, key: str, paper: float) -> str:
@@ -73,3 +62,16 @@ def threshold_conditions(ex, key: str, paper: float) -> str:
     if not hits:
         return f"under no condition tried is the {key} threshold other than below the paper's {paper:g}"
     return f"the {key} threshold is not below the paper's {paper:g} under " + "; ".join(hits)
+
+
+def compare(a, b) -> str:
+    """Where the interval of ``a`` lies against that of ``b``: "above", "below" or "overlapping" ("undecided
+    against" when either cannot decide)."""
+    a, b = as_estimate(a), as_estimate(b)
+    if is_undecided(a) or is_undecided(b):
+        return "undecided against"
+    if a.ci_low > b.ci_high:
+        return "above"
+    if a.ci_high < b.ci_low:
+        return "below"
+    return "overlapping"
