@@ -133,7 +133,8 @@ def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "in
     ax.set_yticks(range(len(rows)), [x for x, _ in rows], fontsize=8)
     ax.invert_yaxis()
     ax.set_xscale("log")
-    ax.set_xlabel("threshold SIR (geometric mean of the runs' breaking SIRs)")
+    ax.set_xlim(0.2, 20.0)
+    ax.set_xlabel("threshold SIR (geometric mean of the runs' breaking SIRs; intervals clipped to the axis)")
     ax.legend(fontsize=8, loc="lower right")
     return fig, ("The rotating marker's loss threshold over motion and geometry (one entry changed at a time, same "
                  "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid, undecided); dotted: the "
