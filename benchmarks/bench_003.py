@@ -7,7 +7,7 @@
   (``study.measure_interference``) 378 runs of 5 s at 500 frames/s (rotating and static markers with one
   and five interferers, two gate sizes and the decoy on 8 SIRs x 6 runs, 5 x 6 runs without compensation,
   2 x 6 runs for the loop bandwidths), and about 30 configurations (3-5 replicates, 22 one-at-a-time values
-  in run-time equivalents, 3 joint samples): about 28 M gate frames. Projected from the marginal CPU cost per
+  in run-time equivalents, 2 joint samples): about 28 M gate frames. Projected from the marginal CPU cost per
   frame of a 225-run batch (3 seeds x 15 SIRs x 5 runs, common random numbers), from runs of 0.5 s and 1 s.
 """
 
