@@ -162,3 +162,16 @@ def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
                                                  "reproduced when radius = outside")
     assert prose.dependence(rec, ("placement",)) == "placement not explored in this run"
     assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)
+
+
+def test_threshold_ratio_covers_the_population_ratio_of_paired_runs():
+    rng = np.random.default_rng(1)
+    hits = done = 0
+    for _ in range(300):
+        tb = np.exp(rng.normal(np.log(1.0), 0.25, 15))
+        ta = tb * 1.5 * np.exp(rng.normal(0.0, 0.1, 15))          # the same runs, 1.5 times harder to break
+        r = study.threshold_ratio(_lost_from_thresholds(ta), _lost_from_thresholds(tb), SIRS)
+        if not r.extrapolated:
+            done += 1
+            hits += r.ci_low <= 1.5 <= r.ci_high
+    assert done > 250 and hits / done >= 0.95
