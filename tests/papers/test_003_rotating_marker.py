@@ -658,3 +658,18 @@ def test_interferer_size_scales_its_flux_at_the_same_sir():
         flux[d] = sc._padded.sum()
     assert flux[None] == pytest.approx(np.pi * 16 / 2.0, rel=0.02)      # disc D = 8 at brightness 1/2
     assert flux[16.0] / flux[None] == pytest.approx(4.0, rel=0.03)
+
+
+@pytest.mark.parametrize("spot", ["disc", "square"])
+def test_centroid_discriminator_reads_the_offset_of_a_spot_inside_the_gate(spot):
+    off = np.array([-3.0, -1.0, -0.25, 0.25, 1.0, 3.0])
+    for axis in (0, 1):
+        out = static_characteristic(_renderer(spot), off, form="centroid", half=A, axis=axis)
+        np.testing.assert_allclose(out, off, atol=0.03)          # slope 1, pixel locking below 0.03 px
+
+
+def test_static_marker_with_a_centroid_tracker_locks():
+    # no background: the window's first moment reads the spot alone (a residual background biases a centroid)
+    sc = Scenario(duration_s=2.0, rotating=False, form="centroid", x_std=0.0, y_amplitude=0.0, background_std=0.0)
+    _, _, h = run_scenario(np.random.default_rng(0), 3, sc, noise="pixel")
+    assert np.sqrt(np.mean(h.miss[:, -250:] ** 2)) < 0.2 and sc.slope() == 1.0

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal
 
-from .discriminators import edge_discriminator, polar_errors, quadrant_noise, \
+from .discriminators import centroid_discriminator, edge_discriminator, polar_errors, quadrant_noise, \
     quadrant_weights, two_emitter_discriminator
 from ...measure import gate_crop_size
 from ...render import pixel_fractions_box
@@ -170,7 +170,7 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
         Sensor-noise generator (None: noise-free).
     gate_half : float
         Gate half-size ``A`` (px).
-    form : {"quadrant", "edge"}
+    form : {"quadrant", "edge", "centroid"}
     edge_a : float, optional
         Edge-form half-width (spot half-size).
     noise : {"pixel", "projected"}
@@ -183,13 +183,13 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
     crop_callback : callable, optional
         ``f(k, crops, origin)`` called each frame (e.g. to record trial 0's gate crop).
     """
-    if form not in ("quadrant", "edge"):
-        raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant' or 'edge'")
+    if form not in ("quadrant", "edge", "centroid"):
+        raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant', 'edge' or 'centroid'")
     if noise not in ("pixel", "projected") or (noise == "projected" and form != "quadrant"):
         raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'pixel', or 'projected' with the quadrant form")
     n, T = scene.n, scene.truth.n_frames
     dt = float(scene.truth.t[1] - scene.truth.t[0]) if T > 1 else 1.0
-    size = gate_crop_size(gate_half if form == "quadrant" else max(edge_a or 0.0, gate_half))
+    size = gate_crop_size(max(edge_a or 0.0, gate_half) if form == "edge" else gate_half)
     est = np.empty((n, T, 5), np.float32) if keep_full else None
     disc = np.empty((n, T, 4), np.float32) if keep_full else None
     gate = np.empty((n, T, 2), np.float32)
@@ -211,6 +211,8 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
             if noise == "projected" and rng is not None and scene.noise_std > 0:
                 w = quadrant_noise(wy, wx, scene.noise_std, rng)
                 dx, dy = dx + w[:, 0], dy + w[:, 1]
+        elif form == "centroid":
+            dx, dy = centroid_discriminator(crops, origin, c, gate_half)
         else:
             dx, dy = edge_discriminator(crops, origin, c, edge_a)
         e_r, e_th = tracker.update(dx, dy, dt)

@@ -53,6 +53,9 @@ REGISTER = Register([
     Entry("static_gate", "comparator", "3D", ("3D", "2D"),
           "the static baseline tuned to its own optimum: the paper's 3D gate, or a 2D gate that keeps interferers on "
           "the marker's circle (1.5 D away) outside it", origin="adversarial"),
+    Entry("static_form", "comparator", "quadrant", ("quadrant", "centroid"),
+          "the non-modulated baseline with the paper's quadrant discriminator, or with the classical gate centroid "
+          "(card section 8.1), each with the same gate, loops and information", origin="adversarial"),
     Entry("edge_norm", "comparator", "slope", ("slope", "slew"),
           "the edge form is a relay with no slope worth the name: normalised by its slope at +-0.25 px, or at "
           "matched slew (its saturated output equal to the quadrant form's), the same tuning effort for both",
@@ -62,10 +65,10 @@ REGISTER = Register([
 TRACKING = ("motion", "motion_scale", "rotation_rate", "phase_loop", "noise", "fps", "spot", "edge_norm")
 INTERFERENCE = ("motion", "motion_scale", "rotation_rate", "phase_loop", "noise", "fps", "spot",
                 "residual_background", "interferer_radius", "interferer_size", "placement", "loss_window_s",
-                "loss_radius", "horizon", "static_gate")
+                "loss_radius", "horizon", "static_gate", "static_form")
 
 _NO_EDGE = tuple(k for k in TRACKING if k != "edge_norm")          # only C003-9 runs the edge form
-_NO_STATIC = tuple(k for k in INTERFERENCE if k != "static_gate")  # only C003-12 runs the static marker
+_NO_STATIC = tuple(k for k in INTERFERENCE if k not in ("static_gate", "static_form"))  # only C003-12 runs it
 DEPENDS = {
     "C003-1": _NO_EDGE,
     "C003-2": _NO_EDGE,

@@ -567,6 +567,8 @@ class Scenario:
         the numerical slope of its static characteristic at zero error."""
         if self.form == "quadrant":
             return 2 * self.brightness * self.diameter
+        if self.form == "centroid":
+            return 1.0
         from .discriminators import static_characteristic
         if self.edge_norm == "slew":
             # matched slew: the normalised edge output saturates where the quadrant form's does

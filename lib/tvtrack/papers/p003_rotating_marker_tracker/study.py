@@ -328,7 +328,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
     curves = {}
     (curves["rotating", 1], curves["rotating", 5]), met_r = _curve(base, sirs, n, seed, crit, (1, 5), True)
-    st = replace(base, rotating=False, gate_half=static_half)
+    st = replace(base, rotating=False, gate_half=static_half, form=config.get("static_form", "quadrant"))
     (curves["static", 1], curves["static", 5]), met_s = _curve(st, sirs, n, seed, criterion(config, st), (1, 5), True)
     capt = met_r[1, :, :, 0]
     for gf in (1.5, 5.0):
