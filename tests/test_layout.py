@@ -72,9 +72,10 @@ def test_import_graph_has_no_circle():
     assert cycle == []
 
 
-def test_graph_sees_the_lazy_import_of_the_loops_from_the_scene():
+def test_graph_sees_the_lazy_import_of_the_discriminators_from_the_scene():
     # guards the test itself: a lazy import inside a function counts as an edge
-    assert "tvtrack.filters.loops" in import_graph()["tvtrack.scenes.rotating_marker"]
+    assert "tvtrack.papers.p003_rotating_marker_tracker.discriminators" in import_graph()[
+        "tvtrack.papers.p003_rotating_marker_tracker.scene"]
 
 
 PAPERS = "tvtrack.papers."
@@ -116,3 +117,4 @@ def test_the_layout_rules_see_a_planted_offence(tmp_path, monkeypatch):
     assert _paper_of("tvtrack.papers.p000_x.model") == "p000_x"
     assert [m for m, deps in graph.items() if not m.startswith("tvtrack.papers")
             and any(d.startswith(PAPERS) for d in deps)] == ["tvtrack.render"]
+

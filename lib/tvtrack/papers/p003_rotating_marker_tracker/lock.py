@@ -19,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..montecarlo import Estimate, proportion_ci
+from ...montecarlo import Estimate, proportion_ci
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "MECHANISMS", "classify_losses", "omega_alarm", "loss_threshold", "losses_by_sir", "loss_curve",
+__all__ = ["LossCriterion", "first_loss", "tag_capture", "MECHANISMS", "CRITERIA", "loss_criteria", "classify_losses", "omega_alarm", "loss_threshold", "losses_by_sir", "loss_curve",
            "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
 
 KINDS = ("window", "consecutive")
@@ -124,6 +124,43 @@ def tag_capture(gate, interferers, loss_frame, window: int, radius: float, fract
 MECHANISMS = ("capture", "drift among several", "frequency", "drift")
 
 
+CRITERIA = ("capture", "drift among several", "frequency")
+
+
+def loss_criteria(loss_frame, gate, interferers, miss, omega_error, window: int, radius: float,
+                  fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
+    """Which loss criteria each loss meets, each judged on its own (no order between them).
+
+    Over the ``window`` frames that end at the loss frame, a frame is *near* an interferer when the gate is within
+    ``radius`` of it while more than ``radius`` from the marker (a gate following a rotating marker passes over
+    interferers on the marker's circle without leaving it). Columns (:data:`CRITERIA`): *capture*, near one
+    interferer for more than ``fraction`` of the window; *drift among several*, near at least two different
+    interferers; *frequency*, ``|omega_error| > omega_tol`` for more than ``fraction`` of the window (never for a
+    static marker, whose ``omega_error`` is NaN). A loss may meet several criteria or none (a *drift*).
+
+    Returns
+    -------
+    ndarray of bool, shape (n, 3)
+        All False for runs that kept lock.
+    """
+    loss = np.asarray(loss_frame)
+    gate, q = np.asarray(gate), np.asarray(interferers)
+    n = gate.shape[0]
+    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)           # (n, window)
+    rows = np.arange(n)[:, None]
+    out = np.zeros((n, 3), bool)
+    with np.errstate(invalid="ignore"):
+        out[:, 2] = (np.abs(np.asarray(omega_error)[rows, frames]) > omega_tol).mean(axis=1) > fraction
+    if q.shape[1]:
+        off_marker = np.asarray(miss)[rows, frames] > radius                      # (n, window)
+        near = (np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius) \
+            & off_marker[:, :, None]
+        out[:, 0] = (near.mean(axis=1) > fraction).any(axis=1)
+        out[:, 1] = near.any(axis=1).sum(axis=1) >= 2
+    out[loss < 0] = False
+    return out
+
+
 def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: int, radius: float,
                     fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
     """How each loss of lock happened, from the ``window`` frames that end at the loss frame.
@@ -131,7 +168,8 @@ def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: in
     A frame counts as *near* an interferer when the gate is within ``radius`` of it while more
     than ``radius`` from the marker: a gate that follows a rotating marker passes over interferers
     on the marker's circle without leaving the marker, and that is not a loss mechanism.
-    The rule, in order (index into :data:`MECHANISMS`; -1 = no loss):
+    One label per loss, by precedence (index into :data:`MECHANISMS`; -1 = no loss); a loss can meet several
+    criteria, so tables of mechanisms count :func:`loss_criteria` instead, which does not depend on an order:
 
     0. *capture*: near one interferer for more than ``fraction`` of the window;
     1. *drift among several*: near at least two different interferers during the window (it is
@@ -159,22 +197,11 @@ def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: in
     -------
     ndarray of int8, shape (n,)
     """
-    loss = np.asarray(loss_frame)
-    gate, q = np.asarray(gate), np.asarray(interferers)
-    n = gate.shape[0]
-    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)           # (n, window)
-    rows = np.arange(n)[:, None]
-    out = np.full(n, 3, np.int8)
-    with np.errstate(invalid="ignore"):
-        freq = (np.abs(np.asarray(omega_error)[rows, frames]) > omega_tol).mean(axis=1) > fraction
-    out[freq] = 2
-    if q.shape[1]:
-        off_marker = np.asarray(miss)[rows, frames] > radius                      # (n, window)
-        near = (np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius) \
-            & off_marker[:, :, None]
-        out[near.any(axis=1).sum(axis=1) >= 2] = 1
-        out[(near.mean(axis=1) > fraction).any(axis=1)] = 0
-    out[loss < 0] = -1
+    met = loss_criteria(loss_frame, gate, interferers, miss, omega_error, window, radius, fraction, omega_tol)
+    out = np.full(met.shape[0], 3, np.int8)
+    for j in (2, 1, 0):                                   # the documented precedence: capture first
+        out[met[:, j]] = j
+    out[np.asarray(loss_frame) < 0] = -1
     return out
 
 
@@ -249,7 +276,7 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
     runs : dict
         ``sir`` (n,), ``miss`` (n, T) px, ``inside`` (n, T) bool, ``gate`` (n, T, 2) px and
         ``interferers`` (n, q, 2) px, e.g. from
-        :func:`tvtrack.scenes.rotating_marker.interference_runs`; equally many runs per SIR.
+        :func:`tvtrack.papers.p003_rotating_marker_tracker.scene.interference_runs`; equally many runs per SIR.
     sir_values : ndarray, shape (m,)
         The SIR grid.
     criterion : LossCriterion

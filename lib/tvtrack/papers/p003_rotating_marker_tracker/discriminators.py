@@ -27,16 +27,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from .render import pixel_fractions_box
+from ...render import pixel_fractions_box
 
 
 __all__ = [
-    "interval_weights", "quadrant_weights", "quadrant_noise", "quadrant_sums", "quadrant_discriminator", "edge_discriminator",
+    "interval_weights", "quadrant_weights", "quadrant_noise", "quadrant_sums", "quadrant_discriminator", "centroid_discriminator",
+    "edge_discriminator",
     "polar_errors", "static_characteristic", "quadrant_slope_fit", "two_emitter_discriminator",
     "two_emitter_slope", "FORMS",
 ]
 
-FORMS = ("quadrant", "edge")
+FORMS = ("quadrant", "edge", "centroid")
 
 
 def _coverage(p, n: int, origin) -> np.ndarray:
@@ -171,6 +172,41 @@ def quadrant_discriminator(crops, origin, center, half):
     return m[..., 0, 1], m[..., 1, 0], m[..., 0, 0]
 
 
+def centroid_discriminator(crops, origin, center, half):
+    """Centroid of the gate window minus the gate centre (px): the classical non-modulated tracker's discriminator.
+
+    First moments of the crop over the gate window (pixel-fraction weights of the window edges, pixel centres at
+    ``origin + i``) over its zeroth moment; for a spot wholly inside the gate and no background, its offset.
+
+    Parameters
+    ----------
+    crops : ndarray, shape (n, rows, cols)
+    origin : ndarray of int, shape (n, 2)
+        Centre ``(x, y)`` of each crop's first pixel.
+    center : ndarray, shape (n, 2)
+        Gate centres (px).
+    half : float
+        Gate half-size (px).
+
+    Returns
+    -------
+    dx, dy : ndarray, shape (n,)
+        Slope 1 per px of spot offset.
+    """
+    crops = np.asarray(crops, dtype=float)
+    o, c = np.asarray(origin), np.asarray(center, dtype=float)
+    n, rows, cols = crops.shape
+    wy, wx = quadrant_weights(o, c, half, (rows, cols))
+    ry, cx = wy[:, 0, :], wx[:, :, 0]                             # whole-window row and column weights
+    xs = o[:, 0, None] + np.arange(cols) - c[:, 0, None]
+    ys = o[:, 1, None] + np.arange(rows) - c[:, 1, None]
+    colsum = np.einsum("nr,nrc->nc", ry, crops)
+    rowsum = np.einsum("nrc,nc->nr", crops, cx)
+    m0 = np.einsum("nc,nc->n", colsum, cx)
+    m0 = np.where(np.abs(m0) > 1e-9, m0, np.inf)                 # an empty window gives no correction
+    return np.einsum("nc,nc->n", colsum, cx * xs) / m0, np.einsum("nr,nr->n", rowsum, ry * ys) / m0
+
+
 def edge_discriminator(crops, origin, center, a: float):
     """Edge discriminator, corrected eqs. (22)-(24): ``u_dx(x_m + a) - u_dx(x_m - a)`` and the
     same in ``y``, with ``u_dx`` the column profile inside the selection window of side ``2a``
@@ -252,6 +288,8 @@ def static_characteristic(render, offsets, *, form: str = "quadrant", half: floa
     gate = np.tile(centre, (off.size, 1))
     if form == "quadrant":
         d = quadrant_discriminator(crops, origin, gate, half)[:2]
+    elif form == "centroid":
+        d = centroid_discriminator(crops, origin, gate, half)
     else:
         if a is None:
             raise ValueError("parameter 'a' is required for the edge form")

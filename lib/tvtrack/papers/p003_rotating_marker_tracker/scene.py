@@ -29,13 +29,13 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
-from ..filters.loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, loop_gains, \
+from .loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, gains_realising, loop_gains, \
     run_closed_loop
-from ..render import box_spot, disc_area, disc_spot
+from ...render import box_spot, disc_area, disc_spot
 
 __all__ = [
     "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
-    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "build_scene", "Scenario",
+    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "MOTIONS", "build_scene", "Scenario",
     "scenario_truth", "run_scenario", "RotatingMarkerScene", "state_errors",
     "interference_runs", "CommonNormal", "PLACEMENTS",
 ]
@@ -338,30 +338,46 @@ class RotatingMarkerScene:
         return img
 
 
+MOTIONS = ("card", "sinusoids", "random")
+
+
 def object_motion(rng: np.random.Generator, n: int, n_frames: int, dt: float, *, center=(128.0, 128.0),
                   x_std: float = 10.0, x_tau: float = 1.0, x_smooth: float = 0.05, y_amplitude: float = 20.0,
-                  y_freq: float = 0.5):
+                  y_freq: float = 0.5, kind: str = "card"):
     """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
-    at ``y_freq`` Hz.
+    at ``y_freq`` Hz (``kind = "card"``).
 
     ``x`` is an Ornstein-Uhlenbeck process (time constant ``x_tau`` s) passed through a first-order
     low-pass of time constant ``x_smooth`` s (so that the path has a finite velocity, as a real
-    object's does) and scaled to the stationary standard deviation ``x_std`` px.
+    object's does) and scaled to the stationary standard deviation ``x_std`` px. Other kinds (the
+    paper gives no amplitudes and no law for the interference runs): ``"sinusoids"``, ``x`` a
+    sinusoid of amplitude ``sqrt 2 x_std`` (the same RMS) at ``0.7 y_freq`` Hz with a random phase;
+    ``"random"``, ``y`` also such a smoothed OU process, of standard deviation ``y_amplitude / sqrt 2``
+    (the sinusoid's RMS). Every kind first draws the card's ``x`` (common random numbers across kinds).
 
     Returns
     -------
     xr, yr : ndarray, shape (n, n_frames)
     """
+    if kind not in MOTIONS:
+        raise ValueError(f"parameter 'kind' = {kind!r}; it must be one of {MOTIONS}")
     t = np.arange(n_frames) * dt
-    xr = np.zeros((n, n_frames))
-    if x_std > 0:
+
+    def smoothed_ou(std):
         ou = ornstein_uhlenbeck(rng, n, n_frames, dt, 1.0, x_tau)
         if x_smooth > 0:
             b = np.exp(-dt / x_smooth)
             ou = lfilter([1 - b], [1.0, -b], ou, axis=1, zi=b * ou[:, :1])[0]
             ou *= np.sqrt((x_tau + x_smooth) / x_tau)
-        xr = x_std * ou
-    yr = y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
+        return std * ou
+
+    ou_x = smoothed_ou(x_std) if x_std > 0 else np.zeros((n, n_frames))
+    ou_y = smoothed_ou(y_amplitude / np.sqrt(2)) if kind == "random" and y_amplitude > 0 else None
+    if kind == "sinusoids":
+        xr = np.sqrt(2) * x_std * np.sin(2 * np.pi * 0.7 * y_freq * t + rng.uniform(0, 2 * np.pi, size=(n, 1)))
+    else:
+        xr = ou_x
+    yr = ou_y if ou_y is not None else y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
     return center[0] + xr, center[1] + yr
 
 
@@ -426,15 +442,20 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
                 diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
                 background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
                 interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
-                decoys=None, decoy_brightness=0.0, n_common: int | None = None):
+                interferer_diameter: float | None = None,
+                decoys=None, decoy_brightness=0.0, n_common: int | None = None, blocks=None):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
-    ``SIR = d / b_q`` (scalar or one value per trial), placed by :func:`place_interferers`
-    around ``interferer_center`` (default: the object's initial centre).
+    ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
+    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre), with the
+    marker's spot or one of ``interferer_diameter``.
 
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
     repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
     independent). ``rng`` may be a list of generators: each draws for its own consecutive block
-    of ``n / len(rng)`` trials (several seeds in one batch).
+    of ``n / len(rng)`` trials (several seeds in one batch). ``blocks``, one dict per generator,
+    overrides ``kappa``, ``background_std``, ``corr_length`` or ``n_interferers`` block by block
+    (several scene settings in one batch; a block with fewer interferers is padded with dark ones
+    far outside the image).
 
     Returns
     -------
@@ -442,21 +463,29 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     """
     n = truth.xr.shape[0]
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    blocks = [{}] * len(rngs) if blocks is None else list(blocks)
+    if len(blocks) != len(rngs) or any(set(b) - {"kappa", "background_std", "corr_length", "n_interferers"}
+                                       for b in blocks):
+        raise ValueError("parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
+                         "corr_length, n_interferers")
     q, residual = [], []
-    for j, g in enumerate(rngs):
+    for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         centre = truth.center[first:first + n_common, 0] if interferer_center is None else interferer_center
-        q.append(_tile(place_interferers(g, n_common, n_interferers, centre, interferer_radius, radial_jitter), n_block))
+        q.append(_tile(place_interferers(g, n_common, b.get("n_interferers", n_interferers), centre,
+                                         interferer_radius, radial_jitter), n_block))
         residual.append(_tile(RotatingMarkerScene.static_residual(
-            g, n_common, image_shape, kappa=kappa, background_std=background_std, corr_length=corr_length,
-            interferers=np.zeros((n_common, 0, 2)), interferer_brightness=np.zeros(n_common), spot=spot,
-            diameter=diameter), n_block))
-    q = np.concatenate(q)
+            g, n_common, image_shape, kappa=b.get("kappa", kappa), background_std=b.get("background_std", background_std),
+            corr_length=b.get("corr_length", corr_length), interferers=np.zeros((n_common, 0, 2)),
+            interferer_brightness=np.zeros(n_common), spot=spot, diameter=diameter), n_block))
+    n_q = max(x.shape[1] for x in q)
+    q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    add_spots(residual, q, np.broadcast_to((brightness / sir)[:, None], q.shape[:2]), spot, diameter)
+    add_spots(residual, q, np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0), spot,
+              diameter if interferer_diameter is None else interferer_diameter)
     return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
                                decoys, decoy_brightness)
 
@@ -491,6 +520,7 @@ class Scenario:
     omega_mod_hz: float = 0.5
     radius_mod: float = 0.0
     radius_mod_hz: float = 0.05
+    motion: str = "card"
     x_std: float = 10.0
     x_tau: float = 1.0
     x_smooth: float = 0.05
@@ -498,6 +528,8 @@ class Scenario:
     y_freq: float = 0.5
     n_interferers: int = 0
     interferer_jitter: float = 0.0
+    interferer_diameter: float | None = None
+    interferer_radius_offset: float = 0.0
     interferer_centre: str = "object"
     decoy_offset: float = 0.0
     decoy_phase: float | None = None
@@ -506,10 +538,21 @@ class Scenario:
     b_r: float = 0.2
     b_omega: float = 6.0
     variant: str = "S"
+    realise_phase_bandwidth: bool = False
     form: str = "quadrant"
+    edge_norm: str = "slope"
     init_offset: tuple = (3.0, -3.0)
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
+
+    def __post_init__(self):
+        if not 0 < self.rotation_hz < self.fps / 2:
+            raise ValueError(f"parameter 'rotation_hz' = {self.rotation_hz}; it must be > 0 and below the frame-rate "
+                             f"Nyquist fps / 2 = {self.fps / 2:g} Hz (the gate samples the rotation once a frame)")
+        if self.motion not in MOTIONS:
+            raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
+        if self.edge_norm not in ("slope", "slew"):
+            raise ValueError(f"parameter 'edge_norm' = {self.edge_norm!r}; it must be 'slope' or 'slew'")
 
     @property
     def n_frames(self) -> int:
@@ -524,10 +567,26 @@ class Scenario:
         the numerical slope of its static characteristic at zero error."""
         if self.form == "quadrant":
             return 2 * self.brightness * self.diameter
-        from ..discriminators import static_characteristic
+        if self.form == "centroid":
+            return 1.0
+        from .discriminators import static_characteristic
+        if self.edge_norm == "slew":
+            # matched slew: the normalised edge output saturates where the quadrant form's does
+            off = np.linspace(0.0, self.gate_half, 49)
+            quad = static_characteristic(self.spot_renderer(), off, form="quadrant", half=self.gate_half)
+            edge = static_characteristic(self.spot_renderer(), off, form="edge", half=self.gate_half,
+                                         a=self.diameter / 2)
+            return float(np.max(edge) / (np.max(quad) / (2 * self.brightness * self.diameter)))
         f = static_characteristic(self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half,
                                   a=self.diameter / 2)
         return float((f[1] - f[0]) / 0.5)
+
+    def gains(self):
+        """Loop gains: the stated bandwidths as designed loop by loop (:func:`loop_gains`), or with
+        ``realise_phase_bandwidth`` the PLL retuned so that the coupled loop realises ``b_omega``."""
+        if self.realise_phase_bandwidth and self.rotating:
+            return gains_realising(self.b_xy, self.b_r, self.b_omega, rotation_hz=self.rotation_hz, r=self.radius)
+        return loop_gains(self.b_xy, self.b_r, self.b_omega, rotation_hz=self.rotation_hz)
 
     def spot_renderer(self):
         """``render(centers, shape, origin)`` for this scenario's spot."""
@@ -540,7 +599,7 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
     t = np.arange(T) * dt
     c = sc.image_size / 2
     xr, yr = object_motion(rng, n, T, dt, center=(c, c), x_std=sc.x_std, x_tau=sc.x_tau, x_smooth=sc.x_smooth,
-                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq)
+                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq, kind=sc.motion)
     if not sc.rotating:
         return marker_truth(xr, yr, np.zeros((n, T)), np.zeros((n, T)), np.zeros(n), dt)
     omega = sc.omega0 * (1 + sc.omega_mod * np.sin(2 * np.pi * sc.omega_mod_hz * t)) * np.ones((n, 1))
@@ -553,7 +612,7 @@ PLACEMENTS = ("object", "image")
 
 def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, tracker: str = "loops",
                  ekf_meas_var: float = 0.05, noise: str = "projected", keep_full: bool = True,
-                 crop_callback=None, n_common: int | None = None):
+                 crop_callback=None, n_common: int | None = None, gains=None, blocks=None):
     """Simulate ``n`` trials of a scenario end to end (truth, scene, tracker, closed loop).
 
     The truth, the decoy, the scene and the sensor noise draw from four generators spawned from
@@ -569,10 +628,15 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     tracker : {"loops", "ekf"}
         Fixed-bandwidth loops (variant ``sc.variant``) or the discrete EKF of eqs. (16)-(17).
     noise : {"projected", "pixel"}
-        See :func:`tvtrack.filters.loops.run_closed_loop` (the edge form always uses pixel noise).
+        See :func:`tvtrack.papers.p003_rotating_marker_tracker.loops.run_closed_loop` (the edge form always uses pixel noise).
     n_common : int, optional
         Common random numbers: within a generator's block, trial ``j n_common + i`` repeats every
         draw of trial ``i`` (e.g. ``n_common`` trials at each of several SIR values).
+    blocks : list of dict, optional
+        Scene settings per generator block (see :func:`build_scene`).
+    gains : LoopGains, optional
+        Loop gains instead of ``sc.gains()``; fields may be arrays of shape (n,) (per-trial gains, e.g. several
+        bandwidths run as one batch on common draws).
 
     ``rng`` may be a list of generators (e.g. one per seed): each draws for its own consecutive
     block of ``n / len(rng)`` trials, exactly as it would alone, so seeds can share one batch.
@@ -581,7 +645,7 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     -------
     truth : MarkerTruth
     scene : RotatingMarkerScene
-    history : tvtrack.filters.loops.TrackHistory
+    history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
     """
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
@@ -602,16 +666,16 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     scene = build_scene([st[2] for st in streams], truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
                         brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
                         background_std=sc.background_std, corr_length=sc.corr_length,
-                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius,
+                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius + sc.interferer_radius_offset,
                         interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
-                        radial_jitter=sc.interferer_jitter, decoys=decoys, decoy_brightness=sc.brightness / sir,
-                        n_common=n_common)
+                        radial_jitter=sc.interferer_jitter, interferer_diameter=sc.interferer_diameter, decoys=decoys, decoy_brightness=sc.brightness / sir,
+                        n_common=n_common, blocks=blocks)
     x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
                    sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,
                    np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
     slope = sc.slope()
     if tracker == "loops":
-        trk = RotatingGateTracker(x0, loop_gains(sc.b_xy, sc.b_r, sc.b_omega, rotation_hz=sc.rotation_hz), slope,
+        trk = RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope,
                                   sc.variant, sc.rotating)
     elif tracker == "ekf":
         q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
@@ -634,7 +698,7 @@ def state_errors(truth: MarkerTruth, history) -> np.ndarray:
     ----------
     truth : MarkerTruth
         Per-trial truth, arrays of shape (n, T).
-    history : tvtrack.filters.loops.TrackHistory
+    history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
         Run with ``keep_full=True`` (``history.estimate`` of shape (n, T, 5)).
 
     Returns
@@ -648,7 +712,7 @@ def state_errors(truth: MarkerTruth, history) -> np.ndarray:
     return e
 
 
-def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values) -> dict:
+def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values, blocks=None) -> dict:
     """Batched interference runs, ``n`` trials per SIR, keeping only what loss detection needs.
 
     The ``n`` trials are the same at every SIR (common random numbers: motion, background,
@@ -671,12 +735,13 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
         ``trial`` (m n,) index of the common draws (0..n-1), ``dt`` frame interval (s),
         ``omega_hat`` (m n, T) the tracker's angular-velocity estimate (rad/s), ``omega_error``
         (m n, T) its relative error against the truth (NaN for a static marker). With a list
-        of generators the blocks follow each other: ``block`` (k m n,) says which generator.
+        of generators the blocks follow each other: ``block`` (k m n,) says which generator
+        (``blocks``: scene settings per generator, see :func:`build_scene`).
     """
     rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
     m = np.asarray(sir_values, float).size
     sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
-    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n)
+    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n, blocks=blocks)
     with np.errstate(divide="ignore", invalid="ignore"):
         omega_error = np.where(truth.omega != 0, h.omega / truth.omega - 1, np.nan).astype(np.float32)
     return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,

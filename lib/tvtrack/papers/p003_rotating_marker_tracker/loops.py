@@ -18,18 +18,20 @@ Everything is batched over a leading trials axis.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import signal
 
-from ..discriminators import edge_discriminator, polar_errors, quadrant_noise, \
+from .discriminators import centroid_discriminator, edge_discriminator, polar_errors, quadrant_noise, \
     quadrant_weights, two_emitter_discriminator
-from ..measure import gate_crop_size
-from ..render import pixel_fractions_box
+from ...measure import gate_crop_size
+from ...render import pixel_fractions_box
 
 __all__ = [
     "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
+    "phase_response", "realised_phase_bandwidth", "gains_realising", "stack_gains",
     "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d", "band_power_share",
     "phase_locked_amplitude",
 ]
@@ -48,6 +50,12 @@ class LoopGains:
     k2: float
     k_phi: float
     k_om: float
+
+
+def stack_gains(gains, n_each: int) -> LoopGains:
+    """Per-trial gains: each of ``gains`` repeated for ``n_each`` consecutive trials (fields of shape (k n_each,))."""
+    return LoopGains(*(np.repeat([getattr(g, f) for g in gains], n_each).astype(float)
+                       for f in ("k_xy", "k_r", "k1", "k2", "k_phi", "k_om")))
 
 
 def loop_gains(b_xy: float = 10.0, b_r: float = 0.2, b_omega: float = 6.0, zeta: float = 0.707,
@@ -155,14 +163,14 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
 
     Parameters
     ----------
-    scene : tvtrack.scenes.rotating_marker.RotatingMarkerScene
+    scene : tvtrack.papers.p003_rotating_marker_tracker.scene.RotatingMarkerScene
     tracker : RotatingGateTracker or EKFTracker
         Anything with ``state`` (n, 5), ``slope``, ``gate_center()`` and ``update(dx, dy, dt)``.
     rng : numpy.random.Generator or None
         Sensor-noise generator (None: noise-free).
     gate_half : float
         Gate half-size ``A`` (px).
-    form : {"quadrant", "edge"}
+    form : {"quadrant", "edge", "centroid"}
     edge_a : float, optional
         Edge-form half-width (spot half-size).
     noise : {"pixel", "projected"}
@@ -175,13 +183,13 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
     crop_callback : callable, optional
         ``f(k, crops, origin)`` called each frame (e.g. to record trial 0's gate crop).
     """
-    if form not in ("quadrant", "edge"):
-        raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant' or 'edge'")
+    if form not in ("quadrant", "edge", "centroid"):
+        raise ValueError(f"parameter 'form' = {form!r}; it must be 'quadrant', 'edge' or 'centroid'")
     if noise not in ("pixel", "projected") or (noise == "projected" and form != "quadrant"):
         raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'pixel', or 'projected' with the quadrant form")
     n, T = scene.n, scene.truth.n_frames
     dt = float(scene.truth.t[1] - scene.truth.t[0]) if T > 1 else 1.0
-    size = gate_crop_size(gate_half if form == "quadrant" else max(edge_a or 0.0, gate_half))
+    size = gate_crop_size(max(edge_a or 0.0, gate_half) if form == "edge" else gate_half)
     est = np.empty((n, T, 5), np.float32) if keep_full else None
     disc = np.empty((n, T, 4), np.float32) if keep_full else None
     gate = np.empty((n, T, 2), np.float32)
@@ -203,6 +211,8 @@ def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generato
             if noise == "projected" and rng is not None and scene.noise_std > 0:
                 w = quadrant_noise(wy, wx, scene.noise_std, rng)
                 dx, dy = dx + w[:, 0], dy + w[:, 1]
+        elif form == "centroid":
+            dx, dy = centroid_discriminator(crops, origin, c, gate_half)
         else:
             dx, dy = edge_discriminator(crops, origin, c, edge_a)
         e_r, e_th = tracker.update(dx, dy, dt)
@@ -226,15 +236,94 @@ def loop_poles(gains: LoopGains, omega: float, r: float) -> np.ndarray:
     -------
     ndarray of complex, shape (5,)
     """
+    A = _loop_matrix(gains, omega, r)
+    return np.linalg.eigvals(A)
+
+
+def _loop_matrix(gains: LoopGains, omega: float, r: float) -> np.ndarray:
+    """State matrix of :func:`loop_poles` (errors ``q_rad, q_tan, dr, dtheta, domega``)."""
     g = gains
     A = np.zeros((5, 5))
-    # e_rad = q0 + dr,  e_tan = q1 + r dth
-    A[0, :] = [-g.k_xy, omega, -g.k_xy, 0, 0]                     # dq/dt = -omega J q - K_xy R(-th) e
+    A[0, :] = [-g.k_xy, omega, -g.k_xy, 0, 0]
     A[1, :] = [-omega, -g.k_xy, 0, -g.k_xy * r, 0]
     A[2, :] = [-g.k_r, 0, -g.k_r, 0, 0]
     A[3, :] = [0, -g.k1 / r, 0, -g.k1, 1]
     A[4, :] = [0, -g.k2 / r, 0, -g.k2, 0]
-    return np.linalg.eigvals(A)
+    return A
+
+
+def phase_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.ndarray:
+    """Frequency response of the coupled variant-S loop from the true marker phase to its estimate.
+
+    With a phase perturbation ``p(t)`` of the uniform rotation (true phase ``theta_0 + omega t + p``),
+    the error state of :func:`loop_poles` obeys ``x' = A x + b p'`` with ``b = -e_dtheta``, so
+    ``theta_hat - theta_0 - omega t = p + dtheta`` and
+
+    ``H(s) = 1 + s e_dtheta^T (s I - A)^{-1} b``  (card item 5; the loops of eq. (16) linearised).
+
+    Uncoupled (``K_xy = 0``) this is the type-2 PLL ``(K1 s + K2) / (s^2 + K1 s + K2)`` with its
+    design -3 dB bandwidth; the coordinate loops also correct the tangential error and lower it.
+
+    Parameters
+    ----------
+    gains : LoopGains
+    omega : float
+        Rotation rate (rad/s).
+    r : float
+        Rotation radius (px).
+    freqs_hz : array_like, shape (m,)
+
+    Returns
+    -------
+    ndarray of complex, shape (m,)
+    """
+    A = _loop_matrix(gains, omega, r)
+    b = np.zeros(5)
+    b[3] = -1.0
+    s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
+    x = np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[..., 0]
+    return 1 + s * x[:, 3]
+
+
+def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: float = 100.0) -> dict:
+    """-3 dB bandwidth (Hz) and peak gain of :func:`phase_response` (coupled loop), on a 0.01 Hz grid.
+
+    Returns
+    -------
+    dict
+        ``bandwidth_hz`` (first frequency where ``|H|`` falls below ``1/sqrt 2``; NaN if none below
+        ``f_max``), ``peak_gain`` (max ``|H|``), ``peak_hz``.
+    """
+    f = np.arange(0.01, f_max, 0.01)
+    mag = np.abs(phase_response(gains, omega, r, f))
+    below = np.flatnonzero(mag < 1 / np.sqrt(2))
+    return dict(bandwidth_hz=float(f[below[0]]) if below.size else float("nan"), peak_gain=float(mag.max()),
+                peak_hz=float(f[np.argmax(mag)]))
+
+
+@functools.lru_cache(maxsize=64)
+def gains_realising(b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707, rotation_hz: float = 8.0,
+                    r: float = 12.0) -> LoopGains:
+    """Loop gains whose *coupled* phase loop realises the -3 dB bandwidth ``b_omega`` (Hz).
+
+    :func:`loop_gains` designs the PLL alone; the coordinate loops take up part of the tangential error,
+    so the coupled loop realises less. Here the PLL's design bandwidth is raised (bisection on the
+    realised bandwidth, monotone in it) until the coupled loop realises ``b_omega``; ``k_xy``, ``k_r`` unchanged.
+    """
+    from scipy.optimize import brentq
+
+    omega = 2 * np.pi * rotation_hz
+
+    def gap(b):
+        return realised_phase_bandwidth(loop_gains(b_xy, b_r, b, zeta, rotation_hz), omega, r)["bandwidth_hz"] - b_omega
+
+    hi = b_omega
+    while gap(hi) < 0:
+        hi *= 2
+        if hi > 1e3:
+            raise ValueError(f"no PLL design realises {b_omega} Hz with b_xy = {b_xy} Hz")
+    b = brentq(gap, b_omega / 4, hi, xtol=1e-3)
+    return loop_gains(b_xy, b_r, b, zeta, rotation_hz)
 
 
 def ekf_noise_from_bandwidths(meas_var: float, dt: float, r: float, b_xy: float, b_r: float,

@@ -1,0 +1,77 @@
+"""Generated prose of notebook 003: every number and every interpretive word comes from a computed test."""
+
+from __future__ import annotations
+
+from ...verdicts import as_estimate, is_undecided
+
+__all__ = ["show", "relation", "compare", "dependence", "threshold_conditions"]
+
+
+def show(e, digits: int = 3) -> str:
+    """``value [low, high]`` of an estimate (a bare number for an exact one)."""
+    e = as_estimate(e)
+    if e.method == "exact":
+        return f"{e.value:.{digits}g}"
+    tail = " (extrapolated)" if e.extrapolated else ""
+    return f"{e.value:.{digits}g} [{e.ci_low:.{digits}g}, {e.ci_high:.{digits}g}]{tail}"
+
+
+def relation(e, ref: float, above: str = "above", below: str = "below", same: str = "indistinguishable from") -> str:
+    """The word for where an estimate's 95 % interval lies relative to ``ref`` (``undecided`` when it cannot say)."""
+    e = as_estimate(e)
+    if is_undecided(e):
+        return "undecided against"
+    if e.ci_low > ref:
+        return above
+    if e.ci_high < ref:
+        return below
+    return same
+
+
+def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
+    """Which parts of which claims change verdict when one of the named register entries alone changes (the
+    one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records."""
+    explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
+    if not explored:
+        return f"{', '.join(entries)} not explored in this run"
+    hits = []
+    for cid, rec in records.items():
+        ref = rec["replicates"][0]["parts"] if rec.get("replicates") else {}
+        for name in rec["parts"]:
+            flips = [f"{c['parts'][name]} when {k} = {v}" for c in rec["conditions"] if c["kind"] == "single"
+                     for k, v in c["changed"].items() if k in explored and c["parts"].get(name) != ref.get(name)]
+            if flips:
+                hits.append(f"{cid} ({name}): {'; '.join(flips)}")
+    if not hits:
+        return f"no part of these claims changed verdict under {', '.join(sorted(explored))} alone"
+    return f"under {', '.join(sorted(explored))} alone the verdict changes for " + " | ".join(hits)
+
+
+def threshold_conditions(ex, key: str, paper: float) -> str:
+    """The register conditions (one at a time and joint) under which the threshold ``key`` of the ``_map`` output
+    (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none."""
+    hits = []
+    for r in ex.runs:
+        if r.stage == "replicate":
+            continue
+        e = r.outputs["_map"][key]
+        word = relation(e, paper)
+        if word != "below":
+            cond = ", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items())
+            hits.append(f"{cond} ({show(e)}, {word} {paper:g})")
+    if not hits:
+        return f"under no condition tried is the {key} threshold other than below the paper's {paper:g}"
+    return f"the {key} threshold is not below the paper's {paper:g} under " + "; ".join(hits)
+
+
+def compare(a, b) -> str:
+    """Where the interval of ``a`` lies against that of ``b``: "above", "below" or "overlapping" ("undecided
+    against" when either cannot decide)."""
+    a, b = as_estimate(a), as_estimate(b)
+    if is_undecided(a) or is_undecided(b):
+        return "undecided against"
+    if a.ci_low > b.ci_high:
+        return "above"
+    if a.ci_high < b.ci_low:
+        return "below"
+    return "overlapping"

@@ -1,0 +1,177 @@
+"""Tests of paper 003's study functions: the direct-count estimators the verdicts rest on, the register and the
+measurement functions' contract."""
+
+import numpy as np
+import pytest
+
+from tvtrack.explore import pool
+from tvtrack.montecarlo import Estimate, zero_events_bound
+from tvtrack.papers.p003_rotating_marker_tracker import study
+from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
+from tvtrack.verdicts import InBand, is_undecided
+
+SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
+
+
+def _lost_from_thresholds(thr, sirs=SIRS):
+    """Runs that lose lock exactly below their threshold: lost[i, j] = sirs[i] < thr[j]."""
+    return np.asarray(sirs)[:, None] < np.asarray(thr)[None, :]
+
+
+def test_loss_share_counts_and_zero_events_bound():
+    e = study.loss_share(np.zeros(30, bool))
+    assert (e.value, e.ci_low) == (0.0, 0.0)
+    assert e.ci_high == pytest.approx(zero_events_bound(30))
+    assert InBand("p", high=0.1).decide(e) == "reproduced"            # 0 of 30 certifies p < 0.095
+    assert InBand("p", high=0.1).decide(study.loss_share(np.zeros(20, bool))) == "partly"  # 0 of 20: only < 0.139
+    full = study.loss_share(np.ones(10, bool))
+    assert full.ci_low == pytest.approx(1 - zero_events_bound(10)) and full.ci_high == 1.0
+    mid = study.loss_share(np.r_[np.ones(3, bool), np.zeros(7, bool)])
+    assert mid.value == pytest.approx(0.3) and mid.ci_low < 0.3 < mid.ci_high
+
+
+def test_zero_event_shares_pool_across_replicates_as_one_count():
+    p = pool([study.loss_share(np.zeros(10, bool)) for _ in range(3)])
+    assert p.n == 30 and p.ci_high == pytest.approx(zero_events_bound(30))
+
+
+def test_log_thresholds_are_grid_midpoints_and_flag_censoring():
+    thr = np.array([0.9, 1.6, 2.5, 0.6, 10.0, 0.3])
+    tau, cens = study.log_thresholds(_lost_from_thresholds(thr), SIRS)
+    # a run with threshold in (s_{k-1}, s_k] gets the log midpoint of that step
+    k = np.searchsorted(SIRS, thr)
+    inside = (k > 0) & (k < SIRS.size)
+    mid = (np.log(SIRS[np.maximum(k - 1, 0)]) + np.log(SIRS[np.minimum(k, SIRS.size - 1)])) / 2
+    np.testing.assert_allclose(tau[inside], mid[inside])
+    np.testing.assert_array_equal(cens, [False, False, False, False, True, True])
+
+
+def test_threshold_estimate_covers_the_geometric_mean_and_is_extrapolated_outside_the_grid():
+    rng = np.random.default_rng(0)
+    true_gm = 1.6
+    hits = 0
+    done = 0
+    for k in range(400):
+        sigma = 0.3 if k % 2 else 0.05                       # spread across steps, or within one grid step
+        thr = np.exp(rng.normal(np.log(true_gm), sigma, 15))  # per-run thresholds, lognormal
+        e = study.threshold(_lost_from_thresholds(thr), SIRS)
+        assert e.extrapolated == bool(np.any((thr <= SIRS[0]) | (thr > SIRS[-1])))
+        if not e.extrapolated:
+            done += 1
+            hits += e.ci_low <= true_gm <= e.ci_high
+    assert done > 350 and hits / done >= 0.95       # covers the population's geometric mean at 15 runs
+    e = study.threshold(_lost_from_thresholds([1.0, 9.0, 2.0]), SIRS)
+    assert e.extrapolated and is_undecided(e)
+
+
+def test_threshold_ratio_is_paired_and_not_degenerate_when_every_run_agrees():
+    a = _lost_from_thresholds([1.6] * 8)
+    b = _lost_from_thresholds([0.9] * 8)
+    r = study.threshold_ratio(a, b, SIRS)
+    # all runs in the same grid steps: the ratio of the step midpoints, widened by half a grid step (never degenerate)
+    mid = lambda lo, hi: np.sqrt(lo * hi)
+    assert r.value == pytest.approx(mid(4 / 3, 2.0) / mid(0.75, 1.0))
+    assert r.ci_low < r.value < r.ci_high and not is_undecided(r)
+
+
+def test_compensation_ratio_is_a_bound_when_uncompensated_runs_lose_everywhere():
+    usirs = np.array(study.UNCOMPENSATED_GRID)
+    comp = _lost_from_thresholds([1.2] * 6)
+    unc_all = np.ones((usirs.size, 6), bool)
+    e = study._compensation_factor(unc_all, usirs, comp, SIRS, 0.1)
+    assert e.value == 0.0 and e.ci_low == 0.0 and 0 < e.ci_high < 0.05 and not e.extrapolated
+    unc = _lost_from_thresholds([6.0] * 6, usirs)
+    e = study._compensation_factor(unc, usirs, comp, SIRS, 0.1)
+    assert e.ci_low < 0.1 * np.sqrt(1.0 * 4 / 3) / np.sqrt(4.0 * 8.0) < e.ci_high
+
+
+def test_register_defaults_are_the_scenario_defaults_and_depends_names_known_entries():
+    sc = study.scenario(REGISTER.default())
+    ref = study.scenario({})
+    assert sc == ref
+    assert (sc.fps, sc.noise_std, sc.spot, sc.motion, sc.n_interferers) == (500.0, 0.02, "disc", "card", 0)
+    assert sc.background_std == pytest.approx(0.2)        # d / (kappa sigma_f) = 50 at kappa = 0.1
+    for cid, names in DEPENDS.items():
+        assert set(names) <= set(TRACKING) | set(INTERFERENCE), cid
+    for name in set(TRACKING) | set(INTERFERENCE):
+        for v in REGISTER[name].values:                  # every value maps onto a valid scenario
+            study.scenario({name: v})
+
+
+def test_measurement_functions_return_every_part_their_rules_read():
+    sz = study.Sizes(trials=2, fig1_s=0.6, fig2_s=0.8, transient_s=0.2, horizon_s=0.4)
+    t = study.measure_tracking(REGISTER.default(), 1, sz)
+    assert set(t["C003-1"]) == {"x_r", "y_r", "lost"} and len(t["C003-2"]["wide_loops"]) == len(study.BXY_GRID)
+    assert set(t["C003-9"]) == {"square_linear", "disc_linear", "edge_square", "edge_disc"}
+    i = study.measure_interference(REGISTER.default(), 1, sz)
+    assert set(i["C003-12"]) == {"one", "five", "imitator"} and len(i["C003-10"]["gate"]) == 3
+    assert i["_curves"]["rotating/5"].shape == (len(study.SIR_GRID), 2)
+    # common random numbers: the same seed gives the same runs
+    again = study.measure_interference(REGISTER.default(), 1, sz)
+    np.testing.assert_array_equal(again["_curves"]["rotating/5"], i["_curves"]["rotating/5"])
+
+
+def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
+    from tvtrack.papers.p003_rotating_marker_tracker.params import RULES, check_consistency
+    from tvtrack.parameters import validate_parameters
+
+    ns = dict(seed=3, n_trials=5, loss_trials=6, replicates=3, max_replicates=5, joint=3, workers=2, rotation_hz=8.0,
+              transient_s=2.0, fig1_duration_s=5.0, fig2_duration_s=10.0, loss_duration_s=5.0, probe_sir=2.0,
+              probe_n_interferers=1, probe_kappa=0.1, probe_marker="rotating", full_analysis=True, record_seconds=1.0,
+              record_full_every=10, output_dir="/tmp/x", rerun_mode="off")
+    lowest = min(REGISTER["fps"].values)
+    check_consistency(validate_parameters(ns, RULES), lowest)
+    for f in (lowest / 2, lowest / 2 + 1, 300.0):
+        with pytest.raises(ValueError, match="Nyquist"):
+            check_consistency(validate_parameters({**ns, "rotation_hz": f}, RULES), lowest)
+
+
+def test_prose_words_follow_the_intervals():
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    e = lambda v, lo, hi, x=False: Estimate(v, float("nan"), lo, hi, 10, 0.95, "t", x)
+    assert prose.relation(e(1.0, 0.8, 1.2), 2.0) == "below"
+    assert prose.relation(e(3.0, 2.5, 3.5), 2.0) == "above"
+    assert prose.relation(e(2.0, 1.5, 2.5), 2.0) == "indistinguishable from"
+    assert prose.relation(e(3.0, 2.5, 3.5, True), 2.0) == "undecided against"
+    assert prose.compare(e(1.0, 0.9, 1.1), e(2.0, 1.9, 2.1)) == "below"
+    assert prose.compare(e(1.0, 0.9, 1.1), e(1.05, 0.95, 1.2)) == "overlapping"
+
+
+def _toy(config, seed):
+    v = {"gentle": 1.0, "fast": 3.0}[config["motion"]] + (0.5 if config["radius"] == "outside" else 0.0)
+    e = Estimate(v, 0.01, v - 0.05, v + 0.05, 30, 0.95, "toy")
+    return {"C": {"value": e, "other": e}, "_map": {"rotating 5": e}}
+
+
+def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
+    from tvtrack.explore import explore
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+    from tvtrack.register import Entry, Register
+    from tvtrack.verdicts import AllOf
+
+    reg = Register([Entry("motion", "regime", "gentle", ("gentle", "fast"), "toy"),
+                    Entry("radius", "regime", "on", ("on", "outside"), "toy")])
+    rule = AllOf({"value": InBand("v", high=2.0), "other": InBand("v", high=1.2)})
+    ex = explore(_toy, reg, {"C": rule}, seed=1, replicates=3, joint=4)
+    rec = {"C": ex.record("C")}
+    assert prose.dependence(rec, ("motion",)) == ("under motion alone the verdict changes for C (value): not "
+                                                 "reproduced when motion = fast | C (other): not reproduced when "
+                                                 "motion = fast")
+    assert prose.dependence(rec, ("radius",)) == ("under radius alone the verdict changes for C (other): not "
+                                                 "reproduced when radius = outside")
+    assert prose.dependence(rec, ("placement",)) == "placement not explored in this run"
+    assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)
+
+
+def test_threshold_ratio_covers_the_population_ratio_of_paired_runs():
+    rng = np.random.default_rng(1)
+    hits = done = 0
+    for _ in range(300):
+        tb = np.exp(rng.normal(np.log(1.0), 0.25, 15))
+        ta = tb * 1.5 * np.exp(rng.normal(0.0, 0.1, 15))          # the same runs, 1.5 times harder to break
+        r = study.threshold_ratio(_lost_from_thresholds(ta), _lost_from_thresholds(tb), SIRS)
+        if not r.extrapolated:
+            done += 1
+            hits += r.ci_low <= 1.5 <= r.ci_high
+    assert done > 250 and hits / done >= 0.95
