@@ -5,7 +5,8 @@ import pytest
 
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Claim, Results, load_results
-from tvtrack.verdicts import Choice, Condition, InBand, NotCheckable, Robustness
+from tvtrack.register import Entry
+from tvtrack.verdicts import Condition, InBand, NotCheckable, Robustness
 
 SEEDS = Robustness(note="no unstated choice: a test fixture", seeds={1: 1.5, 2: 1.4, 3: 1.6})
 
@@ -51,7 +52,7 @@ def test_the_rule_decides_and_claims_are_validated(tmp_path):
                 robustness=Robustness(note="n", seeds={1: 1.0}))
     with pytest.raises(ValueError, match="unknown choices"):
         r.claim(id="C999-2", statement="s", paper_value="", rule=InBand("x", 1.0, 2.0), measured=1,
-                robustness=Robustness([Choice("a", 1, [1, 2], "w")], [Condition({"b": 2}, 1.0)], SEEDS.seeds))
+                robustness=Robustness([Entry("a", "reading", 1, (1, 2), "w")], [Condition({"b": 2}, 1.0)], SEEDS.seeds))
     nc = r.claim(id="C999-3", statement="s", paper_value="", rule=NotCheckable("true by construction"), measured=None)
     assert nc.verdict == "not checkable" and nc.robustness is None
     with pytest.raises(ValueError, match="claim id"):

@@ -5,7 +5,8 @@ import math
 import pytest
 
 from tvtrack.montecarlo import Estimate
-from tvtrack.verdicts import (AllOf, Choice, Condition, InBand, Monotone, NotCheckable, Ordering, Robustness,
+from tvtrack.register import Entry
+from tvtrack.verdicts import (AllOf, Condition, InBand, Monotone, NotCheckable, Ordering, Robustness,
                               WithinFactor, as_estimate, is_undecided, label_parts)
 
 
@@ -86,8 +87,8 @@ def test_not_checkable_says_why():
 def test_robustness_labels():
     rule = InBand("ratio", 3.6, 5.4)
     rob = Robustness(
-        choices=[Choice("epoch", "first", ["first", "mid", "last"], "the paper does not say", kind="operating point"),
-                 Choice("designation_sd", 0.3, [0.3, 1.0], "not given")],
+        choices=[Entry("epoch", "operating point", "first", ("first", "mid", "last"), "the paper does not say"),
+                 Entry("designation_sd", "reading", 0.3, (0.3, 1.0), "not given")],
         conditions=[Condition({"epoch": "mid"}, est(0.5, 0.9)),
                     Condition({"epoch": "last", "designation_sd": 1.0}, est(4.0, 5.0))],
         seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)})
@@ -103,9 +104,9 @@ def test_robustness_labels():
     reps = [{"seed": s, "measured": 1.0} for s in (1, 2, 3)]
     assert label_parts(InBand("x", 0, 2), 1.0, reps, [])["label"] == "unexplored"  # nothing of the world varied
     with pytest.raises(ValueError, match="not among"):
-        Choice("epoch", "middle", ["first", "last"], "")
+        Entry("epoch", "reading", "middle", ("first", "last"), "w")
     with pytest.raises(ValueError, match="not among"):
-        Robustness([Choice("e", 1, [1, 2], "w")], [Condition({"e": 3}, 1.0)], {1: 1, 2: 1, 3: 1}).validate()
+        Robustness([Entry("e", "reading", 1, (1, 2), "w")], [Condition({"e": 3}, 1.0)], {1: 1, 2: 1, 3: 1}).validate()
     with pytest.raises(ValueError, match="needs a note"):
         Robustness(seeds={1: 1, 2: 1, 3: 1}).validate()
     assert math.isfinite(rob.record(rule, est(0.6, 0.9))["conditions"][0]["measured"].value)

@@ -1,13 +1,15 @@
 """tvtrack: a small library for reproducing papers on optical / television target tracking.
 
-Two layers. The science never imports the machinery (``tests/test_layout.py`` checks it):
+Three rooms (``tests/test_layout.py`` keeps them apart):
 
-- the science: :mod:`tvtrack.scenes`, :mod:`tvtrack.render` and :mod:`tvtrack.sensors` (what the camera
-  sees), :mod:`tvtrack.measure` (gates and centroids), :mod:`tvtrack.filters` (Kalman, polynomial and
-  tracking-loop filters), :mod:`tvtrack.detect`, :mod:`tvtrack.estimate`, :mod:`tvtrack.bounds`,
-  :mod:`tvtrack.montecarlo` (seeded generators, intervals), :mod:`tvtrack.verdicts` (acceptance rules
-  and robustness records), :mod:`tvtrack.results` (``results.json``) and :mod:`tvtrack.record`
-  (Rerun recordings), with the paper-specific modules beside them;
+- the core, by role: :mod:`tvtrack.render` and :mod:`tvtrack.measure` (what the camera sees, gates and
+  centroids), :mod:`tvtrack.filters` (Kalman with the one Joseph update, EKF, grid, IMM, alpha-beta,
+  growing-memory, variable-dimension), :mod:`tvtrack.detect` (innovation detectors), :mod:`tvtrack.bounds`
+  (Cramer-Rao bounds), :mod:`tvtrack.montecarlo` (seeded generators, intervals), :mod:`tvtrack.register`
+  (what a paper left unstated), :mod:`tvtrack.explore` (claims over the register and independent replicates),
+  :mod:`tvtrack.verdicts` (rules and part-level labels), :mod:`tvtrack.results` (``results.json``, the
+  claims table), :mod:`tvtrack.parameters`, :mod:`tvtrack.recordings` (Rerun) and :mod:`tvtrack.plotting`;
+- one package per paper, :mod:`tvtrack.papers` (model, algorithms, register, study, plots, recording);
 - the machinery: :mod:`tvtrack.pipeline` runs notebooks with papermill (runner, preflight, sweep,
   reproduce, report, site, viewer, cli).
 """

@@ -36,7 +36,7 @@ from typing import Any, Mapping, Sequence
 from .montecarlo import Estimate
 
 __all__ = ["VERDICTS", "LABELS", "as_estimate", "calibrated", "is_undecided", "Judgement", "Rule", "InBand", "WithinFactor",
-           "Ordering", "Monotone", "AllOf", "NotCheckable", "Choice", "Condition", "Robustness", "rule_parts",
+           "Ordering", "Monotone", "AllOf", "NotCheckable", "Condition", "Robustness", "rule_parts",
            "label_parts", "weakest_label"]
 
 #: The only verdicts a claim may carry.
@@ -565,13 +565,6 @@ def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
 
 
 # --------------------------------------------------------------------------- hand-built records
-
-
-def Choice(name: str, default: Any, values: Sequence[Any], why: str, kind: str = "reading"):
-    """Deprecated: a register :class:`tvtrack.register.Entry` of kind ``reading`` (use ``Entry``)."""
-    from .register import Entry
-
-    return Entry(name, kind, default, tuple(values), why or "(no reason given)")
 
 
 @dataclass(frozen=True)
