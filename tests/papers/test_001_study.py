@@ -229,3 +229,30 @@ def test_replicates_measure_every_part_afresh():
     a, b, a2 = (study.measure_detection({}, s, sz)["C001-2"] for s in (11, 12, 11))
     for part in ("size", "unbiased", "UMP"):
         assert a[part].value != b[part].value and a[part].value == a2[part].value, part
+
+
+def test_a_manoeuvre_that_ends_continues_uniformly():
+    const, short = study.scenario(), study.scenario(accel_duration_s=2.0)
+    end = short.onset + 50  # 2 s at 25 Hz
+    np.testing.assert_array_equal(short.truth[:, : end + 1, :2], const.truth[:, : end + 1, :2])
+    a = np.array([m[1] for m in study.MOTION])[:, None]
+    v_end = np.array([m[0] for m in study.MOTION])[:, None] + 50 * a
+    np.testing.assert_allclose(short.truth[:, end:, 1], np.broadcast_to(v_end, short.truth[:, end:, 1].shape))
+    np.testing.assert_allclose(np.diff(short.truth[:, end:, 0], axis=-1), short.truth[:, end + 1 :, 1])  # uniform
+    assert np.all(short.truth[:, end:, 2] == 0) and np.all(short.truth[:, short.onset : end, 2] == a)
+
+
+def test_adversarial_regimes_reach_the_measurements():
+    # the manoeuvre that ends makes C001-7's dynamic error rise again after the acceleration stops (restart A)
+    const = study.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]
+    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]
+    assert np.all(np.diff(const) < 0) and short[1] > short[0]
+    # a weaker second channel is detected later (pooled median); a 4 s horizon curves less than a 10 s one
+    weak = study.measure_detection({"channel_y": "v -6, a -0.05"}, 1, SIZES)["C001-1"]["median"].value
+    paper = study.measure_detection({}, 1, SIZES)["C001-1"]["median"].value
+    assert weak > paper
+    sz = SIZES | {"prediction_rms": 4.0}
+    assert study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"] > study.measure_spherical(
+        {}, 0, sz
+    )["C001-9"]
+    assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"] == 1.0

@@ -49,6 +49,13 @@ NOISE_MODELS = ("white Gaussian", "quantised", "AR(1), rho = 0.5", "Student t, 3
 THRESHOLD_READINGS = ("exact", "stationary", "independent", "raw increments")
 ARMING_RULES = ("gains at bound", "windows full")
 RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s", "end of the loss")
+#: How long the acceleration lasts (s; None: to the end of the run). The paper gives the onset and the value only.
+MANOEUVRES = {"constant acceleration": None, "2 s acceleration": 2.0}
+#: The second channel's (initial velocity el/frame, acceleration el/frame²) at 25 Hz: not stated (one channel was
+#: simulated); the paper's magnitude, or a turn mostly in x that gives y a quarter of it.
+CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
+#: C001-9's extrapolation horizon, s: the scenario's 10 s loss, or the 3rd-order filter's memory (k_b3 = 100 frames).
+HORIZONS = {"10 s loss": 10.0, "4 s filter memory": 4.0}
 COMPARATORS = ("fixed 2nd order", "fixed 3rd order", "IMM", "VD filter")
 #: Tuning grids (elements, frames); the first value of the fixed filters' grids is the physical floor of the
 #: growing-memory law (the gains of a 2- or 3-point fit), not a grid edge; likewise q_CV = 0 for the IMM's CV model.
@@ -94,8 +101,10 @@ def scenario(
     loss_s: float = 12.0,
     reappear_s: float = 22.0,
     motion=MOTION,
+    accel_duration_s: float | None = None,
 ) -> Scenario:
-    """Uniform motion, constant acceleration from ``maneuver_s``, lost from ``loss_s`` to ``reappear_s``."""
+    """Uniform motion, constant acceleration from ``maneuver_s`` (for ``accel_duration_s``, then uniform motion
+    again; None: to the end), lost from ``loss_s`` to ``reappear_s``."""
     fps = float(frame_rate_hz)
     T = int(round(duration_s * fps))
     onset = int(round(maneuver_s * fps))
@@ -103,7 +112,25 @@ def scenario(
     f = np.arange(T)
     scale = FPS_REF / fps
     truth = np.stack([manoeuvre_truth(v0 * scale, a * scale**2, onset, T) for v0, a in motion])
+    if accel_duration_s is not None:  # the acceleration stops after D frames: x, v continue uniformly
+        D = int(round(accel_duration_s * fps))
+        d = np.clip(f - onset, 0, None)
+        dc = np.minimum(d, D)
+        acc = np.array([a * scale**2 for _, a in motion])[:, None]
+        truth[..., 0] = truth[..., 0] - 0.5 * acc * d**2 + acc * (0.5 * dc**2 + D * (d - dc))
+        truth[..., 1] = truth[..., 1] - acc * d + acc * dc
+        truth[..., 2] = np.where((f >= onset) & (d < D), acc, 0.0)
     return Scenario(fps, T, onset, f_loss, f_back, (f < f_loss) | (f >= f_back), truth)
+
+
+def config_scenario(config: dict) -> Scenario:
+    """The scenario of a configuration: its frame rate, its manoeuvre (``MANOEUVRES``; default constant) and the
+    second channel's motion (``CHANNEL_Y``; default the card's)."""
+    return scenario(
+        config["frame_rate_hz"],
+        motion=(MOTION[0], CHANNEL_Y[config.get("channel_y", "v -6, a -0.2")]),
+        accel_duration_s=MANOEUVRES[config.get("manoeuvre", "constant acceleration")],
+    )
 
 
 def measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_eps: float = 1.0) -> np.ndarray:
@@ -214,7 +241,7 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     ``n_fa_runs`` (no-manoeuvre runs), ``fa_duration_s``, ``roc_delay_s``, ``step_dv``, ``sigma_eps``.
     """
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     rng = np.random.default_rng(seed)
@@ -376,7 +403,13 @@ def _span_ms(xhat, sc: Scenario, channel_truth) -> dict:
 
 @functools.lru_cache(maxsize=4)
 def tuned_comparators(
-    frame_rate_hz: float, n_train: int, train_seed: int, alpha: float, sigma_eps: float = 1.0, grids: tuple = ()
+    frame_rate_hz: float,
+    n_train: int,
+    train_seed: int,
+    alpha: float,
+    sigma_eps: float = 1.0,
+    grids: tuple = (),
+    manoeuvre: str = "constant acceleration",
 ) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
@@ -398,7 +431,7 @@ def tuned_comparators(
         "vdf_q_ca": VDF_Q_CA_GRID,
         "vdf_windows": VDF_WINDOWS,
     } | dict(grids)
-    sc = scenario(frame_rate_hz)
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
     truth = sc.truth[None, :, :, 0]
@@ -448,16 +481,24 @@ def _tuning(config: dict, sizes: dict) -> dict:
         float(config["alpha"]),
         sizes["sigma_eps"],
         grids,
+        config.get("manoeuvre", "constant acceleration"),
     )
 
 
 @functools.lru_cache(maxsize=64)
 def _comparator_ms(
-    name: str, setting: tuple, seed: int, noise: str, frame_rate_hz: float, n: int, sigma_eps: float
+    name: str,
+    setting: tuple,
+    seed: int,
+    noise: str,
+    frame_rate_hz: float,
+    n: int,
+    sigma_eps: float,
+    manoeuvre: str = "constant acceleration",
 ) -> dict:
     """Per-run mean-square position error of a comparator over each span on the test runs of ``seed`` (the same
     draws as :func:`tradeoff_runs`), cached: the scheme's own entries (restart, k_b3 ...) do not change it."""
-    sc = scenario(frame_rate_hz)
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
     z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
     return _span_ms(comparator_positions(name, setting, z, sc, sigma_eps), sc, sc.truth[None, :, :, 0])
 
@@ -473,7 +514,7 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
         ``rms_span``; ``tuning`` (settings, training RMS, on-edge flags); ``z`` the measurements.
     """
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
@@ -493,7 +534,7 @@ def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")
     """The paper's scenario (both channels, ``sizes["n_trials"]`` runs) through the scheme under each restart rule,
     with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     z = measurements(
         sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
     )
@@ -589,7 +630,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     2nd-order filter without the switch over the scheme's, paired ratio) and ``min RMS vs <comparator>`` (ratio
     of the comparator's mean-square error over the span to the scheme's, each comparator tuned for that span)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     sigma, n, fps = sizes["sigma_eps"], sizes["n_tradeoff_trials"], float(config["frame_rate_hz"])
     z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
     adaptive = run_scheme(z, sc, config, sizes, covariance=False).x[..., 0]
@@ -600,7 +641,16 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     ms_adaptive = _span_ms(adaptive, sc, sc.truth[None, :, :, 0])[span]
     tuning = _tuning(config, sizes)[span]
     for name in COMPARATORS:
-        ms = _comparator_ms(name, tuning[name][0], seed, config["noise"], fps, n, sigma)[span]
+        ms = _comparator_ms(
+            name,
+            tuning[name][0],
+            seed,
+            config["noise"],
+            fps,
+            n,
+            sigma,
+            config.get("manoeuvre", "constant acceleration"),
+        )[span]
         parts[f"min RMS vs {name}"] = _ms_ratio(ms, ms_adaptive)
     return {"C001-4": parts}
 
@@ -643,7 +693,7 @@ def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
 def fig4_curves(config: dict, sizes: dict) -> dict:
     """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc)
     dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
     return {"kb3": np.asarray(sizes["kb3_grid"]), "dyn": dyn, "rms": rms, "sum": np.abs(dyn) + rms}
@@ -652,7 +702,7 @@ def fig4_curves(config: dict, sizes: dict) -> dict:
 def loss_sweep(config: dict, sizes: dict) -> dict:
     """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     rows = [
         prediction_error(
             sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + 10.0) * sc.fps))
@@ -693,7 +743,7 @@ def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
     """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc)
     vis = (sc.frames < fl) | (sc.frames >= fb)
     out = {"mean": [], "sd": [], "se": []}
@@ -771,15 +821,16 @@ def spherical_deviations(
 TARGET_SETS = {
     "2-20 km, 100-300 m/s": ((2e3, 5e3, 10e3, 20e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
     "20-100 km, 50-250 m/s": ((20e3, 50e3, 100e3), (50.0, 250.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+    "50-100 km, 100-300 m/s": ((50e3, 70e3, 100e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
 }
 
 
 def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
     """C001-9: the fraction of the geometries within ±20° whose 10 s extrapolation stays within the tolerance
     (``extrapolation``: quadratic/linear; ``tolerance``: "1 element" or "prediction RMS at k_b3"; ``targets``: a
-    key of :data:`TARGET_SETS`; NaN when no geometry stays within ±20°)."""
+    key of :data:`TARGET_SETS`; ``horizon``: a key of :data:`HORIZONS`; NaN when no geometry stays within ±20°)."""
     config = _full(config, sizes)
-    rows = spherical_deviations(*TARGET_SETS[config["targets"]])
+    rows = spherical_deviations(*TARGET_SETS[config["targets"]], horizon_s=HORIZONS[config.get("horizon", "10 s loss")])
     inside = rows[rows[:, 4] > 0]
     if inside.size == 0:
         return {"C001-9": float("nan")}
@@ -813,7 +864,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     )
 
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)
     rng = np.random.default_rng(seed)
