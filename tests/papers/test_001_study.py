@@ -256,3 +256,23 @@ def test_adversarial_regimes_reach_the_measurements():
         {}, 0, sz
     )["C001-9"]
     assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"] == 1.0
+
+
+def test_raised_second_order_limits():
+    sc = study.scenario()
+    truth = sc.truth[:, :, 0]
+    never = study.raised_second_order(truth, sc, np.full(2, -1), 50, 3)
+    np.testing.assert_array_equal(never, study.comparator_positions("fixed 2nd order", (50,), truth, sc, 1.0))
+    # raised at the onset and frozen at k = 3 (alpha 5/6, beta 1/2): the alpha-beta lag under constant
+    # acceleration a is a (1 - alpha) / beta (Kalata), reached well before the loss
+    x = study.raised_second_order(truth, sc, np.full(2, sc.onset), 50, 3)
+    a = np.array([m[1] for m in study.MOTION])
+    np.testing.assert_allclose(x[:, sc.f_loss - 1] - truth[:, sc.f_loss - 1], -a * (1 / 6) / 0.5, rtol=1e-6)
+
+
+def test_compensation_comparator_reaches_the_measurement():
+    base = study.measure_tradeoff({}, 1, SIZES)["C001-4"]["faster compensation"].value
+    raised = study.measure_tradeoff(
+        {"compensation_comparator": study.COMPENSATION_COMPARATORS[1]}, 1, SIZES
+    )["C001-4"]["faster compensation"].value
+    assert raised < 1 < base  # raising the 2nd-order gains at the detection compensates faster than the switch

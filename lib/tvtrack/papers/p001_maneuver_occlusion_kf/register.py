@@ -14,6 +14,7 @@ from ...register import Entry, Register
 from .study import (
     ARMING_RULES,
     CHANNEL_Y,
+    COMPENSATION_COMPARATORS,
     HORIZONS,
     MANOEUVRES,
     NOISE_MODELS,
@@ -170,6 +171,15 @@ ENTRIES = (
         "adversarial",
     ),
     Entry(
+        "compensation_comparator",
+        "comparator",
+        COMPENSATION_COMPARATORS[0],
+        COMPENSATION_COMPARATORS,
+        "C001-4 credits the switch to 3rd order: against the filter that never switches, or against the same "
+        "detection raising the 2nd-order gains without changing the order (its bound tuned for the measure)",
+        "adversarial",
+    ),
+    Entry(
         "channel_y",
         "regime",
         "v -6, a -0.2",
@@ -212,7 +222,17 @@ DEPENDS = {
     ],
     "C001-2": ["alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise", "alternative"],
     "C001-3": ["paper_sigma", "alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise"],
-    "C001-4": ["restart", "k_bound3", "rms_span", "compensation_end_s", "threshold", "k_bound2", "noise", "manoeuvre"],
+    "C001-4": [
+        "restart",
+        "k_bound3",
+        "rms_span",
+        "compensation_end_s",
+        "threshold",
+        "k_bound2",
+        "noise",
+        "manoeuvre",
+        "compensation_comparator",
+    ],
     "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz", "manoeuvre"],
     "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz", "manoeuvre"],
     "C001-9": ["extrapolation", "tolerance", "targets", "horizon"],
