@@ -276,3 +276,16 @@ def test_compensation_comparator_reaches_the_measurement():
         {"compensation_comparator": study.COMPENSATION_COMPARATORS[1]}, 1, SIZES
     )["C001-4"]["faster compensation"].value
     assert raised < 1 < base  # raising the 2nd-order gains at the detection compensates faster than the switch
+
+
+def test_ar1_prediction_rms_matches_monte_carlo():
+    sc = study.scenario()
+    cfg = REG.default() | {"noise": "AR(1), rho = 0.5"}
+    _, rms_white = study.prediction_error(sc, REG.default(), SIZES, 100, sc.f_loss, sc.f_back)
+    dyn, rms = study.prediction_error(sc, cfg, SIZES, 100, sc.f_loss, sc.f_back)
+    z = study.measurements(sc.truth[0, :, 0], "AR(1), rho = 0.5", 3000, np.random.default_rng(3), 1.0)
+    o = study.forced_output(sc, cfg, SIZES, 100, sc.visible, z=z, covariance=False)
+    e = study.predict_ahead(o.x[:, sc.f_back - 1], 1) - sc.truth[0, sc.f_back, 0]
+    assert abs(e.mean() - dyn) < 4 * e.std() / np.sqrt(e.size)
+    assert abs(e.std(ddof=1) / rms - 1) < 4 / np.sqrt(2 * e.size)  # SD of an SD estimate ~ 1/sqrt(2n)
+    assert rms > 1.2 * rms_white  # positively correlated errors average out less

@@ -233,8 +233,8 @@ DEPENDS = {
         "manoeuvre",
         "compensation_comparator",
     ],
-    "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz", "manoeuvre"],
-    "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz", "manoeuvre"],
+    "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz", "manoeuvre", "noise"],
+    "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz", "manoeuvre", "noise"],
     "C001-9": ["extrapolation", "tolerance", "targets", "horizon"],
 }
 

@@ -707,12 +707,20 @@ def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=
 
 
 def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: int, f_back: int):
-    """Noise-free dynamic error and covariance RMS (elements) of the prediction at ``f_back`` after a loss
-    ``[f_loss, f_back)`` (card §4.5)."""
+    """Noise-free dynamic error and RMS (elements) of the prediction at ``f_back`` after a loss ``[f_loss, f_back)``
+    (card §4.5). The RMS is the covariance recursion's for white errors (also the RMS of the quantised and
+    Student-t models, white with the same variance); for ``config["noise"]`` = AR(1) it is exact for the correlated
+    errors: the forced filter is linear, so the prediction error is ``w @ e`` with ``w`` its response to unit
+    impulses and variance ``sigma² w R w``, ``R_ij = 0.5^|i-j|``."""
     vis = (sc.frames < f_loss) | (sc.frames >= f_back)
     o = forced_output(sc, config, sizes, kb3, vis)
     dyn = float(predict_ahead(o.x[f_back - 1], 1) - sc.truth[0, f_back, 0])
     rms = float(np.sqrt(o.gate_var[f_back] - sizes["sigma_eps"] ** 2))
+    if config.get("noise", "white Gaussian") == "AR(1), rho = 0.5":
+        imp = np.eye(f_loss, sc.T)
+        w = predict_ahead(forced_output(sc, config, sizes, kb3, vis, z=imp, covariance=False).x[:, f_back - 1], 1)
+        lag = np.abs(np.subtract.outer(np.arange(f_loss), np.arange(f_loss)))
+        rms = float(sizes["sigma_eps"] * np.sqrt(w @ (0.5**lag) @ w))
     return round(dyn, 6), round(rms, 6)  # float noise off the deterministic curves
 
 
