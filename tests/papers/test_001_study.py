@@ -289,3 +289,19 @@ def test_ar1_prediction_rms_matches_monte_carlo():
     assert abs(e.mean() - dyn) < 4 * e.std() / np.sqrt(e.size)
     assert abs(e.std(ddof=1) / rms - 1) < 4 / np.sqrt(2 * e.size)  # SD of an SD estimate ~ 1/sqrt(2n)
     assert rms > 1.2 * rms_white  # positively correlated errors average out less
+
+
+def test_tapped_statistic_and_gls_taps():
+    from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import window_statistic
+
+    v = np.random.default_rng(4).standard_normal((3, 80))
+    n = 7
+    np.testing.assert_allclose(
+        study.tapped_window_statistic(v, np.r_[np.ones(n), -np.ones(n)])[:, 2 * n - 1 :],
+        window_statistic(v, n)[:, 2 * n - 1 :],
+        atol=1e-12,
+    )
+    taps = study.gls_window_taps(gain_schedule(1, 50)[-1], 25)
+    np.testing.assert_allclose(taps[:25], -taps[25:])  # a contrast of the two windows: invariant to common shifts
+    np.testing.assert_allclose(taps[:25], taps[:25][::-1])  # stationary covariance: symmetric in time
+    assert taps[0] > 10 * taps[12]  # strongly correlated outputs: the window ends carry the information

@@ -15,6 +15,7 @@ from .study import (
     ARMING_RULES,
     CHANNEL_Y,
     COMPENSATION_COMPARATORS,
+    UMP_COMPARATORS,
     HORIZONS,
     MANOEUVRES,
     NOISE_MODELS,
@@ -180,6 +181,16 @@ ENTRIES = (
         "adversarial",
     ),
     Entry(
+        "ump_comparator",
+        "comparator",
+        UMP_COMPARATORS[0],
+        UMP_COMPARATORS,
+        "C001-2's 'most powerful among invariant rules': any function of z is invariant; against Q, or against the "
+        "GLS-weighted sum w·z (w = C_z⁻¹ 1), the most powerful invariant test for a common offset with the filter "
+        "outputs' correlation",
+        "adversarial",
+    ),
+    Entry(
         "channel_y",
         "regime",
         "v -6, a -0.2",
@@ -220,7 +231,7 @@ DEPENDS = {
         "manoeuvre",
         "channel_y",
     ],
-    "C001-2": ["alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise", "alternative"],
+    "C001-2": ["alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise", "alternative", "ump_comparator"],
     "C001-3": ["paper_sigma", "alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise"],
     "C001-4": [
         "restart",

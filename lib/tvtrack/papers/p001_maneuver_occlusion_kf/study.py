@@ -59,6 +59,10 @@ CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
 #: on the training runs over ``RAISED2_GRID``; 3 is the physical floor, restart A's k): the order switch isolated.
 COMPENSATION_COMPARATORS = ("2nd order without the switch", "2nd order, gains raised at the detection")
 RAISED2_GRID = (3, 5, 10, 20, 50)
+#: C001-2's "UMP" comparator, another invariant rule on the same 2n velocities: the sum of squares Q (the GLR for an
+#: arbitrary offset vector), or the GLS-weighted sum w·z, w = C_z⁻¹ 1 (the most powerful invariant test against a
+#: common offset when the samples correlate as the filter's outputs do).
+UMP_COMPARATORS = ("Q (sum of squares)", "GLS-weighted sum")
 #: C001-9's extrapolation horizon, s: the scenario's 10 s loss, or the 3rd-order filter's memory (k_b3 = 100 frames).
 HORIZONS = {"10 s loss": 10.0, "4 s filter memory": 4.0}
 COMPARATORS = ("fixed 2nd order", "fixed 3rd order", "IMM", "VD filter")
@@ -199,6 +203,29 @@ def arming_count(rule: str, k_bound2: int, n: int, onset: int) -> tuple[int, str
     return arm, rule
 
 
+def gls_window_taps(K2, n: int, sigma_eps: float = 1.0) -> np.ndarray:
+    """Taps (2n,) over ``v[t-2n+1 .. t]`` of the GLS-weighted window difference: ``+w`` on the older window, ``-w``
+    on the newer, ``w = C_z⁻¹ 1`` with ``C_z`` the stationary covariance of ``z_k = v_k - v_{k+n}`` of the frozen
+    filter with gains ``K2`` (``cov(z_i, z_j) = 2 r(i-j) - r(i-j-n) - r(i-j+n)``); with independent samples
+    ``w`` is constant and the statistic is (14)'s S up to scale."""
+    from ...filters.alphabeta import lagged_covariances
+
+    r = lagged_covariances(np.asarray(K2, float), sigma_eps, 2 * n)[:, 1, 1]
+    d = np.subtract.outer(np.arange(n), np.arange(n))
+    Cz = 2 * r[np.abs(d)] - r[np.abs(d - n)] - r[np.abs(d + n)]
+    w = np.linalg.solve(Cz, np.ones(n))
+    return np.concatenate([w, -w]) / np.abs(w).sum()
+
+
+def tapped_window_statistic(v, taps) -> np.ndarray:
+    """``sum_j taps[j] v[t-2n+1+j]`` along the last axis, NaN before the window is full (shape of v)."""
+    taps = np.asarray(taps, float)
+    v = np.asarray(v, float)
+    out = signal.lfilter(taps[::-1], [1.0], np.nan_to_num(v), axis=-1)
+    out[..., : taps.size - 1] = np.nan
+    return out
+
+
 def _full(config: dict, sizes: dict) -> dict:
     """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
     return {**sizes.get("defaults", {}), **config}
@@ -293,11 +320,15 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     sig_t = scheduled_statistic_std(G0[:Tr], n, sigma)
     sig_t = np.where(np.isfinite(sig_t), sig_t, np.inf)
     arm_r = np.arange(Tr) >= arm_k - 1
-    Q0 = window_sum_of_squares(v0_hat[:, :Tr], n)
+    if config.get("ump_comparator", UMP_COMPARATORS[0]) == UMP_COMPARATORS[0]:
+        Q0, Qa = window_sum_of_squares(v0_hat[:, :Tr], n), window_sum_of_squares(va, n)
+    else:  # |w·z| with the GLS taps of the frozen TRACK2 filter
+        taps = gls_window_taps(G0[-1], n, sigma)
+        Q0, Qa = np.abs(tapped_window_statistic(v0_hat[:, :Tr], taps)), np.abs(tapped_window_statistic(va, taps))
     q_scale = np.full(Tr, np.inf)
     q_scale[arm_r] = Q0[:, arm_r].mean(axis=0)
     stat_S, stat_S0 = np.abs(window_statistic(va, n)) / sig_t, np.abs(S0[:, :Tr]) / sig_t
-    stat_Q, stat_Q0 = window_sum_of_squares(va, n) / q_scale, Q0 / q_scale
+    stat_Q, stat_Q0 = Qa / q_scale, Q0 / q_scale
     hits_S = first_alarm_within(stat_S, null_quantile_threshold(stat_S0, arm_r, alpha), arm_r, sc.onset)
     hits_Q = first_alarm_within(stat_Q, null_quantile_threshold(stat_Q0, arm_r, alpha), arm_r, sc.onset)
     post = arm_r & (np.arange(Tr) >= sc.onset)
