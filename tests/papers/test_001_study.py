@@ -252,9 +252,10 @@ def test_adversarial_regimes_reach_the_measurements():
     paper = study.measure_detection({}, 1, SIZES)["C001-1"]["median"].value
     assert weak > paper
     sz = SIZES | {"prediction_rms": 4.0}
-    assert study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"] > study.measure_spherical(
-        {}, 0, sz
-    )["C001-9"]
+    assert (
+        study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]
+        > study.measure_spherical({}, 0, sz)["C001-9"]
+    )
     assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"] == 1.0
 
 
@@ -272,9 +273,9 @@ def test_raised_second_order_limits():
 
 def test_compensation_comparator_reaches_the_measurement():
     base = study.measure_tradeoff({}, 1, SIZES)["C001-4"]["faster compensation"].value
-    raised = study.measure_tradeoff(
-        {"compensation_comparator": study.COMPENSATION_COMPARATORS[1]}, 1, SIZES
-    )["C001-4"]["faster compensation"].value
+    raised = study.measure_tradeoff({"compensation_comparator": study.COMPENSATION_COMPARATORS[1]}, 1, SIZES)["C001-4"][
+        "faster compensation"
+    ].value
     assert raised < 1 < base  # raising the 2nd-order gains at the detection compensates faster than the switch
 
 
@@ -305,3 +306,17 @@ def test_tapped_statistic_and_gls_taps():
     np.testing.assert_allclose(taps[:25], -taps[25:])  # a contrast of the two windows: invariant to common shifts
     np.testing.assert_allclose(taps[:25], taps[:25][::-1])  # stationary covariance: symmetric in time
     assert taps[0] > 10 * taps[12]  # strongly correlated outputs: the window ends carry the information
+
+
+def test_acceleration_unit_reading_scales_the_manoeuvre():
+    paper = study.config_scenario(REG.default())
+    per_s = study.config_scenario(REG.default() | {"accel_unit": "el/frame per s"})
+    np.testing.assert_allclose(per_s.truth[:, :, 2], paper.truth[:, :, 2] / 25)
+    np.testing.assert_allclose(
+        per_s.truth[:, :, 1] - paper.truth[:, :1, 1], (paper.truth[:, :, 1] - paper.truth[:, :1, 1]) / 25
+    )
+    # C001-7: the dynamic error scales with the acceleration, the RMS does not
+    sz = SIZES | {"loss_grid_s": [6.0, 8.0]}
+    a = study.measure_curves({}, 0, sz)["C001-7"]
+    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
+    np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from ...register import Entry, Register
 from .study import (
+    ACCEL_UNITS,
     ARMING_RULES,
     CHANNEL_Y,
     COMPENSATION_COMPARATORS,
@@ -191,6 +192,15 @@ ENTRIES = (
         "adversarial",
     ),
     Entry(
+        "accel_unit",
+        "reading",
+        "el/frame²",
+        tuple(ACCEL_UNITS),
+        "'acceleration 0.2 raster elements per frame': per frame² (card), or 0.2 el/frame of velocity gained per "
+        "second, the paper giving every time in seconds (0.008 el/frame² at 25 Hz)",
+        "adversarial",
+    ),
+    Entry(
         "channel_y",
         "regime",
         "v -6, a -0.2",
@@ -230,8 +240,19 @@ DEPENDS = {
         "noise",
         "manoeuvre",
         "channel_y",
+        "accel_unit",
     ],
-    "C001-2": ["alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise", "alternative", "ump_comparator"],
+    "C001-2": [
+        "alpha",
+        "arming",
+        "window_n",
+        "k_bound2",
+        "frame_rate_hz",
+        "noise",
+        "alternative",
+        "ump_comparator",
+        "accel_unit",
+    ],
     "C001-3": ["paper_sigma", "alpha", "arming", "window_n", "k_bound2", "frame_rate_hz", "noise"],
     "C001-4": [
         "restart",
@@ -244,8 +265,8 @@ DEPENDS = {
         "manoeuvre",
         "compensation_comparator",
     ],
-    "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz", "manoeuvre", "noise"],
-    "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz", "manoeuvre", "noise"],
+    "C001-7": ["restart", "k_bound3", "switch_s", "frame_rate_hz", "manoeuvre", "noise", "accel_unit"],
+    "C001-8": ["restart", "occlusion", "switch_s", "frame_rate_hz", "manoeuvre", "noise", "accel_unit"],
     "C001-9": ["extrapolation", "tolerance", "targets", "horizon"],
 }
 

@@ -54,6 +54,9 @@ MANOEUVRES = {"constant acceleration": None, "2 s acceleration": 2.0}
 #: The second channel's (initial velocity el/frame, acceleration el/frame²) at 25 Hz: not stated (one channel was
 #: simulated); the paper's magnitude, or a turn mostly in x that gives y a quarter of it.
 CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
+#: The unit of the paper's "acceleration 0.2 raster elements per frame": el/frame² (the card), or a velocity change of
+#: 0.2 el/frame per second (the paper's times are in seconds): the factor on the accelerations of ``MOTION``.
+ACCEL_UNITS = {"el/frame²": 1.0, "el/frame per s": 1.0 / FPS_REF}
 #: C001-4's "faster compensation" comparator: the scheme's TRACK2 filter never switching (the default), or the same
 #: filter whose 2nd-order gains are raised at the scheme's own detection (restart at k = 3, decaying to a bound tuned
 #: on the training runs over ``RAISED2_GRID``; 3 is the physical floor, restart A's k): the order switch isolated.
@@ -134,10 +137,11 @@ def scenario(
 
 def config_scenario(config: dict) -> Scenario:
     """The scenario of a configuration: its frame rate, its manoeuvre (``MANOEUVRES``; default constant) and the
-    second channel's motion (``CHANNEL_Y``; default the card's)."""
+    second channel's motion (``CHANNEL_Y``; default the card's) and the acceleration's unit (``ACCEL_UNITS``)."""
+    u = ACCEL_UNITS[config.get("accel_unit", "el/frame²")]
     return scenario(
         config["frame_rate_hz"],
-        motion=(MOTION[0], CHANNEL_Y[config.get("channel_y", "v -6, a -0.2")]),
+        motion=tuple((v0, u * a) for v0, a in (MOTION[0], CHANNEL_Y[config.get("channel_y", "v -6, a -0.2")])),
         accel_duration_s=MANOEUVRES[config.get("manoeuvre", "constant acceleration")],
     )
 
