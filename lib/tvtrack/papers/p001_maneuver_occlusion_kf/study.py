@@ -49,6 +49,25 @@ NOISE_MODELS = ("white Gaussian", "quantised", "AR(1), rho = 0.5", "Student t, 3
 THRESHOLD_READINGS = ("exact", "stationary", "independent", "raw increments")
 ARMING_RULES = ("gains at bound", "windows full")
 RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s", "end of the loss")
+#: How long the acceleration lasts (s; None: to the end of the run). The paper gives the onset and the value only.
+MANOEUVRES = {"constant acceleration": None, "2 s acceleration": 2.0}
+#: The second channel's (initial velocity el/frame, acceleration el/frame²) at 25 Hz: not stated (one channel was
+#: simulated); the paper's magnitude, or a turn mostly in x that gives y a quarter of it.
+CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
+#: The unit of the paper's "acceleration 0.2 raster elements per frame": el/frame² (the card), or a velocity change of
+#: 0.2 el/frame per second (the paper's times are in seconds): the factor on the accelerations of ``MOTION``.
+ACCEL_UNITS = {"el/frame²": 1.0, "el/frame per s": 1.0 / FPS_REF}
+#: C001-4's "faster compensation" comparator: the scheme's TRACK2 filter never switching (the default), or the same
+#: filter whose 2nd-order gains are raised at the scheme's own detection (restart at k = 3, decaying to a bound tuned
+#: on the training runs over ``RAISED2_GRID``; 3 is the physical floor, restart A's k): the order switch isolated.
+COMPENSATION_COMPARATORS = ("2nd order without the switch", "2nd order, gains raised at the detection")
+RAISED2_GRID = (3, 5, 10, 20, 50)
+#: C001-2's "UMP" comparator, another invariant rule on the same 2n velocities: the sum of squares Q (the GLR for an
+#: arbitrary offset vector), or the GLS-weighted sum w·z, w = C_z⁻¹ 1 (the most powerful invariant test against a
+#: common offset when the samples correlate as the filter's outputs do).
+UMP_COMPARATORS = ("Q (sum of squares)", "GLS-weighted sum")
+#: C001-9's extrapolation horizon, s: the scenario's 10 s loss, or the 3rd-order filter's memory (k_b3 = 100 frames).
+HORIZONS = {"10 s loss": 10.0, "4 s filter memory": 4.0}
 COMPARATORS = ("fixed 2nd order", "fixed 3rd order", "IMM", "VD filter")
 #: Tuning grids (elements, frames); the first value of the fixed filters' grids is the physical floor of the
 #: growing-memory law (the gains of a 2- or 3-point fit), not a grid edge; likewise q_CV = 0 for the IMM's CV model.
@@ -94,8 +113,10 @@ def scenario(
     loss_s: float = 12.0,
     reappear_s: float = 22.0,
     motion=MOTION,
+    accel_duration_s: float | None = None,
 ) -> Scenario:
-    """Uniform motion, constant acceleration from ``maneuver_s``, lost from ``loss_s`` to ``reappear_s``."""
+    """Uniform motion, constant acceleration from ``maneuver_s`` (for ``accel_duration_s``, then uniform motion
+    again; None: to the end), lost from ``loss_s`` to ``reappear_s``."""
     fps = float(frame_rate_hz)
     T = int(round(duration_s * fps))
     onset = int(round(maneuver_s * fps))
@@ -103,7 +124,26 @@ def scenario(
     f = np.arange(T)
     scale = FPS_REF / fps
     truth = np.stack([manoeuvre_truth(v0 * scale, a * scale**2, onset, T) for v0, a in motion])
+    if accel_duration_s is not None:  # the acceleration stops after D frames: x, v continue uniformly
+        D = int(round(accel_duration_s * fps))
+        d = np.clip(f - onset, 0, None)
+        dc = np.minimum(d, D)
+        acc = np.array([a * scale**2 for _, a in motion])[:, None]
+        truth[..., 0] = truth[..., 0] - 0.5 * acc * d**2 + acc * (0.5 * dc**2 + D * (d - dc))
+        truth[..., 1] = truth[..., 1] - acc * d + acc * dc
+        truth[..., 2] = np.where((f >= onset) & (d < D), acc, 0.0)
     return Scenario(fps, T, onset, f_loss, f_back, (f < f_loss) | (f >= f_back), truth)
+
+
+def config_scenario(config: dict) -> Scenario:
+    """The scenario of a configuration: its frame rate, its manoeuvre (``MANOEUVRES``; default constant) and the
+    second channel's motion (``CHANNEL_Y``; default the card's) and the acceleration's unit (``ACCEL_UNITS``)."""
+    u = ACCEL_UNITS[config.get("accel_unit", "el/frame²")]
+    return scenario(
+        config["frame_rate_hz"],
+        motion=tuple((v0, u * a) for v0, a in (MOTION[0], CHANNEL_Y[config.get("channel_y", "v -6, a -0.2")])),
+        accel_duration_s=MANOEUVRES[config.get("manoeuvre", "constant acceleration")],
+    )
 
 
 def measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_eps: float = 1.0) -> np.ndarray:
@@ -167,6 +207,29 @@ def arming_count(rule: str, k_bound2: int, n: int, onset: int) -> tuple[int, str
     return arm, rule
 
 
+def gls_window_taps(K2, n: int, sigma_eps: float = 1.0) -> np.ndarray:
+    """Taps (2n,) over ``v[t-2n+1 .. t]`` of the GLS-weighted window difference: ``+w`` on the older window, ``-w``
+    on the newer, ``w = C_z⁻¹ 1`` with ``C_z`` the stationary covariance of ``z_k = v_k - v_{k+n}`` of the frozen
+    filter with gains ``K2`` (``cov(z_i, z_j) = 2 r(i-j) - r(i-j-n) - r(i-j+n)``); with independent samples
+    ``w`` is constant and the statistic is (14)'s S up to scale."""
+    from ...filters.alphabeta import lagged_covariances
+
+    r = lagged_covariances(np.asarray(K2, float), sigma_eps, 2 * n)[:, 1, 1]
+    d = np.subtract.outer(np.arange(n), np.arange(n))
+    Cz = 2 * r[np.abs(d)] - r[np.abs(d - n)] - r[np.abs(d + n)]
+    w = np.linalg.solve(Cz, np.ones(n))
+    return np.concatenate([w, -w]) / np.abs(w).sum()
+
+
+def tapped_window_statistic(v, taps) -> np.ndarray:
+    """``sum_j taps[j] v[t-2n+1+j]`` along the last axis, NaN before the window is full (shape of v)."""
+    taps = np.asarray(taps, float)
+    v = np.asarray(v, float)
+    out = signal.lfilter(taps[::-1], [1.0], np.nan_to_num(v), axis=-1)
+    out[..., : taps.size - 1] = np.nan
+    return out
+
+
 def _full(config: dict, sizes: dict) -> dict:
     """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
     return {**sizes.get("defaults", {}), **config}
@@ -214,7 +277,7 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     ``n_fa_runs`` (no-manoeuvre runs), ``fa_duration_s``, ``roc_delay_s``, ``step_dv``, ``sigma_eps``.
     """
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     rng = np.random.default_rng(seed)
@@ -261,11 +324,15 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     sig_t = scheduled_statistic_std(G0[:Tr], n, sigma)
     sig_t = np.where(np.isfinite(sig_t), sig_t, np.inf)
     arm_r = np.arange(Tr) >= arm_k - 1
-    Q0 = window_sum_of_squares(v0_hat[:, :Tr], n)
+    if config.get("ump_comparator", UMP_COMPARATORS[0]) == UMP_COMPARATORS[0]:
+        Q0, Qa = window_sum_of_squares(v0_hat[:, :Tr], n), window_sum_of_squares(va, n)
+    else:  # |w·z| with the GLS taps of the frozen TRACK2 filter
+        taps = gls_window_taps(G0[-1], n, sigma)
+        Q0, Qa = np.abs(tapped_window_statistic(v0_hat[:, :Tr], taps)), np.abs(tapped_window_statistic(va, taps))
     q_scale = np.full(Tr, np.inf)
     q_scale[arm_r] = Q0[:, arm_r].mean(axis=0)
     stat_S, stat_S0 = np.abs(window_statistic(va, n)) / sig_t, np.abs(S0[:, :Tr]) / sig_t
-    stat_Q, stat_Q0 = window_sum_of_squares(va, n) / q_scale, Q0 / q_scale
+    stat_Q, stat_Q0 = Qa / q_scale, Q0 / q_scale
     hits_S = first_alarm_within(stat_S, null_quantile_threshold(stat_S0, arm_r, alpha), arm_r, sc.onset)
     hits_Q = first_alarm_within(stat_Q, null_quantile_threshold(stat_Q0, arm_r, alpha), arm_r, sc.onset)
     post = arm_r & (np.arange(Tr) >= sc.onset)
@@ -376,7 +443,13 @@ def _span_ms(xhat, sc: Scenario, channel_truth) -> dict:
 
 @functools.lru_cache(maxsize=4)
 def tuned_comparators(
-    frame_rate_hz: float, n_train: int, train_seed: int, alpha: float, sigma_eps: float = 1.0, grids: tuple = ()
+    frame_rate_hz: float,
+    n_train: int,
+    train_seed: int,
+    alpha: float,
+    sigma_eps: float = 1.0,
+    grids: tuple = (),
+    manoeuvre: str = "constant acceleration",
 ) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
@@ -398,7 +471,7 @@ def tuned_comparators(
         "vdf_q_ca": VDF_Q_CA_GRID,
         "vdf_windows": VDF_WINDOWS,
     } | dict(grids)
-    sc = scenario(frame_rate_hz)
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
     truth = sc.truth[None, :, :, 0]
@@ -448,16 +521,24 @@ def _tuning(config: dict, sizes: dict) -> dict:
         float(config["alpha"]),
         sizes["sigma_eps"],
         grids,
+        config.get("manoeuvre", "constant acceleration"),
     )
 
 
 @functools.lru_cache(maxsize=64)
 def _comparator_ms(
-    name: str, setting: tuple, seed: int, noise: str, frame_rate_hz: float, n: int, sigma_eps: float
+    name: str,
+    setting: tuple,
+    seed: int,
+    noise: str,
+    frame_rate_hz: float,
+    n: int,
+    sigma_eps: float,
+    manoeuvre: str = "constant acceleration",
 ) -> dict:
     """Per-run mean-square position error of a comparator over each span on the test runs of ``seed`` (the same
     draws as :func:`tradeoff_runs`), cached: the scheme's own entries (restart, k_b3 ...) do not change it."""
-    sc = scenario(frame_rate_hz)
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
     z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
     return _span_ms(comparator_positions(name, setting, z, sc, sigma_eps), sc, sc.truth[None, :, :, 0])
 
@@ -473,7 +554,7 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
         ``rms_span``; ``tuning`` (settings, training RMS, on-edge flags); ``z`` the measurements.
     """
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
@@ -493,7 +574,7 @@ def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")
     """The paper's scenario (both channels, ``sizes["n_trials"]`` runs) through the scheme under each restart rule,
     with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     z = measurements(
         sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
     )
@@ -584,23 +665,62 @@ def _ms_ratio(a, b) -> Estimate:
         return ratio_ci(a, b)
 
 
+def raised_second_order(z, sc: Scenario, detection_frame, k_bound2: int, k_bound: int) -> np.ndarray:
+    """Positions (..., T) of the scheme's TRACK2 filter whose gains are raised, not its order, at
+    ``detection_frame`` (..., -1: none): the growing-memory 2nd-order law bounded at ``k_bound2`` up to the detection,
+    then restarted at k = 3 and bounded at ``k_bound`` (>= 3); coasting while lost."""
+    t = np.arange(sc.T)
+    d = np.where(np.asarray(detection_frame) >= 0, detection_frame, sc.T)[..., None]
+    k = np.where(t <= d, np.minimum(t + 1, k_bound2), np.minimum(3 + (t - d - 1), k_bound))
+    G = gain_schedule(1, max(int(k_bound), int(k_bound2)), sc.T + 3)
+    return scheduled_filter(np.where(sc.visible, z, np.nan), G[k - 1])[..., 0]
+
+
+def compensation_comparator(name: str, z, sc: Scenario, config: dict, sizes: dict, detection_frame) -> np.ndarray:
+    """Positions (..., T) of C001-4's compensation comparator ``name`` (``COMPENSATION_COMPARATORS``). The raised
+    2nd-order filter's bound is tuned on ``sizes["n_train"]`` training runs (seed ``train_seed + 1``, white Gaussian)
+    for the lowest mean-square error from the onset to ``compensation_end_s``, the measure it is judged on."""
+    k2, sigma = int(config["k_bound2"]), sizes["sigma_eps"]
+    if name == COMPENSATION_COMPARATORS[0]:
+        return comparator_positions("fixed 2nd order", (k2,), z, sc, sigma)
+    if name != COMPENSATION_COMPARATORS[1]:
+        raise ValueError(f"compensation comparator {name!r}; it must be one of {COMPENSATION_COMPARATORS}")
+    rng = np.random.default_rng(sizes["train_seed"] + 1)
+    zt = measurements(sc.truth[:, :, 0], "white Gaussian", sizes["n_train"], rng, sigma)
+    dt = run_scheme(zt, sc, config, sizes, covariance=False).detection_frame
+    end = float(config["compensation_end_s"])
+    kb = min(RAISED2_GRID, key=lambda b: compensation_ms(raised_second_order(zt, sc, dt, k2, b), sc, end).mean())
+    return raised_second_order(z, sc, detection_frame, k2, kb)
+
+
 def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     """C001-4 in parts: ``faster compensation`` (mean-square error from the onset to ``compensation_end_s`` of the
-    2nd-order filter without the switch over the scheme's, paired ratio) and ``min RMS vs <comparator>`` (ratio
+    ``compensation_comparator`` (default the 2nd-order filter without the switch) over the scheme's, paired ratio) and ``min RMS vs <comparator>`` (ratio
     of the comparator's mean-square error over the span to the scheme's, each comparator tuned for that span)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     sigma, n, fps = sizes["sigma_eps"], sizes["n_tradeoff_trials"], float(config["frame_rate_hz"])
     z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
-    adaptive = run_scheme(z, sc, config, sizes, covariance=False).x[..., 0]
-    without = comparator_positions("fixed 2nd order", (int(config["k_bound2"]),), z, sc, sigma)
+    scheme = run_scheme(z, sc, config, sizes, covariance=False)
+    adaptive = scheme.x[..., 0]
+    comp = config.get("compensation_comparator", COMPENSATION_COMPARATORS[0])
+    without = compensation_comparator(comp, z, sc, config, sizes, scheme.detection_frame)
     end = float(config["compensation_end_s"])
     parts = {"faster compensation": _ms_ratio(compensation_ms(without, sc, end), compensation_ms(adaptive, sc, end))}
     span = config["rms_span"]
     ms_adaptive = _span_ms(adaptive, sc, sc.truth[None, :, :, 0])[span]
     tuning = _tuning(config, sizes)[span]
     for name in COMPARATORS:
-        ms = _comparator_ms(name, tuning[name][0], seed, config["noise"], fps, n, sigma)[span]
+        ms = _comparator_ms(
+            name,
+            tuning[name][0],
+            seed,
+            config["noise"],
+            fps,
+            n,
+            sigma,
+            config.get("manoeuvre", "constant acceleration"),
+        )[span]
         parts[f"min RMS vs {name}"] = _ms_ratio(ms, ms_adaptive)
     return {"C001-4": parts}
 
@@ -622,12 +742,20 @@ def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=
 
 
 def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: int, f_back: int):
-    """Noise-free dynamic error and covariance RMS (elements) of the prediction at ``f_back`` after a loss
-    ``[f_loss, f_back)`` (card §4.5)."""
+    """Noise-free dynamic error and RMS (elements) of the prediction at ``f_back`` after a loss ``[f_loss, f_back)``
+    (card §4.5). The RMS is the covariance recursion's for white errors (also the RMS of the quantised and
+    Student-t models, white with the same variance); for ``config["noise"]`` = AR(1) it is exact for the correlated
+    errors: the forced filter is linear, so the prediction error is ``w @ e`` with ``w`` its response to unit
+    impulses and variance ``sigma² w R w``, ``R_ij = 0.5^|i-j|``."""
     vis = (sc.frames < f_loss) | (sc.frames >= f_back)
     o = forced_output(sc, config, sizes, kb3, vis)
     dyn = float(predict_ahead(o.x[f_back - 1], 1) - sc.truth[0, f_back, 0])
     rms = float(np.sqrt(o.gate_var[f_back] - sizes["sigma_eps"] ** 2))
+    if config.get("noise", "white Gaussian") == "AR(1), rho = 0.5":
+        imp = np.eye(f_loss, sc.T)
+        w = predict_ahead(forced_output(sc, config, sizes, kb3, vis, z=imp, covariance=False).x[:, f_back - 1], 1)
+        lag = np.abs(np.subtract.outer(np.arange(f_loss), np.arange(f_loss)))
+        rms = float(sizes["sigma_eps"] * np.sqrt(w @ (0.5**lag) @ w))
     return round(dyn, 6), round(rms, 6)  # float noise off the deterministic curves
 
 
@@ -643,7 +771,7 @@ def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
 def fig4_curves(config: dict, sizes: dict) -> dict:
     """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc)
     dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
     return {"kb3": np.asarray(sizes["kb3_grid"]), "dyn": dyn, "rms": rms, "sum": np.abs(dyn) + rms}
@@ -652,7 +780,7 @@ def fig4_curves(config: dict, sizes: dict) -> dict:
 def loss_sweep(config: dict, sizes: dict) -> dict:
     """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     rows = [
         prediction_error(
             sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + 10.0) * sc.fps))
@@ -693,7 +821,7 @@ def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
     """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc)
     vis = (sc.frames < fl) | (sc.frames >= fb)
     out = {"mean": [], "sd": [], "se": []}
@@ -771,15 +899,16 @@ def spherical_deviations(
 TARGET_SETS = {
     "2-20 km, 100-300 m/s": ((2e3, 5e3, 10e3, 20e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
     "20-100 km, 50-250 m/s": ((20e3, 50e3, 100e3), (50.0, 250.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+    "50-100 km, 100-300 m/s": ((50e3, 70e3, 100e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
 }
 
 
 def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
     """C001-9: the fraction of the geometries within ±20° whose 10 s extrapolation stays within the tolerance
     (``extrapolation``: quadratic/linear; ``tolerance``: "1 element" or "prediction RMS at k_b3"; ``targets``: a
-    key of :data:`TARGET_SETS`; NaN when no geometry stays within ±20°)."""
+    key of :data:`TARGET_SETS`; ``horizon``: a key of :data:`HORIZONS`; NaN when no geometry stays within ±20°)."""
     config = _full(config, sizes)
-    rows = spherical_deviations(*TARGET_SETS[config["targets"]])
+    rows = spherical_deviations(*TARGET_SETS[config["targets"]], horizon_s=HORIZONS[config.get("horizon", "10 s loss")])
     inside = rows[rows[:, 4] > 0]
     if inside.size == 0:
         return {"C001-9": float("nan")}
@@ -813,7 +942,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     )
 
     config = _full(config, sizes)
-    sc = scenario(config["frame_rate_hz"])
+    sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)
     rng = np.random.default_rng(seed)
