@@ -2,7 +2,9 @@
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
 directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
-with status 2 before any kernel starts; ``--debug`` shows the traceback instead.
+with status 2 before any kernel starts; ``--debug`` shows the traceback instead. Ctrl-C ends the
+running kernels, removes the temporary folders, prints one line ``interrupted: ...`` and exits with
+status 130; the same command started again resumes (finished runs are kept).
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import sys
 import time
 from pathlib import Path
 
+from .interrupt import EXIT_INTERRUPTED
 from .paths import RUNS_DIR
 from .preflight import NotebookBug, UsageError, check_names, check_values
 
@@ -55,7 +58,7 @@ def _fresh_directory(path: Path) -> Path:
 
 
 def _cmd_run(args) -> int:
-    from .runner import find_notebook, load_profile, run_notebook
+    from .runner import find_notebook, load_profile, remove_stale_temporaries, run_notebook
 
     nb = find_notebook(args.notebook)
     params = {name: _parse_value(value) for name, value in args.parameter}
@@ -64,7 +67,11 @@ def _cmd_run(args) -> int:
     check_values(nb, {**profile, **params})
     out = _fresh_directory(Path(args.output) if args.output else
                            RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}")
-    outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet)
+    remove_stale_temporaries(out.parent)
+    try:
+        outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet and sys.stderr.isatty())
+    except KeyboardInterrupt as exc:
+        raise KeyboardInterrupt(f"{nb.stem}: kernel ended, nothing written to {out}") from exc
     if outcome.ok:
         print(f"ok: {nb.stem} in {outcome.runtime_s:.1f} s -> {outcome.run_dir}")
         return 0
@@ -76,7 +83,7 @@ def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
     summary = run_sweep(args.spec, jobs=args.jobs, output=args.output, executor=args.executor,
-                        scheduler=args.scheduler)
+                        scheduler=args.scheduler, progress=sys.stderr.isatty())
     return 0 if summary.n_failed == 0 else 1
 
 
@@ -167,3 +174,8 @@ def main(argv=None) -> int:
             raise
         print(f"error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, UsageError) else 1
+    except KeyboardInterrupt as exc:
+        if args.debug:
+            raise
+        print(f"interrupted: {exc or args.command + ' stopped'}", file=sys.stderr)
+        return EXIT_INTERRUPTED

@@ -24,6 +24,7 @@ import csv
 import hashlib
 import itertools
 import json
+import os
 import shutil
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -31,6 +32,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
+from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
 from .paths import RUNS_DIR
 from .preflight import UsageError, check_names
 from .runner import read_toml, find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
@@ -149,9 +151,13 @@ def _default_seed(notebook: Path) -> int:
 
 
 def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str, str | None, float]:
-    """Worker: one run (top-level so process pools and Dask can pickle it)."""
-    outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
-                           extra_record={"run_id": run.run_id})
+    """Worker: one run (top-level so process pools and Dask can pickle it). A pool worker told to stop
+    (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
+    try:
+        outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
+                               extra_record={"run_id": run.run_id})
+    except Interrupted:
+        os._exit(EXIT_INTERRUPTED)
     return run.run_id, outcome.status, outcome.error, outcome.runtime_s
 
 
@@ -216,21 +222,20 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         bar.update(1)
         bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
 
-    if executor == "dask":
-        from distributed import as_completed as dask_completed
-
-        with client:
-            futures = [client.submit(_execute, r, nb_path, str(runs_dir), pure=False) for r in todo]
-            for fut in dask_completed(futures):
-                tick(fut.result()[1])
-    elif jobs == 1:
-        for r in todo:
-            tick(_execute(r, nb_path, str(runs_dir))[1])
-    else:
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn")) as pool:
-            futures = [pool.submit(_execute, r, nb_path, str(runs_dir)) for r in todo]
-            for fut in as_completed(futures):
-                tick(fut.result()[1])
+    try:
+        if executor == "dask":
+            _run_on_dask(client, todo, nb_path, str(runs_dir), tick)
+        elif jobs == 1:
+            for r in todo:
+                tick(_execute(r, nb_path, str(runs_dir))[1])
+        else:
+            _run_in_pool(jobs, todo, nb_path, str(runs_dir), tick)
+    except KeyboardInterrupt as exc:
+        bar.close()
+        remove_stale_temporaries(runs_dir)
+        done = sum((read_run(runs_dir / r.run_id) or {}).get("status") == "ok" for r in runs)
+        raise KeyboardInterrupt(f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; "
+                                f"the same command resumes") from exc
     bar.close()
     csv_path, plot = collect_summary(sweep_dir, runs, spec.summary)
     records = [read_run(runs_dir / r.run_id) or {} for r in runs]
@@ -241,6 +246,35 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         if rec.get("status") != "ok":
             print(f"  failed {r.run_id} {r.parameters}: {rec.get('error')}")
     return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, n_failed, csv_path, plot)
+
+
+def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
+    """The runs in a pool of ``jobs`` worker processes; Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init)
+    try:
+        with shielded_spawn():   # workers are spawned by submit(): they start with Ctrl-C ignored
+            futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
+        for fut in as_completed(futures):
+            tick(fut.result()[1])
+    except KeyboardInterrupt:
+        stop_pool(pool)
+        raise
+    pool.shutdown()
+
+
+def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
+    """The runs on a Dask cluster; Ctrl-C cancels the runs not started yet (running ones finish on the
+    workers, and their temporary folders, if a worker dies, are removed at the next start)."""
+    from distributed import as_completed as dask_completed
+
+    with client:
+        futures = [client.submit(_execute, r, nb_path, runs_dir, pure=False) for r in todo]
+        try:
+            for fut in dask_completed(futures):
+                tick(fut.result()[1])
+        except KeyboardInterrupt:
+            client.cancel(futures)
+            raise
 
 
 def _dask_client(scheduler: str):
