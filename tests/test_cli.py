@@ -4,6 +4,7 @@ before any kernel starts."""
 import socket
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -81,8 +82,10 @@ def test_unreachable_scheduler_names_the_address_and_how_to_start_one(tmp_path):
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     address = f"tcp://127.0.0.1:{port}"
+    t0 = time.time()
     line = assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
                                          "-o", tmp_path / "s", timeout=120), address)
+    assert time.time() - t0 < 15
     assert "dask scheduler" in line
 
 
@@ -99,3 +102,78 @@ def test_debug_shows_the_traceback():
 def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, parameter, value, names):
     proc = tvtrack("run", notebook, "-p", parameter, value)
     assert_one_line_error(proc, *names)
+
+
+def test_scheduler_address_without_a_port_is_one_line(tmp_path):
+    for address in ("tcp://127.0.0.1", "127.0.0.1", "tcp://127.0.0.1:"):
+        assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
+                                      "-o", tmp_path / "s", timeout=30), repr(address), "no port")
+    assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", "tcp://host:http",
+                                  "-o", tmp_path / "s", timeout=30), "'http'")
+    assert not (tmp_path / "s").exists()
+
+
+@pytest.mark.parametrize("reply", [None, b"HTTP/1.0 200 OK\r\nContent-Length: 5\r\n\r\nhello"],
+                         ids=["silent", "http"])
+def test_a_port_where_something_else_listens_is_one_line_within_15_s(tmp_path, reply):
+    """Something that is not Dask listens on loopback (a silent service, a web server): one line naming it."""
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+
+    def answer():
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            if reply:
+                conn.recv(1024)
+                conn.sendall(reply)
+
+    threading.Thread(target=answer, daemon=True).start()
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    t0 = time.time()
+    try:
+        proc = tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s",
+                       timeout=60)
+    finally:
+        server.close()
+    assert time.time() - t0 < 15
+    line = assert_one_line_error(proc, address)
+    assert "not a Dask scheduler" in line and "dask scheduler" in line
+
+
+def test_site_output_that_cannot_be_written_is_one_line(tmp_path):
+    (tmp_path / "file").write_text("x")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file" / "site"), "cannot write",
+                          "file/site")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file"), "is a file")
+    assert (tmp_path / "file").read_text() == "x"
+
+
+def test_output_dir_cannot_be_set_with_p_and_the_line_says_why(tmp_path):
+    line = assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-p", "output_dir", "x", "-o", tmp_path / "r"),
+                                 "'output_dir'", "-o")
+    assert "run's own directory" in line
+    in_spec = spec(tmp_path, "[fixed]\noutput_dir = \"x\"\n")
+    assert_one_line_error(tvtrack("sweep", in_spec, "-o", tmp_path / "s"), "'output_dir'", "-o")
+    assert not (tmp_path / "r").exists() and not (tmp_path / "s").exists()
+
+
+def test_sweep_values_are_checked_before_any_run_starts(tmp_path):
+    bad = spec(tmp_path, "[fixed]\nn_trials = 5\n[grid]\nspot_sigma_px = [1.0, -2.0, 9.0]\n")
+    t0 = time.time()
+    line = assert_one_line_error(tvtrack("sweep", bad, "--jobs", "2", "-o", tmp_path / "s"),
+                                 "spot_sigma_px", "-2.0", "no run started")
+    assert "1 more of the 3 parameter sets" in line
+    assert time.time() - t0 < 30
+    assert not (tmp_path / "s").exists()
+
+
+def test_a_refusal_names_the_parameter_the_user_set():
+    """001: window_n = 200 is refused by a check on fa_duration_s; the line leads with window_n."""
+    line = assert_one_line_error(tvtrack("run", "001_maneuver_occlusion_kf", "-p", "window_n", "200"), "window_n")
+    assert line.index("window_n") < line.index("fa_duration_s") if "fa_duration_s" in line else True

@@ -16,7 +16,7 @@ import time
 from pathlib import Path
 
 from .interrupt import EXIT_INTERRUPTED
-from .paths import RUNS_DIR
+from .paths import RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 
 
@@ -54,6 +54,7 @@ def _fresh_directory(path: Path) -> Path:
         path.parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise UsageError(f"cannot create the output directory {path}: {exc.strerror}") from exc
+    writable_directory(path.parent, "output directory's parent")
     return path
 
 
@@ -64,7 +65,7 @@ def _cmd_run(args) -> int:
     params = {name: _parse_value(value) for name, value in args.parameter}
     check_names(nb, params)
     profile = load_profile(nb, args.profile)
-    check_values(nb, {**profile, **params})
+    check_values(nb, {**profile, **params}, given=params)
     out = _fresh_directory(Path(args.output) if args.output else
                            RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}")
     remove_stale_temporaries(out.parent)
@@ -174,6 +175,12 @@ def main(argv=None) -> int:
             raise
         print(f"error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, UsageError) else 1
+    except OSError as exc:
+        if args.debug or not getattr(exc, "filename", None):
+            raise
+        print(f"error: cannot write {exc.filename}: {exc.strerror or exc} (--debug shows the traceback)",
+              file=sys.stderr)
+        return 1
     except KeyboardInterrupt as exc:
         if args.debug:
             raise

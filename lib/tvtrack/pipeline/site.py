@@ -30,7 +30,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .paths import RUNS_DIR
+from .paths import RUNS_DIR, writable_directory
 from .preflight import UsageError
 from .report import NO_LABEL, REPRODUCE_DIR, format_measured, robustness_label, robustness_where
 from .runner import read_run
@@ -312,11 +312,16 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
 
     runs_dir = Path(runs_dir)
     site = Path(out) if out is not None else runs_dir / "site"
+    if site.exists() and not site.is_dir():
+        raise UsageError(f"cannot write the site folder {site}: it is a file; give an empty or new folder")
     if site.exists():
         if any(site.iterdir()) and not (site / "index.html").is_file():
             raise UsageError(f"{site} exists and is not a site built here (no index.html): give an empty or new folder")
-        shutil.rmtree(site)
-    (site / "notebooks").mkdir(parents=True)
+        try:
+            shutil.rmtree(site)
+        except OSError as exc:
+            raise UsageError(f"cannot replace the site folder {site}: {exc.strerror or exc}") from exc
+    writable_directory(site / "notebooks", "site folder")
     (site / "sweeps").mkdir()
     env = _environment()
     runs = find_paper_runs(runs_dir / "reproduce")
