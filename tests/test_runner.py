@@ -106,14 +106,21 @@ def test_same_seed_gives_identical_metrics_alone_and_in_sweeps(sweep_two_jobs, t
 
 
 def test_failed_run_is_isolated_and_recorded(tmp_path):
-    # the preflight passes every set (rerun_mode is checked by the recorder, at run time), so one run fails
-    spec = write_spec(tmp_path / "mixed.toml", "[fixed]\nn_trials = 10\nn_frames = 3\n[zip]\n"
-                      "spot_sigma_px = [1.0, 1.5, 2.0]\nrerun_mode = [\"off\", \"bogus\", \"off\"]\n")
+    # every value passes the preflight; a copy of the fixture fails at run time (after its validation cell) at -2.0
+    nb = json.loads(FIXTURE_NOTEBOOK.read_text())
+    first_code = next(i for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code")
+    nb["cells"].insert(first_code + 2, {"cell_type": "code", "id": "planted", "metadata": {}, "execution_count": None,
+                                        "outputs": [], "source": "if spot_sigma_px == 2.0:\n"
+                                                                 "    raise RuntimeError('planted failure')\n"})
+    (tmp_path / "failing.ipynb").write_text(json.dumps(nb))
+    spec = tmp_path / "mixed.toml"
+    spec.write_text('notebook = "failing.ipynb"\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n'
+                    "[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n")
     s = run_sweep(spec, jobs=2, output=tmp_path / "mixed", progress=False)
     assert (s.n_ok, s.n_failed) == (2, 1)
     rows = s.summary_csv.read_text().splitlines()
     failed = [r for r in rows if ",failed," in r]
-    assert len(failed) == 1 and "parameter 'rerun_mode' = 'bogus'" in failed[0]
+    assert len(failed) == 1 and "RuntimeError: planted failure" in failed[0]
     cli = subprocess.run([sys.executable, "-m", "tvtrack", "sweep", str(spec), "-o", str(tmp_path / "mixed")],
                          capture_output=True, text=True)
     assert cli.returncode == 1  # any failed run makes the sweep exit non-zero
