@@ -16,15 +16,17 @@ kernel: $(STAMP)
 	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
+# (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)
 reproduce: $(STAMP) kernel
 	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE))
 
 report: $(STAMP)
-	$(BIN)/python -m tvtrack report
+	$(BIN)/python -m tvtrack report $(if $(PROFILE),--profile $(PROFILE))
 
 # offline HTML site from papermill_runs/ (after make reproduce): papermill_runs/site/index.html
+# (make site PROFILE=smoke: the smoke runs, in papermill_runs/site-smoke/)
 site: $(STAMP)
-	$(BIN)/python -m tvtrack site
+	$(BIN)/python -m tvtrack site $(if $(PROFILE),--profile $(PROFILE))
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
@@ -38,4 +40,4 @@ sweep: $(STAMP)
 	$(BIN)/python -m tvtrack sweep $(SPEC) --jobs $(or $(JOBS),2)
 
 clean-runs:
-	rm -rf papermill_runs/reproduce papermill_runs/runs papermill_runs/interactive
+	rm -rf papermill_runs/reproduce papermill_runs/reproduce-* papermill_runs/runs papermill_runs/interactive papermill_runs/edit

@@ -26,9 +26,10 @@ def test_index_has_a_card_per_run_with_counts(built_site):
 def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, runs_dir):
     html = (built_site / "ledger.html").read_text()
     claims = [c for p in (runs_dir / "reproduce").glob("*/results.json") for c in json.loads(p.read_text())["claims"]]
-    assert len(claims) == 2
+    assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
-    assert sorted(rows) == [("fixture_centroid", "reproduced", "robust"), ("old_schema", "partly", "—")]
+    assert sorted(rows) == [("fixture_centroid", "reproduced", "robust"), ("new_schema", "not reproduced", "depends"),
+                            ("new_schema", "undecided", "unexplored"), ("old_schema", "partly", "—")]
     nb = json.loads((runs_dir / "reproduce/fixture_centroid/notebook.ipynb").read_text())
     cell = claim_cells(nb, ["C900-1"])["C900-1"]
     assert "results.claim(" in "".join(next(c for c in nb["cells"] if c.get("id") == cell)["source"])
@@ -142,3 +143,44 @@ def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path):
     with pytest.raises(UsageError, match="not a site built here"):
         build_site(runs_dir, precious)
     assert (precious / "thesis.tex").read_text() == "keep me"
+
+
+def test_index_leads_with_the_first_screen_and_the_pictures(built_site):
+    html = (built_site / "index.html").read_text()
+    first = html[html.index('id="first-screen"'):html.index('class="cards"')]
+    rows = re.findall(r'<tr data-verdict="([^"]+)" data-label="([^"]+)">', first)
+    assert rows == [("not reproduced", "depends"), ("undecided", "unexplored")]   # the robust/unrecorded ones are not
+    assert "&lt;= 2 px" in first and "2.6 [2.4, 2.8]" in first
+    assert 'id="forest" src="forest.png"' in html and 'id="robustness" src="robustness.png"' in html
+    for name in ("forest.png", "robustness.png"):
+        assert (built_site / name).stat().st_size > 1000
+    assert html.index('id="first-screen"') < html.index('id="forest"') < html.index('class="cards"')
+    assert 'id="profile">profile shown:\n    <strong>paper</strong>' in html
+
+
+def test_generated_text_is_html_escaped_everywhere(built_site):
+    for page in ("index.html", "ledger.html"):
+        html = (built_site / page).read_text()
+        assert "sigma*2 &lt;b&gt;not bold&lt;/b&gt; &amp; small." in html, page
+        assert "<b>not bold</b>" not in html and "<em>2" not in html
+
+
+def test_ledger_is_compact_with_the_rule_behind_a_click(built_site):
+    html = (built_site / "ledger.html").read_text()
+    row = html[html.index('data-paper="new_schema" data-verdict="not reproduced"'):]
+    row = row[:row.index("</tr>")]
+    details = row[row.index('<details class="rule">'):]
+    assert "error in [0, 2] px" in details and "reproduced when motion = gentle*2" in details
+    assert "covers:</strong> depends over 6 readings x 3 replicates: motion, noise" in details
+    assert "error in [0, 2] px" not in row[:row.index('<details class="rule">')]
+
+
+def test_a_smoke_site_says_so_and_reads_the_smoke_runs(runs_dir, tmp_path):
+    from tvtrack.pipeline.site import build_site
+
+    index = build_site(runs_dir, profile="smoke")
+    assert index == runs_dir / "site-smoke" / "index.html"
+    html = index.read_text()
+    assert "<strong>smoke</strong> (not the paper-scale numbers)" in html
+    assert 'id="old_schema"' in html and 'id="fixture_centroid"' not in html
+    assert "profile smoke" in html

@@ -95,9 +95,14 @@ def _cmd_reproduce(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from .report import README_PATH, write_report
+    from .paths import PAPER_PROFILE, profile_name, reproduce_dir
+    from .report import README_PATH, REPORT_PATH, write_report
 
-    path = write_report(readme=README_PATH)
+    folder = reproduce_dir(args.profile)
+    if profile_name(args.profile) == PAPER_PROFILE:
+        path = write_report(folder, REPORT_PATH, readme=README_PATH)
+    else:
+        path = write_report(folder, writable_directory(folder, "report folder") / "REPRODUCTION.md")
     print(f"wrote {path}")
     return 0
 
@@ -105,7 +110,7 @@ def _cmd_report(args) -> int:
 def _cmd_site(args) -> int:
     from .site import build_site
 
-    index = build_site(Path(args.runs), Path(args.output) if args.output else None)
+    index = build_site(Path(args.runs), Path(args.output) if args.output else None, profile=args.profile)
     print(f"wrote {index} (open it in a browser; no network needed)")
     return 0
 
@@ -147,11 +152,15 @@ def build_parser() -> argparse.ArgumentParser:
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
+    rep.add_argument("--profile", default=None,
+                     help="report on papermill_runs/reproduce-PROFILE/ into its own REPRODUCTION.md (default: paper)")
     rep.set_defaults(func=_cmd_report)
 
     st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
     st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
     st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
+    st.add_argument("--profile", default=None,
+                    help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)")
     st.set_defaults(func=_cmd_site)
 
     from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
