@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report site kernel sweep clean-runs
+.PHONY: reproduce test bench report site kernel sweep edit clean-runs
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -13,7 +13,8 @@ $(STAMP): environment.txt pyproject.toml
 	touch $(STAMP)
 
 kernel: $(STAMP)
-	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null
+	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" \
+		--env RERUN_NOTEBOOK_ASSET inline >/dev/null
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
 # (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)
@@ -34,6 +35,10 @@ test: $(STAMP)
 bench: $(STAMP)
 	mkdir -p benchmarks/results
 	$(BIN)/python -m pytest benchmarks -q --benchmark-only --benchmark-json=benchmarks/results/benchmarks.json
+
+# a working copy of a notebook at the smoke profile, opened in JupyterLab: make edit NB=004_laser_spot_prediction
+edit: $(STAMP) kernel
+	$(BIN)/python -m tvtrack edit $(NB) --lab
 
 # make sweep SPEC=papermill_runs/sweeps/004_horizon.toml JOBS=2
 sweep: $(STAMP)

@@ -177,3 +177,54 @@ def test_a_refusal_names_the_parameter_the_user_set():
     """001: window_n = 200 is refused by a check on fa_duration_s; the line leads with window_n."""
     line = assert_one_line_error(tvtrack("run", "001_maneuver_occlusion_kf", "-p", "window_n", "200"), "window_n")
     assert line.index("window_n") < line.index("fa_duration_s") if "fa_duration_s" in line else True
+
+
+def test_edit_gives_a_working_copy_at_the_smoke_profile_outside_tracked_files(tmp_path):
+    import json
+    import shutil
+
+    from tvtrack.pipeline.edit import EDIT_DIR, working_copy
+
+    nb = tmp_path / "fixture_centroid.ipynb"
+    shutil.copy(FIXTURE_NOTEBOOK, nb)
+    (tmp_path / "fixture_centroid.smoke.toml").write_text("n_trials = 7\nn_frames = 3\n")
+    copy, written = working_copy(nb, folder=tmp_path / "edit")
+    assert written and copy == tmp_path / "edit" / "fixture_centroid.ipynb"
+    cells = json.loads(copy.read_text())["cells"]
+    code = [c for c in cells if c["cell_type"] == "code"]
+    injected = code[1]
+    assert injected["metadata"]["tags"] == ["injected-parameters"]
+    assert "n_trials = 7\n" in injected["source"] and "RERUN_NOTEBOOK_ASSET" in injected["source"]
+    assert all(not c["outputs"] for c in code)
+    # Run All, as JupyterLab does, from another working directory: outputs land in the copy's own -out folder
+    import nbformat
+    from nbclient import NotebookClient
+
+    book = nbformat.read(copy, as_version=4)
+    NotebookClient(book, timeout=120, resources={"metadata": {"path": str(tmp_path)}}).execute()
+    results = json.loads((tmp_path / "edit" / "fixture_centroid-out" / "results.json").read_text())
+    assert results["parameters"]["n_trials"] == 7
+    # an existing copy holds the user's edits: kept unless fresh
+    copy.write_text(copy.read_text().replace("n_trials = 7", "n_trials = 9"))
+    assert working_copy(nb, folder=tmp_path / "edit") == (copy, False) and "n_trials = 9" in copy.read_text()
+    assert working_copy(nb, folder=tmp_path / "edit", fresh=True) == (copy, True) and "n_trials = 7" in copy.read_text()
+    # the default folder is ignored by git: autosave never touches a tracked file
+    ignored = subprocess.run(["git", "check-ignore", "-q", str(EDIT_DIR / "x.ipynb")], cwd=EDIT_DIR.parents[1])
+    assert ignored.returncode == 0
+
+
+def test_edit_refuses_an_unknown_notebook_or_profile():
+    assert_one_line_error(tvtrack("edit", "no_such_notebook"), "no_such_notebook")
+    assert_one_line_error(tvtrack("edit", FIXTURE_NOTEBOOK, "--profile", "smok"), "'smok'")
+
+
+def test_the_inline_viewer_loads_the_bundled_assets_offline():
+    """With the variable the working copy (and the tvtrack-repro kernel) sets, rerun-notebook inlines its own
+    widget.js and Wasm instead of pointing the browser at app.rerun.io ("Failed to fetch" offline)."""
+    from tvtrack.pipeline.edit import OFFLINE_VIEWER_LINE
+
+    probe = ("import os\n" + OFFLINE_VIEWER_LINE + "\nimport rerun_notebook as r\n"
+             "print(r.ASSET_IS_URL, 'app.rerun.io' in r.ESM_MOD[:100000], len(r.ESM_MOD) > 10_000_000)")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
+                         env={k: v for k, v in __import__("os").environ.items() if k != "RERUN_NOTEBOOK_ASSET"})
+    assert out.stdout.split()[-3:] == ["False", "False", "True"], out.stdout + out.stderr

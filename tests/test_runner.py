@@ -243,3 +243,17 @@ def test_stale_temporaries_of_a_dead_process_are_removed_live_ones_kept(tmp_path
         (tmp_path / name / OWNER_FILE).write_text(f"{host} {pid}")
     assert remove_stale_temporaries(tmp_path) == 1
     assert [p.name for p in tmp_path.iterdir()] == [".tmp-b-2"]
+
+
+def test_the_notebooks_default_output_dir_resolves_inside_the_clone_whatever_the_working_directory(tmp_path,
+                                                                                                   monkeypatch):
+    from tvtrack.pipeline.paths import INTERACTIVE_DIR, REPO_ROOT, resolve_output_dir
+
+    for cwd in (REPO_ROOT, REPO_ROOT / "notebooks", tmp_path):   # plain papermill at the root, JupyterLab, elsewhere
+        monkeypatch.chdir(cwd)
+        for default in ("../papermill_runs/interactive/004_laser_spot_prediction", "", None):
+            out = resolve_output_dir(default, "004_laser_spot_prediction")
+            assert out.is_absolute() and out == INTERACTIVE_DIR / "004_laser_spot_prediction"
+            assert out.is_relative_to(REPO_ROOT)
+    assert resolve_output_dir(".", "004_laser_spot_prediction") == Path(".")   # the runner's run directory
+    assert resolve_output_dir("/tmp/x", "004_laser_spot_prediction") == Path("/tmp/x")

@@ -1,4 +1,4 @@
-"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, view}``.
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view}``.
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
 directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
@@ -115,6 +115,23 @@ def _cmd_site(args) -> int:
     return 0
 
 
+def _cmd_edit(args) -> int:
+    import os
+    import shutil
+
+    from .edit import working_copy
+
+    copy, written = working_copy(args.notebook, profile=args.profile, fresh=args.fresh)
+    shown = os.path.relpath(copy)
+    print(f"{'wrote' if written else 'kept (it holds your edits; --fresh replaces it)'} {shown}: "
+          f"the {args.profile} profile, outputs in {os.path.relpath(copy.with_name(copy.stem + '-out'))}/")
+    if not args.lab:
+        print(f"open it in JupyterLab (Run All), or: {Path(sys.executable).parent / 'jupyter'} lab {shown}")
+        return 0
+    jupyter = shutil.which("jupyter", path=str(Path(sys.executable).parent)) or "jupyter"
+    os.execv(jupyter, [jupyter, "lab", str(copy)])
+
+
 def _cmd_view(args) -> int:
     from .webview import serve
 
@@ -162,6 +179,13 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--profile", default=None,
                     help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)")
     st.set_defaults(func=_cmd_site)
+
+    e = sub.add_parser("edit", help="a working copy of a notebook at the smoke profile, to edit and run in JupyterLab")
+    e.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
+    e.add_argument("--profile", default="smoke", help="profile injected into the copy (default: smoke)")
+    e.add_argument("--fresh", action="store_true", help="replace an existing working copy (your edits are lost)")
+    e.add_argument("--lab", action="store_true", help="then start JupyterLab on it")
+    e.set_defaults(func=_cmd_edit)
 
     from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
     v = sub.add_parser("view", help="serve a run's recording in the Rerun web viewer (Ctrl-C stops)")
