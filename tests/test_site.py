@@ -16,9 +16,9 @@ def test_index_has_a_card_per_run_with_counts(built_site):
     for name in ("fixture_centroid", "old_schema", "broken"):
         assert f'id="{name}"' in html
     assert "(test fixture; no paper)" in html and "Run failed" in html and "parameter &#39;n_trials&#39; = 0" in html
-    # fixture: 1 reproduced, robust; old schema: 1 partly, no label
+    # fixture: 1 reproduced, unexplored (it varies no simulated world); old schema: 1 partly, no label
     assert re.search(r'1 <span class="pill v-reproduced">reproduced</span>', html)
-    assert re.search(r'1 <span class="pill l-robust">robust</span>', html)
+    assert re.search(r'2 <span class="pill l-unexplored">unexplored</span>', html)
     assert re.search(r'1 <span class="pill l-—">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
@@ -28,7 +28,7 @@ def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, r
     claims = [c for p in (runs_dir / "reproduce").glob("*/results.json") for c in json.loads(p.read_text())["claims"]]
     assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
-    assert sorted(rows) == [("fixture_centroid", "reproduced", "robust"), ("new_schema", "not reproduced", "depends"),
+    assert sorted(rows) == [("fixture_centroid", "reproduced", "unexplored"), ("new_schema", "not reproduced", "depends"),
                             ("new_schema", "undecided", "unexplored"), ("old_schema", "partly", "—")]
     nb = json.loads((runs_dir / "reproduce/fixture_centroid/notebook.ipynb").read_text())
     cell = claim_cells(nb, ["C900-1"])["C900-1"]

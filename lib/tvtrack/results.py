@@ -13,7 +13,9 @@ Schema (``schema_version`` 2)::
     figures [{file, caption}], recording (file name or null),
     claims [{id, statement, paper_value, rule {kind, text, ...}, acceptance (= rule text), measured,
              verdict, decision (the rule's sentence with the numbers), note,
-             robustness {label, where, choices, conditions, seeds, deterministic, note} or null}]
+             robustness {label, where, coverage, parts {name: {verdict, label, where, replicate_verdicts}},
+                         replicates, conditions, register, design, deterministic} or null}],
+    register [{name, kind, default, values, why, origin}] or null (the notebook's register)
 """
 
 from __future__ import annotations
@@ -35,7 +37,11 @@ import numpy as np
 from .montecarlo import Estimate
 from .verdicts import LABELS, VERDICTS, Robustness, Rule
 
-__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION"]
+__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION", "format_measured",
+           "md_escape", "claims_table", "FINDINGS_ID"]
+
+#: The display id of a notebook's findings cell, filled in when the run finishes.
+FINDINGS_ID = "tvtrack-findings"
 
 SCHEMA_VERSION = 2
 
@@ -65,6 +71,63 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, Path):
         return str(value)
     return value
+
+
+def md_escape(text: Any) -> str:
+    """Generated text made safe for Markdown: ``sigma*2`` stays ``sigma*2`` (no emphasis), ``|`` does not
+    break a table cell, and line breaks become spaces."""
+    out = " ".join(str(text).split())
+    for ch in ("\\", "`", "*", "_", "|"):
+        out = out.replace(ch, "\\" + ch)
+    return out.replace("<", "&lt;")
+
+
+def _num(v: Any) -> str:
+    if isinstance(v, bool) or v is None:
+        return str(v)
+    if isinstance(v, (int, float, np.floating, np.integer)):
+        return f"{float(v):.4g}"
+    return str(v)
+
+
+def format_measured(value: Any) -> str:
+    """Short text for a measured value: an estimate as ``v [lo, hi]``, parts as ``name: v [lo, hi]; ...``."""
+    if isinstance(value, Estimate):
+        value = value.to_dict()
+    if isinstance(value, dict) and "value" in value and "ci_low" in value:
+        v, lo, hi = value["value"], value.get("ci_low"), value.get("ci_high")
+        bad = lambda x: x is None or (isinstance(x, float) and not math.isfinite(x))  # noqa: E731
+        if bad(lo) or bad(hi) or (lo == hi == v):
+            return _num(v)
+        return f"{_num(v)} [{_num(lo)}, {_num(hi)}]"
+    if isinstance(value, dict):
+        return "; ".join(f"{k}: {format_measured(v)}" for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        return ", ".join(format_measured(v) for v in value)
+    return _num(value)
+
+
+def claims_table(claims: list, statement_chars: int = 110) -> str:
+    """The one claims-at-a-glance table (Markdown): per claim what the paper said, what was measured
+    (with its 95 % interval), the verdict and the label with what it covers. ``claims`` are
+    :class:`Claim` objects or their dicts (``results.json``)."""
+    rows = ["| claim | the paper says | paper's value | measured | verdict | label (what it covers) |",
+            "| --- | --- | --- | --- | --- | --- |"]
+    for c in claims:
+        c = c if isinstance(c, dict) else c.__dict__
+        st = " ".join(str(c["statement"]).split())
+        st = st if len(st) <= statement_chars else st[: statement_chars - 1].rstrip() + "…"
+        rob = c.get("robustness") or {}
+        label = rob.get("label", "-")
+        cover = rob.get("coverage", "")
+        where = "; ".join(rob.get("where", [])[:3])
+        lab = md_escape(label) + (f"<br><small>{md_escape(cover)}</small>" if cover else "")
+        if where:
+            lab += f"<br><small>differs: {md_escape(where)}</small>"
+        meas = "-" if c["verdict"] == "not checkable" else md_escape(format_measured(to_jsonable(c["measured"])))
+        rows.append(f"| {c['id']} | {md_escape(st)} | {md_escape(c['paper_value'])} | {meas} | "
+                    f"**{c['verdict']}** | {lab} |")
+    return "\n".join(rows)
 
 
 @dataclass
@@ -123,6 +186,8 @@ class Claim:
 
     def _repr_markdown_(self) -> str:
         label = f", {self.robustness['label']}" if self.robustness else ""
+        if self.robustness and self.robustness.get("coverage"):
+            label += f" ({self.robustness['coverage']})"
         where = f" ({'; '.join(self.robustness['where'])})" if self.robustness and self.robustness["where"] else ""
         return f"**{self.id}: {self.verdict}{label}**{where}. {self.decision}"
 
@@ -149,6 +214,7 @@ class Results:
     claims: list = field(default_factory=list)
     figures: list = field(default_factory=list)
     recording: str | None = None
+    register: list | None = None
     _t0: float = field(default_factory=time.perf_counter, repr=False)
     _started: str = field(
         default_factory=lambda: _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
@@ -169,8 +235,8 @@ class Results:
         self.metrics[name] = value
         return value
 
-    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any, note: str = "",
-              robustness: Robustness | None = None) -> Claim:
+    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any = None, note: str = "",
+              robustness: Robustness | None = None, exploration: Any = None) -> Claim:
         """Record a claim; ``rule`` decides its verdict from ``measured``.
 
         Parameters
@@ -181,9 +247,14 @@ class Results:
             The acceptance rule, fixed before the run.
         measured : Estimate, number, or what ``rule`` reads (a list for :class:`~tvtrack.verdicts.Monotone`,
             a dict of parts for :class:`~tvtrack.verdicts.AllOf`)
-            The claim at the default reading (pooled over seeds, or the first seed).
+            The claim at the default reading. Omit it with ``exploration`` (the replicates pooled).
+        exploration : tvtrack.explore.Exploration
+            The claim measured over the register and independent replicates; gives ``measured`` and the
+            robustness record (part-level labels, coverage, register entries).
         robustness : tvtrack.verdicts.Robustness
-            Required unless the verdict is ``not checkable``.
+            A hand-built record, where no exploration applies.
+
+        A checkable claim needs ``exploration`` or ``robustness``.
 
         Returns
         -------
@@ -192,8 +263,17 @@ class Results:
         """
         if not isinstance(rule, Rule):
             raise TypeError(f"claim {id}: rule must be a tvtrack.verdicts.Rule, got {type(rule).__name__}")
+        if exploration is not None:
+            if robustness is not None:
+                raise ValueError(f"claim {id}: give exploration or robustness, not both")
+            if measured is None:
+                measured = exploration.measured(id)
+            record = exploration.record(id, rule)
+            if self.register is None:
+                self.register = exploration.register.to_dict()
+        else:
+            record = robustness.record(rule, measured) if robustness is not None else None
         verdict, decision = rule.explain(measured)
-        record = robustness.record(rule, verdict) if robustness is not None else None
         c = Claim(id=id, statement=statement, paper_value=paper_value, rule=to_jsonable(rule.to_dict()),
                   acceptance=rule.text(), measured=measured, verdict=verdict, decision=decision, note=note,
                   robustness=record)
@@ -201,6 +281,21 @@ class Results:
             raise ValueError(f"claim {c.id} recorded twice")
         self.claims.append(c)
         return c
+
+    def findings(self) -> None:
+        """Show the findings at the top of a notebook: a placeholder now, replaced by the claims table
+        (:func:`claims_table`) when :meth:`finish` runs at the end (the run fills its own first section)."""
+        _display_markdown("*Findings appear here when the run finishes (they are computed by the cells below).*",
+                          display_id=FINDINGS_ID)
+
+    def finish(self) -> Path:
+        """Write ``results.json`` and fill the findings section shown by :meth:`findings`."""
+        path = self.write()
+        counts = {v: sum(c.verdict == v for c in self.claims) for v in VERDICTS}
+        head = ", ".join(f"{n} {v}" for v, n in counts.items() if n)
+        _display_markdown(f"**{len(self.claims)} claims: {head}.**\n\n{claims_table(self.claims)}",
+                          display_id=FINDINGS_ID, update=True)
+        return path
 
     def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> None:
         """Save a matplotlib figure as ``output_dir/<name>.png``, list it with its caption and,
@@ -228,6 +323,7 @@ class Results:
             "metrics": self.metrics,
             "figures": self.figures,
             "recording": self.recording,
+            "register": self.register,
             "claims": [c.__dict__ for c in self.claims],
         })
 
@@ -253,6 +349,18 @@ def load_results(path: str | Path) -> dict:
     for c in data["claims"]:
         Claim(**c)  # re-validates id, verdict, rule text and robustness label
     return data
+
+
+def _display_markdown(text: str, display_id: str, update: bool = False) -> None:
+    """Show (or update, by display id) Markdown in the running notebook; nothing outside IPython."""
+    try:
+        from IPython import get_ipython
+        from IPython.display import Markdown, display, update_display
+    except ImportError:
+        return
+    if get_ipython() is None:
+        return
+    (update_display if update else display)(Markdown(text), display_id=display_id)
 
 
 def _show_inline(path: Path, caption: str, fig) -> None:

@@ -44,8 +44,9 @@ NO_LABEL = "—"
 """Shown for a claim without a robustness record (not checkable, or a run from before the verdict standard)."""
 ALL_VERDICTS = tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VERDICTS)
 """Every verdict a record may carry: the core's, and ``undecided`` (issue 22) where the core predates it."""
-ALL_LABELS = tuple(LABELS) + tuple(lab for lab in ("unexplored",) if lab not in LABELS)
-"""Every robustness label a record may carry (``unexplored``: no regime or operating point was varied)."""
+ALL_LABELS = tuple(reversed(LABELS)) + tuple(lab for lab in ("unexplored",) if lab not in LABELS)
+"""Every robustness label a record may carry, strongest first (``unexplored``: no regime or operating point
+was varied)."""
 VERDICT_COLOURS = {"reproduced": "#2e7d32", "partly": "#ef8f00", "not reproduced": "#c62828",
                    "not checkable": "#757575", "undecided": "#6a1b9a"}
 """One colour per verdict, shared by the pictures, the site's pills and the README's key."""
@@ -107,8 +108,9 @@ def coverage_text(claim: dict) -> str:
         return ""
     if record.get("coverage"):
         return str(record["coverage"])
-    n_cond, n_seed = len(record.get("conditions", [])), len(record.get("seeds", []))
-    tested = [f"{n} {what}{'s' if n != 1 else ''}" for n, what in ((n_cond, "other reading"), (n_seed, "seed")) if n]
+    n_cond, n_seed = len(record.get("conditions", [])), len(record.get("replicates", record.get("seeds", [])))
+    tested = [f"{n} {what}{'s' if n != 1 else ''}" for n, what in ((n_cond, "other reading"), (n_seed, "replicate"))
+              if n]
     return f"{record.get('label', NO_LABEL)} over {' and '.join(tested)}" if tested else ""
 
 
@@ -138,7 +140,7 @@ def verdict_summary(claims: list[dict]) -> str:
     parts = []
     for verdict in ALL_VERDICTS:
         these = [c for c in claims if c["verdict"] == verdict]
-        if verdict not in VERDICTS and not these:
+        if verdict == "undecided" and not these:
             continue
         labels = Counter(robustness_label(c) for c in these)
         detail = [f"{labels[label]} {label}" for label in ALL_LABELS if labels[label]]
@@ -459,9 +461,9 @@ def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
                  + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**") + ". "
                  f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
                  "(rebuild with `python -m tvtrack report`).", "",
-                 "**Claims: " + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v in VERDICTS or counts[v])
+                 "**Claims: " + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
                  + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
-                 + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab in LABELS or labels[lab]) + "**"
+                 + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS) + "**"
                  + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""), "",
                  f"By verdict: {verdict_summary(claims)}.", "",
                  "## The claims that do not reproduce, and the verdicts that depend", "",
@@ -479,10 +481,11 @@ def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
                      "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
                      "verdict when that entry takes its other values (the claim's own verdict where none differs).", ""]
         head += ["Verdicts come from the notebooks' own Monte Carlo runs at the default reading of what each paper "
-                 "left unstated; *robust*: the same verdict under every explored reading and replicate (each "
-                 "claim's coverage says which); *depends*: the verdict changes under another reading; *unstable*: "
-                 "replicates disagree at the default reading; *unexplored*: no regime or operating point was varied. "
-                 "See each notebook for the reasoning.", ""]
+                 "left unstated; *robust*: the same verdict, part by part, under every register value tried (one at "
+                 "a time and joint samples) and every independent replicate (each claim's coverage says which); "
+                 "*unexplored*: no regime, operating point or model of the simulated world was varied; *depends*: "
+                 "the verdict changes under another value (the table says where); *unstable*: independent "
+                 "replicates disagree at the default. See each notebook for the reasoning.", ""]
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(head + sections))
     if readme is not None:
@@ -509,8 +512,8 @@ def results_paragraph(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
                 "writes this block from them.")
     counts = Counter(c["verdict"] for c in flat)
     labels = Counter(robustness_label(c) for c in flat if c["verdict"] != "not checkable")
-    verdicts = " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v in VERDICTS or counts[v])
-    label_text = ", ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab in LABELS or labels[lab])
+    verdicts = " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
+    label_text = ", ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS)
     lines = [f"{len(flat)} claims ({profiles_shown(done)} profile): **{verdicts}**; of the checkable verdicts "
              f"{label_text}" + (f", {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else "")
              + ". The claims that do not reproduce, and those whose verdict depends on a reading of what the paper "
