@@ -27,6 +27,7 @@ from typing import Any
 from .paths import PAPER_PROFILE, REPO_ROOT, reproduce_dir as _reproduce_dir
 from ..results import VERDICTS
 from ..verdicts import LABELS
+from ..plotting import VERDICT_COLOURS as _CORE_VERDICT_COLOURS
 from .runner import list_notebooks, read_run
 
 __all__ = ["REPRODUCE_DIR", "REPORT_PATH", "README_PATH", "README_BEGIN", "README_END", "ALL_VERDICTS",
@@ -47,9 +48,9 @@ ALL_VERDICTS = tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VER
 ALL_LABELS = tuple(reversed(LABELS)) + tuple(lab for lab in ("unexplored",) if lab not in LABELS)
 """Every robustness label a record may carry, strongest first (``unexplored``: no regime or operating point
 was varied)."""
-VERDICT_COLOURS = {"reproduced": "#2e7d32", "partly": "#ef8f00", "not reproduced": "#c62828",
-                   "not checkable": "#757575", "undecided": "#6a1b9a"}
-"""One colour per verdict, shared by the pictures, the site's pills and the README's key."""
+VERDICT_COLOURS = {**{"reproduced": "#009E73", "partly": "#E69F00", "not reproduced": "#D55E00",
+                      "undecided": "#999999", "not checkable": "#56B4E9"}, **_CORE_VERDICT_COLOURS}
+"""One colour per verdict, the palette of :mod:`tvtrack.plotting` (figures, recordings, report and site)."""
 LABEL_MARKERS = {"robust": "o", "depends": "D", "unstable": "X", "unexplored": "s", NO_LABEL: "."}
 
 _MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>|~#])")
