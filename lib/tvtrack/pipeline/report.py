@@ -66,6 +66,8 @@ def format_measured(value: Any) -> str:
     """Short text for a claim's ``measured`` field (Estimates as ``v [lo, hi]``)."""
     if isinstance(value, dict) and "value" in value and "ci_low" in value:
         v, lo, hi = value["value"], value.get("ci_low"), value.get("ci_high")
+        if v is None:
+            return "no value"
         if lo is None or hi is None:
             return _num(v)
         return f"{_num(v)} [{_num(lo)}, {_num(hi)}]"
