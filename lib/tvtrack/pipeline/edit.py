@@ -27,16 +27,26 @@ OFFLINE_VIEWER_LINE = 'os.environ.setdefault("RERUN_NOTEBOOK_ASSET", "inline")'
 
 
 def _injected_cell(parameters: dict, output_dir: Path, profile: str, source: Path) -> dict:
-    lines = [f"# Injected by `python -m tvtrack edit` from {source.name} at the {profile} profile: edit freely.",
-             "import os", OFFLINE_VIEWER_LINE + "  # the inline Rerun viewer from the installed package (offline)"]
+    lines = [
+        f"# Injected by `python -m tvtrack edit` from {source.name} at the {profile} profile: edit freely.",
+        "import os",
+        OFFLINE_VIEWER_LINE + "  # the inline Rerun viewer from the installed package (offline)",
+    ]
     lines += [f"{name} = {value!r}" for name, value in parameters.items()]
     lines.append(f"output_dir = {str(output_dir)!r}")
-    return {"cell_type": "code", "execution_count": None, "id": "tvtrack-injected-parameters",
-            "metadata": {"tags": ["injected-parameters"]}, "outputs": [], "source": "\n".join(lines) + "\n"}
+    return {
+        "cell_type": "code",
+        "execution_count": None,
+        "id": "tvtrack-injected-parameters",
+        "metadata": {"tags": ["injected-parameters"]},
+        "outputs": [],
+        "source": "\n".join(lines) + "\n",
+    }
 
 
-def working_copy(notebook: str | Path, profile: str = "smoke", fresh: bool = False,
-                 folder: Path = EDIT_DIR) -> tuple[Path, bool]:
+def working_copy(
+    notebook: str | Path, profile: str = "smoke", fresh: bool = False, folder: Path = EDIT_DIR
+) -> tuple[Path, bool]:
     """Write (or find) the working copy of ``notebook`` at ``profile``.
 
     Returns

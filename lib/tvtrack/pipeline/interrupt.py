@@ -16,8 +16,15 @@ import os
 import signal
 import time
 
-__all__ = ["EXIT_INTERRUPTED", "Interrupted", "shielded_spawn", "worker_init", "kernels_end_on_ctrl_c", "stop_pool",
-           "end_children"]
+__all__ = [
+    "EXIT_INTERRUPTED",
+    "Interrupted",
+    "shielded_spawn",
+    "worker_init",
+    "kernels_end_on_ctrl_c",
+    "stop_pool",
+    "end_children",
+]
 
 EXIT_INTERRUPTED = 130
 STOP_GRACE_S = 5.0
@@ -68,8 +75,10 @@ def kernels_end_on_ctrl_c():
     not Python's default handler (ignored in a pool worker, or a caller's own), nothing changes."""
     import threading
 
-    if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    ):
         yield
         return
     signal.signal(signal.SIGINT, _end_kernels_and_raise_keyboard_interrupt)

@@ -14,7 +14,6 @@ import ast
 import difflib
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
