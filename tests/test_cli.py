@@ -228,3 +228,9 @@ def test_the_inline_viewer_loads_the_bundled_assets_offline():
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
                          env={k: v for k, v in __import__("os").environ.items() if k != "RERUN_NOTEBOOK_ASSET"})
     assert out.stdout.split()[-3:] == ["False", "False", "True"], out.stdout + out.stderr
+
+
+def test_report_and_site_of_a_profile_without_runs_are_one_line(tmp_path):
+    assert_one_line_error(tvtrack("report", "--profile", "nope"), "no runs at the nope profile", "PROFILE=nope")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "--profile", "nope"), "no runs at the nope profile")
+    assert not (tmp_path / "site-nope").exists()

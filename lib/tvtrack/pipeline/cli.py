@@ -99,6 +99,9 @@ def _cmd_report(args) -> int:
     from .report import README_PATH, REPORT_PATH, write_report
 
     folder = reproduce_dir(args.profile)
+    if profile_name(args.profile) != PAPER_PROFILE and not folder.is_dir():
+        raise UsageError(f"no runs at the {args.profile} profile ({folder} does not exist): "
+                         f"`make reproduce PROFILE={args.profile}` makes them")
     if profile_name(args.profile) == PAPER_PROFILE:
         path = write_report(folder, REPORT_PATH, readme=README_PATH)
     else:

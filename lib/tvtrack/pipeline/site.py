@@ -324,6 +324,9 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     profile = profile_name(profile)
     source = reproduce_dir(profile, runs_dir)
     default = runs_dir / ("site" if profile == PAPER_PROFILE else f"site-{profile}")
+    if profile != PAPER_PROFILE and not source.is_dir():
+        raise UsageError(f"no runs at the {profile} profile ({source} does not exist): "
+                         f"`make reproduce PROFILE={profile}` makes them")
     site = Path(out) if out is not None else default
     if site.exists() and not site.is_dir():
         raise UsageError(f"cannot write the site folder {site}: it is a file; give an empty or new folder")
