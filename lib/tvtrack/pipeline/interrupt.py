@@ -24,6 +24,7 @@ __all__ = [
     "kernels_end_on_ctrl_c",
     "stop_pool",
     "end_children",
+    "child_pids",
 ]
 
 EXIT_INTERRUPTED = 130
@@ -54,11 +55,6 @@ def _end_kernels_and_raise_interrupted(signum, frame):
     raise Interrupted()
 
 
-def _end_kernels_and_raise_keyboard_interrupt(signum, frame):
-    end_children()
-    raise KeyboardInterrupt()
-
-
 def worker_init(*_args) -> None:
     """Pool-worker initializer: SIGTERM (from :func:`stop_pool`) ends the worker's kernel and raises
     :class:`Interrupted` in the run."""
@@ -81,15 +77,32 @@ def kernels_end_on_ctrl_c():
     ):
         yield
         return
-    signal.signal(signal.SIGINT, _end_kernels_and_raise_keyboard_interrupt)
+    spare = child_pids()
+
+    def end_kernels_and_raise(signum, frame):
+        end_children(spare=spare)
+        raise KeyboardInterrupt()
+
+    signal.signal(signal.SIGINT, end_kernels_and_raise)
     try:
         yield
     finally:
         signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
-def end_children(pid: int | None = None) -> int:
-    """Kill every descendant of process ``pid`` (default: this one), e.g. a Jupyter kernel; returns how many.
+def child_pids(pid: int | None = None) -> set[int]:
+    """Process ids of every descendant of process ``pid`` (default: this one)."""
+    import psutil
+
+    try:
+        return {c.pid for c in psutil.Process(pid).children(recursive=True)}
+    except psutil.NoSuchProcess:
+        return set()
+
+
+def end_children(pid: int | None = None, spare: set[int] | frozenset = frozenset()) -> int:
+    """Kill every descendant of process ``pid`` (default: this one) but those in ``spare`` (processes that were
+    there before the run started, e.g. a caller's own Dask workers), e.g. a Jupyter kernel; returns how many.
 
     Kernels run in sessions of their own, so they are found by parentage, not by process group. They are
     killed outright (SIGKILL): a kernel asked to terminate mid-cell prints its own traceback, and what it
@@ -97,7 +110,7 @@ def end_children(pid: int | None = None) -> int:
     import psutil
 
     try:
-        children = psutil.Process(pid).children(recursive=True)
+        children = [c for c in psutil.Process(pid).children(recursive=True) if c.pid not in spare]
     except psutil.NoSuchProcess:
         return 0
     for child in children:

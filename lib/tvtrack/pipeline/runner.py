@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .interrupt import end_children, kernels_end_on_ctrl_c
+from .interrupt import child_pids, end_children, kernels_end_on_ctrl_c
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
 from .preflight import UsageError
 
@@ -149,6 +149,7 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
               "parameters": params, **(extra_record or {})}
     t0 = time.perf_counter()
     error = tb = None
+    spare = child_pids()   # the caller's own processes: an interrupt ends only this run's kernel
     try:
         with kernels_end_on_ctrl_c():
             pm.execute_notebook(
@@ -166,7 +167,7 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
         error = _short_error(exc)
         tb = traceback.format_exc()
     except BaseException:  # Ctrl-C (KeyboardInterrupt) or a pool worker told to stop: no run, no leftovers
-        end_children()
+        end_children(spare=spare)
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     runtime = time.perf_counter() - t0
