@@ -91,6 +91,16 @@ def test_layout_catches_compared_series_of_one_colour(tmp_path):
     assert any("view 'errors': /errors/x and /errors/y share the colour #0072b2" in p for p in problems)
 
 
+def test_colour_rule_spares_band_edges_and_parts_of_one_thing():
+    from tvtrack.pipeline.viewer import _compared_overlays, _compared_series
+
+    assert _compared_series("/errors/x", "/errors/y") and _compared_series("/v/variant_1", "/v/variant_2")
+    assert not _compared_series("/track/estimate_minus_sigma", "/track/estimate_plus_sigma")
+    assert _compared_overlays("/camera/truth", "/camera/estimate")
+    assert not _compared_overlays("/camera/gate", "/camera/gate_path")
+    assert not _compared_overlays("/camera/center/truth", "/camera/marker/truth")
+
+
 def test_layout_catches_unlabelled_overlapping_markers(tmp_path):
     problems = layout_problems(read_layout(_layout_recording(tmp_path, labels=False)))
     assert any("/camera/truth and /camera/estimate overlap" in p for p in problems)

@@ -742,6 +742,29 @@ def _under(entity: str, origin: str) -> bool:
     return origin == "/" or entity == origin or entity.startswith(origin + "/")
 
 
+_BAND_EDGES = {"minus", "plus", "lo", "hi", "low", "high", "lower", "upper"}
+_ROLES = {"truth", "estimate", "estimated", "measured", "measurement", "predicted", "prediction", "gate",
+          "detection", "detected", "interferer", "decoy"}
+
+
+def _leaf_tokens(entity: str) -> list[str]:
+    return [t for t in entity.rstrip("/").rsplit("/", 1)[-1].lower().split("_") if t]
+
+
+def _compared_series(a: str, b: str) -> bool:
+    """Two series of one time-series view are compared unless they are the two edges of one band
+    (``estimate_minus_sigma`` / ``estimate_plus_sigma``), which share their colour on purpose."""
+    strip = lambda e: [t for t in _leaf_tokens(e) if t not in _BAND_EDGES]
+    return strip(a) != strip(b)
+
+
+def _compared_overlays(a: str, b: str) -> bool:
+    """Two overlays of a 2-D view are compared when they play different roles (truth and estimate); parts of one
+    thing (``gate``, ``gate_path``) or the same role of two objects (``center/truth``, ``marker/truth``) may share."""
+    ra, rb = _leaf_tokens(a)[:1], _leaf_tokens(b)[:1]
+    return bool(ra and rb) and ra != rb and ra[0] in _ROLES and rb[0] in _ROLES
+
+
 def _hex(rgba: int) -> str:
     return f"#{rgba >> 8:06x}"
 
@@ -770,12 +793,12 @@ def layout_problems(layout: RecordingLayout, expectation: Expectation | None = N
             problems.append(f"view {view['name']!r} has no data on the opening timeline {timeline!r} "
                             f"(its data is on {', '.join(elsewhere)}): it opens on 'No data available'")
         single = {e: next(iter(layout.colours[e])) for e in entities if len(layout.colours.get(e, ())) == 1}
-        seen: dict[int, str] = {}
-        for entity, rgba in sorted(single.items()):
-            if rgba in seen:
-                problems.append(f"view {view['name']!r}: {seen[rgba]} and {entity} share the colour {_hex(rgba)}")
-            else:
-                seen[rgba] = entity
+        compared = _compared_series if view.get("kind") == "TimeSeries" else _compared_overlays
+        items = sorted(single.items())
+        for i, (a, rgba) in enumerate(items):
+            for b, other in items[i + 1:]:
+                if rgba == other and compared(a, b):
+                    problems.append(f"view {view['name']!r}: {a} and {b} share the colour {_hex(rgba)}")
         if view.get("kind") == "2D":
             problems += _framing_problems(layout, view, entities, expectation)
     return problems
