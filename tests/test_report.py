@@ -206,3 +206,40 @@ def test_report_without_notebooks_says_so(tmp_path):
 def test_format_measured():
     assert format_measured({"value": 1.23456, "ci_low": 1.1, "ci_high": 1.3, "n": 5}) == "1.235 [1.1, 1.3]"
     assert format_measured({"a": 2, "b": {"value": 0.5, "ci_low": None, "ci_high": None}}) == "a: 2; b: 0.5"
+
+
+def test_ctrl_c_during_reproduce_keeps_earlier_runs_and_leaves_no_temporaries(tmp_path):
+    import os
+    import shutil
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    nb = tmp_path / "nbs" / "fixture_centroid.ipynb"
+    nb.parent.mkdir()
+    shutil.copy(FIXTURE_NOTEBOOK, nb)
+    (nb.parent / "fixture_centroid.smoke.toml").write_text("n_trials = 20000\nn_frames = 20\nrerun_mode = \"off\"\n")
+    runs = tmp_path / "papermill_runs"
+    earlier = _synthetic_run(runs / "reproduce-smoke", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())],
+                             profile="smoke")
+    before = {p.name: p.read_bytes() for p in earlier.iterdir()}
+    script = (f"import sys; from pathlib import Path; import tvtrack.pipeline.reproduce as r\n"
+              f"r.list_notebooks = lambda: [Path({str(nb)!r})]\n"
+              f"from tvtrack.pipeline import cli\n"
+              f"cli._cmd_reproduce = lambda a: r.reproduce(profile='smoke', jobs=1, runs_dir=Path({str(runs)!r}))\n"
+              f"sys.exit(cli.main(['reproduce']))\n")
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    folder = runs / "reproduce-smoke"
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(folder.glob(".tmp-*")):
+        time.sleep(0.1)
+    time.sleep(2.0)
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=30)
+    assert proc.returncode == 130, stderr
+    lines = [line for line in (stdout + stderr).splitlines() if line.strip() and "\r" not in line]
+    assert lines[-1].startswith("interrupted: reproduce") and "kept" in lines[-1], stdout + stderr
+    assert not list(folder.glob(".tmp-*")) and not list(folder.glob(".new-*"))
+    assert {p.name: p.read_bytes() for p in earlier.iterdir()} == before

@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import sys
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from pathlib import Path
@@ -114,7 +115,8 @@ def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: i
     remove_stale_temporaries(folder)
     log = folder / "kernels.log"
     failures = []
-    bar = tqdm(total=len(notebooks), desc=f"reproduce {profile_name(profile)} ({jobs} at once)", unit="notebook")
+    bar = tqdm(total=len(notebooks), desc=f"reproduce {profile_name(profile)} ({jobs} at once)", unit="notebook",
+               disable=not sys.stderr.isatty())
     pool = ProcessPoolExecutor(jobs, mp_context=get_context("spawn"), initializer=_worker_init,
                                initargs=(threads, str(log)))
     try:
