@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report site kernel sweep clean-runs hooks lint
+.PHONY: reproduce test bench report site kernel sweep edit clean-runs hooks lint
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -27,18 +27,21 @@ lint: $(STAMP)
 	$(BIN)/ruff check lib tests benchmarks notebooks
 
 kernel: $(STAMP)
-	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null
+	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" \
+		--env RERUN_NOTEBOOK_ASSET inline >/dev/null
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
+# (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)
 reproduce: $(STAMP) kernel
 	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE))
 
 report: $(STAMP)
-	$(BIN)/python -m tvtrack report
+	$(BIN)/python -m tvtrack report $(if $(PROFILE),--profile $(PROFILE))
 
 # offline HTML site from papermill_runs/ (after make reproduce): papermill_runs/site/index.html
+# (make site PROFILE=smoke: the smoke runs, in papermill_runs/site-smoke/)
 site: $(STAMP)
-	$(BIN)/python -m tvtrack site
+	$(BIN)/python -m tvtrack site $(if $(PROFILE),--profile $(PROFILE))
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
@@ -47,9 +50,13 @@ bench: $(STAMP)
 	mkdir -p benchmarks/results
 	$(BIN)/python -m pytest benchmarks -q --benchmark-only --benchmark-json=benchmarks/results/benchmarks.json
 
+# a working copy of a notebook at the smoke profile, opened in JupyterLab: make edit NB=004_laser_spot_prediction
+edit: $(STAMP) kernel
+	$(BIN)/python -m tvtrack edit $(NB) --lab
+
 # make sweep SPEC=papermill_runs/sweeps/004_horizon.toml JOBS=2
 sweep: $(STAMP)
 	$(BIN)/python -m tvtrack sweep $(SPEC) --jobs $(or $(JOBS),2)
 
 clean-runs:
-	rm -rf papermill_runs/reproduce papermill_runs/runs papermill_runs/interactive
+	rm -rf papermill_runs/reproduce papermill_runs/reproduce-* papermill_runs/runs papermill_runs/interactive papermill_runs/edit

@@ -4,6 +4,7 @@ before any kernel starts."""
 import socket
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -81,8 +82,10 @@ def test_unreachable_scheduler_names_the_address_and_how_to_start_one(tmp_path):
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     address = f"tcp://127.0.0.1:{port}"
+    t0 = time.time()
     line = assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
                                          "-o", tmp_path / "s", timeout=120), address)
+    assert time.time() - t0 < 15
     assert "dask scheduler" in line
 
 
@@ -99,3 +102,135 @@ def test_debug_shows_the_traceback():
 def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, parameter, value, names):
     proc = tvtrack("run", notebook, "-p", parameter, value)
     assert_one_line_error(proc, *names)
+
+
+def test_scheduler_address_without_a_port_is_one_line(tmp_path):
+    for address in ("tcp://127.0.0.1", "127.0.0.1", "tcp://127.0.0.1:"):
+        assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
+                                      "-o", tmp_path / "s", timeout=30), repr(address), "no port")
+    assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", "tcp://host:http",
+                                  "-o", tmp_path / "s", timeout=30), "'http'")
+    assert not (tmp_path / "s").exists()
+
+
+@pytest.mark.parametrize("reply", [None, b"HTTP/1.0 200 OK\r\nContent-Length: 5\r\n\r\nhello"],
+                         ids=["silent", "http"])
+def test_a_port_where_something_else_listens_is_one_line_within_15_s(tmp_path, reply):
+    """Something that is not Dask listens on loopback (a silent service, a web server): one line naming it."""
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+
+    def answer():
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            if reply:
+                conn.recv(1024)
+                conn.sendall(reply)
+
+    threading.Thread(target=answer, daemon=True).start()
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    t0 = time.time()
+    try:
+        proc = tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s",
+                       timeout=60)
+    finally:
+        server.close()
+    assert time.time() - t0 < 15
+    line = assert_one_line_error(proc, address)
+    assert "not a Dask scheduler" in line and "dask scheduler" in line
+
+
+def test_site_output_that_cannot_be_written_is_one_line(tmp_path):
+    (tmp_path / "file").write_text("x")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file" / "site"), "cannot write",
+                          "file/site")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file"), "is a file")
+    assert (tmp_path / "file").read_text() == "x"
+
+
+def test_output_dir_cannot_be_set_with_p_and_the_line_says_why(tmp_path):
+    line = assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-p", "output_dir", "x", "-o", tmp_path / "r"),
+                                 "'output_dir'", "-o")
+    assert "run's own directory" in line
+    in_spec = spec(tmp_path, "[fixed]\noutput_dir = \"x\"\n")
+    assert_one_line_error(tvtrack("sweep", in_spec, "-o", tmp_path / "s"), "'output_dir'", "-o")
+    assert not (tmp_path / "r").exists() and not (tmp_path / "s").exists()
+
+
+def test_sweep_values_are_checked_before_any_run_starts(tmp_path):
+    bad = spec(tmp_path, "[fixed]\nn_trials = 5\n[grid]\nspot_sigma_px = [1.0, -2.0, 9.0]\n")
+    t0 = time.time()
+    line = assert_one_line_error(tvtrack("sweep", bad, "--jobs", "2", "-o", tmp_path / "s"),
+                                 "spot_sigma_px", "-2.0", "no run started")
+    assert "1 more of the 3 parameter sets" in line
+    assert time.time() - t0 < 30
+    assert not (tmp_path / "s").exists()
+
+
+def test_a_refusal_names_the_parameter_the_user_set():
+    """001: window_n = 200 is refused by a check on fa_duration_s; the line leads with window_n."""
+    line = assert_one_line_error(tvtrack("run", "001_maneuver_occlusion_kf", "-p", "window_n", "200"), "window_n")
+    assert line.index("window_n") < line.index("fa_duration_s") if "fa_duration_s" in line else True
+
+
+def test_edit_gives_a_working_copy_at_the_smoke_profile_outside_tracked_files(tmp_path):
+    import json
+    import shutil
+
+    from tvtrack.pipeline.edit import EDIT_DIR, working_copy
+
+    nb = tmp_path / "fixture_centroid.ipynb"
+    shutil.copy(FIXTURE_NOTEBOOK, nb)
+    (tmp_path / "fixture_centroid.smoke.toml").write_text("n_trials = 7\nn_frames = 3\n")
+    copy, written = working_copy(nb, folder=tmp_path / "edit")
+    assert written and copy == tmp_path / "edit" / "fixture_centroid.ipynb"
+    cells = json.loads(copy.read_text())["cells"]
+    code = [c for c in cells if c["cell_type"] == "code"]
+    injected = code[1]
+    assert injected["metadata"]["tags"] == ["injected-parameters"]
+    assert "n_trials = 7\n" in injected["source"] and "RERUN_NOTEBOOK_ASSET" in injected["source"]
+    assert all(not c["outputs"] for c in code)
+    # Run All, as JupyterLab does, from another working directory: outputs land in the copy's own -out folder
+    import nbformat
+    from nbclient import NotebookClient
+
+    book = nbformat.read(copy, as_version=4)
+    NotebookClient(book, timeout=120, resources={"metadata": {"path": str(tmp_path)}}).execute()
+    results = json.loads((tmp_path / "edit" / "fixture_centroid-out" / "results.json").read_text())
+    assert results["parameters"]["n_trials"] == 7
+    # an existing copy holds the user's edits: kept unless fresh
+    copy.write_text(copy.read_text().replace("n_trials = 7", "n_trials = 9"))
+    assert working_copy(nb, folder=tmp_path / "edit") == (copy, False) and "n_trials = 9" in copy.read_text()
+    assert working_copy(nb, folder=tmp_path / "edit", fresh=True) == (copy, True) and "n_trials = 7" in copy.read_text()
+    # the default folder is ignored by git: autosave never touches a tracked file
+    ignored = subprocess.run(["git", "check-ignore", "-q", str(EDIT_DIR / "x.ipynb")], cwd=EDIT_DIR.parents[1])
+    assert ignored.returncode == 0
+
+
+def test_edit_refuses_an_unknown_notebook_or_profile():
+    assert_one_line_error(tvtrack("edit", "no_such_notebook"), "no_such_notebook")
+    assert_one_line_error(tvtrack("edit", FIXTURE_NOTEBOOK, "--profile", "smok"), "'smok'")
+
+
+def test_the_inline_viewer_loads_the_bundled_assets_offline():
+    """With the variable the working copy (and the tvtrack-repro kernel) sets, rerun-notebook inlines its own
+    widget.js and Wasm instead of pointing the browser at app.rerun.io ("Failed to fetch" offline)."""
+    from tvtrack.pipeline.edit import OFFLINE_VIEWER_LINE
+
+    probe = ("import os\n" + OFFLINE_VIEWER_LINE + "\nimport rerun_notebook as r\n"
+             "print(r.ASSET_IS_URL, 'app.rerun.io' in r.ESM_MOD[:100000], len(r.ESM_MOD) > 10_000_000)")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
+                         env={k: v for k, v in __import__("os").environ.items() if k != "RERUN_NOTEBOOK_ASSET"})
+    assert out.stdout.split()[-3:] == ["False", "False", "True"], out.stdout + out.stderr
+
+
+def test_report_and_site_of_a_profile_without_runs_are_one_line(tmp_path):
+    assert_one_line_error(tvtrack("report", "--profile", "nope"), "no runs at the nope profile", "PROFILE=nope")
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "--profile", "nope"), "no runs at the nope profile")
+    assert not (tmp_path / "site-nope").exists()

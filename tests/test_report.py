@@ -6,7 +6,7 @@ import pytest
 from conftest import FIXTURE_NOTEBOOK
 from tvtrack.pipeline.report import (README_BEGIN, README_END, format_measured, update_readme, verdict_summary,
                                      write_report)
-from tvtrack.pipeline.runner import run_notebook
+from tvtrack.pipeline.runner import read_run, run_notebook
 
 
 @pytest.fixture(scope="module")
@@ -23,7 +23,7 @@ def _robust(verdict="reproduced"):
 
 
 def _claim(cid, verdict, robustness, statement="A claim."):
-    return {"id": cid, "statement": statement, "paper_value": "1", "rule": {"kind": "in_band", "text": "in [0, 2]"},
+    return {"id": cid, "statement": statement, "paper_value": "1", "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
             "acceptance": "in [0, 2]", "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
             "verdict": verdict, "note": "", "robustness": robustness}
 
@@ -64,7 +64,7 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     assert ("**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
             "of the checkable verdicts **0 robust · 1 unexplored · 0 depends · 0 unstable**") in text
     # the fixture varies nothing of a simulated world: it cannot be called robust
-    assert "| C900-1 | **reproduced** | unexplored |" in text
+    assert "| C900-1 | **reproduced** | unexplored |" in text and "**Profile shown: paper**" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
     assert re.search(r"`python -m tvtrack view \S*fixture_centroid`", text)
     assert "**Run failed**" in text and "parameter 'n_trials' = 0" in text
@@ -76,7 +76,7 @@ def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     assert ("**1 robust · 0 unexplored · 1 depends · 0 unstable** · 1 without a robustness record") in text
     assert ("By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · "
             "1 not checkable.") in text
-    assert "| C010-2 | **not reproduced** | depends | reproduced when epoch = mid, designation_sd = 1.0 |" in text
+    assert "| C010-2 | **not reproduced** | depends | reproduced when epoch = mid, designation\\_sd = 1.0 |" in text
     assert "| C010-3 | **not checkable** | — |  |" in text
     assert "| C011-1 | **partly** | — |  |" in text
 
@@ -88,17 +88,73 @@ def test_verdict_summary_counts_labels_per_verdict():
                                        "0 not reproduced · 0 not checkable")
 
 
-def test_readme_paragraph_generated_with_dependence(synthetic_runs, tmp_path):
+def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs, tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text(f"intro\n{README_BEGIN}\nhand-written\n{README_END}\nrest\n")
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
     text = readme.read_text()
     assert text.startswith("intro\n") and text.endswith(f"{README_END}\nrest\n") and "hand-written" not in text
-    assert "4 claims, **1 reproduced · 1 partly · 1 not reproduced · 1 not checkable**" in text
-    assert "1 are robust" in text and "1 depend on a reading" in text and "1 have no robustness record" in text
-    # the headline finding carries where it flips
-    assert ("**010 C010-2**: The gain is 4. Measured 1.5 [1.2, 1.8] (in [0, 2]); "
-            "depends: reproduced when epoch = mid, designation_sd = 1.0.") in text
+    assert "4 claims (paper profile): **1 reproduced · 1 partly · 1 not reproduced · 1 not checkable**" in text
+    assert "1 robust, 0 unexplored, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
+    # the headline finding: one line with statement, paper value, measured interval, verdict, label
+    assert "| 010 C010-2 | The gain is 4. | 1 | 1.5 \\[1.2, 1.8\\] | **not reproduced** | depends |" in text
+    assert not re.search(r"20\d\d-\d\d-\d\d", text)     # no date: an unchanged result leaves git status clean
+    before = readme.stat().st_mtime_ns
+    write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
+    assert readme.read_text() == text and readme.stat().st_mtime_ns == before
+
+
+def test_generated_text_is_escaped_in_markdown(tmp_path):
+    root = tmp_path / "reproduce"
+    claim = _claim("C020-1", "not reproduced", {**DEPENDS, "where": ["partly when reading = v1 / sigma*2"]},
+                   "The error is sigma*2 * k_gain | <b>")
+    _synthetic_run(root, "020_esc", [claim])
+    readme = tmp_path / "README.md"
+    readme.write_text(f"{README_BEGIN}\n{README_END}\n")
+    report = write_report(root, tmp_path / "R.md", notebooks=["020_esc"], readme=readme).read_text()
+    for text in (report, readme.read_text()):
+        assert "The error is sigma\\*2 \\* k\\_gain \\| \\<b\\>" in text
+        assert "sigma*2" not in text.replace("sigma\\*2", "")
+    assert "partly when reading = v1 / sigma\\*2" in report
+
+
+def test_first_screen_orders_failures_then_dependent_verdicts_and_reads_new_records(tmp_path):
+    new_record = {"label": "unstable", "where": ["replicates split"], "conditions": [], "seeds": [],
+                  "coverage": "unstable over 3 replicates and 14 readings", "register": [{"name": "motion"}],
+                  "parts": {"gain": {"verdict": "reproduced", "label": "robust"},
+                            "bias": {"verdict": "partly", "label": "unstable"}}}
+    root = tmp_path / "reproduce"
+    _synthetic_run(root, "030_new", [_claim("C030-1", "reproduced", new_record),
+                                     _claim("C030-2", "undecided", {**_robust(), "label": "unexplored"}),
+                                     _claim("C030-3", "reproduced", _robust()),
+                                     _claim("C030-10", "not reproduced", DEPENDS)])
+    from tvtrack.pipeline.report import collect_runs, first_screen
+
+    rows = first_screen(collect_runs(root, ["030_new"]))
+    assert [(r["id"], r["verdict"], r["label"]) for r in rows] == [
+        ("C030-10", "not reproduced", "depends"), ("C030-2", "undecided", "unexplored"),
+        ("C030-1", "reproduced", "unstable")]
+    text = write_report(root, tmp_path / "R.md", notebooks=["030_new"]).read_text()
+    assert "covers: unstable over 3 replicates and 14 readings" in text
+    assert "parts: gain reproduced, robust; bias partly, unstable" in text
+    assert "1 undecided" in text and "1 unexplored" in text
+
+
+def test_report_has_the_forest_plot_and_the_robustness_picture(synthetic_runs, tmp_path):
+    from PIL import Image
+
+    from tvtrack.pipeline.report import collect_runs, forest_items, robustness_matrix
+
+    text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
+    assert "![forest plot" in text and "![robustness" in text
+    for name in ("forest.png", "robustness.png"):
+        assert Image.open(synthetic_runs / "figures" / name).size[0] > 300
+    items = forest_items(collect_runs(synthetic_runs, ["010_new", "011_old"]))
+    # C010-1 and C010-2 measured 1.5 [1.2, 1.8] against [0, 2] -> 0.75 [0.6, 0.9] on the band's scale
+    assert [(i["name"], i["verdict"]) for i in items] == [("010 C010-1", "reproduced"), ("010 C010-2", "not reproduced")]
+    assert items[0]["value"] == pytest.approx(0.75) and (items[0]["low"], items[0]["high"]) == pytest.approx((0.6, 0.9))
+    rows, entries, cells = robustness_matrix([_claim("C1-1", "not reproduced", DEPENDS)])
+    assert (rows, entries, cells) == (["C1-1"], ["epoch"], [["reproduced"]])
 
 
 def test_readme_left_alone_without_complete_paper_runs(synthetic_runs, tmp_path, capsys):
@@ -109,6 +165,30 @@ def test_readme_left_alone_without_complete_paper_runs(synthetic_runs, tmp_path,
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "012_smoke", "absent"], readme=readme)
     assert readme.read_text() == original
     assert "left as it is (no successful paper-profile run of 012_smoke, absent" in capsys.readouterr().out
+
+
+def test_smoke_reproduce_writes_its_own_folder_and_leaves_paper_runs_alone(tmp_path, monkeypatch):
+    import shutil
+
+    from tvtrack.pipeline import reproduce as rep
+
+    nb = tmp_path / "nbs" / "fixture_centroid.ipynb"
+    nb.parent.mkdir()
+    shutil.copy(FIXTURE_NOTEBOOK, nb)
+    (nb.parent / "fixture_centroid.smoke.toml").write_text("n_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n")
+    runs = tmp_path / "papermill_runs"
+    paper = _synthetic_run(runs / "reproduce", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())])
+    before = {p.name: p.read_bytes() for p in paper.iterdir()}
+    monkeypatch.setattr(rep, "list_notebooks", lambda: [nb])
+    monkeypatch.setattr(rep, "REPORT_PATH", tmp_path / "REPRODUCTION.md")
+    monkeypatch.setattr(rep, "README_PATH", tmp_path / "README.md")
+    assert rep.reproduce(profile="smoke", jobs=1, runs_dir=runs) == 0
+    assert {p.name: p.read_bytes() for p in paper.iterdir()} == before
+    smoke = runs / "reproduce-smoke"
+    assert read_run(smoke / "fixture_centroid")["profile"] == "smoke"
+    assert "**Profile shown: smoke**" in (smoke / "REPRODUCTION.md").read_text()
+    assert "not the paper-scale numbers" in (smoke / "REPRODUCTION.md").read_text()
+    assert not (tmp_path / "REPRODUCTION.md").exists() and not (tmp_path / "README.md").exists()
 
 
 def test_update_readme_needs_markers(tmp_path):
@@ -126,3 +206,40 @@ def test_report_without_notebooks_says_so(tmp_path):
 def test_format_measured():
     assert format_measured({"value": 1.23456, "ci_low": 1.1, "ci_high": 1.3, "n": 5}) == "1.235 [1.1, 1.3]"
     assert format_measured({"a": 2, "b": {"value": 0.5, "ci_low": None, "ci_high": None}}) == "a: 2; b: 0.5"
+
+
+def test_ctrl_c_during_reproduce_keeps_earlier_runs_and_leaves_no_temporaries(tmp_path):
+    import os
+    import shutil
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    nb = tmp_path / "nbs" / "fixture_centroid.ipynb"
+    nb.parent.mkdir()
+    shutil.copy(FIXTURE_NOTEBOOK, nb)
+    (nb.parent / "fixture_centroid.smoke.toml").write_text("n_trials = 20000\nn_frames = 20\nrerun_mode = \"off\"\n")
+    runs = tmp_path / "papermill_runs"
+    earlier = _synthetic_run(runs / "reproduce-smoke", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())],
+                             profile="smoke")
+    before = {p.name: p.read_bytes() for p in earlier.iterdir()}
+    script = (f"import sys; from pathlib import Path; import tvtrack.pipeline.reproduce as r\n"
+              f"r.list_notebooks = lambda: [Path({str(nb)!r})]\n"
+              f"from tvtrack.pipeline import cli\n"
+              f"cli._cmd_reproduce = lambda a: r.reproduce(profile='smoke', jobs=1, runs_dir=Path({str(runs)!r}))\n"
+              f"sys.exit(cli.main(['reproduce']))\n")
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    folder = runs / "reproduce-smoke"
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(folder.glob(".tmp-*")):
+        time.sleep(0.1)
+    time.sleep(2.0)
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=30)
+    assert proc.returncode == 130, stderr
+    lines = [line for line in (stdout + stderr).splitlines() if line.strip() and "\r" not in line]
+    assert lines[-1].startswith("interrupted: reproduce") and "kept" in lines[-1], stdout + stderr
+    assert not list(folder.glob(".tmp-*")) and not list(folder.glob(".new-*"))
+    assert {p.name: p.read_bytes() for p in earlier.iterdir()} == before

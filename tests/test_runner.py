@@ -106,13 +106,21 @@ def test_same_seed_gives_identical_metrics_alone_and_in_sweeps(sweep_two_jobs, t
 
 
 def test_failed_run_is_isolated_and_recorded(tmp_path):
-    spec = write_spec(tmp_path / "mixed.toml",
-                      "[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n[grid]\nspot_sigma_px = [1.0, -2.0, 2.0]\n")
+    # every value passes the preflight; a copy of the fixture fails at run time (after its validation cell) at -2.0
+    nb = json.loads(FIXTURE_NOTEBOOK.read_text())
+    first_code = next(i for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code")
+    nb["cells"].insert(first_code + 2, {"cell_type": "code", "id": "planted", "metadata": {}, "execution_count": None,
+                                        "outputs": [], "source": "if spot_sigma_px == 2.0:\n"
+                                                                 "    raise RuntimeError('planted failure')\n"})
+    (tmp_path / "failing.ipynb").write_text(json.dumps(nb))
+    spec = tmp_path / "mixed.toml"
+    spec.write_text('notebook = "failing.ipynb"\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n'
+                    "[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n")
     s = run_sweep(spec, jobs=2, output=tmp_path / "mixed", progress=False)
     assert (s.n_ok, s.n_failed) == (2, 1)
     rows = s.summary_csv.read_text().splitlines()
     failed = [r for r in rows if ",failed," in r]
-    assert len(failed) == 1 and "parameter 'spot_sigma_px' = -2.0 is out of range" in failed[0]
+    assert len(failed) == 1 and "RuntimeError: planted failure" in failed[0]
     cli = subprocess.run([sys.executable, "-m", "tvtrack", "sweep", str(spec), "-o", str(tmp_path / "mixed")],
                          capture_output=True, text=True)
     assert cli.returncode == 1  # any failed run makes the sweep exit non-zero
@@ -158,3 +166,94 @@ def test_dask_executor_on_a_local_cluster(tmp_path):
     local = run_sweep(spec, jobs=1, output=tmp_path / "local", progress=False)
     for run in expand(load_spec(spec)):
         assert metrics(s.sweep_dir / "runs" / run.run_id) == metrics(local.sweep_dir / "runs" / run.run_id)
+
+
+def _wait_for(predicate, timeout_s=240):
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        if predicate():
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _tvtrack_in_own_group(*args):
+    """``python -m tvtrack ARGS`` as a terminal starts it: its own process group, Ctrl-C not ignored."""
+    return subprocess.Popen([sys.executable, "-m", "tvtrack", *map(str, args)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+
+
+def _kernels_of_tree(tmp_path) -> list[str]:
+    """Command lines of live ipykernel processes whose working directory is under ``tmp_path``."""
+    import psutil
+
+    found = []
+    for proc in psutil.process_iter(["cmdline", "cwd"]):
+        cwd = proc.info.get("cwd") or ""
+        if "ipykernel" in " ".join(proc.info.get("cmdline") or []) and cwd.startswith(str(tmp_path)):
+            found.append(cwd)
+    return found
+
+
+def test_ctrl_c_during_a_sweep_stops_it_cleanly_and_the_sweep_resumes(tmp_path):
+    spec = write_spec(tmp_path / "int.toml", "repeats = 2\n[fixed]\nn_trials = 200\nn_frames = 10\n"
+                      "rerun_mode = \"off\"\n[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n")
+    out = tmp_path / "int"
+    runs = out / "runs"
+    proc = _tvtrack_in_own_group("sweep", spec, "--jobs", "2", "-o", out)
+    finished = lambda: [p for p in runs.iterdir() if not p.name.startswith(".")] if runs.exists() else []  # noqa: E731
+    assert _wait_for(lambda: finished() and list(runs.glob(".tmp-*"))), "no run finished and none running"
+    t0 = time.time()
+    os.killpg(proc.pid, signal.SIGINT)          # what Ctrl-C in a terminal does
+    stdout, stderr = proc.communicate(timeout=30)
+    assert time.time() - t0 < 10
+    assert proc.returncode == 130, stderr
+    lines = (stdout + stderr).strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted: ") and "resumes" in lines[0], stdout + stderr
+    assert not list(runs.glob(".tmp-*"))
+    assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5), "a kernel outlived the sweep"
+    done = {p.name for p in finished()}
+    assert 1 <= len(done) < 6
+    for name in done:
+        assert read_run(runs / name)["status"] == "ok"
+    resumed = run_sweep(spec, jobs=2, output=out, progress=False)
+    assert (resumed.n_skipped, resumed.n_ok) == (len(done), 6)
+
+
+def test_ctrl_c_during_a_run_ends_the_kernel_and_leaves_nothing(tmp_path):
+    proc = _tvtrack_in_own_group("run", FIXTURE_NOTEBOOK, "-p", "n_trials", "20000", "-o", tmp_path / "run")
+    assert _wait_for(lambda: _kernels_of_tree(tmp_path), 120)
+    time.sleep(1.0)
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=30)
+    assert proc.returncode == 130
+    lines = (stdout + stderr).strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted: "), stdout + stderr
+    assert list(tmp_path.iterdir()) == []
+    assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5)
+
+
+def test_stale_temporaries_of_a_dead_process_are_removed_live_ones_kept(tmp_path):
+    from tvtrack.pipeline.runner import OWNER_FILE, remove_stale_temporaries
+
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    host = __import__("socket").gethostname()
+    for name, pid in ((".tmp-a-1", int(dead.stdout)), (".tmp-b-2", os.getpid())):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / OWNER_FILE).write_text(f"{host} {pid}")
+    assert remove_stale_temporaries(tmp_path) == 1
+    assert [p.name for p in tmp_path.iterdir()] == [".tmp-b-2"]
+
+
+def test_the_notebooks_default_output_dir_resolves_inside_the_clone_whatever_the_working_directory(tmp_path,
+                                                                                                   monkeypatch):
+    from tvtrack.pipeline.paths import INTERACTIVE_DIR, REPO_ROOT, resolve_output_dir
+
+    for cwd in (REPO_ROOT, REPO_ROOT / "notebooks", tmp_path):   # plain papermill at the root, JupyterLab, elsewhere
+        monkeypatch.chdir(cwd)
+        for default in ("../papermill_runs/interactive/004_laser_spot_prediction", "", None):
+            out = resolve_output_dir(default, "004_laser_spot_prediction")
+            assert out.is_absolute() and out == INTERACTIVE_DIR / "004_laser_spot_prediction"
+            assert out.is_relative_to(REPO_ROOT)
+    assert resolve_output_dir(".", "004_laser_spot_prediction") == Path(".")   # the runner's run directory
+    assert resolve_output_dir("/tmp/x", "004_laser_spot_prediction") == Path("/tmp/x")

@@ -11,24 +11,25 @@ from site_fixtures import built_site, runs_dir  # noqa: F401 - fixtures
 from tvtrack.pipeline.site import claim_cells, recording_still, tex_to_html
 
 
-def test_index_has_a_card_per_run_with_counts(built_site):
+def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "index.html").read_text()
     for name in ("fixture_centroid", "old_schema", "broken"):
         assert f'id="{name}"' in html
     assert "(test fixture; no paper)" in html and "Run failed" in html and "parameter &#39;n_trials&#39; = 0" in html
-    # fixture: 1 reproduced, robust; old schema: 1 partly, no label
+    # fixture: 1 reproduced, unexplored (it varies no simulated world); old schema: 1 partly, no label
     assert re.search(r'1 <span class="pill v-reproduced">reproduced</span>', html)
-    assert re.search(r'1 <span class="pill l-robust">robust</span>', html)
+    assert re.search(r'2 <span class="pill l-unexplored">unexplored</span>', html)
     assert re.search(r'1 <span class="pill l-—">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
 
-def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, runs_dir):
+def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, runs_dir):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "ledger.html").read_text()
     claims = [c for p in (runs_dir / "reproduce").glob("*/results.json") for c in json.loads(p.read_text())["claims"]]
-    assert len(claims) == 2
+    assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
-    assert sorted(rows) == [("fixture_centroid", "reproduced", "robust"), ("old_schema", "partly", "—")]
+    assert sorted(rows) == [("fixture_centroid", "reproduced", "unexplored"), ("new_schema", "not reproduced", "depends"),
+                            ("new_schema", "undecided", "unexplored"), ("old_schema", "partly", "—")]
     nb = json.loads((runs_dir / "reproduce/fixture_centroid/notebook.ipynb").read_text())
     cell = claim_cells(nb, ["C900-1"])["C900-1"]
     assert "results.claim(" in "".join(next(c for c in nb["cells"] if c.get("id") == cell)["source"])
@@ -37,14 +38,14 @@ def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, r
     assert 'href="notebooks/old_schema.html#cell-id=c1">C911-1</a>' in html
 
 
-def test_pages_load_nothing_from_elsewhere(built_site):
+def test_pages_load_nothing_from_elsewhere(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     for page in built_site.rglob("*.html"):
         text = page.read_text()
         assert not re.search(r'<(script|link|img|iframe)[^>]+(src|href)="(https?:)?//', text), page
         assert "@import" not in text and "cdnjs" not in text and "require.js" not in text, page
 
 
-def test_notebook_page_has_figures_math_and_recording(built_site):
+def test_notebook_page_has_figures_math_and_recording(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "notebooks/fixture_centroid.html").read_text()
     assert html.count('src="data:image/png;base64,') >= 1
     assert "Centroid error per axis" in html
@@ -58,7 +59,7 @@ def test_notebook_page_has_figures_math_and_recording(built_site):
     assert "Figures saved by this run" not in html
 
 
-def test_sweep_page_has_table_and_plot(built_site):
+def test_sweep_page_has_table_and_plot(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "sweeps/fixture_sweep.html").read_text()
     assert "<td>0.09</td>" in html and 'src="fixture_sweep.png"' in html
     assert (built_site / "sweeps/fixture_sweep.png").stat().st_size > 0
@@ -69,7 +70,7 @@ def test_tex_that_cannot_be_parsed_stays_readable():
     assert tex_to_html(r"\frac{1}{", display=False) == r'<code class="tex">$\frac{1}{$</code>'
 
 
-def test_recording_still_is_the_first_nonconstant_frame(runs_dir, tmp_path):
+def test_recording_still_is_the_first_nonconstant_frame(runs_dir, tmp_path):  # noqa: F811 - pytest fixture from site_fixtures
     from PIL import Image
 
     out = tmp_path / "still.png"
@@ -88,7 +89,7 @@ def test_cli_has_site_and_view(argv, capsys):
     assert exc.value.code == 0 and "usage" in capsys.readouterr().out
 
 
-def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):
+def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):  # noqa: F811 - pytest fixture from site_fixtures
     import os
     import signal
     import subprocess
@@ -117,7 +118,7 @@ def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):
         proc.kill()
 
 
-def test_view_refuses_a_taken_port(runs_dir):
+def test_view_refuses_a_taken_port(runs_dir):  # noqa: F811 - pytest fixture from site_fixtures
     import socket
 
     from tvtrack.pipeline.preflight import UsageError
@@ -132,7 +133,7 @@ def test_view_refuses_a_taken_port(runs_dir):
         WebViewer(runs_dir / "reproduce/old_schema")
 
 
-def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path):
+def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path):  # noqa: F811 - pytest fixture from site_fixtures
     from tvtrack.pipeline.preflight import UsageError
     from tvtrack.pipeline.site import build_site
 
@@ -142,3 +143,44 @@ def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path):
     with pytest.raises(UsageError, match="not a site built here"):
         build_site(runs_dir, precious)
     assert (precious / "thesis.tex").read_text() == "keep me"
+
+
+def test_index_leads_with_the_first_screen_and_the_pictures(built_site):  # noqa: F811 - pytest fixture from site_fixtures
+    html = (built_site / "index.html").read_text()
+    first = html[html.index('id="first-screen"'):html.index('class="cards"')]
+    rows = re.findall(r'<tr data-verdict="([^"]+)" data-label="([^"]+)">', first)
+    assert rows == [("not reproduced", "depends"), ("undecided", "unexplored")]   # the robust/unrecorded ones are not
+    assert "&lt;= 2 px" in first and "2.6 [2.4, 2.8]" in first
+    assert 'id="forest" src="forest.png"' in html and 'id="robustness" src="robustness.png"' in html
+    for name in ("forest.png", "robustness.png"):
+        assert (built_site / name).stat().st_size > 1000
+    assert html.index('id="first-screen"') < html.index('id="forest"') < html.index('class="cards"')
+    assert 'id="profile">profile shown:\n    <strong>paper</strong>' in html
+
+
+def test_generated_text_is_html_escaped_everywhere(built_site):  # noqa: F811 - pytest fixture from site_fixtures
+    for page in ("index.html", "ledger.html"):
+        html = (built_site / page).read_text()
+        assert "sigma*2 &lt;b&gt;not bold&lt;/b&gt; &amp; small." in html, page
+        assert "<b>not bold</b>" not in html and "<em>2" not in html
+
+
+def test_ledger_is_compact_with_the_rule_behind_a_click(built_site):  # noqa: F811 - pytest fixture from site_fixtures
+    html = (built_site / "ledger.html").read_text()
+    row = html[html.index('data-paper="new_schema" data-verdict="not reproduced"'):]
+    row = row[:row.index("</tr>")]
+    details = row[row.index('<details class="rule">'):]
+    assert "error in [0, 2] px" in details and "reproduced when motion = gentle*2" in details
+    assert "covers:</strong> depends over 6 readings x 3 replicates: motion, noise" in details
+    assert "error in [0, 2] px" not in row[:row.index('<details class="rule">')]
+
+
+def test_a_smoke_site_says_so_and_reads_the_smoke_runs(runs_dir, tmp_path):  # noqa: F811 - pytest fixture from site_fixtures
+    from tvtrack.pipeline.site import build_site
+
+    index = build_site(runs_dir, profile="smoke")
+    assert index == runs_dir / "site-smoke" / "index.html"
+    html = index.read_text()
+    assert "<strong>smoke</strong> (not the paper-scale numbers)" in html
+    assert 'id="old_schema"' in html and 'id="fixture_centroid"' not in html
+    assert "profile smoke" in html

@@ -111,7 +111,7 @@ def test_site_in_browser(browser, smoke_site):
     try:
         page = w.open((site / "index.html").as_uri())
         cards = page.locator("article.card").count()
-        assert cards == len(NOTEBOOK_NAMES) + 3
+        assert cards == len(NOTEBOOK_NAMES) + 4      # + fixture_centroid, old_schema, new_schema, broken
         images = w.images_decoded()
         assert images and all(width > 0 for _, width in images), images
         _shot(page, "site_index.png")
@@ -147,6 +147,55 @@ def test_site_in_browser(browser, smoke_site):
         _shot(page, "site_ledger.png")
         page = w.open((site / "ledger.html").as_uri() + "#paper=old_schema")
         assert visible.count() == 1
+        assert w.errors == [], w.errors
+        assert w.outside == [], w.outside
+    finally:
+        w.close()
+
+
+@pytest.fixture(scope="module")
+def fixture_site(tmp_path_factory):
+    """The site of the fixture runs alone (no paper notebook runs): first screen, pictures, ledger, sweep."""
+    from tvtrack.pipeline.site import build_site
+
+    return build_site(make_runs_dir(tmp_path_factory.mktemp("fixture-site-runs"))).parent
+
+
+def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture_site):
+    w = Watched(browser, viewport=(1280, 800))
+    try:
+        page = w.open((fixture_site / "index.html").as_uri())
+        # the first screen: the profile, then the claims that do not reproduce or are undecided, one row each
+        assert "profile shown: paper" in page.locator("#profile").inner_text()
+        first = page.locator("#first tbody tr")
+        assert first.count() == 2
+        row = first.first.inner_text()
+        assert "C912-1" in row and "sigma*2 <b>not bold</b> & small." in row and "2.6 [2.4, 2.8]" in row
+        assert "not reproduced" in row and "depends" in row
+        assert page.locator("#first b").count() == 0 and page.locator("#first em").count() == 0   # text, not markup
+        assert page.locator("#first").bounding_box()["y"] < 800                      # on the first screen
+        # the forest plot and the robustness picture, decoded, after the first screen and before the cards
+        for pic in ("#forest", "#robustness"):
+            assert page.locator(pic).evaluate("i => i.complete && i.naturalWidth") > 300, pic
+        boxes = [page.locator(s).bounding_box()["y"] for s in ("#first", "#forest", "article.card >> nth=0")]
+        assert boxes == sorted(boxes)
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1280
+
+        page = w.open((fixture_site / "ledger.html").as_uri())
+        # compact: no wider than the window, no row taller than a screen; the rule opens with a click
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1280
+        heights = page.locator("#ledger tbody tr").evaluate_all("rs => rs.map(r => r.getBoundingClientRect().height)")
+        assert max(heights) < 300, heights
+        rule = page.locator('tr[data-paper="new_schema"][data-verdict="not reproduced"] details.rule')
+        assert not rule.locator("p").first.is_visible()
+        rule.locator("summary").click()
+        assert rule.locator("p").first.is_visible() and "error in [0, 2] px" in rule.inner_text()
+        assert "covers: depends over 6 readings x 3 replicates" in rule.inner_text()
+        page.select_option("#f-verdict", "undecided")
+        assert page.locator("#ledger tbody tr[data-paper]:visible").count() == 1
+
+        page = w.open((fixture_site / "sweeps" / "fixture_sweep.html").as_uri())
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1280        # the table scrolls in its box
         assert w.errors == [], w.errors
         assert w.outside == [], w.outside
     finally:

@@ -18,22 +18,26 @@ import time
 import pytest
 
 from tvtrack.pipeline.paths import REPO_ROOT
-from tvtrack.pipeline.viewer import Expectation, check_recording, verify_rrd
+from tvtrack.pipeline.viewer import Expectation, check_recording, layout_problems, read_layout, verify_rrd
 
 SCREENSHOT_DIR = REPO_ROOT / "docs" / "screenshots"
 UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
 
 DEFAULT = Expectation()
+FIXTURE = "fixture_centroid"
 # Per-notebook deviations from DEFAULT, each with its reason.
 EXPECT: dict[str, Expectation] = {
     # an image dissector delivers a 1-D scan: the 2-D view plots samples and pulses against phase
     "000_dissector_ekf": Expectation(image=False),
     # truth ring and estimate dot are sized in screen points: each must stay clearly visible (was 9-35 px)
     "001_maneuver_occlusion_kf": Expectation(min_overlay_px=30),
-    # batch EM location: no gate (per-frame errors under errors/; EM history on the "iteration" line)
-    "002_unified_location_em": Expectation(overlays=("truth", "estimate")),
+    # batch EM location: no gate (per-frame errors under errors/; EM history on the "iteration" line, shown
+    # when the user picks that timeline: the recording opens on "frame", where the image and errors are)
+    "002_unified_location_em": Expectation(overlays=("truth", "estimate"), other_timelines=("iteration",)),
     # the paper's estimates are the measured spot centre and the centre predicted ahead
     "004_laser_spot_prediction": Expectation(overlays=("gate", "truth", "measured", "predicted")),
+    # the test fixture (not a paper notebook) draws truth and estimate in two colours without labels
+    FIXTURE: Expectation(labels_when_overlapping=False),
 }
 
 
@@ -66,3 +70,16 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     if UPDATE_SCREENSHOTS and viewer_notebook.parent.name == "notebooks":
         _save_docs_screenshot(headless_viewer, stem)
     assert check.check_s < 30, f"{stem}: viewer check took {check.check_s:.1f} s (budget 30 s per recording)"
+
+
+@pytest.mark.notebook
+def test_recording_opens_on_the_timeline_with_data_with_distinct_colours_and_framed(viewer_notebook, notebook_run):
+    """Read from the file, no viewer needed: the timeline the recording opens on holds every view's data; compared
+    series and overlays of one view have distinct colours; overlapping markers carry labels; a 2-D view's bounds
+    neither cut off nor drown the data (:func:`tvtrack.pipeline.viewer.layout_problems`)."""
+    stem = viewer_notebook.stem
+    outcome = notebook_run(viewer_notebook)
+    assert outcome.ok, f"{stem} smoke run failed: {outcome.error}"
+    layout = read_layout(outcome.run_dir / "recording.rrd")
+    problems = layout_problems(layout, EXPECT.get(stem, DEFAULT))
+    assert not problems, f"{stem}: opens on {layout.opening_timeline!r}:\n  " + "\n  ".join(problems)

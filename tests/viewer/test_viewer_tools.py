@@ -14,8 +14,8 @@ import rerun.blueprint as rrb
 
 from tvtrack.record import Recorder, image_and_series_blueprint
 from tvtrack.pipeline.viewer import (INSTALL_HINT, Expectation, HeadlessViewer, ViewerUnavailable, check_recording,
-                            coloured_mask, dominant_colours, entities_under, plays_role, verify_rrd,
-                            vulkan_problem)
+                            coloured_mask, dominant_colours, entities_under, layout_problems, plays_role,
+                            read_layout, verify_rrd, vulkan_problem)
 
 YELLOW, GREEN, RED = (255, 215, 0), (0, 200, 0), (255, 40, 40)
 
@@ -42,6 +42,80 @@ def _write_recording(out, *, gate=True, series_view=True, n_frames=12):
 
 
 # -- without a viewer ------------------------------------------------------------------------
+def _layout_recording(out, *, timeline="frame", series_colours=((0, 114, 178), (213, 94, 0)), labels=True,
+                      bounds=None, apart=6.0):
+    """A recording whose layout can be made wrong one way at a time (:func:`layout_problems`)."""
+    from tvtrack.recordings import Recorder as CoreRecorder
+
+    views = [rrb.Spatial2DView(origin="camera", name="Camera",
+                               visual_bounds=rrb.VisualBounds2D(x_range=bounds[:2], y_range=bounds[2:]) if bounds
+                               else None),
+             rrb.TimeSeriesView(origin="errors", name="errors"), rrb.TimeSeriesView(origin="em", name="EM")]
+    blueprint = rrb.Blueprint(rrb.Horizontal(*views), rrb.TimePanel(timeline=timeline), collapse_panels=True)
+    out.mkdir(parents=True, exist_ok=True)
+    rec = CoreRecorder(out, "file", "tvtrack-layout-test", blueprint=blueprint)
+    for k in range(10):
+        rec.set_frame(k)
+        rec.image("camera/image", np.full((32, 32), 10.0 + k, np.float32))
+        c = np.array([10.0 + k, 15.0])
+        rec.points("camera/truth", c, colors=[GREEN], labels=["truth"] if labels else None)
+        rec.points("camera/estimate", c + [apart * 0.01, 0.0], colors=[RED], labels=["estimate"] if labels else None)
+    rec.series("errors/x", np.sin(np.arange(10)))
+    rec.series("errors/y", np.cos(np.arange(10)))
+    rec.series_style("errors/x", color=series_colours[0])
+    rec.series_style("errors/y", color=series_colours[1])
+    rec.series("em/log_likelihood", np.arange(5.0), timeline="iteration")
+    return rec.close()
+
+
+def test_layout_of_a_good_recording_has_no_problem(tmp_path):
+    layout = read_layout(_layout_recording(tmp_path))
+    assert layout.opening_timeline == "frame"
+    assert {v["origin"] for v in layout.views} == {"/camera", "/errors", "/em"}
+    assert layout.timelines["/camera/image"] >= {"frame"} and layout.images["/camera/image"] == (32, 32)
+    # the EM history lives on its own timeline: allowed only where the expectation names that timeline
+    assert layout_problems(layout, Expectation(other_timelines=("iteration",))) == []
+    assert layout_problems(layout) == ["view 'EM' has no data on the opening timeline 'frame' (its data is on "
+                                       "iteration): it opens on 'No data available'"]
+
+
+def test_layout_catches_the_wrong_opening_timeline(tmp_path):
+    """002's recording opened on ``iteration``: three of four views said "No data available"."""
+    problems = layout_problems(read_layout(_layout_recording(tmp_path, timeline="iteration")))
+    assert any("view 'Camera' has no data on the opening timeline 'iteration'" in p for p in problems)
+    assert any("view 'errors' has no data" in p for p in problems)
+
+
+def test_layout_catches_compared_series_of_one_colour(tmp_path):
+    problems = layout_problems(read_layout(_layout_recording(tmp_path, series_colours=((0, 114, 178),) * 2)))
+    assert any("view 'errors': /errors/x and /errors/y share the colour #0072b2" in p for p in problems)
+
+
+def test_colour_rule_spares_band_edges_and_parts_of_one_thing():
+    from tvtrack.pipeline.viewer import _compared_overlays, _compared_series
+
+    assert _compared_series("/errors/x", "/errors/y") and _compared_series("/v/variant_1", "/v/variant_2")
+    assert not _compared_series("/track/estimate_minus_sigma", "/track/estimate_plus_sigma")
+    assert _compared_overlays("/camera/truth", "/camera/estimate")
+    assert not _compared_overlays("/camera/gate", "/camera/gate_path")
+    assert not _compared_overlays("/camera/center/truth", "/camera/marker/truth")
+
+
+def test_layout_catches_unlabelled_overlapping_markers(tmp_path):
+    problems = layout_problems(read_layout(_layout_recording(tmp_path, labels=False)))
+    assert any("/camera/truth and /camera/estimate overlap" in p for p in problems)
+    far = layout_problems(read_layout(_layout_recording(tmp_path / "far", labels=False, apart=500.0)))
+    assert not any("overlap" in p for p in far)
+
+
+def test_layout_catches_bad_framing(tmp_path):
+    cut = layout_problems(read_layout(_layout_recording(tmp_path, bounds=(0.0, 12.0, 0.0, 32.0))))
+    assert any("view 'Camera': its visual bounds" in p and "cut off" in p for p in cut)
+    fine = layout_problems(read_layout(_layout_recording(tmp_path / "fine", bounds=(0.0, 32.0, 0.0, 32.0))))
+    assert not any("Camera" in p for p in fine)
+
+
+
 def test_colour_helpers():
     img = np.zeros((4, 5, 3), np.uint8)
     img[...] = 128                      # grey

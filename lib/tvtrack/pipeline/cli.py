@@ -1,8 +1,10 @@
-"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, view}``.
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view}``.
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
 directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
-with status 2 before any kernel starts; ``--debug`` shows the traceback instead.
+with status 2 before any kernel starts; ``--debug`` shows the traceback instead. Ctrl-C ends the
+running kernels, removes the temporary folders, prints one line ``interrupted: ...`` and exits with
+status 130; the same command started again resumes (finished runs are kept).
 """
 
 from __future__ import annotations
@@ -13,7 +15,8 @@ import sys
 import time
 from pathlib import Path
 
-from .paths import RUNS_DIR
+from .interrupt import EXIT_INTERRUPTED
+from .paths import RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 
 
@@ -51,20 +54,25 @@ def _fresh_directory(path: Path) -> Path:
         path.parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise UsageError(f"cannot create the output directory {path}: {exc.strerror}") from exc
+    writable_directory(path.parent, "output directory's parent")
     return path
 
 
 def _cmd_run(args) -> int:
-    from .runner import find_notebook, load_profile, run_notebook
+    from .runner import find_notebook, load_profile, remove_stale_temporaries, run_notebook
 
     nb = find_notebook(args.notebook)
     params = {name: _parse_value(value) for name, value in args.parameter}
     check_names(nb, params)
     profile = load_profile(nb, args.profile)
-    check_values(nb, {**profile, **params})
+    check_values(nb, {**profile, **params}, given=params)
     out = _fresh_directory(Path(args.output) if args.output else
                            RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}")
-    outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet)
+    remove_stale_temporaries(out.parent)
+    try:
+        outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet and sys.stderr.isatty())
+    except KeyboardInterrupt as exc:
+        raise KeyboardInterrupt(f"{nb.stem}: kernel ended, nothing written to {out}") from exc
     if outcome.ok:
         print(f"ok: {nb.stem} in {outcome.runtime_s:.1f} s -> {outcome.run_dir}")
         return 0
@@ -76,7 +84,7 @@ def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
     summary = run_sweep(args.spec, jobs=args.jobs, output=args.output, executor=args.executor,
-                        scheduler=args.scheduler)
+                        scheduler=args.scheduler, progress=sys.stderr.isatty())
     return 0 if summary.n_failed == 0 else 1
 
 
@@ -87,9 +95,17 @@ def _cmd_reproduce(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from .report import README_PATH, write_report
+    from .paths import PAPER_PROFILE, profile_name, reproduce_dir
+    from .report import README_PATH, REPORT_PATH, write_report
 
-    path = write_report(readme=README_PATH)
+    folder = reproduce_dir(args.profile)
+    if profile_name(args.profile) != PAPER_PROFILE and not folder.is_dir():
+        raise UsageError(f"no runs at the {args.profile} profile ({folder} does not exist): "
+                         f"`make reproduce PROFILE={args.profile}` makes them")
+    if profile_name(args.profile) == PAPER_PROFILE:
+        path = write_report(folder, REPORT_PATH, readme=README_PATH)
+    else:
+        path = write_report(folder, writable_directory(folder, "report folder") / "REPRODUCTION.md")
     print(f"wrote {path}")
     return 0
 
@@ -97,9 +113,26 @@ def _cmd_report(args) -> int:
 def _cmd_site(args) -> int:
     from .site import build_site
 
-    index = build_site(Path(args.runs), Path(args.output) if args.output else None)
+    index = build_site(Path(args.runs), Path(args.output) if args.output else None, profile=args.profile)
     print(f"wrote {index} (open it in a browser; no network needed)")
     return 0
+
+
+def _cmd_edit(args) -> int:
+    import os
+    import shutil
+
+    from .edit import working_copy
+
+    copy, written = working_copy(args.notebook, profile=args.profile, fresh=args.fresh)
+    shown = os.path.relpath(copy)
+    print(f"{'wrote' if written else 'kept (it holds your edits; --fresh replaces it)'} {shown}: "
+          f"the {args.profile} profile, outputs in {os.path.relpath(copy.with_name(copy.stem + '-out'))}/")
+    if not args.lab:
+        print(f"open it in JupyterLab (Run All), or: {Path(sys.executable).parent / 'jupyter'} lab {shown}")
+        return 0
+    jupyter = shutil.which("jupyter", path=str(Path(sys.executable).parent)) or "jupyter"
+    os.execv(jupyter, [jupyter, "lab", str(copy)])
 
 
 def _cmd_view(args) -> int:
@@ -139,12 +172,23 @@ def build_parser() -> argparse.ArgumentParser:
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
+    rep.add_argument("--profile", default=None,
+                     help="report on papermill_runs/reproduce-PROFILE/ into its own REPRODUCTION.md (default: paper)")
     rep.set_defaults(func=_cmd_report)
 
     st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
     st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
     st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
+    st.add_argument("--profile", default=None,
+                    help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)")
     st.set_defaults(func=_cmd_site)
+
+    e = sub.add_parser("edit", help="a working copy of a notebook at the smoke profile, to edit and run in JupyterLab")
+    e.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
+    e.add_argument("--profile", default="smoke", help="profile injected into the copy (default: smoke)")
+    e.add_argument("--fresh", action="store_true", help="replace an existing working copy (your edits are lost)")
+    e.add_argument("--lab", action="store_true", help="then start JupyterLab on it")
+    e.set_defaults(func=_cmd_edit)
 
     from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
     v = sub.add_parser("view", help="serve a run's recording in the Rerun web viewer (Ctrl-C stops)")
@@ -167,3 +211,14 @@ def main(argv=None) -> int:
             raise
         print(f"error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, UsageError) else 1
+    except OSError as exc:
+        if args.debug or not getattr(exc, "filename", None):
+            raise
+        print(f"error: cannot write {exc.filename}: {exc.strerror or exc} (--debug shows the traceback)",
+              file=sys.stderr)
+        return 1
+    except KeyboardInterrupt as exc:
+        if args.debug:
+            raise
+        print(f"interrupted: {exc or args.command + ' stopped'}", file=sys.stderr)
+        return EXIT_INTERRUPTED

@@ -20,7 +20,8 @@ import tempfile
 from pathlib import Path
 from typing import Any, Iterable
 
-__all__ = ["UsageError", "NotebookBug", "parameter_defaults", "check_names", "check_values"]
+__all__ = ["UsageError", "NotebookBug", "parameter_defaults", "check_names", "check_values", "check_values_many",
+           "refuse_output_dir", "OUTPUT_DIR_REASON", "name_given"]
 
 
 class UsageError(ValueError):
@@ -57,6 +58,8 @@ def parameter_defaults(notebook: Path) -> dict[str, Any]:
 def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
     """Raise :class:`UsageError` for a name the notebook's ``parameters`` cell does not define,
     suggesting the closest names."""
+    names = list(names)
+    refuse_output_dir(names, where)
     known = parameter_defaults(notebook)
     for name in names:
         if name not in known:
@@ -68,21 +71,74 @@ def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
 
 _PREFLIGHT = r"""
 import json, sys
-cells, overrides = json.loads(sys.stdin.read())
-namespace = {"__name__": "__preflight__"}
-exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
-namespace.update(overrides)
-try:
-    exec(compile(cells[1], "<validation cell>", "exec"), namespace)
-except ValueError as exc:
-    print(json.dumps({"user_error": str(exc)}))
-    sys.exit(0)
-print(json.dumps({"user_error": None}))
+cells, override_sets = json.loads(sys.stdin.read())
+answers = []
+for overrides in override_sets:
+    namespace = {"__name__": "__preflight__"}
+    exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
+    namespace.update(overrides)
+    try:
+        exec(compile(cells[1], "<validation cell>", "exec"), namespace)
+    except ValueError as exc:
+        answers.append(str(exc))
+        continue
+    answers.append(None)
+print(json.dumps(answers))
 """
 
+OUTPUT_DIR_REASON = ("'output_dir' is where a run writes and tvtrack sets it to the run's own directory; "
+                     "choose that directory with -o (sweeps: -o SWEEP_DIR) instead")
 
-def check_values(notebook: Path, overrides: dict[str, Any], timeout_s: float = 120) -> None:
+
+def refuse_output_dir(names: Iterable[str], where: str = "") -> None:
+    """Raise :class:`UsageError` if ``output_dir`` is among the parameters set (it would be ignored)."""
+    if "output_dir" in set(names):
+        raise UsageError(f"{where}{OUTPUT_DIR_REASON}")
+
+
+def name_given(message: str, given: dict[str, Any]) -> str:
+    """The validation message, led by what the user set when it names none of it (the notebook's check may
+    name the other parameter of an inconsistent pair: 001 ``window_n = 200`` against ``fa_duration_s``)."""
+    if not given or any(f"'{name}'" in message for name in given):   # the notebooks quote the names they check
+        return message
+    shown = ", ".join(f"{name} = {value!r}" for name, value in given.items())
+    return f"{shown} does not fit the other parameters: {message}"
+
+
+def check_values_many(notebook: Path, override_sets: list[dict[str, Any]], timeout_s: float = 120) -> list[str | None]:
+    """Run the notebook's parameters and validation cells once per override set, all in one subprocess.
+
+    Returns
+    -------
+    list of str or None
+        Per set, the validation cell's ``ValueError`` message, or ``None`` when the values pass.
+
+    Raises
+    ------
+    NotebookBug
+        The validation cell failed otherwise: a bug in the notebook, not in the user's input.
+    """
+    cells = _code_cells(notebook)
+    if len(cells) < 2:
+        raise UsageError(f"{notebook.name}: no validation cell after the parameters cell")
+    with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
+        payload = json.dumps([cells[:2], [{**o, "output_dir": scratch} for o in override_sets]], default=str)
+        env = {**os.environ, "MPLBACKEND": "Agg"}
+        proc = subprocess.run([sys.executable, "-c", _PREFLIGHT], input=payload, capture_output=True, text=True,
+                              cwd=scratch, env=env, timeout=timeout_s)
+    if proc.returncode != 0:
+        last = (proc.stderr.strip().splitlines() or ["(no message)"])[-1]
+        raise NotebookBug(f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
+                          f"--debug shows the traceback)")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def check_values(notebook: Path, overrides: dict[str, Any], timeout_s: float = 120,
+                 given: dict[str, Any] | None = None) -> None:
     """Run the notebook's parameters and validation cells with ``overrides`` in a subprocess.
+
+    ``given`` (default: ``overrides``) are the values the user typed; a message that names none of them is
+    led by them, so the user sees which of their values the check is about.
 
     Raises
     ------
@@ -92,18 +148,6 @@ def check_values(notebook: Path, overrides: dict[str, Any], timeout_s: float = 1
     NotebookBug
         The validation cell failed otherwise: a bug in the notebook, not in the user's input.
     """
-    cells = _code_cells(notebook)
-    if len(cells) < 2:
-        raise UsageError(f"{notebook.name}: no validation cell after the parameters cell")
-    with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
-        payload = json.dumps([cells[:2], {**overrides, "output_dir": scratch}], default=str)
-        env = {**os.environ, "MPLBACKEND": "Agg"}
-        proc = subprocess.run([sys.executable, "-c", _PREFLIGHT], input=payload, capture_output=True, text=True,
-                              cwd=scratch, env=env, timeout=timeout_s)
-    if proc.returncode != 0:
-        last = (proc.stderr.strip().splitlines() or ["(no message)"])[-1]
-        raise NotebookBug(f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
-                          f"--debug shows the traceback)")
-    verdict = json.loads(proc.stdout.strip().splitlines()[-1])
-    if verdict["user_error"]:
-        raise UsageError(f"{notebook.stem}: {verdict['user_error']}")
+    (error,) = check_values_many(notebook, [overrides], timeout_s)
+    if error:
+        raise UsageError(f"{notebook.stem}: {name_given(error, overrides if given is None else given)}")

@@ -2,7 +2,10 @@
 
 Notebooks run in a process pool of ``jobs`` workers, longest first (by the runtime of their last
 reproduce run, else a fixed order), each into ``papermill_runs/reproduce/<name>/`` (replacing the
-earlier run only when the new one has ended). So that ``jobs`` notebooks do not oversubscribe the
+earlier run only when the new one has ended). Another profile (``make reproduce PROFILE=smoke``) runs
+into ``papermill_runs/reproduce-<profile>/`` with its own ``REPRODUCTION.md`` there, and leaves the
+paper runs, the repository's ``REPRODUCTION.md`` and the README alone. Ctrl-C stops the notebooks,
+keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``jobs`` notebooks do not oversubscribe the
 machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
 parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
 goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal.
@@ -13,13 +16,16 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import sys
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from pathlib import Path
 
+from .interrupt import shielded_spawn, stop_pool, worker_init
+from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError, parameter_defaults
-from .report import README_PATH, REPRODUCE_DIR, write_report
-from .runner import list_notebooks, run_notebook
+from .report import README_PATH, REPORT_PATH, write_report
+from .runner import list_notebooks, remove_stale_temporaries, run_notebook
 
 __all__ = ["usable_cores", "reproduce"]
 
@@ -33,42 +39,44 @@ def usable_cores() -> int:
     return len(os.sched_getaffinity(0))
 
 
-def _last_runtime(name: str) -> float | None:
+def _last_runtime(folder: Path, name: str) -> float | None:
     try:
-        return float(json.loads((REPRODUCE_DIR / name / "run.json").read_text())["runtime_s"])
+        return float(json.loads((folder / name / "run.json").read_text())["runtime_s"])
     except (OSError, ValueError, KeyError, TypeError):
         return None
 
 
-def _order(notebooks: list[Path]) -> list[Path]:
+def _order(notebooks: list[Path], folder: Path) -> list[Path]:
     def key(nb: Path):
-        t = _last_runtime(nb.stem)
+        t = _last_runtime(folder, nb.stem)
         rank = next((i for i, p in enumerate(_DEFAULT_ORDER) if nb.stem.startswith(p)), len(_DEFAULT_ORDER))
         return (0, -t) if t is not None else (1, rank)
     return sorted(notebooks, key=key)
 
 
 def _worker_init(threads: int, log_path: str) -> None:
+    worker_init()
     for var in _THREAD_VARS:
         os.environ[var] = str(threads)
     log = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
     os.dup2(log, 2)   # kernels inherit this stderr: their transport warnings land in the log
 
 
-def _run_one(nb: str, profile: str | None, parameters: dict) -> tuple[str, bool, str | None, float]:
+def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tuple[str, bool, str | None, float]:
     name = Path(nb).stem
-    fresh = REPRODUCE_DIR / f".new-{name}"
+    fresh = Path(folder) / f".new-{name}"
     if fresh.exists():
         shutil.rmtree(fresh)
     outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
-    final = REPRODUCE_DIR / name
+    final = Path(folder) / name
     if final.exists():
         shutil.rmtree(final)
     os.replace(fresh, final)
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 
-def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: int | None = None) -> int:
+def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: int | None = None,
+              runs_dir: Path = RUNS_DIR) -> int:
     """Run the notebooks (all, or ``only``) side by side, then write the report.
 
     Parameters
@@ -79,6 +87,8 @@ def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: i
         Notebook names to run.
     jobs : int, optional
         Notebooks at once (default: :func:`usable_cores`).
+    runs_dir : Path
+        The folder holding ``reproduce/`` and ``reproduce-<profile>/`` (default ``papermill_runs/``).
 
     Returns
     -------
@@ -97,26 +107,41 @@ def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: i
         if unknown:
             raise UsageError(f"unknown notebooks {sorted(unknown)}; known: {', '.join(nb.stem for nb in notebooks)}")
         notebooks = [nb for nb in notebooks if nb.stem in wanted]
-    notebooks = _order(notebooks)
+    folder = reproduce_dir(profile, runs_dir)
+    notebooks = _order(notebooks, folder)
     jobs = min(jobs, len(notebooks))
     threads = max(1, usable_cores() // jobs)
-    REPRODUCE_DIR.mkdir(parents=True, exist_ok=True)
-    log = REPRODUCE_DIR / "kernels.log"
+    folder.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(folder)
+    log = folder / "kernels.log"
     failures = []
-    bar = tqdm(total=len(notebooks), desc=f"reproduce ({jobs} at once)", unit="notebook")
-    with ProcessPoolExecutor(jobs, mp_context=get_context("spawn"), initializer=_worker_init,
-                             initargs=(threads, str(log))) as pool:
+    bar = tqdm(total=len(notebooks), desc=f"reproduce {profile_name(profile)} ({jobs} at once)", unit="notebook",
+               disable=not sys.stderr.isatty())
+    pool = ProcessPoolExecutor(jobs, mp_context=get_context("spawn"), initializer=_worker_init,
+                               initargs=(threads, str(log)))
+    try:
         futures = {}
-        for nb in notebooks:
-            params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
-            futures[pool.submit(_run_one, str(nb), profile, params)] = nb.stem
+        with shielded_spawn():
+            for nb in notebooks:
+                params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
+                futures[pool.submit(_run_one, str(nb), profile, params, str(folder))] = nb.stem
         for fut in as_completed(futures):
             name, ok, error, runtime = fut.result()
             bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s)")
             if not ok:
                 failures.append(name)
             bar.update(1)
+    except KeyboardInterrupt as exc:
+        stop_pool(pool)
+        bar.close()
+        remove_stale_temporaries(folder)
+        for fresh in folder.glob(".new-*"):
+            shutil.rmtree(fresh, ignore_errors=True)
+        raise KeyboardInterrupt(f"reproduce: notebooks stopped; the runs finished before are kept in {folder}") from exc
+    pool.shutdown()
     bar.close()
-    path = write_report(readme=README_PATH)
+    paper = profile_name(profile) == PAPER_PROFILE
+    path = write_report(folder, REPORT_PATH if paper else folder / "REPRODUCTION.md",
+                        notebooks=[nb.stem for nb in list_notebooks()], readme=README_PATH if paper else None)
     print(f"wrote {path}" + (f"; failed: {', '.join(failures)}" if failures else ""))
     return 1 if failures else 0

@@ -1,12 +1,18 @@
 """``python -m tvtrack site`` (``make site``): a static, offline HTML site built from the runs.
 
-Reads the paper runs under ``papermill_runs/reproduce/<notebook>/`` (what ``make reproduce`` leaves)
+Reads the paper runs under ``papermill_runs/reproduce/<notebook>/`` (what ``make reproduce`` leaves; another
+profile's runs, ``--profile smoke``, from ``papermill_runs/reproduce-smoke/`` into ``papermill_runs/site-smoke/``)
 and the sweeps under ``papermill_runs/<spec>/`` (directories holding ``summary.csv``), and writes
 ``papermill_runs/site/``:
 
-- ``index.html``: one card per paper run (citation, run date, commit, runtime, claims by verdict and
-  robustness label, the recording's still image and the command that serves it), then the sweeps;
-- ``ledger.html``: every claim of every ``results.json``, filterable and sortable by a small inline
+- ``index.html``: the profile it shows, then the first screen: every claim that does not reproduce or is
+  undecided and every verdict that depends or is unstable, one row each (statement, paper value, measured
+  value with interval, verdict, label); the forest plot of every claim and the robustness picture (claims by
+  register entries, coloured by verdict); then one card per paper run (citation, run date, commit, runtime,
+  claims by verdict and robustness label, the recording's still image and the command that serves it), then
+  the sweeps;
+- ``ledger.html``: every claim of every ``results.json`` in a compact table (the rule, where the verdict
+  differs, what the label covers and the parts behind a click), filterable and sortable by a small inline
   script, each linking to the notebook cell that decided it;
 - ``notebooks/<name>.html``: the executed notebook through nbconvert with this package's template
   (``site_templates/notebook``), figures inline, math converted to MathML at build time
@@ -30,13 +36,14 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .paths import RUNS_DIR
+from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
-from .report import NO_LABEL, REPRODUCE_DIR, format_measured, robustness_label, robustness_where
+from .report import (ALL_LABELS, ALL_VERDICTS, NO_LABEL, REPRODUCE_DIR, coverage_text, first_screen, forest_items,
+                     forest_plot, format_measured, part_labels, profiles_shown, robustness_label, robustness_picture,
+                     robustness_where)
 from .runner import read_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import VERDICTS
-from ..verdicts import LABELS
 
 __all__ = ["SITE_DIR", "PaperRun", "find_paper_runs", "find_sweeps", "tex_to_html", "claim_cells",
            "recording_still", "render_notebook", "build_site"]
@@ -44,7 +51,7 @@ __all__ = ["SITE_DIR", "PaperRun", "find_paper_runs", "find_sweeps", "tex_to_htm
 SITE_DIR = RUNS_DIR / "site"
 TEMPLATE_DIR = Path(__file__).with_name("site_templates")
 NOTEBOOK_TEMPLATE = "notebook"
-NOT_SWEEPS = {"reproduce", "runs", "interactive", "site", "profiles", "sweeps"}
+NOT_SWEEPS = {"reproduce", "runs", "interactive", "site", "profiles", "sweeps", "edit"}
 STILL_MIN_SIDE_PX = 320
 
 
@@ -79,7 +86,8 @@ def find_paper_runs(reproduce_dir: Path = REPRODUCE_DIR) -> list[PaperRun]:
 
 def find_sweeps(runs_dir: Path = RUNS_DIR) -> list[Path]:
     """Sweep directories (holding ``summary.csv``) directly under ``runs_dir``."""
-    return sorted(p for p in Path(runs_dir).glob("*/summary.csv") if p.parent.name not in NOT_SWEEPS)
+    return sorted(p for p in Path(runs_dir).glob("*/summary.csv") if p.parent.name not in NOT_SWEEPS
+                  and not p.parent.name.startswith(("reproduce-", "site-")))
 
 
 # --- math --------------------------------------------------------------------------------------------
@@ -263,8 +271,8 @@ def _environment():
 def _counts(claims: list[dict]) -> dict:
     verdicts = Counter(c["verdict"] for c in claims)
     labels = Counter(robustness_label(c) for c in claims)
-    return {"verdicts": [(v, verdicts[v]) for v in VERDICTS],
-            "labels": [(lab, labels[lab]) for lab in (*LABELS, NO_LABEL) if labels[lab]]}
+    return {"verdicts": [(v, verdicts[v]) for v in ALL_VERDICTS if v in VERDICTS or verdicts[v]],
+            "labels": [(lab, labels[lab]) for lab in (*ALL_LABELS, NO_LABEL) if labels[lab]]}
 
 
 def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
@@ -276,6 +284,7 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                          "paper_value": c["paper_value"], "rule": c.get("acceptance", ""),
                          "measured": format_measured(c["measured"]), "verdict": c["verdict"],
                          "label": robustness_label(c), "where": robustness_where(c), "note": c.get("note", ""),
+                         "coverage": coverage_text(c), "parts": part_labels(c),
                          "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else "")})
     return rows
 
@@ -306,20 +315,32 @@ def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
     return shown
 
 
-def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
-    """Build the site from ``runs_dir/reproduce`` and the sweeps in ``runs_dir``; returns ``index.html``."""
+def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str | None = None) -> Path:
+    """Build the site from ``runs_dir/reproduce`` (``reproduce-<profile>`` for another profile) and the sweeps in
+    ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``)."""
     import nbformat
 
     runs_dir = Path(runs_dir)
-    site = Path(out) if out is not None else runs_dir / "site"
+    profile = profile_name(profile)
+    source = reproduce_dir(profile, runs_dir)
+    default = runs_dir / ("site" if profile == PAPER_PROFILE else f"site-{profile}")
+    if profile != PAPER_PROFILE and not source.is_dir():
+        raise UsageError(f"no runs at the {profile} profile ({source} does not exist): "
+                         f"`make reproduce PROFILE={profile}` makes them")
+    site = Path(out) if out is not None else default
+    if site.exists() and not site.is_dir():
+        raise UsageError(f"cannot write the site folder {site}: it is a file; give an empty or new folder")
     if site.exists():
         if any(site.iterdir()) and not (site / "index.html").is_file():
             raise UsageError(f"{site} exists and is not a site built here (no index.html): give an empty or new folder")
-        shutil.rmtree(site)
-    (site / "notebooks").mkdir(parents=True)
+        try:
+            shutil.rmtree(site)
+        except OSError as exc:
+            raise UsageError(f"cannot replace the site folder {site}: {exc.strerror or exc}") from exc
+    writable_directory(site / "notebooks", "site folder")
     (site / "sweeps").mkdir()
     env = _environment()
-    runs = find_paper_runs(runs_dir / "reproduce")
+    runs = find_paper_runs(source)
     cards = []
     for run in runs:
         card = {"run": run, "recording": None, "counts": None, "date": run.record.get("finished_utc", ""),
@@ -338,11 +359,23 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None) -> Path:
     sweeps = [_sweep_page(env, csv_path, site) for csv_path in find_sweeps(runs_dir)]
     rows = _ledger_rows(runs)
     built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    by_name = {r.name: (r.record, r.results) for r in runs}
+    shown = profiles_shown(by_name) if any(r.ok for r in runs) else profile
+    forest = forest_plot(forest_items(by_name), site / "forest.png")
+    picture = robustness_picture(by_name, site / "robustness.png")
+    common = {"root": "", "built": built, "profile": shown, "paper_scale": shown == PAPER_PROFILE,
+              "source": _shown(source, runs_dir)}
     (site / "ledger.html").write_text(env.get_template("ledger.html").render(
-        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=VERDICTS, labels=(*LABELS, NO_LABEL), root="",
-        built=built))
+        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=[v for v, _ in _counts(
+            [c for r in runs if r.ok for c in r.results["claims"]])["verdicts"]],
+        labels=(*ALL_LABELS, NO_LABEL), **common))
+    first = first_screen(by_name)
+    for row in first:
+        cell = next((r.cells.get(row["id"]) for r in runs if r.name == row["paper"]), None)
+        row["href"] = f"notebooks/{row['paper']}.html" + (f"#cell-id={cell}" if cell else "")
     index = site / "index.html"
     index.write_text(env.get_template("index.html").render(
         cards=cards, sweeps=sweeps, totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
-        n_claims=len(rows), root="", built=built))
+        n_claims=len(rows), first=first, forest="forest.png" if forest else None,
+        robustness="robustness.png" if picture else None, **common))
     return index

@@ -24,6 +24,8 @@ import csv
 import hashlib
 import itertools
 import json
+import os
+import re
 import shutil
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -31,14 +33,15 @@ from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
-from .paths import RUNS_DIR
-from .preflight import UsageError, check_names
+from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
+from .paths import RUNS_DIR, writable_directory
+from .preflight import UsageError, check_names, check_values_many, name_given
 from .runner import read_toml, find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
 
 __all__ = ["SweepSpec", "RunSpec", "SweepSummary", "load_spec", "expand", "run_hash", "run_sweep",
-           "collect_summary"]
+           "collect_summary", "preflight", "check_scheduler_address"]
 
-DASK_CONNECT_TIMEOUT_S = 10
+DASK_CONNECT_TIMEOUT_S = 8
 _SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
 
 
@@ -148,10 +151,35 @@ def _default_seed(notebook: Path) -> int:
     return 0
 
 
+def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
+    """Check every distinct parameter set of the sweep with the notebook's validation cell (as ``tvtrack run``
+    does) before any kernel starts; raise one :class:`UsageError` naming the first refused set and how many.
+
+    The sets differ from each other by the swept values only (seeds aside), so one subprocess checks them all
+    (:func:`.preflight.check_values_many`)."""
+    base = load_profile(spec.notebook, spec.profile)
+    distinct: dict[str, RunSpec] = {}
+    for run in runs:
+        key = json.dumps({k: v for k, v in run.parameters.items() if k != "seed"}, sort_keys=True, default=str)
+        distinct.setdefault(key, run)
+    sets = list(distinct.values())
+    errors = check_values_many(spec.notebook, [{**base, **r.parameters} for r in sets])
+    refused = [(r, e) for r, e in zip(sets, errors) if e]
+    if refused:
+        run, error = refused[0]
+        given = {k: v for k, v in run.parameters.items() if k in {**spec.grid, **spec.zipped, **spec.fixed}}
+        more = f" (and {len(refused) - 1} more of the {len(sets)} parameter sets)" if len(refused) > 1 else ""
+        raise UsageError(f"{where}{spec.notebook.stem}: {name_given(error, given)}{more}; no run started")
+
+
 def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str, str | None, float]:
-    """Worker: one run (top-level so process pools and Dask can pickle it)."""
-    outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
-                           extra_record={"run_id": run.run_id})
+    """Worker: one run (top-level so process pools and Dask can pickle it). A pool worker told to stop
+    (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
+    try:
+        outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
+                               extra_record={"run_id": run.run_id})
+    except Interrupted:
+        os._exit(EXIT_INTERRUPTED)
     return run.run_id, outcome.status, outcome.error, outcome.runtime_s
 
 
@@ -183,16 +211,26 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
     if executor == "dask" and not scheduler:
         raise UsageError("executor 'dask' needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    if executor == "dask":
+        check_scheduler_address(scheduler)
     spec = load_spec(spec_path)
+    client = _dask_client(scheduler) if executor == "dask" else None   # before the preflight: fail fast
+    runs = expand(spec)
+    try:
+        preflight(spec, runs, where=f"{spec_path}: ")
+    except UsageError:
+        if client is not None:
+            client.close()
+        raise
     sweep_dir = Path(output) if output else RUNS_DIR / spec.name
     runs_dir = sweep_dir / "runs"
     try:
         runs_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
+    writable_directory(runs_dir, "sweep directory")
     remove_stale_temporaries(runs_dir)
     (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
-    runs = expand(spec)
     todo = []
     for run in runs:
         record = read_run(runs_dir / run.run_id)
@@ -205,7 +243,6 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
 
     from tqdm import tqdm
 
-    client = _dask_client(scheduler) if executor == "dask" else None
     bar = tqdm(total=len(runs), initial=n_skipped, desc=spec.name, disable=not progress, unit="run")
     failed = 0
     nb_path = str(spec.notebook)
@@ -216,21 +253,20 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         bar.update(1)
         bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
 
-    if executor == "dask":
-        from distributed import as_completed as dask_completed
-
-        with client:
-            futures = [client.submit(_execute, r, nb_path, str(runs_dir), pure=False) for r in todo]
-            for fut in dask_completed(futures):
-                tick(fut.result()[1])
-    elif jobs == 1:
-        for r in todo:
-            tick(_execute(r, nb_path, str(runs_dir))[1])
-    else:
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn")) as pool:
-            futures = [pool.submit(_execute, r, nb_path, str(runs_dir)) for r in todo]
-            for fut in as_completed(futures):
-                tick(fut.result()[1])
+    try:
+        if executor == "dask":
+            _run_on_dask(client, todo, nb_path, str(runs_dir), tick)
+        elif jobs == 1:
+            for r in todo:
+                tick(_execute(r, nb_path, str(runs_dir))[1])
+        else:
+            _run_in_pool(jobs, todo, nb_path, str(runs_dir), tick)
+    except KeyboardInterrupt as exc:
+        bar.close()
+        remove_stale_temporaries(runs_dir)
+        done = sum((read_run(runs_dir / r.run_id) or {}).get("status") == "ok" for r in runs)
+        raise KeyboardInterrupt(f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; "
+                                f"the same command resumes") from exc
     bar.close()
     csv_path, plot = collect_summary(sweep_dir, runs, spec.summary)
     records = [read_run(runs_dir / r.run_id) or {} for r in runs]
@@ -243,15 +279,96 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
     return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, n_failed, csv_path, plot)
 
 
-def _dask_client(scheduler: str):
-    """A client of the running Dask scheduler at ``scheduler``, or a :class:`UsageError` saying how to start one."""
-    from distributed import Client
-
+def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
+    """The runs in a pool of ``jobs`` worker processes; Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init)
     try:
-        return Client(scheduler, timeout=DASK_CONNECT_TIMEOUT_S)
-    except (OSError, TimeoutError) as exc:
-        raise UsageError(f"cannot reach the Dask scheduler at {scheduler} within {DASK_CONNECT_TIMEOUT_S} s; start "
-                         f"one with `dask scheduler` (and `dask worker ADDRESS`), or use --executor local") from exc
+        with shielded_spawn():   # workers are spawned by submit(): they start with Ctrl-C ignored
+            futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
+        for fut in as_completed(futures):
+            tick(fut.result()[1])
+    except KeyboardInterrupt:
+        stop_pool(pool)
+        raise
+    pool.shutdown()
+
+
+def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
+    """The runs on a Dask cluster; Ctrl-C cancels the runs not started yet (running ones finish on the
+    workers, and their temporary folders, if a worker dies, are removed at the next start)."""
+    from distributed import as_completed as dask_completed
+
+    with client:
+        futures = [client.submit(_execute, r, nb_path, runs_dir, pure=False) for r in todo]
+        try:
+            for fut in dask_completed(futures):
+                tick(fut.result()[1])
+        except KeyboardInterrupt:
+            client.cancel(futures)
+            raise
+
+
+_ADDRESS = re.compile(r"^(?:(?P<scheme>[a-z]+)://)?(?P<host>\[[0-9a-fA-F:.]+\]|[^:/\s\[\]]+)"
+                      r"(?::(?P<port>[^/\s]*))?/?$")
+
+
+def check_scheduler_address(address: str) -> tuple[str, int]:
+    """``(host, port)`` of a Dask scheduler address such as ``tcp://127.0.0.1:8786`` or ``host:8786``.
+
+    Raises
+    ------
+    UsageError
+        The address has no port, a port that is not a number in [1, 65535], or another scheme than
+        ``tcp``/``tls`` (one line naming the address)."""
+    match = _ADDRESS.match(address.strip())
+    example = "e.g. tcp://127.0.0.1:8786"
+    if not match:
+        raise UsageError(f"scheduler address {address!r} is not HOST:PORT or tcp://HOST:PORT ({example})")
+    scheme, host, port = match.group("scheme"), match.group("host"), match.group("port")
+    if scheme not in (None, "tcp", "tls"):
+        raise UsageError(f"scheduler address {address!r}: scheme {scheme!r} is not supported; use tcp:// ({example})")
+    if port is None or port == "":
+        raise UsageError(f"scheduler address {address!r} has no port ({example}; `dask scheduler` prints its address)")
+    if not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise UsageError(f"scheduler address {address!r}: port {port!r} is not a number in [1, 65535] ({example})")
+    return host.strip("[]"), int(port)
+
+
+def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
+    """A client of the running Dask scheduler at ``scheduler``, within ``timeout_s`` seconds.
+
+    Raises
+    ------
+    UsageError
+        One line naming the address: nothing listens there, or what listens does not answer as a Dask
+        scheduler within the time limit (a web server, a database ...), with how to start one.
+    """
+    import socket
+    import threading
+
+    host, port = check_scheduler_address(scheduler)
+    hint = "start one with `dask scheduler` (and `dask worker ADDRESS`), or use --executor local"
+    try:
+        socket.create_connection((host, port), timeout=timeout_s).close()
+    except OSError as exc:
+        raise UsageError(f"cannot reach the Dask scheduler at {scheduler}: {exc.strerror or exc}; {hint}") from exc
+    outcome: dict = {}
+
+    def connect():   # distributed may wait forever on a port where something else listens: a thread with a deadline
+        from distributed import Client
+
+        try:
+            outcome["client"] = Client(scheduler, timeout=timeout_s)
+        except BaseException as exc:  # noqa: BLE001 - e.g. MemoryError decoding an HTTP reply as a Dask frame
+            outcome["error"] = exc
+
+    thread = threading.Thread(target=connect, daemon=True, name="dask-connect")
+    thread.start()
+    thread.join(timeout_s)
+    if "client" not in outcome:
+        raise UsageError(f"no Dask scheduler answers at {scheduler} within {timeout_s:.0f} s (something listens "
+                         f"there, but not a Dask scheduler); {hint}")
+    return outcome["client"]
 
 
 def _flatten_metrics(metrics: dict) -> dict[str, Any]:

@@ -1,0 +1,147 @@
+"""Ctrl-C for runs that span processes: queued work cancelled, running kernels ended, temporaries removed.
+
+A terminal's Ctrl-C sends SIGINT to the foreground process group: the ``tvtrack`` process and the pool
+workers it started (Jupyter kernels run in sessions of their own and never see it). The workers are
+started with SIGINT ignored (:func:`shielded_spawn`), so only the main process reacts: it cancels what is
+queued, asks each worker to stop with SIGTERM (:func:`stop_pool`), and a worker that receives it raises
+:class:`Interrupted` inside the run, which ends the run's kernel and removes its temporary folder
+(:func:`tvtrack.pipeline.runner.run_notebook`) before the worker exits. The command line then prints one
+line and exits with status 130 (:data:`EXIT_INTERRUPTED`, the shell's convention for SIGINT).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import time
+
+__all__ = [
+    "EXIT_INTERRUPTED",
+    "Interrupted",
+    "shielded_spawn",
+    "worker_init",
+    "kernels_end_on_ctrl_c",
+    "stop_pool",
+    "end_children",
+    "child_pids",
+]
+
+EXIT_INTERRUPTED = 130
+STOP_GRACE_S = 5.0
+"""Seconds a worker gets to end its kernel and remove its temporary folder before it is killed."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """Raised in a pool worker asked to stop (SIGTERM), so the run it executes cleans up like after Ctrl-C."""
+
+
+@contextlib.contextmanager
+def shielded_spawn():
+    """Ignore SIGINT while worker processes are started in this block, so they inherit the ignored disposition.
+
+    Python installs its KeyboardInterrupt handler only where SIGINT is not ignored at start-up, so a spawned
+    worker keeps ignoring Ctrl-C from the first instruction on (an initializer would leave a window in which
+    a Ctrl-C prints the worker's traceback)."""
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _end_kernels_and_raise_interrupted(signum, frame):
+    end_children()
+    raise Interrupted()
+
+
+def worker_init(*_args) -> None:
+    """Pool-worker initializer: SIGTERM (from :func:`stop_pool`) ends the worker's kernel and raises
+    :class:`Interrupted` in the run."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _end_kernels_and_raise_interrupted)
+
+
+@contextlib.contextmanager
+def kernels_end_on_ctrl_c():
+    """In this block a Ctrl-C first kills this process's kernels, then raises ``KeyboardInterrupt``.
+
+    Killing the kernel before the exception unwinds papermill spares the kernel's graceful shutdown (seconds,
+    and a traceback the kernel prints on the user's terminal). Outside the main thread, or where SIGINT is
+    not Python's default handler (ignored in a pool worker, or a caller's own), nothing changes."""
+    import threading
+
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    ):
+        yield
+        return
+    spare = child_pids()
+
+    def end_kernels_and_raise(signum, frame):
+        end_children(spare=spare)
+        raise KeyboardInterrupt()
+
+    signal.signal(signal.SIGINT, end_kernels_and_raise)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def child_pids(pid: int | None = None) -> set[int]:
+    """Process ids of every descendant of process ``pid`` (default: this one)."""
+    import psutil
+
+    try:
+        return {c.pid for c in psutil.Process(pid).children(recursive=True)}
+    except psutil.NoSuchProcess:
+        return set()
+
+
+def end_children(pid: int | None = None, spare: set[int] | frozenset = frozenset()) -> int:
+    """Kill every descendant of process ``pid`` (default: this one) but those in ``spare`` (processes that were
+    there before the run started, e.g. a caller's own Dask workers), e.g. a Jupyter kernel; returns how many.
+
+    Kernels run in sessions of their own, so they are found by parentage, not by process group. They are
+    killed outright (SIGKILL): a kernel asked to terminate mid-cell prints its own traceback, and what it
+    was writing goes to a temporary folder that is removed anyway."""
+    import psutil
+
+    try:
+        children = [c for c in psutil.Process(pid).children(recursive=True) if c.pid not in spare]
+    except psutil.NoSuchProcess:
+        return 0
+    for child in children:
+        with contextlib.suppress(psutil.NoSuchProcess):
+            child.kill()
+    psutil.wait_procs(children, timeout=2.0)
+    return len(children)
+
+
+def stop_pool(pool, grace_s: float = STOP_GRACE_S) -> None:
+    """Stop a ``concurrent.futures.ProcessPoolExecutor`` now: queued runs cancelled, running ones asked to end.
+
+    Each worker gets SIGTERM and ``grace_s`` seconds to end its kernel and remove its temporary folder; a
+    worker (or a kernel) still there after that is killed."""
+    import psutil
+
+    processes = dict(getattr(pool, "_processes", None) or {})
+    descendants = []
+    for pid in processes:
+        with contextlib.suppress(psutil.NoSuchProcess):
+            descendants += psutil.Process(pid).children(recursive=True)
+    pool.shutdown(wait=False, cancel_futures=True)
+    for pid in processes:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(pid, signal.SIGTERM)
+    deadline = time.monotonic() + grace_s
+    for process in processes.values():
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join(1.0)
+    for child in descendants:
+        with contextlib.suppress(psutil.NoSuchProcess):
+            child.kill()
