@@ -202,3 +202,28 @@ def test_a_joint_condition_is_described_by_the_entries_the_claim_reads():
     joint = [c for c in ex.record("X")["conditions"] if c["kind"] == "joint"]
     assert joint and all(set(c["changed"]) <= {"a", "b"} for c in joint)
     assert any(r.changed(ex.default).get("c") == "y" for r in ex.runs if r.stage == "joint")  # c did vary
+
+
+def test_executor_for_a_port_where_nothing_or_no_scheduler_listens_is_one_line_within_the_limit():
+    import socket
+    import threading
+    import time
+
+    from tvtrack.explore import executor_for
+
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    with pytest.raises(ValueError, match="cannot reach"):
+        executor_for(f"127.0.0.1:{port}", timeout_s=2)
+    silent = socket.socket()
+    silent.bind(("127.0.0.1", 0))
+    silent.listen(1)
+    held = []
+    threading.Thread(target=lambda: held.append(silent.accept()), daemon=True).start()
+    t0 = time.perf_counter()
+    with pytest.raises(ValueError, match="no Dask scheduler answers"):
+        executor_for(f"127.0.0.1:{silent.getsockname()[1]}", timeout_s=2)
+    assert time.perf_counter() - t0 < 10
+    silent.close()

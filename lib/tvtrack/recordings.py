@@ -251,6 +251,9 @@ class Recorder:
     def _show_inline(self) -> None:
         """Replay the finished file into an inline viewer widget. (In rerun 0.41 showing a live
         stream inline takes the stream away from its file sink, so the file would stay empty.)"""
+        import os
+
+        os.environ.setdefault("RERUN_NOTEBOOK_ASSET", "inline")  # the viewer shipped with the package: works offline
         from rerun.notebook import Viewer
 
         replay = rr.RecordingStream(self._app, recording_id=uuid.uuid4())
