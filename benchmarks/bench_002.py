@@ -7,8 +7,8 @@ import time
 
 import numpy as np
 
-from tvtrack.estimate.em_location import pixel_entries, unified_location_em
-from tvtrack.scenes.linear_motion import designate, frame_times, mixture_weights, simulate_counts
+from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.model import designate, frame_times, mixture_weights, simulate_counts
 
 N_ITER = 20
 

@@ -5,13 +5,13 @@ to run, the designation errors, the mark initialisation/association and the numb
 :class:`LocationStudy` draws each configuration's scenes from its own seed (derived from the run
 seed and the configuration values, so results do not depend on the number of workers or on which
 other configurations are computed), runs the unified location EM
-(:func:`tvtrack.estimate.em_location.unified_location_em`), the two-stage algorithms of
-:mod:`tvtrack.estimate.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb` on the
+(:func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em`), the two-stage algorithms of
+:mod:`tvtrack.papers.p002_unified_location_em.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb` on the
 same samples, and caches the per-trial errors. Configurations that differ only in their algorithm
 letters share one simulation.
 
 Units: errors are in sigma (the PSF standard deviation), after matching the estimated labels to
-the truth (all ``Q!`` orders, :func:`~tvtrack.estimate.em_location.match_labels`).
+the truth (all ``Q!`` orders, :func:`~tvtrack.papers.p002_unified_location_em.em.match_labels`).
 """
 
 from __future__ import annotations
@@ -27,12 +27,12 @@ from typing import NamedTuple
 import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
-from tvtrack.estimate.em_location import match_labels, pixel_entries, unified_location_em
-from tvtrack.estimate.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
+from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from scipy import stats
 
 from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, mean_square_ci, proportion_ci
-from tvtrack.scenes.linear_motion import (draw_truth, frame_times, mixture_weights, scene_batches,
+from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_times, mixture_weights, scene_batches,
                                           scene_geometry)
 
 #: Algorithm letters of :attr:`Config.algs`.
@@ -77,7 +77,7 @@ class StudySettings:
     accelerate : {"squarem", "none"}
         EM variant of the "u" algorithm.
     mark_init, mark_association : str
-        Defaults of :func:`~tvtrack.estimate.two_stage.em_marks` ``init`` and ``association``.
+        Defaults of :func:`~tvtrack.papers.p002_unified_location_em.two_stage.em_marks` ``init`` and ``association``.
     gate_half_sigma : float
         Centre-of-region gate half-size, sigma (at least 1.5 px).
     bic_max_iter : int

@@ -1,9 +1,9 @@
-"""Tests for the Monte Carlo machinery of notebook 002 (tvtrack.estimate.location_study)."""
+"""Tests for the Monte Carlo machinery of notebook 002 (tvtrack.papers.p002_unified_location_em.study)."""
 
 import numpy as np
 import pytest
 
-from tvtrack.estimate.location_study import (Config, LocationStudy, StudySettings, bootstrap_groups,
+from tvtrack.papers.p002_unified_location_em.study import (Config, LocationStudy, StudySettings, bootstrap_groups,
                                              failure_metrics, position_errors, seed_blocks, seed_sequence,
                                              variance_ratio_ci, variance_sum)
 
