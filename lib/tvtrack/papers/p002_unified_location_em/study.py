@@ -86,6 +86,11 @@ class StudySettings:
         Sub-pixel phases averaged in each CRB value.
     n_trials : int
         Default trials per configuration.
+    velocity_knowledge : {"free", "designated"}
+        What the MAP-ULA and its two-stage twin know of the velocity: nothing ("free": the MAP prior
+        covers the initial positions only, the line fit is ordinary least squares), or the designated
+        velocity with its error ``designation_velocity_sd`` ("designated": the MAP prior's velocity sd is
+        that error, the line fit keeps the designated velocity and fits the intercept).
     n_bootstrap : int
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
@@ -109,6 +114,7 @@ class StudySettings:
     crb_phases: int
     n_trials: int
     n_bootstrap: int
+    velocity_knowledge: str = "free"
 
 
 class Config(NamedTuple):
@@ -214,6 +220,25 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
             yield b, seed + k
 
 
+def centre_gate_half_px(gate_half_sigma: float, sigma_px: float) -> float:
+    """Half-size (px) of the centre-of-region gate: ``gate_half_sigma`` PSF widths, but at least 1.5 px, so
+    that with coarse pixels the gate is 3 x 3 pixels and the centroid can move off the central pixel."""
+    return max(gate_half_sigma * sigma_px, 1.5)
+
+
+def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: float) -> tuple[float, float]:
+    """Prior standard deviations ``(position px, velocity px/frame)`` of the MAP-ULA.
+
+    The position prior is the designation's own error model (``dsd`` sigma per coordinate; at least 1e-6).
+    The velocity is free (``inf``) unless ``velocity_knowledge == "designated"``, where the prior sd is the
+    designation's velocity error ``vsd`` (sigma per frame; 0 fixes it). The default, free, keeps the MAP-ULA
+    from knowing what its two-stage comparator does not (issue 26: a zero sd pinned it to the truth)."""
+    if velocity_knowledge not in ("free", "designated"):
+        raise ValueError(f"velocity_knowledge = {velocity_knowledge!r} must be 'free' or 'designated'")
+    v = np.inf if velocity_knowledge == "free" else vsd * sigma_px
+    return max(dsd, 1e-6) * sigma_px, v
+
+
 def _fallback(marks, designation, init: str) -> np.ndarray:
     """The state a line fit returns where it has too few marks (flagged invalid): the designation,
     or for the designation-free start (``init = "moments"``) a still object at the mean mark."""
@@ -244,7 +269,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
-    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_flags",
+    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_v", "em_flags",
                            "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik")}
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
@@ -271,7 +296,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         if "m" in algs:
             t0 = time.perf_counter()
             r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
-                                    accelerate=accel, prior_sd=(max(dsd, 1e-6) * s, vsd * s))
+                                    accelerate=accel, prior_sd=map_prior_sd(s_.velocity_knowledge, dsd, vsd, s))
             timing["map"] += time.perf_counter() - t0
             out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         if "e" in algs:
@@ -282,6 +307,10 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
                           max_iter=s_.max_iter, accelerate=accel)
             fit = fit_lines(mk, times, _fallback(mk, b.designation, s_.mark_init if init is None else init))
             timing["em"] += time.perf_counter() - t0
+            if "m" in algs:       # the MAP-ULA's two-stage twin: the same velocity knowledge
+                known = b.designation[..., 2:] if s_.velocity_knowledge == "designated" else None
+                fit_v = fit_lines(mk, times, b.designation, velocity=known)
+                out["em_v"].append(errors_vs_truth(fit_v.theta, b.truth, s, times)[0])
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["em"].append(e)
             out["em_iter"].append(mk.n_iter.sum(axis=1))
@@ -298,7 +327,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         if "c" in algs:
             t0 = time.perf_counter()
             mk = centre_of_region_marks(b.counts, propagate(b.designation, times),
-                                        max(s_.gate_half_sigma * s, 1.5))
+                                        centre_gate_half_px(s_.gate_half_sigma, s))
             fit = fit_lines(mk, times, b.designation)
             timing["cr"] += time.perf_counter() - t0
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)

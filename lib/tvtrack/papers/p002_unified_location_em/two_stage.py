@@ -325,7 +325,7 @@ class LineFit:
     valid: np.ndarray
 
 
-def fit_lines(marks: Marks, times, fallback) -> LineFit:
+def fit_lines(marks: Marks, times, fallback, velocity=None) -> LineFit:
     """Ordinary least squares ``x_l = x0 + Vx t_l`` per object and axis over the valid marks
     (eq. (11) with unit weights: ``A' = sum 1``, ``B' = sum t``, ``C' = sum t^2``).
 
@@ -335,9 +335,20 @@ def fit_lines(marks: Marks, times, fallback) -> LineFit:
     times : ndarray, shape (T,)
     fallback : ndarray, shape (N, Q, 4)
         Returned for objects with fewer than two usable marks (flagged invalid).
+    velocity : ndarray, shape (N, Q, 2), optional
+        A known velocity (px/frame): then only ``x0 = mean(x_l - V t_l)`` over the valid marks is
+        fitted (one usable mark suffices), the two-stage counterpart of a ULA whose velocity is fixed.
     """
     t = np.asarray(times, dtype=float)[None, :, None]
     w = marks.valid.astype(float)                                      # (N, T, Q)
+    if velocity is not None:
+        v = np.asarray(velocity, dtype=float)
+        A = w.sum(axis=1)
+        ok = A > 0
+        resid = marks.xy - t[..., None] * v[:, None]                  # (N, T, Q, 2)
+        x0 = (w[..., None] * resid).sum(axis=1) / np.where(ok, A, 1.0)[..., None]
+        theta = np.where(ok[..., None], np.concatenate([x0, v], axis=-1), np.asarray(fallback, float))
+        return LineFit(theta=theta, valid=ok)
     A = w.sum(axis=1)
     B = (w * t).sum(axis=1)
     C = (w * t * t).sum(axis=1)
