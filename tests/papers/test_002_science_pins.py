@@ -17,7 +17,7 @@ import pytest
 from tvtrack.papers.p002_unified_location_em.em import log_likelihood, pixel_entries, unified_location_em
 from tvtrack.papers.p002_unified_location_em.model import (frame_times, mixture_weights, scene_batches,
                                                            scene_geometry)
-from tvtrack.papers.p002_unified_location_em.study import (Config, StudySettings, centre_gate_half_px,
+from tvtrack.papers.p002_unified_location_em.simulation import (Config, StudySettings, centre_gate_half_px,
                                                            map_prior_sd, run_config)
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, propagate
 

@@ -1,4 +1,4 @@
-"""Monte Carlo study of close-object location: ULA vs two-stage trajectory algorithms.
+"""Monte Carlo simulation of close-object location (one configuration at a time): ULA vs two-stage trajectory algorithms.
 
 One *configuration* (:class:`Config`) is ``(Q, d/sigma, Delta/sigma, m_k, T)`` plus the algorithms
 to run, the designation errors, the mark initialisation/association and the number of trials. A
@@ -41,9 +41,10 @@ ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteratio
               "e": "two-stage, iterative (per-frame EM) marks",
               "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
               "b": "BIC fits with Q' = 1, 2, 3"}
-#: Every configuration's trials are drawn in this many blocks, block ``k`` from the run seed ``seed + k``,
-#: so that each claim can be re-judged under three independent seeds (:func:`seed_blocks`).
-N_SEED_BLOCKS = 3
+#: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
+#: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the
+#: block machinery (:func:`seed_blocks`) still reads old results.
+N_SEED_BLOCKS = 1
 #: Columns of the per-trial flag arrays ``ula_flags``, ``em_flags`` and ``cr_flags``.
 FLAG_NAMES = {"ula": ("swap", "merge", "cap_hit", "degenerate", "left_frame"),
               "em": ("swap", "line_fit_invalid", "cap_hit", "missing_marks"),
@@ -209,8 +210,8 @@ def bic_orders(settings: StudySettings, entries, designation, sigma_px: float, p
 
 
 def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
-    """The configuration's scene batches, drawn in :data:`N_SEED_BLOCKS` blocks; block ``k`` holds
-    about ``n / N_SEED_BLOCKS`` trials from the seed ``settings.seed + k``. Yields ``(batch, block seed)``."""
+    """The configuration's scene batches, all from the seed ``settings.seed`` and the configuration's scene
+    values (:data:`N_SEED_BLOCKS` is 1). Yields ``(batch, seed)``."""
     s, seed = g.sigma_px, settings.seed
     sizes = np.diff(np.linspace(0, cfg.n, N_SEED_BLOCKS + 1).round().astype(int))
     for k, n_k in enumerate(sizes):
