@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
+from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, position_crb_sum
 from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from scipy import stats
@@ -39,6 +39,7 @@ from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_tim
 ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteration counts)",
               "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
               "e": "two-stage, iterative (per-frame EM) marks",
+              "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
               "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
               "b": "BIC fits with Q' = 1, 2, 3"}
 #: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
@@ -240,6 +241,21 @@ def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: floa
     return max(dsd, 1e-6) * sigma_px, v
 
 
+def multi_start_gap(entries, designation, sigma_px, p, p0, tol_px, max_iter, accel, rng, n_starts: int = 4):
+    """Log-likelihood by which the ULA started at the designation ends below the best of ``n_starts`` starts
+    (the designation and ``n_starts - 1`` starts with every position moved by N(0, sigma^2)), shape (n,): zero
+    where the designation start reaches the best local maximum found, positive where it stops at a lower one."""
+    lls = []
+    for k in range(n_starts):
+        start = designation.copy()
+        if k:
+            start[..., :2] += rng.normal(scale=sigma_px, size=start[..., :2].shape)
+        lls.append(unified_location_em(entries, start, sigma_px, p, p0, tol_px=tol_px, max_iter=max_iter,
+                                       accelerate=accel).loglik)
+    lls = np.array(lls)
+    return lls.max(axis=0) - lls[0]
+
+
 def _fallback(marks, designation, init: str) -> np.ndarray:
     """The state a line fit returns where it has too few marks (flagged invalid): the designation,
     or for the designation-free start (``init = "moments"``) a still object at the mean mark."""
@@ -270,8 +286,8 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
-    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_v", "em_flags",
-                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik")}
+    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_vd", "em_flags",
+                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap")}
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
@@ -308,10 +324,9 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
                           max_iter=s_.max_iter, accelerate=accel)
             fit = fit_lines(mk, times, _fallback(mk, b.designation, s_.mark_init if init is None else init))
             timing["em"] += time.perf_counter() - t0
-            if "m" in algs:       # the MAP-ULA's two-stage twin: the same velocity knowledge
-                known = b.designation[..., 2:] if s_.velocity_knowledge == "designated" else None
-                fit_v = fit_lines(mk, times, b.designation, velocity=known)
-                out["em_v"].append(errors_vs_truth(fit_v.theta, b.truth, s, times)[0])
+            # the two-stage twin of a MAP-ULA that knows the designated velocity: the line keeps that velocity
+            fit_v = fit_lines(mk, times, b.designation, velocity=b.designation[..., 2:])
+            out["em_vd"].append(errors_vs_truth(fit_v.theta, b.truth, s, times)[0])
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["em"].append(e)
             out["em_iter"].append(mk.n_iter.sum(axis=1))
@@ -334,6 +349,9 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["cr"].append(e)
             out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
+        if "s" in algs:
+            ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
+            out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))
         if "b" in algs:
             out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
     res = {k: np.concatenate(v) for k, v in out.items() if v}
@@ -342,7 +360,16 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     res["timing"] = timing
     # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
     th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, _scene_key(cfg) + ("crb",))), s_.crb_phases, g)
+    fim = fisher_linear_motion(th, times, g.shape, s, m, noise_pp)
     crb = crb_linear_motion(th, times, g.shape, s, m, noise_pp)
+    # van Trees (Bayesian) bound with the designation as the prior of the initial positions (velocity free): it
+    # holds for biased estimators too, e.g. ones that stay near their start where the pixels cannot resolve
+    jp = np.zeros(4 * q)
+    jp[np.arange(4 * q) % 4 < 2] = 1.0 / max(dsd * s, 1e-9) ** 2
+    bcrb = np.linalg.inv(fim.mean(axis=0) + np.diag(jp))
+    bd = np.diagonal(bcrb).reshape(q, 4)
+    res["bcrb_pos"] = float(bd[:, :2].sum()) / s ** 2
+    res["bcrb_vel"] = float(bd[:, 2:].sum()) / s ** 2
     res["crb_pos"] = float(np.mean(position_crb_sum(crb))) / s ** 2
     diag = np.diagonal(crb, axis1=-2, axis2=-1).reshape(-1, q, 4)
     res["crb_vel"] = float(np.mean(diag[..., 2:].sum(axis=(1, 2)))) / s ** 2
