@@ -4,13 +4,27 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report site kernel sweep clean-runs
+.PHONY: reproduce test bench report site kernel sweep clean-runs hooks lint
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q -r environment.txt
 	$(BIN)/python -m pip install -q --no-deps -e .
+	$(MAKE) --no-print-directory hooks
 	touch $(STAMP)
+
+# notebooks enter git without outputs (nbstripout as a git filter; see .gitattributes), so editing
+# and running a notebook in JupyterLab never dirties a tracked file
+hooks:
+	@if git rev-parse --git-dir >/dev/null 2>&1; then \
+	  git config filter.nbstripout.clean "$(abspath $(BIN))/python -m nbstripout"; \
+	  git config filter.nbstripout.smudge cat; \
+	  git config filter.nbstripout.required true; \
+	  git config diff.ipynb.textconv "$(abspath $(BIN))/python -m nbstripout -t"; \
+	fi
+
+lint: $(STAMP)
+	$(BIN)/ruff check lib tests benchmarks notebooks
 
 kernel: $(STAMP)
 	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" >/dev/null

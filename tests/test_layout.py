@@ -75,3 +75,44 @@ def test_import_graph_has_no_circle():
 def test_graph_sees_the_lazy_import_of_the_loops_from_the_scene():
     # guards the test itself: a lazy import inside a function counts as an edge
     assert "tvtrack.filters.loops" in import_graph()["tvtrack.scenes.rotating_marker"]
+
+
+PAPERS = "tvtrack.papers."
+
+
+def _paper_of(module: str) -> str | None:
+    return module.split(".")[2] if module.startswith(PAPERS) and module.count(".") >= 2 else None
+
+
+def test_the_core_never_imports_a_paper_package():
+    offenders = {m: sorted(d for d in deps if d.startswith(PAPERS))
+                 for m, deps in import_graph().items() if not m.startswith("tvtrack.papers")}
+    assert {m: d for m, d in offenders.items() if d} == {}
+
+
+def test_paper_packages_never_import_each_other():
+    offenders = {}
+    for m, deps in import_graph().items():
+        own = _paper_of(m)
+        if own is None:
+            continue
+        other = sorted(d for d in deps if _paper_of(d) not in (None, own))
+        if other:
+            offenders[m] = other
+    assert offenders == {}
+
+
+def test_the_pipeline_imports_neither_papers_nor_science():
+    science = {m for m in import_graph() if not m.startswith("tvtrack.pipeline") and m not in ("tvtrack", "tvtrack.__main__")}
+    allowed = {"tvtrack.results", "tvtrack.verdicts", "tvtrack.montecarlo", "tvtrack.register", "tvtrack.plotting"}
+    offenders = {m: sorted(d for d in deps if d in science - allowed)
+                 for m, deps in import_graph().items() if m.startswith("tvtrack.pipeline")}
+    assert {m: d for m, d in offenders.items() if d} == {}
+
+
+def test_the_layout_rules_see_a_planted_offence(tmp_path, monkeypatch):
+    # guards the rules themselves: a core module importing a paper package is an edge they report
+    graph = {"tvtrack.render": {"tvtrack.papers.p000_x.model"}, "tvtrack.papers.p000_x.model": set()}
+    assert _paper_of("tvtrack.papers.p000_x.model") == "p000_x"
+    assert [m for m, deps in graph.items() if not m.startswith("tvtrack.papers")
+            and any(d.startswith(PAPERS) for d in deps)] == ["tvtrack.render"]

@@ -1,6 +1,6 @@
 import pytest
 
-from tvtrack.parameters import (Boolean, Choice, ChoiceList, Integer, IntegerList, OutputDir, Real, RealList,
+from tvtrack.parameters import (Boolean, OneOf as Choice, OneOfList as ChoiceList, Integer, IntegerList, OutputDir, Real, RealList,
                                 validate_parameters)
 
 

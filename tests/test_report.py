@@ -62,8 +62,9 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     path = write_report(reproduce_dir, tmp_path / "REPRODUCTION.md", notebooks=["fixture_centroid", "broken", "absent"])
     text = path.read_text()
     assert ("**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
-            "of the checkable verdicts **1 robust · 0 depends · 0 unstable**") in text
-    assert "| C900-1 | **reproduced** | robust |  |" in text
+            "of the checkable verdicts **0 robust · 1 unexplored · 0 depends · 0 unstable**") in text
+    # the fixture varies nothing of a simulated world: it cannot be called robust
+    assert "| C900-1 | **reproduced** | unexplored |" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
     assert re.search(r"`python -m tvtrack view \S*fixture_centroid`", text)
     assert "**Run failed**" in text and "parameter 'n_trials' = 0" in text
@@ -72,7 +73,7 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
 
 def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
-    assert ("**1 robust · 1 depends · 0 unstable** · 1 without a robustness record") in text
+    assert ("**1 robust · 0 unexplored · 1 depends · 0 unstable** · 1 without a robustness record") in text
     assert ("By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · "
             "1 not checkable.") in text
     assert "| C010-2 | **not reproduced** | depends | reproduced when epoch = mid, designation_sd = 1.0 |" in text

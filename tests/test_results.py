@@ -29,7 +29,7 @@ def test_results_json_round_trip(tmp_path):
     claim = data["claims"][0]
     assert claim["measured"] == 1.5 and claim["verdict"] == "reproduced"
     assert claim["acceptance"] == claim["rule"]["text"] and claim["rule"]["kind"] == "in_band"
-    assert claim["robustness"]["label"] == "robust" and [s["seed"] for s in claim["robustness"]["seeds"]] == [1, 2, 3]
+    assert claim["robustness"]["label"] == "unexplored" and [s["seed"] for s in claim["robustness"]["replicates"]] == [1, 2, 3]
     assert "numpy" in data["versions"] and data["runtime_s"] >= 0
     json.loads((tmp_path / "results.json").read_text())  # strict JSON (no NaN)
 

@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.montecarlo import Estimate
 from tvtrack.verdicts import (AllOf, Choice, Condition, InBand, Monotone, NotCheckable, Ordering, Robustness,
-                              WithinFactor, as_estimate, robustness_label)
+                              WithinFactor, as_estimate, is_undecided, label_parts)
 
 
 def est(lo, hi, value=None):
@@ -53,8 +53,8 @@ def test_ordering_uses_the_interval_of_the_paired_difference():
     assert rule.decide(est(0.1, 0.2)) == "not reproduced"
     ratio = Ordering("A", "B", ">", measure="ratio")
     assert ratio.decide(est(1.1, 1.3)) == "reproduced" and ratio.decide(est(0.9, 1.3)) == "partly"
-    # a point difference without an interval is no evidence of an ordering
-    assert rule.decide(Estimate(-0.3, float("nan"), float("nan"), float("nan"), 1)) == "reproduced"
+    # a point difference without an interval is no evidence of an ordering: undecided, never decisive
+    assert rule.decide(Estimate(-0.3, float("nan"), float("nan"), float("nan"), 1)) == "undecided"
 
 
 def test_monotone_needs_separated_ends_and_no_contrary_step():
@@ -86,22 +86,45 @@ def test_not_checkable_says_why():
 def test_robustness_labels():
     rule = InBand("ratio", 3.6, 5.4)
     rob = Robustness(
-        choices=[Choice("epoch", "first", ["first", "mid", "last"], "the paper does not say"),
+        choices=[Choice("epoch", "first", ["first", "mid", "last"], "the paper does not say", kind="operating point"),
                  Choice("designation_sd", 0.3, [0.3, 1.0], "not given")],
         conditions=[Condition({"epoch": "mid"}, est(0.5, 0.9)),
                     Condition({"epoch": "last", "designation_sd": 1.0}, est(4.0, 5.0))],
         seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)})
-    rec = rob.record(rule, "not reproduced")
+    rec = rob.record(rule, est(0.6, 0.9))
     assert rec["label"] == "depends"
     assert rec["where"] == ["reproduced when epoch = last, designation_sd = 1.0"]
     assert [c["verdict"] for c in rec["conditions"]] == ["not reproduced", "reproduced"]
     rob.seeds = {1: est(0.6, 0.9), 2: est(3.0, 4.0), 3: est(0.5, 0.8)}
-    assert rob.record(rule, "not reproduced")["label"] == "unstable"
-    assert robustness_label("partly", [], [{"seed": 1, "verdict": "partly"}] * 3) == ("robust", [])
+    unstable = rob.record(rule, est(0.6, 0.9))
+    assert unstable["label"] == "unstable"
+    # the seeds disagree, and the condition that flips is still reported (issue 24 item 3)
+    assert any("replicates" in w for w in unstable["where"]) and any("epoch = last" in w for w in unstable["where"])
+    reps = [{"seed": s, "measured": 1.0} for s in (1, 2, 3)]
+    assert label_parts(InBand("x", 0, 2), 1.0, reps, [])["label"] == "unexplored"  # nothing of the world varied
     with pytest.raises(ValueError, match="not among"):
         Choice("epoch", "middle", ["first", "last"], "")
     with pytest.raises(ValueError, match="not among"):
         Robustness([Choice("e", 1, [1, 2], "w")], [Condition({"e": 3}, 1.0)], {1: 1, 2: 1, 3: 1}).validate()
     with pytest.raises(ValueError, match="needs a note"):
         Robustness(seeds={1: 1, 2: 1, 3: 1}).validate()
-    assert math.isfinite(rob.record(rule, "not reproduced")["conditions"][0]["measured"].value)
+    assert math.isfinite(rob.record(rule, est(0.6, 0.9))["conditions"][0]["measured"].value)
+
+
+def test_undecided_never_decides():
+    nan = Estimate(1.0, float("nan"), float("nan"), float("nan"), 40, method="BCa bootstrap")
+    degenerate = Estimate(1.0, 0.0, 1.0, 1.0, 40, method="BCa bootstrap")
+    tail = Estimate(1e-13, 1e-14, 1e-14, 1e-12, 40, method="logistic fit", extrapolated=True)
+    assert is_undecided(nan) and is_undecided(degenerate) and is_undecided(tail)
+    assert not is_undecided(2.0) and not is_undecided(Estimate.exact(2.0))
+    for e in (nan, degenerate, tail):
+        assert InBand("q", high=0.05).decide(e) == "undecided"
+        assert Ordering("a", "b", ">").decide(e) == "undecided"
+    both = AllOf({"a": InBand("a", 0, 2), "b": InBand("b", 0, 2)})
+    assert both.decide({"a": est(0.5, 1.5), "b": nan}) == "undecided"      # cannot be reproduced on it
+    assert both.decide({"a": est(3.0, 4.0), "b": nan}) == "undecided"      # nor not reproduced
+    assert both.decide({"a": est(0.5, 1.5), "b": est(3.0, 4.0)}) == "partly"
+    assert not both.judge({"a": est(0.5, 1.5), "b": nan}).settled
+    mono = Monotone("g", "x", "increasing")
+    assert mono.decide([nan, est(2, 3), est(4, 5)]) == "undecided"
+    assert mono.decide([est(0, 1), nan, est(4, 5)]) == "reproduced"

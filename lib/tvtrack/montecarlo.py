@@ -50,6 +50,9 @@ class Estimate:
         Confidence level of the interval, e.g. 0.95.
     method : str
         How the interval was made (e.g. ``"BCa bootstrap (2000 resamples)"``, ``"Clopper-Pearson"``).
+    extrapolated : bool
+        The value comes from extrapolating a fit beyond the data (e.g. a logistic tail): it is shown
+        but never decides a verdict (:func:`tvtrack.verdicts.is_undecided`).
     """
 
     value: float
@@ -59,9 +62,16 @@ class Estimate:
     n: int
     confidence: float = 0.95
     method: str = ""
+    extrapolated: bool = False
 
     def to_dict(self) -> dict:
         return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in asdict(self).items()}
+
+    @classmethod
+    def exact(cls, value: float, method: str = "exact") -> "Estimate":
+        """A number with no Monte Carlo uncertainty (a deterministic computation)."""
+        v = float(value)
+        return cls(v, 0.0, v, v, 1, 0.95, method)
 
     def _repr_markdown_(self) -> str:
         return f"{self:.4g}" + (f" ({self.method})" if self.method else "")

@@ -8,7 +8,7 @@ allowed range before any simulation starts::
         "seed": Integer(0, 2**32 - 1),
         "n_trials": Integer(1, 100_000),
         "sigma_px": Real(0.0, 10.0, low_open=True),
-        "rerun_mode": Choice("file", "off"),
+        "rerun_mode": OneOf("file", "off"),
         "output_dir": OutputDir(),
     })
 """
@@ -23,12 +23,12 @@ from pathlib import Path
 from typing import Any, Mapping
 
 __all__ = [
-    "Rule", "Integer", "Real", "Choice", "Boolean", "OutputDir", "RealList", "IntegerList", "ChoiceList",
+    "ParamRule", "Integer", "Real", "OneOf", "Boolean", "OutputDir", "RealList", "IntegerList", "OneOfList",
     "validate_parameters", "COMMON_RULES",
 ]
 
 
-class Rule(abc.ABC):
+class ParamRule(abc.ABC):
     """One parameter's allowed values."""
 
     @abc.abstractmethod
@@ -57,7 +57,7 @@ def _within(x, low, high, low_open, high_open) -> bool:
 
 
 @dataclass(frozen=True)
-class Integer(Rule):
+class Integer(ParamRule):
     """An integer in ``[low, high]`` (either bound may be ``None``)."""
 
     low: int | None = None
@@ -75,7 +75,7 @@ class Integer(Rule):
 
 
 @dataclass(frozen=True)
-class Real(Rule):
+class Real(ParamRule):
     """A finite real number in an interval; ``low_open``/``high_open`` exclude the bounds."""
 
     low: float | None = None
@@ -95,7 +95,7 @@ class Real(Rule):
 
 
 @dataclass(frozen=True)
-class Choice(Rule):
+class OneOf(ParamRule):
     """One of a fixed set of values."""
 
     options: tuple
@@ -113,7 +113,7 @@ class Choice(Rule):
 
 
 @dataclass(frozen=True)
-class Boolean(Rule):
+class Boolean(ParamRule):
     """``True`` or ``False``."""
 
     def check(self, value):
@@ -126,7 +126,7 @@ class Boolean(Rule):
 
 
 @dataclass(frozen=True)
-class RealList(Rule):
+class RealList(ParamRule):
     """A non-empty list of reals, each in the interval, with a length in ``[min_len, max_len]``."""
 
     low: float | None = None
@@ -151,7 +151,7 @@ class RealList(Rule):
 
 
 @dataclass(frozen=True)
-class IntegerList(Rule):
+class IntegerList(ParamRule):
     """A non-empty list of integers, each in ``[low, high]``."""
 
     low: int | None = None
@@ -173,7 +173,7 @@ class IntegerList(Rule):
 
 
 @dataclass(frozen=True)
-class ChoiceList(Rule):
+class OneOfList(ParamRule):
     """A list of distinct values, each one of a fixed set (e.g. which figures to compute)."""
 
     options: tuple
@@ -196,7 +196,7 @@ class ChoiceList(Rule):
 
 
 @dataclass(frozen=True)
-class OutputDir(Rule):
+class OutputDir(ParamRule):
     """A directory path (string); created if missing."""
 
     def check(self, value):
@@ -217,11 +217,11 @@ COMMON_RULES: dict[str, Rule] = {
     "seed": Integer(0, 2**63 - 1),
     "n_trials": Integer(1, 10_000_000),
     "output_dir": OutputDir(),
-    "rerun_mode": Choice("file", "off", "notebook"),
+    "rerun_mode": OneOf("file", "off", "notebook"),
 }
 
 
-def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, Rule]) -> dict[str, Any]:
+def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, ParamRule]) -> dict[str, Any]:
     """Check every parameter against its rule and return them as a plain dict.
 
     Parameters
@@ -256,3 +256,9 @@ def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, Rule])
                 f"parameter {name!r} = {value!r} is out of range; it must be {rule.describe()}"
             ) from None
     return checked
+
+
+#: Deprecated names (kept while the notebooks move; removed after): a parameter rule is not a verdict rule.
+Rule = ParamRule
+Choice = OneOf
+ChoiceList = OneOfList

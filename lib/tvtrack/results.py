@@ -13,7 +13,9 @@ Schema (``schema_version`` 2)::
     figures [{file, caption}], recording (file name or null),
     claims [{id, statement, paper_value, rule {kind, text, ...}, acceptance (= rule text), measured,
              verdict, decision (the rule's sentence with the numbers), note,
-             robustness {label, where, choices, conditions, seeds, deterministic, note} or null}]
+             robustness {label, where, coverage, parts {name: {verdict, label, where, replicate_verdicts}},
+                         replicates, conditions, register, design, deterministic} or null}],
+    register [{name, kind, default, values, why, origin}] or null (the notebook's register)
 """
 
 from __future__ import annotations
@@ -123,6 +125,8 @@ class Claim:
 
     def _repr_markdown_(self) -> str:
         label = f", {self.robustness['label']}" if self.robustness else ""
+        if self.robustness and self.robustness.get("coverage"):
+            label += f" ({self.robustness['coverage']})"
         where = f" ({'; '.join(self.robustness['where'])})" if self.robustness and self.robustness["where"] else ""
         return f"**{self.id}: {self.verdict}{label}**{where}. {self.decision}"
 
@@ -149,6 +153,7 @@ class Results:
     claims: list = field(default_factory=list)
     figures: list = field(default_factory=list)
     recording: str | None = None
+    register: list | None = None
     _t0: float = field(default_factory=time.perf_counter, repr=False)
     _started: str = field(
         default_factory=lambda: _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
@@ -169,8 +174,8 @@ class Results:
         self.metrics[name] = value
         return value
 
-    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any, note: str = "",
-              robustness: Robustness | None = None) -> Claim:
+    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any = None, note: str = "",
+              robustness: Robustness | None = None, exploration: Any = None) -> Claim:
         """Record a claim; ``rule`` decides its verdict from ``measured``.
 
         Parameters
@@ -181,9 +186,14 @@ class Results:
             The acceptance rule, fixed before the run.
         measured : Estimate, number, or what ``rule`` reads (a list for :class:`~tvtrack.verdicts.Monotone`,
             a dict of parts for :class:`~tvtrack.verdicts.AllOf`)
-            The claim at the default reading (pooled over seeds, or the first seed).
+            The claim at the default reading. Omit it with ``exploration`` (the replicates pooled).
+        exploration : tvtrack.explore.Exploration
+            The claim measured over the register and independent replicates; gives ``measured`` and the
+            robustness record (part-level labels, coverage, register entries).
         robustness : tvtrack.verdicts.Robustness
-            Required unless the verdict is ``not checkable``.
+            A hand-built record, where no exploration applies.
+
+        A checkable claim needs ``exploration`` or ``robustness``.
 
         Returns
         -------
@@ -192,8 +202,17 @@ class Results:
         """
         if not isinstance(rule, Rule):
             raise TypeError(f"claim {id}: rule must be a tvtrack.verdicts.Rule, got {type(rule).__name__}")
+        if exploration is not None:
+            if robustness is not None:
+                raise ValueError(f"claim {id}: give exploration or robustness, not both")
+            if measured is None:
+                measured = exploration.measured(id)
+            record = exploration.record(id, rule)
+            if self.register is None:
+                self.register = exploration.register.to_dict()
+        else:
+            record = robustness.record(rule, measured) if robustness is not None else None
         verdict, decision = rule.explain(measured)
-        record = robustness.record(rule, verdict) if robustness is not None else None
         c = Claim(id=id, statement=statement, paper_value=paper_value, rule=to_jsonable(rule.to_dict()),
                   acceptance=rule.text(), measured=measured, verdict=verdict, decision=decision, note=note,
                   robustness=record)
@@ -228,6 +247,7 @@ class Results:
             "metrics": self.metrics,
             "figures": self.figures,
             "recording": self.recording,
+            "register": self.register,
             "claims": [c.__dict__ for c in self.claims],
         })
 

@@ -13,11 +13,17 @@ Conventions (README, "Writing a notebook"):
 - A difference claimed without uncertainty is no evidence: orderings are decided by the interval
   of a paired difference or ratio (:class:`Ordering`), trends by the intervals along the curve
   (:class:`Monotone`).
-- An interval that straddles a bound means the Monte Carlo cannot decide: ``partly``.
+- An interval that straddles a bound means the Monte Carlo cannot decide: ``partly``; the rule says
+  the verdict is not *settled* (:meth:`Rule.judge`), so the explorer can add replicates.
+- Undecided is a verdict input: a NaN value, a NaN or degenerate interval of a random quantity, or an
+  extrapolated estimate (``Estimate.extrapolated``) is ``undecided`` and never decides a claim.
 
-The robustness record (:class:`Robustness`) lists what the paper left unstated
-(:class:`Choice`), the claim measured under each defensible reading (:class:`Condition`) and under
-independent seeds; :func:`robustness_label` derives ``robust``, ``depends`` or ``unstable``.
+Labels (:func:`label_parts`) are per part of a rule (each part of :class:`AllOf`; the whole rule
+otherwise): ``unstable`` when independent replicates at the default disagree, ``depends`` when a
+condition of the register changes the verdict (named in ``where``), ``unexplored`` when no regime,
+operating point or model of the world was varied, else ``robust``; a claim's label is the weakest of
+its parts' and its ``coverage`` text says what was tried. The explorer (:mod:`tvtrack.explore`) makes
+these records; :class:`Robustness` is the older hand-built record, labelled by the same function.
 """
 
 from __future__ import annotations
@@ -29,13 +35,14 @@ from typing import Any, Mapping, Sequence
 
 from .montecarlo import Estimate
 
-__all__ = ["VERDICTS", "LABELS", "as_estimate", "Rule", "InBand", "WithinFactor", "Ordering", "Monotone",
-           "AllOf", "NotCheckable", "Choice", "Condition", "Robustness", "robustness_label"]
+__all__ = ["VERDICTS", "LABELS", "as_estimate", "is_undecided", "Judgement", "Rule", "InBand", "WithinFactor",
+           "Ordering", "Monotone", "AllOf", "NotCheckable", "Choice", "Condition", "Robustness", "rule_parts",
+           "label_parts", "weakest_label"]
 
 #: The only verdicts a claim may carry.
-VERDICTS = ("reproduced", "partly", "not reproduced", "not checkable")
-#: Robustness labels.
-LABELS = ("robust", "depends", "unstable")
+VERDICTS = ("reproduced", "partly", "not reproduced", "undecided", "not checkable")
+#: Robustness labels, weakest first.
+LABELS = ("unstable", "depends", "unexplored", "robust")
 
 
 def as_estimate(measured: Any) -> Estimate:
@@ -44,9 +51,11 @@ def as_estimate(measured: Any) -> Estimate:
     if isinstance(measured, Estimate):
         return measured
     if isinstance(measured, Mapping) and "value" in measured:
-        fields = {k: measured[k] for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method")
-                  if k in measured}
-        fields = {k: (float("nan") if v is None and k != "method" else v) for k, v in fields.items()}
+        fields = {k: measured[k] for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method",
+                                           "extrapolated") if k in measured}
+        fields = {k: (float("nan") if v is None and k not in ("method", "extrapolated") else v)
+                  for k, v in fields.items()}
+        fields["extrapolated"] = bool(fields.get("extrapolated") or False)
         return Estimate(**{"stderr": float("nan"), "n": 1, **fields})
     if isinstance(measured, (int, float)) or hasattr(measured, "__float__"):
         v = float(measured)
@@ -54,12 +63,37 @@ def as_estimate(measured: Any) -> Estimate:
     raise TypeError(f"cannot read a measured value from {type(measured).__name__}: {measured!r}")
 
 
-def _interval(e: Estimate) -> tuple[float, float]:
-    """The estimate's interval; the point where the interval is undefined."""
+def _is_exact(e: Estimate) -> bool:
+    return e.method == "exact"
+
+
+def is_undecided(measured: Any) -> bool:
+    """True when an estimate cannot decide anything: NaN value, NaN interval or a degenerate interval
+    (``ci_low == ci_high``) of a random quantity, or a value extrapolated beyond the data."""
+    e = as_estimate(measured)
+    if getattr(e, "extrapolated", False) or math.isnan(e.value):
+        return True
+    if _is_exact(e):
+        return False
     a, b = e.ci_low, e.ci_high
-    if not (math.isfinite(a) and math.isfinite(b)):
+    if math.isnan(a) or math.isnan(b):
+        return True
+    return a == b
+
+
+def _interval(e: Estimate) -> tuple[float, float]:
+    """The estimate's interval (the point itself for an exact number)."""
+    if _is_exact(e) and (math.isnan(e.ci_low) or math.isnan(e.ci_high)):
         return e.value, e.value
-    return a, b
+    return e.ci_low, e.ci_high
+
+
+def _why_undecided(e: Estimate) -> str:
+    if getattr(e, "extrapolated", False):
+        return "extrapolated beyond the data"
+    if math.isnan(e.value):
+        return "not measured (NaN)"
+    return "its interval is undefined or degenerate"
 
 
 def _g(x: float) -> str:
@@ -69,9 +103,19 @@ def _g(x: float) -> str:
 def _show(e: Estimate, unit: str = "") -> str:
     a, b = _interval(e)
     u = f" {unit}" if unit else ""
-    if a == b == e.value:
+    if math.isnan(a) or math.isnan(b) or a == b == e.value:
         return f"{_g(e.value)}{u}"
     return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}"
+
+
+@dataclass(frozen=True)
+class Judgement:
+    """A rule's decision: the verdict, one sentence why, and whether more data could change it
+    (``settled`` is False for an interval that straddles a bound and for ``undecided``)."""
+
+    verdict: str
+    why: str
+    settled: bool = True
 
 
 class Rule(ABC):
@@ -85,11 +129,16 @@ class Rule(ABC):
 
     def decide(self, measured: Any) -> str:
         """One of :data:`VERDICTS`."""
-        return self.explain(measured)[0]
+        return self.judge(measured).verdict
 
-    @abstractmethod
     def explain(self, measured: Any) -> tuple[str, str]:
         """``(verdict, one sentence saying why, with the numbers)``."""
+        j = self.judge(measured)
+        return j.verdict, j.why
+
+    @abstractmethod
+    def judge(self, measured: Any) -> Judgement:
+        """The :class:`Judgement` of ``measured``."""
 
     def params(self) -> dict:
         return {}
@@ -151,23 +200,25 @@ class InBand(Rule):
         return {"quantity": self.quantity, "low": self.low, "high": self.high, "unit": self.unit,
                 "better": self.better}
 
-    def explain(self, measured):
+    def judge(self, measured):
         e = as_estimate(measured)
+        m = _show(e, self.unit)
+        if is_undecided(e):
+            return Judgement("undecided", f"{self.quantity} = {m}: {_why_undecided(e)}, so it cannot decide", False)
         a, b = _interval(e)
         lo = -math.inf if self.low is None else self.low
         hi = math.inf if self.high is None else self.high
-        m = _show(e, self.unit)
-        if not (math.isfinite(a) and math.isfinite(b)) and not (math.isinf(a) or math.isinf(b)):
-            return "not reproduced", f"{self.quantity} could not be measured ({m})"
         if lo <= a and b <= hi:
-            return "reproduced", f"{self.quantity} = {m} lies {self._band()}"
+            return Judgement("reproduced", f"{self.quantity} = {m} lies {self._band()}")
         below, above = b < lo, a > hi
         if below or above:
             side = "below" if below else "above"
             if (below and self.better == "lower") or (above and self.better == "higher"):
-                return "partly", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()}): better than the paper's number"
-            return "not reproduced", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()})"
-        return "partly", f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): undecided at this sample size"
+                return Judgement("partly", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()}): "
+                                           f"better than the paper's number")
+            return Judgement("not reproduced", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()})")
+        return Judgement("partly", f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): "
+                                   f"undecided at this sample size", False)
 
 
 @dataclass(frozen=True)
@@ -232,18 +283,20 @@ class Ordering(Rule):
     def params(self) -> dict:
         return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure}
 
-    def explain(self, measured):
+    def judge(self, measured):
         e = as_estimate(measured)
+        m = f"{self._what()} = {_show(e)}"
+        if is_undecided(e):
+            return Judgement("undecided", f"{m}: {_why_undecided(e)}, so it cannot decide", False)
         lo, hi = _interval(e)
         r = self.reference
-        m = f"{self._what()} = {_show(e)}"
         claimed_side = lo > r if self.relation == ">" else hi < r
         other_side = hi < r if self.relation == ">" else lo > r
         if claimed_side:
-            return "reproduced", f"{m}: {self.a} {self.relation} {self.b}"
+            return Judgement("reproduced", f"{m}: {self.a} {self.relation} {self.b}")
         if other_side:
-            return "not reproduced", f"{m}: the opposite ordering holds"
-        return "partly", f"{m} contains {_g(r)}: no measurable difference at this sample size"
+            return Judgement("not reproduced", f"{m}: the opposite ordering holds")
+        return Judgement("partly", f"{m} contains {_g(r)}: no measurable difference at this sample size", False)
 
 
 @dataclass(frozen=True)
@@ -284,22 +337,28 @@ class Monotone(Rule):
         s = 1 if up else (-1 if down else 0)
         return s if self.direction == "increasing" else -s
 
-    def explain(self, measured: Sequence):
+    def judge(self, measured: Sequence):
         es = [as_estimate(m) for m in measured]
         if len(es) < 2:
             raise ValueError("Monotone needs at least two points")
-        steps = [self._sep(x, y) for x, y in zip(es[:-1], es[1:])]
-        ends = self._sep(es[0], es[-1])
+        bad = [i for i, e in enumerate(es) if is_undecided(e)]
+        if bad and (0 in bad or len(es) - 1 in bad or len(es) - len(bad) < 2):
+            return Judgement("undecided", f"{self.quantity}: points {bad} along {self.over} are undecided (NaN, "
+                                          f"degenerate or extrapolated), so the trend cannot be decided", False)
+        keep = [e for i, e in enumerate(es) if i not in bad]
+        steps = [self._sep(x, y) for x, y in zip(keep[:-1], keep[1:])]
+        ends = self._sep(keep[0], keep[-1])
         up, down = steps.count(1), steps.count(-1)
-        m = (f"{self.quantity}: {_show(es[0])} at the first point, {_show(es[-1])} at the last; "
-             f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way")
+        m = (f"{self.quantity}: {_show(keep[0])} at the first point, {_show(keep[-1])} at the last; "
+             f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way"
+             + (f" ({len(bad)} undecided points left out)" if bad else ""))
         if ends == -1:
-            return "not reproduced", m
+            return Judgement("not reproduced", m)
         if ends == 1 and down == 0:
-            return "reproduced", m
+            return Judgement("reproduced", m)
         if ends == 0 and up == 0:
-            return "not reproduced", m + " (no measurable trend)"
-        return "partly", m
+            return Judgement("not reproduced", m + " (no measurable trend)", False)
+        return Judgement("partly", m, ends != 0)
 
 
 @dataclass(frozen=True)
@@ -320,20 +379,26 @@ class AllOf(Rule):
     def params(self) -> dict:
         return {"parts": {name: rule.to_dict() for name, rule in self.parts.items()}}
 
-    def explain(self, measured: Mapping):
+    def judge(self, measured: Mapping):
         missing = [name for name in self.parts if name not in measured]
         if missing:
             raise ValueError(f"AllOf: measured lacks the parts {missing}")
-        decided = {name: rule.explain(measured[name]) for name, rule in self.parts.items()}
-        verdicts = [v for v, _ in decided.values() if v != "not checkable"]
-        why = "; ".join(f"({name}) {v}: {w}" for name, (v, w) in decided.items())
+        decided = {name: rule.judge(measured[name]) for name, rule in self.parts.items()}
+        verdicts = [j.verdict for j in decided.values() if j.verdict != "not checkable"]
+        settled = all(j.settled for j in decided.values())
+        why = "; ".join(f"({name}) {j.verdict}: {j.why}" for name, j in decided.items())
         if not verdicts:
-            return "not checkable", why
+            return Judgement("not checkable", why)
+        firm = [v for v in verdicts if v != "undecided"]
+        if len(firm) < len(verdicts):
+            # an undecided part never decides: the claim is partly only if decided parts already disagree
+            mixed = "partly" in firm or len(set(firm)) > 1
+            return Judgement("partly" if mixed else "undecided", why, False)
         if all(v == "reproduced" for v in verdicts):
-            return "reproduced", why
+            return Judgement("reproduced", why, settled)
         if all(v == "not reproduced" for v in verdicts):
-            return "not reproduced", why
-        return "partly", why
+            return Judgement("not reproduced", why, settled)
+        return Judgement("partly", why, settled)
 
 
 @dataclass(frozen=True)
@@ -350,41 +415,147 @@ class NotCheckable(Rule):
     def params(self) -> dict:
         return {"reason": self.reason}
 
-    def explain(self, measured):
-        return "not checkable", self.reason
+    def judge(self, measured):
+        return Judgement("not checkable", self.reason)
 
 
-# --------------------------------------------------------------------------- robustness
+# --------------------------------------------------------------------------- labels
 
-@dataclass(frozen=True)
-class Choice:
-    """Something the paper left unstated that a claim depends on.
 
-    Attributes
+def rule_parts(rule: Rule) -> dict[str, Rule]:
+    """The parts a label is given for: each part of an :class:`AllOf`, else the whole rule as ``"claim"``."""
+    if isinstance(rule, AllOf):
+        return dict(rule.parts)
+    return {"claim": rule}
+
+
+def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
+    if isinstance(rule, AllOf):
+        return {name: measured[name] for name in rule.parts if isinstance(measured, Mapping) and name in measured}
+    return {"claim": measured}
+
+
+def weakest_label(labels: Sequence[str]) -> str:
+    """The weakest of ``labels`` in the order of :data:`LABELS`."""
+    return min(labels, key=LABELS.index) if labels else "unexplored"
+
+
+def _describe(changed: Mapping[str, Any]) -> str:
+    return ", ".join(f"{k} = {v}" for k, v in changed.items()) or "the default reading"
+
+
+def label_parts(rule: Rule, measured: Any, replicates: Sequence[Mapping], conditions: Sequence[Mapping],
+                entries: Sequence[Any] = (), deterministic: bool = False) -> dict:
+    """Part-level robustness labels of one claim.
+
+    Parameters
     ----------
-    name : str
-        Short name, used in conditions (``"epoch"``).
-    default : Any
-        The value the notebook's headline uses.
-    values : sequence
-        Every defensible value (the default among them).
-    why : str
-        Why these values are defensible (a reading of a sentence, a convention, a regime).
+    rule : Rule
+        The claim's rule; labels are given per :func:`rule_parts`.
+    measured : Any
+        The claim at the default (pooled over the replicates): decides the claim's verdict.
+    replicates : sequence of {"seed", "measured"}
+        Independent full-size runs at the default. Conditions are compared with the first replicate,
+        which ran on the same random numbers (common random numbers).
+    conditions : sequence of {"changed": {entry: value}, "kind": "single" | "joint", "measured"}
+        The claim under other values of the register: one entry at a time, or joint samples.
+    entries : sequence of :class:`tvtrack.register.Entry`
+        The register entries the claim depends on.
+    deterministic : bool
+        No random draw is involved (replicates cannot differ).
+
+    Returns
+    -------
+    dict
+        ``label`` (weakest part), ``where`` (the parts and conditions where a verdict differs),
+        ``coverage`` (what was tried), ``parts`` {name: {verdict, label, where, replicate_verdicts,
+        n_conditions}}, ``replicates`` and ``conditions`` with their part verdicts.
     """
+    from .register import WORLD_KINDS
 
-    name: str
-    default: Any
-    values: Sequence[Any]
-    why: str
+    parts = rule_parts(rule)
+    kinds = {e.name: e.kind for e in entries}
+    rep_rows = [{"seed": int(r["seed"]), "measured": r["measured"],
+                 "verdict": rule.decide(r["measured"]),
+                 "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, r["measured"]).items()}}
+                for r in replicates]
+    cond_rows = [{"changed": dict(c["changed"]), "kind": c.get("kind", "single"), "measured": c["measured"],
+                  "verdict": rule.decide(c["measured"]),
+                  "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, c["measured"]).items()}}
+                 for c in conditions]
+    world_varied = any(kinds.get(k) in WORLD_KINDS for c in cond_rows for k in c["changed"])
+    part_out, where = {}, []
+    for name, prule in parts.items():
+        pm = _part_measured(rule, measured).get(name)
+        verdict = prule.decide(pm) if pm is not None else "undecided"
+        rv = [r["parts"][name] for r in rep_rows if name in r["parts"]]
+        ref = rv[0] if rv else verdict  # conditions ran on the first replicate's random numbers
+        flips: dict[str, list[str]] = {}
+        undecided: list[str] = []
+        for c in cond_rows:
+            v = c["parts"].get(name)
+            if v is None:
+                continue
+            if v == "undecided" and ref != "undecided":
+                undecided.append(_describe(c["changed"]))
+            elif v != ref:
+                flips.setdefault(v, []).append(_describe(c["changed"]))
+        pwhere = []
+        if len(set(rv)) > 1:
+            label = "unstable"
+            pwhere += [f"{v} in {rv.count(v)} of {len(rv)} independent replicates" for v in dict.fromkeys(rv)]
+        elif flips:
+            label = "depends"
+        elif not world_varied:
+            label = "unexplored"
+        else:
+            label = "robust"
+        pwhere += [f"{v} when {'; '.join(cs)}" for v, cs in flips.items()]
+        if undecided:
+            pwhere.append(f"undecided when {'; '.join(undecided)}")
+        prefix = "" if len(parts) == 1 else f"({name}) "
+        where += [prefix + w for w in pwhere]
+        part_out[name] = {"verdict": verdict, "label": label, "where": pwhere, "replicate_verdicts": rv,
+                          "n_conditions": sum(1 for c in cond_rows if name in c["parts"])}
+    label = weakest_label([p["label"] for p in part_out.values()])
+    return {"label": label, "where": where, "coverage": _coverage(label, part_out, cond_rows, rep_rows, entries,
+                                                                  deterministic),
+            "parts": part_out, "replicates": rep_rows, "conditions": cond_rows, "deterministic": deterministic}
 
-    def __post_init__(self):
-        if self.default not in list(self.values):
-            raise ValueError(f"choice {self.name!r}: default {self.default!r} is not among {list(self.values)}")
+
+def _zip_parts(parts: Mapping[str, Rule], rule: Rule, measured: Any) -> dict:
+    pm = _part_measured(rule, measured)
+    return {n: (parts[n], pm[n]) for n in parts if n in pm and pm[n] is not None}
+
+
+def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
+    single = [c for c in conds if c["kind"] == "single"]
+    joint = [c for c in conds if c["kind"] != "single"]
+    varied: dict[str, set] = {}
+    for c in single:
+        for k, v in c["changed"].items():
+            varied.setdefault(k, set()).add(str(v))
+    over = ", ".join(f"{k} ({len(v) + 1} values)" for k, v in varied.items()) or "no register entry"
+    reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
+    weak = [n for n, p in parts.items() if p["label"] == label]
+    which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
+    return (f"{label}{which} over {len(conds)} conditions: {len(single)} one at a time over {over}; "
+            f"{len(joint)} joint samples; x {reps_text}")
+
+
+# --------------------------------------------------------------------------- hand-built records
+
+
+def Choice(name: str, default: Any, values: Sequence[Any], why: str, kind: str = "reading"):
+    """Deprecated: a register :class:`tvtrack.register.Entry` of kind ``reading`` (use ``Entry``)."""
+    from .register import Entry
+
+    return Entry(name, kind, default, tuple(values), why or "(no reason given)")
 
 
 @dataclass(frozen=True)
 class Condition:
-    """The claim measured under one reading: ``choices`` maps choice names to values."""
+    """The claim measured under one reading: ``choices`` maps entry names to values."""
 
     choices: Mapping[str, Any]
     measured: Any
@@ -392,21 +563,20 @@ class Condition:
 
 @dataclass
 class Robustness:
-    """How a claim's verdict moves with what the paper left unstated and with the seed.
+    """A hand-built robustness record (prefer :func:`tvtrack.explore.explore`).
 
     Parameters
     ----------
-    choices : list of Choice
-        The unstated choices the claim depends on (empty only with a ``note`` saying why none matters).
+    choices : list of Entry
+        The register entries the claim depends on (empty only with a ``note`` saying why none matters).
     conditions : list of Condition
-        The claim measured under readings other than the default (one-at-a-time or a grid).
+        The claim measured under readings other than the default.
     seeds : mapping seed -> measured
-        The claim at the default reading under at least three independent seeds.
+        The claim at the default reading under at least three independent full-size runs.
     note : str
-        Anything the record alone does not say; required when ``choices`` is empty or when
-        ``deterministic``.
+        Required when ``choices`` is empty or when ``deterministic``.
     deterministic : bool
-        The measurement involves no random draw (the seed cannot matter; ``note`` says why).
+        The measurement involves no random draw (``note`` says why).
     """
 
     choices: list = field(default_factory=list)
@@ -432,47 +602,12 @@ class Robustness:
                 if v not in allowed:
                     raise ValueError(f"condition {dict(cond.choices)}: {k} = {v!r} is not among {allowed}")
 
-    def record(self, rule: Rule, default_verdict: str) -> dict:
-        """The JSON record: choices, conditions and seeds each with its verdict by ``rule``,
-        the label and where the verdict differs from ``default_verdict``."""
+    def record(self, rule: Rule, measured: Any) -> dict:
+        """The JSON record: :func:`label_parts` over the conditions and seeds, with the entries."""
         self.validate()
-        conditions = [{"choices": dict(c.choices), "measured": c.measured, "verdict": rule.decide(c.measured)}
-                      for c in self.conditions]
-        seeds = [{"seed": int(s), "measured": m, "verdict": rule.decide(m)} for s, m in self.seeds.items()]
-        label, where = robustness_label(default_verdict, conditions, seeds)
-        return {
-            "label": label,
-            "where": where,
-            "choices": [{"name": c.name, "default": c.default, "values": list(c.values), "why": c.why}
-                        for c in self.choices],
-            "conditions": conditions,
-            "seeds": seeds,
-            "deterministic": self.deterministic,
-            "note": self.note,
-        }
-
-
-def _describe(choices: Mapping[str, Any]) -> str:
-    return ", ".join(f"{k} = {v}" for k, v in choices.items()) or "the default reading"
-
-
-def robustness_label(default_verdict: str, conditions: Sequence[Mapping], seeds: Sequence[Mapping]) -> tuple[str, list]:
-    """``(label, where)`` from the verdicts of the conditions and the seeds.
-
-    ``unstable`` when the seeds at the default reading disagree; else ``depends`` when any
-    condition's verdict differs from the default verdict; else ``robust``. ``where`` says, for
-    each differing verdict, the conditions (or seeds) that give it.
-    """
-    seed_verdicts = {s["verdict"] for s in seeds}
-    if len(seed_verdicts) > 1:
-        by = {}
-        for s in seeds:
-            by.setdefault(s["verdict"], []).append(str(s["seed"]))
-        return "unstable", [f"{v} with seed {', '.join(ss)}" for v, ss in by.items()]
-    by_verdict: dict[str, list[str]] = {}
-    for c in conditions:
-        if c["verdict"] != default_verdict:
-            by_verdict.setdefault(c["verdict"], []).append(_describe(c["choices"]))
-    if by_verdict:
-        return "depends", [f"{v} when {'; '.join(cs)}" for v, cs in by_verdict.items()]
-    return "robust", []
+        reps = [{"seed": s, "measured": m} for s, m in self.seeds.items()]
+        conds = [{"changed": dict(c.choices), "kind": "single" if len(c.choices) == 1 else "joint",
+                  "measured": c.measured} for c in self.conditions]
+        out = label_parts(rule, measured, reps, conds, self.choices, self.deterministic)
+        out.update({"register": [c.to_dict() for c in self.choices], "note": self.note, "built": "by hand"})
+        return out

@@ -19,6 +19,9 @@ from typing import Any
 from .paths import REPO_ROOT, RUNS_DIR
 from ..results import VERDICTS
 from ..verdicts import LABELS
+
+#: Labels in reading order, strongest first.
+DISPLAY_LABELS = tuple(reversed(LABELS))
 from .runner import list_notebooks, read_run
 
 __all__ = ["REPRODUCE_DIR", "REPORT_PATH", "README_PATH", "README_BEGIN", "README_END", "write_report",
@@ -79,8 +82,10 @@ def verdict_summary(claims: list[dict]) -> str:
     parts = []
     for verdict in VERDICTS:
         these = [c for c in claims if c["verdict"] == verdict]
+        if verdict == "undecided" and not these:
+            continue
         labels = Counter(robustness_label(c) for c in these)
-        detail = [f"{labels[label]} {label}" for label in LABELS if labels[label]]
+        detail = [f"{labels[label]} {label}" for label in DISPLAY_LABELS if labels[label]]
         if verdict != "not checkable" and labels[NO_LABEL]:
             detail.append(f"{labels[NO_LABEL]} no record")
         parts.append(f"{len(these)} {verdict}" + (f" ({', '.join(detail)})" if detail else ""))
@@ -150,18 +155,19 @@ def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
     else:
         counts = Counter(c["verdict"] for c in claims)
         labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
-        head += [f"**Claims: {counts['reproduced']} reproduced · {counts['partly']} partly · "
-                 f"{counts['not reproduced']} not reproduced · {counts['not checkable']} not checkable** "
+        head += [f"**Claims: {' · '.join(f'{counts[v]} {v}' for v in VERDICTS if counts[v] or v != 'undecided')}** "
                  f"({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts "
-                 f"**{labels['robust']} robust · {labels['depends']} depends · {labels['unstable']} unstable**"
+                 f"**{' · '.join(f'{labels[lb]} {lb}' for lb in DISPLAY_LABELS)}**"
                  + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""), "",
                  f"By verdict: {verdict_summary(claims)}.", "",
                  f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} from `papermill_runs/reproduce/` "
                  "by `make reproduce` (rebuild with `python -m tvtrack report`). Verdicts come from the "
                  "notebooks' own Monte Carlo runs at the default reading of what each paper left unstated; "
-                 "*robust*: the same verdict under every defensible reading and seed; *depends*: the verdict "
-                 "changes under another reading (the column says where); *unstable*: seeds disagree at the "
-                 "default reading. See each notebook for the reasoning.", ""]
+                 "*robust*: the same verdict, part by part, under every register value tried (one at a time and "
+                 "joint samples) and every independent replicate; *unexplored*: no regime, operating point or "
+                 "model of the simulated world was varied; *depends*: the verdict changes under another value "
+                 "(the column says where); *unstable*: independent replicates disagree at the default. See each "
+                 "notebook for the reasoning.", ""]
     path.write_text("\n".join(head + sections))
     if readme is not None:
         incomplete = [name for name, (record, data) in runs.items()
@@ -186,7 +192,7 @@ def _dependence(claim: dict) -> str:
     if not record:
         return "no robustness record"
     if record["label"] == "robust":
-        n_cond, n_seed = len(record.get("conditions", [])), len(record.get("seeds", []))
+        n_cond, n_seed = len(record.get("conditions", [])), len(record.get("replicates", record.get("seeds", [])))
         tested = []
         if n_cond:
             tested.append(f"{n_cond} other reading{'s' if n_cond > 1 else ''}")

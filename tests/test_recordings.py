@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
-from tvtrack.record import Recorder, ellipse_outline, image_and_series_blueprint
+from tvtrack.recordings import Recorder, ellipse_outline, image_and_series_blueprint
 
 
 def rerun_cli() -> str:

@@ -1,0 +1,316 @@
+"""The explorer: every claim measured over the register and over independent replicates.
+
+A notebook gives a *measurement function* ``measure(config, seed) -> {claim id: measured}`` (one
+full-size run of its study at a configuration of the register, every random draw from
+``numpy.random.default_rng(seed)``), its :class:`~tvtrack.register.Register` and the claims' rules.
+:func:`explore` runs
+
+1. **independent replicates** at the default configuration: full-size runs with distinct seeds spawned
+   from the run's seed (never slices of one run), at least three;
+2. **one at a time**: every other defensible value of every register entry, at the first replicate's
+   seed (common random numbers: a difference between configurations is not a difference of draws);
+3. **joint samples**: a space-filling (Latin hypercube) sample of combinations of the entries, where
+   interactions that single-axis sweeps miss show up, also at the first replicate's seed;
+4. **adaptive replicates** (optional): while a claim's pooled verdict is not settled (its interval
+   straddles a bound, or is undecided) more replicates run, up to ``max_replicates``; a clear claim
+   stops at the minimum.
+
+The claim's measured value is the replicates pooled (equal weights; on the log scale for positive
+quantities); its label comes from :func:`tvtrack.verdicts.label_parts`, part by part.
+
+Work can be batched across configurations (``batched=True``: the measurement function takes lists of
+configurations and seeds, so a register value can be one more axis of one vectorised computation) or
+sent to an executor with ``submit`` (a :class:`concurrent.futures.Executor` or a
+``dask.distributed.Client``, for explorations larger than one machine).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+from scipy import stats
+
+from .montecarlo import Estimate
+from .register import Register
+from .verdicts import Rule, as_estimate, label_parts
+
+__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool"]
+
+
+@dataclass
+class Run:
+    """One measurement: a configuration, a seed and what it measured."""
+
+    config: dict
+    seed: int
+    stage: str  # "replicate", "single" or "joint"
+    outputs: dict = field(default_factory=dict)
+
+    def changed(self, default: Mapping[str, Any]) -> dict:
+        """The entries whose value differs from ``default``."""
+        return {k: v for k, v in self.config.items() if default.get(k) != v}
+
+
+def replicate_seeds(seed: int, n: int) -> list[int]:
+    """``n`` independent seeds spawned from ``seed`` (:class:`numpy.random.SeedSequence`)."""
+    return [int(s.generate_state(1, np.uint64)[0] % (2**63)) for s in np.random.SeedSequence(seed).spawn(n)]
+
+
+def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) -> list[dict]:
+    """``n`` configurations from a scrambled Latin hypercube over the entries ``names``.
+
+    Each dimension is cut into as many equal strata as the entry has values. Configurations equal to
+    the default or differing from it in fewer than two entries (those are the one-at-a-time runs) are
+    dropped, as are duplicates; so fewer than ``n`` may come back.
+    """
+    names = [k for k in names if len(register[k].values) > 1]
+    if n <= 0 or len(names) < 2:
+        return []
+    u = stats.qmc.LatinHypercube(d=len(names), seed=np.random.default_rng(seed)).random(n)
+    default = register.default()
+    out, seen = [], set()
+    for row in u:
+        cfg = dict(default)
+        for k, x in zip(names, row):
+            vals = register[k].values
+            cfg[k] = vals[min(int(x * len(vals)), len(vals) - 1)]
+        key = tuple(repr(cfg[k]) for k in names)
+        if sum(cfg[k] != default[k] for k in names) >= 2 and key not in seen:
+            seen.add(key)
+            out.append(cfg)
+    return out
+
+
+# --------------------------------------------------------------------------- pooling replicates
+
+
+def _z(conf: float) -> float:
+    return float(stats.norm.ppf(0.5 + conf / 2))
+
+
+def _pool_estimates(es: list[Estimate]) -> Estimate:
+    k = len(es)
+    conf = es[0].confidence
+    z = _z(conf)
+    n = int(sum(e.n for e in es))
+    extrap = any(e.extrapolated for e in es)
+    vals = np.array([e.value for e in es], float)
+    if all(e.method == "exact" for e in es):
+        if np.all(vals == vals[0]):
+            return es[0]
+        t = stats.t.ppf(0.5 + conf / 2, k - 1)
+        m, s = vals.mean(), vals.std(ddof=1) / math.sqrt(k)
+        return Estimate(float(m), float(s), float(m - t * s), float(m + t * s), k, conf,
+                        f"t interval over {k} independent replicates", extrap)
+    lo = np.array([e.ci_low for e in es], float)
+    hi = np.array([e.ci_high for e in es], float)
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
+        return Estimate(float(np.nanmean(vals)), math.nan, math.nan, math.nan, n, conf,
+                        f"pooled over {k} replicates: some intervals undefined", extrap)
+    if np.all(lo > 0) and np.all(vals > 0):
+        lv, lse = np.log(vals), (np.log(hi) - np.log(lo)) / (2 * z)
+        m, se = lv.mean(), math.sqrt(float(np.sum(lse**2))) / k
+        return Estimate(float(math.exp(m)), float(math.exp(m) * se), float(math.exp(m - z * se)),
+                        float(math.exp(m + z * se)), n, conf,
+                        f"pooled over {k} independent replicates (equal weights, log scale)", extrap)
+    se_i = (hi - lo) / (2 * z)
+    m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
+    return Estimate(float(m), float(se), float(m - z * se), float(m + z * se), n, conf,
+                    f"pooled over {k} independent replicates (equal weights)", extrap)
+
+
+def _is_estimate_like(x: Any) -> bool:
+    return isinstance(x, Estimate) or (isinstance(x, Mapping) and "value" in x and "ci_low" in x)
+
+
+def pool(measured: Sequence[Any]) -> Any:
+    """Pool a claim's measured values from independent replicates.
+
+    Estimates are averaged with equal weights and their standard errors (from the intervals) combined
+    (on the log scale when every interval is positive); exact numbers that vary between replicates get
+    a Student-t interval over the replicates; lists and dicts (``Monotone`` points, ``AllOf`` parts)
+    are pooled element by element. An undefined interval in any replicate makes the pooled interval
+    undefined (the verdict is then ``undecided``).
+    """
+    ms = [m for m in measured if m is not None]
+    if not ms:
+        return None
+    if len(ms) == 1:
+        return ms[0]
+    first = ms[0]
+    if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
+        es = [as_estimate(m) for m in ms]
+        return _pool_estimates(es)
+    if isinstance(first, Mapping):
+        keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
+        return {k: pool([m[k] for m in ms]) for k in keys}
+    if isinstance(first, (list, tuple)) and all(isinstance(m, (list, tuple)) and len(m) == len(first) for m in ms):
+        return [pool([m[i] for m in ms]) for i in range(len(first))]
+    return first
+
+
+# --------------------------------------------------------------------------- the exploration
+
+
+@dataclass
+class Exploration:
+    """What :func:`explore` measured: every run, and per claim the pooled value and its labels."""
+
+    register: Register
+    rules: dict
+    depends: dict
+    runs: list
+    settings: dict
+
+    @property
+    def default(self) -> dict:
+        return self.register.default()
+
+    def replicates(self) -> list[Run]:
+        return [r for r in self.runs if r.stage == "replicate"]
+
+    def measured(self, claim_id: str) -> Any:
+        """The claim at the default, pooled over the independent replicates."""
+        return pool([r.outputs.get(claim_id) for r in self.replicates()])
+
+    def _relevant(self, claim_id: str, run: Run) -> bool:
+        ch = run.changed(self.default)
+        return bool(ch) and bool(set(ch) & set(self.depends[claim_id])) and claim_id in run.outputs
+
+    def record(self, claim_id: str, rule: Rule | None = None) -> dict:
+        """The claim's robustness record (:func:`tvtrack.verdicts.label_parts`) with its register entries."""
+        rule = rule or self.rules[claim_id]
+        entries = [self.register[k] for k in self.depends[claim_id]]
+        reps = [{"seed": r.seed, "measured": r.outputs[claim_id]} for r in self.replicates() if claim_id in r.outputs]
+        conds = [{"changed": r.changed(self.default), "kind": r.stage, "measured": r.outputs[claim_id]}
+                 for r in self.runs if r.stage != "replicate" and self._relevant(claim_id, r)]
+        out = label_parts(rule, self.measured(claim_id), reps, conds, entries)
+        out["register"] = [e.to_dict() for e in entries]
+        out["design"] = dict(self.settings)
+        return out
+
+    def table(self, claim_id: str) -> str:
+        """The claim over its replicates and conditions as a Markdown table (verdict per part)."""
+        rec = self.record(claim_id)
+        parts = list(rec["parts"])
+        head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
+        rows = [f"| replicate (seed {r['seed']}) | " + " | ".join(r["parts"].get(p, "-") for p in parts) + " |"
+                for r in rec["replicates"]]
+        rows += [f"| {c['kind']}: " + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
+                 + " | " + " | ".join(c["parts"].get(p, "-") for p in parts) + " |" for c in rec["conditions"]]
+        return "\n".join([head, *rows])
+
+    def summary(self) -> str:
+        """One Markdown line per claim: label and what it covers."""
+        lines = []
+        for cid in self.rules:
+            rec = self.record(cid)
+            lines.append(f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}"
+                                                               if rec["where"] else ""))
+        return "\n".join(lines)
+
+
+def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -> None:
+    if not jobs:
+        return
+    if batched:
+        outs = measure([j.config for j in jobs], [j.seed for j in jobs])
+        if len(outs) != len(jobs):
+            raise ValueError(f"a batched measurement returned {len(outs)} results for {len(jobs)} configurations")
+        for j, o in zip(jobs, outs):
+            j.outputs = dict(o)
+        return
+    if executor is None:
+        for j in jobs:
+            j.outputs = dict(measure(dict(j.config), j.seed))
+        return
+    futures = [executor.submit(measure, dict(j.config), j.seed) for j in jobs]
+    try:
+        for j, f in zip(jobs, futures):
+            j.outputs = dict(f.result())
+    except BaseException:
+        for f in futures:
+            f.cancel()
+        raise
+
+
+def _settled(rules: Mapping[str, Rule], runs: list[Run]) -> bool:
+    reps = [r for r in runs if r.stage == "replicate"]
+    for cid, rule in rules.items():
+        m = pool([r.outputs.get(cid) for r in reps])
+        if m is not None and not rule.judge(m).settled:
+            return False
+    return True
+
+
+def explore(measure: Callable, register: Register, rules: Mapping[str, Rule], *, seed: int, replicates: int = 3,
+            max_replicates: int | None = None, joint: int = 0, depends: Mapping[str, Sequence[str]] | None = None,
+            batched: bool = False, executor: Any = None, one_at_a_time: bool = True) -> Exploration:
+    """Measure every claim over the register and over independent replicates.
+
+    Parameters
+    ----------
+    measure : callable
+        ``measure(config, seed) -> {claim id: measured}``: one full-size run at ``config`` (a dict with
+        every register entry) drawing from ``numpy.random.default_rng(seed)``. With ``batched=True``:
+        ``measure(configs, seeds) -> [dict, ...]``. A module-level function (picklable) for executors.
+    register : Register
+    rules : mapping claim id -> Rule
+    seed : int
+        The run's seed; replicate seeds are spawned from it.
+    replicates : int
+        Independent full-size runs at the default, at least 3.
+    max_replicates : int, optional
+        Adaptive cap: replicates are added one at a time while some claim's pooled verdict is not
+        settled. Default: ``replicates`` (no adaptation).
+    joint : int
+        Latin-hypercube joint samples of the register (0: none).
+    depends : mapping claim id -> entry names, optional
+        The entries each claim depends on (default: every entry). A condition counts for a claim only
+        if it changes one of its entries.
+    batched : bool
+        ``measure`` takes lists (configurations of a stage computed together).
+    executor : object with ``submit``, optional
+        ``concurrent.futures`` executor or ``dask.distributed.Client``.
+    one_at_a_time : bool
+        Run every other value of every entry at the default of the others.
+
+    Returns
+    -------
+    Exploration
+    """
+    if replicates < 3:
+        raise ValueError(f"explore: replicates must be at least 3 independent runs, got {replicates}")
+    cap = replicates if max_replicates is None else int(max_replicates)
+    if cap < replicates:
+        raise ValueError(f"explore: max_replicates {cap} < replicates {replicates}")
+    rules = dict(rules)
+    if not rules:
+        raise ValueError("explore: no claims to measure")
+    depends = {cid: list(depends.get(cid, register.names)) if depends else list(register.names) for cid in rules}
+    for cid, names in depends.items():
+        unknown = set(names) - set(register.names)
+        if unknown:
+            raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
+    seeds = replicate_seeds(seed, cap)
+    default = register.default()
+    runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
+    if one_at_a_time:
+        used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
+        runs += [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
+    if joint:
+        used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
+        runs += [Run(cfg, seeds[0], "joint") for cfg in joint_sample(register, used, joint, seed + 1)]
+    _execute(measure, runs, batched, executor)
+    n = replicates
+    while n < cap and not _settled(rules, runs):
+        extra = [Run(dict(default), seeds[n], "replicate")]
+        _execute(measure, extra, batched, executor)
+        runs += extra
+        n += 1
+    settings = {"replicates": n, "min_replicates": replicates, "max_replicates": cap, "joint": joint,
+                "one_at_a_time": one_at_a_time, "seed": seed}
+    return Exploration(register, rules, depends, runs, settings)

@@ -1,0 +1,175 @@
+"""The register of what a paper left unstated.
+
+Every notebook keeps one :class:`Register`: the readings of ambiguous sentences, the regimes of the
+simulated world the paper does not pin (motion, geometry, spectra, noise and photon models, frame rate,
+horizon), the operating points of the figures the claims come from, the statistics and the comparators.
+Each :class:`Entry` has its default, every defensible value and one line saying why those values are
+defensible. The explorer (:mod:`tvtrack.explore`) measures each claim over the register; a claim's label
+says which entries it was measured over.
+
+Example
+-------
+>>> from tvtrack.register import Entry, Register
+>>> reg = Register([
+...     Entry("motion", "regime", "gentle", ("gentle", "fast"), "the paper never says how the object moves"),
+...     Entry("alpha", "reading", 1e-3, (1e-3, 1e-2), "per-test false-alarm rate; the paper gives none"),
+... ])
+>>> reg.default()
+{'motion': 'gentle', 'alpha': 0.001}
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Iterable, Mapping, Sequence
+
+__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "Entry", "Register"]
+
+#: What an entry can be.
+ENTRY_KINDS = ("reading", "regime", "operating point", "model", "statistic", "comparator", "scale")
+#: Kinds that vary the simulated world or the figure's operating point: a claim measured over none of
+#: them cannot be labelled ``robust`` (:func:`tvtrack.verdicts.label_parts`).
+WORLD_KINDS = ("regime", "operating point", "model")
+#: Who added an entry: the notebook's author, or the adversarial pass hunting for a flip.
+ORIGINS = ("author", "adversarial")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One thing the paper left unstated.
+
+    Attributes
+    ----------
+    name : str
+        Identifier, used as the key in a configuration (``"motion"``).
+    kind : str
+        One of :data:`ENTRY_KINDS`.
+    default : Any
+        The value the notebook's headline uses.
+    values : tuple
+        Every defensible value, the default among them (JSON-able scalars or strings).
+    why : str
+        One line: why these values are defensible (a quote of the paper, a physical range, a textbook).
+    origin : str
+        ``"author"`` or ``"adversarial"`` (added by the adversarial pass while trying to flip a label).
+    """
+
+    name: str
+    kind: str
+    default: Any
+    values: tuple
+    why: str
+    origin: str = "author"
+
+    def __post_init__(self):
+        object.__setattr__(self, "values", tuple(self.values))
+        if not self.name or not isinstance(self.name, str):
+            raise ValueError(f"register entry name must be a non-empty string, got {self.name!r}")
+        if self.kind not in ENTRY_KINDS:
+            raise ValueError(f"register entry {self.name!r}: kind {self.kind!r} must be one of {ENTRY_KINDS}")
+        if self.origin not in ORIGINS:
+            raise ValueError(f"register entry {self.name!r}: origin {self.origin!r} must be one of {ORIGINS}")
+        if self.default not in self.values:
+            raise ValueError(f"register entry {self.name!r}: default {self.default!r} is not among {list(self.values)}")
+        if not self.why.strip():
+            raise ValueError(f"register entry {self.name!r} needs a line saying why its values are defensible")
+
+    @property
+    def alternatives(self) -> tuple:
+        """The defensible values other than the default."""
+        return tuple(v for v in self.values if v != self.default)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "default": self.default, "values": list(self.values),
+                "why": self.why, "origin": self.origin}
+
+
+class Register:
+    """An ordered collection of :class:`Entry` with unique names.
+
+    Parameters
+    ----------
+    entries : iterable of Entry
+    """
+
+    def __init__(self, entries: Iterable[Entry]):
+        self.entries: list[Entry] = list(entries)
+        names = [e.name for e in self.entries]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise ValueError(f"register entries named more than once: {dup}")
+        for e in self.entries:
+            if not isinstance(e, Entry):
+                raise TypeError(f"a register holds Entry objects, got {type(e).__name__}")
+
+    def __iter__(self):
+        return iter(self.entries)
+
+    def __len__(self) -> int:
+        return len(self.entries)
+
+    def __contains__(self, name: str) -> bool:
+        return any(e.name == name for e in self.entries)
+
+    def __getitem__(self, name: str) -> Entry:
+        for e in self.entries:
+            if e.name == name:
+                return e
+        raise KeyError(f"no register entry {name!r}; entries: {self.names}")
+
+    @property
+    def names(self) -> list[str]:
+        return [e.name for e in self.entries]
+
+    def default(self) -> dict:
+        """The default configuration ``{name: default}``."""
+        return {e.name: e.default for e in self.entries}
+
+    def subset(self, names: Sequence[str]) -> "Register":
+        """The entries named, in register order."""
+        unknown = set(names) - set(self.names)
+        if unknown:
+            raise KeyError(f"no register entries {sorted(unknown)}; entries: {self.names}")
+        return Register(e for e in self.entries if e.name in set(names))
+
+    def with_entries(self, *entries: Entry) -> "Register":
+        """A new register with ``entries`` appended (e.g. the adversarial pass's rows)."""
+        return Register([*self.entries, *entries])
+
+    def check(self, config: Mapping[str, Any]) -> dict:
+        """``config`` completed with defaults, each value checked to be defensible."""
+        unknown = set(config) - set(self.names)
+        if unknown:
+            raise KeyError(f"configuration names unknown register entries {sorted(unknown)}")
+        out = self.default()
+        for k, v in config.items():
+            if v not in self[k].values:
+                raise ValueError(f"register entry {k!r}: {v!r} is not among {list(self[k].values)}")
+            out[k] = v
+        return out
+
+    def to_dict(self) -> list[dict]:
+        return [e.to_dict() for e in self.entries]
+
+    def to_markdown(self) -> str:
+        """The register as a Markdown table (name, kind, default, other values, why, origin)."""
+        rows = ["| entry | kind | default | other defensible values | why | added by |",
+                "| --- | --- | --- | --- | --- | --- |"]
+        for e in self.entries:
+            alts = ", ".join(_md(v) for v in e.alternatives) or "-"
+            rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {_escape(e.why)} | {e.origin} |")
+        return "\n".join(rows)
+
+    def _repr_markdown_(self) -> str:
+        return self.to_markdown()
+
+
+def _escape(text: str) -> str:
+    """Text safe inside a Markdown table cell (no emphasis, no column break)."""
+    for ch in ("\\", "*", "_", "|", "`"):
+        text = text.replace(ch, "\\" + ch)
+    return text
+
+
+def _md(v: Any) -> str:
+    return _escape(f"{v:g}" if isinstance(v, float) else str(v))
