@@ -128,3 +128,11 @@ def test_undecided_never_decides():
     mono = Monotone("g", "x", "increasing")
     assert mono.decide([nan, est(2, 3), est(4, 5)]) == "undecided"
     assert mono.decide([est(0, 1), nan, est(4, 5)]) == "reproduced"
+
+
+def test_ordering_says_paired_only_when_paired():
+    from tvtrack.verdicts import Ordering
+
+    assert "paired ratio" in Ordering("a", "b", ">", "ratio").text()
+    unpaired = Ordering("a", "b", ">", "ratio", paired=False)
+    assert "unpaired (independent samples) ratio" in unpaired.text() and unpaired.to_dict()["paired"] is False
