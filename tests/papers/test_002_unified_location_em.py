@@ -10,7 +10,7 @@ from tvtrack.papers.p002_unified_location_em.em import (log_likelihood, match_la
                                           responsibility_maps, unified_location_em)
 from tvtrack.papers.p002_unified_location_em.two_stage import (Marks, associate, associate_by_lines, centre_of_region_marks, em_marks,
                                         fit_lines, moment_starts, propagate)
-from tvtrack.papers.p002_unified_location_em.model import (designate, draw_truth, expected_counts, frame_times,
+from tvtrack.papers.p002_unified_location_em.model import (draw_truth, expected_counts, frame_times,
                                           mixture_weights, pixel_probabilities, scene_batches,
                                           scene_geometry, simulate_counts)
 
