@@ -61,7 +61,7 @@ def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
     cfg = {**DEFAULT, "ULA": "MAP (designation prior)"}
     out = study.measure(cfg, 3, TINY)["C002-11"]
     g, res = study.figure_data(cfg, 3, TINY)
-    r, rm = res[g["5ab"][50][0]], res[g["head_map"][1.0]]
+    r, rm = res[g["5ab"][50][1.0]], res[g["head_map"][1.0]]
     # the same statistic computed here from the free-velocity twin (the plain line fit) and the MAP-ULA
     direct = (study.errors(r, "em").var(axis=0, ddof=1).sum() / study.errors(rm, "map").var(axis=0, ddof=1).sum())
     assert out["d = 1 sigma (paper x4.5)"].value == pytest.approx(direct)

@@ -36,7 +36,7 @@ def ula_distance_figure(g, res, epoch="first"):
               ("2", "Fig 2: Delta = sigma", {f"T = {T}, m_k = {m}": cs for (T, m), cs in g["2"].items()})]
     for ax, (_, title, curves) in zip(axes, panels):
         for label, cs in curves.items():
-            d = [c.d for c in cs]
+            d, cs = list(cs), list(cs.values())
             line = _band(ax, d, [spread_sum(errors(res[c], "ula", epoch)) for c in cs], label)
             ax.plot(d, [res[c]["crb_pos"] for c in cs], ls=":", color=line.get_color())
         _distance_axes(ax, title)
@@ -47,7 +47,8 @@ def one_object_figure(g, res, frames, epoch="first"):
     """Fig 3a: Var x_o of one object against T for three pixel sizes and the three algorithms."""
     names = {"cr": "two-stage, centre-of-region marks", "em": "two-stage, iterative marks", "ula": "ULA"}
     fig, axes = plt.subplots(1, len(g["3a"]), figsize=(4.3 * len(g["3a"]), 3.6), sharey=True)
-    for ax, (pix, cs) in zip(np.atleast_1d(axes), g["3a"].items()):
+    for ax, (pix, by_t) in zip(np.atleast_1d(axes), g["3a"].items()):
+        cs = [by_t[T] for T in frames]
         for alg, label in names.items():
             _band(ax, frames, [spread_sum(errors(res[c], alg, epoch)[:, :1]) for c in cs], label)
         ax.plot(frames, [res[c]["crb_x0"] for c in cs], "k:", label="CRB of x_o")
@@ -63,15 +64,14 @@ def gain_figure(g, res, rng, n_bootstrap, epoch="first"):
               "Fig 5b (T = 50)": g["5ab"][50], "Fig 6b (Delta = 5 sigma)": g["6"][20]}
     fig, axes = plt.subplots(1, 3, figsize=(15, 3.8))
     for i, key in enumerate(("Fig 4a (m_k = 20)", "Fig 5b (T = 50)")):
-        cs = groups[key]
-        d = [c.d for c in cs]
+        d, cs = list(groups[key]), list(groups[key].values())
         for alg, label in (("em", "two-stage, iterative marks"), ("ula", "ULA")):
             _band(axes[i], d, [spread_sum(errors(res[c], alg, epoch)) for c in cs], label)
         axes[i].plot(d, [res[c]["crb_pos"] for c in cs], "k:", label="CRB")
         _distance_axes(axes[i], key)
-    for key, cs in groups.items():
-        _band(axes[2], [c.d for c in cs],
-              [gain(errors(res[c], "em", epoch), errors(res[c], "ula", epoch), rng, n_bootstrap) for c in cs], key)
+    for key, by_d in groups.items():
+        _band(axes[2], list(by_d), [gain(errors(res[c], "em", epoch), errors(res[c], "ula", epoch), rng, n_bootstrap)
+                                    for c in by_d.values()], key)
     axes[2].axhspan(3.0, 6.0, color="0.88", zorder=0, label="paper's x4-4.5 (C002-11 band)")
     axes[2].axhline(1.0, color="0.3", lw=0.8)
     _distance_axes(axes[2], "gain rho = Sigma^2_two-stage / Sigma^2_ULA", "rho")
@@ -98,8 +98,8 @@ def bound_figure(g, res, epoch="first"):
     """The bound at coarse pixels: MSE of both algorithms against the CRB and the van Trees bound with the
     designation prior, Fig 4a's pixel size and Delta = 5 sigma (Fig 6b)."""
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), sharey=True)
-    for ax, (title, cs) in zip(axes, (("Fig 4a's pixels", g["4"][20]), ("Delta = 5 sigma (Fig 6b)", g["6"][20]))):
-        d = [c.d for c in cs]
+    for ax, (title, by_d) in zip(axes, (("Fig 4a's pixels", g["4"][20]), ("Delta = 5 sigma (Fig 6b)", g["6"][20]))):
+        d, cs = list(by_d), list(by_d.values())
         for alg, label in (("em", "two-stage MSE"), ("ula", "ULA MSE")):
             _band(ax, d, [spread_sum(errors(res[c], alg, epoch), "MSE") for c in cs], label)
         ax.plot(d, [res[c]["crb_pos"] for c in cs], "k:", label="CRB (unbiased estimators)")

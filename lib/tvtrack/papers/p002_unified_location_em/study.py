@@ -31,6 +31,9 @@ __all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "
 
 #: Separations d / sigma of the distance axes (card 5.2).
 D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
+#: Separations (sigma) over which C002-10's "coarser pixels" and "more frames" gains are averaged (up to the
+#: register's "close separations" value): the text names d = 1 and 3 sigma.
+CLOSE = (1.0, 2.0, 3.0)
 #: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
 _READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
           "p": ("tol_sigma",),
@@ -133,36 +136,45 @@ class _Points:
         return c
 
 
-def _points(config: dict, scale: Scale):
-    """Every simulation point the claims and figures read, as named groups of :class:`Config`."""
+def _points(config: dict, scale: Scale, figures: bool = False):
+    """The simulation points the claims read (and, with ``figures``, the figures' whole curves), as named groups of
+    ``{d: Config}`` (``{T: Config}`` for Fig 3a). The claims read only the separations they compare, so a replicate
+    simulates what decides a verdict; the figures add the rest of their axes once (first replicate)."""
     P = _Points(config, scale)
     D = tuple(scale.separations)
     T1, m1c = int(config["T of Figs 1a,b"]), int(config["m_k of Fig 1c"])
     pix, T4, m5 = float(config["Delta of Figs 4, 5, 7 (sigma)"]), int(config["T of Figs 4, 6, 7"]), int(
         config["m_k of Fig 5"])
-    close = [d for d in D if d <= 3.0]
-    g = {"1a": {m: [P(2, d, 3.0, m, T1, "u") for d in D] for m in (10, 20)},
-         "1b": {m: [P(2, d, 1.0, m, T1, "u") for d in D] for m in (10, 20)},
-         "1c": {p_: [P(2, d, p_, m1c, 5, "u") for d in D] for p_ in (3.0, 5.0)},
-         "2": {(T, m): [P(2, d, 1.0, m, T, "u") for d in D] for T in (5, 10) for m in (10, 20)},
-         "5": {(p_, T): {d: P(2, d, p_, 20, T, "u") for d in (1.0, 2.0, 3.0)} for p_ in (1.0, 3.0)
-               for T in (5, 10, 50)},
-         "3a": {p_: [P(1, 0.0, p_, 20, T, "uec") for T in scale.fig3_frames] for p_ in (1.0, 3.0, 5.0)},
-         "4": {m: [P(2, d, pix, m, T4, "ue") for d in D] for m in (20, 50)},
-         "5ab": {T: [P(2, d, pix, m5, T, "ue") for d in close] for T in (5, 50)},
+    close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+    close = sorted(set(close) | {1.0, 3.0})                 # C002-11 reads d = 1 and 3 sigma
+    small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
+    d5, T3 = float(config["separation of C002-5 (sigma)"]), int(config["T of the Fig 3a claims"])
+    core = (1.0, 2.0, 3.0, 6.0)
+    pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
+    g = {"1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
+         "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
+         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
+         "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
+         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
+         "3a": {p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (scale.fig3_frames if figures else (T3,))}
+                for p_ in (1.0, 3.0, 5.0)},
+         "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
+         "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
          "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
-         "6": {m: [P(2, d, 5.0, m, T4, "ue") for d in close] for m in (10, 20)},
+         "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
          "good": {p_: P(2, 8.0, p_, 20, T4, "ue") for p_ in (0.5, 1.0)},
-         "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in (min(D), 2.0, max(D))},
-         "ms": {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (0.5, 1.0)}}
+         "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in
+               sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
+    if figures:
+        g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
     return g, P.asked
 
 
-def jobs_of(config: dict, seed: int, scale: Scale) -> list[tuple[StudySettings, Config]]:
+def jobs_of(config: dict, seed: int, scale: Scale, figures: bool = False) -> list[tuple[StudySettings, Config]]:
     """The simulation jobs ``(settings, single-letter Config)`` of one configuration and seed, without repeats."""
     settings = settings_of(config, seed, scale)
     out = {}
-    for c in _points(config, scale)[1]:
+    for c in _points(config, scale, figures)[1]:
         for a in c.algs:
             job = (_job_settings(settings, a, scale), c._replace(algs=a))
             out[job] = None
@@ -260,36 +272,34 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     rng = np.random.default_rng(seed_sequence(seed, ("bootstrap",)))
     B, ep, st = scale.n_bootstrap, config["epoch"], config["statistic"]
     D = list(scale.separations)
-    i1, i2, i3, i6, i8 = (D.index(d) for d in (1.0, 2.0, 3.0, 6.0, 8.0))
     ula = (lambda c: errors(res[c], "ula", ep))
-    out = {}
-    out["C002-1"] = [spread_sum(ula(c), st) for c in g["1a"][20]]
+    out = {"C002-1": [spread_sum(ula(g["1a"][20][d]), st) for d in D]}
 
-    def r_m(pix_key, i):
-        return ula(g[pix_key][10][i]), ula(g[pix_key][20][i])
-    far, near = r_m("1a", i6), r_m("1a", i1)
+    def r_m(key, d):
+        return ula(g[key][10][d]), ula(g[key][20][d])
+    far, near = r_m("1a", 6.0), r_m("1a", 1.0)
     out["C002-2"] = {"weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B),
                      "far apart": gain(*far, rng, B, st, paired=False)}
-    ds3 = [i1, i2, i3, i6]
-    out["C002-3"] = _mean_log_gain([np.hstack(r_m("1b", i)) for i in ds3], [np.hstack(r_m("1a", i)) for i in ds3],
+    ds3 = (1.0, 2.0, 3.0, 6.0)
+    out["C002-3"] = _mean_log_gain([np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3],
                                    rng, B)
-    loss = {p_: np.hstack([ula(g["1c"][p_][i1]), ula(g["1c"][p_][i6])]) for p_ in (5.0, 3.0)}
+    loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
     out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B)
     d5 = float(config["separation of C002-5 (sigma)"])
     out["C002-5"] = [gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False)
                      for T in (5, 10, 50)]
-    small = [i for i, d in enumerate(D) if d <= float(config["small separations of C002-6 (sigma)"])]
+    small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
 
-    def abs_log_rt(m):
-        return [np.hstack([ula(g["2"][(5, m)][i]), ula(g["2"][(10, m)][i])]) for i in small]
+    def rt(m):
+        return [np.hstack([ula(g["2"][(5, m)][d]), ula(g["2"][(10, m)][d])]) for d in small]
 
     def stat6(*gr):
         def mabs(h):
             return np.mean([np.abs(np.log(_vsum(x[..., :x.shape[-1] // 2]) / _vsum(x[..., x.shape[-1] // 2:])))
                             for x in h], axis=0)
         return mabs(gr[:len(small)]) - mabs(gr[len(small):])
-    out["C002-6"] = bootstrap_groups(abs_log_rt(20) + abs_log_rt(10), stat6, rng, B)
-    T3 = list(scale.fig3_frames).index(int(config["T of the Fig 3a claims"]))
+    out["C002-6"] = bootstrap_groups(rt(20) + rt(10), stat6, rng, B)
+    T3 = int(config["T of the Fig 3a claims"])
 
     def x1(pix, alg):
         return position_errors(res[g["3a"][pix][T3]], alg, ep)[:, :1]
@@ -300,29 +310,28 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     p9 = float(config["Delta of the C002-9 order (sigma)"])
     out["C002-9"] = {"centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
                      "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st)}
-    ula_name = "map" if config["ULA"] == "MAP (designation prior)" else "ula"
-    twin = "em_vd" if ula_name == "map" and config["velocity knowledge"] == "designated" else "em"
+    use_map = config["ULA"] == "MAP (designation prior)"
+    twin = "em_vd" if use_map and config["velocity knowledge"] == "designated" else "em"
 
-    def rho(c, u="ula", t="em"):
+    def rho(c):
         r = res[c]
-        return gain(errors(r, t, ep), errors(r, u, ep), rng, B, st)
+        return gain(errors(r, "em", ep), errors(r, "ula", ep), rng, B, st)
 
-    def side(c, u="ula", t="em"):
+    def side(c):
         r = res[c]
-        return np.hstack([errors(r, t, ep), errors(r, u, ep)])
-    close = [i for i, d in enumerate(D) if d <= float(config["close separations of C002-10 (sigma)"])]
-    out["C002-10"] = {"closer": [rho(c) for c in g["4"][20]],
-                      "coarser pixels": _mean_log_gain([side(g["6"][20][i]) for i in close],
-                                                       [side(g["4"][20][i]) for i in close], rng, B),
-                      "more frames": _mean_log_gain([side(g["5ab"][50][i]) for i in close],
-                                                    [side(g["5ab"][5][i]) for i in close], rng, B)}
+        return np.hstack([errors(r, "em", ep), errors(r, "ula", ep)])
+    close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+    out["C002-10"] = {"closer": [rho(g["4"][20][d]) for d in D],
+                      "coarser pixels": _mean_log_gain([side(g["6"][20][d]) for d in close],
+                                                       [side(g["4"][20][d]) for d in close], rng, B),
+                      "more frames": _mean_log_gain([side(g["5ab"][50][d]) for d in close],
+                                                    [side(g["5ab"][5][d]) for d in close], rng, B)}
 
     def head(d):
-        c = g["5ab"][50][D.index(d)]
-        if ula_name == "ula":
+        c = g["5ab"][50][d]
+        if not use_map:
             return rho(c)
-        r, rm = res[c], res[g["head_map"][d]]
-        return gain(errors(r, twin, ep), errors(rm, "map", ep), rng, B, st)
+        return gain(errors(res[c], twin, ep), errors(res[g["head_map"][d]], "map", ep), rng, B, st)
     out["C002-11"] = {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
     out["C002-12"] = {f"Delta = {p_:g} sigma": rho(c) for p_, c in g["good"].items()}
     it = {d: res[c] for d, c in g["7"].items()}
@@ -343,11 +352,10 @@ def _c15(config, g, res, ep, st) -> dict:
     key_pos, key_vel = ("bcrb_pos", "bcrb_vel") if use_bayes else ("crb_pos", "crb_vel")
     parts = {}
     cs = g["4"][20]
-    ds = [c.d for c in cs]
     for d, name in ((1.0, "d = 1 sigma (very close)"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
-        r = res[cs[ds.index(d)]]
+        r = res[cs[d]]
         parts[name] = _efficiency(errors(r, "ula", ep), r[key_pos], st)
-    r = res[cs[ds.index(1.0)]]
+    r = res[cs[1.0]]
     parts["velocities, d = 1 sigma"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
     return parts
 
@@ -373,8 +381,8 @@ def measure(config: dict, seed: int, scale: Scale = Scale()) -> dict:
 def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, _Results]:
     """The simulation points (named groups of :class:`Config`) and their results at ``config`` and ``seed``, for
     the figures (runs what is not cached)."""
-    run_jobs(jobs_of(config, seed, scale), scale.n_workers)
-    return _points(config, scale)[0], _Results(settings_of(config, seed, scale), scale)
+    run_jobs(jobs_of(config, seed, scale, figures=True), scale.n_workers)
+    return _points(config, scale, figures=True)[0], _Results(settings_of(config, seed, scale), scale)
 
 
 
