@@ -72,3 +72,16 @@ def test_word_follows_the_interval():
     assert study.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
     assert study.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
     assert study.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
+
+
+def test_crossing_tracks_swap_sides_at_mid_sequence():
+    from tvtrack.papers.p002_unified_location_em.model import frame_times, scene_geometry
+    from tvtrack.papers.p002_unified_location_em.simulation import track_velocities
+
+    v = track_velocities((0.2, 0.1), "crossing", 2, 3.0, 11)
+    g = scene_geometry(2, 11, 3.0, 1.0, v)
+    t = frame_times(11)
+    dy = (g.theta[1, 1] + g.theta[1, 3] * t) - (g.theta[0, 1] + g.theta[0, 3] * t)
+    np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 0.0, -3.0])
+    np.testing.assert_allclose(track_velocities((0.2, 0.1), "parallel", 2, 3.0, 11), [[0.2, 0.1], [0.2, 0.1]])
+    np.testing.assert_allclose(track_velocities((0.2, 0.1), "crossing", 1, 3.0, 11), [[0.2, 0.1]])

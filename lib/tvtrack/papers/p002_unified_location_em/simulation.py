@@ -39,6 +39,7 @@ from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_tim
 ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteration counts)",
               "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
               "e": "two-stage, iterative (per-frame EM) marks",
+              "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
               "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
               "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
               "b": "BIC fits with Q' = 1, 2, 3"}
@@ -93,6 +94,9 @@ class StudySettings:
         covers the initial positions only, the line fit is ordinary least squares), or the designated
         velocity with its error ``designation_velocity_sd`` ("designated": the MAP prior's velocity sd is
         that error, the line fit keeps the designated velocity and fits the intercept).
+    tracks : {"parallel", "crossing"}
+        Two-object scenes: the common velocity, or object 2 with its y velocity lowered by ``2 d / (T - 1)`` so
+        that the tracks cross at mid-sequence (they start ``d`` apart and end ``d`` apart on the other side).
     n_bootstrap : int
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
@@ -117,6 +121,7 @@ class StudySettings:
     n_trials: int
     n_bootstrap: int
     velocity_knowledge: str = "free"
+    tracks: str = "parallel"
 
 
 class Config(NamedTuple):
@@ -241,6 +246,17 @@ def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: floa
     return max(dsd, 1e-6) * sigma_px, v
 
 
+def track_velocities(velocity_sigma, tracks: str, q: int, d: float, T: int):
+    """Per-object velocities (sigma/frame), shape (Q, 2): the common velocity, or for ``tracks = "crossing"`` and
+    two objects object 2's y velocity lowered by ``2 d / (T - 1)`` (the tracks cross at mid-sequence)."""
+    if tracks not in ("parallel", "crossing"):
+        raise ValueError(f"tracks = {tracks!r} must be 'parallel' or 'crossing'")
+    v = np.tile(np.asarray(velocity_sigma, dtype=float), (q, 1))
+    if tracks == "crossing" and q == 2 and T > 1:
+        v[1, 1] -= 2.0 * d / (T - 1)
+    return v
+
+
 def multi_start_gap(entries, designation, sigma_px, p, p0, tol_px, max_iter, accel, rng, n_starts: int = 4):
     """Log-likelihood by which the ULA started at the designation ends below the best of ``n_starts`` starts
     (the designation and ``n_starts - 1`` starts with every position moved by N(0, sigma^2)), shape (n,): zero
@@ -280,14 +296,14 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     s_ = replace(settings, **dict(cfg.variant))
     q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd, _ = cfg
     accel = None if s_.accelerate == "none" else "squarem"
-    g = scene_geometry(q, T, d, pix, s_.velocity_sigma, s_.margin_sigma)
+    g = scene_geometry(q, T, d, pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
     s = g.sigma_px
     noise_pp = s_.noise_density / s ** 2                 # photons per pixel = density x pixel area
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
     out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_vd", "em_flags",
-                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap")}
+                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w")}
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
@@ -349,6 +365,10 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["cr"].append(e)
             out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
+        if "w" in algs:
+            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
+                                    estimate_weights=True, estimate_sigma=True)
+            out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         if "s" in algs:
             ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
             out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))

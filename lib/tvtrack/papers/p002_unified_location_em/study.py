@@ -27,7 +27,7 @@ from .simulation import (Config, StudySettings, bootstrap_groups, mse_sum, posit
 
 __all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "measure_batch", "figure_data",
            "errors", "gain", "spread_sum", "exp_estimate", "clear_cache", "word",
-           "squarem_vs_plain", "local_maxima_rate"]
+           "squarem_vs_plain", "local_maxima_rate", "estimation_cost"]
 
 #: Separations d / sigma of the distance axes (card 5.2).
 D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
@@ -42,13 +42,14 @@ _READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
           "q": ("tol_sigma", "mark_init", "mark_association"),
           "c": ("gate_half_sigma",),
           "s": ("tol_sigma", "max_iter", "accelerate"),
+          "w": ("tol_sigma", "max_iter"),
           "b": ("bic_max_iter",)}
 _CANON = StudySettings(seed=0, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
                        margin_sigma=6.0, designation_sd_sigma=0.0, designation_velocity_sd=0.0, tol_sigma=1e-6,
                        max_iter=5000, merge_sigma=0.1, accelerate="squarem", mark_init="designation",
                        mark_association="designation", gate_half_sigma=3.0, bic_max_iter=300, crb_phases=64,
                        n_trials=0, n_bootstrap=2000, velocity_knowledge="free")
-_SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases")
+_SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
 _TWO_STAGE = {"designation start, labels by start": ("designation", "designation"),
               "previous start + assignment": ("previous", "assignment"),
               "designation start + line association": ("designation", "lines"),
@@ -107,15 +108,17 @@ def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
                    designation_sd_sigma=float(config["designation error (sigma)"]), tol_sigma=tol, max_iter=cap,
                    accelerate=accel, mark_init=init, mark_association=assoc, crb_phases=scale.crb_phases,
                    n_trials=scale.n_trials, n_bootstrap=scale.n_bootstrap,
-                   velocity_knowledge=config["velocity knowledge"])
+                   velocity_knowledge=config["velocity knowledge"], tracks=config["tracks"])
 
 
-def _job_settings(settings: StudySettings, letter: str, scale: Scale) -> StudySettings:
+def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2) -> StudySettings:
     """``settings`` with every field that ``letter`` does not read reset to a canonical value (the cache key).
     The plain-EM iteration counts (``p``, ``q``) run to the paper's convergence whatever the register's stopping
     reading; only the scale's cap (smoke profile) bounds them."""
     keep = set(_SCENE) | set(_READS[letter])
     out = replace(_CANON, **{k: getattr(settings, k) for k in keep})
+    if q == 1:                                  # one object: nothing to cross
+        out = replace(out, tracks="parallel")
     if letter in "pq" and scale.max_iter is not None:
         out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
     return out
@@ -167,6 +170,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
                sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
     if figures:
         g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
+        g["w"] = {d: P(2, d, pix, 20, T4, "uw", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
     return g, P.asked
 
 
@@ -176,7 +180,7 @@ def jobs_of(config: dict, seed: int, scale: Scale, figures: bool = False) -> lis
     out = {}
     for c in _points(config, scale, figures)[1]:
         for a in c.algs:
-            job = (_job_settings(settings, a, scale), c._replace(algs=a))
+            job = (_job_settings(settings, a, scale, c.q), c._replace(algs=a))
             out[job] = None
     return list(out)
 
@@ -208,7 +212,7 @@ class _Results:
     def __getitem__(self, c: Config) -> dict:
         out = {}
         for a in c.algs:
-            r = _CACHE[(_job_settings(self.settings, a, self.scale), c._replace(algs=a))]
+            r = _CACHE[(_job_settings(self.settings, a, self.scale, c.q), c._replace(algs=a))]
             out.update({k: v for k, v in r.items() if k != "timing"})
             out.setdefault("timing", {}).update({k: v for k, v in r["timing"].items() if v})
         return out
@@ -407,6 +411,12 @@ def squarem_vs_plain(g: dict, res) -> dict:
         diff = np.abs(r["plain"][..., :2] - r["ula"][..., :2]).max(axis=(1, 2))
         out[d] = {"max_sigma": float(diff.max()), "share_over_0.01": proportion_ci(int((diff > 0.01).sum()), len(diff))}
     return out
+
+
+def estimation_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
+    """The accuracy cost of estimating p_j and sigma as well (card 8.4): Sigma^2 with them estimated over Sigma^2
+    with them known, paired on the same trials, per separation."""
+    return {d: gain(errors(res[c], "ula_w"), errors(res[c], "ula"), rng, n_bootstrap) for d, c in g["w"].items()}
 
 
 def local_maxima_rate(g: dict, res, gap: float = 1e-3) -> dict:
