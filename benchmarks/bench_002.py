@@ -1,20 +1,24 @@
 """Speed of notebook 002 (issues 6, 30): ratios measured in one run, never absolute wall times.
 
 Where the time goes (profile of one claims replicate at the paper profile, ``n_trials = 80``, ``n_iter_trials = 40``,
-97 simulation jobs, about 21 s of CPU on this 2-core machine under load before the close grid was cut to d = 1, 2,
-3 sigma; about 15 s after):
+87 simulation jobs, 15.7 s of CPU on this 2-core machine under load; one process):
 
-* half of it is Delta = 5 sigma (Fig 6b, C002-10's "coarser pixels"): the per-frame marks (33 %) and the ULA (18 %).
-  With two objects inside one or two coarse pixels a single frame hardly constrains their separation, so the
-  per-frame EM converges linearly with a rate near 1 and a quarter to a half of the trials reach the 5000-step cap
-  in some frame; that tail costs a fixed ~1 s per point whatever the number of trials;
-* the T = 50 points (Fig 5b, C002-11): two-stage 9 %, ULA 8 %, MAP-ULA 2 %;
-* the plain-EM iteration counts (Fig 7, C002-13/14): 4 %; all T = 5 and T = 10 ULA-only points: about 15 %.
+* about half is Delta = 5 sigma (Fig 6b, C002-10's "coarser pixels"): the per-frame marks and the ULA. With two
+  objects inside one or two coarse pixels a single frame hardly constrains their separation, so the per-frame EM
+  converges linearly with a rate near 1 and a quarter to a half of the trials reach the 5000-step cap in some frame;
+  that tail costs a fixed ~1 s per point whatever the number of trials;
+* the T = 50 points (Fig 5b, C002-11): two-stage ~12 %, ULA ~11 %, MAP-ULA ~3 %;
+* the plain-EM iteration counts (Fig 7, C002-13/14) ~5 %; all T = 5 and T = 10 ULA-only points ~15 %.
 
-An exploration at the paper profile is 3 replicates (up to 5 while a verdict is unsettled) + 8 one-at-a-time values
-that change the simulated world (each a whole replicate) + partial reruns for the comparators and operating points
-(the job cache reruns only the algorithm a value changes; a statistic or a reading reruns nothing) + 3 joint
-samples: about 17-19 replicate-equivalents, ~260-290 s of CPU, ~2.5 min wall with 2 worker processes.
+Measured increments over a replicate: a faster velocity (0.5, 0.25 sigma/frame) reruns every job (15.4 s); Delta =
+sigma for Figs 4, 5, 7 reruns 26 jobs (6.0 s); a statistic or a reading reruns nothing (the job cache keys each
+algorithm's job by the settings it reads).
+
+An exploration at the paper profile: 3 replicates (up to 5 while a verdict is unsettled, ~16 s each), 7
+one-at-a-time values that change the simulated world (photon model, designation error, noise, two velocities,
+crossing tracks, EM stopping; ~15 s each), partial reruns for the comparators and operating points (~45 s in all)
+and 3 joint samples (~45 s): about 290 s of CPU, about 2.5-3 min wall with 2 worker processes, plus the figures'
+extra points (~10 s) and the recording (~1 s).
 
 The benchmarks: the EM batched across trials against the same EM run one trial at a time (the batching is what
 keeps 100+ trials per point affordable), and the job cache: a register value that changes only a statistic costs

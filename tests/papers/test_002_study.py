@@ -85,3 +85,19 @@ def test_crossing_tracks_swap_sides_at_mid_sequence():
     np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 0.0, -3.0])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "parallel", 2, 3.0, 11), [[0.2, 0.1], [0.2, 0.1]])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "crossing", 1, 3.0, 11), [[0.2, 0.1]])
+
+
+def test_mean_log_gain_recovers_a_known_ratio_of_gains():
+    """exp(mean log rho_hi - mean log rho_lo) on normal errors with known variances: rho_hi = 4, rho_lo = 2 -> 2."""
+    rng = np.random.default_rng(4)
+    n = 1500
+
+    def pair(var_num, var_den):
+        return np.hstack([rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))])
+    est = study._mean_log_gain([pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)],
+                               np.random.default_rng(0), 1000)
+    assert est.ci_low < 2.0 < est.ci_high and abs(est.value - 2.0) < 0.25
+    e = rng.normal(size=(n, 2))
+    v = study.gain(2 * e, e, np.random.default_rng(0), 2000)
+    s = study.gain(2 * e, e, np.random.default_rng(0), 2000, statistic="SD ratio")
+    assert v.value == pytest.approx(4.0) and s.value == pytest.approx(2.0)
