@@ -131,7 +131,7 @@ def test_map_comparison_gives_both_algorithms_the_same_velocity_knowledge():
                 designation_sd_sigma=0.3, designation_velocity_sd=0.0, tol_sigma=1e-6, max_iter=300,
                 merge_sigma=0.1, accelerate="squarem", mark_init="designation", mark_association="designation",
                 gate_half_sigma=3.0, bic_max_iter=10, crb_phases=2, n_trials=12, n_bootstrap=2000)
-    cfg = Config(2, 2.0, 1.0, 20, 6, "uem", 0.3, None, None, 12, "pin", 0.0)
+    cfg = Config(2, 2.0, 1.0, 20, 6, "uemk", 0.3, None, None, 12, "pin", 0.0)
     free = run_config(StudySettings(**base, velocity_knowledge="free"), cfg)
     known = run_config(StudySettings(**base, velocity_knowledge="designated"), cfg)
     # free: the MAP-ULA fits the velocity as the two-stage line does; designated (exact here): the MAP-ULA and the
@@ -139,3 +139,6 @@ def test_map_comparison_gives_both_algorithms_the_same_velocity_knowledge():
     assert np.abs(free["map"][..., 2:]).max() > 1e-3 and np.abs(free["em"][..., 2:]).max() > 1e-3
     np.testing.assert_allclose(known["map"][..., 2:], 0.0, atol=1e-5)
     np.testing.assert_allclose(known["em_vd"][..., 2:], 0.0, atol=1e-12)
+    # the ML ULA told the designated (here exact) velocity keeps it; its positions are then fitted freely
+    np.testing.assert_allclose(known["ula_vd"][..., 2:], 0.0, atol=1e-5)
+    assert np.abs(known["ula_vd"][..., :2] - known["ula"][..., :2]).max() > 1e-4

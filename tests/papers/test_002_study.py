@@ -31,6 +31,7 @@ def test_a_statistic_reruns_nothing_and_a_comparator_reruns_only_its_algorithm()
     assert changed == {"e", "q"}
     vel = _letters(study.jobs_of({**DEFAULT, "velocity knowledge": "designated"}, 7, TINY))
     assert {k[1] for k in base if base[k] != vel[k]} == {"m"}
+    assert {k[1] for k in set(vel) - set(base)} == {"k"}      # the ML ULA given the designated velocity
     world = _letters(study.jobs_of({**DEFAULT, "photon model": "poisson"}, 7, TINY))
     assert all(base[k] != world[k] for k in base)          # a regime of the world redraws every scene
 

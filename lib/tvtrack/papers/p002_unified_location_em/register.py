@@ -42,8 +42,8 @@ REGISTER = Register([
           "the paper's ULA is ML; the two-stage's marks start at the designation, so a ULA with the designation as "
           "its prior (the designation's own error model) is the matched comparison"),
     Entry("velocity knowledge", "reading", "free", ("free", "designated"),
-          "the designation gives 'initial conditions'; whether they include the velocity is not said; the MAP-ULA "
-          "and its two-stage twin always get the same knowledge", origin="adversarial"),
+          "the designation gives 'initial conditions'; whether they include the velocity is not said; the ULA (ML or "
+          "MAP) and its two-stage twin always get the same knowledge", origin="adversarial"),
     Entry("Delta of Figs 4, 5, 7 (sigma)", "operating point", 3.0, (1.0, 3.0, 5.0),
           "Figs 4, 5 and 7 give no pixel size; the text names 1, 3 and 5 sigma elsewhere"),
     Entry("T of Figs 4, 6, 7", "operating point", 10, (10, 20), "not stated; Fig 5 uses 5 and 50"),

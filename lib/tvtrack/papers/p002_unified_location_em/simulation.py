@@ -39,6 +39,7 @@ from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_tim
 ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteration counts)",
               "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
               "e": "two-stage, iterative (per-frame EM) marks",
+              "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
               "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
               "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
               "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
@@ -303,7 +304,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
     out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_vd", "em_flags",
-                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w")}
+                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w", "ula_vd")}
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
@@ -365,6 +366,10 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["cr"].append(e)
             out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
+        if "k" in algs:       # the ML ULA given the designated velocity (its error vsd as the only prior)
+            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
+                                    accelerate=accel, prior_sd=(1e6 * s, vsd * s))
+            out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         if "w" in algs:
             r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
                                     estimate_weights=True, estimate_sigma=True)

@@ -43,6 +43,7 @@ _READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
           "c": ("gate_half_sigma",),
           "s": ("tol_sigma", "max_iter", "accelerate"),
           "w": ("tol_sigma", "max_iter"),
+          "k": ("tol_sigma", "max_iter", "accelerate"),
           "b": ("bic_max_iter",)}
 _CANON = StudySettings(seed=0, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
                        margin_sigma=6.0, designation_sd_sigma=0.0, designation_velocity_sd=0.0, tol_sigma=1e-6,
@@ -164,6 +165,8 @@ def _points(config: dict, scale: Scale, figures: bool = False):
          "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
          "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
          "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
+         "head_known": ({d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)}
+                        if config["velocity knowledge"] == "designated" else {}),
          "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
          "good": {p_: P(2, 8.0, p_, 20, T4, "ue") for p_ in (0.5, 1.0)},
          "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in
@@ -315,7 +318,8 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     out["C002-9"] = {"centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
                      "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st)}
     use_map = config["ULA"] == "MAP (designation prior)"
-    twin = "em_vd" if use_map and config["velocity knowledge"] == "designated" else "em"
+    known = config["velocity knowledge"] == "designated"
+    twin = "em_vd" if known else "em"
 
     def rho(c):
         r = res[c]
@@ -333,9 +337,13 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
     def head(d):
         c = g["5ab"][50][d]
-        if not use_map:
+        if use_map:
+            u = errors(res[g["head_map"][d]], "map", ep)
+        elif known:
+            u = errors(res[g["head_known"][d]], "ula_vd", ep)
+        else:
             return rho(c)
-        return gain(errors(res[c], twin, ep), errors(res[g["head_map"][d]], "map", ep), rng, B, st)
+        return gain(errors(res[c], twin, ep), u, rng, B, st)
     out["C002-11"] = {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
     out["C002-12"] = {f"Delta = {p_:g} sigma": rho(c) for p_, c in g["good"].items()}
     it = {d: res[c] for d, c in g["7"].items()}
@@ -481,9 +489,10 @@ def scaled(est: Estimate, factor: float) -> Estimate:
 
 
 def condition_output(exploration, claim_id: str, changed: dict):
-    """What ``claim_id`` measured in the one-at-a-time run that changed exactly ``changed`` (None if not run)."""
+    """What ``claim_id`` measured in the run (one at a time or joint) that changed exactly ``changed`` from the
+    default (None if no run did)."""
     default = exploration.default
     for r in exploration.runs:
-        if r.stage == "single" and r.changed(default) == changed:
+        if r.stage != "replicate" and r.changed(default) == changed:
             return r.outputs.get(claim_id)
     return None
