@@ -146,3 +146,51 @@ def test_bad_designs_are_refused():
 def test_ordering_undecided_on_extrapolated_estimate():
     e = Estimate(1e-13, 0.0, 1e-14, 1e-12, 50, method="logistic fit", extrapolated=True)
     assert Ordering("a", "b", "<", measure="difference").decide(e) == "undecided"
+
+
+def _measure_module_level(config, seed):
+    return {"X": _mean(seed, 3.0 * (config["a"] == 2))}
+
+
+def test_an_executor_gives_the_same_exploration_as_in_process():
+    from concurrent.futures import ThreadPoolExecutor
+
+    here = explore(_measure_module_level, REG, {"X": RULES["X"]}, seed=9, replicates=3, joint=6)
+    with ThreadPoolExecutor(2) as pool_:
+        there = explore(_measure_module_level, REG, {"X": RULES["X"]}, seed=9, replicates=3, joint=6, executor=pool_)
+    assert [r.outputs["X"].value for r in here.runs] == [r.outputs["X"].value for r in there.runs]
+    assert here.record("X")["where"] == there.record("X")["where"]
+    assert here.record("X")["where"][0].startswith("not reproduced when a = 2;")
+
+
+def test_a_batched_measurement_sees_every_configuration_of_a_stage_at_once():
+    calls = []
+
+    def batched(configs, seeds):
+        calls.append(len(configs))
+        return [_measure_module_level(c, s) for c, s in zip(configs, seeds)]
+
+    ex = explore(batched, REG, {"X": RULES["X"]}, seed=9, replicates=3, batched=True)
+    assert calls == [3 + 5]  # three replicates and five one-at-a-time values in one call
+    assert ex.record("X")["label"] == "depends"
+
+
+def test_executor_for_refuses_an_address_without_port_in_one_line():
+    from tvtrack.explore import executor_for
+
+    assert executor_for("") is None
+    with pytest.raises(ValueError, match="has no port"):
+        executor_for("localhost")
+
+
+def test_shares_from_counts_pool_as_counts():
+    from tvtrack.explore import pool
+    from tvtrack.montecarlo import Estimate, proportion_ci, zero_events_bound
+
+    zero = Estimate(0.0, float("nan"), 0.0, zero_events_bound(8), 8, 0.95, "count: zero events")
+    p = pool([zero, zero, zero])
+    assert (p.value, p.ci_low, p.n) == (0.0, 0.0, 24)
+    assert p.ci_high == pytest.approx(zero_events_bound(24))     # averaging the intervals would give ~0.10
+    mixed = pool([proportion_ci(2, 10), proportion_ci(0, 10), proportion_ci(1, 10)])
+    ref = proportion_ci(3, 30)
+    assert (mixed.value, mixed.ci_low, mixed.ci_high) == pytest.approx((ref.value, ref.ci_low, ref.ci_high))

@@ -107,3 +107,40 @@ def test_first_estimate_skips_missing_samples():
     s = growing_memory_filter(z[None], 2)[0]
     assert np.isnan(s[:3]).all()
     assert np.allclose(s[3], [z[3], -0.5 + 0.5 * 3, 0.5])
+
+
+def test_one_joseph_update_for_any_gain_matches_the_textbook_form():
+    """joseph_covariance: the scalar outer-product path and the matrix path agree with
+    (I - K H) P (I - K H)^T + K R K^T for a suboptimal gain, and reduce to (I - K H) P for the
+    Kalman gain."""
+    import numpy as np
+
+    from tvtrack.filters.kalman import joseph_covariance
+
+    rng = np.random.default_rng(0)
+    A = rng.normal(size=(5, 3, 3))
+    P = A @ np.swapaxes(A, -1, -2) + np.eye(3)
+    for m in (1, 2):
+        H = rng.normal(size=(m, 3))
+        R = np.eye(m) * 0.7
+        K = rng.normal(size=(5, 3, m))  # any gain
+        IKH = np.eye(3) - K @ H
+        want = IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2)
+        np.testing.assert_allclose(joseph_covariance(P, K, H, R), want, rtol=1e-12, atol=1e-12)
+        S = H @ P @ H.T + R
+        K_opt = P @ H.T @ np.linalg.inv(S)
+        np.testing.assert_allclose(joseph_covariance(P, K_opt, H, R), (np.eye(3) - K_opt @ H) @ P, atol=1e-10)
+
+
+def test_joseph_update_keeps_its_digits_under_a_diffuse_prior():
+    """A 1e12 prior measured with 1e-6 noise: the posterior variance is the measurement's, 1e-6. The
+    expanded (outer-product) Joseph form cancels to 0 here; the factored form keeps it."""
+    import numpy as np
+
+    from tvtrack.filters.kalman import joseph_covariance
+
+    P = np.diag([1e12, 1e12])[None]
+    H = np.array([[1.0, 0.0]])
+    K = (P[:, :, 0] / (P[:, 0, 0, None] + 1e-6))[..., None]
+    out = joseph_covariance(P, K, H, 1e-6)[0]
+    np.testing.assert_allclose(out, np.diag([1e-6, 1e12]), rtol=1e-6)

@@ -7,7 +7,6 @@ import ast
 import base64
 import hashlib
 import io
-import json
 import re
 import subprocess
 import sys
@@ -200,3 +199,54 @@ def test_no_verdict_is_typed_in_a_code_cell(name):
                        if isinstance(node, ast.Constant) and isinstance(node.value, str)]
             typed = [s for s in strings if s.strip() in ("reproduced", "partly", "not reproduced")]
             assert not typed, f"{name}: a verdict typed in code {typed}; a rule object decides verdicts"
+
+
+# ----------------------------------------------------------------------------- a notebook reads like a paper
+MAX_CODE_LINES, MAX_CELL_LINES, MAX_FUNCTIONS = 400, 30, 3
+
+
+def _code_lines(source: str) -> int:
+    return sum(1 for line in source.splitlines() if line.strip())
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_notebook_keeps_the_budget_of_a_short_paper(name):
+    """At most 400 code lines, no code cell over 30 lines (the parameters cell aside), at most three
+    functions defined in the notebook (study code lives in the paper's package, with tests)."""
+    code = [c for c in read(name).cells if c.cell_type == "code"]
+    total = sum(_code_lines(c.source) for c in code)
+    assert total <= MAX_CODE_LINES, f"{name}: {total} code lines (budget {MAX_CODE_LINES})"
+    long = [(i, _code_lines(c.source)) for i, c in enumerate(code[1:], 1) if _code_lines(c.source) > MAX_CELL_LINES]
+    assert not long, f"{name}: code cells over {MAX_CELL_LINES} lines (index, lines): {long}"
+    defs = [n.name for c in code for n in ast.walk(ast.parse(c.source))
+            if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
+    assert len(defs) <= MAX_FUNCTIONS, f"{name}: {len(defs)} functions or classes defined in the notebook: {defs}"
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_notebook_opens_with_findings_and_ends_with_conclusions(name):
+    cells = read(name).cells
+    md = [c for c in cells if c.cell_type == "markdown"]
+    assert md and md[0].source.lstrip().startswith("# "), f"{name}: the first cell is the title (# ...)"
+    first_code = next(i for i, c in enumerate(cells) if c.cell_type == "code")
+    head = "\n".join(c.source for c in cells[: first_code + 3])
+    assert re.search(r"^#+ .*Findings", head, re.M | re.I), f"{name}: a Findings section opens the notebook"
+    assert "results.findings()" in head, f"{name}: the findings are shown near the top (results.findings())"
+    code = [c for c in cells if c.cell_type == "code"]
+    assert any("results.finish()" in c.source for c in code[-3:]), f"{name}: results.finish() ends the run"
+    tail = "\n".join(c.source for c in cells[-4:] if c.cell_type == "markdown")
+    assert re.search(r"^#+ .*Conclusions", tail, re.M | re.I), f"{name}: Conclusions close the notebook"
+
+
+@pytest.mark.notebook
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_executed_notebook_fills_its_findings_before_any_figure(name, smoke_run):
+    outcome = smoke_run(name)
+    assert outcome.ok, outcome.error
+    nb = nbformat.read(outcome.run_dir / "notebook.ipynb", as_version=4)
+    outs = list(_outputs(nb))
+    table = [k for k, (_, out) in enumerate(outs)
+             if "| claim | the paper says" in out.get("data", {}).get("text/markdown", "")]
+    images = [k for k, (_, out) in enumerate(outs) if "image/png" in out.get("data", {})]
+    assert table, f"{name}: the findings table is not in the executed notebook"
+    assert not images or table[0] < images[0], f"{name}: the findings come after a figure"

@@ -37,7 +37,7 @@ from .montecarlo import Estimate
 from .register import Register
 from .verdicts import Rule, as_estimate, label_parts
 
-__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool"]
+__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
 
 
 @dataclass
@@ -91,12 +91,33 @@ def _z(conf: float) -> float:
     return float(stats.norm.ppf(0.5 + conf / 2))
 
 
+def _is_count(e: Estimate) -> bool:
+    return e.method == "Clopper-Pearson" or e.method.startswith("count")
+
+
+def _pool_counts(es: list[Estimate]) -> Estimate:
+    """Shares from direct counts pool as counts: ``sum k`` of ``sum n``, with the Clopper-Pearson interval (zero or
+    all events: the one-sided bound they certify), never by averaging intervals (which under-covers for zero events)."""
+    from .montecarlo import proportion_ci, zero_events_bound
+
+    n = int(sum(e.n for e in es))
+    k = int(sum(round(e.value * e.n) for e in es))
+    conf = es[0].confidence
+    if 0 < k < n:
+        return proportion_ci(k, n, conf)
+    b = zero_events_bound(n, conf)
+    lo, hi = (0.0, b) if k == 0 else (1.0 - b, 1.0)
+    return Estimate(k / n, math.nan, lo, hi, n, conf, f"count over {len(es)} replicates: {k} of {n}, one-sided bound")
+
+
 def _pool_estimates(es: list[Estimate]) -> Estimate:
     k = len(es)
     conf = es[0].confidence
     z = _z(conf)
     n = int(sum(e.n for e in es))
     extrap = any(e.extrapolated for e in es)
+    if all(_is_count(e) for e in es) and not extrap:
+        return _pool_counts(es)
     vals = np.array([e.value for e in es], float)
     if all(e.method == "exact" for e in es):
         if np.all(vals == vals[0]):
@@ -314,3 +335,28 @@ def explore(measure: Callable, register: Register, rules: Mapping[str, Rule], *,
     settings = {"replicates": n, "min_replicates": replicates, "max_replicates": cap, "joint": joint,
                 "one_at_a_time": one_at_a_time, "seed": seed}
     return Exploration(register, rules, depends, runs, settings)
+
+
+def executor_for(address: str | None, timeout_s: float = 10.0) -> Any:
+    """An executor for :func:`explore`: ``None`` (in process) for an empty address, else a
+    ``dask.distributed.Client`` connected to the scheduler at ``address`` (``host:port`` or
+    ``tcp://host:port``) within ``timeout_s``.
+
+    Raises
+    ------
+    ValueError
+        One line naming the address when it has no port or no scheduler answers in time.
+    """
+    if not address:
+        return None
+    addr = address if "://" in address else f"tcp://{address}"
+    hostport = addr.split("://", 1)[1]
+    if ":" not in hostport or not hostport.rsplit(":", 1)[1].isdigit():
+        raise ValueError(f"scheduler address {address!r} has no port; give host:port, e.g. 127.0.0.1:8786")
+    from distributed import Client
+
+    try:
+        return Client(addr, timeout=timeout_s)
+    except (OSError, TimeoutError) as exc:
+        raise ValueError(f"no Dask scheduler answered at {address!r} within {timeout_s:g} s ({exc.__class__.__name__})"
+                         ) from None

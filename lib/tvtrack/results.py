@@ -37,7 +37,11 @@ import numpy as np
 from .montecarlo import Estimate
 from .verdicts import LABELS, VERDICTS, Robustness, Rule
 
-__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION"]
+__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION", "format_measured",
+           "md_escape", "claims_table", "FINDINGS_ID"]
+
+#: The display id of a notebook's findings cell, filled in when the run finishes.
+FINDINGS_ID = "tvtrack-findings"
 
 SCHEMA_VERSION = 2
 
@@ -67,6 +71,63 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, Path):
         return str(value)
     return value
+
+
+def md_escape(text: Any) -> str:
+    """Generated text made safe for Markdown: ``sigma*2`` stays ``sigma*2`` (no emphasis), ``|`` does not
+    break a table cell, and line breaks become spaces."""
+    out = " ".join(str(text).split())
+    for ch in ("\\", "`", "*", "_", "|"):
+        out = out.replace(ch, "\\" + ch)
+    return out.replace("<", "&lt;")
+
+
+def _num(v: Any) -> str:
+    if isinstance(v, bool) or v is None:
+        return str(v)
+    if isinstance(v, (int, float, np.floating, np.integer)):
+        return f"{float(v):.4g}"
+    return str(v)
+
+
+def format_measured(value: Any) -> str:
+    """Short text for a measured value: an estimate as ``v [lo, hi]``, parts as ``name: v [lo, hi]; ...``."""
+    if isinstance(value, Estimate):
+        value = value.to_dict()
+    if isinstance(value, dict) and "value" in value and "ci_low" in value:
+        v, lo, hi = value["value"], value.get("ci_low"), value.get("ci_high")
+        bad = lambda x: x is None or (isinstance(x, float) and not math.isfinite(x))  # noqa: E731
+        if bad(lo) or bad(hi) or (lo == hi == v):
+            return _num(v)
+        return f"{_num(v)} [{_num(lo)}, {_num(hi)}]"
+    if isinstance(value, dict):
+        return "; ".join(f"{k}: {format_measured(v)}" for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        return ", ".join(format_measured(v) for v in value)
+    return _num(value)
+
+
+def claims_table(claims: list, statement_chars: int = 110) -> str:
+    """The one claims-at-a-glance table (Markdown): per claim what the paper said, what was measured
+    (with its 95 % interval), the verdict and the label with what it covers. ``claims`` are
+    :class:`Claim` objects or their dicts (``results.json``)."""
+    rows = ["| claim | the paper says | paper's value | measured | verdict | label (what it covers) |",
+            "| --- | --- | --- | --- | --- | --- |"]
+    for c in claims:
+        c = c if isinstance(c, dict) else c.__dict__
+        st = " ".join(str(c["statement"]).split())
+        st = st if len(st) <= statement_chars else st[: statement_chars - 1].rstrip() + "…"
+        rob = c.get("robustness") or {}
+        label = rob.get("label", "-")
+        cover = rob.get("coverage", "")
+        where = "; ".join(rob.get("where", [])[:3])
+        lab = md_escape(label) + (f"<br><small>{md_escape(cover)}</small>" if cover else "")
+        if where:
+            lab += f"<br><small>differs: {md_escape(where)}</small>"
+        meas = "-" if c["verdict"] == "not checkable" else md_escape(format_measured(to_jsonable(c["measured"])))
+        rows.append(f"| {c['id']} | {md_escape(st)} | {md_escape(c['paper_value'])} | {meas} | "
+                    f"**{c['verdict']}** | {lab} |")
+    return "\n".join(rows)
 
 
 @dataclass
@@ -221,6 +282,21 @@ class Results:
         self.claims.append(c)
         return c
 
+    def findings(self) -> None:
+        """Show the findings at the top of a notebook: a placeholder now, replaced by the claims table
+        (:func:`claims_table`) when :meth:`finish` runs at the end (the run fills its own first section)."""
+        _display_markdown("*Findings appear here when the run finishes (they are computed by the cells below).*",
+                          display_id=FINDINGS_ID)
+
+    def finish(self) -> Path:
+        """Write ``results.json`` and fill the findings section shown by :meth:`findings`."""
+        path = self.write()
+        counts = {v: sum(c.verdict == v for c in self.claims) for v in VERDICTS}
+        head = ", ".join(f"{n} {v}" for v, n in counts.items() if n)
+        _display_markdown(f"**{len(self.claims)} claims: {head}.**\n\n{claims_table(self.claims)}",
+                          display_id=FINDINGS_ID, update=True)
+        return path
+
     def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> None:
         """Save a matplotlib figure as ``output_dir/<name>.png``, list it with its caption and,
         inside a notebook, show it inline with the caption under it (then close it, so the
@@ -273,6 +349,18 @@ def load_results(path: str | Path) -> dict:
     for c in data["claims"]:
         Claim(**c)  # re-validates id, verdict, rule text and robustness label
     return data
+
+
+def _display_markdown(text: str, display_id: str, update: bool = False) -> None:
+    """Show (or update, by display id) Markdown in the running notebook; nothing outside IPython."""
+    try:
+        from IPython import get_ipython
+        from IPython.display import Markdown, display, update_display
+    except ImportError:
+        return
+    if get_ipython() is None:
+        return
+    (update_display if update else display)(Markdown(text), display_id=display_id)
 
 
 def _show_inline(path: Path, caption: str, fig) -> None:

@@ -30,6 +30,7 @@ import numpy as np
 from scipy.linalg import solve_discrete_lyapunov
 
 from .polynomial import growing_memory_gains, taylor_transition
+from .kalman import joseph_covariance
 
 __all__ = ["closed_form_gains", "gain_schedule", "observation_row", "closed_loop_matrix",
            "steady_state_covariance", "lagged_covariances", "error_covariance_sequence",
@@ -205,9 +206,7 @@ def error_covariance_sequence(gains, sigma_eps: float = 1.0, P0=None) -> np.ndar
     out = np.empty(batch + (T, n, n))
     for t in range(T):
         K = G[..., t, :]
-        IKh = np.eye(n) - K[..., :, None] * h
-        P = IKh @ (F @ P @ F.T) @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * K[..., :, None] * K[..., None, :]
-        P = 0.5 * (P + np.swapaxes(P, -1, -2))
+        P = joseph_covariance(F @ P @ F.T, K[..., :, None], h[None, :], sigma_eps**2)
         out[..., t, :, :] = P
     return out
 

@@ -27,7 +27,7 @@ from typing import Callable
 
 import numpy as np
 
-from .kalman import KalmanOutput, kf_predict, kf_update
+from .kalman import KalmanOutput, joseph_covariance, kf_predict, kf_update
 
 __all__ = ["ExtendedKalmanFilter", "ekf_update", "joseph_update_scalar"]
 
@@ -48,17 +48,15 @@ def joseph_update_scalar(x, P, nu, H, R, mask=None):
 
     Notes
     -----
-    With ``b = P h``, ``c = h^T b``, ``S = c + R``, ``K = b / S``:
-    ``(I - K h^T) P (I - K h^T)^T + R K K^T = P - K b^T - b K^T + S K K^T`` (the Joseph form
-    expanded; valid for any gain ``K``).
+    ``K = P h / S`` with ``S = h^T P h + R``; the covariance by
+    :func:`tvtrack.filters.kalman.joseph_covariance`.
     """
     h = H[..., 0, :]
     b = np.einsum("...ij,...j->...i", P, h)
     S = np.einsum("...i,...i->...", h, b)[..., None, None] + R
     s = S[..., 0, 0]
     K = b / s[..., None]
-    outer_kb = K[..., :, None] * b[..., None, :]
-    P_new = P - outer_kb - np.swapaxes(outer_kb, -1, -2) + s[..., None, None] * K[..., :, None] * K[..., None, :]
+    P_new = joseph_covariance(P, K[..., :, None], H, R)
     x_new = x + K * nu
     if mask is not None:
         m = np.asarray(mask, dtype=bool)

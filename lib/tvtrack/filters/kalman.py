@@ -12,11 +12,39 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
+__all__ = ["joseph_covariance", "kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
 
 
 def _sym(P: np.ndarray) -> np.ndarray:
     return 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def joseph_covariance(P, K, H, R):
+    """The Joseph-form covariance update, for any gain: the one used by every filter in the library.
+
+    ``P+ = (I - K H) P (I - K H)^T + K R K^T``, symmetrised. Valid for a suboptimal gain (bounded,
+    floored or fixed gains of the alpha-beta and growing-memory filters), not only the Kalman gain.
+    ``I - K H`` is formed first, so a huge prior (a diffuse start, 1e12) loses no digits: the expanded
+    form ``P - K b^T - b K^T + S K K^T`` cancels to zero there (``tests/test_filters_core.py``).
+
+    Parameters
+    ----------
+    P : ndarray, shape (..., n, n)      prior covariance
+    K : ndarray, shape (..., n, m)      gain (any)
+    H : ndarray, shape (m, n) or (..., m, n)
+    R : float or ndarray, shape (m, m) or (..., m, m)   measurement-noise covariance
+
+    Returns
+    -------
+    ndarray, shape (..., n, n)
+    """
+    P = np.asarray(P, dtype=float)
+    K = np.asarray(K, dtype=float)
+    H = np.asarray(H, dtype=float)
+    R = np.asarray(R, dtype=float)
+    KRK = K @ (R if R.ndim >= 2 else R[..., None, None]) @ np.swapaxes(K, -1, -2)
+    IKH = np.eye(P.shape[-1]) - K @ H
+    return _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + KRK)
 
 
 def kf_predict(x, P, F, Q):
@@ -56,10 +84,8 @@ def kf_update(x, P, z, H, R, mask=None):
     innovation = np.asarray(z, dtype=float) - np.einsum("...ij,...j->...i", H, x)
     S = _sym(H @ P @ Ht + R)
     K = np.swapaxes(np.linalg.solve(S, H @ np.swapaxes(P, -1, -2)), -1, -2)  # P H^T S^-1
-    n = x.shape[-1]
-    IKH = np.eye(n) - K @ H
     x_new = x + np.einsum("...ij,...j->...i", K, innovation)
-    P_new = _sym(IKH @ P @ np.swapaxes(IKH, -1, -2) + K @ R @ np.swapaxes(K, -1, -2))
+    P_new = joseph_covariance(P, K, H, R)
     if mask is not None:
         m = np.asarray(mask, dtype=bool)
         x_new = np.where(m[..., None], x_new, x)

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .imm import cv_ca_models
+from .kalman import joseph_covariance
 
 __all__ = ["VDOutput", "vd_filter_run", "vd_restart_covariance"]
 
@@ -86,9 +87,8 @@ def _predict_update(x, P, z, seen, Q, F, sigma2):
     nu = np.where(seen, z - x[:, 0], 0.0)
     K = P[:, :, 0] / S[:, None] * seen[:, None]
     x = x + K * nu[:, None]
-    IKh = np.eye(3) - K[:, :, None] * np.array([1.0, 0.0, 0.0])
-    P = IKh @ P @ np.swapaxes(IKh, -1, -2) + sigma2 * K[:, :, None] * K[:, None, :]
-    return x, 0.5 * (P + np.swapaxes(P, -1, -2)), xp, var_p, nu, S
+    P = joseph_covariance(P, K[:, :, None], np.array([[1.0, 0.0, 0.0]]), sigma2)
+    return x, P, xp, var_p, nu, S
 
 
 def vd_filter_run(z, visible, q_cv: float, q_ca: float, sigma_eps: float, window: int, threshold: float,
