@@ -460,28 +460,6 @@ CLAIMS = {
 }
 
 
-def _show(m) -> str:
-    if isinstance(m, Estimate) or (isinstance(m, dict) and "ci_low" in m):
-        e = m if isinstance(m, Estimate) else Estimate(**m)
-        return f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]"
-    if isinstance(m, dict):
-        return "; ".join(f"{k}: {_show(v)}" for k, v in m.items())
-    if isinstance(m, list):
-        return f"{_show(m[0])} ... {_show(m[-1])} ({len(m)} points)"
-    return str(m)
-
-
-def findings_markdown(exploration, rules) -> str:
-    """One line per claim: what the paper said, what we measured (pooled replicates), the verdict, the label."""
-    rows = ["| claim | paper | measured (95 % interval) | verdict | label |", "|---|---|---|---|---|"]
-    for cid, rule in rules.items():
-        m = exploration.measured(cid)
-        rec = exploration.record(cid, rule)
-        rows.append(f"| {cid}: {CLAIMS[cid][0]} | {CLAIMS[cid][1]} | {_show(m)} | {rule.decide(m)} | "
-                    f"{rec['label']} |")
-    return "\n".join(rows)
-
-
 def scaled(est: Estimate, factor: float) -> Estimate:
     """``est`` times a positive constant (value, standard error and interval)."""
     return Estimate(est.value * factor, est.stderr * factor, est.ci_low * factor, est.ci_high * factor, est.n,
