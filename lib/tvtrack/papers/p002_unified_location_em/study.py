@@ -160,7 +160,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
          "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
          "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
          "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
-         "3a": {p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (scale.fig3_frames if figures else (T3,))}
+         "3a": {p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
                 for p_ in (1.0, 3.0, 5.0)},
          "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
          "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
