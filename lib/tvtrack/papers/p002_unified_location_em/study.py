@@ -267,9 +267,13 @@ def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap) -> Estimate:
 
 
 def _efficiency(e, bound: float, statistic: str) -> Estimate:
-    v = spread_sum(e, statistic)
-    return Estimate(v.value / bound, v.stderr / bound, v.ci_low / bound, v.ci_high / bound, v.n, v.confidence,
-                    v.method + " / bound")
+    """Spread over the bound; under the "SD ratio" reading the square root (a ratio of standard deviations)."""
+    v = scaled(spread_sum(e, statistic), 1.0 / bound)
+    if statistic == "SD ratio":
+        r = np.sqrt(max(v.value, 0.0))
+        return Estimate(r, v.stderr / (2 * max(r, 1e-300)), float(np.sqrt(max(v.ci_low, 0.0))),
+                        float(np.sqrt(max(v.ci_high, 0.0))), v.n, v.confidence, v.method + ", square root")
+    return v
 
 
 # -- the claims -----------------------------------------------------------------------------------------------
