@@ -13,8 +13,9 @@ from tvtrack.register import Entry, Register
 __all__ = ["REGISTER", "DEPENDS"]
 
 REGISTER = Register([
-    Entry("epoch", "reading", "first", ("first", "mid", "last"),
-          "captions say 'coordinates' and the text 'initial position'; the frame the accuracy is read at is not given"),
+    Entry("epoch", "reading", "first", ("first", "mid", "last", "velocity"),
+          "captions say 'coordinates' and the text 'initial position'; the frame the accuracy is read at is not given; "
+          "the text of Figs 4-6 says 'parameters', which includes the velocities"),
     Entry("statistic", "statistic", "variance", ("variance", "MSE", "SD ratio"),
           "'sum of variances' may include bias (MSE); 'x4 difference in accuracy' may be a ratio of SDs (card 9.8)"),
     Entry("photon model", "model", "fixed", ("fixed", "poisson"),
@@ -86,5 +87,7 @@ DEPENDS = {
     "C002-12": [*_TWO, *_RHO, "T of Figs 4, 6, 7"],
     "C002-13": [*_TWO, *_WORLD, "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7"],
     "C002-14": [*_TWO, *_WORLD, "two-stage", "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7"],
-    "C002-15": [*_TWO, *_ULA_ONLY, "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7", "bound"],
+    # the bounds are those of the initial positions and the velocities: the epoch reading cannot apply
+    "C002-15": [*_TWO, *[k for k in _ULA_ONLY if k != "epoch"], "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7",
+                "bound"],
 }

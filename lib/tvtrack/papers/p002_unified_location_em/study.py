@@ -224,7 +224,8 @@ class _Results:
 # -- statistics -----------------------------------------------------------------------------------------------
 
 def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
-    """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``), sigma."""
+    """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``; sigma) or of its
+    velocities (``velocity``; sigma/frame)."""
     return position_errors(r, alg, epoch)
 
 
@@ -357,7 +358,7 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
     marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
     out["C002-14"] = ratio_ci(ula_work, marks_work)
-    out["C002-15"] = _c15(config, g, res, ep, st)
+    out["C002-15"] = _c15(config, g, res, "first", st)    # the CRB is the initial positions' bound
     return out
 
 
