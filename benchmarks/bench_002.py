@@ -14,11 +14,13 @@ Measured increments over a replicate: a faster velocity (0.5, 0.25 sigma/frame) 
 sigma for Figs 4, 5, 7 reruns 26 jobs (6.0 s); a statistic or a reading reruns nothing (the job cache keys each
 algorithm's job by the settings it reads).
 
-An exploration at the paper profile: 3 replicates (up to 5 while a verdict is unsettled, ~16 s each), 7
+An exploration at the paper profile: 3 replicates (a 4th while a verdict is unsettled, ~16 s each), 7
 one-at-a-time values that change the simulated world (photon model, designation error, noise, two velocities,
 crossing tracks, EM stopping; ~15 s each), partial reruns for the comparators and operating points (~45 s in all)
-and 3 joint samples (~45 s): about 290 s of CPU, about 2.5-3 min wall with 2 worker processes, plus the figures'
-extra points (~10 s) and the recording (~1 s).
+and 2 joint samples (~30 s), plus the figures' extra points (~10 s) and the recording (~1 s): about 250 s of CPU.
+``make reproduce`` on 2 cores runs two notebooks at once and gives each one worker (``n_workers = 1``), so 002
+takes about 4-4.5 min of one core while the other four notebooks share the other; alone with ``n_workers = 2`` it
+takes about 2-2.5 min.
 
 The benchmarks: the EM batched across trials against the same EM run one trial at a time (the batching is what
 keeps 100+ trials per point affordable), and the job cache: a register value that changes only a statistic costs
