@@ -315,10 +315,11 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
     def x1(pix, alg):
         return position_errors(res[g["3a"][pix][T3]], alg, ep)[:, :1]
+    pc = float(config["coarse Delta of C002-7, C002-8 (sigma)"])
     out["C002-7"] = {"fine pixels": gain(x1(1.0, "em"), x1(1.0, "ula"), rng, B, st),
-                     "coarse pixels": gain(x1(5.0, "em"), x1(5.0, "ula"), rng, B, st)}
-    out["C002-8"] = {"worse than fine pixels": gain(x1(5.0, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
-                     "better than the marks": gain(x1(5.0, "ula"), x1(5.0, "em"), rng, B, st)}
+                     "coarse pixels": gain(x1(pc, "em"), x1(pc, "ula"), rng, B, st)}
+    out["C002-8"] = {"worse than fine pixels": gain(x1(pc, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
+                     "better than the marks": gain(x1(pc, "ula"), x1(pc, "em"), rng, B, st)}
     p9 = float(config["Delta of the C002-9 order (sigma)"])
     out["C002-9"] = {"centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
                      "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st)}
