@@ -480,3 +480,13 @@ def condition_output(exploration, claim_id: str, changed: dict):
         if r.stage != "replicate" and r.changed(default) == changed:
             return r.outputs.get(claim_id)
     return None
+
+
+def compare(a: Estimate, b: Estimate) -> str:
+    """``a`` against ``b`` by their 95 % intervals: "larger than" / "smaller than" when they do not overlap, else
+    "not distinguishable from" (a conservative comparison of two estimates from the same scenes)."""
+    if a.ci_low > b.ci_high:
+        return "larger than"
+    if a.ci_high < b.ci_low:
+        return "smaller than"
+    return "not distinguishable from"
