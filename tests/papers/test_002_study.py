@@ -122,3 +122,15 @@ def test_variance_sum_interval_coverage_near_the_resolution_limit():
     single = np.mean([e.ci_low <= truth <= e.ci_high for e in ests])
     pooled = np.mean([(p := pool(ests[i:i + 3])).ci_low <= truth <= p.ci_high for i in range(0, 60, 3)])
     assert 0.85 <= single <= 1.0 and pooled >= 0.9, (single, pooled)
+
+
+def test_flips_by_entry_reads_single_conditions_only():
+    class Ex:
+        def record(self, cid, rule):
+            ref = {"replicates": [{"parts": {"a": "reproduced"}}]}
+            conds = [{"kind": "single", "changed": {"tracks": "crossing"}, "parts": {"a": "partly"}},
+                     {"kind": "single", "changed": {"bound": "CRB2"}, "parts": {"a": "reproduced"}},
+                     {"kind": "joint", "changed": {"bound": "x", "epoch": "mid"}, "parts": {"a": "partly"}}]
+            return {**ref, "conditions": conds}
+    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == \
+        {"tracks": ["C002-1"], "bound": [], "epoch": []}

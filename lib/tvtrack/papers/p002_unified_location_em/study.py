@@ -490,3 +490,19 @@ def compare(a: Estimate, b: Estimate) -> str:
     if a.ci_high < b.ci_low:
         return "smaller than"
     return "not distinguishable from"
+
+
+def flips_by_entry(exploration, rules, names) -> dict:
+    """``{entry name: [claim ids]}``: the claims some part of whose verdict differs, in a one-at-a-time run that
+    changed that entry, from the first replicate (the run it shares its random numbers with)."""
+    out = {n: [] for n in names}
+    for cid, rule in rules.items():
+        rec = exploration.record(cid, rule)
+        ref = rec["replicates"][0]["parts"] if rec["replicates"] else {}
+        for c in rec["conditions"]:
+            if c["kind"] != "single":
+                continue
+            for k in c["changed"]:
+                if k in out and c["parts"] != ref and cid not in out[k]:
+                    out[k].append(cid)
+    return out
