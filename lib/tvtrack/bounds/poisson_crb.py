@@ -21,7 +21,6 @@ Units: pixels (x along columns, y along rows, centre of pixel i at i) and frames
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ndtr
 
 from ..render import pixel_fractions_gaussian
 
