@@ -134,3 +134,15 @@ def test_flips_by_entry_reads_single_conditions_only():
             return {**ref, "conditions": conds}
     assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == \
         {"tracks": ["C002-1"], "bound": [], "epoch": []}
+
+
+def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
+    study.clear_cache()
+    g, res = study.figure_data(DEFAULT, 9, TINY)
+    rng = np.random.default_rng(0)
+    wq, wc = study.wrong_q_cost(g, res, rng, 2000), study.estimation_cost(g, res, rng, 2000)
+    assert set(wq) == set(wc) == {1.0, 2.0, 4.0}
+    r = res[g["w"][4.0]]
+    assert r["ula_q1"].shape == (TINY.n_iter_trials, 1, 4) and r["ula_w"].shape == r["ula"].shape
+    # far apart one track through the pair's centre is a poor model: its centre error is no smaller
+    assert wq[4.0].value > 0.5 and all(np.isfinite(e.value) for e in wc.values())

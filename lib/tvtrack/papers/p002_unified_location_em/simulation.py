@@ -40,6 +40,7 @@ ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteratio
               "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
               "e": "two-stage, iterative (per-frame EM) marks",
               "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
+              "1": "ULA with Q' = 1: one track fitted to all objects (errors against their mean)",
               "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
               "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
               "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
@@ -304,7 +305,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
     out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_vd", "em_flags",
-                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w", "ula_vd")}
+                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w", "ula_vd", "ula_q1")}
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
@@ -370,6 +371,11 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
                                     accelerate=accel, prior_sd=(1e6 * s, vsd * s))
             out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+        if "1" in algs:       # the wrong number of objects: one track fitted to the pair (card 8.3)
+            p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
+            r = unified_location_em(ent, b.designation.mean(axis=1, keepdims=True), s, p1, p01, tol_px=tol,
+                                    max_iter=s_.max_iter, accelerate=accel)
+            out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
         if "w" in algs:
             r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
                                     estimate_weights=True, estimate_sigma=True)

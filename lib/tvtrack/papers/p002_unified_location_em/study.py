@@ -27,7 +27,8 @@ from .simulation import (Config, StudySettings, bootstrap_groups, mse_sum, posit
 
 __all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "measure_batch", "figure_data",
            "errors", "gain", "spread_sum", "exp_estimate", "clear_cache", "word",
-           "squarem_vs_plain", "local_maxima_rate", "estimation_cost"]
+           "squarem_vs_plain", "local_maxima_rate", "estimation_cost",
+           "wrong_q_cost"]
 
 #: Separations d / sigma of the distance axes (card 5.2).
 D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
@@ -44,6 +45,7 @@ _READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
           "s": ("tol_sigma", "max_iter", "accelerate"),
           "w": ("tol_sigma", "max_iter"),
           "k": ("tol_sigma", "max_iter", "accelerate"),
+          "1": ("tol_sigma", "max_iter", "accelerate"),
           "b": ("bic_max_iter",)}
 _CANON = StudySettings(seed=0, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
                        margin_sigma=6.0, designation_sd_sigma=0.0, designation_velocity_sd=0.0, tol_sigma=1e-6,
@@ -173,7 +175,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
                sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
     if figures:
         g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
-        g["w"] = {d: P(2, d, pix, 20, T4, "uw", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
+        g["w"] = {d: P(2, d, pix, 20, T4, "uw1", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
     return g, P.asked
 
 
@@ -431,6 +433,17 @@ def estimation_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
     """The accuracy cost of estimating p_j and sigma as well (card 8.4): Sigma^2 with them estimated over Sigma^2
     with them known, paired on the same trials, per separation."""
     return {d: gain(errors(res[c], "ula_w"), errors(res[c], "ula"), rng, n_bootstrap) for d, c in g["w"].items()}
+
+
+def wrong_q_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
+    """The cost of a wrong number of objects (card 8.3): the variance sum of the group's mean initial position when
+    one track is fitted to the pair (Q' = 1) over the same with Q = 2 known, paired on the same trials, per d."""
+    out = {}
+    for d, c in g["w"].items():
+        r = res[c]
+        mid2 = r["ula"][..., :2].mean(axis=1)                          # (n, 2): labels do not matter for the mean
+        out[d] = gain(r["ula_q1"][:, 0, :2], mid2, rng, n_bootstrap)
+    return out
 
 
 def local_maxima_rate(g: dict, res, gap: float = 1e-3) -> dict:
