@@ -140,3 +140,11 @@ def test_an_interval_short_of_its_coverage_is_widened_before_it_decides():
     assert "widened" in rule.explain(short)[1]
     unmeasured = Estimate(1.0, 0.05, 0.9, 1.1, 3, method="bootstrap-t; coverage unmeasured at n = 3")
     assert rule.decide(unmeasured) == "undecided"
+
+
+def test_ordering_says_paired_only_when_paired():
+    from tvtrack.verdicts import Ordering
+
+    assert "paired ratio" in Ordering("a", "b", ">", "ratio").text()
+    unpaired = Ordering("a", "b", ">", "ratio", paired=False)
+    assert "unpaired (independent samples) ratio" in unpaired.text() and unpaired.to_dict()["paired"] is False

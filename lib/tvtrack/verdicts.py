@@ -280,6 +280,7 @@ class Ordering(Rule):
     b: str
     relation: str = ">"
     measure: str = "difference"
+    paired: bool = True
     kind = "ordering"
 
     def __post_init__(self):
@@ -297,12 +298,13 @@ class Ordering(Rule):
 
     def text(self) -> str:
         side = "above" if self.relation == ">" else "below"
-        return (f"{self.a} {self.relation} {self.b}, judged on the paired {self.measure} {self._what()}: reproduced "
+        how = "paired" if self.paired else "unpaired (independent samples)"
+        return (f"{self.a} {self.relation} {self.b}, judged on the {how} {self.measure} {self._what()}: reproduced "
                 f"if its 95 % interval lies wholly {side} {_g(self.reference)}, not reproduced if wholly on the "
                 f"other side, partly if it contains {_g(self.reference)}")
 
     def params(self) -> dict:
-        return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure}
+        return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure, "paired": self.paired}
 
     def judge(self, measured):
         e = calibrated(measured)

@@ -15,13 +15,12 @@ with ``dLambda/dx0_j = m F_yjk dF_xji/dmu`` (eq. (4), ``dF/dmu = N(alpha) - N(be
 data are a superposition of multinomials; its information equals this Poisson one for a single
 object without noise and is close to it otherwise (the notebook says which it compares).
 
-Units: pixels and frames, as in :mod:`tvtrack.scenes.linear_motion`.
+Units: pixels (x along columns, y along rows, centre of pixel i at i) and frames.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ndtr
 
 from ..render import pixel_fractions_gaussian
 

@@ -6,11 +6,11 @@ import pytest
 from scipy import stats
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, position_crb_sum
-from tvtrack.estimate.em_location import (log_likelihood, match_labels, pixel_entries,
+from tvtrack.papers.p002_unified_location_em.em import (log_likelihood, match_labels, pixel_entries,
                                           responsibility_maps, unified_location_em)
-from tvtrack.estimate.two_stage import (Marks, associate, associate_by_lines, centre_of_region_marks, em_marks,
+from tvtrack.papers.p002_unified_location_em.two_stage import (Marks, associate, associate_by_lines, centre_of_region_marks, em_marks,
                                         fit_lines, moment_starts, propagate)
-from tvtrack.scenes.linear_motion import (designate, draw_truth, expected_counts, frame_times,
+from tvtrack.papers.p002_unified_location_em.model import (draw_truth, expected_counts, frame_times,
                                           mixture_weights, pixel_probabilities, scene_batches,
                                           scene_geometry, simulate_counts)
 

@@ -21,7 +21,7 @@ from typing import Iterator
 
 import numpy as np
 
-from ..render import gaussian_spot
+from tvtrack.render import gaussian_spot
 
 __all__ = [
     "SceneGeometry", "scene_geometry", "draw_truth", "designate", "frame_times",

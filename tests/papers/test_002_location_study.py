@@ -1,9 +1,9 @@
-"""Tests for the Monte Carlo machinery of notebook 002 (tvtrack.estimate.location_study)."""
+"""Tests for the Monte Carlo machinery of notebook 002 (tvtrack.papers.p002_unified_location_em.simulation)."""
 
 import numpy as np
 import pytest
 
-from tvtrack.estimate.location_study import (Config, LocationStudy, StudySettings, bootstrap_groups,
+from tvtrack.papers.p002_unified_location_em.simulation import (Config, LocationStudy, StudySettings, bootstrap_groups,
                                              failure_metrics, position_errors, seed_blocks, seed_sequence,
                                              variance_ratio_ci, variance_sum)
 
@@ -70,11 +70,11 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     r = study[c_u]
     assert r["ula"].shape == (24, 2, 4) and r["em"].shape == (24, 2, 4)
     blocks = seed_blocks(r)
-    assert sorted(blocks) == [7, 8, 9] and all(m.sum() == 8 for m in blocks.values())
+    assert sorted(blocks) == [7] and blocks[7].sum() == 24      # one seed: replicates are whole runs
     # epochs: the mid-frame error is the first-frame error plus (T-1)/2 velocity errors
     mid = position_errors(r, "ula", "mid")
     np.testing.assert_allclose(mid, (r["ula"][..., :2] + 1.5 * r["ula"][..., 2:]).reshape(24, -1))
-    assert position_errors(r, "ula", "velocity", blocks[8]).shape == (8, 4)
+    assert position_errors(r, "ula", "velocity", blocks[7]).shape == (24, 4)
     assert np.isfinite(r["crb_pos"]) and r["crb_pos"] > 0
     # the ULA on well-separated objects is near its CRB (loose: 24 trials)
     v = variance_sum(position_errors(r, "ula"))

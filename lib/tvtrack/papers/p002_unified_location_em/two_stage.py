@@ -10,7 +10,7 @@ Marks (paper card 002, section 4.4):
   count-weighted centroid of the pixel centres inside a square gate around the designated
   position in that frame (the paper does not define the region; this is the card's choice).
 * :func:`em_marks` -- the iterative mark formation of ref. [5] (Fig. 3a curve 2, Figs 4-6
-  curve 1): the EM of :func:`tvtrack.estimate.em_location.unified_location_em` applied to one
+  curve 1): the EM of :func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em` applied to one
   frame with a static model, ``x = D_x / A``.
 
 Start of the per-frame EM (``init``): the designation propagated to the frame, the previous
@@ -28,7 +28,7 @@ Association rule (not stated in the paper; all variants are parameters):
   :func:`associate_by_lines`, the per-frame orders that (locally) minimise the total residual of
   the straight-line fits.
 
-Units: pixels and frames (see :mod:`tvtrack.scenes.linear_motion`).
+Units: pixels and frames (see :mod:`tvtrack.papers.p002_unified_location_em.model`).
 """
 
 from __future__ import annotations
@@ -39,9 +39,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import uniform_filter
 
-from ..measure import crop
-from ..render import gate_origin
-from .em_location import per_frame_entries, pixel_entries, unified_location_em
+from tvtrack.measure import crop
+from tvtrack.render import gate_origin
+from .em import per_frame_entries, pixel_entries, unified_location_em
 
 __all__ = ["Marks", "LineFit", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines",
            "moment_starts", "associate_by_lines"]
@@ -325,7 +325,7 @@ class LineFit:
     valid: np.ndarray
 
 
-def fit_lines(marks: Marks, times, fallback) -> LineFit:
+def fit_lines(marks: Marks, times, fallback, velocity=None) -> LineFit:
     """Ordinary least squares ``x_l = x0 + Vx t_l`` per object and axis over the valid marks
     (eq. (11) with unit weights: ``A' = sum 1``, ``B' = sum t``, ``C' = sum t^2``).
 
@@ -335,9 +335,20 @@ def fit_lines(marks: Marks, times, fallback) -> LineFit:
     times : ndarray, shape (T,)
     fallback : ndarray, shape (N, Q, 4)
         Returned for objects with fewer than two usable marks (flagged invalid).
+    velocity : ndarray, shape (N, Q, 2), optional
+        A known velocity (px/frame): then only ``x0 = mean(x_l - V t_l)`` over the valid marks is
+        fitted (one usable mark suffices), the two-stage counterpart of a ULA whose velocity is fixed.
     """
     t = np.asarray(times, dtype=float)[None, :, None]
     w = marks.valid.astype(float)                                      # (N, T, Q)
+    if velocity is not None:
+        v = np.asarray(velocity, dtype=float)
+        A = w.sum(axis=1)
+        ok = A > 0
+        resid = marks.xy - t[..., None] * v[:, None]                  # (N, T, Q, 2)
+        x0 = (w[..., None] * resid).sum(axis=1) / np.where(ok, A, 1.0)[..., None]
+        theta = np.where(ok[..., None], np.concatenate([x0, v], axis=-1), np.asarray(fallback, float))
+        return LineFit(theta=theta, valid=ok)
     A = w.sum(axis=1)
     B = (w * t).sum(axis=1)
     C = (w * t * t).sum(axis=1)

@@ -27,7 +27,7 @@ index; sums per trial use :func:`numpy.add.reduceat` over the trial-sorted entri
 trials are dropped from the working set.
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row)
-and frames, as in :mod:`tvtrack.scenes.linear_motion`.
+and frames, as in :mod:`tvtrack.papers.p002_unified_location_em.model`.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import ndtr
 
-from ..scenes.linear_motion import pixel_probabilities
+from .model import pixel_probabilities
 
 __all__ = [
     "PixelEntries", "pixel_entries", "per_frame_entries", "EMResult", "unified_location_em",

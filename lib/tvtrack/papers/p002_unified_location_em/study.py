@@ -1,0 +1,521 @@
+"""Measurement functions of paper 002: what the explorer calls, and the figure data they share.
+
+A *configuration* of the study is a dict ``{register entry name: value}`` (:mod:`.register`); a *seed* makes one
+independent full-size replicate. :func:`measure` turns both into ``{claim id: measured}`` where *measured* is what
+the claim's rule reads (an :class:`~tvtrack.montecarlo.Estimate`, a list of them for ``Monotone``, a dict of parts
+for ``AllOf``). Internally a configuration becomes a set of simulation *jobs*: one :class:`~.simulation.Config`
+(``Q``, separation, pixel size, photons, frames) run for one algorithm letter under the settings that letter reads.
+Jobs are cached by ``(settings, Config)``, so a register value that changes only the two-stage algorithm reruns
+only the two-stage jobs, and a value that changes only a statistic reruns nothing (common random numbers: the
+explorer passes the same seed to every configuration of a stage). :func:`measure_batch` collects the jobs of many
+configurations and runs the missing ones in worker processes.
+
+Units: sigma (PSF standard deviation) for lengths, frames for time.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from tvtrack.montecarlo import Estimate, proportion_ci, ratio_ci
+from .simulation import (Config, StudySettings, bootstrap_groups, mse_sum, position_errors, run_config,
+                         seed_sequence, variance_ratio_ci, variance_sum)
+
+__all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "measure_batch", "figure_data",
+           "errors", "gain", "spread_sum", "exp_estimate", "clear_cache", "word",
+           "squarem_vs_plain", "local_maxima_rate", "estimation_cost",
+           "wrong_q_cost"]
+
+#: Separations d / sigma of the distance axes (card 5.2).
+D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
+#: Separations (sigma) over which C002-10's "coarser pixels" and "more frames" gains are averaged (up to the
+#: register's "close separations" value): the text names d = 1 and 3 sigma.
+CLOSE = (1.0, 2.0, 3.0)
+#: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
+_READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
+          "p": ("tol_sigma",),
+          "m": ("tol_sigma", "max_iter", "merge_sigma", "accelerate", "velocity_knowledge"),
+          "e": ("tol_sigma", "max_iter", "accelerate", "mark_init", "mark_association"),
+          "q": ("tol_sigma", "mark_init", "mark_association"),
+          "c": ("gate_half_sigma",),
+          "s": ("tol_sigma", "max_iter", "accelerate"),
+          "w": ("tol_sigma", "max_iter"),
+          "k": ("tol_sigma", "max_iter", "accelerate"),
+          "1": ("tol_sigma", "max_iter", "accelerate"),
+          "b": ("bic_max_iter",)}
+_CANON = StudySettings(seed=0, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
+                       margin_sigma=6.0, designation_sd_sigma=0.0, designation_velocity_sd=0.0, tol_sigma=1e-6,
+                       max_iter=5000, merge_sigma=0.1, accelerate="squarem", mark_init="designation",
+                       mark_association="designation", gate_half_sigma=3.0, bic_max_iter=300, crb_phases=64,
+                       n_trials=0, n_bootstrap=2000, velocity_knowledge="free")
+_SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
+_TWO_STAGE = {"designation start, labels by start": ("designation", "designation"),
+              "previous start + assignment": ("previous", "assignment"),
+              "designation start + line association": ("designation", "lines"),
+              "no designation: moment start + line association": ("moments", "lines")}
+_EM = {"SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6), "plain EM, cap 100": ("none", 100, 1e-6)}
+_CACHE: dict[tuple, dict] = {}
+
+
+@dataclass(frozen=True)
+class Scale:
+    """Sizes of one replicate (the profile's, not the register's: every configuration uses the same).
+
+    Attributes
+    ----------
+    n_trials : int
+        Monte Carlo trials per simulation point.
+    n_iter_trials : int
+        Trials per point of the plain-EM iteration study (C002-13, C002-14) and of the multi-start check.
+    separations : tuple of float
+        The distance axis d / sigma (must hold 1, 2, 3, 6 and 8 for the claims; 0.5 is the "very close" end).
+    fig3_frames : tuple of int
+        The frame axis of Fig 3 (must hold 5, 10 and 50).
+    crb_phases : int
+        Sub-pixel phases averaged in each bound.
+    n_bootstrap : int
+        Bootstrap resamples of every ratio interval.
+    n_workers : int
+        Worker processes of :func:`run_jobs`.
+    max_iter : int, optional
+        A lower EM iteration cap than the register's (the smoke profile only: it bounds the slow tails).
+    """
+
+    n_trials: int = 100
+    n_iter_trials: int = 40
+    separations: tuple = D_GRID
+    fig3_frames: tuple = (2, 5, 10, 20, 50)
+    crb_phases: int = 64
+    n_bootstrap: int = 2000
+    n_workers: int = 1
+    max_iter: int | None = None
+
+
+def clear_cache() -> None:
+    """Forget every cached simulation job (tests; memory)."""
+    _CACHE.clear()
+
+
+def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
+    """The simulation settings of a register configuration and a replicate seed."""
+    init, assoc = _TWO_STAGE[config["two-stage"]]
+    accel, cap, tol = _EM[config["EM stopping"]]
+    cap = cap if scale.max_iter is None else min(cap, scale.max_iter)
+    vx, vy = (float(v) for v in str(config["velocity (sigma/frame)"]).split(","))
+    return replace(_CANON, seed=int(seed), velocity_sigma=(vx, vy),
+                   noise_density=float(config["noise (photons/sigma^2/frame)"]), photon_model=config["photon model"],
+                   designation_sd_sigma=float(config["designation error (sigma)"]), tol_sigma=tol, max_iter=cap,
+                   accelerate=accel, mark_init=init, mark_association=assoc, crb_phases=scale.crb_phases,
+                   n_trials=scale.n_trials, n_bootstrap=scale.n_bootstrap,
+                   velocity_knowledge=config["velocity knowledge"], tracks=config["tracks"])
+
+
+def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2) -> StudySettings:
+    """``settings`` with every field that ``letter`` does not read reset to a canonical value (the cache key).
+    The plain-EM iteration counts (``p``, ``q``) run to the paper's convergence whatever the register's stopping
+    reading; only the scale's cap (smoke profile) bounds them."""
+    keep = set(_SCENE) | set(_READS[letter])
+    out = replace(_CANON, **{k: getattr(settings, k) for k in keep})
+    if q == 1:                                  # one object: nothing to cross
+        out = replace(out, tracks="parallel")
+    if letter in "pq" and scale.max_iter is not None:
+        out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
+    return out
+
+
+class _Points:
+    """Builds the :class:`Config` of a simulation point from a register configuration and records it."""
+
+    def __init__(self, config: dict, scale: Scale):
+        self.dsd = float(config["designation error (sigma)"])
+        self.scale = scale
+        self.asked: list[Config] = []
+
+    def __call__(self, q, d, pix, m, T, algs, n=None) -> Config:
+        c = Config(int(q), float(d), float(pix), int(m), int(T), algs, self.dsd, None, None,
+                   int(n or self.scale.n_trials), "explore", 0.0)
+        self.asked.append(c)
+        return c
+
+
+def _points(config: dict, scale: Scale, figures: bool = False):
+    """The simulation points the claims read (and, with ``figures``, the figures' whole curves), as named groups of
+    ``{d: Config}`` (``{T: Config}`` for Fig 3a). The claims read only the separations they compare, so a replicate
+    simulates what decides a verdict; the figures add the rest of their axes once (first replicate)."""
+    P = _Points(config, scale)
+    D = tuple(scale.separations)
+    T1, m1c = int(config["T of Figs 1a,b"]), int(config["m_k of Fig 1c"])
+    pix, T4, m5 = float(config["Delta of Figs 4, 5, 7 (sigma)"]), int(config["T of Figs 4, 6, 7"]), int(
+        config["m_k of Fig 5"])
+    close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+    close = sorted(set(close) | {1.0, 3.0})                 # C002-11 reads d = 1 and 3 sigma
+    small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
+    d5, T3 = float(config["separation of C002-5 (sigma)"]), int(config["T of the Fig 3a claims"])
+    core = (1.0, 2.0, 3.0, 6.0)
+    pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
+    g = {"1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
+         "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
+         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
+         "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
+         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
+         "3a": {p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
+                for p_ in (1.0, 3.0, 5.0)},
+         "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
+         "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
+         "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
+         "head_known": ({d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)}
+                        if config["velocity knowledge"] == "designated" else {}),
+         "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
+         "good": {p_: P(2, 8.0, p_, 20, T4, "ue") for p_ in (0.5, 1.0)},
+         "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in
+               sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
+    if figures:
+        g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
+        g["w"] = {d: P(2, d, pix, 20, T4, "uw1", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
+    return g, P.asked
+
+
+def jobs_of(config: dict, seed: int, scale: Scale, figures: bool = False) -> list[tuple[StudySettings, Config]]:
+    """The simulation jobs ``(settings, single-letter Config)`` of one configuration and seed, without repeats."""
+    settings = settings_of(config, seed, scale)
+    out = {}
+    for c in _points(config, scale, figures)[1]:
+        for a in c.algs:
+            job = (_job_settings(settings, a, scale, c.q), c._replace(algs=a))
+            out[job] = None
+    return list(out)
+
+
+def _run_job(job):
+    return run_config(*job)
+
+
+def run_jobs(jobs, n_workers: int = 1) -> None:
+    """Run the jobs not yet cached (longest first) in ``n_workers`` forked processes."""
+    todo = [j for j in dict.fromkeys(jobs) if j not in _CACHE]
+    todo.sort(key=lambda j: -j[1].T * j[1].n * (1 + 2 * (j[1].algs in "epqs")))
+    if n_workers > 1 and len(todo) > 1:
+        with ProcessPoolExecutor(n_workers, mp_context=multiprocessing.get_context("fork")) as pool:
+            for j, r in zip(todo, pool.map(_run_job, todo, chunksize=1)):
+                _CACHE[j] = r
+    else:
+        for j in todo:
+            _CACHE[j] = _run_job(j)
+
+
+class _Results:
+    """``res[c]``: the merged results of every letter of a point (from the cache)."""
+
+    def __init__(self, settings: StudySettings, scale: Scale):
+        self.settings = settings
+        self.scale = scale
+
+    def __getitem__(self, c: Config) -> dict:
+        out = {}
+        for a in c.algs:
+            r = _CACHE[(_job_settings(self.settings, a, self.scale, c.q), c._replace(algs=a))]
+            out.update({k: v for k, v in r.items() if k != "timing"})
+            out.setdefault("timing", {}).update({k: v for k, v in r["timing"].items() if v})
+        return out
+
+
+# -- statistics -----------------------------------------------------------------------------------------------
+
+def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
+    """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``; sigma) or of its
+    velocities (``velocity``; sigma/frame)."""
+    return position_errors(r, alg, epoch)
+
+
+def spread_sum(e, statistic: str = "variance") -> Estimate:
+    """The summed spread of errors (n, k): variance sum, or MSE sum (both in sigma^2)."""
+    return mse_sum(e) if statistic == "MSE" else variance_sum(e)
+
+
+def _spread(statistic: str) -> str:
+    return "mse" if statistic == "MSE" else "variance"
+
+
+def gain(num, den, rng, n_bootstrap, statistic="variance", paired=True) -> Estimate:
+    """``Sigma^2_num / Sigma^2_den`` with a bootstrap interval; ``statistic="SD ratio"`` takes the square root."""
+    return variance_ratio_ci(num, den, rng, n_bootstrap, paired=paired, spread=_spread(statistic),
+                             sqrt=statistic == "SD ratio")
+
+
+def exp_estimate(e: Estimate) -> Estimate:
+    """An estimate of a log quantity mapped back by exp (the interval maps exactly)."""
+    v = float(np.exp(e.value))
+    return Estimate(v, v * e.stderr, float(np.exp(e.ci_low)), float(np.exp(e.ci_high)), e.n, e.confidence, e.method)
+
+
+def _vsum(e):
+    return e.var(axis=1, ddof=1).sum(axis=-1)
+
+
+def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap) -> Estimate:
+    """exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo`` groups); each group holds the
+    paired [num | den] errors of one point side by side (rows resampled jointly, groups independently)."""
+    k = len(pairs_hi)
+
+    def stat(*g):
+        def mlog(h):
+            return np.mean([np.log(_vsum(x[..., :x.shape[-1] // 2]) / _vsum(x[..., x.shape[-1] // 2:])) for x in h],
+                           axis=0)
+        return mlog(g[:k]) - mlog(g[k:])
+    return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
+
+
+def _efficiency(e, bound: float, statistic: str) -> Estimate:
+    """Spread over the bound; under the "SD ratio" reading the square root (a ratio of standard deviations)."""
+    v = scaled(spread_sum(e, statistic), 1.0 / bound)
+    if statistic == "SD ratio":
+        r = np.sqrt(max(v.value, 0.0))
+        return Estimate(r, v.stderr / (2 * max(r, 1e-300)), float(np.sqrt(max(v.ci_low, 0.0))),
+                        float(np.sqrt(max(v.ci_high, 0.0))), v.n, v.confidence, v.method + ", square root")
+    return v
+
+
+# -- the claims -----------------------------------------------------------------------------------------------
+
+def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> dict:
+    """``{claim id: measured}`` of one configuration (see the notebook for each rule)."""
+    rng = np.random.default_rng(seed_sequence(seed, ("bootstrap",)))
+    B, ep, st = scale.n_bootstrap, config["epoch"], config["statistic"]
+    D = list(scale.separations)
+    ula = (lambda c: errors(res[c], "ula", ep))
+    out = {"C002-1": [spread_sum(ula(g["1a"][20][d]), st) for d in D]}
+
+    def r_m(key, d):
+        return ula(g[key][10][d]), ula(g[key][20][d])
+    far, near = r_m("1a", 6.0), r_m("1a", 1.0)
+    out["C002-2"] = {"weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B),
+                     "far apart": gain(*far, rng, B, st, paired=False)}
+    ds3 = (1.0, 2.0, 3.0, 6.0)
+    out["C002-3"] = _mean_log_gain([np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3],
+                                   rng, B)
+    loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
+    out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B)
+    d5 = float(config["separation of C002-5 (sigma)"])
+    out["C002-5"] = [gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False)
+                     for T in (5, 10, 50)]
+    small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
+
+    def rt(m):
+        return [np.hstack([ula(g["2"][(5, m)][d]), ula(g["2"][(10, m)][d])]) for d in small]
+
+    def stat6(*gr):
+        def mabs(h):
+            return np.mean([np.abs(np.log(_vsum(x[..., :x.shape[-1] // 2]) / _vsum(x[..., x.shape[-1] // 2:])))
+                            for x in h], axis=0)
+        return mabs(gr[:len(small)]) - mabs(gr[len(small):])
+    out["C002-6"] = bootstrap_groups(rt(20) + rt(10), stat6, rng, B)
+    T3 = int(config["T of the Fig 3a claims"])
+
+    def x1(pix, alg):
+        return position_errors(res[g["3a"][pix][T3]], alg, ep)[:, :1]
+    pc = float(config["coarse Delta of C002-7, C002-8 (sigma)"])
+    out["C002-7"] = {"fine pixels": gain(x1(1.0, "em"), x1(1.0, "ula"), rng, B, st),
+                     "coarse pixels": gain(x1(pc, "em"), x1(pc, "ula"), rng, B, st)}
+    out["C002-8"] = {"worse than fine pixels": gain(x1(pc, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
+                     "better than the marks": gain(x1(pc, "ula"), x1(pc, "em"), rng, B, st)}
+    p9 = float(config["Delta of the C002-9 order (sigma)"])
+    out["C002-9"] = {"centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
+                     "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st)}
+    use_map = config["ULA"] == "MAP (designation prior)"
+    known = config["velocity knowledge"] == "designated"
+    twin = "em_vd" if known else "em"
+
+    def rho(c):
+        r = res[c]
+        return gain(errors(r, "em", ep), errors(r, "ula", ep), rng, B, st)
+
+    def side(c):
+        r = res[c]
+        return np.hstack([errors(r, "em", ep), errors(r, "ula", ep)])
+    close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+    out["C002-10"] = {"closer": [rho(g["4"][20][d]) for d in D],
+                      "coarser pixels": _mean_log_gain([side(g["6"][20][d]) for d in close],
+                                                       [side(g["4"][20][d]) for d in close], rng, B),
+                      "more frames": _mean_log_gain([side(g["5ab"][50][d]) for d in close],
+                                                    [side(g["5ab"][5][d]) for d in close], rng, B)}
+
+    def head(d):
+        c = g["5ab"][50][d]
+        if use_map:
+            u = errors(res[g["head_map"][d]], "map", ep)
+        elif known:
+            u = errors(res[g["head_known"][d]], "ula_vd", ep)
+        else:
+            return rho(c)
+        return gain(errors(res[c], twin, ep), u, rng, B, st)
+    out["C002-11"] = {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
+    out["C002-12"] = {f"Delta = {p_:g} sigma": rho(c) for p_, c in g["good"].items()}
+    it = {d: res[c] for d, c in g["7"].items()}
+    lo, hi = min(it), max(it)
+    out["C002-13"] = ratio_ci(it[lo]["plain_iter"], it[hi]["plain_iter"], paired=False)
+    T4 = int(config["T of Figs 4, 6, 7"])
+    ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
+    marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
+    out["C002-14"] = ratio_ci(ula_work, marks_work)
+    out["C002-15"] = _c15(config, g, res, "first", st)    # the CRB is the initial positions' bound
+    return out
+
+
+def _c15(config, g, res, ep, st) -> dict:
+    """Efficiency of the ULA: its spread over the bound at very close and resolved separations, and for the
+    velocities ("position and motion parameters of very close objects", conclusions)."""
+    use_bayes = config["bound"] == "van Trees (designation prior)"
+    key_pos, key_vel = ("bcrb_pos", "bcrb_vel") if use_bayes else ("crb_pos", "crb_vel")
+    parts = {}
+    cs = g["4"][20]
+    for d, name in ((1.0, "d = 1 sigma (very close)"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
+        r = res[cs[d]]
+        parts[name] = _efficiency(errors(r, "ula", ep), r[key_pos], st)
+    r = res[cs[1.0]]
+    parts["velocities, d = 1 sigma"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
+    return parts
+
+
+def measure_batch(configs, seeds, scale: Scale = Scale()) -> list[dict]:
+    """:func:`measure` for many configurations at once: their jobs are collected, the missing ones run in
+    ``scale.n_workers`` processes, then each configuration's claims are measured."""
+    jobs = [j for c, s in zip(configs, seeds) for j in jobs_of(c, s, scale)]
+    run_jobs(jobs, scale.n_workers)
+    out = []
+    for c, s in zip(configs, seeds):
+        g, _ = _points(c, scale)
+        out.append(_claims(c, g, _Results(settings_of(c, s, scale), scale), int(s), scale))
+    return out
+
+
+def measure(config: dict, seed: int, scale: Scale = Scale()) -> dict:
+    """One full-size replicate of the study at ``config`` (every register entry present) with all random draws
+    from ``seed``: ``{claim id: measured}``."""
+    return measure_batch([config], [seed], scale)[0]
+
+
+def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, _Results]:
+    """The simulation points (named groups of :class:`Config`) and their results at ``config`` and ``seed``, for
+    the figures (runs what is not cached)."""
+    run_jobs(jobs_of(config, seed, scale, figures=True), scale.n_workers)
+    return _points(config, scale, figures=True)[0], _Results(settings_of(config, seed, scale), scale)
+
+
+
+
+# -- what the notebook reports beside the claims --------------------------------------------------------------
+
+def word(est: Estimate, ref: float = 1.0, above: str = "above", below: str = "below",
+         same: str = "not distinguishable from") -> str:
+    """The word a 95 % interval supports about ``ref``: ``above`` / ``below`` when it excludes ``ref``, else
+    ``same``; ``"undetermined against"`` for an undefined interval."""
+    if not (np.isfinite(est.ci_low) and np.isfinite(est.ci_high)):
+        return "undetermined against"
+    return above if est.ci_low > ref else below if est.ci_high < ref else same
+
+
+def squarem_vs_plain(g: dict, res) -> dict:
+    """How far SQUAREM's estimates are from plain EM's on the same trials (Fig 7's points): the largest absolute
+    difference of any initial position (sigma) and the share of trials where it exceeds 0.01 sigma, per d."""
+    out = {}
+    for d, c in g["7"].items():
+        r = res[c]
+        diff = np.abs(r["plain"][..., :2] - r["ula"][..., :2]).max(axis=(1, 2))
+        out[d] = {"max_sigma": float(diff.max()), "share_over_0.01": proportion_ci(int((diff > 0.01).sum()), len(diff))}
+    return out
+
+
+def estimation_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
+    """The accuracy cost of estimating p_j and sigma as well (card 8.4): Sigma^2 with them estimated over Sigma^2
+    with them known, paired on the same trials, per separation."""
+    return {d: gain(errors(res[c], "ula_w"), errors(res[c], "ula"), rng, n_bootstrap) for d, c in g["w"].items()}
+
+
+def wrong_q_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
+    """The cost of a wrong number of objects (card 8.3): the variance sum of the group's mean initial position when
+    one track is fitted to the pair (Q' = 1) over the same with Q = 2 known, paired on the same trials, per d."""
+    out = {}
+    for d, c in g["w"].items():
+        r = res[c]
+        mid2 = r["ula"][..., :2].mean(axis=1)                          # (n, 2): labels do not matter for the mean
+        out[d] = gain(r["ula_q1"][:, 0, :2], mid2, rng, n_bootstrap)
+    return out
+
+
+def local_maxima_rate(g: dict, res, gap: float = 1e-3) -> dict:
+    """Share of trials (with its interval) in which the ULA started at the designation stops at a local maximum
+    more than ``gap`` (log-likelihood) below the best of four starts, per separation."""
+    return {d: proportion_ci(int((res[c]["ms_gap"] > gap).sum()), len(res[c]["ms_gap"])) for d, c in g["ms"].items()}
+
+
+#: The paper's claims: statement and the paper's value (paper card 002, section 7).
+CLAIMS = {
+    "C002-1": ("Accuracy falls as the objects get closer (Fig 1).", "qualitative"),
+    "C002-2": ("As the objects get closer the dependence of the variance on the photon number weakens (Fig 1a,b).",
+               "qualitative; r_m ~ 2 far apart"),
+    "C002-3": ("With smaller pixels the dependence on the photon number strengthens (Fig 1a vs 1b).", "qualitative"),
+    "C002-4": ("As the objects get closer, errors grow faster for larger pixels (Fig 1c).", "qualitative"),
+    "C002-5": ("With more frames the influence of pixel size weakens (Figs 1c, 2a).", "qualitative"),
+    "C002-6": ("With fewer target photons the dependence on T weakens (grouped sample; Fig 2).", "qualitative"),
+    "C002-7": ("One object: the ULA beats two-stage processing only for large pixels (Fig 3a).", "qualitative"),
+    "C002-8": ("One object: the ULA partly offsets poor primary processing but does not fully compensate it.",
+               "qualitative"),
+    "C002-9": ("Implied ordering of Fig 3a: centre-of-region >= iterative marks >= ULA.", "curve order"),
+    "C002-10": ("Multi-target: the ULA gain grows as objects get closer, pixels larger and frames more (Figs 4-6).",
+                "qualitative"),
+    "C002-11": ("At T = 50 the accuracy difference reaches x4 at separation 3 and x4.5 at separation 1 (Fig 5).",
+                "x4 (d = 3 sigma), x4.5 (d = 1 sigma)"),
+    "C002-12": ("For separations > 8 sigma and Delta/sigma < 1 the two algorithms' accuracies practically coincide.",
+                "rho ~ 1"),
+    "C002-13": ("The number of ULA iterations depends on the separation (Fig 7; direction not stated).",
+                "a curve (lost)"),
+    "C002-14": ("The ULA is more laborious than two-stage processing.", "qualitative"),
+    "C002-15": ("For very close objects with known Q the ULA gives practically potential accuracy of position and "
+                "motion parameters.", "'practically potential'"),
+}
+
+
+def scaled(est: Estimate, factor: float) -> Estimate:
+    """``est`` times a positive constant (value, standard error and interval)."""
+    return Estimate(est.value * factor, est.stderr * factor, est.ci_low * factor, est.ci_high * factor, est.n,
+                    est.confidence, est.method)
+
+
+def condition_output(exploration, claim_id: str, changed: dict):
+    """What ``claim_id`` measured in the run (one at a time or joint) that changed exactly ``changed`` from the
+    default (None if no run did)."""
+    default = exploration.default
+    for r in exploration.runs:
+        if r.stage != "replicate" and r.changed(default) == changed:
+            return r.outputs.get(claim_id)
+    return None
+
+
+def compare(a: Estimate, b: Estimate) -> str:
+    """``a`` against ``b`` by their 95 % intervals: "larger than" / "smaller than" when they do not overlap, else
+    "not distinguishable from" (a conservative comparison of two estimates from the same scenes)."""
+    if a.ci_low > b.ci_high:
+        return "larger than"
+    if a.ci_high < b.ci_low:
+        return "smaller than"
+    return "not distinguishable from"
+
+
+def flips_by_entry(exploration, rules, names) -> dict:
+    """``{entry name: [claim ids]}``: the claims some part of whose verdict differs, in a one-at-a-time run that
+    changed that entry, from the first replicate (the run it shares its random numbers with)."""
+    out = {n: [] for n in names}
+    for cid, rule in rules.items():
+        rec = exploration.record(cid, rule)
+        ref = rec["replicates"][0]["parts"] if rec["replicates"] else {}
+        for c in rec["conditions"]:
+            if c["kind"] != "single":
+                continue
+            for k in c["changed"]:
+                if k in out and c["parts"] != ref and cid not in out[k]:
+                    out[k].append(cid)
+    return out

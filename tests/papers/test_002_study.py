@@ -1,0 +1,148 @@
+"""Tests of paper 002's measurement functions (the explorer's entry point) and its register."""
+
+import numpy as np
+import pytest
+
+from tvtrack.montecarlo import Estimate
+from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
+
+TINY = study.Scale(n_trials=4, n_iter_trials=4, separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0), fig3_frames=(5, 10, 50),
+                   crb_phases=2, n_workers=1, max_iter=40)
+DEFAULT = REGISTER.default()
+
+
+def _letters(jobs):
+    return {(j[1]._replace(algs=""), j[1].algs): j[0] for j in jobs}
+
+
+def test_register_covers_every_claim_and_names_real_entries():
+    assert set(DEPENDS) == set(study.CLAIMS)
+    for cid, names in DEPENDS.items():
+        assert set(names) <= set(REGISTER.names), cid
+    assert {e.origin for e in REGISTER.entries} == {"author", "adversarial"}
+
+
+def test_a_statistic_reruns_nothing_and_a_comparator_reruns_only_its_algorithm():
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    assert _letters(study.jobs_of({**DEFAULT, "statistic": "MSE", "epoch": "mid"}, 7, TINY)) == base
+    two = _letters(study.jobs_of({**DEFAULT, "two-stage": "previous start + assignment"}, 7, TINY))
+    changed = {k[1] for k in base if base[k] != two[k]}
+    assert changed == {"e", "q"}
+    vel = _letters(study.jobs_of({**DEFAULT, "velocity knowledge": "designated"}, 7, TINY))
+    assert {k[1] for k in base if base[k] != vel[k]} == {"m"}
+    assert {k[1] for k in set(vel) - set(base)} == {"k"}      # the ML ULA given the designated velocity
+    world = _letters(study.jobs_of({**DEFAULT, "photon model": "poisson"}, 7, TINY))
+    assert all(base[k] != world[k] for k in base)          # a regime of the world redraws every scene
+
+
+def test_replicates_are_independent_and_reproducible():
+    study.clear_cache()
+    a = study.measure(DEFAULT, 11, TINY)
+    study.clear_cache()
+    again = study.measure(DEFAULT, 11, TINY)
+    other = study.measure(DEFAULT, 12, TINY)
+    assert set(a) == set(study.CLAIMS) - {"C002-16"}
+    assert a["C002-3"].value == again["C002-3"].value
+    assert a["C002-3"].value != other["C002-3"].value
+    assert set(a["C002-11"]) == {"d = 1 sigma (paper x4.5)", "d = 3 sigma (paper x4)"}
+    assert len(a["C002-1"]) == len(TINY.separations) and len(a["C002-10"]["closer"]) == len(TINY.separations)
+
+
+@pytest.mark.slow
+def test_every_register_value_measures_every_claim():
+    configs = [{**DEFAULT, e.name: v} for e in REGISTER.entries for v in e.alternatives]
+    outs = study.measure_batch(configs, [5] * len(configs), TINY)
+    for cfg, out in zip(configs, outs):
+        assert set(out) == set(study.CLAIMS) - {"C002-16"}, cfg
+
+
+def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
+    study.clear_cache()
+    cfg = {**DEFAULT, "ULA": "MAP (designation prior)"}
+    out = study.measure(cfg, 3, TINY)["C002-11"]
+    g, res = study.figure_data(cfg, 3, TINY)
+    r, rm = res[g["5ab"][50][1.0]], res[g["head_map"][1.0]]
+    # the same statistic computed here from the free-velocity twin (the plain line fit) and the MAP-ULA
+    direct = (study.errors(r, "em").var(axis=0, ddof=1).sum() / study.errors(rm, "map").var(axis=0, ddof=1).sum())
+    assert out["d = 1 sigma (paper x4.5)"].value == pytest.approx(direct)
+
+
+def test_word_follows_the_interval():
+    assert study.word(Estimate(2.0, 0.1, 1.5, 2.5, 10)) == "above"
+    assert study.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
+    assert study.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
+    assert study.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
+
+
+def test_crossing_tracks_swap_sides_at_mid_sequence():
+    from tvtrack.papers.p002_unified_location_em.model import frame_times, scene_geometry
+    from tvtrack.papers.p002_unified_location_em.simulation import track_velocities
+
+    v = track_velocities((0.2, 0.1), "crossing", 2, 3.0, 11)
+    g = scene_geometry(2, 11, 3.0, 1.0, v)
+    t = frame_times(11)
+    dy = (g.theta[1, 1] + g.theta[1, 3] * t) - (g.theta[0, 1] + g.theta[0, 3] * t)
+    np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 0.0, -3.0])
+    np.testing.assert_allclose(track_velocities((0.2, 0.1), "parallel", 2, 3.0, 11), [[0.2, 0.1], [0.2, 0.1]])
+    np.testing.assert_allclose(track_velocities((0.2, 0.1), "crossing", 1, 3.0, 11), [[0.2, 0.1]])
+
+
+def test_mean_log_gain_recovers_a_known_ratio_of_gains():
+    """exp(mean log rho_hi - mean log rho_lo) on normal errors with known variances: rho_hi = 4, rho_lo = 2 -> 2."""
+    rng = np.random.default_rng(4)
+    n = 1500
+
+    def pair(var_num, var_den):
+        return np.hstack([rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))])
+    est = study._mean_log_gain([pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)],
+                               np.random.default_rng(0), 1000)
+    assert est.ci_low < 2.0 < est.ci_high and abs(est.value - 2.0) < 0.25
+    e = rng.normal(size=(n, 2))
+    v = study.gain(2 * e, e, np.random.default_rng(0), 2000)
+    s = study.gain(2 * e, e, np.random.default_rng(0), 2000, statistic="SD ratio")
+    assert v.value == pytest.approx(4.0) and s.value == pytest.approx(2.0)
+
+
+@pytest.mark.slow
+def test_variance_sum_interval_coverage_near_the_resolution_limit():
+    """The variance-sum interval at the sizes used (80 trials a replicate, 3 replicates pooled) at d = sigma, where
+    the errors are heavy-tailed: one replicate's BCa interval covers a little under 95 % (issue 26 measured 0.915;
+    here 56 of 60), the pooled replicates' interval (what decides) covers. Deterministic seeds."""
+    from dataclasses import replace
+
+    from tvtrack.explore import pool
+    from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config, variance_sum
+
+    errs = [study.errors(run_config(replace(study._CANON, seed=1000 + k),
+                                    Config(2, 1.0, 3.0, 20, 10, "u", 0.3, None, None, 80, "cov", 0.0)), "ula")
+            for k in range(60)]
+    truth = np.concatenate(errs).var(axis=0, ddof=1).sum()
+    ests = [variance_sum(e) for e in errs]
+    single = np.mean([e.ci_low <= truth <= e.ci_high for e in ests])
+    pooled = np.mean([(p := pool(ests[i:i + 3])).ci_low <= truth <= p.ci_high for i in range(0, 60, 3)])
+    assert 0.85 <= single <= 1.0 and pooled >= 0.9, (single, pooled)
+
+
+def test_flips_by_entry_reads_single_conditions_only():
+    class Ex:
+        def record(self, cid, rule):
+            ref = {"replicates": [{"parts": {"a": "reproduced"}}]}
+            conds = [{"kind": "single", "changed": {"tracks": "crossing"}, "parts": {"a": "partly"}},
+                     {"kind": "single", "changed": {"bound": "CRB2"}, "parts": {"a": "reproduced"}},
+                     {"kind": "joint", "changed": {"bound": "x", "epoch": "mid"}, "parts": {"a": "partly"}}]
+            return {**ref, "conditions": conds}
+    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == \
+        {"tracks": ["C002-1"], "bound": [], "epoch": []}
+
+
+def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
+    study.clear_cache()
+    g, res = study.figure_data(DEFAULT, 9, TINY)
+    rng = np.random.default_rng(0)
+    wq, wc = study.wrong_q_cost(g, res, rng, 2000), study.estimation_cost(g, res, rng, 2000)
+    assert set(wq) == set(wc) == {1.0, 2.0, 4.0}
+    r = res[g["w"][4.0]]
+    assert r["ula_q1"].shape == (TINY.n_iter_trials, 1, 4) and r["ula_w"].shape == r["ula"].shape
+    # far apart one track through the pair's centre is a poor model: its centre error is no smaller
+    assert wq[4.0].value > 0.5 and all(np.isfinite(e.value) for e in wc.values())
