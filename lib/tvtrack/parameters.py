@@ -213,7 +213,7 @@ class OutputDir(ParamRule):
 
 
 #: Rules for the parameters every notebook has (see README, "Writing a notebook").
-COMMON_RULES: dict[str, Rule] = {
+COMMON_RULES: dict[str, ParamRule] = {
     "seed": Integer(0, 2**63 - 1),
     "n_trials": Integer(1, 10_000_000),
     "output_dir": OutputDir(),
@@ -256,9 +256,3 @@ def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, ParamR
                 f"parameter {name!r} = {value!r} is out of range; it must be {rule.describe()}"
             ) from None
     return checked
-
-
-#: Deprecated names (kept while the notebooks move; removed after): a parameter rule is not a verdict rule.
-Rule = ParamRule
-Choice = OneOf
-ChoiceList = OneOfList

@@ -12,7 +12,7 @@ import pytest
 import rerun as rr
 import rerun.blueprint as rrb
 
-from tvtrack.record import Recorder, image_and_series_blueprint
+from tvtrack.recordings import Recorder, image_and_series_blueprint
 from tvtrack.pipeline.viewer import (INSTALL_HINT, Expectation, HeadlessViewer, ViewerUnavailable, check_recording,
                             coloured_mask, dominant_colours, entities_under, layout_problems, plays_role,
                             read_layout, verify_rrd, vulkan_problem)

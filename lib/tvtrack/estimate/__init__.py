@@ -1,1 +1,0 @@
-"""Estimators that work on whole image sequences (e.g. multi-frame EM location)."""
