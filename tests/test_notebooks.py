@@ -250,3 +250,43 @@ def test_executed_notebook_fills_its_findings_before_any_figure(name, smoke_run)
     images = [k for k, (_, out) in enumerate(outs) if "image/png" in out.get("data", {})]
     assert table, f"{name}: the findings table is not in the executed notebook"
     assert not images or table[0] < images[0], f"{name}: the findings come after a figure"
+
+
+_RANGE = re.compile(r"(?:integer|real|number)s?[^\[\(]*?in ([\[\(])([^,\]\)]+), ([^\]\)]+)([\]\)])")
+
+
+def _bound(text: str):
+    text = text.strip().replace("inf", "float('inf')")
+    try:
+        return float(eval(text, {"__builtins__": {"float": float}}))  # noqa: S307 - numbers like 2**63-1 only
+    except Exception:  # a bound that names another parameter: checked by the notebook's cross-checks
+        return None
+
+
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_parameter_ranges_are_written_once(name):
+    """Every range a parameter's comment states is the range its rule in the paper package enforces."""
+    import importlib
+
+    pkg = importlib.import_module(f"tvtrack.papers.p{name}.params")
+    rules = getattr(pkg, "RULES", None) or getattr(pkg, "PARAMETERS")
+    cell = parameters_cell(read(name)).source
+    checked = 0
+    for line in cell.splitlines():
+        m = re.match(r"\s*(\w+)\s*=.*#(.*)$", line)
+        if not m or m.group(1) not in rules:
+            continue
+        rng = _RANGE.search(m.group(2))
+        rule = rules[m.group(1)]
+        if not rng or not hasattr(rule, "low"):
+            continue
+        lo, hi = _bound(rng.group(2)), _bound(rng.group(3))
+        inf = float("inf")
+        want_lo = -inf if rule.low is None else float(rule.low)
+        want_hi = inf if rule.high is None else float(rule.high)
+        if lo is not None:
+            assert lo == pytest.approx(want_lo), f"{name}: {m.group(1)}'s comment says {rng.group(0)}; rule {rule}"
+        if hi is not None:
+            assert hi == pytest.approx(want_hi), f"{name}: {m.group(1)}'s comment says {rng.group(0)}; rule {rule}"
+        checked += 1
+    assert checked >= 3, f"{name}: no parameter comment states a range the test could read"
