@@ -179,3 +179,19 @@ def test_nees_is_near_one_at_the_time_the_model_refers_to_and_grows_when_scored_
     centre, end = nees["interval centre"]["variant 2"], nees["interval end"]["variant 2"]
     assert 0.85 < centre[0].value < 1.2
     assert end[1].value > 1.5 * centre[1].value  # psi_A = 100: the half-interval lag
+
+
+def test_sigma_1_changes_the_truth_and_the_filters_only_for_the_claims_that_read_it():
+    wide = {**DEFAULT, "sigma_1": "0.2 T"}
+    base, spread = study.measure(DEFAULT, 3, SMALL), study.measure(wide, 3, SMALL)
+    # the message's stationary spread reaches the truth: a wider message gives a larger steady error at psi_A = 5
+    assert spread["C000-9"]["variant 2"][0].value > 1.5 * base["C000-9"]["variant 2"][0].value
+    # claims that do not read sigma_1 are measured at its default (the same memoised runs, the same numbers)
+    assert "sigma_1" not in DEPENDS["C000-1"] and "sigma_1" in DEPENDS["C000-9"]
+    assert spread["C000-1"] == base["C000-1"] and spread["C000-6"] == base["C000-6"]
+
+
+def test_c000_9_reads_the_statistic_median_of_runs():
+    med = study.measure({**DEFAULT, "statistic": "median"}, 3, SMALL)["C000-9"]["variant 1"]
+    runs = study.steady_runs(DEFAULT, 3, SMALL, SMALL.psi_grid[0], DEFAULT["contrast"], "v1")
+    assert med[0].value == pytest.approx(np.median(runs))

@@ -135,6 +135,15 @@ REGISTER = Register(
             "adversarial pass: there C000-5 and C000-7 turn partly)",
         ),
         Entry(
+            "sigma_1",
+            "operating point",
+            "0.1 T",
+            ("0.1 T", "0.2 T"),
+            origin="adversarial",
+            why="the paper calls sigma_1 / T = 0.1 'typical'; 0.2 T is an image spread over the micro-raster (within "
+            "+-T/2 of its centre 98 % of the time; D11(0) = 0.2 is the paper's own prior spread), alpha_0 T = 0.15 kept",
+        ),
+        Entry(
             "contrast",
             "operating point",
             0.5,
@@ -166,9 +175,9 @@ _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 DEPENDS = {
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"],
-    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size"],
-    "C000-3": _DATA + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic"],
-    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
+    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1"],
+    "C000-3": _DATA + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"],
+    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1"],
     "C000-6": _DATA
     + [
         "G22",
@@ -180,7 +189,7 @@ DEPENDS = {
         "contrast convention",
         "statistic",
     ],
-    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic"],
+    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1"],
     "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
-    "C000-9": _DATA + ["G22", "v2 noise at", "contrast"],
+    "C000-9": _DATA + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1"],
 }
