@@ -195,3 +195,11 @@ def test_c000_9_reads_the_statistic_median_of_runs():
     med = study.measure({**DEFAULT, "statistic": "median"}, 3, SMALL)["C000-9"]["variant 1"]
     runs = study.steady_runs(DEFAULT, 3, SMALL, SMALL.psi_grid[0], DEFAULT["contrast"], "v1")
     assert med[0].value == pytest.approx(np.median(runs))
+
+
+def test_c000_3_own_covariance_reading_is_the_ratio_of_the_filters_steady_d11():
+    got = study.measure({**DEFAULT, "C000-3 accuracy": "filters' own D11"}, 3, SMALL)["C000-3"]["P=0.5"]
+    psi = DEFAULT["psi_A"]
+    d1 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
+    d2 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
+    assert got.value == pytest.approx(d1.mean() / d2.mean())

@@ -117,6 +117,15 @@ REGISTER = Register(
             "(psi_A = 180 at P = 0.9); its ensemble mean is carried by the 3-4 % of runs that lose lock",
         ),
         Entry(
+            "C000-3 accuracy",
+            "reading",
+            "Monte Carlo error",
+            ("Monte Carlo error", "filters' own D11"),
+            origin="adversarial",
+            why="'the two algorithms give approximately the same estimate of potential accuracy': the accuracy they "
+            "achieve (the Monte Carlo error), or the accuracy each computes for itself (its steady covariance D11)",
+        ),
+        Entry(
             "micro-raster size",
             "reading",
             "T",
@@ -176,7 +185,9 @@ DEPENDS = {
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"],
     "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1"],
-    "C000-3": _DATA + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"],
+    "C000-3": _DATA
+    + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
+    + ["C000-3 accuracy"],
     "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1"],
     "C000-6": _DATA
     + [

@@ -54,7 +54,10 @@ MESSAGE = GaussMarkovMessage(0.1, 0.15)
 MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
 #: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
 #: (so those reuse the default's memoised runs).
-ADVERSARIAL_READS = {"sigma_1": ("0.1 T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9"))}
+ADVERSARIAL_READS = {
+    "sigma_1": ("0.1 T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
+}
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
 #: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
 #: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
@@ -220,6 +223,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
+            "d_steady": d[:, sizes.window()].mean(axis=1),
             "scans": scan_averages(sq, sizes.steps_per_scan),
             "curve": sq.mean(axis=0),
             "d_curve": d.mean(axis=0),
@@ -287,17 +291,18 @@ def _c2(cfg, seed, sizes):
 
 def _c3(cfg, seed, sizes):
     """C000-3: v1 / v2 steady variance over the Fig. 3 contrasts (at psi_A) and the Fig. 2 SNRs (at P)."""
+    field = "d_steady" if cfg.get("C000-3 accuracy", "Monte Carlo error") == "filters' own D11" else "steady"
+
+    def runs(psi, p, filt):
+        return _errors(cfg, seed, sizes, psi, p, filt)[field]
+
     parts = {}
     for p in sizes.contrast_grid:
         psi = psi_at(cfg["psi_A"], p, cfg["contrast convention"])
-        parts[f"P={p:g}"] = _ratio(
-            steady_runs(cfg, seed, sizes, psi, p, "v1"), steady_runs(cfg, seed, sizes, psi, p, "v2"), cfg["statistic"]
-        )
+        parts[f"P={p:g}"] = _ratio(runs(psi, p, "v1"), runs(psi, p, "v2"), cfg["statistic"])
     for psi in sizes.psi_grid:
         parts[f"psi_A={psi:g}"] = _ratio(
-            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v1"),
-            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v2"),
-            cfg["statistic"],
+            runs(psi, cfg["contrast"], "v1"), runs(psi, cfg["contrast"], "v2"), cfg["statistic"]
         )
     return parts
 
