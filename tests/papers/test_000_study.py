@@ -203,3 +203,18 @@ def test_c000_3_own_covariance_reading_is_the_ratio_of_the_filters_steady_d11():
     d1 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
     d2 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
     assert got.value == pytest.approx(d1.mean() / d2.mean())
+
+
+def test_the_drifting_background_scales_only_the_background_part_of_the_noise_intensity():
+    scan = study.scan_at_snr(20.0, 0.5, 0.05)
+    pulse = np.zeros((4000, 200))  # no pulse: the noise is the background's alone
+    xi = np.random.default_rng(0).standard_normal(pulse.shape)
+    cfg = {**DEFAULT, "background": "drifting +-50 %"}
+    y = study._samples(cfg, 7, scan, pulse, xi)[:, 1:]
+    ratio = (y / study.samples_from_pulse(scan, pulse, xi)[:, 1:]) ** 2  # b(t) per run and sample
+    assert ratio.min() >= 0.5 - 1e-9 and ratio.max() <= 1.5 + 1e-9 and ratio.mean() == pytest.approx(1.0, abs=0.02)
+    full = study.scan_at_snr(20.0, 0.5, 0.05)
+    peak = study._samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
+    assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
+    base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
+    assert drift["C000-1"] == base["C000-1"] and drift["C000-5"]["P=0.9"].value != base["C000-5"]["P=0.9"].value

@@ -41,6 +41,15 @@ REGISTER = Register(
             why="eq. (1) models the shot noise as white Gaussian; it is the count statistics of photo-electrons, skewed "
             "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)",
         ),
+        Entry(
+            "background",
+            "regime",
+            "stationary",
+            ("stationary", "drifting +-50 %"),
+            origin="adversarial",
+            why="eq. (2) holds the background intensity N0 constant; a real background (sky, scattered light) drifts: "
+            "N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), unknown to the filters, a random phase per run",
+        ),
         # ---- readings of the paper's ambiguous or inconsistent sentences
         Entry(
             "sigma_sh",
@@ -188,7 +197,7 @@ DEPENDS = {
     "C000-3": _DATA
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
     + ["C000-3 accuracy"],
-    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1"],
+    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background"],
     "C000-6": _DATA
     + [
         "G22",
@@ -200,7 +209,7 @@ DEPENDS = {
         "contrast convention",
         "statistic",
     ],
-    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1"],
+    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background"],
     "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
     "C000-9": _DATA + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1"],
 }

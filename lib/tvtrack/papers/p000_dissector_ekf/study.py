@@ -57,7 +57,10 @@ MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
 ADVERSARIAL_READS = {
     "sigma_1": ("0.1 T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
+    "background": ("stationary", ("C000-5", "C000-7")),
 }
+#: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
+BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
 #: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
 #: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
@@ -181,7 +184,17 @@ def _samples(cfg, seed, scan, pulse, xi):
     there is a signal current to count, P > 0)."""
     if cfg["photon model"] == "Poisson counts" and scan.contrast > 0:
         return counts_from_pulse(scan, pulse, np.random.default_rng([seed, 31]))[0]
-    return samples_from_pulse(scan, pulse, xi)
+    y = samples_from_pulse(scan, pulse, xi)
+    if cfg.get("background", "stationary") != "stationary":  # a slowly drifting background the filters do not model
+        n, k = pulse.shape
+        phase = np.random.default_rng([seed, 41]).uniform(0.0, 2 * np.pi, (n, 1))
+        t = (np.arange(1, k + 1) - 0.5) * scan.dt
+        b = 1.0 + BACKGROUND_DRIFT * np.sin(2 * np.pi * t / BACKGROUND_PERIOD_T + phase)
+        mean = scan.amplitude * pulse
+        y[:, 1:] = mean + (y[:, 1:] - mean) * np.sqrt(
+            (b + scan.signal_noise_ratio * pulse) / (1 + scan.signal_noise_ratio * pulse)
+        )
+    return y
 
 
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
@@ -195,12 +208,12 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
     squared error; ``curve`` and ``d_curve`` (n_steps + 1,) the ensemble mean squared error and mean D11 (T^2)
     """
     reads = {
-        "v1": ("sigma_sh", "G22", "photon model"),
-        "v2": ("sigma_sh", "v2 noise at", "photon model"),
-        "ignoring": ("sigma_sh", "photon model"),
-        "stationary": ("sigma_sh",),
+        "v1": ("sigma_sh", "G22", "photon model", "background"),
+        "v2": ("sigma_sh", "v2 noise at", "photon model", "background"),
+        "ignoring": ("sigma_sh", "photon model", "background"),
+        "stationary": ("sigma_sh", "background"),
     }[filt]
-    key = ("err", _data_key(cfg), tuple(cfg[r] for r in reads), seed, sizes, psi, contrast, filt, offset, init)
+    key = ("err", _data_key(cfg), tuple(cfg.get(r) for r in reads), seed, sizes, psi, contrast, filt, offset, init)
 
     def compute():
         x, pulse, xi, draws_init = _path(cfg, seed, sizes, offset)
@@ -350,7 +363,9 @@ def _c6(cfg, seed, sizes):
         mean = grid_filter(scan, message, 0.5, sizes.grid_points).run(y, 0.0, message.sigma**2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
 
-    g = _memo(("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], seed, sizes, psi), grid)
+    g = _memo(
+        ("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], cfg.get("background"), seed, sizes, psi), grid
+    )
     return _ratio(a[:m], g, cfg["statistic"])
 
 
