@@ -187,8 +187,8 @@ def test_sigma_1_changes_the_truth_and_the_filters_only_for_the_claims_that_read
     # the message's stationary spread reaches the truth: a wider message gives a larger steady error at psi_A = 5
     assert spread["C000-9"]["variant 2"][0].value > 1.5 * base["C000-9"]["variant 2"][0].value
     # claims that do not read sigma_1 are measured at its default (the same memoised runs, the same numbers)
-    assert "sigma_1" not in DEPENDS["C000-1"] and "sigma_1" in DEPENDS["C000-9"]
-    assert spread["C000-1"] == base["C000-1"] and spread["C000-6"] == base["C000-6"]
+    assert "sigma_1" not in DEPENDS["C000-6"] and "sigma_1" in DEPENDS["C000-9"]
+    assert spread["C000-6"] == base["C000-6"] and spread["C000-8"] == base["C000-8"]
 
 
 def test_c000_9_reads_the_statistic_median_of_runs():
@@ -218,3 +218,10 @@ def test_the_drifting_background_scales_only_the_background_part_of_the_noise_in
     assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
     base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
     assert drift["C000-1"] == base["C000-1"] and drift["C000-5"]["P=0.9"].value != base["C000-5"]["P=0.9"].value
+
+
+def test_a_stricter_lock_threshold_acquires_no_earlier():
+    run = study._errors(DEFAULT, 3, SMALL, DEFAULT["psi_A"], DEFAULT["contrast"], "v2")
+    loose = study._acquired_at(DEFAULT, 3, SMALL, "v2", run)
+    strict = study._acquired_at({**DEFAULT, "lock threshold": "2 x steady RMS"}, 3, SMALL, "v2", run)
+    assert np.all(strict >= loose) and np.any(strict > loose)

@@ -101,6 +101,15 @@ REGISTER = Register(
             "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
         ),
         Entry(
+            "lock threshold",
+            "reading",
+            "lock_factor",
+            ("lock_factor", "2 x steady RMS"),
+            origin="adversarial",
+            why="'in lock' is not the paper's word: a scan's RMS error above the notebook's lock_factor (5) x the steady "
+            "RMS error, or a strict 2 x (a scan's error at twice its steady value counts as not yet acquired)",
+        ),
+        Entry(
             "C000-6 filter",
             "reading",
             "variant 2",
@@ -192,7 +201,8 @@ _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).
 DEPENDS = {
     "C000-1": _DATA
-    + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"],
+    + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
+    + ["sigma_1", "lock threshold"],
     "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1"],
     "C000-3": _DATA
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]

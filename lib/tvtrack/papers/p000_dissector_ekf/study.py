@@ -55,7 +55,8 @@ MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
 #: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
 #: (so those reuse the default's memoised runs).
 ADVERSARIAL_READS = {
-    "sigma_1": ("0.1 T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "sigma_1": ("0.1 T", ("C000-1", "C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "lock threshold": ("lock_factor", ("C000-1",)),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
 }
@@ -287,7 +288,8 @@ def _acquired_at(cfg, seed, sizes, filt, run):
     """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
     square of the same filter from the paper's start."""
     ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
-    return acquisition_times_from_scans(run["scans"], sizes.lock_factor**2 * ref, sizes.steps_per_scan * sizes.dt)
+    factor = 2.0 if cfg.get("lock threshold", "lock_factor") == "2 x steady RMS" else sizes.lock_factor
+    return acquisition_times_from_scans(run["scans"], factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
 
 def _c2(cfg, seed, sizes):
