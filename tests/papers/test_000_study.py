@@ -225,3 +225,15 @@ def test_a_stricter_lock_threshold_acquires_no_earlier():
     loose = study._acquired_at(DEFAULT, 3, SMALL, "v2", run)
     strict = study._acquired_at({**DEFAULT, "lock threshold": "2 x steady RMS"}, 3, SMALL, "v2", run)
     assert np.all(strict >= loose) and np.any(strict > loose)
+
+
+@pytest.mark.parametrize("sample_model", ["integrated", "point"])
+def test_a_manoeuvre_adds_exactly_its_motion_to_the_truth_and_moves_the_pulse(sample_model):
+    scan = study.scan_at_snr(1.0, 0.0, 0.05)
+    noises = study.draw_noises(np.random.default_rng(2), 5, 40, 2)
+    x0, p0 = study.truth_and_pulse(scan, study.MESSAGE, noises, sample_model, "interval_end")
+    drift = study._drift({**DEFAULT, "manoeuvre": "weave 0.1 T / 2 T"}, 3, 5)
+    x1, p1 = study.truth_and_pulse(scan, study.MESSAGE, noises, sample_model, "interval_end", drift)
+    np.testing.assert_allclose(x1 - x0, drift(np.arange(41) * 0.05) * np.ones((5, 1)), atol=1e-12)
+    assert not np.allclose(p0, p1)
+    assert study._drift(DEFAULT, 3, 5) is None

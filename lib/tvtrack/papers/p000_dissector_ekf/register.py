@@ -42,6 +42,15 @@ REGISTER = Register(
             "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)",
         ),
         Entry(
+            "manoeuvre",
+            "regime",
+            "none",
+            ("none", "weave 0.1 T / 5 T", "weave 0.1 T / 2 T"),
+            origin="adversarial",
+            why="the filters assume a Gauss-Markov message; a real object also manoeuvres: a weave of amplitude sigma_1 "
+            "(0.1 T) over 5 scans, or over 2 (still sampled by the once-per-scan pulse), random phase per run",
+        ),
+        Entry(
             "background",
             "regime",
             "stationary",
@@ -203,10 +212,10 @@ DEPENDS = {
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
     + ["sigma_1", "lock threshold"],
-    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1"],
+    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1", "manoeuvre"],
     "C000-3": _DATA
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
-    + ["C000-3 accuracy"],
+    + ["C000-3 accuracy", "manoeuvre"],
     "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background"],
     "C000-6": _DATA
     + [

@@ -59,7 +59,10 @@ ADVERSARIAL_READS = {
     "lock threshold": ("lock_factor", ("C000-1",)),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
+    "manoeuvre": ("none", ("C000-2", "C000-3")),
 }
+#: The "manoeuvre" regime: a weave of amplitude 0.1 T (= sigma_1) and this period (T), a random phase per run.
+WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
 #: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
 BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
@@ -151,7 +154,16 @@ def _message(cfg) -> GaussMarkovMessage:
 
 
 def _data_key(cfg):
-    return (cfg["sample model"], cfg["scoring time"], cfg.get("sigma_1", "0.1 T"))
+    return (cfg["sample model"], cfg["scoring time"], cfg.get("sigma_1", "0.1 T"), cfg.get("manoeuvre", "none"))
+
+
+def _drift(cfg, seed, n_trials):
+    """The configuration's manoeuvre as a callable of times (T) for :func:`.model.truth_and_pulse`, or None."""
+    period = WEAVES[cfg.get("manoeuvre", "none")]
+    if period is None:
+        return None
+    phase = np.random.default_rng([seed, 57]).uniform(0.0, 2 * np.pi, (n_trials, 1))
+    return lambda t: 0.1 * np.sin(2 * np.pi * t / period + phase)
 
 
 def _path(cfg, seed, sizes, offset=None):
@@ -169,7 +181,8 @@ def _path(cfg, seed, sizes, offset=None):
             noises = {**noises, "x0": np.full_like(noises["x0"], offset / _message(cfg).sigma)}
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
-        x, pulse = truth_and_pulse(geometry, _message(cfg), noises, cfg["sample model"], score)
+        drift = _drift(cfg, seed, sizes.n_trials)
+        x, pulse = truth_and_pulse(geometry, _message(cfg), noises, cfg["sample model"], score, drift)
         return x, pulse, noises["xi"], noises["init"]
 
     return _memo(("path", _data_key(cfg), seed, sizes, offset), compute)
