@@ -237,3 +237,15 @@ def test_a_manoeuvre_adds_exactly_its_motion_to_the_truth_and_moves_the_pulse(sa
     np.testing.assert_allclose(x1 - x0, drift(np.arange(41) * 0.05) * np.ones((5, 1)), atol=1e-12)
     assert not np.allclose(p0, p1)
     assert study._drift(DEFAULT, 3, 5) is None
+
+
+def test_the_steady_window_after_the_transient_is_the_final_window_of_the_same_length():
+    after = {**DEFAULT, "steady window": "after 5 T"}
+    same = SMALL  # duration 8 T, window 3 T: the last 3 T are the samples after 5 T
+    np.testing.assert_array_equal(
+        study.steady_runs(after, 3, same, 20.0, 0.5, "v2"), study.steady_runs(DEFAULT, 3, same, 20.0, 0.5, "v2")
+    )
+    short = study.Sizes(**{**SMALL.__dict__, "window_T": 1.0})
+    assert not np.allclose(
+        study.steady_runs(after, 3, short, 20.0, 0.5, "v2"), study.steady_runs(DEFAULT, 3, short, 20.0, 0.5, "v2")
+    )

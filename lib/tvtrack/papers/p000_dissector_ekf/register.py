@@ -197,6 +197,15 @@ REGISTER = Register(
         ),
         # ---- statistics
         Entry(
+            "steady window",
+            "scale",
+            "window_T",
+            ("window_T", "after 5 T"),
+            origin="adversarial",
+            why="Fig. 2's steady sigma_x^2 is read over an unstated window: the notebook's final window_T, or every "
+            "sample after the 5 T transient (more samples, closer to the transient)",
+        ),
+        Entry(
             "statistic",
             "statistic",
             "mean",
@@ -213,11 +222,12 @@ DEPENDS = {
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
     + ["sigma_1", "lock threshold"],
-    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1", "manoeuvre"],
+    "C000-2": _DATA + ["G22", "v2 noise at", "micro-raster size", "sigma_1", "manoeuvre", "steady window"],
     "C000-3": _DATA
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
-    + ["C000-3 accuracy", "manoeuvre"],
-    "C000-5": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background"],
+    + ["C000-3 accuracy", "manoeuvre", "steady window"],
+    "C000-5": _DATA
+    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"],
     "C000-6": _DATA
     + [
         "G22",
@@ -229,7 +239,8 @@ DEPENDS = {
         "contrast convention",
         "statistic",
     ],
-    "C000-7": _DATA + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background"],
+    "C000-7": _DATA
+    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"],
     "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
-    "C000-9": _DATA + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1"],
+    "C000-9": _DATA + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1", "steady window"],
 }

@@ -60,7 +60,10 @@ ADVERSARIAL_READS = {
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
     "manoeuvre": ("none", ("C000-2", "C000-3")),
+    "steady window": ("window_T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
 }
+#: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
+STEADY_AFTER_T = 5.0
 #: The "manoeuvre" regime: a weave of amplitude 0.1 T (= sigma_1) and this period (T), a random phase per run.
 WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
 #: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
@@ -251,12 +254,16 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
             "d_steady": d[:, sizes.window()].mean(axis=1),
+            "steady_after": sq[:, np.arange(sq.shape[1]) * sizes.dt > STEADY_AFTER_T].mean(axis=1),
             "scans": scan_averages(sq, sizes.steps_per_scan),
             "curve": sq.mean(axis=0),
             "d_curve": d.mean(axis=0),
         }
 
-    return _memo(key, compute)
+    out = _memo(key, compute)
+    if cfg.get("steady window", "window_T") != "window_T":  # the whole run after the transient
+        out = {**out, "steady": out["steady_after"]}
+    return out
 
 
 def steady_runs(cfg, seed, sizes, psi, contrast, filt):
