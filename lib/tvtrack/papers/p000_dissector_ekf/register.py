@@ -227,7 +227,8 @@ DEPENDS = {
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
     + ["C000-3 accuracy", "manoeuvre", "steady window"],
     "C000-5": _DATA
-    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"],
+    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"]
+    + ["manoeuvre"],
     "C000-6": _DATA
     + [
         "G22",
@@ -240,7 +241,8 @@ DEPENDS = {
         "statistic",
     ],
     "C000-7": _DATA
-    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"],
+    + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"]
+    + ["manoeuvre"],
     "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention"],
     "C000-9": _DATA + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1", "steady window"],
 }

@@ -59,7 +59,7 @@ ADVERSARIAL_READS = {
     "lock threshold": ("lock_factor", ("C000-1",)),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
-    "manoeuvre": ("none", ("C000-2", "C000-3")),
+    "manoeuvre": ("none", ("C000-2", "C000-3", "C000-5", "C000-7")),
     "steady window": ("window_T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
 }
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
