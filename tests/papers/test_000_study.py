@@ -179,3 +179,73 @@ def test_nees_is_near_one_at_the_time_the_model_refers_to_and_grows_when_scored_
     centre, end = nees["interval centre"]["variant 2"], nees["interval end"]["variant 2"]
     assert 0.85 < centre[0].value < 1.2
     assert end[1].value > 1.5 * centre[1].value  # psi_A = 100: the half-interval lag
+
+
+def test_sigma_1_changes_the_truth_and_the_filters_only_for_the_claims_that_read_it():
+    wide = {**DEFAULT, "sigma_1": "0.2 T"}
+    base, spread = study.measure(DEFAULT, 3, SMALL), study.measure(wide, 3, SMALL)
+    # the message's stationary spread reaches the truth: a wider message gives a larger steady error at psi_A = 5
+    assert spread["C000-9"]["variant 2"][0].value > 1.5 * base["C000-9"]["variant 2"][0].value
+    # claims that do not read sigma_1 are measured at its default (the same memoised runs, the same numbers)
+    assert "sigma_1" not in DEPENDS["C000-6"] and "sigma_1" in DEPENDS["C000-9"]
+    assert spread["C000-6"] == base["C000-6"] and spread["C000-8"] == base["C000-8"]
+
+
+def test_c000_9_reads_the_statistic_median_of_runs():
+    med = study.measure({**DEFAULT, "statistic": "median"}, 3, SMALL)["C000-9"]["variant 1"]
+    runs = study.steady_runs(DEFAULT, 3, SMALL, SMALL.psi_grid[0], DEFAULT["contrast"], "v1")
+    assert med[0].value == pytest.approx(np.median(runs))
+
+
+def test_c000_3_own_covariance_reading_is_the_ratio_of_the_filters_steady_d11():
+    got = study.measure({**DEFAULT, "C000-3 accuracy": "filters' own D11"}, 3, SMALL)["C000-3"]["P=0.5"]
+    psi = DEFAULT["psi_A"]
+    d1 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
+    d2 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
+    assert got.value == pytest.approx(d1.mean() / d2.mean())
+
+
+def test_the_drifting_background_scales_only_the_background_part_of_the_noise_intensity():
+    scan = study.scan_at_snr(20.0, 0.5, 0.05)
+    pulse = np.zeros((4000, 200))  # no pulse: the noise is the background's alone
+    xi = np.random.default_rng(0).standard_normal(pulse.shape)
+    cfg = {**DEFAULT, "background": "drifting +-50 %"}
+    y = study._samples(cfg, 7, scan, pulse, xi)[:, 1:]
+    ratio = (y / study.samples_from_pulse(scan, pulse, xi)[:, 1:]) ** 2  # b(t) per run and sample
+    assert ratio.min() >= 0.5 - 1e-9 and ratio.max() <= 1.5 + 1e-9 and ratio.mean() == pytest.approx(1.0, abs=0.02)
+    full = study.scan_at_snr(20.0, 0.5, 0.05)
+    peak = study._samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
+    assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
+    base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
+    assert drift["C000-1"] == base["C000-1"] and drift["C000-5"]["P=0.9"].value != base["C000-5"]["P=0.9"].value
+
+
+def test_a_stricter_lock_threshold_acquires_no_earlier():
+    run = study._errors(DEFAULT, 3, SMALL, DEFAULT["psi_A"], DEFAULT["contrast"], "v2")
+    loose = study._acquired_at(DEFAULT, 3, SMALL, "v2", run)
+    strict = study._acquired_at({**DEFAULT, "lock threshold": "2 x steady RMS"}, 3, SMALL, "v2", run)
+    assert np.all(strict >= loose) and np.any(strict > loose)
+
+
+@pytest.mark.parametrize("sample_model", ["integrated", "point"])
+def test_a_manoeuvre_adds_exactly_its_motion_to_the_truth_and_moves_the_pulse(sample_model):
+    scan = study.scan_at_snr(1.0, 0.0, 0.05)
+    noises = study.draw_noises(np.random.default_rng(2), 5, 40, 2)
+    x0, p0 = study.truth_and_pulse(scan, study.MESSAGE, noises, sample_model, "interval_end")
+    drift = study._drift({**DEFAULT, "manoeuvre": "weave 0.1 T / 2 T"}, 3, 5)
+    x1, p1 = study.truth_and_pulse(scan, study.MESSAGE, noises, sample_model, "interval_end", drift)
+    np.testing.assert_allclose(x1 - x0, drift(np.arange(41) * 0.05) * np.ones((5, 1)), atol=1e-12)
+    assert not np.allclose(p0, p1)
+    assert study._drift(DEFAULT, 3, 5) is None
+
+
+def test_the_steady_window_after_the_transient_is_the_final_window_of_the_same_length():
+    after = {**DEFAULT, "steady window": "after 5 T"}
+    same = SMALL  # duration 8 T, window 3 T: the last 3 T are the samples after 5 T
+    np.testing.assert_array_equal(
+        study.steady_runs(after, 3, same, 20.0, 0.5, "v2"), study.steady_runs(DEFAULT, 3, same, 20.0, 0.5, "v2")
+    )
+    short = study.Sizes(**{**SMALL.__dict__, "window_T": 1.0})
+    assert not np.allclose(
+        study.steady_runs(after, 3, short, 20.0, 0.5, "v2"), study.steady_runs(DEFAULT, 3, short, 20.0, 0.5, "v2")
+    )

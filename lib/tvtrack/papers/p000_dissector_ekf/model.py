@@ -275,7 +275,7 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     return x, y
 
 
-def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str):
+def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str, drift=None):
     """The message on half sub-steps and each sample's pulse and noise intensity averaged over its interval.
 
     Returns ``x`` (n_trials, n_steps + 1): ``x(0)`` then the message at the centre ``(k - 1/2) dt`` or the end
@@ -297,6 +297,8 @@ def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: d
     x_half[:, 0] = message.sigma * noises["x0"]
     for i in range(w.shape[1]):
         x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
+    if drift is not None:  # a motion outside the message model, added to the truth (times i dt / (2 m))
+        x_half = x_half + drift(np.arange(x_half.shape[1]) * 0.5 * scan.dt / m)
     x_mid = x_half[:, 1::2]  # sub-interval centres
     t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
     u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
@@ -315,6 +317,7 @@ def truth_and_pulse(
     noises: dict,
     sample_model: str = "integrated",
     score_at: str = "interval_centre",
+    drift=None,
 ):
     """The truth and the mean pulse ``S`` each sample sees, under either sample model (common draws ``noises``).
 
@@ -326,12 +329,17 @@ def truth_and_pulse(
     -------
     x : ndarray, shape (n_trials, n_steps + 1)     truth (column 0: ``X1(0)``)
     pulse : ndarray, shape (n_trials, n_steps)     mean normalised pulse of samples ``k = 1..n_steps``
+
+    ``drift``: optional callable of times ``t`` (T, shape (K,)) returning a motion (T, broadcastable to
+    (n_trials, K)) added to the message: a target that moves outside the filters' model.
     """
     _check_choice("sample_model", sample_model, SAMPLE_MODELS)
     if sample_model == "integrated":
-        x, pulse, _ = _integrated_path(scan, message, noises, score_at)
+        x, pulse, _ = _integrated_path(scan, message, noises, score_at, drift)
         return x, pulse
     x, _ = simulate(scan, message, {**noises, "xi": np.zeros_like(noises["xi"])})
+    if drift is not None:
+        x = x + drift(np.arange(x.shape[1]) * scan.dt)
     return x, scan.shape(x[:, 1:], np.arange(1, x.shape[1]))
 
 

@@ -49,6 +49,25 @@ __all__ = [
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
 MESSAGE = GaussMarkovMessage(0.1, 0.15)
+#: The register's "sigma_1" operating point: the paper's "typical" sigma_1 = 0.1 T, or an image spread over the
+#: micro-raster (sigma_1 = 0.2 T: within +-T/2 of the centre 98 % of the time), alpha_0 T = 0.15 in both.
+MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
+#: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
+#: (so those reuse the default's memoised runs).
+ADVERSARIAL_READS = {
+    "sigma_1": ("0.1 T", ("C000-1", "C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "lock threshold": ("lock_factor", ("C000-1",)),
+    "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
+    "background": ("stationary", ("C000-5", "C000-7")),
+    "manoeuvre": ("none", ("C000-2", "C000-3", "C000-5", "C000-7")),
+    "steady window": ("window_T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+}
+#: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
+STEADY_AFTER_T = 5.0
+#: The "manoeuvre" regime: a weave of amplitude 0.1 T (= sigma_1) and this period (T), a random phase per run.
+WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
+#: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
+BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
 #: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
 #: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
@@ -132,8 +151,22 @@ def psi_at(psi_anchor: float, contrast: float, convention: str) -> float:
     return float(psi_anchor * g(contrast) / g(0.5))
 
 
+def _message(cfg) -> GaussMarkovMessage:
+    """The message (eqs. (3), (4)) of the configuration's "sigma_1" operating point (the paper's by default)."""
+    return MESSAGES[cfg.get("sigma_1", "0.1 T")]
+
+
 def _data_key(cfg):
-    return (cfg["sample model"], cfg["scoring time"])
+    return (cfg["sample model"], cfg["scoring time"], cfg.get("sigma_1", "0.1 T"), cfg.get("manoeuvre", "none"))
+
+
+def _drift(cfg, seed, n_trials):
+    """The configuration's manoeuvre as a callable of times (T) for :func:`.model.truth_and_pulse`, or None."""
+    period = WEAVES[cfg.get("manoeuvre", "none")]
+    if period is None:
+        return None
+    phase = np.random.default_rng([seed, 57]).uniform(0.0, 2 * np.pi, (n_trials, 1))
+    return lambda t: 0.1 * np.sin(2 * np.pi * t / period + phase)
 
 
 def _path(cfg, seed, sizes, offset=None):
@@ -146,12 +179,13 @@ def _path(cfg, seed, sizes, offset=None):
     def compute():
         noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
         if offset == "uniform":
-            noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / MESSAGE.sigma}
+            noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / _message(cfg).sigma}
         elif offset is not None:  # truth starts at a fixed offset
-            noises = {**noises, "x0": np.full_like(noises["x0"], offset / MESSAGE.sigma)}
+            noises = {**noises, "x0": np.full_like(noises["x0"], offset / _message(cfg).sigma)}
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
-        x, pulse = truth_and_pulse(geometry, MESSAGE, noises, cfg["sample model"], score)
+        drift = _drift(cfg, seed, sizes.n_trials)
+        x, pulse = truth_and_pulse(geometry, _message(cfg), noises, cfg["sample model"], score, drift)
         return x, pulse, noises["xi"], noises["init"]
 
     return _memo(("path", _data_key(cfg), seed, sizes, offset), compute)
@@ -167,7 +201,17 @@ def _samples(cfg, seed, scan, pulse, xi):
     there is a signal current to count, P > 0)."""
     if cfg["photon model"] == "Poisson counts" and scan.contrast > 0:
         return counts_from_pulse(scan, pulse, np.random.default_rng([seed, 31]))[0]
-    return samples_from_pulse(scan, pulse, xi)
+    y = samples_from_pulse(scan, pulse, xi)
+    if cfg.get("background", "stationary") != "stationary":  # a slowly drifting background the filters do not model
+        n, k = pulse.shape
+        phase = np.random.default_rng([seed, 41]).uniform(0.0, 2 * np.pi, (n, 1))
+        t = (np.arange(1, k + 1) - 0.5) * scan.dt
+        b = 1.0 + BACKGROUND_DRIFT * np.sin(2 * np.pi * t / BACKGROUND_PERIOD_T + phase)
+        mean = scan.amplitude * pulse
+        y[:, 1:] = mean + (y[:, 1:] - mean) * np.sqrt(
+            (b + scan.signal_noise_ratio * pulse) / (1 + scan.signal_noise_ratio * pulse)
+        )
+    return y
 
 
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
@@ -181,12 +225,12 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
     squared error; ``curve`` and ``d_curve`` (n_steps + 1,) the ensemble mean squared error and mean D11 (T^2)
     """
     reads = {
-        "v1": ("sigma_sh", "G22", "photon model"),
-        "v2": ("sigma_sh", "v2 noise at", "photon model"),
-        "ignoring": ("sigma_sh", "photon model"),
-        "stationary": ("sigma_sh",),
+        "v1": ("sigma_sh", "G22", "photon model", "background"),
+        "v2": ("sigma_sh", "v2 noise at", "photon model", "background"),
+        "ignoring": ("sigma_sh", "photon model", "background"),
+        "stationary": ("sigma_sh", "background"),
     }[filt]
-    key = ("err", _data_key(cfg), tuple(cfg[r] for r in reads), seed, sizes, psi, contrast, filt, offset, init)
+    key = ("err", _data_key(cfg), tuple(cfg.get(r) for r in reads), seed, sizes, psi, contrast, filt, offset, init)
 
     def compute():
         x, pulse, xi, draws_init = _path(cfg, seed, sizes, offset)
@@ -199,22 +243,27 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 if random_init
                 else None
             )
-            f = variant1_filter(scan, MESSAGE, BETA_0, "consistent", cfg["G22"])
+            f = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"])
             e, d = run_variant1(f, y, (D11_0, D22_0), start)
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
-            e, d = run_variant2(variant2_filter(scan, MESSAGE, assumed, iterations), y, D11_0, start)
+            e, d = run_variant2(variant2_filter(scan, _message(cfg), assumed, iterations), y, D11_0, start)
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
+            "d_steady": d[:, sizes.window()].mean(axis=1),
+            "steady_after": sq[:, np.arange(sq.shape[1]) * sizes.dt > STEADY_AFTER_T].mean(axis=1),
             "scans": scan_averages(sq, sizes.steps_per_scan),
             "curve": sq.mean(axis=0),
             "d_curve": d.mean(axis=0),
         }
 
-    return _memo(key, compute)
+    out = _memo(key, compute)
+    if cfg.get("steady window", "window_T") != "window_T":  # the whole run after the transient
+        out = {**out, "steady": out["steady_after"]}
+    return out
 
 
 def steady_runs(cfg, seed, sizes, psi, contrast, filt):
@@ -259,7 +308,8 @@ def _acquired_at(cfg, seed, sizes, filt, run):
     """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
     square of the same filter from the paper's start."""
     ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
-    return acquisition_times_from_scans(run["scans"], sizes.lock_factor**2 * ref, sizes.steps_per_scan * sizes.dt)
+    factor = 2.0 if cfg.get("lock threshold", "lock_factor") == "2 x steady RMS" else sizes.lock_factor
+    return acquisition_times_from_scans(run["scans"], factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
 
 def _c2(cfg, seed, sizes):
@@ -276,17 +326,18 @@ def _c2(cfg, seed, sizes):
 
 def _c3(cfg, seed, sizes):
     """C000-3: v1 / v2 steady variance over the Fig. 3 contrasts (at psi_A) and the Fig. 2 SNRs (at P)."""
+    field = "d_steady" if cfg.get("C000-3 accuracy", "Monte Carlo error") == "filters' own D11" else "steady"
+
+    def runs(psi, p, filt):
+        return _errors(cfg, seed, sizes, psi, p, filt)[field]
+
     parts = {}
     for p in sizes.contrast_grid:
         psi = psi_at(cfg["psi_A"], p, cfg["contrast convention"])
-        parts[f"P={p:g}"] = _ratio(
-            steady_runs(cfg, seed, sizes, psi, p, "v1"), steady_runs(cfg, seed, sizes, psi, p, "v2"), cfg["statistic"]
-        )
+        parts[f"P={p:g}"] = _ratio(runs(psi, p, "v1"), runs(psi, p, "v2"), cfg["statistic"])
     for psi in sizes.psi_grid:
         parts[f"psi_A={psi:g}"] = _ratio(
-            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v1"),
-            steady_runs(cfg, seed, sizes, psi, cfg["contrast"], "v2"),
-            cfg["statistic"],
+            runs(psi, cfg["contrast"], "v1"), runs(psi, cfg["contrast"], "v2"), cfg["statistic"]
         )
     return parts
 
@@ -313,7 +364,7 @@ def _c6(cfg, seed, sizes):
     if reference == "sigma_x^2*":
         return _ratio(a, steady_runs(cfg, seed, sizes, psi, 0.9, "stationary"), cfg["statistic"])
     if reference == "PCRLB":
-        bound = float(pcrlb_variance(_scan(cfg, psi, 0.9, sizes), MESSAGE, sizes.n_steps)[sizes.window()].mean())
+        bound = float(pcrlb_variance(_scan(cfg, psi, 0.9, sizes), _message(cfg), sizes.n_steps)[sizes.window()].mean())
         e = mean_square_ci(a) if cfg["statistic"] == "mean" else quantile_ci(a, 0.5)
         return Estimate(
             e.value / bound,
@@ -330,10 +381,13 @@ def _c6(cfg, seed, sizes):
         x, pulse, xi, _ = _path(cfg, seed, sizes)
         scan = _scan(cfg, psi, 0.9, sizes)
         y = _samples(cfg, seed, scan, pulse, xi)[:m]
-        mean = grid_filter(scan, MESSAGE, 0.5, sizes.grid_points).run(y, 0.0, MESSAGE.sigma**2).mean
+        message = _message(cfg)
+        mean = grid_filter(scan, message, 0.5, sizes.grid_points).run(y, 0.0, message.sigma**2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
 
-    g = _memo(("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], seed, sizes, psi), grid)
+    g = _memo(
+        ("grid", _data_key(cfg), cfg["sigma_sh"], cfg["photon model"], cfg.get("background"), seed, sizes, psi), grid
+    )
     return _ratio(a[:m], g, cfg["statistic"])
 
 
@@ -348,14 +402,17 @@ def _c8(cfg, seed, sizes):
     reads = {"v1": (cfg["G22"],), "v2": (iterations,)}
     for psi, p in sizes.dt_points:
         psi_p = psi_at(psi, p, cfg["contrast convention"]) if p else psi
-        keys = {name: ("dt", cfg["sigma_sh"], seed, sizes, psi_p, p, name, reads[name]) for name in ("v1", "v2")}
+        keys = {
+            name: ("dt", cfg["sigma_sh"], cfg.get("sigma_1", "0.1 T"), seed, sizes, psi_p, p, name, reads[name])
+            for name in ("v1", "v2")
+        }
         got = {name: _MEMO[key] for name, key in keys.items() if key in _MEMO}
         missing = [name for name in keys if name not in got]
         if missing:
             scan = _scan(cfg, psi_p, p, sizes)
             d = simulate_two_rates(
                 scan,
-                MESSAGE,
+                _message(cfg),
                 sizes.dt_factor,
                 np.random.default_rng([seed, 8]),
                 sizes.dt_trials,
@@ -368,8 +425,8 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y, name=name):
                     if name == "v1":
-                        return run_variant1(variant1_filter(s, MESSAGE, BETA_0, "consistent", cfg["G22"]), y)[0]
-                    return run_variant2(variant2_filter(s, MESSAGE, None, iterations), y)[0]
+                        return run_variant1(variant1_filter(s, _message(cfg), BETA_0, "consistent", cfg["G22"]), y)[0]
+                    return run_variant2(variant2_filter(s, _message(cfg), None, iterations), y)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
@@ -386,10 +443,10 @@ def _c8(cfg, seed, sizes):
 
 
 def _c9(cfg, seed, sizes):
+    """C000-9: steady sigma_x^2 over the Fig. 2 SNRs per variant (the ensemble mean, or the median run)."""
+    stat = mean_square_ci if cfg["statistic"] == "mean" else (lambda a: quantile_ci(a, 0.5))
     return {
-        f"variant {f[1]}": [
-            mean_square_ci(steady_runs(cfg, seed, sizes, psi, cfg["contrast"], f)) for psi in sizes.psi_grid
-        ]
+        f"variant {f[1]}": [stat(steady_runs(cfg, seed, sizes, psi, cfg["contrast"], f)) for psi in sizes.psi_grid]
         for f in ("v1", "v2")
     }
 
@@ -402,16 +459,20 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     dict  {claim id: measured}: C000-1, -2, -3, -5, -6, -7, -8, -9 (each a dict of parts, an Estimate or a
     list of Estimates, as the claim's rule in the notebook reads it)
     """
-    c5, c7 = _c5_c7(config, seed, sizes)
+
+    def reads(claim):  # the configuration with the adversarial entries the claim does not read at their default
+        return {**config, **{k: d for k, (d, claims) in ADVERSARIAL_READS.items() if claim not in claims}}
+
+    c5, c7 = _c5_c7(reads("C000-5"), seed, sizes)
     return {
-        "C000-1": _c1(config, seed, sizes),
-        "C000-2": _c2(config, seed, sizes),
-        "C000-3": _c3(config, seed, sizes),
+        "C000-1": _c1(reads("C000-1"), seed, sizes),
+        "C000-2": _c2(reads("C000-2"), seed, sizes),
+        "C000-3": _c3(reads("C000-3"), seed, sizes),
         "C000-5": c5,
-        "C000-6": _c6(config, seed, sizes),
+        "C000-6": _c6(reads("C000-6"), seed, sizes),
         "C000-7": c7,
-        "C000-8": _c8(config, seed, sizes),
-        "C000-9": _c9(config, seed, sizes),
+        "C000-8": _c8(reads("C000-8"), seed, sizes),
+        "C000-9": _c9(reads("C000-9"), seed, sizes),
     }
 
 
@@ -425,7 +486,8 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
             out[f"{filt}, {init}"] = run["curve"]
             if init == "process means":
                 out[f"{filt} own D11"] = run["d_curve"]
-    out["PCRLB"] = pcrlb_variance(_scan(config, config["psi_A"], config["contrast"], sizes), MESSAGE, sizes.n_steps)
+    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
+    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps)
     return out
 
 
@@ -497,10 +559,10 @@ def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
                 scan = _scan(cfg, psi, cfg["contrast"], sizes)
                 y = _samples(cfg, seed, scan, pulse, xi)
                 if name == "v1":
-                    filt, d0 = variant1_filter(scan, MESSAGE, BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
+                    filt, d0 = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
                 else:
                     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-                    filt, d0 = variant2_filter(scan, MESSAGE, None, iterations), D11_0
+                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations), D11_0
                 nees, _ = consistency(filt, y, x, d0, sizes.window())
                 ests.append(mean_square_ci(nees))
             out[scoring][f"variant {name[1]}"] = ests
