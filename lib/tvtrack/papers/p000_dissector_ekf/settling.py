@@ -9,7 +9,6 @@ error first comes within a tolerance of that steady value. Errors come in arrays
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
 
 from ...montecarlo import Estimate, bootstrap_ci
 
@@ -92,7 +91,7 @@ def settle_time_ci(
 ) -> Estimate:
     """Settling time (:func:`settle_time`) with a percentile bootstrap over trials.
 
-    Trials are resampled with replacement (``scipy.stats.bootstrap``); each resample recomputes the
+    Trials are resampled with replacement (:func:`tvtrack.montecarlo.bootstrap_ci`, percentile); each resample recomputes the
     per-scan ensemble MSE and the steady value from the same trials.
 
     Parameters
@@ -113,26 +112,15 @@ def settle_time_ci(
     scan_duration = steps_per_scan * dt
 
     def statistic(idx, axis=-1):
-        idx = np.atleast_2d(idx)
-        return np.array(
-            [settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance) for i in idx]
-        )
+        idx = np.asarray(idx).astype(int)  # bootstrap_ci hands the trial indices over as floats
+        rows = np.atleast_2d(idx)
+        out = np.array([settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance) for i in rows])
+        return out[0] if idx.ndim == 1 else out
 
     value = float(settle_time(per_scan.mean(axis=0), steady.mean(), scan_duration, tolerance))
-    res = stats.bootstrap(
-        (np.arange(n_trials),),
-        statistic,
-        vectorized=True,
-        n_resamples=n_boot,
-        confidence_level=confidence,
-        method="percentile",
-        rng=rng,
-    )
-    boots = res.bootstrap_distribution
-    spread = float(boots.std()) if np.all(np.isfinite(boots)) else float("nan")
-    return Estimate(
-        value, spread, float(res.confidence_interval.low), float(res.confidence_interval.high), n_trials, confidence
-    )
+    est = bootstrap_ci((np.arange(n_trials),), statistic, n_resamples=n_boot, confidence=confidence, rng=rng,
+                       method="percentile")
+    return Estimate(value, est.stderr, est.ci_low, est.ci_high, n_trials, confidence, est.method)
 
 
 def acquisition_times(sq_error, threshold_ms: float, steps_per_scan: int, dt: float):
