@@ -146,3 +146,22 @@ def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
     assert r["ula_q1"].shape == (TINY.n_iter_trials, 1, 4) and r["ula_w"].shape == r["ula"].shape
     # far apart one track through the pair's centre is a poor model: its centre error is no smaller
     assert wq[4.0].value > 0.5 and all(np.isfinite(e.value) for e in wc.values())
+
+
+def test_trimmed_reading_reruns_nothing_and_ignores_a_few_gross_errors():
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    assert _letters(study.jobs_of({**DEFAULT, "gross errors": study.TRIMMED}, 7, TINY)) == base
+    e = np.random.default_rng(3).standard_normal((400, 2))
+    e[:5] = 1e3                                             # five lost objects
+    assert study.spread_sum(e).value > 1e4
+    trimmed = study.spread_sum(e, "trimmed")
+    assert 1.0 < trimmed.value < 2.0 and trimmed.ci_low <= trimmed.value <= trimmed.ci_high
+    g = study.gain(e * 2.0, e, np.random.default_rng(4), 400, "trimmed")
+    assert g.value == pytest.approx(4.0)
+
+
+def test_photons_of_c002_12_change_only_its_far_apart_points():
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    faint = _letters(study.jobs_of({**DEFAULT, "m_k of C002-12": 10}, 7, TINY))
+    new = {k[0] for k in set(faint) - set(base)}
+    assert new and all(c.d == 8.0 and c.m == 10 and c.pix in (0.5, 1.0) for c in new)

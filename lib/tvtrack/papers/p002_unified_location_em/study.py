@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tvtrack.montecarlo import Estimate, proportion_ci, ratio_ci
-from .simulation import (Config, StudySettings, bootstrap_groups, mse_sum, position_errors, run_config,
+from .simulation import (SPREADS, Config, StudySettings, bootstrap_groups, mse_sum, position_errors, run_config,
                          seed_sequence, variance_ratio_ci, variance_sum)
 
 __all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "measure_batch", "figure_data",
@@ -170,7 +170,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
          "head_known": ({d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)}
                         if config["velocity knowledge"] == "designated" else {}),
          "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
-         "good": {p_: P(2, 8.0, p_, 20, T4, "ue") for p_ in (0.5, 1.0)},
+         "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
          "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in
                sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
     if figures:
@@ -231,13 +231,21 @@ def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
     return position_errors(r, alg, epoch)
 
 
+#: The "gross errors" reading that trims the 10 % largest per-trial squared errors (an adversarial register row).
+TRIMMED = "trimmed 10 %"
+
+
 def spread_sum(e, statistic: str = "variance") -> Estimate:
-    """The summed spread of errors (n, k): variance sum, or MSE sum (both in sigma^2)."""
+    """The summed spread of errors (n, k): variance sum, MSE sum, or (``statistic="trimmed"``) the 10 %-trimmed
+    variance sum with a percentile bootstrap interval (all in sigma^2)."""
+    if statistic == "trimmed":
+        rng = np.random.default_rng(seed_sequence(0, ("trimmed spread",)))
+        return bootstrap_groups([np.asarray(e, float)], SPREADS["trimmed_variance"], rng, 2000)
     return mse_sum(e) if statistic == "MSE" else variance_sum(e)
 
 
 def _spread(statistic: str) -> str:
-    return "mse" if statistic == "MSE" else "variance"
+    return {"MSE": "mse", "trimmed": "trimmed_variance"}.get(statistic, "variance")
 
 
 def gain(num, den, rng, n_bootstrap, statistic="variance", paired=True) -> Estimate:
@@ -252,19 +260,19 @@ def exp_estimate(e: Estimate) -> Estimate:
     return Estimate(v, v * e.stderr, float(np.exp(e.ci_low)), float(np.exp(e.ci_high)), e.n, e.confidence, e.method)
 
 
-def _vsum(e):
-    return e.var(axis=1, ddof=1).sum(axis=-1)
+def _vsum(e, spread: str = "variance"):
+    return e.var(axis=1, ddof=1).sum(axis=-1) if spread == "variance" else SPREADS[spread](e)
 
 
-def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap) -> Estimate:
+def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:
     """exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo`` groups); each group holds the
     paired [num | den] errors of one point side by side (rows resampled jointly, groups independently)."""
     k = len(pairs_hi)
 
     def stat(*g):
         def mlog(h):
-            return np.mean([np.log(_vsum(x[..., :x.shape[-1] // 2]) / _vsum(x[..., x.shape[-1] // 2:])) for x in h],
-                           axis=0)
+            return np.mean([np.log(_vsum(x[..., :x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2:], spread))
+                            for x in h], axis=0)
         return mlog(g[:k]) - mlog(g[k:])
     return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
 
@@ -285,6 +293,9 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     """``{claim id: measured}`` of one configuration (see the notebook for each rule)."""
     rng = np.random.default_rng(seed_sequence(seed, ("bootstrap",)))
     B, ep, st = scale.n_bootstrap, config["epoch"], config["statistic"]
+    if config.get("gross errors", "kept") == TRIMMED:
+        st = "trimmed"
+    sp = "trimmed_variance" if st == "trimmed" else "variance"     # the log-gain parts read variances otherwise
     D = list(scale.separations)
     ula = (lambda c: errors(res[c], "ula", ep))
     out = {"C002-1": [spread_sum(ula(g["1a"][20][d]), st) for d in D]}
@@ -292,13 +303,13 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     def r_m(key, d):
         return ula(g[key][10][d]), ula(g[key][20][d])
     far, near = r_m("1a", 6.0), r_m("1a", 1.0)
-    out["C002-2"] = {"weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B),
+    out["C002-2"] = {"weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B, sp),
                      "far apart": gain(*far, rng, B, st, paired=False)}
     ds3 = (1.0, 2.0, 3.0, 6.0)
     out["C002-3"] = _mean_log_gain([np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3],
-                                   rng, B)
+                                   rng, B, sp)
     loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
-    out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B)
+    out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B, sp)
     d5 = float(config["separation of C002-5 (sigma)"])
     out["C002-5"] = [gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False)
                      for T in (5, 10, 50)]
@@ -309,8 +320,8 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
     def stat6(*gr):
         def mabs(h):
-            return np.mean([np.abs(np.log(_vsum(x[..., :x.shape[-1] // 2]) / _vsum(x[..., x.shape[-1] // 2:])))
-                            for x in h], axis=0)
+            return np.mean([np.abs(np.log(_vsum(x[..., :x.shape[-1] // 2], sp)
+                                                  / _vsum(x[..., x.shape[-1] // 2:], sp))) for x in h], axis=0)
         return mabs(gr[:len(small)]) - mabs(gr[len(small):])
     out["C002-6"] = bootstrap_groups(rt(20) + rt(10), stat6, rng, B)
     T3 = int(config["T of the Fig 3a claims"])
@@ -339,9 +350,9 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
     out["C002-10"] = {"closer": [rho(g["4"][20][d]) for d in D],
                       "coarser pixels": _mean_log_gain([side(g["6"][20][d]) for d in close],
-                                                       [side(g["4"][20][d]) for d in close], rng, B),
+                                                       [side(g["4"][20][d]) for d in close], rng, B, sp),
                       "more frames": _mean_log_gain([side(g["5ab"][50][d]) for d in close],
-                                                    [side(g["5ab"][5][d]) for d in close], rng, B)}
+                                                    [side(g["5ab"][5][d]) for d in close], rng, B, sp)}
 
     def head(d):
         c = g["5ab"][50][d]
@@ -361,7 +372,7 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
     marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
     out["C002-14"] = ratio_ci(ula_work, marks_work)
-    out["C002-15"] = _c15(config, g, res, "first", st)    # the CRB is the initial positions' bound
+    out["C002-15"] = _c15(config, g, res, "first", config["statistic"])   # a trimmed spread is no bound's    # the CRB is the initial positions' bound
     return out
 
 
