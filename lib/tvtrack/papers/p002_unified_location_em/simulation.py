@@ -31,7 +31,7 @@ from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entri
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from scipy import stats
 
-from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, mean_square_ci, proportion_ci
+from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, bootstrap_ci, mean_square_ci, proportion_ci
 from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_times, mixture_weights, scene_batches,
                                           scene_geometry)
 
@@ -529,7 +529,8 @@ def mse_sum(e) -> Estimate:
 
 def bootstrap_groups(groups, statistic, rng: np.random.Generator, n_bootstrap: int = N_BOOTSTRAP,
                      confidence: float = 0.95) -> Estimate:
-    """A statistic of several independent groups of trials with a percentile bootstrap interval.
+    """A statistic of several independent groups of trials with a percentile bootstrap interval
+    (:func:`tvtrack.montecarlo.bootstrap_ci` with trials as clusters of their ``k_g`` values).
 
     The rows (trials) of each group are resampled jointly (a group holds the paired errors of
     several algorithms on the same scenes); different groups (different configurations, drawn
@@ -554,14 +555,18 @@ def bootstrap_groups(groups, statistic, rng: np.random.Generator, n_bootstrap: i
         few trials that repeats one trial has zero variance) are left out.
     """
     groups = [np.asarray(g, dtype=float).reshape(len(g), -1) for g in groups]
-    point = float(np.asarray(statistic(*[g[None] for g in groups])).ravel()[0])
-    with np.errstate(divide="ignore", invalid="ignore"):    # a resample of few trials can repeat one trial
-        boot = np.asarray(statistic(*[g[rng.integers(0, len(g), size=(n_bootstrap, len(g)))] for g in groups]))
-    boot = boot[np.isfinite(boot)]
-    a = (1 - confidence) / 2
-    lo, hi = np.quantile(boot, [a, 1 - a]) if boot.size else (np.nan, np.nan)
-    return Estimate(point, float(boot.std()) if boot.size else float("nan"), float(lo), float(hi),
-                    int(min(len(g) for g in groups)), confidence, f"percentile bootstrap ({n_bootstrap} resamples)")
+    ks = [g.shape[1] for g in groups]
+    labels = [np.repeat(np.arange(len(g)), k) for g, k in zip(groups, ks)]
+
+    def stat(*flat, axis=-1):  # the one bootstrap hands over rows flattened: reshape to (B, n_g, k_g)
+        arrs = [np.asarray(x).reshape(*np.shape(x)[:-1], -1, k) for x, k in zip(flat, ks)]
+        with np.errstate(divide="ignore", invalid="ignore"):  # a resample of few trials can repeat one trial
+            out = statistic(*[a if a.ndim == 3 else a[None] for a in arrs])
+        return out if np.ndim(flat[0]) > 1 else float(np.ravel(out)[0])
+
+    paired = len(groups) == 1
+    return bootstrap_ci([g.ravel() for g in groups], stat, paired=paired, groups=labels[0] if paired else labels,
+                        rng=rng, n_resamples=n_bootstrap, confidence=confidence, method="percentile")
 
 
 def _var_sum(e):
