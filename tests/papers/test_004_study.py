@@ -253,3 +253,26 @@ def test_statistic_readings_radial_and_tail(run):
     )
     for b in CLASSICAL:
         assert tail["C004-3"][b].value == pytest.approx(q(run.forecasts[b]).mean() / q(run.forecasts[PAPER]).mean())
+
+
+def test_natural_spline_reading(run):
+    """The natural cubic spline extends linearly beyond its last knot: it extrapolates a line exactly,
+    not a parabola, and matches scipy's natural spline value + slope at the last knot; the reading
+    'spline = natural cubic' scores it as the spline part of C004-3."""
+    from scipy.interpolate import CubicSpline
+
+    t = np.arange(30.0)
+    line = pr.natural_spline_forecast(2.0 + 0.5 * t, 6, 3)
+    np.testing.assert_allclose(line[5:], 2.0 + 0.5 * (t[5:] + 3))
+    parab = pr.natural_spline_forecast(0.1 * t**2, 6, 1)
+    assert np.nanmax(np.abs(parab[5:] - 0.1 * (t[5:] + 1) ** 2)) > 0.05
+    z = np.random.default_rng(1).standard_normal(12)
+    cs = CubicSpline(np.arange(6.0), z[-6:], bc_type="natural")
+    assert pr.natural_spline_forecast(z, 6, 2)[-1] == pytest.approx(cs(5.0) + 2 * cs.derivative()(5.0))
+    m, s = 1, SIZE.eval_start
+    nat = study.claim_values(study.replace(run, config=dict(DEFAULT, spline="natural cubic")))
+    r = (
+        per_trial_path_mse(run.forecasts[study.NATURAL_SPLINE], run.z_meas, m, s)[0].mean()
+        / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
+    )
+    assert nat["C004-3"]["cubic spline"].value == pytest.approx(r)

@@ -153,9 +153,10 @@ ROWS = (
         "spline",
         "comparator",
         "interpolating",
-        ("interpolating", "least-squares cubic"),
-        "'spline extrapolation' [5] read as the not-a-knot cubic spline through the last L samples, or as a "
-        "least-squares cubic over them (smoother; its window also cross-validated from 4)",
+        ("interpolating", "least-squares cubic", "natural cubic"),
+        "'spline extrapolation' [5] read as the not-a-knot cubic spline through the last L samples, as a "
+        "least-squares cubic over them (smoother), or as the classical natural cubic spline through them, which "
+        "extends linearly beyond its last knot (zero end curvature); every window cross-validated from 4",
         "adversarial",
     ),
     (
