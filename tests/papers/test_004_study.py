@@ -276,3 +276,19 @@ def test_natural_spline_reading(run):
         / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
     )
     assert nat["C004-3"]["cubic spline"].value == pytest.approx(r)
+
+
+def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
+    """'vibration' adds amplitude * sin(2 pi 8 Hz t + phase) per path and axis to the true centres; the
+    other streams (paths, jitter, sensor) are untouched (common random numbers)."""
+    v = study.vibration(1.5, 25.0, (3, 50, 2), np.random.default_rng(0))
+    assert v.shape == (3, 50, 2) and np.max(np.abs(v)) <= 1.5 and np.max(np.abs(v)) > 1.4
+    spec = np.abs(np.fft.rfft(v[0, :, 0]))
+    assert np.argmax(spec) == round(study.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
+    small = study.replace(SIZE, n_paths=2, n_frames=100)
+    a = study._scene(dict(DEFAULT), 5, small)
+    b = study._scene(dict(DEFAULT, vibration=1.0), 5, small)
+    d = (b.truth - a.truth)[0]  # (P, 2, T)
+    np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
+    k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly
+    np.testing.assert_allclose(np.diff(d, 2, axis=-1), k * d[..., 1:-1], atol=1e-9)

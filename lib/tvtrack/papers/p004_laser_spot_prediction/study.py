@@ -60,6 +60,7 @@ __all__ = [
     "measure_batch",
     "exposure_weights",
     "exposed_traces",
+    "vibration",
     "late_rms_ratio",
     "recursion_vs_batch",
     "variance_ratios",
@@ -92,6 +93,7 @@ ENTRIES = (
     "exposure",
     "spot size",
     "C004-3 statistic",
+    "vibration",
 )
 #: The two networks of C004-3b (the paper's back-propagation and RBF networks).
 NETWORKS = ("MLP back-prop", "RBF network")
@@ -115,6 +117,7 @@ _SCENE_KEYS = (
     "energy centre",
     "exposure",
     "spot size",
+    "vibration",
 )
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
@@ -282,6 +285,29 @@ def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = E
     return TraceSet(xy, inten, scene.frame_rate_hz, scene.image_size_px, dict(tr.metadata, exposure=exposure))
 
 
+#: Frequency of the "vibration" regime's sinusoid, Hz (below the 12.5 Hz Nyquist of 25 frames/s).
+VIBRATION_HZ = 8.0
+
+
+def vibration(amplitude_px: float, frame_rate_hz: float, shape, rng: np.random.Generator) -> np.ndarray:
+    """Mount vibration: ``amplitude_px * sin(2 pi f n / fs + phi)`` per path and axis, ``f`` =
+    :data:`VIBRATION_HZ`, phases uniform from ``rng`` (drawn whatever the amplitude: common random
+    numbers).
+
+    Parameters
+    ----------
+    shape : tuple (P, T, 2)
+        Paths, frames, axes.
+
+    Returns
+    -------
+    ndarray, shape (P, T, 2), px
+    """
+    P, T, A = shape
+    t = np.arange(T)[None, :, None] / frame_rate_hz
+    return amplitude_px * np.sin(2 * np.pi * VIBRATION_HZ * t + rng.uniform(0, 2 * np.pi, (P, 1, A)))
+
+
 def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
     s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
     scene = scene_config(config, size)
@@ -291,7 +317,9 @@ def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = N
     intensity = traces.intensity[: size.n_paths, : size.n_frames]
     rms = np.asarray(traces.metadata["wander_rms_px"])[: size.n_paths]
     jit = float(config["jitter"]) * one_frame_motion_rms(scene, rms)
-    xy = xy + jit[:, None, None] * np.random.default_rng(s_jit).standard_normal(xy.shape)
+    rng_j = np.random.default_rng(s_jit)
+    xy = xy + jit[:, None, None] * rng_j.standard_normal(xy.shape)
+    xy = xy + vibration(float(config.get("vibration", 0.0)), scene.frame_rate_hz, xy.shape, rng_j)
     cam = camera_for(config)
     trk = track_spot(xy[None], intensity, np.random.default_rng(s_sens), cam, scene.image_size_px, keep=keep)
     z_meas = np.moveaxis(trk.xy, -1, -2)
