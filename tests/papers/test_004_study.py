@@ -190,3 +190,105 @@ def test_model_order_summary_names_the_better_order(run):
     assert s["rms"][s["best_order1"]] <= min(
         s["rms"][n] for n in ("finite differences, 2 points", "linear regression deg 1")
     )
+
+
+def test_full_frame_exposure_is_the_mean_of_the_path_over_the_frame_interval():
+    """'exposure = full frame': each frame is the mean of k sub-samples of one path drawn at k times the
+    frame rate, the last sub-sample at the frame time; 'instant' is the generator itself."""
+    from dataclasses import replace
+
+    from tvtrack.papers.p004_laser_spot_prediction.beam_wander import generate_traces
+
+    scene = study.scene_config(dict(DEFAULT), SIZE)
+    k = study.EXPOSURE_SUBSAMPLES
+    inst = study.exposed_traces(scene, 3, "instant")
+    np.testing.assert_array_equal(inst.centres_px, generate_traces(scene, 3).centres_px)
+    full = study.exposed_traces(scene, 3, "full frame")
+    fine = generate_traces(
+        replace(
+            scene,
+            frame_rate_hz=scene.frame_rate_hz * k,
+            n_frames=scene.n_frames * k,
+            drift_max_px_per_frame=scene.drift_max_px_per_frame / k,
+        ),
+        3,
+    )
+    t = 17
+    np.testing.assert_allclose(full.centres_px[:, t], fine.centres_px[:, k * t : k * t + k].mean(axis=1))
+    assert full.centres_px.shape == inst.centres_px.shape and full.frame_rate_hz == scene.frame_rate_hz
+    # the boxcar smooths: the frame-to-frame second difference shrinks against the instant sampling
+    d2 = lambda x: np.sqrt(np.mean(np.diff(x, 2, axis=1) ** 2))  # noqa: E731
+    assert d2(full.centres_px) < d2(fine.centres_px[:, k - 1 :: k])
+    with pytest.raises(ValueError, match="exposure"):
+        study.exposed_traces(scene, 3, "half")
+    # interlaced frame integration: two fields of one frame interval each, half a frame apart, averaged
+    w = study.exposure_weights("interlaced, frame integration", 4)
+    np.testing.assert_allclose(w, [0.125, 0.125, 0.25, 0.25, 0.125, 0.125])
+    il = study.exposed_traces(scene, 3, "interlaced, frame integration")
+    a = fine.centres_px[:, k * t : k * t + k].mean(axis=1)
+    b = fine.centres_px[:, k * t - k // 2 : k * t + k // 2].mean(axis=1)
+    np.testing.assert_allclose(il.centres_px[:, t], (a + b) / 2)
+
+
+def test_spot_size_reaches_the_camera():
+    assert study.camera_for(dict(DEFAULT, **{"spot size": 0.6})).spot_sigma_px == 0.6
+    assert study.camera_for(dict(DEFAULT)).spot_sigma_px == 4.0
+
+
+def test_statistic_readings_radial_and_tail(run):
+    """C004-1 radial: the per-path 95th percentile of the distance |e| (both axes); C004-3 tail reading:
+    the paired ratio of per-path 95th percentiles of the per-axis |e|."""
+    m, s = 1, SIZE.eval_start
+    rad = study.claim_values(study.replace(run, config=dict(DEFAULT, **{"C004-1 statistic": "radial 95th percentile"})))
+    e = pr.forecast_errors(run.forecasts[PAPER], run.z_meas, m)[0, ..., s:]
+    want = np.nanquantile(np.hypot(e[:, 0], e[:, 1]), 0.95, axis=1).mean()
+    assert rad["C004-1"].value == pytest.approx(want)
+    tail = study.claim_values(study.replace(run, config=dict(DEFAULT, **{"C004-3 statistic": "95th percentile"})))
+    base = study.claim_values(run)
+    assert tail["C004-2"].value == base["C004-2"].value  # the reading changes C004-3 only
+    q = (
+        lambda f: np.nanquantile(  # noqa: E731
+            np.abs(pr.forecast_errors(f, run.z_meas, m)[0, ..., s:]).reshape(SIZE.n_paths, -1), 0.95, axis=1
+        )
+    )
+    for b in CLASSICAL:
+        assert tail["C004-3"][b].value == pytest.approx(q(run.forecasts[b]).mean() / q(run.forecasts[PAPER]).mean())
+
+
+def test_natural_spline_reading(run):
+    """The natural cubic spline extends linearly beyond its last knot: it extrapolates a line exactly,
+    not a parabola, and matches scipy's natural spline value + slope at the last knot; the reading
+    'spline = natural cubic' scores it as the spline part of C004-3."""
+    from scipy.interpolate import CubicSpline
+
+    t = np.arange(30.0)
+    line = pr.natural_spline_forecast(2.0 + 0.5 * t, 6, 3)
+    np.testing.assert_allclose(line[5:], 2.0 + 0.5 * (t[5:] + 3))
+    parab = pr.natural_spline_forecast(0.1 * t**2, 6, 1)
+    assert np.nanmax(np.abs(parab[5:] - 0.1 * (t[5:] + 1) ** 2)) > 0.05
+    z = np.random.default_rng(1).standard_normal(12)
+    cs = CubicSpline(np.arange(6.0), z[-6:], bc_type="natural")
+    assert pr.natural_spline_forecast(z, 6, 2)[-1] == pytest.approx(cs(5.0) + 2 * cs.derivative()(5.0))
+    m, s = 1, SIZE.eval_start
+    nat = study.claim_values(study.replace(run, config=dict(DEFAULT, spline="natural cubic")))
+    r = (
+        per_trial_path_mse(run.forecasts[study.NATURAL_SPLINE], run.z_meas, m, s)[0].mean()
+        / per_trial_path_mse(run.forecasts[PAPER], run.z_meas, m, s)[0].mean()
+    )
+    assert nat["C004-3"]["cubic spline"].value == pytest.approx(r)
+
+
+def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
+    """'vibration' adds amplitude * sin(2 pi 8 Hz t + phase) per path and axis to the true centres; the
+    other streams (paths, jitter, sensor) are untouched (common random numbers)."""
+    v = study.vibration(1.5, 25.0, (3, 50, 2), np.random.default_rng(0))
+    assert v.shape == (3, 50, 2) and np.max(np.abs(v)) <= 1.5 and np.max(np.abs(v)) > 1.4
+    spec = np.abs(np.fft.rfft(v[0, :, 0]))
+    assert np.argmax(spec) == round(study.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
+    small = study.replace(SIZE, n_paths=2, n_frames=100)
+    a = study._scene(dict(DEFAULT), 5, small)
+    b = study._scene(dict(DEFAULT, vibration=1.0), 5, small)
+    d = (b.truth - a.truth)[0]  # (P, 2, T)
+    np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
+    k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly
+    np.testing.assert_allclose(np.diff(d, 2, axis=-1), k * d[..., 1:-1], atol=1e-9)

@@ -353,6 +353,25 @@ def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     return out
 
 
+def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
+    """Natural cubic spline (zero second derivative at both ends) through the last ``window``
+    samples, extrapolated ``steps`` ahead as a natural spline extends beyond its last knot: linearly,
+    ``S(t_n) + steps * S'(t_n)`` (``window >= 4``; the classical spline of the numerical-methods texts,
+    the minimiser of the integrated squared second derivative on the whole line).
+
+    Like :func:`spline_forecast` it is one FIR filter applied to every window.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
+        raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
+    spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, bc_type="natural")
+    w = spl(window - 1.0) + steps * spl.derivative()(window - 1.0)  # (window,), oldest first
+    out = np.full(z.shape, np.nan)
+    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w
+    return out
+
+
 # -- learned predictors (scikit-learn) --------------------------------------------------------------
 def lag_features(z, n_lags: int, steps: int = 1):
     """Translation-invariant inputs and targets for learned predictors.
