@@ -6,8 +6,8 @@
 - The paper profile's interference exploration under 4 CPU minutes: per configuration of the register
   (``study.measure_interference``) 378 runs of 5 s at 500 frames/s (rotating and static markers with one
   and five interferers, two gate sizes and the decoy on 8 SIRs x 6 runs, 5 x 6 runs without compensation,
-  2 x 6 runs for the loop bandwidths), and about 30 configurations (3-5 replicates, 22 one-at-a-time values
-  in run-time equivalents, 2 joint samples): about 28 M gate frames. Projected from the marginal CPU cost per
+  2 x 6 runs for the loop bandwidths), and about 31 configurations (3-4 replicates, 26 one-at-a-time values
+  in run-time equivalents, 1 joint sample): about 29 M gate frames. Projected from the marginal CPU cost per
   frame of a 225-run batch (3 seeds x 15 SIRs x 5 runs, common random numbers), from runs of 0.5 s and 1 s.
 """
 
@@ -18,7 +18,7 @@ import numpy as np
 from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, run_scenario
 
 SIRS = np.array([0.5, 0.625, 0.75, 0.875, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875, 2.0, 2.5, 3.0])
-PAPER_LOSS_FRAMES = 500 * 5 * 378 * 30
+PAPER_LOSS_FRAMES = 500 * 5 * 378 * 31
 
 
 def _batch(n_trials: int, duration_s: float, n_interferers: int = 5):

@@ -1,6 +1,8 @@
 """Tests of paper 003's study functions: the direct-count estimators the verdicts rest on, the register and the
 measurement functions' contract."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -8,6 +10,7 @@ from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
 from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
+from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
 from tvtrack.verdicts import InBand, is_undecided
 
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
@@ -175,3 +178,34 @@ def test_threshold_ratio_covers_the_population_ratio_of_paired_runs():
             done += 1
             hits += r.ci_low <= 1.5 <= r.ci_high
     assert done > 250 and hits / done >= 0.95
+
+
+def test_adversarial_register_values_reach_the_scenario():
+    """Each adversarial entry changes exactly the scenario property its row names (a key the scenario ignored would
+    leave the explorer measuring the default under another name)."""
+    base = study.scenario({})
+    assert study.scenario({"rotation_rate": "modulated fast"}).omega_mod == pytest.approx(0.15)
+    assert study.scenario({"rotation_rate": "modulated fast"}).omega_mod_hz == pytest.approx(1.0)
+    assert study.scenario({"sinusoid_hz": 1.5}).y_freq == pytest.approx(1.5)
+    ne = study.scenario({"bandwidth_reading": "noise-equivalent"})
+    assert ne.b_xy == pytest.approx(base.b_xy * 2 / np.pi) and ne.b_r == pytest.approx(base.b_r * 2 / np.pi)
+    assert ne.b_omega == pytest.approx(base.b_omega * 0.617)
+    assert study.scenario({"motion_scale": 0.0}).y_amplitude == 0.0
+    assert study.scenario({"fps": 50.0}).fps == 50.0
+
+
+def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
+    """C003-1 must be measured on the runs whose loop is the configured one, also when the bandwidth reading moves
+    it off BXY_GRID (the old `BXY_GRID.index(b) if b in BXY_GRID else 0` silently used the 2 Hz loop's runs). With
+    the same draws, C003-1's y error equals that of a separate run of the configured scenario."""
+    sz = study.Sizes(trials=2, fig1_s=0.8, fig2_s=0.6, transient_s=0.2, horizon_s=0.4)
+    cfg = {**REGISTER.default(), "bandwidth_reading": "noise-equivalent", "slope_range": "small errors"}
+    t = study.measure_tracking(cfg, 1, sz)
+    # the slope reading reaches C003-9: the disc's slope at small errors is 0.96 of 2dD, over +-D/2 only 0.84
+    assert t["C003-9"]["disc_linear"] == pytest.approx(0.960, abs=0.005)
+    assert t["C003-9"]["square_linear"] == pytest.approx(1.0, abs=1e-9)
+    sc = study.scenario(cfg)
+    tr, _, h = run_scenario([study._rng(1, 1)], sz.trials, replace(sc, duration_s=sz.fig1_s))
+    k0 = int(round(sz.transient_s * sc.fps))
+    y = np.sqrt(np.mean(state_errors(tr, h)[:, k0:, 1] ** 2))
+    assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)

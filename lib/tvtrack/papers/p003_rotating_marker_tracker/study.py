@@ -36,6 +36,16 @@ SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR
 UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)         # SIR_0 without compensation (kappa = 1)
 BXY_GRID = (2.0, 5.0, 10.0, 20.0)                       # coordinate-loop bandwidths of the C003-2 mechanism, Hz
 RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}   # interferer radius, offsets in units of D
+# rotation-rate laws (depth, Hz): "mean rotation frequency 8 rev/s" (l. 185) says omega varies; its law is unstated
+ROTATION_LAWS = {"constant": (0.0, 0.5), "modulated": (0.1, 0.5), "modulated fast": (0.15, 1.0),
+                 "modulated strong": (0.2, 1.0)}
+# C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
+SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
+# "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
+# of the xy, r (first order: B_n = K/4 -> K = 4 B_n) and omega loops (2nd order, zeta 0.707: B_n = 0.53 w_n)
+BANDWIDTH_READINGS = {"-3 dB": (1.0, 1.0, 1.0), "noise-equivalent": (2 / np.pi, 2 / np.pi, 0.617)}
+# Fig. 2 laws (omega depth, omega Hz, r depth, r Hz): the card's, and rates inside the stated loop bandwidths
+FIG2_LAWS = {"card": (0.1, 0.5, 0.15, 0.05), "omega 2 Hz": (0.1, 2.0, 0.15, 0.05), "r 0.2 Hz": (0.1, 0.5, 0.25, 0.2)}
 
 
 @dataclass(frozen=True)
@@ -75,8 +85,11 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     scale = float(c.get("motion_scale", 1.0))
     kappa = base.kappa
     radius = c.get("interferer_radius", "r0")
+    om_depth, om_hz = ROTATION_LAWS[c.get("rotation_rate", "constant")]
+    bw = BANDWIDTH_READINGS[c.get("bandwidth_reading", "-3 dB")]
     kw = dict(motion=c.get("motion", "card"), x_std=base.x_std * scale, y_amplitude=base.y_amplitude * scale,
-              omega_mod=0.1 if c.get("rotation_rate", "constant") == "modulated" else 0.0,
+              y_freq=float(c.get("sinusoid_hz", base.y_freq)), omega_mod=om_depth, omega_mod_hz=om_hz,
+              b_xy=base.b_xy * bw[0], b_r=base.b_r * bw[1], b_omega=base.b_omega * bw[2],
               realise_phase_bandwidth=c.get("phase_loop", "designed") == "realised",
               background_std=1.0 / (kappa * float(c.get("residual_background", 50.0))),
               noise_std=float(c.get("noise", base.noise_std)), fps=float(c.get("fps", base.fps)),
@@ -218,15 +231,16 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     crit = criterion(config, sc1)
     out, fig = {}, {}
     # Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1)
-    gains = [sc1.gains() if b == sc1.b_xy else replace(sc1, b_xy=b).gains() for b in BXY_GRID]
-    tr, _, h = run_scenario([_rng(1, seed) for _ in BXY_GRID], n * len(BXY_GRID), sc1,
+    grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)   # the grid follows the bandwidth reading
+    gains = [replace(sc1, b_xy=b).gains() for b in grid]
+    tr, _, h = run_scenario([_rng(1, seed) for _ in grid], n * len(grid), sc1,
                             gains=stack_gains(gains, n), n_common=n)
     e = state_errors(tr, h)
     ex, th = e[:, k0:, 0], tr.theta[:, k0:]
     f_near = (sc1.rotation_hz + 1.0) / sc1.rotation_hz
     locked = phase_locked_amplitude(ex, th).reshape(len(BXY_GRID), n)
     near_ctl = phase_locked_amplitude(ex, f_near * th).reshape(len(BXY_GRID), n)
-    j = BXY_GRID.index(sc1.b_xy) if sc1.b_xy in BXY_GRID else 0
+    j = BXY_GRID.index(Scenario().b_xy)   # was: "if sc1.b_xy in BXY_GRID else 0", which silently judged C003-1 at 2 Hz
     sel = slice(j * n, (j + 1) * n)
     out["C003-1"] = {"x_r": rms_ci(e[sel, k0:, 0]), "y_r": rms_ci(e[sel, k0:, 1]),
                      "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0)}
@@ -237,7 +251,8 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     fig.update(t=tr.t, xr=tr.xr[j * n], yr=tr.yr[j * n], est=h.estimate[j * n, :, :2], err=e[j * n, :, :2],
                locked=locked.mean(axis=1))
     # Fig. 2: varying rotation rate and radius
-    sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=0.1, radius_mod=0.15)
+    om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
+    sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz)
     tr, _, h = run_scenario(_rng(2, seed), n, sc2)
     k2 = int(round(max(sizes.transient_s, 0.25 * sizes.fig2_s) * sc2.fps))
     e = state_errors(tr, h)[:, k2:]
@@ -262,8 +277,8 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     part9 = {}
     for spot in ("square", "disc"):
         s = replace(sc1, spot=spot)
-        part9[f"{spot}_linear"] = quadrant_slope_fit(s.spot_renderer(), s.diameter, s.gate_half)["fit_slope_halfD"] \
-            / s.slope()
+        fit = quadrant_slope_fit(s.spot_renderer(), s.diameter, s.gate_half)
+        part9[f"{spot}_linear"] = fit[SLOPE_RANGES[config.get("slope_range", "+-D/2")]] / s.slope()
         if spot not in quad_ms:
             quad_ms[spot] = _miss_stats(run_scenario(_rng(1, seed), n, s, keep_full=False)[2], k0, crit)[0]
         edge = _miss_stats(run_scenario(_rng(1, seed), n, replace(s, form="edge"), keep_full=False)[2], k0, crit)[0]
