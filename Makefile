@@ -25,6 +25,7 @@ hooks:
 
 lint: $(STAMP)
 	$(BIN)/ruff check lib tests benchmarks notebooks
+	$(BIN)/ruff format --check lib tests benchmarks
 
 kernel: $(STAMP)
 	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" \
@@ -43,7 +44,7 @@ report: $(STAMP)
 site: $(STAMP)
 	$(BIN)/python -m tvtrack site $(if $(PROFILE),--profile $(PROFILE))
 
-test: $(STAMP)
+test: $(STAMP) lint
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP)

@@ -44,8 +44,12 @@ def test_both_variants_vectorise_over_trials(benchmark, data, figure):
     speedup = 1000 * one / batch
     benchmark.extra_info["trial_steps_per_cpu_s"] = 1000 * 600 / batch
     benchmark.extra_info["vectorisation_speedup"] = speedup
-    figure("000 filter steps per CPU s (both variants, 1000 trials x 600 steps)", 2 * 1000 * 600 / batch, 1.2e6,
-           at_least=True)
+    figure(
+        "000 filter steps per CPU s (both variants, 1000 trials x 600 steps)",
+        2 * 1000 * 600 / batch,
+        1.2e6,
+        at_least=True,
+    )
     fig = figure("000 batching 1000 trials vs one at a time (per-trial CPU ratio)", speedup, 50, at_least=True)
     assert fig.passed, fig.message()
 

@@ -29,7 +29,7 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import TrackModeConfi
 
 N_TRIALS, N_CH, FPS, T = 1000, 2, 25.0, 625
 KB2, KB3, N_WIN, ALPHA = 50, 100, 25, 1e-3
-N_REF = 20                       # trial-channels timed with the per-trial reference
+N_REF = 20  # trial-channels timed with the per-trial reference
 
 
 def scenario(seed=0):
@@ -59,7 +59,7 @@ def reference_one(z, visible, thr):
             flt.update(0.0, g=0.0, h=0.0, k=0.0)
         v[t] = flt.dx
         if mode == 2 and visible[t] and k >= KB2 + 2 * N_WIN and since >= 2 * N_WIN:
-            S = v[t - 2 * N_WIN + 1:t - N_WIN + 1].sum() - v[t - N_WIN + 1:t + 1].sum()
+            S = v[t - 2 * N_WIN + 1 : t - N_WIN + 1].sum() - v[t - N_WIN + 1 : t + 1].sum()
             if abs(S) > thr[min(k, thr.size) - 1]:
                 det, mode, k, flt.ddx = t, 3, 3, 0.0
         xs[t] = flt.x, flt.dx, flt.ddx
@@ -80,9 +80,12 @@ def test_full_scenario_speedup(benchmark, figure):
     np.testing.assert_array_equal(det, [d for _, d in ref])
     np.testing.assert_allclose(out.x.reshape(-1, T, 3)[:N_REF], np.stack([x for x, _ in ref]), rtol=1e-9, atol=1e-6)
     speedup = t_ref / t_batched
-    benchmark.extra_info.update(batched_s=t_batched, filterpy_loop_s_extrapolated=t_ref, speedup=speedup,
-                                target_400x_met=bool(speedup >= 400))
-    print(f"\nbatched {t_batched:.2f} s; filterpy per-trial loop {t_ref:.1f} s (from {N_REF} trial-channels); "
-          f"speed-up {speedup:.0f}x")
+    benchmark.extra_info.update(
+        batched_s=t_batched, filterpy_loop_s_extrapolated=t_ref, speedup=speedup, target_400x_met=bool(speedup >= 400)
+    )
+    print(
+        f"\nbatched {t_batched:.2f} s; filterpy per-trial loop {t_ref:.1f} s (from {N_REF} trial-channels); "
+        f"speed-up {speedup:.0f}x"
+    )
     fig = figure("001 batched scenario over per-trial filterpy loop (same run)", speedup, 100, at_least=True, unit="x")
     assert fig.passed, fig.message()

@@ -33,8 +33,14 @@ import numpy as np
 
 from tvtrack.papers.p002_unified_location_em import study
 from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
-from tvtrack.papers.p002_unified_location_em.model import (designate, draw_truth, frame_times, mixture_weights,
-                                                           scene_geometry, simulate_counts)
+from tvtrack.papers.p002_unified_location_em.model import (
+    designate,
+    draw_truth,
+    frame_times,
+    mixture_weights,
+    scene_geometry,
+    simulate_counts,
+)
 from tvtrack.papers.p002_unified_location_em.register import REGISTER
 
 N = 100
@@ -59,8 +65,10 @@ def test_em_batched_across_trials_vs_one_trial_at_a_time(benchmark, figure):
     res = benchmark.pedantic(batched, rounds=3, iterations=1)
     t_batch = benchmark.stats.stats.min
     t0 = time.perf_counter()
-    loop = [unified_location_em(pixel_entries(counts[i:i + 1]), desig[i:i + 1], g.sigma_px, p, p0, max_iter=200)
-            for i in range(N)]
+    loop = [
+        unified_location_em(pixel_entries(counts[i : i + 1]), desig[i : i + 1], g.sigma_px, p, p0, max_iter=200)
+        for i in range(N)
+    ]
     t_loop = time.perf_counter() - t0
     np.testing.assert_allclose(np.concatenate([r.theta for r in loop]), res.theta, atol=1e-8)
     fig = figure("002 batched EM / per-trial loop (same estimates)", t_loop / t_batch, 2.0, at_least=True)
@@ -69,14 +77,21 @@ def test_em_batched_across_trials_vs_one_trial_at_a_time(benchmark, figure):
 
 def test_a_statistic_value_reuses_the_replicate(benchmark, figure):
     """Target: measuring a register value that changes only the statistic costs under 20 % of the replicate."""
-    scale = study.Scale(n_trials=8, n_iter_trials=4, separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0), fig3_frames=(5, 10, 50),
-                        crb_phases=2, max_iter=100)
+    scale = study.Scale(
+        n_trials=8,
+        n_iter_trials=4,
+        separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0),
+        fig3_frames=(5, 10, 50),
+        crb_phases=2,
+        max_iter=100,
+    )
     default = REGISTER.default()
     study.clear_cache()
     t0 = time.perf_counter()
     study.measure(default, 1, scale)
     t_rep = time.perf_counter() - t0
     benchmark.pedantic(lambda: study.measure({**default, "statistic": "MSE"}, 1, scale), rounds=1, iterations=1)
-    fig = figure("002 statistic-only register value / replicate (wall)", benchmark.stats.stats.min / t_rep, 0.2,
-                 at_least=False)
+    fig = figure(
+        "002 statistic-only register value / replicate (wall)", benchmark.stats.stats.min / t_rep, 0.2, at_least=False
+    )
     assert fig.passed, fig.message()

@@ -41,8 +41,13 @@ def gate_crops():
     aim = np.concatenate([tr.centres_px[:, :1], tr.centres_px[:, :-1]], axis=1)  # previous frame
     origin = gate_origin(aim, (g, g))
     signal = gaussian_spot(tr.centres_px, (g, g), cam.spot_sigma_px, cam.flux_e * tr.intensity, origin=origin)
-    crops = sensor_readout(signal, np.random.default_rng(0), background=cam.background_dn,
-                           read_noise=cam.read_noise_dn, bit_depth=cam.bit_depth)
+    crops = sensor_readout(
+        signal,
+        np.random.default_rng(0),
+        background=cam.background_dn,
+        read_noise=cam.read_noise_dn,
+        bit_depth=cam.bit_depth,
+    )
     return crops, origin, tr.centres_px
 
 
@@ -55,10 +60,9 @@ def measure_filter_predict(crops, origin):
 def test_gate_crop_pipeline_frames_per_s(benchmark, figure):
     crops, origin, truth = gate_crops()
     n_frames = crops.shape[0] * crops.shape[1]
-    pred = benchmark.pedantic(measure_filter_predict, args=(crops, origin), rounds=5, iterations=1,
-                              warmup_rounds=1)
+    pred = benchmark.pedantic(measure_filter_predict, args=(crops, origin), rounds=5, iterations=1, warmup_rounds=1)
     e = pred[..., :-1] - np.moveaxis(truth, -1, -2)[..., 1:]
-    assert np.sqrt(np.nanmean(e ** 2)) < 2.0  # sane output, not only fast
+    assert np.sqrt(np.nanmean(e**2)) < 2.0  # sane output, not only fast
     cpu = []
     for _ in range(5):
         t0 = time.process_time()

@@ -33,16 +33,27 @@ MIN_SPEEDUP = 1.8
 ROUNDS = 3
 
 EMPTY_NOTEBOOK = {
-    "cells": [{"cell_type": "code", "id": "parameters", "metadata": {"tags": ["parameters"]}, "execution_count": None,
-               "outputs": [], "source": "output_dir = '.'"}],
+    "cells": [
+        {
+            "cell_type": "code",
+            "id": "parameters",
+            "metadata": {"tags": ["parameters"]},
+            "execution_count": None,
+            "outputs": [],
+            "source": "output_dir = '.'",
+        }
+    ],
     "metadata": {"kernelspec": {"name": KERNEL_NAME, "display_name": "Python 3", "language": "python"}},
-    "nbformat": 4, "nbformat_minor": 5}
+    "nbformat": 4,
+    "nbformat_minor": 5,
+}
 
 
 def _cell_seconds(executed: dict) -> float:
     """The notebook's own work: the sum of papermill's per-cell durations in an executed notebook."""
-    return sum(c["metadata"].get("papermill", {}).get("duration") or 0.0 for c in executed["cells"]
-               if c["cell_type"] == "code")
+    return sum(
+        c["metadata"].get("papermill", {}).get("duration") or 0.0 for c in executed["cells"] if c["cell_type"] == "code"
+    )
 
 
 def _bare_papermill(empty, out) -> float:
@@ -50,8 +61,15 @@ def _bare_papermill(empty, out) -> float:
     import papermill as pm
 
     t0 = time.perf_counter()
-    pm.execute_notebook(str(empty), str(out), parameters={"output_dir": "."}, kernel_name=KERNEL_NAME,
-                        progress_bar=False, log_output=False, extra_arguments=KERNEL_ARGUMENTS)
+    pm.execute_notebook(
+        str(empty),
+        str(out),
+        parameters={"output_dir": "."},
+        kernel_name=KERNEL_NAME,
+        progress_bar=False,
+        log_output=False,
+        extra_arguments=KERNEL_ARGUMENTS,
+    )
     return time.perf_counter() - t0
 
 
@@ -60,7 +78,7 @@ def test_papermill_overhead_per_run(benchmark, tmp_path):
     empty.write_text(json.dumps(EMPTY_NOTEBOOK))
     bare, overhead, counter = [], [], iter(range(1000))
 
-    def one_round():   # interleaved, so a change of load hits both the same way
+    def one_round():  # interleaved, so a change of load hits both the same way
         bare.append(_bare_papermill(empty, tmp_path / f"bare{len(bare)}.ipynb"))
         run_dir = tmp_path / f"run{next(counter)}"
         t0 = time.perf_counter()
@@ -72,10 +90,13 @@ def test_papermill_overhead_per_run(benchmark, tmp_path):
     benchmark.pedantic(one_round, rounds=ROUNDS, iterations=1, warmup_rounds=1)
     bare_s, overhead_s = statistics.median(bare[1:]), statistics.median(overhead[1:])
     added = overhead_s - bare_s
-    benchmark.extra_info.update(bare_papermill_s=bare_s, runner_overhead_s=overhead_s, added_s=added,
-                                max_added_s=MAX_OVERHEAD_S)
-    print(f"\npapermill overhead per run: tvtrack {overhead_s:.2f} s (wall less the notebook's cells), bare papermill "
-          f"on an empty notebook {bare_s:.2f} s: difference {added:+.2f} s (at most {MAX_OVERHEAD_S} s)")
+    benchmark.extra_info.update(
+        bare_papermill_s=bare_s, runner_overhead_s=overhead_s, added_s=added, max_added_s=MAX_OVERHEAD_S
+    )
+    print(
+        f"\npapermill overhead per run: tvtrack {overhead_s:.2f} s (wall less the notebook's cells), bare papermill "
+        f"on an empty notebook {bare_s:.2f} s: difference {added:+.2f} s (at most {MAX_OVERHEAD_S} s)"
+    )
     assert added <= MAX_OVERHEAD_S, f"the runner adds {added:.2f} s per run to a bare papermill run"
 
 
@@ -98,8 +119,10 @@ def _reference_speedup(seconds: float = 4.0) -> float:
 
 def test_sweep_speedup_two_jobs_over_one(benchmark, tmp_path):
     spec = tmp_path / "bench_sweep.toml"
-    spec.write_text(f'notebook = "{FIXTURE_NOTEBOOK}"\nrepeats = 2\n[fixed]\nn_trials = 400\nn_frames = 10\n'
-                    'rerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 1.5, 2.0, 3.0]\n')
+    spec.write_text(
+        f'notebook = "{FIXTURE_NOTEBOOK}"\nrepeats = 2\n[fixed]\nn_trials = 400\nn_frames = 10\n'
+        'rerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 1.5, 2.0, 3.0]\n'
+    )
     timings = {}
 
     def sweep(jobs):
@@ -116,8 +139,16 @@ def test_sweep_speedup_two_jobs_over_one(benchmark, tmp_path):
     reference = min(reference_before, _reference_speedup(), 2.0)
     speedup = timings[1] / timings[2]
     wanted = MIN_SPEEDUP / 2.0 * reference
-    benchmark.extra_info.update(one_job_s=timings[1], two_jobs_s=timings[2], speedup=speedup,
-                                machine_speedup=reference, wanted=wanted, cpus=os.cpu_count())
-    print(f"\n8-run sweep: 1 job {timings[1]:.1f} s, 2 jobs {timings[2]:.1f} s, speed-up x{speedup:.2f}; the machine "
-          f"gives x{reference:.2f} now, so x{wanted:.2f} is wanted (x{MIN_SPEEDUP} on 2 free cores)")
+    benchmark.extra_info.update(
+        one_job_s=timings[1],
+        two_jobs_s=timings[2],
+        speedup=speedup,
+        machine_speedup=reference,
+        wanted=wanted,
+        cpus=os.cpu_count(),
+    )
+    print(
+        f"\n8-run sweep: 1 job {timings[1]:.1f} s, 2 jobs {timings[2]:.1f} s, speed-up x{speedup:.2f}; the machine "
+        f"gives x{reference:.2f} now, so x{wanted:.2f} is wanted (x{MIN_SPEEDUP} on 2 free cores)"
+    )
     assert speedup >= wanted, f"2 jobs gave x{speedup:.2f} over 1 job where the machine gives x{reference:.2f}"

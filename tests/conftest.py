@@ -12,8 +12,10 @@ from tvtrack.pipeline.runner import list_notebooks, run_notebook
 REPO = Path(__file__).resolve().parents[1]
 # A tvtrack imported from another checkout would test the wrong code (and run its notebooks).
 if not Path(tvtrack.__file__).resolve().is_relative_to(REPO / "lib"):
-    raise pytest.UsageError(f"tests in {REPO} import tvtrack from {tvtrack.__file__}; "
-                            f"install this checkout (pip install -e .) or set PYTHONPATH={REPO / 'lib'}")
+    raise pytest.UsageError(
+        f"tests in {REPO} import tvtrack from {tvtrack.__file__}; "
+        f"install this checkout (pip install -e .) or set PYTHONPATH={REPO / 'lib'}"
+    )
 
 FIXTURES = Path(__file__).parent / "fixtures"
 FIXTURE_NOTEBOOK = FIXTURES / "fixture_centroid.ipynb"

@@ -14,24 +14,49 @@ import pytest  # noqa: E402
 from conftest import FIXTURE_NOTEBOOK  # noqa: E402
 from tvtrack.pipeline.runner import run_notebook  # noqa: E402
 
-OLD_CLAIM = {"id": "C911-1", "statement": "An old claim.", "paper_value": "2", "acceptance": "within 10 % of 2",
-             "measured": {"value": 2.1, "ci_low": 1.9, "ci_high": 2.3}, "verdict": "partly", "note": "old schema"}
+OLD_CLAIM = {
+    "id": "C911-1",
+    "statement": "An old claim.",
+    "paper_value": "2",
+    "acceptance": "within 10 % of 2",
+    "measured": {"value": 2.1, "ci_low": 1.9, "ci_high": 2.3},
+    "verdict": "partly",
+    "note": "old schema",
+}
 
 
-NEW_CLAIM = {"id": "C912-1", "statement": "The error is sigma*2 <b>not bold</b> & small.", "paper_value": "<= 2 px",
-             "rule": {"kind": "in_band", "text": "error in [0, 2] px", "low": 0.0, "high": 2.0},
-             "acceptance": "error in [0, 2] px", "measured": {"value": 2.6, "ci_low": 2.4, "ci_high": 2.8},
-             "verdict": "not reproduced", "note": "",
-             "robustness": {"label": "depends", "where": ["reproduced when motion = gentle*2"],
-                            "coverage": "depends over 6 readings x 3 replicates: motion, noise",
-                            "register": [{"name": "motion"}, {"name": "noise"}],
-                            "parts": {"error": {"verdict": "not reproduced", "label": "depends"}},
-                            "conditions": [{"choices": {"motion": "gentle*2"}, "verdict": "reproduced"},
-                                           {"choices": {"noise": "poisson"}, "verdict": "not reproduced"}]}}
-UNDECIDED_CLAIM = {"id": "C912-2", "statement": "The rate is tiny.", "paper_value": "1e-6",
-                   "rule": {"kind": "in_band", "text": "rate in [0, 1e-5]", "low": 0.0, "high": 1e-5},
-                   "acceptance": "rate in [0, 1e-5]", "measured": {"value": None, "ci_low": None, "ci_high": None},
-                   "verdict": "undecided", "note": "", "robustness": {"label": "unexplored", "where": []}}
+NEW_CLAIM = {
+    "id": "C912-1",
+    "statement": "The error is sigma*2 <b>not bold</b> & small.",
+    "paper_value": "<= 2 px",
+    "rule": {"kind": "in_band", "text": "error in [0, 2] px", "low": 0.0, "high": 2.0},
+    "acceptance": "error in [0, 2] px",
+    "measured": {"value": 2.6, "ci_low": 2.4, "ci_high": 2.8},
+    "verdict": "not reproduced",
+    "note": "",
+    "robustness": {
+        "label": "depends",
+        "where": ["reproduced when motion = gentle*2"],
+        "coverage": "depends over 6 readings x 3 replicates: motion, noise",
+        "register": [{"name": "motion"}, {"name": "noise"}],
+        "parts": {"error": {"verdict": "not reproduced", "label": "depends"}},
+        "conditions": [
+            {"choices": {"motion": "gentle*2"}, "verdict": "reproduced"},
+            {"choices": {"noise": "poisson"}, "verdict": "not reproduced"},
+        ],
+    },
+}
+UNDECIDED_CLAIM = {
+    "id": "C912-2",
+    "statement": "The rate is tiny.",
+    "paper_value": "1e-6",
+    "rule": {"kind": "in_band", "text": "rate in [0, 1e-5]", "low": 0.0, "high": 1e-5},
+    "acceptance": "rate in [0, 1e-5]",
+    "measured": {"value": None, "ci_low": None, "ci_high": None},
+    "verdict": "undecided",
+    "note": "",
+    "robustness": {"label": "unexplored", "where": []},
+}
 
 
 def make_runs_dir(root):
@@ -42,32 +67,106 @@ def make_runs_dir(root):
     assert run_notebook(FIXTURE_NOTEBOOK, reproduce / "fixture_centroid", {"n_trials": 10, "n_frames": 3}).ok
     old = reproduce / "old_schema"
     old.mkdir()
-    (old / "run.json").write_text(json.dumps({"notebook": "old_schema", "profile": "paper", "status": "ok",
-                                              "runtime_s": 3.0, "finished_utc": "2026-11-20T09:00:00Z"}))
-    (old / "results.json").write_text(json.dumps({"notebook": "old_schema", "citation": "Old: a paper", "seed": 1,
-                                                  "runtime_s": 2.0, "git_commit": None, "claims": [OLD_CLAIM],
-                                                  "figures": [{"file": "old.png", "caption": "An old figure."}],
-                                                  "recording": None}))
+    (old / "run.json").write_text(
+        json.dumps(
+            {
+                "notebook": "old_schema",
+                "profile": "paper",
+                "status": "ok",
+                "runtime_s": 3.0,
+                "finished_utc": "2026-11-20T09:00:00Z",
+            }
+        )
+    )
+    (old / "results.json").write_text(
+        json.dumps(
+            {
+                "notebook": "old_schema",
+                "citation": "Old: a paper",
+                "seed": 1,
+                "runtime_s": 2.0,
+                "git_commit": None,
+                "claims": [OLD_CLAIM],
+                "figures": [{"file": "old.png", "caption": "An old figure."}],
+                "recording": None,
+            }
+        )
+    )
     fig, ax = plt.subplots(figsize=(3, 2))
     ax.plot([0, 1], [1, 0])
     fig.savefig(old / "old.png")
     plt.close(fig)
-    (old / "notebook.ipynb").write_text(json.dumps({
-        "nbformat": 4, "nbformat_minor": 5, "metadata": {},
-        "cells": [{"cell_type": "markdown", "id": "m1", "metadata": {},
-                   "source": "The gain $G = \\frac{\\sigma_1^2}{\\sigma_2^2}$ and\n\n$$\\hat x_k = x_k + \\varepsilon$$"},
-                  {"cell_type": "code", "id": "c1", "metadata": {}, "execution_count": 1, "outputs": [],
-                   "source": "results.claim(id='C911-1', ...)"}]}))
+    (old / "notebook.ipynb").write_text(
+        json.dumps(
+            {
+                "nbformat": 4,
+                "nbformat_minor": 5,
+                "metadata": {},
+                "cells": [
+                    {
+                        "cell_type": "markdown",
+                        "id": "m1",
+                        "metadata": {},
+                        "source": "The gain $G = \\frac{\\sigma_1^2}{\\sigma_2^2}$ and\n\n$$\\hat x_k = x_k + \\varepsilon$$",
+                    },
+                    {
+                        "cell_type": "code",
+                        "id": "c1",
+                        "metadata": {},
+                        "execution_count": 1,
+                        "outputs": [],
+                        "source": "results.claim(id='C911-1', ...)",
+                    },
+                ],
+            }
+        )
+    )
     new = reproduce / "new_schema"
     new.mkdir()
-    (new / "run.json").write_text(json.dumps({"notebook": "new_schema", "profile": "paper", "status": "ok",
-                                              "runtime_s": 4.0, "finished_utc": "2026-11-25T01:00:00Z"}))
-    (new / "results.json").write_text(json.dumps({"notebook": "new_schema", "citation": "New: a paper", "seed": 1,
-                                                  "runtime_s": 3.0, "git_commit": None, "figures": [],
-                                                  "claims": [NEW_CLAIM, UNDECIDED_CLAIM], "recording": None}))
-    (new / "notebook.ipynb").write_text(json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": [
-        {"cell_type": "code", "id": "n1", "metadata": {}, "execution_count": 1, "outputs": [],
-         "source": "results.claim(id='C912-1', ...)"}]}))
+    (new / "run.json").write_text(
+        json.dumps(
+            {
+                "notebook": "new_schema",
+                "profile": "paper",
+                "status": "ok",
+                "runtime_s": 4.0,
+                "finished_utc": "2026-11-25T01:00:00Z",
+            }
+        )
+    )
+    (new / "results.json").write_text(
+        json.dumps(
+            {
+                "notebook": "new_schema",
+                "citation": "New: a paper",
+                "seed": 1,
+                "runtime_s": 3.0,
+                "git_commit": None,
+                "figures": [],
+                "claims": [NEW_CLAIM, UNDECIDED_CLAIM],
+                "recording": None,
+            }
+        )
+    )
+    (new / "notebook.ipynb").write_text(
+        json.dumps(
+            {
+                "nbformat": 4,
+                "nbformat_minor": 5,
+                "metadata": {},
+                "cells": [
+                    {
+                        "cell_type": "code",
+                        "id": "n1",
+                        "metadata": {},
+                        "execution_count": 1,
+                        "outputs": [],
+                        "source": "results.claim(id='C912-1', ...)",
+                    }
+                ],
+            }
+        )
+    )
     smoke = root / "reproduce-smoke" / "old_schema"
     smoke.mkdir(parents=True)
     for name in ("run.json", "results.json", "notebook.ipynb"):
@@ -76,8 +175,9 @@ def make_runs_dir(root):
     assert not run_notebook(FIXTURE_NOTEBOOK, reproduce / "broken", {"n_trials": 0}).ok
     sweep = root / "fixture_sweep"
     sweep.mkdir()
-    (sweep / "summary.csv").write_text("id,status,spot_sigma_px,centroid_rms_px.value\n"
-                                       "a1,ok,1.0,0.05\nb2,ok,2.0,0.09\nc3,failed,3.0,\n")
+    (sweep / "summary.csv").write_text(
+        "id,status,spot_sigma_px,centroid_rms_px.value\na1,ok,1.0,0.05\nb2,ok,2.0,0.09\nc3,failed,3.0,\n"
+    )
     fig, ax = plt.subplots(figsize=(3, 2))
     ax.plot([1, 2], [0.05, 0.09])
     fig.savefig(sweep / "summary.png")

@@ -12,8 +12,9 @@ from conftest import FIXTURE_NOTEBOOK, FIXTURE_SWEEP
 
 
 def tvtrack(*args, timeout=60):
-    return subprocess.run([sys.executable, "-m", "tvtrack", *map(str, args)], capture_output=True, text=True,
-                          timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "tvtrack", *map(str, args)], capture_output=True, text=True, timeout=timeout
+    )
 
 
 def assert_one_line_error(proc, *fragments):
@@ -53,8 +54,7 @@ def test_output_directory_that_exists_or_cannot_be_created(tmp_path):
     (tmp_path / "taken").mkdir()
     assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-o", tmp_path / "taken"), "exists already")
     (tmp_path / "file").write_text("x")
-    assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-o", tmp_path / "file" / "sub" / "run"),
-                          "cannot create")
+    assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-o", tmp_path / "file" / "sub" / "run"), "cannot create")
     assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "-o", tmp_path / "file" / "sweep"), "cannot create")
 
 
@@ -71,20 +71,25 @@ def test_invalid_specs_name_the_file_and_what_is_wrong(tmp_path):
     assert_one_line_error(tvtrack("sweep", uneven), "uneven.toml", "same length")
     typo = spec(tmp_path, "[grid]\nspot_sigma = [1.0, 2.0]\n", "typo.toml")
     assert_one_line_error(tvtrack("sweep", typo), "typo.toml", "[grid]", "'spot_sigma'", "'spot_sigma_px'")
-    bad_x = spec(tmp_path, "[grid]\nspot_sigma_px = [1.0]\n[summary]\nx = \"sigma\"\ny = \"centroid_rms_px.value\"\n",
-                 "bad_x.toml")
+    bad_x = spec(
+        tmp_path, '[grid]\nspot_sigma_px = [1.0]\n[summary]\nx = "sigma"\ny = "centroid_rms_px.value"\n', "bad_x.toml"
+    )
     assert_one_line_error(tvtrack("sweep", bad_x), "bad_x.toml", "[summary]", "'sigma'")
     assert_one_line_error(tvtrack("sweep", tmp_path / "missing.toml"), "missing.toml")
 
 
 def test_unreachable_scheduler_names_the_address_and_how_to_start_one(tmp_path):
-    with socket.socket() as s:          # a loopback port with nothing listening
+    with socket.socket() as s:  # a loopback port with nothing listening
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     address = f"tcp://127.0.0.1:{port}"
     t0 = time.time()
-    line = assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
-                                         "-o", tmp_path / "s", timeout=120), address)
+    line = assert_one_line_error(
+        tvtrack(
+            "sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s", timeout=120
+        ),
+        address,
+    )
     assert time.time() - t0 < 15
     assert "dask scheduler" in line
 
@@ -94,11 +99,14 @@ def test_debug_shows_the_traceback():
     assert proc.returncode != 0 and "Traceback" in proc.stderr and "UsageError" in proc.stderr
 
 
-@pytest.mark.parametrize("notebook, parameter, value, names", [
-    ("000_dissector_ekf", "dt", "0", ["dt"]),
-    # a bound computed from another parameter must not crash when that parameter is not a number
-    ("001_maneuver_occlusion_kf", "duration_s", "abc", ["duration_s"]),
-])
+@pytest.mark.parametrize(
+    "notebook, parameter, value, names",
+    [
+        ("000_dissector_ekf", "dt", "0", ["dt"]),
+        # a bound computed from another parameter must not crash when that parameter is not a number
+        ("001_maneuver_occlusion_kf", "duration_s", "abc", ["duration_s"]),
+    ],
+)
 def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, parameter, value, names):
     proc = tvtrack("run", notebook, "-p", parameter, value)
     assert_one_line_error(proc, *names)
@@ -106,15 +114,31 @@ def test_paper_notebook_cross_parameter_checks_are_one_line_errors(notebook, par
 
 def test_scheduler_address_without_a_port_is_one_line(tmp_path):
     for address in ("tcp://127.0.0.1", "127.0.0.1", "tcp://127.0.0.1:"):
-        assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address,
-                                      "-o", tmp_path / "s", timeout=30), repr(address), "no port")
-    assert_one_line_error(tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", "tcp://host:http",
-                                  "-o", tmp_path / "s", timeout=30), "'http'")
+        assert_one_line_error(
+            tvtrack(
+                "sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s", timeout=30
+            ),
+            repr(address),
+            "no port",
+        )
+    assert_one_line_error(
+        tvtrack(
+            "sweep",
+            FIXTURE_SWEEP,
+            "--executor",
+            "dask",
+            "--scheduler",
+            "tcp://host:http",
+            "-o",
+            tmp_path / "s",
+            timeout=30,
+        ),
+        "'http'",
+    )
     assert not (tmp_path / "s").exists()
 
 
-@pytest.mark.parametrize("reply", [None, b"HTTP/1.0 200 OK\r\nContent-Length: 5\r\n\r\nhello"],
-                         ids=["silent", "http"])
+@pytest.mark.parametrize("reply", [None, b"HTTP/1.0 200 OK\r\nContent-Length: 5\r\n\r\nhello"], ids=["silent", "http"])
 def test_a_port_where_something_else_listens_is_one_line_within_15_s(tmp_path, reply):
     """Something that is not Dask listens on loopback (a silent service, a web server): one line naming it."""
     import threading
@@ -137,8 +161,9 @@ def test_a_port_where_something_else_listens_is_one_line_within_15_s(tmp_path, r
     address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
     t0 = time.time()
     try:
-        proc = tvtrack("sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s",
-                       timeout=60)
+        proc = tvtrack(
+            "sweep", FIXTURE_SWEEP, "--executor", "dask", "--scheduler", address, "-o", tmp_path / "s", timeout=60
+        )
     finally:
         server.close()
     assert time.time() - t0 < 15
@@ -148,17 +173,19 @@ def test_a_port_where_something_else_listens_is_one_line_within_15_s(tmp_path, r
 
 def test_site_output_that_cannot_be_written_is_one_line(tmp_path):
     (tmp_path / "file").write_text("x")
-    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file" / "site"), "cannot write",
-                          "file/site")
+    assert_one_line_error(
+        tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file" / "site"), "cannot write", "file/site"
+    )
     assert_one_line_error(tvtrack("site", "--runs", tmp_path, "-o", tmp_path / "file"), "is a file")
     assert (tmp_path / "file").read_text() == "x"
 
 
 def test_output_dir_cannot_be_set_with_p_and_the_line_says_why(tmp_path):
-    line = assert_one_line_error(tvtrack("run", FIXTURE_NOTEBOOK, "-p", "output_dir", "x", "-o", tmp_path / "r"),
-                                 "'output_dir'", "-o")
+    line = assert_one_line_error(
+        tvtrack("run", FIXTURE_NOTEBOOK, "-p", "output_dir", "x", "-o", tmp_path / "r"), "'output_dir'", "-o"
+    )
     assert "run's own directory" in line
-    in_spec = spec(tmp_path, "[fixed]\noutput_dir = \"x\"\n")
+    in_spec = spec(tmp_path, '[fixed]\noutput_dir = "x"\n')
     assert_one_line_error(tvtrack("sweep", in_spec, "-o", tmp_path / "s"), "'output_dir'", "-o")
     assert not (tmp_path / "r").exists() and not (tmp_path / "s").exists()
 
@@ -166,8 +193,9 @@ def test_output_dir_cannot_be_set_with_p_and_the_line_says_why(tmp_path):
 def test_sweep_values_are_checked_before_any_run_starts(tmp_path):
     bad = spec(tmp_path, "[fixed]\nn_trials = 5\n[grid]\nspot_sigma_px = [1.0, -2.0, 9.0]\n")
     t0 = time.time()
-    line = assert_one_line_error(tvtrack("sweep", bad, "--jobs", "2", "-o", tmp_path / "s"),
-                                 "spot_sigma_px", "-2.0", "no run started")
+    line = assert_one_line_error(
+        tvtrack("sweep", bad, "--jobs", "2", "-o", tmp_path / "s"), "spot_sigma_px", "-2.0", "no run started"
+    )
     assert "1 more of the 3 parameter sets" in line
     assert time.time() - t0 < 30
     assert not (tmp_path / "s").exists()
@@ -223,10 +251,17 @@ def test_the_inline_viewer_loads_the_bundled_assets_offline():
     widget.js and Wasm instead of pointing the browser at app.rerun.io ("Failed to fetch" offline)."""
     from tvtrack.pipeline.edit import OFFLINE_VIEWER_LINE
 
-    probe = ("import os\n" + OFFLINE_VIEWER_LINE + "\nimport rerun_notebook as r\n"
-             "print(r.ASSET_IS_URL, 'app.rerun.io' in r.ESM_MOD[:100000], len(r.ESM_MOD) > 10_000_000)")
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
-                         env={k: v for k, v in __import__("os").environ.items() if k != "RERUN_NOTEBOOK_ASSET"})
+    probe = (
+        "import os\n" + OFFLINE_VIEWER_LINE + "\nimport rerun_notebook as r\n"
+        "print(r.ASSET_IS_URL, 'app.rerun.io' in r.ESM_MOD[:100000], len(r.ESM_MOD) > 10_000_000)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={k: v for k, v in __import__("os").environ.items() if k != "RERUN_NOTEBOOK_ASSET"},
+    )
     assert out.stdout.split()[-3:] == ["False", "False", "True"], out.stdout + out.stderr
 
 

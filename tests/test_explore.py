@@ -10,11 +10,13 @@ from tvtrack.register import Entry, Register
 from tvtrack.results import Results
 from tvtrack.verdicts import AllOf, InBand, Ordering
 
-REG = Register([
-    Entry("a", "regime", 0, (0, 1, 2), "test regime a"),
-    Entry("b", "operating point", 0, (0, 1, 2), "test operating point b"),
-    Entry("c", "reading", "x", ("x", "y"), "test reading c"),
-])
+REG = Register(
+    [
+        Entry("a", "regime", 0, (0, 1, 2), "test regime a"),
+        Entry("b", "operating point", 0, (0, 1, 2), "test operating point b"),
+        Entry("c", "reading", "x", ("x", "y"), "test reading c"),
+    ]
+)
 
 
 def _mean(seed, shift, n=400, sd=1.0):
@@ -65,16 +67,37 @@ def test_replicates_are_independent_full_size_runs():
 
 
 def test_adaptive_stopping_clear_early_borderline_late():
-    clear = explore(lambda c, s: {"X": _mean(s, 0.0)}, REG, {"X": RULES["X"]}, seed=1, replicates=3,
-                    max_replicates=12, one_at_a_time=False)
+    clear = explore(
+        lambda c, s: {"X": _mean(s, 0.0)},
+        REG,
+        {"X": RULES["X"]},
+        seed=1,
+        replicates=3,
+        max_replicates=12,
+        one_at_a_time=False,
+    )
     assert clear.settings["replicates"] == 3
     # the true mean sits on the band's edge: intervals straddle it, more replicates are run (to the cap)
-    border = explore(lambda c, s: {"X": _mean(s, 0.5, n=100)}, REG, {"X": RULES["X"]}, seed=1, replicates=3,
-                     max_replicates=12, one_at_a_time=False)
+    border = explore(
+        lambda c, s: {"X": _mean(s, 0.5, n=100)},
+        REG,
+        {"X": RULES["X"]},
+        seed=1,
+        replicates=3,
+        max_replicates=12,
+        one_at_a_time=False,
+    )
     assert border.settings["replicates"] > 6
     # a borderline claim that the extra replicates decide stops before the cap
-    near = explore(lambda c, s: {"X": _mean(s, 0.56, n=100)}, REG, {"X": RULES["X"]}, seed=2, replicates=3,
-                   max_replicates=30, one_at_a_time=False)
+    near = explore(
+        lambda c, s: {"X": _mean(s, 0.56, n=100)},
+        REG,
+        {"X": RULES["X"]},
+        seed=2,
+        replicates=3,
+        max_replicates=30,
+        one_at_a_time=False,
+    )
     assert 3 < near.settings["replicates"] < 30
     assert near.record("X")["parts"]["claim"]["verdict"] == "not reproduced"
 
@@ -190,15 +213,16 @@ def test_shares_from_counts_pool_as_counts():
     zero = Estimate(0.0, float("nan"), 0.0, zero_events_bound(8), 8, 0.95, "count: zero events")
     p = pool([zero, zero, zero])
     assert (p.value, p.ci_low, p.n) == (0.0, 0.0, 24)
-    assert p.ci_high == pytest.approx(zero_events_bound(24))     # averaging the intervals would give ~0.10
+    assert p.ci_high == pytest.approx(zero_events_bound(24))  # averaging the intervals would give ~0.10
     mixed = pool([proportion_ci(2, 10), proportion_ci(0, 10), proportion_ci(1, 10)])
     ref = proportion_ci(3, 30)
     assert (mixed.value, mixed.ci_low, mixed.ci_high) == pytest.approx((ref.value, ref.ci_low, ref.ci_high))
 
 
 def test_a_joint_condition_is_described_by_the_entries_the_claim_reads():
-    ex = explore(measure_joint_only, REG, RULES, seed=7, replicates=3, joint=40,
-                 depends={"X": ["a", "b"], "Y": ["a", "c"]})
+    ex = explore(
+        measure_joint_only, REG, RULES, seed=7, replicates=3, joint=40, depends={"X": ["a", "b"], "Y": ["a", "c"]}
+    )
     joint = [c for c in ex.record("X")["conditions"] if c["kind"] == "joint"]
     assert joint and all(set(c["changed"]) <= {"a", "b"} for c in joint)
     assert any(r.changed(ex.default).get("c") == "y" for r in ex.runs if r.stage == "joint")  # c did vary

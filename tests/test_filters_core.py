@@ -2,8 +2,14 @@ import numpy as np
 import pytest
 from filterpy.kalman import KalmanFilter as FPKalman
 
-from tvtrack.filters import (KalmanFilter, growing_memory_filter, growing_memory_gains,
-                             polynomial_observation_row, predict_ahead, taylor_transition)
+from tvtrack.filters import (
+    KalmanFilter,
+    growing_memory_filter,
+    growing_memory_gains,
+    polynomial_observation_row,
+    predict_ahead,
+    taylor_transition,
+)
 from tvtrack.montecarlo import make_rng
 
 
@@ -73,8 +79,10 @@ def test_growing_memory_recursion_equals_batch_least_squares(order):
 def test_second_order_gains_have_the_closed_form():
     N = np.arange(3, 2001, dtype=float)
     g = growing_memory_gains(2, 2000)[2:]
-    closed = np.stack([3 * (3 * N**2 - 3 * N + 2), 18 * (2 * N - 1), 60 * np.ones_like(N)], 1) \
+    closed = (
+        np.stack([3 * (3 * N**2 - 3 * N + 2), 18 * (2 * N - 1), 60 * np.ones_like(N)], 1)
         / (N * (N + 1) * (N + 2))[:, None]
+    )
     assert np.allclose(g, closed, rtol=1e-9)
 
 

@@ -13,8 +13,14 @@ def test_generated_text_is_escaped_for_markdown():
 def test_claims_table_one_line_per_claim(tmp_path):
     res = Results("999_t", "c", {"seed": 1, "output_dir": str(tmp_path)})
     rob = Robustness(note="fixture", seeds={1: 1.5, 2: 1.5, 3: 1.5})
-    res.claim("C999-1", "The error is sigma*2 at most.", "<= 2", InBand("error", high=2.0),
-              Estimate(1.5, 0.1, 1.3, 1.7, 50, method="t"), robustness=rob)
+    res.claim(
+        "C999-1",
+        "The error is sigma*2 at most.",
+        "<= 2",
+        InBand("error", high=2.0),
+        Estimate(1.5, 0.1, 1.3, 1.7, 50, method="t"),
+        robustness=rob,
+    )
     table = claims_table(res.claims)
     lines = table.splitlines()
     assert len(lines) == 3 and lines[0].startswith("| claim | the paper says")

@@ -43,9 +43,11 @@ def import_graph() -> dict[str, set[str]]:
 
 
 def test_science_modules_import_nothing_from_the_pipeline():
-    offenders = {m: sorted(d for d in deps if d.startswith("tvtrack.pipeline"))
-                 for m, deps in import_graph().items()
-                 if not m.startswith("tvtrack.pipeline") and m != "tvtrack.__main__"}  # `python -m tvtrack` is the CLI
+    offenders = {
+        m: sorted(d for d in deps if d.startswith("tvtrack.pipeline"))
+        for m, deps in import_graph().items()
+        if not m.startswith("tvtrack.pipeline") and m != "tvtrack.__main__"
+    }  # `python -m tvtrack` is the CLI
     assert {m: d for m, d in offenders.items() if d} == {}
 
 
@@ -59,7 +61,7 @@ def test_import_graph_has_no_circle():
         state[node] = 1
         for nxt in sorted(graph[node]):
             if state.get(nxt) == 1:
-                cycle.extend(stack[stack.index(nxt):] + [node, nxt] if nxt in stack else [node, nxt])
+                cycle.extend(stack[stack.index(nxt) :] + [node, nxt] if nxt in stack else [node, nxt])
                 return True
             if state.get(nxt) is None and visit(nxt, stack + [node]):
                 return True
@@ -74,8 +76,10 @@ def test_import_graph_has_no_circle():
 
 def test_graph_sees_the_lazy_import_of_the_discriminators_from_the_scene():
     # guards the test itself: a lazy import inside a function counts as an edge
-    assert "tvtrack.papers.p003_rotating_marker_tracker.discriminators" in import_graph()[
-        "tvtrack.papers.p003_rotating_marker_tracker.scene"]
+    assert (
+        "tvtrack.papers.p003_rotating_marker_tracker.discriminators"
+        in import_graph()["tvtrack.papers.p003_rotating_marker_tracker.scene"]
+    )
 
 
 PAPERS = "tvtrack.papers."
@@ -86,8 +90,11 @@ def _paper_of(module: str) -> str | None:
 
 
 def test_the_core_never_imports_a_paper_package():
-    offenders = {m: sorted(d for d in deps if d.startswith(PAPERS))
-                 for m, deps in import_graph().items() if not m.startswith("tvtrack.papers")}
+    offenders = {
+        m: sorted(d for d in deps if d.startswith(PAPERS))
+        for m, deps in import_graph().items()
+        if not m.startswith("tvtrack.papers")
+    }
     assert {m: d for m, d in offenders.items() if d} == {}
 
 
@@ -104,10 +111,15 @@ def test_paper_packages_never_import_each_other():
 
 
 def test_the_pipeline_imports_neither_papers_nor_science():
-    science = {m for m in import_graph() if not m.startswith("tvtrack.pipeline") and m not in ("tvtrack", "tvtrack.__main__")}
+    science = {
+        m for m in import_graph() if not m.startswith("tvtrack.pipeline") and m not in ("tvtrack", "tvtrack.__main__")
+    }
     allowed = {"tvtrack.results", "tvtrack.verdicts", "tvtrack.montecarlo", "tvtrack.register", "tvtrack.plotting"}
-    offenders = {m: sorted(d for d in deps if d in science - allowed)
-                 for m, deps in import_graph().items() if m.startswith("tvtrack.pipeline")}
+    offenders = {
+        m: sorted(d for d in deps if d in science - allowed)
+        for m, deps in import_graph().items()
+        if m.startswith("tvtrack.pipeline")
+    }
     assert {m: d for m, d in offenders.items() if d} == {}
 
 
@@ -115,6 +127,6 @@ def test_the_layout_rules_see_a_planted_offence(tmp_path, monkeypatch):
     # guards the rules themselves: a core module importing a paper package is an edge they report
     graph = {"tvtrack.render": {"tvtrack.papers.p000_x.model"}, "tvtrack.papers.p000_x.model": set()}
     assert _paper_of("tvtrack.papers.p000_x.model") == "p000_x"
-    assert [m for m, deps in graph.items() if not m.startswith("tvtrack.papers")
-            and any(d.startswith(PAPERS) for d in deps)] == ["tvtrack.render"]
-
+    assert [
+        m for m, deps in graph.items() if not m.startswith("tvtrack.papers") and any(d.startswith(PAPERS) for d in deps)
+    ] == ["tvtrack.render"]

@@ -37,8 +37,13 @@ def parameters_cell(nb) -> nbformat.NotebookNode:
 
 
 def assigned_names(source: str) -> list[str]:
-    return [t.id for node in ast.parse(source).body if isinstance(node, ast.Assign)
-            for t in node.targets if isinstance(t, ast.Name)]
+    return [
+        t.id
+        for node in ast.parse(source).body
+        if isinstance(node, ast.Assign)
+        for t in node.targets
+        if isinstance(t, ast.Name)
+    ]
 
 
 def test_there_are_notebooks_or_the_report_says_so():
@@ -51,11 +56,20 @@ def committed(name: str) -> nbformat.NotebookNode:
     the nbstripout filter keeps out of git, does not fail the suite; the file itself outside a checkout."""
     path = NOTEBOOK_DIR / f"{name}.ipynb"
     try:
-        rel = path.resolve().relative_to(Path(subprocess.run(
-            ["git", "rev-parse", "--show-toplevel"], cwd=NOTEBOOK_DIR, capture_output=True, text=True,
-            check=True).stdout.strip()).resolve())
-        blob = subprocess.run(["git", "show", f"HEAD:{rel.as_posix()}"], cwd=NOTEBOOK_DIR, capture_output=True,
-                              text=True, check=True).stdout
+        rel = path.resolve().relative_to(
+            Path(
+                subprocess.run(
+                    ["git", "rev-parse", "--show-toplevel"],
+                    cwd=NOTEBOOK_DIR,
+                    capture_output=True,
+                    text=True,
+                    check=True,
+                ).stdout.strip()
+            ).resolve()
+        )
+        blob = subprocess.run(
+            ["git", "show", f"HEAD:{rel.as_posix()}"], cwd=NOTEBOOK_DIR, capture_output=True, text=True, check=True
+        ).stdout
         return nbformat.reads(blob, as_version=4)
     except (subprocess.CalledProcessError, OSError, ValueError):
         return read(name)
@@ -81,8 +95,9 @@ def test_parameters_cell_follows_the_contract(name):
     comment_lines = {t.start[0] for t in tokens if t.type == tokenize.COMMENT}
     for node in ast.parse(cell.source).body:
         assert isinstance(node, ast.Assign), f"{name}: the parameters cell may hold only assignments"
-        assert node.end_lineno in comment_lines or node.lineno in comment_lines, \
+        assert node.end_lineno in comment_lines or node.lineno in comment_lines, (
             f"{name}: parameter on line {node.lineno} has no comment giving its unit and range"
+        )
     rerun_mode = next(n.value for n in ast.parse(cell.source).body if n.targets[0].id == "rerun_mode")
     assert ast.literal_eval(rerun_mode) == "file"
 
@@ -90,8 +105,9 @@ def test_parameters_cell_follows_the_contract(name):
 @pytest.mark.parametrize("name", NOTEBOOK_NAMES)
 def test_validation_is_the_next_code_cell(name):
     code = [c for c in read(name).cells if c.cell_type == "code"]
-    assert "validate_parameters(globals()" in code[1].source, \
+    assert "validate_parameters(globals()" in code[1].source, (
         f"{name}: the cell after the parameters must validate them with validate_parameters(globals(), ...)"
+    )
 
 
 @pytest.mark.parametrize("name", NOTEBOOK_NAMES)
@@ -136,12 +152,17 @@ def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
     for fig in data["figures"]:
         assert (outcome.run_dir / fig["file"]).is_file() and fig["caption"]
     written = {p.name for p in outcome.run_dir.iterdir()}
-    assert written <= {"results.json", "run.json", "notebook.ipynb", "recording.rrd", "error.txt"} | \
-        {f["file"] for f in data["figures"]}, f"{name}: unexpected outputs {sorted(written)}"
+    assert written <= {"results.json", "run.json", "notebook.ipynb", "recording.rrd", "error.txt"} | {
+        f["file"] for f in data["figures"]
+    }, f"{name}: unexpected outputs {sorted(written)}"
     rrd = outcome.run_dir / "recording.rrd"
     assert data["recording"] == "recording.rrd" and rrd.is_file()
-    verify = subprocess.run([str(Path(sys.executable).parent / "rerun"), "rrd", "verify", str(rrd)],
-                            capture_output=True, text=True, timeout=120)
+    verify = subprocess.run(
+        [str(Path(sys.executable).parent / "rerun"), "rrd", "verify", str(rrd)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert verify.returncode == 0, verify.stderr
 
 
@@ -164,10 +185,14 @@ def test_executed_notebook_shows_every_figure_inline_with_its_caption(name, smok
     assert outcome.ok, outcome.error
     data = load_results(outcome.run_dir / "results.json")
     nb = nbformat.read(outcome.run_dir / "notebook.ipynb", as_version=4)
-    shown = {hashlib.sha256(base64.b64decode(out["data"]["image/png"])).hexdigest()
-             for _, out in _outputs(nb) if "data" in out and "image/png" in out["data"]}
-    markdown = "\n".join(out["data"]["text/markdown"] for _, out in _outputs(nb)
-                         if "data" in out and "text/markdown" in out["data"])
+    shown = {
+        hashlib.sha256(base64.b64decode(out["data"]["image/png"])).hexdigest()
+        for _, out in _outputs(nb)
+        if "data" in out and "image/png" in out["data"]
+    }
+    markdown = "\n".join(
+        out["data"]["text/markdown"] for _, out in _outputs(nb) if "data" in out and "text/markdown" in out["data"]
+    )
     for fig in data["figures"]:
         digest = hashlib.sha256((outcome.run_dir / fig["file"]).read_bytes()).hexdigest()
         assert digest in shown, f"{name}: {fig['file']} is saved but not shown inline"
@@ -195,8 +220,11 @@ def test_executed_notebook_has_no_bare_reprs_or_warnings(name, smoke_run):
 def test_no_verdict_is_typed_in_a_code_cell(name):
     for cell in read(name).cells:
         if cell.cell_type == "code":
-            strings = [node.value for node in ast.walk(ast.parse(cell.source))
-                       if isinstance(node, ast.Constant) and isinstance(node.value, str)]
+            strings = [
+                node.value
+                for node in ast.walk(ast.parse(cell.source))
+                if isinstance(node, ast.Constant) and isinstance(node.value, str)
+            ]
             typed = [s for s in strings if s.strip() in ("reproduced", "partly", "not reproduced")]
             assert not typed, f"{name}: a verdict typed in code {typed}; a rule object decides verdicts"
 
@@ -218,8 +246,12 @@ def test_notebook_keeps_the_budget_of_a_short_paper(name):
     assert total <= MAX_CODE_LINES, f"{name}: {total} code lines (budget {MAX_CODE_LINES})"
     long = [(i, _code_lines(c.source)) for i, c in enumerate(code[1:], 1) if _code_lines(c.source) > MAX_CELL_LINES]
     assert not long, f"{name}: code cells over {MAX_CELL_LINES} lines (index, lines): {long}"
-    defs = [n.name for c in code for n in ast.walk(ast.parse(c.source))
-            if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
+    defs = [
+        n.name
+        for c in code
+        for n in ast.walk(ast.parse(c.source))
+        if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+    ]
     assert len(defs) <= MAX_FUNCTIONS, f"{name}: {len(defs)} functions or classes defined in the notebook: {defs}"
 
 
@@ -245,8 +277,11 @@ def test_executed_notebook_fills_its_findings_before_any_figure(name, smoke_run)
     assert outcome.ok, outcome.error
     nb = nbformat.read(outcome.run_dir / "notebook.ipynb", as_version=4)
     outs = list(_outputs(nb))
-    table = [k for k, (_, out) in enumerate(outs)
-             if "| claim | the paper says" in out.get("data", {}).get("text/markdown", "")]
+    table = [
+        k
+        for k, (_, out) in enumerate(outs)
+        if "| claim | the paper says" in out.get("data", {}).get("text/markdown", "")
+    ]
     images = [k for k, (_, out) in enumerate(outs) if "image/png" in out.get("data", {})]
     assert table, f"{name}: the findings table is not in the executed notebook"
     assert not images or table[0] < images[0], f"{name}: the findings come after a figure"
@@ -269,7 +304,7 @@ def test_parameter_ranges_are_written_once(name):
     import importlib
 
     pkg = importlib.import_module(f"tvtrack.papers.p{name}.params")
-    rules = getattr(pkg, "RULES", None) or getattr(pkg, "PARAMETERS")
+    rules = getattr(pkg, "RULES", None) or pkg.PARAMETERS
     cell = parameters_cell(read(name)).source
     checked = 0
     for line in cell.splitlines():

@@ -14,8 +14,13 @@ def rerun_cli() -> str:
 
 
 def write_recording(tmp_path, n=6):
-    rec = Recorder(tmp_path, "file", "tvtrack-test", blueprint=image_and_series_blueprint("camera", ["errors"]),
-                   frame_interval_s=0.04)
+    rec = Recorder(
+        tmp_path,
+        "file",
+        "tvtrack-test",
+        blueprint=image_and_series_blueprint("camera", ["errors"]),
+        frame_interval_s=0.04,
+    )
     for k in range(n):
         rec.set_frame(k)
         rec.image("camera/image", np.full((8, 10), k, dtype=np.uint8))

@@ -4,7 +4,15 @@ from scipy import integrate, stats
 
 from tvtrack.measure import centroid, crop
 from tvtrack.montecarlo import make_rng
-from tvtrack.render import box_spot, disc_area, disc_spot, gate_origin, gaussian_spot, pixel_fractions_gaussian, sensor_readout
+from tvtrack.render import (
+    box_spot,
+    disc_area,
+    disc_spot,
+    gate_origin,
+    gaussian_spot,
+    pixel_fractions_gaussian,
+    sensor_readout,
+)
 
 
 def test_pixel_fractions_equal_numerical_integrals():
@@ -15,8 +23,9 @@ def test_pixel_fractions_equal_numerical_integrals():
 
 def test_spot_mass_is_flux_times_in_window_fraction():
     img = gaussian_spot([[5.0, 4.0]], (9, 11), 1.2, flux=1000.0)
-    inside = (stats.norm.cdf(10.5, 5, 1.2) - stats.norm.cdf(-0.5, 5, 1.2)) * \
-             (stats.norm.cdf(8.5, 4, 1.2) - stats.norm.cdf(-0.5, 4, 1.2))
+    inside = (stats.norm.cdf(10.5, 5, 1.2) - stats.norm.cdf(-0.5, 5, 1.2)) * (
+        stats.norm.cdf(8.5, 4, 1.2) - stats.norm.cdf(-0.5, 4, 1.2)
+    )
     assert img.sum() == pytest.approx(1000.0 * inside, rel=1e-12)
 
 
@@ -34,7 +43,6 @@ def test_box_spot_centroid_exact_on_symmetric_positions_and_biased_between():
     # between them the sharp-edged box shows the pixel-phase bias of a sampled centroid
     bias = centroid(box_spot((7.25, 7.0), (15, 15), 2.3, 1.0), background=None).xy[0] - 7.25
     assert 1e-3 < abs(bias) < 0.1
-
 
 
 @pytest.mark.parametrize("diameter, tolerance", [(4.0, 0.05), (6.5, 0.05), (8.0, 0.01), (16.0, 0.01)])
@@ -57,6 +65,7 @@ def test_centred_disc_spot_centroid_is_exact(center):
     assert np.allclose(c.xy, center, atol=1e-12)
     with pytest.raises(ValueError, match="diameter"):
         disc_spot(center, (15, 15), 0.0)
+
 
 def test_gate_crop_renders_the_same_pixels_as_the_full_frame():
     centers = np.array([[[20.3, 11.7], [3.0, 4.2]]])

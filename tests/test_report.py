@@ -4,8 +4,14 @@ import re
 import pytest
 
 from conftest import FIXTURE_NOTEBOOK
-from tvtrack.pipeline.report import (README_BEGIN, README_END, format_measured, update_readme, verdict_summary,
-                                     write_report)
+from tvtrack.pipeline.report import (
+    README_BEGIN,
+    README_END,
+    format_measured,
+    update_readme,
+    verdict_summary,
+    write_report,
+)
 from tvtrack.pipeline.runner import read_run, run_notebook
 
 
@@ -18,42 +24,86 @@ def reproduce_dir(tmp_path_factory):
 
 
 def _robust(verdict="reproduced"):
-    return {"label": "robust", "where": [], "choices": [], "conditions": [],
-            "seeds": [{"seed": s, "measured": 1.0, "verdict": verdict} for s in (1, 2, 3)], "note": "n"}
+    return {
+        "label": "robust",
+        "where": [],
+        "choices": [],
+        "conditions": [],
+        "seeds": [{"seed": s, "measured": 1.0, "verdict": verdict} for s in (1, 2, 3)],
+        "note": "n",
+    }
 
 
 def _claim(cid, verdict, robustness, statement="A claim."):
-    return {"id": cid, "statement": statement, "paper_value": "1", "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
-            "acceptance": "in [0, 2]", "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
-            "verdict": verdict, "note": "", "robustness": robustness}
+    return {
+        "id": cid,
+        "statement": statement,
+        "paper_value": "1",
+        "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
+        "acceptance": "in [0, 2]",
+        "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
+        "verdict": verdict,
+        "note": "",
+        "robustness": robustness,
+    }
 
 
 def _synthetic_run(root, name, claims, profile="paper", old_schema=False):
     """A run directory as the runner leaves it, with a hand-made results.json (new or pre-verdict-standard schema)."""
     run = root / name
     run.mkdir(parents=True)
-    (run / "run.json").write_text(json.dumps({"notebook": name, "profile": profile, "status": "ok", "runtime_s": 12.0,
-                                              "finished_utc": "2026-11-24T10:00:00Z"}))
+    (run / "run.json").write_text(
+        json.dumps(
+            {
+                "notebook": name,
+                "profile": profile,
+                "status": "ok",
+                "runtime_s": 12.0,
+                "finished_utc": "2026-11-24T10:00:00Z",
+            }
+        )
+    )
     if old_schema:
         claims = [{k: v for k, v in c.items() if k not in ("rule", "robustness")} for c in claims]
-    (run / "results.json").write_text(json.dumps({"notebook": name, "citation": f"Author: {name}", "seed": 1,
-                                                  "runtime_s": 10.0, "git_commit": "abc", "claims": claims,
-                                                  "figures": [], "recording": None}))
+    (run / "results.json").write_text(
+        json.dumps(
+            {
+                "notebook": name,
+                "citation": f"Author: {name}",
+                "seed": 1,
+                "runtime_s": 10.0,
+                "git_commit": "abc",
+                "claims": claims,
+                "figures": [],
+                "recording": None,
+            }
+        )
+    )
     return run
 
 
-DEPENDS = {"label": "depends", "where": ["reproduced when epoch = mid, designation_sd = 1.0"],
-           "choices": [{"name": "epoch", "default": "first", "values": ["first", "mid"], "why": "unstated"}],
-           "conditions": [{"choices": {"epoch": "mid"}, "measured": 4.0, "verdict": "reproduced"}],
-           "seeds": [], "note": ""}
+DEPENDS = {
+    "label": "depends",
+    "where": ["reproduced when epoch = mid, designation_sd = 1.0"],
+    "choices": [{"name": "epoch", "default": "first", "values": ["first", "mid"], "why": "unstated"}],
+    "conditions": [{"choices": {"epoch": "mid"}, "measured": 4.0, "verdict": "reproduced"}],
+    "seeds": [],
+    "note": "",
+}
 
 
 @pytest.fixture
 def synthetic_runs(tmp_path):
     root = tmp_path / "reproduce"
-    _synthetic_run(root, "010_new", [_claim("C010-1", "reproduced", _robust()),
-                                     _claim("C010-2", "not reproduced", DEPENDS, "The gain is 4."),
-                                     _claim("C010-3", "not checkable", None)])
+    _synthetic_run(
+        root,
+        "010_new",
+        [
+            _claim("C010-1", "reproduced", _robust()),
+            _claim("C010-2", "not reproduced", DEPENDS, "The gain is 4."),
+            _claim("C010-3", "not checkable", None),
+        ],
+    )
     _synthetic_run(root, "011_old", [_claim("C011-1", "partly", None)], old_schema=True)
     return root
 
@@ -61,8 +111,10 @@ def synthetic_runs(tmp_path):
 def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     path = write_report(reproduce_dir, tmp_path / "REPRODUCTION.md", notebooks=["fixture_centroid", "broken", "absent"])
     text = path.read_text()
-    assert ("**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
-            "of the checkable verdicts **0 robust · 1 unexplored · 0 depends · 0 unstable**") in text
+    assert (
+        "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
+        "of the checkable verdicts **0 robust · 1 unexplored · 0 depends · 0 unstable**"
+    ) in text
     # the fixture varies nothing of a simulated world: it cannot be called robust
     assert "| C900-1 | **reproduced** | unexplored |" in text and "**Profile shown: paper**" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
@@ -74,18 +126,23 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
 def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
     assert ("**1 robust · 0 unexplored · 1 depends · 0 unstable** · 1 without a robustness record") in text
-    assert ("By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · "
-            "1 not checkable.") in text
+    assert (
+        "By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · 1 not checkable."
+    ) in text
     assert "| C010-2 | **not reproduced** | depends | reproduced when epoch = mid, designation\\_sd = 1.0 |" in text
     assert "| C010-3 | **not checkable** | — |  |" in text
     assert "| C011-1 | **partly** | — |  |" in text
 
 
 def test_verdict_summary_counts_labels_per_verdict():
-    claims = [_claim("C1-1", "reproduced", _robust()), _claim("C1-2", "reproduced", DEPENDS),
-              _claim("C1-3", "partly", {**DEPENDS, "label": "unstable"})]
-    assert verdict_summary(claims) == ("2 reproduced (1 robust, 1 depends) · 1 partly (1 unstable) · "
-                                       "0 not reproduced · 0 not checkable")
+    claims = [
+        _claim("C1-1", "reproduced", _robust()),
+        _claim("C1-2", "reproduced", DEPENDS),
+        _claim("C1-3", "partly", {**DEPENDS, "label": "unstable"}),
+    ]
+    assert verdict_summary(claims) == (
+        "2 reproduced (1 robust, 1 depends) · 1 partly (1 unstable) · 0 not reproduced · 0 not checkable"
+    )
 
 
 def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs, tmp_path):
@@ -98,7 +155,7 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     assert "1 robust, 0 unexplored, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
     # the headline finding: one line with statement, paper value, measured interval, verdict, label
     assert "| 010 C010-2 | The gain is 4. | 1 | 1.5 \\[1.2, 1.8\\] | **not reproduced** | depends |" in text
-    assert not re.search(r"20\d\d-\d\d-\d\d", text)     # no date: an unchanged result leaves git status clean
+    assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
     before = readme.stat().st_mtime_ns
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
     assert readme.read_text() == text and readme.stat().st_mtime_ns == before
@@ -106,8 +163,12 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
 
 def test_generated_text_is_escaped_in_markdown(tmp_path):
     root = tmp_path / "reproduce"
-    claim = _claim("C020-1", "not reproduced", {**DEPENDS, "where": ["partly when reading = v1 / sigma*2"]},
-                   "The error is sigma*2 * k_gain | <b>")
+    claim = _claim(
+        "C020-1",
+        "not reproduced",
+        {**DEPENDS, "where": ["partly when reading = v1 / sigma*2"]},
+        "The error is sigma*2 * k_gain | <b>",
+    )
     _synthetic_run(root, "020_esc", [claim])
     readme = tmp_path / "README.md"
     readme.write_text(f"{README_BEGIN}\n{README_END}\n")
@@ -119,21 +180,37 @@ def test_generated_text_is_escaped_in_markdown(tmp_path):
 
 
 def test_first_screen_orders_failures_then_dependent_verdicts_and_reads_new_records(tmp_path):
-    new_record = {"label": "unstable", "where": ["replicates split"], "conditions": [], "seeds": [],
-                  "coverage": "unstable over 3 replicates and 14 readings", "register": [{"name": "motion"}],
-                  "parts": {"gain": {"verdict": "reproduced", "label": "robust"},
-                            "bias": {"verdict": "partly", "label": "unstable"}}}
+    new_record = {
+        "label": "unstable",
+        "where": ["replicates split"],
+        "conditions": [],
+        "seeds": [],
+        "coverage": "unstable over 3 replicates and 14 readings",
+        "register": [{"name": "motion"}],
+        "parts": {
+            "gain": {"verdict": "reproduced", "label": "robust"},
+            "bias": {"verdict": "partly", "label": "unstable"},
+        },
+    }
     root = tmp_path / "reproduce"
-    _synthetic_run(root, "030_new", [_claim("C030-1", "reproduced", new_record),
-                                     _claim("C030-2", "undecided", {**_robust(), "label": "unexplored"}),
-                                     _claim("C030-3", "reproduced", _robust()),
-                                     _claim("C030-10", "not reproduced", DEPENDS)])
+    _synthetic_run(
+        root,
+        "030_new",
+        [
+            _claim("C030-1", "reproduced", new_record),
+            _claim("C030-2", "undecided", {**_robust(), "label": "unexplored"}),
+            _claim("C030-3", "reproduced", _robust()),
+            _claim("C030-10", "not reproduced", DEPENDS),
+        ],
+    )
     from tvtrack.pipeline.report import collect_runs, first_screen
 
     rows = first_screen(collect_runs(root, ["030_new"]))
     assert [(r["id"], r["verdict"], r["label"]) for r in rows] == [
-        ("C030-10", "not reproduced", "depends"), ("C030-2", "undecided", "unexplored"),
-        ("C030-1", "reproduced", "unstable")]
+        ("C030-10", "not reproduced", "depends"),
+        ("C030-2", "undecided", "unexplored"),
+        ("C030-1", "reproduced", "unstable"),
+    ]
     text = write_report(root, tmp_path / "R.md", notebooks=["030_new"]).read_text()
     assert "covers: unstable over 3 replicates and 14 readings" in text
     assert "parts: gain reproduced, robust; bias partly, unstable" in text
@@ -151,7 +228,10 @@ def test_report_has_the_forest_plot_and_the_robustness_picture(synthetic_runs, t
         assert Image.open(synthetic_runs / "figures" / name).size[0] > 300
     items = forest_items(collect_runs(synthetic_runs, ["010_new", "011_old"]))
     # C010-1 and C010-2 measured 1.5 [1.2, 1.8] against [0, 2] -> 0.75 [0.6, 0.9] on the band's scale
-    assert [(i["name"], i["verdict"]) for i in items] == [("010 C010-1", "reproduced"), ("010 C010-2", "not reproduced")]
+    assert [(i["name"], i["verdict"]) for i in items] == [
+        ("010 C010-1", "reproduced"),
+        ("010 C010-2", "not reproduced"),
+    ]
     assert items[0]["value"] == pytest.approx(0.75) and (items[0]["low"], items[0]["high"]) == pytest.approx((0.6, 0.9))
     rows, entries, cells = robustness_matrix([_claim("C1-1", "not reproduced", DEPENDS)])
     assert (rows, entries, cells) == (["C1-1"], ["epoch"], [["reproduced"]])
@@ -175,7 +255,7 @@ def test_smoke_reproduce_writes_its_own_folder_and_leaves_paper_runs_alone(tmp_p
     nb = tmp_path / "nbs" / "fixture_centroid.ipynb"
     nb.parent.mkdir()
     shutil.copy(FIXTURE_NOTEBOOK, nb)
-    (nb.parent / "fixture_centroid.smoke.toml").write_text("n_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n")
+    (nb.parent / "fixture_centroid.smoke.toml").write_text('n_trials = 10\nn_frames = 3\nrerun_mode = "off"\n')
     runs = tmp_path / "papermill_runs"
     paper = _synthetic_run(runs / "reproduce", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())])
     before = {p.name: p.read_bytes() for p in paper.iterdir()}
@@ -219,18 +299,26 @@ def test_ctrl_c_during_reproduce_keeps_earlier_runs_and_leaves_no_temporaries(tm
     nb = tmp_path / "nbs" / "fixture_centroid.ipynb"
     nb.parent.mkdir()
     shutil.copy(FIXTURE_NOTEBOOK, nb)
-    (nb.parent / "fixture_centroid.smoke.toml").write_text("n_trials = 20000\nn_frames = 20\nrerun_mode = \"off\"\n")
+    (nb.parent / "fixture_centroid.smoke.toml").write_text('n_trials = 20000\nn_frames = 20\nrerun_mode = "off"\n')
     runs = tmp_path / "papermill_runs"
-    earlier = _synthetic_run(runs / "reproduce-smoke", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())],
-                             profile="smoke")
+    earlier = _synthetic_run(
+        runs / "reproduce-smoke", "fixture_centroid", [_claim("C900-1", "reproduced", _robust())], profile="smoke"
+    )
     before = {p.name: p.read_bytes() for p in earlier.iterdir()}
-    script = (f"import sys; from pathlib import Path; import tvtrack.pipeline.reproduce as r\n"
-              f"r.list_notebooks = lambda: [Path({str(nb)!r})]\n"
-              f"from tvtrack.pipeline import cli\n"
-              f"cli._cmd_reproduce = lambda a: r.reproduce(profile='smoke', jobs=1, runs_dir=Path({str(runs)!r}))\n"
-              f"sys.exit(cli.main(['reproduce']))\n")
-    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
+    script = (
+        f"import sys; from pathlib import Path; import tvtrack.pipeline.reproduce as r\n"
+        f"r.list_notebooks = lambda: [Path({str(nb)!r})]\n"
+        f"from tvtrack.pipeline import cli\n"
+        f"cli._cmd_reproduce = lambda a: r.reproduce(profile='smoke', jobs=1, runs_dir=Path({str(runs)!r}))\n"
+        f"sys.exit(cli.main(['reproduce']))\n"
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     folder = runs / "reproduce-smoke"
     deadline = time.time() + 120
     while time.time() < deadline and not list(folder.glob(".tmp-*")):

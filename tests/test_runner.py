@@ -57,8 +57,11 @@ def test_cli_run_exit_codes(tmp_path):
     ok = subprocess.run(cmd + ["-o", str(tmp_path / "a")], capture_output=True, text=True)
     assert ok.returncode == 0 and "ok: fixture_centroid" in ok.stdout
     # a notebook that raises at run time (not in its validation cell) is a failed run: exit 1, with its record
-    broken = subprocess.run(cmd + ["-p", "spot_flux_e", "1e-300", "-p", "n_frames", "1", "-o", str(tmp_path / "b")],
-                            capture_output=True, text=True)
+    broken = subprocess.run(
+        cmd + ["-p", "spot_flux_e", "1e-300", "-p", "n_frames", "1", "-o", str(tmp_path / "b")],
+        capture_output=True,
+        text=True,
+    )
     assert broken.returncode in (0, 1)
     assert (tmp_path / "b" / "run.json").is_file()
 
@@ -91,13 +94,19 @@ def test_sweep_of_eight_runs_with_two_jobs(sweep_two_jobs):
 
 @pytest.mark.determinism
 def test_same_seed_gives_identical_metrics_alone_and_in_sweeps(sweep_two_jobs, tmp_path):
-    target = next(r for r in expand(load_spec(FIXTURE_SWEEP))
-                  if r.parameters["spot_sigma_px"] == 1.5 and r.parameters["seed"] == 2)
+    target = next(
+        r
+        for r in expand(load_spec(FIXTURE_SWEEP))
+        if r.parameters["spot_sigma_px"] == 1.5 and r.parameters["seed"] == 2
+    )
     in_two_jobs = metrics(sweep_two_jobs.sweep_dir / "runs" / target.run_id)
     alone = run_notebook(FIXTURE_NOTEBOOK, tmp_path / "alone", target.parameters)
-    spec = write_spec(tmp_path / "one.toml", "[fixed]\n" + "".join(
-        f"{k} = {json.dumps(v)}\n" for k, v in target.parameters.items() if k != "seed")
-        + f"seed = {target.parameters['seed']}\n")
+    spec = write_spec(
+        tmp_path / "one.toml",
+        "[fixed]\n"
+        + "".join(f"{k} = {json.dumps(v)}\n" for k, v in target.parameters.items() if k != "seed")
+        + f"seed = {target.parameters['seed']}\n",
+    )
     one_job = run_sweep(spec, jobs=1, output=tmp_path / "one", progress=False)
     assert one_job.n_ok == 1
     (run_dir,) = [p for p in (tmp_path / "one" / "runs").iterdir()]
@@ -109,20 +118,33 @@ def test_failed_run_is_isolated_and_recorded(tmp_path):
     # every value passes the preflight; a copy of the fixture fails at run time (after its validation cell) at -2.0
     nb = json.loads(FIXTURE_NOTEBOOK.read_text())
     first_code = next(i for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code")
-    nb["cells"].insert(first_code + 2, {"cell_type": "code", "id": "planted", "metadata": {}, "execution_count": None,
-                                        "outputs": [], "source": "if spot_sigma_px == 2.0:\n"
-                                                                 "    raise RuntimeError('planted failure')\n"})
+    nb["cells"].insert(
+        first_code + 2,
+        {
+            "cell_type": "code",
+            "id": "planted",
+            "metadata": {},
+            "execution_count": None,
+            "outputs": [],
+            "source": "if spot_sigma_px == 2.0:\n    raise RuntimeError('planted failure')\n",
+        },
+    )
     (tmp_path / "failing.ipynb").write_text(json.dumps(nb))
     spec = tmp_path / "mixed.toml"
-    spec.write_text('notebook = "failing.ipynb"\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n'
-                    "[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n")
+    spec.write_text(
+        'notebook = "failing.ipynb"\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n'
+        "[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n"
+    )
     s = run_sweep(spec, jobs=2, output=tmp_path / "mixed", progress=False)
     assert (s.n_ok, s.n_failed) == (2, 1)
     rows = s.summary_csv.read_text().splitlines()
     failed = [r for r in rows if ",failed," in r]
     assert len(failed) == 1 and "RuntimeError: planted failure" in failed[0]
-    cli = subprocess.run([sys.executable, "-m", "tvtrack", "sweep", str(spec), "-o", str(tmp_path / "mixed")],
-                         capture_output=True, text=True)
+    cli = subprocess.run(
+        [sys.executable, "-m", "tvtrack", "sweep", str(spec), "-o", str(tmp_path / "mixed")],
+        capture_output=True,
+        text=True,
+    )
     assert cli.returncode == 1  # any failed run makes the sweep exit non-zero
     assert "2 ok, 1 failed, 2 skipped" in cli.stdout
 
@@ -130,9 +152,12 @@ def test_failed_run_is_isolated_and_recorded(tmp_path):
 @pytest.mark.determinism
 def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
     out = tmp_path / "killed"
-    proc = subprocess.Popen([sys.executable, "-m", "tvtrack", "sweep", str(FIXTURE_SWEEP), "--jobs", "2",
-                             "-o", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tvtrack", "sweep", str(FIXTURE_SWEEP), "--jobs", "2", "-o", str(out)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
     runs = out / "runs"
     deadline = time.time() + 240
     while time.time() < deadline:
@@ -155,13 +180,14 @@ def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
 @pytest.mark.determinism
 def test_dask_executor_on_a_local_cluster(tmp_path):
     distributed = pytest.importorskip("distributed")
-    spec = write_spec(tmp_path / "dask.toml",
-                      "repeats = 2\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = \"off\"\n"
-                      "[grid]\nspot_sigma_px = [1.0, 2.0]\n")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
-        s = run_sweep(spec, output=tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address,
-                      progress=False)
+    spec = write_spec(
+        tmp_path / "dask.toml",
+        'repeats = 2\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0]\n',
+    )
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        s = run_sweep(
+            spec, output=tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address, progress=False
+        )
     assert (s.n_runs, s.n_ok) == (4, 4)
     local = run_sweep(spec, jobs=1, output=tmp_path / "local", progress=False)
     for run in expand(load_spec(spec)):
@@ -179,8 +205,13 @@ def _wait_for(predicate, timeout_s=240):
 
 def _tvtrack_in_own_group(*args):
     """``python -m tvtrack ARGS`` as a terminal starts it: its own process group, Ctrl-C not ignored."""
-    return subprocess.Popen([sys.executable, "-m", "tvtrack", *map(str, args)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    return subprocess.Popen(
+        [sys.executable, "-m", "tvtrack", *map(str, args)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
 
 
 def _kernels_of_tree(tmp_path) -> list[str]:
@@ -196,15 +227,18 @@ def _kernels_of_tree(tmp_path) -> list[str]:
 
 
 def test_ctrl_c_during_a_sweep_stops_it_cleanly_and_the_sweep_resumes(tmp_path):
-    spec = write_spec(tmp_path / "int.toml", "repeats = 2\n[fixed]\nn_trials = 200\nn_frames = 10\n"
-                      "rerun_mode = \"off\"\n[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n")
+    spec = write_spec(
+        tmp_path / "int.toml",
+        "repeats = 2\n[fixed]\nn_trials = 200\nn_frames = 10\n"
+        'rerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n',
+    )
     out = tmp_path / "int"
     runs = out / "runs"
     proc = _tvtrack_in_own_group("sweep", spec, "--jobs", "2", "-o", out)
     finished = lambda: [p for p in runs.iterdir() if not p.name.startswith(".")] if runs.exists() else []  # noqa: E731
     assert _wait_for(lambda: finished() and list(runs.glob(".tmp-*"))), "no run finished and none running"
     t0 = time.time()
-    os.killpg(proc.pid, signal.SIGINT)          # what Ctrl-C in a terminal does
+    os.killpg(proc.pid, signal.SIGINT)  # what Ctrl-C in a terminal does
     stdout, stderr = proc.communicate(timeout=30)
     assert time.time() - t0 < 10
     assert proc.returncode == 130, stderr
@@ -245,15 +279,16 @@ def test_stale_temporaries_of_a_dead_process_are_removed_live_ones_kept(tmp_path
     assert [p.name for p in tmp_path.iterdir()] == [".tmp-b-2"]
 
 
-def test_the_notebooks_default_output_dir_resolves_inside_the_clone_whatever_the_working_directory(tmp_path,
-                                                                                                   monkeypatch):
+def test_the_notebooks_default_output_dir_resolves_inside_the_clone_whatever_the_working_directory(
+    tmp_path, monkeypatch
+):
     from tvtrack.pipeline.paths import INTERACTIVE_DIR, REPO_ROOT, resolve_output_dir
 
-    for cwd in (REPO_ROOT, REPO_ROOT / "notebooks", tmp_path):   # plain papermill at the root, JupyterLab, elsewhere
+    for cwd in (REPO_ROOT, REPO_ROOT / "notebooks", tmp_path):  # plain papermill at the root, JupyterLab, elsewhere
         monkeypatch.chdir(cwd)
         for default in ("../papermill_runs/interactive/004_laser_spot_prediction", "", None):
             out = resolve_output_dir(default, "004_laser_spot_prediction")
             assert out.is_absolute() and out == INTERACTIVE_DIR / "004_laser_spot_prediction"
             assert out.is_relative_to(REPO_ROOT)
-    assert resolve_output_dir(".", "004_laser_spot_prediction") == Path(".")   # the runner's run directory
+    assert resolve_output_dir(".", "004_laser_spot_prediction") == Path(".")  # the runner's run directory
     assert resolve_output_dir("/tmp/x", "004_laser_spot_prediction") == Path("/tmp/x")

@@ -28,8 +28,12 @@ def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, r
     claims = [c for p in (runs_dir / "reproduce").glob("*/results.json") for c in json.loads(p.read_text())["claims"]]
     assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
-    assert sorted(rows) == [("fixture_centroid", "reproduced", "unexplored"), ("new_schema", "not reproduced", "depends"),
-                            ("new_schema", "undecided", "unexplored"), ("old_schema", "partly", "—")]
+    assert sorted(rows) == [
+        ("fixture_centroid", "reproduced", "unexplored"),
+        ("new_schema", "not reproduced", "depends"),
+        ("new_schema", "undecided", "unexplored"),
+        ("old_schema", "partly", "—"),
+    ]
     nb = json.loads((runs_dir / "reproduce/fixture_centroid/notebook.ipynb").read_text())
     cell = claim_cells(nb, ["C900-1"])["C900-1"]
     assert "results.claim(" in "".join(next(c for c in nb["cells"] if c.get("id") == cell)["source"])
@@ -76,8 +80,8 @@ def test_recording_still_is_the_first_nonconstant_frame(runs_dir, tmp_path):  # 
     out = tmp_path / "still.png"
     assert recording_still(runs_dir / "reproduce/fixture_centroid/recording.rrd", out)
     img = Image.open(out)
-    assert min(img.size) >= 320 and img.size[0] == img.size[1]          # 32 x 32 frame, enlarged
-    assert len(np.unique(np.asarray(img.convert("L")))) > 10                     # a noisy spot, not a flat frame
+    assert min(img.size) >= 320 and img.size[0] == img.size[1]  # 32 x 32 frame, enlarged
+    assert len(np.unique(np.asarray(img.convert("L")))) > 10  # a noisy spot, not a flat frame
 
 
 @pytest.mark.parametrize("argv", [["site", "--help"], ["view", "--help"]])
@@ -99,20 +103,39 @@ def test_view_command_prints_a_loopback_url_and_stops_on_ctrl_c(runs_dir):  # no
     from tvtrack.pipeline.viewer import free_port
 
     web, grpc = free_port(), free_port()
-    proc = subprocess.Popen([sys.executable, "-m", "tvtrack", "view", str(runs_dir / "reproduce/fixture_centroid"),
-                             "--port", str(web), "--grpc-port", str(grpc), "--no-browser"],
-                            stdout=subprocess.PIPE, text=True, env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "tvtrack",
+            "view",
+            str(runs_dir / "reproduce/fixture_centroid"),
+            "--port",
+            str(web),
+            "--grpc-port",
+            str(grpc),
+            "--no-browser",
+        ],
+        stdout=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)},
+    )
     try:
         lines = [proc.stdout.readline() for _ in range(2)]
         url = lines[1].removeprefix("open ").strip()
         assert url == (f"http://127.0.0.1:{web}/?url=rerun%2Bhttp%3A%2F%2F127.0.0.1%3A{grpc}%2Fproxy"), lines
         assert urllib.request.urlopen(url, timeout=10).status == 200
-        children = subprocess.run(["pgrep", "-f", "--", f"web-viewer-port {web}"], capture_output=True, text=True).stdout
+        children = subprocess.run(
+            ["pgrep", "-f", "--", f"web-viewer-port {web}"], capture_output=True, text=True
+        ).stdout
         assert children.split()
         proc.send_signal(signal.SIGINT)
         assert proc.wait(20) == 0 and "stopped" in proc.stdout.read()
-        alive = [pid for pid in children.split() if Path(f"/proc/{pid}/stat").is_file()
-                 and Path(f"/proc/{pid}/stat").read_text().split()[2] != "Z"]
+        alive = [
+            pid
+            for pid in children.split()
+            if Path(f"/proc/{pid}/stat").is_file() and Path(f"/proc/{pid}/stat").read_text().split()[2] != "Z"
+        ]
         assert alive == []
     finally:
         proc.kill()
@@ -147,9 +170,9 @@ def test_site_refuses_to_replace_a_folder_it_did_not_build(runs_dir, tmp_path): 
 
 def test_index_leads_with_the_first_screen_and_the_pictures(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "index.html").read_text()
-    first = html[html.index('id="first-screen"'):html.index('class="cards"')]
+    first = html[html.index('id="first-screen"') : html.index('class="cards"')]
     rows = re.findall(r'<tr data-verdict="([^"]+)" data-label="([^"]+)">', first)
-    assert rows == [("not reproduced", "depends"), ("undecided", "unexplored")]   # the robust/unrecorded ones are not
+    assert rows == [("not reproduced", "depends"), ("undecided", "unexplored")]  # the robust/unrecorded ones are not
     assert "&lt;= 2 px" in first and "2.6 [2.4, 2.8]" in first
     assert 'id="forest" src="forest.png"' in html and 'id="robustness" src="robustness.png"' in html
     for name in ("forest.png", "robustness.png"):
@@ -167,12 +190,12 @@ def test_generated_text_is_html_escaped_everywhere(built_site):  # noqa: F811 - 
 
 def test_ledger_is_compact_with_the_rule_behind_a_click(built_site):  # noqa: F811 - pytest fixture from site_fixtures
     html = (built_site / "ledger.html").read_text()
-    row = html[html.index('data-paper="new_schema" data-verdict="not reproduced"'):]
-    row = row[:row.index("</tr>")]
-    details = row[row.index('<details class="rule">'):]
+    row = html[html.index('data-paper="new_schema" data-verdict="not reproduced"') :]
+    row = row[: row.index("</tr>")]
+    details = row[row.index('<details class="rule">') :]
     assert "error in [0, 2] px" in details and "reproduced when motion = gentle*2" in details
     assert "covers:</strong> depends over 6 readings x 3 replicates: motion, noise" in details
-    assert "error in [0, 2] px" not in row[:row.index('<details class="rule">')]
+    assert "error in [0, 2] px" not in row[: row.index('<details class="rule">')]
 
 
 def test_a_smoke_site_says_so_and_reads_the_smoke_runs(runs_dir, tmp_path):  # noqa: F811 - pytest fixture from site_fixtures

@@ -24,8 +24,17 @@ from tvtrack.pipeline.viewer import coloured_mask, free_port
 CHROMIUM = "/usr/bin/chromium"
 INSTALL = "apt-get install -y chromium && pip install playwright==1.65.2 (Playwright never downloads a browser here)"
 # Flags measured to work for Rerun's web viewer on CPU-only machines (shared/notes/web-viewer-in-browser.md).
-FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+FLAGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
+]
 LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
 SCREENSHOTS = REPO / "docs" / "screenshots"
 UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
@@ -111,19 +120,21 @@ def test_site_in_browser(browser, smoke_site):
     try:
         page = w.open((site / "index.html").as_uri())
         cards = page.locator("article.card").count()
-        assert cards == len(NOTEBOOK_NAMES) + 4      # + fixture_centroid, old_schema, new_schema, broken
+        assert cards == len(NOTEBOOK_NAMES) + 4  # + fixture_centroid, old_schema, new_schema, broken
         images = w.images_decoded()
         assert images and all(width > 0 for _, width in images), images
         _shot(page, "site_index.png")
 
-        ok_notebooks = [n for n in [*NOTEBOOK_NAMES, "fixture_centroid"] if (site / "notebooks" / f"{n}.html").is_file()]
+        ok_notebooks = [
+            n for n in [*NOTEBOOK_NAMES, "fixture_centroid"] if (site / "notebooks" / f"{n}.html").is_file()
+        ]
         for name in (ok_notebooks[0], "old_schema"):
             page = w.open((site / "notebooks" / f"{name}.html").as_uri())
             images = w.images_decoded()
             assert all(width > 0 for _, width in images), (name, images)
         assert page.locator("math").count() == 2 and page.locator("math").first.bounding_box()["width"] > 0
         page = w.open((site / "notebooks" / "fixture_centroid.html").as_uri())
-        assert len(w.images_decoded()) >= 2          # the figure inline and the recording's still
+        assert len(w.images_decoded()) >= 2  # the figure inline and the recording's still
 
         page = w.open((site / "ledger.html").as_uri())
         rows = page.locator("#ledger tbody tr[data-paper]")
@@ -131,8 +142,11 @@ def test_site_in_browser(browser, smoke_site):
         total = rows.count()
         assert total >= 2 and visible.count() == total
         page.select_option("#f-verdict", "partly")
-        assert visible.count() == sum(1 for v in rows.evaluate_all("rs => rs.map(r => r.dataset.verdict)")
-                                      if v == "partly") >= 1
+        assert (
+            visible.count()
+            == sum(1 for v in rows.evaluate_all("rs => rs.map(r => r.dataset.verdict)") if v == "partly")
+            >= 1
+        )
         page.select_option("#f-label", "—")
         assert "C911-1" in visible.first.inner_text()
         page.select_option("#f-verdict", "")
@@ -172,8 +186,8 @@ def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture
         row = first.first.inner_text()
         assert "C912-1" in row and "sigma*2 <b>not bold</b> & small." in row and "2.6 [2.4, 2.8]" in row
         assert "not reproduced" in row and "depends" in row
-        assert page.locator("#first b").count() == 0 and page.locator("#first em").count() == 0   # text, not markup
-        assert page.locator("#first").bounding_box()["y"] < 800                      # on the first screen
+        assert page.locator("#first b").count() == 0 and page.locator("#first em").count() == 0  # text, not markup
+        assert page.locator("#first").bounding_box()["y"] < 800  # on the first screen
         # the forest plot and the robustness picture, decoded, after the first screen and before the cards
         for pic in ("#forest", "#robustness"):
             assert page.locator(pic).evaluate("i => i.complete && i.naturalWidth") > 300, pic
@@ -195,7 +209,7 @@ def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture
         assert page.locator("#ledger tbody tr[data-paper]:visible").count() == 1
 
         page = w.open((fixture_site / "sweeps" / "fixture_sweep.html").as_uri())
-        assert page.evaluate("document.documentElement.scrollWidth") <= 1280        # the table scrolls in its box
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1280  # the table scrolls in its box
         assert w.errors == [], w.errors
         assert w.outside == [], w.outside
     finally:
@@ -211,10 +225,13 @@ def _viewer_drawn(png: bytes) -> dict:
 
     img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
     body = img[60:-60]
-    left, right = body[:, : body.shape[1] // 2], body[:, body.shape[1] // 2:]
+    left, right = body[:, : body.shape[1] // 2], body[:, body.shape[1] // 2 :]
     grey = left[(np.ptp(left.astype(int), axis=-1) < 8)]
-    return {"grey_levels": len(np.unique(grey[:, 0])), "left_colour": int(coloured_mask(left).sum()),
-            "right_colour": int(coloured_mask(right).sum())}
+    return {
+        "grey_levels": len(np.unique(grey[:, 0])),
+        "left_colour": int(coloured_mask(left).sum()),
+        "right_colour": int(coloured_mask(right).sum()),
+    }
 
 
 def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_for_viewer):
@@ -225,7 +242,7 @@ def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_
         with WebViewer(runs_dir_for_viewer, web_port=free_port(), grpc_port=free_port()) as viewer:
             assert urlparse(viewer.url).hostname == "127.0.0.1"
             page = w.open(viewer.url)
-            deadline, seen = time.monotonic() + 90, {}   # ~20 s on an idle 2-core machine
+            deadline, seen = time.monotonic() + 90, {}  # ~20 s on an idle 2-core machine
             while time.monotonic() < deadline:
                 png = page.screenshot()
                 seen = _viewer_drawn(png)
@@ -234,14 +251,17 @@ def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_
                     break
                 time.sleep(0.5)
             assert seen["grey_levels"] > 20 and seen["left_colour"] > 100 and seen["right_colour"] > 100, seen
-            assert viewer.process.poll() is None          # our own server answered, not a stale one
+            assert viewer.process.poll() is None  # our own server answered, not a stale one
             if UPDATE_SCREENSHOTS:
                 SCREENSHOTS.mkdir(parents=True, exist_ok=True)
                 (SCREENSHOTS / "web_viewer.png").write_bytes(png)
         # the viewer asks for fonts, an examples manifest, its latest release and telemetry on the internet:
         # all refused here, and it draws the recording without them
-        assert all(urlparse(u).hostname in {"fonts.googleapis.com", "fonts.gstatic.com", "app.rerun.io",
-                                            "tel.rerun.io", "api.github.com"} for u in w.outside), w.outside
+        assert all(
+            urlparse(u).hostname
+            in {"fonts.googleapis.com", "fonts.gstatic.com", "app.rerun.io", "tel.rerun.io", "api.github.com"}
+            for u in w.outside
+        ), w.outside
     finally:
         w.close()
 

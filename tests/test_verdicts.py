@@ -6,17 +6,35 @@ import pytest
 
 from tvtrack.montecarlo import Estimate
 from tvtrack.register import Entry
-from tvtrack.verdicts import (AllOf, Condition, InBand, Monotone, NotCheckable, Ordering, Robustness,
-                              WithinFactor, as_estimate, is_undecided, label_parts)
+from tvtrack.verdicts import (
+    AllOf,
+    Condition,
+    InBand,
+    Monotone,
+    NotCheckable,
+    Ordering,
+    Robustness,
+    WithinFactor,
+    as_estimate,
+    is_undecided,
+    label_parts,
+)
 
 
 def est(lo, hi, value=None):
     return Estimate((lo + hi) / 2 if value is None else value, 0.1, lo, hi, 100)
 
 
-@pytest.mark.parametrize("ci, expected", [((1.2, 1.8), "reproduced"), ((0.8, 1.2), "partly"),
-                                          ((1.8, 2.3), "partly"), ((2.1, 2.5), "not reproduced"),
-                                          ((0.2, 0.5), "not reproduced")])
+@pytest.mark.parametrize(
+    "ci, expected",
+    [
+        ((1.2, 1.8), "reproduced"),
+        ((0.8, 1.2), "partly"),
+        ((1.8, 2.3), "partly"),
+        ((2.1, 2.5), "not reproduced"),
+        ((0.2, 0.5), "not reproduced"),
+    ],
+)
 def test_in_band_is_two_sided(ci, expected):
     assert InBand("rms", 1.0, 2.0, "px").decide(est(*ci)) == expected
 
@@ -25,7 +43,7 @@ def test_better_than_the_paper_is_partly_not_reproduced():
     rule = InBand("rms", 1.0, 2.0, "px", better="lower")
     verdict, why = rule.explain(est(0.4, 0.6))
     assert verdict == "partly" and "better than the paper" in why
-    assert rule.decide(est(2.1, 2.5)) == "not reproduced"     # worse stays a failure
+    assert rule.decide(est(2.1, 2.5)) == "not reproduced"  # worse stays a failure
     assert "(better than the paper) is partly" in rule.text()
 
 
@@ -65,7 +83,7 @@ def test_monotone_needs_separated_ends_and_no_contrary_step():
     assert rule.decide(down[::-1]) == "not reproduced"
     flat = [est(1, 2), est(1.1, 2.1), est(0.9, 1.9)]
     assert rule.decide(flat) == "not reproduced"
-    wiggle = [est(4, 5), est(5.5, 6), est(1, 2)]          # ends separated but one step up
+    wiggle = [est(4, 5), est(5.5, 6), est(1, 2)]  # ends separated but one step up
     assert rule.decide(wiggle) == "partly"
 
 
@@ -87,11 +105,16 @@ def test_not_checkable_says_why():
 def test_robustness_labels():
     rule = InBand("ratio", 3.6, 5.4)
     rob = Robustness(
-        choices=[Entry("epoch", "operating point", "first", ("first", "mid", "last"), "the paper does not say"),
-                 Entry("designation_sd", "reading", 0.3, (0.3, 1.0), "not given")],
-        conditions=[Condition({"epoch": "mid"}, est(0.5, 0.9)),
-                    Condition({"epoch": "last", "designation_sd": 1.0}, est(4.0, 5.0))],
-        seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)})
+        choices=[
+            Entry("epoch", "operating point", "first", ("first", "mid", "last"), "the paper does not say"),
+            Entry("designation_sd", "reading", 0.3, (0.3, 1.0), "not given"),
+        ],
+        conditions=[
+            Condition({"epoch": "mid"}, est(0.5, 0.9)),
+            Condition({"epoch": "last", "designation_sd": 1.0}, est(4.0, 5.0)),
+        ],
+        seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)},
+    )
     rec = rob.record(rule, est(0.6, 0.9))
     assert rec["label"] == "depends"
     assert rec["where"] == ["reproduced when epoch = last, designation_sd = 1.0"]
@@ -122,8 +145,8 @@ def test_undecided_never_decides():
         assert InBand("q", high=0.05).decide(e) == "undecided"
         assert Ordering("a", "b", ">").decide(e) == "undecided"
     both = AllOf({"a": InBand("a", 0, 2), "b": InBand("b", 0, 2)})
-    assert both.decide({"a": est(0.5, 1.5), "b": nan}) == "undecided"      # cannot be reproduced on it
-    assert both.decide({"a": est(3.0, 4.0), "b": nan}) == "undecided"      # nor not reproduced
+    assert both.decide({"a": est(0.5, 1.5), "b": nan}) == "undecided"  # cannot be reproduced on it
+    assert both.decide({"a": est(3.0, 4.0), "b": nan}) == "undecided"  # nor not reproduced
     assert both.decide({"a": est(0.5, 1.5), "b": est(3.0, 4.0)}) == "partly"
     assert not both.judge({"a": est(0.5, 1.5), "b": nan}).settled
     mono = Monotone("g", "x", "increasing")

@@ -124,23 +124,54 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
             return es[0]
         t = stats.t.ppf(0.5 + conf / 2, k - 1)
         m, s = vals.mean(), vals.std(ddof=1) / math.sqrt(k)
-        return Estimate(float(m), float(s), float(m - t * s), float(m + t * s), k, conf,
-                        f"t interval over {k} independent replicates", extrap)
+        return Estimate(
+            float(m),
+            float(s),
+            float(m - t * s),
+            float(m + t * s),
+            k,
+            conf,
+            f"t interval over {k} independent replicates",
+            extrap,
+        )
     lo = np.array([e.ci_low for e in es], float)
     hi = np.array([e.ci_high for e in es], float)
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
-        return Estimate(float(np.nanmean(vals)), math.nan, math.nan, math.nan, n, conf,
-                        f"pooled over {k} replicates: some intervals undefined", extrap)
+        return Estimate(
+            float(np.nanmean(vals)),
+            math.nan,
+            math.nan,
+            math.nan,
+            n,
+            conf,
+            f"pooled over {k} replicates: some intervals undefined",
+            extrap,
+        )
     if np.all(lo > 0) and np.all(vals > 0):
         lv, lse = np.log(vals), (np.log(hi) - np.log(lo)) / (2 * z)
         m, se = lv.mean(), math.sqrt(float(np.sum(lse**2))) / k
-        return Estimate(float(math.exp(m)), float(math.exp(m) * se), float(math.exp(m - z * se)),
-                        float(math.exp(m + z * se)), n, conf,
-                        f"pooled over {k} independent replicates (equal weights, log scale)", extrap)
+        return Estimate(
+            float(math.exp(m)),
+            float(math.exp(m) * se),
+            float(math.exp(m - z * se)),
+            float(math.exp(m + z * se)),
+            n,
+            conf,
+            f"pooled over {k} independent replicates (equal weights, log scale)",
+            extrap,
+        )
     se_i = (hi - lo) / (2 * z)
     m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
-    return Estimate(float(m), float(se), float(m - z * se), float(m + z * se), n, conf,
-                    f"pooled over {k} independent replicates (equal weights)", extrap)
+    return Estimate(
+        float(m),
+        float(se),
+        float(m - z * se),
+        float(m + z * se),
+        n,
+        conf,
+        f"pooled over {k} independent replicates (equal weights)",
+        extrap,
+    )
 
 
 def _is_estimate_like(x: Any) -> bool:
@@ -206,10 +237,16 @@ class Exploration:
         rule = rule or self.rules[claim_id]
         entries = [self.register[k] for k in self.depends[claim_id]]
         reps = [{"seed": r.seed, "measured": r.outputs[claim_id]} for r in self.replicates() if claim_id in r.outputs]
-        reads = set(self.depends[claim_id])   # a joint sample is described by the entries this claim reads
-        conds = [{"changed": {k: v for k, v in r.changed(self.default).items() if k in reads}, "kind": r.stage,
-                  "measured": r.outputs[claim_id]}
-                 for r in self.runs if r.stage != "replicate" and self._relevant(claim_id, r)]
+        reads = set(self.depends[claim_id])  # a joint sample is described by the entries this claim reads
+        conds = [
+            {
+                "changed": {k: v for k, v in r.changed(self.default).items() if k in reads},
+                "kind": r.stage,
+                "measured": r.outputs[claim_id],
+            }
+            for r in self.runs
+            if r.stage != "replicate" and self._relevant(claim_id, r)
+        ]
         out = label_parts(rule, self.measured(claim_id), reps, conds, entries)
         out["register"] = [e.to_dict() for e in entries]
         out["design"] = dict(self.settings)
@@ -220,10 +257,18 @@ class Exploration:
         rec = self.record(claim_id)
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
-        rows = [f"| replicate (seed {r['seed']}) | " + " | ".join(r["parts"].get(p, "-") for p in parts) + " |"
-                for r in rec["replicates"]]
-        rows += [f"| {c['kind']}: " + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
-                 + " | " + " | ".join(c["parts"].get(p, "-") for p in parts) + " |" for c in rec["conditions"]]
+        rows = [
+            f"| replicate (seed {r['seed']}) | " + " | ".join(r["parts"].get(p, "-") for p in parts) + " |"
+            for r in rec["replicates"]
+        ]
+        rows += [
+            f"| {c['kind']}: "
+            + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
+            + " | "
+            + " | ".join(c["parts"].get(p, "-") for p in parts)
+            + " |"
+            for c in rec["conditions"]
+        ]
         return "\n".join([head, *rows])
 
     def summary(self) -> str:
@@ -231,8 +276,9 @@ class Exploration:
         lines = []
         for cid in self.rules:
             rec = self.record(cid)
-            lines.append(f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}"
-                                                               if rec["where"] else ""))
+            lines.append(
+                f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}" if rec["where"] else "")
+            )
         return "\n".join(lines)
 
 
@@ -269,9 +315,20 @@ def _settled(rules: Mapping[str, Rule], runs: list[Run]) -> bool:
     return True
 
 
-def explore(measure: Callable, register: Register, rules: Mapping[str, Rule], *, seed: int, replicates: int = 3,
-            max_replicates: int | None = None, joint: int = 0, depends: Mapping[str, Sequence[str]] | None = None,
-            batched: bool = False, executor: Any = None, one_at_a_time: bool = True) -> Exploration:
+def explore(
+    measure: Callable,
+    register: Register,
+    rules: Mapping[str, Rule],
+    *,
+    seed: int,
+    replicates: int = 3,
+    max_replicates: int | None = None,
+    joint: int = 0,
+    depends: Mapping[str, Sequence[str]] | None = None,
+    batched: bool = False,
+    executor: Any = None,
+    one_at_a_time: bool = True,
+) -> Exploration:
     """Measure every claim over the register and over independent replicates.
 
     Parameters
@@ -334,8 +391,14 @@ def explore(measure: Callable, register: Register, rules: Mapping[str, Rule], *,
         _execute(measure, extra, batched, executor)
         runs += extra
         n += 1
-    settings = {"replicates": n, "min_replicates": replicates, "max_replicates": cap, "joint": joint,
-                "one_at_a_time": one_at_a_time, "seed": seed}
+    settings = {
+        "replicates": n,
+        "min_replicates": replicates,
+        "max_replicates": cap,
+        "joint": joint,
+        "one_at_a_time": one_at_a_time,
+        "seed": seed,
+    }
     return Exploration(register, rules, depends, runs, settings)
 
 

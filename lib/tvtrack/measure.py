@@ -85,8 +85,9 @@ class Centroid:
     valid: np.ndarray
 
 
-def centroid(images, origin=(0, 0), *, background="border", threshold_sigma: float | None = None,
-             threshold: float | None = None) -> Centroid:
+def centroid(
+    images, origin=(0, 0), *, background="border", threshold_sigma: float | None = None, threshold: float | None = None
+) -> Centroid:
     """Energy centre (intensity-weighted centroid) of each image or gate crop.
 
     Parameters
@@ -114,8 +115,11 @@ def centroid(images, origin=(0, 0), *, background="border", threshold_sigma: flo
             raise ValueError(f"background = {background!r}; use 'border', a number or None")
         level, rms = border_statistics(a)
     else:
-        level = np.zeros(a.shape[:-2]) if background is None else np.broadcast_to(
-            np.asarray(background, dtype=float), a.shape[:-2])
+        level = (
+            np.zeros(a.shape[:-2])
+            if background is None
+            else np.broadcast_to(np.asarray(background, dtype=float), a.shape[:-2])
+        )
         rms = border_statistics(a)[1] if threshold_sigma is not None else None
     w = a - np.asarray(level)[..., None, None]
     cut = np.zeros(a.shape[:-2])

@@ -12,11 +12,34 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 from scipy import stats
 
-__all__ = ["make_rng", "spawn_rngs", "Estimate", "mean_ci", "bootstrap_ci", "mean_square_ci", "variance_ci",
-           "rms_ci", "ratio_ci", "paired_difference", "paired_test", "robust_summary", "proportion_ci",
-           "zero_events_bound", "events_statement", "quantile_ci", "N_BOOTSTRAP", "BOOTSTRAP_SEED",
-           "COVERAGE", "COVERAGE_FLOOR", "coverage_at", "stated_coverage", "coverage_reached", "rate_from_counts",
-           "mark_extrapolated", "widen_to_nominal"]
+__all__ = [
+    "make_rng",
+    "spawn_rngs",
+    "Estimate",
+    "mean_ci",
+    "bootstrap_ci",
+    "mean_square_ci",
+    "variance_ci",
+    "rms_ci",
+    "ratio_ci",
+    "paired_difference",
+    "paired_test",
+    "robust_summary",
+    "proportion_ci",
+    "zero_events_bound",
+    "events_statement",
+    "quantile_ci",
+    "N_BOOTSTRAP",
+    "BOOTSTRAP_SEED",
+    "COVERAGE",
+    "COVERAGE_FLOOR",
+    "coverage_at",
+    "stated_coverage",
+    "coverage_reached",
+    "rate_from_counts",
+    "mark_extrapolated",
+    "widen_to_nominal",
+]
 
 #: Bootstrap resamples by default (intervals at the 2.5 % / 97.5 % tails need thousands).
 N_BOOTSTRAP = 2000
@@ -81,8 +104,9 @@ class Estimate:
 
     def __format__(self, spec: str) -> str:
         spec = spec or ".3g"
-        return (f"{self.value:{spec}} [{self.ci_low:{spec}}, {self.ci_high:{spec}}] "
-                f"({self.confidence:.0%} CI, n={self.n})")
+        return (
+            f"{self.value:{spec}} [{self.ci_low:{spec}}, {self.ci_high:{spec}}] ({self.confidence:.0%} CI, n={self.n})"
+        )
 
 
 # -- coverage measured by simulation -------------------------------------------------------------
@@ -98,10 +122,38 @@ class Estimate:
 #: (:func:`mean_square_ci`, :func:`rms_ci`: bootstrap-t), ``ratio`` (:func:`ratio_ci`: expanded
 #: percentile), ``mean t`` (:func:`mean_ci`, :func:`paired_difference`), ``mean bootstrap-t``.
 COVERAGE = {
-    "mean_square": {5: (0.936, 0.855), 10: (0.937, 0.839), 15: (0.936, 0.852), 30: (0.944, 0.858), 48: (0.953, 0.837), 100: (0.936, 0.860)},
-    "ratio": {5: (0.916, 0.914), 10: (0.941, 0.923), 15: (0.940, 0.927), 30: (0.948, 0.927), 48: (0.937, 0.922), 100: (0.938, 0.921)},
-    "mean t": {5: (0.882, 0.815), 10: (0.904, 0.831), 15: (0.913, 0.842), 30: (0.924, 0.880), 48: (0.946, 0.893), 100: (0.935, 0.909)},
-    "mean bootstrap-t": {5: (0.936, 0.898), 10: (0.937, 0.896), 15: (0.936, 0.900), 30: (0.944, 0.923), 48: (0.948, 0.926), 100: (0.936, 0.924)},
+    "mean_square": {
+        5: (0.936, 0.855),
+        10: (0.937, 0.839),
+        15: (0.936, 0.852),
+        30: (0.944, 0.858),
+        48: (0.953, 0.837),
+        100: (0.936, 0.860),
+    },
+    "ratio": {
+        5: (0.916, 0.914),
+        10: (0.941, 0.923),
+        15: (0.940, 0.927),
+        30: (0.948, 0.927),
+        48: (0.937, 0.922),
+        100: (0.938, 0.921),
+    },
+    "mean t": {
+        5: (0.882, 0.815),
+        10: (0.904, 0.831),
+        15: (0.913, 0.842),
+        30: (0.924, 0.880),
+        48: (0.946, 0.893),
+        100: (0.935, 0.909),
+    },
+    "mean bootstrap-t": {
+        5: (0.936, 0.898),
+        10: (0.937, 0.896),
+        15: (0.936, 0.900),
+        30: (0.944, 0.923),
+        48: (0.948, 0.926),
+        100: (0.936, 0.924),
+    },
 }
 #: A helper whose measured coverage at the sample size falls below this says so (:func:`coverage_reached`).
 COVERAGE_FLOOR = 0.93
@@ -153,16 +205,21 @@ def widen_to_nominal(estimate: Estimate) -> Estimate:
     """
     stated = stated_coverage(estimate)
     if np.isnan(stated) or stated >= estimate.confidence or not np.isfinite([estimate.ci_low, estimate.ci_high]).all():
-        return estimate                          # unmeasured coverage cannot be calibrated: the flag stays False
+        return estimate  # unmeasured coverage cannot be calibrated: the flag stays False
     f = stats.norm.ppf(0.5 + estimate.confidence / 2) / stats.norm.ppf(0.5 + stated / 2)
     v, lo, hi = estimate.value, estimate.ci_low, estimate.ci_high
     if lo > 0 and v > 0:
         lo, hi = v * (lo / v) ** f, v * (hi / v) ** f
     else:
         lo, hi = v - f * (v - lo), v + f * (hi - v)
-    return replace(estimate, ci_low=float(lo), ci_high=float(hi),
-                   method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
-                       f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"))
+    return replace(
+        estimate,
+        ci_low=float(lo),
+        ci_high=float(hi),
+        method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
+            f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"
+        ),
+    )
 
 
 def _expanded_alpha(alpha: float, n: int) -> float:
@@ -190,8 +247,9 @@ def _blocks(n_resamples: int, width: int):
     return [slice(j, min(j + step, n_resamples)) for j in range(0, n_resamples, step)]
 
 
-def _studentized_mean_interval(x: np.ndarray, confidence: float, n_resamples: int,
-                               rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _studentized_mean_interval(
+    x: np.ndarray, confidence: float, n_resamples: int, rng: np.random.Generator
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bootstrap-t (studentised) interval of the mean of each row of ``x`` (R, n).
 
     ``T* = (mean* - mean) / (sd* / sqrt(n))`` over resamples; the interval is
@@ -201,27 +259,28 @@ def _studentized_mean_interval(x: np.ndarray, confidence: float, n_resamples: in
     """
     R, n = x.shape
     m = x.mean(axis=1)
-    xc = x - m[:, None]                                     # centred: no cancellation in the moments
+    xc = x - m[:, None]  # centred: no cancellation in the moments
     se = xc.std(axis=1, ddof=1) / np.sqrt(n)
     idx = rng.integers(0, n, size=(n_resamples, n))
     t = np.empty((R, n_resamples))
     mb = np.empty((R, n_resamples))
     for sl in _blocks(n_resamples, n):
-        W = _resample_weights(idx[sl], n) / n                 # (b, n)
-        m1 = xc @ W.T                                         # (R, b) resample mean minus the mean
-        m2 = (xc ** 2) @ W.T
-        sd = np.sqrt(np.maximum(m2 - m1 ** 2, 0.0) * n / (n - 1)) / np.sqrt(n)
+        W = _resample_weights(idx[sl], n) / n  # (b, n)
+        m1 = xc @ W.T  # (R, b) resample mean minus the mean
+        m2 = (xc**2) @ W.T
+        sd = np.sqrt(np.maximum(m2 - m1**2, 0.0) * n / (n - 1)) / np.sqrt(n)
         with np.errstate(divide="ignore", invalid="ignore"):
             t[:, sl] = m1 / sd
         mb[:, sl] = m1
-    t[np.isnan(t)] = 0.0                                      # a resample of one repeated value at the mean
+    t[np.isnan(t)] = 0.0  # a resample of one repeated value at the mean
     a = 1 - confidence
     q_lo, q_hi = _quantiles(t, [a / 2, 1 - a / 2])
     return m - q_hi * se, m - q_lo * se, mb.std(axis=1, ddof=1)
 
 
-def _ratio_replicates(a: np.ndarray, b: np.ndarray, paired: bool, n_resamples: int,
-                      rng: np.random.Generator) -> np.ndarray:
+def _ratio_replicates(
+    a: np.ndarray, b: np.ndarray, paired: bool, n_resamples: int, rng: np.random.Generator
+) -> np.ndarray:
     """Bootstrap replicates of ``mean(a) / mean(b)`` per row, ``a`` (R, n_a), ``b`` (R, n_b) -> (R, B);
     paired: the same trial indices for both (``n_a == n_b``). Not finite replicates are NaN."""
     na, nb = a.shape[1], b.shape[1]
@@ -237,8 +296,9 @@ def _ratio_replicates(a: np.ndarray, b: np.ndarray, paired: bool, n_resamples: i
     return out
 
 
-def _expanded_percentile_ratio(a: np.ndarray, b: np.ndarray, confidence: float, paired: bool,
-                               n_resamples: int, rng: np.random.Generator):
+def _expanded_percentile_ratio(
+    a: np.ndarray, b: np.ndarray, confidence: float, paired: bool, n_resamples: int, rng: np.random.Generator
+):
     """Expanded percentile interval of ``mean(a) / mean(b)`` per row: ``lo, hi, se_boot`` (R,)."""
     n = min(a.shape[1], b.shape[1])
     a2 = _expanded_alpha(1 - confidence, n) / 2
@@ -271,19 +331,33 @@ def _cluster_statistics(data, statistic, members, picks) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         if all(isinstance(i, np.ndarray) for i in idx):
             return np.asarray(statistic(*(x[i] for x, i in zip(data, idx)), axis=-1), dtype=float)
-        return np.array([float(statistic(*(x[i[j]] for x, i in zip(data, idx)), axis=-1))
-                         for j in range(len(picks[0]))])
+        return np.array(
+            [float(statistic(*(x[i[j]] for x, i in zip(data, idx)), axis=-1)) for j in range(len(picks[0]))]
+        )
 
 
-def _grouped_bootstrap(data, statistic, value: float, groups, paired: bool, n_resamples: int, confidence: float,
-                       rng: np.random.Generator, method: str) -> Estimate:
+def _grouped_bootstrap(
+    data,
+    statistic,
+    value: float,
+    groups,
+    paired: bool,
+    n_resamples: int,
+    confidence: float,
+    rng: np.random.Generator,
+    method: str,
+) -> Estimate:
     """Cluster bootstrap of :func:`bootstrap_ci`: whole clusters resampled with replacement, jointly
     across paired samples (one label array) or independently per sample (one label array each)."""
-    labels = [np.asarray(groups).ravel()] * len(data) if paired or np.ndim(groups[0]) == 0 else \
-        [np.asarray(g).ravel() for g in groups]
+    labels = (
+        [np.asarray(groups).ravel()] * len(data)
+        if paired or np.ndim(groups[0]) == 0
+        else [np.asarray(g).ravel() for g in groups]
+    )
     if len(labels) != len(data) or any(x.size != g.size for x, g in zip(data, labels)):
-        raise ValueError(f"bootstrap_ci: 'groups' has {[g.size for g in labels]} labels, "
-                         f"the samples {[x.size for x in data]} trials")
+        raise ValueError(
+            f"bootstrap_ci: 'groups' has {[g.size for g in labels]} labels, the samples {[x.size for x in data]} trials"
+        )
     members = [_cluster_members(g) for g in labels]
     sizes = [len(m) for m in members]
     C = min(sizes)
@@ -306,22 +380,29 @@ def _grouped_bootstrap(data, statistic, value: float, groups, paired: bool, n_re
             raise ValueError("bootstrap_ci: BCa with clusters needs paired samples; use 'expanded percentile'")
         leave_one_out = np.array([[k for k in range(C) if k != i] for i in range(C)])
         jack = _cluster_statistics(data, statistic, members, [leave_one_out] * len(data))
-        z0 = stats.norm.ppf(np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size,
-                                    1 / boot.size, 1 - 1 / boot.size))
+        z0 = stats.norm.ppf(
+            np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size, 1 / boot.size, 1 - 1 / boot.size)
+        )
         d = jack.mean() - jack
-        acc = np.sum(d ** 3) / (6 * np.sum(d ** 2) ** 1.5) if np.sum(d ** 2) > 0 else 0.0
+        acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
         z = stats.norm.ppf([a / 2, 1 - a / 2])
         probs = stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
     else:
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
-    lo, hi = (np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan))
+    lo, hi = np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan)
     what = f"{C} clusters" if paired or len(set(sizes)) == 1 else f"{'/'.join(map(str, sizes))} clusters"
-    return Estimate(value, float(boot.std(ddof=1)) if boot.size > 1 else float("nan"), float(lo), float(hi), C,
-                    confidence, f"cluster {method} bootstrap ({n_resamples} resamples of {what})")
+    return Estimate(
+        value,
+        float(boot.std(ddof=1)) if boot.size > 1 else float("nan"),
+        float(lo),
+        float(hi),
+        C,
+        confidence,
+        f"cluster {method} bootstrap ({n_resamples} resamples of {what})",
+    )
 
 
-def mean_ci(samples, confidence: float = 0.95, method: str = "t",
-            rng: np.random.Generator | None = None) -> Estimate:
+def mean_ci(samples, confidence: float = 0.95, method: str = "t", rng: np.random.Generator | None = None) -> Estimate:
     """Mean of independent samples with a Student-t (or bootstrap-t) confidence interval.
 
     The Student-t interval is exact for normal samples; on skewed samples it under-covers at small
@@ -351,16 +432,31 @@ def mean_ci(samples, confidence: float = 0.95, method: str = "t",
     if method == "bootstrap-t":
         rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
         lo, hi, _ = _studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
-        return Estimate(mean, se, float(lo[0]), float(hi[0]), n, confidence,
-                        f"bootstrap-t ({N_BOOTSTRAP} resamples); " + _coverage_text("mean bootstrap-t", n))
+        return Estimate(
+            mean,
+            se,
+            float(lo[0]),
+            float(hi[0]),
+            n,
+            confidence,
+            f"bootstrap-t ({N_BOOTSTRAP} resamples); " + _coverage_text("mean bootstrap-t", n),
+        )
     half = float(stats.t.ppf(0.5 + confidence / 2, n - 1) * se)
     text = "Student t" + (f"; {_coverage_text('mean t', n)}" if n < 100 else "")
     return Estimate(mean, se, mean - half, mean + half, n, confidence, text)
 
 
-def bootstrap_ci(samples, statistic, *, paired: bool = True, n_resamples: int = N_BOOTSTRAP,
-                 confidence: float = 0.95, rng: np.random.Generator | None = None,
-                 method: str = "BCa", groups=None) -> Estimate:
+def bootstrap_ci(
+    samples,
+    statistic,
+    *,
+    paired: bool = True,
+    n_resamples: int = N_BOOTSTRAP,
+    confidence: float = 0.95,
+    rng: np.random.Generator | None = None,
+    method: str = "BCa",
+    groups=None,
+) -> Estimate:
     """A statistic of independent trials (or of independent clusters of trials) with a bootstrap interval.
 
     Parameters
@@ -404,7 +500,7 @@ def bootstrap_ci(samples, statistic, *, paired: bool = True, n_resamples: int = 
     value = float(statistic(*data, axis=-1))
     if n < 2 or not np.isfinite(value):
         return Estimate(value, float("nan"), float("nan"), float("nan"), n, confidence, "none (n < 2)")
-    if all(np.ptp(x) == 0 for x in data):             # constant samples: BCa is undefined, nothing varies
+    if all(np.ptp(x) == 0 for x in data):  # constant samples: BCa is undefined, nothing varies
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant sample)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     if groups is not None:
@@ -414,15 +510,26 @@ def bootstrap_ci(samples, statistic, *, paired: bool = True, n_resamples: int = 
         level = 1 - _expanded_alpha(1 - confidence, n)
     elif method not in ("BCa", "percentile"):
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
-    res = stats.bootstrap(data, statistic, paired=paired, vectorized=True, axis=-1, n_resamples=n_resamples,
-                          confidence_level=level, method="BCa" if method == "BCa" else "percentile", rng=rng)
+    res = stats.bootstrap(
+        data,
+        statistic,
+        paired=paired,
+        vectorized=True,
+        axis=-1,
+        n_resamples=n_resamples,
+        confidence_level=level,
+        method="BCa" if method == "BCa" else "percentile",
+        rng=rng,
+    )
     lo, hi = float(res.confidence_interval.low), float(res.confidence_interval.high)
-    return Estimate(value, float(res.standard_error), lo, hi, n, confidence,
-                    f"{method} bootstrap ({n_resamples} resamples)")
+    return Estimate(
+        value, float(res.standard_error), lo, hi, n, confidence, f"{method} bootstrap ({n_resamples} resamples)"
+    )
 
 
-def mean_square_ci(per_trial, confidence: float = 0.95, rng: np.random.Generator | None = None,
-                   method: str = "bootstrap-t") -> Estimate:
+def mean_square_ci(
+    per_trial, confidence: float = 0.95, rng: np.random.Generator | None = None, method: str = "bootstrap-t"
+) -> Estimate:
     """Mean of non-negative per-trial values (mean squares, variances) with a bootstrap interval.
 
     The default is the studentised bootstrap (bootstrap-t, :data:`N_BOOTSTRAP` resamples) with the
@@ -454,12 +561,20 @@ def mean_square_ci(per_trial, confidence: float = 0.95, rng: np.random.Generator
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant sample)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     lo, hi, sd = _studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
-    return Estimate(value, float(sd[0]), float(max(lo[0], 0.0)), float(hi[0]), n, confidence,
-                    f"bootstrap-t ({N_BOOTSTRAP} resamples); {_coverage_text('mean_square', n)}")
+    return Estimate(
+        value,
+        float(sd[0]),
+        float(max(lo[0], 0.0)),
+        float(hi[0]),
+        n,
+        confidence,
+        f"bootstrap-t ({N_BOOTSTRAP} resamples); {_coverage_text('mean_square', n)}",
+    )
 
 
-def variance_ci(samples, confidence: float = 0.95, method: str = "bootstrap",
-                rng: np.random.Generator | None = None) -> Estimate:
+def variance_ci(
+    samples, confidence: float = 0.95, method: str = "bootstrap", rng: np.random.Generator | None = None
+) -> Estimate:
     """Variance (``ddof=1``) of independent samples with an interval that stays above zero.
 
     Parameters
@@ -478,14 +593,15 @@ def variance_ci(samples, confidence: float = 0.95, method: str = "bootstrap",
         a = 1 - confidence
         lo = (n - 1) * s2 / stats.chi2.ppf(1 - a / 2, n - 1)
         hi = (n - 1) * s2 / stats.chi2.ppf(a / 2, n - 1)
-        return Estimate(s2, float(s2 * np.sqrt(2 / (n - 1))), float(lo), float(hi), n, confidence, "chi-square (normal)")
+        return Estimate(
+            s2, float(s2 * np.sqrt(2 / (n - 1))), float(lo), float(hi), n, confidence, "chi-square (normal)"
+        )
     if method != "bootstrap":
         raise ValueError(f"variance_ci: method {method!r} must be 'bootstrap' or 'chi2'")
     return bootstrap_ci((x,), lambda v, axis: np.var(v, axis=axis, ddof=1), confidence=confidence, rng=rng)
 
 
-def rms_ci(errors, axis_trials: int = 0, confidence: float = 0.95,
-           rng: np.random.Generator | None = None) -> Estimate:
+def rms_ci(errors, axis_trials: int = 0, confidence: float = 0.95, rng: np.random.Generator | None = None) -> Estimate:
     """Root-mean-square of errors: the square root of :func:`mean_square_ci` of per-trial mean squares.
 
     The errors within one trial are correlated (a filter's errors over time), so each trial's
@@ -501,12 +617,25 @@ def rms_ci(errors, axis_trials: int = 0, confidence: float = 0.95,
     ms = mean_square_ci(per_trial, confidence, rng)
     value = float(np.sqrt(ms.value))
     se = ms.stderr / (2 * value) if value > 0 else float("nan")
-    return Estimate(value, se, float(np.sqrt(ms.ci_low)), float(np.sqrt(ms.ci_high)), ms.n, confidence,
-                    f"square root of {ms.method} of per-trial mean squares")
+    return Estimate(
+        value,
+        se,
+        float(np.sqrt(ms.ci_low)),
+        float(np.sqrt(ms.ci_high)),
+        ms.n,
+        confidence,
+        f"square root of {ms.method} of per-trial mean squares",
+    )
 
 
-def ratio_ci(numerator, denominator, confidence: float = 0.95, paired: bool = True,
-             rng: np.random.Generator | None = None, method: str = "expanded percentile") -> Estimate:
+def ratio_ci(
+    numerator,
+    denominator,
+    confidence: float = 0.95,
+    paired: bool = True,
+    rng: np.random.Generator | None = None,
+    method: str = "expanded percentile",
+) -> Estimate:
     """``mean(numerator) / mean(denominator)`` with a bootstrap interval.
 
     Paired samples (e.g. the squared errors of two filters on the same runs or paths, common random
@@ -526,13 +655,17 @@ def ratio_ci(numerator, denominator, confidence: float = 0.95, paired: bool = Tr
     a = np.asarray(numerator, dtype=float).ravel()
     b = np.asarray(denominator, dtype=float).ravel()
     if (paired and a.size != b.size) or min(a.size, b.size) < 2:
-        raise ValueError(f"ratio_ci needs {'paired ' if paired else ''}samples of size >= 2, "
-                         f"got {a.size} and {b.size}")
+        raise ValueError(f"ratio_ci needs {'paired ' if paired else ''}samples of size >= 2, got {a.size} and {b.size}")
     if b.mean() == 0:
         raise ValueError("ratio_ci: the denominator's mean is 0")
     if method == "BCa":
-        return bootstrap_ci((a, b), lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis), paired=paired,
-                            confidence=confidence, rng=rng)
+        return bootstrap_ci(
+            (a, b),
+            lambda x, y, axis: x.mean(axis=axis) / y.mean(axis=axis),
+            paired=paired,
+            confidence=confidence,
+            rng=rng,
+        )
     if method != "expanded percentile":
         raise ValueError(f"ratio_ci: method {method!r} must be 'expanded percentile' or 'BCa'")
     value = float(a.mean() / b.mean())
@@ -543,9 +676,16 @@ def ratio_ci(numerator, denominator, confidence: float = 0.95, paired: bool = Tr
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant samples)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     lo, hi, sd = _expanded_percentile_ratio(a[None], b[None], confidence, paired, N_BOOTSTRAP, rng)
-    return Estimate(value, float(sd[0]), float(lo[0]), float(hi[0]), n, confidence,
-                    f"expanded percentile bootstrap ({N_BOOTSTRAP} resamples{', paired' if paired else ''}); "
-                    + _coverage_text("ratio", n))
+    return Estimate(
+        value,
+        float(sd[0]),
+        float(lo[0]),
+        float(hi[0]),
+        n,
+        confidence,
+        f"expanded percentile bootstrap ({N_BOOTSTRAP} resamples{', paired' if paired else ''}); "
+        + _coverage_text("ratio", n),
+    )
 
 
 def paired_difference(a, b, confidence: float = 0.95) -> Estimate:
@@ -572,14 +712,21 @@ def paired_difference(a, b, confidence: float = 0.95) -> Estimate:
     d = mean_ci(a - b, confidence)
     if d.method.startswith("degenerate"):
         if d.value == 0 and np.all(np.isin(a, (0.0, 1.0))) and np.all(np.isin(b, (0.0, 1.0))):
-            bound = zero_events_bound(d.n, confidence)         # no discordant pair: |p_a - p_b| <= P(discordant)
-            return Estimate(0.0, float("nan"), -bound, bound, d.n, confidence,
-                            f"paired 0/1 outcomes, no discordant pair in {d.n}: |difference| < {bound:.3g} "
-                            "(zero-events bound on the discordant share)")
-        return Estimate(d.value, d.stderr, d.ci_low, d.ci_high, d.n, confidence,
-                        "paired t, degenerate (all differences equal)")
-    return Estimate(d.value, d.stderr, d.ci_low, d.ci_high, d.n, confidence,
-                    "paired t" + d.method[len("Student t"):])
+            bound = zero_events_bound(d.n, confidence)  # no discordant pair: |p_a - p_b| <= P(discordant)
+            return Estimate(
+                0.0,
+                float("nan"),
+                -bound,
+                bound,
+                d.n,
+                confidence,
+                f"paired 0/1 outcomes, no discordant pair in {d.n}: |difference| < {bound:.3g} "
+                "(zero-events bound on the discordant share)",
+            )
+        return Estimate(
+            d.value, d.stderr, d.ci_low, d.ci_high, d.n, confidence, "paired t, degenerate (all differences equal)"
+        )
+    return Estimate(d.value, d.stderr, d.ci_low, d.ci_high, d.n, confidence, "paired t" + d.method[len("Student t") :])
 
 
 def paired_test(a, b) -> dict:
@@ -590,12 +737,22 @@ def paired_test(a, b) -> dict:
     d = a - b
     if d.size < 2 or np.all(d == 0):
         return {"t_p": 1.0, "wilcoxon_p": 1.0, "n": int(d.size)}
-    return {"t_p": float(stats.ttest_rel(a, b).pvalue), "wilcoxon_p": float(stats.wilcoxon(a, b).pvalue),
-            "n": int(d.size)}
+    return {
+        "t_p": float(stats.ttest_rel(a, b).pvalue),
+        "wilcoxon_p": float(stats.wilcoxon(a, b).pvalue),
+        "n": int(d.size),
+    }
 
 
-def robust_summary(per_trial, divergence_threshold: float, *, trim: float = 0.1, confidence: float = 0.95,
-                   rng: np.random.Generator | None = None, what: str = "per-trial mean square") -> dict:
+def robust_summary(
+    per_trial,
+    divergence_threshold: float,
+    *,
+    trim: float = 0.1,
+    confidence: float = 0.95,
+    rng: np.random.Generator | None = None,
+    what: str = "per-trial mean square",
+) -> dict:
     """Robust companions of a heavy-tailed mean: median, trimmed mean and divergence rate.
 
     Parameters
@@ -615,16 +772,21 @@ def robust_summary(per_trial, divergence_threshold: float, *, trim: float = 0.1,
         (:func:`mean_square_ci` of the trials that did not diverge, or None).
     """
     x = np.asarray(per_trial, dtype=float).ravel()
-    diverged = ~(x <= divergence_threshold)            # NaN counts as diverged
+    diverged = ~(x <= divergence_threshold)  # NaN counts as diverged
     kept = x[~diverged]
     return {
         "median": quantile_ci(x[np.isfinite(x)], 0.5, confidence) if np.isfinite(x).any() else None,
-        "trimmed_mean": bootstrap_ci((x[np.isfinite(x)],),
-                                     lambda v, axis: stats.trim_mean(v, trim, axis=axis),
-                                     confidence=confidence, rng=rng, method="percentile"),
+        "trimmed_mean": bootstrap_ci(
+            (x[np.isfinite(x)],),
+            lambda v, axis: stats.trim_mean(v, trim, axis=axis),
+            confidence=confidence,
+            rng=rng,
+            method="percentile",
+        ),
         "divergence_rate": proportion_ci(int(diverged.sum()), x.size, confidence),
         "divergence_rule": f"{what} > {divergence_threshold:.4g} (or not finite)",
-        "mean_without_diverged": mean_square_ci(kept, confidence, rng) if kept.size >= 2 and np.all(kept >= 0)
+        "mean_without_diverged": mean_square_ci(kept, confidence, rng)
+        if kept.size >= 2 and np.all(kept >= 0)
         else (mean_ci(kept, confidence) if kept.size >= 2 else None),
     }
 
@@ -637,8 +799,7 @@ def proportion_ci(successes: int, n: int, confidence: float = 0.95) -> Estimate:
     k = int(successes)
     p = k / n
     ci = stats.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
-    return Estimate(p, float(np.sqrt(p * (1 - p) / n)), float(ci.low), float(ci.high), n, confidence,
-                    "Clopper-Pearson")
+    return Estimate(p, float(np.sqrt(p * (1 - p) / n)), float(ci.low), float(ci.high), n, confidence, "Clopper-Pearson")
 
 
 def zero_events_bound(n: int, confidence: float = 0.95) -> float:
@@ -660,8 +821,15 @@ def rate_from_counts(k: int, n: int, confidence: float = 0.95) -> Estimate:
     if k > 0:
         return proportion_ci(k, n, confidence)
     b = zero_events_bound(n, confidence)
-    return Estimate(0.0, float("nan"), 0.0, b, n, confidence,
-                    f"count: 0 of {n} runs, rate < {b:.3g} (one-sided bound 1 - (1 - confidence)^(1/n))")
+    return Estimate(
+        0.0,
+        float("nan"),
+        0.0,
+        b,
+        n,
+        confidence,
+        f"count: 0 of {n} runs, rate < {b:.3g} (one-sided bound 1 - (1 - confidence)^(1/n))",
+    )
 
 
 def mark_extrapolated(fitted: Estimate, k: int, n: int, confidence: float = 0.95) -> Estimate:
@@ -672,8 +840,11 @@ def mark_extrapolated(fitted: Estimate, k: int, n: int, confidence: float = 0.95
     :func:`rate_from_counts` to decide."""
     if k > 0 and fitted.value >= zero_events_bound(n, confidence):
         return fitted
-    return replace(fitted, extrapolated=True,
-                   method=f"{fitted.method}; extrapolated: {events_statement(k, n, confidence)}".lstrip("; "))
+    return replace(
+        fitted,
+        extrapolated=True,
+        method=f"{fitted.method}; extrapolated: {events_statement(k, n, confidence)}".lstrip("; "),
+    )
 
 
 def events_statement(k: int, n: int, confidence: float = 0.95) -> str:
@@ -700,12 +871,19 @@ def quantile_ci(samples, q: float, confidence: float = 0.95) -> Estimate:
     if n == 0:
         raise ValueError("quantile_ci needs at least one sample")
     value = float(np.quantile(x, q))
-    lo_rank = int(stats.binom.ppf((1 - confidence) / 2, n, q))           # l: P(K < l) <= a/2
-    hi_rank = int(stats.binom.ppf(0.5 + confidence / 2, n, q))           # u - 1: P(K >= u) <= a/2
-    l, u = max(lo_rank, 1), min(hi_rank + 1, n)                          # 1-based ranks that exist
+    lo_rank = int(stats.binom.ppf((1 - confidence) / 2, n, q))  # l: P(K < l) <= a/2
+    hi_rank = int(stats.binom.ppf(0.5 + confidence / 2, n, q))  # u - 1: P(K >= u) <= a/2
+    l, u = max(lo_rank, 1), min(hi_rank + 1, n)  # 1-based ranks that exist
     coverage = float(stats.binom.cdf(u - 1, n, q) - stats.binom.cdf(l - 1, n, q))
     lo = float(x[l - 1])
     hi = float(x[u - 1])
     note = "" if coverage >= confidence else ", too few samples for both ranks"
-    return Estimate(value, float("nan"), lo, hi, n, confidence,
-                    f"order statistics (coverage {coverage:.3f} at n = {n}, exact for continuous samples{note})")
+    return Estimate(
+        value,
+        float("nan"),
+        lo,
+        hi,
+        n,
+        confidence,
+        f"order statistics (coverage {coverage:.3f} at n = {n}, exact for continuous samples{note})",
+    )

@@ -23,8 +23,17 @@ from pathlib import Path
 from typing import Any, Mapping
 
 __all__ = [
-    "ParamRule", "Integer", "Real", "OneOf", "Boolean", "OutputDir", "RealList", "IntegerList", "OneOfList",
-    "validate_parameters", "COMMON_RULES",
+    "ParamRule",
+    "Integer",
+    "Real",
+    "OneOf",
+    "Boolean",
+    "OutputDir",
+    "RealList",
+    "IntegerList",
+    "OneOfList",
+    "validate_parameters",
+    "COMMON_RULES",
 ]
 
 
@@ -146,8 +155,7 @@ class RealList(ParamRule):
 
     def describe(self) -> str:
         size = f"{self.min_len}..{self.max_len if self.max_len is not None else 'any'}"
-        return (f"a list of {size} real numbers, each in "
-                f"{_interval(self.low, self.high, self.low_open, self.high_open)}")
+        return f"a list of {size} real numbers, each in {_interval(self.low, self.high, self.low_open, self.high_open)}"
 
 
 @dataclass(frozen=True)
@@ -191,8 +199,7 @@ class OneOfList(ParamRule):
         return list(value)
 
     def describe(self) -> str:
-        return (f"a list of at least {self.min_len} distinct values from "
-                + ", ".join(repr(o) for o in self.options))
+        return f"a list of at least {self.min_len} distinct values from " + ", ".join(repr(o) for o in self.options)
 
 
 @dataclass(frozen=True)
@@ -252,7 +259,5 @@ def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, ParamR
         try:
             checked[name] = rule.check(value)
         except (TypeError, ValueError):
-            raise ValueError(
-                f"parameter {name!r} = {value!r} is out of range; it must be {rule.describe()}"
-            ) from None
+            raise ValueError(f"parameter {name!r} = {value!r} is out of range; it must be {rule.describe()}") from None
     return checked

@@ -13,18 +13,23 @@ PALETTE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F
 
 #: Colours by role, used by figures and recordings alike.
 ROLE_COLOURS = {
-    "truth": "#009E73",      # green
-    "estimate": "#0072B2",   # blue
+    "truth": "#009E73",  # green
+    "estimate": "#0072B2",  # blue
     "measurement": "#E69F00",  # orange
-    "gate": "#F0E442",       # yellow
+    "gate": "#F0E442",  # yellow
     "prediction": "#CC79A7",  # purple
     "interference": "#D55E00",  # vermillion
     "reference": "#000000",
 }
 
 #: Verdict colours (report, site, forest plot).
-VERDICT_COLOURS = {"reproduced": "#009E73", "partly": "#E69F00", "not reproduced": "#D55E00",
-                   "undecided": "#999999", "not checkable": "#56B4E9"}
+VERDICT_COLOURS = {
+    "reproduced": "#009E73",
+    "partly": "#E69F00",
+    "not reproduced": "#D55E00",
+    "undecided": "#999999",
+    "not checkable": "#56B4E9",
+}
 
 
 def colour(i_or_role: int | str) -> str:
@@ -52,9 +57,17 @@ def use_style() -> None:
     import matplotlib as mpl
     from cycler import cycler
 
-    mpl.rcParams.update({
-        "axes.prop_cycle": cycler(color=list(PALETTE)),
-        "axes.grid": True, "grid.alpha": 0.3, "figure.dpi": 100, "font.size": 10,
-        "axes.titlesize": 11, "axes.labelsize": 10, "legend.fontsize": 9, "legend.framealpha": 0.85,
-        "figure.constrained_layout.use": True,
-    })
+    mpl.rcParams.update(
+        {
+            "axes.prop_cycle": cycler(color=list(PALETTE)),
+            "axes.grid": True,
+            "grid.alpha": 0.3,
+            "figure.dpi": 100,
+            "font.size": 10,
+            "axes.titlesize": 11,
+            "axes.labelsize": 10,
+            "legend.fontsize": 9,
+            "legend.framealpha": 0.85,
+            "figure.constrained_layout.use": True,
+        }
+    )

@@ -102,8 +102,14 @@ class Recorder:
         If given, :meth:`set_frame` also sets the ``time`` line to ``frame * frame_interval_s``.
     """
 
-    def __init__(self, output_dir, mode: str = "file", application_id: str = "tvtrack",
-                 blueprint: rrb.Blueprint | None = None, frame_interval_s: float | None = None):
+    def __init__(
+        self,
+        output_dir,
+        mode: str = "file",
+        application_id: str = "tvtrack",
+        blueprint: rrb.Blueprint | None = None,
+        frame_interval_s: float | None = None,
+    ):
         if mode not in ("file", "off", "notebook"):
             raise ValueError(f"parameter 'rerun_mode' = {mode!r}; it must be one of 'file', 'off', 'notebook'")
         self.mode = mode
@@ -144,8 +150,9 @@ class Recorder:
         return cols
 
     # -- images ---------------------------------------------------------------------------
-    def image(self, path: str, image, *, offset=None, jpeg_quality: int | None = None,
-              draw_order: float | None = None) -> None:
+    def image(
+        self, path: str, image, *, offset=None, jpeg_quality: int | None = None, draw_order: float | None = None
+    ) -> None:
         """Log an image (rows x cols, or rows x cols x 3) at the current frame.
 
         ``offset`` = (x0, y0), the integer pixel of the full frame where a gate crop's first
@@ -166,32 +173,72 @@ class Recorder:
             self._rec.log(path, rr.Transform3D(translation=[x0, y0, 0.0]))
 
     # -- geometry -------------------------------------------------------------------------
-    def points(self, path: str, xy, *, radii=None, colors=None, labels=None, image_space: bool = True,
-               draw_order: float | None = None) -> None:
+    def points(
+        self,
+        path: str,
+        xy,
+        *,
+        radii=None,
+        colors=None,
+        labels=None,
+        image_space: bool = True,
+        draw_order: float | None = None,
+    ) -> None:
         """Log 2-D points (N, 2) in pixels at the current frame (higher ``draw_order`` on top;
         negative ``radii`` are in screen points, so markers keep their size when zoomed)."""
         if self.enabled:
-            self._rec.log(path, rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels,
-                                            draw_order=draw_order))
+            self._rec.log(
+                path,
+                rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels, draw_order=draw_order),
+            )
 
-    def boxes(self, path: str, centers, half_sizes, *, colors=None, labels=None, image_space: bool = True,
-              draw_order: float | None = None) -> None:
+    def boxes(
+        self,
+        path: str,
+        centers,
+        half_sizes,
+        *,
+        colors=None,
+        labels=None,
+        image_space: bool = True,
+        draw_order: float | None = None,
+    ) -> None:
         """Log axis-aligned gates (N, 2) centres and half-sizes in pixels."""
         if self.enabled:
-            self._rec.log(path, rr.Boxes2D(centers=_xy(centers, image_space),
-                                           half_sizes=np.asarray(half_sizes, dtype=np.float32).reshape(-1, 2),
-                                           colors=colors, labels=labels, draw_order=draw_order))
+            self._rec.log(
+                path,
+                rr.Boxes2D(
+                    centers=_xy(centers, image_space),
+                    half_sizes=np.asarray(half_sizes, dtype=np.float32).reshape(-1, 2),
+                    colors=colors,
+                    labels=labels,
+                    draw_order=draw_order,
+                ),
+            )
 
-    def lines(self, path: str, strips, *, colors=None, radii=None, labels=None, image_space: bool = True,
-              draw_order: float | None = None) -> None:
+    def lines(
+        self,
+        path: str,
+        strips,
+        *,
+        colors=None,
+        radii=None,
+        labels=None,
+        image_space: bool = True,
+        draw_order: float | None = None,
+    ) -> None:
         """Log polylines: one (N, 2) array or a list of them (trajectories, rotated gates,
         ellipses from :func:`ellipse_outline`)."""
         if not self.enabled:
             return
         if isinstance(strips, np.ndarray) and strips.ndim == 2:
             strips = [strips]
-        self._rec.log(path, rr.LineStrips2D([_xy(s, image_space) for s in strips], colors=colors, radii=radii,
-                                            labels=labels, draw_order=draw_order))
+        self._rec.log(
+            path,
+            rr.LineStrips2D(
+                [_xy(s, image_space) for s in strips], colors=colors, radii=radii, labels=labels, draw_order=draw_order
+            ),
+        )
 
     # -- scalars --------------------------------------------------------------------------
     def scalar(self, path: str, value: float) -> None:

@@ -80,8 +80,14 @@ class Entry:
         return tuple(v for v in self.values if v != self.default)
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "kind": self.kind, "default": self.default, "values": list(self.values),
-                "why": self.why, "origin": self.origin}
+        return {
+            "name": self.name,
+            "kind": self.kind,
+            "default": self.default,
+            "values": list(self.values),
+            "why": self.why,
+            "origin": self.origin,
+        }
 
 
 class Register:
@@ -153,8 +159,10 @@ class Register:
 
     def to_markdown(self) -> str:
         """The register as a Markdown table (name, kind, default, other values, why, origin)."""
-        rows = ["| entry | kind | default | other defensible values | why | added by |",
-                "| --- | --- | --- | --- | --- | --- |"]
+        rows = [
+            "| entry | kind | default | other defensible values | why | added by |",
+            "| --- | --- | --- | --- | --- | --- |",
+        ]
         for e in self.entries:
             alts = ", ".join(_md(v) for v in e.alternatives) or "-"
             rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {_escape(e.why)} | {e.origin} |")

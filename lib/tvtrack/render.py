@@ -18,8 +18,14 @@ import numpy as np
 from scipy.special import ndtr
 
 __all__ = [
-    "pixel_fractions_gaussian", "pixel_fractions_box", "gaussian_spot", "box_spot", "disc_spot", "disc_area",
-    "gate_origin", "sensor_readout",
+    "pixel_fractions_gaussian",
+    "pixel_fractions_box",
+    "gaussian_spot",
+    "box_spot",
+    "disc_spot",
+    "disc_area",
+    "gate_origin",
+    "sensor_readout",
 ]
 
 
@@ -204,9 +210,16 @@ def gate_origin(centers, size) -> np.ndarray:
     return np.floor(c - half + 0.5).astype(np.int64)
 
 
-def sensor_readout(signal, rng: np.random.Generator, *, background: float = 0.0,
-                   photon_noise: bool = True, read_noise: float = 0.0, gain: float = 1.0,
-                   bit_depth: int | None = None) -> np.ndarray:
+def sensor_readout(
+    signal,
+    rng: np.random.Generator,
+    *,
+    background: float = 0.0,
+    photon_noise: bool = True,
+    read_noise: float = 0.0,
+    gain: float = 1.0,
+    bit_depth: int | None = None,
+) -> np.ndarray:
     """Turn expected signal into a sensor reading.
 
     Parameters

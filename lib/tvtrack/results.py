@@ -37,8 +37,18 @@ import numpy as np
 from .montecarlo import Estimate
 from .verdicts import LABELS, VERDICTS, Robustness, Rule
 
-__all__ = ["VERDICTS", "Claim", "Results", "load_results", "to_jsonable", "SCHEMA_VERSION", "format_measured",
-           "md_escape", "claims_table", "FINDINGS_ID"]
+__all__ = [
+    "VERDICTS",
+    "Claim",
+    "Results",
+    "load_results",
+    "to_jsonable",
+    "SCHEMA_VERSION",
+    "format_measured",
+    "md_escape",
+    "claims_table",
+    "FINDINGS_ID",
+]
 
 #: The display id of a notebook's findings cell, filled in when the run finishes.
 FINDINGS_ID = "tvtrack-findings"
@@ -111,8 +121,10 @@ def claims_table(claims: list, statement_chars: int = 110) -> str:
     """The one claims-at-a-glance table (Markdown): per claim what the paper said, what was measured
     (with its 95 % interval), the verdict and the label with what it covers. ``claims`` are
     :class:`Claim` objects or their dicts (``results.json``)."""
-    rows = ["| claim | the paper says | paper's value | measured | verdict | label (what it covers) |",
-            "| --- | --- | --- | --- | --- | --- |"]
+    rows = [
+        "| claim | the paper says | paper's value | measured | verdict | label (what it covers) |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
     for c in claims:
         c = c if isinstance(c, dict) else c.__dict__
         st = " ".join(str(c["statement"]).split())
@@ -125,8 +137,9 @@ def claims_table(claims: list, statement_chars: int = 110) -> str:
         if where:
             lab += f"<br><small>differs: {md_escape(where)}</small>"
         meas = "-" if c["verdict"] == "not checkable" else md_escape(format_measured(to_jsonable(c["measured"])))
-        rows.append(f"| {c['id']} | {md_escape(st)} | {md_escape(c['paper_value'])} | {meas} | "
-                    f"**{c['verdict']}** | {lab} |")
+        rows.append(
+            f"| {c['id']} | {md_escape(st)} | {md_escape(c['paper_value'])} | {meas} | **{c['verdict']}** | {lab} |"
+        )
     return "\n".join(rows)
 
 
@@ -178,11 +191,14 @@ class Claim:
             raise ValueError(f"claim {self.id}: the acceptance text is not the rule's text")
         if self.verdict != "not checkable":
             if not self.robustness:
-                raise ValueError(f"claim {self.id}: a checkable claim needs a robustness record (or a note why "
-                                 f"no unstated choice matters)")
+                raise ValueError(
+                    f"claim {self.id}: a checkable claim needs a robustness record (or a note why "
+                    f"no unstated choice matters)"
+                )
             if self.robustness.get("label") not in LABELS:
-                raise ValueError(f"claim {self.id}: robustness label {self.robustness.get('label')!r} "
-                                 f"must be one of {LABELS}")
+                raise ValueError(
+                    f"claim {self.id}: robustness label {self.robustness.get('label')!r} must be one of {LABELS}"
+                )
 
     def _repr_markdown_(self) -> str:
         label = f", {self.robustness['label']}" if self.robustness else ""
@@ -235,8 +251,17 @@ class Results:
         self.metrics[name] = value
         return value
 
-    def claim(self, id: str, statement: str, paper_value: str, rule: Rule, measured: Any = None, note: str = "",
-              robustness: Robustness | None = None, exploration: Any = None) -> Claim:
+    def claim(
+        self,
+        id: str,
+        statement: str,
+        paper_value: str,
+        rule: Rule,
+        measured: Any = None,
+        note: str = "",
+        robustness: Robustness | None = None,
+        exploration: Any = None,
+    ) -> Claim:
         """Record a claim; ``rule`` decides its verdict from ``measured``.
 
         Parameters
@@ -274,9 +299,18 @@ class Results:
         else:
             record = robustness.record(rule, measured) if robustness is not None else None
         verdict, decision = rule.explain(measured)
-        c = Claim(id=id, statement=statement, paper_value=paper_value, rule=to_jsonable(rule.to_dict()),
-                  acceptance=rule.text(), measured=measured, verdict=verdict, decision=decision, note=note,
-                  robustness=record)
+        c = Claim(
+            id=id,
+            statement=statement,
+            paper_value=paper_value,
+            rule=to_jsonable(rule.to_dict()),
+            acceptance=rule.text(),
+            measured=measured,
+            verdict=verdict,
+            decision=decision,
+            note=note,
+            robustness=record,
+        )
         if any(existing.id == c.id for existing in self.claims):
             raise ValueError(f"claim {c.id} recorded twice")
         self.claims.append(c)
@@ -285,16 +319,21 @@ class Results:
     def findings(self) -> None:
         """Show the findings at the top of a notebook: a placeholder now, replaced by the claims table
         (:func:`claims_table`) when :meth:`finish` runs at the end (the run fills its own first section)."""
-        _display_markdown("*Findings appear here when the run finishes (they are computed by the cells below).*",
-                          display_id=FINDINGS_ID)
+        _display_markdown(
+            "*Findings appear here when the run finishes (they are computed by the cells below).*",
+            display_id=FINDINGS_ID,
+        )
 
     def finish(self) -> Path:
         """Write ``results.json`` and fill the findings section shown by :meth:`findings`."""
         path = self.write()
         counts = {v: sum(c.verdict == v for c in self.claims) for v in VERDICTS}
         head = ", ".join(f"{n} {v}" for v, n in counts.items() if n)
-        _display_markdown(f"**{len(self.claims)} claims: {head}.**\n\n{claims_table(self.claims)}",
-                          display_id=FINDINGS_ID, update=True)
+        _display_markdown(
+            f"**{len(self.claims)} claims: {head}.**\n\n{claims_table(self.claims)}",
+            display_id=FINDINGS_ID,
+            update=True,
+        )
         return path
 
     def save_figure(self, fig, name: str, caption: str, dpi: int = 110) -> None:
@@ -310,22 +349,24 @@ class Results:
         _show_inline(path, caption, fig)
 
     def to_dict(self) -> dict:
-        return to_jsonable({
-            "schema_version": SCHEMA_VERSION,
-            "notebook": self.notebook,
-            "citation": self.citation,
-            "parameters": self.parameters,
-            "seed": self.parameters["seed"],
-            "versions": _versions(),
-            "git_commit": _git_commit(),
-            "started_utc": self._started,
-            "runtime_s": time.perf_counter() - self._t0,
-            "metrics": self.metrics,
-            "figures": self.figures,
-            "recording": self.recording,
-            "register": self.register,
-            "claims": [c.__dict__ for c in self.claims],
-        })
+        return to_jsonable(
+            {
+                "schema_version": SCHEMA_VERSION,
+                "notebook": self.notebook,
+                "citation": self.citation,
+                "parameters": self.parameters,
+                "seed": self.parameters["seed"],
+                "versions": _versions(),
+                "git_commit": _git_commit(),
+                "started_utc": self._started,
+                "runtime_s": time.perf_counter() - self._t0,
+                "metrics": self.metrics,
+                "figures": self.figures,
+                "recording": self.recording,
+                "register": self.register,
+                "claims": [c.__dict__ for c in self.claims],
+            }
+        )
 
     def write(self) -> Path:
         """Write ``results.json`` (atomically) and return its path."""
@@ -339,8 +380,17 @@ class Results:
 def load_results(path: str | Path) -> dict:
     """Read a ``results.json`` and check it against the schema; raise ``ValueError`` if not."""
     data = json.loads(Path(path).read_text())
-    required = ("notebook", "citation", "parameters", "seed", "versions", "git_commit",
-                "runtime_s", "metrics", "claims")
+    required = (
+        "notebook",
+        "citation",
+        "parameters",
+        "seed",
+        "versions",
+        "git_commit",
+        "runtime_s",
+        "metrics",
+        "claims",
+    )
     missing = [k for k in required if k not in data]
     if missing:
         raise ValueError(f"{path}: results.json lacks {missing}")
@@ -392,12 +442,16 @@ def _versions() -> dict:
 def _git_commit() -> str | None:
     try:
         here = Path(__file__).resolve().parent
-        out = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True,
-                             text=True, timeout=10)
+        out = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=10)
         if out.returncode != 0:
             return None
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
-                               capture_output=True, text=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=here,
+            capture_output=True,
+            text=True,
+            timeout=10,
+        ).stdout.strip()
         return out.stdout.strip() + ("-dirty" if dirty else "")
     except (OSError, subprocess.SubprocessError):
         return None

@@ -35,9 +35,26 @@ from typing import Any, Mapping, Sequence
 
 from .montecarlo import Estimate
 
-__all__ = ["VERDICTS", "LABELS", "as_estimate", "calibrated", "is_undecided", "Judgement", "Rule", "InBand", "WithinFactor",
-           "Ordering", "Monotone", "AllOf", "NotCheckable", "Condition", "Robustness", "rule_parts",
-           "label_parts", "weakest_label"]
+__all__ = [
+    "VERDICTS",
+    "LABELS",
+    "as_estimate",
+    "calibrated",
+    "is_undecided",
+    "Judgement",
+    "Rule",
+    "InBand",
+    "WithinFactor",
+    "Ordering",
+    "Monotone",
+    "AllOf",
+    "NotCheckable",
+    "Condition",
+    "Robustness",
+    "rule_parts",
+    "label_parts",
+    "weakest_label",
+]
 
 #: The only verdicts a claim may carry.
 VERDICTS = ("reproduced", "partly", "not reproduced", "undecided", "not checkable")
@@ -51,10 +68,14 @@ def as_estimate(measured: Any) -> Estimate:
     if isinstance(measured, Estimate):
         return measured
     if isinstance(measured, Mapping) and "value" in measured:
-        fields = {k: measured[k] for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method",
-                                           "extrapolated") if k in measured}
-        fields = {k: (float("nan") if v is None and k not in ("method", "extrapolated") else v)
-                  for k, v in fields.items()}
+        fields = {
+            k: measured[k]
+            for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method", "extrapolated")
+            if k in measured
+        }
+        fields = {
+            k: (float("nan") if v is None and k not in ("method", "extrapolated") else v) for k, v in fields.items()
+        }
         fields["extrapolated"] = bool(fields.get("extrapolated") or False)
         return Estimate(**{"stderr": float("nan"), "n": 1, **fields})
     if isinstance(measured, (int, float)) or hasattr(measured, "__float__"):
@@ -211,15 +232,16 @@ class InBand(Rule):
         return f"in [{_g(self.low)}, {_g(self.high)}]{u}"
 
     def text(self) -> str:
-        t = (f"{self.quantity} {self._band()}: reproduced if the whole 95 % interval lies inside, not reproduced "
-             f"if it lies wholly outside, partly if it straddles a bound")
+        t = (
+            f"{self.quantity} {self._band()}: reproduced if the whole 95 % interval lies inside, not reproduced "
+            f"if it lies wholly outside, partly if it straddles a bound"
+        )
         if self.better is not None:
             t += f"; wholly {'below' if self.better == 'lower' else 'above'} the band (better than the paper) is partly"
         return t
 
     def params(self) -> dict:
-        return {"quantity": self.quantity, "low": self.low, "high": self.high, "unit": self.unit,
-                "better": self.better}
+        return {"quantity": self.quantity, "low": self.low, "high": self.high, "unit": self.unit, "better": self.better}
 
     def judge(self, measured):
         e = calibrated(measured)
@@ -235,11 +257,17 @@ class InBand(Rule):
         if below or above:
             side = "below" if below else "above"
             if (below and self.better == "lower") or (above and self.better == "higher"):
-                return Judgement("partly", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()}): "
-                                           f"better than the paper's number")
+                return Judgement(
+                    "partly",
+                    f"{self.quantity} = {m} lies wholly {side} the band ({self._band()}): "
+                    f"better than the paper's number",
+                )
             return Judgement("not reproduced", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()})")
-        return Judgement("partly", f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): "
-                                   f"undecided at this sample size", False)
+        return Judgement(
+            "partly",
+            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): undecided at this sample size",
+            False,
+        )
 
 
 @dataclass(frozen=True)
@@ -260,8 +288,10 @@ class WithinFactor(InBand):
 
     def _band(self) -> str:
         u = f" {self.unit}" if self.unit else ""
-        return (f"within a factor {_g(self.factor)} of the paper's {_g(self.paper_value)}{u} "
-                f"([{_g(self.low)}, {_g(self.high)}])")
+        return (
+            f"within a factor {_g(self.factor)} of the paper's {_g(self.paper_value)}{u} "
+            f"([{_g(self.low)}, {_g(self.high)}])"
+        )
 
     def params(self) -> dict:
         return {**super().params(), "paper_value": self.paper_value, "factor": self.factor}
@@ -299,9 +329,11 @@ class Ordering(Rule):
     def text(self) -> str:
         side = "above" if self.relation == ">" else "below"
         how = "paired" if self.paired else "unpaired (independent samples)"
-        return (f"{self.a} {self.relation} {self.b}, judged on the {how} {self.measure} {self._what()}: reproduced "
-                f"if its 95 % interval lies wholly {side} {_g(self.reference)}, not reproduced if wholly on the "
-                f"other side, partly if it contains {_g(self.reference)}")
+        return (
+            f"{self.a} {self.relation} {self.b}, judged on the {how} {self.measure} {self._what()}: reproduced "
+            f"if its 95 % interval lies wholly {side} {_g(self.reference)}, not reproduced if wholly on the "
+            f"other side, partly if it contains {_g(self.reference)}"
+        )
 
     def params(self) -> dict:
         return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure, "paired": self.paired}
@@ -343,10 +375,12 @@ class Monotone(Rule):
             raise ValueError(f"Monotone: direction {self.direction!r} must be 'increasing' or 'decreasing'")
 
     def text(self) -> str:
-        return (f"{self.quantity} is {self.direction} in {self.over}: reproduced if the first and last 95 % intervals "
-                f"are separated in that direction and no neighbouring pair is separated the other way; not "
-                f"reproduced if the ends are separated the other way or nothing along the grid is measurably "
-                f"{self.direction}; partly otherwise")
+        return (
+            f"{self.quantity} is {self.direction} in {self.over}: reproduced if the first and last 95 % intervals "
+            f"are separated in that direction and no neighbouring pair is separated the other way; not "
+            f"reproduced if the ends are separated the other way or nothing along the grid is measurably "
+            f"{self.direction}; partly otherwise"
+        )
 
     def params(self) -> dict:
         return {"quantity": self.quantity, "over": self.over, "direction": self.direction}
@@ -366,15 +400,21 @@ class Monotone(Rule):
             raise ValueError("Monotone needs at least two points")
         bad = [i for i, e in enumerate(es) if is_undecided(e)]
         if bad and (0 in bad or len(es) - 1 in bad or len(es) - len(bad) < 2):
-            return Judgement("undecided", f"{self.quantity}: points {bad} along {self.over} are undecided (NaN, "
-                                          f"degenerate or extrapolated), so the trend cannot be decided", False)
+            return Judgement(
+                "undecided",
+                f"{self.quantity}: points {bad} along {self.over} are undecided (NaN, "
+                f"degenerate or extrapolated), so the trend cannot be decided",
+                False,
+            )
         keep = [e for i, e in enumerate(es) if i not in bad]
         steps = [self._sep(x, y) for x, y in zip(keep[:-1], keep[1:])]
         ends = self._sep(keep[0], keep[-1])
         up, down = steps.count(1), steps.count(-1)
-        m = (f"{self.quantity}: {_show(keep[0])} at the first point, {_show(keep[-1])} at the last; "
-             f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way"
-             + (f" ({len(bad)} undecided points left out)" if bad else ""))
+        m = (
+            f"{self.quantity}: {_show(keep[0])} at the first point, {_show(keep[-1])} at the last; "
+            f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way"
+            + (f" ({len(bad)} undecided points left out)" if bad else "")
+        )
         if ends == -1:
             return Judgement("not reproduced", m)
         if ends == 1 and down == 0:
@@ -467,8 +507,14 @@ def _describe(changed: Mapping[str, Any]) -> str:
     return ", ".join(f"{k} = {v}" for k, v in changed.items()) or "the default reading"
 
 
-def label_parts(rule: Rule, measured: Any, replicates: Sequence[Mapping], conditions: Sequence[Mapping],
-                entries: Sequence[Any] = (), deterministic: bool = False) -> dict:
+def label_parts(
+    rule: Rule,
+    measured: Any,
+    replicates: Sequence[Mapping],
+    conditions: Sequence[Mapping],
+    entries: Sequence[Any] = (),
+    deterministic: bool = False,
+) -> dict:
     """Part-level robustness labels of one claim.
 
     Parameters
@@ -498,14 +544,25 @@ def label_parts(rule: Rule, measured: Any, replicates: Sequence[Mapping], condit
 
     parts = rule_parts(rule)
     kinds = {e.name: e.kind for e in entries}
-    rep_rows = [{"seed": int(r["seed"]), "measured": r["measured"],
-                 "verdict": rule.decide(r["measured"]),
-                 "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, r["measured"]).items()}}
-                for r in replicates]
-    cond_rows = [{"changed": dict(c["changed"]), "kind": c.get("kind", "single"), "measured": c["measured"],
-                  "verdict": rule.decide(c["measured"]),
-                  "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, c["measured"]).items()}}
-                 for c in conditions]
+    rep_rows = [
+        {
+            "seed": int(r["seed"]),
+            "measured": r["measured"],
+            "verdict": rule.decide(r["measured"]),
+            "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, r["measured"]).items()},
+        }
+        for r in replicates
+    ]
+    cond_rows = [
+        {
+            "changed": dict(c["changed"]),
+            "kind": c.get("kind", "single"),
+            "measured": c["measured"],
+            "verdict": rule.decide(c["measured"]),
+            "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, c["measured"]).items()},
+        }
+        for c in conditions
+    ]
     world_varied = any(kinds.get(k) in WORLD_KINDS for c in cond_rows for k in c["changed"])
     part_out, where = {}, []
     for name, prule in parts.items():
@@ -538,12 +595,23 @@ def label_parts(rule: Rule, measured: Any, replicates: Sequence[Mapping], condit
             pwhere.append(f"undecided when {'; '.join(undecided)}")
         prefix = "" if len(parts) == 1 else f"({name}) "
         where += [prefix + w for w in pwhere]
-        part_out[name] = {"verdict": verdict, "label": label, "where": pwhere, "replicate_verdicts": rv,
-                          "n_conditions": sum(1 for c in cond_rows if name in c["parts"])}
+        part_out[name] = {
+            "verdict": verdict,
+            "label": label,
+            "where": pwhere,
+            "replicate_verdicts": rv,
+            "n_conditions": sum(1 for c in cond_rows if name in c["parts"]),
+        }
     label = weakest_label([p["label"] for p in part_out.values()])
-    return {"label": label, "where": where, "coverage": _coverage(label, part_out, cond_rows, rep_rows, entries,
-                                                                  deterministic),
-            "parts": part_out, "replicates": rep_rows, "conditions": cond_rows, "deterministic": deterministic}
+    return {
+        "label": label,
+        "where": where,
+        "coverage": _coverage(label, part_out, cond_rows, rep_rows, entries, deterministic),
+        "parts": part_out,
+        "replicates": rep_rows,
+        "conditions": cond_rows,
+        "deterministic": deterministic,
+    }
 
 
 def _zip_parts(parts: Mapping[str, Rule], rule: Rule, measured: Any) -> dict:
@@ -562,8 +630,10 @@ def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
     reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
     weak = [n for n, p in parts.items() if p["label"] == label]
     which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
-    return (f"{label}{which} over {len(conds)} conditions: {len(single)} one at a time over {over}; "
-            f"{len(joint)} joint samples; x {reps_text}")
+    return (
+        f"{label}{which} over {len(conds)} conditions: {len(single)} one at a time over {over}; "
+        f"{len(joint)} joint samples; x {reps_text}"
+    )
 
 
 # --------------------------------------------------------------------------- hand-built records
@@ -622,8 +692,10 @@ class Robustness:
         """The JSON record: :func:`label_parts` over the conditions and seeds, with the entries."""
         self.validate()
         reps = [{"seed": s, "measured": m} for s, m in self.seeds.items()]
-        conds = [{"changed": dict(c.choices), "kind": "single" if len(c.choices) == 1 else "joint",
-                  "measured": c.measured} for c in self.conditions]
+        conds = [
+            {"changed": dict(c.choices), "kind": "single" if len(c.choices) == 1 else "joint", "measured": c.measured}
+            for c in self.conditions
+        ]
         out = label_parts(rule, measured, reps, conds, self.choices, self.deterministic)
         out.update({"register": [c.to_dict() for c in self.choices], "note": self.note, "built": "by hand"})
         return out

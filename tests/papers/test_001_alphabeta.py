@@ -3,9 +3,15 @@
 import numpy as np
 import pytest
 
-from tvtrack.filters.alphabeta import (closed_form_gains, closed_loop_matrix, error_covariance_sequence,
-                                       gain_schedule, lagged_covariances, scheduled_filter,
-                                       steady_state_covariance)
+from tvtrack.filters.alphabeta import (
+    closed_form_gains,
+    closed_loop_matrix,
+    error_covariance_sequence,
+    gain_schedule,
+    lagged_covariances,
+    scheduled_filter,
+    steady_state_covariance,
+)
 from tvtrack.filters.polynomial import growing_memory_gains, polynomial_observation_row
 
 
@@ -17,8 +23,8 @@ def test_schedule_reproduces_batch_least_squares(order):
     z = 5.0 + 3.0 * t - 0.01 * t**2 + 2.0 * rng.standard_normal((4, T))
     states = scheduled_filter(z, gain_schedule(order, 10**6, T), x0=rng.normal(0, 100, (4, order + 1)))
     for k in range(order, T):
-        H = polynomial_observation_row(order, k - np.arange(k + 1))       # lags back from sample k
-        ls = np.linalg.lstsq(H, z[:, :k + 1].T, rcond=None)[0].T
+        H = polynomial_observation_row(order, k - np.arange(k + 1))  # lags back from sample k
+        ls = np.linalg.lstsq(H, z[:, : k + 1].T, rcond=None)[0].T
         np.testing.assert_allclose(states[:, k], ls, rtol=0, atol=1e-9 * max(1.0, np.abs(ls).max()))
 
 
@@ -27,8 +33,9 @@ def test_closed_forms_match_core_gains(order):
     n = 500
     core = growing_memory_gains(order, n)[order:]
     np.testing.assert_allclose(closed_form_gains(order, np.arange(order + 1, n + 1)), core, rtol=1e-10, atol=1e-14)
-    np.testing.assert_allclose(closed_form_gains(2, [1, 2, 3, 4]),
-                               [[1, 3, 10], [1, 2.25, 2.5], [1, 1.5, 1], [0.95, 1.05, 0.5]], atol=1e-12)
+    np.testing.assert_allclose(
+        closed_form_gains(2, [1, 2, 3, 4]), [[1, 3, 10], [1, 2.25, 2.5], [1, 1.5, 1], [0.95, 1.05, 0.5]], atol=1e-12
+    )
 
 
 def test_schedule_lower_bound_is_a_plateau():
@@ -54,7 +61,7 @@ def test_lyapunov_statistics_match_long_simulation(order, kb):
     n_runs, burn, T = 400, 30 * kb, 3000
     e = scheduled_filter(rng.standard_normal((n_runs, burn + T)), np.broadcast_to(K, (burn + T, order + 1)))[:, burn:]
     for lag in (0, 1, 3):
-        prod = np.einsum("rti,rtj->rij", e[:, lag:], e[:, :T - lag]) / (T - lag)   # per-run estimate of C(lag)
+        prod = np.einsum("rti,rtj->rij", e[:, lag:], e[:, : T - lag]) / (T - lag)  # per-run estimate of C(lag)
         mean, se = prod.mean(0), prod.std(0, ddof=1) / np.sqrt(n_runs)
         assert np.all(np.abs(mean - C[lag]) <= 4.5 * se + 1e-15), (lag, mean, C[lag], se)
 

@@ -3,8 +3,14 @@
 import numpy as np
 import pytest
 
-from tvtrack.detect.innovation import (chi2_window, cusum, delay_false_alarm_curve, glr_velocity_jump,
-                                       normalised_innovations, velocity_jump_signature)
+from tvtrack.detect.innovation import (
+    chi2_window,
+    cusum,
+    delay_false_alarm_curve,
+    glr_velocity_jump,
+    normalised_innovations,
+    velocity_jump_signature,
+)
 from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter
 
 
@@ -41,8 +47,8 @@ def test_glr_is_the_brute_force_maximum_over_jump_times():
     for t in range(5, 30):
         best = np.zeros(2)
         for d in range(6):
-            seg = u[:, t - d:t + 1]
-            best = np.maximum(best, (seg @ rho[:d + 1]) ** 2 / np.sum(rho[:d + 1] ** 2))
+            seg = u[:, t - d : t + 1]
+            best = np.maximum(best, (seg @ rho[: d + 1]) ** 2 / np.sum(rho[: d + 1] ** 2))
         np.testing.assert_allclose(g[:, t], best, rtol=1e-12)
 
 
@@ -62,13 +68,15 @@ def test_delay_false_alarm_curve_on_a_known_case():
     rng = np.random.default_rng(3)
     null = rng.standard_normal((4000, 50))
     alt = rng.standard_normal((3000, 60))
-    alt[:, 30:] += 4.0                                            # a large step at the onset 30
+    alt[:, 30:] += 4.0  # a large step at the onset 30
     armed = np.ones(50, bool)
     out = delay_false_alarm_curve(alt, null, np.ones(60, bool), armed, 30, [0.05, 0.5], 10.0, 0.5)
     np.testing.assert_allclose(out["per_run_false_alarm"], [0.05, 0.5], atol=0.01)
     assert out["median_delay_s"][0] == 0.0 and out["p_detect_within"][0] > 0.8
     assert out["early_alarm"][1] > out["early_alarm"][0]
-    fixed = delay_false_alarm_curve(alt, null, np.ones(60, bool), armed, 30, None, 10.0, 0.5, thresholds=out["threshold"])
+    fixed = delay_false_alarm_curve(
+        alt, null, np.ones(60, bool), armed, 30, None, 10.0, 0.5, thresholds=out["threshold"]
+    )
     np.testing.assert_allclose(fixed["per_run_false_alarm"], out["per_run_false_alarm"])
     with pytest.raises(ValueError, match="targets"):
         delay_false_alarm_curve(alt, null, np.ones(60, bool), armed, 30, [1.5], 10.0, 0.5)

@@ -23,7 +23,7 @@ def test_kalman_matches_filterpy():
     Q = 1e-3 * np.outer([0.5, 1, 1], [0.5, 1, 1])
     R = np.array([[2.0]])
     x0, P0 = np.array([0.0, 9.0, 0.0]), np.diag([100.0, 10.0, 1.0])
-    zs = np.stack([_data(rng) for _ in range(3)])                  # (3, T)
+    zs = np.stack([_data(rng) for _ in range(3)])  # (3, T)
     ours = KalmanFilter(F, H, Q, R).run(zs[..., None], x0, P0)
     for i in range(3):
         kf = FKalman(dim_x=3, dim_z=1)
@@ -69,7 +69,7 @@ def test_imm_coasts_on_missing_measurements():
     z = _data(rng, 100)
     z[50:60] = np.nan
     out = imm_run(z[:, None], Fs, Qs, np.array([[1.0, 0, 0]]), np.eye(1), M, np.zeros(3), np.eye(3) * 100, [0.5, 0.5])
-    np.testing.assert_allclose(out.mu[55], out.mu[54] @ M)        # mode probabilities only predicted
+    np.testing.assert_allclose(out.mu[55], out.mu[54] @ M)  # mode probabilities only predicted
     np.testing.assert_allclose(out.x[55], out.x_prior[55])
     assert np.all(np.isfinite(out.x))
 
@@ -104,8 +104,17 @@ def test_imm_covariance_stays_spd():
     M = np.array([[0.99, 0.01], [0.01, 0.99]])
     z = np.stack([_data(rng, 400) for _ in range(200)])
     z[:, 200:260] = np.nan
-    out = imm_run(z[..., None], Fs, Qs, np.array([[1.0, 0, 0]]), np.array([[1e-4]]), M,
-                  np.zeros(3), np.diag([1e6, 1e4, 1.0]), [0.5, 0.5])
+    out = imm_run(
+        z[..., None],
+        Fs,
+        Qs,
+        np.array([[1.0, 0, 0]]),
+        np.array([[1e-4]]),
+        M,
+        np.zeros(3),
+        np.diag([1e6, 1e4, 1.0]),
+        [0.5, 0.5],
+    )
     # the CV mode pins a = 0, so its covariance is singular in a by construction: the combined
     # covariance is symmetric positive semi-definite, and positive definite on (x, v)
     np.testing.assert_array_equal(out.P, np.swapaxes(out.P, -1, -2))
@@ -117,7 +126,17 @@ def test_imm_covariance_stays_spd():
 def test_imm_bad_input():
     Fs, Qs = cv_ca_models(1e-4, 1e-3)
     with pytest.raises(ValueError, match="transition"):
-        imm_run(np.zeros((5, 1)), Fs, Qs, np.array([[1.0, 0, 0]]), np.eye(1), np.eye(2) * 0.5, np.zeros(3), np.eye(3), [0.5, 0.5])
+        imm_run(
+            np.zeros((5, 1)),
+            Fs,
+            Qs,
+            np.array([[1.0, 0, 0]]),
+            np.eye(1),
+            np.eye(2) * 0.5,
+            np.zeros(3),
+            np.eye(3),
+            [0.5, 0.5],
+        )
     with pytest.raises(ValueError, match="q_cv"):
         cv_ca_models(-1.0, 0.0)
 
@@ -152,8 +171,8 @@ def test_imm_frozen_coast_keeps_mode_probabilities_and_the_ca_acceleration():
     frozen = imm_run(zs[:, None], *args, coast="frozen")
     mixed = imm_run(zs[:, None], *args)
     np.testing.assert_allclose(frozen.mu[200:], np.broadcast_to(frozen.mu[199], (100, 2)), rtol=1e-12)
-    assert abs(frozen.x[-1, 2] - 0.2) < 0.05 < abs(mixed.x[-1, 2] - 0.2)       # true acceleration 0.2
-    mode = imm_run(zs[:, None], *args, coast="mode")             # the CA mode is the most probable at the loss
+    assert abs(frozen.x[-1, 2] - 0.2) < 0.05 < abs(mixed.x[-1, 2] - 0.2)  # true acceleration 0.2
+    mode = imm_run(zs[:, None], *args, coast="mode")  # the CA mode is the most probable at the loss
     assert mode.mu[199, 1] > 0.5
     np.testing.assert_allclose(mode.mu[200:], np.broadcast_to([0.0, 1.0], (100, 2)))
     assert abs(mode.x[-1, 2] - 0.2) < 0.05

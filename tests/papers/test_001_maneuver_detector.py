@@ -4,9 +4,16 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (calibrate_threshold, scheduled_statistic_std, statistic_std,
-                                     threshold_from_std, variance_independent, variance_stationary,
-                                     window_statistic, window_sum_of_squares)
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
+    calibrate_threshold,
+    scheduled_statistic_std,
+    statistic_std,
+    threshold_from_std,
+    variance_independent,
+    variance_stationary,
+    window_statistic,
+    window_sum_of_squares,
+)
 from tvtrack.filters.alphabeta import gain_schedule, scheduled_filter
 
 
@@ -15,12 +22,12 @@ def test_window_statistic_matches_direct_sums_and_is_invariant():
     v = rng.standard_normal((3, 40))
     n = 6
     S = window_statistic(v, n)
-    assert np.all(np.isnan(S[:, :2 * n - 1]))
+    assert np.all(np.isnan(S[:, : 2 * n - 1]))
     for t in range(2 * n - 1, 40):
-        np.testing.assert_allclose(S[:, t], v[:, t - 2 * n + 1:t - n + 1].sum(1) - v[:, t - n + 1:t + 1].sum(1))
+        np.testing.assert_allclose(S[:, t], v[:, t - 2 * n + 1 : t - n + 1].sum(1) - v[:, t - n + 1 : t + 1].sum(1))
     delta = 100 * rng.standard_normal((3, n))
     shifted = v.copy()
-    shifted[:, -2 * n:] += np.concatenate([delta, delta], axis=1)
+    shifted[:, -2 * n :] += np.concatenate([delta, delta], axis=1)
     np.testing.assert_allclose(window_statistic(shifted, n)[:, -1], S[:, -1], atol=1e-11)
 
 
@@ -94,21 +101,21 @@ def test_sum_of_squares_statistic_matches_direct_sums_and_is_invariant():
     v = rng.standard_normal((2, 30))
     n = 5
     Q = window_sum_of_squares(v, n)
-    assert np.all(np.isnan(Q[:, :2 * n - 1]))
+    assert np.all(np.isnan(Q[:, : 2 * n - 1]))
     for t in range(2 * n - 1, 30):
-        z = v[:, t - 2 * n + 1:t - n + 1] - v[:, t - n + 1:t + 1]
+        z = v[:, t - 2 * n + 1 : t - n + 1] - v[:, t - n + 1 : t + 1]
         np.testing.assert_allclose(Q[:, t], np.sum(z**2, axis=1), rtol=1e-12)
     delta = 10 * rng.standard_normal((2, n))
     shifted = v.copy()
-    shifted[:, -2 * n:] += np.concatenate([delta, delta], axis=1)
+    shifted[:, -2 * n :] += np.concatenate([delta, delta], axis=1)
     np.testing.assert_allclose(window_sum_of_squares(shifted, n)[:, -1], Q[:, -1], rtol=1e-10)
 
 
 def _impulse_response_std(G, n, sigma_eps):
     """Reference: sigma_S(t) from the filter's responses to unit impulses (quadratic memory; small T only)."""
     T = G.shape[0]
-    responses = scheduled_filter(np.eye(T), G)[..., 1]          # (j, t): velocity at t from an impulse at j
-    W = window_statistic(responses, n)                          # (j, t): weight of eps_j in S_t
+    responses = scheduled_filter(np.eye(T), G)[..., 1]  # (j, t): velocity at t from an impulse at j
+    W = window_statistic(responses, n)  # (j, t): weight of eps_j in S_t
     return sigma_eps * np.sqrt(np.sum(W**2, axis=0))
 
 
@@ -120,6 +127,7 @@ def test_exact_std_recursion_equals_impulse_responses(order, kb, n, T):
 
 def _peak_bytes(T, n):
     import tracemalloc
+
     G = gain_schedule(1, 50, T)
     tracemalloc.start()
     scheduled_statistic_std(G, n, 1.0)

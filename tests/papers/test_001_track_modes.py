@@ -3,10 +3,20 @@
 import numpy as np
 import pytest
 
-from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import scheduled_statistic_std, threshold_from_std, window_statistic
+from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
+    scheduled_statistic_std,
+    threshold_from_std,
+    window_statistic,
+)
 from tvtrack.filters.alphabeta import error_covariance_sequence, gain_schedule, scheduled_filter
 from tvtrack.filters.polynomial import polynomial_observation_row, taylor_transition
-from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import COAST, TRACK2, TRACK3, TrackModeConfig, run_track_modes
+from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import (
+    COAST,
+    TRACK2,
+    TRACK3,
+    TrackModeConfig,
+    run_track_modes,
+)
 
 T = 400
 
@@ -39,7 +49,7 @@ def test_forced_switch_restart_a_equals_hand_built_run():
     assert np.all(out.detection_frame == ks - 1)
     x2 = scheduled_filter(z[:, :ks], gain_schedule(1, 50, ks))[:, -1]
     x0 = np.c_[x2, np.zeros(3)]
-    G3 = gain_schedule(2, 80, 3 + T - ks)[3:]                      # k = 4, 5, ...
+    G3 = gain_schedule(2, 80, 3 + T - ks)[3:]  # k = 4, 5, ...
     ref = scheduled_filter(z[:, ks:], G3, x0)
     np.testing.assert_allclose(out.x[:, ks:], ref, atol=1e-8)
     assert np.all(out.mode[:, ks:] == TRACK3)
@@ -54,7 +64,7 @@ def test_restart_b_is_the_window_least_squares_fit():
     out = run_track_modes(z, np.ones(T, bool), TrackModeConfig(window=n, restart="B", force_switch_k=ks), 1.0)
     t = ks - 1
     H = polynomial_observation_row(2, np.arange(n - 1, -1, -1))
-    fit = np.linalg.lstsq(H, z[:, t - n + 1:t + 1].T, rcond=None)[0].T
+    fit = np.linalg.lstsq(H, z[:, t - n + 1 : t + 1].T, rcond=None)[0].T
     np.testing.assert_allclose(out.x[:, t], fit, atol=1e-8)
 
 
@@ -75,7 +85,7 @@ def test_detector_fires_after_onset_with_correlated_threshold():
     d = out.detection_frame
     assert np.mean((d >= 125) & (d < 150)) > 0.95
     S, th = out.statistic, out.threshold
-    assert np.all(np.isnan(S[:, :99]))                             # armed at k = kb2 + 2n = 100
+    assert np.all(np.isnan(S[:, :99]))  # armed at k = kb2 + 2n = 100
     first = np.nanargmax(np.abs(S) > th, axis=1)
     np.testing.assert_array_equal(first[d >= 0], d[d >= 0])
 
@@ -94,8 +104,12 @@ def test_bad_config():
 def _low_threshold_run(restart, **cfg):
     """Detector kept on in TRACK3 with a low threshold, so that it restarts the 3rd-order law many times."""
     _, z = _z(6, seed=3)
-    return run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=1.0, detect_in_track3=True, arm_k=51,
-                                                                restart=restart, **cfg), 1.0)
+    return run_track_modes(
+        z,
+        np.ones(T, bool),
+        TrackModeConfig(threshold=1.0, detect_in_track3=True, arm_k=51, restart=restart, **cfg),
+        1.0,
+    )
 
 
 @pytest.mark.parametrize("restart", ["A", "B", "C"])
@@ -105,7 +119,7 @@ def test_detector_statistic_is_the_window_statistic_of_the_output_velocities(res
     out = _low_threshold_run(restart)
     S, c = out.statistic, out.threshold
     ref = window_statistic(out.x[..., 1], 25)
-    tested = np.isfinite(S) & ~(np.abs(S) > c)            # frames with a test and no restart at that frame
+    tested = np.isfinite(S) & ~(np.abs(S) > c)  # frames with a test and no restart at that frame
     assert tested.sum() > 20 and np.all((out.mode == TRACK3).sum(1) > 0)
     np.testing.assert_allclose(S[tested], ref[tested], atol=1e-8)
 
@@ -114,11 +128,15 @@ def test_track3_tests_use_the_track3_threshold():
     """B2: in TRACK3 the threshold in force comes from ``threshold_track3`` indexed by the TRACK3 count,
     not from the TRACK2 array indexed by the TRACK3 counter."""
     _, z = _z(4, seed=5)
-    thr2 = np.linspace(50.0, 3.0, 400)                       # a TRACK2 array that varies with k
+    thr2 = np.linspace(50.0, 3.0, 400)  # a TRACK2 array that varies with k
     thr3 = np.linspace(2.0, 9.0, 300)
-    out = run_track_modes(z, np.ones(T, bool), TrackModeConfig(threshold=thr2, threshold_track3=thr3,
-                                                                detect_in_track3=True, arm_k=60), 1.0)
-    was3 = np.concatenate([np.zeros((4, 1), bool), out.mode[:, :-1] == TRACK3], axis=1)   # tested in TRACK3
+    out = run_track_modes(
+        z,
+        np.ones(T, bool),
+        TrackModeConfig(threshold=thr2, threshold_track3=thr3, detect_in_track3=True, arm_k=60),
+        1.0,
+    )
+    was3 = np.concatenate([np.zeros((4, 1), bool), out.mode[:, :-1] == TRACK3], axis=1)  # tested in TRACK3
     in3 = was3 & np.isfinite(out.threshold)
     in2 = ~was3 & np.isfinite(out.threshold)
     assert in3.sum() > 10 and in2.sum() > 10
@@ -133,8 +151,12 @@ def test_restart_c_is_a_kalman_reset_from_the_track2_covariance():
     variance, run Kalman gains (no process noise) until kappa1 reaches the bound, then the bound."""
     _, z = _z(3, seed=11)
     ks, kb3, var_a = 138, 60, 1e4
-    out = run_track_modes(z, np.ones(T, bool), TrackModeConfig(k_bound2=50, k_bound3=kb3, force_switch_k=ks,
-                                                                restart="C", restart_accel_var=var_a), 1.0)
+    out = run_track_modes(
+        z,
+        np.ones(T, bool),
+        TrackModeConfig(k_bound2=50, k_bound3=kb3, force_switch_k=ks, restart="C", restart_accel_var=var_a),
+        1.0,
+    )
     G2 = gain_schedule(1, 50, ks)
     x = np.c_[scheduled_filter(z[:, :ks], G2)[:, -1], np.zeros(3)]
     P2 = error_covariance_sequence(G2, 1.0)[-1]
@@ -154,7 +176,7 @@ def test_restart_c_is_a_kalman_reset_from_the_track2_covariance():
         P = IKh @ Pp @ IKh.T + np.outer(K, K)
         np.testing.assert_allclose(out.x[:, t], x, rtol=1e-9, atol=1e-7)
         np.testing.assert_allclose(out.gains[0, t], K, rtol=1e-9, atol=1e-12)
-    assert not kalman                                                   # reached the bound in the run
+    assert not kalman  # reached the bound in the run
 
 
 def _per_trial_reference(z, vis, thr, kb2, kb3, n, restart):
@@ -181,14 +203,14 @@ def _per_trial_reference(z, vis, thr, kb2, kb3, n, restart):
             flt.update(0.0, g=0.0, h=0.0, k=0.0)
         xs[t] = flt.x, flt.dx, flt.ddx
         if not in3 and vis[t] and k >= kb2 + 2 * n and (since >= 2 * n or not had_gap):
-            S[t] = xs[t - 2 * n + 1:t - n + 1, 1].sum() - xs[t - n + 1:t + 1, 1].sum()
+            S[t] = xs[t - 2 * n + 1 : t - n + 1, 1].sum() - xs[t - n + 1 : t + 1, 1].sum()
             if abs(S[t]) > thr[min(k, thr.size) - 1]:
-                det, in3, mode[t] = t, True, TRACK3                  # the switch frame counts as TRACK3
+                det, in3, mode[t] = t, True, TRACK3  # the switch frame counts as TRACK3
                 if restart == "A":
                     k, flt.ddx = 3, 0.0
                 else:
                     H = polynomial_observation_row(2, np.arange(n - 1, -1, -1))
-                    k, (flt.x, flt.dx, flt.ddx) = n, np.linalg.lstsq(H, z[t - n + 1:t + 1], rcond=None)[0]
+                    k, (flt.x, flt.dx, flt.ddx) = n, np.linalg.lstsq(H, z[t - n + 1 : t + 1], rcond=None)[0]
                 xs[t] = flt.x, flt.dx, flt.ddx
     return xs, S, gains, mode, det
 
@@ -203,7 +225,7 @@ def test_batched_run_equals_the_per_trial_filterpy_loop(restart):
     z[::3] = 10.0 * np.arange(T) + np.random.default_rng(14).standard_normal((4, T))  # no manoeuvre
     vis = np.ones((n_trials, T), bool)
     for i in range(n_trials):
-        vis[i, 190 + 7 * i:230 + 9 * i] = False                                                 # gaps differ per trial
+        vis[i, 190 + 7 * i : 230 + 9 * i] = False  # gaps differ per trial
     z = np.where(vis, z, np.nan)
     c = threshold_from_std(1e-2, scheduled_statistic_std(gain_schedule(1, kb2, T), n, 1.0))
     thr = np.where(np.isfinite(c), c, np.inf)
@@ -211,14 +233,15 @@ def test_batched_run_equals_the_per_trial_filterpy_loop(restart):
     out = run_track_modes(z.reshape(3, 4, T), vis.reshape(3, 4, T), cfg, 1.0, covariance=False)
     refs = [_per_trial_reference(z[i], vis[i], thr, kb2, kb3, n, restart) for i in range(n_trials)]
     xs, S, gains, mode, det = (np.stack(r) for r in zip(*refs))
-    assert 0 < np.sum(det >= 0) < n_trials                                                      # both kinds of trial
+    assert 0 < np.sum(det >= 0) < n_trials  # both kinds of trial
     np.testing.assert_array_equal(out.detection_frame.reshape(-1), det)
     np.testing.assert_array_equal(out.mode.reshape(n_trials, T), mode)
     np.testing.assert_array_equal(out.gains.reshape(n_trials, T, 3), gains)
     x = out.x.reshape(n_trials, T, 3)
-    for i in range(3):                        # 1e-12 of each component's scale (a's is set by its restart)
+    for i in range(3):  # 1e-12 of each component's scale (a's is set by its restart)
         np.testing.assert_allclose(x[..., i], xs[..., i], rtol=0, atol=1e-12 * np.abs(xs[..., i]).max())
     # running window sums vs sums taken afresh: agreement to 1e-12 of the sums' magnitude
     np.testing.assert_array_equal(np.isnan(out.statistic.reshape(n_trials, T)), np.isnan(S))
-    np.testing.assert_allclose(out.statistic.reshape(n_trials, T), S, rtol=0,
-                               atol=1e-12 * n * np.abs(xs[..., 1]).max(), equal_nan=True)
+    np.testing.assert_allclose(
+        out.statistic.reshape(n_trials, T), S, rtol=0, atol=1e-12 * n * np.abs(xs[..., 1]).max(), equal_nan=True
+    )

@@ -25,7 +25,9 @@ def test_without_detection_it_is_the_cv_kalman_filter():
     Fs, Qs = cv_ca_models(q_cv, 1e-3)
     P0 = np.diag([1e6, 1e4, 0.0])
     kf = KalmanFilter(Fs[0], np.array([[1.0, 0.0, 0.0]]), Qs[0], np.array([[1.0]]))
-    ref = kf.run(np.where(vis, z, np.nan)[..., None], np.zeros(3), Fs[0] @ P0 @ Fs[0].T + Qs[0])  # VD predicts at frame 0 too
+    ref = kf.run(
+        np.where(vis, z, np.nan)[..., None], np.zeros(3), Fs[0] @ P0 @ Fs[0].T + Qs[0]
+    )  # VD predicts at frame 0 too
     np.testing.assert_allclose(out.x, ref.x, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(out.var_prior[:, 1:], ref.P_prior[:, 1:, 0, 0], rtol=1e-9)
     assert np.all(out.detection_frame == -1) and not out.ca.any()
@@ -42,9 +44,9 @@ def test_restart_covariance_matches_monte_carlo():
     rng = np.random.default_rng(1)
     P_xv = np.array([[0.3, 0.05], [0.05, 0.02]])
     n = 400_000
-    e = rng.multivariate_normal(np.zeros(2), P_xv, n)            # CV posterior errors at t0 - 1
-    ez = 1.5 * rng.standard_normal(n)                             # measurement error at t0
-    x_true, v_true = 100.0, 10.0                                  # no manoeuvre: the re-initialised truth is (x+v, v, 0)
+    e = rng.multivariate_normal(np.zeros(2), P_xv, n)  # CV posterior errors at t0 - 1
+    ez = 1.5 * rng.standard_normal(n)  # measurement error at t0
+    x_true, v_true = 100.0, 10.0  # no manoeuvre: the re-initialised truth is (x+v, v, 0)
     x_hat, v_hat, z = x_true + e[:, 0], v_true + e[:, 1], x_true + v_true + ez
     a = 2.0 * (z - (x_hat + v_hat))
     errs = np.stack([z - (x_true + v_true), v_hat + a - v_true, a], axis=1)
@@ -85,12 +87,13 @@ def test_detection_restarts_back_in_time_and_reruns_the_ca_filter():
     Fs, Qs = cv_ca_models(0.0, q_ca)
     P0 = np.diag([1e6, 1e4, 0.0])
     cv = KalmanFilter(Fs[0], np.array([[1.0, 0.0, 0.0]]), Qs[0], np.array([[1.0]])).run(
-        z[0, :t0][:, None], np.zeros(3), Fs[0] @ P0 @ Fs[0].T + Qs[0])
+        z[0, :t0][:, None], np.zeros(3), Fs[0] @ P0 @ Fs[0].T + Qs[0]
+    )
     x_prev, P_prev = cv.x[t0 - 1], cv.P[t0 - 1]
     np.testing.assert_allclose(out.x[0, t0 - 1], x_prev, rtol=1e-9)
     a = 2.0 * (z[0, t0] - x_prev[0] - x_prev[1])
     ca = KalmanFilter(Fs[1], np.array([[1.0, 0.0, 0.0]]), Qs[1], np.array([[1.0]]))
     x_r, P_r = np.array([z[0, t0], x_prev[1] + a, a]), vd_restart_covariance(P_prev[:2, :2], 1.0)
-    ref = ca.run(z[0, t0 + 1:t + 1][:, None], Fs[1] @ x_r, Fs[1] @ P_r @ Fs[1].T + Qs[1])
+    ref = ca.run(z[0, t0 + 1 : t + 1][:, None], Fs[1] @ x_r, Fs[1] @ P_r @ Fs[1].T + Qs[1])
     np.testing.assert_allclose(out.x[0, t], ref.x[-1], rtol=1e-9, atol=1e-9)
     assert out.ca[0, t] and not out.ca[0, t - 1]

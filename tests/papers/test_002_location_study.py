@@ -3,26 +3,50 @@
 import numpy as np
 import pytest
 
-from tvtrack.papers.p002_unified_location_em.simulation import (Config, LocationStudy, StudySettings, bootstrap_groups,
-                                             failure_metrics, position_errors, seed_blocks, seed_sequence,
-                                             variance_ratio_ci, variance_sum)
+from tvtrack.papers.p002_unified_location_em.simulation import (
+    Config,
+    LocationStudy,
+    StudySettings,
+    bootstrap_groups,
+    failure_metrics,
+    position_errors,
+    seed_blocks,
+    seed_sequence,
+    variance_ratio_ci,
+    variance_sum,
+)
 
-SETTINGS = StudySettings(seed=7, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
-                         margin_sigma=6.0, designation_sd_sigma=0.3, designation_velocity_sd=0.0,
-                         tol_sigma=1e-5, max_iter=500, merge_sigma=0.1, accelerate="squarem",
-                         mark_init="designation", mark_association="designation", gate_half_sigma=3.0,
-                         bic_max_iter=20, crb_phases=2, n_trials=24, n_bootstrap=2000)
+SETTINGS = StudySettings(
+    seed=7,
+    velocity_sigma=(0.2, 0.1),
+    noise_density=0.01,
+    photon_model="fixed",
+    margin_sigma=6.0,
+    designation_sd_sigma=0.3,
+    designation_velocity_sd=0.0,
+    tol_sigma=1e-5,
+    max_iter=500,
+    merge_sigma=0.1,
+    accelerate="squarem",
+    mark_init="designation",
+    mark_association="designation",
+    gate_half_sigma=3.0,
+    bic_max_iter=20,
+    crb_phases=2,
+    n_trials=24,
+    n_bootstrap=2000,
+)
 
 
 def test_variance_ratio_ci_matches_closed_form_and_covers_truth():
     rng = np.random.default_rng(0)
-    a = rng.normal(0, 2.0, (4000, 2))                   # summed variance 8
-    b = rng.normal(0, 1.0, (4000, 2))                   # summed variance 2
+    a = rng.normal(0, 2.0, (4000, 2))  # summed variance 8
+    b = rng.normal(0, 1.0, (4000, 2))  # summed variance 2
     r = variance_ratio_ci(a, b, np.random.default_rng(1), 300, paired=False)
     assert r.value == pytest.approx(a.var(0, ddof=1).sum() / b.var(0, ddof=1).sum())
     assert r.ci_low < 4.0 < r.ci_high and r.ci_high - r.ci_low < 0.6
     mse = variance_ratio_ci(a + 1.0, b, np.random.default_rng(1), 300, mse=True)
-    assert mse.value == pytest.approx(((a + 1) ** 2).mean(0).sum() / (b ** 2).mean(0).sum())
+    assert mse.value == pytest.approx(((a + 1) ** 2).mean(0).sum() / (b**2).mean(0).sum())
     sd = variance_ratio_ci(a, b, np.random.default_rng(1), 300, sqrt=True)
     assert sd.value == pytest.approx(np.sqrt(r.value))
     # paired resampling of identical samples gives exactly 1 in every resample
@@ -35,20 +59,22 @@ def test_variance_ratio_ci_matches_closed_form_and_covers_truth():
     trimmed = variance_ratio_ci(a_gross, b, np.random.default_rng(1), 300, paired=False, spread="trimmed_variance")
     median = variance_ratio_ci(a_gross, b, np.random.default_rng(1), 300, paired=False, spread="median_square")
     assert plain.value > 8.0
-    assert 3.0 < trimmed.value < 5.0 and 3.0 < median.value < 5.0   # scale ratio 4 of two normal samples
+    assert 3.0 < trimmed.value < 5.0 and 3.0 < median.value < 5.0  # scale ratio 4 of two normal samples
 
 
 def test_bootstrap_groups_resamples_groups_independently_and_rows_jointly():
     rng = np.random.default_rng(3)
     x = rng.normal(size=(500, 2))
     # a statistic of one group's paired columns: identical columns give exactly 0 in every resample
-    d = bootstrap_groups([np.hstack([x, x])], lambda g: (g[..., :2] - g[..., 2:]).mean(axis=(1, 2)),
-                         np.random.default_rng(4), 2000)
+    d = bootstrap_groups(
+        [np.hstack([x, x])], lambda g: (g[..., :2] - g[..., 2:]).mean(axis=(1, 2)), np.random.default_rng(4), 2000
+    )
     assert d.value == d.ci_low == d.ci_high == 0.0 and d.n == 500
     # two independent groups: the difference of means has the standard error sqrt(1/n1 + 1/n2)
     y = rng.normal(size=(300, 1)) + 1.0
-    diff = bootstrap_groups([x[:, :1], y], lambda a, b: b.mean(axis=(1, 2)) - a.mean(axis=(1, 2)),
-                            np.random.default_rng(5), 2000)
+    diff = bootstrap_groups(
+        [x[:, :1], y], lambda a, b: b.mean(axis=(1, 2)) - a.mean(axis=(1, 2)), np.random.default_rng(5), 2000
+    )
     assert diff.stderr == pytest.approx(np.sqrt(1 / 500 + 1 / 300), rel=0.15)
     assert diff.ci_low < 1.0 < diff.ci_high
 
@@ -70,7 +96,7 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     r = study[c_u]
     assert r["ula"].shape == (24, 2, 4) and r["em"].shape == (24, 2, 4)
     blocks = seed_blocks(r)
-    assert sorted(blocks) == [7] and blocks[7].sum() == 24      # one seed: replicates are whole runs
+    assert sorted(blocks) == [7] and blocks[7].sum() == 24  # one seed: replicates are whole runs
     # epochs: the mid-frame error is the first-frame error plus (T-1)/2 velocity errors
     mid = position_errors(r, "ula", "mid")
     np.testing.assert_allclose(mid, (r["ula"][..., :2] + 1.5 * r["ula"][..., 2:]).reshape(24, -1))
@@ -84,7 +110,7 @@ def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     np.testing.assert_array_equal(again[c_u]["ula"], r["ula"])
     rates = failure_metrics(r)
     assert set(rates) >= {"ula/gross_rate", "ula/merge_rate", "em/gross_rate", "em/missing_marks_rate"}
-    assert not any("swap" in k for k in rates)           # a label swap costs nothing: not a failure
+    assert not any("swap" in k for k in rates)  # a label swap costs nothing: not a failure
 
 
 def test_bad_workers_raise():

@@ -15,17 +15,21 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p002_unified_location_em.em import log_likelihood, pixel_entries, unified_location_em
-from tvtrack.papers.p002_unified_location_em.model import (frame_times, mixture_weights, scene_batches,
-                                                           scene_geometry)
-from tvtrack.papers.p002_unified_location_em.simulation import (Config, StudySettings, centre_gate_half_px,
-                                                           map_prior_sd, run_config)
+from tvtrack.papers.p002_unified_location_em.model import frame_times, mixture_weights, scene_batches, scene_geometry
+from tvtrack.papers.p002_unified_location_em.simulation import (
+    Config,
+    StudySettings,
+    centre_gate_half_px,
+    map_prior_sd,
+    run_config,
+)
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, propagate
 
 
 def _scene(seed, n, q=2, T=5, d=2.0, pix=0.4, m=40, rho=0.01, dsd=0.5, vsd=0.0):
     rng = np.random.default_rng(seed)
     g = scene_geometry(q, T, d, pix)
-    noise = rho / g.sigma_px ** 2
+    noise = rho / g.sigma_px**2
     b = next(scene_batches(rng, g, n, T, m, noise, dsd * g.sigma_px, vsd * g.sigma_px, batch_size=n))
     p, p0 = mixture_weights(m, noise, g.n_pixels, q)
     return g, b, p, p0
@@ -44,12 +48,13 @@ def test_map_ula_is_a_stationary_point_of_the_log_posterior_at_sigma_px_not_one(
     """Kills: the MAP prior without its sigma^2 factor. The fixed point of MAP-EM must zero the gradient of
     log L + log prior, the prior written here independently: -sum (x - x_d)^2 / (2 sd_x^2) - sum (V - V_d)^2 /
     (2 sd_v^2). Without the factor the prior weighs sigma_px^2 = 6.25 times too much or too little."""
-    g, b, p, p0 = _scene(3, 4, pix=0.4)                      # sigma_px = 2.5
+    g, b, p, p0 = _scene(3, 4, pix=0.4)  # sigma_px = 2.5
     assert g.sigma_px == pytest.approx(2.5)
     times = frame_times(5)
     sd_x, sd_v = 0.3 * g.sigma_px, 0.05 * g.sigma_px
-    res = unified_location_em(pixel_entries(b.counts), b.designation, g.sigma_px, p, p0, tol_px=1e-11,
-                              max_iter=20000, prior_sd=(sd_x, sd_v))
+    res = unified_location_em(
+        pixel_entries(b.counts), b.designation, g.sigma_px, p, p0, tol_px=1e-11, max_iter=20000, prior_sd=(sd_x, sd_v)
+    )
     assert res.converged.all()
 
     def log_post(th):
@@ -58,8 +63,13 @@ def test_map_ula_is_a_stationary_point_of_the_log_posterior_at_sigma_px_not_one(
         return log_likelihood(b.counts, th, times, g.sigma_px, p, p0) + lp
 
     grad = _numeric_gradient(log_post, res.theta)
-    prior_grad = np.concatenate([(res.theta[..., :2] - b.designation[..., :2]) / sd_x ** 2,
-                                 (res.theta[..., 2:] - b.designation[..., 2:]) / sd_v ** 2], axis=-1)
+    prior_grad = np.concatenate(
+        [
+            (res.theta[..., :2] - b.designation[..., :2]) / sd_x**2,
+            (res.theta[..., 2:] - b.designation[..., 2:]) / sd_v**2,
+        ],
+        axis=-1,
+    )
     # the prior pulls with a force of order 1 or more; at the MAP the likelihood balances it exactly
     assert np.abs(prior_grad).max() > 1.0
     assert np.abs(grad).max() < 1e-3 * np.abs(prior_grad).max()
@@ -68,12 +78,12 @@ def test_map_ula_is_a_stationary_point_of_the_log_posterior_at_sigma_px_not_one(
 def test_centre_of_region_gate_is_three_pixels_wide_with_coarse_pixels():
     """Kills: the gate shrunk from 3 x 3 to 1 x 1. At Delta = 5 sigma the gate half-size is 1.5 px, and a photon
     one pixel off the predicted pixel moves the centroid half a pixel; a 1 x 1 gate would return the pixel centre."""
-    assert centre_gate_half_px(3.0, 0.2) == 1.5              # Delta = 5 sigma: 3 sigma = 0.6 px < 1.5 px
-    assert centre_gate_half_px(3.0, 1.0) == 3.0              # Delta = sigma: 3 sigma = 3 px
+    assert centre_gate_half_px(3.0, 0.2) == 1.5  # Delta = 5 sigma: 3 sigma = 0.6 px < 1.5 px
+    assert centre_gate_half_px(3.0, 1.0) == 3.0  # Delta = sigma: 3 sigma = 3 px
     counts = np.zeros((1, 1, 11, 11))
     counts[0, 0, 5, 5] = 1.0
-    counts[0, 0, 5, 6] = 1.0                                  # right neighbour: inside a 3 x 3 gate
-    counts[0, 0, 5, 7] = 5.0                                  # two pixels right: outside it
+    counts[0, 0, 5, 6] = 1.0  # right neighbour: inside a 3 x 3 gate
+    counts[0, 0, 5, 7] = 5.0  # two pixels right: outside it
     pred = np.array([[[[5.2, 4.9]]]])
     marks = centre_of_region_marks(counts, pred, centre_gate_half_px(3.0, 0.2))
     np.testing.assert_allclose(marks.xy[0, 0, 0], [5.5, 5.0])
@@ -83,11 +93,26 @@ def test_centre_of_region_marks_in_the_study_resolve_sub_pixel_motion_with_coars
     """Kills the same mutation where the study uses it: one object, Delta = 5 sigma, 200 photons. With a 3 x 3 gate
     the line fit's x0 error variance is about 0.3 sigma^2 (the centroid's pixel-centre bias); a 1 x 1 gate quantises
     every mark to the pixel centre, Var = Delta^2 / 12 = 2.1 sigma^2."""
-    settings = StudySettings(seed=5, velocity_sigma=(0.2, 0.1), noise_density=0.0, photon_model="fixed",
-                             margin_sigma=6.0, designation_sd_sigma=0.3, designation_velocity_sd=0.0, tol_sigma=1e-6,
-                             max_iter=500, merge_sigma=0.1, accelerate="squarem", mark_init="designation",
-                             mark_association="designation", gate_half_sigma=3.0, bic_max_iter=10, crb_phases=2,
-                             n_trials=120, n_bootstrap=2000)
+    settings = StudySettings(
+        seed=5,
+        velocity_sigma=(0.2, 0.1),
+        noise_density=0.0,
+        photon_model="fixed",
+        margin_sigma=6.0,
+        designation_sd_sigma=0.3,
+        designation_velocity_sd=0.0,
+        tol_sigma=1e-6,
+        max_iter=500,
+        merge_sigma=0.1,
+        accelerate="squarem",
+        mark_init="designation",
+        mark_association="designation",
+        gate_half_sigma=3.0,
+        bic_max_iter=10,
+        crb_phases=2,
+        n_trials=120,
+        n_bootstrap=2000,
+    )
     cfg = Config(1, 0.0, 5.0, 200, 2, "c", 0.3, None, None, 120, "pin", 0.0)
     res = run_config(settings, cfg)
     var_x0 = res["cr"][:, 0, 0].var(ddof=1)
@@ -127,10 +152,26 @@ def test_map_comparison_gives_both_algorithms_the_same_velocity_knowledge():
     assert map_prior_sd("designated", 0.3, 0.05, 2.0) == (0.6, 0.1)
     with pytest.raises(ValueError):
         map_prior_sd("oracle", 0.3, 0.0, 1.0)
-    base = dict(seed=8, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed", margin_sigma=6.0,
-                designation_sd_sigma=0.3, designation_velocity_sd=0.0, tol_sigma=1e-6, max_iter=300,
-                merge_sigma=0.1, accelerate="squarem", mark_init="designation", mark_association="designation",
-                gate_half_sigma=3.0, bic_max_iter=10, crb_phases=2, n_trials=12, n_bootstrap=2000)
+    base = dict(
+        seed=8,
+        velocity_sigma=(0.2, 0.1),
+        noise_density=0.01,
+        photon_model="fixed",
+        margin_sigma=6.0,
+        designation_sd_sigma=0.3,
+        designation_velocity_sd=0.0,
+        tol_sigma=1e-6,
+        max_iter=300,
+        merge_sigma=0.1,
+        accelerate="squarem",
+        mark_init="designation",
+        mark_association="designation",
+        gate_half_sigma=3.0,
+        bic_max_iter=10,
+        crb_phases=2,
+        n_trials=12,
+        n_bootstrap=2000,
+    )
     cfg = Config(2, 2.0, 1.0, 20, 6, "uemk", 0.3, None, None, 12, "pin", 0.0)
     free = run_config(StudySettings(**base, velocity_knowledge="free"), cfg)
     known = run_config(StudySettings(**base, velocity_knowledge="designated"), cfg)

@@ -7,8 +7,15 @@ from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p002_unified_location_em import study
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
-TINY = study.Scale(n_trials=4, n_iter_trials=4, separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0), fig3_frames=(5, 10, 50),
-                   crb_phases=2, n_workers=1, max_iter=40)
+TINY = study.Scale(
+    n_trials=4,
+    n_iter_trials=4,
+    separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0),
+    fig3_frames=(5, 10, 50),
+    crb_phases=2,
+    n_workers=1,
+    max_iter=40,
+)
 DEFAULT = REGISTER.default()
 
 
@@ -31,9 +38,9 @@ def test_a_statistic_reruns_nothing_and_a_comparator_reruns_only_its_algorithm()
     assert changed == {"e", "q"}
     vel = _letters(study.jobs_of({**DEFAULT, "velocity knowledge": "designated"}, 7, TINY))
     assert {k[1] for k in base if base[k] != vel[k]} == {"m"}
-    assert {k[1] for k in set(vel) - set(base)} == {"k"}      # the ML ULA given the designated velocity
+    assert {k[1] for k in set(vel) - set(base)} == {"k"}  # the ML ULA given the designated velocity
     world = _letters(study.jobs_of({**DEFAULT, "photon model": "poisson"}, 7, TINY))
-    assert all(base[k] != world[k] for k in base)          # a regime of the world redraws every scene
+    assert all(base[k] != world[k] for k in base)  # a regime of the world redraws every scene
 
 
 def test_replicates_are_independent_and_reproducible():
@@ -64,7 +71,7 @@ def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
     g, res = study.figure_data(cfg, 3, TINY)
     r, rm = res[g["5ab"][50][1.0]], res[g["head_map"][1.0]]
     # the same statistic computed here from the free-velocity twin (the plain line fit) and the MAP-ULA
-    direct = (study.errors(r, "em").var(axis=0, ddof=1).sum() / study.errors(rm, "map").var(axis=0, ddof=1).sum())
+    direct = study.errors(r, "em").var(axis=0, ddof=1).sum() / study.errors(rm, "map").var(axis=0, ddof=1).sum()
     assert out["d = 1 sigma (paper x4.5)"].value == pytest.approx(direct)
 
 
@@ -94,9 +101,13 @@ def test_mean_log_gain_recovers_a_known_ratio_of_gains():
     n = 1500
 
     def pair(var_num, var_den):
-        return np.hstack([rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))])
-    est = study._mean_log_gain([pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)],
-                               np.random.default_rng(0), 1000)
+        return np.hstack(
+            [rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))]
+        )
+
+    est = study._mean_log_gain(
+        [pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)], np.random.default_rng(0), 1000
+    )
     assert est.ci_low < 2.0 < est.ci_high and abs(est.value - 2.0) < 0.25
     e = rng.normal(size=(n, 2))
     v = study.gain(2 * e, e, np.random.default_rng(0), 2000)
@@ -114,13 +125,19 @@ def test_variance_sum_interval_coverage_near_the_resolution_limit():
     from tvtrack.explore import pool
     from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config, variance_sum
 
-    errs = [study.errors(run_config(replace(study._CANON, seed=1000 + k),
-                                    Config(2, 1.0, 3.0, 20, 10, "u", 0.3, None, None, 80, "cov", 0.0)), "ula")
-            for k in range(60)]
+    errs = [
+        study.errors(
+            run_config(
+                replace(study._CANON, seed=1000 + k), Config(2, 1.0, 3.0, 20, 10, "u", 0.3, None, None, 80, "cov", 0.0)
+            ),
+            "ula",
+        )
+        for k in range(60)
+    ]
     truth = np.concatenate(errs).var(axis=0, ddof=1).sum()
     ests = [variance_sum(e) for e in errs]
     single = np.mean([e.ci_low <= truth <= e.ci_high for e in ests])
-    pooled = np.mean([(p := pool(ests[i:i + 3])).ci_low <= truth <= p.ci_high for i in range(0, 60, 3)])
+    pooled = np.mean([(p := pool(ests[i : i + 3])).ci_low <= truth <= p.ci_high for i in range(0, 60, 3)])
     assert 0.85 <= single <= 1.0 and pooled >= 0.9, (single, pooled)
 
 
@@ -128,12 +145,18 @@ def test_flips_by_entry_reads_single_conditions_only():
     class Ex:
         def record(self, cid, rule):
             ref = {"replicates": [{"parts": {"a": "reproduced"}}]}
-            conds = [{"kind": "single", "changed": {"tracks": "crossing"}, "parts": {"a": "partly"}},
-                     {"kind": "single", "changed": {"bound": "CRB2"}, "parts": {"a": "reproduced"}},
-                     {"kind": "joint", "changed": {"bound": "x", "epoch": "mid"}, "parts": {"a": "partly"}}]
+            conds = [
+                {"kind": "single", "changed": {"tracks": "crossing"}, "parts": {"a": "partly"}},
+                {"kind": "single", "changed": {"bound": "CRB2"}, "parts": {"a": "reproduced"}},
+                {"kind": "joint", "changed": {"bound": "x", "epoch": "mid"}, "parts": {"a": "partly"}},
+            ]
             return {**ref, "conditions": conds}
-    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == \
-        {"tracks": ["C002-1"], "bound": [], "epoch": []}
+
+    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == {
+        "tracks": ["C002-1"],
+        "bound": [],
+        "epoch": [],
+    }
 
 
 def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
@@ -152,7 +175,7 @@ def test_trimmed_reading_reruns_nothing_and_ignores_a_few_gross_errors():
     base = _letters(study.jobs_of(DEFAULT, 7, TINY))
     assert _letters(study.jobs_of({**DEFAULT, "gross errors": study.TRIMMED}, 7, TINY)) == base
     e = np.random.default_rng(3).standard_normal((400, 2))
-    e[:5] = 1e3                                             # five lost objects
+    e[:5] = 1e3  # five lost objects
     assert study.spread_sum(e).value > 1e4
     trimmed = study.spread_sum(e, "trimmed")
     assert 1.0 < trimmed.value < 2.0 and trimmed.ci_low <= trimmed.value <= trimmed.ci_high

@@ -8,14 +8,40 @@ from scipy import signal
 
 from tvtrack.measure import gate_crop_size
 from tvtrack.papers.p003_rotating_marker_tracker.discriminators import (
-    edge_discriminator, interval_weights, polar_errors, quadrant_discriminator, quadrant_noise, quadrant_sums,
-    quadrant_weights, static_characteristic, two_emitter_discriminator)
+    edge_discriminator,
+    interval_weights,
+    polar_errors,
+    quadrant_discriminator,
+    quadrant_noise,
+    quadrant_sums,
+    quadrant_weights,
+    static_characteristic,
+    two_emitter_discriminator,
+)
 from tvtrack.papers.p003_rotating_marker_tracker.lock import (
-    MECHANISMS, LossCriterion, classify_losses, first_loss, omega_alarm, tag_capture)
+    MECHANISMS,
+    LossCriterion,
+    classify_losses,
+    first_loss,
+    omega_alarm,
+    tag_capture,
+)
 from tvtrack.papers.p003_rotating_marker_tracker.loops import (
-    RotatingGateTracker, loop_gains, loop_poles, run_closed_loop, simulate_two_emitter_1d)
+    RotatingGateTracker,
+    loop_gains,
+    loop_poles,
+    run_closed_loop,
+    simulate_two_emitter_1d,
+)
 from tvtrack.papers.p003_rotating_marker_tracker.scene import (
-    RotatingMarkerScene, Scenario, correlated_background, marker_truth, place_interferers, render_spot, run_scenario)
+    RotatingMarkerScene,
+    Scenario,
+    correlated_background,
+    marker_truth,
+    place_interferers,
+    render_spot,
+    run_scenario,
+)
 from tvtrack.render import box_spot, pixel_fractions_box
 
 D, A = 8.0, 12.0
@@ -32,14 +58,14 @@ def test_quadrant_discriminator_odd_and_linear_with_predicted_slope(spot):
         # gate on a pixel centre: the pixel grid is symmetric and the S-curve exactly odd
         pos = static_characteristic(_renderer(spot), offsets, half=A, axis=axis, gate_center=(0.0, 0.0))
         neg = static_characteristic(_renderer(spot), -offsets, half=A, axis=axis, gate_center=(0.0, 0.0))
-        assert np.all(pos > 0)                                             # corrected sign: +grad Pi
+        assert np.all(pos > 0)  # corrected sign: +grad Pi
         np.testing.assert_allclose(neg, -pos, rtol=1e-9)
         # at a sub-pixel gate position the pixel grid breaks oddness only slightly
         pos = static_characteristic(_renderer(spot), offsets, half=A, axis=axis)
         neg = static_characteristic(_renderer(spot), -offsets, half=A, axis=axis)
         np.testing.assert_allclose(neg, -pos, rtol=0.04)
         slope = pos / offsets
-        np.testing.assert_allclose(slope[:3], 2 * D, rtol=0.05)           # linear, slope 2 d D
+        np.testing.assert_allclose(slope[:3], 2 * D, rtol=0.05)  # linear, slope 2 d D
     # saturates (relay zone) beyond D/2 and vanishes once the spot leaves the gate
     far = static_characteristic(_renderer(spot), [5.0, 7.5, 20.0], half=A)
     assert abs(far[0] - far[1]) < 0.05 * far[0] and abs(far[2]) < 1e-9
@@ -86,20 +112,21 @@ def test_projected_noise_has_the_full_pixel_noise_covariance_off_the_diagonal_to
     rng = np.random.default_rng(11)
     n, size, sigma = 100000, 26, 0.3
     origin = np.zeros((n, 2), int)
-    centre = np.tile([5.3, 6.7], (n, 1))                                     # left and lower halves clipped
+    centre = np.tile([5.3, 6.7], (n, 1))  # left and lower halves clipped
     wy, wx = quadrant_weights(origin[:1], centre[:1], A, (size, size))
-    w_dx = np.outer(wy[0, 0], wx[0, :, 1])                                   # full rows x (right - left)
-    w_dy = np.outer(wy[0, 1], wx[0, :, 0])                                   # (upper - lower) x full columns
-    exact = sigma**2 * np.array([[np.sum(w_dx * w_dx), np.sum(w_dx * w_dy)],
-                                 [np.sum(w_dx * w_dy), np.sum(w_dy * w_dy)]])
-    assert abs(exact[0, 1]) > 0.05 * np.sqrt(exact[0, 0] * exact[1, 1])       # a real correlation to test
+    w_dx = np.outer(wy[0, 0], wx[0, :, 1])  # full rows x (right - left)
+    w_dy = np.outer(wy[0, 1], wx[0, :, 0])  # (upper - lower) x full columns
+    exact = sigma**2 * np.array(
+        [[np.sum(w_dx * w_dx), np.sum(w_dx * w_dy)], [np.sum(w_dx * w_dy), np.sum(w_dy * w_dy)]]
+    )
+    assert abs(exact[0, 1]) > 0.05 * np.sqrt(exact[0, 0] * exact[1, 1])  # a real correlation to test
     wy, wx = quadrant_weights(origin, centre, A, (size, size))
     c_proj = np.cov(quadrant_noise(wy, wx, sigma, rng).T)
     pix = sigma * rng.standard_normal((20000, size, size))
     dx, dy, _ = quadrant_discriminator(pix, origin[:20000], centre[:20000], A)
     c_pix = np.cov(np.stack([dx, dy]))
     scale = np.sqrt(exact[0, 0] * exact[1, 1])
-    np.testing.assert_allclose(c_proj, exact, atol=0.01 * scale)          # a sign error would miss by 0.17
+    np.testing.assert_allclose(c_proj, exact, atol=0.01 * scale)  # a sign error would miss by 0.17
     np.testing.assert_allclose(c_pix, exact, atol=0.04 * scale)
 
 
@@ -110,22 +137,35 @@ def test_perfect_background_compensation_leaves_discriminator_unchanged():
     centre = origin + 12.3
     s = render_spot("disc", centre + rng.uniform(-2, 2, (n, 2)), (size, size), D, 1.0, origin)
     noise = 0.02 * rng.standard_normal(s.shape)
-    F = correlated_background(rng, n, (size, size), 8.0, 0.2)               # background f
+    F = correlated_background(rng, n, (size, size), 8.0, 0.2)  # background f
     u = s + F + noise
-    u_d = u - F                                                           # (19) with f_hat = f
+    u_d = u - F  # (19) with f_hat = f
     for form in ("quadrant", "edge"):
         if form == "quadrant":
-            a, b = quadrant_discriminator(u_d, origin, centre, A)[:2], quadrant_discriminator(s + noise, origin, centre, A)[:2]
+            a, b = (
+                quadrant_discriminator(u_d, origin, centre, A)[:2],
+                quadrant_discriminator(s + noise, origin, centre, A)[:2],
+            )
         else:
             a, b = edge_discriminator(u_d, origin, centre, D / 2), edge_discriminator(s + noise, origin, centre, D / 2)
         np.testing.assert_allclose(a, b, atol=1e-5)
     # in the scene: kappa = 0 (perfect estimate) gives exactly the scene without background
     T = 3
-    truth = marker_truth(np.full((n, T), 60.0), np.full((n, T), 60.0), np.full((n, T), 12.0),
-                         np.full((n, T), 50.0), np.zeros(n), 0.002)
-    res = RotatingMarkerScene.static_residual(rng, n, (128, 128), kappa=0.0, background_std=0.5, corr_length=8,
-                                              interferers=np.zeros((n, 0, 2)), interferer_brightness=1.0,
-                                              spot="disc", diameter=D)
+    truth = marker_truth(
+        np.full((n, T), 60.0), np.full((n, T), 60.0), np.full((n, T), 12.0), np.full((n, T), 50.0), np.zeros(n), 0.002
+    )
+    res = RotatingMarkerScene.static_residual(
+        rng,
+        n,
+        (128, 128),
+        kappa=0.0,
+        background_std=0.5,
+        corr_length=8,
+        interferers=np.zeros((n, 0, 2)),
+        interferer_brightness=1.0,
+        spot="disc",
+        diameter=D,
+    )
     with_bg = RotatingMarkerScene(truth, (128, 128), "disc", D, 1.0, res)
     without = RotatingMarkerScene(truth, (128, 128), "disc", D, 1.0)
     c = truth.marker[:, 1] + 1.3
@@ -134,9 +174,9 @@ def test_perfect_background_compensation_leaves_discriminator_unchanged():
 
 def test_edge_discriminator_is_relay_like_for_a_square_and_nonlinear_for_a_disc():
     sq = static_characteristic(_renderer("square"), [1.5, 2.5, 3.5], form="edge", half=A, a=D / 2)
-    assert np.all(sq > 0) and np.ptp(sq) < 0.02 * sq.mean()                 # constant: a relay
+    assert np.all(sq > 0) and np.ptp(sq) < 0.02 * sq.mean()  # constant: a relay
     disc = static_characteristic(_renderer("disc"), [0.5, 1.5, 3.5], form="edge", half=A, a=D / 2)
-    assert np.all(np.diff(disc) > 0) and disc[2] / disc[1] < 1.5            # chord law, far from linear (2.33)
+    assert np.all(np.diff(disc) > 0) and disc[2] / disc[1] < 1.5  # chord law, far from linear (2.33)
 
 
 def test_polar_errors_rotate():
@@ -150,7 +190,7 @@ def test_loop_gains_give_stated_bandwidths_and_stable_poles():
     g = loop_gains(10.0, 0.2, 6.0)
     assert g.k_xy == pytest.approx(2 * np.pi * 10)
     w = 2 * np.pi * 6.0
-    h = (g.k1 * 1j * w + g.k2) / (-(w**2) + g.k1 * 1j * w + g.k2)        # type-2 PLL
+    h = (g.k1 * 1j * w + g.k2) / (-(w**2) + g.k1 * 1j * w + g.k2)  # type-2 PLL
     assert abs(h) == pytest.approx(1 / np.sqrt(2), rel=1e-3)
     poles = loop_poles(g, 2 * np.pi * 8, 12.0)
     assert np.all(poles.real < 0)
@@ -162,12 +202,20 @@ def test_loop_gains_give_stated_bandwidths_and_stable_poles():
 def test_noise_free_tracker_locks_static_object_below_0p1_px():
     n, T, dt = 6, 2000, 0.002
     rng = np.random.default_rng(3)
-    truth = marker_truth(np.full((n, T), 128.3), np.full((n, T), 127.6), np.full((n, T), 12.0),
-                         np.full((n, T), 2 * np.pi * 8), rng.uniform(0, 2 * np.pi, n), dt)
+    truth = marker_truth(
+        np.full((n, T), 128.3),
+        np.full((n, T), 127.6),
+        np.full((n, T), 12.0),
+        np.full((n, T), 2 * np.pi * 8),
+        rng.uniform(0, 2 * np.pi, n),
+        dt,
+    )
     for spot in ("disc", "square"):
         scene = RotatingMarkerScene(truth, (256, 256), spot, D, 1.0)
-        x0 = np.stack([truth.xr[:, 0] + 3, truth.yr[:, 0] - 3, 0.85 * truth.r[:, 0], truth.theta[:, 0] + 0.2,
-                       truth.omega[:, 0]], axis=1)
+        x0 = np.stack(
+            [truth.xr[:, 0] + 3, truth.yr[:, 0] - 3, 0.85 * truth.r[:, 0], truth.theta[:, 0] + 0.2, truth.omega[:, 0]],
+            axis=1,
+        )
         h = run_closed_loop(scene, RotatingGateTracker(x0, loop_gains(), 2 * D), None, gate_half=A)
         assert h.miss[:, -500:].max() < 0.1
         centre_err = np.hypot(h.estimate[:, -500:, 0] - 128.3, h.estimate[:, -500:, 1] - 127.6)
@@ -177,8 +225,14 @@ def test_noise_free_tracker_locks_static_object_below_0p1_px():
 
 def test_variant_p_also_locks():
     n, T, dt = 4, 2000, 0.002
-    truth = marker_truth(np.full((n, T), 128.0), np.full((n, T), 128.0), np.full((n, T), 12.0),
-                         np.full((n, T), 2 * np.pi * 8), np.zeros(n), dt)
+    truth = marker_truth(
+        np.full((n, T), 128.0),
+        np.full((n, T), 128.0),
+        np.full((n, T), 12.0),
+        np.full((n, T), 2 * np.pi * 8),
+        np.zeros(n),
+        dt,
+    )
     scene = RotatingMarkerScene(truth, (256, 256), "disc", D, 1.0)
     x0 = np.tile([129.0, 127.0, 11.0, 0.1, 2 * np.pi * 8], (n, 1))
     h = run_closed_loop(scene, RotatingGateTracker(x0, loop_gains(), 2 * D, variant="P"), None, gate_half=A)
@@ -189,12 +243,12 @@ def test_loss_criterion_window_catches_capture_that_consecutive_misses():
     T = 1000
     miss = np.zeros((3, T))
     miss[1, 300:] = 30.0
-    miss[1, 300::60] = 0.0            # the marker crosses the captured gate once per revolution
-    miss[2, 500:520] = 30.0           # a short excursion, not a loss
+    miss[1, 300::60] = 0.0  # the marker crosses the captured gate once per revolution
+    miss[2, 500:520] = 30.0  # a short excursion, not a loss
     win = first_loss(miss, LossCriterion(12.0, 250, 0.5, "window"))
     assert win[0] == -1 and win[2] == -1 and 300 < win[1] < 600
     cons = first_loss(miss, LossCriterion(12.0, 100, kind="consecutive"))
-    assert cons[1] == -1                                                  # reset every revolution
+    assert cons[1] == -1  # reset every revolution
     inside = np.ones((3, T), bool)
     inside[0, 700] = False
     assert first_loss(miss, LossCriterion(12.0, 250), inside)[0] == 700
@@ -231,17 +285,18 @@ def test_decoy_brightness_follows_the_sir_of_the_run():
 def test_interference_runs_share_their_draws_across_sir_and_markers():
     """Common random numbers: the same trials at every SIR; rotating and static share the motion."""
     from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
+
     sc = Scenario(duration_s=0.3, n_interferers=1)
     runs = interference_runs(np.random.default_rng(3), 4, sc, [1e9, 1e9, 0.5])
-    np.testing.assert_array_equal(runs["miss"][:4], runs["miss"][4:8])     # same SIR, same draws: identical
-    assert not np.array_equal(runs["miss"][:4], runs["miss"][8:])            # the SIR does act
+    np.testing.assert_array_equal(runs["miss"][:4], runs["miss"][4:8])  # same SIR, same draws: identical
+    assert not np.array_equal(runs["miss"][:4], runs["miss"][8:])  # the SIR does act
     np.testing.assert_array_equal(runs["interferers"][:4], runs["interferers"][8:])
     np.testing.assert_array_equal(runs["trial"], np.tile(np.arange(4), 3))
     rot = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[0]
     sta = run_scenario(np.random.default_rng(3), 4, Scenario(duration_s=0.3, n_interferers=1, rotating=False), 2.0)[0]
     np.testing.assert_array_equal(rot.xr, sta.xr)
     q = run_scenario(np.random.default_rng(3), 4, sc, 2.0)[1].interferers
-    np.testing.assert_allclose(np.hypot(*(q[:, 0] - rot.center[:, 0]).T), sc.radius)   # around the object
+    np.testing.assert_allclose(np.hypot(*(q[:, 0] - rot.center[:, 0]).T), sc.radius)  # around the object
 
 
 def test_seed_reproduces_and_interferers_sit_on_circle():
@@ -261,7 +316,7 @@ def test_render_spot_brightness_per_covered_pixel_and_background_correlation():
         assert img.max() == pytest.approx(2.5, rel=1e-12)
     f = correlated_background(np.random.default_rng(6), 4, (128, 128), 8.0, 2.0)
     assert f.std() == pytest.approx(2.0, rel=0.05)
-    rho = np.mean(f[:, :, :-8] * f[:, :, 8:]) / f.var()                    # at tau = l_c: exp(-1)
+    rho = np.mean(f[:, :, :-8] * f[:, :, 8:]) / f.var()  # at tau = l_c: exp(-1)
     assert rho == pytest.approx(np.exp(-1), abs=0.08)
 
 
@@ -270,16 +325,29 @@ def test_two_emitter_1d_tracker_follows_and_integral_slope_is_2_sum_c2():
     lam = np.array([120.3, 128.0, 131.7])
     line = lambda l: 2 * a * (0.7 * pixel_fractions_box(l - beta, a, L) + 0.4 * pixel_fractions_box(l + beta, a, L))
     # a displacement of 1 px moves each box by 1 px inside its gate: 2 (c1^2 + c2^2) per px
-    e = two_emitter_discriminator(line(lam + 1.0), 0, lam + 0.0, beta=beta, a=a, c1=0.7, c2=0.4,
-                                  form="integral", half_gate=12.0)
+    e = two_emitter_discriminator(
+        line(lam + 1.0), 0, lam + 0.0, beta=beta, a=a, c1=0.7, c2=0.4, form="integral", half_gate=12.0
+    )
     np.testing.assert_allclose(e, 2 * (0.7**2 + 0.4**2) * 1.0, rtol=0.05)
     e_edge = two_emitter_discriminator(line(lam + 1.0), 0, lam, beta=beta, a=a, c1=0.7, c2=0.4, form="edge")
-    assert np.all(e_edge > 0)                                            # corrected (6) pulls toward truth
+    assert np.all(e_edge > 0)  # corrected (6) pulls toward truth
     rng = np.random.default_rng(7)
     T, dt = 1500, 0.002
     truth = 128 + 10 * np.sin(2 * np.pi * 0.5 * np.arange(T) * dt) * np.ones((n, 1))
-    est = simulate_two_emitter_1d(rng, truth, dt=dt, beta=beta, a=a, f_c=8.0, noise_std=0.02, form="integral",
-                                  bandwidth=5.0, unit_slope=2.0, half_gate=12.0, lam0=truth[:, 0] + 3)
+    est = simulate_two_emitter_1d(
+        rng,
+        truth,
+        dt=dt,
+        beta=beta,
+        a=a,
+        f_c=8.0,
+        noise_std=0.02,
+        form="integral",
+        bandwidth=5.0,
+        unit_slope=2.0,
+        half_gate=12.0,
+        lam0=truth[:, 0] + 3,
+    )
     assert np.sqrt(np.mean((est[:, 500:] - truth[:, 500:]) ** 2)) < 1.0
 
 
@@ -287,9 +355,18 @@ def test_bad_inputs_raise_value_errors_naming_the_parameter():
     with pytest.raises(ValueError, match="spot"):
         render_spot("star", np.zeros(2), (4, 4), 2.0)
     with pytest.raises(ValueError, match="kappa"):
-        RotatingMarkerScene.static_residual(np.random.default_rng(0), 1, (8, 8), kappa=2.0, background_std=1,
-                                            corr_length=2, interferers=np.zeros((1, 0, 2)),
-                                            interferer_brightness=1, spot="disc", diameter=2)
+        RotatingMarkerScene.static_residual(
+            np.random.default_rng(0),
+            1,
+            (8, 8),
+            kappa=2.0,
+            background_std=1,
+            corr_length=2,
+            interferers=np.zeros((1, 0, 2)),
+            interferer_brightness=1,
+            spot="disc",
+            diameter=2,
+        )
     with pytest.raises(ValueError, match="b_xy"):
         loop_gains(b_xy=0.0)
     with pytest.raises(ValueError, match="variant"):
@@ -335,6 +412,7 @@ def test_ekf_step_matches_filterpy():
 def test_state_errors_wrap_the_phase():
     from types import SimpleNamespace
     from tvtrack.papers.p003_rotating_marker_tracker.scene import state_errors
+
     z = np.zeros((1, 2))
     truth = SimpleNamespace(xr=z + 1, yr=z, r=z + 12, theta=np.array([[3.1, -3.1]]), omega=z + 50)
     est = np.stack([z + 1.5, z - 2, z + 11, np.array([[-3.1, 3.1]]), z + 51], axis=-1)
@@ -345,13 +423,14 @@ def test_state_errors_wrap_the_phase():
 
 def test_loss_curve_counts_losses_threshold_and_captures():
     from tvtrack.papers.p003_rotating_marker_tracker.lock import loss_curve
+
     T, crit = 100, LossCriterion(12.0, 10, 0.5)
     sir = np.repeat([1.0, 2.0, 4.0], 2)
     miss = np.zeros((6, T))
-    miss[:3, 40:] = 20.0                                   # both runs at SIR 1 and one at SIR 2 lose lock
+    miss[:3, 40:] = 20.0  # both runs at SIR 1 and one at SIR 2 lose lock
     q = np.array([[[50.0, 50.0]]] * 6)
     gate = np.full((6, T, 2), 80.0)
-    gate[0, 40:] = 50.0                                    # run 0 sits on the interferer: a capture
+    gate[0, 40:] = 50.0  # run 0 sits on the interferer: a capture
     runs = dict(sir=sir, miss=miss, inside=np.ones((6, T), bool), gate=gate, interferers=q)
     c = loss_curve(runs, np.array([1.0, 2.0, 4.0]), crit, capture_radius=4.5)
     assert c["losses"].tolist() == [2, 1, 0] and c["captures"].tolist() == [1, 0, 0] and c["n"] == 2
@@ -360,20 +439,22 @@ def test_loss_curve_counts_losses_threshold_and_captures():
 
 def test_band_power_share_of_a_tone_and_of_white_noise():
     from tvtrack.papers.p003_rotating_marker_tracker.loops import band_power_share
+
     fs, t = 500.0, np.arange(4000) / 500.0
     rng = np.random.default_rng(8)
     tone = np.sin(2 * np.pi * 8.0 * t) + 0.01 * rng.standard_normal((3, t.size))
     share, f, p = band_power_share(tone, fs, 7.0, 9.0)
-    assert np.all(share > 0.85) and p.shape == (3, f.size)   # the Hann window leaks ~10 % out of the band
+    assert np.all(share > 0.85) and p.shape == (3, f.size)  # the Hann window leaks ~10 % out of the band
     white, _, _ = band_power_share(rng.standard_normal((3, t.size)), fs, 7.0, 9.0)
-    in_band = np.sum((f >= 7.0) & (f <= 9.0))                # a flat PSD: the band's share of the bins
+    in_band = np.sum((f >= 7.0) & (f <= 9.0))  # a flat PSD: the band's share of the bins
     assert np.all(np.abs(white - in_band / f.size) < 0.006)
 
 
 def test_slope_helpers_match_the_predicted_slopes():
     from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_slope_fit, two_emitter_slope
+
     sq = quadrant_slope_fit(_renderer("square"), D, A)
-    assert sq["slope_at_zero"] == pytest.approx(2 * D, rel=1e-9)   # pixel edges soften only the ends of +-D/2
+    assert sq["slope_at_zero"] == pytest.approx(2 * D, rel=1e-9)  # pixel edges soften only the ends of +-D/2
     assert sq["fit_slope_halfD"] == pytest.approx(2 * D, rel=0.03) and sq["max_dev_from_line"] < 0.03
     assert quadrant_slope_fit(_renderer("disc"), D, A)["slope_at_zero"] == pytest.approx(2 * D, rel=0.05)
     # integral form: a box of unit brightness moving by one px shifts 2 units across the gate centre
@@ -382,30 +463,48 @@ def test_slope_helpers_match_the_predicted_slopes():
 
 def test_logistic_loss_fit_recovers_a_known_curve_and_its_5_percent_sir():
     from tvtrack.papers.p003_rotating_marker_tracker.lock import fit_loss_curve, sir_at_loss
+
     rng = np.random.default_rng(12)
     s50, beta = 1.2, 6.0
     grid = np.arange(0.5, 2.01, 0.125)
-    C = 400                                                                  # trials, each run at every SIR
+    C = 400  # trials, each run at every SIR
     p = 1 / (1 + np.exp(-beta * (np.log(s50) - np.log(grid))))
     lost = rng.random((C, grid.size)) < p
     loss_frame = np.where(lost, 10, -1).ravel()
-    fit = fit_loss_curve(loss_frame, np.tile(grid, C), np.repeat(np.arange(C), grid.size), grid,
-                         dt=0.01, n_frames=100, rng=rng, n_boot=100)
+    fit = fit_loss_curve(
+        loss_frame,
+        np.tile(grid, C),
+        np.repeat(np.arange(C), grid.size),
+        grid,
+        dt=0.01,
+        n_frames=100,
+        rng=rng,
+        n_boot=100,
+    )
     true05 = sir_at_loss(s50, beta, 0.05)
     assert true05 == pytest.approx(s50 * np.exp(np.log(19) / beta))
     assert fit.sir_50.ci_low < s50 < fit.sir_50.ci_high
     assert fit.sir_05.ci_low < true05 < fit.sir_05.ci_high
     assert abs(fit.sir_50.value / s50 - 1) < 0.05 and abs(fit.beta / beta - 1) < 0.25
     assert fit.p_at(s50) == pytest.approx(0.5, abs=0.05)
-    none = fit_loss_curve(np.full(grid.size * 5, -1), np.tile(grid, 5), np.repeat(np.arange(5), grid.size), grid,
-                          dt=0.01, n_frames=100, rng=rng, n_boot=10)
-    assert np.isnan(none.sir_50.value)                                       # no transition on the grid
+    none = fit_loss_curve(
+        np.full(grid.size * 5, -1),
+        np.tile(grid, 5),
+        np.repeat(np.arange(5), grid.size),
+        grid,
+        dt=0.01,
+        n_frames=100,
+        rng=rng,
+        n_boot=10,
+    )
+    assert np.isnan(none.sir_50.value)  # no transition on the grid
 
 
 def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
     from tvtrack.papers.p003_rotating_marker_tracker.lock import loss_rate
+
     rng = np.random.default_rng(13)
-    T, dt, lam = 1000, 0.01, 0.2                                             # 10 s runs, 0.2 losses/s
+    T, dt, lam = 1000, 0.01, 0.2  # 10 s runs, 0.2 losses/s
     t = rng.exponential(1 / lam, 4000)
     frame = np.where(t < T * dt, np.floor(t / dt), -1).astype(int)
     r = loss_rate(frame, dt, T)
@@ -415,18 +514,20 @@ def test_loss_rate_is_losses_per_locked_second_with_a_poisson_interval():
 
 def test_phase_locked_amplitude_recovers_a_tone_in_noise_and_ignores_other_frequencies():
     from tvtrack.papers.p003_rotating_marker_tracker.loops import phase_locked_amplitude
+
     rng = np.random.default_rng(14)
     t = np.arange(5000) / 500.0
     theta = 2 * np.pi * 8 * t + rng.uniform(0, 2 * np.pi, (50, 1))
     err = 0.3 * np.cos(theta - 0.7) + 2.0 + rng.standard_normal((50, t.size))
     a = phase_locked_amplitude(err, theta)
     assert a.mean() == pytest.approx(0.3, abs=0.03)
-    control = phase_locked_amplitude(err, 2 * np.pi * 12 * t)   # noise only: a, b ~ N(0, 2/T), Rayleigh mean sqrt(pi/T)
+    control = phase_locked_amplitude(err, 2 * np.pi * 12 * t)  # noise only: a, b ~ N(0, 2/T), Rayleigh mean sqrt(pi/T)
     assert control.mean() == pytest.approx(np.sqrt(np.pi / t.size), rel=0.2)
 
 
 def test_seeds_batched_together_give_the_same_runs_as_alone():
     from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
+
     sc = Scenario(duration_s=0.3, n_interferers=5, decoy_offset=16.0)
     g = lambda s: np.random.default_rng([7, s])
     both = interference_runs([g(1), g(2)], 3, sc, [0.7, 2.0])
@@ -439,11 +540,13 @@ def test_seeds_batched_together_give_the_same_runs_as_alone():
 def test_newton_logistic_fit_matches_a_generic_optimiser():
     from scipy.optimize import minimize
     from tvtrack.papers.p003_rotating_marker_tracker.lock import fit_logistic_loss
+
     sir = np.arange(0.5, 2.01, 0.125)
     k = np.array([20, 19, 18, 15, 12, 9, 5, 4, 2, 1, 0, 1, 0])
     n = np.full(sir.size, 20)
-    nll = lambda th: np.sum(k * np.logaddexp(0, -th[1] * (th[0] - np.log(sir)))
-                            + (n - k) * np.logaddexp(0, th[1] * (th[0] - np.log(sir))))
+    nll = lambda th: np.sum(
+        k * np.logaddexp(0, -th[1] * (th[0] - np.log(sir))) + (n - k) * np.logaddexp(0, th[1] * (th[0] - np.log(sir)))
+    )
     ref = minimize(nll, [0.0, 3.0], method="Nelder-Mead", options=dict(xatol=1e-10, fatol=1e-12, maxiter=5000)).x
     s50, beta = fit_logistic_loss(sir, k, n)
     assert np.log(s50) == pytest.approx(ref[0], abs=1e-5) and beta == pytest.approx(ref[1], rel=1e-4)
@@ -451,16 +554,16 @@ def test_newton_logistic_fit_matches_a_generic_optimiser():
 
 def test_loss_mechanisms_are_told_apart_on_constructed_histories():
     T, w, radius = 100, 10, 4.0
-    q = np.array([[[30.0, 0.0], [-30.0, 0.0], [0.0, 30.0]]] * 5)            # three interferers, five runs
+    q = np.array([[[30.0, 0.0], [-30.0, 0.0], [0.0, 30.0]]] * 5)  # three interferers, five runs
     gate = np.zeros((5, T, 2))
     omega_err = np.zeros((5, T))
     loss = np.array([60, 60, 60, 60, -1])
-    gate[0, 50:] = q[0, 0] + 1.0                                           # sits on one interferer
-    gate[1, 50:55] = q[1, 0]                                               # passed from one to another
+    gate[0, 50:] = q[0, 0] + 1.0  # sits on one interferer
+    gate[1, 50:55] = q[1, 0]  # passed from one to another
     gate[1, 55:60] = q[1, 1]
-    omega_err[2, 45:] = 0.5                                                 # rotation lost, no interferer near
-    gate[3, 50:] = [10.0, 10.0]                                             # slid off, rotation held
-    miss = np.full((5, T), 20.0)                                            # off the marker in every window
+    omega_err[2, 45:] = 0.5  # rotation lost, no interferer near
+    gate[3, 50:] = [10.0, 10.0]  # slid off, rotation held
+    miss = np.full((5, T), 20.0)  # off the marker in every window
     codes = classify_losses(loss, gate, q, miss, omega_err, w, radius)
     assert [MECHANISMS[c] for c in codes[:4]] == ["capture", "drift among several", "frequency", "drift"]
     assert codes[4] == -1
@@ -476,8 +579,8 @@ def test_loss_mechanisms_are_told_apart_on_constructed_histories():
 def test_omega_alarm_fires_when_the_moving_mean_deviation_crosses_the_tolerance():
     omega0, w = 10.0, 4
     hat = np.full((3, 50), omega0)
-    hat[1, 20:] = 1.5 * omega0                                                # deviation 0.5 from frame 20
-    hat[2, 20:22] = 3.0 * omega0                                              # a 2-frame spike: mean 1.0 over 4 frames
+    hat[1, 20:] = 1.5 * omega0  # deviation 0.5 from frame 20
+    hat[2, 20:22] = 3.0 * omega0  # a 2-frame spike: mean 1.0 over 4 frames
     alarm = omega_alarm(hat, omega0, w, tol=0.2)
     # frame 20 + k has moving mean 0.5 (k + 1) / 4 > 0.2 first at k = 1
     assert alarm.tolist() == [-1, 21, 20]
@@ -501,7 +604,7 @@ def _phase_response_simulated(freqs, r, gains, a=0.02, T=6000, dt=0.002, w=2 * n
         m = 128.0 + r * np.stack([np.cos(th_true[:, k]), np.sin(th_true[:, k])], axis=1)
         th_hat[:, k] = trk.state[:, 3]
         trk.update(S * (m[:, 0] - g[:, 0]), S * (m[:, 1] - g[:, 1]), dt)
-    dev = th_hat - w * t                      # estimate of p (plus a transient)
+    dev = th_hat - w * t  # estimate of p (plus a transient)
     k0 = T // 3
     z = np.mean(dev[:, k0:] * np.exp(-2j * np.pi * f[:, None] * t[k0:]), axis=1) * 2
     return np.abs(z) / a
@@ -521,8 +624,11 @@ def test_tracker_phase_response_matches_the_coupled_loop_analysis(r):
 
 
 def test_coupled_phase_loop_realises_less_than_its_design_and_the_retuned_gains_realise_it():
-    from tvtrack.papers.p003_rotating_marker_tracker.loops import (gains_realising, phase_response,
-                                                                   realised_phase_bandwidth)
+    from tvtrack.papers.p003_rotating_marker_tracker.loops import (
+        gains_realising,
+        phase_response,
+        realised_phase_bandwidth,
+    )
 
     w = 2 * np.pi * 8
     # uncoupled (K_xy -> 0) the response is the type-2 PLL's closed form, -3 dB at the design 6 Hz
@@ -578,11 +684,13 @@ def test_scenario_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
 def test_motion_kinds_share_the_rms_and_the_card_draws():
     from tvtrack.papers.p003_rotating_marker_tracker.scene import object_motion
 
-    out = {k: object_motion(np.random.default_rng(4), 400, 5000, 0.002, kind=k) for k in ("card", "sinusoids", "random")}
+    out = {
+        k: object_motion(np.random.default_rng(4), 400, 5000, 0.002, kind=k) for k in ("card", "sinusoids", "random")
+    }
     for k, (x, y) in out.items():
         assert np.sqrt(np.mean((x - 128) ** 2)) == pytest.approx(10.0, rel=0.15), k
         assert np.sqrt(np.mean((y - 128) ** 2)) == pytest.approx(20 / np.sqrt(2), rel=0.15), k
-    np.testing.assert_array_equal(out["card"][0], out["random"][0])      # x: the same OU draws
+    np.testing.assert_array_equal(out["card"][0], out["random"][0])  # x: the same OU draws
     with pytest.raises(ValueError, match="motion"):
         Scenario(motion="zigzag")
 
@@ -605,11 +713,12 @@ def test_per_trial_gains_batch_equals_separate_runs():
 
     sc = Scenario(duration_s=0.3)
     gs = [loop_gains(b_xy=b) for b in (5.0, 20.0)]
-    _, _, hb = run_scenario([np.random.default_rng(7), np.random.default_rng(7)], 4, sc, gains=stack_gains(gs, 2),
-                            n_common=2)
+    _, _, hb = run_scenario(
+        [np.random.default_rng(7), np.random.default_rng(7)], 4, sc, gains=stack_gains(gs, 2), n_common=2
+    )
     for j, g in enumerate(gs):
         _, _, h = run_scenario(np.random.default_rng(7), 2, sc, gains=g)
-        np.testing.assert_allclose(hb.estimate[2 * j:2 * j + 2], h.estimate, rtol=1e-5, atol=1e-4)
+        np.testing.assert_allclose(hb.estimate[2 * j : 2 * j + 2], h.estimate, rtol=1e-5, atol=1e-4)
 
 
 def test_scene_blocks_in_one_batch_equal_separate_runs():
@@ -617,13 +726,18 @@ def test_scene_blocks_in_one_batch_equal_separate_runs():
 
     sc = Scenario(duration_s=0.3)
     sirs = [1.0, 3.0]
-    both = interference_runs([np.random.default_rng(5), np.random.default_rng(5)], 2, sc, sirs,
-                             blocks=[{"n_interferers": 1}, {"n_interferers": 5, "kappa": 0.2}])
+    both = interference_runs(
+        [np.random.default_rng(5), np.random.default_rng(5)],
+        2,
+        sc,
+        sirs,
+        blocks=[{"n_interferers": 1}, {"n_interferers": 5, "kappa": 0.2}],
+    )
     for b, over in enumerate(({"n_interferers": 1}, {"n_interferers": 5, "kappa": 0.2})):
         alone = interference_runs(np.random.default_rng(5), 2, replace(sc, **over), sirs)
         sel = both["block"] == b
         np.testing.assert_allclose(both["miss"][sel], alone["miss"], rtol=1e-4, atol=1e-3)
-        np.testing.assert_allclose(both["interferers"][sel][:, :over["n_interferers"]], alone["interferers"])
+        np.testing.assert_allclose(both["interferers"][sel][:, : over["n_interferers"]], alone["interferers"])
 
 
 def test_loss_criteria_do_not_depend_on_an_order_and_capture_is_counted_once():
@@ -634,8 +748,8 @@ def test_loss_criteria_do_not_depend_on_an_order_and_capture_is_counted_once():
     gate = np.zeros((3, T, 2))
     omega_err = np.zeros((3, T))
     loss = np.array([60, 60, -1])
-    gate[0, 50:] = q[0, 0]                      # sits on an interferer ...
-    omega_err[0, 45:] = 0.5                     # ... and has lost the rotation: both criteria
+    gate[0, 50:] = q[0, 0]  # sits on an interferer ...
+    omega_err[0, 45:] = 0.5  # ... and has lost the rotation: both criteria
     gate[1, 50:] = q[1, 0]
     miss = np.full((3, T), 20.0)
     met = loss_criteria(loss, gate, q, miss, omega_err, w, radius)
@@ -650,13 +764,14 @@ def test_loss_criteria_do_not_depend_on_an_order_and_capture_is_counted_once():
 def test_interferer_size_scales_its_flux_at_the_same_sir():
     from tvtrack.papers.p003_rotating_marker_tracker.scene import build_scene
 
-    truth = marker_truth(np.full((1, 3), 128.0), np.full((1, 3), 128.0), np.full((1, 3), 12.0),
-                         np.full((1, 3), 50.0), np.zeros(1), 0.002)
+    truth = marker_truth(
+        np.full((1, 3), 128.0), np.full((1, 3), 128.0), np.full((1, 3), 12.0), np.full((1, 3), 50.0), np.zeros(1), 0.002
+    )
     flux = {}
     for d in (None, 16.0):
         sc = build_scene(np.random.default_rng(2), truth, kappa=0.0, n_interferers=1, sir=2.0, interferer_diameter=d)
         flux[d] = sc._padded.sum()
-    assert flux[None] == pytest.approx(np.pi * 16 / 2.0, rel=0.02)      # disc D = 8 at brightness 1/2
+    assert flux[None] == pytest.approx(np.pi * 16 / 2.0, rel=0.02)  # disc D = 8 at brightness 1/2
     assert flux[16.0] / flux[None] == pytest.approx(4.0, rel=0.03)
 
 
@@ -665,7 +780,7 @@ def test_centroid_discriminator_reads_the_offset_of_a_spot_inside_the_gate(spot)
     off = np.array([-3.0, -1.0, -0.25, 0.25, 1.0, 3.0])
     for axis in (0, 1):
         out = static_characteristic(_renderer(spot), off, form="centroid", half=A, axis=axis)
-        np.testing.assert_allclose(out, off, atol=0.03)          # slope 1, pixel locking below 0.03 px
+        np.testing.assert_allclose(out, off, atol=0.03)  # slope 1, pixel locking below 0.03 px
 
 
 def test_static_marker_with_a_centroid_tracker_locks():

@@ -25,7 +25,7 @@ def test_loss_share_counts_and_zero_events_bound():
     e = study.loss_share(np.zeros(30, bool))
     assert (e.value, e.ci_low) == (0.0, 0.0)
     assert e.ci_high == pytest.approx(zero_events_bound(30))
-    assert InBand("p", high=0.1).decide(e) == "reproduced"            # 0 of 30 certifies p < 0.095
+    assert InBand("p", high=0.1).decide(e) == "reproduced"  # 0 of 30 certifies p < 0.095
     assert InBand("p", high=0.1).decide(study.loss_share(np.zeros(20, bool))) == "partly"  # 0 of 20: only < 0.139
     full = study.loss_share(np.ones(10, bool))
     assert full.ci_low == pytest.approx(1 - zero_events_bound(10)) and full.ci_high == 1.0
@@ -55,14 +55,14 @@ def test_threshold_estimate_covers_the_geometric_mean_and_is_extrapolated_outsid
     hits = 0
     done = 0
     for k in range(400):
-        sigma = 0.3 if k % 2 else 0.05                       # spread across steps, or within one grid step
+        sigma = 0.3 if k % 2 else 0.05  # spread across steps, or within one grid step
         thr = np.exp(rng.normal(np.log(true_gm), sigma, 15))  # per-run thresholds, lognormal
         e = study.threshold(_lost_from_thresholds(thr), SIRS)
         assert e.extrapolated == bool(np.any((thr <= SIRS[0]) | (thr > SIRS[-1])))
         if not e.extrapolated:
             done += 1
             hits += e.ci_low <= true_gm <= e.ci_high
-    assert done > 350 and hits / done >= 0.95       # covers the population's geometric mean at 15 runs
+    assert done > 350 and hits / done >= 0.95  # covers the population's geometric mean at 15 runs
     e = study.threshold(_lost_from_thresholds([1.0, 9.0, 2.0]), SIRS)
     assert e.extrapolated and is_undecided(e)
 
@@ -93,11 +93,11 @@ def test_register_defaults_are_the_scenario_defaults_and_depends_names_known_ent
     ref = study.scenario({})
     assert sc == ref
     assert (sc.fps, sc.noise_std, sc.spot, sc.motion, sc.n_interferers) == (500.0, 0.02, "disc", "card", 0)
-    assert sc.background_std == pytest.approx(0.2)        # d / (kappa sigma_f) = 50 at kappa = 0.1
+    assert sc.background_std == pytest.approx(0.2)  # d / (kappa sigma_f) = 50 at kappa = 0.1
     for cid, names in DEPENDS.items():
         assert set(names) <= set(TRACKING) | set(INTERFERENCE), cid
     for name in set(TRACKING) | set(INTERFERENCE):
-        for v in REGISTER[name].values:                  # every value maps onto a valid scenario
+        for v in REGISTER[name].values:  # every value maps onto a valid scenario
             study.scenario({name: v})
 
 
@@ -118,10 +118,29 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
     from tvtrack.papers.p003_rotating_marker_tracker.params import RULES, check_consistency
     from tvtrack.parameters import validate_parameters
 
-    ns = dict(seed=3, n_trials=5, loss_trials=6, replicates=3, max_replicates=5, joint=3, workers=2, rotation_hz=8.0,
-              transient_s=2.0, fig1_duration_s=5.0, fig2_duration_s=10.0, loss_duration_s=5.0, probe_sir=2.0,
-              probe_n_interferers=1, probe_kappa=0.1, probe_marker="rotating", full_analysis=True, record_seconds=1.0,
-              record_full_every=10, output_dir="/tmp/x", rerun_mode="off")
+    ns = dict(
+        seed=3,
+        n_trials=5,
+        loss_trials=6,
+        replicates=3,
+        max_replicates=5,
+        joint=3,
+        workers=2,
+        rotation_hz=8.0,
+        transient_s=2.0,
+        fig1_duration_s=5.0,
+        fig2_duration_s=10.0,
+        loss_duration_s=5.0,
+        probe_sir=2.0,
+        probe_n_interferers=1,
+        probe_kappa=0.1,
+        probe_marker="rotating",
+        full_analysis=True,
+        record_seconds=1.0,
+        record_full_every=10,
+        output_dir="/tmp/x",
+        rerun_mode="off",
+    )
     lowest = min(REGISTER["fps"].values)
     check_consistency(validate_parameters(ns, RULES), lowest)
     for f in (lowest / 2, lowest / 2 + 1, 300.0):
@@ -153,16 +172,23 @@ def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
     from tvtrack.register import Entry, Register
     from tvtrack.verdicts import AllOf
 
-    reg = Register([Entry("motion", "regime", "gentle", ("gentle", "fast"), "toy"),
-                    Entry("radius", "regime", "on", ("on", "outside"), "toy")])
+    reg = Register(
+        [
+            Entry("motion", "regime", "gentle", ("gentle", "fast"), "toy"),
+            Entry("radius", "regime", "on", ("on", "outside"), "toy"),
+        ]
+    )
     rule = AllOf({"value": InBand("v", high=2.0), "other": InBand("v", high=1.2)})
     ex = explore(_toy, reg, {"C": rule}, seed=1, replicates=3, joint=4)
     rec = {"C": ex.record("C")}
-    assert prose.dependence(rec, ("motion",)) == ("under motion alone the verdict changes for C (value): not "
-                                                 "reproduced when motion = fast | C (other): not reproduced when "
-                                                 "motion = fast")
-    assert prose.dependence(rec, ("radius",)) == ("under radius alone the verdict changes for C (other): not "
-                                                 "reproduced when radius = outside")
+    assert prose.dependence(rec, ("motion",)) == (
+        "under motion alone the verdict changes for C (value): not "
+        "reproduced when motion = fast | C (other): not reproduced when "
+        "motion = fast"
+    )
+    assert prose.dependence(rec, ("radius",)) == (
+        "under radius alone the verdict changes for C (other): not reproduced when radius = outside"
+    )
     assert prose.dependence(rec, ("placement",)) == "placement not explored in this run"
     assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)
 
@@ -172,7 +198,7 @@ def test_threshold_ratio_covers_the_population_ratio_of_paired_runs():
     hits = done = 0
     for _ in range(300):
         tb = np.exp(rng.normal(np.log(1.0), 0.25, 15))
-        ta = tb * 1.5 * np.exp(rng.normal(0.0, 0.1, 15))          # the same runs, 1.5 times harder to break
+        ta = tb * 1.5 * np.exp(rng.normal(0.0, 0.1, 15))  # the same runs, 1.5 times harder to break
         r = study.threshold_ratio(_lost_from_thresholds(ta), _lost_from_thresholds(tb), SIRS)
         if not r.extrapolated:
             done += 1

@@ -6,9 +6,12 @@ from math import factorial
 import numpy as np
 import pytest
 
-from tvtrack.filters.polynomial import (growing_memory_filter, growing_memory_gains, predict_ahead,
-                                        taylor_transition)
-from tvtrack.papers.p004_laser_spot_prediction.predictors import g1_floor_filter, g1_floor_gains, growing_memory_forecast
+from tvtrack.filters.polynomial import growing_memory_filter, growing_memory_gains, predict_ahead, taylor_transition
+from tvtrack.papers.p004_laser_spot_prediction.predictors import (
+    g1_floor_filter,
+    g1_floor_gains,
+    growing_memory_forecast,
+)
 from tvtrack.papers.p004_laser_spot_prediction.predictors import batch_least_squares_states as pr_batch
 
 
@@ -26,7 +29,7 @@ def test_recursion_equals_batch_least_squares(order):
     z = 40 + np.cumsum(rng.normal(0, 1, T)) + rng.normal(0, 0.3, T)
     states = growing_memory_filter(z, order, None)
     for n in range(order, T):
-        ref = _batch_ls(z[:n + 1], np.arange(n + 1), n, order)
+        ref = _batch_ls(z[: n + 1], np.arange(n + 1), n, order)
         rel = np.abs(states[n] - ref) / np.maximum(np.abs(ref), 1.0)
         assert rel.max() <= 1e-9, (n, rel.max())
 
@@ -43,7 +46,9 @@ def test_first_estimate_at_three_samples_and_exact_quadratic():
 def test_closed_form_gains_and_nine_over_n():
     """C004-5: g_N closed form, monotone, g_N1 -> 9/N."""
     N = np.arange(1, 401, dtype=float)
-    closed = np.stack([3 * (3 * N ** 2 - 3 * N + 2), 18 * (2 * N - 1), 60 + 0 * N], axis=1) / (N * (N + 1) * (N + 2))[:, None]
+    closed = (
+        np.stack([3 * (3 * N**2 - 3 * N + 2), 18 * (2 * N - 1), 60 + 0 * N], axis=1) / (N * (N + 1) * (N + 2))[:, None]
+    )
     g = growing_memory_gains(2, 400)
     np.testing.assert_allclose(g[2:], closed[2:], rtol=1e-10)
     assert np.all(np.diff(g[2:, 0]) < 0)
@@ -55,13 +60,13 @@ def test_filtered_variance_equals_sigma2_g1():
     rng = np.random.default_rng(11)
     n_mc, T, sigma = 4000, 40, 0.7
     t = np.arange(T)
-    quad = 3 - 0.2 * t + 0.05 * t ** 2
+    quad = 3 - 0.2 * t + 0.05 * t**2
     est = growing_memory_filter(quad + sigma * rng.standard_normal((n_mc, T)), 2, None)[..., 0]
     g1 = growing_memory_gains(2, T)[:, 0]
     for N in (3, 10, 40):
         v = np.mean((est[:, N - 1] - quad[N - 1]) ** 2)
         # the mean of n_mc squared normals has relative sd sqrt(2/n_mc) = 0.022
-        assert abs(v / (sigma ** 2 * g1[N - 1]) - 1) < 5 * np.sqrt(2 / n_mc)
+        assert abs(v / (sigma**2 * g1[N - 1]) - 1) < 5 * np.sqrt(2 / n_mc)
 
 
 def test_forward_transition_is_inverse_of_backward():
@@ -94,7 +99,9 @@ def test_variant_floor_matches_core_before_the_floor_and_keeps_g1():
     np.testing.assert_allclose(var[:, :20], core[:, :20], rtol=1e-9, atol=1e-9)
     gains = g1_floor_gains(2, 200, g1min)
     assert np.all(gains[19:, 0] >= g1min - 1e-15)
-    np.testing.assert_allclose(gains[50] / gains[50, 0], growing_memory_gains(2, 51)[-1] / growing_memory_gains(2, 51)[-1, 0])
+    np.testing.assert_allclose(
+        gains[50] / gains[50, 0], growing_memory_gains(2, 51)[-1] / growing_memory_gains(2, 51)[-1, 0]
+    )
 
 
 def test_variant_rejects_bad_input():
@@ -117,7 +124,7 @@ def test_fast_floored_forecast_equals_core_filter(order, nf):
 
 def test_batch_least_squares_states_exact_on_a_quadratic():
     t = np.arange(12.0)
-    z = 3.0 - 0.5 * t + 0.1 * t ** 2
+    z = 3.0 - 0.5 * t + 0.1 * t**2
     states = pr_batch(z, 2)
     assert np.all(np.isnan(states[:2]))
     np.testing.assert_allclose(states[2:, 0], z[2:], atol=1e-10)

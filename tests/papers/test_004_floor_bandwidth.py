@@ -4,8 +4,13 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.filters.alphabeta import (abg_variance_reduction, closed_form_gains, floor_bandwidth_map,
-                                       floor_variance_reduction, steady_state_covariance)
+from tvtrack.filters.alphabeta import (
+    abg_variance_reduction,
+    closed_form_gains,
+    floor_bandwidth_map,
+    floor_variance_reduction,
+    steady_state_covariance,
+)
 from tvtrack.filters.polynomial import growing_memory_filter, taylor_transition
 
 FLOORS = [3, 4, 5, 7, 10, 15, 30, 100, 200]
@@ -24,13 +29,18 @@ def test_floored_filter_is_filterpys_ghk_filter_with_the_mapped_gains(floor):
     f = gh.GHKFilter(x0[0], x0[1], x0[2], 1.0, m["alpha"][0], m["beta"][0], m["gamma"][0])
     ref = np.array([f.update(zt)[0] for zt in z[floor:]])
     np.testing.assert_allclose(states[floor:, 0], ref, rtol=1e-10, atol=1e-9)
-    np.testing.assert_allclose(pr.growing_memory_forecast(z, 1, 2, floor)[floor:],
-                               states[floor:, 0] + states[floor:, 1] + states[floor:, 2] / 2, rtol=1e-9)
+    np.testing.assert_allclose(
+        pr.growing_memory_forecast(z, 1, 2, floor)[floor:],
+        states[floor:, 0] + states[floor:, 1] + states[floor:, 2] / 2,
+        rtol=1e-9,
+    )
 
 
 def test_variance_reduction_closed_forms_equal_the_lyapunov_solution():
     F = taylor_transition(2)
-    gains = np.vstack([closed_form_gains(2, np.array(FLOORS)), pr.fading_memory_gains(0.5), pr.fading_memory_gains(0.9)])
+    gains = np.vstack(
+        [closed_form_gains(2, np.array(FLOORS)), pr.fading_memory_gains(0.5), pr.fading_memory_gains(0.9)]
+    )
     filtered, predicted = abg_variance_reduction(gains)
     for K, vf, vp in zip(gains, filtered, predicted):
         P = steady_state_covariance(K, 1.0)
@@ -41,8 +51,9 @@ def test_variance_reduction_closed_forms_equal_the_lyapunov_solution():
 
 def test_rational_functions_of_the_floor_and_their_limit():
     N = np.arange(3, 400)
-    np.testing.assert_allclose(np.stack(floor_variance_reduction(N)),
-                               np.stack(abg_variance_reduction(closed_form_gains(2, N))), rtol=1e-10)
+    np.testing.assert_allclose(
+        np.stack(floor_variance_reduction(N)), np.stack(abg_variance_reduction(closed_form_gains(2, N))), rtol=1e-10
+    )
     big = floor_variance_reduction(1e6)
     np.testing.assert_allclose(np.array(big) * 1e6, 153 / 22, rtol=1e-5)
 

@@ -37,12 +37,20 @@ def test_track_spot_noiseless_limit_and_frame_edge():
     T = 30
     x = np.linspace(64.0, 6.0, T)  # runs towards the left edge
     truth = np.stack([x, 64 + 3 * np.sin(np.arange(T) / 4)], axis=-1)[None]
-    cam = SpotCamera(spot_sigma_px=2.0, peak_dn=60000.0, background_dn=0.0, read_noise_dn=0.0,
-                     gain_e_per_dn=1.0, bit_depth=16, gate_size_px=15, threshold_sigma=0.0)
+    cam = SpotCamera(
+        spot_sigma_px=2.0,
+        peak_dn=60000.0,
+        background_dn=0.0,
+        read_noise_dn=0.0,
+        gain_e_per_dn=1.0,
+        bit_depth=16,
+        gate_size_px=15,
+        threshold_sigma=0.0,
+    )
     res = track_spot(truth, np.ones((1, T)), np.random.default_rng(0), cam, 128, keep=(0,))
     assert np.all(res.origin >= 0) and np.all(res.origin <= 128 - 15)
     err = res.xy[0, :-3] - truth[0, :-3]  # the last frames lose part of the spot to the edge
-    assert np.sqrt(np.mean(err ** 2)) < 0.02
+    assert np.sqrt(np.mean(err**2)) < 0.02
     assert res.gates.shape == (T, 15, 15)
 
 
@@ -128,12 +136,14 @@ def test_gaussian_fit_reaches_the_cramer_rao_bound(read_noise_dn):
     rng = np.random.default_rng(11)
     n, g, flux = 1000, 31, 2 * np.pi * 16 * 200
     c = 15 + rng.uniform(-2, 2, (n, 2))
-    img = sensor_readout(gaussian_spot(c, (g, g), 4.0, flux), rng, background=10.0, read_noise=read_noise_dn,
-                         bit_depth=8)
+    img = sensor_readout(
+        gaussian_spot(c, (g, g), 4.0, flux), rng, background=10.0, read_noise=read_noise_dn, bit_depth=8
+    )
     wc = windowed_centroid(img, (0, 0), window_px=21, threshold_sigma=3.0).xy
     ml = gaussian_fit_centre(img, np.zeros((n, 2)), wc, sigma_px=4.0, read_noise=read_noise_dn)
-    fim = fisher_linear_motion(np.array([[15.0, 15, 0, 0]]), np.array([0.0]), (g, g), 4.0, flux,
-                               10.0 + read_noise_dn ** 2 + 1 / 12)[:2, :2]
+    fim = fisher_linear_motion(
+        np.array([[15.0, 15, 0, 0]]), np.array([0.0]), (g, g), 4.0, flux, 10.0 + read_noise_dn**2 + 1 / 12
+    )[:2, :2]
     crb = np.sqrt(np.linalg.inv(fim)[0, 0])
     rms_ml = np.sqrt(np.mean((ml - c) ** 2))
     assert abs(rms_ml / crb - 1) < 0.1

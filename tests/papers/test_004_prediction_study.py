@@ -4,13 +4,27 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (CLASSICAL, FADING, FITTED, PAPER, ComparisonSetup, compare_methods,
-                                      per_trial_path_mse, radial_error_summary)
+from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (
+    CLASSICAL,
+    FADING,
+    FITTED,
+    PAPER,
+    ComparisonSetup,
+    compare_methods,
+    per_trial_path_mse,
+    radial_error_summary,
+)
 
-SETUP = ComparisonSetup(floor_grid=(3, 5, 10, 30), window_grid=(4, 8, 16), start=30,
-                        learned_kw=dict(hidden_units=4, rbf_centres=20, max_samples=600),
-                        jerk_grid=(1e-6, 1e-4, 1e-2), meas_var_grid=(1e-4, 1e-2),
-                        singer_tau_grid=(1.0, 10.0), singer_ratio_grid=(1e-2, 1e2))
+SETUP = ComparisonSetup(
+    floor_grid=(3, 5, 10, 30),
+    window_grid=(4, 8, 16),
+    start=30,
+    learned_kw=dict(hidden_units=4, rbf_centres=20, max_samples=600),
+    jerk_grid=(1e-6, 1e-4, 1e-2),
+    meas_var_grid=(1e-4, 1e-2),
+    singer_tau_grid=(1.0, 10.0),
+    singer_ratio_grid=(1e-2, 1e2),
+)
 
 
 def _series(n_paths=6, T=200, noise=0.0, seed=0):
@@ -18,7 +32,7 @@ def _series(n_paths=6, T=200, noise=0.0, seed=0):
     t = np.arange(T)
     a = rng.uniform(-1e-3, 1e-3, (n_paths, 2, 1))
     v = rng.uniform(-0.3, 0.3, (n_paths, 2, 1))
-    z = (60.0 + v * t + a * t ** 2)[None]
+    z = (60.0 + v * t + a * t**2)[None]
     return z + noise * rng.standard_normal(z.shape)
 
 
@@ -33,7 +47,7 @@ def test_polynomial_methods_are_exact_on_noiseless_quadratics():
     assert np.min(c.mse["finite differences, 2 points"]) > 0  # a line misses the curvature
     fc = pr.sliding_regression_forecast(z, 2, 1, 1)
     e = fc[..., 30:-1] - z[..., 31:]
-    np.testing.assert_allclose(per_trial_path_mse(fc, z, 1, 31), np.mean(e ** 2, axis=(-1, -2)), rtol=1e-12)
+    np.testing.assert_allclose(per_trial_path_mse(fc, z, 1, 31), np.mean(e**2, axis=(-1, -2)), rtol=1e-12)
 
 
 def test_a_path_never_tunes_its_own_setting():

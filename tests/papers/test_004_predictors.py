@@ -17,22 +17,24 @@ def test_forecast_errors_alignment():
 @pytest.mark.parametrize("degree, window", [(1, 2), (2, 3), (2, 8), (3, 9)])
 def test_sliding_regression_exact_on_polynomials(degree, window):
     t = np.arange(60.0)
-    z = 1 + 0.3 * t - 0.02 * t ** 2 * (degree >= 2) + 1e-4 * t ** 3 * (degree >= 3)
+    z = 1 + 0.3 * t - 0.02 * t**2 * (degree >= 2) + 1e-4 * t**3 * (degree >= 3)
     for steps in (1, 4):
         f = pr.sliding_regression_forecast(z, window, degree, steps)
-        np.testing.assert_allclose(f[window - 1:-steps], z[window - 1 + steps:], atol=1e-8)
-        assert np.all(np.isnan(f[:window - 1]))
+        np.testing.assert_allclose(f[window - 1 : -steps], z[window - 1 + steps :], atol=1e-8)
+        assert np.all(np.isnan(f[: window - 1]))
 
 
 def test_finite_difference_formula():
     z = np.array([0.0, 1.0, 4.0, 2.0])
     np.testing.assert_allclose(pr.sliding_regression_forecast(z, 2, 1, 1)[1:], 2 * z[1:] - z[:-1], atol=1e-12)
-    np.testing.assert_allclose(pr.sliding_regression_forecast(z, 3, 2, 1)[2:], 3 * z[2:] - 3 * z[1:-1] + z[:-2], atol=1e-12)
+    np.testing.assert_allclose(
+        pr.sliding_regression_forecast(z, 3, 2, 1)[2:], 3 * z[2:] - 3 * z[1:-1] + z[:-2], atol=1e-12
+    )
 
 
 def test_spline_extrapolation_exact_on_cubics_and_batched():
     t = np.arange(40.0)
-    z = np.stack([2 - t + 0.01 * t ** 3, 5 + 0.5 * t])
+    z = np.stack([2 - t + 0.01 * t**3, 5 + 0.5 * t])
     f = pr.spline_forecast(z, 6, 2)
     np.testing.assert_allclose(f[:, 5:-2], z[:, 7:], rtol=1e-9)
 
@@ -97,7 +99,7 @@ def test_learned_predictors_beat_last_value_on_smooth_series(kind):
     f = pr.learned_forecast(model, z[4:])
     e = pr.forecast_errors(f, z[4:], 1)[:, 10:]
     naive = np.diff(z[4:], axis=-1)[:, 9:]
-    assert np.sqrt(np.nanmean(e ** 2)) < 0.3 * np.sqrt(np.mean(naive ** 2))
+    assert np.sqrt(np.nanmean(e**2)) < 0.3 * np.sqrt(np.mean(naive**2))
 
 
 def test_lag_features_and_folds():
@@ -110,13 +112,16 @@ def test_lag_features_and_folds():
     assert all(np.intersect1d(tr, te).size == 0 for tr, te in folds)
 
 
-@pytest.mark.parametrize("call, name", [
-    (lambda: pr.sliding_regression_forecast(np.arange(10.0), 2, 2), "window"),
-    (lambda: pr.spline_forecast(np.arange(10.0), 3), "window"),
-    (lambda: pr.growing_memory_forecast(np.arange(10.0), 0), "steps"),
-    (lambda: pr.fit_learned_predictor("svm", np.zeros((2, 50)), 3), "kind"),
-    (lambda: pr.path_folds(3, 5), "n_folds"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: pr.sliding_regression_forecast(np.arange(10.0), 2, 2), "window"),
+        (lambda: pr.spline_forecast(np.arange(10.0), 3), "window"),
+        (lambda: pr.growing_memory_forecast(np.arange(10.0), 0), "steps"),
+        (lambda: pr.fit_learned_predictor("svm", np.zeros((2, 50)), 3), "kind"),
+        (lambda: pr.path_folds(3, 5), "n_folds"),
+    ],
+)
 def test_bad_arguments_name_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
@@ -188,8 +193,8 @@ def test_fading_memory_filter_is_the_discounted_least_squares_quadratic():
     z = np.cumsum(np.random.default_rng(4).standard_normal(T))
     fc = fading_memory_forecast(z, theta, 1)
     lags = np.arange(400.0)
-    H = np.stack([np.ones_like(lags), -lags, lags ** 2 / 2], axis=1)
-    w = np.sqrt(theta ** lags)
+    H = np.stack([np.ones_like(lags), -lags, lags**2 / 2], axis=1)
+    w = np.sqrt(theta**lags)
     X = np.linalg.lstsq(H * w[:, None], z[::-1][:400] * w, rcond=None)[0]
     np.testing.assert_allclose(fc[-1], X[0] + X[1] + X[2] / 2, rtol=1e-9)
 
@@ -259,7 +264,8 @@ def test_singer_forecast_uses_each_folds_fit_and_beats_constant_acceleration_on_
         F, Q, H, R = pr.singer_model(tau, s2, r)
         ref = pr.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), r * np.diag([1e4, 1e2, 1e1]), 1)[0]
         np.testing.assert_array_equal(out[:, test], ref)
-    ca = pr.constant_acceleration_forecast(z, pr.fit_constant_acceleration_folds(
-        z[0], folds, np.logspace(-5, 0, 11), np.logspace(-3, 0, 7)), folds, 1)
+    ca = pr.constant_acceleration_forecast(
+        z, pr.fit_constant_acceleration_folds(z[0], folds, np.logspace(-5, 0, 11), np.logspace(-3, 0, 7)), folds, 1
+    )
     mse = lambda f: np.mean(pr.forecast_errors(f, z, 1)[..., 20:-1] ** 2)
     assert mse(out) < mse(ca)

@@ -8,10 +8,18 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction.traces import DATA_DIR
-from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (BeamWanderConfig, component_sigmas, component_table, gauss_markov_discrete,
-                                        generate_traces, one_frame_motion_rms, optimal_wander_forecast, scaled_config,
-                                        with_frame_jitter,
-                                        wander_state_space)
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (
+    BeamWanderConfig,
+    component_sigmas,
+    component_table,
+    gauss_markov_discrete,
+    generate_traces,
+    one_frame_motion_rms,
+    optimal_wander_forecast,
+    scaled_config,
+    with_frame_jitter,
+    wander_state_space,
+)
 from tvtrack.papers.p004_laser_spot_prediction.traces import TraceSet, load_traces, save_traces, sha256_file
 
 SHIPPED = DATA_DIR / "laser_traces" / "traces.npz"
@@ -44,24 +52,32 @@ def _write_npz(path, arrays):
 
 
 def _valid_arrays():
-    return {"centres_px": np.full((2, 5, 2), 60.0), "intensity": np.ones((2, 5)),
-            "frame_rate_hz": np.float64(25), "image_size_px": np.int64(128),
-            "metadata_json": np.asarray("{}"), "format": np.asarray("tvtrack-traces-v1")}
+    return {
+        "centres_px": np.full((2, 5, 2), 60.0),
+        "intensity": np.ones((2, 5)),
+        "frame_rate_hz": np.float64(25),
+        "image_size_px": np.int64(128),
+        "metadata_json": np.asarray("{}"),
+        "format": np.asarray("tvtrack-traces-v1"),
+    }
 
 
-@pytest.mark.parametrize("change, message", [
-    (lambda a: a.pop("intensity"), "missing entries"),
-    (lambda a: a.update(centres_px=np.full((2, 5, 2), 60, dtype=np.int32)), "float64"),
-    (lambda a: a.update(centres_px=np.full((2, 5, 3), 60.0)), "shape"),
-    (lambda a: a.update(intensity=np.ones((2, 4))), "intensity"),
-    (lambda a: a.update(intensity=-np.ones((2, 5))), "> 0"),
-    (lambda a: a.update(centres_px=np.full((2, 5, 2), np.nan)), "non-finite"),
-    (lambda a: a.update(centres_px=np.full((2, 5, 2), 200.0)), "leave the sensor"),
-    (lambda a: a.update(format=np.asarray("other")), "format"),
-    (lambda a: a.update(metadata_json=np.asarray("{not json")), "JSON"),
-    (lambda a: a.update(frame_rate_hz=np.float64(-1)), "frame_rate_hz"),
-    (lambda a: a.update(metadata_json=np.array([{"a": 1}], dtype=object)), "pickle"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda a: a.pop("intensity"), "missing entries"),
+        (lambda a: a.update(centres_px=np.full((2, 5, 2), 60, dtype=np.int32)), "float64"),
+        (lambda a: a.update(centres_px=np.full((2, 5, 3), 60.0)), "shape"),
+        (lambda a: a.update(intensity=np.ones((2, 4))), "intensity"),
+        (lambda a: a.update(intensity=-np.ones((2, 5))), "> 0"),
+        (lambda a: a.update(centres_px=np.full((2, 5, 2), np.nan)), "non-finite"),
+        (lambda a: a.update(centres_px=np.full((2, 5, 2), 200.0)), "leave the sensor"),
+        (lambda a: a.update(format=np.asarray("other")), "format"),
+        (lambda a: a.update(metadata_json=np.asarray("{not json")), "JSON"),
+        (lambda a: a.update(frame_rate_hz=np.float64(-1)), "frame_rate_hz"),
+        (lambda a: a.update(metadata_json=np.array([{"a": 1}], dtype=object)), "pickle"),
+    ],
+)
 def test_bad_files_give_clear_errors(tmp_path, change, message):
     arrays = _valid_arrays()
     change(arrays)
@@ -108,8 +124,14 @@ def test_shipped_data_set_matches_checksum_and_regenerates():
 
 def test_generator_statistics():
     """Stationary per-axis variance = the drawn RMS^2; the discrete model keeps it stationary."""
-    cfg = BeamWanderConfig(n_paths=300, n_frames=200, rms_min_px=4.0, rms_max_px=4.0,
-                           drift_max_px_per_frame=0.0, scintillation_sigma_ln=0.3)
+    cfg = BeamWanderConfig(
+        n_paths=300,
+        n_frames=200,
+        rms_min_px=4.0,
+        rms_max_px=4.0,
+        drift_max_px_per_frame=0.0,
+        scintillation_sigma_ln=0.3,
+    )
     tr = generate_traces(cfg, seed=1)
     d = tr.centres_px - 63.5
     # samples of one frame across 300 paths x 2 axes are independent: variance within ~8%
@@ -117,7 +139,7 @@ def test_generator_statistics():
     assert abs(np.mean(tr.intensity) - 1) < 0.01
     assert abs(np.std(np.log(tr.intensity)) - 0.3) < 0.01
     sig = component_sigmas(cfg, np.array([4.0]))
-    np.testing.assert_allclose((sig ** 2).sum(), 16.0)
+    np.testing.assert_allclose((sig**2).sum(), 16.0)
     w = 2 * np.pi * np.array(cfg.corner_frequencies_hz)
     Phi, Q = gauss_markov_discrete(w, sig, 0.04)
     P = np.zeros((3, 2, 2))
@@ -134,11 +156,16 @@ def test_state_space_reproduces_wander_variance():
     np.testing.assert_allclose(H[0, :n] @ Pw @ H[0, :n], 25.0)
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    ({"n_paths": 0}, "n_paths"), ({"frame_rate_hz": -1.0}, "frame_rate_hz"),
-    ({"corner_frequencies_hz": (20.0,)}, "corner_frequencies_hz"), ({"rms_max_px": 100.0}, "rms_max_px"),
-    ({"drift_max_px_per_frame": 1.0}, "drift_max_px_per_frame"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"n_paths": 0}, "n_paths"),
+        ({"frame_rate_hz": -1.0}, "frame_rate_hz"),
+        ({"corner_frequencies_hz": (20.0,)}, "corner_frequencies_hz"),
+        ({"rms_max_px": 100.0}, "rms_max_px"),
+        ({"drift_max_px_per_frame": 1.0}, "drift_max_px_per_frame"),
+    ],
+)
 def test_config_rejects_bad_values(kwargs, name):
     with pytest.raises(ValueError, match=name):
         BeamWanderConfig(**kwargs)
@@ -170,7 +197,7 @@ def test_optimal_wander_forecast_beats_the_paper_filter_and_last_value():
     truth = np.moveaxis(tr.centres_px, -1, -2)[None]  # (1, P, 2, T)
     z = truth + 0.05 * np.random.default_rng(2).standard_normal(truth.shape)
     rms = lambda fc: np.sqrt(np.nanmean(forecast_errors(fc, truth, 1)[..., 50:] ** 2))
-    opt = rms(optimal_wander_forecast(z, cfg, np.asarray(tr.metadata["wander_rms_px"]), 0.05 ** 2, 1))
+    opt = rms(optimal_wander_forecast(z, cfg, np.asarray(tr.metadata["wander_rms_px"]), 0.05**2, 1))
     assert opt < rms(growing_memory_forecast(z, 1, 2, 10)) and opt < rms(z)
 
 
@@ -179,7 +206,7 @@ def test_one_frame_motion_matches_the_generated_increments():
     tr = generate_traces(cfg, 3)
     d = np.diff(tr.centres_px, axis=1)
     expected = float(one_frame_motion_rms(cfg, 5.0))
-    assert abs(np.sqrt(np.mean(d ** 2)) / expected - 1) < 0.03  # 120k increments, correlated over ~1 s
+    assert abs(np.sqrt(np.mean(d**2)) / expected - 1) < 0.03  # 120k increments, correlated over ~1 s
     shares = [c["variance_share"] for c in component_table(cfg)]
     np.testing.assert_allclose(sum(shares), 1.0)
 
@@ -215,8 +242,15 @@ def test_aliased_corners_only_on_request_and_not_recorded_by_default():
 def test_first_order_rolloff_is_an_ornstein_uhlenbeck_process_and_stays_out_of_the_default_metadata():
     """roll-off f^-2: each component is first-order (lag-one correlation exp(-w dt), stationary variance
     sigma^2); the optimal model's wander block keeps that variance; the default records nothing new."""
-    cfg = BeamWanderConfig(n_paths=400, n_frames=300, rms_min_px=4.0, rms_max_px=4.0, drift_max_px_per_frame=0.0,
-                           corner_frequencies_hz=(0.5,), rolloff="f^-2")
+    cfg = BeamWanderConfig(
+        n_paths=400,
+        n_frames=300,
+        rms_min_px=4.0,
+        rms_max_px=4.0,
+        drift_max_px_per_frame=0.0,
+        corner_frequencies_hz=(0.5,),
+        rolloff="f^-2",
+    )
     tr = generate_traces(cfg, seed=2)
     d = tr.centres_px - 63.5
     assert abs(np.var(d[:, -1]) / 16 - 1) < 0.1
@@ -226,6 +260,9 @@ def test_first_order_rolloff_is_an_ornstein_uhlenbeck_process_and_stays_out_of_t
     F, Q, H, P0 = wander_state_space(cfg, np.array([4.0]))
     Pw = P0[0, :2, :2]
     np.testing.assert_allclose(F[:2, :2] @ Pw @ F[:2, :2].T + Q[0, :2, :2], Pw, rtol=1e-9, atol=1e-12)
-    assert "rolloff" in tr.metadata["config"] and "rolloff" not in generate_traces(BeamWanderConfig(), 1).metadata["config"]
+    assert (
+        "rolloff" in tr.metadata["config"]
+        and "rolloff" not in generate_traces(BeamWanderConfig(), 1).metadata["config"]
+    )
     with pytest.raises(ValueError, match="rolloff"):
         BeamWanderConfig(rolloff="f^-3")

@@ -64,8 +64,10 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     verify_rrd(rrd)
 
     check = check_recording(headless_viewer, rrd, EXPECT.get(stem, DEFAULT))
-    print(f"{stem}: loaded in {check.load_s:.1f} s, viewer check {check.check_s:.1f} s, "
-          + ", ".join(f"{k} {v.coloured} px" for k, v in check.pixels.items()))
+    print(
+        f"{stem}: loaded in {check.load_s:.1f} s, viewer check {check.check_s:.1f} s, "
+        + ", ".join(f"{k} {v.coloured} px" for k, v in check.pixels.items())
+    )
     assert not check.problems, f"{stem} in the Rerun viewer ({rrd}):\n  " + "\n  ".join(check.problems)
     if UPDATE_SCREENSHOTS and viewer_notebook.parent.name == "notebooks":
         _save_docs_screenshot(headless_viewer, stem)

@@ -13,9 +13,21 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from tvtrack.recordings import Recorder, image_and_series_blueprint
-from tvtrack.pipeline.viewer import (INSTALL_HINT, Expectation, HeadlessViewer, ViewerUnavailable, check_recording,
-                            coloured_mask, dominant_colours, entities_under, layout_problems, plays_role,
-                            read_layout, verify_rrd, vulkan_problem)
+from tvtrack.pipeline.viewer import (
+    INSTALL_HINT,
+    Expectation,
+    HeadlessViewer,
+    ViewerUnavailable,
+    check_recording,
+    coloured_mask,
+    dominant_colours,
+    entities_under,
+    layout_problems,
+    plays_role,
+    read_layout,
+    verify_rrd,
+    vulkan_problem,
+)
 
 YELLOW, GREEN, RED = (255, 215, 0), (0, 200, 0), (255, 40, 40)
 
@@ -23,8 +35,11 @@ YELLOW, GREEN, RED = (255, 215, 0), (0, 200, 0), (255, 40, 40)
 def _write_recording(out, *, gate=True, series_view=True, n_frames=12):
     """A small tracking recording: a grey spot image, a yellow gate, green truth, red estimate,
     error series; ``gate=False`` leaves the gate out, ``series_view=False`` shows no time series."""
-    blueprint = (image_and_series_blueprint("camera", ["errors"]) if series_view
-                 else rrb.Blueprint(rrb.Spatial2DView(origin="camera", name="Camera"), auto_views=False))
+    blueprint = (
+        image_and_series_blueprint("camera", ["errors"])
+        if series_view
+        else rrb.Blueprint(rrb.Spatial2DView(origin="camera", name="Camera"), auto_views=False)
+    )
     rec = Recorder(out, "file", "tvtrack-viewer-test", blueprint=blueprint)
     yy, xx = np.mgrid[0:32, 0:32]
     for k in range(n_frames):
@@ -42,15 +57,21 @@ def _write_recording(out, *, gate=True, series_view=True, n_frames=12):
 
 
 # -- without a viewer ------------------------------------------------------------------------
-def _layout_recording(out, *, timeline="frame", series_colours=((0, 114, 178), (213, 94, 0)), labels=True,
-                      bounds=None, apart=6.0):
+def _layout_recording(
+    out, *, timeline="frame", series_colours=((0, 114, 178), (213, 94, 0)), labels=True, bounds=None, apart=6.0
+):
     """A recording whose layout can be made wrong one way at a time (:func:`layout_problems`)."""
     from tvtrack.recordings import Recorder as CoreRecorder
 
-    views = [rrb.Spatial2DView(origin="camera", name="Camera",
-                               visual_bounds=rrb.VisualBounds2D(x_range=bounds[:2], y_range=bounds[2:]) if bounds
-                               else None),
-             rrb.TimeSeriesView(origin="errors", name="errors"), rrb.TimeSeriesView(origin="em", name="EM")]
+    views = [
+        rrb.Spatial2DView(
+            origin="camera",
+            name="Camera",
+            visual_bounds=rrb.VisualBounds2D(x_range=bounds[:2], y_range=bounds[2:]) if bounds else None,
+        ),
+        rrb.TimeSeriesView(origin="errors", name="errors"),
+        rrb.TimeSeriesView(origin="em", name="EM"),
+    ]
     blueprint = rrb.Blueprint(rrb.Horizontal(*views), rrb.TimePanel(timeline=timeline), collapse_panels=True)
     out.mkdir(parents=True, exist_ok=True)
     rec = CoreRecorder(out, "file", "tvtrack-layout-test", blueprint=blueprint)
@@ -75,8 +96,10 @@ def test_layout_of_a_good_recording_has_no_problem(tmp_path):
     assert layout.timelines["/camera/image"] >= {"frame"} and layout.images["/camera/image"] == (32, 32)
     # the EM history lives on its own timeline: allowed only where the expectation names that timeline
     assert layout_problems(layout, Expectation(other_timelines=("iteration",))) == []
-    assert layout_problems(layout) == ["view 'EM' has no data on the opening timeline 'frame' (its data is on "
-                                       "iteration): it opens on 'No data available'"]
+    assert layout_problems(layout) == [
+        "view 'EM' has no data on the opening timeline 'frame' (its data is on "
+        "iteration): it opens on 'No data available'"
+    ]
 
 
 def test_layout_catches_the_wrong_opening_timeline(tmp_path):
@@ -115,10 +138,9 @@ def test_layout_catches_bad_framing(tmp_path):
     assert not any("Camera" in p for p in fine)
 
 
-
 def test_colour_helpers():
     img = np.zeros((4, 5, 3), np.uint8)
-    img[...] = 128                      # grey
+    img[...] = 128  # grey
     img[0, :2] = YELLOW
     img[1, 0] = RED
     mask = coloured_mask(img)
@@ -134,7 +156,7 @@ def test_entity_helpers():
     assert plays_role("/camera/gate_box", "/camera", "gate")
     assert plays_role("/camera/estimates/obj1", "camera", "estimate")
     assert not plays_role("/camera/image", "/camera", "gate")
-    assert not plays_role("/gate/x", "/gate", "gate")      # the origin itself plays no role
+    assert not plays_role("/gate/x", "/gate", "gate")  # the origin itself plays no role
 
 
 def test_vulkan_problem_names_the_package(monkeypatch, tmp_path):
@@ -198,8 +220,7 @@ def test_view_error_report_is_reported(headless_viewer, tmp_path):
 
 def test_overlay_outside_the_image_view_is_reported(headless_viewer, tmp_path):
     """An expectation for a role whose entity lies outside every 2-D view's origin fails."""
-    check = check_recording(headless_viewer, _write_recording(tmp_path),
-                            Expectation(overlays=("gate", "errors")))
+    check = check_recording(headless_viewer, _write_recording(tmp_path), Expectation(overlays=("gate", "errors")))
     assert any("'errors'" in p for p in check.problems)
 
 

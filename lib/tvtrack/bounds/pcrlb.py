@@ -53,7 +53,7 @@ def expected_over_gaussian(func, mean, var, order: int = 41):
     """
     if order < 1:
         raise ValueError(f"parameter 'order' = {order}; it must be >= 1")
-    nodes, weights = np.polynomial.hermite_e.hermegauss(order)   # weight exp(-x^2/2)
+    nodes, weights = np.polynomial.hermite_e.hermegauss(order)  # weight exp(-x^2/2)
     weights = weights / weights.sum()
     mean = np.asarray(mean, dtype=float)
     std = np.sqrt(np.asarray(var, dtype=float))
@@ -84,8 +84,10 @@ def pcrlb_recursion(F, Q, J0, measurement_info):
     Jz = np.asarray(measurement_info, dtype=float)
     n = F.shape[0]
     if Q.shape != (n, n) or np.shape(J0) != (n, n) or Jz.ndim != 3 or Jz.shape[1:] != (n, n):
-        raise ValueError(f"inconsistent shapes F{F.shape} Q{Q.shape} J0{np.shape(J0)} "
-                         f"measurement_info{Jz.shape}; expected (n,n), (n,n), (n,n), (T,n,n)")
+        raise ValueError(
+            f"inconsistent shapes F{F.shape} Q{Q.shape} J0{np.shape(J0)} "
+            f"measurement_info{Jz.shape}; expected (n,n), (n,n), (n,n), (T,n,n)"
+        )
     if np.any(np.linalg.eigvalsh(Q) <= 0):
         raise ValueError("parameter 'Q' must be positive definite")
     bound = np.empty_like(Jz)

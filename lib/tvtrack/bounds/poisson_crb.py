@@ -38,8 +38,9 @@ def _dfraction(center, sigma, n):
     return (np.exp(-0.5 * a * a) - np.exp(-0.5 * b * b)) / (_SQRT_2PI * sigma)
 
 
-def fisher_linear_motion(theta, times, shape, sigma_px: float, photons: float, noise_per_pixel: float,
-                         chunk: int = 16) -> np.ndarray:
+def fisher_linear_motion(
+    theta, times, shape, sigma_px: float, photons: float, noise_per_pixel: float, chunk: int = 16
+) -> np.ndarray:
     """Fisher information of the stacked motion states.
 
     Parameters
@@ -77,22 +78,22 @@ def fisher_linear_motion(theta, times, shape, sigma_px: float, photons: float, n
     rows, cols = shape
     out = np.empty((flat.shape[0], 4 * q, 4 * q))
     for s in range(0, flat.shape[0], chunk):
-        th = flat[s:s + chunk]                                        # (c, Q, 4)
-        mux = th[:, :, None, 0] + th[:, :, None, 2] * t               # (c, Q, T)
+        th = flat[s : s + chunk]  # (c, Q, 4)
+        mux = th[:, :, None, 0] + th[:, :, None, 2] * t  # (c, Q, T)
         muy = th[:, :, None, 1] + th[:, :, None, 3] * t
-        fx = pixel_fractions_gaussian(mux, sigma_px, cols)            # (c, Q, T, C)
-        fy = pixel_fractions_gaussian(muy, sigma_px, rows)            # (c, Q, T, R)
+        fx = pixel_fractions_gaussian(mux, sigma_px, cols)  # (c, Q, T, C)
+        fy = pixel_fractions_gaussian(muy, sigma_px, rows)  # (c, Q, T, R)
         dx = _dfraction(mux, sigma_px, cols)
         dy = _dfraction(muy, sigma_px, rows)
         lam = photons * np.einsum("cqtr,cqtk->ctrk", fy, fx) + noise_per_pixel
         if noise_per_pixel == 0:
             lam = np.maximum(lam, 1e-300)
-        gx = photons * fy[..., :, None] * dx[..., None, :]           # dLambda/dx0 (4)
-        gy = photons * dy[..., :, None] * fx[..., None, :]           # dLambda/dy0 (5)
+        gx = photons * fy[..., :, None] * dx[..., None, :]  # dLambda/dx0 (4)
+        gy = photons * dy[..., :, None] * fx[..., None, :]  # dLambda/dy0 (5)
         tt = t[None, None, :, None, None]
-        g = np.stack([gx, gy, gx * tt, gy * tt], axis=2)              # (c, Q, 4, T, R, C) (6),(7)
+        g = np.stack([gx, gy, gx * tt, gy * tt], axis=2)  # (c, Q, 4, T, R, C) (6),(7)
         g = g.reshape(g.shape[0], 4 * q, *g.shape[3:]) / np.sqrt(lam)[:, None]
-        out[s:s + chunk] = np.einsum("cptrk,cstrk->cps", g, g)
+        out[s : s + chunk] = np.einsum("cptrk,cstrk->cps", g, g)
     return out.reshape(batch + (4 * q, 4 * q))
 
 

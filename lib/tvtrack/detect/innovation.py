@@ -26,8 +26,14 @@ import numpy as np
 from ..filters.alphabeta import error_covariance_sequence, scheduled_filter
 from ..filters.polynomial import taylor_transition
 
-__all__ = ["normalised_innovations", "chi2_window", "cusum", "velocity_jump_signature", "glr_velocity_jump",
-           "delay_false_alarm_curve"]
+__all__ = [
+    "normalised_innovations",
+    "chi2_window",
+    "cusum",
+    "velocity_jump_signature",
+    "glr_velocity_jump",
+    "delay_false_alarm_curve",
+]
 
 
 def _check_length(L, name="L") -> int:
@@ -58,7 +64,7 @@ def normalised_innovations(z, states, gains, sigma_eps: float) -> np.ndarray:
     d = x.shape[-1]
     F = taylor_transition(d - 1)
     prev = np.concatenate([np.zeros(x.shape[:-2] + (1, d)), x[..., :-1, :]], axis=-2)
-    pred = prev @ F[0]                                         # h F x_{t-1}
+    pred = prev @ F[0]  # h F x_{t-1}
     P = error_covariance_sequence(np.asarray(gains, dtype=float), sigma_eps)
     P_prev = np.concatenate([np.zeros((1, d, d)), P[:-1]])
     s2 = (F @ P_prev @ F.T)[:, 0, 0] + sigma_eps**2
@@ -72,7 +78,7 @@ def chi2_window(u, L: int) -> np.ndarray:
     c = np.concatenate([np.zeros(u.shape[:-1] + (1,)), np.cumsum(u**2, axis=-1)], axis=-1)
     out = np.full(u.shape, np.nan)
     if u.shape[-1] >= L:
-        out[..., L - 1:] = c[..., L:] - c[..., :-L]
+        out[..., L - 1 :] = c[..., L:] - c[..., :-L]
     return out
 
 
@@ -116,7 +122,7 @@ def velocity_jump_signature(gain, sigma_eps: float, L: int) -> np.ndarray:
     x = scheduled_filter(ramp, G)
     prev = np.concatenate([np.zeros((1, K.size)), x[:-1]])
     nu = ramp - prev @ taylor_transition(K.size - 1)[0]
-    P = error_covariance_sequence(np.broadcast_to(K, (2000, K.size)), sigma_eps)[-1]   # steady state
+    P = error_covariance_sequence(np.broadcast_to(K, (2000, K.size)), sigma_eps)[-1]  # steady state
     F = taylor_transition(K.size - 1)
     return nu / np.sqrt((F @ P @ F.T)[0, 0] + sigma_eps**2)
 
@@ -138,15 +144,24 @@ def glr_velocity_jump(u, signature) -> np.ndarray:
     energy = np.cumsum(rho**2)
     for d in range(L):
         num = np.zeros_like(best)
-        for i in range(d + 1):                                 # u_{t-d+i} for t = L-1 .. T-1
-            num += rho[i] * u[..., L - 1 - d + i:T - d + i]
+        for i in range(d + 1):  # u_{t-d+i} for t = L-1 .. T-1
+            num += rho[i] * u[..., L - 1 - d + i : T - d + i]
         best = np.maximum(best, num**2 / energy[d])
-    out[..., L - 1:] = best
+    out[..., L - 1 :] = best
     return out
 
 
-def delay_false_alarm_curve(stat_alt, stat_null, armed_alt, armed_null, onset: int, targets, frame_rate_hz: float,
-                            delay_limit_s: float, thresholds=None) -> dict:
+def delay_false_alarm_curve(
+    stat_alt,
+    stat_null,
+    armed_alt,
+    armed_null,
+    onset: int,
+    targets,
+    frame_rate_hz: float,
+    delay_limit_s: float,
+    thresholds=None,
+) -> dict:
     """Detection delay against the per-run false-alarm probability, thresholds set on null runs.
 
     For each target per-run false-alarm probability ``p`` the threshold is the ``1 - p`` quantile
@@ -185,8 +200,10 @@ def delay_false_alarm_curve(stat_alt, stat_null, armed_alt, armed_null, onset: i
     alt = alt.reshape(-1, alt.shape[-1])
     null_max = null.max(axis=-1)
     thr = np.quantile(null_max, 1 - targets) if thresholds is None else np.asarray(thresholds, dtype=float)
-    out = {k: np.empty(targets.size) for k in ("threshold", "per_run_false_alarm", "median_delay_s",
-                                                 "p_detect_within", "early_alarm")}
+    out = {
+        k: np.empty(targets.size)
+        for k in ("threshold", "per_run_false_alarm", "median_delay_s", "p_detect_within", "early_alarm")
+    }
     limit = int(round(delay_limit_s * frame_rate_hz))
     for i, c in enumerate(thr):
         hit = alt > c

@@ -32,10 +32,20 @@ from scipy.linalg import solve_discrete_lyapunov
 from .polynomial import growing_memory_gains, taylor_transition
 from .kalman import joseph_covariance
 
-__all__ = ["closed_form_gains", "gain_schedule", "observation_row", "closed_loop_matrix",
-           "steady_state_covariance", "lagged_covariances", "error_covariance_sequence",
-           "filter_step", "scheduled_filter", "abg_variance_reduction", "floor_variance_reduction",
-           "floor_bandwidth_map"]
+__all__ = [
+    "closed_form_gains",
+    "gain_schedule",
+    "observation_row",
+    "closed_loop_matrix",
+    "steady_state_covariance",
+    "lagged_covariances",
+    "error_covariance_sequence",
+    "filter_step",
+    "scheduled_filter",
+    "abg_variance_reduction",
+    "floor_variance_reduction",
+    "floor_bandwidth_map",
+]
 
 _ORDERS = (1, 2)
 
@@ -226,7 +236,7 @@ def filter_step(x, z, K, F):
     x_new : ndarray, shape (..., n)
     innovation : ndarray, shape (...)   ``z - x_pred[0]``, NaN where missing
     """
-    xp = x @ F.T                                          # (E1) prediction
+    xp = x @ F.T  # (E1) prediction
     innovation = np.asarray(z, dtype=float) - xp[..., 0]  # (eq. 1) scalar innovation Z - h F x
     present = np.isfinite(innovation)
     x_new = xp + K * np.where(present, innovation, 0.0)[..., None]
@@ -292,7 +302,9 @@ def abg_variance_reduction(K):
     if K.shape[-1] != 3:
         raise ValueError(f"parameter 'K' has {K.shape[-1]} components; it must have 3 (alpha-beta-gamma)")
     g, h, k = K[..., 0], K[..., 1], K[..., 2] / 2
-    filtered = (h * (2 * g**2 + 2 * h - 3 * g * h) - g * k * (4 - 2 * g - h)) / ((4 - 2 * g - h) * (g * h + g * k - 2 * k))
+    filtered = (h * (2 * g**2 + 2 * h - 3 * g * h) - g * k * (4 - 2 * g - h)) / (
+        (4 - 2 * g - h) * (g * h + g * k - 2 * k)
+    )
     predicted = (g * k * (2 * g + h - 4) + h * (g * (2 * g + h) + 2 * h)) / ((2 * k - g * (h + k)) * (2 * g + h - 4))
     return filtered, predicted
 
@@ -322,8 +334,10 @@ def floor_variance_reduction(floor_memory):
     if np.any(N < 3):
         raise ValueError(f"parameter 'floor_memory' has values < 3 (min {N.min()}); it must be >= 3")
     D = (2 * N - 1) * (N**2 - N - 3) * (11 * N**2 - 11 * N - 6)
-    return (3 * (51 * N**4 - 264 * N**3 + 478 * N**2 - 373 * N + 114) / D,
-            3 * (51 * N**4 + 60 * N**3 - 8 * N**2 + 5 * N + 6) / D)
+    return (
+        3 * (51 * N**4 - 264 * N**3 + 478 * N**2 - 373 * N + 114) / D,
+        3 * (51 * N**4 + 60 * N**3 - 8 * N**2 + 5 * N + 6) / D,
+    )
 
 
 def floor_bandwidth_map(floor_memory, frame_rate_hz: float) -> dict:
@@ -353,6 +367,12 @@ def floor_bandwidth_map(floor_memory, frame_rate_hz: float) -> dict:
     filtered, predicted = floor_variance_reduction(N)
     # v N^3 + 3v N^2 + 2v N - 9N^2 + 9N - 6 = 0
     memory = np.array([np.max(np.roots([v, 3 * v - 9, 2 * v + 9, -6]).real) for v in filtered])
-    return {"alpha": K[:, 0], "beta": K[:, 1], "gamma": K[:, 2] / 2, "vrr_filtered": filtered,
-            "vrr_predicted": predicted, "noise_bandwidth_hz": filtered * frame_rate_hz / 2,
-            "equivalent_memory": memory}
+    return {
+        "alpha": K[:, 0],
+        "beta": K[:, 1],
+        "gamma": K[:, 2] / 2,
+        "vrr_filtered": filtered,
+        "vrr_predicted": predicted,
+        "noise_bandwidth_hz": filtered * frame_rate_hz / 2,
+        "equivalent_memory": memory,
+    }

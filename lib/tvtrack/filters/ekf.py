@@ -97,7 +97,7 @@ def ekf_update(x_prior, P_prior, z, h, jacobian, noise_cov, k, mask=None, noise_
         for _ in range(noise_iterations):
             x, P, S = joseph_update_scalar(x_prior, P_prior, nu, H, noise_cov(x, k), mask)
         return x, P, nu, S
-    z_lin = z - hx + np.einsum("...ij,...j->...i", H, x_prior)   # innovation of the linearised model
+    z_lin = z - hx + np.einsum("...ij,...j->...i", H, x_prior)  # innovation of the linearised model
     x, P, nu, S = kf_update(x_prior, P_prior, z_lin, H, noise_cov(x_prior, k), mask)
     for _ in range(noise_iterations):
         x, P, nu, S = kf_update(x_prior, P_prior, z_lin, H, noise_cov(x, k), mask)
@@ -135,10 +135,12 @@ class ExtendedKalmanFilter:
             raise ValueError(f"inconsistent shapes F{self.F.shape} Q{self.Q.shape}; both must be (n, n)")
         if not np.all(np.linalg.eigvalsh(0.5 * (self.Q + np.swapaxes(self.Q, -1, -2))) >= 0):
             raise ValueError("parameter 'Q' must be symmetric positive semi-definite")
-        if isinstance(self.noise_iterations, bool) or int(self.noise_iterations) != self.noise_iterations \
-                or self.noise_iterations < 0:
-            raise ValueError(f"parameter 'noise_iterations' = {self.noise_iterations!r}; "
-                             "it must be an integer >= 0")
+        if (
+            isinstance(self.noise_iterations, bool)
+            or int(self.noise_iterations) != self.noise_iterations
+            or self.noise_iterations < 0
+        ):
+            raise ValueError(f"parameter 'noise_iterations' = {self.noise_iterations!r}; it must be an integer >= 0")
         if not callable(self.noise_cov):
             R = np.asarray(self.noise_cov, dtype=float)
             self.noise_cov = lambda x, k, _R=R: _R
@@ -158,9 +160,12 @@ class ExtendedKalmanFilter:
         x = np.broadcast_to(np.asarray(x0, dtype=float), batch + (n,)).copy()
         P = np.broadcast_to(np.asarray(P0, dtype=float), batch + (n, n)).copy()
         out = {  # time-major while filling (contiguous writes), moved after the batch axes at the end
-            "x_prior": np.empty((T,) + batch + (n,)), "P_prior": np.empty((T,) + batch + (n, n)),
-            "x": np.empty((T,) + batch + (n,)), "P": np.empty((T,) + batch + (n, n)),
-            "innovation": np.empty((T,) + batch + (m,)), "S": np.empty((T,) + batch + (m, m)),
+            "x_prior": np.empty((T,) + batch + (n,)),
+            "P_prior": np.empty((T,) + batch + (n, n)),
+            "x": np.empty((T,) + batch + (n,)),
+            "P": np.empty((T,) + batch + (n, n)),
+            "innovation": np.empty((T,) + batch + (m,)),
+            "S": np.empty((T,) + batch + (m, m)),
         }
         zs_t = np.moveaxis(zs, -2, 0)
         diagonal = self.F.ndim == 2 and np.array_equal(self.F, np.diag(np.diag(self.F)))
@@ -168,7 +173,7 @@ class ExtendedKalmanFilter:
         ff = np.outer(f, f) if diagonal else None
         for t in range(T):
             if t > 0:
-                if diagonal:                                             # (E1), (E7) for diagonal Phi
+                if diagonal:  # (E1), (E7) for diagonal Phi
                     x, P = x * f, P * ff + self.Q
                 else:
                     x, P = kf_predict(x, P, self.F, self.Q)
@@ -176,12 +181,20 @@ class ExtendedKalmanFilter:
             out["P_prior"][t] = P
             z = zs_t[t]
             present = np.all(np.isfinite(z), axis=-1)
-            if present.all():                                            # no masking needed (fast path)
-                x, P, nu, S = ekf_update(x, P, z, self.h, self.jacobian, self.noise_cov, t, None,
-                                         self.noise_iterations)
+            if present.all():  # no masking needed (fast path)
+                x, P, nu, S = ekf_update(x, P, z, self.h, self.jacobian, self.noise_cov, t, None, self.noise_iterations)
             else:
-                x, P, nu, S = ekf_update(x, P, np.where(present[..., None], z, 0.0), self.h, self.jacobian,
-                                         self.noise_cov, t, present, self.noise_iterations)
+                x, P, nu, S = ekf_update(
+                    x,
+                    P,
+                    np.where(present[..., None], z, 0.0),
+                    self.h,
+                    self.jacobian,
+                    self.noise_cov,
+                    t,
+                    present,
+                    self.noise_iterations,
+                )
                 nu = np.where(present[..., None], nu, np.nan)
             out["innovation"][t] = nu
             out["S"][t] = S
@@ -190,7 +203,7 @@ class ExtendedKalmanFilter:
         axis = len(batch)
         hist = {key: np.moveaxis(v, 0, axis) for key, v in out.items()}
         nu = hist["innovation"]
-        if m == 1:                                                       # scalar measurement: nu^2 / S, no solve
+        if m == 1:  # scalar measurement: nu^2 / S, no solve
             hist["nis"] = nu[..., 0] ** 2 / hist["S"][..., 0, 0]
         else:
             hist["nis"] = np.einsum("...i,...i->...", nu, np.linalg.solve(hist["S"], nu[..., None])[..., 0])

@@ -70,15 +70,18 @@ class GridFilter:
             i0 = max(int(np.floor((centre - self.low) / dx)) - half, 0)
             i1 = min(int(np.ceil((centre - self.low) / dx)) + half, self.nodes.size - 1)
             idx = np.arange(i0, i1 + 1)
-            mass = stats.norm.cdf((self.nodes[idx] + edges_half - centre) / sd) \
-                - stats.norm.cdf((self.nodes[idx] - edges_half - centre) / sd)
+            mass = stats.norm.cdf((self.nodes[idx] + edges_half - centre) / sd) - stats.norm.cdf(
+                (self.nodes[idx] - edges_half - centre) / sd
+            )
             if mass.sum() <= 0:
                 continue
             rows.append(idx)
             cols.append(np.full(idx.size, j))
             vals.append(mass / mass.sum())
-        self._transition = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                                             shape=(self.nodes.size, self.nodes.size))
+        self._transition = sparse.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(self.nodes.size, self.nodes.size),
+        )
 
     def run(self, zs, prior_mean: float, prior_var: float) -> GridOutput:
         """Filter measurements ``zs`` (n_trials, T); a NaN column means no measurement at that step.
@@ -100,14 +103,14 @@ class GridFilter:
         tiny = np.finfo(float).tiny
         for k in range(T):
             if k > 0:
-                p = self._transition @ p                                     # prediction
+                p = self._transition @ p  # prediction
             z = zs[:, k]
             if np.all(np.isfinite(z)):
-                logw = np.log(np.maximum(p, tiny)) + self.log_likelihood(z, k).T   # Bayes update
+                logw = np.log(np.maximum(p, tiny)) + self.log_likelihood(z, k).T  # Bayes update
                 logw -= logw.max(axis=0)
                 p = np.exp(logw)
                 p /= p.sum(axis=0)
             m = self.nodes @ p
             mean[:, k] = m
-            var[:, k] = (self.nodes ** 2) @ p - m ** 2
+            var[:, k] = (self.nodes**2) @ p - m**2
         return GridOutput(mean, np.maximum(var, 0.0))

@@ -148,13 +148,12 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
         if coast == "mode":
             top_mode = eye[np.argmax(mu, axis=-1)]
             mu = np.where(present[..., None], mu, top_mode)
-        cbar = np.einsum("...i,...ij->...j", mu, Mt)                      # (..., r)
-        live = cbar > 0                                                   # a mode with no probability keeps its own state
+        cbar = np.einsum("...i,...ij->...j", mu, Mt)  # (..., r)
+        live = cbar > 0  # a mode with no probability keeps its own state
         omega = np.where(live[..., None, :], mu[..., :, None] * Mt / np.where(live, cbar, 1.0)[..., None, :], eye)
         x_mix = np.einsum("...ij,...ia->...ja", omega, xs)
-        d = xs[..., :, None, :] - x_mix[..., None, :, :]                  # (..., i, j, n)
-        P_mix = np.einsum("...ij,...ijab->...jab", omega,
-                          Ps[..., :, None, :, :] + d[..., :, None] * d[..., None, :])
+        d = xs[..., :, None, :] - x_mix[..., None, :, :]  # (..., i, j, n)
+        P_mix = np.einsum("...ij,...ijab->...jab", omega, Ps[..., :, None, :, :] + d[..., :, None] * d[..., None, :])
         # 2. mode-matched prediction
         xs, Ps = kf_predict(x_mix, P_mix, Fs, Qs)
         xp, Pp = _combine(xs, Ps, cbar)

@@ -135,8 +135,12 @@ class KalmanFilter:
     def __post_init__(self):
         self.F, self.H, self.Q, self.R = (np.asarray(a, dtype=float) for a in (self.F, self.H, self.Q, self.R))
         n, m = self.F.shape[-1], self.H.shape[-2]
-        if self.F.shape[-2:] != (n, n) or self.H.shape[-1] != n or self.Q.shape[-2:] != (n, n) \
-                or self.R.shape[-2:] != (m, m):
+        if (
+            self.F.shape[-2:] != (n, n)
+            or self.H.shape[-1] != n
+            or self.Q.shape[-2:] != (n, n)
+            or self.R.shape[-2:] != (m, m)
+        ):
             raise ValueError(f"inconsistent shapes F{self.F.shape} H{self.H.shape} Q{self.Q.shape} R{self.R.shape}")
 
     def run(self, zs, x0, P0) -> KalmanOutput:

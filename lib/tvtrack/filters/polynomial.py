@@ -21,8 +21,13 @@ from math import factorial
 
 import numpy as np
 
-__all__ = ["taylor_transition", "polynomial_observation_row", "growing_memory_gains",
-           "growing_memory_filter", "predict_ahead"]
+__all__ = [
+    "taylor_transition",
+    "polynomial_observation_row",
+    "growing_memory_gains",
+    "growing_memory_filter",
+    "predict_ahead",
+]
 
 _MAX_ORDER = 3
 
@@ -158,5 +163,5 @@ def predict_ahead(states, steps: int | np.ndarray = 1) -> np.ndarray:
     order = s.shape[-1] - 1
     m = np.asarray(steps, dtype=float)[..., None]
     k = np.arange(order + 1)
-    coeff = m ** k / np.array([factorial(int(i)) for i in k])
+    coeff = m**k / np.array([factorial(int(i)) for i in k])
     return np.sum(s * coeff, axis=-1)

@@ -71,7 +71,7 @@ def vd_restart_covariance(P_xv: np.ndarray, sigma_eps: float) -> np.ndarray:
     -------
     ndarray, shape (..., 3, 3)
     """
-    M = np.array([[0.0, 0.0, 1.0], [-2.0, -1.0, 2.0], [-2.0, -2.0, 2.0]])     # rows x, v, a; columns e_x, e_v, e_z
+    M = np.array([[0.0, 0.0, 1.0], [-2.0, -1.0, 2.0], [-2.0, -2.0, 2.0]])  # rows x, v, a; columns e_x, e_v, e_z
     Sigma = np.zeros(P_xv.shape[:-2] + (3, 3))
     Sigma[..., :2, :2] = P_xv
     Sigma[..., 2, 2] = sigma_eps**2
@@ -91,8 +91,9 @@ def _predict_update(x, P, z, seen, Q, F, sigma2):
     return x, P, xp, var_p, nu, S
 
 
-def vd_filter_run(z, visible, q_cv: float, q_ca: float, sigma_eps: float, window: int, threshold: float,
-                  x0=None, P0=None) -> VDOutput:
+def vd_filter_run(
+    z, visible, q_cv: float, q_ca: float, sigma_eps: float, window: int, threshold: float, x0=None, P0=None
+) -> VDOutput:
     """Run the VD filter on independent channels.
 
     Parameters
@@ -127,18 +128,18 @@ def vd_filter_run(z, visible, q_cv: float, q_ca: float, sigma_eps: float, window
     zt = np.moveaxis(z.reshape(B, T), -1, 0)
     vis = np.moveaxis(np.broadcast_to(np.asarray(visible, dtype=bool), z.shape).reshape(B, T), -1, 0)
     Fs, Qs = cv_ca_models(q_cv, q_ca)
-    F = Fs[1]                                     # CA transition; CV trials keep a = 0 and no a-variance
+    F = Fs[1]  # CA transition; CV trials keep a = 0 and no a-variance
     sigma2 = sigma_eps**2
     lam = 1.0 - 1.0 / window
     x = np.broadcast_to(np.zeros(3) if x0 is None else np.asarray(x0, float), (B, 3)).copy()
     P = np.broadcast_to(np.diag([1e6, 1e4, 0.0]) if P0 is None else np.asarray(P0, float), (B, 3, 3)).copy()
     x[:, 2] = 0.0
     P[:, 2, :] = P[:, :, 2] = 0.0
-    depth = window + 2                            # ring of posteriors back to t0 - 1
+    depth = window + 2  # ring of posteriors back to t0 - 1
     ring_x, ring_P = np.empty((depth, B, 3)), np.empty((depth, B, 3, 3))
     ca = np.zeros(B, dtype=bool)
     rho = np.zeros(B)
-    run = np.zeros(B, dtype=np.int64)             # consecutive measurements up to now
+    run = np.zeros(B, dtype=np.int64)  # consecutive measurements up to now
     detected = np.full(B, -1, dtype=np.int64)
     out_x, out_xp = np.empty((T, B, 3)), np.empty((T, B, 3))
     out_vp, out_rho, out_ca = np.empty((T, B)), np.full((T, B), np.nan), np.empty((T, B), dtype=bool)
@@ -158,9 +159,10 @@ def vd_filter_run(z, visible, q_cv: float, q_ca: float, sigma_eps: float, window
             a = 2.0 * (zt[t0, idx] - xb[:, 0] - xb[:, 1])
             xr = np.stack([zt[t0, idx], xb[:, 1] + a, a], axis=-1)
             Pr = vd_restart_covariance(Pb[:, :2, :2], sigma_eps)
-            for s in range(t0 + 1, t + 1):        # re-run the CA filter over the window
-                xr, Pr = _predict_update(xr, Pr, zt[s, idx], np.ones(idx.size, bool),
-                                         np.broadcast_to(Qs[1], (idx.size, 3, 3)), F, sigma2)[:2]
+            for s in range(t0 + 1, t + 1):  # re-run the CA filter over the window
+                xr, Pr = _predict_update(
+                    xr, Pr, zt[s, idx], np.ones(idx.size, bool), np.broadcast_to(Qs[1], (idx.size, 3, 3)), F, sigma2
+                )[:2]
             x[idx], P[idx] = xr, Pr
             ca[idx] = True
             detected[idx] = t
@@ -170,5 +172,6 @@ def vd_filter_run(z, visible, q_cv: float, q_ca: float, sigma_eps: float, window
     def back(a, extra=()):
         return np.moveaxis(a, 0, 1).reshape(batch + (T,) + extra)
 
-    return VDOutput(back(out_x, (3,)), back(out_xp, (3,)), back(out_vp), back(out_rho), back(out_ca),
-                    detected.reshape(batch))
+    return VDOutput(
+        back(out_x, (3,)), back(out_xp, (3,)), back(out_vp), back(out_rho), back(out_ca), detected.reshape(batch)
+    )

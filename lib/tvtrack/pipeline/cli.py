@@ -66,8 +66,11 @@ def _cmd_run(args) -> int:
     check_names(nb, params)
     profile = load_profile(nb, args.profile)
     check_values(nb, {**profile, **params}, given=params)
-    out = _fresh_directory(Path(args.output) if args.output else
-                           RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}")
+    out = _fresh_directory(
+        Path(args.output)
+        if args.output
+        else RUNS_DIR / "runs" / f"{nb.stem}-{args.profile or 'paper'}-{time.strftime('%Y%m%d-%H%M%S')}"
+    )
     remove_stale_temporaries(out.parent)
     try:
         outcome = run_notebook(nb, out, params, args.profile, progress=not args.quiet and sys.stderr.isatty())
@@ -83,8 +86,14 @@ def _cmd_run(args) -> int:
 def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
-    summary = run_sweep(args.spec, jobs=args.jobs, output=args.output, executor=args.executor,
-                        scheduler=args.scheduler, progress=sys.stderr.isatty())
+    summary = run_sweep(
+        args.spec,
+        jobs=args.jobs,
+        output=args.output,
+        executor=args.executor,
+        scheduler=args.scheduler,
+        progress=sys.stderr.isatty(),
+    )
     return 0 if summary.n_failed == 0 else 1
 
 
@@ -100,8 +109,10 @@ def _cmd_report(args) -> int:
 
     folder = reproduce_dir(args.profile)
     if profile_name(args.profile) != PAPER_PROFILE and not folder.is_dir():
-        raise UsageError(f"no runs at the {args.profile} profile ({folder} does not exist): "
-                         f"`make reproduce PROFILE={args.profile}` makes them")
+        raise UsageError(
+            f"no runs at the {args.profile} profile ({folder} does not exist): "
+            f"`make reproduce PROFILE={args.profile}` makes them"
+        )
     if profile_name(args.profile) == PAPER_PROFILE:
         path = write_report(folder, REPORT_PATH, readme=README_PATH)
     else:
@@ -126,8 +137,10 @@ def _cmd_edit(args) -> int:
 
     copy, written = working_copy(args.notebook, profile=args.profile, fresh=args.fresh)
     shown = os.path.relpath(copy)
-    print(f"{'wrote' if written else 'kept (it holds your edits; --fresh replaces it)'} {shown}: "
-          f"the {args.profile} profile, outputs in {os.path.relpath(copy.with_name(copy.stem + '-out'))}/")
+    print(
+        f"{'wrote' if written else 'kept (it holds your edits; --fresh replaces it)'} {shown}: "
+        f"the {args.profile} profile, outputs in {os.path.relpath(copy.with_name(copy.stem + '-out'))}/"
+    )
     if not args.lab:
         print(f"open it in JupyterLab (Run All), or: {Path(sys.executable).parent / 'jupyter'} lab {shown}")
         return 0
@@ -138,8 +151,9 @@ def _cmd_edit(args) -> int:
 def _cmd_view(args) -> int:
     from .webview import serve
 
-    return serve(args.target, host=args.host, port=args.port, grpc_port=args.grpc_port,
-                 open_browser=not args.no_browser)
+    return serve(
+        args.target, host=args.host, port=args.port, grpc_port=args.grpc_port, open_browser=not args.no_browser
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -149,8 +163,15 @@ def build_parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("run", help="execute one notebook through papermill into its own directory")
     r.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
-    r.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
-                   help="override a parameter (VALUE is a Python literal or a plain string)")
+    r.add_argument(
+        "-p",
+        "--parameter",
+        nargs=2,
+        action="append",
+        default=[],
+        metavar=("NAME", "VALUE"),
+        help="override a parameter (VALUE is a Python literal or a plain string)",
+    )
     r.add_argument("--profile", default=None, help="parameter profile, e.g. 'smoke' (default: paper)")
     r.add_argument("-o", "--output", default=None, help="run directory (must not exist)")
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
@@ -167,20 +188,23 @@ def build_parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("reproduce", help="run every notebook side by side, then write REPRODUCTION.md")
     rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
     rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
-    rp.add_argument("--jobs", type=_positive_int, default=None,
-                    help="notebooks at once (default: the usable cores)")
+    rp.add_argument("--jobs", type=_positive_int, default=None, help="notebooks at once (default: the usable cores)")
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
-    rep.add_argument("--profile", default=None,
-                     help="report on papermill_runs/reproduce-PROFILE/ into its own REPRODUCTION.md (default: paper)")
+    rep.add_argument(
+        "--profile",
+        default=None,
+        help="report on papermill_runs/reproduce-PROFILE/ into its own REPRODUCTION.md (default: paper)",
+    )
     rep.set_defaults(func=_cmd_report)
 
     st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
     st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
     st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
-    st.add_argument("--profile", default=None,
-                    help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)")
+    st.add_argument(
+        "--profile", default=None, help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)"
+    )
     st.set_defaults(func=_cmd_site)
 
     e = sub.add_parser("edit", help="a working copy of a notebook at the smoke profile, to edit and run in JupyterLab")
@@ -191,12 +215,17 @@ def build_parser() -> argparse.ArgumentParser:
     e.set_defaults(func=_cmd_edit)
 
     from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
+
     v = sub.add_parser("view", help="serve a run's recording in the Rerun web viewer (Ctrl-C stops)")
     v.add_argument("target", help="run directory holding recording.rrd, or an .rrd file")
     v.add_argument("--host", default=DEFAULT_HOST, help=f"address to bind (default {DEFAULT_HOST}, this machine only)")
     v.add_argument("--port", type=int, default=DEFAULT_WEB_PORT, help=f"web viewer port (default {DEFAULT_WEB_PORT})")
-    v.add_argument("--grpc-port", type=int, default=DEFAULT_GRPC_PORT,
-                   help=f"port the recording is streamed from (default {DEFAULT_GRPC_PORT})")
+    v.add_argument(
+        "--grpc-port",
+        type=int,
+        default=DEFAULT_GRPC_PORT,
+        help=f"port the recording is streamed from (default {DEFAULT_GRPC_PORT})",
+    )
     v.add_argument("--no-browser", action="store_true", help="only print the URL")
     v.set_defaults(func=_cmd_view)
     return p
@@ -214,8 +243,9 @@ def main(argv=None) -> int:
     except OSError as exc:
         if args.debug or not getattr(exc, "filename", None):
             raise
-        print(f"error: cannot write {exc.filename}: {exc.strerror or exc} (--debug shows the traceback)",
-              file=sys.stderr)
+        print(
+            f"error: cannot write {exc.filename}: {exc.strerror or exc} (--debug shows the traceback)", file=sys.stderr
+        )
         return 1
     except KeyboardInterrupt as exc:
         if args.debug:

@@ -20,8 +20,17 @@ import tempfile
 from pathlib import Path
 from typing import Any, Iterable
 
-__all__ = ["UsageError", "NotebookBug", "parameter_defaults", "check_names", "check_values", "check_values_many",
-           "refuse_output_dir", "OUTPUT_DIR_REASON", "name_given"]
+__all__ = [
+    "UsageError",
+    "NotebookBug",
+    "parameter_defaults",
+    "check_names",
+    "check_values",
+    "check_values_many",
+    "refuse_output_dir",
+    "OUTPUT_DIR_REASON",
+    "name_given",
+]
 
 
 class UsageError(ValueError):
@@ -64,8 +73,11 @@ def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
     for name in names:
         if name not in known:
             close = difflib.get_close_matches(name, list(known), n=3, cutoff=0.6)
-            hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else \
-                f"; its parameters are {', '.join(sorted(known))}"
+            hint = (
+                f"; did you mean {' or '.join(repr(c) for c in close)}?"
+                if close
+                else f"; its parameters are {', '.join(sorted(known))}"
+            )
             raise UsageError(f"{where}{notebook.stem} has no parameter {name!r}{hint}")
 
 
@@ -86,8 +98,10 @@ for overrides in override_sets:
 print(json.dumps(answers))
 """
 
-OUTPUT_DIR_REASON = ("'output_dir' is where a run writes and tvtrack sets it to the run's own directory; "
-                     "choose that directory with -o (sweeps: -o SWEEP_DIR) instead")
+OUTPUT_DIR_REASON = (
+    "'output_dir' is where a run writes and tvtrack sets it to the run's own directory; "
+    "choose that directory with -o (sweeps: -o SWEEP_DIR) instead"
+)
 
 
 def refuse_output_dir(names: Iterable[str], where: str = "") -> None:
@@ -99,7 +113,7 @@ def refuse_output_dir(names: Iterable[str], where: str = "") -> None:
 def name_given(message: str, given: dict[str, Any]) -> str:
     """The validation message, led by what the user set when it names none of it (the notebook's check may
     name the other parameter of an inconsistent pair: 001 ``window_n = 200`` against ``fa_duration_s``)."""
-    if not given or any(f"'{name}'" in message for name in given):   # the notebooks quote the names they check
+    if not given or any(f"'{name}'" in message for name in given):  # the notebooks quote the names they check
         return message
     shown = ", ".join(f"{name} = {value!r}" for name, value in given.items())
     return f"{shown} does not fit the other parameters: {message}"
@@ -124,17 +138,27 @@ def check_values_many(notebook: Path, override_sets: list[dict[str, Any]], timeo
     with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
         payload = json.dumps([cells[:2], [{**o, "output_dir": scratch} for o in override_sets]], default=str)
         env = {**os.environ, "MPLBACKEND": "Agg"}
-        proc = subprocess.run([sys.executable, "-c", _PREFLIGHT], input=payload, capture_output=True, text=True,
-                              cwd=scratch, env=env, timeout=timeout_s)
+        proc = subprocess.run(
+            [sys.executable, "-c", _PREFLIGHT],
+            input=payload,
+            capture_output=True,
+            text=True,
+            cwd=scratch,
+            env=env,
+            timeout=timeout_s,
+        )
     if proc.returncode != 0:
         last = (proc.stderr.strip().splitlines() or ["(no message)"])[-1]
-        raise NotebookBug(f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
-                          f"--debug shows the traceback)")
+        raise NotebookBug(
+            f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
+            f"--debug shows the traceback)"
+        )
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def check_values(notebook: Path, overrides: dict[str, Any], timeout_s: float = 120,
-                 given: dict[str, Any] | None = None) -> None:
+def check_values(
+    notebook: Path, overrides: dict[str, Any], timeout_s: float = 120, given: dict[str, Any] | None = None
+) -> None:
     """Run the notebook's parameters and validation cells with ``overrides`` in a subprocess.
 
     ``given`` (default: ``overrides``) are the values the user typed; a message that names none of them is

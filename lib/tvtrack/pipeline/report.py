@@ -30,11 +30,33 @@ from ..verdicts import LABELS
 from ..plotting import VERDICT_COLOURS as _CORE_VERDICT_COLOURS
 from .runner import list_notebooks, read_run
 
-__all__ = ["REPRODUCE_DIR", "REPORT_PATH", "README_PATH", "README_BEGIN", "README_END", "ALL_VERDICTS",
-           "ALL_LABELS", "write_report", "md_escape", "format_measured", "robustness_label", "robustness_where",
-           "coverage_text", "part_labels", "verdict_summary", "results_paragraph", "update_readme", "collect_runs",
-           "first_screen", "first_screen_table", "forest_items", "forest_plot", "robustness_matrix",
-           "robustness_picture", "profiles_shown"]
+__all__ = [
+    "REPRODUCE_DIR",
+    "REPORT_PATH",
+    "README_PATH",
+    "README_BEGIN",
+    "README_END",
+    "ALL_VERDICTS",
+    "ALL_LABELS",
+    "write_report",
+    "md_escape",
+    "format_measured",
+    "robustness_label",
+    "robustness_where",
+    "coverage_text",
+    "part_labels",
+    "verdict_summary",
+    "results_paragraph",
+    "update_readme",
+    "collect_runs",
+    "first_screen",
+    "first_screen_table",
+    "forest_items",
+    "forest_plot",
+    "robustness_matrix",
+    "robustness_picture",
+    "profiles_shown",
+]
 
 REPRODUCE_DIR = _reproduce_dir()
 REPORT_PATH = REPO_ROOT / "REPRODUCTION.md"
@@ -48,8 +70,16 @@ ALL_VERDICTS = tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VER
 ALL_LABELS = tuple(reversed(LABELS)) + tuple(lab for lab in ("unexplored",) if lab not in LABELS)
 """Every robustness label a record may carry, strongest first (``unexplored``: no regime or operating point
 was varied)."""
-VERDICT_COLOURS = {**{"reproduced": "#009E73", "partly": "#E69F00", "not reproduced": "#D55E00",
-                      "undecided": "#999999", "not checkable": "#56B4E9"}, **_CORE_VERDICT_COLOURS}
+VERDICT_COLOURS = {
+    **{
+        "reproduced": "#009E73",
+        "partly": "#E69F00",
+        "not reproduced": "#D55E00",
+        "undecided": "#999999",
+        "not checkable": "#56B4E9",
+    },
+    **_CORE_VERDICT_COLOURS,
+}
 """One colour per verdict, the palette of :mod:`tvtrack.plotting` (figures, recordings, report and site)."""
 LABEL_MARKERS = {"robust": "o", "depends": "D", "unstable": "X", "unexplored": "s", NO_LABEL: "."}
 
@@ -112,8 +142,9 @@ def coverage_text(claim: dict) -> str:
     if record.get("coverage"):
         return str(record["coverage"])
     n_cond, n_seed = len(record.get("conditions", [])), len(record.get("replicates", record.get("seeds", [])))
-    tested = [f"{n} {what}{'s' if n != 1 else ''}" for n, what in ((n_cond, "other reading"), (n_seed, "replicate"))
-              if n]
+    tested = [
+        f"{n} {what}{'s' if n != 1 else ''}" for n, what in ((n_cond, "other reading"), (n_seed, "replicate")) if n
+    ]
     return f"{record.get('label', NO_LABEL)} over {' and '.join(tested)}" if tested else ""
 
 
@@ -123,8 +154,11 @@ def part_labels(claim: dict) -> list[tuple[str, str, str]]:
     parts = (claim.get("robustness") or {}).get("parts") or {}
     if isinstance(parts, list):
         parts = {p.get("name", str(i)): p for i, p in enumerate(parts)}
-    return [(str(name), str(p.get("verdict", "")), str(p.get("label", ""))) for name, p in parts.items()
-            if isinstance(p, dict)]
+    return [
+        (str(name), str(p.get("verdict", "")), str(p.get("label", "")))
+        for name, p in parts.items()
+        if isinstance(p, dict)
+    ]
 
 
 def register_names(claim: dict) -> list[str]:
@@ -167,7 +201,7 @@ def collect_runs(reproduce_dir: Path, notebooks: list[str]) -> dict[str, tuple[d
 
 
 def profiles_shown(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
-    """"paper", or the profiles of the runs shown when they are not all paper-scale ("smoke", "paper and smoke")."""
+    """ "paper", or the profiles of the runs shown when they are not all paper-scale ("smoke", "paper and smoke")."""
     names = sorted({(record or {}).get("profile") or PAPER_PROFILE for record, data in runs.values() if data})
     return " and ".join(names) if names else PAPER_PROFILE
 
@@ -187,9 +221,18 @@ def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
         for c in (data or {}).get("claims", []):
             label = robustness_label(c)
             if c["verdict"] in _FIRST_ORDER or (c["verdict"] != "not checkable" and label in ("depends", "unstable")):
-                rows.append({"paper": name, "id": c["id"], "statement": c["statement"],
-                             "paper_value": c.get("paper_value", ""), "measured": format_measured(c["measured"]),
-                             "verdict": c["verdict"], "label": label, "where": robustness_where(c)})
+                rows.append(
+                    {
+                        "paper": name,
+                        "id": c["id"],
+                        "statement": c["statement"],
+                        "paper_value": c.get("paper_value", ""),
+                        "measured": format_measured(c["measured"]),
+                        "verdict": c["verdict"],
+                        "label": label,
+                        "where": robustness_where(c),
+                    }
+                )
     return sorted(rows, key=lambda r: (_FIRST_ORDER.get(r["verdict"], 2), r["paper"], _claim_order(r["id"])))
 
 
@@ -201,14 +244,20 @@ def first_screen_table(rows: list[dict]) -> str:
     """The rows of :func:`first_screen` as a Markdown table (text escaped), or a sentence when there are none."""
     if not rows:
         return "Every checkable claim reproduces, robustly or without a robustness record."
-    lines = ["| claim | statement | paper | measured [95 % interval] | verdict | label |",
-             "| --- | --- | --- | --- | --- | --- |"]
-    lines += [f"| {r['paper'][:3]} {r['id']} | {md_escape(r['statement'])} | {md_escape(r['paper_value'])} | "
-              f"{md_escape(r['measured'])} | **{r['verdict']}** | {r['label']} |" for r in rows]
+    lines = [
+        "| claim | statement | paper | measured [95 % interval] | verdict | label |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    lines += [
+        f"| {r['paper'][:3]} {r['id']} | {md_escape(r['statement'])} | {md_escape(r['paper_value'])} | "
+        f"{md_escape(r['measured'])} | **{r['verdict']}** | {r['label']} |"
+        for r in rows
+    ]
     return "\n".join(lines)
 
 
 # --- the pictures --------------------------------------------------------------------------------------------------
+
 
 def _estimate(value: Any) -> tuple[float, float, float] | None:
     """``(value, low, high)`` of an Estimate-like dict or a plain number; ``None`` otherwise."""
@@ -259,16 +308,26 @@ def forest_items(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
             pairs = [(c["id"], rule, measured, c["verdict"])]
             if rule.get("kind") == "all_of" and isinstance(measured, dict):
                 parts = dict(((p, (v, lab)) for p, v, lab in part_labels(c)))
-                pairs = [(f"{c['id']} {part}", sub, measured.get(part), parts.get(part, (c["verdict"], ""))[0])
-                         for part, sub in (rule.get("parts") or {}).items()]
+                pairs = [
+                    (f"{c['id']} {part}", sub, measured.get(part), parts.get(part, (c["verdict"], ""))[0])
+                    for part, sub in (rule.get("parts") or {}).items()
+                ]
             for label_text, sub, value, verdict in pairs:
                 band, est = _band(sub), _estimate(value)
                 if band is None or est is None:
                     continue
                 v, lo, hi = (_relative(x, band) for x in est)
-                items.append({"name": f"{name[:3]} {label_text}", "verdict": verdict or c["verdict"],
-                              "label": robustness_label(c), "band": band, "value": v, "low": min(lo, hi),
-                              "high": max(lo, hi)})
+                items.append(
+                    {
+                        "name": f"{name[:3]} {label_text}",
+                        "verdict": verdict or c["verdict"],
+                        "label": robustness_label(c),
+                        "band": band,
+                        "value": v,
+                        "low": min(lo, hi),
+                        "high": max(lo, hi),
+                    }
+                )
     return items
 
 
@@ -303,8 +362,14 @@ def forest_plot(items: list[dict], path: Path) -> Path | None:
     labels = [lab for lab in (*ALL_LABELS, NO_LABEL) if any(it["label"] == lab for it in items)]
     handles = [Line2D([], [], color=VERDICT_COLOURS.get(v, "k"), lw=2, label=v) for v in verdicts]
     handles += [Line2D([], [], color="grey", marker=LABEL_MARKERS[lab], ls="", label=lab) for lab in labels]
-    ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.6 / len(items) - 0.08),
-              ncol=min(len(handles), 5), frameon=False)
+    ax.legend(
+        handles=handles,
+        fontsize=7,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.6 / len(items) - 0.08),
+        ncol=min(len(handles), 5),
+        frameon=False,
+    )
     ax.set_title("Every claim: measured 95 % interval against the paper's band", fontsize=9)
     ax.grid(axis="x", alpha=0.3)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -334,8 +399,12 @@ def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[li
                     if differs:
                         row[f"!{entry}"] = True
         for n in names:
-            row.setdefault(n, c["verdict"] if any(n in (cond.get("choices") or {}) for cond in
-                                                  c["robustness"].get("conditions", [])) else None)
+            row.setdefault(
+                n,
+                c["verdict"]
+                if any(n in (cond.get("choices") or {}) for cond in c["robustness"].get("conditions", []))
+                else None,
+            )
         rows.append(c["id"])
         cells.append(row)
     return rows, entries, [[row.get(e) for e in entries] for row in cells]
@@ -358,8 +427,9 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
     from matplotlib.patches import Patch
 
     heights = [max(len(rows), 1) * 0.22 + 1.6 for _, rows, _, _ in panels]
-    fig, axes = plt.subplots(len(panels), 1, figsize=(8, sum(heights)), squeeze=False,
-                             gridspec_kw={"height_ratios": heights})
+    fig, axes = plt.subplots(
+        len(panels), 1, figsize=(8, sum(heights)), squeeze=False, gridspec_kw={"height_ratios": heights}
+    )
     for ax, (name, rows, entries, cells) in zip(axes[:, 0], panels):
         for i, row in enumerate(cells):
             for j, verdict in enumerate(row):
@@ -367,16 +437,24 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
                 ax.add_patch(plt.Rectangle((j, i), 1, 1, color=colour, ec="white", lw=1))
         ax.set_xlim(0, len(entries))
         ax.set_ylim(len(rows), 0)
-        ax.set_xticks([j + 0.5 for j in range(len(entries))], [e[:24] for e in entries], rotation=35, ha="right",
-                      fontsize=7)
+        ax.set_xticks(
+            [j + 0.5 for j in range(len(entries))], [e[:24] for e in entries], rotation=35, ha="right", fontsize=7
+        )
         ax.set_yticks([i + 0.5 for i in range(len(rows))], rows, fontsize=7)
         ax.set_title(name, fontsize=8, loc="left")
         ax.tick_params(length=0)
-    used = sorted({v for _, _, _, cells in panels for row in cells for v in row if v},
-                  key=lambda v: ALL_VERDICTS.index(v) if v in ALL_VERDICTS else 99)
-    fig.legend(handles=[Patch(color=VERDICT_COLOURS.get(v, "k"), label=v) for v in used]
-               + [Patch(color="#f4f4f4", label="not explored")], loc="lower center", ncol=len(used) + 1,
-               fontsize=7, frameon=False)
+    used = sorted(
+        {v for _, _, _, cells in panels for row in cells for v in row if v},
+        key=lambda v: ALL_VERDICTS.index(v) if v in ALL_VERDICTS else 99,
+    )
+    fig.legend(
+        handles=[Patch(color=VERDICT_COLOURS.get(v, "k"), label=v) for v in used]
+        + [Patch(color="#f4f4f4", label="not explored")],
+        loc="lower center",
+        ncol=len(used) + 1,
+        fontsize=7,
+        frameon=False,
+    )
     fig.suptitle("Claims by register entries: the verdict when the entry takes its other values", fontsize=9)
     fig.tight_layout(rect=(0, 0.03, 1, 0.98))
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -386,6 +464,7 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
 
 
 # --- REPRODUCTION.md -----------------------------------------------------------------------------------------------
+
 
 def _details(c: dict) -> str:
     """One claim's rule, where its verdict differs, what the label covers, its parts and note: the text behind the
@@ -403,8 +482,12 @@ def _details(c: dict) -> str:
     return f"- **{c['id']}** " + " · ".join(bits)
 
 
-def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
-                 notebooks: list[str] | None = None, readme: Path | None = None) -> Path:
+def write_report(
+    reproduce_dir: Path = REPRODUCE_DIR,
+    path: Path = REPORT_PATH,
+    notebooks: list[str] | None = None,
+    readme: Path | None = None,
+) -> Path:
     """Rebuild ``REPRODUCTION.md`` from the run directories under ``reproduce_dir``
     (one section per notebook of ``notebooks``, default: all in ``notebooks/``).
 
@@ -423,28 +506,55 @@ def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
         rel = os.path.relpath(run_dir, path.parent)
         record, data = runs[name]
         if record is None:
-            sections.append(f"## {name}\n\nNot run yet: `make reproduce` (or `python -m tvtrack reproduce --only {name}`).\n")
+            sections.append(
+                f"## {name}\n\nNot run yet: `make reproduce` (or `python -m tvtrack reproduce --only {name}`).\n"
+            )
             continue
         if data is None:
-            sections.append(f"## {name}\n\n**Run failed** after {record.get('runtime_s', 0):.0f} s: "
-                            f"`{str(record.get('error')).replace('`', chr(39))}` "
-                            f"(see [{rel}/error.txt]({rel}/error.txt)).\n")
+            sections.append(
+                f"## {name}\n\n**Run failed** after {record.get('runtime_s', 0):.0f} s: "
+                f"`{str(record.get('error')).replace('`', chr(39))}` "
+                f"(see [{rel}/error.txt]({rel}/error.txt)).\n"
+            )
             continue
         claims += data["claims"]
-        lines = [f"## {name}", "", f"*{md_escape(data['citation'])}*", "",
-                 f"Profile `{record.get('profile')}`, seed {data['seed']}, runtime {record['runtime_s']:.0f} s "
-                 f"(notebook {data['runtime_s']:.0f} s), commit `{data.get('git_commit')}`. "
-                 f"[Executed notebook]({rel}/notebook.ipynb) · [results.json]({rel}/results.json)"]
+        lines = [
+            f"## {name}",
+            "",
+            f"*{md_escape(data['citation'])}*",
+            "",
+            f"Profile `{record.get('profile')}`, seed {data['seed']}, runtime {record['runtime_s']:.0f} s "
+            f"(notebook {data['runtime_s']:.0f} s), commit `{data.get('git_commit')}`. "
+            f"[Executed notebook]({rel}/notebook.ipynb) · [results.json]({rel}/results.json)",
+        ]
         if data.get("recording"):
-            lines[-1] += (f" · [recording]({rel}/{data['recording']}) (in the browser: "
-                          f"`python -m tvtrack view {rel}`; desktop: `rerun {rel}/{data['recording']}`)")
-        lines += ["", verdict_summary(data["claims"]), "",
-                  "| claim | verdict | robustness | where the verdict differs | statement | paper | measured |",
-                  "| --- | --- | --- | --- | --- | --- | --- |"]
+            lines[-1] += (
+                f" · [recording]({rel}/{data['recording']}) (in the browser: "
+                f"`python -m tvtrack view {rel}`; desktop: `rerun {rel}/{data['recording']}`)"
+            )
+        lines += [
+            "",
+            verdict_summary(data["claims"]),
+            "",
+            "| claim | verdict | robustness | where the verdict differs | statement | paper | measured |",
+            "| --- | --- | --- | --- | --- | --- | --- |",
+        ]
         for c in data["claims"]:
-            lines.append("| " + " | ".join((
-                c["id"], f"**{c['verdict']}**", robustness_label(c), _cell(robustness_where(c)), _cell(c["statement"]),
-                _cell(c["paper_value"]), _cell(format_measured(c["measured"])))) + " |")
+            lines.append(
+                "| "
+                + " | ".join(
+                    (
+                        c["id"],
+                        f"**{c['verdict']}**",
+                        robustness_label(c),
+                        _cell(robustness_where(c)),
+                        _cell(c["statement"]),
+                        _cell(c["paper_value"]),
+                        _cell(format_measured(c["measured"])),
+                    )
+                )
+                + " |"
+            )
         lines += ["", "<details><summary>Rules, coverage and notes</summary>", ""]
         lines += [_details(c) for c in data["claims"]]
         lines += ["", "</details>"]
@@ -460,43 +570,67 @@ def write_report(reproduce_dir: Path = REPRODUCE_DIR, path: Path = REPORT_PATH,
         counts = Counter(c["verdict"] for c in claims)
         labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
         folder = os.path.relpath(reproduce_dir, path.parent)
-        head += [f"**Profile shown: {shown}** (runs in `{folder}/`)"
-                 + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**") + ". "
-                 f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
-                 "(rebuild with `python -m tvtrack report`).", "",
-                 "**Claims: " + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
-                 + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
-                 + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS) + "**"
-                 + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""), "",
-                 f"By verdict: {verdict_summary(claims)}.", "",
-                 "## The claims that do not reproduce, and the verdicts that depend", "",
-                 first_screen_table(first_screen(runs)), ""]
+        head += [
+            f"**Profile shown: {shown}** (runs in `{folder}/`)"
+            + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**")
+            + ". "
+            f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
+            "(rebuild with `python -m tvtrack report`).",
+            "",
+            "**Claims: "
+            + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
+            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
+            + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS)
+            + "**"
+            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
+            "",
+            f"By verdict: {verdict_summary(claims)}.",
+            "",
+            "## The claims that do not reproduce, and the verdicts that depend",
+            "",
+            first_screen_table(first_screen(runs)),
+            "",
+        ]
         figures = Path(reproduce_dir) / "figures"
         forest = forest_plot(forest_items(runs), figures / "forest.png")
         picture = robustness_picture(runs, figures / "robustness.png")
         if forest:
-            head += [f"![forest plot: every claim's measured interval against the paper's band]"
-                     f"({os.path.relpath(forest, path.parent)})", "",
-                     "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
-                     "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.", ""]
+            head += [
+                f"![forest plot: every claim's measured interval against the paper's band]"
+                f"({os.path.relpath(forest, path.parent)})",
+                "",
+                "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
+                "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.",
+                "",
+            ]
         if picture:
-            head += [f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})", "",
-                     "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
-                     "verdict when that entry takes its other values (the claim's own verdict where none differs).", ""]
-        head += ["Verdicts come from the notebooks' own Monte Carlo runs at the default reading of what each paper "
-                 "left unstated; *robust*: the same verdict, part by part, under every register value tried (one at "
-                 "a time and joint samples) and every independent replicate (each claim's coverage says which); "
-                 "*unexplored*: no regime, operating point or model of the simulated world was varied; *depends*: "
-                 "the verdict changes under another value (the table says where); *unstable*: independent "
-                 "replicates disagree at the default. See each notebook for the reasoning.", ""]
+            head += [
+                f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
+                "",
+                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
+                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
+                "",
+            ]
+        head += [
+            "Verdicts come from the notebooks' own Monte Carlo runs at the default reading of what each paper "
+            "left unstated; *robust*: the same verdict, part by part, under every register value tried (one at "
+            "a time and joint samples) and every independent replicate (each claim's coverage says which); "
+            "*unexplored*: no regime, operating point or model of the simulated world was varied; *depends*: "
+            "the verdict changes under another value (the table says where); *unstable*: independent "
+            "replicates disagree at the default. See each notebook for the reasoning.",
+            "",
+        ]
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(head + sections))
     if readme is not None:
-        incomplete = [name for name, (record, data) in runs.items()
-                      if data is None or record.get("profile") != PAPER_PROFILE]
+        incomplete = [
+            name for name, (record, data) in runs.items() if data is None or record.get("profile") != PAPER_PROFILE
+        ]
         if incomplete:
-            print(f"{readme.name}: results block left as it is (no successful paper-profile run of "
-                  f"{', '.join(incomplete)}; `make reproduce` runs them)")
+            print(
+                f"{readme.name}: results block left as it is (no successful paper-profile run of "
+                f"{', '.join(incomplete)}; `make reproduce` runs them)"
+            )
         else:
             update_readme(readme, results_paragraph(runs))
             print(f"{readme.name}: results block regenerated")
@@ -511,21 +645,30 @@ def results_paragraph(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
     missing = sorted(set(runs) - set(done))
     flat = [c for _, data in done.values() for c in data["claims"]]
     if not flat:
-        return ("No results yet: `make reproduce` runs every notebook at paper scale and `python -m tvtrack report` "
-                "writes this block from them.")
+        return (
+            "No results yet: `make reproduce` runs every notebook at paper scale and `python -m tvtrack report` "
+            "writes this block from them."
+        )
     counts = Counter(c["verdict"] for c in flat)
     labels = Counter(robustness_label(c) for c in flat if c["verdict"] != "not checkable")
     verdicts = " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
     label_text = ", ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS)
-    lines = [f"{len(flat)} claims ({profiles_shown(done)} profile): **{verdicts}**; of the checkable verdicts "
-             f"{label_text}" + (f", {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else "")
-             + ". The claims that do not reproduce, and those whose verdict depends on a reading of what the paper "
-             "left unstated or changes between replicates:"]
+    lines = [
+        f"{len(flat)} claims ({profiles_shown(done)} profile): **{verdicts}**; of the checkable verdicts "
+        f"{label_text}"
+        + (f", {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else "")
+        + ". The claims that do not reproduce, and those whose verdict depends on a reading of what the paper "
+        "left unstated or changes between replicates:"
+    ]
     if missing:
         lines[0] = f"Not included (no successful run): {', '.join(missing)}. " + lines[0]
-    lines += ["", first_screen_table(first_screen(done)), "",
-              "Every claim with its rule, interval and coverage: `REPRODUCTION.md` (written by `make reproduce`) and "
-              "the site's ledger (`make site`)."]
+    lines += [
+        "",
+        first_screen_table(first_screen(done)),
+        "",
+        "Every claim with its rule, interval and coverage: `REPRODUCTION.md` (written by `make reproduce`) and "
+        "the site's ledger (`make site`).",
+    ]
     return "\n".join(lines)
 
 
@@ -536,5 +679,5 @@ def update_readme(readme: Path, paragraph: str) -> None:
     if not pattern.search(text):
         raise ValueError(f"{readme}: no '{README_BEGIN}' ... '{README_END}' markers to put the results between")
     new = pattern.sub(lambda _: f"{README_BEGIN}\n{paragraph}\n{README_END}", text, count=1)
-    if new != text:   # an unchanged block leaves the file (and its timestamp) alone
+    if new != text:  # an unchanged block leaves the file (and its timestamp) alone
         Path(readme).write_text(new)

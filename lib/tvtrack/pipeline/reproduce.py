@@ -51,6 +51,7 @@ def _order(notebooks: list[Path], folder: Path) -> list[Path]:
         t = _last_runtime(folder, nb.stem)
         rank = next((i for i, p in enumerate(_DEFAULT_ORDER) if nb.stem.startswith(p)), len(_DEFAULT_ORDER))
         return (0, -t) if t is not None else (1, rank)
+
     return sorted(notebooks, key=key)
 
 
@@ -59,7 +60,7 @@ def _worker_init(threads: int, log_path: str) -> None:
     for var in _THREAD_VARS:
         os.environ[var] = str(threads)
     log = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
-    os.dup2(log, 2)   # kernels inherit this stderr: their transport warnings land in the log
+    os.dup2(log, 2)  # kernels inherit this stderr: their transport warnings land in the log
 
 
 def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tuple[str, bool, str | None, float]:
@@ -75,8 +76,9 @@ def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tup
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 
-def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: int | None = None,
-              runs_dir: Path = RUNS_DIR) -> int:
+def reproduce(
+    profile: str | None = None, only: list[str] | None = None, jobs: int | None = None, runs_dir: Path = RUNS_DIR
+) -> int:
     """Run the notebooks (all, or ``only``) side by side, then write the report.
 
     Parameters
@@ -115,10 +117,15 @@ def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: i
     remove_stale_temporaries(folder)
     log = folder / "kernels.log"
     failures = []
-    bar = tqdm(total=len(notebooks), desc=f"reproduce {profile_name(profile)} ({jobs} at once)", unit="notebook",
-               disable=not sys.stderr.isatty())
-    pool = ProcessPoolExecutor(jobs, mp_context=get_context("spawn"), initializer=_worker_init,
-                               initargs=(threads, str(log)))
+    bar = tqdm(
+        total=len(notebooks),
+        desc=f"reproduce {profile_name(profile)} ({jobs} at once)",
+        unit="notebook",
+        disable=not sys.stderr.isatty(),
+    )
+    pool = ProcessPoolExecutor(
+        jobs, mp_context=get_context("spawn"), initializer=_worker_init, initargs=(threads, str(log))
+    )
     try:
         futures = {}
         with shielded_spawn():
@@ -141,7 +148,11 @@ def reproduce(profile: str | None = None, only: list[str] | None = None, jobs: i
     pool.shutdown()
     bar.close()
     paper = profile_name(profile) == PAPER_PROFILE
-    path = write_report(folder, REPORT_PATH if paper else folder / "REPRODUCTION.md",
-                        notebooks=[nb.stem for nb in list_notebooks()], readme=README_PATH if paper else None)
+    path = write_report(
+        folder,
+        REPORT_PATH if paper else folder / "REPRODUCTION.md",
+        notebooks=[nb.stem for nb in list_notebooks()],
+        readme=README_PATH if paper else None,
+    )
     print(f"wrote {path}" + (f"; failed: {', '.join(failures)}" if failures else ""))
     return 1 if failures else 0

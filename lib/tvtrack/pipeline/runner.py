@@ -33,12 +33,18 @@ from .paths import NOTEBOOK_DIR, PROFILE_DIR
 from .preflight import UsageError
 
 __all__ = [
-    "find_notebook", "list_notebooks", "load_profile", "read_toml", "RunOutcome", "run_notebook", "read_run",
+    "find_notebook",
+    "list_notebooks",
+    "load_profile",
+    "read_toml",
+    "RunOutcome",
+    "run_notebook",
+    "read_run",
     "remove_stale_temporaries",
 ]
 
 KERNEL_NAME = os.environ.get("TVTRACK_KERNEL", "python3")
-OWNER_FILE = ".owner"   # "<host> <pid>" of the process running a temporary run folder
+OWNER_FILE = ".owner"  # "<host> <pid>" of the process running a temporary run folder
 # papermill's 60 s default is too short for a kernel to start while a sweep loads every core
 KERNEL_START_TIMEOUT_S = 300
 
@@ -70,8 +76,14 @@ def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
         path = folder / f"{notebook.stem}.{profile}.toml"
         if path.is_file():
             return read_toml(path)
-    known = sorted({p.name.split(".")[1] for folder in (PROFILE_DIR, notebook.parent)
-                    for p in folder.glob(f"{notebook.stem}.*.toml")} | {"paper"})
+    known = sorted(
+        {
+            p.name.split(".")[1]
+            for folder in (PROFILE_DIR, notebook.parent)
+            for p in folder.glob(f"{notebook.stem}.*.toml")
+        }
+        | {"paper"}
+    )
     raise UsageError(f"no profile {profile!r} for {notebook.stem}; its profiles: {', '.join(known)}")
 
 
@@ -109,10 +121,17 @@ KERNEL_ARGUMENTS = ["--IPKernelApp.log_level=ERROR"]
 KERNEL_SHUTDOWN = "immediate"
 
 
-def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str, Any] | None = None,
-                 profile: str | None = None, *, kernel_name: str | None = None,
-                 timeout_s: float | None = None, progress: bool = False,
-                 extra_record: dict | None = None) -> RunOutcome:
+def run_notebook(
+    notebook: str | Path,
+    run_dir: str | Path,
+    parameters: dict[str, Any] | None = None,
+    profile: str | None = None,
+    *,
+    kernel_name: str | None = None,
+    timeout_s: float | None = None,
+    progress: bool = False,
+    extra_record: dict | None = None,
+) -> RunOutcome:
     """Execute ``notebook`` into ``run_dir`` (which must not exist yet).
 
     Parameters
@@ -145,18 +164,29 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
     tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
     tmp.mkdir()
     (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
-    record = {"notebook": nb.stem, "notebook_path": str(nb), "profile": profile or "paper",
-              "parameters": params, **(extra_record or {})}
+    record = {
+        "notebook": nb.stem,
+        "notebook_path": str(nb),
+        "profile": profile or "paper",
+        "parameters": params,
+        **(extra_record or {}),
+    }
     t0 = time.perf_counter()
     error = tb = None
-    spare = child_pids()   # the caller's own processes: an interrupt ends only this run's kernel
+    spare = child_pids()  # the caller's own processes: an interrupt ends only this run's kernel
     try:
         with kernels_end_on_ctrl_c():
             pm.execute_notebook(
-                str(nb), str(tmp / "notebook.ipynb"), parameters=params, cwd=str(tmp),
-                kernel_name=kernel_name or KERNEL_NAME, progress_bar=progress,
-                execution_timeout=timeout_s, log_output=False,
-                start_timeout=KERNEL_START_TIMEOUT_S, extra_arguments=KERNEL_ARGUMENTS,
+                str(nb),
+                str(tmp / "notebook.ipynb"),
+                parameters=params,
+                cwd=str(tmp),
+                kernel_name=kernel_name or KERNEL_NAME,
+                progress_bar=progress,
+                execution_timeout=timeout_s,
+                log_output=False,
+                start_timeout=KERNEL_START_TIMEOUT_S,
+                extra_arguments=KERNEL_ARGUMENTS,
                 shutdown_kernel=KERNEL_SHUTDOWN,
             )
         status = "ok"
@@ -171,8 +201,9 @@ def run_notebook(notebook: str | Path, run_dir: str | Path, parameters: dict[str
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     runtime = time.perf_counter() - t0
-    record.update(status=status, error=error, runtime_s=runtime,
-                  finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
+    record.update(
+        status=status, error=error, runtime_s=runtime, finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    )
     (tmp / "run.json").write_text(json.dumps(record, indent=2, default=str))
     if tb:
         (tmp / "error.txt").write_text(tb)

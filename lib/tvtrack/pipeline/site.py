@@ -38,15 +38,37 @@ from pathlib import Path
 
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
-from .report import (ALL_LABELS, ALL_VERDICTS, NO_LABEL, REPRODUCE_DIR, coverage_text, first_screen, forest_items,
-                     forest_plot, format_measured, part_labels, profiles_shown, robustness_label, robustness_picture,
-                     robustness_where)
+from .report import (
+    ALL_LABELS,
+    ALL_VERDICTS,
+    NO_LABEL,
+    REPRODUCE_DIR,
+    coverage_text,
+    first_screen,
+    forest_items,
+    forest_plot,
+    format_measured,
+    part_labels,
+    profiles_shown,
+    robustness_label,
+    robustness_picture,
+    robustness_where,
+)
 from .runner import read_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import VERDICTS
 
-__all__ = ["SITE_DIR", "PaperRun", "find_paper_runs", "find_sweeps", "tex_to_html", "claim_cells",
-           "recording_still", "render_notebook", "build_site"]
+__all__ = [
+    "SITE_DIR",
+    "PaperRun",
+    "find_paper_runs",
+    "find_sweeps",
+    "tex_to_html",
+    "claim_cells",
+    "recording_still",
+    "render_notebook",
+    "build_site",
+]
 
 SITE_DIR = RUNS_DIR / "site"
 TEMPLATE_DIR = Path(__file__).with_name("site_templates")
@@ -63,7 +85,7 @@ class PaperRun:
     run_dir: Path
     record: dict
     results: dict | None = None
-    cells: dict = field(default_factory=dict)    # claim id -> notebook cell id
+    cells: dict = field(default_factory=dict)  # claim id -> notebook cell id
 
     @property
     def ok(self) -> bool:
@@ -86,11 +108,15 @@ def find_paper_runs(reproduce_dir: Path = REPRODUCE_DIR) -> list[PaperRun]:
 
 def find_sweeps(runs_dir: Path = RUNS_DIR) -> list[Path]:
     """Sweep directories (holding ``summary.csv``) directly under ``runs_dir``."""
-    return sorted(p for p in Path(runs_dir).glob("*/summary.csv") if p.parent.name not in NOT_SWEEPS
-                  and not p.parent.name.startswith(("reproduce-", "site-")))
+    return sorted(
+        p
+        for p in Path(runs_dir).glob("*/summary.csv")
+        if p.parent.name not in NOT_SWEEPS and not p.parent.name.startswith(("reproduce-", "site-"))
+    )
 
 
 # --- math --------------------------------------------------------------------------------------------
+
 
 def tex_to_html(tex: str, display: bool) -> str:
     """MathML for a TeX formula (``latex2mathml``); a formula it cannot parse stays readable as TeX."""
@@ -123,14 +149,16 @@ def _markdown_exporter_class():
         @pass_context
         def markdown2html(self, context, source):
             cell = context.get("cell", {})
-            renderer = MathMLRenderer(escape=False, attachments=cell.get("attachments", {}),
-                                      anchor_link_text=self.anchor_link_text)
+            renderer = MathMLRenderer(
+                escape=False, attachments=cell.get("attachments", {}), anchor_link_text=self.anchor_link_text
+            )
             return MarkdownWithMath(renderer=renderer).render(source)
 
     return SiteExporter
 
 
 # --- notebooks ---------------------------------------------------------------------------------------
+
 
 def claim_cells(notebook: dict, claim_ids: list[str]) -> dict[str, str]:
     """``{claim id: cell id}``: the code cell that decided each claim (its source names the id in quotes,
@@ -151,19 +179,26 @@ def claim_cells(notebook: dict, claim_ids: list[str]) -> dict[str, str]:
 
 def has_inline_images(notebook: dict) -> bool:
     """Whether any output of the notebook is an image (runs from before the verdict standard have none)."""
-    return any(key.startswith("image/") for cell in notebook["cells"] for out in cell.get("outputs", [])
-               for key in out.get("data", {}))
+    return any(
+        key.startswith("image/")
+        for cell in notebook["cells"]
+        for out in cell.get("outputs", [])
+        for key in out.get("data", {})
+    )
 
 
-def render_notebook(nb, out: Path, title: str, recording: dict | None = None,
-                    figures: list[dict] | None = None) -> None:
+def render_notebook(
+    nb, out: Path, title: str, recording: dict | None = None, figures: list[dict] | None = None
+) -> None:
     """Write the executed notebook (an ``nbformat`` node) as one offline HTML page.
 
     ``figures`` (``[{src, caption}]``, ``src`` relative to the page) are shown after the notebook, for
     runs whose notebook does not show its figures inline."""
-    exporter = _markdown_exporter_class()(template_name=NOTEBOOK_TEMPLATE,
-                                          extra_template_basedirs=[str(TEMPLATE_DIR)],
-                                          extra_template_paths=[str(TEMPLATE_DIR)])
+    exporter = _markdown_exporter_class()(
+        template_name=NOTEBOOK_TEMPLATE,
+        extra_template_basedirs=[str(TEMPLATE_DIR)],
+        extra_template_paths=[str(TEMPLATE_DIR)],
+    )
     site = {"title": title, "recording": recording, "figures": figures or []}
     body, _ = exporter.from_notebook_node(nb, resources={"site": site, "metadata": {"name": title}})
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -172,9 +207,20 @@ def render_notebook(nb, out: Path, title: str, recording: dict | None = None,
 
 # --- recordings --------------------------------------------------------------------------------------
 
-_CHANNEL_DTYPES = {6: "u1", 7: "i1", 8: "u2", 9: "i2", 10: "u4", 11: "i4", 12: "u8", 13: "i8",
-                   33: "f2", 34: "f4", 35: "f8"}   # rerun.datatypes.ChannelDatatype values
-_CHANNELS = {1: 1, 2: 3, 3: 4}                      # rerun.datatypes.ColorModel: L, RGB, RGBA
+_CHANNEL_DTYPES = {
+    6: "u1",
+    7: "i1",
+    8: "u2",
+    9: "i2",
+    10: "u4",
+    11: "i4",
+    12: "u8",
+    13: "i8",
+    33: "f2",
+    34: "f4",
+    35: "f8",
+}  # rerun.datatypes.ChannelDatatype values
+_CHANNELS = {1: 1, 2: 3, 3: 4}  # rerun.datatypes.ColorModel: L, RGB, RGBA
 
 
 def _decode_images(batch):
@@ -216,11 +262,11 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
     from PIL import Image
     from rerun.chunk import RrdReader
 
-    best = {}   # entity -> (frame, image): the earliest useful frame of the entity's first chunk holding one
+    best = {}  # entity -> (frame, image): the earliest useful frame of the entity's first chunk holding one
     stream = RrdReader(rrd).stream().filter(components=["Image:buffer", "Image:format", "EncodedImage:blob"])
     for chunk in stream:
         if chunk.entity_path in best:
-            continue    # chunks come in time order: later ones cannot hold an earlier frame worth decoding
+            continue  # chunks come in time order: later ones cannot hold an earlier frame worth decoding
         for frame, image in sorted(_decode_images(chunk.to_record_batch()), key=lambda fi: fi[0]):
             if np.ptp(image) > 0:
                 best[chunk.entity_path] = (frame, image)
@@ -232,8 +278,9 @@ def recording_still(rrd: Path, out_png: Path) -> bool:
         lo, hi = np.percentile(image, [0.5, 99.5])
         image = np.clip((image.astype(float) - lo) / max(hi - lo, 1e-12) * 255, 0, 255).astype(np.uint8)
     scale = max(1, -(-STILL_MIN_SIDE_PX // min(image.shape[:2])))
-    still = Image.fromarray(image.astype(np.uint8)).resize((image.shape[1] * scale, image.shape[0] * scale),
-                                                          Image.NEAREST)
+    still = Image.fromarray(image.astype(np.uint8)).resize(
+        (image.shape[1] * scale, image.shape[0] * scale), Image.NEAREST
+    )
     out_png.parent.mkdir(parents=True, exist_ok=True)
     still.save(out_png)
     return True
@@ -255,12 +302,15 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
         return None
     still = site / "runs" / run.name / "recording.png"
     has_still = recording_still(rrd, still)
-    return {"still": f"runs/{run.name}/recording.png" if has_still else None,
-            "command": f"python -m tvtrack view {_shown(run.run_dir, runs_dir)}",
-            "url": viewer_url(DEFAULT_HOST, DEFAULT_WEB_PORT, DEFAULT_GRPC_PORT)}
+    return {
+        "still": f"runs/{run.name}/recording.png" if has_still else None,
+        "command": f"python -m tvtrack view {_shown(run.run_dir, runs_dir)}",
+        "url": viewer_url(DEFAULT_HOST, DEFAULT_WEB_PORT, DEFAULT_GRPC_PORT),
+    }
 
 
 # --- pages -------------------------------------------------------------------------------------------
+
 
 def _environment():
     from jinja2 import Environment, FileSystemLoader, select_autoescape
@@ -271,8 +321,10 @@ def _environment():
 def _counts(claims: list[dict]) -> dict:
     verdicts = Counter(c["verdict"] for c in claims)
     labels = Counter(robustness_label(c) for c in claims)
-    return {"verdicts": [(v, verdicts[v]) for v in ALL_VERDICTS if v in VERDICTS or verdicts[v]],
-            "labels": [(lab, labels[lab]) for lab in (*ALL_LABELS, NO_LABEL) if labels[lab]]}
+    return {
+        "verdicts": [(v, verdicts[v]) for v in ALL_VERDICTS if v in VERDICTS or verdicts[v]],
+        "labels": [(lab, labels[lab]) for lab in (*ALL_LABELS, NO_LABEL) if labels[lab]],
+    }
 
 
 def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
@@ -280,12 +332,23 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
     for run in runs:
         for c in (run.results or {}).get("claims", []):
             cell = run.cells.get(c["id"])
-            rows.append({"paper": run.name, "id": c["id"], "statement": c["statement"],
-                         "paper_value": c["paper_value"], "rule": c.get("acceptance", ""),
-                         "measured": format_measured(c["measured"]), "verdict": c["verdict"],
-                         "label": robustness_label(c), "where": robustness_where(c), "note": c.get("note", ""),
-                         "coverage": coverage_text(c), "parts": part_labels(c),
-                         "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else "")})
+            rows.append(
+                {
+                    "paper": run.name,
+                    "id": c["id"],
+                    "statement": c["statement"],
+                    "paper_value": c["paper_value"],
+                    "rule": c.get("acceptance", ""),
+                    "measured": format_measured(c["measured"]),
+                    "verdict": c["verdict"],
+                    "label": robustness_label(c),
+                    "where": robustness_where(c),
+                    "note": c.get("note", ""),
+                    "coverage": coverage_text(c),
+                    "parts": part_labels(c),
+                    "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else ""),
+                }
+            )
     return rows
 
 
@@ -325,8 +388,9 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     source = reproduce_dir(profile, runs_dir)
     default = runs_dir / ("site" if profile == PAPER_PROFILE else f"site-{profile}")
     if profile != PAPER_PROFILE and not source.is_dir():
-        raise UsageError(f"no runs at the {profile} profile ({source} does not exist): "
-                         f"`make reproduce PROFILE={profile}` makes them")
+        raise UsageError(
+            f"no runs at the {profile} profile ({source} does not exist): `make reproduce PROFILE={profile}` makes them"
+        )
     site = Path(out) if out is not None else default
     if site.exists() and not site.is_dir():
         raise UsageError(f"cannot write the site folder {site}: it is a file; give an empty or new folder")
@@ -343,8 +407,13 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     runs = find_paper_runs(source)
     cards = []
     for run in runs:
-        card = {"run": run, "recording": None, "counts": None, "date": run.record.get("finished_utc", ""),
-                "shown": _shown(run.run_dir, runs_dir)}
+        card = {
+            "run": run,
+            "recording": None,
+            "counts": None,
+            "date": run.record.get("finished_utc", ""),
+            "shown": _shown(run.run_dir, runs_dir),
+        }
         if run.ok:
             card["recording"] = _recording_info(run, site, runs_dir)
             card["counts"] = _counts(run.results["claims"])
@@ -352,8 +421,13 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
             assets.mkdir(parents=True, exist_ok=True)
             shutil.copy2(run.run_dir / "results.json", assets / "results.json")
             nb = nbformat.read(run.run_dir / "notebook.ipynb", as_version=4)
-            render_notebook(nb, site / "notebooks" / f"{run.name}.html", run.name, card["recording"],
-                            _figures_not_inline(run, nb, assets))
+            render_notebook(
+                nb,
+                site / "notebooks" / f"{run.name}.html",
+                run.name,
+                card["recording"],
+                _figures_not_inline(run, nb, assets),
+            )
             run.cells = claim_cells(nb, [c["id"] for c in run.results["claims"]])
         cards.append(card)
     sweeps = [_sweep_page(env, csv_path, site) for csv_path in find_sweeps(runs_dir)]
@@ -363,19 +437,37 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     shown = profiles_shown(by_name) if any(r.ok for r in runs) else profile
     forest = forest_plot(forest_items(by_name), site / "forest.png")
     picture = robustness_picture(by_name, site / "robustness.png")
-    common = {"root": "", "built": built, "profile": shown, "paper_scale": shown == PAPER_PROFILE,
-              "source": _shown(source, runs_dir)}
-    (site / "ledger.html").write_text(env.get_template("ledger.html").render(
-        rows=rows, papers=[r.name for r in runs if r.ok], verdicts=[v for v, _ in _counts(
-            [c for r in runs if r.ok for c in r.results["claims"]])["verdicts"]],
-        labels=(*ALL_LABELS, NO_LABEL), **common))
+    common = {
+        "root": "",
+        "built": built,
+        "profile": shown,
+        "paper_scale": shown == PAPER_PROFILE,
+        "source": _shown(source, runs_dir),
+    }
+    (site / "ledger.html").write_text(
+        env.get_template("ledger.html").render(
+            rows=rows,
+            papers=[r.name for r in runs if r.ok],
+            verdicts=[v for v, _ in _counts([c for r in runs if r.ok for c in r.results["claims"]])["verdicts"]],
+            labels=(*ALL_LABELS, NO_LABEL),
+            **common,
+        )
+    )
     first = first_screen(by_name)
     for row in first:
         cell = next((r.cells.get(row["id"]) for r in runs if r.name == row["paper"]), None)
         row["href"] = f"notebooks/{row['paper']}.html" + (f"#cell-id={cell}" if cell else "")
     index = site / "index.html"
-    index.write_text(env.get_template("index.html").render(
-        cards=cards, sweeps=sweeps, totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
-        n_claims=len(rows), first=first, forest="forest.png" if forest else None,
-        robustness="robustness.png" if picture else None, **common))
+    index.write_text(
+        env.get_template("index.html").render(
+            cards=cards,
+            sweeps=sweeps,
+            totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
+            n_claims=len(rows),
+            first=first,
+            forest="forest.png" if forest else None,
+            robustness="robustness.png" if picture else None,
+            **common,
+        )
+    )
     return index

@@ -38,8 +38,18 @@ from .paths import RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given
 from .runner import read_toml, find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
 
-__all__ = ["SweepSpec", "RunSpec", "SweepSummary", "load_spec", "expand", "run_hash", "run_sweep",
-           "collect_summary", "preflight", "check_scheduler_address"]
+__all__ = [
+    "SweepSpec",
+    "RunSpec",
+    "SweepSummary",
+    "load_spec",
+    "expand",
+    "run_hash",
+    "run_sweep",
+    "collect_summary",
+    "preflight",
+    "check_scheduler_address",
+]
 
 DASK_CONNECT_TIMEOUT_S = 8
 _SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
@@ -89,27 +99,39 @@ def load_spec(path: str | Path) -> SweepSpec:
         if not isinstance(values, list) or not values:
             raise UsageError(f"{path}: grid/zip entry {key!r} must be a non-empty list")
     if len({len(v) for v in zipped.values()}) > 1:
-        raise UsageError(f"{path}: all [zip] lists must have the same length, got "
-                         f"{ {k: len(v) for k, v in zipped.items()} }")
+        raise UsageError(
+            f"{path}: all [zip] lists must have the same length, got { {k: len(v) for k, v in zipped.items()} }"
+        )
     overlap = (set(grid) & set(zipped)) | ((set(grid) | set(zipped)) & set(raw.get("fixed", {})))
     if overlap:
         raise UsageError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
     summary = raw.get("summary", {})
     if summary and not {"x", "y"} <= set(summary):
         raise UsageError(f"{path}: [summary] needs both 'x' and 'y'")
-    for table, names in (("[fixed]", raw.get("fixed", {})), ("[grid]", grid), ("[zip]", zipped),
-                         ("[summary] x/hue", [summary[k] for k in ("x", "hue") if k in summary])):
+    for table, names in (
+        ("[fixed]", raw.get("fixed", {})),
+        ("[grid]", grid),
+        ("[zip]", zipped),
+        ("[summary] x/hue", [summary[k] for k in ("x", "hue") if k in summary]),
+    ):
         check_names(nb, names, where=f"{path}: {table}: ")
     if "y" in summary and not isinstance(summary["y"], str):
         raise UsageError(f"{path}: [summary] y = {summary['y']!r}; it must be a metric name (a string)")
-    return SweepSpec(name=path.stem, notebook=nb, profile=raw.get("profile"), repeats=repeats,
-                     fixed=dict(raw.get("fixed", {})), grid=dict(grid), zipped=dict(zipped), summary=summary)
+    return SweepSpec(
+        name=path.stem,
+        notebook=nb,
+        profile=raw.get("profile"),
+        repeats=repeats,
+        fixed=dict(raw.get("fixed", {})),
+        grid=dict(grid),
+        zipped=dict(zipped),
+        summary=summary,
+    )
 
 
 def run_hash(notebook: str, profile: str | None, parameters: dict) -> str:
     """Stable 12-hex-digit id of a run (independent of dict order)."""
-    blob = json.dumps({"notebook": notebook, "profile": profile, "parameters": parameters},
-                      sort_keys=True, default=str)
+    blob = json.dumps({"notebook": notebook, "profile": profile, "parameters": parameters}, sort_keys=True, default=str)
     return hashlib.sha256(blob.encode()).hexdigest()[:12]
 
 
@@ -131,8 +153,11 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
         for z in zip_rows:
             for r in range(spec.repeats):
                 params = {**spec.fixed, **g, **z, "seed": int(base_seed) + r}
-                runs.append(RunSpec(spec.notebook.stem, spec.profile, params,
-                                    run_hash(spec.notebook.stem, spec.profile, params)))
+                runs.append(
+                    RunSpec(
+                        spec.notebook.stem, spec.profile, params, run_hash(spec.notebook.stem, spec.profile, params)
+                    )
+                )
     return runs
 
 
@@ -176,8 +201,9 @@ def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str,
     """Worker: one run (top-level so process pools and Dask can pickle it). A pool worker told to stop
     (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
     try:
-        outcome = run_notebook(notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile,
-                               extra_record={"run_id": run.run_id})
+        outcome = run_notebook(
+            notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile, extra_record={"run_id": run.run_id}
+        )
     except Interrupted:
         os._exit(EXIT_INTERRUPTED)
     return run.run_id, outcome.status, outcome.error, outcome.runtime_s
@@ -194,8 +220,14 @@ class SweepSummary:
     plot: Path | None
 
 
-def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = None,
-              executor: str = "local", scheduler: str | None = None, progress: bool = True) -> SweepSummary:
+def run_sweep(
+    spec_path: str | Path,
+    jobs: int = 1,
+    output: str | Path | None = None,
+    executor: str = "local",
+    scheduler: str | None = None,
+    progress: bool = True,
+) -> SweepSummary:
     """Run every run of a spec that has not finished yet, then write the summary.
 
     Parameters
@@ -214,7 +246,7 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
     if executor == "dask":
         check_scheduler_address(scheduler)
     spec = load_spec(spec_path)
-    client = _dask_client(scheduler) if executor == "dask" else None   # before the preflight: fail fast
+    client = _dask_client(scheduler) if executor == "dask" else None  # before the preflight: fail fast
     runs = expand(spec)
     try:
         preflight(spec, runs, where=f"{spec_path}: ")
@@ -265,8 +297,9 @@ def run_sweep(spec_path: str | Path, jobs: int = 1, output: str | Path | None = 
         bar.close()
         remove_stale_temporaries(runs_dir)
         done = sum((read_run(runs_dir / r.run_id) or {}).get("status") == "ok" for r in runs)
-        raise KeyboardInterrupt(f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; "
-                                f"the same command resumes") from exc
+        raise KeyboardInterrupt(
+            f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; the same command resumes"
+        ) from exc
     bar.close()
     csv_path, plot = collect_summary(sweep_dir, runs, spec.summary)
     records = [read_run(runs_dir / r.run_id) or {} for r in runs]
@@ -283,7 +316,7 @@ def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, ti
     """The runs in a pool of ``jobs`` worker processes; Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init)
     try:
-        with shielded_spawn():   # workers are spawned by submit(): they start with Ctrl-C ignored
+        with shielded_spawn():  # workers are spawned by submit(): they start with Ctrl-C ignored
             futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
         for fut in as_completed(futures):
             tick(fut.result()[1])
@@ -308,8 +341,10 @@ def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick)
             raise
 
 
-_ADDRESS = re.compile(r"^(?:(?P<scheme>[a-z]+)://)?(?P<host>\[[0-9a-fA-F:.]+\]|[^:/\s\[\]]+)"
-                      r"(?::(?P<port>[^/\s]*))?/?$")
+_ADDRESS = re.compile(
+    r"^(?:(?P<scheme>[a-z]+)://)?(?P<host>\[[0-9a-fA-F:.]+\]|[^:/\s\[\]]+)"
+    r"(?::(?P<port>[^/\s]*))?/?$"
+)
 
 
 def check_scheduler_address(address: str) -> tuple[str, int]:
@@ -354,7 +389,7 @@ def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
         raise UsageError(f"cannot reach the Dask scheduler at {scheduler}: {exc.strerror or exc}; {hint}") from exc
     outcome: dict = {}
 
-    def connect():   # distributed may wait forever on a port where something else listens: a thread with a deadline
+    def connect():  # distributed may wait forever on a port where something else listens: a thread with a deadline
         from distributed import Client
 
         try:
@@ -366,8 +401,10 @@ def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
     thread.start()
     thread.join(timeout_s)
     if "client" not in outcome:
-        raise UsageError(f"no Dask scheduler answers at {scheduler} within {timeout_s:.0f} s (something listens "
-                         f"there, but not a Dask scheduler); {hint}")
+        raise UsageError(
+            f"no Dask scheduler answers at {scheduler} within {timeout_s:.0f} s (something listens "
+            f"there, but not a Dask scheduler); {hint}"
+        )
     return outcome["client"]
 
 
@@ -391,8 +428,12 @@ def collect_summary(sweep_dir: Path, runs: list[RunSpec], summary: dict | None =
     for run in runs:
         run_dir = sweep_dir / "runs" / run.run_id
         rec = read_run(run_dir) or {"status": "missing"}
-        row: dict[str, Any] = {"run_id": run.run_id, "status": rec.get("status"), "error": rec.get("error") or "",
-                               "runtime_s": rec.get("runtime_s")}
+        row: dict[str, Any] = {
+            "run_id": run.run_id,
+            "status": rec.get("status"),
+            "error": rec.get("error") or "",
+            "runtime_s": rec.get("runtime_s"),
+        }
         row.update(run.parameters)
         res = run_dir / "results.json"
         if res.is_file():
@@ -428,12 +469,12 @@ def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | No
     for r in ok:
         groups.setdefault(r.get(hue) if hue else None, []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4))
-    base = y[:-len(".value")] if y.endswith(".value") else None
+    base = y[: -len(".value")] if y.endswith(".value") else None
     for key, items in groups.items():
         xs = sorted({r[x] for r in items})
         mean = [np.mean([r[y] for r in items if r[x] == v]) for v in xs]
         label = f"{hue} = {key}" if hue else None
-        line, = ax.plot(xs, mean, marker="o", label=label)
+        (line,) = ax.plot(xs, mean, marker="o", label=label)
         if base and all(f"{base}.ci_low" in r for r in items):
             lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
             hi = [np.mean([r[f"{base}.ci_high"] for r in items if r[x] == v]) for v in xs]

@@ -48,9 +48,21 @@ from typing import Iterable, Sequence
 import numpy as np
 
 __all__ = [
-    "INSTALL_HINT", "ViewerUnavailable", "vulkan_problem", "rerun_executable", "verify_rrd",
-    "free_port", "coloured_mask", "dominant_colours", "LoadedRecording", "OverlayPixels",
-    "HeadlessViewer", "entities_under", "plays_role", "Expectation", "RecordingCheck",
+    "INSTALL_HINT",
+    "ViewerUnavailable",
+    "vulkan_problem",
+    "rerun_executable",
+    "verify_rrd",
+    "free_port",
+    "coloured_mask",
+    "dominant_colours",
+    "LoadedRecording",
+    "OverlayPixels",
+    "HeadlessViewer",
+    "entities_under",
+    "plays_role",
+    "Expectation",
+    "RecordingCheck",
     "check_recording",
 ]
 
@@ -82,12 +94,16 @@ def vulkan_problem() -> str | None:
     if named:
         manifests = [p for p in named.split(os.pathsep) if p]
         if not any(Path(p).exists() for p in manifests):
-            return (f"VK_DRIVER_FILES/VK_ICD_FILENAMES name no existing driver manifest ({named}); "
-                    f"unset it or install a software Vulkan driver: {INSTALL_HINT}")
+            return (
+                f"VK_DRIVER_FILES/VK_ICD_FILENAMES name no existing driver manifest ({named}); "
+                f"unset it or install a software Vulkan driver: {INSTALL_HINT}"
+            )
         return None
     if not any(glob.glob(os.path.join(d, "*.json")) for d in _ICD_DIRS):
-        return ("the Vulkan loader is installed but no Vulkan driver is (no ICD manifest in "
-                f"{', '.join(_ICD_DIRS)}); install a software Vulkan driver: {INSTALL_HINT}")
+        return (
+            "the Vulkan loader is installed but no Vulkan driver is (no ICD manifest in "
+            f"{', '.join(_ICD_DIRS)}); install a software Vulkan driver: {INSTALL_HINT}"
+        )
     return None
 
 
@@ -98,8 +114,7 @@ def rerun_executable() -> str:
         return str(beside)
     found = shutil.which("rerun")
     if found is None:
-        raise FileNotFoundError("no 'rerun' command beside the Python interpreter or on PATH "
-                                "(it comes with rerun-sdk)")
+        raise FileNotFoundError("no 'rerun' command beside the Python interpreter or on PATH (it comes with rerun-sdk)")
     return found
 
 
@@ -108,8 +123,9 @@ def verify_rrd(path: str | Path, timeout_s: float = 60.0) -> str:
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"no recording at {path}")
-    proc = subprocess.run([rerun_executable(), "rrd", "verify", str(path)], capture_output=True,
-                          text=True, timeout=timeout_s)
+    proc = subprocess.run(
+        [rerun_executable(), "rrd", "verify", str(path)], capture_output=True, text=True, timeout=timeout_s
+    )
     report = (proc.stdout + proc.stderr).strip()
     if proc.returncode != 0:
         raise ValueError(f"rerun rrd verify {path} failed (exit {proc.returncode}): {report}")
@@ -167,7 +183,7 @@ class LoadedRecording:
 
     path: Path
     store_id: str
-    timelines: dict = field(default_factory=dict)   # name -> rerun Timeline (start, end)
+    timelines: dict = field(default_factory=dict)  # name -> rerun Timeline (start, end)
     load_s: float = 0.0
 
     def timeline(self, name: str):
@@ -182,9 +198,9 @@ class OverlayPixels:
 
     view_name: str
     entities: list[str]
-    changed: int            # pixels that differ between shown and hidden
-    coloured: int           # of those, pixels whose shown colour is not grey
-    colours: list[tuple]    # dominant shown colours among the changed coloured pixels
+    changed: int  # pixels that differ between shown and hidden
+    coloured: int  # of those, pixels whose shown colour is not grey
+    colours: list[tuple]  # dominant shown colours among the changed coloured pixels
 
 
 class HeadlessViewer:
@@ -202,8 +218,12 @@ class HeadlessViewer:
     Use as a context manager; :meth:`close` ends the whole process group.
     """
 
-    def __init__(self, window_size: tuple[int, int] = (1200, 700), startup_timeout_s: float = 30.0,
-                 log_path: str | Path | None = None):
+    def __init__(
+        self,
+        window_size: tuple[int, int] = (1200, 700),
+        startup_timeout_s: float = 30.0,
+        log_path: str | Path | None = None,
+    ):
         w, h = (int(v) for v in window_size)
         if not (200 <= w <= 4000 and 200 <= h <= 4000):
             raise ValueError(f"parameter 'window_size' = {window_size!r}; both sides must be in [200, 4000] px")
@@ -237,11 +257,21 @@ class HeadlessViewer:
             raise ViewerUnavailable(problem)
         self.port = free_port()
         w, h = self.window_size
-        cmd = [rerun_executable(), "--headless", "--bind", "127.0.0.1", "--port", str(self.port),
-               "--window-size", f"{w}x{h}", "--hide-welcome-screen"]
+        cmd = [
+            rerun_executable(),
+            "--headless",
+            "--bind",
+            "127.0.0.1",
+            "--port",
+            str(self.port),
+            "--window-size",
+            f"{w}x{h}",
+            "--hide-welcome-screen",
+        ]
         with open(self.log_path, "wb") as log:
-            self._proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                          start_new_session=True)
+            self._proc = subprocess.Popen(
+                cmd, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True
+            )
         self.started_at = time.monotonic()
         url = f"rerun+http://127.0.0.1:{self.port}/proxy"
         deadline = self.started_at + self.startup_timeout_s
@@ -260,8 +290,10 @@ class HeadlessViewer:
             break
         if self._client is None:
             self.close()
-            raise RuntimeError(f"the headless viewer did not answer on {url} within {self.startup_timeout_s:.0f} s "
-                               f"(last error: {last_error}); log: {self._log_tail()}")
+            raise RuntimeError(
+                f"the headless viewer did not answer on {url} within {self.startup_timeout_s:.0f} s "
+                f"(last error: {last_error}); log: {self._log_tail()}"
+            )
         # the gRPC server answers before the renderer exists: paint one small frame to be sure it
         # renders, then check that our own process is the one answering (rerun defers silently
         # to an existing listener on its port and exits)
@@ -294,8 +326,9 @@ class HeadlessViewer:
         # without Vulkan, wgpu falls back to GL, which lacks a render target the viewer needs
         no_renderer = ("graphics adapter", "render context", "backend: gl", "no suitable adapter")
         if any(sign in log.lower() for sign in no_renderer):
-            raise ViewerUnavailable(f"{what} ({panic or 'no usable graphics adapter'}); install a software "
-                                    f"Vulkan driver: {INSTALL_HINT}")
+            raise ViewerUnavailable(
+                f"{what} ({panic or 'no usable graphics adapter'}); install a software Vulkan driver: {INSTALL_HINT}"
+            )
         raise RuntimeError(f"{what}. Viewer log: {tail}")
 
     def _log_tail(self, n_chars: int = 1500) -> str:
@@ -340,8 +373,9 @@ class HeadlessViewer:
     def client(self):
         """The connected ``rerun.experimental.ViewerClient``."""
         if self._client is None or not self.alive:
-            raise RuntimeError("the headless viewer is not running" +
-                               (f"; log: {self._log_tail()}" if self._proc is not None else ""))
+            raise RuntimeError(
+                "the headless viewer is not running" + (f"; log: {self._log_tail()}" if self._proc is not None else "")
+            )
         return self._client
 
     # -- recordings -------------------------------------------------------------------------
@@ -368,17 +402,19 @@ class HeadlessViewer:
             if not state.loading and ranges and all(t[2] is not None for t in ranges) and ranges == previous:
                 break
             if time.monotonic() - t0 > timeout_s:
-                raise TimeoutError(f"{path} did not finish loading in {timeout_s:.0f} s "
-                                   f"(still loading: {[s.status for s in state.loading]})")
+                raise TimeoutError(
+                    f"{path} did not finish loading in {timeout_s:.0f} s "
+                    f"(still loading: {[s.status for s in state.loading]})"
+                )
             previous = ranges
             time.sleep(0.1)
         # the viewer keeps a blueprint per application id across files: show this file's own
         # default blueprint, as a user opening it for the first time sees it
         client.run_command("recording.reset_blueprint_to_default", store_id=store_id)
-        client.take_screenshot(max_size=64)   # one painted frame applies the queued command
-        self.recording = LoadedRecording(path=path, store_id=store_id,
-                                         timelines={t.name: t for t in rec.timelines},
-                                         load_s=time.monotonic() - t0)
+        client.take_screenshot(max_size=64)  # one painted frame applies the queued command
+        self.recording = LoadedRecording(
+            path=path, store_id=store_id, timelines={t.name: t for t in rec.timelines}, load_s=time.monotonic() - t0
+        )
         return self.recording
 
     def set_time(self, timeline: str, sequence: int) -> None:
@@ -401,8 +437,11 @@ class HeadlessViewer:
     def archetypes(self) -> dict[str, set[str]]:
         """Archetype short names logged per entity path, e.g. ``{"/camera/image": {"Image"}}``."""
         schema = self.client.get_recording_schema(max_entities=10_000)
-        return {e.entity_path: {c.archetype.rsplit(".", 1)[-1] for c in e.components if c.archetype}
-                for e in schema.entities if not e.entity_path.startswith("/__")}
+        return {
+            e.entity_path: {c.archetype.rsplit(".", 1)[-1] for c in e.components if c.archetype}
+            for e in schema.entities
+            if not e.entity_path.startswith("/__")
+        }
 
     def blueprint(self) -> dict:
         """The active recording's blueprint, keyed by blueprint entity path, archetype, field."""
@@ -422,8 +461,9 @@ class HeadlessViewer:
         """RGB array (H, W, 3) uint8 of one view or of the whole viewer."""
         return _decode_png(self.screenshot_png(view_id))
 
-    def overlay_pixels(self, view, entities: Sequence[str], shown: np.ndarray | None = None,
-                       min_chroma: int = 60) -> OverlayPixels:
+    def overlay_pixels(
+        self, view, entities: Sequence[str], shown: np.ndarray | None = None, min_chroma: int = 60
+    ) -> OverlayPixels:
         """Pixels that ``entities`` (and everything below them) draw in ``view``.
 
         The view is shot as the blueprint has it (or ``shown`` is used) and again with the
@@ -452,8 +492,13 @@ class HeadlessViewer:
             raise RuntimeError(f"view {view.name!r} changed size between screenshots: {shown.shape} vs {hidden.shape}")
         changed = (shown != hidden).any(axis=-1)
         coloured = changed & coloured_mask(shown, min_chroma)
-        return OverlayPixels(view_name=view.name, entities=list(entities), changed=int(changed.sum()),
-                             coloured=int(coloured.sum()), colours=dominant_colours(shown, coloured))
+        return OverlayPixels(
+            view_name=view.name,
+            entities=list(entities),
+            changed=int(changed.sum()),
+            coloured=int(coloured.sum()),
+            colours=dominant_colours(shown, coloured),
+        )
 
     def seconds_since_start(self) -> float:
         return 0.0 if self.started_at is None else time.monotonic() - self.started_at
@@ -469,7 +514,7 @@ def plays_role(path: str, origin: str, role: str) -> bool:
     """Whether an entity below ``origin`` plays ``role``: one of its path parts below the origin
     starts with the role's name (``/camera/gate``, ``/camera/gate_rotated``, ``/camera/estimates/obj1``
     all play ``gate`` or ``estimate`` under origin ``/camera``)."""
-    below = path[len("/" + origin.strip("/")):].strip("/").split("/")
+    below = path[len("/" + origin.strip("/")) :].strip("/").split("/")
     return any(part.startswith(role) for part in below if part)
 
 
@@ -524,14 +569,13 @@ class RecordingCheck:
     frame: int | None = None
     views: list = field(default_factory=list)
     entity_paths: list[str] = field(default_factory=list)
-    pixels: dict[str, OverlayPixels] = field(default_factory=dict)   # role or view name -> pixels
+    pixels: dict[str, OverlayPixels] = field(default_factory=dict)  # role or view name -> pixels
     problems: list[str] = field(default_factory=list)
     load_s: float = 0.0
     check_s: float = 0.0
 
 
-def check_recording(viewer: HeadlessViewer, path: str | Path,
-                    expect: Expectation = Expectation()) -> RecordingCheck:
+def check_recording(viewer: HeadlessViewer, path: str | Path, expect: Expectation = Expectation()) -> RecordingCheck:
     """Open ``path`` in ``viewer`` and check what a user looks for.
 
     At the middle frame: the blueprint has a 2-D view and a time-series view, all visible; an
@@ -555,20 +599,23 @@ def check_recording(viewer: HeadlessViewer, path: str | Path,
     spatial = [v for v in views if v.view_class == "2D"]
     series_views = [v for v in views if v.view_class == "TimeSeries"]
     if not spatial or not series_views:
-        problems.append(f"blueprint views {sorted(v.view_class for v in views)}: need a 2-D image view "
-                        "('2D') and a time series ('TimeSeries')")
+        problems.append(
+            f"blueprint views {sorted(v.view_class for v in views)}: need a 2-D image view "
+            "('2D') and a time series ('TimeSeries')"
+        )
     problems += [f"view {v.name!r} ({v.view_class}) is not visible" for v in views if not v.visible]
     paths = check.entity_paths = viewer.entity_paths()
     archetypes = viewer.archetypes()
-    shots: dict[str, np.ndarray] = {}   # each screenshot paints a whole frame: take only the needed ones
+    shots: dict[str, np.ndarray] = {}  # each screenshot paints a whole frame: take only the needed ones
 
     def shot(view) -> np.ndarray:
         if view.view_id not in shots:
             shots[view.view_id] = viewer.screenshot(view.view_id)
         return shots[view.view_id]
 
-    images = [(v, p) for v in spatial for p in entities_under(paths, v.origin)
-              if archetypes.get(p, set()) & IMAGE_ARCHETYPES]
+    images = [
+        (v, p) for v in spatial for p in entities_under(paths, v.origin) if archetypes.get(p, set()) & IMAGE_ARCHETYPES
+    ]
     if expect.image and not images:
         problems.append(f"no image entity in the 2-D views {[v.origin for v in spatial]}; entities: {paths}")
     for view, image_path in images[:1] if expect.image else []:
@@ -578,8 +625,7 @@ def check_recording(viewer: HeadlessViewer, path: str | Path,
         if px.changed < expect.min_image_fraction * area:
             problems.append(f"image {image_path} covers only {px.changed} of {area} px of view {view.name!r}")
     for role in expect.overlays:
-        found = [(v, [p for p in entities_under(paths, v.origin) if plays_role(p, v.origin, role)])
-                 for v in spatial]
+        found = [(v, [p for p in entities_under(paths, v.origin) if plays_role(p, v.origin, role)]) for v in spatial]
         found = [(v, ps) for v, ps in found if ps]
         if not found:
             problems.append(f"no {role!r} entity in the 2-D views {[v.origin for v in spatial]}; entities: {paths}")
@@ -587,8 +633,10 @@ def check_recording(viewer: HeadlessViewer, path: str | Path,
         view, role_paths = found[0]
         px = check.pixels[role] = viewer.overlay_pixels(view, role_paths, shown=shot(view))
         if px.coloured < expect.min_overlay_px:
-            problems.append(f"{role} {role_paths} draws {px.coloured} coloured px in view {view.name!r} at "
-                            f"{expect.timeline} {frame} ({px.changed} changed); need >= {expect.min_overlay_px}")
+            problems.append(
+                f"{role} {role_paths} draws {px.coloured} coloured px in view {view.name!r} at "
+                f"{expect.timeline} {frame} ({px.changed} changed); need >= {expect.min_overlay_px}"
+            )
 
     series = [p for p in entities_under(paths, expect.series_root) if "Scalars" in archetypes.get(p, set())]
     if not series:
@@ -601,23 +649,32 @@ def check_recording(viewer: HeadlessViewer, path: str | Path,
         total = int(coloured_mask(shot(view)).sum())
         px = check.pixels[f"series:{view.name}"] = viewer.overlay_pixels(view, in_view, shown=shot(view))
         if min(total, px.coloured) < expect.min_line_px:
-            problems.append(f"time-series view {view.name!r}: {total} coloured px, {px.coloured} of them from "
-                            f"{in_view}; need >= {expect.min_line_px} (a plotted line)")
+            problems.append(
+                f"time-series view {view.name!r}: {total} coloured px, {px.coloured} of them from "
+                f"{in_view}; need >= {expect.min_line_px} (a plotted line)"
+            )
 
-    viewer.screenshot_png(max_size=64)   # paint every view once more, as the blueprint has them
-    for view in viewer.views():   # reports describe the last paint
-        problems += [f"view {view.name!r} reports {r.severity}: {r.summary} {r.details or ''}".strip()
-                     for r in view.reports if r.severity.lower() in REPORT_SEVERITIES]
+    viewer.screenshot_png(max_size=64)  # paint every view once more, as the blueprint has them
+    for view in viewer.views():  # reports describe the last paint
+        problems += [
+            f"view {view.name!r} reports {r.severity}: {r.summary} {r.details or ''}".strip()
+            for r in view.reports
+            if r.severity.lower() in REPORT_SEVERITIES
+        ]
     check.check_s = time.monotonic() - t0
     return check
-
 
 
 # --- the recording's layout, read from the file (no viewer needed) ---------------------------------------------
 
 _NOT_TIMELINES = {"rerun.controls.RowId"}
-_COLOUR_COMPONENTS = ("Points2D:colors", "Boxes2D:colors", "LineStrips2D:colors", "SeriesLines:colors",
-                      "SeriesPoints:colors")
+_COLOUR_COMPONENTS = (
+    "Points2D:colors",
+    "Boxes2D:colors",
+    "LineStrips2D:colors",
+    "SeriesLines:colors",
+    "SeriesPoints:colors",
+)
 
 
 @dataclass
@@ -684,8 +741,11 @@ def read_layout(path: str | Path) -> RecordingLayout:
                 layout.opening_timeline = _first_string(timeline[-1]) or layout.opening_timeline
             if entity.startswith("/view/") and entity.count("/") == 2:
                 view = views.setdefault(entity, {})
-                for key, column in (("kind", "ViewBlueprint:class_identifier"), ("name", "ViewBlueprint:display_name"),
-                                    ("origin", "ViewBlueprint:space_origin")):
+                for key, column in (
+                    ("kind", "ViewBlueprint:class_identifier"),
+                    ("name", "ViewBlueprint:display_name"),
+                    ("origin", "ViewBlueprint:space_origin"),
+                ):
                     values = _column(batch, column)
                     if values:
                         view[key] = _first_string(values[-1])
@@ -694,7 +754,7 @@ def read_layout(path: str | Path) -> RecordingLayout:
                     ranges = batch.column(name).to_pylist()[-1]
                     while isinstance(ranges, list) and len(ranges) == 1:
                         ranges = ranges[0]
-                    if isinstance(ranges, dict):   # {"x_range": [x0, x1], "y_range": [y0, y1]}
+                    if isinstance(ranges, dict):  # {"x_range": [x0, x1], "y_range": [y0, y1]}
                         ranges = [ranges.get("x_range"), ranges.get("y_range")]
                     try:
                         flat = np.asarray(ranges, dtype=float).ravel()
@@ -713,8 +773,15 @@ def read_layout(path: str | Path) -> RecordingLayout:
         if entity.startswith("/__"):
             continue
         names = batch.schema.names
-        timelines = {n for n in names if ":" not in n and n not in _NOT_TIMELINES and n != "log_time"
-                     and batch.num_rows and batch.column(n).null_count < batch.num_rows}
+        timelines = {
+            n
+            for n in names
+            if ":" not in n
+            and n not in _NOT_TIMELINES
+            and n != "log_time"
+            and batch.num_rows
+            and batch.column(n).null_count < batch.num_rows
+        }
         layout.timelines.setdefault(entity, set()).update(timelines)
         for name in _COLOUR_COMPONENTS:
             for row in _column(batch, name) or []:
@@ -728,8 +795,9 @@ def read_layout(path: str | Path) -> RecordingLayout:
                 if row and name.startswith("Points2D"):
                     layout.markers.add(entity)
                 if row:
-                    xy = np.asarray([p for item in row for p in (item if name.startswith("Line") else [item])],
-                                    dtype=float).reshape(-1, 2)
+                    xy = np.asarray(
+                        [p for item in row for p in (item if name.startswith("Line") else [item])], dtype=float
+                    ).reshape(-1, 2)
                     layout.positions.setdefault(entity, []).append((frame, xy))
         for fmt in _column(batch, "Image:format") or []:
             if fmt:
@@ -743,8 +811,20 @@ def _under(entity: str, origin: str) -> bool:
 
 
 _BAND_EDGES = {"minus", "plus", "lo", "hi", "low", "high", "lower", "upper"}
-_ROLES = {"truth", "estimate", "estimated", "measured", "measurement", "predicted", "prediction", "gate",
-          "detection", "detected", "interferer", "decoy"}
+_ROLES = {
+    "truth",
+    "estimate",
+    "estimated",
+    "measured",
+    "measurement",
+    "predicted",
+    "prediction",
+    "gate",
+    "detection",
+    "detected",
+    "interferer",
+    "decoy",
+}
 
 
 def _leaf_tokens(entity: str) -> list[str]:
@@ -790,13 +870,15 @@ def layout_problems(layout: RecordingLayout, expectation: Expectation | None = N
         on_other = set().union(*timed.values()) <= set(expectation.other_timelines) if timed else False
         if timeline and timed and not on_other and not any(timeline in t for t in timed.values()):
             elsewhere = sorted(set().union(*timed.values()))
-            problems.append(f"view {view['name']!r} has no data on the opening timeline {timeline!r} "
-                            f"(its data is on {', '.join(elsewhere)}): it opens on 'No data available'")
+            problems.append(
+                f"view {view['name']!r} has no data on the opening timeline {timeline!r} "
+                f"(its data is on {', '.join(elsewhere)}): it opens on 'No data available'"
+            )
         single = {e: next(iter(layout.colours[e])) for e in entities if len(layout.colours.get(e, ())) == 1}
         compared = _compared_series if view.get("kind") == "TimeSeries" else _compared_overlays
         items = sorted(single.items())
         for i, (a, rgba) in enumerate(items):
-            for b, other in items[i + 1:]:
+            for b, other in items[i + 1 :]:
                 if rgba == other and compared(a, b):
                     problems.append(f"view {view['name']!r}: {a} and {b} share the colour {_hex(rgba)}")
         if view.get("kind") == "2D":
@@ -823,8 +905,10 @@ def _framing_problems(layout: RecordingLayout, view: dict, entities: list[str], 
         (px0, py0), (px1, py1) = points.min(axis=0), points.max(axis=0)
         margin = 0.02 * span
         if px0 < x0 - margin or px1 > x1 + margin or py0 < y0 - margin or py1 > y1 + margin:
-            problems.append(f"view {view['name']!r}: its visual bounds [{x0:.4g}, {x1:.4g}] x [{y0:.4g}, {y1:.4g}] "
-                            f"cut off data spanning [{px0:.4g}, {px1:.4g}] x [{py0:.4g}, {py1:.4g}]")
+            problems.append(
+                f"view {view['name']!r}: its visual bounds [{x0:.4g}, {x1:.4g}] x [{y0:.4g}, {y1:.4g}] "
+                f"cut off data spanning [{px0:.4g}, {px1:.4g}] x [{py0:.4g}, {py1:.4g}]"
+            )
         elif not images and max(px1 - px0, py1 - py0) < 0.1 * span:
             problems.append(f"view {view['name']!r}: the data fills under a tenth of its visual bounds")
     if expectation.labels_when_overlapping:
@@ -838,12 +922,14 @@ def _overlap_problems(layout: RecordingLayout, view: dict, entities: list[str], 
     points = [e for e in entities if e in layout.markers and e not in layout.labels]
     by_frame = {e: {f: xy.mean(axis=0) for f, xy in layout.positions[e] if len(xy) == 1} for e in points}
     for i, a in enumerate(points):
-        for b in points[i + 1:]:
+        for b in points[i + 1 :]:
             common = sorted(set(by_frame[a]) & set(by_frame[b]))
             if len(common) < 2:
                 continue
             gaps = np.array([np.linalg.norm(by_frame[a][f] - by_frame[b][f]) for f in common])
             if np.median(gaps) < distance:
-                problems.append(f"view {view['name']!r}: {a} and {b} overlap (median {np.median(gaps):.3g} apart) "
-                                f"with no labels to tell them apart")
+                problems.append(
+                    f"view {view['name']!r}: {a} and {b} overlap (median {np.median(gaps):.3g} apart) "
+                    f"with no labels to tell them apart"
+                )
     return problems

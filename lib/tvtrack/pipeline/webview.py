@@ -25,8 +25,16 @@ from urllib.parse import quote
 from .preflight import UsageError
 from .viewer import rerun_executable
 
-__all__ = ["DEFAULT_HOST", "DEFAULT_WEB_PORT", "DEFAULT_GRPC_PORT", "find_recording", "viewer_url", "port_free",
-           "WebViewer", "serve"]
+__all__ = [
+    "DEFAULT_HOST",
+    "DEFAULT_WEB_PORT",
+    "DEFAULT_GRPC_PORT",
+    "find_recording",
+    "viewer_url",
+    "port_free",
+    "WebViewer",
+    "serve",
+]
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_WEB_PORT = 9090
@@ -78,8 +86,13 @@ class WebViewer:
         Ports of the viewer app and of the recording; both must be free.
     """
 
-    def __init__(self, recording: str | Path, host: str = DEFAULT_HOST, web_port: int = DEFAULT_WEB_PORT,
-                 grpc_port: int = DEFAULT_GRPC_PORT):
+    def __init__(
+        self,
+        recording: str | Path,
+        host: str = DEFAULT_HOST,
+        web_port: int = DEFAULT_WEB_PORT,
+        grpc_port: int = DEFAULT_GRPC_PORT,
+    ):
         self.recording = find_recording(recording)
         self.host, self.web_port, self.grpc_port = host, web_port, grpc_port
         self.process: subprocess.Popen | None = None
@@ -97,9 +110,22 @@ class WebViewer:
         # BROWSER=/bin/true: rerun must not open a browser itself (serve() decides that).
         env = {**os.environ, "BROWSER": "/bin/true", "RERUN_ANALYTICS": "0"}
         self.process = subprocess.Popen(
-            [rerun_executable(), "--web-viewer", "--bind", self.host, "--web-viewer-port", str(self.web_port),
-             "--port", str(self.grpc_port), str(self.recording)],
-            env=env, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            [
+                rerun_executable(),
+                "--web-viewer",
+                "--bind",
+                self.host,
+                "--web-viewer-port",
+                str(self.web_port),
+                "--port",
+                str(self.grpc_port),
+                str(self.recording),
+            ],
+            env=env,
+            start_new_session=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
         probe = "127.0.0.1" if self.host in ("0.0.0.0", "") else self.host
         deadline = time.monotonic() + START_TIMEOUT_S
         while not (_listening(probe, self.web_port) and _listening(probe, self.grpc_port)):
@@ -108,8 +134,10 @@ class WebViewer:
                 raise RuntimeError(f"rerun --web-viewer exited with code {self.process.returncode}: {err[-500:]}")
             if time.monotonic() > deadline:
                 self.stop()
-                raise TimeoutError(f"rerun --web-viewer did not listen on ports {self.web_port} and "
-                                   f"{self.grpc_port} within {START_TIMEOUT_S:.0f} s")
+                raise TimeoutError(
+                    f"rerun --web-viewer did not listen on ports {self.web_port} and "
+                    f"{self.grpc_port} within {START_TIMEOUT_S:.0f} s"
+                )
             time.sleep(0.2)
         return self
 
@@ -139,12 +167,17 @@ def _interrupt(signum, frame):
     raise KeyboardInterrupt
 
 
-def serve(target: str | Path, host: str = DEFAULT_HOST, port: int = DEFAULT_WEB_PORT,
-          grpc_port: int = DEFAULT_GRPC_PORT, open_browser: bool = True) -> int:
+def serve(
+    target: str | Path,
+    host: str = DEFAULT_HOST,
+    port: int = DEFAULT_WEB_PORT,
+    grpc_port: int = DEFAULT_GRPC_PORT,
+    open_browser: bool = True,
+) -> int:
     """Serve ``target``'s recording until Ctrl-C; print the URL and open it in a browser where there is one
     (never under CI). Returns the exit code."""
     viewer = WebViewer(target, host, port, grpc_port)
-    signal.signal(signal.SIGTERM, _interrupt)   # a plain kill also ends the viewer's process group
+    signal.signal(signal.SIGTERM, _interrupt)  # a plain kill also ends the viewer's process group
     with viewer:
         print(f"serving {viewer.recording}\nopen {viewer.url}\n(Ctrl-C stops)", flush=True)
         if open_browser and not os.environ.get("CI"):

@@ -114,12 +114,15 @@ def settle_time_ci(
     def statistic(idx, axis=-1):
         idx = np.asarray(idx).astype(int)  # bootstrap_ci hands the trial indices over as floats
         rows = np.atleast_2d(idx)
-        out = np.array([settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance) for i in rows])
+        out = np.array(
+            [settle_time(per_scan[i].mean(axis=0), steady[i].mean(), scan_duration, tolerance) for i in rows]
+        )
         return out[0] if idx.ndim == 1 else out
 
     value = float(settle_time(per_scan.mean(axis=0), steady.mean(), scan_duration, tolerance))
-    est = bootstrap_ci((np.arange(n_trials),), statistic, n_resamples=n_boot, confidence=confidence, rng=rng,
-                       method="percentile")
+    est = bootstrap_ci(
+        (np.arange(n_trials),), statistic, n_resamples=n_boot, confidence=confidence, rng=rng, method="percentile"
+    )
     return Estimate(value, est.stderr, est.ci_low, est.ci_high, n_trials, confidence, est.method)
 
 

@@ -36,10 +36,23 @@ from ...filters.alphabeta import (
 from ...filters.polynomial import taylor_transition
 from ...montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci, zero_events_bound
 
-__all__ = ["window_statistic", "window_sum_of_squares", "threshold_from_std", "variance_independent", "variance_stationary",
-           "velocity_autocovariance", "statistic_std", "scheduled_statistic_std", "calibrate_threshold",
-           "false_alarm_rates", "detection_time_summary", "first_detection_roc", "null_quantile_threshold",
-           "first_alarm_within", "track2_thresholds"]
+__all__ = [
+    "window_statistic",
+    "window_sum_of_squares",
+    "threshold_from_std",
+    "variance_independent",
+    "variance_stationary",
+    "velocity_autocovariance",
+    "statistic_std",
+    "scheduled_statistic_std",
+    "calibrate_threshold",
+    "false_alarm_rates",
+    "detection_time_summary",
+    "first_detection_roc",
+    "null_quantile_threshold",
+    "first_alarm_within",
+    "track2_thresholds",
+]
 
 
 def _check_window(n) -> int:
@@ -94,7 +107,7 @@ def window_sum_of_squares(v, n: int) -> np.ndarray:
     T = v.shape[-1]
     Q = np.full(v.shape, np.nan)
     if T >= 2 * n:
-        d2 = (v[..., n:] - v[..., :-n]) ** 2                      # d2[j] = (v[j+n] - v[j])^2
+        d2 = (v[..., n:] - v[..., :-n]) ** 2  # d2[j] = (v[j+n] - v[j])^2
         c = np.concatenate([np.zeros(v.shape[:-1] + (1,)), np.cumsum(d2, axis=-1)], axis=-1)
         t = np.arange(2 * n - 1, T)
         Q[..., t] = c[..., t - n + 1] - c[..., t - 2 * n + 1]
@@ -192,9 +205,9 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     out = np.full(T, np.nan)
     if T < 2 * n:
         return out
-    P = error_covariance_sequence(G, sigma_eps)                     # (T, d, d) after each frame
+    P = error_covariance_sequence(G, sigma_eps)  # (T, d, d) after each frame
     ends = np.arange(2 * n - 1, T)
-    starts = ends - 2 * n + 1                                       # first frame of the older window
+    starts = ends - 2 * n + 1  # first frame of the older window
     m = d + 2
     Y = np.zeros((ends.size, m, m))
     Y[starts > 0, :d, :d] = P[starts[starts > 0] - 1]
@@ -203,11 +216,11 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     M = np.broadcast_to(np.eye(m), Y.shape).copy()
     L = np.zeros((ends.size, m))
     for s in range(2 * n):
-        K = G[starts + s]                                           # (B, d)
-        A = (np.eye(d) - K[:, :, None] * h) @ F                     # (B, d, d)
+        K = G[starts + s]  # (B, d)
+        A = (np.eye(d) - K[:, :, None] * h) @ F  # (B, d, d)
         col, other = (d, d + 1) if s < n else (d + 1, d)
         M[:, :d, :d] = A
-        M[:, col, :d] = A[:, 1, :]                                  # the sum gains the new velocity error
+        M[:, col, :d] = A[:, 1, :]  # the sum gains the new velocity error
         M[:, other, :d] = 0.0
         L[:, :d] = K
         L[:, col] = K[:, 1]
@@ -255,8 +268,16 @@ def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: f
     return np.where(np.isfinite(c), c, np.inf)
 
 
-def calibrate_threshold(gains, n: int, alpha: float, frames, n_sims: int, rng: np.random.Generator,
-                        sigma_eps: float = 1.0, confidence: float = 0.95) -> Estimate:
+def calibrate_threshold(
+    gains,
+    n: int,
+    alpha: float,
+    frames,
+    n_sims: int,
+    rng: np.random.Generator,
+    sigma_eps: float = 1.0,
+    confidence: float = 0.95,
+) -> Estimate:
     """Threshold by simulation under no manoeuvre: the ``1 - alpha`` quantile of ``|S_t|``.
 
     White Gaussian noise of RMS ``sigma_eps`` on a constant-velocity truth (the filter is
@@ -325,8 +346,9 @@ def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming
         "per_test_fixed_frame": proportion_ci(int(alarm[:, test_frame].sum()), runs),
         "per_test_at_arming": proportion_ci(int(alarm[:, arming_frame].sum()), runs),
         "per_test_pooled": _pooled_rate(alarm[:, armed]),
-        "per_run_before_onset": (proportion_ci(int(alarm[:, before_onset].any(axis=1).sum()), runs)
-                                 if before_onset.any() else None),
+        "per_run_before_onset": (
+            proportion_ci(int(alarm[:, before_onset].any(axis=1).sum()), runs) if before_onset.any() else None
+        ),
         "per_run_whole": proportion_ci(int(alarm[:, armed].any(axis=1).sum()), runs),
     }
 
@@ -334,9 +356,16 @@ def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming
 def _pooled_rate(alarm) -> Estimate:
     """Per-test rate pooled over the tested frames of independent runs, ``alarm`` (runs, tests)."""
     runs = alarm.shape[0]
-    if not alarm.any():                     # zero events: the bound they certify, never [0, 0]
-        return Estimate(0.0, float("nan"), 0.0, zero_events_bound(runs), runs, 0.95,
-                        f"zero-events bound over {runs} independent runs")
+    if not alarm.any():  # zero events: the bound they certify, never [0, 0]
+        return Estimate(
+            0.0,
+            float("nan"),
+            0.0,
+            zero_events_bound(runs),
+            runs,
+            0.95,
+            f"zero-events bound over {runs} independent runs",
+        )
     return mean_ci(alarm.mean(axis=1))
 
 
@@ -406,8 +435,7 @@ def first_detection_roc(stat_alt, stat_null, armed, onset: int, pfa_targets):
     before = m_[..., :onset].max(axis=-1).ravel()
     within = m_.max(axis=-1).ravel()
     g_ = np.quantile(null, 1 - np.asarray(pfa_targets, dtype=float))
-    return (np.array([np.mean(null > g) for g in g_]),
-            np.array([np.mean((before <= g) & (within > g)) for g in g_]))
+    return (np.array([np.mean(null > g) for g in g_]), np.array([np.mean((before <= g) & (within > g)) for g in g_]))
 
 
 def null_quantile_threshold(stat_null, armed, pfa: float) -> float:

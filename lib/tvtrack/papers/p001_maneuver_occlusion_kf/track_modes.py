@@ -107,8 +107,10 @@ class TrackModeConfig:
         if self.threshold_index not in ("count", "frame"):
             raise ValueError(f"parameter 'threshold_index' = {self.threshold_index!r}; it must be 'count' or 'frame'")
         if self.arm_k is not None and self.arm_k < 2 * self.window + 1:
-            raise ValueError(f"parameter 'arm_k' = {self.arm_k}; it must be >= 2 window + 1 = {2 * self.window + 1} "
-                             f"(a window holding the first measurement's velocity 3 Z_1 alarms in every run)")
+            raise ValueError(
+                f"parameter 'arm_k' = {self.arm_k}; it must be >= 2 window + 1 = {2 * self.window + 1} "
+                f"(a window holding the first measurement's velocity 3 Z_1 alarms in every run)"
+            )
         th = np.atleast_1d(np.asarray(self.threshold, dtype=float))
         if th.ndim != 1 or np.any(~(th > 0)):
             raise ValueError("parameter 'threshold' must be a positive number or a 1-D array of them")
@@ -117,8 +119,10 @@ class TrackModeConfig:
             if th3.ndim != 1 or np.any(~(th3 > 0)):
                 raise ValueError("parameter 'threshold_track3' must be None, a positive number or a 1-D array of them")
         elif self.detect_in_track3 and th.size > 1:
-            raise ValueError("parameter 'threshold_track3' is required with detect_in_track3 and a threshold array "
-                             "(the TRACK2 array, indexed by the TRACK2 count, does not apply in TRACK3)")
+            raise ValueError(
+                "parameter 'threshold_track3' is required with detect_in_track3 and a threshold array "
+                "(the TRACK2 array, indexed by the TRACK2 count, does not apply in TRACK3)"
+            )
         for name in ("arm_k", "rearm_after_gap", "force_switch_k"):
             v = getattr(self, name)
             if v is not None and not (isinstance(v, (int, np.integer)) and v >= 0):
@@ -156,13 +160,14 @@ def _quadratic_fit(z_window, sigma_eps):
     """LS quadratic through ``window`` samples ending now: state at the newest sample and the
     noise covariance ``sigma^2 (H^T H)^-1``. ``z_window`` (m, w)."""
     w = z_window.shape[-1]
-    H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))   # lags back from the newest sample
-    pinv = np.linalg.pinv(H)                                        # (3, w)
+    H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))  # lags back from the newest sample
+    pinv = np.linalg.pinv(H)  # (3, w)
     return z_window @ pinv.T, sigma_eps**2 * pinv @ pinv.T
 
 
-def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
-                    covariance: bool = True) -> TrackModeOutput:
+def run_track_modes(
+    z, visible, config: TrackModeConfig, sigma_eps: float = 1.0, covariance: bool = True
+) -> TrackModeOutput:
     """Run the mode logic on measurements of independent channels.
 
     Parameters
@@ -202,9 +207,9 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
     # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
     B = int(np.prod(batch, dtype=np.int64))
-    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))                        # (T, B)
+    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))  # (T, B)
     visible = np.asarray(visible, dtype=bool)
-    if visible.ndim == 1:                           # one visibility for every trial: (T, 1) broadcasts
+    if visible.ndim == 1:  # one visibility for every trial: (T, 1) broadcasts
         vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
     else:
         vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
@@ -231,24 +236,24 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
     P = np.zeros((B, 3, 3))
     # per-trial counters start as scalars shared by all trials (lockstep) and become arrays
     # at the first frame where trials differ (partial visibility, a detection)
-    k = np.int64(0)                                 # measurements since the (re)start
-    row = np.int64(-1)                              # gain-table row = in3 kmax + min(k, bound) - 1
+    k = np.int64(0)  # measurements since the (re)start
+    row = np.int64(-1)  # gain-table row = in3 kmax + min(k, bound) - 1
     cap = np.int64(cfg.k_bound2 - 1)
-    in3 = np.int64(0)                               # 0 = TRACK2, 1 = TRACK3
-    any3 = False                                    # some trial is in TRACK3
-    kalman = np.zeros(B, dtype=bool)                # restart C: Kalman gains until kappa1 reaches the bound
+    in3 = np.int64(0)  # 0 = TRACK2, 1 = TRACK3
+    any3 = False  # some trial is in TRACK3
+    kalman = np.zeros(B, dtype=bool)  # restart C: Kalman gains until kappa1 reaches the bound
     had_gap = False
     since_visible = np.int64(0)
     detected_at = np.full(B, -1, dtype=np.int64)
     detector_on = not forced
-    sum_old = sum_new = None                        # running window sums of output velocities
+    sum_old = sum_new = None  # running window sums of output velocities
 
     out_x = np.empty((T, 3, B))
     out_var = np.full((T, 3, B), np.nan) if covariance else None
     out_gate = np.full((T, B), np.nan) if covariance else None
-    out_K = np.zeros((T, 3, B))                     # gains used (0 while lost)
-    out_mode = np.zeros((T, B), dtype=np.int8)      # COAST unless written
-    out_S = np.full((T, B), np.nan)                 # NaN unless tested
+    out_K = np.zeros((T, 3, B))  # gains used (0 while lost)
+    out_mode = np.zeros((T, B), dtype=np.int8)  # COAST unless written
+    out_S = np.full((T, B), np.nan)  # NaN unless tested
     out_c = np.full((T, B), np.nan)
 
     for t in range(T):
@@ -317,8 +322,8 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
             alarm = seen & (in3 == 0) & (k == cfg.force_switch_k)
         elif detector_on and t >= 2 * n - 1:
             if sum_old is None:
-                sum_old = out_x[t - 2 * n + 1:t - n + 1, 1].sum(axis=0)
-                sum_new = out_x[t - n + 1:t + 1, 1].sum(axis=0)
+                sum_old = out_x[t - 2 * n + 1 : t - n + 1, 1].sum(axis=0)
+                sum_new = out_x[t - n + 1 : t + 1, 1].sum(axis=0)
             else:
                 mid = out_x[t - n, 1]
                 np.subtract(mid, out_x[t - 2 * n, 1], out=tmp)
@@ -349,7 +354,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 prior[:, 2, 2] = cfg.restart_accel_var
                 P = np.where(alarm[:, None, None], prior, P)
                 kalman = kalman | alarm
-                k = np.where(alarm, 0, k)                    # measurements since the restart
+                k = np.where(alarm, 0, k)  # measurements since the restart
                 row = np.where(alarm, bound3_row, row)
             elif cfg.restart == "A":
                 x2 = np.where(alarm, 0.0, x2)
@@ -358,7 +363,7 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 k = np.where(alarm, cfg.restart_k, k)
                 row = np.where(alarm, kmax + min(cfg.restart_k, cfg.k_bound3) - 1, row)
             else:
-                zw = zt[max(t - n + 1, 0):t + 1].T
+                zw = zt[max(t - n + 1, 0) : t + 1].T
                 xb, Pb = _quadratic_fit(zw, sigma_eps)
                 x0, x1, x2 = (np.where(alarm, xb[:, i], v) for i, v in enumerate((x0, x1, x2)))
                 if covariance:
@@ -366,13 +371,13 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
                 k = np.where(alarm, zw.shape[-1], k)
                 row = np.where(alarm, kmax + min(zw.shape[-1], cfg.k_bound3) - 1, row)
             if sum_new is not None:
-                sum_new = sum_new + (x1 - x1_before)     # the window holds the restarted velocity (B1)
+                sum_new = sum_new + (x1 - x1_before)  # the window holds the restarted velocity (B1)
             in3 = np.where(alarm, 1, in3)
             any3 = True
             cap = np.where(alarm, kmax + cfg.k_bound3 - 1, cap)
             if not detect3 and in3.all():
                 detector_on = False
-            out_x[t, 1] = x1                            # a restart may have changed the velocity
+            out_x[t, 1] = x1  # a restart may have changed the velocity
 
         out_x[t, 0], out_x[t, 2] = x0, x2
         if covariance:
@@ -388,11 +393,19 @@ def run_track_modes(z, visible, config: TrackModeConfig, sigma_eps: float = 1.0,
 
     if covariance:
         out_var, out_gate = back(out_var, (3,)), back(out_gate)
-    else:                                           # NaN, without allocating (read-only views)
+    else:  # NaN, without allocating (read-only views)
         out_var = np.broadcast_to(np.nan, batch + (T, 3))
         out_gate = np.broadcast_to(np.nan, batch + (T,))
-    return TrackModeOutput(back(out_x, (3,)), out_var, out_gate, back(out_K, (3,)),
-                           back(out_mode), back(out_S), back(out_c), detected_at.reshape(batch))
+    return TrackModeOutput(
+        back(out_x, (3,)),
+        out_var,
+        out_gate,
+        back(out_K, (3,)),
+        back(out_mode),
+        back(out_S),
+        back(out_c),
+        detected_at.reshape(batch),
+    )
 
 
 def manoeuvre_truth(v0: float, accel: float, onset_frame: int, n_frames: int) -> np.ndarray:

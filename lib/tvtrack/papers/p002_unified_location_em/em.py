@@ -41,8 +41,14 @@ from scipy.special import ndtr
 from .model import pixel_probabilities
 
 __all__ = [
-    "PixelEntries", "pixel_entries", "per_frame_entries", "EMResult", "unified_location_em",
-    "match_labels", "responsibility_maps", "log_likelihood",
+    "PixelEntries",
+    "pixel_entries",
+    "per_frame_entries",
+    "EMResult",
+    "unified_location_em",
+    "match_labels",
+    "responsibility_maps",
+    "log_likelihood",
 ]
 
 _SQRT_2PI = np.sqrt(2.0 * np.pi)
@@ -90,17 +96,30 @@ def pixel_entries(counts) -> PixelEntries:
     if counts.size and counts.min() < 0:
         raise ValueError(f"counts has a negative value {counts.min()}; counts must be >= 0")
     n, t, r, c = np.nonzero(counts)
-    return PixelEntries(trial=n, frame=t, row=r.astype(float), col=c.astype(float),
-                        count=counts[n, t, r, c].astype(float), n_trials=counts.shape[0],
-                        n_frames=counts.shape[1], shape=counts.shape[2:])
+    return PixelEntries(
+        trial=n,
+        frame=t,
+        row=r.astype(float),
+        col=c.astype(float),
+        count=counts[n, t, r, c].astype(float),
+        n_trials=counts.shape[0],
+        n_frames=counts.shape[1],
+        shape=counts.shape[2:],
+    )
 
 
 def per_frame_entries(entries: PixelEntries) -> PixelEntries:
     """Treat every (trial, frame) as its own one-frame trial ``trial * T + frame`` (for marks)."""
-    return PixelEntries(trial=entries.trial * entries.n_frames + entries.frame,
-                        frame=np.zeros_like(entries.frame), row=entries.row, col=entries.col,
-                        count=entries.count, n_trials=entries.n_trials * entries.n_frames,
-                        n_frames=1, shape=entries.shape)
+    return PixelEntries(
+        trial=entries.trial * entries.n_frames + entries.frame,
+        frame=np.zeros_like(entries.frame),
+        row=entries.row,
+        col=entries.col,
+        count=entries.count,
+        n_trials=entries.n_trials * entries.n_frames,
+        n_frames=1,
+        shape=entries.shape,
+    )
 
 
 @dataclass
@@ -208,22 +227,22 @@ def _axis_tables(mu, s, n_cells: int, second: bool):
     # standardised edges, clipped where the Gaussian tail is below double precision
     # (exp(-37^2/2) ~ 1e-298 is still a normal number: no slow denormal arithmetic)
     z = np.clip((edges - mu[..., None]) / s[..., None], -37.0, 37.0)
-    G = ndtr(-np.abs(z))                            # tail mass beyond each edge: no cancellation
+    G = ndtr(-np.abs(z))  # tail mass beyond each edge: no cancellation
     phi = np.exp(-0.5 * z * z) / _SQRT_2PI
     a, b = z[..., :-1], z[..., 1:]
     Ga, Gb = G[..., :-1], G[..., 1:]
-    F = np.where(b <= 0, Gb - Ga, np.where(a >= 0, Ga - Gb, 1.0 - Ga - Gb))   # (U3)
+    F = np.where(b <= 0, Gb - Ga, np.where(a >= 0, Ga - Gb, 1.0 - Ga - Gb))  # (U3)
     ok = F > _TINY
     Fs = np.where(ok, F, 1.0)
     m = mu[..., None]
     sd = s[..., None]
     centre = edges[:-1] + 0.5
     dphi = (phi[..., :-1] - phi[..., 1:]) / Fs
-    mean = np.clip(np.where(ok, m + sd * dphi, centre), centre - 0.5, centre + 0.5)   # (U6)
+    mean = np.clip(np.where(ok, m + sd * dphi, centre), centre - 0.5, centre + 0.5)  # (U6)
     if not second:
         return F, mean, None
     za, zb = a * phi[..., :-1], b * phi[..., 1:]
-    var_mu = sd * sd * (1.0 + (za - zb) / Fs)                          # E[(z - mu)^2 | pixel]
+    var_mu = sd * sd * (1.0 + (za - zb) / Fs)  # E[(z - mu)^2 | pixel]
     ez2 = np.where(ok, var_mu + 2 * m * (mean - m) + m * m, centre * centre + 1.0 / 12.0)
     return F, np.asarray(mean), np.maximum(ez2, mean * mean)
 
@@ -242,10 +261,10 @@ def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
     Fx, mx, sx = _axis_tables(theta[:, None, :, 0] + theta[:, None, :, 2] * t, s, cols, second)
     Fy, my, sy = _axis_tables(theta[:, None, :, 1] + theta[:, None, :, 3] * t, s, rows, second)
     ix, iy = work.index(theta.shape[1], cols), work.index(theta.shape[1], rows, rows=True)
-    fx, fy = Fx.ravel()[ix], Fy.ravel()[iy]                           # (nnz, Q)
-    pv = p[work.loc] * (fx * fy)                                      # p_j F_jikl
-    v = np.maximum(p_noise[work.loc] / (rows * cols) + pv.sum(axis=1), _TINY)   # (U1)
-    w = pv * (work.count / v)[:, None]                                # n_ikl lambda_jikl
+    fx, fy = Fx.ravel()[ix], Fy.ravel()[iy]  # (nnz, Q)
+    pv = p[work.loc] * (fx * fy)  # p_j F_jikl
+    v = np.maximum(p_noise[work.loc] / (rows * cols) + pv.sum(axis=1), _TINY)  # (U1)
+    w = pv * (work.count / v)[:, None]  # n_ikl lambda_jikl
     te = times[work.frame][:, None]
     wt = w * te
     ex, ey = mx.ravel()[ix], my.ravel()[iy]
@@ -281,9 +300,9 @@ def _m_step(sums, theta, static: bool, prior=None):
         det = A * C - B * B
         bad = (A <= 1e-12) | (det <= 1e-9 * np.maximum(A * C, 1e-300))
         ds = np.where(bad, 1.0, det)
-        new[..., 0] = (C * Dx - B * Dtx) / ds                        # (11) x0
-        new[..., 1] = (C * Dy - B * Dty) / ds                        # (11) y0
-        new[..., 2] = (A * Dtx - B * Dx) / ds                        # (11) Vx with the new x0
+        new[..., 0] = (C * Dx - B * Dtx) / ds  # (11) x0
+        new[..., 1] = (C * Dy - B * Dty) / ds  # (11) y0
+        new[..., 2] = (A * Dtx - B * Dx) / ds  # (11) Vx with the new x0
         new[..., 3] = (A * Dty - B * Dy) / ds
     bad = bad | ~np.isfinite(new).all(axis=-1)
     new = np.where(bad[..., None], theta, new)
@@ -328,8 +347,8 @@ def match_labels(estimate, reference, times=None):
     tm = 0.0 if times is None else float(np.mean(times))
     pe = est[..., :2] + tm * est[..., 2:]
     pr = ref[..., :2] + tm * ref[..., 2:]
-    perms = np.array(list(itertools.permutations(range(q))))           # (P, Q), identity first
-    cost = ((pe[:, perms] - pr[:, None]) ** 2).sum(axis=(-1, -2))      # (N, P)
+    perms = np.array(list(itertools.permutations(range(q))))  # (P, Q), identity first
+    cost = ((pe[:, perms] - pr[:, None]) ** 2).sum(axis=(-1, -2))  # (N, P)
     best = cost.argmin(axis=1)
     # ties (e.g. merged objects) keep the given order
     best = np.where(cost[np.arange(len(best)), best] < cost[:, 0], best, 0)
@@ -360,12 +379,25 @@ def _broadcast(value, shape, name, positive: bool):
     return arr
 
 
-def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, times=None,
-                        motion: str = "linear", tol_px: float = 1e-6, max_iter: int = 5000,
-                        accelerate: str | None = None, estimate_weights: bool = False,
-                        estimate_sigma: bool = False, merge_px: float = 0.05,
-                        min_in_frame_mass: float = 0.99, history: bool = False,
-                        prior_sd=None) -> EMResult:
+def unified_location_em(
+    entries: PixelEntries,
+    theta0,
+    sigma_px,
+    p,
+    p_noise,
+    *,
+    times=None,
+    motion: str = "linear",
+    tol_px: float = 1e-6,
+    max_iter: int = 5000,
+    accelerate: str | None = None,
+    estimate_weights: bool = False,
+    estimate_sigma: bool = False,
+    merge_px: float = 0.05,
+    min_in_frame_mass: float = 0.99,
+    history: bool = False,
+    prior_sd=None,
+) -> EMResult:
     """Maximum-likelihood linear-motion states of ``Q`` objects from all ``T`` frames at once.
 
     Parameters
@@ -430,8 +462,10 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
     if accelerate not in (None, "squarem"):
         raise ValueError(f"accelerate = {accelerate!r} must be None or 'squarem'")
     if accelerate and (estimate_weights or estimate_sigma):
-        raise ValueError("accelerate = 'squarem' extrapolates the motion states only; it cannot be "
-                         "combined with estimate_weights or estimate_sigma")
+        raise ValueError(
+            "accelerate = 'squarem' extrapolates the motion states only; it cannot be "
+            "combined with estimate_weights or estimate_sigma"
+        )
     if merge_px < 0:
         raise ValueError(f"merge_px = {merge_px} must be >= 0")
     if not 0 < min_in_frame_mass <= 1:
@@ -452,17 +486,20 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
     if prior_sd is not None:
         sd_x, sd_v = (float(v) for v in prior_sd)
         if not (sd_x > 0 and sd_v >= 0) or static or estimate_sigma:
-            raise ValueError(f"prior_sd = {prior_sd}: needs position sd > 0, velocity sd >= 0, linear motion "
-                             f"and fixed sigma")
-        prior = (theta0, sigma ** 2 / sd_x ** 2, sigma ** 2 / max(sd_v, 1e-9) ** 2)
+            raise ValueError(
+                f"prior_sd = {prior_sd}: needs position sd > 0, velocity sd >= 0, linear motion and fixed sigma"
+            )
+        prior = (theta0, sigma**2 / sd_x**2, sigma**2 / max(sd_v, 1e-9) ** 2)
 
     def log_prior(th, rows):
         if prior is None:
             return 0.0
         mean, a, c = (x[rows] for x in prior)
         sg2 = sigma[rows] ** 2
-        return -0.5 * ((a / sg2)[..., None] * (th[..., :2] - mean[..., :2]) ** 2
-                       + (c / sg2)[..., None] * (th[..., 2:] - mean[..., 2:]) ** 2).sum(axis=(1, 2))
+        return -0.5 * (
+            (a / sg2)[..., None] * (th[..., :2] - mean[..., :2]) ** 2
+            + (c / sg2)[..., None] * (th[..., 2:] - mean[..., 2:]) ** 2
+        ).sum(axis=(1, 2))
 
     theta = theta0.copy()
     if static:
@@ -511,8 +548,8 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
             t2, *_, l1, bad2 = step(work, t1, pw_a, p0_a, sg_a)
             r = t1 - th
             v = t2 - t1 - r
-            nr = np.sqrt((r ** 2).sum(axis=(1, 2)))
-            nv = np.sqrt((v ** 2).sum(axis=(1, 2)))
+            nr = np.sqrt((r**2).sum(axis=(1, 2)))
+            nv = np.sqrt((v**2).sum(axis=(1, 2)))
             alpha = np.where(nv > 0, np.minimum(-nr / np.where(nv > 0, nv, 1.0), -1.0), -1.0)
             tx = th - 2 * alpha[:, None, None] * r + alpha[:, None, None] ** 2 * v
             t3, *_, lx, bad3 = step(work, tx, pw_a, p0_a, sg_a)
@@ -542,8 +579,9 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
     # final log-likelihood at the returned estimate
     live = np.flatnonzero(photons > 0)
     if live.size:
-        _, loglik[live] = _e_step(_Work(entries, live), theta[live], pw[live], p0[live], sigma[live],
-                                  times, entries.shape, False)
+        _, loglik[live] = _e_step(
+            _Work(entries, live), theta[live], pw[live], p0[live], sigma[live], times, entries.shape, False
+        )
     cap_hit = ~converged & ~degenerate & (n_iter >= max_iter)
     tm = float(times.mean())
     pos = theta[..., :2] + tm * theta[..., 2:]
@@ -556,9 +594,22 @@ def unified_location_em(entries: PixelEntries, theta0, sigma_px, p, p_noise, *, 
     else:
         swapped = np.zeros(n, dtype=bool)
     left = _in_frame_mass(theta, sigma, times, entries.shape) < min_in_frame_mass
-    return EMResult(theta=theta, p=pw, p_noise=p0, sigma=sigma, loglik=loglik, n_iter=n_iter,
-                    converged=converged, cap_hit=cap_hit, degenerate=degenerate, merged=merged,
-                    swapped=swapped, left_frame=left, history_theta=hist_t, history_loglik=hist_l)
+    return EMResult(
+        theta=theta,
+        p=pw,
+        p_noise=p0,
+        sigma=sigma,
+        loglik=loglik,
+        n_iter=n_iter,
+        converged=converged,
+        cap_hit=cap_hit,
+        degenerate=degenerate,
+        merged=merged,
+        swapped=swapped,
+        left_frame=left,
+        history_theta=hist_t,
+        history_loglik=hist_l,
+    )
 
 
 def log_likelihood(counts, theta, times, sigma_px, p, p_noise) -> np.ndarray:
@@ -593,7 +644,7 @@ def responsibility_maps(theta, times, shape, sigma_px, p, p_noise) -> np.ndarray
         Sums to 1 over the first axis in every pixel.
     """
     theta = np.asarray(theta, dtype=float)
-    F = pixel_probabilities(theta, times, shape, sigma_px)             # (Q, T, R, C)
+    F = pixel_probabilities(theta, times, shape, sigma_px)  # (Q, T, R, C)
     pv = np.asarray(p, dtype=float)[:, None, None, None] * F
     noise = np.full((1,) + F.shape[1:], p_noise / (shape[0] * shape[1]))
     parts = np.concatenate([pv, noise], axis=0)

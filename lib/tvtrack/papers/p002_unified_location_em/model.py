@@ -24,8 +24,16 @@ import numpy as np
 from tvtrack.render import gaussian_spot
 
 __all__ = [
-    "SceneGeometry", "scene_geometry", "draw_truth", "designate", "frame_times",
-    "pixel_probabilities", "expected_counts", "simulate_counts", "scene_batches", "SceneBatch",
+    "SceneGeometry",
+    "scene_geometry",
+    "draw_truth",
+    "designate",
+    "frame_times",
+    "pixel_probabilities",
+    "expected_counts",
+    "simulate_counts",
+    "scene_batches",
+    "SceneBatch",
     "mixture_weights",
 ]
 
@@ -62,8 +70,14 @@ def frame_times(n_frames: int) -> np.ndarray:
     return np.arange(n_frames, dtype=float)
 
 
-def scene_geometry(n_objects: int, n_frames: int, separation_sigma: float, pixel_over_sigma: float,
-                   velocity_sigma=(0.2, 0.1), margin_sigma: float = 6.0) -> SceneGeometry:
+def scene_geometry(
+    n_objects: int,
+    n_frames: int,
+    separation_sigma: float,
+    pixel_over_sigma: float,
+    velocity_sigma=(0.2, 0.1),
+    margin_sigma: float = 6.0,
+) -> SceneGeometry:
     """Reference truth and window for ``Q`` objects on parallel tracks separated along ``y``.
 
     Parameters
@@ -94,12 +108,12 @@ def scene_geometry(n_objects: int, n_frames: int, separation_sigma: float, pixel
     v = np.asarray(velocity_sigma, dtype=float) * s
     start = np.zeros((n_objects, 2))
     start[:, 1] = np.arange(n_objects) * separation_sigma * s
-    ends = start[None] + times[:, None, None] * v                      # (T, Q, 2)
+    ends = start[None] + times[:, None, None] * v  # (T, Q, 2)
     lo = ends.min(axis=(0, 1))
     hi = ends.max(axis=(0, 1))
     pad = margin_sigma * s
-    start = start - lo + pad - 0.5                                     # window edge at -0.5 px
-    span = hi - lo + 2 * pad + 1.0                                     # +1 px for the phase
+    start = start - lo + pad - 0.5  # window edge at -0.5 px
+    span = hi - lo + 2 * pad + 1.0  # +1 px for the phase
     cols, rows = (int(np.ceil(w)) for w in span)
     theta = np.concatenate([start, np.broadcast_to(v, (n_objects, 2))], axis=1)
     return SceneGeometry(theta=theta, shape=(rows, cols), sigma_px=s)
@@ -147,8 +161,7 @@ def mixture_weights(photons: float, noise_per_pixel: float, n_pixels: int, n_obj
     p_noise : float
     """
     if photons < 0 or noise_per_pixel < 0 or photons * n_objects + noise_per_pixel <= 0:
-        raise ValueError(f"photons = {photons} and noise_per_pixel = {noise_per_pixel} must be >= 0, "
-                         "not both zero")
+        raise ValueError(f"photons = {photons} and noise_per_pixel = {noise_per_pixel} must be >= 0, not both zero")
     total = n_objects * photons + noise_per_pixel * n_pixels
     return np.full(n_objects, photons / total), noise_per_pixel * n_pixels / total
 
@@ -168,7 +181,7 @@ def pixel_probabilities(theta, times, shape, sigma_px) -> np.ndarray:
     ndarray, shape (..., Q, T, rows, cols)
         ``F_xji F_yjk``; summed over the pixels it gives the object's in-window PSF mass.
     """
-    pos = np.moveaxis(_positions(theta, times), -2, -3)               # (..., Q, T, 2)
+    pos = np.moveaxis(_positions(theta, times), -2, -3)  # (..., Q, T, 2)
     return gaussian_spot(pos, shape, sigma_px)
 
 
@@ -177,8 +190,16 @@ def expected_counts(theta, times, shape, sigma_px, photons: float, noise_per_pix
     return photons * pixel_probabilities(theta, times, shape, sigma_px).sum(axis=-4) + noise_per_pixel
 
 
-def simulate_counts(rng: np.random.Generator, theta, times, shape, sigma_px: float, photons: float,
-                    noise_per_pixel: float, photon_model: str = "fixed") -> np.ndarray:
+def simulate_counts(
+    rng: np.random.Generator,
+    theta,
+    times,
+    shape,
+    sigma_px: float,
+    photons: float,
+    noise_per_pixel: float,
+    photon_model: str = "fixed",
+) -> np.ndarray:
     """Photon counts of every pixel of every frame.
 
     Parameters
@@ -221,7 +242,7 @@ def simulate_counts(rng: np.random.Generator, theta, times, shape, sigma_px: flo
     counts = rng.poisson(noise_per_pixel, size=(n_trials, n_frames, rows, cols)).astype(np.int32)
     if photons == 0:
         return counts
-    pos = _positions(theta, times)                                     # (N, T, Q, 2)
+    pos = _positions(theta, times)  # (N, T, Q, 2)
     if photon_model == "fixed":
         m = int(photons)
         xy = pos[..., None, :] + sigma_px * rng.normal(size=(n_trials, n_frames, n_obj, m, 2))
@@ -231,8 +252,8 @@ def simulate_counts(rng: np.random.Generator, theta, times, shape, sigma_px: flo
         m = int(k.max()) if k.size else 0
         xy = pos[..., None, :] + sigma_px * rng.normal(size=(n_trials, n_frames, n_obj, m, 2))
         keep = np.arange(m) < k[..., None]
-    u = np.floor(xy[..., 0] + 0.5).astype(np.int64)                    # column of each photon
-    v = np.floor(xy[..., 1] + 0.5).astype(np.int64)                    # row
+    u = np.floor(xy[..., 0] + 0.5).astype(np.int64)  # column of each photon
+    v = np.floor(xy[..., 1] + 0.5).astype(np.int64)  # row
     inside = (u >= 0) & (u < cols) & (v >= 0) & (v < rows)
     if keep is not None:
         inside &= keep
@@ -252,10 +273,18 @@ class SceneBatch:
     counts: np.ndarray
 
 
-def scene_batches(rng: np.random.Generator, geometry: SceneGeometry, n_trials: int, n_frames: int,
-                  photons: float, noise_per_pixel: float, designation_sd_px: float,
-                  designation_velocity_sd_px: float = 0.0, photon_model: str = "fixed",
-                  batch_size: int = 256) -> Iterator[SceneBatch]:
+def scene_batches(
+    rng: np.random.Generator,
+    geometry: SceneGeometry,
+    n_trials: int,
+    n_frames: int,
+    photons: float,
+    noise_per_pixel: float,
+    designation_sd_px: float,
+    designation_velocity_sd_px: float = 0.0,
+    photon_model: str = "fixed",
+    batch_size: int = 256,
+) -> Iterator[SceneBatch]:
     """Generate ``n_trials`` trials in batches of at most ``batch_size`` (bounded memory).
 
     All draws come from ``rng`` in batch order, so the same seed gives the same trials.
@@ -268,7 +297,8 @@ def scene_batches(rng: np.random.Generator, geometry: SceneGeometry, n_trials: i
         n = min(batch_size, n_trials - done)
         truth = draw_truth(rng, n, geometry)
         desig = designate(rng, truth, designation_sd_px, designation_velocity_sd_px)
-        counts = simulate_counts(rng, truth, times, geometry.shape, geometry.sigma_px, photons,
-                                 noise_per_pixel, photon_model)
+        counts = simulate_counts(
+            rng, truth, times, geometry.shape, geometry.sigma_px, photons, noise_per_pixel, photon_model
+        )
         yield SceneBatch(truth, desig, counts)
         done += n

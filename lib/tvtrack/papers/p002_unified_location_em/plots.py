@@ -17,7 +17,7 @@ __all__ = ["ula_distance_figure", "one_object_figure", "gain_figure", "iteration
 
 def _band(ax, x, ests, label, **kw):
     v = np.array([e.value for e in ests])
-    line, = ax.plot(x, v, marker="o", ms=3, label=label, **kw)
+    (line,) = ax.plot(x, v, marker="o", ms=3, label=label, **kw)
     ax.fill_between(x, [e.ci_low for e in ests], [e.ci_high for e in ests], color=line.get_color(), alpha=0.2, lw=0)
     return line
 
@@ -30,10 +30,12 @@ def _distance_axes(ax, title, ylabel="total position variance (sigma^2)"):
 def ula_distance_figure(g, res, epoch="first"):
     """Figs 1a, 1b, 1c and 2: the ULA's total position variance against separation, with the CRB (dotted)."""
     fig, axes = plt.subplots(1, 4, figsize=(16, 3.8))
-    panels = [("1a", "Fig 1a: Delta = 3 sigma", {f"m_k = {m}": cs for m, cs in g["1a"].items()}),
-              ("1b", "Fig 1b: Delta = sigma", {f"m_k = {m}": cs for m, cs in g["1b"].items()}),
-              ("1c", "Fig 1c: T = 5", {f"Delta = {p:g} sigma": cs for p, cs in g["1c"].items()}),
-              ("2", "Fig 2: Delta = sigma", {f"T = {T}, m_k = {m}": cs for (T, m), cs in g["2"].items()})]
+    panels = [
+        ("1a", "Fig 1a: Delta = 3 sigma", {f"m_k = {m}": cs for m, cs in g["1a"].items()}),
+        ("1b", "Fig 1b: Delta = sigma", {f"m_k = {m}": cs for m, cs in g["1b"].items()}),
+        ("1c", "Fig 1c: T = 5", {f"Delta = {p:g} sigma": cs for p, cs in g["1c"].items()}),
+        ("2", "Fig 2: Delta = sigma", {f"T = {T}, m_k = {m}": cs for (T, m), cs in g["2"].items()}),
+    ]
     for ax, (_, title, curves) in zip(axes, panels):
         for label, cs in curves.items():
             d, cs = list(cs), list(cs.values())
@@ -52,16 +54,26 @@ def one_object_figure(g, res, frames, epoch="first"):
         for alg, label in names.items():
             _band(ax, frames, [spread_sum(errors(res[c], alg, epoch)[:, :1]) for c in cs], label)
         ax.plot(frames, [res[c]["crb_x0"] for c in cs], "k:", label="CRB of x_o")
-        ax.set(xscale="log", yscale="log", xlabel="number of frames T", ylabel="Var x_o (sigma^2)",
-               title=f"Fig 3a: one object, Delta = {pix:g} sigma, m_k = 20")
+        ax.set(
+            xscale="log",
+            yscale="log",
+            xlabel="number of frames T",
+            ylabel="Var x_o (sigma^2)",
+            title=f"Fig 3a: one object, Delta = {pix:g} sigma, m_k = 20",
+        )
         ax.legend(fontsize=7)
     return fig
 
 
 def gain_figure(g, res, rng, n_bootstrap, epoch="first"):
     """Figs 4-6: the two-stage (iterative marks) and the ULA against separation, and the gain rho."""
-    groups = {"Fig 4a (m_k = 20)": g["4"][20], "Fig 4b (m_k = 50)": g["4"][50], "Fig 5a (T = 5)": g["5ab"][5],
-              "Fig 5b (T = 50)": g["5ab"][50], "Fig 6b (Delta = 5 sigma)": g["6"][20]}
+    groups = {
+        "Fig 4a (m_k = 20)": g["4"][20],
+        "Fig 4b (m_k = 50)": g["4"][50],
+        "Fig 5a (T = 5)": g["5ab"][5],
+        "Fig 5b (T = 50)": g["5ab"][50],
+        "Fig 6b (Delta = 5 sigma)": g["6"][20],
+    }
     fig, axes = plt.subplots(1, 3, figsize=(15, 3.8))
     for i, key in enumerate(("Fig 4a (m_k = 20)", "Fig 5b (T = 50)")):
         d, cs = list(groups[key]), list(groups[key].values())
@@ -70,8 +82,12 @@ def gain_figure(g, res, rng, n_bootstrap, epoch="first"):
         axes[i].plot(d, [res[c]["crb_pos"] for c in cs], "k:", label="CRB")
         _distance_axes(axes[i], key)
     for key, by_d in groups.items():
-        _band(axes[2], list(by_d), [gain(errors(res[c], "em", epoch), errors(res[c], "ula", epoch), rng, n_bootstrap)
-                                    for c in by_d.values()], key)
+        _band(
+            axes[2],
+            list(by_d),
+            [gain(errors(res[c], "em", epoch), errors(res[c], "ula", epoch), rng, n_bootstrap) for c in by_d.values()],
+            key,
+        )
     axes[2].axhspan(3.0, 6.0, color="0.88", zorder=0, label="paper's x4-4.5 (C002-11 band)")
     axes[2].axhline(1.0, color="0.3", lw=0.8)
     _distance_axes(axes[2], "gain rho = Sigma^2_two-stage / Sigma^2_ULA", "rho")
@@ -88,8 +104,12 @@ def iterations_figure(g, res):
     ax.plot(ds, [np.quantile(x, 0.9) for x in it], "--", lw=0.8, label="ULA, 90th percentile")
     T = res[g["7"][ds[0]]]["T"]
     _band(ax, ds, [mean_ci(res[g["7"][d]]["em_plain_iter"] / T) for d in ds], "marks, plain EM per frame (mean)")
-    ax.set(xlabel="separation d / sigma", ylabel="EM iterations to tolerance", yscale="log",
-           title="Fig 7: iterations vs separation")
+    ax.set(
+        xlabel="separation d / sigma",
+        ylabel="EM iterations to tolerance",
+        yscale="log",
+        title="Fig 7: iterations vs separation",
+    )
     ax.legend(fontsize=7)
     return fig
 

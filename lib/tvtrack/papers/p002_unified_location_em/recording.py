@@ -20,15 +20,28 @@ from .two_stage import em_marks, fit_lines, propagate
 
 __all__ = ["BLUEPRINT", "count_image", "record_trial"]
 
-BLUEPRINT = rrb.Blueprint(rrb.Horizontal(
-    rrb.Vertical(rrb.Spatial2DView(origin="camera", name="Counts (log), truth, designation, estimates"),
-                 rrb.Horizontal(rrb.Spatial2DView(origin="responsibility/first_iteration", name="lambda_1, first EM step"),
-                                rrb.Spatial2DView(origin="responsibility/last_iteration", name="lambda_1, converged"))),
-    rrb.Vertical(rrb.TimeSeriesView(origin="errors", name="position error per frame (px)"),
-                 rrb.Tabs(rrb.TimeSeriesView(origin="em/loglik", name="EM log-likelihood (time line 'iteration')"),
-                          rrb.TimeSeriesView(origin="em/theta", name="EM parameters, px (time line 'iteration')")),
-                 row_shares=[0.6, 0.4]),
-    column_shares=[0.6, 0.4]), rrb.TimePanel(timeline="frame", play_state="paused"), collapse_panels=True)
+BLUEPRINT = rrb.Blueprint(
+    rrb.Horizontal(
+        rrb.Vertical(
+            rrb.Spatial2DView(origin="camera", name="Counts (log), truth, designation, estimates"),
+            rrb.Horizontal(
+                rrb.Spatial2DView(origin="responsibility/first_iteration", name="lambda_1, first EM step"),
+                rrb.Spatial2DView(origin="responsibility/last_iteration", name="lambda_1, converged"),
+            ),
+        ),
+        rrb.Vertical(
+            rrb.TimeSeriesView(origin="errors", name="position error per frame (px)"),
+            rrb.Tabs(
+                rrb.TimeSeriesView(origin="em/loglik", name="EM log-likelihood (time line 'iteration')"),
+                rrb.TimeSeriesView(origin="em/theta", name="EM parameters, px (time line 'iteration')"),
+            ),
+            row_shares=[0.6, 0.4],
+        ),
+        column_shares=[0.6, 0.4],
+    ),
+    rrb.TimePanel(timeline="frame", play_state="paused"),
+    collapse_panels=True,
+)
 
 
 def count_image(frame) -> np.ndarray:
@@ -36,21 +49,32 @@ def count_image(frame) -> np.ndarray:
     return (255 * np.log1p(frame) / max(np.log1p(frame.max()), 1e-12)).astype(np.uint8)
 
 
-def record_trial(output_dir, mode: str, rng: np.random.Generator, *, separation: float, pixel: float, photons: int,
-                 frames: int, velocity=(0.2, 0.1), noise_density: float = 0.01, designation_sd: float = 0.3,
-                 every: int = 1, max_iter: int = 5000) -> dict:
+def record_trial(
+    output_dir,
+    mode: str,
+    rng: np.random.Generator,
+    *,
+    separation: float,
+    pixel: float,
+    photons: int,
+    frames: int,
+    velocity=(0.2, 0.1),
+    noise_density: float = 0.01,
+    designation_sd: float = 0.3,
+    every: int = 1,
+    max_iter: int = 5000,
+) -> dict:
     """Simulate one two-object trial, fit it, and write the recording. Returns a summary: ``path`` of the
     recording (None when off), ``n_iter`` of the ULA, and the per-frame errors (px) ``err_ula`` and ``err_marks``
     (T, 2), each object's labels matched to the truth first."""
     g = scene_geometry(2, frames, separation, pixel, velocity, 6.0)
     times, s = frame_times(frames), g.sigma_px
-    noise = noise_density / s ** 2
+    noise = noise_density / s**2
     p, p0 = mixture_weights(photons, noise, g.n_pixels, 2)
     truth = draw_truth(rng, 1, g)
     desig = designate(rng, truth, designation_sd * s)
     counts = simulate_counts(rng, truth, times, g.shape, s, photons, noise)
-    res = unified_location_em(pixel_entries(counts), desig, s, p, p0, tol_px=1e-6 * s, max_iter=max_iter,
-                              history=True)
+    res = unified_location_em(pixel_entries(counts), desig, s, p, p0, tol_px=1e-6 * s, max_iter=max_iter, history=True)
     marks = em_marks(counts, desig, times, s, p, p0, tol_px=1e-6 * s, max_iter=max_iter)
     lam = [responsibility_maps(th, times, g.shape, s, p, p0)[0] for th in (desig[0], res.theta[0])]
     truth_xy, est_xy, des_xy = (propagate(th, times)[0] for th in (truth, res.theta, desig))

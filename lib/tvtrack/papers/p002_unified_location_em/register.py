@@ -12,76 +12,196 @@ from tvtrack.register import Entry, Register
 
 __all__ = ["REGISTER", "DEPENDS"]
 
-REGISTER = Register([
-    Entry("epoch", "reading", "first", ("first", "mid", "last", "velocity"),
-          "captions say 'coordinates' and the text 'initial position'; the frame the accuracy is read at is not given; "
-          "the text of Figs 4-6 says 'parameters', which includes the velocities"),
-    Entry("statistic", "statistic", "variance", ("variance", "MSE", "SD ratio"),
-          "'sum of variances' may include bias (MSE); 'x4 difference in accuracy' may be a ratio of SDs (card 9.8)"),
-    Entry("gross errors", "statistic", "kept", ("kept", "trimmed 10 %"),
-          "a Monte Carlo 'sum of variances' of 1999 may have dropped anomalous (lost-object) errors; the 10 % largest "
-          "per-trial squared errors trimmed in every spread and gain (never in the bound's efficiency)",
-          origin="adversarial"),
-    Entry("photon model", "model", "fixed", ("fixed", "poisson"),
-          "'m_k target photons' may be a fixed count or a Poisson mean (card 9.3); the CRB is Poisson's"),
-    Entry("designation error (sigma)", "regime", 0.3, (0.3, 1.0),
-          "the target designation that starts both algorithms has no stated accuracy (card 4.1: 0.3 sigma); a "
-          "designation as coarse as the PSF is where a designation-started two-stage would lose its help"),
-    Entry("noise (photons/sigma^2/frame)", "regime", 0.01, (0.01, 0.05),
-          "the noise weight p_o is never given (card 9.4); the card's level and five times it"),
-    Entry("velocity (sigma/frame)", "regime", "0.2, 0.1", ("0, 0", "0.2, 0.1", "0.5, 0.25"),
-          "velocities are not stated (card 9.10); motionless objects have no sub-pixel phase diversity",
-          origin="adversarial"),
-    Entry("tracks", "regime", "parallel", ("parallel", "crossing"),
-          "the paper's objects are 'close' but their motion is not given; objects released together may cross (card "
-          "8.6); claims read along 'the distance between objects' presume a fixed distance, so only the claims on "
-          "labour and on very close objects read it", origin="adversarial"),
-    Entry("EM stopping", "reading", "SQUAREM to 1e-6 sigma", ("SQUAREM to 1e-6 sigma", "plain EM, cap 100"),
-          "the paper stops when the parameters 'practically stop changing'; a practical cap may stop plain EM early",
-          origin="adversarial"),
-    Entry("two-stage", "comparator", "designation start, labels by start",
-          ("designation start, labels by start", "previous start + assignment", "designation start + line association",
-           "no designation: moment start + line association"),
-          "ref. [4]'s trajectory algorithm is not described: how its marks start and are associated (card 9.9)",
-          origin="adversarial"),
-    Entry("ULA", "comparator", "ML", ("ML", "MAP (designation prior)"),
-          "the paper's ULA is ML; the two-stage's marks start at the designation, so a ULA with the designation as "
-          "its prior (the designation's own error model) is the matched comparison"),
-    Entry("velocity knowledge", "reading", "free", ("free", "designated"),
-          "the designation gives 'initial conditions'; whether they include the velocity is not said; the ULA (ML or "
-          "MAP) and its two-stage twin always get the same knowledge", origin="adversarial"),
-    Entry("Delta of Figs 4, 5, 7 (sigma)", "operating point", 3.0, (1.0, 3.0, 5.0),
-          "Figs 4, 5 and 7 give no pixel size; the text names 1, 3 and 5 sigma elsewhere"),
-    Entry("T of Figs 4, 6, 7", "operating point", 10, (10, 20), "not stated; Fig 5 uses 5 and 50"),
-    Entry("m_k of Fig 5", "operating point", 20, (20, 50, 10),
-          "not stated; Fig 4 uses 20 and 50; 10 (Figs 1c, 2) is where a single frame's marks are weakest and pooling "
-          "T = 50 frames should help the ULA most (value 10 added by the adversarial pass)"),
-    Entry("m_k of C002-12", "operating point", 20, (20, 10),
-          "the 'practically coincide' statement names no photon count; Figs 1c and 2 go down to m_k = 10, where a "
-          "single frame's mark is weakest", origin="adversarial"),
-    Entry("T of Figs 1a,b", "operating point", 5, (5, 10), "not stated; Fig 1c states 5, Fig 2 uses 5 and 10"),
-    Entry("m_k of Fig 1c", "reading", 10, (10, 50), "the text says m_k = 10, the caption 50"),
-    Entry("T of the Fig 3a claims", "operating point", 10, (5, 10, 50),
-          "Fig 3a spans the number of frames; the conclusions do not say at which T"),
-    Entry("coarse Delta of C002-7, C002-8 (sigma)", "operating point", 5.0, (3.0, 5.0),
-          "'large pixels', 'poor CCDs' are not quantified; Figs 1 and 3 name 3 and 5 sigma", origin="adversarial"),
-    Entry("Delta of the C002-9 order (sigma)", "operating point", 3.0, (1.0, 3.0, 5.0),
-          "Fig 3a gives no pixel size; the ordering is implied for the figure as a whole"),
-    Entry("separation of C002-5 (sigma)", "operating point", 2.0, (1.0, 2.0, 3.0),
-          "the statement gives no separation; Figs 1c and 2a span the distance axis"),
-    Entry("small separations of C002-6 (sigma)", "reading", 2.0, (1.0, 2.0),
-          "'fewer photons weaken the T dependence' is read at small d (card C002-6: d <= 2 sigma)"),
-    Entry("close separations of C002-10 (sigma)", "reading", 3.0, (1.0, 2.0, 3.0),
-          "'the gain grows with pixel size and frames' is read where the gain is visible; the text names d = 1 and 3"),
-    Entry("bound", "statistic", "CRB", ("CRB", "van Trees (designation prior)"),
-          "'practically potential accuracy' names no bound; the CRB holds for unbiased estimators only, the van Trees "
-          "bound with the designation as prior for any estimator started there", origin="adversarial"),
-])
+REGISTER = Register(
+    [
+        Entry(
+            "epoch",
+            "reading",
+            "first",
+            ("first", "mid", "last", "velocity"),
+            "captions say 'coordinates' and the text 'initial position'; the frame the accuracy is read at is not given; "
+            "the text of Figs 4-6 says 'parameters', which includes the velocities",
+        ),
+        Entry(
+            "statistic",
+            "statistic",
+            "variance",
+            ("variance", "MSE", "SD ratio"),
+            "'sum of variances' may include bias (MSE); 'x4 difference in accuracy' may be a ratio of SDs (card 9.8)",
+        ),
+        Entry(
+            "gross errors",
+            "statistic",
+            "kept",
+            ("kept", "trimmed 10 %"),
+            "a Monte Carlo 'sum of variances' of 1999 may have dropped anomalous (lost-object) errors; the 10 % largest "
+            "per-trial squared errors trimmed in every spread and gain (never in the bound's efficiency)",
+            origin="adversarial",
+        ),
+        Entry(
+            "photon model",
+            "model",
+            "fixed",
+            ("fixed", "poisson"),
+            "'m_k target photons' may be a fixed count or a Poisson mean (card 9.3); the CRB is Poisson's",
+        ),
+        Entry(
+            "designation error (sigma)",
+            "regime",
+            0.3,
+            (0.3, 1.0),
+            "the target designation that starts both algorithms has no stated accuracy (card 4.1: 0.3 sigma); a "
+            "designation as coarse as the PSF is where a designation-started two-stage would lose its help",
+        ),
+        Entry(
+            "noise (photons/sigma^2/frame)",
+            "regime",
+            0.01,
+            (0.01, 0.05),
+            "the noise weight p_o is never given (card 9.4); the card's level and five times it",
+        ),
+        Entry(
+            "velocity (sigma/frame)",
+            "regime",
+            "0.2, 0.1",
+            ("0, 0", "0.2, 0.1", "0.5, 0.25"),
+            "velocities are not stated (card 9.10); motionless objects have no sub-pixel phase diversity",
+            origin="adversarial",
+        ),
+        Entry(
+            "tracks",
+            "regime",
+            "parallel",
+            ("parallel", "crossing"),
+            "the paper's objects are 'close' but their motion is not given; objects released together may cross (card "
+            "8.6); claims read along 'the distance between objects' presume a fixed distance, so only the claims on "
+            "labour and on very close objects read it",
+            origin="adversarial",
+        ),
+        Entry(
+            "EM stopping",
+            "reading",
+            "SQUAREM to 1e-6 sigma",
+            ("SQUAREM to 1e-6 sigma", "plain EM, cap 100"),
+            "the paper stops when the parameters 'practically stop changing'; a practical cap may stop plain EM early",
+            origin="adversarial",
+        ),
+        Entry(
+            "two-stage",
+            "comparator",
+            "designation start, labels by start",
+            (
+                "designation start, labels by start",
+                "previous start + assignment",
+                "designation start + line association",
+                "no designation: moment start + line association",
+            ),
+            "ref. [4]'s trajectory algorithm is not described: how its marks start and are associated (card 9.9)",
+            origin="adversarial",
+        ),
+        Entry(
+            "ULA",
+            "comparator",
+            "ML",
+            ("ML", "MAP (designation prior)"),
+            "the paper's ULA is ML; the two-stage's marks start at the designation, so a ULA with the designation as "
+            "its prior (the designation's own error model) is the matched comparison",
+        ),
+        Entry(
+            "velocity knowledge",
+            "reading",
+            "free",
+            ("free", "designated"),
+            "the designation gives 'initial conditions'; whether they include the velocity is not said; the ULA (ML or "
+            "MAP) and its two-stage twin always get the same knowledge",
+            origin="adversarial",
+        ),
+        Entry(
+            "Delta of Figs 4, 5, 7 (sigma)",
+            "operating point",
+            3.0,
+            (1.0, 3.0, 5.0),
+            "Figs 4, 5 and 7 give no pixel size; the text names 1, 3 and 5 sigma elsewhere",
+        ),
+        Entry("T of Figs 4, 6, 7", "operating point", 10, (10, 20), "not stated; Fig 5 uses 5 and 50"),
+        Entry(
+            "m_k of Fig 5",
+            "operating point",
+            20,
+            (20, 50, 10),
+            "not stated; Fig 4 uses 20 and 50; 10 (Figs 1c, 2) is where a single frame's marks are weakest and pooling "
+            "T = 50 frames should help the ULA most (value 10 added by the adversarial pass)",
+        ),
+        Entry(
+            "m_k of C002-12",
+            "operating point",
+            20,
+            (20, 10),
+            "the 'practically coincide' statement names no photon count; Figs 1c and 2 go down to m_k = 10, where a "
+            "single frame's mark is weakest",
+            origin="adversarial",
+        ),
+        Entry("T of Figs 1a,b", "operating point", 5, (5, 10), "not stated; Fig 1c states 5, Fig 2 uses 5 and 10"),
+        Entry("m_k of Fig 1c", "reading", 10, (10, 50), "the text says m_k = 10, the caption 50"),
+        Entry(
+            "T of the Fig 3a claims",
+            "operating point",
+            10,
+            (5, 10, 50),
+            "Fig 3a spans the number of frames; the conclusions do not say at which T",
+        ),
+        Entry(
+            "coarse Delta of C002-7, C002-8 (sigma)",
+            "operating point",
+            5.0,
+            (3.0, 5.0),
+            "'large pixels', 'poor CCDs' are not quantified; Figs 1 and 3 name 3 and 5 sigma",
+            origin="adversarial",
+        ),
+        Entry(
+            "Delta of the C002-9 order (sigma)",
+            "operating point",
+            3.0,
+            (1.0, 3.0, 5.0),
+            "Fig 3a gives no pixel size; the ordering is implied for the figure as a whole",
+        ),
+        Entry(
+            "separation of C002-5 (sigma)",
+            "operating point",
+            2.0,
+            (1.0, 2.0, 3.0),
+            "the statement gives no separation; Figs 1c and 2a span the distance axis",
+        ),
+        Entry(
+            "small separations of C002-6 (sigma)",
+            "reading",
+            2.0,
+            (1.0, 2.0),
+            "'fewer photons weaken the T dependence' is read at small d (card C002-6: d <= 2 sigma)",
+        ),
+        Entry(
+            "close separations of C002-10 (sigma)",
+            "reading",
+            3.0,
+            (1.0, 2.0, 3.0),
+            "'the gain grows with pixel size and frames' is read where the gain is visible; the text names d = 1 and 3",
+        ),
+        Entry(
+            "bound",
+            "statistic",
+            "CRB",
+            ("CRB", "van Trees (designation prior)"),
+            "'practically potential accuracy' names no bound; the CRB holds for unbiased estimators only, the van Trees "
+            "bound with the designation as prior for any estimator started there",
+            origin="adversarial",
+        ),
+    ]
+)
 
 _WORLD = ["photon model", "designation error (sigma)", "noise (photons/sigma^2/frame)", "velocity (sigma/frame)"]
 _ULA_ONLY = ["epoch", "statistic", "gross errors", *_WORLD, "EM stopping"]
 _RHO = [*_ULA_ONLY, "two-stage"]
-_TWO = ["tracks"]                      # two objects whose distance changes: labour and very close objects only
+_TWO = ["tracks"]  # two objects whose distance changes: labour and very close objects only
 #: Register entries each claim's measurement reads.
 DEPENDS = {
     "C002-1": [*_ULA_ONLY, "T of Figs 1a,b"],
@@ -93,13 +213,23 @@ DEPENDS = {
     "C002-7": [*_RHO, "T of the Fig 3a claims", "coarse Delta of C002-7, C002-8 (sigma)"],
     "C002-8": [*_RHO, "T of the Fig 3a claims", "coarse Delta of C002-7, C002-8 (sigma)"],
     "C002-9": [*_RHO, "T of the Fig 3a claims", "Delta of the C002-9 order (sigma)"],
-    "C002-10": [*_RHO, "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7", "m_k of Fig 5",
-                "close separations of C002-10 (sigma)"],
+    "C002-10": [
+        *_RHO,
+        "Delta of Figs 4, 5, 7 (sigma)",
+        "T of Figs 4, 6, 7",
+        "m_k of Fig 5",
+        "close separations of C002-10 (sigma)",
+    ],
     "C002-11": [*_RHO, "ULA", "velocity knowledge", "Delta of Figs 4, 5, 7 (sigma)", "m_k of Fig 5"],
     "C002-12": [*_RHO, "T of Figs 4, 6, 7", "m_k of C002-12"],
     "C002-13": [*_TWO, *_WORLD, "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7"],
     "C002-14": [*_TWO, *_WORLD, "two-stage", "Delta of Figs 4, 5, 7 (sigma)", "T of Figs 4, 6, 7"],
     # the bounds are those of the initial positions and the velocities: the epoch reading cannot apply
-    "C002-15": [*_TWO, *[k for k in _ULA_ONLY if k not in ("epoch", "gross errors")], "Delta of Figs 4, 5, 7 (sigma)",
-                "T of Figs 4, 6, 7", "bound"],
+    "C002-15": [
+        *_TWO,
+        *[k for k in _ULA_ONLY if k not in ("epoch", "gross errors")],
+        "Delta of Figs 4, 5, 7 (sigma)",
+        "T of Figs 4, 6, 7",
+        "bound",
+    ],
 }

@@ -32,27 +32,38 @@ from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_m
 from scipy import stats
 
 from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, bootstrap_ci, mean_square_ci, proportion_ci
-from tvtrack.papers.p002_unified_location_em.model import (draw_truth, frame_times, mixture_weights, scene_batches,
-                                          scene_geometry)
+from tvtrack.papers.p002_unified_location_em.model import (
+    draw_truth,
+    frame_times,
+    mixture_weights,
+    scene_batches,
+    scene_geometry,
+)
 
 #: Algorithm letters of :attr:`Config.algs`.
-ALGORITHMS = {"u": "ULA (accelerated as set)", "p": "ULA with plain EM (iteration counts)",
-              "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
-              "e": "two-stage, iterative (per-frame EM) marks",
-              "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
-              "1": "ULA with Q' = 1: one track fitted to all objects (errors against their mean)",
-              "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
-              "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
-              "q": "two-stage, iterative marks by plain EM (iteration counts)", "c": "two-stage, centre-of-region marks",
-              "b": "BIC fits with Q' = 1, 2, 3"}
+ALGORITHMS = {
+    "u": "ULA (accelerated as set)",
+    "p": "ULA with plain EM (iteration counts)",
+    "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
+    "e": "two-stage, iterative (per-frame EM) marks",
+    "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
+    "1": "ULA with Q' = 1: one track fitted to all objects (errors against their mean)",
+    "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
+    "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
+    "q": "two-stage, iterative marks by plain EM (iteration counts)",
+    "c": "two-stage, centre-of-region marks",
+    "b": "BIC fits with Q' = 1, 2, 3",
+}
 #: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
 #: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the
 #: block machinery (:func:`seed_blocks`) still reads old results.
 N_SEED_BLOCKS = 1
 #: Columns of the per-trial flag arrays ``ula_flags``, ``em_flags`` and ``cr_flags``.
-FLAG_NAMES = {"ula": ("swap", "merge", "cap_hit", "degenerate", "left_frame"),
-              "em": ("swap", "line_fit_invalid", "cap_hit", "missing_marks"),
-              "cr": ("swap", "line_fit_invalid")}
+FLAG_NAMES = {
+    "ula": ("swap", "merge", "cap_hit", "degenerate", "left_frame"),
+    "em": ("swap", "line_fit_invalid", "cap_hit", "missing_marks"),
+    "cr": ("swap", "line_fit_invalid"),
+}
 
 
 @dataclass(frozen=True)
@@ -154,12 +165,14 @@ class Config(NamedTuple):
 def seed_sequence(seed: int, values) -> np.random.SeedSequence:
     """Seed sequence from the run seed and a tuple of values (numbers to 1e-3, ``None`` as 0,
     strings hashed with CRC-32, which, unlike ``hash()``, does not change between processes)."""
+
     def word(v):
         if v is None:
             return 0
         if isinstance(v, str):
             return zlib.crc32(v.encode())
         return int(round(1000 * v)) & 0xFFFFFFFF
+
     return np.random.SeedSequence([seed, *[word(v) for v in values]])
 
 
@@ -197,22 +210,32 @@ def errors_vs_truth(theta, truth, sigma_px: float, times):
     return (est - truth) / sigma_px, ~same
 
 
-def bic_orders(settings: StudySettings, entries, designation, sigma_px: float, photons: float,
-               noise_per_pixel: float, n_pixels: int) -> np.ndarray:
+def bic_orders(
+    settings: StudySettings,
+    entries,
+    designation,
+    sigma_px: float,
+    photons: float,
+    noise_per_pixel: float,
+    n_pixels: int,
+) -> np.ndarray:
     """BIC ``-2 L + 5 Q' ln(n_photons)`` of ULA fits with ``Q' = 1, 2, 3`` (weights estimated,
     plain EM, at most ``settings.bic_max_iter`` steps); returns shape (n, 3)."""
     n = designation.shape[0]
     n_photons = entries.photons_per_trial()
     d2 = designation[:, :2]
-    starts = {1: d2.mean(axis=1, keepdims=True),
-              2: d2,
-              3: np.concatenate([d2, d2.mean(axis=1, keepdims=True) + [sigma_px, 0, 0, 0]], axis=1)}
+    starts = {
+        1: d2.mean(axis=1, keepdims=True),
+        2: d2,
+        3: np.concatenate([d2, d2.mean(axis=1, keepdims=True) + [sigma_px, 0, 0, 0]], axis=1),
+    }
     out = np.empty((n, 3))
     for k, th0 in starts.items():
         p, p0 = mixture_weights(photons, noise_per_pixel, n_pixels, k)
-        r = unified_location_em(entries, th0, sigma_px, p, p0, tol_px=1e-4 * sigma_px,
-                                max_iter=settings.bic_max_iter, estimate_weights=True)
-        n_par = 5 * k                                        # motion (4) and weight (1) per object
+        r = unified_location_em(
+            entries, th0, sigma_px, p, p0, tol_px=1e-4 * sigma_px, max_iter=settings.bic_max_iter, estimate_weights=True
+        )
+        n_par = 5 * k  # motion (4) and weight (1) per object
         out[:, k - 1] = -2 * r.loglik + n_par * np.log(np.maximum(n_photons, 1))
     return out
 
@@ -224,8 +247,18 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
     sizes = np.diff(np.linspace(0, cfg.n, N_SEED_BLOCKS + 1).round().astype(int))
     for k, n_k in enumerate(sizes):
         rng = np.random.default_rng(seed_sequence(seed + k, _scene_key(cfg)))
-        for b in scene_batches(rng, g, int(n_k), cfg.T, cfg.m, noise_pp, cfg.dsd * s, cfg.vsd * s,
-                               settings.photon_model, batch_size=max(1, int(4e6 // (cfg.T * g.n_pixels)))):
+        for b in scene_batches(
+            rng,
+            g,
+            int(n_k),
+            cfg.T,
+            cfg.m,
+            noise_pp,
+            cfg.dsd * s,
+            cfg.vsd * s,
+            settings.photon_model,
+            batch_size=max(1, int(4e6 // (cfg.T * g.n_pixels))),
+        ):
             yield b, seed + k
 
 
@@ -268,8 +301,11 @@ def multi_start_gap(entries, designation, sigma_px, p, p0, tol_px, max_iter, acc
         start = designation.copy()
         if k:
             start[..., :2] += rng.normal(scale=sigma_px, size=start[..., :2].shape)
-        lls.append(unified_location_em(entries, start, sigma_px, p, p0, tol_px=tol_px, max_iter=max_iter,
-                                       accelerate=accel).loglik)
+        lls.append(
+            unified_location_em(
+                entries, start, sigma_px, p, p0, tol_px=tol_px, max_iter=max_iter, accelerate=accel
+            ).loglik
+        )
     lls = np.array(lls)
     return lls.max(axis=0) - lls[0]
 
@@ -300,12 +336,35 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     accel = None if s_.accelerate == "none" else "squarem"
     g = scene_geometry(q, T, d, pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
     s = g.sigma_px
-    noise_pp = s_.noise_density / s ** 2                 # photons per pixel = density x pixel area
+    noise_pp = s_.noise_density / s**2  # photons per pixel = density x pixel area
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
-    out = {k: [] for k in ("truth", "ula", "ula_flags", "ula_iter", "plain", "plain_iter", "map", "em", "em_vd", "em_flags",
-                           "em_iter", "em_plain_iter", "cr", "cr_flags", "bic", "ula_loglik", "ms_gap", "ula_w", "ula_vd", "ula_q1")}
+    out = {
+        k: []
+        for k in (
+            "truth",
+            "ula",
+            "ula_flags",
+            "ula_iter",
+            "plain",
+            "plain_iter",
+            "map",
+            "em",
+            "em_vd",
+            "em_flags",
+            "em_iter",
+            "em_plain_iter",
+            "cr",
+            "cr_flags",
+            "bic",
+            "ula_loglik",
+            "ms_gap",
+            "ula_w",
+            "ula_vd",
+            "ula_q1",
+        )
+    }
     timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
     block_seed = []
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
@@ -314,8 +373,17 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         ent = pixel_entries(b.counts)
         if "u" in algs:
             t0 = time.perf_counter()
-            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
-                                    accelerate=accel, merge_px=s_.merge_sigma * s)
+            r = unified_location_em(
+                ent,
+                b.designation,
+                s,
+                p,
+                p0,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                accelerate=accel,
+                merge_px=s_.merge_sigma * s,
+            )
             timing["ula"] += time.perf_counter() - t0
             e, sw = errors_vs_truth(r.theta, b.truth, s, times)
             out["ula"].append(e)
@@ -330,16 +398,34 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             out["plain_iter"].append(r.n_iter)
         if "m" in algs:
             t0 = time.perf_counter()
-            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
-                                    accelerate=accel, prior_sd=map_prior_sd(s_.velocity_knowledge, dsd, vsd, s))
+            r = unified_location_em(
+                ent,
+                b.designation,
+                s,
+                p,
+                p0,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                accelerate=accel,
+                prior_sd=map_prior_sd(s_.velocity_knowledge, dsd, vsd, s),
+            )
             timing["map"] += time.perf_counter() - t0
             out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         if "e" in algs:
             t0 = time.perf_counter()
-            mk = em_marks(b.counts, b.designation, times, s, p, p0,
-                          init=s_.mark_init if init is None else init,
-                          association=s_.mark_association if assoc is None else assoc, tol_px=tol,
-                          max_iter=s_.max_iter, accelerate=accel)
+            mk = em_marks(
+                b.counts,
+                b.designation,
+                times,
+                s,
+                p,
+                p0,
+                init=s_.mark_init if init is None else init,
+                association=s_.mark_association if assoc is None else assoc,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                accelerate=accel,
+            )
             fit = fit_lines(mk, times, _fallback(mk, b.designation, s_.mark_init if init is None else init))
             timing["em"] += time.perf_counter() - t0
             # the two-stage twin of a MAP-ULA that knows the designated velocity: the line keeps that velocity
@@ -348,37 +434,73 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["em"].append(e)
             out["em_iter"].append(mk.n_iter.sum(axis=1))
-            out["em_flags"].append(np.stack([sw, (~fit.valid).any(axis=1), mk.cap_hit.any(axis=1),
-                                             (~mk.valid).any(axis=(1, 2))], axis=1))
+            out["em_flags"].append(
+                np.stack([sw, (~fit.valid).any(axis=1), mk.cap_hit.any(axis=1), (~mk.valid).any(axis=(1, 2))], axis=1)
+            )
         if "q" in algs:
             t0 = time.perf_counter()
-            mk = em_marks(b.counts, b.designation, times, s, p, p0,
-                          init=s_.mark_init if init is None else init,
-                          association=s_.mark_association if assoc is None else assoc, tol_px=tol,
-                          max_iter=s_.max_iter)
+            mk = em_marks(
+                b.counts,
+                b.designation,
+                times,
+                s,
+                p,
+                p0,
+                init=s_.mark_init if init is None else init,
+                association=s_.mark_association if assoc is None else assoc,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+            )
             timing["em_plain"] += time.perf_counter() - t0
             out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
         if "c" in algs:
             t0 = time.perf_counter()
-            mk = centre_of_region_marks(b.counts, propagate(b.designation, times),
-                                        centre_gate_half_px(s_.gate_half_sigma, s))
+            mk = centre_of_region_marks(
+                b.counts, propagate(b.designation, times), centre_gate_half_px(s_.gate_half_sigma, s)
+            )
             fit = fit_lines(mk, times, b.designation)
             timing["cr"] += time.perf_counter() - t0
             e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
             out["cr"].append(e)
             out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
-        if "k" in algs:       # the ML ULA given the designated velocity (its error vsd as the only prior)
-            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
-                                    accelerate=accel, prior_sd=(1e6 * s, vsd * s))
+        if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
+            r = unified_location_em(
+                ent,
+                b.designation,
+                s,
+                p,
+                p0,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                accelerate=accel,
+                prior_sd=(1e6 * s, vsd * s),
+            )
             out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-        if "1" in algs:       # the wrong number of objects: one track fitted to the pair (card 8.3)
+        if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
             p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
-            r = unified_location_em(ent, b.designation.mean(axis=1, keepdims=True), s, p1, p01, tol_px=tol,
-                                    max_iter=s_.max_iter, accelerate=accel)
+            r = unified_location_em(
+                ent,
+                b.designation.mean(axis=1, keepdims=True),
+                s,
+                p1,
+                p01,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                accelerate=accel,
+            )
             out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
         if "w" in algs:
-            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter,
-                                    estimate_weights=True, estimate_sigma=True)
+            r = unified_location_em(
+                ent,
+                b.designation,
+                s,
+                p,
+                p0,
+                tol_px=tol,
+                max_iter=s_.max_iter,
+                estimate_weights=True,
+                estimate_sigma=True,
+            )
             out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         if "s" in algs:
             ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
@@ -399,12 +521,12 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     jp[np.arange(4 * q) % 4 < 2] = 1.0 / max(dsd * s, 1e-9) ** 2
     bcrb = np.linalg.inv(fim.mean(axis=0) + np.diag(jp))
     bd = np.diagonal(bcrb).reshape(q, 4)
-    res["bcrb_pos"] = float(bd[:, :2].sum()) / s ** 2
-    res["bcrb_vel"] = float(bd[:, 2:].sum()) / s ** 2
-    res["crb_pos"] = float(np.mean(position_crb_sum(crb))) / s ** 2
+    res["bcrb_pos"] = float(bd[:, :2].sum()) / s**2
+    res["bcrb_vel"] = float(bd[:, 2:].sum()) / s**2
+    res["crb_pos"] = float(np.mean(position_crb_sum(crb))) / s**2
     diag = np.diagonal(crb, axis1=-2, axis2=-1).reshape(-1, q, 4)
-    res["crb_vel"] = float(np.mean(diag[..., 2:].sum(axis=(1, 2)))) / s ** 2
-    res["crb_x0"] = float(np.mean(diag[:, 0, 0])) / s ** 2
+    res["crb_vel"] = float(np.mean(diag[..., 2:].sum(axis=(1, 2)))) / s**2
+    res["crb_x0"] = float(np.mean(diag[:, 0, 0])) / s**2
     res["shape"] = g.shape
     return res
 
@@ -423,18 +545,43 @@ class LocationStudy:
         self.n_workers = n_workers
         self._cache: dict[tuple, dict] = {}
 
-    def config(self, q, d, pix, m, T, algs="uec", dsd=None, init=None, assoc=None, n=None, tag="main",
-               vsd=None, variant: dict | None = None) -> Config:
+    def config(
+        self,
+        q,
+        d,
+        pix,
+        m,
+        T,
+        algs="uec",
+        dsd=None,
+        init=None,
+        assoc=None,
+        n=None,
+        tag="main",
+        vsd=None,
+        variant: dict | None = None,
+    ) -> Config:
         """A :class:`Config` with the settings' defaults filled in (``dsd``, ``vsd``, ``n``);
         ``variant`` maps :class:`StudySettings` field names to this configuration's own values."""
         st = self.settings
         unknown = set(variant or {}) - {f.name for f in fields(StudySettings)}
         if unknown:
             raise ValueError(f"variant names {sorted(unknown)}; it may override only StudySettings fields")
-        return Config(int(q), float(d), float(pix), int(m), int(T), algs,
-                      float(st.designation_sd_sigma if dsd is None else dsd), init, assoc,
-                      int(n or st.n_trials), tag, float(st.designation_velocity_sd if vsd is None else vsd),
-                      tuple(sorted((variant or {}).items())))
+        return Config(
+            int(q),
+            float(d),
+            float(pix),
+            int(m),
+            int(T),
+            algs,
+            float(st.designation_sd_sigma if dsd is None else dsd),
+            init,
+            assoc,
+            int(n or st.n_trials),
+            tag,
+            float(st.designation_velocity_sd if vsd is None else vsd),
+            tuple(sorted((variant or {}).items())),
+        )
 
     def __getitem__(self, c) -> dict:
         return self._cache[base(c)]
@@ -469,8 +616,16 @@ class LocationStudy:
 
     def variance_ratio(self, e_num, e_den, paired=True, mse=False, sqrt=False, spread="variance") -> Estimate:
         """:func:`variance_ratio_ci` with :meth:`bootstrap_rng` and ``settings.n_bootstrap`` resamples."""
-        return variance_ratio_ci(e_num, e_den, self.bootstrap_rng(), self.settings.n_bootstrap, paired=paired,
-                                 mse=mse, sqrt=sqrt, spread=spread)
+        return variance_ratio_ci(
+            e_num,
+            e_den,
+            self.bootstrap_rng(),
+            self.settings.n_bootstrap,
+            paired=paired,
+            mse=mse,
+            sqrt=sqrt,
+            spread=spread,
+        )
 
     def groups_ci(self, groups, statistic) -> Estimate:
         """:func:`bootstrap_groups` with :meth:`bootstrap_rng` and ``settings.n_bootstrap`` resamples."""
@@ -478,6 +633,7 @@ class LocationStudy:
 
 
 # -- summaries ------------------------------------------------------------------------------------
+
 
 def position_errors(result: dict, alg: str, epoch: str = "first", trials=None) -> np.ndarray:
     """Errors of one algorithm at one epoch, shape (n, 2Q), sigma (sigma/frame for velocity).
@@ -527,8 +683,9 @@ def mse_sum(e) -> Estimate:
     return mean_square_ci((np.asarray(e, dtype=float) ** 2).sum(axis=1))
 
 
-def bootstrap_groups(groups, statistic, rng: np.random.Generator, n_bootstrap: int = N_BOOTSTRAP,
-                     confidence: float = 0.95) -> Estimate:
+def bootstrap_groups(
+    groups, statistic, rng: np.random.Generator, n_bootstrap: int = N_BOOTSTRAP, confidence: float = 0.95
+) -> Estimate:
     """A statistic of several independent groups of trials with a percentile bootstrap interval
     (:func:`tvtrack.montecarlo.bootstrap_ci` with trials as clusters of their ``k_g`` values).
 
@@ -565,8 +722,16 @@ def bootstrap_groups(groups, statistic, rng: np.random.Generator, n_bootstrap: i
         return out if np.ndim(flat[0]) > 1 else float(np.ravel(out)[0])
 
     paired = len(groups) == 1
-    return bootstrap_ci([g.ravel() for g in groups], stat, paired=paired, groups=labels[0] if paired else labels,
-                        rng=rng, n_resamples=n_bootstrap, confidence=confidence, method="percentile")
+    return bootstrap_ci(
+        [g.ravel() for g in groups],
+        stat,
+        paired=paired,
+        groups=labels[0] if paired else labels,
+        rng=rng,
+        n_resamples=n_bootstrap,
+        confidence=confidence,
+        method="percentile",
+    )
 
 
 def _var_sum(e):
@@ -575,7 +740,7 @@ def _var_sum(e):
 
 
 def _mean_square_sum(e):
-    return (e ** 2).mean(axis=1).sum(axis=-1)
+    return (e**2).mean(axis=1).sum(axis=-1)
 
 
 def _trimmed_var_sum(e, trim: float = 0.1):
@@ -587,17 +752,28 @@ def _trimmed_var_sum(e, trim: float = 0.1):
 
 def _median_square(e):
     """Median of the per-trial summed squared errors (B, n, k) -> (B,)."""
-    return np.median((e ** 2).sum(axis=-1), axis=1)
+    return np.median((e**2).sum(axis=-1), axis=1)
 
 
 #: Spread statistics of :func:`variance_ratio_ci`: a sum over coordinates of (B, n, k) -> (B,).
-SPREADS = {"variance": _var_sum, "mse": _mean_square_sum, "trimmed_variance": _trimmed_var_sum,
-           "median_square": _median_square}
+SPREADS = {
+    "variance": _var_sum,
+    "mse": _mean_square_sum,
+    "trimmed_variance": _trimmed_var_sum,
+    "median_square": _median_square,
+}
 
 
-def variance_ratio_ci(e_num, e_den, rng: np.random.Generator, n_bootstrap: int = N_BOOTSTRAP,
-                      paired: bool = True, mse: bool = False, sqrt: bool = False,
-                      spread: str = "variance") -> Estimate:
+def variance_ratio_ci(
+    e_num,
+    e_den,
+    rng: np.random.Generator,
+    n_bootstrap: int = N_BOOTSTRAP,
+    paired: bool = True,
+    mse: bool = False,
+    sqrt: bool = False,
+    spread: str = "variance",
+) -> Estimate:
     """Ratio of summed column variances (or another spread) of two error samples, with a
     percentile bootstrap CI.
 
@@ -633,13 +809,19 @@ def variance_ratio_ci(e_num, e_den, rng: np.random.Generator, n_bootstrap: int =
     if paired:
         if len(e_num) != len(e_den):
             raise ValueError(f"paired ratio needs equal sample sizes, got {len(e_num)} and {len(e_den)}")
-        r = bootstrap_groups([np.hstack([e_num, e_den])],
-                             lambda e: f(e[..., :k]) / f(e[..., k:]), rng, n_bootstrap)
+        r = bootstrap_groups([np.hstack([e_num, e_den])], lambda e: f(e[..., :k]) / f(e[..., k:]), rng, n_bootstrap)
     else:
         r = bootstrap_groups([e_num, e_den], lambda a, b: f(a) / f(b), rng, n_bootstrap)
     if sqrt:
-        return Estimate(float(np.sqrt(r.value)), r.stderr / (2 * np.sqrt(r.value)), float(np.sqrt(r.ci_low)),
-                        float(np.sqrt(r.ci_high)), r.n, r.confidence, r.method)
+        return Estimate(
+            float(np.sqrt(r.value)),
+            r.stderr / (2 * np.sqrt(r.value)),
+            float(np.sqrt(r.ci_low)),
+            float(np.sqrt(r.ci_high)),
+            r.n,
+            r.confidence,
+            r.method,
+        )
     return r
 
 

@@ -22,13 +22,39 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tvtrack.montecarlo import Estimate, proportion_ci, ratio_ci
-from .simulation import (SPREADS, Config, StudySettings, bootstrap_groups, mse_sum, position_errors, run_config,
-                         seed_sequence, variance_ratio_ci, variance_sum)
+from .simulation import (
+    SPREADS,
+    Config,
+    StudySettings,
+    bootstrap_groups,
+    mse_sum,
+    position_errors,
+    run_config,
+    seed_sequence,
+    variance_ratio_ci,
+    variance_sum,
+)
 
-__all__ = ["Scale", "D_GRID", "settings_of", "jobs_of", "run_jobs", "measure", "measure_batch", "figure_data",
-           "errors", "gain", "spread_sum", "exp_estimate", "clear_cache", "word",
-           "squarem_vs_plain", "local_maxima_rate", "estimation_cost",
-           "wrong_q_cost"]
+__all__ = [
+    "Scale",
+    "D_GRID",
+    "settings_of",
+    "jobs_of",
+    "run_jobs",
+    "measure",
+    "measure_batch",
+    "figure_data",
+    "errors",
+    "gain",
+    "spread_sum",
+    "exp_estimate",
+    "clear_cache",
+    "word",
+    "squarem_vs_plain",
+    "local_maxima_rate",
+    "estimation_cost",
+    "wrong_q_cost",
+]
 
 #: Separations d / sigma of the distance axes (card 5.2).
 D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
@@ -36,27 +62,47 @@ D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
 #: register's "close separations" value): the text names d = 1 and 3 sigma.
 CLOSE = (1.0, 2.0, 3.0)
 #: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
-_READS = {"u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
-          "p": ("tol_sigma",),
-          "m": ("tol_sigma", "max_iter", "merge_sigma", "accelerate", "velocity_knowledge"),
-          "e": ("tol_sigma", "max_iter", "accelerate", "mark_init", "mark_association"),
-          "q": ("tol_sigma", "mark_init", "mark_association"),
-          "c": ("gate_half_sigma",),
-          "s": ("tol_sigma", "max_iter", "accelerate"),
-          "w": ("tol_sigma", "max_iter"),
-          "k": ("tol_sigma", "max_iter", "accelerate"),
-          "1": ("tol_sigma", "max_iter", "accelerate"),
-          "b": ("bic_max_iter",)}
-_CANON = StudySettings(seed=0, velocity_sigma=(0.2, 0.1), noise_density=0.01, photon_model="fixed",
-                       margin_sigma=6.0, designation_sd_sigma=0.0, designation_velocity_sd=0.0, tol_sigma=1e-6,
-                       max_iter=5000, merge_sigma=0.1, accelerate="squarem", mark_init="designation",
-                       mark_association="designation", gate_half_sigma=3.0, bic_max_iter=300, crb_phases=64,
-                       n_trials=0, n_bootstrap=2000, velocity_knowledge="free")
+_READS = {
+    "u": ("tol_sigma", "max_iter", "merge_sigma", "accelerate"),
+    "p": ("tol_sigma",),
+    "m": ("tol_sigma", "max_iter", "merge_sigma", "accelerate", "velocity_knowledge"),
+    "e": ("tol_sigma", "max_iter", "accelerate", "mark_init", "mark_association"),
+    "q": ("tol_sigma", "mark_init", "mark_association"),
+    "c": ("gate_half_sigma",),
+    "s": ("tol_sigma", "max_iter", "accelerate"),
+    "w": ("tol_sigma", "max_iter"),
+    "k": ("tol_sigma", "max_iter", "accelerate"),
+    "1": ("tol_sigma", "max_iter", "accelerate"),
+    "b": ("bic_max_iter",),
+}
+_CANON = StudySettings(
+    seed=0,
+    velocity_sigma=(0.2, 0.1),
+    noise_density=0.01,
+    photon_model="fixed",
+    margin_sigma=6.0,
+    designation_sd_sigma=0.0,
+    designation_velocity_sd=0.0,
+    tol_sigma=1e-6,
+    max_iter=5000,
+    merge_sigma=0.1,
+    accelerate="squarem",
+    mark_init="designation",
+    mark_association="designation",
+    gate_half_sigma=3.0,
+    bic_max_iter=300,
+    crb_phases=64,
+    n_trials=0,
+    n_bootstrap=2000,
+    velocity_knowledge="free",
+)
 _SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
-_TWO_STAGE = {"designation start, labels by start": ("designation", "designation"),
-              "previous start + assignment": ("previous", "assignment"),
-              "designation start + line association": ("designation", "lines"),
-              "no designation: moment start + line association": ("moments", "lines")}
+_TWO_STAGE = {
+    "designation start, labels by start": ("designation", "designation"),
+    "previous start + assignment": ("previous", "assignment"),
+    "designation start + line association": ("designation", "lines"),
+    "no designation: moment start + line association": ("moments", "lines"),
+}
 _EM = {"SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6), "plain EM, cap 100": ("none", 100, 1e-6)}
 _CACHE: dict[tuple, dict] = {}
 
@@ -106,12 +152,24 @@ def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
     accel, cap, tol = _EM[config["EM stopping"]]
     cap = cap if scale.max_iter is None else min(cap, scale.max_iter)
     vx, vy = (float(v) for v in str(config["velocity (sigma/frame)"]).split(","))
-    return replace(_CANON, seed=int(seed), velocity_sigma=(vx, vy),
-                   noise_density=float(config["noise (photons/sigma^2/frame)"]), photon_model=config["photon model"],
-                   designation_sd_sigma=float(config["designation error (sigma)"]), tol_sigma=tol, max_iter=cap,
-                   accelerate=accel, mark_init=init, mark_association=assoc, crb_phases=scale.crb_phases,
-                   n_trials=scale.n_trials, n_bootstrap=scale.n_bootstrap,
-                   velocity_knowledge=config["velocity knowledge"], tracks=config["tracks"])
+    return replace(
+        _CANON,
+        seed=int(seed),
+        velocity_sigma=(vx, vy),
+        noise_density=float(config["noise (photons/sigma^2/frame)"]),
+        photon_model=config["photon model"],
+        designation_sd_sigma=float(config["designation error (sigma)"]),
+        tol_sigma=tol,
+        max_iter=cap,
+        accelerate=accel,
+        mark_init=init,
+        mark_association=assoc,
+        crb_phases=scale.crb_phases,
+        n_trials=scale.n_trials,
+        n_bootstrap=scale.n_bootstrap,
+        velocity_knowledge=config["velocity knowledge"],
+        tracks=config["tracks"],
+    )
 
 
 def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2) -> StudySettings:
@@ -120,7 +178,7 @@ def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2
     reading; only the scale's cap (smoke profile) bounds them."""
     keep = set(_SCENE) | set(_READS[letter])
     out = replace(_CANON, **{k: getattr(settings, k) for k in keep})
-    if q == 1:                                  # one object: nothing to cross
+    if q == 1:  # one object: nothing to cross
         out = replace(out, tracks="parallel")
     if letter in "pq" and scale.max_iter is not None:
         out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
@@ -136,8 +194,20 @@ class _Points:
         self.asked: list[Config] = []
 
     def __call__(self, q, d, pix, m, T, algs, n=None) -> Config:
-        c = Config(int(q), float(d), float(pix), int(m), int(T), algs, self.dsd, None, None,
-                   int(n or self.scale.n_trials), "explore", 0.0)
+        c = Config(
+            int(q),
+            float(d),
+            float(pix),
+            int(m),
+            int(T),
+            algs,
+            self.dsd,
+            None,
+            None,
+            int(n or self.scale.n_trials),
+            "explore",
+            0.0,
+        )
         self.asked.append(c)
         return c
 
@@ -149,30 +219,40 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     P = _Points(config, scale)
     D = tuple(scale.separations)
     T1, m1c = int(config["T of Figs 1a,b"]), int(config["m_k of Fig 1c"])
-    pix, T4, m5 = float(config["Delta of Figs 4, 5, 7 (sigma)"]), int(config["T of Figs 4, 6, 7"]), int(
-        config["m_k of Fig 5"])
+    pix, T4, m5 = (
+        float(config["Delta of Figs 4, 5, 7 (sigma)"]),
+        int(config["T of Figs 4, 6, 7"]),
+        int(config["m_k of Fig 5"]),
+    )
     close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
-    close = sorted(set(close) | {1.0, 3.0})                 # C002-11 reads d = 1 and 3 sigma
+    close = sorted(set(close) | {1.0, 3.0})  # C002-11 reads d = 1 and 3 sigma
     small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
     d5, T3 = float(config["separation of C002-5 (sigma)"]), int(config["T of the Fig 3a claims"])
     core = (1.0, 2.0, 3.0, 6.0)
     pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
-    g = {"1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
-         "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
-         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
-         "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
-         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
-         "3a": {p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
-                for p_ in (1.0, 3.0, 5.0)},
-         "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
-         "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
-         "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
-         "head_known": ({d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)}
-                        if config["velocity knowledge"] == "designated" else {}),
-         "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
-         "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
-         "7": {d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials) for d in
-               sorted({min(D), max(D)} | ({2.0} if figures else set()))}}
+    g = {
+        "1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
+        "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
+        "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
+        "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
+        "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
+        "3a": {
+            p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
+            for p_ in (1.0, 3.0, 5.0)
+        },
+        "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
+        "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
+        "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
+        "head_known": (
+            {d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)} if config["velocity knowledge"] == "designated" else {}
+        ),
+        "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
+        "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
+        "7": {
+            d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials)
+            for d in sorted({min(D), max(D)} | ({2.0} if figures else set()))
+        },
+    }
     if figures:
         g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
         g["w"] = {d: P(2, d, pix, 20, T4, "uw1", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
@@ -225,6 +305,7 @@ class _Results:
 
 # -- statistics -----------------------------------------------------------------------------------------------
 
+
 def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
     """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``; sigma) or of its
     velocities (``velocity``; sigma/frame)."""
@@ -250,8 +331,9 @@ def _spread(statistic: str) -> str:
 
 def gain(num, den, rng, n_bootstrap, statistic="variance", paired=True) -> Estimate:
     """``Sigma^2_num / Sigma^2_den`` with a bootstrap interval; ``statistic="SD ratio"`` takes the square root."""
-    return variance_ratio_ci(num, den, rng, n_bootstrap, paired=paired, spread=_spread(statistic),
-                             sqrt=statistic == "SD ratio")
+    return variance_ratio_ci(
+        num, den, rng, n_bootstrap, paired=paired, spread=_spread(statistic), sqrt=statistic == "SD ratio"
+    )
 
 
 def exp_estimate(e: Estimate) -> Estimate:
@@ -271,9 +353,16 @@ def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance
 
     def stat(*g):
         def mlog(h):
-            return np.mean([np.log(_vsum(x[..., :x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2:], spread))
-                            for x in h], axis=0)
+            return np.mean(
+                [
+                    np.log(_vsum(x[..., : x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2 :], spread))
+                    for x in h
+                ],
+                axis=0,
+            )
+
         return mlog(g[:k]) - mlog(g[k:])
+
     return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
 
 
@@ -282,12 +371,20 @@ def _efficiency(e, bound: float, statistic: str) -> Estimate:
     v = scaled(spread_sum(e, statistic), 1.0 / bound)
     if statistic == "SD ratio":
         r = np.sqrt(max(v.value, 0.0))
-        return Estimate(r, v.stderr / (2 * max(r, 1e-300)), float(np.sqrt(max(v.ci_low, 0.0))),
-                        float(np.sqrt(max(v.ci_high, 0.0))), v.n, v.confidence, v.method + ", square root")
+        return Estimate(
+            r,
+            v.stderr / (2 * max(r, 1e-300)),
+            float(np.sqrt(max(v.ci_low, 0.0))),
+            float(np.sqrt(max(v.ci_high, 0.0))),
+            v.n,
+            v.confidence,
+            v.method + ", square root",
+        )
     return v
 
 
 # -- the claims -----------------------------------------------------------------------------------------------
+
 
 def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> dict:
     """``{claim id: measured}`` of one configuration (see the notebook for each rule)."""
@@ -295,24 +392,29 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     B, ep, st = scale.n_bootstrap, config["epoch"], config["statistic"]
     if config.get("gross errors", "kept") == TRIMMED:
         st = "trimmed"
-    sp = "trimmed_variance" if st == "trimmed" else "variance"     # the log-gain parts read variances otherwise
+    sp = "trimmed_variance" if st == "trimmed" else "variance"  # the log-gain parts read variances otherwise
     D = list(scale.separations)
-    ula = (lambda c: errors(res[c], "ula", ep))
+    ula = lambda c: errors(res[c], "ula", ep)
     out = {"C002-1": [spread_sum(ula(g["1a"][20][d]), st) for d in D]}
 
     def r_m(key, d):
         return ula(g[key][10][d]), ula(g[key][20][d])
+
     far, near = r_m("1a", 6.0), r_m("1a", 1.0)
-    out["C002-2"] = {"weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B, sp),
-                     "far apart": gain(*far, rng, B, st, paired=False)}
+    out["C002-2"] = {
+        "weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B, sp),
+        "far apart": gain(*far, rng, B, st, paired=False),
+    }
     ds3 = (1.0, 2.0, 3.0, 6.0)
-    out["C002-3"] = _mean_log_gain([np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3],
-                                   rng, B, sp)
+    out["C002-3"] = _mean_log_gain(
+        [np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3], rng, B, sp
+    )
     loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
     out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B, sp)
     d5 = float(config["separation of C002-5 (sigma)"])
-    out["C002-5"] = [gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False)
-                     for T in (5, 10, 50)]
+    out["C002-5"] = [
+        gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False) for T in (5, 10, 50)
+    ]
     small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
 
     def rt(m):
@@ -320,22 +422,36 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
     def stat6(*gr):
         def mabs(h):
-            return np.mean([np.abs(np.log(_vsum(x[..., :x.shape[-1] // 2], sp)
-                                                  / _vsum(x[..., x.shape[-1] // 2:], sp))) for x in h], axis=0)
-        return mabs(gr[:len(small)]) - mabs(gr[len(small):])
+            return np.mean(
+                [
+                    np.abs(np.log(_vsum(x[..., : x.shape[-1] // 2], sp) / _vsum(x[..., x.shape[-1] // 2 :], sp)))
+                    for x in h
+                ],
+                axis=0,
+            )
+
+        return mabs(gr[: len(small)]) - mabs(gr[len(small) :])
+
     out["C002-6"] = bootstrap_groups(rt(20) + rt(10), stat6, rng, B)
     T3 = int(config["T of the Fig 3a claims"])
 
     def x1(pix, alg):
         return position_errors(res[g["3a"][pix][T3]], alg, ep)[:, :1]
+
     pc = float(config["coarse Delta of C002-7, C002-8 (sigma)"])
-    out["C002-7"] = {"fine pixels": gain(x1(1.0, "em"), x1(1.0, "ula"), rng, B, st),
-                     "coarse pixels": gain(x1(pc, "em"), x1(pc, "ula"), rng, B, st)}
-    out["C002-8"] = {"worse than fine pixels": gain(x1(pc, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
-                     "better than the marks": gain(x1(pc, "ula"), x1(pc, "em"), rng, B, st)}
+    out["C002-7"] = {
+        "fine pixels": gain(x1(1.0, "em"), x1(1.0, "ula"), rng, B, st),
+        "coarse pixels": gain(x1(pc, "em"), x1(pc, "ula"), rng, B, st),
+    }
+    out["C002-8"] = {
+        "worse than fine pixels": gain(x1(pc, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
+        "better than the marks": gain(x1(pc, "ula"), x1(pc, "em"), rng, B, st),
+    }
     p9 = float(config["Delta of the C002-9 order (sigma)"])
-    out["C002-9"] = {"centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
-                     "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st)}
+    out["C002-9"] = {
+        "centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
+        "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st),
+    }
     use_map = config["ULA"] == "MAP (designation prior)"
     known = config["velocity knowledge"] == "designated"
     twin = "em_vd" if known else "em"
@@ -347,12 +463,17 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     def side(c):
         r = res[c]
         return np.hstack([errors(r, "em", ep), errors(r, "ula", ep)])
+
     close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
-    out["C002-10"] = {"closer": [rho(g["4"][20][d]) for d in D],
-                      "coarser pixels": _mean_log_gain([side(g["6"][20][d]) for d in close],
-                                                       [side(g["4"][20][d]) for d in close], rng, B, sp),
-                      "more frames": _mean_log_gain([side(g["5ab"][50][d]) for d in close],
-                                                    [side(g["5ab"][5][d]) for d in close], rng, B, sp)}
+    out["C002-10"] = {
+        "closer": [rho(g["4"][20][d]) for d in D],
+        "coarser pixels": _mean_log_gain(
+            [side(g["6"][20][d]) for d in close], [side(g["4"][20][d]) for d in close], rng, B, sp
+        ),
+        "more frames": _mean_log_gain(
+            [side(g["5ab"][50][d]) for d in close], [side(g["5ab"][5][d]) for d in close], rng, B, sp
+        ),
+    }
 
     def head(d):
         c = g["5ab"][50][d]
@@ -363,6 +484,7 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
         else:
             return rho(c)
         return gain(errors(res[c], twin, ep), u, rng, B, st)
+
     out["C002-11"] = {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
     out["C002-12"] = {f"Delta = {p_:g} sigma": rho(c) for p_, c in g["good"].items()}
     it = {d: res[c] for d, c in g["7"].items()}
@@ -372,7 +494,9 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
     marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
     out["C002-14"] = ratio_ci(ula_work, marks_work)
-    out["C002-15"] = _c15(config, g, res, "first", config["statistic"])   # a trimmed spread is no bound's    # the CRB is the initial positions' bound
+    out["C002-15"] = _c15(
+        config, g, res, "first", config["statistic"]
+    )  # a trimmed spread is no bound's    # the CRB is the initial positions' bound
     return out
 
 
@@ -416,12 +540,12 @@ def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, 
     return _points(config, scale, figures=True)[0], _Results(settings_of(config, seed, scale), scale)
 
 
-
-
 # -- what the notebook reports beside the claims --------------------------------------------------------------
 
-def word(est: Estimate, ref: float = 1.0, above: str = "above", below: str = "below",
-         same: str = "not distinguishable from") -> str:
+
+def word(
+    est: Estimate, ref: float = 1.0, above: str = "above", below: str = "below", same: str = "not distinguishable from"
+) -> str:
     """The word a 95 % interval supports about ``ref``: ``above`` / ``below`` when it excludes ``ref``, else
     ``same``; ``"undetermined against"`` for an undefined interval."""
     if not (np.isfinite(est.ci_low) and np.isfinite(est.ci_high)):
@@ -452,7 +576,7 @@ def wrong_q_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
     out = {}
     for d, c in g["w"].items():
         r = res[c]
-        mid2 = r["ula"][..., :2].mean(axis=1)                          # (n, 2): labels do not matter for the mean
+        mid2 = r["ula"][..., :2].mean(axis=1)  # (n, 2): labels do not matter for the mean
         out[d] = gain(r["ula_q1"][:, 0, :2], mid2, rng, n_bootstrap)
     return out
 
@@ -466,34 +590,56 @@ def local_maxima_rate(g: dict, res, gap: float = 1e-3) -> dict:
 #: The paper's claims: statement and the paper's value (paper card 002, section 7).
 CLAIMS = {
     "C002-1": ("Accuracy falls as the objects get closer (Fig 1).", "qualitative"),
-    "C002-2": ("As the objects get closer the dependence of the variance on the photon number weakens (Fig 1a,b).",
-               "qualitative; r_m ~ 2 far apart"),
+    "C002-2": (
+        "As the objects get closer the dependence of the variance on the photon number weakens (Fig 1a,b).",
+        "qualitative; r_m ~ 2 far apart",
+    ),
     "C002-3": ("With smaller pixels the dependence on the photon number strengthens (Fig 1a vs 1b).", "qualitative"),
     "C002-4": ("As the objects get closer, errors grow faster for larger pixels (Fig 1c).", "qualitative"),
     "C002-5": ("With more frames the influence of pixel size weakens (Figs 1c, 2a).", "qualitative"),
     "C002-6": ("With fewer target photons the dependence on T weakens (grouped sample; Fig 2).", "qualitative"),
     "C002-7": ("One object: the ULA beats two-stage processing only for large pixels (Fig 3a).", "qualitative"),
-    "C002-8": ("One object: the ULA partly offsets poor primary processing but does not fully compensate it.",
-               "qualitative"),
+    "C002-8": (
+        "One object: the ULA partly offsets poor primary processing but does not fully compensate it.",
+        "qualitative",
+    ),
     "C002-9": ("Implied ordering of Fig 3a: centre-of-region >= iterative marks >= ULA.", "curve order"),
-    "C002-10": ("Multi-target: the ULA gain grows as objects get closer, pixels larger and frames more (Figs 4-6).",
-                "qualitative"),
-    "C002-11": ("At T = 50 the accuracy difference reaches x4 at separation 3 and x4.5 at separation 1 (Fig 5).",
-                "x4 (d = 3 sigma), x4.5 (d = 1 sigma)"),
-    "C002-12": ("For separations > 8 sigma and Delta/sigma < 1 the two algorithms' accuracies practically coincide.",
-                "rho ~ 1"),
-    "C002-13": ("The number of ULA iterations depends on the separation (Fig 7; direction not stated).",
-                "a curve (lost)"),
+    "C002-10": (
+        "Multi-target: the ULA gain grows as objects get closer, pixels larger and frames more (Figs 4-6).",
+        "qualitative",
+    ),
+    "C002-11": (
+        "At T = 50 the accuracy difference reaches x4 at separation 3 and x4.5 at separation 1 (Fig 5).",
+        "x4 (d = 3 sigma), x4.5 (d = 1 sigma)",
+    ),
+    "C002-12": (
+        "For separations > 8 sigma and Delta/sigma < 1 the two algorithms' accuracies practically coincide.",
+        "rho ~ 1",
+    ),
+    "C002-13": (
+        "The number of ULA iterations depends on the separation (Fig 7; direction not stated).",
+        "a curve (lost)",
+    ),
     "C002-14": ("The ULA is more laborious than two-stage processing.", "qualitative"),
-    "C002-15": ("For very close objects with known Q the ULA gives practically potential accuracy of position and "
-                "motion parameters.", "'practically potential'"),
+    "C002-15": (
+        "For very close objects with known Q the ULA gives practically potential accuracy of position and "
+        "motion parameters.",
+        "'practically potential'",
+    ),
 }
 
 
 def scaled(est: Estimate, factor: float) -> Estimate:
     """``est`` times a positive constant (value, standard error and interval)."""
-    return Estimate(est.value * factor, est.stderr * factor, est.ci_low * factor, est.ci_high * factor, est.n,
-                    est.confidence, est.method)
+    return Estimate(
+        est.value * factor,
+        est.stderr * factor,
+        est.ci_low * factor,
+        est.ci_high * factor,
+        est.n,
+        est.confidence,
+        est.method,
+    )
 
 
 def condition_output(exploration, claim_id: str, changed: dict):

@@ -43,8 +43,17 @@ from tvtrack.measure import crop
 from tvtrack.render import gate_origin
 from .em import per_frame_entries, pixel_entries, unified_location_em
 
-__all__ = ["Marks", "LineFit", "propagate", "centre_of_region_marks", "em_marks", "associate", "fit_lines",
-           "moment_starts", "associate_by_lines"]
+__all__ = [
+    "Marks",
+    "LineFit",
+    "propagate",
+    "centre_of_region_marks",
+    "em_marks",
+    "associate",
+    "fit_lines",
+    "moment_starts",
+    "associate_by_lines",
+]
 
 
 @dataclass
@@ -94,16 +103,16 @@ def centre_of_region_marks(counts, predicted, half_gate_px: float) -> Marks:
     if half_gate_px <= 0:
         raise ValueError(f"half_gate_px = {half_gate_px} must be > 0")
     if counts.ndim != 4 or predicted.shape[:2] != counts.shape[:2] or predicted.shape[-1] != 2:
-        raise ValueError(f"counts {counts.shape} must be (N, T, rows, cols) and predicted "
-                         f"{predicted.shape} (N, T, Q, 2)")
+        raise ValueError(
+            f"counts {counts.shape} must be (N, T, rows, cols) and predicted {predicted.shape} (N, T, Q, 2)"
+        )
     rows, cols = counts.shape[-2:]
     g = 2 * int(np.floor(half_gate_px)) + 1
     size = (min(g, rows), min(g, cols))
     origin = gate_origin(predicted, size)
-    origin = np.stack([np.clip(origin[..., 0], 0, cols - size[1]),
-                       np.clip(origin[..., 1], 0, rows - size[0])], axis=-1)
+    origin = np.stack([np.clip(origin[..., 0], 0, cols - size[1]), np.clip(origin[..., 1], 0, rows - size[0])], axis=-1)
     q = predicted.shape[2]
-    gates = crop(np.repeat(counts[:, :, None], q, axis=2), origin, size)   # (N, T, Q, g, g)
+    gates = crop(np.repeat(counts[:, :, None], q, axis=2), origin, size)  # (N, T, Q, g, g)
     total = gates.sum(axis=(-1, -2))
     sx = (gates.sum(axis=-2) * np.arange(size[1])).sum(axis=-1)
     sy = (gates.sum(axis=-1) * np.arange(size[0])).sum(axis=-1)
@@ -111,8 +120,7 @@ def centre_of_region_marks(counts, predicted, half_gate_px: float) -> Marks:
     ts = np.where(valid, total, 1.0)
     xy = np.where(valid[..., None], origin + np.stack([sx, sy], axis=-1) / ts[..., None], predicted)
     n, t = counts.shape[:2]
-    return Marks(xy=xy, valid=valid, n_iter=np.zeros((n, t), dtype=np.int64),
-                 cap_hit=np.zeros((n, t), dtype=bool))
+    return Marks(xy=xy, valid=valid, n_iter=np.zeros((n, t), dtype=np.int64), cap_hit=np.zeros((n, t), dtype=bool))
 
 
 def associate(marks: Marks, predicted) -> Marks:
@@ -122,17 +130,28 @@ def associate(marks: Marks, predicted) -> Marks:
     q = predicted.shape[2]
     if q > 7:
         raise ValueError(f"Q = {q}; the assignment enumerates Q! orders and allows Q <= 7")
-    perms = np.array(list(itertools.permutations(range(q))))          # (P, Q)
+    perms = np.array(list(itertools.permutations(range(q))))  # (P, Q)
     cost = ((marks.xy[:, :, perms] - predicted[:, :, None]) ** 2).sum(axis=(-1, -2))  # (N, T, P)
-    best = perms[cost.argmin(axis=-1)]                                 # (N, T, Q)
+    best = perms[cost.argmin(axis=-1)]  # (N, T, Q)
     xy = np.take_along_axis(marks.xy, best[..., None], axis=2)
     valid = np.take_along_axis(marks.valid, best, axis=2)
     return Marks(xy=xy, valid=valid, n_iter=marks.n_iter, cap_hit=marks.cap_hit)
 
 
-def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "designation",
-             association: str = "designation", tol_px: float = 1e-6, max_iter: int = 5000,
-             accelerate: str | None = None) -> Marks:
+def em_marks(
+    counts,
+    designation,
+    times,
+    sigma_px,
+    p,
+    p_noise,
+    *,
+    init: str = "designation",
+    association: str = "designation",
+    tol_px: float = 1e-6,
+    max_iter: int = 5000,
+    accelerate: str | None = None,
+) -> Marks:
     """Marks from the iterative per-frame EM ("mark formation", ref. [5]).
 
     Parameters
@@ -162,7 +181,7 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
         raise ValueError(f"association = {association!r} must be 'designation', 'assignment' or 'lines'")
     n, t = counts.shape[:2]
     q = designation.shape[1]
-    predicted = propagate(designation, times)                          # (N, T, Q, 2)
+    predicted = propagate(designation, times)  # (N, T, Q, 2)
 
     def frame_state(xy):
         th = np.zeros(xy.shape[:-1] + (4,))
@@ -172,9 +191,18 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
     if init in ("designation", "moments"):
         starts = predicted if init == "designation" else moment_starts(counts, sigma_px, q)
         ent = per_frame_entries(pixel_entries(counts))
-        res = unified_location_em(ent, frame_state(starts).reshape(n * t, q, 4), sigma_px, p,
-                                  p_noise, times=np.zeros(1), motion="static", tol_px=tol_px,
-                                  max_iter=max_iter, accelerate=accelerate)
+        res = unified_location_em(
+            ent,
+            frame_state(starts).reshape(n * t, q, 4),
+            sigma_px,
+            p,
+            p_noise,
+            times=np.zeros(1),
+            motion="static",
+            tol_px=tol_px,
+            max_iter=max_iter,
+            accelerate=accelerate,
+        )
         xy = res.theta[..., :2].reshape(n, t, q, 2)
         valid = ~res.degenerate.reshape(n, t)[..., None] & np.ones(q, dtype=bool)
         n_iter = res.n_iter.reshape(n, t)
@@ -185,11 +213,20 @@ def em_marks(counts, designation, times, sigma_px, p, p_noise, *, init: str = "d
         n_iter = np.empty((n, t), dtype=np.int64)
         cap = np.empty((n, t), dtype=bool)
         start = predicted[:, 0]
-        for l in range(t):                                             # loop over frames only
-            ent = pixel_entries(counts[:, l:l + 1])
-            res = unified_location_em(ent, frame_state(start), sigma_px, p, p_noise,
-                                      times=np.zeros(1), motion="static", tol_px=tol_px,
-                                      max_iter=max_iter, accelerate=accelerate)
+        for l in range(t):  # loop over frames only
+            ent = pixel_entries(counts[:, l : l + 1])
+            res = unified_location_em(
+                ent,
+                frame_state(start),
+                sigma_px,
+                p,
+                p_noise,
+                times=np.zeros(1),
+                motion="static",
+                tol_px=tol_px,
+                max_iter=max_iter,
+                accelerate=accelerate,
+            )
             xy[:, l] = res.theta[..., :2]
             valid[:, l] = ~res.degenerate[:, None]
             n_iter[:, l] = res.n_iter
@@ -207,7 +244,7 @@ def _gate_moments(counts, py, px, half: int):
     """Count-weighted centroid (N, T, 2) and second-moment matrix (N, T, 2, 2) of each frame inside
     the square gate of half-size ``half`` px around pixel ``(py, px)`` (N, T)."""
     rows, cols = counts.shape[-2:]
-    yy = np.arange(rows, dtype=float)[:, None]                             # pixel centres, px
+    yy = np.arange(rows, dtype=float)[:, None]  # pixel centres, px
     xx = np.arange(cols, dtype=float)[None, :]
     inside = (np.abs(yy - py[..., None, None]) <= half) & (np.abs(xx - px[..., None, None]) <= half)
     w = counts * inside
@@ -220,8 +257,9 @@ def _gate_moments(counts, py, px, half: int):
     return np.stack([mx, my], axis=-1), cov
 
 
-def moment_starts(counts, sigma_px: float, q: int, half_gate_sigma: float = 3.0,
-                  peak_fraction: float = 0.5) -> np.ndarray:
+def moment_starts(
+    counts, sigma_px: float, q: int, half_gate_sigma: float = 3.0, peak_fraction: float = 0.5
+) -> np.ndarray:
     """Designation-free starting positions of the per-frame EM, shape (N, T, Q, 2), px.
 
     In each frame the count image is box-filtered over a gate ``2 * ceil(half_gate_sigma * sigma)
@@ -257,14 +295,14 @@ def moment_starts(counts, sigma_px: float, q: int, half_gate_sigma: float = 3.0,
         py, px = np.unravel_index(k, (rows, cols))
         peaks.append((py, px))
         heights.append(np.take_along_axis(smooth.reshape(n, t, -1), k[..., None], axis=-1)[..., 0])
-        near = ((np.abs(yy - py[..., None, None]) <= 2 * half) & (np.abs(xx - px[..., None, None]) <= 2 * half))
+        near = (np.abs(yy - py[..., None, None]) <= 2 * half) & (np.abs(xx - px[..., None, None]) <= 2 * half)
         smooth = np.where(near, -np.inf, smooth)
-    resolved = np.all([h >= peak_fraction * heights[0] for h in heights], axis=0)       # (N, T)
+    resolved = np.all([h >= peak_fraction * heights[0] for h in heights], axis=0)  # (N, T)
     centres = np.stack([_gate_moments(counts, py, px, half)[0] for py, px in peaks], axis=2)  # (N, T, Q, 2)
     c, cov = _gate_moments(counts, *peaks[0], half)
     lam, vec = np.linalg.eigh(cov)
-    u = vec[..., :, -1]                                                    # (N, T, 2)
-    excess = np.maximum(lam[..., -1] - sigma_px ** 2 - 1 / 12, (sigma_px / 2) ** 2)
+    u = vec[..., :, -1]  # (N, T, 2)
+    excess = np.maximum(lam[..., -1] - sigma_px**2 - 1 / 12, (sigma_px / 2) ** 2)
     spacing = np.sqrt(12 * excess / (q * q - 1)) if q > 1 else np.zeros_like(excess)
     offsets = (np.arange(q) - (q - 1) / 2)[None, None, :, None]
     split = c[:, :, None, :] + offsets * spacing[..., None, None] * u[:, :, None, :]
@@ -294,11 +332,14 @@ def associate_by_lines(marks: Marks, times, max_rounds: int = 20) -> Marks:
     frame_mean = (w * xy).sum(axis=2, keepdims=True) / np.maximum(w.sum(axis=2, keepdims=True), 1)
     c = (xy - frame_mean) * w
     cov = np.einsum("ntqi,ntqj->nij", c, c)
-    u = np.linalg.eigh(cov)[1][..., -1]                                     # (N, 2)
+    u = np.linalg.eigh(cov)[1][..., -1]  # (N, 2)
     order = np.argsort(np.einsum("ntqi,ni->ntq", xy - frame_mean, u), axis=2)
-    current = Marks(xy=np.take_along_axis(xy, order[..., None], axis=2),
-                    valid=np.take_along_axis(marks.valid, order, axis=2), n_iter=marks.n_iter,
-                    cap_hit=marks.cap_hit)
+    current = Marks(
+        xy=np.take_along_axis(xy, order[..., None], axis=2),
+        valid=np.take_along_axis(marks.valid, order, axis=2),
+        n_iter=marks.n_iter,
+        cap_hit=marks.cap_hit,
+    )
     fallback = np.concatenate([current.xy.mean(axis=1), np.zeros((n, q, 2))], axis=-1)
     for _ in range(max_rounds):
         fit = fit_lines(current, times, fallback)
@@ -340,19 +381,19 @@ def fit_lines(marks: Marks, times, fallback, velocity=None) -> LineFit:
         fitted (one usable mark suffices), the two-stage counterpart of a ULA whose velocity is fixed.
     """
     t = np.asarray(times, dtype=float)[None, :, None]
-    w = marks.valid.astype(float)                                      # (N, T, Q)
+    w = marks.valid.astype(float)  # (N, T, Q)
     if velocity is not None:
         v = np.asarray(velocity, dtype=float)
         A = w.sum(axis=1)
         ok = A > 0
-        resid = marks.xy - t[..., None] * v[:, None]                  # (N, T, Q, 2)
+        resid = marks.xy - t[..., None] * v[:, None]  # (N, T, Q, 2)
         x0 = (w[..., None] * resid).sum(axis=1) / np.where(ok, A, 1.0)[..., None]
         theta = np.where(ok[..., None], np.concatenate([x0, v], axis=-1), np.asarray(fallback, float))
         return LineFit(theta=theta, valid=ok)
     A = w.sum(axis=1)
     B = (w * t).sum(axis=1)
     C = (w * t * t).sum(axis=1)
-    Dx = (w[..., None] * marks.xy).sum(axis=1)                         # (N, Q, 2)
+    Dx = (w[..., None] * marks.xy).sum(axis=1)  # (N, Q, 2)
     Dt = (w[..., None] * t[..., None] * marks.xy).sum(axis=1)
     det = A * C - B * B
     ok = det > 1e-9 * np.maximum(A * C, 1e-300)

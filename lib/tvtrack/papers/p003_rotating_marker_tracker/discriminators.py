@@ -31,10 +31,19 @@ from ...render import pixel_fractions_box
 
 
 __all__ = [
-    "interval_weights", "quadrant_weights", "quadrant_noise", "quadrant_sums", "quadrant_discriminator", "centroid_discriminator",
+    "interval_weights",
+    "quadrant_weights",
+    "quadrant_noise",
+    "quadrant_sums",
+    "quadrant_discriminator",
+    "centroid_discriminator",
     "edge_discriminator",
-    "polar_errors", "static_characteristic", "quadrant_slope_fit", "two_emitter_discriminator",
-    "two_emitter_slope", "FORMS",
+    "polar_errors",
+    "static_characteristic",
+    "quadrant_slope_fit",
+    "two_emitter_discriminator",
+    "two_emitter_slope",
+    "FORMS",
 ]
 
 FORMS = ("quadrant", "edge", "centroid")
@@ -87,8 +96,7 @@ def quadrant_weights(origin, center, half, shape, dtype=np.float64):
     rows, cols = shape
     xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
     yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
-    return (np.stack([yl + yu, yu - yl], axis=-2).astype(dtype),
-            np.stack([xl + xr, xr - xl], axis=-1).astype(dtype))
+    return (np.stack([yl + yu, yu - yl], axis=-2).astype(dtype), np.stack([xl + xr, xr - xl], axis=-1).astype(dtype))
 
 
 def quadrant_noise(wy, wx, sigma: float, rng: np.random.Generator) -> np.ndarray:
@@ -168,7 +176,7 @@ def quadrant_discriminator(crops, origin, center, half):
     """
     u = np.asarray(crops)
     wy, wx = quadrant_weights(origin, center, half, u.shape[-2:], u.dtype)
-    m = wy @ (u @ wx)                                                 # (n, 2, 2)
+    m = wy @ (u @ wx)  # (n, 2, 2)
     return m[..., 0, 1], m[..., 1, 0], m[..., 0, 0]
 
 
@@ -197,13 +205,13 @@ def centroid_discriminator(crops, origin, center, half):
     o, c = np.asarray(origin), np.asarray(center, dtype=float)
     n, rows, cols = crops.shape
     wy, wx = quadrant_weights(o, c, half, (rows, cols))
-    ry, cx = wy[:, 0, :], wx[:, :, 0]                             # whole-window row and column weights
+    ry, cx = wy[:, 0, :], wx[:, :, 0]  # whole-window row and column weights
     xs = o[:, 0, None] + np.arange(cols) - c[:, 0, None]
     ys = o[:, 1, None] + np.arange(rows) - c[:, 1, None]
     colsum = np.einsum("nr,nrc->nc", ry, crops)
     rowsum = np.einsum("nrc,nc->nr", crops, cx)
     m0 = np.einsum("nc,nc->n", colsum, cx)
-    m0 = np.where(np.abs(m0) > 1e-9, m0, np.inf)                 # an empty window gives no correction
+    m0 = np.where(np.abs(m0) > 1e-9, m0, np.inf)  # an empty window gives no correction
     return np.einsum("nc,nc->n", colsum, cx * xs) / m0, np.einsum("nr,nr->n", rowsum, ry * ys) / m0
 
 
@@ -222,10 +230,12 @@ def edge_discriminator(crops, origin, center, a: float):
     rows, cols = u.shape[-2:]
     hy = interval_weights(c[..., 1] - a, c[..., 1] + a, rows, o[..., 1])
     hx = interval_weights(c[..., 0] - a, c[..., 0] + a, cols, o[..., 0])
-    u_dx = np.einsum("...y,...yx->...x", hy, u)   # (24)-type profile along x
+    u_dx = np.einsum("...y,...yx->...x", hy, u)  # (24)-type profile along x
     u_dy = np.einsum("...yx,...x->...y", u, hx)
-    return (_interp(u_dx, o[..., 0], c[..., 0] + a) - _interp(u_dx, o[..., 0], c[..., 0] - a),
-            _interp(u_dy, o[..., 1], c[..., 1] + a) - _interp(u_dy, o[..., 1], c[..., 1] - a))
+    return (
+        _interp(u_dx, o[..., 0], c[..., 0] + a) - _interp(u_dx, o[..., 0], c[..., 0] - a),
+        _interp(u_dy, o[..., 1], c[..., 1] + a) - _interp(u_dy, o[..., 1], c[..., 1] - a),
+    )
 
 
 def _interp(profile, origin, x):
@@ -246,8 +256,17 @@ def polar_errors(dx, dy, theta):
     return dx * c + dy * s, -dx * s + dy * c
 
 
-def static_characteristic(render, offsets, *, form: str = "quadrant", half: float, a: float | None = None,
-                          axis: int = 0, extra=None, gate_center=(0.3, -0.2)) -> np.ndarray:
+def static_characteristic(
+    render,
+    offsets,
+    *,
+    form: str = "quadrant",
+    half: float,
+    a: float | None = None,
+    axis: int = 0,
+    extra=None,
+    gate_center=(0.3, -0.2),
+) -> np.ndarray:
     """Noise-free discriminator output against the spot's offset from the gate centre (S-curve).
 
     Parameters
@@ -297,7 +316,6 @@ def static_characteristic(render, offsets, *, form: str = "quadrant", half: floa
     return d[axis]
 
 
-
 def quadrant_slope_fit(render, diameter: float, half: float) -> dict:
     """Slope of the quadrant S-curve at zero error and its straight-line fit over ``+-D/2``.
 
@@ -324,11 +342,16 @@ def quadrant_slope_fit(render, diameter: float, half: float) -> dict:
     grid = np.linspace(-D / 2, D / 2, 9)
     g = static_characteristic(render, grid, form="quadrant", half=half)
     lin = np.polyfit(grid, g, 1)
-    return dict(slope_at_zero=float(np.polyfit(small, f, 1)[0]), fit_slope_halfD=float(lin[0]),
-                max_dev_from_line=float(np.max(np.abs(g - np.polyval(lin, grid))) / (lin[0] * D / 2)))
+    return dict(
+        slope_at_zero=float(np.polyfit(small, f, 1)[0]),
+        fit_slope_halfD=float(lin[0]),
+        max_dev_from_line=float(np.max(np.abs(g - np.polyval(lin, grid))) / (lin[0] * D / 2)),
+    )
 
-def two_emitter_discriminator(line, origin, lam_hat, *, beta: float, a: float, c1, c2,
-                              form: str = "edge", half_gate: float | None = None):
+
+def two_emitter_discriminator(
+    line, origin, lam_hat, *, beta: float, a: float, c1, c2, form: str = "edge", half_gate: float | None = None
+):
     """1-D two-emitter discriminator, corrected eq. (6) (emitter 1 at ``lambda - beta``).
 
     Edge form: ``c1 [u(l - b + a) - u(l - b - a)] + c2 [u(l + b + a) - u(l + b - a)]``
@@ -370,9 +393,9 @@ def two_emitter_discriminator(line, origin, lam_hat, *, beta: float, a: float, c
     return c1 * diff(lam - beta) + c2 * diff(lam + beta)
 
 
-
-def two_emitter_slope(*, beta: float, a: float, form: str = "edge", half_gate: float | None = None,
-                      n: int = 256, step: float = 0.5) -> float:
+def two_emitter_slope(
+    *, beta: float, a: float, form: str = "edge", half_gate: float | None = None, n: int = 256, step: float = 0.5
+) -> float:
     """Numerical slope (output per px of error) of the 1-D two-emitter discriminator at zero error.
 
     Emitter 1 alone (``c1 = 1``, ``c2 = 0``), a box of half-width ``a`` and unit brightness per
@@ -388,7 +411,18 @@ def two_emitter_slope(*, beta: float, a: float, form: str = "edge", half_gate: f
         Gate half-width of the integral form (px).
     """
     c = n / 2
-    vals = [two_emitter_discriminator(2 * a * pixel_fractions_box(np.array([lam - beta]), a, n), 0, np.array([c]),
-                                      beta=beta, a=a, c1=1.0, c2=0.0, form=form, half_gate=half_gate)[0]
-            for lam in (c - step / 2, c + step / 2)]
+    vals = [
+        two_emitter_discriminator(
+            2 * a * pixel_fractions_box(np.array([lam - beta]), a, n),
+            0,
+            np.array([c]),
+            beta=beta,
+            a=a,
+            c1=1.0,
+            c2=0.0,
+            form=form,
+            half_gate=half_gate,
+        )[0]
+        for lam in (c - step / 2, c + step / 2)
+    ]
     return (vals[1] - vals[0]) / step

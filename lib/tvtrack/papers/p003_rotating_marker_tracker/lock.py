@@ -21,8 +21,26 @@ import numpy as np
 
 from ...montecarlo import Estimate, proportion_ci
 
-__all__ = ["LossCriterion", "first_loss", "tag_capture", "MECHANISMS", "CRITERIA", "loss_criteria", "classify_losses", "omega_alarm", "loss_threshold", "losses_by_sir", "loss_curve",
-           "fit_logistic_loss", "fit_logistic_loss_batch", "sir_at_loss", "LossFit", "loss_rate", "fit_loss_curve", "ratio_of_fits"]
+__all__ = [
+    "LossCriterion",
+    "first_loss",
+    "tag_capture",
+    "MECHANISMS",
+    "CRITERIA",
+    "loss_criteria",
+    "classify_losses",
+    "omega_alarm",
+    "loss_threshold",
+    "losses_by_sir",
+    "loss_curve",
+    "fit_logistic_loss",
+    "fit_logistic_loss_batch",
+    "sir_at_loss",
+    "LossFit",
+    "loss_rate",
+    "fit_loss_curve",
+    "ratio_of_fits",
+]
 
 KINDS = ("window", "consecutive")
 
@@ -115,8 +133,8 @@ def tag_capture(gate, interferers, loss_frame, window: int, radius: float, fract
     n = gate.shape[0]
     if q.shape[1] == 0:
         return np.zeros(n, bool)
-    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)          # (n, window)
-    seg = gate[np.arange(n)[:, None], frames]                                  # (n, window, 2)
+    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)  # (n, window)
+    seg = gate[np.arange(n)[:, None], frames]  # (n, window, 2)
     near = np.linalg.norm(seg[:, :, None, :] - q[:, None, :, :], axis=-1) < radius
     return (loss >= 0) & (near.mean(axis=1) > fraction).any(axis=1)
 
@@ -127,8 +145,17 @@ MECHANISMS = ("capture", "drift among several", "frequency", "drift")
 CRITERIA = ("capture", "drift among several", "frequency")
 
 
-def loss_criteria(loss_frame, gate, interferers, miss, omega_error, window: int, radius: float,
-                  fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
+def loss_criteria(
+    loss_frame,
+    gate,
+    interferers,
+    miss,
+    omega_error,
+    window: int,
+    radius: float,
+    fraction: float = 0.5,
+    omega_tol: float = 0.2,
+) -> np.ndarray:
     """Which loss criteria each loss meets, each judged on its own (no order between them).
 
     Over the ``window`` frames that end at the loss frame, a frame is *near* an interferer when the gate is within
@@ -146,23 +173,33 @@ def loss_criteria(loss_frame, gate, interferers, miss, omega_error, window: int,
     loss = np.asarray(loss_frame)
     gate, q = np.asarray(gate), np.asarray(interferers)
     n = gate.shape[0]
-    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)           # (n, window)
+    frames = np.clip(loss[:, None] - np.arange(window)[::-1], 0, None)  # (n, window)
     rows = np.arange(n)[:, None]
     out = np.zeros((n, 3), bool)
     with np.errstate(invalid="ignore"):
         out[:, 2] = (np.abs(np.asarray(omega_error)[rows, frames]) > omega_tol).mean(axis=1) > fraction
     if q.shape[1]:
-        off_marker = np.asarray(miss)[rows, frames] > radius                      # (n, window)
-        near = (np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius) \
-            & off_marker[:, :, None]
+        off_marker = np.asarray(miss)[rows, frames] > radius  # (n, window)
+        near = (np.linalg.norm(gate[rows, frames][:, :, None, :] - q[:, None, :, :], axis=-1) < radius) & off_marker[
+            :, :, None
+        ]
         out[:, 0] = (near.mean(axis=1) > fraction).any(axis=1)
         out[:, 1] = near.any(axis=1).sum(axis=1) >= 2
     out[loss < 0] = False
     return out
 
 
-def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: int, radius: float,
-                    fraction: float = 0.5, omega_tol: float = 0.2) -> np.ndarray:
+def classify_losses(
+    loss_frame,
+    gate,
+    interferers,
+    miss,
+    omega_error,
+    window: int,
+    radius: float,
+    fraction: float = 0.5,
+    omega_tol: float = 0.2,
+) -> np.ndarray:
     """How each loss of lock happened, from the ``window`` frames that end at the loss frame.
 
     A frame counts as *near* an interferer when the gate is within ``radius`` of it while more
@@ -199,7 +236,7 @@ def classify_losses(loss_frame, gate, interferers, miss, omega_error, window: in
     """
     met = loss_criteria(loss_frame, gate, interferers, miss, omega_error, window, radius, fraction, omega_tol)
     out = np.full(met.shape[0], 3, np.int8)
-    for j in (2, 1, 0):                                   # the documented precedence: capture first
+    for j in (2, 1, 0):  # the documented precedence: capture first
         out[met[:, j]] = j
     out[np.asarray(loss_frame) < 0] = -1
     return out
@@ -222,7 +259,7 @@ def omega_alarm(omega_hat, omega_nominal: float, window: int, tol: float = 0.2) 
     """
     dev = np.abs(np.asarray(omega_hat, float) / omega_nominal - 1.0)
     c = np.cumsum(np.pad(dev, ((0, 0), (1, 0))), axis=1)
-    mean = (c[:, window:] - c[:, :-window]) / window                            # frames window-1 .. T-1
+    mean = (c[:, window:] - c[:, :-window]) / window  # frames window-1 .. T-1
     hit = mean > tol
     return np.where(hit.any(axis=1), hit.argmax(axis=1) + window - 1, -1)
 
@@ -293,13 +330,16 @@ def loss_curve(runs: dict, sir_values, criterion: LossCriterion, capture_radius:
     capt = tag_capture(runs["gate"], runs["interferers"], loss, criterion.window, capture_radius, criterion.fraction)
     counts = losses_by_sir(loss, runs["sir"], sir_values)
     n = int((runs["sir"] == sir_values[0]).sum())
-    return dict(p=[proportion_ci(int(c), n) for c in counts], losses=counts, n=n,
-                threshold=loss_threshold(sir_values, counts),
-                captures=np.array([capt[runs["sir"] == s].sum() for s in sir_values]))
+    return dict(
+        p=[proportion_ci(int(c), n) for c in counts],
+        losses=counts,
+        n=n,
+        threshold=loss_threshold(sir_values, counts),
+        captures=np.array([capt[runs["sir"] == s].sum() for s in sir_values]),
+    )
 
 
 # --- loss of lock as a fitted curve of SIR ------------------------------------------------------
-
 
 
 def fit_logistic_loss_batch(sir, k, n, max_slope: float = 200.0, iterations: int = 60) -> tuple[np.ndarray, np.ndarray]:
@@ -398,24 +438,48 @@ class LossFit:
         ok = np.isfinite(self.boot_50)
         boot = 1.0 / (1.0 + np.exp(-self.boot_beta[ok] * (np.log(self.boot_50[ok]) - np.log(s))))
         if not np.isfinite(self.sir_50.value):
-            return Estimate(self.p_at(s), float("nan"), 0.0, 3.0 / float(self.n.sum()), int(self.n.sum()),
-                            0.95, "no loss on the grid (rule of three over all runs)") if self.k.sum() == 0 else \
-                Estimate(1.0, float("nan"), 1.0, 1.0, int(self.n.sum()), 0.95, "every run lost")
+            return (
+                Estimate(
+                    self.p_at(s),
+                    float("nan"),
+                    0.0,
+                    3.0 / float(self.n.sum()),
+                    int(self.n.sum()),
+                    0.95,
+                    "no loss on the grid (rule of three over all runs)",
+                )
+                if self.k.sum() == 0
+                else Estimate(1.0, float("nan"), 1.0, 1.0, int(self.n.sum()), 0.95, "every run lost")
+            )
         return _boot_estimate(self.p_at(s), np.concatenate([boot, np.full((~ok).sum(), np.nan)]), self.sir_50.n)
 
     def summary(self) -> dict:
         """What results.json keeps per condition."""
-        return dict(sir=self.sir, losses=self.k, runs=self.n, sir_50=self.sir_50, sir_05=self.sir_05,
-                    slope_log_sir=self.beta, loss_rate_per_s=dict(zip(map(lambda v: f"{v:g}", self.sir), self.rate)),
-                    duration_s=self.duration_s)
+        return dict(
+            sir=self.sir,
+            losses=self.k,
+            runs=self.n,
+            sir_50=self.sir_50,
+            sir_05=self.sir_05,
+            slope_log_sir=self.beta,
+            loss_rate_per_s=dict(zip(map(lambda v: f"{v:g}", self.sir), self.rate)),
+            duration_s=self.duration_s,
+        )
 
 
 def _boot_estimate(value: float, boot: np.ndarray, n: int, confidence: float = 0.95) -> Estimate:
     ok = boot[np.isfinite(boot)]
     a = (1 - confidence) / 2
-    lo, hi = (np.quantile(ok, [a, 1 - a]) if ok.size >= 0.9 * boot.size else (np.nan, np.nan))
-    return Estimate(float(value), float(np.std(ok)) if ok.size else float("nan"), float(lo), float(hi), n,
-                    confidence, f"cluster bootstrap percentile ({boot.size} resamples of the trials)")
+    lo, hi = np.quantile(ok, [a, 1 - a]) if ok.size >= 0.9 * boot.size else (np.nan, np.nan)
+    return Estimate(
+        float(value),
+        float(np.std(ok)) if ok.size else float("nan"),
+        float(lo),
+        float(hi),
+        n,
+        confidence,
+        f"cluster bootstrap percentile ({boot.size} resamples of the trials)",
+    )
 
 
 def loss_rate(loss_frame, dt: float, n_frames: int, confidence: float = 0.95) -> Estimate:
@@ -428,12 +492,24 @@ def loss_rate(loss_frame, dt: float, n_frames: int, confidence: float = 0.95) ->
     a = 1 - confidence
     lo = chi2.ppf(a / 2, 2 * k) / 2 / exposure if k > 0 else 0.0
     hi = chi2.ppf(1 - a / 2, 2 * k + 2) / 2 / exposure
-    return Estimate(k / exposure, np.sqrt(k) / exposure, float(lo), float(hi), loss.size, confidence,
-                    "exact Poisson (chi-square)")
+    return Estimate(
+        k / exposure, np.sqrt(k) / exposure, float(lo), float(hi), loss.size, confidence, "exact Poisson (chi-square)"
+    )
 
 
-def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames: int,
-                   rng: np.random.Generator, n_boot: int = 300, level: float = 0.05, boot_index=None) -> LossFit:
+def fit_loss_curve(
+    loss_frame,
+    sir,
+    cluster,
+    sir_values,
+    *,
+    dt: float,
+    n_frames: int,
+    rng: np.random.Generator,
+    n_boot: int = 300,
+    level: float = 0.05,
+    boot_index=None,
+) -> LossFit:
     """Fit P(loss within the run) against log SIR and bootstrap SIR_50 and the SIR at ``level``.
 
     Parameters
@@ -460,8 +536,11 @@ def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames:
     sir_values = np.asarray(sir_values, float)
     lost = np.asarray(loss_frame) >= 0
     ids, cl = np.unique(np.asarray(cluster), return_inverse=True)
-    col = np.searchsorted(sir_values, np.asarray(sir, float)) if np.all(np.diff(sir_values) > 0) else \
-        np.array([int(np.flatnonzero(sir_values == s)[0]) for s in sir])
+    col = (
+        np.searchsorted(sir_values, np.asarray(sir, float))
+        if np.all(np.diff(sir_values) > 0)
+        else np.array([int(np.flatnonzero(sir_values == s)[0]) for s in sir])
+    )
     C, m = ids.size, sir_values.size
     lost_cm = np.zeros((C, m))
     runs_cm = np.zeros((C, m))
@@ -472,18 +551,32 @@ def fit_loss_curve(loss_frame, sir, cluster, sir_values, *, dt: float, n_frames:
     s05 = sir_at_loss(s50, beta, level) if np.isfinite(s50) else float("nan")
     if boot_index is None:
         boot_index = rng.integers(0, C, size=(n_boot, C))
-    W = np.stack([np.bincount(idx, minlength=C) for idx in boot_index]).astype(float)    # (B, C) resample weights
+    W = np.stack([np.bincount(idx, minlength=C) for idx in boot_index]).astype(float)  # (B, C) resample weights
     b50, bbeta = fit_logistic_loss_batch(sir_values, W @ lost_cm, W @ runs_cm)
     b05 = b50 * np.exp(-np.log(level / (1 - level)) / bbeta)
     rate = [loss_rate(np.asarray(loss_frame)[col == j], dt, n_frames) for j in range(m)]
     if np.isfinite(s50):
         e50, e05 = _boot_estimate(s50, b50, C), _boot_estimate(s05, b05, C)
-    elif k.sum() == 0:   # no loss anywhere: the thresholds lie below the grid
-        e50 = e05 = Estimate(float("nan"), float("nan"), 0.0, float(sir_values.min()), C, 0.95,
-                             "no loss on the grid: below its smallest SIR")
-    else:                # every run lost: above the grid
-        e50 = e05 = Estimate(float("inf"), float("nan"), float(sir_values.max()), float("inf"), C, 0.95,
-                             "every run lost: above the largest SIR of the grid")
+    elif k.sum() == 0:  # no loss anywhere: the thresholds lie below the grid
+        e50 = e05 = Estimate(
+            float("nan"),
+            float("nan"),
+            0.0,
+            float(sir_values.min()),
+            C,
+            0.95,
+            "no loss on the grid: below its smallest SIR",
+        )
+    else:  # every run lost: above the grid
+        e50 = e05 = Estimate(
+            float("inf"),
+            float("nan"),
+            float(sir_values.max()),
+            float("inf"),
+            C,
+            0.95,
+            "every run lost: above the largest SIR of the grid",
+        )
     return LossFit(sir_values, k.astype(int), n.astype(int), e50, e05, beta, b50, b05, bbeta, rate, n_frames * dt)
 
 

@@ -24,15 +24,32 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal
 
-from .discriminators import centroid_discriminator, edge_discriminator, polar_errors, quadrant_noise, \
-    quadrant_weights, two_emitter_discriminator
+from .discriminators import (
+    centroid_discriminator,
+    edge_discriminator,
+    polar_errors,
+    quadrant_noise,
+    quadrant_weights,
+    two_emitter_discriminator,
+)
 from ...measure import gate_crop_size
 from ...render import pixel_fractions_box
 
 __all__ = [
-    "LoopGains", "loop_gains", "RotatingGateTracker", "TrackHistory", "run_closed_loop", "loop_poles",
-    "phase_response", "realised_phase_bandwidth", "gains_realising", "stack_gains",
-    "EKFTracker", "ekf_noise_from_bandwidths", "simulate_two_emitter_1d", "band_power_share",
+    "LoopGains",
+    "loop_gains",
+    "RotatingGateTracker",
+    "TrackHistory",
+    "run_closed_loop",
+    "loop_poles",
+    "phase_response",
+    "realised_phase_bandwidth",
+    "gains_realising",
+    "stack_gains",
+    "EKFTracker",
+    "ekf_noise_from_bandwidths",
+    "simulate_two_emitter_1d",
+    "band_power_share",
     "phase_locked_amplitude",
 ]
 
@@ -54,12 +71,17 @@ class LoopGains:
 
 def stack_gains(gains, n_each: int) -> LoopGains:
     """Per-trial gains: each of ``gains`` repeated for ``n_each`` consecutive trials (fields of shape (k n_each,))."""
-    return LoopGains(*(np.repeat([getattr(g, f) for g in gains], n_each).astype(float)
-                       for f in ("k_xy", "k_r", "k1", "k2", "k_phi", "k_om")))
+    return LoopGains(
+        *(
+            np.repeat([getattr(g, f) for g in gains], n_each).astype(float)
+            for f in ("k_xy", "k_r", "k1", "k2", "k_phi", "k_om")
+        )
+    )
 
 
-def loop_gains(b_xy: float = 10.0, b_r: float = 0.2, b_omega: float = 6.0, zeta: float = 0.707,
-               rotation_hz: float = 8.0) -> LoopGains:
+def loop_gains(
+    b_xy: float = 10.0, b_r: float = 0.2, b_omega: float = 6.0, zeta: float = 0.707, rotation_hz: float = 8.0
+) -> LoopGains:
     """Gains from closed-loop -3 dB bandwidths (Hz): 10 / 0.2 / 6 Hz in the paper.
 
     Variant P uses ``k_phi = 2 pi B_om`` and ``k_om = k_phi / T_rot^2`` (card, section 4.3).
@@ -98,8 +120,8 @@ class RotatingGateTracker:
         if self.state.ndim != 2 or self.state.shape[1] != 5:
             raise ValueError(f"parameter 'x0' has shape {self.state.shape}; it must be (n, 5)")
         self.g, self.slope, self.variant, self.rotating = gains, float(slope), variant, rotating
-        self.phi = self.state[:, 3].copy()        # variant P: phase at the reference time
-        self.tau = 0.0                           # variant P: time since the reference
+        self.phi = self.state[:, 3].copy()  # variant P: phase at the reference time
+        self.tau = 0.0  # variant P: time since the reference
 
     def gate_center(self) -> np.ndarray:
         """Predicted marker position (eq. (8) with the estimates), shape (n, 2)."""
@@ -115,18 +137,18 @@ class RotatingGateTracker:
         s[:, 1] += dt * g.k_xy * dy / S
         if not self.rotating:
             return np.zeros_like(dx), np.zeros_like(dx)
-        e_r, e_th = polar_errors(dx, dy, s[:, 3])                    # corrected (26)-(28)
+        e_r, e_th = polar_errors(dx, dy, s[:, 3])  # corrected (26)-(28)
         eps_th = e_th / (S * np.maximum(s[:, 2], 1.0))
         s[:, 2] += dt * g.k_r * e_r / S
         if self.variant == "S":
             s[:, 3] += dt * (s[:, 4] + g.k1 * eps_th)
             s[:, 4] += dt * g.k2 * eps_th
         else:
-            self.phi += dt * g.k_phi * eps_th                        # (28): dPi/dphi = r e_th
-            s[:, 4] += dt * g.k_om * self.tau * eps_th               # (27): dPi/domega = r t e_th
+            self.phi += dt * g.k_phi * eps_th  # (28): dPi/dphi = r e_th
+            s[:, 4] += dt * g.k_om * self.tau * eps_th  # (27): dPi/domega = r t e_th
             self.tau += dt
             period = 2 * np.pi / max(float(np.mean(np.abs(s[:, 4]))), 1e-9)
-            if self.tau >= period:                                   # re-reference the time origin
+            if self.tau >= period:  # re-reference the time origin
                 self.phi += s[:, 4] * self.tau
                 self.tau = 0.0
             s[:, 3] = self.phi + s[:, 4] * self.tau
@@ -156,9 +178,18 @@ class TrackHistory:
     omega: np.ndarray
 
 
-def run_closed_loop(scene, tracker: RotatingGateTracker, rng: np.random.Generator | None, *, gate_half: float,
-                    form: str = "quadrant", edge_a: float | None = None, noise: str = "pixel",
-                    keep_full: bool = True, crop_callback=None) -> TrackHistory:
+def run_closed_loop(
+    scene,
+    tracker: RotatingGateTracker,
+    rng: np.random.Generator | None,
+    *,
+    gate_half: float,
+    form: str = "quadrant",
+    edge_a: float | None = None,
+    noise: str = "pixel",
+    keep_full: bool = True,
+    crop_callback=None,
+) -> TrackHistory:
     """Render gate crops, discriminate and update the loops frame by frame (batched over trials).
 
     Parameters
@@ -297,13 +328,17 @@ def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: fl
     f = np.arange(0.01, f_max, 0.01)
     mag = np.abs(phase_response(gains, omega, r, f))
     below = np.flatnonzero(mag < 1 / np.sqrt(2))
-    return dict(bandwidth_hz=float(f[below[0]]) if below.size else float("nan"), peak_gain=float(mag.max()),
-                peak_hz=float(f[np.argmax(mag)]))
+    return dict(
+        bandwidth_hz=float(f[below[0]]) if below.size else float("nan"),
+        peak_gain=float(mag.max()),
+        peak_hz=float(f[np.argmax(mag)]),
+    )
 
 
 @functools.lru_cache(maxsize=64)
-def gains_realising(b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707, rotation_hz: float = 8.0,
-                    r: float = 12.0) -> LoopGains:
+def gains_realising(
+    b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707, rotation_hz: float = 8.0, r: float = 12.0
+) -> LoopGains:
     """Loop gains whose *coupled* phase loop realises the -3 dB bandwidth ``b_omega`` (Hz).
 
     :func:`loop_gains` designs the PLL alone; the coordinate loops take up part of the tangential error,
@@ -326,8 +361,9 @@ def gains_realising(b_xy: float, b_r: float, b_omega: float, zeta: float = 0.707
     return loop_gains(b_xy, b_r, b, zeta, rotation_hz)
 
 
-def ekf_noise_from_bandwidths(meas_var: float, dt: float, r: float, b_xy: float, b_r: float,
-                              b_omega: float) -> np.ndarray:
+def ekf_noise_from_bandwidths(
+    meas_var: float, dt: float, r: float, b_xy: float, b_r: float, b_omega: float
+) -> np.ndarray:
     """Process-noise densities ``N_0`` (diagonal, per second) giving the EKF the stated bandwidths.
 
     A random-walk state measured every ``dt`` with variance ``meas_var`` (information rate
@@ -399,8 +435,8 @@ class EKFTracker:
         H[:, 0, 2], H[:, 1, 2] = cs, sn
         H[:, 0, 3], H[:, 1, 3] = -r * sn, r * cs
         info = np.einsum("nki,nkj->nij", H, H) / self.meas_var
-        P_new = np.linalg.inv(np.linalg.inv(P) + info)                                # corrected (17)
-        x += np.einsum("nij,nkj,nk->ni", P_new, H, z) / self.meas_var                  # (16)
+        P_new = np.linalg.inv(np.linalg.inv(P) + info)  # corrected (17)
+        x += np.einsum("nij,nkj,nk->ni", P_new, H, z) / self.meas_var  # (16)
         F = np.eye(5)
         F[3, 4] = dt
         x[:, 3] += dt * x[:, 4]
@@ -408,9 +444,22 @@ class EKFTracker:
         return polar
 
 
-def simulate_two_emitter_1d(rng: np.random.Generator, lam, *, dt: float, beta: float, a: float, f_c: float,
-                            noise_std: float, form: str, bandwidth: float, unit_slope: float,
-                            half_gate: float | None = None, line_length: int = 256, lam0=None) -> np.ndarray:
+def simulate_two_emitter_1d(
+    rng: np.random.Generator,
+    lam,
+    *,
+    dt: float,
+    beta: float,
+    a: float,
+    f_c: float,
+    noise_std: float,
+    form: str,
+    bandwidth: float,
+    unit_slope: float,
+    half_gate: float | None = None,
+    line_length: int = 256,
+    lam0=None,
+) -> np.ndarray:
     """1-D two-emitter tracker, eqs. (1)-(6) with the corrected (6), batched over trials.
 
     Emitters of half-width ``a`` at ``lambda -+ beta`` with anti-phase laws
@@ -440,12 +489,18 @@ def simulate_two_emitter_1d(rng: np.random.Generator, lam, *, dt: float, beta: f
         t = k * dt
         c1 = 0.5 * (1 + np.cos(2 * np.pi * f_c * t))
         c2 = 1.0 - c1
-        line = (c1 * pixel_fractions_box(lam[:, k] - beta, a, line_length) +
-                c2 * pixel_fractions_box(lam[:, k] + beta, a, line_length)) * 2 * a          # (2), (3)
-        line += noise_std * rng.standard_normal(line.shape)                                # (4)
+        line = (
+            (
+                c1 * pixel_fractions_box(lam[:, k] - beta, a, line_length)
+                + c2 * pixel_fractions_box(lam[:, k] + beta, a, line_length)
+            )
+            * 2
+            * a
+        )  # (2), (3)
+        line += noise_std * rng.standard_normal(line.shape)  # (4)
         est[:, k] = lh
         e = two_emitter_discriminator(line, 0, lh, beta=beta, a=a, c1=c1, c2=c2, form=form, half_gate=half_gate)
-        lh = lh + dt * K * e / (unit_slope * (c1**2 + c2**2))                             # (5)
+        lh = lh + dt * K * e / (unit_slope * (c1**2 + c2**2))  # (5)
     return est
 
 
@@ -499,6 +554,6 @@ def phase_locked_amplitude(err, phase) -> np.ndarray:
     """
     e = np.asarray(err, float)
     ph = np.broadcast_to(np.asarray(phase, float), e.shape)
-    X = np.stack([np.ones_like(ph), np.cos(ph), np.sin(ph)], axis=-1)              # (n, T, 3)
+    X = np.stack([np.ones_like(ph), np.cos(ph), np.sin(ph)], axis=-1)  # (n, T, 3)
     coef = np.linalg.solve(np.einsum("ntk,ntl->nkl", X, X), np.einsum("ntk,nt->nk", X, e)[..., None])[..., 0]
     return np.hypot(coef[:, 1], coef[:, 2])

@@ -40,10 +40,14 @@ def check_consistency(p: dict, lowest_fps: float) -> None:
         The lowest frame rate the run uses (the register's ``fps`` values).
     """
     if p["rotation_hz"] >= lowest_fps / 2:
-        raise ValueError(f"parameter 'rotation_hz' = {p['rotation_hz']} is at or above the frame-rate Nyquist "
-                         f"{lowest_fps / 2:g} Hz of the lowest frame rate run ({lowest_fps:g} frames/s)")
+        raise ValueError(
+            f"parameter 'rotation_hz' = {p['rotation_hz']} is at or above the frame-rate Nyquist "
+            f"{lowest_fps / 2:g} Hz of the lowest frame rate run ({lowest_fps:g} frames/s)"
+        )
     if p["max_replicates"] < p["replicates"]:
         raise ValueError(f"parameters 'max_replicates' = {p['max_replicates']} < 'replicates' = {p['replicates']}")
     if not p["transient_s"] < min(p["fig1_duration_s"], p["fig2_duration_s"]):
-        raise ValueError(f"parameters 'transient_s' = {p['transient_s']}, 'fig1_duration_s' = {p['fig1_duration_s']}, "
-                         f"'fig2_duration_s' = {p['fig2_duration_s']}: the transient must be shorter than both runs")
+        raise ValueError(
+            f"parameters 'transient_s' = {p['transient_s']}, 'fig1_duration_s' = {p['fig1_duration_s']}, "
+            f"'fig2_duration_s' = {p['fig2_duration_s']}: the transient must be shorter than both runs"
+        )

@@ -11,8 +11,15 @@ from .discriminators import static_characteristic
 from .loops import phase_response
 from .scene import Scenario
 
-__all__ = ["s_curves", "tracking_figure", "fig2_figure", "loop_response_figure", "loss_curves_figure",
-           "threshold_map_figure", "trace_figure"]
+__all__ = [
+    "s_curves",
+    "tracking_figure",
+    "fig2_figure",
+    "loop_response_figure",
+    "loss_curves_figure",
+    "threshold_map_figure",
+    "trace_figure",
+]
 
 
 def s_curves(sc: Scenario):
@@ -32,9 +39,11 @@ def s_curves(sc: Scenario):
         ax.set_ylabel(r"$\Delta_x$ (d px$^2$)" if form == "quadrant" else r"$u_{dx}(\hat x+a)-u_{dx}(\hat x-a)$ (d px)")
         ax.set_title(f"{form} form")
         ax.legend(fontsize=8)
-    return fig, (f"Static discriminator characteristics (D = {D:g} px, gate {2 * A:g} px): both quadrant curves leave "
-                 "zero on the dotted 2dD slope; the square's stays on it over +-D/2 (grey), the disc's bends; the edge "
-                 "form is a relay for the square and a narrow chord law for the disc.")
+    return fig, (
+        f"Static discriminator characteristics (D = {D:g} px, gate {2 * A:g} px): both quadrant curves leave "
+        "zero on the dotted 2dD slope; the square's stays on it over +-D/2 (grey), the disc's bends; the edge "
+        "form is a relay for the square and a narrow chord law for the disc."
+    )
 
 
 def tracking_figure(f: dict):
@@ -50,8 +59,10 @@ def tracking_figure(f: dict):
     axes[2].set_ylabel("error (px)")
     axes[2].set_xlabel("time (s)")
     axes[2].legend(loc="upper right", fontsize=8)
-    return fig, ("Fig. 1 redrawn: estimated (solid) and true (dashed) object centre, x random and y sinusoidal, and "
-                 "the errors (bottom): what to see is the transient, then the error traces (their RMS is given below).")
+    return fig, (
+        "Fig. 1 redrawn: estimated (solid) and true (dashed) object centre, x random and y sinusoidal, and "
+        "the errors (bottom): what to see is the transient, then the error traces (their RMS is given below)."
+    )
 
 
 def fig2_figure(f: dict):
@@ -66,27 +77,38 @@ def fig2_figure(f: dict):
     axes[1].set_xlabel("time (s)")
     for ax in axes:
         ax.legend(loc="upper right", fontsize=8)
-    return fig, ("Fig. 2 redrawn: (a) angular rate and (b) radius, estimate (thin) and truth (bold); what to see is "
-                 "whether the thin lines ride on the bold ones after the radius loop's transient.")
+    return fig, (
+        "Fig. 2 redrawn: (a) angular rate and (b) radius, estimate (thin) and truth (bold); what to see is "
+        "whether the thin lines ride on the bold ones after the radius loop's transient."
+    )
 
 
 def loop_response_figure(designed, realised, omega: float, r: float, design_hz: float):
     """|H(f)| of the coupled phase loop (true phase -> estimate) for two gain sets, and the PLL alone."""
     f = np.logspace(-1, 1.7, 300)
     fig, ax = plt.subplots(figsize=(7, 3.4))
-    for g, label in ((designed, "PLL designed alone (coupled)"), (realised, "retuned: coupled loop realises the design")):
+    for g, label in (
+        (designed, "PLL designed alone (coupled)"),
+        (realised, "retuned: coupled loop realises the design"),
+    ):
         ax.loglog(f, np.abs(phase_response(g, omega, r, f)), label=label)
     s = 2j * np.pi * f
-    ax.loglog(f, np.abs((designed.k1 * s + designed.k2) / (s**2 + designed.k1 * s + designed.k2)), "k:",
-              label="PLL alone (design)")
+    ax.loglog(
+        f,
+        np.abs((designed.k1 * s + designed.k2) / (s**2 + designed.k1 * s + designed.k2)),
+        "k:",
+        label="PLL alone (design)",
+    )
     ax.axhline(1 / np.sqrt(2), color="0.6", lw=0.8)
     ax.axvline(design_hz, color="0.6", lw=0.8, ls="--")
     ax.set_xlabel("frequency of the phase perturbation (Hz)")
     ax.set_ylabel(r"$|\hat\theta / \theta|$")
     ax.legend(fontsize=8)
-    return fig, ("Frequency response of the coupled five-state loop from the true marker phase to its estimate "
-                 f"(linearised in the rotating frame; grey: -3 dB and the {design_hz:g} Hz design): what to see is where "
-                 "each curve crosses -3 dB against the dashed design, and its peak (numbers below).")
+    return fig, (
+        "Frequency response of the coupled five-state loop from the true marker phase to its estimate "
+        f"(linearised in the rotating frame; grey: -3 dB and the {design_hz:g} Hz design): what to see is where "
+        "each curve crosses -3 dB against the dashed design, and its peak (numbers below)."
+    )
 
 
 def loss_curves_figure(curves: list, sirs, horizon_s: float):
@@ -98,8 +120,14 @@ def loss_curves_figure(curves: list, sirs, horizon_s: float):
             lost = np.concatenate([c[f"{marker}/{n_i}"] for c in curves], axis=1)
             e = [proportion_ci(int(x.sum()), x.size) for x in lost]
             p = np.array([x.value for x in e])
-            ax.errorbar(sirs, p, yerr=[p - [x.ci_low for x in e], [x.ci_high for x in e] - p], fmt="o" + ls,
-                        capsize=2, label=f"{marker} marker")
+            ax.errorbar(
+                sirs,
+                p,
+                yerr=[p - [x.ci_low for x in e], [x.ci_high for x in e] - p],
+                fmt="o" + ls,
+                capsize=2,
+                label=f"{marker} marker",
+            )
         for x in (2.0, 3.0):
             ax.axvline(x, color="0.5", lw=0.8, ls=":")
         ax.set_xscale("log")
@@ -109,25 +137,37 @@ def loss_curves_figure(curves: list, sirs, horizon_s: float):
         ax.set_xlabel("SIR seen by the tracker")
         ax.legend(fontsize=8)
     axes[0].set_ylabel(f"P(loss within {horizon_s:g} s)")
-    return fig, ("Share of runs that lost lock against SIR (dots, 95 % Clopper-Pearson bars; replicates pooled, the "
-                 "same runs at every SIR), rotating marker (solid) and static baseline (dashed); dotted: the paper's "
-                 "thresholds 2 and 3.")
+    return fig, (
+        "Share of runs that lost lock against SIR (dots, 95 % Clopper-Pearson bars; replicates pooled, the "
+        "same runs at every SIR), rotating marker (solid) and static baseline (dashed); dotted: the paper's "
+        "thresholds 2 and 3."
+    )
 
 
-def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "interferer_radius", "interferer_size",
-                                                   "placement")):
+def threshold_map_figure(
+    ex: Exploration, entries=("motion", "motion_scale", "interferer_radius", "interferer_size", "placement")
+):
     """The rotating marker's thresholds (one and five interferers) at the default and under each value of the
     motion and geometry entries (one at a time, first replicate's draws)."""
     rows = [("default", next(r for r in ex.runs if r.stage == "replicate"))]
-    rows += [(", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r) for r in ex.runs
-             if r.stage == "single" and set(r.changed(ex.default)) & set(entries)]
+    rows += [
+        (", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r)
+        for r in ex.runs
+        if r.stage == "single" and set(r.changed(ex.default)) & set(entries)
+    ]
     fig, ax = plt.subplots(figsize=(7.5, 0.42 * len(rows) + 1.2))
     for j, (_, r) in enumerate(rows):
         for key, dy, mk in (("rotating 1", -0.15, "o"), ("rotating 5", 0.15, "s")):
             e = r.outputs["_map"][key]
-            ax.errorbar(e.value, j + dy, xerr=[[e.value - e.ci_low], [e.ci_high - e.value]], fmt=mk,
-                        color="C0" if key.endswith("1") else "C3", mfc="none" if e.extrapolated else None,
-                        label=(f"{key[-1]} interferer(s)" if j == 0 else None))
+            ax.errorbar(
+                e.value,
+                j + dy,
+                xerr=[[e.value - e.ci_low], [e.ci_high - e.value]],
+                fmt=mk,
+                color="C0" if key.endswith("1") else "C3",
+                mfc="none" if e.extrapolated else None,
+                label=(f"{key[-1]} interferer(s)" if j == 0 else None),
+            )
     ax.axvline(2.0, color="C0", ls=":", lw=1)
     ax.axvline(3.0, color="C3", ls=":", lw=1)
     ax.set_yticks(range(len(rows)), [x for x, _ in rows], fontsize=8)
@@ -136,9 +176,11 @@ def threshold_map_figure(ex: Exploration, entries=("motion", "motion_scale", "in
     ax.set_xlim(0.2, 20.0)
     ax.set_xlabel("threshold SIR (geometric mean of the runs' breaking SIRs; intervals clipped to the axis)")
     ax.legend(fontsize=8, loc="lower right")
-    return fig, ("The rotating marker's loss threshold over motion and geometry (one entry changed at a time, same "
-                 "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid, undecided); dotted: the "
-                 "paper's 2 (one interferer) and 3 (five).")
+    return fig, (
+        "The rotating marker's loss threshold over motion and geometry (one entry changed at a time, same "
+        "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid, undecided); dotted: the "
+        "paper's 2 (one interferer) and 3 (five)."
+    )
 
 
 def trace_figure(truth, scene, hist, k_show: int, n_rev: int, rng):
@@ -150,13 +192,15 @@ def trace_figure(truth, scene, hist, k_show: int, n_rev: int, rng):
     fig.colorbar(im, ax=ax, label="compensated signal u_d (units of d)")
     ax.plot(truth.marker[0, win, 0], truth.marker[0, win, 1], "g-", lw=1.5, label="true marker path")
     ax.plot(hist.gate[0, win, 0], hist.gate[0, win, 1], "m--", lw=1.0, label="gate centre (tracker)")
-    ax.plot(truth.xr[0, :k_show + 1], truth.yr[0, :k_show + 1], "y-", lw=1.0, label="true object centre")
+    ax.plot(truth.xr[0, : k_show + 1], truth.yr[0, : k_show + 1], "y-", lw=1.0, label="true object centre")
     ax.plot(scene.interferers[0, :, 0], scene.interferers[0, :, 1], "r+", ms=12, label="interferers")
     ax.set_xlim(c0[0] - half_view, c0[0] + half_view)
     ax.set_ylim(c0[1] + half_view, c0[1] - half_view)
     ax.set_xlabel("x (px)")
     ax.set_ylabel("y (px, rows)")
     ax.legend(fontsize=7, loc="lower right")
-    return fig, ("Fig. 3 redrawn: one compensated frame with five stationary interferers (red) at SIR = 3, the true "
-                 "marker path (green) and the gate centre (magenta, dashed) over 1.5 revolutions, and the object "
-                 "centre's path (yellow): the gate path lies on the marker path as it sweeps past the interferers.")
+    return fig, (
+        "Fig. 3 redrawn: one compensated frame with five stationary interferers (red) at SIR = 3, the true "
+        "marker path (green) and the gate centre (magenta, dashed) over 1.5 revolutions, and the object "
+        "centre's path (yellow): the gate path lies on the marker path as it sweeps past the interferers."
+    )

@@ -38,8 +38,13 @@ def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
     for cid, rec in records.items():
         ref = rec["replicates"][0]["parts"] if rec.get("replicates") else {}
         for name in rec["parts"]:
-            flips = [f"{c['parts'][name]} when {k} = {v}" for c in rec["conditions"] if c["kind"] == "single"
-                     for k, v in c["changed"].items() if k in explored and c["parts"].get(name) != ref.get(name)]
+            flips = [
+                f"{c['parts'][name]} when {k} = {v}"
+                for c in rec["conditions"]
+                if c["kind"] == "single"
+                for k, v in c["changed"].items()
+                if k in explored and c["parts"].get(name) != ref.get(name)
+            ]
             if flips:
                 hits.append(f"{cid} ({name}): {'; '.join(flips)}")
     if not hits:

@@ -13,18 +13,37 @@ __all__ = ["blueprint", "record_showcase"]
 
 def blueprint():
     """Camera on the left; errors, discriminator outputs and lock on the right (frame timeline)."""
-    return image_and_series_blueprint("camera", ("errors", "discriminator", "lock"),
-                                      image_name="Camera (zoomed on the object)",
-                                      series_names=("state errors (px, rad, rad/s)", "discriminator outputs / S (px)",
-                                                    "lock flag and miss distance (px)"))
+    return image_and_series_blueprint(
+        "camera",
+        ("errors", "discriminator", "lock"),
+        image_name="Camera (zoomed on the object)",
+        series_names=(
+            "state errors (px, rad, rad/s)",
+            "discriminator outputs / S (px)",
+            "lock flag and miss distance (px)",
+        ),
+    )
 
 
 def _to8(img):
     return np.clip((img + 0.25) * 180, 0, 255).astype(np.uint8)
 
 
-def record_showcase(rec: Recorder, truth, scene, hist, crops, origins, *, gate_half: float, n_frames: int,
-                    full_every: int, rev_frames: int, loss_frame: int, rng) -> None:
+def record_showcase(
+    rec: Recorder,
+    truth,
+    scene,
+    hist,
+    crops,
+    origins,
+    *,
+    gate_half: float,
+    n_frames: int,
+    full_every: int,
+    rev_frames: int,
+    loss_frame: int,
+    rng,
+) -> None:
     """Log one run (trial 0) frame by frame.
 
     Parameters
@@ -56,14 +75,17 @@ def record_showcase(rec: Recorder, truth, scene, hist, crops, origins, *, gate_h
         rec.image("camera/frame_in_gate", _to8(crops[k]), offset=origins[k], draw_order=1.0)
         g, est = hist.gate[0, k], hist.estimate[0, k]
         rec.boxes("camera/gate", g, [A, A], colors=[0, 200, 255])
-        rec.lines("camera/gate_quadrants", [np.array([[g[0] - A, g[1]], [g[0] + A, g[1]]]),
-                                            np.array([[g[0], g[1] - A], [g[0], g[1] + A]])], colors=[0, 200, 255])
+        rec.lines(
+            "camera/gate_quadrants",
+            [np.array([[g[0] - A, g[1]], [g[0] + A, g[1]]]), np.array([[g[0], g[1] - A], [g[0], g[1] + A]])],
+            colors=[0, 200, 255],
+        )
         rec.points("camera/marker/truth", truth.marker[0, k], colors=[0, 255, 0], radii=1.2)
         rec.points("camera/marker/estimate", g, colors=[255, 0, 255], radii=1.2)
         rec.points("camera/center/truth", truth.center[0, k], colors=[0, 255, 0], radii=1.0)
         rec.points("camera/center/estimate", est[:2], colors=[255, 0, 255], radii=1.0)
         rec.lines("camera/circle/estimate", est[:2] + est[2] * circle, colors=[255, 0, 255])
-        rec.lines("camera/gate_path", hist.gate[0, max(0, k - rev_frames):k + 1], colors=[0, 200, 255])
+        rec.lines("camera/gate_path", hist.gate[0, max(0, k - rev_frames) : k + 1], colors=[0, 200, 255])
     e = state_errors(truth, hist)
     locked = np.ones(n_frames)
     if loss_frame >= 0:

@@ -11,90 +11,232 @@ from ...register import Entry, Register
 
 __all__ = ["REGISTER", "TRACKING", "INTERFERENCE", "DEPENDS", "tracking_register", "interference_register"]
 
-REGISTER = Register([
-    Entry("motion", "regime", "card", ("card", "sinusoids", "random"),
-          "Fig. 1 says only 'x random, y a sinusoid' and nothing for the interference runs: the card's OU x with a "
-          "0.5 Hz y, both axes sinusoidal, or both random, at the same RMS"),
-    Entry("motion_scale", "regime", 1.0, (0.0, 0.25, 1.0, 2.0),
-          "no amplitudes are given: 0 a hovering object (adversarial: Fig. 3 shows the marker sweeping the "
-          "interferers, nothing says the object moved), 0.25 the card's slow object (5 px), 2 doubles the speed "
-          "(40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, still well inside the gate)"),
-    Entry("sinusoid_hz", "regime", 0.5, (0.5, 1.5),
-          "Fig. 1: 'Y moves along a sinusoid', no frequency: 0.5 Hz (card) or 1.5 Hz (15 % of the 10 Hz loop, a "
-          "lag of ~3 px inside the 12 px gate half-width)", origin="adversarial"),
-    Entry("rotation_rate", "regime", "constant", ("constant", "modulated", "modulated fast", "modulated strong"),
-          "l. 185 gives the *mean* rotation frequency (8 rev/s), so omega may vary in every run; its law is unstated: "
-          "constant, 10 % at 0.5 Hz, 15 % or 20 % at 1 Hz (peak slew 47 or 63 rad/s^2, inside the stated 6 Hz loop)",
-          origin="adversarial"),
-    Entry("fig2_law", "regime", "card", ("card", "omega 2 Hz", "r 0.2 Hz"),
-          "Fig. 2: omega and r 'vary sinusoidally', no depth or rate: the card's 10 %/0.5 Hz and 15 %/0.05 Hz, "
-          "omega at 2 Hz (inside the stated 6 Hz loop), r 25 % at 0.2 Hz (the stated r-loop bandwidth)",
-          origin="adversarial"),
-    Entry("bandwidth_reading", "reading", "-3 dB", ("-3 dB", "noise-equivalent"),
-          "'bandwidths 10; 0.2 and 6 Hz' without saying which: closed-loop -3 dB, or noise-equivalent (K = 4 B_n "
-          "for the first-order loops, B_n = 0.53 w_n for the PLL)", origin="adversarial"),
-    Entry("slope_range", "reading", "+-D/2", ("+-D/2", "small errors"),
-          "C003-9: 'the quadrant form restores a linear part' without its extent: the slope fitted over +-D/2 (the "
-          "card's acceptance) or the slope of the linear part at small errors (+-D/8, +-D/4)", origin="adversarial"),
-    Entry("phase_loop", "model", "designed", ("designed", "realised"),
-          "'6 Hz for omega' without the gain rule: a PLL designed for 6 Hz alone (the coupled loop then realises "
-          "less, see the loop section) or gains retuned until the coupled loop realises 6 Hz", origin="adversarial"),
-    Entry("noise", "regime", 0.02, (0.01, 0.02, 0.05),
-          "sensor noise is 'white, intensity N' with no value: d/50 (card), from d/100 to d/20"),
-    Entry("fps", "regime", 500.0, (50.0, 250.0, 500.0, 1000.0),
-          "no frame rate is given; 8 rev/s needs tens of frames per revolution: 250-1000 frames/s (31-125 a turn); "
-          "adversarial: 50, broadcast TV's field rate for the paper's 'TV sensor' (8 rev/s is below its Nyquist)"),
-    Entry("spot", "model", "disc", ("disc", "square"),
-          "the simulation speaks of a spot 'diameter' and the quadrant form for round spots; eq. (9) derives with a "
-          "square spot"),
-    Entry("residual_background", "regime", 50.0, (50.0, 100.0),
-          "'marker brightness over the background std after compensation 50-100' (simulation section)"),
-    Entry("interferer_radius", "regime", "r0", ("r0", "r0 - D/2", "r0 + D/2", "jitter D/2"),
-          "Fig. 3: interferers 'in the area swept by the marker': on its circle, half a spot inside or outside it, "
-          "or scattered within half a spot of it", origin="adversarial"),
-    Entry("interferer_size", "regime", "D", ("D", "2D"),
-          "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
-          "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux)",
-          origin="adversarial"),
-    Entry("placement", "regime", "object", ("object", "image"),
-          "the circle of interferers about the object's initial centre (card) or about the image centre"),
-    Entry("loss_window_s", "statistic", 0.5, (0.25, 0.5, 1.0),
-          "'loss of tracking' is not defined: the miss beyond the loss radius for more than half of a window of "
-          "0.25-1 s (card section 4.5: 0.5 s)"),
-    Entry("loss_radius", "statistic", "gate half-size", ("gate half-size", "D/2"),
-          "a loss is the marker leaving the gate, or (stricter) leaving the spot's own half-width"),
-    Entry("horizon", "scale", "T", ("T", "2T"),
-          "run lengths of the interference runs are not given and P(loss within T) grows with T: the notebook's "
-          "T (5 s at paper scale, for cost) and twice it (the card's 10 s)"),
-    Entry("static_gate", "comparator", "3D", ("3D", "2D"),
-          "the static baseline tuned to its own optimum: the paper's 3D gate, or a 2D gate that keeps interferers on "
-          "the marker's circle (1.5 D away) outside it", origin="adversarial"),
-    Entry("static_form", "comparator", "quadrant", ("quadrant", "centroid"),
-          "the non-modulated baseline with the paper's quadrant discriminator, or with the classical gate centroid "
-          "(card section 8.1), each with the same gate, loops and information", origin="adversarial"),
-    Entry("edge_norm", "comparator", "slope", ("slope", "slew"),
-          "the edge form is a relay with no slope worth the name: normalised by its slope at +-0.25 px, or at "
-          "matched slew (its saturated output equal to the quadrant form's), the same tuning effort for both",
-          origin="adversarial"),
-])
+REGISTER = Register(
+    [
+        Entry(
+            "motion",
+            "regime",
+            "card",
+            ("card", "sinusoids", "random"),
+            "Fig. 1 says only 'x random, y a sinusoid' and nothing for the interference runs: the card's OU x with a "
+            "0.5 Hz y, both axes sinusoidal, or both random, at the same RMS",
+        ),
+        Entry(
+            "motion_scale",
+            "regime",
+            1.0,
+            (0.0, 0.25, 1.0, 2.0),
+            "no amplitudes are given: 0 a hovering object (adversarial: Fig. 3 shows the marker sweeping the "
+            "interferers, nothing says the object moved), 0.25 the card's slow object (5 px), 2 doubles the speed "
+            "(40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, still well inside the gate)",
+        ),
+        Entry(
+            "sinusoid_hz",
+            "regime",
+            0.5,
+            (0.5, 1.5),
+            "Fig. 1: 'Y moves along a sinusoid', no frequency: 0.5 Hz (card) or 1.5 Hz (15 % of the 10 Hz loop, a "
+            "lag of ~3 px inside the 12 px gate half-width)",
+            origin="adversarial",
+        ),
+        Entry(
+            "rotation_rate",
+            "regime",
+            "constant",
+            ("constant", "modulated", "modulated fast", "modulated strong"),
+            "l. 185 gives the *mean* rotation frequency (8 rev/s), so omega may vary in every run; its law is unstated: "
+            "constant, 10 % at 0.5 Hz, 15 % or 20 % at 1 Hz (peak slew 47 or 63 rad/s^2, inside the stated 6 Hz loop)",
+            origin="adversarial",
+        ),
+        Entry(
+            "fig2_law",
+            "regime",
+            "card",
+            ("card", "omega 2 Hz", "r 0.2 Hz"),
+            "Fig. 2: omega and r 'vary sinusoidally', no depth or rate: the card's 10 %/0.5 Hz and 15 %/0.05 Hz, "
+            "omega at 2 Hz (inside the stated 6 Hz loop), r 25 % at 0.2 Hz (the stated r-loop bandwidth)",
+            origin="adversarial",
+        ),
+        Entry(
+            "bandwidth_reading",
+            "reading",
+            "-3 dB",
+            ("-3 dB", "noise-equivalent"),
+            "'bandwidths 10; 0.2 and 6 Hz' without saying which: closed-loop -3 dB, or noise-equivalent (K = 4 B_n "
+            "for the first-order loops, B_n = 0.53 w_n for the PLL)",
+            origin="adversarial",
+        ),
+        Entry(
+            "slope_range",
+            "reading",
+            "+-D/2",
+            ("+-D/2", "small errors"),
+            "C003-9: 'the quadrant form restores a linear part' without its extent: the slope fitted over +-D/2 (the "
+            "card's acceptance) or the slope of the linear part at small errors (+-D/8, +-D/4)",
+            origin="adversarial",
+        ),
+        Entry(
+            "phase_loop",
+            "model",
+            "designed",
+            ("designed", "realised"),
+            "'6 Hz for omega' without the gain rule: a PLL designed for 6 Hz alone (the coupled loop then realises "
+            "less, see the loop section) or gains retuned until the coupled loop realises 6 Hz",
+            origin="adversarial",
+        ),
+        Entry(
+            "noise",
+            "regime",
+            0.02,
+            (0.01, 0.02, 0.05),
+            "sensor noise is 'white, intensity N' with no value: d/50 (card), from d/100 to d/20",
+        ),
+        Entry(
+            "fps",
+            "regime",
+            500.0,
+            (50.0, 250.0, 500.0, 1000.0),
+            "no frame rate is given; 8 rev/s needs tens of frames per revolution: 250-1000 frames/s (31-125 a turn); "
+            "adversarial: 50, broadcast TV's field rate for the paper's 'TV sensor' (8 rev/s is below its Nyquist)",
+        ),
+        Entry(
+            "spot",
+            "model",
+            "disc",
+            ("disc", "square"),
+            "the simulation speaks of a spot 'diameter' and the quadrant form for round spots; eq. (9) derives with a "
+            "square spot",
+        ),
+        Entry(
+            "residual_background",
+            "regime",
+            50.0,
+            (50.0, 100.0),
+            "'marker brightness over the background std after compensation 50-100' (simulation section)",
+        ),
+        Entry(
+            "interferer_radius",
+            "regime",
+            "r0",
+            ("r0", "r0 - D/2", "r0 + D/2", "jitter D/2"),
+            "Fig. 3: interferers 'in the area swept by the marker': on its circle, half a spot inside or outside it, "
+            "or scattered within half a spot of it",
+            origin="adversarial",
+        ),
+        Entry(
+            "interferer_size",
+            "regime",
+            "D",
+            ("D", "2D"),
+            "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
+            "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux)",
+            origin="adversarial",
+        ),
+        Entry(
+            "placement",
+            "regime",
+            "object",
+            ("object", "image"),
+            "the circle of interferers about the object's initial centre (card) or about the image centre",
+        ),
+        Entry(
+            "loss_window_s",
+            "statistic",
+            0.5,
+            (0.25, 0.5, 1.0),
+            "'loss of tracking' is not defined: the miss beyond the loss radius for more than half of a window of "
+            "0.25-1 s (card section 4.5: 0.5 s)",
+        ),
+        Entry(
+            "loss_radius",
+            "statistic",
+            "gate half-size",
+            ("gate half-size", "D/2"),
+            "a loss is the marker leaving the gate, or (stricter) leaving the spot's own half-width",
+        ),
+        Entry(
+            "horizon",
+            "scale",
+            "T",
+            ("T", "2T"),
+            "run lengths of the interference runs are not given and P(loss within T) grows with T: the notebook's "
+            "T (5 s at paper scale, for cost) and twice it (the card's 10 s)",
+        ),
+        Entry(
+            "static_gate",
+            "comparator",
+            "3D",
+            ("3D", "2D"),
+            "the static baseline tuned to its own optimum: the paper's 3D gate, or a 2D gate that keeps interferers on "
+            "the marker's circle (1.5 D away) outside it",
+            origin="adversarial",
+        ),
+        Entry(
+            "static_form",
+            "comparator",
+            "quadrant",
+            ("quadrant", "centroid"),
+            "the non-modulated baseline with the paper's quadrant discriminator, or with the classical gate centroid "
+            "(card section 8.1), each with the same gate, loops and information",
+            origin="adversarial",
+        ),
+        Entry(
+            "edge_norm",
+            "comparator",
+            "slope",
+            ("slope", "slew"),
+            "the edge form is a relay with no slope worth the name: normalised by its slope at +-0.25 px, or at "
+            "matched slew (its saturated output equal to the quadrant form's), the same tuning effort for both",
+            origin="adversarial",
+        ),
+    ]
+)
 
-TRACKING = ("motion", "motion_scale", "sinusoid_hz", "rotation_rate", "fig2_law", "bandwidth_reading", "phase_loop",
-            "noise", "fps", "spot", "edge_norm", "slope_range")
+TRACKING = (
+    "motion",
+    "motion_scale",
+    "sinusoid_hz",
+    "rotation_rate",
+    "fig2_law",
+    "bandwidth_reading",
+    "phase_loop",
+    "noise",
+    "fps",
+    "spot",
+    "edge_norm",
+    "slope_range",
+)
 # fig2_law only changes the Fig. 2 runs; bandwidth_reading is left out of the interference study for cost (measured
 # there by the adversarial pass, /work/wt/adv/003.md row 12: it made parts undecided and flipped none)
-INTERFERENCE = ("motion", "motion_scale", "sinusoid_hz", "rotation_rate", "phase_loop", "noise", "fps", "spot",
-                "residual_background", "interferer_radius", "interferer_size", "placement", "loss_window_s",
-                "loss_radius", "horizon", "static_gate", "static_form")
+INTERFERENCE = (
+    "motion",
+    "motion_scale",
+    "sinusoid_hz",
+    "rotation_rate",
+    "phase_loop",
+    "noise",
+    "fps",
+    "spot",
+    "residual_background",
+    "interferer_radius",
+    "interferer_size",
+    "placement",
+    "loss_window_s",
+    "loss_radius",
+    "horizon",
+    "static_gate",
+    "static_form",
+)
 
-_NO_EDGE = tuple(k for k in TRACKING if k not in ("edge_norm", "slope_range"))   # only C003-9 reads them
-_FIG1 = tuple(k for k in _NO_EDGE if k != "fig2_law")              # only C003-3 reads the Fig. 2 runs
+_NO_EDGE = tuple(k for k in TRACKING if k not in ("edge_norm", "slope_range"))  # only C003-9 reads them
+_FIG1 = tuple(k for k in _NO_EDGE if k != "fig2_law")  # only C003-3 reads the Fig. 2 runs
 _NO_STATIC = tuple(k for k in INTERFERENCE if k not in ("static_gate", "static_form"))  # only C003-12 runs it
 DEPENDS = {
     "C003-1": _FIG1,
     "C003-2": _FIG1,
-    "C003-3": tuple(k for k in _NO_EDGE if k != "rotation_rate"),   # Fig. 2 always modulates omega (fig2_law)
+    "C003-3": tuple(k for k in _NO_EDGE if k != "rotation_rate"),  # Fig. 2 always modulates omega (fig2_law)
     "C003-4": _FIG1,
-    "C003-9": tuple(k for k in TRACKING if k not in ("spot", "fig2_law")),   # C003-9 runs both spots
+    "C003-9": tuple(k for k in TRACKING if k not in ("spot", "fig2_law")),  # C003-9 runs both spots
     "C003-5": _NO_STATIC,
     "C003-6": _NO_STATIC,
     "C003-7": _NO_STATIC,

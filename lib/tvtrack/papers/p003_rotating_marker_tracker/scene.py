@@ -29,15 +29,35 @@ import numpy as np
 from scipy import ndimage
 from scipy.signal import lfilter
 
-from .loops import EKFTracker, RotatingGateTracker, ekf_noise_from_bandwidths, gains_realising, loop_gains, \
-    run_closed_loop
+from .loops import (
+    EKFTracker,
+    RotatingGateTracker,
+    ekf_noise_from_bandwidths,
+    gains_realising,
+    loop_gains,
+    run_closed_loop,
+)
 from ...render import box_spot, disc_area, disc_spot
 
 __all__ = [
-    "render_spot", "correlated_background", "ornstein_uhlenbeck", "marker_truth",
-    "MarkerTruth", "place_interferers", "add_spots", "object_motion", "MOTIONS", "build_scene", "Scenario",
-    "scenario_truth", "run_scenario", "RotatingMarkerScene", "state_errors",
-    "interference_runs", "CommonNormal", "PLACEMENTS",
+    "render_spot",
+    "correlated_background",
+    "ornstein_uhlenbeck",
+    "marker_truth",
+    "MarkerTruth",
+    "place_interferers",
+    "add_spots",
+    "object_motion",
+    "MOTIONS",
+    "build_scene",
+    "Scenario",
+    "scenario_truth",
+    "run_scenario",
+    "RotatingMarkerScene",
+    "state_errors",
+    "interference_runs",
+    "CommonNormal",
+    "PLACEMENTS",
 ]
 
 SPOTS = ("disc", "square")
@@ -78,12 +98,14 @@ def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, 
     ndimage.gaussian_filter(field, sigma=(0, sigma, sigma), mode="wrap", output=field)
     impulse = np.zeros(2 * int(4 * sigma + 0.5) + 1)
     impulse[impulse.size // 2] = 1.0
-    gain = np.sum(ndimage.gaussian_filter1d(impulse, sigma, mode="constant") ** 2)   # per axis
+    gain = np.sum(ndimage.gaussian_filter1d(impulse, sigma, mode="constant") ** 2)  # per axis
     field *= np.float32(std / gain)
     return field
 
 
-def ornstein_uhlenbeck(rng: np.random.Generator, n: int, n_frames: int, dt: float, std: float, tau: float) -> np.ndarray:
+def ornstein_uhlenbeck(
+    rng: np.random.Generator, n: int, n_frames: int, dt: float, std: float, tau: float
+) -> np.ndarray:
     """Stationary Ornstein-Uhlenbeck paths (exact discretisation), shape (n, n_frames), zero mean."""
     if not tau > 0:
         raise ValueError(f"parameter 'tau' = {tau}; it must be > 0")
@@ -140,13 +162,15 @@ def marker_truth(xr, yr, r, omega, phi, dt: float) -> MarkerTruth:
     xr, yr, r, omega = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (xr, yr, r, omega)))
     # theta_k = phi + sum_{j<k} omega_j dt (eq. (8) with the exact phase, not (U3))
     theta = np.asarray(phi, dtype=float)[:, None] + np.concatenate(
-        [np.zeros_like(omega[:, :1]), np.cumsum(omega[:, :-1], axis=1) * dt], axis=1)
+        [np.zeros_like(omega[:, :1]), np.cumsum(omega[:, :-1], axis=1) * dt], axis=1
+    )
     t = np.arange(xr.shape[1]) * dt
     return MarkerTruth(xr.copy(), yr.copy(), r.copy(), theta, omega.copy(), t)
 
 
-def place_interferers(rng: np.random.Generator, n: int, count: int, center, radius: float,
-                      radial_jitter: float = 0.0) -> np.ndarray:
+def place_interferers(
+    rng: np.random.Generator, n: int, count: int, center, radius: float, radial_jitter: float = 0.0
+) -> np.ndarray:
     """Stationary interferers on a circle (the area swept by the marker).
 
     One interferer sits at a uniformly random angle; several are equally spaced with a common
@@ -223,9 +247,19 @@ class RotatingMarkerScene:
 
     MARGIN = 40  # px of zero padding around the image so that gates may leave it
 
-    def __init__(self, truth: MarkerTruth, image_shape, spot: str, diameter: float, brightness: float,
-                 residual=None, noise_std: float = 0.0, interferers=None, decoys=None,
-                 decoy_brightness=0.0):
+    def __init__(
+        self,
+        truth: MarkerTruth,
+        image_shape,
+        spot: str,
+        diameter: float,
+        brightness: float,
+        residual=None,
+        noise_std: float = 0.0,
+        interferers=None,
+        decoys=None,
+        decoy_brightness=0.0,
+    ):
         _check_spot(spot)
         if noise_std < 0:
             raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
@@ -243,12 +277,23 @@ class RotatingMarkerScene:
         rows, cols = self.image_shape
         self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
         if residual is not None:
-            self._padded[:, m:m + rows, m:m + cols] = residual
+            self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
 
     @staticmethod
-    def static_residual(rng: np.random.Generator, n: int, image_shape, *, kappa: float, background_std: float,
-                        corr_length: float, interferers, interferer_brightness, spot: str, diameter: float) -> np.ndarray:
+    def static_residual(
+        rng: np.random.Generator,
+        n: int,
+        image_shape,
+        *,
+        kappa: float,
+        background_std: float,
+        corr_length: float,
+        interferers,
+        interferer_brightness,
+        spot: str,
+        diameter: float,
+    ) -> np.ndarray:
         """``kappa * f + sum_q b_q spot(. - x_q)``: what compensation leaves of the static scene.
 
         Parameters
@@ -308,8 +353,13 @@ class RotatingMarkerScene:
         ar = np.arange(size)
         flat = (self._base + oy * W + ox)[:, None, None] + (ar[:, None] * W + ar)[None]
         crops = self._padded.reshape(-1).take(flat)
-        marker = np.stack([self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
-                           self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k])], axis=1)
+        marker = np.stack(
+            [
+                self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
+                self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k]),
+            ],
+            axis=1,
+        )
         crops += self._spot(marker, size, origin, self.brightness)
         if self.decoys is not None:
             crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
@@ -327,12 +377,14 @@ class RotatingMarkerScene:
         """Full compensated frame ``u_d`` of one trial at frame ``k``, shape (rows, cols), float32."""
         m = self.MARGIN
         rows, cols = self.image_shape
-        img = self._padded[trial, m:m + rows, m:m + cols].copy()
-        img += render_spot(self.spot, self.truth.marker[trial, k], self.image_shape, self.diameter,
-                           self.brightness).astype(np.float32)
+        img = self._padded[trial, m : m + rows, m : m + cols].copy()
+        img += render_spot(
+            self.spot, self.truth.marker[trial, k], self.image_shape, self.diameter, self.brightness
+        ).astype(np.float32)
         if self.decoys is not None:
-            img += render_spot(self.spot, self.decoys[trial, k], self.image_shape, self.diameter,
-                               self.decoy_brightness[trial]).astype(np.float32)
+            img += render_spot(
+                self.spot, self.decoys[trial, k], self.image_shape, self.diameter, self.decoy_brightness[trial]
+            ).astype(np.float32)
         if rng is not None and self.noise_std > 0:
             img += self.noise_std * rng.standard_normal(img.shape, dtype=np.float32)
         return img
@@ -341,9 +393,20 @@ class RotatingMarkerScene:
 MOTIONS = ("card", "sinusoids", "random")
 
 
-def object_motion(rng: np.random.Generator, n: int, n_frames: int, dt: float, *, center=(128.0, 128.0),
-                  x_std: float = 10.0, x_tau: float = 1.0, x_smooth: float = 0.05, y_amplitude: float = 20.0,
-                  y_freq: float = 0.5, kind: str = "card"):
+def object_motion(
+    rng: np.random.Generator,
+    n: int,
+    n_frames: int,
+    dt: float,
+    *,
+    center=(128.0, 128.0),
+    x_std: float = 10.0,
+    x_tau: float = 1.0,
+    x_smooth: float = 0.05,
+    y_amplitude: float = 20.0,
+    y_freq: float = 0.5,
+    kind: str = "card",
+):
     """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
     at ``y_freq`` Hz (``kind = "card"``).
 
@@ -433,17 +496,36 @@ def _generator_blocks(rng, n: int, n_common: int | None):
     n_block = n // len(rngs)
     n_common = n_block if n_common is None else int(n_common)
     if n % len(rngs) or n_common < 1 or n_block % n_common:
-        raise ValueError(f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
-                         f"{len(rngs)} generators)")
+        raise ValueError(
+            f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+            f"{len(rngs)} generators)"
+        )
     return rngs, n_block, n_common
 
 
-def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(256, 256), spot: str = "disc",
-                diameter: float = 8.0, brightness: float = 1.0, noise_std: float = 0.02, kappa: float = 0.1,
-                background_std: float = 0.2, corr_length: float = 8.0, n_interferers: int = 0, sir=np.inf,
-                interferer_radius: float = 12.0, interferer_center=None, radial_jitter: float = 0.0,
-                interferer_diameter: float | None = None,
-                decoys=None, decoy_brightness=0.0, n_common: int | None = None, blocks=None):
+def build_scene(
+    rng: np.random.Generator,
+    truth: MarkerTruth,
+    *,
+    image_shape=(256, 256),
+    spot: str = "disc",
+    diameter: float = 8.0,
+    brightness: float = 1.0,
+    noise_std: float = 0.02,
+    kappa: float = 0.1,
+    background_std: float = 0.2,
+    corr_length: float = 8.0,
+    n_interferers: int = 0,
+    sir=np.inf,
+    interferer_radius: float = 12.0,
+    interferer_center=None,
+    radial_jitter: float = 0.0,
+    interferer_diameter: float | None = None,
+    decoys=None,
+    decoy_brightness=0.0,
+    n_common: int | None = None,
+    blocks=None,
+):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
     :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre), with the
@@ -464,30 +546,58 @@ def build_scene(rng: np.random.Generator, truth: MarkerTruth, *, image_shape=(25
     n = truth.xr.shape[0]
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     blocks = [{}] * len(rngs) if blocks is None else list(blocks)
-    if len(blocks) != len(rngs) or any(set(b) - {"kappa", "background_std", "corr_length", "n_interferers"}
-                                       for b in blocks):
-        raise ValueError("parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
-                         "corr_length, n_interferers")
+    if len(blocks) != len(rngs) or any(
+        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
+    ):
+        raise ValueError(
+            "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
+            "corr_length, n_interferers"
+        )
     q, residual = [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
-        centre = truth.center[first:first + n_common, 0] if interferer_center is None else interferer_center
-        q.append(_tile(place_interferers(g, n_common, b.get("n_interferers", n_interferers), centre,
-                                         interferer_radius, radial_jitter), n_block))
-        residual.append(_tile(RotatingMarkerScene.static_residual(
-            g, n_common, image_shape, kappa=b.get("kappa", kappa), background_std=b.get("background_std", background_std),
-            corr_length=b.get("corr_length", corr_length), interferers=np.zeros((n_common, 0, 2)),
-            interferer_brightness=np.zeros(n_common), spot=spot, diameter=diameter), n_block))
+        centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
+        q.append(
+            _tile(
+                place_interferers(
+                    g, n_common, b.get("n_interferers", n_interferers), centre, interferer_radius, radial_jitter
+                ),
+                n_block,
+            )
+        )
+        residual.append(
+            _tile(
+                RotatingMarkerScene.static_residual(
+                    g,
+                    n_common,
+                    image_shape,
+                    kappa=b.get("kappa", kappa),
+                    background_std=b.get("background_std", background_std),
+                    corr_length=b.get("corr_length", corr_length),
+                    interferers=np.zeros((n_common, 0, 2)),
+                    interferer_brightness=np.zeros(n_common),
+                    spot=spot,
+                    diameter=diameter,
+                ),
+                n_block,
+            )
+        )
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    add_spots(residual, q, np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0), spot,
-              diameter if interferer_diameter is None else interferer_diameter)
-    return RotatingMarkerScene(truth, image_shape, spot, diameter, brightness, residual, noise_std, q,
-                               decoys, decoy_brightness)
+    add_spots(
+        residual,
+        q,
+        np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0),
+        spot,
+        diameter if interferer_diameter is None else interferer_diameter,
+    )
+    return RotatingMarkerScene(
+        truth, image_shape, spot, diameter, brightness, residual, noise_std, q, decoys, decoy_brightness
+    )
 
 
 @dataclass(frozen=True)
@@ -547,8 +657,10 @@ class Scenario:
 
     def __post_init__(self):
         if not 0 < self.rotation_hz < self.fps / 2:
-            raise ValueError(f"parameter 'rotation_hz' = {self.rotation_hz}; it must be > 0 and below the frame-rate "
-                             f"Nyquist fps / 2 = {self.fps / 2:g} Hz (the gate samples the rotation once a frame)")
+            raise ValueError(
+                f"parameter 'rotation_hz' = {self.rotation_hz}; it must be > 0 and below the frame-rate "
+                f"Nyquist fps / 2 = {self.fps / 2:g} Hz (the gate samples the rotation once a frame)"
+            )
         if self.motion not in MOTIONS:
             raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
         if self.edge_norm not in ("slope", "slew"):
@@ -570,15 +682,18 @@ class Scenario:
         if self.form == "centroid":
             return 1.0
         from .discriminators import static_characteristic
+
         if self.edge_norm == "slew":
             # matched slew: the normalised edge output saturates where the quadrant form's does
             off = np.linspace(0.0, self.gate_half, 49)
             quad = static_characteristic(self.spot_renderer(), off, form="quadrant", half=self.gate_half)
-            edge = static_characteristic(self.spot_renderer(), off, form="edge", half=self.gate_half,
-                                         a=self.diameter / 2)
+            edge = static_characteristic(
+                self.spot_renderer(), off, form="edge", half=self.gate_half, a=self.diameter / 2
+            )
             return float(np.max(edge) / (np.max(quad) / (2 * self.brightness * self.diameter)))
-        f = static_characteristic(self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half,
-                                  a=self.diameter / 2)
+        f = static_characteristic(
+            self.spot_renderer(), [-0.25, 0.25], form="edge", half=self.gate_half, a=self.diameter / 2
+        )
         return float((f[1] - f[0]) / 0.5)
 
     def gains(self):
@@ -598,8 +713,19 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
     T, dt = sc.n_frames, 1.0 / sc.fps
     t = np.arange(T) * dt
     c = sc.image_size / 2
-    xr, yr = object_motion(rng, n, T, dt, center=(c, c), x_std=sc.x_std, x_tau=sc.x_tau, x_smooth=sc.x_smooth,
-                           y_amplitude=sc.y_amplitude, y_freq=sc.y_freq, kind=sc.motion)
+    xr, yr = object_motion(
+        rng,
+        n,
+        T,
+        dt,
+        center=(c, c),
+        x_std=sc.x_std,
+        x_tau=sc.x_tau,
+        x_smooth=sc.x_smooth,
+        y_amplitude=sc.y_amplitude,
+        y_freq=sc.y_freq,
+        kind=sc.motion,
+    )
     if not sc.rotating:
         return marker_truth(xr, yr, np.zeros((n, T)), np.zeros((n, T)), np.zeros(n), dt)
     omega = sc.omega0 * (1 + sc.omega_mod * np.sin(2 * np.pi * sc.omega_mod_hz * t)) * np.ones((n, 1))
@@ -610,9 +736,21 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
 PLACEMENTS = ("object", "image")
 
 
-def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, tracker: str = "loops",
-                 ekf_meas_var: float = 0.05, noise: str = "projected", keep_full: bool = True,
-                 crop_callback=None, n_common: int | None = None, gains=None, blocks=None):
+def run_scenario(
+    rng: np.random.Generator,
+    n: int,
+    sc: Scenario,
+    sir=np.inf,
+    *,
+    tracker: str = "loops",
+    ekf_meas_var: float = 0.05,
+    noise: str = "projected",
+    keep_full: bool = True,
+    crop_callback=None,
+    n_common: int | None = None,
+    gains=None,
+    blocks=None,
+):
     """Simulate ``n`` trials of a scenario end to end (truth, scene, tracker, closed loop).
 
     The truth, the decoy, the scene and the sensor noise draw from four generators spawned from
@@ -650,44 +788,84 @@ def run_scenario(rng: np.random.Generator, n: int, sc: Scenario, sir=np.inf, *, 
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
-    streams = [g.spawn(4) for g in rngs]                                       # truth, decoy, scene, noise
+    streams = [g.spawn(4) for g in rngs]  # truth, decoy, scene, noise
     bases = [scenario_truth(st[0], n_common, sc) for st in streams]
-    truth = MarkerTruth(*(np.concatenate([_tile(getattr(b, f), n_block) for b in bases])
-                          for f in ("xr", "yr", "r", "theta", "omega")), bases[0].t)
+    truth = MarkerTruth(
+        *(np.concatenate([_tile(getattr(b, f), n_block) for b in bases]) for f in ("xr", "yr", "r", "theta", "omega")),
+        bases[0].t,
+    )
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     decoys = None
     if sc.decoy_offset > 0:
         ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
-        dphi = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None] \
-            if sc.decoy_phase is None else np.full((n, 1), float(sc.decoy_phase))
-        decoys = np.stack([truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
-                           truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi)], axis=-1)
+        dphi = (
+            np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+            if sc.decoy_phase is None
+            else np.full((n, 1), float(sc.decoy_phase))
+        )
+        decoys = np.stack(
+            [
+                truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
+                truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi),
+            ],
+            axis=-1,
+        )
     c = sc.image_size / 2
-    scene = build_scene([st[2] for st in streams], truth, image_shape=(sc.image_size, sc.image_size), spot=sc.spot, diameter=sc.diameter,
-                        brightness=sc.brightness, noise_std=sc.noise_std, kappa=sc.kappa,
-                        background_std=sc.background_std, corr_length=sc.corr_length,
-                        n_interferers=sc.n_interferers, sir=sir, interferer_radius=sc.radius + sc.interferer_radius_offset,
-                        interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
-                        radial_jitter=sc.interferer_jitter, interferer_diameter=sc.interferer_diameter, decoys=decoys, decoy_brightness=sc.brightness / sir,
-                        n_common=n_common, blocks=blocks)
-    x0 = np.stack([truth.xr[:, 0] + sc.init_offset[0], truth.yr[:, 0] + sc.init_offset[1],
-                   sc.init_radius_factor * truth.r[:, 0], truth.theta[:, 0] + sc.init_phase,
-                   np.full(n, sc.omega0 if sc.rotating else 0.0)], axis=1)
+    scene = build_scene(
+        [st[2] for st in streams],
+        truth,
+        image_shape=(sc.image_size, sc.image_size),
+        spot=sc.spot,
+        diameter=sc.diameter,
+        brightness=sc.brightness,
+        noise_std=sc.noise_std,
+        kappa=sc.kappa,
+        background_std=sc.background_std,
+        corr_length=sc.corr_length,
+        n_interferers=sc.n_interferers,
+        sir=sir,
+        interferer_radius=sc.radius + sc.interferer_radius_offset,
+        interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
+        radial_jitter=sc.interferer_jitter,
+        interferer_diameter=sc.interferer_diameter,
+        decoys=decoys,
+        decoy_brightness=sc.brightness / sir,
+        n_common=n_common,
+        blocks=blocks,
+    )
+    x0 = np.stack(
+        [
+            truth.xr[:, 0] + sc.init_offset[0],
+            truth.yr[:, 0] + sc.init_offset[1],
+            sc.init_radius_factor * truth.r[:, 0],
+            truth.theta[:, 0] + sc.init_phase,
+            np.full(n, sc.omega0 if sc.rotating else 0.0),
+        ],
+        axis=1,
+    )
     slope = sc.slope()
     if tracker == "loops":
-        trk = RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope,
-                                  sc.variant, sc.rotating)
+        trk = RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope, sc.variant, sc.rotating)
     elif tracker == "ekf":
         q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
         P0 = np.diag([9.0, 9.0, 4.0, 0.04, 1.0])
         trk = EKFTracker(x0, P0, q, ekf_meas_var, slope)
     else:
         raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
-    noise_rng = streams[0][3] if n_common == n else \
-        BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
-    hist = run_closed_loop(scene, trk, noise_rng, gate_half=sc.gate_half, form=sc.form, edge_a=sc.diameter / 2,
-                           noise=noise if sc.form == "quadrant" else "pixel", keep_full=keep_full,
-                           crop_callback=crop_callback)
+    noise_rng = (
+        streams[0][3] if n_common == n else BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
+    )
+    hist = run_closed_loop(
+        scene,
+        trk,
+        noise_rng,
+        gate_half=sc.gate_half,
+        form=sc.form,
+        edge_a=sc.diameter / 2,
+        noise=noise if sc.form == "quadrant" else "pixel",
+        keep_full=keep_full,
+        crop_callback=crop_callback,
+    )
     return truth, scene, hist
 
 
@@ -744,6 +922,15 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
     truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n, blocks=blocks)
     with np.errstate(divide="ignore", invalid="ignore"):
         omega_error = np.where(truth.omega != 0, h.omega / truth.omega - 1, np.nan).astype(np.float32)
-    return dict(sir=sir, miss=h.miss, inside=h.inside, gate=h.gate, interferers=scene.interferers,
-                omega_hat=h.omega, omega_error=omega_error,
-                trial=np.tile(np.arange(n), m * len(rngs)), block=np.repeat(np.arange(len(rngs)), m * n), dt=1.0 / sc.fps)
+    return dict(
+        sir=sir,
+        miss=h.miss,
+        inside=h.inside,
+        gate=h.gate,
+        interferers=scene.interferers,
+        omega_hat=h.omega,
+        omega_error=omega_error,
+        trial=np.tile(np.arange(n), m * len(rngs)),
+        block=np.repeat(np.arange(len(rngs)), m * n),
+        dt=1.0 / sc.fps,
+    )

@@ -29,16 +29,32 @@ from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
 from .scene import Scenario, interference_runs, run_scenario, state_errors
 
-__all__ = ["SIR_GRID", "UNCOMPENSATED_GRID", "BXY_GRID", "Sizes", "scenario", "criterion", "loss_share",
-           "log_thresholds", "threshold", "threshold_ratio", "measure_tracking", "measure_interference"]
+__all__ = [
+    "SIR_GRID",
+    "UNCOMPENSATED_GRID",
+    "BXY_GRID",
+    "Sizes",
+    "scenario",
+    "criterion",
+    "loss_share",
+    "log_thresholds",
+    "threshold",
+    "threshold_ratio",
+    "measure_tracking",
+    "measure_interference",
+]
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
-UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)         # SIR_0 without compensation (kappa = 1)
-BXY_GRID = (2.0, 5.0, 10.0, 20.0)                       # coordinate-loop bandwidths of the C003-2 mechanism, Hz
-RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}   # interferer radius, offsets in units of D
+UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)  # SIR_0 without compensation (kappa = 1)
+BXY_GRID = (2.0, 5.0, 10.0, 20.0)  # coordinate-loop bandwidths of the C003-2 mechanism, Hz
+RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}  # interferer radius, offsets in units of D
 # rotation-rate laws (depth, Hz): "mean rotation frequency 8 rev/s" (l. 185) says omega varies; its law is unstated
-ROTATION_LAWS = {"constant": (0.0, 0.5), "modulated": (0.1, 0.5), "modulated fast": (0.15, 1.0),
-                 "modulated strong": (0.2, 1.0)}
+ROTATION_LAWS = {
+    "constant": (0.0, 0.5),
+    "modulated": (0.1, 0.5),
+    "modulated fast": (0.15, 1.0),
+    "modulated strong": (0.2, 1.0),
+}
 # C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
 SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
 # "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
@@ -87,19 +103,29 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     radius = c.get("interferer_radius", "r0")
     om_depth, om_hz = ROTATION_LAWS[c.get("rotation_rate", "constant")]
     bw = BANDWIDTH_READINGS[c.get("bandwidth_reading", "-3 dB")]
-    kw = dict(motion=c.get("motion", "card"), x_std=base.x_std * scale, y_amplitude=base.y_amplitude * scale,
-              y_freq=float(c.get("sinusoid_hz", base.y_freq)), omega_mod=om_depth, omega_mod_hz=om_hz,
-              b_xy=base.b_xy * bw[0], b_r=base.b_r * bw[1], b_omega=base.b_omega * bw[2],
-              realise_phase_bandwidth=c.get("phase_loop", "designed") == "realised",
-              background_std=1.0 / (kappa * float(c.get("residual_background", 50.0))),
-              noise_std=float(c.get("noise", base.noise_std)), fps=float(c.get("fps", base.fps)),
-              spot=c.get("spot", base.spot),
-              duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
-              interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
-              interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
-              interferer_centre=c.get("placement", "object"), edge_norm=c.get("edge_norm", "slope"),
-              interferer_diameter={"D": None, "2D": 2 * base.diameter}[c.get("interferer_size", "D")],
-              rotation_hz=sizes.rotation_hz)
+    kw = dict(
+        motion=c.get("motion", "card"),
+        x_std=base.x_std * scale,
+        y_amplitude=base.y_amplitude * scale,
+        y_freq=float(c.get("sinusoid_hz", base.y_freq)),
+        omega_mod=om_depth,
+        omega_mod_hz=om_hz,
+        b_xy=base.b_xy * bw[0],
+        b_r=base.b_r * bw[1],
+        b_omega=base.b_omega * bw[2],
+        realise_phase_bandwidth=c.get("phase_loop", "designed") == "realised",
+        background_std=1.0 / (kappa * float(c.get("residual_background", 50.0))),
+        noise_std=float(c.get("noise", base.noise_std)),
+        fps=float(c.get("fps", base.fps)),
+        spot=c.get("spot", base.spot),
+        duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
+        interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
+        interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
+        interferer_centre=c.get("placement", "object"),
+        edge_norm=c.get("edge_norm", "slope"),
+        interferer_diameter={"D": None, "2D": 2 * base.diameter}[c.get("interferer_size", "D")],
+        rotation_hz=sizes.rotation_hz,
+    )
     kw.update(over)
     return Scenario(**kw)
 
@@ -157,7 +183,7 @@ def log_thresholds(lost, sirs) -> tuple[np.ndarray, np.ndarray]:
     L = np.asarray(lost, bool)
     ls = np.log(np.asarray(sirs, float))
     steps = np.diff(ls)
-    k = L[:-1].sum(axis=0)                                  # grid steps climbed (index of the first kept SIR)
+    k = L[:-1].sum(axis=0)  # grid steps climbed (index of the first kept SIR)
     upper = ls[0] + (L[:-1] * steps[:, None]).sum(axis=0)
     below = np.where(k > 0, steps[np.maximum(k - 1, 0)], steps[0])
     tau = upper - below / 2
@@ -179,9 +205,14 @@ def threshold(lost, sirs) -> Estimate:
     tau, cens = log_thresholds(lost, sirs)
     h = _half_step(sirs)
     m = mean_ci(tau)
-    return _estimate(np.exp(m.value), np.exp(m.ci_low - h), np.exp(m.ci_high + h), tau.size,
-                     "geometric mean of per-run breaking SIRs (grid-censored), t interval + half a grid step",
-                     extrapolated=bool(cens.any()))
+    return _estimate(
+        np.exp(m.value),
+        np.exp(m.ci_low - h),
+        np.exp(m.ci_high + h),
+        tau.size,
+        "geometric mean of per-run breaking SIRs (grid-censored), t interval + half a grid step",
+        extrapolated=bool(cens.any()),
+    )
 
 
 def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
@@ -194,9 +225,14 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
     tb, cb = log_thresholds(lost_b, sirs)
     m = mean_ci(ta - tb)
     h = _half_step(sirs)
-    return _estimate(np.exp(m.value), np.exp(m.ci_low - h), np.exp(m.ci_high + h), ta.size,
-                     "paired ratio of geometric-mean thresholds, t interval + half a grid step",
-                     extrapolated=bool(ca.any() or cb.any()))
+    return _estimate(
+        np.exp(m.value),
+        np.exp(m.ci_low - h),
+        np.exp(m.ci_high + h),
+        ta.size,
+        "paired ratio of geometric-mean thresholds, t interval + half a grid step",
+        extrapolated=bool(ca.any() or cb.any()),
+    )
 
 
 def _rng(stream: int, seed: int) -> np.random.Generator:
@@ -231,25 +267,35 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     crit = criterion(config, sc1)
     out, fig = {}, {}
     # Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1)
-    grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)   # the grid follows the bandwidth reading
+    grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)  # the grid follows the bandwidth reading
     gains = [replace(sc1, b_xy=b).gains() for b in grid]
-    tr, _, h = run_scenario([_rng(1, seed) for _ in grid], n * len(grid), sc1,
-                            gains=stack_gains(gains, n), n_common=n)
+    tr, _, h = run_scenario([_rng(1, seed) for _ in grid], n * len(grid), sc1, gains=stack_gains(gains, n), n_common=n)
     e = state_errors(tr, h)
     ex, th = e[:, k0:, 0], tr.theta[:, k0:]
     f_near = (sc1.rotation_hz + 1.0) / sc1.rotation_hz
     locked = phase_locked_amplitude(ex, th).reshape(len(BXY_GRID), n)
     near_ctl = phase_locked_amplitude(ex, f_near * th).reshape(len(BXY_GRID), n)
-    j = BXY_GRID.index(Scenario().b_xy)   # was: "if sc1.b_xy in BXY_GRID else 0", which silently judged C003-1 at 2 Hz
+    j = BXY_GRID.index(Scenario().b_xy)  # was: "if sc1.b_xy in BXY_GRID else 0", which silently judged C003-1 at 2 Hz
     sel = slice(j * n, (j + 1) * n)
-    out["C003-1"] = {"x_r": rms_ci(e[sel, k0:, 0]), "y_r": rms_ci(e[sel, k0:, 1]),
-                     "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0)}
-    out["C003-2"] = {"far": ratio_ci(locked[j], phase_locked_amplitude(ex[sel], 1.5 * th[sel])),
-                     "near": ratio_ci(locked[j], near_ctl[j]),
-                     "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)]}
+    out["C003-1"] = {
+        "x_r": rms_ci(e[sel, k0:, 0]),
+        "y_r": rms_ci(e[sel, k0:, 1]),
+        "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0),
+    }
+    out["C003-2"] = {
+        "far": ratio_ci(locked[j], phase_locked_amplitude(ex[sel], 1.5 * th[sel])),
+        "near": ratio_ci(locked[j], near_ctl[j]),
+        "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)],
+    }
     quad_ms = {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)}
-    fig.update(t=tr.t, xr=tr.xr[j * n], yr=tr.yr[j * n], est=h.estimate[j * n, :, :2], err=e[j * n, :, :2],
-               locked=locked.mean(axis=1))
+    fig.update(
+        t=tr.t,
+        xr=tr.xr[j * n],
+        yr=tr.yr[j * n],
+        est=h.estimate[j * n, :, :2],
+        err=e[j * n, :, :2],
+        locked=locked.mean(axis=1),
+    )
     # Fig. 2: varying rotation rate and radius
     om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
     sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz)
@@ -262,15 +308,21 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     cases = ((50.0, 8.0), (100.0, 8.0), (50.0, 4.0), (50.0, 16.0))
     blocks = [dict(kappa=sc1.kappa, background_std=1.0 / (sc1.kappa * r), corr_length=c) for r, c in cases]
     blocks.append(dict(kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0))
-    h = run_scenario([_rng(3, seed) for _ in blocks], n * len(blocks), sc1, keep_full=False, n_common=n,
-                     blocks=blocks)[2]
+    h = run_scenario([_rng(3, seed) for _ in blocks], n * len(blocks), sc1, keep_full=False, n_common=n, blocks=blocks)[
+        2
+    ]
     ms, lo = _miss_stats(h, k0, crit)
     ms, lo = ms.reshape(len(blocks), n), lo.reshape(len(blocks), n)
     rms = [mean_ci(np.sqrt(m)) for m in ms[:-1]]
     lost = {"compensated": lo[0], "none": lo[-1]}
     hi, lo = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
-    spread = _estimate(hi.value / lo.value, max(hi.ci_low / lo.ci_high, 0.0), hi.ci_high / max(lo.ci_low, 1e-12),
-                       hi.n, "max/min of per-case RMS miss; interval from the per-case 95 % bounds (conservative)")
+    spread = _estimate(
+        hi.value / lo.value,
+        max(hi.ci_low / lo.ci_high, 0.0),
+        hi.ci_high / max(lo.ci_low, 1e-12),
+        hi.n,
+        "max/min of per-case RMS miss; interval from the per-case 95 % bounds (conservative)",
+    )
     out["C003-4"] = {"spread": spread, "compensation": _share_difference(lost["none"], lost["compensated"])}
     fig["background_rms"] = [r.value for r in rms]
     # C003-9: static slopes (deterministic) and edge vs quadrant in closed loop on the Fig. 1 draws (stream 1)
@@ -295,8 +347,13 @@ def _share_difference(a, b) -> Estimate:
     d = a - b
     if np.all(d == d[0]):
         bnd = zero_events_bound(d.size)
-        return _estimate(d[0], d[0] - bnd if d[0] <= 0 else 1 - bnd, min(d[0] + bnd, 1.0) if d[0] < 1 else 1.0,
-                         d.size, "no discordant runs: one-sided 95 % bound")
+        return _estimate(
+            d[0],
+            d[0] - bnd if d[0] <= 0 else 1 - bnd,
+            min(d[0] + bnd, 1.0) if d[0] < 1 else 1.0,
+            d.size,
+            "no discordant runs: one-sided 95 % bound",
+        )
     m = mean_ci(d)
     return _estimate(m.value, max(m.ci_low, -1.0), min(m.ci_high, 1.0), d.size, "paired t on per-run differences")
 
@@ -317,8 +374,16 @@ def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=No
     lost = (fl >= 0).reshape(shape)
     if not criteria:
         return lost, None
-    met = loss_criteria(fl, runs["gate"], runs["interferers"], runs["miss"], runs["omega_error"], crit.window,
-                        sc.diameter / 2 + 0.5, crit.fraction)
+    met = loss_criteria(
+        fl,
+        runs["gate"],
+        runs["interferers"],
+        runs["miss"],
+        runs["omega_error"],
+        crit.window,
+        sc.diameter / 2 + 0.5,
+        crit.fraction,
+    )
     return lost, met.reshape(shape + (3,))
 
 
@@ -354,29 +419,48 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
     k0 = int(round(sizes.transient_s * base.fps))
     bw = (5.0, 20.0)
-    h = run_scenario([_rng(1, seed) for _ in bw], 2 * n, base, keep_full=False, n_common=n,
-                     gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n))[2]
+    h = run_scenario(
+        [_rng(1, seed) for _ in bw],
+        2 * n,
+        base,
+        keep_full=False,
+        n_common=n,
+        gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n),
+    )[2]
     ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
     r1, r5 = curves["rotating", 1], curves["rotating", 5]
     out = {
         "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
-        "C003-6": {"finite": loss_share(r1[at[0.5]]), "loss_free": loss_share(r1[at[2.0]]),
-                   "not_lower": loss_share(r1[at[4 / 3]])},
-        "C003-7": {"loss_free": loss_share(r5[at[3.0]]), "not_lower": loss_share(r5[at[2.0]]),
-                   "rise": threshold_ratio(r5, r1, sirs)},
-        "C003-10": {"gate": [threshold(curves["gate", 1.5], sirs), threshold(r5, sirs),
-                             threshold(curves["gate", 5.0], sirs)],
-                    "compensation": _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa)},
-        "C003-11": {"dynamics": loss_share(curves["gate", 1.5][-1]),
-                    "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
-                    "bandwidth": ratio_ci(ms[1], ms[0])},
-        "C003-12": {"one": threshold_ratio(curves["static", 1], r1, sirs),
-                    "five": threshold_ratio(curves["static", 5], r5, sirs),
-                    "imitator": threshold_ratio(curves["decoy"], r1, sirs)},
+        "C003-6": {
+            "finite": loss_share(r1[at[0.5]]),
+            "loss_free": loss_share(r1[at[2.0]]),
+            "not_lower": loss_share(r1[at[4 / 3]]),
+        },
+        "C003-7": {
+            "loss_free": loss_share(r5[at[3.0]]),
+            "not_lower": loss_share(r5[at[2.0]]),
+            "rise": threshold_ratio(r5, r1, sirs),
+        },
+        "C003-10": {
+            "gate": [threshold(curves["gate", 1.5], sirs), threshold(r5, sirs), threshold(curves["gate", 5.0], sirs)],
+            "compensation": _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
+        },
+        "C003-11": {
+            "dynamics": loss_share(curves["gate", 1.5][-1]),
+            "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
+            "bandwidth": ratio_ci(ms[1], ms[0]),
+        },
+        "C003-12": {
+            "one": threshold_ratio(curves["static", 1], r1, sirs),
+            "five": threshold_ratio(curves["static", 5], r5, sirs),
+            "imitator": threshold_ratio(curves["decoy"], r1, sirs),
+        },
     }
-    out["_mechanisms"] = {f"{m} {k}": _mechanisms(curves[m, k], met[j]) for m, met in (("rotating", met_r),
-                                                                                      ("static", met_s))
-                          for j, k in enumerate((1, 5))}
+    out["_mechanisms"] = {
+        f"{m} {k}": _mechanisms(curves[m, k], met[j])
+        for m, met in (("rotating", met_r), ("static", met_s))
+        for j, k in enumerate((1, 5))
+    }
     out["_map"] = {f"{m} {k}": threshold(curves[m, k], sirs) for m in ("rotating", "static") for k in (1, 5)}
     out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
     return out
@@ -386,8 +470,11 @@ def _mechanisms(lost, met) -> dict:
     """Counts of the losses (all SIRs) and of those meeting each loss criterion (a loss may meet several)."""
     lost = np.asarray(lost, bool)
     m = np.asarray(met, bool)[lost]
-    return {"losses": int(lost.sum()), **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
-            "none (drift)": int((~m.any(axis=1)).sum())}
+    return {
+        "losses": int(lost.sum()),
+        **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
+        "none (drift)": int((~m.any(axis=1)).sum()),
+    }
 
 
 def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
@@ -403,10 +490,21 @@ def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Esti
     comp = threshold(lost_comp, sirs)
     if unc[-1].any():
         hi = kappa * comp.ci_high / float(usirs[-1])
-        return _estimate(0.0, 0.0, hi, unc.shape[1], f"{int(unc[-1].sum())} of {unc.shape[1]} uncompensated runs "
-                         f"lost even at SIR_0 {usirs[-1]:g}: bound from the grid's top",
-                         extrapolated=comp.extrapolated)
+        return _estimate(
+            0.0,
+            0.0,
+            hi,
+            unc.shape[1],
+            f"{int(unc[-1].sum())} of {unc.shape[1]} uncompensated runs "
+            f"lost even at SIR_0 {usirs[-1]:g}: bound from the grid's top",
+            extrapolated=comp.extrapolated,
+        )
     u = threshold(unc, usirs)
-    return _estimate(kappa * comp.value / u.value, kappa * comp.ci_low / u.ci_high, kappa * comp.ci_high / u.ci_low,
-                     u.n, "ratio of thresholds, interval from their bounds",
-                     extrapolated=bool(u.extrapolated or comp.extrapolated))
+    return _estimate(
+        kappa * comp.value / u.value,
+        kappa * comp.ci_low / u.ci_high,
+        kappa * comp.ci_high / u.ci_low,
+        u.n,
+        "ratio of thresholds, interval from their bounds",
+        extrapolated=bool(u.extrapolated or comp.extrapolated),
+    )

@@ -43,9 +43,21 @@ from .predictors import kalman_forecast
 from ...render import gate_origin, gaussian_spot, sensor_readout
 from .traces import TraceSet, save_traces, sha256_file
 
-__all__ = ["BeamWanderConfig", "scaled_config", "component_sigmas", "component_table", "one_frame_motion_rms",
-           "with_frame_jitter", "gauss_markov_discrete", "generate_traces",
-           "wander_state_space", "optimal_wander_forecast", "SpotCamera", "GateTrack", "track_spot"]
+__all__ = [
+    "BeamWanderConfig",
+    "scaled_config",
+    "component_sigmas",
+    "component_table",
+    "one_frame_motion_rms",
+    "with_frame_jitter",
+    "gauss_markov_discrete",
+    "generate_traces",
+    "wander_state_space",
+    "optimal_wander_forecast",
+    "SpotCamera",
+    "GateTrack",
+    "track_spot",
+]
 
 #: The generator's name as the shipped data set records it (``metadata["generator"]``). The module has
 #: since moved into the paper package; the recorded name stays so that regenerating the data set with
@@ -113,19 +125,30 @@ class BeamWanderConfig:
             ("n_frames", self.n_frames, self.n_frames >= 2, ">= 2"),
             ("frame_rate_hz", self.frame_rate_hz, self.frame_rate_hz > 0, "> 0"),
             ("image_size_px", self.image_size_px, self.image_size_px >= 8, ">= 8"),
-            ("corner_frequencies_hz", self.corner_frequencies_hz,
-             len(self.corner_frequencies_hz) >= 1 and all(0 < f and (self.aliased_corners or f < self.frame_rate_hz / 2)
-                                                          for f in self.corner_frequencies_hz),
-             "a non-empty list of values in (0, frame_rate_hz/2) (any value > 0 with aliased_corners=True)"),
+            (
+                "corner_frequencies_hz",
+                self.corner_frequencies_hz,
+                len(self.corner_frequencies_hz) >= 1
+                and all(
+                    0 < f and (self.aliased_corners or f < self.frame_rate_hz / 2) for f in self.corner_frequencies_hz
+                ),
+                "a non-empty list of values in (0, frame_rate_hz/2) (any value > 0 with aliased_corners=True)",
+            ),
             ("spectral_index", self.spectral_index, -2.0 <= self.spectral_index <= 4.0, "in [-2, 4]"),
             ("rms_min_px", self.rms_min_px, 0 <= self.rms_min_px <= self.rms_max_px, "in [0, rms_max_px]"),
-            ("rms_max_px", self.rms_max_px, self.rms_max_px <= self.image_size_px / 6,
-             f"<= image_size_px/6 = {self.image_size_px / 6:g}"),
-            ("drift_max_px_per_frame", self.drift_max_px_per_frame,
-             0 <= self.drift_max_px_per_frame * self.n_frames <= self.image_size_px / 4,
-             f"in [0, image_size_px/(4 n_frames)] = [0, {self.image_size_px / 4 / self.n_frames:g}]"),
-            ("scintillation_sigma_ln", self.scintillation_sigma_ln, 0 <= self.scintillation_sigma_ln <= 2,
-             "in [0, 2]"),
+            (
+                "rms_max_px",
+                self.rms_max_px,
+                self.rms_max_px <= self.image_size_px / 6,
+                f"<= image_size_px/6 = {self.image_size_px / 6:g}",
+            ),
+            (
+                "drift_max_px_per_frame",
+                self.drift_max_px_per_frame,
+                0 <= self.drift_max_px_per_frame * self.n_frames <= self.image_size_px / 4,
+                f"in [0, image_size_px/(4 n_frames)] = [0, {self.image_size_px / 4 / self.n_frames:g}]",
+            ),
+            ("scintillation_sigma_ln", self.scintillation_sigma_ln, 0 <= self.scintillation_sigma_ln <= 2, "in [0, 2]"),
             ("rolloff", self.rolloff, self.rolloff in ("f^-4", "f^-2"), "'f^-4' or 'f^-2'"),
         ]
         for name, value, ok, allowed in checks:
@@ -133,15 +156,22 @@ class BeamWanderConfig:
                 raise ValueError(f"parameter {name!r} = {value!r}; it must be {allowed}")
 
 
-def scaled_config(config: BeamWanderConfig, wander_scale: float = 1.0,
-                  bandwidth_scale: float = 1.0) -> BeamWanderConfig:
+def scaled_config(
+    config: BeamWanderConfig, wander_scale: float = 1.0, bandwidth_scale: float = 1.0
+) -> BeamWanderConfig:
     """``config`` with the wander RMS range multiplied by ``wander_scale`` and every corner
     frequency by ``bandwidth_scale`` (with the same seed, the same paths, louder or faster)."""
     if not (wander_scale > 0 and bandwidth_scale > 0):
-        raise ValueError(f"parameters 'wander_scale' = {wander_scale!r} and 'bandwidth_scale' = "
-                         f"{bandwidth_scale!r}; both must be > 0")
-    return replace(config, rms_min_px=config.rms_min_px * wander_scale, rms_max_px=config.rms_max_px * wander_scale,
-                   corner_frequencies_hz=tuple(f * bandwidth_scale for f in config.corner_frequencies_hz))
+        raise ValueError(
+            f"parameters 'wander_scale' = {wander_scale!r} and 'bandwidth_scale' = "
+            f"{bandwidth_scale!r}; both must be > 0"
+        )
+    return replace(
+        config,
+        rms_min_px=config.rms_min_px * wander_scale,
+        rms_max_px=config.rms_max_px * wander_scale,
+        corner_frequencies_hz=tuple(f * bandwidth_scale for f in config.corner_frequencies_hz),
+    )
 
 
 def component_sigmas(config: BeamWanderConfig, rms_px) -> np.ndarray:
@@ -175,8 +205,10 @@ def component_table(config: BeamWanderConfig) -> list[dict]:
     share = component_sigmas(config, 1.0) ** 2
     wt = 2 * np.pi * f / config.frame_rate_hz
     rho = np.exp(-wt) if config.rolloff == "f^-2" else (1 + wt) * np.exp(-wt)
-    return [{"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
-            for fk, sk, rk in zip(f, share, rho)]
+    return [
+        {"corner_hz": float(fk), "variance_share": float(sk), "frame_correlation": float(rk)}
+        for fk, sk, rk in zip(f, share, rho)
+    ]
 
 
 def one_frame_motion_rms(config: BeamWanderConfig, rms_px) -> np.ndarray:
@@ -194,7 +226,7 @@ def one_frame_motion_rms(config: BeamWanderConfig, rms_px) -> np.ndarray:
     """
     sig = component_sigmas(config, rms_px)
     rho = np.array([c["frame_correlation"] for c in component_table(config)])
-    return np.sqrt(np.sum(2 * sig ** 2 * (1 - rho), axis=-1))
+    return np.sqrt(np.sum(2 * sig**2 * (1 - rho), axis=-1))
 
 
 def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> TraceSet:
@@ -215,12 +247,17 @@ def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> T
     if not (jitter_over_step >= 0):
         raise ValueError(f"parameter 'jitter_over_step' = {jitter_over_step!r}; it must be >= 0")
     meta = dict(traces.metadata)
-    cfg = BeamWanderConfig(**{**meta["config"], "corner_frequencies_hz": tuple(meta["config"]["corner_frequencies_hz"])})
+    cfg = BeamWanderConfig(
+        **{**meta["config"], "corner_frequencies_hz": tuple(meta["config"]["corner_frequencies_hz"])}
+    )
     step = one_frame_motion_rms(cfg, np.asarray(meta["wander_rms_px"]))
     sd = jitter_over_step * step
     jitter = sd[:, None, None] * np.random.default_rng(seed).standard_normal(traces.centres_px.shape)
-    meta["variant"] = {"frame_jitter_over_step": float(jitter_over_step), "jitter_seed": int(seed),
-                       "jitter_rms_px": sd.tolist()}
+    meta["variant"] = {
+        "frame_jitter_over_step": float(jitter_over_step),
+        "jitter_seed": int(seed),
+        "jitter_rms_px": sd.tolist(),
+    }
     return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
 
 
@@ -256,7 +293,7 @@ def gauss_markov_discrete(omega, sigma, dt: float, order: int = 2) -> tuple[np.n
         Phi = np.zeros(omega.shape + (2, 2))
         Phi[:, 0, 0] = a
         Qd = np.zeros(sigma.shape + (2, 2))
-        Qd[..., 0, 0] = sigma ** 2 * (1 - a ** 2)
+        Qd[..., 0, 0] = sigma**2 * (1 - a**2)
         return Phi, Qd
     Phi = np.empty(omega.shape + (2, 2))
     Q1 = np.empty(omega.shape + (2, 2))  # for q = 1
@@ -267,7 +304,7 @@ def gauss_markov_discrete(omega, sigma, dt: float, order: int = 2) -> tuple[np.n
         Phi[k] = vl[2:, 2:].T
         Q1[k] = Phi[k] @ vl[:2, 2:]
         Q1[k] = 0.5 * (Q1[k] + Q1[k].T)
-    q2 = (2.0 * sigma * omega ** 1.5) ** 2
+    q2 = (2.0 * sigma * omega**1.5) ** 2
     return Phi, q2[..., None, None] * Q1
 
 
@@ -276,7 +313,7 @@ def _stationary_cov(omega, sigma, order: int = 2) -> np.ndarray:
     omega = np.asarray(omega, dtype=float)
     sigma = np.asarray(sigma, dtype=float)
     P = np.zeros(sigma.shape + (2, 2))
-    P[..., 0, 0] = sigma ** 2
+    P[..., 0, 0] = sigma**2
     P[..., 1, 1] = 0.0 if order == 1 else (sigma * omega) ** 2
     return P
 
@@ -338,8 +375,10 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
         "seed": int(seed),
         "wander_rms_px": rms.tolist(),
         "drift_px_per_frame": drift.tolist(),
-        "units": {"centres_px": "px (pixel centres at integers; x = column, y = row)",
-                  "intensity": "dimensionless total-intensity factor, mean 1"},
+        "units": {
+            "centres_px": "px (pixel centres at integers; x = column, y = row)",
+            "intensity": "dimensionless total-intensity factor, mean 1",
+        },
     }
     return TraceSet(centres, intensity, c.frame_rate_hz, c.image_size_px, metadata)
 
@@ -381,13 +420,13 @@ def wander_state_space(config: BeamWanderConfig, rms_px, drift_prior_px_per_fram
     Q = np.zeros((npath, n, n))
     P0 = np.zeros((npath, n, n))
     for k in range(K):
-        Q[:, 2 * k:2 * k + 2, 2 * k:2 * k + 2] = Qd[:, k]
-        P0[:, 2 * k:2 * k + 2, 2 * k:2 * k + 2] = Pst[:, k]
+        Q[:, 2 * k : 2 * k + 2, 2 * k : 2 * k + 2] = Qd[:, k]
+        P0[:, 2 * k : 2 * k + 2, 2 * k : 2 * k + 2] = Pst[:, k]
     d = c.drift_max_px_per_frame / np.sqrt(3.0) if drift_prior_px_per_frame is None else drift_prior_px_per_frame
-    P0[:, -2, -2] = 100.0 ** 2
+    P0[:, -2, -2] = 100.0**2
     P0[:, -1, -1] = max(d, 1e-9) ** 2
     H = np.zeros((1, n))
-    H[0, 0:2 * K:2] = 1.0
+    H[0, 0 : 2 * K : 2] = 1.0
     H[0, -2] = 1.0
     return F, Q, H, P0
 
@@ -466,17 +505,24 @@ class SpotCamera:
     def __post_init__(self):
         checks = [
             ("centroid_mode", self.centroid_mode, self.centroid_mode in ("windowed", "gate"), "'windowed' or 'gate'"),
-            ("centroid_window_px", self.centroid_window_px,
-             self.centroid_window_px is None or 0 < self.centroid_window_px <= self.gate_size_px,
-             f"None or in (0, gate_size_px = {self.gate_size_px}]"),
+            (
+                "centroid_window_px",
+                self.centroid_window_px,
+                self.centroid_window_px is None or 0 < self.centroid_window_px <= self.gate_size_px,
+                f"None or in (0, gate_size_px = {self.gate_size_px}]",
+            ),
             ("spot_sigma_px", self.spot_sigma_px, 0 < self.spot_sigma_px <= 32, "in (0, 32]"),
             ("peak_dn", self.peak_dn, self.peak_dn > 0, "> 0"),
             ("background_dn", self.background_dn, self.background_dn >= 0, ">= 0"),
             ("read_noise_dn", self.read_noise_dn, self.read_noise_dn >= 0, ">= 0"),
             ("gain_e_per_dn", self.gain_e_per_dn, self.gain_e_per_dn > 0, "> 0"),
             ("bit_depth", self.bit_depth, 1 <= self.bit_depth <= 16, "in [1, 16]"),
-            ("gate_size_px", self.gate_size_px, self.gate_size_px >= 5 and self.gate_size_px % 2 == 1,
-             "an odd integer >= 5"),
+            (
+                "gate_size_px",
+                self.gate_size_px,
+                self.gate_size_px >= 5 and self.gate_size_px % 2 == 1,
+                "an odd integer >= 5",
+            ),
             ("threshold_sigma", self.threshold_sigma, self.threshold_sigma >= 0, ">= 0"),
         ]
         for name, value, ok, allowed in checks:
@@ -491,7 +537,7 @@ class SpotCamera:
     @property
     def flux_e(self) -> float:
         """Total spot signal at intensity 1, electrons (``2 pi sigma^2 peak gain``)."""
-        return 2 * np.pi * self.spot_sigma_px ** 2 * self.peak_dn * self.gain_e_per_dn
+        return 2 * np.pi * self.spot_sigma_px**2 * self.peak_dn * self.gain_e_per_dn
 
 
 @dataclass(frozen=True)
@@ -516,8 +562,14 @@ class GateTrack:
     clipped: np.ndarray | None = None
 
 
-def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCamera = SpotCamera(),
-               image_size_px: int = 128, keep: tuple | None = None) -> GateTrack:
+def track_spot(
+    centres_px,
+    intensity,
+    rng: np.random.Generator,
+    camera: SpotCamera = SpotCamera(),
+    image_size_px: int = 128,
+    keep: tuple | None = None,
+) -> GateTrack:
     """Render each frame's gate crop and measure the spot's energy centre, frame by frame.
 
     The gate of frame ``n`` is centred on the centre measured in frame ``n-1`` (frame 0: on the
@@ -553,15 +605,20 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
     origin = np.zeros(c.shape, dtype=np.int64)
     gates = None if keep is None else np.empty((T, g, g))
     clipped = np.zeros(c.shape[:-1], dtype=bool)
-    full_scale = 2 ** camera.bit_depth - 1
+    full_scale = 2**camera.bit_depth - 1
     aim = c[..., 0, :]
     for t in range(T):
         o = np.clip(gate_origin(aim, (g, g)), 0, image_size_px - g)
-        signal = gaussian_spot(c[..., t, :], (g, g), camera.spot_sigma_px,
-                               camera.flux_e * inten[..., t], origin=o)
-        img = sensor_readout(signal, rng, background=camera.background_dn * camera.gain_e_per_dn,
-                             photon_noise=True, read_noise=camera.read_noise_dn * camera.gain_e_per_dn,
-                             gain=camera.gain_e_per_dn, bit_depth=camera.bit_depth)
+        signal = gaussian_spot(c[..., t, :], (g, g), camera.spot_sigma_px, camera.flux_e * inten[..., t], origin=o)
+        img = sensor_readout(
+            signal,
+            rng,
+            background=camera.background_dn * camera.gain_e_per_dn,
+            photon_noise=True,
+            read_noise=camera.read_noise_dn * camera.gain_e_per_dn,
+            gain=camera.gain_e_per_dn,
+            bit_depth=camera.bit_depth,
+        )
         if camera.centroid_mode == "windowed":
             m = windowed_centroid(img, o, window_px=camera.window_px, threshold_sigma=camera.threshold_sigma)
         else:
@@ -577,8 +634,10 @@ def track_spot(centres_px, intensity, rng: np.random.Generator, camera: SpotCame
 
 def main(argv=None) -> int:
     """Write a trace data set: ``traces.npz`` plus ``checksums.sha256``."""
-    ap = argparse.ArgumentParser(prog="python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander",
-                                 description="Generate synthetic laser beam-wander traces (true centres).")
+    ap = argparse.ArgumentParser(
+        prog="python -m tvtrack.papers.p004_laser_spot_prediction.beam_wander",
+        description="Generate synthetic laser beam-wander traces (true centres).",
+    )
     ap.add_argument("--out", required=True, help="output folder")
     ap.add_argument("--seed", type=int, required=True, help="random seed (integer >= 0)")
     d = BeamWanderConfig()
@@ -593,15 +652,27 @@ def main(argv=None) -> int:
     ap.add_argument("--drift-max-px-per-frame", type=float, default=d.drift_max_px_per_frame)
     ap.add_argument("--scintillation-sigma-ln", type=float, default=d.scintillation_sigma_ln)
     a = ap.parse_args(argv)
-    cfg = BeamWanderConfig(a.n_paths, a.n_frames, a.frame_rate_hz, a.image_size_px,
-                           tuple(a.corner_frequencies_hz), a.spectral_index, a.rms_min_px, a.rms_max_px,
-                           a.drift_max_px_per_frame, a.scintillation_sigma_ln)
+    cfg = BeamWanderConfig(
+        a.n_paths,
+        a.n_frames,
+        a.frame_rate_hz,
+        a.image_size_px,
+        tuple(a.corner_frequencies_hz),
+        a.spectral_index,
+        a.rms_min_px,
+        a.rms_max_px,
+        a.drift_max_px_per_frame,
+        a.scintillation_sigma_ln,
+    )
     traces = generate_traces(cfg, a.seed)
     out = Path(a.out)
     path = save_traces(out / "traces.npz", traces)
     (out / "checksums.sha256").write_text(f"{sha256_file(path)}  {path.name}\n")
-    print(json.dumps({"file": str(path), "sha256": sha256_file(path), "n_paths": cfg.n_paths,
-                      "n_frames": cfg.n_frames}, indent=1))
+    print(
+        json.dumps(
+            {"file": str(path), "sha256": sha256_file(path), "n_paths": cfg.n_paths, "n_frames": cfg.n_frames}, indent=1
+        )
+    )
     return 0
 
 

@@ -35,15 +35,34 @@ import numpy as np
 
 from . import predictors as pr
 
-__all__ = ["PAPER", "CLASSICAL", "FITTED", "FADING", "SINGER", "MIN_WINDOW", "ComparisonSetup", "Comparison",
-           "compare_methods", "per_trial_path_mse", "fit_learned_folds", "apply_learned_folds", "radial_error_summary",
-           "window_candidates", "grid_edges"]
+__all__ = [
+    "PAPER",
+    "CLASSICAL",
+    "FITTED",
+    "FADING",
+    "SINGER",
+    "MIN_WINDOW",
+    "ComparisonSetup",
+    "Comparison",
+    "compare_methods",
+    "per_trial_path_mse",
+    "fit_learned_folds",
+    "apply_learned_folds",
+    "radial_error_summary",
+    "window_candidates",
+    "grid_edges",
+]
 
 #: The paper's filter.
 PAPER = "growing memory (paper)"
 #: Baselines the paper names whose errors it quotes as 2-10 px (finite differences, splines, regression).
-CLASSICAL = ("finite differences, 2 points", "finite differences, 3 points", "cubic spline",
-             "linear regression deg 1", "linear regression deg 2")
+CLASSICAL = (
+    "finite differences, 2 points",
+    "finite differences, 3 points",
+    "cubic spline",
+    "linear regression deg 1",
+    "linear regression deg 2",
+)
 #: Principled counterpart of the floor (not a baseline of the paper): Morrison's fading-memory filter.
 FADING = "fading memory (Morrison)"
 #: Singer-model Kalman filter with ML parameters (a Kalman filter whose memory is set by a motion model).
@@ -64,7 +83,9 @@ def window_candidates(min_window: int, grid) -> tuple:
     its optimum when the motion is fast and the measurement clean (a degree-1 fit on 2 samples).
     """
     grid = sorted(int(g) for g in grid)
-    return tuple(sorted(set(range(int(min_window), max(grid[0], int(min_window)) + 1)) | {g for g in grid if g >= min_window}))
+    return tuple(
+        sorted(set(range(int(min_window), max(grid[0], int(min_window)) + 1)) | {g for g in grid if g >= min_window})
+    )
 
 
 def grid_edges(chosen, grid) -> np.ndarray:
@@ -108,8 +129,12 @@ def radial_error_summary(forecast, reference, steps: int, start: int) -> dict:
     """
     e = pr.forecast_errors(forecast, reference, steps)[..., start:]
     r = np.hypot(e[:, :, 0], e[:, :, 1])  # (trials, paths, T)
-    return {"rms": float(np.sqrt(np.nanmean(r ** 2))), "p95": float(np.nanquantile(r, 0.95)),
-            "max": float(np.nanmax(r)), "per_path_rms": np.sqrt(np.nanmean(r ** 2, axis=(0, 2)))}
+    return {
+        "rms": float(np.sqrt(np.nanmean(r**2))),
+        "p95": float(np.nanquantile(r, 0.95)),
+        "max": float(np.nanmax(r)),
+        "per_path_rms": np.sqrt(np.nanmean(r**2, axis=(0, 2))),
+    }
 
 
 @dataclass(frozen=True)
@@ -170,8 +195,12 @@ def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup):
 
 def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Generator) -> list:
     """One learned predictor per fold, trained on the first trial of its training paths."""
-    return [pr.fit_learned_predictor(kind, z[0, train], s.learned_lags, s.steps, seed=int(rng.integers(2**31)),
-                                     **s.learned_kw) for train, _ in folds]
+    return [
+        pr.fit_learned_predictor(
+            kind, z[0, train], s.learned_lags, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw
+        )
+        for train, _ in folds
+    ]
 
 
 def apply_learned_folds(models, z, folds) -> np.ndarray:
@@ -182,8 +211,15 @@ def apply_learned_folds(models, z, folds) -> np.ndarray:
     return out
 
 
-def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.Generator,
-                    learned_models: dict | None = None, learned: bool = True) -> Comparison:
+def compare_methods(
+    z,
+    reference,
+    folds,
+    setup: ComparisonSetup,
+    rng: np.random.Generator,
+    learned_models: dict | None = None,
+    learned: bool = True,
+) -> Comparison:
     """Every method on the same series, tuned by cross-validation over paths.
 
     Parameters
@@ -210,34 +246,41 @@ def compare_methods(z, reference, folds, setup: ComparisonSetup, rng: np.random.
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
     fc, mse[PAPER], chosen[PAPER], all_fc, all_mse = _tuned(
-        s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s)
+        s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s
+    )
     fcs[PAPER] = fc
     fixed[PAPER] = per_trial_path_mse(pr.growing_memory_forecast(z, m, s.order, s.fixed_floor), reference, m, s.start)
     fcs["finite differences, 2 points"] = pr.sliding_regression_forecast(z, 2, 1, m)
     fcs["finite differences, 3 points"] = pr.sliding_regression_forecast(z, 3, 2, m)
     for name in ("finite differences, 2 points", "finite differences, 3 points"):
         mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)
-    windowed = {"cubic spline": lambda L: pr.spline_forecast(z, L, m),
-                "linear regression deg 1": lambda L: pr.sliding_regression_forecast(z, L, 1, m),
-                "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m)}
+    windowed = {
+        "cubic spline": lambda L: pr.spline_forecast(z, L, m),
+        "linear regression deg 1": lambda L: pr.sliding_regression_forecast(z, L, 1, m),
+        "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m),
+    }
     for name, make in windowed.items():
-        fcs[name], mse[name], chosen[name], _, _ = _tuned(window_candidates(MIN_WINDOW[name], s.window_grid), make, z,
-                                                          reference, folds, s)
+        fcs[name], mse[name], chosen[name], _, _ = _tuned(
+            window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s
+        )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
     fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
-        s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s)
+        s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s
+    )
     fixed[FADING] = mse[FADING]
     models = {}
     if learned:
         for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):
-            models[kind] = (learned_models[kind] if learned_models is not None
-                            else fit_learned_folds(kind, z, folds, s, rng))
+            models[kind] = (
+                learned_models[kind] if learned_models is not None else fit_learned_folds(kind, z, folds, s, rng)
+            )
             fcs[name] = apply_learned_folds(models[kind], z, folds)
             mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)
     fits = pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid)
     fcs["CA Kalman, ML noise"] = pr.constant_acceleration_forecast(z, fits, folds, m)
-    mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(fcs["CA Kalman, ML noise"],
-                                                                                   reference, m, s.start)
+    mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(
+        fcs["CA Kalman, ML noise"], reference, m, s.start
+    )
     chosen["CA Kalman, ML noise"] = np.array(fits)
     singer_fits = pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid)
     fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)

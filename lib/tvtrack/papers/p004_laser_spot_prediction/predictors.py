@@ -42,16 +42,43 @@ from scipy.linalg import expm
 
 from ...filters.kalman import kf_predict, kf_update
 from ...montecarlo import mean_ci, rms_ci
-from ...filters.polynomial import (growing_memory_filter, growing_memory_gains, polynomial_observation_row,
-                                 predict_ahead, taylor_transition)
+from ...filters.polynomial import (
+    growing_memory_filter,
+    growing_memory_gains,
+    polynomial_observation_row,
+    predict_ahead,
+    taylor_transition,
+)
 
 __all__ = [
-    "forecast_errors", "growing_memory_forecast", "fading_memory_gains", "fading_memory_forecast", "g1_floor_gains", "g1_floor_filter",
-    "sliding_regression_forecast", "spline_forecast", "lag_features", "fit_learned_predictor",
-    "learned_forecast", "constant_acceleration_model", "kalman_forecast", "fit_constant_acceleration",
-    "path_folds", "cross_validated_pick", "hold_last", "errors_by_path", "forecast_rms_ci", "error_summary", "batch_least_squares_states",
-    "cross_validated_learned_forecast", "fit_constant_acceleration_folds", "constant_acceleration_forecast",
-    "singer_model", "fit_singer", "fit_singer_folds", "singer_forecast",
+    "forecast_errors",
+    "growing_memory_forecast",
+    "fading_memory_gains",
+    "fading_memory_forecast",
+    "g1_floor_gains",
+    "g1_floor_filter",
+    "sliding_regression_forecast",
+    "spline_forecast",
+    "lag_features",
+    "fit_learned_predictor",
+    "learned_forecast",
+    "constant_acceleration_model",
+    "kalman_forecast",
+    "fit_constant_acceleration",
+    "path_folds",
+    "cross_validated_pick",
+    "hold_last",
+    "errors_by_path",
+    "forecast_rms_ci",
+    "error_summary",
+    "batch_least_squares_states",
+    "cross_validated_learned_forecast",
+    "fit_constant_acceleration_folds",
+    "constant_acceleration_forecast",
+    "singer_model",
+    "fit_singer",
+    "fit_singer_folds",
+    "singer_forecast",
 ]
 
 
@@ -146,9 +173,13 @@ def error_summary(forecast, reference, steps: int, start: int = 0) -> dict:
     """
     e = errors_by_path(forecast_errors(forecast, reference, steps), start)
     a = np.abs(e)
-    return {"rms": rms_ci(e), "per_path_rms": np.sqrt(np.nanmean(e ** 2, axis=1)),
-            "p95": mean_ci(np.nanquantile(a, 0.95, axis=1)), "max": float(np.nanmax(a)),
-            "per_path_p95": np.nanquantile(a, 0.95, axis=1)}
+    return {
+        "rms": rms_ci(e),
+        "per_path_rms": np.sqrt(np.nanmean(e**2, axis=1)),
+        "p95": mean_ci(np.nanquantile(a, 0.95, axis=1)),
+        "max": float(np.nanmax(a)),
+        "per_path_p95": np.nanquantile(a, 0.95, axis=1),
+    }
 
 
 def batch_least_squares_states(z, order: int = 2) -> np.ndarray:
@@ -173,7 +204,7 @@ def batch_least_squares_states(z, order: int = 2) -> np.ndarray:
     for n_ in range(order, z.size):
         lags = np.arange(n_, -1, -1.0)
         Hn = np.stack([(-lags) ** p / np.prod(np.arange(1, p + 1)) for p in range(order + 1)], axis=1)
-        out[n_] = np.linalg.lstsq(Hn, z[:n_ + 1], rcond=None)[0]
+        out[n_] = np.linalg.lstsq(Hn, z[: n_ + 1], rcond=None)[0]
     return out
 
 
@@ -198,8 +229,9 @@ def growing_memory_forecast(z, steps: int = 1, order: int = 2, floor_memory: int
     head = growing_memory_filter(z[..., :floor_memory], order, floor_memory)
     out = np.empty(z.shape)
     out[..., :floor_memory] = predict_ahead(head, steps)
-    out[..., floor_memory:] = _fixed_gain_forecast(z[..., floor_memory:], head[..., -1, :], order,
-                                                   growing_memory_gains(order, floor_memory)[-1], steps)
+    out[..., floor_memory:] = _fixed_gain_forecast(
+        z[..., floor_memory:], head[..., -1, :], order, growing_memory_gains(order, floor_memory)[-1], steps
+    )
     return out
 
 
@@ -237,7 +269,7 @@ def fading_memory_gains(theta: float) -> np.ndarray:
     """
     if not (0 < theta < 1):
         raise ValueError(f"parameter 'theta' = {theta!r}; it must be in (0, 1)")
-    return np.array([1 - theta ** 3, 1.5 * (1 - theta) ** 2 * (1 + theta), (1 - theta) ** 3])
+    return np.array([1 - theta**3, 1.5 * (1 - theta) ** 2 * (1 + theta), (1 - theta) ** 3])
 
 
 def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
@@ -325,13 +357,14 @@ def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> 
     if not (isinstance(degree, (int, np.integer)) and 0 <= degree <= 5):
         raise ValueError(f"parameter 'degree' = {degree!r}; it must be an integer in [0, 5]")
     if not (isinstance(window, (int, np.integer)) and degree + 1 <= window <= z.shape[-1]):
-        raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in "
-                         f"[degree+1, T] = [{degree + 1}, {z.shape[-1]}]")
+        raise ValueError(
+            f"parameter 'window' = {window!r}; it must be an integer in [degree+1, T] = [{degree + 1}, {z.shape[-1]}]"
+        )
     t = np.arange(window, dtype=float) - (window - 1)  # 0 = newest sample
     V = np.vander(t, degree + 1, increasing=True)
     w = np.vander(np.array([float(steps)]), degree + 1, increasing=True) @ np.linalg.pinv(V)  # (1, window)
     out = np.full(z.shape, np.nan)
-    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w[0]
+    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w[0]
     return out
 
 
@@ -349,7 +382,7 @@ def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, extrapolate=True)
     w = spl(window - 1.0 + steps)  # (window,): weight of each sample, oldest first
     out = np.full(z.shape, np.nan)
-    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w
+    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w
     return out
 
 
@@ -368,7 +401,7 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, bc_type="natural")
     w = spl(window - 1.0) + steps * spl.derivative()(window - 1.0)  # (window,), oldest first
     out = np.full(z.shape, np.nan)
-    out[..., window - 1:] = sliding_window_view(z, window, axis=-1) @ w
+    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w
     return out
 
 
@@ -395,12 +428,21 @@ def lag_features(z, n_lags: int, steps: int = 1):
     win = sliding_window_view(z, n_lags + 1, axis=-1)  # (..., T-n_lags, n_lags+1), newest last
     X[..., n_lags:, :] = win[..., -2::-1] - win[..., -1:]
     y = np.full(z.shape, np.nan)
-    y[..., :T - steps] = z[..., steps:] - z[..., :T - steps]
+    y[..., : T - steps] = z[..., steps:] - z[..., : T - steps]
     return X, y
 
 
-def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hidden_units: int = 16,
-                          rbf_centres: int = 100, max_samples: int | None = 4000, seed: int = 0):
+def fit_learned_predictor(
+    kind: str,
+    z_train,
+    n_lags: int,
+    steps: int = 1,
+    *,
+    hidden_units: int = 16,
+    rbf_centres: int = 100,
+    max_samples: int | None = 4000,
+    seed: int = 0,
+):
     """Train a learned ``steps``-ahead predictor on the series in ``z_train``.
 
     Parameters
@@ -439,14 +481,26 @@ def fit_learned_predictor(kind: str, z_train, n_lags: int, steps: int = 1, *, hi
     if max_samples is not None and idx.size > max_samples:
         idx = np.sort(np.random.default_rng(seed).choice(idx, max_samples, replace=False))
     if kind == "mlp":
-        model = make_pipeline(StandardScaler(), MLPRegressor(
-            hidden_layer_sizes=(hidden_units,), activation="tanh", solver="adam", alpha=1e-4,
-            learning_rate_init=1e-3, max_iter=2000, early_stopping=True, n_iter_no_change=10,
-            random_state=seed))
+        model = make_pipeline(
+            StandardScaler(),
+            MLPRegressor(
+                hidden_layer_sizes=(hidden_units,),
+                activation="tanh",
+                solver="adam",
+                alpha=1e-4,
+                learning_rate_init=1e-3,
+                max_iter=2000,
+                early_stopping=True,
+                n_iter_no_change=10,
+                random_state=seed,
+            ),
+        )
     else:
-        model = make_pipeline(StandardScaler(), Nystroem(kernel="rbf", gamma=1.0 / n_lags,
-                                                         n_components=rbf_centres, random_state=seed),
-                              RidgeCV(alphas=np.logspace(-6, 2, 9)))
+        model = make_pipeline(
+            StandardScaler(),
+            Nystroem(kernel="rbf", gamma=1.0 / n_lags, n_components=rbf_centres, random_state=seed),
+            RidgeCV(alphas=np.logspace(-6, 2, 9)),
+        )
     model.fit(X[idx], y[idx])
     model.n_lags_ = n_lags
     model.steps_ = steps
@@ -499,8 +553,9 @@ def cross_validated_pick(per_path_loss, folds) -> np.ndarray:
     return pick
 
 
-def cross_validated_learned_forecast(kind: str, z, folds, n_lags: int, steps: int, rng: np.random.Generator,
-                                     **fit_kwargs) -> np.ndarray:
+def cross_validated_learned_forecast(
+    kind: str, z, folds, n_lags: int, steps: int, rng: np.random.Generator, **fit_kwargs
+) -> np.ndarray:
     """Forecasts of a learned predictor scored by cross-validation over paths.
 
     For each ``(train, test)`` fold of :func:`path_folds` a model is trained by
@@ -523,8 +578,7 @@ def cross_validated_learned_forecast(kind: str, z, folds, n_lags: int, steps: in
     z = _check_z(z)
     out = np.full(z.shape, np.nan)
     for train, test in folds:
-        model = fit_learned_predictor(kind, z[0, train], n_lags, steps, seed=int(rng.integers(2**31)),
-                                      **fit_kwargs)
+        model = fit_learned_predictor(kind, z[0, train], n_lags, steps, seed=int(rng.integers(2**31)), **fit_kwargs)
         out[:, test] = learned_forecast(model, z[:, test])
     return out
 
@@ -691,11 +745,11 @@ def _singer_q_closed_form(a):
     """Singer (1970) eq. (11): Q per frame for unit white-acceleration-noise density, ``a = 1/tau``
     (shape (...)); accurate for ``a`` >~ 0.05."""
     e1, e2 = np.exp(-a), np.exp(-2 * a)
-    q11 = (1 - e2 + 2 * a + 2 * a ** 3 / 3 - 2 * a ** 2 - 4 * a * e1) / (2 * a ** 5)
-    q12 = (e2 + 1 - 2 * e1 + 2 * a * e1 - 2 * a + a ** 2) / (2 * a ** 4)
-    q13 = (1 - e2 - 2 * a * e1) / (2 * a ** 3)
-    q22 = (4 * e1 - 3 - e2 + 2 * a) / (2 * a ** 3)
-    q23 = (e2 + 1 - 2 * e1) / (2 * a ** 2)
+    q11 = (1 - e2 + 2 * a + 2 * a**3 / 3 - 2 * a**2 - 4 * a * e1) / (2 * a**5)
+    q12 = (e2 + 1 - 2 * e1 + 2 * a * e1 - 2 * a + a**2) / (2 * a**4)
+    q13 = (1 - e2 - 2 * a * e1) / (2 * a**3)
+    q22 = (4 * e1 - 3 - e2 + 2 * a) / (2 * a**3)
+    q23 = (e2 + 1 - 2 * e1) / (2 * a**2)
     q33 = (1 - e2) / (2 * a)
     return np.stack([np.stack([q11, q12, q13], -1), np.stack([q12, q22, q23], -1), np.stack([q13, q23, q33], -1)], -2)
 
@@ -750,7 +804,9 @@ def singer_model(tau_frames, accel_var, meas_var):
     e1 = np.exp(-a)
     F = np.zeros(tau.shape + (3, 3))
     F[..., 0, 0] = F[..., 1, 1] = F[..., 0, 1] = 1.0
-    F[..., 0, 2] = np.where(a < 1e-3, 0.5 - a / 6 + a ** 2 / 24, (a - 1 + e1) / np.maximum(a, 1e-3) ** 2)  # series: no cancellation
+    F[..., 0, 2] = np.where(
+        a < 1e-3, 0.5 - a / 6 + a**2 / 24, (a - 1 + e1) / np.maximum(a, 1e-3) ** 2
+    )  # series: no cancellation
     F[..., 1, 2] = -np.expm1(-a) / a
     F[..., 2, 2] = e1
     short = tau <= _SINGER_CLOSED_FORM_MAX_TAU

@@ -46,8 +46,9 @@ def soft_window(centre, half: float, n: int) -> np.ndarray:
     return np.clip(np.minimum(i + 0.5, c + half) - np.maximum(i - 0.5, c - half), 0.0, 1.0)
 
 
-def windowed_centroid(images, origin=(0, 0), *, window_px: float, threshold_sigma: float = 3.0,
-                      n_iter: int = 4) -> Centroid:
+def windowed_centroid(
+    images, origin=(0, 0), *, window_px: float, threshold_sigma: float = 3.0, n_iter: int = 4
+) -> Centroid:
     """Thresholded energy centre in a soft window re-centred on the estimate (see the module text).
 
     Parameters
@@ -87,7 +88,7 @@ def windowed_centroid(images, origin=(0, 0), *, window_px: float, threshold_sigm
     mass = np.zeros(batch)
     for _ in range(n_iter + 1):
         wx, wy = soft_window(cx, half, cols), soft_window(cy, half, rows)
-        col_sum = np.einsum("...rc,...r->...c", w, wy)       # window-weighted column profile
+        col_sum = np.einsum("...rc,...r->...c", w, wy)  # window-weighted column profile
         row_sum = np.einsum("...rc,...c->...r", w, wx)
         mass = np.einsum("...c,...c->...", col_sum, wx)
         valid = mass > 0
@@ -132,8 +133,9 @@ def _fraction_slope(centre, sigma: float, n: int) -> np.ndarray:
     return (np.exp(-0.5 * a * a) - np.exp(-0.5 * b * b)) / (np.sqrt(2 * np.pi) * sigma)
 
 
-def gaussian_fit_centre(images, origin, start_xy, *, sigma_px: float, read_noise: float, gain: float = 1.0,
-                        n_iter: int = 10) -> np.ndarray:
+def gaussian_fit_centre(
+    images, origin, start_xy, *, sigma_px: float, read_noise: float, gain: float = 1.0, n_iter: int = 10
+) -> np.ndarray:
     """Spot centre by fitting a pixel-integrated Gaussian of known width, Poisson plus read noise.
 
     Model ``lambda_ij = b + F f_x(j) f_y(i)`` (``f`` the pixel fractions of
@@ -172,10 +174,16 @@ def gaussian_fit_centre(images, origin, start_xy, *, sigma_px: float, read_noise
         dx, dy = _fraction_slope(x, sigma_px, cols), _fraction_slope(y, sigma_px, rows)
         shape = fy[..., :, None] * fx[..., None, :]
         lam = b[..., None, None] + F[..., None, None] * shape
-        w = 1.0 / (np.maximum(lam, 1e-6) / gain + read_noise ** 2)
-        J = np.stack([F[..., None, None] * fy[..., :, None] * dx[..., None, :],
-                      F[..., None, None] * dy[..., :, None] * fx[..., None, :],
-                      shape, np.ones_like(shape)], axis=-1).reshape(a.shape[:-2] + (rows * cols, 4))
+        w = 1.0 / (np.maximum(lam, 1e-6) / gain + read_noise**2)
+        J = np.stack(
+            [
+                F[..., None, None] * fy[..., :, None] * dx[..., None, :],
+                F[..., None, None] * dy[..., :, None] * fx[..., None, :],
+                shape,
+                np.ones_like(shape),
+            ],
+            axis=-1,
+        ).reshape(a.shape[:-2] + (rows * cols, 4))
         r = (a - lam).reshape(a.shape[:-2] + (rows * cols,))
         wf = w.reshape(r.shape)
         JtW = np.swapaxes(J, -1, -2) * wf[..., None, :]

@@ -84,8 +84,9 @@ def _validate(centres, intensity, frame_rate_hz, image_size_px, where: str) -> N
     c = np.asarray(centres)
     i = np.asarray(intensity)
     if c.dtype != np.float64 or c.ndim != 3 or c.shape[-1] != 2 or c.shape[0] < 1 or c.shape[1] < 1:
-        raise ValueError(f"{where}: 'centres_px' must be float64 of shape (n_paths>=1, n_frames>=1, 2); "
-                         f"got {c.dtype} {c.shape}")
+        raise ValueError(
+            f"{where}: 'centres_px' must be float64 of shape (n_paths>=1, n_frames>=1, 2); got {c.dtype} {c.shape}"
+        )
     if i.dtype != np.float64 or i.shape != c.shape[:2]:
         raise ValueError(f"{where}: 'intensity' must be float64 of shape {c.shape[:2]}; got {i.dtype} {i.shape}")
     if not np.all(np.isfinite(c)):
@@ -97,8 +98,10 @@ def _validate(centres, intensity, frame_rate_hz, image_size_px, where: str) -> N
     if int(image_size_px) != image_size_px or image_size_px < 1:
         raise ValueError(f"{where}: 'image_size_px' = {image_size_px!r}; it must be an integer >= 1")
     if np.any(c < -0.5) or np.any(c > image_size_px - 0.5):
-        raise ValueError(f"{where}: 'centres_px' leave the sensor [-0.5, {image_size_px - 0.5}] px "
-                         f"(range {c.min():.2f}..{c.max():.2f})")
+        raise ValueError(
+            f"{where}: 'centres_px' leave the sensor [-0.5, {image_size_px - 0.5}] px "
+            f"(range {c.min():.2f}..{c.max():.2f})"
+        )
 
 
 def save_traces(path, traces: TraceSet) -> Path:
@@ -165,18 +168,25 @@ def load_traces(path) -> TraceSet:
     for key, kind in (("frame_rate_hz", "f"), ("image_size_px", "i")):
         a = arrays[key]
         if a.shape != () or a.dtype.kind != kind:
-            raise ValueError(f"{where}: '{key}' must be a 0-d {'float' if kind == 'f' else 'integer'}; "
-                             f"got {a.dtype} {a.shape}")
+            raise ValueError(
+                f"{where}: '{key}' must be a 0-d {'float' if kind == 'f' else 'integer'}; got {a.dtype} {a.shape}"
+            )
     try:
         metadata = json.loads(str(arrays["metadata_json"]))
     except json.JSONDecodeError as exc:
         raise ValueError(f"{where}: 'metadata_json' is not valid JSON ({exc})") from None
     if not isinstance(metadata, dict):
         raise ValueError(f"{where}: 'metadata_json' must hold a JSON object")
-    _validate(arrays["centres_px"], arrays["intensity"], float(arrays["frame_rate_hz"]),
-              int(arrays["image_size_px"]), where)
-    return TraceSet(arrays["centres_px"], arrays["intensity"], float(arrays["frame_rate_hz"]),
-                    int(arrays["image_size_px"]), metadata)
+    _validate(
+        arrays["centres_px"], arrays["intensity"], float(arrays["frame_rate_hz"]), int(arrays["image_size_px"]), where
+    )
+    return TraceSet(
+        arrays["centres_px"],
+        arrays["intensity"],
+        float(arrays["frame_rate_hz"]),
+        int(arrays["image_size_px"]),
+        metadata,
+    )
 
 
 def sha256_file(path) -> str:
