@@ -185,12 +185,16 @@ class Recorder:
         draw_order: float | None = None,
     ) -> None:
         """Log 2-D points (N, 2) in pixels at the current frame (higher ``draw_order`` on top;
-        negative ``radii`` are in screen points, so markers keep their size when zoomed)."""
+        negative ``radii`` are in screen points, so markers keep their size when zoomed). Each marker is
+        labelled with the entity's own name (``camera/estimate`` -> "estimate") unless ``labels`` is
+        given, or ``False`` for none: overlapping markers of truth, measurement and estimate stay apart."""
         if self.enabled:
-            self._rec.log(
-                path,
-                rr.Points2D(_xy(xy, image_space), radii=radii, colors=colors, labels=labels, draw_order=draw_order),
-            )
+            pts = _xy(xy, image_space)
+            if labels is None:
+                labels = [path.rstrip("/").rsplit("/", 1)[-1]] * len(pts)
+            elif labels is False:
+                labels = None
+            self._rec.log(path, rr.Points2D(pts, radii=radii, colors=colors, labels=labels, draw_order=draw_order))
 
     def boxes(
         self,

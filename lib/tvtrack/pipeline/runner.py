@@ -251,7 +251,16 @@ def _owner_alive(tmp: Path) -> bool:
         return False
     except (PermissionError, ValueError):
         return True
-    return True
+    return not _zombie(int(pid))
+
+
+def _zombie(pid: int) -> bool:
+    """A killed process that nobody has reaped yet still answers ``kill(pid, 0)``: its state says it is dead."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (OSError, IndexError):
+        return False
+    return state in ("Z", "X")
 
 
 def remove_stale_temporaries(parent: Path) -> int:

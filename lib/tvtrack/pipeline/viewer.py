@@ -616,6 +616,8 @@ def check_recording(viewer: HeadlessViewer, path: str | Path, expect: Expectatio
     images = [
         (v, p) for v in spatial for p in entities_under(paths, v.origin) if archetypes.get(p, set()) & IMAGE_ARCHETYPES
     ]
+    # the view's main image first (an entity named ".../image"), not a small overlay such as a gate crop
+    images.sort(key=lambda vp: not vp[1].rstrip("/").endswith("/image"))
     if expect.image and not images:
         problems.append(f"no image entity in the 2-D views {[v.origin for v in spatial]}; entities: {paths}")
     for view, image_path in images[:1] if expect.image else []:

@@ -42,7 +42,14 @@ def record_trial(output_dir, mode: str, scan: DissectorScan, x, pulse, xi, n_sca
     for k in range(1, n_rec + 1, every):
         rec.set_frame(k)
         ks = np.arange(max(k - int(np.floor(scan.phase(k) / scan.dt)), 1), k + 1)
-        rec.points("scan/samples", to_view(scan.phase(ks), y[ks]), radii=0.8, colors=[255, 255, 255], image_space=False)
+        rec.points(
+            "scan/samples",
+            to_view(scan.phase(ks), y[ks]),
+            radii=0.8,
+            colors=[255, 255, 255],
+            image_space=False,
+            labels=False,
+        )
         for name, centre, colour in (("true_pulse", x[k], [0, 200, 0]), ("predicted_pulse", x_pred[k], [255, 140, 0])):
             shape = np.exp(-0.5 * ((phase_axis - scan.pulse_centre - centre) / scan.pulse_sigma) ** 2)
             rec.lines(f"scan/{name}", to_view(phase_axis, shape), colors=colour, image_space=False)

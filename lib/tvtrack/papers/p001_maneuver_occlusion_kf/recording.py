@@ -100,8 +100,23 @@ def record_run(
             radii=-4.0,
         )
     rec.set_frame(0)
-    rec.lines("trajectory/truth", true_xy[::5], colors=[rgb(ROLE_COLOURS["truth"])], image_space=False)
-    rec.lines("trajectory/estimate", est_xy[::5], colors=[rgb(ROLE_COLOURS["estimate"])], image_space=False)
+    # the estimate follows the truth closely: the truth is drawn wider and below, so both stay visible
+    rec.lines(
+        "trajectory/truth",
+        true_xy[::5],
+        colors=[rgb(ROLE_COLOURS["truth"])],
+        radii=-3.0,
+        image_space=False,
+        draw_order=10.0,
+    )
+    rec.lines(
+        "trajectory/estimate",
+        est_xy[::5],
+        colors=[rgb(ROLE_COLOURS["estimate"])],
+        radii=-1.0,
+        image_space=False,
+        draw_order=20.0,
+    )
     for c, nm in enumerate(("x", "y")):
         rec.series(f"errors/{nm}", out.x[0, c, :, 0] - truth[c, :, 0])
         rec.series(f"gain/kappa1_{nm}", out.gains[0, c, :, 0])
