@@ -59,25 +59,56 @@ def ellipse_outline(center, covariance, n_sigma: float = 1.0, n_points: int = 48
 
 def image_and_series_blueprint(
     image_origin: str = "camera",
-    series_origins: Sequence[str] = ("errors",),
+    series_origins: Sequence[str | Sequence[str]] = ("errors",),
     *,
     image_name: str = "Camera",
-    series_names: Sequence[str] | None = None,
+    series_names: Sequence[str | Sequence[str]] | None = None,
     image_share: float = 0.55,
     timeline: str = "frame",
+    more_images: Sequence[tuple[str, str]] = (),
 ) -> rrb.Blueprint:
-    """The usual layout: the image space (image, gate, truth, estimates) on the left and one
-    time-series view per series root stacked on the right; the viewer opens on ``timeline`` (the
-    one that carries the per-frame data), paused at its start."""
-    names = list(series_names) if series_names is not None else [o.split("/")[-1] for o in series_origins]
-    series = [rrb.TimeSeriesView(origin=o, name=n) for o, n in zip(series_origins, names)]
+    """The one blueprint helper: the image space (image, gate, truth, estimates) on the left and one
+    time-series view per series root stacked on the right; the viewer opens on ``timeline`` (the one
+    that carries the per-frame data), paused at its start.
+
+    Parameters
+    ----------
+    image_origin, image_name : str
+        The main 2-D view.
+    series_origins : sequence of str or of tuples of str
+        One time-series view per root; a tuple of roots becomes tabs in one place.
+    series_names : sequence, optional
+        The views' names, shaped like ``series_origins`` (default: the roots' last components).
+    image_share : float
+        Width of the left column.
+    timeline : str
+        The timeline the viewer opens on.
+    more_images : sequence of (origin, name)
+        Further 2-D views under the main one (side by side when there are several).
+    """
+
+    def one(origin, name):
+        return rrb.TimeSeriesView(origin=origin, name=name)
+
+    names = (
+        series_names
+        if series_names is not None
+        else [
+            tuple(o.split("/")[-1] for o in s_) if not isinstance(s_, str) else s_.split("/")[-1]
+            for s_ in series_origins
+        ]
+    )
+    series = [
+        one(o, n) if isinstance(o, str) else rrb.Tabs(*(one(oo, nn) for oo, nn in zip(o, n)))
+        for o, n in zip(series_origins, names)
+    ]
     right = rrb.Vertical(*series) if len(series) > 1 else series[0]
+    left = rrb.Spatial2DView(origin=image_origin, name=image_name)
+    if more_images:
+        extra = [rrb.Spatial2DView(origin=o, name=n) for o, n in more_images]
+        left = rrb.Vertical(left, rrb.Horizontal(*extra) if len(extra) > 1 else extra[0])
     return rrb.Blueprint(
-        rrb.Horizontal(
-            rrb.Spatial2DView(origin=image_origin, name=image_name),
-            right,
-            column_shares=[image_share, 1.0 - image_share],
-        ),
+        rrb.Horizontal(left, right, column_shares=[image_share, 1.0 - image_share]),
         rrb.TimePanel(timeline=timeline, play_state="paused"),
         collapse_panels=True,
     )

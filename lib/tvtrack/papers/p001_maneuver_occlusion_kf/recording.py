@@ -5,36 +5,31 @@ velocity, acceleration, detector statistic and threshold, kappa1 and the mode.""
 from __future__ import annotations
 
 import numpy as np
-import rerun.blueprint as rrb
 
 from ...filters.polynomial import predict_ahead
 from ...plotting import ROLE_COLOURS, rgb
-from ...recordings import Recorder, ellipse_outline
+from ...recordings import Recorder, ellipse_outline, image_and_series_blueprint
 from ...render import gate_origin, gaussian_spot
 
 __all__ = ["blueprint", "record_run"]
 
 
-def blueprint() -> rrb.Blueprint:
+def blueprint():
     """Crop and trajectory on the left, the time series stacked on the right."""
-    return rrb.Blueprint(
-        rrb.Horizontal(
-            rrb.Vertical(
-                rrb.Spatial2DView(origin="camera", name="Crop around the object (elements)"),
-                rrb.Spatial2DView(origin="trajectory", name="Trajectory (elements)"),
-            ),
-            rrb.Vertical(
-                rrb.TimeSeriesView(origin="errors", name="Coordinate error (elements)"),
-                rrb.TimeSeriesView(origin="velocity", name="Velocity x (elements/frame)"),
-                rrb.TimeSeriesView(origin="acceleration", name="Acceleration x (elements/frame²)"),
-                rrb.TimeSeriesView(origin="detector", name="Detector x: S and ±c"),
-                rrb.TimeSeriesView(origin="gain", name="κ1"),
-                rrb.TimeSeriesView(origin="mode", name="Mode (0 coast, 2, 3)"),
-            ),
-            column_shares=[0.45, 0.55],
+    return image_and_series_blueprint(
+        "camera",
+        ("errors", "velocity", "acceleration", "detector", "gain", "mode"),
+        image_name="Crop around the object (elements)",
+        series_names=(
+            "Coordinate error (elements)",
+            "Velocity x (elements/frame)",
+            "Acceleration x (elements/frame²)",
+            "Detector x: S and ±c",
+            "κ1",
+            "Mode (0 coast, 2, 3)",
         ),
-        rrb.TimePanel(timeline="frame", play_state="paused"),
-        collapse_panels=True,
+        image_share=0.45,
+        more_images=(("trajectory", "Trajectory (elements)"),),
     )
 
 

@@ -10,37 +10,28 @@ line).
 from __future__ import annotations
 
 import numpy as np
-import rerun.blueprint as rrb
 
 from tvtrack.plotting import colour, rgb
-from tvtrack.recordings import Recorder
+from tvtrack.recordings import Recorder, image_and_series_blueprint
 from .em import match_labels, pixel_entries, responsibility_maps, unified_location_em
 from .model import designate, draw_truth, frame_times, mixture_weights, scene_geometry, simulate_counts
 from .two_stage import em_marks, fit_lines, propagate
 
 __all__ = ["BLUEPRINT", "count_image", "record_trial"]
 
-BLUEPRINT = rrb.Blueprint(
-    rrb.Horizontal(
-        rrb.Vertical(
-            rrb.Spatial2DView(origin="camera", name="Counts (log), truth, designation, estimates"),
-            rrb.Horizontal(
-                rrb.Spatial2DView(origin="responsibility/first_iteration", name="lambda_1, first EM step"),
-                rrb.Spatial2DView(origin="responsibility/last_iteration", name="lambda_1, converged"),
-            ),
-        ),
-        rrb.Vertical(
-            rrb.TimeSeriesView(origin="errors", name="position error per frame (px)"),
-            rrb.Tabs(
-                rrb.TimeSeriesView(origin="em/loglik", name="EM log-likelihood (time line 'iteration')"),
-                rrb.TimeSeriesView(origin="em/theta", name="EM parameters, px (time line 'iteration')"),
-            ),
-            row_shares=[0.6, 0.4],
-        ),
-        column_shares=[0.6, 0.4],
+BLUEPRINT = image_and_series_blueprint(
+    "camera",
+    ("errors", ("em/loglik", "em/theta")),
+    image_name="Counts (log), truth, designation, estimates",
+    series_names=(
+        "position error per frame (px)",
+        ("EM log-likelihood (time line 'iteration')", "EM parameters, px (time line 'iteration')"),
     ),
-    rrb.TimePanel(timeline="frame", play_state="paused"),
-    collapse_panels=True,
+    image_share=0.6,
+    more_images=(
+        ("responsibility/first_iteration", "lambda_1, first EM step"),
+        ("responsibility/last_iteration", "lambda_1, converged"),
+    ),
 )
 
 
