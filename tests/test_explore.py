@@ -251,3 +251,13 @@ def test_executor_for_a_port_where_nothing_or_no_scheduler_listens_is_one_line_w
         executor_for(f"127.0.0.1:{silent.getsockname()[1]}", timeout_s=2)
     assert time.perf_counter() - t0 < 10
     silent.close()
+
+
+def test_results_keep_the_union_of_the_registers_of_several_explorations(tmp_path):
+    res = Results("000_x", "c", {"seed": 1, "output_dir": str(tmp_path)})
+    other = Register([Entry("d", "regime", 0, (0, 1), "another study's regime")])
+    ex1 = explore(measure_renamed, REG, {"C000-1": RULES["Y"]}, seed=5, replicates=3)
+    ex2 = explore(lambda c, s: {"C000-2": _mean(s, 0.0)}, other, {"C000-2": RULES["X"]}, seed=5, replicates=3)
+    res.claim("C000-1", "s", "p", RULES["Y"], exploration=ex1)
+    res.claim("C000-2", "s", "p", RULES["X"], exploration=ex2)
+    assert [e["name"] for e in res.register] == ["a", "b", "c", "d"]

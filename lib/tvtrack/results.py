@@ -294,8 +294,10 @@ class Results:
             if measured is None:
                 measured = exploration.measured(id)
             record = exploration.record(id, rule)
-            if self.register is None:
-                self.register = exploration.register.to_dict()
+            known = {e["name"] for e in self.register or []}  # several explorations: the union of their registers
+            self.register = (self.register or []) + [
+                e for e in exploration.register.to_dict() if e["name"] not in known
+            ]
         else:
             record = robustness.record(rule, measured) if robustness is not None else None
         verdict, decision = rule.explain(measured)
