@@ -14,7 +14,7 @@ register class; :func:`build` makes the :class:`tvtrack.register.Register`.
 
 from __future__ import annotations
 
-__all__ = ["ROWS", "DEFAULT", "DEPENDS", "NAMES", "build", "explored"]
+__all__ = ["ROWS", "DEFAULT", "DEPENDS", "NAMES", "WORLD", "build", "explored"]
 
 #: (name, kind, default, values, why, origin)
 ROWS = (
@@ -205,7 +205,9 @@ DEFAULT = {name: default for name, _, default, *_ in ROWS}
 #: Entry names in register order.
 NAMES = tuple(DEFAULT)
 
-_WORLD = (
+#: Entries that change the simulated scene (the world): every claim in pixels depends on them, and the study
+#: renders one scene per combination of them (``study._SCENE_KEYS``).
+WORLD = (
     "spectral index",
     "roll-off",
     "bandwidth",
@@ -223,13 +225,13 @@ _WORLD = (
 
 #: Entries each claim depends on, with the reason for every entry left out.
 DEPENDS = {
-    "C004-1": list(_WORLD) + ["horizon", "tuning", "reference", "C004-1 statistic"],  # not the networks' lags
-    "C004-2": list(_WORLD) + ["horizon", "tuning", "reference"],
-    "C004-3": list(_WORLD) + ["horizon", "tuning", "reference", "spline", "C004-3 statistic"],
-    "C004-3b": list(_WORLD) + ["horizon", "tuning", "reference", "network lags"],
+    "C004-1": list(WORLD) + ["horizon", "tuning", "reference", "C004-1 statistic"],  # not the networks' lags
+    "C004-2": list(WORLD) + ["horizon", "tuning", "reference"],
+    "C004-3": list(WORLD) + ["horizon", "tuning", "reference", "spline", "C004-3 statistic"],
+    "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags"],
     "C004-4": [],  # exact algebra on any series: nothing in the register can change it
     "C004-5": [],  # the model's own signal (quadratic + white noise): nothing in the register enters
-    "C004-6": list(_WORLD) + ["horizon", "tuning", "reference"],
+    "C004-6": list(WORLD) + ["horizon", "tuning", "reference"],
     "C004-8": ["frame rate", "read noise", "saturation"],  # the per-frame work and the frame interval
 }
 

@@ -44,6 +44,7 @@ from .prediction_study import (
     per_trial_path_mse,
     window_candidates,
 )
+from .register import WORLD
 from .traces import TraceSet
 
 __all__ = [
@@ -104,21 +105,7 @@ NATURAL_SPLINE = "natural cubic spline"
 #: The optimal predictor of the generator's own model: a bound, not a method.
 OPTIMAL = "optimal (true model)"
 
-_SCENE_KEYS = (
-    "spectral index",
-    "roll-off",
-    "bandwidth",
-    "amplitude",
-    "jitter",
-    "frame rate",
-    "read noise",
-    "saturation",
-    "scintillation",
-    "energy centre",
-    "exposure",
-    "spot size",
-    "vibration",
-)
+_SCENE_KEYS = WORLD  # the entries that change the rendered scene
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
 _CHECK_N = (3, 5, 10, 20, 50, 100)
