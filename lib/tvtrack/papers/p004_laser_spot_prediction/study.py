@@ -44,7 +44,7 @@ from .prediction_study import (
     per_trial_path_mse,
     window_candidates,
 )
-from .register import WORLD
+from .register import NAMES, WORLD
 from .traces import TraceSet
 
 __all__ = [
@@ -74,28 +74,7 @@ __all__ = [
 ]
 
 #: Register entry names the study reads (the configuration dict's keys).
-ENTRIES = (
-    "spectral index",
-    "roll-off",
-    "bandwidth",
-    "amplitude",
-    "jitter",
-    "frame rate",
-    "read noise",
-    "saturation",
-    "scintillation",
-    "energy centre",
-    "horizon",
-    "network lags",
-    "tuning",
-    "reference",
-    "C004-1 statistic",
-    "spline",
-    "exposure",
-    "spot size",
-    "C004-3 statistic",
-    "vibration",
-)
+ENTRIES = NAMES  # the register's entry names, in register order
 #: The two networks of C004-3b (the paper's back-propagation and RBF networks).
 NETWORKS = ("MLP back-prop", "RBF network")
 #: The least-squares cubic over a window: the other reading of the paper's "spline extrapolation".
