@@ -405,42 +405,16 @@ def explore(
 def executor_for(address: str | None, timeout_s: float = 10.0) -> Any:
     """An executor for :func:`explore`: ``None`` (in process) for an empty address, else a
     ``dask.distributed.Client`` connected to the scheduler at ``address`` (``host:port`` or
-    ``tcp://host:port``) within ``timeout_s``.
+    ``tcp://host:port``) within ``timeout_s`` (:func:`tvtrack.executors.connect_dask`).
 
     Raises
     ------
     ValueError
         One line naming the address: it has no port, nothing listens there, or what listens does not
-        answer as a Dask scheduler in time (``distributed`` can wait forever on a silent port, so the
-        connection runs in a thread with a deadline).
+        answer as a Dask scheduler in time.
     """
     if not address:
         return None
-    import socket
-    import threading
+    from .executors import connect_dask
 
-    addr = address if "://" in address else f"tcp://{address}"
-    hostport = addr.split("://", 1)[1]
-    host, _, port = hostport.rpartition(":")
-    if not host or not port.isdigit():
-        raise ValueError(f"scheduler address {address!r} has no port; give host:port, e.g. 127.0.0.1:8786")
-    try:
-        socket.create_connection((host.strip("[]"), int(port)), timeout=timeout_s).close()
-    except OSError as exc:
-        raise ValueError(f"cannot reach a Dask scheduler at {address!r}: {exc.strerror or exc}") from None
-    outcome: dict = {}
-
-    def connect():
-        from distributed import Client
-
-        try:
-            outcome["client"] = Client(addr, timeout=timeout_s)
-        except BaseException as exc:  # noqa: BLE001 - e.g. MemoryError decoding an HTTP reply as a Dask frame
-            outcome["error"] = exc
-
-    thread = threading.Thread(target=connect, daemon=True, name="dask-connect")
-    thread.start()
-    thread.join(timeout_s)
-    if "client" not in outcome:
-        raise ValueError(f"no Dask scheduler answers at {address!r} within {timeout_s:g} s")
-    return outcome["client"]
+    return connect_dask(address, timeout_s)

@@ -25,7 +25,6 @@ import hashlib
 import itertools
 import json
 import os
-import re
 import shutil
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -33,6 +32,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
+from ..executors import SchedulerError, connect_dask, parse_scheduler_address
 from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
 from .paths import RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given
@@ -341,12 +341,6 @@ def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick)
             raise
 
 
-_ADDRESS = re.compile(
-    r"^(?:(?P<scheme>[a-z]+)://)?(?P<host>\[[0-9a-fA-F:.]+\]|[^:/\s\[\]]+)"
-    r"(?::(?P<port>[^/\s]*))?/?$"
-)
-
-
 def check_scheduler_address(address: str) -> tuple[str, int]:
     """``(host, port)`` of a Dask scheduler address such as ``tcp://127.0.0.1:8786`` or ``host:8786``.
 
@@ -354,19 +348,11 @@ def check_scheduler_address(address: str) -> tuple[str, int]:
     ------
     UsageError
         The address has no port, a port that is not a number in [1, 65535], or another scheme than
-        ``tcp``/``tls`` (one line naming the address)."""
-    match = _ADDRESS.match(address.strip())
-    example = "e.g. tcp://127.0.0.1:8786"
-    if not match:
-        raise UsageError(f"scheduler address {address!r} is not HOST:PORT or tcp://HOST:PORT ({example})")
-    scheme, host, port = match.group("scheme"), match.group("host"), match.group("port")
-    if scheme not in (None, "tcp", "tls"):
-        raise UsageError(f"scheduler address {address!r}: scheme {scheme!r} is not supported; use tcp:// ({example})")
-    if port is None or port == "":
-        raise UsageError(f"scheduler address {address!r} has no port ({example}; `dask scheduler` prints its address)")
-    if not port.isdigit() or not 1 <= int(port) <= 65535:
-        raise UsageError(f"scheduler address {address!r}: port {port!r} is not a number in [1, 65535] ({example})")
-    return host.strip("[]"), int(port)
+        ``tcp``/``tls`` (one line naming the address; :func:`tvtrack.executors.parse_scheduler_address`)."""
+    try:
+        return parse_scheduler_address(address)
+    except SchedulerError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
@@ -378,34 +364,11 @@ def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
         One line naming the address: nothing listens there, or what listens does not answer as a Dask
         scheduler within the time limit (a web server, a database ...), with how to start one.
     """
-    import socket
-    import threading
-
-    host, port = check_scheduler_address(scheduler)
     hint = "start one with `dask scheduler` (and `dask worker ADDRESS`), or use --executor local"
     try:
-        socket.create_connection((host, port), timeout=timeout_s).close()
-    except OSError as exc:
-        raise UsageError(f"cannot reach the Dask scheduler at {scheduler}: {exc.strerror or exc}; {hint}") from exc
-    outcome: dict = {}
-
-    def connect():  # distributed may wait forever on a port where something else listens: a thread with a deadline
-        from distributed import Client
-
-        try:
-            outcome["client"] = Client(scheduler, timeout=timeout_s)
-        except BaseException as exc:  # noqa: BLE001 - e.g. MemoryError decoding an HTTP reply as a Dask frame
-            outcome["error"] = exc
-
-    thread = threading.Thread(target=connect, daemon=True, name="dask-connect")
-    thread.start()
-    thread.join(timeout_s)
-    if "client" not in outcome:
-        raise UsageError(
-            f"no Dask scheduler answers at {scheduler} within {timeout_s:.0f} s (something listens "
-            f"there, but not a Dask scheduler); {hint}"
-        )
-    return outcome["client"]
+        return connect_dask(scheduler, timeout_s, hint=hint)
+    except SchedulerError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def _flatten_metrics(metrics: dict) -> dict[str, Any]:
