@@ -171,3 +171,16 @@ def test_ordering_says_paired_only_when_paired():
     assert "paired ratio" in Ordering("a", "b", ">", "ratio").text()
     unpaired = Ordering("a", "b", ">", "ratio", paired=False)
     assert "unpaired (independent samples) ratio" in unpaired.text() and unpaired.to_dict()["paired"] is False
+
+
+def test_an_identity_inside_a_composite_claim_takes_no_label():
+    # C000-3's P = 0 ratio is 1 by construction: as a NotCheckable part it neither decides nor labels the claim
+    from tvtrack.register import Entry
+
+    rule = AllOf({"identity": NotCheckable("1 by construction"), "x": InBand("x", 0, 2)})
+    reps = [{"seed": s, "measured": {"identity": 1.0, "x": est(0.5, 1.5)}} for s in (1, 2, 3)]
+    conds = [{"changed": {"world": "b"}, "kind": "single", "measured": {"identity": 1.0, "x": est(0.5, 1.5)}}]
+    rec = label_parts(rule, reps[0]["measured"], reps, conds, [Entry("world", "regime", "a", ("a", "b"), "w")])
+    assert rec["parts"]["identity"]["label"] == "-" and rec["parts"]["x"]["label"] == "robust"
+    assert rec["label"] == "robust" and "weakest part: x" in rec["coverage"]
+    assert rule.decide({"identity": 1.0, "x": est(3.0, 4.0)}) == "not reproduced"

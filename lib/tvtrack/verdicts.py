@@ -498,6 +498,10 @@ def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
     return {"claim": measured}
 
 
+NO_PART_LABEL = "-"
+"""The label of a :class:`NotCheckable` part inside an :class:`AllOf` (it takes no part in the claim's label)."""
+
+
 def weakest_label(labels: Sequence[str]) -> str:
     """The weakest of ``labels`` in the order of :data:`LABELS`."""
     return min(labels, key=LABELS.index) if labels else "unexplored"
@@ -581,7 +585,9 @@ def label_parts(
             elif v != ref:
                 flips.setdefault(v, []).append(_describe(c["changed"]))
         pwhere = []
-        if len(set(rv)) > 1:
+        if isinstance(prule, NotCheckable):
+            label = NO_PART_LABEL  # an identity or a statement this project cannot check has nothing to flip
+        elif len(set(rv)) > 1:
             label = "unstable"
             pwhere += [f"{v} in {rv.count(v)} of {len(rv)} independent replicates" for v in dict.fromkeys(rv)]
         elif flips:
@@ -602,7 +608,7 @@ def label_parts(
             "replicate_verdicts": rv,
             "n_conditions": sum(1 for c in cond_rows if name in c["parts"]),
         }
-    label = weakest_label([p["label"] for p in part_out.values()])
+    label = weakest_label([p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL])
     return {
         "label": label,
         "where": where,
