@@ -1,12 +1,14 @@
 """Tests for the Monte Carlo machinery of notebook 002 (tvtrack.papers.p002_unified_location_em.simulation)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from tvtrack.papers.p002_unified_location_em.simulation import (
     Config,
     LocationStudy,
-    StudySettings,
+    CANONICAL_SETTINGS,
     bootstrap_groups,
     failure_metrics,
     position_errors,
@@ -16,25 +18,15 @@ from tvtrack.papers.p002_unified_location_em.simulation import (
     variance_sum,
 )
 
-SETTINGS = StudySettings(
+SETTINGS = replace(
+    CANONICAL_SETTINGS,
     seed=7,
-    velocity_sigma=(0.2, 0.1),
-    noise_density=0.01,
-    photon_model="fixed",
-    margin_sigma=6.0,
     designation_sd_sigma=0.3,
-    designation_velocity_sd=0.0,
     tol_sigma=1e-5,
     max_iter=500,
-    merge_sigma=0.1,
-    accelerate="squarem",
-    mark_init="designation",
-    mark_association="designation",
-    gate_half_sigma=3.0,
     bic_max_iter=20,
     crb_phases=2,
     n_trials=24,
-    n_bootstrap=2000,
 )
 
 

@@ -11,6 +11,8 @@ Each test names the planted bug ("mutation") it kills; each was seen failing wit
 * the MAP comparison's information: the MAP-ULA must not be given the velocity its two-stage twin lacks.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -18,7 +20,7 @@ from tvtrack.papers.p002_unified_location_em.em import log_likelihood, pixel_ent
 from tvtrack.papers.p002_unified_location_em.model import frame_times, mixture_weights, scene_batches, scene_geometry
 from tvtrack.papers.p002_unified_location_em.simulation import (
     Config,
-    StudySettings,
+    CANONICAL_SETTINGS,
     centre_gate_half_px,
     map_prior_sd,
     run_config,
@@ -93,25 +95,15 @@ def test_centre_of_region_marks_in_the_study_resolve_sub_pixel_motion_with_coars
     """Kills the same mutation where the study uses it: one object, Delta = 5 sigma, 200 photons. With a 3 x 3 gate
     the line fit's x0 error variance is about 0.3 sigma^2 (the centroid's pixel-centre bias); a 1 x 1 gate quantises
     every mark to the pixel centre, Var = Delta^2 / 12 = 2.1 sigma^2."""
-    settings = StudySettings(
+    settings = replace(
+        CANONICAL_SETTINGS,
         seed=5,
-        velocity_sigma=(0.2, 0.1),
         noise_density=0.0,
-        photon_model="fixed",
-        margin_sigma=6.0,
         designation_sd_sigma=0.3,
-        designation_velocity_sd=0.0,
-        tol_sigma=1e-6,
         max_iter=500,
-        merge_sigma=0.1,
-        accelerate="squarem",
-        mark_init="designation",
-        mark_association="designation",
-        gate_half_sigma=3.0,
         bic_max_iter=10,
         crb_phases=2,
         n_trials=120,
-        n_bootstrap=2000,
     )
     cfg = Config(1, 0.0, 5.0, 200, 2, "c", 0.3, None, None, 120, "pin", 0.0)
     res = run_config(settings, cfg)
@@ -152,29 +144,12 @@ def test_map_comparison_gives_both_algorithms_the_same_velocity_knowledge():
     assert map_prior_sd("designated", 0.3, 0.05, 2.0) == (0.6, 0.1)
     with pytest.raises(ValueError):
         map_prior_sd("oracle", 0.3, 0.0, 1.0)
-    base = dict(
-        seed=8,
-        velocity_sigma=(0.2, 0.1),
-        noise_density=0.01,
-        photon_model="fixed",
-        margin_sigma=6.0,
-        designation_sd_sigma=0.3,
-        designation_velocity_sd=0.0,
-        tol_sigma=1e-6,
-        max_iter=300,
-        merge_sigma=0.1,
-        accelerate="squarem",
-        mark_init="designation",
-        mark_association="designation",
-        gate_half_sigma=3.0,
-        bic_max_iter=10,
-        crb_phases=2,
-        n_trials=12,
-        n_bootstrap=2000,
+    base = replace(
+        CANONICAL_SETTINGS, seed=8, designation_sd_sigma=0.3, max_iter=300, bic_max_iter=10, crb_phases=2, n_trials=12
     )
     cfg = Config(2, 2.0, 1.0, 20, 6, "uemk", 0.3, None, None, 12, "pin", 0.0)
-    free = run_config(StudySettings(**base, velocity_knowledge="free"), cfg)
-    known = run_config(StudySettings(**base, velocity_knowledge="designated"), cfg)
+    free = run_config(replace(base, velocity_knowledge="free"), cfg)
+    known = run_config(replace(base, velocity_knowledge="designated"), cfg)
     # free: the MAP-ULA fits the velocity as the two-stage line does; designated (exact here): the MAP-ULA and the
     # line that keeps the designated velocity ("em_vd", its twin) both have no velocity error
     assert np.abs(free["map"][..., 2:]).max() > 1e-3 and np.abs(free["em"][..., 2:]).max() > 1e-3

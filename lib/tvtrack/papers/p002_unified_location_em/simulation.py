@@ -137,6 +137,31 @@ class StudySettings:
     tracks: str = "parallel"
 
 
+CANONICAL_SETTINGS = StudySettings(
+    seed=0,
+    velocity_sigma=(0.2, 0.1),
+    noise_density=0.01,
+    photon_model="fixed",
+    margin_sigma=6.0,
+    designation_sd_sigma=0.0,
+    designation_velocity_sd=0.0,
+    tol_sigma=1e-6,
+    max_iter=5000,
+    merge_sigma=0.1,
+    accelerate="squarem",
+    mark_init="designation",
+    mark_association="designation",
+    gate_half_sigma=3.0,
+    bic_max_iter=300,
+    crb_phases=64,
+    n_trials=0,
+    n_bootstrap=2000,
+    velocity_knowledge="free",
+)
+"""The study's canonical settings (the paper-profile world); ``dataclasses.replace(CANONICAL_SETTINGS, ...)``
+gives any other (tests, smaller runs)."""
+
+
 class Config(NamedTuple):
     """One configuration (a point of a curve).
 

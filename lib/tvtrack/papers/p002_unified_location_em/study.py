@@ -24,6 +24,7 @@ import numpy as np
 from tvtrack.montecarlo import Estimate, proportion_ci, ratio_ci
 from .simulation import (
     SPREADS,
+    CANONICAL_SETTINGS,
     Config,
     StudySettings,
     bootstrap_groups,
@@ -75,27 +76,7 @@ _READS = {
     "1": ("tol_sigma", "max_iter", "accelerate"),
     "b": ("bic_max_iter",),
 }
-_CANON = StudySettings(
-    seed=0,
-    velocity_sigma=(0.2, 0.1),
-    noise_density=0.01,
-    photon_model="fixed",
-    margin_sigma=6.0,
-    designation_sd_sigma=0.0,
-    designation_velocity_sd=0.0,
-    tol_sigma=1e-6,
-    max_iter=5000,
-    merge_sigma=0.1,
-    accelerate="squarem",
-    mark_init="designation",
-    mark_association="designation",
-    gate_half_sigma=3.0,
-    bic_max_iter=300,
-    crb_phases=64,
-    n_trials=0,
-    n_bootstrap=2000,
-    velocity_knowledge="free",
-)
+_CANON = CANONICAL_SETTINGS
 _SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
 _TWO_STAGE = {
     "designation start, labels by start": ("designation", "designation"),
