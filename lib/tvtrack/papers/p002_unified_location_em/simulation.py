@@ -436,22 +436,16 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             )
             timing["map"] += time.perf_counter() - t0
             out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+        mark_args = dict(
+            init=s_.mark_init if init is None else init,
+            association=s_.mark_association if assoc is None else assoc,
+            tol_px=tol,
+            max_iter=s_.max_iter,
+        )
         if "e" in algs:
             t0 = time.perf_counter()
-            mk = em_marks(
-                b.counts,
-                b.designation,
-                times,
-                s,
-                p,
-                p0,
-                init=s_.mark_init if init is None else init,
-                association=s_.mark_association if assoc is None else assoc,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                accelerate=accel,
-            )
-            fit = fit_lines(mk, times, _fallback(mk, b.designation, s_.mark_init if init is None else init))
+            mk = em_marks(b.counts, b.designation, times, s, p, p0, accelerate=accel, **mark_args)
+            fit = fit_lines(mk, times, _fallback(mk, b.designation, mark_args["init"]))
             timing["em"] += time.perf_counter() - t0
             # the two-stage twin of a MAP-ULA that knows the designated velocity: the line keeps that velocity
             fit_v = fit_lines(mk, times, b.designation, velocity=b.designation[..., 2:])
@@ -464,18 +458,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             )
         if "q" in algs:
             t0 = time.perf_counter()
-            mk = em_marks(
-                b.counts,
-                b.designation,
-                times,
-                s,
-                p,
-                p0,
-                init=s_.mark_init if init is None else init,
-                association=s_.mark_association if assoc is None else assoc,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-            )
+            mk = em_marks(b.counts, b.designation, times, s, p, p0, **mark_args)
             timing["em_plain"] += time.perf_counter() - t0
             out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
         if "c" in algs:
