@@ -38,6 +38,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import ndtr
 
+from tvtrack import jit
+
+from . import _kernels
 from .model import pixel_probabilities
 
 __all__ = [
@@ -197,6 +200,7 @@ class _Work:
         self.count = entries.count[keep]
         self.n_frames = entries.n_frames
         self._index = {}
+        self.kernel_arrays = None  # the entries typed for the compiled E-step, made at its first use
 
     def index(self, q: int, n_cells: int, rows: bool = False) -> np.ndarray:
         """Flat index (nnz, Q) into a per-(trial, frame, object, pixel) table of one axis."""
@@ -255,6 +259,14 @@ def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
     sums : (n_act, Q, 7 or 9) = A, B, C, Dx, Dtx, Dy, Dty [, Sxx, Syy]  (eq. (10))
     loglik : (n_act,)  sum n ln v at ``theta``
     """
+    if jit.enabled():
+        return _kernels.e_step(work, theta, p, p_noise, sigma, times, shape, second)
+    return _e_step_numpy(work, theta, p, p_noise, sigma, times, shape, second)
+
+
+def _e_step_numpy(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
+    """:func:`_e_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_JIT=0`` or without
+    numba)."""
     rows, cols = shape
     t = times[None, :, None]
     s = sigma[:, None, :]

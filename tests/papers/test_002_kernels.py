@@ -1,0 +1,73 @@
+"""The compiled E-step of notebook 002's unified location EM against its NumPy twin (issue 30).
+
+The NumPy path is always tested (``TVTRACK_JIT=0``); the compiled path only where numba is importable.
+"""
+
+import numpy as np
+import pytest
+
+from tvtrack import jit
+from tvtrack.papers.p002_unified_location_em import _kernels, em
+from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.model import (
+    designate,
+    draw_truth,
+    frame_times,
+    mixture_weights,
+    scene_geometry,
+    simulate_counts,
+)
+
+needs_numba = pytest.mark.skipif(jit._numba is None, reason="numba is not installed: the NumPy path is the one used")
+
+
+def _scene(q=2, T=10, d=2.0, pix=1.0, m=20, noise=0.01, n=12, seed=0):
+    rng = np.random.default_rng(seed)
+    g = scene_geometry(q, T, d, pix)
+    truth = draw_truth(rng, n, g)
+    counts = simulate_counts(rng, truth, frame_times(T), g.shape, g.sigma_px, m, noise)
+    p, p0 = mixture_weights(m, noise, g.n_pixels, q)
+    return g, counts, designate(rng, truth, 0.3 * g.sigma_px), p, p0
+
+
+@needs_numba
+@pytest.mark.parametrize("q, pix, second", [(1, 1.0, False), (2, 1.0, True), (2, 5.0, False), (3, 2.5, True)])
+def test_compiled_e_step_equals_the_numpy_e_step(q, pix, second):
+    g, counts, desig, p, p0 = _scene(q=q, pix=pix)
+    entries = pixel_entries(counts)
+    n = counts.shape[0]
+    work = em._Work(entries, np.arange(n))
+    rng = np.random.default_rng(3)
+    theta = desig + 0.3 * rng.standard_normal(desig.shape)  # off the designation: every term non-trivial
+    pw = np.broadcast_to(p, (n, q)).copy()
+    p0v = np.full(n, p0)
+    sigma = np.full((n, q), g.sigma_px) * (1 + 0.1 * rng.random((n, q)))
+    times = frame_times(counts.shape[1])
+    ref_sums, ref_ll = em._e_step_numpy(work, theta, pw, p0v, sigma, times, entries.shape, second)
+    sums, ll = _kernels.e_step(work, theta, pw, p0v, sigma, times, entries.shape, second)
+    assert sums.shape == ref_sums.shape == (n, q, 9 if second else 7)
+    np.testing.assert_allclose(sums, ref_sums, rtol=1e-11, atol=1e-12)
+    np.testing.assert_allclose(ll, ref_ll, rtol=1e-12)
+
+
+@needs_numba
+@pytest.mark.parametrize("accelerate", [None, "squarem"])
+def test_the_em_gives_the_same_estimates_compiled_or_not(monkeypatch, accelerate):
+    g, counts, desig, p, p0 = _scene(pix=2.5, n=16, seed=4)
+    run = dict(times=frame_times(counts.shape[1]), tol_px=1e-8, accelerate=accelerate)
+    fast = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, **run)
+    monkeypatch.setenv("TVTRACK_JIT", "0")
+    assert not jit.enabled()
+    slow = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, **run)
+    np.testing.assert_allclose(fast.theta, slow.theta, atol=1e-6)  # both stop within 1e-8 px of the fixed point
+    np.testing.assert_allclose(fast.loglik, slow.loglik, rtol=1e-10)
+    assert np.abs(fast.n_iter - slow.n_iter).max() <= 2
+
+
+def test_the_numpy_path_is_used_when_jit_is_off(monkeypatch):
+    monkeypatch.setenv("TVTRACK_JIT", "0")
+    called = []
+    monkeypatch.setattr(_kernels, "e_step", lambda *a: called.append(1))
+    g, counts, desig, p, p0 = _scene(n=4)
+    res = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, times=frame_times(counts.shape[1]))
+    assert not called and res.converged.all()
