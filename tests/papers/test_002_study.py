@@ -236,3 +236,13 @@ def test_c002_6_photon_pair_and_coordinate_readings():
     )
     assert len({o["C002-6"].value for o in out}) == 3 and all(np.isfinite(o["C002-6"].value) for o in out)
     assert out[1]["C002-3"].value == out[0]["C002-3"].value  # the coordinate reading is C002-6's alone
+
+
+def test_em_stopping_never_reaches_the_iteration_counts_of_fig7():
+    # C002-13 does not list "EM stopping": its plain-EM counts must not change with it (a loose tolerance would)
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    for value in REGISTER["EM stopping"].alternatives:
+        other = _letters(study.jobs_of({**DEFAULT, "EM stopping": value}, 7, TINY))
+        pq = {k for k in base if k[1] in "pq"}
+        assert pq and all(other.get(k) == base[k] for k in pq), value
+    assert "EM stopping" not in DEPENDS["C002-13"] and "EM stopping" not in DEPENDS["C002-14"]

@@ -103,7 +103,11 @@ _TWO_STAGE = {
     "designation start + line association": ("designation", "lines"),
     "no designation: moment start + line association": ("moments", "lines"),
 }
-_EM = {"SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6), "plain EM, cap 100": ("none", 100, 1e-6)}
+_EM = {
+    "SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6),
+    "plain EM, cap 100": ("none", 100, 1e-6),
+    "plain EM to 0.1 sigma": ("none", 5000, 0.1),
+}
 _CACHE: dict[tuple, dict] = {}
 
 
@@ -180,6 +184,8 @@ def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2
     out = replace(_CANON, **{k: getattr(settings, k) for k in keep})
     if q == 1:  # one object: nothing to cross
         out = replace(out, tracks="parallel")
+    if letter in "pq":  # the counts' own tolerance is the "EM tolerance of Fig 7" row (a Config variant)
+        out = replace(out, tol_sigma=_CANON.tol_sigma)
     if letter in "pq" and scale.max_iter is not None:
         out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
     return out
