@@ -188,3 +188,61 @@ def test_photons_of_c002_12_change_only_its_far_apart_points():
     faint = _letters(study.jobs_of({**DEFAULT, "m_k of C002-12": 10}, 7, TINY))
     new = {k[0] for k in set(faint) - set(base)}
     assert new and all(c.d == 8.0 and c.m == 10 and c.pix in (0.5, 1.0) for c in new)
+
+
+def test_fig7_tolerance_reruns_only_the_iteration_points_on_the_same_scenes():
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "0.05 sigma"}, 7, TINY))
+    new = set(loose) - set(base)
+    assert new and all(k[0].variant == (("tol_sigma", 0.05),) and k[0].n == TINY.n_iter_trials for k in new)
+    assert {k[1] for k in new} == {"u", "p", "q"}  # the Fig 7 points only, every letter they hold
+    # what the loose reading no longer asks for is the default's Fig 7 points (a 'u' point may be shared)
+    assert set(base) - set(loose) <= {(k[0]._replace(variant=()), k[1]) for k in new}
+    assert study.fig7_variant(DEFAULT) == ()  # the default's cache keys are those of before the row
+
+
+def test_a_loose_practical_tolerance_stops_plain_em_in_fewer_steps_on_the_same_trials():
+    from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config
+
+    settings = study.settings_of(DEFAULT, 3, TINY)
+    tight = Config(2, 1.0, 3.0, 20, 5, "p", 0.3, None, None, 6, "explore", 0.0)
+    loose = tight._replace(variant=(("tol_sigma", 0.05),))
+    a, b = run_config(settings, tight), run_config(settings, loose)
+    assert np.array_equal(a["truth"], b["truth"])  # a variant sees the same draws (common random numbers)
+    assert np.all(b["plain_iter"] <= a["plain_iter"]) and b["plain_iter"].mean() < a["plain_iter"].mean()
+    assert np.all(b["plain_iter"] >= 1)
+
+
+def test_c002_6_photon_pair_and_coordinate_readings():
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    assert _letters(study.jobs_of({**DEFAULT, "coordinate of C002-6": "along the separation"}, 7, TINY)) == base
+    faint = _letters(study.jobs_of({**DEFAULT, "m_k pair of C002-6": "10 vs 5"}, 7, TINY))
+    new = {k[0] for k in set(faint) - set(base)}
+    assert new and all(c.m == 5 and c.pix == 1.0 and c.T in (5, 10) and c.d <= 2.0 for c in new)
+    whole = _letters(study.jobs_of({**DEFAULT, "small separations of C002-6 (sigma)": 8.0}, 7, TINY))
+    assert {k[0].d for k in set(whole) - set(base)} == {d for d in TINY.separations if d > 2.0}
+    e = np.arange(12.0).reshape(3, 4)  # columns x1, y1, x2, y2; the objects are separated along y
+    assert e[:, study.COORDINATE6["along the separation"]].tolist() == e[:, [1, 3]].tolist()
+    assert e[:, study.COORDINATE6["across the separation"]].tolist() == e[:, [0, 2]].tolist()
+    study.clear_cache()
+    out = study.measure_batch(
+        [
+            DEFAULT,
+            {**DEFAULT, "coordinate of C002-6": "along the separation"},
+            {**DEFAULT, "m_k pair of C002-6": "10 vs 5"},
+        ],
+        [7, 7, 7],
+        TINY,
+    )
+    assert len({o["C002-6"].value for o in out}) == 3 and all(np.isfinite(o["C002-6"].value) for o in out)
+    assert out[1]["C002-3"].value == out[0]["C002-3"].value  # the coordinate reading is C002-6's alone
+
+
+def test_em_stopping_never_reaches_the_iteration_counts_of_fig7():
+    # C002-13 does not list "EM stopping": its plain-EM counts must not change with it (a loose tolerance would)
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    for value in REGISTER["EM stopping"].alternatives:
+        other = _letters(study.jobs_of({**DEFAULT, "EM stopping": value}, 7, TINY))
+        pq = {k for k in base if k[1] in "pq"}
+        assert pq and all(other.get(k) == base[k] for k in pq), value
+    assert "EM stopping" not in DEPENDS["C002-13"] and "EM stopping" not in DEPENDS["C002-14"]

@@ -84,7 +84,11 @@ _TWO_STAGE = {
     "designation start + line association": ("designation", "lines"),
     "no designation: moment start + line association": ("moments", "lines"),
 }
-_EM = {"SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6), "plain EM, cap 100": ("none", 100, 1e-6)}
+_EM = {
+    "SQUAREM to 1e-6 sigma": ("squarem", 5000, 1e-6),
+    "plain EM, cap 100": ("none", 100, 1e-6),
+    "plain EM to 0.05 sigma": ("none", 5000, 0.05),
+}
 _CACHE: dict[tuple, dict] = {}
 
 
@@ -161,6 +165,8 @@ def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2
     out = replace(_CANON, **{k: getattr(settings, k) for k in keep})
     if q == 1:  # one object: nothing to cross
         out = replace(out, tracks="parallel")
+    if letter in "pq":  # the counts' own tolerance is the "EM tolerance of Fig 7" row (a Config variant)
+        out = replace(out, tol_sigma=_CANON.tol_sigma)
     if letter in "pq" and scale.max_iter is not None:
         out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
     return out
@@ -174,7 +180,7 @@ class _Points:
         self.scale = scale
         self.asked: list[Config] = []
 
-    def __call__(self, q, d, pix, m, T, algs, n=None) -> Config:
+    def __call__(self, q, d, pix, m, T, algs, n=None, variant=()) -> Config:
         c = Config(
             int(q),
             float(d),
@@ -188,9 +194,40 @@ class _Points:
             int(n or self.scale.n_trials),
             "explore",
             0.0,
+            tuple(variant),
         )
         self.asked.append(c)
         return c
+
+
+#: The photon counts C002-6 compares (an adversarial register row): ``"20 vs 10"`` (Fig 2) or ``"10 vs 5"`` ("at
+#: least from some critical level": a level below Fig 2's).
+PHOTONS6 = {"20 vs 10": (20, 10), "10 vs 5": (10, 5)}
+#: Columns of the per-trial errors ``(x1, y1, x2, y2)`` that C002-6's "sum of variances of the coordinate" reads
+#: (an adversarial register row): the objects are separated along ``y``.
+COORDINATE6 = {
+    "both": slice(None),
+    "along the separation": slice(1, None, 2),
+    "across the separation": slice(0, None, 2),
+}
+
+
+def photons6(config: dict) -> tuple[int, int]:
+    """The (more, fewer) target photons per frame whose T dependences C002-6 compares."""
+    return PHOTONS6[config.get("m_k pair of C002-6", "20 vs 10")]
+
+
+#: The "EM tolerance of Fig 7" reading (an adversarial register row): the stopping tolerance, sigma, of the iteration
+#: counts of Fig 7 (ULA and two-stage marks alike); ``None`` keeps the study's own 1e-6 sigma.
+FIG7_TOLERANCE = {"1e-6 sigma": None, "0.01 sigma": 0.01, "0.05 sigma": 0.05}
+
+
+def fig7_variant(config: dict) -> tuple:
+    """The :class:`Config` ``variant`` of the Fig 7 points (C002-13, C002-14): the register's stopping tolerance
+    of the iteration counts, or ``()`` at the default (the default's cache keys and draws are unchanged; a variant
+    sees the same scenes, common random numbers)."""
+    tol = FIG7_TOLERANCE[config.get("EM tolerance of Fig 7", "1e-6 sigma")]
+    return () if tol is None else (("tol_sigma", float(tol)),)
 
 
 def _points(config: dict, scale: Scale, figures: bool = False):
@@ -215,7 +252,9 @@ def _points(config: dict, scale: Scale, figures: bool = False):
         "1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
         "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
-        "2": {(T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in (10, 20)},
+        "2": {
+            (T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in sorted(photons6(config))
+        },
         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
         "3a": {
             p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
@@ -230,7 +269,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
         "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
         "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
         "7": {
-            d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials)
+            d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials, variant=fig7_variant(config))
             for d in sorted({min(D), max(D)} | ({2.0} if figures else set()))
         },
     }
@@ -398,8 +437,10 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     ]
     small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
 
+    cols = COORDINATE6[config.get("coordinate of C002-6", "both")]
+
     def rt(m):
-        return [np.hstack([ula(g["2"][(5, m)][d]), ula(g["2"][(10, m)][d])]) for d in small]
+        return [np.hstack([ula(g["2"][(5, m)][d])[:, cols], ula(g["2"][(10, m)][d])[:, cols]]) for d in small]
 
     def stat6(*gr):
         def mabs(h):
@@ -413,7 +454,8 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
         return mabs(gr[: len(small)]) - mabs(gr[len(small) :])
 
-    out["C002-6"] = bootstrap_groups(rt(20) + rt(10), stat6, rng, B)
+    m_hi, m_lo = photons6(config)
+    out["C002-6"] = bootstrap_groups(rt(m_hi) + rt(m_lo), stat6, rng, B)
     T3 = int(config["T of the Fig 3a claims"])
 
     def x1(pix, alg):
