@@ -261,3 +261,13 @@ def test_results_keep_the_union_of_the_registers_of_several_explorations(tmp_pat
     res.claim("C000-1", "s", "p", RULES["Y"], exploration=ex1)
     res.claim("C000-2", "s", "p", RULES["X"], exploration=ex2)
     assert [e["name"] for e in res.register] == ["a", "b", "c", "d"]
+
+
+def test_a_small_register_gets_every_joint_combination():
+    # C000-4 flips only when both of its two entries are off their defaults: a sample could miss that one cell
+    from tvtrack.explore import joint_sample
+
+    small = Register([Entry("a", "reading", 0, (0, 1), "w"), Entry("b", "scale", "x", ("x", "y", "z"), "w")])
+    got = joint_sample(small, ["a", "b"], 4, seed=1)
+    assert sorted((c["a"], c["b"]) for c in got) == [(1, "y"), (1, "z")]
+    assert joint_sample(small, ["a", "b"], 1, seed=1) != got  # fewer samples than cells: a Latin-hypercube sample

@@ -26,6 +26,7 @@ sent to an executor with ``submit`` (a :class:`concurrent.futures.Executor` or a
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
@@ -64,13 +65,25 @@ def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) ->
 
     Each dimension is cut into as many equal strata as the entry has values. Configurations equal to
     the default or differing from it in fewer than two entries (those are the one-at-a-time runs) are
-    dropped, as are duplicates; so fewer than ``n`` may come back.
+    dropped, as are duplicates; so fewer than ``n`` may come back. A register so small that all its joint
+    combinations (two or more entries off their defaults) number at most ``n`` gets every one of them.
     """
     names = [k for k in names if len(register[k].values) > 1]
     if n <= 0 or len(names) < 2:
         return []
-    u = stats.qmc.LatinHypercube(d=len(names), seed=np.random.default_rng(seed)).random(n)
     default = register.default()
+    full = (
+        [
+            {**default, **dict(zip(names, combo))}
+            for combo in itertools.product(*(register[k].values for k in names))
+            if sum(v != default[k] for k, v in zip(names, combo)) >= 2
+        ]
+        if math.prod(len(register[k].values) for k in names) <= 4 * n
+        else None
+    )
+    if full is not None and len(full) <= n:  # a small register: every joint combination, not a sample
+        return full
+    u = stats.qmc.LatinHypercube(d=len(names), seed=np.random.default_rng(seed)).random(n)
     out, seen = [], set()
     for row in u:
         cfg = dict(default)

@@ -249,3 +249,16 @@ def test_the_steady_window_after_the_transient_is_the_final_window_of_the_same_l
     assert not np.allclose(
         study.steady_runs(after, 3, short, 20.0, 0.5, "v2"), study.steady_runs(DEFAULT, 3, short, 20.0, 0.5, "v2")
     )
+
+
+def test_c000_4_cost_reads_its_register_entries():
+    # the adversarial pass: C000-4's cost reads 'v2 noise at' (variant 2's work per step) and the batch size
+    from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
+    from tvtrack.papers.p000_dissector_ekf.study import measure_cost
+
+    assert DEPENDS["C000-4"] == ["v2 noise at", "C000-4 batch"]
+    base = {k: REGISTER.default()[k] for k in DEPENDS["C000-4"]}
+    fixed = measure_cost(base, 1, n_trials=200, n_steps=100)["C000-4"]
+    updated = measure_cost({**base, "v2 noise at": "updated estimate"}, 1, n_trials=200, n_steps=100)["C000-4"]
+    assert fixed > 1.0  # variant 1's 2 x 2 algebra costs more per step than variant 2's scalar EKF
+    assert updated < fixed  # the re-evaluation of eq. (9) at the update adds to variant 2's work

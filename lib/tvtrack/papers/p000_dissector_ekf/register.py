@@ -206,6 +206,16 @@ REGISTER = Register(
             "sample after the 5 T transient (more samples, closer to the transient)",
         ),
         Entry(
+            "C000-4 batch",
+            "scale",
+            "all trials",
+            ("all trials", "one trial"),
+            "the paper's tracker filters one object; a Monte Carlo batch amortises the Python overhead per step, so "
+            "the CPU ratio of C000-4 is read both ways (a register row so that joint samples combine it with "
+            "'v2 noise at')",
+            origin="adversarial",
+        ),
+        Entry(
             "statistic",
             "statistic",
             "mean",
@@ -219,6 +229,7 @@ REGISTER = Register(
 _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).
 DEPENDS = {
+    "C000-4": ["v2 noise at", "C000-4 batch"],
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
     + ["sigma_1", "lock threshold"],
