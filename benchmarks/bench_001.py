@@ -10,14 +10,21 @@ trials); the subset's detections and states must equal the batched ones.
 Target: >= 400x (issue 30, asserted). Timing under load (the machine is shared): every round times the batched
 run and the filterpy loop on a fresh random subset of ``N_REF`` trial-channels back to back (both sides see the
 same load), and the figure is the ratio of each side's minimum over ``ROUNDS`` rounds (its least-disturbed round,
-as ``timeit`` reports); the median of the per-round ratios and the load averages are printed and noted in the table. The batched run is ``run_track_modes(engine="auto")``: the numba-compiled
-per-trial kernel (``_track_modes_kernel``) when numba is importable and ``TVTRACK_NO_JIT`` is unset, else the
-NumPy frame loop. Its compile time (first call in the process, a 1-trial call before the rounds) is excluded
-from the ratio and reported. The NumPy frame loop (``engine="numpy"``) is timed in the same rounds and reported.
-Where the time goes (profiled 2026-11-25): the NumPy path is one Python loop over the 625 frames of about 25
-in-place NumPy operations on (2000,) arrays, i.e. NumPy's per-call overhead, not arithmetic (140-240x under
-load); the kernel runs the same scalar logic per trial in about 5-10 ns per trial-frame, and about half of its
-time is writing the (2000, 625, 3) outputs (gains, states, statistic, threshold, mode) to fresh memory.
+as ``timeit`` reports); the median of the per-round ratios and the load averages are printed and noted in the
+table. The batched run is ``run_track_modes(engine="auto")``: the numba-compiled per-trial kernel
+(``_track_modes_kernel``) when numba is importable and ``TVTRACK_NO_JIT`` is unset, else the NumPy frame loop. Its
+compile time (the first call in the process, a 1-trial call before the rounds) is excluded from the ratio and
+reported. The NumPy frame loop (``engine="numpy"``) is timed in the same rounds and reported.
+
+Where the time goes (profiled 2026-11-25, load 2.5-3.5 on 2 cores): the NumPy path is one Python loop over the 625
+frames of about 25 in-place NumPy operations on (2000,) arrays, i.e. NumPy's per-call overhead, not arithmetic
+(14-30 ms, 170-250x). The kernel (6-10 ms, 440-570x) is bound by memory and the detector's bookkeeping, not by
+the filter: the filter recursion alone with its outputs runs in ~4.5 ms; writing the (2000, 625, 3) gains as
+float64 cost ~30 % (the kernel without covariance stores each frame's gain-table row, int16, and
+``TrackModeOutput.gains`` expands it on access); fresh output pages (first touch) cost about as much as the
+kernel's arithmetic. Tried and dropped: advancing 16 trials together (to overlap their recursions) was 3x slower
+(per-iteration state loads and stores). Compile: ~0.6-1.8 s for the covariance-free kernel, ~1.4-3 s for the
+general one, once per process (no on-disk cache: see ``_track_modes_kernel``).
 """
 
 import time
