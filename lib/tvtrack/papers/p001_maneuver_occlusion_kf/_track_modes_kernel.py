@@ -1,15 +1,24 @@
-"""Compiled per-trial kernel of the mode logic (:func:`track_modes.run_track_modes`, ``engine="jit"``).
+"""Compiled per-trial kernels of the mode logic (:func:`track_modes.run_track_modes`, ``engine="jit"``).
 
 The batched NumPy loop of :func:`~.track_modes.run_track_modes` spends its time in NumPy's per-call
-overhead (about 25 in-place operations on ``(B,)`` arrays per frame). This kernel runs the same logic one
+overhead (about 25 in-place operations on ``(B,)`` arrays per frame). These kernels run the same logic one
 trial at a time over the frames, as scalar code compiled by numba (``@njit``, no ``fastmath``, no parallel
-threads). It is a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
-the card §4.4-4.5 recursions), tested equal to the NumPy path in ``tests/papers/test_001_track_modes.py``.
+threads). They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
+the card §4.4-4.5 recursions), tested equal to the NumPy path in ``tests/papers/test_001_track_modes_jit.py``
+and ``tests/papers/test_001_track_modes.py`` (every test there runs with both engines):
 
-Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment) ``run_track_modes`` uses
-the NumPy path. The kernel is compiled on first use in each process (no on-disk cache: a cache next to the
-source is not writable on read-only installs and is shared by parallel notebook runs); :func:`compile_seconds`
-reports the time that took.
+- :func:`kernel_python`: everything, with the noise-driven covariance (gates, variances, restart C's Kalman
+  gains); writes the gains per frame;
+- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same statements minus the
+  covariance; writes each frame's gain-table row (int16) instead of three float64 gains, which
+  :attr:`~.track_modes.TrackModeOutput.gains` expands on access (the gains array was ~30 % of the run time).
+
+Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment, or ``engine="numpy"``)
+``run_track_modes`` uses the NumPy path. Each kernel is compiled on its first use in a process (~0.6-1.8 s for
+the fast one, ~1.4-3 s for the general one on the shared 2-core machine), with no on-disk cache: numba's cache
+next to the source is not writable on read-only installs, its fallback writes outside the clone (or fails at
+decoration when no location is writable) and parallel notebook runs would share it; :func:`compile_seconds`
+reports the first call's time.
 
 The only global (cross-trial) quantity of the NumPy path is ``had_gap``: it turns true at the first frame
 where some trial is hidden (``gap_start``), and from then on the per-trial ``since_visible`` counter gates
@@ -18,6 +27,7 @@ the detector. The kernel receives ``gap_start`` and reproduces that counter per 
 
 from __future__ import annotations
 
+import functools
 import os
 import time
 
@@ -426,8 +436,9 @@ def kernel_fast_python(
         det[b] = detected
 
 
+@functools.cache
 def available() -> bool:
-    """True when numba can be imported."""
+    """True when numba can be imported (checked once per process)."""
     try:
         import numba  # noqa: F401
     except ImportError:
