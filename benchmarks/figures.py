@@ -23,6 +23,7 @@ class Figure:
     target: float
     at_least: bool
     unit: str = ""
+    note: str = ""  # measuring conditions shown after the value (load average, engine)
 
     @property
     def passed(self) -> bool:
@@ -31,7 +32,8 @@ class Figure:
     def row(self) -> str:
         unit = f" {self.unit}" if self.unit else ""
         target = f"{'>=' if self.at_least else '<='} {self.target:.4g}{unit}"
-        return f"| {self.name} | {self.value:.4g}{unit} | {target} | {'yes' if self.passed else 'no'} |"
+        note = f" ({self.note})" if self.note else ""
+        return f"| {self.name} | {self.value:.4g}{unit}{note} | {target} | {'yes' if self.passed else 'no'} |"
 
     def message(self) -> str:
         return f"{self.name}: {self.value:.4g} {self.unit} misses the target {self.row().split('|')[3].strip()}"
@@ -40,11 +42,21 @@ class Figure:
 _FIGURES: dict[str, Figure] = {}
 
 
-def record_figure(name: str, value: float, target: float, *, at_least: bool, unit: str = "") -> Figure:
-    """Record a figure for the table and return it (assert ``fig.passed, fig.message()`` in the test)."""
-    fig = Figure(name, float(value), float(target), at_least, unit)
+def record_figure(name: str, value: float, target: float, *, at_least: bool, unit: str = "", note: str = "") -> Figure:
+    """Record a figure for the table and return it (assert ``fig.passed, fig.message()`` in the test);
+    ``note`` states the measuring conditions (e.g. :func:`load_note`)."""
+    fig = Figure(name, float(value), float(target), at_least, unit, note)
     _FIGURES[name] = fig
     return fig
+
+
+def load_note() -> str:
+    """The machine's load averages (1, 5, 15 min) as a note for a figure measured under that load."""
+    try:
+        one, five, fifteen = os.getloadavg()
+    except OSError:
+        return "load average unknown"
+    return f"load {one:.2f}/{five:.2f}/{fifteen:.2f}, {os.cpu_count()} cores"
 
 
 def cpu_seconds() -> float:

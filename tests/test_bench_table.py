@@ -32,3 +32,12 @@ def test_cpu_clock_counts_cpu_not_sleep():
         time.sleep(0.5)
         sum(i * i for i in range(300_000))
     assert c.wall_s >= 0.5 and 0 < c.cpu_s < c.wall_s - 0.4  # the sleep is wall time, not CPU time
+
+
+def test_a_note_states_the_conditions_in_the_value_cell(tmp_path):
+    table = tmp_path / "table.md"
+    note = figures.load_note()
+    assert note.startswith("load ") or note == "load average unknown"
+    fig = figures.Figure("001 speed-up", 412.0, 400, at_least=True, unit="x", note=note)
+    figures.write_table([fig], table)
+    assert figures.read_table(table)["001 speed-up"] == f"| 001 speed-up | 412 x ({note}) | >= 400 x | yes |"

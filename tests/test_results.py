@@ -128,3 +128,16 @@ def test_figure_is_saved_and_listed(tmp_path):
     assert r.figures == [{"file": "fig1.png", "caption": "caption"}]
     with pytest.raises(ValueError, match="figure name"):
         r.save_figure(fig, "../evil", "c")
+
+
+def test_results_record_the_kernels_cpu_seconds(tmp_path):
+    """``cpu_s``: CPU time spent since the Results was made (the benchmark table's per-notebook CPU figure)."""
+    import time
+
+    r = make(tmp_path)
+    t = time.process_time()
+    while time.process_time() - t < 0.3:
+        pass
+    time.sleep(0.3)  # wall, not CPU
+    data = r.to_dict()
+    assert 0.3 <= data["cpu_s"] < data["runtime_s"] - 0.25

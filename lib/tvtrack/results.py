@@ -9,7 +9,7 @@ never typed; every claim that is not ``not checkable`` carries a robustness reco
 Schema (``schema_version`` 2)::
 
     notebook, citation, parameters, seed, versions {python, packages...}, git_commit,
-    runtime_s, started_utc, metrics {name: number | Estimate-dict | list | dict},
+    runtime_s, cpu_s (the kernel's CPU seconds, all threads and waited-for children), started_utc, metrics {name: number | Estimate-dict | list | dict},
     figures [{file, caption}], recording (file name or null),
     claims [{id, statement, paper_value, rule {kind, text, ...}, acceptance (= rule text), measured,
              verdict, decision (the rule's sentence with the numbers), note,
@@ -24,6 +24,7 @@ import datetime as _dt
 import importlib.metadata
 import json
 import math
+import os
 import platform
 import re
 import subprocess
@@ -143,6 +144,12 @@ def claims_table(claims: list, statement_chars: int = 110) -> str:
     return "\n".join(rows)
 
 
+def _cpu_seconds() -> float:
+    """CPU seconds of this process (all threads) and its waited-for children (process-pool workers)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
 @dataclass
 class Claim:
     """One claim of the paper, checked (as stored in ``results.json``).
@@ -232,6 +239,7 @@ class Results:
     recording: str | None = None
     register: list | None = None
     _t0: float = field(default_factory=time.perf_counter, repr=False)
+    _cpu0: float = field(default_factory=lambda: _cpu_seconds(), repr=False)
     _started: str = field(
         default_factory=lambda: _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         repr=False,
@@ -362,6 +370,7 @@ class Results:
                 "git_commit": _git_commit(),
                 "started_utc": self._started,
                 "runtime_s": time.perf_counter() - self._t0,
+                "cpu_s": _cpu_seconds() - self._cpu0,
                 "metrics": self.metrics,
                 "figures": self.figures,
                 "recording": self.recording,

@@ -1,4 +1,5 @@
-"""Tests of tvtrack.papers.p001_maneuver_occlusion_kf.track_modes (notebook 001): mode logic against hand-built runs."""
+"""Tests of tvtrack.papers.p001_maneuver_occlusion_kf.track_modes (notebook 001): mode logic against hand-built runs,
+with both engines (the NumPy frame loop and the compiled kernel)."""
 
 import numpy as np
 import pytest
@@ -19,6 +20,16 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import (
 )
 
 T = 400
+
+
+@pytest.fixture(autouse=True, params=["numpy", "jit"])
+def engine(request, monkeypatch):
+    """Every test here runs with the NumPy frame loop (``TVTRACK_NO_JIT=1``, the fallback) and with the
+    compiled kernel (skipped when numba is not importable)."""
+    if request.param == "jit":
+        pytest.importorskip("numba")
+    monkeypatch.setenv("TVTRACK_NO_JIT", "1" if request.param == "numpy" else "0")
+    return request.param
 
 
 def _z(n, seed=0, accel=0.2, onset=125):

@@ -17,12 +17,15 @@ reappearance. Choices the paper leaves open are fields of :class:`TrackModeConfi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from ...filters.alphabeta import gain_schedule, observation_row
 from ...filters.polynomial import polynomial_observation_row, taylor_transition
+from . import _track_modes_kernel as _kernel
 
 __all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes", "manoeuvre_truth"]
 
@@ -129,7 +132,7 @@ class TrackModeConfig:
                 raise ValueError(f"parameter '{name}' = {v!r}; it must be None or an integer >= 0")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class TrackModeOutput:
     """Per-frame history; time is the axis after the batch axes.
 
@@ -139,7 +142,9 @@ class TrackModeOutput:
     var : ndarray, shape (..., T, 3)      noise-driven error variances of (x, v, a)
     gate_var : ndarray, shape (..., T)    predicted innovation variance ``[F P F^T]_00 + sigma^2``
                                           before each frame's measurement
-    gains : ndarray, shape (..., T, 3)    gains used (0 while lost)
+    gains : ndarray, shape (..., T, 3)    gains used (0 while lost); a property, expanded on first access
+                                          when the run stored the gain-table rows instead (compiled kernel
+                                          without covariance)
     mode : ndarray of int8, shape (..., T)  COAST / TRACK2 / TRACK3
     statistic : ndarray, shape (..., T)   detector statistic S (NaN when not tested)
     threshold : ndarray, shape (..., T)   threshold in force (NaN when not tested)
@@ -149,11 +154,21 @@ class TrackModeOutput:
     x: np.ndarray
     var: np.ndarray
     gate_var: np.ndarray
-    gains: np.ndarray
     mode: np.ndarray
     statistic: np.ndarray
     threshold: np.ndarray
     detection_frame: np.ndarray
+    gains_array: np.ndarray | None = field(default=None, repr=False)
+    gain_rows: np.ndarray | None = field(default=None, repr=False)  # (..., T) row of gain_table, -1 while lost
+    gain_table: np.ndarray | None = field(default=None, repr=False)  # (R, 3)
+
+    @cached_property
+    def gains(self) -> np.ndarray:
+        """Gains used per frame, shape (..., T, 3) (0 while lost)."""
+        if self.gains_array is not None:
+            return self.gains_array
+        table = np.vstack([self.gain_table, np.zeros((1, 3))])  # row -1 -> zeros
+        return table[self.gain_rows]
 
 
 def _quadratic_fit(z_window, sigma_eps):
@@ -166,7 +181,7 @@ def _quadratic_fit(z_window, sigma_eps):
 
 
 def run_track_modes(
-    z, visible, config: TrackModeConfig, sigma_eps: float = 1.0, covariance: bool = True
+    z, visible, config: TrackModeConfig, sigma_eps: float = 1.0, covariance: bool = True, engine: str = "auto"
 ) -> TrackModeOutput:
     """Run the mode logic on measurements of independent channels.
 
@@ -182,6 +197,10 @@ def run_track_modes(
     covariance : bool
         Propagate the noise-driven covariance (``var``, ``gate_var``); when False those
         outputs are NaN and the run is faster. Restart "C" needs it.
+    engine : {"auto", "jit", "numpy"}
+        "numpy": the batched NumPy loop over frames; "jit": the numba-compiled per-trial kernel
+        (:mod:`._track_modes_kernel`, the same logic, tested equal); "auto": the kernel when numba is
+        importable and the environment variable ``TVTRACK_NO_JIT`` is unset or ``0``, else NumPy.
 
     Returns
     -------
@@ -192,6 +211,12 @@ def run_track_modes(
     batch = z.shape[:-1]
     if not sigma_eps > 0:
         raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
+    if engine not in ("auto", "jit", "numpy"):
+        raise ValueError(f"parameter 'engine' = {engine!r}; it must be 'auto', 'jit' or 'numpy'")
+    if engine == "auto":
+        engine = "jit" if _kernel.use_jit_default() else "numpy"
+    elif engine == "jit" and not _kernel.available():
+        raise ImportError("engine='jit' needs numba, which is not importable; use engine='numpy' or 'auto'")
     cfg = config
     if cfg.restart == "C" and not covariance:
         raise ValueError("parameter 'covariance' = False; restart 'C' needs the covariance (covariance=True)")
@@ -204,16 +229,6 @@ def run_track_modes(
     detect3 = bool(cfg.detect_in_track3)
     by_frame = cfg.threshold_index == "frame"
 
-    # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
-    # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
-    B = int(np.prod(batch, dtype=np.int64))
-    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))  # (T, B)
-    visible = np.asarray(visible, dtype=bool)
-    if visible.ndim == 1:  # one visibility for every trial: (T, 1) broadcasts
-        vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
-    else:
-        vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
-    hidden = ~vis
     # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
     # row = in3 * kmax + min(k, bound) - 1
     kmax = max(cfg.k_bound2, cfg.k_bound3)
@@ -225,11 +240,32 @@ def run_track_modes(
     kappa1_bound3 = table[bound3_row, 0]
     F = taylor_transition(2)
     h = observation_row(2)
-    all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
     # thresholds indexed directly by the count k (entry k-1 of the array, its last entry beyond it)
     counts = np.maximum(np.arange(T + max(cfg.restart_k, n) + 1), 1) - 1
     thr_by_k = thr[np.minimum(counts, thr.size - 1)]
     thr3_by_k = thr3[np.minimum(counts, thr3.size - 1)]
+
+    B = int(np.prod(batch, dtype=np.int64))
+    visible = np.asarray(visible, dtype=bool)
+    if engine == "jit":
+        vis_bt = (
+            np.broadcast_to(visible, (T,)).reshape(1, T)
+            if visible.ndim == 1
+            else np.broadcast_to(visible, z.shape).reshape(B, T)
+        )
+        return _run_jit(
+            z.reshape(B, T), vis_bt, table, thr, thr_by_k, thr3_by_k, cfg, arm_k, rearm, sigma_eps, covariance, batch
+        )
+
+    # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
+    # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
+    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))  # (T, B)
+    if visible.ndim == 1:  # one visibility for every trial: (T, 1) broadcasts
+        vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
+    else:
+        vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
+    hidden = ~vis
+    all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
 
     x0, x1, x2 = np.zeros(B), np.zeros(B), np.zeros(B)
     innov, tmp = np.empty(B), np.empty(B)
@@ -397,14 +433,103 @@ def run_track_modes(
         out_var = np.broadcast_to(np.nan, batch + (T, 3))
         out_gate = np.broadcast_to(np.nan, batch + (T,))
     return TrackModeOutput(
-        back(out_x, (3,)),
-        out_var,
-        out_gate,
-        back(out_K, (3,)),
-        back(out_mode),
-        back(out_S),
-        back(out_c),
-        detected_at.reshape(batch),
+        x=back(out_x, (3,)),
+        var=out_var,
+        gate_var=out_gate,
+        mode=back(out_mode),
+        statistic=back(out_S),
+        threshold=back(out_c),
+        detection_frame=detected_at.reshape(batch),
+        gains_array=back(out_K, (3,)),
+    )
+
+
+def _run_jit(zt, vis, table, thr, thr_by_k, thr3_by_k, cfg, arm_k, rearm, sigma_eps, covariance, batch):
+    """``run_track_modes`` with the compiled per-trial kernel; arguments as prepared there, ``zt`` (B, T)
+    and ``vis`` (1 or B, T) trial-major."""
+    B, T = zt.shape
+    z = np.ascontiguousarray(zt, dtype=float)
+    if not z.flags.writeable:  # one compiled signature: writeable C arrays
+        z = z.copy()
+    vis = np.array(vis, dtype=bool, order="C")
+    not_all = np.flatnonzero(~vis.all(axis=0))
+    gap_start = int(not_all[0]) if not_all.size else T
+    n = cfg.window
+    kmax = max(cfg.k_bound2, cfg.k_bound3)
+    if cfg.restart == "B":  # least-squares fits for every window length w <= n (w < n only before frame n)
+        pinv_w, Pb_w = np.zeros((n + 1, 3, n)), np.zeros((n + 1, 3, 3))
+        for w in range(1, n + 1):
+            H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))
+            pinv = np.linalg.pinv(H)
+            pinv_w[w, :, :w], Pb_w[w] = pinv, sigma_eps**2 * pinv @ pinv.T
+    else:
+        pinv_w, Pb_w = np.zeros((1, 3, 1)), np.zeros((1, 3, 3))
+    # every element is written by the kernel (NaN where not tested, zero gains while lost)
+    out_x, out_mode = np.empty((B, T, 3)), np.empty((B, T), dtype=np.int8)
+    out_S, out_c = np.empty((B, T)), np.empty((B, T))
+    det = np.empty(B, dtype=np.int64)
+    thr_args = (n, int(arm_k), int(rearm), thr, thr_by_k, thr3_by_k, cfg.threshold_index == "frame")
+    forced_args = (cfg.force_switch_k is not None, -1 if cfg.force_switch_k is None else int(cfg.force_switch_k))
+    restart_args = (bool(cfg.detect_in_track3), _kernel.RESTART_CODES[cfg.restart], int(cfg.restart_k))
+    t0 = time.perf_counter()
+    if covariance:
+        out_K, out_var, out_gate = np.empty((B, T, 3)), np.empty((B, T, 3)), np.empty((B, T))
+        _kernel.get_kernel(True)(
+            z,
+            vis,
+            gap_start,
+            table,
+            kmax,
+            cfg.k_bound2,
+            cfg.k_bound3,
+            float(table[kmax + cfg.k_bound3 - 1, 0]),
+            np.ascontiguousarray(taylor_transition(2), dtype=float),
+            np.ascontiguousarray(observation_row(2), dtype=float),
+            *thr_args,
+            *forced_args,
+            *restart_args,
+            float(cfg.restart_accel_var),
+            pinv_w,
+            Pb_w,
+            float(sigma_eps**2),
+            True,
+            out_x,
+            out_var,
+            out_gate,
+            out_K,
+            out_mode,
+            out_S,
+            out_c,
+            det,
+        )
+        gain_kw = {"gains_array": out_K.reshape(batch + (T, 3))}
+    else:
+        out_row = np.empty((B, T), dtype=np.int16 if table.shape[0] < 2**15 else np.int32)
+        _kernel.get_kernel(False)(
+            z, vis, gap_start, table, kmax, cfg.k_bound2, cfg.k_bound3, *thr_args, *forced_args, *restart_args,
+            pinv_w, out_x, out_row, out_mode, out_S, out_c, det,
+        )  # fmt: skip
+        gain_kw = {"gain_rows": out_row.reshape(batch + (T,)), "gain_table": table}
+    _kernel._record_compile(covariance, t0)
+
+    def back(a, extra=()):
+        """(B, T[, 3]) -> (..., T[, 3])"""
+        return a.reshape(batch + (T,) + extra)
+
+    if covariance:
+        out_var, out_gate = back(out_var, (3,)), back(out_gate)
+    else:
+        out_var = np.broadcast_to(np.nan, batch + (T, 3))
+        out_gate = np.broadcast_to(np.nan, batch + (T,))
+    return TrackModeOutput(
+        x=back(out_x, (3,)),
+        var=out_var,
+        gate_var=out_gate,
+        mode=back(out_mode),
+        statistic=back(out_S),
+        threshold=back(out_c),
+        detection_frame=det.reshape(batch),
+        **gain_kw,
     )
 
 

@@ -1,0 +1,472 @@
+"""Compiled per-trial kernels of the mode logic (:func:`track_modes.run_track_modes`, ``engine="jit"``).
+
+The batched NumPy loop of :func:`~.track_modes.run_track_modes` spends its time in NumPy's per-call
+overhead (about 25 in-place operations on ``(B,)`` arrays per frame). These kernels run the same logic one
+trial at a time over the frames, as scalar code compiled by numba (``@njit``, no ``fastmath``, no parallel
+threads). They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
+the card §4.4-4.5 recursions), tested equal to the NumPy path in ``tests/papers/test_001_track_modes_jit.py``
+and ``tests/papers/test_001_track_modes.py`` (every test there runs with both engines):
+
+- :func:`kernel_python`: everything, with the noise-driven covariance (gates, variances, restart C's Kalman
+  gains); writes the gains per frame;
+- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same statements minus the
+  covariance; writes each frame's gain-table row (int16) instead of three float64 gains, which
+  :attr:`~.track_modes.TrackModeOutput.gains` expands on access (the gains array was ~30 % of the run time).
+
+Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment, or ``engine="numpy"``)
+``run_track_modes`` uses the NumPy path. Each kernel is compiled on its first use in a process (~0.6-1.8 s for
+the fast one, ~1.4-3 s for the general one on the shared 2-core machine), with no on-disk cache: numba's cache
+next to the source is not writable on read-only installs, its fallback writes outside the clone (or fails at
+decoration when no location is writable) and parallel notebook runs would share it; :func:`compile_seconds`
+reports the first call's time.
+
+The only global (cross-trial) quantity of the NumPy path is ``had_gap``: it turns true at the first frame
+where some trial is hidden (``gap_start``), and from then on the per-trial ``since_visible`` counter gates
+the detector. The kernel receives ``gap_start`` and reproduces that counter per trial.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import time
+
+import numpy as np
+
+__all__ = [
+    "RESTART_CODES",
+    "available",
+    "compile_seconds",
+    "get_kernel",
+    "kernel_fast_python",
+    "kernel_python",
+    "use_jit_default",
+]
+
+#: Restart option -> integer code passed to the kernel.
+RESTART_CODES = {"A": 0, "B": 1, "C": 2}
+
+_compiled = {}
+_compile_s = {}
+
+
+def kernel_python(
+    z,
+    vis,
+    gap_start,
+    table,
+    kmax,
+    kb2,
+    kb3,
+    kappa1_bound3,
+    F,
+    h,
+    n,
+    arm_k,
+    rearm,
+    thr,
+    thr_by_k,
+    thr3_by_k,
+    by_frame,
+    forced,
+    force_k,
+    detect3,
+    restart,
+    restart_k,
+    accel_var,
+    pinv_w,
+    Pb_w,
+    sigma2,
+    covariance,
+    out_x,
+    out_var,
+    out_gate,
+    out_K,
+    out_mode,
+    out_S,
+    out_c,
+    det,
+):
+    """Per-trial mode logic; writes the outputs in place.
+
+    Parameters
+    ----------
+    z : ndarray, shape (B, T)                 measurements, elements
+    vis : ndarray of bool, shape (Bv, T)      visibility, ``Bv`` = 1 (shared) or ``B``
+    gap_start : int                           first frame where some trial is hidden (``T`` if none)
+    table : ndarray, shape (2 kmax, 3)        gain rows: TRACK2 then TRACK3
+    kmax : int                                rows per law in ``table`` (``max(kb2, kb3)``)
+    kb2, kb3 : int                            gain bounds of the 2nd- and 3rd-order laws
+    kappa1_bound3 : float                     ``kappa1`` at the 3rd-order bound (restart C)
+    F : ndarray, shape (3, 3); h : ndarray, shape (3,)   transition and observation row
+    n, arm_k, rearm : int                     detector half-window, arming count, re-arming wait
+    thr : ndarray, shape (K,)                 threshold array (read by frame when ``by_frame``)
+    thr_by_k, thr3_by_k : ndarray             thresholds indexed by the count ``k``
+    by_frame, forced, detect3 : bool          options of :class:`~.track_modes.TrackModeConfig`
+    force_k : int                             forced switch count (when ``forced``)
+    restart : int                             :data:`RESTART_CODES`
+    restart_k : int; accel_var : float        restart A index, restart C acceleration variance
+    pinv_w : ndarray, shape (n + 1, 3, n)     restart B: least-squares pseudo-inverse for ``w`` samples
+    Pb_w : ndarray, shape (n + 1, 3, 3)       restart B: its noise covariance
+    sigma2 : float                            measurement noise variance
+    covariance : bool                         propagate the covariance (``out_var``, ``out_gate``)
+    out_x, out_var, out_K : ndarray, shape (B, T, 3); out_gate, out_S, out_c : ndarray, shape (B, T)
+    out_mode : ndarray of int8, shape (B, T); det : ndarray of int64, shape (B,)
+        Outputs, every element written (``out_var``, ``out_gate`` only with ``covariance``).
+    """
+    B, T = z.shape
+    shared_vis = vis.shape[0] == 1
+    last_row = table.shape[0] - 1
+    cap2 = kb2 - 1
+    cap3 = kmax + kb3 - 1  # also the row of the 3rd-order bound (restart C)
+    restart_row = kmax + min(restart_k, kb3) - 1
+    P = np.zeros((3, 3))
+    Pp = np.zeros((3, 3))
+    A = np.zeros((3, 3))
+    IKh = np.zeros((3, 3))
+    for b in range(B):
+        vb = 0 if shared_vis else b
+        x0 = 0.0
+        x1 = 0.0
+        x2 = 0.0
+        k = 0
+        row = -1
+        cap = cap2
+        in3 = 0
+        kalman = False
+        since = 0
+        detected = -1
+        sum_old = 0.0
+        sum_new = 0.0
+        for i in range(3):
+            for j in range(3):
+                P[i, j] = 0.0
+        for t in range(T):
+            seen = vis[vb, t]
+            if t == gap_start:
+                since = k
+            if seen:
+                k += 1
+                row = min(row + 1, cap)
+            if t >= gap_start:
+                since = since + 1 if seen else 0
+            r = row if row >= 0 else last_row
+            K0 = table[r, 0]
+            K1 = table[r, 1]
+            K2 = table[r, 2]
+            if covariance:
+                for i in range(3):
+                    for j in range(3):
+                        s = 0.0
+                        for m in range(3):
+                            s += F[i, m] * P[m, j]
+                        A[i, j] = s
+                for i in range(3):
+                    for j in range(3):
+                        s = 0.0
+                        for m in range(3):
+                            s += A[i, m] * F[j, m]
+                        Pp[i, j] = s
+                S_inn = Pp[0, 0] + sigma2
+                out_gate[b, t] = S_inn
+                if kalman:
+                    k0 = Pp[0, 0] / S_inn
+                    if seen and k0 <= kappa1_bound3:
+                        kalman = False
+                    else:
+                        K0 = k0
+                        K1 = Pp[1, 0] / S_inn
+                        K2 = Pp[2, 0] / S_inn
+                c0 = K0 if seen else 0.0
+                c1 = K1 if seen else 0.0
+                c2 = K2 if seen else 0.0
+                for i in range(3):
+                    ci = c0 if i == 0 else (c1 if i == 1 else c2)
+                    for j in range(3):
+                        IKh[i, j] = (1.0 if i == j else 0.0) - ci * h[j]
+                for i in range(3):
+                    for j in range(3):
+                        s = 0.0
+                        for m in range(3):
+                            s += IKh[i, m] * Pp[m, j]
+                        A[i, j] = s
+                for i in range(3):
+                    ci = c0 if i == 0 else (c1 if i == 1 else c2)
+                    for j in range(3):
+                        cj = c0 if j == 0 else (c1 if j == 1 else c2)
+                        s = 0.0
+                        for m in range(3):
+                            s += A[i, m] * IKh[j, m]
+                        P[i, j] = s + sigma2 * ci * cj
+                for i in range(3):
+                    for j in range(i + 1, 3):
+                        s = 0.5 * (P[i, j] + P[j, i])
+                        P[i, j] = s
+                        P[j, i] = s
+            if seen:
+                out_K[b, t, 0] = K0
+                out_K[b, t, 1] = K1
+                out_K[b, t, 2] = K2
+            else:
+                out_K[b, t, 0] = 0.0
+                out_K[b, t, 1] = 0.0
+                out_K[b, t, 2] = 0.0
+            # (eq. 1) predict and correct; (E1) zero gains while lost
+            x0 += x1
+            x0 += 0.5 * x2
+            x1 += x2
+            if seen:
+                innov = z[b, t] - x0
+                x0 += K0 * innov
+                x1 += K1 * innov
+                x2 += K2 * innov
+            out_x[b, t, 1] = x1
+
+            # detector (eq. 14) on the last 2n output velocities, sums kept running
+            alarm = False
+            out_S[b, t] = np.nan
+            out_c[b, t] = np.nan
+            if forced:
+                alarm = seen and in3 == 0 and k == force_k
+            elif t >= 2 * n - 1:
+                if t == 2 * n - 1:
+                    sum_old = 0.0
+                    for u in range(t - 2 * n + 1, t - n + 1):
+                        sum_old += out_x[b, u, 1]
+                    sum_new = 0.0
+                    for u in range(t - n + 1, t + 1):
+                        sum_new += out_x[b, u, 1]
+                else:
+                    mid = out_x[b, t - n, 1]
+                    sum_old += mid - out_x[b, t - 2 * n, 1]
+                    sum_new += x1 - mid
+                testing = seen and k >= arm_k and (detect3 or in3 == 0)
+                if t >= gap_start and since < rearm:
+                    testing = False
+                if testing:
+                    S = sum_old - sum_new
+                    c = thr[min(t, thr.shape[0] - 1)] if by_frame else thr_by_k[k]
+                    if detect3 and in3 == 1:
+                        c = thr3_by_k[k]
+                    out_S[b, t] = S
+                    out_c[b, t] = c
+                    alarm = abs(S) > c
+            # switch to TRACK3 with raised gains (card §4.4 step 4)
+            if alarm:
+                if detected < 0:
+                    detected = t
+                x1_before = x1
+                if restart == 2:
+                    x2 = 0.0
+                    for i in range(3):
+                        P[i, 2] = 0.0
+                        P[2, i] = 0.0
+                    P[2, 2] = accel_var
+                    kalman = True
+                    k = 0
+                    row = cap3
+                elif restart == 0:
+                    x2 = 0.0
+                    if covariance:
+                        for i in range(3):
+                            P[i, 2] = 0.0
+                            P[2, i] = 0.0
+                    k = restart_k
+                    row = restart_row
+                else:
+                    w = min(n, t + 1)
+                    x0 = 0.0
+                    x1 = 0.0
+                    x2 = 0.0
+                    for u in range(w):
+                        zu = z[b, t - w + 1 + u]
+                        x0 += pinv_w[w, 0, u] * zu
+                        x1 += pinv_w[w, 1, u] * zu
+                        x2 += pinv_w[w, 2, u] * zu
+                    if covariance:
+                        for i in range(3):
+                            for j in range(3):
+                                P[i, j] = Pb_w[w, i, j]
+                    k = w
+                    row = kmax + min(w, kb3) - 1
+                if not forced:
+                    sum_new += x1 - x1_before
+                in3 = 1
+                cap = cap3
+                out_x[b, t, 1] = x1
+            out_x[b, t, 0] = x0
+            out_x[b, t, 2] = x2
+            if covariance:
+                out_var[b, t, 0] = P[0, 0]
+                out_var[b, t, 1] = P[1, 1]
+                out_var[b, t, 2] = P[2, 2]
+            out_mode[b, t] = in3 + 2 if seen else 0
+        det[b] = detected
+
+
+def kernel_fast_python(
+    z,
+    vis,
+    gap_start,
+    table,
+    kmax,
+    kb2,
+    kb3,
+    n,
+    arm_k,
+    rearm,
+    thr,
+    thr_by_k,
+    thr3_by_k,
+    by_frame,
+    forced,
+    force_k,
+    detect3,
+    restart,
+    restart_k,
+    pinv_w,
+    out_x,
+    out_row,
+    out_mode,
+    out_S,
+    out_c,
+    det,
+):
+    """:func:`kernel_python` without the covariance (``covariance=False``, restarts A and B): the same
+    logic, statement for statement, minus the covariance recursion; the gains are written as the row of
+    ``table`` in force (``out_row`` (B, T) int16, -1 while lost), expanded on access
+    (:attr:`~.track_modes.TrackModeOutput.gains`). Arguments as in :func:`kernel_python`."""
+    B, T = z.shape
+    shared_vis = vis.shape[0] == 1
+    cap2 = kb2 - 1
+    cap3 = kmax + kb3 - 1
+    restart_row = kmax + min(restart_k, kb3) - 1
+    nthr = thr.shape[0]
+    for b in range(B):
+        vb = 0 if shared_vis else b
+        x0 = 0.0
+        x1 = 0.0
+        x2 = 0.0
+        k = 0
+        row = -1
+        cap = cap2
+        in3 = 0
+        since = 0
+        detected = -1
+        sum_old = 0.0
+        sum_new = 0.0
+        for t in range(T):
+            seen = vis[vb, t]
+            if t == gap_start:
+                since = k
+            if seen:
+                k += 1
+                row = min(row + 1, cap)
+            if t >= gap_start:
+                since = since + 1 if seen else 0
+            # (eq. 1) predict and correct; (E1) zero gains while lost
+            x0 += x1
+            x0 += 0.5 * x2
+            x1 += x2
+            if seen:
+                out_row[b, t] = row
+                innov = z[b, t] - x0
+                x0 += table[row, 0] * innov
+                x1 += table[row, 1] * innov
+                x2 += table[row, 2] * innov
+            else:
+                out_row[b, t] = -1
+            out_x[b, t, 1] = x1
+
+            # detector (eq. 14) on the last 2n output velocities, sums kept running
+            alarm = False
+            S = np.nan
+            c = np.nan
+            if forced:
+                alarm = seen and in3 == 0 and k == force_k
+            elif t >= 2 * n - 1:
+                if t == 2 * n - 1:
+                    sum_old = 0.0
+                    for u in range(t - 2 * n + 1, t - n + 1):
+                        sum_old += out_x[b, u, 1]
+                    sum_new = 0.0
+                    for u in range(t - n + 1, t + 1):
+                        sum_new += out_x[b, u, 1]
+                else:
+                    mid = out_x[b, t - n, 1]
+                    sum_old += mid - out_x[b, t - 2 * n, 1]
+                    sum_new += x1 - mid
+                if seen and k >= arm_k and (detect3 or in3 == 0) and (t < gap_start or since >= rearm):
+                    S = sum_old - sum_new
+                    c = thr[min(t, nthr - 1)] if by_frame else thr_by_k[k]
+                    if detect3 and in3 == 1:
+                        c = thr3_by_k[k]
+                    alarm = abs(S) > c
+            out_S[b, t] = S
+            out_c[b, t] = c
+            # switch to TRACK3 with raised gains (card §4.4 step 4)
+            if alarm:
+                if detected < 0:
+                    detected = t
+                x1_before = x1
+                if restart == 0:
+                    x2 = 0.0
+                    k = restart_k
+                    row = restart_row
+                else:
+                    w = min(n, t + 1)
+                    x0 = 0.0
+                    x1 = 0.0
+                    x2 = 0.0
+                    for u in range(w):
+                        zu = z[b, t - w + 1 + u]
+                        x0 += pinv_w[w, 0, u] * zu
+                        x1 += pinv_w[w, 1, u] * zu
+                        x2 += pinv_w[w, 2, u] * zu
+                    k = w
+                    row = kmax + min(w, kb3) - 1
+                if not forced:
+                    sum_new += x1 - x1_before
+                in3 = 1
+                cap = cap3
+                out_x[b, t, 1] = x1
+            out_x[b, t, 0] = x0
+            out_x[b, t, 2] = x2
+            out_mode[b, t] = in3 + 2 if seen else 0
+        det[b] = detected
+
+
+@functools.cache
+def available() -> bool:
+    """True when numba can be imported (checked once per process)."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def use_jit_default() -> bool:
+    """The ``engine="auto"`` choice: the JIT when numba is importable and ``TVTRACK_NO_JIT`` is unset or 0."""
+    return os.environ.get("TVTRACK_NO_JIT", "0") in ("", "0") and available()
+
+
+def get_kernel(covariance: bool = True):
+    """The compiled kernel: :func:`kernel_python` (``covariance``) or :func:`kernel_fast_python`, each
+    compiled on its first call in this process."""
+    name = "general" if covariance else "fast"
+    if name not in _compiled:
+        import numba
+
+        _compiled[name] = numba.njit(cache=False, nogil=True)(kernel_python if covariance else kernel_fast_python)
+    return _compiled[name]
+
+
+def compile_seconds(covariance: bool = False) -> float | None:
+    """Seconds the first (compiling) call of the kernel (see :func:`get_kernel`) took in this process;
+    None before it."""
+    return _compile_s.get("general" if covariance else "fast")
+
+
+def _record_compile(covariance: bool, t0: float) -> None:
+    _compile_s.setdefault("general" if covariance else "fast", time.perf_counter() - t0)
