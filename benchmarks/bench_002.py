@@ -11,7 +11,7 @@ Where the time goes (profile of one claims replicate at the paper profile, ``n_t
 * the plain-EM iteration counts (Fig 7, C002-13/14) ~5 %; all T = 5 and T = 10 ULA-only points ~15 %.
 
 Since this session the E-step is compiled (numba, :mod:`tvtrack.papers.p002_unified_location_em._kernels`; its
-NumPy twin is tested against it and used with ``TVTRACK_JIT=0``): a replicate at the paper profile takes 9.4 s of
+NumPy twin is tested against it and used with ``TVTRACK_NO_JIT=1``): a replicate at the paper profile takes 9.4 s of
 CPU instead of 14.0 (x1.5). The E-step is arithmetic-bound, not overhead-bound: 42 000 E-steps per replicate on
 4 x 4 to 9 x 9 windows, each evaluating the Gaussian tail mass (erfc) and density at every pixel edge of every
 (trial, frame, object); the compiled kernel still spends about 70 % of the replicate there, and the number of
@@ -29,18 +29,14 @@ and 2 joint samples (~30 s), plus the figures' extra points (~10 s) and the reco
 takes about 4-4.5 min of one core while the other four notebooks share the other; alone with ``n_workers = 2`` it
 takes about 2-2.5 min.
 
-What a JIT would save (measured 2026-11-25, load ~3): the per-frame EM at Delta = 5 sigma on 40 trials (static,
-2 objects) takes 0.70 s of CPU, of which the loop passes needed by the 7 trials that reach the 5000-step cap are
-almost all: 139 us per pass whatever the number of trials still iterating (``_axis_tables`` 0.46 s, ``_e_step``
-0.18 s, ``_m_step`` 0.09 s of a 1.36 s profiled run), i.e. NumPy call overhead on a handful of trials. A per-trial
-compiled E+M step over a trial's few non-zero pixels costs ~1 us, so a capped trial would take ~5 ms instead of
-~0.7 s of passes: the Delta = 5 sigma tail (about half of a replicate) would nearly vanish, an estimated 40-50 % of
-002's paper-profile CPU. Not implemented this session (the EM has accelerated, MAP, sigma- and weight-estimating
-variants and the ndtr-based pixel integrals to reproduce and test equal to the NumPy path).
-
-The benchmarks: the EM batched across trials against the same EM run one trial at a time (the batching is what
-keeps 100+ trials per point affordable), and the job cache: a register value that changes only a statistic costs
-almost nothing against a replicate.
+What more a JIT would save (measured 2026-11-25, load ~3, before the compiled E-step): the per-frame EM at
+Delta = 5 sigma on 40 trials (static, 2 objects) takes 0.70 s of CPU, almost all of it the loop passes needed by the
+7 trials that reach the 5000-step cap: 139 us per pass whatever the number of trials still iterating
+(``_axis_tables`` 0.46 s, ``_e_step`` 0.18 s, ``_m_step`` 0.09 s of a 1.36 s profiled run). The compiled E-step
+removes the first two; the M-step, the SQUAREM extrapolation and the convergence test still run in NumPy per pass.
+A per-trial compiled E+M loop (about 1 us a pass for a capped trial) would save an estimated further 25-35 % of
+002's CPU; not done (the EM's accelerated, MAP, sigma- and weight-estimating variants would all need compiled twins
+tested equal to the NumPy path).
 """
 
 import time
@@ -115,7 +111,7 @@ def test_a_statistic_value_reuses_the_replicate(benchmark, figure):
     assert fig.passed, fig.message()
 
 
-@pytest.mark.skipif(not jit.enabled(), reason="numba absent or TVTRACK_JIT=0: the NumPy E-step is the one used")
+@pytest.mark.skipif(not jit.enabled(), reason="numba absent or TVTRACK_NO_JIT=1: the NumPy E-step is the one used")
 def test_compiled_e_step_vs_numpy_e_step_on_a_replicate(benchmark, figure, monkeypatch):
     """Target: one claims replicate (half the paper profile's trials) at least 1.3 times faster in CPU with the
     compiled E-step than with the NumPy one, the same verdict numbers to 1e-6 relative (the EM stops within its
@@ -128,7 +124,7 @@ def test_compiled_e_step_vs_numpy_e_step_on_a_replicate(benchmark, figure, monke
     fast = benchmark.pedantic(lambda: study.measure(default, 3, scale), rounds=1, iterations=1)
     t_fast = benchmark.stats.stats.min
     study.clear_cache()
-    monkeypatch.setenv("TVTRACK_JIT", "0")
+    monkeypatch.setenv("TVTRACK_NO_JIT", "1")
     t0 = time.perf_counter()
     slow = study.measure(default, 3, scale)
     t_slow = time.perf_counter() - t0

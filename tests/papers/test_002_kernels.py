@@ -1,6 +1,6 @@
 """The compiled E-step of notebook 002's unified location EM against its NumPy twin (issue 30).
 
-The NumPy path is always tested (``TVTRACK_JIT=0``); the compiled path only where numba is importable.
+The NumPy path is always tested (``TVTRACK_NO_JIT=1``); the compiled path only where numba is importable.
 """
 
 import numpy as np
@@ -56,7 +56,7 @@ def test_the_em_gives_the_same_estimates_compiled_or_not(monkeypatch, accelerate
     g, counts, desig, p, p0 = _scene(pix=2.5, n=16, seed=4)
     run = dict(times=frame_times(counts.shape[1]), tol_px=1e-8, accelerate=accelerate)
     fast = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, **run)
-    monkeypatch.setenv("TVTRACK_JIT", "0")
+    monkeypatch.setenv("TVTRACK_NO_JIT", "1")
     assert not jit.enabled()
     slow = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, **run)
     np.testing.assert_allclose(fast.theta, slow.theta, atol=1e-6)  # both stop within 1e-8 px of the fixed point
@@ -65,7 +65,7 @@ def test_the_em_gives_the_same_estimates_compiled_or_not(monkeypatch, accelerate
 
 
 def test_the_numpy_path_is_used_when_jit_is_off(monkeypatch):
-    monkeypatch.setenv("TVTRACK_JIT", "0")
+    monkeypatch.setenv("TVTRACK_NO_JIT", "1")
     called = []
     monkeypatch.setattr(_kernels, "e_step", lambda *a: called.append(1))
     g, counts, desig, p, p0 = _scene(n=4)

@@ -27,11 +27,11 @@ the detector. The kernel receives ``gap_start`` and reproduces that counter per 
 
 from __future__ import annotations
 
-import functools
-import os
 import time
 
 import numpy as np
+
+from tvtrack import jit
 
 __all__ = [
     "RESTART_CODES",
@@ -436,19 +436,15 @@ def kernel_fast_python(
         det[b] = detected
 
 
-@functools.cache
 def available() -> bool:
-    """True when numba can be imported (checked once per process)."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    """True when numba can be imported (:func:`tvtrack.jit.available`)."""
+    return jit.available()
 
 
 def use_jit_default() -> bool:
-    """The ``engine="auto"`` choice: the JIT when numba is importable and ``TVTRACK_NO_JIT`` is unset or 0."""
-    return os.environ.get("TVTRACK_NO_JIT", "0") in ("", "0") and available()
+    """The ``engine="auto"`` choice: the JIT when numba is importable and ``TVTRACK_NO_JIT`` is unset or 0
+    (:func:`tvtrack.jit.switched_off`)."""
+    return not jit.switched_off() and available()
 
 
 def get_kernel(covariance: bool = True):

@@ -265,7 +265,7 @@ def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
 
 
 def _e_step_numpy(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
-    """:func:`_e_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_JIT=0`` or without
+    """:func:`_e_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_NO_JIT=1`` or without
     numba)."""
     rows, cols = shape
     t = times[None, :, None]
