@@ -271,3 +271,19 @@ def test_a_small_register_gets_every_joint_combination():
     got = joint_sample(small, ["a", "b"], 4, seed=1)
     assert sorted((c["a"], c["b"]) for c in got) == [(1, "y"), (1, "z")]
     assert joint_sample(small, ["a", "b"], 1, seed=1) != got  # fewer samples than cells: a Latin-hypercube sample
+
+
+def test_a_pinned_joint_condition_is_measured_every_run():
+    # a flip found once by a joint sample (a = 2 and b = 2) stays in the record when the joint stage misses it
+    plain = explore(measure_joint_only, REG, {"X": RULES["X"]}, seed=7, replicates=3, joint=0)
+    assert plain.record("X")["label"] == "robust"
+    pinned = REG.with_pinned({"a": 2, "b": 2})
+    ex = explore(measure_joint_only, pinned, {"X": RULES["X"]}, seed=7, replicates=3, joint=0)
+    rec = ex.record("X")
+    assert rec["label"] == "depends" and any("a = 2, b = 2" in w for w in rec["where"])
+    assert "1 pinned joint conditions" in rec["coverage"]
+    assert pinned.subset(["a", "c"]).pinned == [] and pinned.subset(["a", "b"]).pinned == [{"a": 2, "b": 2}]
+    with pytest.raises(ValueError, match="not among"):
+        REG.with_pinned({"a": 5, "b": 2})
+    with pytest.raises(ValueError, match="at least two"):
+        REG.with_pinned({"a": 2})

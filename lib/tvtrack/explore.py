@@ -47,7 +47,7 @@ class Run:
 
     config: dict
     seed: int
-    stage: str  # "replicate", "single" or "joint"
+    stage: str  # "replicate", "single", "joint" or "pinned" (a joint condition of Register.pinned)
     outputs: dict = field(default_factory=dict)
 
     def changed(self, default: Mapping[str, Any]) -> dict:
@@ -397,6 +397,8 @@ def explore(
     if joint:
         used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
         runs += [Run(cfg, seeds[0], "joint") for cfg in joint_sample(register, used, joint, seed + 1)]
+    used = {k for names in depends.values() for k in names}
+    runs += [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & used]
     _execute(measure, runs, batched, executor)
     n = replicates
     while n < cap and not _settled(rules, runs):

@@ -96,9 +96,14 @@ class Register:
     Parameters
     ----------
     entries : iterable of Entry
+    pinned : iterable of mapping {entry name: value}, optional
+        Joint conditions that flipped a claim before (a joint sample of an earlier run, or the adversarial
+        pass): :func:`tvtrack.explore.explore` measures every one of them each time, so that a label never
+        becomes ``robust`` because a random joint sample happened to miss a known flip. Each names at least
+        two entries, with values among their defensible values.
     """
 
-    def __init__(self, entries: Iterable[Entry]):
+    def __init__(self, entries: Iterable[Entry], pinned: Iterable[Mapping[str, Any]] = ()):
         self.entries: list[Entry] = list(entries)
         names = [e.name for e in self.entries]
         dup = sorted({n for n in names if names.count(n) > 1})
@@ -107,6 +112,11 @@ class Register:
         for e in self.entries:
             if not isinstance(e, Entry):
                 raise TypeError(f"a register holds Entry objects, got {type(e).__name__}")
+        self.pinned: list[dict] = [dict(p) for p in pinned]
+        for p in self.pinned:
+            if len(p) < 2:
+                raise ValueError(f"a pinned joint condition names at least two entries, got {p}")
+            self.check(p)
 
     def __iter__(self):
         return iter(self.entries)
@@ -136,11 +146,16 @@ class Register:
         unknown = set(names) - set(self.names)
         if unknown:
             raise KeyError(f"no register entries {sorted(unknown)}; entries: {self.names}")
-        return Register(e for e in self.entries if e.name in set(names))
+        keep = set(names)
+        return Register((e for e in self.entries if e.name in keep), [p for p in self.pinned if set(p) <= keep])
 
     def with_entries(self, *entries: Entry) -> "Register":
         """A new register with ``entries`` appended (e.g. the adversarial pass's rows)."""
-        return Register([*self.entries, *entries])
+        return Register([*self.entries, *entries], self.pinned)
+
+    def with_pinned(self, *conditions: Mapping[str, Any]) -> "Register":
+        """A new register with joint ``conditions`` pinned (see the class)."""
+        return Register(self.entries, [*self.pinned, *conditions])
 
     def check(self, config: Mapping[str, Any]) -> dict:
         """``config`` completed with defaults, each value checked to be defensible."""
@@ -166,6 +181,10 @@ class Register:
         for e in self.entries:
             alts = ", ".join(_md(v) for v in e.alternatives) or "-"
             rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {_escape(e.why)} | {e.origin} |")
+        if self.pinned:
+            rows.append("")
+            rows.append("Joint conditions pinned (they flipped a claim before; measured every run):")
+            rows += [f"- {_escape(', '.join(f'{k} = {v}' for k, v in p.items()))}" for p in self.pinned]
         return "\n".join(rows)
 
     def _repr_markdown_(self) -> str:

@@ -627,7 +627,8 @@ def _zip_parts(parts: Mapping[str, Rule], rule: Rule, measured: Any) -> dict:
 
 def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
     single = [c for c in conds if c["kind"] == "single"]
-    joint = [c for c in conds if c["kind"] != "single"]
+    joint = [c for c in conds if c["kind"] == "joint"]
+    pinned = [c for c in conds if c["kind"] == "pinned"]
     varied: dict[str, set] = {}
     for c in single:
         for k, v in c["changed"].items():
@@ -638,7 +639,7 @@ def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
     which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
     return (
         f"{label}{which} over {len(conds)} conditions: {len(single)} one at a time over {over}; "
-        f"{len(joint)} joint samples; x {reps_text}"
+        f"{len(joint)} joint samples{f' and {len(pinned)} pinned joint conditions' if pinned else ''}; x {reps_text}"
     )
 
 

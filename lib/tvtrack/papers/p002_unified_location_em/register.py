@@ -232,7 +232,16 @@ REGISTER = Register(
             "bound with the designation as prior for any estimator started there",
             origin="adversarial",
         ),
-    ]
+    ],
+    pinned=[
+        # the joint sample that made C002-1 not reproduced in the paper-profile run of 2026-11-25 (issue 22)
+        {
+            "gross errors": "trimmed 10 %",
+            "noise (photons/sigma^2/frame)": 0.05,
+            "velocity (sigma/frame)": "0.5, 0.25",
+            "EM stopping": "plain EM, cap 100",
+        },
+    ],
 )
 
 _WORLD = ["photon model", "designation error (sigma)", "noise (photons/sigma^2/frame)", "velocity (sigma/frame)"]
