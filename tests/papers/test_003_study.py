@@ -235,3 +235,21 @@ def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
     k0 = int(round(sz.transient_s * sc.fps))
     y = np.sqrt(np.mean(state_errors(tr, h)[:, k0:, 1] ** 2))
     assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)
+
+
+def test_compensation_reading_one_sided_counts_a_stronger_compensation_as_kappa():
+    from tvtrack.verdicts import WithinFactor
+
+    rule = WithinFactor("ratio", 0.1, 2.0)
+    strong = Estimate(0.0, float("nan"), 0.0, 0.04, 6, 0.95, "bound from the grid's top")  # compensation > 1/kappa
+    weak = Estimate(0.5, float("nan"), 0.4, 0.6, 6, 0.95, "ratio")  # compensation worth only 2x
+    one = study.compensation_reading(strong, 0.1, "one-sided")
+    assert (one.value, one.ci_low, one.ci_high) == pytest.approx((0.2 / 3, 0.2 / 3, 0.24 / 3))
+    assert rule.decide(one) == "reproduced"
+    assert rule.decide(study.compensation_reading(strong, 0.1, "two-sided")) == "not reproduced"
+    for reading in study.COMPENSATION_READINGS:  # a weak compensation fails under both readings
+        assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
+    edge = Estimate(0.15, float("nan"), 0.05, 0.3, 6, 0.95, "ratio")  # interval reaching past 2 kappa
+    assert rule.decide(study.compensation_reading(edge, 0.1, "one-sided")) == "partly"
+    with pytest.raises(ValueError):
+        study.compensation_reading(weak, 0.1, "both")

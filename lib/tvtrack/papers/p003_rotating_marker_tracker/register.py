@@ -67,6 +67,16 @@ REGISTER = Register(
             origin="adversarial",
         ),
         Entry(
+            "compensation_reading",
+            "reading",
+            "one-sided",
+            ("one-sided", "two-sided"),
+            "C003-10 from l. 198 ('if compensation is equivalent to reducing the background by an order of magnitude, "
+            "the threshold SIR before compensation ... decreases to 0.2-0.3') and l. 208 (compensation is one of the "
+            "main factors): the order of magnitude is a hypothesis, so compensation lowers the SIR_0 threshold at "
+            "least about 1/kappa-fold (one-sided); the card's reading asks for about 1/kappa (two-sided)",
+        ),
+        Entry(
             "slope_range",
             "reading",
             "+-D/2",
@@ -226,11 +236,13 @@ INTERFERENCE = (
     "horizon",
     "static_gate",
     "static_form",
+    "compensation_reading",
 )
 
 _NO_EDGE = tuple(k for k in TRACKING if k not in ("edge_norm", "slope_range"))  # only C003-9 reads them
 _FIG1 = tuple(k for k in _NO_EDGE if k != "fig2_law")  # only C003-3 reads the Fig. 2 runs
-_NO_STATIC = tuple(k for k in INTERFERENCE if k not in ("static_gate", "static_form"))  # only C003-12 runs it
+_I_ALL = tuple(k for k in INTERFERENCE if k != "compensation_reading")  # only C003-10 reads it
+_NO_STATIC = tuple(k for k in _I_ALL if k not in ("static_gate", "static_form"))  # only C003-12 runs it
 DEPENDS = {
     "C003-1": _FIG1,
     "C003-2": _FIG1,
@@ -240,9 +252,9 @@ DEPENDS = {
     "C003-5": _NO_STATIC,
     "C003-6": _NO_STATIC,
     "C003-7": _NO_STATIC,
-    "C003-10": _NO_STATIC,
+    "C003-10": _NO_STATIC + ("compensation_reading",),
     "C003-11": _NO_STATIC,
-    "C003-12": INTERFERENCE,
+    "C003-12": _I_ALL,
 }
 
 
