@@ -110,6 +110,15 @@ REGISTER = Register(
             "adversarial: 50, broadcast TV's field rate for the paper's 'TV sensor' (8 rev/s is below its Nyquist)",
         ),
         Entry(
+            "exposure",
+            "model",
+            "instant",
+            ("instant", "integrated"),
+            "no exposure is given: the sensor samples at the frame time, or integrates over the frame, so the marker is "
+            "smeared along the arc it turns in one frame (1.2 px at 500 frames/s, 12 px at 50: a spot's width "
+            "and more); the same spot energy per frame either way",
+        ),
+        Entry(
             "spot",
             "model",
             "disc",
@@ -212,6 +221,7 @@ TRACKING = (
     "phase_loop",
     "noise",
     "fps",
+    "exposure",
     "spot",
     "edge_norm",
     "slope_range",
@@ -226,6 +236,7 @@ INTERFERENCE = (
     "phase_loop",
     "noise",
     "fps",
+    "exposure",
     "spot",
     "residual_background",
     "interferer_radius",

@@ -58,6 +58,7 @@ __all__ = [
     "interference_runs",
     "CommonNormal",
     "PLACEMENTS",
+    "EXPOSURES",
 ]
 
 SPOTS = ("disc", "square")
@@ -243,6 +244,14 @@ class RotatingMarkerScene:
         another centre), rendered into every frame with the marker's spot.
     decoy_brightness : float or ndarray, shape (n,)
         Decoy brightness per fully covered pixel (one value per trial allowed).
+    exposure_steps : int
+        1: the sensor samples the scene at the frame time (instant exposure). ``m > 1``: it integrates over the
+        frame interval centred on the frame time, rendered as the mean of ``m`` sub-frame renders at
+        ``tau_j = ((j + 1/2)/m - 1/2) dt``: the object moves by its velocity (central differences of the truth),
+        the marker turns by ``omega tau_j`` about it, the decoy about its own centre (``decoy_phase``). The spot
+        energy per frame is the same either way; only its spread changes. :meth:`frame` (recordings) is instant.
+    decoy_phase : ndarray, shape (n,), optional
+        Phase offset of each decoy from the marker (needed to smear a decoy).
     """
 
     MARGIN = 40  # px of zero padding around the image so that gates may leave it
@@ -259,8 +268,12 @@ class RotatingMarkerScene:
         interferers=None,
         decoys=None,
         decoy_brightness=0.0,
+        exposure_steps: int = 1,
+        decoy_phase=None,
     ):
         _check_spot(spot)
+        if int(exposure_steps) < 1:
+            raise ValueError(f"parameter 'exposure_steps' = {exposure_steps}; it must be >= 1")
         if noise_std < 0:
             raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
         self.truth = truth
@@ -279,6 +292,30 @@ class RotatingMarkerScene:
         if residual is not None:
             self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+        self.exposure_steps = int(exposure_steps)
+        if self.exposure_steps > 1:
+            t = truth.t
+            self._dt = float(t[1] - t[0]) if t.size > 1 else 1.0
+            self._velocity = np.gradient(truth.center, self._dt, axis=1) if t.size > 1 else np.zeros_like(truth.center)
+            if self.decoys is not None and decoy_phase is None:
+                raise ValueError("an integrated exposure with a decoy needs 'decoy_phase'")
+            self.decoy_phase = None if decoy_phase is None else np.asarray(decoy_phase, float).reshape(self.n)
+
+    def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+        """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
+        tr, m = self.truth, self.exposure_steps
+        tau = ((np.arange(m) + 0.5) / m - 0.5) * self._dt
+        shift = tau[:, None, None] * self._velocity[None, :, k]  # object motion within the frame
+        ang = tr.theta[None, :, k] + tr.omega[None, :, k] * tau[:, None]
+        r = tr.r[None, :, k]
+        centre = np.stack([tr.xr[:, k], tr.yr[:, k]], axis=-1)[None]
+        marker = centre + shift + r[..., None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+        if self.decoys is None:
+            return marker, None
+        a0 = tr.theta[:, k] + self.decoy_phase
+        own = self.decoys[:, k] - r[0][:, None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
+        a = ang + self.decoy_phase[None]
+        return marker, own[None] + shift + r[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
     @staticmethod
     def static_residual(
@@ -360,9 +397,16 @@ class RotatingMarkerScene:
             ],
             axis=1,
         )
-        crops += self._spot(marker, size, origin, self.brightness)
-        if self.decoys is not None:
-            crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        if self.exposure_steps == 1:
+            crops += self._spot(marker, size, origin, self.brightness)
+            if self.decoys is not None:
+                crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        else:
+            sub_m, sub_d = self._sub_positions(k)
+            for j in range(self.exposure_steps):
+                crops += self._spot(sub_m[j], size, origin, self.brightness / self.exposure_steps)
+                if sub_d is not None:
+                    crops += self._spot(sub_d[j], size, origin, self.decoy_brightness / self.exposure_steps)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
@@ -525,6 +569,8 @@ def build_scene(
     decoy_brightness=0.0,
     n_common: int | None = None,
     blocks=None,
+    exposure_steps: int = 1,
+    decoy_phase=None,
 ):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
@@ -596,7 +642,18 @@ def build_scene(
         diameter if interferer_diameter is None else interferer_diameter,
     )
     return RotatingMarkerScene(
-        truth, image_shape, spot, diameter, brightness, residual, noise_std, q, decoys, decoy_brightness
+        truth,
+        image_shape,
+        spot,
+        diameter,
+        brightness,
+        residual,
+        noise_std,
+        q,
+        decoys,
+        decoy_brightness,
+        exposure_steps,
+        decoy_phase,
     )
 
 
@@ -651,6 +708,7 @@ class Scenario:
     realise_phase_bandwidth: bool = False
     form: str = "quadrant"
     edge_norm: str = "slope"
+    exposure: str = "instant"
     init_offset: tuple = (3.0, -3.0)
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
@@ -665,6 +723,8 @@ class Scenario:
             raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
         if self.edge_norm not in ("slope", "slew"):
             raise ValueError(f"parameter 'edge_norm' = {self.edge_norm!r}; it must be 'slope' or 'slew'")
+        if self.exposure not in EXPOSURES:
+            raise ValueError(f"parameter 'exposure' = {self.exposure!r}; it must be one of {EXPOSURES}")
 
     @property
     def n_frames(self) -> int:
@@ -673,6 +733,15 @@ class Scenario:
     @property
     def omega0(self) -> float:
         return 2 * np.pi * self.rotation_hz
+
+    @property
+    def exposure_steps(self) -> int:
+        """Sub-frame renders of an integrated exposure: the marker's largest arc per frame in half-pixel steps
+        (``ceil(2 omega_max r_max / fps) + 1``); 1 for an instant exposure."""
+        if self.exposure == "instant":
+            return 1
+        arc = self.omega0 * (1 + self.omega_mod) * self.radius * (1 + self.radius_mod) / self.fps
+        return int(np.ceil(2 * arc)) + 1
 
     def slope(self) -> float:
         """Discriminator slope ``S`` per px: ``2 d D`` for the quadrant form; for the edge form
@@ -734,6 +803,7 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
 
 
 PLACEMENTS = ("object", "image")
+EXPOSURES = ("instant", "integrated")
 
 
 def run_scenario(
@@ -832,6 +902,8 @@ def run_scenario(
         decoy_brightness=sc.brightness / sir,
         n_common=n_common,
         blocks=blocks,
+        exposure_steps=sc.exposure_steps,
+        decoy_phase=None if decoys is None else dphi[:, 0],
     )
     x0 = np.stack(
         [

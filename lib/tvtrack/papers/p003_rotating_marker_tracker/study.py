@@ -94,7 +94,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
+    ``noise``, ``fps``, ``spot``, ``exposure``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
     """
     c = config
     base = Scenario()
@@ -118,6 +118,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
         noise_std=float(c.get("noise", base.noise_std)),
         fps=float(c.get("fps", base.fps)),
         spot=c.get("spot", base.spot),
+        exposure=c.get("exposure", base.exposure),
         duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
         interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
         interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
