@@ -60,3 +60,66 @@ def test_static_baseline_gets_the_rotating_markers_photons(exposure):
         sums[rotating] = crops.sum(axis=(1, 2))
     np.testing.assert_allclose(sums[True], sums[False], rtol=0.01)  # the disc renderer's flux within 1 %
     np.testing.assert_allclose(sums[True], np.pi * 16, rtol=0.01)  # d pi D^2 / 4 with d = 1, D = 8
+
+
+# ---------------------------------------------------------------------------------------------- temporal median
+
+
+def _still_truth(n_frames, r=R, omega=OMEGA, fps=500.0):
+    return marker_truth(np.full((1, n_frames), 128.0), np.full((1, n_frames), 128.0), r, omega, np.array([PHI]), 1 / fps)
+
+
+def _residual(scene):
+    m = scene.MARGIN
+    return scene._padded[:, m:-m, m:-m].astype(float)
+
+
+def test_median_compensation_cancels_background_and_interferers_exactly():
+    """Noise-free, object still: the rotating marker covers every pixel in fewer than half of two revolutions'
+    frames, so the median is the static scene itself and nothing is left, however bright the interferers; the
+    same scene with kappa compensation keeps kappa f and the interferers."""
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import build_scene
+
+    truth = _still_truth(200)
+    kw = dict(noise_std=0.0, background_std=0.2, n_interferers=5, sir=0.1, median_frames=125)
+    med = build_scene(np.random.default_rng(2), truth, compensation="median", **kw)
+    kap = build_scene(np.random.default_rng(2), truth, compensation="kappa", **kw)
+    assert np.abs(_residual(med)).max() == 0.0
+    assert _residual(kap).max() > 5.0  # interferers at 10 d
+
+
+def test_median_compensation_removes_a_marker_that_stood_still():
+    """A non-rotating marker on a still object is part of the static scene: the median takes it away whole."""
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import median_residual, render_spot
+
+    truth = _still_truth(51, r=0.0, omega=0.0)
+    res = median_residual(np.random.default_rng(0), truth, 51, (256, 256), "disc", 8.0, 1.0, 0.0)
+    np.testing.assert_allclose(res[0], -render_spot("disc", [128.0, 128.0], (256, 256), 8.0, 1.0), atol=1e-6)
+
+
+def test_median_ring_and_noise_follow_the_sample_median_laws():
+    """With noise sigma and N frames: pixels the marker never reaches read the median of N normals (standard
+    deviation sigma sqrt(pi / 2N)); a pixel the bright marker covers in a share p of the frames reads
+    -sigma Phi^-1(1 / (2 (1 - p))) (the faint ring)."""
+    from scipy.stats import norm
+
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import median_residual
+
+    N, sigma = 1001, 0.02
+    truth = _still_truth(N)
+    res = median_residual(np.random.default_rng(3), truth, N, (256, 256), "disc", 8.0, 1.0, sigma)[0]
+    free = median_residual(np.random.default_rng(4), truth, N, (256, 256), "disc", 8.0, 1.0, 0.0)[0]
+    ys, xs = np.mgrid[:256, :256]
+    rho = np.hypot(xs - 128.0, ys - 128.0)
+    assert np.all(free == 0.0)
+    inner = rho < R - 8.0  # inside the box, never covered: exact medians of noise
+    assert res[inner].std() == pytest.approx(sigma * np.sqrt(np.pi / (2 * N)), rel=0.1)
+    # coverage share of ring pixels from the noise-free sweep (frames where the pixel reads well above the noise)
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import render_spot
+
+    sweep = render_spot("disc", truth.marker[0], (64, 64), 8.0, 1.0, (96, 96))  # (N, 64, 64) about the centre
+    ring = (np.abs(rho - R) < 1.0) & (xs > 128)
+    p = (sweep[:, ring[96:160, 96:160]] > 5 * sigma).mean(axis=0)
+    expect = -sigma * norm.ppf(1 / (2 * (1 - p)))
+    np.testing.assert_allclose(res[ring], expect, atol=4 * sigma * np.sqrt(np.pi / (2 * N)))
+    assert expect.mean() < -0.1 * sigma  # a faint but real ring

@@ -59,6 +59,8 @@ __all__ = [
     "CommonNormal",
     "PLACEMENTS",
     "EXPOSURES",
+    "COMPENSATIONS",
+    "median_residual",
 ]
 
 SPOTS = ("disc", "square")
@@ -525,6 +527,62 @@ class BlockNormal:
         return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
 
 
+def median_residual(
+    rng: np.random.Generator,
+    truth: MarkerTruth,
+    n_frames: int,
+    image_shape,
+    spot: str,
+    diameter: float,
+    brightness: float,
+    noise_std: float,
+) -> np.ndarray:
+    """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
+
+    The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
+    ``f + interferers + s_t + n_t`` (card 8.5: a median over >= 2 revolutions). Everything static -- background and
+    stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the marker's
+    sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the frames
+    reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for more
+    than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
+    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``.
+    Instant exposure, and no decoy, in the median frames.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    truth : MarkerTruth
+        ``n`` trials; frames ``0 .. n_frames - 1`` enter the median.
+    n_frames : int
+        Frames in the median (``N``).
+    image_shape : (int, int)
+    spot, diameter, brightness, noise_std
+        The marker spot and the sensor noise per pixel.
+
+    Returns
+    -------
+    ndarray, shape (n, rows, cols), float32
+    """
+    N = int(min(max(n_frames, 1), truth.n_frames))
+    n = truth.xr.shape[0]
+    rows, cols = image_shape
+    out = (-noise_std * np.sqrt(np.pi / (2 * N)) * rng.standard_normal((n, rows, cols))).astype(np.float32)
+    m = truth.marker[:, :N]  # (n, N, 2)
+    lo = np.floor(m.min(axis=1) - diameter / 2 - 2).astype(np.int64)
+    size = int(np.max(np.ceil(m.max(axis=1) + diameter / 2 + 2).astype(np.int64) - lo)) + 1
+    frames = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None])  # (N, n, s, s)
+    if noise_std > 0:
+        frames = frames + noise_std * rng.standard_normal(frames.shape)
+    box = -np.median(frames, axis=0)
+    ar = np.arange(size)
+    ys, xs = lo[:, 1, None] + ar, lo[:, 0, None] + ar
+    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+    trial = np.arange(n)[:, None, None]
+    yi, xi = np.clip(ys, 0, rows - 1)[:, :, None], np.clip(xs, 0, cols - 1)[:, None, :]
+    out[trial, yi, xi] = np.where(ok, box, out[trial, yi, xi])
+    return out
+
+
 def _tile(a, n: int):
     """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
     a = np.asarray(a)
@@ -571,6 +629,8 @@ def build_scene(
     blocks=None,
     exposure_steps: int = 1,
     decoy_phase=None,
+    compensation: str = "kappa",
+    median_frames: int = 0,
 ):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
@@ -584,6 +644,11 @@ def build_scene(
     overrides ``kappa``, ``background_std``, ``corr_length`` or ``n_interferers`` block by block
     (several scene settings in one batch; a block with fewer interferers is padded with dark ones
     far outside the image).
+
+    ``compensation``: ``"kappa"`` leaves ``kappa`` times the static scene (:meth:`RotatingMarkerScene.
+    static_residual`); ``"median"`` subtracts the temporal median of the first ``median_frames`` frames
+    (:func:`median_residual`: background and interferers cancel) in every block with ``kappa < 1`` (a block with
+    ``kappa = 1`` stays uncompensated).
 
     Returns
     -------
@@ -599,7 +664,9 @@ def build_scene(
             "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
             "corr_length, n_interferers"
         )
-    q, residual = [], []
+    if compensation not in COMPENSATIONS:
+        raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")
+    q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
@@ -611,33 +678,38 @@ def build_scene(
                 n_block,
             )
         )
-        residual.append(
-            _tile(
-                RotatingMarkerScene.static_residual(
-                    g,
-                    n_common,
-                    image_shape,
-                    kappa=b.get("kappa", kappa),
-                    background_std=b.get("background_std", background_std),
-                    corr_length=b.get("corr_length", corr_length),
-                    interferers=np.zeros((n_common, 0, 2)),
-                    interferer_brightness=np.zeros(n_common),
-                    spot=spot,
-                    diameter=diameter,
-                ),
-                n_block,
+        med = compensation == "median" and b.get("kappa", kappa) < 1
+        by_median.append(np.full(n_block, med))
+        if med:
+            part = MarkerTruth(
+                *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
             )
-        )
+            res = median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std)
+        else:
+            res = RotatingMarkerScene.static_residual(
+                g,
+                n_common,
+                image_shape,
+                kappa=b.get("kappa", kappa),
+                background_std=b.get("background_std", background_std),
+                corr_length=b.get("corr_length", corr_length),
+                interferers=np.zeros((n_common, 0, 2)),
+                interferer_brightness=np.zeros(n_common),
+                spot=spot,
+                diameter=diameter,
+            )
+        residual.append(_tile(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
+    cancelled = np.concatenate(by_median)[:, None]  # a temporal median removes stationary interferers exactly
     add_spots(
         residual,
         q,
-        np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0),
+        np.where((q[..., 0] > -1e3) & ~cancelled, (brightness / sir)[:, None], 0.0),
         spot,
         diameter if interferer_diameter is None else interferer_diameter,
     )
@@ -709,6 +781,8 @@ class Scenario:
     form: str = "quadrant"
     edge_norm: str = "slope"
     exposure: str = "instant"
+    compensation: str = "kappa"
+    median_revolutions: float = 2.0
     init_offset: tuple = (3.0, -3.0)
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
@@ -723,6 +797,8 @@ class Scenario:
             raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
         if self.edge_norm not in ("slope", "slew"):
             raise ValueError(f"parameter 'edge_norm' = {self.edge_norm!r}; it must be 'slope' or 'slew'")
+        if self.compensation not in COMPENSATIONS:
+            raise ValueError(f"parameter 'compensation' = {self.compensation!r}; it must be one of {COMPENSATIONS}")
         if self.exposure not in EXPOSURES:
             raise ValueError(f"parameter 'exposure' = {self.exposure!r}; it must be one of {EXPOSURES}")
 
@@ -804,6 +880,7 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
 
 PLACEMENTS = ("object", "image")
 EXPOSURES = ("instant", "integrated")
+COMPENSATIONS = ("kappa", "median")
 
 
 def run_scenario(
@@ -904,6 +981,8 @@ def run_scenario(
         blocks=blocks,
         exposure_steps=sc.exposure_steps,
         decoy_phase=None if decoys is None else dphi[:, 0],
+        compensation=sc.compensation,
+        median_frames=int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz)),
     )
     x0 = np.stack(
         [

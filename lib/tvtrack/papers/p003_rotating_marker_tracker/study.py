@@ -55,6 +55,8 @@ ROTATION_LAWS = {
     "modulated fast": (0.15, 1.0),
     "modulated strong": (0.2, 1.0),
 }
+# background compensation: the paper's kappa model or a temporal median of the first two revolutions (card 8.5)
+COMPENSATION_MODELS = {"kappa": "kappa", "temporal median": "median"}
 # C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
 SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
 # "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
@@ -94,7 +96,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``exposure``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
+    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
     """
     c = config
     base = Scenario()
@@ -119,6 +121,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
         fps=float(c.get("fps", base.fps)),
         spot=c.get("spot", base.spot),
         exposure=c.get("exposure", base.exposure),
+        compensation=COMPENSATION_MODELS[c.get("compensation", "kappa")],
         duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
         interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
         interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
