@@ -66,7 +66,9 @@ def test_static_baseline_gets_the_rotating_markers_photons(exposure):
 
 
 def _still_truth(n_frames, r=R, omega=OMEGA, fps=500.0):
-    return marker_truth(np.full((1, n_frames), 128.0), np.full((1, n_frames), 128.0), r, omega, np.array([PHI]), 1 / fps)
+    return marker_truth(
+        np.full((1, n_frames), 128.0), np.full((1, n_frames), 128.0), r, omega, np.array([PHI]), 1 / fps
+    )
 
 
 def _residual(scene):
