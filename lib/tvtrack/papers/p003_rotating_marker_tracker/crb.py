@@ -182,7 +182,7 @@ def compare_with_bound(
     duration_s: float,
     transient_s: float,
     sc: Scenario | None = None,
-    bxy_grid=(5.0, 10.0, 20.0, 40.0),
+    bxy_grid=(2.5, 5.0, 10.0, 20.0, 40.0),
     supersample=(1, 8),
     model: dict = MODEL,
 ) -> dict:
