@@ -740,6 +740,9 @@ class Scenario:
     adds an imitating interferer rotating like the marker about a centre displaced by that many px,
     at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness is
     ``d / SIR`` with the SIR passed to :func:`run_scenario`, like a stationary interferer's.
+    ``exposure`` ``"instant"`` or ``"integrated"`` over the frame (:attr:`exposure_steps` sub-frame renders);
+    ``compensation`` ``"kappa"`` (``kappa`` times the static scene left) or ``"median"`` (a per-pixel temporal median
+    of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`).
     """
 
     fps: float = 500.0
