@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy import stats
 
 from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
@@ -235,3 +236,89 @@ def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
     k0 = int(round(sz.transient_s * sc.fps))
     y = np.sqrt(np.mean(state_errors(tr, h)[:, k0:, 1] ** 2))
     assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)
+
+
+def test_compensation_reading_one_sided_counts_a_stronger_compensation_as_kappa():
+    from tvtrack.verdicts import WithinFactor
+
+    rule = WithinFactor("ratio", 0.1, 2.0)
+    strong = Estimate(0.0, float("nan"), 0.0, 0.04, 6, 0.95, "bound from the grid's top")  # compensation > 1/kappa
+    weak = Estimate(0.5, float("nan"), 0.4, 0.6, 6, 0.95, "ratio")  # compensation worth only 2x
+    one = study.compensation_reading(strong, 0.1, "one-sided")
+    assert (one.value, one.ci_low, one.ci_high) == pytest.approx((0.2 / 3, 0.2 / 3, 0.24 / 3))
+    assert rule.decide(one) == "reproduced"
+    assert rule.decide(study.compensation_reading(strong, 0.1, "two-sided")) == "not reproduced"
+    for reading in study.COMPENSATION_READINGS:  # a weak compensation fails under both readings
+        assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
+    edge = Estimate(0.15, float("nan"), 0.05, 0.3, 6, 0.95, "ratio")  # interval reaching past 2 kappa
+    assert rule.decide(study.compensation_reading(edge, 0.1, "one-sided")) == "partly"
+    with pytest.raises(ValueError):
+        study.compensation_reading(weak, 0.1, "both")
+
+
+def test_extend_grid_decides_thresholds_outside_the_grid_and_fills_by_monotonicity():
+    sirs = np.array([1.0, 1.5, 2.25])
+    thr = {"a": np.array([0.7, 1.2, 2.0]), "b": np.array([1.2, 1.3, 1.7]), "c": np.array([1.2, 1.8, 3.0])}
+    calls = []
+
+    def run(keys, sir):
+        calls.append((tuple(keys), sir))
+        return {k: sir < thr[k] for k in keys}
+
+    curves = {k: _lost_from_thresholds(v, sirs) for k, v in thr.items()}
+    assert study.threshold(curves["a"], sirs).extrapolated and study.threshold(curves["c"], sirs).extrapolated
+    xs, xc = study.extend_grid(curves, sirs, run)
+    np.testing.assert_allclose(xs, [1 / 1.5, 1.0, 1.5, 2.25, 3.375])
+    assert calls == [(("a",), 1 / 1.5), (("c",), 3.375)]  # only the censored curves are run
+    for k, v in thr.items():  # the filled rows are what the curve would have measured there
+        np.testing.assert_array_equal(xc[k], _lost_from_thresholds(v, xs))
+        assert not study.threshold(xc[k], xs).extrapolated
+    # a threshold beyond two extra points stays undecided
+    far = {"d": _lost_from_thresholds([0.1, 1.2, 1.3], sirs)}
+    xs2, xc2 = study.extend_grid(far, sirs, lambda keys, sir: {k: sir < np.array([0.1, 1.2, 1.3]) for k in keys})
+    assert xs2.size == 5 and study.threshold(xc2["d"], xs2).extrapolated
+
+
+def test_a_curve_run_at_one_more_sir_repeats_the_grid_runs_draws():
+    """extend_grid pairs the extra point with the grid runs: the same draws at any SIR list (common random numbers),
+    so the runs at a SIR are identical whether it is run alone or within the grid."""
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
+
+    sc = study.scenario({}, study.Sizes(trials=2, horizon_s=0.3), n_interferers=1)
+    grid = interference_runs([study._rng(10, 5)], 2, sc, [0.5, 1.0])
+    one = interference_runs([study._rng(10, 5)], 2, sc, [1.0])
+    np.testing.assert_array_equal(one["miss"], grid["miss"][2:])
+    assert np.ptp(grid["miss"][:2] - grid["miss"][2:]) > 0  # the SIR does change the runs
+
+
+def test_threshold_ratio_is_an_upper_bound_when_the_first_curve_breaks_below_the_grid():
+    thr_a = np.array([0.4, 0.3, 0.6, 0.45, 0.8])  # static marker: three runs keep lock at the bottom 0.5
+    thr_b = np.array([2.1, 1.9, 2.4, 2.2, 2.0])
+    e = study.threshold_ratio(_lost_from_thresholds(thr_a), _lost_from_thresholds(thr_b), SIRS)
+    assert not e.extrapolated and e.ci_low == 0.0
+    ls = np.log(SIRS)
+    tau_b = study.log_thresholds(_lost_from_thresholds(thr_b), SIRS)[0]
+    ub_a = np.where(thr_a < SIRS[0], ls[0], study.log_thresholds(_lost_from_thresholds(thr_a), SIRS)[0])
+    d = ub_a - tau_b
+    t = stats.t.ppf(0.975, d.size - 1)
+    assert e.ci_high == pytest.approx(np.exp(d.mean() + t * d.std(ddof=1) / np.sqrt(d.size) + np.log(1.5) / 2))
+    assert e.ci_high < 1  # the static marker's threshold is certainly below the rotating one's
+    # censoring on the other side (a above the grid) stays undecided
+    hi = study.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b), SIRS)
+    assert hi.extrapolated
+
+
+def test_extend_grid_with_a_trigger_runs_only_when_the_trigger_curves_are_censored():
+    sirs = np.array([1.0, 1.5, 2.25])
+    thr = {"rot": np.array([1.2, 1.3, 1.7]), "static": np.array([0.7, 1.2, 2.0])}
+    curves = {k: _lost_from_thresholds(v, sirs) for k, v in thr.items()}
+    calls = []
+    xs, _ = study.extend_grid(curves, sirs, lambda keys, sir: calls.append(sir) or {}, trigger=["rot"])
+    assert calls == [] and xs.size == 3  # only the static curve breaks below: no extra point
+    thr["rot"][0] = 0.8
+    curves = {k: _lost_from_thresholds(v, sirs) for k, v in thr.items()}
+    xs, xc = study.extend_grid(
+        curves, sirs, lambda keys, sir: {k: sir < thr[k] for k in keys}, max_points=1, trigger=["rot"]
+    )
+    np.testing.assert_allclose(xs, [1 / 1.5, 1.0, 1.5, 2.25])
+    np.testing.assert_array_equal(xc["static"][0], 1 / 1.5 < thr["static"])  # run too, for the pairing

@@ -48,6 +48,9 @@ __all__ = [
     "stack_gains",
     "EKFTracker",
     "ekf_noise_from_bandwidths",
+    "velocity_model",
+    "marker_jacobian",
+    "VelocityEKFTracker",
     "simulate_two_emitter_1d",
     "band_power_share",
     "phase_locked_amplitude",
@@ -441,6 +444,125 @@ class EKFTracker:
         F[3, 4] = dt
         x[:, 3] += dt * x[:, 4]
         self.P = F @ P_new @ F.T + np.diag(self.q * dt)
+        return polar
+
+
+def velocity_model(dt: float, q_acc: float, q_r: float, q_omega: float) -> tuple[np.ndarray, np.ndarray]:
+    """Transition and process-noise covariance of the seven-state model with object velocity.
+
+    State ``(x_r, y_r, r, theta, omega, v_x, v_y)`` (px, px, px, rad, rad/s, px/s, px/s): the five states of eqs.
+    (7), (11), (12) with ``g_1 = v_x``, ``g_2 = v_y`` and white accelerations (nearly constant velocity), the radius
+    a random walk, the phase driven by a random-walk rate (``theta' = omega``, ``omega' = n_04``). Exact
+    discretisation of the continuous white-noise densities over ``dt``: each integrated pair (position, velocity)
+    gets ``q [[dt^3/3, dt^2/2], [dt^2/2, dt]]``.
+
+    Parameters
+    ----------
+    dt : float
+        Frame interval (s).
+    q_acc : float
+        Acceleration noise density (px^2/s^3), per axis.
+    q_r : float
+        Radius random-walk density (px^2/s).
+    q_omega : float
+        Rate random-walk density (rad^2/s^3).
+
+    Returns
+    -------
+    F, Q : ndarray, shape (7, 7)
+    """
+    F = np.eye(7)
+    Q = np.zeros((7, 7))
+    block = np.array([[dt**3 / 3, dt**2 / 2], [dt**2 / 2, dt]])
+    for pos, rate, q in ((0, 5, q_acc), (1, 6, q_acc), (3, 4, q_omega)):
+        F[pos, rate] = dt
+        Q[np.ix_([pos, rate], [pos, rate])] = q * block
+    Q[2, 2] = q_r * dt
+    return F, Q
+
+
+def marker_jacobian(state) -> np.ndarray:
+    """``dm / dlambda`` of the marker position of eq. (8) for five- or seven-state vectors.
+
+    Parameters
+    ----------
+    state : ndarray, shape (n, k), k >= 5
+        ``(x_r, y_r, r, theta, ...)``.
+
+    Returns
+    -------
+    ndarray, shape (n, 2, k)
+        Rows ``[1, 0, cos th, -r sin th, 0, ...]`` and ``[0, 1, sin th, r cos th, 0, ...]``.
+    """
+    s = np.asarray(state, dtype=float)
+    H = np.zeros((s.shape[0], 2, s.shape[1]))
+    cs, sn, r = np.cos(s[:, 3]), np.sin(s[:, 3]), s[:, 2]
+    H[:, 0, 0] = H[:, 1, 1] = 1.0
+    H[:, 0, 2], H[:, 1, 2] = cs, sn
+    H[:, 0, 3], H[:, 1, 3] = -r * sn, r * cs
+    return H
+
+
+class VelocityEKFTracker:
+    """Discrete EKF of eqs. (16)-(17) on the seven-state model of :func:`velocity_model` (object velocity added).
+
+    The same measurement as :class:`EKFTracker` (the normalised quadrant outputs read as the marker's offset from the
+    gate, ``H = dm/dlambda`` with zero velocity columns) and the same information-form update (corrected (17)); the
+    prediction uses the model's ``F`` and ``Q`` for the frame interval. ``state`` is the five-state view ``(x_r, y_r,
+    r, theta, omega)`` the closed-loop runner records; ``velocity`` the last two states.
+
+    Parameters
+    ----------
+    x0 : ndarray, shape (n, 7)
+        Initial estimates ``(x_r, y_r, r, theta, omega, v_x, v_y)``.
+    P0 : ndarray, shape (7, 7)
+    q_acc, q_r, q_omega : float
+        Noise densities of :func:`velocity_model`.
+    meas_var : float
+        Variance (px^2) of each normalised discriminator output.
+    slope : float
+        Discriminator slope ``S``.
+    """
+
+    def __init__(self, x0, P0, q_acc: float, q_r: float, q_omega: float, meas_var: float, slope: float):
+        if not meas_var > 0:
+            raise ValueError(f"parameter 'meas_var' = {meas_var}; it must be > 0")
+        if not slope > 0:
+            raise ValueError(f"parameter 'slope' = {slope}; it must be > 0")
+        self.lam = np.array(x0, dtype=float, copy=True)
+        if self.lam.ndim != 2 or self.lam.shape[1] != 7:
+            raise ValueError(f"parameter 'x0' has shape {self.lam.shape}; it must be (n, 7)")
+        self.P = np.broadcast_to(np.asarray(P0, dtype=float), (self.lam.shape[0], 7, 7)).copy()
+        self.q = (float(q_acc), float(q_r), float(q_omega))
+        self.meas_var, self.slope = float(meas_var), float(slope)
+
+    @property
+    def state(self) -> np.ndarray:
+        """The five-state part ``(x_r, y_r, r, theta, omega)``, shape (n, 5) (a view)."""
+        return self.lam[:, :5]
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """``(v_x, v_y)`` (px/s), shape (n, 2)."""
+        return self.lam[:, 5:]
+
+    def gate_center(self) -> np.ndarray:
+        """Predicted marker position, shape (n, 2)."""
+        x = self.lam
+        return np.stack([x[:, 0] + x[:, 2] * np.cos(x[:, 3]), x[:, 1] + x[:, 2] * np.sin(x[:, 3])], axis=1)
+
+    def update(self, dx, dy, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """Update with frame k's discriminator outputs, then predict to k+1; returns ``(e_r, e_th)``."""
+        x = self.lam
+        polar = polar_errors(dx, dy, x[:, 3])
+        H = marker_jacobian(x)
+        z = np.stack([dx, dy], axis=1) / self.slope
+        info = np.einsum("nki,nkj->nij", H, H) / self.meas_var
+        P_new = np.linalg.inv(np.linalg.inv(self.P) + info)  # corrected (17)
+        x += np.einsum("nij,nkj,nk->ni", P_new, H, z) / self.meas_var  # (16)
+        F, Q = velocity_model(dt, *self.q)
+        x[:] = x @ F.T
+        self.P = F @ P_new @ F.T + Q
         return polar
 
 

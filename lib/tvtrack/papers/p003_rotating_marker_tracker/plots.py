@@ -148,7 +148,7 @@ def threshold_map_figure(
     ex: Exploration, entries=("motion", "motion_scale", "interferer_radius", "interferer_size", "placement")
 ):
     """The rotating marker's thresholds (one and five interferers) at the default and under each value of the
-    motion and geometry entries (one at a time, first replicate's draws)."""
+    named entries (default: motion and geometry; one at a time, first replicate's draws)."""
     rows = [("default", next(r for r in ex.runs if r.stage == "replicate"))]
     rows += [
         (", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r)
@@ -177,7 +177,7 @@ def threshold_map_figure(
     ax.set_xlabel("threshold SIR (geometric mean of the runs' breaking SIRs; intervals clipped to the axis)")
     ax.legend(fontsize=8, loc="lower right")
     return fig, (
-        "The rotating marker's loss threshold over motion and geometry (one entry changed at a time, same "
+        "The rotating marker's loss threshold over the register entries shown (one changed at a time, same "
         "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid, undecided); dotted: the "
         "paper's 2 (one interferer) and 3 (five)."
     )

@@ -58,6 +58,9 @@ __all__ = [
     "interference_runs",
     "CommonNormal",
     "PLACEMENTS",
+    "EXPOSURES",
+    "COMPENSATIONS",
+    "median_residual",
 ]
 
 SPOTS = ("disc", "square")
@@ -243,6 +246,14 @@ class RotatingMarkerScene:
         another centre), rendered into every frame with the marker's spot.
     decoy_brightness : float or ndarray, shape (n,)
         Decoy brightness per fully covered pixel (one value per trial allowed).
+    exposure_steps : int
+        1: the sensor samples the scene at the frame time (instant exposure). ``m > 1``: it integrates over the
+        frame interval centred on the frame time, rendered as the mean of ``m`` sub-frame renders at
+        ``tau_j = ((j + 1/2)/m - 1/2) dt``: the object moves by its velocity (central differences of the truth),
+        the marker turns by ``omega tau_j`` about it, the decoy about its own centre (``decoy_phase``). The spot
+        energy per frame is the same either way; only its spread changes. :meth:`frame` (recordings) is instant.
+    decoy_phase : ndarray, shape (n,), optional
+        Phase offset of each decoy from the marker (needed to smear a decoy).
     """
 
     MARGIN = 40  # px of zero padding around the image so that gates may leave it
@@ -259,8 +270,12 @@ class RotatingMarkerScene:
         interferers=None,
         decoys=None,
         decoy_brightness=0.0,
+        exposure_steps: int = 1,
+        decoy_phase=None,
     ):
         _check_spot(spot)
+        if int(exposure_steps) < 1:
+            raise ValueError(f"parameter 'exposure_steps' = {exposure_steps}; it must be >= 1")
         if noise_std < 0:
             raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
         self.truth = truth
@@ -279,6 +294,30 @@ class RotatingMarkerScene:
         if residual is not None:
             self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+        self.exposure_steps = int(exposure_steps)
+        if self.exposure_steps > 1:
+            t = truth.t
+            self._dt = float(t[1] - t[0]) if t.size > 1 else 1.0
+            self._velocity = np.gradient(truth.center, self._dt, axis=1) if t.size > 1 else np.zeros_like(truth.center)
+            if self.decoys is not None and decoy_phase is None:
+                raise ValueError("an integrated exposure with a decoy needs 'decoy_phase'")
+            self.decoy_phase = None if decoy_phase is None else np.asarray(decoy_phase, float).reshape(self.n)
+
+    def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+        """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
+        tr, m = self.truth, self.exposure_steps
+        tau = ((np.arange(m) + 0.5) / m - 0.5) * self._dt
+        shift = tau[:, None, None] * self._velocity[None, :, k]  # object motion within the frame
+        ang = tr.theta[None, :, k] + tr.omega[None, :, k] * tau[:, None]
+        r = tr.r[None, :, k]
+        centre = np.stack([tr.xr[:, k], tr.yr[:, k]], axis=-1)[None]
+        marker = centre + shift + r[..., None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+        if self.decoys is None:
+            return marker, None
+        a0 = tr.theta[:, k] + self.decoy_phase
+        own = self.decoys[:, k] - r[0][:, None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
+        a = ang + self.decoy_phase[None]
+        return marker, own[None] + shift + r[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
     @staticmethod
     def static_residual(
@@ -360,9 +399,16 @@ class RotatingMarkerScene:
             ],
             axis=1,
         )
-        crops += self._spot(marker, size, origin, self.brightness)
-        if self.decoys is not None:
-            crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        if self.exposure_steps == 1:
+            crops += self._spot(marker, size, origin, self.brightness)
+            if self.decoys is not None:
+                crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        else:
+            sub_m, sub_d = self._sub_positions(k)
+            for j in range(self.exposure_steps):
+                crops += self._spot(sub_m[j], size, origin, self.brightness / self.exposure_steps)
+                if sub_d is not None:
+                    crops += self._spot(sub_d[j], size, origin, self.decoy_brightness / self.exposure_steps)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
@@ -481,6 +527,62 @@ class BlockNormal:
         return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
 
 
+def median_residual(
+    rng: np.random.Generator,
+    truth: MarkerTruth,
+    n_frames: int,
+    image_shape,
+    spot: str,
+    diameter: float,
+    brightness: float,
+    noise_std: float,
+) -> np.ndarray:
+    """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
+
+    The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
+    ``f + interferers + s_t + n_t`` (card 8.5: a median over >= 2 revolutions). Everything static -- background and
+    stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the marker's
+    sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the frames
+    reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for more
+    than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
+    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``.
+    Instant exposure, and no decoy, in the median frames.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    truth : MarkerTruth
+        ``n`` trials; frames ``0 .. n_frames - 1`` enter the median.
+    n_frames : int
+        Frames in the median (``N``).
+    image_shape : (int, int)
+    spot, diameter, brightness, noise_std
+        The marker spot and the sensor noise per pixel.
+
+    Returns
+    -------
+    ndarray, shape (n, rows, cols), float32
+    """
+    N = int(min(max(n_frames, 1), truth.n_frames))
+    n = truth.xr.shape[0]
+    rows, cols = image_shape
+    out = (-noise_std * np.sqrt(np.pi / (2 * N)) * rng.standard_normal((n, rows, cols))).astype(np.float32)
+    m = truth.marker[:, :N]  # (n, N, 2)
+    lo = np.floor(m.min(axis=1) - diameter / 2 - 2).astype(np.int64)
+    size = int(np.max(np.ceil(m.max(axis=1) + diameter / 2 + 2).astype(np.int64) - lo)) + 1
+    frames = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None])  # (N, n, s, s)
+    if noise_std > 0:
+        frames = frames + noise_std * rng.standard_normal(frames.shape)
+    box = -np.median(frames, axis=0)
+    ar = np.arange(size)
+    ys, xs = lo[:, 1, None] + ar, lo[:, 0, None] + ar
+    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+    trial = np.arange(n)[:, None, None]
+    yi, xi = np.clip(ys, 0, rows - 1)[:, :, None], np.clip(xs, 0, cols - 1)[:, None, :]
+    out[trial, yi, xi] = np.where(ok, box, out[trial, yi, xi])
+    return out
+
+
 def _tile(a, n: int):
     """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
     a = np.asarray(a)
@@ -525,6 +627,10 @@ def build_scene(
     decoy_brightness=0.0,
     n_common: int | None = None,
     blocks=None,
+    exposure_steps: int = 1,
+    decoy_phase=None,
+    compensation: str = "kappa",
+    median_frames: int = 0,
 ):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
@@ -538,6 +644,11 @@ def build_scene(
     overrides ``kappa``, ``background_std``, ``corr_length`` or ``n_interferers`` block by block
     (several scene settings in one batch; a block with fewer interferers is padded with dark ones
     far outside the image).
+
+    ``compensation``: ``"kappa"`` leaves ``kappa`` times the static scene (:meth:`RotatingMarkerScene.
+    static_residual`); ``"median"`` subtracts the temporal median of the first ``median_frames`` frames
+    (:func:`median_residual`: background and interferers cancel) in every block with ``kappa < 1`` (a block with
+    ``kappa = 1`` stays uncompensated).
 
     Returns
     -------
@@ -553,7 +664,9 @@ def build_scene(
             "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
             "corr_length, n_interferers"
         )
-    q, residual = [], []
+    if compensation not in COMPENSATIONS:
+        raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")
+    q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
@@ -565,38 +678,54 @@ def build_scene(
                 n_block,
             )
         )
-        residual.append(
-            _tile(
-                RotatingMarkerScene.static_residual(
-                    g,
-                    n_common,
-                    image_shape,
-                    kappa=b.get("kappa", kappa),
-                    background_std=b.get("background_std", background_std),
-                    corr_length=b.get("corr_length", corr_length),
-                    interferers=np.zeros((n_common, 0, 2)),
-                    interferer_brightness=np.zeros(n_common),
-                    spot=spot,
-                    diameter=diameter,
-                ),
-                n_block,
+        med = compensation == "median" and b.get("kappa", kappa) < 1
+        by_median.append(np.full(n_block, med))
+        if med:
+            part = MarkerTruth(
+                *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
             )
-        )
+            res = median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std)
+        else:
+            res = RotatingMarkerScene.static_residual(
+                g,
+                n_common,
+                image_shape,
+                kappa=b.get("kappa", kappa),
+                background_std=b.get("background_std", background_std),
+                corr_length=b.get("corr_length", corr_length),
+                interferers=np.zeros((n_common, 0, 2)),
+                interferer_brightness=np.zeros(n_common),
+                spot=spot,
+                diameter=diameter,
+            )
+        residual.append(_tile(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
+    cancelled = np.concatenate(by_median)[:, None]  # a temporal median removes stationary interferers exactly
     add_spots(
         residual,
         q,
-        np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0),
+        np.where((q[..., 0] > -1e3) & ~cancelled, (brightness / sir)[:, None], 0.0),
         spot,
         diameter if interferer_diameter is None else interferer_diameter,
     )
     return RotatingMarkerScene(
-        truth, image_shape, spot, diameter, brightness, residual, noise_std, q, decoys, decoy_brightness
+        truth,
+        image_shape,
+        spot,
+        diameter,
+        brightness,
+        residual,
+        noise_std,
+        q,
+        decoys,
+        decoy_brightness,
+        exposure_steps,
+        decoy_phase,
     )
 
 
@@ -611,6 +740,9 @@ class Scenario:
     adds an imitating interferer rotating like the marker about a centre displaced by that many px,
     at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness is
     ``d / SIR`` with the SIR passed to :func:`run_scenario`, like a stationary interferer's.
+    ``exposure`` ``"instant"`` or ``"integrated"`` over the frame (:attr:`exposure_steps` sub-frame renders);
+    ``compensation`` ``"kappa"`` (``kappa`` times the static scene left) or ``"median"`` (a per-pixel temporal median
+    of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`).
     """
 
     fps: float = 500.0
@@ -651,6 +783,9 @@ class Scenario:
     realise_phase_bandwidth: bool = False
     form: str = "quadrant"
     edge_norm: str = "slope"
+    exposure: str = "instant"
+    compensation: str = "kappa"
+    median_revolutions: float = 2.0
     init_offset: tuple = (3.0, -3.0)
     init_radius_factor: float = 0.85
     init_phase: float = 0.2
@@ -665,6 +800,10 @@ class Scenario:
             raise ValueError(f"parameter 'motion' = {self.motion!r}; it must be one of {MOTIONS}")
         if self.edge_norm not in ("slope", "slew"):
             raise ValueError(f"parameter 'edge_norm' = {self.edge_norm!r}; it must be 'slope' or 'slew'")
+        if self.compensation not in COMPENSATIONS:
+            raise ValueError(f"parameter 'compensation' = {self.compensation!r}; it must be one of {COMPENSATIONS}")
+        if self.exposure not in EXPOSURES:
+            raise ValueError(f"parameter 'exposure' = {self.exposure!r}; it must be one of {EXPOSURES}")
 
     @property
     def n_frames(self) -> int:
@@ -673,6 +812,15 @@ class Scenario:
     @property
     def omega0(self) -> float:
         return 2 * np.pi * self.rotation_hz
+
+    @property
+    def exposure_steps(self) -> int:
+        """Sub-frame renders of an integrated exposure: the marker's largest arc per frame in half-pixel steps
+        (``ceil(2 omega_max r_max / fps) + 1``); 1 for an instant exposure."""
+        if self.exposure == "instant":
+            return 1
+        arc = self.omega0 * (1 + self.omega_mod) * self.radius * (1 + self.radius_mod) / self.fps
+        return int(np.ceil(2 * arc)) + 1
 
     def slope(self) -> float:
         """Discriminator slope ``S`` per px: ``2 d D`` for the quadrant form; for the edge form
@@ -734,6 +882,8 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
 
 
 PLACEMENTS = ("object", "image")
+EXPOSURES = ("instant", "integrated")
+COMPENSATIONS = ("kappa", "median")
 
 
 def run_scenario(
@@ -832,6 +982,10 @@ def run_scenario(
         decoy_brightness=sc.brightness / sir,
         n_common=n_common,
         blocks=blocks,
+        exposure_steps=sc.exposure_steps,
+        decoy_phase=None if decoys is None else dphi[:, 0],
+        compensation=sc.compensation,
+        median_frames=int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz)),
     )
     x0 = np.stack(
         [

@@ -55,6 +55,8 @@ ROTATION_LAWS = {
     "modulated fast": (0.15, 1.0),
     "modulated strong": (0.2, 1.0),
 }
+# background compensation: the paper's kappa model or a temporal median of the first two revolutions (card 8.5)
+COMPENSATION_MODELS = {"kappa": "kappa", "temporal median": "median"}
 # C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
 SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
 # "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
@@ -94,7 +96,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
+    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
     """
     c = config
     base = Scenario()
@@ -118,6 +120,8 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
         noise_std=float(c.get("noise", base.noise_std)),
         fps=float(c.get("fps", base.fps)),
         spot=c.get("spot", base.spot),
+        exposure=c.get("exposure", base.exposure),
+        compensation=COMPENSATION_MODELS[c.get("compensation", "kappa")],
         duration_s=sizes.horizon_s * (2.0 if c.get("horizon", "T") == "2T" else 1.0),
         interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
         interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
@@ -219,12 +223,30 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
     """Ratio of the geometric-mean thresholds of two curves run on the same draws (paired per run).
 
     ``exp(mean(tau_a - tau_b))`` with the paired t interval widened by half the largest grid step;
-    ``extrapolated`` when a run of either curve broke outside the grid.
+    ``extrapolated`` when a run of either curve broke outside the grid -- except where the censoring certifies a
+    bound: when the runs of ``a`` broke outside the grid only below it and those of ``b`` only above it, each
+    censored run's log threshold is at most (``a``) or at least (``b``) the grid's edge, so the ratio is bounded
+    above: ``[0, exp(upper t bound of mean(ub_a - lb_b) + h)]`` (value: the bound's point), like the zero-events
+    bound of a share.
     """
-    ta, ca = log_thresholds(lost_a, sirs)
-    tb, cb = log_thresholds(lost_b, sirs)
-    m = mean_ci(ta - tb)
+    La, Lb = np.asarray(lost_a, bool), np.asarray(lost_b, bool)
+    ta, ca = log_thresholds(La, sirs)
+    tb, cb = log_thresholds(Lb, sirs)
     h = _half_step(sirs)
+    steps = np.diff(np.log(np.asarray(sirs, float)))
+    if (ca.any() or cb.any()) and not La[-1].any() and Lb[0].all():
+        ub = np.where(~La[0], ta + steps[0] / 2, ta)  # a: kept lock at the bottom, threshold below it
+        lb = np.where(Lb[-1], tb + steps[-1] / 2, tb)  # b: lost at the top, threshold above it
+        m = mean_ci(ub - lb)
+        return _estimate(
+            np.exp(m.value),
+            0.0,
+            np.exp(m.ci_high + h),
+            ta.size,
+            f"upper bound: {int((~La[0]).sum())} run(s) of the first curve kept lock at the grid's bottom, "
+            f"{int(Lb[-1].sum())} of the second lost it at its top; paired t bound + half a grid step",
+        )
+    m = mean_ci(ta - tb)
     return _estimate(
         np.exp(m.value),
         np.exp(m.ci_low - h),
@@ -233,6 +255,49 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
         "paired ratio of geometric-mean thresholds, t interval + half a grid step",
         extrapolated=bool(ca.any() or cb.any()),
     )
+
+
+def extend_grid(
+    curves: dict, sirs, run, step: float = 1.5, max_points: int = 2, trigger=None
+) -> tuple[np.ndarray, dict]:
+    """Adaptive grid points for thresholds that would break outside the grid (C003-12 was undecided for them).
+
+    While some run of some curve kept lock at the grid's bottom (or lost it at its top), the curves with such runs
+    are run at one more SIR, the bottom over ``step`` (the top times ``step``), up to ``max_points`` on each side.
+    A curve not run there is filled by monotonicity, exactly where it is known: every one of its runs lost lock at
+    the old bottom, so it loses below it (kept lock at the old top, so it keeps it above). With the same draws at
+    every SIR (common random numbers) the extended curves stay paired run by run. With ``trigger`` (keys), a side is
+    extended only while one of those curves needs it (the others' censoring may certify a bound instead, see
+    :func:`threshold_ratio`).
+
+    Parameters
+    ----------
+    curves : dict of key -> ndarray of bool, shape (m, n)
+        Loss indicators on ``sirs``.
+    sirs : array_like, shape (m,)
+    run : callable
+        ``run(keys, sir) -> {key: ndarray of bool, shape (n,)}``: the named curves' runs at one more SIR.
+
+    Returns
+    -------
+    sirs : ndarray, shape (m',)
+    curves : dict of key -> ndarray of bool, shape (m', n)
+    """
+    s = list(np.asarray(sirs, float))
+    out = {k: np.asarray(v, bool) for k, v in curves.items()}
+    for side in ("low", "high"):
+        for _ in range(max_points):
+            edge = 0 if side == "low" else -1
+            need = [k for k, v in out.items() if (~v[edge] if side == "low" else v[edge]).any()]
+            if not need or (trigger is not None and not set(need) & set(trigger)):
+                break
+            sir = s[0] / step if side == "low" else s[-1] * step
+            new = run(need, sir)
+            for k, v in out.items():
+                row = np.asarray(new[k], bool) if k in new else np.full(v.shape[1], side == "low")
+                out[k] = np.vstack([row[None], v]) if side == "low" else np.vstack([v, row[None]])
+            s = [sir] + s if side == "low" else s + [sir]
+    return np.asarray(s), out
 
 
 def _rng(stream: int, seed: int) -> np.random.Generator:
@@ -390,6 +455,9 @@ def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=No
 def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     """One replicate of the loss-of-lock claims at ``config`` (all curves on :data:`SIR_GRID`, same draws).
 
+    The thresholds of C003-7's ``rise``, C003-12 and ``_map`` read the rotating, static and decoy curves on the grid
+    extended where a run broke outside it (:func:`extend_grid`, up to two points on each side; ``"_grid"``).
+
     Returns
     -------
     dict
@@ -429,6 +497,21 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     )[2]
     ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
     r1, r5 = curves["rotating", 1], curves["rotating", 5]
+
+    def more(keys, sir):  # the C003-7/-12 curves at one more SIR, only the families asked for (same draws)
+        got = {}
+        for fam, sc_f in (("rotating", base), ("static", st)):
+            if any(k[0] == fam for k in keys):
+                lost, _ = _curve(sc_f, [sir], n, seed, criterion(config, sc_f), (1, 5))
+                got[fam, 1], got[fam, 5] = lost[0, 0], lost[1, 0]
+        if "decoy" in keys:
+            got["decoy"] = _curve(replace(base, decoy_offset=2 * D), [sir], n, seed, crit)[0][0]
+        return got
+
+    pair_keys = [("rotating", 1), ("rotating", 5), ("static", 1), ("static", 5), "decoy"]
+    # one adaptive point a side, and only when the rotating marker's own runs break outside the grid: the static
+    # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio)
+    xsirs, xc = extend_grid({k: curves[k] for k in pair_keys}, sirs, more, max_points=1, trigger=pair_keys[:2])
     out = {
         "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
         "C003-6": {
@@ -439,11 +522,15 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-7": {
             "loss_free": loss_share(r5[at[3.0]]),
             "not_lower": loss_share(r5[at[2.0]]),
-            "rise": threshold_ratio(r5, r1, sirs),
+            "rise": threshold_ratio(xc["rotating", 5], xc["rotating", 1], xsirs),
         },
         "C003-10": {
             "gate": [threshold(curves["gate", 1.5], sirs), threshold(r5, sirs), threshold(curves["gate", 5.0], sirs)],
-            "compensation": _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
+            "compensation": compensation_reading(
+                _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
+                base.kappa,
+                config.get("compensation_reading", "one-sided"),
+            ),
         },
         "C003-11": {
             "dynamics": loss_share(curves["gate", 1.5][-1]),
@@ -451,9 +538,9 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
             "bandwidth": ratio_ci(ms[1], ms[0]),
         },
         "C003-12": {
-            "one": threshold_ratio(curves["static", 1], r1, sirs),
-            "five": threshold_ratio(curves["static", 5], r5, sirs),
-            "imitator": threshold_ratio(curves["decoy"], r1, sirs),
+            "one": threshold_ratio(xc["static", 1], xc["rotating", 1], xsirs),
+            "five": threshold_ratio(xc["static", 5], xc["rotating", 5], xsirs),
+            "imitator": threshold_ratio(xc["decoy"], xc["rotating", 1], xsirs),
         },
     }
     out["_mechanisms"] = {
@@ -461,7 +548,10 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         for m, met in (("rotating", met_r), ("static", met_s))
         for j, k in enumerate((1, 5))
     }
-    out["_map"] = {f"{m} {k}": threshold(curves[m, k], sirs) for m in ("rotating", "static") for k in (1, 5)}
+    out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    out["_grid"] = [
+        float(x) for x in xsirs
+    ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
     out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
     return out
 
@@ -475,6 +565,49 @@ def _mechanisms(lost, met) -> dict:
         **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
         "none (drift)": int((~m.any(axis=1)).sum()),
     }
+
+
+COMPENSATION_READINGS = ("one-sided", "two-sided")
+
+
+def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimate:
+    """C003-10's compensation ratio as its reading judges it (the rule: within a factor 2 of ``kappa``).
+
+    The paper (l. 198): "Если использование процедуры компенсации фоновых излучений эквивалентно уменьшению яркости
+    фона на порядок, то пороговое отношение сигнал/помеха, имевшее место до компенсации фона и гарантирующее отсутствие
+    срывов слежения, ... уменьшается до 0,2-0,3" ("if compensation is equivalent to reducing the background by an
+    order of magnitude, the no-loss threshold SIR before compensation ... decreases to 0.2-0.3"), and l. 208 names
+    compensation one of the main factors of the robustness. The order of magnitude is a hypothesis, not a measured
+    ratio: compensation lowers the SIR_0 threshold *at least* about 1/kappa-fold ("one-sided", the paper's reading),
+    so a ratio below ``kappa`` (the uncompensated tracker fails even harder) is no contradiction: under "one-sided" a
+    ratio ``q < kappa`` is mapped to ``(2 kappa + q) / 3``, onto ``[2 kappa / 3, kappa)`` inside the rule's band (a
+    monotone map, so an interval stays a non-degenerate interval; ratios >= kappa are unchanged and still fail above
+    ``2 kappa``). "two-sided" (the card's "about 1/kappa-fold") keeps the ratio as measured.
+
+    Parameters
+    ----------
+    ratio : Estimate
+        Compensated over uncompensated SIR_0 threshold (:func:`_compensation_factor`).
+    kappa : float
+        Compensation residual.
+    reading : {"one-sided", "two-sided"}
+    """
+    if reading not in COMPENSATION_READINGS:
+        raise ValueError(f"parameter 'reading' = {reading!r}; it must be one of {COMPENSATION_READINGS}")
+    if reading == "two-sided":
+        return ratio
+    k = float(kappa)
+
+    def fold(q):
+        return q if not q < k else (2 * k + q) / 3
+
+    return replace(
+        ratio,
+        value=fold(ratio.value),
+        ci_low=fold(ratio.ci_low),
+        ci_high=fold(ratio.ci_high),
+        method=ratio.method + "; one-sided reading: a ratio q < kappa counts as (2 kappa + q) / 3",
+    )
 
 
 def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
