@@ -31,10 +31,12 @@ ROWS = (
         "roll-off",
         "regime",
         "f^-4",
-        ("f^-4", "f^-2"),
-        "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model) or a "
-        "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum, which falls "
-        "between f^-8/3 and f^-17/3 (Tyler's G-tilt)); the paper shows no spectrum",
+        ("f^-4", "f^-2", "G-tilt"),
+        "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model), a "
+        "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), or the "
+        "whole spectrum replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 "
+        "below the corner v/D (at the fastest corner x bandwidth), f^-11/3 above it, the exposure entry "
+        "multiplying it by its sinc^2 exactly; the paper shows no spectrum",
         "adversarial",
     ),
     (

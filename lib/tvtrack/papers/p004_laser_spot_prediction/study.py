@@ -26,6 +26,7 @@ from ...montecarlo import Estimate, variance_ci
 from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
 from .beam_wander import (
+    GTILT,
     BeamWanderConfig,
     SpotCamera,
     generate_traces,
@@ -224,7 +225,9 @@ def exposure_weights(exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> np.ndarray:
 
 def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> TraceSet:
     """Traces at ``scene`` as the camera sees them (:func:`exposure_weights`): "instant" is the
-    generator itself; otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
+    generator itself; under the G-tilt spectrum the exposure is exact (the spectrum times the exposure's
+    power gain: a boxcar of one frame interval, and for the interlaced reading two such fields half a
+    frame apart); otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
     centre and intensity are the weighted means of the sub-samples up to the frame time (the start
     padded with the first sub-sample).
 
@@ -235,6 +238,13 @@ def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = E
         ``wander_rms_px`` are the path draws (before averaging).
     """
     w = exposure_weights(exposure, k)
+    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (beam_wander.exposure_gain)
+        dt = 1.0 / scene.frame_rate_hz
+        tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
+        tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
+        return TraceSet(
+            tr.centres_px, tr.intensity, tr.frame_rate_hz, tr.image_size_px, dict(tr.metadata, exposure=exposure)
+        )
     if exposure == "instant":
         return generate_traces(scene, seed)
     fine = replace(
