@@ -96,7 +96,9 @@ ROWS = (
         "regime",
         0.3,
         (0.3, 0.8),
-        "standard deviation of ln(total intensity) per frame; the card's 0.3, 0.8 for strong turbulence",
+        "sigma of ln(total irradiance) per frame (log-normal, mean 1; scintillation index exp(sigma^2) - 1 = "
+        "0.09 and 0.90): whole-spot fading, i.i.d. per frame, the spot's shape kept (scintillation averaged over "
+        "the receiving aperture, no speckle inside the spot); the card's 0.3, 0.8 for strong turbulence",
         "author",
     ),
     (
@@ -245,10 +247,27 @@ def build():
     return Register([Entry(name=n, kind=k, default=d, values=v, why=w, origin=o) for n, k, d, v, w, o in ROWS])
 
 
-def explored(names=()):
+def explored(names=(), defaults=None):
     """The register and the claims' dependencies restricted to the entries ``names`` (all if empty):
-    a smaller exploration (the smoke profile); the other entries stay at their defaults."""
+    a smaller exploration (the smoke profile); the other entries stay at their defaults.
+
+    ``defaults`` ({name: value}) moves an entry's default (the value joins its values), e.g. a sweep over
+    the scintillation; an entry so moved must be explored (else the measurement would use the register's
+    default)."""
+    from dataclasses import replace
+
     reg = build()
+    moved = {n: v for n, v in (defaults or {}).items() if v != DEFAULT[n]}
+    if names and set(moved) - set(names):
+        raise ValueError(f"entries {sorted(set(moved) - set(names))} have a moved default but are not explored")
+    if moved:
+        entries = [
+            replace(e, default=moved[e.name], values=tuple(sorted({*e.values, moved[e.name]})))
+            if e.name in moved
+            else e
+            for e in reg
+        ]
+        reg = type(reg)(entries)
     if not names:
         return reg, {c: list(d) for c, d in DEPENDS.items()}
     return reg.subset(list(names)), {c: [e for e in d if e in names] for c, d in DEPENDS.items()}
