@@ -113,6 +113,12 @@ class StudySize:
         The "fixed" tuning reading.
     mlp_hidden_units, rbf_centres, train_samples : int
         Network sizes and training pairs per fold.
+    lag_grid : tuple of int
+        Candidate lag counts of the networks when the register's "network lags" is "cross-validated"
+        (:func:`.prediction_study.tune_learned_lags`).
+    lag_tuning_samples : int
+        Training pairs of each tuning model (at most ``train_samples``): the tuning fits ``len(lag_grid)``
+        models per fold, so they are trained on fewer pairs than the final ones.
     n_mc_variance : int
         Monte Carlo series of the C004-5 variance check.
     timing_frames : int
@@ -132,6 +138,8 @@ class StudySize:
     train_samples: int = 4000
     n_mc_variance: int = 20000
     timing_frames: int = 200
+    lag_grid: tuple = (1, 2, 4, 8, 16)
+    lag_tuning_samples: int = 500
 
 
 #: The shipped data set's generator configuration and the card's camera (21 px centroid window).
@@ -330,7 +338,9 @@ def _setup(config: dict, size: StudySize) -> ComparisonSetup:
         window_grid=tuple(size.window_grid),
         fixed_floor=size.fixed_floor,
         fixed_window=size.fixed_window,
-        learned_lags=int(config["network lags"]),
+        learned_lags=None if config["network lags"] == "cross-validated" else int(config["network lags"]),
+        lag_grid=tuple(size.lag_grid),
+        lag_tuning_samples=min(size.lag_tuning_samples, size.train_samples),
         learned_kw=dict(
             hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres, max_samples=size.train_samples
         ),
@@ -596,6 +606,9 @@ def grid_edge_report(run: StudyRun) -> dict:
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
+    for name in NETWORKS:
+        if name in ch:  # lag counts chosen by cross-validation (1 lag, the lowest, is a true limit)
+            out[f"{name} lags"] = float(np.mean(grid_edges(ch[name], s.lag_grid) == 1))
     sg = np.asarray(ch[SINGER])
     out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
     return out
