@@ -23,6 +23,7 @@ RULES = {
     "n_folds": Integer(2, 5),
     "floor_grid": IntegerList(3, 1000),
     "window_grid": IntegerList(2, 30),
+    "lag_grid": IntegerList(1, 30),
     "fixed_floor": Integer(3, 1000),
     "fixed_window": Integer(4, 30),
     "horizons": IntegerList(1, 10),

@@ -125,8 +125,8 @@ ROWS = (
         "cross-validated",
         ("cross-validated", 10),
         "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9]): "
-        "chosen per fold from 1, 2, 4, 8, 16 on the training paths only (each network at its own optimum, as "
-        "the filter's floor), or fixed at 10 (the earlier fixed-lag reading)",
+        "chosen per fold from the notebook's lag_grid (1, 2, 4, 8, 16) on the training paths only (each network "
+        "at its own optimum, as the filter's floor), or fixed at 10 (the earlier fixed-lag reading)",
         "author",
     ),
     (

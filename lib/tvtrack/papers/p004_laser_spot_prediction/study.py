@@ -22,7 +22,7 @@ import numpy as np
 
 from ...filters.polynomial import growing_memory_filter, growing_memory_gains, predict_ahead
 from ...measure import centroid
-from ...montecarlo import Estimate, variance_ci
+from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci, variance_ci
 from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
 from .beam_wander import (
@@ -34,7 +34,6 @@ from .beam_wander import (
     optimal_wander_forecast,
     track_spot,
 )
-from .intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
 from .prediction_study import (
     CLASSICAL,
     FADING,
@@ -92,6 +91,24 @@ _SCENE_KEYS = WORLD  # the entries that change the rendered scene
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
 _CHECK_N = (3, 5, 10, 20, 50, 100)
+
+
+def root_mean_ci(mean_squares) -> Estimate:
+    """RMS of per-path mean squares ``m`` (px^2), px: :func:`tvtrack.montecarlo.rms_ci` with each path one
+    trial (the square root of the bootstrap-t interval of the mean square; its measured coverage in
+    ``method``)."""
+    return rms_ci(np.sqrt(np.asarray(mean_squares, dtype=float))[:, None])
+
+
+def ratio_of_means_ci(numerator, denominator) -> Estimate:
+    """Paired ratio of per-path means (the same paths under two methods):
+    :func:`tvtrack.montecarlo.ratio_ci` (expanded percentile bootstrap over paths; coverage in ``method``)."""
+    return ratio_ci(numerator, denominator, paired=True)
+
+
+def mean_ci_t(samples) -> Estimate:
+    """Mean of one value per path: :func:`tvtrack.montecarlo.mean_ci`, bootstrap-t (coverage in ``method``)."""
+    return mean_ci(samples, method="bootstrap-t")
 
 
 @dataclass(frozen=True)
@@ -396,7 +413,7 @@ def run_study(
 
 def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
     """RMS over the late frames without / with the floor: square root of the paired ratio of per-path
-    mean squares (bootstrap-t over paths)."""
+    mean squares (:func:`ratio_of_means_ci`)."""
     a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
     b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
     r = ratio_of_means_ci(a, b)
@@ -580,8 +597,8 @@ def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
 
 
 def scores(run: StudyRun) -> tuple[dict, dict]:
-    """Per method: RMS error against the measured centre (px, bootstrap-t over paths), and the paired
-    ratio of its per-path MSE to the paper filter's (bootstrap-t)."""
+    """Per method: RMS error against the measured centre (px, :func:`root_mean_ci`), and the paired
+    ratio of its per-path MSE to the paper filter's (:func:`ratio_of_means_ci`)."""
     m = int(run.config["horizon"])
     mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
     rms = {n: root_mean_ci(v) for n, v in mse.items()}
