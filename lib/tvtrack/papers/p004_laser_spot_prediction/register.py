@@ -35,8 +35,8 @@ ROWS = (
         "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model), a "
         "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), or the "
         "whole spectrum replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 "
-        "below the corner v/D (at the fastest corner x bandwidth), f^-11/3 above it, the exposure entry "
-        "multiplying it by its sinc^2 exactly; the paper shows no spectrum",
+        "below the corner v/D (at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry "
+        "multiplying it by its sinc^2 exactly; the spectral index does not enter it); the paper shows no spectrum",
         "adversarial",
     ),
     (
