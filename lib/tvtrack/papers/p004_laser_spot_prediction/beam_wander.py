@@ -13,9 +13,14 @@ Model (per image axis, x and y independent and alike)::
   ``f^-4`` above the highest one. The default ``alpha = 2/3`` is the low-frequency slope of the
   Kolmogorov tilt spectrum (Tyler 1994); above the tilt corner real spectra fall as
   ``f^(-11/3)``..``f^(-17/3)``, bracketing the model's ``f^-4``.
+- Or (``rolloff="G-tilt"``) Tyler's G-tilt spectrum of a centroid through Kolmogorov turbulence in frozen
+  flow (:func:`gtilt_shape`): ``f^(-2/3)`` below the corner ``~ v/D`` and ``f^(-11/3)`` above it, drawn by
+  spectral synthesis with the frame's exposure applied exactly (``sinc^2(pi f tau)``, :func:`exposure_gain`)
+  and folded at the frame rate.
 - ``v_d``: a slow linear drift (mount or alignment), uniform direction, speed uniform in
   ``[0, drift_max]``, centred on the middle of the trace.
-- Total intensity (scintillation): i.i.d. log-normal per frame, ``ln I ~ N(-s^2/2, s^2)`` (mean 1).
+- Total intensity (scintillation): i.i.d. log-normal per frame, ``ln I ~ N(-s^2/2, s^2)`` (mean 1,
+  scintillation index ``exp(s^2) - 1``): the whole spot fades, its shape kept (no speckle inside it).
 
 Each path draws its own total wander RMS per axis, log-uniform in ``[rms_min, rms_max]`` (the
 paper's 15 "laser paths" were different recordings), split over the components as above.
