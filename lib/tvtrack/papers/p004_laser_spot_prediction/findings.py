@@ -10,7 +10,7 @@ import numpy as np
 
 from ...montecarlo import Estimate
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER
-from .study import NETWORKS, OPTIMAL
+from .study import CENTROID, NETWORKS, OPTIMAL
 
 __all__ = [
     "compare_word",
@@ -25,6 +25,7 @@ __all__ = [
     "amplitude_sentence",
     "adversarial_summary",
     "edge_sentence",
+    "scintillation_table",
 ]
 
 
@@ -232,4 +233,40 @@ def edge_sentence(report: dict) -> str:
         "Tuned settings on an edge of their grid (share of paths or folds): "
         + ", ".join(f"{k} {v:.0%}" for k, v in on.items())
         + "."
+    )
+
+
+def scintillation_table(exploration, entry: str = "scintillation") -> str:
+    """What scintillation does: the centroid error and the one-step prediction error (C004-2) at each
+    explored sigma of ln(irradiance) (the exploration's one-at-a-time runs; the default pooled over its
+    replicates), as a Markdown table and a sentence whose words come from the intervals of the lowest
+    and highest level: "grows"/"shrinks" only where the two 95 % intervals are disjoint (a conservative
+    test: overlapping intervals may still differ)."""
+    from .study import single_values
+
+    centroid = single_values(exploration, CENTROID, entry)
+    prediction = single_values(exploration, "C004-2", entry)
+    levels = sorted(centroid)
+    rows = [
+        "| sigma of ln I | scintillation index | centroid error (px) | prediction error, C004-2 (px) |",
+        "|---|---|---|---|",
+    ]
+    rows += [
+        f"| {s:g} | {np.expm1(s * s):.2f} | {fmt(centroid[s], '.3f')} | {fmt(prediction[s], '.3f')} |" for s in levels
+    ]
+    if len(levels) < 2:
+        return "\n".join(rows)
+    lo, hi = levels[0], levels[-1]
+
+    def word(a: Estimate, b: Estimate) -> str:
+        if a.ci_high < b.ci_low:
+            return "grows"
+        if a.ci_low > b.ci_high:
+            return "shrinks"
+        return "does not change measurably (overlapping intervals)"
+
+    c_ratio, p_ratio = centroid[hi].value / centroid[lo].value, prediction[hi].value / prediction[lo].value
+    return "\n".join(rows) + (
+        f"\n\nFrom sigma = {lo:g} to {hi:g} the centroid error {word(centroid[lo], centroid[hi])} (x{c_ratio:.2f}) "
+        f"and the prediction error {word(prediction[lo], prediction[hi])} (x{p_ratio:.2f})."
     )

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ...parameters import Integer, IntegerList, OneOfList, RealList
-from .register import NAMES
+from ...parameters import Integer, IntegerList, OneOfList, Real, RealList
+from .register import DEFAULT, NAMES
 
 __all__ = ["RULES", "check_consistency"]
 
@@ -16,12 +16,14 @@ RULES = {
     "joint_samples": Integer(0, 64),
     "explore_workers": Integer(1, 16),
     "explore_entries": OneOfList(*NAMES, min_len=0),
+    "scintillation_sigma_ln": Real(0.0, 1.5),
     "n_paths": Integer(6, 15),
     "n_frames": Integer(200, 1000),
     "eval_start_frame": Integer(40, 99),
     "n_folds": Integer(2, 5),
     "floor_grid": IntegerList(3, 1000),
     "window_grid": IntegerList(2, 30),
+    "lag_grid": IntegerList(1, 30),
     "fixed_floor": Integer(3, 1000),
     "fixed_window": Integer(4, 30),
     "horizons": IntegerList(1, 10),
@@ -42,4 +44,11 @@ def check_consistency(p: Mapping[str, Any]) -> None:
             f"parameters: max_replicates = {p['max_replicates']} must be >= n_trials = {p['n_trials']}, "
             f"and n_folds = {p['n_folds']} <= n_paths // 2 = {p['n_paths'] // 2} (every fold needs >= 2 "
             "test paths)"
+        )
+    if p.get("scintillation_sigma_ln", DEFAULT["scintillation"]) != DEFAULT["scintillation"] and (
+        p["explore_entries"] and "scintillation" not in p["explore_entries"]
+    ):
+        raise ValueError(
+            f"parameter 'scintillation_sigma_ln' = {p['scintillation_sigma_ln']} moves the scintillation entry's "
+            "default: 'scintillation' must then be in explore_entries (or explore_entries empty)"
         )

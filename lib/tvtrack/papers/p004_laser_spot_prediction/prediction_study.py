@@ -10,7 +10,8 @@ scored on:
   at the method's degree + 1 (the fewest samples it can fit: 2 for a line, 3 for a quadratic, 4 for
   the cubic spline; :func:`window_candidates`);
 - finite differences (2 and 3 points): nothing to tune;
-- MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold;
+- MLP and RBF network (``L`` lagged increments): trained on the training paths of each fold, ``L``
+  fixed or chosen per fold on the training paths only (:func:`tune_learned_lags`);
 - constant-acceleration Kalman filter: its two noise levels by maximum likelihood on the
   training paths of each fold (grids wide enough that the optimum lies inside; :func:`grid_edges`
   reports a fit on an edge);
@@ -46,6 +47,7 @@ __all__ = [
     "Comparison",
     "compare_methods",
     "per_trial_path_mse",
+    "tune_learned_lags",
     "fit_learned_folds",
     "apply_learned_folds",
     "radial_error_summary",
@@ -149,8 +151,10 @@ class ComparisonSetup:
     theta_grid: tuple = (0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
     fixed_floor: int = 10
     fixed_window: int = 10
-    learned_lags: int = 10
+    learned_lags: int | None = 10
     learned_kw: dict = field(default_factory=dict)
+    lag_grid: tuple = (1, 2, 4, 8, 16)
+    lag_tuning_samples: int = 500
     jerk_grid: tuple = tuple(np.logspace(-7, 1, 17))
     meas_var_grid: tuple = tuple(np.logspace(-4, 2, 7))  # px^2: up to 10 px RMS, past any jitter of the register
     singer_tau_grid: tuple = tuple(np.logspace(-2, 3, 11))
@@ -193,13 +197,61 @@ def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup):
     return fc, mse[pick, :, np.arange(P)].T, np.asarray(candidates)[pick], fcs, mse
 
 
-def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Generator) -> list:
-    """One learned predictor per fold, trained on the first trial of its training paths."""
+def tune_learned_lags(kind: str, z, reference, folds, s: ComparisonSetup, rng: np.random.Generator):
+    """The lag count of a learned predictor, chosen per fold by cross-validation on its training paths only.
+
+    The folds' test groups ``G_1..G_K`` (K >= 3) are the units: for every candidate ``L`` of
+    ``s.lag_grid`` and group ``g`` a model is trained on ``G_g`` alone (``s.lag_tuning_samples`` pairs at
+    most) and scored on every path outside ``G_g``. Fold ``i`` picks the ``L`` with the smallest mean
+    squared error over the pairs (``g``, path) with ``g != i`` and the path outside ``G_g`` and ``G_i``:
+    models and scores that never touch ``G_i``, the paths fold ``i`` is tested on. Each model sees a
+    ``K``-th of the paths (fewer than the final model's ``(K-1)/K``): if anything, a lean toward fewer lags.
+
+    Parameters
+    ----------
+    z : ndarray, shape (trials, paths, axes, T)
+        Complete measured series; only trial 0 is used.
+    reference : ndarray, broadcastable to ``z``
+        What the forecasts are scored against (measured centres).
+
+    Returns
+    -------
+    lags : ndarray of int, shape (K,)
+        The chosen lag count of each fold.
+    loss : ndarray, shape (K, candidates)
+        Each fold's tuning loss per candidate, px^2.
+    """
+    groups = [np.asarray(test) for _, test in folds]
+    K, P = len(groups), z.shape[1]
+    if K < 3:
+        raise ValueError(f"{K} folds: cross-validating the lag count on training paths only needs >= 3 folds")
+    grid = tuple(int(L) for L in s.lag_grid)
+    seeds = rng.integers(2**31, size=(len(grid), K))
+    kw = {**s.learned_kw, "max_samples": s.lag_tuning_samples}
+    per_path = np.full((len(grid), K, P), np.nan)  # MSE of the model (L, g) on each path outside G_g
+    ref = np.broadcast_to(reference, z.shape)
+    for c, L in enumerate(grid):
+        for g, grp in enumerate(groups):
+            model = pr.fit_learned_predictor(kind, z[0, grp], L, s.steps, seed=int(seeds[c, g]), **kw)
+            out = np.setdiff1d(np.arange(P), grp)
+            f = pr.learned_forecast(model, z[:1, out])
+            per_path[c, g, out] = per_trial_path_mse(f, ref[:1, out], s.steps, s.start)[0]
+    loss = np.empty((K, len(grid)))
+    for i in range(K):
+        use = np.ones((K, P), dtype=bool)
+        use[i] = False  # no model trained on the fold's test group
+        use[:, groups[i]] = False  # no score on it
+        loss[i] = [np.nanmean(per_path[c][use]) for c in range(len(grid))]
+    return np.asarray(grid)[np.argmin(loss, axis=1)], loss
+
+
+def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Generator, lags=None) -> list:
+    """One learned predictor per fold, trained on the first trial of its training paths, with ``lags[i]``
+    lagged inputs in fold ``i`` (default ``s.learned_lags`` in every fold)."""
+    lags = [s.learned_lags] * len(folds) if lags is None else [int(L) for L in lags]
     return [
-        pr.fit_learned_predictor(
-            kind, z[0, train], s.learned_lags, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw
-        )
-        for train, _ in folds
+        pr.fit_learned_predictor(kind, z[0, train], L, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw)
+        for (train, _), L in zip(folds, lags)
     ]
 
 
@@ -271,8 +323,12 @@ def compare_methods(
     models = {}
     if learned:
         for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):
+            lags = None
+            if learned_models is None and s.learned_lags is None:  # cross-validated on the training paths
+                lags, _ = tune_learned_lags(kind, z, reference, folds, s, rng)
+                chosen[name] = lags
             models[kind] = (
-                learned_models[kind] if learned_models is not None else fit_learned_folds(kind, z, folds, s, rng)
+                learned_models[kind] if learned_models is not None else fit_learned_folds(kind, z, folds, s, rng, lags)
             )
             fcs[name] = apply_learned_folds(models[kind], z, folds)
             mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)

@@ -190,21 +190,25 @@ def batch_least_squares_states(z, order: int = 2) -> np.ndarray:
     Parameters
     ----------
     z : ndarray, shape (T,)
-        One series, all finite.
+        One series; NaN marks a lost sample, left out of the fit (the others keep their true times).
 
     Returns
     -------
     ndarray, shape (T, order+1)
-        NaN for the first ``order`` samples (fewer samples than unknowns).
+        NaN until ``order + 1`` samples are present (fewer samples than unknowns).
     """
     z = np.asarray(z, dtype=float)
-    if z.ndim != 1 or not np.all(np.isfinite(z)):
-        raise ValueError(f"parameter 'z' has shape {z.shape}; it must be one complete series (T,)")
+    if z.ndim != 1 or np.any(np.isinf(z)):
+        raise ValueError(f"parameter 'z' has shape {z.shape}; it must be one series (T,), NaN for lost samples")
     out = np.full(z.shape + (order + 1,), np.nan)
+    present = np.isfinite(z)
     for n_ in range(order, z.size):
-        lags = np.arange(n_, -1, -1.0)
+        keep = present[: n_ + 1]
+        if keep.sum() < order + 1:
+            continue
+        lags = np.arange(n_, -1, -1.0)[keep]
         Hn = np.stack([(-lags) ** p / np.prod(np.arange(1, p + 1)) for p in range(order + 1)], axis=1)
-        out[n_] = np.linalg.lstsq(Hn, z[: n_ + 1], rcond=None)[0]
+        out[n_] = np.linalg.lstsq(Hn, z[: n_ + 1][keep], rcond=None)[0]
     return out
 
 

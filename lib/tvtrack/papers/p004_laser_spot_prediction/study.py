@@ -20,12 +20,19 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...filters.polynomial import growing_memory_filter, growing_memory_gains, predict_ahead
+from ...filters.polynomial import (
+    growing_memory_filter,
+    growing_memory_gains,
+    polynomial_observation_row,
+    predict_ahead,
+    taylor_transition,
+)
 from ...measure import centroid
-from ...montecarlo import Estimate, variance_ci
-from ...render import gaussian_spot, sensor_readout
+from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci, variance_ci
+from ...render import gate_origin, gaussian_spot, sensor_readout
 from . import predictors as pr
 from .beam_wander import (
+    GTILT,
     BeamWanderConfig,
     SpotCamera,
     generate_traces,
@@ -33,7 +40,6 @@ from .beam_wander import (
     optimal_wander_forecast,
     track_spot,
 )
-from .intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
 from .prediction_study import (
     CLASSICAL,
     FADING,
@@ -49,6 +55,7 @@ from .traces import TraceSet
 
 __all__ = [
     "ENTRIES",
+    "CENTROID",
     "NETWORKS",
     "OPTIMAL",
     "StudySize",
@@ -63,6 +70,7 @@ __all__ = [
     "exposed_traces",
     "vibration",
     "late_rms_ratio",
+    "streaming_frame_times",
     "recursion_vs_batch",
     "variance_ratios",
     "model_order_summary",
@@ -81,6 +89,8 @@ NETWORKS = ("MLP back-prop", "RBF network")
 LSQ_CUBIC = "least-squares cubic"
 #: The natural cubic spline, extended linearly beyond its last knot: a third reading of "spline extrapolation".
 NATURAL_SPLINE = "natural cubic spline"
+#: Key of the per-axis RMS centroid (measurement) error in :func:`claim_values`' output, px (not a claim).
+CENTROID = "centroid error"
 #: The optimal predictor of the generator's own model: a bound, not a method.
 OPTIMAL = "optimal (true model)"
 
@@ -88,6 +98,24 @@ _SCENE_KEYS = WORLD  # the entries that change the rendered scene
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
 _CHECK_N = (3, 5, 10, 20, 50, 100)
+
+
+def root_mean_ci(mean_squares) -> Estimate:
+    """RMS of per-path mean squares ``m`` (px^2), px: :func:`tvtrack.montecarlo.rms_ci` with each path one
+    trial (the square root of the bootstrap-t interval of the mean square; its measured coverage in
+    ``method``)."""
+    return rms_ci(np.sqrt(np.asarray(mean_squares, dtype=float))[:, None])
+
+
+def ratio_of_means_ci(numerator, denominator) -> Estimate:
+    """Paired ratio of per-path means (the same paths under two methods):
+    :func:`tvtrack.montecarlo.ratio_ci` (expanded percentile bootstrap over paths; coverage in ``method``)."""
+    return ratio_ci(numerator, denominator, paired=True)
+
+
+def mean_ci_t(samples) -> Estimate:
+    """Mean of one value per path: :func:`tvtrack.montecarlo.mean_ci`, bootstrap-t (coverage in ``method``)."""
+    return mean_ci(samples, method="bootstrap-t")
 
 
 @dataclass(frozen=True)
@@ -109,6 +137,12 @@ class StudySize:
         The "fixed" tuning reading.
     mlp_hidden_units, rbf_centres, train_samples : int
         Network sizes and training pairs per fold.
+    lag_grid : tuple of int
+        Candidate lag counts of the networks when the register's "network lags" is "cross-validated"
+        (:func:`.prediction_study.tune_learned_lags`).
+    lag_tuning_samples : int
+        Training pairs of each tuning model (at most ``train_samples``): the tuning fits ``len(lag_grid)``
+        models per fold, so they are trained on fewer pairs than the final ones.
     n_mc_variance : int
         Monte Carlo series of the C004-5 variance check.
     timing_frames : int
@@ -128,6 +162,8 @@ class StudySize:
     train_samples: int = 4000
     n_mc_variance: int = 20000
     timing_frames: int = 200
+    lag_grid: tuple = (1, 2, 4, 8, 16)
+    lag_tuning_samples: int = 500
 
 
 #: The shipped data set's generator configuration and the card's camera (21 px centroid window).
@@ -224,7 +260,9 @@ def exposure_weights(exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> np.ndarray:
 
 def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> TraceSet:
     """Traces at ``scene`` as the camera sees them (:func:`exposure_weights`): "instant" is the
-    generator itself; otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
+    generator itself; under the G-tilt spectrum the exposure is exact (the spectrum times the exposure's
+    power gain: a boxcar of one frame interval, and for the interlaced reading two such fields half a
+    frame apart); otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
     centre and intensity are the weighted means of the sub-samples up to the frame time (the start
     padded with the first sub-sample).
 
@@ -235,6 +273,13 @@ def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = E
         ``wander_rms_px`` are the path draws (before averaging).
     """
     w = exposure_weights(exposure, k)
+    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (beam_wander.exposure_gain)
+        dt = 1.0 / scene.frame_rate_hz
+        tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
+        tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
+        return TraceSet(
+            tr.centres_px, tr.intensity, tr.frame_rate_hz, tr.image_size_px, dict(tr.metadata, exposure=exposure)
+        )
     if exposure == "instant":
         return generate_traces(scene, seed)
     fine = replace(
@@ -317,7 +362,9 @@ def _setup(config: dict, size: StudySize) -> ComparisonSetup:
         window_grid=tuple(size.window_grid),
         fixed_floor=size.fixed_floor,
         fixed_window=size.fixed_window,
-        learned_lags=int(config["network lags"]),
+        learned_lags=None if config["network lags"] == "cross-validated" else int(config["network lags"]),
+        lag_grid=tuple(size.lag_grid),
+        lag_tuning_samples=min(size.lag_tuning_samples, size.train_samples),
         learned_kw=dict(
             hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres, max_samples=size.train_samples
         ),
@@ -373,7 +420,7 @@ def run_study(
 
 def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
     """RMS over the late frames without / with the floor: square root of the paired ratio of per-path
-    mean squares (bootstrap-t over paths)."""
+    mean squares (:func:`ratio_of_means_ci`)."""
     a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
     b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
     r = ratio_of_means_ci(a, b)
@@ -390,31 +437,67 @@ def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int)
 
 def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
     """Largest relative deviation of the recursion (5)-(6) from eq. (4) solved by ``lstsq`` at every
-    sample, and the first sample with an estimate (C004-4, C004-7)."""
+    sample, and the first sample with an estimate (C004-4, C004-7). Lost samples (NaN) are skipped: the
+    recursion coasts over them and eq. (4) is solved on the samples present at their true times (the
+    register's "lost frames" reading; the two agree only on gap-free series)."""
     rec = growing_memory_filter(series, order, None)
     batch = pr.batch_least_squares_states(series, order)
     dev = float(np.nanmax(np.abs(rec - batch) / np.maximum(np.abs(batch), 1.0)))
     return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
 
 
-def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N) -> dict:
+#: Batches of the batch-means interval of :func:`variance_ratios` under heavy-tailed noise.
+VARIANCE_BATCHES = 20
+
+
+def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N, noise: str = "Gaussian") -> dict:
     """``Var(x_est) / (sigma^2 g_N1)`` at each checked ``N`` on an exact quadratic plus unit white noise,
-    with Bonferroni-adjusted chi-square intervals (95 % family-wise; the errors are Gaussian), and the
-    largest step of ``g_N1`` over ``N >= 3`` (C004-5)."""
+    with Bonferroni-adjusted intervals (95 % family-wise), and the largest step of ``g_N1`` over ``N >= 3``
+    (C004-5).
+
+    ``noise``: ``"Gaussian"`` (chi-square intervals, exact for Gaussian errors) or ``"Student t3"`` (unit
+    variance, heavy tails: the chi-square interval would under-cover, so the interval is a batch-means one,
+    :data:`VARIANCE_BATCHES` batches of mean squared errors through :func:`tvtrack.montecarlo.mean_ci`
+    bootstrap-t; its method quotes the core's coverage of 95 % intervals). The noise is drawn whatever the
+    reading from the same stream (common random numbers)."""
     nmax = max(check_n)
     t = np.arange(nmax)
     quad = 5.0 + 0.3 * t - 0.01 * t**2
     g1 = growing_memory_gains(2, nmax)[:, 0]
-    est = growing_memory_filter(quad + rng.standard_normal((n_series, nmax)), 2, None)[..., 0]
+    if noise == "Gaussian":
+        w = rng.standard_normal((n_series, nmax))
+    elif noise == "Student t3":
+        w = rng.standard_t(3, (n_series, nmax)) / np.sqrt(3.0)
+    else:
+        raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'Gaussian' or 'Student t3'")
+    est = growing_memory_filter(quad + w, 2, None)[..., 0]
     conf = 1 - 0.05 / len(check_n)
     out = {"g1 decreasing": float(np.max(np.diff(g1[2:])))}
     for n in check_n:
-        v = variance_ci(est[:, n - 1] - quad[n - 1], confidence=conf, method="chi2")
+        e = est[:, n - 1] - quad[n - 1]
         p = g1[n - 1]
+        if noise != "Gaussian":
+            b = mean_ci(np.mean(e.reshape(VARIANCE_BATCHES, -1) ** 2, axis=1) / p, conf, method="bootstrap-t")
+            out[f"variance at N={n}"] = replace(
+                b, method=f"batch means ({VARIANCE_BATCHES} batches), {b.method} (the coverage of 95 % intervals)"
+            )
+            continue
+        v = variance_ci(e, confidence=conf, method="chi2")
         out[f"variance at N={n}"] = Estimate(
             v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method
         )
     return out
+
+
+def _frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
+    """CPU ms per frame at the C004-8 readings: the batched plain centroid's mean (default), or the
+    streaming pipeline's mean or 99th percentile over frames after the first (warm-up)."""
+    pipeline = config.get("C004-8 pipeline", "batched plain centroid")
+    statistic = config.get("C004-8 statistic", "mean")
+    if pipeline == "batched plain centroid" and statistic == "mean":
+        return _time_per_frame(run, rng)
+    t = streaming_frame_times(run, rng)[0][1:] * 1e3  # per-frame times exist only for the streaming pipeline
+    return float(np.mean(t) if statistic == "mean" else np.quantile(t, 0.99))
 
 
 def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
@@ -435,6 +518,63 @@ def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
     return (time.process_time() - t0) / nt * 1e3
 
 
+def streaming_frame_times(run: StudyRun, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each frame processed as it arrives (the "streaming" reading of C004-8): from the full 128 x 128
+    frame, crop the gate around the last measured centre, measure the study's energy centre in it (the
+    camera's ``centroid_mode``), run one step of the recursion (5)-(6) with the fixed floor's precomputed
+    gains and predict one frame ahead.
+
+    Returns
+    -------
+    times : ndarray, shape (n,)
+        CPU seconds of each frame (``time.process_time``).
+    states : ndarray, shape (n, 2, 3)
+        The recursion's state after each frame (per axis; NaN before the first three), for tests.
+    measured : ndarray, shape (n, 2)
+        The centres the recursion was fed, px (a frame with nothing above threshold: the prediction).
+    """
+    from .spot_centre import windowed_centroid
+
+    nt = min(run.size.timing_frames, run.truth.shape[-1])
+    cam, size = run.camera, run.scene.image_size_px
+    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
+    frames = sensor_readout(
+        gaussian_spot(xy, (size, size), cam.spot_sigma_px, cam.flux_e),
+        rng,
+        background=cam.background_dn,
+        read_noise=cam.read_noise_dn,
+        bit_depth=cam.bit_depth,
+    )
+    g, nf = cam.gate_size_px, run.size.fixed_floor
+    F = taylor_transition(2)
+    gains = growing_memory_gains(2, nf)
+    H0 = polynomial_observation_row(2, np.arange(3)[::-1])  # the first three samples, oldest first
+    times, states, measured = np.empty(nt), np.full((nt, 2, 3), np.nan), np.empty((nt, 2))
+    aim, first, x = xy[0], [], None
+    for t in range(nt):
+        t0 = time.process_time()
+        o = np.clip(gate_origin(aim, (g, g)), 0, size - g)
+        gate = frames[t, o[1] : o[1] + g, o[0] : o[0] + g]
+        if cam.centroid_mode == "windowed":
+            m = windowed_centroid(gate, o, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
+        else:
+            m = centroid(gate, o, background="border", threshold_sigma=cam.threshold_sigma)
+        z = m.xy if m.valid else aim
+        if x is None:
+            first.append(z)
+            if len(first) == 3:
+                x = np.linalg.solve(H0, np.asarray(first))  # (3 states, 2 axes): eq. (4) on 3 samples
+        else:
+            x = F @ x
+            x = x + gains[min(t + 1, nf) - 1][:, None] * (z - x[0])[None, :]
+        if x is not None:
+            aim = (F @ x)[0]  # the one-step prediction centres the next gate
+            states[t] = x.T
+        times[t] = time.process_time() - t0
+        measured[t] = z
+    return times, states, measured
+
+
 def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.ndarray:
     """Per path: the ``q`` quantile of the per-axis ``|e|`` over both axes and the frames from
     ``start`` on, px; shape (P,)."""
@@ -451,7 +591,8 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         ``C004-1`` (mean per-path quantile of the per-axis ``|e|``, px), ``C004-2`` (RMS, px),
         ``C004-3`` / ``C004-3b`` (per baseline: paired ratio of its MSE to the filter's), ``C004-4``
         (recursion vs lstsq), ``C004-5`` (gains and variance), ``C004-6`` (late RMS ratio without / with
-        the floor), ``C004-8`` (CPU time per frame / frame interval).
+        the floor), ``C004-8`` (CPU time per frame / frame interval); and :data:`CENTROID`, the per-axis RMS
+        error of the measured centres against the true ones from ``eval_start`` on (px; no claim reads it).
     """
     c = run.config
     m = int(c["horizon"])
@@ -474,15 +615,17 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
     T = run.truth.shape[-1]
     late = max(T // 2, start)
     rng_mc, rng_t = (np.random.default_rng(s) for s in _streams(seed)[4:6])
+    held = c.get("lost frames", "held") == "held"
     return {
         "C004-1": mean_ci_t(per_path_q),
         "C004-2": root_mean_ci(mse[PAPER]),
         "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
         "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": recursion_vs_batch(run.z[0, 0, 0, : min(T, 200)])[0],
-        "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance),
+        "C004-4": recursion_vs_batch((run.z if held else run.z_meas)[0, 0, 0, : min(T, 200)])[0],
+        "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian")),
         "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
-        "C004-8": _time_per_frame(run, rng_t) / (1e3 / run.scene.frame_rate_hz),
+        "C004-8": _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz),
+        CENTROID: root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1))),
     }
 
 
@@ -555,8 +698,8 @@ def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
 
 
 def scores(run: StudyRun) -> tuple[dict, dict]:
-    """Per method: RMS error against the measured centre (px, bootstrap-t over paths), and the paired
-    ratio of its per-path MSE to the paper filter's (bootstrap-t)."""
+    """Per method: RMS error against the measured centre (px, :func:`root_mean_ci`), and the paired
+    ratio of its per-path MSE to the paper filter's (:func:`ratio_of_means_ci`)."""
     m = int(run.config["horizon"])
     mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
     rms = {n: root_mean_ci(v) for n, v in mse.items()}
@@ -581,6 +724,9 @@ def grid_edge_report(run: StudyRun) -> dict:
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
+    for name in NETWORKS:
+        if name in ch:  # lag counts chosen by cross-validation (1 lag, the lowest, is a true limit)
+            out[f"{name} lags"] = float(np.mean(grid_edges(ch[name], s.lag_grid) == 1))
     sg = np.asarray(ch[SINGER])
     out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
     return out
