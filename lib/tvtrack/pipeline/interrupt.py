@@ -55,11 +55,18 @@ def _end_kernels_and_raise_interrupted(signum, frame):
     raise Interrupted()
 
 
-def worker_init(*_args) -> None:
+THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def worker_init(threads: int | None = None) -> None:
     """Pool-worker initializer: SIGTERM (from :func:`stop_pool`) ends the worker's kernel and raises
-    :class:`Interrupted` in the run."""
+    :class:`Interrupted` in the run; with ``threads``, the worker's kernels get that many BLAS/OpenMP threads
+    (so that ``jobs`` kernels at once do not oversubscribe the cores)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _end_kernels_and_raise_interrupted)
+    if threads is not None:
+        for var in THREAD_VARS:
+            os.environ[var] = str(threads)
 
 
 @contextlib.contextmanager

@@ -31,7 +31,6 @@ __all__ = ["usable_cores", "reproduce"]
 
 # without a previous run to time, the heaviest notebooks start first
 _DEFAULT_ORDER = ("002", "003", "004", "000", "001")
-_THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 
 
 def usable_cores() -> int:
@@ -56,9 +55,7 @@ def _order(notebooks: list[Path], folder: Path) -> list[Path]:
 
 
 def _worker_init(threads: int, log_path: str) -> None:
-    worker_init()
-    for var in _THREAD_VARS:
-        os.environ[var] = str(threads)
+    worker_init(threads)
     log = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
     os.dup2(log, 2)  # kernels inherit this stderr: their transport warnings land in the log
 

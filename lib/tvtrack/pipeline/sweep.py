@@ -314,7 +314,10 @@ def run_sweep(
 
 def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
     """The runs in a pool of ``jobs`` worker processes; Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init)
+    threads = max(1, len(os.sched_getaffinity(0)) // jobs)  # jobs kernels at once share the cores
+    pool = ProcessPoolExecutor(
+        max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init, initargs=(threads,)
+    )
     try:
         with shielded_spawn():  # workers are spawned by submit(): they start with Ctrl-C ignored
             futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
