@@ -36,7 +36,8 @@ ROWS = (
         "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), or the "
         "whole spectrum replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 "
         "below the corner v/D (at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry "
-        "multiplying it by its sinc^2 exactly; the spectral index does not enter it); the paper shows no spectrum",
+        "multiplying it by its sinc^2 exactly; the spectral index does not enter it; content below the record's "
+        "fundamental, 1/40 s, is left to the drift); the paper shows no spectrum",
         "adversarial",
     ),
     (
@@ -126,7 +127,8 @@ ROWS = (
         ("cross-validated", 10),
         "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9]): "
         "chosen per fold from the notebook's lag_grid (1, 2, 4, 8, 16) on the training paths only (each network "
-        "at its own optimum, as the filter's floor), or fixed at 10 (the earlier fixed-lag reading)",
+        "at its own optimum, as the filter's floor; each tuning model trained on a third of the paths and 500 "
+        "pairs, which if anything favours fewer lags), or fixed at 10 (the earlier fixed-lag reading)",
         "author",
     ),
     (
