@@ -272,3 +272,25 @@ def test_singer_forecast_uses_each_folds_fit_and_beats_constant_acceleration_on_
     )
     mse = lambda f: np.mean(pr.forecast_errors(f, z, 1)[..., 20:-1] ** 2)
     assert mse(out) < mse(ca)
+
+
+def test_absolute_centre_inputs_are_the_last_centres_and_the_target_the_next():
+    # the third adversarial pass's reading of what the networks are fed ("network inputs" = absolute centres)
+    from tvtrack.papers.p004_laser_spot_prediction.predictors import (
+        fit_learned_predictor,
+        lag_features,
+        learned_forecast,
+    )
+
+    z = np.arange(10.0)
+    X, y = lag_features(z, 3, inputs="absolute centres")
+    assert np.isnan(X[1]).all() and X[2].tolist() == [2.0, 1.0, 0.0] and X[9].tolist() == [9.0, 8.0, 7.0]
+    assert y[2] == 3.0 and np.isnan(y[9])
+    with pytest.raises(ValueError, match="inputs"):
+        lag_features(z, 3, inputs="pixels")
+    rng = np.random.default_rng(0)
+    paths = np.cumsum(rng.normal(0, 0.2, (4, 400)), axis=1) + 60.0  # a slow walk about the field's middle
+    model = fit_learned_predictor("rbf", paths, 4, inputs="absolute centres", max_samples=1500)
+    f = learned_forecast(model, paths[:1])
+    err = (f[0, 3:-1] - paths[0, 4:]).std()
+    assert model.inputs_ == "absolute centres" and err < 0.4  # the next centre, not an increment (~60 px off)

@@ -410,11 +410,13 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
 
 
 # -- learned predictors (scikit-learn) --------------------------------------------------------------
-def lag_features(z, n_lags: int, steps: int = 1):
-    """Translation-invariant inputs and targets for learned predictors.
+def lag_features(z, n_lags: int, steps: int = 1, inputs: str = "increments"):
+    """Inputs and targets for learned predictors.
 
-    Inputs at frame ``n``: ``z[n-j] - z[n]`` for ``j = 1..n_lags`` (increments to the newest
-    sample, px); target: ``z[n+steps] - z[n]``.
+    ``inputs="increments"`` (translation-invariant): inputs at frame ``n`` are ``z[n-j] - z[n]`` for
+    ``j = 1..n_lags`` (increments to the newest sample, px), the target ``z[n+steps] - z[n]``.
+    ``inputs="absolute centres"``: the last ``n_lags`` centres as measured, ``z[n-j]`` for ``j = 0..n_lags-1``
+    (newest first, px), the target ``z[n+steps]`` (the network must learn the identity map over the field).
 
     Returns
     -------
@@ -427,13 +429,23 @@ def lag_features(z, n_lags: int, steps: int = 1):
     z = _check_z(z)
     if not (isinstance(n_lags, (int, np.integer)) and 1 <= n_lags < z.shape[-1]):
         raise ValueError(f"parameter 'n_lags' = {n_lags!r}; it must be an integer in [1, T-1]")
+    if inputs not in LEARNED_INPUTS:
+        raise ValueError(f"parameter 'inputs' = {inputs!r}; it must be one of {LEARNED_INPUTS}")
     T = z.shape[-1]
     X = np.full(z.shape + (n_lags,), np.nan)
+    y = np.full(z.shape, np.nan)
+    if inputs == "absolute centres":
+        win = sliding_window_view(z, n_lags, axis=-1)  # (..., T-n_lags+1, n_lags), newest last
+        X[..., n_lags - 1 :, :] = win[..., ::-1]
+        y[..., : T - steps] = z[..., steps:]
+        return X, y
     win = sliding_window_view(z, n_lags + 1, axis=-1)  # (..., T-n_lags, n_lags+1), newest last
     X[..., n_lags:, :] = win[..., -2::-1] - win[..., -1:]
-    y = np.full(z.shape, np.nan)
     y[..., : T - steps] = z[..., steps:] - z[..., : T - steps]
     return X, y
+
+
+LEARNED_INPUTS = ("increments", "absolute centres")
 
 
 def fit_learned_predictor(
@@ -446,8 +458,10 @@ def fit_learned_predictor(
     rbf_centres: int = 100,
     max_samples: int | None = 4000,
     seed: int = 0,
+    inputs: str = "increments",
 ):
-    """Train a learned ``steps``-ahead predictor on the series in ``z_train``.
+    """Train a learned ``steps``-ahead predictor on the series in ``z_train`` (``inputs``: what the network is
+    fed, see :func:`lag_features`; with absolute centres the target is standardised as well).
 
     Parameters
     ----------
@@ -475,7 +489,7 @@ def fit_learned_predictor(
 
     if kind not in ("mlp", "rbf"):
         raise ValueError(f"parameter 'kind' = {kind!r}; it must be 'mlp' or 'rbf'")
-    X, y = lag_features(z_train, n_lags, steps)
+    X, y = lag_features(z_train, n_lags, steps, inputs)
     X = X.reshape(-1, n_lags)
     y = y.reshape(-1)
     ok = np.all(np.isfinite(X), axis=1) & np.isfinite(y)
@@ -505,21 +519,27 @@ def fit_learned_predictor(
             Nystroem(kernel="rbf", gamma=1.0 / n_lags, n_components=rbf_centres, random_state=seed),
             RidgeCV(alphas=np.logspace(-6, 2, 9)),
         )
+    if inputs == "absolute centres":  # the target standardised too: a next centre, not a small increment
+        from sklearn.compose import TransformedTargetRegressor
+
+        model = TransformedTargetRegressor(regressor=model, transformer=StandardScaler())
     model.fit(X[idx], y[idx])
     model.n_lags_ = n_lags
     model.steps_ = steps
+    model.inputs_ = inputs
     return model
 
 
 def learned_forecast(model, z) -> np.ndarray:
     """Apply a model from :func:`fit_learned_predictor`: ``forecast = z + model(lags)``."""
     z = _check_z(z)
-    X, _ = lag_features(z, model.n_lags_, model.steps_)
+    inputs = getattr(model, "inputs_", "increments")
+    X, _ = lag_features(z, model.n_lags_, model.steps_, inputs)
     flat = X.reshape(-1, model.n_lags_)
     ok = np.all(np.isfinite(flat), axis=1)
     out = np.full(flat.shape[0], np.nan)
     out[ok] = model.predict(flat[ok])
-    return z + out.reshape(z.shape)
+    return out.reshape(z.shape) if inputs == "absolute centres" else z + out.reshape(z.shape)
 
 
 def path_folds(n_paths: int, n_folds: int) -> list[tuple[np.ndarray, np.ndarray]]:

@@ -132,6 +132,17 @@ ROWS = (
         "author",
     ),
     (
+        "network inputs",
+        "comparator",
+        "increments",
+        ("increments", "absolute centres"),
+        "what the MLP and RBF network are fed is not stated (nor in refs. [8], [9]): the lagged increments to the "
+        "newest centre, predicting the next increment (translation-invariant), or the last centres as measured, "
+        "predicting the next centre (inputs and target standardised; the same sizes, lag tuning and folds). Found by "
+        "the third adversarial pass: with absolute centres the networks extrapolate badly off the training paths",
+        "adversarial",
+    ),
+    (
         "tuning",
         "reading",
         "cross-validated",
@@ -275,7 +286,7 @@ DEPENDS = {
     "C004-1": list(WORLD) + ["horizon", "tuning", "reference", "C004-1 statistic"],  # not the networks' lags
     "C004-2": list(WORLD) + ["horizon", "tuning", "reference"],
     "C004-3": list(WORLD) + ["horizon", "tuning", "reference", "spline", "C004-3 statistic"],
-    "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags"],
+    "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags", "network inputs"],
     "C004-4": ["lost frames"] + list(WORLD),  # exact on gap-free series; the world decides whether frames are lost
     "C004-5": ["C004-5 noise"],  # the model's own signal (quadratic + white noise): only the noise law enters
     "C004-6": list(WORLD) + ["horizon", "tuning", "reference"],

@@ -366,7 +366,10 @@ def _setup(config: dict, size: StudySize) -> ComparisonSetup:
         lag_grid=tuple(size.lag_grid),
         lag_tuning_samples=min(size.lag_tuning_samples, size.train_samples),
         learned_kw=dict(
-            hidden_units=size.mlp_hidden_units, rbf_centres=size.rbf_centres, max_samples=size.train_samples
+            hidden_units=size.mlp_hidden_units,
+            rbf_centres=size.rbf_centres,
+            max_samples=size.train_samples,
+            inputs=config["network inputs"],
         ),
     )
 
@@ -648,7 +651,7 @@ def _measure_group(items, size: StudySize) -> list[dict]:
         sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
         if sk not in _CACHE:
             _CACHE[sk] = _scene(config, seed, size)
-        rk = sk + _key(config, ("horizon", "network lags"))
+        rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
         if rk not in _CACHE:
             _CACHE[rk] = _methods(_CACHE[sk], config, seed)
         out.append(claim_values(replace(_CACHE[rk], config=dict(config)), seed))
