@@ -302,3 +302,18 @@ def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
     np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
     k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly
     np.testing.assert_allclose(np.diff(d, 2, axis=-1), k * d[..., 1:-1], atol=1e-9)
+
+
+def test_frame_loss_breaks_the_recursion_only_when_lost_frames_are_skipped():
+    # third adversarial pass: with gaps the sample-counting recursion differs from eq. (4) at the true times
+    from tvtrack.papers.p004_laser_spot_prediction.study import drop_frames, recursion_vs_batch
+
+    t = np.arange(200.0)
+    z = 3.0 + 0.2 * t - 0.001 * t**2 + np.random.default_rng(1).normal(0, 0.3, t.size)
+    same = drop_frames(z, np.random.default_rng(2), 0.0, held=False)
+    assert np.array_equal(same, z)
+    held = drop_frames(z, np.random.default_rng(2), 0.05, held=True)
+    skipped = drop_frames(z, np.random.default_rng(2), 0.05, held=False)
+    assert np.isnan(skipped).any() and np.isfinite(held).all()
+    assert recursion_vs_batch(held)[0] < 1e-9  # held: an even series again, exact
+    assert recursion_vs_batch(skipped)[0] > 1e-6  # skipped: the recursion is not eq. (4) at the true times

@@ -247,6 +247,16 @@ ROWS = (
         "adversarial",
     ),
     (
+        "frame loss",
+        "regime",
+        0.0,
+        (0.0, 0.01),
+        "the world of the study never loses a frame, so 'lost frames' could not act: with 0.01 each frame starts an "
+        "obscuration or deep fade of 1-5 frames with probability 0.01 (third adversarial pass); only C004-4 reads "
+        "it (the recursion counts samples and assumes even spacing)",
+        "adversarial",
+    ),
+    (
         "C004-5 noise",
         "regime",
         "Gaussian",
@@ -287,7 +297,8 @@ DEPENDS = {
     "C004-2": list(WORLD) + ["horizon", "tuning", "reference"],
     "C004-3": list(WORLD) + ["horizon", "tuning", "reference", "spline", "C004-3 statistic"],
     "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags", "network inputs"],
-    "C004-4": ["lost frames"] + list(WORLD),  # exact on gap-free series; the world decides whether frames are lost
+    "C004-4": ["lost frames", "frame loss"]
+    + list(WORLD),  # exact on gap-free series; the world decides whether frames are lost
     "C004-5": ["C004-5 noise"],  # the model's own signal (quadratic + white noise): only the noise law enters
     "C004-6": list(WORLD) + ["horizon", "tuning", "reference"],
     # the per-frame work (the energy centre is timed in the streaming reading) and the frame interval

@@ -449,6 +449,24 @@ def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
     return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
 
 
+def drop_frames(series, rng: np.random.Generator, rate: float, held: bool) -> np.ndarray:
+    """``series`` (T,) with obscurations: each frame starts a gap with probability ``rate``, of 1 to 5 frames
+    (uniform); lost frames are held at the last centre (``held``) or NaN (skipped). ``rate = 0`` returns the
+    series unchanged (the draws are made whatever the rate: common random numbers)."""
+    z = np.array(series, dtype=float)
+    starts = rng.random(z.size) < rate
+    lengths = rng.integers(1, 6, z.size)
+    lost = np.zeros(z.size, bool)
+    for k in np.flatnonzero(starts):
+        lost[k : k + lengths[k]] = True
+    lost[0] = False  # the track starts on a measured centre
+    if held:
+        idx = np.maximum.accumulate(np.where(lost, 0, np.arange(z.size)))
+        return z[idx]
+    z[lost] = np.nan
+    return z
+
+
 #: Batches of the batch-means interval of :func:`variance_ratios` under heavy-tailed noise.
 VARIANCE_BATCHES = 20
 
@@ -624,7 +642,14 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         "C004-2": root_mean_ci(mse[PAPER]),
         "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
         "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": recursion_vs_batch((run.z if held else run.z_meas)[0, 0, 0, : min(T, 200)])[0],
+        "C004-4": recursion_vs_batch(
+            drop_frames(
+                (run.z if held else run.z_meas)[0, 0, 0, : min(T, 200)],
+                np.random.default_rng([seed, 4004]),
+                float(c.get("frame loss", 0.0)),
+                held,
+            )
+        )[0],
         "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian")),
         "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
         "C004-8": _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz),
