@@ -64,6 +64,10 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     verify_rrd(rrd)
 
     check = check_recording(headless_viewer, rrd, EXPECT.get(stem, DEFAULT))
+    if check.problems:  # a headless viewer on a loaded machine can miss one repaint: look once more, say so
+        print(f"{stem}: first look found {check.problems}; checking again")
+        time.sleep(2.0)
+        check = check_recording(headless_viewer, rrd, EXPECT.get(stem, DEFAULT))
     print(
         f"{stem}: loaded in {check.load_s:.1f} s, viewer check {check.check_s:.1f} s, "
         + ", ".join(f"{k} {v.coloured} px" for k, v in check.pixels.items())
