@@ -396,19 +396,10 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         block_seed.append(np.full(len(b.truth), block))
         out["truth"].append(b.truth)
         ent = pixel_entries(b.counts)
+        em_args, em_kw = (b.designation, s, p, p0), dict(tol_px=tol, max_iter=s_.max_iter)  # common to every ULA variant
         if "u" in algs:
             t0 = time.perf_counter()
-            r = unified_location_em(
-                ent,
-                b.designation,
-                s,
-                p,
-                p0,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                accelerate=accel,
-                merge_px=s_.merge_sigma * s,
-            )
+            r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, merge_px=s_.merge_sigma * s)
             timing["ula"] += time.perf_counter() - t0
             e, sw = errors_vs_truth(r.theta, b.truth, s, times)
             out["ula"].append(e)
@@ -417,23 +408,14 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             out["ula_flags"].append(np.stack([sw, r.merged, r.cap_hit, r.degenerate, r.left_frame], axis=1))
         if "p" in algs:
             t0 = time.perf_counter()
-            r = unified_location_em(ent, b.designation, s, p, p0, tol_px=tol, max_iter=s_.max_iter)
+            r = unified_location_em(ent, *em_args, **em_kw)
             timing["plain"] += time.perf_counter() - t0
             out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
             out["plain_iter"].append(r.n_iter)
         if "m" in algs:
             t0 = time.perf_counter()
-            r = unified_location_em(
-                ent,
-                b.designation,
-                s,
-                p,
-                p0,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                accelerate=accel,
-                prior_sd=map_prior_sd(s_.velocity_knowledge, dsd, vsd, s),
-            )
+            prior = map_prior_sd(s_.velocity_knowledge, dsd, vsd, s)
+            r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, prior_sd=prior)
             timing["map"] += time.perf_counter() - t0
             out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
         mark_args = dict(
