@@ -396,7 +396,10 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         block_seed.append(np.full(len(b.truth), block))
         out["truth"].append(b.truth)
         ent = pixel_entries(b.counts)
-        em_args, em_kw = (b.designation, s, p, p0), dict(tol_px=tol, max_iter=s_.max_iter)  # common to every ULA variant
+        em_args, em_kw = (
+            (b.designation, s, p, p0),
+            dict(tol_px=tol, max_iter=s_.max_iter),
+        )  # common to every ULA variant
         if "u" in algs:
             t0 = time.perf_counter()
             r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, merge_px=s_.merge_sigma * s)
