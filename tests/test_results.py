@@ -136,8 +136,9 @@ def test_results_record_the_kernels_cpu_seconds(tmp_path):
 
     r = make(tmp_path)
     t = time.process_time()
-    while time.process_time() - t < 0.3:
+    while time.process_time() - t < 0.35:
         pass
     time.sleep(0.3)  # wall, not CPU
     data = r.to_dict()
-    assert 0.3 <= data["cpu_s"] < data["runtime_s"] - 0.25
+    # cpu_s comes from os.times (10 ms ticks): a stated 0.02 s below the 0.35 s spun
+    assert 0.33 <= data["cpu_s"] < data["runtime_s"] - 0.25
