@@ -246,3 +246,25 @@ def test_em_stopping_never_reaches_the_iteration_counts_of_fig7():
         pq = {k for k in base if k[1] in "pq"}
         assert pq and all(other.get(k) == base[k] for k in pq), value
     assert "EM stopping" not in DEPENDS["C002-13"] and "EM stopping" not in DEPENDS["C002-14"]
+
+
+@pytest.mark.parametrize(
+    ("reading", "pix", "m"),
+    [({"m_k of C002-1": 10}, 3.0, 10), ({"Delta of C002-1 (sigma)": 1.0}, 1.0, 20)],
+)
+def test_c002_1_panel_readings_read_that_panels_whole_distance_axis(reading, pix, m):
+    # the third adversarial pass's C002-1 readings: another Fig 1 curve, simulated on the same scenes' seeds,
+    # over the whole distance axis; nothing else is rerun, and the claim reads that curve
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    other = _letters(study.jobs_of({**DEFAULT, **reading}, 7, TINY))
+    new = {k[0] for k in set(other) - set(base)}
+    assert {c.d for c in new} == set(TINY.separations) - {1.0, 2.0, 3.0, 6.0}
+    assert all(c.pix == pix and c.m == m and c.T == DEFAULT["T of Figs 1a,b"] for c in new)
+    assert all(other[k] == base[k] for k in set(base) & set(other))  # common random numbers
+    study.clear_cache()
+    got = study.measure({**DEFAULT, **reading}, 7, TINY)["C002-1"]
+    g, res = study.figure_data({**DEFAULT, **reading}, 7, TINY)
+    panel = g[study.FIG1_PANEL[pix]][m]
+    assert [e.value for e in got] == [
+        study.spread_sum(study.errors(res[panel[d]], "ula", "first"), "variance").value for d in TINY.separations
+    ]

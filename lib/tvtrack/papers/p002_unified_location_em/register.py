@@ -157,6 +157,24 @@ REGISTER = Register(
             origin="adversarial",
         ),
         Entry("T of Figs 1a,b", "operating point", 5, (5, 10), "not stated; Fig 1c states 5, Fig 2 uses 5 and 10"),
+        Entry(
+            "m_k of C002-1",
+            "operating point",
+            20,
+            (20, 10),
+            "C002-1 cites 'Fig 1', whose panels a and b draw both the 10- and the 20-photon curves; the claim names "
+            "neither (third adversarial pass: tried, no flip at 1500 trials)",
+            origin="adversarial",
+        ),
+        Entry(
+            "Delta of C002-1 (sigma)",
+            "operating point",
+            3.0,
+            (3.0, 1.0),
+            "C002-1 cites 'Fig 1': panel a has pixels of 3 sigma, panel b of 1 sigma (third adversarial pass: tried, "
+            "no flip at 1500 trials; below about 1 sigma the variance sum plateaus)",
+            origin="adversarial",
+        ),
         Entry("m_k of Fig 1c", "reading", 10, (10, 50), "the text says m_k = 10, the caption 50"),
         Entry(
             "T of the Fig 3a claims",
@@ -250,7 +268,7 @@ _RHO = [*_ULA_ONLY, "two-stage"]
 _TWO = ["tracks"]  # two objects whose distance changes: labour and very close objects only
 #: Register entries each claim's measurement reads.
 DEPENDS = {
-    "C002-1": [*_ULA_ONLY, "T of Figs 1a,b"],
+    "C002-1": [*_ULA_ONLY, "T of Figs 1a,b", "m_k of C002-1", "Delta of C002-1 (sigma)"],
     "C002-2": [*_ULA_ONLY, "T of Figs 1a,b"],
     "C002-3": [*_ULA_ONLY, "T of Figs 1a,b"],
     "C002-4": [*_ULA_ONLY, "m_k of Fig 1c"],

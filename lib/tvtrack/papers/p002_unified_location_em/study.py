@@ -222,6 +222,15 @@ def photons6(config: dict) -> tuple[int, int]:
 FIG7_TOLERANCE = {"1e-6 sigma": None, "0.01 sigma": 0.01, "0.05 sigma": 0.05}
 
 
+#: Fig 1's panels by pixel size Delta / sigma.
+FIG1_PANEL = {3.0: "1a", 1.0: "1b"}
+
+
+def c1_point(config: dict) -> tuple[int, float]:
+    """C002-1's point of Fig 1: ``(m_k, Delta / sigma)`` from the register (default 20 photons, Fig 1a)."""
+    return int(config.get("m_k of C002-1", 20)), float(config.get("Delta of C002-1 (sigma)", 3.0))
+
+
 def fig7_variant(config: dict) -> tuple:
     """The :class:`Config` ``variant`` of the Fig 7 points (C002-13, C002-14): the register's stopping tolerance
     of the iteration counts, or ``()`` at the default (the default's cache keys and draws are unchanged; a variant
@@ -248,9 +257,14 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     d5, T3 = float(config["separation of C002-5 (sigma)"]), int(config["T of the Fig 3a claims"])
     core = (1.0, 2.0, 3.0, 6.0)
     pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
+    m1, p1 = c1_point(config)  # C002-1 reads its panel's whole distance axis
+
+    def fig1(p_, m):
+        return {d: P(2, d, p_, m, T1, "u") for d in (D if (p_, m) == (p1, m1) else pick(core))}
+
     g = {
-        "1a": {m: {d: P(2, d, 3.0, m, T1, "u") for d in (D if m == 20 else pick(core))} for m in (10, 20)},
-        "1b": {m: {d: P(2, d, 1.0, m, T1, "u") for d in pick(core)} for m in (10, 20)},
+        "1a": {m: fig1(3.0, m) for m in (10, 20)},
+        "1b": {m: fig1(1.0, m) for m in (10, 20)},
         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
         "2": {
             (T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in sorted(photons6(config))
@@ -415,7 +429,8 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     sp = "trimmed_variance" if st == "trimmed" else "variance"  # the log-gain parts read variances otherwise
     D = list(scale.separations)
     ula = lambda c: errors(res[c], "ula", ep)
-    out = {"C002-1": [spread_sum(ula(g["1a"][20][d]), st) for d in D]}
+    m1, p1 = c1_point(config)
+    out = {"C002-1": [spread_sum(ula(g[FIG1_PANEL[p1]][m1][d]), st) for d in D]}
 
     def r_m(key, d):
         return ula(g[key][10][d]), ula(g[key][20][d])
