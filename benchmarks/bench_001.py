@@ -16,15 +16,18 @@ table. The batched run is ``run_track_modes(engine="auto")``: the numba-compiled
 compile time (the first call in the process, a 1-trial call before the rounds) is excluded from the ratio and
 reported. The NumPy frame loop (``engine="numpy"``) is timed in the same rounds and reported.
 
-Where the time goes (profiled 2026-11-25, load 2.5-3.5 on 2 cores): the NumPy path is one Python loop over the 625
-frames of about 25 in-place NumPy operations on (2000,) arrays, i.e. NumPy's per-call overhead, not arithmetic
-(14-30 ms, 170-250x). The kernel (6-10 ms, 440-570x) is bound by memory and the detector's bookkeeping, not by
-the filter: the filter recursion alone with its outputs runs in ~4.5 ms; writing the (2000, 625, 3) gains as
-float64 cost ~30 % (the kernel without covariance stores each frame's gain-table row, int16, and
-``TrackModeOutput.gains`` expands it on access); fresh output pages (first touch) cost about as much as the
-kernel's arithmetic. Tried and dropped: advancing 16 trials together (to overlap their recursions) was 3x slower
-(per-iteration state loads and stores). Compile: ~0.6-1.8 s for the covariance-free kernel, ~1.4-3 s for the
-general one, once per process (no on-disk cache: see ``_track_modes_kernel``).
+Where the time goes (profiled 2026-11-25 at load 2.5-3.5 and 2026-11-28 idle, 2 cores): the NumPy path is one
+Python loop over the 625 frames of about 25 in-place NumPy operations on (2000,) arrays, i.e. NumPy's per-call
+overhead, not arithmetic (14-30 ms, 120-250x). The kernel is bound by memory bandwidth, not by the filter: each
+trial-frame writes 43 bytes of outputs (54 MB a call); ``fastmath`` changes nothing, warm (already touched)
+output pages change nothing, and one thread takes 8-10 ms on the machine of 2026-11-28 (about 310x; 6-10 ms,
+440-570x, on that of 2026-11-25). The trials therefore run on numba's threads (``prange``, outputs identical on
+any thread count, tested): 3.5-4.5 ms on 2 idle cores. Under load the second thread gains less (one core busy
+elsewhere: about the one-thread time), which the minimum over interleaved rounds absorbs only while the load
+has gaps; the one-thread ratio is in the table's note. Tried and dropped: advancing 16 trials together (to
+overlap their recursions) was 3x slower (per-iteration state loads and stores); numba's ``workqueue`` threading
+layer gained nothing over one thread here (``omp`` is used where libgomp is present). Compile: ~2 s for the
+covariance-free kernel with ``parallel=True``, once per process (no on-disk cache: see ``_track_modes_kernel``).
 """
 
 import time
@@ -78,6 +81,31 @@ def reference_one(z, visible, thr):
     return xs, det
 
 
+def _threads() -> int:
+    """The threads the compiled kernel runs its trials on (numba's count; 1 without numba)."""
+    try:
+        import numba
+    except ImportError:
+        return 1
+    return numba.get_num_threads()
+
+
+class _one_thread:
+    """``with _one_thread():`` numba's kernels on one thread, the previous count restored after."""
+
+    def __enter__(self):
+        import numba
+
+        self.before = numba.get_num_threads()
+        numba.set_num_threads(1)
+
+    def __exit__(self, *exc):
+        import numba
+
+        numba.set_num_threads(self.before)
+        return False
+
+
 def test_full_scenario_speedup(benchmark, figure):
     z, visible, thr = scenario()
     cfg = TrackModeConfig(k_bound2=KB2, k_bound3=KB3, window=N_WIN, threshold=thr)
@@ -87,7 +115,8 @@ def test_full_scenario_speedup(benchmark, figure):
     first_call_s = time.perf_counter() - t0
     flat = z.reshape(-1, T)
     rng = np.random.default_rng(1)
-    times = {"batched": [], "numpy": [], "filterpy": []}
+    times = {"batched": [], "numpy": [], "filterpy": [], "one thread": []}
+    threads = _threads()
 
     def one_round():
         for name, eng in (("batched", engine), ("numpy", "numpy")):
@@ -95,6 +124,11 @@ def test_full_scenario_speedup(benchmark, figure):
             out = run_track_modes(z, visible, cfg, 1.0, False, engine=eng)
             times[name].append(time.perf_counter() - t0)
             one_round.out[name] = out
+        if engine == "jit":  # the same kernel on one thread (reported: one core's memory bandwidth bounds it)
+            with _one_thread():
+                t0 = time.perf_counter()
+                run_track_modes(z, visible, cfg, 1.0, False, engine=engine)
+                times["one thread"].append(time.perf_counter() - t0)
         idx = rng.choice(flat.shape[0], N_REF, replace=False)
         t0 = time.perf_counter()
         ref = [reference_one(flat[i], visible, thr) for i in idx]
@@ -113,6 +147,7 @@ def test_full_scenario_speedup(benchmark, figure):
     # each side's least-disturbed round (the minimum over the interleaved rounds, as timeit does); the median of the
     # per-round ratios is reported alongside (it moves with the load's bursts)
     speedup, speedup_np = float(t_ref.min() / t_b.min()), float(t_ref.min() / t_np.min())
+    one = f"; one thread {t_ref.min() / min(times['one thread']):.0f}x" if times["one thread"] else ""
     per_round, per_round_np = float(np.median(t_ref / t_b)), float(np.median(t_ref / t_np))
     compile_s = _kernel.compile_seconds() if engine == "jit" else None
     benchmark.extra_info.update(
@@ -126,6 +161,8 @@ def test_full_scenario_speedup(benchmark, figure):
         speedup_numpy_median_per_round=per_round_np,
         first_call_s=first_call_s,
         compile_s=compile_s,
+        threads=threads,
+        one_thread_s=times["one thread"],
         load=load,
     )
     print(
@@ -134,7 +171,10 @@ def test_full_scenario_speedup(benchmark, figure):
         f"each); speed-up (ratio of the minima) {speedup:.0f}x, median per-round {per_round:.0f}x (numpy loop {speedup_np:.0f}x, "
         f"{per_round_np:.0f}x); first call (compile) {first_call_s:.2f} s"
     )
-    note = f"{engine}, minima of {ROUNDS} interleaved rounds, per-round median {per_round:.0f}x, {load}"
+    note = (
+        f"{engine} on {threads} thread{'s' if threads > 1 else ''}{one}, minima of {ROUNDS} interleaved rounds, "
+        f"per-round median {per_round:.0f}x, {load}"
+    )
     figure(
         "001 NumPy frame loop over per-trial filterpy loop (same run)",
         speedup_np,

@@ -13,12 +13,17 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 
-__all__ = ["available", "switched_off", "enabled", "njit"]
+__all__ = ["available", "switched_off", "enabled", "njit", "prange"]
 
 try:  # numba is pinned in environment.txt; a bare install without it still works
     import numba as _numba
 except ImportError:  # pragma: no cover - exercised by the fallback tests via TVTRACK_NO_JIT=1
     _numba = None
+
+
+#: ``numba.prange`` (a loop numba may run on several threads when the function is compiled with
+#: ``parallel=True``; plain ``range`` when the same source runs uncompiled) or ``range`` without numba.
+prange = _numba.prange if _numba is not None else range
 
 
 def available() -> bool:

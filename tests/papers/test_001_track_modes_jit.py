@@ -112,3 +112,35 @@ def test_without_numba_auto_is_numpy_and_jit_refuses(monkeypatch):
         run_track_modes(z, vis["gap"], TrackModeConfig(threshold=thr), 1.0, engine="jit")
     with pytest.raises(ValueError, match="engine"):
         run_track_modes(z, vis["gap"], TrackModeConfig(threshold=thr), 1.0, engine="cuda")
+
+
+def test_the_parallel_kernel_gives_the_same_numbers_on_one_thread_and_on_all():
+    """The trials run on numba's threads (``prange``): they share nothing, so one thread and all threads give
+    bit-identical outputs (a shared accumulator or a trial-indexed write to the wrong row would differ)."""
+    numba = pytest.importorskip("numba")
+    z, vis, thr = _scenario(shape=(8, 16))
+    cfg = TrackModeConfig(threshold=thr, restart="B")
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = [run_track_modes(z, vis["per-trial"], cfg, 2.0, cov, engine="jit") for cov in (True, False)]
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+        many = [run_track_modes(z, vis["per-trial"], cfg, 2.0, cov, engine="jit") for cov in (True, False)]
+    finally:
+        numba.set_num_threads(before)
+    for a, b in zip(one, many):
+        for name in FIELDS:
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+
+
+def test_reproduce_and_sweep_workers_cap_numba_threads(monkeypatch):
+    from tvtrack.pipeline.interrupt import THREAD_VARS, worker_init
+
+    assert "NUMBA_NUM_THREADS" in THREAD_VARS
+    for var in THREAD_VARS:
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setattr("signal.signal", lambda *a: None)
+    worker_init(1)
+    import os
+
+    assert os.environ["NUMBA_NUM_THREADS"] == "1"

@@ -55,7 +55,7 @@ def _end_kernels_and_raise_interrupted(signum, frame):
     raise Interrupted()
 
 
-THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS")
 
 
 def worker_init(threads: int | None = None) -> None:

@@ -2,8 +2,13 @@
 
 The batched NumPy loop of :func:`~.track_modes.run_track_modes` spends its time in NumPy's per-call
 overhead (about 25 in-place operations on ``(B,)`` arrays per frame). These kernels run the same logic one
-trial at a time over the frames, as scalar code compiled by numba (``@njit``, no ``fastmath``, no parallel
-threads). They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
+trial at a time over the frames, as scalar code compiled by numba (``@njit``, no ``fastmath``), the trials
+spread over the process's threads (``prange``; the trials share nothing, so the numbers do not depend on the
+thread count, tested). One thread is bound by memory bandwidth, not arithmetic: each trial-frame writes 43 bytes
+of outputs (states, statistic, threshold, gain row, mode), 54 MB for the 001 benchmark's 2000 x 625, which one
+core of the 2-core machine writes in about 9.5 ms; two threads write it in about 4 ms. The thread count is
+numba's (``NUMBA_NUM_THREADS``, default the CPU count); ``tvtrack reproduce`` and the sweep runner give each
+notebook kernel ``cores // jobs`` threads, as for BLAS. They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
 the card §4.4-4.5 recursions), tested equal to the NumPy path in ``tests/papers/test_001_track_modes_jit.py``
 and ``tests/papers/test_001_track_modes.py`` (every test there runs with both engines):
 
@@ -120,12 +125,13 @@ def kernel_python(
     cap2 = kb2 - 1
     cap3 = kmax + kb3 - 1  # also the row of the 3rd-order bound (restart C)
     restart_row = kmax + min(restart_k, kb3) - 1
-    P = np.zeros((3, 3))
-    Pp = np.zeros((3, 3))
-    A = np.zeros((3, 3))
-    IKh = np.zeros((3, 3))
-    for b in range(B):
-        vb = 0 if shared_vis else b
+    v_stride = 0 if shared_vis else 1
+    for b in jit.prange(B):  # trials are independent: numba runs them on the process's threads
+        vb = b * v_stride
+        P = np.zeros((3, 3))  # each trial's own scratch (shared between threads they would race)
+        Pp = np.zeros((3, 3))
+        A = np.zeros((3, 3))
+        IKh = np.zeros((3, 3))
         x0 = 0.0
         x1 = 0.0
         x2 = 0.0
@@ -342,8 +348,9 @@ def kernel_fast_python(
     cap3 = kmax + kb3 - 1
     restart_row = kmax + min(restart_k, kb3) - 1
     nthr = thr.shape[0]
-    for b in range(B):
-        vb = 0 if shared_vis else b
+    v_stride = 0 if shared_vis else 1
+    for b in jit.prange(B):  # trials are independent: numba runs them on the process's threads
+        vb = b * v_stride
         x0 = 0.0
         x1 = 0.0
         x2 = 0.0
@@ -454,7 +461,9 @@ def get_kernel(covariance: bool = True):
     if name not in _compiled:
         import numba
 
-        _compiled[name] = numba.njit(cache=False, nogil=True)(kernel_python if covariance else kernel_fast_python)
+        _compiled[name] = numba.njit(cache=False, nogil=True, parallel=True)(
+            kernel_python if covariance else kernel_fast_python
+        )
     return _compiled[name]
 
 
