@@ -26,8 +26,8 @@ Methods (Kokryatska & Hrynchyshyn 2005 name them as baselines, Sect. "results"):
   by a model of the motion), with :func:`fit_singer` choosing ``tau``, the acceleration variance
   and the measurement variance by maximum likelihood.
 
-Fitted methods are scored by cross-validation over paths (:func:`path_folds`,
-:func:`cross_validated_learned_forecast`, :func:`fit_constant_acceleration_folds`,
+Fitted methods are scored by cross-validation over paths (:func:`path_folds`; the learned networks through
+``prediction_study.fit_learned_folds``; :func:`fit_constant_acceleration_folds`,
 :func:`constant_acceleration_forecast`, :func:`fit_singer_folds`, :func:`singer_forecast`); :func:`hold_last` fills lost measurements and
 :func:`error_summary` reduces errors to per-path RMS / 95th percentile / maximum.
 :func:`batch_least_squares_states` is the direct eq. (4) the recursion must reproduce.
@@ -72,7 +72,6 @@ __all__ = [
     "forecast_rms_ci",
     "error_summary",
     "batch_least_squares_states",
-    "cross_validated_learned_forecast",
     "fit_constant_acceleration_folds",
     "constant_acceleration_forecast",
     "singer_model",
@@ -575,36 +574,6 @@ def cross_validated_pick(per_path_loss, folds) -> np.ndarray:
     if np.any(pick < 0):
         raise ValueError("the folds do not cover every path")
     return pick
-
-
-def cross_validated_learned_forecast(
-    kind: str, z, folds, n_lags: int, steps: int, rng: np.random.Generator, **fit_kwargs
-) -> np.ndarray:
-    """Forecasts of a learned predictor scored by cross-validation over paths.
-
-    For each ``(train, test)`` fold of :func:`path_folds` a model is trained by
-    :func:`fit_learned_predictor` on the first trial of the training paths, ``z[0, train]``, and
-    applied to every trial of the test paths.
-
-    Parameters
-    ----------
-    z : ndarray, shape (trials, paths, ..., T)
-        Complete measured series, px.
-    rng : numpy.random.Generator
-        One seed per fold is drawn from it (in fold order) for :func:`fit_learned_predictor`.
-    **fit_kwargs
-        ``hidden_units``, ``rbf_centres``, ``max_samples`` of :func:`fit_learned_predictor`.
-
-    Returns
-    -------
-    ndarray, shape like ``z``
-    """
-    z = _check_z(z)
-    out = np.full(z.shape, np.nan)
-    for train, test in folds:
-        model = fit_learned_predictor(kind, z[0, train], n_lags, steps, seed=int(rng.integers(2**31)), **fit_kwargs)
-        out[:, test] = learned_forecast(model, z[:, test])
-    return out
 
 
 # -- Kalman filters -------------------------------------------------------------------------------
