@@ -190,8 +190,9 @@ def threshold_map_figure(
     ax.legend(fontsize=8, loc="lower right")
     return fig, (
         "The rotating marker's loss threshold over the register entries shown (one changed at a time, same "
-        "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid, undecided); dotted: the "
-        "paper's 2 (one interferer) and 3 (five)."
+        "draws; 95 % intervals; open symbols: some runs broke outside the SIR grid and are placed "
+        "half a grid step beyond its edge, a guess; the sentence below judges them by the side the censoring "
+        "certifies); dotted: the paper's 2 (one interferer) and 3 (five)."
     )
 
 
