@@ -110,6 +110,8 @@ def test_measurement_functions_return_every_part_their_rules_read():
     i = study.measure_interference(REGISTER.default(), 1, sz)
     assert set(i["C003-12"]) == {"one", "five", "imitator"} and len(i["C003-10"]["gate"]) == 3
     assert i["_curves"]["rotating/5"].shape == (len(study.SIR_GRID), 2)
+    assert set(i["_map_bound"]) == set(i["_map"])  # the prose reads a certified side for every threshold
+    assert i["_compensation_ratio"].n == 2  # C003-10's ratio before its reading, shown beside the mapped one
     # common random numbers: the same seed gives the same runs
     again = study.measure_interference(REGISTER.default(), 1, sz)
     np.testing.assert_array_equal(again["_curves"]["rotating/5"], i["_curves"]["rotating/5"])
@@ -159,6 +161,8 @@ def test_prose_words_follow_the_intervals():
     assert prose.relation(e(3.0, 2.5, 3.5, True), 2.0) == "undecided against"
     assert prose.compare(e(1.0, 0.9, 1.1), e(2.0, 1.9, 2.1)) == "below"
     assert prose.compare(e(1.0, 0.9, 1.1), e(1.05, 0.95, 1.2)) == "overlapping"
+    assert prose.show_bound(e(0.0, 0.0, 0.009)) == "at most 0.009"
+    assert prose.show_bound(e(1.0, 0.8, 1.2)) == "1 [0.8, 1.2]"
 
 
 def _toy(config, seed):
@@ -322,3 +326,44 @@ def test_extend_grid_with_a_trigger_runs_only_when_the_trigger_curves_are_censor
     )
     np.testing.assert_allclose(xs, [1 / 1.5, 1.0, 1.5, 2.25])
     np.testing.assert_array_equal(xc["static"][0], 1 / 1.5 < thr["static"])  # run too, for the pairing
+
+
+def test_threshold_bound_certifies_the_side_of_a_grid_censored_threshold():
+    """A threshold whose runs all kept lock down to the grid's bottom is certainly below a paper value above the grid
+    (a paper-profile run listed the temporal median's 0.27 as 'not below the paper's 2'); all lost at the top: above."""
+    sirs = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75])
+    none_lost = np.zeros((sirs.size, 6), bool)
+    low = study.threshold_bound(none_lost, sirs)
+    assert study.threshold(none_lost, sirs).extrapolated and not low.extrapolated
+    assert low.ci_low == 0.0 and low.ci_high == pytest.approx(0.5 * np.sqrt(1.5))
+    high = study.threshold_bound(np.ones((sirs.size, 6), bool), sirs)
+    assert high.ci_high == np.inf and high.ci_low == pytest.approx(6.75 / np.sqrt(1.5))
+    inside = _lost_from_thresholds([0.9, 1.1, 1.6, 1.2, 0.8, 2.5], sirs)
+    b, t = study.threshold_bound(inside, sirs), study.threshold(inside, sirs)
+    assert (b.value, b.ci_low, b.ci_high, b.extrapolated) == (t.value, t.ci_low, t.ci_high, False)  # no censoring
+    both = _lost_from_thresholds([0.1, 1.1, 9.0], sirs)
+    assert study.threshold_bound(both, sirs).extrapolated  # censored on both sides: still undecided
+
+
+def _censored(config, seed):
+    sirs = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75])
+    thr = [0.3] * 6 if config["comp"] == "median" else [2.5, 3.1, 2.8, 4.0, 3.3, 2.6]
+    lost = _lost_from_thresholds(thr, sirs)
+    e = study.threshold(lost, sirs)
+    return {
+        "C": {"value": e},
+        "_map": {"rotating 1": e},
+        "_map_bound": {"rotating 1": study.threshold_bound(lost, sirs)},
+    }
+
+
+def test_threshold_conditions_does_not_list_a_threshold_certified_below_the_paper():
+    from tvtrack.explore import explore
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+    from tvtrack.register import Entry, Register
+
+    reg = Register([Entry("comp", "model", "kappa", ("kappa", "median"), "toy")])
+    ex = explore(_censored, reg, {"C": InBand("t", high=10.0)}, seed=1, replicates=3, joint=0)
+    assert prose.threshold_conditions(ex, "rotating 1", 2.0) == (
+        "under no condition tried is the rotating 1 threshold other than below the paper's 2"
+    )

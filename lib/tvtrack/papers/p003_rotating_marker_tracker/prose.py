@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ...verdicts import as_estimate, is_undecided
 
-__all__ = ["show", "relation", "compare", "dependence", "threshold_conditions"]
+__all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions"]
 
 
 def show(e, digits: int = 3) -> str:
@@ -14,6 +14,15 @@ def show(e, digits: int = 3) -> str:
         return f"{e.value:.{digits}g}"
     tail = " (extrapolated)" if e.extrapolated else ""
     return f"{e.value:.{digits}g} [{e.ci_low:.{digits}g}, {e.ci_high:.{digits}g}]{tail}"
+
+
+def show_bound(e, digits: int = 3) -> str:
+    """``at most b`` for a one-sided bound ``0 [0, b]`` (the estimators' form of a bound from censored runs), else
+    :func:`show`."""
+    e = as_estimate(e)
+    if e.value == 0 and e.ci_low == 0 and e.method != "exact":
+        return f"at most {e.ci_high:.{digits}g}"
+    return show(e, digits)
 
 
 def relation(e, ref: float, above: str = "above", below: str = "below", same: str = "indistinguishable from") -> str:
@@ -54,13 +63,16 @@ def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
 
 def threshold_conditions(ex, key: str, paper: float) -> str:
     """The register conditions (one at a time and joint) under which the threshold ``key`` of the ``_map`` output
-    (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none."""
+    (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none.
+
+    The word comes from ``_map_bound`` where the run has it (:func:`.study.threshold_bound`): a threshold whose runs
+    broke outside the grid on one side only still lies measurably below (or above) the paper's value."""
     hits = []
     for r in ex.runs:
         if r.stage == "replicate":
             continue
         e = r.outputs["_map"][key]
-        word = relation(e, paper)
+        word = relation(r.outputs.get("_map_bound", r.outputs["_map"])[key], paper)
         if word != "below":
             cond = ", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items())
             hits.append(f"{cond} ({show(e)}, {word} {paper:g})")

@@ -33,12 +33,14 @@ __all__ = [
     "SIR_GRID",
     "UNCOMPENSATED_GRID",
     "BXY_GRID",
+    "LINEAR_BAND",
     "Sizes",
     "scenario",
     "criterion",
     "loss_share",
     "log_thresholds",
     "threshold",
+    "threshold_bound",
     "threshold_ratio",
     "measure_tracking",
     "measure_interference",
@@ -46,6 +48,7 @@ __all__ = [
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
 UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)  # SIR_0 without compensation (kappa = 1)
+LINEAR_BAND = (0.9, 1.1)  # C003-9: quadrant slope / 2dD counted "linear" (the rule and the s-curve caption)
 BXY_GRID = (2.0, 5.0, 10.0, 20.0)  # coordinate-loop bandwidths of the C003-2 mechanism, Hz
 RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}  # interferer radius, offsets in units of D
 # rotation-rate laws (depth, Hz): "mean rotation frequency 8 rev/s" (l. 185) says omega varies; its law is unstated
@@ -216,6 +219,37 @@ def threshold(lost, sirs) -> Estimate:
         tau.size,
         "geometric mean of per-run breaking SIRs (grid-censored), t interval + half a grid step",
         extrapolated=bool(cens.any()),
+    )
+
+
+def threshold_bound(lost, sirs) -> Estimate:
+    """The side of the paper's value a threshold certifies, from the same runs as :func:`threshold`.
+
+    :func:`threshold` is ``extrapolated`` (undecided) as soon as one run broke outside the grid; but a run that kept
+    lock at the grid's bottom broke below it, and one that lost lock at its top broke above it, so censoring on one
+    side still bounds the geometric mean on the other: with runs censored below, ``[0, exp(upper t bound of the
+    mean with those runs at the bottom + h)]``; censored above, ``[exp(lower t bound with those runs at the top - h),
+    inf]`` (``h`` half the largest grid step, as in :func:`threshold`). Without censoring it equals
+    :func:`threshold`; censored on both sides it stays ``extrapolated``. The value is :func:`threshold`'s.
+    """
+    L = np.asarray(lost, bool)
+    ls = np.log(np.asarray(sirs, float))
+    tau, _ = log_thresholds(L, sirs)
+    point = threshold(L, sirs)
+    low_c, high_c = ~L[0], L[-1]  # kept lock at the bottom (broke below) / lost at the top (broke above)
+    if not (low_c.any() or high_c.any()):
+        return point
+    h = _half_step(sirs)
+    lo = 0.0 if low_c.any() else float(np.exp(mean_ci(np.where(high_c, ls[-1], tau)).ci_low - h))
+    hi = float("inf") if high_c.any() else float(np.exp(mean_ci(np.where(low_c, ls[0], tau)).ci_high + h))
+    return _estimate(
+        point.value,
+        lo,
+        hi,
+        tau.size,
+        f"bound certified by the censoring: {int(low_c.sum())} run(s) broke below the grid, "
+        f"{int(high_c.sum())} above it; t bound + half a grid step",
+        extrapolated=bool(low_c.any() and high_c.any()),
     )
 
 
@@ -465,7 +499,9 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-7": {"loss_free", "not_lower", "rise"}, "C003-10": {"gate", "compensation"},
         "C003-11": {"dynamics", "selection", "bandwidth"} (mean-square miss without interferers,
         B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}``, ``"_map"`` (the thresholds of the
-        rotating and static markers with one and five interferers), ``"_mechanisms"`` (counts of the losses meeting
+        rotating and static markers with one and five interferers), ``"_map_bound"`` (the same thresholds as the
+        bounds their grid censoring certifies, :func:`threshold_bound`), ``"_compensation_ratio"``
+        (C003-10's compensation ratio before :func:`compensation_reading`), ``"_mechanisms"`` (counts of the losses meeting
         each loss criterion) and ``"_curves"`` (the loss indicators).
     """
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
@@ -512,6 +548,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     # one adaptive point a side, and only when the rotating marker's own runs break outside the grid: the static
     # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio)
     xsirs, xc = extend_grid({k: curves[k] for k in pair_keys}, sirs, more, max_points=1, trigger=pair_keys[:2])
+    comp_ratio = _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa)
     out = {
         "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
         "C003-6": {
@@ -527,7 +564,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-10": {
             "gate": [threshold(curves["gate", 1.5], sirs), threshold(r5, sirs), threshold(curves["gate", 5.0], sirs)],
             "compensation": compensation_reading(
-                _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
+                comp_ratio,
                 base.kappa,
                 config.get("compensation_reading", "one-sided"),
             ),
@@ -549,6 +586,9 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         for j, k in enumerate((1, 5))
     }
     out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
+    out["_map_bound"] = {f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    out["_compensation_ratio"] = comp_ratio  # C003-10's ratio as measured, before its reading maps it (prose)
     out["_grid"] = [
         float(x) for x in xsirs
     ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
