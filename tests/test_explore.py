@@ -1,6 +1,8 @@
 """The explorer: replicates are independent, joint-only flips are caught, adaptive stopping stops
 early on a clear claim and late on a borderline one, labels are per part."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -287,3 +289,15 @@ def test_a_pinned_joint_condition_is_measured_every_run():
         REG.with_pinned({"a": 5, "b": 2})
     with pytest.raises(ValueError, match="at least two"):
         REG.with_pinned({"a": 2})
+
+
+def test_certified_bounds_pool_to_their_envelope_never_below_zero():
+    bound = [Estimate(0.0, 0.003, 0.0, b, 6, 0.95, "bound from the grid's top") for b in (0.004, 0.0066, 0.005)]
+    p = pool(bound)
+    assert (p.value, p.ci_low, p.ci_high) == (0.0, 0.0, 0.0066)  # a linear pool gave [-0.006, 0.006]
+    mixed = pool([bound[0], Estimate(0.03, 0.01, 0.01, 0.09, 6, 0.95, "ratio")])
+    assert mixed.ci_low == 0.0 and mixed.ci_high == 0.09
+    upper = [Estimate(0.58, 0.1, 0.0, 0.71, 2, 0.95, "upper bound"), Estimate(0.87, 0.5, 0.11, 6.6, 2, 0.95, "ratio")]
+    assert (pool(upper).ci_low, pool(upper).ci_high) == (0.0, 6.6)  # a ratio's pooled interval never below zero
+    lower = pool([Estimate(2.0, 0.5, 1.5, math.inf, 6, 0.95, "fold"), Estimate(3.0, 0.5, 2.5, math.inf, 6, 0.95, "f")])
+    assert lower.ci_low == 1.5 and lower.ci_high == math.inf

@@ -123,6 +123,12 @@ def _pool_counts(es: list[Estimate]) -> Estimate:
     return Estimate(k / n, math.nan, lo, hi, n, conf, f"count over {len(es)} replicates: {k} of {n}, one-sided bound")
 
 
+def _is_bound(e: Estimate) -> bool:
+    """A one-sided interval of a non-negative quantity: ``[0, b]`` (a certified upper bound, e.g. no run of a
+    threshold ratio's denominator broke on the grid, or an interval clipped at zero) or ``[a, inf)``."""
+    return (e.ci_low == 0.0 < e.ci_high and e.value >= 0.0) or e.ci_high == math.inf
+
+
 def _pool_estimates(es: list[Estimate]) -> Estimate:
     k = len(es)
     conf = es[0].confidence
@@ -149,6 +155,20 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
         )
     lo = np.array([e.ci_low for e in es], float)
     hi = np.array([e.ci_high for e in es], float)
+    if any(_is_bound(e) for e in es) and not (np.isnan(lo).any() or np.isnan(hi).any() or np.isnan(vals).any()):
+        # a certified one-sided bound has no standard error to combine: the envelope of the replicates'
+        # intervals covers the truth at least as often as any one of them does (conservative, never negative)
+        a, b = float(lo.min()), float(hi.max())
+        return Estimate(
+            float(np.clip(np.median(vals), a, b)),
+            float((b - a) / (2 * z)),
+            a,
+            b,
+            n,
+            conf,
+            f"envelope of {k} independent replicates' intervals (some are certified bounds)",
+            extrap,
+        )
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
         return Estimate(
             float(np.nanmean(vals)),

@@ -111,7 +111,7 @@ def test_measurement_functions_return_every_part_their_rules_read():
     assert set(i["C003-12"]) == {"one", "five", "imitator"} and len(i["C003-10"]["gate"]) == 3
     assert i["_curves"]["rotating/5"].shape == (len(study.SIR_GRID), 2)
     assert set(i["_map_bound"]) == set(i["_map"])  # the prose reads a certified side for every threshold
-    assert i["_compensation_ratio"].n == 2  # C003-10's ratio before its reading, shown beside the mapped one
+    assert i["C003-10"]["compensation"].n == 2  # the default (one-sided) reading shows the ratio as measured
     # common random numbers: the same seed gives the same runs
     again = study.measure_interference(REGISTER.default(), 1, sz)
     np.testing.assert_array_equal(again["_curves"]["rotating/5"], i["_curves"]["rotating/5"])
@@ -242,20 +242,28 @@ def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
     assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)
 
 
-def test_compensation_reading_one_sided_counts_a_stronger_compensation_as_kappa():
-    from tvtrack.verdicts import WithinFactor
+def test_compensation_reading_one_sided_keeps_the_ratio_and_two_sided_folds_it_about_kappa():
+    from tvtrack.verdicts import InBand
 
-    rule = WithinFactor("ratio", 0.1, 2.0)
+    rule = InBand("ratio", high=2 * 0.1)  # the notebook's C003-10 compensation rule
     strong = Estimate(0.0, float("nan"), 0.0, 0.04, 6, 0.95, "bound from the grid's top")  # compensation > 1/kappa
     weak = Estimate(0.5, float("nan"), 0.4, 0.6, 6, 0.95, "ratio")  # compensation worth only 2x
-    one = study.compensation_reading(strong, 0.1, "one-sided")
-    assert (one.value, one.ci_low, one.ci_high) == pytest.approx((0.2 / 3, 0.2 / 3, 0.24 / 3))
-    assert rule.decide(one) == "reproduced"
-    assert rule.decide(study.compensation_reading(strong, 0.1, "two-sided")) == "not reproduced"
+    about = Estimate(0.08, float("nan"), 0.06, 0.15, 6, 0.95, "ratio")  # within a factor 2 of kappa, straddling it
+    edge = Estimate(0.15, float("nan"), 0.05, 0.3, 6, 0.95, "ratio")  # interval reaching past 2 kappa
+    assert study.compensation_reading(strong, 0.1, "one-sided") is strong  # the measured ratio, unmapped
+    assert rule.decide(study.compensation_reading(strong, 0.1, "one-sided")) == "reproduced"
+    two = study.compensation_reading(strong, 0.1, "two-sided")  # q <= 0.04: at least 2.5-fold from kappa
+    assert two.ci_low == pytest.approx(0.25) and two.value == pytest.approx(0.25) and two.ci_high == np.inf
+    assert rule.decide(two) == "not reproduced"
+    folded = study.compensation_reading(about, 0.1, "two-sided")
+    assert (folded.value, folded.ci_low, folded.ci_high) == pytest.approx((0.125, 0.1, 0.01 / 0.06))
+    assert rule.decide(folded) == "reproduced"  # 0.06 and 0.15 both lie within a factor 2 of kappa
     for reading in study.COMPENSATION_READINGS:  # a weak compensation fails under both readings
         assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
-    edge = Estimate(0.15, float("nan"), 0.05, 0.3, 6, 0.95, "ratio")  # interval reaching past 2 kappa
-    assert rule.decide(study.compensation_reading(edge, 0.1, "one-sided")) == "partly"
+        assert rule.decide(study.compensation_reading(edge, 0.1, reading)) == "partly"
+    low = Estimate(0.04, float("nan"), 0.03, 0.06, 6, 0.95, "ratio")  # below kappa / 2: one-sided yes, two-sided no
+    assert rule.decide(study.compensation_reading(low, 0.1, "one-sided")) == "reproduced"
+    assert rule.decide(study.compensation_reading(low, 0.1, "two-sided")) == "partly"  # fold [0.167, 0.333]
     with pytest.raises(ValueError):
         study.compensation_reading(weak, 0.1, "both")
 

@@ -500,8 +500,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-11": {"dynamics", "selection", "bandwidth"} (mean-square miss without interferers,
         B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}``, ``"_map"`` (the thresholds of the
         rotating and static markers with one and five interferers), ``"_map_bound"`` (the same thresholds as the
-        bounds their grid censoring certifies, :func:`threshold_bound`), ``"_compensation_ratio"``
-        (C003-10's compensation ratio before :func:`compensation_reading`), ``"_mechanisms"`` (counts of the losses meeting
+        bounds their grid censoring certifies, :func:`threshold_bound`), ``"_mechanisms"`` (counts of the losses meeting
         each loss criterion) and ``"_curves"`` (the loss indicators).
     """
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
@@ -588,7 +587,6 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
     # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
     out["_map_bound"] = {f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
-    out["_compensation_ratio"] = comp_ratio  # C003-10's ratio as measured, before its reading maps it (prose)
     out["_grid"] = [
         float(x) for x in xsirs
     ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
@@ -611,18 +609,19 @@ COMPENSATION_READINGS = ("one-sided", "two-sided")
 
 
 def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimate:
-    """C003-10's compensation ratio as its reading judges it (the rule: within a factor 2 of ``kappa``).
+    """C003-10's compensation ratio as its reading judges it (the rule: at most ``2 kappa``, i.e. compensation lowers
+    the SIR_0 threshold at least about 1/kappa-fold, within the rule's factor 2).
 
     The paper (l. 198): "Если использование процедуры компенсации фоновых излучений эквивалентно уменьшению яркости
     фона на порядок, то пороговое отношение сигнал/помеха, имевшее место до компенсации фона и гарантирующее отсутствие
     срывов слежения, ... уменьшается до 0,2-0,3" ("if compensation is equivalent to reducing the background by an
     order of magnitude, the no-loss threshold SIR before compensation ... decreases to 0.2-0.3"), and l. 208 names
     compensation one of the main factors of the robustness. The order of magnitude is a hypothesis, not a measured
-    ratio: compensation lowers the SIR_0 threshold *at least* about 1/kappa-fold ("one-sided", the paper's reading),
-    so a ratio below ``kappa`` (the uncompensated tracker fails even harder) is no contradiction: under "one-sided" a
-    ratio ``q < kappa`` is mapped to ``(2 kappa + q) / 3``, onto ``[2 kappa / 3, kappa)`` inside the rule's band (a
-    monotone map, so an interval stays a non-degenerate interval; ratios >= kappa are unchanged and still fail above
-    ``2 kappa``). "two-sided" (the card's "about 1/kappa-fold") keeps the ratio as measured.
+    ratio: "one-sided" (the paper's reading, the default) keeps the ratio as measured, and a ratio below ``kappa``
+    (the uncompensated tracker fails even harder) meets the rule. "two-sided" (the card's "about 1/kappa-fold")
+    judges the ratio's fold distance from ``kappa``: ``kappa exp|log(q / kappa)|`` (``q`` itself for ``q >= kappa``,
+    ``kappa^2 / q`` below it), at most ``2 kappa`` exactly when ``q`` lies within a factor 2 of ``kappa``; an
+    interval straddling ``kappa`` starts at ``kappa``.
 
     Parameters
     ----------
@@ -634,19 +633,22 @@ def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimat
     """
     if reading not in COMPENSATION_READINGS:
         raise ValueError(f"parameter 'reading' = {reading!r}; it must be one of {COMPENSATION_READINGS}")
-    if reading == "two-sided":
+    if reading == "one-sided":
         return ratio
     k = float(kappa)
 
     def fold(q):
-        return q if not q < k else (2 * k + q) / 3
+        return q if q >= k else (k * k / q if q > 0 else np.inf)
 
+    lo, hi = ratio.ci_low, ratio.ci_high
+    ends = sorted((fold(lo), fold(hi)))
+    value = fold(ratio.value)
     return replace(
         ratio,
-        value=fold(ratio.value),
-        ci_low=fold(ratio.ci_low),
-        ci_high=fold(ratio.ci_high),
-        method=ratio.method + "; one-sided reading: a ratio q < kappa counts as (2 kappa + q) / 3",
+        value=value if np.isfinite(value) else ends[0],  # a bound [0, b] certifies a fold distance of at least fold(b)
+        ci_low=k if lo < k < hi else ends[0],
+        ci_high=ends[1],
+        method=ratio.method + "; two-sided reading: the ratio's fold distance from kappa, kappa exp|log(q / kappa)|",
     )
 
 
