@@ -112,6 +112,15 @@ def test_measurement_functions_return_every_part_their_rules_read():
     assert i["_curves"]["rotating/5"].shape == (len(study.SIR_GRID), 2)
     assert set(i["_map_bound"]) == set(i["_map"])  # the prose reads a certified side for every threshold
     assert i["C003-10"]["compensation"].n == 2  # the default (one-sided) reading shows the ratio as measured
+    # C003-10's gate part: the side a grid-censored threshold certifies, not an extrapolated (undecided) point
+    for got, key in zip(i["C003-10"]["gate"], ("gate/1.5", "rotating/5", "gate/5.0")):
+        want = study.threshold_bound(i["_curves"][key], study.SIR_GRID)
+        assert (got.value, got.ci_low, got.ci_high, got.extrapolated) == (
+            want.value,
+            want.ci_low,
+            want.ci_high,
+            want.extrapolated,
+        )
     # common random numbers: the same seed gives the same runs
     again = study.measure_interference(REGISTER.default(), 1, sz)
     np.testing.assert_array_equal(again["_curves"]["rotating/5"], i["_curves"]["rotating/5"])

@@ -561,7 +561,12 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
             "rise": threshold_ratio(xc["rotating", 5], xc["rotating", 1], xsirs),
         },
         "C003-10": {
-            "gate": [threshold(curves["gate", 1.5], sirs), threshold(r5, sirs), threshold(curves["gate", 5.0], sirs)],
+            # the side a grid-censored threshold certifies decides (threshold_bound), as in the prose's map
+            "gate": [
+                threshold_bound(curves["gate", 1.5], sirs),
+                threshold_bound(r5, sirs),
+                threshold_bound(curves["gate", 5.0], sirs),
+            ],
             "compensation": compensation_reading(
                 comp_ratio,
                 base.kappa,
