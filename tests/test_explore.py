@@ -301,3 +301,11 @@ def test_certified_bounds_pool_to_their_envelope_never_below_zero():
     assert (pool(upper).ci_low, pool(upper).ci_high) == (0.0, 6.6)  # a ratio's pooled interval never below zero
     lower = pool([Estimate(2.0, 0.5, 1.5, math.inf, 6, 0.95, "fold"), Estimate(3.0, 0.5, 2.5, math.inf, 6, 0.95, "f")])
     assert lower.ci_low == 1.5 and lower.ci_high == math.inf
+
+
+def test_a_linear_pool_stays_within_the_replicates_intervals():
+    # paired share differences near their edge: each replicate's interval ends at 1, the pool must too
+    reps = [Estimate(0.97, 0.04, 0.85, 1.0, 6, 0.95, "paired t"), Estimate(0.97, 0.03, 0.9, 1.0, 6, 0.95, "paired t")]
+    reps.append(Estimate(0.96, 0.05, -0.2, 1.0, 6, 0.95, "paired t"))
+    p = pool(reps)
+    assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high  # a linear pool gave 1.2

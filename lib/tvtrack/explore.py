@@ -195,11 +195,14 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
         )
     se_i = (hi - lo) / (2 * z)
     m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
+    # never beyond every replicate's interval (a share difference's pooled interval stays within [-1, 1]): the truth
+    # lies outside the hull only when it lies outside every replicate's interval
+    a, b = max(float(m - z * se), float(lo.min())), min(float(m + z * se), float(hi.max()))
     return Estimate(
         float(m),
         float(se),
-        float(m - z * se),
-        float(m + z * se),
+        a,
+        b,
         n,
         conf,
         f"pooled over {k} independent replicates (equal weights)",
