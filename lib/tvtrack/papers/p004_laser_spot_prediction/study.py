@@ -71,6 +71,7 @@ __all__ = [
     "vibration",
     "late_rms_ratio",
     "streaming_frame_times",
+    "CLOCKS",
     "recursion_vs_batch",
     "variance_ratios",
     "model_order_summary",
@@ -510,19 +511,29 @@ def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N, n
     return out
 
 
+#: The clocks of the "C004-8 clock" reading: CPU time of the process, or wall-clock time.
+CLOCKS = {"CPU": time.process_time, "wall": time.perf_counter}
+
+
 def _frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
-    """CPU ms per frame at the C004-8 readings: the batched plain centroid's mean (default), or the
-    streaming pipeline's mean or 99th percentile over frames after the first (warm-up)."""
+    """Time per frame, ms, at the C004-8 readings: the batched plain centroid's mean (default), or the
+    streaming pipeline's mean or 99th percentile over frames after the first (warm-up); the streaming
+    pipeline measures in the gate or (``C004-8 frame`` = "whole frame") over the whole frame, and
+    ``C004-8 clock`` reads CPU or wall-clock time."""
     pipeline = config.get("C004-8 pipeline", "batched plain centroid")
     statistic = config.get("C004-8 statistic", "mean")
-    if pipeline == "batched plain centroid" and statistic == "mean":
-        return _time_per_frame(run, rng)
-    t = streaming_frame_times(run, rng)[0][1:] * 1e3  # per-frame times exist only for the streaming pipeline
+    whole = config.get("C004-8 frame", "gate") == "whole frame"
+    clock = CLOCKS[config.get("C004-8 clock", "CPU")]
+    if pipeline == "batched plain centroid" and statistic == "mean" and not whole:
+        return _time_per_frame(run, rng, clock)
+    # per-frame times exist only for the streaming pipeline (the 99th percentile and the whole-frame reading)
+    t = streaming_frame_times(run, rng, whole_frame=whole, clock=clock)[0][1:] * 1e3
     return float(np.mean(t) if statistic == "mean" else np.quantile(t, 0.99))
 
 
-def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
-    """CPU ms per full 128 x 128 frame: centroid, filter update and one-step prediction."""
+def _time_per_frame(run: StudyRun, rng: np.random.Generator, clock=time.process_time) -> float:
+    """ms per full 128 x 128 frame (``clock``: CPU by default): centroid, filter update and one-step
+    prediction, batched over the frames."""
     nt = min(run.size.timing_frames, run.truth.shape[-1])
     cam = run.camera
     xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
@@ -533,22 +544,25 @@ def _time_per_frame(run: StudyRun, rng: np.random.Generator) -> float:
         read_noise=cam.read_noise_dn,
         bit_depth=cam.bit_depth,
     )
-    t0 = time.process_time()
+    t0 = clock()
     cm = centroid(frames, background="border", threshold_sigma=cam.threshold_sigma)
     predict_ahead(growing_memory_filter(np.moveaxis(cm.xy, -1, 0), 2, run.size.fixed_floor), 1)
-    return (time.process_time() - t0) / nt * 1e3
+    return (clock() - t0) / nt * 1e3
 
 
-def streaming_frame_times(run: StudyRun, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def streaming_frame_times(
+    run: StudyRun, rng: np.random.Generator, whole_frame: bool = False, clock=time.process_time
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each frame processed as it arrives (the "streaming" reading of C004-8): from the full 128 x 128
-    frame, crop the gate around the last measured centre, measure the study's energy centre in it (the
+    frame, crop the gate around the one-step prediction, measure the study's energy centre in it (the
     camera's ``centroid_mode``), run one step of the recursion (5)-(6) with the fixed floor's precomputed
-    gains and predict one frame ahead.
+    gains and predict one frame ahead. ``whole_frame``: no gate, the energy centre runs over the whole
+    frame (the windowed one started at the prediction).
 
     Returns
     -------
     times : ndarray, shape (n,)
-        CPU seconds of each frame (``time.process_time``).
+        Seconds of each frame on ``clock`` (CPU time, ``time.process_time``, by default).
     states : ndarray, shape (n, 2, 3)
         The recursion's state after each frame (per axis; NaN before the first three), for tests.
     measured : ndarray, shape (n, 2)
@@ -573,11 +587,15 @@ def streaming_frame_times(run: StudyRun, rng: np.random.Generator) -> tuple[np.n
     times, states, measured = np.empty(nt), np.full((nt, 2, 3), np.nan), np.empty((nt, 2))
     aim, first, x = xy[0], [], None
     for t in range(nt):
-        t0 = time.process_time()
-        o = np.clip(gate_origin(aim, (g, g)), 0, size - g)
-        gate = frames[t, o[1] : o[1] + g, o[0] : o[0] + g]
+        t0 = clock()
+        if whole_frame:
+            o, gate = np.zeros(2, int), frames[t]
+        else:
+            o = np.clip(gate_origin(aim, (g, g)), 0, size - g)
+            gate = frames[t, o[1] : o[1] + g, o[0] : o[0] + g]
         if cam.centroid_mode == "windowed":
-            m = windowed_centroid(gate, o, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
+            start = aim if whole_frame else None  # in a gate the window starts at its centre, the prediction
+            m = windowed_centroid(gate, o, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma, start=start)
         else:
             m = centroid(gate, o, background="border", threshold_sigma=cam.threshold_sigma)
         z = m.xy if m.valid else aim
@@ -591,7 +609,7 @@ def streaming_frame_times(run: StudyRun, rng: np.random.Generator) -> tuple[np.n
         if x is not None:
             aim = (F @ x)[0]  # the one-step prediction centres the next gate
             states[t] = x.T
-        times[t] = time.process_time() - t0
+        times[t] = clock() - t0
         measured[t] = z
     return times, states, measured
 
