@@ -26,6 +26,7 @@ __all__ = [
     "adversarial_summary",
     "edge_sentence",
     "scintillation_table",
+    "verdict_lines",
 ]
 
 
@@ -139,7 +140,8 @@ def model_order_sentence(summary: dict) -> str:
         else ""
     )
     return (
-        f"Model order: the best first-order predictor ({summary['best_order1']}) against the best second-order "
+        f"Model order (shipped paths, default reading): the best first-order predictor ({summary['best_order1']}) "
+        f"against the best second-order "
         f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
         f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames{edge}, "
         f"{memory} the horizon: the acceleration the quadratic extrapolates has "
@@ -171,6 +173,24 @@ def horizon_sentence(hz: dict) -> str:
             else "does not describe this wander over these horizons."
         )
         + f" The filter's floor was re-tuned at every horizon (median cross-validated N_f per horizon: {floors})."
+        + _horizon_edges(hz.get("edges", {}))
+    )
+
+
+def _horizon_edges(edges: dict) -> str:
+    """The horizons at which a tuned setting sits on an edge of its grid (share of paths or folds): there a
+    curve of the horizon study is the grid's limit, not the method's optimum."""
+    on = {h: {k: v for k, v in e.items() if v > 0} for h, e in edges.items()}
+    on = {h: e for h, e in on.items() if e}
+    if not edges:
+        return ""
+    if not on:
+        return " Every tuned setting lies inside its grid at every horizon."
+    return (
+        " Tuned settings on an edge of their grid (share of paths or folds), where a curve shows the grid's limit "
+        "rather than the method's optimum: "
+        + "; ".join(f"horizon {h}: " + ", ".join(f"{k} {v:.0%}" for k, v in e.items()) for h, e in on.items())
+        + "."
     )
 
 
@@ -263,10 +283,29 @@ def scintillation_table(exploration, entry: str = "scintillation") -> str:
             return "grows"
         if a.ci_low > b.ci_high:
             return "shrinks"
-        return "does not change measurably (overlapping intervals)"
+        return "does not change measurably"
+
+    def overlap(a: Estimate, b: Estimate) -> str:
+        return "; the intervals overlap" if a.ci_high >= b.ci_low and a.ci_low <= b.ci_high else ""
 
     c_ratio, p_ratio = centroid[hi].value / centroid[lo].value, prediction[hi].value / prediction[lo].value
     return "\n".join(rows) + (
-        f"\n\nFrom sigma = {lo:g} to {hi:g} the centroid error {word(centroid[lo], centroid[hi])} (x{c_ratio:.2f}) "
-        f"and the prediction error {word(prediction[lo], prediction[hi])} (x{p_ratio:.2f})."
+        f"\n\nFrom sigma = {lo:g} to {hi:g} the centroid error {word(centroid[lo], centroid[hi])} (x{c_ratio:.2f}"
+        f"{overlap(centroid[lo], centroid[hi])}) and the prediction error {word(prediction[lo], prediction[hi])} "
+        f"(x{p_ratio:.2f}{overlap(prediction[lo], prediction[hi])})."
     )
+
+
+def verdict_lines(claims) -> str:
+    """One line per claim of the run (``Results.claims``): its verdict and label and, for a claim of several
+    parts, each part's verdict and label, read from the claim's record (so the conclusions say what the
+    claims table says)."""
+    lines = []
+    for c in claims:
+        rob = c.robustness or {}
+        text = f"- {c.id}: {c.verdict}, {rob.get('label', '-')}"
+        parts = rob.get("parts", {})
+        if len(parts) > 1:
+            text += " (" + "; ".join(f"{p}: {v['verdict']}, {v['label']}" for p, v in parts.items()) + ")"
+        lines.append(text)
+    return "\n".join(lines)

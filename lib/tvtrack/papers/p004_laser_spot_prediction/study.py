@@ -755,10 +755,14 @@ def scores(run: StudyRun) -> tuple[dict, dict]:
 def grid_edge_report(run: StudyRun) -> dict:
     """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
     an edge may be the grid's limit rather than the method's optimum)."""
+    return _edge_shares(run.comparison.chosen, _setup(run.config, run.size))
+
+
+def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
+    """:func:`grid_edge_report` of the tuned settings ``ch`` (``compare_methods``' ``chosen``) on the grids of
+    ``s``; the networks' lags only where they were tuned."""
     from .prediction_study import MIN_WINDOW, grid_edges, window_candidates
 
-    s = _setup(run.config, run.size)
-    ch = run.comparison.chosen
     out = {
         PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) == 1)),  # N_f = 3 (order + 1) is a true limit
         FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
@@ -880,9 +884,10 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
     -------
     dict
         ``rms``: {method: {horizon: Estimate (px)}}; ``floor``: {horizon: median cross-validated N_f};
-        ``slopes``: {method: log-log slope of RMS over the horizons}.
+        ``floor_grid``: the floor's grid; ``edges``: {horizon: :func:`grid_edge_report` of that horizon's
+        tuning}; ``slopes``: {method: log-log slope of RMS over the horizons}.
     """
-    rms, floors = {}, {}
+    rms, floors, edges = {}, {}, {}
     for h in horizons:
         s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
         cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
@@ -893,10 +898,11 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
         for name, f in fcs.items():
             rms.setdefault(name, {})[h] = root_mean_ci(per_trial_path_mse(f, run.z_meas, h, run.size.eval_start)[0])
         floors[h] = float(np.median(cmp.chosen[PAPER]))
+        edges[h] = _edge_shares(cmp.chosen, s)
     hs = np.log(np.asarray(horizons, dtype=float))
     slopes = (
         {n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
         if len(horizons) > 1
         else {}
     )
-    return {"rms": rms, "floor": floors, "slopes": slopes}
+    return {"rms": rms, "floor": floors, "floor_grid": tuple(run.size.floor_grid), "edges": edges, "slopes": slopes}
