@@ -351,3 +351,17 @@ def test_frame_loss_breaks_the_recursion_only_when_lost_frames_are_skipped():
     assert np.isnan(skipped).any() and np.isfinite(held).all()
     assert recursion_vs_batch(held)[0] < 1e-9  # held: an even series again, exact
     assert recursion_vs_batch(skipped)[0] > 1e-6  # skipped: the recursion is not eq. (4) at the true times
+
+
+def test_budget_and_regeneration_sentences_follow_their_tests():
+    """The measurement's share is read at the study's read noise (or the nearest level, said so); the
+    regenerated data set 'agrees' only within the stated tolerance."""
+    budget = {2.0: {"centroid": 0.04, "crb": 0.03}, 32.0: {"centroid": 0.2, "crb": 0.14}}
+    pred = Estimate(0.33, 0.01, 0.31, 0.35, 15)
+    text = fd.budget_sentence(budget, 2.0, pred)
+    assert "At the study's read noise the centroid errs 0.040 px" in text and "a small part" in text
+    far = fd.budget_sentence(budget, 24.0, Estimate(0.3, 0.01, 0.28, 0.32, 15))
+    assert "At 32 DN, the budget's level nearest the study's 24 DN," in far and "a large part" in far
+    assert "2 DN 0.56" in text
+    assert "agrees with" in fd.regeneration_sentence(3.8e-16)
+    assert "differs from" in fd.regeneration_sentence(2e-12)

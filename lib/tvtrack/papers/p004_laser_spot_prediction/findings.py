@@ -27,6 +27,8 @@ __all__ = [
     "edge_sentence",
     "scintillation_table",
     "verdict_lines",
+    "budget_sentence",
+    "regeneration_sentence",
 ]
 
 
@@ -309,3 +311,33 @@ def verdict_lines(claims) -> str:
             text += " (" + "; ".join(f"{p}: {v['verdict']}, {v['label']}" for p, v in parts.items()) + ")"
         lines.append(text)
     return "\n".join(lines)
+
+
+def budget_sentence(budget: dict, read_noise_dn: float, prediction_rms: Estimate) -> str:
+    """The centroid's efficiency ``(CRB / RMS)^2`` at each read-noise level of the measurement budget, and
+    whether the centroid error at the study's read noise is a small part (below half) of the one-step
+    prediction error; a read noise the budget did not measure is said, and the nearest level used."""
+    eff = ", ".join(f"{v:g} DN {(b['crb'] / b['centroid']) ** 2:.2f}" for v, b in budget.items())
+    level = min(budget, key=lambda v: abs(v - read_noise_dn))
+    where = (
+        "At the study's read noise"
+        if level == read_noise_dn
+        else f"At {level:g} DN, the budget's level nearest the study's {read_noise_dn:g} DN,"
+    )
+    c = budget[level]["centroid"]
+    share = "a small part" if c < 0.5 * prediction_rms.value else "a large part"
+    return (
+        f"Efficiency of the centroid, (CRB / RMS)^2: {eff}. {where} the centroid errs {c:.3f} px against a one-step "
+        f"prediction error of {prediction_rms.value:.2f} px: the measurement is {share} of the error (below half "
+        "counts as small)."
+    )
+
+
+def regeneration_sentence(max_rel_diff: float, tolerance: float = 1e-12) -> str:
+    """Whether the data set regenerated from its stored seed matches the shipped one within the stated
+    relative tolerance."""
+    word = "agrees with" if max_rel_diff <= tolerance else "differs from"
+    return (
+        f"The regenerated set {word} the shipped one: largest relative difference {max_rel_diff:.1e} "
+        f"(tolerance {tolerance:g})."
+    )
