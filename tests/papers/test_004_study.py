@@ -148,8 +148,42 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
         )
         pick = np.asarray(SIZE.floor_grid)[pr.cross_validated_pick(loss, run.folds)]
         assert hz["floor"][h] == float(np.median(pick))
+        assert hz["edges"][h][PAPER] == float(np.mean(pick == max(SIZE.floor_grid)))  # the floor's upper edge
     assert hz["rms"][PAPER][10].value > hz["rms"][PAPER][1].value
     assert set(hz["slopes"]) == set(hz["rms"])
+    text = fd.horizon_sentence(hz)
+    on_edge = any(v > 0 for e in hz["edges"].values() for v in e.values())
+    assert ("on an edge of their grid" in text) == on_edge
+    assert ("inside its grid at every horizon" in text) == (not on_edge)
+
+
+def test_horizon_sentence_names_the_settings_on_a_grid_edge():
+    """A floor on the grid's top at a long horizon is named with its horizon and share (the curve there is
+    the grid's limit); a horizon with nothing on an edge is not listed."""
+    text = fd._horizon_edges({1: {PAPER: 0.0, "Singer tau": 0.0}, 10: {PAPER: 0.6, "Singer tau": 0.0}})
+    assert "horizon 10: growing memory (paper) 60%" in text and "horizon 1:" not in text
+    assert "inside its grid" in fd._horizon_edges({1: {PAPER: 0.0}})
+    assert fd._horizon_edges({}) == ""
+
+
+def test_conclusion_lines_state_every_part_as_the_claims_table_does():
+    from types import SimpleNamespace
+
+    parts = {
+        "finite differences, 2 points": {"verdict": "not reproduced", "label": "depends"},
+        "cubic spline": {"verdict": "reproduced", "label": "robust"},
+    }
+    claims = [
+        SimpleNamespace(id="C004-3", verdict="partly", robustness={"label": "depends", "parts": parts}),
+        SimpleNamespace(id="C004-1", verdict="reproduced", robustness={"label": "robust", "parts": {"claim": {}}}),
+        SimpleNamespace(id="C004-7", verdict="not checkable", robustness=None),
+    ]
+    text = fd.verdict_lines(claims).splitlines()
+    assert text[0] == (
+        "- C004-3: partly, depends (finite differences, 2 points: not reproduced, depends; "
+        "cubic spline: reproduced, robust)"
+    )
+    assert text[1:] == ["- C004-1: reproduced, robust", "- C004-7: not checkable, -"]
 
 
 def test_late_rms_ratio_is_the_root_of_the_mean_square_ratio():
@@ -317,3 +351,17 @@ def test_frame_loss_breaks_the_recursion_only_when_lost_frames_are_skipped():
     assert np.isnan(skipped).any() and np.isfinite(held).all()
     assert recursion_vs_batch(held)[0] < 1e-9  # held: an even series again, exact
     assert recursion_vs_batch(skipped)[0] > 1e-6  # skipped: the recursion is not eq. (4) at the true times
+
+
+def test_budget_and_regeneration_sentences_follow_their_tests():
+    """The measurement's share is read at the study's read noise (or the nearest level, said so); the
+    regenerated data set 'agrees' only within the stated tolerance."""
+    budget = {2.0: {"centroid": 0.04, "crb": 0.03}, 32.0: {"centroid": 0.2, "crb": 0.14}}
+    pred = Estimate(0.33, 0.01, 0.31, 0.35, 15)
+    text = fd.budget_sentence(budget, 2.0, pred)
+    assert "At the study's read noise the centroid errs 0.040 px" in text and "a small part" in text
+    far = fd.budget_sentence(budget, 24.0, Estimate(0.3, 0.01, 0.28, 0.32, 15))
+    assert "At 32 DN, the budget's level nearest the study's 24 DN," in far and "a large part" in far
+    assert "2 DN 0.56" in text
+    assert "agrees with" in fd.regeneration_sentence(3.8e-16)
+    assert "differs from" in fd.regeneration_sentence(2e-12)

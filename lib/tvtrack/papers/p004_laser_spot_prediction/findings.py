@@ -26,6 +26,9 @@ __all__ = [
     "adversarial_summary",
     "edge_sentence",
     "scintillation_table",
+    "verdict_lines",
+    "budget_sentence",
+    "regeneration_sentence",
 ]
 
 
@@ -139,7 +142,8 @@ def model_order_sentence(summary: dict) -> str:
         else ""
     )
     return (
-        f"Model order: the best first-order predictor ({summary['best_order1']}) against the best second-order "
+        f"Model order (shipped paths, default reading): the best first-order predictor ({summary['best_order1']}) "
+        f"against the best second-order "
         f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
         f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames{edge}, "
         f"{memory} the horizon: the acceleration the quadratic extrapolates has "
@@ -171,6 +175,24 @@ def horizon_sentence(hz: dict) -> str:
             else "does not describe this wander over these horizons."
         )
         + f" The filter's floor was re-tuned at every horizon (median cross-validated N_f per horizon: {floors})."
+        + _horizon_edges(hz.get("edges", {}))
+    )
+
+
+def _horizon_edges(edges: dict) -> str:
+    """The horizons at which a tuned setting sits on an edge of its grid (share of paths or folds): there a
+    curve of the horizon study is the grid's limit, not the method's optimum."""
+    on = {h: {k: v for k, v in e.items() if v > 0} for h, e in edges.items()}
+    on = {h: e for h, e in on.items() if e}
+    if not edges:
+        return ""
+    if not on:
+        return " Every tuned setting lies inside its grid at every horizon."
+    return (
+        " Tuned settings on an edge of their grid (share of paths or folds), where a curve shows the grid's limit "
+        "rather than the method's optimum: "
+        + "; ".join(f"horizon {h}: " + ", ".join(f"{k} {v:.0%}" for k, v in e.items()) for h, e in on.items())
+        + "."
     )
 
 
@@ -263,10 +285,59 @@ def scintillation_table(exploration, entry: str = "scintillation") -> str:
             return "grows"
         if a.ci_low > b.ci_high:
             return "shrinks"
-        return "does not change measurably (overlapping intervals)"
+        return "does not change measurably"
+
+    def overlap(a: Estimate, b: Estimate) -> str:
+        return "; the intervals overlap" if a.ci_high >= b.ci_low and a.ci_low <= b.ci_high else ""
 
     c_ratio, p_ratio = centroid[hi].value / centroid[lo].value, prediction[hi].value / prediction[lo].value
     return "\n".join(rows) + (
-        f"\n\nFrom sigma = {lo:g} to {hi:g} the centroid error {word(centroid[lo], centroid[hi])} (x{c_ratio:.2f}) "
-        f"and the prediction error {word(prediction[lo], prediction[hi])} (x{p_ratio:.2f})."
+        f"\n\nFrom sigma = {lo:g} to {hi:g} the centroid error {word(centroid[lo], centroid[hi])} (x{c_ratio:.2f}"
+        f"{overlap(centroid[lo], centroid[hi])}) and the prediction error {word(prediction[lo], prediction[hi])} "
+        f"(x{p_ratio:.2f}{overlap(prediction[lo], prediction[hi])})."
+    )
+
+
+def verdict_lines(claims) -> str:
+    """One line per claim of the run (``Results.claims``): its verdict and label and, for a claim of several
+    parts, each part's verdict and label, read from the claim's record (so the conclusions say what the
+    claims table says)."""
+    lines = []
+    for c in claims:
+        rob = c.robustness or {}
+        text = f"- {c.id}: {c.verdict}, {rob.get('label', '-')}"
+        parts = rob.get("parts", {})
+        if len(parts) > 1:
+            text += " (" + "; ".join(f"{p}: {v['verdict']}, {v['label']}" for p, v in parts.items()) + ")"
+        lines.append(text)
+    return "\n".join(lines)
+
+
+def budget_sentence(budget: dict, read_noise_dn: float, prediction_rms: Estimate) -> str:
+    """The centroid's efficiency ``(CRB / RMS)^2`` at each read-noise level of the measurement budget, and
+    whether the centroid error at the study's read noise is a small part (below half) of the one-step
+    prediction error; a read noise the budget did not measure is said, and the nearest level used."""
+    eff = ", ".join(f"{v:g} DN {(b['crb'] / b['centroid']) ** 2:.2f}" for v, b in budget.items())
+    level = min(budget, key=lambda v: abs(v - read_noise_dn))
+    where = (
+        "At the study's read noise"
+        if level == read_noise_dn
+        else f"At {level:g} DN, the budget's level nearest the study's {read_noise_dn:g} DN,"
+    )
+    c = budget[level]["centroid"]
+    share = "a small part" if c < 0.5 * prediction_rms.value else "a large part"
+    return (
+        f"Efficiency of the centroid, (CRB / RMS)^2: {eff}. {where} the centroid errs {c:.3f} px against a one-step "
+        f"prediction error of {prediction_rms.value:.2f} px: the measurement is {share} of the error (below half "
+        "counts as small)."
+    )
+
+
+def regeneration_sentence(max_rel_diff: float, tolerance: float = 1e-12) -> str:
+    """Whether the data set regenerated from its stored seed matches the shipped one within the stated
+    relative tolerance."""
+    word = "agrees with" if max_rel_diff <= tolerance else "differs from"
+    return (
+        f"The regenerated set {word} the shipped one: largest relative difference {max_rel_diff:.1e} "
+        f"(tolerance {tolerance:g})."
     )

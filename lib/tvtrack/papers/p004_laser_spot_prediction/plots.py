@@ -42,11 +42,12 @@ _STYLES = [
 ]
 
 
-def plain_log(ax, which: str = "xy") -> None:
-    """Log axes with plain-number tick labels (1, 2, 5 x 10^k written out, no 10^x)."""
+def plain_log(ax, which: str = "xy", subs=(1.0, 2.0, 5.0)) -> None:
+    """Log axes with plain-number tick labels (``subs`` x 10^k written out, no 10^x; ``(1.0,)`` for
+    axes spanning many decades, whose 1-2-5 labels would overlap)."""
     for name in which:
         axis = getattr(ax, f"{name}axis")
-        axis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        axis.set_major_locator(matplotlib.ticker.LogLocator(subs=subs))
         axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
@@ -79,12 +80,12 @@ def measurement_figure(run, frame: int):
     axs[0].plot(*xy[frame], "+", color=colour("measurement"), ms=12, label="energy centre")
     axs[0].plot(*truth[frame], "x", color=colour("truth"), ms=8, label="true centre")
     axs[0].set(xlabel="x (px)", ylabel="y (px)", title=f"frame {frame}: gate, window, weighted pixels")
-    axs[0].legend(loc="lower left", fontsize=8)
+    axs[0].legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=8)  # off the image
     k = np.arange(xy.shape[0])
     axs[1].plot(k, xy[:, 0], label="x (curve 1)")
     axs[1].plot(k, xy[:, 1], label="y (curve 2)")
     axs[1].set(xlabel="frame number", ylabel="measured centre (px)", title="energy-centre coordinates, path 1")
-    axs[1].legend(fontsize=8)
+    axs[1].legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=8)  # off the curves
     return fig
 
 
@@ -120,10 +121,16 @@ def comparison_figure(run, names):
     m = int(run.config["horizon"])
     data = [np.sqrt(per_trial_path_mse(run.forecasts[n], run.z_meas, m, run.size.eval_start)[0]) for n in names]
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.boxplot(data, orientation="horizontal", tick_labels=list(names), showmeans=True)
+    ax.boxplot(
+        data,
+        orientation="horizontal",
+        tick_labels=list(names),
+        showmeans=True,
+        meanprops=dict(marker="^", markerfacecolor="k", markeredgecolor="k", markersize=5),
+    )
     ax.axvspan(1, 2, color="g", alpha=0.12, label="paper's claim: 1-2 px")
     ax.set_xscale("log")
-    plain_log(ax, "x")
+    plain_log(ax, "x", subs=(1.0, 2.0, 3.0, 5.0))
     ax.set_xlabel(f"per-path RMS of the {m}-frame prediction error per axis (px)")
     ax.invert_yaxis()
     ax.legend(loc="lower right")
@@ -146,7 +153,7 @@ def horizon_figure(hz: dict, horizons):
             ms=4,
             capsize=2,
             lw=2.0 if name == PAPER else 1.0,
-            color="k" if name == OPTIMAL else colour(j),
+            color="k" if name == OPTIMAL else colour(j % 7),  # black (the palette's last) is the bound's alone
             label=name,
         )
     ax.axhspan(1, 2, color="g", alpha=0.12, label="1-2 px (paper)")
@@ -174,7 +181,8 @@ def floor_figure(run, floor_grid, late_start: int):
     axs[0].axhline(opt, color="k", ls=":", label="optimal predictor")
     axs[0].set_xscale("log")
     axs[0].set_yscale("log")
-    plain_log(axs[0])
+    plain_log(axs[0], "x")
+    plain_log(axs[0], "y", subs=(1.0, 2.0, 3.0, 5.0))  # less than a decade: a label near the optimal line
     axs[0].set(xlabel="floor N_f (samples)", ylabel=f"RMS {m}-frame prediction error (px)")
     axs[0].legend(fontsize=8)
     k = np.arange(run.z.shape[-1])
@@ -204,7 +212,8 @@ def gains_figure(ratios: dict, floor: int):
     axs[0].axvline(floor, color="gray", ls="--", label=f"floor N_f = {floor}")
     axs[0].set_xscale("log")
     axs[0].set_yscale("log")
-    plain_log(axs[0])
+    plain_log(axs[0], "x")
+    plain_log(axs[0], "y", subs=(1.0,))  # six decades: decade labels only
     axs[0].set(xlabel="samples used N", ylabel="gain g_N")
     axs[0].legend(fontsize=7)
     keys = [k for k in ratios if k.startswith("variance at N=")]
@@ -264,7 +273,8 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
         )
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
-    plain_log(ax, "x")
+    lo, hi = ax.get_xlim()
+    plain_log(ax, "x", subs=(1.0,) if hi / lo > 300 else (1.0, 2.0, 5.0))  # 1-2-5 labels overlap over many decades
     ax.set_yticks(y, [lab for lab, _ in rows], fontsize=7)
     ax.invert_yaxis()
     ax.set_xlabel("baseline MSE / filter MSE (paired over paths, 95 % CI); above 1: the filter is better")

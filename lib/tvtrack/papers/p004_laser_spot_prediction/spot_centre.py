@@ -47,7 +47,7 @@ def soft_window(centre, half: float, n: int) -> np.ndarray:
 
 
 def windowed_centroid(
-    images, origin=(0, 0), *, window_px: float, threshold_sigma: float = 3.0, n_iter: int = 4
+    images, origin=(0, 0), *, window_px: float, threshold_sigma: float = 3.0, n_iter: int = 4, start=None
 ) -> Centroid:
     """Thresholded energy centre in a soft window re-centred on the estimate (see the module text).
 
@@ -64,6 +64,9 @@ def windowed_centroid(
     n_iter : int
         Re-centring steps after the first (gate-centred) one; each shrinks the pull toward the
         previous estimate by ``N / (M + N)``.
+    start : array_like, shape (2,) or (..., 2), optional
+        Full-frame ``(x, y)`` of the first window's middle (default: the gate centre), e.g. the predicted
+        centre when the "gate" is a whole frame.
 
     Returns
     -------
@@ -82,6 +85,9 @@ def windowed_centroid(
     batch = a.shape[:-2]
     cx = np.full(batch, (cols - 1) / 2.0)
     cy = np.full(batch, (rows - 1) / 2.0)
+    if start is not None:
+        st = np.asarray(start, dtype=float) - np.asarray(origin, dtype=float)
+        cx, cy = np.broadcast_to(st[..., 0], batch).copy(), np.broadcast_to(st[..., 1], batch).copy()
     half = window_px / 2.0
     xs, ys = np.arange(cols, dtype=float), np.arange(rows, dtype=float)
     valid = np.ones(batch, dtype=bool)
