@@ -92,3 +92,23 @@ def test_folds_partition_the_paths(n_paths, n_folds):
     for train, test in folds:
         assert not set(train.tolist()) & set(test.tolist())
         assert sorted(np.concatenate([train, test]).tolist()) == list(range(n_paths))
+
+
+def test_a_tuning_grid_is_extended_until_the_folds_leave_its_top():
+    """The floor's grid reaches the paper filter's optimum (at horizon 10 the old grid's top, 200, was picked):
+    while a fold picks the last candidate the next extension value is tried, and only then."""
+    z = np.zeros((2, 6, 2, 60))
+    folds = pr.path_folds(6, 3)
+    made = []
+
+    def make(c):  # a forecast whose error is |c - 5| everywhere: the optimum is 5
+        made.append(c)
+        return np.full(z.shape, abs(c - 5.0))
+
+    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP, more=(4, 5, 6, 7))
+    assert np.all(chosen == 5) and made == [1, 2, 3, 4, 5, 6]  # 7 is never needed
+    made.clear()
+    _, _, chosen, _, _ = ps._tuned((4, 5, 6), make, z, z, folds, SETUP, more=(7,))
+    assert np.all(chosen == 5) and made == [4, 5, 6]  # an interior optimum extends nothing
+    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP)
+    assert np.all(chosen == 3)  # without an extension the top stays the grid's limit (reported as an edge)

@@ -186,12 +186,25 @@ class Comparison:
     learned_models: dict
 
 
-def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup):
+#: Floors tried beyond ``floor_grid`` while a fold picks the grid's top (``>= T`` frames: no floor at all, the
+#: filter's own limit), so the paper's filter is tuned to its optimum at long horizons too (the floor sat at the
+#: old grid's top, 200, at horizon 10).
+FLOOR_EXTENSION = (350, 600, 1000)
+
+
+def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
     """Forecast with every candidate setting, pick per fold on the training paths (pooled
-    trials), and assemble the cross-validated forecast and per-trial-path MSE."""
+    trials), and assemble the cross-validated forecast and per-trial-path MSE. While a fold picks the
+    last candidate, the next value of ``more`` is tried too (the grid reaches the method's optimum)."""
+    candidates, more = list(candidates), [c for c in more if c > max(candidates)]
     fcs = [make(c) for c in candidates]
     mse = np.stack([per_trial_path_mse(f, ref, s.steps, s.start) for f in fcs])  # (C, trials, P)
     pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+    while more and np.any(pick == len(candidates) - 1):
+        candidates.append(more.pop(0))
+        fcs.append(make(candidates[-1]))
+        mse = np.concatenate([mse, per_trial_path_mse(fcs[-1], ref, s.steps, s.start)[None]])
+        pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
     P = z.shape[1]
     fc = np.stack([fcs[pick[p]][:, p] for p in range(P)], axis=1)
     return fc, mse[pick, :, np.arange(P)].T, np.asarray(candidates)[pick], fcs, mse
@@ -297,8 +310,15 @@ def compare_methods(
     s = setup
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
+    T = z.shape[-1]
     fc, mse[PAPER], chosen[PAPER], all_fc, all_mse = _tuned(
-        s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s
+        s.floor_grid,
+        lambda nf: pr.growing_memory_forecast(z, m, s.order, nf),
+        z,
+        reference,
+        folds,
+        s,
+        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
     )
     fcs[PAPER] = fc
     fixed[PAPER] = per_trial_path_mse(pr.growing_memory_forecast(z, m, s.order, s.fixed_floor), reference, m, s.start)
