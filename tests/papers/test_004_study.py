@@ -136,19 +136,27 @@ def test_scene_jitter_and_saturation():
 def test_horizon_study_retunes_the_floor_at_every_horizon(run):
     """The floor reported at each horizon is the one cross-validation picks for that horizon (the old
     study kept the one-frame floor at every horizon)."""
+    from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FLOOR_EXTENSION
+
     hz = study.horizon_study(run, (1, 10), seed=0)
+    T = run.z.shape[-1]
     for h in (1, 10):
-        loss = np.stack(
-            [
-                per_trial_path_mse(pr.growing_memory_forecast(run.z, h, 2, nf), run.z_meas, h, SIZE.eval_start).mean(
-                    axis=0
-                )
-                for nf in SIZE.floor_grid
-            ]
-        )
-        pick = np.asarray(SIZE.floor_grid)[pr.cross_validated_pick(loss, run.folds)]
+        grid, more = list(SIZE.floor_grid), sorted({min(v, T) for v in FLOOR_EXTENSION})
+
+        def loss_of(nf, h=h):
+            f = pr.growing_memory_forecast(run.z, h, 2, nf)
+            return per_trial_path_mse(f, run.z_meas, h, SIZE.eval_start).mean(axis=0)
+
+        loss = [loss_of(nf) for nf in grid]
+        pick = pr.cross_validated_pick(np.stack(loss), run.folds)
+        while more and np.any(pick == len(grid) - 1):  # the grid extended while a fold picks its top
+            grid.append(more.pop(0))
+            loss.append(loss_of(grid[-1]))
+            pick = pr.cross_validated_pick(np.stack(loss), run.folds)
+        pick = np.asarray(grid)[pick]
         assert hz["floor"][h] == float(np.median(pick))
-        assert hz["edges"][h][PAPER] == float(np.mean(pick == max(SIZE.floor_grid)))  # the floor's upper edge
+        top = max((*SIZE.floor_grid, *FLOOR_EXTENSION))
+        assert hz["edges"][h][PAPER] == float(np.mean(pick == top))  # the extended grid's upper edge
     assert hz["rms"][PAPER][10].value > hz["rms"][PAPER][1].value
     assert set(hz["slopes"]) == set(hz["rms"])
     text = fd.horizon_sentence(hz)

@@ -190,6 +190,8 @@ class Comparison:
 #: filter's own limit), so the paper's filter is tuned to its optimum at long horizons too (the floor sat at the
 #: old grid's top, 200, at horizon 10).
 FLOOR_EXTENSION = (350, 600, 1000)
+#: Windows tried beyond ``window_grid`` likewise, so each windowed baseline gets the same tuning effort.
+WINDOW_EXTENSION = (45, 70, 100)
 
 
 def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
@@ -333,7 +335,7 @@ def compare_methods(
     }
     for name, make in windowed.items():
         fcs[name], mse[name], chosen[name], _, _ = _tuned(
-            window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s
+            window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=WINDOW_EXTENSION
         )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
     fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(

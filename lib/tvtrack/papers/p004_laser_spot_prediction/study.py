@@ -779,15 +779,16 @@ def grid_edge_report(run: StudyRun) -> dict:
 def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
     """:func:`grid_edge_report` of the tuned settings ``ch`` (``compare_methods``' ``chosen``) on the grids of
     ``s``; the networks' lags only where they were tuned."""
-    from .prediction_study import MIN_WINDOW, grid_edges, window_candidates
+    from .prediction_study import FLOOR_EXTENSION, MIN_WINDOW, WINDOW_EXTENSION, grid_edges, window_candidates
 
+    floors = (*s.floor_grid, *FLOOR_EXTENSION)  # the grids as the tuning extends them while a fold picks the top
     out = {
-        PAPER: float(np.mean(grid_edges(ch[PAPER], s.floor_grid) == 1)),  # N_f = 3 (order + 1) is a true limit
+        PAPER: float(np.mean(grid_edges(ch[PAPER], floors) == 1)),  # N_f = 3 (order + 1) is a true limit
         FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
     }
     for name, lo in MIN_WINDOW.items():
         out[name] = float(
-            np.mean(grid_edges(ch[name], window_candidates(lo, s.window_grid)) == 1)
+            np.mean(grid_edges(ch[name], (*window_candidates(lo, s.window_grid), *WINDOW_EXTENSION)) == 1)
         )  # degree+1 is a true limit
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
