@@ -141,7 +141,7 @@ def test_variance_sum_interval_coverage_near_the_resolution_limit():
     assert 0.85 <= single <= 1.0 and pooled >= 0.9, (single, pooled)
 
 
-def test_flips_by_entry_reads_single_conditions_only():
+def test_flips_by_entry_reads_single_conditions_unless_asked_for_joint_ones():
     class Ex:
         def record(self, cid, rule):
             ref = {"replicates": [{"parts": {"a": "reproduced"}}]}
@@ -156,6 +156,12 @@ def test_flips_by_entry_reads_single_conditions_only():
         "tracks": ["C002-1"],
         "bound": [],
         "epoch": [],
+    }
+    # a joint condition counts only when asked for, and then for every entry it changed
+    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"], ("joint", "pinned")) == {
+        "tracks": [],
+        "bound": ["C002-1"],
+        "epoch": ["C002-1"],
     }
 
 
@@ -236,6 +242,35 @@ def test_c002_6_photon_pair_and_coordinate_readings():
     )
     assert len({o["C002-6"].value for o in out}) == 3 and all(np.isfinite(o["C002-6"].value) for o in out)
     assert out[1]["C002-3"].value == out[0]["C002-3"].value  # the coordinate reading is C002-6's alone
+
+
+def test_c002_6_pixel_frame_pair_and_gap_readings():
+    # the fourth adversarial pass's C002-6 rows: Fig 2's comparison at Fig 1a's coarser pixels, over 5 to 50 frames
+    # and as the absolute gap between the T curves; each reruns at most C002-6's own ULA points and changes only it
+    assert {"Delta of C002-6 (sigma)", "T pair of C002-6"} <= set(DEPENDS["C002-6"])
+    assert [c for c, names in DEPENDS.items() if "T pair of C002-6" in names] == ["C002-6"]
+    base = _letters(study.jobs_of(DEFAULT, 7, TINY))
+    for reading, pix, frames in (
+        ({"Delta of C002-6 (sigma)": 3.0}, 3.0, {5, 10}),
+        ({"T pair of C002-6": "5 vs 50"}, 1.0, {50}),
+    ):
+        other = _letters(study.jobs_of({**DEFAULT, **reading}, 7, TINY))
+        new = set(other) - set(base)
+        assert new and all(k[1] == "u" for k in new)
+        assert all(c.q == 2 and c.pix == pix and c.T in frames and c.m in (10, 20) and c.d <= 2.0 for c, _ in new)
+        assert all(other[k] == base[k] for k in set(base) & set(other))  # common random numbers
+    gap = {"T dependence of C002-6": "absolute (variance gap)"}
+    assert _letters(study.jobs_of({**DEFAULT, **gap}, 7, TINY)) == base  # a statistic reruns nothing
+    study.clear_cache()
+    readings = [{}, {"Delta of C002-6 (sigma)": 3.0}, {"T pair of C002-6": "5 vs 50"}, gap]
+    out = study.measure_batch([{**DEFAULT, **r} for r in readings], [7] * 4, TINY)
+    assert len({o["C002-6"].value for o in out}) == 4 and all(np.isfinite(o["C002-6"].value) for o in out)
+    # the gap reading: mean over d <= 2 sigma of |Sigma^2(5) - Sigma^2(10)| at 20 photons minus that at 10 photons
+    g, res = study.figure_data(DEFAULT, 7, TINY)
+    v = {k: [study._vsum(study.errors(res[g["2"][k][d]], "ula")[None])[0] for d in (1.0, 2.0)] for k in g["2"]}
+    want = np.mean(np.abs(np.subtract(v[(5, 20)], v[(10, 20)]))) - np.mean(np.abs(np.subtract(v[(5, 10)], v[(10, 10)])))
+    assert out[3]["C002-6"].value == pytest.approx(want, rel=1e-9)
+    assert all(o[c].value == out[0][c].value for o in out[1:] for c in ("C002-3", "C002-13"))
 
 
 def test_em_stopping_never_reaches_the_iteration_counts_of_fig7():

@@ -102,9 +102,11 @@ def fig3(contrast_grid, ratios, title: str):
 def conditions(labels, ests, line: float, xlabel: str, title: str):
     """One claim's measured value under every condition of its exploration (horizontal error bars, log x)."""
     labels = [textwrap.fill(str(t), 70) for t in labels]
-    fig, ax = plt.subplots(figsize=(9, 0.3 * sum(t.count("\n") + 1 for t in labels) + 1.2))
+    rows = np.array([t.count("\n") + 1.0 for t in labels])  # each label's height in text lines, with a gap
+    fig, ax = plt.subplots(figsize=(9, 0.18 * rows.sum() + 1.2))
     es = [as_estimate(e) for e in ests]
-    y = np.arange(len(es))
+    y = np.cumsum(rows) - rows / 2  # a multi-line label gets the room it needs (no overlap)
+    ax.set_ylim(0, rows.sum())
     v = np.array([e.value for e in es])
     ax.errorbar(v, y, xerr=[v - [e.ci_low for e in es], [e.ci_high for e in es] - v], fmt="o", ms=3, capsize=2)
     ax.axvline(line, color="k", lw=1)

@@ -7,6 +7,7 @@ number of frames T, variances in sigma^2 (log scale), gains as ratios.
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker
 import numpy as np
 
 from tvtrack.montecarlo import mean_ci
@@ -61,6 +62,8 @@ def one_object_figure(g, res, frames, epoch="first"):
             ylabel="Var x_o (sigma^2)",
             title=f"Fig 3a: one object, Delta = {pix:g} sigma, m_k = 20",
         )
+        ax.set_xticks(list(frames), [f"{T:g}" for T in frames])  # the simulated T only: no crowded minor labels
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.legend(fontsize=7)
     return fig
 

@@ -217,6 +217,21 @@ def photons6(config: dict) -> tuple[int, int]:
     return PHOTONS6[config.get("m_k pair of C002-6", "20 vs 10")]
 
 
+#: The frame counts whose variance ratio r_T C002-6 reads (an adversarial register row): Fig 2's ``"5 vs 10"``, or
+#: ``"5 vs 50"``, the range of Figs 3a and 5 ("the number of analysed frames" over the study's whole T axis).
+FRAMES6 = {"5 vs 10": (5, 10), "5 vs 50": (5, 50)}
+
+
+#: How C002-6 reads "the dependence on T" (an adversarial register row): relative, |ln r_T| (the gap between the T
+#: curves on a log axis), or absolute, |Sigma^2(T_lo) - Sigma^2(T_hi)| in sigma^2 (the gap on a linear axis).
+T_DEPENDENCE6 = ("relative (log ratio)", "absolute (variance gap)")
+
+
+def c6_point(config: dict) -> tuple[float, tuple[int, int]]:
+    """C002-6's pixel size Delta / sigma (Fig 2: 1; an adversarial register row) and its frame pair."""
+    return float(config.get("Delta of C002-6 (sigma)", 1.0)), FRAMES6[config.get("T pair of C002-6", "5 vs 10")]
+
+
 #: The "EM tolerance of Fig 7" reading (an adversarial register row): the stopping tolerance, sigma, of the iteration
 #: counts of Fig 7 (ULA and two-stage marks alike); ``None`` keeps the study's own 1e-6 sigma.
 FIG7_TOLERANCE = {"1e-6 sigma": None, "0.01 sigma": 0.01, "0.05 sigma": 0.05}
@@ -258,6 +273,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     core = (1.0, 2.0, 3.0, 6.0)
     pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
     m1, p1 = c1_point(config)  # C002-1 reads its panel's whole distance axis
+    p6, T6 = c6_point(config)
 
     def fig1(p_, m):
         return {d: P(2, d, p_, m, T1, "u") for d in (D if (p_, m) == (p1, m1) else pick(core))}
@@ -267,7 +283,9 @@ def _points(config: dict, scale: Scale, figures: bool = False):
         "1b": {m: fig1(1.0, m) for m in (10, 20)},
         "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
         "2": {
-            (T, m): {d: P(2, d, 1.0, m, T, "u") for d in pick(small)} for T in (5, 10) for m in sorted(photons6(config))
+            (T, m): {d: P(2, d, p6, m, T, "u") for d in pick(small)}
+            for T in sorted({5, 10, *T6} if figures else T6)
+            for m in sorted(photons6(config))
         },
         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
         "3a": {
@@ -454,20 +472,19 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
 
     cols = COORDINATE6[config.get("coordinate of C002-6", "both")]
 
+    t_lo, t_hi = c6_point(config)[1]
+
     def rt(m):
-        return [np.hstack([ula(g["2"][(5, m)][d])[:, cols], ula(g["2"][(10, m)][d])[:, cols]]) for d in small]
+        return [np.hstack([ula(g["2"][(t_lo, m)][d])[:, cols], ula(g["2"][(t_hi, m)][d])[:, cols]]) for d in small]
+
+    gap = config.get("T dependence of C002-6", T_DEPENDENCE6[0]) == T_DEPENDENCE6[1]
 
     def stat6(*gr):
-        def mabs(h):
-            return np.mean(
-                [
-                    np.abs(np.log(_vsum(x[..., : x.shape[-1] // 2], sp) / _vsum(x[..., x.shape[-1] // 2 :], sp)))
-                    for x in h
-                ],
-                axis=0,
-            )
+        def dep(x):
+            a, b = _vsum(x[..., : x.shape[-1] // 2], sp), _vsum(x[..., x.shape[-1] // 2 :], sp)
+            return np.abs(a - b) if gap else np.abs(np.log(a / b))
 
-        return mabs(gr[: len(small)]) - mabs(gr[len(small) :])
+        return np.mean([dep(x) for x in gr[: len(small)]], axis=0) - np.mean([dep(x) for x in gr[len(small) :]], axis=0)
 
     m_hi, m_lo = photons6(config)
     out["C002-6"] = bootstrap_groups(rt(m_hi) + rt(m_lo), stat6, rng, B)
@@ -700,15 +717,17 @@ def compare(a: Estimate, b: Estimate) -> str:
     return "not distinguishable from"
 
 
-def flips_by_entry(exploration, rules, names) -> dict:
-    """``{entry name: [claim ids]}``: the claims some part of whose verdict differs, in a one-at-a-time run that
-    changed that entry, from the first replicate (the run it shares its random numbers with)."""
+def flips_by_entry(exploration, rules, names, kinds=("single",)) -> dict:
+    """``{entry name: [claim ids]}``: the claims some part of whose verdict differs, in a run of a kind in ``kinds``
+    (``"single"``: one at a time, the entry alone; ``"joint"``, ``"pinned"``: joint conditions, where the entry is
+    one of several changed) that changed that entry, from the first replicate (the run it shares its random numbers
+    with)."""
     out = {n: [] for n in names}
     for cid, rule in rules.items():
         rec = exploration.record(cid, rule)
         ref = rec["replicates"][0]["parts"] if rec["replicates"] else {}
         for c in rec["conditions"]:
-            if c["kind"] != "single":
+            if c["kind"] not in kinds:
                 continue
             for k in c["changed"]:
                 if k in out and c["parts"] != ref and cid not in out[k]:
