@@ -95,3 +95,15 @@ def test_wall_clock_leaves_out_the_frames_another_process_preempted(scene, monke
     monkeypatch.setattr(study, "_involuntary_switches", lambda: 0)
     kept = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isfinite(kept))
+
+
+def test_the_c004_4_joint_flip_is_pinned_in_every_exploration():
+    """The flip found once (frames lost in the world and skipped by the recursion) is measured in every run,
+    whatever the random joint samples draw (it went unsampled once the register grew, and C004-4 read robust)."""
+    from tvtrack.papers.p004_laser_spot_prediction.register import build, explored
+
+    pin = {"frame loss": 0.01, "lost frames": "skipped (coast)"}
+    assert pin in build().pinned
+    assert pin in explored()[0].pinned
+    assert pin in explored(defaults={"scintillation": 0.5}, names=("scintillation", *pin))[0].pinned
+    assert pin not in explored(names=("frame loss",))[0].pinned  # an entry not explored cannot be pinned
