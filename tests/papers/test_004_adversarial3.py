@@ -107,3 +107,21 @@ def test_the_c004_4_joint_flip_is_pinned_in_every_exploration():
     assert pin in explored()[0].pinned
     assert pin in explored(defaults={"scintillation": 0.5}, names=("scintillation", *pin))[0].pinned
     assert pin not in explored(names=("frame loss",))[0].pinned  # an entry not explored cannot be pinned
+
+
+def test_c004_4_reads_every_paths_series_so_a_loss_rate_always_acts():
+    """C004-4 under 'frame loss' reads every path's series: at a 0.01 loss rate one 200-frame series keeps all its
+    frames for some seeds (the pinned flip then went unseen and C004-4 read robust), fifteen practically never."""
+    import numpy as np
+
+    from tvtrack.papers.p004_laser_spot_prediction import study
+
+    rng = np.random.default_rng(3)
+    t = np.arange(200.0)
+    z = 5 + 0.01 * t**2 / 2 + 0.3 * np.cumsum(rng.standard_normal((15, 200)), axis=1)
+    one_quiet = [s for s in range(40) if study._recursion_check(z[:1], [s, 4004], 0.01, held=False) <= 1e-9]
+    assert one_quiet  # a single series misses the losses at some seeds
+    for s in one_quiet:
+        assert study._recursion_check(z, [s, 4004], 0.01, held=False) > 1e-3  # skipped frames: eq. (4) differs
+        assert study._recursion_check(z, [s, 4004], 0.01, held=True) <= 1e-9  # held frames: exact again
+    assert study._recursion_check(z, [0, 4004], 0.0, held=False) <= 1e-9  # no loss: the recursion is exact

@@ -450,6 +450,14 @@ def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
     return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
 
 
+def _recursion_check(series, seed, rate: float, held: bool) -> float:
+    """C004-4: :func:`recursion_vs_batch`'s largest deviation over every path's series (P, T), each with its own
+    obscurations (:func:`drop_frames`, one stream in path order): one 200-frame series at a 0.01 loss rate loses no
+    frame one time in eight, every path's series (3000 frames) practically never."""
+    rng = np.random.default_rng(seed)
+    return max(recursion_vs_batch(drop_frames(z, rng, rate, held))[0] for z in np.atleast_2d(series))
+
+
 def drop_frames(series, rng: np.random.Generator, rate: float, held: bool) -> np.ndarray:
     """``series`` (T,) with obscurations: each frame starts a gap with probability ``rate``, of 1 to 5 frames
     (uniform); lost frames are held at the last centre (``held``) or NaN (skipped). ``rate = 0`` returns the
@@ -678,14 +686,9 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         "C004-2": root_mean_ci(mse[PAPER]),
         "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
         "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": recursion_vs_batch(
-            drop_frames(
-                (run.z if held else run.z_meas)[0, 0, 0, : min(T, 200)],
-                np.random.default_rng([seed, 4004]),
-                float(c.get("frame loss", 0.0)),
-                held,
-            )
-        )[0],
+        "C004-4": _recursion_check(
+            (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)], [seed, 4004], float(c.get("frame loss", 0.0)), held
+        ),
         "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian")),
         "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
         "C004-8": _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz),
