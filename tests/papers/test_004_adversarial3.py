@@ -11,23 +11,9 @@ from tvtrack.papers.p004_laser_spot_prediction import study
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, ROWS
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
-SIZE = study.StudySize(
-    n_paths=6,
-    n_frames=200,
-    floor_grid=(3, 10),
-    window_grid=(4, 10),
-    mlp_hidden_units=4,
-    rbf_centres=20,
-    train_samples=300,
-    n_mc_variance=2000,
-    timing_frames=60,
-    lag_grid=(1, 4),
-)
+from . import test_004_adversarial2 as _second
 
-
-@pytest.fixture(scope="module")
-def scene():
-    return study._scene(dict(DEFAULT), 3, SIZE)
+SIZE, scene = _second.SIZE, _second.scene  # the second pass's reduced study and its scene fixture
 
 
 @pytest.mark.parametrize("mode, tol_px", [("windowed", 0.5), ("gate", 3.0)])
