@@ -309,3 +309,11 @@ def test_a_linear_pool_stays_within_the_replicates_intervals():
     reps.append(Estimate(0.96, 0.05, -0.2, 1.0, 6, 0.95, "paired t"))
     p = pool(reps)
     assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high  # a linear pool gave 1.2
+
+
+def test_a_log_scale_pool_stays_within_the_replicates_intervals():
+    # positive share differences pool on the log scale; their pooled interval must not pass 1 either (C003-4)
+    reps = [Estimate(0.97, 0.05, 0.8, 1.0, 6, 0.95, "paired t"), Estimate(0.97, 0.04, 0.85, 1.0, 6, 0.95, "paired t")]
+    reps.append(Estimate(0.97, 0.03, 0.9, 1.0, 6, 0.95, "paired t"))
+    p = pool(reps)
+    assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high and "log scale" in p.method  # was 1.019

@@ -186,8 +186,8 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
         return Estimate(
             float(math.exp(m)),
             float(math.exp(m) * se),
-            float(math.exp(m - z * se)),
-            float(math.exp(m + z * se)),
+            max(float(math.exp(m - z * se)), float(lo.min())),  # within the replicates' hull, as below
+            min(float(math.exp(m + z * se)), float(hi.max())),
             n,
             conf,
             f"pooled over {k} independent replicates (equal weights, log scale)",
