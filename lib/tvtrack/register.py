@@ -20,18 +20,27 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping, Sequence
 
-__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "Entry", "Register"]
+__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "READING_KINDS", "side_of", "Entry", "Register"]
 
 #: What an entry can be.
 ENTRY_KINDS = ("reading", "regime", "operating point", "model", "statistic", "comparator", "scale")
 #: Kinds that vary the simulated world or the figure's operating point: a claim measured over none of
 #: them cannot be labelled ``robust`` (:func:`tvtrack.verdicts.label_parts`).
 WORLD_KINDS = ("regime", "operating point", "model")
+#: Kinds that are readings of the paper itself (an ambiguous sentence, a statistic, a comparator the paper
+#: names): a flip under one says the paper's claim is ambiguous. Every other kind (:data:`WORLD_KINDS` and
+#: ``scale``) is a world beyond the paper: a flip there says the claim does not extend to it.
+READING_KINDS = ("reading", "statistic", "comparator")
 #: Who added an entry: the notebook's author, or the adversarial pass hunting for a flip.
 ORIGINS = ("author", "adversarial")
+
+
+def side_of(kind: str) -> str:
+    """``"reading"`` for a reading of the paper (:data:`READING_KINDS`), ``"world"`` for a world beyond it."""
+    return "reading" if kind in READING_KINDS else "world"
 
 
 @dataclass(frozen=True)
@@ -52,6 +61,12 @@ class Entry:
         One line: why these values are defensible (a quote of the paper, a physical range, a textbook).
     origin : str
         ``"author"`` or ``"adversarial"`` (added by the adversarial pass while trying to flip a label).
+    title : str
+        What the entry is, in plain words a domain reader understands without the code ("time at which the
+        estimate is scored"); default: the name.
+    phrases : mapping value -> str
+        Each value in plain words ("scored at the end of the integration interval (the paper's filtering
+        error)"); a value without a phrase reads ``"<title> = <value>"``.
     """
 
     name: str
@@ -60,6 +75,8 @@ class Entry:
     values: tuple
     why: str
     origin: str = "author"
+    title: str = ""
+    phrases: Mapping[Any, str] | None = field(default=None, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "values", tuple(self.values))
@@ -73,6 +90,23 @@ class Entry:
             raise ValueError(f"register entry {self.name!r}: default {self.default!r} is not among {list(self.values)}")
         if not self.why.strip():
             raise ValueError(f"register entry {self.name!r} needs a line saying why its values are defensible")
+        phrases = dict(self.phrases or {})
+        stray = [k for k in phrases if k not in self.values]
+        if stray:
+            raise ValueError(f"register entry {self.name!r}: phrases for values not among {list(self.values)}: {stray}")
+        object.__setattr__(self, "phrases", phrases)
+
+    @property
+    def side(self) -> str:
+        """``"reading"`` (a reading of the paper) or ``"world"`` (a world beyond it): :func:`side_of`."""
+        return side_of(self.kind)
+
+    def phrase(self, value: Any) -> str:
+        """``value`` in plain words: its phrase, else ``"<title> = <value>"``."""
+        if value in self.phrases:
+            return self.phrases[value]
+        v = f"{value:g}" if isinstance(value, float) else str(value)
+        return f"{self.title or self.name} = {v}"
 
     @property
     def alternatives(self) -> tuple:
@@ -87,6 +121,9 @@ class Entry:
             "values": list(self.values),
             "why": self.why,
             "origin": self.origin,
+            "title": self.title or self.name,
+            "side": self.side,
+            "phrases": {str(v): self.phrase(v) for v in self.values},
         }
 
 
@@ -156,6 +193,12 @@ class Register:
     def with_pinned(self, *conditions: Mapping[str, Any]) -> "Register":
         """A new register with joint ``conditions`` pinned (see the class)."""
         return Register(self.entries, [*self.pinned, *conditions])
+
+    def describe(self, changed: Mapping[str, Any]) -> str:
+        """A configuration's changes from the default in plain words, joined by "; " (entries of other
+        registers, or none, read as the default reading)."""
+        parts = [self[k].phrase(v) if k in self else f"{k} = {v}" for k, v in changed.items()]
+        return "; ".join(parts) or "the default reading"
 
     def check(self, config: Mapping[str, Any]) -> dict:
         """``config`` completed with defaults, each value checked to be defensible."""
