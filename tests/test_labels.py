@@ -82,10 +82,10 @@ def test_partly_only_when_decided_parts_disagree():
 def test_a_power_limited_claim_is_not_unstable():
     # the truth 0.3 sits inside the band, near its edge: single replicates of 100 straddle, the pool decides
     reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
-    ex = explore(lambda c, s: {"X": _mean(s, 0.3)}, reg, {"X": BAND}, seed=3, replicates=3, max_replicates=20)
+    ex = explore(lambda c, s: {"X": _mean(s, 0.3)}, reg, {"X": BAND}, seed=4, replicates=3, max_replicates=20)
     rec = ex.record("X")
     reps = rec["parts"]["claim"]["replicate_verdicts"]
-    assert "undecided" in reps and "not reproduced" not in reps
+    assert set(reps) == {"undecided", "reproduced"}  # replicates differ, but none decisively against another
     assert rec["label"] != "unstable" and rec["parts"]["claim"]["verdict"] == "reproduced"
 
 
