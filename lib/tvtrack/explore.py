@@ -541,10 +541,12 @@ def explore(
         target = _sizing_target(rules, runs, n, cap)
         if target is None:
             break
-        extra = [Run(dict(default), seeds[n], "replicate")]
+        # one replicate at a time, re-judged after each; an executor's workers take one each at once
+        step = max(1, min(target - n, int(getattr(executor, "_max_workers", 1) or 1)))
+        extra = [Run(dict(default), s, "replicate") for s in seeds[n : n + step]]
         run(measure, extra, "sizing")
         runs += extra
-        n += 1
+        n += step
     singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
     run(measure, singles if one_at_a_time else [], "one at a time")
     runs += singles if one_at_a_time else []
