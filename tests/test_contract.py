@@ -112,3 +112,12 @@ def test_a_lazy_export_imports_only_its_own_module():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ["False", "True", "False", "['CLAIMS',", "'DEPENDS']"]
+
+
+@pytest.mark.parametrize("name", PACKAGES)
+def test_viewer_expectations_make_an_expectation(name):
+    from tvtrack.pipeline.viewer import Expectation
+
+    recording = importlib.import_module(f"tvtrack.papers.{name}.recording")
+    expected = dataclasses.replace(Expectation(), **recording.VIEWER_EXPECTATIONS)
+    assert {k: getattr(expected, k) for k in recording.VIEWER_EXPECTATIONS} == recording.VIEWER_EXPECTATIONS
