@@ -121,3 +121,16 @@ def test_viewer_expectations_make_an_expectation(name):
     recording = importlib.import_module(f"tvtrack.papers.{name}.recording")
     expected = dataclasses.replace(Expectation(), **recording.VIEWER_EXPECTATIONS)
     assert {k: getattr(expected, k) for k in recording.VIEWER_EXPECTATIONS} == recording.VIEWER_EXPECTATIONS
+
+
+def test_the_project_has_a_licence_and_cites_every_paper():
+    import yaml
+
+    root = contract.PAPERS_DIR.parents[2]
+    assert "Permission is hereby granted" in (root / "LICENSE").read_text()
+    cff = yaml.safe_load((root / "CITATION.cff").read_text())
+    assert cff["cff-version"] == "1.2.0" and cff["license"] == "MIT"
+    titles = [" ".join(r["title"].lower().split()) for r in cff["references"]]
+    for name in PACKAGES:
+        citation = " ".join(importlib.import_module(f"tvtrack.papers.{name}").CITATION.lower().split())
+        assert any(t in citation for t in titles), f"{name}: its paper is not among CITATION.cff's references"
