@@ -157,3 +157,25 @@ def test_the_cell_format_makes_a_valid_notebook_without_outputs():
     assert [c.cell_type for c in node.cells] == ["markdown", "code", "code"]
     assert node.cells[0].source.startswith("# Title") and node.cells[1].metadata.tags == ["parameters"]
     assert all(c.outputs == [] and c.execution_count is None for c in node.cells if c.cell_type == "code")
+
+
+def test_the_guides_python_examples_are_formatted_and_run(tmp_path):
+    import re
+
+    blocks = re.findall(r"```python\n(.*?)```", (REPO_ROOT / "docs" / "adding_a_paper.md").read_text(), re.S)
+    assert blocks
+    for i, code in enumerate(blocks):
+        path = tmp_path / f"example_{i}.py"
+        path.write_text(code)
+        done = subprocess.run(
+            [BIN / "ruff", "format", "--check", "--diff", "--config", str(REPO_ROOT / "pyproject.toml"), str(path)],
+            capture_output=True,
+            text=True,
+        )
+        assert done.returncode == 0, done.stdout + done.stderr
+        namespace: dict = {}
+        exec(compile(code, str(path), "exec"), namespace)  # noqa: S102 - the guide's own example
+    assert namespace["REGISTER"].names == ["motion", "alpha"] and set(namespace["DEPENDS"]["C005-1"]) == {
+        "motion",
+        "alpha",
+    }
