@@ -120,6 +120,13 @@ def test_the_generated_notebook_runs_at_smoke_size_and_passes_the_notebook_check
     (claim,) = data["claims"]
     assert claim["id"] == f"C{NUMBER}-1" and [e["name"] for e in data["register"]] == ["read noise"]
     assert 0 < claim["measured"]["value"] < 0.5  # the placeholder world: a bright spot, a fraction of a pixel
+    # what the viewer check reads from the file (no viewer needed): opens on the timeline with data, framed
+    from dataclasses import replace
+
+    from tvtrack.pipeline.viewer import Expectation, layout_problems, read_layout
+
+    expect = replace(Expectation(), **paper.recording.VIEWER_EXPECTATIONS)
+    assert layout_problems(read_layout(outcome.run_dir / "recording.rrd"), expect) == []
 
 
 def test_it_refuses_a_bad_number_or_name_and_never_overwrites(tree):
