@@ -31,6 +31,7 @@ from __future__ import annotations
 import dataclasses
 import importlib
 import re
+import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from types import ModuleType
@@ -102,7 +103,7 @@ def lazy_exports(package: str, table: Mapping[str, str]) -> tuple[Callable[[str]
         return getattr(value, attribute)
 
     def __dir__() -> list[str]:
-        return sorted(table)
+        return sorted(set(vars(sys.modules[package])) | set(table))
 
     return __getattr__, __dir__
 
