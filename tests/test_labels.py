@@ -272,3 +272,17 @@ def test_a_part_undecided_at_the_default_sends_no_screened_configuration_to_full
     assert rec["parts"]["edge"]["verdict"] == "undecided"  # the truth sits on the edge: nothing to flip there
     # only the configurations whose decided part may flip go to full size (c = 1 flips "clear"), not every one
     assert 0 < ex.settings["confirmed_at_full_size"] <= sum(r.config["c"] == 1 for r in joint) < len(joint)
+
+
+def test_screened_singles_are_confirmed_at_full_size_where_they_may_flip():
+    ex = explore(_single, REG5, {"X": BAND}, seed=4, replicates=3, screen=_small_single, screen_singles=True)
+    singles = {tuple(r.config.items()): r for r in ex.runs if r.stage == "single"}
+    assert ex.settings["screened_singles"] and "one at a time, screened" in ex.settings["timing"]
+    flip = next(r for r in singles.values() if r.config["c"] == 1)
+    assert flip.outputs["X"].n == 400  # the flip was confirmed at full size
+    assert sum(r.outputs["X"].n == 40 for r in singles.values()) >= 8  # the clear agreements stay screened
+    assert [f["changed"] for f in ex.record("X")["parts"]["claim"]["flips"]] == [{"c": 1}]
+
+
+def _small_single(config, seed):
+    return {"X": _mean(seed, 3.0 * (config["c"] == 1) + 0.05 * config["e"], n=40)}

@@ -483,6 +483,7 @@ def explore(
     executor: Any = None,
     one_at_a_time: bool = True,
     screen: Callable | None = None,
+    screen_singles: bool = False,
     combinations: int = 24,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
@@ -525,6 +526,8 @@ def explore(
         Run every other value of every entry at the default of the others.
     screen : callable, optional
         A cheaper measurement with ``measure``'s signature (e.g. fewer trials) for the joint design.
+    screen_singles : bool
+        Screen the one-at-a-time stage too (its configurations confirmed at full size likewise).
     combinations : int
         Cap on the sub-combination runs that name the smallest flipping combination.
 
@@ -571,20 +574,21 @@ def explore(
         runs += extra
         n += step
     singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
-    run(measure, singles if one_at_a_time else [], "one at a time")
-    runs += singles if one_at_a_time else []
+    singles = singles if one_at_a_time else []
     design = joint_sample(register, used, joint, seed + 1) if joint else []
     joints = [Run(cfg, seeds[0], "joint") for cfg in design]
     confirmed = 0
-    if screen is not None and joints:
-        run(screen, joints, "joint, screened")
-        default_j = _pooled(rules, runs)
-        redo = [r for r in joints if _disagrees(rules, depends, default_j, r, default)]
-        run(measure, redo, "joint, confirmed at full size")
-        confirmed = len(redo)
-    else:
-        run(measure, joints, "joint")
-    runs += joints
+    for name, jobs, screened in (("one at a time", singles, screen_singles), ("joint", joints, True)):
+        if screen is not None and screened and jobs:
+            run(screen, jobs, f"{name}, screened")
+            default_j = _pooled(rules, runs)
+            redo = [r for r in jobs if _disagrees(rules, depends, default_j, r, default)]
+            run(measure, redo, f"{name}, confirmed at full size")
+            confirmed += len(redo)
+        else:
+            run(measure, jobs, name)
+            confirmed += len(jobs) if name == "joint" else 0
+        runs += jobs
     pinned = [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & set(used)]
     run(measure, pinned, "pinned")
     runs += pinned
@@ -604,7 +608,8 @@ def explore(
         "joint_configurations": len(joints),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
         "screened": screen is not None and bool(joints),
-        "confirmed_at_full_size": confirmed if screen is not None else len(joints),
+        "screened_singles": screen is not None and screen_singles and bool(singles),
+        "confirmed_at_full_size": confirmed,
         "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,
