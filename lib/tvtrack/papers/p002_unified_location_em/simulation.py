@@ -36,6 +36,7 @@ from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,
     frame_times,
     mixture_weights,
+    noise_per_pixel,
     scene_batches,
     scene_geometry,
 )
@@ -361,7 +362,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     accel = None if s_.accelerate == "none" else "squarem"
     g = scene_geometry(q, T, d, pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
     s = g.sigma_px
-    noise_pp = s_.noise_density / s**2  # photons per pixel = density x pixel area
+    noise_pp = noise_per_pixel(s_.noise_density, s)  # photons per pixel = density x pixel area
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
