@@ -7,7 +7,13 @@ import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
 
-from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, track_distance, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em import (
+    match_labels,
+    per_frame_entries,
+    pixel_entries,
+    track_distance,
+    unified_location_em,
+)
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,
@@ -26,6 +32,7 @@ from tvtrack.papers.p002_unified_location_em.simulation import (
     seed_sequence,
     track_velocities,
 )
+from tvtrack.papers.p002_unified_location_em.two_stage import em_marks, fit_lines, propagate
 
 
 def _crossing(n, d=2.0, pix=3.0, T=10, seed=0):
@@ -129,3 +136,64 @@ def test_squarem_never_lowers_the_likelihood():
     L = np.array(res.history_loglik)  # (cycles, N): the log-likelihood at the start of each cycle
     assert np.diff(L, axis=0).min() > -1e-9 * np.abs(L).max(), np.diff(L, axis=0).min()
     assert res.loglik.min() >= L[0].min()
+
+
+# -- the matched practical stop (issue 39) ---------------------------------------------------------------------
+
+
+def _scene(seed, n, q=2, d=1.0, pix=3.0, m=20, T=10):
+    g = scene_geometry(q, T, d, pix)
+    s = g.sigma_px
+    noise = noise_per_pixel(0.01, s)
+    rng = np.random.default_rng(seed)
+    truth = draw_truth(rng, n, g)
+    times = frame_times(T)
+    counts = simulate_counts(rng, truth, times, g.shape, s, m, noise)
+    desig = designate(rng, truth, 0.3 * s)
+    p, p0 = mixture_weights(m, noise, g.n_pixels, q)
+    return g, truth, times, counts, desig, p, p0
+
+
+def test_the_practical_stop_leaves_each_em_within_its_gap_of_its_own_maximum():
+    """The log-likelihood stop: the ULA (all frames) and each frame's mark (one frame) end within about the same
+    log-likelihood gap of where plain EM converges, whatever their rates (close objects, d = sigma): the typical
+    trial within the gap, nine in ten within twice the tight gap (Aitken's estimate falls short on the plateaus
+    EM crosses while two images split, which a loose gap meets in about a tenth of the trials)."""
+    g, truth, times, counts, desig, p, p0 = _scene(8, 60)
+    s = g.sigma_px
+    ent = pixel_entries(counts)
+    frames = per_frame_entries(ent)
+    starts = np.zeros((frames.n_trials, 2, 4))
+    starts[..., :2] = propagate(desig, times).reshape(-1, 2, 2)
+    for data, th0, kw in ((ent, desig, {}), (frames, starts, dict(times=np.zeros(1), motion="static"))):
+        full = unified_location_em(data, th0, s, p, p0, tol_px=1e-9 * s, **kw)
+        for gap in (0.1, 0.01):
+            stop = unified_location_em(data, th0, s, p, p0, tol_loglik=gap, **kw)
+            lost = full.loglik - stop.loglik
+            assert lost.min() > -1e-6 and np.median(lost) < gap, (gap, np.median(lost))
+            assert stop.n_iter.mean() < full.n_iter.mean()
+        assert np.quantile(lost, 0.9) < 2 * gap, np.quantile(lost, 0.9)
+
+
+def test_the_practical_stop_does_not_handicap_the_ula_at_fifty_frames():
+    """At the headline's point (d = sigma, Delta = 3 sigma, T = 50) the error a practical stop adds, relative to
+    each algorithm's converged variance, is no larger for the ULA than for the two-stage under the matched
+    log-likelihood stop; under the parameter tolerance of 0.05 sigma for both it was more than twice as large."""
+    g, truth, times, counts, desig, p, p0 = _scene(9, 60, T=50)
+    s = g.sigma_px
+    ent = pixel_entries(counts)
+
+    def ula(**kw):
+        return unified_location_em(ent, desig, s, p, p0, **kw).theta[..., :2].reshape(len(truth), -1) / s
+
+    def marks(**kw):
+        mk = em_marks(counts, desig, times, s, p, p0, **kw)
+        return fit_lines(mk, times, desig).theta[..., :2].reshape(len(truth), -1) / s
+
+    def added(f, **kw):
+        ref = f(tol_px=1e-7 * s, accelerate="squarem")
+        return ((f(**kw) - ref) ** 2).sum(axis=1).mean() / ref.var(axis=0, ddof=1).sum()
+
+    matched = added(ula, tol_loglik=0.1) / added(marks, tol_loglik=0.1)
+    sigma_tol = added(ula, tol_px=0.05 * s) / added(marks, tol_px=0.05 * s)
+    assert matched < 1.0 < 2.0 < sigma_tol, (matched, sigma_tol)

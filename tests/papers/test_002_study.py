@@ -198,9 +198,9 @@ def test_photons_of_c002_12_change_only_its_far_apart_points():
 
 def test_fig7_tolerance_reruns_only_the_iteration_points_on_the_same_scenes():
     base = _letters(study.jobs_of(DEFAULT, 7, TINY))
-    loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "0.05 sigma"}, 7, TINY))
+    loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "log-likelihood gap 0.1"}, 7, TINY))
     new = set(loose) - set(base)
-    assert new and all(k[0].variant == (("tol_sigma", 0.05),) and k[0].n == TINY.n_iter_trials for k in new)
+    assert new and all(k[0].variant == (("tol_loglik", 0.1),) and k[0].n == TINY.n_iter_trials for k in new)
     assert {k[1] for k in new} == {"u", "p", "q"}  # the Fig 7 points only, every letter they hold
     # what the loose reading no longer asks for is the default's Fig 7 points (a 'u' point may be shared)
     assert set(base) - set(loose) <= {(k[0]._replace(variant=()), k[1]) for k in new}
@@ -212,7 +212,7 @@ def test_a_loose_practical_tolerance_stops_plain_em_in_fewer_steps_on_the_same_t
 
     settings = study.settings_of(DEFAULT, 3, TINY)
     tight = Config(2, 1.0, 3.0, 20, 5, "p", 0.3, None, None, 6, "explore", 0.0)
-    loose = tight._replace(variant=(("tol_sigma", 0.05),))
+    loose = tight._replace(variant=(("tol_loglik", 0.1),))
     a, b = run_config(settings, tight), run_config(settings, loose)
     assert np.array_equal(a["truth"], b["truth"])  # a variant sees the same draws (common random numbers)
     assert np.all(b["plain_iter"] <= a["plain_iter"]) and b["plain_iter"].mean() < a["plain_iter"].mean()

@@ -388,6 +388,22 @@ def track_distance(theta, times) -> np.ndarray:
     return np.sqrt(d2.mean(axis=1))
 
 
+#: Successive steps whose Aitken estimate of the remaining gain must be below ``tol_loglik`` before a trial stops (one
+#: such step can be a lull of EM's rate while two images split).
+CALM = 2
+
+
+def _aitken_gap(ll, prev_ll, prev_rise):
+    """Aitken estimate of the log-likelihood still to be gained, shape (n,): with the rises ``r_k = L_k - L_{k-1}``
+    of two successive steps and their ratio ``a = r_k / r_{k-1}`` (EM's linear rate), the remaining gain is
+    ``r_k a / (1 - a)`` (``inf`` until two rises are known or while the rate is not in [0, 1))."""
+    rise = ll - prev_ll
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = rise / prev_rise
+        gap = np.where((a >= 0) & (a < 1), rise * a / (1 - a), np.inf)
+    return np.where(np.isfinite(prev_rise) & np.isfinite(rise), np.maximum(gap, 0.0), np.inf)
+
+
 def _in_frame_mass(theta, sigma, times, shape):
     """Smallest in-window PSF mass over objects and frames, shape (N,)."""
     rows, cols = shape
@@ -430,6 +446,7 @@ def unified_location_em(
     min_in_frame_mass: float = 0.99,
     history: bool = False,
     prior_sd=None,
+    tol_loglik: float | None = None,
 ) -> EMResult:
     """Maximum-likelihood linear-motion states of ``Q`` objects from all ``T`` frames at once.
 
@@ -471,6 +488,15 @@ def unified_location_em(
         In-window PSF mass below which an object counts as having left the frame, in (0, 1].
     history : bool
         Keep theta and the log-likelihood of every iteration (for tests and recordings).
+    tol_loglik : float, optional
+        Stop a trial instead when the log-likelihood it can still gain is below ``tol_loglik`` (nats, > 0;
+        ``tol_px`` is then not used), the remaining gain estimated by Aitken's extrapolation of the last two
+        rises (EM converges linearly: ``L* - L_k ~ r_k a / (1 - a)``, ``a = r_k / r_{k-1}``; Lindsay 1995,
+        McNicholas et al. 2010). The gap to the maximum is half the squared stopping error in units of the
+        estimate's own standard error (``L* - L ~ delta' I delta / 2``), whatever the number of frames the
+        likelihood pools and whatever EM's rate: the same ``tol_loglik`` stops a joint estimate over ``T``
+        frames and a one-frame mark at the same distance from their maxima relative to their own spread. The
+        estimate must hold on :data:`CALM` successive steps.
     prior_sd : (float, float), optional
         MAP-EM: a Gaussian prior centred on ``theta0`` (the designation) with standard deviations
         ``(position px, velocity px/frame)`` per coordinate; a velocity sd of 0 fixes the velocity
@@ -492,6 +518,8 @@ def unified_location_em(
         raise ValueError(f"tol_px = {tol_px} must be > 0")
     if max_iter < 1:
         raise ValueError(f"max_iter = {max_iter} must be >= 1")
+    if tol_loglik is not None and not tol_loglik > 0:
+        raise ValueError(f"tol_loglik = {tol_loglik} must be > 0 (or None)")
     if accelerate not in (None, "squarem"):
         raise ValueError(f"accelerate = {accelerate!r} must be None or 'squarem'")
     if accelerate and (estimate_weights or estimate_sigma):
@@ -542,6 +570,9 @@ def unified_location_em(
     n_iter = np.zeros(n, dtype=np.int64)
     converged = np.zeros(n, dtype=bool)
     degenerate = photons <= 0
+    prev_ll = np.full(n, -np.inf)  # log-likelihood at the previous step's start (tol_loglik)
+    prev_rise = np.full(n, np.nan)  # and the rise of the step before
+    calm = np.zeros(n, dtype=np.int64)  # successive steps whose remaining gain was below tol_loglik
     hist_t, hist_l = [], []
 
     def step(work, th, pw_, p0_, sg_):
@@ -597,7 +628,14 @@ def unified_location_em(
         theta[upd] = np.where(bad[live, None, None], th[live], new[live])
         pw[upd], p0[upd], sigma[upd] = pw_n[live], p0_n[live], sg_n[live]
         n_iter[upd] += taken
-        conv = (delta < tol_px) & ~bad & live
+        if tol_loglik is not None:
+            gap = _aitken_gap(ll, prev_ll[active], prev_rise[active])
+            prev_rise[upd] = (ll - prev_ll[active])[live]
+            prev_ll[upd] = ll[live]
+            calm[upd] = np.where(gap[live] < tol_loglik, calm[upd] + 1, 0)
+            conv = (calm[active] >= CALM) & ~bad & live
+        else:
+            conv = (delta < tol_px) & ~bad & live
         converged[active[conv]] = True
         degenerate[active[bad & live]] = True
         if history:

@@ -114,6 +114,10 @@ class StudySettings:
     n_bootstrap : int
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
+    tol_loglik : float or None
+        The matched practical stop (nats): every EM of the ULA and of the per-frame marks stops when the
+        log-likelihood it can still gain is below this (each on its own likelihood: all frames for the ULA, one
+        frame for a mark; ``tol_sigma`` is then not used). ``None``: the parameter-change rule ``tol_sigma``.
     """
 
     seed: int
@@ -136,6 +140,7 @@ class StudySettings:
     n_bootstrap: int
     velocity_knowledge: str = "free"
     tracks: str = "parallel"
+    tol_loglik: float | None = None
 
 
 CANONICAL_SETTINGS = StudySettings(
@@ -399,7 +404,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         ent = pixel_entries(b.counts)
         em_args, em_kw = (
             (b.designation, s, p, p0),
-            dict(tol_px=tol, max_iter=s_.max_iter),
+            dict(tol_px=tol, max_iter=s_.max_iter, tol_loglik=s_.tol_loglik),
         )  # common to every ULA variant
         if "u" in algs:
             t0 = time.perf_counter()
@@ -427,6 +432,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             association=s_.mark_association if assoc is None else assoc,
             tol_px=tol,
             max_iter=s_.max_iter,
+            tol_loglik=s_.tol_loglik,
         )
         if "e" in algs:
             t0 = time.perf_counter()
