@@ -93,6 +93,10 @@ def test_crossing_tracks_swap_sides_at_mid_sequence():
     np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 0.0, -3.0])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "parallel", 2, 3.0, 11), [[0.2, 0.1], [0.2, 0.1]])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "crossing", 1, 3.0, 11), [[0.2, 0.1]])
+    # diverging (the paper's satellites separating after release): d apart at the start, 3 d at the end
+    g = scene_geometry(2, 11, 3.0, 1.0, track_velocities((0.2, 0.1), "diverging", 2, 3.0, 11))
+    dy = (g.theta[1, 1] + g.theta[1, 3] * t) - (g.theta[0, 1] + g.theta[0, 3] * t)
+    np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 6.0, 9.0])
 
 
 def test_mean_log_gain_recovers_a_known_ratio_of_gains():
@@ -303,3 +307,35 @@ def test_c002_1_panel_readings_read_that_panels_whole_distance_axis(reading, pix
     assert [e.value for e in got] == [
         study.spread_sum(study.errors(res[panel[d]], "ula", "first"), "variance").value for d in TINY.separations
     ]
+
+
+def test_every_register_entry_and_value_is_in_plain_words():
+    for e in REGISTER.entries:
+        assert e.title and e.title != e.name, e.name
+        assert set(e.phrases) == set(e.values), (e.name, set(e.values) - set(e.phrases))
+    assert REGISTER["tracks"].kind == "regime" and REGISTER["EM stopping"].side == "reading"
+
+
+def test_screen_scale_is_a_quarter_of_the_trials_with_fewer_resamples():
+    small = study.screen_scale(study.Scale(n_trials=80, n_iter_trials=40, n_bootstrap=2000), 0.25)
+    assert (small.n_trials, small.n_iter_trials, small.n_bootstrap) == (20, 10, 1000)
+    assert study.screen_scale(TINY, 0.25).n_trials == 8  # never below 8 trials
+
+
+def test_failure_rates_and_bic_shares_read_the_figure_points():
+    from tvtrack.papers.p002_unified_location_em import extras
+
+    study.clear_cache()
+    g, res = study.figure_data(DEFAULT, 3, TINY)
+    rates = extras.failure_rates(g, res)
+    assert list(rates) == [label for *_, label in extras.FAILURE_GROUPS]
+    r = res[g["4"][20][1.0]]
+    row = rates["Fig 4a (m_k = 20)"][1.0]
+    assert row["ULA label swap"].value == r["ula_flags"][:, 0].mean()
+    assert row["two-stage cap hit"].value == r["em_flags"][:, 2].mean()
+    shares = extras.bic_correct_q(g, res)
+    assert set(shares) == set(TINY.separations)
+    for d, s in shares.items():
+        assert sum(e.value for e in s.values()) == pytest.approx(1.0)
+        pick = np.argmin(res[g["bic"][d]]["bic"], axis=1)
+        assert s["Q' = 2 (correct)"].value == pytest.approx((pick == 1).mean())

@@ -13,7 +13,15 @@ import numpy as np
 from tvtrack.montecarlo import mean_ci
 from .study import errors, gain, spread_sum
 
-__all__ = ["ula_distance_figure", "one_object_figure", "gain_figure", "iterations_figure", "bound_figure"]
+__all__ = [
+    "ula_distance_figure",
+    "one_object_figure",
+    "gain_figure",
+    "iterations_figure",
+    "bound_figure",
+    "failure_figure",
+    "bic_figure",
+]
 
 
 def _band(ax, x, ests, label, **kw):
@@ -128,4 +136,32 @@ def bound_figure(g, res, epoch="first"):
         ax.plot(d, [res[c]["crb_pos"] for c in cs], "k:", label="CRB (unbiased estimators)")
         ax.plot(d, [res[c]["bcrb_pos"] for c in cs], "k--", label="van Trees bound (designation prior)")
         _distance_axes(ax, title, "total position MSE (sigma^2)")
+    return fig
+
+
+def failure_figure(rates):
+    """Failure, label-swap and cap-hit rates (:func:`.extras.failure_rates`) against separation, one panel per rate,
+    one curve per figure configuration and algorithm (ULA solid, two-stage dashed)."""
+    kinds = ("failure", "label swap", "cap hit")
+    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), sharey=True)
+    for ax, kind in zip(axes, kinds):
+        for k, (label, rows) in enumerate(rates.items()):
+            d = list(rows)
+            for alg, ls in (("ULA", "-"), ("two-stage", "--")):
+                ests = [rows[x][f"{alg} {kind}"] for x in d]
+                _band(ax, d, ests, f"{alg}, {label}", ls=ls, color=f"C{k}")
+        ax.set(xlabel="separation d / sigma", ylabel="share of trials", title=kind, ylim=(-0.02, 1.02))
+    axes[0].legend(fontsize=6)
+    return fig
+
+
+def bic_figure(shares):
+    """Share of trials in which BIC picks each number of objects (:func:`.extras.bic_correct_q`) against
+    separation; two objects are there."""
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    d = list(shares)
+    for name in next(iter(shares.values())):
+        _band(ax, d, [shares[x][name] for x in d], name)
+    ax.set(xlabel="separation d / sigma", ylabel="share of trials choosing Q'", ylim=(-0.02, 1.02))
+    ax.legend(fontsize=7)
     return fig

@@ -108,9 +108,10 @@ class StudySettings:
         covers the initial positions only, the line fit is ordinary least squares), or the designated
         velocity with its error ``designation_velocity_sd`` ("designated": the MAP prior's velocity sd is
         that error, the line fit keeps the designated velocity and fits the intercept).
-    tracks : {"parallel", "crossing"}
-        Two-object scenes: the common velocity, or object 2 with its y velocity lowered by ``2 d / (T - 1)`` so
-        that the tracks cross at mid-sequence (they start ``d`` apart and end ``d`` apart on the other side).
+    tracks : {"parallel", "crossing", "diverging"}
+        Two-object scenes: the common velocity, or object 2 with its y velocity lowered (raised) by
+        ``2 d / (T - 1)``: the tracks cross at mid-sequence (diverge from ``d`` to ``3 d``); see
+        :func:`track_velocities`.
     n_bootstrap : int
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
@@ -313,13 +314,15 @@ def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: floa
 
 
 def track_velocities(velocity_sigma, tracks: str, q: int, d: float, T: int):
-    """Per-object velocities (sigma/frame), shape (Q, 2): the common velocity, or for ``tracks = "crossing"`` and
-    two objects object 2's y velocity lowered by ``2 d / (T - 1)`` (the tracks cross at mid-sequence)."""
-    if tracks not in ("parallel", "crossing"):
-        raise ValueError(f"tracks = {tracks!r} must be 'parallel' or 'crossing'")
+    """Per-object velocities (sigma/frame), shape (Q, 2): the common velocity (``"parallel"``), or for two objects
+    object 2's y velocity lowered by ``2 d / (T - 1)`` (``"crossing"``: they start ``d`` apart and end ``d`` apart
+    on the other side, crossing at mid-sequence) or raised by it (``"diverging"``: they start ``d`` apart and end
+    ``3 d`` apart, like satellites separating after their release from one launcher, the paper's example)."""
+    if tracks not in ("parallel", "crossing", "diverging"):
+        raise ValueError(f"tracks = {tracks!r} must be 'parallel', 'crossing' or 'diverging'")
     v = np.tile(np.asarray(velocity_sigma, dtype=float), (q, 1))
-    if tracks == "crossing" and q == 2 and T > 1:
-        v[1, 1] -= 2.0 * d / (T - 1)
+    if tracks != "parallel" and q == 2 and T > 1:
+        v[1, 1] += (-2.0 if tracks == "crossing" else 2.0) * d / (T - 1)
     return v
 
 

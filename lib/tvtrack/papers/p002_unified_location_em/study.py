@@ -44,6 +44,7 @@ __all__ = [
     "run_jobs",
     "measure",
     "measure_batch",
+    "screen_scale",
     "figure_data",
     "errors",
     "gain",
@@ -317,6 +318,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     if figures:
         g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
         g["w"] = {d: P(2, d, pix, 20, T4, "uw1", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
+        g["bic"] = {d: P(2, d, pix, 20, T4, "b", n=scale.n_iter_trials) for d in D}  # unknown Q (card 8.3)
     return g, P.asked
 
 
@@ -589,6 +591,21 @@ def measure_batch(configs, seeds, scale: Scale = Scale()) -> list[dict]:
         g, _ = _points(c, scale)
         out.append(_claims(c, g, _Results(settings_of(c, s, scale), scale), int(s), scale))
     return out
+
+
+def screen_scale(scale: Scale, fraction: float = 0.25, n_bootstrap: int = 1000) -> Scale:
+    """The cheaper scale of the joint design's screen (``explore(..., screen=partial(measure_batch, scale=...))``):
+    ``fraction`` of the trials of every point (at least 8; 4 for the iteration study) and ``n_bootstrap`` resamples
+    (the screen only sorts configurations: each whose verdict is not decisively the default's is re-measured at
+    full size)."""
+    if not 0 < fraction <= 1:
+        raise ValueError(f"fraction = {fraction} must be in (0, 1]")
+    return replace(
+        scale,
+        n_trials=max(8, round(scale.n_trials * fraction)),
+        n_iter_trials=max(4, round(scale.n_iter_trials * fraction)),
+        n_bootstrap=min(n_bootstrap, scale.n_bootstrap),
+    )
 
 
 def measure(config: dict, seed: int, scale: Scale = Scale()) -> dict:
