@@ -317,8 +317,8 @@ def test_every_register_entry_and_value_is_in_plain_words():
 
 
 def test_screen_scale_is_a_quarter_of_the_trials_with_fewer_resamples():
-    small = study.screen_scale(study.Scale(n_trials=80, n_iter_trials=40, n_bootstrap=2000), 0.25)
-    assert (small.n_trials, small.n_iter_trials, small.n_bootstrap) == (20, 10, 1000)
+    small = study.screen_scale(study.Scale(n_trials=80, n_iter_trials=40, n_bootstrap=2000, crb_phases=64), 0.25)
+    assert (small.n_trials, small.n_iter_trials, small.n_bootstrap, small.crb_phases) == (20, 10, 1000, 16)
     assert study.screen_scale(TINY, 0.25).n_trials == 8  # never below 8 trials
 
 

@@ -595,9 +595,9 @@ def measure_batch(configs, seeds, scale: Scale = Scale()) -> list[dict]:
 
 def screen_scale(scale: Scale, fraction: float = 0.25, n_bootstrap: int = 1000) -> Scale:
     """The cheaper scale of the joint design's screen (``explore(..., screen=partial(measure_batch, scale=...))``):
-    ``fraction`` of the trials of every point (at least 8; 4 for the iteration study) and ``n_bootstrap`` resamples
-    (the screen only sorts configurations: each whose verdict is not decisively the default's is re-measured at
-    full size)."""
+    ``fraction`` of the trials of every point (at least 8; 4 for the iteration study), ``n_bootstrap`` resamples and
+    a quarter of the bound's sub-pixel phases (at least 8). The screen only sorts configurations: each whose verdict
+    is not decisively the default's is re-measured at full size."""
     if not 0 < fraction <= 1:
         raise ValueError(f"fraction = {fraction} must be in (0, 1]")
     return replace(
@@ -605,6 +605,7 @@ def screen_scale(scale: Scale, fraction: float = 0.25, n_bootstrap: int = 1000) 
         n_trials=max(8, round(scale.n_trials * fraction)),
         n_iter_trials=max(4, round(scale.n_iter_trials * fraction)),
         n_bootstrap=min(n_bootstrap, scale.n_bootstrap),
+        crb_phases=max(8, scale.crb_phases // 4),
     )
 
 
