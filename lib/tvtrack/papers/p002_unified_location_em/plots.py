@@ -144,12 +144,27 @@ def failure_figure(rates):
     one curve per figure configuration and algorithm (ULA solid, two-stage dashed)."""
     kinds = ("failure", "label swap", "cap hit")
     fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), sharey=True)
+    n_curves = 2 * len(rates)
     for ax, kind in zip(axes, kinds):
         for k, (label, rows) in enumerate(rates.items()):
-            d = list(rows)
-            for alg, ls in (("ULA", "-"), ("two-stage", "--")):
-                ests = [rows[x][f"{alg} {kind}"] for x in d]
-                _band(ax, d, ests, f"{alg}, {label}", ls=ls, color=f"C{k}")
+            d = np.array(list(rows), dtype=float)
+            for a, (alg, ls) in enumerate((("ULA", "-"), ("two-stage", "--"))):
+                ests = [rows[x][f"{alg} {kind}"] for x in rows]
+                v = np.array([e.value for e in ests])
+                err = [v - [e.ci_low for e in ests], np.array([e.ci_high for e in ests]) - v]
+                shift = 0.03 * (2 * k + a - (n_curves - 1) / 2)  # side by side, so the intervals stay apart
+                ax.errorbar(
+                    d + shift,
+                    v,
+                    yerr=err,
+                    ls=ls,
+                    color=f"C{k}",
+                    marker="o",
+                    ms=3,
+                    capsize=2,
+                    lw=1,
+                    label=f"{alg}, {label}",
+                )
         ax.set(xlabel="separation d / sigma", ylabel="share of trials", title=kind, ylim=(-0.02, 1.02))
     axes[0].legend(fontsize=6)
     return fig
