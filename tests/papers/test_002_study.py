@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import Estimate
-from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em import extras, study
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
 TINY = study.Scale(
@@ -76,10 +76,10 @@ def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
 
 
 def test_word_follows_the_interval():
-    assert study.word(Estimate(2.0, 0.1, 1.5, 2.5, 10)) == "above"
-    assert study.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
-    assert study.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
-    assert study.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
+    assert extras.word(Estimate(2.0, 0.1, 1.5, 2.5, 10)) == "above"
+    assert extras.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
+    assert extras.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
+    assert extras.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
 
 
 def test_crossing_tracks_swap_sides_at_mid_sequence():
@@ -156,13 +156,13 @@ def test_flips_by_entry_reads_single_conditions_unless_asked_for_joint_ones():
             ]
             return {**ref, "conditions": conds}
 
-    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == {
+    assert extras.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == {
         "tracks": ["C002-1"],
         "bound": [],
         "epoch": [],
     }
     # a joint condition counts only when asked for, and then for every entry it changed
-    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"], ("joint", "pinned")) == {
+    assert extras.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"], ("joint", "pinned")) == {
         "tracks": [],
         "bound": ["C002-1"],
         "epoch": ["C002-1"],
@@ -173,7 +173,7 @@ def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
     study.clear_cache()
     g, res = study.figure_data(DEFAULT, 9, TINY)
     rng = np.random.default_rng(0)
-    wq, wc = study.wrong_q_cost(g, res, rng, 2000), study.estimation_cost(g, res, rng, 2000)
+    wq, wc = extras.wrong_q_cost(g, res, rng, 2000), extras.estimation_cost(g, res, rng, 2000)
     assert set(wq) == set(wc) == {1.0, 2.0, 4.0}
     r = res[g["w"][4.0]]
     assert r["ula_q1"].shape == (TINY.n_iter_trials, 1, 4) and r["ula_w"].shape == r["ula"].shape
@@ -323,7 +323,6 @@ def test_screen_scale_is_a_quarter_of_the_trials_with_fewer_resamples():
 
 
 def test_failure_rates_and_bic_shares_read_the_figure_points():
-    from tvtrack.papers.p002_unified_location_em import extras
 
     study.clear_cache()
     g, res = study.figure_data(DEFAULT, 3, TINY)

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from tvtrack.montecarlo import Estimate, proportion_ci, ratio_ci
+from tvtrack.montecarlo import Estimate, ratio_ci
 from .simulation import (
     SPREADS,
     CANONICAL_SETTINGS,
@@ -51,11 +51,6 @@ __all__ = [
     "spread_sum",
     "exp_estimate",
     "clear_cache",
-    "word",
-    "squarem_vs_plain",
-    "local_maxima_rate",
-    "estimation_cost",
-    "wrong_q_cost",
 ]
 
 #: Separations d / sigma of the distance axes (card 5.2).
@@ -622,53 +617,6 @@ def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, 
     return _points(config, scale, figures=True)[0], _Results(settings_of(config, seed, scale), scale)
 
 
-# -- what the notebook reports beside the claims --------------------------------------------------------------
-
-
-def word(
-    est: Estimate, ref: float = 1.0, above: str = "above", below: str = "below", same: str = "not distinguishable from"
-) -> str:
-    """The word a 95 % interval supports about ``ref``: ``above`` / ``below`` when it excludes ``ref``, else
-    ``same``; ``"undetermined against"`` for an undefined interval."""
-    if not (np.isfinite(est.ci_low) and np.isfinite(est.ci_high)):
-        return "undetermined against"
-    return above if est.ci_low > ref else below if est.ci_high < ref else same
-
-
-def squarem_vs_plain(g: dict, res) -> dict:
-    """How far SQUAREM's estimates are from plain EM's on the same trials (Fig 7's points): the largest absolute
-    difference of any initial position (sigma) and the share of trials where it exceeds 0.01 sigma, per d."""
-    out = {}
-    for d, c in g["7"].items():
-        r = res[c]
-        diff = np.abs(r["plain"][..., :2] - r["ula"][..., :2]).max(axis=(1, 2))
-        out[d] = {"max_sigma": float(diff.max()), "share_over_0.01": proportion_ci(int((diff > 0.01).sum()), len(diff))}
-    return out
-
-
-def estimation_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
-    """The accuracy cost of estimating p_j and sigma as well (card 8.4): Sigma^2 with them estimated over Sigma^2
-    with them known, paired on the same trials, per separation."""
-    return {d: gain(errors(res[c], "ula_w"), errors(res[c], "ula"), rng, n_bootstrap) for d, c in g["w"].items()}
-
-
-def wrong_q_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
-    """The cost of a wrong number of objects (card 8.3): the variance sum of the group's mean initial position when
-    one track is fitted to the pair (Q' = 1) over the same with Q = 2 known, paired on the same trials, per d."""
-    out = {}
-    for d, c in g["w"].items():
-        r = res[c]
-        mid2 = r["ula"][..., :2].mean(axis=1)  # (n, 2): labels do not matter for the mean
-        out[d] = gain(r["ula_q1"][:, 0, :2], mid2, rng, n_bootstrap)
-    return out
-
-
-def local_maxima_rate(g: dict, res, gap: float = 1e-3) -> dict:
-    """Share of trials (with its interval) in which the ULA started at the designation stops at a local maximum
-    more than ``gap`` (log-likelihood) below the best of four starts, per separation."""
-    return {d: proportion_ci(int((res[c]["ms_gap"] > gap).sum()), len(res[c]["ms_gap"])) for d, c in g["ms"].items()}
-
-
 #: The paper's claims: statement and the paper's value (paper card 002, section 7).
 CLAIMS = {
     "C002-1": ("Accuracy falls as the objects get closer (Fig 1).", "qualitative"),
@@ -722,41 +670,3 @@ def scaled(est: Estimate, factor: float) -> Estimate:
         est.confidence,
         est.method,
     )
-
-
-def condition_output(exploration, claim_id: str, changed: dict):
-    """What ``claim_id`` measured in the run (one at a time or joint) that changed exactly ``changed`` from the
-    default (None if no run did)."""
-    default = exploration.default
-    for r in exploration.runs:
-        if r.stage != "replicate" and r.changed(default) == changed:
-            return r.outputs.get(claim_id)
-    return None
-
-
-def compare(a: Estimate, b: Estimate) -> str:
-    """``a`` against ``b`` by their 95 % intervals: "larger than" / "smaller than" when they do not overlap, else
-    "not distinguishable from" (a conservative comparison of two estimates from the same scenes)."""
-    if a.ci_low > b.ci_high:
-        return "larger than"
-    if a.ci_high < b.ci_low:
-        return "smaller than"
-    return "not distinguishable from"
-
-
-def flips_by_entry(exploration, rules, names, kinds=("single",)) -> dict:
-    """``{entry name: [claim ids]}``: the claims some part of whose verdict differs, in a run of a kind in ``kinds``
-    (``"single"``: one at a time, the entry alone; ``"joint"``, ``"pinned"``: joint conditions, where the entry is
-    one of several changed) that changed that entry, from the first replicate (the run it shares its random numbers
-    with)."""
-    out = {n: [] for n in names}
-    for cid, rule in rules.items():
-        rec = exploration.record(cid, rule)
-        ref = rec["replicates"][0]["parts"] if rec["replicates"] else {}
-        for c in rec["conditions"]:
-            if c["kind"] not in kinds:
-                continue
-            for k in c["changed"]:
-                if k in out and c["parts"] != ref and cid not in out[k]:
-                    out[k].append(cid)
-    return out
