@@ -327,7 +327,10 @@ def test_failure_rates_and_bic_shares_read_the_figure_points():
     study.clear_cache()
     g, res = study.figure_data(DEFAULT, 3, TINY)
     rates = extras.failure_rates(g, res)
-    assert list(rates) == [label for *_, label in extras.FAILURE_GROUPS]
+    assert list(rates) == [label for *_, label in extras.FAILURE_GROUPS] + ["Fig 7 (plain EM)"]
+    r7 = res[g["7"][min(g["7"])]]
+    assert rates["Fig 7 (plain EM)"][min(g["7"])]["ULA cap hit"].value == r7["plain_cap"].mean()
+    assert np.all(r7["plain_cap"] == (r7["plain_iter"] >= TINY.max_iter))  # TINY caps plain EM at 40 steps
     r = res[g["4"][20][1.0]]
     row = rates["Fig 4a (m_k = 20)"][1.0]
     assert row["ULA label swap"].value == r["ula_flags"][:, 0].mean()

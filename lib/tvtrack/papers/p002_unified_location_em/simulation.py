@@ -367,7 +367,8 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     dict
         Per algorithm letter run: ``ula``/``plain``/``map``/``em``/``cr`` errors (n, Q, 4) in sigma,
         ``*_flags`` (n, k) bool with columns :data:`FLAG_NAMES`, ``*_iter`` (n,) EM steps
-        (``em_iter``, ``em_plain_iter``: summed over frames), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
+        (``em_iter``, ``em_plain_iter``: summed over frames), ``plain_cap`` / ``em_plain_cap`` (n,) the plain EM's
+        iteration cap hit (marks: in some frame), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
         ``timing`` (wall seconds per algorithm), ``crb_pos`` / ``crb_vel`` (trace of the position /
         velocity block of the CRB, sigma^2, averaged over the sub-pixel phase), ``crb_x0`` (the bound
         on x_o of the first object alone), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
@@ -390,12 +391,14 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             "ula_iter",
             "plain",
             "plain_iter",
+            "plain_cap",
             "map",
             "em",
             "em_vd",
             "em_flags",
             "em_iter",
             "em_plain_iter",
+            "em_plain_cap",
             "cr",
             "cr_flags",
             "bic",
@@ -431,6 +434,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             timing["plain"] += time.perf_counter() - t0
             out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
             out["plain_iter"].append(r.n_iter)
+            out["plain_cap"].append(r.cap_hit)
         if "m" in algs:
             t0 = time.perf_counter()
             prior = map_prior_sd(s_.velocity_knowledge, dsd, vsd, s)
@@ -463,6 +467,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             mk = em_marks(b.counts, b.designation, times, s, p, p0, **mark_args)
             timing["em_plain"] += time.perf_counter() - t0
             out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
+            out["em_plain_cap"].append(mk.cap_hit.any(axis=1))
         if "c" in algs:
             t0 = time.perf_counter()
             mk = centre_of_region_marks(
