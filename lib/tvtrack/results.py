@@ -37,7 +37,16 @@ import numpy as np
 
 from .montecarlo import Estimate
 from .verdicts import LABELS, VERDICTS, Robustness, Rule
-from .wording import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, claim_summary, format_measured, results_summary, shown_label
+from .wording import (
+    GLOSSARY,
+    LABEL_WORDS,
+    VERDICT_WORDS,
+    claim_flips,
+    claim_summary,
+    format_measured,
+    results_summary,
+    shown_label,
+)
 
 __all__ = [
     "VERDICTS",
@@ -50,6 +59,7 @@ __all__ = [
     "md_escape",
     "claims_table",
     "claim_summary",
+    "claim_flips",
     "results_summary",
     "shown_label",
     "GLOSSARY",

@@ -415,21 +415,26 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
     checkable = len(claims) - v["not checkable"]
     sure = labels["robust"] + labels["limited"]
+
+    def n(k: int, one: str, many: str) -> str:
+        return f"{k} {one if k == 1 else many}"
+
     text = [
-        f"Of {_plural(len(claims), 'claim')} checked, {v['reproduced']} hold, {v['partly']} hold in part and "
-        f"{v['not reproduced']} do not; the runs could not decide {v['undecided']}, and {v['not checkable']} "
-        f"give nothing to measure."
+        f"Of {_plural(len(claims), 'claim')} checked, {n(v['reproduced'], 'holds', 'hold')}, "
+        f"{n(v['partly'], 'holds', 'hold')} in part and {n(v['not reproduced'], 'does', 'do')} not; the runs could "
+        f"not decide {v['undecided']}, and {n(v['not checkable'], 'gives', 'give')} nothing to measure."
     ]
     if labels[PROVISIONAL]:
         text.append(
-            f"{labels[PROVISIONAL]} of the {checkable} checkable verdicts come from a design too small to label "
-            f"(a {profile}-size run): none of them is called robust."
+            f"{n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
+            f"design too small to label (a {profile}-size run): none of them is called robust."
         )
     else:
         text.append(
-            f"Of the {checkable} checkable verdicts, {sure} survive every reading of the paper "
-            f"({labels['robust']} robust, {labels['limited']} only within the paper's world), {labels['depends']} "
-            f"turn on a reading of an ambiguous passage and {labels['unstable']} differ between independent replicates."
+            f"Of the {checkable} checkable verdicts, {n(sure, 'survives', 'survive')} every reading of the paper "
+            f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
+            f"{n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage and "
+            f"{n(labels['unstable'], 'differs', 'differ')} between independent replicates."
         )
     turns: Counter = Counter()
     for c in claims:
