@@ -43,7 +43,6 @@ from .report import (
     ALL_VERDICTS,
     NO_LABEL,
     REPRODUCE_DIR,
-    coverage_text,
     first_screen,
     forest_items,
     forest_plot,
@@ -54,9 +53,10 @@ from .report import (
     robustness_picture,
     robustness_where,
 )
+from .report import _plain_coverage as coverage_text
 from .runner import read_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
-from ..results import VERDICTS
+from ..results import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, VERDICTS, claim_flips, claim_summary, results_summary
 
 __all__ = [
     "SITE_DIR",
@@ -315,7 +315,89 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
 def _environment():
     from jinja2 import Environment, FileSystemLoader, select_autoescape
 
-    return Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
+    env = Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
+    env.globals.update(
+        glossary=GLOSSARY,
+        glossary_verdicts=list(VERDICT_WORDS.items()),
+        glossary_labels=list(LABEL_WORDS.items()),
+        verdict_words=[v for v in ALL_VERDICTS],
+    )
+    return env
+
+
+def claim_page_href(paper: str, claim_id: str) -> str:
+    """A claim's page, relative to the site root."""
+    return f"claims/{paper}/{claim_id}.html"
+
+
+def _part_rows(claim: dict) -> list[dict]:
+    """The claim's parts for its page: verdict, label, share that agrees, runs to decide, what moves it most."""
+    rows = []
+    for name, p in ((claim.get("robustness") or {}).get("parts") or {}).items():
+        if not isinstance(p, dict):
+            continue
+        share = p.get("share") or {}
+        rows.append(
+            {
+                "name": name,
+                "verdict": p.get("verdict", ""),
+                "label": p.get("label", ""),
+                "share": (
+                    f"{share.get('agree')} of {share.get('decided', share.get('design'))} "
+                    f"(95 % CI {share['ci_low'] * 100:.0f}-{share['ci_high'] * 100:.0f} %)"
+                    if "ci_low" in share
+                    else ""
+                ),
+                "runs": (p.get("runs_to_decide") or {}).get("text", ""),
+                "sensitivity": ", ".join(
+                    f"{s.get('title') or s.get('entry')} ({float(s.get('score', 0)):.2f})"
+                    for s in (p.get("sensitivity") or [])[:3]
+                ),
+            }
+        )
+    return rows
+
+
+def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
+    """One page per claim, ``claims/<paper>/<id>.html``: its sentence, its specification curve
+    (:func:`tvtrack.plotting.specification_curve`) and the record behind it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting import specification_curve
+
+    template = env.get_template("claim.html")
+    for run in runs:
+        if not run.ok:
+            continue
+        folder = site / "claims" / run.name
+        folder.mkdir(parents=True, exist_ok=True)
+        for c in run.results["claims"]:
+            curve, caption = None, ""
+            if c["verdict"] != "not checkable" and (c.get("robustness") or {}).get("conditions"):
+                fig, caption = specification_curve(c)
+                fig.savefig(folder / f"{c['id']}.png", dpi=80)
+                plt.close(fig)
+                curve = f"{c['id']}.png"
+            cell = run.cells.get(c["id"])
+            (folder / f"{c['id']}.html").write_text(
+                template.render(
+                    c=c,
+                    paper=run.name,
+                    shown=robustness_label(c),
+                    summary=claim_summary(c),
+                    measured=format_measured(c.get("measured"), c.get("rule")),
+                    coverage=coverage_text(c),
+                    flips=claim_flips(c),
+                    parts=_part_rows(c),
+                    curve=curve,
+                    caption=caption,
+                    cell_href=f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else ""),
+                    **{**common, "root": "../../"},
+                )
+            )
 
 
 def _counts(claims: list[dict]) -> dict:
@@ -339,10 +421,13 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                     "statement": c["statement"],
                     "paper_value": c["paper_value"],
                     "rule": c.get("acceptance", ""),
-                    "measured": format_measured(c["measured"]),
+                    "measured": format_measured(c["measured"], c.get("rule")),
                     "verdict": c["verdict"],
                     "label": robustness_label(c),
                     "where": robustness_where(c),
+                    "summary": claim_summary(c),
+                    "flips": claim_flips(c),
+                    "page": claim_page_href(run.name, c["id"]),
                     "note": c.get("note", ""),
                     "coverage": coverage_text(c),
                     "parts": part_labels(c),
@@ -453,18 +538,26 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
             **common,
         )
     )
+    _claim_pages(env, runs, site, common)
     first = first_screen(by_name)
     for row in first:
-        cell = next((r.cells.get(row["id"]) for r in runs if r.name == row["paper"]), None)
-        row["href"] = f"notebooks/{row['paper']}.html" + (f"#cell-id={cell}" if cell else "")
+        row["page"] = claim_page_href(row["paper"], row["id"])
+    all_claims = [c for r in runs if r.ok for c in r.results["claims"]]
+    papers = [
+        {"name": r.name, "n": len(r.results["claims"]), "verdicts": Counter(c["verdict"] for c in r.results["claims"])}
+        for r in runs
+        if r.ok
+    ]
     index = site / "index.html"
     index.write_text(
         env.get_template("index.html").render(
             cards=cards,
             sweeps=sweeps,
-            totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
+            totals=_counts(all_claims),
             n_claims=len(rows),
             first=first,
+            summary=results_summary(all_claims, shown),
+            papers=papers,
             forest="forest.png" if forest else None,
             robustness="robustness.png" if picture else None,
             **common,
