@@ -427,7 +427,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     if labels[PROVISIONAL]:
         text.append(
             f"{n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
-            f"design too small to label (a {profile}-size run): none of them is called robust."
+            f"design too small to label (a {profile if profile != 'paper' else 'smoke'}-size run): none of them is "
+            "called robust."
         )
     else:
         text.append(

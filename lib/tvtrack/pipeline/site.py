@@ -378,7 +378,7 @@ def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
             curve, caption = None, ""
             if c["verdict"] != "not checkable" and (c.get("robustness") or {}).get("conditions"):
                 fig, caption = specification_curve(c)
-                fig.savefig(folder / f"{c['id']}.png", dpi=80)
+                fig.savefig(folder / f"{c['id']}.png", dpi=100)
                 plt.close(fig)
                 curve = f"{c['id']}.png"
             cell = run.cells.get(c["id"])
