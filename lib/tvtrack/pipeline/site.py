@@ -5,15 +5,19 @@ profile's runs, ``--profile smoke``, from ``papermill_runs/reproduce-smoke/`` in
 and the sweeps under ``papermill_runs/<spec>/`` (directories holding ``summary.csv``), and writes
 ``papermill_runs/site/``:
 
-- ``index.html``: the profile it shows, then the first screen: every claim that does not reproduce or is
-  undecided and every verdict that depends or is unstable, one row each (statement, paper value, measured
-  value with interval, verdict, label); the forest plot of every claim and the robustness picture (claims by
+- ``index.html``: the profile it shows, then the first screen: a paragraph in plain words
+  (:func:`tvtrack.results.results_summary`) beside the glossary of the verdict and label words (every chip on
+  every page carries its word's meaning as a tooltip), one row per paper, every claim that does not reproduce or
+  is undecided and every verdict that depends or is unstable, one row each with its sentence
+  (:func:`tvtrack.results.claim_summary`); the forest plot of every claim and the robustness picture (claims by
   register entries, coloured by verdict); then one card per paper run (citation, run date, commit, runtime,
   claims by verdict and robustness label, the recording's still image and the command that serves it), then
   the sweeps;
 - ``ledger.html``: every claim of every ``results.json`` in a compact table (the rule, where the verdict
   differs, what the label covers and the parts behind a click), filterable and sortable by a small inline
   script, each linking to the notebook cell that decided it;
+- ``claims/<notebook>/<id>.html``: one page per claim: its sentence, its specification curve
+  (:func:`tvtrack.plotting.specification_curve`, ``<id>.png`` beside it) and the record behind it;
 - ``notebooks/<name>.html``: the executed notebook through nbconvert with this package's template
   (``site_templates/notebook``), figures inline, math converted to MathML at build time
   (``latex2mathml``), no script or style loaded from anywhere;
