@@ -259,8 +259,8 @@ def _side(changed: Mapping, record: Mapping) -> str:
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
-    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict}]``, readings of the
-    paper first, then worlds beyond it, single entries before combinations, each text said once.
+    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict}]``, single entries
+    first (readings of the paper, then worlds beyond it), then the smallest combinations, each text said once.
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
     verdict differs from the claim's."""
@@ -281,7 +281,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     order = {"single": 0, "combination": 1, "pinned": 2, "joint": 3}
     for f in sorted(
         flips,
-        key=lambda f: (f.get("side") != "reading", order.get(f.get("kind"), 4), len(f.get("changed") or {})),
+        key=lambda f: (order.get(f.get("kind"), 4), f.get("side") != "reading", len(f.get("changed") or {})),
     ):
         text = str(f.get("text") or describe(f.get("changed") or {}, record))
         if text not in seen:
