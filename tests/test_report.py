@@ -399,4 +399,7 @@ def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
     row = next(line for line in text.splitlines() if line.startswith("| C001-5 |"))
     assert "| provisional |" in row and "robust" not in row and "too small to label" in row
     assert "**Profile shown: smoke**" in text and "its labels are provisional" in text
-    assert "of the checkable verdicts comes from a design too small to label (a smoke-size run): none of them is called robust" in text
+    assert (
+        "of the checkable verdicts comes from a design too small to label (a smoke-size run): none of them is called robust"
+        in text
+    )
