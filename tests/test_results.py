@@ -221,4 +221,4 @@ def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_thei
         "sigma read as the SD of the raw velocity increments; gain bound set at frame 100",
         "sigma read as the SD of the raw velocity increments; a target weaving at 0.1 T",
     ]
-    assert [f["side"] for f in flips] == ["reading", "world", "reading", "reading"]
+    assert [f["side"] for f in flips] == ["reading", "world", "reading", "world"]  # a world changed: a world

@@ -17,6 +17,7 @@ Conventions
 from __future__ import annotations
 
 import math
+import re
 from collections import Counter
 from typing import Any, Mapping
 
@@ -223,14 +224,16 @@ def against(measured: Any, rule: Mapping | None) -> str:
 
 
 def shown_label(claim: Mapping) -> str:
-    """The label a reader sees: the record's, :data:`PROVISIONAL` when the design is too small to label (a smoke
-    run is never shown as robust), ``"—"`` without a record."""
+    """The label a reader sees: the record's; :data:`PROVISIONAL` in place of ``robust`` or ``unexplored`` when
+    the design is too small to estimate a share (a smoke run is never shown as robust; a flip it found still
+    shows as ``depends``, ``limited`` or ``unstable``); ``"—"`` without a record."""
     record = claim.get("robustness") or {}
     if not record:
         return "—"
-    if record.get("provisional"):
+    label = str(record.get("label", "—"))
+    if record.get("provisional") and label in ("robust", "unexplored"):
         return PROVISIONAL
-    return str(record.get("label", "—"))
+    return label
 
 
 def _phrases(record: Mapping) -> dict[str, tuple[str, str, dict]]:
@@ -254,8 +257,9 @@ def describe(changed: Mapping, record: Mapping) -> str:
 
 
 def _side(changed: Mapping, record: Mapping) -> str:
+    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"`` (as the core's flips)."""
     known = _phrases(record)
-    return "reading" if any(known.get(str(k), ("", "reading"))[1] == "reading" for k in changed) else "world"
+    return "reading" if all(known.get(str(k), ("", "reading"))[1] == "reading" for k in changed) else "world"
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
@@ -323,10 +327,12 @@ def _measured_bits(claim: Mapping, max_parts: int) -> str:
 
 def _share_text(claim: Mapping, with_ci: bool) -> str:
     parts = (claim.get("robustness") or {}).get("parts") or {}
-    shares = [(n, p["share"]) for n, p in parts.items() if isinstance(p, Mapping) and p.get("share")]
+    shares = [
+        (n, p["share"]) for n, p in parts.items() if isinstance(p, Mapping) and (p.get("share") or {}).get("decided")
+    ]
     if not shares:
         return ""
-    name, s = min(shares, key=lambda ns: ns[1].get("value", 1.0))
+    name, s = min(shares, key=lambda ns: ns[1].get("value") if _finite(ns[1].get("value")) else 1.0)
     where = "" if len(parts) == 1 else f" ({name})"
     ci = f", 95 % CI {s['ci_low'] * 100:.0f}-{s['ci_high'] * 100:.0f} %" if with_ci and "ci_low" in s else ""
     return f"{s.get('agree')} of {s.get('decided', s.get('design'))} explored configurations agree{where}{ci}"
@@ -336,8 +342,9 @@ def _runs_text(claim: Mapping) -> str:
     parts = (claim.get("robustness") or {}).get("parts") or {}
     for p in parts.values():
         r = (p or {}).get("runs_to_decide") if isinstance(p, Mapping) else None
-        if r and r.get("text"):
-            return str(r["text"])
+        if r and r.get("text"):  # "undecided at 3 replicates: about 7 ... would decide it" -> what decides it
+            text = str(r["text"])
+            return re.sub(r"^undecided at \d+ replicates?[:;] ", "", text)
     return ""
 
 
