@@ -113,10 +113,10 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     text = path.read_text()
     assert (
         "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
-        "of the checkable verdicts **0 robust · 0 limited · 1 unexplored · 0 depends · 0 unstable**"
+        "of the checkable verdicts **0 robust · 0 limited · 0 unexplored · 0 depends · 0 unstable · 1 provisional**"
     ) in text
-    # the fixture varies nothing of a simulated world: it cannot be called robust
-    assert re.search(r"\| C900-1 \| [^|]+ \| \*\*reproduced\*\* \| unexplored \| Reproduced: ", text)
+    # the fixture's design is far too small for a share: never robust, shown as provisional
+    assert re.search(r"\| C900-1 \| [^|]+ \| \*\*reproduced\*\* \| provisional \| Reproduced \(smoke-size ", text)
     assert "**Profile shown: paper**" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
     assert re.search(r"`python -m tvtrack view \S*fixture_centroid`", text)

@@ -20,7 +20,8 @@ def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytes
     assert re.search(
         r'1 <span class="pill v-reproduced" title="reproduced: the whole 95 % [^"]+">reproduced</span>', html
     )
-    assert re.search(r'2 <span class="pill l-unexplored" title="unexplored: [^"]+">unexplored</span>', html)
+    assert re.search(r'1 <span class="pill l-unexplored" title="unexplored: [^"]+">unexplored</span>', html)
+    assert re.search(r'1 <span class="pill l-provisional" title="provisional: a smoke-size run[^"]+">provisional</span>', html)
     assert re.search(r'1 <span class="pill l-—" title="—: no robustness record[^"]*">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
@@ -31,7 +32,7 @@ def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, r
     assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
     assert sorted(rows) == [
-        ("fixture_centroid", "reproduced", "unexplored"),
+        ("fixture_centroid", "reproduced", "provisional"),  # a design too small for a share
         ("new_schema", "not reproduced", "depends"),
         ("new_schema", "undecided", "unexplored"),
         ("old_schema", "partly", "—"),
