@@ -116,7 +116,10 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
         "of the checkable verdicts **0 robust · 0 limited · 0 unexplored · 0 depends · 0 unstable · 1 provisional**"
     ) in text
     # the fixture's design is far too small for a share: never robust, shown as provisional
-    assert re.search(r"\| C900-1 \| [^|]+ \| \*\*reproduced\*\* \| provisional \| Reproduced \(smoke-size ", text)
+    assert re.search(
+        r"\| C900-1 \| [^|]+ \| \*\*reproduced\*\* \| provisional \| Reproduced \(too few configurations to label\): ",
+        text,
+    )
     assert "**Profile shown: paper**" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
     assert re.search(r"`python -m tvtrack view \S*fixture_centroid`", text)
@@ -397,7 +400,7 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
 def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
     text = write_report(explored_runs, tmp_path / "R.md", notebooks=["002_smoke"]).read_text()
     row = next(line for line in text.splitlines() if line.startswith("| C001-5 |"))
-    assert "| provisional |" in row and "robust" not in row and "too small to label" in row
+    assert "| provisional |" in row and "robust" not in row and "too few configurations to label" in row
     assert "**Profile shown: smoke**" in text and "its labels are provisional" in text
     assert (
         "of the checkable verdicts comes from a design too small to label (a smoke-size run): none of them is called robust"

@@ -190,7 +190,7 @@ def test_claim_summary_says_verdict_share_readings_then_worlds_within_two_lines(
         "Undecided: 0.6209 [0.6162, 0.6256] against [0, 0.625] (ratio of MSEs, network / filter). "
         "About 7 replicates (560 trials) would decide it."
     )
-    assert claim_summary(SMOKE).startswith("Reproduced (smoke-size run: too small to label): ")
+    assert claim_summary(SMOKE).startswith("Reproduced (too few configurations to label): ")
     assert claim_summary(NOT_CHECKABLE) == "Not checkable: the recording of the real aircraft is not published"
     # many long flips, worlds listed first in the record: readings still come first, and the sentence fits
     crowded = copy.deepcopy(DEPENDS)

@@ -21,7 +21,10 @@ def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytes
         r'1 <span class="pill v-reproduced" title="reproduced: the whole 95 % [^"]+">reproduced</span>', html
     )
     assert re.search(r'1 <span class="pill l-unexplored" title="unexplored: [^"]+">unexplored</span>', html)
-    assert re.search(r'1 <span class="pill l-provisional" title="provisional: a smoke-size run[^"]+">provisional</span>', html)
+    assert re.search(
+        r'1 <span class="pill l-provisional" title="provisional: too few configurations explored[^"]+">provisional</span>',
+        html,
+    )
     assert re.search(r'1 <span class="pill l-—" title="—: no robustness record[^"]*">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
@@ -231,7 +234,7 @@ def test_index_opens_with_the_paragraph_the_glossary_and_tooltips(explored_site)
     # the smoke-size record is never shown as robust; the first screen gives each claim its sentence
     ledger = (explored_site / "ledger.html").read_text()
     assert '<tr data-paper="001_explored" data-verdict="reproduced" data-label="provisional">' in ledger
-    assert "too small to label" in ledger[ledger.index('data-label="provisional"') :][:3000]
+    assert "too few configurations to label" in ledger[ledger.index('data-label="provisional"') :][:3000]
     row = html[html.index('<tr data-verdict="not reproduced" data-label="depends">') :]
     assert "Flips when sigma read as the SD of the raw velocity increments" in row[: row.index("</tr>")]
     assert 'href="claims/001_explored/C001-3.html"' in row[: row.index("</tr>")]

@@ -55,7 +55,7 @@ LABEL_WORDS = {
     "depends": "another reading of an ambiguous passage of the paper changes the verdict",
     "unstable": "independent replicates of the same run disagree decisively",
     "unexplored": "no world beyond the paper was varied: nothing to say how far it extends",
-    "provisional": "a smoke-size run: too few configurations to label the verdict at all",
+    "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
     "—": "no robustness record (the claim is not checkable)",
 }
 GLOSSARY = {**VERDICT_WORDS, **LABEL_WORDS}
@@ -88,7 +88,9 @@ def _finite(x: Any) -> bool:
 
 
 def _triple(value: Any) -> tuple[float, float | None, float | None] | None:
-    """``(value, low, high)`` of an Estimate dict or a number (missing or infinite ends are ``None``)."""
+    """``(value, low, high)`` of an Estimate (or its dict) or a number (missing or infinite ends are ``None``)."""
+    if hasattr(value, "to_dict") and not isinstance(value, Mapping):
+        value = value.to_dict()
     if isinstance(value, Mapping) and "value" in value:
         v = value.get("value")
         if not _finite(v):
@@ -172,6 +174,8 @@ def format_measured(value: Any, rule: Mapping | None = None) -> str:
     ``"a: 2 px; b: 0.5 (ratio of MSEs)"`` for parts; ``"falls from 322 to 4.14 px over 15 points"`` for a
     long vector."""
     rule = rule or {}
+    if hasattr(value, "to_dict") and not isinstance(value, Mapping):  # an Estimate
+        value = value.to_dict()
     if isinstance(value, Mapping) and "value" in value and "ci_low" in value:
         return format_value(value, unit_text(rule))
     if isinstance(value, Mapping):
@@ -387,7 +391,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     label = shown_label(claim)
     head = verdict[:1].upper() + verdict[1:]
     if label == PROVISIONAL:
-        head += " (smoke-size run: too small to label)"
+        head += " (too few configurations to label)"
     flips = claim_flips(claim)
     # from the fullest sentence to the shortest, the first that fits
     for max_parts, with_ci, n_each, flip_chars in (
