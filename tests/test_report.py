@@ -406,3 +406,13 @@ def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
         "of the checkable verdicts comes from a design too small to label (a smoke-size run): none of them is called robust"
         in text
     )
+
+
+def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explored_runs, tmp_path):
+    text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
+    head = "\n".join(text.splitlines()[:16])
+    assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
+    assert "The verdicts turn most often on how the target moves (2 claims)" in head
+    assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
+    assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
+    assert "- **001 C001-3** (not reproduced, depends)" in text and "- **001 C004-3b** (undecided, unexplored)" in text
