@@ -269,6 +269,10 @@ def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[li
     return rows, entries, [[row.get(e) for e in entries] for row in cells]
 
 
+def _short(text: str, chars: int) -> str:
+    return text if len(text) <= chars else text[: chars - 1] + "…"
+
+
 def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: Path) -> Path | None:
     """One panel per notebook: its claims (rows) by its register entries (columns), each cell coloured by the
     verdict under that entry's other values (see :func:`robustness_matrix`; blank: not explored)."""
@@ -279,6 +283,13 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
             panels.append((name, rows, entries, cells))
     if not panels:
         return None
+    titles = {  # the entries by their titles (plain words), not their register keys
+        str(e["name"]): str(e.get("title") or e["name"])
+        for _record, data in runs.values()
+        for c in (data or {}).get("claims", [])
+        for e in (c.get("robustness") or {}).get("register") or []
+        if isinstance(e, dict) and "name" in e
+    }
     import matplotlib
 
     matplotlib.use("Agg")
@@ -297,7 +308,11 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
         ax.set_xlim(0, len(entries))
         ax.set_ylim(len(rows), 0)
         ax.set_xticks(
-            [j + 0.5 for j in range(len(entries))], [e[:24] for e in entries], rotation=35, ha="right", fontsize=7
+            [j + 0.5 for j in range(len(entries))],
+            [_short(titles.get(e, e), 32) for e in entries],
+            rotation=35,
+            ha="right",
+            fontsize=7,
         )
         ax.set_yticks([i + 0.5 for i in range(len(rows))], rows, fontsize=7)
         ax.set_title(name, fontsize=8, loc="left")
