@@ -296,7 +296,10 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
     import matplotlib.pyplot as plt
     from matplotlib.patches import Patch
 
-    heights = [max(len(rows), 1) * 0.22 + 1.6 for _, rows, _, _ in panels]
+    heights = [  # rows, and room for the rotated entry titles below them
+        max(len(rows), 1) * 0.22 + 1.0 + 0.035 * max(len(_short(titles.get(e, e), 32)) for e in entries)
+        for _, rows, entries, _ in panels
+    ]
     fig, axes = plt.subplots(
         len(panels), 1, figsize=(8, sum(heights)), squeeze=False, gridspec_kw={"height_ratios": heights}
     )

@@ -172,7 +172,7 @@ def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None)
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_short(r['statement']))}* "
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_short(r['statement'], 120))}* "
         f"{md_escape(r['summary'])}"
         for r in rows
     )
@@ -323,7 +323,7 @@ def write_report(
             "| --- | --- | --- | --- | --- |",
         ]
         lines += [
-            f"| {c['id']} | {_cell(_short(c['statement']))} | **{c['verdict']}** | {_cell(robustness_label(c))} | "
+            f"| {c['id']} | {_cell(c['statement'])} | **{c['verdict']}** | {_cell(robustness_label(c))} | "
             f"{_cell(claim_summary(c))} |"
             for c in data["claims"]
         ]
