@@ -211,9 +211,14 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
         1,
         figsize=(width, 3.0 + 0.22 * max(len(labels), 1)),
         sharex=True,
-        gridspec_kw={"height_ratios": [2.2, 0.35 + 0.22 * max(len(labels), 1)]},
-        constrained_layout=True,
+        gridspec_kw={"height_ratios": [2.2, 0.35 + 0.22 * max(len(labels), 1)], "hspace": 0.06},
+        layout="none",
     )
+    # fixed margins, not a layout engine (it draws the figure once more: most of a site build's time)
+    longest = max((len(t) for _, _, t in labels), default=10)
+    height = fig.get_size_inches()[1]
+    fig.subplots_adjust(left=min(0.55, (0.5 + 0.052 * longest) / width), right=0.98, top=1 - 0.32 / height,
+                        bottom=0.32 / height)  # fmt: skip
     x = np.arange(n)
     colours = [VERDICT_COLOURS.get(r["verdict"], "#444444") for r in rows]
     unit = prule.get("unit") or ""
@@ -244,14 +249,16 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
         y = [levels.index(r["verdict"]) if r["verdict"] in levels else len(levels) for r in rows]
         top.scatter(x, y, c=colours, s=30)
         top.set_yticks(range(len(levels)), levels, fontsize=8)
+        top.set_ylim(len(levels) - 0.5, -0.5)
         d = next(i for i, r in enumerate(rows) if r["kind"] == "default")
         top.scatter([d], [y[d]], marker="D", s=80, facecolors="none", edgecolors="black", zorder=4, label="default")
-    top.legend(fontsize=7, loc="best")
+    top.legend(fontsize=7, loc="upper left")
     top.set_title(f"{record.get('id', '')}{f' ({part})' if part else ''}: every explored configuration", fontsize=9)
-    for j, (k, val, _) in enumerate(labels):
-        on = [i for i, r in enumerate(rows) if str(r["changed"].get(k)) == val]
-        bottom.scatter(x, [j] * n, s=6, color="#dddddd")
-        bottom.scatter(on, [j] * len(on), s=18, color="#333333")
+    grid = np.array([[str(r["changed"].get(k)) == val for r in rows] for k, val, _ in labels], dtype=bool)
+    jj, ii = np.nonzero(~grid) if labels else ([], [])
+    bottom.scatter(ii, jj, s=6, color="#dddddd")
+    jj, ii = np.nonzero(grid) if labels else ([], [])
+    bottom.scatter(ii, jj, s=18, color="#333333")
     bottom.set_yticks(range(len(labels)), [t for _, _, t in labels], fontsize=7)
     bottom.set_ylim(len(labels) - 0.5 if labels else 0.5, -0.5)
     bottom.set_xticks([])
