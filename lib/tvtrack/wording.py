@@ -419,7 +419,8 @@ def _plural(n: int, word: str) -> str:
 
 def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     """A short paragraph: what holds, what does not, what the runs could not decide, and on what the main
-    verdicts turn (the register titles whose values flip the most claims)."""
+    verdicts turn (the register titles whose values flip the most claims); runs of another ``profile`` than
+    ``"paper"`` are said not to be the paper-scale numbers."""
     if not claims:
         return "No claim has been checked yet."
     v = Counter(str(c.get("verdict")) for c in claims)
@@ -438,8 +439,7 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     if labels[PROVISIONAL]:
         text.append(
             f"{n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
-            f"design too small to label (a {profile if profile != 'paper' else 'smoke'}-size run): none of them is "
-            "called robust."
+            "design too small to label (a smoke-size run): none of them is called robust."
         )
     else:
         text.append(
@@ -463,6 +463,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
         text.append(
             f"The verdicts turn most often on {', '.join(top[:-1]) + ' and ' if len(top) > 1 else ''}{top[-1]}."
         )
+    if profile != "paper":
+        text.append(f"These are {profile}-profile runs, not the paper-scale numbers.")
     return " ".join(text)
 
 
