@@ -189,7 +189,6 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
         The figure and a caption generated from the record.
     """
     import matplotlib.pyplot as plt
-    import numpy as np
 
     part = _spec_part(record, part)
     rule = record.get("rule") or {}
@@ -219,51 +218,14 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
     height = fig.get_size_inches()[1]
     fig.subplots_adjust(left=min(0.55, (0.5 + 0.052 * longest) / width), right=0.98, top=1 - 0.32 / height,
                         bottom=0.32 / height)  # fmt: skip
-    x = np.arange(n)
-    colours = [VERDICT_COLOURS.get(r["verdict"], "#444444") for r in rows]
-    unit = prule.get("unit") or ""
-    quantity = prule.get("quantity") or prule.get("measure") or "measured value"
-    if numeric:
-        v = np.array([r["point"] for r in rows])
-        top.vlines(x, v[:, 1], v[:, 2], colors=colours, lw=1.6)
-        top.scatter(x, v[:, 0], c=colours, s=22, zorder=3)
-        if (v[:, 1] > 0).all() and v[:, 2].max() / max(v[:, 1].min(), 1e-300) > 100:
-            top.set_yscale("log")
-        ymin, ymax = top.get_ylim()
-        lo, hi = (
-            b if isinstance(b, (int, float)) and np.isfinite(b) else None for b in (prule.get("low"), prule.get("high"))
-        )
-        if lo is not None or hi is not None:
-            band_lo = ymin if lo is None or (top.get_yscale() == "log" and lo <= 0) else lo
-            band_hi = ymax if hi is None else hi
-            if band_hi > band_lo:
-                top.axhspan(band_lo, band_hi, color="#dfe8f5", zorder=0, label="the rule's band")
-            top.set_ylim(ymin, ymax)
-        import textwrap
-
-        top.set_ylabel(textwrap.fill(f"{quantity}" + (f" ({unit})" if unit else ""), 34), fontsize=8)
-        d = next(i for i, r in enumerate(rows) if r["kind"] == "default")
-        top.scatter([d], [v[d, 0]], marker="D", s=70, facecolors="none", edgecolors="black", zorder=4, label="default")
-    else:
-        levels = ["reproduced", "undecided", "partly", "not reproduced"]
-        y = [levels.index(r["verdict"]) if r["verdict"] in levels else len(levels) for r in rows]
-        top.scatter(x, y, c=colours, s=30)
-        top.set_yticks(range(len(levels)), levels, fontsize=8)
-        top.set_ylim(len(levels) - 0.5, -0.5)
-        d = next(i for i, r in enumerate(rows) if r["kind"] == "default")
-        top.scatter([d], [y[d]], marker="D", s=80, facecolors="none", edgecolors="black", zorder=4, label="default")
+    d = next(i for i, r in enumerate(rows) if r["kind"] == "default")
+    (_spec_values if numeric else _spec_verdicts)(top, rows, d, prule)
     top.legend(fontsize=7, loc="upper left")
     top.set_title(f"{record.get('id', '')}{f' ({part})' if part else ''}: every explored configuration", fontsize=9)
-    grid = np.array([[str(r["changed"].get(k)) == val for r in rows] for k, val, _ in labels], dtype=bool)
-    jj, ii = np.nonzero(~grid) if labels else ([], [])
-    bottom.scatter(ii, jj, s=6, color="#dddddd")
-    jj, ii = np.nonzero(grid) if labels else ([], [])
-    bottom.scatter(ii, jj, s=18, color="#333333")
-    bottom.set_yticks(range(len(labels)), [t for _, _, t in labels], fontsize=7)
-    bottom.set_ylim(len(labels) - 0.5 if labels else 0.5, -0.5)
-    bottom.set_xticks([])
+    _spec_matrix(bottom, rows, labels)
     bottom.set_xlabel("configurations, sorted" + (" by value" if numeric else " by verdict"), fontsize=8)
-    bottom.grid(False)
+    unit = prule.get("unit") or ""
+    quantity = prule.get("quantity") or prule.get("measure") or "measured value"
     same = sum(r["verdict"] == rows[d]["verdict"] for r in rows)
     caption = (
         f"{record.get('id', '')}{f', part {part}' if part else ''}: the {quantity}"
@@ -275,6 +237,59 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
         + ". Below: the register values each configuration changed (dark dots)."
     )
     return fig, caption
+
+
+def _spec_values(ax, rows: list[dict], d: int, prule: dict) -> None:
+    """The top panel of a numeric curve: values with their intervals, the band shaded, the default ``d`` marked."""
+    import textwrap
+
+    import numpy as np
+
+    x = np.arange(len(rows))
+    colours = [VERDICT_COLOURS.get(r["verdict"], "#444444") for r in rows]
+    v = np.array([r["point"] for r in rows])
+    ax.vlines(x, v[:, 1], v[:, 2], colors=colours, lw=1.6)
+    ax.scatter(x, v[:, 0], c=colours, s=22, zorder=3)
+    if (v[:, 1] > 0).all() and v[:, 2].max() / max(v[:, 1].min(), 1e-300) > 100:
+        ax.set_yscale("log")
+    ymin, ymax = ax.get_ylim()
+    lo, hi = (
+        b if isinstance(b, (int, float)) and np.isfinite(b) else None for b in (prule.get("low"), prule.get("high"))
+    )
+    if lo is not None or hi is not None:
+        band_lo = ymin if lo is None or (ax.get_yscale() == "log" and lo <= 0) else lo
+        band_hi = ymax if hi is None else hi
+        if band_hi > band_lo:
+            ax.axhspan(band_lo, band_hi, color="#dfe8f5", zorder=0, label="the rule's band")
+        ax.set_ylim(ymin, ymax)
+    unit, quantity = prule.get("unit") or "", prule.get("quantity") or prule.get("measure") or "measured value"
+    ax.set_ylabel(textwrap.fill(f"{quantity}" + (f" ({unit})" if unit else ""), 34), fontsize=8)
+    ax.scatter([d], [v[d, 0]], marker="D", s=70, facecolors="none", edgecolors="black", zorder=4, label="default")
+
+
+def _spec_verdicts(ax, rows: list[dict], d: int, prule: dict) -> None:
+    """The top panel of a curve without one value per configuration (a trend): each configuration's verdict."""
+    levels = ["reproduced", "undecided", "partly", "not reproduced"]
+    y = [levels.index(r["verdict"]) if r["verdict"] in levels else len(levels) for r in rows]
+    ax.scatter(range(len(rows)), y, c=[VERDICT_COLOURS.get(r["verdict"], "#444444") for r in rows], s=30)
+    ax.set_yticks(range(len(levels)), levels, fontsize=8)
+    ax.set_ylim(len(levels) - 0.5, -0.5)
+    ax.scatter([d], [y[d]], marker="D", s=80, facecolors="none", edgecolors="black", zorder=4, label="default")
+
+
+def _spec_matrix(ax, rows: list[dict], labels: list[tuple[str, str, str]]) -> None:
+    """The dot matrix: one row per register value, a dark dot where a configuration set it."""
+    import numpy as np
+
+    grid = np.array([[str(r["changed"].get(k)) == val for r in rows] for k, val, _ in labels], dtype=bool)
+    jj, ii = np.nonzero(~grid) if labels else ([], [])
+    ax.scatter(ii, jj, s=6, color="#dddddd")
+    jj, ii = np.nonzero(grid) if labels else ([], [])
+    ax.scatter(ii, jj, s=18, color="#333333")
+    ax.set_yticks(range(len(labels)), [t for _, _, t in labels], fontsize=7)
+    ax.set_ylim(len(labels) - 0.5 if labels else 0.5, -0.5)
+    ax.set_xticks([])
+    ax.grid(False)
 
 
 def errorbars(ax, x, estimates, *, horizontal: bool = False, **style):

@@ -265,6 +265,65 @@ def _details(c: dict) -> str:
     return f"- **{c['id']}** " + " · ".join(bits)
 
 
+def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce_dir: Path, path: Path) -> list[str]:
+    """The report's first screen (profile and date, :func:`_in_short`, the counts) and its two pictures."""
+    shown = profiles_shown(runs)
+    head = ["# Reproduction report", ""]
+    if not notebooks:
+        head += ["No notebooks in `notebooks/` yet: nothing to reproduce.", ""]
+    else:
+        counts = Counter(c["verdict"] for c in claims)
+        labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
+        folder = os.path.relpath(reproduce_dir, path.parent)
+        head += [
+            f"**Profile shown: {shown}** (runs in `{folder}/`)"
+            + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**; its labels are provisional")
+            + ". "
+            f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
+            "(rebuild with `python -m tvtrack report`).",
+            "",
+            *_in_short(runs, shown),
+            "**Claims: "
+            + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
+            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
+            + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab != "provisional" or labels[lab])
+            + "**"
+            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
+            "",
+            f"By verdict: {verdict_summary(claims)}.",
+            "",
+        ]
+        figures = Path(reproduce_dir) / "figures"
+        forest = forest_plot(forest_items(runs), figures / "forest.png")
+        picture = robustness_picture(runs, figures / "robustness.png")
+        if forest:
+            head += [
+                f"![forest plot: every claim's measured interval against the paper's band]"
+                f"({os.path.relpath(forest, path.parent)})",
+                "",
+                "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
+                "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.",
+                "",
+            ]
+        if picture:
+            head += [
+                f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
+                "",
+                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
+                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
+                "",
+            ]
+        head += [
+            "Each claim below: its verdict at the default reading of what the paper left unstated, its label, and "
+            "one sentence: the measured value against the rule's band in the same unit, the share of the explored "
+            "configurations that agree, the readings of the paper that flip it, then the worlds it does not extend "
+            "to. The record behind it (rule, decision, coverage, every flip) opens with a click; each notebook's "
+            "exploration section draws every claim's specification curve.",
+            "",
+        ]
+    return head
+
+
 def write_report(
     reproduce_dir: Path = REPRODUCE_DIR,
     path: Path = REPORT_PATH,
@@ -334,60 +393,7 @@ def write_report(
             lines += ["", "Figures:", ""]
             lines += [f"- [{_cell(f['caption'])}]({rel}/{f['file']})" for f in data["figures"]]
         sections.append("\n".join(lines) + "\n")
-    shown = profiles_shown(runs)
-    head = ["# Reproduction report", ""]
-    if not notebooks:
-        head += ["No notebooks in `notebooks/` yet: nothing to reproduce.", ""]
-    else:
-        counts = Counter(c["verdict"] for c in claims)
-        labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
-        folder = os.path.relpath(reproduce_dir, path.parent)
-        head += [
-            f"**Profile shown: {shown}** (runs in `{folder}/`)"
-            + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**; its labels are provisional")
-            + ". "
-            f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
-            "(rebuild with `python -m tvtrack report`).",
-            "",
-            *_in_short(runs, shown),
-            "**Claims: "
-            + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
-            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
-            + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab != "provisional" or labels[lab])
-            + "**"
-            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
-            "",
-            f"By verdict: {verdict_summary(claims)}.",
-            "",
-        ]
-        figures = Path(reproduce_dir) / "figures"
-        forest = forest_plot(forest_items(runs), figures / "forest.png")
-        picture = robustness_picture(runs, figures / "robustness.png")
-        if forest:
-            head += [
-                f"![forest plot: every claim's measured interval against the paper's band]"
-                f"({os.path.relpath(forest, path.parent)})",
-                "",
-                "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
-                "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.",
-                "",
-            ]
-        if picture:
-            head += [
-                f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
-                "",
-                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
-                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
-                "",
-            ]
-        head += [
-            "Each claim below: its verdict at the default reading of what the paper left unstated, its label, and "
-            "one sentence: the measured value against the rule's band in the same unit, the share of the explored "
-            "configurations that agree, the readings of the paper that flip it, then the worlds it does not extend "
-            "to. The record behind it (rule, decision, coverage, every flip) opens with a click; each notebook's "
-            "exploration section draws every claim's specification curve.",
-            "",
-        ]
+    head = _report_head(runs, claims, notebooks, Path(reproduce_dir), path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(head + sections))
     if readme is not None:

@@ -467,6 +467,19 @@ def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
     return shown
 
 
+def _first_screen(runs: list[PaperRun], by_name: dict) -> tuple[list[dict], list[dict], list[dict]]:
+    """The index's first-screen rows (each with its claim page), one row per paper, and every claim."""
+    first = first_screen(by_name)
+    for row in first:
+        row["page"] = claim_page_href(row["paper"], row["id"])
+    papers = [
+        {"name": r.name, "n": len(r.results["claims"]), "verdicts": Counter(c["verdict"] for c in r.results["claims"])}
+        for r in runs
+        if r.ok
+    ]
+    return first, papers, [c for r in runs if r.ok for c in r.results["claims"]]
+
+
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str | None = None) -> Path:
     """Build the site from ``runs_dir/reproduce`` (``reproduce-<profile>`` for another profile) and the sweeps in
     ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``)."""
@@ -543,15 +556,7 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
         )
     )
     _claim_pages(env, runs, site, common)
-    first = first_screen(by_name)
-    for row in first:
-        row["page"] = claim_page_href(row["paper"], row["id"])
-    all_claims = [c for r in runs if r.ok for c in r.results["claims"]]
-    papers = [
-        {"name": r.name, "n": len(r.results["claims"]), "verdicts": Counter(c["verdict"] for c in r.results["claims"])}
-        for r in runs
-        if r.ok
-    ]
+    first, papers, all_claims = _first_screen(runs, by_name)
     index = site / "index.html"
     index.write_text(
         env.get_template("index.html").render(
