@@ -222,3 +222,43 @@ def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_thei
         "sigma read as the SD of the raw velocity increments; a target weaving at 0.1 T",
     ]
     assert [f["side"] for f in flips] == ["reading", "world", "reading", "world"]  # a world changed: a world
+
+
+def _toy_measure(config, seed):
+    rng = np.random.default_rng(seed)
+    shift = {"filtered": 0.0, "raw": 3.0}[config["reading"]] + {"straight": 0.0, "turn": 1.5}[config["motion"]]
+    x = rng.normal(1.0 + shift, 0.5, 200)
+    half = 2 * x.std() / np.sqrt(200)
+    return {"C999-1": Estimate(x.mean(), x.std() / np.sqrt(200), x.mean() - half, x.mean() + half, 200)}
+
+
+def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp_path):
+    """End to end through the core: Results.claim over an exploration, then the sentence and the curve from the
+    Claim object itself (as a notebook has it) and from its results.json dict."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from tvtrack.explore import explore
+    from tvtrack.plotting import specification_curve
+    from tvtrack.register import Register
+    from tvtrack.results import claim_summary
+
+    reg = Register(
+        [
+            Entry("reading", "reading", "filtered", ("filtered", "raw"), "what sigma is of", title="sigma's series",
+                  phrases={"filtered": "sigma of the filtered velocity", "raw": "sigma of the raw increments"}),
+            Entry("motion", "regime", "straight", ("straight", "turn"), "one pass", title="the target's motion",
+                  phrases={"straight": "a straight pass", "turn": "a 3 g turn"}),
+        ]
+    )  # fmt: skip
+    rule = InBand("per-test false-alarm rate / alpha", 0.0, 2.5, unit="x alpha")
+    ex = explore(_toy_measure, reg, {"C999-1": rule}, seed=3)
+    r = make(tmp_path)
+    claim = r.claim("C999-1", "s", "rho <= 0.5", rule, exploration=ex)
+    text = claim_summary(claim)
+    assert text.startswith("Reproduced: ") and " x alpha against [0, 2.5] x alpha." in text and len(text) <= 250
+    assert "Flips when sigma of the raw increments; does not extend to a 3 g turn." in text
+    assert "reading" not in text.replace("readings", "")  # the phrases, not the register keys
+    assert claim_summary(load_results(r.write())["claims"][0]) == text
+    fig, caption = specification_curve(claim)
+    assert "under each of" in caption and len(fig.axes) == 2

@@ -176,8 +176,9 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
 
     Parameters
     ----------
-    record : dict
-        A claim as ``results.json`` stores it (``id, rule, measured, verdict, robustness``).
+    record : dict or tvtrack.results.Claim
+        A claim as ``results.json`` stores it (``id, rule, measured, verdict, robustness``), or as
+        :meth:`tvtrack.results.Results.claim` returns it.
     part : str, optional
         The part of an ``all of`` rule to draw; default the weakest-labelled part.
     max_rows : int
@@ -190,6 +191,10 @@ def specification_curve(record: dict, part: str | None = None, max_rows: int = 1
     """
     import matplotlib.pyplot as plt
 
+    if not isinstance(record, dict):  # a Claim object: its JSON form
+        from .results import to_jsonable
+
+        record = to_jsonable(vars(record))
     part = _spec_part(record, part)
     rule = record.get("rule") or {}
     prule = (rule.get("parts") or {}).get(part, rule) if part else rule

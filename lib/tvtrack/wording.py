@@ -227,11 +227,16 @@ def against(measured: Any, rule: Mapping | None) -> str:
 # --- labels and flips --------------------------------------------------------------------------------------------
 
 
+def _as_dict(claim: Any) -> Mapping:
+    """A claim as ``results.json`` stores it: a dict as it is, a :class:`tvtrack.results.Claim` by its fields."""
+    return claim if isinstance(claim, Mapping) else vars(claim)
+
+
 def shown_label(claim: Mapping) -> str:
     """The label a reader sees: the record's; :data:`PROVISIONAL` in place of ``robust`` or ``unexplored`` when
     the design is too small to estimate a share (a smoke run is never shown as robust; a flip it found still
     shows as ``depends``, ``limited`` or ``unstable``); ``"—"`` without a record."""
-    record = claim.get("robustness") or {}
+    record = _as_dict(claim).get("robustness") or {}
     if not record:
         return "—"
     label = str(record.get("label", "—"))
@@ -272,6 +277,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
     verdict differs from the claim's."""
+    claim = _as_dict(claim)
     record = claim.get("robustness") or {}
     parts = record.get("parts") or {}
     names = [part] if part else list(parts)
@@ -373,17 +379,19 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
 
     Parameters
     ----------
-    claim : dict
-        A claim as ``results.json`` stores it (``id, verdict, measured, rule, robustness, ...``).
+    claim : dict or tvtrack.results.Claim
+        A claim as ``results.json`` stores it (``id, verdict, measured, rule, robustness, ...``), or as
+        :meth:`tvtrack.results.Results.claim` returns it.
     chars : int
         The longest sentence returned.
 
     Returns
     -------
     str
-        E.g. ``"Not reproduced: 351.6 [350, 353.1] x alpha against at most 2 x alpha. 29 of 32 explored
+        E.g. ``"Not reproduced: 351.6 [350, 353.1] x alpha against [0, 2] x alpha. 29 of 32 explored
         configurations agree. Flips when sigma read as the SD of the raw velocity increments."``
     """
+    claim = _as_dict(claim)
     verdict = str(claim.get("verdict", ""))
     if verdict == "not checkable":
         note = claim.get("note") or (claim.get("rule") or {}).get("reason") or "nothing measurable"
