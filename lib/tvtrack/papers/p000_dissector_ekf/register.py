@@ -8,6 +8,7 @@ while trying to flip a label.
 from __future__ import annotations
 
 from ...register import Entry, Register
+from .rules import CONVERGENCE_READINGS
 from .study import JOINT_READING_C6
 
 __all__ = ["REGISTER", "DEPENDS"]
@@ -105,8 +106,8 @@ REGISTER = Register(
         Entry(
             "convergence criterion",
             "reading",
-            "90 % of runs acquired",
-            ("90 % of runs acquired", "ensemble mean within 10 %"),
+            CONVERGENCE_READINGS[0],
+            CONVERGENCE_READINGS,
             "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
             "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
         ),

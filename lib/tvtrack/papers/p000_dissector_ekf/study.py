@@ -31,6 +31,7 @@ from .model import (
     truth_and_pulse,
 )
 from .reference import grid_filter, pcrlb_variance, scan_crlb
+from .rules import ENSEMBLE_MEAN, tagged
 from .settling import acquisition_times_from_scans, median_ratio_ci, scan_averages
 
 __all__ = [
@@ -297,8 +298,8 @@ def _c1(cfg, seed, sizes):
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
         run = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"])
-        if cfg["convergence criterion"] == "ensemble mean within 10 %":
-            parts[f"variant {filt[1]}"] = ratio_ci(run["scans"][:, scan_end - 1], run["steady"])
+        if cfg["convergence criterion"] == ENSEMBLE_MEAN:  # its own rule judges it (.rules.ByReading)
+            parts[f"variant {filt[1]}"] = tagged(ratio_ci(run["scans"][:, scan_end - 1], run["steady"]), ENSEMBLE_MEAN)
             continue
         t = _acquired_at(cfg, seed, sizes, filt, run)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
