@@ -20,6 +20,7 @@ import numpy as np
 from scipy import stats
 
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
+from .cost import operation_ratio
 from .ekf import consistency, run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
@@ -516,15 +517,20 @@ def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dic
 
 
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
-    """C000-4 at ``config``: :func:`cost_ratio` over ``n_trials`` trials (``"C000-4 batch" = "all trials"``) or one,
-    with variant 2 re-evaluating eq. (9)'s noise at the updated estimate when ``"v2 noise at"`` says so.
+    """C000-4 at ``config``: arithmetic operations per filter step of variant 1 over variant 2
+    (:func:`.cost.operation_ratio`, deterministic; the default reading ``"C000-4 cost measure" = "operation
+    count"``), or the CPU-time ratio :func:`cost_ratio` over ``n_trials`` trials (``"C000-4 batch" = "all
+    trials"``) or one; variant 2 re-evaluates eq. (9)'s noise at the updated estimate when ``"v2 noise at"``
+    says so.
 
     Returns
     -------
-    dict  {"C000-4": CPU time of variant 1 / variant 2 (float)}
+    dict  {"C000-4": variant 1 / variant 2 (float)}
     """
-    n = n_trials if config["C000-4 batch"] == "all trials" else 1
     iterations = 1 if config["v2 noise at"] == "updated estimate" else 0
+    if config.get("C000-4 cost measure", "operation count") == "operation count":
+        return {"C000-4": operation_ratio(iterations)}
+    n = n_trials if config["C000-4 batch"] == "all trials" else 1
     return {"C000-4": cost_ratio(n, n_steps, seed, noise_iterations=iterations)}
 
 
