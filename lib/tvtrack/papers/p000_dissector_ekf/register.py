@@ -27,11 +27,13 @@ REGISTER = Register(
         ),
         Entry(
             "scoring time",
-            "model",
-            "interval centre",
-            ("interval centre", "interval end"),
-            "the filters model an integrated sample by the pulse at its interval centre, so their estimate refers to "
-            "that time; the interval end is the time of the newest datum (a point sample is scored at its instant)",
+            "reading",
+            "interval end",
+            ("interval end", "interval centre"),
+            "the paper's error (E9) is the filtering error X1(k) - X1_hat(k|k): the estimate against the message at "
+            "the time of its newest datum, the end of the sample's integration interval; the filters model an "
+            "integrated sample by the pulse at its interval centre, so scoring there (half an interval of later data "
+            "in the estimate, a short smoother) is the other reading (a point sample is scored at its instant)",
         ),
         Entry(
             "photon model",
