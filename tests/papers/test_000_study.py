@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.explore import explore
 from tvtrack.montecarlo import zero_events_bound
-from tvtrack.papers.p000_dissector_ekf import study
+from tvtrack.papers.p000_dissector_ekf import studies, study
 from tvtrack.papers.p000_dissector_ekf.findings import claim_details, conclusions
 from tvtrack.papers.p000_dissector_ekf.recording import record_trial
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
@@ -177,7 +177,7 @@ def test_the_joint_reading_of_c000_6_is_the_ignoring_filter_at_fixed_background_
 
 def test_nees_is_near_one_at_the_time_the_model_refers_to_and_grows_when_scored_at_the_interval_end():
     sizes = study.Sizes(n_trials=200, duration_T=10.0, window_T=4.0, substeps=3, psi_grid=(5.0, 100.0))
-    nees = study.consistency_over_psi(DEFAULT, 3, sizes)
+    nees = studies.consistency_over_psi(DEFAULT, 3, sizes)
     centre, end = nees["interval centre"]["variant 2"], nees["interval end"]["variant 2"]
     assert 0.85 < centre[0].value < 1.2
     assert end[1].value > 1.5 * centre[1].value  # psi_A = 100: the half-interval lag

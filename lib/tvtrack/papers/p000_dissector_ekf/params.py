@@ -26,7 +26,7 @@ RULES = {
     "grid_points": Integer(51, 4001),
     "lock_factor": Real(2.0, 50.0),
     "acquire_by_T": Real(1.0, 30.0),
-    "offsets": RealList(0.0, 1.0),
+    "offsets": RealList(-1.0, 1.0),
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 40),
     "joint": Integer(0, 200),
@@ -45,6 +45,12 @@ def check_consistency(p: Mapping[str, Any]) -> None:
         raise ValueError(
             f"parameters 'contrast_grid' = {p['contrast_grid']} must hold 0, 0.5 and 0.9 and 'psi_grid' = "
             f"{p['psi_grid']} at least two values (trend claims C000-5, -6, -7, -9)"
+        )
+    off = list(p["offsets"])
+    if off != sorted(off) or min(off) >= 0 or max(off) <= 0:
+        raise ValueError(
+            f"parameter 'offsets' = {off} must be ascending with offsets on both sides of 0 (the acquisition figure "
+            f"states the pull-in range on each side)"
         )
     if p["max_replicates"] < p["replicates"]:
         raise ValueError(

@@ -60,12 +60,16 @@ def acquisition(offsets, acq: dict, acquire_by: float):
         )
         axl.plot(offsets, a["lost"], f"C{i}o-", ms=3, label=f"variant {name[1]}")
     ax.axhline(acquire_by, color="k", lw=0.8, ls="--", label=f"{acquire_by:g} T")
-    ax.axvline(0.5, color="grey", lw=0.8, ls=":")
+    for a in (ax, axl):
+        for edge in (-0.5, 0.5):
+            a.axvline(edge, color="grey", lw=0.8, ls=":")
+        a.axvline(0.0, color="k", lw=0.5)
     ax.set_ylabel("90 % of runs acquired by (T)")
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8)
-    axl.axvline(0.5, color="grey", lw=0.8, ls=":")
-    axl.set_xlabel(r"initial offset of the object $X_1(0)$ (T; micro-raster edge at 0.5)")
+    axl.set_xlabel(
+        r"signed initial offset of the object $X_1(0)$ (T; the filters start at 0; micro-raster edges +-0.5)"
+    )
     axl.set_ylabel("not in lock at the end")
     for a in (ax, axl):
         a.grid(alpha=0.3, which="both")

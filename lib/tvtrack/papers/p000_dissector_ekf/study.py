@@ -21,7 +21,7 @@ from scipy import stats
 
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .cost import operation_ratio
-from .ekf import consistency, run_variant1, run_variant2, variant1_filter, variant2_filter
+from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -41,13 +41,10 @@ __all__ = [
     "psi_at",
     "measure",
     "steady_runs",
-    "fig1_curves",
-    "acquisition_vs_offset",
     "CONTRAST_CONVENTIONS",
     "cost_ratio",
     "measure_cost",
     "record_inputs",
-    "consistency_over_psi",
 ]
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
@@ -479,43 +476,6 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     }
 
 
-def fig1_curves(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
-    """Fig. 1: ensemble sigma_x^2(t) of both variants from both initial estimates, the filters' mean D11 and the
-    PCRLB, at the configuration's psi_A and contrast. Arrays of shape (n_steps + 1,), T^2."""
-    out = {}
-    for filt in ("v1", "v2"):
-        for init in ("process means", "random N(0, D11(0))"):
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
-            out[f"{filt}, {init}"] = run["curve"]
-            if init == "process means":
-                out[f"{filt} own D11"] = run["d_curve"]
-    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps)
-    return out
-
-
-def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dict:
-    """Acquisition against the truth's initial offset X1(0) (T), both variants from the paper's start estimate.
-
-    Returns
-    -------
-    dict  per variant: ``q90`` (Estimates of the 90 % acquisition time, T; not acquired counts as 2 x duration),
-    ``late`` (proportion Estimates of runs not acquired by ``acquire_by_T``) and ``lost`` (fraction of runs out
-    of lock at the end of the run), one per offset
-    """
-    out = {}
-    for filt in ("v1", "v2"):
-        q90, late, lost = [], [], []
-        for off in offsets:
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
-            t = _acquired_at(config, seed, sizes, filt, run)
-            q90.append(quantile_ci(np.where(np.isfinite(t), t, 2 * sizes.duration_T), 0.9))
-            late.append(proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size))
-            lost.append(float(np.mean(~np.isfinite(t))))
-        out[filt] = {"q90": q90, "late": late, "lost": lost}
-    return out
-
-
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
     """C000-4 at ``config``: arithmetic operations per filter step of variant 1 over variant 2
     (:func:`.cost.operation_ratio`, deterministic; the default reading ``"C000-4 cost measure" = "operation
@@ -560,32 +520,3 @@ def record_inputs(config: dict, seed: int, sizes: Sizes):
     """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`)."""
     x, pulse, xi, _ = _path(config, seed, sizes)
     return _scan(config, config["psi_A"], config["contrast"], sizes), x, pulse, xi
-
-
-def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
-    """Mean steady-state NEES of both variants over the Fig. 2 SNRs, with the truth scored at the interval centre
-    (the time the filters' model of a sample refers to) and at its end: 1 for a filter whose D11 describes its error.
-
-    Returns
-    -------
-    dict  {scoring time: {"variant 1" | "variant 2": [Estimate per psi_A]}}
-    """
-    out = {}
-    for scoring in ("interval centre", "interval end"):
-        cfg = {**config, "scoring time": scoring}
-        x, pulse, xi, _ = _path(cfg, seed, sizes)
-        out[scoring] = {}
-        for name in ("v1", "v2"):
-            ests = []
-            for psi in sizes.psi_grid:
-                scan = _scan(cfg, psi, cfg["contrast"], sizes)
-                y = _samples(cfg, seed, scan, pulse, xi)
-                if name == "v1":
-                    filt, d0 = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
-                else:
-                    iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations), D11_0
-                nees, _ = consistency(filt, y, x, d0, sizes.window())
-                ests.append(mean_square_ci(nees))
-            out[scoring][f"variant {name[1]}"] = ests
-    return out
