@@ -91,3 +91,15 @@ def test_the_measurement_tags_the_card_reading_and_only_it():
     assert all(0.5 < e.value < 2.0 for e in got.values())  # a ratio near 1, not a share of runs
     plain = study._c1(default, 5, sizes)
     assert not any(isinstance(e, ReadingEstimate) for e in plain.values())
+
+
+def test_every_entry_has_plain_words_and_the_worlds_the_paper_did_not_compute_are_world_kinds():
+    for e in REGISTER:
+        assert e.title and e.title != e.name, e.name
+        assert set(e.phrases) == set(e.values), e.name
+    worlds = {"sigma_1": "0.2 T", "manoeuvre": "weave 0.1 T / 2 T", "background": "drifting +-50 %"}
+    worlds["photon model"] = "Poisson counts"
+    for name, value in worlds.items():
+        assert REGISTER[name].side == "world" and value in REGISTER[name].values
+    for name in ("scoring time", "convergence criterion", "contrast convention", "C000-4 cost measure"):
+        assert REGISTER[name].side == "reading"
