@@ -1,6 +1,7 @@
 """The figure studies of paper 000 (studies.py): acquisition against the signed offset and its pull-in range."""
 
 import numpy as np
+import pytest
 
 from tvtrack.montecarlo import proportion_ci
 from tvtrack.papers.p000_dissector_ekf import studies, study
@@ -29,3 +30,18 @@ def test_a_negative_offset_starts_the_truth_on_the_other_side_and_acquisition_is
         late = [e.value for e in a["late"]]
         assert late[1] < 0.2 and late[2] < 0.2
         assert late[0] > 0.5 and late[3] < 0.2
+
+
+def test_fig3_has_both_variants_their_variance_the_ratio_and_the_bound():
+    sizes = study.Sizes(n_trials=30, duration_T=6.0, window_T=2.0, substeps=2, contrast_grid=(0.0, 0.5, 0.9))
+    f3 = studies.fig3_curves(DEFAULT, 6, sizes)
+    trend = study.measure(DEFAULT, 6, sizes)["C000-7"]["trend"]
+    np.testing.assert_allclose([e.value for e in f3["ratio"]["variant 2"]], [e.value for e in trend], rtol=1e-12)
+    for v in ("variant 1", "variant 2"):
+        assert f3["ratio"][v][0].value == 1.0  # at P = 0 both variants are the stationary filter
+        ratio = [s.value / r.value for s, r in zip(f3["sigma_x^2"][v], f3["sigma_x^2*"])]
+        np.testing.assert_allclose([e.value for e in f3["ratio"][v]], ratio, rtol=1e-9)
+    v1 = study.steady_runs(DEFAULT, 6, sizes, 20.0, 0.9, "v1").mean()
+    assert f3["sigma_x^2"]["variant 1"][2].value == pytest.approx(v1, rel=1e-12)
+    assert all(0 < b < s.value for b, s in zip(f3["PCRLB"], f3["sigma_x^2"]["variant 2"]))  # the bound lies below
+    assert f3["PCRLB"][0] < f3["sigma_x^2*"][0].value

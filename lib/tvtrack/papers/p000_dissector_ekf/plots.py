@@ -91,15 +91,27 @@ def fig2(psi_grid, by_variant: dict, title: str):
     return fig
 
 
-def fig3(contrast_grid, ratios, title: str):
-    """Fig. 3 (solid curves): sigma_x^2 / sigma_x^2* against contrast P, with the paper's P = 0.5 and 0.9 marked."""
-    fig, ax = plt.subplots(figsize=(7, 4))
-    errorbars(ax, contrast_grid, ratios, color="C1", marker="^", ms=4, capsize=2, label="variant 2")
-    for p in (0.5, 0.9):
-        ax.axvline(p, color="grey", lw=0.8, ls=":")
-    ax.set(xlabel="contrast P", ylabel=r"$\sigma_x^2 / \sigma_x^{2*}$", title=title)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+def fig3(contrast_grid, curves: dict, title: str):
+    """Fig. 3 as the paper draws it: left, the steady sigma_x^2 (T^2) of both variants against contrast P with the
+    stationary-noise sigma_x^2* and the PCRLB; right, sigma_x^2 / sigma_x^2* of both variants with the PCRLB's own
+    ratio; the paper's P = 0.5 and 0.9 marked (``curves`` from :func:`.studies.fig3_curves`)."""
+    fig, (ax, axr) = plt.subplots(1, 2, figsize=(11, 4))
+    p = np.asarray(contrast_grid, dtype=float)
+    for i, v in enumerate(("variant 1", "variant 2")):
+        style = dict(color=f"C{i}", marker="os"[i], ms=4, capsize=2, label=v)
+        errorbars(ax, p + 0.005 * i, curves["sigma_x^2"][v], **style)
+        errorbars(axr, p + 0.005 * i, curves["ratio"][v], **style)
+    errorbars(ax, p, curves["sigma_x^2*"], color="k", marker="_", ms=8, capsize=2, ls="--", label=r"$\sigma_x^{2*}$")
+    ax.plot(p, curves["PCRLB"], "k-", lw=0.8, label="PCRLB")
+    axr.plot(p, np.asarray(curves["PCRLB"]) / curves["PCRLB"][0], "k-", lw=0.8, label="PCRLB(P) / PCRLB(0)")
+    ax.set(yscale="log", xlabel="contrast P", ylabel=r"steady $\sigma_x^2$  ($T^2$)")
+    axr.set(yscale="log", xlabel="contrast P", ylabel=r"$\sigma_x^2 / \sigma_x^{2*}$  (ratio)")
+    for a in (ax, axr):
+        for q in (0.5, 0.9):
+            a.axvline(q, color="grey", lw=0.8, ls=":")
+        a.legend(fontsize=8)
+        a.grid(alpha=0.3, which="both")
+    fig.suptitle(title)
     return fig
 
 

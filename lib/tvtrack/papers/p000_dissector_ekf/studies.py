@@ -14,9 +14,23 @@ import numpy as np
 from ...montecarlo import mean_square_ci, proportion_ci, quantile_ci
 from .ekf import consistency, variant1_filter, variant2_filter
 from .reference import pcrlb_variance
-from .study import BETA_0, D11_0, D22_0, Sizes, _acquired_at, _errors, _message, _path, _samples, _scan
+from .study import (
+    BETA_0,
+    D11_0,
+    D22_0,
+    Sizes,
+    _acquired_at,
+    _errors,
+    _message,
+    _path,
+    _ratio_to_star,
+    _samples,
+    _scan,
+    psi_at,
+    steady_runs,
+)
 
-__all__ = ["fig1_curves", "acquisition_vs_offset", "pull_in_range", "consistency_over_psi"]
+__all__ = ["fig1_curves", "acquisition_vs_offset", "pull_in_range", "consistency_over_psi", "fig3_curves"]
 
 
 def fig1_curves(config: dict, seed: int, sizes: Sizes) -> dict:
@@ -108,4 +122,28 @@ def pull_in_range(offsets, acq: dict, limit: float = 0.1) -> dict:
                 edge = float(offsets[i])
             sides[side] = edge
         out[name] = sides
+    return out
+
+
+def fig3_curves(config: dict, seed: int, sizes: Sizes) -> dict:
+    """Fig. 3 of both variants over the contrast grid (psi_A from the configuration's contrast convention).
+
+    Returns
+    -------
+    dict  ``sigma_x^2`` {variant: [Estimate per P]} steady error variance (T^2); ``ratio`` {variant: [Estimate]}
+    sigma_x^2 / sigma_x^2* paired on the same runs; ``sigma_x^2*`` [Estimate] the stationary-noise variance;
+    ``PCRLB`` [float] the steady posterior Cramer-Rao bound (T^2, the mean over the steady window)
+    """
+    out = {"sigma_x^2": {}, "ratio": {}, "sigma_x^2*": [], "PCRLB": []}
+    psis = [psi_at(config["psi_A"], p, config["contrast convention"]) for p in sizes.contrast_grid]
+    for filt in ("v1", "v2"):
+        v = f"variant {filt[1]}"
+        out["sigma_x^2"][v] = [
+            mean_square_ci(steady_runs(config, seed, sizes, s, p, filt)) for s, p in zip(psis, sizes.contrast_grid)
+        ]
+        out["ratio"][v] = [_ratio_to_star(config, seed, sizes, p, filt) for p in sizes.contrast_grid]
+    for s, p in zip(psis, sizes.contrast_grid):
+        out["sigma_x^2*"].append(mean_square_ci(steady_runs(config, seed, sizes, s, p, "stationary")))
+        bound = pcrlb_variance(_scan(config, s, p, sizes), _message(config), sizes.n_steps)
+        out["PCRLB"].append(float(bound[sizes.window()].mean()))
     return out
