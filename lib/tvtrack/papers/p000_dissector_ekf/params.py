@@ -24,6 +24,10 @@ RULES = {
     "dt_check_T": Real(3.0, 200.0),
     "grid_trials": Integer(10, 5000),
     "grid_points": Integer(51, 4001),
+    "grid_psi": RealList(0.5, 1000.0),
+    "grid_contrasts": RealList(0.0, 0.99),
+    "pulse_durations": RealList(0.1, 1.0),
+    "betas": RealList(0.1, 1000.0),
     "lock_factor": Real(2.0, 50.0),
     "acquire_by_T": Real(1.0, 30.0),
     "offsets": RealList(-1.0, 1.0),
@@ -51,6 +55,10 @@ def check_consistency(p: Mapping[str, Any]) -> None:
         raise ValueError(
             f"parameter 'offsets' = {off} must be ascending with offsets on both sides of 0 (the acquisition figure "
             f"states the pull-in range on each side)"
+        )
+    if max(p["betas"]) * p["dt"] >= 1.0:
+        raise ValueError(
+            f"parameter 'betas' = {p['betas']}: each beta_0 dt must be < 1 (dt = {p['dt']}; the Euler step of X2)"
         )
     if p["max_replicates"] < p["replicates"]:
         raise ValueError(

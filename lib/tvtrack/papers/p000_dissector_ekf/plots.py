@@ -9,7 +9,7 @@ import numpy as np
 
 from ...verdicts import as_estimate
 
-__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency"]
+__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency", "panels"]
 
 
 def errorbars(ax, x, ests, **style):
@@ -174,4 +174,22 @@ def consistency(psi_grid, nees: dict):
     ax.set(xscale="log", xlabel=r"$\psi_A = A/\sigma_ш$", ylabel="mean steady NEES (1 = consistent)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
+    return fig
+
+
+def panels(specs, title: str):
+    """One row of panels, each ``(x, {label: [Estimate]}, xlabel, ylabel, log_x, reference line or None)``: the
+    curves with their 95 % intervals (the beyond-the-paper studies of :mod:`.beyond`)."""
+    fig, axes = plt.subplots(1, len(specs), figsize=(5.5 * len(specs), 4), squeeze=False)
+    for ax, (x, curves, xlabel, ylabel, log_x, line) in zip(axes[0], specs):
+        x = np.asarray(x, dtype=float)
+        for i, (label, ests) in enumerate(curves.items()):
+            shift = x * (1 + 0.02 * i) if log_x else x + 0.005 * i * (np.ptp(x) or 1.0)
+            errorbars(ax, shift, ests, color=f"C{i}", marker="o", ms=3, capsize=2, label=label)
+        if line is not None:
+            ax.axhline(line, color="k", lw=0.8, ls="--")
+        ax.set(xscale="log" if log_x else "linear", xlabel=xlabel, ylabel=ylabel)
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+    fig.suptitle(title)
     return fig
