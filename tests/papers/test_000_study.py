@@ -96,7 +96,7 @@ def test_c000_6_readings_use_their_reference_and_common_random_numbers():
 
 
 def test_c000_1_counts_runs_not_acquired_with_the_bound_zero_events_certify():
-    m = study.measure(DEFAULT, 5, SMALL)["C000-1"]
+    m = study.measure(DEFAULT, 5, SMALL)["C000-1"]["measured"]
     for part in m.values():
         assert part.ci_low >= 0
         if part.value == 0:

@@ -10,8 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...register import Entry, Register
-from .rules import CONVERGENCE_READINGS
-from .study import JOINT_READING_C6
+from .study import CONVERGENCE_READINGS, JOINT_READING_C6
 
 __all__ = ["REGISTER", "DEPENDS"]
 

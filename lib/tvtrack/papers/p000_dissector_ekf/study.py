@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .cost import operation_ratio
 from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
@@ -32,7 +33,6 @@ from .model import (
     truth_and_pulse,
 )
 from .reference import grid_filter, pcrlb_variance, scan_crlb
-from .rules import ENSEMBLE_MEAN, tagged
 from .settling import acquisition_times_from_scans, median_ratio_ci, scan_averages
 
 __all__ = [
@@ -72,6 +72,9 @@ BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
 #: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
 #: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
 JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
+#: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
+LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
+CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -289,19 +292,20 @@ def _c1(cfg, seed, sizes):
 
     "90 % of runs acquired": the fraction of runs not in lock for good by ``acquire_by_T`` (Clopper-Pearson; zero
     runs give the bound they certify). "ensemble mean within 10 %": sigma_x^2 over the scan ending at
-    ``acquire_by_T`` over the steady sigma_x^2 (paired ratio over runs).
+    ``acquire_by_T`` over the steady sigma_x^2 (paired ratio over runs). Tagged with the reading
+    (:meth:`tvtrack.verdicts.ByReading.tag`): each reading's rule judges its own quantity.
     """
     parts = {}
     scan_end = int(round(sizes.acquire_by_T * sizes.steps_per_scan * sizes.dt))  # scans up to acquire_by_T
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
         run = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"])
-        if cfg["convergence criterion"] == ENSEMBLE_MEAN:  # its own rule judges it (.rules.ByReading)
-            parts[f"variant {filt[1]}"] = tagged(ratio_ci(run["scans"][:, scan_end - 1], run["steady"]), ENSEMBLE_MEAN)
+        if cfg["convergence criterion"] == ENSEMBLE_MEAN:  # its own rule judges it (.claims, a ByReading rule)
+            parts[f"variant {filt[1]}"] = ratio_ci(run["scans"][:, scan_end - 1], run["steady"])
             continue
         t = _acquired_at(cfg, seed, sizes, filt, run)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
-    return parts
+    return ByReading.tag(cfg["convergence criterion"], parts)
 
 
 def _acquired_at(cfg, seed, sizes, filt, run):
