@@ -34,6 +34,8 @@ RULES = {
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 40),
     "joint": Integer(0, 200),
+    "screen_trials": Integer(20, 20_000),
+    "combinations": Integer(0, 100),
     "record_scans": Integer(1, 1000),
 }
 
@@ -56,6 +58,8 @@ def check_consistency(p: Mapping[str, Any]) -> None:
             f"parameter 'offsets' = {off} must be ascending with offsets on both sides of 0 (the acquisition figure "
             f"states the pull-in range on each side)"
         )
+    if p["screen_trials"] > p["n_trials"]:
+        raise ValueError(f"parameter 'screen_trials' = {p['screen_trials']} must be at most n_trials = {p['n_trials']}")
     if max(p["betas"]) * p["dt"] >= 1.0:
         raise ValueError(
             f"parameter 'betas' = {p['betas']}: each beta_0 dt must be < 1 (dt = {p['dt']}; the Euler step of X2)"
