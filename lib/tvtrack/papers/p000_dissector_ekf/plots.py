@@ -178,17 +178,19 @@ def consistency(psi_grid, nees: dict):
 
 
 def panels(specs, title: str):
-    """One row of panels, each ``(x, {label: [Estimate]}, xlabel, ylabel, log_x, reference line or None)``: the
-    curves with their 95 % intervals (the beyond-the-paper studies of :mod:`.beyond`)."""
+    """One row of panels, each ``(x, {label: [Estimate]}, xlabel, ylabel, log_x, reference line or None[, log_y])``:
+    the curves with their 95 % intervals (the beyond-the-paper studies of :mod:`.beyond`)."""
     fig, axes = plt.subplots(1, len(specs), figsize=(5.5 * len(specs), 4), squeeze=False)
-    for ax, (x, curves, xlabel, ylabel, log_x, line) in zip(axes[0], specs):
+    for ax, (x, curves, xlabel, ylabel, log_x, line, *log_y) in zip(axes[0], specs):
         x = np.asarray(x, dtype=float)
         for i, (label, ests) in enumerate(curves.items()):
             shift = x * (1 + 0.02 * i) if log_x else x + 0.005 * i * (np.ptp(x) or 1.0)
             errorbars(ax, shift, ests, color=f"C{i}", marker="o", ms=3, capsize=2, label=label)
         if line is not None:
             ax.axhline(line, color="k", lw=0.8, ls="--")
-        ax.set(xscale="log" if log_x else "linear", xlabel=xlabel, ylabel=ylabel)
+        ax.set(
+            xscale="log" if log_x else "linear", yscale="log" if any(log_y) else "linear", xlabel=xlabel, ylabel=ylabel
+        )
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3, which="both")
     fig.suptitle(title)
