@@ -13,7 +13,7 @@ import numpy as np
 
 from ...montecarlo import Estimate, mean_square_ci, ratio_ci
 from .baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
-from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
+from .cost import run_steps_variant1, run_steps_variant2
 from .model import draw_noises, scan_at_snr, truth_and_pulse
 from .reference import grid_filter
 from .study import BETA_0, D11_0, D22_0, Sizes, _message, _path, _samples, _scan, steady_runs
@@ -50,7 +50,7 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
         truth = x[:, ends]
         gain = tune_fixed_gain(z[:half], truth[:half], f, GAINS, steady)
         base = ((fixed_gain_track(z[half:], f, gain) - truth[half:]) ** 2)[:, steady].mean(axis=1)
-        est = run_variant2(variant2_filter(scan, _message(config)), y[half:], D11_0)[0]
+        est = run_steps_variant2(scan, _message(config), y[half:], D11_0)[0]
         v2 = ((est[:, ends] - truth[half:]) ** 2)[:, steady].mean(axis=1)
         out["baseline"].append(mean_square_ci(base))
         out["variant 2"].append(mean_square_ci(v2))
@@ -104,10 +104,9 @@ def pulse_and_beta(config: dict, seed: int, sizes: Sizes, durations, betas, cont
             scan = scan_at_snr(config["psi_A"], p, sizes.dt, tu, sig)
             y = _samples(config, seed, scan, pulse, noises["xi"])
             if filt == "v1":
-                f = variant1_filter(scan, message, beta, "consistent", config["G22"])
-                e = run_variant1(f, y, (D11_0, D22_0))[0]
+                e = run_steps_variant1(scan, message, y, (D11_0, D22_0), None, beta, config["G22"])[0]
             else:
-                e = run_variant2(variant2_filter(scan, message), y, D11_0)[0]
+                e = run_steps_variant2(scan, message, y, D11_0)[0]
             return ((x - e) ** 2)[:, window].mean(axis=1)
 
         return steady

@@ -15,10 +15,20 @@ from __future__ import annotations
 import math
 from collections import Counter as _Tally
 
+import numpy as np
+
 from .ekf import _g22
 from .model import DissectorScan, GaussMarkovMessage
 
-__all__ = ["Counted", "variant1_step", "variant2_step", "operation_counts", "operation_ratio"]
+__all__ = [
+    "Counted",
+    "variant1_step",
+    "variant2_step",
+    "operation_counts",
+    "operation_ratio",
+    "run_steps_variant1",
+    "run_steps_variant2",
+]
 
 #: The operations counted as arithmetic (a function evaluation is reported beside them).
 ARITHMETIC = ("mul", "add", "div")
@@ -69,16 +79,16 @@ class Counted:
         return self.v
 
 
-def _fn(name: str, f):
+def _fn(name: str, f, array_f):
     def apply(x):
         if isinstance(x, Counted):
             return x._op(name, f(x.v))
-        return f(x)
+        return array_f(x)  # plain numbers and arrays of trials (the runners below)
 
     return apply
 
 
-_exp, _sqrt = _fn("exp", math.exp), _fn("sqrt", math.sqrt)
+_exp, _sqrt = _fn("exp", math.exp, np.exp), _fn("sqrt", math.sqrt, np.sqrt)
 
 
 def _timing(scan: DissectorScan, k: int) -> float:
@@ -123,12 +133,23 @@ def variant1_step(scan: DissectorScan, message: GaussMarkovMessage, x, d, y, k: 
     return x_new, d_new
 
 
-def variant2_step(scan: DissectorScan, message: GaussMarkovMessage, x, d, y, k: int, noise_iterations: int = 0):
+def variant2_step(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    x,
+    d,
+    y,
+    k: int,
+    noise_iterations: int = 0,
+    assumed_contrast: float | None = None,
+):
     """One step of variant 2 (scalar EKF, eq. (9): the noise intensity at the predicted estimate, re-evaluated
-    ``noise_iterations`` times at the updated one). Arguments as :func:`variant1_step` with scalar ``x``, ``d``."""
+    ``noise_iterations`` times at the updated one; ``assumed_contrast`` 0 is the filter ignoring the signal noise).
+    Arguments as :func:`variant1_step` with scalar ``x``, ``d`` (or arrays over trials)."""
+    p = scan.contrast if assumed_contrast is None else assumed_contrast
     f1, q1 = message.euler(scan.dt)
     f11, a, sig2 = f1 * f1, scan.amplitude, scan.pulse_sigma**2
-    c_exp, c_h, r0, r1 = -0.5 / sig2, a / sig2, scan.n0 / scan.dt, scan.n0 * scan.signal_noise_ratio / scan.dt
+    c_exp, c_h, r0, r1 = -0.5 / sig2, a / sig2, scan.n0 / scan.dt, scan.n0 * p / (1.0 - p) / scan.dt
     xp, p = f1 * x, f11 * d + q1
     tk = _timing(scan, k)
     u = tk - xp
@@ -169,3 +190,39 @@ def operation_counts(variant: int, noise_iterations: int = 0) -> dict:
 def operation_ratio(noise_iterations: int = 0) -> float:
     """Arithmetic operations per step of variant 1 over variant 2 (C000-4's default reading)."""
     return operation_counts(1)["arithmetic"] / operation_counts(2, noise_iterations)["arithmetic"]
+
+
+def _run_steps(step, y, x, d):
+    """Run ``step(x, d, y_k, k)`` over the columns ``k = 1..K-1`` of ``y`` (n_trials, K); column 0 holds the prior
+    (no sample at k = 0). Returns the X1 estimates and their variances D11, each (n_trials, K)."""
+    n, K = y.shape
+    est, var = np.empty((n, K)), np.empty((n, K))
+    est[:, 0], var[:, 0] = x[0] if isinstance(x, tuple) else x, d[0] if isinstance(d, tuple) else d
+    for k in range(1, K):
+        x, d = step(x, d, y[:, k], k)
+        est[:, k], var[:, k] = (x[0], d[0]) if isinstance(x, tuple) else (x, d)
+    return est, var
+
+
+def run_steps_variant1(scan, message, y, d0=(0.2, 1.0), init=None, beta: float = 15.0, g22: str = "paper"):
+    """Variant 1 over samples ``y`` (n_trials, K) with :func:`variant1_step` vectorised over the trials: the same
+    estimates and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py``
+    checks the two agree), about three times faster. ``init`` (n_trials, 2) initial estimates (default 0)."""
+    n = y.shape[0]
+    x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
+    x = (x0[:, 0].copy(), x0[:, 1].copy())
+    d = (np.full(n, float(d0[0])), np.zeros(n), np.full(n, float(d0[1])))
+    return _run_steps(lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22), y, x, d)
+
+
+def run_steps_variant2(scan, message, y, d0: float = 0.2, init=None, assumed_contrast=None, noise_iterations=0):
+    """Variant 2 (or, with ``assumed_contrast`` 0, the filter ignoring the signal noise) over samples ``y``
+    (n_trials, K) with :func:`variant2_step` vectorised over the trials: the same estimates and D11 as
+    :func:`.ekf.run_variant2`. ``init`` (n_trials,) initial estimates (default 0)."""
+    n = y.shape[0]
+    x = np.zeros(n) if init is None else np.asarray(init, dtype=float).copy()
+
+    def step(x, d, yk, k):
+        return variant2_step(scan, message, x, d, yk, k, noise_iterations, assumed_contrast)
+
+    return _run_steps(step, y, x, np.full(n, float(d0)))

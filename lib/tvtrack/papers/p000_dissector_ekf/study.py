@@ -21,7 +21,7 @@ from scipy import stats
 
 from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
-from .cost import operation_ratio
+from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
@@ -246,13 +246,12 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 if random_init
                 else None
             )
-            f = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"])
-            e, d = run_variant1(f, y, (D11_0, D22_0), start)
+            e, d = run_steps_variant1(scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"])
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
-            e, d = run_variant2(variant2_filter(scan, _message(cfg), assumed, iterations), y, D11_0, start)
+            e, d = run_steps_variant2(scan, _message(cfg), y, D11_0, start, assumed, iterations)
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
@@ -429,8 +428,8 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y, name=name):
                     if name == "v1":
-                        return run_variant1(variant1_filter(s, _message(cfg), BETA_0, "consistent", cfg["G22"]), y)[0]
-                    return run_variant2(variant2_filter(s, _message(cfg), None, iterations), y)[0]
+                        return run_steps_variant1(s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"])[0]
+                    return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
