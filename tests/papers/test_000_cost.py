@@ -78,21 +78,25 @@ def test_c000_4_measures_operation_counts_by_default_and_cpu_time_as_the_other_r
     assert cpu > 0 and cpu != pytest.approx(43 / 20)
 
 
-def test_the_vectorised_runners_the_study_uses_are_the_core_filters():
+@pytest.mark.parametrize("compiled", [False, True])
+def test_the_vectorised_runners_the_study_uses_are_the_core_filters(compiled):
     """study.py runs the counted steps vectorised over the trials (three times faster than the core EKF's Joseph
     form): over a whole run they must give the core filters' estimates and variances, for every option the register
     reaches (G22, random initial estimates, the ignoring filter, the noise re-evaluated at the update)."""
+    from tvtrack import jit
     from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant1, run_steps_variant2
 
+    if compiled and not jit.available():
+        pytest.skip("numba is not installed: the compiled loops are not used")
     scan, y = _samples(5.0, 0.9, n_steps=400)
     init = np.random.default_rng(3).normal(0.0, 0.3, (y.shape[0], 2))
     for g22 in ("paper", "euler", "matched"):
         core = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", g22), y, (0.2, 1.0), init)
-        mine = run_steps_variant1(scan, MSG, y, (0.2, 1.0), init, 15.0, g22)
+        mine = run_steps_variant1(scan, MSG, y, (0.2, 1.0), init, 15.0, g22, compiled)
         np.testing.assert_allclose(mine[0], core[0], rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose(mine[1], core[1], rtol=1e-9)
     for assumed, iterations in ((None, 0), (None, 1), (0.0, 0)):
         core = run_variant2(variant2_filter(scan, MSG, assumed, iterations), y, 0.2, init[:, 0])
-        mine = run_steps_variant2(scan, MSG, y, 0.2, init[:, 0], assumed, iterations)
+        mine = run_steps_variant2(scan, MSG, y, 0.2, init[:, 0], assumed, iterations, compiled)
         np.testing.assert_allclose(mine[0], core[0], rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose(mine[1], core[1], rtol=1e-9)

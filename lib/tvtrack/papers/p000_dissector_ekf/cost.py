@@ -17,6 +17,8 @@ from collections import Counter as _Tally
 
 import numpy as np
 
+from ... import jit
+from . import _kernels
 from .ekf import _g22
 from .model import DissectorScan, GaussMarkovMessage
 
@@ -204,23 +206,74 @@ def _run_steps(step, y, x, d):
     return est, var
 
 
-def run_steps_variant1(scan, message, y, d0=(0.2, 1.0), init=None, beta: float = 15.0, g22: str = "paper"):
-    """Variant 1 over samples ``y`` (n_trials, K) with :func:`variant1_step` vectorised over the trials: the same
-    estimates and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py``
-    checks the two agree), about three times faster. ``init`` (n_trials, 2) initial estimates (default 0)."""
+def _timing_table(scan: DissectorScan, n_columns: int) -> np.ndarray:
+    return np.array([_timing(scan, k) for k in range(n_columns)])
+
+
+def _use_kernel(compiled: bool | None) -> bool:
+    return jit.enabled() if compiled is None else bool(compiled)
+
+
+def run_steps_variant1(
+    scan, message, y, d0=(0.2, 1.0), init=None, beta: float = 15.0, g22: str = "paper", compiled: bool | None = None
+):
+    """Variant 1 over samples ``y`` (n_trials, K): :func:`variant1_step` vectorised over the trials, or its compiled
+    loop (:func:`._kernels.variant1_loop`, where numba is enabled; ``compiled`` forces either). The same estimates
+    and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py`` checks that
+    they agree), several times faster. ``init`` (n_trials, 2) initial estimates (default 0)."""
     n = y.shape[0]
     x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
+    if _use_kernel(compiled):
+        f1, q1 = message.euler(scan.dt)
+        f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
+        sig2, sqrt_c = scan.pulse_sigma**2, math.sqrt(scan.n0 * scan.signal_noise_ratio)
+        consts = (f1, f2, f1 * f1, f1 * f2, f2 * f2, q1, q2, -0.5 / sig2, scan.amplitude / sig2, 0.5 / sig2)
+        tk = _timing_table(scan, y.shape[1])
+        return _kernels.variant1_loop(
+            np.ascontiguousarray(y, dtype=float),
+            np.ascontiguousarray(x0),
+            (float(d0[0]), float(d0[1])),
+            tk,
+            *consts,
+            scan.amplitude,
+            sqrt_c,
+            scan.n0 / scan.dt,
+        )
     x = (x0[:, 0].copy(), x0[:, 1].copy())
     d = (np.full(n, float(d0[0])), np.zeros(n), np.full(n, float(d0[1])))
     return _run_steps(lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22), y, x, d)
 
 
-def run_steps_variant2(scan, message, y, d0: float = 0.2, init=None, assumed_contrast=None, noise_iterations=0):
+def run_steps_variant2(
+    scan, message, y, d0: float = 0.2, init=None, assumed_contrast=None, noise_iterations=0, compiled=None
+):
     """Variant 2 (or, with ``assumed_contrast`` 0, the filter ignoring the signal noise) over samples ``y``
-    (n_trials, K) with :func:`variant2_step` vectorised over the trials: the same estimates and D11 as
-    :func:`.ekf.run_variant2`. ``init`` (n_trials,) initial estimates (default 0)."""
+    (n_trials, K): :func:`variant2_step` vectorised over the trials, or its compiled loop
+    (:func:`._kernels.variant2_loop`); the same estimates and D11 as :func:`.ekf.run_variant2`. ``init``
+    (n_trials,) initial estimates (default 0)."""
     n = y.shape[0]
     x = np.zeros(n) if init is None else np.asarray(init, dtype=float).copy()
+    if _use_kernel(compiled):
+        p = scan.contrast if assumed_contrast is None else assumed_contrast
+        f1, q1 = message.euler(scan.dt)
+        sig2 = scan.pulse_sigma**2
+        r0, r1 = scan.n0 / scan.dt, scan.n0 * p / (1.0 - p) / scan.dt
+        tk = _timing_table(scan, y.shape[1])
+        return _kernels.variant2_loop(
+            np.ascontiguousarray(y, dtype=float),
+            np.ascontiguousarray(x),
+            float(d0),
+            tk,
+            f1,
+            f1 * f1,
+            q1,
+            -0.5 / sig2,
+            scan.amplitude / sig2,
+            scan.amplitude,
+            r0,
+            r1,
+            int(noise_iterations),
+        )
 
     def step(x, d, yk, k):
         return variant2_step(scan, message, x, d, yk, k, noise_iterations, assumed_contrast)
