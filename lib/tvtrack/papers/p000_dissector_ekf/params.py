@@ -34,7 +34,7 @@ RULES = {
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 40),
     "joint": Integer(0, 200),
-    "screen_trials": Integer(20, 20_000),
+    "screen_trials": Integer(0, 20_000),
     "combinations": Integer(0, 100),
     "record_scans": Integer(1, 1000),
 }
