@@ -127,12 +127,15 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
         ),
         "C000-7": AllOf(
             {
-                "trend": Monotone("error variance / stationary-noise error variance sigma_x^2*", "contrast P"),
+                "trend": Monotone(
+                    "error variance / stationary-noise error variance sigma_x^2*", "contrast P", unit="(ratio)"
+                ),
                 "measurement vs estimate": Ordering(
                     "single-scan measurement CRLB ratio (P = 0.9 over P = 0)",
                     "estimate variance ratio sigma_x^2 / sigma_x^2* at P = 0.9",
                     ">",
                     "difference",
+                    unit="(ratio)",
                 ),
             }
         ),
@@ -151,7 +154,7 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
         ),
         "C000-9": AllOf(
             {
-                f"variant {v}": Monotone(f"steady error variance of variant {v} (T^2)", "psi_A", "decreasing")
+                f"variant {v}": Monotone(f"steady error variance of variant {v}", "psi_A", "decreasing", unit="T^2")
                 for v in (1, 2)
             }
         ),
@@ -163,7 +166,9 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
 def cost_rule() -> Rule:
     """C000-4: variant 1 needs more arithmetic per filter step than variant 2 (the ratio of operation counts, or of
     CPU time under the register's other reading)."""
-    return Ordering("variant 1 arithmetic per filter step", "variant 2 arithmetic per filter step", ">", "ratio")
+    return Ordering(
+        "variant 1 arithmetic per filter step", "variant 2 arithmetic per filter step", ">", "ratio", unit="(ratio)"
+    )
 
 
 RULES = claim_rules()
