@@ -164,3 +164,25 @@ def test_c000_3_and_c000_9_read_their_own_filters_and_points(measured):
     for v, filt in ((1, "v1"), (2, "v2")):
         expect = [_independent_steady(21, psi, 0.5, filt).mean() for psi in SMALL.psi_grid]
         np.testing.assert_allclose([e.value for e in measured["C000-9"][f"variant {v}"]], expect, rtol=1e-9)
+
+
+def test_c000_6_readings_are_their_filter_over_their_reference(measured):
+    """Kills: C000-6's reading taken from another filter or another reference (the PCRLB at another P, the
+    ignoring filter replaced by variant 2)."""
+    from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant2
+    from tvtrack.papers.p000_dissector_ekf.reference import pcrlb_variance
+
+    star = _independent_steady(21, 20.0, 0.9, "star").mean()
+    v2 = _independent_steady(21, 20.0, 0.9, "v2")
+    assert measured["C000-6"].value == pytest.approx(v2.mean() / star, rel=1e-9)
+    window = np.arange(SMALL.n_steps + 1) * SMALL.dt > SMALL.duration_T - SMALL.window_T
+    bound = pcrlb_variance(scan_at_snr(20.0, 0.9, SMALL.dt), MSG, SMALL.n_steps)[window].mean()
+    pcrlb = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 21, SMALL)["C000-6"]
+    assert pcrlb.value == pytest.approx(v2.mean() / bound, rel=1e-9)
+    noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
+    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end")
+    scan = scan_at_snr(20.0, 0.9, SMALL.dt)
+    est = run_steps_variant2(scan, MSG, samples_from_pulse(scan, pulse, noises["xi"]), 0.2, None, 0.0)[0]
+    ignoring = ((x - est) ** 2)[:, window].mean()
+    got = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 21, SMALL)["C000-6"]
+    assert got.value == pytest.approx(ignoring / star, rel=1e-9)
