@@ -186,3 +186,30 @@ def test_c000_6_readings_are_their_filter_over_their_reference(measured):
     ignoring = ((x - est) ** 2)[:, window].mean()
     got = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 21, SMALL)["C000-6"]
     assert got.value == pytest.approx(ignoring / star, rel=1e-9)
+
+
+def test_c000_1_share_is_the_runs_out_of_lock_after_the_acquisition_time():
+    """Kills: C000-1's share from another filter, threshold or time: a run is late when a scan from acquire_by_T on
+    has a mean squared error above (the reading's factor)^2 times the filter's steady mean squared error; psi_A = 2
+    and the strict reading, a factor 2, where some runs are late."""
+    from dataclasses import replace
+
+    from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant2
+
+    sizes = replace(SMALL, acquire_by_T=1.0)  # here the share changes from one scan to the next
+
+    noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
+    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end")
+    scan = scan_at_snr(2.0, 0.5, SMALL.dt)
+    sq = (x - run_steps_variant2(scan, MSG, samples_from_pulse(scan, pulse, noises["xi"]), 0.2)[0]) ** 2
+    per_scan = sq[:, 1:].reshape(SMALL.n_trials, -1, 20).mean(axis=2)
+    threshold = 2.0**2 * _independent_steady(21, 2.0, 0.5, "v2").mean()
+    late = (per_scan[:, 1:] > threshold).any(axis=1).mean()
+    got = study._c1({**DEFAULT, "psi_A": 2.0, "lock threshold": "2 x steady RMS"}, 21, sizes)
+    assert got["reading"] == "90 % of runs acquired"
+    assert got["measured"]["variant 2"].value == pytest.approx(late, abs=1e-12)
+    lower, later = (
+        (per_scan[:, 1:] > threshold / 4).any(axis=1).mean(),
+        (per_scan[:, 2:] > threshold).any(axis=1).mean(),
+    )
+    assert lower > late > later > 0  # the threshold and the time matter on these runs (the test is not vacuous)
