@@ -788,3 +788,30 @@ def test_static_marker_with_a_centroid_tracker_locks():
     sc = Scenario(duration_s=2.0, rotating=False, form="centroid", x_std=0.0, y_amplitude=0.0, background_std=0.0)
     _, _, h = run_scenario(np.random.default_rng(0), 3, sc, noise="pixel")
     assert np.sqrt(np.mean(h.miss[:, -250:] ** 2)) < 0.2 and sc.slope() == 1.0
+
+
+def test_the_objects_y_phase_is_drawn_per_run_so_interferers_are_not_always_crossed_at_full_speed():
+    """Issue 40: with a fixed y phase every run starts (and has its interferers placed) where the sinusoid is
+    steepest. Each run's phase, recovered from its path, must be spread uniformly over the circle."""
+    from scipy import stats
+
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import scenario_truth
+
+    sc = Scenario(duration_s=0.1)
+    tr = scenario_truth(np.random.default_rng(40), 400, sc)
+    c, w = sc.image_size / 2, 2 * np.pi * sc.y_freq
+    t = tr.t[None, :]
+    # least squares of y - c on sin(w t), cos(w t): amplitude cos(psi), sin(psi) times y_amplitude
+    basis = np.stack([np.sin(w * t[0]), np.cos(w * t[0])], axis=1)
+    coef = np.linalg.lstsq(basis, (tr.yr - c).T, rcond=None)[0]
+    psi = np.mod(np.arctan2(coef[1], coef[0]), 2 * np.pi)
+    np.testing.assert_allclose(np.hypot(*coef), sc.y_amplitude, rtol=1e-6)
+    assert stats.kstest(psi / (2 * np.pi), "uniform").pvalue > 0.01
+    # the start point's speed: a third of the runs start below half the full speed (|cos psi| < 1/2)
+    slow = np.mean(np.abs(np.cos(psi)) < 0.5)
+    assert 0.25 < slow < 0.42
+    # the interferers are placed about each run's own start, which now moves along the path with the phase
+    assert np.std(tr.center[:, 0, 1]) == pytest.approx(sc.y_amplitude / np.sqrt(2), rel=0.15)
+    # a fixed phase is still available as an explicit choice (and reproduces its phase in every run)
+    fixed = scenario_truth(np.random.default_rng(40), 5, replace(sc, y_phase=0.3))
+    np.testing.assert_allclose(fixed.yr[:, 0], c + sc.y_amplitude * np.sin(0.3))

@@ -452,9 +452,15 @@ def object_motion(
     y_amplitude: float = 20.0,
     y_freq: float = 0.5,
     kind: str = "card",
+    y_phase: float | None = None,
 ):
     """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
-    at ``y_freq`` Hz (``kind = "card"``).
+    at ``y_freq`` Hz and phase ``y_phase`` rad (``kind = "card"``).
+
+    ``y_phase = None`` (the default) draws the sinusoid's phase per run, uniformly on ``[0, 2 pi)``: the paper
+    gives none, and a fixed phase puts every run's start (about which the interferers are placed) at the same
+    point of the path, so the object always crosses the interferers at the same speed (at ``y_phase = 0``: its
+    full speed), a geometry one comparator can be more sensitive to than another (issue 40).
 
     ``x`` is an Ornstein-Uhlenbeck process (time constant ``x_tau`` s) passed through a first-order
     low-pass of time constant ``x_smooth`` s (so that the path has a finite velocity, as a real
@@ -481,12 +487,14 @@ def object_motion(
         return std * ou
 
     ou_x = smoothed_ou(x_std) if x_std > 0 else np.zeros((n, n_frames))
+    # the y phase is drawn right after the card's x in every kind (common random numbers across kinds)
+    psi = rng.uniform(0, 2 * np.pi, size=(n, 1)) if y_phase is None else np.full((n, 1), float(y_phase))
     ou_y = smoothed_ou(y_amplitude / np.sqrt(2)) if kind == "random" and y_amplitude > 0 else None
     if kind == "sinusoids":
         xr = np.sqrt(2) * x_std * np.sin(2 * np.pi * 0.7 * y_freq * t + rng.uniform(0, 2 * np.pi, size=(n, 1)))
     else:
         xr = ou_x
-    yr = ou_y if ou_y is not None else y_amplitude * np.sin(2 * np.pi * y_freq * t) * np.ones((n, 1))
+    yr = ou_y if ou_y is not None else y_amplitude * np.sin(2 * np.pi * y_freq * t + psi)
     return center[0] + xr, center[1] + yr
 
 
@@ -736,7 +744,8 @@ class Scenario:
     Units: px, s, Hz; brightness in units of the marker brightness ``d``.
     ``kappa`` = compensation residual (1 = none); ``noise_std`` and ``background_std`` are
     per pixel (the background before compensation). ``omega_mod``/``radius_mod`` are relative
-    sinusoidal modulation depths of the rotation rate and radius (Fig. 2). ``decoy_offset`` > 0
+    sinusoidal modulation depths of the rotation rate and radius (Fig. 2). ``y_phase`` is the phase of the
+    object's y sinusoid (rad; None = uniformly random per run, :func:`object_motion`). ``decoy_offset`` > 0
     adds an imitating interferer rotating like the marker about a centre displaced by that many px,
     at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness is
     ``d / SIR`` with the SIR passed to :func:`run_scenario`, like a stationary interferer's.
@@ -768,6 +777,7 @@ class Scenario:
     x_smooth: float = 0.05
     y_amplitude: float = 20.0
     y_freq: float = 0.5
+    y_phase: float | None = None
     n_interferers: int = 0
     interferer_jitter: float = 0.0
     interferer_diameter: float | None = None
@@ -873,6 +883,7 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
         y_amplitude=sc.y_amplitude,
         y_freq=sc.y_freq,
         kind=sc.motion,
+        y_phase=sc.y_phase,
     )
     if not sc.rotating:
         return marker_truth(xr, yr, np.zeros((n, T)), np.zeros((n, T)), np.zeros(n), dt)
