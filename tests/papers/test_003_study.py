@@ -384,3 +384,61 @@ def test_threshold_conditions_does_not_list_a_threshold_certified_below_the_pape
     assert prose.threshold_conditions(ex, "rotating 1", 2.0) == (
         "under no condition tried is the rotating 1 threshold other than below the paper's 2"
     )
+
+
+def _spy_curves(monkeypatch):
+    """Replace the loss curves and the bandwidth runs of measure_interference by stubs that record each scenario
+    (every run keeps lock), so the scenarios the rules read can be checked without running them."""
+    seen = []
+
+    def curve(sc, sirs, n, seed, crit, counts=None, criteria=False):
+        seen.append(sc)
+        shape = (len(sirs), n) if counts is None else (len(counts), len(sirs), n)
+        return np.zeros(shape, bool), (np.zeros(shape + (3,), bool) if criteria else None)
+
+    class _H:
+        def __init__(self, n, frames):
+            self.miss = np.ones((n, frames))
+
+    monkeypatch.setattr(study, "_curve", curve)
+    monkeypatch.setattr(study, "run_scenario", lambda rng, n, sc, **kw: (None, None, _H(n, sc.n_frames)))
+    return seen
+
+
+@pytest.mark.parametrize("static_gate, half_in_d", [(None, 1.5), ("3D", 1.5), ("2D", 1.0)])
+def test_static_comparator_runs_the_rotating_markers_gate_by_default(monkeypatch, static_gate, half_in_d):
+    """C003-12 compares the markers at the paper's 3D gate (half-size 1.5 D = 12 px, the rotating marker's) unless
+    the register's static_gate comparator asks for 2D (pins the default a planted bug changed unseen)."""
+    seen = _spy_curves(monkeypatch)
+    cfg = {} if static_gate is None else {"static_gate": static_gate}
+    sz = study.Sizes(trials=2, horizon_s=0.2, transient_s=0.05)
+    study.measure_interference(cfg, 1, sz)
+    static = [sc for sc in seen if not sc.rotating]
+    rotating = [sc for sc in seen if sc.rotating and sc.n_interferers == 0 and sc.decoy_offset == 0]
+    assert static and rotating
+    D = rotating[0].diameter
+    assert {sc.gate_half for sc in static} == {half_in_d * D}
+    assert {sc.gate_half for sc in rotating} == {1.5 * D} == {study.scenario({}).gate_half}
+
+
+@pytest.mark.parametrize("rotation_hz", [8.0, 5.0])
+def test_c003_2_near_control_sits_one_hertz_above_the_rotation(monkeypatch, rotation_hz):
+    """C003-2's near control demodulates at f_rot + 1 Hz (and the far one at 1.5 f_rot): the phases handed to the
+    synchronous demodulator are the marker's phase times (f_rot + 1) / f_rot and 1.5 (pins the control frequency a
+    planted bug changed unseen)."""
+    phases = []
+    real = study.phase_locked_amplitude
+
+    def spy(err, theta):
+        phases.append(np.asarray(theta))
+        return real(err, theta)
+
+    monkeypatch.setattr(study, "phase_locked_amplitude", spy)
+    sz = study.Sizes(trials=2, fig1_s=0.5, fig2_s=0.4, transient_s=0.1, rotation_hz=rotation_hz)
+    study.measure_tracking({}, 1, sz)
+    locked, near, far = phases[:3]
+    ok = np.abs(locked) > 1e-9
+    np.testing.assert_allclose(near[ok] / locked[ok], (rotation_hz + 1.0) / rotation_hz, rtol=1e-12)
+    n = sz.trials
+    j = study.BXY_GRID.index(10.0)
+    np.testing.assert_allclose(far, 1.5 * locked[j * n : (j + 1) * n], rtol=1e-12)
