@@ -442,3 +442,33 @@ def test_c003_2_near_control_sits_one_hertz_above_the_rotation(monkeypatch, rota
     n = sz.trials
     j = study.BXY_GRID.index(10.0)
     np.testing.assert_allclose(far, 1.5 * locked[j * n : (j + 1) * n], rtol=1e-12)
+
+
+def test_fold_distance_is_two_sided_about_its_reference():
+    e = Estimate(0.5, float("nan"), 0.4, 0.625, 6, 0.95, "t")
+    f = study.fold_distance(e, 1.0)
+    assert (f.value, f.ci_low, f.ci_high) == pytest.approx((2.0, 1.6, 2.5))
+    up = study.fold_distance(Estimate(2.0, float("nan"), 1.6, 2.5, 6, 0.95, "t"), 1.0)
+    assert (up.value, up.ci_low, up.ci_high) == pytest.approx((2.0, 1.6, 2.5))
+    straddle = study.fold_distance(Estimate(1.1, float("nan"), 0.5, 1.5, 6, 0.95, "t"), 1.0)
+    assert (straddle.ci_low, straddle.ci_high) == pytest.approx((1.0, 2.0))
+    rule = InBand("fold change", low=1.25)
+    assert rule.decide(f) == rule.decide(up) == "reproduced"
+
+
+@pytest.mark.parametrize("factor", [0.5, 2.0])
+def test_c003_11_bandwidth_part_is_two_sided(monkeypatch, factor):
+    """l. 192 says errors depend substantially on the loop bandwidths, not which way: a miss that halves or doubles
+    from 5 to 20 Hz gives the same fold distance 4 in mean square (and the signed ratio is kept for the prose)."""
+    _spy_curves(monkeypatch)
+
+    class _H:
+        def __init__(self, n, frames):
+            ramp = 1.0 + 0.1 * np.arange(n // 2)[:, None] * np.ones((1, frames))
+            self.miss = np.concatenate([ramp, factor * ramp])  # rows: 5 Hz runs, then 20 Hz runs
+
+    monkeypatch.setattr(study, "run_scenario", lambda rng, n, sc, **kw: (None, None, _H(n, sc.n_frames)))
+    out = study.measure_interference({}, 1, study.Sizes(trials=4, horizon_s=0.2, transient_s=0.05))
+    assert out["_bandwidth_ratio"].value == pytest.approx(factor**2)
+    assert out["C003-11"]["bandwidth"].value == pytest.approx(4.0)
+    assert out["C003-11"]["bandwidth"].ci_low >= 1.0

@@ -54,6 +54,8 @@ __all__ = [
     "simulate_two_emitter_1d",
     "band_power_share",
     "phase_locked_amplitude",
+    "omega_response",
+    "omega_bandwidth",
 ]
 
 VARIANTS = ("S", "P")
@@ -335,6 +337,51 @@ def realised_phase_bandwidth(gains: LoopGains, omega: float, r: float, f_max: fl
         bandwidth_hz=float(f[below[0]]) if below.size else float("nan"),
         peak_gain=float(mag.max()),
         peak_hz=float(f[np.argmax(mag)]),
+    )
+
+
+def omega_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.ndarray:
+    """Frequency response of the coupled variant-S loop from the true rotation rate to its estimate ``omega_hat``.
+
+    With the phase perturbation ``p`` of :func:`phase_response` the true rate deviates by ``p'`` and the state
+    ``domega`` of :func:`loop_poles` is ``omega_hat - omega_0``, so ``H_omega(s) = e_domega^T (s I - A)^{-1} b``
+    per unit ``p'``. Uncoupled (``K_xy = 0``) it is the PLL's ``K2 / (s^2 + K1 s + K2)``: the rate estimate is
+    low-passed at the loop's natural frequency, well below the phase loop's -3 dB bandwidth.
+
+    Parameters
+    ----------
+    gains : LoopGains
+    omega : float
+        Rotation rate (rad/s).
+    r : float
+        Rotation radius (px).
+    freqs_hz : array_like, shape (m,)
+
+    Returns
+    -------
+    ndarray of complex, shape (m,)
+    """
+    A = _loop_matrix(gains, omega, r)
+    b = np.zeros(5)
+    b[3] = -1.0
+    s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
+    return np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[:, 4, 0]
+
+
+def omega_bandwidth(gains: LoopGains, omega: float, r: float, at_hz: float = 6.0, f_max: float = 100.0) -> dict:
+    """-3 dB bandwidth (Hz) of :func:`omega_response` and its gain at ``at_hz`` (the paper's "6 Hz for omega").
+
+    Returns
+    -------
+    dict
+        ``bandwidth_hz`` (first frequency on a 0.01 Hz grid where ``|H_omega| < 1/sqrt 2``; NaN if none below
+        ``f_max``) and ``gain_at`` (``|H_omega(at_hz)|``, dimensionless).
+    """
+    f = np.arange(0.01, f_max, 0.01)
+    below = np.flatnonzero(np.abs(omega_response(gains, omega, r, f)) < 1 / np.sqrt(2))
+    return dict(
+        bandwidth_hz=float(f[below[0]]) if below.size else float("nan"),
+        gain_at=float(np.abs(omega_response(gains, omega, r, [at_hz])[0])),
     )
 
 

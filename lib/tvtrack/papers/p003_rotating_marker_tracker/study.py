@@ -42,6 +42,7 @@ __all__ = [
     "threshold",
     "threshold_bound",
     "threshold_ratio",
+    "fold_distance",
     "measure_tracking",
     "measure_interference",
 ]
@@ -386,6 +387,8 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
         "near": ratio_ci(locked[j], near_ctl[j]),
         "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)],
     }
+    # the locked ripple's own trend with the loop width, paired on the same draws: B_xy 10 Hz over 2 Hz
+    out["_ripple_trend"] = ratio_ci(locked[j], locked[BXY_GRID.index(2.0)])
     quad_ms = {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)}
     fig.update(
         t=tr.t,
@@ -531,6 +534,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n),
     )[2]
     ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
+    bw_ratio = ratio_ci(ms[1], ms[0])  # B_xy 20 Hz over 5 Hz, with its direction (kept in "_bandwidth_ratio")
     r1, r5 = curves["rotating", 1], curves["rotating", 5]
 
     def more(keys, sir):  # the C003-7/-12 curves at one more SIR, only the families asked for (same draws)
@@ -576,7 +580,8 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         "C003-11": {
             "dynamics": loss_share(curves["gate", 1.5][-1]),
             "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
-            "bandwidth": ratio_ci(ms[1], ms[0]),
+            # l. 192 says the errors depend substantially on the bandwidths, not which way: two-sided (fold distance)
+            "bandwidth": fold_distance(bw_ratio, 1.0),
         },
         "C003-12": {
             "one": threshold_ratio(xc["static", 1], xc["rotating", 1], xsirs),
@@ -584,6 +589,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
             "imitator": threshold_ratio(xc["decoy"], xc["rotating", 1], xsirs),
         },
     }
+    out["_bandwidth_ratio"] = bw_ratio
     out["_mechanisms"] = {
         f"{m} {k}": _mechanisms(curves[m, k], met[j])
         for m, met in (("rotating", met_r), ("static", met_s))
@@ -640,7 +646,24 @@ def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimat
         raise ValueError(f"parameter 'reading' = {reading!r}; it must be one of {COMPENSATION_READINGS}")
     if reading == "one-sided":
         return ratio
-    k = float(kappa)
+    return fold_distance(ratio, kappa)
+
+
+def fold_distance(ratio: Estimate, reference: float) -> Estimate:
+    """A ratio's fold distance from ``reference``, either direction: ``k exp|log(q / k)|`` (``q`` itself for
+    ``q >= k``, ``k^2 / q`` below it), so a two-sided rule ("depends on", "about k") is one band on one number.
+
+    The interval maps end by end; an interval straddling ``k`` starts at ``k`` (no measurable distance), and a
+    bound ``[0, b]`` certifies a distance of at least ``fold(b)``.
+
+    Parameters
+    ----------
+    ratio : Estimate
+        A ratio (positive), with its 95 % interval.
+    reference : float
+        The ratio of no change (``1`` for C003-11's bandwidth part, ``kappa`` for C003-10's two-sided reading).
+    """
+    k = float(reference)
 
     def fold(q):
         return q if q >= k else (k * k / q if q > 0 else np.inf)
@@ -650,10 +673,10 @@ def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimat
     value = fold(ratio.value)
     return replace(
         ratio,
-        value=value if np.isfinite(value) else ends[0],  # a bound [0, b] certifies a fold distance of at least fold(b)
+        value=value if np.isfinite(value) else ends[0],
         ci_low=k if lo < k < hi else ends[0],
         ci_high=ends[1],
-        method=ratio.method + "; two-sided reading: the ratio's fold distance from kappa, kappa exp|log(q / kappa)|",
+        method=ratio.method + f"; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|",
     )
 
 
