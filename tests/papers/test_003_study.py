@@ -472,3 +472,23 @@ def test_c003_11_bandwidth_part_is_two_sided(monkeypatch, factor):
     assert out["_bandwidth_ratio"].value == pytest.approx(factor**2)
     assert out["C003-11"]["bandwidth"].value == pytest.approx(4.0)
     assert out["C003-11"]["bandwidth"].ci_low >= 1.0
+
+
+def test_decoy_brightness_convention_sets_the_decoys_brightness_at_the_tracker():
+    """What SIR means for C003-12's decoy: 'residual' puts it at d / SIR (a stationary interferer's brightness after
+    compensation, the paper's SIR of l. 198), 'emitted' at what a stationary interferer emits, d / (kappa SIR)."""
+    assert study.scenario({}).decoy_gain == 1.0
+    em = study.scenario({"decoy_brightness": "emitted"})
+    assert em.decoy_gain == pytest.approx(1 / em.kappa) == pytest.approx(10.0)
+    for cfg, want in (({}, 0.5), ({"decoy_brightness": "emitted"}, 5.0)):
+        sc = replace(study.scenario(cfg), decoy_offset=16.0, duration_s=0.02)
+        _, scene, _ = run_scenario(np.random.default_rng(1), 2, sc, 2.0)
+        np.testing.assert_allclose(scene.decoy_brightness, want)
+    assert "decoy_brightness" in DEPENDS["C003-12"] and "decoy_brightness" not in DEPENDS["C003-7"]
+
+
+def test_every_register_entry_and_value_reads_in_plain_words():
+    for e in REGISTER:
+        assert e.title and e.title != e.name, e.name
+        for v in e.values:
+            assert v in e.phrases and len(e.phrases[v]) > 10, (e.name, v)

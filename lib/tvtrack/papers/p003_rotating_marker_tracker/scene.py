@@ -747,8 +747,11 @@ class Scenario:
     sinusoidal modulation depths of the rotation rate and radius (Fig. 2). ``y_phase`` is the phase of the
     object's y sinusoid (rad; None = uniformly random per run, :func:`object_motion`). ``decoy_offset`` > 0
     adds an imitating interferer rotating like the marker about a centre displaced by that many px,
-    at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness is
-    ``d / SIR`` with the SIR passed to :func:`run_scenario`, like a stationary interferer's.
+    at the phase offset ``decoy_phase`` (rad; None = uniformly random per trial); its brightness at the tracker is
+    ``decoy_gain d / SIR`` with the SIR passed to :func:`run_scenario`. The paper defines SIR with the brightness an
+    interferer keeps *after* compensation; a decoy moves, so no background compensation removes it: ``decoy_gain = 1``
+    (the default) puts the decoy at the brightness a stationary interferer keeps at that SIR (the paper's SIR read
+    for the decoy), ``1 / kappa`` at the brightness a stationary interferer *emits* there (equal emitters).
     ``exposure`` ``"instant"`` or ``"integrated"`` over the frame (:attr:`exposure_steps` sub-frame renders);
     ``compensation`` ``"kappa"`` (``kappa`` times the static scene left) or ``"median"`` (a per-pixel temporal median
     of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`).
@@ -785,6 +788,7 @@ class Scenario:
     interferer_centre: str = "object"
     decoy_offset: float = 0.0
     decoy_phase: float | None = None
+    decoy_gain: float = 1.0
     gate_half: float = 12.0
     b_xy: float = 10.0
     b_r: float = 0.2
@@ -990,7 +994,7 @@ def run_scenario(
         radial_jitter=sc.interferer_jitter,
         interferer_diameter=sc.interferer_diameter,
         decoys=decoys,
-        decoy_brightness=sc.brightness / sir,
+        decoy_brightness=sc.decoy_gain * sc.brightness / sir,
         n_common=n_common,
         blocks=blocks,
         exposure_steps=sc.exposure_steps,

@@ -61,6 +61,10 @@ ROTATION_LAWS = {
 }
 # background compensation: the paper's kappa model or a temporal median of the first two revolutions (card 8.5)
 COMPENSATION_MODELS = {"kappa": "kappa", "temporal median": "median"}
+# what SIR means for the law-following decoy of C003-12: the brightness a stationary interferer keeps after
+# compensation (the paper's SIR, l. 198, read for the decoy: equal brightness at the tracker), or the brightness it
+# emits (equal emitters: compensation cannot remove a moving decoy, so it reaches the tracker 1/kappa brighter)
+DECOY_BRIGHTNESS = ("residual", "emitted")
 # C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
 SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
 # "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
@@ -100,7 +104,8 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``.
+    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``,
+    ``decoy_brightness``.
     """
     c = config
     base = Scenario()
@@ -132,6 +137,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
         interferer_centre=c.get("placement", "object"),
         edge_norm=c.get("edge_norm", "slope"),
         interferer_diameter={"D": None, "2D": 2 * base.diameter}[c.get("interferer_size", "D")],
+        decoy_gain={"residual": 1.0, "emitted": 1.0 / kappa}[c.get("decoy_brightness", DECOY_BRIGHTNESS[0])],
         rotation_hz=sizes.rotation_hz,
     )
     kw.update(over)
