@@ -492,3 +492,13 @@ def test_every_register_entry_and_value_reads_in_plain_words():
         assert e.title and e.title != e.name, e.name
         for v in e.values:
             assert v in e.phrases and len(e.phrases[v]) > 10, (e.name, v)
+
+
+def test_exposure_study_runs_both_exposures_on_the_same_draws():
+    sz = study.Sizes(trials=2, fig1_s=0.6, fig2_s=0.5, transient_s=0.2, horizon_s=0.4)
+    res = study.exposure_study(1, sz, sz, 50.0)
+    assert res["arc_px"] == pytest.approx(2 * np.pi * 8 * 12 / 50)
+    assert set(res["instant"]["thresholds"]) == {"rotating 1", "rotating 5", "static 1", "static 5"}
+    direct = study.measure_tracking({"fps": 50.0, "exposure": "integrated"}, 1, sz)["C003-1"]["x_r"]
+    assert res["integrated"]["x_r_rms_px"].value == pytest.approx(direct.value, rel=1e-12)
+    assert res["integrated"]["x_r_rms_px"].value != pytest.approx(res["instant"]["x_r_rms_px"].value, rel=1e-6)
