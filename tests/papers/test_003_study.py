@@ -27,7 +27,8 @@ def test_loss_share_counts_and_zero_events_bound():
     assert (e.value, e.ci_low) == (0.0, 0.0)
     assert e.ci_high == pytest.approx(zero_events_bound(30))
     assert InBand("p", high=0.1).decide(e) == "reproduced"  # 0 of 30 certifies p < 0.095
-    assert InBand("p", high=0.1).decide(study.loss_share(np.zeros(20, bool))) == "partly"  # 0 of 20: only < 0.139
+    j = InBand("p", high=0.1).judge(study.loss_share(np.zeros(20, bool)))  # 0 of 20 certifies only p < 0.139
+    assert j.verdict == "undecided" and 29 <= np.ceil(20 * j.runs_factor) <= 31  # 0 of 29 certifies p < 0.1
     full = study.loss_share(np.ones(10, bool))
     assert full.ci_low == pytest.approx(1 - zero_events_bound(10)) and full.ci_high == 1.0
     mid = study.loss_share(np.r_[np.ones(3, bool), np.zeros(7, bool)])
@@ -269,10 +270,10 @@ def test_compensation_reading_one_sided_keeps_the_ratio_and_two_sided_folds_it_a
     assert rule.decide(folded) == "reproduced"  # 0.06 and 0.15 both lie within a factor 2 of kappa
     for reading in study.COMPENSATION_READINGS:  # a weak compensation fails under both readings
         assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
-        assert rule.decide(study.compensation_reading(edge, 0.1, reading)) == "partly"
+        assert rule.decide(study.compensation_reading(edge, 0.1, reading)) == "undecided"
     low = Estimate(0.04, float("nan"), 0.03, 0.06, 6, 0.95, "ratio")  # below kappa / 2: one-sided yes, two-sided no
     assert rule.decide(study.compensation_reading(low, 0.1, "one-sided")) == "reproduced"
-    assert rule.decide(study.compensation_reading(low, 0.1, "two-sided")) == "partly"  # fold [0.167, 0.333]
+    assert rule.decide(study.compensation_reading(low, 0.1, "two-sided")) == "undecided"  # fold [0.167, 0.333]
     with pytest.raises(ValueError):
         study.compensation_reading(weak, 0.1, "both")
 
@@ -368,7 +369,7 @@ def _censored(config, seed):
     lost = _lost_from_thresholds(thr, sirs)
     e = study.threshold(lost, sirs)
     return {
-        "C": {"value": e},
+        "C": e,
         "_map": {"rotating 1": e},
         "_map_bound": {"rotating 1": study.threshold_bound(lost, sirs)},
     }
