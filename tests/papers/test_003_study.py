@@ -12,7 +12,7 @@ from tvtrack.montecarlo import Estimate, zero_events_bound
 from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
-from tvtrack.verdicts import InBand, is_undecided
+from tvtrack.verdicts import InBand, Ordering, is_undecided
 
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
 
@@ -326,9 +326,15 @@ def test_threshold_ratio_is_an_upper_bound_when_the_first_curve_breaks_below_the
     t = stats.t.ppf(0.975, d.size - 1)
     assert e.ci_high == pytest.approx(np.exp(d.mean() + t * d.std(ddof=1) / np.sqrt(d.size) + np.log(1.5) / 2))
     assert e.ci_high < 1  # the static marker's threshold is certainly below the rotating one's
-    # censoring on the other side (a above the grid) stays undecided
+    # the mirror (a above the grid, b inside it): a lower bound, at the grid's top over b's breaking SIRs
     hi = study.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b), SIRS)
-    assert hi.extrapolated
+    assert not hi.extrapolated and hi.ci_high == np.inf
+    d = ls[-1] - tau_b
+    assert hi.ci_low == pytest.approx(np.exp(d.mean() - t * d.std(ddof=1) / np.sqrt(d.size) - np.log(1.5) / 2))
+    assert hi.ci_low > 1 and Ordering("decoy", "stationary", ">", measure="ratio").decide(hi) == "reproduced"
+    # censored on the same side in both curves: undecided
+    both = study.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b * 4), SIRS)
+    assert both.extrapolated
 
 
 def test_extend_grid_with_a_trigger_runs_only_when_the_trigger_curves_are_censored():

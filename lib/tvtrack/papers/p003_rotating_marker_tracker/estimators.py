@@ -145,7 +145,9 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
     bound: when the runs of ``a`` broke outside the grid only below it and those of ``b`` only above it, each
     censored run's log threshold is at most (``a``) or at least (``b``) the grid's edge, so the ratio is bounded
     above: ``[0, exp(upper t bound of mean(ub_a - lb_b) + h)]`` (value: the bound's point), like the zero-events
-    bound of a share.
+    bound of a share; mirrored, when ``a`` broke outside only above the grid and ``b`` only below it, the ratio is
+    bounded below: ``[exp(lower t bound of mean(lb_a - ub_b) - h), inf]`` (e.g. C003-12's imitator when a bright decoy
+    breaks lock at every grid SIR).
     """
     La, Lb = np.asarray(lost_a, bool), np.asarray(lost_b, bool)
     ta, ca = log_thresholds(La, sirs)
@@ -163,6 +165,18 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
             ta.size,
             f"upper bound: {int((~La[0]).sum())} run(s) of the first curve kept lock at the grid's bottom, "
             f"{int(Lb[-1].sum())} of the second lost it at its top; paired t bound + half a grid step",
+        )
+    if (ca.any() or cb.any()) and La[0].all() and not Lb[-1].any():  # the mirror case: a lower bound
+        lb = np.where(La[-1], ta + steps[-1] / 2, ta)  # a: lost at the top, threshold above it
+        ub = np.where(~Lb[0], tb + steps[0] / 2, tb)  # b: kept lock at the bottom, threshold below it
+        m = mean_ci(lb - ub)
+        return _estimate(
+            np.exp(m.value),
+            np.exp(m.ci_low - h),
+            np.inf,
+            ta.size,
+            f"lower bound: {int(La[-1].sum())} run(s) of the first curve lost lock at the grid's top, "
+            f"{int((~Lb[0]).sum())} of the second kept it at its bottom; paired t bound + half a grid step",
         )
     m = mean_ci(ta - tb)
     return _estimate(
