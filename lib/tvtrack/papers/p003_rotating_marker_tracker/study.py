@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import mean_ci, ratio_ci, rms_ci
+from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
@@ -265,27 +265,40 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     out["C003-3"] = {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])}
     fig.update(t2=tr.t, omega=tr.omega[0], omega_hat=h.estimate[0, :, 4], r=tr.r[0], r_hat=h.estimate[0, :, 2])
     # C003-4: background sweep (compensated) and the ablation without compensation, one batch on the same draws
+    out["C003-4"], fig["background_rms"] = _background_sweep(sc1, n, seed, k0, crit)
+    out["C003-9"] = _discriminator_forms(config, sc1, n, seed, k0, crit, quad_ms)
+    out["_figure"] = fig
+    return out
+
+
+def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> tuple[dict, list]:
+    """C003-4: the compensated background sweep (residual d/(kappa sigma_f) 50, 100; correlation 4, 8, 16 px) and the
+    ablation without compensation (d/sigma_f = 5), one batch on the same draws (stream 3).
+
+    Returns ``({"spread", "compensation"}, per-case RMS miss in px)``."""
     cases = ((50.0, 8.0), (100.0, 8.0), (50.0, 4.0), (50.0, 16.0))
     blocks = [dict(kappa=sc1.kappa, background_std=1.0 / (sc1.kappa * r), corr_length=c) for r, c in cases]
     blocks.append(dict(kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0))
-    h = run_scenario([_rng(3, seed) for _ in blocks], n * len(blocks), sc1, keep_full=False, n_common=n, blocks=blocks)[
-        2
-    ]
+    rngs = [_rng(3, seed) for _ in blocks]
+    h = run_scenario(rngs, n * len(blocks), sc1, keep_full=False, n_common=n, blocks=blocks)[2]
     ms, lo = _miss_stats(h, k0, crit)
     ms, lo = ms.reshape(len(blocks), n), lo.reshape(len(blocks), n)
     rms = [mean_ci(np.sqrt(m)) for m in ms[:-1]]
-    lost = {"compensated": lo[0], "none": lo[-1]}
-    hi, lo = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
+    big, small = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
     spread = _estimate(
-        hi.value / lo.value,
-        max(hi.ci_low / lo.ci_high, 0.0),
-        hi.ci_high / max(lo.ci_low, 1e-12),
-        hi.n,
+        big.value / small.value,
+        max(big.ci_low / small.ci_high, 0.0),
+        big.ci_high / max(small.ci_low, 1e-12),
+        big.n,
         "max/min of per-case RMS miss; interval from the per-case 95 % bounds (conservative)",
     )
-    out["C003-4"] = {"spread": spread, "compensation": _share_difference(lost["none"], lost["compensated"])}
-    fig["background_rms"] = [r.value for r in rms]
-    # C003-9: static slopes (deterministic) and edge vs quadrant in closed loop on the Fig. 1 draws (stream 1)
+    return {"spread": spread, "compensation": _share_difference(lo[-1], lo[0])}, [r.value for r in rms]
+
+
+def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int, crit, quad_ms: dict) -> dict:
+    """C003-9: the quadrant slopes over 2dD (deterministic, read over ``slope_range``) and the edge form's mean-square
+    miss over the quadrant form's in closed loop, for both spots, on the Fig. 1 draws (stream 1; ``quad_ms`` holds
+    the quadrant runs already made, by spot)."""
     part9 = {}
     for spot in ("square", "disc"):
         s = replace(sc1, spot=spot)
@@ -295,9 +308,7 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
             quad_ms[spot] = _miss_stats(run_scenario(_rng(1, seed), n, s, keep_full=False)[2], k0, crit)[0]
         edge = _miss_stats(run_scenario(_rng(1, seed), n, replace(s, form="edge"), keep_full=False)[2], k0, crit)[0]
         part9[f"edge_{spot}"] = ratio_ci(edge, quad_ms[spot])
-    out["C003-9"] = part9
-    out["_figure"] = fig
-    return out
+    return part9
 
 
 # ----------------------------------------------------------------------------------------------------------------
@@ -347,7 +358,6 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         each loss criterion) and ``"_curves"`` (the loss indicators).
     """
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
-    at = {s: i for i, s in enumerate(SIR_GRID)}
     base = scenario(config, sizes)
     D = base.diameter
     crit = criterion(config, base)
@@ -363,19 +373,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     curves["decoy"], _ = _curve(replace(base, decoy_offset=2 * D), sirs, n, seed, crit)
     usirs = np.asarray(UNCOMPENSATED_GRID)
     curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
-    k0 = int(round(sizes.transient_s * base.fps))
-    bw = (5.0, 20.0)
-    h = run_scenario(
-        [_rng(1, seed) for _ in bw],
-        2 * n,
-        base,
-        keep_full=False,
-        n_common=n,
-        gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n),
-    )[2]
-    ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
-    bw_ratio = ratio_ci(ms[1], ms[0])  # B_xy 20 Hz over 5 Hz, with its direction (kept in "_bandwidth_ratio")
-    r1, r5 = curves["rotating", 1], curves["rotating", 5]
+    bw_ratio = _bandwidth_ratio(base, n, seed, int(round(sizes.transient_s * base.fps)))
 
     def more(keys, sir):  # the C003-7/-12 curves at one more SIR, only the families asked for (same draws)
         got = {}
@@ -391,8 +389,47 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
     # one adaptive point a side, and only when the rotating marker's own runs break outside the grid: the static
     # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio)
     xsirs, xc = extend_grid({k: curves[k] for k in pair_keys}, sirs, more, max_points=1, trigger=pair_keys[:2])
+    out = _interference_claims(config, base, curves, capt, xc, xsirs, bw_ratio)
+    out["_bandwidth_ratio"] = bw_ratio
+    out["_mechanisms"] = {
+        f"{m} {k}": _mechanisms(curves[m, k], met[j])
+        for m, met in (("rotating", met_r), ("static", met_s))
+        for j, k in enumerate((1, 5))
+    }
+    out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
+    out["_map_bound"] = {f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    out["_grid"] = [
+        float(x) for x in xsirs
+    ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
+    out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
+    return out
+
+
+def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
+    """C003-11: mean-square marker miss (frames from ``k0``, no interferers) with B_xy = 20 Hz over 5 Hz, paired on
+    the Fig. 1 draws (stream 1), with its direction (the rule reads its fold distance, :func:`fold_distance`)."""
+    bw = (5.0, 20.0)
+    h = run_scenario(
+        [_rng(1, seed) for _ in bw],
+        2 * n,
+        base,
+        keep_full=False,
+        n_common=n,
+        gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n),
+    )[2]
+    ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
+    return ratio_ci(ms[1], ms[0])
+
+
+def _interference_claims(config: dict, base: Scenario, curves: dict, capt, xc: dict, xsirs, bw_ratio) -> dict:
+    """The claim parts of :func:`measure_interference` from its loss curves (``curves`` on :data:`SIR_GRID`, ``xc`` on
+    the extended grid ``xsirs``), the capture indicators ``capt`` (five interferers, per SIR and run) and C003-11's
+    bandwidth ratio."""
+    sirs, usirs, at = np.asarray(SIR_GRID), np.asarray(UNCOMPENSATED_GRID), {s: i for i, s in enumerate(SIR_GRID)}
+    r1, r5 = curves["rotating", 1], curves["rotating", 5]
     comp_ratio = _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa)
-    out = {
+    return {
         "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
         "C003-6": {
             "finite": loss_share(r1[at[0.5]]),
@@ -429,20 +466,6 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
             "imitator": threshold_ratio(xc["decoy"], xc["rotating", 1], xsirs),
         },
     }
-    out["_bandwidth_ratio"] = bw_ratio
-    out["_mechanisms"] = {
-        f"{m} {k}": _mechanisms(curves[m, k], met[j])
-        for m, met in (("rotating", met_r), ("static", met_s))
-        for j, k in enumerate((1, 5))
-    }
-    out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
-    # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
-    out["_map_bound"] = {f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
-    out["_grid"] = [
-        float(x) for x in xsirs
-    ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
-    out["_curves"] = {("/".join(map(str, k)) if isinstance(k, tuple) else k): v for k, v in curves.items()}
-    return out
 
 
 def _mechanisms(lost, met) -> dict:
