@@ -506,16 +506,7 @@ def build_scene(
     """
     n = truth.xr.shape[0]
     rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
-    blocks = [{}] * len(rngs) if blocks is None else list(blocks)
-    if len(blocks) != len(rngs) or any(
-        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
-    ):
-        raise ValueError(
-            "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
-            "corr_length, n_interferers"
-        )
-    if compensation not in COMPENSATIONS:
-        raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")
+    blocks = _check_blocks(blocks, len(rngs), compensation)
     q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
@@ -528,26 +519,12 @@ def build_scene(
                 n_block,
             )
         )
-        med = compensation == "median" and b.get("kappa", kappa) < 1
+        static = dict(kappa=kappa, background_std=background_std, corr_length=corr_length)
+        res, med = _block_residual(
+            g, {**static, **b}, truth, first, n_common, compensation, median_frames, image_shape, spot, diameter,
+            brightness, noise_std,
+        )  # fmt: skip
         by_median.append(np.full(n_block, med))
-        if med:
-            part = MarkerTruth(
-                *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
-            )
-            res = median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std)
-        else:
-            res = RotatingMarkerScene.static_residual(
-                g,
-                n_common,
-                image_shape,
-                kappa=b.get("kappa", kappa),
-                background_std=b.get("background_std", background_std),
-                corr_length=b.get("corr_length", corr_length),
-                interferers=np.zeros((n_common, 0, 2)),
-                interferer_brightness=np.zeros(n_common),
-                spot=spot,
-                diameter=diameter,
-            )
         residual.append(_tile(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
@@ -577,6 +554,48 @@ def build_scene(
         exposure_steps,
         decoy_phase,
     )
+
+
+def _check_blocks(blocks, n_generators: int, compensation: str) -> list:
+    """The per-generator scene settings of :func:`build_scene` (one dict per generator), checked."""
+    blocks = [{}] * n_generators if blocks is None else list(blocks)
+    if len(blocks) != n_generators or any(
+        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
+    ):
+        raise ValueError(
+            "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
+            "corr_length, n_interferers"
+        )
+    if compensation not in COMPENSATIONS:
+        raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")
+    return blocks
+
+
+def _block_residual(
+    g, b: dict, truth, first: int, n_common: int, compensation: str, median_frames: int, image_shape, spot: str,
+    diameter: float, brightness: float, noise_std: float,
+):  # fmt: skip
+    """One generator block's static residual, shape (n_common, rows, cols), and whether a temporal median made it
+    (stationary interferers then cancel): the median of the first ``median_frames`` frames when ``compensation`` is
+    ``"median"`` and the block compensates (``kappa < 1``), else ``kappa`` times the background (``b``'s settings)."""
+    if compensation == "median" and b["kappa"] < 1:
+        part = MarkerTruth(
+            *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
+        )
+        return median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std), True
+    res = RotatingMarkerScene.static_residual(
+        g,
+        n_common,
+        image_shape,
+        kappa=b["kappa"],
+        background_std=b["background_std"],
+        corr_length=b["corr_length"],
+        interferers=np.zeros((n_common, 0, 2)),
+        interferer_brightness=np.zeros(n_common),
+        spot=spot,
+        diameter=diameter,
+    )
+    return res, False
 
 
 COMPENSATIONS = ("kappa", "median")

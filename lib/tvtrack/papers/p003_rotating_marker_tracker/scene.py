@@ -308,23 +308,53 @@ def run_scenario(
         bases[0].t,
     )
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
-    decoys = None
-    if sc.decoy_offset > 0:
-        ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
-        dphi = (
-            np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
-            if sc.decoy_phase is None
-            else np.full((n, 1), float(sc.decoy_phase))
-        )
-        decoys = np.stack(
-            [
-                truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
-                truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi),
-            ],
-            axis=-1,
-        )
+    decoys, dphi = _decoy_paths(streams, truth, sc, n, n_common, n_block)
+    scene = _scene_of(streams, truth, sc, sir, decoys, dphi, n_common, blocks)
+    trk = _tracker_of(sc, truth, tracker, gains, ekf_meas_var)
+    noise_rng = (
+        streams[0][3] if n_common == n else BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
+    )
+    hist = run_closed_loop(
+        scene,
+        trk,
+        noise_rng,
+        gate_half=sc.gate_half,
+        form=sc.form,
+        edge_a=sc.diameter / 2,
+        noise=noise if sc.form == "quadrant" else "pixel",
+        keep_full=keep_full,
+        crop_callback=crop_callback,
+    )
+    return truth, scene, hist
+
+
+def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: int, n_block: int):
+    """The law-following decoy's image positions, shape (n, frames, 2), and its phase offsets, shape (n, 1): it
+    rotates like the marker about a centre ``sc.decoy_offset`` px from the object's, at a random angle and (unless
+    ``sc.decoy_phase``) a random phase, both drawn from each generator's decoy stream. ``(None, None)`` without one."""
+    if sc.decoy_offset <= 0:
+        return None, None
+    ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+    dphi = (
+        np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+        if sc.decoy_phase is None
+        else np.full((n, 1), float(sc.decoy_phase))
+    )
+    decoys = np.stack(
+        [
+            truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
+            truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi),
+        ],
+        axis=-1,
+    )
+    return decoys, dphi
+
+
+def _scene_of(streams, truth: MarkerTruth, sc: Scenario, sir, decoys, dphi, n_common: int, blocks):
+    """The compensated scene of a scenario (:func:`build_scene` with the scenario's settings; the decoy at
+    ``sc.decoy_gain d / SIR``)."""
     c = sc.image_size / 2
-    scene = build_scene(
+    return build_scene(
         [st[2] for st in streams],
         truth,
         image_shape=(sc.image_size, sc.image_size),
@@ -350,6 +380,12 @@ def run_scenario(
         compensation=sc.compensation,
         median_frames=int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz)),
     )
+
+
+def _tracker_of(sc: Scenario, truth: MarkerTruth, tracker: str, gains, ekf_meas_var: float):
+    """The tracker of a scenario, started off the truth by the scenario's initial errors: the fixed-bandwidth loops
+    (``gains`` or the scenario's) or the discrete EKF of eqs. (16)-(17)."""
+    n = truth.xr.shape[0]
     x0 = np.stack(
         [
             truth.xr[:, 0] + sc.init_offset[0],
@@ -362,28 +398,12 @@ def run_scenario(
     )
     slope = sc.slope()
     if tracker == "loops":
-        trk = RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope, sc.variant, sc.rotating)
-    elif tracker == "ekf":
+        return RotatingGateTracker(x0, sc.gains() if gains is None else gains, slope, sc.variant, sc.rotating)
+    if tracker == "ekf":
         q = ekf_noise_from_bandwidths(ekf_meas_var, 1.0 / sc.fps, sc.radius, sc.b_xy, sc.b_r, sc.b_omega)
         P0 = np.diag([9.0, 9.0, 4.0, 0.04, 1.0])
-        trk = EKFTracker(x0, P0, q, ekf_meas_var, slope)
-    else:
-        raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
-    noise_rng = (
-        streams[0][3] if n_common == n else BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
-    )
-    hist = run_closed_loop(
-        scene,
-        trk,
-        noise_rng,
-        gate_half=sc.gate_half,
-        form=sc.form,
-        edge_a=sc.diameter / 2,
-        noise=noise if sc.form == "quadrant" else "pixel",
-        keep_full=keep_full,
-        crop_callback=crop_callback,
-    )
-    return truth, scene, hist
+        return EKFTracker(x0, P0, q, ekf_meas_var, slope)
+    raise ValueError(f"parameter 'tracker' = {tracker!r}; it must be 'loops' or 'ekf'")
 
 
 def state_errors(truth: MarkerTruth, history) -> np.ndarray:
