@@ -130,7 +130,7 @@ class Sizes:
 def screen_sizes(sizes: Sizes) -> Sizes:
     """The joint design's cheaper screen (:func:`tvtrack.explore.explore`'s ``screen``): half the runs (at least the
     5 at which the intervals' coverage is measured) and half the run lengths, the transient kept shorter than the
-    Fig. 1 run. Measured at paper size: 0.40 of the interference and 0.62 of the tracking cost per joint configuration.
+    Fig. 1 run. Measured at paper size: 0.50 of the interference and 0.62 of the tracking cost per joint configuration.
     """
     fig1 = max(sizes.fig1_s / 2, sizes.transient_s + 1.0)
     return replace(
