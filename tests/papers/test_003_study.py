@@ -510,3 +510,19 @@ def test_exposure_study_runs_both_exposures_on_the_same_draws():
     direct = study.measure_tracking({"fps": 50.0, "exposure": "integrated"}, 1, sz)["C003-1"]["x_r"]
     assert res["integrated"]["x_r_rms_px"].value == pytest.approx(direct.value, rel=1e-12)
     assert res["integrated"]["x_r_rms_px"].value != pytest.approx(res["instant"]["x_r_rms_px"].value, rel=1e-6)
+
+
+def test_paper_profile_sizes_the_loss_parts_to_certify_the_rules_limit_and_runs_32_joint_configurations():
+    """Zero losses must be able to certify P(loss) <= 0.1 (29 runs, zero-events bound) under the sizing cap, in both
+    studies, and the joint design must hold at least 32 configurations per notebook (16 per study)."""
+    from pathlib import Path
+
+    import papermill
+
+    nb = Path(__file__).resolve().parents[2] / "notebooks" / "003_rotating_marker_tracker.ipynb"
+    p = {k: v["default"] for k, v in papermill.inspect_notebook(str(nb)).items()}
+    cap = int(p["max_replicates"])
+    assert zero_events_bound(29) < 0.1 < zero_events_bound(28)
+    for runs in ("loss_trials", "n_trials"):
+        assert zero_events_bound(cap * int(p[runs])) < 0.1, runs
+    assert 2 * int(p["joint"]) >= 32
