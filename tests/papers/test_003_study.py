@@ -526,3 +526,12 @@ def test_paper_profile_sizes_the_loss_parts_to_certify_the_rules_limit_and_runs_
     for runs in ("loss_trials", "n_trials"):
         assert zero_events_bound(cap * int(p[runs])) < 0.1, runs
     assert 2 * int(p["joint"]) >= 32
+
+
+def test_screen_sizes_halve_the_runs_but_keep_the_measured_coverage_and_a_steady_state():
+    full = study.Sizes(trials=6, fig1_s=5.0, fig2_s=8.0, transient_s=2.0, horizon_s=5.0)
+    s = study.screen_sizes(full)
+    assert s.trials == 5 and s.horizon_s == 2.5 and s.fig1_s == 3.0 and s.fig2_s == 4.0
+    assert s.fig1_s > s.transient_s and s.rotation_hz == full.rotation_hz
+    big = study.screen_sizes(replace(full, trials=20))
+    assert big.trials == 10
