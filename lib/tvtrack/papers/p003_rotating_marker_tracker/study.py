@@ -58,6 +58,8 @@ __all__ = [
     "UNCOMPENSATED_GRID",
     "BXY_GRID",
     "LINEAR_BAND",
+    "RIPPLE_TREND",
+    "BANDWIDTH_PAIR",
     "Sizes",
     "scenario",
     "screen_sizes",
@@ -78,6 +80,8 @@ SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR
 UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)  # SIR_0 without compensation (kappa = 1)
 LINEAR_BAND = (0.9, 1.1)  # C003-9: quadrant slope / 2dD counted "linear" (the rule and the s-curve caption)
 BXY_GRID = (2.0, 5.0, 10.0, 20.0)  # coordinate-loop bandwidths of the C003-2 mechanism, Hz
+RIPPLE_TREND = (10.0, 2.0)  # C003-2: the locked ripple at the paper's B_xy over the narrowest of BXY_GRID, Hz
+BANDWIDTH_PAIR = (5.0, 20.0)  # C003-11: the coordinate-loop bandwidths whose mean-square misses are compared, Hz
 RADIUS_OFFSETS = {"r0": 0.0, "r0 - D/2": -0.5, "r0 + D/2": 0.5}  # interferer radius, offsets in units of D
 # rotation-rate laws (depth, Hz): "mean rotation frequency 8 rev/s" (l. 185) says omega varies; its law is unstated
 ROTATION_LAWS = {
@@ -246,7 +250,7 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
         "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)],
     }
     # the locked ripple's own trend with the loop width, paired on the same draws: B_xy 10 Hz over 2 Hz
-    out["_ripple_trend"] = ratio_ci(locked[j], locked[BXY_GRID.index(2.0)])
+    out["_ripple_trend"] = ratio_ci(locked[BXY_GRID.index(RIPPLE_TREND[0])], locked[BXY_GRID.index(RIPPLE_TREND[1])])
     quad_ms = {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)}
     fig.update(
         t=tr.t,
@@ -407,9 +411,10 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
 
 
 def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
-    """C003-11: mean-square marker miss (frames from ``k0``, no interferers) with B_xy = 20 Hz over 5 Hz, paired on
-    the Fig. 1 draws (stream 1), with its direction (the rule reads its fold distance, :func:`fold_distance`)."""
-    bw = (5.0, 20.0)
+    """C003-11: mean-square marker miss (frames from ``k0``, no interferers) with the wider loop of
+    :data:`BANDWIDTH_PAIR` over the narrower, paired on the Fig. 1 draws (stream 1), with its direction (the rule reads
+    its fold distance, :func:`fold_distance`)."""
+    bw = BANDWIDTH_PAIR
     h = run_scenario(
         [_rng(1, seed) for _ in bw],
         2 * n,
