@@ -75,14 +75,23 @@ def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, 
     return field
 
 
+LAYOUTS = ("even", "independent")  # interferers on the circle: equally spaced, or each at its own random angle
+
+
 def place_interferers(
-    rng: np.random.Generator, n: int, count: int, center, radius: float, radial_jitter: float = 0.0
+    rng: np.random.Generator,
+    n: int,
+    count: int,
+    center,
+    radius: float,
+    radial_jitter: float = 0.0,
+    layout: str = "even",
 ) -> np.ndarray:
     """Stationary interferers on a circle (the area swept by the marker).
 
-    One interferer sits at a uniformly random angle; several are equally spaced with a common
-    random angular offset. ``radial_jitter`` > 0 draws each radius uniformly in
-    ``[radius - jitter, radius + jitter]``.
+    One interferer sits at a uniformly random angle; with ``layout="even"`` several are equally spaced with a
+    common random angular offset (a pattern symmetric about ``center``), with ``"independent"`` each at its own
+    uniformly random angle. ``radial_jitter`` > 0 draws each radius uniformly in ``[radius - jitter, radius + jitter]``.
 
     Returns
     -------
@@ -91,8 +100,12 @@ def place_interferers(
     """
     if count < 0:
         raise ValueError(f"parameter 'count' = {count}; it must be >= 0")
-    offset = rng.uniform(0, 2 * np.pi, size=(n, 1))
-    ang = offset + 2 * np.pi * np.arange(count) / max(count, 1)
+    if layout not in LAYOUTS:
+        raise ValueError(f"parameter 'layout' = {layout!r}; it must be one of {LAYOUTS}")
+    if layout == "independent":
+        ang = rng.uniform(0, 2 * np.pi, size=(n, count))
+    else:
+        ang = rng.uniform(0, 2 * np.pi, size=(n, 1)) + 2 * np.pi * np.arange(count) / max(count, 1)
     rad = radius + rng.uniform(-radial_jitter, radial_jitter, size=(n, count))
     c = np.broadcast_to(np.asarray(center, dtype=float), (n, 2))
     return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
@@ -473,6 +486,7 @@ def build_scene(
     interferer_center=None,
     radial_jitter: float = 0.0,
     interferer_diameter: float | None = None,
+    interferer_layout: str = "even",
     decoys=None,
     decoy_brightness=0.0,
     n_common: int | None = None,
@@ -484,8 +498,8 @@ def build_scene(
 ):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
-    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre), with the
-    marker's spot or one of ``interferer_diameter``.
+    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre) in
+    ``interferer_layout``, with the marker's spot or one of ``interferer_diameter``.
 
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
     repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
@@ -511,11 +525,10 @@ def build_scene(
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
+        count = b.get("n_interferers", n_interferers)
         q.append(
             _tile(
-                place_interferers(
-                    g, n_common, b.get("n_interferers", n_interferers), centre, interferer_radius, radial_jitter
-                ),
+                place_interferers(g, n_common, count, centre, interferer_radius, radial_jitter, interferer_layout),
                 n_block,
             )
         )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ...verdicts import as_estimate, is_undecided
+from .register import REGISTER
 
 __all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions"]
 
@@ -37,18 +38,23 @@ def relation(e, ref: float, above: str = "above", below: str = "below", same: st
     return same
 
 
+def _title(name: str) -> str:
+    return REGISTER[name].title if name in REGISTER else name
+
+
 def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
     """Which parts of which claims change verdict when one of the named register entries alone changes (the
-    one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records."""
+    one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records; each
+    entry named by its title and each value by its phrase (:class:`tvtrack.register.Entry`), never by code names."""
     explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
     if not explored:
-        return f"{', '.join(entries)} not explored in this run"
+        return f"{'; '.join(_title(e) for e in entries)}: not explored in this run"
     hits = []
     for cid, rec in records.items():
         ref = rec["replicates"][0]["parts"] if rec.get("replicates") else {}
         for name in rec["parts"]:
             flips = [
-                f"{c['parts'][name]} when {k} = {v}"
+                f"{c['parts'][name]} with {REGISTER.describe({k: v})}"
                 for c in rec["conditions"]
                 if c["kind"] == "single"
                 for k, v in c["changed"].items()
@@ -56,9 +62,10 @@ def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
             ]
             if flips:
                 hits.append(f"{cid} ({name}): {'; '.join(flips)}")
+    names = "; ".join(_title(e) for e in sorted(explored))
     if not hits:
-        return f"no part of these claims changed verdict under {', '.join(sorted(explored))} alone"
-    return f"under {', '.join(sorted(explored))} alone the verdict changes for " + " | ".join(hits)
+        return f"no part of these claims changed verdict when one of these alone changed: {names}"
+    return f"changing one of these alone ({names}) changes the verdict for " + " | ".join(hits)
 
 
 def threshold_conditions(ex, key: str, paper: float) -> str:
@@ -74,11 +81,13 @@ def threshold_conditions(ex, key: str, paper: float) -> str:
         e = r.outputs["_map"][key]
         word = relation(r.outputs.get("_map_bound", r.outputs["_map"])[key], paper)
         if word != "below":
-            cond = ", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items())
+            cond = REGISTER.describe(r.changed(ex.default))
             hits.append(f"{cond} ({show(e)}, {word} {paper:g})")
+    marker, count = key.split()
+    what = f"the {marker} marker's threshold with {count} interferer{'s' if count != '1' else ''}"
     if not hits:
-        return f"under no condition tried is the {key} threshold other than below the paper's {paper:g}"
-    return f"the {key} threshold is not below the paper's {paper:g} under " + "; ".join(hits)
+        return f"under no condition tried is {what} other than below the paper's {paper:g}"
+    return f"{what} is not below the paper's {paper:g} under: " + " | ".join(hits)
 
 
 def compare(a, b) -> str:

@@ -241,6 +241,23 @@ REGISTER = Register(
             },
         ),
         Entry(
+            "interferer_layout",
+            "reading",
+            "even",
+            ("even", "independent"),
+            "a reading of l. 198's 'the area where the five powerful stationary interferers are placed', which the marker "
+            "sweeps: the card's five equally spaced on the circle (a pattern symmetric about the object's start, where "
+            "the static comparison marker sits, so their pulls on its quadrant discriminator cancel), or each at its "
+            "own random angle (the area holds them, nothing says evenly). Adversarial (session 4 review): measured at "
+            "4-5 runs per SIR, 2.5 s, it raises both markers' five-interferer thresholds, the static marker's more",
+            origin="adversarial",
+            title="how several interferers are spread around the marker's circle",
+            phrases={
+                "even": "equally spaced around the marker's circle (the card)",
+                "independent": "each at its own random angle on the marker's circle",
+            },
+        ),
+        Entry(
             "interferer_size",
             "regime",
             "D",
@@ -357,7 +374,14 @@ REGISTER = Register(
                 "emitted": "the decoy emitting what a stationary interferer emits (10 times brighter at the tracker)",
             },
         ),
-    ]
+    ],
+    pinned=[
+        # adversarial review, session 4 (docs/adversarial/session4-003-review.md): five interferers each at its own
+        # angle and twice the marker's spot: 10 of 10 runs lost lock at SIR 3 (C003-5 no_loss, C003-7 loss_free
+        # decisively not reproduced), where the layout alone lost 0 of 20 and the larger spot alone 2 of 10
+        # (4-5 runs per SIR, 2.5 s runs, seeds 11-14)
+        {"interferer_layout": "independent", "interferer_size": "2D"},
+    ],
 )
 
 TRACKING = (
@@ -392,6 +416,7 @@ INTERFERENCE = (
     "residual_background",
     "compensation",
     "interferer_radius",
+    "interferer_layout",
     "interferer_size",
     "placement",
     "loss_window_s",

@@ -135,6 +135,7 @@ class Scenario:
     interferer_diameter: float | None = None
     interferer_radius_offset: float = 0.0
     interferer_centre: str = "object"
+    interferer_layout: str = "even"
     decoy_offset: float = 0.0
     decoy_phase: float | None = None
     decoy_gain: float = 1.0
@@ -370,6 +371,7 @@ def _scene_of(streams, truth: MarkerTruth, sc: Scenario, sir, decoys, dphi, n_co
         interferer_radius=sc.radius + sc.interferer_radius_offset,
         interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
         radial_jitter=sc.interferer_jitter,
+        interferer_layout=sc.interferer_layout,
         interferer_diameter=sc.interferer_diameter,
         decoys=decoys,
         decoy_brightness=sc.decoy_gain * sc.brightness / sir,

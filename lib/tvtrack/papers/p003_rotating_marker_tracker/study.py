@@ -150,7 +150,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     """The :class:`Scenario` of a register configuration (entries absent from ``config`` keep their defaults).
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
-    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``placement``, ``horizon``, ``edge_norm``,
+    ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``interferer_layout``, ``placement``, ``horizon``, ``edge_norm``,
     ``decoy_brightness``.
     """
     c = config
@@ -181,6 +181,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
         interferer_radius_offset=RADIUS_OFFSETS[radius] * base.diameter if radius in RADIUS_OFFSETS else 0.0,
         interferer_jitter=base.diameter / 2 if radius == "jitter D/2" else 0.0,
         interferer_centre=c.get("placement", "object"),
+        interferer_layout=c.get("interferer_layout", "even"),
         edge_norm=c.get("edge_norm", "slope"),
         interferer_diameter={"D": None, "2D": 2 * base.diameter}[c.get("interferer_size", "D")],
         decoy_gain={"residual": 1.0, "emitted": 1.0 / kappa}[c.get("decoy_brightness", DECOY_BRIGHTNESS[0])],
