@@ -13,6 +13,7 @@ from scipy import stats
 from tvtrack.papers.p003_rotating_marker_tracker import imaging, prose, study
 from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_discriminator
 from tvtrack.papers.p003_rotating_marker_tracker.imaging import render_spot
+from tvtrack.papers.p003_rotating_marker_tracker.lock import first_loss
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER
 from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, run_scenario
 
@@ -128,3 +129,29 @@ def test_independent_layout_raises_both_markers_five_interferer_thresholds_on_th
         assert ind[key].value > 1.3 * even[key].value, key
     for key in ("rotating 1", "static 1"):
         assert ind[key].value == pytest.approx(even[key].value), key
+
+
+def _lost(cfg: dict, seed: int = 21, n: int = 3, duration_s: float = 3.0) -> np.ndarray:
+    sc = study.scenario(cfg, study.Sizes(), duration_s=duration_s)
+    h = run_scenario(np.random.default_rng(seed), n, sc, keep_full=False)[2]
+    return first_loss(h.miss, study.criterion(cfg, sc), h.inside) >= 0
+
+
+def test_pinned_fast_object_loses_lock_where_each_half_alone_does_not():
+    """The pinned joint condition (twice the card's motion with the 1.5 Hz sinusoid): the object's peak y speed
+    2 pi f A = 377 px/s exceeds K_xy D/2 (the coordinate loop's slew inside the quadrant discriminator's linear
+    range, 251 px/s at 10 Hz), while each half alone stays below it (126 and 188 px/s): every run loses lock with the
+    joint, none with either half (review: 10 of 10 and 0 of 20, 5 s runs; 3 runs of 3 s here)."""
+    joint = {"motion_scale": 2.0, "sinusoid_hz": 1.5}
+    assert joint in REGISTER.pinned
+    sc = Scenario()
+    limit = sc.gains().k_xy * sc.diameter / 2
+    assert limit == pytest.approx(2 * np.pi * 10 * 4, rel=0.01)
+    speed = {
+        k: 2 * np.pi * c.get("sinusoid_hz", 0.5) * 20 * c.get("motion_scale", 1.0)
+        for k, c in (("scale", {"motion_scale": 2.0}), ("freq", {"sinusoid_hz": 1.5}), ("joint", joint))
+    }
+    assert speed["scale"] < limit and speed["freq"] < limit < speed["joint"]
+    assert _lost(joint).all()
+    assert not _lost({"motion_scale": 2.0}).any()
+    assert not _lost({"sinusoid_hz": 1.5}).any()

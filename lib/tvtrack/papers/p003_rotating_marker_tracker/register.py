@@ -376,7 +376,15 @@ REGISTER = Register(
                 "emitted": "the decoy emitting what a stationary interferer emits (10 times brighter at the tracker)",
             },
         ),
-    ]
+    ],
+    pinned=[
+        # adversarial review, session 4 (docs/adversarial/session4-003-review.md): twice the card's motion with the
+        # 1.5 Hz sinusoid, each inside the tracker alone (y_r RMS 1.5-1.6 and 2.5 px, 0 of 10 lost), together lost
+        # lock in 10 of 10 Fig. 1 runs (y_r RMS 35 px): the object's peak speed (377 px/s) exceeds what the 10 Hz
+        # coordinate loop can follow inside the quadrant discriminator's linear range, K_xy D/2 = 251 px/s
+        # (C003-1 decisively not reproduced; 5 runs, 5 s, seeds 21-22)
+        {"motion_scale": 2.0, "sinusoid_hz": 1.5},
+    ],
 )
 
 TRACKING = (
