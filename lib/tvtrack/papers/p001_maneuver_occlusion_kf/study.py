@@ -27,6 +27,7 @@ from ...filters.imm import cv_ca_models, imm_run
 from ...filters.polynomial import predict_ahead
 from ...filters.vdf import vd_filter_run
 from ...montecarlo import Estimate, mean_ci, paired_difference, ratio_ci
+from .false_alarm import closed_form_rate, statistic_impulse_response, with_check
 from .maneuver_detector import (
     detection_time_summary,
     false_alarm_rates,
@@ -356,7 +357,11 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     # C001-3: the paper's independence threshold, sigma read as the filter-output or the raw-increment RMS
     reading = "independent" if config["paper_sigma"] == "filter-output velocity" else "raw increments"
     c_paper = detector_threshold(reading, np.ones(T0, bool), kb2, n, alpha, sigma)
-    c001_3 = _per_alpha(false_alarm_rates(S0, c_paper, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"], alpha)
+    mc3 = false_alarm_rates(S0, c_paper, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"]
+    cf3 = closed_form_rate(
+        statistic_impulse_response(G0, n), c_paper, armed0, config["noise"], sigma, rng=rng, runs=2000, mc=mc3
+    )
+    c001_3 = with_check(_per_alpha(cf3, alpha), _per_alpha(mc3, alpha), "alpha")
     return {"C001-1": c001_1, "C001-2": c001_2, "C001-3": c001_3}
 
 
