@@ -24,7 +24,7 @@ from ...filters.alphabeta import scheduled_filter
 from ...montecarlo import Estimate, mean_ci
 from .maneuver_detector import window_statistic
 
-__all__ = ["statistic_impulse_response", "closed_form_rate", "CLOSED_FORM_MODELS"]
+__all__ = ["statistic_impulse_response", "closed_form_rate", "closed_form_check", "CLOSED_FORM_MODELS"]
 
 #: Error models whose per-test rate has a closed form (exact), conditional form or closed-form bounds.
 CLOSED_FORM_MODELS = {
@@ -53,8 +53,9 @@ def _rates(c, sd) -> np.ndarray:
     return 2 * stats.norm.sf(np.asarray(c, float) / np.asarray(sd, float))
 
 
-def _exact(value: float, n: int, method: str) -> Estimate:
-    return Estimate(value, 0.0, value, value, n, 0.95, method)
+def _exact(value: float, n: int) -> Estimate:
+    """A closed-form number: its interval is the point (method ``"exact"``, which the verdicts read as such)."""
+    return Estimate(value, 0.0, value, value, n, 0.95, "exact")
 
 
 def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rng=None, runs: int = 2000, mc=None):
@@ -75,7 +76,7 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
     Returns
     -------
     Estimate
-        Exact (zero-width interval) for the Gaussian models; conditional Monte Carlo for Student t; for quantised
+        Exact (method ``"exact"``, zero-width interval) for the Gaussian models and where the bounds coincide; conditional Monte Carlo for Student t; for quantised
         errors the Monte Carlo interval intersected with the closed-form bounds.
     """
     armed = np.asarray(armed, bool)
@@ -84,11 +85,11 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
     s2 = sigma_eps**2
     if model == "white Gaussian":
         r = _rates(c, np.sqrt(s2 * np.sum(Ha**2, axis=0)))
-        return _exact(float(r.mean()), int(armed.sum()), "Gaussian closed form 2 Phi(-c/sigma_S), exact")
+        return _exact(float(r.mean()), int(armed.sum()))
     if model == "AR(1), rho = 0.5":
         lag = np.abs(np.subtract.outer(np.arange(Ha.shape[0]), np.arange(Ha.shape[0])))
         var = s2 * np.einsum("jt,jk,kt->t", Ha, 0.5**lag, Ha)
-        return _exact(float(_rates(c, np.sqrt(var)).mean()), int(armed.sum()), "Gaussian closed form (AR(1)), exact")
+        return _exact(float(_rates(c, np.sqrt(var)).mean()), int(armed.sum()))
     if model == "Student t, 3 dof":
         if rng is None:
             raise ValueError("the Student-t model needs rng (its chi-square scales are drawn)")
@@ -116,6 +117,8 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
         high = min(hi, mc.ci_high if np.isfinite(mc.ci_high) else hi)
         if low > high:  # the Monte Carlo interval misses the certain bounds (a 5 % event): keep the bounds
             low, high = lo, hi
+        if high - low <= 1e-12 * max(abs(high), 1e-300):  # the bounds pin the rate: a closed-form number
+            return _exact(0.5 * (lo + hi), int(armed.sum()))
         value = float(np.clip(mc.value, low, high))
         return Estimate(
             value,
@@ -129,19 +132,10 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
     raise ValueError(f"measurement-error model {model!r}; it must be one of {tuple(CLOSED_FORM_MODELS)}")
 
 
-def with_check(closed: Estimate, mc: Estimate, unit: str = "") -> Estimate:
-    """``closed`` with the Monte Carlo estimate of the same rate named in its method (the check), and a flag when
-    the Monte Carlo interval misses the closed form's."""
-    agree = mc.ci_low <= closed.ci_high and closed.ci_low <= mc.ci_high
-    word = "agrees" if agree else "DISAGREES"
-    u = f" {unit}" if unit else ""
-    check = f"Monte Carlo check {mc.value:.4g}{u} [{mc.ci_low:.4g}, {mc.ci_high:.4g}] ({mc.method}) {word}"
-    return Estimate(
-        closed.value,
-        closed.stderr,
-        closed.ci_low,
-        closed.ci_high,
-        closed.n,
-        closed.confidence,
-        f"{closed.method}; {check}",
-    )
+def closed_form_check(closed: Estimate, mc: Estimate) -> dict:
+    """The closed form against the Monte Carlo of the same rate: ``{"closed", "monte_carlo", "z"}`` with ``z`` the
+    difference in combined standard errors (NaN where the Monte Carlo saw no event: its bound is then only
+    checked to contain the closed form, ``"contains"``)."""
+    se = float(np.hypot(mc.stderr if np.isfinite(mc.stderr) else 0.0, closed.stderr))
+    z = (closed.value - mc.value) / se if se > 0 else float("nan")
+    return {"closed": closed, "monte_carlo": mc, "z": z, "contains": bool(mc.ci_low <= closed.value <= mc.ci_high)}
