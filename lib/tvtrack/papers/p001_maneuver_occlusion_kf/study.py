@@ -26,7 +26,7 @@ from ...filters.imm import cv_ca_models, imm_run
 from ...filters.polynomial import predict_ahead
 from ...filters.vdf import vd_filter_run
 from ...montecarlo import Estimate, mean_ci, paired_difference
-from .curves import resolved
+from .curves import optimum_location, resolved  # noqa: F401 (optimum_location: the notebook reads it here)
 from .false_alarm import closed_form_check, closed_form_rate, statistic_impulse_response
 from .maneuver_detector import (
     detection_time_summary,
