@@ -39,6 +39,12 @@ def test_measurements_read_only_register_entries_or_settings_fixed_by_the_paper(
     )
 
 
+def test_the_sizes_a_notebook_passes_are_run_sizes_or_fixed_by_the_paper():
+    from tvtrack.papers.p001_maneuver_occlusion_kf.sizes import Sizes
+
+    assert set(Sizes.__annotations__) == set(RUN_SIZES) | set(FIXED_BY_PAPER)
+
+
 def test_notebook_rules_read_no_unregistered_parameter():
     """The notebook's rules: any parameter of the parameters cell they read must be a register entry or fixed by
     the paper (a delay limit, alpha, a span or a tolerance typed into a rule would escape the register)."""
