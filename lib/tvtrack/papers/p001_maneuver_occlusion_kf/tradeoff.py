@@ -128,7 +128,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     return {"C001-4": parts}
 
 
-@functools.lru_cache(maxsize=16)
+@functools.lru_cache(maxsize=64)
 def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, manoeuvre) -> np.ndarray:
     """Position errors (runs, 2, T) of a tuned comparator on the test runs of ``seed`` (the draws of
     :func:`measure_tradeoff`), cached: the scheme's own entries (restart, k_b3 ...) do not change them."""
