@@ -21,6 +21,8 @@ import functools
 import numpy as np
 
 from ...montecarlo import Estimate
+from .comparators import _tuning, comparator_positions, compensation_comparator
+from .scenario import COMPARATORS, COMPENSATION_COMPARATORS, _full, config_scenario, measurements, run_scheme, span_mask
 
 __all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff"]
 
@@ -85,24 +87,22 @@ def _columns(err, frames) -> np.ndarray:
 
 def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     """C001-4 in parts (module docstring): ``faster compensation`` and ``min RMS vs <comparator>`` for every
-    comparator of :data:`~.study.COMPARATORS`, each tuned for the register's span (for ``|bias| + RMS at 12 s``: for
+    comparator of :data:`~.scenario.COMPARATORS`, each tuned for the register's span (for ``|bias| + RMS at 12 s``: for
     the mean square at the last frame before the loss). Ratios > 1: the scheme's error is the smaller.
 
     Config entries read: ``rms_span``, ``rms_statistic``, ``compensation_end_s``, ``compensation_comparator``,
-    ``noise``, ``manoeuvre``, ``frame_rate_hz`` and the scheme's entries (:func:`~.study.run_scheme`).
+    ``noise``, ``manoeuvre``, ``frame_rate_hz`` and the scheme's entries (:func:`~.scenario.run_scheme`).
     """
-    from . import study
-
-    config = study._full(config, sizes)
-    sc = study.config_scenario(config)
+    config = _full(config, sizes)
+    sc = config_scenario(config)
     sigma, n = sizes["sigma_eps"], sizes["n_tradeoff_trials"]
-    z = study.measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
+    z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
     truth = sc.truth[None, :, :, 0]
     boot_rng = np.random.default_rng([seed, 4])
-    scheme = study.run_scheme(z, sc, config, sizes, covariance=False)
+    scheme = run_scheme(z, sc, config, sizes, covariance=False)
     err_s = scheme.x[..., 0] - truth
-    comp = config.get("compensation_comparator", study.COMPENSATION_COMPARATORS[0])
-    err_c = study.compensation_comparator(comp, z, sc, config, sizes, scheme.detection_frame) - truth
+    comp = config.get("compensation_comparator", COMPENSATION_COMPARATORS[0])
+    err_c = compensation_comparator(comp, z, sc, config, sizes, scheme.detection_frame) - truth
     f = sc.frames
     comp_frames = (f >= sc.onset) & (f < int(round(float(config["compensation_end_s"]) * sc.fps)))
     parts = {
@@ -115,10 +115,10 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
         span, kind = "last frame before the loss", "|bias| + SD"
     else:
         span, kind = config["rms_span"], {"random error (SD)": "random", "total mean square": "total"}[stat]
-    frames = study.span_mask(span, sc)
-    tuning = study._tuning(config, sizes)[span]
+    frames = span_mask(span, sc)
+    tuning = _tuning(config, sizes)[span]
     man = config.get("manoeuvre", "constant acceleration")
-    for name in study.COMPARATORS:
+    for name in COMPARATORS:
         err = _comparator_errors(
             name, tuning[name][0], seed, config["noise"], float(config["frame_rate_hz"]), n, sigma, man
         )
@@ -132,8 +132,6 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
 def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, manoeuvre) -> np.ndarray:
     """Position errors (runs, 2, T) of a tuned comparator on the test runs of ``seed`` (the draws of
     :func:`measure_tradeoff`), cached: the scheme's own entries (restart, k_b3 ...) do not change them."""
-    from . import study
-
-    sc = study.config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
-    z = study.measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
-    return study.comparator_positions(name, setting, z, sc, sigma_eps) - sc.truth[None, :, :, 0]
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
+    z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
+    return comparator_positions(name, setting, z, sc, sigma_eps) - sc.truth[None, :, :, 0]
