@@ -11,14 +11,13 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
-from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location, resolved
+from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, RUN_SIZES, build_register
-from tvtrack.verdicts import Monotone
 
 ROOT = Path(__file__).parents[2]
 PKG = ROOT / "lib" / "tvtrack" / "papers" / "p001_maneuver_occlusion_kf"
 REG = build_register()
-RULE_CLASSES = {"InBand", "WithinFactor", "Ordering", "Monotone", "AllOf"}
+RULE_CLASSES = {"InBand", "WithinFactor", "Ordering", "Monotone", "AllOf", "ByReading"}
 
 
 def _reads(pattern: str) -> set:
@@ -88,15 +87,19 @@ def test_fig4_optimum_sits_at_the_sign_crossing_of_the_dynamic_error():
 
 def test_curve_tolerance_makes_sub_tolerance_steps_flat():
     """A deterministic RMS curve falling from 9 to 4 elements with a 0.0065-element rise in its flat tail (the
-    rise issue 38 saw flip 'RMS decreasing'): flat at the default 0.01 el, a rise at 0.001 el."""
+    rise issue 38 saw flip 'RMS decreasing'): flat under the register's default tolerance 0.01 el, a rise at
+    0.001 el; the measurement is tagged with the configuration's tolerance and C001-8's rule picks its Monotone."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES
+
     curve = [9.0, 6.0, 4.2, 4.1356, 4.1421]
-    assert Monotone("RMS", "k_b3", "decreasing").judge(resolved(curve, 0.01)).verdict == "reproduced"
-    assert Monotone("RMS", "k_b3", "decreasing").judge(resolved(curve, 0.001)).verdict != "reproduced"
-    with pytest.raises(ValueError, match="tolerance"):
-        resolved(curve, 0.0)
+    rms_rule = {t: RULES["C001-8"].for_value(t).parts["RMS decreasing"] for t in (0.01, 0.001)}
+    assert rms_rule[0.01].tolerance == 0.01 and RULES["C001-8"].default.parts["RMS decreasing"].tolerance == 0.01
+    assert rms_rule[0.01].judge(curve).verdict == "reproduced"
+    assert rms_rule[0.001].judge(curve).verdict == "not reproduced"
     sz = dict(sigma_eps=1.0, defaults=REG.default(), kb3_grid=[50, 100, 200], loss_grid_s=[6.0, 8.0])
-    wide = study.measure_curves({"curve_tolerance": 0.1}, 0, sz)["C001-8"]["RMS decreasing"][0]
-    assert wide.ci_high - wide.ci_low == pytest.approx(0.1)
+    m = study.measure_curves({"curve_tolerance": 0.1}, 0, sz)["C001-8"]
+    assert m["reading"] == 0.1 and RULES["C001-8"].for_value(m["reading"]).parts["RMS decreasing"].tolerance == 0.1
+    assert RULES["C001-8"].decide(study.measure_curves({}, 0, sz)["C001-8"]) == "reproduced"
 
 
 def test_c001_9_at_the_papers_two_rates():

@@ -170,7 +170,7 @@ def test_curve_parts_on_a_constructed_curve():
     cur["sum"] = np.abs(cur["dyn"]) + cur["rms"]
     p = study.c8_parts(cur)
     assert p["interior minimum"] == pytest.approx(min(9.0, 5.0) - 4.0)
-    assert [e.value for e in p["dynamic grows beyond the optimum"]] == [2.0, 4.0]
+    assert p["dynamic grows beyond the optimum"] == [2.0, 4.0]
 
 
 def test_fig4_monte_carlo_checks_the_noise_free_curve():
@@ -213,18 +213,22 @@ def test_spherical_measurement_by_target_set():
 
 def test_explorer_runs_the_curves_group():
     from tvtrack.explore import explore
-    from tvtrack.verdicts import AllOf, Monotone
+    from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES as CLAIM_RULES
 
     ex = explore(
         functools.partial(study.measure_curves, sizes=SIZES),
         group_register(REG, "curves"),
-        {"C001-8": AllOf({"RMS decreasing": Monotone("RMS", "k_b3", "decreasing")})},
+        {c: CLAIM_RULES[c] for c in GROUPS["curves"]},
         seed=1,
-        joint=0,
-        depends={"C001-8": DEPENDS["C001-8"]},
+        joint=4,
+        depends=DEPENDS,
     )
     rec = ex.record("C001-8")
     assert len(ex.replicates()) == 3 and rec["conditions"]
+    assert rec["parts"]["RMS decreasing"]["verdict"] == "reproduced" and ex.table("C001-8")
+    # the tolerance reading is explored: every value of curve_tolerance was measured and judged by its own rule
+    tol = {c["changed"]["curve_tolerance"] for c in rec["conditions"] if set(c["changed"]) == {"curve_tolerance"}}
+    assert tol == {0.001, 0.1}
 
 
 def test_detector_benchmark_arms_every_detector_before_the_onset():
@@ -264,8 +268,8 @@ def test_a_manoeuvre_that_ends_continues_uniformly():
 
 def test_adversarial_regimes_reach_the_measurements():
     # the manoeuvre that ends makes C001-7's dynamic error rise again after the acceleration stops (restart A)
-    const = [e.value for e in study.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]]
-    short = [e.value for e in study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]]
+    const = study.measure_curves({}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
+    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
     assert np.all(np.diff(const) < 0) and short[1] > short[0]
     # a weaker second channel is detected later (pooled median); a 4 s horizon curves less than a 10 s one
     weak = study.measure_detection({"channel_y": "v -6, a -0.05"}, 1, SIZES)["C001-1"]["median"].value
@@ -337,6 +341,6 @@ def test_acceleration_unit_reading_scales_the_manoeuvre():
     )
     # C001-7: the dynamic error scales with the acceleration, the RMS does not
     sz = SIZES | {"loss_grid_s": [6.0, 8.0]}
-    a = study.measure_curves({}, 0, sz)["C001-7"]
-    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
+    a = study.measure_curves({}, 0, sz)["C001-7"]["measured"]
+    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]["measured"]
     np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)

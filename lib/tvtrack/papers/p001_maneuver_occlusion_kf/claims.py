@@ -6,7 +6,8 @@ notebook's, written once here).
 
 from __future__ import annotations
 
-from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, WithinFactor
+from ...verdicts import AllOf, ByReading, InBand, Monotone, NotCheckable, Ordering, WithinFactor
+from .register import ENTRIES
 from .study import COMPARATORS, PAPER_RATES
 
 __all__ = ["CLAIMS", "RULES"]
@@ -54,6 +55,35 @@ CLAIMS = {
     "C001-10": _claim("0.008° = 1 raster element and 0.02° = 10 elements/frame.", "1 element; 10 elements/frame"),
 }
 
+_TOL = next(e for e in ENTRIES if e.name == "curve_tolerance")
+CURVE_TOLERANCE, CURVE_TOLERANCES = _TOL.default, _TOL.values
+
+
+def _c7(t: float) -> AllOf:
+    """C001-7's rule at the curve tolerance ``t`` (elements)."""
+    return AllOf(
+        {
+            "decreasing": Monotone("|dynamic error| after a 10 s loss", "loss time", "decreasing", "el", t),
+            "dominates early": Ordering("|dynamic error|", "RMS error for the earliest loss", ">", "ratio"),
+        }
+    )
+
+
+def _c8(t: float) -> AllOf:
+    """C001-8's rule at the curve tolerance ``t`` (elements)."""
+    return AllOf(
+        {
+            "RMS decreasing": Monotone("RMS prediction error at reappearance", "k_b3", "decreasing", "el", t),
+            "interior minimum": Ordering(
+                "smallest |dynamic|+RMS at the ends of the grid", "the smallest inside it", ">", unit="el"
+            ),
+            "dynamic grows beyond the optimum": Monotone(
+                "|dynamic error| from the optimum on", "k_b3", "increasing", "el", t
+            ),
+        }
+    )
+
+
 RULES = {
     "C001-1": AllOf(
         {
@@ -99,29 +129,9 @@ RULES = {
         "none); checks: increases of kappa1 outside the switches, runs at the bound before the loss"
     ),
     "C001-6": NotCheckable("an identity of the zero-gain recursion for a polynomial truth of degree <= 2"),
-    # C001-7, -8: deterministic curves; each point carries ± curve_tolerance / 2 (register, curves.resolved), so a
-    # step counts only when it exceeds the register's tolerance
-    "C001-7": AllOf(
-        {
-            "decreasing": Monotone(
-                "|dynamic error| after a 10 s loss (points ± curve_tolerance / 2)", "loss time", "decreasing", "el"
-            ),
-            "dominates early": Ordering("|dynamic error|", "RMS error for the earliest loss", ">", "ratio"),
-        }
-    ),
-    "C001-8": AllOf(
-        {
-            "RMS decreasing": Monotone(
-                "RMS prediction error at reappearance (points ± curve_tolerance / 2)", "k_b3", "decreasing", "el"
-            ),
-            "interior minimum": Ordering(
-                "smallest |dynamic|+RMS at the ends of the grid", "the smallest inside it", ">", unit="el"
-            ),
-            "dynamic grows beyond the optimum": Monotone(
-                "|dynamic error| from the optimum on", "k_b3", "increasing", "el"
-            ),
-        }
-    ),
+    # C001-7, -8: deterministic curves judged with the register's curve_tolerance (a smaller step is flat)
+    "C001-7": ByReading("curve_tolerance", {t: _c7(t) for t in CURVE_TOLERANCES}, _c7(CURVE_TOLERANCE)),
+    "C001-8": ByReading("curve_tolerance", {t: _c8(t) for t in CURVE_TOLERANCES}, _c8(CURVE_TOLERANCE)),
     "C001-9": AllOf(
         {
             **{

@@ -1,6 +1,6 @@
 """The deterministic curves of C001-7 and C001-8 (Fisenko et al. 2008, Fig. 4 and the text before Fig. 1) as
-measured values: each point carries the register's ``curve_tolerance`` as its resolution, and Fig. 4's optimum is
-reported with what it rests on (where the signed dynamic error crosses zero).
+measured values, tagged with the register's ``curve_tolerance`` (the claims' Monotone rules count a smaller step as
+flat), and Fig. 4's optimum reported with what it rests on (where the signed dynamic error crosses zero).
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import numpy as np
 from scipy import stats
 
 from ...filters.polynomial import predict_ahead
-from ...montecarlo import Estimate
+from ...verdicts import ByReading
 from .track_modes import TrackModeConfig, run_track_modes
 from .scenario import (
     Scenario,
@@ -20,7 +20,6 @@ from .scenario import (
 )
 
 __all__ = [
-    "resolved",
     "optimum_location",
     "forced_output",
     "prediction_error",
@@ -35,22 +34,6 @@ __all__ = [
     "agreement_word",
     "unbiased_prediction_bound",
 ]
-
-
-def resolved(values, tolerance: float) -> list[Estimate]:
-    """Deterministic curve values (elements) as estimates whose interval is ``value ± tolerance / 2``.
-
-    A neighbouring step then counts as a change (its intervals separate) only when it exceeds ``tolerance``:
-    the curves are noise-free runs and covariance recursions, exact up to float rounding, and where the gains
-    never reach the bound before the loss they are flat by construction; a step below the tolerance is flat.
-    """
-    t = float(tolerance)
-    if not t > 0:
-        raise ValueError(f"curve tolerance = {tolerance!r}; it must be > 0 (elements)")
-    return [
-        Estimate(float(v), 0.0, float(v) - t / 2, float(v) + t / 2, 1, 0.95, f"deterministic; resolution ±{t / 2:g} el")
-        for v in np.asarray(values, float)
-    ]
 
 
 def optimum_location(cur: dict) -> dict:
@@ -153,35 +136,36 @@ def loss_sweep(config: dict, sizes: dict) -> dict:
     return {"loss_s": np.asarray(sizes["loss_grid_s"]), "dyn": dyn, "rms": rms}
 
 
-def c7_parts(sweep: dict, tolerance: float = 0.01) -> dict:
-    """C001-7's parts: |dynamic| decreasing with the loss time (each point ± ``tolerance``/2 elements,
-    :func:`.curves.resolved`); |dynamic| / RMS for the earliest loss."""
+def c7_parts(sweep: dict) -> dict:
+    """C001-7's parts: |dynamic| (elements) along the loss times; |dynamic| / RMS for the earliest loss."""
     return {
-        "decreasing": resolved(np.abs(sweep["dyn"]), tolerance),
+        "decreasing": [float(v) for v in np.abs(sweep["dyn"])],
         "dominates early": float(abs(sweep["dyn"][0]) / sweep["rms"][0]),
     }
 
 
-def c8_parts(cur: dict, tolerance: float = 0.01) -> dict:
-    """C001-8's parts: RMS decreasing in k_b3; an interior minimum of curve 3 (ends minus the inside minimum);
-    |dynamic| increasing from the optimum on (curve points ± ``tolerance``/2 elements, :func:`.curves.resolved`)."""
+def c8_parts(cur: dict) -> dict:
+    """C001-8's parts: the RMS (elements) along k_b3; an interior minimum of curve 3 (ends minus the inside
+    minimum); |dynamic| from the optimum on."""
     s = cur["sum"]
     ib = int(np.argmin(s))
     tail = [float(v) for v in np.abs(cur["dyn"])[ib:]]
     return {
-        "RMS decreasing": resolved(cur["rms"], tolerance),
+        "RMS decreasing": [float(v) for v in cur["rms"]],
         "interior minimum": float(min(s[0], s[-1]) - s[1:-1].min()),
-        "dynamic grows beyond the optimum": resolved(tail if len(tail) >= 2 else [tail[0], tail[0]], tolerance),
+        "dynamic grows beyond the optimum": tail if len(tail) >= 2 else [tail[0], tail[0]],
     }
 
 
 def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
-    """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw)."""
+    """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), each
+    tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone
+    rules count a step below it as flat, :mod:`.claims`)."""
     config = _full(config, sizes)
     tol = float(config["curve_tolerance"])
     return {
-        "C001-7": c7_parts(loss_sweep(config, sizes), tol),
-        "C001-8": c8_parts(fig4_curves(config, sizes), tol),
+        "C001-7": ByReading.tag(tol, c7_parts(loss_sweep(config, sizes))),
+        "C001-8": ByReading.tag(tol, c8_parts(fig4_curves(config, sizes))),
     }
 
 

@@ -74,7 +74,6 @@ from .comparators import (
     compensation_comparator,
 )
 from .curves import (
-    resolved,
     optimum_location,
     forced_output,
     prediction_error,
@@ -146,7 +145,6 @@ __all__ = [
     "compensation_ms",
     "raised_second_order",
     "compensation_comparator",
-    "resolved",
     "optimum_location",
     "forced_output",
     "prediction_error",
