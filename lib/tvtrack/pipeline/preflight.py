@@ -30,6 +30,7 @@ __all__ = [
     "refuse_output_dir",
     "OUTPUT_DIR_REASON",
     "name_given",
+    "refuse_unknown_keys",
 ]
 
 
@@ -79,6 +80,16 @@ def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
                 else f"; its parameters are {', '.join(sorted(known))}"
             )
             raise UsageError(f"{where}{notebook.stem} has no parameter {name!r}{hint}")
+
+
+def refuse_unknown_keys(table: dict, allowed: Iterable[str], where: str = "") -> None:
+    """Raise :class:`UsageError` for the first key of ``table`` not in ``allowed``, suggesting the closest."""
+    allowed = sorted(allowed)
+    for key in table:
+        if key not in allowed:
+            close = difflib.get_close_matches(key, allowed, n=2, cutoff=0.6)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}?" if close else f"allowed: {', '.join(allowed)}"
+            raise UsageError(f"{where}unknown key {key!r}; {hint}")
 
 
 _PREFLIGHT = r"""
