@@ -74,7 +74,7 @@ def test_spec_expansion_and_stable_ids():
 
 
 def test_bad_specs_are_refused(tmp_path):
-    with pytest.raises(ValueError, match="unknown keys"):
+    with pytest.raises(ValueError, match="unknown key .gird.; did you mean .grid."):
         load_spec(write_spec(tmp_path / "a.toml", "gird = 1\n"))
     with pytest.raises(ValueError, match="same length"):
         load_spec(write_spec(tmp_path / "b.toml", "[zip]\na = [1, 2]\nb = [1]\n"))
