@@ -147,6 +147,9 @@ def _cmd_edit(args) -> int:
     if not args.lab:
         print(f"open it in JupyterLab (Run All), or: {Path(sys.executable).parent / 'jupyter'} lab {shown}")
         return 0
+    from .kernels import install_clone_kernel
+
+    install_clone_kernel()  # the clone's own kernel, in this environment, which the copy names
     jupyter = shutil.which("jupyter", path=str(Path(sys.executable).parent)) or "jupyter"
     os.execv(jupyter, [jupyter, "lab", str(copy)])
 

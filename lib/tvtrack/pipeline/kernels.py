@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import io
+import logging
 import os
 import shutil
 import sys
@@ -63,9 +65,18 @@ class KernelSetup:
     def __enter__(self) -> "KernelSetup":
         self._dir = tempfile.mkdtemp(prefix="tvk-", dir=_ipc_parent())
         self._log = open(self.log_path, "ab")  # noqa: SIM115 - closed in __exit__
+        # papermill's own lines about a kernel ("Error occurred while starting new kernel client ...") go to
+        # the same log, not to the terminal (Python's last-resort handler prints unhandled warnings there)
+        self._handler = _LogHandler(self)
+        self._logger = logging.getLogger("papermill")
+        self._propagate = self._logger.propagate
+        self._logger.addHandler(self._handler)
+        self._logger.propagate = False
         return self
 
     def __exit__(self, *exc) -> None:
+        self._logger.removeHandler(self._handler)
+        self._logger.propagate = self._propagate
         if self._log is not None:
             self._log.close()
         if self._dir:
@@ -103,6 +114,18 @@ class KernelSetup:
         return RunKernelManager
 
 
+class _LogHandler(logging.Handler):
+    """Records of papermill's logger, as lines of the kernel log."""
+
+    def __init__(self, setup: KernelSetup):
+        super().__init__(logging.WARNING)
+        self.setup = setup
+
+    def emit(self, record: logging.LogRecord) -> None:
+        with contextlib.suppress(Exception):
+            self.setup.note(f"papermill: {record.getMessage()}")
+
+
 def clone_kernel_name(root: str | Path = REPO_ROOT) -> str:
     """``tvtrack-repro-<8 hex digits of the clone's resolved path>``: one name per clone."""
     digest = hashlib.sha256(str(Path(root).resolve()).encode()).hexdigest()[:8]
@@ -121,7 +144,7 @@ def install_clone_kernel(prefix: str | Path = sys.prefix, root: str | Path = REP
     from ipykernel.kernelspec import install
 
     root = Path(root).resolve()
-    with contextlib.redirect_stdout(sys.stderr):
+    with contextlib.redirect_stdout(io.StringIO()):  # ipykernel's own 'Installed kernelspec' line
         path = install(
             kernel_name=clone_kernel_name(root),
             display_name=f"Python (tvtrack-repro, {root.name} at {root.parent})",
