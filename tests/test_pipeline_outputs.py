@@ -132,3 +132,15 @@ def test_what_counts_as_a_failure_to_write():
     assert runner._is_write_error(err) and runner._is_write_error(OSError(errno.EROFS, "x"))
     assert runner._is_write_error(OSError(errno.ENOSPC, "x"))
     assert not runner._is_write_error(OSError(errno.ENOENT, "x"))
+
+
+def test_lock_files_nobody_holds_are_removed_held_ones_kept(tmp_path):
+    from tvtrack.pipeline.lock import remove_stale_locks
+
+    (tmp_path / ".dead.lock").write_text("99999999 host\n")  # its writer was killed: nobody holds it
+    holder = hold_lock(tmp_path / ".live.lock", tmp_path / "live")
+    try:
+        assert remove_stale_locks(tmp_path) == 1
+        assert [p.name for p in tmp_path.iterdir()] == [".live.lock"]
+    finally:
+        holder.communicate("")

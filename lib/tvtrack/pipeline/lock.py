@@ -20,7 +20,7 @@ from typing import Iterator
 
 from .preflight import UsageError
 
-__all__ = ["FolderBusy", "output_lock", "LOCK_NAME"]
+__all__ = ["FolderBusy", "output_lock", "remove_stale_locks", "LOCK_NAME"]
 
 LOCK_NAME = ".tvtrack.lock"
 
@@ -81,3 +81,23 @@ def output_lock(lock_file: Path, target: Path, what: str = "output folder") -> I
         with contextlib.suppress(OSError):
             lock_file.unlink()
         os.close(fd)
+
+
+def remove_stale_locks(folder: Path) -> int:
+    """Delete the lock files in ``folder`` that nobody holds (left by a writer killed with SIGKILL); returns
+    how many. A lock file is taken before it is removed, so a live writer's lock is never touched."""
+    n = 0
+    for path in Path(folder).glob(".*.lock"):
+        try:
+            fd = os.open(path, os.O_RDWR)
+        except OSError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            path.unlink()
+            n += 1
+        except OSError:
+            pass
+        finally:
+            os.close(fd)
+    return n

@@ -32,7 +32,7 @@ from typing import Any
 
 from .interrupt import child_pids, end_children, kernels_end_on_ctrl_c
 from .kernels import KernelSetup as _KernelSetup
-from .lock import output_lock
+from .lock import output_lock, remove_stale_locks
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
 from .preflight import UsageError, check_names
 
@@ -361,10 +361,12 @@ def _zombie(pid: int) -> bool:
 def remove_stale_temporaries(parent: Path) -> int:
     """Delete the ``.tmp-*`` folders under ``parent`` left by runs whose process is gone; returns how many.
 
-    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept."""
+    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept; lock files
+    nobody holds are removed too (:func:`.lock.remove_stale_locks`)."""
     n = 0
     if not Path(parent).is_dir():
         return 0
+    remove_stale_locks(Path(parent))
     for tmp in Path(parent).glob(".tmp-*"):
         if tmp.is_dir() and not _owner_alive(tmp):
             shutil.rmtree(tmp, ignore_errors=True)
