@@ -274,6 +274,9 @@ def test_view_refuses_a_corrupt_or_truncated_recording_before_serving(tmp_path):
     half = tmp_path / "half.rrd"
     half.write_bytes(good.read_bytes()[: good.stat().st_size // 2])
     _one_line_error(_view(half, *ports), "half.rrd", "not a readable Rerun recording")
+    for name, content in (("empty.rrd", b""), ("short.rrd", b"xxxx")):  # rerun rrd verify passes these
+        (tmp_path / name).write_bytes(content)
+        _one_line_error(_view(tmp_path / name, *ports), name, "not a readable Rerun recording", "RRF header")
 
 
 def test_view_checks_port_and_host_in_one_line_each(tmp_path):

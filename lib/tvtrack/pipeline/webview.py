@@ -21,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -110,8 +111,20 @@ def preflight(recording: Path, host: str, web_port: int, grpc_port: int) -> None
     try:
         verify_rrd(recording)
     except (ValueError, OSError, subprocess.SubprocessError) as exc:
-        detail = " ".join(str(exc).split(": ", 1)[-1].split())
-        raise UsageError(f"{recording} is not a readable Rerun recording: {detail[:240]}") from None
+        raise UsageError(f"{recording} is not a readable Rerun recording: {_verify_reason(str(exc))}") from None
+
+
+_ANSI = re.compile(r"\x1b\[[0-9;]*m")
+_LOG_LINE = re.compile(r"^\d{4}-\d\d-\d\dT")
+
+
+def _verify_reason(report: str) -> str:
+    """The line of ``rerun rrd verify``'s report that says what is wrong (colours and log lines dropped)."""
+    text = _ANSI.sub("", report).split("failed (exit", 1)[-1].split("): ", 1)[-1]
+    lines = [ln.strip() for ln in text.splitlines() if ln.strip() and not _LOG_LINE.match(ln.strip())]
+    lines = [ln for ln in lines if not ln.startswith("Error: Verification failed")] or lines or ["no details"]
+    reason = lines[0].rsplit(" -- skipping: ", 1)[-1]
+    return " ".join(reason.split())[:240]
 
 
 def _listening(host: str, port: int) -> bool:
