@@ -168,3 +168,26 @@ def test_ids_of_a_spec_are_stable_and_distinct_across_the_fixture(tmp_path):
     runs = expand(load_spec(spec(tmp_path, body)))
     assert len(runs) == 8 and len({r.run_id for r in runs}) == 8
     assert Path(FIXTURE_NOTEBOOK).is_file()
+
+
+def test_metric_names_written_through_an_f_string_match_any_value_of_their_fields(tmp_path):
+    from tvtrack.pipeline.summary import check_metric, notebook_metric_names
+
+    nb = tmp_path / "m.ipynb"
+    cells = [
+        {"cell_type": "code", "metadata": {"tags": ["parameters"]}, "source": "seed = 1\n", "outputs": []},
+        {"cell_type": "code", "metadata": {}, "source": 'results.metric(f"gain/d{d:g}/ratio", r)\n', "outputs": []},
+        {"cell_type": "code", "metadata": {}, "source": "results.metric('rms_px', e)\n", "outputs": []},
+    ]
+    nb.write_text(json.dumps({"cells": cells, "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
+    assert notebook_metric_names(nb) == ["gain/d{...}/ratio", "rms_px"]
+    for good in ("gain/d0.5/ratio", "gain/d2/ratio.value", "rms_px", "rms_px.ci_high"):
+        check_metric(nb, good)
+    for bad in ("gain/ratio", "rms", "rms_px_total"):
+        with pytest.raises(UsageError, match="its metrics: gain/d{...}/ratio, rms_px"):
+            check_metric(nb, bad)
+    # a name computed at run time cannot be read from the source: nothing is refused
+    cells.append({"cell_type": "code", "metadata": {}, "source": "results.metric(name, v)\n", "outputs": []})
+    nb.write_text(json.dumps({"cells": cells, "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
+    assert notebook_metric_names(nb) is None
+    check_metric(nb, "anything.at.all")
