@@ -4,7 +4,8 @@ Each entry's ``why`` says why its values are defensible; ``origin="adversarial"`
 flip a label (the designation-free and velocity-knowledge readings of the comparison, motionless objects, a
 stopped-early EM, the Bayesian bound; in a second pass the photon pair and the coordinate of C002-6 and the
 practical stopping tolerance of Fig 7's iteration counts; in a fourth the pixel size, the frame pair and the
-T-dependence statistic of C002-6). :data:`DEPENDS` names the entries each claim's measurement reads: an entry
+T-dependence statistic of C002-6; in the session-4 review the separation that is "very close" in C002-15 and the pixel
+pair of C002-5). :data:`DEPENDS` names the entries each claim's measurement reads: an entry
 left out cannot change that claim's number (it changes only simulation points the claim does not use).
 """
 
