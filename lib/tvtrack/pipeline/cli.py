@@ -193,7 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=_cmd_run)
 
     s = sub.add_parser("sweep", help="run a TOML sweep spec (grid x repeats) in a process pool")
-    s.add_argument("spec", help="sweep spec TOML (see README, 'Sweeps')")
+    s.add_argument("spec", help="sweep spec TOML (see docs/contributing.md, 'Sweeps')")
     s.add_argument("--jobs", type=_positive_int, default=1, help="parallel runs (local executor)")
     s.add_argument("-o", "--output", default=None, help="sweep directory (default papermill_runs/<spec name>)")
     s.add_argument("--executor", choices=["local", "dask"], default="local")

@@ -4,7 +4,7 @@ cell, and parameter values through the notebook's own validation cell.
 A notebook's first code cell (tagged ``parameters``) holds one assignment per parameter; the next
 code cell imports the library and calls ``validate_parameters(globals(), ...)`` together with any
 cross-parameter check, raising ``ValueError`` that names the parameters. That cell must be cheap
-and do no simulation (README, "Writing a notebook"), so it can run here, in a subprocess with a
+and do no simulation (docs/contributing.md, "Writing a notebook"), so it can run here, in a subprocess with a
 throw-away ``output_dir``, before a run starts.
 """
 

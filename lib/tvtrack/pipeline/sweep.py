@@ -1,6 +1,6 @@
 """Parameter sweeps: a TOML spec -> many notebook runs -> ``summary.csv`` (+ a plot).
 
-Spec format (see README, "Sweeps")::
+Spec format (see docs/contributing.md, "Sweeps")::
 
     notebook = "004_laser_spot_prediction"   # name in notebooks/ or a path relative to the spec
     profile = "smoke"                          # optional base profile (default: paper defaults)
