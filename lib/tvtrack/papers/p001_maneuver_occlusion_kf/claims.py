@@ -98,8 +98,8 @@ RULES = {
             "invariance": NotCheckable("S is a difference of two window sums: a common shift cancels by construction"),
             "unbiased": InBand("alarm rate after the onset", 1.0, None, "× alpha"),
             "UMP": Ordering(
-                "P(detection within roc_delay_s of the onset) of |S|",
-                "that of the other invariant test (ump_comparator) at the same per-test false-alarm rate",
+                "P(detection within the delay limit after the onset) of |S|",
+                "that of the other invariant test at the same per-test false-alarm rate",
                 ">",
             ),
         }
@@ -110,15 +110,18 @@ RULES = {
     "C001-4": AllOf(
         {
             "faster compensation": Ordering(
-                "mean-square dynamic error (mean over runs, onset to compensation_end_s) of the compensation "
-                "comparator",
+                "mean-square dynamic error (mean error over runs) from the onset to the end of the compensation "
+                "interval, of the filter compared with",
                 "the scheme's",
                 ">",
                 "ratio",
             ),
             **{
                 f"min RMS vs {c}": Ordering(
-                    f"RMS statistic (rms_statistic over rms_span) of the tuned {c}", "the scheme's", ">", "ratio"
+                    f"RMS error of the tuned {c} (as the register reads 'RMS', over its span)",
+                    "the scheme's",
+                    ">",
+                    "ratio",
                 )
                 for c in COMPARATORS
             },
