@@ -75,6 +75,11 @@ JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
 #: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
 LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
 CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
+#: The two readings of C000-5's "for P > 0.5 it substantially determines [the accuracy]" (register entry
+#: "substantially determines"; each has its own rule): the paper's one example P = 0.9, or every contrast of Fig. 3
+#: above 0.5 (the adversarial review, docs/adversarial/session4-000-review.md).
+AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
+DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -346,14 +351,21 @@ def _c3(cfg, seed, sizes):
 
 
 def _c5_c7(cfg, seed, sizes):
+    """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*."""
     ratios = [_ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
     c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, ratios) if 0 < p <= 0.5}
-    c5["P=0.9"] = ratios[list(sizes.contrast_grid).index(0.9)]
-    r9 = c5["P=0.9"]
+    r9 = ratios[list(sizes.contrast_grid).index(0.9)]
+    above = (
+        [0.9] if cfg.get("substantially determines", AT_09) == AT_09 else [p for p in sizes.contrast_grid if p > 0.5]
+    )
+    c5.update({f"P={p:g}": ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
     crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes)) / scan_crlb(_scan(cfg, psi9, 0.0, sizes))
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
-    return c5, {"trend": ratios, "measurement vs estimate": gap}
+    return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
+        "trend": ratios,
+        "measurement vs estimate": gap,
+    }
 
 
 def _c6(cfg, seed, sizes):
