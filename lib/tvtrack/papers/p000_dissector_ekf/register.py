@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...register import Entry, Register
-from .study import CONVERGENCE_READINGS, DETERMINES_READINGS, JOINT_READING_C6
+from .study import CONVERGENCE_READINGS, DETERMINES_READINGS, JOINT_READING_C6, LOCK_DEFAULT, WINDOW_DEFAULT
 
 __all__ = ["REGISTER", "DEPENDS"]
 
@@ -116,8 +116,8 @@ _ENTRIES = [
     Entry(
         "lock threshold",
         "reading",
-        "lock_factor",
-        ("lock_factor", "2 x steady RMS"),
+        LOCK_DEFAULT,
+        (LOCK_DEFAULT, "2 x steady RMS"),
         origin="adversarial",
         why="'in lock' is not the paper's word: a scan's RMS error above the notebook's lock_factor (5) x the steady "
         "RMS error, or a strict 2 x (a scan's error at twice its steady value counts as not yet acquired)",
@@ -202,8 +202,8 @@ _ENTRIES = [
     Entry(
         "steady window",
         "statistic",
-        "window_T",
-        ("window_T", "after 5 T"),
+        WINDOW_DEFAULT,
+        (WINDOW_DEFAULT, "after 5 T"),
         origin="adversarial",
         why="Fig. 2's steady sigma_x^2 is read over an unstated window: the notebook's final window_T, or every "
         "sample after the 5 T transient (more samples, closer to the transient)",
@@ -302,24 +302,24 @@ _PLAIN = {
     "G22": (
         "process noise of variant 1's signal-noise state X2 per step (E8)",
         {
-            "paper": "2 beta_0 dt, as printed in (E8) (a unit-variance X2)",
-            "euler": "beta_0^2 dt, the Euler step of eq. (8)",
-            "matched": "the value that gives X2 the per-sample variance of the true signal noise",
+            "paper": "variant 1's signal-noise state X2 driven by 2 beta_0 dt per step, as printed in (E8)",
+            "euler": "variant 1's signal-noise state X2 driven by beta_0^2 dt per step (the Euler step of eq. (8))",
+            "matched": "variant 1's signal-noise state X2 matched to the per-sample variance of the true signal noise",
         },
     ),
     "v2 noise at": (
         "where variant 2 evaluates the signal-dependent noise level (eq. (9))",
         {
-            "predicted estimate": "at the predicted coordinate, before the update",
-            "updated estimate": "re-evaluated once at the updated coordinate",
+            "predicted estimate": "variant 2's noise level evaluated at the predicted coordinate, before the update",
+            "updated estimate": "variant 2's noise level re-evaluated once at the updated coordinate",
         },
     ),
     "initial estimate": (
         "the filters' initial coordinate estimate",
         {
-            "process means": "zero, the process mean (the paper's solid curves)",
-            "random N(0, D11(0))": "random, normal with the filters' initial variance 0.2 T^2 (the paper's dashed "
-            "curves)",
+            "process means": "the filters start at the process mean, zero (the paper's solid curves)",
+            "random N(0, D11(0))": "the filters start from random estimates, normal with their initial variance "
+            "0.2 T^2 (the paper's dashed curves)",
         },
     ),
     "initial position": (
@@ -341,8 +341,9 @@ _PLAIN = {
     "lock threshold": (
         "error above which a scan counts as out of lock",
         {
-            "lock_factor": "a scan's RMS error above lock_factor (5) times the steady RMS error",
-            "2 x steady RMS": "a scan's RMS error above twice the steady RMS error",
+            LOCK_DEFAULT: "out of lock: a scan's RMS error above the run's lock factor (5 unless the run sets it) times the "
+            "steady RMS error",
+            "2 x steady RMS": "out of lock: a scan's RMS error above twice the steady RMS error",
         },
     ),
     "C000-6 filter": (
@@ -357,8 +358,8 @@ _PLAIN = {
         "the 'potentially achievable' accuracy of the 20-times sentence",
         {
             "sigma_x^2*": "the error variance with stationary noise only (the paper's Fig. 3 reference)",
-            "PCRLB": "the posterior Cramer-Rao bound",
-            "grid filter": "the near-optimal grid (point-mass) Bayesian filter",
+            "PCRLB": "'potentially achievable' taken as the posterior Cramer-Rao bound",
+            "grid filter": "'potentially achievable' taken as the near-optimal grid (point-mass) Bayesian filter",
         },
     ),
     "C000-6 joint reading": (
@@ -377,7 +378,10 @@ _PLAIN = {
     ),
     "micro-raster size": (
         "the length '2 % of the micro-raster size' refers to",
-        {"T": "the scan interval T", "T_u": "the pulse duration T_u = T/2"},
+        {
+            "T": "the error as a fraction of the scan interval T",
+            "T_u": "the error as a fraction of the pulse duration T_u = T/2 instead of the scan interval",
+        },
     ),
     "psi_A": (
         "signal-to-noise ratio psi_A of Figs. 1 and 3 and of the claims",
@@ -397,16 +401,16 @@ _PLAIN = {
     "contrast convention": (
         "what stays fixed as the contrast P varies in Fig. 3",
         {
-            "fixed N0": "the background noise level N0 (only the signal-noise share changes)",
-            "fixed total current": "the total current, signal plus background (psi_A moves with P)",
-            "fixed background": "the background current (psi_A grows as P / (1 - P))",
+            "fixed N0": "the background noise level N0 held fixed as P varies (only the signal-noise share changes)",
+            "fixed total current": "the total current, signal plus background, held fixed as P varies (psi_A moves with P)",
+            "fixed background": "the background current held fixed as P varies (psi_A grows as P / (1 - P))",
         },
     ),
     "steady window": (
         "samples the steady error variance is averaged over",
         {
-            "window_T": "the final steady_window_T scans of each run",
-            "after 5 T": "every sample after the first 5 scans",
+            WINDOW_DEFAULT: "the steady error variance averaged over the final steady window of each run",
+            "after 5 T": "the steady error variance averaged over every sample after the first 5 scans",
         },
     ),
     "C000-4 cost measure": (
@@ -418,7 +422,10 @@ _PLAIN = {
     ),
     "C000-4 batch": (
         "how many runs the CPU time is measured over",
-        {"all trials": "a Monte Carlo batch of runs at once", "one trial": "one tracked object"},
+        {
+            "all trials": "CPU time over a Monte Carlo batch of runs at once",
+            "one trial": "CPU time over one tracked object",
+        },
     ),
     "substantially determines": (
         "where 'for P > 0.5 the signal noise substantially determines the accuracy' is checked (C000-5)",
@@ -431,7 +438,10 @@ _PLAIN = {
     ),
     "statistic": (
         "the ensemble statistic of the error variance",
-        {"mean": "the ensemble mean (the paper's E9)", "median": "the median over the runs"},
+        {
+            "mean": "the ensemble mean of the error (the paper's E9)",
+            "median": "the median of the per-run error variances instead of the ensemble mean",
+        },
     ),
 }
 

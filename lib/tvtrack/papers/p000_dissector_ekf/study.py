@@ -52,15 +52,18 @@ MESSAGE = GaussMarkovMessage(0.1, 0.15)
 #: The register's "sigma_1" operating point: the paper's "typical" sigma_1 = 0.1 T, or an image spread over the
 #: micro-raster (sigma_1 = 0.2 T: within +-T/2 of the centre 98 % of the time), alpha_0 T = 0.15 in both.
 MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
+#: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
+#: final window_T), named in plain words (the register table shows them).
+LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
 #: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
 #: (so those reuse the default's memoised runs).
 ADVERSARIAL_READS = {
     "sigma_1": ("0.1 T", ("C000-1", "C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
-    "lock threshold": ("lock_factor", ("C000-1",)),
+    "lock threshold": (LOCK_DEFAULT, ("C000-1",)),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
     "manoeuvre": ("none", ("C000-2", "C000-3", "C000-5", "C000-7")),
-    "steady window": ("window_T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "steady window": (WINDOW_DEFAULT, ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
 }
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
 STEADY_AFTER_T = 5.0
@@ -268,7 +271,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         }
 
     out = _memo(key, compute)
-    if cfg.get("steady window", "window_T") != "window_T":  # the whole run after the transient
+    if cfg.get("steady window", WINDOW_DEFAULT) != WINDOW_DEFAULT:  # the whole run after the transient
         out = {**out, "steady": out["steady_after"]}
     return out
 
@@ -316,7 +319,7 @@ def _acquired_at(cfg, seed, sizes, filt, run):
     """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
     square of the same filter from the paper's start."""
     ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
-    factor = 2.0 if cfg.get("lock threshold", "lock_factor") == "2 x steady RMS" else sizes.lock_factor
+    factor = 2.0 if cfg.get("lock threshold", LOCK_DEFAULT) == "2 x steady RMS" else sizes.lock_factor
     return acquisition_times_from_scans(run["scans"], factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
 
