@@ -100,7 +100,7 @@ def _phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
     for k, v in changed.items():
         e = entries.get(k)
         out.append(e.phrase(v) if e is not None else f"{k} = {v}")
-    return "; ".join(out) or "the default reading"
+    return " and ".join(out) or "the default reading"  # one configuration: its changes hold together
 
 
 def _side(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
