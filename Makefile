@@ -27,9 +27,10 @@ lint: $(STAMP)
 	$(BIN)/ruff check lib tests benchmarks notebooks
 	$(BIN)/ruff format --check lib tests benchmarks
 
+# this clone's Jupyter kernel, in its own .venv (named tvtrack-repro-<digest of the clone's path>), so two clones
+# never repoint each other's kernel; `make edit` opens working copies on it
 kernel: $(STAMP)
-	$(BIN)/python -m ipykernel install --user --name tvtrack-repro --display-name "Python (tvtrack-repro)" \
-		--env RERUN_NOTEBOOK_ASSET inline >/dev/null
+	$(BIN)/python -m tvtrack.pipeline.kernels
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
 # (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)

@@ -1,6 +1,6 @@
 """Benchmark figures (issue 30): a figure is a ratio against a reference run in the same process or
 work per CPU second, never an absolute wall time; :func:`write_table` merges them into one table,
-``benchmarks/results/table.md`` (name, value, target, pass), which ``make bench`` writes and the README quotes.
+``benchmarks/results/table.md`` (name, value, target, pass), which ``make bench`` writes and docs/benchmarks.md quotes.
 """
 
 from __future__ import annotations

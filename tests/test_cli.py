@@ -212,33 +212,50 @@ def test_edit_gives_a_working_copy_at_the_smoke_profile_outside_tracked_files(tm
     import shutil
 
     from tvtrack.pipeline.edit import EDIT_DIR, working_copy
+    from tvtrack.pipeline.kernels import clone_kernel_name
 
     nb = tmp_path / "fixture_centroid.ipynb"
     shutil.copy(FIXTURE_NOTEBOOK, nb)
     (tmp_path / "fixture_centroid.smoke.toml").write_text("n_trials = 7\nn_frames = 3\n")
     copy, written = working_copy(nb, folder=tmp_path / "edit")
     assert written and copy == tmp_path / "edit" / "fixture_centroid.ipynb"
-    cells = json.loads(copy.read_text())["cells"]
-    code = [c for c in cells if c["cell_type"] == "code"]
-    injected = code[1]
-    assert injected["metadata"]["tags"] == ["injected-parameters"]
-    assert "n_trials = 7\n" in injected["source"] and "RERUN_NOTEBOOK_ASSET" in injected["source"]
+    data = json.loads(copy.read_text())
+    code = [c for c in data["cells"] if c["cell_type"] == "code"]
+    assert len(code) == len([c for c in json.loads(nb.read_text())["cells"] if c["cell_type"] == "code"])
+    params = code[0]
+    # one cell holds the smoke values themselves: no override below, nothing of the paper's values left
+    assert params["metadata"]["tags"] == ["parameters"]
+    assert not any("injected-parameters" in c["metadata"].get("tags", []) for c in code)
+    source = params["source"]
+    assert "n_trials = 7  # Monte Carlo trials" in source and "n_frames = 3  # frames per trial" in source
+    assert "n_trials = 200" not in source and "n_frames = 20" not in source
+    assert "RERUN_NOTEBOOK_ASSET" in source and repr(str(tmp_path / "edit" / "fixture_centroid-out")) in source
+    assert data["metadata"]["kernelspec"]["name"] == clone_kernel_name()
     assert all(not c["outputs"] for c in code)
-    # Run All, as JupyterLab does, from another working directory: outputs land in the copy's own -out folder
+    # a reader edits the parameters cell, then Runs All from another working directory: the edit takes effect
+    # and outputs land in the copy's own -out folder
+    copy.write_text(copy.read_text().replace("n_trials = 7", "n_trials = 9"))
     import nbformat
     from nbclient import NotebookClient
 
     book = nbformat.read(copy, as_version=4)
-    NotebookClient(book, timeout=120, resources={"metadata": {"path": str(tmp_path)}}).execute()
+    NotebookClient(book, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}).execute()
     results = json.loads((tmp_path / "edit" / "fixture_centroid-out" / "results.json").read_text())
-    assert results["parameters"]["n_trials"] == 7
+    assert results["parameters"]["n_trials"] == 9 and results["parameters"]["n_frames"] == 3
     # an existing copy holds the user's edits: kept unless fresh
-    copy.write_text(copy.read_text().replace("n_trials = 7", "n_trials = 9"))
     assert working_copy(nb, folder=tmp_path / "edit") == (copy, False) and "n_trials = 9" in copy.read_text()
     assert working_copy(nb, folder=tmp_path / "edit", fresh=True) == (copy, True) and "n_trials = 7" in copy.read_text()
     # the default folder is ignored by git: autosave never touches a tracked file
     ignored = subprocess.run(["git", "check-ignore", "-q", str(EDIT_DIR / "x.ipynb")], cwd=EDIT_DIR.parents[1])
     assert ignored.returncode == 0
+
+
+def test_the_parameters_cell_keeps_comments_and_replaces_multiline_values():
+    from tvtrack.pipeline.edit import parameters_cell
+
+    source = 'a = 1  # first, "quoted # not a comment"\nb = [\n    1,\n    2,\n]  # a list\nc = "x # y"\n'
+    out = parameters_cell(source, {"b": [3], "c": "z", "d": 4.0}, ["# header"])
+    assert out == "# header\na = 1  # first, \"quoted # not a comment\"\nb = [3]  # a list\nc = 'z'\nd = 4.0\n"
 
 
 def test_edit_refuses_an_unknown_notebook_or_profile():

@@ -294,7 +294,7 @@ def test_a_pinned_joint_condition_is_measured_every_run():
     pinned = REG.with_pinned({"a": 2, "b": 2})
     ex = explore(measure_joint_only, pinned, {"X": RULES["X"]}, seed=7, replicates=3, joint=0)
     rec = ex.record("X")
-    assert rec["label"] == "limited" and any("a = 2; b = 2" in w for w in rec["where"])
+    assert rec["label"] == "limited" and any("a = 2 and b = 2" in w for w in rec["where"])
     assert "1 pinned known flips" in rec["coverage"]
     assert pinned.subset(["a", "c"]).pinned == [] and pinned.subset(["a", "b"]).pinned == [{"a": 2, "b": 2}]
     with pytest.raises(ValueError, match="not among"):

@@ -1,4 +1,4 @@
-"""The notebook contract (README, "Writing a notebook"), checked on every notebook in notebooks/:
+"""The notebook contract (docs/contributing.md, "Writing a notebook"), checked on every notebook in notebooks/:
 the committed file, then an execution of its smoke profile."""
 
 from __future__ import annotations

@@ -218,8 +218,8 @@ def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_thei
     assert [f["text"] for f in flips] == [
         "sigma read as the SD of the raw velocity increments",
         "a target weaving at 0.1 T",
-        "sigma read as the SD of the raw velocity increments; gain bound set at frame 100",
-        "sigma read as the SD of the raw velocity increments; a target weaving at 0.1 T",
+        "sigma read as the SD of the raw velocity increments and gain bound set at frame 100",
+        "sigma read as the SD of the raw velocity increments and a target weaving at 0.1 T",
     ]
     assert [f["side"] for f in flips] == ["reading", "world", "reading", "world"]  # a world changed: a world
 

@@ -74,7 +74,7 @@ def test_spec_expansion_and_stable_ids():
 
 
 def test_bad_specs_are_refused(tmp_path):
-    with pytest.raises(ValueError, match="unknown keys"):
+    with pytest.raises(ValueError, match="unknown key .gird.; did you mean .grid."):
         load_spec(write_spec(tmp_path / "a.toml", "gird = 1\n"))
     with pytest.raises(ValueError, match="same length"):
         load_spec(write_spec(tmp_path / "b.toml", "[zip]\na = [1, 2]\nb = [1]\n"))
@@ -167,14 +167,14 @@ def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
         time.sleep(0.2)
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
-    finished = {p.name for p in runs.iterdir() if not p.name.startswith(".tmp-")}
+    finished = {p.name for p in runs.iterdir() if not p.name.startswith(".")}  # not .tmp-* nor a lock file
     assert 2 <= len(finished) < 8
     for name in finished:  # no half-written run directory
         assert read_run(runs / name)["status"] == "ok"
         assert (runs / name / "results.json").is_file()
     resumed = run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
     assert resumed.n_skipped == len(finished)
-    assert resumed.n_ok == 8 and not list(runs.glob(".tmp-*"))
+    assert resumed.n_ok == 8 and not list(runs.glob(".tmp-*")) and not list(runs.glob(".*.lock"))
 
 
 @pytest.mark.determinism

@@ -115,7 +115,7 @@ def test_robustness_labels():
     )
     rec = rob.record(rule, est(0.6, 0.9))
     assert rec["label"] == "limited"  # the flip changes an operating point (a world), not only a reading
-    assert rec["where"] == ["reproduced when epoch = last; designation_sd = 1"]
+    assert rec["where"] == ["reproduced when epoch = last and designation_sd = 1"]
     assert [c["verdict"] for c in rec["conditions"]] == ["not reproduced", "reproduced"]
     rob.seeds = {1: est(0.6, 0.9), 2: est(3.8, 4.0), 3: est(0.5, 0.8)}
     unstable = rob.record(rule, est(0.6, 0.9))

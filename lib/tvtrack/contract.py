@@ -77,7 +77,21 @@ def paper_packages(root: Path = PAPERS_DIR) -> list[str]:
     return sorted(p.name for p in Path(root).iterdir() if _PACKAGE.match(p.name) and (p / "__init__.py").is_file())
 
 
-def lazy_exports(package: str, table: Mapping[str, str]) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
+#: Where a paper package's exports live unless its ``__init__`` says otherwise (the shape ``tvtrack new`` writes).
+SOURCES = {
+    "REGISTER": "register:REGISTER",
+    "DEPENDS": "register:DEPENDS",
+    "RULES": "claims:RULES",
+    "CLAIMS": "claims:CLAIMS",
+    "PARAMETERS": "params:PARAMETERS",
+    "Sizes": "study:Sizes",
+    "recording": "recording",
+}
+
+
+def lazy_exports(
+    package: str, table: Mapping[str, str] | None = None
+) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """``__getattr__`` and ``__dir__`` for a paper package's ``__init__``: each exported name is imported from
     its module on first use.
 
@@ -85,11 +99,12 @@ def lazy_exports(package: str, table: Mapping[str, str]) -> tuple[Callable[[str]
     ----------
     package : str
         The package's ``__name__``.
-    table : mapping
-        ``{exported name: "module"}`` (the module itself, e.g. ``"recording"``), ``"module:attribute"``
-        (``"params:PARAMETERS"``) or ``"module:function()"`` (called without arguments, e.g.
-        ``"register:build_register()"``), modules relative to ``package``.
+    table : mapping, optional
+        Where the package departs from :data:`SOURCES`: ``{exported name: "module"}`` (the module itself, e.g.
+        ``"recording"``), ``"module:attribute"`` (``"params:RULES"``) or ``"module:function()"`` (called without
+        arguments, e.g. ``"register:build_register()"``), modules relative to ``package``.
     """
+    table = {**SOURCES, **(table or {})}
 
     def __getattr__(name: str) -> Any:
         if name not in table:

@@ -100,7 +100,7 @@ def _phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
     for k, v in changed.items():
         e = entries.get(k)
         out.append(e.phrase(v) if e is not None else f"{k} = {v}")
-    return "; ".join(out) or "the default reading"
+    return " and ".join(out) or "the default reading"  # one configuration: its changes hold together
 
 
 def _side(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
@@ -458,7 +458,7 @@ def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, pro
     combos = [c for c in conds if c["kind"] == "combination"]
     reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
     weak = [n for n, p in parts.items() if p["label"] == label]
-    which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
+    which = "" if len(parts) == 1 or not weak else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
     extra = [f"{len(pinned)} pinned known flips"] if pinned else []
     extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
     small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""

@@ -219,7 +219,7 @@ class OutputDir(ParamRule):
         return "a directory path (a non-empty string; an existing non-directory is refused)"
 
 
-#: Rules for the parameters every notebook has (see README, "Writing a notebook").
+#: Rules for the parameters every notebook has (see docs/contributing.md, "Writing a notebook").
 COMMON_RULES: dict[str, ParamRule] = {
     "seed": Integer(0, 2**63 - 1),
     "n_trials": Integer(1, 10_000_000),

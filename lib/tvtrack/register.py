@@ -195,10 +195,10 @@ class Register:
         return Register(self.entries, [*self.pinned, *conditions])
 
     def describe(self, changed: Mapping[str, Any]) -> str:
-        """A configuration's changes from the default in plain words, joined by "; " (entries of other
-        registers, or none, read as the default reading)."""
+        """A configuration's changes from the default in plain words, joined by " and " (they hold together;
+        entries of other registers are named as they are, no change reads as the default reading)."""
         parts = [self[k].phrase(v) if k in self else f"{k} = {v}" for k, v in changed.items()]
-        return "; ".join(parts) or "the default reading"
+        return " and ".join(parts) or "the default reading"
 
     def check(self, config: Mapping[str, Any]) -> dict:
         """``config`` completed with defaults, each value checked to be defensible."""

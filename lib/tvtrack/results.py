@@ -342,7 +342,7 @@ class Results:
         path = self.output_dir / f"{name}.png"
         fig.savefig(path, dpi=dpi, bbox_inches="tight")
         self.figures.append({"file": path.name, "caption": caption})
-        _show_inline(path, caption, fig)
+        _show_inline(path, f"*Figure {len(self.figures)}.* {caption}", fig)
 
     def to_dict(self) -> dict:
         return to_jsonable(
@@ -422,7 +422,7 @@ def _show_inline(path: Path, caption: str, fig) -> None:
     import matplotlib.pyplot as plt
 
     display(Image(filename=str(path)))
-    display(Markdown(f"*Figure ({path.stem}).* {caption}"))
+    display(Markdown(caption))
     plt.close(fig)
 
 

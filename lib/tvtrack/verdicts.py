@@ -639,7 +639,7 @@ class ByReading(Rule):
         return {"reading": value, "measured": measured}
 
     def text(self) -> str:
-        other = "; ".join(f"under {self.entry} = {v}: {r.text()}" for v, r in self.rules.items())
+        other = "; ".join(f"under {self.entry} = {v}: {r.text()}" for v, r in self.rules.items() if r != self.default)
         return f"{self.default.text()}" + (f" ({other})" if other else "")
 
     def params(self) -> dict:

@@ -262,7 +262,7 @@ def describe(changed: Mapping, record: Mapping) -> str:
     for k, v in changed.items():
         title, _, phrases = known.get(str(k), (str(k).replace("_", " "), "reading", {}))
         bits.append(phrases.get(str(v)) or f"{title} = {number(v) if _finite(v) else v}")
-    return "; ".join(bits) or "the default reading"
+    return " and ".join(bits) or "the default reading"  # one configuration: its changes hold together
 
 
 def _side(changed: Mapping, record: Mapping) -> str:

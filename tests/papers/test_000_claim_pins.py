@@ -131,7 +131,7 @@ def test_sigma_x2_star_is_variant_2_on_stationary_noise_data(measured):
     star = _independent_steady(21, 20.0, 0.9, "star")
     for p in (0.5, 0.9):
         ratio = _independent_steady(21, 20.0, p, "v2").mean() / star.mean()
-        assert measured["C000-5"][f"P={p:g}"].value == pytest.approx(ratio, rel=1e-9)
+        assert measured["C000-5"]["measured"][f"P={p:g}"].value == pytest.approx(ratio, rel=1e-9)
     np.testing.assert_allclose(study.steady_runs(DEFAULT, 21, SMALL, 20.0, 0.9, "stationary"), star, rtol=1e-9)
 
 

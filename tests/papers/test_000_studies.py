@@ -65,7 +65,7 @@ def test_the_sensitivity_study_at_the_papers_t_u_and_beta_0_is_the_claims_data_p
     from tvtrack.papers.p000_dissector_ekf import beyond
 
     sens = beyond.pulse_and_beta(DEFAULT, 8, TINY, (0.25, 0.5), (5.0, 15.0))
-    c5 = study.measure(DEFAULT, 8, TINY)["C000-5"]["P=0.9"]
+    c5 = study.measure(DEFAULT, 8, TINY)["C000-5"]["measured"]["P=0.9"]
     assert sens["T_u"]["variant 2"][1].value == pytest.approx(c5.value, rel=1e-12)
     v1 = studies.fig3_curves(DEFAULT, 8, TINY)["ratio"]["variant 1"][2]
     assert sens["beta_0"][1].value == pytest.approx(v1.value, rel=1e-12)

@@ -219,7 +219,10 @@ def test_the_drifting_background_scales_only_the_background_part_of_the_noise_in
     peak = study._samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
     assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
     base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
-    assert drift["C000-1"] == base["C000-1"] and drift["C000-5"]["P=0.9"].value != base["C000-5"]["P=0.9"].value
+    assert (
+        drift["C000-1"] == base["C000-1"]
+        and drift["C000-5"]["measured"]["P=0.9"].value != base["C000-5"]["measured"]["P=0.9"].value
+    )
 
 
 def test_a_stricter_lock_threshold_acquires_no_earlier():

@@ -93,15 +93,35 @@ def test_detection_measurement_matches_the_closed_forms():
     assert 5.0 < m["C001-1"]["median"].value < 6.0
 
 
-def test_tradeoff_measurement_uses_the_same_runs_as_the_figure_study():
+def test_tradeoff_parts_are_the_dynamic_and_random_errors_of_the_figure_study_runs():
+    """C001-4 (issue 38): the 'min RMS' parts read the register's rms_statistic on the same runs as the figure
+    study: the random error (variance over runs, mean over the span), the total mean square, or |bias| + SD at
+    the last frame before the loss; the compensation part is the dynamic (mean) error's mean square."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff import error_functional
+
     cfg = {"rms_span": "onset to loss"}
     tr = study.tradeoff_runs(cfg, 4, SIZES)
     sc = tr["scenario"]
     mask = study.span_mask("onset to loss", sc)
-    ms = {k: ((p - sc.truth[None, :, :, 0]) ** 2)[..., mask].mean(axis=(-1, -2)) for k, p in tr["positions"].items()}
+    err = {k: (p - sc.truth[None, :, :, 0])[..., mask] for k, p in tr["positions"].items()}
+    var = {k: e.var(axis=0).mean() for k, e in err.items()}
+    ms = {k: (e**2).mean() for k, e in err.items()}
     m = study.measure_tradeoff(cfg, 4, SIZES)["C001-4"]
+    t = study.measure_tradeoff(cfg | {"rms_statistic": "total mean square"}, 4, SIZES)["C001-4"]
     for name in study.COMPARATORS:
-        assert m[f"min RMS vs {name}"].value == pytest.approx(ms[name].mean() / ms["adaptive"].mean(), rel=1e-9)
+        assert m[f"min RMS vs {name}"].value == pytest.approx(var[name] / var["adaptive"], rel=1e-9)
+        assert t[f"min RMS vs {name}"].value == pytest.approx(ms[name] / ms["adaptive"], rel=1e-9)
+        assert m[f"min RMS vs {name}"].ci_low < m[f"min RMS vs {name}"].value < m[f"min RMS vs {name}"].ci_high
+    # the compensation part: mean square of the per-frame mean error from the onset to 8 s
+    f = sc.frames
+    cm = (f >= sc.onset) & (f < 200)
+    bias2 = {k: ((p - sc.truth[None, :, :, 0])[..., cm].mean(axis=0) ** 2).mean() for k, p in tr["positions"].items()}
+    assert m["faster compensation"].value == pytest.approx(
+        bias2["2nd order without the switch"] / bias2["adaptive"], rel=1e-9
+    )
+    # the card's reading: |mean| + SD at 12 s (the last frame before the loss), channels averaged
+    e12 = np.random.default_rng(0).normal(2.0, 3.0, (4000, 2))
+    assert error_functional(e12.mean(0), (e12**2).mean(0), "|bias| + SD") == pytest.approx(5.0, rel=0.05)
 
 
 def test_tuning_picks_the_grid_minimum():
@@ -186,25 +206,29 @@ def test_every_claim_depends_on_register_entries_and_the_rules_name_the_notebook
 
 def test_spherical_measurement_by_target_set():
     sz = SIZES | {"prediction_rms": 4.0}
-    near = study.measure_spherical({}, 0, sz)["C001-9"]
-    far = study.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]
+    near = study.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
+    far = study.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]["geometries"]
     assert 0 <= near < far <= 1  # farther, slower targets curve less in angle
 
 
 def test_explorer_runs_the_curves_group():
     from tvtrack.explore import explore
-    from tvtrack.verdicts import AllOf, Monotone
+    from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES as CLAIM_RULES
 
     ex = explore(
         functools.partial(study.measure_curves, sizes=SIZES),
         group_register(REG, "curves"),
-        {"C001-8": AllOf({"RMS decreasing": Monotone("RMS", "k_b3", "decreasing")})},
+        {c: CLAIM_RULES[c] for c in GROUPS["curves"]},
         seed=1,
-        joint=0,
-        depends={"C001-8": DEPENDS["C001-8"]},
+        joint=4,
+        depends=DEPENDS,
     )
     rec = ex.record("C001-8")
     assert len(ex.replicates()) == 3 and rec["conditions"]
+    assert rec["parts"]["RMS decreasing"]["verdict"] == "reproduced" and ex.table("C001-8")
+    # the tolerance reading is explored: every value of curve_tolerance was measured and judged by its own rule
+    tol = {c["changed"]["curve_tolerance"] for c in rec["conditions"] if set(c["changed"]) == {"curve_tolerance"}}
+    assert tol == {0.001, 0.1}
 
 
 def test_detector_benchmark_arms_every_detector_before_the_onset():
@@ -244,8 +268,8 @@ def test_a_manoeuvre_that_ends_continues_uniformly():
 
 def test_adversarial_regimes_reach_the_measurements():
     # the manoeuvre that ends makes C001-7's dynamic error rise again after the acceleration stops (restart A)
-    const = study.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]
-    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]
+    const = study.measure_curves({}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
+    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
     assert np.all(np.diff(const) < 0) and short[1] > short[0]
     # a weaker second channel is detected later (pooled median); a 4 s horizon curves less than a 10 s one
     weak = study.measure_detection({"channel_y": "v -6, a -0.05"}, 1, SIZES)["C001-1"]["median"].value
@@ -253,10 +277,10 @@ def test_adversarial_regimes_reach_the_measurements():
     assert weak > paper
     sz = SIZES | {"prediction_rms": 4.0}
     assert (
-        study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]
-        > study.measure_spherical({}, 0, sz)["C001-9"]
+        study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]["geometries"]
+        > study.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
     )
-    assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"] == 1.0
+    assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"]["geometries"] == 1.0
 
 
 def test_raised_second_order_limits():
@@ -317,6 +341,6 @@ def test_acceleration_unit_reading_scales_the_manoeuvre():
     )
     # C001-7: the dynamic error scales with the acceleration, the RMS does not
     sz = SIZES | {"loss_grid_s": [6.0, 8.0]}
-    a = study.measure_curves({}, 0, sz)["C001-7"]
-    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
+    a = study.measure_curves({}, 0, sz)["C001-7"]["measured"]
+    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]["measured"]
     np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)

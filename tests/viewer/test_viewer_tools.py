@@ -238,3 +238,104 @@ def test_viewer_process_group_ends(tmp_path):
             assert psutil.Process(pid).status() == psutil.STATUS_ZOMBIE, f"viewer process {pid} still runs"
         except psutil.NoSuchProcess:
             pass
+
+
+# -- python -m tvtrack view: checked before it serves, stopped by any signal (issue 42) ----------------------
+def _view(*args, timeout=60):
+    import subprocess
+    import sys
+
+    return subprocess.run(
+        [sys.executable, "-m", "tvtrack", "view", *map(str, args), "--no-browser"],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+
+
+def _one_line_error(proc, *fragments):
+    assert proc.returncode == 2, (proc.returncode, proc.stdout, proc.stderr)
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout and "serving" not in proc.stdout
+    for f in fragments:
+        assert f in lines[0], (f, lines[0])
+    return lines[0]
+
+
+def test_view_refuses_a_corrupt_or_truncated_recording_before_serving(tmp_path):
+    from tvtrack.pipeline.viewer import free_port
+
+    good = _write_recording(tmp_path)
+    ports = ["--port", free_port(), "--grpc-port", free_port()]
+    garbage = tmp_path / "garbage.rrd"
+    garbage.write_bytes(b"this is not a recording " * 40)
+    _one_line_error(_view(garbage, *ports), "garbage.rrd", "not a readable Rerun recording", "RRD")
+    half = tmp_path / "half.rrd"
+    half.write_bytes(good.read_bytes()[: good.stat().st_size // 2])
+    _one_line_error(_view(half, *ports), "half.rrd", "not a readable Rerun recording")
+    for name, content in (("empty.rrd", b""), ("short.rrd", b"xxxx")):  # rerun rrd verify passes these
+        (tmp_path / name).write_bytes(content)
+        _one_line_error(_view(tmp_path / name, *ports), name, "not a readable Rerun recording", "RRF header")
+
+
+def test_view_checks_port_and_host_in_one_line_each(tmp_path):
+    from tvtrack.pipeline.viewer import free_port
+
+    rec = _write_recording(tmp_path)
+    _one_line_error(_view(rec, "--port", 70000, "--grpc-port", free_port()), "--port 70000", "[1, 65535]")
+    _one_line_error(_view(rec, "--port", free_port(), "--grpc-port", 0), "--grpc-port 0", "[1, 65535]")
+    line = _one_line_error(
+        _view(rec, "--host", "no-such-host.invalid", "--port", free_port(), "--grpc-port", free_port()),
+        "'no-such-host.invalid'",
+        "does not resolve",
+    )
+    assert "listens" not in line  # not reported as a busy port
+    _one_line_error(
+        _view(rec, "--host", "192.0.2.1", "--port", free_port(), "--grpc-port", free_port()),
+        "192.0.2.1",
+        "not an address of this machine",
+    )
+    import socket
+
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen(1)
+        port = busy.getsockname()[1]
+        _one_line_error(_view(rec, "--port", port, "--grpc-port", free_port()), f"--port {port}", "already listens")
+
+
+@pytest.mark.parametrize("signame", ["SIGHUP", "SIGTERM"])
+def test_a_hangup_or_a_kill_stops_the_viewer_and_frees_its_ports(tmp_path, signame):
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from tvtrack.pipeline.viewer import free_port
+    from tvtrack.pipeline.webview import port_free
+
+    rec = _write_recording(tmp_path)
+    web, grpc = free_port(), free_port()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tvtrack", "view", rec, "--no-browser", "--port", str(web), "--grpc-port", str(grpc)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,  # like a terminal's job: the signal goes to tvtrack only
+    )
+    try:
+        lines = [proc.stdout.readline() for _ in range(2)]
+        assert lines[1].startswith("open http://127.0.0.1:"), (lines, proc.stderr.read() if proc.poll() else "")
+        assert not port_free("127.0.0.1", web) and not port_free("127.0.0.1", grpc)
+        proc.send_signal(getattr(signal, signame))
+        proc.wait(timeout=20)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert proc.returncode == 0, proc.stderr.read()
+    deadline = time.time() + 10
+    while not (port_free("127.0.0.1", web) and port_free("127.0.0.1", grpc)) and time.time() < deadline:
+        time.sleep(0.2)
+    assert port_free("127.0.0.1", web) and port_free("127.0.0.1", grpc), "the viewer still holds its ports"

@@ -1,8 +1,10 @@
 """Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view, new}``.
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
-directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
-with status 2 before any kernel starts; ``--debug`` shows the traceback instead. Ctrl-C ends the
+directory that exists or that another tvtrack is writing, an unreachable scheduler) prints one line
+``error: ...`` on stderr and exits with status 2 before any kernel starts; ``--debug`` shows the traceback
+instead. Outputs that cannot be written during a run (a full disk, a read-only folder) print one line,
+leave no temporary folder and exit with status 1. Ctrl-C ends the
 running kernels, removes the temporary folders, prints one line ``interrupted: ...`` and exits with
 status 130; the same command started again resumes (finished runs are kept).
 """
@@ -18,6 +20,7 @@ from pathlib import Path
 from .interrupt import EXIT_INTERRUPTED
 from .paths import RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
+from .runner import WriteFailed
 
 
 class _Parser(argparse.ArgumentParser):
@@ -144,6 +147,9 @@ def _cmd_edit(args) -> int:
     if not args.lab:
         print(f"open it in JupyterLab (Run All), or: {Path(sys.executable).parent / 'jupyter'} lab {shown}")
         return 0
+    from .kernels import install_clone_kernel
+
+    install_clone_kernel()  # the clone's own kernel, in this environment, which the copy names
     jupyter = shutil.which("jupyter", path=str(Path(sys.executable).parent)) or "jupyter"
     os.execv(jupyter, [jupyter, "lab", str(copy)])
 
@@ -187,7 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=_cmd_run)
 
     s = sub.add_parser("sweep", help="run a TOML sweep spec (grid x repeats) in a process pool")
-    s.add_argument("spec", help="sweep spec TOML (see README, 'Sweeps')")
+    s.add_argument("spec", help="sweep spec TOML (see docs/contributing.md, 'Sweeps')")
     s.add_argument("--jobs", type=_positive_int, default=1, help="parallel runs (local executor)")
     s.add_argument("-o", "--output", default=None, help="sweep directory (default papermill_runs/<spec name>)")
     s.add_argument("--executor", choices=["local", "dask"], default="local")
@@ -250,7 +256,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (UsageError, NotebookBug) as exc:
+    except (UsageError, NotebookBug, WriteFailed) as exc:
         if args.debug:
             raise
         print(f"error: {exc}", file=sys.stderr)

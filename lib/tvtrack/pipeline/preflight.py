@@ -4,7 +4,7 @@ cell, and parameter values through the notebook's own validation cell.
 A notebook's first code cell (tagged ``parameters``) holds one assignment per parameter; the next
 code cell imports the library and calls ``validate_parameters(globals(), ...)`` together with any
 cross-parameter check, raising ``ValueError`` that names the parameters. That cell must be cheap
-and do no simulation (README, "Writing a notebook"), so it can run here, in a subprocess with a
+and do no simulation (docs/contributing.md, "Writing a notebook"), so it can run here, in a subprocess with a
 throw-away ``output_dir``, before a run starts.
 """
 
@@ -30,6 +30,7 @@ __all__ = [
     "refuse_output_dir",
     "OUTPUT_DIR_REASON",
     "name_given",
+    "refuse_unknown_keys",
 ]
 
 
@@ -79,6 +80,16 @@ def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
                 else f"; its parameters are {', '.join(sorted(known))}"
             )
             raise UsageError(f"{where}{notebook.stem} has no parameter {name!r}{hint}")
+
+
+def refuse_unknown_keys(table: dict, allowed: Iterable[str], where: str = "") -> None:
+    """Raise :class:`UsageError` for the first key of ``table`` not in ``allowed``, suggesting the closest."""
+    allowed = sorted(allowed)
+    for key in table:
+        if key not in allowed:
+            close = difflib.get_close_matches(key, allowed, n=2, cutoff=0.6)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}?" if close else f"allowed: {', '.join(allowed)}"
+            raise UsageError(f"{where}unknown key {key!r}; {hint}")
 
 
 _PREFLIGHT = r"""

@@ -4,7 +4,8 @@ Notebooks run in a process pool of ``jobs`` workers, longest first (by the runti
 reproduce run, else a fixed order), each into ``papermill_runs/reproduce/<name>/`` (replacing the
 earlier run only when the new one has ended). Another profile (``make reproduce PROFILE=smoke``) runs
 into ``papermill_runs/reproduce-<profile>/`` with its own ``REPRODUCTION.md`` there, and leaves the
-paper runs, the repository's ``REPRODUCTION.md`` and the README alone. Ctrl-C stops the notebooks,
+paper runs, the repository's ``REPRODUCTION.md`` and the README alone. A reproduce holds the lock of its
+folder (:mod:`.lock`): a second one into the same folder is refused. Ctrl-C stops the notebooks,
 keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``jobs`` notebooks do not oversubscribe the
 machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
 parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
@@ -25,7 +26,8 @@ from .interrupt import shielded_spawn, stop_pool, worker_init
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError, parameter_defaults
 from .report import README_PATH, REPORT_PATH, write_report
-from .runner import list_notebooks, remove_stale_temporaries, run_notebook
+from .lock import LOCK_NAME, output_lock
+from .runner import WriteFailed, list_notebooks, remove_stale_temporaries, run_notebook
 
 __all__ = ["usable_cores", "reproduce"]
 
@@ -65,7 +67,10 @@ def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tup
     fresh = Path(folder) / f".new-{name}"
     if fresh.exists():
         shutil.rmtree(fresh)
-    outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
+    try:
+        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
+    except WriteFailed as exc:  # nothing kept; the earlier run of this notebook stays
+        return name, False, str(exc), 0.0
     final = Path(folder) / name
     if final.exists():
         shutil.rmtree(final)
@@ -93,9 +98,12 @@ def reproduce(
     -------
     int
         Exit status: 1 if any notebook failed (the others still run and are reported).
-    """
-    from tqdm import tqdm
 
+    Raises
+    ------
+    FolderBusy
+        Another ``reproduce`` writes the same folder (one line naming its process id, exit status 2).
+    """
     jobs = usable_cores() if jobs is None else jobs
     if jobs < 1:
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
@@ -111,6 +119,23 @@ def reproduce(
     jobs = min(jobs, len(notebooks))
     threads = max(1, usable_cores() // jobs)
     folder.mkdir(parents=True, exist_ok=True)
+    with output_lock(folder / LOCK_NAME, folder, "reproduce folder"):
+        failures = _run_notebooks(notebooks, profile, folder, jobs, threads)
+        paper = profile_name(profile) == PAPER_PROFILE
+        path = write_report(
+            folder,
+            REPORT_PATH if paper else folder / "REPRODUCTION.md",
+            notebooks=[nb.stem for nb in list_notebooks()],
+            readme=README_PATH if paper else None,
+        )
+    print(f"wrote {path}" + (f"; failed: {', '.join(failures)}" if failures else ""))
+    return 1 if failures else 0
+
+
+def _run_notebooks(notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int) -> list[str]:
+    """The notebooks in a pool of ``jobs`` workers; returns the names of those that failed."""
+    from tqdm import tqdm
+
     remove_stale_temporaries(folder)
     log = folder / "kernels.log"
     failures = []
@@ -144,12 +169,4 @@ def reproduce(
         raise KeyboardInterrupt(f"reproduce: notebooks stopped; the runs finished before are kept in {folder}") from exc
     pool.shutdown()
     bar.close()
-    paper = profile_name(profile) == PAPER_PROFILE
-    path = write_report(
-        folder,
-        REPORT_PATH if paper else folder / "REPRODUCTION.md",
-        notebooks=[nb.stem for nb in list_notebooks()],
-        readme=README_PATH if paper else None,
-    )
-    print(f"wrote {path}" + (f"; failed: {', '.join(failures)}" if failures else ""))
-    return 1 if failures else 0
+    return failures

@@ -16,6 +16,8 @@ its kernel and removes its temporary folder; one left by a killed process (its o
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import json
 import os
 import shutil
@@ -29,8 +31,10 @@ from pathlib import Path
 from typing import Any
 
 from .interrupt import child_pids, end_children, kernels_end_on_ctrl_c
+from .kernels import KernelSetup as _KernelSetup
+from .lock import output_lock, remove_stale_locks
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
-from .preflight import UsageError
+from .preflight import UsageError, check_names
 
 __all__ = [
     "find_notebook",
@@ -41,9 +45,15 @@ __all__ = [
     "run_notebook",
     "read_run",
     "remove_stale_temporaries",
+    "WriteFailed",
 ]
 
 KERNEL_NAME = os.environ.get("TVTRACK_KERNEL", "python3")
+"""``python3``: the runner starts ``sys.executable -m ipykernel_launcher`` (this environment's Python) whatever
+kernel specs are installed (a per-user ``python3`` spec of another environment is never used); the variable
+``TVTRACK_KERNEL`` names an installed kernel spec instead."""
+KERNEL_LOG = "kernel.log"
+KERNEL_START_ATTEMPTS = 3
 OWNER_FILE = ".owner"  # "<host> <pid>" of the process running a temporary run folder
 # papermill's 60 s default is too short for a kernel to start while a sweep loads every core
 KERNEL_START_TIMEOUT_S = 300
@@ -69,13 +79,21 @@ def find_notebook(name: str | Path) -> Path:
 def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
     """Parameters of a named profile, from ``papermill_runs/profiles/<stem>.<profile>.toml``
     (or, for notebooks outside ``notebooks/``, ``<stem>.<profile>.toml`` beside the notebook).
-    ``None`` or ``"paper"`` is the notebook's own defaults: no overrides."""
+    ``None`` or ``"paper"`` is the notebook's own defaults: no overrides.
+
+    Raises
+    ------
+    UsageError
+        No such profile, invalid TOML, or a key that is not a parameter of the notebook (one line naming the
+        profile file and the closest parameter names)."""
     if profile in (None, "paper"):
         return {}
     for folder in (PROFILE_DIR, notebook.parent):
         path = folder / f"{notebook.stem}.{profile}.toml"
         if path.is_file():
-            return read_toml(path)
+            values = read_toml(path)
+            check_names(notebook, values, where=f"{path}: ")
+            return values
     known = sorted(
         {
             p.name.split(".")[1]
@@ -94,6 +112,10 @@ def read_toml(path: Path) -> dict[str, Any]:
             return dict(tomllib.load(fh))
     except tomllib.TOMLDecodeError as exc:
         raise UsageError(f"{path}: invalid TOML: {exc}") from exc
+
+
+class WriteFailed(RuntimeError):
+    """A run's outputs could not be written (full disk, read-only folder): one line, exit status 1."""
 
 
 @dataclass
@@ -150,66 +172,139 @@ def run_notebook(
     Returns
     -------
     RunOutcome
-        ``status`` is ``"failed"`` (with the error) if the notebook raised; this function
-        itself raises only if the run directory cannot be written.
-    """
-    import papermill as pm  # heavy import, only when running
+        ``status`` is ``"failed"`` (with the error) if the notebook raised or its kernel died.
 
+    Raises
+    ------
+    FolderBusy
+        Another process writes ``run_dir`` (:mod:`.lock`).
+    WriteFailed
+        The run's outputs could not be written (a full disk, a read-only folder); the temporary folder is
+        removed and nothing is kept.
+    """
     nb = find_notebook(notebook)
     run_dir = Path(run_dir).resolve()
-    if run_dir.exists():
-        raise FileExistsError(f"run directory {run_dir} exists already")
     params = {**load_profile(nb, profile), **(parameters or {}), "output_dir": "."}
     run_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
-    tmp.mkdir()
-    (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
-    record = {
-        "notebook": nb.stem,
-        "notebook_path": str(nb),
-        "profile": profile or "paper",
-        "parameters": params,
-        **(extra_record or {}),
-    }
-    t0 = time.perf_counter()
-    error = tb = None
+    with output_lock(run_dir.parent / f".{run_dir.name}.lock", run_dir, "run directory"):
+        if run_dir.exists():
+            raise FileExistsError(f"run directory {run_dir} exists already")
+        tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
+        try:
+            tmp.mkdir()
+            (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
+        except OSError as exc:
+            _write_failed(tmp, run_dir, exc)
+        record = {
+            "notebook": nb.stem,
+            "notebook_path": str(nb),
+            "profile": profile or "paper",
+            "parameters": params,
+            **(extra_record or {}),
+        }
+        t0 = time.perf_counter()
+        status, error, tb = _execute_in(tmp, nb, params, kernel_name, timeout_s, progress, run_dir)
+        runtime = time.perf_counter() - t0
+        record.update(
+            status=status,
+            error=error,
+            runtime_s=runtime,
+            finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        )
+        try:
+            _write_record(tmp, record, tb)
+            (tmp / OWNER_FILE).unlink(missing_ok=True)
+            os.replace(tmp, run_dir)
+        except OSError as exc:
+            _write_failed(tmp, run_dir, exc)
+    return RunOutcome(run_dir=run_dir, status=status, runtime_s=runtime, error=error, record=record)
+
+
+def _execute_in(tmp: Path, nb: Path, params: dict, kernel_name, timeout_s, progress, run_dir: Path):
+    """Execute the notebook in ``tmp``: ``(status, one-line error or None, traceback or None)``.
+
+    A kernel that dies before it answers (:func:`_died_at_start`) is started again, up to
+    :data:`KERNEL_START_ATTEMPTS` times; what kernels print goes to ``kernel.log`` in the run, never to the
+    terminal. Ctrl-C (or a pool worker's stop) ends the kernel, removes ``tmp`` and propagates."""
+    import papermill as pm  # heavy import, only when running
+
     spare = child_pids()  # the caller's own processes: an interrupt ends only this run's kernel
+    log_path = tmp / KERNEL_LOG
     try:
-        with kernels_end_on_ctrl_c():
-            pm.execute_notebook(
-                str(nb),
-                str(tmp / "notebook.ipynb"),
-                parameters=params,
-                cwd=str(tmp),
-                kernel_name=kernel_name or KERNEL_NAME,
-                progress_bar=progress,
-                execution_timeout=timeout_s,
-                log_output=False,
-                start_timeout=KERNEL_START_TIMEOUT_S,
-                extra_arguments=KERNEL_ARGUMENTS,
-                shutdown_kernel=KERNEL_SHUTDOWN,
-            )
-        status = "ok"
+        with kernels_end_on_ctrl_c(), _KernelSetup(log_path, kernel_name) as setup:
+            for attempt in range(1, KERNEL_START_ATTEMPTS + 1):
+                try:
+                    pm.execute_notebook(
+                        str(nb),
+                        str(tmp / "notebook.ipynb"),
+                        parameters=params,
+                        cwd=str(tmp),
+                        kernel_name=setup.kernel_name,
+                        progress_bar=progress,
+                        execution_timeout=timeout_s,
+                        log_output=False,
+                        start_timeout=KERNEL_START_TIMEOUT_S,
+                        extra_arguments=KERNEL_ARGUMENTS,
+                        shutdown_kernel=KERNEL_SHUTDOWN,
+                        kernel_manager_class=setup.manager_class(),
+                    )
+                    break
+                except RuntimeError as exc:
+                    if not _died_at_start(exc) or attempt == KERNEL_START_ATTEMPTS:
+                        raise
+                    setup.note(f"tvtrack: the kernel died before it answered (attempt {attempt}); starting another")
         if not (tmp / "results.json").is_file():
-            status, error = "failed", "the notebook finished without writing results.json"
+            return "failed", "the notebook finished without writing results.json", None
+        return "ok", None, None
     except Exception as exc:  # noqa: BLE001 - a failed run is recorded, never raised
-        status = "failed"
+        if _is_write_error(exc):
+            _write_failed(tmp, run_dir, exc)
         error = _short_error(exc)
-        tb = traceback.format_exc()
+        if _died_at_start(exc):
+            error = f"the kernel died before it answered ({KERNEL_START_ATTEMPTS} attempts); its output: {KERNEL_LOG}"
+        return "failed", error, traceback.format_exc()
     except BaseException:  # Ctrl-C (KeyboardInterrupt) or a pool worker told to stop: no run, no leftovers
         end_children(spare=spare)
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    runtime = time.perf_counter() - t0
-    record.update(
-        status=status, error=error, runtime_s=runtime, finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
-    )
+    finally:
+        with contextlib.suppress(OSError):
+            if log_path.stat().st_size == 0:
+                log_path.unlink()
+
+
+def _write_record(tmp: Path, record: dict, tb: str | None) -> None:
+    """``run.json`` (and ``error.txt`` for a failure) into the temporary folder."""
     (tmp / "run.json").write_text(json.dumps(record, indent=2, default=str))
     if tb:
         (tmp / "error.txt").write_text(tb)
-    (tmp / OWNER_FILE).unlink(missing_ok=True)
-    os.replace(tmp, run_dir)
-    return RunOutcome(run_dir=run_dir, status=status, runtime_s=runtime, error=error, record=record)
+
+
+_WRITE_ERRNOS = {errno.ENOSPC, errno.EROFS, errno.EDQUOT, errno.EACCES, errno.EPERM}
+
+
+def _is_write_error(exc: BaseException) -> bool:
+    """A failure to write (full disk, read-only folder), in this process or in the kernel's own writes."""
+    if isinstance(exc, OSError):
+        return exc.errno in _WRITE_ERRNOS
+    evalue = str(getattr(exc, "evalue", ""))
+    return getattr(exc, "ename", None) in ("OSError", "PermissionError") and any(
+        f"[Errno {n}]" in evalue for n in _WRITE_ERRNOS
+    )
+
+
+def _write_failed(tmp: Path, run_dir: Path, exc: BaseException) -> None:
+    """Remove the temporary folder and raise :class:`WriteFailed` with one line."""
+    shutil.rmtree(tmp, ignore_errors=True)
+    reason = getattr(exc, "strerror", None) or getattr(exc, "evalue", None) or str(exc)
+    raise WriteFailed(f"cannot write the run {run_dir}: {reason}; its temporary folder is removed") from exc
+
+
+def _died_at_start(exc: BaseException) -> bool:
+    """The kernel died (or never answered) before its ``kernel_info`` reply: nothing of the notebook ran."""
+    return isinstance(exc, RuntimeError) and (
+        "before replying to kernel_info" in str(exc) or "didn't respond in" in str(exc)
+    )
 
 
 def _short_error(exc: Exception) -> str:
@@ -266,10 +361,12 @@ def _zombie(pid: int) -> bool:
 def remove_stale_temporaries(parent: Path) -> int:
     """Delete the ``.tmp-*`` folders under ``parent`` left by runs whose process is gone; returns how many.
 
-    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept."""
+    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept; lock files
+    nobody holds are removed too (:func:`.lock.remove_stale_locks`)."""
     n = 0
     if not Path(parent).is_dir():
         return 0
+    remove_stale_locks(Path(parent))
     for tmp in Path(parent).glob(".tmp-*"):
         if tmp.is_dir() and not _owner_alive(tmp):
             shutil.rmtree(tmp, ignore_errors=True)

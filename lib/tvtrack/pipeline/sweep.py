@@ -1,10 +1,11 @@
 """Parameter sweeps: a TOML spec -> many notebook runs -> ``summary.csv`` (+ a plot).
 
-Spec format (see README, "Sweeps")::
+Spec format (see docs/contributing.md, "Sweeps")::
 
     notebook = "004_laser_spot_prediction"   # name in notebooks/ or a path relative to the spec
     profile = "smoke"                          # optional base profile (default: paper defaults)
     repeats = 2                                # distinct seeds seed, seed+1, ... (default 1)
+                                               # (or a list `seed = [1, 2, 3]` in [grid], with repeats = 1)
     [fixed]    n_trials = 20                   # set in every run
     [grid]     horizon_frames = [1, 2, 5]      # cartesian product
     [zip]      a = [1, 2]; b = [10, 20]        # varied together (equal lengths)
@@ -12,7 +13,10 @@ Spec format (see README, "Sweeps")::
                # optional: xlabel, ylabel, title, xscale/yscale = "log"
 
 Each run's directory is ``<sweep dir>/runs/<hash>``, the hash a stable digest of the notebook
-and its parameters, so a sweep started again skips the runs already finished (resume). A run
+and its parameters, so a sweep started again skips the runs already finished (resume); two runs of one
+spec never share a directory (a repeated value is refused), and a sweep holds the lock of its folder.
+The summary's ``y`` is a metric the notebook writes, nested values by a dotted path (refused before any
+run otherwise: :mod:`.summary`). A run
 that fails is recorded in its directory (``run.json`` with the error, ``error.txt``) and never
 stops the others; the sweep exits non-zero if any run failed. A run's directory appears only
 when the run has ended (see :mod:`tvtrack.pipeline.runner`).
@@ -20,7 +24,6 @@ when the run has ended (see :mod:`tvtrack.pipeline.runner`).
 
 from __future__ import annotations
 
-import csv
 import hashlib
 import itertools
 import json
@@ -30,13 +33,22 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
-from typing import Any
 
 from ..executors import SchedulerError, connect_dask, parse_scheduler_address
 from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
 from .paths import RUNS_DIR, writable_directory
-from .preflight import UsageError, check_names, check_values_many, name_given
-from .runner import read_toml, find_notebook, load_profile, read_run, remove_stale_temporaries, run_notebook
+from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
+from .lock import LOCK_NAME, output_lock
+from .runner import (
+    WriteFailed,
+    find_notebook,
+    load_profile,
+    read_run,
+    read_toml,
+    remove_stale_temporaries,
+    run_notebook,
+)
+from .summary import check_metric, check_metric_in, collect_summary
 
 __all__ = [
     "SweepSpec",
@@ -53,6 +65,11 @@ __all__ = [
 
 DASK_CONNECT_TIMEOUT_S = 8
 _SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
+_SUMMARY_KEYS = {"x", "y", "hue", "xlabel", "ylabel", "title", "xscale", "yscale"}
+SEED_HOWTO = (
+    "vary seeds either with a [grid] (or [zip]) list `seed = [...]` and repeats = 1, or with repeats = N "
+    "(seeds base, base+1, ..., the base from [fixed] seed)"
+)
 
 
 @dataclass(frozen=True)
@@ -84,9 +101,7 @@ def load_spec(path: str | Path) -> SweepSpec:
     if not path.is_file():
         raise UsageError(f"no sweep spec {str(path)!r}")
     raw = read_toml(path)
-    unknown = set(raw) - _SPEC_KEYS
-    if unknown:
-        raise UsageError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS)}")
+    refuse_unknown_keys(raw, _SPEC_KEYS, f"{path}: ")
     if "notebook" not in raw:
         raise UsageError(f"{path}: 'notebook' is required")
     nb_name = raw["notebook"]
@@ -106,8 +121,13 @@ def load_spec(path: str | Path) -> SweepSpec:
     if overlap:
         raise UsageError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
     summary = raw.get("summary", {})
+    refuse_unknown_keys(summary, _SUMMARY_KEYS, f"{path}: [summary]: ")
     if summary and not {"x", "y"} <= set(summary):
         raise UsageError(f"{path}: [summary] needs both 'x' and 'y'")
+    if ("seed" in grid or "seed" in zipped) and repeats > 1:
+        raise UsageError(
+            f"{path}: a seed list in [grid]/[zip] and repeats = {repeats} both vary the seed; {SEED_HOWTO}"
+        )
     for table, names in (
         ("[fixed]", raw.get("fixed", {})),
         ("[grid]", grid),
@@ -117,6 +137,8 @@ def load_spec(path: str | Path) -> SweepSpec:
         check_names(nb, names, where=f"{path}: {table}: ")
     if "y" in summary and not isinstance(summary["y"], str):
         raise UsageError(f"{path}: [summary] y = {summary['y']!r}; it must be a metric name (a string)")
+    if "y" in summary:
+        check_metric(nb, summary["y"], where=f"{path}: [summary] y: ")
     return SweepSpec(
         name=path.stem,
         notebook=nb,
@@ -140,7 +162,14 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
 
     The base seed is the spec's ``fixed.seed`` if given, else the profile's, else the
     notebook's default (read from the run's injected parameters, so it is set explicitly here
-    to keep run ids stable: default 0 when nothing names it)."""
+    to keep run ids stable: default 0 when nothing names it). A ``seed`` list in ``[grid]`` or ``[zip]``
+    gives each run its own seed (``repeats`` is then 1: :func:`load_spec`).
+
+    Raises
+    ------
+    UsageError
+        Two runs would be the same run (the same parameters, so the same directory): a value listed twice.
+    """
     base_params = {**load_profile(spec.notebook, spec.profile), **spec.fixed}
     base_seed = base_params.get("seed", _default_seed(spec.notebook))
     grid_keys = list(spec.grid)
@@ -152,12 +181,21 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
     for g in grid_rows:
         for z in zip_rows:
             for r in range(spec.repeats):
-                params = {**spec.fixed, **g, **z, "seed": int(base_seed) + r}
+                seed = {**g, **z}.get("seed", int(base_seed) + r)
+                params = {**spec.fixed, **g, **z, "seed": seed}
                 runs.append(
                     RunSpec(
                         spec.notebook.stem, spec.profile, params, run_hash(spec.notebook.stem, spec.profile, params)
                     )
                 )
+    seen: dict[str, RunSpec] = {}
+    for run in runs:
+        if run.run_id in seen:
+            raise UsageError(
+                f"{spec.name}: two runs have the same parameters {run.parameters} (a value listed twice in "
+                "[grid]/[zip]?); each run needs its own directory: remove the repeated value"
+            )
+        seen[run.run_id] = run
     return runs
 
 
@@ -198,14 +236,17 @@ def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
 
 
 def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str, str | None, float]:
-    """Worker: one run (top-level so process pools and Dask can pickle it). A pool worker told to stop
-    (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
+    """Worker: one run (top-level so process pools and Dask can pickle it): ``(run id, status, error,
+    runtime)``, status ``"absent"`` when its outputs could not be written (nothing kept). A pool worker told
+    to stop (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
     try:
         outcome = run_notebook(
             notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile, extra_record={"run_id": run.run_id}
         )
     except Interrupted:
         os._exit(EXIT_INTERRUPTED)
+    except WriteFailed as exc:
+        return run.run_id, "absent", str(exc), 0.0
     return run.run_id, outcome.status, outcome.error, outcome.runtime_s
 
 
@@ -218,6 +259,7 @@ class SweepSummary:
     n_failed: int
     summary_csv: Path
     plot: Path | None
+    n_absent: int = 0
 
 
 def run_sweep(
@@ -230,6 +272,9 @@ def run_sweep(
 ) -> SweepSummary:
     """Run every run of a spec that has not finished yet, then write the summary.
 
+    The sweep holds the lock of its folder (:mod:`.lock`) from its first write to its summary: a second
+    sweep into the same folder is refused with one line naming this one's process id.
+
     Parameters
     ----------
     jobs : int
@@ -238,6 +283,11 @@ def run_sweep(
         Sweep directory (default ``papermill_runs/<spec name>``).
     executor : {"local", "dask"}
         ``"dask"`` submits the runs to an existing Dask cluster at ``scheduler``.
+
+    Returns
+    -------
+    SweepSummary
+        ``n_failed`` counts every run not ``ok`` (failed, or ``absent``: its outputs could not be written).
     """
     if jobs < 1:
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
@@ -261,27 +311,48 @@ def run_sweep(
     except OSError as exc:
         raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
     writable_directory(runs_dir, "sweep directory")
+    with output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"):
+        todo = _runs_to_do(spec, spec_path, sweep_dir, runs)
+        errors = _run_all(spec, runs, todo, jobs, executor, client, runs_dir, progress)
+        return _finish(spec, sweep_dir, runs, len(runs) - len(todo), errors)
+
+
+def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]) -> list[RunSpec]:
+    """The runs not finished yet (a failed run is removed and tried again); refuses a summary metric that the
+    finished runs do not hold."""
+    runs_dir = sweep_dir / "runs"
     remove_stale_temporaries(runs_dir)
     (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
     todo = []
     for run in runs:
         record = read_run(runs_dir / run.run_id)
         if record and record.get("status") == "ok":
+            if "y" in spec.summary:
+                check_metric_in(
+                    runs_dir / run.run_id / "results.json", spec.summary["y"], f"{spec_path}: [summary] y: "
+                )
             continue
         if (runs_dir / run.run_id).exists():  # a failed run is tried again
             shutil.rmtree(runs_dir / run.run_id)
         todo.append(run)
-    n_skipped = len(runs) - len(todo)
+    return todo
 
+
+def _run_all(spec, runs, todo, jobs, executor, client, runs_dir: Path, progress: bool) -> dict[str, str]:
+    """Execute ``todo``; returns ``{run id: why}`` for the runs whose outputs could not be written."""
     from tqdm import tqdm
 
-    bar = tqdm(total=len(runs), initial=n_skipped, desc=spec.name, disable=not progress, unit="run")
+    bar = tqdm(total=len(runs), initial=len(runs) - len(todo), desc=spec.name, disable=not progress, unit="run")
     failed = 0
+    errors: dict[str, str] = {}
     nb_path = str(spec.notebook)
 
-    def tick(status: str) -> None:
+    def tick(result: tuple) -> None:
         nonlocal failed
+        run_id, status, error, _ = result
         failed += status != "ok"
+        if status == "absent":
+            errors[run_id] = error
         bar.update(1)
         bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
 
@@ -290,7 +361,7 @@ def run_sweep(
             _run_on_dask(client, todo, nb_path, str(runs_dir), tick)
         elif jobs == 1:
             for r in todo:
-                tick(_execute(r, nb_path, str(runs_dir))[1])
+                tick(_execute(r, nb_path, str(runs_dir)))
         else:
             _run_in_pool(jobs, todo, nb_path, str(runs_dir), tick)
     except KeyboardInterrupt as exc:
@@ -301,15 +372,32 @@ def run_sweep(
             f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; the same command resumes"
         ) from exc
     bar.close()
-    csv_path, plot = collect_summary(sweep_dir, runs, spec.summary)
-    records = [read_run(runs_dir / r.run_id) or {} for r in runs]
+    return errors
+
+
+def _finish(spec: SweepSpec, sweep_dir: Path, runs: list[RunSpec], n_skipped: int, errors: dict) -> SweepSummary:
+    """Write the summary and print one line per run that is not ok."""
+    runs_dir = sweep_dir / "runs"
+    csv_path, plot = collect_summary(sweep_dir, runs, spec.summary, errors)
+    records = [read_run(runs_dir / r.run_id) or {"status": "absent", "error": errors.get(r.run_id)} for r in runs]
     n_ok = sum(rec.get("status") == "ok" for rec in records)
-    n_failed = len(runs) - n_ok
-    print(f"{spec.name}: {n_ok} ok, {n_failed} failed, {n_skipped} skipped (already done) -> {sweep_dir}")
+    n_absent = sum(rec.get("status") == "absent" for rec in records)
+    absent = f", {n_absent} absent (outputs not written)" if n_absent else ""
+    print(
+        f"{spec.name}: {n_ok} ok, {len(runs) - n_ok - n_absent} failed, {n_skipped} skipped (already done)"
+        f"{absent} -> {sweep_dir}"
+    )
     for r, rec in zip(runs, records):
         if rec.get("status") != "ok":
-            print(f"  failed {r.run_id} {r.parameters}: {rec.get('error')}")
-    return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, n_failed, csv_path, plot)
+            print(f"  {rec.get('status')} {r.run_id} {r.parameters}: {rec.get('error')}")
+    if spec.summary and plot is None and n_ok:
+        first = next(r for r, rec in zip(runs, records) if rec.get("status") == "ok")
+        try:
+            check_metric_in(runs_dir / first.run_id / "results.json", spec.summary["y"])
+            print(f"  no summary.png: no finished run has both {spec.summary['x']!r} and {spec.summary['y']!r}")
+        except UsageError as exc:
+            print(f"  no summary.png: {exc}")
+    return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, len(runs) - n_ok, csv_path, plot, n_absent)
 
 
 def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
@@ -322,7 +410,7 @@ def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, ti
         with shielded_spawn():  # workers are spawned by submit(): they start with Ctrl-C ignored
             futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
         for fut in as_completed(futures):
-            tick(fut.result()[1])
+            tick(fut.result())
     except KeyboardInterrupt:
         stop_pool(pool)
         raise
@@ -338,7 +426,7 @@ def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick)
         futures = [client.submit(_execute, r, nb_path, runs_dir, pure=False) for r in todo]
         try:
             for fut in dask_completed(futures):
-                tick(fut.result()[1])
+                tick(fut.result())
         except KeyboardInterrupt:
             client.cancel(futures)
             raise
@@ -372,88 +460,3 @@ def _dask_client(scheduler: str, timeout_s: float = DASK_CONNECT_TIMEOUT_S):
         return connect_dask(scheduler, timeout_s, hint=hint)
     except SchedulerError as exc:
         raise UsageError(str(exc)) from None
-
-
-def _flatten_metrics(metrics: dict) -> dict[str, Any]:
-    """Scalars as they are; Estimate-like dicts as NAME.value / NAME.ci_low / NAME.ci_high;
-    lists and other nested values are left out of the table."""
-    out: dict[str, Any] = {}
-    for name, value in metrics.items():
-        if isinstance(value, (int, float, bool)) or value is None:
-            out[name] = value
-        elif isinstance(value, dict) and "value" in value:
-            for key in ("value", "ci_low", "ci_high"):
-                out[f"{name}.{key}"] = value.get(key)
-    return out
-
-
-def collect_summary(sweep_dir: Path, runs: list[RunSpec], summary: dict | None = None) -> tuple[Path, Path | None]:
-    """Write ``summary.csv`` (one row per run: id, status, error, parameters, metrics, verdicts)
-    and, if ``summary`` names ``x`` and ``y``, ``summary.png``."""
-    rows = []
-    for run in runs:
-        run_dir = sweep_dir / "runs" / run.run_id
-        rec = read_run(run_dir) or {"status": "missing"}
-        row: dict[str, Any] = {
-            "run_id": run.run_id,
-            "status": rec.get("status"),
-            "error": rec.get("error") or "",
-            "runtime_s": rec.get("runtime_s"),
-        }
-        row.update(run.parameters)
-        res = run_dir / "results.json"
-        if res.is_file():
-            data = json.loads(res.read_text())
-            row.update(_flatten_metrics(data.get("metrics", {})))
-            row.update({f"verdict {c['id']}": c["verdict"] for c in data.get("claims", [])})
-        rows.append(row)
-    columns: list[str] = []
-    for row in rows:
-        columns += [k for k in row if k not in columns]
-    csv_path = sweep_dir / "summary.csv"
-    with csv_path.open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=columns)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in row.items()})
-    plot = _summary_plot(sweep_dir, rows, summary) if summary else None
-    return csv_path, plot
-
-
-def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    x, y, hue = summary["x"], summary["y"], summary.get("hue")
-    ok = [r for r in rows if r.get("status") == "ok" and r.get(y) is not None and x in r]
-    if not ok:
-        return None
-    groups: dict[Any, list[dict]] = {}
-    for r in ok:
-        groups.setdefault(r.get(hue) if hue else None, []).append(r)
-    fig, ax = plt.subplots(figsize=(6, 4))
-    base = y[: -len(".value")] if y.endswith(".value") else None
-    for key, items in groups.items():
-        xs = sorted({r[x] for r in items})
-        mean = [np.mean([r[y] for r in items if r[x] == v]) for v in xs]
-        label = f"{hue} = {key}" if hue else None
-        (line,) = ax.plot(xs, mean, marker="o", label=label)
-        if base and all(f"{base}.ci_low" in r for r in items):
-            lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
-            hi = [np.mean([r[f"{base}.ci_high"] for r in items if r[x] == v]) for v in xs]
-            ax.fill_between(xs, lo, hi, alpha=0.2, color=line.get_color())
-    ax.set_xscale(summary.get("xscale", "linear"))
-    ax.set_yscale(summary.get("yscale", "linear"))
-    ax.set_xlabel(summary.get("xlabel", x))
-    ax.set_ylabel(summary.get("ylabel", y))
-    ax.set_title(summary.get("title", sweep_dir.name))
-    if hue:
-        ax.legend()
-    ax.grid(alpha=0.3)
-    path = sweep_dir / "summary.png"
-    fig.savefig(path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return path

@@ -123,11 +123,16 @@ def verify_rrd(path: str | Path, timeout_s: float = 60.0) -> str:
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"no recording at {path}")
+    with path.open("rb") as fh:
+        head = fh.read(4)
+    if len(head) < 4 or not (head[:3] == b"RRF" and head[3:4].isdigit()):
+        # `rerun rrd verify` passes a file too short to hold a message ("0 files verified without error")
+        raise ValueError(f"rerun rrd verify {path} failed (exit 0): Not an RRD file: no RRF header, got {head!r}")
     proc = subprocess.run(
         [rerun_executable(), "rrd", "verify", str(path)], capture_output=True, text=True, timeout=timeout_s
     )
     report = (proc.stdout + proc.stderr).strip()
-    if proc.returncode != 0:
+    if proc.returncode != 0 or "0 files verified" in report:
         raise ValueError(f"rerun rrd verify {path} failed (exit {proc.returncode}): {report}")
     return report
 

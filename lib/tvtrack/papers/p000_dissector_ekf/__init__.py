@@ -21,14 +21,5 @@ CITATION = (
 )
 
 __getattr__, __dir__ = lazy_exports(
-    __name__,
-    {
-        "REGISTER": "register:REGISTER",
-        "DEPENDS": "register:DEPENDS",
-        "RULES": "claims:RULES",
-        "CLAIMS": "claims:CLAIMS",
-        "PARAMETERS": "params:RULES",
-        "Sizes": "study:Sizes",
-        "recording": "recording",
-    },
-)
+    __name__, {"PARAMETERS": "params:RULES"}
+)  # the rest where tvtrack.contract.SOURCES says

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from ... import verdicts as vd
 from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, Rule
-from .study import ENSEMBLE_MEAN, LATE_SHARE, Sizes
+from .study import AT_09, ENSEMBLE_MEAN, EVERY_ABOVE, LATE_SHARE, Sizes
 
 __all__ = ["CLAIMS", "RULES", "claim_rules", "cost_rule"]
 
@@ -81,6 +81,24 @@ def _convergence(acquire_by: float) -> vd.ByReading:
     return vd.ByReading("convergence criterion", {LATE_SHARE: share, ENSEMBLE_MEAN: ratio}, share)
 
 
+def _contrast_threshold(grid_p) -> vd.ByReading:
+    """C000-5's rule, per reading of "for P > 0.5 it substantially determines": at most 1.3 at every Fig. 3
+    contrast in (0, 0.5]; at least 2 at P = 0.9 (the default), or at every Fig. 3 contrast above 0.5 (the
+    adversarial reading "at every P > 0.5": the paper's threshold is P = 0.5, not 0.9)."""
+
+    def ratio(p):
+        return f"error variance / stationary-noise error variance sigma_x^2* at P={p:g}"
+
+    below = {f"P={p:g}": InBand(ratio(p), high=1.3, unit="(ratio)") for p in grid_p if 0 < p <= 0.5}
+
+    def rule(above):
+        return AllOf({**below, **{f"P={p:g}": InBand(ratio(p), 2.0, unit="(ratio)") for p in above}})
+
+    default = rule([0.9])
+    every = rule([p for p in grid_p if p > 0.5])
+    return vd.ByReading("substantially determines", {AT_09: default, EVERY_ABOVE: every}, default)
+
+
 def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
     """The claim rules of C000-1, -2, -3, -5, -6, -7, -8, -9 for a run of ``sizes`` (:class:`.study.Sizes`: its
     grids name the parts; the defaults if None). C000-4 has its own measurement (:func:`.study.measure_cost`)."""
@@ -104,22 +122,7 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
                 for k in [f"P={p:g}" for p in grid_p] + [f"psi_A={p:g}" for p in grid_psi]
             }
         ),
-        "C000-5": AllOf(
-            {
-                **{
-                    f"P={p:g}": band(
-                        f"error variance / stationary-noise error variance sigma_x^2* at P={p:g}",
-                        high=1.3,
-                        unit="(ratio)",
-                    )
-                    for p in grid_p
-                    if 0 < p <= 0.5
-                },
-                "P=0.9": band(
-                    "error variance / stationary-noise error variance sigma_x^2* at P=0.9", 2.0, unit="(ratio)"
-                ),
-            }
-        ),
+        "C000-5": _contrast_threshold(grid_p),
         "C000-6": band(
             "error variance at P = 0.9 of the reading's filter / the reading's potentially achievable variance",
             20.0,

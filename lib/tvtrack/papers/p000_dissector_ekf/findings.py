@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...verdicts import as_estimate
+from ...verdicts import ByReading, as_estimate
 
 __all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows", "beside"]
 
@@ -79,6 +79,11 @@ def _fmt(measured) -> str:
     return f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]"
 
 
+def _measured(m):
+    """A measurement without its reading's tag (:meth:`tvtrack.verdicts.ByReading.tag`)."""
+    return m["measured"] if isinstance(m, dict) and set(m) == {"reading", "measured"} else m
+
+
 def beside(ex, rules: dict, claim_ids, entry: str, value) -> str:
     """A Markdown table: each part of each claim at the default (pooled replicates) and with ``entry = value``
     (the one-at-a-time condition, first replicate's draws), values with 95 % intervals and each verdict (a list
@@ -99,8 +104,9 @@ def beside(ex, rules: dict, claim_ids, entry: str, value) -> str:
         )
         if other is None:
             continue
-        parts = getattr(rules[cid], "parts", None) or {"claim": rules[cid]}
-        here = ex.measured(cid)
+        rule = rules[cid].default if isinstance(rules[cid], ByReading) else rules[cid]
+        parts = getattr(rule, "parts", None) or {"claim": rule}
+        here, other = (_measured(m) for m in (ex.measured(cid), other))
         for name, rule in parts.items():
             a, b = (here, other) if name == "claim" else (here[name], other[name])
             lines.append(f"| {cid}, {name} | {_fmt(a)} | {rule.decide(a)} | {_fmt(b)} | {rule.decide(b)} |")

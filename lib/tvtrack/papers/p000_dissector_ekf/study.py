@@ -52,15 +52,18 @@ MESSAGE = GaussMarkovMessage(0.1, 0.15)
 #: The register's "sigma_1" operating point: the paper's "typical" sigma_1 = 0.1 T, or an image spread over the
 #: micro-raster (sigma_1 = 0.2 T: within +-T/2 of the centre 98 % of the time), alpha_0 T = 0.15 in both.
 MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
+#: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
+#: final window_T), named in plain words (the register table shows them).
+LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
 #: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
 #: (so those reuse the default's memoised runs).
 ADVERSARIAL_READS = {
     "sigma_1": ("0.1 T", ("C000-1", "C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
-    "lock threshold": ("lock_factor", ("C000-1",)),
+    "lock threshold": (LOCK_DEFAULT, ("C000-1",)),
     "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
     "background": ("stationary", ("C000-5", "C000-7")),
     "manoeuvre": ("none", ("C000-2", "C000-3", "C000-5", "C000-7")),
-    "steady window": ("window_T", ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
+    "steady window": (WINDOW_DEFAULT, ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
 }
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
 STEADY_AFTER_T = 5.0
@@ -75,6 +78,11 @@ JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
 #: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
 LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
 CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
+#: The two readings of C000-5's "for P > 0.5 it substantially determines [the accuracy]" (register entry
+#: "substantially determines"; each has its own rule): the paper's one example P = 0.9, or every contrast of Fig. 3
+#: above 0.5 (the adversarial review, docs/adversarial/session4-000-review.md).
+AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
+DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -263,7 +271,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         }
 
     out = _memo(key, compute)
-    if cfg.get("steady window", "window_T") != "window_T":  # the whole run after the transient
+    if cfg.get("steady window", WINDOW_DEFAULT) != WINDOW_DEFAULT:  # the whole run after the transient
         out = {**out, "steady": out["steady_after"]}
     return out
 
@@ -311,7 +319,7 @@ def _acquired_at(cfg, seed, sizes, filt, run):
     """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
     square of the same filter from the paper's start."""
     ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
-    factor = 2.0 if cfg.get("lock threshold", "lock_factor") == "2 x steady RMS" else sizes.lock_factor
+    factor = 2.0 if cfg.get("lock threshold", LOCK_DEFAULT) == "2 x steady RMS" else sizes.lock_factor
     return acquisition_times_from_scans(run["scans"], factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
 
@@ -346,14 +354,21 @@ def _c3(cfg, seed, sizes):
 
 
 def _c5_c7(cfg, seed, sizes):
+    """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*."""
     ratios = [_ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
     c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, ratios) if 0 < p <= 0.5}
-    c5["P=0.9"] = ratios[list(sizes.contrast_grid).index(0.9)]
-    r9 = c5["P=0.9"]
+    r9 = ratios[list(sizes.contrast_grid).index(0.9)]
+    above = (
+        [0.9] if cfg.get("substantially determines", AT_09) == AT_09 else [p for p in sizes.contrast_grid if p > 0.5]
+    )
+    c5.update({f"P={p:g}": ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
     crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes)) / scan_crlb(_scan(cfg, psi9, 0.0, sizes))
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
-    return c5, {"trend": ratios, "measurement vs estimate": gap}
+    return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
+        "trend": ratios,
+        "measurement vs estimate": gap,
+    }
 
 
 def _c6(cfg, seed, sizes):

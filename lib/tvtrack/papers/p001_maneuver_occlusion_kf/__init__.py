@@ -22,14 +22,5 @@ CITATION = (
 )
 
 __getattr__, __dir__ = lazy_exports(
-    __name__,
-    {
-        "REGISTER": "register:build_register()",
-        "DEPENDS": "register:DEPENDS",
-        "RULES": "claims:RULES",
-        "CLAIMS": "claims:CLAIMS",
-        "PARAMETERS": "params:RULES",
-        "Sizes": "sizes:Sizes",
-        "recording": "recording",
-    },
-)
+    __name__, {"REGISTER": "register:build_register()", "PARAMETERS": "params:RULES", "Sizes": "sizes:Sizes"}
+)  # the rest where tvtrack.contract.SOURCES says

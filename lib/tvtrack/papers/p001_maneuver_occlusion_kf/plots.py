@@ -200,8 +200,9 @@ def loss_sweep_plot(sweeps: dict, switch_s: float):
 
 
 def comparators_plot(t_s, rms_t: dict, ratios: dict, loss):
-    """C001-4: (a) position RMS over time of the scheme and every tuned comparator (channels pooled); (b) the
-    ratio of each comparator's mean-square error to the scheme's with its 95 % interval (above 1: the scheme is
+    """C001-4: (a) position RMS over time of the scheme and every tuned comparator (channels pooled); (b) each
+    part's ratio, the comparator's error statistic over the scheme's (the dynamic error's mean square for the
+    compensation, the register's RMS statistic for the others), with its 95 % interval (above 1: the scheme is
     better)."""
     use_style()
     fig, axs = plt.subplots(1, 2, figsize=(11, 3.8), width_ratios=[1.5, 1])
@@ -221,7 +222,7 @@ def comparators_plot(t_s, rms_t: dict, ratios: dict, loss):
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
     ax.set_yticks(y, names, fontsize=8)
-    ax.set(xlabel="MS error ratio to the scheme (> 1: scheme better)", title="(b) the C001-4 parts")
+    ax.set(xlabel="comparator's error / the scheme's (> 1: scheme better)", title="(b) the C001-4 parts")
     return fig
 
 

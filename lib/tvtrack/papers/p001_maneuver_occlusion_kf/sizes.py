@@ -14,21 +14,19 @@ class Sizes(TypedDict, total=False):
     Keys
     ----
     n_trials : runs per condition; n_fa_runs, fa_duration_s : false-alarm runs and their length (s);
-    roc_delay_s : the detection delay of the UMP comparison (s); step_dv : velocity step of the power runs
-    (elements/frame); sigma_eps : measurement noise (elements); restart_accel_var : acceleration variance at a
-    restart; n_train, n_tradeoff_trials, train_seed : comparator tuning runs, trade-off runs and their seed;
+    sigma_eps : measurement noise (elements, the paper's 1); n_train, n_tradeoff_trials, train_seed : comparator tuning runs, trade-off runs and their seed;
     kb3_grid : the gain bounds of Fig. 4 (frames); loss_grid_s : loss start times (s); n_fig4_trials : runs per
     Fig. 4 point; grids : the comparators' tuning grids; defaults : the register's defaults; prediction_rms : the
-    C001-9 tolerance (elements), set after the Fig. 4 study.
+    C001-9 tolerance (elements), set after the Fig. 4 study. The delay limit of C001-2 (``roc_delay_s``), its step
+    (``step_dv``) and restart C's prior (``restart_accel_var``) are register entries (issue 38), not sizes; what a
+    measurement may read besides the register is listed in :data:`.register.RUN_SIZES` and
+    :data:`.register.FIXED_BY_PAPER`.
     """
 
     n_trials: int
     n_fa_runs: int
     fa_duration_s: float
-    roc_delay_s: float
-    step_dv: float
     sigma_eps: float
-    restart_accel_var: float
     n_train: int
     n_tradeoff_trials: int
     train_seed: int

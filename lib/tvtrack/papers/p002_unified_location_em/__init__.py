@@ -22,15 +22,4 @@ CITATION = (
     'objects", Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).'
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__,
-    {
-        "REGISTER": "register:REGISTER",
-        "DEPENDS": "register:DEPENDS",
-        "RULES": "claims:RULES",
-        "CLAIMS": "claims:CLAIMS",
-        "PARAMETERS": "params:PARAMETERS",
-        "Sizes": "study:Scale",
-        "recording": "recording",
-    },
-)
+__getattr__, __dir__ = lazy_exports(__name__, {"Sizes": "study:Scale"})  # the rest where tvtrack.contract.SOURCES says

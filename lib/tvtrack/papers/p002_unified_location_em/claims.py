@@ -42,7 +42,7 @@ RULES = {
         "loss variance(1 sigma) / variance(6 sigma) with 5-sigma pixels", "with 3-sigma pixels", ">", **_U, unit=_R
     ),
     "C002-5": Monotone(
-        "variance with 3-sigma pixels / with 1-sigma pixels", "frames T = 5, 10, 50", "decreasing", unit=_R
+        "variance with coarser / finer pixels (3 / 1 sigma by default)", "frames T = 5, 10, 50", "decreasing", unit=_R
     ),
     "C002-6": Ordering(
         "frame dependence |ln r_T| at 20 photons",
@@ -107,8 +107,13 @@ RULES = {
     ),
     "C002-15": AllOf(
         {
-            p: InBand(f"ULA variance / bound (efficiency), {p}", 0.8, 1.5, unit="variance / bound")
-            for p in ("d = 1 sigma (very close)", "d = 2 sigma", "d = 4 sigma", "velocities, d = 1 sigma")
+            p: InBand(f"ULA variance / bound (efficiency), {q}", 0.8, 1.5, unit="variance / bound")
+            for p, q in (
+                ("very close", "very close objects (d = 1 sigma by default)"),
+                ("d = 2 sigma", "d = 2 sigma"),
+                ("d = 4 sigma", "d = 4 sigma"),
+                ("velocities, very close", "velocities of very close objects"),
+            )
         }
     ),
     "C002-16": NotCheckable("a summary of C002-7, C002-10, C002-12 and C002-15"),

@@ -4,7 +4,8 @@ Each entry's ``why`` says why its values are defensible; ``origin="adversarial"`
 flip a label (the designation-free and velocity-knowledge readings of the comparison, motionless objects, a
 stopped-early EM, the Bayesian bound; in a second pass the photon pair and the coordinate of C002-6 and the
 practical stopping tolerance of Fig 7's iteration counts; in a fourth the pixel size, the frame pair and the
-T-dependence statistic of C002-6). :data:`DEPENDS` names the entries each claim's measurement reads: an entry
+T-dependence statistic of C002-6; in the session-4 review the separation that is "very close" in C002-15 and the pixel
+pair of C002-5). :data:`DEPENDS` names the entries each claim's measurement reads: an entry
 left out cannot change that claim's number (it changes only simulation points the claim does not use).
 """
 
@@ -175,6 +176,20 @@ PLAIN = {
     "close separations of C002-10 (sigma)": (
         "distances where the ULA's gain is read",
         {1.0: "objects 1 sigma apart", 2.0: "objects up to 2 sigma apart", 3.0: "objects up to 3 sigma apart"},
+    ),
+    "pixel pair of C002-5": (
+        "pixel sizes whose influence C002-5 reads",
+        {
+            "3 vs 1": "pixels 3 sigma wide against 1 sigma wide (Figs 1c and 2a together)",
+            "5 vs 3": "pixels 5 sigma wide against 3 sigma wide (the two pixel sizes of Fig 1c)",
+        },
+    ),
+    "very close separation of C002-15 (sigma)": (
+        "distance between the objects at which 'very close' is read",
+        {
+            1.0: "very close = 1 sigma apart (the smallest distance the text names)",
+            0.5: "very close = 0.5 sigma apart (the closest objects of the distance axis)",
+        },
     ),
     "bound": (
         "the 'potential accuracy'",
@@ -462,6 +477,30 @@ REGISTER = Register(
             "bound with the designation as prior for any estimator started there",
             origin="adversarial",
         ),
+        Entry(
+            "pixel pair of C002-5",
+            "reading",
+            "3 vs 1",
+            ("3 vs 1", "5 vs 3"),
+            "C002-5 cites Figs 1c and 2a for 'with more frames the influence of pixel size weakens'; Fig 1c compares "
+            "pixels of 3 and 5 sigma, Fig 2a has pixels of 1 sigma only, so the card's 3 against 1 sigma joins two "
+            "figures and Fig 1c's own 5 against 3 sigma is the pair the cited figure draws (session-4 adversarial "
+            "review: 5 against 3 sigma, d = 2 sigma, 300 trials per point: the ratio rises from T = 5 to T = 10, "
+            "measurably against the trend)",
+            origin="adversarial",
+        ),
+        Entry(
+            "very close separation of C002-15 (sigma)",
+            "reading",
+            1.0,
+            (1.0, 0.5),
+            "'very close objects' is not quantified; the text names d = 1 sigma as its smallest distance, and the "
+            "study's distance axis (card 5.2) starts at 0.5 sigma, where the images overlap most (session-4 "
+            "adversarial review, 300 trials: at 0.5 sigma the ULA's variance is 0.31 of the CRB, a biased estimator "
+            "the CRB does not bound, and 3.0 times the van Trees bound of its designation prior; its mean squared "
+            "error is twice the designation's own)",
+            origin="adversarial",
+        ),
     ],
     pinned=[
         # the joint sample that made C002-1 not reproduced in the paper-profile run of 2026-11-25 (issue 22)
@@ -512,7 +551,7 @@ DEPENDS = {
     "C002-2": [*_ULA_ONLY, "T of Figs 1a,b"],
     "C002-3": [*_ULA_ONLY, "T of Figs 1a,b"],
     "C002-4": [*_ULA_ONLY, "m_k of Fig 1c"],
-    "C002-5": [*_ULA_ONLY, "separation of C002-5 (sigma)"],
+    "C002-5": [*_ULA_ONLY, "separation of C002-5 (sigma)", "pixel pair of C002-5"],
     "C002-6": [
         *_ULA_ONLY,
         "small separations of C002-6 (sigma)",
@@ -550,5 +589,6 @@ DEPENDS = {
         "Delta of Figs 4, 5, 7 (sigma)",
         "T of Figs 4, 6, 7",
         "bound",
+        "very close separation of C002-15 (sigma)",
     ],
 }

@@ -251,6 +251,22 @@ def c1_point(config: dict) -> tuple[int, float]:
     return int(config.get("m_k of C002-1", 20)), float(config.get("Delta of C002-1 (sigma)", 3.0))
 
 
+#: The pixel sizes Delta / sigma (coarser, finer) whose variance ratio C002-5 reads (an adversarial register row): the
+#: card's 3 against 1 sigma (Figs 1c and 2a together), or Fig 1c's own pair, 5 against 3 sigma.
+PIXELS5 = {"3 vs 1": (3.0, 1.0), "5 vs 3": (5.0, 3.0)}
+
+
+def c5_pair(config: dict) -> tuple[float, float]:
+    """The (coarser, finer) pixel sizes Delta / sigma of C002-5."""
+    return PIXELS5[config.get("pixel pair of C002-5", "3 vs 1")]
+
+
+def c15_close(config: dict) -> float:
+    """The separation d / sigma at which C002-15 reads "very close objects" (an adversarial register row: 1 sigma,
+    the smallest separation the text names, or 0.5 sigma, the closest of the study's distance axis)."""
+    return float(config.get("very close separation of C002-15 (sigma)", 1.0))
+
+
 def fig7_variant(config: dict) -> tuple:
     """The :class:`Config` ``variant`` of the Fig 7 points (C002-13, C002-14): the register's stopping tolerance
     of the iteration counts, or ``()`` at the default (the default's cache keys and draws are unchanged; a variant
@@ -292,7 +308,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
             for T in sorted({5, 10, *T6} if figures else T6)
             for m in sorted(photons6(config))
         },
-        "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in (1.0, 3.0) for T in (5, 10, 50)},
+        "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in c5_pair(config) for T in (5, 10, 50)},
         "3a": {
             p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
             for p_ in (1.0, 3.0, 5.0)
@@ -304,6 +320,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
             {d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)} if config["velocity knowledge"] == "designated" else {}
         ),
         "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
+        "c15": {d: P(2, d, pix, 20, T4, "u") for d in sorted({c15_close(config), 2.0, 4.0})},
         "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
         "7": {
             d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials, variant=fig7_variant(config))
@@ -471,8 +488,9 @@ def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> di
     loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
     out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B, sp)
     d5 = float(config["separation of C002-5 (sigma)"])
+    hi5, lo5 = c5_pair(config)
     out["C002-5"] = [
-        gain(ula(g["5"][(3.0, T)][d5]), ula(g["5"][(1.0, T)][d5]), rng, B, st, paired=False) for T in (5, 10, 50)
+        gain(ula(g["5"][(hi5, T)][d5]), ula(g["5"][(lo5, T)][d5]), rng, B, st, paired=False) for T in (5, 10, 50)
     ]
     small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
 
@@ -567,12 +585,12 @@ def _c15(config, g, res, ep, st) -> dict:
     use_bayes = config["bound"] == "van Trees (designation prior)"
     key_pos, key_vel = ("bcrb_pos", "bcrb_vel") if use_bayes else ("crb_pos", "crb_vel")
     parts = {}
-    cs = g["4"][20]
-    for d, name in ((1.0, "d = 1 sigma (very close)"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
+    cs, close = g["c15"], c15_close(config)
+    for d, name in ((close, "very close"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
         r = res[cs[d]]
         parts[name] = _efficiency(errors(r, "ula", ep), r[key_pos], st)
-    r = res[cs[1.0]]
-    parts["velocities, d = 1 sigma"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
+    r = res[cs[close]]
+    parts["velocities, very close"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
     return parts
 
 

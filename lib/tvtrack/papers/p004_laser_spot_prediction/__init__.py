@@ -28,14 +28,5 @@ CITATION = (
 )
 
 __getattr__, __dir__ = lazy_exports(
-    __name__,
-    {
-        "REGISTER": "register:build()",
-        "DEPENDS": "register:DEPENDS",
-        "RULES": "claims:RULES",
-        "CLAIMS": "claims:CLAIMS",
-        "PARAMETERS": "params:RULES",
-        "Sizes": "study:StudySize",
-        "recording": "recording",
-    },
-)
+    __name__, {"REGISTER": "register:build()", "PARAMETERS": "params:RULES", "Sizes": "study:StudySize"}
+)  # the rest where tvtrack.contract.SOURCES says

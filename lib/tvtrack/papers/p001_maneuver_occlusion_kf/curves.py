@@ -1,0 +1,210 @@
+"""The deterministic curves of C001-7 and C001-8 (Fisenko et al. 2008, Fig. 4 and the text before Fig. 1) as
+measured values, tagged with the register's ``curve_tolerance`` (the claims' Monotone rules count a smaller step as
+flat), and Fig. 4's optimum reported with what it rests on (where the signed dynamic error crosses zero).
+"""
+
+from __future__ import annotations
+
+
+import numpy as np
+from scipy import stats
+
+from ...filters.polynomial import predict_ahead
+from ...verdicts import ByReading
+from .track_modes import TrackModeConfig, run_track_modes
+from .scenario import (
+    Scenario,
+    config_scenario,
+    measurements,
+    _full,
+)
+
+__all__ = [
+    "optimum_location",
+    "forced_output",
+    "prediction_error",
+    "occlusion_frames",
+    "fig4_curves",
+    "loss_sweep",
+    "c7_parts",
+    "c8_parts",
+    "measure_curves",
+    "fig4_monte_carlo",
+    "curve_agreement",
+    "agreement_word",
+    "unbiased_prediction_bound",
+]
+
+
+def optimum_location(cur: dict) -> dict:
+    """Where curve 3 (|dynamic| + RMS) is smallest and what puts it there.
+
+    Returns
+    -------
+    dict
+        ``kb3`` (the grid point of the minimum), ``sum``, ``dyn``, ``rms`` there; ``crossings``: the k_b3 values
+        (linear interpolation between grid points) where the signed dynamic error changes sign; ``nearest_crossing``
+        (None without a crossing); ``at_crossing``: whether the minimum is the grid point next to a crossing on
+        either side (the optimum then sits where the dynamic error passes through zero, not where a trade-off
+        of two monotone errors balances); ``rms_share``: RMS / sum at the minimum.
+    """
+    kb = np.asarray(cur["kb3"], float)
+    dyn, rms, s = (np.asarray(cur[k], float) for k in ("dyn", "rms", "sum"))
+    i = int(np.argmin(s))
+    a, b = dyn[:-1], dyn[1:]
+    j = np.nonzero(a * b < 0)[0]  # strict sign changes (exact zeros of a rounded curve are not crossings)
+    cross = [float(kb[k] + (kb[k + 1] - kb[k]) * a[k] / (a[k] - b[k])) for k in j]
+    near = min(cross, key=lambda c: abs(c - kb[i])) if cross else None
+    adjacent = near is not None and (
+        (i > 0 and kb[i - 1] <= near <= kb[i]) or (i < len(kb) - 1 and kb[i] <= near <= kb[i + 1])
+    )
+    return {
+        "kb3": int(kb[i]),
+        "sum": float(s[i]),
+        "dyn": float(dyn[i]),
+        "rms": float(rms[i]),
+        "crossings": cross,
+        "nearest_crossing": near,
+        "at_crossing": bool(adjacent),
+        "rms_share": float(rms[i] / s[i]),
+    }
+
+
+def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=None, covariance=True):
+    """The scheme with the switch forced at ``switch_s`` (the filter is then linear, card §4.5), on the noise-free
+    truth of channel x (``z=None``) or on measurements ``z``."""
+    k_switch = int(round(float(config["switch_s"]) * sc.fps)) + 1
+    cfg = TrackModeConfig(
+        k_bound2=int(config["k_bound2"]),
+        k_bound3=int(kb3),
+        window=int(config["window_n"]),
+        restart=config["restart"],
+        restart_accel_var=float(config["restart_accel_var"]),
+        force_switch_k=k_switch,
+    )
+    zz = sc.truth[0, :, 0] if z is None else z
+    return run_track_modes(zz, visible, cfg, sizes["sigma_eps"], covariance=covariance or cfg.restart == "C")
+
+
+def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: int, f_back: int):
+    """Noise-free dynamic error and RMS (elements) of the prediction at ``f_back`` after a loss ``[f_loss, f_back)``
+    (card §4.5). The RMS is the covariance recursion's for white errors (also the RMS of the quantised and
+    Student-t models, white with the same variance); for ``config["noise"]`` = AR(1) it is exact for the correlated
+    errors: the forced filter is linear, so the prediction error is ``w @ e`` with ``w`` its response to unit
+    impulses and variance ``sigma² w R w``, ``R_ij = 0.5^|i-j|``."""
+    vis = (sc.frames < f_loss) | (sc.frames >= f_back)
+    o = forced_output(sc, config, sizes, kb3, vis)
+    dyn = float(predict_ahead(o.x[f_back - 1], 1) - sc.truth[0, f_back, 0])
+    rms = float(np.sqrt(o.gate_var[f_back] - sizes["sigma_eps"] ** 2))
+    if config.get("noise", "white Gaussian") == "AR(1), rho = 0.5":
+        imp = np.eye(f_loss, sc.T)
+        w = predict_ahead(forced_output(sc, config, sizes, kb3, vis, z=imp, covariance=False).x[:, f_back - 1], 1)
+        lag = np.abs(np.subtract.outer(np.arange(f_loss), np.arange(f_loss)))
+        rms = float(sizes["sigma_eps"] * np.sqrt(w @ (0.5**lag) @ w))
+    return round(dyn, 6), round(rms, 6)  # float noise off the deterministic curves
+
+
+def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
+    """Fig. 4's "disappearance at the 10th second": the scenario's loss (12-22 s) or a 10 s loss from 10 s."""
+    if reading == "scenario 12-22 s":
+        return sc.f_loss, sc.f_back
+    if reading == "from 10 s":
+        return int(round(10 * sc.fps)), int(round(20 * sc.fps))
+    raise ValueError(f"occlusion reading {reading!r}")
+
+
+def fig4_curves(config: dict, sizes: dict) -> dict:
+    """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
+    config = _full(config, sizes)
+    sc = config_scenario(config)
+    fl, fb = occlusion_frames(config["occlusion"], sc)
+    dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
+    return {"kb3": np.asarray(sizes["kb3_grid"]), "dyn": dyn, "rms": rms, "sum": np.abs(dyn) + rms}
+
+
+def loss_sweep(config: dict, sizes: dict) -> dict:
+    """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
+    config = _full(config, sizes)
+    sc = config_scenario(config)
+    rows = [
+        prediction_error(
+            sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + 10.0) * sc.fps))
+        )
+        for s in sizes["loss_grid_s"]
+    ]
+    dyn, rms = np.array(rows).T
+    return {"loss_s": np.asarray(sizes["loss_grid_s"]), "dyn": dyn, "rms": rms}
+
+
+def c7_parts(sweep: dict) -> dict:
+    """C001-7's parts: |dynamic| (elements) along the loss times; |dynamic| / RMS for the earliest loss."""
+    return {
+        "decreasing": [float(v) for v in np.abs(sweep["dyn"])],
+        "dominates early": float(abs(sweep["dyn"][0]) / sweep["rms"][0]),
+    }
+
+
+def c8_parts(cur: dict) -> dict:
+    """C001-8's parts: the RMS (elements) along k_b3; an interior minimum of curve 3 (ends minus the inside
+    minimum); |dynamic| from the optimum on."""
+    s = cur["sum"]
+    ib = int(np.argmin(s))
+    tail = [float(v) for v in np.abs(cur["dyn"])[ib:]]
+    return {
+        "RMS decreasing": [float(v) for v in cur["rms"]],
+        "interior minimum": float(min(s[0], s[-1]) - s[1:-1].min()),
+        "dynamic grows beyond the optimum": tail if len(tail) >= 2 else [tail[0], tail[0]],
+    }
+
+
+def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
+    """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), each
+    tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone
+    rules count a step below it as flat, :mod:`.claims`)."""
+    config = _full(config, sizes)
+    tol = float(config["curve_tolerance"])
+    return {
+        "C001-7": ByReading.tag(tol, c7_parts(loss_sweep(config, sizes))),
+        "C001-8": ByReading.tag(tol, c8_parts(fig4_curves(config, sizes))),
+    }
+
+
+def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
+    """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
+    config = _full(config, sizes)
+    sc = config_scenario(config)
+    fl, fb = occlusion_frames(config["occlusion"], sc)
+    vis = (sc.frames < fl) | (sc.frames >= fb)
+    out = {"mean": [], "sd": [], "se": []}
+    for kb in sizes["kb3_grid"]:
+        z = measurements(sc.truth[0, :, 0], "white Gaussian", sizes["n_fig4_trials"], rng, sizes["sigma_eps"])
+        o = forced_output(sc, config, sizes, kb, vis, z=z, covariance=False)
+        e = predict_ahead(o.x[:, fb - 1], 1) - sc.truth[0, fb, 0]
+        out["mean"].append(e.mean())
+        out["sd"].append(e.std(ddof=1))
+        out["se"].append(e.std(ddof=1) / np.sqrt(e.size))
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def curve_agreement(curves: dict, mc: dict, n: int) -> dict:
+    """Chi-square tests of the Monte Carlo against the noise-free dynamic error (means) and the covariance RMS
+    (variances): ``{"p_mean", "p_var"}``, two-sided for the variance."""
+    p_mean = float(stats.chi2.sf(np.sum(((mc["mean"] - curves["dyn"]) / mc["se"]) ** 2), len(curves["dyn"])))
+    chi2 = float(np.sum((n - 1) * mc["sd"] ** 2 / curves["rms"] ** 2))
+    dof = len(curves["rms"]) * (n - 1)
+    return {"p_mean": p_mean, "p_var": float(2 * min(stats.chi2.sf(chi2, dof), stats.chi2.cdf(chi2, dof)))}
+
+
+def agreement_word(p: float, level: float = 0.05) -> str:
+    """The word a test at ``level`` allows: "agree with" when p >= level, "differ from" otherwise."""
+    return "agree with" if p >= level else "differ from"
+
+
+def unbiased_prediction_bound(sc: Scenario, f_first: int, f_last: int, f_pred: int, sigma_eps: float = 1.0) -> float:
+    """SD bound for any *unbiased* predictor of the position at ``f_pred`` from the measurements ``f_first`` ..
+    ``f_last`` of a quadratic in white noise (the least-squares fit is the MVU estimator, card §8.3), elements."""
+    lags = np.arange(f_last - f_first, -1, -1, dtype=float)
+    H = np.stack([np.ones_like(lags), -lags, 0.5 * lags**2], axis=-1)
+    m = f_pred - f_last
+    u = np.array([1.0, m, 0.5 * m**2])
+    return float(sigma_eps * np.sqrt(u @ np.linalg.solve(H.T @ H, u)))

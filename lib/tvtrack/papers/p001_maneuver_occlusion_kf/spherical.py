@@ -1,0 +1,110 @@
+"""C001-9 (Fisenko et al. 2008, text before Fig. 1): targets in uniform Cartesian motion seen in azimuth and
+elevation, the paper's two angular rates first, then a grid of geometries.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from .scenario import FPS_REF, _full
+
+__all__ = [
+    "HORIZONS",
+    "spherical_deviations",
+    "TARGET_SETS",
+    "PAPER_RATES",
+    "paper_rate_deviation",
+    "measure_spherical",
+]
+
+
+#: C001-9's extrapolation horizon, s: the scenario's 10 s loss, or the 3rd-order filter's memory (k_b3 = 100 frames).
+HORIZONS = {"10 s loss": 10.0, "4 s filter memory": 4.0}
+
+
+def spherical_deviations(
+    ranges_m, speeds, headings_deg, elevations_deg, horizon_s: float = 10.0, deg_per_element: float = 6.0 / 712
+) -> np.ndarray:
+    """Targets in uniform Cartesian motion seen in azimuth/elevation: the largest deviation (elements) over
+    ``horizon_s`` of a linear and of a quadratic extrapolation of the exact angular state at the start.
+
+    Returns
+    -------
+    ndarray, shape (geometries, 7)
+        range m, speed m/s, heading deg, initial elevation deg, stays within ±20° (1/0), linear, quadratic.
+    """
+    tt = np.linspace(0, horizon_s, 251)
+    hd = 1e-3
+
+    def angles(R, V, h, e0, t):
+        p = R * np.array([np.cos(e0), 0.0, np.sin(e0)]) + V * np.asarray(t)[:, None] * np.array(
+            [np.cos(h), np.sin(h), 0.0]
+        )
+        return np.degrees(np.arctan2(p[:, 1], p[:, 0])), np.degrees(np.arctan2(p[:, 2], np.hypot(p[:, 0], p[:, 1])))
+
+    rows = []
+    for R, V, h, e0 in itertools.product(ranges_m, speeds, np.deg2rad(headings_deg), np.deg2rad(elevations_deg)):
+        az, el = angles(R, V, h, e0, tt)
+        inside = np.all(np.abs(az) <= 20) and np.all(np.abs(el) <= 20)
+        dev = []
+        for order in (1, 2):
+            worst = 0.0
+            for ang, a3 in zip((az, el), angles(R, V, h, e0, [-hd, 0.0, hd])):
+                v = (a3[2] - a3[0]) / (2 * hd)
+                a = (a3[2] - 2 * a3[1] + a3[0]) / hd**2 if order == 2 else 0.0
+                worst = max(worst, float(np.max(np.abs(a3[1] + v * tt + 0.5 * a * tt**2 - ang))) / deg_per_element)
+            dev.append(worst)
+        rows.append((R, V, np.degrees(h), np.degrees(e0), float(inside), *dev))
+    return np.array(rows)
+
+
+#: The target sets of C001-9: ranges m, speeds m/s, headings deg, initial elevations deg.
+TARGET_SETS = {
+    "2-20 km, 100-300 m/s": ((2e3, 5e3, 10e3, 20e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+    "20-100 km, 50-250 m/s": ((20e3, 50e3, 100e3), (50.0, 250.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+    "50-100 km, 100-300 m/s": ((50e3, 70e3, 100e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
+}
+
+
+#: The paper's two angular rates, deg/s: 10 elements/frame and 0.02°/frame at 25 Hz (C001-10's two figures).
+PAPER_RATES = {
+    "2.107°/s (10 el/frame)": 10.0 * FPS_REF * 6.0 / 712,
+    "0.5°/s (0.02°/frame)": 0.02 * FPS_REF,
+}
+
+
+def paper_rate_deviation(rate_deg_s: float, horizon_s: float = 10.0, extrapolation: str = "quadratic") -> dict:
+    """C001-9 at one of the paper's angular rates: a target crossing at closest approach (azimuth 0, elevation 0,
+    the rate ``rate_deg_s`` there), its angle extrapolated over ``horizon_s``; the largest deviation from the
+    true angle, elements (closed form ``omega H - atan(omega H)`` at the crossing, where the angular acceleration
+    is 0 so linear and quadratic coincide), and whether the angle stays within ±20°.
+    """
+    R = 10e3  # only the rate matters: the angle is atan(omega t)
+    row = spherical_deviations([R], [np.deg2rad(rate_deg_s) * R], [90.0], [0.0], horizon_s=horizon_s)[0]
+    return {
+        "deviation_el": float(row[5] if extrapolation == "linear" else row[6]),
+        "within_20deg": bool(row[4] > 0),
+        "end_angle_deg": float(np.degrees(np.arctan(np.deg2rad(rate_deg_s) * horizon_s))),
+    }
+
+
+def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
+    """C001-9 in parts: at each of the paper's two rates (:data:`PAPER_RATES`) the deviation in multiples of the
+    tolerance (:func:`paper_rate_deviation`), then over the register's grid of geometries the fraction within
+    ±20° whose extrapolation stays within the tolerance (``extrapolation``: quadratic/linear; ``tolerance``:
+    "1 element" or "prediction RMS at k_b3"; ``targets``: a key of :data:`TARGET_SETS`; ``horizon``: a key of
+    :data:`HORIZONS`; NaN when no geometry stays within ±20°)."""
+    config = _full(config, sizes)
+    H = HORIZONS[config.get("horizon", "10 s loss")]
+    tol = 1.0 if config["tolerance"] == "1 element" else float(sizes["prediction_rms"])
+    parts = {
+        name: paper_rate_deviation(rate, H, config["extrapolation"])["deviation_el"] / tol
+        for name, rate in PAPER_RATES.items()
+    }
+    rows = spherical_deviations(*TARGET_SETS[config["targets"]], horizon_s=H)
+    inside = rows[rows[:, 4] > 0]
+    col = 5 if config["extrapolation"] == "linear" else 6
+    parts["geometries"] = float(np.mean(inside[:, col] < tol)) if inside.size else float("nan")
+    return {"C001-9": parts}

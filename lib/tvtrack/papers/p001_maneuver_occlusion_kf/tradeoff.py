@@ -1,0 +1,137 @@
+"""C001-4 read as Fisenko et al. (2008) write it: the switch "sped up the transient of the dynamic error and
+minimised the RMS (СКО) error", two errors the paper keeps apart (Fig. 4's curves 1 and 2 too).
+
+* The **dynamic error** is the non-random part of the position error, its mean over runs at each frame; the part
+  ``faster compensation`` compares its mean square from the onset to ``compensation_end_s`` (the compensation
+  comparator's over the scheme's).
+* The **RMS** the gain law minimises is read by the register entry ``rms_statistic``: the random error (the SD over
+  runs at each frame, mean square over ``rms_span``; the paper's СКО, default), the total mean square over the
+  span (bias and random together; the earlier reading), or the card's acceptance ``|bias| + RMS at 12 s`` (at the
+  last frame before the loss). Each ``min RMS vs <comparator>`` part is the comparator's value over the
+  scheme's.
+
+Every ratio is of functionals of the per-frame mean and second moment over runs, so its interval is a paired
+percentile bootstrap over runs (multinomial weights, the same resampled runs for both filters).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from ...montecarlo import Estimate
+from .comparators import _tuning, comparator_positions, compensation_comparator
+from .scenario import COMPARATORS, COMPENSATION_COMPARATORS, _full, config_scenario, measurements, run_scheme, span_mask
+
+__all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff"]
+
+#: Readings of "the gain law minimises the RMS error" (register entry ``rms_statistic``).
+RMS_STATISTICS = ("random error (SD)", "total mean square", "|bias| + RMS at 12 s")
+N_BOOT = 400
+
+
+def error_functional(m1, m2, kind: str) -> np.ndarray:
+    """A statistic of the error from its per-column mean ``m1`` and second moment ``m2`` over runs (..., columns).
+
+    ``"bias²"``: mean over columns of m1² (elements²); ``"random"``: mean of the variance m2 - m1²; ``"total"``:
+    mean of m2; ``"|bias| + SD"``: mean over columns of |m1| + sqrt(m2 - m1²) (elements)."""
+    var = np.maximum(m2 - m1**2, 0.0)
+    if kind == "bias²":
+        return np.mean(m1**2, axis=-1)
+    if kind == "random":
+        return np.mean(var, axis=-1)
+    if kind == "total":
+        return np.mean(m2, axis=-1)
+    if kind == "|bias| + SD":
+        return np.mean(np.abs(m1) + np.sqrt(var), axis=-1)
+    raise ValueError(f"error functional {kind!r}")
+
+
+def paired_functional_ratio(err_a, err_b, kind: str, rng: np.random.Generator, n_boot: int = N_BOOT) -> Estimate:
+    """``f(err_a) / f(err_b)`` for the functional ``kind`` of :func:`error_functional`, with a paired percentile
+    bootstrap over runs.
+
+    Parameters
+    ----------
+    err_a, err_b : ndarray, shape (runs, columns)
+        Position errors (elements) of two filters on the same runs; columns are the frames x channels judged.
+    """
+    a, b = np.asarray(err_a, float), np.asarray(err_b, float)
+    runs = a.shape[0]
+
+    def f(x, w=None):
+        if w is None:
+            return error_functional(x.mean(0), (x**2).mean(0), kind)
+        return error_functional(w @ x / runs, w @ x**2 / runs, kind)
+
+    value = float(f(a) / f(b))
+    w = rng.multinomial(runs, np.full(runs, 1.0 / runs), size=n_boot).astype(float)
+    boot = f(a, w) / f(b, w)
+    lo, hi = np.quantile(boot, [0.025, 0.975])
+    return Estimate(
+        value,
+        float(np.std(boot, ddof=1)),
+        float(lo),
+        float(hi),
+        runs,
+        0.95,
+        f"paired percentile bootstrap over {runs} runs ({n_boot} resamples)",
+    )
+
+
+def _columns(err, frames) -> np.ndarray:
+    """(runs, 2, T) errors -> (runs, 2 x frames) at the selected frames (channels pooled)."""
+    return err[..., frames].reshape(err.shape[0], -1)
+
+
+def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
+    """C001-4 in parts (module docstring): ``faster compensation`` and ``min RMS vs <comparator>`` for every
+    comparator of :data:`~.scenario.COMPARATORS`, each tuned for the register's span (for ``|bias| + RMS at 12 s``: for
+    the mean square at the last frame before the loss). Ratios > 1: the scheme's error is the smaller.
+
+    Config entries read: ``rms_span``, ``rms_statistic``, ``compensation_end_s``, ``compensation_comparator``,
+    ``noise``, ``manoeuvre``, ``frame_rate_hz`` and the scheme's entries (:func:`~.scenario.run_scheme`).
+    """
+    config = _full(config, sizes)
+    sc = config_scenario(config)
+    sigma, n = sizes["sigma_eps"], sizes["n_tradeoff_trials"]
+    z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
+    truth = sc.truth[None, :, :, 0]
+    boot_rng = np.random.default_rng([seed, 4])
+    scheme = run_scheme(z, sc, config, sizes, covariance=False)
+    err_s = scheme.x[..., 0] - truth
+    comp = config.get("compensation_comparator", COMPENSATION_COMPARATORS[0])
+    err_c = compensation_comparator(comp, z, sc, config, sizes, scheme.detection_frame) - truth
+    f = sc.frames
+    comp_frames = (f >= sc.onset) & (f < int(round(float(config["compensation_end_s"]) * sc.fps)))
+    parts = {
+        "faster compensation": paired_functional_ratio(
+            _columns(err_c, comp_frames), _columns(err_s, comp_frames), "bias²", boot_rng
+        )
+    }
+    stat = config.get("rms_statistic", RMS_STATISTICS[0])
+    if stat == "|bias| + RMS at 12 s":
+        span, kind = "last frame before the loss", "|bias| + SD"
+    else:
+        span, kind = config["rms_span"], {"random error (SD)": "random", "total mean square": "total"}[stat]
+    frames = span_mask(span, sc)
+    tuning = _tuning(config, sizes)[span]
+    man = config.get("manoeuvre", "constant acceleration")
+    for name in COMPARATORS:
+        err = _comparator_errors(
+            name, tuning[name][0], seed, config["noise"], float(config["frame_rate_hz"]), n, sigma, man
+        )
+        parts[f"min RMS vs {name}"] = paired_functional_ratio(
+            _columns(err, frames), _columns(err_s, frames), kind, boot_rng
+        )
+    return {"C001-4": parts}
+
+
+@functools.lru_cache(maxsize=64)
+def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, manoeuvre) -> np.ndarray:
+    """Position errors (runs, 2, T) of a tuned comparator on the test runs of ``seed`` (the draws of
+    :func:`measure_tradeoff`), cached: the scheme's own entries (restart, k_b3 ...) do not change them."""
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
+    z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
+    return comparator_positions(name, setting, z, sc, sigma_eps) - sc.truth[None, :, :, 0]

@@ -1,0 +1,167 @@
+"""A sweep's summary: ``summary.csv`` (one row per run) and ``summary.png`` (the ``[summary]`` metric ``y``
+against ``x``), and the check, made before any run starts, that ``y`` names a metric the notebook writes.
+
+A run's metrics (``results.json``) may nest: ``{"detection": {"median_s": {"value": 1.2, "ci_low": ...}}}``.
+Every number at any depth is a column named by its dotted path (``detection.median_s.value``); strings and
+lists are left out of the table.
+"""
+
+from __future__ import annotations
+
+import csv
+import difflib
+import json
+import re
+from pathlib import Path
+from typing import Any
+
+from .preflight import UsageError, _code_cells
+from .runner import read_run
+
+__all__ = ["flatten_metrics", "notebook_metric_names", "check_metric", "check_metric_in", "collect_summary"]
+
+MAX_DEPTH = 6
+_METRIC_CALL = re.compile(r"\.metric\(\s*(f?)(\"[^\"\n]*\"|'[^'\n]*'|[^,\s)]+)")
+
+
+def flatten_metrics(metrics: dict, prefix: str = "", depth: int = 0) -> dict[str, Any]:
+    """``{dotted path: number}`` for every number (int, float, bool, None) at any depth of ``metrics``."""
+    out: dict[str, Any] = {}
+    for name, value in metrics.items():
+        key = f"{prefix}{name}"
+        if isinstance(value, (int, float, bool)) or value is None:
+            out[key] = value
+        elif isinstance(value, dict) and depth < MAX_DEPTH:
+            out.update(flatten_metrics(value, key + ".", depth + 1))
+    return out
+
+
+def notebook_metric_names(notebook: Path) -> list[str] | None:
+    """The metric names a notebook writes (``results.metric("NAME", ...)`` calls; an f-string's fields read as
+    ``{...}``), or ``None`` when a name is computed (a variable) and cannot be read from the source."""
+    names: list[str] = []
+    for source in _code_cells(notebook):
+        for fstring, arg in _METRIC_CALL.findall(source):
+            if arg[0] not in "\"'":
+                return None
+            names.append(arg[1:-1] if not fstring else re.sub(r"\{[^}]*\}", "{...}", arg[1:-1]))
+    return names or None
+
+
+def _matches(name: str, y: str) -> bool:
+    pattern = ".+".join(re.escape(part) for part in name.split("{...}"))
+    return re.fullmatch(pattern + r"(\..+)?", y) is not None
+
+
+def check_metric(notebook: Path, y: str, where: str = "") -> None:
+    """Refuse a summary metric ``y`` whose first part is none of the metrics the notebook writes.
+
+    Raises
+    ------
+    UsageError
+        One line naming ``y``, the closest metric names and the notebook's metrics.
+    """
+    names = notebook_metric_names(notebook)
+    if names is None or any(_matches(n, y) for n in names):
+        return
+    close = difflib.get_close_matches(y.split(".")[0], names, n=2, cutoff=0.6)
+    hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+    raise UsageError(
+        f"{where}{notebook.stem} writes no metric {y!r}; {hint}its metrics: {', '.join(names)} "
+        "(a nested value by its dotted path, e.g. NAME.value)"
+    )
+
+
+def check_metric_in(results: Path, y: str, where: str = "") -> None:
+    """Refuse ``y`` when an earlier run's ``results.json`` (same notebook, same sweep) holds no number at that
+    dotted path, naming the paths it holds under the same metric (or all of them)."""
+    try:
+        columns = flatten_metrics(json.loads(results.read_text()).get("metrics", {}))
+    except (OSError, ValueError, AttributeError):
+        return
+    if y in columns:
+        return
+    head = y.split(".")[0]
+    same = [c for c in columns if c == head or c.startswith(head + ".")] or list(columns)
+    close = difflib.get_close_matches(y, same, n=2, cutoff=0.6)
+    hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+    shown = ", ".join(same[:20]) + (f" and {len(same) - 20} more" if len(same) > 20 else "")
+    raise UsageError(f"{where}the runs' results hold no metric {y!r}; {hint}metrics there: {shown}")
+
+
+def collect_summary(
+    sweep_dir: Path, runs: list, summary: dict | None = None, errors: dict[str, str] | None = None
+) -> tuple[Path, Path | None]:
+    """Write ``summary.csv`` (one row per run: id, status, error, parameters, metrics, verdicts)
+    and, if ``summary`` names ``x`` and ``y``, ``summary.png``.
+
+    ``status`` is ``ok``, ``failed`` (the run's directory holds its error) or ``absent`` (no directory: the
+    run was not done, or its outputs could not be written; ``errors`` maps such a run's id to why)."""
+    rows = []
+    errors = errors or {}
+    for run in runs:
+        run_dir = sweep_dir / "runs" / run.run_id
+        rec = read_run(run_dir) or {"status": "absent", "error": errors.get(run.run_id, "not run")}
+        row: dict[str, Any] = {
+            "run_id": run.run_id,
+            "status": rec.get("status"),
+            "error": rec.get("error") or "",
+            "runtime_s": rec.get("runtime_s"),
+        }
+        row.update(run.parameters)
+        res = run_dir / "results.json"
+        if res.is_file():
+            data = json.loads(res.read_text())
+            row.update(flatten_metrics(data.get("metrics", {})))
+            row.update({f"verdict {c['id']}": c["verdict"] for c in data.get("claims", [])})
+        rows.append(row)
+    columns: list[str] = []
+    for row in rows:
+        columns += [k for k in row if k not in columns]
+    csv_path = sweep_dir / "summary.csv"
+    with csv_path.open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=columns)
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in row.items()})
+    plot = _summary_plot(sweep_dir, rows, summary) if summary else None
+    return csv_path, plot
+
+
+def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    x, y, hue = summary["x"], summary["y"], summary.get("hue")
+    ok = [r for r in rows if r.get("status") == "ok" and r.get(y) is not None and x in r]
+    if not ok:
+        return None
+    groups: dict[Any, list[dict]] = {}
+    for r in ok:
+        groups.setdefault(r.get(hue) if hue else None, []).append(r)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    base = y[: -len(".value")] if y.endswith(".value") else None
+    for key, items in groups.items():
+        xs = sorted({r[x] for r in items})
+        mean = [np.mean([r[y] for r in items if r[x] == v]) for v in xs]
+        label = f"{hue} = {key}" if hue else None
+        (line,) = ax.plot(xs, mean, marker="o", label=label)
+        if base and all(r.get(f"{base}.ci_low") is not None and r.get(f"{base}.ci_high") is not None for r in items):
+            lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
+            hi = [np.mean([r[f"{base}.ci_high"] for r in items if r[x] == v]) for v in xs]
+            ax.fill_between(xs, lo, hi, alpha=0.2, color=line.get_color())
+    ax.set_xscale(summary.get("xscale", "linear"))
+    ax.set_yscale(summary.get("yscale", "linear"))
+    ax.set_xlabel(summary.get("xlabel", x))
+    ax.set_ylabel(summary.get("ylabel", y))
+    ax.set_title(summary.get("title", sweep_dir.name))
+    if hue:
+        ax.legend()
+    ax.grid(alpha=0.3)
+    path = sweep_dir / "summary.png"
+    fig.savefig(path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    return path
