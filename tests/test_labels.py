@@ -309,3 +309,9 @@ def test_a_by_reading_claim_keeps_its_parts_and_judges_each_condition_by_its_rea
     # the ratio 1.003 is judged by the ratio's rule (reproduced), 1.5 by it too (not reproduced): one flip, named
     assert rec["conditions"][0]["parts"] == {"variant 1": "reproduced", "variant 2": "not reproduced"}
     assert rec["parts"]["variant 1"]["flips"] == [] and rec["parts"]["variant 2"]["label"] == "depends"
+
+
+def test_a_part_on_the_edge_says_no_practical_run_decides_it_instead_of_a_huge_number():
+    reps = [{"seed": s, "measured": Estimate(0.5000001, 0.05, 0.4, 0.6, 100, method="t")} for s in (1, 2, 3)]
+    runs = label_parts(BAND, reps[0]["measured"], reps, [], [])["parts"]["claim"]["runs_to_decide"]
+    assert runs["replicates"] is None and "over 1000 times the runs" in runs["text"]

@@ -57,6 +57,9 @@ __all__ = [
 #: fewer (and not every combination of its entries) makes the label provisional: never ``robust``.
 MIN_SHARE_DESIGN = 32
 
+#: Beyond this multiple of the runs, a projection says only that no practical run decides the part.
+PRACTICAL_FACTOR = 1000.0
+
 NO_PART_LABEL = "-"
 """The label of a part with nothing to flip: a :class:`NotCheckable` part, or a part whose default is undecided."""
 
@@ -264,6 +267,14 @@ def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[
 
 def _runs_text(j: Judgement, n_reps: int, n_runs: int, cap: int | None) -> dict:
     f = j.runs_factor
+    if math.isfinite(f) and f > PRACTICAL_FACTOR:
+        return {
+            "replicates": None,
+            "now": n_reps,
+            "factor": f,
+            "text": f"undecided at {n_reps} replicates: the estimate sits so close to the band edge that only over "
+            f"{PRACTICAL_FACTOR:g} times the runs are projected to decide it",
+        }
     if not math.isfinite(f):
         return {
             "replicates": None,
