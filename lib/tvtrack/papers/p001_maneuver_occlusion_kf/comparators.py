@@ -91,6 +91,8 @@ def tuned_comparators(
     sigma_eps: float = 1.0,
     grids: tuple = (),
     manoeuvre: str = "constant acceleration",
+    accel_unit: str = "el/frame²",
+    channel_y: str = "v -6, a -0.2",
 ) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
@@ -112,7 +114,9 @@ def tuned_comparators(
         "vdf_q_ca": VDF_Q_CA_GRID,
         "vdf_windows": VDF_WINDOWS,
     } | dict(grids)
-    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
+    sc = config_scenario(
+        {"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre, "accel_unit": accel_unit, "channel_y": channel_y}
+    )
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
     truth = sc.truth[None, :, :, 0]
@@ -163,6 +167,8 @@ def _tuning(config: dict, sizes: dict) -> dict:
         sizes["sigma_eps"],
         grids,
         config.get("manoeuvre", "constant acceleration"),
+        config.get("accel_unit", "el/frame²"),
+        config.get("channel_y", "v -6, a -0.2"),
     )
 
 
