@@ -485,6 +485,14 @@ DEPENDS = {
         "noise",
         "manoeuvre",
         "compensation_comparator",
+        # the scheme's detection and the scenario, which C001-4's measurement reads too (session-4 review)
+        "alpha",
+        "arming",
+        "window_n",
+        "frame_rate_hz",
+        "accel_unit",
+        "channel_y",
+        "restart_accel_var",
     ],
     "C001-7": [
         "restart",
