@@ -81,3 +81,62 @@ def test_c4_depends_on_every_entry_its_measurement_reads(entry, value):
     moved = study.measure_tradeoff({entry: value}, 2, SIZES)["C001-4"]["faster compensation"].value
     assert abs(moved / base - 1) > 0.01
     assert entry in DEPENDS["C001-4"]
+
+
+CURVE_SIZES = SIZES | dict(
+    kb3_grid=[20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130, 140, 160, 200],
+    loss_grid_s=[5.6, 6.0, 6.5, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0],
+)
+
+
+def _curve_parts(config):
+    """Each part verdict of C001-7 and C001-8 at ``config``, each judged by the rule of its curve tolerance."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf import claims
+
+    m = study.measure_curves(config, 0, CURVE_SIZES)
+    out = {}
+    for cid, make in (("C001-7", claims._c7), ("C001-8", claims._c8)):
+        tol, measured = m[cid]["reading"], m[cid]["measured"]
+        rule = make(tol)
+        out |= {f"{cid} {k}": r.judge(measured[k]).verdict for k, r in rule.parts.items()}
+    return out
+
+
+def test_curves_depend_on_the_track2_bound_and_the_window():
+    """Fig. 4 and the loss sweep force the switch after a TRACK2 run (its bound k_b2 sets the state the restart
+    starts from) and restart B fits the detector's window: restart C's C001-7 'decreasing' turns with k_b2 alone
+    (not reproduced at 50 frames, reproduced at 30), so both entries belong to C001-7's and C001-8's dependencies."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS
+
+    assert _curve_parts({"restart": "C"})["C001-7 decreasing"] == "not reproduced"
+    assert _curve_parts({"restart": "C", "k_bound2": 30})["C001-7 decreasing"] == "reproduced"
+    for cid in ("C001-7", "C001-8"):
+        assert {"k_bound2", "window_n", "loss_length_s"} <= set(DEPENDS[cid])
+
+
+def test_pinned_joint_conditions_flip_what_their_comment_says():
+    """The register's pinned joint conditions each turn a part the default reproduces."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import PINNED, build_register
+
+    default = _curve_parts({})
+    assert set(default.values()) == {"reproduced"}
+    b10 = _curve_parts(PINNED[0])
+    assert b10["C001-8 interior minimum"] == "not reproduced" and b10["C001-7 dominates early"] == "not reproduced"
+    assert _curve_parts(PINNED[1])["C001-8 RMS decreasing"] == "not reproduced"
+    # neither entry alone turns those parts
+    assert _curve_parts({"window_n": 10})["C001-8 interior minimum"] == "reproduced"
+    assert _curve_parts({"noise": "AR(1), rho = 0.5"})["C001-8 RMS decreasing"] == "reproduced"
+    assert build_register().pinned == [dict(p) for p in PINNED]
+
+
+@pytest.mark.parametrize("length", [5.0, 2.0])
+def test_loss_length_moves_the_loss_and_not_the_optimum(length):
+    """A shorter loss ends earlier (the register's loss_length_s), and curve 3's minimum stays at the k_b3 where
+    restart A's dynamic error crosses zero (100 frames), whatever the loss's length: the optimum is set by the
+    restart's transient, not by a balance with the prediction horizon."""
+    sc = study.config_scenario(REG.default())
+    assert study.occlusion_frames("scenario 12-22 s", sc, length) == (sc.f_loss, sc.f_loss + int(length * sc.fps))
+    f = study.fig4_curves({"loss_length_s": length}, CURVE_SIZES)
+    f10 = study.fig4_curves({}, CURVE_SIZES)
+    assert f["rms"][-1] < f10["rms"][-1]  # a shorter coast, a smaller random prediction error
+    assert f["kb3"][np.argmin(f["sum"])] == f10["kb3"][np.argmin(f10["sum"])] == 100
