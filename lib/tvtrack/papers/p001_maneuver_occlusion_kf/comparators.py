@@ -205,3 +205,22 @@ def compensation_comparator(name: str, z, sc: Scenario, config: dict, sizes: dic
     end = float(config["compensation_end_s"])
     kb = min(RAISED2_GRID, key=lambda b: compensation_ms(raised_second_order(zt, sc, dt, k2, b), sc, end).mean())
     return raised_second_order(z, sc, detection_frame, k2, kb)
+
+
+_COASTS = {
+    "mix": "coasting with the textbook mixing cycle",
+    "frozen": "coasting without mixing, mode probabilities frozen",
+    "mode": "coasting on the model most probable at the loss",
+}
+
+
+def tuning_phrase(name: str, setting: tuple) -> str:
+    """A comparator's tuned setting (:func:`comparator_positions`) in plain words with units."""
+    if name in ("fixed 2nd order", "fixed 3rd order"):
+        return f"gains frozen at frame {int(setting[0])}"
+    if name == "IMM":
+        return (
+            f"acceleration-model process noise {setting[0]:g} el²/frame⁴, probability {setting[1]:g} of staying in "
+            f"a model, {_COASTS.get(setting[2], setting[2])}"
+        )
+    return f"acceleration-model process noise {setting[0]:g} el²/frame⁴, detector and restart over {int(setting[1])} frames"
