@@ -91,6 +91,8 @@ def tuned_comparators(
     sigma_eps: float = 1.0,
     grids: tuple = (),
     manoeuvre: str = "constant acceleration",
+    accel_unit: str = "el/frame²",
+    channel_y: str = "v -6, a -0.2",
 ) -> dict:
     """Each comparator tuned on ``n_train`` training runs of the scenario with white Gaussian errors (their own
     seed, never the test runs) for the lowest position RMS over each span:
@@ -112,7 +114,9 @@ def tuned_comparators(
         "vdf_q_ca": VDF_Q_CA_GRID,
         "vdf_windows": VDF_WINDOWS,
     } | dict(grids)
-    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
+    sc = config_scenario(
+        {"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre, "accel_unit": accel_unit, "channel_y": channel_y}
+    )
     rng = np.random.default_rng(train_seed)
     z = measurements(sc.truth[:, :, 0], "white Gaussian", n_train, rng, sigma_eps)
     truth = sc.truth[None, :, :, 0]
@@ -163,6 +167,8 @@ def _tuning(config: dict, sizes: dict) -> dict:
         sizes["sigma_eps"],
         grids,
         config.get("manoeuvre", "constant acceleration"),
+        config.get("accel_unit", "el/frame²"),
+        config.get("channel_y", "v -6, a -0.2"),
     )
 
 
@@ -199,3 +205,22 @@ def compensation_comparator(name: str, z, sc: Scenario, config: dict, sizes: dic
     end = float(config["compensation_end_s"])
     kb = min(RAISED2_GRID, key=lambda b: compensation_ms(raised_second_order(zt, sc, dt, k2, b), sc, end).mean())
     return raised_second_order(z, sc, detection_frame, k2, kb)
+
+
+_COASTS = {
+    "mix": "coasting with the textbook mixing cycle",
+    "frozen": "coasting without mixing, mode probabilities frozen",
+    "mode": "coasting on the model most probable at the loss",
+}
+
+
+def tuning_phrase(name: str, setting: tuple) -> str:
+    """A comparator's tuned setting (:func:`comparator_positions`) in plain words with units."""
+    if name in ("fixed 2nd order", "fixed 3rd order"):
+        return f"gains frozen at frame {int(setting[0])}"
+    if name == "IMM":
+        return (
+            f"acceleration-model process noise {setting[0]:g} el²/frame⁴, probability {setting[1]:g} of staying in "
+            f"a model, {_COASTS.get(setting[2], setting[2])}"
+        )
+    return f"acceleration-model process noise {setting[0]:g} el²/frame⁴, detector and restart over {int(setting[1])} frames"

@@ -104,31 +104,34 @@ def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: 
     return round(dyn, 6), round(rms, 6)  # float noise off the deterministic curves
 
 
-def occlusion_frames(reading: str, sc: Scenario) -> tuple[int, int]:
-    """Fig. 4's "disappearance at the 10th second": the scenario's loss (12-22 s) or a 10 s loss from 10 s."""
-    if reading == "scenario 12-22 s":
-        return sc.f_loss, sc.f_back
-    if reading == "from 10 s":
-        return int(round(10 * sc.fps)), int(round(20 * sc.fps))
-    raise ValueError(f"occlusion reading {reading!r}")
+def occlusion_frames(reading: str, sc: Scenario, length_s: float = 10.0) -> tuple[int, int]:
+    """Fig. 4's "disappearance at the 10th second": the scenario's loss (from 12 s) or a loss from 10 s, lasting
+    ``length_s`` seconds (the register's ``loss_length_s``; the paper's 10 s gives 12-22 s and 10-20 s)."""
+    starts = {"scenario 12-22 s": sc.f_loss / sc.fps, "from 10 s": 10.0}
+    if reading not in starts:
+        raise ValueError(f"occlusion reading {reading!r}")
+    start = starts[reading]
+    return int(round(start * sc.fps)), int(round((start + float(length_s)) * sc.fps))
 
 
 def fig4_curves(config: dict, sizes: dict) -> dict:
     """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
     config = _full(config, sizes)
     sc = config_scenario(config)
-    fl, fb = occlusion_frames(config["occlusion"], sc)
+    fl, fb = occlusion_frames(config["occlusion"], sc, config.get("loss_length_s", 10.0))
     dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
     return {"kb3": np.asarray(sizes["kb3_grid"]), "dyn": dyn, "rms": rms, "sum": np.abs(dyn) + rms}
 
 
 def loss_sweep(config: dict, sizes: dict) -> dict:
-    """C001-7: a 10 s loss starting at each of ``sizes["loss_grid_s"]`` (deterministic)."""
+    """C001-7: a loss of ``loss_length_s`` (default the paper's 10 s) starting at each of ``sizes["loss_grid_s"]``
+    (deterministic)."""
     config = _full(config, sizes)
     sc = config_scenario(config)
+    length = float(config.get("loss_length_s", 10.0))
     rows = [
         prediction_error(
-            sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + 10.0) * sc.fps))
+            sc, config, sizes, int(config["k_bound3"]), int(round(s * sc.fps)), int(round((s + length) * sc.fps))
         )
         for s in sizes["loss_grid_s"]
     ]
@@ -173,7 +176,7 @@ def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dic
     """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
     config = _full(config, sizes)
     sc = config_scenario(config)
-    fl, fb = occlusion_frames(config["occlusion"], sc)
+    fl, fb = occlusion_frames(config["occlusion"], sc, config.get("loss_length_s", 10.0))
     vis = (sc.frames < fl) | (sc.frames >= fb)
     out = {"mean": [], "sd": [], "se": []}
     for kb in sizes["kb3_grid"]:

@@ -72,6 +72,7 @@ from .comparators import (
     compensation_ms,
     raised_second_order,
     compensation_comparator,
+    tuning_phrase,
 )
 from .curves import (
     optimum_location,
@@ -145,6 +146,7 @@ __all__ = [
     "compensation_ms",
     "raised_second_order",
     "compensation_comparator",
+    "tuning_phrase",
     "optimum_location",
     "forced_output",
     "prediction_error",

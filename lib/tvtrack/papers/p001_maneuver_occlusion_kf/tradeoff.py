@@ -117,10 +117,12 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
         span, kind = config["rms_span"], {"random error (SD)": "random", "total mean square": "total"}[stat]
     frames = span_mask(span, sc)
     tuning = _tuning(config, sizes)[span]
-    man = config.get("manoeuvre", "constant acceleration")
+    # the comparators run on the configuration's own scenario (the scheme's truth): its frame rate, manoeuvre,
+    # acceleration unit and second channel
+    world = tuple(config.get(k, d) for k, d in _WORLD)
     for name in COMPARATORS:
         err = _comparator_errors(
-            name, tuning[name][0], seed, config["noise"], float(config["frame_rate_hz"]), n, sigma, man
+            name, tuning[name][0], seed, config["noise"], float(config["frame_rate_hz"]), n, sigma, world
         )
         parts[f"min RMS vs {name}"] = paired_functional_ratio(
             _columns(err, frames), _columns(err_s, frames), kind, boot_rng
@@ -128,10 +130,15 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     return {"C001-4": parts}
 
 
+#: The scenario entries besides the frame rate (:func:`~.scenario.config_scenario`) with their defaults.
+_WORLD = (("manoeuvre", "constant acceleration"), ("accel_unit", "el/frame²"), ("channel_y", "v -6, a -0.2"))
+
+
 @functools.lru_cache(maxsize=64)
-def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, manoeuvre) -> np.ndarray:
+def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, world) -> np.ndarray:
     """Position errors (runs, 2, T) of a tuned comparator on the test runs of ``seed`` (the draws of
-    :func:`measure_tradeoff`), cached: the scheme's own entries (restart, k_b3 ...) do not change them."""
-    sc = config_scenario({"frame_rate_hz": frame_rate_hz, "manoeuvre": manoeuvre})
+    :func:`measure_tradeoff`), cached: the scheme's own entries (restart, k_b3 ...) do not change them. ``world``:
+    the values of the scenario entries ``_WORLD`` (the same truth as the scheme's)."""
+    sc = config_scenario({"frame_rate_hz": frame_rate_hz} | {k: v for (k, _), v in zip(_WORLD, world)})
     z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
     return comparator_positions(name, setting, z, sc, sigma_eps) - sc.truth[None, :, :, 0]
