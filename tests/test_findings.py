@@ -25,7 +25,7 @@ def test_claims_table_one_line_per_claim(tmp_path):
     table = claims_table(res.claims)
     lines = table.splitlines()
     assert len(lines) == 3 and lines[0].startswith("| claim | the paper says")
-    assert r"sigma\*2" in lines[2] and "1.5 [1.3, 1.7]" in lines[2] and "**reproduced**" in lines[2]
+    assert r"sigma\*2" in lines[2] and r"1.5 \[1.3, 1.7\]" in lines[2] and "**reproduced**" in lines[2]
     # a hand-built record explores no configuration: its label is provisional, never robust, and the sentence says so
     assert "| provisional |" in lines[2] and "(too few configurations to label)" in lines[2]
     assert claims_table([c.__dict__ for c in res.claims]) == table  # results.json dicts render the same

@@ -23,6 +23,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping, Sequence
 
+from .markdown import md_escape
+
 __all__ = ["ENTRY_KINDS", "WORLD_KINDS", "READING_KINDS", "side_of", "Entry", "Register"]
 
 #: What an entry can be.
@@ -223,23 +225,16 @@ class Register:
         ]
         for e in self.entries:
             alts = ", ".join(_md(v) for v in e.alternatives) or "-"
-            rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {_escape(e.why)} | {e.origin} |")
+            rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {md_escape(e.why)} | {e.origin} |")
         if self.pinned:
             rows.append("")
             rows.append("Joint conditions pinned (they flipped a claim before; measured every run):")
-            rows += [f"- {_escape(', '.join(f'{k} = {v}' for k, v in p.items()))}" for p in self.pinned]
+            rows += [f"- {md_escape(', '.join(f'{k} = {v}' for k, v in p.items()))}" for p in self.pinned]
         return "\n".join(rows)
 
     def _repr_markdown_(self) -> str:
         return self.to_markdown()
 
 
-def _escape(text: str) -> str:
-    """Text safe inside a Markdown table cell (no emphasis, no column break)."""
-    for ch in ("\\", "*", "_", "|", "`"):
-        text = text.replace(ch, "\\" + ch)
-    return text
-
-
 def _md(v: Any) -> str:
-    return _escape(f"{v:g}" if isinstance(v, float) else str(v))
+    return md_escape(f"{v:g}" if isinstance(v, float) else str(v))

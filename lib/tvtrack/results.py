@@ -37,6 +37,7 @@ import numpy as np
 
 from .montecarlo import Estimate
 from .labels import Robustness
+from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .wording import (
     GLOSSARY,
@@ -100,15 +101,6 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, Path):
         return str(value)
     return value
-
-
-def md_escape(text: Any) -> str:
-    """Generated text made safe for Markdown: ``sigma*2`` stays ``sigma*2`` (no emphasis), ``|`` does not
-    break a table cell, and line breaks become spaces."""
-    out = " ".join(str(text).split())
-    for ch in ("\\", "`", "*", "_", "|"):
-        out = out.replace(ch, "\\" + ch)
-    return out.replace("<", "&lt;")
 
 
 def claims_table(claims: list, statement_chars: int = 110) -> str:

@@ -25,7 +25,15 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-from ..results import LABEL_WORDS, VERDICT_WORDS, claim_flips, claim_summary, format_measured, results_summary
+from ..results import (
+    LABEL_WORDS,
+    VERDICT_WORDS,
+    claim_flips,
+    claim_summary,
+    format_measured,
+    md_escape,
+    results_summary,
+)
 from .figures import (
     ALL_LABELS,
     ALL_VERDICTS,
@@ -78,14 +86,6 @@ REPORT_PATH = REPO_ROOT / "REPRODUCTION.md"
 README_PATH = REPO_ROOT / "README.md"
 README_BEGIN = "<!-- begin generated results -->"
 README_END = "<!-- end generated results -->"
-
-_MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>|~#])")
-
-
-def md_escape(text: Any) -> str:
-    """Generated text made literal in Markdown (``sigma*2`` stays ``sigma*2``, a ``|`` does not split a table
-    cell, ``<b>`` is not HTML); line breaks become spaces."""
-    return _MD_SPECIAL.sub(r"\\\1", " ".join(str(text).split()))
 
 
 def _cell(text: Any) -> str:
