@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 from scipy.linalg import block_diag, expm
+from scipy.signal import lfilter
 
 from .spot_centre import windowed_centroid
 from ...measure import centroid
@@ -77,8 +78,10 @@ GENERATOR_RECORDED_NAME = "tvtrack.scenes.beam_wander.generate_traces"
 
 #: Tyler's G-tilt spectrum as a value of ``BeamWanderConfig.rolloff``.
 GTILT = "G-tilt"
+#: The smooth side of the tilt range: the critically damped sum through one more real pole at the fastest corner.
+SMOOTH = "f^-6"
 #: The wander spectra the generator draws.
-ROLLOFFS = ("f^-4", "f^-2", GTILT)
+ROLLOFFS = ("f^-4", "f^-2", SMOOTH, GTILT)
 
 
 @dataclass(frozen=True)
@@ -113,10 +116,16 @@ class BeamWanderConfig:
         exact discretisation holds for any corner; such a component is nearly uncorrelated from
         frame to frame (aliased fast tilt). Recorded in the metadata only when True, so data sets
         made before the option existed regenerate byte for byte.
-    rolloff : {"f^-4", "f^-2", "G-tilt"}
+    rolloff : {"f^-4", "f^-2", "f^-6", "G-tilt"}
         Spectrum of each component above its corner (default ``"f^-4"``): a critically damped
         second-order Gauss-Markov process (smooth paths with a velocity), or a first-order one
         (Ornstein-Uhlenbeck, PSD ``~ 1 / (1 + (f/f_k)^2)``: continuous paths without a velocity).
+        ``"f^-6"``: the critically damped sum passed through one more real pole at the fastest corner
+        (the discrete one-pole low-pass ``y_t = b y_(t-1) + (1 - b) x_t``, ``b = exp(-2 pi f_max / fs)``,
+        started at the first sample), so the spectrum falls as ``f^-6`` above it: the smooth side of the
+        tilt range (Tyler's G-tilt falls as ``f^-17/3``; proposed in ``docs/adversarial/004.md``). The
+        low-pass takes some variance from the fastest component; the generator's state-space model
+        (:func:`wander_state_space`) omits the pole, so the "optimal" forecast is model-based, no bound.
         ``"G-tilt"`` replaces the whole sum by Tyler's G-tilt spectrum (:func:`gtilt_psd`): its
         asymptotes cross at the highest corner, ``spectral_index`` and the other corners are unused.
         Recorded in the metadata only when not the default, like ``aliased_corners``.
@@ -553,6 +562,9 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
             if t > 0:
                 s = np.einsum("kij,pakj->paki", Phi, s) + np.einsum("pkij,pakj->paki", Lq, noise[t])
             wander[:, t, :] = s[..., 0].sum(axis=-1)
+        if c.rolloff == SMOOTH:  # one more pole at the fastest corner (no draw: common random numbers)
+            b = float(np.exp(-omega.max() * dt))
+            wander = lfilter([1.0 - b], [1.0, -b], wander, axis=1, zi=b * wander[:, :1])[0]
     centre = (c.image_size_px - 1) / 2.0
     t_rel = np.arange(T) - (T - 1) / 2.0
     centres = centre + drift[:, None, :] * t_rel[None, :, None] + wander
