@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
-from .prediction_study import FLOOR_EXTENSION, PAPER, _tuned, per_trial_path_mse
+from .prediction_study import FLOOR_EXTENSION, _tuned
 from .register import DEFAULT
 
 __all__ = ["TARGET_PX", "BAND_PX", "Calibration", "paper_filter_rms", "calibrate_bandwidth", "shipped_config_at"]

@@ -294,8 +294,9 @@ ROWS = (
         "Gaussian",
         ("Gaussian", "Student t3"),
         "the model's noise law is not stated: heavy-tailed white noise (Student t, 3 d.o.f., unit variance; a "
-        "centroid with outliers) leaves Var = sigma^2 g_N1 exact but needs a distribution-free interval "
-        "(batch means, bootstrap-t) instead of the chi-square one",
+        "centroid with outliers) leaves Var = sigma^2 g_N1 exact, but t3 has no fourth moment: the Monte Carlo "
+        "variance has infinite variance and no interval of it has a stated coverage, so this world's variance parts "
+        "carry no interval and the rule cannot decide them (a heavy tail never makes a label; the g_N1 part is exact)",
         "adversarial",
     ),
 )
