@@ -1,0 +1,56 @@
+"""Notebook 004, fourth pass: C004-6's scored frames, the register in plain words and honest kinds."""
+
+import numpy as np
+import pytest
+
+from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import study
+from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER
+from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, PINNED, build
+
+from . import test_004_study as _study
+
+SIZE, run = _study.SIZE, _study.run  # the study tests' reduced size and their default run (fixture)
+
+
+def _late_ratio(fc_a, fc_b, ref, first: int) -> float:
+    """sqrt(mean over paths of the MSE of a / that of b), one-step errors e[n] = f[n-1] - ref[n], n >= first."""
+    ea = fc_a[0, ..., first - 1 : -1] - ref[0, ..., first:]
+    eb = fc_b[0, ..., first - 1 : -1] - ref[0, ..., first:]
+    return float(np.sqrt(np.mean(np.mean(ea**2, axis=(-2, -1))) / np.mean(np.mean(eb**2, axis=(-2, -1)))))
+
+
+def test_c004_6_scores_the_second_half_of_the_frames(run):
+    """C004-6 is the RMS over frames T/2..T-1 (the card's 'frames 500-1000' of 1000) without the floor over with
+    the cross-validated floor, against the measured centre; recomputed here from the forecasts. The ratio over all
+    scored frames differs, so a run scoring the wrong frames fails."""
+    T = run.truth.shape[-1]
+    nofloor = pr.growing_memory_forecast(run.z, 1, 2, None)
+    want = _late_ratio(nofloor, run.forecasts[PAPER], run.z_meas, T // 2)
+    got = study.claim_values(run, 7)["C004-6"]
+    assert got.value == pytest.approx(want, rel=1e-12)
+    wrong = _late_ratio(nofloor, run.forecasts[PAPER], run.z_meas, SIZE.eval_start)
+    assert wrong != pytest.approx(want, rel=1e-3)  # the frames matter: the pin can see a wrong start
+    truth = study.claim_values(study.replace(run, config=dict(DEFAULT, reference="true centre")), 7)["C004-6"]
+    assert truth.value == pytest.approx(_late_ratio(nofloor, run.forecasts[PAPER], run.truth, T // 2), rel=1e-12)
+
+
+def test_every_entry_and_value_in_plain_words():
+    reg = build()
+    for e in reg:
+        assert e.title and e.title != e.name or " " in e.name
+        for v in e.values:
+            assert v in e.phrases and len(e.phrases[v]) > 5, (e.name, v)
+    assert "calibrated" in reg["bandwidth"].phrase(reg["bandwidth"].default)
+
+
+def test_kinds_say_reading_or_world_honestly():
+    """Lost frames are a world beyond the paper (its recursion never meets one), so the pinned C004-4 condition is
+    all world and its flip reads 'does not extend to lost frames'; the horizon and the frame rate are readings of
+    the paper's text (unstated horizon, '25 frames/s' against 'every 5 ms'); the noise law is a world."""
+    reg = build()
+    assert reg["lost frames"].side == reg["frame loss"].side == "world"
+    assert all(reg[name].side == "world" for cond in PINNED for name in cond)
+    assert reg["horizon"].side == reg["frame rate"].side == "reading"
+    assert reg["C004-5 noise"].side == "world"
+    assert set(DEPENDS["C004-5"]) == {"C004-5 noise"}
