@@ -54,3 +54,23 @@ def test_kinds_say_reading_or_world_honestly():
     assert reg["horizon"].side == reg["frame rate"].side == "reading"
     assert reg["C004-5 noise"].side == "world"
     assert set(DEPENDS["C004-5"]) == {"C004-5 noise"}
+
+
+def test_spline_readings_are_tuned_on_the_extended_window_grid():
+    """With a window grid of 4 alone every fold picks the grid's top, so the tuning tries 45, 70, 100 (as for the
+    interpolating spline and the regressions): in a slow, noisy world the least-squares cubic picks a longer window, and each
+    path's forecast is the one of its chosen window. The variant floor is tuned over the floors likewise."""
+    size = study.replace(SIZE, window_grid=(4,))
+    r = study.run_study(dict(DEFAULT, bandwidth=1.0, **{"read noise": 64.0}), 7, size)  # slow, noisy: long windows
+    for name, make in (
+        (study.LSQ_CUBIC, lambda L: pr.sliding_regression_forecast(r.z, L, 3, 1)),
+        (study.NATURAL_SPLINE, lambda L: pr.natural_spline_forecast(r.z, L, 1)),
+    ):
+        chosen = np.asarray(r.comparison.chosen[name])
+        assert set(chosen) <= {4, 45, 70, 100}
+        for p, L in enumerate(chosen):
+            np.testing.assert_allclose(r.forecasts[name][:, p], make(int(L))[:, p], equal_nan=True)
+    assert np.max(r.comparison.chosen[study.LSQ_CUBIC]) >= 45
+    variant = np.asarray(r.comparison.chosen["growing memory, g1 floor (variant)"])
+    assert set(variant) <= set(size.floor_grid) | {200, 350}
+    assert study.grid_edge_report(r)[study.LSQ_CUBIC] >= 0.0

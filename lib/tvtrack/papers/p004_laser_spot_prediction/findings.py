@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...montecarlo import Estimate
-from .prediction_study import CLASSICAL, FADING, PAPER, SINGER
+from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
 __all__ = [
@@ -105,7 +105,7 @@ def comparison_table(run, rms: dict, ratios: dict) -> str:
             if name == SINGER
             else f"theta {np.min(c):g}..{np.max(c):g}"
             if name == FADING
-            else f"{'N_f' if name == PAPER else 'L'} {int(np.min(c))}..{int(np.max(c))}"
+            else f"{'N_f' if name in (PAPER, VARIANT) else 'L'} {int(np.min(c))}..{int(np.max(c))}"
         )
         r = ratios.get(name)
         rows.append(f"| {name} | {setting} | {fmt(e, '.3f')} | {fmt(r) if r is not None else '-'} |")

@@ -57,6 +57,7 @@ __all__ = [
     "fading_memory_forecast",
     "g1_floor_gains",
     "g1_floor_filter",
+    "g1_floor_forecast",
     "sliding_regression_forecast",
     "spline_forecast",
     "lag_features",
@@ -347,6 +348,23 @@ def g1_floor_filter(z, g1_min: float, order: int = 2) -> np.ndarray:
         x = x + gains[t] * (z[..., t] - x[..., 0])[..., None]  # (eq. 6), gain for N = t+1
         states[..., t, :] = x
     return states
+
+
+def g1_floor_forecast(z, floor_memory: int, steps: int = 1, order: int = 2) -> np.ndarray:
+    """``steps``-ahead forecast of the *variant* floor (:func:`g1_floor_filter`) at the floor memory ``N_f``:
+    ``g_1`` never drops below ``g_{N_f,1}`` of the growing memory, ``g_2, g_3`` scaled by the same factor.
+
+    Parameters
+    ----------
+    z : ndarray, shape (..., T)
+        Complete measured series, px.
+
+    Returns
+    -------
+    ndarray, shape like ``z``, px (NaN for the first ``order`` samples).
+    """
+    g1_min = float(growing_memory_gains(order, int(floor_memory))[-1, 0])
+    return predict_ahead(g1_floor_filter(z, g1_min, order), _check_steps(steps))
 
 
 # -- window methods -------------------------------------------------------------------------------

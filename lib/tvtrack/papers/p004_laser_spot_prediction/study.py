@@ -46,6 +46,8 @@ from .prediction_study import (
     PAPER,
     SINGER,
     ComparisonSetup,
+    WINDOW_EXTENSION,
+    _tuned,
     compare_methods,
     per_trial_path_mse,
     window_candidates,
@@ -391,19 +393,18 @@ def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
     fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
     fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
     fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
-    # the other reading of "spline extrapolation": a least-squares cubic over the window (not interpolating)
-    lsq = lambda L: pr.sliding_regression_forecast(run.z, L, 3, m)  # noqa: E731
-    cands = window_candidates(4, s.window_grid)
-    loss = np.stack([per_trial_path_mse(lsq(L), run.z_meas, m, s.start).mean(axis=0) for L in cands])
-    pick = pr.cross_validated_pick(loss, folds)
-    fc[LSQ_CUBIC] = np.stack([lsq(cands[pick[p]])[:, p] for p in range(run.z.shape[1])], axis=1)
-    fixed[LSQ_CUBIC] = lsq(s.fixed_window)
-    # a third reading: the natural cubic spline, extended linearly beyond its last knot (window from 4)
-    nat = {L: pr.natural_spline_forecast(run.z, L, m) for L in cands}
-    loss = np.stack([per_trial_path_mse(nat[L], run.z_meas, m, s.start).mean(axis=0) for L in cands])
-    pick = pr.cross_validated_pick(loss, folds)
-    fc[NATURAL_SPLINE] = np.stack([nat[cands[pick[p]]][:, p] for p in range(run.z.shape[1])], axis=1)
-    fixed[NATURAL_SPLINE] = pr.natural_spline_forecast(run.z, s.fixed_window, m)
+    # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
+    # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
+    # natural cubic spline, extended linearly beyond its last knot
+    readings = {
+        LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
+        NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
+    }
+    for name, make in readings.items():
+        fc[name], _, cmp.chosen[name], _, _ = _tuned(
+            window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
+        )
+        fixed[name] = make(s.fixed_window)
     return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
 
 
@@ -799,6 +800,11 @@ def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
         out[name] = float(
             np.mean(grid_edges(ch[name], (*window_candidates(lo, s.window_grid), *WINDOW_EXTENSION)) == 1)
         )  # degree+1 is a true limit
+    for name in (LSQ_CUBIC, NATURAL_SPLINE):  # the spline's other readings, tuned in _methods (not at every horizon)
+        if name in ch:
+            out[name] = float(
+                np.mean(grid_edges(ch[name], (*window_candidates(4, s.window_grid), *WINDOW_EXTENSION)) == 1)
+            )
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
