@@ -74,3 +74,22 @@ def test_spline_readings_are_tuned_on_the_extended_window_grid():
     variant = np.asarray(r.comparison.chosen["growing memory, g1 floor (variant)"])
     assert set(variant) <= set(size.floor_grid) | {200, 350}
     assert study.grid_edge_report(r)[study.LSQ_CUBIC] >= 0.0
+
+
+def test_model_order_result_states_its_numbers(run):
+    """Beside C004-3: the best first-order and best second-order predictors with their RMS, the MSE ratio
+    (recomputed from the forecasts) and the acceleration's correlation time in frames and ms (40 ms a frame)."""
+    from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+    from tvtrack.papers.p004_laser_spot_prediction.prediction_study import per_trial_path_mse
+
+    s = study.model_order_summary(run)
+    mse = {n: per_trial_path_mse(run.forecasts[n], run.z_meas, 1, SIZE.eval_start)[0] for n in run.forecasts}
+    order1 = ("finite differences, 2 points", "linear regression deg 1")
+    b1 = min(order1, key=lambda n: mse[n].mean())
+    assert s["best_order1"] == b1
+    assert s["ratio_2_over_1"].value == pytest.approx(mse[s["best_order2"]].mean() / mse[b1].mean(), rel=1e-12)
+    assert s["frame_ms"] == pytest.approx(40.0)
+    text = fd.model_order_sentence(s)
+    tau = s["singer_tau_frames"]
+    assert f"RMS {np.sqrt(mse[b1].mean()):.3f} px" in text
+    assert f"({np.min(tau) * 40:.2g}..{np.max(tau) * 40:.2g} ms)" in text

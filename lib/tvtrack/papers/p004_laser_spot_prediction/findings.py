@@ -67,9 +67,12 @@ def _measured_text(m) -> str:
     return f"{m:.3g}" if isinstance(m, float) else str(m)
 
 
-def findings(rules: dict, exploration, paper_values: dict, extra: dict | None = None) -> str:
+def findings(
+    rules: dict, exploration, paper_values: dict, extra: dict | None = None, beside: dict | None = None
+) -> str:
     """The findings section: one line per claim (verdict from its rule on the pooled replicates,
-    label from the exploration), then ``extra`` lines (already generated sentences)."""
+    label from the exploration), each followed by its ``beside`` sentence ({claim id: generated sentence}, e.g. the
+    model-order result beside C004-3), then ``extra`` lines (already generated sentences)."""
     lines = []
     for cid, rule in rules.items():
         if cid in exploration.rules:
@@ -84,6 +87,8 @@ def findings(rules: dict, exploration, paper_values: dict, extra: dict | None = 
                     if p in m
                 )
             lines.append(claim_line(cid, paper_values[cid], text, verdict, rec["label"]))
+            if (beside or {}).get(cid):
+                lines.append(f"  - {beside[cid]}")
         else:
             lines.append(claim_line(cid, paper_values[cid], "-", rule.decide(None), "not explored"))
     return "\n".join(lines + [f"- {t}" for t in (extra or {}).values()])
@@ -141,11 +146,14 @@ def model_order_sentence(summary: dict) -> str:
         if np.min(tau) <= summary["tau_grid_min"]
         else ""
     )
+    rms = summary["rms"]
+    b1, b2 = summary["best_order1"], summary["best_order2"]
+    ms = summary.get("frame_ms", float("nan"))
     return (
-        f"Model order (shipped paths, default reading): the best first-order predictor ({summary['best_order1']}) "
-        f"against the best second-order "
-        f"one ({summary['best_order2']}): MSE ratio second/first {fmt(r)}, so {winner} wins. The Singer filter's "
-        f"maximum-likelihood acceleration time constant is {np.min(tau):.2g}..{np.max(tau):.2g} frames{edge}, "
+        f"Model order (shipped paths, default reading): the best first-order predictor ({b1}, RMS {rms[b1]:.3f} px) "
+        f"against the best second-order one ({b2}, RMS {rms[b2]:.3f} px): MSE ratio second/first {fmt(r)}, so "
+        f"{winner} wins. The acceleration's correlation time (the Singer filter's maximum-likelihood time constant) "
+        f"is {np.min(tau):.2g}..{np.max(tau):.2g} frames ({np.min(tau) * ms:.2g}..{np.max(tau) * ms:.2g} ms){edge}, "
         f"{memory} the horizon: the acceleration the quadratic extrapolates has "
         + (
             "decorrelated before the prediction lands, so the acceleration term adds noise more than it removes bias."

@@ -886,7 +886,7 @@ def model_order_summary(run: StudyRun) -> dict:
         first-order predictor: 2-point differences or degree-1 regression; and second-order: the paper's
         filter, 3-point differences, degree-2 regression, Morrison), ``ratio_2_over_1`` (paired MSE ratio,
         best second order over best first order; below 1: the acceleration term pays),
-        ``singer_tau_frames`` (per fold) and ``tau_over_horizon``.
+        ``singer_tau_frames`` (per fold), ``tau_over_horizon`` and ``frame_ms`` (the frame interval, ms).
     """
     c = run.config
     m = int(c["horizon"])
@@ -906,6 +906,7 @@ def model_order_summary(run: StudyRun) -> dict:
         "singer_tau_frames": tau,
         "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
         "tau_over_horizon": float(np.median(tau) / m),
+        "frame_ms": 1e3 / float(run.scene.frame_rate_hz),
     }
 
 
