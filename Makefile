@@ -44,8 +44,10 @@ report: $(STAMP)
 site: $(STAMP)
 	$(BIN)/python -m tvtrack site $(if $(PROFILE),--profile $(PROFILE))
 
+# every core: test files are spread over pytest-xdist workers (one file stays on one worker, so its module
+# fixtures run once); the notebooks' smoke runs are shared between workers (tests/conftest.py)
 test: $(STAMP) lint
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto --dist loadfile
 
 bench: $(STAMP)
 	mkdir -p benchmarks/results

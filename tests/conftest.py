@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import fcntl
+import os
+import pickle
 from pathlib import Path
 
 import pytest
@@ -27,13 +30,27 @@ NOTEBOOK_NAMES = [nb.stem for nb in list_notebooks()]
 @pytest.fixture(scope="session")
 def smoke_run(tmp_path_factory):
     """``smoke_run(name) -> RunOutcome``: the notebook's smoke-profile run, executed on first
-    use and shared by every test of the session (contract checks, recording checks, viewer)."""
+    use and shared by every test of the session (contract checks, recording checks, viewer).
+
+    Under pytest-xdist (``make test`` runs two workers) the workers share one run per notebook: the first
+    worker to ask runs it under a file lock and leaves its outcome beside it; the other waits and reads it."""
     cache = {}
-    root = tmp_path_factory.mktemp("smoke")
+    shared = bool(os.environ.get("PYTEST_XDIST_WORKER"))
+    root = (tmp_path_factory.getbasetemp().parent if shared else tmp_path_factory.mktemp("smoke")) / "smoke-shared"
+    root.mkdir(parents=True, exist_ok=True)
 
     def get(name: str):
-        if name not in cache:
-            cache[name] = run_notebook(name, root / name, profile="smoke")
-        return cache[name]
+        if name in cache:
+            return cache[name]
+        with open(root / f"{name}.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+            done = root / f"{name}.outcome.pkl"
+            if done.exists():
+                outcome = pickle.loads(done.read_bytes())
+            else:
+                outcome = run_notebook(name, root / name, profile="smoke")
+                done.write_bytes(pickle.dumps(outcome))
+        cache[name] = outcome
+        return outcome
 
     return get

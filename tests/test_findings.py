@@ -2,7 +2,8 @@
 
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Results, claims_table, format_measured, md_escape
-from tvtrack.verdicts import InBand, Robustness
+from tvtrack.labels import Robustness
+from tvtrack.verdicts import InBand
 
 
 def test_generated_text_is_escaped_for_markdown():

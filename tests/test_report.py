@@ -113,7 +113,7 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     text = path.read_text()
     assert (
         "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
-        "of the checkable verdicts **0 robust · 1 unexplored · 0 depends · 0 unstable**"
+        "of the checkable verdicts **0 robust · 1 unexplored · 0 limited · 0 depends · 0 unstable**"
     ) in text
     # the fixture varies nothing of a simulated world: it cannot be called robust
     assert "| C900-1 | **reproduced** | unexplored |" in text and "**Profile shown: paper**" in text
@@ -125,7 +125,7 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
 
 def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
-    assert ("**1 robust · 0 unexplored · 1 depends · 0 unstable** · 1 without a robustness record") in text
+    assert ("**1 robust · 0 unexplored · 0 limited · 1 depends · 0 unstable** · 1 without a robustness record") in text
     assert (
         "By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · 1 not checkable."
     ) in text
@@ -152,7 +152,7 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     text = readme.read_text()
     assert text.startswith("intro\n") and text.endswith(f"{README_END}\nrest\n") and "hand-written" not in text
     assert "4 claims (paper profile): **1 reproduced · 1 partly · 1 not reproduced · 1 not checkable**" in text
-    assert "1 robust, 0 unexplored, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
+    assert "1 robust, 0 unexplored, 0 limited, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
     # the headline finding: one line with statement, paper value, measured interval, verdict, label
     assert "| 010 C010-2 | The gain is 4. | 1 | 1.5 \\[1.2, 1.8\\] | **not reproduced** | depends |" in text
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean

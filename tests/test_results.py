@@ -6,7 +6,8 @@ import pytest
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Claim, Results, load_results
 from tvtrack.register import Entry
-from tvtrack.verdicts import Condition, InBand, NotCheckable, Robustness
+from tvtrack.labels import Condition, Robustness
+from tvtrack.verdicts import InBand, NotCheckable
 
 SEEDS = Robustness(note="no unstated choice: a test fixture", seeds={1: 1.5, 2: 1.4, 3: 1.6})
 

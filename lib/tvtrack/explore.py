@@ -36,7 +36,8 @@ from scipy import stats
 
 from .montecarlo import Estimate
 from .register import Register
-from .verdicts import Rule, calibrated, label_parts
+from .labels import label_parts, rule_parts
+from .verdicts import Rule, calibrated, is_decisive
 
 __all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
 
@@ -277,13 +278,14 @@ class Exploration:
         conds = [
             {
                 "changed": {k: v for k, v in r.changed(self.default).items() if k in reads},
+                "config": {k: v for k, v in r.config.items() if k in reads},
                 "kind": r.stage,
                 "measured": r.outputs[claim_id],
             }
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
         ]
-        out = label_parts(rule, self.measured(claim_id), reps, conds, entries)
+        out = label_parts(rule, self.measured(claim_id), reps, conds, entries, design=self.settings)
         out["register"] = [e.to_dict() for e in entries]
         out["design"] = dict(self.settings)
         return out
@@ -342,13 +344,105 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -
         raise
 
 
-def _settled(rules: Mapping[str, Rule], runs: list[Run]) -> bool:
-    reps = [r for r in runs if r.stage == "replicate"]
+def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping, default: Mapping | None = None) -> dict:
+    """``{(claim, part): Judgement}`` of one run's outputs (or of the pooled default)."""
+    out = {}
     for cid, rule in rules.items():
-        m = pool([r.outputs.get(cid) for r in reps])
-        if m is not None and not rule.judge(m).settled:
-            return False
-    return True
+        m = outputs.get(cid)
+        if m is None:
+            continue
+        for part, prule in rule_parts(rule).items():
+            pm = (
+                m
+                if part == "claim" and len(rule_parts(rule)) == 1
+                else (m.get(part) if isinstance(m, Mapping) else None)
+            )
+            if pm is not None:
+                out[(cid, part)] = prule.judge(pm)
+    return out
+
+
+def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
+    reps = [r for r in runs if r.stage == "replicate"]
+    return _part_verdicts(rules, {cid: pool([r.outputs.get(cid) for r in reps]) for cid in rules})
+
+
+def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> int | None:
+    """The replicates projected to decide every undecided part that can be decided within ``cap`` (None: none)."""
+    targets = []
+    for j in _pooled(rules, runs).values():
+        if j.verdict == "undecided" and math.isfinite(j.runs_factor):
+            need = max(n + 1, math.ceil(n * j.runs_factor))
+            if need <= cap:
+                targets.append(need)
+    return max(targets) if targets else None
+
+
+def _disagrees(rules, depends, default_j: Mapping, run: Run, default_cfg: Mapping) -> bool:
+    """True when some claim the run's changes touch has a part whose verdict is not decisively the default's."""
+    changed = set(run.changed(default_cfg))
+    for (cid, part), j in _part_verdicts(rules, run.outputs).items():
+        if not changed & set(depends[cid]):
+            continue
+        d = default_j.get((cid, part))
+        if d is None or not is_decisive(j.verdict) or j.verdict != d.verdict:
+            return True
+    return False
+
+
+def _flipping_unexplained(rules, depends, default_j, runs: list[Run], default_cfg) -> list[tuple[Run, set]]:
+    """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or
+    a sub-combination that flips the same part), each with the entries of the flipped claims it changed (only
+    those with more than two: a pair is already the smallest combination)."""
+    explainers = [r for r in runs if r.stage in ("single", "combination")]
+    flips_of = {id(r): _flips(rules, default_j, r) for r in runs if r.stage != "replicate"}
+    out = []
+    for r in runs:
+        if r.stage not in ("joint", "pinned"):
+            continue
+        ch = set(r.changed(default_cfg).items())
+        todo = set()
+        for key in flips_of[id(r)]:
+            explained = any(key in flips_of[id(s)] and set(s.changed(default_cfg).items()) <= ch for s in explainers)
+            if not explained:
+                todo |= {k for k, _ in ch if k in depends[key[0]]}
+        if len(todo) > 2:
+            out.append((r, todo))
+    return out
+
+
+def _flips(rules, default_j, run: Run) -> set:
+    return {
+        key
+        for key, j in _part_verdicts(rules, run.outputs).items()
+        if key in default_j
+        and is_decisive(j.verdict)
+        and is_decisive(default_j[key].verdict)
+        and j.verdict != default_j[key].verdict
+    }
+
+
+def _combination_runs(rules, depends, runs, default_cfg, seed0, cap, size) -> list[Run]:
+    """Sub-combinations of ``size`` entries of every unexplained flipping joint run (not yet measured)."""
+    default_j = _pooled(rules, runs)
+    have = {tuple(sorted(r.changed(default_cfg).items(), key=repr)) for r in runs}
+    out: list[Run] = []
+    for r, names in _flipping_unexplained(rules, depends, default_j, runs, default_cfg):
+        if size >= len(names):
+            continue
+        for combo in itertools.combinations(sorted(names), size):
+            cfg = {**default_cfg, **{k: r.config[k] for k in combo}}
+            key = tuple(sorted(((k, cfg[k]) for k in combo), key=repr))
+            if key not in have and len(out) < cap:
+                have.add(key)
+                out.append(Run(cfg, seed0, "combination"))
+    return out
+
+
+def _n_joint_combinations(register: Register, names: Sequence[str]) -> int:
+    """Configurations with at least two of ``names`` off their defaults."""
+    sizes = [len(register[k].values) for k in names]
+    return math.prod(sizes) - 1 - sum(m - 1 for m in sizes)
 
 
 def explore(
@@ -364,8 +458,21 @@ def explore(
     batched: bool = False,
     executor: Any = None,
     one_at_a_time: bool = True,
+    screen: Callable | None = None,
+    combinations: int = 24,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
+
+    Stages, in order: ``replicates`` independent full-size runs at the default; **sizing**: while a claim
+    part's pooled verdict is undecided and the replicates projected to decide it (the rule's
+    ``runs_factor``) fit under ``max_replicates``, one more replicate at a time (a part projected beyond the
+    cap stops adding and its record says how many it needs); **one at a time** (every other value of every
+    entry); **joint** (a Latin-hypercube design of ``joint`` configurations, measured with ``screen`` when
+    given, and every configuration whose verdict is not decisively the default's re-measured at full size);
+    **pinned** joint conditions; **combinations**: for each joint configuration that flips a part where no
+    single entry does, its pairs of changed entries, then its triples where no pair flips (at most
+    ``combinations`` runs), so a label names the smallest combination that flips. Every non-replicate stage
+    runs on the first replicate's seed (common random numbers).
 
     Parameters
     ----------
@@ -380,19 +487,22 @@ def explore(
     replicates : int
         Independent full-size runs at the default, at least 3.
     max_replicates : int, optional
-        Adaptive cap: replicates are added one at a time while some claim's pooled verdict is not
-        settled. Default: ``replicates`` (no adaptation).
+        Sizing cap (default ``replicates``: no sizing).
     joint : int
-        Latin-hypercube joint samples of the register (0: none).
+        Latin-hypercube joint configurations of the register (0: none).
     depends : mapping claim id -> entry names, optional
         The entries each claim depends on (default: every entry). A condition counts for a claim only
         if it changes one of its entries.
     batched : bool
-        ``measure`` takes lists (configurations of a stage computed together).
+        ``measure`` (and ``screen``) take lists (configurations of a stage computed together).
     executor : object with ``submit``, optional
         ``concurrent.futures`` executor or ``dask.distributed.Client``.
     one_at_a_time : bool
         Run every other value of every entry at the default of the others.
+    screen : callable, optional
+        A cheaper measurement with ``measure``'s signature (e.g. fewer trials) for the joint design.
+    combinations : int
+        Cap on the sub-combination runs that name the smallest flipping combination.
 
     Returns
     -------
@@ -413,27 +523,54 @@ def explore(
             raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
     seeds = replicate_seeds(seed, cap)
     default = register.default()
+    used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
     runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
-    if one_at_a_time:
-        used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
-        runs += [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
-    if joint:
-        used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
-        runs += [Run(cfg, seeds[0], "joint") for cfg in joint_sample(register, used, joint, seed + 1)]
-    used = {k for names in depends.values() for k in names}
-    runs += [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & used]
     _execute(measure, runs, batched, executor)
     n = replicates
-    while n < cap and not _settled(rules, runs):
+    while n < cap:
+        target = _sizing_target(rules, runs, n, cap)
+        if target is None:
+            break
         extra = [Run(dict(default), seeds[n], "replicate")]
         _execute(measure, extra, batched, executor)
         runs += extra
         n += 1
+    singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
+    _execute(measure, singles if one_at_a_time else [], batched, executor)
+    runs += singles if one_at_a_time else []
+    design = joint_sample(register, used, joint, seed + 1) if joint else []
+    joints = [Run(cfg, seeds[0], "joint") for cfg in design]
+    confirmed = 0
+    if screen is not None and joints:
+        _execute(screen, joints, batched, executor)
+        default_j = _pooled(rules, runs)
+        redo = [r for r in joints if _disagrees(rules, depends, default_j, r, default)]
+        _execute(measure, redo, batched, executor)
+        confirmed = len(redo)
+    else:
+        _execute(measure, joints, batched, executor)
+    runs += joints
+    pinned = [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & set(used)]
+    _execute(measure, pinned, batched, executor)
+    runs += pinned
+    n_combo = 0
+    for size in (2, 3):
+        combos = _combination_runs(rules, depends, runs, default, seeds[0], combinations - n_combo, size)
+        _execute(measure, combos, batched, executor)
+        runs += combos
+        n_combo += len(combos)
     settings = {
         "replicates": n,
         "min_replicates": replicates,
         "max_replicates": cap,
+        "stopping": "replicates added one at a time while a part is undecided and the replicates projected to "
+        "decide it fit under max_replicates",
         "joint": joint,
+        "joint_configurations": len(joints),
+        "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
+        "screened": screen is not None and bool(joints),
+        "confirmed_at_full_size": confirmed if screen is not None else len(joints),
+        "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,
     }

@@ -36,7 +36,8 @@ from typing import Any
 import numpy as np
 
 from .montecarlo import Estimate
-from .verdicts import LABELS, VERDICTS, Robustness, Rule
+from .labels import Robustness
+from .verdicts import LABELS, VERDICTS, Rule
 
 __all__ = [
     "VERDICTS",

@@ -1,29 +1,27 @@
-"""Acceptance rules as code, and the robustness record of a claim.
+"""Acceptance rules as code.
 
 A rule renders its own acceptance text and decides the verdict from measured estimates with
 their intervals, so the text and the decision cannot disagree. Notebooks never type a verdict:
 they pass a rule and the measured value to :meth:`tvtrack.results.Results.claim`.
 
-Conventions (README, "Writing a notebook"):
+Conventions (docs/verdicts.md):
 
 - Where the paper gives a value, the rule is two-sided (:class:`InBand`, :class:`WithinFactor`).
-  A measured value wholly beyond the paper's band on the side the paper would call *better* is
-  ``partly`` (the claim's number is not what the run shows), with that said in the decision.
+  A measured value wholly beyond the paper's band is ``not reproduced`` even on the side the paper
+  would call *better* (the claim's number is not what the run shows); the decision says so.
 - A claim true by construction of the model is :class:`NotCheckable`, with the reason.
 - A difference claimed without uncertainty is no evidence: orderings are decided by the interval
   of a paired difference or ratio (:class:`Ordering`), trends by the intervals along the curve
   (:class:`Monotone`).
-- An interval that straddles a bound means the Monte Carlo cannot decide: ``partly``; the rule says
-  the verdict is not *settled* (:meth:`Rule.judge`), so the explorer can add replicates.
-- Undecided is a verdict input: a NaN value, a NaN or degenerate interval of a random quantity, or an
-  extrapolated estimate (``Estimate.extrapolated``) is ``undecided`` and never decides a claim.
+- **Decided by the data, not the run size.** An interval that straddles a band edge (or contains an
+  ordering's reference, or a trend that nothing along the grid resolves) is ``undecided``, never
+  ``partly``: the judgement carries ``runs_factor``, the multiple of the current runs projected to
+  decide it (:func:`runs_to_decide`), so the explorer can size the run. ``partly`` is only an
+  :class:`AllOf` whose decided parts disagree.
+- Undecided is also a verdict input: a NaN value, a NaN or degenerate interval of a random quantity, or
+  an extrapolated estimate (``Estimate.extrapolated``) is ``undecided`` and never decides a claim.
 
-Labels (:func:`label_parts`) are per part of a rule (each part of :class:`AllOf`; the whole rule
-otherwise): ``unstable`` when independent replicates at the default disagree, ``depends`` when a
-condition of the register changes the verdict (named in ``where``), ``unexplored`` when no regime,
-operating point or model of the world was varied, else ``robust``; a claim's label is the weakest of
-its parts' and its ``coverage`` text says what was tried. The explorer (:mod:`tvtrack.explore`) makes
-these records; :class:`Robustness` is the older hand-built record, labelled by the same function.
+Labels (:mod:`tvtrack.labels`) say how the verdict holds over the register and the replicates.
 """
 
 from __future__ import annotations
@@ -49,17 +47,22 @@ __all__ = [
     "Monotone",
     "AllOf",
     "NotCheckable",
-    "Condition",
-    "Robustness",
-    "rule_parts",
-    "label_parts",
-    "weakest_label",
+    "DECISIVE",
+    "is_decisive",
+    "runs_to_decide",
 ]
 
 #: The only verdicts a claim may carry.
 VERDICTS = ("reproduced", "partly", "not reproduced", "undecided", "not checkable")
-#: Robustness labels, weakest first.
-LABELS = ("unstable", "depends", "unexplored", "robust")
+#: Verdicts that decide a part: a condition can flip a part only from one of these to the other.
+DECISIVE = ("reproduced", "not reproduced")
+#: Robustness labels, weakest first (docs/verdicts.md defines each in a sentence).
+LABELS = ("unstable", "depends", "limited", "unexplored", "robust")
+
+
+def is_decisive(verdict: str) -> bool:
+    """True for ``reproduced`` and ``not reproduced`` (and a claim's ``partly``: its decided parts disagree)."""
+    return verdict in DECISIVE or verdict == "partly"
 
 
 def as_estimate(measured: Any) -> Estimate:
@@ -152,12 +155,66 @@ def _show(e: Estimate, unit: str = "") -> str:
 
 @dataclass(frozen=True)
 class Judgement:
-    """A rule's decision: the verdict, one sentence why, and whether more data could change it
-    (``settled`` is False for an interval that straddles a bound and for ``undecided``)."""
+    """A rule's decision: the verdict, one sentence why, whether more data could change it
+    (``settled`` is False for ``undecided``) and, for an interval that straddles a band edge,
+    ``runs_factor``: the multiple of the runs behind the estimate projected to decide it
+    (:func:`runs_to_decide`; ``inf`` where no number of runs is projected to, e.g. a value on the edge or
+    an undefined interval; ``1.0`` for a decided verdict)."""
 
     verdict: str
     why: str
     settled: bool = True
+    runs_factor: float = 1.0
+
+
+def _zero_count(e: Estimate) -> bool:
+    """A rate from direct counts with zero (or all) events: its interval is the one-sided bound they certify."""
+    m = e.method or ""
+    counted = "Clopper" in m or m.startswith("count")
+    return counted and e.n > 0 and ((e.value == 0.0 and e.ci_low == 0.0) or (e.value == 1.0 and e.ci_high == 1.0))
+
+
+def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
+    """The multiple of the runs behind ``e`` projected to move every band edge in ``edges`` that its interval
+    straddles out of the interval.
+
+    An interval's half-width shrinks as ``1/sqrt(n)``: an edge at distance ``d`` from the point, with the
+    half-width ``h`` on that side, leaves the interval at about ``(h / d)^2`` times the runs (a projection: the
+    explorer re-judges after every added replicate). Zero events in ``n`` runs certify
+    ``p <= 1 - alpha^(1/n)``: an upper edge ``L`` is certified at ``n = ln(alpha) / ln(1 - L)`` runs of zero
+    events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
+    point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
+    """
+    a, b = _interval(e)
+    v = e.value
+    inside = [c for c in edges if c is not None and math.isfinite(c) and a < c < b]
+    if not inside:
+        return 1.0
+    if any(math.isnan(x) for x in (a, b, v)):
+        return math.inf
+    if _zero_count(e):
+        alpha = 1.0 - e.confidence
+        need = []
+        for c in inside:
+            p = c if v == 0.0 else 1.0 - c  # the rate (or its complement) the bound must certify
+            if not 0.0 < p < 1.0:
+                return math.inf
+            need.append(math.log(alpha) / math.log(1.0 - p))
+        return max(need) / e.n
+    factors = []
+    for c in inside:
+        d = abs(v - c)
+        h = (b - v) if c > v else (v - a)
+        if d == 0.0:
+            return math.inf
+        factors.append((h / d) ** 2)
+    return max(factors)
+
+
+def _decide_note(factor: float) -> str:
+    if not math.isfinite(factor):
+        return "no number of runs is projected to decide it (the point sits on the edge)"
+    return f"about {factor:.2g} times the runs would decide it"
 
 
 class Rule(ABC):
@@ -194,8 +251,9 @@ class InBand(Rule):
     """The quantity lies in ``[low, high]`` (either end may be open).
 
     ``reproduced`` when the whole interval lies inside, ``not reproduced`` when it lies wholly
-    outside, ``partly`` when it straddles an end. With ``better`` set, an interval wholly beyond
-    the band on that side is ``partly`` (better than the paper's number, not the paper's number).
+    outside, ``undecided`` when it straddles an end (with the runs projected to decide it). With
+    ``better`` set, an interval wholly beyond the band on that side is still ``not reproduced``, and the
+    decision says it is better than the paper's number.
 
     Parameters
     ----------
@@ -234,10 +292,13 @@ class InBand(Rule):
     def text(self) -> str:
         t = (
             f"{self.quantity} {self._band()}: reproduced if the whole 95 % interval lies inside, not reproduced "
-            f"if it lies wholly outside, partly if it straddles a bound"
+            f"if it lies wholly outside, undecided if it straddles a bound"
         )
         if self.better is not None:
-            t += f"; wholly {'below' if self.better == 'lower' else 'above'} the band (better than the paper) is partly"
+            t += (
+                f" (wholly {'below' if self.better == 'lower' else 'above'} the band is better than the paper's "
+                f"number, and still not the paper's number)"
+            )
         return t
 
     def params(self) -> dict:
@@ -256,17 +317,18 @@ class InBand(Rule):
         below, above = b < lo, a > hi
         if below or above:
             side = "below" if below else "above"
-            if (below and self.better == "lower") or (above and self.better == "higher"):
-                return Judgement(
-                    "partly",
-                    f"{self.quantity} = {m} lies wholly {side} the band ({self._band()}): "
-                    f"better than the paper's number",
-                )
-            return Judgement("not reproduced", f"{self.quantity} = {m} lies wholly {side} the band ({self._band()})")
+            better = (below and self.better == "lower") or (above and self.better == "higher")
+            return Judgement(
+                "not reproduced",
+                f"{self.quantity} = {m} lies wholly {side} the band ({self._band()})"
+                + (": better than the paper's number, but not the paper's number" if better else ""),
+            )
+        f = runs_to_decide(e, (self.low, self.high))
         return Judgement(
-            "partly",
-            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): undecided at this sample size",
+            "undecided",
+            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): {_decide_note(f)}",
             False,
+            f,
         )
 
 
@@ -303,7 +365,8 @@ class Ordering(Rule):
     difference ``a - b`` (reference 0) or ratio ``a / b`` (reference 1).
 
     ``reproduced`` when the interval lies wholly on the claimed side, ``not reproduced`` when it
-    lies wholly on the other, ``partly`` when it contains the reference (no measurable difference).
+    lies wholly on the other, ``undecided`` when it contains the reference (no measurable difference at
+    this size; ``runs_factor`` projects the runs that would resolve the measured one).
     """
 
     a: str
@@ -311,6 +374,7 @@ class Ordering(Rule):
     relation: str = ">"
     measure: str = "difference"
     paired: bool = True
+    unit: str = ""
     kind = "ordering"
 
     def __post_init__(self):
@@ -332,11 +396,26 @@ class Ordering(Rule):
         return (
             f"{self.a} {self.relation} {self.b}, judged on the {how} {self.measure} {self._what()}: reproduced "
             f"if its 95 % interval lies wholly {side} {_g(self.reference)}, not reproduced if wholly on the "
-            f"other side, partly if it contains {_g(self.reference)}"
+            f"other side, undecided if it contains {_g(self.reference)}"
         )
 
+    @property
+    def quantity(self) -> str:
+        """The quantity decided on, in words."""
+        if self.measure == "ratio":
+            return f"ratio of {self.a} to {self.b}"
+        return f"difference {self.a} minus {self.b}" + (f" ({self.unit})" if self.unit else "")
+
     def params(self) -> dict:
-        return {"a": self.a, "b": self.b, "relation": self.relation, "measure": self.measure, "paired": self.paired}
+        return {
+            "a": self.a,
+            "b": self.b,
+            "relation": self.relation,
+            "measure": self.measure,
+            "paired": self.paired,
+            "quantity": self.quantity,
+            "unit": self.unit if self.measure == "difference" else f"ratio of {self.a} to {self.b}",
+        }
 
     def judge(self, measured):
         e = calibrated(measured)
@@ -351,48 +430,83 @@ class Ordering(Rule):
             return Judgement("reproduced", f"{m}: {self.a} {self.relation} {self.b}")
         if other_side:
             return Judgement("not reproduced", f"{m}: the opposite ordering holds")
-        return Judgement("partly", f"{m} contains {_g(r)}: no measurable difference at this sample size", False)
+        f = runs_to_decide(e, (r,))
+        return Judgement(
+            "undecided", f"{m} contains {_g(r)}: no measurable difference yet; {_decide_note(f)}", False, f
+        )
 
 
 @dataclass(frozen=True)
 class Monotone(Rule):
     """The quantity increases (or decreases) along a grid, judged on the intervals.
 
-    Steps between neighbours support the trend when their intervals are separated in its
-    direction and contradict it when separated the other way. ``reproduced``: first and last
-    points separated in the claimed direction and no step contradicts; ``not reproduced``: first
-    and last separated the other way, or no step and no end-to-end change is measurable; else
-    ``partly``.
+    Steps between neighbours support the trend when their intervals are separated in its direction
+    by more than ``tolerance`` and contradict it when separated the other way by more than it.
+    ``reproduced``: first and last points separated in the claimed direction and no step contradicts;
+    ``not reproduced``: the ends separated the other way, or some step measurably against the trend
+    (the curve is decisively not monotone); ``undecided``: nothing resolves the trend either way (no
+    measurable trend is not evidence against it), with the runs projected to separate the ends.
+
+    Parameters
+    ----------
+    quantity, over : str
+        What is measured and along what, in words.
+    direction : {"increasing", "decreasing"}
+    unit : str
+    tolerance : float
+        Separations of at most this size (in ``unit``) count as flat: for deterministic curves, where
+        a rounding-level wiggle is not a trend (state why in the claim's note).
     """
 
     quantity: str
     over: str
     direction: str = "increasing"
+    unit: str = ""
+    tolerance: float = 0.0
     kind = "monotone"
 
     def __post_init__(self):
         if self.direction not in ("increasing", "decreasing"):
             raise ValueError(f"Monotone: direction {self.direction!r} must be 'increasing' or 'decreasing'")
+        if not self.tolerance >= 0:
+            raise ValueError(f"Monotone: tolerance {self.tolerance!r} must be >= 0")
 
     def text(self) -> str:
+        tol = f" by more than {_g(self.tolerance)}{' ' + self.unit if self.unit else ''}" if self.tolerance else ""
         return (
             f"{self.quantity} is {self.direction} in {self.over}: reproduced if the first and last 95 % intervals "
-            f"are separated in that direction and no neighbouring pair is separated the other way; not "
-            f"reproduced if the ends are separated the other way or nothing along the grid is measurably "
-            f"{self.direction}; partly otherwise"
+            f"are separated{tol} in that direction and no neighbouring pair is separated the other way; not "
+            f"reproduced if the ends, or any neighbouring pair, are separated against the trend; undecided if "
+            f"nothing along the grid resolves the trend"
         )
 
     def params(self) -> dict:
-        return {"quantity": self.quantity, "over": self.over, "direction": self.direction}
+        return {
+            "quantity": self.quantity,
+            "over": self.over,
+            "direction": self.direction,
+            "unit": self.unit,
+            "tolerance": self.tolerance,
+        }
 
     def _sep(self, e0: Estimate, e1: Estimate) -> int:
         """+1 when ``e1`` is measurably beyond ``e0`` in the claimed direction, -1 the other way, 0 else."""
         a0, b0 = _interval(e0)
         a1, b1 = _interval(e1)
-        up = a1 > b0
-        down = b1 < a0
+        up = a1 - b0 > self.tolerance
+        down = a0 - b1 > self.tolerance
         s = 1 if up else (-1 if down else 0)
         return s if self.direction == "increasing" else -s
+
+    def _ends_factor(self, e0: Estimate, e1: Estimate) -> float:
+        """Runs projected to separate the end intervals: ``((h0 + h1) / |v1 - v0|)^2``."""
+        a0, b0 = _interval(e0)
+        a1, b1 = _interval(e1)
+        d = abs(e1.value - e0.value) - self.tolerance
+        h = (b0 - a0) / 2 + (b1 - a1) / 2
+        if not (d > 0 and math.isfinite(h)):
+            return math.inf
+        return max((h / d) ** 2, 1.0)
 
     def judge(self, measured: Sequence):
         es = [calibrated(m) for m in measured]
@@ -405,29 +519,34 @@ class Monotone(Rule):
                 f"{self.quantity}: points {bad} along {self.over} are undecided (NaN, "
                 f"degenerate or extrapolated), so the trend cannot be decided",
                 False,
+                math.inf,
             )
         keep = [e for i, e in enumerate(es) if i not in bad]
         steps = [self._sep(x, y) for x, y in zip(keep[:-1], keep[1:])]
         ends = self._sep(keep[0], keep[-1])
         up, down = steps.count(1), steps.count(-1)
+        u = f" {self.unit}" if self.unit else ""
         m = (
-            f"{self.quantity}: {_show(keep[0])} at the first point, {_show(keep[-1])} at the last; "
+            f"{self.quantity}: {_show(keep[0])}{u} at the first point, {_show(keep[-1])}{u} at the last; "
             f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way"
             + (f" ({len(bad)} undecided points left out)" if bad else "")
         )
         if ends == -1:
-            return Judgement("not reproduced", m)
-        if ends == 1 and down == 0:
+            return Judgement("not reproduced", m + " (the ends go against the trend)")
+        if down:
+            return Judgement("not reproduced", m + " (measurably not monotone)")
+        if ends == 1:
             return Judgement("reproduced", m)
-        if ends == 0 and up == 0:
-            return Judgement("not reproduced", m + " (no measurable trend)", False)
-        return Judgement("partly", m, ends != 0)
+        f = self._ends_factor(keep[0], keep[-1])
+        return Judgement("undecided", m + f" (no measurable trend yet; {_decide_note(f)})", False, f)
 
 
 @dataclass(frozen=True)
 class AllOf(Rule):
     """Every part of a composite claim, each by its own rule: ``reproduced`` when all parts are,
-    ``not reproduced`` when none is reproduced or partly, else ``partly``."""
+    ``not reproduced`` when all decided parts are not, ``partly`` only when decided parts disagree,
+    ``undecided`` when the decided parts agree but some part is undecided (it could still go either
+    way) -- a part too small to decide never makes a claim ``partly``."""
 
     parts: Mapping[str, Rule] = field(default_factory=dict)
     kind = "all_of"
@@ -447,21 +566,17 @@ class AllOf(Rule):
         if missing:
             raise ValueError(f"AllOf: measured lacks the parts {missing}")
         decided = {name: rule.judge(measured[name]) for name, rule in self.parts.items()}
-        verdicts = [j.verdict for j in decided.values() if j.verdict != "not checkable"]
-        settled = all(j.settled for j in decided.values())
+        checked = {n: j for n, j in decided.items() if j.verdict != "not checkable"}
         why = "; ".join(f"({name}) {j.verdict}: {j.why}" for name, j in decided.items())
-        if not verdicts:
+        if not checked:
             return Judgement("not checkable", why)
-        firm = [v for v in verdicts if v != "undecided"]
-        if len(firm) < len(verdicts):
-            # an undecided part never decides: the claim is partly only if decided parts already disagree
-            mixed = "partly" in firm or len(set(firm)) > 1
-            return Judgement("partly" if mixed else "undecided", why, False)
-        if all(v == "reproduced" for v in verdicts):
-            return Judgement("reproduced", why, settled)
-        if all(v == "not reproduced" for v in verdicts):
-            return Judgement("not reproduced", why, settled)
-        return Judgement("partly", why, settled)
+        firm = {j.verdict for j in checked.values() if j.verdict != "undecided"}
+        open_ = [j for j in checked.values() if j.verdict == "undecided"]
+        if "partly" in firm or len(firm) > 1:
+            return Judgement("partly", why, not open_)
+        if open_:
+            return Judgement("undecided", why, False, max(j.runs_factor for j in open_))
+        return Judgement(firm.pop(), why)
 
 
 @dataclass(frozen=True)
@@ -480,229 +595,3 @@ class NotCheckable(Rule):
 
     def judge(self, measured):
         return Judgement("not checkable", self.reason)
-
-
-# --------------------------------------------------------------------------- labels
-
-
-def rule_parts(rule: Rule) -> dict[str, Rule]:
-    """The parts a label is given for: each part of an :class:`AllOf`, else the whole rule as ``"claim"``."""
-    if isinstance(rule, AllOf):
-        return dict(rule.parts)
-    return {"claim": rule}
-
-
-def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
-    if isinstance(rule, AllOf):
-        return {name: measured[name] for name in rule.parts if isinstance(measured, Mapping) and name in measured}
-    return {"claim": measured}
-
-
-NO_PART_LABEL = "-"
-"""The label of a :class:`NotCheckable` part inside an :class:`AllOf` (it takes no part in the claim's label)."""
-
-
-def weakest_label(labels: Sequence[str]) -> str:
-    """The weakest of ``labels`` in the order of :data:`LABELS`."""
-    return min(labels, key=LABELS.index) if labels else "unexplored"
-
-
-def _describe(changed: Mapping[str, Any]) -> str:
-    return ", ".join(f"{k} = {v}" for k, v in changed.items()) or "the default reading"
-
-
-def label_parts(
-    rule: Rule,
-    measured: Any,
-    replicates: Sequence[Mapping],
-    conditions: Sequence[Mapping],
-    entries: Sequence[Any] = (),
-    deterministic: bool = False,
-) -> dict:
-    """Part-level robustness labels of one claim.
-
-    Parameters
-    ----------
-    rule : Rule
-        The claim's rule; labels are given per :func:`rule_parts`.
-    measured : Any
-        The claim at the default (pooled over the replicates): decides the claim's verdict.
-    replicates : sequence of {"seed", "measured"}
-        Independent full-size runs at the default. Conditions are compared with the first replicate,
-        which ran on the same random numbers (common random numbers).
-    conditions : sequence of {"changed": {entry: value}, "kind": "single" | "joint", "measured"}
-        The claim under other values of the register: one entry at a time, or joint samples.
-    entries : sequence of :class:`tvtrack.register.Entry`
-        The register entries the claim depends on.
-    deterministic : bool
-        No random draw is involved (replicates cannot differ).
-
-    Returns
-    -------
-    dict
-        ``label`` (weakest part), ``where`` (the parts and conditions where a verdict differs),
-        ``coverage`` (what was tried), ``parts`` {name: {verdict, label, where, replicate_verdicts,
-        n_conditions}}, ``replicates`` and ``conditions`` with their part verdicts.
-    """
-    from .register import WORLD_KINDS
-
-    parts = rule_parts(rule)
-    kinds = {e.name: e.kind for e in entries}
-    rep_rows = [
-        {
-            "seed": int(r["seed"]),
-            "measured": r["measured"],
-            "verdict": rule.decide(r["measured"]),
-            "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, r["measured"]).items()},
-        }
-        for r in replicates
-    ]
-    cond_rows = [
-        {
-            "changed": dict(c["changed"]),
-            "kind": c.get("kind", "single"),
-            "measured": c["measured"],
-            "verdict": rule.decide(c["measured"]),
-            "parts": {n: p.decide(m) for n, (p, m) in _zip_parts(parts, rule, c["measured"]).items()},
-        }
-        for c in conditions
-    ]
-    world_varied = any(kinds.get(k) in WORLD_KINDS for c in cond_rows for k in c["changed"])
-    part_out, where = {}, []
-    for name, prule in parts.items():
-        pm = _part_measured(rule, measured).get(name)
-        verdict = prule.decide(pm) if pm is not None else "undecided"
-        rv = [r["parts"][name] for r in rep_rows if name in r["parts"]]
-        ref = rv[0] if rv else verdict  # conditions ran on the first replicate's random numbers
-        flips: dict[str, list[str]] = {}
-        undecided: list[str] = []
-        for c in cond_rows:
-            v = c["parts"].get(name)
-            if v is None:
-                continue
-            if v == "undecided" and ref != "undecided":
-                undecided.append(_describe(c["changed"]))
-            elif v != ref:
-                flips.setdefault(v, []).append(_describe(c["changed"]))
-        pwhere = []
-        if isinstance(prule, NotCheckable):
-            label = NO_PART_LABEL  # an identity or a statement this project cannot check has nothing to flip
-        elif len(set(rv)) > 1:
-            label = "unstable"
-            pwhere += [f"{v} in {rv.count(v)} of {len(rv)} independent replicates" for v in dict.fromkeys(rv)]
-        elif flips:
-            label = "depends"
-        elif not world_varied:
-            label = "unexplored"
-        else:
-            label = "robust"
-        pwhere += [f"{v} when {'; '.join(cs)}" for v, cs in flips.items()]
-        if undecided:
-            pwhere.append(f"undecided when {'; '.join(undecided)}")
-        prefix = "" if len(parts) == 1 else f"({name}) "
-        where += [prefix + w for w in pwhere]
-        part_out[name] = {
-            "verdict": verdict,
-            "label": label,
-            "where": pwhere,
-            "replicate_verdicts": rv,
-            "n_conditions": sum(1 for c in cond_rows if name in c["parts"]),
-        }
-    label = weakest_label([p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL])
-    return {
-        "label": label,
-        "where": where,
-        "coverage": _coverage(label, part_out, cond_rows, rep_rows, entries, deterministic),
-        "parts": part_out,
-        "replicates": rep_rows,
-        "conditions": cond_rows,
-        "deterministic": deterministic,
-    }
-
-
-def _zip_parts(parts: Mapping[str, Rule], rule: Rule, measured: Any) -> dict:
-    pm = _part_measured(rule, measured)
-    return {n: (parts[n], pm[n]) for n in parts if n in pm and pm[n] is not None}
-
-
-def _coverage(label, parts, conds, reps, entries, deterministic) -> str:
-    single = [c for c in conds if c["kind"] == "single"]
-    joint = [c for c in conds if c["kind"] == "joint"]
-    pinned = [c for c in conds if c["kind"] == "pinned"]
-    varied: dict[str, set] = {}
-    for c in single:
-        for k, v in c["changed"].items():
-            varied.setdefault(k, set()).add(str(v))
-    over = ", ".join(f"{k} ({len(v) + 1} values)" for k, v in varied.items()) or "no register entry"
-    reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
-    weak = [n for n, p in parts.items() if p["label"] == label]
-    which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
-    return (
-        f"{label}{which} over {len(conds)} conditions: {len(single)} one at a time over {over}; "
-        f"{len(joint)} joint samples{f' and {len(pinned)} pinned joint conditions' if pinned else ''}; x {reps_text}"
-    )
-
-
-# --------------------------------------------------------------------------- hand-built records
-
-
-@dataclass(frozen=True)
-class Condition:
-    """The claim measured under one reading: ``choices`` maps entry names to values."""
-
-    choices: Mapping[str, Any]
-    measured: Any
-
-
-@dataclass
-class Robustness:
-    """A hand-built robustness record (prefer :func:`tvtrack.explore.explore`).
-
-    Parameters
-    ----------
-    choices : list of Entry
-        The register entries the claim depends on (empty only with a ``note`` saying why none matters).
-    conditions : list of Condition
-        The claim measured under readings other than the default.
-    seeds : mapping seed -> measured
-        The claim at the default reading under at least three independent full-size runs.
-    note : str
-        Required when ``choices`` is empty or when ``deterministic``.
-    deterministic : bool
-        The measurement involves no random draw (``note`` says why).
-    """
-
-    choices: list = field(default_factory=list)
-    conditions: list = field(default_factory=list)
-    seeds: Mapping[int, Any] = field(default_factory=dict)
-    note: str = ""
-    deterministic: bool = False
-
-    def validate(self) -> None:
-        if not self.choices and not self.note:
-            raise ValueError("a robustness record without unstated choices needs a note saying why none matters")
-        if self.deterministic and not self.note:
-            raise ValueError("a deterministic robustness record needs a note saying why the seed cannot matter")
-        if not self.deterministic and len(self.seeds) < 3:
-            raise ValueError(f"a robustness record needs the claim under at least 3 seeds, got {len(self.seeds)}")
-        names = {c.name for c in self.choices}
-        for cond in self.conditions:
-            unknown = set(cond.choices) - names
-            if unknown:
-                raise ValueError(f"condition {dict(cond.choices)} names unknown choices {sorted(unknown)}")
-            for k, v in cond.choices.items():
-                allowed = list(next(c for c in self.choices if c.name == k).values)
-                if v not in allowed:
-                    raise ValueError(f"condition {dict(cond.choices)}: {k} = {v!r} is not among {allowed}")
-
-    def record(self, rule: Rule, measured: Any) -> dict:
-        """The JSON record: :func:`label_parts` over the conditions and seeds, with the entries."""
-        self.validate()
-        reps = [{"seed": s, "measured": m} for s, m in self.seeds.items()]
-        conds = [
-            {"changed": dict(c.choices), "kind": "single" if len(c.choices) == 1 else "joint", "measured": c.measured}
-            for c in self.conditions
-        ]
-        out = label_parts(rule, measured, reps, conds, self.choices, self.deterministic)
-        out.update({"register": [c.to_dict() for c in self.choices], "note": self.note, "built": "by hand"})
-        return out

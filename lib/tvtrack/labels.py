@@ -1,0 +1,519 @@
+"""Robustness labels of a claim: how its verdict holds over the replicates and the register.
+
+:func:`label_parts` gives each part of a claim's rule (each part of an :class:`~tvtrack.verdicts.AllOf`;
+the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
+
+- ``unstable``: independent replicates at the default disagree **decisively** (one reproduced, another
+  not reproduced); a replicate too small to decide (``undecided``) never makes a part unstable;
+- ``depends``: a configuration that changes only **readings of the paper** (entries of kind reading,
+  statistic, comparator) reaches a decisive verdict other than the default's decisive verdict: the paper's
+  claim is ambiguous there;
+- ``limited``: the verdict holds under every explored reading, and only configurations that change a **world
+  beyond the paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
+- ``unexplored``: no entry of the world was varied, or the design is too small to estimate a share
+  (``provisional``; e.g. the smoke profile);
+- ``robust``: none of the above, over a design large enough for a share.
+
+A condition flips a part only when its verdict is decisive and differs from the default's pooled decisive
+verdict: an interval that straddles (``undecided``) is never a flip. A part whose default verdict is
+undecided has nothing to flip (label ``-``) and carries the runs projected to decide it.
+
+Each part also carries the **share** of the explored configurations whose verdict agrees with the
+default's (Clopper-Pearson interval), the **flips** named (single entries first, readings before worlds;
+then the smallest combinations the explorer found; a joint configuration only where no subset of it was
+found to flip), and a **sensitivity** ranking of the entries (main-effect share of the measured value over
+the explored configurations: the correlation ratio eta^2 of the value on the entry's level; with categorical
+entries on a Latin-hypercube design this is the first-order effect a Sobol index estimates, without the
+continuous sampler SALib's estimators need).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+from scipy import stats
+
+from .register import WORLD_KINDS, side_of
+from .verdicts import LABELS, AllOf, Judgement, NotCheckable, Rule, as_estimate, is_decisive
+
+__all__ = [
+    "MIN_SHARE_DESIGN",
+    "NO_PART_LABEL",
+    "rule_parts",
+    "weakest_label",
+    "label_parts",
+    "share",
+    "attribute",
+    "sensitivity",
+    "Condition",
+    "Robustness",
+]
+
+#: Distinct explored configurations a claim needs for its share to be estimated to about +-14 points (95 %);
+#: fewer (and not every combination of its entries) makes the label provisional: never ``robust``.
+MIN_SHARE_DESIGN = 32
+
+NO_PART_LABEL = "-"
+"""The label of a part with nothing to flip: a :class:`NotCheckable` part, or a part whose default is undecided."""
+
+
+def rule_parts(rule: Rule) -> dict[str, Rule]:
+    """The parts a label is given for: each part of an :class:`AllOf`, else the whole rule as ``"claim"``."""
+    if isinstance(rule, AllOf):
+        return dict(rule.parts)
+    return {"claim": rule}
+
+
+def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
+    if isinstance(rule, AllOf):
+        return {name: measured[name] for name in rule.parts if isinstance(measured, Mapping) and name in measured}
+    return {"claim": measured}
+
+
+def weakest_label(labels: Sequence[str]) -> str:
+    """The weakest of ``labels`` in the order of :data:`tvtrack.verdicts.LABELS`."""
+    return min(labels, key=LABELS.index) if labels else "unexplored"
+
+
+def _phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
+    """A configuration's changes in plain words (the entries' phrases)."""
+    out = []
+    for k, v in changed.items():
+        e = entries.get(k)
+        out.append(e.phrase(v) if e is not None else f"{k} = {v}")
+    return "; ".join(out) or "the default reading"
+
+
+def _side(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
+    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"``."""
+    kinds = [entries[k].kind if k in entries else "reading" for k in changed]
+    return "reading" if all(side_of(k) == "reading" for k in kinds) else "world"
+
+
+def _scalar(m: Any) -> float:
+    """One number for a part's measured value: an estimate's value, a curve's end-to-end change."""
+    if m is None:
+        return math.nan
+    if isinstance(m, (list, tuple)):
+        if len(m) < 2:
+            return math.nan
+        return _scalar(m[-1]) - _scalar(m[0])
+    try:
+        return float(as_estimate(m).value)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def share(verdicts: Sequence[str], default: str, confidence: float = 0.95) -> dict | None:
+    """The share of decided configurations whose verdict is the default's, with a Clopper-Pearson interval.
+
+    Parameters
+    ----------
+    verdicts : sequence of str
+        One verdict per distinct explored configuration.
+    default : str
+        The default's pooled verdict (decisive; else there is no share).
+    """
+    if not is_decisive(default):
+        return None
+    decided = [v for v in verdicts if is_decisive(v)]
+    n, k = len(decided), sum(v == default for v in decided)
+    if n == 0:
+        return {
+            "agree": 0,
+            "decided": 0,
+            "undecided": len(verdicts),
+            "design": len(verdicts),
+            "value": math.nan,
+            "ci_low": 0.0,
+            "ci_high": 1.0,
+        }
+    ci = stats.binomtest(k, n).proportion_ci(confidence, method="exact")
+    return {
+        "agree": k,
+        "decided": n,
+        "undecided": len(verdicts) - n,
+        "design": len(verdicts),
+        "value": k / n,
+        "ci_low": float(ci.low),
+        "ci_high": float(ci.high),
+    }
+
+
+def _subset(a: Mapping, b: Mapping) -> bool:
+    return all(k in b and b[k] == v for k, v in a.items())
+
+
+def attribute(
+    default: str, rows: Sequence[Mapping], entries: Mapping[str, Any], same_seed: str | None = None
+) -> list[dict]:
+    """The configurations that flip a part, named as simply as the runs allow.
+
+    A configuration flips the part when its verdict is decisive and differs from the default's pooled decisive
+    verdict and, where the default's run on the same random numbers (the first replicate) is decisive, from
+    that run's verdict too: a condition that only repeats its own replicate's luck is no flip.
+
+    Parameters
+    ----------
+    default : str
+        The default's pooled decisive verdict.
+    same_seed : str, optional
+        The verdict of the default's run on the conditions' random numbers.
+    rows : sequence of {"changed", "kind", "verdict"}
+        The part under every explored condition (``kind``: single, joint, pinned or combination).
+    entries : mapping name -> Entry
+
+    Returns
+    -------
+    list of dict
+        ``{"changed", "side", "kind", "verdict", "text"}``: single entries first (readings, then worlds),
+        then the smallest combinations that flip a joint configuration no single entry explains (pairs
+        before triples), then joint configurations in which no subset was found to flip.
+    """
+    if not is_decisive(default):
+        return []
+    crn = same_seed if same_seed is not None and is_decisive(same_seed) else default
+    flipped = [r for r in rows if is_decisive(r["verdict"]) and r["verdict"] != default and r["verdict"] != crn]
+    singles = [r for r in flipped if r["kind"] == "single"]
+    combos = [r for r in flipped if r["kind"] == "combination"]
+    out: list[dict] = []
+    seen: set = set()
+
+    def add(r: Mapping, kind: str) -> None:
+        key = tuple(sorted((k, repr(v)) for k, v in r["changed"].items()))
+        if key in seen:
+            return
+        seen.add(key)
+        out.append(
+            {
+                "changed": dict(r["changed"]),
+                "side": _side(r["changed"], entries),
+                "kind": kind,
+                "verdict": r["verdict"],
+                "text": _phrase(r["changed"], entries),
+            }
+        )
+
+    for r in sorted(singles, key=lambda r: _side(r["changed"], entries) != "reading"):
+        add(r, "single")
+    later: list[tuple[int, Mapping, str]] = []
+    for j in (r for r in flipped if r["kind"] in ("joint", "pinned")):
+        if any(_subset(s["changed"], j["changed"]) for s in singles):
+            continue  # a single entry already explains it
+        subs = [c for c in combos if _subset(c["changed"], j["changed"])]
+        if subs:
+            smallest = min(len(c["changed"]) for c in subs)
+            later += [(smallest, c, "combination") for c in subs if len(c["changed"]) == smallest]
+        else:
+            later.append((len(j["changed"]) + 100, j, "joint"))  # after every named combination
+    for _, r, kind in sorted(later, key=lambda t: (t[0], _side(t[1]["changed"], entries) != "reading")):
+        add(r, kind)
+    return out
+
+
+def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[str, Any], default: Mapping) -> list:
+    """Entries ranked by how much they move a part's measured value over the explored configurations.
+
+    The score is the correlation ratio eta^2: the share of the variance of the part's value (its point value;
+    a curve's end-to-end change) between the groups of configurations that give the entry each of its values.
+    Needs at least 8 configurations with a finite value and some spread; else an empty list.
+
+    Parameters
+    ----------
+    rows : sequence of {"config": full configuration, "value": float}
+    names : entry names the claim reads
+    default : the default configuration (an entry missing from a row's config is at its default)
+    """
+    pts = [(r["config"], r["value"]) for r in rows if math.isfinite(r["value"])]
+    if len(pts) < 8:
+        return []
+    y = np.array([v for _, v in pts])
+    total = float(np.sum((y - y.mean()) ** 2))
+    if not total > 0:
+        return []
+    out = []
+    for k in names:
+        levels = [repr(c.get(k, default.get(k))) for c, _ in pts]
+        between = 0.0
+        for lev in set(levels):
+            g = y[[lv == lev for lv in levels]]
+            between += len(g) * (g.mean() - y.mean()) ** 2
+        e = entries.get(k)
+        out.append({"entry": k, "title": (e.title or e.name) if e is not None else k, "score": between / total})
+    return sorted(out, key=lambda d: -d["score"])
+
+
+def _runs_text(j: Judgement, n_reps: int, n_runs: int, cap: int | None) -> dict:
+    f = j.runs_factor
+    if not math.isfinite(f):
+        return {
+            "replicates": None,
+            "now": n_reps,
+            "factor": None,
+            "text": f"undecided at {n_reps} replicates; no number of runs is projected to decide it",
+        }
+    reps = max(n_reps + 1, math.ceil(n_reps * f))
+    runs = math.ceil(n_runs * f) if n_runs > n_reps else None
+    what = f"about {reps} independent replicates" + (f" ({runs} runs)" if runs else "")
+    beyond = f", beyond the cap of {cap}" if cap is not None and reps > cap else ""
+    return {
+        "replicates": reps,
+        "now": n_reps,
+        "factor": f,
+        "runs": runs,
+        "text": f"undecided at {n_reps} replicates: {what} would decide it{beyond}",
+    }
+
+
+def _replicate_text(rv: Sequence[str]) -> str:
+    counts = ", ".join(f"{v} in {rv.count(v)}" for v in dict.fromkeys(rv))
+    return f"independent replicates disagree: {counts} of {len(rv)}"
+
+
+def _n_combinations(names: Sequence[str], entries: Mapping[str, Any]) -> int:
+    return math.prod(len(entries[k].values) for k in names if k in entries) - 1
+
+
+def label_parts(
+    rule: Rule,
+    measured: Any,
+    replicates: Sequence[Mapping],
+    conditions: Sequence[Mapping],
+    entries: Sequence[Any] = (),
+    deterministic: bool = False,
+    design: Mapping | None = None,
+) -> dict:
+    """Part-level robustness labels of one claim (see the module).
+
+    Parameters
+    ----------
+    rule : Rule
+        The claim's rule; labels are given per :func:`rule_parts`.
+    measured : Any
+        The claim at the default, pooled over the replicates: decides the default's verdict.
+    replicates : sequence of {"seed", "measured"}
+        Independent full-size runs at the default.
+    conditions : sequence of {"changed": {entry: value}, "kind", "measured", "config" (optional)}
+        The claim under other configurations: ``single`` (one entry), ``joint`` (the Latin-hypercube design),
+        ``pinned`` (known flips measured every run) and ``combination`` (subsets of a flipping joint
+        configuration, run to name the smallest that flips). Conditions ran on the first replicate's random
+        numbers (common random numbers).
+    entries : sequence of :class:`tvtrack.register.Entry`
+        The register entries the claim depends on.
+    deterministic : bool
+        No random draw is involved (replicates cannot differ).
+    design : mapping, optional
+        The explorer's settings (``max_replicates`` is the sizing cap; ``min_share_design`` overrides
+        :data:`MIN_SHARE_DESIGN`).
+
+    Returns
+    -------
+    dict
+        ``label`` (weakest part), ``provisional``, ``where`` (plain lines), ``coverage``, ``parts`` {name:
+        {verdict, label, where, replicate_verdicts, n_conditions, share, flips, sensitivity, runs_to_decide}},
+        ``replicates`` and ``conditions`` with their part verdicts.
+    """
+    design = dict(design or {})
+    parts = rule_parts(rule)
+    by_name = {e.name: e for e in entries}
+    default_cfg = {e.name: e.default for e in entries}
+    rep_rows = [_row(rule, parts, r["measured"], {"seed": int(r["seed"])}) for r in replicates]
+    cond_rows = [
+        _row(
+            rule,
+            parts,
+            c["measured"],
+            {
+                "changed": dict(c["changed"]),
+                "kind": c.get("kind", "single"),
+                "text": _phrase(c["changed"], by_name),
+                "config": {**default_cfg, **dict(c.get("config", c["changed"]))},
+            },
+        )
+        for c in conditions
+    ]
+    world_varied = any(by_name[k].kind in WORLD_KINDS for c in cond_rows for k in c["changed"] if k in by_name)
+    explored = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint")])
+    need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), _n_combinations(list(by_name), by_name))
+    provisional = not deterministic and len(explored) < max(need, 1)
+    n_reps = len(rep_rows)
+    pooled_n = _runs_behind(measured)
+    part_out, where = {}, []
+    for name, prule in parts.items():
+        pm = _part_measured(rule, measured).get(name)
+        j = prule.judge(pm) if pm is not None else Judgement("undecided", "not measured", False, math.inf)
+        rv = [r["parts"][name] for r in rep_rows if name in r["parts"]]
+        rows = [{**c, "verdict": c["parts"][name]} for c in cond_rows if name in c["parts"]]
+        flips = attribute(j.verdict, rows, by_name, rv[0] if rv else None)
+        ex_rows = [{**c, "verdict": c["parts"][name]} for c in explored if name in c["parts"]]
+        sens_rows = [{"config": c["config"], "value": _scalar(c["part_measured"].get(name))} for c in ex_rows]
+        if rep_rows and name in rep_rows[0]["part_measured"]:
+            sens_rows.append({"config": default_cfg, "value": _scalar(rep_rows[0]["part_measured"][name])})
+        decisive_reps = {v for v in rv if v in ("reproduced", "not reproduced")}
+        pwhere: list[str] = []
+        runs = None
+        if isinstance(prule, NotCheckable):
+            label = NO_PART_LABEL
+        elif len(decisive_reps) > 1:
+            label = "unstable"
+            pwhere.append(_replicate_text(rv))
+        elif not is_decisive(j.verdict):
+            label = NO_PART_LABEL
+            runs = _runs_text(j, n_reps, pooled_n, design.get("max_replicates"))
+            pwhere.append(runs["text"])
+        elif any(f["side"] == "reading" for f in flips):
+            label = "depends"
+        elif flips:
+            label = "limited"
+        elif not world_varied or provisional:
+            label = "unexplored"
+        else:
+            label = "robust"
+        pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
+        prefix = "" if len(parts) == 1 else f"({name}) "
+        where += [prefix + w for w in pwhere]
+        part_out[name] = {
+            "verdict": j.verdict,
+            "label": label,
+            "where": pwhere,
+            "replicate_verdicts": rv,
+            "n_conditions": len(rows),
+            "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
+            "flips": flips,
+            "sensitivity": sensitivity(sens_rows, list(by_name), by_name, default_cfg),
+            "runs_to_decide": runs,
+        }
+    labels = [p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL]
+    label = weakest_label(labels)
+    for r in (*rep_rows, *cond_rows):
+        r.pop("part_measured", None)
+    return {
+        "label": label,
+        "provisional": provisional,
+        "where": where,
+        "coverage": _coverage(label, part_out, cond_rows, rep_rows, entries, deterministic, len(explored), provisional),
+        "parts": part_out,
+        "replicates": rep_rows,
+        "conditions": cond_rows,
+        "deterministic": deterministic,
+    }
+
+
+def _row(rule: Rule, parts: Mapping[str, Rule], measured: Any, extra: dict) -> dict:
+    pm = {n: m for n, m in _part_measured(rule, measured).items() if m is not None and n in parts}
+    return {
+        **extra,
+        "measured": measured,
+        "verdict": rule.decide(measured),
+        "parts": {n: parts[n].decide(m) for n, m in pm.items()},
+        "part_measured": pm,
+    }
+
+
+def _distinct(rows: Sequence[dict]) -> list[dict]:
+    out, seen = [], set()
+    for r in rows:
+        key = tuple(sorted((k, repr(v)) for k, v in r["changed"].items()))
+        if r["changed"] and key not in seen:
+            seen.add(key)
+            out.append(r)
+    return out
+
+
+def _runs_behind(measured: Any) -> int:
+    """The runs behind a pooled measured value (its ``n``; the largest over parts)."""
+    if isinstance(measured, Mapping) and "value" not in measured:
+        return max((_runs_behind(v) for v in measured.values()), default=0)
+    if isinstance(measured, (list, tuple)):
+        return max((_runs_behind(v) for v in measured), default=0)
+    try:
+        return int(as_estimate(measured).n)
+    except (TypeError, ValueError):
+        return 0
+
+
+def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, provisional) -> str:
+    single = [c for c in conds if c["kind"] == "single"]
+    joint = [c for c in conds if c["kind"] == "joint"]
+    pinned = [c for c in conds if c["kind"] == "pinned"]
+    combos = [c for c in conds if c["kind"] == "combination"]
+    reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
+    weak = [n for n, p in parts.items() if p["label"] == label]
+    which = "" if len(parts) == 1 else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
+    extra = [f"{len(pinned)} pinned known flips"] if pinned else []
+    extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
+    small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""
+    return (
+        f"{label}{which} over {n_explored} distinct configurations ({len(single)} one at a time over "
+        f"{len(entries)} register entries, {len(joint)} joint samples"
+        + (", " + ", ".join(extra) if extra else "")
+        + f"); x {reps_text}{small}"
+    )
+
+
+# --------------------------------------------------------------------------- hand-built records
+
+
+@dataclass(frozen=True)
+class Condition:
+    """The claim measured under one reading: ``choices`` maps entry names to values."""
+
+    choices: Mapping[str, Any]
+    measured: Any
+
+
+@dataclass
+class Robustness:
+    """A hand-built robustness record (prefer :func:`tvtrack.explore.explore`).
+
+    Parameters
+    ----------
+    choices : list of Entry
+        The register entries the claim depends on (empty only with a ``note`` saying why none matters).
+    conditions : list of Condition
+        The claim measured under readings other than the default.
+    seeds : mapping seed -> measured
+        The claim at the default reading under at least three independent full-size runs.
+    note : str
+        Required when ``choices`` is empty or when ``deterministic``.
+    deterministic : bool
+        The measurement involves no random draw (``note`` says why).
+    """
+
+    choices: list = field(default_factory=list)
+    conditions: list = field(default_factory=list)
+    seeds: Mapping[int, Any] = field(default_factory=dict)
+    note: str = ""
+    deterministic: bool = False
+
+    def validate(self) -> None:
+        if not self.choices and not self.note:
+            raise ValueError("a robustness record without unstated choices needs a note saying why none matters")
+        if self.deterministic and not self.note:
+            raise ValueError("a deterministic robustness record needs a note saying why the seed cannot matter")
+        if not self.deterministic and len(self.seeds) < 3:
+            raise ValueError(f"a robustness record needs the claim under at least 3 seeds, got {len(self.seeds)}")
+        names = {c.name for c in self.choices}
+        for cond in self.conditions:
+            unknown = set(cond.choices) - names
+            if unknown:
+                raise ValueError(f"condition {dict(cond.choices)} names unknown choices {sorted(unknown)}")
+            for k, v in cond.choices.items():
+                allowed = list(next(c for c in self.choices if c.name == k).values)
+                if v not in allowed:
+                    raise ValueError(f"condition {dict(cond.choices)}: {k} = {v!r} is not among {allowed}")
+
+    def record(self, rule: Rule, measured: Any) -> dict:
+        """The JSON record: :func:`label_parts` over the conditions and seeds, with the entries."""
+        self.validate()
+        reps = [{"seed": s, "measured": m} for s, m in self.seeds.items()]
+        conds = [
+            {"changed": dict(c.choices), "kind": "single" if len(c.choices) == 1 else "joint", "measured": c.measured}
+            for c in self.conditions
+        ]
+        out = label_parts(rule, measured, reps, conds, self.choices, self.deterministic)
+        out.update({"register": [c.to_dict() for c in self.choices], "note": self.note, "built": "by hand"})
+        return out

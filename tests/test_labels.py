@@ -1,0 +1,221 @@
+"""Verdicts decided by the data and labels noise cannot make (issue 34), on constructed claims.
+
+Each test builds a claim whose truth is known: a power-limited claim, a zero-events part, a straddling
+condition, a planted single-entry flip, a planted pair interaction, a reading against a world.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from tvtrack.explore import explore
+from tvtrack.labels import attribute, label_parts, sensitivity, share
+from tvtrack.montecarlo import Estimate, mean_ci, rate_from_counts, zero_events_bound
+from tvtrack.register import Entry, Register
+from tvtrack.verdicts import InBand, Monotone, Ordering, runs_to_decide
+
+
+def _mean(seed, shift, n=100, sd=1.0):
+    return mean_ci(np.random.default_rng(seed).normal(shift, sd, n))
+
+
+BAND = InBand("mean", -0.5, 0.5, "px")
+
+
+# --------------------------------------------------------------------------- undecided and runs to decide
+
+
+def test_a_straddling_interval_is_undecided_with_the_runs_that_would_decide_it():
+    j = BAND.judge(Estimate(0.56, 0.05, 0.46, 0.66, 100, method="Student t"))
+    assert j.verdict == "undecided" and not j.settled
+    assert j.runs_factor == pytest.approx((0.10 / 0.06) ** 2)  # (half-width / distance to the edge) squared
+    assert "times the runs would decide it" in j.why
+    # decided verdicts need no more runs
+    assert BAND.judge(Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")).runs_factor == 1.0
+    # a point on the edge is never projected to leave it
+    assert not math.isfinite(runs_to_decide(Estimate(0.5, 0.05, 0.4, 0.6, 100, method="t"), (-0.5, 0.5)))
+
+
+def test_zero_events_are_sized_to_certify_the_limit():
+    # 0 losses in 24 runs certify p <= 0.117: undecided against 0.1; 29 runs of zero events certify it
+    rule = InBand("share of runs that lost lock", high=0.1)
+    j = rule.judge(rate_from_counts(0, 24))
+    assert j.verdict == "undecided"
+    assert math.ceil(24 * j.runs_factor) == 29 == math.ceil(math.log(0.05) / math.log(0.9))
+    assert rule.decide(rate_from_counts(0, 29)) == "reproduced"
+    assert zero_events_bound(29) <= 0.1 < zero_events_bound(28)
+
+
+def test_the_explorer_sizes_a_zero_events_part_until_it_decides():
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
+    rule = InBand("share of runs that lost lock", high=0.1)
+    ex = explore(lambda c, s: {"L": rate_from_counts(0, 6)}, reg, {"L": rule}, seed=1, replicates=3, max_replicates=8)
+    assert ex.settings["replicates"] == 5  # 30 runs of zero events >= 29: stops as soon as it decides
+    rec = ex.record("L")
+    assert rec["parts"]["claim"]["verdict"] == "reproduced" and rec["parts"]["claim"]["runs_to_decide"] is None
+    short = explore(lambda c, s: {"L": rate_from_counts(0, 6)}, reg, {"L": rule}, seed=1, replicates=3)
+    runs = short.record("L")["parts"]["claim"]["runs_to_decide"]
+    assert runs["replicates"] == 5 and runs["runs"] == 29 and "beyond the cap of 3" in runs["text"]
+
+
+def test_monotone_tolerance_makes_a_rounding_wiggle_flat():
+    pts = [Estimate.exact(v) for v in (7.60, 7.59, 7.5965, 7.50)]  # one step up by 0.0065
+    assert Monotone("RMS", "k", "decreasing").decide(pts) == "not reproduced"
+    tol = Monotone("RMS", "k", "decreasing", unit="el", tolerance=0.01)
+    assert tol.decide(pts) == "reproduced" and "by more than 0.01 el" in tol.text()
+
+
+def test_partly_only_when_decided_parts_disagree():
+    from tvtrack.verdicts import AllOf
+
+    rule = AllOf({"a": BAND, "b": Ordering("x", "y", ">")})
+    straddle = Estimate(0.0, 0.1, -0.1, 0.2, 50, method="t")
+    assert rule.decide({"a": Estimate.exact(0.0), "b": straddle}) == "undecided"  # too small, not "partly"
+    assert rule.decide({"a": Estimate.exact(3.0), "b": straddle}) == "undecided"
+    assert rule.decide({"a": Estimate.exact(3.0), "b": Estimate(0.3, 0.1, 0.1, 0.5, 50, method="t")}) == "partly"
+
+
+# --------------------------------------------------------------------------- labels noise cannot make
+
+
+def test_a_power_limited_claim_is_not_unstable():
+    # the truth 0.3 sits inside the band, near its edge: single replicates of 100 straddle, the pool decides
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
+    ex = explore(lambda c, s: {"X": _mean(s, 0.3)}, reg, {"X": BAND}, seed=4, replicates=3, max_replicates=20)
+    rec = ex.record("X")
+    reps = rec["parts"]["claim"]["replicate_verdicts"]
+    assert set(reps) == {"undecided", "reproduced"}  # replicates differ, but none decisively against another
+    assert rec["label"] != "unstable" and rec["parts"]["claim"]["verdict"] == "reproduced"
+
+
+def test_a_straddling_condition_is_not_a_flip_and_a_real_flip_still_is():
+    entries = {"a": Entry("a", "regime", 0, (0, 1, 2), "w")}
+    rows = [
+        {"changed": {"a": 1}, "kind": "single", "verdict": "undecided"},  # straddles: no evidence
+        {"changed": {"a": 2}, "kind": "single", "verdict": "not reproduced"},
+    ]
+    flips = attribute("reproduced", rows, entries)
+    assert [f["changed"] for f in flips] == [{"a": 2}] and flips[0]["side"] == "world"
+    assert attribute("undecided", rows, entries) == []  # an undecided default has nothing to flip
+    # a condition that repeats its own replicate's verdict is no flip
+    assert attribute("reproduced", rows, entries, same_seed="not reproduced") == []
+
+
+def test_a_reading_flip_is_depends_a_world_flip_is_limited():
+    reg = [
+        Entry("sigma", "reading", "raw", ("raw", "smoothed"), "w"),
+        Entry("motion", "regime", "cv", ("cv", "weave"), "w"),
+    ]
+    reps = [{"seed": s, "measured": Estimate.exact(0.0)} for s in (1, 2, 3)]
+    flip = Estimate.exact(3.0)
+    reading = label_parts(
+        BAND,
+        0.0,
+        reps,
+        [
+            {"changed": {"sigma": "smoothed"}, "kind": "single", "measured": flip},
+            {"changed": {"motion": "weave"}, "kind": "single", "measured": 0.0},
+        ],
+        reg,
+    )
+    world = label_parts(
+        BAND,
+        0.0,
+        reps,
+        [
+            {"changed": {"sigma": "smoothed"}, "kind": "single", "measured": 0.0},
+            {"changed": {"motion": "weave"}, "kind": "single", "measured": flip},
+        ],
+        reg,
+    )
+    assert reading["label"] == "depends" and world["label"] == "limited"
+    assert world["parts"]["claim"]["flips"][0]["side"] == "world"
+
+
+def test_phrases_name_the_flip_in_plain_words():
+    e = Entry(
+        "paper_sigma",
+        "reading",
+        "sd",
+        ("sd", "raw"),
+        "w",
+        title="sigma of the motion model",
+        phrases={"raw": "sigma read as the SD of the raw velocity increments"},
+    )
+    reps = [{"seed": s, "measured": 0.0} for s in (1, 2, 3)]
+    rec = label_parts(BAND, 0.0, reps, [{"changed": {"paper_sigma": "raw"}, "kind": "single", "measured": 3.0}], [e])
+    assert rec["where"] == ["not reproduced when sigma read as the SD of the raw velocity increments"]
+    assert "paper_sigma" not in rec["where"][0]
+
+
+# --------------------------------------------------------------------------- attribution and sensitivity
+
+
+REG5 = Register([Entry(k, "regime", 0, (0, 1, 2), f"test entry {k}") for k in "abcde"])
+
+
+def _pair(config, seed):
+    """Flips when a = 2 and b = 2 together, whatever the others: a planted pair interaction."""
+    return {"X": _mean(seed, 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.0, n=400)}
+
+
+def _single(config, seed):
+    """Flips when c = 1, whatever the others: a planted single-entry flip; e moves the value a little."""
+    return {"X": _mean(seed, 3.0 * (config["c"] == 1) + 0.05 * config["e"], n=400)}
+
+
+def test_attribution_names_a_planted_pair_and_never_a_larger_set():
+    ex = explore(_pair, REG5, {"X": BAND}, seed=4, replicates=3, joint=40)
+    flips = ex.record("X")["parts"]["claim"]["flips"]
+    assert flips, "the joint design must reach a = b = 2"
+    assert all(f["changed"] == {"a": 2, "b": 2} for f in flips)
+    assert flips[0]["kind"] == "combination" and ex.settings["combinations"] > 0
+
+
+def test_attribution_names_a_planted_single_and_never_a_joint_sample():
+    ex = explore(_single, REG5, {"X": BAND}, seed=4, replicates=3, joint=40)
+    rec = ex.record("X")
+    flips = rec["parts"]["claim"]["flips"]
+    assert [f["changed"] for f in flips] == [{"c": 1}] and flips[0]["kind"] == "single"
+    assert rec["parts"]["claim"]["sensitivity"][0]["entry"] == "c"  # the entry that moves it most ranks first
+    sh = rec["parts"]["claim"]["share"]
+    assert sh["decided"] >= 32 and sh["ci_low"] <= sh["value"] <= sh["ci_high"]
+
+
+def test_screened_joint_configurations_are_confirmed_at_full_size():
+    calls = {"screen": 0, "full": 0}
+
+    def full(config, seed):
+        calls["full"] += 1
+        return _single(config, seed)
+
+    def small(config, seed):
+        calls["screen"] += 1
+        return {"X": _mean(seed, 3.0 * (config["c"] == 1) + 0.05 * config["e"], n=40)}
+
+    ex = explore(full, REG5, {"X": BAND}, seed=4, replicates=3, joint=40, screen=small)
+    joint = [r for r in ex.runs if r.stage == "joint"]
+    assert calls["screen"] == len(joint) and ex.settings["screened"]
+    assert ex.settings["confirmed_at_full_size"] < len(joint)  # the clear agreements stay screened
+    assert all(r.outputs["X"].n == 400 for r in joint if r.config["c"] == 1)  # every flip confirmed at full size
+    assert [f["changed"] for f in ex.record("X")["parts"]["claim"]["flips"]] == [{"c": 1}]
+
+
+def test_share_interval_covers_at_the_design_size():
+    rng = np.random.default_rng(0)
+    hits = 0
+    for _ in range(400):
+        v = ["reproduced" if x else "not reproduced" for x in rng.random(32) < 0.8]
+        s = share(v, "reproduced")
+        hits += s["ci_low"] <= 0.8 <= s["ci_high"]
+    assert hits / 400 >= 0.93
+
+
+def test_sensitivity_needs_a_design_and_ranks_by_main_effect():
+    rng = np.random.default_rng(1)
+    rows = [{"config": {"a": a, "b": b}, "value": 2.0 * a + 0.1 * rng.normal()} for a in (0, 1) for b in (0, 1, 2)]
+    ents = {k: Entry(k, "regime", 0, (0, 1, 2), "w") for k in "ab"}
+    ranked = sensitivity(rows * 2, ["a", "b"], ents, {"a": 0, "b": 0})
+    assert [r["entry"] for r in ranked] == ["a", "b"] and ranked[0]["score"] > 0.9
+    assert sensitivity(rows[:4], ["a", "b"], ents, {"a": 0, "b": 0}) == []
