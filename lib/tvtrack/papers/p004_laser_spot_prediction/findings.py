@@ -29,6 +29,9 @@ __all__ = [
     "verdict_lines",
     "budget_sentence",
     "regeneration_sentence",
+    "calibration_sentence",
+    "flips_markdown",
+    "coverage_lines",
 ]
 
 
@@ -349,3 +352,54 @@ def regeneration_sentence(max_rel_diff: float, tolerance: float = 1e-12) -> str:
         f"The regenerated set {word} the shipped one: largest relative difference {max_rel_diff:.1e} "
         f"(tolerance {tolerance:g})."
     )
+
+
+def calibration_sentence(cal, default_bandwidth: float, band=(1.0, 2.0)) -> str:
+    """What the calibration found (:func:`.calibration.calibrate_bandwidth`): the factor, the filter's error there
+    and in the earlier world (factor 1, when evaluated), and the register's default beside the root."""
+    ev = dict(cal.evaluations)
+    earlier = f"; in the earlier world (factor 1) it errs {ev[1.0]:.2f} px" if 1.0 in ev else ""
+    inside = "inside" if band[0] <= cal.rms_px <= band[1] else "outside"
+    return (
+        f"Calibration: Brent's root finder on the bandwidth factor ({len(ev)} evaluations, same seed) finds "
+        f"{cal.scale:.3g}, where the paper's filter errs {cal.rms_px:.3f} px per axis one frame ahead ({inside} the "
+        f"paper's {band[0]:g}-{band[1]:g} px; target {cal.target_px:g} px){earlier}. The register's default "
+        f"bandwidth is {default_bandwidth:g} (this root on the shipped-size set, rounded), so the claims below are "
+        "judged in a world where the paper's filter errs what the paper says it errs."
+    )
+
+
+def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
+    """Per claim part: its verdict and label, the share of joint configurations that agree with the default, the
+    plain-words conditions that flip it (at most ``max_flips``, single entries first, then the smallest
+    combinations; each marked a reading of the paper or a world beyond it), and the entries that move its value
+    most: the short form of the "where" lists."""
+    lines = []
+    for cid, rule in rules.items():
+        rec = exploration.record(cid, rule)
+        for part, v in rec["parts"].items():
+            head = cid if len(rec["parts"]) == 1 else f"{cid} ({part})"
+            text = f"- **{head}**: {v['verdict']}, {v['label']}"
+            sh = v.get("share")
+            if sh and sh.get("decided"):
+                text += (
+                    f"; {sh['agree']} of {sh['decided']} decided joint configurations agree with the default "
+                    f"({sh['ci_low']:.2f}-{sh['ci_high']:.2f})"
+                )
+            flips = v.get("flips") or []
+            if flips:
+                shown = [f"{f['verdict']} when {f['text']} ({f['side']})" for f in flips[:max_flips]]
+                more = f"; {len(flips) - max_flips} more" if len(flips) > max_flips else ""
+                text += "; flips: " + "; ".join(shown) + more
+            if v.get("runs_to_decide"):
+                text += f"; {v['runs_to_decide']['text']}"
+            sens = [d["title"] for d in (v.get("sensitivity") or [])[:2] if d["score"] >= 0.1]
+            if sens:
+                text += "; its value moves most with the " + " and the ".join(sens)
+            lines.append(text + ".")
+    return "\n".join(lines)
+
+
+def coverage_lines(exploration, rules: dict) -> str:
+    """One line per claim: what its label was measured over (the record's ``coverage``)."""
+    return "\n".join(f"- **{cid}**: {exploration.record(cid, rule)['coverage']}" for cid, rule in rules.items())

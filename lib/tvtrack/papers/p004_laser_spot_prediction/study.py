@@ -61,6 +61,7 @@ __all__ = [
     "NETWORKS",
     "OPTIMAL",
     "StudySize",
+    "screen_size",
     "StudyRun",
     "scene_config",
     "camera_for",
@@ -167,6 +168,23 @@ class StudySize:
     timing_frames: int = 200
     lag_grid: tuple = (1, 2, 4, 8, 16)
     lag_tuning_samples: int = 500
+
+
+def screen_size(size: StudySize) -> StudySize:
+    """The explorer's cheaper screen of the joint design (``explore(screen=...)``): the same paths and folds at
+    half the frames (at least 200), a quarter of the networks' training pairs (at least 300), a quarter of the
+    variance check's series and the lag grid's two ends; a joint configuration whose screened verdict is not
+    decisively the default's is measured again at ``size``."""
+    lags = tuple(sorted({min(size.lag_grid), max(size.lag_grid)}))
+    return replace(
+        size,
+        n_frames=max(200, size.n_frames // 2),
+        train_samples=max(300, size.train_samples // 4),
+        lag_tuning_samples=min(size.lag_tuning_samples, max(300, size.train_samples // 4)),
+        n_mc_variance=max(1000, size.n_mc_variance // 4),
+        lag_grid=lags,
+        timing_frames=min(size.timing_frames, 100),
+    )
 
 
 #: The shipped data set's generator configuration and the card's camera (21 px centroid window).
