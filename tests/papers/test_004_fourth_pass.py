@@ -93,3 +93,33 @@ def test_model_order_result_states_its_numbers(run):
     tau = s["singer_tau_frames"]
     assert f"RMS {np.sqrt(mse[b1].mean()):.3f} px" in text
     assert f"({np.min(tau) * 40:.2g}..{np.max(tau) * 40:.2g} ms)" in text
+
+
+def test_flips_markdown_is_short_and_plain():
+    """One line per claim part with its flips in plain words (each marked reading or world), at most max_flips
+    named and the rest counted, and the entries its value moves with by title; no run table."""
+    from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+
+    flips = [
+        {"verdict": "reproduced", "text": f"condition {k}", "side": "reading" if k % 2 else "world"} for k in range(9)
+    ]
+    part = {
+        "verdict": "not reproduced",
+        "label": "depends",
+        "share": {"agree": 20, "decided": 30, "ci_low": 0.47, "ci_high": 0.83},
+        "flips": flips,
+        "runs_to_decide": None,
+        "sensitivity": [{"title": "prediction horizon", "score": 0.6}, {"title": "spline", "score": 0.05}],
+    }
+
+    class Ex:
+        def record(self, cid, rule):
+            return {"parts": {"a": part, "b": dict(part, flips=[], label="robust")}}
+
+    text = fd.flips_markdown(Ex(), {"C004-3": None}, max_flips=3)
+    lines = text.splitlines()
+    assert len(lines) == 2 and lines[0].startswith("- **C004-3 (a)**: not reproduced, depends")
+    assert "reproduced when condition 0 (world); reproduced when condition 1 (reading)" in lines[0]
+    assert "condition 3" not in lines[0] and "; 6 more" in lines[0]
+    assert "20 of 30" in lines[0] and "moves most with: prediction horizon." in lines[0]
+    assert "flips" not in lines[1] and "spline" not in lines[1]

@@ -85,8 +85,10 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
 
     cfg = {**DEFAULT, **config}
     traces = None
-    if traces_seed is not None:
-        traces = generate_traces(st.scene_config(cfg, size), int(traces_seed))
+    if traces_seed is not None:  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
+        scene = st.scene_config(cfg, size)
+        big = replace(scene, n_paths=max(scene.n_paths, st.BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
+        traces = generate_traces(big, int(traces_seed))
     run = st._scene(cfg, seed, size, traces)
     s = st._setup(cfg, size)
     folds = pr.path_folds(size.n_paths, size.n_folds)

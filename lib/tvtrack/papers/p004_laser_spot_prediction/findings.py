@@ -370,7 +370,7 @@ def calibration_sentence(cal, default_bandwidth: float, band=(1.0, 2.0)) -> str:
 
 
 def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
-    """Per claim part: its verdict and label, the share of joint configurations that agree with the default, the
+    """Per claim part: its verdict and label, the share of explored configurations that agree with the default, the
     plain-words conditions that flip it (at most ``max_flips``, single entries first, then the smallest
     combinations; each marked a reading of the paper or a world beyond it), and the entries that move its value
     most: the short form of the "where" lists."""
@@ -383,8 +383,8 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
             sh = v.get("share")
             if sh and sh.get("decided"):
                 text += (
-                    f"; {sh['agree']} of {sh['decided']} decided joint configurations agree with the default "
-                    f"({sh['ci_low']:.2f}-{sh['ci_high']:.2f})"
+                    f"; {sh['agree']} of {sh['decided']} decided explored configurations (one at a time and joint) "
+                    f"agree with the default (share {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
                 )
             flips = v.get("flips") or []
             if flips:
@@ -395,7 +395,7 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
                 text += f"; {v['runs_to_decide']['text']}"
             sens = [d["title"] for d in (v.get("sensitivity") or [])[:2] if d["score"] >= 0.1]
             if sens:
-                text += "; its value moves most with the " + " and the ".join(sens)
+                text += "; its value moves most with: " + "; ".join(sens)
             lines.append(text + ".")
     return "\n".join(lines)
 
