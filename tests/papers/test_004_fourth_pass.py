@@ -123,3 +123,20 @@ def test_flips_markdown_is_short_and_plain():
     assert "condition 3" not in lines[0] and "; 6 more" in lines[0]
     assert "20 of 30" in lines[0] and "moves most with: prediction horizon." in lines[0]
     assert "flips" not in lines[1] and "spline" not in lines[1]
+
+
+def test_screen_is_the_same_study_on_less_data():
+    """The joint design's screen keeps the paths, folds and grids of the floor and windows (the verdicts read the
+    same comparisons) and halves the frames, quarters the training pairs and the variance check, and keeps the
+    lag grid's two ends; never below the smallest run the parameters allow."""
+    full = study.StudySize()
+    s = study.screen_size(full)
+    assert (s.n_paths, s.n_folds, s.floor_grid, s.window_grid) == (
+        full.n_paths,
+        full.n_folds,
+        full.floor_grid,
+        full.window_grid,
+    )
+    assert (s.n_frames, s.train_samples, s.n_mc_variance, s.lag_grid) == (500, 1000, 5000, (1, 16))
+    small = study.screen_size(SIZE)
+    assert small.n_frames == 200 and small.train_samples == 300 and small.lag_tuning_samples <= small.train_samples
