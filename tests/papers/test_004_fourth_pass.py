@@ -140,3 +140,24 @@ def test_screen_is_the_same_study_on_less_data():
     assert (s.n_frames, s.train_samples, s.n_mc_variance, s.lag_grid) == (500, 1000, 5000, (1, 16))
     small = study.screen_size(SIZE)
     assert small.n_frames == 200 and small.train_samples == 300 and small.lag_tuning_samples <= small.train_samples
+
+
+def test_variant_floor_forecast():
+    """The variant floor at N_f >= T never binds (g_N1 >= g_T1 for N <= T): the growing memory without a floor.
+    At N_f = 10 its position gain never falls below g_{10,1} while the paper's frozen floor differs."""
+    from tvtrack.filters.polynomial import growing_memory_gains, predict_ahead
+
+    rng = np.random.default_rng(3)
+    z = (
+        20
+        + np.cumsum(np.cumsum(0.05 * rng.standard_normal((2, 150)), axis=-1), axis=-1)
+        + 0.2 * rng.standard_normal((2, 150))
+    )
+    np.testing.assert_allclose(
+        pr.g1_floor_forecast(z, 150, 2), pr.growing_memory_forecast(z, 2, 2, None), rtol=1e-9, equal_nan=True
+    )
+    g = pr.g1_floor_gains(2, 150, growing_memory_gains(2, 10)[-1, 0])
+    assert np.nanmin(g[:, 0]) == pytest.approx(growing_memory_gains(2, 10)[-1, 0])
+    states = pr.g1_floor_filter(z, growing_memory_gains(2, 10)[-1, 0])
+    np.testing.assert_allclose(pr.g1_floor_forecast(z, 10, 3), predict_ahead(states, 3), rtol=1e-12, equal_nan=True)
+    assert not np.allclose(pr.g1_floor_forecast(z, 10)[:, 20:], pr.growing_memory_forecast(z, 1, 2, 10)[:, 20:])
