@@ -152,3 +152,111 @@ def test_joseph_update_keeps_its_digits_under_a_diffuse_prior():
     K = (P[:, :, 0] / (P[:, 0, 0, None] + 1e-6))[..., None]
     out = joseph_covariance(P, K, H, 1e-6)[0]
     np.testing.assert_allclose(out, np.diag([1e-6, 1e12]), rtol=1e-6)
+
+
+# ----------------------------------------------------------------------------- the one filter interface
+
+
+def _filterpy_history(F, H, Q, R, zs, x0, P0):
+    """filterpy's KalmanFilter over one sequence (T, m), with our convention: prior of time 0, update first."""
+    ref = FPKalman(dim_x=F.shape[0], dim_z=H.shape[0])
+    ref.F, ref.H, ref.Q, ref.R, ref.P, ref.x = F, H, Q, R, np.array(P0, float), np.array(x0, float)
+    out = {"x_prior": [], "P_prior": [], "x": [], "P": []}
+    for t, z in enumerate(zs):
+        if t > 0:
+            ref.predict()
+        out["x_prior"].append(ref.x.copy())
+        out["P_prior"].append(ref.P.copy())
+        if np.all(np.isfinite(z)):
+            ref.update(z)
+        out["x"].append(ref.x.copy())
+        out["P"].append(ref.P.copy())
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def test_batched_run_over_two_trial_axes_matches_filterpy_sequence_by_sequence():
+    from tvtrack.filters import SequentialFilter
+
+    F = np.array([[1.0, 1.0, 0.5], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]])
+    H = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    Q, R = 0.02 * np.eye(3), np.array([[0.5, 0.1], [0.1, 0.8]])
+    rng = make_rng(5)
+    zs = np.cumsum(rng.normal(size=(2, 3, 40, 2)), axis=2)
+    zs[0, 1, 10:13] = np.nan  # a coasting stretch in one sequence
+    zs[1, 2, 30, 1] = np.nan  # one component missing: the whole row is absent
+    x0, P0 = np.array([0.0, 1.0, 0.0]), 5.0 * np.eye(3)
+    filt = KalmanFilter(F, H, Q, R)
+    assert isinstance(filt, SequentialFilter)
+    out = filt.run(zs, x0, P0)
+    assert out.x.shape == (2, 3, 40, 3) and out.P.shape == (2, 3, 40, 3, 3) and out.nis.shape == (2, 3, 40)
+    for i in range(2):
+        for j in range(3):
+            ref = _filterpy_history(F, H, Q, R, zs[i, j], x0, P0)
+            for key, value in ref.items():
+                assert np.allclose(getattr(out, key)[i, j], value, rtol=1e-9, atol=1e-9), (i, j, key)
+    assert np.isnan(out.innovation[0, 1, 10:13]).all() and np.isnan(out.nis[1, 2, 30])
+    assert np.array_equal(out.x[0, 1, 11], out.x_prior[0, 1, 11])  # absent: the prior is kept
+
+
+def test_the_ekf_with_a_linear_observation_is_the_kalman_filter_of_filterpy():
+    from tvtrack.filters.ekf import ExtendedKalmanFilter
+
+    F, H, Q, R = cv_model(q=0.03, r=0.7)
+    zs = np.cumsum(make_rng(6).normal(size=(4, 50, 1)), axis=1)
+    zs[2, 5:9] = np.nan
+    ekf = ExtendedKalmanFilter(
+        F, Q, lambda x, k: x[..., :1], lambda x, k: np.broadcast_to(H, x.shape[:-1] + H.shape), R
+    )
+    out = ekf.run(zs, [0.0, 0.0], 10 * np.eye(2))
+    for trial in range(4):
+        ref = _filterpy_history(F, H, Q, R, zs[trial], [0.0, 0.0], 10 * np.eye(2))
+        assert np.allclose(out.x[trial], ref["x"], rtol=1e-9, atol=1e-9)
+        assert np.allclose(out.P_prior[trial], ref["P_prior"], rtol=1e-9, atol=1e-9)
+
+
+def test_a_gain_schedule_in_the_interface_is_the_scheduled_filter_and_its_covariance():
+    from tvtrack.filters.alphabeta import (
+        GainScheduleFilter,
+        error_covariance_sequence,
+        gain_schedule,
+        scheduled_filter,
+    )
+
+    T = 60
+    gains = gain_schedule(2, 12, T)
+    gains[30:35] = 0.0  # a coasting stretch (zero gains)
+    z = np.cumsum(make_rng(7).normal(size=(2, 5, T)), axis=-1)
+    x_before = np.array([1.0, 0.5, 0.0])
+    filt = GainScheduleFilter(gains, sigma_eps=0.7)
+    out = filt.run(z[..., None], filt.F @ x_before, np.zeros((3, 3)))
+    assert np.allclose(out.x, scheduled_filter(z, gains, x0=x_before), rtol=1e-12, atol=1e-12)
+    assert np.allclose(out.P[0, 0], error_covariance_sequence(gains, sigma_eps=0.7), rtol=1e-12, atol=1e-12)
+    # the growing-memory start fits the first three samples exactly: position equals the third sample
+    assert np.allclose(out.x[..., 2, 0], z[..., 2])
+
+
+def test_a_filter_that_writes_only_its_two_steps_gets_the_batched_run():
+    from tvtrack.filters import SequentialFilter
+
+    class RandomWalk(SequentialFilter):
+        """Scalar random walk, written as its textbook steps (independent of the library's update)."""
+
+        def predict(self, x, P, k):
+            return x, P + 0.1
+
+        def update(self, x, P, z, k, mask=None):
+            S = P + 1.0  # (..., 1, 1)
+            K = P[..., 0] / S[..., 0]  # (..., 1)
+            nu = z - x
+            x_new, P_new = x + K * nu, ((1 - K) * P[..., 0])[..., None]
+            if mask is not None:
+                x_new = np.where(mask[..., None], x_new, x)
+                P_new = np.where(mask[..., None, None], P_new, P)
+            return x_new, P_new, nu, S
+
+    zs = make_rng(8).normal(size=(3, 30, 1))
+    zs[1, 4] = np.nan
+    out = RandomWalk().run(zs, [0.0], [[2.0]])
+    ref = KalmanFilter([[1.0]], [[1.0]], [[0.1]], [[1.0]]).run(zs, [0.0], [[2.0]])
+    for key in ("x", "P", "x_prior", "P_prior", "nis"):
+        assert np.allclose(getattr(out, key), getattr(ref, key), equal_nan=True, rtol=1e-12), key

@@ -219,3 +219,39 @@ def test_sensitivity_needs_a_design_and_ranks_by_main_effect():
     ranked = sensitivity(rows * 2, ["a", "b"], ents, {"a": 0, "b": 0})
     assert [r["entry"] for r in ranked] == ["a", "b"] and ranked[0]["score"] > 0.9
     assert sensitivity(rows[:4], ["a", "b"], ents, {"a": 0, "b": 0}) == []
+
+
+# --------------------------------------------------------------------------- every reading can decide
+
+
+def test_a_reading_is_judged_by_its_own_rule():
+    from tvtrack.verdicts import ByReading
+
+    share_rule = InBand("share of runs late after 5 T", high=0.1)
+    ratio_rule = InBand("ensemble mean / steady mean after 5 T", 1 / 1.1, 1.1)
+    rule = ByReading("acquisition criterion", {"ensemble mean": ratio_rule}, default=share_rule)
+    ratio = Estimate(1.003, 0.04, 0.922, 1.087, 600, method="t")
+    assert rule.decide(ByReading.tag("ensemble mean", ratio)) == "reproduced"  # judged by the ratio's rule
+    assert share_rule.decide(ratio) == "not reproduced"  # what the share's rule made of it (the bug class)
+    assert rule.decide(ByReading.tag("share late", Estimate(0.02, 0.01, 0.0, 0.05, 600, method="t"))) == "reproduced"
+    with pytest.raises(ValueError, match="needs ByReading.tag"):
+        rule.decide(ratio)
+
+
+@pytest.mark.parametrize(
+    "rule",
+    [
+        InBand("q", 1.0, 2.0),
+        InBand("q", high=0.1),
+        InBand("q", low=0.0),
+        Ordering("a", "b", ">", measure="ratio"),
+        Ordering("a", "b", "<"),
+        Monotone("g", "x", "decreasing", tolerance=0.5),
+    ],
+)
+def test_synthetic_measurements_reach_both_verdicts(rule):
+    from tvtrack.verdicts import AllOf, synthetic
+
+    for r in (rule, AllOf({"p": rule, "q": InBand("z", 0, 1)})):
+        assert r.decide(synthetic(r, "reproduced")) == "reproduced"
+        assert r.decide(synthetic(r, "not reproduced")) == "not reproduced"

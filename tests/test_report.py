@@ -152,7 +152,9 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     text = readme.read_text()
     assert text.startswith("intro\n") and text.endswith(f"{README_END}\nrest\n") and "hand-written" not in text
     assert "4 claims (paper profile): **1 reproduced · 1 partly · 1 not reproduced · 1 not checkable**" in text
-    assert "1 robust, 0 unexplored, 0 limited, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
+    assert (
+        "1 robust, 0 unexplored, 0 limited, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
+    )
     # the headline finding: one line with statement, paper value, measured interval, verdict, label
     assert "| 010 C010-2 | The gain is 4. | 1 | 1.5 \\[1.2, 1.8\\] | **not reproduced** | depends |" in text
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean

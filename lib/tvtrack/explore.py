@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
@@ -523,40 +524,51 @@ def explore(
             raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
     seeds = replicate_seeds(seed, cap)
     default = register.default()
+    timing: dict[str, list] = {}  # stage -> [configurations, wall s]: where the exploration's time goes
+
+    def run(fn: Callable, jobs: list[Run], stage: str) -> None:
+        t0 = time.perf_counter()
+        _execute(fn, jobs, batched, executor)
+        row = timing.setdefault(stage, [0, 0.0])
+        row[0] += len(jobs)
+        row[1] += time.perf_counter() - t0
+
     used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
     runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
-    _execute(measure, runs, batched, executor)
+    run(measure, runs, "replicates")
     n = replicates
     while n < cap:
         target = _sizing_target(rules, runs, n, cap)
         if target is None:
             break
-        extra = [Run(dict(default), seeds[n], "replicate")]
-        _execute(measure, extra, batched, executor)
+        # one replicate at a time, re-judged after each; an executor's workers take one each at once
+        step = max(1, min(target - n, int(getattr(executor, "_max_workers", 1) or 1)))
+        extra = [Run(dict(default), s, "replicate") for s in seeds[n : n + step]]
+        run(measure, extra, "sizing")
         runs += extra
-        n += 1
+        n += step
     singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
-    _execute(measure, singles if one_at_a_time else [], batched, executor)
+    run(measure, singles if one_at_a_time else [], "one at a time")
     runs += singles if one_at_a_time else []
     design = joint_sample(register, used, joint, seed + 1) if joint else []
     joints = [Run(cfg, seeds[0], "joint") for cfg in design]
     confirmed = 0
     if screen is not None and joints:
-        _execute(screen, joints, batched, executor)
+        run(screen, joints, "joint, screened")
         default_j = _pooled(rules, runs)
         redo = [r for r in joints if _disagrees(rules, depends, default_j, r, default)]
-        _execute(measure, redo, batched, executor)
+        run(measure, redo, "joint, confirmed at full size")
         confirmed = len(redo)
     else:
-        _execute(measure, joints, batched, executor)
+        run(measure, joints, "joint")
     runs += joints
     pinned = [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & set(used)]
-    _execute(measure, pinned, batched, executor)
+    run(measure, pinned, "pinned")
     runs += pinned
     n_combo = 0
     for size in (2, 3):
         combos = _combination_runs(rules, depends, runs, default, seeds[0], combinations - n_combo, size)
-        _execute(measure, combos, batched, executor)
+        run(measure, combos, "combinations")
         runs += combos
         n_combo += len(combos)
     settings = {
@@ -573,6 +585,7 @@ def explore(
         "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,
+        "timing": {k: {"configurations": n_, "wall_s": round(t, 3)} for k, (n_, t) in timing.items() if n_},
     }
     return Exploration(register, rules, depends, runs, settings)
 

@@ -7,10 +7,13 @@ random draw comes from a :class:`numpy.random.Generator` made from the run's ``s
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from scipy import stats
+
+from .estimate import Estimate  # re-exported: tvtrack.montecarlo.Estimate
+from .resampling import _expanded_alpha, _expanded_percentile_ratio, _grouped_bootstrap, _studentized_mean_interval
 
 __all__ = [
     "make_rng",
@@ -56,57 +59,6 @@ def spawn_rngs(seed: int, n: int) -> list[np.random.Generator]:
     """``n`` independent generators derived from ``seed`` (for independent sub-experiments
     whose results must not change when another sub-experiment draws more numbers)."""
     return [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(n)]
-
-
-@dataclass(frozen=True)
-class Estimate:
-    """A Monte Carlo estimate with its uncertainty.
-
-    Attributes
-    ----------
-    value : float
-        Point estimate.
-    stderr : float
-        Standard error of ``value`` (NaN where not defined).
-    ci_low, ci_high : float
-        Confidence interval at level ``confidence``.
-    n : int
-        Number of independent samples behind the estimate.
-    confidence : float
-        Confidence level of the interval, e.g. 0.95.
-    method : str
-        How the interval was made (e.g. ``"BCa bootstrap (2000 resamples)"``, ``"Clopper-Pearson"``).
-    extrapolated : bool
-        The value comes from extrapolating a fit beyond the data (e.g. a logistic tail): it is shown
-        but never decides a verdict (:func:`tvtrack.verdicts.is_undecided`).
-    """
-
-    value: float
-    stderr: float
-    ci_low: float
-    ci_high: float
-    n: int
-    confidence: float = 0.95
-    method: str = ""
-    extrapolated: bool = False
-
-    def to_dict(self) -> dict:
-        return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in asdict(self).items()}
-
-    @classmethod
-    def exact(cls, value: float, method: str = "exact") -> "Estimate":
-        """A number with no Monte Carlo uncertainty (a deterministic computation)."""
-        v = float(value)
-        return cls(v, 0.0, v, v, 1, 0.95, method)
-
-    def _repr_markdown_(self) -> str:
-        return f"{self:.4g}" + (f" ({self.method})" if self.method else "")
-
-    def __format__(self, spec: str) -> str:
-        spec = spec or ".3g"
-        return (
-            f"{self.value:{spec}} [{self.ci_low:{spec}}, {self.ci_high:{spec}}] ({self.confidence:.0%} CI, n={self.n})"
-        )
 
 
 # -- coverage measured by simulation -------------------------------------------------------------
@@ -219,186 +171,6 @@ def widen_to_nominal(estimate: Estimate) -> Estimate:
         method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
             f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"
         ),
-    )
-
-
-def _expanded_alpha(alpha: float, n: int) -> float:
-    """Tail probability of the expanded percentile bootstrap (Hesterberg 2015, "What teachers should
-    know about the bootstrap", sec. 5.4): ``2 Phi(-sqrt(n/(n-1)) t_{alpha/2, n-1})``, which widens
-    the percentile interval by the t and ``n/(n-1)`` factors its narrowness at small n lacks."""
-    return float(2 * stats.norm.cdf(np.sqrt(n / (n - 1)) * stats.t.ppf(alpha / 2, n - 1)))
-
-
-def _quantiles(boot: np.ndarray, probs) -> np.ndarray:
-    """Quantiles over the last axis ignoring NaN (``boot`` (..., B)), shape (len(probs), ...)."""
-    with np.errstate(invalid="ignore"):
-        return np.nanquantile(boot, probs, axis=-1)
-
-
-def _resample_weights(idx: np.ndarray, n: int) -> np.ndarray:
-    """Resample counts ``W`` (B, n) from resample indices ``idx`` (B, n): ``W @ x / n`` is the mean of a resample."""
-    B = idx.shape[0]
-    return np.bincount((idx + n * np.arange(B)[:, None]).ravel(), minlength=B * n).reshape(B, n).astype(float)
-
-
-def _blocks(n_resamples: int, width: int):
-    """Slices of the resamples, at most about 4e6 weights each (memory stays small at any n)."""
-    step = max(1, int(4e6 // max(width, 1)))
-    return [slice(j, min(j + step, n_resamples)) for j in range(0, n_resamples, step)]
-
-
-def _studentized_mean_interval(
-    x: np.ndarray, confidence: float, n_resamples: int, rng: np.random.Generator
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Bootstrap-t (studentised) interval of the mean of each row of ``x`` (R, n).
-
-    ``T* = (mean* - mean) / (sd* / sqrt(n))`` over resamples; the interval is
-    ``[mean - q_{1-a/2}(T*) se, mean - q_{a/2}(T*) se]`` with ``se = sd / sqrt(n)`` (Efron and
-    Tibshirani 1993, sec. 12.5). Returns ``lo, hi, sd_boot`` (R,), ``sd_boot`` the bootstrap standard
-    deviation of the mean. The resample indices are shared by the rows (independent experiments).
-    """
-    R, n = x.shape
-    m = x.mean(axis=1)
-    xc = x - m[:, None]  # centred: no cancellation in the moments
-    se = xc.std(axis=1, ddof=1) / np.sqrt(n)
-    idx = rng.integers(0, n, size=(n_resamples, n))
-    t = np.empty((R, n_resamples))
-    mb = np.empty((R, n_resamples))
-    for sl in _blocks(n_resamples, n):
-        W = _resample_weights(idx[sl], n) / n  # (b, n)
-        m1 = xc @ W.T  # (R, b) resample mean minus the mean
-        m2 = (xc**2) @ W.T
-        sd = np.sqrt(np.maximum(m2 - m1**2, 0.0) * n / (n - 1)) / np.sqrt(n)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t[:, sl] = m1 / sd
-        mb[:, sl] = m1
-    t[np.isnan(t)] = 0.0  # a resample of one repeated value at the mean
-    a = 1 - confidence
-    q_lo, q_hi = _quantiles(t, [a / 2, 1 - a / 2])
-    return m - q_hi * se, m - q_lo * se, mb.std(axis=1, ddof=1)
-
-
-def _ratio_replicates(
-    a: np.ndarray, b: np.ndarray, paired: bool, n_resamples: int, rng: np.random.Generator
-) -> np.ndarray:
-    """Bootstrap replicates of ``mean(a) / mean(b)`` per row, ``a`` (R, n_a), ``b`` (R, n_b) -> (R, B);
-    paired: the same trial indices for both (``n_a == n_b``). Not finite replicates are NaN."""
-    na, nb = a.shape[1], b.shape[1]
-    ia = rng.integers(0, na, size=(n_resamples, na))
-    ib = ia if paired else rng.integers(0, nb, size=(n_resamples, nb))
-    out = np.empty((a.shape[0], n_resamples))
-    for sl in _blocks(n_resamples, max(na, nb)):
-        Wa = _resample_weights(ia[sl], na)
-        Wb = Wa if paired else _resample_weights(ib[sl], nb)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out[:, sl] = (a @ Wa.T / na) / (b @ Wb.T / nb)
-    out[~np.isfinite(out)] = np.nan
-    return out
-
-
-def _expanded_percentile_ratio(
-    a: np.ndarray, b: np.ndarray, confidence: float, paired: bool, n_resamples: int, rng: np.random.Generator
-):
-    """Expanded percentile interval of ``mean(a) / mean(b)`` per row: ``lo, hi, se_boot`` (R,)."""
-    n = min(a.shape[1], b.shape[1])
-    a2 = _expanded_alpha(1 - confidence, n) / 2
-    boot = _ratio_replicates(a, b, paired, n_resamples, rng)
-    lo, hi = _quantiles(boot, [a2, 1 - a2])
-    with np.errstate(invalid="ignore"):
-        return lo, hi, np.nanstd(boot, axis=1, ddof=1)
-
-
-def _cluster_members(groups: np.ndarray) -> list[np.ndarray]:
-    """Indices of the trials of each cluster (in order of first appearance of the labels)."""
-    _, first, inverse = np.unique(groups, return_index=True, return_inverse=True)
-    order = np.argsort(first)
-    return [np.flatnonzero(inverse == k) for k in order]
-
-
-def _cluster_indices(members: list[np.ndarray], picks: np.ndarray) -> np.ndarray | list[np.ndarray]:
-    """Trial indices of the clusters picked in each row of ``picks`` (B, c): an array (B, c * m) for
-    clusters of equal size m (cluster order and trial order kept), else a list of B index arrays."""
-    if len({len(m) for m in members}) == 1:
-        return np.stack(members)[picks].reshape(len(picks), -1)
-    return [np.concatenate([members[k] for k in row]) for row in picks]
-
-
-def _cluster_statistics(data, statistic, members, picks) -> np.ndarray:
-    """``statistic`` on the picked clusters of each sample (B,): ``members`` and ``picks`` hold one
-    entry per sample (the same entry for paired samples). Equal cluster sizes are evaluated in one
-    vectorised call, unequal sizes resample by resample."""
-    idx = [_cluster_indices(m, p) for m, p in zip(members, picks)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        if all(isinstance(i, np.ndarray) for i in idx):
-            return np.asarray(statistic(*(x[i] for x, i in zip(data, idx)), axis=-1), dtype=float)
-        return np.array(
-            [float(statistic(*(x[i[j]] for x, i in zip(data, idx)), axis=-1)) for j in range(len(picks[0]))]
-        )
-
-
-def _grouped_bootstrap(
-    data,
-    statistic,
-    value: float,
-    groups,
-    paired: bool,
-    n_resamples: int,
-    confidence: float,
-    rng: np.random.Generator,
-    method: str,
-) -> Estimate:
-    """Cluster bootstrap of :func:`bootstrap_ci`: whole clusters resampled with replacement, jointly
-    across paired samples (one label array) or independently per sample (one label array each)."""
-    labels = (
-        [np.asarray(groups).ravel()] * len(data)
-        if paired or np.ndim(groups[0]) == 0
-        else [np.asarray(g).ravel() for g in groups]
-    )
-    if len(labels) != len(data) or any(x.size != g.size for x, g in zip(data, labels)):
-        raise ValueError(
-            f"bootstrap_ci: 'groups' has {[g.size for g in labels]} labels, the samples {[x.size for x in data]} trials"
-        )
-    members = [_cluster_members(g) for g in labels]
-    sizes = [len(m) for m in members]
-    C = min(sizes)
-    if C < 2:
-        return Estimate(value, float("nan"), float("nan"), float("nan"), C, confidence, "none (fewer than 2 clusters)")
-    if paired:
-        picks = [rng.integers(0, C, size=(n_resamples, C))] * len(data)
-    else:
-        picks = [rng.integers(0, c, size=(n_resamples, c)) for c in sizes]
-    boot = _cluster_statistics(data, statistic, members, picks)
-    boot = boot[np.isfinite(boot)]
-    a = 1 - confidence
-    if method == "percentile":
-        probs = [a / 2, 1 - a / 2]
-    elif method == "expanded percentile":
-        a2 = _expanded_alpha(a, C) / 2
-        probs = [a2, 1 - a2]
-    elif method == "BCa":
-        if not paired:
-            raise ValueError("bootstrap_ci: BCa with clusters needs paired samples; use 'expanded percentile'")
-        leave_one_out = np.array([[k for k in range(C) if k != i] for i in range(C)])
-        jack = _cluster_statistics(data, statistic, members, [leave_one_out] * len(data))
-        z0 = stats.norm.ppf(
-            np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size, 1 / boot.size, 1 - 1 / boot.size)
-        )
-        d = jack.mean() - jack
-        acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
-        z = stats.norm.ppf([a / 2, 1 - a / 2])
-        probs = stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
-    else:
-        raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
-    lo, hi = np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan)
-    what = f"{C} clusters" if paired or len(set(sizes)) == 1 else f"{'/'.join(map(str, sizes))} clusters"
-    return Estimate(
-        value,
-        float(boot.std(ddof=1)) if boot.size > 1 else float("nan"),
-        float(lo),
-        float(hi),
-        C,
-        confidence,
-        f"cluster {method} bootstrap ({n_resamples} resamples of {what})",
     )
 
 

@@ -71,3 +71,34 @@ def use_style() -> None:
             "figure.constrained_layout.use": True,
         }
     )
+
+
+def errorbars(ax, x, estimates, *, horizontal: bool = False, **style):
+    """Estimates with their confidence intervals as error bars: the one helper every paper's plots use.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    x : array_like, shape (k,)
+        Abscissae (ordinates with ``horizontal=True``).
+    estimates : sequence of k Estimates, numbers or what :func:`tvtrack.verdicts.as_estimate` reads
+        The values and their intervals (a number has a zero-width interval).
+    horizontal : bool
+        Bars along x (values on the x axis, ``x`` on the y axis), e.g. one row per condition.
+    **style
+        Passed to :meth:`matplotlib.axes.Axes.errorbar` (``fmt``, ``color``, ``capsize``, ``label`` ...).
+
+    Returns
+    -------
+    matplotlib.container.ErrorbarContainer
+    """
+    import numpy as np
+
+    from .verdicts import as_estimate
+
+    es = [as_estimate(e) for e in estimates]
+    v = np.array([e.value for e in es], dtype=float)
+    err = [v - np.array([e.ci_low for e in es], dtype=float), np.array([e.ci_high for e in es], dtype=float) - v]
+    if horizontal:
+        return ax.errorbar(v, x, xerr=err, **style)
+    return ax.errorbar(x, v, yerr=err, **style)

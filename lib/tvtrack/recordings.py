@@ -276,11 +276,6 @@ class Recorder:
         )
 
     # -- scalars --------------------------------------------------------------------------
-    def scalar(self, path: str, value: float) -> None:
-        """Log one scalar at the current frame."""
-        if self.enabled:
-            self._rec.log(path, rr.Scalars(float(value)))
-
     def series(self, path: str, values, frames=None, times_s=None, *, timeline: str = "frame") -> None:
         """Log a whole scalar series at once (column logging).
 

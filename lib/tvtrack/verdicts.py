@@ -47,6 +47,9 @@ __all__ = [
     "Monotone",
     "AllOf",
     "NotCheckable",
+    "ByReading",
+    "for_config",
+    "synthetic",
     "DECISIVE",
     "is_decisive",
     "runs_to_decide",
@@ -595,3 +598,104 @@ class NotCheckable(Rule):
 
     def judge(self, measured):
         return Judgement("not checkable", self.reason)
+
+
+@dataclass(frozen=True)
+class ByReading(Rule):
+    """A claim whose criterion changes with a reading of the paper: the rule in force is the one of the
+    reading the measurement was made under, so no reading is judged by another reading's rule.
+
+    The measurement function returns ``{"reading": value, "measured": ...}`` (:meth:`tag`), naming the value of
+    ``entry`` it measured under; a value without a rule of its own is judged by ``default``.
+
+    Parameters
+    ----------
+    entry : str
+        The register entry whose value selects the rule.
+    rules : mapping value -> Rule
+    default : Rule
+        The rule of every other value (the default reading's).
+    """
+
+    entry: str
+    rules: Mapping[Any, Rule] = field(default_factory=dict)
+    default: Rule | None = None
+    kind = "by_reading"
+
+    def __post_init__(self):
+        if self.default is None:
+            raise ValueError("ByReading needs the default reading's rule")
+
+    def for_value(self, value: Any) -> Rule:
+        """The rule in force under ``entry = value``."""
+        return self.rules.get(value, self.default)
+
+    def for_config(self, config: Mapping[str, Any]) -> Rule:
+        return self.for_value(config.get(self.entry))
+
+    @staticmethod
+    def tag(value: Any, measured: Any) -> dict:
+        """What a measurement function returns under ``entry = value``."""
+        return {"reading": value, "measured": measured}
+
+    def text(self) -> str:
+        other = "; ".join(f"under {self.entry} = {v}: {r.text()}" for v, r in self.rules.items())
+        return f"{self.default.text()}" + (f" ({other})" if other else "")
+
+    def params(self) -> dict:
+        return {
+            "entry": self.entry,
+            "default": self.default.to_dict(),
+            "rules": {str(v): r.to_dict() for v, r in self.rules.items()},
+        }
+
+    def judge(self, measured):
+        if not (isinstance(measured, Mapping) and "reading" in measured and "measured" in measured):
+            raise ValueError(f"ByReading({self.entry!r}) needs ByReading.tag(value, measured), got {measured!r}")
+        return self.for_value(measured["reading"]).judge(measured["measured"])
+
+
+def for_config(rule: Rule, config: Mapping[str, Any]) -> Rule:
+    """The rule in force at a configuration of the register (a :class:`ByReading` picks its reading's rule;
+    every other rule is the same everywhere)."""
+    return rule.for_config(config) if isinstance(rule, ByReading) else rule
+
+
+def synthetic(rule: Rule, verdict: str) -> Any:
+    """A measured value that ``rule`` judges ``verdict`` (``"reproduced"`` or ``"not reproduced"``), or None
+    where no value can reach it: the check that every reading can decide both ways (a rule that can never
+    reproduce, or never fail, decides nothing).
+
+    Parameters
+    ----------
+    rule : Rule
+        :class:`InBand` (and :class:`WithinFactor`), :class:`Ordering`, :class:`Monotone`, :class:`AllOf`
+        (every part the same way); a :class:`ByReading` is checked per reading with :func:`for_config`.
+    """
+    tight = lambda v: Estimate(v, 0.0, v - 1e-9 * max(1.0, abs(v)), v + 1e-9 * max(1.0, abs(v)), 10**6, 0.95, "t")
+    yes = verdict == "reproduced"
+    if isinstance(rule, NotCheckable):
+        return None
+    if isinstance(rule, AllOf):
+        parts = {n: synthetic(r, verdict) for n, r in rule.parts.items()}
+        if any(v is None for n, v in parts.items() if not isinstance(rule.parts[n], NotCheckable)):
+            return None
+        return parts
+    if isinstance(rule, Ordering):
+        r = rule.reference
+        step = 0.5 * (r if rule.measure == "ratio" else 1.0)
+        return tight(r + step if (rule.relation == ">") == yes else r - step)
+    if isinstance(rule, Monotone):
+        up = (rule.direction == "increasing") == yes
+        span = 10.0 * (rule.tolerance + 1.0)
+        return [tight(0.0), tight(span if up else -span)]
+    if isinstance(rule, InBand):
+        lo, hi = rule.low, rule.high
+        if yes:
+            if lo is not None and hi is not None:
+                return tight((lo + hi) / 2)
+            return tight(lo + abs(lo) + 1.0 if hi is None else hi - abs(hi) - 1.0)
+        if hi is not None:
+            return tight(hi + abs(hi) + 1.0)
+        return tight(lo - abs(lo) - 1.0)
+    return None

@@ -11,9 +11,11 @@ viewer, as a user sees it on opening the file) for the notebooks in ``notebooks/
 
 from __future__ import annotations
 
+import importlib
 import io
 import os
 import time
+from dataclasses import replace
 
 import pytest
 
@@ -25,20 +27,17 @@ UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
 
 DEFAULT = Expectation()
 FIXTURE = "fixture_centroid"
-# Per-notebook deviations from DEFAULT, each with its reason.
-EXPECT: dict[str, Expectation] = {
-    # an image dissector delivers a 1-D scan: the 2-D view plots samples and pulses against phase
-    "000_dissector_ekf": Expectation(image=False),
-    # truth ring and estimate dot are sized in screen points: each must stay clearly visible (was 9-35 px)
-    "001_maneuver_occlusion_kf": Expectation(min_overlay_px=30),
-    # batch EM location: no gate (per-frame errors under errors/; EM history on the "iteration" line, shown
-    # when the user picks that timeline: the recording opens on "frame", where the image and errors are)
-    "002_unified_location_em": Expectation(overlays=("truth", "estimate"), other_timelines=("iteration",)),
-    # the paper's estimates are the measured spot centre and the centre predicted ahead
-    "004_laser_spot_prediction": Expectation(overlays=("gate", "truth", "measured", "predicted")),
-    # the test fixture (not a paper notebook) draws truth and estimate in two colours without labels
-    FIXTURE: Expectation(labels_when_overlapping=False),
-}
+# the test fixture (not a paper notebook) draws truth and estimate in two colours without labels
+FIXTURE_EXPECTATION = Expectation(labels_when_overlapping=False)
+
+
+def expectation(stem: str) -> Expectation:
+    """What the viewer must show for notebook ``stem``: the paper's deviations from :data:`DEFAULT`, written with
+    their reasons in its package's ``recording.VIEWER_EXPECTATIONS`` (the paper contract, ``tvtrack.contract``)."""
+    if stem == FIXTURE:
+        return FIXTURE_EXPECTATION
+    recording = importlib.import_module(f"tvtrack.papers.p{stem}.recording")
+    return replace(DEFAULT, **recording.VIEWER_EXPECTATIONS)
 
 
 def _save_docs_screenshot(viewer, stem: str) -> None:
@@ -63,11 +62,11 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     assert rrd.is_file(), f"{stem} smoke run wrote no recording.rrd (the smoke profile must keep rerun_mode='file')"
     verify_rrd(rrd)
 
-    check = check_recording(headless_viewer, rrd, EXPECT.get(stem, DEFAULT))
+    check = check_recording(headless_viewer, rrd, expectation(stem))
     if check.problems:  # a headless viewer on a loaded machine can miss one repaint: look once more, say so
         print(f"{stem}: first look found {check.problems}; checking again")
         time.sleep(2.0)
-        check = check_recording(headless_viewer, rrd, EXPECT.get(stem, DEFAULT))
+        check = check_recording(headless_viewer, rrd, expectation(stem))
     print(
         f"{stem}: loaded in {check.load_s:.1f} s, viewer check {check.check_s:.1f} s, "
         + ", ".join(f"{k} {v.coloured} px" for k, v in check.pixels.items())
@@ -87,5 +86,5 @@ def test_recording_opens_on_the_timeline_with_data_with_distinct_colours_and_fra
     outcome = notebook_run(viewer_notebook)
     assert outcome.ok, f"{stem} smoke run failed: {outcome.error}"
     layout = read_layout(outcome.run_dir / "recording.rrd")
-    problems = layout_problems(layout, EXPECT.get(stem, DEFAULT))
+    problems = layout_problems(layout, expectation(stem))
     assert not problems, f"{stem}: opens on {layout.opening_timeline!r}:\n  " + "\n  ".join(problems)

@@ -1,5 +1,6 @@
 """Batched filters: arrays carry any leading batch axes (trials, channels), time is explicit."""
 
+from .interface import FilterOutput, SequentialFilter
 from .kalman import KalmanFilter, KalmanOutput, kf_predict, kf_update
 from .polynomial import (
     growing_memory_filter,
@@ -10,7 +11,9 @@ from .polynomial import (
 )
 
 __all__ = [
+    "FilterOutput",
     "KalmanFilter",
+    "SequentialFilter",
     "KalmanOutput",
     "kf_predict",
     "kf_update",

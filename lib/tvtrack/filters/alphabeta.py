@@ -29,8 +29,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import solve_discrete_lyapunov
 
-from .polynomial import growing_memory_gains, taylor_transition
+from .interface import SequentialFilter
 from .kalman import joseph_covariance
+from .polynomial import growing_memory_gains, taylor_transition
 
 __all__ = [
     "closed_form_gains",
@@ -41,6 +42,7 @@ __all__ = [
     "lagged_covariances",
     "error_covariance_sequence",
     "filter_step",
+    "GainScheduleFilter",
     "scheduled_filter",
     "abg_variance_reduction",
     "floor_variance_reduction",
@@ -275,6 +277,49 @@ def scheduled_filter(z, gains, x0=None) -> np.ndarray:
         x, _ = filter_step(x, z[..., t], G[..., t, :], F)
         out[..., t, :] = x
     return out
+
+
+class GainScheduleFilter(SequentialFilter):
+    """An alpha-beta(-gamma) filter with a gain per frame (eq. (1)) in the one filter interface
+    (:class:`tvtrack.filters.interface.SequentialFilter`), carrying its noise-driven error covariance.
+
+    The state is the polynomial (position, velocity, ...) of :func:`taylor_transition`; the measurement is the
+    position (m = 1). :meth:`run` gives the states of :func:`scheduled_filter` and the covariances of
+    :func:`error_covariance_sequence` when started from the prior of frame 0 (``x0 = F x_before``,
+    ``P0 = F P_before F^T``).
+
+    Parameters
+    ----------
+    gains : array_like, shape (T, order+1) or (..., T, order+1)
+        Gains per frame (a zero row coasts), e.g. ``gain_schedule(order, k_bound, T)``.
+    sigma_eps : float
+        Measurement noise RMS (the covariance's unit squared).
+    """
+
+    def __init__(self, gains, sigma_eps: float = 1.0):
+        self.gains = np.asarray(gains, dtype=float)
+        self.order = _order_of(self.gains)
+        self.F = taylor_transition(self.order)
+        self.h = observation_row(self.order)
+        self.sigma_eps = float(sigma_eps)
+
+    def predict(self, x, P, k: int = 0):
+        """``x <- F x``, ``P <- F P F^T`` (no process noise: the dynamic error is the bias of the schedule)."""
+        return np.einsum("ij,...j->...i", self.F, x), self.F @ P @ self.F.T
+
+    def update(self, x, P, z, k: int = 0, mask=None):
+        """Correct with the gains of frame ``k``: ``x + K (z - x[0])``; ``P`` by the Joseph form with
+        ``R = sigma_eps^2``. ``z`` (..., 1); returns ``x``, ``P``, the innovation (..., 1) and ``S`` (..., 1, 1)."""
+        K = self.gains[..., k, :]
+        nu = np.asarray(z, dtype=float) - x[..., :1]
+        x_new = x + K * nu
+        P_new = joseph_covariance(P, K[..., :, None], self.h[None, :], self.sigma_eps**2)
+        S = (P[..., 0, 0] + self.sigma_eps**2)[..., None, None]
+        if mask is not None:
+            m = np.asarray(mask, dtype=bool)
+            x_new = np.where(m[..., None], x_new, x)
+            P_new = np.where(m[..., None, None], P_new, P)
+        return x_new, P_new, nu, S
 
 
 def abg_variance_reduction(K):

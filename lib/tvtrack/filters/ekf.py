@@ -27,7 +27,8 @@ from typing import Callable
 
 import numpy as np
 
-from .kalman import KalmanOutput, joseph_covariance, kf_predict, kf_update
+from .interface import SequentialFilter
+from .kalman import joseph_covariance, kf_predict, kf_update
 
 __all__ = ["ExtendedKalmanFilter", "ekf_update", "joseph_update_scalar"]
 
@@ -105,7 +106,7 @@ def ekf_update(x_prior, P_prior, z, h, jacobian, noise_cov, k, mask=None, noise_
 
 
 @dataclass
-class ExtendedKalmanFilter:
+class ExtendedKalmanFilter(SequentialFilter):
     """EKF with linear dynamics and a nonlinear observation whose noise may depend on the state.
 
     Parameters
@@ -144,67 +145,17 @@ class ExtendedKalmanFilter:
         if not callable(self.noise_cov):
             R = np.asarray(self.noise_cov, dtype=float)
             self.noise_cov = lambda x, k, _R=R: _R
-
-    def run(self, zs, x0, P0) -> KalmanOutput:
-        """Filter measurements ``zs`` (..., T, m); NaN rows are missing (the filter coasts).
-
-        As in :meth:`tvtrack.filters.kalman.KalmanFilter.run`, ``(x0, P0)`` is the prior for
-        time 0, the first step is an update with ``zs[..., 0, :]``, then predict/update alternate.
-        """
-        zs = np.asarray(zs, dtype=float)
-        if zs.ndim < 2:
-            raise ValueError(f"parameter 'zs' has shape {zs.shape}; it must be (..., T, m)")
-        T = zs.shape[-2]
-        batch = zs.shape[:-2]
-        n, m = self.F.shape[-1], zs.shape[-1]
-        x = np.broadcast_to(np.asarray(x0, dtype=float), batch + (n,)).copy()
-        P = np.broadcast_to(np.asarray(P0, dtype=float), batch + (n, n)).copy()
-        out = {  # time-major while filling (contiguous writes), moved after the batch axes at the end
-            "x_prior": np.empty((T,) + batch + (n,)),
-            "P_prior": np.empty((T,) + batch + (n, n)),
-            "x": np.empty((T,) + batch + (n,)),
-            "P": np.empty((T,) + batch + (n, n)),
-            "innovation": np.empty((T,) + batch + (m,)),
-            "S": np.empty((T,) + batch + (m, m)),
-        }
-        zs_t = np.moveaxis(zs, -2, 0)
         diagonal = self.F.ndim == 2 and np.array_equal(self.F, np.diag(np.diag(self.F)))
-        f = np.diag(self.F) if diagonal else None
-        ff = np.outer(f, f) if diagonal else None
-        for t in range(T):
-            if t > 0:
-                if diagonal:  # (E1), (E7) for diagonal Phi
-                    x, P = x * f, P * ff + self.Q
-                else:
-                    x, P = kf_predict(x, P, self.F, self.Q)
-            out["x_prior"][t] = x
-            out["P_prior"][t] = P
-            z = zs_t[t]
-            present = np.all(np.isfinite(z), axis=-1)
-            if present.all():  # no masking needed (fast path)
-                x, P, nu, S = ekf_update(x, P, z, self.h, self.jacobian, self.noise_cov, t, None, self.noise_iterations)
-            else:
-                x, P, nu, S = ekf_update(
-                    x,
-                    P,
-                    np.where(present[..., None], z, 0.0),
-                    self.h,
-                    self.jacobian,
-                    self.noise_cov,
-                    t,
-                    present,
-                    self.noise_iterations,
-                )
-                nu = np.where(present[..., None], nu, np.nan)
-            out["innovation"][t] = nu
-            out["S"][t] = S
-            out["x"][t] = x
-            out["P"][t] = P
-        axis = len(batch)
-        hist = {key: np.moveaxis(v, 0, axis) for key, v in out.items()}
-        nu = hist["innovation"]
-        if m == 1:  # scalar measurement: nu^2 / S, no solve
-            hist["nis"] = nu[..., 0] ** 2 / hist["S"][..., 0, 0]
-        else:
-            hist["nis"] = np.einsum("...i,...i->...", nu, np.linalg.solve(hist["S"], nu[..., None])[..., 0])
-        return KalmanOutput(**hist)
+        self._f = np.diag(self.F) if diagonal else None  # (E1), (E7) for a diagonal Phi: elementwise
+        self._ff = np.outer(self._f, self._f) if diagonal else None
+
+    def predict(self, x, P, k: int = 0):
+        """The time update (eqs. (E1), (E7)): :func:`tvtrack.filters.kalman.kf_predict`, elementwise for a
+        diagonal ``F``; ``k`` is unused (linear time-invariant dynamics)."""
+        if self._f is not None:
+            return x * self._f, P * self._ff + self.Q
+        return kf_predict(x, P, self.F, self.Q)
+
+    def update(self, x, P, z, k: int = 0, mask=None):
+        """The measurement update at step ``k`` (:func:`ekf_update`, with ``noise_iterations``)."""
+        return ekf_update(x, P, z, self.h, self.jacobian, self.noise_cov, k, mask, self.noise_iterations)

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .interface import FilterOutput, SequentialFilter
+
 __all__ = ["joseph_covariance", "kf_predict", "kf_update", "KalmanFilter", "KalmanOutput"]
 
 
@@ -93,30 +95,12 @@ def kf_update(x, P, z, H, R, mask=None):
     return x_new, P_new, innovation, S
 
 
-@dataclass(frozen=True)
-class KalmanOutput:
-    """Filter history; time is the axis after the batch axes.
-
-    Attributes
-    ----------
-    x_prior, x : ndarray, shape (..., T, n)   predicted and updated states
-    P_prior, P : ndarray, shape (..., T, n, n)
-    innovation : ndarray, shape (..., T, m)   NaN where the measurement was absent
-    S : ndarray, shape (..., T, m, m)
-    nis : ndarray, shape (..., T)             normalised innovation squared
-    """
-
-    x_prior: np.ndarray
-    P_prior: np.ndarray
-    x: np.ndarray
-    P: np.ndarray
-    innovation: np.ndarray
-    S: np.ndarray
-    nis: np.ndarray
+#: The history a filter's ``run`` returns (:class:`tvtrack.filters.interface.FilterOutput`).
+KalmanOutput = FilterOutput
 
 
 @dataclass
-class KalmanFilter:
+class KalmanFilter(SequentialFilter):
     """Time-invariant linear Kalman filter, run over a whole batch of sequences at once.
 
     Parameters
@@ -143,32 +127,10 @@ class KalmanFilter:
         ):
             raise ValueError(f"inconsistent shapes F{self.F.shape} H{self.H.shape} Q{self.Q.shape} R{self.R.shape}")
 
-    def run(self, zs, x0, P0) -> KalmanOutput:
-        """Filter measurements ``zs`` (..., T, m); NaN rows are treated as missing (coast).
+    def predict(self, x, P, k: int = 0):
+        """``x <- F x``, ``P <- F P F^T + Q`` (:func:`kf_predict`); ``k`` is unused (a time-invariant model)."""
+        return kf_predict(x, P, self.F, self.Q)
 
-        The first step is an update of ``(x0, P0)`` with ``zs[..., 0, :]`` (``x0`` is the prior
-        for time 0), then predict/update alternate.
-        """
-        zs = np.asarray(zs, dtype=float)
-        T = zs.shape[-2]
-        batch = zs.shape[:-2]
-        n = self.F.shape[-1]
-        x = np.broadcast_to(np.asarray(x0, dtype=float), batch + (n,)).copy()
-        P = np.broadcast_to(np.asarray(P0, dtype=float), batch + (n, n)).copy()
-        out = {k: [] for k in ("x_prior", "P_prior", "x", "P", "innovation", "S", "nis")}
-        for t in range(T):
-            if t > 0:
-                x, P = kf_predict(x, P, self.F, self.Q)
-            out["x_prior"].append(x)
-            out["P_prior"].append(P)
-            z = zs[..., t, :]
-            present = np.all(np.isfinite(z), axis=-1)
-            x, P, nu, S = kf_update(x, P, np.where(present[..., None], z, 0.0), self.H, self.R, present)
-            nu = np.where(present[..., None], nu, np.nan)
-            out["innovation"].append(nu)
-            out["S"].append(S)
-            out["nis"].append(np.einsum("...i,...i->...", nu, np.linalg.solve(S, nu[..., None])[..., 0]))
-            out["x"].append(x)
-            out["P"].append(P)
-        axis = len(batch)
-        return KalmanOutput(**{k: np.stack(v, axis=axis) for k, v in out.items()})
+    def update(self, x, P, z, k: int = 0, mask=None):
+        """The Joseph-form update (:func:`kf_update`); ``k`` is unused."""
+        return kf_update(x, P, z, self.H, self.R, mask)

@@ -1,4 +1,4 @@
-"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view}``.
+"""Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view, new}``.
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
 directory that exists, an unreachable scheduler) prints one line ``error: ...`` on stderr and exits
@@ -156,6 +156,15 @@ def _cmd_view(args) -> int:
     )
 
 
+def _cmd_new(args) -> int:
+    from .new_paper import new_paper
+
+    for path in new_paper(args.number, args.name, title=args.title):
+        print(f"wrote {path}")
+    print("next: docs/adding_a_paper.md walks through these files and what to change")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="python -m tvtrack", description=__doc__)
     p.add_argument("--debug", action="store_true", help="show the traceback of an error")
@@ -228,6 +237,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     v.add_argument("--no-browser", action="store_true", help="only print the URL")
     v.set_defaults(func=_cmd_view)
+
+    n = sub.add_parser("new", help="a new paper's package, notebook, tests and smoke profile from the template")
+    n.add_argument("number", help="three digits, e.g. 005")
+    n.add_argument("name", help="lower case, digits and '_', e.g. spot_tracker")
+    n.add_argument("--title", default=None, help="the paper's title in a few words (default: the name)")
+    n.set_defaults(func=_cmd_new)
     return p
 
 

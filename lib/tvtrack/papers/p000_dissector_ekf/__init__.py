@@ -1,6 +1,34 @@
-"""Paper 000: Martyshevsky (1995), coordinate accuracy of an image-dissector tracker under signal-dependent noise.
+"""Paper 000: coordinate accuracy of an image-dissector tracker under signal-dependent noise.
+
+Yu. V. Martyshevsky, "Analysis of the accuracy of determining the coordinates of a light object by a television
+tracking system based on an image dissector", Avtometriya, 1995, No. 3.
 
 Modules: :mod:`.model` (the scan, the message, the data generators), :mod:`.ekf` (the paper's two EKFs),
 :mod:`.reference` (grid filter, PCRLB), :mod:`.baseline` (centroid + fixed-gain tracker), :mod:`.settling`
-(steady state, settling and acquisition), :mod:`.study` (measurement functions), :mod:`.register` (unstated choices).
+(steady state, settling and acquisition), :mod:`.study` (measurement functions), :mod:`.register` (unstated
+choices), :mod:`.claims` (the claims and their rules), :mod:`.params` (parameter rules), :mod:`.plots`,
+:mod:`.findings` and :mod:`.recording` (Rerun layout).
+
+The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
+``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
 """
+
+from ...contract import lazy_exports
+
+CITATION = (
+    'Yu. V. Martyshevsky, "Analysis of the accuracy of determining the coordinates of a light object by a '
+    'television tracking system based on an image dissector", Avtometriya, 1995, No. 3.'
+)
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "REGISTER": "register:REGISTER",
+        "DEPENDS": "register:DEPENDS",
+        "RULES": "claims:RULES",
+        "CLAIMS": "claims:CLAIMS",
+        "PARAMETERS": "params:RULES",
+        "Sizes": "study:Sizes",
+        "recording": "recording",
+    },
+)

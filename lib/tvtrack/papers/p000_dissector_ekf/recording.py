@@ -83,3 +83,8 @@ def record_trial(output_dir, mode: str, scan: DissectorScan, x, pulse, xi, n_sca
         rec.series(path, values)
         rec.series_style(path, name=name, color=colour)
     return rec.close() and "recording.rrd"
+
+
+#: The viewer check's deviations from its default expectation (``tvtrack.contract.VIEWER_KEYS``): an image
+#: dissector delivers a 1-D scan, so the 2-D view plots samples and pulses against phase, with no image.
+VIEWER_EXPECTATIONS = {"image": False}

@@ -1,6 +1,35 @@
-"""Paper 001: Fisenko, Vilesov, Mozheiko, Fisenko (2008), manoeuvre detection and prediction through occlusion.
+"""Paper 001: manoeuvre detection and prediction through occlusion.
+
+V. T. Fisenko, L. D. Vilesov, V. I. Mozheiko, T. Yu. Fisenko, "Detection of an object's manoeuvre and prediction
+of its trajectory in a television tracking system", 2008 (Izv. vuzov. Priborostroenie, unverified).
 
 Modules: :mod:`.track_modes` (the per-channel TRACK2 / TRACK3 / COAST mode logic), :mod:`.maneuver_detector`
 (the two-window manoeuvre detector of eqs. (3)-(14) and its thresholds), :mod:`.study` (the measurement functions
-the explorer calls), :mod:`.register` (the notebook's register of unstated choices).
+the explorer calls), :mod:`.register` (the notebook's register of unstated choices), :mod:`.claims` (the claims
+and their rules), :mod:`.sizes` (the run sizes), :mod:`.params` (parameter rules), :mod:`.plots` and
+:mod:`.recording` (Rerun layout).
+
+The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
+``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
 """
+
+from ...contract import lazy_exports
+
+CITATION = (
+    "V. T. Fisenko, L. D. Vilesov, V. I. Mozheiko, T. Yu. Fisenko, \"Detection of an object's manoeuvre and "
+    'prediction of its trajectory in a television tracking system", 2008 (Izv. vuzov. Priborostroenie, '
+    "unverified)."
+)
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "REGISTER": "register:build_register()",
+        "DEPENDS": "register:DEPENDS",
+        "RULES": "claims:RULES",
+        "CLAIMS": "claims:CLAIMS",
+        "PARAMETERS": "params:RULES",
+        "Sizes": "sizes:Sizes",
+        "recording": "recording",
+    },
+)

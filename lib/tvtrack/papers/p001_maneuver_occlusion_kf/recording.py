@@ -126,3 +126,8 @@ def record_run(
     for f in np.where(np.diff(out.mode[0, 0].astype(int)) != 0)[0] + 1:
         rec.set_frame(int(f))
         rec.text("log/mode_x", f"channel x: mode {out.mode[0, 0, f - 1]} -> {out.mode[0, 0, f]}")
+
+
+#: The viewer check's deviations from its default expectation (``tvtrack.contract.VIEWER_KEYS``): the truth ring
+#: and estimate dot are sized in screen points, and each must stay clearly visible (was 9-35 px).
+VIEWER_EXPECTATIONS = {"min_overlay_px": 30}

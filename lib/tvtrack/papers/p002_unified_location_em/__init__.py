@@ -1,9 +1,36 @@
-"""Paper 002: Savanevich (1999), a unified location algorithm (ULA) for the linear motion of closely spaced objects.
+"""Paper 002: a unified location algorithm (ULA) for the linear motion of closely spaced objects.
+
+V. E. Savanevich, "A unified location algorithm for determining the motion parameters of closely spaced objects",
+Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).
 
 Modules: ``model`` (the linear-motion scene: geometry, truth, designation, photon counts), ``em`` (the ULA: EM over
 all frames, eqs. (10)-(11), with SQUAREM and the MAP variant), ``two_stage`` (per-frame marks and line fits, the
 paper's comparator), ``simulation`` (one configuration's Monte Carlo: every algorithm on the same scenes, errors,
 bounds, interval helpers), ``study`` (the measurement functions the explorer calls, the figure data and the
-sentences' statistics), ``register`` (the unstated choices and which claim reads which), ``params`` (the notebook's
-parameter rules), ``plots`` (one function per figure) and ``recording`` (the Rerun layout of one trial).
+sentences' statistics), ``register`` (the unstated choices and which claim reads which), ``claims`` (the claims
+and their rules), ``params`` (the notebook's parameter rules), ``plots`` (one function per figure) and
+``recording`` (the Rerun layout of one trial).
+
+The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
+``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
 """
+
+from ...contract import lazy_exports
+
+CITATION = (
+    'V. E. Savanevich, "A unified location algorithm for determining the motion parameters of closely spaced '
+    'objects", Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).'
+)
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "REGISTER": "register:REGISTER",
+        "DEPENDS": "register:DEPENDS",
+        "RULES": "claims:RULES",
+        "CLAIMS": "claims:CLAIMS",
+        "PARAMETERS": "params:PARAMETERS",
+        "Sizes": "study:Scale",
+        "recording": "recording",
+    },
+)

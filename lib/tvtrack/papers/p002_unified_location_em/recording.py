@@ -96,3 +96,9 @@ def record_trial(
             rec.series(f"em/theta/{name}_{j + 1}", hist[:, j, k], timeline="iteration")
     path = rec.close()
     return {"path": path, "n_iter": int(res.n_iter[0]), "err_ula": err_u, "err_marks": err_m}
+
+
+#: The viewer check's deviations from its default expectation (``tvtrack.contract.VIEWER_KEYS``): batch EM
+#: location draws no gate (per-frame errors under errors/); the EM history is on the "iteration" timeline, shown
+#: when the user picks it (the recording opens on "frame", where the image and the errors are).
+VIEWER_EXPECTATIONS = {"overlays": ("truth", "estimate"), "other_timelines": ("iteration",)}

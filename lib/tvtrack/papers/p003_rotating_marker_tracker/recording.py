@@ -99,3 +99,7 @@ def record_showcase(
     if 0 <= loss_frame < n_frames:
         rec.set_frame(int(loss_frame))
         rec.text("lock/events", "loss of lock", level="WARN")
+
+
+#: The viewer check's deviations from its default expectation (``tvtrack.contract.VIEWER_KEYS``): none.
+VIEWER_EXPECTATIONS: dict = {}

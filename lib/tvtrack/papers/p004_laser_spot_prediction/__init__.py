@@ -1,6 +1,9 @@
 """Paper 004: laser-spot energy-centre prediction with a growing-memory polynomial ("Kalman") filter.
 
-Kokryatska and Hrynchyshyn (Vinnytsia National Technical University, 2005). Modules:
+N. I. Kokryatska, R. M. Hrynchyshyn, "Modelling of signal generation and prediction of the coordinates of the
+energy centres of laser-beam images using Kalman filters", Vinnytsia National Technical University, 2005.
+
+Modules:
 
 - :mod:`.beam_wander`: the synthetic beam-wander generator (the paper's recordings are not available),
   the camera that renders and measures the spot, and the optimal (true-model Kalman) predictor;
@@ -9,5 +12,30 @@ Kokryatska and Hrynchyshyn (Vinnytsia National Technical University, 2005). Modu
 - :mod:`.predictors`: the paper's filter with its gain floor and every baseline (finite differences,
   spline, regression, MLP, RBF network, fading memory, constant-acceleration and Singer Kalman filters);
 - :mod:`.prediction_study`: every method tuned the same way (cross-validation over paths) and scored;
-- :mod:`.study`: the measurement functions the explorer calls; :mod:`.register`: the unstated choices.
+- :mod:`.study`: the measurement functions the explorer calls; :mod:`.register`: the unstated choices;
+  :mod:`.claims`: the claims and their rules; :mod:`.params`: parameter rules; :mod:`.recording`: Rerun layout.
+
+The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
+``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
 """
+
+from ...contract import lazy_exports
+
+CITATION = (
+    'N. I. Kokryatska, R. M. Hrynchyshyn, "Modelling of signal generation and prediction of the coordinates of '
+    'the energy centres of laser-beam images using Kalman filters", Vinnytsia National Technical University, '
+    "2005."
+)
+
+__getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "REGISTER": "register:build()",
+        "DEPENDS": "register:DEPENDS",
+        "RULES": "claims:RULES",
+        "CLAIMS": "claims:CLAIMS",
+        "PARAMETERS": "params:RULES",
+        "Sizes": "study:StudySize",
+        "recording": "recording",
+    },
+)

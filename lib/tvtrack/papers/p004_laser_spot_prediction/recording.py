@@ -69,3 +69,8 @@ def record_run(rec: Recorder, run, every: int = 1) -> None:
         rec.series(f"centre/{axis}_measured", meas[:, a])
         rec.series(f"centre/{axis}_predicted", np.concatenate([np.full(m, np.nan), fc[a, :-m]]))
     rec.series("filter/g1", gain_used(int(run.comparison.chosen[PAPER][0]), T))
+
+
+#: The viewer check's deviations from its default expectation (``tvtrack.contract.VIEWER_KEYS``): the paper's
+#: estimates are the measured spot centre and the centre predicted ahead.
+VIEWER_EXPECTATIONS = {"overlays": ("gate", "truth", "measured", "predicted")}

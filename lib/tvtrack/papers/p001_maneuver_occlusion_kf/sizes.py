@@ -1,0 +1,40 @@
+"""The run sizes of notebook 001: the keys of the ``sizes`` dict the notebook builds from its parameters and
+passes to every measurement function of :mod:`.study`."""
+
+from __future__ import annotations
+
+from typing import Any, TypedDict
+
+__all__ = ["Sizes"]
+
+
+class Sizes(TypedDict, total=False):
+    """Monte Carlo sizes and grids of one full-size run (a plain dict at run time).
+
+    Keys
+    ----
+    n_trials : runs per condition; n_fa_runs, fa_duration_s : false-alarm runs and their length (s);
+    roc_delay_s : the detection delay of the UMP comparison (s); step_dv : velocity step of the power runs
+    (elements/frame); sigma_eps : measurement noise (elements); restart_accel_var : acceleration variance at a
+    restart; n_train, n_tradeoff_trials, train_seed : comparator tuning runs, trade-off runs and their seed;
+    kb3_grid : the gain bounds of Fig. 4 (frames); loss_grid_s : loss start times (s); n_fig4_trials : runs per
+    Fig. 4 point; grids : the comparators' tuning grids; defaults : the register's defaults; prediction_rms : the
+    C001-9 tolerance (elements), set after the Fig. 4 study.
+    """
+
+    n_trials: int
+    n_fa_runs: int
+    fa_duration_s: float
+    roc_delay_s: float
+    step_dv: float
+    sigma_eps: float
+    restart_accel_var: float
+    n_train: int
+    n_tradeoff_trials: int
+    train_seed: int
+    kb3_grid: Any
+    loss_grid_s: Any
+    n_fig4_trials: int
+    grids: dict
+    defaults: dict
+    prediction_rms: float

@@ -1,0 +1,70 @@
+"""The claims of paper 004 (Kokryatska and Hrynchyshyn 2005) and the rules that decide them.
+
+``CLAIMS`` holds what the paper says (statement and the paper's value), ``RULES`` the rule of each claim (the
+notebook's, written once here).
+"""
+
+from __future__ import annotations
+
+from ...verdicts import AllOf, InBand, NotCheckable, Ordering
+from .prediction_study import CLASSICAL
+from .study import NETWORKS
+
+__all__ = ["CLAIMS", "RULES"]
+
+
+def _claim(statement: str, paper_value: str) -> dict[str, str]:
+    return {"statement": statement, "paper_value": paper_value}
+
+
+CLAIMS = {
+    "C004-1": _claim("The prediction error does not exceed 2 pixels (Fig. 4 text).", "<= 2 px"),
+    "C004-2": _claim("Prediction accuracy improved to 1...2 pixels (abstract, conclusions).", "1-2 px"),
+    "C004-3": _claim(
+        "The filter is more accurate than finite differences and splines (2-10 px) and linear regression "
+        "(3-10 px), compared on one and the same data base.",
+        "filter 1-2 px; others 2-10 px",
+    ),
+    "C004-3b": _claim(
+        "The filter is more accurate than back-propagation networks (2-3 px) and RBF networks (2-4 px).",
+        "filter 1-2 px; MLP 2-3 px; RBF 2-4 px",
+    ),
+    "C004-4": _claim("The recursion (5)-(6) reproduces the growing-memory least-squares estimate (4).", "exact"),
+    "C004-5": _claim("The correction is large for small n, tends to 0, and smoothing improves with n.", "qualitative"),
+    "C004-6": _claim(
+        "Without a floor the accuracy degrades on signals that follow the model only locally; the floor prevents it.",
+        "qualitative",
+    ),
+    "C004-7": _claim(
+        "Estimates exist once the number of observations equals the number of state components (3).", "n = 3"
+    ),
+    "C004-8": _claim("The algorithm works in real time.", "real time"),
+}
+
+
+def _better(baseline: str) -> Ordering:
+    """The baseline's MSE above the filter's: a paired per-path ratio above 1."""
+    return Ordering(f"{baseline} MSE", "filter MSE", ">", measure="ratio")
+
+
+RULES = {
+    "C004-1": InBand("mean per-path quantile of the per-axis |e|", high=2.0, unit="px"),
+    "C004-2": InBand("per-axis RMS prediction error", low=1.0, high=2.0, unit="px", better="lower"),
+    "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
+    "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
+    "C004-4": InBand("largest relative deviation of the recursion (5)-(6) from lstsq on eq. (4)", high=1e-9),
+    "C004-5": AllOf(
+        {
+            "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0),
+            **{
+                f"variance at N={n}": InBand(f"Var(x_est) / (sigma^2 g_N1) at N = {n}", low=0.9, high=1.1)
+                for n in (3, 5, 10, 20, 50, 100)
+            },
+        }
+    ),
+    "C004-6": InBand("RMS over the second half of the frames, no floor / floor", low=2.0),
+    "C004-7": NotCheckable(
+        "true by construction: eq. (4) on the first three samples is the exact interpolating quadratic"
+    ),
+    "C004-8": InBand("time per frame (energy centre + filter + prediction) / frame interval", high=1.0),
+}
