@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.papers.p004_laser_spot_prediction import study
+from tvtrack.papers.p004_laser_spot_prediction import derivation, study
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS
 
 SIZE = study.StudySize(
@@ -76,7 +76,7 @@ def test_heavy_tailed_noise_is_a_reading_the_rule_cannot_decide():
 
     out = study.variance_ratios(np.random.default_rng(4), 20000, noise="Student t3")
     rule = InBand("variance ratio", low=0.9, high=1.1)
-    for n in study._CHECK_N:
+    for n in derivation._CHECK_N:
         e = out[f"variance at N={n}"]
         assert abs(e.value - 1) < 0.15 and "fourth moment" in e.method
         assert is_undecided(e) and rule.judge(e).verdict == "undecided"

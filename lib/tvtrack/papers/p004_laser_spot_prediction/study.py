@@ -15,21 +15,12 @@ Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...filters.polynomial import (
-    growing_memory_filter,
-    growing_memory_gains,
-    polynomial_observation_row,
-    predict_ahead,
-    taylor_transition,
-)
-from ...measure import centroid
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci, variance_ci
-from ...render import gate_origin, gaussian_spot, sensor_readout
+from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
 from .beam_wander import (
     GTILT,
@@ -52,7 +43,9 @@ from .prediction_study import (
     per_trial_path_mse,
     window_candidates,
 )
+from .derivation import _recursion_check, recursion_vs_batch, variance_ratios
 from .register import NAMES, WORLD
+from .timing import CLOCKS, _frame_time_ms, streaming_frame_times
 from .traces import TraceSet
 
 __all__ = [
@@ -101,7 +94,6 @@ OPTIMAL = "optimal (true model)"
 _SCENE_KEYS = WORLD  # the entries that change the rendered scene
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
-_CHECK_N = (3, 5, 10, 20, 50, 100)
 
 
 def root_mean_ci(mean_squares) -> Estimate:
@@ -458,213 +450,6 @@ def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int)
     )
 
 
-def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
-    """Largest relative deviation of the recursion (5)-(6) from eq. (4) solved by ``lstsq`` at every
-    sample, and the first sample with an estimate (C004-4, C004-7). Lost samples (NaN) are skipped: the
-    recursion coasts over them and eq. (4) is solved on the samples present at their true times (the
-    register's "lost frames" reading; the two agree only on gap-free series)."""
-    rec = growing_memory_filter(series, order, None)
-    batch = pr.batch_least_squares_states(series, order)
-    dev = float(np.nanmax(np.abs(rec - batch) / np.maximum(np.abs(batch), 1.0)))
-    return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
-
-
-def _recursion_check(series, seed, rate: float, held: bool) -> float:
-    """C004-4: :func:`recursion_vs_batch`'s largest deviation over every path's series (P, T), each with its own
-    obscurations (:func:`drop_frames`, one stream in path order): one 200-frame series at a 0.01 loss rate loses no
-    frame one time in eight, every path's series (3000 frames) practically never."""
-    rng = np.random.default_rng(seed)
-    return max(recursion_vs_batch(drop_frames(z, rng, rate, held))[0] for z in np.atleast_2d(series))
-
-
-def drop_frames(series, rng: np.random.Generator, rate: float, held: bool) -> np.ndarray:
-    """``series`` (T,) with obscurations: each frame starts a gap with probability ``rate``, of 1 to 5 frames
-    (uniform); lost frames are held at the last centre (``held``) or NaN (skipped). ``rate = 0`` returns the
-    series unchanged (the draws are made whatever the rate: common random numbers)."""
-    z = np.array(series, dtype=float)
-    starts = rng.random(z.size) < rate
-    lengths = rng.integers(1, 6, z.size)
-    lost = np.zeros(z.size, bool)
-    for k in np.flatnonzero(starts):
-        lost[k : k + lengths[k]] = True
-    lost[0] = False  # the track starts on a measured centre
-    if held:
-        idx = np.maximum.accumulate(np.where(lost, 0, np.arange(z.size)))
-        return z[idx]
-    z[lost] = np.nan
-    return z
-
-
-#: Why the heavy-tailed reading of C004-5 has no interval (:func:`variance_ratios`).
-HEAVY_TAIL_METHOD = (
-    "mean of squared errors, no interval: Student t3 noise has no fourth moment, so this mean has infinite "
-    "variance and no interval has a stated coverage (the rule cannot decide this reading)"
-)
-
-
-def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N, noise: str = "Gaussian") -> dict:
-    """``Var(x_est) / (sigma^2 g_N1)`` at each checked ``N`` on an exact quadratic plus unit white noise,
-    with Bonferroni-adjusted intervals (95 % family-wise), and the largest step of ``g_N1`` over ``N >= 3``
-    (C004-5).
-
-    ``noise``: ``"Gaussian"`` (chi-square intervals, exact for Gaussian errors) or ``"Student t3"`` (unit
-    variance, heavy tails). Under Student t3 the variance law still holds exactly (the filter is linear in white
-    noise of finite variance), but the noise has no fourth moment, so the squared error whose mean estimates the
-    variance has infinite variance: no interval of the variance ratio has a stated coverage at any number of
-    series (a batch-means bootstrap-t interval read [0.91, 2.01] at one seed and excluded the band at another by
-    chance). The reading therefore reports the point value (the mean of the squared errors) with a NaN interval
-    whose method says why: the rule cannot decide it (:func:`tvtrack.verdicts.is_undecided`), so a heavy tail never
-    makes a verdict, let alone a label. The noise is drawn whatever the reading from the same stream (common random
-    numbers)."""
-    nmax = max(check_n)
-    t = np.arange(nmax)
-    quad = 5.0 + 0.3 * t - 0.01 * t**2
-    g1 = growing_memory_gains(2, nmax)[:, 0]
-    if noise == "Gaussian":
-        w = rng.standard_normal((n_series, nmax))
-    elif noise == "Student t3":
-        w = rng.standard_t(3, (n_series, nmax)) / np.sqrt(3.0)
-    else:
-        raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'Gaussian' or 'Student t3'")
-    est = growing_memory_filter(quad + w, 2, None)[..., 0]
-    conf = 1 - 0.05 / len(check_n)
-    out = {"g1 decreasing": float(np.max(np.diff(g1[2:])))}
-    for n in check_n:
-        e = est[:, n - 1] - quad[n - 1]
-        p = g1[n - 1]
-        if noise != "Gaussian":
-            out[f"variance at N={n}"] = Estimate(
-                float(np.mean(e**2) / p), np.nan, np.nan, np.nan, e.size, conf, HEAVY_TAIL_METHOD
-            )
-            continue
-        v = variance_ci(e, confidence=conf, method="chi2")
-        out[f"variance at N={n}"] = Estimate(
-            v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method
-        )
-    return out
-
-
-#: The clocks of the "C004-8 clock" reading: CPU time of the process, or wall-clock time.
-CLOCKS = {"CPU": time.process_time, "wall": time.perf_counter}
-
-
-def _frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
-    """Time per frame, ms, at the C004-8 readings: the batched plain centroid's mean (default), or the
-    streaming pipeline's mean or 99th percentile over frames after the first (warm-up); the streaming
-    pipeline measures in the gate or (``C004-8 frame`` = "whole frame") over the whole frame, and
-    ``C004-8 clock`` reads CPU or wall-clock time."""
-    pipeline = config.get("C004-8 pipeline", "batched plain centroid")
-    statistic = config.get("C004-8 statistic", "mean")
-    whole = config.get("C004-8 frame", "gate") == "whole frame"
-    clock = CLOCKS[config.get("C004-8 clock", "CPU")]
-    if pipeline == "batched plain centroid" and statistic == "mean" and not whole:
-        return _time_per_frame(run, rng, clock)
-    # per-frame times exist only for the streaming pipeline (the 99th percentile and the whole-frame reading);
-    # on the wall clock the frames another process preempted are left out (a dedicated core, as the paper's PC)
-    wall = clock is CLOCKS["wall"]
-    t = streaming_frame_times(run, rng, whole_frame=whole, clock=clock, drop_preempted=wall)[0][1:] * 1e3
-    return float(np.nanmean(t) if statistic == "mean" else np.nanquantile(t, 0.99))
-
-
-def _time_per_frame(run: StudyRun, rng: np.random.Generator, clock=time.process_time) -> float:
-    """ms per full 128 x 128 frame (``clock``: CPU by default): centroid, filter update and one-step
-    prediction, batched over the frames."""
-    nt = min(run.size.timing_frames, run.truth.shape[-1])
-    cam = run.camera
-    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
-    frames = sensor_readout(
-        gaussian_spot(xy, (run.scene.image_size_px,) * 2, cam.spot_sigma_px, cam.flux_e),
-        rng,
-        background=cam.background_dn,
-        read_noise=cam.read_noise_dn,
-        bit_depth=cam.bit_depth,
-    )
-    t0 = clock()
-    cm = centroid(frames, background="border", threshold_sigma=cam.threshold_sigma)
-    predict_ahead(growing_memory_filter(np.moveaxis(cm.xy, -1, 0), 2, run.size.fixed_floor), 1)
-    return (clock() - t0) / nt * 1e3
-
-
-def _involuntary_switches() -> int:
-    """Involuntary context switches of this process so far (another process took the core)."""
-    import resource
-
-    return resource.getrusage(resource.RUSAGE_SELF).ru_nivcsw
-
-
-def streaming_frame_times(
-    run: StudyRun,
-    rng: np.random.Generator,
-    whole_frame: bool = False,
-    clock=time.process_time,
-    drop_preempted: bool = False,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each frame processed as it arrives (the "streaming" reading of C004-8): from the full 128 x 128
-    frame, crop the gate around the one-step prediction, measure the study's energy centre in it (the
-    camera's ``centroid_mode``), run one step of the recursion (5)-(6) with the fixed floor's precomputed
-    gains and predict one frame ahead. ``whole_frame``: no gate, the energy centre runs over the whole
-    frame (the windowed one started at the prediction). ``drop_preempted``: a frame during which the process
-    was preempted (an involuntary context switch: another process took the core) gets a NaN time, so a
-    wall clock measures the pipeline on a dedicated core, not the other tenants of a shared machine.
-
-    Returns
-    -------
-    times : ndarray, shape (n,)
-        Seconds of each frame on ``clock`` (CPU time, ``time.process_time``, by default).
-    states : ndarray, shape (n, 2, 3)
-        The recursion's state after each frame (per axis; NaN before the first three), for tests.
-    measured : ndarray, shape (n, 2)
-        The centres the recursion was fed, px (a frame with nothing above threshold: the prediction).
-    """
-    from .spot_centre import windowed_centroid
-
-    nt = min(run.size.timing_frames, run.truth.shape[-1])
-    cam, size = run.camera, run.scene.image_size_px
-    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
-    frames = sensor_readout(
-        gaussian_spot(xy, (size, size), cam.spot_sigma_px, cam.flux_e),
-        rng,
-        background=cam.background_dn,
-        read_noise=cam.read_noise_dn,
-        bit_depth=cam.bit_depth,
-    )
-    g, nf = cam.gate_size_px, run.size.fixed_floor
-    F = taylor_transition(2)
-    gains = growing_memory_gains(2, nf)
-    H0 = polynomial_observation_row(2, np.arange(3)[::-1])  # the first three samples, oldest first
-    times, states, measured = np.empty(nt), np.full((nt, 2, 3), np.nan), np.empty((nt, 2))
-    aim, first, x = xy[0], [], None
-    for t in range(nt):
-        n0 = _involuntary_switches() if drop_preempted else 0
-        t0 = clock()
-        if whole_frame:
-            o, gate = np.zeros(2, int), frames[t]
-        else:
-            o = np.clip(gate_origin(aim, (g, g)), 0, size - g)
-            gate = frames[t, o[1] : o[1] + g, o[0] : o[0] + g]
-        if cam.centroid_mode == "windowed":
-            start = aim if whole_frame else None  # in a gate the window starts at its centre, the prediction
-            m = windowed_centroid(gate, o, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma, start=start)
-        else:
-            m = centroid(gate, o, background="border", threshold_sigma=cam.threshold_sigma)
-        z = m.xy if m.valid else aim
-        if x is None:
-            first.append(z)
-            if len(first) == 3:
-                x = np.linalg.solve(H0, np.asarray(first))  # (3 states, 2 axes): eq. (4) on 3 samples
-        else:
-            x = F @ x
-            x = x + gains[min(t + 1, nf) - 1][:, None] * (z - x[0])[None, :]
-        if x is not None:
-            aim = (F @ x)[0]  # the one-step prediction centres the next gate
-            states[t] = x.T
-        times[t] = clock() - t0
-        if drop_preempted and _involuntary_switches() != n0:
-            times[t] = np.nan
-        measured[t] = z
-    return times, states, measured
-
-
 def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.ndarray:
     """Per path: the ``q`` quantile of the per-axis ``|e|`` over both axes and the frames from
     ``start`` on, px; shape (P,)."""
@@ -868,7 +653,6 @@ def measurement_budget(
     dict
         {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
     """
-    from ...render import gaussian_spot, sensor_readout
     from .spot_centre import gaussian_fit_centre, windowed_centroid
 
     g = camera.gate_size_px
