@@ -46,13 +46,14 @@ ROWS = (
         "bandwidth",
         "regime",
         3.0,
-        (1.0, 3.0, 8.0),
+        (1.0, 2.2, 3.0, 8.0),
         "every corner frequency x this (today's 0.02, 0.1, 0.5 Hz at 1); the paper gives no turbulence strength, range "
         "or wind speed, so the wander time scale W0/V_perp is unknown within an order of magnitude. The default is "
         "calibrated (calibration.calibrate_bandwidth: a root find on the factor): at 3 the paper's filter errs 1.4-1.5 "
         "px per axis one frame ahead on 15 x 1000 frames, the middle of the paper's own '1...2 pixels'; at 1 (the "
-        "world of the first three passes) it errs 0.33 px, a regime the paper never saw; at 8 (fastest corner 4 Hz) "
-        "3.9 px",
+        "world of the first three passes) it errs 0.33 px, a regime the paper never saw; at 2.2 (the same search for "
+        "the band's low end, 1 px: root 2.28 on the shipped paths, 2.12 on a fresh draw) about 1 px, where C004-1's "
+        "'does not exceed 2 px' can hold; at 8 (fastest corner 4 Hz) 3.9 px",
         "author",
     ),
     (
@@ -325,6 +326,7 @@ PLAIN = {
         "speed of the wander (corner frequencies x this)",
         {
             1.0: "slow wander, the earlier world (fastest corner 0.5 Hz)",
+            2.2: "wander calibrated to the low end of the paper's 1-2 px (fastest corner 1.1 Hz)",
             3.0: "wander calibrated to the paper's 1-2 px (fastest corner 1.5 Hz)",
             8.0: "fast wander (fastest corner 4 Hz)",
         },
