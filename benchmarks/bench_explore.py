@@ -6,8 +6,8 @@ and wall seconds per stage -- replicates, sizing, one at a time, joint screened 
 combinations). Per notebook, as figures in the table ``make bench`` writes:
 
 - **configurations per wall second** of its explorations (all stages together);
-- **the screening's saving**: the full-size cost of the joint design (its configurations at the one-at-a-time
-  stage's full-size cost per configuration) over what the screened design cost (screening plus the confirmations
+- **the screening's saving**: the full-size cost of the joint design (its configurations at the replicates'
+  full-size cost per configuration) over what the screened design cost (screening plus the confirmations
   at full size); at least 1 where a notebook screens (a screen that costs more than it saves fails);
 - every stage's configurations and seconds, in the row's note.
 
@@ -69,10 +69,13 @@ def test_exploration_configurations_per_second_and_screening_saving(benchmark, n
     note = "; ".join(f"{k}: {v[0]} in {v[1]:.0f} s" for k, v in stages.items())
     fig = figure(f"{name} exploration, configurations per wall s", n / wall, 0.0, at_least=True, note=note)
     assert fig.passed, fig.message()
-    if "joint, screened" in stages and stages.get("one at a time", [0])[0]:
-        per_full = stages["one at a time"][1] / stages["one at a time"][0]
-        full_cost = stages["joint, screened"][0] * per_full
-        spent = stages["joint, screened"][1] + stages.get("joint, confirmed at full size", [0, 0.0])[1]
+    screened = [k for k in stages if k.endswith(", screened")]
+    if screened and stages.get("replicates", [0])[0]:
+        per_full = stages["replicates"][1] / stages["replicates"][0]  # one full-size configuration
+        full_cost = sum(stages[k][0] for k in screened) * per_full
+        spent = sum(
+            stages[k][1] + stages.get(k.replace("screened", "confirmed at full size"), [0, 0.0])[1] for k in screened
+        )
         saving = figure(
             f"{name} screening's saving (full-size cost / screened cost)", full_cost / spent, 1.0, at_least=True
         )

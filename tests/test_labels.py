@@ -255,3 +255,34 @@ def test_synthetic_measurements_reach_both_verdicts(rule):
     for r in (rule, AllOf({"p": rule, "q": InBand("z", 0, 1)})):
         assert r.decide(synthetic(r, "reproduced")) == "reproduced"
         assert r.decide(synthetic(r, "not reproduced")) == "not reproduced"
+
+
+def test_a_part_undecided_at_the_default_sends_no_screened_configuration_to_full_size():
+    from tvtrack.verdicts import AllOf
+
+    rule = AllOf({"edge": InBand("m", -0.5, 0.5), "clear": BAND})
+
+    def measure(config, seed, n=400):
+        flip = 3.0 * (config["c"] == 1)
+        return {"X": {"edge": _mean(seed, 0.5, n=n), "clear": _mean(seed + 1, flip, n=n)}}
+
+    ex = explore(measure, REG5, {"X": rule}, seed=4, replicates=3, joint=40, screen=lambda c, s: measure(c, s, 40))
+    joint = [r for r in ex.runs if r.stage == "joint"]
+    rec = ex.record("X")
+    assert rec["parts"]["edge"]["verdict"] == "undecided"  # the truth sits on the edge: nothing to flip there
+    # only the configurations whose decided part may flip go to full size (c = 1 flips "clear"), not every one
+    assert 0 < ex.settings["confirmed_at_full_size"] <= sum(r.config["c"] == 1 for r in joint) < len(joint)
+
+
+def test_screened_singles_are_confirmed_at_full_size_where_they_may_flip():
+    ex = explore(_single, REG5, {"X": BAND}, seed=4, replicates=3, screen=_small_single, screen_singles=True)
+    singles = {tuple(r.config.items()): r for r in ex.runs if r.stage == "single"}
+    assert ex.settings["screened_singles"] and "one at a time, screened" in ex.settings["timing"]
+    flip = next(r for r in singles.values() if r.config["c"] == 1)
+    assert flip.outputs["X"].n == 400  # the flip was confirmed at full size
+    assert sum(r.outputs["X"].n == 40 for r in singles.values()) >= 8  # the clear agreements stay screened
+    assert [f["changed"] for f in ex.record("X")["parts"]["claim"]["flips"]] == [{"c": 1}]
+
+
+def _small_single(config, seed):
+    return {"X": _mean(seed, 3.0 * (config["c"] == 1) + 0.05 * config["e"], n=40)}

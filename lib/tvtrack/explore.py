@@ -345,22 +345,36 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -
         raise
 
 
-def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping, default: Mapping | None = None) -> dict:
-    """``{(claim, part): Judgement}`` of one run's outputs (or of the pooled default)."""
+def _part_measured(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
+    """``{(claim, part): (part rule, part measured)}`` of one run's outputs."""
     out = {}
     for cid, rule in rules.items():
         m = outputs.get(cid)
         if m is None:
             continue
-        for part, prule in rule_parts(rule).items():
-            pm = (
-                m
-                if part == "claim" and len(rule_parts(rule)) == 1
-                else (m.get(part) if isinstance(m, Mapping) else None)
-            )
+        parts = rule_parts(rule)
+        for part, prule in parts.items():
+            pm = m if part == "claim" and len(parts) == 1 else (m.get(part) if isinstance(m, Mapping) else None)
             if pm is not None:
-                out[(cid, part)] = prule.judge(pm)
+                out[(cid, part)] = (prule, pm)
     return out
+
+
+def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
+    """``{(claim, part): Judgement}`` of one run's outputs (or of the pooled default)."""
+    return {key: prule.judge(pm) for key, (prule, pm) in _part_measured(rules, outputs).items()}
+
+
+def _point(pm: Any) -> Any:
+    """A measured value's point estimate as an exact number (its interval dropped), element by element."""
+    if isinstance(pm, (list, tuple)):
+        return [_point(x) for x in pm]
+    if isinstance(pm, Mapping) and "value" not in pm:
+        return {k: _point(v) for k, v in pm.items()}
+    try:
+        return Estimate.exact(calibrated(pm).value)
+    except (TypeError, ValueError):
+        return pm
 
 
 def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
@@ -380,14 +394,23 @@ def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int)
 
 
 def _disagrees(rules, depends, default_j: Mapping, run: Run, default_cfg: Mapping) -> bool:
-    """True when some claim the run's changes touch has a part whose verdict is not decisively the default's."""
+    """True when a screened run must be confirmed at full size: some claim part its changes touch, whose default
+    verdict is decisive (an undecided default has nothing to flip), is screened decisively otherwise, or is
+    undecided with its point estimate on the other side of the rule (it sits near a band edge and may flip)."""
     changed = set(run.changed(default_cfg))
-    for (cid, part), j in _part_verdicts(rules, run.outputs).items():
-        if not changed & set(depends[cid]):
-            continue
+    for (cid, part), (prule, pm) in _part_measured(rules, run.outputs).items():
         d = default_j.get((cid, part))
-        if d is None or not is_decisive(j.verdict) or j.verdict != d.verdict:
+        if not changed & set(depends[cid]) or d is None or not is_decisive(d.verdict):
+            continue
+        v = prule.judge(pm).verdict
+        if is_decisive(v) and v != d.verdict:
             return True
+        if not is_decisive(v):
+            try:
+                if prule.judge(_point(pm)).verdict != d.verdict:
+                    return True
+            except (TypeError, ValueError):
+                return True
     return False
 
 
@@ -460,6 +483,7 @@ def explore(
     executor: Any = None,
     one_at_a_time: bool = True,
     screen: Callable | None = None,
+    screen_singles: bool = False,
     combinations: int = 24,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
@@ -502,6 +526,8 @@ def explore(
         Run every other value of every entry at the default of the others.
     screen : callable, optional
         A cheaper measurement with ``measure``'s signature (e.g. fewer trials) for the joint design.
+    screen_singles : bool
+        Screen the one-at-a-time stage too (its configurations confirmed at full size likewise).
     combinations : int
         Cap on the sub-combination runs that name the smallest flipping combination.
 
@@ -548,20 +574,21 @@ def explore(
         runs += extra
         n += step
     singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
-    run(measure, singles if one_at_a_time else [], "one at a time")
-    runs += singles if one_at_a_time else []
+    singles = singles if one_at_a_time else []
     design = joint_sample(register, used, joint, seed + 1) if joint else []
     joints = [Run(cfg, seeds[0], "joint") for cfg in design]
     confirmed = 0
-    if screen is not None and joints:
-        run(screen, joints, "joint, screened")
-        default_j = _pooled(rules, runs)
-        redo = [r for r in joints if _disagrees(rules, depends, default_j, r, default)]
-        run(measure, redo, "joint, confirmed at full size")
-        confirmed = len(redo)
-    else:
-        run(measure, joints, "joint")
-    runs += joints
+    for name, jobs, screened in (("one at a time", singles, screen_singles), ("joint", joints, True)):
+        if screen is not None and screened and jobs:
+            run(screen, jobs, f"{name}, screened")
+            default_j = _pooled(rules, runs)
+            redo = [r for r in jobs if _disagrees(rules, depends, default_j, r, default)]
+            run(measure, redo, f"{name}, confirmed at full size")
+            confirmed += len(redo)
+        else:
+            run(measure, jobs, name)
+            confirmed += len(jobs) if name == "joint" else 0
+        runs += jobs
     pinned = [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & set(used)]
     run(measure, pinned, "pinned")
     runs += pinned
@@ -581,7 +608,8 @@ def explore(
         "joint_configurations": len(joints),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
         "screened": screen is not None and bool(joints),
-        "confirmed_at_full_size": confirmed if screen is not None else len(joints),
+        "screened_singles": screen is not None and screen_singles and bool(singles),
+        "confirmed_at_full_size": confirmed,
         "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import Estimate
-from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em import extras, study
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
 TINY = study.Scale(
@@ -76,10 +76,10 @@ def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
 
 
 def test_word_follows_the_interval():
-    assert study.word(Estimate(2.0, 0.1, 1.5, 2.5, 10)) == "above"
-    assert study.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
-    assert study.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
-    assert study.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
+    assert extras.word(Estimate(2.0, 0.1, 1.5, 2.5, 10)) == "above"
+    assert extras.word(Estimate(0.5, 0.1, 0.3, 0.8, 10)) == "below"
+    assert extras.word(Estimate(1.0, 0.1, 0.8, 1.2, 10)) == "not distinguishable from"
+    assert extras.word(Estimate(1.0, np.nan, np.nan, np.nan, 10)) == "undetermined against"
 
 
 def test_crossing_tracks_swap_sides_at_mid_sequence():
@@ -93,6 +93,10 @@ def test_crossing_tracks_swap_sides_at_mid_sequence():
     np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 0.0, -3.0])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "parallel", 2, 3.0, 11), [[0.2, 0.1], [0.2, 0.1]])
     np.testing.assert_allclose(track_velocities((0.2, 0.1), "crossing", 1, 3.0, 11), [[0.2, 0.1]])
+    # diverging (the paper's satellites separating after release): d apart at the start, 3 d at the end
+    g = scene_geometry(2, 11, 3.0, 1.0, track_velocities((0.2, 0.1), "diverging", 2, 3.0, 11))
+    dy = (g.theta[1, 1] + g.theta[1, 3] * t) - (g.theta[0, 1] + g.theta[0, 3] * t)
+    np.testing.assert_allclose(dy[[0, 5, 10]], [3.0, 6.0, 9.0])
 
 
 def test_mean_log_gain_recovers_a_known_ratio_of_gains():
@@ -152,13 +156,13 @@ def test_flips_by_entry_reads_single_conditions_unless_asked_for_joint_ones():
             ]
             return {**ref, "conditions": conds}
 
-    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == {
+    assert extras.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"]) == {
         "tracks": ["C002-1"],
         "bound": [],
         "epoch": [],
     }
     # a joint condition counts only when asked for, and then for every entry it changed
-    assert study.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"], ("joint", "pinned")) == {
+    assert extras.flips_by_entry(Ex(), {"C002-1": None}, ["tracks", "bound", "epoch"], ("joint", "pinned")) == {
         "tracks": [],
         "bound": ["C002-1"],
         "epoch": ["C002-1"],
@@ -169,7 +173,7 @@ def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
     study.clear_cache()
     g, res = study.figure_data(DEFAULT, 9, TINY)
     rng = np.random.default_rng(0)
-    wq, wc = study.wrong_q_cost(g, res, rng, 2000), study.estimation_cost(g, res, rng, 2000)
+    wq, wc = extras.wrong_q_cost(g, res, rng, 2000), extras.estimation_cost(g, res, rng, 2000)
     assert set(wq) == set(wc) == {1.0, 2.0, 4.0}
     r = res[g["w"][4.0]]
     assert r["ula_q1"].shape == (TINY.n_iter_trials, 1, 4) and r["ula_w"].shape == r["ula"].shape
@@ -198,9 +202,9 @@ def test_photons_of_c002_12_change_only_its_far_apart_points():
 
 def test_fig7_tolerance_reruns_only_the_iteration_points_on_the_same_scenes():
     base = _letters(study.jobs_of(DEFAULT, 7, TINY))
-    loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "0.05 sigma"}, 7, TINY))
+    loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "log-likelihood gap 0.1"}, 7, TINY))
     new = set(loose) - set(base)
-    assert new and all(k[0].variant == (("tol_sigma", 0.05),) and k[0].n == TINY.n_iter_trials for k in new)
+    assert new and all(k[0].variant == (("tol_loglik", 0.1),) and k[0].n == TINY.n_iter_trials for k in new)
     assert {k[1] for k in new} == {"u", "p", "q"}  # the Fig 7 points only, every letter they hold
     # what the loose reading no longer asks for is the default's Fig 7 points (a 'u' point may be shared)
     assert set(base) - set(loose) <= {(k[0]._replace(variant=()), k[1]) for k in new}
@@ -212,7 +216,7 @@ def test_a_loose_practical_tolerance_stops_plain_em_in_fewer_steps_on_the_same_t
 
     settings = study.settings_of(DEFAULT, 3, TINY)
     tight = Config(2, 1.0, 3.0, 20, 5, "p", 0.3, None, None, 6, "explore", 0.0)
-    loose = tight._replace(variant=(("tol_sigma", 0.05),))
+    loose = tight._replace(variant=(("tol_loglik", 0.1),))
     a, b = run_config(settings, tight), run_config(settings, loose)
     assert np.array_equal(a["truth"], b["truth"])  # a variant sees the same draws (common random numbers)
     assert np.all(b["plain_iter"] <= a["plain_iter"]) and b["plain_iter"].mean() < a["plain_iter"].mean()
@@ -303,3 +307,37 @@ def test_c002_1_panel_readings_read_that_panels_whole_distance_axis(reading, pix
     assert [e.value for e in got] == [
         study.spread_sum(study.errors(res[panel[d]], "ula", "first"), "variance").value for d in TINY.separations
     ]
+
+
+def test_every_register_entry_and_value_is_in_plain_words():
+    for e in REGISTER.entries:
+        assert e.title and e.title != e.name, e.name
+        assert set(e.phrases) == set(e.values), (e.name, set(e.values) - set(e.phrases))
+    assert REGISTER["tracks"].kind == "regime" and REGISTER["EM stopping"].side == "reading"
+
+
+def test_screen_scale_is_a_quarter_of_the_trials_with_fewer_resamples():
+    small = study.screen_scale(study.Scale(n_trials=80, n_iter_trials=40, n_bootstrap=2000, crb_phases=64), 0.25)
+    assert (small.n_trials, small.n_iter_trials, small.n_bootstrap, small.crb_phases) == (20, 10, 1000, 16)
+    assert study.screen_scale(TINY, 0.25).n_trials == 8  # never below 8 trials
+
+
+def test_failure_rates_and_bic_shares_read_the_figure_points():
+
+    study.clear_cache()
+    g, res = study.figure_data(DEFAULT, 3, TINY)
+    rates = extras.failure_rates(g, res)
+    assert list(rates) == [label for *_, label in extras.FAILURE_GROUPS] + ["Fig 7 (plain EM)"]
+    r7 = res[g["7"][min(g["7"])]]
+    assert rates["Fig 7 (plain EM)"][min(g["7"])]["ULA cap hit"].value == r7["plain_cap"].mean()
+    assert np.all(r7["plain_cap"] == (r7["plain_iter"] >= TINY.max_iter))  # TINY caps plain EM at 40 steps
+    r = res[g["4"][20][1.0]]
+    row = rates["Fig 4a (m_k = 20)"][1.0]
+    assert row["ULA label swap"].value == r["ula_flags"][:, 0].mean()
+    assert row["two-stage cap hit"].value == r["em_flags"][:, 2].mean()
+    shares = extras.bic_correct_q(g, res)
+    assert set(shares) == set(TINY.separations)
+    for d, s in shares.items():
+        assert sum(e.value for e in s.values()) == pytest.approx(1.0)
+        pick = np.argmin(res[g["bic"][d]]["bic"], axis=1)
+        assert s["Q' = 2 (correct)"].value == pytest.approx((pick == 1).mean())

@@ -19,58 +19,95 @@ CLAIMS = {cid: {"statement": s, "paper_value": v} for cid, (s, v) in _STUDY_CLAI
 }
 
 _U = dict(measure="ratio", paired=False)  # between independent configurations
+_V, _R = "sigma^2", "variance ratio"  # units: PSF variances; ratios of variance sums
 
 RULES = {
-    "C002-1": Monotone("ULA Sigma^2 (Fig 1a, m_k = 20)", "separation d/sigma", "decreasing"),
+    "C002-1": Monotone(
+        "ULA total position variance (Fig 1a, 20 photons)", "separation d / sigma", "decreasing", unit=_V
+    ),
     "C002-2": AllOf(
         {
-            "weakens": Ordering("r_m(6 sigma)", "r_m(1 sigma)", ">", **_U),
-            "far apart": InBand("r_m = Sigma^2(m_k = 10) / Sigma^2(m_k = 20) at 6 sigma", 1.6, 2.4),
+            "weakens": Ordering(
+                "photon gain r_m = variance(10 photons) / variance(20) at d = 6 sigma",
+                "r_m at d = 1 sigma",
+                ">",
+                **_U,
+                unit=_R,
+            ),
+            "far apart": InBand("photon gain r_m at d = 6 sigma", 1.6, 2.4, unit=_R),
         }
     ),
-    "C002-3": Ordering("mean r_m(Delta = sigma)", "mean r_m(Delta = 3 sigma)", ">", **_U),
-    "C002-4": Ordering("loss Sigma^2(1 sigma) / Sigma^2(6 sigma) at Delta = 5 sigma", "at Delta = 3 sigma", ">", **_U),
-    "C002-5": Monotone("Sigma^2(Delta = 3 sigma) / Sigma^2(Delta = sigma)", "T = 5, 10, 50", "decreasing"),
-    "C002-6": Ordering("|ln r_T| at m_k = 20", "|ln r_T| at m_k = 10", ">", "difference", paired=False),
+    "C002-3": Ordering("mean photon gain r_m with 1-sigma pixels", "with 3-sigma pixels", ">", **_U, unit=_R),
+    "C002-4": Ordering(
+        "loss variance(1 sigma) / variance(6 sigma) with 5-sigma pixels", "with 3-sigma pixels", ">", **_U, unit=_R
+    ),
+    "C002-5": Monotone(
+        "variance with 3-sigma pixels / with 1-sigma pixels", "frames T = 5, 10, 50", "decreasing", unit=_R
+    ),
+    "C002-6": Ordering(
+        "frame dependence |ln r_T| at 20 photons",
+        "at 10 photons",
+        ">",
+        "difference",
+        paired=False,
+        unit="|ln r_T| difference",
+    ),
     "C002-7": AllOf(
         {
-            "fine pixels": InBand("Var_two-stage / Var_ULA of x_o at Delta = sigma", None, 1.2),
-            "coarse pixels": InBand("Var_two-stage / Var_ULA of x_o at coarse Delta", 1.2, None),
+            "fine pixels": InBand("two-stage / ULA variance of x_o, 1-sigma pixels", None, 1.2, unit=_R),
+            "coarse pixels": InBand("two-stage / ULA variance of x_o, coarse pixels", 1.2, None, unit=_R),
         }
     ),
     "C002-8": AllOf(
         {
-            "worse than fine pixels": Ordering("Var_ULA(coarse Delta)", "Var_ULA(Delta = sigma)", ">", **_U),
-            "better than the marks": Ordering("Var_ULA(coarse Delta)", "Var_two-stage(coarse Delta)", "<", "ratio"),
+            "worse than fine pixels": Ordering(
+                "ULA variance of x_o, coarse pixels", "1-sigma pixels", ">", **_U, unit=_R
+            ),
+            "better than the marks": Ordering(
+                "ULA variance of x_o, coarse pixels", "two-stage's", "<", "ratio", unit=_R
+            ),
         }
     ),
     "C002-9": AllOf(
         {
-            "centre-of-region >= iterative marks": Ordering("Var_centre", "Var_iterative", ">", "ratio"),
-            "iterative marks >= ULA": Ordering("Var_iterative", "Var_ULA", ">", "ratio"),
+            "centre-of-region >= iterative marks": Ordering(
+                "centre-of-region variance of x_o", "iterative marks'", ">", "ratio", unit=_R
+            ),
+            "iterative marks >= ULA": Ordering("iterative marks' variance of x_o", "ULA's", ">", "ratio", unit=_R),
         }
     ),
     "C002-10": AllOf(
         {
-            "closer": Monotone("rho (Fig 4a)", "separation d/sigma", "decreasing"),
-            "coarser pixels": Ordering("rho(Delta = 5 sigma)", "rho(Fig 4's Delta)", ">", **_U),
-            "more frames": Ordering("rho(T = 50)", "rho(T = 5)", ">", **_U),
+            "closer": Monotone(
+                "gain rho = two-stage / ULA variance (Fig 4a)", "separation d / sigma", "decreasing", unit=_R
+            ),
+            "coarser pixels": Ordering("rho with 5-sigma pixels", "rho with Fig 4's pixels", ">", **_U, unit=_R),
+            "more frames": Ordering("rho at T = 50", "rho at T = 5", ">", **_U, unit=_R),
         }
     ),
     "C002-11": AllOf(
         {
-            p: InBand(f"rho at {p.split(' (')[0]}, T = 50", 3.0, 6.0)
+            p: InBand(
+                f"gain rho = two-stage / ULA variance at {p.split(' (')[0]}, T = 50", 3.0, 6.0, unit=_R, better="higher"
+            )
             for p in ("d = 1 sigma (paper x4.5)", "d = 3 sigma (paper x4)")
         }
     ),
     "C002-12": AllOf(
-        {f"Delta = {p:g} sigma": InBand(f"rho at d = 8 sigma, Delta = {p:g} sigma", 0.9, 1.1) for p in (0.5, 1.0)}
+        {
+            f"Delta = {p:g} sigma": InBand(f"gain rho at d = 8 sigma, {p:g}-sigma pixels", 0.9, 1.1, unit=_R)
+            for p in (0.5, 1.0)
+        }
     ),
-    "C002-13": Ordering("mean plain-EM iterations at the smallest d", "at the largest d", ">", **_U),
-    "C002-14": Ordering("ULA frame-iterations", "two-stage frame-iterations", ">", "ratio"),
+    "C002-13": Ordering(
+        "mean plain-EM iterations at the smallest d", "at the largest d", ">", **_U, unit="iterations ratio"
+    ),
+    "C002-14": Ordering(
+        "ULA frame-iterations", "two-stage frame-iterations", ">", "ratio", unit="frame-iterations ratio"
+    ),
     "C002-15": AllOf(
         {
-            p: InBand(f"ULA spread / bound, {p}", 0.8, 1.5)
+            p: InBand(f"ULA variance / bound (efficiency), {p}", 0.8, 1.5, unit="variance / bound")
             for p in ("d = 1 sigma (very close)", "d = 2 sigma", "d = 4 sigma", "velocities, d = 1 sigma")
         }
     ),

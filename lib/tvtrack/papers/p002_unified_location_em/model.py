@@ -35,6 +35,7 @@ __all__ = [
     "scene_batches",
     "SceneBatch",
     "mixture_weights",
+    "noise_per_pixel",
 ]
 
 
@@ -164,6 +165,22 @@ def mixture_weights(photons: float, noise_per_pixel: float, n_pixels: int, n_obj
         raise ValueError(f"photons = {photons} and noise_per_pixel = {noise_per_pixel} must be >= 0, not both zero")
     total = n_objects * photons + noise_per_pixel * n_pixels
     return np.full(n_objects, photons / total), noise_per_pixel * n_pixels / total
+
+
+def noise_per_pixel(noise_density: float, sigma_px: float) -> float:
+    """Mean noise photons per pixel per frame: the density (photons per sigma^2 per frame) times the pixel's area
+    in sigma^2, ``(Delta / sigma)^2 = 1 / sigma_px^2``.
+
+    Parameters
+    ----------
+    noise_density : float
+        Uniform noise photons per sigma^2 per frame (>= 0; card 4.1: rho_o = 0.01).
+    sigma_px : float
+        PSF standard deviation in px (> 0), i.e. ``sigma / Delta``.
+    """
+    if noise_density < 0 or not sigma_px > 0:
+        raise ValueError(f"noise_density = {noise_density} must be >= 0 and sigma_px = {sigma_px} > 0")
+    return float(noise_density) / float(sigma_px) ** 2
 
 
 def _positions(theta, times) -> np.ndarray:

@@ -14,6 +14,8 @@ PARAMETERS = {
     "replicates": Integer(3, 50),
     "max_replicates": Integer(3, 50),
     "joint_samples": Integer(0, 100),
+    "screen_fraction": Real(0.0, 1.0, low_open=True),
+    "combination_runs": Integer(0, 100),
     "one_at_a_time": Boolean(),
     "em_iteration_cap": Integer(10, 100_000),
     "n_workers": Integer(1, 16),

@@ -13,7 +13,15 @@ import numpy as np
 from tvtrack.montecarlo import mean_ci
 from .study import errors, gain, spread_sum
 
-__all__ = ["ula_distance_figure", "one_object_figure", "gain_figure", "iterations_figure", "bound_figure"]
+__all__ = [
+    "ula_distance_figure",
+    "one_object_figure",
+    "gain_figure",
+    "iterations_figure",
+    "bound_figure",
+    "failure_figure",
+    "bic_figure",
+]
 
 
 def _band(ax, x, ests, label, **kw):
@@ -128,4 +136,49 @@ def bound_figure(g, res, epoch="first"):
         ax.plot(d, [res[c]["crb_pos"] for c in cs], "k:", label="CRB (unbiased estimators)")
         ax.plot(d, [res[c]["bcrb_pos"] for c in cs], "k--", label="van Trees bound (designation prior)")
         _distance_axes(ax, title, "total position MSE (sigma^2)")
+    return fig
+
+
+def failure_figure(rates):
+    """Failure, label-swap and cap-hit rates (:func:`.extras.failure_rates`) against separation, one panel per rate,
+    one curve per figure configuration and algorithm (ULA solid, two-stage dashed)."""
+    kinds = ("failure", "label swap", "cap hit")
+    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), sharey=True)
+    n_curves = 2 * len(rates)
+    for ax, kind in zip(axes, kinds):
+        for k, (label, rows) in enumerate(rates.items()):
+            d = np.array(list(rows), dtype=float)
+            for a, (alg, ls) in enumerate((("ULA", "-"), ("two-stage", "--"))):
+                if f"{alg} {kind}" not in next(iter(rows.values())):
+                    continue  # Fig 7's plain EM: cap hits only
+                ests = [rows[x][f"{alg} {kind}"] for x in rows]
+                v = np.array([e.value for e in ests])
+                err = [v - [e.ci_low for e in ests], np.array([e.ci_high for e in ests]) - v]
+                shift = 0.03 * (2 * k + a - (n_curves - 1) / 2)  # side by side, so the intervals stay apart
+                ax.errorbar(
+                    d + shift,
+                    v,
+                    yerr=err,
+                    ls=ls,
+                    color=f"C{k}",
+                    marker="o",
+                    ms=3,
+                    capsize=2,
+                    lw=1,
+                    label=f"{alg}, {label}",
+                )
+        ax.set(xlabel="separation d / sigma", ylabel="share of trials", title=kind, ylim=(-0.02, 1.02))
+    axes[-1].legend(fontsize=6)  # the cap-hit panel holds every curve (Fig 7: cap hits only)
+    return fig
+
+
+def bic_figure(shares):
+    """Share of trials in which BIC picks each number of objects (:func:`.extras.bic_correct_q`) against
+    separation; two objects are there."""
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    d = list(shares)
+    for name in next(iter(shares.values())):
+        _band(ax, d, [shares[x][name] for x in d], name)
+    ax.set(xlabel="separation d / sigma", ylabel="share of trials choosing Q'", ylim=(-0.02, 1.02))
+    ax.legend(fontsize=7)
     return fig

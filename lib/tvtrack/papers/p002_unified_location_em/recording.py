@@ -14,7 +14,7 @@ import numpy as np
 from tvtrack.plotting import colour, rgb
 from tvtrack.recordings import Recorder, image_and_series_blueprint
 from .em import match_labels, pixel_entries, responsibility_maps, unified_location_em
-from .model import designate, draw_truth, frame_times, mixture_weights, scene_geometry, simulate_counts
+from .model import designate, draw_truth, frame_times, mixture_weights, noise_per_pixel, scene_geometry, simulate_counts
 from .two_stage import em_marks, fit_lines, propagate
 
 __all__ = ["BLUEPRINT", "count_image", "record_trial"]
@@ -60,7 +60,7 @@ def record_trial(
     (T, 2), each object's labels matched to the truth first."""
     g = scene_geometry(2, frames, separation, pixel, velocity, 6.0)
     times, s = frame_times(frames), g.sigma_px
-    noise = noise_density / s**2
+    noise = noise_per_pixel(noise_density, s)
     p, p0 = mixture_weights(photons, noise, g.n_pixels, 2)
     truth = draw_truth(rng, 1, g)
     desig = designate(rng, truth, designation_sd * s)

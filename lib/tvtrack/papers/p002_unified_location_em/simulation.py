@@ -29,15 +29,29 @@ import numpy as np
 from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, position_crb_sum
 from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
-from scipy import stats
-
-from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, bootstrap_ci, mean_square_ci, proportion_ci
+from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,
     frame_times,
     mixture_weights,
+    noise_per_pixel,
     scene_batches,
     scene_geometry,
+)
+
+from .summaries import (  # noqa: F401  (re-exported: the summaries lived here before)
+    FLAG_NAMES,
+    SPREADS,
+    bootstrap_groups,
+    centred_squares,
+    failure_metrics,
+    failure_rate,
+    gross_errors,
+    mse_sum,
+    position_errors,
+    seed_blocks,
+    variance_ratio_ci,
+    variance_sum,
 )
 
 #: Algorithm letters of :attr:`Config.algs`.
@@ -58,12 +72,6 @@ ALGORITHMS = {
 #: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the
 #: block machinery (:func:`seed_blocks`) still reads old results.
 N_SEED_BLOCKS = 1
-#: Columns of the per-trial flag arrays ``ula_flags``, ``em_flags`` and ``cr_flags``.
-FLAG_NAMES = {
-    "ula": ("swap", "merge", "cap_hit", "degenerate", "left_frame"),
-    "em": ("swap", "line_fit_invalid", "cap_hit", "missing_marks"),
-    "cr": ("swap", "line_fit_invalid"),
-}
 
 
 @dataclass(frozen=True)
@@ -107,12 +115,17 @@ class StudySettings:
         covers the initial positions only, the line fit is ordinary least squares), or the designated
         velocity with its error ``designation_velocity_sd`` ("designated": the MAP prior's velocity sd is
         that error, the line fit keeps the designated velocity and fits the intercept).
-    tracks : {"parallel", "crossing"}
-        Two-object scenes: the common velocity, or object 2 with its y velocity lowered by ``2 d / (T - 1)`` so
-        that the tracks cross at mid-sequence (they start ``d`` apart and end ``d`` apart on the other side).
+    tracks : {"parallel", "crossing", "diverging"}
+        Two-object scenes: the common velocity, or object 2 with its y velocity lowered (raised) by
+        ``2 d / (T - 1)``: the tracks cross at mid-sequence (diverge from ``d`` to ``3 d``); see
+        :func:`track_velocities`.
     n_bootstrap : int
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
+    tol_loglik : float or None
+        The matched practical stop (nats): every EM of the ULA and of the per-frame marks stops when the
+        log-likelihood it can still gain is below this (each on its own likelihood: all frames for the ULA, one
+        frame for a mark; ``tol_sigma`` is then not used). ``None``: the parameter-change rule ``tol_sigma``.
     """
 
     seed: int
@@ -135,6 +148,7 @@ class StudySettings:
     n_bootstrap: int
     velocity_knowledge: str = "free"
     tracks: str = "parallel"
+    tol_loglik: float | None = None
 
 
 CANONICAL_SETTINGS = StudySettings(
@@ -307,13 +321,15 @@ def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: floa
 
 
 def track_velocities(velocity_sigma, tracks: str, q: int, d: float, T: int):
-    """Per-object velocities (sigma/frame), shape (Q, 2): the common velocity, or for ``tracks = "crossing"`` and
-    two objects object 2's y velocity lowered by ``2 d / (T - 1)`` (the tracks cross at mid-sequence)."""
-    if tracks not in ("parallel", "crossing"):
-        raise ValueError(f"tracks = {tracks!r} must be 'parallel' or 'crossing'")
+    """Per-object velocities (sigma/frame), shape (Q, 2): the common velocity (``"parallel"``), or for two objects
+    object 2's y velocity lowered by ``2 d / (T - 1)`` (``"crossing"``: they start ``d`` apart and end ``d`` apart
+    on the other side, crossing at mid-sequence) or raised by it (``"diverging"``: they start ``d`` apart and end
+    ``3 d`` apart, like satellites separating after their release from one launcher, the paper's example)."""
+    if tracks not in ("parallel", "crossing", "diverging"):
+        raise ValueError(f"tracks = {tracks!r} must be 'parallel', 'crossing' or 'diverging'")
     v = np.tile(np.asarray(velocity_sigma, dtype=float), (q, 1))
-    if tracks == "crossing" and q == 2 and T > 1:
-        v[1, 1] -= 2.0 * d / (T - 1)
+    if tracks != "parallel" and q == 2 and T > 1:
+        v[1, 1] += (-2.0 if tracks == "crossing" else 2.0) * d / (T - 1)
     return v
 
 
@@ -351,7 +367,8 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     dict
         Per algorithm letter run: ``ula``/``plain``/``map``/``em``/``cr`` errors (n, Q, 4) in sigma,
         ``*_flags`` (n, k) bool with columns :data:`FLAG_NAMES`, ``*_iter`` (n,) EM steps
-        (``em_iter``, ``em_plain_iter``: summed over frames), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
+        (``em_iter``, ``em_plain_iter``: summed over frames), ``plain_cap`` / ``em_plain_cap`` (n,) the plain EM's
+        iteration cap hit (marks: in some frame), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
         ``timing`` (wall seconds per algorithm), ``crb_pos`` / ``crb_vel`` (trace of the position /
         velocity block of the CRB, sigma^2, averaged over the sub-pixel phase), ``crb_x0`` (the bound
         on x_o of the first object alone), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
@@ -361,7 +378,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     accel = None if s_.accelerate == "none" else "squarem"
     g = scene_geometry(q, T, d, pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
     s = g.sigma_px
-    noise_pp = s_.noise_density / s**2  # photons per pixel = density x pixel area
+    noise_pp = noise_per_pixel(s_.noise_density, s)  # photons per pixel = density x pixel area
     times = frame_times(T)
     p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
     tol = s_.tol_sigma * s
@@ -374,12 +391,14 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             "ula_iter",
             "plain",
             "plain_iter",
+            "plain_cap",
             "map",
             "em",
             "em_vd",
             "em_flags",
             "em_iter",
             "em_plain_iter",
+            "em_plain_cap",
             "cr",
             "cr_flags",
             "bic",
@@ -398,7 +417,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         ent = pixel_entries(b.counts)
         em_args, em_kw = (
             (b.designation, s, p, p0),
-            dict(tol_px=tol, max_iter=s_.max_iter),
+            dict(tol_px=tol, max_iter=s_.max_iter, tol_loglik=s_.tol_loglik),
         )  # common to every ULA variant
         if "u" in algs:
             t0 = time.perf_counter()
@@ -415,6 +434,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             timing["plain"] += time.perf_counter() - t0
             out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
             out["plain_iter"].append(r.n_iter)
+            out["plain_cap"].append(r.cap_hit)
         if "m" in algs:
             t0 = time.perf_counter()
             prior = map_prior_sd(s_.velocity_knowledge, dsd, vsd, s)
@@ -426,6 +446,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             association=s_.mark_association if assoc is None else assoc,
             tol_px=tol,
             max_iter=s_.max_iter,
+            tol_loglik=s_.tol_loglik,
         )
         if "e" in algs:
             t0 = time.perf_counter()
@@ -446,6 +467,7 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
             mk = em_marks(b.counts, b.designation, times, s, p, p0, **mark_args)
             timing["em_plain"] += time.perf_counter() - t0
             out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
+            out["em_plain_cap"].append(mk.cap_hit.any(axis=1))
         if "c" in algs:
             t0 = time.perf_counter()
             mk = centre_of_region_marks(
@@ -623,222 +645,3 @@ class LocationStudy:
     def groups_ci(self, groups, statistic) -> Estimate:
         """:func:`bootstrap_groups` with :meth:`bootstrap_rng` and ``settings.n_bootstrap`` resamples."""
         return bootstrap_groups(groups, statistic, self.bootstrap_rng(), self.settings.n_bootstrap)
-
-
-# -- summaries ------------------------------------------------------------------------------------
-
-
-def position_errors(result: dict, alg: str, epoch: str = "first", trials=None) -> np.ndarray:
-    """Errors of one algorithm at one epoch, shape (n, 2Q), sigma (sigma/frame for velocity).
-
-    Parameters
-    ----------
-    result : dict
-        A :func:`run_config` result.
-    alg : str
-        ``"ula"``, ``"plain"``, ``"em"``, ``"cr"`` or another error array of ``result``.
-    epoch : {"first", "mid", "last", "velocity"}
-        Position error at the first frame ``t = 0`` (the paper's "initial position", an
-        extrapolated end of the fitted line), at the middle ``t = (T-1)/2`` (where a line fit is
-        most accurate), at the last frame ``t = T-1``, or the velocity error.
-    trials : array of bool or int, optional
-        The trials to keep (e.g. one seed block, :func:`seed_blocks`).
-    """
-    e = result[alg] if trials is None else result[alg][trials]
-    t_last = result["T"] - 1
-    t = {"first": 0.0, "mid": t_last / 2, "last": float(t_last), "velocity": None}
-    if epoch not in t:
-        raise ValueError(f"epoch = {epoch!r} must be one of {list(t)}")
-    out = e[..., 2:4] if epoch == "velocity" else e[..., :2] + t[epoch] * e[..., 2:4]
-    return out.reshape(len(e), -1)
-
-
-def seed_blocks(result: dict) -> dict[int, np.ndarray]:
-    """``{seed: boolean mask of the trials drawn from it}`` (:data:`N_SEED_BLOCKS` blocks)."""
-    return {int(s): result["seed"] == s for s in np.unique(result["seed"])}
-
-
-def centred_squares(e) -> np.ndarray:
-    """Per-trial summed squared deviations from the column means, ``n/(n-1)`` corrected, shape (n,):
-    their mean is the sum of the column variances of ``e`` (n, k)."""
-    e = np.asarray(e, dtype=float)
-    return ((e - e.mean(axis=0)) ** 2).sum(axis=1) * len(e) / (len(e) - 1)
-
-
-def variance_sum(e) -> Estimate:
-    """Sum of the variances of the columns of ``e`` (n, k) with a BCa bootstrap interval of the
-    per-trial centred squares (never below zero; the mean's own uncertainty is second order)."""
-    return mean_square_ci(centred_squares(e))
-
-
-def mse_sum(e) -> Estimate:
-    """Sum of the mean squared values of the columns of ``e`` (n, k), with a BCa bootstrap interval."""
-    return mean_square_ci((np.asarray(e, dtype=float) ** 2).sum(axis=1))
-
-
-def bootstrap_groups(
-    groups, statistic, rng: np.random.Generator, n_bootstrap: int = N_BOOTSTRAP, confidence: float = 0.95
-) -> Estimate:
-    """A statistic of several independent groups of trials with a percentile bootstrap interval
-    (:func:`tvtrack.montecarlo.bootstrap_ci` with trials as clusters of their ``k_g`` values).
-
-    The rows (trials) of each group are resampled jointly (a group holds the paired errors of
-    several algorithms on the same scenes); different groups (different configurations, drawn
-    from different seeds) are resampled independently.
-
-    Parameters
-    ----------
-    groups : sequence of ndarray, each shape (n_g, k_g)
-        Per-trial values, one row per trial.
-    statistic : callable
-        ``statistic(*arrays)`` with arrays of shape (B, n_g, k_g) returns shape (B,).
-    rng : numpy.random.Generator
-        Draws the resample indices.
-    n_bootstrap : int
-        Resamples (at least 2000 for 95 % tails).
-
-    Returns
-    -------
-    Estimate
-        The statistic on the data, the bootstrap standard deviation, the percentile interval,
-        ``n`` the smallest group size. Resamples whose statistic is not finite (a resample of a
-        few trials that repeats one trial has zero variance) are left out.
-    """
-    groups = [np.asarray(g, dtype=float).reshape(len(g), -1) for g in groups]
-    ks = [g.shape[1] for g in groups]
-    labels = [np.repeat(np.arange(len(g)), k) for g, k in zip(groups, ks)]
-
-    def stat(*flat, axis=-1):  # the one bootstrap hands over rows flattened: reshape to (B, n_g, k_g)
-        arrs = [np.asarray(x).reshape(*np.shape(x)[:-1], -1, k) for x, k in zip(flat, ks)]
-        with np.errstate(divide="ignore", invalid="ignore"):  # a resample of few trials can repeat one trial
-            out = statistic(*[a if a.ndim == 3 else a[None] for a in arrs])
-        return out if np.ndim(flat[0]) > 1 else float(np.ravel(out)[0])
-
-    paired = len(groups) == 1
-    return bootstrap_ci(
-        [g.ravel() for g in groups],
-        stat,
-        paired=paired,
-        groups=labels[0] if paired else labels,
-        rng=rng,
-        n_resamples=n_bootstrap,
-        confidence=confidence,
-        method="percentile",
-    )
-
-
-def _var_sum(e):
-    """Summed column variances of resampled errors (B, n, k) -> (B,)."""
-    return e.var(axis=1, ddof=1).sum(axis=-1)
-
-
-def _mean_square_sum(e):
-    return (e**2).mean(axis=1).sum(axis=-1)
-
-
-def _trimmed_var_sum(e, trim: float = 0.1):
-    """10 %-trimmed mean of the per-trial centred squares (B, n, k) -> (B,): a variance sum that a few
-    gross errors cannot dominate."""
-    c = ((e - np.median(e, axis=1, keepdims=True)) ** 2).sum(axis=-1)
-    return stats.trim_mean(c, trim, axis=1)
-
-
-def _median_square(e):
-    """Median of the per-trial summed squared errors (B, n, k) -> (B,)."""
-    return np.median((e**2).sum(axis=-1), axis=1)
-
-
-#: Spread statistics of :func:`variance_ratio_ci`: a sum over coordinates of (B, n, k) -> (B,).
-SPREADS = {
-    "variance": _var_sum,
-    "mse": _mean_square_sum,
-    "trimmed_variance": _trimmed_var_sum,
-    "median_square": _median_square,
-}
-
-
-def variance_ratio_ci(
-    e_num,
-    e_den,
-    rng: np.random.Generator,
-    n_bootstrap: int = N_BOOTSTRAP,
-    paired: bool = True,
-    mse: bool = False,
-    sqrt: bool = False,
-    spread: str = "variance",
-) -> Estimate:
-    """Ratio of summed column variances (or another spread) of two error samples, with a
-    percentile bootstrap CI.
-
-    Unlike :func:`tvtrack.montecarlo.ratio_ci` (a ratio of means), this is a ratio of variance
-    *sums*, e.g. the gain ``rho = Sigma^2_traj / Sigma^2_ULA``.
-
-    Parameters
-    ----------
-    e_num, e_den : ndarray, shape (n1, k) and (n2, k)
-        Per-trial errors (any unit; the ratio is unit-free).
-    rng : numpy.random.Generator
-        Draws the resample indices.
-    n_bootstrap : int
-        Number of resamples.
-    paired : bool
-        Resample trials jointly (same samples for both, requires ``n1 == n2``; otherwise
-        independent resamples).
-    mse : bool
-        Shorthand for ``spread="mse"`` (summed mean squares instead of variances).
-    sqrt : bool
-        Report the square root (ratio of RMS / standard deviations).
-    spread : {"variance", "mse", "trimmed_variance", "median_square"}
-        The spread statistic (:data:`SPREADS`): the last two are robust to a few gross errors.
-
-    Returns
-    -------
-    Estimate
-        Point ratio, bootstrap standard deviation, 2.5 % and 97.5 % quantiles, ``min(n1, n2)``.
-    """
-    f = SPREADS["mse" if mse else spread]
-    e_num, e_den = np.asarray(e_num, float), np.asarray(e_den, float)
-    k = e_num.shape[1]
-    if paired:
-        if len(e_num) != len(e_den):
-            raise ValueError(f"paired ratio needs equal sample sizes, got {len(e_num)} and {len(e_den)}")
-        r = bootstrap_groups([np.hstack([e_num, e_den])], lambda e: f(e[..., :k]) / f(e[..., k:]), rng, n_bootstrap)
-    else:
-        r = bootstrap_groups([e_num, e_den], lambda a, b: f(a) / f(b), rng, n_bootstrap)
-    if sqrt:
-        return Estimate(
-            float(np.sqrt(r.value)),
-            r.stderr / (2 * np.sqrt(r.value)),
-            float(np.sqrt(r.ci_low)),
-            float(np.sqrt(r.ci_high)),
-            r.n,
-            r.confidence,
-            r.method,
-        )
-    return r
-
-
-def failure_rate(flags) -> Estimate:
-    """Proportion of true flags with a Clopper-Pearson interval."""
-    return proportion_ci(int(np.sum(flags)), len(flags))
-
-
-def gross_errors(result: dict, alg: str, limit_sigma: float = 2.0) -> np.ndarray:
-    """Trials (n,) in which some position error exceeds ``limit_sigma``."""
-    return (np.abs(result[alg][..., :2]) > limit_sigma).any(axis=(1, 2))
-
-
-def failure_metrics(result: dict, algs=("ula", "em")) -> dict[str, Estimate]:
-    """Failure rates of one configuration: ``<alg>/gross_rate`` and ``<alg>/<flag>_rate`` for the
-    estimator-failure flags of :data:`FLAG_NAMES` (ULA and iterative marks). A label swap is not a
-    failure (errors are taken after the best label order, so it costs nothing) and is left out."""
-    out = {}
-    for a in algs:
-        if a not in result:
-            continue
-        out[f"{a}/gross_rate"] = failure_rate(gross_errors(result, a))
-        if a in ("ula", "em"):
-            for k, name in enumerate(FLAG_NAMES[a]):
-                if name != "swap":
-                    out[f"{a}/{name}_rate"] = failure_rate(result[f"{a}_flags"][:, k])
-    return out

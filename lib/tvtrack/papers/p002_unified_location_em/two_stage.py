@@ -151,6 +151,7 @@ def em_marks(
     tol_px: float = 1e-6,
     max_iter: int = 5000,
     accelerate: str | None = None,
+    tol_loglik: float | None = None,
 ) -> Marks:
     """Marks from the iterative per-frame EM ("mark formation", ref. [5]).
 
@@ -169,8 +170,9 @@ def em_marks(
         (no designation).
     association : {"designation", "assignment", "lines"}
         See the module docstring; ``"lines"`` uses no designation.
-    tol_px, max_iter, accelerate
-        Stopping rule and acceleration of the per-frame EM.
+    tol_px, max_iter, accelerate, tol_loglik
+        Stopping rule and acceleration of the per-frame EM (``tol_loglik``: on each frame's own
+        log-likelihood, see :func:`unified_location_em`).
     """
     counts = np.asarray(counts)
     designation = np.asarray(designation, dtype=float)
@@ -202,6 +204,7 @@ def em_marks(
             tol_px=tol_px,
             max_iter=max_iter,
             accelerate=accelerate,
+            tol_loglik=tol_loglik,
         )
         xy = res.theta[..., :2].reshape(n, t, q, 2)
         valid = ~res.degenerate.reshape(n, t)[..., None] & np.ones(q, dtype=bool)
@@ -226,6 +229,7 @@ def em_marks(
                 tol_px=tol_px,
                 max_iter=max_iter,
                 accelerate=accelerate,
+                tol_loglik=tol_loglik,
             )
             xy[:, l] = res.theta[..., :2]
             valid[:, l] = ~res.degenerate[:, None]
