@@ -128,7 +128,7 @@ def test_flips_markdown_is_short_and_plain():
 def test_screen_is_the_same_study_on_less_data():
     """The joint design's screen keeps the paths, folds and grids of the floor and windows (the verdicts read the
     same comparisons) and halves the frames, quarters the training pairs and the variance check, and keeps the
-    lag grid's two ends; never below the smallest run the parameters allow."""
+    lag grid's two ends; never below the smallest run the parameters allow, and no screen below 400 frames."""
     full = study.StudySize()
     s = study.screen_size(full)
     assert (s.n_paths, s.n_folds, s.floor_grid, s.window_grid) == (
@@ -138,8 +138,9 @@ def test_screen_is_the_same_study_on_less_data():
         full.window_grid,
     )
     assert (s.n_frames, s.train_samples, s.n_mc_variance, s.lag_grid) == (500, 1000, 5000, (1, 16))
-    small = study.screen_size(SIZE)
-    assert small.n_frames == 200 and small.train_samples == 300 and small.lag_tuning_samples <= small.train_samples
+    assert study.screen_size(SIZE) == SIZE  # 200 frames: nothing to halve, so no screen
+    mid = study.screen_size(study.replace(SIZE, n_frames=400))
+    assert mid.n_frames == 200 and mid.train_samples == 300 and mid.lag_tuning_samples <= mid.train_samples
 
 
 def test_variant_floor_forecast():

@@ -166,7 +166,10 @@ def screen_size(size: StudySize) -> StudySize:
     """The explorer's cheaper screen of the joint design (``explore(screen=...)``): the same paths and folds at
     half the frames (at least 200), a quarter of the networks' training pairs (at least 300), a quarter of the
     variance check's series and the lag grid's two ends; a joint configuration whose screened verdict is not
-    decisively the default's is measured again at ``size``."""
+    decisively the default's is measured again at ``size``. A run of fewer than 400 frames (the smoke profile) is
+    returned as it is: halving it would leave too few frames, so the notebook then screens nothing."""
+    if size.n_frames < 400:
+        return size
     lags = tuple(sorted({min(size.lag_grid), max(size.lag_grid)}))
     return replace(
         size,
