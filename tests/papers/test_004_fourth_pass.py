@@ -162,3 +162,23 @@ def test_variant_floor_forecast():
     states = pr.g1_floor_filter(z, growing_memory_gains(2, 10)[-1, 0])
     np.testing.assert_allclose(pr.g1_floor_forecast(z, 10, 3), predict_ahead(states, 3), rtol=1e-12, equal_nan=True)
     assert not np.allclose(pr.g1_floor_forecast(z, 10)[:, 20:], pr.growing_memory_forecast(z, 1, 2, 10)[:, 20:])
+
+
+def test_c004_4_lost_frame_flip_reads_limited_not_depends():
+    """The pinned lost-frame condition that breaks the recursion is a world beyond the paper: the core labels the
+    part `limited` and names the flip as a world, in plain words ("frames lost ...; lost frames skipped ...")."""
+    from tvtrack.labels import label_parts
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction.claims import RULES
+
+    reg = build()
+    rule = RULES["C004-4"]
+    exact = lambda v: Estimate.exact(v)  # noqa: E731  (a deterministic computation)
+    reps = [{"seed": s, "measured": exact(1e-13)} for s in range(3)]
+    conds = [{"changed": dict(PINNED[0]), "kind": "pinned", "measured": exact(1.3)}]
+    conds += [{"changed": {"frame loss": 0.01}, "kind": "single", "measured": exact(1e-13)}]
+    conds += [{"changed": {"lost frames": "skipped (coast)"}, "kind": "single", "measured": exact(1e-13)}]
+    rec = label_parts(rule, exact(1e-13), reps, conds, [reg[k] for k in DEPENDS["C004-4"]], deterministic=True)
+    assert rec["label"] == "limited"
+    (flip,) = rec["parts"]["claim"]["flips"]
+    assert flip["side"] == "world" and "frames lost" in flip["text"] and "coasts" in flip["text"]
