@@ -289,7 +289,7 @@ def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = E
         ``wander_rms_px`` are the path draws (before averaging).
     """
     w = exposure_weights(exposure, k)
-    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (beam_wander.exposure_gain)
+    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (gtilt.exposure_gain)
         dt = 1.0 / scene.frame_rate_hz
         tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
         tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
