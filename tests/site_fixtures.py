@@ -195,3 +195,59 @@ def built_site(runs_dir):
     from tvtrack.pipeline.site import build_site
 
     return build_site(runs_dir).parent
+
+
+def make_explored_runs(root):
+    """``root/reproduce/001_explored``: one run whose claims carry the explorer's record (shares, flips by phrase,
+    runs to decide, a smoke-size design, a long deterministic vector; :mod:`record_fixtures`)."""
+    from record_fixtures import CLAIMS
+
+    run = root / "reproduce" / "001_explored"
+    run.mkdir(parents=True)
+    (run / "run.json").write_text(
+        json.dumps(
+            {
+                "notebook": "001_explored",
+                "profile": "paper",
+                "status": "ok",
+                "runtime_s": 5.0,
+                "finished_utc": "2026-11-28T10:00:00Z",
+            }
+        )
+    )
+    (run / "results.json").write_text(
+        json.dumps(
+            {
+                "notebook": "001_explored",
+                "citation": "Explored: a paper",
+                "seed": 1,
+                "runtime_s": 4.0,
+                "git_commit": None,
+                "figures": [],
+                "claims": CLAIMS,
+                "recording": None,
+            }
+        )
+    )
+    cells = [
+        {
+            "cell_type": "code",
+            "id": f"e{k}",
+            "metadata": {},
+            "execution_count": k + 1,
+            "outputs": [],
+            "source": f"results.claim(id='{c['id']}', ...)",
+        }
+        for k, c in enumerate(CLAIMS)
+    ]
+    (run / "notebook.ipynb").write_text(
+        json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": cells})
+    )
+    return root
+
+
+@pytest.fixture(scope="session")
+def explored_site(tmp_path_factory):
+    from tvtrack.pipeline.site import build_site
+
+    return build_site(make_explored_runs(tmp_path_factory.mktemp("explored-runs"))).parent

@@ -26,6 +26,7 @@ def test_claims_table_one_line_per_claim(tmp_path):
     lines = table.splitlines()
     assert len(lines) == 3 and lines[0].startswith("| claim | the paper says")
     assert r"sigma\*2" in lines[2] and "1.5 [1.3, 1.7]" in lines[2] and "**reproduced**" in lines[2]
-    assert "unexplored" in lines[2] and "independent replicates" in lines[2]  # the label says what it covers
+    # a hand-built record explores no configuration: its label is provisional, never robust, and the sentence says so
+    assert "| provisional |" in lines[2] and "(too few configurations to label)" in lines[2]
     assert claims_table([c.__dict__ for c in res.claims]) == table  # results.json dicts render the same
     assert format_measured({"a": Estimate(1, 0, 1, 1, 1, method="exact")}) == "a: 1"

@@ -286,3 +286,26 @@ def test_screened_singles_are_confirmed_at_full_size_where_they_may_flip():
 
 def _small_single(config, seed):
     return {"X": _mean(seed, 3.0 * (config["c"] == 1) + 0.05 * config["e"], n=40)}
+
+
+def test_a_by_reading_claim_keeps_its_parts_and_judges_each_condition_by_its_reading():
+    from tvtrack.verdicts import AllOf, ByReading
+
+    share = AllOf({f"variant {v}": InBand(f"late share {v}", high=0.1) for v in (1, 2)})
+    ratio = AllOf({f"variant {v}": InBand(f"ratio {v}", 0.9, 1.1) for v in (1, 2)})
+    rule = ByReading("criterion", {"ratio": ratio}, default=share)
+    reg = [Entry("criterion", "reading", "share", ("share", "ratio"), "w"), Entry("w", "regime", 0, (0, 1), "w")]
+    late = {f"variant {v}": Estimate.exact(0.02) for v in (1, 2)}
+    reps = [{"seed": s, "measured": ByReading.tag("share", late)} for s in (1, 2, 3)]
+    near_one = {"variant 1": Estimate.exact(1.003), "variant 2": Estimate.exact(1.5)}
+    rec = label_parts(
+        rule,
+        reps[0]["measured"],
+        reps,
+        [{"changed": {"criterion": "ratio"}, "kind": "single", "measured": ByReading.tag("ratio", near_one)}],
+        reg,
+    )
+    assert set(rec["parts"]) == {"variant 1", "variant 2"}
+    # the ratio 1.003 is judged by the ratio's rule (reproduced), 1.5 by it too (not reproduced): one flip, named
+    assert rec["conditions"][0]["parts"] == {"variant 1": "reproduced", "variant 2": "not reproduced"}
+    assert rec["parts"]["variant 1"]["flips"] == [] and rec["parts"]["variant 2"]["label"] == "depends"

@@ -113,10 +113,14 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     text = path.read_text()
     assert (
         "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
-        "of the checkable verdicts **0 robust · 1 unexplored · 0 limited · 0 depends · 0 unstable**"
+        "of the checkable verdicts **0 robust · 0 limited · 0 unexplored · 0 depends · 0 unstable · 1 provisional**"
     ) in text
-    # the fixture varies nothing of a simulated world: it cannot be called robust
-    assert "| C900-1 | **reproduced** | unexplored |" in text and "**Profile shown: paper**" in text
+    # the fixture's design is far too small for a share: never robust, shown as provisional
+    assert re.search(
+        r"\| C900-1 \| [^|]+ \| \*\*reproduced\*\* \| provisional \| Reproduced \(too few configurations to label\): ",
+        text,
+    )
+    assert "**Profile shown: paper**" in text
     assert "centroid_errors.png" in text and "recording.rrd" in text
     assert re.search(r"`python -m tvtrack view \S*fixture_centroid`", text)
     assert "**Run failed**" in text and "parameter 'n_trials' = 0" in text
@@ -125,13 +129,18 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
 
 def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
-    assert ("**1 robust · 0 unexplored · 0 limited · 1 depends · 0 unstable** · 1 without a robustness record") in text
+    assert ("**1 robust · 0 limited · 0 unexplored · 1 depends · 0 unstable** · 1 without a robustness record") in text
     assert (
         "By verdict: 1 reproduced (1 robust) · 1 partly (1 no record) · 1 not reproduced (1 depends) · 1 not checkable."
     ) in text
-    assert "| C010-2 | **not reproduced** | depends | reproduced when epoch = mid, designation\\_sd = 1.0 |" in text
-    assert "| C010-3 | **not checkable** | — |  |" in text
-    assert "| C011-1 | **partly** | — |  |" in text
+    # the flip named by the register's words, not the record's legacy "where" line with its code names
+    assert (
+        "| C010-2 | The gain is 4. | **not reproduced** | depends | Not reproduced: 1.5 \\[1.2, 1.8\\] against \\[0, 2\\]. "
+        "Flips when epoch = mid. |"
+    ) in text
+    assert "designation\\_sd" not in text
+    assert "| C010-3 | A claim. | **not checkable** | — | Not checkable: nothing measurable |" in text
+    assert "| C011-1 | A claim. | **partly** | — | Partly: 1.5 \\[1.2, 1.8\\]. |" in text
 
 
 def test_verdict_summary_counts_labels_per_verdict():
@@ -151,12 +160,15 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
     text = readme.read_text()
     assert text.startswith("intro\n") and text.endswith(f"{README_END}\nrest\n") and "hand-written" not in text
-    assert "4 claims (paper profile): **1 reproduced · 1 partly · 1 not reproduced · 1 not checkable**" in text
+    assert text.index(README_BEGIN) < text.index("Of 4 claims checked, 1 holds, 1 holds in part and 1 does not")
+    assert "| 010\\_new | 3 | 1 | 0 | 1 | 0 | 1 | 1 robust, 1 depends |" in text  # one row per paper
+    assert "**robust**: no explored reading" in text and "**undecided**: the interval straddles" in text  # glossary
+    # the headline finding: one line with statement, verdict, label and its sentence
     assert (
-        "1 robust, 0 unexplored, 0 limited, 1 depends, 0 unstable" in text and "1 without a robustness record" in text
-    )
-    # the headline finding: one line with statement, paper value, measured interval, verdict, label
-    assert "| 010 C010-2 | The gain is 4. | 1 | 1.5 \\[1.2, 1.8\\] | **not reproduced** | depends |" in text
+        "- **010 C010-2** (not reproduced, depends) *The gain is 4.* Not reproduced: 1.5 \\[1.2, 1.8\\] against "
+        "\\[0, 2\\]. Flips when epoch = mid."
+    ) in text
+    assert "C010-1" not in text  # reproduced claims are counted, not listed
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
     before = readme.stat().st_mtime_ns
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
@@ -168,7 +180,7 @@ def test_generated_text_is_escaped_in_markdown(tmp_path):
     claim = _claim(
         "C020-1",
         "not reproduced",
-        {**DEPENDS, "where": ["partly when reading = v1 / sigma*2"]},
+        {**DEPENDS, "conditions": [{"choices": {"reading": "v1 / sigma*2"}, "verdict": "reproduced"}]},
         "The error is sigma*2 * k_gain | <b>",
     )
     _synthetic_run(root, "020_esc", [claim])
@@ -178,7 +190,7 @@ def test_generated_text_is_escaped_in_markdown(tmp_path):
     for text in (report, readme.read_text()):
         assert "The error is sigma\\*2 \\* k\\_gain \\| \\<b\\>" in text
         assert "sigma*2" not in text.replace("sigma\\*2", "")
-    assert "partly when reading = v1 / sigma\\*2" in report
+    assert "Flips when reading = v1 / sigma\\*2." in report
 
 
 def test_first_screen_orders_failures_then_dependent_verdicts_and_reads_new_records(tmp_path):
@@ -333,3 +345,74 @@ def test_ctrl_c_during_reproduce_keeps_earlier_runs_and_leaves_no_temporaries(tm
     assert lines[-1].startswith("interrupted: reproduce") and "kept" in lines[-1], stdout + stderr
     assert not list(folder.glob(".tmp-*")) and not list(folder.glob(".new-*"))
     assert {p.name: p.read_bytes() for p in earlier.iterdir()} == before
+
+
+# --- the report a reader understands in a minute (issue 36) ------------------------------------------------------
+
+
+@pytest.fixture
+def explored_runs(tmp_path):
+    """Two runs whose claims carry the explorer's record (share, flips, runs to decide, register phrases)."""
+    from record_fixtures import CLAIMS
+
+    root = tmp_path / "reproduce"
+    _synthetic_run(root, "001_explored", CLAIMS[:3] + CLAIMS[4:])
+    _synthetic_run(root, "002_smoke", CLAIMS[3:4], profile="smoke")
+    return root
+
+
+def _sentence_cells(text: str) -> dict[str, str]:
+    """``{claim id: its sentence}`` from the per-notebook tables (the last cell), unescaped."""
+    cells = {}
+    for m in re.finditer(r"^\| (C\d{3}-\w+) \| .* \| ([^|]*(?:\\\|[^|]*)*) \|$", text, re.M):
+        cells[m.group(1)] = m.group(2).replace("\\", "")
+    return cells
+
+
+def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explored_runs, tmp_path):
+    from record_fixtures import CLAIMS, REGISTER_KEYS
+
+    text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
+    cells = _sentence_cells(text)
+    assert set(cells) == {c["id"] for c in CLAIMS}
+    assert all(len(s) <= 250 for s in cells.values()), {k: len(s) for k, s in cells.items()}
+    for key in REGISTER_KEYS:  # phrases only: no register key, plain or escaped, anywhere in the report
+        assert key not in text and key.replace("_", "\\_") not in text, key
+    # the reading that flips C001-3 comes before the world it does not extend to
+    assert cells["C001-3"] == (
+        "Not reproduced: 351.6 [350, 353.1] x alpha against [0, 2] x alpha. 29 of 32 explored configurations agree, "
+        "95 % CI 75-98 %. Flips when sigma read as the SD of the raw velocity increments; does not extend to a "
+        "target weaving at 0.1 T."
+    )
+    assert "About 7 replicates (560 trials) would decide it." in cells["C004-3b"]
+    # every measured value carries its unit or says what it is a ratio of
+    for c in CLAIMS:
+        if c["verdict"] == "not checkable":
+            continue
+        rules = c["rule"].get("parts", {"claim": c["rule"]}).values()
+        shown = [r["unit"] for r in rules if r["unit"] in cells[c["id"]]]
+        assert shown or "ratio of" in cells[c["id"]], (c["id"], cells[c["id"]])
+    # deterministic numbers show no interval; the 9-point vector is summarised by its ends and trend
+    assert not re.search(r"\[([-\d.e+]+), \1\]", text.replace("\\", ""))
+    assert "falls from 2.163e+05 px to 0.178 px over 9 points" in text and "7839" not in text
+
+
+def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
+    text = write_report(explored_runs, tmp_path / "R.md", notebooks=["002_smoke"]).read_text()
+    row = next(line for line in text.splitlines() if line.startswith("| C001-5 |"))
+    assert "| provisional |" in row and "robust" not in row and "too few configurations to label" in row
+    assert "**Profile shown: smoke**" in text and "its labels are provisional" in text
+    assert (
+        "of the checkable verdicts comes from a design too small to label (a smoke-size run): none of them is called robust"
+        in text
+    )
+
+
+def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explored_runs, tmp_path):
+    text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
+    head = "\n".join(text.splitlines()[:16])
+    assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
+    assert "The verdicts turn most often on how the target moves (2 claims)" in head
+    assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
+    assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
+    assert "- **001 C001-3** (not reproduced, depends)" in text and "- **001 C004-3b** (undecided, unexplored)" in text

@@ -143,3 +143,122 @@ def test_results_record_the_kernels_cpu_seconds(tmp_path):
     data = r.to_dict()
     # cpu_s comes from os.times (10 ms ticks): a stated 0.02 s below the 0.35 s spun
     assert 0.33 <= data["cpu_s"] < data["runtime_s"] - 0.25
+
+
+# --- a claim in plain words (issue 36) ------------------------------------------------------------------------------
+
+
+def test_numbers_carry_units_and_deterministic_ones_no_interval():
+    from tvtrack.results import format_measured
+
+    px = {"kind": "in_band", "unit": "px", "quantity": "prediction error"}
+    assert format_measured({"value": 0.6313, "ci_low": 0.5896, "ci_high": 0.676}, px) == "0.6313 [0.5896, 0.676] px"
+    # a zero-width interval is a deterministic number: no interval
+    assert format_measured({"value": 2.163e5, "ci_low": 2.163e5, "ci_high": 2.163e5}, px) == "2.163e+05 px"
+    # ends that round to the value get the figures they need to differ from it
+    assert format_measured({"value": 0.1667, "ci_low": 0.16668, "ci_high": 0.16672}) == "0.1667 [0.16668, 0.16672]"
+    # a one-sided interval; a ratio says what it is a ratio of; no unit: the quantity's name
+    assert format_measured({"value": 0.0, "ci_low": 0.0, "ci_high": None}, px) == "0 (at least 0) px"
+    ratio = {"unit": "ratio of MSEs, network / filter"}
+    assert format_measured(0.6209, ratio) == "0.6209 (ratio of MSEs, network / filter)"
+    assert format_measured(1.5, {"quantity": "speed-up"}) == "1.5 (speed-up)"
+
+
+def test_long_vectors_are_summarised_by_their_ends_and_trend():
+    from tvtrack.results import format_measured
+
+    ms = {"unit": "ms"}
+    falling = [{"value": v, "ci_low": v, "ci_high": v} for v in (322.3, 119.4, 60.07, 35.64, 23.45, 16.56)]
+    assert format_measured(falling, ms) == "falls from 322.3 ms to 16.56 ms over 6 points"
+    assert format_measured([1, 2, 3, 4, 5], ms) == "rises from 1 ms to 5 ms over 5 points"
+    assert format_measured([1, 3, 2, 4, 0.5], ms) == "ranges 0.5 to 4, going from 1 ms to 0.5 ms over 5 points"
+    assert format_measured([1, 2], ms) == "1, 2 ms"  # short vectors are shown whole
+
+
+def test_claim_summary_says_verdict_share_readings_then_worlds_within_two_lines():
+    import copy
+
+    from record_fixtures import DEPENDS, NOT_CHECKABLE, SMOKE, UNDECIDED
+    from tvtrack.results import claim_summary
+
+    assert claim_summary(DEPENDS) == (
+        "Not reproduced: 351.6 [350, 353.1] x alpha against [0, 2] x alpha. 29 of 32 explored configurations agree, "
+        "95 % CI 75-98 %. Flips when sigma read as the SD of the raw velocity increments; does not extend to a "
+        "target weaving at 0.1 T."
+    )
+    assert claim_summary(UNDECIDED) == (
+        "Undecided: 0.6209 [0.6162, 0.6256] against [0, 0.625] (ratio of MSEs, network / filter). "
+        "About 7 replicates (560 trials) would decide it."
+    )
+    assert claim_summary(SMOKE).startswith("Reproduced (too few configurations to label): ")
+    assert claim_summary(NOT_CHECKABLE) == "Not checkable: the recording of the real aircraft is not published"
+    # many long flips, worlds listed first in the record: readings still come first, and the sentence fits
+    crowded = copy.deepcopy(DEPENDS)
+    flips = crowded["robustness"]["parts"]["claim"]["flips"]
+    flips[:] = [{**flips[1], "text": f"a world number {k} " + "far " * 30} for k in range(4)] + [
+        {**flips[0], "text": f"reading number {k} " + "long " * 30} for k in range(4)
+    ]
+    text = claim_summary(crowded)
+    assert len(text) <= 250 and text.index("reading number 0") < text.index("a world number 0"), text
+    assert "(+3 more)" in text
+
+
+def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_their_phrases():
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.results import claim_flips
+
+    legacy = copy.deepcopy(DEPENDS)
+    for part in legacy["robustness"]["parts"].values():
+        del part["flips"]
+    flips = claim_flips(legacy)
+    # the decisive conditions whose verdict differs from the claim's: singles (readings, then worlds), then the
+    # smallest combinations, then joint samples
+    assert [f["text"] for f in flips] == [
+        "sigma read as the SD of the raw velocity increments",
+        "a target weaving at 0.1 T",
+        "sigma read as the SD of the raw velocity increments; gain bound set at frame 100",
+        "sigma read as the SD of the raw velocity increments; a target weaving at 0.1 T",
+    ]
+    assert [f["side"] for f in flips] == ["reading", "world", "reading", "world"]  # a world changed: a world
+
+
+def _toy_measure(config, seed):
+    rng = np.random.default_rng(seed)
+    shift = {"filtered": 0.0, "raw": 3.0}[config["reading"]] + {"straight": 0.0, "turn": 1.5}[config["motion"]]
+    x = rng.normal(1.0 + shift, 0.5, 200)
+    half = 2 * x.std() / np.sqrt(200)
+    return {"C999-1": Estimate(x.mean(), x.std() / np.sqrt(200), x.mean() - half, x.mean() + half, 200)}
+
+
+def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp_path):
+    """End to end through the core: Results.claim over an exploration, then the sentence and the curve from the
+    Claim object itself (as a notebook has it) and from its results.json dict."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from tvtrack.explore import explore
+    from tvtrack.plotting import specification_curve
+    from tvtrack.register import Register
+    from tvtrack.results import claim_summary
+
+    reg = Register(
+        [
+            Entry("reading", "reading", "filtered", ("filtered", "raw"), "what sigma is of", title="sigma's series",
+                  phrases={"filtered": "sigma of the filtered velocity", "raw": "sigma of the raw increments"}),
+            Entry("motion", "regime", "straight", ("straight", "turn"), "one pass", title="the target's motion",
+                  phrases={"straight": "a straight pass", "turn": "a 3 g turn"}),
+        ]
+    )  # fmt: skip
+    rule = InBand("per-test false-alarm rate / alpha", 0.0, 2.5, unit="x alpha")
+    ex = explore(_toy_measure, reg, {"C999-1": rule}, seed=3)
+    r = make(tmp_path)
+    claim = r.claim("C999-1", "s", "rho <= 0.5", rule, exploration=ex)
+    text = claim_summary(claim)
+    assert text.startswith("Reproduced: ") and " x alpha against [0, 2.5] x alpha." in text and len(text) <= 250
+    assert "Flips when sigma of the raw increments; does not extend to a 3 g turn." in text
+    assert "reading" not in text.replace("readings", "")  # the phrases, not the register keys
+    assert claim_summary(load_results(r.write())["claims"][0]) == text
+    fig, caption = specification_curve(claim)
+    assert "under each of" in caption and len(fig.axes) == 2

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from site_fixtures import built_site, runs_dir  # noqa: F401 - fixtures
+from site_fixtures import built_site, explored_site, runs_dir  # noqa: F401 - fixtures
 from tvtrack.pipeline.site import claim_cells, recording_still, tex_to_html
 
 
@@ -17,9 +17,15 @@ def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytes
         assert f'id="{name}"' in html
     assert "(test fixture; no paper)" in html and "Run failed" in html and "parameter &#39;n_trials&#39; = 0" in html
     # fixture: 1 reproduced, unexplored (it varies no simulated world); old schema: 1 partly, no label
-    assert re.search(r'1 <span class="pill v-reproduced">reproduced</span>', html)
-    assert re.search(r'2 <span class="pill l-unexplored">unexplored</span>', html)
-    assert re.search(r'1 <span class="pill l-—">—</span>', html)
+    assert re.search(
+        r'1 <span class="pill v-reproduced" title="reproduced: the whole 95 % [^"]+">reproduced</span>', html
+    )
+    assert re.search(r'1 <span class="pill l-unexplored" title="unexplored: [^"]+">unexplored</span>', html)
+    assert re.search(
+        r'1 <span class="pill l-provisional" title="provisional: too few configurations explored[^"]+">provisional</span>',
+        html,
+    )
+    assert re.search(r'1 <span class="pill l-—" title="—: no robustness record[^"]*">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
 
@@ -29,7 +35,7 @@ def test_ledger_lists_every_claim_with_verdict_label_and_cell_link(built_site, r
     assert len(claims) == 4
     rows = re.findall(r'<tr data-paper="([^"]+)" data-verdict="([^"]+)" data-label="([^"]+)">', html)
     assert sorted(rows) == [
-        ("fixture_centroid", "reproduced", "unexplored"),
+        ("fixture_centroid", "reproduced", "provisional"),  # a design too small for a share
         ("new_schema", "not reproduced", "depends"),
         ("new_schema", "undecided", "unexplored"),
         ("old_schema", "partly", "—"),
@@ -193,7 +199,7 @@ def test_ledger_is_compact_with_the_rule_behind_a_click(built_site):  # noqa: F8
     row = html[html.index('data-paper="new_schema" data-verdict="not reproduced"') :]
     row = row[: row.index("</tr>")]
     details = row[row.index('<details class="rule">') :]
-    assert "error in [0, 2] px" in details and "reproduced when motion = gentle*2" in details
+    assert "error in [0, 2] px" in details and "Flips when motion = gentle*2." in details
     assert "covers:</strong> depends over 6 readings x 3 replicates: motion, noise" in details
     assert "error in [0, 2] px" not in row[: row.index('<details class="rule">')]
 
@@ -207,3 +213,46 @@ def test_a_smoke_site_says_so_and_reads_the_smoke_runs(runs_dir, tmp_path):  # n
     assert "<strong>smoke</strong> (not the paper-scale numbers)" in html
     assert 'id="old_schema"' in html and 'id="fixture_centroid"' not in html
     assert "profile smoke" in html
+
+
+def test_index_opens_with_the_paragraph_the_glossary_and_tooltips(explored_site):  # noqa: F811
+    from tvtrack.results import GLOSSARY
+
+    html = (explored_site / "index.html").read_text()
+    short = html[html.index('id="in-short"') : html.index('id="first-screen"')]
+    assert (
+        '<p id="summary">Of 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1'
+        in short
+    )
+    glossary = short[short.index('id="glossary"') :]
+    for word in GLOSSARY:  # every verdict and label word defined right there
+        assert f">{word}</span></dt><dd>" in glossary, word
+    pills = re.findall(
+        r'<span class="pill [^"]*"( title="[^"]*")?>', html + (explored_site / "ledger.html").read_text()
+    )
+    assert pills and all(t.startswith(' title="') and len(t) > 20 for t in pills)
+    # the smoke-size record is never shown as robust; the first screen gives each claim its sentence
+    ledger = (explored_site / "ledger.html").read_text()
+    assert '<tr data-paper="001_explored" data-verdict="reproduced" data-label="provisional">' in ledger
+    assert "too few configurations to label" in ledger[ledger.index('data-label="provisional"') :][:3000]
+    row = html[html.index('<tr data-verdict="not reproduced" data-label="depends">') :]
+    assert "Flips when sigma read as the SD of the raw velocity increments" in row[: row.index("</tr>")]
+    assert 'href="claims/001_explored/C001-3.html"' in row[: row.index("</tr>")]
+
+
+def test_each_claim_has_a_page_with_its_specification_curve(explored_site):  # noqa: F811
+    from PIL import Image
+
+    page = (explored_site / "claims/001_explored/C001-3.html").read_text()
+    assert 'id="specification-curve" src="C001-3.png"' in page
+    assert Image.open(explored_site / "claims/001_explored/C001-3.png").size[0] > 400
+    assert "under each of 7 configurations" in page and "3 of 7 give the default&#39;s verdict" in page
+    assert "29 of 32 (95 % CI 75-98 %)" in page and "what the paper&#39;s sigma is the SD of (0.81)" in page
+    assert 'href="../../notebooks/001_explored.html#cell-id=e0"' in page
+    assert "paper_sigma" not in page
+    vector = (explored_site / "claims/001_explored/C001-7.html").read_text()
+    assert "falls from 2.163e+05 px to 0.178 px over 9 points" in vector and "7839" not in vector
+    undecided = (explored_site / "claims/001_explored/C004-3b.html").read_text()
+    assert "About 7 replicates (560 trials) would decide it." in undecided
+    nothing = (explored_site / "claims/001_explored/C001-6.html").read_text()
+    assert "no specification curve" in nothing

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from conftest import NOTEBOOK_NAMES, REPO
-from site_fixtures import make_runs_dir
+from site_fixtures import make_explored_runs, make_runs_dir
 from tvtrack.pipeline.viewer import coloured_mask, free_port
 
 CHROMIUM = "/usr/bin/chromium"
@@ -113,17 +113,70 @@ def _shot(page, name: str):
         page.screenshot(path=str(SCREENSHOTS / name))
 
 
+FIRST_SCREEN = (1400, 900)
+
+
+def _assert_first_screen(page):
+    """The paragraph and the glossary lie wholly on the first screen (no scrolling), every verdict and label chip
+    has its meaning as a tooltip, and the page is no wider than the window."""
+    width, height = FIRST_SCREEN
+    assert page.evaluate("window.scrollY") == 0
+    for sel in ("#summary", "#glossary"):
+        box = page.locator(sel).bounding_box()
+        assert box and box["y"] >= 0 and box["y"] + box["height"] <= height, (sel, box)
+        assert page.locator(sel).is_visible()
+    assert page.locator("#summary").inner_text().startswith("Of ")
+    terms = page.locator("#glossary dt").all_inner_texts()
+    assert {"reproduced", "not reproduced", "undecided", "robust", "depends", "limited", "provisional"} <= set(terms)
+    titles = page.locator(".pill").evaluate_all("ps => ps.map(p => p.getAttribute('title') || '')")
+    assert titles and all(len(t) > 20 for t in titles), [t for t in titles if len(t) <= 20]
+    assert page.evaluate("document.documentElement.scrollWidth") <= width
+
+
+def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_path_factory):
+    """Issue 36's acceptance at 1400 x 900: the paragraph and glossary without scrolling, tooltips on every chip
+    (shown on hover), no horizontal scroll, and a claim page that shows its specification curve."""
+    from tvtrack.pipeline.site import build_site
+
+    root = make_explored_runs(make_runs_dir(tmp_path_factory.mktemp("first-screen-runs")))
+    site = build_site(root).parent
+    w = Watched(browser, viewport=FIRST_SCREEN)
+    try:
+        page = w.open((site / "index.html").as_uri())
+        _assert_first_screen(page)
+        chip = page.locator("#glossary .pill.l-depends").first
+        assert "reading of an ambiguous passage of the paper changes the verdict" in chip.get_attribute("title")
+        page.click('#first a:has-text("C001-3")')
+        assert page.url.endswith("claims/001_explored/C001-3.html")
+        curve = page.locator("#specification-curve")
+        assert curve.evaluate("i => i.complete && i.naturalWidth") > 400
+        assert curve.bounding_box()["width"] > 400
+        assert "Flips when sigma read as the SD" in page.locator("#claim-summary").inner_text()
+        assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]
+        _shot(page, "site_claim.png")
+        page = w.open((site / "ledger.html").as_uri())
+        assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]
+        titles = page.locator(".pill").evaluate_all("ps => ps.map(p => p.getAttribute('title') || '')")
+        assert titles and all(len(t) > 20 for t in titles)
+        assert w.errors == [], w.errors
+        assert w.outside == [], w.outside
+    finally:
+        w.close()
+
+
 def test_site_in_browser(browser, smoke_site):
     site, build_s = smoke_site
     assert build_s < 60, f"site build took {build_s:.0f} s"
-    w = Watched(browser)
+    w = Watched(browser, viewport=FIRST_SCREEN)
     try:
         page = w.open((site / "index.html").as_uri())
         cards = page.locator("article.card").count()
         assert cards == len(NOTEBOOK_NAMES) + 4  # + fixture_centroid, old_schema, new_schema, broken
         images = w.images_decoded()
         assert images and all(width > 0 for _, width in images), images
+        _assert_first_screen(page)
         _shot(page, "site_index.png")
+        w.page.set_viewport_size({"width": 1200, "height": 800})
 
         ok_notebooks = [
             n for n in [*NOTEBOOK_NAMES, "fixture_centroid"] if (site / "notebooks" / f"{n}.html").is_file()

@@ -37,7 +37,7 @@ from scipy import stats
 
 from .montecarlo import Estimate
 from .register import Register
-from .labels import label_parts, rule_parts
+from .labels import label_parts, part_pairs
 from .verdicts import Rule, calibrated, is_decisive
 
 __all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
@@ -346,18 +346,13 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -
 
 
 def _part_measured(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
-    """``{(claim, part): (part rule, part measured)}`` of one run's outputs."""
-    out = {}
-    for cid, rule in rules.items():
-        m = outputs.get(cid)
-        if m is None:
-            continue
-        parts = rule_parts(rule)
-        for part, prule in parts.items():
-            pm = m if part == "claim" and len(parts) == 1 else (m.get(part) if isinstance(m, Mapping) else None)
-            if pm is not None:
-                out[(cid, part)] = (prule, pm)
-    return out
+    """``{(claim, part): (part rule in force, part measured)}`` of one run's outputs (:func:`labels.part_pairs`)."""
+    return {
+        (cid, part): pair
+        for cid, rule in rules.items()
+        if outputs.get(cid) is not None
+        for part, pair in part_pairs(rule, outputs[cid]).items()
+    }
 
 
 def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping) -> dict:

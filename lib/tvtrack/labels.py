@@ -37,12 +37,13 @@ import numpy as np
 from scipy import stats
 
 from .register import WORLD_KINDS, side_of
-from .verdicts import LABELS, AllOf, Judgement, NotCheckable, Rule, as_estimate, is_decisive
+from .verdicts import LABELS, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
 
 __all__ = [
     "MIN_SHARE_DESIGN",
     "NO_PART_LABEL",
     "rule_parts",
+    "part_pairs",
     "weakest_label",
     "label_parts",
     "share",
@@ -61,16 +62,31 @@ NO_PART_LABEL = "-"
 
 
 def rule_parts(rule: Rule) -> dict[str, Rule]:
-    """The parts a label is given for: each part of an :class:`AllOf`, else the whole rule as ``"claim"``."""
+    """The parts a label is given for: each part of an :class:`AllOf`, else the whole rule as ``"claim"``; a
+    :class:`ByReading` rule has its default reading's parts (every reading names the same parts)."""
+    if isinstance(rule, ByReading):
+        return rule_parts(rule.default)
     if isinstance(rule, AllOf):
         return dict(rule.parts)
     return {"claim": rule}
 
 
-def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
+def part_pairs(rule: Rule, measured: Any) -> dict[str, tuple[Rule, Any]]:
+    """``{part: (the part's rule in force, the part's measured value)}`` of one measurement: a
+    :class:`ByReading` measurement is split by the rule of the reading it was made under."""
+    if isinstance(rule, ByReading):
+        if not (isinstance(measured, Mapping) and "reading" in measured and "measured" in measured):
+            return {}
+        return part_pairs(rule.for_value(measured["reading"]), measured["measured"])
     if isinstance(rule, AllOf):
-        return {name: measured[name] for name in rule.parts if isinstance(measured, Mapping) and name in measured}
-    return {"claim": measured}
+        if not isinstance(measured, Mapping):
+            return {}
+        return {n: (r, measured[n]) for n, r in rule.parts.items() if n in measured and measured[n] is not None}
+    return {} if measured is None else {"claim": (rule, measured)}
+
+
+def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
+    return {n: m for n, (_, m) in part_pairs(rule, measured).items()}
 
 
 def weakest_label(labels: Sequence[str]) -> str:
@@ -343,8 +359,8 @@ def label_parts(
     pooled_n = _runs_behind(measured)
     part_out, where = {}, []
     for name, prule in parts.items():
-        pm = _part_measured(rule, measured).get(name)
-        j = prule.judge(pm) if pm is not None else Judgement("undecided", "not measured", False, math.inf)
+        pair = part_pairs(rule, measured).get(name)
+        j = pair[0].judge(pair[1]) if pair else Judgement("undecided", "not measured", False, math.inf)
         rv = [r["parts"][name] for r in rep_rows if name in r["parts"]]
         rows = [{**c, "verdict": c["parts"][name]} for c in cond_rows if name in c["parts"]]
         flips = attribute(j.verdict, rows, by_name, rv[0] if rv else None)
@@ -403,13 +419,13 @@ def label_parts(
 
 
 def _row(rule: Rule, parts: Mapping[str, Rule], measured: Any, extra: dict) -> dict:
-    pm = {n: m for n, m in _part_measured(rule, measured).items() if m is not None and n in parts}
+    pairs = {n: pr for n, pr in part_pairs(rule, measured).items() if n in parts}
     return {
         **extra,
         "measured": measured,
         "verdict": rule.decide(measured),
-        "parts": {n: parts[n].decide(m) for n, m in pm.items()},
-        "part_measured": pm,
+        "parts": {n: r.decide(m) for n, (r, m) in pairs.items()},
+        "part_measured": {n: m for n, (_, m) in pairs.items()},
     }
 
 

@@ -38,6 +38,16 @@ import numpy as np
 from .montecarlo import Estimate
 from .labels import Robustness
 from .verdicts import LABELS, VERDICTS, Rule
+from .wording import (
+    GLOSSARY,
+    LABEL_WORDS,
+    VERDICT_WORDS,
+    claim_flips,
+    claim_summary,
+    format_measured,
+    results_summary,
+    shown_label,
+)
 
 __all__ = [
     "VERDICTS",
@@ -49,6 +59,13 @@ __all__ = [
     "format_measured",
     "md_escape",
     "claims_table",
+    "claim_summary",
+    "claim_flips",
+    "results_summary",
+    "shown_label",
+    "GLOSSARY",
+    "VERDICT_WORDS",
+    "LABEL_WORDS",
     "FINDINGS_ID",
 ]
 
@@ -94,53 +111,23 @@ def md_escape(text: Any) -> str:
     return out.replace("<", "&lt;")
 
 
-def _num(v: Any) -> str:
-    if isinstance(v, bool) or v is None:
-        return str(v)
-    if isinstance(v, (int, float, np.floating, np.integer)):
-        return f"{float(v):.4g}"
-    return str(v)
-
-
-def format_measured(value: Any) -> str:
-    """Short text for a measured value: an estimate as ``v [lo, hi]``, parts as ``name: v [lo, hi]; ...``."""
-    if isinstance(value, Estimate):
-        value = value.to_dict()
-    if isinstance(value, dict) and "value" in value and "ci_low" in value:
-        v, lo, hi = value["value"], value.get("ci_low"), value.get("ci_high")
-        bad = lambda x: x is None or (isinstance(x, float) and not math.isfinite(x))  # noqa: E731
-        if bad(lo) or bad(hi) or (lo == hi == v):
-            return _num(v)
-        return f"{_num(v)} [{_num(lo)}, {_num(hi)}]"
-    if isinstance(value, dict):
-        return "; ".join(f"{k}: {format_measured(v)}" for k, v in value.items())
-    if isinstance(value, (list, tuple)):
-        return ", ".join(format_measured(v) for v in value)
-    return _num(value)
-
-
 def claims_table(claims: list, statement_chars: int = 110) -> str:
-    """The one claims-at-a-glance table (Markdown): per claim what the paper said, what was measured
-    (with its 95 % interval), the verdict and the label with what it covers. ``claims`` are
-    :class:`Claim` objects or their dicts (``results.json``)."""
+    """The one claims-at-a-glance table (Markdown): per claim what the paper said, the verdict, the robustness
+    label (``provisional`` for a design too small to label) and one sentence (:func:`claim_summary`): the
+    measured value in its unit against the rule's band, the share of explored configurations that agree, the
+    readings that flip it and, where undecided, the runs that would decide it. ``claims`` are :class:`Claim`
+    objects or their dicts (``results.json``)."""
     rows = [
-        "| claim | the paper says | paper's value | measured | verdict | label (what it covers) |",
-        "| --- | --- | --- | --- | --- | --- |",
+        "| claim | the paper says | verdict | label | measured against the paper, and on what it turns |",
+        "| --- | --- | --- | --- | --- |",
     ]
     for c in claims:
-        c = c if isinstance(c, dict) else c.__dict__
+        c = to_jsonable(c if isinstance(c, dict) else c.__dict__)
         st = " ".join(str(c["statement"]).split())
         st = st if len(st) <= statement_chars else st[: statement_chars - 1].rstrip() + "…"
-        rob = c.get("robustness") or {}
-        label = rob.get("label", "-")
-        cover = rob.get("coverage", "")
-        where = "; ".join(rob.get("where", [])[:3])
-        lab = md_escape(label) + (f"<br><small>{md_escape(cover)}</small>" if cover else "")
-        if where:
-            lab += f"<br><small>differs: {md_escape(where)}</small>"
-        meas = "-" if c["verdict"] == "not checkable" else md_escape(format_measured(to_jsonable(c["measured"])))
         rows.append(
-            f"| {c['id']} | {md_escape(st)} | {md_escape(c['paper_value'])} | {meas} | **{c['verdict']}** | {lab} |"
+            f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(shown_label(c))} | "
+            f"{md_escape(claim_summary(c))} |"
         )
     return "\n".join(rows)
 
@@ -209,11 +196,9 @@ class Claim:
                 )
 
     def _repr_markdown_(self) -> str:
-        label = f", {self.robustness['label']}" if self.robustness else ""
-        if self.robustness and self.robustness.get("coverage"):
-            label += f" ({self.robustness['coverage']})"
-        where = f" ({'; '.join(self.robustness['where'])})" if self.robustness and self.robustness["where"] else ""
-        return f"**{self.id}: {self.verdict}{label}**{where}. {self.decision}"
+        record = to_jsonable(self.__dict__)
+        label = shown_label(record)
+        return f"**{self.id}: {self.verdict}, {label}**. {md_escape(claim_summary(record))}"
 
 
 @dataclass

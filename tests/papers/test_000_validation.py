@@ -31,6 +31,10 @@ def test_defaults_pass(tmp_path):
         ({"max_replicates": 3, "replicates": 4}, "max_replicates"),
         ({"dt_check_T": 1.0}, "dt_check_T"),
         ({"joint": -1}, "joint"),
+        ({"offsets": [0.0, 0.5, 1.0]}, "offsets"),
+        ({"offsets": [0.5, -0.5]}, "offsets"),
+        ({"betas": [5.0, 25.0]}, "betas"),
+        ({"screen_trials": 700}, "screen_trials"),
     ],
 )
 def test_bad_values_name_the_parameter(tmp_path, overrides, named):

@@ -6,6 +6,7 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 
 from tvtrack.papers.p003_rotating_marker_tracker import plots, study  # noqa: E402
 from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_slope_fit  # noqa: E402
@@ -40,3 +41,38 @@ def test_loss_curves_mark_each_panel_with_its_own_paper_threshold():
     plt.close(fig)
     assert vlines[0] == {2.0} and vlines[1] == {3.0}
     assert "2 with one interferer, 3 with five" in caption
+
+
+def test_median_example_cancels_the_interferers_and_leaves_a_faint_ring():
+    sc = Scenario(n_interferers=5)
+    ex = study.median_example(3, sc)
+    res, q = ex["residual"], ex["interferers"]
+    # nothing of the interferers survives: the residual at each interferer is at most the ring's depth
+    ring = -res.min()
+    assert 0.0 < ring < 0.5 * sc.brightness  # a faint ring, far below the marker's own brightness
+    far = res[:40, :40]  # far from the object: only the sample median of noise, std sqrt(pi / 2N) sigma
+    assert np.std(far) == pytest.approx(sc.noise_std * np.sqrt(np.pi / (2 * ex["n_frames"])), rel=0.1)
+    fig, caption = plots.median_figure(**ex)
+    plt.close(fig)
+    assert f"{ring:.3g} d" in caption and q.shape == (5, 2)
+
+
+def test_bound_and_exposure_figures_state_the_numbers_they_draw():
+    from tvtrack.montecarlo import Estimate
+
+    def est(v):
+        return Estimate(v, float("nan"), 0.9 * v, 1.1 * v, 6, 0.95, "t")
+
+    cb = {
+        "rms": {"loops 10 Hz": est(0.5), "EKF (5 states)": est(0.4), "EKF (velocity)": est(0.3)},
+        "bound": {1: 0.1, 8: 0.09},
+        "best_loops": {"bandwidth_hz": 10.0, "edge": False},
+    }
+    fig, caption = plots.bound_figure(cb)
+    plt.close(fig)
+    assert "at 3 times the bound" in caption and "(loops 10 Hz) at 5 times it" in caption
+    thr = {k: est(v) for k, v in (("rotating 1", 0.7), ("rotating 5", 1.0), ("static 1", 1.2), ("static 5", 1.7))}
+    res = {"instant": {"thresholds": thr}, "integrated": {"thresholds": {**thr, "static 5": est(4.0)}}, "arc_px": 12.1}
+    fig, caption = plots.exposure_figure(res)
+    plt.close(fig)
+    assert "separated by the exposure: static 5." in caption and "12.1 px" in caption

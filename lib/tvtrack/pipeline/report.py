@@ -9,14 +9,15 @@ verdict); and the README's results block between :data:`README_BEGIN` and :data:
 every notebook has a paper-profile run. The README block carries no date (the date is in ``REPRODUCTION.md``
 and on the site), so a ``make reproduce`` whose numbers reproduce leaves ``git status`` clean.
 
-Claim text is generated (statements, rule text, register values such as ``sigma*2``): everything written to
-Markdown goes through :func:`md_escape`.
+Both open with the same first screen: a paragraph in plain words (:func:`tvtrack.results.results_summary`), the
+glossary of the verdict and label words, one row per paper, and the claims that do not hold or were not decided,
+each in one sentence (:func:`tvtrack.results.claim_summary`). Claim text is generated (statements, rule text,
+register phrases such as ``sigma*2``): everything written to Markdown goes through :func:`md_escape`.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import re
 import time
@@ -24,10 +25,21 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
+from ..results import LABEL_WORDS, VERDICT_WORDS, claim_flips, claim_summary, format_measured, results_summary
+from .figures import (
+    ALL_LABELS,
+    ALL_VERDICTS,
+    NO_LABEL,
+    coverage_text,
+    forest_items,
+    forest_plot,
+    part_labels,
+    robustness_label,
+    robustness_matrix,
+    robustness_picture,
+    robustness_where,
+)
 from .paths import PAPER_PROFILE, REPO_ROOT, reproduce_dir as _reproduce_dir
-from ..results import VERDICTS
-from ..verdicts import LABELS
-from ..plotting import VERDICT_COLOURS as _CORE_VERDICT_COLOURS
 from .runner import list_notebooks, read_run
 
 __all__ = [
@@ -38,6 +50,7 @@ __all__ = [
     "README_END",
     "ALL_VERDICTS",
     "ALL_LABELS",
+    "NO_LABEL",
     "write_report",
     "md_escape",
     "format_measured",
@@ -46,11 +59,13 @@ __all__ = [
     "coverage_text",
     "part_labels",
     "verdict_summary",
+    "glossary_markdown",
+    "papers_table",
     "results_paragraph",
     "update_readme",
     "collect_runs",
     "first_screen",
-    "first_screen_table",
+    "first_screen_list",
     "forest_items",
     "forest_plot",
     "robustness_matrix",
@@ -63,25 +78,6 @@ REPORT_PATH = REPO_ROOT / "REPRODUCTION.md"
 README_PATH = REPO_ROOT / "README.md"
 README_BEGIN = "<!-- begin generated results -->"
 README_END = "<!-- end generated results -->"
-NO_LABEL = "—"
-"""Shown for a claim without a robustness record (not checkable, or a run from before the verdict standard)."""
-ALL_VERDICTS = tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VERDICTS)
-"""Every verdict a record may carry: the core's, and ``undecided`` (issue 22) where the core predates it."""
-ALL_LABELS = tuple(reversed(LABELS)) + tuple(lab for lab in ("unexplored",) if lab not in LABELS)
-"""Every robustness label a record may carry, strongest first (``unexplored``: no regime or operating point
-was varied)."""
-VERDICT_COLOURS = {
-    **{
-        "reproduced": "#009E73",
-        "partly": "#E69F00",
-        "not reproduced": "#D55E00",
-        "undecided": "#999999",
-        "not checkable": "#56B4E9",
-    },
-    **_CORE_VERDICT_COLOURS,
-}
-"""One colour per verdict, the palette of :mod:`tvtrack.plotting` (figures, recordings, report and site)."""
-LABEL_MARKERS = {"robust": "o", "depends": "D", "unstable": "X", "unexplored": "s", NO_LABEL: "."}
 
 _MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>|~#])")
 
@@ -92,83 +88,8 @@ def md_escape(text: Any) -> str:
     return _MD_SPECIAL.sub(r"\\\1", " ".join(str(text).split()))
 
 
-def format_measured(value: Any) -> str:
-    """Short text for a claim's ``measured`` field (Estimates as ``v [lo, hi]``)."""
-    if isinstance(value, dict) and "value" in value and "ci_low" in value:
-        v, lo, hi = value["value"], value.get("ci_low"), value.get("ci_high")
-        if v is None:
-            return "no value"
-        if lo is None or hi is None:
-            return _num(v)
-        return f"{_num(v)} [{_num(lo)}, {_num(hi)}]"
-    if isinstance(value, dict):
-        return "; ".join(f"{k}: {format_measured(v)}" for k, v in value.items())
-    if isinstance(value, list):
-        return ", ".join(format_measured(v) for v in value)
-    return _num(value)
-
-
-def _num(v: Any) -> str:
-    if isinstance(v, bool) or v is None:
-        return str(v)
-    if isinstance(v, (int, float)):
-        return f"{v:.4g}"
-    return str(v)
-
-
 def _cell(text: Any) -> str:
     return md_escape(text)
-
-
-def robustness_label(claim: dict) -> str:
-    """The claim's robustness label, or :data:`NO_LABEL` when it has no record (not checkable,
-    or a ``results.json`` written before the verdict standard)."""
-    record = claim.get("robustness")
-    return record.get("label", NO_LABEL) if record else NO_LABEL
-
-
-def robustness_where(claim: dict) -> str:
-    """Where the claim's verdict differs from the default reading ("" when robust or unrecorded)."""
-    record = claim.get("robustness")
-    return "; ".join(record.get("where", [])) if record else ""
-
-
-def coverage_text(claim: dict) -> str:
-    """The record's sentence saying what its label covers ("robust over 14 readings x 3 replicates: ..."), or
-    for a record without one (before issue 22) what it counted: other readings and seeds."""
-    record = claim.get("robustness")
-    if not record:
-        return ""
-    if record.get("coverage"):
-        return str(record["coverage"])
-    n_cond, n_seed = len(record.get("conditions", [])), len(record.get("replicates", record.get("seeds", [])))
-    tested = [
-        f"{n} {what}{'s' if n != 1 else ''}" for n, what in ((n_cond, "other reading"), (n_seed, "replicate")) if n
-    ]
-    return f"{record.get('label', NO_LABEL)} over {' and '.join(tested)}" if tested else ""
-
-
-def part_labels(claim: dict) -> list[tuple[str, str, str]]:
-    """``[(part, verdict, label)]`` from the record's ``parts`` (issue 22: a label per part of a rule); empty for
-    records without parts."""
-    parts = (claim.get("robustness") or {}).get("parts") or {}
-    if isinstance(parts, list):
-        parts = {p.get("name", str(i)): p for i, p in enumerate(parts)}
-    return [
-        (str(name), str(p.get("verdict", "")), str(p.get("label", "")))
-        for name, p in parts.items()
-        if isinstance(p, dict)
-    ]
-
-
-def register_names(claim: dict) -> list[str]:
-    """Names of the register entries the claim's record was explored over (``register``, or the older
-    ``choices``)."""
-    record = claim.get("robustness") or {}
-    entries = record.get("register") or record.get("choices") or []
-    if isinstance(entries, dict):
-        entries = entries.get("entries", list(entries.values()))
-    return [str(e["name"]) if isinstance(e, dict) else str(e) for e in entries]
 
 
 def verdict_summary(claims: list[dict]) -> str:
@@ -206,16 +127,19 @@ def profiles_shown(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
     return " and ".join(names) if names else PAPER_PROFILE
 
 
-# --- the first screen: what does not reproduce, and what depends ------------------------------------------------
+# --- the first screen ------------------------------------------------------------------------------------------
 
 _FIRST_ORDER = {"not reproduced": 0, "undecided": 1}
+NOT_HOLDING = ("not reproduced", "undecided")
+"""The verdicts listed claim by claim on the README's first screen (the rest are counted)."""
 
 
 def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]:
     """The claims a researcher asks about first, one row each: every claim that does not reproduce or is
     undecided, then every other checkable claim whose verdict depends on a reading or is unstable.
 
-    Rows: ``{paper, id, statement, paper_value, measured, verdict, label}`` (measured with its interval)."""
+    Rows: ``{paper, id, statement, paper_value, measured, verdict, label, where, summary}`` (measured with its
+    unit and interval; ``summary``: :func:`tvtrack.results.claim_summary`)."""
     rows = []
     for name, (_, data) in runs.items():
         for c in (data or {}).get("claims", []):
@@ -227,10 +151,11 @@ def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
                         "id": c["id"],
                         "statement": c["statement"],
                         "paper_value": c.get("paper_value", ""),
-                        "measured": format_measured(c["measured"]),
+                        "measured": format_measured(c["measured"], c.get("rule")),
                         "verdict": c["verdict"],
                         "label": label,
                         "where": robustness_where(c),
+                        "summary": claim_summary(c),
                     }
                 )
     return sorted(rows, key=lambda r: (_FIRST_ORDER.get(r["verdict"], 2), r["paper"], _claim_order(r["id"])))
@@ -240,246 +165,163 @@ def _claim_order(cid: str):
     return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", cid)]
 
 
-def first_screen_table(rows: list[dict]) -> str:
-    """The rows of :func:`first_screen` as a Markdown table (text escaped), or a sentence when there are none."""
+def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None) -> str:
+    """Rows of :func:`first_screen` (those with ``verdicts``, default all) as a Markdown list, one claim a line:
+    its id, statement, verdict and label, then its sentence; a sentence when there are none."""
+    rows = [r for r in rows if verdicts is None or r["verdict"] in verdicts]
     if not rows:
-        return "Every checkable claim reproduces, robustly or without a robustness record."
-    lines = [
-        "| claim | statement | paper | measured [95 % interval] | verdict | label |",
-        "| --- | --- | --- | --- | --- | --- |",
-    ]
-    lines += [
-        f"| {r['paper'][:3]} {r['id']} | {md_escape(r['statement'])} | {md_escape(r['paper_value'])} | "
-        f"{md_escape(r['measured'])} | **{r['verdict']}** | {r['label']} |"
+        return "Every checkable claim reproduces or holds in part."
+    return "\n".join(
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_short(r['statement'], 120))}* "
+        f"{md_escape(r['summary'])}"
         for r in rows
+    )
+
+
+def _short(text: str, chars: int = 90) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= chars else text[: chars - 1].rstrip() + "…"
+
+
+def glossary_markdown() -> str:
+    """The verdict and label words with their meanings: two paragraphs, for the first screen."""
+    verdicts = "; ".join(f"**{w}**: {m}" for w, m in VERDICT_WORDS.items())
+    labels = "; ".join(f"**{md_escape(w)}**: {m}" for w, m in LABEL_WORDS.items())
+    return f"Verdicts (what the runs say): {verdicts}.\n\nLabels (how sure, and why): {labels}."
+
+
+def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
+    """One row per notebook with a run: its claims counted by verdict and by label (Markdown)."""
+    verdicts = list(ALL_VERDICTS)
+    labels = [lab for lab in ALL_LABELS if lab not in (NO_LABEL,)]
+    lines = [
+        "| paper | claims | " + " | ".join(verdicts) + " | labels of the checkable claims |",
+        "| --- | ---: | " + " | ".join("---:" for _ in verdicts) + " | --- |",
     ]
+    for name, (_, data) in runs.items():
+        if not data:
+            lines.append(f"| {md_escape(name)} | no run | " + " | ".join("" for _ in verdicts) + " |  |")
+            continue
+        cs = data["claims"]
+        v = Counter(c["verdict"] for c in cs)
+        lab = Counter(robustness_label(c) for c in cs if c["verdict"] != "not checkable")
+        shown = ", ".join(f"{lab[x]} {x}" for x in labels if lab[x])
+        lines.append(f"| {md_escape(name)} | {len(cs)} | " + " | ".join(str(v[x]) for x in verdicts) + f" | {shown} |")
     return "\n".join(lines)
 
 
-# --- the pictures --------------------------------------------------------------------------------------------------
-
-
-def _estimate(value: Any) -> tuple[float, float, float] | None:
-    """``(value, low, high)`` of an Estimate-like dict or a plain number; ``None`` otherwise."""
-    if isinstance(value, dict) and "value" in value:
-        v, lo, hi = value.get("value"), value.get("ci_low"), value.get("ci_high")
-    elif isinstance(value, (int, float)) and not isinstance(value, bool):
-        v = lo = hi = value
-    else:
-        return None
-    try:
-        v, lo, hi = float(v), float(v if lo is None else lo), float(v if hi is None else hi)
-    except (TypeError, ValueError):
-        return None
-    return (v, lo, hi) if math.isfinite(v) else None
-
-
-def _band(rule: dict) -> tuple[float | None, float | None] | None:
-    """The paper's band ``(low, high)`` of an in-band rule (either end may be ``None``: open)."""
-    if not isinstance(rule, dict) or "low" not in rule and "high" not in rule:
-        return None
-    lo, hi = rule.get("low"), rule.get("high")
-    lo = None if lo is None or not math.isfinite(float(lo)) else float(lo)
-    hi = None if hi is None or not math.isfinite(float(hi)) else float(hi)
-    return None if lo is None and hi is None else (lo, hi)
-
-
-def _relative(x: float, band: tuple[float | None, float | None]) -> float:
-    """Position of ``x`` on a scale where the band is [0, 1] (one-sided bands: the finite end at 0 or 1, one unit
-    = the end's magnitude)."""
-    lo, hi = band
-    if lo is not None and hi is not None and hi > lo:
-        return (x - lo) / (hi - lo)
-    if lo is not None:
-        return (x - lo) / (abs(lo) or 1.0)
-    return 1.0 + (x - hi) / (abs(hi) or 1.0)
-
-
-def forest_items(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]:
-    """One row per checkable claim (one per part for an ``all of`` rule) that has an interval and a band:
-    ``{name, verdict, label, band, value, low, high}`` with the value and interval on the band's scale
-    (:func:`_relative`: the paper's band is [0, 1])."""
-    items = []
-    for name, (_, data) in runs.items():
-        for c in (data or {}).get("claims", []):
-            if c["verdict"] == "not checkable":
-                continue
-            rule, measured = c.get("rule") or {}, c["measured"]
-            pairs = [(c["id"], rule, measured, c["verdict"])]
-            if rule.get("kind") == "all_of" and isinstance(measured, dict):
-                parts = dict(((p, (v, lab)) for p, v, lab in part_labels(c)))
-                pairs = [
-                    (f"{c['id']} {part}", sub, measured.get(part), parts.get(part, (c["verdict"], ""))[0])
-                    for part, sub in (rule.get("parts") or {}).items()
-                ]
-            for label_text, sub, value, verdict in pairs:
-                band, est = _band(sub), _estimate(value)
-                if band is None or est is None:
-                    continue
-                v, lo, hi = (_relative(x, band) for x in est)
-                items.append(
-                    {
-                        "name": f"{name[:3]} {label_text}",
-                        "verdict": verdict or c["verdict"],
-                        "label": robustness_label(c),
-                        "band": band,
-                        "value": v,
-                        "low": min(lo, hi),
-                        "high": max(lo, hi),
-                    }
-                )
-    return items
-
-
-def forest_plot(items: list[dict], path: Path) -> Path | None:
-    """Every claim's measured value and 95 % interval against the paper's band (shaded, [0, 1] on this scale),
-    coloured by verdict and marked by robustness label; ``None`` when no claim has an interval and a band."""
-    if not items:
-        return None
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.lines import Line2D
-
-    clip = (-2.0, 3.0)
-    fig, ax = plt.subplots(figsize=(7.5, 0.9 + 0.22 * len(items)))
-    ax.axvspan(0, 1, color="#dfe8f5", zorder=0)
-    for k, it in enumerate(reversed(items)):
-        colour = VERDICT_COLOURS.get(it["verdict"], "#000000")
-        lo, hi, v = (min(max(x, clip[0]), clip[1]) for x in (it["low"], it["high"], it["value"]))
-        lo_band, hi_band = it["band"]
-        if lo_band is None:
-            ax.plot([clip[0], 1], [k, k], color="#dfe8f5", lw=6, zorder=0)
-        if hi_band is None:
-            ax.plot([0, clip[1]], [k, k], color="#dfe8f5", lw=6, zorder=0)
-        ax.plot([lo, hi], [k, k], color=colour, lw=2)
-        ax.plot([v], [k], marker=LABEL_MARKERS.get(it["label"], "."), color=colour, ms=6, mec="black", mew=0.5)
-    ax.set_yticks(range(len(items)), [it["name"] for it in reversed(items)], fontsize=7)
-    ax.set_xlim(*clip)
-    ax.set_xlabel("measured value on the scale of the paper's band (band = [0, 1], shaded; clipped at the edges)")
-    verdicts = [v for v in ALL_VERDICTS if any(it["verdict"] == v for it in items)]
-    labels = [lab for lab in (*ALL_LABELS, NO_LABEL) if any(it["label"] == lab for it in items)]
-    handles = [Line2D([], [], color=VERDICT_COLOURS.get(v, "k"), lw=2, label=v) for v in verdicts]
-    handles += [Line2D([], [], color="grey", marker=LABEL_MARKERS[lab], ls="", label=lab) for lab in labels]
-    ax.legend(
-        handles=handles,
-        fontsize=7,
-        loc="upper center",
-        bbox_to_anchor=(0.5, -0.6 / len(items) - 0.08),
-        ncol=min(len(handles), 5),
-        frameon=False,
-    )
-    ax.set_title("Every claim: measured 95 % interval against the paper's band", fontsize=9)
-    ax.grid(axis="x", alpha=0.3)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return path
-
-
-def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[list[str | None]]]:
-    """Claims (rows) by register entries (columns): in each cell the verdict that differs from the claim's own
-    when that entry takes another value (any condition varying it), else the claim's verdict; ``None`` where the
-    claim was not explored over the entry. Works on records with ``register`` (issue 22) or ``choices``."""
-    entries: list[str] = []
-    rows, cells = [], []
-    for c in claims:
-        if c["verdict"] == "not checkable" or not c.get("robustness"):
-            continue
-        names = register_names(c)
-        entries += [n for n in names if n not in entries]
-        row = {}
-        for cond in c["robustness"].get("conditions", []):
-            choices = cond.get("choices") or cond.get("config") or {}
-            for entry in choices:
-                differs = cond.get("verdict") != c["verdict"]
-                if differs or entry not in row:
-                    row[entry] = cond.get("verdict") if differs else c["verdict"]
-                    if differs:
-                        row[f"!{entry}"] = True
-        for n in names:
-            row.setdefault(
-                n,
-                c["verdict"]
-                if any(n in (cond.get("choices") or {}) for cond in c["robustness"].get("conditions", []))
-                else None,
-            )
-        rows.append(c["id"])
-        cells.append(row)
-    return rows, entries, [[row.get(e) for e in entries] for row in cells]
-
-
-def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: Path) -> Path | None:
-    """One panel per notebook: its claims (rows) by its register entries (columns), each cell coloured by the
-    verdict under that entry's other values (see :func:`robustness_matrix`; blank: not explored)."""
-    panels = []
-    for name, (_, data) in runs.items():
-        rows, entries, cells = robustness_matrix((data or {}).get("claims", []))
-        if rows and entries:
-            panels.append((name, rows, entries, cells))
-    if not panels:
-        return None
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Patch
-
-    heights = [max(len(rows), 1) * 0.22 + 1.6 for _, rows, _, _ in panels]
-    fig, axes = plt.subplots(
-        len(panels), 1, figsize=(8, sum(heights)), squeeze=False, gridspec_kw={"height_ratios": heights}
-    )
-    for ax, (name, rows, entries, cells) in zip(axes[:, 0], panels):
-        for i, row in enumerate(cells):
-            for j, verdict in enumerate(row):
-                colour = VERDICT_COLOURS.get(verdict, "#ffffff") if verdict else "#f4f4f4"
-                ax.add_patch(plt.Rectangle((j, i), 1, 1, color=colour, ec="white", lw=1))
-        ax.set_xlim(0, len(entries))
-        ax.set_ylim(len(rows), 0)
-        ax.set_xticks(
-            [j + 0.5 for j in range(len(entries))], [e[:24] for e in entries], rotation=35, ha="right", fontsize=7
-        )
-        ax.set_yticks([i + 0.5 for i in range(len(rows))], rows, fontsize=7)
-        ax.set_title(name, fontsize=8, loc="left")
-        ax.tick_params(length=0)
-    used = sorted(
-        {v for _, _, _, cells in panels for row in cells for v in row if v},
-        key=lambda v: ALL_VERDICTS.index(v) if v in ALL_VERDICTS else 99,
-    )
-    fig.legend(
-        handles=[Patch(color=VERDICT_COLOURS.get(v, "k"), label=v) for v in used]
-        + [Patch(color="#f4f4f4", label="not explored")],
-        loc="lower center",
-        ncol=len(used) + 1,
-        fontsize=7,
-        frameon=False,
-    )
-    fig.suptitle("Claims by register entries: the verdict when the entry takes its other values", fontsize=9)
-    fig.tight_layout(rect=(0, 0.03, 1, 0.98))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+def _in_short(runs: dict, shown: str) -> list[str]:
+    """The first screen: the paragraph, the glossary, the table of papers and the claims that do not hold."""
+    claims = [c for _, data in runs.values() if data for c in data["claims"]]
+    return [
+        md_escape(results_summary(claims, shown)),
+        "",
+        glossary_markdown(),
+        "",
+        papers_table(runs),
+        "",
+        "The claims that do not reproduce, and those the runs could not decide:",
+        "",
+        first_screen_list(first_screen(runs), NOT_HOLDING),
+        "",
+    ]
 
 
 # --- REPRODUCTION.md -----------------------------------------------------------------------------------------------
 
 
+def _plain_coverage(c: dict) -> str:
+    """What the label covers, with register keys replaced by their titles."""
+    text = coverage_text(c)
+    for e in (c.get("robustness") or {}).get("register") or []:
+        if isinstance(e, dict) and e.get("title") and e.get("name"):
+            text = re.sub(rf"\b{re.escape(str(e['name']))}\b", str(e["title"]), text)
+    return text
+
+
 def _details(c: dict) -> str:
-    """One claim's rule, where its verdict differs, what the label covers, its parts and note: the text behind the
-    compact table (a ``<details>`` block)."""
+    """One claim's rule, decision, what the label covers, its parts, every flip and the note: the record behind
+    the compact table (a ``<details>`` block), in phrases, not register keys."""
     bits = [f"rule: {md_escape(c.get('acceptance', ''))}"]
-    if robustness_where(c):
-        bits.append(f"where it differs: {md_escape(robustness_where(c))}")
-    if coverage_text(c):
-        bits.append(f"covers: {md_escape(coverage_text(c))}")
+    if c.get("verdict") != "not checkable":
+        bits.append(f"measured: {md_escape(format_measured(c.get('measured'), c.get('rule')))}")
+    if c.get("decision"):
+        bits.append(f"decision: {md_escape(c['decision'])}")
+    if _plain_coverage(c):
+        bits.append(f"covers: {md_escape(_plain_coverage(c))}")
     parts = part_labels(c)
     if parts:
         bits.append("parts: " + "; ".join(f"{md_escape(p)} {v}, {lab}" for p, v, lab in parts))
+    flips = claim_flips(c)
+    if flips:
+        bits.append(
+            "flipped by: "
+            + "; ".join(
+                f"{md_escape(f['text'])} ({'a reading' if f['side'] == 'reading' else 'a world'})" for f in flips
+            )
+        )
     if c.get("note"):
         bits.append(f"note: {md_escape(c['note'])}")
     return f"- **{c['id']}** " + " · ".join(bits)
+
+
+def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce_dir: Path, path: Path) -> list[str]:
+    """The report's first screen (profile and date, :func:`_in_short`, the counts) and its two pictures."""
+    shown = profiles_shown(runs)
+    head = ["# Reproduction report", ""]
+    if not notebooks:
+        head += ["No notebooks in `notebooks/` yet: nothing to reproduce.", ""]
+    else:
+        counts = Counter(c["verdict"] for c in claims)
+        labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
+        folder = os.path.relpath(reproduce_dir, path.parent)
+        head += [
+            f"**Profile shown: {shown}** (runs in `{folder}/`)"
+            + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**; its labels are provisional")
+            + ". "
+            f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
+            "(rebuild with `python -m tvtrack report`).",
+            "",
+            *_in_short(runs, shown),
+            "**Claims: "
+            + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
+            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
+            + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab != "provisional" or labels[lab])
+            + "**"
+            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
+            "",
+            f"By verdict: {verdict_summary(claims)}.",
+            "",
+        ]
+        figures = Path(reproduce_dir) / "figures"
+        forest = forest_plot(forest_items(runs), figures / "forest.png")
+        picture = robustness_picture(runs, figures / "robustness.png")
+        if forest:
+            head += [
+                f"![forest plot: every claim's measured interval against the paper's band]"
+                f"({os.path.relpath(forest, path.parent)})",
+                "",
+                "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
+                "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.",
+                "",
+            ]
+        if picture:
+            head += [
+                f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
+                "",
+                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
+                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
+                "",
+            ]
+        head += [
+            "Each claim below: its verdict at the default reading of what the paper left unstated, its label, and "
+            "one sentence: the measured value against the rule's band in the same unit, the share of the explored "
+            "configurations that agree, the readings of the paper that flip it, then the worlds it does not extend "
+            "to. The record behind it (rule, decision, coverage, every flip) opens with a click; each notebook's "
+            "exploration section draws every claim's specification curve.",
+            "",
+        ]
+    return head
 
 
 def write_report(
@@ -536,90 +378,22 @@ def write_report(
             "",
             verdict_summary(data["claims"]),
             "",
-            "| claim | verdict | robustness | where the verdict differs | statement | paper | measured |",
-            "| --- | --- | --- | --- | --- | --- | --- |",
+            "| claim | the paper says | verdict | label | measured against the paper, and on what it turns |",
+            "| --- | --- | --- | --- | --- |",
         ]
-        for c in data["claims"]:
-            lines.append(
-                "| "
-                + " | ".join(
-                    (
-                        c["id"],
-                        f"**{c['verdict']}**",
-                        robustness_label(c),
-                        _cell(robustness_where(c)),
-                        _cell(c["statement"]),
-                        _cell(c["paper_value"]),
-                        _cell(format_measured(c["measured"])),
-                    )
-                )
-                + " |"
-            )
-        lines += ["", "<details><summary>Rules, coverage and notes</summary>", ""]
+        lines += [
+            f"| {c['id']} | {_cell(c['statement'])} | **{c['verdict']}** | {_cell(robustness_label(c))} | "
+            f"{_cell(claim_summary(c))} |"
+            for c in data["claims"]
+        ]
+        lines += ["", "<details><summary>Rules, decisions, coverage, every flip and notes</summary>", ""]
         lines += [_details(c) for c in data["claims"]]
         lines += ["", "</details>"]
         if data.get("figures"):
             lines += ["", "Figures:", ""]
             lines += [f"- [{_cell(f['caption'])}]({rel}/{f['file']})" for f in data["figures"]]
         sections.append("\n".join(lines) + "\n")
-    shown = profiles_shown(runs)
-    head = ["# Reproduction report", ""]
-    if not notebooks:
-        head += ["No notebooks in `notebooks/` yet: nothing to reproduce.", ""]
-    else:
-        counts = Counter(c["verdict"] for c in claims)
-        labels = Counter(robustness_label(c) for c in claims if c["verdict"] != "not checkable")
-        folder = os.path.relpath(reproduce_dir, path.parent)
-        head += [
-            f"**Profile shown: {shown}** (runs in `{folder}/`)"
-            + ("" if shown == PAPER_PROFILE else ": **not the paper-scale numbers**")
-            + ". "
-            f"Written {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `make reproduce` "
-            "(rebuild with `python -m tvtrack report`).",
-            "",
-            "**Claims: "
-            + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
-            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
-            + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS)
-            + "**"
-            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
-            "",
-            f"By verdict: {verdict_summary(claims)}.",
-            "",
-            "## The claims that do not reproduce, and the verdicts that depend",
-            "",
-            first_screen_table(first_screen(runs)),
-            "",
-        ]
-        figures = Path(reproduce_dir) / "figures"
-        forest = forest_plot(forest_items(runs), figures / "forest.png")
-        picture = robustness_picture(runs, figures / "robustness.png")
-        if forest:
-            head += [
-                f"![forest plot: every claim's measured interval against the paper's band]"
-                f"({os.path.relpath(forest, path.parent)})",
-                "",
-                "Every claim with an interval and a band: the measured 95 % interval (line) and value (marker: "
-                "the robustness label) on the scale of the paper's band (shaded, [0, 1]), coloured by verdict.",
-                "",
-            ]
-        if picture:
-            head += [
-                f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
-                "",
-                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
-                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
-                "",
-            ]
-        head += [
-            "Verdicts come from the notebooks' own Monte Carlo runs at the default reading of what each paper "
-            "left unstated; *robust*: the same verdict, part by part, under every register value tried (one at "
-            "a time and joint samples) and every independent replicate (each claim's coverage says which); "
-            "*unexplored*: no regime, operating point or model of the simulated world was varied; *depends*: "
-            "the verdict changes under another value (the table says where); *unstable*: independent "
-            "replicates disagree at the default. See each notebook for the reasoning.",
-            "",
-        ]
+    head = _report_head(runs, claims, notebooks, Path(reproduce_dir), path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(head + sections))
     if readme is not None:
@@ -638,36 +412,23 @@ def write_report(
 
 
 def results_paragraph(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
-    """The README's results block (Markdown) from :func:`collect_runs`: the counts by verdict and robustness,
-    then the first screen (:func:`first_screen_table`). No date: the block changes only when a verdict, a label
-    or a number does, so ``git status`` after ``make reproduce`` is itself a reproducibility check."""
+    """The README's results block (Markdown) from :func:`collect_runs`: the paragraph in plain words, the glossary,
+    one row per paper and the claims that do not reproduce or were not decided, one sentence each. No date: the
+    block changes only when a verdict, a label or a number does, so ``git status`` after ``make reproduce`` is
+    itself a reproducibility check."""
     done = {name: (record, data) for name, (record, data) in runs.items() if data is not None}
     missing = sorted(set(runs) - set(done))
-    flat = [c for _, data in done.values() for c in data["claims"]]
-    if not flat:
+    if not any(data["claims"] for _, data in done.values()):
         return (
             "No results yet: `make reproduce` runs every notebook at paper scale and `python -m tvtrack report` "
             "writes this block from them."
         )
-    counts = Counter(c["verdict"] for c in flat)
-    labels = Counter(robustness_label(c) for c in flat if c["verdict"] != "not checkable")
-    verdicts = " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
-    label_text = ", ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS)
-    lines = [
-        f"{len(flat)} claims ({profiles_shown(done)} profile): **{verdicts}**; of the checkable verdicts "
-        f"{label_text}"
-        + (f", {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else "")
-        + ". The claims that do not reproduce, and those whose verdict depends on a reading of what the paper "
-        "left unstated or changes between replicates:"
-    ]
+    lines = _in_short(done, profiles_shown(done))
     if missing:
-        lines[0] = f"Not included (no successful run): {', '.join(missing)}. " + lines[0]
+        lines.insert(0, f"Not included (no successful run): {', '.join(missing)}.\n")
     lines += [
-        "",
-        first_screen_table(first_screen(done)),
-        "",
-        "Every claim with its rule, interval and coverage: `REPRODUCTION.md` (written by `make reproduce`) and "
-        "the site's ledger (`make site`).",
+        "Every claim with its sentence, rule and coverage: `REPRODUCTION.md` (written by `make reproduce`); with its "
+        "specification curve: the site (`make site`).",
     ]
     return "\n".join(lines)
 

@@ -5,15 +5,19 @@ profile's runs, ``--profile smoke``, from ``papermill_runs/reproduce-smoke/`` in
 and the sweeps under ``papermill_runs/<spec>/`` (directories holding ``summary.csv``), and writes
 ``papermill_runs/site/``:
 
-- ``index.html``: the profile it shows, then the first screen: every claim that does not reproduce or is
-  undecided and every verdict that depends or is unstable, one row each (statement, paper value, measured
-  value with interval, verdict, label); the forest plot of every claim and the robustness picture (claims by
+- ``index.html``: the profile it shows, then the first screen: a paragraph in plain words
+  (:func:`tvtrack.results.results_summary`) beside the glossary of the verdict and label words (every chip on
+  every page carries its word's meaning as a tooltip), one row per paper, every claim that does not reproduce or
+  is undecided and every verdict that depends or is unstable, one row each with its sentence
+  (:func:`tvtrack.results.claim_summary`); the forest plot of every claim and the robustness picture (claims by
   register entries, coloured by verdict); then one card per paper run (citation, run date, commit, runtime,
   claims by verdict and robustness label, the recording's still image and the command that serves it), then
   the sweeps;
 - ``ledger.html``: every claim of every ``results.json`` in a compact table (the rule, where the verdict
   differs, what the label covers and the parts behind a click), filterable and sortable by a small inline
   script, each linking to the notebook cell that decided it;
+- ``claims/<notebook>/<id>.html``: one page per claim: its sentence, its specification curve
+  (:func:`tvtrack.plotting.specification_curve`, ``<id>.png`` beside it) and the record behind it;
 - ``notebooks/<name>.html``: the executed notebook through nbconvert with this package's template
   (``site_templates/notebook``), figures inline, math converted to MathML at build time
   (``latex2mathml``), no script or style loaded from anywhere;
@@ -43,7 +47,6 @@ from .report import (
     ALL_VERDICTS,
     NO_LABEL,
     REPRODUCE_DIR,
-    coverage_text,
     first_screen,
     forest_items,
     forest_plot,
@@ -54,9 +57,10 @@ from .report import (
     robustness_picture,
     robustness_where,
 )
+from .report import _plain_coverage as coverage_text
 from .runner import read_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
-from ..results import VERDICTS
+from ..results import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, VERDICTS, claim_flips, claim_summary, results_summary
 
 __all__ = [
     "SITE_DIR",
@@ -315,7 +319,89 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
 def _environment():
     from jinja2 import Environment, FileSystemLoader, select_autoescape
 
-    return Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
+    env = Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
+    env.globals.update(
+        glossary=GLOSSARY,
+        glossary_verdicts=list(VERDICT_WORDS.items()),
+        glossary_labels=list(LABEL_WORDS.items()),
+        verdict_words=[v for v in ALL_VERDICTS],
+    )
+    return env
+
+
+def claim_page_href(paper: str, claim_id: str) -> str:
+    """A claim's page, relative to the site root."""
+    return f"claims/{paper}/{claim_id}.html"
+
+
+def _part_rows(claim: dict) -> list[dict]:
+    """The claim's parts for its page: verdict, label, share that agrees, runs to decide, what moves it most."""
+    rows = []
+    for name, p in ((claim.get("robustness") or {}).get("parts") or {}).items():
+        if not isinstance(p, dict):
+            continue
+        share = p.get("share") or {}
+        rows.append(
+            {
+                "name": name,
+                "verdict": p.get("verdict", ""),
+                "label": p.get("label", ""),
+                "share": (
+                    f"{share.get('agree')} of {share.get('decided', share.get('design'))} "
+                    f"(95 % CI {share['ci_low'] * 100:.0f}-{share['ci_high'] * 100:.0f} %)"
+                    if "ci_low" in share
+                    else ""
+                ),
+                "runs": (p.get("runs_to_decide") or {}).get("text", ""),
+                "sensitivity": ", ".join(
+                    f"{s.get('title') or s.get('entry')} ({float(s.get('score', 0)):.2f})"
+                    for s in (p.get("sensitivity") or [])[:3]
+                ),
+            }
+        )
+    return rows
+
+
+def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
+    """One page per claim, ``claims/<paper>/<id>.html``: its sentence, its specification curve
+    (:func:`tvtrack.plotting.specification_curve`) and the record behind it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting import specification_curve
+
+    template = env.get_template("claim.html")
+    for run in runs:
+        if not run.ok:
+            continue
+        folder = site / "claims" / run.name
+        folder.mkdir(parents=True, exist_ok=True)
+        for c in run.results["claims"]:
+            curve, caption = None, ""
+            if c["verdict"] != "not checkable" and (c.get("robustness") or {}).get("conditions"):
+                fig, caption = specification_curve(c)
+                fig.savefig(folder / f"{c['id']}.png", dpi=100)
+                plt.close(fig)
+                curve = f"{c['id']}.png"
+            cell = run.cells.get(c["id"])
+            (folder / f"{c['id']}.html").write_text(
+                template.render(
+                    c=c,
+                    paper=run.name,
+                    shown=robustness_label(c),
+                    summary=claim_summary(c),
+                    measured=format_measured(c.get("measured"), c.get("rule")),
+                    coverage=coverage_text(c),
+                    flips=claim_flips(c),
+                    parts=_part_rows(c),
+                    curve=curve,
+                    caption=caption,
+                    cell_href=f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else ""),
+                    **{**common, "root": "../../"},
+                )
+            )
 
 
 def _counts(claims: list[dict]) -> dict:
@@ -339,10 +425,13 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                     "statement": c["statement"],
                     "paper_value": c["paper_value"],
                     "rule": c.get("acceptance", ""),
-                    "measured": format_measured(c["measured"]),
+                    "measured": format_measured(c["measured"], c.get("rule")),
                     "verdict": c["verdict"],
                     "label": robustness_label(c),
                     "where": robustness_where(c),
+                    "summary": claim_summary(c),
+                    "flips": claim_flips(c),
+                    "page": claim_page_href(run.name, c["id"]),
                     "note": c.get("note", ""),
                     "coverage": coverage_text(c),
                     "parts": part_labels(c),
@@ -376,6 +465,19 @@ def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
             shutil.copy2(run.run_dir / fig["file"], assets / fig["file"])
             shown.append({"src": f"../runs/{run.name}/{fig['file']}", "caption": fig["caption"]})
     return shown
+
+
+def _first_screen(runs: list[PaperRun], by_name: dict) -> tuple[list[dict], list[dict], list[dict]]:
+    """The index's first-screen rows (each with its claim page), one row per paper, and every claim."""
+    first = first_screen(by_name)
+    for row in first:
+        row["page"] = claim_page_href(row["paper"], row["id"])
+    papers = [
+        {"name": r.name, "n": len(r.results["claims"]), "verdicts": Counter(c["verdict"] for c in r.results["claims"])}
+        for r in runs
+        if r.ok
+    ]
+    return first, papers, [c for r in runs if r.ok for c in r.results["claims"]]
 
 
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str | None = None) -> Path:
@@ -453,18 +555,18 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
             **common,
         )
     )
-    first = first_screen(by_name)
-    for row in first:
-        cell = next((r.cells.get(row["id"]) for r in runs if r.name == row["paper"]), None)
-        row["href"] = f"notebooks/{row['paper']}.html" + (f"#cell-id={cell}" if cell else "")
+    _claim_pages(env, runs, site, common)
+    first, papers, all_claims = _first_screen(runs, by_name)
     index = site / "index.html"
     index.write_text(
         env.get_template("index.html").render(
             cards=cards,
             sweeps=sweeps,
-            totals=_counts([c for r in runs if r.ok for c in r.results["claims"]]),
+            totals=_counts(all_claims),
             n_claims=len(rows),
             first=first,
+            summary=results_summary(all_claims, shown),
+            papers=papers,
             forest="forest.png" if forest else None,
             robustness="robustness.png" if picture else None,
             **common,

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 from collections import Counter
 
-__all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows"]
+from ...verdicts import as_estimate
+
+__all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows", "beside"]
 
 
 def claim_details(results, ex, claim_id: str) -> str:
@@ -70,3 +72,36 @@ def condition_rows(ex, claim_id: str) -> list:
     for c in ex.record(claim_id)["conditions"]:
         rows.append((", ".join(f"{k} = {v}" for k, v in c["changed"].items()), c["measured"]))
     return rows
+
+
+def _fmt(measured) -> str:
+    e = as_estimate(measured[-1] if isinstance(measured, (list, tuple)) else measured)
+    return f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]"
+
+
+def beside(ex, rules: dict, claim_ids, entry: str, value) -> str:
+    """A Markdown table: each part of each claim at the default (pooled replicates) and with ``entry = value``
+    (the one-at-a-time condition, first replicate's draws), values with 95 % intervals and each verdict (a list
+    part, a trend, shows its last point)."""
+    default = ex.register.default()[entry]
+    lines = [
+        f"| claim, part | {entry} = {default} (default) | verdict | {entry} = {value} | verdict |",
+        "|---|---|---|---|---|",
+    ]
+    for cid in claim_ids:
+        other = next(
+            (
+                c["measured"]
+                for c in ex.record(cid)["conditions"]
+                if c["kind"] == "single" and c["changed"] == {entry: value}
+            ),
+            None,
+        )
+        if other is None:
+            continue
+        parts = getattr(rules[cid], "parts", None) or {"claim": rules[cid]}
+        here = ex.measured(cid)
+        for name, rule in parts.items():
+            a, b = (here, other) if name == "claim" else (here[name], other[name])
+            lines.append(f"| {cid}, {name} | {_fmt(a)} | {rule.decide(a)} | {_fmt(b)} | {rule.decide(b)} |")
+    return "\n".join(lines)

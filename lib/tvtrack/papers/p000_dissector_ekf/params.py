@@ -24,12 +24,18 @@ RULES = {
     "dt_check_T": Real(3.0, 200.0),
     "grid_trials": Integer(10, 5000),
     "grid_points": Integer(51, 4001),
+    "grid_psi": RealList(0.5, 1000.0),
+    "grid_contrasts": RealList(0.0, 0.99),
+    "pulse_durations": RealList(0.1, 1.0),
+    "betas": RealList(0.1, 1000.0),
     "lock_factor": Real(2.0, 50.0),
     "acquire_by_T": Real(1.0, 30.0),
-    "offsets": RealList(0.0, 1.0),
+    "offsets": RealList(-1.0, 1.0),
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 40),
     "joint": Integer(0, 200),
+    "screen_trials": Integer(0, 20_000),
+    "combinations": Integer(0, 100),
     "record_scans": Integer(1, 1000),
 }
 
@@ -45,6 +51,18 @@ def check_consistency(p: Mapping[str, Any]) -> None:
         raise ValueError(
             f"parameters 'contrast_grid' = {p['contrast_grid']} must hold 0, 0.5 and 0.9 and 'psi_grid' = "
             f"{p['psi_grid']} at least two values (trend claims C000-5, -6, -7, -9)"
+        )
+    off = list(p["offsets"])
+    if off != sorted(off) or min(off) >= 0 or max(off) <= 0:
+        raise ValueError(
+            f"parameter 'offsets' = {off} must be ascending with offsets on both sides of 0 (the acquisition figure "
+            f"states the pull-in range on each side)"
+        )
+    if p["screen_trials"] > p["n_trials"]:
+        raise ValueError(f"parameter 'screen_trials' = {p['screen_trials']} must be at most n_trials = {p['n_trials']}")
+    if max(p["betas"]) * p["dt"] >= 1.0:
+        raise ValueError(
+            f"parameter 'betas' = {p['betas']}: each beta_0 dt must be < 1 (dt = {p['dt']}; the Euler step of X2)"
         )
     if p["max_replicates"] < p["replicates"]:
         raise ValueError(

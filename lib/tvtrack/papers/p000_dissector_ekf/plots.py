@@ -9,7 +9,7 @@ import numpy as np
 
 from ...verdicts import as_estimate
 
-__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency"]
+__all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency", "panels"]
 
 
 def errorbars(ax, x, ests, **style):
@@ -60,12 +60,16 @@ def acquisition(offsets, acq: dict, acquire_by: float):
         )
         axl.plot(offsets, a["lost"], f"C{i}o-", ms=3, label=f"variant {name[1]}")
     ax.axhline(acquire_by, color="k", lw=0.8, ls="--", label=f"{acquire_by:g} T")
-    ax.axvline(0.5, color="grey", lw=0.8, ls=":")
+    for a in (ax, axl):
+        for edge in (-0.5, 0.5):
+            a.axvline(edge, color="grey", lw=0.8, ls=":")
+        a.axvline(0.0, color="k", lw=0.5)
     ax.set_ylabel("90 % of runs acquired by (T)")
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8)
-    axl.axvline(0.5, color="grey", lw=0.8, ls=":")
-    axl.set_xlabel(r"initial offset of the object $X_1(0)$ (T; micro-raster edge at 0.5)")
+    axl.set_xlabel(
+        r"signed initial offset of the object $X_1(0)$ (T; the filters start at 0; micro-raster edges +-0.5)"
+    )
     axl.set_ylabel("not in lock at the end")
     for a in (ax, axl):
         a.grid(alpha=0.3, which="both")
@@ -87,15 +91,27 @@ def fig2(psi_grid, by_variant: dict, title: str):
     return fig
 
 
-def fig3(contrast_grid, ratios, title: str):
-    """Fig. 3 (solid curves): sigma_x^2 / sigma_x^2* against contrast P, with the paper's P = 0.5 and 0.9 marked."""
-    fig, ax = plt.subplots(figsize=(7, 4))
-    errorbars(ax, contrast_grid, ratios, color="C1", marker="^", ms=4, capsize=2, label="variant 2")
-    for p in (0.5, 0.9):
-        ax.axvline(p, color="grey", lw=0.8, ls=":")
-    ax.set(xlabel="contrast P", ylabel=r"$\sigma_x^2 / \sigma_x^{2*}$", title=title)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+def fig3(contrast_grid, curves: dict, title: str):
+    """Fig. 3 as the paper draws it: left, the steady sigma_x^2 (T^2) of both variants against contrast P with the
+    stationary-noise sigma_x^2* and the PCRLB; right, sigma_x^2 / sigma_x^2* of both variants with the PCRLB's own
+    ratio; the paper's P = 0.5 and 0.9 marked (``curves`` from :func:`.studies.fig3_curves`)."""
+    fig, (ax, axr) = plt.subplots(1, 2, figsize=(11, 4))
+    p = np.asarray(contrast_grid, dtype=float)
+    for i, v in enumerate(("variant 1", "variant 2")):
+        style = dict(color=f"C{i}", marker="os"[i], ms=4, capsize=2, label=v)
+        errorbars(ax, p + 0.005 * i, curves["sigma_x^2"][v], **style)
+        errorbars(axr, p + 0.005 * i, curves["ratio"][v], **style)
+    errorbars(ax, p, curves["sigma_x^2*"], color="k", marker="_", ms=8, capsize=2, ls="--", label=r"$\sigma_x^{2*}$")
+    ax.plot(p, curves["PCRLB"], "k-", lw=0.8, label="PCRLB")
+    axr.plot(p, np.asarray(curves["PCRLB"]) / curves["PCRLB"][0], "k-", lw=0.8, label="PCRLB(P) / PCRLB(0)")
+    ax.set(yscale="log", xlabel="contrast P", ylabel=r"steady $\sigma_x^2$  ($T^2$)")
+    axr.set(yscale="log", xlabel="contrast P", ylabel=r"$\sigma_x^2 / \sigma_x^{2*}$  (ratio)")
+    for a in (ax, axr):
+        for q in (0.5, 0.9):
+            a.axvline(q, color="grey", lw=0.8, ls=":")
+        a.legend(fontsize=8)
+        a.grid(alpha=0.3, which="both")
+    fig.suptitle(title)
     return fig
 
 
@@ -158,4 +174,24 @@ def consistency(psi_grid, nees: dict):
     ax.set(xscale="log", xlabel=r"$\psi_A = A/\sigma_ш$", ylabel="mean steady NEES (1 = consistent)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
+    return fig
+
+
+def panels(specs, title: str):
+    """One row of panels, each ``(x, {label: [Estimate]}, xlabel, ylabel, log_x, reference line or None[, log_y])``:
+    the curves with their 95 % intervals (the beyond-the-paper studies of :mod:`.beyond`)."""
+    fig, axes = plt.subplots(1, len(specs), figsize=(5.5 * len(specs), 4), squeeze=False)
+    for ax, (x, curves, xlabel, ylabel, log_x, line, *log_y) in zip(axes[0], specs):
+        x = np.asarray(x, dtype=float)
+        for i, (label, ests) in enumerate(curves.items()):
+            shift = x * (1 + 0.02 * i) if log_x else x + 0.005 * i * (np.ptp(x) or 1.0)
+            errorbars(ax, shift, ests, color=f"C{i}", marker="o", ms=3, capsize=2, label=label)
+        if line is not None:
+            ax.axhline(line, color="k", lw=0.8, ls="--")
+        ax.set(
+            xscale="log" if log_x else "linear", yscale="log" if any(log_y) else "linear", xlabel=xlabel, ylabel=ylabel
+        )
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+    fig.suptitle(title)
     return fig

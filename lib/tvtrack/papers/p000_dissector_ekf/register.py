@@ -7,229 +7,425 @@ while trying to flip a label.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ...register import Entry, Register
-from .study import JOINT_READING_C6
+from .study import CONVERGENCE_READINGS, JOINT_READING_C6
 
 __all__ = ["REGISTER", "DEPENDS"]
 
-REGISTER = Register(
-    [
-        # ---- the data model: decided once, the filters, the grid likelihood and the PCRLB model the same sample
-        Entry(
-            "sample model",
-            "model",
-            "integrated",
-            ("integrated", "point"),
-            "a sampled tracker integrates the current over each dt (integrate and dump: the noise variance N/dt of the "
-            "paper's (E5), (E6)); the point sample is the textbook idealisation the filters, grid filter and PCRLB model "
-            "exactly",
-        ),
-        Entry(
-            "scoring time",
-            "model",
-            "interval centre",
-            ("interval centre", "interval end"),
-            "the filters model an integrated sample by the pulse at its interval centre, so their estimate refers to "
-            "that time; the interval end is the time of the newest datum (a point sample is scored at its instant)",
-        ),
-        Entry(
-            "photon model",
-            "model",
-            "Gaussian",
-            ("Gaussian", "Poisson counts"),
-            origin="adversarial",
-            why="eq. (1) models the shot noise as white Gaussian; it is the count statistics of photo-electrons, skewed "
-            "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)",
-        ),
-        Entry(
-            "manoeuvre",
-            "regime",
-            "none",
-            ("none", "weave 0.1 T / 2 T"),
-            origin="adversarial",
-            why="the filters assume a Gauss-Markov message; a real object also manoeuvres: a weave of amplitude sigma_1 "
-            "(0.1 T) over 2 scans (still sampled by the once-per-scan pulse), random phase per run (a 5-scan weave "
-            "moved C000-2 and C000-3 less: left out to spare the paper profile)",
-        ),
-        Entry(
-            "background",
-            "regime",
-            "stationary",
-            ("stationary", "drifting +-50 %"),
-            origin="adversarial",
-            why="eq. (2) holds the background intensity N0 constant; a real background (sky, scattered light) drifts: "
-            "N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), unknown to the filters, a random phase per run",
-        ),
-        # ---- readings of the paper's ambiguous or inconsistent sentences
-        Entry(
-            "sigma_sh",
-            "reading",
-            "per sample",
-            ("per sample", "unit bandwidth"),
-            "psi_A = A / sigma_sh: the RMS of the background noise in one sample sqrt(N0/dt), or in a 1/T bandwidth "
-            "sqrt(N0) (4.5 times more noise per sample at the same psi_A)",
-        ),
-        Entry(
-            "G22",
-            "reading",
-            "paper",
-            ("paper", "euler", "matched"),
-            "(E8) prints 2 beta_0 dt (a unit-variance X2); Euler on eq. (8) gives beta_0^2 dt; the matched value makes "
-            "sqrt(c_s S) X2 carry the truth's per-sample signal-noise variance",
-        ),
-        Entry(
-            "v2 noise at",
-            "reading",
-            "predicted estimate",
-            ("predicted estimate", "updated estimate"),
-            "eq. (9) evaluates the noise intensity at 'the estimate': the prediction is the only one before the update; "
-            "one re-evaluation at the updated estimate is the other reading",
-        ),
-        Entry(
-            "initial estimate",
-            "reading",
-            "process means",
-            ("process means", "random N(0, D11(0))"),
-            "the paper's solid curves start at the process means; its dashed curves from normally distributed initial "
-            "estimates of unstated variance (read as D(0))",
-        ),
-        Entry(
-            "initial position",
-            "reading",
-            "stationary N(0, sigma_1^2)",
-            ("stationary N(0, sigma_1^2)", "uniform in the micro-raster"),
-            origin="adversarial",
-            why="'the image is within the micro-raster' (the paper's motivation of D11(0) = 0.2): the message's own law, "
-            "or anywhere in the raster with equal probability",
-        ),
-        Entry(
-            "convergence criterion",
-            "reading",
-            "90 % of runs acquired",
-            ("90 % of runs acquired", "ensemble mean within 10 %"),
-            "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
-            "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
-        ),
-        Entry(
-            "lock threshold",
-            "reading",
-            "lock_factor",
-            ("lock_factor", "2 x steady RMS"),
-            origin="adversarial",
-            why="'in lock' is not the paper's word: a scan's RMS error above the notebook's lock_factor (5) x the steady "
-            "RMS error, or a strict 2 x (a scan's error at twice its steady value counts as not yet acquired)",
-        ),
-        Entry(
-            "C000-6 filter",
-            "reading",
-            "variant 2",
-            ("variant 2", "variant 1", "ignoring the signal noise"),
-            "the sentence's opening is lost at a page break: 'accounting for' (a matched variant) or 'ignoring' (the "
-            "filter that assumes P = 0) the non-stationary component",
-        ),
-        Entry(
-            "potentially achievable",
-            "comparator",
-            "sigma_x^2*",
-            ("sigma_x^2*", "PCRLB", "grid filter"),
-            "'potentially achievable' is undefined: the stationary-noise accuracy of Fig. 3 (the paper's own "
-            "reference), the posterior Cramer-Rao bound, or the near-optimal grid (point-mass) filter",
-        ),
-        Entry(
-            "C000-6 joint reading",
-            "reading",
-            "the entries above",
-            ("the entries above", JOINT_READING_C6),
-            origin="adversarial",
-            why="a flip the joint samples can miss: 'ignoring' the component, with the background current held fixed "
-            "(psi_A = 180 at P = 0.9); its ensemble mean is carried by the 3-4 % of runs that lose lock",
-        ),
-        Entry(
-            "C000-3 accuracy",
-            "reading",
-            "Monte Carlo error",
-            ("Monte Carlo error", "filters' own D11"),
-            origin="adversarial",
-            why="'the two algorithms give approximately the same estimate of potential accuracy': the accuracy they "
-            "achieve (the Monte Carlo error), or the accuracy each computes for itself (its steady covariance D11)",
-        ),
-        Entry(
-            "micro-raster size",
-            "reading",
-            "T",
-            ("T", "T_u"),
-            origin="adversarial",
-            why="'2 % of the micro-raster size': the coordinate is a time shift within the scan interval T; the pulse "
-            "duration T_u = T/2 is the other length a reader could take",
-        ),
-        # ---- operating points of the figures the claims come from
-        Entry(
-            "psi_A",
-            "operating point",
-            20.0,
-            (2.0, 5.0, 10.0, 20.0, 50.0, 100.0),
-            "Figs. 1 and 3 do not state psi_A; 20 is the only SNR the paper quotes; Fig. 2 spans 2-100 (2 added by the "
-            "adversarial pass: there C000-5 and C000-7 turn partly)",
-        ),
-        Entry(
-            "sigma_1",
-            "operating point",
-            "0.1 T",
-            ("0.1 T", "0.2 T"),
-            origin="adversarial",
-            why="the paper calls sigma_1 / T = 0.1 'typical'; 0.2 T is an image spread over the micro-raster (within "
-            "+-T/2 of its centre 98 % of the time; D11(0) = 0.2 is the paper's own prior spread), alpha_0 T = 0.15 kept",
-        ),
-        Entry(
-            "contrast",
-            "operating point",
-            0.5,
-            (0.0, 0.5, 0.9),
-            "Figs. 1 and 2 do not state P; 0.5 is the paper's boundary, 0.9 its high-contrast example",
-        ),
-        Entry(
-            "contrast convention",
-            "operating point",
-            "fixed N0",
-            ("fixed N0", "fixed total current", "fixed background"),
-            "what is held fixed as P varies in Fig. 3 is unstated: N0 (only P/(1-P) changes), the total current or the "
-            "background current (psi_A then moves with P, anchored at psi_A at P = 0.5)",
-        ),
-        # ---- statistics
-        Entry(
-            "steady window",
-            "scale",
-            "window_T",
-            ("window_T", "after 5 T"),
-            origin="adversarial",
-            why="Fig. 2's steady sigma_x^2 is read over an unstated window: the notebook's final window_T, or every "
-            "sample after the 5 T transient (more samples, closer to the transient)",
-        ),
-        Entry(
-            "C000-4 batch",
-            "scale",
-            "all trials",
-            ("all trials", "one trial"),
-            "the paper's tracker filters one object; a Monte Carlo batch amortises the Python overhead per step, so "
-            "the CPU ratio of C000-4 is read both ways (a register row so that joint samples combine it with "
-            "'v2 noise at')",
-            origin="adversarial",
-        ),
-        Entry(
-            "statistic",
-            "statistic",
-            "mean",
-            ("mean", "median"),
-            "the paper's sigma_x^2 is an ensemble mean (E9); the median of per-run variances is not carried by the few "
-            "runs that lose lock",
-        ),
-    ]
-)
+_ENTRIES = [
+    # ---- the data model: decided once, the filters, the grid likelihood and the PCRLB model the same sample
+    Entry(
+        "sample model",
+        "model",
+        "integrated",
+        ("integrated", "point"),
+        "a sampled tracker integrates the current over each dt (integrate and dump: the noise variance N/dt of the "
+        "paper's (E5), (E6)); the point sample is the textbook idealisation the filters, grid filter and PCRLB model "
+        "exactly",
+    ),
+    Entry(
+        "scoring time",
+        "reading",
+        "interval end",
+        ("interval end", "interval centre"),
+        "the paper's error (E9) is the filtering error X1(k) - X1_hat(k|k): the estimate against the message at "
+        "the time of its newest datum, the end of the sample's integration interval; the filters model an "
+        "integrated sample by the pulse at its interval centre, so scoring there (half an interval of later data "
+        "in the estimate, a short smoother) is the other reading (a point sample is scored at its instant)",
+    ),
+    Entry(
+        "photon model",
+        "model",
+        "Gaussian",
+        ("Gaussian", "Poisson counts"),
+        origin="adversarial",
+        why="eq. (1) models the shot noise as white Gaussian; it is the count statistics of photo-electrons, skewed "
+        "at few counts per sample (about 5 background electrons per sample at psi_A = 20, P = 0.9)",
+    ),
+    Entry(
+        "manoeuvre",
+        "regime",
+        "none",
+        ("none", "weave 0.1 T / 2 T"),
+        origin="adversarial",
+        why="the filters assume a Gauss-Markov message; a real object also manoeuvres: a weave of amplitude sigma_1 "
+        "(0.1 T) over 2 scans (still sampled by the once-per-scan pulse), random phase per run (a 5-scan weave "
+        "moved C000-2 and C000-3 less: left out to spare the paper profile)",
+    ),
+    Entry(
+        "background",
+        "regime",
+        "stationary",
+        ("stationary", "drifting +-50 %"),
+        origin="adversarial",
+        why="eq. (2) holds the background intensity N0 constant; a real background (sky, scattered light) drifts: "
+        "N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), unknown to the filters, a random phase per run",
+    ),
+    # ---- readings of the paper's ambiguous or inconsistent sentences
+    Entry(
+        "sigma_sh",
+        "reading",
+        "per sample",
+        ("per sample", "unit bandwidth"),
+        "psi_A = A / sigma_sh: the RMS of the background noise in one sample sqrt(N0/dt), or in a 1/T bandwidth "
+        "sqrt(N0) (4.5 times more noise per sample at the same psi_A)",
+    ),
+    Entry(
+        "G22",
+        "reading",
+        "paper",
+        ("paper", "euler", "matched"),
+        "(E8) prints 2 beta_0 dt (a unit-variance X2); Euler on eq. (8) gives beta_0^2 dt; the matched value makes "
+        "sqrt(c_s S) X2 carry the truth's per-sample signal-noise variance",
+    ),
+    Entry(
+        "v2 noise at",
+        "reading",
+        "predicted estimate",
+        ("predicted estimate", "updated estimate"),
+        "eq. (9) evaluates the noise intensity at 'the estimate': the prediction is the only one before the update; "
+        "one re-evaluation at the updated estimate is the other reading",
+    ),
+    Entry(
+        "initial estimate",
+        "reading",
+        "process means",
+        ("process means", "random N(0, D11(0))"),
+        "the paper's solid curves start at the process means; its dashed curves from normally distributed initial "
+        "estimates of unstated variance (read as D(0))",
+    ),
+    Entry(
+        "initial position",
+        "reading",
+        "stationary N(0, sigma_1^2)",
+        ("stationary N(0, sigma_1^2)", "uniform in the micro-raster"),
+        origin="adversarial",
+        why="'the image is within the micro-raster' (the paper's motivation of D11(0) = 0.2): the message's own law, "
+        "or anywhere in the raster with equal probability",
+    ),
+    Entry(
+        "convergence criterion",
+        "reading",
+        CONVERGENCE_READINGS[0],
+        CONVERGENCE_READINGS,
+        "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
+        "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
+    ),
+    Entry(
+        "lock threshold",
+        "reading",
+        "lock_factor",
+        ("lock_factor", "2 x steady RMS"),
+        origin="adversarial",
+        why="'in lock' is not the paper's word: a scan's RMS error above the notebook's lock_factor (5) x the steady "
+        "RMS error, or a strict 2 x (a scan's error at twice its steady value counts as not yet acquired)",
+    ),
+    Entry(
+        "C000-6 filter",
+        "reading",
+        "variant 2",
+        ("variant 2", "variant 1", "ignoring the signal noise"),
+        "the sentence's opening is lost at a page break: 'accounting for' (a matched variant) or 'ignoring' (the "
+        "filter that assumes P = 0) the non-stationary component",
+    ),
+    Entry(
+        "potentially achievable",
+        "comparator",
+        "sigma_x^2*",
+        ("sigma_x^2*", "PCRLB", "grid filter"),
+        "'potentially achievable' is undefined: the stationary-noise accuracy of Fig. 3 (the paper's own "
+        "reference), the posterior Cramer-Rao bound, or the near-optimal grid (point-mass) filter",
+    ),
+    Entry(
+        "C000-6 joint reading",
+        "reading",
+        "the entries above",
+        ("the entries above", JOINT_READING_C6),
+        origin="adversarial",
+        why="a flip the joint samples can miss: 'ignoring' the component, with the background current held fixed "
+        "(psi_A = 180 at P = 0.9); its ensemble mean is carried by the 3-4 % of runs that lose lock",
+    ),
+    Entry(
+        "C000-3 accuracy",
+        "reading",
+        "Monte Carlo error",
+        ("Monte Carlo error", "filters' own D11"),
+        origin="adversarial",
+        why="'the two algorithms give approximately the same estimate of potential accuracy': the accuracy they "
+        "achieve (the Monte Carlo error), or the accuracy each computes for itself (its steady covariance D11)",
+    ),
+    Entry(
+        "micro-raster size",
+        "reading",
+        "T",
+        ("T", "T_u"),
+        origin="adversarial",
+        why="'2 % of the micro-raster size': the coordinate is a time shift within the scan interval T; the pulse "
+        "duration T_u = T/2 is the other length a reader could take",
+    ),
+    # ---- operating points of the figures the claims come from
+    Entry(
+        "psi_A",
+        "operating point",
+        20.0,
+        (2.0, 5.0, 10.0, 20.0, 50.0, 100.0),
+        "Figs. 1 and 3 do not state psi_A; 20 is the only SNR the paper quotes; Fig. 2 spans 2-100 (2 added by the "
+        "adversarial pass: there C000-5 and C000-7 turn partly)",
+    ),
+    Entry(
+        "sigma_1",
+        "operating point",
+        "0.1 T",
+        ("0.1 T", "0.2 T"),
+        origin="adversarial",
+        why="the paper calls sigma_1 / T = 0.1 'typical'; 0.2 T is an image spread over the micro-raster (within "
+        "+-T/2 of its centre 98 % of the time; D11(0) = 0.2 is the paper's own prior spread), alpha_0 T = 0.15 kept",
+    ),
+    Entry(
+        "contrast",
+        "operating point",
+        0.5,
+        (0.0, 0.5, 0.9),
+        "Figs. 1 and 2 do not state P; 0.5 is the paper's boundary, 0.9 its high-contrast example",
+    ),
+    Entry(
+        "contrast convention",
+        "reading",
+        "fixed N0",
+        ("fixed N0", "fixed total current", "fixed background"),
+        "what is held fixed as P varies in Fig. 3 is unstated: N0 (only P/(1-P) changes), the total current or the "
+        "background current (psi_A then moves with P, anchored at psi_A at P = 0.5)",
+    ),
+    # ---- statistics
+    Entry(
+        "steady window",
+        "statistic",
+        "window_T",
+        ("window_T", "after 5 T"),
+        origin="adversarial",
+        why="Fig. 2's steady sigma_x^2 is read over an unstated window: the notebook's final window_T, or every "
+        "sample after the 5 T transient (more samples, closer to the transient)",
+    ),
+    Entry(
+        "C000-4 cost measure",
+        "reading",
+        "operation count",
+        ("operation count", "CPU time"),
+        "'needs more computation': the arithmetic of one filter step (multiplications, additions and divisions "
+        "of each variant's equations, counted; deterministic), or the CPU time of the vectorised filters (least "
+        "of 5 repeats; it moves between machines and runs, so it never enters the README's results)",
+    ),
+    Entry(
+        "C000-4 batch",
+        "statistic",
+        "all trials",
+        ("all trials", "one trial"),
+        "the paper's tracker filters one object; a Monte Carlo batch amortises the Python overhead per step, so "
+        "the CPU ratio of C000-4 is read both ways (a register row so that joint samples combine it with "
+        "'v2 noise at')",
+        origin="adversarial",
+    ),
+    Entry(
+        "statistic",
+        "statistic",
+        "mean",
+        ("mean", "median"),
+        "the paper's sigma_x^2 is an ensemble mean (E9); the median of per-run variances is not carried by the few "
+        "runs that lose lock",
+    ),
+]
+
+
+#: Each entry in plain words: what it is (its title) and each value as a tracking engineer reads it (units in T,
+#: the scan interval; the paper's equations by number).
+_PLAIN = {
+    "sample model": (
+        "how one sample of the dissector current is taken",
+        {
+            "integrated": "each sample integrates the current over its interval dt (integrate and dump)",
+            "point": "each sample is the current at one instant (the textbook idealisation the filters model exactly)",
+        },
+    ),
+    "scoring time": (
+        "time of the true coordinate each estimate is scored against",
+        {
+            "interval end": "the estimate is scored at the end of its sample's interval, its newest datum (the "
+            "paper's filtering error, E9)",
+            "interval centre": "the estimate is scored at the centre of its sample's interval (half an interval of "
+            "later data in the estimate: a short smoother)",
+        },
+    ),
+    "photon model": (
+        "statistics of the photo-current noise",
+        {
+            "Gaussian": "white Gaussian noise whose intensity follows the signal (the paper's eq. (1))",
+            "Poisson counts": "photo-electron counts (Poisson), about 5 background electrons per sample at psi_A = 20, "
+            "P = 0.9",
+        },
+    ),
+    "manoeuvre": (
+        "motion of the object beyond the paper's random drift",
+        {
+            "none": "the object drifts as the paper's Gauss-Markov message only",
+            "weave 0.1 T / 2 T": "the object also weaves, amplitude 0.1 T over 2 scans (a manoeuvring target)",
+        },
+    ),
+    "background": (
+        "background light level over time",
+        {
+            "stationary": "constant background noise intensity N0 (the paper's eq. (2))",
+            "drifting +-50 %": "background intensity drifting by +-50 % over 10 scans, unknown to the filters",
+        },
+    ),
+    "sigma_sh": (
+        "background noise level that defines the SNR psi_A",
+        {
+            "per sample": "psi_A = pulse peak / RMS background noise of one sample",
+            "unit bandwidth": "psi_A = pulse peak / RMS background noise in a 1/T bandwidth (4.5 times more noise "
+            "per sample at the same psi_A)",
+        },
+    ),
+    "G22": (
+        "process noise of variant 1's signal-noise state X2 per step (E8)",
+        {
+            "paper": "2 beta_0 dt, as printed in (E8) (a unit-variance X2)",
+            "euler": "beta_0^2 dt, the Euler step of eq. (8)",
+            "matched": "the value that gives X2 the per-sample variance of the true signal noise",
+        },
+    ),
+    "v2 noise at": (
+        "where variant 2 evaluates the signal-dependent noise level (eq. (9))",
+        {
+            "predicted estimate": "at the predicted coordinate, before the update",
+            "updated estimate": "re-evaluated once at the updated coordinate",
+        },
+    ),
+    "initial estimate": (
+        "the filters' initial coordinate estimate",
+        {
+            "process means": "zero, the process mean (the paper's solid curves)",
+            "random N(0, D11(0))": "random, normal with the filters' initial variance 0.2 T^2 (the paper's dashed "
+            "curves)",
+        },
+    ),
+    "initial position": (
+        "where the object starts in the micro-raster",
+        {
+            "stationary N(0, sigma_1^2)": "normal about the raster centre with the message's spread sigma_1 = 0.1 T",
+            "uniform in the micro-raster": "anywhere in the raster, uniform over +-T/2",
+        },
+    ),
+    "convergence criterion": (
+        "what 'the algorithms converge fairly quickly' is measured by",
+        {
+            "90 % of runs acquired": "at most 10 % of the runs not yet in lock for good after the given number of "
+            "scans",
+            "ensemble mean within 10 %": "the ensemble error variance within 10 % of its steady value after the given "
+            "number of scans (the card's criterion)",
+        },
+    ),
+    "lock threshold": (
+        "error above which a scan counts as out of lock",
+        {
+            "lock_factor": "a scan's RMS error above lock_factor (5) times the steady RMS error",
+            "2 x steady RMS": "a scan's RMS error above twice the steady RMS error",
+        },
+    ),
+    "C000-6 filter": (
+        "the filter of the truncated 'more than 20 times' sentence",
+        {
+            "variant 2": "variant 2, which accounts for the signal noise",
+            "variant 1": "variant 1, which accounts for the signal noise",
+            "ignoring the signal noise": "a filter that ignores the signal noise (assumes P = 0)",
+        },
+    ),
+    "potentially achievable": (
+        "the 'potentially achievable' accuracy of the 20-times sentence",
+        {
+            "sigma_x^2*": "the error variance with stationary noise only (the paper's Fig. 3 reference)",
+            "PCRLB": "the posterior Cramer-Rao bound",
+            "grid filter": "the near-optimal grid (point-mass) Bayesian filter",
+        },
+    ),
+    "C000-6 joint reading": (
+        "the adversarial joint reading of the 20-times sentence",
+        {
+            "the entries above": "the sentence read through the two entries above",
+            JOINT_READING_C6: "a filter ignoring the signal noise, with the background current held fixed as P varies",
+        },
+    ),
+    "C000-3 accuracy": (
+        "what 'the same estimate of potential accuracy' compares",
+        {
+            "Monte Carlo error": "the error variance each variant achieves",
+            "filters' own D11": "the error variance each variant computes for itself (its D11)",
+        },
+    ),
+    "micro-raster size": (
+        "the length '2 % of the micro-raster size' refers to",
+        {"T": "the scan interval T", "T_u": "the pulse duration T_u = T/2"},
+    ),
+    "psi_A": (
+        "signal-to-noise ratio psi_A of Figs. 1 and 3 and of the claims",
+        {v: f"psi_A = {v:g}" for v in (2.0, 5.0, 10.0, 20.0, 50.0, 100.0)},
+    ),
+    "sigma_1": (
+        "spread of the object's random drift sigma_1",
+        {
+            "0.1 T": "sigma_1 = 0.1 T, the paper's typical value",
+            "0.2 T": "sigma_1 = 0.2 T, an image spread over the whole micro-raster (a world the paper did not compute)",
+        },
+    ),
+    "contrast": (
+        "object contrast P of Figs. 1 and 2",
+        {0.0: "contrast P = 0 (no signal noise)", 0.5: "contrast P = 0.5", 0.9: "contrast P = 0.9"},
+    ),
+    "contrast convention": (
+        "what stays fixed as the contrast P varies in Fig. 3",
+        {
+            "fixed N0": "the background noise level N0 (only the signal-noise share changes)",
+            "fixed total current": "the total current, signal plus background (psi_A moves with P)",
+            "fixed background": "the background current (psi_A grows as P / (1 - P))",
+        },
+    ),
+    "steady window": (
+        "samples the steady error variance is averaged over",
+        {
+            "window_T": "the final steady_window_T scans of each run",
+            "after 5 T": "every sample after the first 5 scans",
+        },
+    ),
+    "C000-4 cost measure": (
+        "what 'needs more computation' is measured by",
+        {
+            "operation count": "multiplications, additions and divisions per filter step, counted",
+            "CPU time": "CPU time of the vectorised filters per step",
+        },
+    ),
+    "C000-4 batch": (
+        "how many runs the CPU time is measured over",
+        {"all trials": "a Monte Carlo batch of runs at once", "one trial": "one tracked object"},
+    ),
+    "statistic": (
+        "the ensemble statistic of the error variance",
+        {"mean": "the ensemble mean (the paper's E9)", "median": "the median over the runs"},
+    ),
+}
+
+
+def _plain(entry: Entry) -> Entry:
+    title, phrases = _PLAIN[entry.name]
+    return replace(entry, title=title, phrases=phrases)
+
+
+REGISTER = Register([_plain(e) for e in _ENTRIES])
 
 _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).
 DEPENDS = {
-    "C000-4": ["v2 noise at", "C000-4 batch"],
+    "C000-4": ["C000-4 cost measure", "v2 noise at", "C000-4 batch"],
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
     + ["sigma_1", "lock threshold"],

@@ -19,8 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
-from .ekf import consistency, run_variant1, run_variant2, variant1_filter, variant2_filter
+from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
+from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -39,13 +41,10 @@ __all__ = [
     "psi_at",
     "measure",
     "steady_runs",
-    "fig1_curves",
-    "acquisition_vs_offset",
     "CONTRAST_CONVENTIONS",
     "cost_ratio",
     "measure_cost",
     "record_inputs",
-    "consistency_over_psi",
 ]
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
@@ -73,6 +72,9 @@ BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
 #: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
 #: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
 JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
+#: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
+LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
+CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -244,13 +246,12 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 if random_init
                 else None
             )
-            f = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"])
-            e, d = run_variant1(f, y, (D11_0, D22_0), start)
+            e, d = run_steps_variant1(scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"])
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
-            e, d = run_variant2(variant2_filter(scan, _message(cfg), assumed, iterations), y, D11_0, start)
+            e, d = run_steps_variant2(scan, _message(cfg), y, D11_0, start, assumed, iterations)
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
@@ -290,19 +291,20 @@ def _c1(cfg, seed, sizes):
 
     "90 % of runs acquired": the fraction of runs not in lock for good by ``acquire_by_T`` (Clopper-Pearson; zero
     runs give the bound they certify). "ensemble mean within 10 %": sigma_x^2 over the scan ending at
-    ``acquire_by_T`` over the steady sigma_x^2 (paired ratio over runs).
+    ``acquire_by_T`` over the steady sigma_x^2 (paired ratio over runs). Tagged with the reading
+    (:meth:`tvtrack.verdicts.ByReading.tag`): each reading's rule judges its own quantity.
     """
     parts = {}
     scan_end = int(round(sizes.acquire_by_T * sizes.steps_per_scan * sizes.dt))  # scans up to acquire_by_T
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
         run = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"])
-        if cfg["convergence criterion"] == "ensemble mean within 10 %":
+        if cfg["convergence criterion"] == ENSEMBLE_MEAN:  # its own rule judges it (.claims, a ByReading rule)
             parts[f"variant {filt[1]}"] = ratio_ci(run["scans"][:, scan_end - 1], run["steady"])
             continue
         t = _acquired_at(cfg, seed, sizes, filt, run)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
-    return parts
+    return ByReading.tag(cfg["convergence criterion"], parts)
 
 
 def _acquired_at(cfg, seed, sizes, filt, run):
@@ -426,8 +428,8 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y, name=name):
                     if name == "v1":
-                        return run_variant1(variant1_filter(s, _message(cfg), BETA_0, "consistent", cfg["G22"]), y)[0]
-                    return run_variant2(variant2_filter(s, _message(cfg), None, iterations), y)[0]
+                        return run_steps_variant1(s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"])[0]
+                    return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
@@ -477,53 +479,21 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     }
 
 
-def fig1_curves(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
-    """Fig. 1: ensemble sigma_x^2(t) of both variants from both initial estimates, the filters' mean D11 and the
-    PCRLB, at the configuration's psi_A and contrast. Arrays of shape (n_steps + 1,), T^2."""
-    out = {}
-    for filt in ("v1", "v2"):
-        for init in ("process means", "random N(0, D11(0))"):
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
-            out[f"{filt}, {init}"] = run["curve"]
-            if init == "process means":
-                out[f"{filt} own D11"] = run["d_curve"]
-    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps)
-    return out
-
-
-def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dict:
-    """Acquisition against the truth's initial offset X1(0) (T), both variants from the paper's start estimate.
-
-    Returns
-    -------
-    dict  per variant: ``q90`` (Estimates of the 90 % acquisition time, T; not acquired counts as 2 x duration),
-    ``late`` (proportion Estimates of runs not acquired by ``acquire_by_T``) and ``lost`` (fraction of runs out
-    of lock at the end of the run), one per offset
-    """
-    out = {}
-    for filt in ("v1", "v2"):
-        q90, late, lost = [], [], []
-        for off in offsets:
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
-            t = _acquired_at(config, seed, sizes, filt, run)
-            q90.append(quantile_ci(np.where(np.isfinite(t), t, 2 * sizes.duration_T), 0.9))
-            late.append(proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size))
-            lost.append(float(np.mean(~np.isfinite(t))))
-        out[filt] = {"q90": q90, "late": late, "lost": lost}
-    return out
-
-
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
-    """C000-4 at ``config``: :func:`cost_ratio` over ``n_trials`` trials (``"C000-4 batch" = "all trials"``) or one,
-    with variant 2 re-evaluating eq. (9)'s noise at the updated estimate when ``"v2 noise at"`` says so.
+    """C000-4 at ``config``: arithmetic operations per filter step of variant 1 over variant 2
+    (:func:`.cost.operation_ratio`, deterministic; the default reading ``"C000-4 cost measure" = "operation
+    count"``), or the CPU-time ratio :func:`cost_ratio` over ``n_trials`` trials (``"C000-4 batch" = "all
+    trials"``) or one; variant 2 re-evaluates eq. (9)'s noise at the updated estimate when ``"v2 noise at"``
+    says so.
 
     Returns
     -------
-    dict  {"C000-4": CPU time of variant 1 / variant 2 (float)}
+    dict  {"C000-4": variant 1 / variant 2 (float)}
     """
-    n = n_trials if config["C000-4 batch"] == "all trials" else 1
     iterations = 1 if config["v2 noise at"] == "updated estimate" else 0
+    if config.get("C000-4 cost measure", "operation count") == "operation count":
+        return {"C000-4": operation_ratio(iterations)}
+    n = n_trials if config["C000-4 batch"] == "all trials" else 1
     return {"C000-4": cost_ratio(n, n_steps, seed, noise_iterations=iterations)}
 
 
@@ -553,32 +523,3 @@ def record_inputs(config: dict, seed: int, sizes: Sizes):
     """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`)."""
     x, pulse, xi, _ = _path(config, seed, sizes)
     return _scan(config, config["psi_A"], config["contrast"], sizes), x, pulse, xi
-
-
-def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
-    """Mean steady-state NEES of both variants over the Fig. 2 SNRs, with the truth scored at the interval centre
-    (the time the filters' model of a sample refers to) and at its end: 1 for a filter whose D11 describes its error.
-
-    Returns
-    -------
-    dict  {scoring time: {"variant 1" | "variant 2": [Estimate per psi_A]}}
-    """
-    out = {}
-    for scoring in ("interval centre", "interval end"):
-        cfg = {**config, "scoring time": scoring}
-        x, pulse, xi, _ = _path(cfg, seed, sizes)
-        out[scoring] = {}
-        for name in ("v1", "v2"):
-            ests = []
-            for psi in sizes.psi_grid:
-                scan = _scan(cfg, psi, cfg["contrast"], sizes)
-                y = _samples(cfg, seed, scan, pulse, xi)
-                if name == "v1":
-                    filt, d0 = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
-                else:
-                    iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations), D11_0
-                nees, _ = consistency(filt, y, x, d0, sizes.window())
-                ests.append(mean_square_ci(nees))
-            out[scoring][f"variant {name[1]}"] = ests
-    return out

@@ -20,6 +20,12 @@ REGISTER = Register(
             ("card", "sinusoids", "random"),
             "Fig. 1 says only 'x random, y a sinusoid' and nothing for the interference runs: the card's OU x with a "
             "0.5 Hz y, both axes sinusoidal, or both random, at the same RMS",
+            title="law of the object's motion (Fig. 1 and the interference runs)",
+            phrases={
+                "card": "x a random (smoothed Ornstein-Uhlenbeck) walk of 10 px RMS, y a 20 px sinusoid at 0.5 Hz with a random phase (the card)",
+                "sinusoids": "both coordinates sinusoidal (x at 0.35 Hz), the same RMS as the card's motion",
+                "random": "both coordinates random walks, the same RMS as the card's motion",
+            },
         ),
         Entry(
             "motion_scale",
@@ -29,6 +35,13 @@ REGISTER = Register(
             "no amplitudes are given: 0 a hovering object (adversarial: Fig. 3 shows the marker sweeping the "
             "interferers, nothing says the object moved), 0.25 the card's slow object (5 px), 2 doubles the speed "
             "(40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, still well inside the gate)",
+            title="amplitude of the object's motion, relative to the card's (10 px RMS in x, 20 px in y)",
+            phrases={
+                0.0: "a hovering object (no motion)",
+                0.25: "a slow object (5 px in y)",
+                1.0: "the card's motion (20 px in y)",
+                2.0: "twice the card's motion (40 px in y)",
+            },
         ),
         Entry(
             "sinusoid_hz",
@@ -38,6 +51,11 @@ REGISTER = Register(
             "Fig. 1: 'Y moves along a sinusoid', no frequency: 0.5 Hz (card) or 1.5 Hz (15 % of the 10 Hz loop, a "
             "lag of ~3 px inside the 12 px gate half-width)",
             origin="adversarial",
+            title="frequency of the object's y sinusoid in Fig. 1",
+            phrases={
+                0.5: "y sinusoid at 0.5 Hz (the card)",
+                1.5: "y sinusoid at 1.5 Hz (15 % of the 10 Hz coordinate loop)",
+            },
         ),
         Entry(
             "rotation_rate",
@@ -47,6 +65,13 @@ REGISTER = Register(
             "l. 185 gives the *mean* rotation frequency (8 rev/s), so omega may vary in every run; its law is unstated: "
             "constant, 10 % at 0.5 Hz, 15 % or 20 % at 1 Hz (peak slew 47 or 63 rad/s^2, inside the stated 6 Hz loop)",
             origin="adversarial",
+            title="law of the marker's rotation rate about its mean 8 rev/s",
+            phrases={
+                "constant": "a constant 8 rev/s",
+                "modulated": "8 rev/s varied by 10 % at 0.5 Hz",
+                "modulated fast": "8 rev/s varied by 15 % at 1 Hz",
+                "modulated strong": "8 rev/s varied by 20 % at 1 Hz",
+            },
         ),
         Entry(
             "fig2_law",
@@ -56,6 +81,12 @@ REGISTER = Register(
             "Fig. 2: omega and r 'vary sinusoidally', no depth or rate: the card's 10 %/0.5 Hz and 15 %/0.05 Hz, "
             "omega at 2 Hz (inside the stated 6 Hz loop), r 25 % at 0.2 Hz (the stated r-loop bandwidth)",
             origin="adversarial",
+            title="how the rotation rate and radius vary in the Fig. 2 runs",
+            phrases={
+                "card": "rate 10 % at 0.5 Hz, radius 15 % at 0.05 Hz (the card)",
+                "omega 2 Hz": "rate 10 % at 2 Hz (inside the 6 Hz loop), radius as the card",
+                "r 0.2 Hz": "radius 25 % at 0.2 Hz (the radius loop's own bandwidth), rate as the card",
+            },
         ),
         Entry(
             "bandwidth_reading",
@@ -65,6 +96,11 @@ REGISTER = Register(
             "'bandwidths 10; 0.2 and 6 Hz' without saying which: closed-loop -3 dB, or noise-equivalent (K = 4 B_n "
             "for the first-order loops, B_n = 0.53 w_n for the PLL)",
             origin="adversarial",
+            title="what the paper's loop 'bandwidths' (10, 0.2 and 6 Hz) measure",
+            phrases={
+                "-3 dB": "the closed-loop -3 dB bandwidth",
+                "noise-equivalent": "the noise-equivalent bandwidth (narrower loops: -3 dB at 6.4, 0.13 and 3.7 Hz)",
+            },
         ),
         Entry(
             "compensation_reading",
@@ -75,6 +111,11 @@ REGISTER = Register(
             "the threshold SIR before compensation ... decreases to 0.2-0.3') and l. 208 (compensation is one of the "
             "main factors): the order of magnitude is a hypothesis, so compensation lowers the SIR_0 threshold at "
             "least about 1/kappa-fold (one-sided); the card's reading asks for about 1/kappa (two-sided)",
+            title="how much C003-10 asks background compensation to lower the pre-compensation threshold",
+            phrases={
+                "one-sided": "at least about tenfold (the paper's 'order of magnitude' as a hypothesis: more is also fine)",
+                "two-sided": "about tenfold, within a factor 2 either way (the card's reading)",
+            },
         ),
         Entry(
             "slope_range",
@@ -84,15 +125,25 @@ REGISTER = Register(
             "C003-9: 'the quadrant form restores a linear part' without its extent: the slope fitted over +-D/2 (the "
             "card's acceptance) or the slope of the linear part at small errors (+-D/8, +-D/4)",
             origin="adversarial",
+            title="error range over which C003-9's 'linear part' of the quadrant discriminator is measured",
+            phrases={
+                "+-D/2": "slope fitted over errors up to half a spot diameter (4 px, the card)",
+                "small errors": "slope at small errors (1-2 px)",
+            },
         ),
         Entry(
             "phase_loop",
-            "model",
+            "reading",
             "designed",
             ("designed", "realised"),
-            "'6 Hz for omega' without the gain rule: a PLL designed for 6 Hz alone (the coupled loop then realises "
+            "a reading of the paper's '6 Hz for omega' (l. 192), which names no gain rule: a PLL designed for 6 Hz alone (the coupled loop then realises "
             "less, see the loop section) or gains retuned until the coupled loop realises 6 Hz",
             origin="adversarial",
+            title="what the paper's '6 Hz for omega' sets in the phase-tracking loop",
+            phrases={
+                "designed": "the phase loop designed for 6 Hz on its own (the coupled tracker then realises less)",
+                "realised": "loop gains retuned until the coupled tracker's phase loop realises 6 Hz",
+            },
         ),
         Entry(
             "noise",
@@ -100,6 +151,12 @@ REGISTER = Register(
             0.02,
             (0.01, 0.02, 0.05),
             "sensor noise is 'white, intensity N' with no value: d/50 (card), from d/100 to d/20",
+            title="sensor noise per pixel and frame, in units of the marker brightness d",
+            phrases={
+                0.01: "sensor noise d/100 per pixel",
+                0.02: "sensor noise d/50 per pixel (the card)",
+                0.05: "sensor noise d/20 per pixel",
+            },
         ),
         Entry(
             "fps",
@@ -108,6 +165,13 @@ REGISTER = Register(
             (50.0, 250.0, 500.0, 1000.0),
             "no frame rate is given; 8 rev/s needs tens of frames per revolution: 250-1000 frames/s (31-125 a turn); "
             "adversarial: 50, broadcast TV's field rate for the paper's 'TV sensor' (8 rev/s is below its Nyquist)",
+            title="camera frame rate",
+            phrases={
+                50.0: "50 frames/s (TV field rate, 6 frames per revolution)",
+                250.0: "250 frames/s (31 frames per revolution)",
+                500.0: "500 frames/s (62 frames per revolution, the card)",
+                1000.0: "1000 frames/s (125 frames per revolution)",
+            },
         ),
         Entry(
             "exposure",
@@ -117,14 +181,21 @@ REGISTER = Register(
             "no exposure is given: the sensor samples at the frame time, or integrates over the frame, so the marker is "
             "smeared along the arc it turns in one frame (1.2 px at 500 frames/s, 12 px at 50: a spot's width "
             "and more); the same spot energy per frame either way",
+            title="how the sensor exposes each frame",
+            phrases={
+                "instant": "an instant snapshot at the frame time",
+                "integrated": "integrated over the frame (the marker smeared along its arc)",
+            },
         ),
         Entry(
             "spot",
-            "model",
+            "reading",
             "disc",
             ("disc", "square"),
-            "the simulation speaks of a spot 'diameter' and the quadrant form for round spots; eq. (9) derives with a "
-            "square spot",
+            "a reading of the paper's spot: the simulation speaks of a spot 'diameter' and the quadrant form for round "
+            "spots, eq. (9) derives with a square spot",
+            title="shape of the emitter's image",
+            phrases={"disc": "a round spot 8 px across", "square": "a square spot 8 px on a side (eq. (9))"},
         ),
         Entry(
             "compensation",
@@ -135,6 +206,11 @@ REGISTER = Register(
             "times the static scene left (the paper's hypothesis), or a data-driven per-pixel temporal median of the "
             "first two revolutions' frames (card 8.5), which cancels stationary interferers whatever their "
             "brightness and leaves a faint ring where the marker swept (and a still marker's own spot)",
+            title="how the background is compensated",
+            phrases={
+                "kappa": "a tenth of the static scene (background and interferers) left (the paper's hypothesis)",
+                "temporal median": "each pixel's median over the first two revolutions subtracted (removes stationary interferers)",
+            },
         ),
         Entry(
             "residual_background",
@@ -142,15 +218,27 @@ REGISTER = Register(
             50.0,
             (50.0, 100.0),
             "'marker brightness over the background std after compensation 50-100' (simulation section)",
+            title="marker brightness over the background's standard deviation after compensation",
+            phrases={
+                50.0: "marker 50 times the residual background's std",
+                100.0: "marker 100 times the residual background's std",
+            },
         ),
         Entry(
             "interferer_radius",
-            "regime",
+            "reading",
             "r0",
             ("r0", "r0 - D/2", "r0 + D/2", "jitter D/2"),
-            "Fig. 3: interferers 'in the area swept by the marker': on its circle, half a spot inside or outside it, "
+            "a reading of Fig. 3's interferers 'in the area swept by the marker': on its circle, half a spot inside or outside it, "
             "or scattered within half a spot of it",
             origin="adversarial",
+            title="where the interferers sit relative to the circle the marker sweeps",
+            phrases={
+                "r0": "on the marker's circle (12 px from the object's start)",
+                "r0 - D/2": "half a spot inside the marker's circle",
+                "r0 + D/2": "half a spot outside the marker's circle",
+                "jitter D/2": "scattered within half a spot of the marker's circle",
+            },
         ),
         Entry(
             "interferer_size",
@@ -160,6 +248,11 @@ REGISTER = Register(
             "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
             "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux)",
             origin="adversarial",
+            title="size of each interferer's spot",
+            phrases={
+                "D": "interferers the size of the marker's spot",
+                "2D": "interferers twice the marker's spot diameter (four times its flux)",
+            },
         ),
         Entry(
             "placement",
@@ -167,6 +260,8 @@ REGISTER = Register(
             "object",
             ("object", "image"),
             "the circle of interferers about the object's initial centre (card) or about the image centre",
+            title="centre of the interferers' circle",
+            phrases={"object": "about the object's starting point", "image": "about the image centre"},
         ),
         Entry(
             "loss_window_s",
@@ -175,6 +270,12 @@ REGISTER = Register(
             (0.25, 0.5, 1.0),
             "'loss of tracking' is not defined: the miss beyond the loss radius for more than half of a window of "
             "0.25-1 s (card section 4.5: 0.5 s)",
+            title="window over which a loss of lock is declared (the marker off the gate more than half of it)",
+            phrases={
+                0.25: "loss: off the gate for most of 0.25 s",
+                0.5: "loss: off the gate for most of 0.5 s (4 revolutions, the card)",
+                1.0: "loss: off the gate for most of 1 s",
+            },
         ),
         Entry(
             "loss_radius",
@@ -182,6 +283,11 @@ REGISTER = Register(
             "gate half-size",
             ("gate half-size", "D/2"),
             "a loss is the marker leaving the gate, or (stricter) leaving the spot's own half-width",
+            title="distance from the gate centre beyond which the marker counts as lost",
+            phrases={
+                "gate half-size": "the marker outside the gate (12 px)",
+                "D/2": "the marker more than half a spot (4 px) from the gate centre",
+            },
         ),
         Entry(
             "horizon",
@@ -190,6 +296,8 @@ REGISTER = Register(
             ("T", "2T"),
             "run lengths of the interference runs are not given and P(loss within T) grows with T: the notebook's "
             "T (5 s at paper scale, for cost) and twice it (the card's 10 s)",
+            title="length of each interference run (a loss is counted within it)",
+            phrases={"T": "runs of T = 5 s at paper scale", "2T": "runs of 2T = 10 s (the card's length)"},
         ),
         Entry(
             "static_gate",
@@ -199,6 +307,11 @@ REGISTER = Register(
             "the static baseline tuned to its own optimum: the paper's 3D gate, or a 2D gate that keeps interferers on "
             "the marker's circle (1.5 D away) outside it",
             origin="adversarial",
+            title="gate of the non-rotating comparison marker (C003-12)",
+            phrases={
+                "3D": "the static marker with the paper's gate, 3 spot diameters (24 px)",
+                "2D": "the static marker with a 2-diameter gate (16 px), which keeps interferers on the rotating marker's circle out",
+            },
         ),
         Entry(
             "static_form",
@@ -208,6 +321,11 @@ REGISTER = Register(
             "the non-modulated baseline with the paper's quadrant discriminator, or with the classical gate centroid "
             "(card section 8.1), each with the same gate, loops and information",
             origin="adversarial",
+            title="discriminator of the non-rotating comparison marker (C003-12)",
+            phrases={
+                "quadrant": "the static marker tracked by the paper's quadrant discriminator",
+                "centroid": "the static marker tracked by the gate's centroid",
+            },
         ),
         Entry(
             "edge_norm",
@@ -217,6 +335,27 @@ REGISTER = Register(
             "the edge form is a relay with no slope worth the name: normalised by its slope at +-0.25 px, or at "
             "matched slew (its saturated output equal to the quadrant form's), the same tuning effort for both",
             origin="adversarial",
+            title="how the edge discriminator's output is scaled into pixels (C003-9)",
+            phrases={
+                "slope": "edge form scaled by its slope at small errors",
+                "slew": "edge form scaled so that its saturated output equals the quadrant form's",
+            },
+        ),
+        Entry(
+            "decoy_brightness",
+            "comparator",
+            "residual",
+            ("residual", "emitted"),
+            "what SIR means for C003-12's law-following decoy: the paper defines SIR with the brightness an interferer "
+            "keeps after background compensation (l. 198); a moving decoy is not compensated, so at a given SIR it is "
+            "either as bright at the tracker as a stationary interferer's residual, or emits what the stationary "
+            "interferer emits (and reaches the tracker 1/kappa = 10 times brighter)",
+            origin="adversarial",
+            title="brightness of the law-following decoy at a given SIR (C003-12)",
+            phrases={
+                "residual": "the decoy as bright at the tracker as a stationary interferer after compensation",
+                "emitted": "the decoy emitting what a stationary interferer emits (10 times brighter at the tracker)",
+            },
         ),
     ]
 )
@@ -260,13 +399,14 @@ INTERFERENCE = (
     "horizon",
     "static_gate",
     "static_form",
+    "decoy_brightness",
     "compensation_reading",
 )
 
 _NO_EDGE = tuple(k for k in TRACKING if k not in ("edge_norm", "slope_range"))  # only C003-9 reads them
 _FIG1 = tuple(k for k in _NO_EDGE if k != "fig2_law")  # only C003-3 reads the Fig. 2 runs
 _I_ALL = tuple(k for k in INTERFERENCE if k != "compensation_reading")  # only C003-10 reads it
-_NO_STATIC = tuple(k for k in _I_ALL if k not in ("static_gate", "static_form"))  # only C003-12 runs it
+_NO_STATIC = tuple(k for k in _I_ALL if k not in ("static_gate", "static_form", "decoy_brightness"))  # C003-12 only
 DEPENDS = {
     "C003-1": _FIG1,
     "C003-2": _FIG1,

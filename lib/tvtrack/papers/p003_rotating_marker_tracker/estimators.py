@@ -1,0 +1,347 @@
+"""Direct-count estimators of notebook 003's verdicts: loss shares, grid-censored thresholds and their ratios, the
+adaptive grid extension, fold distances and C003-10's compensation ratio (moved from :mod:`.study`, which re-exports
+them).
+
+Every estimate reads direct counts, never a fitted tail: the probability of loss at a grid SIR is a count with its
+Clopper-Pearson interval (zero events: the one-sided bound they certify); a threshold is the geometric mean of the
+per-run breaking SIRs, with a Student-t interval widened by half the grid step.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ...montecarlo import Estimate, mean_ci, proportion_ci, zero_events_bound
+
+__all__ = [
+    "loss_share",
+    "log_thresholds",
+    "threshold",
+    "threshold_bound",
+    "threshold_ratio",
+    "extend_grid",
+    "COMPENSATION_READINGS",
+    "compensation_reading",
+    "fold_distance",
+]
+
+
+def _estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
+    return Estimate(float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, bool(extrapolated))
+
+
+def loss_share(events) -> Estimate:
+    """Share of runs with the event (loss, capture), from the direct count.
+
+    ``k`` of ``n`` with the exact Clopper-Pearson 95 % interval; zero events give ``[0, b]`` with ``b`` the
+    one-sided bound they certify (:func:`tvtrack.montecarlo.zero_events_bound`), and ``n`` events ``[1 - b, 1]``.
+
+    Parameters
+    ----------
+    events : array_like of bool, shape (n,)
+    """
+    e = np.asarray(events, bool).ravel()
+    n, k = e.size, int(e.sum())
+    if k == 0:
+        return _estimate(0.0, 0.0, zero_events_bound(n), n, "count: zero events, one-sided 95 % bound")
+    if k == n:
+        return _estimate(1.0, 1 - zero_events_bound(n), 1.0, n, "count: all events, one-sided 95 % bound")
+    return proportion_ci(k, n)
+
+
+def log_thresholds(lost, sirs) -> tuple[np.ndarray, np.ndarray]:
+    """Per-run log breaking SIR from the losses on a SIR grid (the same runs at every SIR).
+
+    A run that lost lock at the grid SIRs below ``s_k`` and kept it from ``s_k`` on broke between ``s_{k-1}`` and
+    ``s_k``; its log threshold is the midpoint ``(ln s_{k-1} + ln s_k) / 2``. A non-monotone run counts its losses:
+    ``ln s_0 + sum_i lost_i (ln s_{i+1} - ln s_i)`` is the upper end, minus half the step below it.
+
+    Parameters
+    ----------
+    lost : array_like of bool, shape (m, n)
+        Loss of lock at each of ``m`` grid SIRs (increasing) for ``n`` runs.
+    sirs : array_like, shape (m,)
+
+    Returns
+    -------
+    tau : ndarray, shape (n,)
+        Log thresholds.
+    censored : ndarray of bool, shape (n,)
+        Runs that broke outside the grid (lost at its top, or kept lock at its bottom).
+    """
+    L = np.asarray(lost, bool)
+    ls = np.log(np.asarray(sirs, float))
+    steps = np.diff(ls)
+    k = L[:-1].sum(axis=0)  # grid steps climbed (index of the first kept SIR)
+    upper = ls[0] + (L[:-1] * steps[:, None]).sum(axis=0)
+    below = np.where(k > 0, steps[np.maximum(k - 1, 0)], steps[0])
+    tau = upper - below / 2
+    censored = L[-1] | ~L[0]
+    return tau, censored
+
+
+def _half_step(sirs) -> float:
+    return float(np.max(np.diff(np.log(np.asarray(sirs, float)))) / 2)
+
+
+def threshold(lost, sirs) -> Estimate:
+    """Geometric-mean breaking SIR of the runs, from :func:`log_thresholds`.
+
+    ``exp(mean tau)`` with the Student-t 95 % interval of the mean widened by half the largest grid step on each
+    side (each run's threshold is known only to within its grid step); ``extrapolated`` when any run broke outside
+    the grid (the mean would then rest on a guess).
+    """
+    tau, cens = log_thresholds(lost, sirs)
+    h = _half_step(sirs)
+    m = mean_ci(tau)
+    return _estimate(
+        np.exp(m.value),
+        np.exp(m.ci_low - h),
+        np.exp(m.ci_high + h),
+        tau.size,
+        "geometric mean of per-run breaking SIRs (grid-censored), t interval + half a grid step",
+        extrapolated=bool(cens.any()),
+    )
+
+
+def threshold_bound(lost, sirs) -> Estimate:
+    """The side of the paper's value a threshold certifies, from the same runs as :func:`threshold`.
+
+    :func:`threshold` is ``extrapolated`` (undecided) as soon as one run broke outside the grid; but a run that kept
+    lock at the grid's bottom broke below it, and one that lost lock at its top broke above it, so censoring on one
+    side still bounds the geometric mean on the other: with runs censored below, ``[0, exp(upper t bound of the
+    mean with those runs at the bottom + h)]``; censored above, ``[exp(lower t bound with those runs at the top - h),
+    inf]`` (``h`` half the largest grid step, as in :func:`threshold`). Without censoring it equals
+    :func:`threshold`; censored on both sides it stays ``extrapolated``. The value is :func:`threshold`'s.
+    """
+    L = np.asarray(lost, bool)
+    ls = np.log(np.asarray(sirs, float))
+    tau, _ = log_thresholds(L, sirs)
+    point = threshold(L, sirs)
+    low_c, high_c = ~L[0], L[-1]  # kept lock at the bottom (broke below) / lost at the top (broke above)
+    if not (low_c.any() or high_c.any()):
+        return point
+    h = _half_step(sirs)
+    lo = 0.0 if low_c.any() else float(np.exp(mean_ci(np.where(high_c, ls[-1], tau)).ci_low - h))
+    hi = float("inf") if high_c.any() else float(np.exp(mean_ci(np.where(low_c, ls[0], tau)).ci_high + h))
+    return _estimate(
+        point.value,
+        lo,
+        hi,
+        tau.size,
+        f"bound certified by the censoring: {int(low_c.sum())} run(s) broke below the grid, "
+        f"{int(high_c.sum())} above it; t bound + half a grid step",
+        extrapolated=bool(low_c.any() and high_c.any()),
+    )
+
+
+def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
+    """Ratio of the geometric-mean thresholds of two curves run on the same draws (paired per run).
+
+    ``exp(mean(tau_a - tau_b))`` with the paired t interval widened by half the largest grid step;
+    ``extrapolated`` when a run of either curve broke outside the grid -- except where the censoring certifies a
+    bound: when the runs of ``a`` broke outside the grid only below it and those of ``b`` only above it, each
+    censored run's log threshold is at most (``a``) or at least (``b``) the grid's edge, so the ratio is bounded
+    above: ``[0, exp(upper t bound of mean(ub_a - lb_b) + h)]`` (value: the bound's point), like the zero-events
+    bound of a share; mirrored, when ``a`` broke outside only above the grid and ``b`` only below it, the ratio is
+    bounded below: ``[exp(lower t bound of mean(lb_a - ub_b) - h), inf]`` (e.g. C003-12's imitator when a bright decoy
+    breaks lock at every grid SIR).
+    """
+    La, Lb = np.asarray(lost_a, bool), np.asarray(lost_b, bool)
+    ta, ca = log_thresholds(La, sirs)
+    tb, cb = log_thresholds(Lb, sirs)
+    h = _half_step(sirs)
+    steps = np.diff(np.log(np.asarray(sirs, float)))
+    if (ca.any() or cb.any()) and not La[-1].any() and Lb[0].all():
+        ub = np.where(~La[0], ta + steps[0] / 2, ta)  # a: kept lock at the bottom, threshold below it
+        lb = np.where(Lb[-1], tb + steps[-1] / 2, tb)  # b: lost at the top, threshold above it
+        m = mean_ci(ub - lb)
+        return _estimate(
+            np.exp(m.value),
+            0.0,
+            np.exp(m.ci_high + h),
+            ta.size,
+            f"upper bound: {int((~La[0]).sum())} run(s) of the first curve kept lock at the grid's bottom, "
+            f"{int(Lb[-1].sum())} of the second lost it at its top; paired t bound + half a grid step",
+        )
+    if (ca.any() or cb.any()) and La[0].all() and not Lb[-1].any():  # the mirror case: a lower bound
+        lb = np.where(La[-1], ta + steps[-1] / 2, ta)  # a: lost at the top, threshold above it
+        ub = np.where(~Lb[0], tb + steps[0] / 2, tb)  # b: kept lock at the bottom, threshold below it
+        m = mean_ci(lb - ub)
+        return _estimate(
+            np.exp(m.value),
+            np.exp(m.ci_low - h),
+            np.inf,
+            ta.size,
+            f"lower bound: {int(La[-1].sum())} run(s) of the first curve lost lock at the grid's top, "
+            f"{int((~Lb[0]).sum())} of the second kept it at its bottom; paired t bound + half a grid step",
+        )
+    m = mean_ci(ta - tb)
+    return _estimate(
+        np.exp(m.value),
+        np.exp(m.ci_low - h),
+        np.exp(m.ci_high + h),
+        ta.size,
+        "paired ratio of geometric-mean thresholds, t interval + half a grid step",
+        extrapolated=bool(ca.any() or cb.any()),
+    )
+
+
+def extend_grid(
+    curves: dict, sirs, run, step: float = 1.5, max_points: int = 2, trigger=None
+) -> tuple[np.ndarray, dict]:
+    """Adaptive grid points for thresholds that would break outside the grid (C003-12 was undecided for them).
+
+    While some run of some curve kept lock at the grid's bottom (or lost it at its top), the curves with such runs
+    are run at one more SIR, the bottom over ``step`` (the top times ``step``), up to ``max_points`` on each side.
+    A curve not run there is filled by monotonicity, exactly where it is known: every one of its runs lost lock at
+    the old bottom, so it loses below it (kept lock at the old top, so it keeps it above). With the same draws at
+    every SIR (common random numbers) the extended curves stay paired run by run. With ``trigger`` (keys), a side is
+    extended only while one of those curves needs it (the others' censoring may certify a bound instead, see
+    :func:`threshold_ratio`).
+
+    Parameters
+    ----------
+    curves : dict of key -> ndarray of bool, shape (m, n)
+        Loss indicators on ``sirs``.
+    sirs : array_like, shape (m,)
+    run : callable
+        ``run(keys, sir) -> {key: ndarray of bool, shape (n,)}``: the named curves' runs at one more SIR.
+
+    Returns
+    -------
+    sirs : ndarray, shape (m',)
+    curves : dict of key -> ndarray of bool, shape (m', n)
+    """
+    s = list(np.asarray(sirs, float))
+    out = {k: np.asarray(v, bool) for k, v in curves.items()}
+    for side in ("low", "high"):
+        for _ in range(max_points):
+            edge = 0 if side == "low" else -1
+            need = [k for k, v in out.items() if (~v[edge] if side == "low" else v[edge]).any()]
+            if not need or (trigger is not None and not set(need) & set(trigger)):
+                break
+            sir = s[0] / step if side == "low" else s[-1] * step
+            new = run(need, sir)
+            for k, v in out.items():
+                row = np.asarray(new[k], bool) if k in new else np.full(v.shape[1], side == "low")
+                out[k] = np.vstack([row[None], v]) if side == "low" else np.vstack([v, row[None]])
+            s = [sir] + s if side == "low" else s + [sir]
+    return np.asarray(s), out
+
+
+def _share_difference(a, b) -> Estimate:
+    """Paired difference of two loss shares on the same runs (Student t on per-run differences; all-equal runs:
+    the zero-events bound on discordant runs)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    d = a - b
+    if np.all(d == d[0]):
+        bnd = zero_events_bound(d.size)
+        return _estimate(
+            d[0],
+            d[0] - bnd if d[0] <= 0 else 1 - bnd,
+            min(d[0] + bnd, 1.0) if d[0] < 1 else 1.0,
+            d.size,
+            "no discordant runs: one-sided 95 % bound",
+        )
+    m = mean_ci(d)
+    return _estimate(m.value, max(m.ci_low, -1.0), min(m.ci_high, 1.0), d.size, "paired t on per-run differences")
+
+
+COMPENSATION_READINGS = ("one-sided", "two-sided")
+
+
+def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimate:
+    """C003-10's compensation ratio as its reading judges it (the rule: at most ``2 kappa``, i.e. compensation lowers
+    the SIR_0 threshold at least about 1/kappa-fold, within the rule's factor 2).
+
+    The paper (l. 198): "Если использование процедуры компенсации фоновых излучений эквивалентно уменьшению яркости
+    фона на порядок, то пороговое отношение сигнал/помеха, имевшее место до компенсации фона и гарантирующее отсутствие
+    срывов слежения, ... уменьшается до 0,2-0,3" ("if compensation is equivalent to reducing the background by an
+    order of magnitude, the no-loss threshold SIR before compensation ... decreases to 0.2-0.3"), and l. 208 names
+    compensation one of the main factors of the robustness. The order of magnitude is a hypothesis, not a measured
+    ratio: "one-sided" (the paper's reading, the default) keeps the ratio as measured, and a ratio below ``kappa``
+    (the uncompensated tracker fails even harder) meets the rule. "two-sided" (the card's "about 1/kappa-fold")
+    judges the ratio's fold distance from ``kappa``: ``kappa exp|log(q / kappa)|`` (``q`` itself for ``q >= kappa``,
+    ``kappa^2 / q`` below it), at most ``2 kappa`` exactly when ``q`` lies within a factor 2 of ``kappa``; an
+    interval straddling ``kappa`` starts at ``kappa``.
+
+    Parameters
+    ----------
+    ratio : Estimate
+        Compensated over uncompensated SIR_0 threshold (:func:`_compensation_factor`).
+    kappa : float
+        Compensation residual.
+    reading : {"one-sided", "two-sided"}
+    """
+    if reading not in COMPENSATION_READINGS:
+        raise ValueError(f"parameter 'reading' = {reading!r}; it must be one of {COMPENSATION_READINGS}")
+    if reading == "one-sided":
+        return ratio
+    return fold_distance(ratio, kappa)
+
+
+def fold_distance(ratio: Estimate, reference: float) -> Estimate:
+    """A ratio's fold distance from ``reference``, either direction: ``k exp|log(q / k)|`` (``q`` itself for
+    ``q >= k``, ``k^2 / q`` below it), so a two-sided rule ("depends on", "about k") is one band on one number.
+
+    The interval maps end by end; an interval straddling ``k`` starts at ``k`` (no measurable distance), and a
+    bound ``[0, b]`` certifies a distance of at least ``fold(b)``.
+
+    Parameters
+    ----------
+    ratio : Estimate
+        A ratio (positive), with its 95 % interval.
+    reference : float
+        The ratio of no change (``1`` for C003-11's bandwidth part, ``kappa`` for C003-10's two-sided reading).
+    """
+    k = float(reference)
+
+    def fold(q):
+        return q if q >= k else (k * k / q if q > 0 else np.inf)
+
+    lo, hi = ratio.ci_low, ratio.ci_high
+    ends = sorted((fold(lo), fold(hi)))
+    value = fold(ratio.value)
+    return replace(
+        ratio,
+        value=value if np.isfinite(value) else ends[0],
+        ci_low=k if lo < k < hi else ends[0],
+        ci_high=ends[1],
+        method=ratio.method + f"; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|",
+    )
+
+
+def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
+    """Compensated SIR_0 threshold (``kappa`` x its SIR threshold) over the uncompensated SIR_0 threshold: about
+    ``kappa`` if compensation is worth its 1/kappa background reduction (C003-10), 0 if the raw background alone
+    breaks lock.
+
+    When a run without compensation lost lock at every grid SIR_0, its threshold lies above the grid: the ratio is
+    then bounded above by the compensated threshold's upper bound over the grid's top (a direct-count bound,
+    reported as ``[0, bound]``); a run that broke below the grid leaves the ratio undecided (extrapolated).
+    """
+    unc = np.asarray(lost_unc, bool)
+    comp = threshold(lost_comp, sirs)
+    if unc[-1].any():
+        hi = kappa * comp.ci_high / float(usirs[-1])
+        return _estimate(
+            0.0,
+            0.0,
+            hi,
+            unc.shape[1],
+            f"{int(unc[-1].sum())} of {unc.shape[1]} uncompensated runs "
+            f"lost even at SIR_0 {usirs[-1]:g}: bound from the grid's top",
+            extrapolated=comp.extrapolated,
+        )
+    u = threshold(unc, usirs)
+    return _estimate(
+        kappa * comp.value / u.value,
+        kappa * comp.ci_low / u.ci_high,
+        kappa * comp.ci_high / u.ci_low,
+        u.n,
+        "ratio of thresholds, interval from their bounds",
+        extrapolated=bool(u.extrapolated or comp.extrapolated),
+    )

@@ -1,0 +1,601 @@
+"""The compensated TV image of notebook 003 (moved from :mod:`.scene`, which re-exports it): spots, the correlated
+background, stationary interferers, the temporal-median residual, the scene object that renders each frame's gate
+crop, and its builder.
+
+Model (Yukhno 2025, eqs. (9), (10), (19), with the compensation model of the paper card, section 4.2)::
+
+    u_d(x, y, t) = s(x - x_m(t), y - y_m(t)) + kappa * f(x, y) + sum_q (d / SIR) * spot(x - x_q, y - y_q) + n
+
+Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = column, ``y`` = row.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import ndimage
+
+from ...render import box_spot, disc_area, disc_spot
+from .motion import MarkerTruth
+
+__all__ = [
+    "SPOTS",
+    "render_spot",
+    "correlated_background",
+    "place_interferers",
+    "add_spots",
+    "RotatingMarkerScene",
+    "CommonNormal",
+    "BlockNormal",
+    "median_residual",
+    "build_scene",
+    "COMPENSATIONS",
+]
+
+
+SPOTS = ("disc", "square")
+
+
+def _check_spot(spot: str) -> None:
+    if spot not in SPOTS:
+        raise ValueError(f"parameter 'spot' = {spot!r}; it must be one of {SPOTS}")
+
+
+def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
+    """A marker or interferer spot: ``"disc"`` (diameter ``D``) or ``"square"`` (side ``D``),
+    ``brightness`` per fully covered pixel; shape ``(..., rows, cols)``."""
+    _check_spot(spot)
+    b = np.asarray(brightness, dtype=float)
+    if spot == "disc":
+        return disc_spot(centers, shape, diameter, b * disc_area(diameter), origin)
+    return box_spot(centers, shape, diameter / 2, b * diameter**2, origin)
+
+
+def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, std) -> np.ndarray:
+    """Zero-mean Gaussian random fields with correlation ``exp(-(tau / corr_length)^2)``.
+
+    White noise is filtered by a Gaussian kernel of standard deviation ``corr_length / 2``
+    (periodic boundary) and divided by the filter's exact output standard deviation (the root
+    sum of squares of the discrete kernel), so every pixel has standard deviation ``std``.
+
+    Returns
+    -------
+    ndarray, shape (n, rows, cols), float32
+    """
+    if not corr_length > 0:
+        raise ValueError(f"parameter 'corr_length' = {corr_length}; it must be > 0")
+    if std < 0:
+        raise ValueError(f"parameter 'std' = {std}; it must be >= 0")
+    sigma = corr_length / 2
+    field = rng.standard_normal((n, *shape), dtype=np.float32)
+    ndimage.gaussian_filter(field, sigma=(0, sigma, sigma), mode="wrap", output=field)
+    impulse = np.zeros(2 * int(4 * sigma + 0.5) + 1)
+    impulse[impulse.size // 2] = 1.0
+    gain = np.sum(ndimage.gaussian_filter1d(impulse, sigma, mode="constant") ** 2)  # per axis
+    field *= np.float32(std / gain)
+    return field
+
+
+def place_interferers(
+    rng: np.random.Generator, n: int, count: int, center, radius: float, radial_jitter: float = 0.0
+) -> np.ndarray:
+    """Stationary interferers on a circle (the area swept by the marker).
+
+    One interferer sits at a uniformly random angle; several are equally spaced with a common
+    random angular offset. ``radial_jitter`` > 0 draws each radius uniformly in
+    ``[radius - jitter, radius + jitter]``.
+
+    Returns
+    -------
+    ndarray, shape (n, count, 2)
+        Positions ``(x, y)`` in px.
+    """
+    if count < 0:
+        raise ValueError(f"parameter 'count' = {count}; it must be >= 0")
+    offset = rng.uniform(0, 2 * np.pi, size=(n, 1))
+    ang = offset + 2 * np.pi * np.arange(count) / max(count, 1)
+    rad = radius + rng.uniform(-radial_jitter, radial_jitter, size=(n, count))
+    c = np.broadcast_to(np.asarray(center, dtype=float), (n, 2))
+    return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
+
+
+def add_spots(images, centers, brightness, spot: str, diameter: float) -> None:
+    """Add spots to images in place, each rendered only in a small patch around it.
+
+    Parameters
+    ----------
+    images : ndarray, shape (n, rows, cols)
+    centers : ndarray, shape (n, q, 2)
+        Spot centres (px); parts falling outside the image are dropped.
+    brightness : ndarray, shape (n, q)
+    """
+    n, rows, cols = images.shape
+    size = int(np.ceil(diameter)) + 4
+    trial = np.arange(n)[:, None, None]
+    ar = np.arange(size)
+    for j in range(np.asarray(centers).shape[1]):
+        c = centers[:, j]
+        origin = np.floor(c - (size - 1) / 2).astype(np.int64)
+        patch = render_spot(spot, c, (size, size), diameter, brightness[:, j], origin)
+        ys = origin[:, 1, None] + ar
+        xs = origin[:, 0, None] + ar
+        ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+        yi = np.clip(ys, 0, rows - 1)[:, :, None]
+        xi = np.clip(xs, 0, cols - 1)[:, None, :]
+        images[trial, yi, xi] += np.where(ok, patch, 0.0).astype(images.dtype)
+
+
+class RotatingMarkerScene:
+    """Static compensated scene per trial plus the moving marker, read out as gate crops.
+
+    Parameters
+    ----------
+    truth : MarkerTruth
+        Marker and object truth, shape (n, T) per state.
+    image_shape : (int, int)
+        Sensor size ``(rows, cols)``.
+    spot : {"disc", "square"}
+        Marker and interferer shape.
+    diameter : float
+        Spot diameter (disc) or side (square), px.
+    brightness : float
+        Marker brightness ``d`` per fully covered pixel.
+    residual : ndarray, shape (n, rows, cols), optional
+        Static residual after compensation, ``kappa f + interferers``; see :meth:`static_residual`.
+    noise_std : float
+        Sensor noise per pixel per frame (>= 0).
+    interferers : ndarray, shape (n, q, 2), optional
+        Interferer positions (kept for plotting and capture tagging).
+    decoys : ndarray, shape (n, T, 2), optional
+        Paths of a moving imitating interferer (e.g. an emitter rotating like the marker about
+        another centre), rendered into every frame with the marker's spot.
+    decoy_brightness : float or ndarray, shape (n,)
+        Decoy brightness per fully covered pixel (one value per trial allowed).
+    exposure_steps : int
+        1: the sensor samples the scene at the frame time (instant exposure). ``m > 1``: it integrates over the
+        frame interval centred on the frame time, rendered as the mean of ``m`` sub-frame renders at
+        ``tau_j = ((j + 1/2)/m - 1/2) dt``: the object moves by its velocity (central differences of the truth),
+        the marker turns by ``omega tau_j`` about it, the decoy about its own centre (``decoy_phase``). The spot
+        energy per frame is the same either way; only its spread changes. :meth:`frame` (recordings) is instant.
+    decoy_phase : ndarray, shape (n,), optional
+        Phase offset of each decoy from the marker (needed to smear a decoy).
+    """
+
+    MARGIN = 40  # px of zero padding around the image so that gates may leave it
+
+    def __init__(
+        self,
+        truth: MarkerTruth,
+        image_shape,
+        spot: str,
+        diameter: float,
+        brightness: float,
+        residual=None,
+        noise_std: float = 0.0,
+        interferers=None,
+        decoys=None,
+        decoy_brightness=0.0,
+        exposure_steps: int = 1,
+        decoy_phase=None,
+    ):
+        _check_spot(spot)
+        if int(exposure_steps) < 1:
+            raise ValueError(f"parameter 'exposure_steps' = {exposure_steps}; it must be >= 1")
+        if noise_std < 0:
+            raise ValueError(f"parameter 'noise_std' = {noise_std}; it must be >= 0")
+        self.truth = truth
+        self.n = truth.xr.shape[0]
+        self.image_shape = tuple(image_shape)
+        self.spot = spot
+        self.diameter = float(diameter)
+        self.brightness = float(brightness)
+        self.noise_std = float(noise_std)
+        self.interferers = np.zeros((self.n, 0, 2)) if interferers is None else np.asarray(interferers, float)
+        self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
+        self.decoy_brightness = np.broadcast_to(np.asarray(decoy_brightness, dtype=float), (self.n,))
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
+        if residual is not None:
+            self._padded[:, m : m + rows, m : m + cols] = residual
+        self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+        self.exposure_steps = int(exposure_steps)
+        if self.exposure_steps > 1:
+            t = truth.t
+            self._dt = float(t[1] - t[0]) if t.size > 1 else 1.0
+            self._velocity = np.gradient(truth.center, self._dt, axis=1) if t.size > 1 else np.zeros_like(truth.center)
+            if self.decoys is not None and decoy_phase is None:
+                raise ValueError("an integrated exposure with a decoy needs 'decoy_phase'")
+            self.decoy_phase = None if decoy_phase is None else np.asarray(decoy_phase, float).reshape(self.n)
+
+    def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+        """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
+        tr, m = self.truth, self.exposure_steps
+        tau = ((np.arange(m) + 0.5) / m - 0.5) * self._dt
+        shift = tau[:, None, None] * self._velocity[None, :, k]  # object motion within the frame
+        ang = tr.theta[None, :, k] + tr.omega[None, :, k] * tau[:, None]
+        r = tr.r[None, :, k]
+        centre = np.stack([tr.xr[:, k], tr.yr[:, k]], axis=-1)[None]
+        marker = centre + shift + r[..., None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+        if self.decoys is None:
+            return marker, None
+        a0 = tr.theta[:, k] + self.decoy_phase
+        own = self.decoys[:, k] - r[0][:, None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
+        a = ang + self.decoy_phase[None]
+        return marker, own[None] + shift + r[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+    @staticmethod
+    def static_residual(
+        rng: np.random.Generator,
+        n: int,
+        image_shape,
+        *,
+        kappa: float,
+        background_std: float,
+        corr_length: float,
+        interferers,
+        interferer_brightness,
+        spot: str,
+        diameter: float,
+    ) -> np.ndarray:
+        """``kappa * f + sum_q b_q spot(. - x_q)``: what compensation leaves of the static scene.
+
+        Parameters
+        ----------
+        kappa : float
+            Compensation residual factor in [0, 1] (0 = perfect estimate of the background).
+        background_std : float
+            Standard deviation of ``f`` before compensation.
+        interferers : ndarray, shape (n, q, 2)
+        interferer_brightness : float or ndarray, shape (n,) or (n, q)
+            Residual brightness (after compensation) of each interferer, ``d / SIR``.
+
+        Returns
+        -------
+        ndarray, shape (n, rows, cols), float32
+        """
+        if not 0 <= kappa <= 1:
+            raise ValueError(f"parameter 'kappa' = {kappa}; it must be in [0, 1]")
+        out = kappa * correlated_background(rng, n, image_shape, corr_length, background_std)
+        q = np.asarray(interferers, dtype=float)
+        b = np.asarray(interferer_brightness, dtype=float)
+        b = np.broadcast_to(b[:, None] if b.ndim == 1 else b, q.shape[:2])
+        add_spots(out, q, b, spot, diameter)
+        return out
+
+    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None):
+        """Compensated signal ``u_d`` in square crops of side ``size`` around ``centres`` at frame ``k``.
+
+        Parameters
+        ----------
+        k : int
+            Frame index.
+        centres : ndarray, shape (n, 2)
+            Gate centres (px).
+        size : int
+            Crop side (px), e.g. :func:`tvtrack.measure.gate_crop_size`.
+        rng : numpy.random.Generator or None
+            Draws the sensor noise (None: noise-free).
+
+        Returns
+        -------
+        crops : ndarray, shape (n, size, size), float32
+        origin : ndarray of int, shape (n, 2)
+            ``(x0, y0)`` of each crop's first pixel.
+        inside : ndarray of bool, shape (n,)
+            Whether the gate centre is inside the image.
+        """
+        c = np.asarray(centres, dtype=float)
+        origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        inside = (c[:, 0] >= 0) & (c[:, 0] <= cols - 1) & (c[:, 1] >= 0) & (c[:, 1] <= rows - 1)
+        ox = np.clip(origin[:, 0] + m, 0, cols + 2 * m - size)
+        oy = np.clip(origin[:, 1] + m, 0, rows + 2 * m - size)
+        origin = np.stack([ox - m, oy - m], axis=1)
+        H, W = self._padded.shape[1:]
+        ar = np.arange(size)
+        flat = (self._base + oy * W + ox)[:, None, None] + (ar[:, None] * W + ar)[None]
+        crops = self._padded.reshape(-1).take(flat)
+        marker = np.stack(
+            [
+                self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
+                self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k]),
+            ],
+            axis=1,
+        )
+        if self.exposure_steps == 1:
+            crops += self._spot(marker, size, origin, self.brightness)
+            if self.decoys is not None:
+                crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+        else:
+            sub_m, sub_d = self._sub_positions(k)
+            for j in range(self.exposure_steps):
+                crops += self._spot(sub_m[j], size, origin, self.brightness / self.exposure_steps)
+                if sub_d is not None:
+                    crops += self._spot(sub_d[j], size, origin, self.decoy_brightness / self.exposure_steps)
+        if rng is not None and self.noise_std > 0:
+            crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
+        return crops, origin, inside
+
+    def _spot(self, centers, size, origin, brightness) -> np.ndarray:
+        if self.spot == "disc":
+            flux = np.asarray(brightness, dtype=float) * disc_area(self.diameter)
+            return disc_spot(centers, (size, size), self.diameter, flux, origin, dtype=np.float32)
+        return render_spot("square", centers, (size, size), self.diameter, brightness, origin).astype(np.float32)
+
+    def frame(self, trial: int, k: int, rng: np.random.Generator | None = None) -> np.ndarray:
+        """Full compensated frame ``u_d`` of one trial at frame ``k``, shape (rows, cols), float32."""
+        m = self.MARGIN
+        rows, cols = self.image_shape
+        img = self._padded[trial, m : m + rows, m : m + cols].copy()
+        img += render_spot(
+            self.spot, self.truth.marker[trial, k], self.image_shape, self.diameter, self.brightness
+        ).astype(np.float32)
+        if self.decoys is not None:
+            img += render_spot(
+                self.spot, self.decoys[trial, k], self.image_shape, self.diameter, self.decoy_brightness[trial]
+            ).astype(np.float32)
+        if rng is not None and self.noise_std > 0:
+            img += self.noise_std * rng.standard_normal(img.shape, dtype=np.float32)
+        return img
+
+
+class CommonNormal:
+    """Standard normal draws shared by blocks of trials (common random numbers).
+
+    Wraps a generator; ``standard_normal(shape)`` with ``shape[0] = blocks * n_common`` draws
+    ``n_common`` rows and repeats them, so trial ``j n_common + i`` gets the draws of trial ``i``.
+    Used to run one set of trials at several SIR values (or markers) on the same noise.
+    """
+
+    def __init__(self, rng: np.random.Generator, n_common: int):
+        if n_common < 1:
+            raise ValueError(f"parameter 'n_common' = {n_common}; it must be >= 1")
+        self.rng = rng
+        self.n_common = int(n_common)
+
+    def standard_normal(self, shape, dtype=np.float64):
+        shape = tuple(np.atleast_1d(shape))
+        if shape[0] % self.n_common:
+            raise ValueError(f"leading size {shape[0]} is not a multiple of n_common = {self.n_common}")
+        z = self.rng.standard_normal((self.n_common, *shape[1:]), dtype=dtype)
+        return np.tile(z, (shape[0] // self.n_common,) + (1,) * (len(shape) - 1))
+
+
+class BlockNormal:
+    """Standard normal draws made block by block from several sources (one per seed), concatenated
+    along the leading axis; each source is a generator or a :class:`CommonNormal`."""
+
+    def __init__(self, sources, block: int):
+        self.sources = list(sources)
+        self.block = int(block)
+
+    def standard_normal(self, shape, dtype=np.float64):
+        shape = tuple(np.atleast_1d(shape))
+        if shape[0] != self.block * len(self.sources):
+            raise ValueError(f"leading size {shape[0]} is not {len(self.sources)} blocks of {self.block}")
+        return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
+
+
+def median_residual(
+    rng: np.random.Generator,
+    truth: MarkerTruth,
+    n_frames: int,
+    image_shape,
+    spot: str,
+    diameter: float,
+    brightness: float,
+    noise_std: float,
+) -> np.ndarray:
+    """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
+
+    The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
+    ``f + interferers + s_t + n_t`` (card 8.5: a median over >= 2 revolutions). Everything static -- background and
+    stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the marker's
+    sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the frames
+    reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for more
+    than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
+    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``.
+    Instant exposure, and no decoy, in the median frames.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    truth : MarkerTruth
+        ``n`` trials; frames ``0 .. n_frames - 1`` enter the median.
+    n_frames : int
+        Frames in the median (``N``).
+    image_shape : (int, int)
+    spot, diameter, brightness, noise_std
+        The marker spot and the sensor noise per pixel.
+
+    Returns
+    -------
+    ndarray, shape (n, rows, cols), float32
+    """
+    N = int(min(max(n_frames, 1), truth.n_frames))
+    n = truth.xr.shape[0]
+    rows, cols = image_shape
+    out = (-noise_std * np.sqrt(np.pi / (2 * N)) * rng.standard_normal((n, rows, cols))).astype(np.float32)
+    m = truth.marker[:, :N]  # (n, N, 2)
+    lo = np.floor(m.min(axis=1) - diameter / 2 - 2).astype(np.int64)
+    size = int(np.max(np.ceil(m.max(axis=1) + diameter / 2 + 2).astype(np.int64) - lo)) + 1
+    frames = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None])  # (N, n, s, s)
+    if noise_std > 0:
+        frames = frames + noise_std * rng.standard_normal(frames.shape)
+    box = -np.median(frames, axis=0)
+    ar = np.arange(size)
+    ys, xs = lo[:, 1, None] + ar, lo[:, 0, None] + ar
+    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+    trial = np.arange(n)[:, None, None]
+    yi, xi = np.clip(ys, 0, rows - 1)[:, :, None], np.clip(xs, 0, cols - 1)[:, None, :]
+    out[trial, yi, xi] = np.where(ok, box, out[trial, yi, xi])
+    return out
+
+
+def _tile(a, n: int):
+    """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
+    a = np.asarray(a)
+    return np.tile(a, (n // a.shape[0],) + (1,) * (a.ndim - 1))
+
+
+def _generator_blocks(rng, n: int, n_common: int | None):
+    """Split ``n`` trials into one consecutive block per generator (``rng`` one or a list), and check
+    that ``n_common`` (trials sharing common random numbers; default: the whole block) divides a block.
+
+    Returns ``(generators, trials per generator, n_common)``."""
+    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
+    n_block = n // len(rngs)
+    n_common = n_block if n_common is None else int(n_common)
+    if n % len(rngs) or n_common < 1 or n_block % n_common:
+        raise ValueError(
+            f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
+            f"{len(rngs)} generators)"
+        )
+    return rngs, n_block, n_common
+
+
+def build_scene(
+    rng: np.random.Generator,
+    truth: MarkerTruth,
+    *,
+    image_shape=(256, 256),
+    spot: str = "disc",
+    diameter: float = 8.0,
+    brightness: float = 1.0,
+    noise_std: float = 0.02,
+    kappa: float = 0.1,
+    background_std: float = 0.2,
+    corr_length: float = 8.0,
+    n_interferers: int = 0,
+    sir=np.inf,
+    interferer_radius: float = 12.0,
+    interferer_center=None,
+    radial_jitter: float = 0.0,
+    interferer_diameter: float | None = None,
+    decoys=None,
+    decoy_brightness=0.0,
+    n_common: int | None = None,
+    blocks=None,
+    exposure_steps: int = 1,
+    decoy_phase=None,
+    compensation: str = "kappa",
+    median_frames: int = 0,
+):
+    """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
+    ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
+    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre), with the
+    marker's spot or one of ``interferer_diameter``.
+
+    ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
+    repeat them over the ``n / n_common`` blocks (common random numbers; default: all trials
+    independent). ``rng`` may be a list of generators: each draws for its own consecutive block
+    of ``n / len(rng)`` trials (several seeds in one batch). ``blocks``, one dict per generator,
+    overrides ``kappa``, ``background_std``, ``corr_length`` or ``n_interferers`` block by block
+    (several scene settings in one batch; a block with fewer interferers is padded with dark ones
+    far outside the image).
+
+    ``compensation``: ``"kappa"`` leaves ``kappa`` times the static scene (:meth:`RotatingMarkerScene.
+    static_residual`); ``"median"`` subtracts the temporal median of the first ``median_frames`` frames
+    (:func:`median_residual`: background and interferers cancel) in every block with ``kappa < 1`` (a block with
+    ``kappa = 1`` stays uncompensated).
+
+    Returns
+    -------
+    RotatingMarkerScene
+    """
+    n = truth.xr.shape[0]
+    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    blocks = _check_blocks(blocks, len(rngs), compensation)
+    q, residual, by_median = [], [], []
+    for j, (g, b) in enumerate(zip(rngs, blocks)):
+        first = j * n_block
+        centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
+        q.append(
+            _tile(
+                place_interferers(
+                    g, n_common, b.get("n_interferers", n_interferers), centre, interferer_radius, radial_jitter
+                ),
+                n_block,
+            )
+        )
+        static = dict(kappa=kappa, background_std=background_std, corr_length=corr_length)
+        res, med = _block_residual(
+            g, {**static, **b}, truth, first, n_common, compensation, median_frames, image_shape, spot, diameter,
+            brightness, noise_std,
+        )  # fmt: skip
+        by_median.append(np.full(n_block, med))
+        residual.append(_tile(res, n_block))
+    n_q = max(x.shape[1] for x in q)
+    q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
+    residual = np.concatenate(residual) if len(residual) > 1 else residual[0]
+    sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
+    if np.any(sir <= 0):
+        raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
+    cancelled = np.concatenate(by_median)[:, None]  # a temporal median removes stationary interferers exactly
+    add_spots(
+        residual,
+        q,
+        np.where((q[..., 0] > -1e3) & ~cancelled, (brightness / sir)[:, None], 0.0),
+        spot,
+        diameter if interferer_diameter is None else interferer_diameter,
+    )
+    return RotatingMarkerScene(
+        truth,
+        image_shape,
+        spot,
+        diameter,
+        brightness,
+        residual,
+        noise_std,
+        q,
+        decoys,
+        decoy_brightness,
+        exposure_steps,
+        decoy_phase,
+    )
+
+
+def _check_blocks(blocks, n_generators: int, compensation: str) -> list:
+    """The per-generator scene settings of :func:`build_scene` (one dict per generator), checked."""
+    blocks = [{}] * n_generators if blocks is None else list(blocks)
+    if len(blocks) != n_generators or any(
+        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
+    ):
+        raise ValueError(
+            "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
+            "corr_length, n_interferers"
+        )
+    if compensation not in COMPENSATIONS:
+        raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")
+    return blocks
+
+
+def _block_residual(
+    g, b: dict, truth, first: int, n_common: int, compensation: str, median_frames: int, image_shape, spot: str,
+    diameter: float, brightness: float, noise_std: float,
+):  # fmt: skip
+    """One generator block's static residual, shape (n_common, rows, cols), and whether a temporal median made it
+    (stationary interferers then cancel): the median of the first ``median_frames`` frames when ``compensation`` is
+    ``"median"`` and the block compensates (``kappa < 1``), else ``kappa`` times the background (``b``'s settings)."""
+    if compensation == "median" and b["kappa"] < 1:
+        part = MarkerTruth(
+            *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
+        )
+        return median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std), True
+    res = RotatingMarkerScene.static_residual(
+        g,
+        n_common,
+        image_shape,
+        kappa=b["kappa"],
+        background_std=b["background_std"],
+        corr_length=b["corr_length"],
+        interferers=np.zeros((n_common, 0, 2)),
+        interferer_brightness=np.zeros(n_common),
+        spot=spot,
+        diameter=diameter,
+    )
+    return res, False
+
+
+COMPENSATIONS = ("kappa", "median")

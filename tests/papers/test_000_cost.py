@@ -1,0 +1,102 @@
+"""C000-4 by operation counts: the counted straight-line steps are the filters of the notebook, and their counts are
+the ones derived by hand from the equations."""
+
+import numpy as np
+import pytest
+
+from tvtrack.papers.p000_dissector_ekf import study
+from tvtrack.papers.p000_dissector_ekf.cost import (
+    operation_counts,
+    operation_ratio,
+    variant1_step,
+    variant2_step,
+)
+from tvtrack.papers.p000_dissector_ekf.ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
+from tvtrack.papers.p000_dissector_ekf.model import (
+    GaussMarkovMessage,
+    draw_noises,
+    samples_from_pulse,
+    scan_at_snr,
+    truth_and_pulse,
+)
+from tvtrack.papers.p000_dissector_ekf.register import REGISTER
+
+MSG = GaussMarkovMessage(0.1, 0.15)
+
+
+def _samples(psi, p, n_steps=60):
+    scan = scan_at_snr(psi, p, 0.05)
+    noises = draw_noises(np.random.default_rng(9), 3, n_steps, 2)
+    _, pulse = truth_and_pulse(scan, MSG, noises)
+    return scan, samples_from_pulse(scan, pulse, noises["xi"])
+
+
+@pytest.mark.parametrize("psi, p, g22", [(20.0, 0.5, "paper"), (5.0, 0.9, "matched")])
+def test_the_counted_variant1_step_is_the_notebooks_variant1(psi, p, g22):
+    scan, y = _samples(psi, p)
+    est, var = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", g22), y, (0.2, 1.0))
+    for trial in range(y.shape[0]):
+        x, d = (0.0, 0.0), (0.2, 0.0, 1.0)
+        for k in range(1, y.shape[1]):
+            x, d = variant1_step(scan, MSG, x, d, y[trial, k], k, 15.0, g22)
+            assert x[0] == pytest.approx(est[trial, k], rel=1e-9, abs=1e-12)
+            assert d[0] == pytest.approx(var[trial, k], rel=1e-8)
+
+
+@pytest.mark.parametrize("iterations", [0, 1])
+def test_the_counted_variant2_step_is_the_notebooks_variant2(iterations):
+    scan, y = _samples(20.0, 0.9)
+    est, var = run_variant2(variant2_filter(scan, MSG, None, iterations), y, 0.2)
+    for trial in range(y.shape[0]):
+        x, d = 0.0, 0.2
+        for k in range(1, y.shape[1]):
+            x, d = variant2_step(scan, MSG, x, d, y[trial, k], k, iterations)
+            assert x == pytest.approx(est[trial, k], rel=1e-9, abs=1e-12)
+            assert d == pytest.approx(var[trial, k], rel=1e-8)
+
+
+def test_the_counts_are_the_hand_derived_ones():
+    """Variant 1: predict 2 + 3 mul, 2 add; pulse 1 add, 2 mul, exp; sqrt(c_s S) 1 mul, sqrt; h 2 mul, 1 add;
+    gradient 5 mul, 1 add; D^- h^T 4 mul, 2 add; innovation variance 2 mul, 2 add; gain 2 div; update 1 + 2 add,
+    2 mul; covariance 3 mul, 3 add. Variant 2: predict 2 mul, 1 add; pulse 1 add, 2 mul, exp; h and H 3 mul;
+    D^- H, H D^- H 2 mul; innovation 1 add; R 1 mul, 1 add; innovation variance 1 add; gain 1 div, update 1 mul,
+    1 add; covariance 1 mul, 1 div."""
+    assert operation_counts(1) == {"mul": 26, "add": 15, "div": 2, "exp": 1, "sqrt": 1, "arithmetic": 43}
+    assert operation_counts(2) == {"mul": 12, "add": 6, "div": 2, "exp": 1, "sqrt": 0, "arithmetic": 20}
+    # re-evaluating the noise at the updated estimate: 1 add, 2 mul, exp for the pulse; R, variance, gain, update
+    assert operation_counts(2, 1) == {"mul": 17, "add": 10, "div": 4, "exp": 2, "sqrt": 0, "arithmetic": 31}
+    assert operation_ratio() == pytest.approx(43 / 20)
+    assert operation_ratio(1) == pytest.approx(43 / 31)
+
+
+def test_c000_4_measures_operation_counts_by_default_and_cpu_time_as_the_other_reading():
+    cfg = REGISTER.default()
+    assert study.measure_cost(cfg, 1, 20)["C000-4"] == pytest.approx(43 / 20)
+    updated = {**cfg, "v2 noise at": "updated estimate"}
+    assert study.measure_cost(updated, 1, 20)["C000-4"] == pytest.approx(43 / 31)
+    cpu = study.measure_cost({**cfg, "C000-4 cost measure": "CPU time"}, 1, 20, n_steps=20)["C000-4"]
+    assert cpu > 0 and cpu != pytest.approx(43 / 20)
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_the_vectorised_runners_the_study_uses_are_the_core_filters(compiled):
+    """study.py runs the counted steps vectorised over the trials (three times faster than the core EKF's Joseph
+    form): over a whole run they must give the core filters' estimates and variances, for every option the register
+    reaches (G22, random initial estimates, the ignoring filter, the noise re-evaluated at the update)."""
+    from tvtrack import jit
+    from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant1, run_steps_variant2
+
+    if compiled and not jit.available():
+        pytest.skip("numba is not installed: the compiled loops are not used")
+    scan, y = _samples(5.0, 0.9, n_steps=400)
+    init = np.random.default_rng(3).normal(0.0, 0.3, (y.shape[0], 2))
+    for g22 in ("paper", "euler", "matched"):
+        core = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", g22), y, (0.2, 1.0), init)
+        mine = run_steps_variant1(scan, MSG, y, (0.2, 1.0), init, 15.0, g22, compiled)
+        np.testing.assert_allclose(mine[0], core[0], rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(mine[1], core[1], rtol=1e-9)
+    for assumed, iterations in ((None, 0), (None, 1), (0.0, 0)):
+        core = run_variant2(variant2_filter(scan, MSG, assumed, iterations), y, 0.2, init[:, 0])
+        mine = run_steps_variant2(scan, MSG, y, 0.2, init[:, 0], assumed, iterations, compiled)
+        np.testing.assert_allclose(mine[0], core[0], rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(mine[1], core[1], rtol=1e-9)
