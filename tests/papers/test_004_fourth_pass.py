@@ -182,3 +182,19 @@ def test_c004_4_lost_frame_flip_reads_limited_not_depends():
     assert rec["label"] == "limited"
     (flip,) = rec["parts"]["claim"]["flips"]
     assert flip["side"] == "world" and "frames lost" in flip["text"] and "coasts" in flip["text"]
+
+
+def test_paths_are_drawn_again_until_the_spot_stays_on_the_sensor():
+    """At amplitude 2 (6-16 px RMS) some sets of 15 x 1000 frames reach the sensor's edge, which the generator
+    refuses (a joint configuration crashed the exploration): the set is drawn again from a child of the run's
+    stream. A set that stays on the sensor is the first draw, unchanged."""
+    size = study.StudySize()
+    scene = study.scene_config(dict(DEFAULT, amplitude=2.0), size)
+    first = lambda seed: int(study._streams(seed)[0].generate_state(1)[0])  # noqa: E731
+    with pytest.raises(ValueError, match="leave the sensor"):
+        study.exposed_traces(scene, first(1), "instant")
+    tr, draws = study.traces_on_sensor(scene, study._streams(1)[0], "instant")
+    assert draws == 2 and tr.centres_px.min() >= -0.5 and tr.centres_px.max() <= 127.5
+    same, one = study.traces_on_sensor(scene, study._streams(0)[0], "instant")
+    assert one == 1
+    np.testing.assert_array_equal(same.centres_px, study.exposed_traces(scene, first(0), "instant").centres_px)

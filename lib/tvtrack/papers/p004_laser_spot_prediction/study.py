@@ -57,6 +57,7 @@ __all__ = [
     "screen_size",
     "StudyRun",
     "scene_config",
+    "traces_on_sensor",
     "camera_for",
     "run_study",
     "claim_values",
@@ -244,6 +245,7 @@ class StudyRun:
     forecasts: dict | None = None  # cross-validated forecasts, OPTIMAL and the fixed-tuning ones
     fixed_forecasts: dict | None = None
     folds: list | None = None
+    draws: int = 0  # sets of paths drawn until the spot stayed on the sensor (0: the paths were given)
 
 
 def _streams(seed: int):
@@ -335,11 +337,45 @@ def vibration(amplitude_px: float, frame_rate_hz: float, shape, rng: np.random.G
     return amplitude_px * np.sin(2 * np.pi * VIBRATION_HZ * t + rng.uniform(0, 2 * np.pi, (P, 1, A)))
 
 
+#: Most draws of a run's paths (:func:`traces_on_sensor`) before the run gives up.
+MAX_DRAWS = 50
+
+
+def traces_on_sensor(scene: BeamWanderConfig, stream: np.random.SeedSequence, exposure: str) -> tuple[TraceSet, int]:
+    """The run's paths (:func:`exposed_traces`), drawn again until the spot stays on the sensor on every path.
+
+    The paper's recordings kept the spot in the 128 px frame (it measures the spot in every image). A large wander
+    (amplitude 2: 6-16 px RMS per axis) with the drift reaches the edge on some draws, which the generator
+    refuses. Such a set is drawn again, so the world is conditioned on the spot staying on the sensor, as the
+    recordings were. The first draw uses the seed every earlier version used, so a set that stays on the sensor
+    is unchanged; later draws take children of ``stream``.
+
+    Returns
+    -------
+    traces : TraceSet
+    draws : int
+        Sets drawn (1: the first stayed on the sensor).
+    """
+    seed = int(stream.generate_state(1)[0])
+    for k in range(1, MAX_DRAWS + 1):
+        try:
+            return exposed_traces(scene, seed, exposure), k
+        except ValueError as err:
+            if "leave the sensor" not in str(err):
+                raise
+        seed = int(stream.spawn(1)[0].generate_state(1)[0])
+    raise ValueError(
+        f"the spot left the {scene.image_size_px} px sensor on every one of {MAX_DRAWS} draws of the paths: the "
+        "wander is too large for the frame"
+    )
+
+
 def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
     s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
     scene = scene_config(config, size)
+    draws = 0
     if traces is None:
-        traces = exposed_traces(scene, int(s_tr.generate_state(1)[0]), config.get("exposure", "instant"))
+        traces, draws = traces_on_sensor(scene, s_tr, config.get("exposure", "instant"))
     xy = traces.centres_px[: size.n_paths, : size.n_frames]
     intensity = traces.intensity[: size.n_paths, : size.n_frames]
     rms = np.asarray(traces.metadata["wander_rms_px"])[: size.n_paths]
@@ -367,6 +403,7 @@ def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = N
         clipped_share=float(np.mean(trk.clipped)),
         intensity=intensity,
         track=trk,
+        draws=draws,
     )
 
 
