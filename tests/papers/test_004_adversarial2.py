@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.papers.p004_laser_spot_prediction import study
+from tvtrack.papers.p004_laser_spot_prediction import derivation, study
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS
 
 SIZE = study.StudySize(
@@ -67,13 +67,21 @@ def test_lost_frames_skipped_break_the_equality_only_where_a_frame_is_lost():
     assert study.recursion_vs_batch(gap)[0] > 1e-6
 
 
-def test_heavy_tailed_noise_keeps_the_variance_law_with_a_batch_means_interval():
-    """Student t3 noise of unit variance: Var(x_est) / g_N1 is still 1 (a linear estimator), each part's
-    interval is a batch-means bootstrap-t that holds 1; the Gaussian reading keeps the chi-square intervals."""
+def test_heavy_tailed_noise_is_a_reading_the_rule_cannot_decide():
+    """Student t3 noise of unit variance: Var(x_est) / g_N1 is still 1 (a linear estimator) and the point values
+    show it, but the squared error has infinite variance (no fourth moment), so each part carries no interval and
+    the rule reads it undecided: a heavy tail never decides a part (nor flips a label). The Gaussian reading keeps
+    the chi-square intervals and decides."""
+    from tvtrack.verdicts import InBand, is_undecided
+
     out = study.variance_ratios(np.random.default_rng(4), 20000, noise="Student t3")
-    for n in study._CHECK_N:
+    rule = InBand("variance ratio", low=0.9, high=1.1)
+    for n in derivation._CHECK_N:
         e = out[f"variance at N={n}"]
-        assert "batch means" in e.method and e.ci_low < 1.0 < e.ci_high and abs(e.value - 1) < 0.15
+        assert abs(e.value - 1) < 0.15 and "fourth moment" in e.method
+        assert is_undecided(e) and rule.judge(e).verdict == "undecided"
+    gauss = study.variance_ratios(np.random.default_rng(4), 20000)
+    assert rule.judge(gauss["variance at N=10"]).verdict == "reproduced"
     assert "chi-square" in study.variance_ratios(np.random.default_rng(4), 2000)["variance at N=3"].method
     with pytest.raises(ValueError, match="noise"):
         study.variance_ratios(np.random.default_rng(4), 100, noise="Cauchy")

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
-from tvtrack.papers.p004_laser_spot_prediction import study
+from tvtrack.papers.p004_laser_spot_prediction import study, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, ROWS
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
@@ -73,12 +73,12 @@ def test_wall_clock_leaves_out_the_frames_another_process_preempted(scene, monke
         flips["n"] += k % 4 == 3
         return flips["n"]
 
-    monkeypatch.setattr(study, "_involuntary_switches", every_other_frame)
+    monkeypatch.setattr(timing, "_involuntary_switches", every_other_frame)
     t = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isnan(t[1::2])) and np.all(np.isfinite(t[0::2]))
     ms = study._frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
     assert np.isfinite(ms) and ms > 0
-    monkeypatch.setattr(study, "_involuntary_switches", lambda: 0)
+    monkeypatch.setattr(timing, "_involuntary_switches", lambda: 0)
     kept = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isfinite(kept))
 

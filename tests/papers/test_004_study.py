@@ -348,7 +348,7 @@ def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
 
 def test_frame_loss_breaks_the_recursion_only_when_lost_frames_are_skipped():
     # third adversarial pass: with gaps the sample-counting recursion differs from eq. (4) at the true times
-    from tvtrack.papers.p004_laser_spot_prediction.study import drop_frames, recursion_vs_batch
+    from tvtrack.papers.p004_laser_spot_prediction.derivation import drop_frames, recursion_vs_batch
 
     t = np.arange(200.0)
     z = 3.0 + 0.2 * t - 0.001 * t**2 + np.random.default_rng(1).normal(0, 0.3, t.size)

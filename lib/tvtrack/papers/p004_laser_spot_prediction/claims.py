@@ -44,27 +44,35 @@ CLAIMS = {
 
 def _better(baseline: str) -> Ordering:
     """The baseline's MSE above the filter's: a paired per-path ratio above 1."""
-    return Ordering(f"{baseline} MSE", "filter MSE", ">", measure="ratio")
+    return Ordering(f"mean squared error of {baseline}", "that of the paper's filter", ">", measure="ratio")
 
 
 RULES = {
-    "C004-1": InBand("mean per-path quantile of the per-axis |e|", high=2.0, unit="px"),
+    "C004-1": InBand(
+        "mean per-path 95th percentile of the per-axis |prediction error| (or the register's other statistic)",
+        high=2.0,
+        unit="px",
+    ),
     "C004-2": InBand("per-axis RMS prediction error", low=1.0, high=2.0, unit="px", better="lower"),
     "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
     "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
-    "C004-4": InBand("largest relative deviation of the recursion (5)-(6) from lstsq on eq. (4)", high=1e-9),
+    "C004-4": InBand(
+        "largest relative deviation of the recursion (5)-(6) from least squares on eq. (4)", high=1e-9, unit="relative"
+    ),
     "C004-5": AllOf(
         {
-            "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0),
+            "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0, unit="gain"),
             **{
-                f"variance at N={n}": InBand(f"Var(x_est) / (sigma^2 g_N1) at N = {n}", low=0.9, high=1.1)
+                f"variance at N={n}": InBand(
+                    f"variance of the filtered position / (sigma^2 g_N1) at N = {n}", low=0.9, high=1.1, unit="ratio"
+                )
                 for n in (3, 5, 10, 20, 50, 100)
             },
         }
     ),
-    "C004-6": InBand("RMS over the second half of the frames, no floor / floor", low=2.0),
+    "C004-6": InBand("RMS error over the second half of the frames, no floor / floor", low=2.0, unit="ratio"),
     "C004-7": NotCheckable(
         "true by construction: eq. (4) on the first three samples is the exact interpolating quadratic"
     ),
-    "C004-8": InBand("time per frame (energy centre + filter + prediction) / frame interval", high=1.0),
+    "C004-8": InBand("time per frame (energy centre + filter + prediction) / frame interval", high=1.0, unit="ratio"),
 }

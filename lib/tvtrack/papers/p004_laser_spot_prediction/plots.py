@@ -24,6 +24,7 @@ __all__ = [
     "floor_figure",
     "gains_figure",
     "ranking_figure",
+    "calibration_figure",
 ]
 
 _STYLES = [
@@ -279,4 +280,22 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     ax.invert_yaxis()
     ax.set_xlabel("baseline MSE / filter MSE (paired over paths, 95 % CI); above 1: the filter is better")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+def calibration_figure(cal, band=(1.0, 2.0)):
+    """The calibration's evaluations: the paper filter's RMS one-step error against the bandwidth factor (log-log),
+    the paper's band, the target and the root found."""
+    b, r = np.array(sorted(cal.evaluations)).T
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(b, r, "o-", color=colour(0), label="paper's filter, floor cross-validated")
+    ax.axhspan(*band, color="g", alpha=0.12, label=f"paper's {band[0]:g}-{band[1]:g} px")
+    ax.axhline(cal.target_px, color="k", lw=0.8, ls=":", label=f"target {cal.target_px:g} px")
+    ax.axvline(cal.scale, color=colour(1), lw=1.2, ls="--", label=f"root: factor {cal.scale:.3g}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    plain_log(ax)
+    ax.set_xlabel("bandwidth factor (every corner frequency x this; 1 = the earlier world)")
+    ax.set_ylabel("RMS one-step prediction error per axis (px)")
+    ax.legend(fontsize=8, loc="upper left")
     return fig

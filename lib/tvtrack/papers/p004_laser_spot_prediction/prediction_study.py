@@ -38,6 +38,7 @@ from . import predictors as pr
 
 __all__ = [
     "PAPER",
+    "VARIANT",
     "CLASSICAL",
     "FITTED",
     "FADING",
@@ -57,6 +58,8 @@ __all__ = [
 
 #: The paper's filter.
 PAPER = "growing memory (paper)"
+#: The card's labelled variant of the paper's floor: only ``g_1 >= g_{N_f,1}``, ``g_2, g_3`` scaled by the same factor.
+VARIANT = "growing memory, g1 floor (variant)"
 #: Baselines the paper names whose errors it quotes as 2-10 px (finite differences, splines, regression).
 CLASSICAL = (
     "finite differences, 2 points",
@@ -323,6 +326,16 @@ def compare_methods(
         more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
     )
     fcs[PAPER] = fc
+    fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = _tuned(  # the card's variant floor, tuned alike
+        s.floor_grid,
+        lambda nf: pr.g1_floor_forecast(z, nf, m, s.order),
+        z,
+        reference,
+        folds,
+        s,
+        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
+    )
+    fixed[VARIANT] = per_trial_path_mse(pr.g1_floor_forecast(z, s.fixed_floor, m, s.order), reference, m, s.start)
     fixed[PAPER] = per_trial_path_mse(pr.growing_memory_forecast(z, m, s.order, s.fixed_floor), reference, m, s.start)
     fcs["finite differences, 2 points"] = pr.sliding_regression_forecast(z, 2, 1, m)
     fcs["finite differences, 3 points"] = pr.sliding_regression_forecast(z, 3, 2, m)

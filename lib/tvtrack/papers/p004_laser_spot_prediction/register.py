@@ -14,7 +14,7 @@ register class; :func:`build` makes the :class:`tvtrack.register.Register`.
 
 from __future__ import annotations
 
-__all__ = ["ROWS", "DEFAULT", "DEPENDS", "NAMES", "WORLD", "build", "explored"]
+__all__ = ["ROWS", "PLAIN", "DEFAULT", "DEPENDS", "NAMES", "WORLD", "build", "explored"]
 
 #: (name, kind, default, values, why, origin)
 ROWS = (
@@ -31,22 +31,29 @@ ROWS = (
         "roll-off",
         "regime",
         "f^-4",
-        ("f^-4", "f^-2", "G-tilt"),
+        ("f^-4", "f^-2", "f^-6", "G-tilt"),
         "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model), a "
-        "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), or the "
-        "whole spectrum replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 "
-        "below the corner v/D (at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry "
-        "multiplying it by its sinc^2 exactly; the spectral index does not enter it; content below the record's "
-        "fundamental, 1/40 s, is left to the drift); the paper shows no spectrum",
+        "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), the critically "
+        "damped sum through one more pole at the fastest corner (f^-6: the smooth side of the tilt range, proposed by "
+        "the first adversarial pass, docs/adversarial/004.md; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
+        "replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 below the corner v/D "
+        "(at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry multiplying it by its sinc^2 "
+        "exactly; the spectral index does not enter it; content below the record's fundamental, 1/40 s, is left to "
+        "the drift); the paper shows no spectrum",
         "adversarial",
     ),
     (
         "bandwidth",
         "regime",
-        1.0,
-        (0.5, 1.0, 4.0),
-        "every corner frequency x this; the paper gives no turbulence strength, range or wind speed, so the "
-        "wander time scale W0/V_perp is unknown within an order of magnitude",
+        3.0,
+        (1.0, 2.2, 3.0, 8.0),
+        "every corner frequency x this (today's 0.02, 0.1, 0.5 Hz at 1); the paper gives no turbulence strength, range "
+        "or wind speed, so the wander time scale W0/V_perp is unknown within an order of magnitude. The default is "
+        "calibrated (calibration.calibrate_bandwidth: a root find on the factor): at 3 the paper's filter errs 1.4-1.5 "
+        "px per axis one frame ahead on 15 x 1000 frames, the middle of the paper's own '1...2 pixels'; at 1 (the "
+        "world of the first three passes) it errs 0.33 px, a regime the paper never saw; at 2.2 (the same search for "
+        "the band's low end, 1 px: root 2.28 on the shipped paths, 2.12 on a fresh draw) about 1 px, where C004-1's "
+        "'does not exceed 2 px' can hold; at 8 (fastest corner 4 Hz) 3.9 px",
         "author",
     ),
     (
@@ -68,7 +75,7 @@ ROWS = (
     ),
     (
         "frame rate",
-        "regime",
+        "reading",
         25.0,
         (25.0, 200.0),
         "25 frames/s is stated; the centres are also said to be measured 'every 5 ms' (200 frames/s); "
@@ -113,7 +120,7 @@ ROWS = (
     ),
     (
         "horizon",
-        "scale",
+        "reading",
         1,
         (1, 3, 10),
         "the prediction horizon is not stated: one frame is the natural reading of 'prediction mode', 10 frames "
@@ -262,12 +269,14 @@ ROWS = (
     ),
     (
         "lost frames",
-        "reading",
+        "model",
         "held",
         ("held", "skipped (coast)"),
         "C004-4 on the series the filter sees: lost centres held at the last one, or skipped (no observation: "
         "the recursion coasts, eq. (4) is solved on the samples present at their true times; the two agree only "
-        "on gap-free series, and the register's world loses no frame at its defaults)",
+        "on gap-free series, and the register's world loses no frame at its defaults). A world beyond the paper "
+        "(kind model, not a reading): the paper's recursion (5)-(6) counts samples on an even grid and says nothing "
+        "of lost frames, so a flip here says C004-4 does not extend to lost frames, not that the paper is ambiguous",
         "adversarial",
     ),
     (
@@ -286,11 +295,185 @@ ROWS = (
         "Gaussian",
         ("Gaussian", "Student t3"),
         "the model's noise law is not stated: heavy-tailed white noise (Student t, 3 d.o.f., unit variance; a "
-        "centroid with outliers) leaves Var = sigma^2 g_N1 exact but needs a distribution-free interval "
-        "(batch means, bootstrap-t) instead of the chi-square one",
+        "centroid with outliers) leaves Var = sigma^2 g_N1 exact, but t3 has no fourth moment: the Monte Carlo "
+        "variance has infinite variance and no interval of it has a stated coverage, so this world's variance parts "
+        "carry no interval and the rule cannot decide them (a heavy tail never makes a label; the g_N1 part is exact)",
         "adversarial",
     ),
 )
+
+
+#: Every entry in plain words: {name: (title, {value: phrase})} (what a reader sees in the labels' "where" lists).
+PLAIN = {
+    "spectral index": (
+        "slope of the wander spectrum between its corners",
+        {
+            0.0: "wander mostly fast (flat spectrum between the corners)",
+            2 / 3: "wander spectrum f^-2/3 between the corners (tilt-like)",
+            5 / 3: "wander mostly slow (Kolmogorov-like f^-5/3 spectrum)",
+        },
+    ),
+    "roll-off": (
+        "how fast the wander spectrum falls above its corners",
+        {
+            "f^-4": "smooth wander (spectrum falling as f^-4)",
+            "f^-2": "rough wander without a velocity (f^-2)",
+            "f^-6": "smoother wander (spectrum falling as f^-6)",
+            "G-tilt": "Tyler's turbulence tilt spectrum (G-tilt)",
+        },
+    ),
+    "bandwidth": (
+        "speed of the wander (corner frequencies x this)",
+        {
+            1.0: "slow wander, the earlier world (fastest corner 0.5 Hz)",
+            2.2: "wander calibrated to the low end of the paper's 1-2 px (fastest corner 1.1 Hz)",
+            3.0: "wander calibrated to the paper's 1-2 px (fastest corner 1.5 Hz)",
+            8.0: "fast wander (fastest corner 4 Hz)",
+        },
+    ),
+    "amplitude": (
+        "size of the wander (RMS x this)",
+        {
+            0.5: "half-size wander (1.5-4 px RMS)",
+            1.0: "wander of 3-8 px RMS per axis",
+            2.0: "double-size wander (6-16 px RMS)",
+        },
+    ),
+    "jitter": (
+        "frame-to-frame jitter of the spot (x the one-frame motion)",
+        {
+            0.0: "no frame-to-frame jitter",
+            1.0: "jitter as large as the one-frame motion",
+            4.0: "jitter 4x the one-frame motion",
+        },
+    ),
+    "frame rate": (
+        "camera frame rate",
+        {25.0: "25 frames/s (as stated)", 200.0: "200 frames/s (the 'every 5 ms' of the text)"},
+    ),
+    "read noise": (
+        "camera read noise",
+        {
+            2.0: "read noise 2 DN (clean camera)",
+            16.0: "read noise 16 DN",
+            64.0: "read noise 64 DN (spot barely above the noise)",
+        },
+    ),
+    "saturation": (
+        "sensor full scale",
+        {"8-bit": "8-bit sensor (bright frames clip)", "none": "no clipping (16-bit converter)"},
+    ),
+    "scintillation": (
+        "whole-spot fading (sigma of ln irradiance)",
+        {0.3: "moderate fading (sigma ln I = 0.3)", 0.8: "strong fading (sigma ln I = 0.8)"},
+    ),
+    "energy centre": (
+        "energy-centre algorithm",
+        {
+            "windowed": "energy centre in a window re-centred on itself",
+            "whole gate": "energy centre over the whole 31 px gate",
+        },
+    ),
+    "horizon": (
+        "prediction horizon",
+        {
+            1: "predicting 1 frame (40 ms) ahead",
+            3: "predicting 3 frames ahead",
+            10: "predicting 10 frames (0.4 s) ahead",
+        },
+    ),
+    "network lags": (
+        "past centres fed to the networks",
+        {"cross-validated": "network lag count chosen by cross-validation", 10: "networks fed a fixed 10 lags"},
+    ),
+    "network inputs": (
+        "what the networks are fed",
+        {
+            "increments": "networks fed increments to the newest centre",
+            "absolute centres": "networks fed the centres as measured",
+        },
+    ),
+    "tuning": (
+        "how the floor and the windows are chosen",
+        {
+            "cross-validated": "floor and windows chosen by cross-validation over paths",
+            "fixed": "fixed floor N_f = 10 and window L = 10",
+        },
+    ),
+    "reference": (
+        "what the error is measured against",
+        {"measured centre": "error against the next measured centre", "true centre": "error against the true centre"},
+    ),
+    "C004-1 statistic": (
+        "statistic behind 'does not exceed 2 px'",
+        {
+            "95th percentile": "95th percentile of the per-axis error",
+            "99th percentile": "99th percentile of the per-axis error",
+            "radial 95th percentile": "95th percentile of the radial (2-D) error",
+        },
+    ),
+    "spline": (
+        "which spline extrapolates",
+        {
+            "interpolating": "cubic spline through the last L centres",
+            "least-squares cubic": "least-squares cubic over the last L centres",
+            "natural cubic": "natural cubic spline (straight beyond its last knot)",
+        },
+    ),
+    "exposure": (
+        "camera exposure",
+        {
+            "instant": "short exposure",
+            "interlaced, frame integration": "interlaced TV camera integrating a whole frame",
+        },
+    ),
+    "spot size": (
+        "spot size (Gaussian sigma)",
+        {4.0: "spot sigma 4 px", 0.6: "focused, undersampled spot (sigma 0.6 px)"},
+    ),
+    "C004-3 statistic": (
+        "statistic the methods are ranked by",
+        {"MSE": "ranked by mean squared error", "95th percentile": "ranked by the 95th percentile of the error"},
+    ),
+    "vibration": (
+        "mount vibration at 8 Hz",
+        {0.0: "no mount vibration", 1.0: "1 px mount vibration at 8 Hz"},
+    ),
+    "C004-8 pipeline": (
+        "what is timed for 'real time'",
+        {
+            "batched plain centroid": "plain centroid timed in a batch",
+            "streaming, the study's energy centre": "each frame timed as it arrives (the study's energy centre)",
+        },
+    ),
+    "C004-8 statistic": (
+        "statistic of the time per frame",
+        {"mean": "mean time per frame", "99th percentile": "99th percentile of the time per frame"},
+    ),
+    "C004-8 frame": (
+        "image area measured per frame",
+        {"gate": "measured in the 31 px gate", "whole frame": "measured over the whole 128 x 128 frame"},
+    ),
+    "C004-8 clock": (
+        "clock of the timing",
+        {"CPU": "CPU time", "wall": "wall-clock time"},
+    ),
+    "lost frames": (
+        "what the recursion does with a lost frame",
+        {
+            "held": "a lost frame's centre held at the last one",
+            "skipped (coast)": "lost frames skipped (the recursion coasts)",
+        },
+    ),
+    "frame loss": (
+        "frames lost to obscuration or deep fades",
+        {0.0: "no frame lost", 0.01: "frames lost (1 % of frames start a 1-5 frame obscuration)"},
+    ),
+    "C004-5 noise": (
+        "law of the white measurement noise",
+        {"Gaussian": "Gaussian noise", "Student t3": "heavy-tailed noise (Student t, 3 degrees of freedom)"},
+    ),
+}
 
 #: {name: default}.
 DEFAULT = {name: default for name, _, default, *_ in ROWS}
@@ -348,7 +531,10 @@ def build():
     """The :class:`tvtrack.register.Register` of :data:`ROWS`, with the joint conditions :data:`PINNED`."""
     from ...register import Entry, Register
 
-    entries = [Entry(name=n, kind=k, default=d, values=v, why=w, origin=o) for n, k, d, v, w, o in ROWS]
+    entries = [
+        Entry(name=n, kind=k, default=d, values=v, why=w, origin=o, title=PLAIN[n][0], phrases=PLAIN[n][1])
+        for n, k, d, v, w, o in ROWS
+    ]
     return Register(entries, PINNED)
 
 

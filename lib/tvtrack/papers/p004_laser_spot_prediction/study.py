@@ -15,21 +15,12 @@ Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...filters.polynomial import (
-    growing_memory_filter,
-    growing_memory_gains,
-    polynomial_observation_row,
-    predict_ahead,
-    taylor_transition,
-)
-from ...measure import centroid
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci, variance_ci
-from ...render import gate_origin, gaussian_spot, sensor_readout
+from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
 from .beam_wander import (
     GTILT,
@@ -46,11 +37,15 @@ from .prediction_study import (
     PAPER,
     SINGER,
     ComparisonSetup,
+    WINDOW_EXTENSION,
+    _tuned,
     compare_methods,
     per_trial_path_mse,
     window_candidates,
 )
+from .derivation import _recursion_check, recursion_vs_batch, variance_ratios
 from .register import NAMES, WORLD
+from .timing import CLOCKS, _frame_time_ms, streaming_frame_times
 from .traces import TraceSet
 
 __all__ = [
@@ -59,8 +54,10 @@ __all__ = [
     "NETWORKS",
     "OPTIMAL",
     "StudySize",
+    "screen_size",
     "StudyRun",
     "scene_config",
+    "traces_on_sensor",
     "camera_for",
     "run_study",
     "claim_values",
@@ -98,7 +95,6 @@ OPTIMAL = "optimal (true model)"
 _SCENE_KEYS = WORLD  # the entries that change the rendered scene
 #: Sub-frame samples per exposure of the "full frame" exposure reading.
 EXPOSURE_SUBSAMPLES = 4
-_CHECK_N = (3, 5, 10, 20, 50, 100)
 
 
 def root_mean_ci(mean_squares) -> Estimate:
@@ -167,6 +163,27 @@ class StudySize:
     lag_tuning_samples: int = 500
 
 
+def screen_size(size: StudySize) -> StudySize:
+    """The explorer's cheaper screen of the joint design (``explore(screen=...)``): the same paths and folds at
+    half the frames (at least 200), a quarter of the networks' training pairs (at least 300), a quarter of the
+    variance check's series and the lag grid's two ends; a joint configuration whose screened verdict is not
+    decisively the default's is measured again at ``size``. A run of fewer than 400 frames (the smoke profile) is
+    returned as it is: halving it would leave too few frames. Measured at paper size (32 joint configurations,
+    seed 2005), the screen sent all 32 to full size, so the notebook does not screen (docs/adversarial/session4-004.md)."""
+    if size.n_frames < 400:
+        return size
+    lags = tuple(sorted({min(size.lag_grid), max(size.lag_grid)}))
+    return replace(
+        size,
+        n_frames=max(200, size.n_frames // 2),
+        train_samples=max(300, size.train_samples // 4),
+        lag_tuning_samples=min(size.lag_tuning_samples, max(300, size.train_samples // 4)),
+        n_mc_variance=max(1000, size.n_mc_variance // 4),
+        lag_grid=lags,
+        timing_frames=min(size.timing_frames, 100),
+    )
+
+
 #: The shipped data set's generator configuration and the card's camera (21 px centroid window).
 BASE_SCENE = BeamWanderConfig()
 BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
@@ -229,6 +246,7 @@ class StudyRun:
     forecasts: dict | None = None  # cross-validated forecasts, OPTIMAL and the fixed-tuning ones
     fixed_forecasts: dict | None = None
     folds: list | None = None
+    draws: int = 0  # sets of paths drawn until the spot stayed on the sensor (0: the paths were given)
 
 
 def _streams(seed: int):
@@ -274,7 +292,7 @@ def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = E
         ``wander_rms_px`` are the path draws (before averaging).
     """
     w = exposure_weights(exposure, k)
-    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (beam_wander.exposure_gain)
+    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (gtilt.exposure_gain)
         dt = 1.0 / scene.frame_rate_hz
         tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
         tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
@@ -320,11 +338,45 @@ def vibration(amplitude_px: float, frame_rate_hz: float, shape, rng: np.random.G
     return amplitude_px * np.sin(2 * np.pi * VIBRATION_HZ * t + rng.uniform(0, 2 * np.pi, (P, 1, A)))
 
 
+#: Most draws of a run's paths (:func:`traces_on_sensor`) before the run gives up.
+MAX_DRAWS = 50
+
+
+def traces_on_sensor(scene: BeamWanderConfig, stream: np.random.SeedSequence, exposure: str) -> tuple[TraceSet, int]:
+    """The run's paths (:func:`exposed_traces`), drawn again until the spot stays on the sensor on every path.
+
+    The paper's recordings kept the spot in the 128 px frame (it measures the spot in every image). A large wander
+    (amplitude 2: 6-16 px RMS per axis) with the drift reaches the edge on some draws, which the generator
+    refuses. Such a set is drawn again, so the world is conditioned on the spot staying on the sensor, as the
+    recordings were. The first draw uses the seed every earlier version used, so a set that stays on the sensor
+    is unchanged; later draws take children of ``stream``.
+
+    Returns
+    -------
+    traces : TraceSet
+    draws : int
+        Sets drawn (1: the first stayed on the sensor).
+    """
+    seed = int(stream.generate_state(1)[0])
+    for k in range(1, MAX_DRAWS + 1):
+        try:
+            return exposed_traces(scene, seed, exposure), k
+        except ValueError as err:
+            if "leave the sensor" not in str(err):
+                raise
+        seed = int(stream.spawn(1)[0].generate_state(1)[0])
+    raise ValueError(
+        f"the spot left the {scene.image_size_px} px sensor on every one of {MAX_DRAWS} draws of the paths: the "
+        "wander is too large for the frame"
+    )
+
+
 def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
     s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
     scene = scene_config(config, size)
+    draws = 0
     if traces is None:
-        traces = exposed_traces(scene, int(s_tr.generate_state(1)[0]), config.get("exposure", "instant"))
+        traces, draws = traces_on_sensor(scene, s_tr, config.get("exposure", "instant"))
     xy = traces.centres_px[: size.n_paths, : size.n_frames]
     intensity = traces.intensity[: size.n_paths, : size.n_frames]
     rms = np.asarray(traces.metadata["wander_rms_px"])[: size.n_paths]
@@ -352,6 +404,7 @@ def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = N
         clipped_share=float(np.mean(trk.clipped)),
         intensity=intensity,
         track=trk,
+        draws=draws,
     )
 
 
@@ -391,19 +444,18 @@ def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
     fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
     fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
     fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
-    # the other reading of "spline extrapolation": a least-squares cubic over the window (not interpolating)
-    lsq = lambda L: pr.sliding_regression_forecast(run.z, L, 3, m)  # noqa: E731
-    cands = window_candidates(4, s.window_grid)
-    loss = np.stack([per_trial_path_mse(lsq(L), run.z_meas, m, s.start).mean(axis=0) for L in cands])
-    pick = pr.cross_validated_pick(loss, folds)
-    fc[LSQ_CUBIC] = np.stack([lsq(cands[pick[p]])[:, p] for p in range(run.z.shape[1])], axis=1)
-    fixed[LSQ_CUBIC] = lsq(s.fixed_window)
-    # a third reading: the natural cubic spline, extended linearly beyond its last knot (window from 4)
-    nat = {L: pr.natural_spline_forecast(run.z, L, m) for L in cands}
-    loss = np.stack([per_trial_path_mse(nat[L], run.z_meas, m, s.start).mean(axis=0) for L in cands])
-    pick = pr.cross_validated_pick(loss, folds)
-    fc[NATURAL_SPLINE] = np.stack([nat[cands[pick[p]]][:, p] for p in range(run.z.shape[1])], axis=1)
-    fixed[NATURAL_SPLINE] = pr.natural_spline_forecast(run.z, s.fixed_window, m)
+    # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
+    # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
+    # natural cubic spline, extended linearly beyond its last knot
+    readings = {
+        LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
+        NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
+    }
+    for name, make in readings.items():
+        fc[name], _, cmp.chosen[name], _, _ = _tuned(
+            window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
+        )
+        fixed[name] = make(s.fixed_window)
     return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
 
 
@@ -437,207 +489,6 @@ def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int)
         r.confidence,
         "square root of the " + r.method,
     )
-
-
-def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
-    """Largest relative deviation of the recursion (5)-(6) from eq. (4) solved by ``lstsq`` at every
-    sample, and the first sample with an estimate (C004-4, C004-7). Lost samples (NaN) are skipped: the
-    recursion coasts over them and eq. (4) is solved on the samples present at their true times (the
-    register's "lost frames" reading; the two agree only on gap-free series)."""
-    rec = growing_memory_filter(series, order, None)
-    batch = pr.batch_least_squares_states(series, order)
-    dev = float(np.nanmax(np.abs(rec - batch) / np.maximum(np.abs(batch), 1.0)))
-    return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
-
-
-def _recursion_check(series, seed, rate: float, held: bool) -> float:
-    """C004-4: :func:`recursion_vs_batch`'s largest deviation over every path's series (P, T), each with its own
-    obscurations (:func:`drop_frames`, one stream in path order): one 200-frame series at a 0.01 loss rate loses no
-    frame one time in eight, every path's series (3000 frames) practically never."""
-    rng = np.random.default_rng(seed)
-    return max(recursion_vs_batch(drop_frames(z, rng, rate, held))[0] for z in np.atleast_2d(series))
-
-
-def drop_frames(series, rng: np.random.Generator, rate: float, held: bool) -> np.ndarray:
-    """``series`` (T,) with obscurations: each frame starts a gap with probability ``rate``, of 1 to 5 frames
-    (uniform); lost frames are held at the last centre (``held``) or NaN (skipped). ``rate = 0`` returns the
-    series unchanged (the draws are made whatever the rate: common random numbers)."""
-    z = np.array(series, dtype=float)
-    starts = rng.random(z.size) < rate
-    lengths = rng.integers(1, 6, z.size)
-    lost = np.zeros(z.size, bool)
-    for k in np.flatnonzero(starts):
-        lost[k : k + lengths[k]] = True
-    lost[0] = False  # the track starts on a measured centre
-    if held:
-        idx = np.maximum.accumulate(np.where(lost, 0, np.arange(z.size)))
-        return z[idx]
-    z[lost] = np.nan
-    return z
-
-
-#: Batches of the batch-means interval of :func:`variance_ratios` under heavy-tailed noise.
-VARIANCE_BATCHES = 20
-
-
-def variance_ratios(rng: np.random.Generator, n_series: int, check_n=_CHECK_N, noise: str = "Gaussian") -> dict:
-    """``Var(x_est) / (sigma^2 g_N1)`` at each checked ``N`` on an exact quadratic plus unit white noise,
-    with Bonferroni-adjusted intervals (95 % family-wise), and the largest step of ``g_N1`` over ``N >= 3``
-    (C004-5).
-
-    ``noise``: ``"Gaussian"`` (chi-square intervals, exact for Gaussian errors) or ``"Student t3"`` (unit
-    variance, heavy tails: the chi-square interval would under-cover, so the interval is a batch-means one,
-    :data:`VARIANCE_BATCHES` batches of mean squared errors through :func:`tvtrack.montecarlo.mean_ci`
-    bootstrap-t; its method quotes the core's coverage of 95 % intervals). The noise is drawn whatever the
-    reading from the same stream (common random numbers)."""
-    nmax = max(check_n)
-    t = np.arange(nmax)
-    quad = 5.0 + 0.3 * t - 0.01 * t**2
-    g1 = growing_memory_gains(2, nmax)[:, 0]
-    if noise == "Gaussian":
-        w = rng.standard_normal((n_series, nmax))
-    elif noise == "Student t3":
-        w = rng.standard_t(3, (n_series, nmax)) / np.sqrt(3.0)
-    else:
-        raise ValueError(f"parameter 'noise' = {noise!r}; it must be 'Gaussian' or 'Student t3'")
-    est = growing_memory_filter(quad + w, 2, None)[..., 0]
-    conf = 1 - 0.05 / len(check_n)
-    out = {"g1 decreasing": float(np.max(np.diff(g1[2:])))}
-    for n in check_n:
-        e = est[:, n - 1] - quad[n - 1]
-        p = g1[n - 1]
-        if noise != "Gaussian":
-            b = mean_ci(np.mean(e.reshape(VARIANCE_BATCHES, -1) ** 2, axis=1) / p, conf, method="bootstrap-t")
-            out[f"variance at N={n}"] = replace(
-                b, method=f"batch means ({VARIANCE_BATCHES} batches), {b.method} (the coverage of 95 % intervals)"
-            )
-            continue
-        v = variance_ci(e, confidence=conf, method="chi2")
-        out[f"variance at N={n}"] = Estimate(
-            v.value / p, v.stderr / p, v.ci_low / p, v.ci_high / p, v.n, conf, v.method
-        )
-    return out
-
-
-#: The clocks of the "C004-8 clock" reading: CPU time of the process, or wall-clock time.
-CLOCKS = {"CPU": time.process_time, "wall": time.perf_counter}
-
-
-def _frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
-    """Time per frame, ms, at the C004-8 readings: the batched plain centroid's mean (default), or the
-    streaming pipeline's mean or 99th percentile over frames after the first (warm-up); the streaming
-    pipeline measures in the gate or (``C004-8 frame`` = "whole frame") over the whole frame, and
-    ``C004-8 clock`` reads CPU or wall-clock time."""
-    pipeline = config.get("C004-8 pipeline", "batched plain centroid")
-    statistic = config.get("C004-8 statistic", "mean")
-    whole = config.get("C004-8 frame", "gate") == "whole frame"
-    clock = CLOCKS[config.get("C004-8 clock", "CPU")]
-    if pipeline == "batched plain centroid" and statistic == "mean" and not whole:
-        return _time_per_frame(run, rng, clock)
-    # per-frame times exist only for the streaming pipeline (the 99th percentile and the whole-frame reading);
-    # on the wall clock the frames another process preempted are left out (a dedicated core, as the paper's PC)
-    wall = clock is CLOCKS["wall"]
-    t = streaming_frame_times(run, rng, whole_frame=whole, clock=clock, drop_preempted=wall)[0][1:] * 1e3
-    return float(np.nanmean(t) if statistic == "mean" else np.nanquantile(t, 0.99))
-
-
-def _time_per_frame(run: StudyRun, rng: np.random.Generator, clock=time.process_time) -> float:
-    """ms per full 128 x 128 frame (``clock``: CPU by default): centroid, filter update and one-step
-    prediction, batched over the frames."""
-    nt = min(run.size.timing_frames, run.truth.shape[-1])
-    cam = run.camera
-    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
-    frames = sensor_readout(
-        gaussian_spot(xy, (run.scene.image_size_px,) * 2, cam.spot_sigma_px, cam.flux_e),
-        rng,
-        background=cam.background_dn,
-        read_noise=cam.read_noise_dn,
-        bit_depth=cam.bit_depth,
-    )
-    t0 = clock()
-    cm = centroid(frames, background="border", threshold_sigma=cam.threshold_sigma)
-    predict_ahead(growing_memory_filter(np.moveaxis(cm.xy, -1, 0), 2, run.size.fixed_floor), 1)
-    return (clock() - t0) / nt * 1e3
-
-
-def _involuntary_switches() -> int:
-    """Involuntary context switches of this process so far (another process took the core)."""
-    import resource
-
-    return resource.getrusage(resource.RUSAGE_SELF).ru_nivcsw
-
-
-def streaming_frame_times(
-    run: StudyRun,
-    rng: np.random.Generator,
-    whole_frame: bool = False,
-    clock=time.process_time,
-    drop_preempted: bool = False,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each frame processed as it arrives (the "streaming" reading of C004-8): from the full 128 x 128
-    frame, crop the gate around the one-step prediction, measure the study's energy centre in it (the
-    camera's ``centroid_mode``), run one step of the recursion (5)-(6) with the fixed floor's precomputed
-    gains and predict one frame ahead. ``whole_frame``: no gate, the energy centre runs over the whole
-    frame (the windowed one started at the prediction). ``drop_preempted``: a frame during which the process
-    was preempted (an involuntary context switch: another process took the core) gets a NaN time, so a
-    wall clock measures the pipeline on a dedicated core, not the other tenants of a shared machine.
-
-    Returns
-    -------
-    times : ndarray, shape (n,)
-        Seconds of each frame on ``clock`` (CPU time, ``time.process_time``, by default).
-    states : ndarray, shape (n, 2, 3)
-        The recursion's state after each frame (per axis; NaN before the first three), for tests.
-    measured : ndarray, shape (n, 2)
-        The centres the recursion was fed, px (a frame with nothing above threshold: the prediction).
-    """
-    from .spot_centre import windowed_centroid
-
-    nt = min(run.size.timing_frames, run.truth.shape[-1])
-    cam, size = run.camera, run.scene.image_size_px
-    xy = np.moveaxis(run.truth[0, 0, :, :nt], 0, -1)
-    frames = sensor_readout(
-        gaussian_spot(xy, (size, size), cam.spot_sigma_px, cam.flux_e),
-        rng,
-        background=cam.background_dn,
-        read_noise=cam.read_noise_dn,
-        bit_depth=cam.bit_depth,
-    )
-    g, nf = cam.gate_size_px, run.size.fixed_floor
-    F = taylor_transition(2)
-    gains = growing_memory_gains(2, nf)
-    H0 = polynomial_observation_row(2, np.arange(3)[::-1])  # the first three samples, oldest first
-    times, states, measured = np.empty(nt), np.full((nt, 2, 3), np.nan), np.empty((nt, 2))
-    aim, first, x = xy[0], [], None
-    for t in range(nt):
-        n0 = _involuntary_switches() if drop_preempted else 0
-        t0 = clock()
-        if whole_frame:
-            o, gate = np.zeros(2, int), frames[t]
-        else:
-            o = np.clip(gate_origin(aim, (g, g)), 0, size - g)
-            gate = frames[t, o[1] : o[1] + g, o[0] : o[0] + g]
-        if cam.centroid_mode == "windowed":
-            start = aim if whole_frame else None  # in a gate the window starts at its centre, the prediction
-            m = windowed_centroid(gate, o, window_px=cam.window_px, threshold_sigma=cam.threshold_sigma, start=start)
-        else:
-            m = centroid(gate, o, background="border", threshold_sigma=cam.threshold_sigma)
-        z = m.xy if m.valid else aim
-        if x is None:
-            first.append(z)
-            if len(first) == 3:
-                x = np.linalg.solve(H0, np.asarray(first))  # (3 states, 2 axes): eq. (4) on 3 samples
-        else:
-            x = F @ x
-            x = x + gains[min(t + 1, nf) - 1][:, None] * (z - x[0])[None, :]
-        if x is not None:
-            aim = (F @ x)[0]  # the one-step prediction centres the next gate
-            states[t] = x.T
-        times[t] = clock() - t0
-        if drop_preempted and _involuntary_switches() != n0:
-            times[t] = np.nan
-        measured[t] = z
-    return times, states, measured
 
 
 def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.ndarray:
@@ -793,6 +644,11 @@ def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
         out[name] = float(
             np.mean(grid_edges(ch[name], (*window_candidates(lo, s.window_grid), *WINDOW_EXTENSION)) == 1)
         )  # degree+1 is a true limit
+    for name in (LSQ_CUBIC, NATURAL_SPLINE):  # the spline's other readings, tuned in _methods (not at every horizon)
+        if name in ch:
+            out[name] = float(
+                np.mean(grid_edges(ch[name], (*window_candidates(4, s.window_grid), *WINDOW_EXTENSION)) == 1)
+            )
     ca = np.asarray(ch["CA Kalman, ML noise"])
     out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
     out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
@@ -838,7 +694,6 @@ def measurement_budget(
     dict
         {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
     """
-    from ...render import gaussian_spot, sensor_readout
     from .spot_centre import gaussian_fit_centre, windowed_centroid
 
     g = camera.gate_size_px
@@ -874,7 +729,7 @@ def model_order_summary(run: StudyRun) -> dict:
         first-order predictor: 2-point differences or degree-1 regression; and second-order: the paper's
         filter, 3-point differences, degree-2 regression, Morrison), ``ratio_2_over_1`` (paired MSE ratio,
         best second order over best first order; below 1: the acceleration term pays),
-        ``singer_tau_frames`` (per fold) and ``tau_over_horizon``.
+        ``singer_tau_frames`` (per fold), ``tau_over_horizon`` and ``frame_ms`` (the frame interval, ms).
     """
     c = run.config
     m = int(c["horizon"])
@@ -894,6 +749,7 @@ def model_order_summary(run: StudyRun) -> dict:
         "singer_tau_frames": tau,
         "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
         "tau_over_horizon": float(np.median(tau) / m),
+        "frame_ms": 1e3 / float(run.scene.frame_rate_hz),
     }
 
 

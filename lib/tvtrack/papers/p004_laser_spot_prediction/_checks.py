@@ -1,0 +1,18 @@
+"""Argument checks shared by the predictors of paper 004 (:mod:`.predictors`, :mod:`.kalman_baselines`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _check_steps(steps) -> int:
+    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
+        raise ValueError(f"parameter 'steps' = {steps!r}; it must be an integer >= 1 (frames ahead)")
+    return int(steps)
+
+
+def _check_z(z) -> np.ndarray:
+    z = np.asarray(z, dtype=float)
+    if z.ndim < 1 or z.shape[-1] < 2:
+        raise ValueError(f"parameter 'z' has shape {z.shape}; it needs a time axis (last) of length >= 2")
+    return z

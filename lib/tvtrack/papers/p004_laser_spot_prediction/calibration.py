@@ -1,0 +1,165 @@
+"""The calibrated world of paper 004: the wander's bandwidth at which the paper's own filter errs what the paper
+says it errs.
+
+The paper (Kokryatska and Hrynchyshyn 2005) reports its method's one-step error as "1...2 pixels" (abstract,
+conclusions) on recordings that are not available. A synthetic world in which the filter errs a third of that is
+an operating point the paper never saw, and comparisons made there (C004-3: a line against the filter's quadratic)
+are made in the wrong regime. So the world is calibrated: one knob of the generator is searched until the paper's
+filter, tuned as everywhere (floor cross-validated over paths), errs :data:`TARGET_PX` per axis on a data set of
+the shipped size (15 paths x 1000 frames) at the paper's horizon (one frame).
+
+**Which knob.** The wander's *bandwidth* (every corner frequency x a factor; the spectrum's shape and the paths'
+range kept). The amplitude cannot reach the band: the error is nearly all motion (the energy centre errs 0.04 px),
+so it grows linearly with the amplitude, and at the largest amplitude the generator allows with the spot inside the
+128 px frame (RMS <= 128/6 px, amplitude 2.67) the filter errs 0.8 px. The bandwidth is also the least known
+property of the world: the wander's time scale W0/V_perp is unknown within an order of magnitude (no range, beam
+size or wind speed is given). The roll-off is a register reading (f^-2, f^-4, f^-6, G-tilt), not a scale.
+
+**The search.** :func:`calibrate_bandwidth`: Brent's root finder (:func:`scipy.optimize.brentq`) on
+``log(rms(b) / target)`` over ``log b`` in a bracket, every evaluation on the same seed (common random numbers:
+the same paths, faster or slower), so ``rms(b)`` is a smooth increasing function of ``b`` up to the floor's
+discrete choice.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.optimize import brentq
+
+from . import predictors as pr
+from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
+from .prediction_study import FLOOR_EXTENSION, _tuned
+from .register import DEFAULT
+
+__all__ = ["TARGET_PX", "BAND_PX", "Calibration", "paper_filter_rms", "calibrate_bandwidth", "shipped_config_at"]
+
+#: The paper's own error band, px per axis ("1...2 pixels", abstract and conclusions).
+BAND_PX = (1.0, 2.0)
+#: The calibration's target: the middle of the band, px per axis.
+TARGET_PX = 1.5
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Result of :func:`calibrate_bandwidth`.
+
+    Attributes
+    ----------
+    entry : str
+        The register entry calibrated ("bandwidth": every corner frequency x ``scale``).
+    scale : float
+        The calibrated value (dimensionless factor on today's corners 0.02, 0.1, 0.5 Hz).
+    rms_px : float
+        The paper filter's per-axis RMS one-step error at ``scale``, px.
+    target_px : float
+        The target, px.
+    evaluations : tuple of (float, float)
+        Every (scale, rms px) the search evaluated, in order.
+    """
+
+    entry: str
+    scale: float
+    rms_px: float
+    target_px: float
+    evaluations: tuple
+
+
+def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = None) -> float:
+    """Per-axis RMS error (px) of the paper's filter, floor cross-validated over paths, at ``config``'s horizon
+    against the measured centre, on ``size.n_paths`` x ``size.n_frames`` paths of the world ``config``.
+
+    Parameters
+    ----------
+    config : dict
+        Register configuration (entries left out stay at the register's defaults).
+    seed : int
+        The run's seed (sensor noise; the paths too unless ``traces_seed`` is given).
+    size : study.StudySize
+    traces_seed : int, optional
+        Draw the paths with this generator seed at the configuration's scene (e.g. the shipped data set's seed:
+        the shipped paths, faster or slower).
+    """
+    from . import study as st
+
+    cfg = {**DEFAULT, **config}
+    traces = None
+    if traces_seed is not None:  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
+        scene = st.scene_config(cfg, size)
+        big = replace(scene, n_paths=max(scene.n_paths, st.BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
+        traces = generate_traces(big, int(traces_seed))
+    run = st._scene(cfg, seed, size, traces)
+    s = st._setup(cfg, size)
+    folds = pr.path_folds(size.n_paths, size.n_folds)
+    T = run.z.shape[-1]
+    _, mse, _, _, _ = _tuned(
+        s.floor_grid,
+        lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
+        run.z,
+        run.z_meas,
+        folds,
+        s,
+        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
+    )
+    return float(np.sqrt(np.mean(mse)))
+
+
+def calibrate_bandwidth(
+    seed: int,
+    size,
+    target_px: float = TARGET_PX,
+    bracket: tuple = (1.0, 8.0),
+    config: dict | None = None,
+    traces_seed: int | None = None,
+    xtol: float = 0.005,
+) -> Calibration:
+    """The bandwidth factor at which the paper's filter errs ``target_px`` per axis (:func:`paper_filter_rms`).
+
+    Brent's method on ``log(rms(b) / target)`` over ``log b`` in ``bracket``; ``xtol`` is the tolerance on
+    ``log b`` (0.005: the factor to 0.5 %).
+
+    Parameters
+    ----------
+    seed, size, traces_seed :
+        As :func:`paper_filter_rms` (one seed for every evaluation: common random numbers).
+    bracket : (float, float)
+        Factors whose errors straddle the target (the fastest corner, 0.5 Hz x b, stays below the 12.5 Hz
+        Nyquist frequency of 25 frames/s up to b = 25).
+    config : dict, optional
+        The rest of the world (default: the register's defaults, the bandwidth aside).
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    ValueError
+        If the bracket's errors do not straddle the target.
+    """
+    evals: dict = {}  # {scale: rms px}, in evaluation order
+
+    def rms(b: float) -> float:
+        if b not in evals:
+            evals[b] = paper_filter_rms({**(config or {}), "bandwidth": b}, seed, size, traces_seed)
+        return evals[b]
+
+    gap = lambda log_b: float(np.log(rms(float(np.exp(log_b))) / target_px))  # noqa: E731
+    lo, hi = (float(np.log(b)) for b in bracket)
+    if gap(lo) * gap(hi) > 0:
+        raise ValueError(
+            f"parameter 'bracket' = {bracket}: the filter errs {rms(np.exp(lo)):.3g} and {rms(np.exp(hi)):.3g} px "
+            f"there; both on one side of the target {target_px:g} px"
+        )
+    b = float(np.exp(brentq(gap, lo, hi, xtol=xtol)))
+    r = rms(b)
+    evaluations = tuple((float(k), float(v)) for k, v in evals.items())
+    return Calibration("bandwidth", b, float(r), float(target_px), evaluations)
+
+
+def shipped_config_at(metadata: dict, bandwidth: float) -> BeamWanderConfig:
+    """The shipped data set's generator configuration (its ``metadata``) with every corner x ``bandwidth``."""
+    cfg = metadata["config"]
+    base = BeamWanderConfig(**{**cfg, "corner_frequencies_hz": tuple(cfg["corner_frequencies_hz"])})
+    return scaled_config(replace(base), bandwidth_scale=bandwidth)
