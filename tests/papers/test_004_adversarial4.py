@@ -61,3 +61,14 @@ def test_scoring_start_does_not_favour_a_predictor():
     b = _values({}, 2, replace(SIZE, eval_start=100))["C004-3"]
     for name in CLASSICAL:
         assert b[name].value == pytest.approx(a[name].value, rel=0.03), name
+
+
+def test_floor_benefit_falls_below_two_in_the_fastest_register_world():
+    """C004-6 (late-half RMS no floor / floor >= 2) at the register's bandwidth 8: the floor still helps (ratio above
+    1) but decisively by less than 2x, so the part is flipped by a world the register already holds; at the
+    calibrated default it holds (ratio above 2.5). Fails if the no-floor or floor forecast were swapped (ratio below
+    1) or if the floor were not applied (ratio 1)."""
+    fast = _values({"bandwidth": 8.0}, 1)["C004-6"]
+    default = _values({}, 1)["C004-6"]
+    assert 1.1 < fast.ci_low and fast.ci_high < 2.0
+    assert default.ci_low > 2.5
