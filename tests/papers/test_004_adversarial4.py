@@ -11,6 +11,7 @@ import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import study
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL
+from tvtrack.papers.p004_laser_spot_prediction.register import DEPENDS
 
 SIZE = replace(
     study.StudySize(),
@@ -72,3 +73,19 @@ def test_floor_benefit_falls_below_two_in_the_fastest_register_world():
     default = _values({}, 1)["C004-6"]
     assert 1.1 < fast.ci_low and fast.ci_high < 2.0
     assert default.ci_low > 2.5
+
+
+def test_radial_reading_of_c004_2_is_the_distance_rms():
+    """The register's "C004-2 statistic" = "radial RMS" reads the paper's "1...2 pixels" as the RMS distance between
+    predicted and measured centres: sqrt(2) x the per-axis RMS (the per-axis mean square summed over the two axes),
+    same run, interval scaled alike. At the calibrated default that puts the value at the band's top edge (above
+    1.9 px on this seed). Fails if the reading is ignored (factor 1) or applied to the RMS instead of the MSE."""
+    size = replace(SIZE, n_frames=300)
+    axis, radial = study.measure_batch([{}, {"C004-2 statistic": "radial RMS"}], [1, 1], size)
+    a, r = axis["C004-2"], radial["C004-2"]
+    assert r.value == pytest.approx(2**0.5 * a.value, rel=1e-9)
+    assert r.ci_low == pytest.approx(2**0.5 * a.ci_low, rel=1e-6) and r.ci_high == pytest.approx(
+        2**0.5 * a.ci_high, rel=1e-6
+    )
+    assert r.value > 1.9 and a.value < 1.8
+    assert "C004-2 statistic" in DEPENDS["C004-2"]

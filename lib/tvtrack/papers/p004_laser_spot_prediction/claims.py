@@ -53,7 +53,9 @@ RULES = {
         high=2.0,
         unit="px",
     ),
-    "C004-2": InBand("per-axis RMS prediction error", low=1.0, high=2.0, unit="px", better="lower"),
+    "C004-2": InBand(
+        "per-axis RMS prediction error (or, a reading, the radial RMS)", low=1.0, high=2.0, unit="px", better="lower"
+    ),
     "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
     "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
     "C004-4": InBand(

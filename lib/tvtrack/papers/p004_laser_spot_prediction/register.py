@@ -300,11 +300,29 @@ ROWS = (
         "carry no interval and the rule cannot decide them (a heavy tail never makes a label; the g_N1 part is exact)",
         "adversarial",
     ),
+    (
+        "C004-2 statistic",
+        "reading",
+        "per-axis RMS",
+        ("per-axis RMS", "radial RMS"),
+        "what '1...2 pixels' (abstract, conclusions) measures: the RMS error per image axis, or the RMS distance "
+        "between the predicted and the measured spot centre (sqrt(2) x the per-axis RMS for isotropic errors); the "
+        "paper says neither, and C004-1's statistic already carries the radial reading (session-4 review, "
+        "docs/adversarial/session4-004-review.md)",
+        "adversarial",
+    ),
 )
 
 
 #: Every entry in plain words: {name: (title, {value: phrase})} (what a reader sees in the labels' "where" lists).
 PLAIN = {
+    "C004-2 statistic": (
+        "error behind the paper's '1...2 pixels'",
+        {
+            "per-axis RMS": "RMS prediction error per image axis",
+            "radial RMS": "RMS distance between the predicted and the measured spot centre",
+        },
+    ),
     "spectral index": (
         "slope of the wander spectrum between its corners",
         {
@@ -501,7 +519,7 @@ WORLD = (
 #: Entries each claim depends on, with the reason for every entry left out.
 DEPENDS = {
     "C004-1": list(WORLD) + ["horizon", "tuning", "reference", "C004-1 statistic"],  # not the networks' lags
-    "C004-2": list(WORLD) + ["horizon", "tuning", "reference"],
+    "C004-2": list(WORLD) + ["horizon", "tuning", "reference", "C004-2 statistic"],
     "C004-3": list(WORLD) + ["horizon", "tuning", "reference", "spline", "C004-3 statistic"],
     "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags", "network inputs"],
     "C004-4": ["lost frames", "frame loss"]

@@ -534,7 +534,7 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
     held = c.get("lost frames", "held") == "held"
     return {
         "C004-1": mean_ci_t(per_path_q),
-        "C004-2": root_mean_ci(mse[PAPER]),
+        "C004-2": root_mean_ci(mse[PAPER] * (2.0 if c.get("C004-2 statistic") == "radial RMS" else 1.0)),
         "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
         "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
         "C004-4": _recursion_check(
