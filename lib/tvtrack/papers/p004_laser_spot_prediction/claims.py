@@ -53,8 +53,11 @@ RULES = {
         high=2.0,
         unit="px",
     ),
-    "C004-2": InBand(
-        "per-axis RMS prediction error (or, a reading, the radial RMS)", low=1.0, high=2.0, unit="px", better="lower"
+    "C004-2": NotCheckable(
+        "the simulated world is calibrated so that the paper's filter errs 1.5 px (the wander's bandwidth is the root "
+        "of that equation, calibration.calibrate_bandwidth): the paper's 1-2 px is the calibration's input, so at the "
+        "default it holds by construction, and without the paper's recordings nothing else can check it; the "
+        "measured RMS is still shown (per axis, and radial as a reading)"
     ),
     "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
     "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
