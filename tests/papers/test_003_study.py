@@ -197,15 +197,16 @@ def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
     rule = AllOf({"value": InBand("v", high=2.0), "other": InBand("v", high=1.2)})
     ex = explore(_toy, reg, {"C": rule}, seed=1, replicates=3, joint=4)
     rec = {"C": ex.record("C")}
+    # entries are named in plain words (003's register titles; an entry it lacks by its name)
+    motion = "law of the object's motion (Fig. 1 and the interference runs)"
     assert prose.dependence(rec, ("motion",)) == (
-        "under motion alone the verdict changes for C (value): not "
-        "reproduced when motion = fast | C (other): not reproduced when "
-        "motion = fast"
+        f"changing one of these alone ({motion}) changes the verdict for C (value): not reproduced with {motion} = "
+        f"fast | C (other): not reproduced with {motion} = fast"
     )
     assert prose.dependence(rec, ("radius",)) == (
-        "under radius alone the verdict changes for C (other): not reproduced when radius = outside"
+        "changing one of these alone (radius) changes the verdict for C (other): not reproduced with radius = outside"
     )
-    assert prose.dependence(rec, ("placement",)) == "placement not explored in this run"
+    assert prose.dependence(rec, ("placement",)) == "centre of the interferers' circle: not explored in this run"
     assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)
 
 
@@ -390,7 +391,7 @@ def test_threshold_conditions_does_not_list_a_threshold_certified_below_the_pape
     reg = Register([Entry("comp", "model", "kappa", ("kappa", "median"), "toy")])
     ex = explore(_censored, reg, {"C": InBand("t", high=10.0)}, seed=1, replicates=3, joint=0)
     assert prose.threshold_conditions(ex, "rotating 1", 2.0) == (
-        "under no condition tried is the rotating 1 threshold other than below the paper's 2"
+        "under no condition tried is the rotating marker's threshold with 1 interferer other than below the paper's 2"
     )
 
 

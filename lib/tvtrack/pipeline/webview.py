@@ -245,13 +245,13 @@ def serve(
     for signum in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(signum, _interrupt)
     with viewer:
-        print(f"serving {viewer.recording}\nopen {viewer.url}\n(Ctrl-C stops)", flush=True)
-        if open_browser and not os.environ.get("CI"):
-            try:
-                webbrowser.get().open(viewer.url)
-            except webbrowser.Error:
-                pass  # no browser on this machine: the printed URL is the way in
-        try:
+        try:  # a signal may come while the URL is still being printed: it stops the viewer the same way
+            print(f"serving {viewer.recording}\nopen {viewer.url}\n(Ctrl-C stops)", flush=True)
+            if open_browser and not os.environ.get("CI"):
+                try:
+                    webbrowser.get().open(viewer.url)
+                except webbrowser.Error:
+                    pass  # no browser on this machine: the printed URL is the way in
             code = viewer.process.wait()
         except KeyboardInterrupt:
             with contextlib.suppress(OSError):  # the terminal may be gone (SIGHUP)

@@ -5,12 +5,12 @@ Re-exported by :mod:`.beam_wander`; ``config`` is a :class:`.beam_wander.BeamWan
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .beam_wander import BeamWanderConfig
+# ``config`` below is a :class:`.beam_wander.BeamWanderConfig` (not imported: beam_wander imports this module)
+BeamWanderConfig = Any
 
 __all__ = [
     "GTILT",

@@ -5,7 +5,7 @@ readings). :mod:`.study` reads it in its claim values; ``run`` is a :class:`.stu
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 
@@ -19,8 +19,8 @@ from ...filters.polynomial import (
 from ...measure import centroid
 from ...render import gate_origin, gaussian_spot, sensor_readout
 
-if TYPE_CHECKING:
-    from .study import StudyRun
+# ``run`` below is a :class:`.study.StudyRun` (not imported: study imports this module)
+StudyRun = Any
 
 __all__ = ["CLOCKS", "streaming_frame_times"]
 
