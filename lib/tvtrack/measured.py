@@ -1,0 +1,151 @@
+"""Reading a measured value for a rule: a number, an estimate or its dict as an :class:`~tvtrack.montecarlo.Estimate`,
+widened to its nominal coverage where its helper falls short (:func:`calibrated`), whether it can decide anything
+(:func:`is_undecided`), and the runs projected to move a band edge out of its interval (:func:`runs_to_decide`).
+:mod:`tvtrack.verdicts` decides with them and re-exports the public ones."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping, Sequence
+
+from .estimate import Estimate
+
+__all__ = ["as_estimate", "calibrated", "is_undecided", "runs_to_decide"]
+
+
+def as_estimate(measured: Any) -> Estimate:
+    """An :class:`Estimate` from an estimate, an estimate dict or a plain number (a number is
+    exact: a deterministic computation, its interval the point itself)."""
+    if isinstance(measured, Estimate):
+        return measured
+    if isinstance(measured, Mapping) and "value" in measured:
+        fields = {
+            k: measured[k]
+            for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method", "extrapolated")
+            if k in measured
+        }
+        fields = {
+            k: (float("nan") if v is None and k not in ("method", "extrapolated") else v) for k, v in fields.items()
+        }
+        fields["extrapolated"] = bool(fields.get("extrapolated") or False)
+        return Estimate(**{"stderr": float("nan"), "n": 1, **fields})
+    if isinstance(measured, (int, float)) or hasattr(measured, "__float__"):
+        v = float(measured)
+        return Estimate(v, 0.0, v, v, 1, 0.95, "exact")
+    raise TypeError(f"cannot read a measured value from {type(measured).__name__}: {measured!r}")
+
+
+def _is_exact(e: Estimate) -> bool:
+    return e.method == "exact"
+
+
+def calibrated(measured: Any) -> Estimate:
+    """The estimate a rule decides on: an interval whose helper states a measured coverage short of its
+    nominal level at this sample size (:func:`tvtrack.montecarlo.coverage_reached`) is widened to it
+    (:func:`tvtrack.montecarlo.widen_to_nominal`; the method says so); others are returned as they are."""
+    from .montecarlo import coverage_reached, stated_coverage, widen_to_nominal
+
+    e = as_estimate(measured)
+    s = stated_coverage(e)
+    if math.isfinite(s) and not coverage_reached(e):
+        return widen_to_nominal(e)
+    return e
+
+
+def is_undecided(measured: Any) -> bool:
+    """True when an estimate cannot decide anything: NaN value, NaN interval or a degenerate interval
+    (``ci_low == ci_high``) of a random quantity, a value extrapolated beyond the data, or an interval
+    whose coverage at its sample size was never measured ("coverage unmeasured")."""
+    from .montecarlo import stated_coverage
+
+    e = as_estimate(measured)
+    if getattr(e, "extrapolated", False) or math.isnan(e.value):
+        return True
+    if not _is_exact(e) and math.isnan(stated_coverage(e)):
+        return True
+    if _is_exact(e):
+        return False
+    a, b = e.ci_low, e.ci_high
+    if math.isnan(a) or math.isnan(b):
+        return True
+    return a == b
+
+
+def _interval(e: Estimate) -> tuple[float, float]:
+    """The estimate's interval (the point itself for an exact number)."""
+    if _is_exact(e) and (math.isnan(e.ci_low) or math.isnan(e.ci_high)):
+        return e.value, e.value
+    return e.ci_low, e.ci_high
+
+
+def _why_undecided(e: Estimate) -> str:
+    if getattr(e, "extrapolated", False):
+        return "extrapolated beyond the data"
+    if math.isnan(e.value):
+        return "not measured (NaN)"
+    if "coverage unmeasured" in (e.method or ""):
+        return "its interval's coverage at this sample size is unmeasured"
+    return "its interval is undefined or degenerate"
+
+
+def _g(x: float) -> str:
+    return f"{x:.4g}"
+
+
+def _show(e: Estimate, unit: str = "") -> str:
+    a, b = _interval(e)
+    u = f" {unit}" if unit else ""
+    if math.isnan(a) or math.isnan(b) or a == b == e.value:
+        return f"{_g(e.value)}{u}"
+    widened = " (interval widened to its nominal coverage)" if "widened" in (e.method or "") else ""
+    return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}{widened}"
+
+
+def _zero_count(e: Estimate) -> bool:
+    """A rate from direct counts with zero (or all) events: its interval is the one-sided bound they certify."""
+    m = e.method or ""
+    counted = "Clopper" in m or m.startswith("count")
+    return counted and e.n > 0 and ((e.value == 0.0 and e.ci_low == 0.0) or (e.value == 1.0 and e.ci_high == 1.0))
+
+
+def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
+    """The multiple of the runs behind ``e`` projected to move every band edge in ``edges`` that its interval
+    straddles out of the interval.
+
+    An interval's half-width shrinks as ``1/sqrt(n)``: an edge at distance ``d`` from the point, with the
+    half-width ``h`` on that side, leaves the interval at about ``(h / d)^2`` times the runs (a projection: the
+    explorer re-judges after every added replicate). Zero events in ``n`` runs certify
+    ``p <= 1 - alpha^(1/n)``: an upper edge ``L`` is certified at ``n = ln(alpha) / ln(1 - L)`` runs of zero
+    events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
+    point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
+    """
+    a, b = _interval(e)
+    v = e.value
+    inside = [c for c in edges if c is not None and math.isfinite(c) and a < c < b]
+    if not inside:
+        return 1.0
+    if any(math.isnan(x) for x in (a, b, v)):
+        return math.inf
+    if _zero_count(e):
+        alpha = 1.0 - e.confidence
+        need = []
+        for c in inside:
+            p = c if v == 0.0 else 1.0 - c  # the rate (or its complement) the bound must certify
+            if not 0.0 < p < 1.0:
+                return math.inf
+            need.append(math.log(alpha) / math.log(1.0 - p))
+        return max(need) / e.n
+    factors = []
+    for c in inside:
+        d = abs(v - c)
+        h = (b - v) if c > v else (v - a)
+        if d == 0.0:
+            return math.inf
+        factors.append((h / d) ** 2)
+    return max(factors)
+
+
+def _decide_note(factor: float) -> str:
+    if not math.isfinite(factor):
+        return "no number of runs is projected to decide it (the point sits on the edge)"
+    return f"about {factor:.2g} times the runs would decide it"
