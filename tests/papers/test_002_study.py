@@ -37,8 +37,14 @@ def test_a_statistic_reruns_nothing_and_a_comparator_reruns_only_its_algorithm()
     changed = {k[1] for k in base if base[k] != two[k]}
     assert changed == {"e", "q"}
     vel = _letters(study.jobs_of({**DEFAULT, "velocity knowledge": "designated"}, 7, TINY))
-    assert {k[1] for k in base if base[k] != vel[k]} == {"m"}
+    assert {k[1] for k in base if base[k] != vel[k]} == set()
     assert {k[1] for k in set(vel) - set(base)} == {"k"}  # the ML ULA given the designated velocity
+    assert "m" not in {k[1] for k in base}  # the MAP-ULA runs only under its own reading of "ULA"
+    mp = {**DEFAULT, "ULA": "MAP (designation prior)"}
+    base_map = _letters(study.jobs_of(mp, 7, TINY))
+    vel_map = _letters(study.jobs_of({**mp, "velocity knowledge": "designated"}, 7, TINY))
+    assert {k[1] for k in base_map if base_map[k] != vel_map[k]} == {"m"}
+    assert {k[1] for k in set(base_map) - set(base)} == {"m"}
     world = _letters(study.jobs_of({**DEFAULT, "photon model": "poisson"}, 7, TINY))
     assert all(base[k] != world[k] for k in base)  # a regime of the world redraws every scene
 
@@ -341,3 +347,45 @@ def test_failure_rates_and_bic_shares_read_the_figure_points():
         assert sum(e.value for e in s.values()) == pytest.approx(1.0)
         pick = np.argmin(res[g["bic"][d]]["bic"], axis=1)
         assert s["Q' = 2 (correct)"].value == pytest.approx((pick == 1).mean())
+
+
+def _flat(x):
+    """A measured value as plain numbers (Estimate fields, lists, dicts of parts), for exact comparison."""
+    if isinstance(x, Estimate):
+        return (x.value, x.stderr, x.ci_low, x.ci_high, x.n, x.confidence, x.method)
+    if isinstance(x, dict):
+        return {k: _flat(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_flat(v) for v in x]
+    return x
+
+
+@pytest.mark.parametrize(
+    "config, subset",
+    [
+        (DEFAULT, {"C002-11"}),
+        (DEFAULT, {"C002-6", "C002-15"}),
+        ({**DEFAULT, "ULA": "MAP (designation prior)", "statistic": "MSE"}, {"C002-11", "C002-2"}),
+        ({**DEFAULT, "velocity knowledge": "designated", "gross errors": study.TRIMMED}, {"C002-11", "C002-9"}),
+    ],
+)
+def test_a_claims_subset_measures_those_claims_bit_for_bit_and_runs_only_their_jobs(config, subset):
+    study.clear_cache()
+    part = study.measure(config, 5, TINY, claims=frozenset(subset))
+    ran = set(study._CACHE)
+    assert ran == set(study.jobs_of(config, 5, TINY, claims=subset))
+    assert len(ran) < len(study.jobs_of(config, 5, TINY))  # fewer jobs than the whole study
+    study.clear_cache()
+    whole = study.measure(config, 5, TINY)
+    assert set(part) == set(subset)
+    assert _flat(part) == _flat({k: whole[k] for k in subset})
+    batch = study.measure_batch([config, config], [5, 6], TINY, claims=[frozenset(subset), None])
+    assert _flat(batch[0]) == _flat(part) and set(batch[1]) == set(whole)
+
+
+def test_every_claims_points_are_among_the_studys_points():
+    g, asked = study._points(DEFAULT, TINY)
+    for cid in study.CLAIMS:
+        if cid != "C002-16":
+            need = study.needed_points(DEFAULT, g, TINY.separations, {cid})
+            assert need and set(need) <= set(asked), cid

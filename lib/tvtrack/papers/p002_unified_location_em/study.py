@@ -8,7 +8,10 @@ for ``AllOf``). Internally a configuration becomes a set of simulation *jobs*: o
 Jobs are cached by ``(settings, Config)``, so a register value that changes only the two-stage algorithm reruns
 only the two-stage jobs, and a value that changes only a statistic reruns nothing (common random numbers: the
 explorer passes the same seed to every configuration of a stage). :func:`measure_batch` collects the jobs of many
-configurations and runs the missing ones in worker processes.
+configurations and runs the missing ones in worker processes. Asked for some claims only (``claims=``), a
+measurement runs only the jobs those claims read (:data:`.claim_values.NEEDS`) and gives them the values a
+measurement of every claim gives, bit for bit (each claim bootstraps from its own stream). The claims' statistics
+live in :mod:`.claim_values`, the register's point readings in :mod:`.readings` (both re-exported here).
 
 Units: sigma (PSF standard deviation) for lengths, frames for time.
 """
@@ -19,22 +22,38 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
-import numpy as np
 
-from tvtrack.montecarlo import Estimate, ratio_ci
-from .simulation import (
-    SPREADS,
-    CANONICAL_SETTINGS,
-    Config,
-    StudySettings,
-    bootstrap_groups,
-    mse_sum,
-    position_errors,
-    run_config,
-    seed_sequence,
-    variance_ratio_ci,
-    variance_sum,
+from .claim_values import (  # noqa: F401 - the statistics the notebook and the tests read through study
+    _efficiency,
+    _mean_log_gain,
+    _vsum,
+    errors,
+    exp_estimate,
+    gain,
+    measure_claims,
+    needed_points,
+    scaled,
+    spread_sum,
 )
+from .readings import (  # noqa: F401 - the readings the tests read through study
+    CLOSE,
+    COORDINATE6,
+    D_GRID,
+    FIG1_PANEL,
+    FIG7_TOLERANCE,
+    FRAMES6,
+    PHOTONS6,
+    PIXELS5,
+    T_DEPENDENCE6,
+    TRIMMED,
+    c1_point,
+    c5_pair,
+    c6_point,
+    c15_close,
+    fig7_variant,
+    photons6,
+)
+from .simulation import CANONICAL_SETTINGS, Config, StudySettings, run_config
 
 __all__ = [
     "Scale",
@@ -50,14 +69,10 @@ __all__ = [
     "gain",
     "spread_sum",
     "exp_estimate",
+    "scaled",
     "clear_cache",
 ]
 
-#: Separations d / sigma of the distance axes (card 5.2).
-D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
-#: Separations (sigma) over which C002-10's "coarser pixels" and "more frames" gains are averaged (up to the
-#: register's "close separations" value): the text names d = 1 and 3 sigma.
-CLOSE = (1.0, 2.0, 3.0)
 #: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
 _READS = {
     "u": ("tol_sigma", "tol_loglik", "max_iter", "merge_sigma", "accelerate"),
@@ -204,77 +219,6 @@ class _Points:
         return c
 
 
-#: The photon counts C002-6 compares (an adversarial register row): ``"20 vs 10"`` (Fig 2) or ``"10 vs 5"`` ("at
-#: least from some critical level": a level below Fig 2's).
-PHOTONS6 = {"20 vs 10": (20, 10), "10 vs 5": (10, 5)}
-#: Columns of the per-trial errors ``(x1, y1, x2, y2)`` that C002-6's "sum of variances of the coordinate" reads
-#: (an adversarial register row): the objects are separated along ``y``.
-COORDINATE6 = {
-    "both": slice(None),
-    "along the separation": slice(1, None, 2),
-    "across the separation": slice(0, None, 2),
-}
-
-
-def photons6(config: dict) -> tuple[int, int]:
-    """The (more, fewer) target photons per frame whose T dependences C002-6 compares."""
-    return PHOTONS6[config.get("m_k pair of C002-6", "20 vs 10")]
-
-
-#: The frame counts whose variance ratio r_T C002-6 reads (an adversarial register row): Fig 2's ``"5 vs 10"``, or
-#: ``"5 vs 50"``, the range of Figs 3a and 5 ("the number of analysed frames" over the study's whole T axis).
-FRAMES6 = {"5 vs 10": (5, 10), "5 vs 50": (5, 50)}
-
-
-#: How C002-6 reads "the dependence on T" (an adversarial register row): relative, |ln r_T| (the gap between the T
-#: curves on a log axis), or absolute, |Sigma^2(T_lo) - Sigma^2(T_hi)| in sigma^2 (the gap on a linear axis).
-T_DEPENDENCE6 = ("relative (log ratio)", "absolute (variance gap)")
-
-
-def c6_point(config: dict) -> tuple[float, tuple[int, int]]:
-    """C002-6's pixel size Delta / sigma (Fig 2: 1; an adversarial register row) and its frame pair."""
-    return float(config.get("Delta of C002-6 (sigma)", 1.0)), FRAMES6[config.get("T pair of C002-6", "5 vs 10")]
-
-
-#: The "EM tolerance of Fig 7" reading (an adversarial register row): the practical stop of the iteration counts of
-#: Fig 7, the log-likelihood gap (nats) each EM (ULA and per-frame marks alike) may leave, matched as in "EM
-#: stopping"; ``None`` keeps the study's own 1e-6 sigma.
-FIG7_TOLERANCE = {"1e-6 sigma": None, "log-likelihood gap 0.01": 0.01, "log-likelihood gap 0.1": 0.1}
-
-
-#: Fig 1's panels by pixel size Delta / sigma.
-FIG1_PANEL = {3.0: "1a", 1.0: "1b"}
-
-
-def c1_point(config: dict) -> tuple[int, float]:
-    """C002-1's point of Fig 1: ``(m_k, Delta / sigma)`` from the register (default 20 photons, Fig 1a)."""
-    return int(config.get("m_k of C002-1", 20)), float(config.get("Delta of C002-1 (sigma)", 3.0))
-
-
-#: The pixel sizes Delta / sigma (coarser, finer) whose variance ratio C002-5 reads (an adversarial register row): the
-#: card's 3 against 1 sigma (Figs 1c and 2a together), or Fig 1c's own pair, 5 against 3 sigma.
-PIXELS5 = {"3 vs 1": (3.0, 1.0), "5 vs 3": (5.0, 3.0)}
-
-
-def c5_pair(config: dict) -> tuple[float, float]:
-    """The (coarser, finer) pixel sizes Delta / sigma of C002-5."""
-    return PIXELS5[config.get("pixel pair of C002-5", "3 vs 1")]
-
-
-def c15_close(config: dict) -> float:
-    """The separation d / sigma at which C002-15 reads "very close objects" (an adversarial register row: 1 sigma,
-    the smallest separation the text names, or 0.5 sigma, the closest of the study's distance axis)."""
-    return float(config.get("very close separation of C002-15 (sigma)", 1.0))
-
-
-def fig7_variant(config: dict) -> tuple:
-    """The :class:`Config` ``variant`` of the Fig 7 points (C002-13, C002-14): the register's stopping tolerance
-    of the iteration counts, or ``()`` at the default (the default's cache keys and draws are unchanged; a variant
-    sees the same scenes, common random numbers)."""
-    tol = FIG7_TOLERANCE[config.get("EM tolerance of Fig 7", "1e-6 sigma")]
-    return () if tol is None else (("tol_loglik", float(tol)),)
-
-
 def _points(config: dict, scale: Scale, figures: bool = False):
     """The simulation points the claims read (and, with ``figures``, the figures' whole curves), as named groups of
     ``{d: Config}`` (``{T: Config}`` for Fig 3a). The claims read only the separations they compare, so a replicate
@@ -334,11 +278,16 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     return g, P.asked
 
 
-def jobs_of(config: dict, seed: int, scale: Scale, figures: bool = False) -> list[tuple[StudySettings, Config]]:
-    """The simulation jobs ``(settings, single-letter Config)`` of one configuration and seed, without repeats."""
+def jobs_of(
+    config: dict, seed: int, scale: Scale, figures: bool = False, claims=None
+) -> list[tuple[StudySettings, Config]]:
+    """The simulation jobs ``(settings, single-letter Config)`` of one configuration and seed, without repeats:
+    those of the points the ``claims`` read (None: every claim), or with ``figures`` every point of the figures."""
     settings = settings_of(config, seed, scale)
+    g, asked = _points(config, scale, figures)
+    points = asked if figures else needed_points(config, g, scale.separations, claims)
     out = {}
-    for c in _points(config, scale, figures)[1]:
+    for c in points:
         for a in c.algs:
             job = (_job_settings(settings, a, scale, c.q), c._replace(algs=a))
             out[job] = None
@@ -378,231 +327,21 @@ class _Results:
         return out
 
 
-# -- statistics -----------------------------------------------------------------------------------------------
-
-
-def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
-    """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``; sigma) or of its
-    velocities (``velocity``; sigma/frame)."""
-    return position_errors(r, alg, epoch)
-
-
-#: The "gross errors" reading that trims the 10 % largest per-trial squared errors (an adversarial register row).
-TRIMMED = "trimmed 10 %"
-
-
-def spread_sum(e, statistic: str = "variance") -> Estimate:
-    """The summed spread of errors (n, k): variance sum, MSE sum, or (``statistic="trimmed"``) the 10 %-trimmed
-    variance sum with a percentile bootstrap interval (all in sigma^2)."""
-    if statistic == "trimmed":
-        rng = np.random.default_rng(seed_sequence(0, ("trimmed spread",)))
-        return bootstrap_groups([np.asarray(e, float)], SPREADS["trimmed_variance"], rng, 2000)
-    return mse_sum(e) if statistic == "MSE" else variance_sum(e)
-
-
-def _spread(statistic: str) -> str:
-    return {"MSE": "mse", "trimmed": "trimmed_variance"}.get(statistic, "variance")
-
-
-def gain(num, den, rng, n_bootstrap, statistic="variance", paired=True) -> Estimate:
-    """``Sigma^2_num / Sigma^2_den`` with a bootstrap interval; ``statistic="SD ratio"`` takes the square root."""
-    return variance_ratio_ci(
-        num, den, rng, n_bootstrap, paired=paired, spread=_spread(statistic), sqrt=statistic == "SD ratio"
-    )
-
-
-def exp_estimate(e: Estimate) -> Estimate:
-    """An estimate of a log quantity mapped back by exp (the interval maps exactly)."""
-    v = float(np.exp(e.value))
-    return Estimate(v, v * e.stderr, float(np.exp(e.ci_low)), float(np.exp(e.ci_high)), e.n, e.confidence, e.method)
-
-
-def _vsum(e, spread: str = "variance"):
-    return e.var(axis=1, ddof=1).sum(axis=-1) if spread == "variance" else SPREADS[spread](e)
-
-
-def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:
-    """exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo`` groups); each group holds the
-    paired [num | den] errors of one point side by side (rows resampled jointly, groups independently)."""
-    k = len(pairs_hi)
-
-    def stat(*g):
-        def mlog(h):
-            return np.mean(
-                [
-                    np.log(_vsum(x[..., : x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2 :], spread))
-                    for x in h
-                ],
-                axis=0,
-            )
-
-        return mlog(g[:k]) - mlog(g[k:])
-
-    return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
-
-
-def _efficiency(e, bound: float, statistic: str) -> Estimate:
-    """Spread over the bound; under the "SD ratio" reading the square root (a ratio of standard deviations)."""
-    v = scaled(spread_sum(e, statistic), 1.0 / bound)
-    if statistic == "SD ratio":
-        r = np.sqrt(max(v.value, 0.0))
-        return Estimate(
-            r,
-            v.stderr / (2 * max(r, 1e-300)),
-            float(np.sqrt(max(v.ci_low, 0.0))),
-            float(np.sqrt(max(v.ci_high, 0.0))),
-            v.n,
-            v.confidence,
-            v.method + ", square root",
-        )
-    return v
-
-
-# -- the claims -----------------------------------------------------------------------------------------------
-
-
-def _claims(config: dict, g: dict, res: _Results, seed: int, scale: Scale) -> dict:
-    """``{claim id: measured}`` of one configuration (see the notebook for each rule)."""
-    rng = np.random.default_rng(seed_sequence(seed, ("bootstrap",)))
-    B, ep, st = scale.n_bootstrap, config["epoch"], config["statistic"]
-    if config.get("gross errors", "kept") == TRIMMED:
-        st = "trimmed"
-    sp = "trimmed_variance" if st == "trimmed" else "variance"  # the log-gain parts read variances otherwise
-    D = list(scale.separations)
-    ula = lambda c: errors(res[c], "ula", ep)
-    m1, p1 = c1_point(config)
-    out = {"C002-1": [spread_sum(ula(g[FIG1_PANEL[p1]][m1][d]), st) for d in D]}
-
-    def r_m(key, d):
-        return ula(g[key][10][d]), ula(g[key][20][d])
-
-    far, near = r_m("1a", 6.0), r_m("1a", 1.0)
-    out["C002-2"] = {
-        "weakens": _mean_log_gain([np.hstack(far)], [np.hstack(near)], rng, B, sp),
-        "far apart": gain(*far, rng, B, st, paired=False),
-    }
-    ds3 = (1.0, 2.0, 3.0, 6.0)
-    out["C002-3"] = _mean_log_gain(
-        [np.hstack(r_m("1b", d)) for d in ds3], [np.hstack(r_m("1a", d)) for d in ds3], rng, B, sp
-    )
-    loss = {p_: np.hstack([ula(g["1c"][p_][1.0]), ula(g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
-    out["C002-4"] = _mean_log_gain([loss[5.0]], [loss[3.0]], rng, B, sp)
-    d5 = float(config["separation of C002-5 (sigma)"])
-    hi5, lo5 = c5_pair(config)
-    out["C002-5"] = [
-        gain(ula(g["5"][(hi5, T)][d5]), ula(g["5"][(lo5, T)][d5]), rng, B, st, paired=False) for T in (5, 10, 50)
-    ]
-    small = [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
-
-    cols = COORDINATE6[config.get("coordinate of C002-6", "both")]
-
-    t_lo, t_hi = c6_point(config)[1]
-
-    def rt(m):
-        return [np.hstack([ula(g["2"][(t_lo, m)][d])[:, cols], ula(g["2"][(t_hi, m)][d])[:, cols]]) for d in small]
-
-    gap = config.get("T dependence of C002-6", T_DEPENDENCE6[0]) == T_DEPENDENCE6[1]
-
-    def stat6(*gr):
-        def dep(x):
-            a, b = _vsum(x[..., : x.shape[-1] // 2], sp), _vsum(x[..., x.shape[-1] // 2 :], sp)
-            return np.abs(a - b) if gap else np.abs(np.log(a / b))
-
-        return np.mean([dep(x) for x in gr[: len(small)]], axis=0) - np.mean([dep(x) for x in gr[len(small) :]], axis=0)
-
-    m_hi, m_lo = photons6(config)
-    out["C002-6"] = bootstrap_groups(rt(m_hi) + rt(m_lo), stat6, rng, B)
-    T3 = int(config["T of the Fig 3a claims"])
-
-    def x1(pix, alg):
-        return position_errors(res[g["3a"][pix][T3]], alg, ep)[:, :1]
-
-    pc = float(config["coarse Delta of C002-7, C002-8 (sigma)"])
-    out["C002-7"] = {
-        "fine pixels": gain(x1(1.0, "em"), x1(1.0, "ula"), rng, B, st),
-        "coarse pixels": gain(x1(pc, "em"), x1(pc, "ula"), rng, B, st),
-    }
-    out["C002-8"] = {
-        "worse than fine pixels": gain(x1(pc, "ula"), x1(1.0, "ula"), rng, B, st, paired=False),
-        "better than the marks": gain(x1(pc, "ula"), x1(pc, "em"), rng, B, st),
-    }
-    p9 = float(config["Delta of the C002-9 order (sigma)"])
-    out["C002-9"] = {
-        "centre-of-region >= iterative marks": gain(x1(p9, "cr"), x1(p9, "em"), rng, B, st),
-        "iterative marks >= ULA": gain(x1(p9, "em"), x1(p9, "ula"), rng, B, st),
-    }
-    use_map = config["ULA"] == "MAP (designation prior)"
-    known = config["velocity knowledge"] == "designated"
-    twin = "em_vd" if known else "em"
-
-    def rho(c):
-        r = res[c]
-        return gain(errors(r, "em", ep), errors(r, "ula", ep), rng, B, st)
-
-    def side(c):
-        r = res[c]
-        return np.hstack([errors(r, "em", ep), errors(r, "ula", ep)])
-
-    close = [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
-    out["C002-10"] = {
-        "closer": [rho(g["4"][20][d]) for d in D],
-        "coarser pixels": _mean_log_gain(
-            [side(g["6"][20][d]) for d in close], [side(g["4"][20][d]) for d in close], rng, B, sp
-        ),
-        "more frames": _mean_log_gain(
-            [side(g["5ab"][50][d]) for d in close], [side(g["5ab"][5][d]) for d in close], rng, B, sp
-        ),
-    }
-
-    def head(d):
-        c = g["5ab"][50][d]
-        if use_map:
-            u = errors(res[g["head_map"][d]], "map", ep)
-        elif known:
-            u = errors(res[g["head_known"][d]], "ula_vd", ep)
-        else:
-            return rho(c)
-        return gain(errors(res[c], twin, ep), u, rng, B, st)
-
-    out["C002-11"] = {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
-    out["C002-12"] = {f"Delta = {p_:g} sigma": rho(c) for p_, c in g["good"].items()}
-    it = {d: res[c] for d, c in g["7"].items()}
-    lo, hi = min(it), max(it)
-    out["C002-13"] = ratio_ci(it[lo]["plain_iter"], it[hi]["plain_iter"], paired=False)
-    T4 = int(config["T of Figs 4, 6, 7"])
-    ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
-    marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
-    out["C002-14"] = ratio_ci(ula_work, marks_work)
-    out["C002-15"] = _c15(
-        config, g, res, "first", config["statistic"]
-    )  # a trimmed spread is no bound's    # the CRB is the initial positions' bound
-    return out
-
-
-def _c15(config, g, res, ep, st) -> dict:
-    """Efficiency of the ULA: its spread over the bound at very close and resolved separations, and for the
-    velocities ("position and motion parameters of very close objects", conclusions)."""
-    use_bayes = config["bound"] == "van Trees (designation prior)"
-    key_pos, key_vel = ("bcrb_pos", "bcrb_vel") if use_bayes else ("crb_pos", "crb_vel")
-    parts = {}
-    cs, close = g["c15"], c15_close(config)
-    for d, name in ((close, "very close"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
-        r = res[cs[d]]
-        parts[name] = _efficiency(errors(r, "ula", ep), r[key_pos], st)
-    r = res[cs[close]]
-    parts["velocities, very close"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
-    return parts
-
-
-def measure_batch(configs, seeds, scale: Scale = Scale()) -> list[dict]:
+def measure_batch(configs, seeds, scale: Scale = Scale(), claims=None) -> list[dict]:
     """:func:`measure` for many configurations at once: their jobs are collected, the missing ones run in
-    ``scale.n_workers`` processes, then each configuration's claims are measured."""
-    jobs = [j for c, s in zip(configs, seeds) for j in jobs_of(c, s, scale)]
+    ``scale.n_workers`` processes, then each configuration's claims are measured. ``claims``: one set of claim
+    ids per configuration (None, or None for one configuration: all claims); only the jobs those claims read run,
+    and each asked claim's value is the one a measurement of every claim gives, bit for bit."""
+    asked = [None] * len(configs) if claims is None else list(claims)
+    if len(asked) != len(configs):
+        raise ValueError(f"{len(asked)} claim sets for {len(configs)} configurations")
+    jobs = [j for c, s, k in zip(configs, seeds, asked) for j in jobs_of(c, s, scale, claims=k)]
     run_jobs(jobs, scale.n_workers)
     out = []
-    for c, s in zip(configs, seeds):
+    for c, s, k in zip(configs, seeds, asked):
         g, _ = _points(c, scale)
-        out.append(_claims(c, g, _Results(settings_of(c, s, scale), scale), int(s), scale))
+        res = _Results(settings_of(c, s, scale), scale)
+        out.append(measure_claims(c, g, res, int(s), scale.n_bootstrap, scale.separations, k))
     return out
 
 
@@ -622,10 +361,10 @@ def screen_scale(scale: Scale, fraction: float = 0.25, n_bootstrap: int = 1000) 
     )
 
 
-def measure(config: dict, seed: int, scale: Scale = Scale()) -> dict:
+def measure(config: dict, seed: int, scale: Scale = Scale(), claims=None) -> dict:
     """One full-size replicate of the study at ``config`` (every register entry present) with all random draws
-    from ``seed``: ``{claim id: measured}``."""
-    return measure_batch([config], [seed], scale)[0]
+    from ``seed``: ``{claim id: measured}`` for the ``claims`` asked (a set of claim ids; None: all)."""
+    return measure_batch([config], [seed], scale, None if claims is None else [claims])[0]
 
 
 def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, _Results]:
@@ -675,16 +414,3 @@ CLAIMS = {
         "'practically potential'",
     ),
 }
-
-
-def scaled(est: Estimate, factor: float) -> Estimate:
-    """``est`` times a positive constant (value, standard error and interval)."""
-    return Estimate(
-        est.value * factor,
-        est.stderr * factor,
-        est.ci_low * factor,
-        est.ci_high * factor,
-        est.n,
-        est.confidence,
-        est.method,
-    )

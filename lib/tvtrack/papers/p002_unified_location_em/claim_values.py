@@ -1,0 +1,403 @@
+"""What each claim of paper 002 computes from the simulated points: the statistics and one function per claim.
+
+:func:`measure_claims` turns the results of a configuration's simulation points (:func:`.study._points`, read
+through ``res[Config]``) into ``{claim id: measured}`` for the claims asked. Each claim draws its bootstrap
+resamples from its own stream (``seed_sequence(seed, ("bootstrap", claim id))``), so a claim's interval is the
+same whether it is measured alone or with the others (``measure(config, seed, claims=...)``), and :data:`NEEDS`
+names the simulation points each claim reads, so a subset runs only its own jobs.
+
+Units: sigma (PSF standard deviation) for lengths, frames for time.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from tvtrack.montecarlo import Estimate, ratio_ci
+from .readings import (
+    CLOSE,
+    COORDINATE6,
+    FIG1_PANEL,
+    T_DEPENDENCE6,
+    TRIMMED,
+    c1_point,
+    c5_pair,
+    c6_point,
+    c15_close,
+    photons6,
+)
+from .simulation import (
+    SPREADS,
+    bootstrap_groups,
+    mse_sum,
+    position_errors,
+    seed_sequence,
+    variance_ratio_ci,
+    variance_sum,
+)
+
+__all__ = ["errors", "spread_sum", "gain", "exp_estimate", "scaled", "NEEDS", "needed_points", "measure_claims"]
+
+
+# -- statistics -----------------------------------------------------------------------------------------------
+
+
+def errors(r: dict, alg: str, epoch: str = "first") -> np.ndarray:
+    """Per-trial errors (n, 2Q) of one algorithm at one epoch (``first``, ``mid``, ``last``; sigma) or of its
+    velocities (``velocity``; sigma/frame)."""
+    return position_errors(r, alg, epoch)
+
+
+def spread_sum(e, statistic: str = "variance") -> Estimate:
+    """The summed spread of errors (n, k): variance sum, MSE sum, or (``statistic="trimmed"``) the 10 %-trimmed
+    variance sum with a percentile bootstrap interval (all in sigma^2)."""
+    if statistic == "trimmed":
+        rng = np.random.default_rng(seed_sequence(0, ("trimmed spread",)))
+        return bootstrap_groups([np.asarray(e, float)], SPREADS["trimmed_variance"], rng, 2000)
+    return mse_sum(e) if statistic == "MSE" else variance_sum(e)
+
+
+def _spread(statistic: str) -> str:
+    return {"MSE": "mse", "trimmed": "trimmed_variance"}.get(statistic, "variance")
+
+
+def gain(num, den, rng, n_bootstrap, statistic="variance", paired=True) -> Estimate:
+    """``Sigma^2_num / Sigma^2_den`` with a bootstrap interval; ``statistic="SD ratio"`` takes the square root."""
+    return variance_ratio_ci(
+        num, den, rng, n_bootstrap, paired=paired, spread=_spread(statistic), sqrt=statistic == "SD ratio"
+    )
+
+
+def exp_estimate(e: Estimate) -> Estimate:
+    """An estimate of a log quantity mapped back by exp (the interval maps exactly)."""
+    v = float(np.exp(e.value))
+    return Estimate(v, v * e.stderr, float(np.exp(e.ci_low)), float(np.exp(e.ci_high)), e.n, e.confidence, e.method)
+
+
+def _vsum(e, spread: str = "variance"):
+    return e.var(axis=1, ddof=1).sum(axis=-1) if spread == "variance" else SPREADS[spread](e)
+
+
+def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:
+    """exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo`` groups); each group holds the
+    paired [num | den] errors of one point side by side (rows resampled jointly, groups independently)."""
+    k = len(pairs_hi)
+
+    def stat(*g):
+        def mlog(h):
+            return np.mean(
+                [
+                    np.log(_vsum(x[..., : x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2 :], spread))
+                    for x in h
+                ],
+                axis=0,
+            )
+
+        return mlog(g[:k]) - mlog(g[k:])
+
+    return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
+
+
+def _efficiency(e, bound: float, statistic: str) -> Estimate:
+    """Spread over the bound; under the "SD ratio" reading the square root (a ratio of standard deviations)."""
+    v = scaled(spread_sum(e, statistic), 1.0 / bound)
+    if statistic == "SD ratio":
+        r = np.sqrt(max(v.value, 0.0))
+        return Estimate(
+            r,
+            v.stderr / (2 * max(r, 1e-300)),
+            float(np.sqrt(max(v.ci_low, 0.0))),
+            float(np.sqrt(max(v.ci_high, 0.0))),
+            v.n,
+            v.confidence,
+            v.method + ", square root",
+        )
+    return v
+
+
+def scaled(est: Estimate, factor: float) -> Estimate:
+    """``est`` times a positive constant (value, standard error and interval)."""
+    return Estimate(
+        est.value * factor,
+        est.stderr * factor,
+        est.ci_low * factor,
+        est.ci_high * factor,
+        est.n,
+        est.confidence,
+        est.method,
+    )
+
+
+# -- the claims -----------------------------------------------------------------------------------------------
+
+
+@dataclass
+class _Ctx:
+    """What every claim function reads: the configuration, its point groups ``g``, the results ``res[Config]``,
+    the claim's bootstrap stream and the readings of the epoch and the statistic."""
+
+    config: dict
+    g: dict
+    res: object
+    rng: np.random.Generator
+    B: int
+    D: list
+
+    def __post_init__(self):
+        self.ep, self.st = self.config["epoch"], self.config["statistic"]
+        if self.config.get("gross errors", "kept") == TRIMMED:
+            self.st = "trimmed"
+        self.sp = "trimmed_variance" if self.st == "trimmed" else "variance"  # the log gains read variances else
+
+    def ula(self, c):
+        return errors(self.res[c], "ula", self.ep)
+
+    def gain(self, num, den, paired=True):
+        return gain(num, den, self.rng, self.B, self.st, paired=paired)
+
+    def log_gain(self, hi, lo):
+        return _mean_log_gain(hi, lo, self.rng, self.B, self.sp)
+
+    def r_m(self, key, d):
+        return self.ula(self.g[key][10][d]), self.ula(self.g[key][20][d])
+
+    def x1(self, pix, alg):
+        return position_errors(self.res[self.g["3a"][pix][int(self.config["T of the Fig 3a claims"])]], alg, self.ep)[
+            :, :1
+        ]
+
+    def rho(self, c):
+        r = self.res[c]
+        return self.gain(errors(r, "em", self.ep), errors(r, "ula", self.ep))
+
+    def side(self, c):
+        r = self.res[c]
+        return np.hstack([errors(r, "em", self.ep), errors(r, "ula", self.ep)])
+
+
+def _close10(config: dict) -> list:
+    return [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+
+
+def _small6(config: dict, D) -> list:
+    return [d for d in D if d <= float(config["small separations of C002-6 (sigma)"])]
+
+
+def _c1(x: _Ctx):
+    m1, p1 = c1_point(x.config)
+    return [spread_sum(x.ula(x.g[FIG1_PANEL[p1]][m1][d]), x.st) for d in x.D]
+
+
+def _c2(x: _Ctx):
+    far, near = x.r_m("1a", 6.0), x.r_m("1a", 1.0)
+    return {"weakens": x.log_gain([np.hstack(far)], [np.hstack(near)]), "far apart": x.gain(*far, paired=False)}
+
+
+_DS3 = (1.0, 2.0, 3.0, 6.0)
+
+
+def _c3(x: _Ctx):
+    return x.log_gain([np.hstack(x.r_m("1b", d)) for d in _DS3], [np.hstack(x.r_m("1a", d)) for d in _DS3])
+
+
+def _c4(x: _Ctx):
+    loss = {p_: np.hstack([x.ula(x.g["1c"][p_][1.0]), x.ula(x.g["1c"][p_][6.0])]) for p_ in (5.0, 3.0)}
+    return x.log_gain([loss[5.0]], [loss[3.0]])
+
+
+def _c5(x: _Ctx):
+    d5 = float(x.config["separation of C002-5 (sigma)"])
+    hi5, lo5 = c5_pair(x.config)
+    g5 = x.g["5"]
+    return [x.gain(x.ula(g5[(hi5, T)][d5]), x.ula(g5[(lo5, T)][d5]), paired=False) for T in (5, 10, 50)]
+
+
+def _c6(x: _Ctx):
+    small = _small6(x.config, x.D)
+    cols = COORDINATE6[x.config.get("coordinate of C002-6", "both")]
+    t_lo, t_hi = c6_point(x.config)[1]
+    gap = x.config.get("T dependence of C002-6", T_DEPENDENCE6[0]) == T_DEPENDENCE6[1]
+
+    def rt(m):
+        g2 = x.g["2"]
+        return [np.hstack([x.ula(g2[(t_lo, m)][d])[:, cols], x.ula(g2[(t_hi, m)][d])[:, cols]]) for d in small]
+
+    def dep(a):
+        u, v = _vsum(a[..., : a.shape[-1] // 2], x.sp), _vsum(a[..., a.shape[-1] // 2 :], x.sp)
+        return np.abs(u - v) if gap else np.abs(np.log(u / v))
+
+    def stat6(*gr):
+        k = len(small)
+        return np.mean([dep(a) for a in gr[:k]], axis=0) - np.mean([dep(a) for a in gr[k:]], axis=0)
+
+    m_hi, m_lo = photons6(x.config)
+    return bootstrap_groups(rt(m_hi) + rt(m_lo), stat6, x.rng, x.B)
+
+
+def _pc(config: dict) -> float:
+    return float(config["coarse Delta of C002-7, C002-8 (sigma)"])
+
+
+def _c7(x: _Ctx):
+    pc = _pc(x.config)
+    return {
+        "fine pixels": x.gain(x.x1(1.0, "em"), x.x1(1.0, "ula")),
+        "coarse pixels": x.gain(x.x1(pc, "em"), x.x1(pc, "ula")),
+    }
+
+
+def _c8(x: _Ctx):
+    pc = _pc(x.config)
+    return {
+        "worse than fine pixels": x.gain(x.x1(pc, "ula"), x.x1(1.0, "ula"), paired=False),
+        "better than the marks": x.gain(x.x1(pc, "ula"), x.x1(pc, "em")),
+    }
+
+
+def _c9(x: _Ctx):
+    p9 = float(x.config["Delta of the C002-9 order (sigma)"])
+    return {
+        "centre-of-region >= iterative marks": x.gain(x.x1(p9, "cr"), x.x1(p9, "em")),
+        "iterative marks >= ULA": x.gain(x.x1(p9, "em"), x.x1(p9, "ula")),
+    }
+
+
+def _c10(x: _Ctx):
+    close, g = _close10(x.config), x.g
+    return {
+        "closer": [x.rho(g["4"][20][d]) for d in x.D],
+        "coarser pixels": x.log_gain([x.side(g["6"][20][d]) for d in close], [x.side(g["4"][20][d]) for d in close]),
+        "more frames": x.log_gain([x.side(g["5ab"][50][d]) for d in close], [x.side(g["5ab"][5][d]) for d in close]),
+    }
+
+
+def _c11(x: _Ctx):
+    use_map = x.config["ULA"] == "MAP (designation prior)"
+    known = x.config["velocity knowledge"] == "designated"
+
+    def head(d):
+        c = x.g["5ab"][50][d]
+        if use_map:
+            u = errors(x.res[x.g["head_map"][d]], "map", x.ep)
+        elif known:
+            u = errors(x.res[x.g["head_known"][d]], "ula_vd", x.ep)
+        else:
+            return x.rho(c)
+        return x.gain(errors(x.res[c], "em_vd" if known else "em", x.ep), u)
+
+    return {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
+
+
+def _c12(x: _Ctx):
+    return {f"Delta = {p_:g} sigma": x.rho(c) for p_, c in x.g["good"].items()}
+
+
+def _iterations(x: _Ctx):
+    it = {d: x.res[c] for d, c in x.g["7"].items()}
+    return it, min(it), max(it)
+
+
+def _c13(x: _Ctx):
+    it, lo, hi = _iterations(x)
+    return ratio_ci(it[lo]["plain_iter"], it[hi]["plain_iter"], paired=False)
+
+
+def _c14(x: _Ctx):
+    it, lo, hi = _iterations(x)
+    T4 = int(x.config["T of Figs 4, 6, 7"])
+    ula_work = np.concatenate([it[d]["plain_iter"] * T4 for d in (lo, hi)])
+    marks_work = np.concatenate([it[d]["em_plain_iter"] for d in (lo, hi)])
+    return ratio_ci(ula_work, marks_work)
+
+
+def _c15(x: _Ctx) -> dict:
+    """Efficiency of the ULA: its spread over the bound at very close and resolved separations, and for the
+    velocities ("position and motion parameters of very close objects", conclusions). The bound is the initial
+    positions' (epoch "first" whatever the register's), and a trimmed spread is no bound's (the register's
+    statistic as read, untrimmed)."""
+    config, st = x.config, x.config["statistic"]
+    use_bayes = config["bound"] == "van Trees (designation prior)"
+    key_pos, key_vel = ("bcrb_pos", "bcrb_vel") if use_bayes else ("crb_pos", "crb_vel")
+    parts = {}
+    cs, close = x.g["c15"], c15_close(config)
+    for d, name in ((close, "very close"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
+        r = x.res[cs[d]]
+        parts[name] = _efficiency(errors(r, "ula", "first"), r[key_pos], st)
+    r = x.res[cs[close]]
+    parts["velocities, very close"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
+    return parts
+
+
+#: ``{claim id: function of the claim context}``.
+_MEASURES = {
+    "C002-1": _c1,
+    "C002-2": _c2,
+    "C002-3": _c3,
+    "C002-4": _c4,
+    "C002-5": _c5,
+    "C002-6": _c6,
+    "C002-7": _c7,
+    "C002-8": _c8,
+    "C002-9": _c9,
+    "C002-10": _c10,
+    "C002-11": _c11,
+    "C002-12": _c12,
+    "C002-13": _c13,
+    "C002-14": _c14,
+    "C002-15": _c15,
+}
+
+
+def _fig3(config: dict, g: dict, pixels) -> list:
+    T3 = int(config["T of the Fig 3a claims"])
+    return [g["3a"][p_][T3] for p_ in pixels]
+
+
+def _head(config: dict, g: dict, D=None) -> list:
+    extra = g["head_map"] if config["ULA"] == "MAP (designation prior)" else {}
+    if not extra and config["velocity knowledge"] == "designated":
+        extra = g["head_known"]
+    return [g["5ab"][50][d] for d in (1.0, 3.0)] + list(extra.values())
+
+
+#: ``{claim id: function (config, point groups g, separations D) -> the Configs the claim reads}``.
+NEEDS = {
+    "C002-1": lambda c, g, D: [g[FIG1_PANEL[c1_point(c)[1]]][c1_point(c)[0]][d] for d in D],
+    "C002-2": lambda c, g, D: [g["1a"][m][d] for m in (10, 20) for d in (6.0, 1.0)],
+    "C002-3": lambda c, g, D: [g[k][m][d] for k in ("1a", "1b") for m in (10, 20) for d in _DS3],
+    "C002-4": lambda c, g, D: [g["1c"][p_][d] for p_ in (5.0, 3.0) for d in (1.0, 6.0)],
+    "C002-5": lambda c, g, D: [p for row in g["5"].values() for p in row.values()],
+    "C002-6": lambda c, g, D: [p for row in g["2"].values() for p in row.values()],
+    "C002-7": lambda c, g, D: _fig3(c, g, (1.0, _pc(c))),
+    "C002-8": lambda c, g, D: _fig3(c, g, (1.0, _pc(c))),
+    "C002-9": lambda c, g, D: _fig3(c, g, (float(c["Delta of the C002-9 order (sigma)"]),)),
+    "C002-10": lambda c, g, D: (
+        [g["4"][20][d] for d in D] + [g[k][s][d] for k, s in (("6", 20), ("5ab", 50), ("5ab", 5)) for d in _close10(c)]
+    ),
+    "C002-11": _head,
+    "C002-12": lambda c, g, D: list(g["good"].values()),
+    "C002-13": lambda c, g, D: list(g["7"].values()),
+    "C002-14": lambda c, g, D: list(g["7"].values()),
+    "C002-15": lambda c, g, D: list(g["c15"].values()),
+}
+
+
+def needed_points(config: dict, g: dict, D, claims=None) -> list:
+    """The simulation points (:class:`~.simulation.Config`) that the ``claims`` (None: all) read, without repeats,
+    in the claims' order."""
+    asked = _MEASURES if claims is None else [c for c in _MEASURES if c in claims]
+    return list(dict.fromkeys(p for cid in asked for p in NEEDS[cid](config, g, list(D))))
+
+
+def measure_claims(config: dict, g: dict, res, seed: int, n_bootstrap: int, D, claims=None) -> dict:
+    """``{claim id: measured}`` of one configuration for the ``claims`` asked (None: all; see the notebook for
+    each rule). Each claim draws from its own bootstrap stream, so its value does not depend on which others are
+    asked."""
+    out = {}
+    for cid, fn in _MEASURES.items():
+        if claims is None or cid in claims:
+            rng = np.random.default_rng(seed_sequence(seed, ("bootstrap", cid)))
+            out[cid] = fn(_Ctx(config, g, res, rng, n_bootstrap, list(D)))
+    return out
