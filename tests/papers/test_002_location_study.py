@@ -5,9 +5,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from tvtrack.papers.p002_unified_location_em.location_study import LocationStudy
 from tvtrack.papers.p002_unified_location_em.simulation import (
     Config,
-    LocationStudy,
     CANONICAL_SETTINGS,
     bootstrap_groups,
     failure_metrics,

@@ -3,14 +3,16 @@
 V. E. Savanevich, "A unified location algorithm for determining the motion parameters of closely spaced objects",
 Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).
 
-Modules: ``model`` (the linear-motion scene: geometry, truth, designation, photon counts), ``em`` (the ULA: EM over
-all frames, eqs. (10)-(11), with SQUAREM and the MAP variant; its E- and M-steps in ``em_steps``), ``two_stage`` (per-frame marks and line fits, the
-paper's comparator), ``simulation`` (one configuration's Monte Carlo: every algorithm on the same scenes, errors,
-bounds, interval helpers), ``study`` (the measurement functions the explorer calls and the figure data),
-``readings`` (which points and statistics a configuration's claims compare), ``claim_values`` (what each claim
-computes from the points, and the sentences' statistics), ``register`` (the unstated choices and which claim reads which), ``claims`` (the claims
-and their rules), ``params`` (the notebook's parameter rules), ``plots`` (one function per figure) and
-``recording`` (the Rerun layout of one trial).
+Modules: ``model`` (the linear-motion scene: geometry, truth, designation, photon counts), ``em`` (the ULA: EM
+over all frames, eqs. (10)-(11), with SQUAREM and the MAP variant; its E- and M-steps in ``em_steps``),
+``two_stage`` (per-frame marks and line fits, the paper's comparator), ``sim_config`` (a simulation's settings,
+point and seeds), ``simulation`` (one configuration's Monte Carlo: every algorithm on the same scenes, errors,
+bounds), ``location_study`` (an on-demand cache of configurations), ``study`` (the measurement functions the
+explorer calls and the figure data), ``readings`` (which points and statistics a configuration's claims
+compare), ``claim_values`` (what each claim computes from the points, and the sentences' statistics),
+``register`` (the unstated choices and which claim reads which), ``claims`` (the claims and their rules),
+``params`` (the notebook's parameter rules), ``plots`` (one function per figure) and ``recording`` (the Rerun
+layout of one trial).
 
 The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
 ``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.

@@ -1,14 +1,14 @@
 """Monte Carlo simulation of close-object location (one configuration at a time): ULA vs two-stage trajectory algorithms.
 
-One *configuration* (:class:`Config`) is ``(Q, d/sigma, Delta/sigma, m_k, T)`` plus the algorithms
-to run, the designation errors, the mark initialisation/association and the number of trials. A
-:class:`LocationStudy` draws each configuration's scenes from its own seed (derived from the run
-seed and the configuration values, so results do not depend on the number of workers or on which
-other configurations are computed), runs the unified location EM
+One *configuration* (:class:`~.sim_config.Config`, defined with its settings and seeds in :mod:`.sim_config`) is
+``(Q, d/sigma, Delta/sigma, m_k, T)`` plus the algorithms to run, the designation errors, the mark
+initialisation/association and the number of trials. :func:`run_config` draws its scenes from its own seed
+(derived from the run seed and the configuration values, so results do not depend on the number of workers or on
+which other configurations are computed), runs the unified location EM
 (:func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em`), the two-stage algorithms of
-:mod:`tvtrack.papers.p002_unified_location_em.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb` on the
-same samples, and caches the per-trial errors. Configurations that differ only in their algorithm
-letters share one simulation.
+:mod:`tvtrack.papers.p002_unified_location_em.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb`
+on the same samples, and returns the per-trial errors (cached by :mod:`.study` and by
+:class:`~.location_study.LocationStudy`).
 
 Units: errors are in sigma (the PSF standard deviation), after matching the estimated labels to
 the truth (all ``Q!`` orders, :func:`~tvtrack.papers.p002_unified_location_em.em.match_labels`).
@@ -16,20 +16,14 @@ the truth (all ``Q!`` orders, :func:`~tvtrack.papers.p002_unified_location_em.em
 
 from __future__ import annotations
 
-import multiprocessing
 import time
-import zlib
-from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, fields, replace
-from functools import partial
-from typing import NamedTuple
+from dataclasses import replace
 
 import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, position_crb_sum
 from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
-from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,
     frame_times,
@@ -39,6 +33,16 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
 )
 
+from .sim_config import (  # noqa: F401  (re-exported: the configuration lived here before)
+    ALGORITHMS,
+    CANONICAL_SETTINGS,
+    N_SEED_BLOCKS,
+    Config,
+    StudySettings,
+    _scene_key,
+    base,
+    seed_sequence,
+)
 from .summaries import (  # noqa: F401  (re-exported: the summaries lived here before)
     FLAG_NAMES,
     SPREADS,
@@ -53,177 +57,6 @@ from .summaries import (  # noqa: F401  (re-exported: the summaries lived here b
     variance_ratio_ci,
     variance_sum,
 )
-
-#: Algorithm letters of :attr:`Config.algs`.
-ALGORITHMS = {
-    "u": "ULA (accelerated as set)",
-    "p": "ULA with plain EM (iteration counts)",
-    "m": "MAP-ULA: the ULA with the designation as a Gaussian prior (its own error model)",
-    "e": "two-stage, iterative (per-frame EM) marks",
-    "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
-    "1": "ULA with Q' = 1: one track fitted to all objects (errors against their mean)",
-    "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
-    "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
-    "q": "two-stage, iterative marks by plain EM (iteration counts)",
-    "c": "two-stage, centre-of-region marks",
-    "b": "BIC fits with Q' = 1, 2, 3",
-}
-#: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
-#: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the
-#: block machinery (:func:`seed_blocks`) still reads old results.
-N_SEED_BLOCKS = 1
-
-
-@dataclass(frozen=True)
-class StudySettings:
-    """Everything a configuration's simulation needs besides the :class:`Config` itself.
-
-    Attributes
-    ----------
-    seed : int
-        Run seed; every configuration's generator derives from it.
-    velocity_sigma : (float, float)
-        Common velocity ``(Vx, Vy)`` of the objects, sigma per frame.
-    noise_density : float
-        Uniform noise photons per sigma^2 per frame.
-    photon_model : {"fixed", "poisson"}
-        Target photons per object per frame: fixed count or Poisson with that mean.
-    margin_sigma : float
-        Empty window border around all trajectories, sigma.
-    designation_sd_sigma, designation_velocity_sd : float
-        Default designation errors (position sigma; velocity sigma per frame).
-    tol_sigma : float
-        EM stopping tolerance on position-equivalent change, sigma.
-    max_iter : int
-        EM iteration cap (ULA and per-frame marks).
-    merge_sigma : float
-        Two ULA estimates closer than this count as merged, sigma.
-    accelerate : {"squarem", "none"}
-        EM variant of the "u" algorithm.
-    mark_init, mark_association : str
-        Defaults of :func:`~tvtrack.papers.p002_unified_location_em.two_stage.em_marks` ``init`` and ``association``.
-    gate_half_sigma : float
-        Centre-of-region gate half-size, sigma (at least 1.5 px).
-    bic_max_iter : int
-        Iteration cap of the BIC fits.
-    crb_phases : int
-        Sub-pixel phases averaged in each CRB value.
-    n_trials : int
-        Default trials per configuration.
-    velocity_knowledge : {"free", "designated"}
-        What the MAP-ULA and its two-stage twin know of the velocity: nothing ("free": the MAP prior
-        covers the initial positions only, the line fit is ordinary least squares), or the designated
-        velocity with its error ``designation_velocity_sd`` ("designated": the MAP prior's velocity sd is
-        that error, the line fit keeps the designated velocity and fits the intercept).
-    tracks : {"parallel", "crossing", "diverging"}
-        Two-object scenes: the common velocity, or object 2 with its y velocity lowered (raised) by
-        ``2 d / (T - 1)``: the tracks cross at mid-sequence (diverge from ``d`` to ``3 d``); see
-        :func:`track_velocities`.
-    n_bootstrap : int
-        Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
-        the 2.5 % and 97.5 % tails need thousands).
-    tol_loglik : float or None
-        The matched practical stop (nats): every EM of the ULA and of the per-frame marks stops when the
-        log-likelihood it can still gain is below this (each on its own likelihood: all frames for the ULA, one
-        frame for a mark; ``tol_sigma`` is then not used). ``None``: the parameter-change rule ``tol_sigma``.
-    """
-
-    seed: int
-    velocity_sigma: tuple[float, float]
-    noise_density: float
-    photon_model: str
-    margin_sigma: float
-    designation_sd_sigma: float
-    designation_velocity_sd: float
-    tol_sigma: float
-    max_iter: int
-    merge_sigma: float
-    accelerate: str
-    mark_init: str
-    mark_association: str
-    gate_half_sigma: float
-    bic_max_iter: int
-    crb_phases: int
-    n_trials: int
-    n_bootstrap: int
-    velocity_knowledge: str = "free"
-    tracks: str = "parallel"
-    tol_loglik: float | None = None
-
-
-CANONICAL_SETTINGS = StudySettings(
-    seed=0,
-    velocity_sigma=(0.2, 0.1),
-    noise_density=0.01,
-    photon_model="fixed",
-    margin_sigma=6.0,
-    designation_sd_sigma=0.0,
-    designation_velocity_sd=0.0,
-    tol_sigma=1e-6,
-    max_iter=5000,
-    merge_sigma=0.1,
-    accelerate="squarem",
-    mark_init="designation",
-    mark_association="designation",
-    gate_half_sigma=3.0,
-    bic_max_iter=300,
-    crb_phases=64,
-    n_trials=0,
-    n_bootstrap=2000,
-    velocity_knowledge="free",
-)
-"""The study's canonical settings (the paper-profile world); ``dataclasses.replace(CANONICAL_SETTINGS, ...)``
-gives any other (tests, smaller runs)."""
-
-
-class Config(NamedTuple):
-    """One configuration (a point of a curve).
-
-    ``algs`` is a string of letters from :data:`ALGORITHMS`; ``init``/``assoc`` of ``None`` mean
-    the settings' defaults; ``tag`` separates otherwise equal configurations drawn for different
-    studies (different seeds). ``variant`` overrides :class:`StudySettings` fields for this
-    configuration alone, as sorted ``(name, value)`` pairs (e.g. ``(("max_iter", 30),)``); it does not
-    enter the scene seed, so a variant sees the same draws as its default (common random numbers).
-    """
-
-    q: int
-    d: float
-    pix: float
-    m: int
-    T: int
-    algs: str
-    dsd: float
-    init: str | None
-    assoc: str | None
-    n: int
-    tag: str
-    vsd: float
-    variant: tuple = ()
-
-
-def seed_sequence(seed: int, values) -> np.random.SeedSequence:
-    """Seed sequence from the run seed and a tuple of values (numbers to 1e-3, ``None`` as 0,
-    strings hashed with CRC-32, which, unlike ``hash()``, does not change between processes)."""
-
-    def word(v):
-        if v is None:
-            return 0
-        if isinstance(v, str):
-            return zlib.crc32(v.encode())
-        return int(round(1000 * v)) & 0xFFFFFFFF
-
-    return np.random.SeedSequence([seed, *[word(v) for v in values]])
-
-
-def base(c) -> tuple:
-    """A configuration without its algorithm letters (the scene draws do not depend on them)."""
-    return tuple(c[:5]) + ("",) + tuple(c[6:])
-
-
-def _scene_key(c: Config) -> tuple:
-    """What a configuration's scene seed derives from: everything but the algorithm letters and the
-    settings variant, so a variant redraws exactly its default's scenes."""
-    return base(c)[:-1]
 
 
 def errors_vs_truth(theta, truth, sigma_px: float, times):
@@ -544,104 +377,3 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     res["crb_x0"] = float(np.mean(diag[:, 0, 0])) / s**2
     res["shape"] = g.shape
     return res
-
-
-class LocationStudy:
-    """Cache of configuration results, computed in parallel on demand.
-
-    ``study[c]`` returns the result dict of :func:`run_config` for ``c`` whatever algorithms
-    ``c`` names (the simulation ran with the union of those asked for its scenes).
-    """
-
-    def __init__(self, settings: StudySettings, n_workers: int = 1):
-        if n_workers < 1:
-            raise ValueError(f"n_workers = {n_workers}; it must be >= 1")
-        self.settings = settings
-        self.n_workers = n_workers
-        self._cache: dict[tuple, dict] = {}
-
-    def config(
-        self,
-        q,
-        d,
-        pix,
-        m,
-        T,
-        algs="uec",
-        dsd=None,
-        init=None,
-        assoc=None,
-        n=None,
-        tag="main",
-        vsd=None,
-        variant: dict | None = None,
-    ) -> Config:
-        """A :class:`Config` with the settings' defaults filled in (``dsd``, ``vsd``, ``n``);
-        ``variant`` maps :class:`StudySettings` field names to this configuration's own values."""
-        st = self.settings
-        unknown = set(variant or {}) - {f.name for f in fields(StudySettings)}
-        if unknown:
-            raise ValueError(f"variant names {sorted(unknown)}; it may override only StudySettings fields")
-        return Config(
-            int(q),
-            float(d),
-            float(pix),
-            int(m),
-            int(T),
-            algs,
-            float(st.designation_sd_sigma if dsd is None else dsd),
-            init,
-            assoc,
-            int(n or st.n_trials),
-            tag,
-            float(st.designation_velocity_sd if vsd is None else vsd),
-            tuple(sorted((variant or {}).items())),
-        )
-
-    def __getitem__(self, c) -> dict:
-        return self._cache[base(c)]
-
-    def __contains__(self, c) -> bool:
-        return base(c) in self._cache
-
-    def __len__(self) -> int:
-        return len(self._cache)
-
-    def compute(self, configs) -> None:
-        """Run every configuration not yet cached, each scene set once with the union of the
-        algorithms asked for it (longest first, in ``n_workers`` forked processes)."""
-        union: dict[tuple, str] = {}
-        for c in configs:
-            if c not in self:
-                union[base(c)] = "".join(sorted(set(union.get(base(c), "")) | set(c[5])))
-        todo = [Config(*k[:5], a, *k[6:]) for k, a in union.items()]
-        todo.sort(key=lambda c: -c.T * c.n * (1 + 2 * ("e" in c.algs) + 3 * ("p" in c.algs) + 3 * ("q" in c.algs)))
-        run = partial(run_config, self.settings)
-        if self.n_workers > 1 and len(todo) > 1:
-            with ProcessPoolExecutor(self.n_workers, mp_context=multiprocessing.get_context("fork")) as pool:
-                for c, r in zip(todo, pool.map(run, todo)):
-                    self._cache[base(c)] = r
-        else:
-            for c in todo:
-                self._cache[base(c)] = run(c)
-
-    def bootstrap_rng(self) -> np.random.Generator:
-        """This run's bootstrap generator (the same draws on every call)."""
-        return np.random.default_rng(seed_sequence(self.settings.seed, ("bootstrap",)))
-
-    def variance_ratio(self, e_num, e_den, paired=True, mse=False, sqrt=False, spread="variance") -> Estimate:
-        """:func:`variance_ratio_ci` with :meth:`bootstrap_rng` and ``settings.n_bootstrap`` resamples."""
-        return variance_ratio_ci(
-            e_num,
-            e_den,
-            self.bootstrap_rng(),
-            self.settings.n_bootstrap,
-            paired=paired,
-            mse=mse,
-            sqrt=sqrt,
-            spread=spread,
-        )
-
-    def groups_ci(self, groups, statistic) -> Estimate:
-        """:func:`bootstrap_groups` with :meth:`bootstrap_rng` and ``settings.n_bootstrap`` resamples."""
-        return bootstrap_groups(groups, statistic, self.bootstrap_rng(), self.settings.n_bootstrap)
