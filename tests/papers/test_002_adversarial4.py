@@ -40,7 +40,8 @@ def test_the_new_readings_are_readings_of_the_paper_and_read_only_their_claim():
 
 def test_very_close_at_half_a_sigma_adds_only_ula_points_at_that_separation():
     new = _new_points({**DEFAULT, VERY_CLOSE: 0.5})
-    assert new and all(c.d == 0.5 and c.algs == "u" and c.q == 2 for c in new)
+    assert new and all(c.d == 0.5 and c.q == 2 for c in new)
+    assert sorted(c.algs for c in new) == ["r", "u"]  # the ULA and its bounds
     g, _ = study._points({**DEFAULT, VERY_CLOSE: 0.5}, TINY)
     assert sorted(g["c15"]) == [0.5, 2.0, 4.0]
     g, _ = study._points(DEFAULT, TINY)
@@ -70,7 +71,7 @@ def _ula_at(d, pix, T, n, seed=11):
     cfg = DEFAULT
     scale = study.Scale(n_trials=n, crb_phases=8, n_bootstrap=500)
     st = study.settings_of(cfg, seed, scale)
-    c = sim.Config(2, float(d), float(pix), 20, T, "u", st.designation_sd_sigma, None, None, n, "explore", 0.0)
+    c = sim.Config(2, float(d), float(pix), 20, T, "ur", st.designation_sd_sigma, None, None, n, "explore", 0.0)
     return sim.run_config(study._job_settings(st, "u", scale, 2), c)
 
 

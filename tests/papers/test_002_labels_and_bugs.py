@@ -108,7 +108,7 @@ def test_noise_per_pixel_scales_with_the_pixel_area():
     # the study's bound (hence its scenes: the same photons per pixel) reads the noise at the pixel area: at a
     # density of 1 photon per sigma^2 and Delta = 3 sigma the CRB is the one with 9 noise photons per pixel
     st = replace(CANONICAL_SETTINGS, noise_density=1.0, crb_phases=4, n_trials=8)
-    cfg = Config(1, 0.0, 3.0, 20, 5, "c", 0.3, None, None, 8, "t", 0.0)
+    cfg = Config(1, 0.0, 3.0, 20, 5, "cr", 0.3, None, None, 8, "t", 0.0)
     res = run_config(st, cfg)
     g = scene_geometry(1, 5, 0.0, 3.0, (0.2, 0.1))
     th = draw_truth(np.random.default_rng(seed_sequence(st.seed, _scene_key(cfg) + ("crb",))), 4, g)

@@ -80,7 +80,7 @@ def test_seed_sequence_depends_on_values_only():
 
 def test_study_shares_scenes_between_algorithms_and_is_reproducible():
     study = LocationStudy(SETTINGS, n_workers=1)
-    c_u = study.config(2, 3.0, 1.0, 20, 4, "u")
+    c_u = study.config(2, 3.0, 1.0, 20, 4, "ur")
     c_e = study.config(2, 3.0, 1.0, 20, 4, "e")
     assert isinstance(c_u, Config) and c_u.n == 24 and c_u.dsd == 0.3
     study.compute([c_u, c_e])

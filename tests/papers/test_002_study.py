@@ -389,3 +389,15 @@ def test_every_claims_points_are_among_the_studys_points():
         if cid != "C002-16":
             need = study.needed_points(DEFAULT, g, TINY.separations, {cid})
             assert need and set(need) <= set(asked), cid
+
+
+def test_the_bounds_run_only_where_they_are_read():
+    """The bounds (letter r: CRB and van Trees) are computed once per point, for C002-15's points and the figures',
+    never inside an algorithm's job (they cost a fifth of a screened configuration when every job drew them)."""
+    jobs = study.jobs_of(DEFAULT, 7, TINY, claims={"C002-15", "C002-12"})
+    assert sorted(j[1].d for j in jobs if j[1].algs == "r") == [1.0, 2.0, 4.0]
+    study.run_jobs(jobs)
+    assert all(("crb_pos" in study._CACHE[j]) == (j[1].algs == "r") for j in jobs)
+    fig = {j[1]._replace(algs="") for j in study.jobs_of(DEFAULT, 7, TINY, figures=True) if j[1].algs == "r"}
+    g, _ = study._points(DEFAULT, TINY, figures=True)
+    assert {c._replace(algs="") for c in g["4"][50].values()} <= fig and {g["6"][20][2.0]._replace(algs="")} <= fig

@@ -100,7 +100,13 @@ def fisher_linear_motion(
 def crb_linear_motion(theta, times, shape, sigma_px: float, photons: float, noise_per_pixel: float) -> np.ndarray:
     """Inverse Fisher information (the CRB covariance), shape (..., 4Q, 4Q); singular
     information (e.g. coincident objects) gives ``inf`` on the diagonal, never NaN."""
-    fim = fisher_linear_motion(theta, times, shape, sigma_px, photons, noise_per_pixel)
+    return crb_from_fisher(fisher_linear_motion(theta, times, shape, sigma_px, photons, noise_per_pixel))
+
+
+def crb_from_fisher(fim) -> np.ndarray:
+    """The CRB covariance from a Fisher information ``fim`` of shape (..., k, k) (:func:`crb_linear_motion`
+    without recomputing the information): its inverse, ``inf`` on the diagonal where it is singular."""
+    fim = np.asarray(fim, dtype=float)
     cond = np.linalg.cond(fim)
     ok = np.isfinite(cond) & (cond < 1e14)
     safe = np.where(ok[..., None, None], fim, np.eye(fim.shape[-1]))

@@ -40,7 +40,7 @@ class LocationStudy:
         pix,
         m,
         T,
-        algs="uec",
+        algs="uecr",
         dsd=None,
         init=None,
         assoc=None,

@@ -31,6 +31,7 @@ ALGORITHMS = {
     "q": "two-stage, iterative marks by plain EM (iteration counts)",
     "c": "two-stage, centre-of-region marks",
     "b": "BIC fits with Q' = 1, 2, 3",
+    "r": "the bounds: the CRB and the van Trees bound of the designation prior (no estimator)",
 }
 #: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
 #: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the

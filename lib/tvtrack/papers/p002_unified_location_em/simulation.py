@@ -21,7 +21,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, position_crb_sum
+from tvtrack.bounds.poisson_crb import crb_from_fisher, fisher_linear_motion, position_crb_sum
 from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from tvtrack.papers.p002_unified_location_em.model import (
@@ -202,9 +202,8 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         ``*_flags`` (n, k) bool with columns :data:`FLAG_NAMES`, ``*_iter`` (n,) EM steps
         (``em_iter``, ``em_plain_iter``: summed over frames), ``plain_cap`` / ``em_plain_cap`` (n,) the plain EM's
         iteration cap hit (marks: in some frame), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
-        ``timing`` (wall seconds per algorithm), ``crb_pos`` / ``crb_vel`` (trace of the position /
-        velocity block of the CRB, sigma^2, averaged over the sub-pixel phase), ``crb_x0`` (the bound
-        on x_o of the first object alone), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
+        ``timing`` (wall seconds per algorithm), with the letter ``r`` the bounds of :func:`_bounds`
+        (``crb_pos``, ``crb_vel``, ``crb_x0``, ``bcrb_pos``, ``bcrb_vel``), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
     """
     s_ = replace(settings, **dict(cfg.variant))
     q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd, _ = cfg
@@ -359,10 +358,22 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     res["seed"] = np.concatenate(block_seed)
     res["T"] = T
     res["timing"] = timing
+    if "r" in algs:
+        res.update(_bounds(s_, cfg, g, times, noise_pp))
+    res["shape"] = g.shape
+    return res
+
+
+def _bounds(s_: StudySettings, cfg: Config, g, times, noise_pp: float) -> dict:
+    """The bounds of one configuration (letter ``r``; sigma^2): ``crb_pos`` / ``crb_vel`` (trace of the position /
+    velocity block of the CRB, averaged over the sub-pixel phase), ``crb_x0`` (the bound on x_o of the first object
+    alone) and ``bcrb_pos`` / ``bcrb_vel`` (the van Trees bound with the designation as the positions' prior)."""
+    q, m, dsd, s = cfg.q, cfg.m, cfg.dsd, g.sigma_px
+    res = {}
     # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
     th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, _scene_key(cfg) + ("crb",))), s_.crb_phases, g)
     fim = fisher_linear_motion(th, times, g.shape, s, m, noise_pp)
-    crb = crb_linear_motion(th, times, g.shape, s, m, noise_pp)
+    crb = crb_from_fisher(fim)
     # van Trees (Bayesian) bound with the designation as the prior of the initial positions (velocity free): it
     # holds for biased estimators too, e.g. ones that stay near their start where the pixels cannot resolve
     jp = np.zeros(4 * q)
@@ -375,5 +386,4 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     diag = np.diagonal(crb, axis1=-2, axis2=-1).reshape(-1, q, 4)
     res["crb_vel"] = float(np.mean(diag[..., 2:].sum(axis=(1, 2)))) / s**2
     res["crb_x0"] = float(np.mean(diag[:, 0, 0])) / s**2
-    res["shape"] = g.shape
     return res

@@ -86,6 +86,7 @@ _READS = {
     "k": ("tol_sigma", "max_iter", "accelerate"),
     "1": ("tol_sigma", "max_iter", "accelerate"),
     "b": ("bic_max_iter",),
+    "r": (),  # the bounds read the scene only
 }
 _CANON = CANONICAL_SETTINGS
 _SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
@@ -239,32 +240,33 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     pick = (lambda ds: D) if figures else (lambda ds: [d for d in D if d in ds])
     m1, p1 = c1_point(config)  # C002-1 reads its panel's whole distance axis
     p6, T6 = c6_point(config)
+    r = "r" if figures else ""  # the bounds (letter r): the figures draw them; of the claims only C002-15 reads them
 
     def fig1(p_, m):
-        return {d: P(2, d, p_, m, T1, "u") for d in (D if (p_, m) == (p1, m1) else pick(core))}
+        return {d: P(2, d, p_, m, T1, "u" + r) for d in (D if (p_, m) == (p1, m1) else pick(core))}
 
     g = {
         "1a": {m: fig1(3.0, m) for m in (10, 20)},
         "1b": {m: fig1(1.0, m) for m in (10, 20)},
-        "1c": {p_: {d: P(2, d, p_, m1c, 5, "u") for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
+        "1c": {p_: {d: P(2, d, p_, m1c, 5, "u" + r) for d in pick((1.0, 6.0))} for p_ in (3.0, 5.0)},
         "2": {
-            (T, m): {d: P(2, d, p6, m, T, "u") for d in pick(small)}
+            (T, m): {d: P(2, d, p6, m, T, "u" + r) for d in pick(small)}
             for T in sorted({5, 10, *T6} if figures else T6)
             for m in sorted(photons6(config))
         },
         "5": {(p_, T): {d5: P(2, d5, p_, 20, T, "u")} for p_ in c5_pair(config) for T in (5, 10, 50)},
         "3a": {
-            p_: {T: P(1, 0.0, p_, 20, T, "uec") for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
+            p_: {T: P(1, 0.0, p_, 20, T, "uec" + r) for T in (sorted({*scale.fig3_frames, T3}) if figures else (T3,))}
             for p_ in (1.0, 3.0, 5.0)
         },
-        "4": {m: {d: P(2, d, pix, m, T4, "ue") for d in D} for m in ((20, 50) if figures else (20,))},
-        "5ab": {T: {d: P(2, d, pix, m5, T, "ue") for d in close} for T in (5, 50)},
+        "4": {m: {d: P(2, d, pix, m, T4, "ue" + r) for d in D} for m in ((20, 50) if figures else (20,))},
+        "5ab": {T: {d: P(2, d, pix, m5, T, "ue" + r) for d in close} for T in (5, 50)},
         "head_map": {d: P(2, d, pix, m5, 50, "m") for d in (1.0, 3.0)},
         "head_known": (
             {d: P(2, d, pix, m5, 50, "k") for d in (1.0, 3.0)} if config["velocity knowledge"] == "designated" else {}
         ),
-        "6": {20: {d: P(2, d, 5.0, 20, T4, "ue") for d in close}},
-        "c15": {d: P(2, d, pix, 20, T4, "u") for d in sorted({c15_close(config), 2.0, 4.0})},
+        "6": {20: {d: P(2, d, 5.0, 20, T4, "ue" + r) for d in close}},
+        "c15": {d: P(2, d, pix, 20, T4, "ur") for d in sorted({c15_close(config), 2.0, 4.0})},
         "good": {p_: P(2, 8.0, p_, int(config.get("m_k of C002-12", 20)), T4, "ue") for p_ in (0.5, 1.0)},
         "7": {
             d: P(2, d, pix, 20, T4, "upq", n=scale.n_iter_trials, variant=fig7_variant(config))
