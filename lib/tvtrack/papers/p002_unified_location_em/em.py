@@ -38,6 +38,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import ndtr
 
+from tvtrack import jit
+
+from . import _kernels
 from .em_steps import (  # noqa: F401 - the entries and the steps (tests and the kernel's twin read them here)
     PixelEntries,
     _axis_tables,
@@ -368,8 +371,10 @@ def unified_location_em(
     calm = np.zeros(n, dtype=np.int64)  # successive steps whose remaining gain was below tol_loglik
     hist_t, hist_l = [], []
 
+    e_step = _kernels.e_step if jit.enabled() else _e_step_numpy  # :func:`_e_step`, its switch read once
+
     def step(work, th, pw_, p0_, sg_):
-        sums, ll = _e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
+        sums, ll = e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
         pr = None if prior is None else tuple(x[work.trials] for x in prior)
         new, bad = _m_step(sums, th, static, pr)
         ll = ll + log_prior(th, work.trials)
