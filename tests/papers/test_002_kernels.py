@@ -71,3 +71,23 @@ def test_the_numpy_path_is_used_when_jit_is_off(monkeypatch):
     g, counts, desig, p, p0 = _scene(n=4)
     res = unified_location_em(pixel_entries(counts), desig, g.sigma_px, p, p0, times=frame_times(counts.shape[1]))
     assert not called and res.converged.all()
+
+
+@pytest.mark.parametrize("static", [False, True])
+def test_compiled_m_step_is_the_numpy_m_step_bit_for_bit(static):
+    """The compiled M-step (no prior) gives the NumPy one's new states and degenerate flags exactly, including rows
+    with no weight (A = 0), a singular line fit (all weight in one frame: det = 0) and a non-finite sum."""
+    if not jit.available():
+        pytest.skip("numba not installed")
+    rng = np.random.default_rng(3)
+    sums = rng.uniform(0.5, 50.0, size=(40, 2, 7))
+    sums[..., 1] = sums[..., 0] * rng.uniform(0, 5, size=(40, 2))  # B = A * mean t
+    sums[..., 2] = sums[..., 1] ** 2 / sums[..., 0] * rng.uniform(1.0, 2.0, size=(40, 2))  # C >= B^2 / A
+    sums[0, 0, 0] = 0.0  # no weight
+    sums[1, 1, 2] = sums[1, 1, 1] ** 2 / sums[1, 1, 0]  # singular
+    sums[2, 0, 3] = np.inf
+    theta = rng.normal(size=(40, 2, 4))
+    ref_new, ref_bad = em._m_step(sums, theta, static)
+    new, bad = _kernels.m_step(sums, theta, static)
+    assert ref_bad[:3].any() and ref_bad.tolist() == bad.tolist()
+    assert np.array_equal(ref_new, new)

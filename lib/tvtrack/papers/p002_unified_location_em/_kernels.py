@@ -135,3 +135,44 @@ def e_step(work, theta, p, p_noise, sigma, times, shape, second: bool):
         int(cols),
         bool(second),
     )
+
+
+@njit
+def _m_step_entries(sums, theta, static):  # pragma: no cover - compiled
+    n, q_n = theta.shape[0], theta.shape[1]
+    new = np.empty_like(theta)
+    any_bad = np.zeros(n, dtype=np.bool_)
+    for r in range(n):
+        for q in range(q_n):
+            A, B, C = sums[r, q, 0], sums[r, q, 1], sums[r, q, 2]
+            Dx, Dtx, Dy, Dty = sums[r, q, 3], sums[r, q, 4], sums[r, q, 5], sums[r, q, 6]
+            if static:
+                bad = A <= 1e-12
+                As = 1.0 if bad else A
+                v0, v1, v2, v3 = Dx / As, Dy / As, 0.0, 0.0
+            else:
+                det = A * C - B * B
+                AC = A * C
+                bad = (A <= 1e-12) or (det <= 1e-9 * (AC if AC >= 1e-300 else 1e-300))
+                ds = 1.0 if bad else det
+                v0 = (C * Dx - B * Dtx) / ds
+                v1 = (C * Dy - B * Dty) / ds
+                v2 = (A * Dtx - B * Dx) / ds
+                v3 = (A * Dty - B * Dy) / ds
+            if not (math.isfinite(v0) and math.isfinite(v1) and math.isfinite(v2) and math.isfinite(v3)):
+                bad = True
+            if bad:
+                any_bad[r] = True
+                for k in range(4):
+                    new[r, q, k] = theta[r, q, k]
+            else:
+                new[r, q, 0], new[r, q, 1], new[r, q, 2], new[r, q, 3] = v0, v1, v2, v3
+    return new, any_bad
+
+
+def m_step(sums, theta, static: bool):
+    """Compiled :func:`em_steps._m_step` without a prior (same arguments, same returns: ``new theta (N, Q, 4)``,
+    ``degenerate (N,)``), the same arithmetic element by element (bit for bit; tests/papers/test_002_kernels.py)."""
+    return _m_step_entries(
+        np.ascontiguousarray(sums, dtype=np.float64), np.ascontiguousarray(theta, dtype=np.float64), bool(static)
+    )

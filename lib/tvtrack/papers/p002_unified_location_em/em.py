@@ -371,12 +371,15 @@ def unified_location_em(
     calm = np.zeros(n, dtype=np.int64)  # successive steps whose remaining gain was below tol_loglik
     hist_t, hist_l = [], []
 
-    e_step = _kernels.e_step if jit.enabled() else _e_step_numpy  # :func:`_e_step`, its switch read once
+    fast = jit.enabled()  # compiled steps (:mod:`._kernels`) or their NumPy twins, the switch read once
+    e_step = _kernels.e_step if fast else _e_step_numpy
 
     def step(work, th, pw_, p0_, sg_):
         sums, ll = e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
-        pr = None if prior is None else tuple(x[work.trials] for x in prior)
-        new, bad = _m_step(sums, th, static, pr)
+        if prior is None:
+            new, bad = _kernels.m_step(sums, th, static) if fast else _m_step(sums, th, static)
+        else:
+            new, bad = _m_step(sums, th, static, tuple(x[work.trials] for x in prior))
         ll = ll + log_prior(th, work.trials)
         if estimate_sigma:
             sg_ = _sigma_update(sums, new, sg_, bad)
