@@ -405,3 +405,23 @@ def test_a_confirmation_re_measures_only_the_claims_that_may_flip():
             n_x = r.outputs["X"].n
             assert n_x == (400 if "X" in r.claims else 40)  # confirmed claims at full size, the others screened
     assert 0 < ex.settings["confirmed_claims"] < 2 * ex.settings["confirmed_at_full_size"]  # not every claim
+
+
+def test_sizing_measures_every_undecided_claim_not_only_those_projected_to_decide():
+    """A claim whose projection from few replicates exceeds the cap still gets the replicates that another claim's
+    sizing adds (its projection is noisy; left out, it would stay pooled over fewer replicates than the run has)."""
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
+    rules = {"edge": InBand("m", -0.5, 0.5), "far": InBand("m", -0.5, 0.5)}
+    asked = []
+
+    def measure(config, seed, claims=None):
+        asked.append(claims)
+        out = {"edge": _mean(seed + 7, 0.45, n=100), "far": _mean(seed + 11, 0.5, n=100)}
+        return out if claims is None else {k: out[k] for k in claims}
+
+    ex = explore(measure, reg, rules, seed=2, replicates=3, max_replicates=12, one_at_a_time=False)
+    n = ex.settings["replicates"]
+    undecided_far = [i for i in range(3, n) if "far" in (asked[i] or ())]
+    reps = [r for r in ex.runs if r.stage == "replicate"]
+    assert n > 3 and sum("far" in r.outputs for r in reps) == 3 + len(undecided_far)
+    assert len(undecided_far) == n - 3  # undecided at n = 3 and every step: measured in every sizing replicate

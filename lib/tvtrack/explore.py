@@ -251,14 +251,16 @@ def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
 
 def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> tuple[int, frozenset] | None:
     """The replicates projected to decide every undecided part that can be decided within ``cap``, and the claims
-    of those parts (None: no such part)."""
+    with a part still undecided (None: no part projected to decide). Every undecided claim rides along in a sizing
+    replicate, not only those projected to decide: a projection from a few replicates is noisy (002's C002-2 was
+    projected at 18 runs from 4 and decided at 5), and a claim left out would stay pooled over fewer replicates."""
     targets, claims = [], set()
     for (cid, _part), j in _pooled(rules, runs).items():
-        if j.verdict == "undecided" and math.isfinite(j.runs_factor):
-            need = max(n + 1, math.ceil(n * j.runs_factor))
+        if j.verdict == "undecided":
+            claims.add(cid)
+            need = max(n + 1, math.ceil(n * j.runs_factor)) if math.isfinite(j.runs_factor) else cap + 1
             if need <= cap:
                 targets.append(need)
-                claims.add(cid)
     return (max(targets), frozenset(claims)) if targets else None
 
 
