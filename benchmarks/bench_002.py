@@ -21,13 +21,14 @@ Measured increments over a replicate (before the compiled E-step): a faster velo
 sigma for Figs 4, 5, 7 reruns 26 jobs (6.0 s); a statistic or a reading reruns nothing (the job cache keys each
 algorithm's job by the settings it reads).
 
-An exploration at the paper profile: 3 replicates (a 4th while a verdict is unsettled, ~16 s each), 7
-one-at-a-time values that change the simulated world (photon model, designation error, noise, two velocities,
-crossing tracks, EM stopping; ~15 s each), partial reruns for the comparators and operating points (~45 s in all)
-and 2 joint samples (~30 s), plus the figures' extra points (~10 s) and the recording (~1 s): about 250 s of CPU.
-``make reproduce`` on 2 cores runs two notebooks at once and gives each one worker (``n_workers = 1``), so 002
-takes about 4-4.5 min of one core while the other four notebooks share the other; alone with ``n_workers = 2`` it
-takes about 2-2.5 min.
+An exploration at the paper profile (issue 43, measured 2026-11-28 in CPU seconds, one process, ``nice -n 10`` at a
+load of 2): replicates 21.7 (3), sizing 9.8 (5 more, each measuring only the claims still undecided), one at a time
+104.3 (52 values, each measuring only the claims that read it, at full size reusing the first replicate's jobs),
+joint 439.2 (32 configurations, 13.7 each), pinned 26.8 (2), combinations 17.2 (8); about 620 in all, against about
+1,070 the run before (the bounds drawn in every algorithm's job, the MAP-ULA run under every reading, every claim
+measured in every run, and a screen whose confirmations cost as much as it spared: at 8 joint configurations 68 + 123
+screened against 180 unscreened). A default replicate costs 6.5-9.5 s of CPU, of which C002-10's points (the
+8-separation gain curve and Fig 6b's coarse pixels) are about 60 %.
 
 What more a JIT would save (measured 2026-11-25, load ~3, before the compiled E-step): the per-frame EM at
 Delta = 5 sigma on 40 trials (static, 2 objects) takes 0.70 s of CPU, almost all of it the loop passes needed by the
