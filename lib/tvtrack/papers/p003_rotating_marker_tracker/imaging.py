@@ -211,6 +211,8 @@ class RotatingMarkerScene:
         if residual is not None:
             self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+        self._offsets: dict = {}  # gate_crops' pixel offsets by crop side
+        self._marker = None  # gate_crops' marker positions (n, T, 2), made on first use
         self.exposure_steps = int(exposure_steps)
         if self.exposure_steps > 1:
             t = truth.t
@@ -302,33 +304,64 @@ class RotatingMarkerScene:
         m = self.MARGIN
         rows, cols = self.image_shape
         inside = (c[:, 0] >= 0) & (c[:, 0] <= cols - 1) & (c[:, 1] >= 0) & (c[:, 1] <= rows - 1)
-        ox = np.clip(origin[:, 0] + m, 0, cols + 2 * m - size)
-        oy = np.clip(origin[:, 1] + m, 0, rows + 2 * m - size)
+        ox = np.minimum(np.maximum(origin[:, 0] + m, 0), cols + 2 * m - size)
+        oy = np.minimum(np.maximum(origin[:, 1] + m, 0), rows + 2 * m - size)
         origin = np.stack([ox - m, oy - m], axis=1)
-        H, W = self._padded.shape[1:]
-        ar = np.arange(size)
-        flat = (self._base + oy * W + ox)[:, None, None] + (ar[:, None] * W + ar)[None]
+        W = self._padded.shape[2]
+        if size not in self._offsets:  # flat offsets of a crop's pixels from its first, by crop side
+            ar = np.arange(size)
+            self._offsets[size] = (ar[:, None] * W + ar)[None]
+        flat = (self._base + oy * W + ox)[:, None, None] + self._offsets[size]
         crops = self._padded.reshape(-1).take(flat)
-        marker = np.stack(
-            [
-                self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
-                self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k]),
-            ],
-            axis=1,
-        )
+        if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
+            tr = self.truth
+            self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
+        marker = self._marker[:, k]
         if self.exposure_steps == 1:
-            crops += self._spot(marker, size, origin, self.brightness)
+            self._add_spot(crops, marker, origin, self.brightness)
             if self.decoys is not None:
-                crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+                self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
         else:
             sub_m, sub_d = self._sub_positions(k)
             for j in range(self.exposure_steps):
-                crops += self._spot(sub_m[j], size, origin, self.brightness / self.exposure_steps)
+                self._add_spot(crops, sub_m[j], origin, self.brightness / self.exposure_steps)
                 if sub_d is not None:
-                    crops += self._spot(sub_d[j], size, origin, self.decoy_brightness / self.exposure_steps)
+                    self._add_spot(crops, sub_d[j], origin, self.decoy_brightness / self.exposure_steps)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
+
+    # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
+    # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares)
+    BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
+
+    def _add_spot(self, crops, centers, origin, brightness) -> None:
+        """Add a spot centred at ``centers`` (n, 2) px to ``crops`` (n, size, size), first pixels at ``origin``, in place.
+
+        Large batches render only the box of pixels a spot can reach (centres within ``D/2 + 1/2`` of the spot's
+        centre, for the disc and the square alike) and add it where it overlaps its crop: every pixel gets the same
+        float32 number as rendering the whole crop (the spot functions are pixel by pixel; the other pixels get 0).
+        """
+        size = crops.shape[-1]
+        if crops.size <= self.BOX_MIN_PIXELS[self.spot]:
+            crops += self._spot(centers, size, origin, brightness)
+            return
+        n = crops.shape[0]
+        reach = self.diameter / 2 + 0.5
+        side = int(np.ceil(2 * reach)) + 2  # pixels floor(c - reach) .. floor(c - reach) + side - 1 cover c + reach
+        c = np.asarray(centers, dtype=float)
+        box0 = np.floor(c - reach).astype(np.int64)
+        patch = self._spot(c, side, box0, brightness)
+        ar = np.arange(side)
+        cx = (box0[:, 0] - origin[:, 0])[:, None] + ar  # box columns and rows within the crop, (n, side)
+        cy = (box0[:, 1] - origin[:, 1])[:, None] + ar
+        idx = (np.arange(n)[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
+        flat = crops.reshape(-1)
+        if cx.min() >= 0 and cy.min() >= 0 and cx.max() < size and cy.max() < size:
+            flat[idx] += patch  # indices unique: every box pixel is one crop pixel
+            return
+        ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
+        flat[idx[ok]] += patch[ok]
 
     def _spot(self, centers, size, origin, brightness) -> np.ndarray:
         if self.spot == "disc":
