@@ -27,3 +27,83 @@ def test_spots_rendered_box_by_box_equal_the_whole_crop_render_bit_for_bit(spot)
     c_in = origin + rng.uniform(6.0, size - 7.0, (n, 2))
     scene._add_spot(inside, c_in, origin, bright)
     assert np.array_equal(inside, crops + scene._spot(c_in, size, origin, bright))
+
+
+# --- claims= and the memo of measurement parts: the same numbers as the plain measurement ---------------------------
+
+from tvtrack.papers.p003_rotating_marker_tracker import memo, study  # noqa: E402
+
+TINY = study.Sizes(trials=2, fig1_s=1.5, fig2_s=1.5, transient_s=0.5, horizon_s=0.6)
+
+
+def _same(a, b, path=()):
+    """Bit-for-bit equality of nested measurement outputs (dicts, lists, arrays, Estimates, numbers)."""
+    if isinstance(a, dict):
+        assert set(a) == set(b), (path, set(a) ^ set(b))
+        for k in a:
+            _same(a[k], b[k], path + (k,))
+    elif isinstance(a, (list, tuple)):
+        assert len(a) == len(b), path
+        for i, (x, y) in enumerate(zip(a, b)):
+            _same(x, y, path + (i,))
+    elif isinstance(a, np.ndarray):
+        assert a.dtype == b.dtype and np.array_equal(a, b, equal_nan=True), path
+    elif hasattr(a, "__dataclass_fields__"):
+        _same(vars(a), vars(b), path)
+    elif isinstance(a, float) and np.isnan(a):
+        assert np.isnan(b), path
+    else:
+        assert a == b, (path, a, b)
+
+
+@pytest.mark.parametrize(
+    "measure, subsets",
+    [
+        (study.measure_tracking, [{"C003-1"}, {"C003-3"}, {"C003-4"}, {"C003-9"}, {"C003-2", "C003-4"}]),
+        (study.measure_interference, [{"C003-5"}, {"C003-10"}, {"C003-11"}, {"C003-12"}, {"C003-7", "C003-10"}]),
+    ],
+)
+def test_a_measurement_of_some_claims_equals_the_full_one_on_those_claims(measure, subsets):
+    config = {"motion_scale": 0.25}
+    memo.clear_cache()
+    full = measure(config, 3, TINY)
+    for sub in subsets:
+        memo.clear_cache()  # computed afresh, not taken from the full run
+        part = measure(config, 3, TINY, claims=frozenset(sub))
+        assert {k for k in part if not k.startswith("_")} == sub
+        _same({c: part[c] for c in sub}, {c: full[c] for c in sub})
+    memo.clear_cache()
+
+
+@pytest.mark.parametrize(
+    "measure, default, changed, reruns",
+    [
+        # the static baseline's gate changes only the static curves: one batch of runs, the rest reused
+        (study.measure_interference, {}, {"static_gate": "2D"}, 1),
+        # the compensation reading changes no run at all
+        (study.measure_interference, {}, {"compensation_reading": "two-sided"}, 0),
+        # the Fig. 2 law changes only the Fig. 2 runs; the edge form's normalisation only the two edge-form runs
+        (study.measure_tracking, {}, {"fig2_law": "omega 2 Hz"}, 1),
+        (study.measure_tracking, {}, {"edge_norm": "slew"}, 2),
+    ],
+)
+def test_reused_parts_give_the_numbers_of_a_fresh_measurement(monkeypatch, measure, default, changed, reruns):
+    memo.clear_cache()
+    fresh = measure(changed, 5, TINY)
+    memo.clear_cache()
+    measure(default, 5, TINY)  # the default's parts kept
+    calls = []
+    monkeypatch.setattr(study, "run_scenario", _counting(study.run_scenario, calls))
+    monkeypatch.setattr(study, "interference_runs", _counting(study.interference_runs, calls))
+    reused = measure(changed, 5, TINY)
+    assert len(calls) == reruns
+    _same(reused, fresh)
+    memo.clear_cache()
+
+
+def _counting(f, calls):
+    def g(*a, **k):
+        calls.append(1)
+        return f(*a, **k)
+
+    return g

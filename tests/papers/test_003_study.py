@@ -14,6 +14,14 @@ from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERF
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
 from tvtrack.verdicts import InBand, Ordering, is_undecided
 
+
+@pytest.fixture(autouse=True)
+def _fresh_memo():
+    """Tests here replace the runners: no measurement part kept from another test (study.clear_cache)."""
+    study.clear_cache()
+    yield
+    study.clear_cache()
+
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
 
 

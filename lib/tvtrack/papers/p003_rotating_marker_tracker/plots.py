@@ -168,7 +168,7 @@ def threshold_map_figure(
     rows += [
         (", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r)
         for r in ex.runs
-        if r.stage == "single" and set(r.changed(ex.default)) & set(entries)
+        if r.stage == "single" and set(r.changed(ex.default)) & set(entries) and "_map" in r.outputs
     ]
     fig, ax = plt.subplots(figsize=(7.5, 0.42 * len(rows) + 1.2))
     for j, (_, r) in enumerate(rows):
