@@ -22,6 +22,7 @@ def _fresh_memo():
     yield
     study.clear_cache()
 
+
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
 
 

@@ -12,6 +12,7 @@ Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = col
 from __future__ import annotations
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from scipy import ndimage
 
 from ...render import box_spot, disc_area, disc_spot
@@ -211,7 +212,8 @@ class RotatingMarkerScene:
         if residual is not None:
             self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
-        self._offsets: dict = {}  # gate_crops' pixel offsets by crop side
+        self._windows: dict = {}  # gate_crops' window views of the padded image by crop side
+        self._trials = np.arange(self.n)
         self._marker = None  # gate_crops' marker positions (n, T, 2), made on first use
         self.exposure_steps = int(exposure_steps)
         if self.exposure_steps > 1:
@@ -307,12 +309,9 @@ class RotatingMarkerScene:
         ox = np.minimum(np.maximum(origin[:, 0] + m, 0), cols + 2 * m - size)
         oy = np.minimum(np.maximum(origin[:, 1] + m, 0), rows + 2 * m - size)
         origin = np.stack([ox - m, oy - m], axis=1)
-        W = self._padded.shape[2]
-        if size not in self._offsets:  # flat offsets of a crop's pixels from its first, by crop side
-            ar = np.arange(size)
-            self._offsets[size] = (ar[:, None] * W + ar)[None]
-        flat = (self._base + oy * W + ox)[:, None, None] + self._offsets[size]
-        crops = self._padded.reshape(-1).take(flat)
+        if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
+            self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
+        crops = self._windows[size][self._trials, oy, ox]  # (n, size, size), a copy
         if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
             tr = self.truth
             self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
@@ -355,13 +354,14 @@ class RotatingMarkerScene:
         ar = np.arange(side)
         cx = (box0[:, 0] - origin[:, 0])[:, None] + ar  # box columns and rows within the crop, (n, side)
         cy = (box0[:, 1] - origin[:, 1])[:, None] + ar
-        idx = (np.arange(n)[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
-        flat = crops.reshape(-1)
-        if cx.min() >= 0 and cy.min() >= 0 and cx.max() < size and cy.max() < size:
-            flat[idx] += patch  # indices unique: every box pixel is one crop pixel
+        if cx[:, 0].min() >= 0 and cy[:, 0].min() >= 0 and cx[:, -1].max() < size and cy[:, -1].max() < size:
+            # every box inside its crop: add through a writeable window view (each trial writes its own crop)
+            win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)
+            win[np.arange(n), cy[:, 0], cx[:, 0]] += patch
             return
+        idx = (np.arange(n)[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
         ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
-        flat[idx[ok]] += patch[ok]
+        crops.reshape(-1)[idx[ok]] += patch[ok]  # indices unique: every box pixel inside is one crop pixel
 
     def _spot(self, centers, size, origin, brightness) -> np.ndarray:
         if self.spot == "disc":
