@@ -102,8 +102,17 @@ def quadrant_weights(origin, center, half, shape, dtype=np.float64):
     o = np.asarray(origin)
     c = np.asarray(center, dtype=float)
     rows, cols = shape
-    xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
-    yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
+    if rows == cols and np.ndim(half) == 0 and o.shape == c.shape:
+        # both axes and the centre and both gate edges in one pass (the frame loop's case): the same numbers
+        p = np.empty(c.shape + (3,))
+        p[..., 0], p[..., 1], p[..., 2] = c, c - half, c + half
+        cov = _coverage(p, rows, o[..., None])  # (..., 2 axes, 3 points, rows)
+        mid = cov[..., 0, :]
+        lo, hi = mid - cov[..., 1, :], cov[..., 2, :] - mid
+        xl, yl, xr, yu = lo[..., 0, :], lo[..., 1, :], hi[..., 0, :], hi[..., 1, :]
+    else:
+        xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
+        yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
     wy = np.empty(yl.shape[:-1] + (2, rows), dtype)  # sums and differences in float64, one rounding to dtype
     np.add(yl, yu, out=wy[..., 0, :])
     np.subtract(yu, yl, out=wy[..., 1, :])

@@ -305,10 +305,10 @@ class RotatingMarkerScene:
         origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
         m = self.MARGIN
         rows, cols = self.image_shape
-        inside = (c[:, 0] >= 0) & (c[:, 0] <= cols - 1) & (c[:, 1] >= 0) & (c[:, 1] <= rows - 1)
-        ox = np.minimum(np.maximum(origin[:, 0] + m, 0), cols + 2 * m - size)
-        oy = np.minimum(np.maximum(origin[:, 1] + m, 0), rows + 2 * m - size)
-        origin = np.stack([ox - m, oy - m], axis=1)
+        inside = ((c >= 0) & (c <= (cols - 1, rows - 1))).all(axis=1)
+        o = np.minimum(np.maximum(origin + m, 0), (cols + 2 * m - size, rows + 2 * m - size))  # (x, y) in the padding
+        origin = o - m
+        ox, oy = o[:, 0], o[:, 1]
         if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
             self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
         crops = self._windows[size][self._trials, oy, ox]  # (n, size, size), a copy
