@@ -351,17 +351,21 @@ class RotatingMarkerScene:
         c = np.asarray(centers, dtype=float)
         box0 = np.floor(c - reach).astype(np.int64)
         patch = self._spot(c, side, box0, brightness)
-        ar = np.arange(side)
-        cx = (box0[:, 0] - origin[:, 0])[:, None] + ar  # box columns and rows within the crop, (n, side)
-        cy = (box0[:, 1] - origin[:, 1])[:, None] + ar
-        if cx[:, 0].min() >= 0 and cy[:, 0].min() >= 0 and cx[:, -1].max() < size and cy[:, -1].max() < size:
-            # every box inside its crop: add through a writeable window view (each trial writes its own crop)
-            win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)
-            win[np.arange(n), cy[:, 0], cx[:, 0]] += patch
+        rel = box0 - origin  # (n, 2): each box's first pixel within its crop
+        inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
+        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
+        if inside.all():
+            win[np.arange(n), rel[:, 1], rel[:, 0]] += patch
             return
-        idx = (np.arange(n)[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
-        ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
-        crops.reshape(-1)[idx[ok]] += patch[ok]  # indices unique: every box pixel inside is one crop pixel
+        t = np.flatnonzero(inside)
+        win[t, rel[t, 1], rel[t, 0]] += patch[t]
+        part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
+        if part.size:  # boxes wholly outside add nothing
+            ar = np.arange(side)
+            cx, cy = rel[part, 0, None] + ar, rel[part, 1, None] + ar
+            idx = (part[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
+            ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
+            crops.reshape(-1)[idx[ok]] += patch[part][ok]  # indices unique: each box pixel inside is one crop pixel
 
     def _spot(self, centers, size, origin, brightness) -> np.ndarray:
         if self.spot == "disc":
