@@ -255,7 +255,7 @@ def bound_figure(cb: dict):
 
 
 def exposure_figure(res: dict, paper=(("rotating 1", 2.0), ("rotating 5", 3.0))):
-    """Frame-rate smear and matched exposure (:func:`.study.exposure_study`'s result): each marker's threshold with
+    """Frame-rate smear and matched exposure (:func:`.beyond.exposure_study`'s result): each marker's threshold with
     an instant and an integrated exposure at the same frame rate; the caption says which thresholds move."""
     keys = list(res["instant"]["thresholds"])
     fig, ax = plt.subplots(figsize=(7.0, 0.45 * len(keys) + 1.4))

@@ -32,10 +32,7 @@ from .memo import clear_cache, memo, scenario_key
 from .scene import (
     Scenario,
     interference_runs,
-    median_residual,
-    place_interferers,
     run_scenario,
-    scenario_truth,
     state_errors,
 )
 from .estimators import (  # noqa: F401 (re-exported: moved from this module)
@@ -74,8 +71,6 @@ __all__ = [
     "measure_tracking",
     "measure_interference",
     "clear_cache",
-    "exposure_study",
-    "median_example",
 ]
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
@@ -573,53 +568,3 @@ def _mechanisms(lost, met) -> dict:
         **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
         "none (drift)": int((~m.any(axis=1)).sum()),
     }
-
-
-# ----------------------------------------------------------------------------------------------------------------
-# beyond the paper: frame-rate smear, matched exposure of the static baseline, temporal-median compensation
-
-
-def exposure_study(seed: int, sizes: Sizes, sizes_i: Sizes, fps: float) -> dict:
-    """Frame-rate smear (card 8.5) and the static baseline at matched exposure, at frame rate ``fps``.
-
-    Both exposure models on the same draws: ``"instant"`` (the marker sampled at the frame time) and ``"integrated"``
-    (the sensor integrates over the frame, so the rotating marker is smeared along the arc ``2 pi f_rot r / fps`` it
-    turns in a frame, while the static baseline's emitter, held still, keeps its spot: the same spot energy per frame,
-    sensor noise and exposure model for both markers, i.e. matched exposure).
-
-    Returns
-    -------
-    dict
-        ``{exposure: {"x_r_rms_px": Estimate (Fig. 1 RMS x_r error, px), "thresholds": {"rotating 1", "rotating 5",
-        "static 1", "static 5"}: Estimate (the bound each threshold's grid censoring certifies, SIR)}}`` and
-        ``"arc_px"``: the marker's arc per frame (px).
-    """
-    out = {}
-    for e in ("instant", "integrated"):
-        cfg = {"fps": float(fps), "exposure": e}
-        out[e] = {
-            "x_r_rms_px": measure_tracking(cfg, seed, sizes)["C003-1"]["x_r"],
-            "thresholds": measure_interference(cfg, seed, sizes_i)["_map_bound"],
-        }
-    sc = scenario({"fps": float(fps)}, sizes)
-    out["arc_px"] = float(sc.omega0 * sc.radius / sc.fps)
-    return out
-
-
-def median_example(seed: int, sc: Scenario) -> dict:
-    """One trial of the temporal-median compensation (card 8.5) for :func:`.plots.median_figure`: the truth, the
-    interferers about its start and the residual the median of the first ``sc.median_revolutions`` revolutions leaves
-    (:func:`.scene.median_residual`; the static scene cancels, so the interferers leave nothing).
-
-    Returns
-    -------
-    dict
-        ``residual`` (rows, cols), ``truth`` (one trial), ``interferers`` (count, 2) px, ``n_frames``, ``noise_std``.
-    """
-    rng = _rng(50, seed)
-    n_frames = int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz))
-    truth = scenario_truth(rng, 1, replace(sc, duration_s=max(sc.duration_s, (n_frames + 1) / sc.fps)))
-    q = place_interferers(rng, 1, sc.n_interferers, truth.center[:, 0], sc.radius)
-    shape = (sc.image_size, sc.image_size)
-    res = median_residual(rng, truth, n_frames, shape, sc.spot, sc.diameter, sc.brightness, sc.noise_std)
-    return dict(residual=res[0], truth=truth, interferers=q[0], n_frames=n_frames, noise_std=sc.noise_std)
