@@ -19,6 +19,15 @@ of it NumPy call overhead; at 240 trials ~1.5 ms per step, mostly the gathers. A
 per-step overhead (~0.15-0.2 s per 500-frame batch, ~10-20 % of a 240-trial run) and little of the gathers; the
 background generation, the larger share, gains nothing from a JIT (it is already one scipy call) but could be drawn
 once per scene and shared across the configurations that do not change it (common random numbers).
+
+Per configuration, 2026-11-28 (issue 43; CPU s of one process, paper sizes, load 5-8): ``measure_interference`` at
+the default 4.7 s (6.3 s before: window-view gathers, spot boxes, one-pass quadrant weights, all bit for bit), of
+which the rotating and the static pairs (96 runs each) 1.0 and 0.9 s, the two gate sizes 0.4 and 0.7 s, the decoy
+0.75 s, the uncompensated runs 0.45 s and the bandwidth pair 0.35 s; a frame step costs ~130 us of NumPy calls plus
+~3 us per run. ``measure_tracking`` 2.8 s (3.6 s before): six batches of 6-30 runs, each ~125 us per frame step of
+call overhead (edge form with pixel noise ~190 us). Across configurations the study memo (``.memo``) reruns only the
+parts a register change touches (static gate, decoy brightness, static form: one batch; compensation reading: none;
+Fig. 2 law: Fig. 2; edge normalisation: the two edge runs), and ``claims=`` skips the parts no asked claim reads.
 """
 
 import time
