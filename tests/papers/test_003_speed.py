@@ -29,6 +29,25 @@ def test_spots_rendered_box_by_box_equal_the_whole_crop_render_bit_for_bit(spot)
     assert np.array_equal(inside, crops + scene._spot(c_in, size, origin, bright))
 
 
+@pytest.mark.parametrize("spot", ["disc", "square"])
+@pytest.mark.parametrize("n", [6, 200])  # whole-crop and box-by-box rendering
+def test_spots_of_an_integrated_exposure_rendered_in_one_call_equal_one_call_each(spot, n):
+    rng = np.random.default_rng(5)
+    size, m = 26, 4
+    scene = RotatingMarkerScene.__new__(RotatingMarkerScene)
+    scene.spot, scene.diameter = spot, 8.0
+    crops = rng.normal(size=(n, size, size)).astype(np.float32)
+    origin = rng.integers(-50, 50, (n, 2))
+    centres = origin + rng.uniform(-12.0, size + 12.0, (m, n, 2))
+    bright = np.stack([np.full(n, 0.25), rng.uniform(0.1, 0.5, n)] * (m // 2))  # marker and decoy interleaved
+    one_by_one = crops.copy()
+    for j in range(m):
+        scene._add_spot(one_by_one, centres[j], origin, bright[j] if j % 2 else 0.25)
+    together = crops.copy()
+    scene._add_spot(together, centres, origin, bright)
+    assert np.array_equal(together, one_by_one)
+
+
 # --- claims= and the memo of measurement parts: the same numbers as the plain measurement ---------------------------
 
 from tvtrack.papers.p003_rotating_marker_tracker import memo, study  # noqa: E402

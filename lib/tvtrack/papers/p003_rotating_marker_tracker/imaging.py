@@ -227,11 +227,15 @@ class RotatingMarkerScene:
             if self.decoys is not None:
                 self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
         else:
-            sub_m, sub_d = self._sub_positions(k)
-            for j in range(self.exposure_steps):
-                self._add_spot(crops, sub_m[j], origin, self.brightness / self.exposure_steps)
-                if sub_d is not None:
-                    self._add_spot(crops, sub_d[j], origin, self.decoy_brightness / self.exposure_steps)
+            sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
+            steps = self.exposure_steps
+            b = np.full((steps, self.n), self.brightness / steps)
+            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
+                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, self.n, 2)
+                b = np.stack([b, np.broadcast_to(self.decoy_brightness / steps, b.shape)], axis=1).reshape(
+                    2 * steps, -1
+                )
+            self._add_spot(crops, sub_m, origin, b)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
@@ -241,23 +245,39 @@ class RotatingMarkerScene:
     BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
 
     def _add_spot(self, crops, centers, origin, brightness) -> None:
-        """Add a spot centred at ``centers`` (n, 2) px to ``crops`` (n, size, size), first pixels at ``origin``, in place.
+        """Add spots centred at ``centers`` (n, 2) px, or (m, n, 2): ``m`` spots per crop added one after the other
+        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place.
 
-        Large batches render only the box of pixels a spot can reach (centres within ``D/2 + 1/2`` of the spot's
-        centre, for the disc and the square alike) and add it where it overlaps its crop: every pixel gets the same
-        float32 number as rendering the whole crop (the spot functions are pixel by pixel; the other pixels get 0).
+        All the spots are rendered in one call (the spot functions are pixel by pixel: the same numbers as one call
+        each), then added in order. Large batches render only the box of pixels a spot can reach (centres within
+        ``D/2 + 1/2`` of the spot's centre, for the disc and the square alike) and add it where it overlaps its crop:
+        every pixel gets the same float32 number as rendering the whole crop (the other pixels get 0).
         """
-        size = crops.shape[-1]
+        n, size = crops.shape[0], crops.shape[-1]
+        c = np.asarray(centers, dtype=float)
+        m = 1 if c.ndim == 2 else c.shape[0]
+        if m > 1:  # one render of every spot: centres, origins and brightnesses flattened to (m n, ...)
+            c = c.reshape(m * n, 2)
+            origin = np.tile(origin, (m, 1))
+            brightness = np.broadcast_to(np.asarray(brightness, dtype=float), (m, n)).reshape(m * n)
         if crops.size <= self.BOX_MIN_PIXELS[self.spot]:
-            crops += self._spot(centers, size, origin, brightness)
+            spots = self._spot(c, size, origin, brightness)
+            for j in range(m):
+                crops += spots[j * n : (j + 1) * n]
             return
-        n = crops.shape[0]
         reach = self.diameter / 2 + 0.5
         side = int(np.ceil(2 * reach)) + 2  # pixels floor(c - reach) .. floor(c - reach) + side - 1 cover c + reach
-        c = np.asarray(centers, dtype=float)
         box0 = np.floor(c - reach).astype(np.int64)
         patch = self._spot(c, side, box0, brightness)
-        rel = box0 - origin  # (n, 2): each box's first pixel within its crop
+        rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
+        for j in range(m):
+            self._place(crops, patch[j * n : (j + 1) * n], rel[j * n : (j + 1) * n], side)
+
+    @staticmethod
+    def _place(crops, patch, rel, side: int) -> None:
+        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
+        within the crops, where they overlap."""
+        n, size = crops.shape[0], crops.shape[-1]
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
         win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
         if inside.all():
