@@ -126,3 +126,17 @@ def _counting(f, calls):
         return f(*a, **k)
 
     return g
+
+
+@pytest.mark.parametrize("config", [{}, {"exposure": "integrated", "decoy_brightness": "emitted"}])
+def test_the_decoy_riding_in_the_rotating_markers_batch_gets_the_runs_it_gets_alone(config):
+    sc = study.scenario(config, TINY)
+    crit, sirs, d = study.criterion(config, sc), study.SIR_GRID, 2 * sc.diameter
+    memo.clear_cache()
+    lost, met = study._curve(sc, sirs, 3, 7, crit, (1, 5, ("decoy", d)), True)
+    alone_r, met_r = study._curve(sc, sirs, 3, 7, crit, (1, 5), True)
+    alone_d, _ = study._curve(study.replace(sc, decoy_offset=d), sirs, 3, 7, crit)
+    assert np.array_equal(lost[:2], alone_r) and np.array_equal(met[:2], met_r)
+    assert np.array_equal(lost[2], alone_d)
+    assert lost[2].any() and not lost[2].all()  # a curve that tells the two apart
+    memo.clear_cache()

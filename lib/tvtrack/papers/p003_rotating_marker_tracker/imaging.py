@@ -421,11 +421,11 @@ def _check_blocks(blocks, n_generators: int, compensation: str) -> list:
     """The per-generator scene settings of :func:`build_scene` (one dict per generator), checked."""
     blocks = [{}] * n_generators if blocks is None else list(blocks)
     if len(blocks) != n_generators or any(
-        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
+        set(b) - {"kappa", "background_std", "corr_length", "n_interferers", "decoy_offset"} for b in blocks
     ):
         raise ValueError(
             "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
-            "corr_length, n_interferers"
+            "corr_length, n_interferers, decoy_offset"
         )
     if compensation not in COMPENSATIONS:
         raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")

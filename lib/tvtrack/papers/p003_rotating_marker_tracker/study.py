@@ -372,8 +372,10 @@ def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int
 
 def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=None, criteria: bool = False):
     """Loss indicators of ``n`` runs at each SIR (stream 10: common draws), shape (m, n); with ``counts``
-    (interferer numbers) one batch of blocks, shape (len(counts), m, n). With ``criteria`` also the loss criteria
-    each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker), shape (..., m, n, 3)."""
+    (interferer numbers, or ``("decoy", offset)``: no stationary interferer and the law-following decoy at that
+    offset, px) one batch of blocks, shape (len(counts), m, n); each block gets the runs it would get alone. With
+    ``criteria`` also the loss criteria each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker),
+    shape (..., m, n, 3)."""
     key = ("curve", scenario_key(sc), tuple(float(x) for x in sirs), n, seed, crit, counts and tuple(counts), criteria)
     return memo(key, lambda: _curve_runs(sc, sirs, n, seed, crit, counts, criteria))
 
@@ -381,7 +383,13 @@ def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=No
 def _curve_runs(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts, criteria: bool):
     """:func:`_curve`, computed."""
     k = 1 if counts is None else len(counts)
-    blocks = None if counts is None else [{"n_interferers": c} for c in counts]
+    blocks = (
+        None
+        if counts is None
+        else [
+            {"n_interferers": c} if isinstance(c, int) else {"n_interferers": 0, "decoy_offset": c[1]} for c in counts
+        ]
+    )
     runs = interference_runs([_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
     fl = first_loss(runs["miss"], crit, runs["inside"])
     shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
@@ -441,7 +449,10 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
     crit = criterion(config, base)
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
     curves, met = {}, {}
-    (curves["rotating", 1], curves["rotating", 5]), met["rotating"] = _curve(base, sirs, n, seed, crit, (1, 5), True)
+    # the decoy's runs (C003-12) ride in the rotating marker's batch as a third block: the same runs as alone
+    fam = (1, 5, ("decoy", 2 * D)) if "decoy" in need else (1, 5)
+    lost_r, met_r = _curve(base, sirs, n, seed, crit, fam, True)
+    curves["rotating", 1], curves["rotating", 5], met["rotating"] = lost_r[0], lost_r[1], met_r[:2]
     st = replace(base, rotating=False, gate_half=static_half, form=config.get("static_form", "quadrant"))
     if "static" in need:
         (curves["static", 1], curves["static", 5]), met["static"] = _curve(
@@ -453,7 +464,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
             g = replace(base, n_interferers=5, gate_half=gf * D / 2)
             curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
     if "decoy" in need:
-        curves["decoy"], _ = _curve(replace(base, decoy_offset=2 * D), sirs, n, seed, crit)
+        curves["decoy"] = lost_r[2]
     usirs = np.asarray(UNCOMPENSATED_GRID)
     if "uncompensated" in need:
         curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
