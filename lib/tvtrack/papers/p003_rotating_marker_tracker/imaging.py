@@ -270,19 +270,22 @@ class RotatingMarkerScene:
         box0 = np.floor(c - reach).astype(np.int64)
         patch = self._spot(c, side, box0, brightness)
         rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
-        for j in range(m):
-            self._place(crops, patch[j * n : (j + 1) * n], rel[j * n : (j + 1) * n], side)
-
-    @staticmethod
-    def _place(crops, patch, rel, side: int) -> None:
-        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
-        within the crops, where they overlap."""
-        n, size = crops.shape[0], crops.shape[-1]
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
         win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
-        if inside.all():
-            win[np.arange(n), rel[:, 1], rel[:, 0]] += patch
-            return
+        trials, every = np.arange(n), inside.all()
+        for j in range(m):
+            sl = slice(j * n, (j + 1) * n)
+            if every:
+                win[trials, rel[sl, 1], rel[sl, 0]] += patch[sl]
+            else:
+                self._place(crops, win, patch[sl], rel[sl], inside[sl], side)
+
+    @staticmethod
+    def _place(crops, win, patch, rel, inside, side: int) -> None:
+        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
+        within the crops, where they overlap (``win``: the crops' side x side windows; ``inside``: the boxes wholly
+        inside their crops)."""
+        size = crops.shape[-1]
         t = np.flatnonzero(inside)
         win[t, rel[t, 1], rel[t, 0]] += patch[t]
         part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
