@@ -266,8 +266,9 @@ class RotatingMarkerScene:
                 crops += spots[j * n : (j + 1) * n]
             return
         reach = self.diameter / 2 + 0.5
-        side = int(np.ceil(2 * reach)) + 2  # pixels floor(c - reach) .. floor(c - reach) + side - 1 cover c + reach
-        box0 = np.floor(c - reach).astype(np.int64)
+        # pixels up to c - reach and from c + reach get nothing: floor(c - reach) + 1 .. + side - 1 hold the rest
+        side = int(np.ceil(2 * reach))
+        box0 = np.floor(c - reach).astype(np.int64) + 1
         patch = self._spot(c, side, box0, brightness)
         rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
