@@ -240,9 +240,10 @@ class RotatingMarkerScene:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
 
-    # crops holding more pixels than this get their spots rendered box by box: faster from about 18 disc or 40
-    # square-spot crops of 26 x 26 px (measured: 56 against 113 us a frame for 96 discs, 66 against 83 for squares)
-    BOX_MIN_PIXELS = {"disc": 12000, "square": 27000}
+    # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
+    # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares;
+    # lower thresholds, faster per call with the 9-pixel box, made the tracking study's 24-30-run batches slower)
+    BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
 
     def _add_spot(self, crops, centers, origin, brightness) -> None:
         """Add spots centred at ``centers`` (n, 2) px, or (m, n, 2): ``m`` spots per crop added one after the other
