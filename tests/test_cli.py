@@ -284,6 +284,8 @@ def test_the_inline_viewer_loads_the_bundled_assets_offline():
 
 
 def test_report_and_site_of_a_profile_without_runs_are_one_line(tmp_path):
-    assert_one_line_error(tvtrack("report", "--profile", "nope"), "no runs at the nope profile", "PROFILE=nope")
-    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "--profile", "nope"), "no runs at the nope profile")
+    # both name the command that makes them, for all notebooks and for one
+    one = "python -m tvtrack reproduce --profile nope --only NAME"
+    assert_one_line_error(tvtrack("report", "--profile", "nope"), "no runs at the nope profile", "PROFILE=nope", one)
+    assert_one_line_error(tvtrack("site", "--runs", tmp_path, "--profile", "nope"), "no runs at the nope profile", one)
     assert not (tmp_path / "site-nope").exists()
