@@ -79,3 +79,48 @@ def test_cached_tuning_equals_a_cold_tuning_bit_for_bit():
     # another world is tuned afresh: the weaker acceleration unit changes the training truth
     other = comparators.tuned_comparators(*key, 1e-2, 1.0, GRIDS, accel_unit="el/frame per s")
     assert other != cold
+
+
+SIZES = dict(
+    n_trials=40,
+    n_fa_runs=600,
+    fa_duration_s=12.0,
+    sigma_eps=1.0,
+    n_train=5,
+    n_tradeoff_trials=12,
+    train_seed=9,
+    kb3_grid=[20, 100, 200],
+    loss_grid_s=[6.0, 12.0],
+    grids=dict(GRIDS),
+    prediction_rms=3.0,
+)
+
+
+@pytest.fixture(scope="module")
+def sizes():
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
+
+    return SIZES | {"defaults": build_register().default()}
+
+
+@pytest.mark.parametrize("cfg", [{}, {"alternative": "step", "noise": "Student t, 3 dof"}])
+def test_detection_measures_only_the_asked_claims_and_each_as_in_a_full_run(cfg, sizes):
+    full = study.measure_detection(cfg, 5, sizes)
+    assert set(full) == {"C001-1", "C001-2", "C001-3"}
+    for asked in ({"C001-1"}, {"C001-2"}, {"C001-3"}, {"C001-1", "C001-3"}):
+        got = study.measure_detection(cfg, 5, sizes, claims=frozenset(asked))
+        assert set(got) == asked
+        assert repr(got) == repr({k: full[k] for k in full if k in asked})  # bit for bit (repr keeps NaNs)
+    assert study.measure_detection(cfg, 5, sizes, claims=frozenset({"C001-4"})) == {}
+
+
+def test_the_other_measurements_take_claims(sizes):
+    full = study.measure_curves({}, 0, sizes)
+    for cid in ("C001-7", "C001-8"):
+        assert repr(study.measure_curves({}, 0, sizes, claims=frozenset({cid}))) == repr({cid: full[cid]})
+    assert study.measure_tradeoff({}, 3, sizes, claims=frozenset({"C001-1"})) == {}
+    assert repr(study.measure_tradeoff({}, 3, sizes, claims=frozenset({"C001-4"}))) == repr(
+        study.measure_tradeoff({}, 3, sizes)
+    )
+    assert study.measure_spherical({}, 0, sizes, claims=frozenset()) == {}
+    assert set(study.measure_spherical({}, 0, sizes, claims=None)) == {"C001-9"}
