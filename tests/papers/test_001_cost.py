@@ -124,3 +124,18 @@ def test_the_other_measurements_take_claims(sizes):
     )
     assert study.measure_spherical({}, 0, sizes, claims=frozenset()) == {}
     assert set(study.measure_spherical({}, 0, sizes, claims=None)) == {"C001-9"}
+
+
+def test_vd_filter_over_a_grid_of_process_noises_equals_one_run_per_setting():
+    from tvtrack.filters.vdf import vd_filter_run
+
+    sc, zz = _series(5, seed=3)
+    z = np.where(np.isnan(zz), 0.0, zz)
+    qs = (1e-6, 1e-4, 1e-2)
+    grid = vd_filter_run(np.broadcast_to(z, (3,) + z.shape), sc.visible, 0.0, np.reshape(qs, (3, 1, 1)), 1.0, 5, 8.0)
+    assert (grid.detection_frame >= 0).any()  # the restart branch runs
+    for i, q in enumerate(qs):
+        one = vd_filter_run(z, sc.visible, 0.0, q, 1.0, 5, 8.0)
+        assert np.array_equal(grid.x[i], one.x) and np.array_equal(grid.detection_frame[i], one.detection_frame)
+    with pytest.raises(ValueError):
+        vd_filter_run(z, sc.visible, 0.0, np.full((5, 2), -1.0), 1.0, 5, 8.0)

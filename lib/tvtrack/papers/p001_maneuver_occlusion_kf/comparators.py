@@ -173,11 +173,19 @@ def _vd_statistic(world: tuple, q_ca: float, window: int) -> np.ndarray:
 @functools.lru_cache(maxsize=64)
 def _scores_vd(world: tuple, grids: tuple, alpha: float) -> dict:
     """``{setting: {span: training mean square}}`` of the VD filter, its threshold the ``1 - alpha`` quantile of
-    its statistic before the onset."""
+    its statistic before the onset; every q_CA of a window in one batched run (the per-setting numbers, tested bit
+    for bit), the settings in the grid's order (q_CA, then window)."""
     g = _grids(grids)
-    vd_thr = {w: float(np.quantile(_vd_statistic(world, g["vdf_q_ca"][0], w), 1 - alpha)) for w in g["vdf_windows"]}
-    settings = [(q, w, vd_thr[w]) for q, w in itertools.product(g["vdf_q_ca"], g["vdf_windows"])]
-    return {st: _score(world, "VD filter", st) for st in settings}
+    sc, z, truth = _training(world)
+    qs = tuple(g["vdf_q_ca"])
+    by_window = {}
+    for w in g["vdf_windows"]:
+        thr = float(np.quantile(_vd_statistic(world, qs[0], w), 1 - alpha))
+        zb = np.broadcast_to(z, (len(qs),) + z.shape)
+        q_b = np.asarray(qs, float).reshape((-1,) + (1,) * z.ndim)[..., 0]
+        x = vd_filter_run(zb, sc.visible, 0.0, q_b, world[3], int(w), thr).x[..., 0]
+        by_window[w] = (thr, [{k: float(v.mean()) for k, v in _span_ms(xq, sc, truth).items()} for xq in x])
+    return {(q, w, by_window[w][0]): by_window[w][1][i] for i, q in enumerate(qs) for w in g["vdf_windows"]}
 
 
 def _on_edge(name: str, best: tuple, g: dict) -> bool:
