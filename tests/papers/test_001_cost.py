@@ -139,3 +139,11 @@ def test_vd_filter_over_a_grid_of_process_noises_equals_one_run_per_setting():
         assert np.array_equal(grid.x[i], one.x) and np.array_equal(grid.detection_frame[i], one.detection_frame)
     with pytest.raises(ValueError):
         vd_filter_run(z, sc.visible, 0.0, np.full((5, 2), -1.0), 1.0, 5, 8.0)
+
+
+def test_detector_benchmark_with_no_manoeuvre_runs_shorter_than_the_loss_time(sizes):
+    """fa_duration_s = 8 s (its range's floor) against the loss at 12 s: the benchmark failed (null statistic
+    shorter than the scenario runs); the null runs now last at least to the loss, the same as 12 s."""
+    a = study.detector_benchmark({}, 2, sizes | {"fa_duration_s": 8.0, "n_fa_runs": 300})
+    b = study.detector_benchmark({}, 2, sizes | {"fa_duration_s": 12.0, "n_fa_runs": 300})
+    assert repr(a) == repr(b)

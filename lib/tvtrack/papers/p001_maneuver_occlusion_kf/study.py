@@ -491,7 +491,8 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     """Delay against per-run false alarms of the paper's |S| (several half-windows), Q and three innovation tests
     (chi-square over n frames, two-sided CUSUM with drift 0.5, the Willsky-Jones GLR for a velocity jump) on the
     TRACK2 filter: thresholds from no-manoeuvre runs of ``fa_duration_s`` for each per-run false-alarm target,
-    median first-alarm delay after the onset on the scenario's runs up to the loss (card §8.1).
+    median first-alarm delay after the onset on the scenario's runs up to the loss (card §8.1). The no-manoeuvre
+    runs last at least as long as those (a shorter ``fa_duration_s`` has no null statistic for the last frames).
 
     Every detector is armed by the configuration's arming rule for its own window (:func:`arming_count`), so each
     tests before the onset; a detector first armed after the onset would "detect" at its first test in every run.
@@ -517,7 +518,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)
     rng = np.random.default_rng(seed)
     Tl = sc.f_loss
-    T0 = int(round(sizes["fa_duration_s"] * sc.fps))
+    T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), Tl)  # the null runs at least as long as the alternative's
     scale = FPS_REF / sc.fps
     z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)
     z0 = measurements(MOTION[0][0] * scale * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
