@@ -240,6 +240,8 @@ def shown_label(claim: Mapping) -> str:
     if not record:
         return "—"
     label = str(record.get("label", "—"))
+    if label == "-":  # no part decided at the default: nothing to label (labels.NO_PART_LABEL)
+        return "—"
     if record.get("provisional") and label in ("robust", "unexplored"):
         return PROVISIONAL
     return label
