@@ -147,3 +147,38 @@ def test_detector_benchmark_with_no_manoeuvre_runs_shorter_than_the_loss_time(si
     a = study.detector_benchmark({}, 2, sizes | {"fa_duration_s": 8.0, "n_fa_runs": 300})
     b = study.detector_benchmark({}, 2, sizes | {"fa_duration_s": 12.0, "n_fa_runs": 300})
     assert repr(a) == repr(b)
+
+
+def test_the_detection_exploration_asking_for_claims_keeps_every_record(sizes):
+    """The explorer asks measure_detection only for the claims a run needs (claims=): every claim's record (parts,
+    verdicts, flips, label) is the one of an exploration that measures every claim in every run."""
+    import functools
+    import json
+
+    from tvtrack.explore import explore
+    from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
+
+    sz = sizes | {"n_trials": 30, "n_fa_runs": 300}
+    ids = GROUPS["detection"]
+
+    def every_claim(config, seed):
+        return study.measure_detection(config, seed, sz)
+
+    records = []
+    for fn in (functools.partial(study.measure_detection, sizes=sz), every_claim):
+        ex = explore(
+            fn,
+            group_register(build_register(), "detection"),
+            {c: RULES[c] for c in ids},
+            depends=DEPENDS,
+            seed=7,
+            replicates=3,
+            joint=4,
+        )
+        rec = {c: json.loads(json.dumps(ex.record(c, RULES[c]), default=repr)) for c in ids}
+        for r in rec.values():
+            for k in ("timing", "measures_claims_asked"):
+                r["design"].pop(k, None)
+        records.append(rec)
+    assert records[0] == records[1]
