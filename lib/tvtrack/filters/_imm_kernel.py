@@ -26,117 +26,128 @@ COASTS = {"mix": 0, "frozen": 1, "mode": 2}
 _compiled = {}
 
 
+@jit.njit
+def _mix(mu, M, coast, present, xs, Ps, cbar, xm, Pm, Mt, w):
+    """Step 1 of :func:`imm_run` for one trial: ``mu`` (r,) (the most probable mode's alone when coasting with
+    ``coast == 2``), ``cbar`` (r,), the mixed states ``xm`` (r, n) and covariances ``Pm`` (r, n, n); ``Mt``
+    (r, r) and ``w`` (r,) are work space."""
+    r, n = xs.shape
+    for i in range(r):
+        for j in range(r):
+            Mt[i, j] = M[i, j] if (coast == 0 or present) else (1.0 if i == j else 0.0)
+    if coast == 2 and not present:
+        top = 0
+        for j in range(1, r):
+            if mu[j] > mu[top]:
+                top = j
+        for j in range(r):
+            mu[j] = 1.0 if j == top else 0.0
+    for j in range(r):
+        s = 0.0
+        for i in range(r):
+            s += mu[i] * Mt[i, j]
+        cbar[j] = s
+    for j in range(r):
+        for i in range(r):
+            w[i] = mu[i] * Mt[i, j] / cbar[j] if cbar[j] > 0 else (1.0 if i == j else 0.0)
+        for a in range(n):
+            s = 0.0
+            for i in range(r):
+                s += w[i] * xs[i, a]
+            xm[j, a] = s
+        for a in range(n):
+            for c in range(n):
+                s = 0.0
+                for i in range(r):
+                    s += w[i] * (Ps[i, a, c] + (xs[i, a] - xm[j, a]) * (xs[i, c] - xm[j, c]))
+                Pm[j, a, c] = s
+
+
+@jit.njit
+def _predict(Fs, Qs, xm, Pm, xs, Ps, tmp):
+    """Step 2 for one trial: ``xs = F xm``, ``Ps = sym(F Pm F^T + Q)`` per mode (``Pm`` overwritten; ``tmp``
+    (n, n) work space)."""
+    r, n = xs.shape
+    for j in range(r):
+        for a in range(n):
+            s = 0.0
+            for c in range(n):
+                s += Fs[j, a, c] * xm[j, c]
+            xs[j, a] = s
+        for a in range(n):
+            for c in range(n):
+                s = 0.0
+                for d in range(n):
+                    s += Fs[j, a, d] * Pm[j, d, c]
+                tmp[a, c] = s
+        for a in range(n):
+            for c in range(n):
+                s = 0.0
+                for d in range(n):
+                    s += tmp[a, d] * Fs[j, c, d]
+                Pm[j, a, c] = s + Qs[j, a, c]
+        for a in range(n):
+            for c in range(n):
+                Ps[j, a, c] = 0.5 * (Pm[j, a, c] + Pm[j, c, a])
+
+
+@jit.njit
+def _update(z, R, cbar, mu, xs, Ps, K, tmp, logw):
+    """Steps 3-4 for one trial with a measurement ``z`` of the position: Joseph-form update of each mode
+    (``H = e1``), its log-likelihood and the mode probabilities ``mu``; ``K`` (n,), ``tmp`` (n, n) and ``logw``
+    (r,) are work space."""
+    r, n = xs.shape
+    for j in range(r):
+        S = Ps[j, 0, 0] + R
+        nu = z - xs[j, 0]
+        for a in range(n):
+            K[a] = Ps[j, a, 0] / S
+        for a in range(n):
+            xs[j, a] += K[a] * nu
+        # (I - K H) P (I - K H)^T + K R K^T, H = e1: row a of (I - K H) P is P[a] - K[a] P[0]
+        for a in range(n):
+            for c in range(n):
+                tmp[a, c] = Ps[j, a, c] - K[a] * Ps[j, 0, c]
+        for a in range(n):
+            for c in range(a, n):
+                Ps[j, a, c] = 0.5 * (
+                    (tmp[a, c] - tmp[a, 0] * K[c] + K[a] * R * K[c]) + (tmp[c, a] - tmp[c, 0] * K[a] + K[c] * R * K[a])
+                )
+                Ps[j, c, a] = Ps[j, a, c]
+        logw[j] = np.log(max(cbar[j], 1e-300)) + -0.5 * (nu * nu / S + np.log(S) + np.log(2 * np.pi))
+    top = -np.inf
+    for j in range(r):
+        top = max(top, logw[j])
+    tot = 0.0
+    for j in range(r):
+        logw[j] = np.exp(logw[j] - top)
+        tot += logw[j]
+    for j in range(r):
+        mu[j] = logw[j] / tot
+
+
 def kernel_python(zs, Fs, Qs, R, M, x0, P0, mu0, coast, out):
     """Combined posterior states ``out`` (B, T, n) of the IMM on scalar position measurements ``zs`` (B, T) (NaN:
     missing); ``Fs, Qs`` (r, n, n), ``R`` the measurement variance, ``M`` (r, r), ``x0`` (n,), ``P0`` (n, n),
-    ``mu0`` (r,), ``coast`` a code of :data:`COASTS`. The statements follow :func:`imm_run` line by line."""
+    ``mu0`` (r,), ``coast`` a code of :data:`COASTS`. The statements follow :func:`imm_run` step by step
+    (:func:`_mix`, :func:`_predict`, :func:`_update`)."""
     B, T = zs.shape
     r, n = Fs.shape[0], Fs.shape[1]
     for b in range(B):
-        xs = np.empty((r, n))
-        Ps = np.empty((r, n, n))
+        xs, Ps = np.empty((r, n)), np.empty((r, n, n))
+        xm, Pm = np.empty((r, n)), np.empty((r, n, n))
         for j in range(r):
             xs[j] = x0
             Ps[j] = P0
-        mu = mu0.copy()
-        Mt = np.empty((r, r))
-        cbar = np.empty(r)
-        omega = np.empty((r, r))
-        xm = np.empty((r, n))
-        Pm = np.empty((r, n, n))
-        tmp = np.empty((n, n))
-        K = np.empty(n)
-        loglik = np.empty(r)
+        mu, cbar = mu0.copy(), np.empty(r)
+        Mt, w, K, tmp = np.empty((r, r)), np.empty(r), np.empty(n), np.empty((n, n))
         for t in range(T):
             z = zs[b, t]
             present = np.isfinite(z)
-            # 1. mixing
-            for i in range(r):
-                for j in range(r):
-                    Mt[i, j] = M[i, j] if (coast == 0 or present) else (1.0 if i == j else 0.0)
-            if coast == 2 and not present:
-                top = 0
-                for j in range(1, r):
-                    if mu[j] > mu[top]:
-                        top = j
-                for j in range(r):
-                    mu[j] = 1.0 if j == top else 0.0
-            for j in range(r):
-                s = 0.0
-                for i in range(r):
-                    s += mu[i] * Mt[i, j]
-                cbar[j] = s
-            for i in range(r):
-                for j in range(r):
-                    if cbar[j] > 0:
-                        omega[i, j] = mu[i] * Mt[i, j] / cbar[j]
-                    else:
-                        omega[i, j] = 1.0 if i == j else 0.0
-            for j in range(r):
-                for a in range(n):
-                    s = 0.0
-                    for i in range(r):
-                        s += omega[i, j] * xs[i, a]
-                    xm[j, a] = s
-                for a in range(n):
-                    for c in range(n):
-                        s = 0.0
-                        for i in range(r):
-                            s += omega[i, j] * (Ps[i, a, c] + (xs[i, a] - xm[j, a]) * (xs[i, c] - xm[j, c]))
-                        Pm[j, a, c] = s
-            # 2. mode-matched prediction: x = F x, P = sym(F P F^T + Q)
-            for j in range(r):
-                F = Fs[j]
-                for a in range(n):
-                    s = 0.0
-                    for c in range(n):
-                        s += F[a, c] * xm[j, c]
-                    xs[j, a] = s
-                for a in range(n):
-                    for c in range(n):
-                        s = 0.0
-                        for d in range(n):
-                            s += F[a, d] * Pm[j, d, c]
-                        tmp[a, c] = s
-                for a in range(n):
-                    for c in range(n):
-                        s = 0.0
-                        for d in range(n):
-                            s += tmp[a, d] * F[c, d]
-                        Pm[j, a, c] = s + Qs[j, a, c]
-                for a in range(n):
-                    for c in range(n):
-                        Ps[j, a, c] = 0.5 * (Pm[j, a, c] + Pm[j, c, a])
-            # 3. update (Joseph form) and likelihoods; 4. mode probabilities
+            _mix(mu, M, coast, present, xs, Ps, cbar, xm, Pm, Mt, w)
+            _predict(Fs, Qs, xm, Pm, xs, Ps, tmp)
             if present:
-                for j in range(r):
-                    S = Ps[j, 0, 0] + R
-                    nu = z - xs[j, 0]
-                    for a in range(n):
-                        K[a] = Ps[j, a, 0] / S
-                    for a in range(n):
-                        xs[j, a] += K[a] * nu
-                    # (I - K H) P (I - K H)^T + K R K^T, H = e1: row a of (I - K H) P is P[a] - K[a] P[0]
-                    for a in range(n):
-                        for c in range(n):
-                            tmp[a, c] = Ps[j, a, c] - K[a] * Ps[j, 0, c]
-                    for a in range(n):
-                        for c in range(n):
-                            Pm[j, a, c] = tmp[a, c] - tmp[a, 0] * K[c] + K[a] * R * K[c]
-                    for a in range(n):
-                        for c in range(n):
-                            Ps[j, a, c] = 0.5 * (Pm[j, a, c] + Pm[j, c, a])
-                    loglik[j] = -0.5 * (nu * nu / S + np.log(S) + np.log(2 * np.pi))
-                top = -np.inf
-                for j in range(r):
-                    loglik[j] = np.log(max(cbar[j], 1e-300)) + loglik[j]
-                    top = max(top, loglik[j])
-                tot = 0.0
-                for j in range(r):
-                    loglik[j] = np.exp(loglik[j] - top)
-                    tot += loglik[j]
-                for j in range(r):
-                    mu[j] = loglik[j] / tot
+                _update(z, R, cbar, mu, xs, Ps, K, tmp, w)
             else:
                 for j in range(r):
                     mu[j] = cbar[j]
@@ -148,6 +159,7 @@ def kernel_python(zs, Fs, Qs, R, M, x0, P0, mu0, coast, out):
 
 
 def _kernel():
+    """:func:`kernel_python` compiled (with its steps) on its first call in this process."""
     if "imm" not in _compiled:
         _compiled["imm"] = jit.njit(kernel_python)
     return _compiled["imm"]
