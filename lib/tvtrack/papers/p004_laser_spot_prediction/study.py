@@ -35,7 +35,9 @@ from .prediction_study import (
     CLASSICAL,
     FADING,
     PAPER,
+    PARTS,
     SINGER,
+    Comparison,
     ComparisonSetup,
     WINDOW_EXTENSION,
     _tuned,
@@ -247,6 +249,7 @@ class StudyRun:
     fixed_forecasts: dict | None = None
     folds: list | None = None
     draws: int = 0  # sets of paths drawn until the spot stayed on the sensor (0: the paths were given)
+    parts: frozenset = frozenset()  # the methods run besides the paper's filter (:data:`ALL_PARTS`)
 
 
 def _streams(seed: int):
@@ -428,35 +431,87 @@ def _setup(config: dict, size: StudySize) -> ComparisonSetup:
     )
 
 
-def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
-    """Every method on ``run``'s measured series at ``config``'s horizon and lags (re-tuned for it)."""
+#: What one run can compute beyond the scene and the paper's filter: the comparison's parts
+#: (:data:`.prediction_study.PARTS`) and the optimal predictor of the generator's own model (figures only).
+ALL_PARTS = PARTS | {"optimal"}
+#: The parts each claim's value reads (the paper's filter is always run with the methods; C004-4, C004-5, C004-8
+#: and :data:`CENTROID` read no method).
+CLAIM_PARTS = {
+    "C004-1": frozenset(),
+    "C004-2": frozenset(),
+    "C004-3": frozenset({"classical"}),
+    "C004-3b": frozenset({"learned"}),
+    "C004-6": frozenset(),
+}
+#: Every value :func:`claim_values` can return.
+CLAIM_KEYS = ("C004-1", "C004-2", "C004-3", "C004-3b", "C004-4", "C004-5", "C004-6", "C004-8", CENTROID)
+
+
+def parts_for(claims) -> frozenset | None:
+    """The method parts the ``claims`` read (None: no method at all; ``claims`` None: every claim)."""
+    asked = CLAIM_PARTS if claims is None else [c for c in claims if c in CLAIM_PARTS]
+    if not asked:
+        return None
+    return frozenset().union(*(CLAIM_PARTS[c] for c in asked))
+
+
+def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRun:
+    """The methods on ``run``'s measured series at ``config``'s horizon and lags (re-tuned for it): the paper's
+    filter and the ``parts`` of :data:`ALL_PARTS` (each part's numbers are the same whichever others run: only
+    the networks draw, from their own stream)."""
     if not np.all(np.isfinite(run.z)):
         raise ValueError("the spot was never measured on some path: nothing to predict")
+    parts = frozenset(parts)
     size = run.size
     s = _setup(config, size)
     m = s.steps
     folds = pr.path_folds(size.n_paths, size.n_folds)
-    cmp = compare_methods(run.z, run.z_meas, folds, s, np.random.default_rng(_streams(seed)[3]))
+    rng = np.random.default_rng(_streams(seed)[3])
+    cmp = compare_methods(run.z, run.z_meas, folds, s, rng, parts=parts & PARTS)
     fc = dict(cmp.forecasts)
-    fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, m)
+    if "optimal" in parts:
+        noise = run.centroid_rms**2 + run.jitter_rms**2
+        fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, noise, m)
     fixed = dict(fc)
     fixed[PAPER] = pr.growing_memory_forecast(run.z, m, s.order, s.fixed_floor)
-    fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
-    fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
-    fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
-    # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
-    # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
-    # natural cubic spline, extended linearly beyond its last knot
-    readings = {
-        LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
-        NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
-    }
-    for name, make in readings.items():
-        fc[name], _, cmp.chosen[name], _, _ = _tuned(
-            window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
-        )
-        fixed[name] = make(s.fixed_window)
-    return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
+    if "classical" in parts:
+        fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
+        fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
+        fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
+        # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
+        # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
+        # natural cubic spline, extended linearly beyond its last knot
+        readings = {
+            LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
+            NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
+        }
+        for name, make in readings.items():
+            fc[name], _, cmp.chosen[name], _, _ = _tuned(
+                window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
+            )
+            fixed[name] = make(s.fixed_window)
+    return replace(
+        run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds, parts=parts
+    )
+
+
+def _merged(run: StudyRun, more: StudyRun) -> StudyRun:
+    """``run`` with the methods of ``more`` (the same scene and setup, other parts) added."""
+    a, b = run.comparison, more.comparison
+    cmp = Comparison(
+        {**a.mse, **b.mse},
+        {**a.mse_fixed, **b.mse_fixed},
+        {**a.chosen, **b.chosen},
+        {**a.forecasts, **b.forecasts},
+        {**a.learned_models, **b.learned_models},
+    )
+    return replace(
+        run,
+        comparison=cmp,
+        forecasts={**run.forecasts, **more.forecasts},
+        fixed_forecasts={**run.fixed_forecasts, **more.fixed_forecasts},
+        parts=run.parts | more.parts,
+    )
 
 
 def run_study(
@@ -498,8 +553,14 @@ def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.
     return np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
 
 
-def claim_values(run: StudyRun, seed: int = 0) -> dict:
+def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
     """What each claim's rule reads, from one run at its configuration.
+
+    Parameters
+    ----------
+    claims : iterable of str, optional
+        The claims to compute (default: all); :data:`CENTROID` is always returned. A claim's value is the same
+        whichever others are asked.
 
     Returns
     -------
@@ -510,6 +571,30 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         the floor), ``C004-8`` (CPU time per frame / frame interval); and :data:`CENTROID`, the per-axis RMS
         error of the measured centres against the true ones from ``eval_start`` on (px; no claim reads it).
     """
+    want = set(CLAIM_KEYS if claims is None else claims)
+    c = run.config
+    start = run.size.eval_start
+    out = _prediction_values(run, want)
+    T = run.truth.shape[-1]
+    held = c.get("lost frames", "held") == "held"
+    if "C004-4" in want:
+        z4 = (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)]
+        out["C004-4"] = _recursion_check(z4, [seed, 4004], float(c.get("frame loss", 0.0)), held)
+    if "C004-5" in want:  # each stream is its own: skipping one claim leaves the others' draws as they were
+        rng_mc = np.random.default_rng(_streams(seed)[4])
+        out["C004-5"] = variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian"))
+    if "C004-8" in want:
+        rng_t = np.random.default_rng(_streams(seed)[5])
+        out["C004-8"] = _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
+    out[CENTROID] = root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1)))
+    return out
+
+
+def _prediction_values(run: StudyRun, want) -> dict:
+    """The values of the prediction claims in ``want`` (C004-1, -2, -3, -3b, -6; see :func:`claim_values`)."""
+    want = set(want) & set(CLAIM_PARTS)
+    if not want:
+        return {}
     c = run.config
     m = int(c["horizon"])
     start = run.size.eval_start
@@ -519,32 +604,28 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
     elif c["spline"] == "natural cubic":
         fc["cubic spline"] = fc[NATURAL_SPLINE]
     ref = run.z_meas if c["reference"] == "measured centre" else run.truth
-    mse = {name: per_trial_path_mse(f, ref, m, start)[0] for name, f in fc.items()}
-    e = np.abs(pr.forecast_errors(fc[PAPER], ref, m)[0, ..., start:])  # (P, 2, T')
-    q = 0.99 if c["C004-1 statistic"] == "99th percentile" else 0.95
-    if c["C004-1 statistic"] == "radial 95th percentile":
-        e = np.sqrt(np.sum(e**2, axis=1))  # (P, T'): distance from the predicted to the reference centre
-    per_path_q = np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
-    rank = mse  # what C004-3 compares: per-path MSE, or (a reading) per-path q95 of |e|, the tail
-    if c["C004-3 statistic"] == "95th percentile":
-        rank = {name: _path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
-    T = run.truth.shape[-1]
-    late = max(T // 2, start)
-    rng_mc, rng_t = (np.random.default_rng(s) for s in _streams(seed)[4:6])
-    held = c.get("lost frames", "held") == "held"
-    return {
-        "C004-1": mean_ci_t(per_path_q),
-        "C004-2": root_mean_ci(mse[PAPER] * (2.0 if c.get("C004-2 statistic") == "radial RMS" else 1.0)),
-        "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
-        "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": _recursion_check(
-            (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)], [seed, 4004], float(c.get("frame loss", 0.0)), held
-        ),
-        "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian")),
-        "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
-        "C004-8": _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz),
-        CENTROID: root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1))),
-    }
+    names = {PAPER}.union(*({"C004-3": CLASSICAL, "C004-3b": NETWORKS}.get(k, ()) for k in want))
+    mse = {name: per_trial_path_mse(fc[name], ref, m, start)[0] for name in names}
+    out = {}
+    if "C004-1" in want:
+        e = np.abs(pr.forecast_errors(fc[PAPER], ref, m)[0, ..., start:])  # (P, 2, T')
+        q = 0.99 if c["C004-1 statistic"] == "99th percentile" else 0.95
+        if c["C004-1 statistic"] == "radial 95th percentile":
+            e = np.sqrt(np.sum(e**2, axis=1))  # (P, T'): distance from the predicted to the reference centre
+        out["C004-1"] = mean_ci_t(np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1))
+    if "C004-2" in want:
+        out["C004-2"] = root_mean_ci(mse[PAPER] * (2.0 if c.get("C004-2 statistic") == "radial RMS" else 1.0))
+    if "C004-3" in want:
+        rank = mse  # what C004-3 compares: per-path MSE, or (a reading) per-path q95 of |e|, the tail
+        if c["C004-3 statistic"] == "95th percentile":
+            rank = {name: _path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
+        out["C004-3"] = {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL}
+    if "C004-3b" in want:
+        out["C004-3b"] = {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS}
+    if "C004-6" in want:
+        late = max(run.truth.shape[-1] // 2, start)
+        out["C004-6"] = late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late)
+    return out
 
 
 _CACHE: dict = {}
@@ -560,20 +641,31 @@ def _key(config: dict, names) -> tuple:
 
 
 def _measure_group(items, size: StudySize) -> list[dict]:
-    """Claim values of (configuration, seed) pairs that share one scene (same scene entries and seed)."""
+    """Claim values of (configuration, seed, claims) triples that share one scene (same scene entries and seed).
+
+    The scene is cached by the entries it reads and the seed; the methods by those and the entries they read
+    (horizon, the networks' lags and inputs), with the parts run so far: a configuration that asks for a part
+    not yet run adds it to the cached run (the parts share no draw, so the numbers are those of one run of all)."""
     out = []
-    for config, seed in items:
+    for config, seed, claims in items:
         sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
         if sk not in _CACHE:
             _CACHE[sk] = _scene(config, seed, size)
-        rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
-        if rk not in _CACHE:
-            _CACHE[rk] = _methods(_CACHE[sk], config, seed)
-        out.append(claim_values(replace(_CACHE[rk], config=dict(config)), seed))
+        run = _CACHE[sk]
+        parts = parts_for(claims)
+        if parts is not None:
+            rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
+            have = _CACHE.get(rk)
+            if have is None:
+                _CACHE[rk] = _methods(run, config, seed, parts)
+            elif not parts <= have.parts:
+                _CACHE[rk] = _merged(have, _methods(run, config, seed, parts - have.parts))
+            run = _CACHE[rk]
+        out.append(claim_values(replace(run, config=dict(config)), seed, claims))
     return out
 
 
-def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1) -> list[dict]:
+def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1, claims=None) -> list[dict]:
     """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
     and seed share one rendered scene, and those that also share the horizon and the networks' lags
     share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it).
@@ -583,14 +675,18 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     workers : int
         Processes the scene groups are spread over (1: this process, whose cache then also serves
         later calls, e.g. the adaptive replicates).
+    claims : list of (set of str or None), optional
+        Per configuration, the claims to compute (None: all); the methods no asked claim reads are not run
+        (the explorer's ``claims=``). Each claim's value is the same as when all are asked.
     """
     from .register import DEFAULT
 
     configs = [{**DEFAULT, **c} for c in configs]  # entries left out of a smaller exploration stay at their defaults
+    claims = [None] * len(configs) if claims is None else list(claims)
     groups: dict = {}
     for i, (config, seed) in enumerate(zip(configs, seeds)):
         groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
-    items = [[(dict(configs[i]), int(seeds[i])) for i in idx] for idx in groups.values()]
+    items = [[(dict(configs[i]), int(seeds[i]), claims[i]) for i in idx] for idx in groups.values()]
     if workers > 1 and len(items) > 1:
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
@@ -607,12 +703,18 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     return out
 
 
-def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
+def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None) -> dict:
     """The explorer's measurement function: one full-size run at ``config`` with all random draws
-    from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`)."""
+    from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`; ``claims``: only those,
+    running only the methods they read)."""
     from .register import DEFAULT
 
-    return claim_values(run_study({**DEFAULT, **config}, seed, size), seed)
+    config = {**DEFAULT, **config}
+    run = _scene(config, seed, size)
+    parts = parts_for(claims)
+    if parts is not None:
+        run = _methods(run, config, seed, parts)
+    return claim_values(run, seed, claims)
 
 
 def scores(run: StudyRun) -> tuple[dict, dict]:
