@@ -83,6 +83,30 @@ def test_measure_is_a_function_of_config_and_seed_and_batching_changes_nothing()
     assert batch[0]["C004-2"].value != study.measure(dict(DEFAULT), 8, SIZE)["C004-2"].value  # another seed
 
 
+def test_claims_asked_are_computed_alone_bit_for_bit():
+    """measure(..., claims=S) gives exactly measure(...)'s values on S (the explorer's claims=), running only the
+    methods S reads; a batch that asks the prediction claims one by one on one scene (the cached run grows by the
+    parts asked) gives the values of one full run."""
+    cfg = dict(DEFAULT, horizon=3)
+    full = study.measure(cfg, 7, SIZE)
+    for subset in ({"C004-3"}, {"C004-3b"}, {"C004-1", "C004-6"}, {"C004-4", "C004-5"}, {"C004-2", "C004-3b"}):
+        got = study.measure(cfg, 7, SIZE, claims=frozenset(subset))
+        assert subset <= set(got) and "C004-8" not in got
+        for cid in subset:
+            _same(full[cid], got[cid])
+    study.clear_cache()
+    asked = [frozenset({"C004-3"}), frozenset({"C004-3b", "C004-2"}), None, frozenset({"C004-5"})]
+    batch = study.measure_batch([cfg] * 4, [7] * 4, SIZE, claims=asked)
+    for claims, got in zip(asked, batch):
+        for cid in claims or set(full) - {"C004-8"}:
+            _same(full[cid], got[cid])
+    runs = [r for k, r in study._CACHE.items() if k[0] == "scene" and r.parts]
+    assert len(runs) == 1 and runs[0].parts == {"classical", "learned"}  # no Kalman filter: no claim reads it
+    assert "MLP back-prop" in runs[0].forecasts and study.SINGER not in runs[0].forecasts
+    study.clear_cache()
+    assert study.parts_for({"C004-5", "C004-8"}) is None and study.parts_for({"C004-3"}) == {"classical"}
+
+
 def test_readings_of_one_run(run):
     """tuning = fixed is the floor N_f = fixed_floor; reference = true centre scores against the truth."""
     m, s = 1, SIZE.eval_start
