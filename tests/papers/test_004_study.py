@@ -189,6 +189,18 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
     assert ("inside its grid at every horizon" in text) == (not on_edge)
 
 
+def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
+    """At the run's own horizon the horizon study takes the run's comparison instead of a fresh one: the same
+    numbers (RMS, floors, edge shares) as a fresh comparison, which a run without its parts forces."""
+    reused = study.horizon_study(run, (1, 2), seed=0)
+    fresh = study.horizon_study(study.replace(run, parts=frozenset()), (1, 2), seed=0)
+    assert study._run_comparison_at(run, 1) is not None and study._run_comparison_at(run, 2) is None
+    assert reused["floor"] == fresh["floor"] and reused["edges"] == fresh["edges"]
+    assert list(reused["rms"]) == list(fresh["rms"])
+    for name, per_h in fresh["rms"].items():
+        _same(per_h, reused["rms"][name])
+
+
 def test_horizon_sentence_names_the_settings_on_a_grid_edge():
     """A floor on the grid's top at a long horizon is named with its horizon and share (the curve there is
     the grid's limit); a horizon with nothing on an edge is not listed."""

@@ -870,7 +870,9 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
     rms, floors, edges = {}, {}, {}
     for h in horizons:
         s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
-        cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
+        cmp = _run_comparison_at(run, h)
+        if cmp is None:
+            cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
         fcs = dict(cmp.forecasts)
         fcs[OPTIMAL] = optimal_wander_forecast(
             run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, h
@@ -886,3 +888,15 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
         else {}
     )
     return {"rms": rms, "floor": floors, "floor_grid": tuple(run.size.floor_grid), "edges": edges, "slopes": slopes}
+
+
+def _run_comparison_at(run: StudyRun, horizon: int) -> Comparison | None:
+    """``run``'s own comparison as :func:`horizon_study` would compute it at ``horizon`` (the networks and the
+    spline's other readings left out), if ``run`` ran every non-learned method at that horizon; else None. The
+    non-learned methods draw nothing, so the numbers are those of a fresh comparison."""
+    if run.comparison is None or int(run.config["horizon"]) != int(horizon) or not PARTS - {"learned"} <= run.parts:
+        return None
+    skip = {*NETWORKS, LSQ_CUBIC, NATURAL_SPLINE}
+    c = run.comparison
+    keep = lambda d: {n: v for n, v in d.items() if n not in skip}  # noqa: E731
+    return Comparison(keep(c.mse), keep(c.mse_fixed), keep(c.chosen), keep(c.forecasts), {})
