@@ -8,6 +8,7 @@ from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p004_laser_spot_prediction import findings as fd
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction import recording, study
+from tvtrack.papers.p004_laser_spot_prediction import side_studies as side
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import one_frame_motion_rms
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL, PAPER, per_trial_path_mse
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, NAMES, ROWS, build, explored
@@ -107,6 +108,18 @@ def test_claims_asked_are_computed_alone_bit_for_bit():
     assert study.parts_for({"C004-5", "C004-8"}) is None and study.parts_for({"C004-3"}) == {"classical"}
 
 
+def test_the_cached_variance_check_is_the_uncached_one():
+    """C004-5 is computed once per (seed, series, noise law) and shared by every configuration: the cached value is
+    bit for bit a fresh run from the seed's own stream, for each noise law and seed."""
+    study.clear_cache()
+    for seed, noise in ((7, "Gaussian"), (7, "Student t3"), (8, "Gaussian"), (7, "Gaussian")):
+        fresh = study.variance_ratios(np.random.default_rng(study._streams(seed)[4]), 1000, noise=noise)
+        _same(fresh, study._variance_check(seed, 1000, noise))
+    assert len(study._VARIANCE) == 3
+    study.clear_cache()
+    assert not study._VARIANCE
+
+
 def test_readings_of_one_run(run):
     """tuning = fixed is the floor N_f = fixed_floor; reference = true centre scores against the truth."""
     m, s = 1, SIZE.eval_start
@@ -162,7 +175,7 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
     study kept the one-frame floor at every horizon)."""
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FLOOR_EXTENSION
 
-    hz = study.horizon_study(run, (1, 10), seed=0)
+    hz = side.horizon_study(run, (1, 10), seed=0)
     T = run.z.shape[-1]
     for h in (1, 10):
         grid, more = list(SIZE.floor_grid), sorted({min(v, T) for v in FLOOR_EXTENSION})
@@ -192,9 +205,9 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
 def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     """At the run's own horizon the horizon study takes the run's comparison instead of a fresh one: the same
     numbers (RMS, floors, edge shares) as a fresh comparison, which a run without its parts forces."""
-    reused = study.horizon_study(run, (1, 2), seed=0)
-    fresh = study.horizon_study(study.replace(run, parts=frozenset()), (1, 2), seed=0)
-    assert study._run_comparison_at(run, 1) is not None and study._run_comparison_at(run, 2) is None
+    reused = side.horizon_study(run, (1, 2), seed=0)
+    fresh = side.horizon_study(study.replace(run, parts=frozenset()), (1, 2), seed=0)
+    assert side._run_comparison_at(run, 1) is not None and side._run_comparison_at(run, 2) is None
     assert reused["floor"] == fresh["floor"] and reused["edges"] == fresh["edges"]
     assert list(reused["rms"]) == list(fresh["rms"])
     for name, per_h in fresh["rms"].items():
@@ -268,7 +281,7 @@ def test_words_follow_the_interval():
 
 
 def test_model_order_summary_names_the_better_order(run):
-    s = study.model_order_summary(run)
+    s = side.model_order_summary(run)
     ratio = s["ratio_2_over_1"]
     text = fd.model_order_sentence(s)
     if ratio.ci_low > 1:

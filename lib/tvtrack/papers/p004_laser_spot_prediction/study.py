@@ -10,7 +10,9 @@ differ only in the horizon, the networks' lags or a statistic (common random num
 drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
 
 The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
-Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run.
+Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run. The world a run draws (generator,
+camera, exposure, vibration) is :mod:`.world`, re-exported here; the notebook's studies beyond the claims (scores,
+measurement budget, model order, horizon) are :mod:`.side_studies`.
 """
 
 from __future__ import annotations
@@ -20,20 +22,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
-from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
-from .beam_wander import (
-    GTILT,
-    BeamWanderConfig,
-    SpotCamera,
-    generate_traces,
-    one_frame_motion_rms,
-    optimal_wander_forecast,
-    track_spot,
-)
+from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
 from .prediction_study import (
     CLASSICAL,
-    FADING,
     PAPER,
     PARTS,
     SINGER,
@@ -49,20 +41,42 @@ from .derivation import _recursion_check, recursion_vs_batch, variance_ratios
 from .register import NAMES, WORLD
 from .timing import CLOCKS, _frame_time_ms, streaming_frame_times
 from .traces import TraceSet
+from .world import (
+    BASE_CAMERA,
+    BASE_SCENE,
+    EXPOSURE_SUBSAMPLES,
+    EXPOSURES,
+    MAX_DRAWS,
+    VIBRATION_HZ,
+    camera_for,
+    exposed_traces,
+    exposure_weights,
+    scene_config,
+    traces_on_sensor,
+    vibration,
+)
 
 __all__ = [
     "ENTRIES",
     "CENTROID",
     "NETWORKS",
     "OPTIMAL",
+    "SINGER",
     "StudySize",
     "screen_size",
     "StudyRun",
+    "BASE_SCENE",
+    "BASE_CAMERA",
+    "EXPOSURE_SUBSAMPLES",
+    "EXPOSURES",
+    "VIBRATION_HZ",
+    "MAX_DRAWS",
     "scene_config",
     "traces_on_sensor",
     "camera_for",
     "run_study",
     "claim_values",
+    "parts_for",
     "measure",
     "measure_batch",
     "exposure_weights",
@@ -73,12 +87,7 @@ __all__ = [
     "CLOCKS",
     "recursion_vs_batch",
     "variance_ratios",
-    "model_order_summary",
-    "horizon_study",
     "clear_cache",
-    "scores",
-    "single_values",
-    "grid_edge_report",
 ]
 
 #: Register entry names the study reads (the configuration dict's keys).
@@ -95,8 +104,6 @@ CENTROID = "centroid error"
 OPTIMAL = "optimal (true model)"
 
 _SCENE_KEYS = WORLD  # the entries that change the rendered scene
-#: Sub-frame samples per exposure of the "full frame" exposure reading.
-EXPOSURE_SUBSAMPLES = 4
 
 
 def root_mean_ci(mean_squares) -> Estimate:
@@ -186,46 +193,6 @@ def screen_size(size: StudySize) -> StudySize:
     )
 
 
-#: The shipped data set's generator configuration and the card's camera (21 px centroid window).
-BASE_SCENE = BeamWanderConfig()
-BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
-
-
-def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
-    """The generator's configuration at a register configuration.
-
-    ``bandwidth`` scales every corner frequency, ``amplitude`` the wander RMS range; ``frame rate``
-    changes the sampling at ``n_frames`` images per path (the paper: "up to 1000 images"), the drift
-    kept in px/s.
-    """
-    fs = float(config["frame rate"])
-    return replace(
-        base,
-        n_paths=size.n_paths,
-        n_frames=size.n_frames,
-        frame_rate_hz=fs,
-        corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
-        spectral_index=float(config["spectral index"]),
-        rolloff=config["roll-off"],
-        rms_min_px=base.rms_min_px * config["amplitude"],
-        rms_max_px=base.rms_max_px * config["amplitude"],
-        drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
-        scintillation_sigma_ln=float(config["scintillation"]),
-    )
-
-
-def camera_for(config: dict, base: SpotCamera = BASE_CAMERA) -> SpotCamera:
-    """The camera at a register configuration: read noise, saturation (8-bit full scale or none), the
-    energy-centre algorithm and the spot size (Gaussian sigma, px)."""
-    return replace(
-        base,
-        read_noise_dn=float(config["read noise"]),
-        bit_depth=8 if config["saturation"] == "8-bit" else 16,
-        centroid_mode="windowed" if config["energy centre"] == "windowed" else "gate",
-        spot_sigma_px=float(config.get("spot size", base.spot_sigma_px)),
-    )
-
-
 @dataclass
 class StudyRun:
     """One full-size run (see :func:`run_study`); arrays per (trial=1, path, axis, frame), px."""
@@ -255,123 +222,6 @@ class StudyRun:
 def _streams(seed: int):
     """Independent streams (traces, jitter, sensor, models, Monte Carlo, timing) of one run."""
     return np.random.SeedSequence(int(seed)).spawn(6)
-
-
-#: Exposure readings: sub-frame weights (newest first, one sub-sample = 1/EXPOSURE_SUBSAMPLES frame).
-EXPOSURES = ("instant", "full frame", "interlaced, frame integration")
-
-
-def exposure_weights(exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> np.ndarray:
-    """Weights of the path's sub-samples in one frame's spot, newest (the frame time) first.
-
-    "instant": the centre at the frame time. "full frame": a boxcar over the frame interval.
-    "interlaced, frame integration": a TV camera's two fields, each integrating one frame interval, the
-    second half a frame earlier; the frame is their mean (triangle-topped over 1.5 frame intervals).
-    """
-    if exposure == "instant":
-        return np.ones(1)
-    if exposure == "full frame":
-        return np.full(k, 1.0 / k)
-    if exposure == "interlaced, frame integration":
-        w = np.zeros(k + k // 2)
-        w[:k] += 0.5 / k
-        w[k // 2 :] += 0.5 / k
-        return w
-    raise ValueError(f"parameter 'exposure' = {exposure!r}; it must be one of {EXPOSURES}")
-
-
-def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> TraceSet:
-    """Traces at ``scene`` as the camera sees them (:func:`exposure_weights`): "instant" is the
-    generator itself; under the G-tilt spectrum the exposure is exact (the spectrum times the exposure's
-    power gain: a boxcar of one frame interval, and for the interlaced reading two such fields half a
-    frame apart); otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
-    centre and intensity are the weighted means of the sub-samples up to the frame time (the start
-    padded with the first sub-sample).
-
-    Returns
-    -------
-    TraceSet
-        ``centres_px`` (n_paths, n_frames, 2) px, ``intensity`` (n_paths, n_frames); the metadata's
-        ``wander_rms_px`` are the path draws (before averaging).
-    """
-    w = exposure_weights(exposure, k)
-    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (gtilt.exposure_gain)
-        dt = 1.0 / scene.frame_rate_hz
-        tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
-        tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
-        return TraceSet(
-            tr.centres_px, tr.intensity, tr.frame_rate_hz, tr.image_size_px, dict(tr.metadata, exposure=exposure)
-        )
-    if exposure == "instant":
-        return generate_traces(scene, seed)
-    fine = replace(
-        scene,
-        frame_rate_hz=scene.frame_rate_hz * k,
-        n_frames=scene.n_frames * k,
-        drift_max_px_per_frame=scene.drift_max_px_per_frame / k,
-    )
-    tr = generate_traces(fine, seed)
-    at = k * np.arange(scene.n_frames) + k - 1  # sub-sample at each frame time
-    idx = np.maximum(at[:, None] - np.arange(w.size)[None, :], 0)  # (T, len(w))
-    xy = np.einsum("ptjc,j->ptc", tr.centres_px[:, idx], w)
-    inten = np.einsum("ptj,j->pt", tr.intensity[:, idx], w)
-    return TraceSet(xy, inten, scene.frame_rate_hz, scene.image_size_px, dict(tr.metadata, exposure=exposure))
-
-
-#: Frequency of the "vibration" regime's sinusoid, Hz (below the 12.5 Hz Nyquist of 25 frames/s).
-VIBRATION_HZ = 8.0
-
-
-def vibration(amplitude_px: float, frame_rate_hz: float, shape, rng: np.random.Generator) -> np.ndarray:
-    """Mount vibration: ``amplitude_px * sin(2 pi f n / fs + phi)`` per path and axis, ``f`` =
-    :data:`VIBRATION_HZ`, phases uniform from ``rng`` (drawn whatever the amplitude: common random
-    numbers).
-
-    Parameters
-    ----------
-    shape : tuple (P, T, 2)
-        Paths, frames, axes.
-
-    Returns
-    -------
-    ndarray, shape (P, T, 2), px
-    """
-    P, T, A = shape
-    t = np.arange(T)[None, :, None] / frame_rate_hz
-    return amplitude_px * np.sin(2 * np.pi * VIBRATION_HZ * t + rng.uniform(0, 2 * np.pi, (P, 1, A)))
-
-
-#: Most draws of a run's paths (:func:`traces_on_sensor`) before the run gives up.
-MAX_DRAWS = 50
-
-
-def traces_on_sensor(scene: BeamWanderConfig, stream: np.random.SeedSequence, exposure: str) -> tuple[TraceSet, int]:
-    """The run's paths (:func:`exposed_traces`), drawn again until the spot stays on the sensor on every path.
-
-    The paper's recordings kept the spot in the 128 px frame (it measures the spot in every image). A large wander
-    (amplitude 2: 6-16 px RMS per axis) with the drift reaches the edge on some draws, which the generator
-    refuses. Such a set is drawn again, so the world is conditioned on the spot staying on the sensor, as the
-    recordings were. The first draw uses the seed every earlier version used, so a set that stays on the sensor
-    is unchanged; later draws take children of ``stream``.
-
-    Returns
-    -------
-    traces : TraceSet
-    draws : int
-        Sets drawn (1: the first stayed on the sensor).
-    """
-    seed = int(stream.generate_state(1)[0])
-    for k in range(1, MAX_DRAWS + 1):
-        try:
-            return exposed_traces(scene, seed, exposure), k
-        except ValueError as err:
-            if "leave the sensor" not in str(err):
-                raise
-        seed = int(stream.spawn(1)[0].generate_state(1)[0])
-    raise ValueError(
-        f"the spot left the {scene.image_size_px} px sensor on every one of {MAX_DRAWS} draws of the paths: the "
-        "wander is too large for the frame"
-    )
 
 
 def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
@@ -581,13 +431,25 @@ def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
         z4 = (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)]
         out["C004-4"] = _recursion_check(z4, [seed, 4004], float(c.get("frame loss", 0.0)), held)
     if "C004-5" in want:  # each stream is its own: skipping one claim leaves the others' draws as they were
-        rng_mc = np.random.default_rng(_streams(seed)[4])
-        out["C004-5"] = variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian"))
+        out["C004-5"] = _variance_check(seed, run.size.n_mc_variance, c.get("C004-5 noise", "Gaussian"))
     if "C004-8" in want:
         rng_t = np.random.default_rng(_streams(seed)[5])
         out["C004-8"] = _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
     out[CENTROID] = root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1)))
     return out
+
+
+#: C004-5's values by (seed, series, noise law): all the check reads (the model's own signal, not the scene), so every
+#: configuration of one seed and noise law shares one Monte Carlo run (cleared by :func:`clear_cache`).
+_VARIANCE: dict = {}
+
+
+def _variance_check(seed: int, n_series: int, noise: str) -> dict:
+    """:func:`.derivation.variance_ratios` from the seed's own stream, computed once per (seed, series, noise)."""
+    key = (int(seed), int(n_series), noise)
+    if key not in _VARIANCE:
+        _VARIANCE[key] = variance_ratios(np.random.default_rng(_streams(seed)[4]), n_series, noise=noise)
+    return dict(_VARIANCE[key])
 
 
 def _prediction_values(run: StudyRun, want) -> dict:
@@ -632,8 +494,9 @@ _CACHE: dict = {}
 
 
 def clear_cache() -> None:
-    """Forget the scenes and runs :func:`measure_batch` keeps between calls of one exploration."""
+    """Forget the scenes, runs and C004-5 checks :func:`measure_batch` keeps between calls of one exploration."""
     _CACHE.clear()
+    _VARIANCE.clear()
 
 
 def _key(config: dict, names) -> tuple:
@@ -715,188 +578,3 @@ def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None)
     if parts is not None:
         run = _methods(run, config, seed, parts)
     return claim_values(run, seed, claims)
-
-
-def scores(run: StudyRun) -> tuple[dict, dict]:
-    """Per method: RMS error against the measured centre (px, :func:`root_mean_ci`), and the paired
-    ratio of its per-path MSE to the paper filter's (:func:`ratio_of_means_ci`)."""
-    m = int(run.config["horizon"])
-    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
-    rms = {n: root_mean_ci(v) for n, v in mse.items()}
-    return rms, {n: ratio_of_means_ci(v, mse[PAPER]) for n, v in mse.items() if n != PAPER}
-
-
-def grid_edge_report(run: StudyRun) -> dict:
-    """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
-    an edge may be the grid's limit rather than the method's optimum)."""
-    return _edge_shares(run.comparison.chosen, _setup(run.config, run.size))
-
-
-def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
-    """:func:`grid_edge_report` of the tuned settings ``ch`` (``compare_methods``' ``chosen``) on the grids of
-    ``s``; the networks' lags only where they were tuned."""
-    from .prediction_study import FLOOR_EXTENSION, MIN_WINDOW, WINDOW_EXTENSION, grid_edges, window_candidates
-
-    floors = (*s.floor_grid, *FLOOR_EXTENSION)  # the grids as the tuning extends them while a fold picks the top
-    out = {
-        PAPER: float(np.mean(grid_edges(ch[PAPER], floors) == 1)),  # N_f = 3 (order + 1) is a true limit
-        FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
-    }
-    for name, lo in MIN_WINDOW.items():
-        out[name] = float(
-            np.mean(grid_edges(ch[name], (*window_candidates(lo, s.window_grid), *WINDOW_EXTENSION)) == 1)
-        )  # degree+1 is a true limit
-    for name in (LSQ_CUBIC, NATURAL_SPLINE):  # the spline's other readings, tuned in _methods (not at every horizon)
-        if name in ch:
-            out[name] = float(
-                np.mean(grid_edges(ch[name], (*window_candidates(4, s.window_grid), *WINDOW_EXTENSION)) == 1)
-            )
-    ca = np.asarray(ch["CA Kalman, ML noise"])
-    out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
-    out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
-    for name in NETWORKS:
-        if name in ch:  # lag counts chosen by cross-validation (1 lag, the lowest, is a true limit)
-            out[f"{name} lags"] = float(np.mean(grid_edges(ch[name], s.lag_grid) == 1))
-    sg = np.asarray(ch[SINGER])
-    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
-    return out
-
-
-def single_values(exploration, claim_id: str, entry: str) -> dict:
-    """The claim's measured value at each value of ``entry`` (one at a time; the default pooled)."""
-    from .register import DEFAULT
-
-    out = {exploration.default.get(entry, DEFAULT[entry]): exploration.measured(claim_id)}
-    for r in exploration.runs:
-        if r.stage == "single" and list(r.changed(exploration.default)) == [entry]:
-            out[r.config[entry]] = r.outputs[claim_id]
-    return dict(sorted(out.items()))
-
-
-def spot_position_crb(camera: SpotCamera, read_noise_dn: float) -> float:
-    """Per-axis Cramer-Rao bound of the spot position in one gate at intensity 1 (Poisson counts, read
-    noise and quantisation as Poisson-equivalent variance per pixel), px."""
-    from ...bounds.poisson_crb import fisher_linear_motion
-
-    g = camera.gate_size_px
-    theta = np.array([[(g - 1) / 2, (g - 1) / 2, 0.0, 0.0]])
-    noise = camera.background_dn + read_noise_dn**2 + 1 / 12
-    fim = fisher_linear_motion(theta, np.array([0.0]), (g, g), camera.spot_sigma_px, camera.flux_e, noise)[:2, :2]
-    return float(np.sqrt(np.linalg.inv(fim)[0, 0]))  # one frame: only the position block is informative
-
-
-def measurement_budget(
-    read_noise_levels, n_gates: int, rng: np.random.Generator, camera: SpotCamera = BASE_CAMERA
-) -> dict:
-    """Error of the windowed centroid and of a Gaussian-fit MLE on static spots (random sub-pixel
-    positions, intensity 1) against the Cramer-Rao bound, per read-noise level.
-
-    Returns
-    -------
-    dict
-        {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
-    """
-    from .spot_centre import gaussian_fit_centre, windowed_centroid
-
-    g = camera.gate_size_px
-    out = {}
-    for rn in read_noise_levels:
-        c_true = (g - 1) / 2 + rng.uniform(-2, 2, (n_gates, 2))
-        img = sensor_readout(
-            gaussian_spot(c_true, (g, g), camera.spot_sigma_px, camera.flux_e),
-            rng,
-            background=camera.background_dn,
-            read_noise=rn,
-            bit_depth=camera.bit_depth,
-        )
-        wc = windowed_centroid(img, (0, 0), window_px=camera.window_px, threshold_sigma=camera.threshold_sigma).xy
-        ok = np.all(np.isfinite(wc), axis=-1)
-        ml = gaussian_fit_centre(img[ok], np.zeros((ok.sum(), 2)), wc[ok], sigma_px=camera.spot_sigma_px, read_noise=rn)
-        out[float(rn)] = {
-            "centroid": float(np.sqrt(np.mean((wc[ok] - c_true[ok]) ** 2))),
-            "mle": float(np.sqrt(np.mean((ml - c_true[ok]) ** 2))),
-            "crb": spot_position_crb(camera, rn),
-            "lost": float(np.mean(~ok)),
-        }
-    return out
-
-
-def model_order_summary(run: StudyRun) -> dict:
-    """Which model order predicts best, and the fitted Singer time constant that says why.
-
-    Returns
-    -------
-    dict
-        ``rms`` per method (px), ``best`` (name), ``best_order1`` / ``best_order2`` (names of the best
-        first-order predictor: 2-point differences or degree-1 regression; and second-order: the paper's
-        filter, 3-point differences, degree-2 regression, Morrison), ``ratio_2_over_1`` (paired MSE ratio,
-        best second order over best first order; below 1: the acceleration term pays),
-        ``singer_tau_frames`` (per fold), ``tau_over_horizon`` and ``frame_ms`` (the frame interval, ms).
-    """
-    c = run.config
-    m = int(c["horizon"])
-    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
-    rms = {n: float(np.sqrt(v.mean())) for n, v in mse.items()}
-    order1 = ("finite differences, 2 points", "linear regression deg 1")
-    order2 = (PAPER, "finite differences, 3 points", "linear regression deg 2", FADING)
-    b1 = min(order1, key=rms.get)
-    b2 = min(order2, key=rms.get)
-    tau = np.asarray(run.comparison.chosen[SINGER])[:, 0]
-    return {
-        "rms": rms,
-        "best": min((n for n in rms if n != OPTIMAL), key=rms.get),
-        "best_order1": b1,
-        "best_order2": b2,
-        "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
-        "singer_tau_frames": tau,
-        "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
-        "tau_over_horizon": float(np.median(tau) / m),
-        "frame_ms": 1e3 / float(run.scene.frame_rate_hz),
-    }
-
-
-def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
-    """RMS error versus horizon, every method re-tuned at each horizon (the floor and windows chosen
-    by cross-validation for that horizon; the Kalman filters re-fitted; networks left out for cost),
-    and the optimal predictor.
-
-    Returns
-    -------
-    dict
-        ``rms``: {method: {horizon: Estimate (px)}}; ``floor``: {horizon: median cross-validated N_f};
-        ``floor_grid``: the floor's grid; ``edges``: {horizon: :func:`grid_edge_report` of that horizon's
-        tuning}; ``slopes``: {method: log-log slope of RMS over the horizons}.
-    """
-    rms, floors, edges = {}, {}, {}
-    for h in horizons:
-        s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
-        cmp = _run_comparison_at(run, h)
-        if cmp is None:
-            cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
-        fcs = dict(cmp.forecasts)
-        fcs[OPTIMAL] = optimal_wander_forecast(
-            run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, h
-        )
-        for name, f in fcs.items():
-            rms.setdefault(name, {})[h] = root_mean_ci(per_trial_path_mse(f, run.z_meas, h, run.size.eval_start)[0])
-        floors[h] = float(np.median(cmp.chosen[PAPER]))
-        edges[h] = _edge_shares(cmp.chosen, s)
-    hs = np.log(np.asarray(horizons, dtype=float))
-    slopes = (
-        {n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
-        if len(horizons) > 1
-        else {}
-    )
-    return {"rms": rms, "floor": floors, "floor_grid": tuple(run.size.floor_grid), "edges": edges, "slopes": slopes}
-
-
-def _run_comparison_at(run: StudyRun, horizon: int) -> Comparison | None:
-    """``run``'s own comparison as :func:`horizon_study` would compute it at ``horizon`` (the networks and the
-    spline's other readings left out), if ``run`` ran every non-learned method at that horizon; else None. The
-    non-learned methods draw nothing, so the numbers are those of a fresh comparison."""
-    if run.comparison is None or int(run.config["horizon"]) != int(horizon) or not PARTS - {"learned"} <= run.parts:
-        return None
-    skip = {*NETWORKS, LSQ_CUBIC, NATURAL_SPLINE}
-    c = run.comparison
-    keep = lambda d: {n: v for n, v in d.items() if n not in skip}  # noqa: E731
-    return Comparison(keep(c.mse), keep(c.mse_fixed), keep(c.chosen), keep(c.forecasts), {})
