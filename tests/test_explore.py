@@ -329,3 +329,79 @@ def test_a_log_scale_pool_stays_within_the_replicates_intervals():
     reps.append(Estimate(0.97, 0.03, 0.9, 1.0, 6, 0.95, "paired t"))
     p = pool(reps)
     assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high and "log scale" in p.method  # was 1.019
+
+
+# --------------------------------------------------------------------------- measuring only the claims asked (issue 43)
+
+
+def _depends_xy():
+    return {"X": ["a", "b"], "Y": ["c"]}
+
+
+def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_claim_needs():
+    asked = []
+
+    def subset(config, seed, claims=None):
+        asked.append((dict(config), claims))
+        out = measure_joint_only(config, seed)
+        return out if claims is None else {k: v for k, v in out.items() if k in claims}
+
+    design = dict(seed=3, replicates=3, joint=8, depends=_depends_xy())
+    plain = explore(measure_joint_only, REG, RULES, **design)
+    lean = explore(subset, REG, RULES, **design)
+    assert lean.settings["measures_claims_asked"] and not plain.settings["measures_claims_asked"]
+    for cid in RULES:  # every verdict, label and flip is the same
+        a, b = plain.record(cid), lean.record(cid)
+        for part in a["parts"]:
+            for key in ("verdict", "label", "flips", "share"):
+                assert a["parts"][part][key] == b["parts"][part][key], (cid, part, key)
+    # a condition measures only the claims that read what it changes; replicates measure all
+    default = REG.default()
+    for config, claims in asked:
+        changed = {k for k in config if config[k] != default[k]}
+        if not changed:
+            assert claims is None
+        else:
+            assert claims == {c for c, names in _depends_xy().items() if changed & set(names)}
+    assert any(c == {"Y"} for _, c in asked) and any(c == {"X"} for _, c in asked)
+
+
+def test_sizing_adds_replicates_only_to_the_claims_still_undecided():
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
+    rules = {"clear": InBand("m", -0.5, 0.5), "edge": InBand("m", -0.5, 0.5)}
+    asked = []
+
+    def measure(config, seed, claims=None):
+        asked.append(claims)
+        out = {"clear": _mean(seed, 0.0), "edge": _mean(seed + 7, 0.45, n=100)}
+        return out if claims is None else {k: out[k] for k in claims}
+
+    ex = explore(measure, reg, rules, seed=2, replicates=3, max_replicates=12, one_at_a_time=False)
+    assert ex.settings["replicates"] > 3
+    sized = asked[3 : ex.settings["replicates"]]
+    assert sized and all(c == {"edge"} for c in sized)  # the clear claim spends nothing more
+    reps = [r for r in ex.runs if r.stage == "replicate"]
+    assert sum("clear" in r.outputs for r in reps) == 3 and sum("edge" in r.outputs for r in reps) == len(reps)
+    assert len(ex.record("clear")["replicates"]) == 3
+
+
+def test_a_confirmation_re_measures_only_the_claims_that_may_flip():
+    def full(config, seed, claims=None, n=400):
+        out = {
+            "X": _mean(seed, 3.0 * (config["a"] == 1) * (config["b"] == 1), n=n),
+            "Y": {"p1": _mean(seed, 0.0, n=n), "p2": _mean(seed, 3.0 * (config["c"] == "y"), n=n)},
+        }
+        return out if claims is None else {k: out[k] for k in claims}
+
+    def small(config, seed, claims=None):
+        return full(config, seed, claims, n=40)
+
+    ex = explore(full, REG, RULES, seed=5, replicates=3, joint=8, screen=small, screen_singles=True)
+    for r in ex.runs:
+        if r.stage in ("single", "joint"):
+            flips_x = r.config["a"] == 1 and r.config["b"] == 1
+            flips_y = r.config["c"] == "y"
+            assert ("X" in r.claims) >= flips_x and ("Y" in r.claims) >= flips_y  # every flip confirmed
+            n_x = r.outputs["X"].n
+            assert n_x == (400 if "X" in r.claims else 40)  # confirmed claims at full size, the others screened
+    assert 0 < ex.settings["confirmed_claims"] < 2 * ex.settings["confirmed_at_full_size"]  # not every claim

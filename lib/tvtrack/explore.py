@@ -26,6 +26,7 @@ sent to an executor with ``submit`` (a :class:`concurrent.futures.Executor` or a
 
 from __future__ import annotations
 
+import inspect
 import itertools
 import math
 import time
@@ -38,6 +39,7 @@ from scipy import stats
 from .montecarlo import Estimate
 from .register import Register
 from .labels import label_parts, part_pairs
+from .pooling import pool
 from .verdicts import Rule, calibrated, is_decisive
 
 __all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
@@ -51,6 +53,7 @@ class Run:
     seed: int
     stage: str  # "replicate", "single", "joint" or "pinned" (a joint condition of Register.pinned)
     outputs: dict = field(default_factory=dict)
+    claims: frozenset | None = None  # the claims this run measures (None: all), for a measure taking ``claims``
 
     def changed(self, default: Mapping[str, Any]) -> dict:
         """The entries whose value differs from ``default``."""
@@ -97,149 +100,6 @@ def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) ->
             seen.add(key)
             out.append(cfg)
     return out
-
-
-# --------------------------------------------------------------------------- pooling replicates
-
-
-def _z(conf: float) -> float:
-    return float(stats.norm.ppf(0.5 + conf / 2))
-
-
-def _is_count(e: Estimate) -> bool:
-    return e.method == "Clopper-Pearson" or e.method.startswith("count")
-
-
-def _pool_counts(es: list[Estimate]) -> Estimate:
-    """Shares from direct counts pool as counts: ``sum k`` of ``sum n``, with the Clopper-Pearson interval (zero or
-    all events: the one-sided bound they certify), never by averaging intervals (which under-covers for zero events)."""
-    from .montecarlo import proportion_ci, zero_events_bound
-
-    n = int(sum(e.n for e in es))
-    k = int(sum(round(e.value * e.n) for e in es))
-    conf = es[0].confidence
-    if 0 < k < n:
-        return proportion_ci(k, n, conf)
-    b = zero_events_bound(n, conf)
-    lo, hi = (0.0, b) if k == 0 else (1.0 - b, 1.0)
-    return Estimate(k / n, math.nan, lo, hi, n, conf, f"count over {len(es)} replicates: {k} of {n}, one-sided bound")
-
-
-def _is_bound(e: Estimate) -> bool:
-    """A one-sided interval of a non-negative quantity: ``[0, b]`` (a certified upper bound, e.g. no run of a
-    threshold ratio's denominator broke on the grid, or an interval clipped at zero) or ``[a, inf)``."""
-    return (e.ci_low == 0.0 < e.ci_high and e.value >= 0.0) or e.ci_high == math.inf
-
-
-def _pool_estimates(es: list[Estimate]) -> Estimate:
-    k = len(es)
-    conf = es[0].confidence
-    z = _z(conf)
-    n = int(sum(e.n for e in es))
-    extrap = any(e.extrapolated for e in es)
-    if all(_is_count(e) for e in es) and not extrap:
-        return _pool_counts(es)
-    vals = np.array([e.value for e in es], float)
-    if all(e.method == "exact" for e in es):
-        if np.all(vals == vals[0]):
-            return es[0]
-        t = stats.t.ppf(0.5 + conf / 2, k - 1)
-        m, s = vals.mean(), vals.std(ddof=1) / math.sqrt(k)
-        return Estimate(
-            float(m),
-            float(s),
-            float(m - t * s),
-            float(m + t * s),
-            k,
-            conf,
-            f"t interval over {k} independent replicates",
-            extrap,
-        )
-    lo = np.array([e.ci_low for e in es], float)
-    hi = np.array([e.ci_high for e in es], float)
-    if any(_is_bound(e) for e in es) and not (np.isnan(lo).any() or np.isnan(hi).any() or np.isnan(vals).any()):
-        # a certified one-sided bound has no standard error to combine: the envelope of the replicates'
-        # intervals covers the truth at least as often as any one of them does (conservative, never negative)
-        a, b = float(lo.min()), float(hi.max())
-        return Estimate(
-            float(np.clip(np.median(vals), a, b)),
-            float((b - a) / (2 * z)),
-            a,
-            b,
-            n,
-            conf,
-            f"envelope of {k} independent replicates' intervals (some are certified bounds)",
-            extrap,
-        )
-    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
-        return Estimate(
-            float(np.nanmean(vals)),
-            math.nan,
-            math.nan,
-            math.nan,
-            n,
-            conf,
-            f"pooled over {k} replicates: some intervals undefined",
-            extrap,
-        )
-    if np.all(lo > 0) and np.all(vals > 0):
-        lv, lse = np.log(vals), (np.log(hi) - np.log(lo)) / (2 * z)
-        m, se = lv.mean(), math.sqrt(float(np.sum(lse**2))) / k
-        return Estimate(
-            float(math.exp(m)),
-            float(math.exp(m) * se),
-            max(float(math.exp(m - z * se)), float(lo.min())),  # within the replicates' hull, as below
-            min(float(math.exp(m + z * se)), float(hi.max())),
-            n,
-            conf,
-            f"pooled over {k} independent replicates (equal weights, log scale)",
-            extrap,
-        )
-    se_i = (hi - lo) / (2 * z)
-    m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
-    # never beyond every replicate's interval (a share difference's pooled interval stays within [-1, 1]): the truth
-    # lies outside the hull only when it lies outside every replicate's interval
-    a, b = max(float(m - z * se), float(lo.min())), min(float(m + z * se), float(hi.max()))
-    return Estimate(
-        float(m),
-        float(se),
-        a,
-        b,
-        n,
-        conf,
-        f"pooled over {k} independent replicates (equal weights)",
-        extrap,
-    )
-
-
-def _is_estimate_like(x: Any) -> bool:
-    return isinstance(x, Estimate) or (isinstance(x, Mapping) and "value" in x and "ci_low" in x)
-
-
-def pool(measured: Sequence[Any]) -> Any:
-    """Pool a claim's measured values from independent replicates.
-
-    Estimates are averaged with equal weights and their standard errors (from the intervals) combined
-    (on the log scale when every interval is positive); exact numbers that vary between replicates get
-    a Student-t interval over the replicates; lists and dicts (``Monotone`` points, ``AllOf`` parts)
-    are pooled element by element. An undefined interval in any replicate makes the pooled interval
-    undefined (the verdict is then ``undecided``).
-    """
-    ms = [m for m in measured if m is not None]
-    if not ms:
-        return None
-    if len(ms) == 1:
-        return ms[0]
-    first = ms[0]
-    if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
-        es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
-        return _pool_estimates(es)
-    if isinstance(first, Mapping):
-        keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
-        return {k: pool([m[k] for m in ms]) for k in keys}
-    if isinstance(first, (list, tuple)) and all(isinstance(m, (list, tuple)) and len(m) == len(first) for m in ms):
-        return [pool([m[i] for m in ms]) for i in range(len(first))]
-    return first
 
 
 # --------------------------------------------------------------------------- the exploration
@@ -321,24 +181,36 @@ class Exploration:
         return "\n".join(lines)
 
 
+def takes_claims(fn: Callable) -> bool:
+    """Whether a measurement function takes a ``claims`` keyword (it can skip the work of claims not asked)."""
+    try:
+        return "claims" in inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return False
+
+
 def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -> None:
+    """Run ``jobs`` through ``measure``; a job's outputs are updated with what it measured (a confirmation at
+    full size replaces the screened values of the claims it re-measures and keeps the others)."""
     if not jobs:
         return
+    kw = takes_claims(measure)
     if batched:
-        outs = measure([j.config for j in jobs], [j.seed for j in jobs])
+        extra = {"claims": [j.claims for j in jobs]} if kw else {}
+        outs = measure([j.config for j in jobs], [j.seed for j in jobs], **extra)
         if len(outs) != len(jobs):
             raise ValueError(f"a batched measurement returned {len(outs)} results for {len(jobs)} configurations")
         for j, o in zip(jobs, outs):
-            j.outputs = dict(o)
+            j.outputs.update(o)
         return
     if executor is None:
         for j in jobs:
-            j.outputs = dict(measure(dict(j.config), j.seed))
+            j.outputs.update(measure(dict(j.config), j.seed, **({"claims": j.claims} if kw else {})))
         return
-    futures = [executor.submit(measure, dict(j.config), j.seed) for j in jobs]
+    futures = [executor.submit(measure, dict(j.config), j.seed, **({"claims": j.claims} if kw else {})) for j in jobs]
     try:
         for j, f in zip(jobs, futures):
-            j.outputs = dict(f.result())
+            j.outputs.update(f.result())
     except BaseException:
         for f in futures:
             f.cancel()
@@ -377,36 +249,45 @@ def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
     return _part_verdicts(rules, {cid: pool([r.outputs.get(cid) for r in reps]) for cid in rules})
 
 
-def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> int | None:
-    """The replicates projected to decide every undecided part that can be decided within ``cap`` (None: none)."""
-    targets = []
-    for j in _pooled(rules, runs).values():
+def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> tuple[int, frozenset] | None:
+    """The replicates projected to decide every undecided part that can be decided within ``cap``, and the claims
+    of those parts (None: no such part)."""
+    targets, claims = [], set()
+    for (cid, _part), j in _pooled(rules, runs).items():
         if j.verdict == "undecided" and math.isfinite(j.runs_factor):
             need = max(n + 1, math.ceil(n * j.runs_factor))
             if need <= cap:
                 targets.append(need)
-    return max(targets) if targets else None
+                claims.add(cid)
+    return (max(targets), frozenset(claims)) if targets else None
 
 
-def _disagrees(rules, depends, default_j: Mapping, run: Run, default_cfg: Mapping) -> bool:
-    """True when a screened run must be confirmed at full size: some claim part its changes touch, whose default
-    verdict is decisive (an undecided default has nothing to flip), is screened decisively otherwise, or is
-    undecided with its point estimate on the other side of the rule (it sits near a band edge and may flip)."""
+def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mapping) -> frozenset:
+    """The claims of a screened run to confirm at full size: those with a part its changes touch, whose default
+    verdict is decisive (an undecided default has nothing to flip), screened decisively otherwise, or undecided
+    with its point estimate on the other side of the rule (it sits near a band edge and may flip)."""
     changed = set(run.changed(default_cfg))
+    out = set()
     for (cid, part), (prule, pm) in _part_measured(rules, run.outputs).items():
         d = default_j.get((cid, part))
-        if not changed & set(depends[cid]) or d is None or not is_decisive(d.verdict):
+        if cid in out or not changed & set(depends[cid]) or d is None or not is_decisive(d.verdict):
             continue
         v = prule.judge(pm).verdict
         if is_decisive(v) and v != d.verdict:
-            return True
-        if not is_decisive(v):
+            out.add(cid)
+        elif not is_decisive(v):
             try:
                 if prule.judge(_point(pm)).verdict != d.verdict:
-                    return True
+                    out.add(cid)
             except (TypeError, ValueError):
-                return True
-    return False
+                out.add(cid)
+    return frozenset(out)
+
+
+def _touched(depends: Mapping[str, Sequence[str]], run: Run, default_cfg: Mapping) -> frozenset:
+    """The claims that read an entry ``run`` changes (the only ones a condition can say anything about)."""
+    changed = set(run.changed(default_cfg))
+    return frozenset(cid for cid, names in depends.items() if changed & set(names))
 
 
 def _flipping_unexplained(rules, depends, default_j, runs: list[Run], default_cfg) -> list[tuple[Run, set]]:
@@ -500,6 +381,11 @@ def explore(
         ``measure(config, seed) -> {claim id: measured}``: one full-size run at ``config`` (a dict with
         every register entry) drawing from ``numpy.random.default_rng(seed)``. With ``batched=True``:
         ``measure(configs, seeds) -> [dict, ...]``. A module-level function (picklable) for executors.
+        A measurement with a ``claims`` keyword is asked only for the claims a run needs (a frozenset of
+        claim ids, ``None`` for all; batched: one per configuration) and may skip the work of the others:
+        a condition asks for the claims that read an entry it changes, a sizing replicate for the claims
+        with a part still undecided, a confirmation for the claims that may flip (the others keep their
+        screened values). It may return more claims than asked.
     register : Register
     rules : mapping claim id -> Rule
     seed : int
@@ -559,37 +445,53 @@ def explore(
     run(measure, runs, "replicates")
     n = replicates
     while n < cap:
-        target = _sizing_target(rules, runs, n, cap)
-        if target is None:
+        sized = _sizing_target(rules, runs, n, cap)
+        if sized is None:
             break
-        # one replicate at a time, re-judged after each; an executor's workers take one each at once
+        target, undecided = sized
+        # one replicate at a time, re-judged after each; an executor's workers take one each at once; a
+        # measurement taking ``claims`` measures only the claims still undecided
         step = max(1, min(target - n, int(getattr(executor, "_max_workers", 1) or 1)))
-        extra = [Run(dict(default), s, "replicate") for s in seeds[n : n + step]]
+        extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
         run(measure, extra, "sizing")
         runs += extra
         n += step
-    singles = [Run({**default, k: v}, seeds[0], "single") for k in used for v in register[k].alternatives]
+
+    def conditions(cfgs: Sequence[Mapping], stage: str) -> list[Run]:
+        out = [Run(dict(c), seeds[0], stage) for c in cfgs]
+        for r in out:
+            r.claims = _touched(depends, r, default)
+        return out
+
+    singles = conditions([{**default, k: v} for k in used for v in register[k].alternatives], "single")
     singles = singles if one_at_a_time else []
     design = joint_sample(register, used, joint, seed + 1) if joint else []
-    joints = [Run(cfg, seeds[0], "joint") for cfg in design]
-    confirmed = 0
+    joints = conditions(design, "joint")
+    confirmed = confirmed_claims = 0
     for name, jobs, screened in (("one at a time", singles, screen_singles), ("joint", joints, True)):
         if screen is not None and screened and jobs:
             run(screen, jobs, f"{name}, screened")
             default_j = _pooled(rules, runs)
-            redo = [r for r in jobs if _disagrees(rules, depends, default_j, r, default)]
+            redo = []
+            for r in jobs:
+                r.claims = _to_confirm(rules, depends, default_j, r, default)
+                if r.claims:
+                    redo.append(r)
             run(measure, redo, f"{name}, confirmed at full size")
             confirmed += len(redo)
+            confirmed_claims += sum(len(r.claims) for r in redo)
         else:
             run(measure, jobs, name)
             confirmed += len(jobs) if name == "joint" else 0
         runs += jobs
-    pinned = [Run({**default, **p}, seeds[0], "pinned") for p in register.pinned if set(p) & set(used)]
+    pinned = conditions([{**default, **p} for p in register.pinned if set(p) & set(used)], "pinned")
     run(measure, pinned, "pinned")
     runs += pinned
     n_combo = 0
     for size in (2, 3):
         combos = _combination_runs(rules, depends, runs, default, seeds[0], combinations - n_combo, size)
+        for r in combos:
+            r.claims = _touched(depends, r, default)
         run(measure, combos, "combinations")
         runs += combos
         n_combo += len(combos)
@@ -605,6 +507,8 @@ def explore(
         "screened": screen is not None and bool(joints),
         "screened_singles": screen is not None and screen_singles and bool(singles),
         "confirmed_at_full_size": confirmed,
+        "confirmed_claims": confirmed_claims,
+        "measures_claims_asked": takes_claims(measure),
         "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,

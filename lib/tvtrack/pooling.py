@@ -1,0 +1,155 @@
+"""Pooling a claim's measured values over independent replicates (equal weights; counts as counts; certified
+bounds to their envelope; positive quantities on the log scale), for :mod:`tvtrack.explore`."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+from scipy import stats
+
+from .montecarlo import Estimate
+from .verdicts import calibrated
+
+__all__ = ["pool"]
+
+
+def _z(conf: float) -> float:
+    return float(stats.norm.ppf(0.5 + conf / 2))
+
+
+def _is_count(e: Estimate) -> bool:
+    return e.method == "Clopper-Pearson" or e.method.startswith("count")
+
+
+def _pool_counts(es: list[Estimate]) -> Estimate:
+    """Shares from direct counts pool as counts: ``sum k`` of ``sum n``, with the Clopper-Pearson interval (zero or
+    all events: the one-sided bound they certify), never by averaging intervals (which under-covers for zero events)."""
+    from .montecarlo import proportion_ci, zero_events_bound
+
+    n = int(sum(e.n for e in es))
+    k = int(sum(round(e.value * e.n) for e in es))
+    conf = es[0].confidence
+    if 0 < k < n:
+        return proportion_ci(k, n, conf)
+    b = zero_events_bound(n, conf)
+    lo, hi = (0.0, b) if k == 0 else (1.0 - b, 1.0)
+    return Estimate(k / n, math.nan, lo, hi, n, conf, f"count over {len(es)} replicates: {k} of {n}, one-sided bound")
+
+
+def _is_bound(e: Estimate) -> bool:
+    """A one-sided interval of a non-negative quantity: ``[0, b]`` (a certified upper bound, e.g. no run of a
+    threshold ratio's denominator broke on the grid, or an interval clipped at zero) or ``[a, inf)``."""
+    return (e.ci_low == 0.0 < e.ci_high and e.value >= 0.0) or e.ci_high == math.inf
+
+
+def _pool_estimates(es: list[Estimate]) -> Estimate:
+    k = len(es)
+    conf = es[0].confidence
+    z = _z(conf)
+    n = int(sum(e.n for e in es))
+    extrap = any(e.extrapolated for e in es)
+    if all(_is_count(e) for e in es) and not extrap:
+        return _pool_counts(es)
+    vals = np.array([e.value for e in es], float)
+    if all(e.method == "exact" for e in es):
+        if np.all(vals == vals[0]):
+            return es[0]
+        t = stats.t.ppf(0.5 + conf / 2, k - 1)
+        m, s = vals.mean(), vals.std(ddof=1) / math.sqrt(k)
+        return Estimate(
+            float(m),
+            float(s),
+            float(m - t * s),
+            float(m + t * s),
+            k,
+            conf,
+            f"t interval over {k} independent replicates",
+            extrap,
+        )
+    lo = np.array([e.ci_low for e in es], float)
+    hi = np.array([e.ci_high for e in es], float)
+    if any(_is_bound(e) for e in es) and not (np.isnan(lo).any() or np.isnan(hi).any() or np.isnan(vals).any()):
+        # a certified one-sided bound has no standard error to combine: the envelope of the replicates'
+        # intervals covers the truth at least as often as any one of them does (conservative, never negative)
+        a, b = float(lo.min()), float(hi.max())
+        return Estimate(
+            float(np.clip(np.median(vals), a, b)),
+            float((b - a) / (2 * z)),
+            a,
+            b,
+            n,
+            conf,
+            f"envelope of {k} independent replicates' intervals (some are certified bounds)",
+            extrap,
+        )
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
+        return Estimate(
+            float(np.nanmean(vals)),
+            math.nan,
+            math.nan,
+            math.nan,
+            n,
+            conf,
+            f"pooled over {k} replicates: some intervals undefined",
+            extrap,
+        )
+    if np.all(lo > 0) and np.all(vals > 0):
+        lv, lse = np.log(vals), (np.log(hi) - np.log(lo)) / (2 * z)
+        m, se = lv.mean(), math.sqrt(float(np.sum(lse**2))) / k
+        return Estimate(
+            float(math.exp(m)),
+            float(math.exp(m) * se),
+            max(float(math.exp(m - z * se)), float(lo.min())),  # within the replicates' hull, as below
+            min(float(math.exp(m + z * se)), float(hi.max())),
+            n,
+            conf,
+            f"pooled over {k} independent replicates (equal weights, log scale)",
+            extrap,
+        )
+    se_i = (hi - lo) / (2 * z)
+    m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
+    # never beyond every replicate's interval (a share difference's pooled interval stays within [-1, 1]): the truth
+    # lies outside the hull only when it lies outside every replicate's interval
+    a, b = max(float(m - z * se), float(lo.min())), min(float(m + z * se), float(hi.max()))
+    return Estimate(
+        float(m),
+        float(se),
+        a,
+        b,
+        n,
+        conf,
+        f"pooled over {k} independent replicates (equal weights)",
+        extrap,
+    )
+
+
+def _is_estimate_like(x: Any) -> bool:
+    return isinstance(x, Estimate) or (isinstance(x, Mapping) and "value" in x and "ci_low" in x)
+
+
+def pool(measured: Sequence[Any]) -> Any:
+    """Pool a claim's measured values from independent replicates.
+
+    Estimates are averaged with equal weights and their standard errors (from the intervals) combined
+    (on the log scale when every interval is positive); exact numbers that vary between replicates get
+    a Student-t interval over the replicates; lists and dicts (``Monotone`` points, ``AllOf`` parts)
+    are pooled element by element. An undefined interval in any replicate makes the pooled interval
+    undefined (the verdict is then ``undecided``).
+    """
+    ms = [m for m in measured if m is not None]
+    if not ms:
+        return None
+    if len(ms) == 1:
+        return ms[0]
+    first = ms[0]
+    if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
+        es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
+        return _pool_estimates(es)
+    if isinstance(first, Mapping):
+        keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
+        return {k: pool([m[k] for m in ms]) for k in keys}
+    if isinstance(first, (list, tuple)) and all(isinstance(m, (list, tuple)) and len(m) == len(first) for m in ms):
+        return [pool([m[i] for m in ms]) for i in range(len(first))]
+    return first
