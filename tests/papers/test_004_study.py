@@ -212,6 +212,14 @@ def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     assert list(reused["rms"]) == list(fresh["rms"])
     for name, per_h in fresh["rms"].items():
         _same(per_h, reused["rms"][name])
+    # the Kalman fits made once are those a fresh comparison at horizon 2 makes
+    from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CA_KALMAN, compare_methods
+
+    s2 = study.replace(study._setup(dict(run.config, horizon=2), SIZE), learned_kw={})
+    direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
+    for name in (CA_KALMAN, study.SINGER, PAPER):
+        mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
+        _same(study.root_mean_ci(mse), reused["rms"][name][2])
 
 
 def test_horizon_sentence_names_the_settings_on_a_grid_edge():

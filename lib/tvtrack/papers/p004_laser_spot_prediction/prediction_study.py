@@ -43,6 +43,7 @@ __all__ = [
     "FITTED",
     "FADING",
     "SINGER",
+    "CA_KALMAN",
     "MIN_WINDOW",
     "ComparisonSetup",
     "Comparison",
@@ -73,10 +74,12 @@ CLASSICAL = (
 FADING = "fading memory (Morrison)"
 #: Singer-model Kalman filter with ML parameters (a Kalman filter whose memory is set by a motion model).
 SINGER = "Singer Kalman, ML"
+#: The constant-acceleration Kalman filter with ML noise levels.
+CA_KALMAN = "CA Kalman, ML noise"
 #: Baselines fitted to data: back-propagation MLP and RBF network (the paper names both, 2-3 and
 #: 2-4 px), and two Kalman filters with ML parameters standing in for the paper's "Kalman filters"
 #: (1-2 px): constant acceleration with white jerk, and Singer's correlated acceleration.
-FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise", SINGER)
+FITTED = ("MLP back-prop", "RBF network", CA_KALMAN, SINGER)
 #: The fewest samples each windowed baseline can fit (its degree + 1): where its window search starts.
 MIN_WINDOW = {"cubic spline": 4, "linear regression deg 1": 2, "linear regression deg 2": 3}
 
@@ -297,6 +300,7 @@ def compare_methods(
     learned_models: dict | None = None,
     learned: bool = True,
     parts=None,
+    kalman_fits=None,
 ) -> Comparison:
     """Every method on the same series, tuned by cross-validation over paths.
 
@@ -318,6 +322,9 @@ def compare_methods(
     parts : iterable of str, optional
         Which of :data:`PARTS` to run besides the paper's filter (default: all; ``learned=False`` drops
         "learned"). Each part's numbers are the same whichever other parts run (no part shares a draw).
+    kalman_fits : (ca, singer), optional
+        The Kalman filters' per-fold ML parameters (``chosen`` of an earlier comparison on the same series and
+        folds: the fits read no horizon); None: fitted here.
 
     Returns
     -------
@@ -350,7 +357,7 @@ def compare_methods(
     if learned and "learned" in parts:
         models = _learned(z, reference, folds, s, rng, learned_models, (mse, fixed, chosen, fcs))
     if "kalman" in parts:
-        _kalman(z, reference, folds, s, (mse, fixed, chosen, fcs))
+        _kalman(z, reference, folds, s, (mse, fixed, chosen, fcs), kalman_fits)
     return Comparison(mse, fixed, chosen, fcs, models)
 
 
@@ -393,18 +400,20 @@ def _learned(z, reference, folds, s: ComparisonSetup, rng, learned_models, out) 
     return models
 
 
-def _kalman(z, reference, folds, s: ComparisonSetup, out) -> None:
-    """The constant-acceleration and Singer Kalman filters, noise fitted by maximum likelihood per fold, into
-    ``out``."""
+def _kalman(z, reference, folds, s: ComparisonSetup, out, fitted=None) -> None:
+    """The constant-acceleration and Singer Kalman filters, noise fitted by maximum likelihood per fold (or the
+    ``fitted`` (ca, singer) parameters), into ``out``."""
     mse, fixed, chosen, fcs = out
     m = s.steps
-    fits = pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid)
-    fcs["CA Kalman, ML noise"] = pr.constant_acceleration_forecast(z, fits, folds, m)
-    mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(
-        fcs["CA Kalman, ML noise"], reference, m, s.start
-    )
-    chosen["CA Kalman, ML noise"] = np.array(fits)
-    singer_fits = pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid)
+    if fitted is None:
+        fitted = (
+            pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
+            pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
+        )
+    fits, singer_fits = fitted
+    fcs[CA_KALMAN] = pr.constant_acceleration_forecast(z, fits, folds, m)
+    mse[CA_KALMAN] = fixed[CA_KALMAN] = per_trial_path_mse(fcs[CA_KALMAN], reference, m, s.start)
+    chosen[CA_KALMAN] = np.array(fits)
     fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)
     mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
     chosen[SINGER] = np.array(singer_fits)
