@@ -430,3 +430,31 @@ def test_budget_and_regeneration_sentences_follow_their_tests():
     assert "2 DN 0.56" in text
     assert "agrees with" in fd.regeneration_sentence(3.8e-16)
     assert "differs from" in fd.regeneration_sentence(2e-12)
+
+
+def test_ranking_figure_and_single_values_take_runs_measured_for_some_claims_only():
+    """With the explorer's claims=, a condition measures only the claims reading what it changes (a change of the
+    networks' lags: C004-3b alone); the ranking figure draws each condition's claims and single_values skips a run
+    without the claim."""
+    from types import SimpleNamespace
+
+    from tvtrack.papers.p004_laser_spot_prediction import plots
+
+    est = lambda v: Estimate(v, 0.1, v - 0.2, v + 0.2, 15)  # noqa: E731
+    ranks = {"C004-3": {b: est(2.0) for b in CLASSICAL}, "C004-3b": {b: est(0.5) for b in study.NETWORKS}}
+
+    def run(stage, changed, outputs):
+        return SimpleNamespace(stage=stage, config=dict(DEFAULT, **changed), outputs=outputs, changed=lambda d: changed)
+
+    runs = [
+        run("single", {"network lags": 10}, {"C004-3b": ranks["C004-3b"]}),
+        run("single", {"spline": "natural cubic"}, {"C004-3": ranks["C004-3"]}),
+        run("single", {"amplitude": 2.0}, {**ranks, "C004-2": est(3.0)}),
+        run("single", {"amplitude": 0.5}, {"C004-3": ranks["C004-3"]}),  # no C004-2: skipped
+    ]
+    ex = SimpleNamespace(runs=runs, default=dict(DEFAULT), measured=lambda c: ranks.get(c, est(1.5)))
+    fig = plots.ranking_figure(ex)
+    assert len(fig.axes[0].get_yticklabels()) == 5  # the default and the four conditions
+    dots = {c.get_label(): len(c[0].get_xdata()) for c in fig.axes[0].containers}
+    assert dots == {**{b: 4 for b in CLASSICAL}, **{b: 3 for b in study.NETWORKS}}  # rows measured for the claim
+    assert side.single_values(ex, "C004-2", "amplitude") == {1.0: est(1.5), 2.0: est(3.0)}

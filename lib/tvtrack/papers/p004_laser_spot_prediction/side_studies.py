@@ -96,7 +96,7 @@ def single_values(exploration, claim_id: str, entry: str) -> dict:
 
     out = {exploration.default.get(entry, DEFAULT[entry]): exploration.measured(claim_id)}
     for r in exploration.runs:
-        if r.stage == "single" and list(r.changed(exploration.default)) == [entry]:
+        if r.stage == "single" and list(r.changed(exploration.default)) == [entry] and claim_id in r.outputs:
             out[r.config[entry]] = r.outputs[claim_id]
     return dict(sorted(out.items()))
 
