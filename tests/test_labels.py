@@ -315,3 +315,21 @@ def test_a_part_on_the_edge_says_no_practical_run_decides_it_instead_of_a_huge_n
     reps = [{"seed": s, "measured": Estimate(0.5000001, 0.05, 0.4, 0.6, 100, method="t")} for s in (1, 2, 3)]
     runs = label_parts(BAND, reps[0]["measured"], reps, [], [])["parts"]["claim"]["runs_to_decide"]
     assert runs["replicates"] is None and "over 1000 times the runs" in runs["text"]
+
+
+def test_a_claim_with_no_decided_part_has_no_label_not_unexplored(tmp_path):
+    from tvtrack.results import Results
+    from tvtrack.verdicts import NotCheckable
+    from tvtrack.wording import shown_label
+
+    edge = explore(lambda c, s: {"E": _mean(s, 0.5, n=100)}, REG5, {"E": BAND}, seed=4, replicates=3, joint=8)
+    rec = edge.record("E")
+    edge_c = explore(lambda c, s: {"C000-1": _mean(s, 0.5, n=100)}, REG5, {"C000-1": BAND}, seed=4, replicates=3)
+    assert rec["parts"]["claim"]["verdict"] == "undecided"
+    assert rec["label"] == "-" and rec["coverage"].startswith("no label")
+    assert shown_label({"robustness": rec}) == "—"
+    res = Results("000_x", "c", {"seed": 1, "output_dir": str(tmp_path)})
+    claim = res.claim("C000-1", "s", "p", BAND, exploration=edge_c)  # an undecided claim is accepted unlabelled
+    assert claim.verdict == "undecided" and claim.robustness["label"] == "-"
+    nc = label_parts(NotCheckable("no data"), None, [], [], [])
+    assert nc["label"] == "-"

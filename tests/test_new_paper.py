@@ -13,6 +13,7 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from load import wall_budget
 
 import test_notebooks as tn
 import tvtrack.papers
@@ -87,7 +88,7 @@ def test_the_generated_tests_pass(tree, paper):
         text=True,
         timeout=300,
     )
-    assert done.returncode == 0 and "4 passed" in done.stdout, done.stdout[-3000:] + done.stderr[-2000:]
+    assert done.returncode == 0 and "5 passed" in done.stdout, done.stdout[-3000:] + done.stderr[-2000:]
 
 
 @pytest.mark.notebook
@@ -108,7 +109,7 @@ def test_the_generated_notebook_runs_at_smoke_size_and_passes_the_notebook_check
     smoke = tomllib.loads((root / "papermill_runs" / "profiles" / f"{STEM}.smoke.toml").read_text())
     outcome = run_notebook(root / "notebooks" / f"{STEM}.ipynb", root / "runs" / STEM, smoke)
     assert outcome.ok, f"{outcome.error}\n{(outcome.run_dir / 'error.txt').read_text()}"
-    assert outcome.runtime_s < 60, f"the smoke run took {outcome.runtime_s:.0f} s"
+    assert outcome.runtime_s < wall_budget(60), f"the smoke run took {outcome.runtime_s:.0f} s"
     for check in (
         tn.test_smoke_run_writes_valid_results_and_recording,
         tn.test_executed_notebook_shows_every_figure_inline_with_its_caption,
@@ -151,6 +152,9 @@ def test_the_command_line_names_the_files_it_writes(tmp_path, monkeypatch, capsy
     assert main(["new", "907", "cli_demo", "--title", "Another demo"]) == 0
     out = capsys.readouterr().out
     assert f"wrote {tmp_path / 'notebooks' / '907_cli_demo.ipynb'}" in out and "docs/adding_a_paper.md" in out
+    # what to run next, and where: the tree it wrote into
+    assert f"in {tmp_path}," in out and "tests/papers/test_907_cli_demo.py" in out
+    assert "tvtrack run 907_cli_demo --profile smoke" in out
     assert main(["new", "907", "cli_demo"]) == 2
     assert "paper 907 exists already" in capsys.readouterr().err
 

@@ -61,17 +61,18 @@ def test_the_runner_ignores_a_python3_kernel_spec_of_another_environment(tmp_pat
     assert not (tmp_path / "run" / "kernel.log").exists()  # nothing printed: the empty log is not kept
 
 
-def test_sixteen_runs_with_eight_jobs_all_start_and_succeed(tmp_path):
+def test_eight_kernels_starting_at_once_all_start_and_succeed(tmp_path):
+    """Eight runs on eight jobs: every kernel starts at the same moment (the start race of a loaded machine)."""
     from tvtrack.pipeline.sweep import run_sweep
 
     spec = tmp_path / "many.toml"
     spec.write_text(
-        f'notebook = "{FIXTURE_NOTEBOOK}"\nrepeats = 4\n[fixed]\nn_trials = 2\nn_frames = 2\nrerun_mode = "off"\n'
+        f'notebook = "{FIXTURE_NOTEBOOK}"\nrepeats = 2\n[fixed]\nn_trials = 2\nn_frames = 2\nrerun_mode = "off"\n'
         "[grid]\nspot_sigma_px = [1.0, 1.5, 2.0, 3.0]\n"
     )
     s = run_sweep(spec, jobs=8, output=tmp_path / "many", progress=False)
     rows = s.summary_csv.read_text().splitlines()[1:]
-    assert (s.n_runs, s.n_ok, s.n_failed) == (16, 16, 0), rows
+    assert (s.n_runs, s.n_ok, s.n_failed) == (8, 8, 0), rows
     assert not list((tmp_path / "many" / "runs").glob(".tmp-*"))
 
 

@@ -25,7 +25,7 @@ def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytes
         r'1 <span class="pill l-provisional" title="provisional: too few configurations explored[^"]+">provisional</span>',
         html,
     )
-    assert re.search(r'1 <span class="pill l-—" title="—: no robustness record[^"]*">—</span>', html)
+    assert re.search(r'1 <span class="pill l-—" title="—: no label: the claim is not checkable[^"]*">—</span>', html)
     assert 'href="sweeps/fixture_sweep.html"' in html and "1 failed" in html
 
 

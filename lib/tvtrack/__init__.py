@@ -5,7 +5,8 @@ Three rooms (``tests/test_layout.py`` keeps them apart):
 - the core, by role: :mod:`tvtrack.render` and :mod:`tvtrack.measure` (what the camera sees, gates and
   centroids), :mod:`tvtrack.filters` (Kalman with the one Joseph update, EKF, grid, IMM, alpha-beta,
   growing-memory, variable-dimension), :mod:`tvtrack.detect` (innovation detectors), :mod:`tvtrack.bounds`
-  (Cramer-Rao bounds), :mod:`tvtrack.montecarlo` (seeded generators, intervals), :mod:`tvtrack.register`
+  (Cramer-Rao bounds), :mod:`tvtrack.montecarlo` (seeded generators, intervals;
+  re-exports :mod:`tvtrack.coverage` and :mod:`tvtrack.counts`), :mod:`tvtrack.register`
   (what a paper left unstated), :mod:`tvtrack.explore` (claims over the register and independent replicates),
   :mod:`tvtrack.verdicts` (rules and part-level labels), :mod:`tvtrack.results` (``results.json``, the
   claims table), :mod:`tvtrack.parameters`, :mod:`tvtrack.recordings` (Rerun) and :mod:`tvtrack.plotting`;

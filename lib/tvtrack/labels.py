@@ -414,7 +414,7 @@ def label_parts(
             "runs_to_decide": runs,
         }
     labels = [p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL]
-    label = weakest_label(labels)
+    label = weakest_label(labels) if labels else NO_PART_LABEL  # no decided part: nothing to label
     for r in (*rep_rows, *cond_rows):
         r.pop("part_measured", None)
     return {
@@ -473,6 +473,8 @@ def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, pro
     extra = [f"{len(pinned)} pinned known flips"] if pinned else []
     extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
     small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""
+    if label == NO_PART_LABEL:
+        label, which = "no label (no part decided at the default: nothing to flip)", ""
     return (
         f"{label}{which} over {n_explored} distinct configurations ({len(single)} one at a time over "
         f"{len(entries)} register entries, {len(joint)} joint samples"

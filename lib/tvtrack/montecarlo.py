@@ -2,17 +2,29 @@
 
 Convention: Monte Carlo arrays carry trials on the leading axis, ``(n_trials, ...)``, and every
 random draw comes from a :class:`numpy.random.Generator` made from the run's ``seed``.
+
+This module is the one import path for the interval helpers: it holds the intervals of means, mean
+squares, ratios, paired differences and quantiles, and re-exports the measured coverage of those
+intervals (:mod:`tvtrack.coverage`) and the probabilities from event counts (:mod:`tvtrack.counts`).
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import replace
-
 import numpy as np
 from scipy import stats
 
-from .estimate import Estimate  # re-exported: tvtrack.montecarlo.Estimate
+# re-exported: tvtrack.montecarlo.Estimate, the coverage table and the counts helpers keep their import paths
+from .counts import events_statement, mark_extrapolated, proportion_ci, rate_from_counts, zero_events_bound
+from .coverage import (
+    COVERAGE,
+    COVERAGE_FLOOR,
+    _coverage_text,
+    coverage_at,
+    coverage_reached,
+    stated_coverage,
+    widen_to_nominal,
+)
+from .estimate import Estimate
 from .resampling import _expanded_alpha, _expanded_percentile_ratio, _grouped_bootstrap, _studentized_mean_interval
 
 __all__ = [
@@ -59,119 +71,6 @@ def spawn_rngs(seed: int, n: int) -> list[np.random.Generator]:
     """``n`` independent generators derived from ``seed`` (for independent sub-experiments
     whose results must not change when another sub-experiment draws more numbers)."""
     return [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(n)]
-
-
-# -- coverage measured by simulation -------------------------------------------------------------
-
-#: Coverage of the 95 % intervals measured by simulation (2000 experiments per cell, re-measured by
-#: ``tests/test_intervals.py``, which fails if a value here drifts): helper -> {n: (skewed, heavy)}.
-#: *skewed*: the worst of light to moderately skewed samples (mean of 20 squared normals,
-#: exponential, log-normal sigma 0.5; for ratios paired paths whose scale is log-normal sigma 0.5 and
-#: a common exponential; for the Student-t mean also normal samples); *heavy*: the worst of heavy tails
-#: (log-normal sigma 1, Student t3, means of 20 squared Student-t(3) errors, paths whose scale is
-#: log-normal sigma 1). Between tabulated sizes the next smaller size counts; below the smallest the
-#: coverage is unmeasured (stated as such, and :func:`coverage_reached` is False). Keys: ``mean_square``
-#: (:func:`mean_square_ci`, :func:`rms_ci`: bootstrap-t), ``ratio`` (:func:`ratio_ci`: expanded
-#: percentile), ``mean t`` (:func:`mean_ci`, :func:`paired_difference`), ``mean bootstrap-t``.
-COVERAGE = {
-    "mean_square": {
-        5: (0.936, 0.855),
-        10: (0.937, 0.839),
-        15: (0.936, 0.852),
-        30: (0.944, 0.858),
-        48: (0.953, 0.837),
-        100: (0.936, 0.860),
-    },
-    "ratio": {
-        5: (0.916, 0.914),
-        10: (0.941, 0.923),
-        15: (0.940, 0.927),
-        30: (0.948, 0.927),
-        48: (0.937, 0.922),
-        100: (0.938, 0.921),
-    },
-    "mean t": {
-        5: (0.882, 0.815),
-        10: (0.904, 0.831),
-        15: (0.913, 0.842),
-        30: (0.924, 0.880),
-        48: (0.946, 0.893),
-        100: (0.935, 0.909),
-    },
-    "mean bootstrap-t": {
-        5: (0.936, 0.898),
-        10: (0.937, 0.896),
-        15: (0.936, 0.900),
-        30: (0.944, 0.923),
-        48: (0.948, 0.926),
-        100: (0.936, 0.924),
-    },
-}
-#: A helper whose measured coverage at the sample size falls below this says so (:func:`coverage_reached`).
-COVERAGE_FLOOR = 0.93
-
-
-def coverage_at(helper: str, n: int) -> tuple[float, float]:
-    """The measured coverage ``(skewed, heavy)`` of ``helper``'s 95 % interval at ``n`` samples
-    (:data:`COVERAGE`, the next smaller tabulated size); NaN below the smallest size measured."""
-    table = COVERAGE[helper]
-    below = [m for m in sorted(table) if m <= n]
-    return table[below[-1]] if below else (float("nan"), float("nan"))
-
-
-def _coverage_text(helper: str, n: int) -> str:
-    skewed, heavy = coverage_at(helper, n)
-    if np.isnan(skewed):
-        return f"coverage unmeasured at n = {n} (below n = {min(COVERAGE[helper])}, the smallest size measured)"
-    return f"coverage {skewed:.3f} at n = {n} (skewed samples; heavy tails {heavy:.3f})"
-
-
-def stated_coverage(estimate) -> float:
-    """The coverage an interval's ``method`` states ("coverage 0.91 at n = 15"; NaN for "coverage
-    unmeasured"), or its nominal ``confidence`` where the method states none (exact and large-sample
-    intervals, and intervals :func:`widen_to_nominal` has widened: "measured coverage ...; widened")."""
-    method = getattr(estimate, "method", "") or ""
-    if "coverage unmeasured" in method:
-        return float("nan")
-    m = re.search(r"(?<!measured )coverage (\d\.\d+)", method)
-    return float(m.group(1)) if m else float(estimate.confidence)
-
-
-def coverage_reached(estimate, floor: float = COVERAGE_FLOOR) -> bool:
-    """Whether the interval covers about its nominal level at its sample size (for skewed samples).
-
-    A rule reads this flag: where it is False the interval is narrower than it claims, so the part
-    should be widened or left undecided. Heavy tails are not covered by the flag (no interval of a
-    mean reaches 95 % on them at small n; see :func:`robust_summary`)."""
-    return stated_coverage(estimate) >= floor - 1e-12
-
-
-def widen_to_nominal(estimate: Estimate) -> Estimate:
-    """The interval widened so that its measured coverage becomes its nominal one (a rule's way to
-    decide on a helper whose :func:`stated_coverage` falls short, instead of refusing).
-
-    Each side is stretched about the value by ``z_{(1+confidence)/2} / z_{(1+stated)/2}`` (on the log
-    scale when the interval is positive, where the skewed helpers' intervals are closer to symmetric);
-    an interval that covers already is returned unchanged. A calibration by the measured coverage on
-    skewed samples (:data:`COVERAGE`), not an exact interval: heavy tails stay below nominal.
-    """
-    stated = stated_coverage(estimate)
-    if np.isnan(stated) or stated >= estimate.confidence or not np.isfinite([estimate.ci_low, estimate.ci_high]).all():
-        return estimate  # unmeasured coverage cannot be calibrated: the flag stays False
-    f = stats.norm.ppf(0.5 + estimate.confidence / 2) / stats.norm.ppf(0.5 + stated / 2)
-    v, lo, hi = estimate.value, estimate.ci_low, estimate.ci_high
-    if lo > 0 and v > 0:
-        lo, hi = v * (lo / v) ** f, v * (hi / v) ** f
-    else:
-        lo, hi = v - f * (v - lo), v + f * (hi - v)
-    return replace(
-        estimate,
-        ci_low=float(lo),
-        ci_high=float(hi),
-        method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
-            f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"
-        ),
-    )
 
 
 def mean_ci(samples, confidence: float = 0.95, method: str = "t", rng: np.random.Generator | None = None) -> Estimate:
@@ -561,71 +460,6 @@ def robust_summary(
         if kept.size >= 2 and np.all(kept >= 0)
         else (mean_ci(kept, confidence) if kept.size >= 2 else None),
     }
-
-
-def proportion_ci(successes: int, n: int, confidence: float = 0.95) -> Estimate:
-    """A probability from ``successes`` out of ``n`` Bernoulli trials, with the exact
-    Clopper-Pearson interval (scipy.stats.binomtest)."""
-    if n <= 0:
-        raise ValueError(f"proportion_ci needs n >= 1, got n={n}")
-    k = int(successes)
-    p = k / n
-    ci = stats.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
-    return Estimate(p, float(np.sqrt(p * (1 - p) / n)), float(ci.low), float(ci.high), n, confidence, "Clopper-Pearson")
-
-
-def zero_events_bound(n: int, confidence: float = 0.95) -> float:
-    """The upper bound on a probability that zero events in ``n`` independent runs certify:
-    ``1 - (1 - confidence)^(1/n)`` (one-sided Clopper-Pearson; about ``3/n`` at 95 %)."""
-    if n <= 0:
-        raise ValueError(f"zero_events_bound needs n >= 1, got n={n}")
-    return float(1 - (1 - confidence) ** (1 / n))
-
-
-def rate_from_counts(k: int, n: int, confidence: float = 0.95) -> Estimate:
-    """A probability as the direct counts support it: ``k`` events in ``n`` independent runs.
-
-    ``k > 0``: :func:`proportion_ci` (Clopper-Pearson). ``k = 0``: the interval ``[0, b]`` with ``b`` the
-    bound zero events certify (:func:`zero_events_bound`, one-sided), so a rule can decide "the rate is
-    below a target" from the counts alone and never from a model's tail. Both methods read as counts
-    to :mod:`tvtrack.explore`, which pools replicates as summed counts.
-    """
-    if k > 0:
-        return proportion_ci(k, n, confidence)
-    b = zero_events_bound(n, confidence)
-    return Estimate(
-        0.0,
-        float("nan"),
-        0.0,
-        b,
-        n,
-        confidence,
-        f"count: 0 of {n} runs, rate < {b:.3g} (one-sided bound 1 - (1 - confidence)^(1/n))",
-    )
-
-
-def mark_extrapolated(fitted: Estimate, k: int, n: int, confidence: float = 0.95) -> Estimate:
-    """A fitted probability (e.g. a logistic loss curve read at one SIR) marked ``extrapolated`` where
-    the ``k`` of ``n`` direct counts behind it cannot resolve it: zero events, or a fitted value below
-    the bound zero events would certify (``1 - 0.05^(1/n)``: the runs would most likely see nothing).
-    An extrapolated estimate is shown but never decides (:func:`tvtrack.verdicts.is_undecided`); use
-    :func:`rate_from_counts` to decide."""
-    if k > 0 and fitted.value >= zero_events_bound(n, confidence):
-        return fitted
-    return replace(
-        fitted,
-        extrapolated=True,
-        method=f"{fitted.method}; extrapolated: {events_statement(k, n, confidence)}".lstrip("; "),
-    )
-
-
-def events_statement(k: int, n: int, confidence: float = 0.95) -> str:
-    """What ``k`` events in ``n`` runs say, in words: for ``k = 0`` the bound it certifies,
-    otherwise the rate with its Clopper-Pearson interval."""
-    if k == 0:
-        return f"0 of {n} runs: rate < {zero_events_bound(n, confidence):.3g} ({confidence:.0%} one-sided)"
-    e = proportion_ci(k, n, confidence)
-    return f"{k} of {n} runs: rate {e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}] ({confidence:.0%} Clopper-Pearson)"
 
 
 def quantile_ci(samples, q: float, confidence: float = 0.95) -> Estimate:

@@ -11,7 +11,6 @@ __all__ = [
     "ROLE_COLOURS",
     "colour",
     "rgb",
-    "series_colours",
     "VERDICT_COLOURS",
     "use_style",
     "errorbars",
@@ -54,13 +53,6 @@ def rgb(hex_colour: str) -> tuple[int, int, int]:
     """``"#RRGGBB"`` -> ``(r, g, b)`` in 0..255 (what Rerun takes)."""
     h = hex_colour.lstrip("#")
     return int(h[0:2], 16), int(h[2:4], 16), int(h[4:6], 16)
-
-
-def series_colours(n: int) -> list[tuple[int, int, int]]:
-    """``n`` distinct RGB colours for compared series (x/y errors, variant 1/2, ...)."""
-    if n > len(PALETTE):
-        raise ValueError(f"{n} compared series: the palette has {len(PALETTE)} distinct colours")
-    return [rgb(c) for c in PALETTE[:n]]
 
 
 def use_style() -> None:

@@ -188,10 +188,6 @@ class Register:
         keep = set(names)
         return Register((e for e in self.entries if e.name in keep), [p for p in self.pinned if set(p) <= keep])
 
-    def with_entries(self, *entries: Entry) -> "Register":
-        """A new register with ``entries`` appended (e.g. the adversarial pass's rows)."""
-        return Register([*self.entries, *entries], self.pinned)
-
     def with_pinned(self, *conditions: Mapping[str, Any]) -> "Register":
         """A new register with joint ``conditions`` pinned (see the class)."""
         return Register(self.entries, [*self.pinned, *conditions])

@@ -178,7 +178,8 @@ def disc_spot(centers, shape, diameter, flux=1.0, origin=(0, 0), dtype=np.float6
     cover = np.square(dx)[..., None, :] + np.square(dy)[..., :, None]
     np.sqrt(cover, out=cover)
     np.subtract(dtype(diameter / 2 + 0.5), cover, out=cover)
-    np.clip(cover, 0.0, 1.0, out=cover)
+    np.maximum(cover, 0.0, out=cover)  # clip in place, without np.clip's per-call overhead (same numbers)
+    np.minimum(cover, 1.0, out=cover)
     cover *= (np.asarray(flux, dtype=float) / disc_area(diameter)).astype(dtype)[..., None, None]
     return cover
 

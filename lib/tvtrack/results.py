@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from .montecarlo import Estimate
-from .labels import Robustness
+from .labels import NO_PART_LABEL, Robustness
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .wording import (
@@ -182,7 +182,8 @@ class Claim:
                     f"claim {self.id}: a checkable claim needs a robustness record (or a note why "
                     f"no unstated choice matters)"
                 )
-            if self.robustness.get("label") not in LABELS:
+            undecided = self.verdict == "undecided" and self.robustness.get("label") == NO_PART_LABEL
+            if self.robustness.get("label") not in LABELS and not undecided:
                 raise ValueError(
                     f"claim {self.id}: robustness label {self.robustness.get('label')!r} must be one of {LABELS}"
                 )

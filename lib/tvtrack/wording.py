@@ -56,7 +56,7 @@ LABEL_WORDS = {
     "unstable": "independent replicates of the same run disagree decisively",
     "unexplored": "no world beyond the paper was varied: nothing to say how far it extends",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
-    "—": "no robustness record (the claim is not checkable)",
+    "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }
 GLOSSARY = {**VERDICT_WORDS, **LABEL_WORDS}
 """Every verdict and label word with its meaning (the site's tooltips, the report's glossary)."""
@@ -240,6 +240,8 @@ def shown_label(claim: Mapping) -> str:
     if not record:
         return "—"
     label = str(record.get("label", "—"))
+    if label == "-":  # no part decided at the default: nothing to label (labels.NO_PART_LABEL)
+        return "—"
     if record.get("provisional") and label in ("robust", "unexplored"):
         return PROVISIONAL
     return label

@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from tvtrack.papers.p003_rotating_marker_tracker import plots, study  # noqa: E402
+from tvtrack.papers.p003_rotating_marker_tracker import beyond, plots, study  # noqa: E402
 from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_slope_fit  # noqa: E402
 from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario  # noqa: E402
 
@@ -45,7 +45,7 @@ def test_loss_curves_mark_each_panel_with_its_own_paper_threshold():
 
 def test_median_example_cancels_the_interferers_and_leaves_a_faint_ring():
     sc = Scenario(n_interferers=5)
-    ex = study.median_example(3, sc)
+    ex = beyond.median_example(3, sc)
     res, q = ex["residual"], ex["interferers"]
     # nothing of the interferers survives: the residual at each interferer is at most the ring's depth
     ring = -res.min()

@@ -9,10 +9,19 @@ from scipy import stats
 
 from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
-from tvtrack.papers.p003_rotating_marker_tracker import study
+from tvtrack.papers.p003_rotating_marker_tracker import beyond, study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
 from tvtrack.verdicts import InBand, Ordering, is_undecided
+
+
+@pytest.fixture(autouse=True)
+def _fresh_memo():
+    """Tests here replace the runners: no measurement part kept from another test (study.clear_cache)."""
+    study.clear_cache()
+    yield
+    study.clear_cache()
+
 
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
 
@@ -505,7 +514,7 @@ def test_every_register_entry_and_value_reads_in_plain_words():
 
 def test_exposure_study_runs_both_exposures_on_the_same_draws():
     sz = study.Sizes(trials=2, fig1_s=0.6, fig2_s=0.5, transient_s=0.2, horizon_s=0.4)
-    res = study.exposure_study(1, sz, sz, 50.0)
+    res = beyond.exposure_study(1, sz, sz, 50.0)
     assert res["arc_px"] == pytest.approx(2 * np.pi * 8 * 12 / 50)
     assert set(res["instant"]["thresholds"]) == {"rotating 1", "rotating 5", "static 1", "static 5"}
     direct = study.measure_tracking({"fps": 50.0, "exposure": "integrated"}, 1, sz)["C003-1"]["x_r"]

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import side_studies as side
 from tvtrack.papers.p004_laser_spot_prediction import study
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, PINNED, build
@@ -73,7 +74,7 @@ def test_spline_readings_are_tuned_on_the_extended_window_grid():
     assert np.max(r.comparison.chosen[study.LSQ_CUBIC]) >= 45
     variant = np.asarray(r.comparison.chosen["growing memory, g1 floor (variant)"])
     assert set(variant) <= set(size.floor_grid) | {200, 350}
-    assert study.grid_edge_report(r)[study.LSQ_CUBIC] >= 0.0
+    assert side.grid_edge_report(r)[study.LSQ_CUBIC] >= 0.0
 
 
 def test_model_order_result_states_its_numbers(run):
@@ -82,7 +83,7 @@ def test_model_order_result_states_its_numbers(run):
     from tvtrack.papers.p004_laser_spot_prediction import findings as fd
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import per_trial_path_mse
 
-    s = study.model_order_summary(run)
+    s = side.model_order_summary(run)
     mse = {n: per_trial_path_mse(run.forecasts[n], run.z_meas, 1, SIZE.eval_start)[0] for n in run.forecasts}
     order1 = ("finite differences, 2 points", "linear regression deg 1")
     b1 = min(order1, key=lambda n: mse[n].mean())

@@ -8,6 +8,7 @@ from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p004_laser_spot_prediction import findings as fd
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction import recording, study
+from tvtrack.papers.p004_laser_spot_prediction import side_studies as side
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import one_frame_motion_rms
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL, PAPER, per_trial_path_mse
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, NAMES, ROWS, build, explored
@@ -83,6 +84,42 @@ def test_measure_is_a_function_of_config_and_seed_and_batching_changes_nothing()
     assert batch[0]["C004-2"].value != study.measure(dict(DEFAULT), 8, SIZE)["C004-2"].value  # another seed
 
 
+def test_claims_asked_are_computed_alone_bit_for_bit():
+    """measure(..., claims=S) gives exactly measure(...)'s values on S (the explorer's claims=), running only the
+    methods S reads; a batch that asks the prediction claims one by one on one scene (the cached run grows by the
+    parts asked) gives the values of one full run."""
+    cfg = dict(DEFAULT, horizon=3)
+    full = study.measure(cfg, 7, SIZE)
+    for subset in ({"C004-3"}, {"C004-3b"}, {"C004-1", "C004-6"}, {"C004-4", "C004-5"}, {"C004-2", "C004-3b"}):
+        got = study.measure(cfg, 7, SIZE, claims=frozenset(subset))
+        assert subset <= set(got) and "C004-8" not in got
+        for cid in subset:
+            _same(full[cid], got[cid])
+    study.clear_cache()
+    asked = [frozenset({"C004-3"}), frozenset({"C004-3b", "C004-2"}), None, frozenset({"C004-5"})]
+    batch = study.measure_batch([cfg] * 4, [7] * 4, SIZE, claims=asked)
+    for claims, got in zip(asked, batch):
+        for cid in claims or set(full) - {"C004-8"}:
+            _same(full[cid], got[cid])
+    runs = [r for k, r in study._CACHE.items() if k[0] == "scene" and r.parts]
+    assert len(runs) == 1 and runs[0].parts == {"classical", "learned"}  # no Kalman filter: no claim reads it
+    assert "MLP back-prop" in runs[0].forecasts and study.SINGER not in runs[0].forecasts
+    study.clear_cache()
+    assert study.parts_for({"C004-5", "C004-8"}) is None and study.parts_for({"C004-3"}) == {"classical"}
+
+
+def test_the_cached_variance_check_is_the_uncached_one():
+    """C004-5 is computed once per (seed, series, noise law) and shared by every configuration: the cached value is
+    bit for bit a fresh run from the seed's own stream, for each noise law and seed."""
+    study.clear_cache()
+    for seed, noise in ((7, "Gaussian"), (7, "Student t3"), (8, "Gaussian"), (7, "Gaussian")):
+        fresh = study.variance_ratios(np.random.default_rng(study._streams(seed)[4]), 1000, noise=noise)
+        _same(fresh, study._variance_check(seed, 1000, noise))
+    assert len(study._VARIANCE) == 3
+    study.clear_cache()
+    assert not study._VARIANCE
+
+
 def test_readings_of_one_run(run):
     """tuning = fixed is the floor N_f = fixed_floor; reference = true centre scores against the truth."""
     m, s = 1, SIZE.eval_start
@@ -138,7 +175,7 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
     study kept the one-frame floor at every horizon)."""
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FLOOR_EXTENSION
 
-    hz = study.horizon_study(run, (1, 10), seed=0)
+    hz = side.horizon_study(run, (1, 10), seed=0)
     T = run.z.shape[-1]
     for h in (1, 10):
         grid, more = list(SIZE.floor_grid), sorted({min(v, T) for v in FLOOR_EXTENSION})
@@ -163,6 +200,26 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
     on_edge = any(v > 0 for e in hz["edges"].values() for v in e.values())
     assert ("on an edge of their grid" in text) == on_edge
     assert ("inside its grid at every horizon" in text) == (not on_edge)
+
+
+def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
+    """At the run's own horizon the horizon study takes the run's comparison instead of a fresh one: the same
+    numbers (RMS, floors, edge shares) as a fresh comparison, which a run without its parts forces."""
+    reused = side.horizon_study(run, (1, 2), seed=0)
+    fresh = side.horizon_study(study.replace(run, parts=frozenset()), (1, 2), seed=0)
+    assert side._run_comparison_at(run, 1) is not None and side._run_comparison_at(run, 2) is None
+    assert reused["floor"] == fresh["floor"] and reused["edges"] == fresh["edges"]
+    assert list(reused["rms"]) == list(fresh["rms"])
+    for name, per_h in fresh["rms"].items():
+        _same(per_h, reused["rms"][name])
+    # the Kalman fits made once are those a fresh comparison at horizon 2 makes
+    from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CA_KALMAN, compare_methods
+
+    s2 = study.replace(study._setup(dict(run.config, horizon=2), SIZE), learned_kw={})
+    direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
+    for name in (CA_KALMAN, study.SINGER, PAPER):
+        mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
+        _same(study.root_mean_ci(mse), reused["rms"][name][2])
 
 
 def test_horizon_sentence_names_the_settings_on_a_grid_edge():
@@ -232,7 +289,7 @@ def test_words_follow_the_interval():
 
 
 def test_model_order_summary_names_the_better_order(run):
-    s = study.model_order_summary(run)
+    s = side.model_order_summary(run)
     ratio = s["ratio_2_over_1"]
     text = fd.model_order_sentence(s)
     if ratio.ci_low > 1:
@@ -373,3 +430,31 @@ def test_budget_and_regeneration_sentences_follow_their_tests():
     assert "2 DN 0.56" in text
     assert "agrees with" in fd.regeneration_sentence(3.8e-16)
     assert "differs from" in fd.regeneration_sentence(2e-12)
+
+
+def test_ranking_figure_and_single_values_take_runs_measured_for_some_claims_only():
+    """With the explorer's claims=, a condition measures only the claims reading what it changes (a change of the
+    networks' lags: C004-3b alone); the ranking figure draws each condition's claims and single_values skips a run
+    without the claim."""
+    from types import SimpleNamespace
+
+    from tvtrack.papers.p004_laser_spot_prediction import plots
+
+    est = lambda v: Estimate(v, 0.1, v - 0.2, v + 0.2, 15)  # noqa: E731
+    ranks = {"C004-3": {b: est(2.0) for b in CLASSICAL}, "C004-3b": {b: est(0.5) for b in study.NETWORKS}}
+
+    def run(stage, changed, outputs):
+        return SimpleNamespace(stage=stage, config=dict(DEFAULT, **changed), outputs=outputs, changed=lambda d: changed)
+
+    runs = [
+        run("single", {"network lags": 10}, {"C004-3b": ranks["C004-3b"]}),
+        run("single", {"spline": "natural cubic"}, {"C004-3": ranks["C004-3"]}),
+        run("single", {"amplitude": 2.0}, {**ranks, "C004-2": est(3.0)}),
+        run("single", {"amplitude": 0.5}, {"C004-3": ranks["C004-3"]}),  # no C004-2: skipped
+    ]
+    ex = SimpleNamespace(runs=runs, default=dict(DEFAULT), measured=lambda c: ranks.get(c, est(1.5)))
+    fig = plots.ranking_figure(ex)
+    assert len(fig.axes[0].get_yticklabels()) == 5  # the default and the four conditions
+    dots = {c.get_label(): len(c[0].get_xdata()) for c in fig.axes[0].containers}
+    assert dots == {**{b: 4 for b in CLASSICAL}, **{b: 3 for b in study.NETWORKS}}  # rows measured for the claim
+    assert side.single_values(ex, "C004-2", "amplitude") == {1.0: est(1.5), 2.0: est(3.0)}

@@ -18,6 +18,7 @@ import time
 from dataclasses import replace
 
 import pytest
+from load import wall_budget
 
 from tvtrack.pipeline.paths import REPO_ROOT
 from tvtrack.pipeline.viewer import Expectation, check_recording, layout_problems, read_layout, verify_rrd
@@ -63,9 +64,11 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     verify_rrd(rrd)
 
     check = check_recording(headless_viewer, rrd, expectation(stem))
-    if check.problems:  # a headless viewer on a loaded machine can miss one repaint: look once more, say so
-        print(f"{stem}: first look found {check.problems}; checking again")
-        time.sleep(2.0)
+    for look in (2, 3):  # a headless viewer on a loaded machine can miss repaints: look again (say so), up to 3 looks
+        if not check.problems:
+            break
+        print(f"{stem}: look {look - 1} found {check.problems}; checking again")
+        time.sleep(wall_budget(2.0))
         check = check_recording(headless_viewer, rrd, expectation(stem))
     print(
         f"{stem}: loaded in {check.load_s:.1f} s, viewer check {check.check_s:.1f} s, "
@@ -74,7 +77,9 @@ def test_recording_in_viewer(viewer_notebook, notebook_run, headless_viewer):
     assert not check.problems, f"{stem} in the Rerun viewer ({rrd}):\n  " + "\n  ".join(check.problems)
     if UPDATE_SCREENSHOTS and viewer_notebook.parent.name == "notebooks":
         _save_docs_screenshot(headless_viewer, stem)
-    assert check.check_s < 30, f"{stem}: viewer check took {check.check_s:.1f} s (budget 30 s per recording)"
+    assert check.check_s < wall_budget(30), (
+        f"{stem}: viewer check took {check.check_s:.1f} s (30 s per recording, idle)"
+    )
 
 
 @pytest.mark.notebook

@@ -115,7 +115,7 @@ def test_layout_catches_compared_series_of_one_colour(tmp_path):
 
 
 def test_colour_rule_spares_band_edges_and_parts_of_one_thing():
-    from tvtrack.pipeline.viewer import _compared_overlays, _compared_series
+    from tvtrack.pipeline.viewer.layout import _compared_overlays, _compared_series
 
     assert _compared_series("/errors/x", "/errors/y") and _compared_series("/v/variant_1", "/v/variant_2")
     assert not _compared_series("/track/estimate_minus_sigma", "/track/estimate_plus_sigma")

@@ -101,12 +101,16 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
     ----------
     zs : array_like, shape (..., T, m)
         Measurements; a row with a NaN is missing.
-    Fs, Qs : array_like, shape (r, n, n)
-        Mode transition matrices and process noise covariances.
+    Fs : array_like, shape (r, n, n)
+        Mode transition matrices.
+    Qs : array_like, shape (r, n, n) or (..., r, n, n)
+        Process noise covariances; leading axes broadcast against the batch axes of ``zs`` (several
+        tunings in one run: each batch element's numbers are those of its own run, tested bit for bit).
     H : array_like, shape (m, n)
     R : array_like, shape (m, m)
-    transition : array_like, shape (r, r)
-        Markov mode transition matrix, ``transition[i, j] = P(mode j next | mode i now)``; rows sum to 1.
+    transition : array_like, shape (r, r) or (..., r, r)
+        Markov mode transition matrix, ``transition[i, j] = P(mode j next | mode i now)``; rows sum to 1;
+        leading axes broadcast against the batch axes of ``zs``, as for ``Qs``.
     x0 : array_like, shape (n,) or (..., n)
         Initial estimate (the same for every mode), treated as the posterior before frame 0.
     P0 : array_like, shape (n, n) or (..., n, n)
@@ -124,9 +128,9 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
     Fs, Qs = np.asarray(Fs, float), np.asarray(Qs, float)
     M = np.asarray(transition, dtype=float)
     r, n = Fs.shape[0], Fs.shape[-1]
-    if Qs.shape != Fs.shape or M.shape != (r, r):
+    if Qs.shape[-3:] != Fs.shape or M.shape[-2:] != (r, r):
         raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
-    if np.any(M < 0) or not np.allclose(M.sum(axis=1), 1.0):
+    if np.any(M < 0) or not np.allclose(M.sum(axis=-1), 1.0):
         raise ValueError("parameter 'transition' must be a row-stochastic matrix")
     if coast not in ("mix", "frozen", "mode"):
         raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")

@@ -92,7 +92,7 @@ def _predict_update(x, P, z, seen, Q, F, sigma2):
 
 
 def vd_filter_run(
-    z, visible, q_cv: float, q_ca: float, sigma_eps: float, window: int, threshold: float, x0=None, P0=None
+    z, visible, q_cv: float, q_ca, sigma_eps: float, window: int, threshold: float, x0=None, P0=None
 ) -> VDOutput:
     """Run the VD filter on independent channels.
 
@@ -101,8 +101,11 @@ def vd_filter_run(
     z : array_like, shape (..., T)
         Measured coordinate, elements (ignored where not visible).
     visible : array_like of bool, shape (T,) or (..., T)
-    q_cv, q_ca : float
-        Process noises of the CV and CA models (:func:`tvtrack.filters.imm.cv_ca_models`), elements²/frame⁴.
+    q_cv : float
+        Process noise of the CV model (:func:`tvtrack.filters.imm.cv_ca_models`), elements²/frame⁴.
+    q_ca : float or array_like broadcasting to the batch shape ``z.shape[:-1]``
+        Process noise of the CA model, elements²/frame⁴; one per series runs a grid of settings in one call
+        (each series' numbers those of its own call, tested bit for bit).
     sigma_eps : float
         Measurement noise RMS, elements.
     window : int
@@ -127,7 +130,9 @@ def vd_filter_run(
     B = int(np.prod(batch, dtype=np.int64))
     zt = np.moveaxis(z.reshape(B, T), -1, 0)
     vis = np.moveaxis(np.broadcast_to(np.asarray(visible, dtype=bool), z.shape).reshape(B, T), -1, 0)
-    Fs, Qs = cv_ca_models(q_cv, q_ca)
+    q_b = np.broadcast_to(np.asarray(q_ca, dtype=float), batch).reshape(B)
+    Fs, Qs = cv_ca_models(q_cv, float(q_b.min()) if B else 0.0)
+    Q1 = q_b[:, None, None] * cv_ca_models(q_cv, 1.0)[1][1]  # q_ca (0.5, 1, 1)(0.5, 1, 1)^T per series
     F = Fs[1]  # CA transition; CV trials keep a = 0 and no a-variance
     sigma2 = sigma_eps**2
     lam = 1.0 - 1.0 / window
@@ -145,7 +150,7 @@ def vd_filter_run(
     out_vp, out_rho, out_ca = np.empty((T, B)), np.full((T, B), np.nan), np.empty((T, B), dtype=bool)
     for t in range(T):
         seen = vis[t]
-        Q = np.where(ca[:, None, None], Qs[1], Qs[0])
+        Q = np.where(ca[:, None, None], Q1, Qs[0])
         x, P, out_xp[t], out_vp[t], nu, S = _predict_update(x, P, zt[t], seen, Q, F, sigma2)
         run = np.where(seen, run + 1, 0)
         rho = np.where(seen & ~ca, lam * rho + nu**2 / S, rho)
@@ -160,9 +165,7 @@ def vd_filter_run(
             xr = np.stack([zt[t0, idx], xb[:, 1] + a, a], axis=-1)
             Pr = vd_restart_covariance(Pb[:, :2, :2], sigma_eps)
             for s in range(t0 + 1, t + 1):  # re-run the CA filter over the window
-                xr, Pr = _predict_update(
-                    xr, Pr, zt[s, idx], np.ones(idx.size, bool), np.broadcast_to(Qs[1], (idx.size, 3, 3)), F, sigma2
-                )[:2]
+                xr, Pr = _predict_update(xr, Pr, zt[s, idx], np.ones(idx.size, bool), Q1[idx], F, sigma2)[:2]
             x[idx], P[idx] = xr, Pr
             ca[idx] = True
             detected[idx] = t

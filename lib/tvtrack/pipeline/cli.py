@@ -18,7 +18,7 @@ import time
 from pathlib import Path
 
 from .interrupt import EXIT_INTERRUPTED
-from .paths import RUNS_DIR, writable_directory
+from .paths import REPO_ROOT, RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 from .runner import WriteFailed
 
@@ -114,7 +114,8 @@ def _cmd_report(args) -> int:
     if profile_name(args.profile) != PAPER_PROFILE and not folder.is_dir():
         raise UsageError(
             f"no runs at the {args.profile} profile ({folder} does not exist): "
-            f"`make reproduce PROFILE={args.profile}` makes them"
+            f"`make reproduce PROFILE={args.profile}` makes them (one notebook: "
+            f"`python -m tvtrack reproduce --profile {args.profile} --only NAME`)"
         )
     if profile_name(args.profile) == PAPER_PROFILE:
         path = write_report(folder, REPORT_PATH, readme=README_PATH)
@@ -165,9 +166,16 @@ def _cmd_view(args) -> int:
 def _cmd_new(args) -> int:
     from .new_paper import new_paper
 
-    for path in new_paper(args.number, args.name, title=args.title):
+    written = new_paper(args.number, args.name, title=args.title)
+    for path in written:
         print(f"wrote {path}")
-    print("next: docs/adding_a_paper.md walks through these files and what to change")
+    stem = f"{args.number}_{args.name}"
+    root = next(p for p in written if p.suffix == ".ipynb").parent.parent  # notebooks/<stem>.ipynb
+    print(
+        f"next: docs/adding_a_paper.md walks through these files and what to change; check the paper, in {root}, with\n"
+        f"  python -m pytest -q tests/test_contract.py tests/papers/test_{stem}.py\n"
+        f"  python -m tvtrack run {stem} --profile smoke -o /tmp/{stem}-smoke"
+    )
     return 0
 
 
@@ -244,7 +252,17 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--no-browser", action="store_true", help="only print the URL")
     v.set_defaults(func=_cmd_view)
 
-    n = sub.add_parser("new", help="a new paper's package, notebook, tests and smoke profile from the template")
+    n = sub.add_parser(
+        "new",
+        help="a new paper's package, notebook, tests and smoke profile from the template",
+        description=(
+            f"Writes, into the clone this tvtrack is imported from (the repository root of its lib/: {REPO_ROOT}), "
+            "lib/tvtrack/papers/pNNN_NAME/, notebooks/NNN_NAME.ipynb, tests/papers/test_NNN_NAME.py and "
+            "papermill_runs/profiles/NNN_NAME.smoke.toml, and adds a placeholder reference to CITATION.cff; "
+            "it never overwrites a file. As written, the paper passes the lint, its tests and the paper contract, "
+            "and runs at smoke size. docs/adding_a_paper.md walks through what to change."
+        ),
+    )
     n.add_argument("number", help="three digits, e.g. 005")
     n.add_argument("name", help="lower case, digits and '_', e.g. spot_tracker")
     n.add_argument("--title", default=None, help="the paper's title in a few words (default: the name)")

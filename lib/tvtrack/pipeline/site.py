@@ -492,6 +492,7 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     if profile != PAPER_PROFILE and not source.is_dir():
         raise UsageError(
             f"no runs at the {profile} profile ({source} does not exist): `make reproduce PROFILE={profile}` makes them"
+            f" (one notebook: `python -m tvtrack reproduce --profile {profile} --only NAME`)"
         )
     site = Path(out) if out is not None else default
     if site.exists() and not site.is_dir():

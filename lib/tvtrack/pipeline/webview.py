@@ -31,7 +31,7 @@ from pathlib import Path
 from urllib.parse import quote
 
 from .preflight import UsageError
-from .viewer import rerun_executable, verify_rrd
+from .viewer.environment import rerun_executable, verify_rrd
 
 __all__ = [
     "DEFAULT_HOST",

@@ -5,9 +5,9 @@ of its trajectory in a television tracking system", 2008 (Izv. vuzov. Priborostr
 
 Modules: :mod:`.track_modes` (the per-channel TRACK2 / TRACK3 / COAST mode logic), :mod:`.maneuver_detector`
 (the two-window manoeuvre detector of eqs. (3)-(14) and its thresholds), :mod:`.study` (the measurement functions
-the explorer calls), :mod:`.register` (the notebook's register of unstated choices), :mod:`.claims` (the claims
-and their rules), :mod:`.sizes` (the run sizes), :mod:`.params` (parameter rules), :mod:`.plots` and
-:mod:`.recording` (Rerun layout).
+the explorer calls), :mod:`.register` (the notebook's register of unstated choices, its entries in
+:mod:`.entries`), :mod:`.claims` (the claims and their rules), :mod:`.sizes` (the run sizes), :mod:`.params`
+(parameter rules), :mod:`.plots` and :mod:`.recording` (Rerun layout).
 
 The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
 ``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.

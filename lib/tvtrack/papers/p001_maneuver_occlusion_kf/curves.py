@@ -160,16 +160,18 @@ def c8_parts(cur: dict) -> dict:
     }
 
 
-def measure_curves(config: dict, seed: int, sizes: dict) -> dict:
+def measure_curves(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), each
     tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone
-    rules count a step below it as flat, :mod:`.claims`)."""
+    rules count a step below it as flat, :mod:`.claims`); only the claims in ``claims`` (None: both)."""
     config = _full(config, sizes)
     tol = float(config["curve_tolerance"])
-    return {
-        "C001-7": ByReading.tag(tol, c7_parts(loss_sweep(config, sizes))),
-        "C001-8": ByReading.tag(tol, c8_parts(fig4_curves(config, sizes))),
-    }
+    out = {}
+    if claims is None or "C001-7" in claims:
+        out["C001-7"] = ByReading.tag(tol, c7_parts(loss_sweep(config, sizes)))
+    if claims is None or "C001-8" in claims:
+        out["C001-8"] = ByReading.tag(tol, c8_parts(fig4_curves(config, sizes)))
+    return out
 
 
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:

@@ -90,12 +90,14 @@ def paper_rate_deviation(rate_deg_s: float, horizon_s: float = 10.0, extrapolati
     }
 
 
-def measure_spherical(config: dict, seed: int, sizes: dict) -> dict:
+def measure_spherical(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-9 in parts: at each of the paper's two rates (:data:`PAPER_RATES`) the deviation in multiples of the
     tolerance (:func:`paper_rate_deviation`), then over the register's grid of geometries the fraction within
     ±20° whose extrapolation stays within the tolerance (``extrapolation``: quadratic/linear; ``tolerance``:
     "1 element" or "prediction RMS at k_b3"; ``targets``: a key of :data:`TARGET_SETS`; ``horizon``: a key of
-    :data:`HORIZONS`; NaN when no geometry stays within ±20°)."""
+    :data:`HORIZONS`; NaN when no geometry stays within ±20°); ``{}`` when ``claims`` does not ask for C001-9."""
+    if claims is not None and "C001-9" not in claims:
+        return {}
     config = _full(config, sizes)
     H = HORIZONS[config.get("horizon", "10 s loss")]
     tol = 1.0 if config["tolerance"] == "1 element" else float(sizes["prediction_rms"])

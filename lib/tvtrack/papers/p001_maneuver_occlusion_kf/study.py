@@ -244,49 +244,79 @@ def _ump_comparator_statistics(name: str, v_null, v_alt, G, n: int, sigma: float
     return np.abs(tapped_window_statistic(v_null, taps)), np.abs(tapped_window_statistic(v_alt, taps))
 
 
-def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
+def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-1 (detection time), C001-2 (size, invariance, unbiasedness, optimality) and C001-3 (the paper's
     independence threshold) from one full-size run. Per-test rates are in units of the configuration's alpha.
 
     Config entries read: ``frame_rate_hz``, ``window_n``, ``k_bound2``, ``alpha``, ``arming``, ``threshold``,
     ``paper_sigma``, ``noise``, ``alternative``, ``roc_delay_s``, ``step_dv``, ``ump_comparator``. Sizes:
     ``n_trials`` (scenario runs, both channels), ``n_fa_runs`` (no-manoeuvre runs), ``fa_duration_s``,
-    ``sigma_eps``.
+    ``sigma_eps``. ``claims``: the claim ids to measure (None: all); the others' work is skipped, never their
+    random draws that a later claim's stream follows, so each asked claim is the same number as in a full run
+    (tested bit for bit).
     """
+    asked = set(GROUP_DETECTION if claims is None else claims) & set(GROUP_DETECTION)
+    if not asked:
+        return {}
     config = _full(config, sizes)
     sc = config_scenario(config)
-    n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
+    n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     rng = np.random.default_rng(seed)
-    scale = FPS_REF / sc.fps
     # the scenario runs up to the loss, both channels
     Tl = sc.f_loss
     z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)  # (runs, 2, Tl)
+    out = {"C001-1": _c001_1(config, sc, z, arm_k, sigma)} if "C001-1" in asked else {}
+    if asked <= {"C001-1"}:
+        return out
     # no-manoeuvre runs: uniform motion of channel x
     d_roc = int(round(float(config["roc_delay_s"]) * sc.fps))
     Tr = sc.onset + d_roc + 1
     T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), Tr, arm_k + 1)
+    scale = FPS_REF / sc.fps
     z0 = measurements(MOTION[0][0] * scale * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
     G0 = gain_schedule(1, kb2, T0)
     v0_hat = scheduled_filter(z0, G0)[..., 1]
     S0 = window_statistic(v0_hat, n)
     f0 = np.arange(T0)
     armed0 = f0 >= arm_k - 1
-    pre0 = armed0 & (f0 < sc.onset)
-    # C001-1: the scheme with the reading's threshold
+    null = (S0, armed0, armed0 & (f0 < sc.onset), T0, arm_k)
+    # C001-2's draws come before C001-3's: made whether or not C001-2 is asked
+    za = z[..., :Tr] if config["alternative"] == "ramp" else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
+    shift = 50 * rng.standard_normal((5, n))
+    if "C001-2" in asked:
+        out["C001-2"] = _c001_2(config, sc, sigma, za, v0_hat, G0, null, shift, Tr)
+    if "C001-3" in asked:
+        out["C001-3"] = _c001_3(config, sigma, G0, null, rng)
+    return out
+
+
+#: The claims :func:`measure_detection` measures.
+GROUP_DETECTION = ("C001-1", "C001-2", "C001-3")
+
+
+def _c001_1(config: dict, sc: Scenario, z, arm_k: int, sigma: float) -> dict:
+    """C001-1's parts on the scenario runs z (runs, 2, Tl): the scheme with the reading's threshold."""
+    n, kb2, alpha, Tl = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sc.f_loss
     c1 = detector_threshold(config["threshold"], np.ones(Tl, bool), kb2, n, alpha, sigma)
     cfg = TrackModeConfig(k_bound2=kb2, window=n, threshold=c1, threshold_index="frame", arm_k=arm_k)
     det = run_track_modes(z, np.ones(Tl, bool), cfg, sigma, covariance=False).detection_frame
     s = detection_time_summary(det, sc.onset, Tl, sc.fps)
-    c001_1 = {
+    return {
         "median": _frame_resolution(s["median_s"], sc.fps) if s["median_s"] else _missing("fewer than two detections"),
         "early": s["false_alarm_before_onset"],
         "missed": s["missed_by_loss"],
     }
-    # C001-2: size with the exact sigma_S; unbiasedness and power against Q on the TRACK2 filter (no switch)
+
+
+def _c001_2(config: dict, sc: Scenario, sigma: float, za, v0_hat, G0, null: tuple, shift, Tr: int) -> dict:
+    """C001-2's parts: size with the exact sigma_S; unbiasedness and power against the UMP comparator on the
+    TRACK2 filter (no switch); ``za`` (runs, 2, Tr) the alternative's runs, ``null`` the no-manoeuvre statistic
+    ``(S0, armed0, pre0, T0, arm_k)``, ``shift`` (5, n) the invariance check's offsets."""
+    n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
+    S0, armed0, pre0, T0, arm_k = null
     c_exact0 = detector_threshold("exact", np.ones(T0, bool), kb2, n, alpha, sigma)
     size = false_alarm_rates(S0, c_exact0, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"]
-    za = z[..., :Tr] if config["alternative"] == "ramp" else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
     va = scheduled_filter(za, G0[:Tr])[..., 1]
     sig_t = scheduled_statistic_std(G0[:Tr], n, sigma)
     sig_t = np.where(np.isfinite(sig_t), sig_t, np.inf)
@@ -302,7 +332,6 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
     hits_Q = first_alarm_within(stat_Q, null_quantile_threshold(stat_Q0, arm_r, alpha), arm_r, sc.onset)
     post = arm_r & (np.arange(Tr) >= sc.onset)
     unbiased = mean_ci((stat_S[..., post] > stats.norm.isf(alpha / 2)).mean(axis=-1).reshape(-1))
-    shift = 50 * rng.standard_normal((5, n))
     v_test = v0_hat[:5, -2 * n :]
     invariance = float(
         np.max(
@@ -312,21 +341,26 @@ def measure_detection(config: dict, seed: int, sizes: dict) -> dict:
             )
         )
     )
-    c001_2 = {
+    return {
         "size": _per_alpha(size, alpha),
         "invariance": invariance,
         "unbiased": _per_alpha(unbiased, alpha),
         "UMP": paired_difference(hits_S.reshape(-1).astype(float), hits_Q.reshape(-1).astype(float)),
     }
-    # C001-3: the paper's independence threshold, sigma read as the filter-output or the raw-increment RMS
+
+
+def _c001_3(config: dict, sigma: float, G0, null: tuple, rng: np.random.Generator) -> Estimate:
+    """C001-3: the paper's independence threshold, sigma read as the filter-output or the raw-increment RMS; its
+    per-test rate in units of alpha (the Gaussian closed form, checked against the null runs)."""
+    n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
+    S0, armed0, pre0, T0, arm_k = null
     reading = "independent" if config["paper_sigma"] == "filter-output velocity" else "raw increments"
     c_paper = detector_threshold(reading, np.ones(T0, bool), kb2, n, alpha, sigma)
     mc3 = false_alarm_rates(S0, c_paper, armed0, pre0, T0 - 1, arm_k - 1)["per_test_pooled"]
     cf3 = closed_form_rate(
         statistic_impulse_response(G0, n), c_paper, armed0, config["noise"], sigma, rng=rng, runs=2000, mc=mc3
     )
-    c001_3 = _per_alpha(cf3, alpha)
-    return {"C001-1": c001_1, "C001-2": c001_2, "C001-3": c001_3}
+    return _per_alpha(cf3, alpha)
 
 
 def c3_closed_form_check(config: dict, seed: int, sizes: dict) -> dict:
@@ -445,19 +479,20 @@ def sigma_s_readings(config: dict, sizes: dict) -> dict:
     }
 
 
-def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
+def measure_tradeoff(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-4's measurement: :func:`.tradeoff.measure_tradeoff` (the dynamic error's transient and the RMS the
-    register's ``rms_statistic`` reads, as separate parts)."""
+    register's ``rms_statistic`` reads, as separate parts); ``{}`` when ``claims`` does not ask for C001-4."""
     from .tradeoff import measure_tradeoff as measure
 
-    return measure(config, seed, sizes)
+    return measure(config, seed, sizes) if claims is None or "C001-4" in claims else {}
 
 
 def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50), fa_targets=None) -> dict:
     """Delay against per-run false alarms of the paper's |S| (several half-windows), Q and three innovation tests
     (chi-square over n frames, two-sided CUSUM with drift 0.5, the Willsky-Jones GLR for a velocity jump) on the
     TRACK2 filter: thresholds from no-manoeuvre runs of ``fa_duration_s`` for each per-run false-alarm target,
-    median first-alarm delay after the onset on the scenario's runs up to the loss (card §8.1).
+    median first-alarm delay after the onset on the scenario's runs up to the loss (card §8.1). The no-manoeuvre
+    runs last at least as long as those (a shorter ``fa_duration_s`` has no null statistic for the last frames).
 
     Every detector is armed by the configuration's arming rule for its own window (:func:`arming_count`), so each
     tests before the onset; a detector first armed after the onset would "detect" at its first test in every run.
@@ -483,7 +518,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)
     rng = np.random.default_rng(seed)
     Tl = sc.f_loss
-    T0 = int(round(sizes["fa_duration_s"] * sc.fps))
+    T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), Tl)  # the null runs at least as long as the alternative's
     scale = FPS_REF / sc.fps
     z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)
     z0 = measurements(MOTION[0][0] * scale * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)

@@ -8,7 +8,8 @@ Modules: :mod:`.scene` (the rotating-marker scene, interferers, decoy and the sc
 frequency response, the EKF trackers (five states, and with velocity), the 1-D two-emitter tracker), :mod:`.crb`
 (the posterior CRB and the trackers against it), :mod:`.lock` (loss-of-lock criterion, loss
 criteria and mechanisms, the omega lock detector, logistic loss-curve fits), :mod:`.study` (the measurement functions
-the explorer calls, on direct counts), :mod:`.register` (what the paper left unstated), :mod:`.claims` (the claims
+the explorer calls, on direct counts; :mod:`.memo` keeps their parts by what they read), :mod:`.beyond` (frame-rate smear,
+the temporal median), :mod:`.register` (what the paper left unstated), :mod:`.claims` (the claims
 and their rules), :mod:`.params` (parameter rules), :mod:`.plots`, :mod:`.prose` (generated sentences) and
 :mod:`.recording` (Rerun layout).
 

@@ -1,6 +1,7 @@
-"""The compensated TV image of notebook 003 (moved from :mod:`.scene`, which re-exports it): spots, the correlated
-background, stationary interferers, the temporal-median residual, the scene object that renders each frame's gate
-crop, and its builder.
+"""The compensated TV image of notebook 003 (moved from :mod:`.scene`, which re-exports it): the scene object that
+renders each frame's gate crop, and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
+correlated background, interferers, the temporal-median residual) and the common random numbers of batched runs in
+:mod:`.draws`; both are re-exported here.
 
 Model (Yukhno 2025, eqs. (9), (10), (19), with the compensation model of the paper card, section 4.2)::
 
@@ -12,9 +13,20 @@ Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = col
 from __future__ import annotations
 
 import numpy as np
-from scipy import ndimage
+from numpy.lib.stride_tricks import sliding_window_view
 
-from ...render import box_spot, disc_area, disc_spot
+from ...render import disc_area, disc_spot
+from .backdrop import (  # noqa: F401 (re-exported: moved from this module)
+    LAYOUTS,
+    SPOTS,
+    _check_spot,
+    add_spots,
+    correlated_background,
+    median_residual,
+    place_interferers,
+    render_spot,
+)
+from .draws import BlockNormal, CommonNormal, _generator_blocks, _tile  # noqa: F401 (re-exported)
 from .motion import MarkerTruth
 
 __all__ = [
@@ -30,111 +42,6 @@ __all__ = [
     "build_scene",
     "COMPENSATIONS",
 ]
-
-
-SPOTS = ("disc", "square")
-
-
-def _check_spot(spot: str) -> None:
-    if spot not in SPOTS:
-        raise ValueError(f"parameter 'spot' = {spot!r}; it must be one of {SPOTS}")
-
-
-def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
-    """A marker or interferer spot: ``"disc"`` (diameter ``D``) or ``"square"`` (side ``D``),
-    ``brightness`` per fully covered pixel; shape ``(..., rows, cols)``."""
-    _check_spot(spot)
-    b = np.asarray(brightness, dtype=float)
-    if spot == "disc":
-        return disc_spot(centers, shape, diameter, b * disc_area(diameter), origin)
-    return box_spot(centers, shape, diameter / 2, b * diameter**2, origin)
-
-
-def correlated_background(rng: np.random.Generator, n: int, shape, corr_length, std) -> np.ndarray:
-    """Zero-mean Gaussian random fields with correlation ``exp(-(tau / corr_length)^2)``.
-
-    White noise is filtered by a Gaussian kernel of standard deviation ``corr_length / 2``
-    (periodic boundary) and divided by the filter's exact output standard deviation (the root
-    sum of squares of the discrete kernel), so every pixel has standard deviation ``std``.
-
-    Returns
-    -------
-    ndarray, shape (n, rows, cols), float32
-    """
-    if not corr_length > 0:
-        raise ValueError(f"parameter 'corr_length' = {corr_length}; it must be > 0")
-    if std < 0:
-        raise ValueError(f"parameter 'std' = {std}; it must be >= 0")
-    sigma = corr_length / 2
-    field = rng.standard_normal((n, *shape), dtype=np.float32)
-    ndimage.gaussian_filter(field, sigma=(0, sigma, sigma), mode="wrap", output=field)
-    impulse = np.zeros(2 * int(4 * sigma + 0.5) + 1)
-    impulse[impulse.size // 2] = 1.0
-    gain = np.sum(ndimage.gaussian_filter1d(impulse, sigma, mode="constant") ** 2)  # per axis
-    field *= np.float32(std / gain)
-    return field
-
-
-LAYOUTS = ("even", "independent")  # interferers on the circle: equally spaced, or each at its own random angle
-
-
-def place_interferers(
-    rng: np.random.Generator,
-    n: int,
-    count: int,
-    center,
-    radius: float,
-    radial_jitter: float = 0.0,
-    layout: str = "even",
-) -> np.ndarray:
-    """Stationary interferers on a circle (the area swept by the marker).
-
-    One interferer sits at a uniformly random angle; with ``layout="even"`` several are equally spaced with a
-    common random angular offset (a pattern symmetric about ``center``), with ``"independent"`` each at its own
-    uniformly random angle. ``radial_jitter`` > 0 draws each radius uniformly in ``[radius - jitter, radius + jitter]``.
-
-    Returns
-    -------
-    ndarray, shape (n, count, 2)
-        Positions ``(x, y)`` in px.
-    """
-    if count < 0:
-        raise ValueError(f"parameter 'count' = {count}; it must be >= 0")
-    if layout not in LAYOUTS:
-        raise ValueError(f"parameter 'layout' = {layout!r}; it must be one of {LAYOUTS}")
-    if layout == "independent":
-        ang = rng.uniform(0, 2 * np.pi, size=(n, count))
-    else:
-        ang = rng.uniform(0, 2 * np.pi, size=(n, 1)) + 2 * np.pi * np.arange(count) / max(count, 1)
-    rad = radius + rng.uniform(-radial_jitter, radial_jitter, size=(n, count))
-    c = np.broadcast_to(np.asarray(center, dtype=float), (n, 2))
-    return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
-
-
-def add_spots(images, centers, brightness, spot: str, diameter: float) -> None:
-    """Add spots to images in place, each rendered only in a small patch around it.
-
-    Parameters
-    ----------
-    images : ndarray, shape (n, rows, cols)
-    centers : ndarray, shape (n, q, 2)
-        Spot centres (px); parts falling outside the image are dropped.
-    brightness : ndarray, shape (n, q)
-    """
-    n, rows, cols = images.shape
-    size = int(np.ceil(diameter)) + 4
-    trial = np.arange(n)[:, None, None]
-    ar = np.arange(size)
-    for j in range(np.asarray(centers).shape[1]):
-        c = centers[:, j]
-        origin = np.floor(c - (size - 1) / 2).astype(np.int64)
-        patch = render_spot(spot, c, (size, size), diameter, brightness[:, j], origin)
-        ys = origin[:, 1, None] + ar
-        xs = origin[:, 0, None] + ar
-        ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
-        yi = np.clip(ys, 0, rows - 1)[:, :, None]
-        xi = np.clip(xs, 0, cols - 1)[:, None, :]
-        images[trial, yi, xi] += np.where(ok, patch, 0.0).astype(images.dtype)
 
 
 class RotatingMarkerScene:
@@ -211,6 +118,9 @@ class RotatingMarkerScene:
         if residual is not None:
             self._padded[:, m : m + rows, m : m + cols] = residual
         self._base = np.arange(self.n) * self._padded.shape[1] * self._padded.shape[2]
+        self._windows: dict = {}  # gate_crops' window views of the padded image by crop side
+        self._trials = np.arange(self.n)
+        self._marker = None  # gate_crops' marker positions (n, T, 2), made on first use
         self.exposure_steps = int(exposure_steps)
         if self.exposure_steps > 1:
             t = truth.t
@@ -301,34 +211,92 @@ class RotatingMarkerScene:
         origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
         m = self.MARGIN
         rows, cols = self.image_shape
-        inside = (c[:, 0] >= 0) & (c[:, 0] <= cols - 1) & (c[:, 1] >= 0) & (c[:, 1] <= rows - 1)
-        ox = np.clip(origin[:, 0] + m, 0, cols + 2 * m - size)
-        oy = np.clip(origin[:, 1] + m, 0, rows + 2 * m - size)
-        origin = np.stack([ox - m, oy - m], axis=1)
-        H, W = self._padded.shape[1:]
-        ar = np.arange(size)
-        flat = (self._base + oy * W + ox)[:, None, None] + (ar[:, None] * W + ar)[None]
-        crops = self._padded.reshape(-1).take(flat)
-        marker = np.stack(
-            [
-                self.truth.xr[:, k] + self.truth.r[:, k] * np.cos(self.truth.theta[:, k]),
-                self.truth.yr[:, k] + self.truth.r[:, k] * np.sin(self.truth.theta[:, k]),
-            ],
-            axis=1,
-        )
+        inside = ((c >= 0) & (c <= (cols - 1, rows - 1))).all(axis=1)
+        o = np.minimum(np.maximum(origin + m, 0), (cols + 2 * m - size, rows + 2 * m - size))  # (x, y) in the padding
+        origin = o - m
+        ox, oy = o[:, 0], o[:, 1]
+        if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
+            self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
+        crops = self._windows[size][self._trials, oy, ox]  # (n, size, size), a copy
+        if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
+            tr = self.truth
+            self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
+        marker = self._marker[:, k]
         if self.exposure_steps == 1:
-            crops += self._spot(marker, size, origin, self.brightness)
+            self._add_spot(crops, marker, origin, self.brightness)
             if self.decoys is not None:
-                crops += self._spot(self.decoys[:, k], size, origin, self.decoy_brightness)
+                self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
         else:
-            sub_m, sub_d = self._sub_positions(k)
-            for j in range(self.exposure_steps):
-                crops += self._spot(sub_m[j], size, origin, self.brightness / self.exposure_steps)
-                if sub_d is not None:
-                    crops += self._spot(sub_d[j], size, origin, self.decoy_brightness / self.exposure_steps)
+            sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
+            steps = self.exposure_steps
+            b = np.full((steps, self.n), self.brightness / steps)
+            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
+                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, self.n, 2)
+                b = np.stack([b, np.broadcast_to(self.decoy_brightness / steps, b.shape)], axis=1).reshape(
+                    2 * steps, -1
+                )
+            self._add_spot(crops, sub_m, origin, b)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
+
+    # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
+    # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares;
+    # lower thresholds, faster per call with the 9-pixel box, made the tracking study's 24-30-run batches slower)
+    BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
+
+    def _add_spot(self, crops, centers, origin, brightness) -> None:
+        """Add spots centred at ``centers`` (n, 2) px, or (m, n, 2): ``m`` spots per crop added one after the other
+        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place.
+
+        All the spots are rendered in one call (the spot functions are pixel by pixel: the same numbers as one call
+        each), then added in order. Large batches render only the box of pixels a spot can reach (centres within
+        ``D/2 + 1/2`` of the spot's centre, for the disc and the square alike) and add it where it overlaps its crop:
+        every pixel gets the same float32 number as rendering the whole crop (the other pixels get 0).
+        """
+        n, size = crops.shape[0], crops.shape[-1]
+        c = np.asarray(centers, dtype=float)
+        m = 1 if c.ndim == 2 else c.shape[0]
+        if m > 1:  # one render of every spot: centres, origins and brightnesses flattened to (m n, ...)
+            c = c.reshape(m * n, 2)
+            origin = np.tile(origin, (m, 1))
+            brightness = np.broadcast_to(np.asarray(brightness, dtype=float), (m, n)).reshape(m * n)
+        if crops.size <= self.BOX_MIN_PIXELS[self.spot]:
+            spots = self._spot(c, size, origin, brightness)
+            for j in range(m):
+                crops += spots[j * n : (j + 1) * n]
+            return
+        reach = self.diameter / 2 + 0.5
+        # pixels up to c - reach and from c + reach get nothing: floor(c - reach) + 1 .. + side - 1 hold the rest
+        side = int(np.ceil(2 * reach))
+        box0 = np.floor(c - reach).astype(np.int64) + 1
+        patch = self._spot(c, side, box0, brightness)
+        rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
+        inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
+        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
+        trials, every = np.arange(n), inside.all()
+        for j in range(m):
+            sl = slice(j * n, (j + 1) * n)
+            if every:
+                win[trials, rel[sl, 1], rel[sl, 0]] += patch[sl]
+            else:
+                self._place(crops, win, patch[sl], rel[sl], inside[sl], side)
+
+    @staticmethod
+    def _place(crops, win, patch, rel, inside, side: int) -> None:
+        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
+        within the crops, where they overlap (``win``: the crops' side x side windows; ``inside``: the boxes wholly
+        inside their crops)."""
+        size = crops.shape[-1]
+        t = np.flatnonzero(inside)
+        win[t, rel[t, 1], rel[t, 0]] += patch[t]
+        part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
+        if part.size:  # boxes wholly outside add nothing
+            ar = np.arange(side)
+            cx, cy = rel[part, 0, None] + ar, rel[part, 1, None] + ar
+            idx = (part[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
+            ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
+            crops.reshape(-1)[idx[ok]] += patch[part][ok]  # indices unique: each box pixel inside is one crop pixel
 
     def _spot(self, centers, size, origin, brightness) -> np.ndarray:
         if self.spot == "disc":
@@ -351,121 +319,6 @@ class RotatingMarkerScene:
         if rng is not None and self.noise_std > 0:
             img += self.noise_std * rng.standard_normal(img.shape, dtype=np.float32)
         return img
-
-
-class CommonNormal:
-    """Standard normal draws shared by blocks of trials (common random numbers).
-
-    Wraps a generator; ``standard_normal(shape)`` with ``shape[0] = blocks * n_common`` draws
-    ``n_common`` rows and repeats them, so trial ``j n_common + i`` gets the draws of trial ``i``.
-    Used to run one set of trials at several SIR values (or markers) on the same noise.
-    """
-
-    def __init__(self, rng: np.random.Generator, n_common: int):
-        if n_common < 1:
-            raise ValueError(f"parameter 'n_common' = {n_common}; it must be >= 1")
-        self.rng = rng
-        self.n_common = int(n_common)
-
-    def standard_normal(self, shape, dtype=np.float64):
-        shape = tuple(np.atleast_1d(shape))
-        if shape[0] % self.n_common:
-            raise ValueError(f"leading size {shape[0]} is not a multiple of n_common = {self.n_common}")
-        z = self.rng.standard_normal((self.n_common, *shape[1:]), dtype=dtype)
-        return np.tile(z, (shape[0] // self.n_common,) + (1,) * (len(shape) - 1))
-
-
-class BlockNormal:
-    """Standard normal draws made block by block from several sources (one per seed), concatenated
-    along the leading axis; each source is a generator or a :class:`CommonNormal`."""
-
-    def __init__(self, sources, block: int):
-        self.sources = list(sources)
-        self.block = int(block)
-
-    def standard_normal(self, shape, dtype=np.float64):
-        shape = tuple(np.atleast_1d(shape))
-        if shape[0] != self.block * len(self.sources):
-            raise ValueError(f"leading size {shape[0]} is not {len(self.sources)} blocks of {self.block}")
-        return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
-
-
-def median_residual(
-    rng: np.random.Generator,
-    truth: MarkerTruth,
-    n_frames: int,
-    image_shape,
-    spot: str,
-    diameter: float,
-    brightness: float,
-    noise_std: float,
-) -> np.ndarray:
-    """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
-
-    The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
-    ``f + interferers + s_t + n_t`` (card 8.5: a median over >= 2 revolutions). Everything static -- background and
-    stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the marker's
-    sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the frames
-    reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for more
-    than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
-    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``.
-    Instant exposure, and no decoy, in the median frames.
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-    truth : MarkerTruth
-        ``n`` trials; frames ``0 .. n_frames - 1`` enter the median.
-    n_frames : int
-        Frames in the median (``N``).
-    image_shape : (int, int)
-    spot, diameter, brightness, noise_std
-        The marker spot and the sensor noise per pixel.
-
-    Returns
-    -------
-    ndarray, shape (n, rows, cols), float32
-    """
-    N = int(min(max(n_frames, 1), truth.n_frames))
-    n = truth.xr.shape[0]
-    rows, cols = image_shape
-    out = (-noise_std * np.sqrt(np.pi / (2 * N)) * rng.standard_normal((n, rows, cols))).astype(np.float32)
-    m = truth.marker[:, :N]  # (n, N, 2)
-    lo = np.floor(m.min(axis=1) - diameter / 2 - 2).astype(np.int64)
-    size = int(np.max(np.ceil(m.max(axis=1) + diameter / 2 + 2).astype(np.int64) - lo)) + 1
-    frames = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None])  # (N, n, s, s)
-    if noise_std > 0:
-        frames = frames + noise_std * rng.standard_normal(frames.shape)
-    box = -np.median(frames, axis=0)
-    ar = np.arange(size)
-    ys, xs = lo[:, 1, None] + ar, lo[:, 0, None] + ar
-    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
-    trial = np.arange(n)[:, None, None]
-    yi, xi = np.clip(ys, 0, rows - 1)[:, :, None], np.clip(xs, 0, cols - 1)[:, None, :]
-    out[trial, yi, xi] = np.where(ok, box, out[trial, yi, xi])
-    return out
-
-
-def _tile(a, n: int):
-    """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
-    a = np.asarray(a)
-    return np.tile(a, (n // a.shape[0],) + (1,) * (a.ndim - 1))
-
-
-def _generator_blocks(rng, n: int, n_common: int | None):
-    """Split ``n`` trials into one consecutive block per generator (``rng`` one or a list), and check
-    that ``n_common`` (trials sharing common random numbers; default: the whole block) divides a block.
-
-    Returns ``(generators, trials per generator, n_common)``."""
-    rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
-    n_block = n // len(rngs)
-    n_common = n_block if n_common is None else int(n_common)
-    if n % len(rngs) or n_common < 1 or n_block % n_common:
-        raise ValueError(
-            f"parameter 'n_common' = {n_common}; it must divide the trials per generator ({n} trials, "
-            f"{len(rngs)} generators)"
-        )
-    return rngs, n_block, n_common
 
 
 def build_scene(
@@ -573,11 +426,11 @@ def _check_blocks(blocks, n_generators: int, compensation: str) -> list:
     """The per-generator scene settings of :func:`build_scene` (one dict per generator), checked."""
     blocks = [{}] * n_generators if blocks is None else list(blocks)
     if len(blocks) != n_generators or any(
-        set(b) - {"kappa", "background_std", "corr_length", "n_interferers"} for b in blocks
+        set(b) - {"kappa", "background_std", "corr_length", "n_interferers", "decoy_offset"} for b in blocks
     ):
         raise ValueError(
             "parameter 'blocks' needs one dict per generator with keys among kappa, background_std, "
-            "corr_length, n_interferers"
+            "corr_length, n_interferers, decoy_offset"
         )
     if compensation not in COMPENSATIONS:
         raise ValueError(f"parameter 'compensation' = {compensation!r}; it must be one of {COMPENSATIONS}")

@@ -168,7 +168,7 @@ def threshold_map_figure(
     rows += [
         (", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r)
         for r in ex.runs
-        if r.stage == "single" and set(r.changed(ex.default)) & set(entries)
+        if r.stage == "single" and set(r.changed(ex.default)) & set(entries) and "_map" in r.outputs
     ]
     fig, ax = plt.subplots(figsize=(7.5, 0.42 * len(rows) + 1.2))
     for j, (_, r) in enumerate(rows):
@@ -255,7 +255,7 @@ def bound_figure(cb: dict):
 
 
 def exposure_figure(res: dict, paper=(("rotating 1", 2.0), ("rotating 5", 3.0))):
-    """Frame-rate smear and matched exposure (:func:`.study.exposure_study`'s result): each marker's threshold with
+    """Frame-rate smear and matched exposure (:func:`.beyond.exposure_study`'s result): each marker's threshold with
     an instant and an integrated exposure at the same frame rate; the caption says which thresholds move."""
     keys = list(res["instant"]["thresholds"])
     fig, ax = plt.subplots(figsize=(7.0, 0.45 * len(keys) + 1.4))

@@ -73,10 +73,12 @@ def threshold_conditions(ex, key: str, paper: float) -> str:
     (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none.
 
     The word comes from ``_map_bound`` where the run has it (:func:`.study.threshold_bound`): a threshold whose runs
-    broke outside the grid on one side only still lies measurably below (or above) the paper's value."""
+    broke outside the grid on one side only still lies measurably below (or above) the paper's value. Runs that
+    measured no thresholds (asked only for claims without the static curves, e.g. a change of the compensation
+    reading alone, which changes no run) are left out."""
     hits = []
     for r in ex.runs:
-        if r.stage == "replicate":
+        if r.stage == "replicate" or "_map" not in r.outputs:
             continue
         e = r.outputs["_map"][key]
         word = relation(r.outputs.get("_map_bound", r.outputs["_map"])[key], paper)

@@ -309,7 +309,7 @@ def run_scenario(
         bases[0].t,
     )
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
-    decoys, dphi = _decoy_paths(streams, truth, sc, n, n_common, n_block)
+    decoys, dphi = _decoy_paths(streams, truth, sc, n, n_common, n_block, blocks)
     scene = _scene_of(streams, truth, sc, sir, decoys, dphi, n_common, blocks)
     trk = _tracker_of(sc, truth, tracker, gains, ekf_meas_var)
     noise_rng = (
@@ -329,22 +329,34 @@ def run_scenario(
     return truth, scene, hist
 
 
-def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: int, n_block: int):
+def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: int, n_block: int, blocks=None):
     """The law-following decoy's image positions, shape (n, frames, 2), and its phase offsets, shape (n, 1): it
-    rotates like the marker about a centre ``sc.decoy_offset`` px from the object's, at a random angle and (unless
-    ``sc.decoy_phase``) a random phase, both drawn from each generator's decoy stream. ``(None, None)`` without one."""
-    if sc.decoy_offset <= 0:
+    rotates like the marker about a centre ``sc.decoy_offset`` px from the object's (a block's ``decoy_offset``
+    where ``blocks`` sets one), at a random angle and (unless ``sc.decoy_phase``) a random phase, both drawn from each
+    generator's decoy stream. Trials of a block without a decoy get zeros (and no decoy brightness, see
+    :func:`_scene_of`). ``(None, None)`` without any decoy."""
+    offsets = [float((blocks[j] if blocks else {}).get("decoy_offset", sc.decoy_offset)) for j in range(len(streams))]
+    if max(offsets) <= 0:
         return None, None
-    ang = np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+    zero = np.zeros(n_common)
+    ang = np.concatenate(
+        [_tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block) for st, o in zip(streams, offsets)]
+    )[:, None]
     dphi = (
-        np.concatenate([_tile(st[1].uniform(0, 2 * np.pi, n_common), n_block) for st in streams])[:, None]
+        np.concatenate(
+            [
+                _tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
+                for st, o in zip(streams, offsets)
+            ]
+        )[:, None]
         if sc.decoy_phase is None
         else np.full((n, 1), float(sc.decoy_phase))
     )
+    off = np.repeat(offsets, n_block)[:, None] if len(set(offsets)) > 1 else offsets[0]
     decoys = np.stack(
         [
-            truth.xr + sc.decoy_offset * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
-            truth.yr + sc.decoy_offset * np.sin(ang) + truth.r * np.sin(truth.theta + dphi),
+            truth.xr + off * np.cos(ang) + truth.r * np.cos(truth.theta + dphi),
+            truth.yr + off * np.sin(ang) + truth.r * np.sin(truth.theta + dphi),
         ],
         axis=-1,
     )
@@ -374,7 +386,7 @@ def _scene_of(streams, truth: MarkerTruth, sc: Scenario, sir, decoys, dphi, n_co
         interferer_layout=sc.interferer_layout,
         interferer_diameter=sc.interferer_diameter,
         decoys=decoys,
-        decoy_brightness=sc.decoy_gain * sc.brightness / sir,
+        decoy_brightness=_decoy_brightness(sc, sir, blocks, len(streams)),
         n_common=n_common,
         blocks=blocks,
         exposure_steps=sc.exposure_steps,
@@ -382,6 +394,15 @@ def _scene_of(streams, truth: MarkerTruth, sc: Scenario, sir, decoys, dphi, n_co
         compensation=sc.compensation,
         median_frames=int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz)),
     )
+
+
+def _decoy_brightness(sc: Scenario, sir, blocks, n_generators: int):
+    """The decoy's brightness per trial, ``sc.decoy_gain d / SIR``; 0 in a block whose ``decoy_offset`` is 0."""
+    b = sc.decoy_gain * sc.brightness / sir
+    if not blocks or all("decoy_offset" not in x for x in blocks):
+        return b
+    on = np.repeat([float(x.get("decoy_offset", sc.decoy_offset)) > 0 for x in blocks], len(sir) // n_generators)
+    return np.where(on, b, 0.0)
 
 
 def _tracker_of(sc: Scenario, truth: MarkerTruth, tracker: str, gains, ekf_meas_var: float):

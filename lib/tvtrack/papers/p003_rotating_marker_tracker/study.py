@@ -28,13 +28,11 @@ from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
+from .memo import clear_cache, memo, scenario_key
 from .scene import (
     Scenario,
     interference_runs,
-    median_residual,
-    place_interferers,
     run_scenario,
-    scenario_truth,
     state_errors,
 )
 from .estimators import (  # noqa: F401 (re-exported: moved from this module)
@@ -72,8 +70,7 @@ __all__ = [
     "fold_distance",
     "measure_tracking",
     "measure_interference",
-    "exposure_study",
-    "median_example",
+    "clear_cache",
 ]
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
@@ -211,8 +208,22 @@ def _miss_stats(h, k0: int, crit: LossCriterion) -> tuple[np.ndarray, np.ndarray
     return ms, first_loss(h.miss, crit, h.inside) >= 0
 
 
-def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
+T_CLAIMS = ("C003-1", "C003-2", "C003-3", "C003-4", "C003-9")
+I_CLAIMS = ("C003-5", "C003-6", "C003-7", "C003-10", "C003-11", "C003-12")
+
+
+def _asked(claims, ids) -> set:
+    """The claims of ``ids`` a measurement computes: all with ``claims=None``, else those asked."""
+    return set(ids) if claims is None else set(ids) & set(claims)
+
+
+def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes(), claims=None) -> dict:
     """One replicate of the tracking claims at ``config``.
+
+    ``claims`` (ids, None for all) names the claims to compute: the runs only other claims read are skipped (the
+    Fig. 1 batch feeds C003-1, C003-2 and C003-9, the Fig. 2 runs C003-3, the background sweep C003-4, the edge runs
+    C003-9); what is computed is the same, bit for bit, whatever else is asked. Parts whose inputs a configuration
+    leaves as they were are taken from the run that computed them (:func:`.memo.memo`).
 
     Returns
     -------
@@ -222,14 +233,43 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
         1.5 f_rot and at f_rot + 1 Hz; ``wide_loops``: the near ratio at each bandwidth of :data:`BXY_GRID`)
         "C003-4": {"spread", "compensation"}, "C003-9": {"square_linear", "disc_linear", "edge_square",
         "edge_disc"}}``; Estimates (``wide_loops`` a list over :data:`BXY_GRID`, the slopes exact numbers), and
-        ``"_figure"`` with arrays of the first run for the notebook's figures.
+        ``"_figure"`` with arrays of the first run for the notebook's figures (its Fig. 1 and Fig. 2 parts where those
+        runs were made), ``"_ripple_trend"`` with the Fig. 1 batch.
     """
+    asked = _asked(claims, T_CLAIMS)
     n = sizes.trials
     sc1 = scenario(config, sizes, duration_s=sizes.fig1_s)
     k0 = int(round(sizes.transient_s * sc1.fps))
     crit = criterion(config, sc1)
-    out, fig = {}, {}
-    # Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1)
+    out, fig, quad_ms = {}, {}, {}
+    if asked & {"C003-1", "C003-2", "C003-9"}:
+        f1 = memo(("fig1", scenario_key(sc1), n, seed, k0, crit), lambda: _fig1(sc1, n, seed, k0, crit))
+        out.update({k: f1[k] for k in ("C003-1", "C003-2", "_ripple_trend")})
+        quad_ms, fig = dict(f1["quad_ms"]), dict(f1["figure"])
+    if "C003-3" in asked:  # Fig. 2: varying rotation rate and radius
+        om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
+        sc2 = replace(
+            sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz
+        )
+        k2 = int(round(max(sizes.transient_s, 0.25 * sizes.fig2_s) * sc2.fps))
+        f2 = memo(("fig2", scenario_key(sc2), n, seed, k2), lambda: _fig2(sc2, n, seed, k2))
+        out["C003-3"] = f2["C003-3"]
+        fig.update(f2["figure"])
+    if "C003-4" in asked:  # background sweep (compensated) and the ablation without compensation, same draws
+        bg = memo(
+            ("background", scenario_key(sc1), n, seed, k0, crit), lambda: _background_sweep(sc1, n, seed, k0, crit)
+        )
+        out["C003-4"], fig["background_rms"] = bg
+    if "C003-9" in asked:
+        out["C003-9"] = _discriminator_forms(config, sc1, n, seed, k0, crit, quad_ms)
+    out["_figure"] = fig
+    return {k: v for k, v in out.items() if k in asked or k.startswith("_")}
+
+
+def _fig1(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> dict:
+    """Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1):
+    C003-1, C003-2, the locked ripple's trend, the quadrant runs' mean-square miss by spot (``quad_ms``, for C003-9)
+    and the first run's arrays (``figure``)."""
     grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)  # the grid follows the bandwidth reading
     gains = [replace(sc1, b_xy=b).gains() for b in grid]
     tr, _, h = run_scenario([_rng(1, seed) for _ in grid], n * len(grid), sc1, gains=stack_gains(gains, n), n_common=n)
@@ -240,40 +280,45 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
     near_ctl = phase_locked_amplitude(ex, f_near * th).reshape(len(BXY_GRID), n)
     j = BXY_GRID.index(Scenario().b_xy)  # was: "if sc1.b_xy in BXY_GRID else 0", which silently judged C003-1 at 2 Hz
     sel = slice(j * n, (j + 1) * n)
-    out["C003-1"] = {
-        "x_r": rms_ci(e[sel, k0:, 0]),
-        "y_r": rms_ci(e[sel, k0:, 1]),
-        "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0),
+    return {
+        "C003-1": {
+            "x_r": rms_ci(e[sel, k0:, 0]),
+            "y_r": rms_ci(e[sel, k0:, 1]),
+            "lost": loss_share(first_loss(h.miss[sel], crit, h.inside[sel]) >= 0),
+        },
+        "C003-2": {
+            "far": ratio_ci(locked[j], phase_locked_amplitude(ex[sel], 1.5 * th[sel])),
+            "near": ratio_ci(locked[j], near_ctl[j]),
+            "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)],
+        },
+        # the locked ripple's own trend with the loop width, paired on the same draws: B_xy 10 Hz over 2 Hz
+        "_ripple_trend": ratio_ci(locked[BXY_GRID.index(RIPPLE_TREND[0])], locked[BXY_GRID.index(RIPPLE_TREND[1])]),
+        "quad_ms": {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)},
+        "figure": dict(
+            t=tr.t,
+            xr=tr.xr[j * n].copy(),
+            yr=tr.yr[j * n].copy(),
+            est=h.estimate[j * n, :, :2].copy(),
+            err=e[j * n, :, :2].copy(),
+            locked=locked.mean(axis=1),
+        ),
     }
-    out["C003-2"] = {
-        "far": ratio_ci(locked[j], phase_locked_amplitude(ex[sel], 1.5 * th[sel])),
-        "near": ratio_ci(locked[j], near_ctl[j]),
-        "wide_loops": [ratio_ci(a, c) for a, c in zip(locked, near_ctl)],
-    }
-    # the locked ripple's own trend with the loop width, paired on the same draws: B_xy 10 Hz over 2 Hz
-    out["_ripple_trend"] = ratio_ci(locked[BXY_GRID.index(RIPPLE_TREND[0])], locked[BXY_GRID.index(RIPPLE_TREND[1])])
-    quad_ms = {"disc" if sc1.spot == "disc" else "square": np.mean(h.miss[sel, k0:].astype(float) ** 2, axis=1)}
-    fig.update(
-        t=tr.t,
-        xr=tr.xr[j * n],
-        yr=tr.yr[j * n],
-        est=h.estimate[j * n, :, :2],
-        err=e[j * n, :, :2],
-        locked=locked.mean(axis=1),
-    )
-    # Fig. 2: varying rotation rate and radius
-    om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
-    sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz)
+
+
+def _fig2(sc2: Scenario, n: int, seed: int, k2: int) -> dict:
+    """Fig. 2 (varying rotation rate and radius, stream 2): C003-3 and the first run's arrays (``figure``)."""
     tr, _, h = run_scenario(_rng(2, seed), n, sc2)
-    k2 = int(round(max(sizes.transient_s, 0.25 * sizes.fig2_s) * sc2.fps))
     e = state_errors(tr, h)[:, k2:]
-    out["C003-3"] = {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])}
-    fig.update(t2=tr.t, omega=tr.omega[0], omega_hat=h.estimate[0, :, 4], r=tr.r[0], r_hat=h.estimate[0, :, 2])
-    # C003-4: background sweep (compensated) and the ablation without compensation, one batch on the same draws
-    out["C003-4"], fig["background_rms"] = _background_sweep(sc1, n, seed, k0, crit)
-    out["C003-9"] = _discriminator_forms(config, sc1, n, seed, k0, crit, quad_ms)
-    out["_figure"] = fig
-    return out
+    return {
+        "C003-3": {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])},
+        "figure": dict(
+            t2=tr.t,
+            omega=tr.omega[0].copy(),
+            omega_hat=h.estimate[0, :, 4].copy(),
+            r=tr.r[0].copy(),
+            r_hat=h.estimate[0, :, 2].copy(),
+        ),
+    }
 
 
 def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> tuple[dict, list]:
@@ -300,6 +345,12 @@ def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCrite
     return {"spread": spread, "compensation": _share_difference(lo[-1], lo[0])}, [r.value for r in rms]
 
 
+def _miss_ms(sc: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> np.ndarray:
+    """Per-run mean-square marker miss (px^2, frames from ``k0``) of ``n`` runs of ``sc`` on the Fig. 1 draws."""
+    key = ("miss_ms", scenario_key(sc), n, seed, k0, crit)
+    return memo(key, lambda: _miss_stats(run_scenario(_rng(1, seed), n, sc, keep_full=False)[2], k0, crit)[0])
+
+
 def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int, crit, quad_ms: dict) -> dict:
     """C003-9: the quadrant slopes over 2dD (deterministic, read over ``slope_range``) and the edge form's mean-square
     miss over the quadrant form's in closed loop, for both spots, on the Fig. 1 draws (stream 1; ``quad_ms`` holds
@@ -310,9 +361,8 @@ def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int
         fit = quadrant_slope_fit(s.spot_renderer(), s.diameter, s.gate_half)
         part9[f"{spot}_linear"] = fit[SLOPE_RANGES[config.get("slope_range", "+-D/2")]] / s.slope()
         if spot not in quad_ms:
-            quad_ms[spot] = _miss_stats(run_scenario(_rng(1, seed), n, s, keep_full=False)[2], k0, crit)[0]
-        edge = _miss_stats(run_scenario(_rng(1, seed), n, replace(s, form="edge"), keep_full=False)[2], k0, crit)[0]
-        part9[f"edge_{spot}"] = ratio_ci(edge, quad_ms[spot])
+            quad_ms[spot] = _miss_ms(s, n, seed, k0, crit)
+        part9[f"edge_{spot}"] = ratio_ci(_miss_ms(replace(s, form="edge"), n, seed, k0, crit), quad_ms[spot])
     return part9
 
 
@@ -322,10 +372,24 @@ def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int
 
 def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=None, criteria: bool = False):
     """Loss indicators of ``n`` runs at each SIR (stream 10: common draws), shape (m, n); with ``counts``
-    (interferer numbers) one batch of blocks, shape (len(counts), m, n). With ``criteria`` also the loss criteria
-    each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker), shape (..., m, n, 3)."""
+    (interferer numbers, or ``("decoy", offset)``: no stationary interferer and the law-following decoy at that
+    offset, px) one batch of blocks, shape (len(counts), m, n); each block gets the runs it would get alone. With
+    ``criteria`` also the loss criteria each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker),
+    shape (..., m, n, 3)."""
+    key = ("curve", scenario_key(sc), tuple(float(x) for x in sirs), n, seed, crit, counts and tuple(counts), criteria)
+    return memo(key, lambda: _curve_runs(sc, sirs, n, seed, crit, counts, criteria))
+
+
+def _curve_runs(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts, criteria: bool):
+    """:func:`_curve`, computed."""
     k = 1 if counts is None else len(counts)
-    blocks = None if counts is None else [{"n_interferers": c} for c in counts]
+    blocks = (
+        None
+        if counts is None
+        else [
+            {"n_interferers": c} if isinstance(c, int) else {"n_interferers": 0, "decoy_offset": c[1]} for c in counts
+        ]
+    )
     runs = interference_runs([_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
     fl = first_loss(runs["miss"], crit, runs["inside"])
     shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
@@ -345,11 +409,25 @@ def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=No
     return lost, met.reshape(shape + (3,))
 
 
-def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
+# the loss curves each interference claim reads (the rotating marker's, with one and five interferers, all do)
+_I_NEEDS = {
+    "C003-5": set(),
+    "C003-6": set(),
+    "C003-7": set(),
+    "C003-10": {"gate", "uncompensated"},
+    "C003-11": {"gate", "bandwidth"},
+    "C003-12": {"static", "decoy"},
+}
+
+
+def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims=None) -> dict:
     """One replicate of the loss-of-lock claims at ``config`` (all curves on :data:`SIR_GRID`, same draws).
 
     The thresholds of C003-7's ``rise``, C003-12 and ``_map`` read the rotating, static and decoy curves on the grid
     extended where a run broke outside it (:func:`extend_grid`, up to two points on each side; ``"_grid"``).
+    ``claims`` (ids, None for all) names the claims to compute: the curves only other claims read are not run
+    (:data:`_I_NEEDS`); what is computed is the same, bit for bit, whatever else is asked. Curves whose inputs a
+    configuration leaves as they were are taken from the run that computed them (:func:`.memo.memo`).
 
     Returns
     -------
@@ -360,25 +438,40 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
         B_xy 20 Hz over 5 Hz), "C003-12": {"one", "five", "imitator"}}``, ``"_map"`` (the thresholds of the
         rotating and static markers with one and five interferers), ``"_map_bound"`` (the same thresholds as the
         bounds their grid censoring certifies, :func:`threshold_bound`), ``"_mechanisms"`` (counts of the losses meeting
-        each loss criterion) and ``"_curves"`` (the loss indicators).
+        each loss criterion) and ``"_curves"`` (the loss indicators); ``_map`` and ``_map_bound`` only with the static
+        curves (C003-12 asked), ``_bandwidth_ratio`` only with C003-11.
     """
+    asked = _asked(claims, I_CLAIMS)
+    need = set().union(*(_I_NEEDS[c] for c in asked)) if asked else set()
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
     base = scenario(config, sizes)
     D = base.diameter
     crit = criterion(config, base)
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
-    curves = {}
-    (curves["rotating", 1], curves["rotating", 5]), met_r = _curve(base, sirs, n, seed, crit, (1, 5), True)
+    curves, met = {}, {}
+    # the decoy's runs (C003-12) ride in the rotating marker's batch as a third block: the same runs as alone
+    fam = (1, 5, ("decoy", 2 * D)) if "decoy" in need else (1, 5)
+    lost_r, met_r = _curve(base, sirs, n, seed, crit, fam, True)
+    curves["rotating", 1], curves["rotating", 5], met["rotating"] = lost_r[0], lost_r[1], met_r[:2]
     st = replace(base, rotating=False, gate_half=static_half, form=config.get("static_form", "quadrant"))
-    (curves["static", 1], curves["static", 5]), met_s = _curve(st, sirs, n, seed, criterion(config, st), (1, 5), True)
-    capt = met_r[1, :, :, 0]
-    for gf in (1.5, 5.0):
-        g = replace(base, n_interferers=5, gate_half=gf * D / 2)
-        curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
-    curves["decoy"], _ = _curve(replace(base, decoy_offset=2 * D), sirs, n, seed, crit)
+    if "static" in need:
+        (curves["static", 1], curves["static", 5]), met["static"] = _curve(
+            st, sirs, n, seed, criterion(config, st), (1, 5), True
+        )
+    capt = met["rotating"][1, :, :, 0]
+    if "gate" in need:
+        for gf in (1.5, 5.0):
+            g = replace(base, n_interferers=5, gate_half=gf * D / 2)
+            curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
+    if "decoy" in need:
+        curves["decoy"] = lost_r[2]
     usirs = np.asarray(UNCOMPENSATED_GRID)
-    curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
-    bw_ratio = _bandwidth_ratio(base, n, seed, int(round(sizes.transient_s * base.fps)))
+    if "uncompensated" in need:
+        curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
+    bw_ratio = None
+    if "bandwidth" in need:
+        k0 = int(round(sizes.transient_s * base.fps))
+        bw_ratio = memo(("bandwidth", scenario_key(base), n, seed, k0), lambda: _bandwidth_ratio(base, n, seed, k0))
 
     def more(keys, sir):  # the C003-7/-12 curves at one more SIR, only the families asked for (same draws)
         got = {}
@@ -390,20 +483,21 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes()) -> dic
             got["decoy"] = _curve(replace(base, decoy_offset=2 * D), [sir], n, seed, crit)[0][0]
         return got
 
-    pair_keys = [("rotating", 1), ("rotating", 5), ("static", 1), ("static", 5), "decoy"]
+    pair_keys = [k for k in [("rotating", 1), ("rotating", 5), ("static", 1), ("static", 5), "decoy"] if k in curves]
     # one adaptive point a side, and only when the rotating marker's own runs break outside the grid: the static
-    # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio)
+    # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio); the
+    # rotating curves' extension does not depend on which other curves are extended with them
     xsirs, xc = extend_grid({k: curves[k] for k in pair_keys}, sirs, more, max_points=1, trigger=pair_keys[:2])
-    out = _interference_claims(config, base, curves, capt, xc, xsirs, bw_ratio)
-    out["_bandwidth_ratio"] = bw_ratio
-    out["_mechanisms"] = {
-        f"{m} {k}": _mechanisms(curves[m, k], met[j])
-        for m, met in (("rotating", met_r), ("static", met_s))
-        for j, k in enumerate((1, 5))
-    }
-    out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
-    # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
-    out["_map_bound"] = {f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+    out = _interference_claims(config, base, curves, capt, xc, xsirs, bw_ratio, asked)
+    if bw_ratio is not None:
+        out["_bandwidth_ratio"] = bw_ratio
+    out["_mechanisms"] = {f"{m} {k}": _mechanisms(curves[m, k], met[m][j]) for m in met for j, k in enumerate((1, 5))}
+    if "static" in met:
+        out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
+        # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
+        out["_map_bound"] = {
+            f"{m} {k}": threshold_bound(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)
+        }
     out["_grid"] = [
         float(x) for x in xsirs
     ]  # the SIR grid with its adaptive points (the thresholds of _map, C003-7 rise, C003-12)
@@ -428,26 +522,27 @@ def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
     return ratio_ci(ms[1], ms[0])
 
 
-def _interference_claims(config: dict, base: Scenario, curves: dict, capt, xc: dict, xsirs, bw_ratio) -> dict:
+def _interference_claims(
+    config: dict, base: Scenario, curves: dict, capt, xc: dict, xsirs, bw_ratio, asked=I_CLAIMS
+) -> dict:
     """The claim parts of :func:`measure_interference` from its loss curves (``curves`` on :data:`SIR_GRID`, ``xc`` on
     the extended grid ``xsirs``), the capture indicators ``capt`` (five interferers, per SIR and run) and C003-11's
-    bandwidth ratio."""
+    bandwidth ratio; only the ``asked`` claims (their curves present)."""
     sirs, usirs, at = np.asarray(SIR_GRID), np.asarray(UNCOMPENSATED_GRID), {s: i for i, s in enumerate(SIR_GRID)}
     r1, r5 = curves["rotating", 1], curves["rotating", 5]
-    comp_ratio = _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa)
-    return {
-        "C003-5": {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
-        "C003-6": {
+    parts = {
+        "C003-5": lambda: {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
+        "C003-6": lambda: {
             "finite": loss_share(r1[at[0.5]]),
             "loss_free": loss_share(r1[at[2.0]]),
             "not_lower": loss_share(r1[at[4 / 3]]),
         },
-        "C003-7": {
+        "C003-7": lambda: {
             "loss_free": loss_share(r5[at[3.0]]),
             "not_lower": loss_share(r5[at[2.0]]),
             "rise": threshold_ratio(xc["rotating", 5], xc["rotating", 1], xsirs),
         },
-        "C003-10": {
+        "C003-10": lambda: {
             # the side a grid-censored threshold certifies decides (threshold_bound), as in the prose's map
             "gate": [
                 threshold_bound(curves["gate", 1.5], sirs),
@@ -455,23 +550,24 @@ def _interference_claims(config: dict, base: Scenario, curves: dict, capt, xc: d
                 threshold_bound(curves["gate", 5.0], sirs),
             ],
             "compensation": compensation_reading(
-                comp_ratio,
+                _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
                 base.kappa,
                 config.get("compensation_reading", "one-sided"),
             ),
         },
-        "C003-11": {
+        "C003-11": lambda: {
             "dynamics": loss_share(curves["gate", 1.5][-1]),
             "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
             # l. 192 says the errors depend substantially on the bandwidths, not which way: two-sided (fold distance)
             "bandwidth": fold_distance(bw_ratio, 1.0),
         },
-        "C003-12": {
+        "C003-12": lambda: {
             "one": threshold_ratio(xc["static", 1], xc["rotating", 1], xsirs),
             "five": threshold_ratio(xc["static", 5], xc["rotating", 5], xsirs),
             "imitator": threshold_ratio(xc["decoy"], xc["rotating", 1], xsirs),
         },
     }
+    return {c: f() for c, f in parts.items() if c in asked}
 
 
 def _mechanisms(lost, met) -> dict:
@@ -483,53 +579,3 @@ def _mechanisms(lost, met) -> dict:
         **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
         "none (drift)": int((~m.any(axis=1)).sum()),
     }
-
-
-# ----------------------------------------------------------------------------------------------------------------
-# beyond the paper: frame-rate smear, matched exposure of the static baseline, temporal-median compensation
-
-
-def exposure_study(seed: int, sizes: Sizes, sizes_i: Sizes, fps: float) -> dict:
-    """Frame-rate smear (card 8.5) and the static baseline at matched exposure, at frame rate ``fps``.
-
-    Both exposure models on the same draws: ``"instant"`` (the marker sampled at the frame time) and ``"integrated"``
-    (the sensor integrates over the frame, so the rotating marker is smeared along the arc ``2 pi f_rot r / fps`` it
-    turns in a frame, while the static baseline's emitter, held still, keeps its spot: the same spot energy per frame,
-    sensor noise and exposure model for both markers, i.e. matched exposure).
-
-    Returns
-    -------
-    dict
-        ``{exposure: {"x_r_rms_px": Estimate (Fig. 1 RMS x_r error, px), "thresholds": {"rotating 1", "rotating 5",
-        "static 1", "static 5"}: Estimate (the bound each threshold's grid censoring certifies, SIR)}}`` and
-        ``"arc_px"``: the marker's arc per frame (px).
-    """
-    out = {}
-    for e in ("instant", "integrated"):
-        cfg = {"fps": float(fps), "exposure": e}
-        out[e] = {
-            "x_r_rms_px": measure_tracking(cfg, seed, sizes)["C003-1"]["x_r"],
-            "thresholds": measure_interference(cfg, seed, sizes_i)["_map_bound"],
-        }
-    sc = scenario({"fps": float(fps)}, sizes)
-    out["arc_px"] = float(sc.omega0 * sc.radius / sc.fps)
-    return out
-
-
-def median_example(seed: int, sc: Scenario) -> dict:
-    """One trial of the temporal-median compensation (card 8.5) for :func:`.plots.median_figure`: the truth, the
-    interferers about its start and the residual the median of the first ``sc.median_revolutions`` revolutions leaves
-    (:func:`.scene.median_residual`; the static scene cancels, so the interferers leave nothing).
-
-    Returns
-    -------
-    dict
-        ``residual`` (rows, cols), ``truth`` (one trial), ``interferers`` (count, 2) px, ``n_frames``, ``noise_std``.
-    """
-    rng = _rng(50, seed)
-    n_frames = int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz))
-    truth = scenario_truth(rng, 1, replace(sc, duration_s=max(sc.duration_s, (n_frames + 1) / sc.fps)))
-    q = place_interferers(rng, 1, sc.n_interferers, truth.center[:, 0], sc.radius)
-    shape = (sc.image_size, sc.image_size)
-    res = median_residual(rng, truth, n_frames, shape, sc.spot, sc.diameter, sc.brightness, sc.noise_std)
-    return dict(residual=res[0], truth=truth, interferers=q[0], n_frames=n_frames, noise_std=sc.noise_std)

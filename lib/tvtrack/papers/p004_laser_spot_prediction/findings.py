@@ -275,7 +275,7 @@ def scintillation_table(exploration, entry: str = "scintillation") -> str:
     replicates), as a Markdown table and a sentence whose words come from the intervals of the lowest
     and highest level: "grows"/"shrinks" only where the two 95 % intervals are disjoint (a conservative
     test: overlapping intervals may still differ)."""
-    from .study import single_values
+    from .side_studies import single_values
 
     centroid = single_values(exploration, CENTROID, entry)
     prediction = single_values(exploration, "C004-2", entry)

@@ -103,6 +103,8 @@ def _kalman_pass(z, F, Q, H, R, x0, P0, steps: int, burn_in: int):
     x = np.broadcast_to(x0, np.broadcast_shapes(z.shape[:-1], x0.shape[:-1], cov_batch) + (n,)).copy()
     forecast = []
     norm_sq, log_s = 0.0, 0.0
+    # the core's steps (kf_predict / kf_update), not SequentialFilter.run: that carries P per series and keeps the
+    # whole history, where this loop carries P per noise setting only and keeps just the forecast and likelihood
     for t in range(T):
         if t > 0:
             x, P = kf_predict(x, P, F, Q)

@@ -14,7 +14,7 @@ RULES = {
     "n_trials": Integer(3, 10),
     "max_replicates": Integer(3, 20),
     "joint_samples": Integer(0, 64),
-    "explore_workers": Integer(1, 16),
+    "n_workers": Integer(1, 16),
     "explore_entries": OneOfList(*NAMES, min_len=0),
     "scintillation_sigma_ln": Real(0.0, 1.5),
     "n_paths": Integer(6, 15),

@@ -245,21 +245,23 @@ def budget_figure(budget: dict):
 
 def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     """The paired MSE ratio (baseline / filter) of every baseline of the ranking claims, at the default
-    (replicates pooled) and under every one-at-a-time condition of the register; above 1: the filter is better."""
+    (replicates pooled) and under every one-at-a-time condition of the register; above 1: the filter is better.
+    A condition shows the claims it was measured for (a condition that changes only what one claim reads, e.g. the
+    networks' lags, measures only that claim)."""
     rows = [("default (pooled replicates)", {b: e for c in claim_ids for b, e in exploration.measured(c).items()})]
     default = exploration.default
     for r in exploration.runs:
-        if r.stage == "single":
+        if r.stage == "single" and any(c in r.outputs for c in claim_ids):
             label = ", ".join(
                 f"{k} = {v:.3g}" if isinstance(v, float) else f"{k} = {v}" for k, v in r.changed(default).items()
             )
-            rows.append((label, {b: e for c in claim_ids for b, e in r.outputs[c].items()}))
+            rows.append((label, {b: e for c in claim_ids if c in r.outputs for b, e in r.outputs[c].items()}))
     names = list(rows[0][1])
     fig, ax = plt.subplots(figsize=(8, 0.28 * len(rows) + 1.5))
-    y = np.arange(len(rows))
     for j, b in enumerate(names):
         mk, _ = _STYLES[j % len(_STYLES)]
-        est = [row[b] for _, row in rows]
+        y = np.array([i for i, (_, row) in enumerate(rows) if b in row])
+        est = [row[b] for _, row in rows if b in row]
         v = np.array([e.value for e in est])
         ax.errorbar(
             v,
@@ -276,7 +278,7 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     ax.set_xscale("log")
     lo, hi = ax.get_xlim()
     plain_log(ax, "x", subs=(1.0,) if hi / lo > 300 else (1.0, 2.0, 5.0))  # 1-2-5 labels overlap over many decades
-    ax.set_yticks(y, [lab for lab, _ in rows], fontsize=7)
+    ax.set_yticks(np.arange(len(rows)), [lab for lab, _ in rows], fontsize=7)
     ax.invert_yaxis()
     ax.set_xlabel("baseline MSE / filter MSE (paired over paths, 95 % CI); above 1: the filter is better")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))

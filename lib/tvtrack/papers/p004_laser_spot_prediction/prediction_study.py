@@ -43,9 +43,11 @@ __all__ = [
     "FITTED",
     "FADING",
     "SINGER",
+    "CA_KALMAN",
     "MIN_WINDOW",
     "ComparisonSetup",
     "Comparison",
+    "PARTS",
     "compare_methods",
     "per_trial_path_mse",
     "tune_learned_lags",
@@ -72,10 +74,12 @@ CLASSICAL = (
 FADING = "fading memory (Morrison)"
 #: Singer-model Kalman filter with ML parameters (a Kalman filter whose memory is set by a motion model).
 SINGER = "Singer Kalman, ML"
+#: The constant-acceleration Kalman filter with ML noise levels.
+CA_KALMAN = "CA Kalman, ML noise"
 #: Baselines fitted to data: back-propagation MLP and RBF network (the paper names both, 2-3 and
 #: 2-4 px), and two Kalman filters with ML parameters standing in for the paper's "Kalman filters"
 #: (1-2 px): constant acceleration with white jerk, and Singer's correlated acceleration.
-FITTED = ("MLP back-prop", "RBF network", "CA Kalman, ML noise", SINGER)
+FITTED = ("MLP back-prop", "RBF network", CA_KALMAN, SINGER)
 #: The fewest samples each windowed baseline can fit (its degree + 1): where its window search starts.
 MIN_WINDOW = {"cubic spline": 4, "linear regression deg 1": 2, "linear regression deg 2": 3}
 
@@ -281,6 +285,12 @@ def apply_learned_folds(models, z, folds) -> np.ndarray:
     return out
 
 
+#: The parts of :func:`compare_methods` beyond the paper's filter (always run): the card's variant floor, the
+#: classical baselines (finite differences, cubic spline, regression), Morrison's fading memory, the networks
+#: and the two ML Kalman filters.
+PARTS = frozenset({"variant", "classical", "fading", "learned", "kalman"})
+
+
 def compare_methods(
     z,
     reference,
@@ -289,6 +299,8 @@ def compare_methods(
     rng: np.random.Generator,
     learned_models: dict | None = None,
     learned: bool = True,
+    parts=None,
+    kalman_fits=None,
 ) -> Comparison:
     """Every method on the same series, tuned by cross-validation over paths.
 
@@ -301,42 +313,59 @@ def compare_methods(
     folds : list of (train, test)
         :func:`tvtrack.papers.p004_laser_spot_prediction.predictors.path_folds`.
     rng : numpy.random.Generator
-        Seeds of the learned models.
+        Seeds of the learned models (only they draw from it).
     learned_models : dict, optional
         Pre-trained ``{"mlp": [...], "rbf": [...]}`` per fold to apply instead of training here
         (train/test mismatch: models trained in another regime).
     learned : bool
         Include the MLP and RBF network.
+    parts : iterable of str, optional
+        Which of :data:`PARTS` to run besides the paper's filter (default: all; ``learned=False`` drops
+        "learned"). Each part's numbers are the same whichever other parts run (no part shares a draw).
+    kalman_fits : (ca, singer), optional
+        The Kalman filters' per-fold ML parameters (``chosen`` of an earlier comparison on the same series and
+        folds: the fits read no horizon); None: fitted here.
 
     Returns
     -------
     Comparison
     """
+    parts = PARTS if parts is None else frozenset(parts)
+    if not parts <= PARTS:
+        raise ValueError(f"parameter 'parts' has {sorted(set(parts) - PARTS)}; they must be among {sorted(PARTS)}")
     s = setup
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
-    T = z.shape[-1]
-    fc, mse[PAPER], chosen[PAPER], all_fc, all_mse = _tuned(
-        s.floor_grid,
-        lambda nf: pr.growing_memory_forecast(z, m, s.order, nf),
-        z,
-        reference,
-        folds,
-        s,
-        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
+    more = sorted({min(int(v), z.shape[-1]) for v in FLOOR_EXTENSION})
+    fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = _tuned(
+        s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s, more=more
     )
-    fcs[PAPER] = fc
-    fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = _tuned(  # the card's variant floor, tuned alike
-        s.floor_grid,
-        lambda nf: pr.g1_floor_forecast(z, nf, m, s.order),
-        z,
-        reference,
-        folds,
-        s,
-        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
-    )
-    fixed[VARIANT] = per_trial_path_mse(pr.g1_floor_forecast(z, s.fixed_floor, m, s.order), reference, m, s.start)
+    if "variant" in parts:  # the card's variant floor, tuned alike
+        fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = _tuned(
+            s.floor_grid, lambda nf: pr.g1_floor_forecast(z, nf, m, s.order), z, reference, folds, s, more=more
+        )
+        fixed[VARIANT] = per_trial_path_mse(pr.g1_floor_forecast(z, s.fixed_floor, m, s.order), reference, m, s.start)
     fixed[PAPER] = per_trial_path_mse(pr.growing_memory_forecast(z, m, s.order, s.fixed_floor), reference, m, s.start)
+    if "classical" in parts:
+        _classical(z, reference, folds, s, (mse, fixed, chosen, fcs))
+    if "fading" in parts:
+        fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
+            s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s
+        )
+        fixed[FADING] = mse[FADING]
+    models = {}
+    if learned and "learned" in parts:
+        models = _learned(z, reference, folds, s, rng, learned_models, (mse, fixed, chosen, fcs))
+    if "kalman" in parts:
+        _kalman(z, reference, folds, s, (mse, fixed, chosen, fcs), kalman_fits)
+    return Comparison(mse, fixed, chosen, fcs, models)
+
+
+def _classical(z, reference, folds, s: ComparisonSetup, out) -> None:
+    """The paper's classical baselines into ``out`` = (mse, fixed, chosen, forecasts): finite differences of 2 and
+    3 points, the cubic spline and regression of degree 1 and 2 (windows cross-validated)."""
+    mse, fixed, chosen, fcs = out
+    m = s.steps
     fcs["finite differences, 2 points"] = pr.sliding_regression_forecast(z, 2, 1, m)
     fcs["finite differences, 3 points"] = pr.sliding_regression_forecast(z, 3, 2, m)
     for name in ("finite differences, 2 points", "finite differences, 3 points"):
@@ -351,30 +380,40 @@ def compare_methods(
             window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=WINDOW_EXTENSION
         )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
-    fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
-        s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s
-    )
-    fixed[FADING] = mse[FADING]
+
+
+def _learned(z, reference, folds, s: ComparisonSetup, rng, learned_models, out) -> dict:
+    """The MLP and RBF network into ``out`` (their lag counts cross-validated when ``s.learned_lags`` is None);
+    returns the fitted models per kind."""
+    mse, fixed, chosen, fcs = out
     models = {}
-    if learned:
-        for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):
-            lags = None
-            if learned_models is None and s.learned_lags is None:  # cross-validated on the training paths
-                lags, _ = tune_learned_lags(kind, z, reference, folds, s, rng)
-                chosen[name] = lags
-            models[kind] = (
-                learned_models[kind] if learned_models is not None else fit_learned_folds(kind, z, folds, s, rng, lags)
-            )
-            fcs[name] = apply_learned_folds(models[kind], z, folds)
-            mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, m, s.start)
-    fits = pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid)
-    fcs["CA Kalman, ML noise"] = pr.constant_acceleration_forecast(z, fits, folds, m)
-    mse["CA Kalman, ML noise"] = fixed["CA Kalman, ML noise"] = per_trial_path_mse(
-        fcs["CA Kalman, ML noise"], reference, m, s.start
-    )
-    chosen["CA Kalman, ML noise"] = np.array(fits)
-    singer_fits = pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid)
+    for kind, name in (("mlp", "MLP back-prop"), ("rbf", "RBF network")):
+        lags = None
+        if learned_models is None and s.learned_lags is None:  # cross-validated on the training paths
+            lags, _ = tune_learned_lags(kind, z, reference, folds, s, rng)
+            chosen[name] = lags
+        models[kind] = (
+            learned_models[kind] if learned_models is not None else fit_learned_folds(kind, z, folds, s, rng, lags)
+        )
+        fcs[name] = apply_learned_folds(models[kind], z, folds)
+        mse[name] = fixed[name] = per_trial_path_mse(fcs[name], reference, s.steps, s.start)
+    return models
+
+
+def _kalman(z, reference, folds, s: ComparisonSetup, out, fitted=None) -> None:
+    """The constant-acceleration and Singer Kalman filters, noise fitted by maximum likelihood per fold (or the
+    ``fitted`` (ca, singer) parameters), into ``out``."""
+    mse, fixed, chosen, fcs = out
+    m = s.steps
+    if fitted is None:
+        fitted = (
+            pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
+            pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
+        )
+    fits, singer_fits = fitted
+    fcs[CA_KALMAN] = pr.constant_acceleration_forecast(z, fits, folds, m)
+    mse[CA_KALMAN] = fixed[CA_KALMAN] = per_trial_path_mse(fcs[CA_KALMAN], reference, m, s.start)
+    chosen[CA_KALMAN] = np.array(fits)
     fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)
     mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
     chosen[SINGER] = np.array(singer_fits)
-    return Comparison(mse, fixed, chosen, fcs, models)

@@ -462,6 +462,14 @@ def lag_features(z, n_lags: int, steps: int = 1, inputs: str = "increments"):
 LEARNED_INPUTS = ("increments", "absolute centres")
 
 
+def _sklearn_unchecked():
+    """scikit-learn without its per-call parameter validation and finiteness checks (the inputs here are built
+    finite and the parameters fixed): the same numbers, about a fifth less CPU time per network."""
+    import sklearn
+
+    return sklearn.config_context(skip_parameter_validation=True, assume_finite=True)
+
+
 def fit_learned_predictor(
     kind: str,
     z_train,
@@ -537,7 +545,8 @@ def fit_learned_predictor(
         from sklearn.compose import TransformedTargetRegressor
 
         model = TransformedTargetRegressor(regressor=model, transformer=StandardScaler())
-    model.fit(X[idx], y[idx])
+    with _sklearn_unchecked():
+        model.fit(X[idx], y[idx])
     model.n_lags_ = n_lags
     model.steps_ = steps
     model.inputs_ = inputs
@@ -552,7 +561,8 @@ def learned_forecast(model, z) -> np.ndarray:
     flat = X.reshape(-1, model.n_lags_)
     ok = np.all(np.isfinite(flat), axis=1)
     out = np.full(flat.shape[0], np.nan)
-    out[ok] = model.predict(flat[ok])
+    with _sklearn_unchecked():
+        out[ok] = model.predict(flat[ok])
     return out.reshape(z.shape) if inputs == "absolute centres" else z + out.reshape(z.shape)
 
 

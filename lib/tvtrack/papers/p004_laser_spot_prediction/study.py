@@ -10,7 +10,9 @@ differ only in the horizon, the networks' lags or a statistic (common random num
 drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
 
 The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
-Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run.
+Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run. The world a run draws (generator,
+camera, exposure, vibration) is :mod:`.world`, re-exported here; the notebook's studies beyond the claims (scores,
+measurement budget, model order, horizon) are :mod:`.side_studies`.
 """
 
 from __future__ import annotations
@@ -20,22 +22,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
-from ...render import gaussian_spot, sensor_readout
 from . import predictors as pr
-from .beam_wander import (
-    GTILT,
-    BeamWanderConfig,
-    SpotCamera,
-    generate_traces,
-    one_frame_motion_rms,
-    optimal_wander_forecast,
-    track_spot,
-)
+from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
 from .prediction_study import (
     CLASSICAL,
-    FADING,
     PAPER,
+    PARTS,
     SINGER,
+    Comparison,
     ComparisonSetup,
     WINDOW_EXTENSION,
     _tuned,
@@ -47,20 +41,42 @@ from .derivation import _recursion_check, recursion_vs_batch, variance_ratios
 from .register import NAMES, WORLD
 from .timing import CLOCKS, _frame_time_ms, streaming_frame_times
 from .traces import TraceSet
+from .world import (
+    BASE_CAMERA,
+    BASE_SCENE,
+    EXPOSURE_SUBSAMPLES,
+    EXPOSURES,
+    MAX_DRAWS,
+    VIBRATION_HZ,
+    camera_for,
+    exposed_traces,
+    exposure_weights,
+    scene_config,
+    traces_on_sensor,
+    vibration,
+)
 
 __all__ = [
     "ENTRIES",
     "CENTROID",
     "NETWORKS",
     "OPTIMAL",
+    "SINGER",
     "StudySize",
     "screen_size",
     "StudyRun",
+    "BASE_SCENE",
+    "BASE_CAMERA",
+    "EXPOSURE_SUBSAMPLES",
+    "EXPOSURES",
+    "VIBRATION_HZ",
+    "MAX_DRAWS",
     "scene_config",
     "traces_on_sensor",
     "camera_for",
     "run_study",
     "claim_values",
+    "parts_for",
     "measure",
     "measure_batch",
     "exposure_weights",
@@ -71,12 +87,7 @@ __all__ = [
     "CLOCKS",
     "recursion_vs_batch",
     "variance_ratios",
-    "model_order_summary",
-    "horizon_study",
     "clear_cache",
-    "scores",
-    "single_values",
-    "grid_edge_report",
 ]
 
 #: Register entry names the study reads (the configuration dict's keys).
@@ -93,8 +104,6 @@ CENTROID = "centroid error"
 OPTIMAL = "optimal (true model)"
 
 _SCENE_KEYS = WORLD  # the entries that change the rendered scene
-#: Sub-frame samples per exposure of the "full frame" exposure reading.
-EXPOSURE_SUBSAMPLES = 4
 
 
 def root_mean_ci(mean_squares) -> Estimate:
@@ -184,46 +193,6 @@ def screen_size(size: StudySize) -> StudySize:
     )
 
 
-#: The shipped data set's generator configuration and the card's camera (21 px centroid window).
-BASE_SCENE = BeamWanderConfig()
-BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
-
-
-def scene_config(config: dict, size: StudySize, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
-    """The generator's configuration at a register configuration.
-
-    ``bandwidth`` scales every corner frequency, ``amplitude`` the wander RMS range; ``frame rate``
-    changes the sampling at ``n_frames`` images per path (the paper: "up to 1000 images"), the drift
-    kept in px/s.
-    """
-    fs = float(config["frame rate"])
-    return replace(
-        base,
-        n_paths=size.n_paths,
-        n_frames=size.n_frames,
-        frame_rate_hz=fs,
-        corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
-        spectral_index=float(config["spectral index"]),
-        rolloff=config["roll-off"],
-        rms_min_px=base.rms_min_px * config["amplitude"],
-        rms_max_px=base.rms_max_px * config["amplitude"],
-        drift_max_px_per_frame=base.drift_max_px_per_frame * base.frame_rate_hz / fs,
-        scintillation_sigma_ln=float(config["scintillation"]),
-    )
-
-
-def camera_for(config: dict, base: SpotCamera = BASE_CAMERA) -> SpotCamera:
-    """The camera at a register configuration: read noise, saturation (8-bit full scale or none), the
-    energy-centre algorithm and the spot size (Gaussian sigma, px)."""
-    return replace(
-        base,
-        read_noise_dn=float(config["read noise"]),
-        bit_depth=8 if config["saturation"] == "8-bit" else 16,
-        centroid_mode="windowed" if config["energy centre"] == "windowed" else "gate",
-        spot_sigma_px=float(config.get("spot size", base.spot_sigma_px)),
-    )
-
-
 @dataclass
 class StudyRun:
     """One full-size run (see :func:`run_study`); arrays per (trial=1, path, axis, frame), px."""
@@ -247,128 +216,12 @@ class StudyRun:
     fixed_forecasts: dict | None = None
     folds: list | None = None
     draws: int = 0  # sets of paths drawn until the spot stayed on the sensor (0: the paths were given)
+    parts: frozenset = frozenset()  # the methods run besides the paper's filter (:data:`ALL_PARTS`)
 
 
 def _streams(seed: int):
     """Independent streams (traces, jitter, sensor, models, Monte Carlo, timing) of one run."""
     return np.random.SeedSequence(int(seed)).spawn(6)
-
-
-#: Exposure readings: sub-frame weights (newest first, one sub-sample = 1/EXPOSURE_SUBSAMPLES frame).
-EXPOSURES = ("instant", "full frame", "interlaced, frame integration")
-
-
-def exposure_weights(exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> np.ndarray:
-    """Weights of the path's sub-samples in one frame's spot, newest (the frame time) first.
-
-    "instant": the centre at the frame time. "full frame": a boxcar over the frame interval.
-    "interlaced, frame integration": a TV camera's two fields, each integrating one frame interval, the
-    second half a frame earlier; the frame is their mean (triangle-topped over 1.5 frame intervals).
-    """
-    if exposure == "instant":
-        return np.ones(1)
-    if exposure == "full frame":
-        return np.full(k, 1.0 / k)
-    if exposure == "interlaced, frame integration":
-        w = np.zeros(k + k // 2)
-        w[:k] += 0.5 / k
-        w[k // 2 :] += 0.5 / k
-        return w
-    raise ValueError(f"parameter 'exposure' = {exposure!r}; it must be one of {EXPOSURES}")
-
-
-def exposed_traces(scene: BeamWanderConfig, seed: int, exposure: str, k: int = EXPOSURE_SUBSAMPLES) -> TraceSet:
-    """Traces at ``scene`` as the camera sees them (:func:`exposure_weights`): "instant" is the
-    generator itself; under the G-tilt spectrum the exposure is exact (the spectrum times the exposure's
-    power gain: a boxcar of one frame interval, and for the interlaced reading two such fields half a
-    frame apart); otherwise the path is drawn at ``k`` sub-samples per frame and each frame's
-    centre and intensity are the weighted means of the sub-samples up to the frame time (the start
-    padded with the first sub-sample).
-
-    Returns
-    -------
-    TraceSet
-        ``centres_px`` (n_paths, n_frames, 2) px, ``intensity`` (n_paths, n_frames); the metadata's
-        ``wander_rms_px`` are the path draws (before averaging).
-    """
-    w = exposure_weights(exposure, k)
-    if scene.rolloff == GTILT:  # exact: the exposure multiplies the spectrum (gtilt.exposure_gain)
-        dt = 1.0 / scene.frame_rate_hz
-        tau, delta = {"instant": (0.0, 0.0), "full frame": (dt, 0.0), EXPOSURES[2]: (dt, dt / 2)}[exposure]
-        tr = generate_traces(replace(scene, exposure_s=tau, field_offset_s=delta), seed)
-        return TraceSet(
-            tr.centres_px, tr.intensity, tr.frame_rate_hz, tr.image_size_px, dict(tr.metadata, exposure=exposure)
-        )
-    if exposure == "instant":
-        return generate_traces(scene, seed)
-    fine = replace(
-        scene,
-        frame_rate_hz=scene.frame_rate_hz * k,
-        n_frames=scene.n_frames * k,
-        drift_max_px_per_frame=scene.drift_max_px_per_frame / k,
-    )
-    tr = generate_traces(fine, seed)
-    at = k * np.arange(scene.n_frames) + k - 1  # sub-sample at each frame time
-    idx = np.maximum(at[:, None] - np.arange(w.size)[None, :], 0)  # (T, len(w))
-    xy = np.einsum("ptjc,j->ptc", tr.centres_px[:, idx], w)
-    inten = np.einsum("ptj,j->pt", tr.intensity[:, idx], w)
-    return TraceSet(xy, inten, scene.frame_rate_hz, scene.image_size_px, dict(tr.metadata, exposure=exposure))
-
-
-#: Frequency of the "vibration" regime's sinusoid, Hz (below the 12.5 Hz Nyquist of 25 frames/s).
-VIBRATION_HZ = 8.0
-
-
-def vibration(amplitude_px: float, frame_rate_hz: float, shape, rng: np.random.Generator) -> np.ndarray:
-    """Mount vibration: ``amplitude_px * sin(2 pi f n / fs + phi)`` per path and axis, ``f`` =
-    :data:`VIBRATION_HZ`, phases uniform from ``rng`` (drawn whatever the amplitude: common random
-    numbers).
-
-    Parameters
-    ----------
-    shape : tuple (P, T, 2)
-        Paths, frames, axes.
-
-    Returns
-    -------
-    ndarray, shape (P, T, 2), px
-    """
-    P, T, A = shape
-    t = np.arange(T)[None, :, None] / frame_rate_hz
-    return amplitude_px * np.sin(2 * np.pi * VIBRATION_HZ * t + rng.uniform(0, 2 * np.pi, (P, 1, A)))
-
-
-#: Most draws of a run's paths (:func:`traces_on_sensor`) before the run gives up.
-MAX_DRAWS = 50
-
-
-def traces_on_sensor(scene: BeamWanderConfig, stream: np.random.SeedSequence, exposure: str) -> tuple[TraceSet, int]:
-    """The run's paths (:func:`exposed_traces`), drawn again until the spot stays on the sensor on every path.
-
-    The paper's recordings kept the spot in the 128 px frame (it measures the spot in every image). A large wander
-    (amplitude 2: 6-16 px RMS per axis) with the drift reaches the edge on some draws, which the generator
-    refuses. Such a set is drawn again, so the world is conditioned on the spot staying on the sensor, as the
-    recordings were. The first draw uses the seed every earlier version used, so a set that stays on the sensor
-    is unchanged; later draws take children of ``stream``.
-
-    Returns
-    -------
-    traces : TraceSet
-    draws : int
-        Sets drawn (1: the first stayed on the sensor).
-    """
-    seed = int(stream.generate_state(1)[0])
-    for k in range(1, MAX_DRAWS + 1):
-        try:
-            return exposed_traces(scene, seed, exposure), k
-        except ValueError as err:
-            if "leave the sensor" not in str(err):
-                raise
-        seed = int(stream.spawn(1)[0].generate_state(1)[0])
-    raise ValueError(
-        f"the spot left the {scene.image_size_px} px sensor on every one of {MAX_DRAWS} draws of the paths: the "
-        "wander is too large for the frame"
-    )
 
 
 def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
@@ -428,35 +281,87 @@ def _setup(config: dict, size: StudySize) -> ComparisonSetup:
     )
 
 
-def _methods(run: StudyRun, config: dict, seed: int) -> StudyRun:
-    """Every method on ``run``'s measured series at ``config``'s horizon and lags (re-tuned for it)."""
+#: What one run can compute beyond the scene and the paper's filter: the comparison's parts
+#: (:data:`.prediction_study.PARTS`) and the optimal predictor of the generator's own model (figures only).
+ALL_PARTS = PARTS | {"optimal"}
+#: The parts each claim's value reads (the paper's filter is always run with the methods; C004-4, C004-5, C004-8
+#: and :data:`CENTROID` read no method).
+CLAIM_PARTS = {
+    "C004-1": frozenset(),
+    "C004-2": frozenset(),
+    "C004-3": frozenset({"classical"}),
+    "C004-3b": frozenset({"learned"}),
+    "C004-6": frozenset(),
+}
+#: Every value :func:`claim_values` can return.
+CLAIM_KEYS = ("C004-1", "C004-2", "C004-3", "C004-3b", "C004-4", "C004-5", "C004-6", "C004-8", CENTROID)
+
+
+def parts_for(claims) -> frozenset | None:
+    """The method parts the ``claims`` read (None: no method at all; ``claims`` None: every claim)."""
+    asked = CLAIM_PARTS if claims is None else [c for c in claims if c in CLAIM_PARTS]
+    if not asked:
+        return None
+    return frozenset().union(*(CLAIM_PARTS[c] for c in asked))
+
+
+def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRun:
+    """The methods on ``run``'s measured series at ``config``'s horizon and lags (re-tuned for it): the paper's
+    filter and the ``parts`` of :data:`ALL_PARTS` (each part's numbers are the same whichever others run: only
+    the networks draw, from their own stream)."""
     if not np.all(np.isfinite(run.z)):
         raise ValueError("the spot was never measured on some path: nothing to predict")
+    parts = frozenset(parts)
     size = run.size
     s = _setup(config, size)
     m = s.steps
     folds = pr.path_folds(size.n_paths, size.n_folds)
-    cmp = compare_methods(run.z, run.z_meas, folds, s, np.random.default_rng(_streams(seed)[3]))
+    rng = np.random.default_rng(_streams(seed)[3])
+    cmp = compare_methods(run.z, run.z_meas, folds, s, rng, parts=parts & PARTS)
     fc = dict(cmp.forecasts)
-    fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, m)
+    if "optimal" in parts:
+        noise = run.centroid_rms**2 + run.jitter_rms**2
+        fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, noise, m)
     fixed = dict(fc)
     fixed[PAPER] = pr.growing_memory_forecast(run.z, m, s.order, s.fixed_floor)
-    fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
-    fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
-    fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
-    # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
-    # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
-    # natural cubic spline, extended linearly beyond its last knot
-    readings = {
-        LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
-        NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
-    }
-    for name, make in readings.items():
-        fc[name], _, cmp.chosen[name], _, _ = _tuned(
-            window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
-        )
-        fixed[name] = make(s.fixed_window)
-    return replace(run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds)
+    if "classical" in parts:
+        fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
+        fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
+        fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
+        # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
+        # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
+        # natural cubic spline, extended linearly beyond its last knot
+        readings = {
+            LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
+            NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
+        }
+        for name, make in readings.items():
+            fc[name], _, cmp.chosen[name], _, _ = _tuned(
+                window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
+            )
+            fixed[name] = make(s.fixed_window)
+    return replace(
+        run, config=dict(config), comparison=cmp, forecasts=fc, fixed_forecasts=fixed, folds=folds, parts=parts
+    )
+
+
+def _merged(run: StudyRun, more: StudyRun) -> StudyRun:
+    """``run`` with the methods of ``more`` (the same scene and setup, other parts) added."""
+    a, b = run.comparison, more.comparison
+    cmp = Comparison(
+        {**a.mse, **b.mse},
+        {**a.mse_fixed, **b.mse_fixed},
+        {**a.chosen, **b.chosen},
+        {**a.forecasts, **b.forecasts},
+        {**a.learned_models, **b.learned_models},
+    )
+    return replace(
+        run,
+        comparison=cmp,
+        forecasts={**run.forecasts, **more.forecasts},
+        fixed_forecasts={**run.fixed_forecasts, **more.fixed_forecasts},
+        parts=run.parts | more.parts,
+    )
 
 
 def run_study(
@@ -498,8 +403,14 @@ def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.
     return np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
 
 
-def claim_values(run: StudyRun, seed: int = 0) -> dict:
+def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
     """What each claim's rule reads, from one run at its configuration.
+
+    Parameters
+    ----------
+    claims : iterable of str, optional
+        The claims to compute (default: all); :data:`CENTROID` is always returned. A claim's value is the same
+        whichever others are asked.
 
     Returns
     -------
@@ -510,6 +421,42 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
         the floor), ``C004-8`` (CPU time per frame / frame interval); and :data:`CENTROID`, the per-axis RMS
         error of the measured centres against the true ones from ``eval_start`` on (px; no claim reads it).
     """
+    want = set(CLAIM_KEYS if claims is None else claims)
+    c = run.config
+    start = run.size.eval_start
+    out = _prediction_values(run, want)
+    T = run.truth.shape[-1]
+    held = c.get("lost frames", "held") == "held"
+    if "C004-4" in want:
+        z4 = (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)]
+        out["C004-4"] = _recursion_check(z4, [seed, 4004], float(c.get("frame loss", 0.0)), held)
+    if "C004-5" in want:  # each stream is its own: skipping one claim leaves the others' draws as they were
+        out["C004-5"] = _variance_check(seed, run.size.n_mc_variance, c.get("C004-5 noise", "Gaussian"))
+    if "C004-8" in want:
+        rng_t = np.random.default_rng(_streams(seed)[5])
+        out["C004-8"] = _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
+    out[CENTROID] = root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1)))
+    return out
+
+
+#: C004-5's values by (seed, series, noise law): all the check reads (the model's own signal, not the scene), so every
+#: configuration of one seed and noise law shares one Monte Carlo run (cleared by :func:`clear_cache`).
+_VARIANCE: dict = {}
+
+
+def _variance_check(seed: int, n_series: int, noise: str) -> dict:
+    """:func:`.derivation.variance_ratios` from the seed's own stream, computed once per (seed, series, noise)."""
+    key = (int(seed), int(n_series), noise)
+    if key not in _VARIANCE:
+        _VARIANCE[key] = variance_ratios(np.random.default_rng(_streams(seed)[4]), n_series, noise=noise)
+    return dict(_VARIANCE[key])
+
+
+def _prediction_values(run: StudyRun, want) -> dict:
+    """The values of the prediction claims in ``want`` (C004-1, -2, -3, -3b, -6; see :func:`claim_values`)."""
+    want = set(want) & set(CLAIM_PARTS)
+    if not want:
+        return {}
     c = run.config
     m = int(c["horizon"])
     start = run.size.eval_start
@@ -519,40 +466,37 @@ def claim_values(run: StudyRun, seed: int = 0) -> dict:
     elif c["spline"] == "natural cubic":
         fc["cubic spline"] = fc[NATURAL_SPLINE]
     ref = run.z_meas if c["reference"] == "measured centre" else run.truth
-    mse = {name: per_trial_path_mse(f, ref, m, start)[0] for name, f in fc.items()}
-    e = np.abs(pr.forecast_errors(fc[PAPER], ref, m)[0, ..., start:])  # (P, 2, T')
-    q = 0.99 if c["C004-1 statistic"] == "99th percentile" else 0.95
-    if c["C004-1 statistic"] == "radial 95th percentile":
-        e = np.sqrt(np.sum(e**2, axis=1))  # (P, T'): distance from the predicted to the reference centre
-    per_path_q = np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
-    rank = mse  # what C004-3 compares: per-path MSE, or (a reading) per-path q95 of |e|, the tail
-    if c["C004-3 statistic"] == "95th percentile":
-        rank = {name: _path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
-    T = run.truth.shape[-1]
-    late = max(T // 2, start)
-    rng_mc, rng_t = (np.random.default_rng(s) for s in _streams(seed)[4:6])
-    held = c.get("lost frames", "held") == "held"
-    return {
-        "C004-1": mean_ci_t(per_path_q),
-        "C004-2": root_mean_ci(mse[PAPER] * (2.0 if c.get("C004-2 statistic") == "radial RMS" else 1.0)),
-        "C004-3": {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL},
-        "C004-3b": {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS},
-        "C004-4": _recursion_check(
-            (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)], [seed, 4004], float(c.get("frame loss", 0.0)), held
-        ),
-        "C004-5": variance_ratios(rng_mc, run.size.n_mc_variance, noise=c.get("C004-5 noise", "Gaussian")),
-        "C004-6": late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late),
-        "C004-8": _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz),
-        CENTROID: root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1))),
-    }
+    names = {PAPER}.union(*({"C004-3": CLASSICAL, "C004-3b": NETWORKS}.get(k, ()) for k in want))
+    mse = {name: per_trial_path_mse(fc[name], ref, m, start)[0] for name in names}
+    out = {}
+    if "C004-1" in want:
+        e = np.abs(pr.forecast_errors(fc[PAPER], ref, m)[0, ..., start:])  # (P, 2, T')
+        q = 0.99 if c["C004-1 statistic"] == "99th percentile" else 0.95
+        if c["C004-1 statistic"] == "radial 95th percentile":
+            e = np.sqrt(np.sum(e**2, axis=1))  # (P, T'): distance from the predicted to the reference centre
+        out["C004-1"] = mean_ci_t(np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1))
+    if "C004-2" in want:
+        out["C004-2"] = root_mean_ci(mse[PAPER] * (2.0 if c.get("C004-2 statistic") == "radial RMS" else 1.0))
+    if "C004-3" in want:
+        rank = mse  # what C004-3 compares: per-path MSE, or (a reading) per-path q95 of |e|, the tail
+        if c["C004-3 statistic"] == "95th percentile":
+            rank = {name: _path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
+        out["C004-3"] = {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL}
+    if "C004-3b" in want:
+        out["C004-3b"] = {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS}
+    if "C004-6" in want:
+        late = max(run.truth.shape[-1] // 2, start)
+        out["C004-6"] = late_rms_ratio(pr.growing_memory_forecast(run.z, m, 2, None), fc[PAPER], ref, m, late)
+    return out
 
 
 _CACHE: dict = {}
 
 
 def clear_cache() -> None:
-    """Forget the scenes and runs :func:`measure_batch` keeps between calls of one exploration."""
+    """Forget the scenes, runs and C004-5 checks :func:`measure_batch` keeps between calls of one exploration."""
     _CACHE.clear()
+    _VARIANCE.clear()
 
 
 def _key(config: dict, names) -> tuple:
@@ -560,20 +504,31 @@ def _key(config: dict, names) -> tuple:
 
 
 def _measure_group(items, size: StudySize) -> list[dict]:
-    """Claim values of (configuration, seed) pairs that share one scene (same scene entries and seed)."""
+    """Claim values of (configuration, seed, claims) triples that share one scene (same scene entries and seed).
+
+    The scene is cached by the entries it reads and the seed; the methods by those and the entries they read
+    (horizon, the networks' lags and inputs), with the parts run so far: a configuration that asks for a part
+    not yet run adds it to the cached run (the parts share no draw, so the numbers are those of one run of all)."""
     out = []
-    for config, seed in items:
+    for config, seed, claims in items:
         sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
         if sk not in _CACHE:
             _CACHE[sk] = _scene(config, seed, size)
-        rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
-        if rk not in _CACHE:
-            _CACHE[rk] = _methods(_CACHE[sk], config, seed)
-        out.append(claim_values(replace(_CACHE[rk], config=dict(config)), seed))
+        run = _CACHE[sk]
+        parts = parts_for(claims)
+        if parts is not None:
+            rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
+            have = _CACHE.get(rk)
+            if have is None:
+                _CACHE[rk] = _methods(run, config, seed, parts)
+            elif not parts <= have.parts:
+                _CACHE[rk] = _merged(have, _methods(run, config, seed, parts - have.parts))
+            run = _CACHE[rk]
+        out.append(claim_values(replace(run, config=dict(config)), seed, claims))
     return out
 
 
-def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1) -> list[dict]:
+def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1, claims=None) -> list[dict]:
     """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
     and seed share one rendered scene, and those that also share the horizon and the networks' lags
     share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it).
@@ -583,14 +538,18 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     workers : int
         Processes the scene groups are spread over (1: this process, whose cache then also serves
         later calls, e.g. the adaptive replicates).
+    claims : list of (set of str or None), optional
+        Per configuration, the claims to compute (None: all); the methods no asked claim reads are not run
+        (the explorer's ``claims=``). Each claim's value is the same as when all are asked.
     """
     from .register import DEFAULT
 
     configs = [{**DEFAULT, **c} for c in configs]  # entries left out of a smaller exploration stay at their defaults
+    claims = [None] * len(configs) if claims is None else list(claims)
     groups: dict = {}
     for i, (config, seed) in enumerate(zip(configs, seeds)):
         groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
-    items = [[(dict(configs[i]), int(seeds[i])) for i in idx] for idx in groups.values()]
+    items = [[(dict(configs[i]), int(seeds[i]), claims[i]) for i in idx] for idx in groups.values()]
     if workers > 1 and len(items) > 1:
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
@@ -607,180 +566,15 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     return out
 
 
-def measure(config: dict, seed: int, size: StudySize = StudySize()) -> dict:
+def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None) -> dict:
     """The explorer's measurement function: one full-size run at ``config`` with all random draws
-    from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`)."""
+    from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`; ``claims``: only those,
+    running only the methods they read)."""
     from .register import DEFAULT
 
-    return claim_values(run_study({**DEFAULT, **config}, seed, size), seed)
-
-
-def scores(run: StudyRun) -> tuple[dict, dict]:
-    """Per method: RMS error against the measured centre (px, :func:`root_mean_ci`), and the paired
-    ratio of its per-path MSE to the paper filter's (:func:`ratio_of_means_ci`)."""
-    m = int(run.config["horizon"])
-    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
-    rms = {n: root_mean_ci(v) for n, v in mse.items()}
-    return rms, {n: ratio_of_means_ci(v, mse[PAPER]) for n, v in mse.items() if n != PAPER}
-
-
-def grid_edge_report(run: StudyRun) -> dict:
-    """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
-    an edge may be the grid's limit rather than the method's optimum)."""
-    return _edge_shares(run.comparison.chosen, _setup(run.config, run.size))
-
-
-def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
-    """:func:`grid_edge_report` of the tuned settings ``ch`` (``compare_methods``' ``chosen``) on the grids of
-    ``s``; the networks' lags only where they were tuned."""
-    from .prediction_study import FLOOR_EXTENSION, MIN_WINDOW, WINDOW_EXTENSION, grid_edges, window_candidates
-
-    floors = (*s.floor_grid, *FLOOR_EXTENSION)  # the grids as the tuning extends them while a fold picks the top
-    out = {
-        PAPER: float(np.mean(grid_edges(ch[PAPER], floors) == 1)),  # N_f = 3 (order + 1) is a true limit
-        FADING: float(np.mean(grid_edges(ch[FADING], s.theta_grid) != 0)),
-    }
-    for name, lo in MIN_WINDOW.items():
-        out[name] = float(
-            np.mean(grid_edges(ch[name], (*window_candidates(lo, s.window_grid), *WINDOW_EXTENSION)) == 1)
-        )  # degree+1 is a true limit
-    for name in (LSQ_CUBIC, NATURAL_SPLINE):  # the spline's other readings, tuned in _methods (not at every horizon)
-        if name in ch:
-            out[name] = float(
-                np.mean(grid_edges(ch[name], (*window_candidates(4, s.window_grid), *WINDOW_EXTENSION)) == 1)
-            )
-    ca = np.asarray(ch["CA Kalman, ML noise"])
-    out["CA Kalman jerk density"] = float(np.mean(grid_edges(ca[:, 0], s.jerk_grid) != 0))
-    out["CA Kalman measurement variance"] = float(np.mean(grid_edges(ca[:, 1], s.meas_var_grid) != 0))
-    for name in NETWORKS:
-        if name in ch:  # lag counts chosen by cross-validation (1 lag, the lowest, is a true limit)
-            out[f"{name} lags"] = float(np.mean(grid_edges(ch[name], s.lag_grid) == 1))
-    sg = np.asarray(ch[SINGER])
-    out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
-    return out
-
-
-def single_values(exploration, claim_id: str, entry: str) -> dict:
-    """The claim's measured value at each value of ``entry`` (one at a time; the default pooled)."""
-    from .register import DEFAULT
-
-    out = {exploration.default.get(entry, DEFAULT[entry]): exploration.measured(claim_id)}
-    for r in exploration.runs:
-        if r.stage == "single" and list(r.changed(exploration.default)) == [entry]:
-            out[r.config[entry]] = r.outputs[claim_id]
-    return dict(sorted(out.items()))
-
-
-def spot_position_crb(camera: SpotCamera, read_noise_dn: float) -> float:
-    """Per-axis Cramer-Rao bound of the spot position in one gate at intensity 1 (Poisson counts, read
-    noise and quantisation as Poisson-equivalent variance per pixel), px."""
-    from ...bounds.poisson_crb import fisher_linear_motion
-
-    g = camera.gate_size_px
-    theta = np.array([[(g - 1) / 2, (g - 1) / 2, 0.0, 0.0]])
-    noise = camera.background_dn + read_noise_dn**2 + 1 / 12
-    fim = fisher_linear_motion(theta, np.array([0.0]), (g, g), camera.spot_sigma_px, camera.flux_e, noise)[:2, :2]
-    return float(np.sqrt(np.linalg.inv(fim)[0, 0]))  # one frame: only the position block is informative
-
-
-def measurement_budget(
-    read_noise_levels, n_gates: int, rng: np.random.Generator, camera: SpotCamera = BASE_CAMERA
-) -> dict:
-    """Error of the windowed centroid and of a Gaussian-fit MLE on static spots (random sub-pixel
-    positions, intensity 1) against the Cramer-Rao bound, per read-noise level.
-
-    Returns
-    -------
-    dict
-        {read noise (DN): {"centroid", "mle", "crb"} per-axis RMS / bound, px}
-    """
-    from .spot_centre import gaussian_fit_centre, windowed_centroid
-
-    g = camera.gate_size_px
-    out = {}
-    for rn in read_noise_levels:
-        c_true = (g - 1) / 2 + rng.uniform(-2, 2, (n_gates, 2))
-        img = sensor_readout(
-            gaussian_spot(c_true, (g, g), camera.spot_sigma_px, camera.flux_e),
-            rng,
-            background=camera.background_dn,
-            read_noise=rn,
-            bit_depth=camera.bit_depth,
-        )
-        wc = windowed_centroid(img, (0, 0), window_px=camera.window_px, threshold_sigma=camera.threshold_sigma).xy
-        ok = np.all(np.isfinite(wc), axis=-1)
-        ml = gaussian_fit_centre(img[ok], np.zeros((ok.sum(), 2)), wc[ok], sigma_px=camera.spot_sigma_px, read_noise=rn)
-        out[float(rn)] = {
-            "centroid": float(np.sqrt(np.mean((wc[ok] - c_true[ok]) ** 2))),
-            "mle": float(np.sqrt(np.mean((ml - c_true[ok]) ** 2))),
-            "crb": spot_position_crb(camera, rn),
-            "lost": float(np.mean(~ok)),
-        }
-    return out
-
-
-def model_order_summary(run: StudyRun) -> dict:
-    """Which model order predicts best, and the fitted Singer time constant that says why.
-
-    Returns
-    -------
-    dict
-        ``rms`` per method (px), ``best`` (name), ``best_order1`` / ``best_order2`` (names of the best
-        first-order predictor: 2-point differences or degree-1 regression; and second-order: the paper's
-        filter, 3-point differences, degree-2 regression, Morrison), ``ratio_2_over_1`` (paired MSE ratio,
-        best second order over best first order; below 1: the acceleration term pays),
-        ``singer_tau_frames`` (per fold), ``tau_over_horizon`` and ``frame_ms`` (the frame interval, ms).
-    """
-    c = run.config
-    m = int(c["horizon"])
-    mse = {n: per_trial_path_mse(f, run.z_meas, m, run.size.eval_start)[0] for n, f in run.forecasts.items()}
-    rms = {n: float(np.sqrt(v.mean())) for n, v in mse.items()}
-    order1 = ("finite differences, 2 points", "linear regression deg 1")
-    order2 = (PAPER, "finite differences, 3 points", "linear regression deg 2", FADING)
-    b1 = min(order1, key=rms.get)
-    b2 = min(order2, key=rms.get)
-    tau = np.asarray(run.comparison.chosen[SINGER])[:, 0]
-    return {
-        "rms": rms,
-        "best": min((n for n in rms if n != OPTIMAL), key=rms.get),
-        "best_order1": b1,
-        "best_order2": b2,
-        "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
-        "singer_tau_frames": tau,
-        "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
-        "tau_over_horizon": float(np.median(tau) / m),
-        "frame_ms": 1e3 / float(run.scene.frame_rate_hz),
-    }
-
-
-def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
-    """RMS error versus horizon, every method re-tuned at each horizon (the floor and windows chosen
-    by cross-validation for that horizon; the Kalman filters re-fitted; networks left out for cost),
-    and the optimal predictor.
-
-    Returns
-    -------
-    dict
-        ``rms``: {method: {horizon: Estimate (px)}}; ``floor``: {horizon: median cross-validated N_f};
-        ``floor_grid``: the floor's grid; ``edges``: {horizon: :func:`grid_edge_report` of that horizon's
-        tuning}; ``slopes``: {method: log-log slope of RMS over the horizons}.
-    """
-    rms, floors, edges = {}, {}, {}
-    for h in horizons:
-        s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
-        cmp = compare_methods(run.z, run.z_meas, run.folds, s, np.random.default_rng(0), learned=False)
-        fcs = dict(cmp.forecasts)
-        fcs[OPTIMAL] = optimal_wander_forecast(
-            run.z, run.scene, run.path_rms, run.centroid_rms**2 + run.jitter_rms**2, h
-        )
-        for name, f in fcs.items():
-            rms.setdefault(name, {})[h] = root_mean_ci(per_trial_path_mse(f, run.z_meas, h, run.size.eval_start)[0])
-        floors[h] = float(np.median(cmp.chosen[PAPER]))
-        edges[h] = _edge_shares(cmp.chosen, s)
-    hs = np.log(np.asarray(horizons, dtype=float))
-    slopes = (
-        {n: float(np.polyfit(hs, np.log([d[h].value for h in horizons]), 1)[0]) for n, d in rms.items()}
-        if len(horizons) > 1
-        else {}
-    )
-    return {"rms": rms, "floor": floors, "floor_grid": tuple(run.size.floor_grid), "edges": edges, "slopes": slopes}
+    config = {**DEFAULT, **config}
+    run = _scene(config, seed, size)
+    parts = parts_for(claims)
+    if parts is not None:
+        run = _methods(run, config, seed, parts)
+    return claim_values(run, seed, claims)

@@ -1,0 +1,142 @@
+"""Tests of paper 003's cost cuts (issue 43): each faster path gives the same numbers, bit for bit, as the plain one."""
+
+import numpy as np
+import pytest
+
+from tvtrack.papers.p003_rotating_marker_tracker.imaging import RotatingMarkerScene
+
+
+@pytest.mark.parametrize("spot", ["disc", "square"])
+def test_spots_rendered_box_by_box_equal_the_whole_crop_render_bit_for_bit(spot):
+    rng = np.random.default_rng(4)
+    n, size = 200, 26
+    scene = RotatingMarkerScene.__new__(RotatingMarkerScene)  # only the spot settings are read
+    scene.spot, scene.diameter = spot, 8.0
+    crops = rng.normal(size=(n, size, size)).astype(np.float32)
+    origin = rng.integers(-50, 50, (n, 2))
+    centres = origin + rng.uniform(-12.0, size + 12.0, (n, 2))  # inside, across the edges and outside the crop
+    centres[:20] = np.round(centres[:20]) + 0.5 * rng.integers(0, 2, (20, 2))  # on pixel centres and edges
+    bright = rng.uniform(0.5, 2.0, n)
+    whole = crops + scene._spot(centres, size, origin, bright)
+    for threshold in (10**9, 0):  # whole crop, then box by box
+        scene.BOX_MIN_PIXELS = {spot: threshold}
+        got = crops.copy()
+        scene._add_spot(got, centres, origin, bright)
+        assert np.array_equal(got, whole), (threshold, np.abs(got - whole).max())
+    inside = crops.copy()  # every box inside its crop: the unmasked path
+    c_in = origin + rng.uniform(6.0, size - 7.0, (n, 2))
+    scene._add_spot(inside, c_in, origin, bright)
+    assert np.array_equal(inside, crops + scene._spot(c_in, size, origin, bright))
+
+
+@pytest.mark.parametrize("spot", ["disc", "square"])
+@pytest.mark.parametrize("n", [6, 200])  # whole-crop and box-by-box rendering
+def test_spots_of_an_integrated_exposure_rendered_in_one_call_equal_one_call_each(spot, n):
+    rng = np.random.default_rng(5)
+    size, m = 26, 4
+    scene = RotatingMarkerScene.__new__(RotatingMarkerScene)
+    scene.spot, scene.diameter = spot, 8.0
+    crops = rng.normal(size=(n, size, size)).astype(np.float32)
+    origin = rng.integers(-50, 50, (n, 2))
+    centres = origin + rng.uniform(-12.0, size + 12.0, (m, n, 2))
+    bright = np.stack([np.full(n, 0.25), rng.uniform(0.1, 0.5, n)] * (m // 2))  # marker and decoy interleaved
+    one_by_one = crops.copy()
+    for j in range(m):
+        scene._add_spot(one_by_one, centres[j], origin, bright[j] if j % 2 else 0.25)
+    together = crops.copy()
+    scene._add_spot(together, centres, origin, bright)
+    assert np.array_equal(together, one_by_one)
+
+
+# --- claims= and the memo of measurement parts: the same numbers as the plain measurement ---------------------------
+
+from tvtrack.papers.p003_rotating_marker_tracker import memo, study  # noqa: E402
+
+TINY = study.Sizes(trials=2, fig1_s=1.5, fig2_s=1.5, transient_s=0.5, horizon_s=0.6)
+
+
+def _same(a, b, path=()):
+    """Bit-for-bit equality of nested measurement outputs (dicts, lists, arrays, Estimates, numbers)."""
+    if isinstance(a, dict):
+        assert set(a) == set(b), (path, set(a) ^ set(b))
+        for k in a:
+            _same(a[k], b[k], path + (k,))
+    elif isinstance(a, (list, tuple)):
+        assert len(a) == len(b), path
+        for i, (x, y) in enumerate(zip(a, b)):
+            _same(x, y, path + (i,))
+    elif isinstance(a, np.ndarray):
+        assert a.dtype == b.dtype and np.array_equal(a, b, equal_nan=True), path
+    elif hasattr(a, "__dataclass_fields__"):
+        _same(vars(a), vars(b), path)
+    elif isinstance(a, float) and np.isnan(a):
+        assert np.isnan(b), path
+    else:
+        assert a == b, (path, a, b)
+
+
+@pytest.mark.parametrize(
+    "measure, subsets",
+    [
+        (study.measure_tracking, [{"C003-1"}, {"C003-3"}, {"C003-4"}, {"C003-9"}, {"C003-2", "C003-4"}]),
+        (study.measure_interference, [{"C003-5"}, {"C003-10"}, {"C003-11"}, {"C003-12"}, {"C003-7", "C003-10"}]),
+    ],
+)
+def test_a_measurement_of_some_claims_equals_the_full_one_on_those_claims(measure, subsets):
+    config = {"motion_scale": 0.25}
+    memo.clear_cache()
+    full = measure(config, 3, TINY)
+    for sub in subsets:
+        memo.clear_cache()  # computed afresh, not taken from the full run
+        part = measure(config, 3, TINY, claims=frozenset(sub))
+        assert {k for k in part if not k.startswith("_")} == sub
+        _same({c: part[c] for c in sub}, {c: full[c] for c in sub})
+    memo.clear_cache()
+
+
+@pytest.mark.parametrize(
+    "measure, default, changed, reruns",
+    [
+        # the static baseline's gate changes only the static curves: one batch of runs, the rest reused
+        (study.measure_interference, {}, {"static_gate": "2D"}, 1),
+        # the compensation reading changes no run at all
+        (study.measure_interference, {}, {"compensation_reading": "two-sided"}, 0),
+        # the Fig. 2 law changes only the Fig. 2 runs; the edge form's normalisation only the two edge-form runs
+        (study.measure_tracking, {}, {"fig2_law": "omega 2 Hz"}, 1),
+        (study.measure_tracking, {}, {"edge_norm": "slew"}, 2),
+    ],
+)
+def test_reused_parts_give_the_numbers_of_a_fresh_measurement(monkeypatch, measure, default, changed, reruns):
+    memo.clear_cache()
+    fresh = measure(changed, 5, TINY)
+    memo.clear_cache()
+    measure(default, 5, TINY)  # the default's parts kept
+    calls = []
+    monkeypatch.setattr(study, "run_scenario", _counting(study.run_scenario, calls))
+    monkeypatch.setattr(study, "interference_runs", _counting(study.interference_runs, calls))
+    reused = measure(changed, 5, TINY)
+    assert len(calls) == reruns
+    _same(reused, fresh)
+    memo.clear_cache()
+
+
+def _counting(f, calls):
+    def g(*a, **k):
+        calls.append(1)
+        return f(*a, **k)
+
+    return g
+
+
+@pytest.mark.parametrize("config", [{}, {"exposure": "integrated", "decoy_brightness": "emitted"}])
+def test_the_decoy_riding_in_the_rotating_markers_batch_gets_the_runs_it_gets_alone(config):
+    sc = study.scenario(config, TINY)
+    crit, sirs, d = study.criterion(config, sc), study.SIR_GRID, 2 * sc.diameter
+    memo.clear_cache()
+    lost, met = study._curve(sc, sirs, 3, 7, crit, (1, 5, ("decoy", d)), True)
+    alone_r, met_r = study._curve(sc, sirs, 3, 7, crit, (1, 5), True)
+    alone_d, _ = study._curve(study.replace(sc, decoy_offset=d), sirs, 3, 7, crit)
+    assert np.array_equal(lost[:2], alone_r) and np.array_equal(met[:2], met_r)
+    assert np.array_equal(lost[2], alone_d)
+    assert lost[2].any() and not lost[2].all()  # a curve that tells the two apart
+    memo.clear_cache()
