@@ -95,9 +95,7 @@ def test_adaptive_stopping_clear_early_borderline_late():
     # projected far beyond the cap: no replicate is spent, and the record says how many would decide it
     assert border.settings["replicates"] == 3
     runs = border.record("X")["parts"]["claim"]["runs_to_decide"]
-    assert (
-        border.record("X")["parts"]["claim"]["verdict"] == "undecided" and border.record("X")["label"] == "unexplored"
-    )
+    assert border.record("X")["parts"]["claim"]["verdict"] == "undecided" and border.record("X")["label"] == "-"
     assert runs["now"] == 3 and (runs["replicates"] is None or runs["replicates"] > 12)
     assert "beyond the cap of 12" in runs["text"] or "no number of runs" in runs["text"]
     # a borderline claim that the extra replicates decide stops before the cap
