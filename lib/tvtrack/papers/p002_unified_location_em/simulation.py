@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -203,7 +204,9 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         (``em_iter``, ``em_plain_iter``: summed over frames), ``plain_cap`` / ``em_plain_cap`` (n,) the plain EM's
         iteration cap hit (marks: in some frame), ``ula_loglik`` (n,), ``bic`` (n, 3), ``truth`` (n, Q, 4) px;
         ``timing`` (wall seconds per algorithm), with the letter ``r`` the bounds of :func:`_bounds`
-        (``crb_pos``, ``crb_vel``, ``crb_x0``, ``bcrb_pos``, ``bcrb_vel``), ``seed`` (n,) the seed of each trial's block, ``T`` and ``shape``.
+        (``crb_pos``, ``crb_vel``, ``crb_x0``, ``bcrb_pos``, ``bcrb_vel``), ``seed`` (n,) the seed of each trial's
+        block, ``T`` and ``shape``. The algorithms run by family (:func:`_run_ula`, :func:`_run_marks`,
+        :func:`_run_extras`) on each block of scenes.
     """
     s_ = replace(settings, **dict(cfg.variant))
     q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd, _ = cfg
@@ -246,114 +249,24 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
     for b, block in _seeded_batches(s_, cfg, g, noise_pp):
         block_seed.append(np.full(len(b.truth), block))
         out["truth"].append(b.truth)
-        ent = pixel_entries(b.counts)
-        em_args, em_kw = (
-            (b.designation, s, p, p0),
-            dict(tol_px=tol, max_iter=s_.max_iter, tol_loglik=s_.tol_loglik),
-        )  # common to every ULA variant
-        if "u" in algs:
-            t0 = time.perf_counter()
-            r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, merge_px=s_.merge_sigma * s)
-            timing["ula"] += time.perf_counter() - t0
-            e, sw = errors_vs_truth(r.theta, b.truth, s, times)
-            out["ula"].append(e)
-            out["ula_iter"].append(r.n_iter)
-            out["ula_loglik"].append(r.loglik)
-            out["ula_flags"].append(np.stack([sw, r.merged, r.cap_hit, r.degenerate, r.left_frame], axis=1))
-        if "p" in algs:
-            t0 = time.perf_counter()
-            r = unified_location_em(ent, *em_args, **em_kw)
-            timing["plain"] += time.perf_counter() - t0
-            out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-            out["plain_iter"].append(r.n_iter)
-            out["plain_cap"].append(r.cap_hit)
-        if "m" in algs:
-            t0 = time.perf_counter()
-            prior = map_prior_sd(s_.velocity_knowledge, dsd, vsd, s)
-            r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, prior_sd=prior)
-            timing["map"] += time.perf_counter() - t0
-            out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-        mark_args = dict(
-            init=s_.mark_init if init is None else init,
-            association=s_.mark_association if assoc is None else assoc,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            tol_loglik=s_.tol_loglik,
+        x = SimpleNamespace(
+            s_=s_,
+            cfg=cfg,
+            b=b,
+            block=block,
+            ent=pixel_entries(b.counts),
+            s=s,
+            p=p,
+            p0=p0,
+            tol=tol,
+            accel=accel,
+            times=times,
+            g=g,
+            noise_pp=noise_pp,
         )
-        if "e" in algs:
-            t0 = time.perf_counter()
-            mk = em_marks(b.counts, b.designation, times, s, p, p0, accelerate=accel, **mark_args)
-            fit = fit_lines(mk, times, _fallback(mk, b.designation, mark_args["init"]))
-            timing["em"] += time.perf_counter() - t0
-            # the two-stage twin of a MAP-ULA that knows the designated velocity: the line keeps that velocity
-            fit_v = fit_lines(mk, times, b.designation, velocity=b.designation[..., 2:])
-            out["em_vd"].append(errors_vs_truth(fit_v.theta, b.truth, s, times)[0])
-            e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
-            out["em"].append(e)
-            out["em_iter"].append(mk.n_iter.sum(axis=1))
-            out["em_flags"].append(
-                np.stack([sw, (~fit.valid).any(axis=1), mk.cap_hit.any(axis=1), (~mk.valid).any(axis=(1, 2))], axis=1)
-            )
-        if "q" in algs:
-            t0 = time.perf_counter()
-            mk = em_marks(b.counts, b.designation, times, s, p, p0, **mark_args)
-            timing["em_plain"] += time.perf_counter() - t0
-            out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
-            out["em_plain_cap"].append(mk.cap_hit.any(axis=1))
-        if "c" in algs:
-            t0 = time.perf_counter()
-            mk = centre_of_region_marks(
-                b.counts, propagate(b.designation, times), centre_gate_half_px(s_.gate_half_sigma, s)
-            )
-            fit = fit_lines(mk, times, b.designation)
-            timing["cr"] += time.perf_counter() - t0
-            e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
-            out["cr"].append(e)
-            out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
-        if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
-            r = unified_location_em(
-                ent,
-                b.designation,
-                s,
-                p,
-                p0,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                accelerate=accel,
-                prior_sd=(1e6 * s, vsd * s),
-            )
-            out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-        if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
-            p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
-            r = unified_location_em(
-                ent,
-                b.designation.mean(axis=1, keepdims=True),
-                s,
-                p1,
-                p01,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                accelerate=accel,
-            )
-            out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
-        if "w" in algs:
-            r = unified_location_em(
-                ent,
-                b.designation,
-                s,
-                p,
-                p0,
-                tol_px=tol,
-                max_iter=s_.max_iter,
-                estimate_weights=True,
-                estimate_sigma=True,
-            )
-            out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-        if "s" in algs:
-            ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
-            out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))
-        if "b" in algs:
-            out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
+        _run_ula(x, out, timing)
+        _run_marks(x, out, timing)
+        _run_extras(x, out)
     res = {k: np.concatenate(v) for k, v in out.items() if v}
     res["seed"] = np.concatenate(block_seed)
     res["T"] = T
@@ -362,6 +275,140 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         res.update(_bounds(s_, cfg, g, times, noise_pp))
     res["shape"] = g.shape
     return res
+
+
+def _run_ula(x, out: dict, timing: dict) -> None:
+    """The ULA and its variants on one block of scenes: ``u`` (accelerated as set), ``p`` (plain EM, the iteration
+    counts) and ``m`` (MAP-ULA); results appended to ``out``, wall seconds added to ``timing``."""
+    s_, cfg, b, ent, s, p, p0, tol, accel, times = x.s_, x.cfg, x.b, x.ent, x.s, x.p, x.p0, x.tol, x.accel, x.times
+    algs = cfg.algs
+    dsd, vsd = cfg.dsd, cfg.vsd
+    em_args, em_kw = (
+        (b.designation, s, p, p0),
+        dict(tol_px=tol, max_iter=s_.max_iter, tol_loglik=s_.tol_loglik),
+    )  # common to every ULA variant
+    if "u" in algs:
+        t0 = time.perf_counter()
+        r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, merge_px=s_.merge_sigma * s)
+        timing["ula"] += time.perf_counter() - t0
+        e, sw = errors_vs_truth(r.theta, b.truth, s, times)
+        out["ula"].append(e)
+        out["ula_iter"].append(r.n_iter)
+        out["ula_loglik"].append(r.loglik)
+        out["ula_flags"].append(np.stack([sw, r.merged, r.cap_hit, r.degenerate, r.left_frame], axis=1))
+    if "p" in algs:
+        t0 = time.perf_counter()
+        r = unified_location_em(ent, *em_args, **em_kw)
+        timing["plain"] += time.perf_counter() - t0
+        out["plain"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+        out["plain_iter"].append(r.n_iter)
+        out["plain_cap"].append(r.cap_hit)
+    if "m" in algs:
+        t0 = time.perf_counter()
+        prior = map_prior_sd(s_.velocity_knowledge, dsd, vsd, s)
+        r = unified_location_em(ent, *em_args, **em_kw, accelerate=accel, prior_sd=prior)
+        timing["map"] += time.perf_counter() - t0
+        out["map"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+
+
+def _run_marks(x, out: dict, timing: dict) -> None:
+    """The two-stage algorithms on one block of scenes: ``e`` (iterative marks, with the line fit and its twin that
+    keeps the designated velocity), ``q`` (iterative marks by plain EM, the iteration counts) and ``c``
+    (centre-of-region marks)."""
+    s_, cfg, b, s, p, p0, tol, accel, times = x.s_, x.cfg, x.b, x.s, x.p, x.p0, x.tol, x.accel, x.times
+    algs = cfg.algs
+    init, assoc = cfg.init, cfg.assoc
+    mark_args = dict(
+        init=s_.mark_init if init is None else init,
+        association=s_.mark_association if assoc is None else assoc,
+        tol_px=tol,
+        max_iter=s_.max_iter,
+        tol_loglik=s_.tol_loglik,
+    )
+    if "e" in algs:
+        t0 = time.perf_counter()
+        mk = em_marks(b.counts, b.designation, times, s, p, p0, accelerate=accel, **mark_args)
+        fit = fit_lines(mk, times, _fallback(mk, b.designation, mark_args["init"]))
+        timing["em"] += time.perf_counter() - t0
+        # the two-stage twin of a MAP-ULA that knows the designated velocity: the line keeps that velocity
+        fit_v = fit_lines(mk, times, b.designation, velocity=b.designation[..., 2:])
+        out["em_vd"].append(errors_vs_truth(fit_v.theta, b.truth, s, times)[0])
+        e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
+        out["em"].append(e)
+        out["em_iter"].append(mk.n_iter.sum(axis=1))
+        out["em_flags"].append(
+            np.stack([sw, (~fit.valid).any(axis=1), mk.cap_hit.any(axis=1), (~mk.valid).any(axis=(1, 2))], axis=1)
+        )
+    if "q" in algs:
+        t0 = time.perf_counter()
+        mk = em_marks(b.counts, b.designation, times, s, p, p0, **mark_args)
+        timing["em_plain"] += time.perf_counter() - t0
+        out["em_plain_iter"].append(mk.n_iter.sum(axis=1))
+        out["em_plain_cap"].append(mk.cap_hit.any(axis=1))
+    if "c" in algs:
+        t0 = time.perf_counter()
+        mk = centre_of_region_marks(
+            b.counts, propagate(b.designation, times), centre_gate_half_px(s_.gate_half_sigma, s)
+        )
+        fit = fit_lines(mk, times, b.designation)
+        timing["cr"] += time.perf_counter() - t0
+        e, sw = errors_vs_truth(fit.theta, b.truth, s, times)
+        out["cr"].append(e)
+        out["cr_flags"].append(np.stack([sw, (~fit.valid).any(axis=1)], axis=1))
+
+
+def _run_extras(x, out: dict) -> None:
+    """The studies beyond the comparison on one block of scenes: ``k`` (the ML ULA given the designated
+    velocity), ``1`` (one track fitted to the pair), ``w`` (weights and sigma estimated), ``s`` (multi-start
+    gap) and ``b`` (BIC orders)."""
+    s_, cfg, b, ent, s, p, p0, tol, accel, times = x.s_, x.cfg, x.b, x.ent, x.s, x.p, x.p0, x.tol, x.accel, x.times
+    algs = cfg.algs
+    q, m, vsd = cfg.q, cfg.m, cfg.vsd
+    g, noise_pp, block = x.g, x.noise_pp, x.block
+    if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
+        r = unified_location_em(
+            ent,
+            b.designation,
+            s,
+            p,
+            p0,
+            tol_px=tol,
+            max_iter=s_.max_iter,
+            accelerate=accel,
+            prior_sd=(1e6 * s, vsd * s),
+        )
+        out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+    if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
+        p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
+        r = unified_location_em(
+            ent,
+            b.designation.mean(axis=1, keepdims=True),
+            s,
+            p1,
+            p01,
+            tol_px=tol,
+            max_iter=s_.max_iter,
+            accelerate=accel,
+        )
+        out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
+    if "w" in algs:
+        r = unified_location_em(
+            ent,
+            b.designation,
+            s,
+            p,
+            p0,
+            tol_px=tol,
+            max_iter=s_.max_iter,
+            estimate_weights=True,
+            estimate_sigma=True,
+        )
+        out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
+    if "s" in algs:
+        ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
+        out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))
+    if "b" in algs:
+        out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
 
 
 def _bounds(s_: StudySettings, cfg: Config, g, times, noise_pp: float) -> dict:
