@@ -286,9 +286,9 @@ def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mappi
     return frozenset(out)
 
 
-def _touched(depends: Mapping[str, Sequence[str]], run: Run, default_cfg: Mapping) -> frozenset:
-    """The claims that read an entry ``run`` changes (the only ones a condition can say anything about)."""
-    changed = set(run.changed(default_cfg))
+def _touched(depends: Mapping[str, Sequence[str]], config: Mapping, default_cfg: Mapping) -> frozenset:
+    """The claims that read an entry ``config`` changes (the only ones a condition can say anything about)."""
+    changed = {k for k, v in config.items() if default_cfg.get(k) != v}
     return frozenset(cid for cid, names in depends.items() if changed & set(names))
 
 
@@ -433,68 +433,34 @@ def explore(
             raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
     seeds = replicate_seeds(seed, cap)
     default = register.default()
-    timing: dict[str, list] = {}  # stage -> [configurations, wall s]: where the exploration's time goes
-
-    def run(fn: Callable, jobs: list[Run], stage: str) -> None:
-        t0 = time.perf_counter()
-        _execute(fn, jobs, batched, executor)
-        row = timing.setdefault(stage, [0, 0.0])
-        row[0] += len(jobs)
-        row[1] += time.perf_counter() - t0
-
+    clock = _Clock(batched, executor)
     used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
     runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
-    run(measure, runs, "replicates")
-    n = replicates
-    while n < cap:
-        sized = _sizing_target(rules, runs, n, cap)
-        if sized is None:
-            break
-        target, undecided = sized
-        # one replicate at a time, re-judged after each; an executor's workers take one each at once; a
-        # measurement taking ``claims`` measures only the claims still undecided
-        step = max(1, min(target - n, int(getattr(executor, "_max_workers", 1) or 1)))
-        extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
-        run(measure, extra, "sizing")
-        runs += extra
-        n += step
+    clock.run(measure, runs, "replicates")
+    n = _size(measure, rules, runs, seeds, cap, clock, default)
 
     def conditions(cfgs: Sequence[Mapping], stage: str) -> list[Run]:
-        out = [Run(dict(c), seeds[0], stage) for c in cfgs]
-        for r in out:
-            r.claims = _touched(depends, r, default)
-        return out
+        return [Run(dict(c), seeds[0], stage, claims=_touched(depends, c, default)) for c in cfgs]
 
     singles = conditions([{**default, k: v} for k in used for v in register[k].alternatives], "single")
     singles = singles if one_at_a_time else []
-    design = joint_sample(register, used, joint, seed + 1) if joint else []
-    joints = conditions(design, "joint")
-    confirmed = confirmed_claims = 0
+    joints = conditions(joint_sample(register, used, joint, seed + 1) if joint else [], "joint")
+    confirmed = {"runs": 0, "claims": 0}  # runs measured at full size after a screen (an unscreened joint: all)
     for name, jobs, screened in (("one at a time", singles, screen_singles), ("joint", joints, True)):
-        if screen is not None and screened and jobs:
-            run(screen, jobs, f"{name}, screened")
-            default_j = _pooled(rules, runs)
-            redo = []
-            for r in jobs:
-                r.claims = _to_confirm(rules, depends, default_j, r, default)
-                if r.claims:
-                    redo.append(r)
-            run(measure, redo, f"{name}, confirmed at full size")
-            confirmed += len(redo)
-            confirmed_claims += sum(len(r.claims) for r in redo)
-        else:
-            run(measure, jobs, name)
-            confirmed += len(jobs) if name == "joint" else 0
+        stage_screen = screen if screened else None
+        done = _measure_stage(measure, stage_screen, jobs, name, rules, depends, runs, default, clock)
+        confirmed["runs"] += done[0] if stage_screen is not None or name == "joint" else 0
+        confirmed["claims"] += done[1]
         runs += jobs
     pinned = conditions([{**default, **p} for p in register.pinned if set(p) & set(used)], "pinned")
-    run(measure, pinned, "pinned")
+    clock.run(measure, pinned, "pinned")
     runs += pinned
     n_combo = 0
     for size in (2, 3):
         combos = _combination_runs(rules, depends, runs, default, seeds[0], combinations - n_combo, size)
         for r in combos:
-            r.claims = _touched(depends, r, default)
-        run(measure, combos, "combinations")
+            r.claims = _touched(depends, r.config, default)
+        clock.run(measure, combos, "combinations")
         runs += combos
         n_combo += len(combos)
     settings = {
@@ -508,15 +474,74 @@ def explore(
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
         "screened": screen is not None and bool(joints),
         "screened_singles": screen is not None and screen_singles and bool(singles),
-        "confirmed_at_full_size": confirmed,
-        "confirmed_claims": confirmed_claims,
+        "confirmed_at_full_size": confirmed["runs"],
+        "confirmed_claims": confirmed["claims"],
         "measures_claims_asked": takes_claims(measure),
         "combinations": n_combo,
         "one_at_a_time": one_at_a_time,
         "seed": seed,
-        "timing": {k: {"configurations": n_, "wall_s": round(t, 3)} for k, (n_, t) in timing.items() if n_},
+        "timing": clock.table(),
     }
     return Exploration(register, rules, depends, runs, settings)
+
+
+class _Clock:
+    """Runs the stages' jobs and keeps where the exploration's time goes: per stage its configurations, wall
+    seconds and this process's CPU seconds (an executor's workers' CPU is not in it)."""
+
+    def __init__(self, batched: bool, executor: Any):
+        self.batched, self.executor = batched, executor
+        self.rows: dict[str, list] = {}
+
+    def run(self, fn: Callable, jobs: list[Run], stage: str) -> None:
+        t0, c0 = time.perf_counter(), time.process_time()
+        _execute(fn, jobs, self.batched, self.executor)
+        row = self.rows.setdefault(stage, [0, 0.0, 0.0])
+        row[0] += len(jobs)
+        row[1] += time.perf_counter() - t0
+        row[2] += time.process_time() - c0
+
+    def table(self) -> dict:
+        return {
+            k: {"configurations": n, "wall_s": round(w, 3), "cpu_s": round(c, 3)}
+            for k, (n, w, c) in self.rows.items()
+            if n
+        }
+
+
+def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: _Clock, default: dict) -> int:
+    """Sizing: one replicate at a time (as many at once as an executor has workers), re-judged after each, while
+    a part is undecided and projected to decide under ``cap``; a measurement taking ``claims`` measures only the
+    claims still undecided. Appends to ``runs``; returns the replicates run."""
+    n = len(runs)
+    while n < cap:
+        sized = _sizing_target(rules, runs, n, cap)
+        if sized is None:
+            break
+        target, undecided = sized
+        step = max(1, min(target - n, int(getattr(clock.executor, "_max_workers", 1) or 1)))
+        extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
+        clock.run(measure, extra, "sizing")
+        runs += extra
+        n += step
+    return n
+
+
+def _measure_stage(measure, screen, jobs, name, rules, depends, runs, default, clock: _Clock) -> tuple[int, int]:
+    """One stage of conditions: at full size, or screened with ``screen`` and the claims that may flip confirmed
+    at full size (the others keep their screened values). Returns (runs confirmed, claims confirmed)."""
+    if screen is None or not jobs:
+        clock.run(measure, jobs, name)
+        return len(jobs), 0
+    clock.run(screen, jobs, f"{name}, screened")
+    default_j = _pooled(rules, runs)
+    redo = []
+    for r in jobs:
+        r.claims = _to_confirm(rules, depends, default_j, r, default)
+        if r.claims:
+            redo.append(r)
+    clock.run(measure, redo, f"{name}, confirmed at full size")
+    return len(redo), sum(len(r.claims) for r in redo)
 
 
 def executor_for(address: str | None, timeout_s: float = 10.0) -> Any:
