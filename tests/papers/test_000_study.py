@@ -267,3 +267,34 @@ def test_c000_4_cost_reads_its_register_entries():
     updated = measure_cost({**base, "v2 noise at": "updated estimate"}, 1, n_trials=200, n_steps=100)["C000-4"]
     assert fixed > 1.0  # variant 1's 2 x 2 algebra costs more per step than variant 2's scalar EKF
     assert updated < fixed  # the re-evaluation of eq. (9) at the update adds to variant 2's work
+
+
+def test_each_variant_is_in_lock_against_its_own_steady_level():
+    """C000-1's acquisition time of a variant: the first scan after which every scan's mean square stays within
+    lock_factor^2 x the steady mean square of that same variant (not of the other: variant 1's steady level is
+    above variant 2's at P = 0.9, so a borrowed threshold moves variant 2's acquisition)."""
+    cfg = {**DEFAULT, "contrast": 0.9}
+    scan_s = SMALL.steps_per_scan * SMALL.dt
+    levels = {}
+    for filt in ("v1", "v2"):
+        start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
+        run = study._errors(
+            cfg, 9, SMALL, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"]
+        )
+        steady = study._errors(cfg, 9, SMALL, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
+        factor = 2.0 if cfg["lock threshold"] == "2 x steady RMS" else SMALL.lock_factor
+        levels[filt] = thr = factor**2 * steady
+        t = study._acquired_at(cfg, 9, SMALL, filt, run)
+        scans = run["scans"]
+        for i in range(scans.shape[0]):
+            if not np.isfinite(t[i]):
+                assert scans[i, -1] > thr  # out of lock at the end: never acquired
+                continue
+            k = int(round(t[i] / scan_s))
+            assert np.all(scans[i, k:] <= thr), (filt, i)  # in lock for good from scan k
+            assert k <= 1 or scans[i, k - 1] > thr, (filt, i)  # and not one scan earlier
+    assert levels["v1"] > 1.2 * levels["v2"]  # the two thresholds differ
+    # scans between the two levels: in lock against variant 1's own level, out of lock against variant 2's
+    between = {"scans": np.full((3, 6), (levels["v1"] + levels["v2"]) / 2)}
+    assert np.all(study._acquired_at(cfg, 9, SMALL, "v1", between) == scan_s)
+    assert np.all(np.isinf(study._acquired_at(cfg, 9, SMALL, "v2", between)))
