@@ -320,11 +320,7 @@ def phase_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.nda
     -------
     ndarray of complex, shape (m,)
     """
-    A = _loop_matrix(gains, omega, r)
-    b = np.zeros(5)
-    b[3] = -1.0
-    s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
-    x = np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[..., 0]
+    s, x = _phase_resolvent(gains, omega, r, freqs_hz)
     return 1 + s * x[:, 3]
 
 
@@ -368,11 +364,17 @@ def omega_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.nda
     -------
     ndarray of complex, shape (m,)
     """
+    return _phase_resolvent(gains, omega, r, freqs_hz)[1][:, 4]
+
+
+def _phase_resolvent(gains: LoopGains, omega: float, r: float, freqs_hz) -> tuple[np.ndarray, np.ndarray]:
+    """``s = 2 pi i f`` (shape (m,)) and ``(s I - A)^{-1} b`` (shape (m, 5)) for a unit phase perturbation
+    ``b = -e_dtheta`` of the coupled loop: the common part of :func:`phase_response` and :func:`omega_response`."""
     A = _loop_matrix(gains, omega, r)
     b = np.zeros(5)
     b[3] = -1.0
     s = 2j * np.pi * np.atleast_1d(np.asarray(freqs_hz, dtype=float))
-    return np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[:, 4, 0]
+    return s, np.linalg.solve(s[:, None, None] * np.eye(5) - A, np.broadcast_to(b, (s.size, 5))[..., None])[..., 0]
 
 
 def omega_bandwidth(gains: LoopGains, omega: float, r: float, at_hz: float = 6.0, f_max: float = 100.0) -> dict:

@@ -1,0 +1,196 @@
+"""The learned predictors of paper 004 (Kokryatska & Hrynchyshyn 2005 compare their filter with back-propagation and
+RBF networks, 2-3 px and 2-4 px): lag features, the networks fitted with scikit-learn, their forecasts, and the
+path folds of their cross-validated tuning. Re-exported by :mod:`.predictors`."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+
+from ._checks import _check_steps, _check_z
+
+__all__ = [
+    "LEARNED_INPUTS",
+    "lag_features",
+    "fit_learned_predictor",
+    "learned_forecast",
+    "path_folds",
+    "cross_validated_pick",
+]
+
+
+def lag_features(z, n_lags: int, steps: int = 1, inputs: str = "increments"):
+    """Inputs and targets for learned predictors.
+
+    ``inputs="increments"`` (translation-invariant): inputs at frame ``n`` are ``z[n-j] - z[n]`` for
+    ``j = 1..n_lags`` (increments to the newest sample, px), the target ``z[n+steps] - z[n]``.
+    ``inputs="absolute centres"``: the last ``n_lags`` centres as measured, ``z[n-j]`` for ``j = 0..n_lags-1``
+    (newest first, px), the target ``z[n+steps]`` (the network must learn the identity map over the field).
+
+    Returns
+    -------
+    X : ndarray, shape (..., T, n_lags)
+        NaN rows where fewer than ``n_lags+1`` samples exist.
+    y : ndarray, shape (..., T)
+        NaN where ``n + steps >= T``.
+    """
+    steps = _check_steps(steps)
+    z = _check_z(z)
+    if not (isinstance(n_lags, (int, np.integer)) and 1 <= n_lags < z.shape[-1]):
+        raise ValueError(f"parameter 'n_lags' = {n_lags!r}; it must be an integer in [1, T-1]")
+    if inputs not in LEARNED_INPUTS:
+        raise ValueError(f"parameter 'inputs' = {inputs!r}; it must be one of {LEARNED_INPUTS}")
+    T = z.shape[-1]
+    X = np.full(z.shape + (n_lags,), np.nan)
+    y = np.full(z.shape, np.nan)
+    if inputs == "absolute centres":
+        win = sliding_window_view(z, n_lags, axis=-1)  # (..., T-n_lags+1, n_lags), newest last
+        X[..., n_lags - 1 :, :] = win[..., ::-1]
+        y[..., : T - steps] = z[..., steps:]
+        return X, y
+    win = sliding_window_view(z, n_lags + 1, axis=-1)  # (..., T-n_lags, n_lags+1), newest last
+    X[..., n_lags:, :] = win[..., -2::-1] - win[..., -1:]
+    y[..., : T - steps] = z[..., steps:] - z[..., : T - steps]
+    return X, y
+
+
+LEARNED_INPUTS = ("increments", "absolute centres")
+
+
+def _sklearn_unchecked():
+    """scikit-learn without its per-call parameter validation and finiteness checks (the inputs here are built
+    finite and the parameters fixed): the same numbers, about a fifth less CPU time per network."""
+    import sklearn
+
+    return sklearn.config_context(skip_parameter_validation=True, assume_finite=True)
+
+
+def fit_learned_predictor(
+    kind: str,
+    z_train,
+    n_lags: int,
+    steps: int = 1,
+    *,
+    hidden_units: int = 16,
+    rbf_centres: int = 100,
+    max_samples: int | None = 4000,
+    seed: int = 0,
+    inputs: str = "increments",
+):
+    """Train a learned ``steps``-ahead predictor on the series in ``z_train`` (``inputs``: what the network is
+    fed, see :func:`lag_features`; with absolute centres the target is standardised as well).
+
+    Parameters
+    ----------
+    kind : {"mlp", "rbf"}
+        ``"mlp"``: ``StandardScaler -> MLPRegressor`` (one tanh hidden layer of ``hidden_units``,
+        back-propagation with Adam, early stopping). ``"rbf"``: ``StandardScaler ->
+        Nystroem(rbf, rbf_centres units centred on training points, gamma = 1/n_lags) -> RidgeCV``.
+    z_train : ndarray, shape (..., T)
+        Training series (whole paths; keep test paths out).
+    max_samples : int, optional
+        Train on at most this many (input, target) pairs, drawn at random without replacement
+        (``None`` = all).
+    seed : int
+        For the sample draw, the network's initial weights and the choice of RBF centres.
+
+    Returns
+    -------
+    sklearn Pipeline, with attribute ``n_lags_`` and ``steps_`` set.
+    """
+    from sklearn.kernel_approximation import Nystroem
+    from sklearn.linear_model import RidgeCV
+    from sklearn.neural_network import MLPRegressor
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+
+    if kind not in ("mlp", "rbf"):
+        raise ValueError(f"parameter 'kind' = {kind!r}; it must be 'mlp' or 'rbf'")
+    X, y = lag_features(z_train, n_lags, steps, inputs)
+    X = X.reshape(-1, n_lags)
+    y = y.reshape(-1)
+    ok = np.all(np.isfinite(X), axis=1) & np.isfinite(y)
+    if ok.sum() < 10 * n_lags:
+        raise ValueError(f"only {ok.sum()} training samples for {n_lags} lags; give longer or more series")
+    idx = np.flatnonzero(ok)
+    if max_samples is not None and idx.size > max_samples:
+        idx = np.sort(np.random.default_rng(seed).choice(idx, max_samples, replace=False))
+    if kind == "mlp":
+        model = make_pipeline(
+            StandardScaler(),
+            MLPRegressor(
+                hidden_layer_sizes=(hidden_units,),
+                activation="tanh",
+                solver="adam",
+                alpha=1e-4,
+                learning_rate_init=1e-3,
+                max_iter=2000,
+                early_stopping=True,
+                n_iter_no_change=10,
+                random_state=seed,
+            ),
+        )
+    else:
+        model = make_pipeline(
+            StandardScaler(),
+            Nystroem(kernel="rbf", gamma=1.0 / n_lags, n_components=rbf_centres, random_state=seed),
+            RidgeCV(alphas=np.logspace(-6, 2, 9)),
+        )
+    if inputs == "absolute centres":  # the target standardised too: a next centre, not a small increment
+        from sklearn.compose import TransformedTargetRegressor
+
+        model = TransformedTargetRegressor(regressor=model, transformer=StandardScaler())
+    with _sklearn_unchecked():
+        model.fit(X[idx], y[idx])
+    model.n_lags_ = n_lags
+    model.steps_ = steps
+    model.inputs_ = inputs
+    return model
+
+
+def learned_forecast(model, z) -> np.ndarray:
+    """Apply a model from :func:`fit_learned_predictor`: ``forecast = z + model(lags)``."""
+    z = _check_z(z)
+    inputs = getattr(model, "inputs_", "increments")
+    X, _ = lag_features(z, model.n_lags_, model.steps_, inputs)
+    flat = X.reshape(-1, model.n_lags_)
+    ok = np.all(np.isfinite(flat), axis=1)
+    out = np.full(flat.shape[0], np.nan)
+    with _sklearn_unchecked():
+        out[ok] = model.predict(flat[ok])
+    return out.reshape(z.shape) if inputs == "absolute centres" else z + out.reshape(z.shape)
+
+
+def path_folds(n_paths: int, n_folds: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Split path indices ``0..n_paths-1`` into ``n_folds`` contiguous (train, test) folds."""
+    if not (2 <= n_folds <= n_paths):
+        raise ValueError(f"parameter 'n_folds' = {n_folds!r}; it must be in [2, n_paths={n_paths}]")
+    idx = np.arange(n_paths)
+    return [(np.setdiff1d(idx, test), test) for test in np.array_split(idx, n_folds)]
+
+
+def cross_validated_pick(per_path_loss, folds) -> np.ndarray:
+    """Tuning by cross-validation over paths: for each fold, the candidate with the smallest mean
+    loss over the fold's *training* paths is used on its test paths.
+
+    Parameters
+    ----------
+    per_path_loss : ndarray, shape (C, P)
+        Loss (e.g. mean squared prediction error) of each of ``C`` candidate settings on each path.
+    folds : list of (train, test) index arrays
+        :func:`path_folds`.
+
+    Returns
+    -------
+    ndarray of int, shape (P,)
+        Index of the candidate applied to each path (chosen without that path).
+    """
+    loss = np.asarray(per_path_loss, dtype=float)
+    if loss.ndim != 2:
+        raise ValueError(f"parameter 'per_path_loss' has shape {loss.shape}; it must be (candidates, paths)")
+    pick = np.full(loss.shape[1], -1)
+    for train, test in folds:
+        pick[test] = int(np.argmin(loss[:, train].mean(axis=1)))
+    if np.any(pick < 0):
+        raise ValueError("the folds do not cover every path")
+    return pick
