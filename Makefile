@@ -64,3 +64,4 @@ sweep: $(STAMP)
 
 clean-runs:
 	rm -rf papermill_runs/reproduce papermill_runs/reproduce-* papermill_runs/runs papermill_runs/interactive papermill_runs/edit
+	rm -rf .jit-cache

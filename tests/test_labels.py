@@ -333,3 +333,34 @@ def test_a_claim_with_no_decided_part_has_no_label_not_unexplored(tmp_path):
     assert claim.verdict == "undecided" and claim.robustness["label"] == "-"
     nc = label_parts(NotCheckable("no data"), None, [], [], [])
     assert nc["label"] == "-"
+
+
+def test_sensitivity_scores_do_not_depend_on_the_string_hash_seed():
+    """The between-group sum runs over the entry's levels in a fixed order: Python's per-process string hashing
+    (PYTHONHASHSEED) once set the order, and the scores of two runs of one seed differed in the last digit."""
+    import os
+    import subprocess
+    import sys
+    import textwrap
+
+    code = textwrap.dedent(
+        """
+        import numpy as np
+        from tvtrack.labels import sensitivity
+        rng = np.random.default_rng(5)
+        rows = [{"config": {"a": f"level-{i % 7}", "b": float(i % 3)}, "value": float(v)}
+                for i, v in enumerate(rng.normal(size=40))]
+        print(repr([float(d["score"]) for d in sensitivity(rows, ["a", "b"], {}, {})]))
+        """
+    )
+    outs = {
+        subprocess.run(
+            [sys.executable, "-c", code],
+            capture_output=True,
+            text=True,
+            check=True,
+            env={**os.environ, "PYTHONHASHSEED": str(seed)},
+        ).stdout
+        for seed in (0, 1, 5)  # 5 ordered the levels differently from 0 and 1 before the fix
+    }
+    assert len(outs) == 1, outs

@@ -5,16 +5,33 @@ A compiled kernel is used only where a loop is dominated by NumPy's per-call ove
 scalar position measurement (``filters._imm_kernel``, notebook 001's comparator, issue 43) and notebook 002's EM
 E-step (``papers.p002_unified_location_em._kernels``). Every kernel has a NumPy twin that the tests
 always run and compare with it. Set the environment variable ``TVTRACK_NO_JIT=1`` to force the NumPy paths
-(numba absent has the same effect). Compiled code is not cached on disk (numba's in-tree cache is not writable on
-read-only installs): each process compiles at its first call (about 1 s a kernel).
+(numba absent has the same effect).
+
+Compiled code is kept on disk only where ``TVTRACK_JIT_CACHE`` names a folder (``tvtrack run``, ``sweep``,
+``reproduce`` and ``edit`` set it to the clone's ``.jit-cache/`` for their kernels; the test session to a folder of
+its own): then a kernel compiled by one process is loaded by the next instead of compiled again (001's mode
+kernels take about 13 s to compile). The compiled code lives in a subfolder named by a digest of every source
+file of the package (:func:`source_digest`), so an edit anywhere in ``tvtrack`` (a kernel, or a function a kernel
+calls, which numba's own cache check does not see) compiles afresh. Without the variable, or where the folder
+cannot be written, each process compiles at its first call (numba's in-tree cache is not used: it is not
+writable on read-only installs).
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
+import shutil
+import time
 from collections.abc import Callable
+from pathlib import Path
 
-__all__ = ["available", "switched_off", "enabled", "njit", "prange"]
+__all__ = ["available", "switched_off", "enabled", "njit", "prange", "cache_folder", "source_digest", "CACHE_ENV"]
+
+#: the environment variable naming the folder compiled kernels are kept in (unset: none kept)
+CACHE_ENV = "TVTRACK_JIT_CACHE"
+#: a digest folder not used for this many seconds is removed when another one is made
+_STALE_S = 86_400.0
 
 try:  # numba is pinned in environment.txt; a bare install without it still works
     import numba as _numba
@@ -42,9 +59,51 @@ def enabled() -> bool:
     return available() and not switched_off()
 
 
-def njit(fn: Callable) -> Callable:
-    """``numba.njit(fn)`` (compiled lazily at the first call, no caching on disk) or ``fn`` itself without
-    numba. Call the result only when :func:`enabled` (the NumPy twin otherwise)."""
+def source_digest(root: Path | None = None) -> str:
+    """A digest (16 hex digits) of the relative path and bytes of every ``.py`` file under ``root`` (default: the
+    ``tvtrack`` package): the name of the cache subfolder, so that compiled code is never reused across an edit."""
+    root = Path(__file__).parent if root is None else Path(root)
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        h.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()[:16]
+
+
+def _prune(base: Path, keep: Path) -> None:
+    """Remove the digest folders of ``base`` other than ``keep`` that no process used for a day."""
+    for other in base.iterdir():
+        try:
+            if other != keep and other.is_dir() and time.time() - other.stat().st_mtime > _STALE_S:
+                shutil.rmtree(other, ignore_errors=True)
+        except OSError:
+            pass
+
+
+def cache_folder() -> Path | None:
+    """The folder this process keeps compiled kernels in (``$TVTRACK_JIT_CACHE/<source digest>``), made if
+    needed; ``None`` when the variable is unset or the folder cannot be written (each process then compiles)."""
+    base = os.environ.get(CACHE_ENV)
+    if not base or _numba is None:
+        return None
+    folder = Path(base) / source_digest()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        os.utime(folder)
+        _prune(Path(base), folder)
+    except OSError:
+        return None
+    return folder if os.access(folder, os.W_OK) else None
+
+
+_CACHE = cache_folder()
+if _CACHE is not None:
+    _numba.config.CACHE_DIR = str(_CACHE)  # numba's locator reads it when a cached function first compiles
+
+
+def njit(fn: Callable, parallel: bool = False, error_model: str = "numpy") -> Callable:
+    """``numba.njit(fn)`` (compiled lazily at the first call; kept on disk when :func:`cache_folder` is set) or
+    ``fn`` itself without numba. ``parallel`` lets numba run ``prange`` loops on the process's threads. Call the
+    result only when :func:`enabled` (the NumPy twin otherwise)."""
     if _numba is None:
         return fn
-    return _numba.njit(fn, cache=False, nogil=True, error_model="numpy")
+    return _numba.njit(fn, cache=_CACHE is not None, nogil=True, error_model=error_model, parallel=parallel)

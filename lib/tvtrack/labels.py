@@ -257,7 +257,7 @@ def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[
     for k in names:
         levels = [repr(c.get(k, default.get(k))) for c, _ in pts]
         between = 0.0
-        for lev in set(levels):
+        for lev in dict.fromkeys(levels):  # first-seen order: a set's order changes with the hash seed
             g = y[[lv == lev for lv in levels]]
             between += len(g) * (g.mean() - y.mean()) ** 2
         e = entries.get(k)

@@ -13,12 +13,13 @@ from __future__ import annotations
 
 import argparse
 import ast
+import os
 import sys
 import time
 from pathlib import Path
 
 from .interrupt import EXIT_INTERRUPTED
-from .paths import REPO_ROOT, RUNS_DIR, writable_directory
+from .paths import JIT_CACHE_DIR, REPO_ROOT, RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 from .runner import WriteFailed
 
@@ -272,6 +273,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
+    # the kernels this command starts keep their compiled code in the clone (tvtrack.jit), unless told otherwise
+    os.environ.setdefault("TVTRACK_JIT_CACHE", str(JIT_CACHE_DIR))
     try:
         return args.func(args)
     except (UsageError, NotebookBug, WriteFailed) as exc:

@@ -7,6 +7,8 @@ from pathlib import Path
 REPO_ROOT = Path(__file__).resolve().parents[3]
 NOTEBOOK_DIR = REPO_ROOT / "notebooks"
 RUNS_DIR = REPO_ROOT / "papermill_runs"
+#: where the notebooks' compiled kernels are kept between runs (:mod:`tvtrack.jit`; ``TVTRACK_JIT_CACHE``)
+JIT_CACHE_DIR = REPO_ROOT / ".jit-cache"
 PROFILE_DIR = RUNS_DIR / "profiles"
 SWEEP_DIR = RUNS_DIR / "sweeps"
 INTERACTIVE_DIR = RUNS_DIR / "interactive"

@@ -33,6 +33,7 @@ from typing import Any
 from .interrupt import child_pids, end_children, kernels_end_on_ctrl_c
 from .kernels import KernelSetup as _KernelSetup
 from .lock import output_lock, remove_stale_locks
+from . import lean_imports
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
 from .preflight import UsageError, check_names
 
@@ -226,7 +227,7 @@ def _execute_in(tmp: Path, nb: Path, params: dict, kernel_name, timeout_s, progr
     A kernel that dies before it answers (:func:`_died_at_start`) is started again, up to
     :data:`KERNEL_START_ATTEMPTS` times; what kernels print goes to ``kernel.log`` in the run, never to the
     terminal. Ctrl-C (or a pool worker's stop) ends the kernel, removes ``tmp`` and propagates."""
-    import papermill as pm  # heavy import, only when running
+    pm = lean_imports.papermill()  # heavy import, only when running
 
     spare = child_pids()  # the caller's own processes: an interrupt ends only this run's kernel
     log_path = tmp / KERNEL_LOG

@@ -40,6 +40,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from . import lean_imports
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
 from .report import (
@@ -483,7 +484,7 @@ def _first_screen(runs: list[PaperRun], by_name: dict) -> tuple[list[dict], list
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str | None = None) -> Path:
     """Build the site from ``runs_dir/reproduce`` (``reproduce-<profile>`` for another profile) and the sweeps in
     ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``)."""
-    import nbformat
+    nbformat = lean_imports.nbformat()
 
     runs_dir = Path(runs_dir)
     profile = profile_name(profile)

@@ -36,6 +36,7 @@ from pathlib import Path
 
 from ..executors import SchedulerError, connect_dask, parse_scheduler_address
 from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
+from . import lean_imports
 from .paths import RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
 from .lock import LOCK_NAME, output_lock
@@ -203,9 +204,7 @@ def _default_seed(notebook: Path) -> int:
     """The ``seed`` default in the notebook's parameters cell."""
     import ast
 
-    import nbformat
-
-    nb = nbformat.read(notebook, as_version=4)
+    nb = lean_imports.nbformat().read(notebook, as_version=4)
     for cell in nb.cells:
         if cell.cell_type == "code" and "parameters" in cell.metadata.get("tags", []):
             for node in ast.parse(cell.source).body:

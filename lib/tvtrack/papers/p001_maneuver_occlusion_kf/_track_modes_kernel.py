@@ -20,10 +20,10 @@ and ``tests/papers/test_001_track_modes.py`` (every test there runs with both en
 
 Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment, or ``engine="numpy"``)
 ``run_track_modes`` uses the NumPy path. Each kernel is compiled on its first use in a process (~0.6-1.8 s for
-the fast one, ~1.4-3 s for the general one on the shared 2-core machine), with no on-disk cache: numba's cache
-next to the source is not writable on read-only installs, its fallback writes outside the clone (or fails at
-decoration when no location is writable) and parallel notebook runs would share it; :func:`compile_seconds`
-reports the first call's time.
+the fast one, ~1.4-3 s for the general one on the shared 2-core machine), or loaded from the folder
+:func:`tvtrack.jit.cache_folder` names when ``TVTRACK_JIT_CACHE`` is set (the pipeline's runs and the test
+session set it; numba's own cache beside the source is never used); :func:`compile_seconds` reports the first
+call's time.
 
 The only global (cross-trial) quantity of the NumPy path is ``had_gap``: it turns true at the first frame
 where some trial is hidden (``gap_start``), and from then on the per-trial ``since_visible`` counter gates
@@ -459,10 +459,8 @@ def get_kernel(covariance: bool = True):
     compiled on its first call in this process."""
     name = "general" if covariance else "fast"
     if name not in _compiled:
-        import numba
-
-        _compiled[name] = numba.njit(cache=False, nogil=True, parallel=True)(
-            kernel_python if covariance else kernel_fast_python
+        _compiled[name] = jit.njit(
+            kernel_python if covariance else kernel_fast_python, parallel=True, error_model="python"
         )
     return _compiled[name]
 

@@ -156,7 +156,8 @@ def _scores_without_alpha(world: tuple, grids: tuple) -> dict:
     cand = {"fixed 2nd order": [(kb,) for kb in g["fixed2"]], "fixed 3rd order": [(kb,) for kb in g["fixed3"]]}
     cand["IMM"] = [(q, p, "mix") for q, p in itertools.product(g["imm_q_ca"], g["imm_p_stay"])]
     scores = {name: {st: _score(world, name, st) for st in settings} for name, settings in cand.items()}
-    for q, p, _ in {min(scores["IMM"], key=lambda st: scores["IMM"][st][span]) for span in TUNING_SPANS}:
+    best = [min(scores["IMM"], key=lambda st: scores["IMM"][st][span]) for span in TUNING_SPANS]
+    for q, p, _ in dict.fromkeys(best):  # in span order (a set's order changes with the string hash seed)
         for coast in ("frozen", "mode"):  # three ways to coast at each best process noise
             scores["IMM"][(q, p, coast)] = _score(world, "IMM", (q, p, coast))
     return scores
