@@ -5,28 +5,22 @@ from __future__ import annotations
 import fcntl
 import os
 import pickle
-import shutil
 import signal
-import tempfile
 from pathlib import Path
 
 import pytest
 
-# Compiled kernels (tvtrack.jit) are kept for this session in a folder of its own, set before tvtrack is imported
-# and inherited by the xdist workers and every kernel a test starts: a kernel compiled once (a smoke run, a test)
-# is loaded by the other processes instead of compiled again. A session never reads an earlier session's code.
-_OWN_JIT_CACHE = None
-if "TVTRACK_JIT_CACHE" not in os.environ:
-    _OWN_JIT_CACHE = os.environ["TVTRACK_JIT_CACHE"] = tempfile.mkdtemp(prefix="tvtrack-test-jit-")
-
-
-def pytest_unconfigure(config):
-    if _OWN_JIT_CACHE:  # only the process that made the folder (the xdist controller) removes it
-        shutil.rmtree(_OWN_JIT_CACHE, ignore_errors=True)
-
+# Compiled kernels (tvtrack.jit) are kept where the pipeline keeps them, the clone's .jit-cache/ (in a folder named by
+# a digest of the package's sources: an edit compiles afresh), set before tvtrack is imported and inherited by
+# the xdist workers and every kernel a test starts: a kernel compiled once (a smoke run, a test, an earlier
+# session, make reproduce) is loaded by the other processes instead of compiled again.
+os.environ.setdefault("TVTRACK_JIT_CACHE", str(Path(__file__).resolve().parents[1] / ".jit-cache"))
 
 import tvtrack  # noqa: E402 - after the compiled-kernel folder is set
+from tvtrack.pipeline import lean_imports  # noqa: E402
 from tvtrack.pipeline.runner import list_notebooks, run_notebook  # noqa: E402
+
+lean_imports.nbformat()  # the test modules' own `import nbformat` then costs nothing (see lean_imports)
 
 REPO = Path(__file__).resolve().parents[1]
 # A tvtrack imported from another checkout would test the wrong code (and run its notebooks).
@@ -55,17 +49,21 @@ def smoke_run(tmp_path_factory):
     use and shared by every test of the session (contract checks, recording checks, viewer).
 
     Under pytest-xdist (``make test`` runs two workers) the workers share one run per notebook: the first
-    worker to ask runs it under a file lock and leaves its outcome beside it; the other waits and reads it."""
+    worker to ask runs it under a file lock and leaves its outcome beside it. A worker that finds the run it
+    wants under way in the other worker runs a notebook nobody has started meanwhile (every smoke run is needed
+    by the session), and waits only when none is left."""
     cache = {}
     shared = bool(os.environ.get("PYTEST_XDIST_WORKER"))
     root = (tmp_path_factory.getbasetemp().parent if shared else tmp_path_factory.mktemp("smoke")) / "smoke-shared"
     root.mkdir(parents=True, exist_ok=True)
 
-    def get(name: str):
-        if name in cache:
-            return cache[name]
+    def attempt(name: str, wait: bool):
+        """The outcome (run here, or read from the worker that ran it); None when another holds it and not wait."""
         with open(root / f"{name}.lock", "w") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+            try:  # the lock is released when the file closes
+                fcntl.flock(lock, fcntl.LOCK_EX if wait else fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                return None
             done = root / f"{name}.outcome.pkl"
             if done.exists():
                 outcome = pickle.loads(done.read_bytes())
@@ -74,5 +72,12 @@ def smoke_run(tmp_path_factory):
                 done.write_bytes(pickle.dumps(outcome))
         cache[name] = outcome
         return outcome
+
+    def get(name: str):
+        while name not in cache and attempt(name, wait=False) is None:
+            free = [n for n in NOTEBOOK_NAMES if n not in cache and not (root / f"{n}.outcome.pkl").exists()]
+            if not any(attempt(n, wait=False) is not None for n in free if n != name):
+                attempt(name, wait=True)  # nothing else to do: wait for the other worker's run
+        return cache[name]
 
     return get

@@ -152,9 +152,13 @@ def test_failed_run_is_isolated_and_recorded(tmp_path):
 
 @pytest.mark.determinism
 def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
+    spec = write_spec(
+        tmp_path / "killed.toml",
+        'repeats = 2\n[fixed]\nn_trials = 20\nn_frames = 5\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n',
+    )
     out = tmp_path / "killed"
     proc = subprocess.Popen(
-        [sys.executable, "-m", "tvtrack", "sweep", str(FIXTURE_SWEEP), "--jobs", "2", "-o", str(out)],
+        [sys.executable, "-m", "tvtrack", "sweep", str(spec), "--jobs", "2", "-o", str(out)],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         start_new_session=True,
@@ -169,13 +173,13 @@ def test_sigkill_midway_then_resume_finishes_only_missing_runs(tmp_path):
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     finished = {p.name for p in runs.iterdir() if not p.name.startswith(".")}  # not .tmp-* nor a lock file
-    assert 2 <= len(finished) < 8
+    assert 2 <= len(finished) < 6
     for name in finished:  # no half-written run directory
         assert read_run(runs / name)["status"] == "ok"
         assert (runs / name / "results.json").is_file()
-    resumed = run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
+    resumed = run_sweep(spec, jobs=2, output=out, progress=False)
     assert resumed.n_skipped == len(finished)
-    assert resumed.n_ok == 8 and not list(runs.glob(".tmp-*")) and not list(runs.glob(".*.lock"))
+    assert resumed.n_ok == 6 and not list(runs.glob(".tmp-*")) and not list(runs.glob(".*.lock"))
 
 
 @pytest.mark.determinism
@@ -183,13 +187,13 @@ def test_dask_executor_on_a_local_cluster(tmp_path):
     distributed = pytest.importorskip("distributed")
     spec = write_spec(
         tmp_path / "dask.toml",
-        'repeats = 2\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0]\n',
-    )
+        'repeats = 1\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0]\n',
+    )  # one run for each of the cluster's two workers
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         s = run_sweep(
             spec, output=tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address, progress=False
         )
-    assert (s.n_runs, s.n_ok) == (4, 4)
+    assert (s.n_runs, s.n_ok) == (2, 2)
     local = run_sweep(spec, jobs=1, output=tmp_path / "local", progress=False)
     for run in expand(load_spec(spec)):
         assert metrics(s.sweep_dir / "runs" / run.run_id) == metrics(local.sweep_dir / "runs" / run.run_id)
@@ -230,8 +234,7 @@ def _kernels_of_tree(tmp_path) -> list[str]:
 def test_ctrl_c_during_a_sweep_stops_it_cleanly_and_the_sweep_resumes(tmp_path):
     spec = write_spec(
         tmp_path / "int.toml",
-        "repeats = 2\n[fixed]\nn_trials = 200\nn_frames = 10\n"
-        'rerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0, 3.0]\n',
+        'repeats = 2\n[fixed]\nn_trials = 200\nn_frames = 10\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0]\n',
     )
     out = tmp_path / "int"
     runs = out / "runs"
@@ -248,11 +251,11 @@ def test_ctrl_c_during_a_sweep_stops_it_cleanly_and_the_sweep_resumes(tmp_path):
     assert not list(runs.glob(".tmp-*"))
     assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5), "a kernel outlived the sweep"
     done = {p.name for p in finished()}
-    assert 1 <= len(done) < 6
+    assert 1 <= len(done) < 4
     for name in done:
         assert read_run(runs / name)["status"] == "ok"
     resumed = run_sweep(spec, jobs=2, output=out, progress=False)
-    assert (resumed.n_skipped, resumed.n_ok) == (len(done), 6)
+    assert (resumed.n_skipped, resumed.n_ok) == (len(done), 4)
 
 
 def test_ctrl_c_during_a_run_ends_the_kernel_and_leaves_nothing(tmp_path):
