@@ -30,8 +30,37 @@ def write_spec(path: Path, body: str) -> Path:
 
 @pytest.fixture(scope="module")
 def sweep_two_jobs(tmp_path_factory):
+    """The fixture sweep on 2 jobs; ``.workers_up_in_preflight``: the pool processes alive when its preflight
+    checked the values (the workers start while it runs)."""
+    import multiprocessing
+
+    from tvtrack.pipeline import sweep
+
+    seen, checked = [], sweep.preflight
+
+    def preflight(*args, **kwargs):
+        deadline = time.time() + 60
+        while len(multiprocessing.active_children()) < 2 and time.time() < deadline:
+            time.sleep(0.05)
+        seen.append(len(multiprocessing.active_children()))
+        return checked(*args, **kwargs)
+
     out = tmp_path_factory.mktemp("sweep") / "fixture"
-    return run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
+    sweep.preflight = preflight
+    try:
+        summary = run_sweep(FIXTURE_SWEEP, jobs=2, output=out, progress=False)
+    finally:
+        sweep.preflight = checked
+    summary.workers_up_in_preflight = seen
+    summary.workers_left = len(multiprocessing.active_children())
+    return summary
+
+
+def test_a_two_job_sweep_starts_its_workers_while_the_preflight_checks(sweep_two_jobs):
+    """The workers' start-up (a Python process each, importing the runner and papermill) overlaps the preflight
+    instead of following it; the pool ends with the sweep (a refused sweep ends them too, with no traceback:
+    tests/test_cli.py)."""
+    assert sweep_two_jobs.workers_up_in_preflight == [2] and sweep_two_jobs.workers_left == 0
 
 
 def test_run_writes_results_figure_recording_and_record(tmp_path):

@@ -50,7 +50,24 @@ def shielded_spawn():
         signal.signal(signal.SIGINT, previous)
 
 
+_busy = False  # a pool worker inside a task that must clean up when stopped (:func:`running_a_task`)
+
+
+@contextlib.contextmanager
+def running_a_task():
+    """Mark this pool worker busy: a SIGTERM from :func:`stop_pool` in this block ends the kernel and raises
+    :class:`Interrupted` (the run removes its temporary folder); outside it the worker simply exits."""
+    global _busy
+    _busy = True
+    try:
+        yield
+    finally:
+        _busy = False
+
+
 def _end_kernels_and_raise_interrupted(signum, frame):
+    if not _busy:  # idle, waiting for a task or starting up: nothing to clean up, and no traceback to print
+        os._exit(EXIT_INTERRUPTED)
     end_children()
     raise Interrupted()
 

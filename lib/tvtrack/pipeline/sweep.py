@@ -35,7 +35,7 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from ..executors import SchedulerError, connect_dask, parse_scheduler_address
-from .interrupt import EXIT_INTERRUPTED, Interrupted, shielded_spawn, stop_pool, worker_init
+from .interrupt import EXIT_INTERRUPTED, Interrupted, running_a_task, shielded_spawn, stop_pool, worker_init
 from . import lean_imports
 from .paths import RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
@@ -239,9 +239,14 @@ def _execute(run: RunSpec, notebook_path: str, runs_dir: str) -> tuple[str, str,
     runtime)``, status ``"absent"`` when its outputs could not be written (nothing kept). A pool worker told
     to stop (:class:`.interrupt.Interrupted`) exits once the run has ended its kernel and removed its folder."""
     try:
-        outcome = run_notebook(
-            notebook_path, Path(runs_dir) / run.run_id, run.parameters, run.profile, extra_record={"run_id": run.run_id}
-        )
+        with running_a_task():
+            outcome = run_notebook(
+                notebook_path,
+                Path(runs_dir) / run.run_id,
+                run.parameters,
+                run.profile,
+                extra_record={"run_id": run.run_id},
+            )
     except Interrupted:
         os._exit(EXIT_INTERRUPTED)
     except WriteFailed as exc:
@@ -297,23 +302,31 @@ def run_sweep(
     spec = load_spec(spec_path)
     client = _dask_client(scheduler) if executor == "dask" else None  # before the preflight: fail fast
     runs = expand(spec)
+    # the pool's workers start (and import what a run needs) while the preflight checks the values: the
+    # sweep's serial part shrinks by a worker's start-up; a refused sweep stops them before any run
+    pool = _start_pool(jobs) if executor == "local" and jobs > 1 and len(runs) > 1 else None
     try:
         preflight(spec, runs, where=f"{spec_path}: ")
-    except UsageError:
+        sweep_dir = Path(output) if output else RUNS_DIR / spec.name
+        runs_dir = sweep_dir / "runs"
+        try:
+            runs_dir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
+        writable_directory(runs_dir, "sweep directory")
+        with output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"):
+            todo = _runs_to_do(spec, spec_path, sweep_dir, runs)
+            errors = _run_all(spec, runs, todo, (executor, client, pool), runs_dir, progress)
+            return _finish(spec, sweep_dir, runs, len(runs) - len(todo), errors)
+    except BaseException:
         if client is not None:
             client.close()
+        if pool is not None:
+            stop_pool(pool)
         raise
-    sweep_dir = Path(output) if output else RUNS_DIR / spec.name
-    runs_dir = sweep_dir / "runs"
-    try:
-        runs_dir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
-    writable_directory(runs_dir, "sweep directory")
-    with output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"):
-        todo = _runs_to_do(spec, spec_path, sweep_dir, runs)
-        errors = _run_all(spec, runs, todo, jobs, executor, client, runs_dir, progress)
-        return _finish(spec, sweep_dir, runs, len(runs) - len(todo), errors)
+    finally:
+        if pool is not None:
+            pool.shutdown()
 
 
 def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]) -> list[RunSpec]:
@@ -337,9 +350,12 @@ def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]
     return todo
 
 
-def _run_all(spec, runs, todo, jobs, executor, client, runs_dir: Path, progress: bool) -> dict[str, str]:
-    """Execute ``todo``; returns ``{run id: why}`` for the runs whose outputs could not be written."""
+def _run_all(spec, runs, todo, where: tuple, runs_dir: Path, progress: bool) -> dict[str, str]:
+    """Execute ``todo`` (``where``: the executor's name, the Dask client or None, the local pool or None);
+    returns ``{run id: why}`` for the runs whose outputs could not be written."""
     from tqdm import tqdm
+
+    executor, client, pool = where
 
     bar = tqdm(total=len(runs), initial=len(runs) - len(todo), desc=spec.name, disable=not progress, unit="run")
     failed = 0
@@ -358,11 +374,11 @@ def _run_all(spec, runs, todo, jobs, executor, client, runs_dir: Path, progress:
     try:
         if executor == "dask":
             _run_on_dask(client, todo, nb_path, str(runs_dir), tick)
-        elif jobs == 1:
+        elif pool is None:  # one job (or one run): in this process
             for r in todo:
                 tick(_execute(r, nb_path, str(runs_dir)))
         else:
-            _run_in_pool(jobs, todo, nb_path, str(runs_dir), tick)
+            _run_in_pool(pool, todo, nb_path, str(runs_dir), tick)
     except KeyboardInterrupt as exc:
         bar.close()
         remove_stale_temporaries(runs_dir)
@@ -399,21 +415,35 @@ def _finish(spec: SweepSpec, sweep_dir: Path, runs: list[RunSpec], n_skipped: in
     return SweepSummary(sweep_dir, len(runs), n_skipped, n_ok, len(runs) - n_ok, csv_path, plot, n_absent)
 
 
-def _run_in_pool(jobs: int, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
-    """The runs in a pool of ``jobs`` worker processes; Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
+def _warm_up() -> None:
+    """A pool worker's first task: import what a run needs (papermill, through the runner) while the sweep's
+    preflight runs (a sweep refused or stopped meanwhile ends the worker: :func:`.interrupt.running_a_task`)."""
+    lean_imports.papermill()
+
+
+def _start_pool(jobs: int) -> ProcessPoolExecutor:
+    """A pool of ``jobs`` spawned workers, each started now with a warm-up task; Ctrl-C ignored in them (their
+    kernels end through :func:`.interrupt.stop_pool`), each kernel given its share of the cores' threads."""
     threads = max(1, len(os.sched_getaffinity(0)) // jobs)  # jobs kernels at once share the cores
     pool = ProcessPoolExecutor(
         max_workers=jobs, mp_context=get_context("spawn"), initializer=worker_init, initargs=(threads,)
     )
+    with shielded_spawn():  # workers are spawned by submit(): they start with Ctrl-C ignored
+        for _ in range(jobs):
+            pool.submit(_warm_up)
+    return pool
+
+
+def _run_in_pool(pool: ProcessPoolExecutor, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
+    """The runs in the pool's workers (:func:`_start_pool`); Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
     try:
-        with shielded_spawn():  # workers are spawned by submit(): they start with Ctrl-C ignored
+        with shielded_spawn():  # a worker replaced by the pool starts with Ctrl-C ignored too
             futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
         for fut in as_completed(futures):
             tick(fut.result())
     except KeyboardInterrupt:
         stop_pool(pool)
         raise
-    pool.shutdown()
 
 
 def _run_on_dask(client, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
