@@ -85,3 +85,18 @@ def test_notebook_tooling_is_imported_without_the_iri_parsers_and_still_validate
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "refused", out.stderr
+
+
+def test_the_core_imports_without_scipy_stats():
+    """scipy.stats (0.4 s to import) loads at the first interval computed, not when a notebook's import cell or the
+    preflight that checks its parameters imports the core."""
+    code = (
+        "import sys\n"
+        "import tvtrack.results, tvtrack.labels, tvtrack.verdicts, tvtrack.explore, tvtrack.montecarlo\n"
+        "assert 'scipy.stats' not in sys.modules, 'imported with the core'\n"
+        "import numpy as np\n"
+        "print(tvtrack.montecarlo.mean_ci(np.random.default_rng(0).normal(size=10)).ci_high > 0)\n"
+        "assert 'scipy.stats' in sys.modules\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.strip() == "True", out.stderr

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .estimate import Estimate
 
@@ -24,7 +24,7 @@ def proportion_ci(successes: int, n: int, confidence: float = 0.95) -> Estimate:
         raise ValueError(f"proportion_ci needs n >= 1, got n={n}")
     k = int(successes)
     p = k / n
-    ci = stats.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
+    ci = scipy.stats.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
     return Estimate(p, float(np.sqrt(p * (1 - p) / n)), float(ci.low), float(ci.high), n, confidence, "Clopper-Pearson")
 
 

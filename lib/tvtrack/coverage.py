@@ -12,7 +12,7 @@ import re
 from dataclasses import replace
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .estimate import Estimate
 
@@ -113,7 +113,7 @@ def widen_to_nominal(estimate: Estimate) -> Estimate:
     stated = stated_coverage(estimate)
     if np.isnan(stated) or stated >= estimate.confidence or not np.isfinite([estimate.ci_low, estimate.ci_high]).all():
         return estimate  # unmeasured coverage cannot be calibrated: the flag stays False
-    f = stats.norm.ppf(0.5 + estimate.confidence / 2) / stats.norm.ppf(0.5 + stated / 2)
+    f = scipy.stats.norm.ppf(0.5 + estimate.confidence / 2) / scipy.stats.norm.ppf(0.5 + stated / 2)
     v, lo, hi = estimate.value, estimate.ci_low, estimate.ci_high
     if lo > 0 and v > 0:
         lo, hi = v * (lo / v) ** f, v * (hi / v) ** f

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .montecarlo import Estimate
 from .register import Register
@@ -88,7 +88,7 @@ def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) ->
     )
     if full is not None and len(full) <= n:  # a small register: every joint combination, not a sample
         return full
-    u = stats.qmc.LatinHypercube(d=len(names), seed=np.random.default_rng(seed)).random(n)
+    u = scipy.stats.qmc.LatinHypercube(d=len(names), seed=np.random.default_rng(seed)).random(n)
     out, seen = [], set()
     for row in u:
         cfg = dict(default)

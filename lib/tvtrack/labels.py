@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .register import WORLD_KINDS, side_of
 from .verdicts import LABELS, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
@@ -150,7 +150,7 @@ def share(verdicts: Sequence[str], default: str, confidence: float = 0.95) -> di
             "ci_low": 0.0,
             "ci_high": 1.0,
         }
-    ci = stats.binomtest(k, n).proportion_ci(confidence, method="exact")
+    ci = scipy.stats.binomtest(k, n).proportion_ci(confidence, method="exact")
     return {
         "agree": k,
         "decided": n,

@@ -11,7 +11,7 @@ intervals (:mod:`tvtrack.coverage`) and the probabilities from event counts (:mo
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 # re-exported: tvtrack.montecarlo.Estimate, the coverage table and the counts helpers keep their import paths
 from .counts import events_statement, mark_extrapolated, proportion_ci, rate_from_counts, zero_events_bound
@@ -112,7 +112,7 @@ def mean_ci(samples, confidence: float = 0.95, method: str = "t", rng: np.random
             confidence,
             f"bootstrap-t ({N_BOOTSTRAP} resamples); " + _coverage_text("mean bootstrap-t", n),
         )
-    half = float(stats.t.ppf(0.5 + confidence / 2, n - 1) * se)
+    half = float(scipy.stats.t.ppf(0.5 + confidence / 2, n - 1) * se)
     text = "Student t" + (f"; {_coverage_text('mean t', n)}" if n < 100 else "")
     return Estimate(mean, se, mean - half, mean + half, n, confidence, text)
 
@@ -181,7 +181,7 @@ def bootstrap_ci(
         level = 1 - _expanded_alpha(1 - confidence, n)
     elif method not in ("BCa", "percentile"):
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
-    res = stats.bootstrap(
+    res = scipy.stats.bootstrap(
         data,
         statistic,
         paired=paired,
@@ -262,8 +262,8 @@ def variance_ci(
     s2 = float(x.var(ddof=1))
     if method == "chi2":
         a = 1 - confidence
-        lo = (n - 1) * s2 / stats.chi2.ppf(1 - a / 2, n - 1)
-        hi = (n - 1) * s2 / stats.chi2.ppf(a / 2, n - 1)
+        lo = (n - 1) * s2 / scipy.stats.chi2.ppf(1 - a / 2, n - 1)
+        hi = (n - 1) * s2 / scipy.stats.chi2.ppf(a / 2, n - 1)
         return Estimate(
             s2, float(s2 * np.sqrt(2 / (n - 1))), float(lo), float(hi), n, confidence, "chi-square (normal)"
         )
@@ -409,8 +409,8 @@ def paired_test(a, b) -> dict:
     if d.size < 2 or np.all(d == 0):
         return {"t_p": 1.0, "wilcoxon_p": 1.0, "n": int(d.size)}
     return {
-        "t_p": float(stats.ttest_rel(a, b).pvalue),
-        "wilcoxon_p": float(stats.wilcoxon(a, b).pvalue),
+        "t_p": float(scipy.stats.ttest_rel(a, b).pvalue),
+        "wilcoxon_p": float(scipy.stats.wilcoxon(a, b).pvalue),
         "n": int(d.size),
     }
 
@@ -449,7 +449,7 @@ def robust_summary(
         "median": quantile_ci(x[np.isfinite(x)], 0.5, confidence) if np.isfinite(x).any() else None,
         "trimmed_mean": bootstrap_ci(
             (x[np.isfinite(x)],),
-            lambda v, axis: stats.trim_mean(v, trim, axis=axis),
+            lambda v, axis: scipy.stats.trim_mean(v, trim, axis=axis),
             confidence=confidence,
             rng=rng,
             method="percentile",
@@ -477,10 +477,10 @@ def quantile_ci(samples, q: float, confidence: float = 0.95) -> Estimate:
     if n == 0:
         raise ValueError("quantile_ci needs at least one sample")
     value = float(np.quantile(x, q))
-    lo_rank = int(stats.binom.ppf((1 - confidence) / 2, n, q))  # l: P(K < l) <= a/2
-    hi_rank = int(stats.binom.ppf(0.5 + confidence / 2, n, q))  # u - 1: P(K >= u) <= a/2
+    lo_rank = int(scipy.stats.binom.ppf((1 - confidence) / 2, n, q))  # l: P(K < l) <= a/2
+    hi_rank = int(scipy.stats.binom.ppf(0.5 + confidence / 2, n, q))  # u - 1: P(K >= u) <= a/2
     l, u = max(lo_rank, 1), min(hi_rank + 1, n)  # 1-based ranks that exist
-    coverage = float(stats.binom.cdf(u - 1, n, q) - stats.binom.cdf(l - 1, n, q))
+    coverage = float(scipy.stats.binom.cdf(u - 1, n, q) - scipy.stats.binom.cdf(l - 1, n, q))
     lo = float(x[l - 1])
     hi = float(x[u - 1])
     note = "" if coverage >= confidence else ", too few samples for both ranks"

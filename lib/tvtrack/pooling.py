@@ -7,7 +7,7 @@ import math
 from typing import Any, Mapping, Sequence
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .montecarlo import Estimate
 from .verdicts import calibrated
@@ -16,7 +16,7 @@ __all__ = ["pool"]
 
 
 def _z(conf: float) -> float:
-    return float(stats.norm.ppf(0.5 + conf / 2))
+    return float(scipy.stats.norm.ppf(0.5 + conf / 2))
 
 
 def _is_count(e: Estimate) -> bool:
@@ -56,7 +56,7 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
     if all(e.method == "exact" for e in es):
         if np.all(vals == vals[0]):
             return es[0]
-        t = stats.t.ppf(0.5 + conf / 2, k - 1)
+        t = scipy.stats.t.ppf(0.5 + conf / 2, k - 1)
         m, s = vals.mean(), vals.std(ddof=1) / math.sqrt(k)
         return Estimate(
             float(m),

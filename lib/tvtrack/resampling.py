@@ -5,7 +5,7 @@ blocks, the studentised (bootstrap-t) interval of a mean, the expanded percentil
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
+import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .estimate import Estimate
 
@@ -14,7 +14,7 @@ def _expanded_alpha(alpha: float, n: int) -> float:
     """Tail probability of the expanded percentile bootstrap (Hesterberg 2015, "What teachers should
     know about the bootstrap", sec. 5.4): ``2 Phi(-sqrt(n/(n-1)) t_{alpha/2, n-1})``, which widens
     the percentile interval by the t and ``n/(n-1)`` factors its narrowness at small n lacks."""
-    return float(2 * stats.norm.cdf(np.sqrt(n / (n - 1)) * stats.t.ppf(alpha / 2, n - 1)))
+    return float(2 * scipy.stats.norm.cdf(np.sqrt(n / (n - 1)) * scipy.stats.t.ppf(alpha / 2, n - 1)))
 
 
 def _quantiles(boot: np.ndarray, probs) -> np.ndarray:
@@ -168,13 +168,13 @@ def _grouped_bootstrap(
             raise ValueError("bootstrap_ci: BCa with clusters needs paired samples; use 'expanded percentile'")
         leave_one_out = np.array([[k for k in range(C) if k != i] for i in range(C)])
         jack = _cluster_statistics(data, statistic, members, [leave_one_out] * len(data))
-        z0 = stats.norm.ppf(
+        z0 = scipy.stats.norm.ppf(
             np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size, 1 / boot.size, 1 - 1 / boot.size)
         )
         d = jack.mean() - jack
         acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
-        z = stats.norm.ppf([a / 2, 1 - a / 2])
-        probs = stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
+        z = scipy.stats.norm.ppf([a / 2, 1 - a / 2])
+        probs = scipy.stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
     else:
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
     lo, hi = np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan)
