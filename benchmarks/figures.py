@@ -16,23 +16,28 @@ HEADER = ("| figure | value | target | pass |", "|---|---|---|---|")
 
 @dataclass(frozen=True)
 class Figure:
-    """One benchmark figure: ``value`` against ``target`` (``at_least``: a floor, else a ceiling)."""
+    """One benchmark figure: ``value`` against ``target`` (``at_least``: a floor, else a ceiling); a ``target`` of
+    ``None`` is a figure the table reports without a pass or fail (a measured trade-off, not a promise)."""
 
     name: str
     value: float
-    target: float
+    target: float | None
     at_least: bool
     unit: str = ""
     note: str = ""  # measuring conditions shown after the value (load average, engine)
 
     @property
     def passed(self) -> bool:
+        if self.target is None:
+            return True
         return self.value >= self.target if self.at_least else self.value <= self.target
 
     def row(self) -> str:
         unit = f" {self.unit}" if self.unit else ""
-        target = f"{'>=' if self.at_least else '<='} {self.target:.4g}{unit}"
         note = f" ({self.note})" if self.note else ""
+        if self.target is None:
+            return f"| {self.name} | {self.value:.4g}{unit}{note} | reported, no target | - |"
+        target = f"{'>=' if self.at_least else '<='} {self.target:.4g}{unit}"
         return f"| {self.name} | {self.value:.4g}{unit}{note} | {target} | {'yes' if self.passed else 'no'} |"
 
     def message(self) -> str:
@@ -42,10 +47,12 @@ class Figure:
 _FIGURES: dict[str, Figure] = {}
 
 
-def record_figure(name: str, value: float, target: float, *, at_least: bool, unit: str = "", note: str = "") -> Figure:
+def record_figure(
+    name: str, value: float, target: float | None, *, at_least: bool = True, unit: str = "", note: str = ""
+) -> Figure:
     """Record a figure for the table and return it (assert ``fig.passed, fig.message()`` in the test);
     ``note`` states the measuring conditions (e.g. :func:`load_note`)."""
-    fig = Figure(name, float(value), float(target), at_least, unit, note)
+    fig = Figure(name, float(value), None if target is None else float(target), at_least, unit, note)
     _FIGURES[name] = fig
     return fig
 

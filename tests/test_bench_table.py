@@ -43,3 +43,12 @@ def test_a_note_states_the_conditions_in_the_value_cell(tmp_path):
     fig = figures.Figure("001 speed-up", 412.0, 400, at_least=True, unit="x", note=note)
     figures.write_table([fig], table)
     assert figures.read_table(table)["001 speed-up"] == f"| 001 speed-up | 412 x ({note}) | >= 400 x | yes |"
+
+
+def test_a_figure_without_a_target_is_reported_without_a_pass(tmp_path):
+    table = tmp_path / "table.md"
+    fig = figures.Figure("000 screening's saving", 1.07, None, at_least=True, note="16 joint configurations")
+    assert fig.passed  # nothing to fail: a measured trade-off
+    figures.write_table([fig], table)
+    row = figures.read_table(table)["000 screening's saving"]
+    assert row == "| 000 screening's saving | 1.07 (16 joint configurations) | reported, no target | - |"

@@ -66,6 +66,26 @@ def test_measure_returns_every_claim_with_the_parts_its_rule_reads_and_reproduce
     assert study.measure(DEFAULT, 8, SMALL)["C000-6"].value != a["C000-6"].value
 
 
+def test_measure_asked_for_some_claims_measures_only_those_with_the_same_values():
+    # the explorer asks a condition for the claims it touches and a screened run's confirmation for those that may
+    # flip: a claim's value must not depend on which others are measured with it (fresh memo, a joint-like config)
+    cfg = {
+        **DEFAULT,
+        "photon model": "Poisson counts",
+        "sigma_1": "0.2 T",
+        "manoeuvre": REGISTER["manoeuvre"].alternatives[0],
+    }
+    study._MEMO.clear()
+    some = study.measure(cfg, 11, SMALL, claims=frozenset({"C000-3", "C000-7"}))
+    assert set(some) == {"C000-3", "C000-5", "C000-7"}  # C000-5 and C000-7 are one computation
+    study._MEMO.clear()
+    full = study.measure(cfg, 11, SMALL)
+    for cid in some:
+        assert repr(some[cid]) == repr(full[cid]), cid
+    study._MEMO.clear()
+    assert set(study.measure(cfg, 11, SMALL, claims=frozenset({"C000-6"}))) == {"C000-6"}
+
+
 def test_at_zero_contrast_the_variants_are_the_same_filter_and_the_ratio_is_exact():
     m = study.measure(DEFAULT, 3, SMALL)
     e = m["C000-3"]["P=0"]

@@ -40,6 +40,7 @@ __all__ = [
     "MESSAGE",
     "psi_at",
     "measure",
+    "MEASURED_CLAIMS",
     "steady_runs",
     "CONTRAST_CONVENTIONS",
     "cost_ratio",
@@ -55,6 +56,8 @@ MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
 #: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
 #: final window_T), named in plain words (the register table shows them).
 LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
+#: The claims :func:`measure` measures, in the order it returns them.
+MEASURED_CLAIMS = ("C000-1", "C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-8", "C000-9")
 #: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
 #: (so those reuse the default's memoised runs).
 ADVERSARIAL_READS = {
@@ -469,29 +472,33 @@ def _c9(cfg, seed, sizes):
     }
 
 
-def measure(config: dict, seed: int, sizes: Sizes = Sizes()) -> dict:
+def measure(config: dict, seed: int, sizes: Sizes = Sizes(), claims: frozenset | None = None) -> dict:
     """One full-size run of the study at ``config`` (every register entry present), draws from ``seed``.
+
+    ``claims`` (claim ids, ``None`` for all): measure only these (:func:`tvtrack.explore.explore` asks a condition
+    for the claims that read an entry it changes, a screened run's confirmation for the claims that may flip).
+    Each claim draws from its own streams of ``seed``, so a claim's value does not depend on which others are
+    measured with it.
 
     Returns
     -------
     dict  {claim id: measured}: C000-1, -2, -3, -5, -6, -7, -8, -9 (each a dict of parts, an Estimate or a
-    list of Estimates, as the claim's rule in the notebook reads it)
+    list of Estimates, as the claim's rule in the notebook reads it), those of ``claims`` only when given (C000-5
+    and C000-7 come together: one computation)
     """
 
     def reads(claim):  # the configuration with the adversarial entries the claim does not read at their default
         return {**config, **{k: d for k, (d, claims) in ADVERSARIAL_READS.items() if claim not in claims}}
 
-    c5, c7 = _c5_c7(reads("C000-5"), seed, sizes)
-    return {
-        "C000-1": _c1(reads("C000-1"), seed, sizes),
-        "C000-2": _c2(reads("C000-2"), seed, sizes),
-        "C000-3": _c3(reads("C000-3"), seed, sizes),
-        "C000-5": c5,
-        "C000-6": _c6(reads("C000-6"), seed, sizes),
-        "C000-7": c7,
-        "C000-8": _c8(reads("C000-8"), seed, sizes),
-        "C000-9": _c9(reads("C000-9"), seed, sizes),
-    }
+    want = set(MEASURED_CLAIMS) if claims is None else set(claims)
+    out = {}
+    if want & {"C000-5", "C000-7"}:
+        out["C000-5"], out["C000-7"] = _c5_c7(reads("C000-5"), seed, sizes)
+    single = {"C000-1": _c1, "C000-2": _c2, "C000-3": _c3, "C000-6": _c6, "C000-8": _c8, "C000-9": _c9}
+    for cid, fn in single.items():
+        if cid in want:
+            out[cid] = fn(reads(cid), seed, sizes)
+    return {cid: out[cid] for cid in MEASURED_CLAIMS if cid in out}
 
 
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
