@@ -85,6 +85,7 @@ def test_a_conforming_fake_passes():
         ({"RULES": {"C999-1": "reproduced"}}, "not a tvtrack.verdicts.Rule"),
         ({"RULES": {"C999-3": InBand("x", high=1.0)}}, "RULES: 'C999-3' is not a claim"),
         ({"PARAMETERS": {"n_trials": (1, 100)}}, "not a tvtrack.parameters.ParamRule"),
+        ({"PARAMETERS": {"workers": Integer(1, 16)}}, "name the number of worker processes n_workers"),
         ({"CLAIMS": {"C999-1": ("The error is below 1 px.", "< 1 px")}}, "exactly 'statement' and 'paper_value'"),
         ({"CLAIMS": {"C998-1": {"statement": "s", "paper_value": "v"}}}, "does not start with 'C999-'"),
         ({"Sizes": {"n_trials": 10}}, "Sizes must be a class"),

@@ -12,7 +12,8 @@ name            what it is
 ``RULES``       ``{claim id: Rule}``: the :mod:`tvtrack.verdicts` rule that decides each claim (claim rules
                 only), built at the notebook's default parameters
 ``PARAMETERS``  ``{notebook parameter: ParamRule}``: the rules :func:`tvtrack.parameters.validate_parameters`
-                applies to the notebook's parameters cell (ranges written once)
+                applies to the notebook's parameters cell (ranges written once); a notebook that spreads work
+                over processes names their number ``n_workers`` (``make reproduce`` sets it to cores // jobs)
 ``CLAIMS``      ``{claim id: {"statement": str, "paper_value": str}}``: what the paper says, in its words
 ``Sizes``       the class that holds one full-size run's Monte Carlo sizes and grids (the notebook fills it
                 from its parameters)
@@ -174,6 +175,11 @@ def _depends_problems(depends: Any, register: Any, claims: Mapping) -> list[str]
     return out
 
 
+#: Other names of the worker-process parameter, refused: the pipeline sets ``n_workers`` only (a notebook whose
+#: parameter had another name ran its own pool beside another notebook in ``make reproduce``, two processes per core).
+WORKER_ALIASES = ("workers", "n_jobs", "jobs", "processes", "n_processes", "n_procs", "n_cores", "cores")
+
+
 def _parameters_problems(parameters: Any) -> list[str]:
     from .parameters import ParamRule
 
@@ -183,6 +189,10 @@ def _parameters_problems(parameters: Any) -> list[str]:
         f"PARAMETERS[{k!r}] is a {type(v).__name__}, not a tvtrack.parameters.ParamRule"
         for k, v in parameters.items()
         if not isinstance(v, ParamRule)
+    ] + [
+        f"PARAMETERS[{k!r}]: name the number of worker processes n_workers (make reproduce sets it to cores // jobs)"
+        for k in parameters
+        if k in WORKER_ALIASES
     ]
 
 

@@ -148,7 +148,7 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
         max_replicates=5,
         joint=3,
         screen_joint=False,
-        workers=2,
+        n_workers=2,
         rotation_hz=8.0,
         transient_s=2.0,
         fig1_duration_s=5.0,

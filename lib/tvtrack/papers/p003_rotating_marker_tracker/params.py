@@ -14,7 +14,7 @@ RULES = {
     "max_replicates": Integer(3, 40),
     "joint": Integer(0, 64),
     "screen_joint": Boolean(),
-    "workers": Integer(1, 16),
+    "n_workers": Integer(1, 16),
     "rotation_hz": Real(0.0, 500.0, low_open=True),
     "transient_s": Real(0.0, 60.0),
     "fig1_duration_s": Real(0.0, 60.0, low_open=True),
