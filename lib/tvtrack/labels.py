@@ -348,71 +348,28 @@ def label_parts(
     by_name = {e.name: e for e in entries}
     default_cfg = {e.name: e.default for e in entries}
     rep_rows = [_row(rule, parts, r["measured"], {"seed": int(r["seed"])}) for r in replicates]
-    cond_rows = [
-        _row(
-            rule,
-            parts,
-            c["measured"],
-            {
-                "changed": dict(c["changed"]),
-                "kind": c.get("kind", "single"),
-                "text": _phrase(c["changed"], by_name),
-                "config": {**default_cfg, **dict(c.get("config", c["changed"]))},
-            },
-        )
-        for c in conditions
-    ]
+    cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg)
     world_varied = any(by_name[k].kind in WORLD_KINDS for c in cond_rows for k in c["changed"] if k in by_name)
     explored = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint")])
     need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), _n_combinations(list(by_name), by_name))
     provisional = not deterministic and len(explored) < max(need, 1)
-    n_reps = len(rep_rows)
-    pooled_n = _runs_behind(measured)
+    context = {
+        "rep_rows": rep_rows,
+        "cond_rows": cond_rows,
+        "explored": explored,
+        "by_name": by_name,
+        "default_cfg": default_cfg,
+        "open_world": world_varied and not provisional,
+        "n_reps": len(rep_rows),
+        "pooled_n": _runs_behind(measured),
+        "max_replicates": design.get("max_replicates"),
+    }
     part_out, where = {}, []
+    pairs = part_pairs(rule, measured)
     for name, prule in parts.items():
-        pair = part_pairs(rule, measured).get(name)
-        j = pair[0].judge(pair[1]) if pair else Judgement("undecided", "not measured", False, math.inf)
-        rv = [r["parts"][name] for r in rep_rows if name in r["parts"]]
-        rows = [{**c, "verdict": c["parts"][name]} for c in cond_rows if name in c["parts"]]
-        flips = attribute(j.verdict, rows, by_name, rv[0] if rv else None)
-        ex_rows = [{**c, "verdict": c["parts"][name]} for c in explored if name in c["parts"]]
-        sens_rows = [{"config": c["config"], "value": _scalar(c["part_measured"].get(name))} for c in ex_rows]
-        if rep_rows and name in rep_rows[0]["part_measured"]:
-            sens_rows.append({"config": default_cfg, "value": _scalar(rep_rows[0]["part_measured"][name])})
-        decisive_reps = {v for v in rv if v in ("reproduced", "not reproduced")}
-        pwhere: list[str] = []
-        runs = None
-        if isinstance(prule, NotCheckable):
-            label = NO_PART_LABEL
-        elif len(decisive_reps) > 1:
-            label = "unstable"
-            pwhere.append(_replicate_text(rv))
-        elif not is_decisive(j.verdict):
-            label = NO_PART_LABEL
-            runs = _runs_text(j, n_reps, pooled_n, design.get("max_replicates"))
-            pwhere.append(runs["text"])
-        elif any(f["side"] == "reading" for f in flips):
-            label = "depends"
-        elif flips:
-            label = "limited"
-        elif not world_varied or provisional:
-            label = "unexplored"
-        else:
-            label = "robust"
-        pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
+        part_out[name] = _label_part(name, prule, pairs.get(name), context)
         prefix = "" if len(parts) == 1 else f"({name}) "
-        where += [prefix + w for w in pwhere]
-        part_out[name] = {
-            "verdict": j.verdict,
-            "label": label,
-            "where": pwhere,
-            "replicate_verdicts": rv,
-            "n_conditions": len(rows),
-            "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
-            "flips": flips,
-            "sensitivity": sensitivity(sens_rows, list(by_name), by_name, default_cfg),
-            "runs_to_decide": runs,
-        }
+        where += [prefix + w for w in part_out[name]["where"]]
     labels = [p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL]
     label = weakest_label(labels) if labels else NO_PART_LABEL  # no decided part: nothing to label
     for r in (*rep_rows, *cond_rows):
@@ -427,6 +384,75 @@ def label_parts(
         "conditions": cond_rows,
         "deterministic": deterministic,
     }
+
+
+def _condition_rows(rule: Rule, parts: Mapping[str, Rule], conditions, by_name: Mapping, default_cfg: dict) -> list:
+    """One row per condition: its changes in words, its full configuration, its verdicts (:func:`_row`)."""
+    return [
+        _row(
+            rule,
+            parts,
+            c["measured"],
+            {
+                "changed": dict(c["changed"]),
+                "kind": c.get("kind", "single"),
+                "text": _phrase(c["changed"], by_name),
+                "config": {**default_cfg, **dict(c.get("config", c["changed"]))},
+            },
+        )
+        for c in conditions
+    ]
+
+
+def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dict:
+    """One part's record: its pooled verdict (``pair``: (rule, measured) at the default, None when the part was
+    not measured), label, where-lines, replicate verdicts, share, flips, sensitivity and runs to decide;
+    ``ctx`` holds the claim's rows and design (:func:`label_parts`)."""
+    j = pair[0].judge(pair[1]) if pair else Judgement("undecided", "not measured", False, math.inf)
+    rv = [r["parts"][name] for r in ctx["rep_rows"] if name in r["parts"]]
+    rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
+    flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None)
+    ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
+    sens_rows = [{"config": c["config"], "value": _scalar(c["part_measured"].get(name))} for c in ex_rows]
+    rep0 = ctx["rep_rows"][0]["part_measured"] if ctx["rep_rows"] else {}
+    if name in rep0:
+        sens_rows.append({"config": ctx["default_cfg"], "value": _scalar(rep0[name])})
+    pwhere: list[str] = []
+    runs = None
+    if isinstance(prule, NotCheckable):
+        label = NO_PART_LABEL
+    elif len({v for v in rv if v in ("reproduced", "not reproduced")}) > 1:
+        label = "unstable"
+        pwhere.append(_replicate_text(rv))
+    elif not is_decisive(j.verdict):
+        label = NO_PART_LABEL
+        runs = _runs_text(j, ctx["n_reps"], ctx["pooled_n"], ctx["max_replicates"])
+        pwhere.append(runs["text"])
+    else:
+        label = _decided_label(flips, ctx["open_world"])
+    pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
+    return {
+        "verdict": j.verdict,
+        "label": label,
+        "where": pwhere,
+        "replicate_verdicts": rv,
+        "n_conditions": len(rows),
+        "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
+        "flips": flips,
+        "sensitivity": sensitivity(sens_rows, list(ctx["by_name"]), ctx["by_name"], ctx["default_cfg"]),
+        "runs_to_decide": runs,
+    }
+
+
+def _decided_label(flips: Sequence[Mapping], open_world: bool) -> str:
+    """The label of a part decided at the default with replicates that agree: ``depends`` when a reading of the
+    paper flips it, ``limited`` when only a world beyond it does, else ``robust`` where the explored design was
+    large enough and varied the world (``open_world``), ``unexplored`` where not."""
+    if any(f["side"] == "reading" for f in flips):
+        return "depends"
+    if flips:
+        return "limited"
+    return "robust" if open_world else "unexplored"
 
 
 def _row(rule: Rule, parts: Mapping[str, Rule], measured: Any, extra: dict) -> dict:
