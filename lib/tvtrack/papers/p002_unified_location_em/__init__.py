@@ -4,7 +4,8 @@ V. E. Savanevich, "A unified location algorithm for determining the motion param
 Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).
 
 Modules: ``model`` (the linear-motion scene: geometry, truth, designation, photon counts), ``em`` (the ULA: EM
-over all frames, eqs. (10)-(11), with SQUAREM and the MAP variant; its E- and M-steps in ``em_steps``),
+over all frames, eqs. (10)-(11), with SQUAREM and the MAP variant; its E- and M-steps in ``em_steps``, its
+iteration and stopping rules in ``em_loop``),
 ``two_stage`` (per-frame marks and line fits, the paper's comparator), ``sim_config`` (a simulation's settings,
 point and seeds), ``simulation`` (one configuration's Monte Carlo: every algorithm on the same scenes, errors,
 bounds), ``location_study`` (an on-demand cache of configurations), ``study`` (the measurement functions the

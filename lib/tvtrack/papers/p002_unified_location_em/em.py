@@ -41,6 +41,7 @@ from scipy.special import ndtr
 from tvtrack import jit
 
 from . import _kernels
+from .em_loop import CALM, EMModel, EMState, MapPrior, iterate  # noqa: F401 - CALM: the stop of tol_loglik, read here
 from .em_steps import (  # noqa: F401 - the entries and the steps (tests and the kernel's twin read them here)
     PixelEntries,
     _axis_tables,
@@ -184,22 +185,6 @@ def track_distance(theta, times) -> np.ndarray:
     return np.sqrt(d2.mean(axis=1))
 
 
-#: Successive steps whose Aitken estimate of the remaining gain must be below ``tol_loglik`` before a trial stops (one
-#: such step can be a lull of EM's rate while two images split).
-CALM = 2
-
-
-def _aitken_gap(ll, prev_ll, prev_rise):
-    """Aitken estimate of the log-likelihood still to be gained, shape (n,): with the rises ``r_k = L_k - L_{k-1}``
-    of two successive steps and their ratio ``a = r_k / r_{k-1}`` (EM's linear rate), the remaining gain is
-    ``r_k a / (1 - a)`` (``inf`` until two rises are known or while the rate is not in [0, 1))."""
-    rise = ll - prev_ll
-    with np.errstate(divide="ignore", invalid="ignore"):
-        a = rise / prev_rise
-        gap = np.where((a >= 0) & (a < 1), rise * a / (1 - a), np.inf)
-    return np.where(np.isfinite(prev_rise) & np.isfinite(rise), np.maximum(gap, 0.0), np.inf)
-
-
 def _in_frame_mass(theta, sigma, times, shape):
     """Smallest in-window PSF mass over objects and frames, shape (N,)."""
     rows, cols = shape
@@ -303,11 +288,51 @@ def unified_location_em(
     -------
     EMResult
     """
+    theta0 = _checked_start(entries, theta0)
+    _check_options(
+        motion, tol_px, max_iter, tol_loglik, accelerate, estimate_weights, estimate_sigma, merge_px, min_in_frame_mass
+    )
+    n, q = theta0.shape[:2]
+    times = _frame_times(times, entries.n_frames)
+    static = motion == "static"
+    sigma, pw, p0 = _mixture(sigma_px, p, p_noise, (n, q))
+    span = max(float(times.max() - times.min()), 1.0)
+    prior = _map_prior(prior_sd, theta0, sigma, static, estimate_sigma)
+    fast = jit.enabled()  # compiled steps (:mod:`._kernels`) or their NumPy twins, the switch read once
+    model = EMModel(
+        entries=entries,
+        times=times,
+        static=static,
+        estimate_weights=estimate_weights,
+        estimate_sigma=estimate_sigma,
+        prior=prior,
+        span=span,
+        e_step=_kernels.e_step if fast else _e_step_numpy,
+        fast=fast,
+    )
+    photons = entries.photons_per_trial()
+    state = EMState.start(theta0, static, pw, p0, sigma, photons)
+    iterate(
+        model, state, accelerate=accelerate, tol_px=tol_px, tol_loglik=tol_loglik, max_iter=max_iter, history=history
+    )
+    _final_loglik(entries, state, times, photons)
+    return _result(state, theta0, times, entries.shape, max_iter, merge_px, min_in_frame_mass)
+
+
+def _checked_start(entries: PixelEntries, theta0) -> np.ndarray:
+    """``theta0`` as a float array, shape (N, Q, 4) with ``N = entries.n_trials`` (px, px/frame), checked finite."""
     theta0 = np.asarray(theta0, dtype=float)
     if theta0.ndim != 3 or theta0.shape[-1] != 4 or theta0.shape[0] != entries.n_trials:
         raise ValueError(f"theta0 has shape {theta0.shape}; it must be ({entries.n_trials}, Q, 4)")
     if not np.isfinite(theta0).all():
         raise ValueError("theta0 must be finite")
+    return theta0
+
+
+def _check_options(
+    motion, tol_px, max_iter, tol_loglik, accelerate, estimate_weights, estimate_sigma, merge_px, min_in_frame_mass
+) -> None:
+    """Raise ``ValueError`` for an option of :func:`unified_location_em` out of its range (see there)."""
     if motion not in ("linear", "static"):
         raise ValueError(f"motion = {motion!r} must be 'linear' or 'static'")
     if not tol_px > 0:
@@ -327,156 +352,88 @@ def unified_location_em(
         raise ValueError(f"merge_px = {merge_px} must be >= 0")
     if not 0 < min_in_frame_mass <= 1:
         raise ValueError(f"min_in_frame_mass = {min_in_frame_mass} must be in (0, 1]")
-    n, q = theta0.shape[:2]
-    times = np.arange(entries.n_frames, dtype=float) if times is None else np.asarray(times, float)
-    if times.shape != (entries.n_frames,):
-        raise ValueError(f"times has shape {times.shape}; it must be ({entries.n_frames},)")
-    static = motion == "static"
+
+
+def _frame_times(times, n_frames: int) -> np.ndarray:
+    """Frame times, shape (T,), frames: ``times`` checked against ``n_frames`` (default ``0..T-1``)."""
+    times = np.arange(n_frames, dtype=float) if times is None else np.asarray(times, float)
+    if times.shape != (n_frames,):
+        raise ValueError(f"times has shape {times.shape}; it must be ({n_frames},)")
+    return times
+
+
+def _mixture(sigma_px, p, p_noise, shape):
+    """Per-trial PSF widths (px) and weights of the mixture (U1), ``(sigma (N, Q), p (N, Q), p_noise (N,))`` for
+    ``shape = (N, Q)``, checked positive (``p_noise`` >= 0) and summing to one (``p_noise + sum_j p_j = 1``, eq.
+    (2)); fresh arrays (the EM updates them in place)."""
+    n, q = shape
     sigma = _broadcast(sigma_px, (n, q), "sigma_px", positive=True)
     pw = _broadcast(p, (n, q), "p", positive=True)
     p0 = _broadcast(p_noise, (n,), "p_noise", positive=False)
     if np.any(np.abs(pw.sum(axis=1) + p0 - 1.0) > 1e-9):
         raise ValueError("weights must satisfy p_noise + sum(p) = 1")
-    span = max(float(times.max() - times.min()), 1.0)
-    second = estimate_sigma
-    prior = None
-    if prior_sd is not None:
-        sd_x, sd_v = (float(v) for v in prior_sd)
-        if not (sd_x > 0 and sd_v >= 0) or static or estimate_sigma:
-            raise ValueError(
-                f"prior_sd = {prior_sd}: needs position sd > 0, velocity sd >= 0, linear motion and fixed sigma"
-            )
-        prior = (theta0, sigma**2 / sd_x**2, sigma**2 / max(sd_v, 1e-9) ** 2)
+    return sigma, pw, p0
 
-    def log_prior(th, rows):
-        if prior is None:
-            return 0.0
-        mean, a, c = (x[rows] for x in prior)
-        sg2 = sigma[rows] ** 2
-        return -0.5 * (
-            (a / sg2)[..., None] * (th[..., :2] - mean[..., :2]) ** 2
-            + (c / sg2)[..., None] * (th[..., 2:] - mean[..., 2:]) ** 2
-        ).sum(axis=(1, 2))
 
-    theta = theta0.copy()
-    if static:
-        theta[..., 2:] = 0.0
-    photons = entries.photons_per_trial()
-    loglik = np.zeros(n)
-    n_iter = np.zeros(n, dtype=np.int64)
-    converged = np.zeros(n, dtype=bool)
-    degenerate = photons <= 0
-    prev_ll = np.full(n, -np.inf)  # log-likelihood at the previous step's start (tol_loglik)
-    prev_rise = np.full(n, np.nan)  # and the rise of the step before
-    calm = np.zeros(n, dtype=np.int64)  # successive steps whose remaining gain was below tol_loglik
-    hist_t, hist_l = [], []
+def _map_prior(prior_sd, theta0, sigma, static: bool, estimate_sigma: bool) -> MapPrior | None:
+    """The MAP-EM prior of ``prior_sd = (position sd px, velocity sd px/frame)`` centred on ``theta0`` (N, Q, 4),
+    with the PSF widths ``sigma`` (N, Q, px); None without ``prior_sd``. A velocity sd of 0 is taken as 1e-9
+    px/frame."""
+    if prior_sd is None:
+        return None
+    sd_x, sd_v = (float(v) for v in prior_sd)
+    if not (sd_x > 0 and sd_v >= 0) or static or estimate_sigma:
+        raise ValueError(
+            f"prior_sd = {prior_sd}: needs position sd > 0, velocity sd >= 0, linear motion and fixed sigma"
+        )
+    return MapPrior(mean=theta0, a=sigma**2 / sd_x**2, c=sigma**2 / max(sd_v, 1e-9) ** 2, sigma=sigma)
 
-    fast = jit.enabled()  # compiled steps (:mod:`._kernels`) or their NumPy twins, the switch read once
-    e_step = _kernels.e_step if fast else _e_step_numpy
 
-    def step(work, th, pw_, p0_, sg_):
-        sums, ll = e_step(work, th, pw_, p0_, sg_, times, entries.shape, second)
-        if prior is None:
-            new, bad = _kernels.m_step(sums, th, static) if fast else _m_step(sums, th, static)
-        else:
-            new, bad = _m_step(sums, th, static, tuple(x[work.trials] for x in prior))
-        ll = ll + log_prior(th, work.trials)
-        if estimate_sigma:
-            sg_ = _sigma_update(sums, new, sg_, bad)
-        if estimate_weights:
-            tot = np.add.reduceat(work.count, work.starts)[:, None]
-            pw_ = np.where(bad[:, None], pw_, np.maximum(sums[..., 0] / tot, 1e-12))
-            p0_ = np.clip(1.0 - pw_.sum(axis=1), 0.0, 1.0)
-        return new, pw_, p0_, sg_, ll, bad
-
-    def change(a, b):
-        d = np.abs(a - b)
-        return np.maximum(d[..., :2].max(axis=(1, 2)), span * d[..., 2:].max(axis=(1, 2)))
-
-    # the working set holds the trials still iterating plus a few that stopped recently; it is
-    # rebuilt (entries regrouped) only when fewer than 60 % of it still iterate
-    active = np.flatnonzero(~degenerate)
-    work = _Work(entries, active)
-    live = np.ones(active.size, dtype=bool)
-    while live.any():
-        th, pw_a, p0_a, sg_a = theta[active], pw[active], p0[active], sigma[active]
-        if accelerate is None:
-            new, pw_n, p0_n, sg_n, ll, bad = step(work, th, pw_a, p0_a, sg_a)
-            delta = change(new, th)
-            if estimate_sigma:
-                delta = np.maximum(delta, np.abs(sg_n - sg_a).max(axis=1))
-            if estimate_weights:
-                delta = np.maximum(delta, np.abs(pw_n - pw_a).max(axis=1))
-            taken = 1
-        else:
-            t1, *_, l0, bad1 = step(work, th, pw_a, p0_a, sg_a)
-            t2, *_, l1, bad2 = step(work, t1, pw_a, p0_a, sg_a)
-            r = t1 - th
-            v = t2 - t1 - r
-            nr = np.sqrt((r**2).sum(axis=(1, 2)))
-            nv = np.sqrt((v**2).sum(axis=(1, 2)))
-            alpha = np.where(nv > 0, np.minimum(-nr / np.where(nv > 0, nv, 1.0), -1.0), -1.0)
-            tx = th - 2 * alpha[:, None, None] * r + alpha[:, None, None] ** 2 * v
-            t3, *_, lx, bad3 = step(work, tx, pw_a, p0_a, sg_a)
-            ok = (lx >= l0) & np.isfinite(lx) & ~bad3
-            new = np.where(ok[:, None, None], t3, t2)
-            delta = np.where(ok, change(t3, tx), change(t2, t1))
-            ll, bad = l0, bad1 | bad2
-            pw_n, p0_n, sg_n = pw_a, p0_a, sg_a
-            taken = 3
-        upd = active[live]
-        loglik[upd] = ll[live]
-        theta[upd] = np.where(bad[live, None, None], th[live], new[live])
-        pw[upd], p0[upd], sigma[upd] = pw_n[live], p0_n[live], sg_n[live]
-        n_iter[upd] += taken
-        if tol_loglik is not None:
-            gap = _aitken_gap(ll, prev_ll[active], prev_rise[active])
-            prev_rise[upd] = (ll - prev_ll[active])[live]
-            prev_ll[upd] = ll[live]
-            calm[upd] = np.where(gap[live] < tol_loglik, calm[upd] + 1, 0)
-            conv = (calm[active] >= CALM) & ~bad & live
-        else:
-            conv = (delta < tol_px) & ~bad & live
-        converged[active[conv]] = True
-        degenerate[active[bad & live]] = True
-        if history:
-            hist_t.append(theta.copy())
-            hist_l.append(loglik.copy())
-        live &= ~conv & ~bad & (n_iter[active] < max_iter)
-        if live.sum() < 0.6 * live.size:
-            active = active[live]
-            work = _Work(entries, active)
-            live = np.ones(active.size, dtype=bool)
-
-    # final log-likelihood at the returned estimate
+def _final_loglik(entries: PixelEntries, state: EMState, times, photons) -> None:
+    """Set ``state.loglik`` to the log-likelihood ``sum n_ikl ln v_ikl`` (eq. (3)) at the returned estimates of the
+    trials with photons (``photons``, shape (N,), their total counts; the prior's term left out)."""
     live = np.flatnonzero(photons > 0)
     if live.size:
-        _, loglik[live] = _e_step(
-            _Work(entries, live), theta[live], pw[live], p0[live], sigma[live], times, entries.shape, False
+        _, state.loglik[live] = _e_step(
+            _Work(entries, live),
+            state.theta[live],
+            state.pw[live],
+            state.p0[live],
+            state.sigma[live],
+            times,
+            entries.shape,
+            False,
         )
-    cap_hit = ~converged & ~degenerate & (n_iter >= max_iter)
+
+
+def _result(state: EMState, theta0, times, shape, max_iter: int, merge_px: float, min_in_frame_mass: float):
+    """The :class:`EMResult` of a finished ``state``, with the flags: cap hit, merged tracks (closer than
+    ``merge_px`` px in RMS over the frames), labels swapped against ``theta0`` (N, Q, 4) and objects that left the
+    window ``shape`` (less than ``min_in_frame_mass`` of the PSF inside in some frame)."""
+    theta, n, q = state.theta, theta0.shape[0], theta0.shape[1]
+    cap_hit = ~state.converged & ~state.degenerate & (state.n_iter >= max_iter)
     merged = (track_distance(theta, times) < merge_px).any(axis=1) if q > 1 else np.zeros(n, dtype=bool)
     if q > 1:
         _, same = match_labels(theta, theta0, times)
         swapped = ~same & ~merged
     else:
         swapped = np.zeros(n, dtype=bool)
-    left = _in_frame_mass(theta, sigma, times, entries.shape) < min_in_frame_mass
+    left = _in_frame_mass(theta, state.sigma, times, shape) < min_in_frame_mass
     return EMResult(
         theta=theta,
-        p=pw,
-        p_noise=p0,
-        sigma=sigma,
-        loglik=loglik,
-        n_iter=n_iter,
-        converged=converged,
+        p=state.pw,
+        p_noise=state.p0,
+        sigma=state.sigma,
+        loglik=state.loglik,
+        n_iter=state.n_iter,
+        converged=state.converged,
         cap_hit=cap_hit,
-        degenerate=degenerate,
+        degenerate=state.degenerate,
         merged=merged,
         swapped=swapped,
         left_frame=left,
-        history_theta=hist_t,
-        history_loglik=hist_l,
+        history_theta=state.hist_t,
+        history_loglik=state.hist_l,
     )
 
 

@@ -209,72 +209,78 @@ def run_config(settings: StudySettings, cfg: Config) -> dict:
         :func:`_run_extras`) on each block of scenes.
     """
     s_ = replace(settings, **dict(cfg.variant))
-    q, d, pix, m, T, algs, dsd, init, assoc, n, tag, vsd, _ = cfg
-    accel = None if s_.accelerate == "none" else "squarem"
-    g = scene_geometry(q, T, d, pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
-    s = g.sigma_px
-    noise_pp = noise_per_pixel(s_.noise_density, s)  # photons per pixel = density x pixel area
-    times = frame_times(T)
-    p, p0 = mixture_weights(m, noise_pp, g.n_pixels, q)
-    tol = s_.tol_sigma * s
-    out = {
-        k: []
-        for k in (
-            "truth",
-            "ula",
-            "ula_flags",
-            "ula_iter",
-            "plain",
-            "plain_iter",
-            "plain_cap",
-            "map",
-            "em",
-            "em_vd",
-            "em_flags",
-            "em_iter",
-            "em_plain_iter",
-            "em_plain_cap",
-            "cr",
-            "cr_flags",
-            "bic",
-            "ula_loglik",
-            "ms_gap",
-            "ula_w",
-            "ula_vd",
-            "ula_q1",
-        )
-    }
-    timing = {"ula": 0.0, "plain": 0.0, "map": 0.0, "em": 0.0, "em_plain": 0.0, "cr": 0.0}
+    shared = _config_inputs(s_, cfg)
+    out = {k: [] for k in _OUTPUTS}
+    timing = dict.fromkeys(_TIMED, 0.0)
     block_seed = []
-    for b, block in _seeded_batches(s_, cfg, g, noise_pp):
+    for b, block in _seeded_batches(s_, cfg, shared.g, shared.noise_pp):
         block_seed.append(np.full(len(b.truth), block))
         out["truth"].append(b.truth)
-        x = SimpleNamespace(
-            s_=s_,
-            cfg=cfg,
-            b=b,
-            block=block,
-            ent=pixel_entries(b.counts),
-            s=s,
-            p=p,
-            p0=p0,
-            tol=tol,
-            accel=accel,
-            times=times,
-            g=g,
-            noise_pp=noise_pp,
-        )
+        x = SimpleNamespace(**vars(shared), b=b, block=block, ent=pixel_entries(b.counts))
         _run_ula(x, out, timing)
         _run_marks(x, out, timing)
         _run_extras(x, out)
     res = {k: np.concatenate(v) for k, v in out.items() if v}
     res["seed"] = np.concatenate(block_seed)
-    res["T"] = T
+    res["T"] = cfg.T
     res["timing"] = timing
-    if "r" in algs:
-        res.update(_bounds(s_, cfg, g, times, noise_pp))
-    res["shape"] = g.shape
+    if "r" in cfg.algs:
+        res.update(_bounds(s_, cfg, shared.g, shared.times, shared.noise_pp))
+    res["shape"] = shared.g.shape
     return res
+
+
+#: The per-trial outputs of :func:`run_config`, in the order of its result (each algorithm run fills its own).
+_OUTPUTS = (
+    "truth",
+    "ula",
+    "ula_flags",
+    "ula_iter",
+    "plain",
+    "plain_iter",
+    "plain_cap",
+    "map",
+    "em",
+    "em_vd",
+    "em_flags",
+    "em_iter",
+    "em_plain_iter",
+    "em_plain_cap",
+    "cr",
+    "cr_flags",
+    "bic",
+    "ula_loglik",
+    "ms_gap",
+    "ula_w",
+    "ula_vd",
+    "ula_q1",
+)
+#: The algorithms whose wall time (s) :func:`run_config` reports under ``timing``.
+_TIMED = ("ula", "plain", "map", "em", "em_plain", "cr")
+
+
+def _config_inputs(s_: StudySettings, cfg: Config) -> SimpleNamespace:
+    """What every block of scenes of a configuration shares: the settings ``s_`` (with the configuration's variant)
+    and ``cfg``, the scene geometry ``g``, the PSF width ``s`` (px), the noise ``noise_pp`` (photons per pixel =
+    density x pixel area), the mixture weights ``p`` (Q,) and ``p0`` (eq. (2)), the EM tolerance ``tol`` (px), the
+    acceleration ``accel`` (None or ``"squarem"``) and the frame times ``times`` (T,)."""
+    q, d, T = cfg.q, cfg.d, cfg.T
+    g = scene_geometry(q, T, d, cfg.pix, track_velocities(s_.velocity_sigma, s_.tracks, q, d, T), s_.margin_sigma)
+    s = g.sigma_px
+    noise_pp = noise_per_pixel(s_.noise_density, s)
+    p, p0 = mixture_weights(cfg.m, noise_pp, g.n_pixels, q)
+    return SimpleNamespace(
+        s_=s_,
+        cfg=cfg,
+        s=s,
+        p=p,
+        p0=p0,
+        tol=s_.tol_sigma * s,
+        accel=None if s_.accelerate == "none" else "squarem",
+        times=frame_times(T),
+        g=g,
+        noise_pp=noise_pp,
+    )
 
 
 def _run_ula(x, out: dict, timing: dict) -> None:

@@ -181,67 +181,68 @@ def em_marks(
         raise ValueError(f"init = {init!r} must be 'designation', 'previous' or 'moments'")
     if association not in ("designation", "assignment", "lines"):
         raise ValueError(f"association = {association!r} must be 'designation', 'assignment' or 'lines'")
-    n, t = counts.shape[:2]
-    q = designation.shape[1]
     predicted = propagate(designation, times)  # (N, T, Q, 2)
-
-    def frame_state(xy):
-        th = np.zeros(xy.shape[:-1] + (4,))
-        th[..., :2] = xy
-        return th
-
-    if init in ("designation", "moments"):
-        starts = predicted if init == "designation" else moment_starts(counts, sigma_px, q)
-        ent = per_frame_entries(pixel_entries(counts))
-        res = unified_location_em(
-            ent,
-            frame_state(starts).reshape(n * t, q, 4),
-            sigma_px,
-            p,
-            p_noise,
-            times=np.zeros(1),
-            motion="static",
-            tol_px=tol_px,
-            max_iter=max_iter,
-            accelerate=accelerate,
-            tol_loglik=tol_loglik,
-        )
-        xy = res.theta[..., :2].reshape(n, t, q, 2)
-        valid = ~res.degenerate.reshape(n, t)[..., None] & np.ones(q, dtype=bool)
-        n_iter = res.n_iter.reshape(n, t)
-        cap = res.cap_hit.reshape(n, t)
+    mixture = (sigma_px, p, p_noise)
+    em_kw = dict(tol_px=tol_px, max_iter=max_iter, accelerate=accelerate, tol_loglik=tol_loglik)
+    if init == "previous":
+        marks = _marks_in_sequence(counts, predicted[:, 0], designation[..., 2:], times, mixture, em_kw)
     else:
-        xy = np.empty((n, t, q, 2))
-        valid = np.empty((n, t, q), dtype=bool)
-        n_iter = np.empty((n, t), dtype=np.int64)
-        cap = np.empty((n, t), dtype=bool)
-        start = predicted[:, 0]
-        for l in range(t):  # loop over frames only
-            ent = pixel_entries(counts[:, l : l + 1])
-            res = unified_location_em(
-                ent,
-                frame_state(start),
-                sigma_px,
-                p,
-                p_noise,
-                times=np.zeros(1),
-                motion="static",
-                tol_px=tol_px,
-                max_iter=max_iter,
-                accelerate=accelerate,
-                tol_loglik=tol_loglik,
-            )
-            xy[:, l] = res.theta[..., :2]
-            valid[:, l] = ~res.degenerate[:, None]
-            n_iter[:, l] = res.n_iter
-            cap[:, l] = res.cap_hit
-            if l + 1 < t:
-                step = (times[l + 1] - times[l]) * designation[..., 2:]
-                start = np.where(valid[:, l, :, None], xy[:, l], start) + step
-    marks = Marks(xy=xy, valid=valid, n_iter=n_iter, cap_hit=cap)
+        q = designation.shape[1]
+        starts = predicted if init == "designation" else moment_starts(counts, sigma_px, q)
+        marks = _marks_at_once(counts, starts, mixture, em_kw)
     if association == "lines":
         return associate_by_lines(marks, times)
     return associate(marks, predicted) if association == "assignment" else marks
+
+
+def _frame_state(xy) -> np.ndarray:
+    """Static states ``(x, y, 0, 0)`` (..., Q, 4) of the positions ``xy`` (..., Q, 2), px."""
+    th = np.zeros(xy.shape[:-1] + (4,))
+    th[..., :2] = xy
+    return th
+
+
+def _frame_em(entries, xy, mixture, em_kw):
+    """The static one-frame EM (``x = D_x / A``, eq. (11) with ``V = 0``) of every trial of ``entries`` started at
+    ``xy`` (n, Q, 2) px; ``mixture = (sigma_px, p, p_noise)`` and ``em_kw`` (the stopping rule and acceleration)
+    as in :func:`~.em.unified_location_em`. Returns its :class:`~.em.EMResult`."""
+    return unified_location_em(entries, _frame_state(xy), *mixture, times=np.zeros(1), motion="static", **em_kw)
+
+
+def _marks_at_once(counts, starts, mixture, em_kw) -> Marks:
+    """The marks of every frame of every trial from one EM call over all ``N T`` frames as separate trials,
+    started at ``starts`` (N, T, Q, 2) px (:func:`_frame_em` for the other arguments)."""
+    n, t = counts.shape[:2]
+    q = starts.shape[2]
+    res = _frame_em(per_frame_entries(pixel_entries(counts)), starts.reshape(n * t, q, 2), mixture, em_kw)
+    return Marks(
+        xy=res.theta[..., :2].reshape(n, t, q, 2),
+        valid=~res.degenerate.reshape(n, t)[..., None] & np.ones(q, dtype=bool),
+        n_iter=res.n_iter.reshape(n, t),
+        cap_hit=res.cap_hit.reshape(n, t),
+    )
+
+
+def _marks_in_sequence(counts, start, velocity, times, mixture, em_kw) -> Marks:
+    """The marks frame after frame (``init = "previous"``): frame 0 started at ``start`` (N, Q, 2) px, each next
+    frame at the previous frame's marks (where valid; else its own start) moved by ``velocity`` (N, Q, 2) px/frame
+    over the frame interval of ``times`` (T,) (:func:`_frame_em` for the other arguments)."""
+    n, t = counts.shape[:2]
+    q = start.shape[1]
+    xy = np.empty((n, t, q, 2))
+    valid = np.empty((n, t, q), dtype=bool)
+    n_iter = np.empty((n, t), dtype=np.int64)
+    cap = np.empty((n, t), dtype=bool)
+    for l in range(t):  # loop over frames only
+        res = _frame_em(pixel_entries(counts[:, l : l + 1]), start, mixture, em_kw)
+        xy[:, l] = res.theta[..., :2]
+        valid[:, l] = ~res.degenerate[:, None]
+        n_iter[:, l] = res.n_iter
+        cap[:, l] = res.cap_hit
+        if l + 1 < t:
+            step = (times[l + 1] - times[l]) * velocity
+            start = np.where(valid[:, l, :, None], xy[:, l], start) + step
+    return Marks(xy=xy, valid=valid, n_iter=n_iter, cap_hit=cap)
 
 
 def _gate_moments(counts, py, px, half: int):
