@@ -100,10 +100,20 @@ if _CACHE is not None:
     _numba.config.CACHE_DIR = str(_CACHE)  # numba's locator reads it when a cached function first compiles
 
 
-def njit(fn: Callable, parallel: bool = False, error_model: str = "numpy") -> Callable:
+def njit(fn: Callable, parallel: bool = False, error_model: str = "numpy", inline: bool = False) -> Callable:
     """``numba.njit(fn)`` (compiled lazily at the first call; kept on disk when :func:`cache_folder` is set) or
-    ``fn`` itself without numba. ``parallel`` lets numba run ``prange`` loops on the process's threads. Call the
-    result only when :func:`enabled` (the NumPy twin otherwise)."""
+    ``fn`` itself without numba. ``parallel`` lets numba run ``prange`` loops on the process's threads; ``inline``
+    has numba write ``fn`` into every compiled function that calls it (``inline="always"``: a step of a kernel
+    split into functions compiles to the code of its statements in place, where a call LLVM does not inline costs
+    the call and its arrays' reference counts). Call the result only when :func:`enabled` (the NumPy twin
+    otherwise)."""
     if _numba is None:
         return fn
-    return _numba.njit(fn, cache=_CACHE is not None, nogil=True, error_model=error_model, parallel=parallel)
+    return _numba.njit(
+        fn,
+        cache=_CACHE is not None,
+        nogil=True,
+        error_model=error_model,
+        parallel=parallel,
+        inline="always" if inline else "never",
+    )

@@ -3,7 +3,8 @@
 V. T. Fisenko, L. D. Vilesov, V. I. Mozheiko, T. Yu. Fisenko, "Detection of an object's manoeuvre and prediction
 of its trajectory in a television tracking system", 2008 (Izv. vuzov. Priborostroenie, unverified).
 
-Modules: :mod:`.track_modes` (the per-channel TRACK2 / TRACK3 / COAST mode logic), :mod:`.maneuver_detector`
+Modules: :mod:`.track_modes` (the per-channel TRACK2 / TRACK3 / COAST mode logic; its engines in
+:mod:`._track_modes_kernel`, compiled, and :mod:`._track_modes_numpy`), :mod:`.maneuver_detector`
 (the two-window manoeuvre detector of eqs. (3)-(14) and its thresholds), :mod:`.study` (the measurement functions
 the explorer calls), :mod:`.register` (the notebook's register of unstated choices, its entries in
 :mod:`.entries`), :mod:`.claims` (the claims and their rules), :mod:`.sizes` (the run sizes), :mod:`.params`

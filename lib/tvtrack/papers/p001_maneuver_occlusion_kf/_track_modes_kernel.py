@@ -14,9 +14,14 @@ and ``tests/papers/test_001_track_modes.py`` (every test there runs with both en
 
 - :func:`kernel_python`: everything, with the noise-driven covariance (gates, variances, restart C's Kalman
   gains); writes the gains per frame;
-- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same statements minus the
+- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same steps minus the
   covariance; writes each frame's gain-table row (int16) instead of three float64 gains, which
   :attr:`~.track_modes.TrackModeOutput.gains` expands on access (the gains array was ~30 % of the run time).
+
+Both are written as a loop over trials and frames calling the steps of a frame (:func:`_count`,
+:func:`_predict_covariance`, :func:`_kalman_gains`, :func:`_correct_covariance`, :func:`_predict_state`,
+:func:`_correct_state`, :func:`_detect`, :func:`_restart_state`, :func:`_restart_covariance`), which numba inlines
+(:func:`_step`): the compiled kernels are the code of the statements written in place.
 
 Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment, or ``engine="numpy"``)
 ``run_track_modes`` uses the NumPy path. Each kernel is compiled on its first use in a process (~0.6-1.8 s for
@@ -53,6 +58,308 @@ RESTART_CODES = {"A": 0, "B": 1, "C": 2}
 
 _compiled = {}
 _compile_s = {}
+
+
+def _step(fn):
+    """A step of the kernels, written by numba into the kernel that calls it (:func:`tvtrack.jit.njit` with
+    ``inline``): the compiled kernel is the code of the statements in place (same numbers, same speed; as calls of
+    their own the steps were 1.4-3x slower). Called from Python (the uncompiled kernels) a step runs compiled."""
+    return jit.njit(fn, error_model="python", inline=True)
+
+
+@_step
+def _count(seen, t, gap_start, k, row, cap, since):
+    """One trial's counters after frame ``t``.
+
+    Parameters
+    ----------
+    seen : bool        the object is visible at frame ``t``
+    t, gap_start : int frame, and the first frame where some trial is hidden (``T`` if none)
+    k : int            measurements since the (re)start
+    row : int          gain-table row in force (-1 before the first measurement)
+    cap : int          the row of the gain bound of the law in force (the row stops there)
+    since : int        visible frames since the last loss, counted from ``gap_start`` on (the NumPy path's
+                       ``since_visible``, which starts at ``gap_start`` from the count ``k``)
+
+    Returns
+    -------
+    k, row, since : int
+    """
+    if t == gap_start:
+        since = k
+    if seen:
+        k += 1
+        row = min(row + 1, cap)
+    if t >= gap_start:
+        since = since + 1 if seen else 0
+    return k, row, since
+
+
+@_step
+def _predict_covariance(F, P, A, Pp):
+    """Noise-driven covariance prediction ``Pp = F P F^T`` (card §4.5; no process noise).
+
+    Parameters
+    ----------
+    F : ndarray, shape (3, 3)   transition (frame units)
+    P : ndarray, shape (3, 3)   error covariance after the last frame, elements² (per frame powers)
+    A : ndarray, shape (3, 3)   work space (``F P``)
+    Pp : ndarray, shape (3, 3)  output: the predicted covariance
+    """
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += F[i, m] * P[m, j]
+            A[i, j] = s
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += A[i, m] * F[j, m]
+            Pp[i, j] = s
+
+
+@_step
+def _kalman_gains(Pp, S_inn, seen, kalman, kappa1_bound3, K0, K1, K2):
+    """Restart C's gains: while ``kalman``, the Kalman gains ``K = Pp h^T / S_inn`` of the propagated covariance
+    replace the table's ``K0, K1, K2``, until ``kappa1`` falls to the 3rd-order bound's on a visible frame (then
+    the table's gains for good).
+
+    Parameters
+    ----------
+    Pp : ndarray, shape (3, 3)   predicted covariance (:func:`_predict_covariance`)
+    S_inn : float                predicted innovation variance ``Pp[0, 0] + sigma²``, elements²
+    seen, kalman : bool          visible at this frame; restart C's Kalman gains in force
+    kappa1_bound3 : float        ``kappa1`` at the 3rd-order bound
+    K0, K1, K2 : float           the table's gains for this frame
+
+    Returns
+    -------
+    kalman : bool
+    K0, K1, K2 : float           the gains in force
+    """
+    if kalman:
+        k0 = Pp[0, 0] / S_inn
+        if seen and k0 <= kappa1_bound3:
+            kalman = False
+        else:
+            K0 = k0
+            K1 = Pp[1, 0] / S_inn
+            K2 = Pp[2, 0] / S_inn
+    return kalman, K0, K1, K2
+
+
+@_step
+def _gains_used(seen, K0, K1, K2):
+    """The gains applied at a frame: ``K0, K1, K2`` when ``seen``, zero while lost (E1)."""
+    c0 = K0 if seen else 0.0
+    c1 = K1 if seen else 0.0
+    c2 = K2 if seen else 0.0
+    return c0, c1, c2
+
+
+@_step
+def _correct_covariance(h, Pp, sigma2, c0, c1, c2, A, IKh, P):
+    """Covariance after the correction with the gains used ``c`` (card §4.5):
+    ``P = (I - c h) Pp (I - c h)^T + sigma² c c^T``, symmetrised.
+
+    Parameters
+    ----------
+    h : ndarray, shape (3,)      observation row
+    Pp : ndarray, shape (3, 3)   predicted covariance
+    sigma2 : float               measurement noise variance, elements²
+    c0, c1, c2 : float           the gains used (:func:`_gains_used`, zero while lost)
+    A, IKh : ndarray, shape (3, 3)  work space
+    P : ndarray, shape (3, 3)    output
+    """
+    for i in range(3):
+        ci = c0 if i == 0 else (c1 if i == 1 else c2)
+        for j in range(3):
+            IKh[i, j] = (1.0 if i == j else 0.0) - ci * h[j]
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += IKh[i, m] * Pp[m, j]
+            A[i, j] = s
+    for i in range(3):
+        ci = c0 if i == 0 else (c1 if i == 1 else c2)
+        for j in range(3):
+            cj = c0 if j == 0 else (c1 if j == 1 else c2)
+            s = 0.0
+            for m in range(3):
+                s += A[i, m] * IKh[j, m]
+            P[i, j] = s + sigma2 * ci * cj
+    for i in range(3):
+        for j in range(i + 1, 3):
+            s = 0.5 * (P[i, j] + P[j, i])
+            P[i, j] = s
+            P[j, i] = s
+
+
+@_step
+def _predict_state(x0, x1, x2):
+    """(eq. 1) prediction ``x <- F x`` of the state (position, elements; velocity, elements/frame; acceleration,
+    elements/frame²), ``F`` the order-2 Taylor transition; returns the predicted ``x0, x1, x2``."""
+    x0 += x1
+    x0 += 0.5 * x2
+    x1 += x2
+    return x0, x1, x2
+
+
+@_step
+def _correct_state(x0, x1, x2, z, K0, K1, K2):
+    """(eq. 1) correction of the predicted state with the measurement ``z`` (elements) and the gains ``K0, K1, K2``;
+    returns the corrected ``x0, x1, x2``."""
+    innov = z - x0
+    x0 += K0 * innov
+    x1 += K1 * innov
+    x2 += K2 * innov
+    return x0, x1, x2
+
+
+@_step
+def _window_sums(out_x, b, t, n, x1, sum_old, sum_new):
+    """(eq. 14) the detector's window sums at frame ``t >= 2n - 1``: output velocities (elements/frame) summed over
+    the older half-window ``[t - 2n + 1, t - n]`` and the newer ``[t - n + 1, t]``, from scratch at the first frame,
+    kept running after it.
+
+    Parameters
+    ----------
+    out_x : ndarray, shape (B, T, 3)   states written so far (velocities of frames ``<= t``)
+    b, t, n : int                      trial, frame, half-window
+    x1 : float                         velocity at frame ``t``
+    sum_old, sum_new : float           the sums at frame ``t - 1``
+
+    Returns
+    -------
+    sum_old, sum_new : float
+    """
+    if t == 2 * n - 1:
+        sum_old = 0.0
+        for u in range(t - 2 * n + 1, t - n + 1):
+            sum_old += out_x[b, u, 1]
+        sum_new = 0.0
+        for u in range(t - n + 1, t + 1):
+            sum_new += out_x[b, u, 1]
+    else:
+        mid = out_x[b, t - n, 1]
+        sum_old += mid - out_x[b, t - 2 * n, 1]
+        sum_new += x1 - mid
+    return sum_old, sum_new
+
+
+@_step
+def _armed(seen, t, k, in3, since, gap_start, arm_k, rearm, detect3):
+    """Whether the detector tests at frame ``t``: visible, ``k >= arm_k``, in TRACK2 unless ``detect3``, and from
+    ``gap_start`` on ``rearm`` visible frames after the last loss."""
+    return seen and k >= arm_k and (detect3 or in3 == 0) and (t < gap_start or since >= rearm)
+
+
+@_step
+def _threshold(t, k, in3, thr, thr_by_k, thr3_by_k, by_frame, detect3):
+    """The threshold ``c`` (elements/frame) in force at frame ``t``: by frame or by the count ``k``, the TRACK3
+    array's in TRACK3 with ``detect3``."""
+    c = thr[min(t, thr.shape[0] - 1)] if by_frame else thr_by_k[k]
+    if detect3 and in3 == 1:
+        c = thr3_by_k[k]
+    return c
+
+
+@_step
+def _detect(
+    out_x, b, t, x1, seen, k, in3, since, sum_old, sum_new, gap_start, n, arm_k, rearm, thr, thr_by_k, thr3_by_k,
+    by_frame, forced, force_k, detect3,
+):  # fmt: skip
+    """The detector at frame ``t`` (eq. 14): ``|S| > c`` with ``S = sum_old - sum_new`` of the last 2n output
+    velocities (:func:`_window_sums`), or the forced switch at the TRACK2 count ``force_k``.
+
+    Arguments as in :func:`kernel_python` and :func:`_count`; ``x1`` the velocity at frame ``t``, ``sum_old,
+    sum_new`` the window sums at frame ``t - 1``.
+
+    Returns
+    -------
+    alarm : bool
+    S, c : float          statistic and threshold, elements/frame (NaN when not tested)
+    sum_old, sum_new : float
+    """
+    alarm = False
+    S = np.nan
+    c = np.nan
+    if forced:
+        alarm = seen and in3 == 0 and k == force_k
+    elif t >= 2 * n - 1:
+        sum_old, sum_new = _window_sums(out_x, b, t, n, x1, sum_old, sum_new)
+        if _armed(seen, t, k, in3, since, gap_start, arm_k, rearm, detect3):
+            S = sum_old - sum_new
+            c = _threshold(t, k, in3, thr, thr_by_k, thr3_by_k, by_frame, detect3)
+            alarm = abs(S) > c
+    return alarm, S, c, sum_old, sum_new
+
+
+@_step
+def _least_squares_fit(z, b, t, n, pinv_w):
+    """Restart B's state: the least-squares quadratic through the last ``w = min(n, t + 1)`` measurements, at the
+    newest one.
+
+    Parameters
+    ----------
+    z : ndarray, shape (B, T)             measurements, elements
+    b, t, n : int                         trial, frame, half-window
+    pinv_w : ndarray, shape (n + 1, 3, n) pseudo-inverse for ``w`` samples (entry ``w``)
+
+    Returns
+    -------
+    w : int
+    x0, x1, x2 : float                    position, velocity, acceleration (elements, per frame, per frame²)
+    """
+    w = min(n, t + 1)
+    x0 = 0.0
+    x1 = 0.0
+    x2 = 0.0
+    for u in range(w):
+        zu = z[b, t - w + 1 + u]
+        x0 += pinv_w[w, 0, u] * zu
+        x1 += pinv_w[w, 1, u] * zu
+        x2 += pinv_w[w, 2, u] * zu
+    return w, x0, x1, x2
+
+
+@_step
+def _restart_state(restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2):
+    """The state and counters after a switch to TRACK3 (card §4.4 step 4): restart A keeps ``x, v``, sets ``a = 0``
+    and continues the 3rd-order law at ``restart_k``; B fits a quadratic (:func:`_least_squares_fit`) and continues
+    at ``w``; C keeps ``x, v``, sets ``a = 0`` and starts at the bound's row with ``k = 0``.
+
+    Returns
+    -------
+    x0, x1, x2 : float
+    k, row : int          the count and the gain-table row
+    """
+    if restart == 2:
+        return x0, x1, 0.0, 0, cap3
+    if restart == 0:
+        return x0, x1, 0.0, restart_k, restart_row
+    w, x0, x1, x2 = _least_squares_fit(z, b, t, n, pinv_w)
+    return x0, x1, x2, w, kmax + min(w, kb3) - 1
+
+
+@_step
+def _restart_covariance(restart, P, w, accel_var, Pb_w):
+    """The covariance after a switch to TRACK3: restart A zeroes the acceleration's row and column, C also sets
+    its variance to ``accel_var`` (elements²/frame⁴), B takes the fit's ``Pb_w[w]`` ((n + 1, 3, 3)); ``P`` (3, 3)
+    in place."""
+    if restart == 1:
+        for i in range(3):
+            for j in range(3):
+                P[i, j] = Pb_w[w, i, j]
+        return
+    for i in range(3):
+        P[i, 2] = 0.0
+        P[2, i] = 0.0
+    if restart == 2:
+        P[2, 2] = accel_var
 
 
 def kernel_python(
@@ -92,7 +399,10 @@ def kernel_python(
     out_c,
     det,
 ):
-    """Per-trial mode logic; writes the outputs in place.
+    """Per-trial mode logic; writes the outputs in place. Each frame: the counters (:func:`_count`), the covariance
+    (:func:`_predict_covariance`, :func:`_kalman_gains`, :func:`_correct_covariance`), the state (eq. 1:
+    :func:`_predict_state`, :func:`_correct_state`), the detector (eq. 14: :func:`_detect`) and on an alarm the
+    switch to TRACK3 (:func:`_restart_state`, :func:`_restart_covariance`).
 
     Parameters
     ----------
@@ -120,181 +430,59 @@ def kernel_python(
         Outputs, every element written (``out_var``, ``out_gate`` only with ``covariance``).
     """
     B, T = z.shape
-    shared_vis = vis.shape[0] == 1
     last_row = table.shape[0] - 1
     cap2 = kb2 - 1
     cap3 = kmax + kb3 - 1  # also the row of the 3rd-order bound (restart C)
     restart_row = kmax + min(restart_k, kb3) - 1
-    v_stride = 0 if shared_vis else 1
+    v_stride = 0 if vis.shape[0] == 1 else 1
     for b in jit.prange(B):  # trials are independent: numba runs them on the process's threads
         vb = b * v_stride
         P = np.zeros((3, 3))  # each trial's own scratch (shared between threads they would race)
         Pp = np.zeros((3, 3))
         A = np.zeros((3, 3))
         IKh = np.zeros((3, 3))
-        x0 = 0.0
-        x1 = 0.0
-        x2 = 0.0
-        k = 0
-        row = -1
-        cap = cap2
-        in3 = 0
+        x0 = x1 = x2 = 0.0
+        k, row, cap, in3, since, detected = 0, -1, cap2, 0, 0, -1
         kalman = False
-        since = 0
-        detected = -1
-        sum_old = 0.0
-        sum_new = 0.0
-        for i in range(3):
-            for j in range(3):
-                P[i, j] = 0.0
+        sum_old = sum_new = 0.0
         for t in range(T):
             seen = vis[vb, t]
-            if t == gap_start:
-                since = k
-            if seen:
-                k += 1
-                row = min(row + 1, cap)
-            if t >= gap_start:
-                since = since + 1 if seen else 0
+            k, row, since = _count(seen, t, gap_start, k, row, cap, since)
             r = row if row >= 0 else last_row
-            K0 = table[r, 0]
-            K1 = table[r, 1]
-            K2 = table[r, 2]
+            K0, K1, K2 = table[r, 0], table[r, 1], table[r, 2]
             if covariance:
-                for i in range(3):
-                    for j in range(3):
-                        s = 0.0
-                        for m in range(3):
-                            s += F[i, m] * P[m, j]
-                        A[i, j] = s
-                for i in range(3):
-                    for j in range(3):
-                        s = 0.0
-                        for m in range(3):
-                            s += A[i, m] * F[j, m]
-                        Pp[i, j] = s
+                _predict_covariance(F, P, A, Pp)
                 S_inn = Pp[0, 0] + sigma2
                 out_gate[b, t] = S_inn
-                if kalman:
-                    k0 = Pp[0, 0] / S_inn
-                    if seen and k0 <= kappa1_bound3:
-                        kalman = False
-                    else:
-                        K0 = k0
-                        K1 = Pp[1, 0] / S_inn
-                        K2 = Pp[2, 0] / S_inn
-                c0 = K0 if seen else 0.0
-                c1 = K1 if seen else 0.0
-                c2 = K2 if seen else 0.0
-                for i in range(3):
-                    ci = c0 if i == 0 else (c1 if i == 1 else c2)
-                    for j in range(3):
-                        IKh[i, j] = (1.0 if i == j else 0.0) - ci * h[j]
-                for i in range(3):
-                    for j in range(3):
-                        s = 0.0
-                        for m in range(3):
-                            s += IKh[i, m] * Pp[m, j]
-                        A[i, j] = s
-                for i in range(3):
-                    ci = c0 if i == 0 else (c1 if i == 1 else c2)
-                    for j in range(3):
-                        cj = c0 if j == 0 else (c1 if j == 1 else c2)
-                        s = 0.0
-                        for m in range(3):
-                            s += A[i, m] * IKh[j, m]
-                        P[i, j] = s + sigma2 * ci * cj
-                for i in range(3):
-                    for j in range(i + 1, 3):
-                        s = 0.5 * (P[i, j] + P[j, i])
-                        P[i, j] = s
-                        P[j, i] = s
-            if seen:
-                out_K[b, t, 0] = K0
-                out_K[b, t, 1] = K1
-                out_K[b, t, 2] = K2
-            else:
-                out_K[b, t, 0] = 0.0
-                out_K[b, t, 1] = 0.0
-                out_K[b, t, 2] = 0.0
+                kalman, K0, K1, K2 = _kalman_gains(Pp, S_inn, seen, kalman, kappa1_bound3, K0, K1, K2)
+            c0, c1, c2 = _gains_used(seen, K0, K1, K2)
+            if covariance:
+                _correct_covariance(h, Pp, sigma2, c0, c1, c2, A, IKh, P)
+            out_K[b, t, 0] = c0
+            out_K[b, t, 1] = c1
+            out_K[b, t, 2] = c2
             # (eq. 1) predict and correct; (E1) zero gains while lost
-            x0 += x1
-            x0 += 0.5 * x2
-            x1 += x2
+            x0, x1, x2 = _predict_state(x0, x1, x2)
             if seen:
-                innov = z[b, t] - x0
-                x0 += K0 * innov
-                x1 += K1 * innov
-                x2 += K2 * innov
+                x0, x1, x2 = _correct_state(x0, x1, x2, z[b, t], K0, K1, K2)
             out_x[b, t, 1] = x1
-
-            # detector (eq. 14) on the last 2n output velocities, sums kept running
-            alarm = False
-            out_S[b, t] = np.nan
-            out_c[b, t] = np.nan
-            if forced:
-                alarm = seen and in3 == 0 and k == force_k
-            elif t >= 2 * n - 1:
-                if t == 2 * n - 1:
-                    sum_old = 0.0
-                    for u in range(t - 2 * n + 1, t - n + 1):
-                        sum_old += out_x[b, u, 1]
-                    sum_new = 0.0
-                    for u in range(t - n + 1, t + 1):
-                        sum_new += out_x[b, u, 1]
-                else:
-                    mid = out_x[b, t - n, 1]
-                    sum_old += mid - out_x[b, t - 2 * n, 1]
-                    sum_new += x1 - mid
-                testing = seen and k >= arm_k and (detect3 or in3 == 0)
-                if t >= gap_start and since < rearm:
-                    testing = False
-                if testing:
-                    S = sum_old - sum_new
-                    c = thr[min(t, thr.shape[0] - 1)] if by_frame else thr_by_k[k]
-                    if detect3 and in3 == 1:
-                        c = thr3_by_k[k]
-                    out_S[b, t] = S
-                    out_c[b, t] = c
-                    alarm = abs(S) > c
-            # switch to TRACK3 with raised gains (card §4.4 step 4)
-            if alarm:
+            alarm, S, c, sum_old, sum_new = _detect(
+                out_x, b, t, x1, seen, k, in3, since, sum_old, sum_new, gap_start, n, arm_k, rearm, thr, thr_by_k,
+                thr3_by_k, by_frame, forced, force_k, detect3,
+            )  # fmt: skip
+            out_S[b, t] = S
+            out_c[b, t] = c
+            if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
                 if detected < 0:
                     detected = t
                 x1_before = x1
+                x0, x1, x2, k, row = _restart_state(
+                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2
+                )
                 if restart == 2:
-                    x2 = 0.0
-                    for i in range(3):
-                        P[i, 2] = 0.0
-                        P[2, i] = 0.0
-                    P[2, 2] = accel_var
                     kalman = True
-                    k = 0
-                    row = cap3
-                elif restart == 0:
-                    x2 = 0.0
-                    if covariance:
-                        for i in range(3):
-                            P[i, 2] = 0.0
-                            P[2, i] = 0.0
-                    k = restart_k
-                    row = restart_row
-                else:
-                    w = min(n, t + 1)
-                    x0 = 0.0
-                    x1 = 0.0
-                    x2 = 0.0
-                    for u in range(w):
-                        zu = z[b, t - w + 1 + u]
-                        x0 += pinv_w[w, 0, u] * zu
-                        x1 += pinv_w[w, 1, u] * zu
-                        x2 += pinv_w[w, 2, u] * zu
-                    if covariance:
-                        for i in range(3):
-                            for j in range(3):
-                                P[i, j] = Pb_w[w, i, j]
-                    k = w
-                    row = kmax + min(w, kb3) - 1
+                if covariance:
+                    _restart_covariance(restart, P, min(n, t + 1), accel_var, Pb_w)
                 if not forced:
                     sum_new += x1 - x1_before
                 in3 = 1
@@ -339,99 +527,43 @@ def kernel_fast_python(
     det,
 ):
     """:func:`kernel_python` without the covariance (``covariance=False``, restarts A and B): the same
-    logic, statement for statement, minus the covariance recursion; the gains are written as the row of
-    ``table`` in force (``out_row`` (B, T) int16, -1 while lost), expanded on access
-    (:attr:`~.track_modes.TrackModeOutput.gains`). Arguments as in :func:`kernel_python`."""
+    steps minus the covariance recursion; the gains are written as the row of ``table`` in force (``out_row``
+    (B, T) int16, -1 while lost), expanded on access (:attr:`~.track_modes.TrackModeOutput.gains`). Arguments as in
+    :func:`kernel_python`."""
     B, T = z.shape
-    shared_vis = vis.shape[0] == 1
     cap2 = kb2 - 1
     cap3 = kmax + kb3 - 1
     restart_row = kmax + min(restart_k, kb3) - 1
-    nthr = thr.shape[0]
-    v_stride = 0 if shared_vis else 1
+    v_stride = 0 if vis.shape[0] == 1 else 1
     for b in jit.prange(B):  # trials are independent: numba runs them on the process's threads
         vb = b * v_stride
-        x0 = 0.0
-        x1 = 0.0
-        x2 = 0.0
-        k = 0
-        row = -1
-        cap = cap2
-        in3 = 0
-        since = 0
-        detected = -1
-        sum_old = 0.0
-        sum_new = 0.0
+        x0 = x1 = x2 = 0.0
+        k, row, cap, in3, since, detected = 0, -1, cap2, 0, 0, -1
+        sum_old = sum_new = 0.0
         for t in range(T):
             seen = vis[vb, t]
-            if t == gap_start:
-                since = k
-            if seen:
-                k += 1
-                row = min(row + 1, cap)
-            if t >= gap_start:
-                since = since + 1 if seen else 0
+            k, row, since = _count(seen, t, gap_start, k, row, cap, since)
             # (eq. 1) predict and correct; (E1) zero gains while lost
-            x0 += x1
-            x0 += 0.5 * x2
-            x1 += x2
+            x0, x1, x2 = _predict_state(x0, x1, x2)
             if seen:
                 out_row[b, t] = row
-                innov = z[b, t] - x0
-                x0 += table[row, 0] * innov
-                x1 += table[row, 1] * innov
-                x2 += table[row, 2] * innov
+                x0, x1, x2 = _correct_state(x0, x1, x2, z[b, t], table[row, 0], table[row, 1], table[row, 2])
             else:
                 out_row[b, t] = -1
             out_x[b, t, 1] = x1
-
-            # detector (eq. 14) on the last 2n output velocities, sums kept running
-            alarm = False
-            S = np.nan
-            c = np.nan
-            if forced:
-                alarm = seen and in3 == 0 and k == force_k
-            elif t >= 2 * n - 1:
-                if t == 2 * n - 1:
-                    sum_old = 0.0
-                    for u in range(t - 2 * n + 1, t - n + 1):
-                        sum_old += out_x[b, u, 1]
-                    sum_new = 0.0
-                    for u in range(t - n + 1, t + 1):
-                        sum_new += out_x[b, u, 1]
-                else:
-                    mid = out_x[b, t - n, 1]
-                    sum_old += mid - out_x[b, t - 2 * n, 1]
-                    sum_new += x1 - mid
-                if seen and k >= arm_k and (detect3 or in3 == 0) and (t < gap_start or since >= rearm):
-                    S = sum_old - sum_new
-                    c = thr[min(t, nthr - 1)] if by_frame else thr_by_k[k]
-                    if detect3 and in3 == 1:
-                        c = thr3_by_k[k]
-                    alarm = abs(S) > c
+            alarm, S, c, sum_old, sum_new = _detect(
+                out_x, b, t, x1, seen, k, in3, since, sum_old, sum_new, gap_start, n, arm_k, rearm, thr, thr_by_k,
+                thr3_by_k, by_frame, forced, force_k, detect3,
+            )  # fmt: skip
             out_S[b, t] = S
             out_c[b, t] = c
-            # switch to TRACK3 with raised gains (card §4.4 step 4)
-            if alarm:
+            if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
                 if detected < 0:
                     detected = t
                 x1_before = x1
-                if restart == 0:
-                    x2 = 0.0
-                    k = restart_k
-                    row = restart_row
-                else:
-                    w = min(n, t + 1)
-                    x0 = 0.0
-                    x1 = 0.0
-                    x2 = 0.0
-                    for u in range(w):
-                        zu = z[b, t - w + 1 + u]
-                        x0 += pinv_w[w, 0, u] * zu
-                        x1 += pinv_w[w, 1, u] * zu
-                        x2 += pinv_w[w, 2, u] * zu
-                    k = w
-                    row = kmax + min(w, kb3) - 1
+                x0, x1, x2, k, row = _restart_state(
+                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2
+                )
                 if not forced:
                     sum_new += x1 - x1_before
                 in3 = 1

@@ -65,36 +65,41 @@ def record_run(
     pred_xy = predict_ahead(prev, 1).T
     size = (crop_px, crop_px)
     origins = gate_origin(true_xy, size)
-    none = np.zeros((0, 2))
     for f in range(0, T, every):
         rec.set_frame(f)
         o = origins[f]
-        if visible[f]:
-            img = 20 + gaussian_spot(true_xy[f], size, spot_sigma_px, 2 * np.pi * spot_sigma_px**2 * 200, origin=o)
-        else:
-            img = np.full(size, 90.0)  # the cloud: object not visible
-        rec.image("camera/image", np.clip(img + rng.normal(0, 3, size), 0, 255).astype(np.uint8))
+        rec.image("camera/image", _crop_image(true_xy[f], o, visible[f], size, spot_sigma_px, rng))
         rec.boxes("camera/gate", pred_xy[f] - o, gate_sigma * gate_sd[f], colors=[rgb(ROLE_COLOURS["gate"])])
-        rec.lines(
-            "camera/truth",
-            ellipse_outline(true_xy[f] - o, 4.0 * np.eye(2)),
-            colors=[rgb(ROLE_COLOURS["truth"])],
-            radii=-1.5,
-        )
-        rec.points("camera/estimate", est_xy[f] - o, colors=[rgb(ROLE_COLOURS["estimate"])], radii=-4.0)
-        rec.points(
-            "camera/measured",
-            meas_xy[f] - o if visible[f] else none,
-            colors=[rgb(ROLE_COLOURS["measurement"])],
-            radii=-3.0,
-        )
-        rec.points(
-            "camera/predicted",
-            none if visible[f] else est_xy[f] - o,
-            colors=[rgb(ROLE_COLOURS["prediction"])],
-            radii=-4.0,
-        )
+        _log_crop_points(rec, true_xy[f] - o, meas_xy[f] - o, est_xy[f] - o, visible[f])
     rec.set_frame(0)
+    _log_trajectory(rec, true_xy, est_xy)
+    _log_series(rec, out, truth)
+
+
+def _crop_image(xy, origin, visible: bool, size, spot_sigma_px: float, rng: np.random.Generator) -> np.ndarray:
+    """One frame's rendered crop (uint8, shape ``size``): the object's Gaussian spot at ``xy`` (elements) on a dark
+    background, or the uniform cloud while it is not visible, plus pixel noise (RMS 3 grey levels)."""
+    if visible:
+        img = 20 + gaussian_spot(xy, size, spot_sigma_px, 2 * np.pi * spot_sigma_px**2 * 200, origin=origin)
+    else:
+        img = np.full(size, 90.0)  # the cloud: object not visible
+    return np.clip(img + rng.normal(0, 3, size), 0, 255).astype(np.uint8)
+
+
+def _log_crop_points(rec: Recorder, true_xy, meas_xy, est_xy, visible: bool) -> None:
+    """One frame's truth ring, estimate and, while visible, the measurement (else the prediction), each (2,) in
+    crop coordinates (elements)."""
+    none = np.zeros((0, 2))
+    rec.lines(
+        "camera/truth", ellipse_outline(true_xy, 4.0 * np.eye(2)), colors=[rgb(ROLE_COLOURS["truth"])], radii=-1.5
+    )
+    rec.points("camera/estimate", est_xy, colors=[rgb(ROLE_COLOURS["estimate"])], radii=-4.0)
+    rec.points("camera/measured", meas_xy if visible else none, colors=[rgb(ROLE_COLOURS["measurement"])], radii=-3.0)
+    rec.points("camera/predicted", none if visible else est_xy, colors=[rgb(ROLE_COLOURS["prediction"])], radii=-4.0)
+
+
+def _log_trajectory(rec: Recorder, true_xy, est_xy) -> None:
+    """The true and estimated trajectories, (T, 2) elements, every 5th frame."""
     # the estimate follows the truth closely: the truth is drawn wider and below, so both stay visible
     rec.lines(
         "trajectory/truth",
@@ -112,6 +117,11 @@ def record_run(
         image_space=False,
         draw_order=20.0,
     )
+
+
+def _log_series(rec: Recorder, out, truth) -> None:
+    """Run 0's time series: errors, kappa1 and mode of both channels; velocity, acceleration and the detector of
+    channel x; a text entry at each mode change of channel x."""
     for c, nm in enumerate(("x", "y")):
         rec.series(f"errors/{nm}", out.x[0, c, :, 0] - truth[c, :, 0])
         rec.series(f"gain/kappa1_{nm}", out.gains[0, c, :, 0])

@@ -171,13 +171,107 @@ class TrackModeOutput:
         return table[self.gain_rows]
 
 
-def _quadratic_fit(z_window, sigma_eps):
-    """LS quadratic through ``window`` samples ending now: state at the newest sample and the
-    noise covariance ``sigma^2 (H^T H)^-1``. ``z_window`` (m, w)."""
-    w = z_window.shape[-1]
-    H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))  # lags back from the newest sample
-    pinv = np.linalg.pinv(H)  # (3, w)
-    return z_window @ pinv.T, sigma_eps**2 * pinv @ pinv.T
+@dataclass(frozen=True, eq=False)
+class _Prepared:
+    """The constants of a run, derived from its :class:`TrackModeConfig` (both engines).
+
+    Attributes
+    ----------
+    n, arm_k, rearm : int            detector half-window, arming count and re-arming wait, frames
+    thr : ndarray, shape (K,)        threshold ``c(alpha)``, elements/frame
+    thr_by_k, thr3_by_k : ndarray, shape (T + max(restart_k, n) + 1,)
+                                     TRACK2 and TRACK3 thresholds indexed directly by the count ``k``
+    forced, detect3, by_frame : bool forced switch, tests in TRACK3, threshold read by frame
+    table : ndarray, shape (2 kmax, 3)   gain rows: ``[0, kmax)`` TRACK2 (kappa3 = 0), ``[kmax, 2 kmax)`` TRACK3;
+                                     row = in3 kmax + min(k, bound) - 1
+    kmax : int                       rows per law, ``max(k_bound2, k_bound3)``
+    bound3_row : int; kappa1_bound3 : float   the 3rd-order bound's row and its ``kappa1`` (restart C)
+    """
+
+    n: int
+    arm_k: int
+    rearm: int
+    thr: np.ndarray
+    thr_by_k: np.ndarray
+    thr3_by_k: np.ndarray
+    forced: bool
+    detect3: bool
+    by_frame: bool
+    table: np.ndarray
+    kmax: int
+    bound3_row: int
+    kappa1_bound3: float
+
+
+def _resolve_engine(engine: str, sigma_eps: float, cfg: TrackModeConfig, covariance: bool) -> str:
+    """Check the arguments of :func:`run_track_modes` that the config does not; the engine to run ("jit" or
+    "numpy")."""
+    if not sigma_eps > 0:
+        raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
+    if engine not in ("auto", "jit", "numpy"):
+        raise ValueError(f"parameter 'engine' = {engine!r}; it must be 'auto', 'jit' or 'numpy'")
+    if engine == "auto":
+        engine = "jit" if _kernel.use_jit_default() else "numpy"
+    elif engine == "jit" and not _kernel.available():
+        raise ImportError("engine='jit' needs numba, which is not importable; use engine='numpy' or 'auto'")
+    if cfg.restart == "C" and not covariance:
+        raise ValueError("parameter 'covariance' = False; restart 'C' needs the covariance (covariance=True)")
+    return engine
+
+
+def _prepare(cfg: TrackModeConfig, T: int) -> _Prepared:
+    """The run's constants (:class:`_Prepared`) for ``T`` frames: detector settings, the gain table of the two
+    laws (:func:`~tvtrack.filters.alphabeta.gain_schedule`) and the thresholds by count."""
+    n = cfg.window
+    thr = np.atleast_1d(np.asarray(cfg.threshold, dtype=float))
+    thr3 = thr if cfg.threshold_track3 is None else np.atleast_1d(np.asarray(cfg.threshold_track3, dtype=float))
+    kmax = max(cfg.k_bound2, cfg.k_bound3)
+    table = np.zeros((2 * kmax, 3))
+    table[:kmax, :2] = gain_schedule(1, cfg.k_bound2, kmax)
+    table[kmax:] = gain_schedule(2, cfg.k_bound3, kmax)
+    bound3_row = kmax + cfg.k_bound3 - 1
+    # thresholds indexed directly by the count k (entry k-1 of the array, its last entry beyond it)
+    counts = np.maximum(np.arange(T + max(cfg.restart_k, n) + 1), 1) - 1
+    return _Prepared(
+        n=n,
+        arm_k=cfg.k_bound2 + 2 * n if cfg.arm_k is None else cfg.arm_k,
+        rearm=2 * n if cfg.rearm_after_gap is None else cfg.rearm_after_gap,
+        thr=thr,
+        thr_by_k=thr[np.minimum(counts, thr.size - 1)],
+        thr3_by_k=thr3[np.minimum(counts, thr3.size - 1)],
+        forced=cfg.force_switch_k is not None,
+        detect3=bool(cfg.detect_in_track3),
+        by_frame=cfg.threshold_index == "frame",
+        table=table,
+        kmax=kmax,
+        bound3_row=bound3_row,
+        kappa1_bound3=table[bound3_row, 0],
+    )
+
+
+def _output(batch, T, x, var, gate_var, mode, statistic, threshold, detection_frame, **gains) -> TrackModeOutput:
+    """:class:`TrackModeOutput` from trial-major views ``(B, T[, 3])`` (``var``, ``gate_var`` None without the
+    covariance: NaN, as read-only broadcasts); ``gains`` as in :class:`TrackModeOutput`, already shaped."""
+
+    def back(a, extra=()):
+        """(B, T[, 3]) -> (..., T[, 3])"""
+        return a.reshape(batch + (T,) + extra)
+
+    if var is not None:
+        var, gate_var = back(var, (3,)), back(gate_var)
+    else:  # NaN, without allocating (read-only views)
+        var = np.broadcast_to(np.nan, batch + (T, 3))
+        gate_var = np.broadcast_to(np.nan, batch + (T,))
+    return TrackModeOutput(
+        x=back(x, (3,)),
+        var=var,
+        gate_var=gate_var,
+        mode=back(mode),
+        statistic=back(statistic),
+        threshold=back(threshold),
+        detection_frame=detection_frame.reshape(batch),
+        **gains,
+    )
 
 
 def run_track_modes(
@@ -198,8 +292,8 @@ def run_track_modes(
         Propagate the noise-driven covariance (``var``, ``gate_var``); when False those
         outputs are NaN and the run is faster. Restart "C" needs it.
     engine : {"auto", "jit", "numpy"}
-        "numpy": the batched NumPy loop over frames; "jit": the numba-compiled per-trial kernel
-        (:mod:`._track_modes_kernel`, the same logic, tested equal); "auto": the kernel when numba is
+        "numpy": the batched NumPy loop over frames (:mod:`._track_modes_numpy`); "jit": the numba-compiled per-trial
+        kernel (:mod:`._track_modes_kernel`, the same logic, tested equal); "auto": the kernel when numba is
         importable and the environment variable ``TVTRACK_NO_JIT`` is unset or ``0``, else NumPy.
 
     Returns
@@ -209,42 +303,8 @@ def run_track_modes(
     z = np.asarray(z, dtype=float)
     T = z.shape[-1]
     batch = z.shape[:-1]
-    if not sigma_eps > 0:
-        raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
-    if engine not in ("auto", "jit", "numpy"):
-        raise ValueError(f"parameter 'engine' = {engine!r}; it must be 'auto', 'jit' or 'numpy'")
-    if engine == "auto":
-        engine = "jit" if _kernel.use_jit_default() else "numpy"
-    elif engine == "jit" and not _kernel.available():
-        raise ImportError("engine='jit' needs numba, which is not importable; use engine='numpy' or 'auto'")
-    cfg = config
-    if cfg.restart == "C" and not covariance:
-        raise ValueError("parameter 'covariance' = False; restart 'C' needs the covariance (covariance=True)")
-    n = cfg.window
-    arm_k = cfg.k_bound2 + 2 * n if cfg.arm_k is None else cfg.arm_k
-    rearm = 2 * n if cfg.rearm_after_gap is None else cfg.rearm_after_gap
-    thr = np.atleast_1d(np.asarray(cfg.threshold, dtype=float))
-    thr3 = thr if cfg.threshold_track3 is None else np.atleast_1d(np.asarray(cfg.threshold_track3, dtype=float))
-    forced = cfg.force_switch_k is not None
-    detect3 = bool(cfg.detect_in_track3)
-    by_frame = cfg.threshold_index == "frame"
-
-    # gain table: rows [0, kmax) = TRACK2 (kappa3 = 0), rows [kmax, 2 kmax) = TRACK3;
-    # row = in3 * kmax + min(k, bound) - 1
-    kmax = max(cfg.k_bound2, cfg.k_bound3)
-    table = np.zeros((2 * kmax, 3))
-    table[:kmax, :2] = gain_schedule(1, cfg.k_bound2, kmax)
-    table[kmax:] = gain_schedule(2, cfg.k_bound3, kmax)
-    cols = [np.ascontiguousarray(table[:, i]) for i in range(3)]
-    bound3_row = kmax + cfg.k_bound3 - 1
-    kappa1_bound3 = table[bound3_row, 0]
-    F = taylor_transition(2)
-    h = observation_row(2)
-    # thresholds indexed directly by the count k (entry k-1 of the array, its last entry beyond it)
-    counts = np.maximum(np.arange(T + max(cfg.restart_k, n) + 1), 1) - 1
-    thr_by_k = thr[np.minimum(counts, thr.size - 1)]
-    thr3_by_k = thr3[np.minimum(counts, thr3.size - 1)]
-
+    engine = _resolve_engine(engine, sigma_eps, config, covariance)
+    prep = _prepare(config, T)
     B = int(np.prod(batch, dtype=np.int64))
     visible = np.asarray(visible, dtype=bool)
     if engine == "jit":
@@ -253,200 +313,32 @@ def run_track_modes(
             if visible.ndim == 1
             else np.broadcast_to(visible, z.shape).reshape(B, T)
         )
-        return _run_jit(
-            z.reshape(B, T), vis_bt, table, thr, thr_by_k, thr3_by_k, cfg, arm_k, rearm, sigma_eps, covariance, batch
-        )
+        return _run_jit(z.reshape(B, T), vis_bt, config, prep, sigma_eps, covariance, batch)
+    from ._track_modes_numpy import run_numpy  # imports this module
 
-    # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
-    # and every output is written frame by frame into its (T, [3,] B) buffer (no gathers afterwards)
-    zt = np.ascontiguousarray(np.moveaxis(z.reshape(B, T), -1, 0))  # (T, B)
-    if visible.ndim == 1:  # one visibility for every trial: (T, 1) broadcasts
-        vis = np.ascontiguousarray(np.broadcast_to(visible, (T,))[:, None])
-    else:
-        vis = np.ascontiguousarray(np.moveaxis(np.broadcast_to(visible, z.shape).reshape(B, T), -1, 0))
-    hidden = ~vis
-    all_seen, none_seen = vis.all(axis=1), ~vis.any(axis=1)
-
-    x0, x1, x2 = np.zeros(B), np.zeros(B), np.zeros(B)
-    innov, tmp = np.empty(B), np.empty(B)
-    P = np.zeros((B, 3, 3))
-    # per-trial counters start as scalars shared by all trials (lockstep) and become arrays
-    # at the first frame where trials differ (partial visibility, a detection)
-    k = np.int64(0)  # measurements since the (re)start
-    row = np.int64(-1)  # gain-table row = in3 kmax + min(k, bound) - 1
-    cap = np.int64(cfg.k_bound2 - 1)
-    in3 = np.int64(0)  # 0 = TRACK2, 1 = TRACK3
-    any3 = False  # some trial is in TRACK3
-    kalman = np.zeros(B, dtype=bool)  # restart C: Kalman gains until kappa1 reaches the bound
-    had_gap = False
-    since_visible = np.int64(0)
-    detected_at = np.full(B, -1, dtype=np.int64)
-    detector_on = not forced
-    sum_old = sum_new = None  # running window sums of output velocities
-
-    out_x = np.empty((T, 3, B))
-    out_var = np.full((T, 3, B), np.nan) if covariance else None
-    out_gate = np.full((T, B), np.nan) if covariance else None
-    out_K = np.zeros((T, 3, B))  # gains used (0 while lost)
-    out_mode = np.zeros((T, B), dtype=np.int8)  # COAST unless written
-    out_S = np.full((T, B), np.nan)  # NaN unless tested
-    out_c = np.full((T, B), np.nan)
-
-    for t in range(T):
-        seen = vis[t]
-        if all_seen[t]:
-            k += 1
-            if isinstance(row, np.ndarray):
-                row += 1
-                np.minimum(row, cap, out=row)
-            else:
-                row = np.minimum(row + 1, cap)
-            if had_gap:
-                since_visible += 1
-        elif none_seen[t]:
-            since_visible = since_visible * 0
-            had_gap = True
-        else:
-            if not had_gap:
-                since_visible = k + 0
-            had_gap = True
-            k = k + seen
-            row = np.minimum(row + seen, cap)
-            since_visible = np.where(seen, since_visible + 1, 0)
-        K0, K1, K2 = cols[0].take(row), cols[1].take(row), cols[2].take(row)
-        if covariance:
-            # noise-driven covariance: predict, then correct with the gains in force (card §4.5)
-            Pp = F @ P @ F.T
-            out_gate[t] = Pp[:, 0, 0] + sigma_eps**2
-            if kalman.any():
-                # restart C: Kalman gains of the propagated covariance, until kappa1 reaches the bound
-                Kk = Pp[:, :, 0] / (Pp[:, 0, 0] + sigma_eps**2)[:, None]
-                reached = kalman & seen & (Kk[:, 0] <= kappa1_bound3)
-                kalman = kalman & ~reached
-                K0, K1, K2 = (np.where(kalman, Kk[:, i], Ki) for i, Ki in enumerate((K0, K1, K2)))
-            Kc = np.stack(np.broadcast_arrays(K0, K1, K2), axis=-1) * seen[:, None]
-            IKh = np.eye(3) - Kc[:, :, None] * h
-            P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + sigma_eps**2 * Kc[:, :, None] * Kc[:, None, :]
-            P = 0.5 * (P + np.swapaxes(P, -1, -2))
-        if all_seen[t]:
-            out_K[t, 0], out_K[t, 1], out_K[t, 2] = K0, K1, K2
-        elif not none_seen[t]:
-            for i, Ki in enumerate((K0, K1, K2)):
-                np.multiply(Ki, seen, out=out_K[t, i])
-        # (eq. 1) predict and correct; (E1) zero gains while lost (a = 0 in every TRACK2 trial)
-        x0 += x1
-        if any3:
-            np.multiply(x2, 0.5, out=tmp)
-            x0 += tmp
-            x1 += x2
-        if not none_seen[t]:
-            np.subtract(zt[t], x0, out=innov)
-            if not all_seen[t]:
-                np.copyto(innov, 0.0, where=hidden[t])
-            np.multiply(K0, innov, out=tmp)
-            x0 += tmp
-            np.multiply(K1, innov, out=tmp)
-            x1 += tmp
-            if any3:
-                np.multiply(K2, innov, out=tmp)
-                x2 += tmp
-        out_x[t, 1] = x1
-
-        # detector (eq. 14) on the last 2n output velocities, sums kept running
-        alarm = None
-        if forced:
-            alarm = seen & (in3 == 0) & (k == cfg.force_switch_k)
-        elif detector_on and t >= 2 * n - 1:
-            if sum_old is None:
-                sum_old = out_x[t - 2 * n + 1 : t - n + 1, 1].sum(axis=0)
-                sum_new = out_x[t - n + 1 : t + 1, 1].sum(axis=0)
-            else:
-                mid = out_x[t - n, 1]
-                np.subtract(mid, out_x[t - 2 * n, 1], out=tmp)
-                sum_old += tmp
-                np.subtract(x1, mid, out=tmp)
-                sum_new += tmp
-            testing = k >= arm_k
-            testing = testing & (in3 == 0) if not detect3 else testing
-            if not all_seen[t]:
-                testing &= seen
-            if had_gap:
-                testing &= since_visible >= rearm
-            if testing.any():
-                S = sum_old - sum_new
-                c = thr[min(t, thr.size - 1)] if by_frame else thr_by_k.take(k)
-                if detect3 and any3:
-                    c = np.where(in3 == 1, thr3_by_k.take(k), c)
-                np.copyto(out_S[t], S, where=testing)
-                np.copyto(out_c[t], c, where=testing)
-                alarm = testing & (np.abs(S) > c)
-        # switch to TRACK3 with raised gains (card §4.4 step 4)
-        if alarm is not None and alarm.any():
-            detected_at = np.where(alarm & (detected_at < 0), t, detected_at)
-            x1_before = x1
-            if cfg.restart == "C":
-                x2 = np.where(alarm, 0.0, x2)
-                prior = P * np.outer([1, 1, 0], [1, 1, 0])
-                prior[:, 2, 2] = cfg.restart_accel_var
-                P = np.where(alarm[:, None, None], prior, P)
-                kalman = kalman | alarm
-                k = np.where(alarm, 0, k)  # measurements since the restart
-                row = np.where(alarm, bound3_row, row)
-            elif cfg.restart == "A":
-                x2 = np.where(alarm, 0.0, x2)
-                if covariance:
-                    P = np.where(alarm[:, None, None], P * np.outer([1, 1, 0], [1, 1, 0]), P)
-                k = np.where(alarm, cfg.restart_k, k)
-                row = np.where(alarm, kmax + min(cfg.restart_k, cfg.k_bound3) - 1, row)
-            else:
-                zw = zt[max(t - n + 1, 0) : t + 1].T
-                xb, Pb = _quadratic_fit(zw, sigma_eps)
-                x0, x1, x2 = (np.where(alarm, xb[:, i], v) for i, v in enumerate((x0, x1, x2)))
-                if covariance:
-                    P = np.where(alarm[:, None, None], Pb, P)
-                k = np.where(alarm, zw.shape[-1], k)
-                row = np.where(alarm, kmax + min(zw.shape[-1], cfg.k_bound3) - 1, row)
-            if sum_new is not None:
-                sum_new = sum_new + (x1 - x1_before)  # the window holds the restarted velocity (B1)
-            in3 = np.where(alarm, 1, in3)
-            any3 = True
-            cap = np.where(alarm, kmax + cfg.k_bound3 - 1, cap)
-            if not detect3 and in3.all():
-                detector_on = False
-            out_x[t, 1] = x1  # a restart may have changed the velocity
-
-        out_x[t, 0], out_x[t, 2] = x0, x2
-        if covariance:
-            out_var[t] = np.diagonal(P, axis1=-2, axis2=-1).T
-        if all_seen[t]:
-            out_mode[t] = in3 + TRACK2
-        elif not none_seen[t]:
-            out_mode[t] = np.where(seen, in3 + TRACK2, COAST)
-
-    def back(a, extra=()):
-        """(T, [3,] B) -> (..., T[, 3]), a view"""
-        return np.moveaxis(a, -1, 0).reshape(batch + (T,) + extra)
-
-    if covariance:
-        out_var, out_gate = back(out_var, (3,)), back(out_gate)
-    else:  # NaN, without allocating (read-only views)
-        out_var = np.broadcast_to(np.nan, batch + (T, 3))
-        out_gate = np.broadcast_to(np.nan, batch + (T,))
-    return TrackModeOutput(
-        x=back(out_x, (3,)),
-        var=out_var,
-        gate_var=out_gate,
-        mode=back(out_mode),
-        statistic=back(out_S),
-        threshold=back(out_c),
-        detection_frame=detected_at.reshape(batch),
-        gains_array=back(out_K, (3,)),
-    )
+    return run_numpy(z.reshape(B, T), visible, config, prep, sigma_eps, covariance, batch)
 
 
-def _run_jit(zt, vis, table, thr, thr_by_k, thr3_by_k, cfg, arm_k, rearm, sigma_eps, covariance, batch):
-    """``run_track_modes`` with the compiled per-trial kernel; arguments as prepared there, ``zt`` (B, T)
-    and ``vis`` (1 or B, T) trial-major."""
+def _restart_b_fits(n: int, sigma_eps: float):
+    """Restart B's least-squares fits for every window length ``w <= n`` (``w < n`` only before frame ``n``).
+
+    Returns
+    -------
+    pinv_w : ndarray, shape (n + 1, 3, n)   entry ``w``: the pseudo-inverse for the last ``w`` samples (zero-padded)
+    Pb_w : ndarray, shape (n + 1, 3, 3)     entry ``w``: its noise covariance ``sigma² pinv pinv^T``, elements²
+    """
+    pinv_w, Pb_w = np.zeros((n + 1, 3, n)), np.zeros((n + 1, 3, 3))
+    for w in range(1, n + 1):
+        H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))
+        pinv = np.linalg.pinv(H)
+        pinv_w[w, :, :w], Pb_w[w] = pinv, sigma_eps**2 * pinv @ pinv.T
+    return pinv_w, Pb_w
+
+
+def _run_jit(zt, vis, cfg: TrackModeConfig, prep: _Prepared, sigma_eps: float, covariance: bool, batch):
+    """``run_track_modes`` with the compiled per-trial kernel: :func:`._track_modes_kernel.kernel_python` with the
+    covariance, :func:`._track_modes_kernel.kernel_fast_python` without. ``zt`` (B, T) and ``vis`` (1 or B, T)
+    trial-major; the other arguments as prepared there."""
     B, T = zt.shape
     z = np.ascontiguousarray(zt, dtype=float)
     if not z.flags.writeable:  # one compiled signature: writeable C arrays
@@ -454,83 +346,37 @@ def _run_jit(zt, vis, table, thr, thr_by_k, thr3_by_k, cfg, arm_k, rearm, sigma_
     vis = np.array(vis, dtype=bool, order="C")
     not_all = np.flatnonzero(~vis.all(axis=0))
     gap_start = int(not_all[0]) if not_all.size else T
-    n = cfg.window
-    kmax = max(cfg.k_bound2, cfg.k_bound3)
-    if cfg.restart == "B":  # least-squares fits for every window length w <= n (w < n only before frame n)
-        pinv_w, Pb_w = np.zeros((n + 1, 3, n)), np.zeros((n + 1, 3, 3))
-        for w in range(1, n + 1):
-            H = polynomial_observation_row(2, np.arange(w - 1, -1, -1))
-            pinv = np.linalg.pinv(H)
-            pinv_w[w, :, :w], Pb_w[w] = pinv, sigma_eps**2 * pinv @ pinv.T
-    else:
-        pinv_w, Pb_w = np.zeros((1, 3, 1)), np.zeros((1, 3, 3))
+    n, kmax = prep.n, prep.kmax
+    pinv_w, Pb_w = _restart_b_fits(n, sigma_eps) if cfg.restart == "B" else (np.zeros((1, 3, 1)), np.zeros((1, 3, 3)))
     # every element is written by the kernel (NaN where not tested, zero gains while lost)
     out_x, out_mode = np.empty((B, T, 3)), np.empty((B, T), dtype=np.int8)
     out_S, out_c = np.empty((B, T)), np.empty((B, T))
     det = np.empty(B, dtype=np.int64)
-    thr_args = (n, int(arm_k), int(rearm), thr, thr_by_k, thr3_by_k, cfg.threshold_index == "frame")
-    forced_args = (cfg.force_switch_k is not None, -1 if cfg.force_switch_k is None else int(cfg.force_switch_k))
-    restart_args = (bool(cfg.detect_in_track3), _kernel.RESTART_CODES[cfg.restart], int(cfg.restart_k))
+    thr_args = (n, int(prep.arm_k), int(prep.rearm), prep.thr, prep.thr_by_k, prep.thr3_by_k, prep.by_frame)
+    forced_args = (prep.forced, -1 if cfg.force_switch_k is None else int(cfg.force_switch_k))
+    restart_args = (prep.detect3, _kernel.RESTART_CODES[cfg.restart], int(cfg.restart_k))
+    table, kb2, kb3 = prep.table, cfg.k_bound2, cfg.k_bound3
+    out_var = out_gate = None
     t0 = time.perf_counter()
     if covariance:
         out_K, out_var, out_gate = np.empty((B, T, 3)), np.empty((B, T, 3)), np.empty((B, T))
+        F = np.ascontiguousarray(taylor_transition(2), dtype=float)
+        h = np.ascontiguousarray(observation_row(2), dtype=float)
         _kernel.get_kernel(True)(
-            z,
-            vis,
-            gap_start,
-            table,
-            kmax,
-            cfg.k_bound2,
-            cfg.k_bound3,
-            float(table[kmax + cfg.k_bound3 - 1, 0]),
-            np.ascontiguousarray(taylor_transition(2), dtype=float),
-            np.ascontiguousarray(observation_row(2), dtype=float),
-            *thr_args,
-            *forced_args,
-            *restart_args,
-            float(cfg.restart_accel_var),
-            pinv_w,
-            Pb_w,
-            float(sigma_eps**2),
-            True,
-            out_x,
-            out_var,
-            out_gate,
-            out_K,
-            out_mode,
-            out_S,
-            out_c,
-            det,
-        )
+            z, vis, gap_start, table, kmax, kb2, kb3, float(prep.kappa1_bound3), F, h, *thr_args, *forced_args,
+            *restart_args, float(cfg.restart_accel_var), pinv_w, Pb_w, float(sigma_eps**2), True,
+            out_x, out_var, out_gate, out_K, out_mode, out_S, out_c, det,
+        )  # fmt: skip
         gain_kw = {"gains_array": out_K.reshape(batch + (T, 3))}
     else:
         out_row = np.empty((B, T), dtype=np.int16 if table.shape[0] < 2**15 else np.int32)
         _kernel.get_kernel(False)(
-            z, vis, gap_start, table, kmax, cfg.k_bound2, cfg.k_bound3, *thr_args, *forced_args, *restart_args,
+            z, vis, gap_start, table, kmax, kb2, kb3, *thr_args, *forced_args, *restart_args,
             pinv_w, out_x, out_row, out_mode, out_S, out_c, det,
         )  # fmt: skip
         gain_kw = {"gain_rows": out_row.reshape(batch + (T,)), "gain_table": table}
     _kernel._record_compile(covariance, t0)
-
-    def back(a, extra=()):
-        """(B, T[, 3]) -> (..., T[, 3])"""
-        return a.reshape(batch + (T,) + extra)
-
-    if covariance:
-        out_var, out_gate = back(out_var, (3,)), back(out_gate)
-    else:
-        out_var = np.broadcast_to(np.nan, batch + (T, 3))
-        out_gate = np.broadcast_to(np.nan, batch + (T,))
-    return TrackModeOutput(
-        x=back(out_x, (3,)),
-        var=out_var,
-        gate_var=out_gate,
-        mode=back(out_mode),
-        statistic=back(out_S),
-        threshold=back(out_c),
-        detection_frame=det.reshape(batch),
-        **gain_kw,
-    )
+    return _output(batch, T, out_x, out_var, out_gate, out_mode, out_S, out_c, det, **gain_kw)
 
 
 def manoeuvre_truth(v0: float, accel: float, onset_frame: int, n_frames: int) -> np.ndarray:
