@@ -53,6 +53,8 @@ __all__ = [
     "use_jit_default",
 ]
 
+#: Mode codes the kernels write (``in3 + TRACK2`` while seen), :attr:`.track_modes.TrackModeOutput.mode`.
+COAST, TRACK2, TRACK3 = 0, 2, 3
 #: Restart option -> integer code passed to the kernel.
 RESTART_CODES = {"A": 0, "B": 1, "C": 2}
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ...filters.alphabeta import observation_row
 from ...filters.polynomial import polynomial_observation_row, taylor_transition
-from .track_modes import COAST, TRACK2, TrackModeConfig, TrackModeOutput, _output, _Prepared
+from ._track_modes_kernel import COAST, TRACK2
 
 __all__ = ["run_numpy"]
 
@@ -24,7 +24,7 @@ def _quadratic_fit(z_window, sigma_eps):
     return z_window @ pinv.T, sigma_eps**2 * pinv @ pinv.T
 
 
-def run_numpy(z, visible, cfg: TrackModeConfig, prep: _Prepared, sigma_eps: float, covariance: bool, batch):
+def run_numpy(z, visible, cfg, prep, sigma_eps: float, covariance: bool, batch) -> tuple:
     """:func:`~.track_modes.run_track_modes` with the NumPy frame loop.
 
     Parameters
@@ -38,7 +38,9 @@ def run_numpy(z, visible, cfg: TrackModeConfig, prep: _Prepared, sigma_eps: floa
 
     Returns
     -------
-    TrackModeOutput
+    tuple  the trial-major outputs ``(x, var, gate_var, mode, statistic, threshold, detection_frame, gains)`` that
+    ``track_modes._output`` makes a :class:`~.track_modes.TrackModeOutput` of (this module imports nothing of
+    :mod:`.track_modes`, which imports it)
     """
     B, T = z.shape
     # time-major, flat batch: every per-frame operation works in place on contiguous (B,) arrays,
@@ -70,7 +72,7 @@ class _FrameLoop:
     covariance : bool                      propagate the noise-driven covariance
     """
 
-    def __init__(self, zt, vis, cfg: TrackModeConfig, prep: _Prepared, sigma_eps: float, covariance: bool):
+    def __init__(self, zt, vis, cfg, prep, sigma_eps: float, covariance: bool):
         T, B = zt.shape
         self.zt, self.vis, self.cfg, self.p = zt, vis, cfg, prep
         self.sigma_eps, self.covariance = sigma_eps, covariance
@@ -266,8 +268,8 @@ class _FrameLoop:
         elif not self.none_seen[t]:
             self.out_mode[t] = np.where(seen, self.in3 + TRACK2, COAST)
 
-    def output(self, batch) -> TrackModeOutput:
-        """The outputs, as views of the time-major buffers with the batch axes ``batch`` in front."""
+    def output(self, batch) -> tuple:
+        """The outputs, as views of the time-major buffers, trial-major (:func:`run_numpy`)."""
 
         def trial_major(a):
             """(T, [3,] B) -> (B, T[, 3]), a view"""
@@ -278,4 +280,4 @@ class _FrameLoop:
             for a in (self.out_x, self.out_var, self.out_gate, self.out_mode, self.out_S, self.out_c, self.out_K)
         )
         T = x.shape[1]
-        return _output(batch, T, x, var, gate_var, mode, S, c, self.detected_at, gains_array=K.reshape(batch + (T, 3)))
+        return x, var, gate_var, mode, S, c, self.detected_at, K.reshape(batch + (T, 3))

@@ -29,8 +29,8 @@ from . import _track_modes_kernel as _kernel
 
 __all__ = ["COAST", "TRACK2", "TRACK3", "TrackModeConfig", "TrackModeOutput", "run_track_modes", "manoeuvre_truth"]
 
-#: Mode codes in :attr:`TrackModeOutput.mode`.
-COAST, TRACK2, TRACK3 = 0, 2, 3
+#: Mode codes in :attr:`TrackModeOutput.mode` (defined with the kernels that write them).
+COAST, TRACK2, TRACK3 = _kernel.COAST, _kernel.TRACK2, _kernel.TRACK3
 
 
 @dataclass(frozen=True)
@@ -314,9 +314,10 @@ def run_track_modes(
             else np.broadcast_to(visible, z.shape).reshape(B, T)
         )
         return _run_jit(z.reshape(B, T), vis_bt, config, prep, sigma_eps, covariance, batch)
-    from ._track_modes_numpy import run_numpy  # imports this module
+    from ._track_modes_numpy import run_numpy
 
-    return run_numpy(z.reshape(B, T), visible, config, prep, sigma_eps, covariance, batch)
+    *views, gains = run_numpy(z.reshape(B, T), visible, config, prep, sigma_eps, covariance, batch)
+    return _output(batch, T, *views, gains_array=gains)
 
 
 def _restart_b_fits(n: int, sigma_eps: float):
