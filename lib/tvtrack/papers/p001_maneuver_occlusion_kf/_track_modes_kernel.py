@@ -1,34 +1,30 @@
 """Compiled per-trial kernels of the mode logic (:func:`track_modes.run_track_modes`, ``engine="jit"``).
 
-The batched NumPy loop of :func:`~.track_modes.run_track_modes` spends its time in NumPy's per-call
-overhead (about 25 in-place operations on ``(B,)`` arrays per frame). These kernels run the same logic one
-trial at a time over the frames, as scalar code compiled by numba (``@njit``, no ``fastmath``), the trials
-spread over the process's threads (``prange``; the trials share nothing, so the numbers do not depend on the
-thread count, tested). One thread is bound by memory bandwidth, not arithmetic: each trial-frame writes 43 bytes
-of outputs (states, statistic, threshold, gain row, mode), 54 MB for the 001 benchmark's 2000 x 625, which one
-core of the 2-core machine writes in about 9.5 ms; two threads write it in about 4 ms. The thread count is
-numba's (``NUMBA_NUM_THREADS``, default the CPU count); ``tvtrack reproduce`` and the sweep runner give each
-notebook kernel ``cores // jobs`` threads, as for BLAS. They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and
-the card §4.4-4.5 recursions), tested equal to the NumPy path in ``tests/papers/test_001_track_modes_jit.py``
-and ``tests/papers/test_001_track_modes.py`` (every test there runs with both engines):
+The batched NumPy loop (:mod:`._track_modes_numpy`) spends its time in NumPy's per-call overhead (about 25
+in-place operations on ``(B,)`` arrays per frame). These kernels run the same logic one trial at a time over the
+frames, as scalar code compiled by numba (no ``fastmath``), the trials spread over the process's threads
+(``prange``; the trials share nothing, so the numbers do not depend on the thread count, tested). One thread is
+bound by memory bandwidth: each trial-frame writes 43 bytes of outputs, 54 MB for the 001 benchmark's 2000 x 625
+(about 9.5 ms on one core of the 2-core machine, 4 ms on two). The thread count is numba's
+(``NUMBA_NUM_THREADS``); ``tvtrack reproduce`` and the sweep runner give each notebook kernel ``cores // jobs``.
+They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and the card
+§4.4-4.5 recursions), tested equal to the NumPy path (``tests/papers/test_001_track_modes_jit.py``; every test of
+``tests/papers/test_001_track_modes.py`` runs with both engines):
 
 - :func:`kernel_python`: everything, with the noise-driven covariance (gates, variances, restart C's Kalman
   gains); writes the gains per frame;
-- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same steps minus the
-  covariance; writes each frame's gain-table row (int16) instead of three float64 gains, which
-  :attr:`~.track_modes.TrackModeOutput.gains` expands on access (the gains array was ~30 % of the run time).
+- :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same steps minus the covariance;
+  writes each frame's gain-table row (int16), which :attr:`~.track_modes.TrackModeOutput.gains` expands on access.
 
-Both are written as a loop over trials and frames calling the steps of a frame (:func:`_count`,
-:func:`_predict_covariance`, :func:`_kalman_gains`, :func:`_correct_covariance`, :func:`_predict_state`,
-:func:`_correct_state`, :func:`_detect`, :func:`_restart_state`, :func:`_restart_covariance`), which numba inlines
-(:func:`_step`): the compiled kernels are the code of the statements written in place.
+Both loop over trials and frames calling the steps of a frame (:func:`_count`, :func:`_predict_covariance`,
+:func:`_kalman_gains`, :func:`_correct_covariance`, :func:`_predict_state`, :func:`_correct_state`,
+:func:`_detect`, :func:`_restart_state`, :func:`_restart_covariance`), which numba inlines (:func:`_step`).
 
-Numba is optional: without it (or with ``TVTRACK_NO_JIT=1`` in the environment, or ``engine="numpy"``)
-``run_track_modes`` uses the NumPy path. Each kernel is compiled on its first use in a process (~0.6-1.8 s for
-the fast one, ~1.4-3 s for the general one on the shared 2-core machine), or loaded from the folder
-:func:`tvtrack.jit.cache_folder` names when ``TVTRACK_JIT_CACHE`` is set (the pipeline's runs and the test
-session set it; numba's own cache beside the source is never used); :func:`compile_seconds` reports the first
-call's time.
+Numba is optional: without it (or with ``TVTRACK_NO_JIT=1``, or ``engine="numpy"``) ``run_track_modes`` uses the
+NumPy path. Each kernel is compiled on its first use in a process (about 2 s for the fast one, 5-6 s for the
+general one on the shared 2-core machine), or loaded from :func:`tvtrack.jit.cache_folder` when
+``TVTRACK_JIT_CACHE`` is set (the pipeline's runs and the test session set it); :func:`compile_seconds` reports
+the first call's time.
 
 The only global (cross-trial) quantity of the NumPy path is ``had_gap``: it turns true at the first frame
 where some trial is hidden (``gap_start``), and from then on the per-trial ``since_visible`` counter gates
@@ -43,15 +39,8 @@ import numpy as np
 
 from tvtrack import jit
 
-__all__ = [
-    "RESTART_CODES",
-    "available",
-    "compile_seconds",
-    "get_kernel",
-    "kernel_fast_python",
-    "kernel_python",
-    "use_jit_default",
-]
+__all__ = ["RESTART_CODES", "available", "compile_seconds", "get_kernel", "kernel_fast_python", "kernel_python"]
+__all__ += ["use_jit_default", "COAST", "TRACK2", "TRACK3"]
 
 #: Mode codes the kernels write (``in3 + TRACK2`` while seen), :attr:`.track_modes.TrackModeOutput.mode`.
 COAST, TRACK2, TRACK3 = 0, 2, 3
