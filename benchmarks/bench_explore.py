@@ -10,12 +10,13 @@ combinations). Per notebook, as figures in the table ``make bench`` writes:
   split between the notebooks in proportion to the CPU seconds each spent, so every notebook passes exactly when
   the five together fit (one notebook may take more than a fifth when the others take less);
 - (the CPU seconds of ``make reproduce``, the notebooks' ``cpu_s`` summed against the budget's 1,800 core-seconds,
-  are ``bench_runner``'s rows; the last measured run, 2026-11-28: 1,512 CPU s -- 002 648, 003 480, 004 204,
-  001 119, 000 61 -- in 13 min 12 s wall on 2 idle cores; a stage's CPU seconds include an executor's worker
+  are ``bench_runner``'s rows; the last measured run, 2026-11-28: 1,463 CPU s -- 002 638, 003 435, 004 206,
+  001 124, 000 61 -- in 13 min 05 s wall on 2 idle cores; a stage's CPU seconds include an executor's worker
   processes, :func:`tvtrack.explore.cpu_seconds`);
 - **the screening's saving**: the full-size cost of the joint design (its configurations at the replicates'
   full-size cost per configuration) over what the screened design cost (screening plus the confirmations
-  at full size); at least 1 where a notebook screens (a screen that costs more than it saves fails);
+  at full size); at least 1 where a notebook screens (a screen that costs more than it saves fails). No notebook
+  screens by default, so ``bench_000.py`` measures it both ways in one run, reported without a target;
 - every stage's configurations and seconds, in the row's note.
 
 And **the smoke profile's seconds**: each notebook run at its smoke profile here (the edit loop's Run All), against
