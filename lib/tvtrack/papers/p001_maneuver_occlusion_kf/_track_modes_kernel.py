@@ -87,6 +87,24 @@ def _count(seen, t, gap_start, k, row, cap, since):
 
 
 @_step
+def _congruence(X, M, work, out):
+    """``out = X M X^T`` for 3 x 3 arrays (``work``: ``X M``), summed in index order (the covariance recursions
+    of card §4.5)."""
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += X[i, m] * M[m, j]
+            work[i, j] = s
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for m in range(3):
+                s += work[i, m] * X[j, m]
+            out[i, j] = s
+
+
+@_step
 def _predict_covariance(F, P, A, Pp):
     """Noise-driven covariance prediction ``Pp = F P F^T`` (card §4.5; no process noise).
 
@@ -97,18 +115,7 @@ def _predict_covariance(F, P, A, Pp):
     A : ndarray, shape (3, 3)   work space (``F P``)
     Pp : ndarray, shape (3, 3)  output: the predicted covariance
     """
-    for i in range(3):
-        for j in range(3):
-            s = 0.0
-            for m in range(3):
-                s += F[i, m] * P[m, j]
-            A[i, j] = s
-    for i in range(3):
-        for j in range(3):
-            s = 0.0
-            for m in range(3):
-                s += A[i, m] * F[j, m]
-            Pp[i, j] = s
+    _congruence(F, P, A, Pp)
 
 
 @_step
@@ -168,20 +175,12 @@ def _correct_covariance(h, Pp, sigma2, c0, c1, c2, A, IKh, P):
         ci = c0 if i == 0 else (c1 if i == 1 else c2)
         for j in range(3):
             IKh[i, j] = (1.0 if i == j else 0.0) - ci * h[j]
-    for i in range(3):
-        for j in range(3):
-            s = 0.0
-            for m in range(3):
-                s += IKh[i, m] * Pp[m, j]
-            A[i, j] = s
+    _congruence(IKh, Pp, A, P)
     for i in range(3):
         ci = c0 if i == 0 else (c1 if i == 1 else c2)
         for j in range(3):
             cj = c0 if j == 0 else (c1 if j == 1 else c2)
-            s = 0.0
-            for m in range(3):
-                s += A[i, m] * IKh[j, m]
-            P[i, j] = s + sigma2 * ci * cj
+            P[i, j] = P[i, j] + sigma2 * ci * cj
     for i in range(3):
         for j in range(i + 1, 3):
             s = 0.5 * (P[i, j] + P[j, i])
