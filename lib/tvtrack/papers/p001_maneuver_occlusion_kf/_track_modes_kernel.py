@@ -336,6 +336,29 @@ def _restart_state(restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3,
 
 
 @_step
+def _switch(
+    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced, sum_new, detected
+):
+    """The switch to TRACK3 at an alarm at frame ``t`` (card §4.4 step 4), common to both kernels: the restarted
+    state, count and gain row (:func:`_restart_state`); the detector's new-window sum takes the restart's velocity
+    jump (elements/frame) unless the switch was forced; ``detected`` becomes ``t`` at the first alarm.
+
+    Returns
+    -------
+    x0, x1, x2, k, row, sum_new, detected
+    """
+    if detected < 0:
+        detected = t
+    x1_before = x1
+    x0, x1, x2, k, row = _restart_state(
+        restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2
+    )
+    if not forced:
+        sum_new += x1 - x1_before
+    return x0, x1, x2, k, row, sum_new, detected
+
+
+@_step
 def _restart_covariance(restart, P, w, accel_var, Pb_w):
     """The covariance after a switch to TRACK3: restart A zeroes the acceleration's row and column, C also sets
     its variance to ``accel_var`` (elements²/frame⁴), B takes the fit's ``Pb_w[w]`` ((n + 1, 3, 3)); ``P`` (3, 3)
@@ -353,42 +376,10 @@ def _restart_covariance(restart, P, w, accel_var, Pb_w):
 
 
 def kernel_python(
-    z,
-    vis,
-    gap_start,
-    table,
-    kmax,
-    kb2,
-    kb3,
-    kappa1_bound3,
-    F,
-    h,
-    n,
-    arm_k,
-    rearm,
-    thr,
-    thr_by_k,
-    thr3_by_k,
-    by_frame,
-    forced,
-    force_k,
-    detect3,
-    restart,
-    restart_k,
-    accel_var,
-    pinv_w,
-    Pb_w,
-    sigma2,
-    covariance,
-    out_x,
-    out_var,
-    out_gate,
-    out_K,
-    out_mode,
-    out_S,
-    out_c,
-    det,
-):
+    z, vis, gap_start, table, kmax, kb2, kb3, kappa1_bound3, F, h, n, arm_k, rearm, thr, thr_by_k, thr3_by_k,
+    by_frame, forced, force_k, detect3, restart, restart_k, accel_var, pinv_w, Pb_w, sigma2, covariance, out_x,
+    out_var, out_gate, out_K, out_mode, out_S, out_c, det
+):  # fmt: skip
     """Per-trial mode logic; writes the outputs in place. Each frame: the counters (:func:`_count`), the covariance
     (:func:`_predict_covariance`, :func:`_kalman_gains`, :func:`_correct_covariance`), the state (eq. 1:
     :func:`_predict_state`, :func:`_correct_state`), the detector (eq. 14: :func:`_detect`) and on an alarm the
@@ -463,18 +454,14 @@ def kernel_python(
             out_S[b, t] = S
             out_c[b, t] = c
             if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
-                if detected < 0:
-                    detected = t
-                x1_before = x1
-                x0, x1, x2, k, row = _restart_state(
-                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2
-                )
+                x0, x1, x2, k, row, sum_new, detected = _switch(
+                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced,
+                    sum_new, detected,
+                )  # fmt: skip
                 if restart == 2:
                     kalman = True
                 if covariance:
                     _restart_covariance(restart, P, min(n, t + 1), accel_var, Pb_w)
-                if not forced:
-                    sum_new += x1 - x1_before
                 in3 = 1
                 cap = cap3
                 out_x[b, t, 1] = x1
@@ -489,33 +476,9 @@ def kernel_python(
 
 
 def kernel_fast_python(
-    z,
-    vis,
-    gap_start,
-    table,
-    kmax,
-    kb2,
-    kb3,
-    n,
-    arm_k,
-    rearm,
-    thr,
-    thr_by_k,
-    thr3_by_k,
-    by_frame,
-    forced,
-    force_k,
-    detect3,
-    restart,
-    restart_k,
-    pinv_w,
-    out_x,
-    out_row,
-    out_mode,
-    out_S,
-    out_c,
-    det,
-):
+    z, vis, gap_start, table, kmax, kb2, kb3, n, arm_k, rearm, thr, thr_by_k, thr3_by_k, by_frame, forced, force_k,
+    detect3, restart, restart_k, pinv_w, out_x, out_row, out_mode, out_S, out_c, det
+):  # fmt: skip
     """:func:`kernel_python` without the covariance (``covariance=False``, restarts A and B): the same
     steps minus the covariance recursion; the gains are written as the row of ``table`` in force (``out_row``
     (B, T) int16, -1 while lost), expanded on access (:attr:`~.track_modes.TrackModeOutput.gains`). Arguments as in
@@ -548,14 +511,10 @@ def kernel_fast_python(
             out_S[b, t] = S
             out_c[b, t] = c
             if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
-                if detected < 0:
-                    detected = t
-                x1_before = x1
-                x0, x1, x2, k, row = _restart_state(
-                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2
-                )
-                if not forced:
-                    sum_new += x1 - x1_before
+                x0, x1, x2, k, row, sum_new, detected = _switch(
+                    restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced,
+                    sum_new, detected,
+                )  # fmt: skip
                 in3 = 1
                 cap = cap3
                 out_x[b, t, 1] = x1
