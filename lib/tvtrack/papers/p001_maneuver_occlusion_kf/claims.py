@@ -96,7 +96,9 @@ RULES = {
         {
             "size": WithinFactor("per-test false-alarm rate (exact sigma_S)", 1.0, 1.5, "× alpha"),
             "invariance": NotCheckable("S is a difference of two window sums: a common shift cancels by construction"),
-            "unbiased": InBand("alarm rate after the onset", 1.0, None, "× alpha"),
+            "unbiased": InBand(
+                "alarm rate after the onset (exact, from the statistic's distribution)", 1.0, None, "× alpha"
+            ),
             "UMP": Ordering(
                 "P(detection within the delay limit after the onset) of |S|",
                 "that of the other invariant test at the same per-test false-alarm rate",

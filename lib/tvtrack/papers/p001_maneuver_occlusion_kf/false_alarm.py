@@ -49,8 +49,11 @@ def statistic_impulse_response(gains, n: int) -> np.ndarray:
     return window_statistic(v, n)
 
 
-def _rates(c, sd) -> np.ndarray:
-    return 2 * stats.norm.sf(np.asarray(c, float) / np.asarray(sd, float))
+def _rates(c, sd, mean=0.0) -> np.ndarray:
+    """``P(|S| > c)`` for ``S ~ N(mean, sd²)``: ``Phi((mean - c)/sd) + Phi((-mean - c)/sd)`` (``2 Phi(-c/sd)`` at
+    mean 0)."""
+    c, sd, mean = np.asarray(c, float), np.asarray(sd, float), np.asarray(mean, float)
+    return stats.norm.sf((c - mean) / sd) + stats.norm.sf((c + mean) / sd)
 
 
 def _exact(value: float, n: int) -> Estimate:
@@ -58,8 +61,15 @@ def _exact(value: float, n: int) -> Estimate:
     return Estimate(value, 0.0, value, value, n, 0.95, "exact")
 
 
-def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rng=None, runs: int = 2000, mc=None):
+def closed_form_rate(
+    H, threshold, armed, model: str, sigma_eps: float = 1.0, rng=None, runs: int = 2000, mc=None, mean=None
+):
     """Per-test rate of ``|S_t| > threshold_t`` averaged over the armed frames, from the closed form.
+
+    Under an alternative the statistic's mean ``E[S_t] = sum_j H[j, t] x_j`` (``x`` the noise-free measurements)
+    shifts the Gaussian part: ``P(|S_t| > c_t) = Phi((mu_t - c_t)/sd_t) + Phi((-mu_t - c_t)/sd_t)``, still exact
+    for the Gaussian models (the rate of a rare alarm from its distribution, never from a handful of counted
+    alarms), conditional for Student t and bounded for quantised errors (``|S_t - mu_t - G_t| <= b_t``).
 
     Parameters
     ----------
@@ -72,6 +82,9 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
     runs : int                           independent runs of scales (Student t)
     mc : Estimate, optional              the Monte Carlo rate of the same threshold (quantised: clipped into the
                                          closed-form bounds; required for that model)
+    mean : array_like, shape (T,) or (k, T), optional
+                                         ``E[S_t]`` under the alternative, elements/frame (k channels: the rate is
+                                         averaged over channels and armed frames); default 0 (the null)
 
     Returns
     -------
@@ -82,20 +95,21 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
     armed = np.asarray(armed, bool)
     Ha = np.asarray(H, float)[:, armed]
     c = np.broadcast_to(np.asarray(threshold, float), armed.shape)[armed]
+    mu = np.zeros((1, int(armed.sum()))) if mean is None else np.atleast_2d(np.asarray(mean, float))[:, armed]
     s2 = sigma_eps**2
     if model == "white Gaussian":
-        r = _rates(c, np.sqrt(s2 * np.sum(Ha**2, axis=0)))
+        r = _rates(c, np.sqrt(s2 * np.sum(Ha**2, axis=0)), mu)
         return _exact(float(r.mean()), int(armed.sum()))
     if model == "AR(1), rho = 0.5":
         lag = np.abs(np.subtract.outer(np.arange(Ha.shape[0]), np.arange(Ha.shape[0])))
         var = s2 * np.einsum("jt,jk,kt->t", Ha, 0.5**lag, Ha)
-        return _exact(float(_rates(c, np.sqrt(var)).mean()), int(armed.sum()))
+        return _exact(float(_rates(c, np.sqrt(var), mu).mean()), int(armed.sum()))
     if model == "Student t, 3 dof":
         if rng is None:
             raise ValueError("the Student-t model needs rng (its chi-square scales are drawn)")
         inv_scale = 1.0 / rng.chisquare(3, (runs, Ha.shape[0]))  # error_j = sigma e_j / sqrt(chi2_j)
         sd = np.sqrt(s2 * inv_scale @ Ha**2)  # (runs, armed frames)
-        e = mean_ci(_rates(c, sd).mean(axis=1))
+        e = mean_ci(_rates(c, sd[:, None, :], mu[None]).reshape(sd.shape[0], -1).mean(axis=1))
         e = Estimate(e.value, e.stderr, max(e.ci_low, 0.0), e.ci_high, e.n, e.confidence, e.method)
         return Estimate(
             e.value,
@@ -111,8 +125,8 @@ def closed_form_rate(H, threshold, armed, model: str, sigma_eps: float = 1.0, rn
             raise ValueError("the quantised model needs the Monte Carlo estimate 'mc' (the closed form bounds it)")
         sd = np.sqrt((s2 - 1 / 12) * np.sum(Ha**2, axis=0))
         b = 0.5 * np.sum(np.abs(Ha), axis=0)
-        lo = float(_rates(c + b, sd).mean())
-        hi = float(_rates(np.maximum(c - b, 0.0), sd).mean())
+        lo = float(_rates(c + b, sd, mu).mean())
+        hi = float(_rates(np.maximum(c - b, 0.0), sd, mu).mean())
         low = max(lo, mc.ci_low if np.isfinite(mc.ci_low) else lo)
         high = min(hi, mc.ci_high if np.isfinite(mc.ci_high) else hi)
         if low > high:  # the Monte Carlo interval misses the certain bounds (a 5 % event): keep the bounds

@@ -228,11 +228,16 @@ def _per_alpha(e: Estimate, alpha: float) -> Estimate:
 def _step_runs(config: dict, sc: Scenario, Tr: int, n_runs: int, rng: np.random.Generator, sigma: float):
     """Measurements (n_runs, 2, Tr) of C001-2's step alternative: a velocity step of ``step_dv`` elements/frame (at
     25 Hz) at the onset, both channels, away from the manoeuvre's sign."""
+    return measurements(_step_truth(config, sc, Tr), config["noise"], n_runs, rng, sigma)
+
+
+def _step_truth(config: dict, sc: Scenario, Tr: int) -> np.ndarray:
+    """Noise-free positions (2, Tr) of C001-2's step alternative, elements: uniform motion, then a velocity step
+    of ``step_dv`` elements/frame (at 25 Hz) at the onset, away from the manoeuvre's sign."""
     scale = FPS_REF / sc.fps
     t = np.arange(Tr)
     dv = float(config["step_dv"]) * scale
-    steps = np.stack([v0 * scale * t + np.sign(a) * dv * np.clip(t - sc.onset, 0, None) for v0, a in MOTION])
-    return measurements(steps, config["noise"], n_runs, rng, sigma)
+    return np.stack([v0 * scale * t + np.sign(a) * dv * np.clip(t - sc.onset, 0, None) for v0, a in MOTION])
 
 
 def _ump_comparator_statistics(name: str, v_null, v_alt, G, n: int, sigma: float):
@@ -282,10 +287,12 @@ def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict
     armed0 = f0 >= arm_k - 1
     null = (S0, armed0, armed0 & (f0 < sc.onset), T0, arm_k)
     # C001-2's draws come before C001-3's: made whether or not C001-2 is asked
-    za = z[..., :Tr] if config["alternative"] == "ramp" else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
+    ramp = config["alternative"] == "ramp"
+    za = z[..., :Tr] if ramp else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
     shift = 50 * rng.standard_normal((5, n))
     if "C001-2" in asked:
-        out["C001-2"] = _c001_2(config, sc, sigma, za, v0_hat, G0, null, shift, Tr)
+        alt = (sc.truth[:, :Tr, 0] if ramp else _step_truth(config, sc, Tr), _closed_form_rng(seed))
+        out["C001-2"] = _c001_2(config, sc, sigma, za, v0_hat, G0, null, shift, Tr, alt)
     if "C001-3" in asked:
         out["C001-3"] = _c001_3(config, sigma, G0, null, rng)
     return out
@@ -309,10 +316,23 @@ def _c001_1(config: dict, sc: Scenario, z, arm_k: int, sigma: float) -> dict:
     }
 
 
-def _c001_2(config: dict, sc: Scenario, sigma: float, za, v0_hat, G0, null: tuple, shift, Tr: int) -> dict:
+def _closed_form_rng(seed: int) -> np.random.Generator:
+    """The stream of C001-2's conditional closed form (Student-t scales): its own child of the run's seed, so the
+    other claims' draws do not depend on whether C001-2 is asked."""
+    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2,)))
+
+
+def _c001_2(config: dict, sc: Scenario, sigma: float, za, v0_hat, G0, null: tuple, shift, Tr: int, alt) -> dict:
     """C001-2's parts: size with the exact sigma_S; unbiasedness and power against the UMP comparator on the
     TRACK2 filter (no switch); ``za`` (runs, 2, Tr) the alternative's runs, ``null`` the no-manoeuvre statistic
-    ``(S0, armed0, pre0, T0, arm_k)``, ``shift`` (5, n) the invariance check's offsets."""
+    ``(S0, armed0, pre0, T0, arm_k)``, ``shift`` (5, n) the invariance check's offsets, ``alt`` the alternative's
+    noise-free positions (2, Tr) and the closed form's generator.
+
+    Unbiasedness is the test's alarm rate after the onset, ``P(|S_t| > c_t)`` averaged over the two channels and
+    the armed frames after the onset: a rare event (about alpha per test), so it is computed from the statistic's
+    distribution (:func:`.false_alarm.closed_form_rate` with the alternative's mean ``E[S_t] = x H``), exact for
+    the Gaussian error models, never from the handful of alarms a Monte Carlo counts (the counted rate is its
+    cross-check, and bounds the quantised model)."""
     n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
     S0, armed0, pre0, T0, arm_k = null
     c_exact0 = detector_threshold("exact", np.ones(T0, bool), kb2, n, alpha, sigma)
@@ -331,7 +351,12 @@ def _c001_2(config: dict, sc: Scenario, sigma: float, za, v0_hat, G0, null: tupl
     hits_S = first_alarm_within(stat_S, null_quantile_threshold(stat_S0, arm_r, alpha), arm_r, sc.onset)
     hits_Q = first_alarm_within(stat_Q, null_quantile_threshold(stat_Q0, arm_r, alpha), arm_r, sc.onset)
     post = arm_r & (np.arange(Tr) >= sc.onset)
-    unbiased = mean_ci((stat_S[..., post] > stats.norm.isf(alpha / 2)).mean(axis=-1).reshape(-1))
+    counted = mean_ci((stat_S[..., post] > stats.norm.isf(alpha / 2)).mean(axis=-1).reshape(-1))
+    H = statistic_impulse_response(G0[:Tr], n)
+    post &= np.isfinite(H).all(axis=0)
+    mean = np.asarray(alt[0], float) @ np.nan_to_num(H)
+    c_t = stats.norm.isf(alpha / 2) * sig_t
+    unbiased = closed_form_rate(H, c_t, post, config["noise"], sigma, rng=alt[1], mc=counted, mean=mean)
     v_test = v0_hat[:5, -2 * n :]
     invariance = float(
         np.max(
