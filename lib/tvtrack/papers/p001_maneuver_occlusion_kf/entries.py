@@ -344,6 +344,23 @@ ENTRIES = (
         },
     ),
     Entry(
+        "C001-4 switch",
+        "reading",
+        "detected",
+        ("detected", "forced at the detection time"),
+        "C001-4 credits the gain law with the smaller RMS; the paper's Fig. 4 and card §4.5 compute the errors with "
+        "the switch at the paper's detection time 5.5 s (the filter then linear), while in the scheme the switch "
+        "comes when the detector fires, so the spread of the detection time enters the random error; the text "
+        "does not say which error the sentence means",
+        "adversarial",
+        title="when the scheme switches to 3rd order in C001-4's errors",
+        phrases={
+            "detected": "the scheme switching when its detector fires (the detection time's spread included)",
+            "forced at the detection time": "the scheme switching at the paper's detection time, as Fig. 4 is "
+            "computed (the gain law alone)",
+        },
+    ),
+    Entry(
         "ump_comparator",
         "comparator",
         UMP_COMPARATORS[0],

@@ -62,6 +62,8 @@ DEPENDS = {
         "accel_unit",
         "channel_y",
         "restart_accel_var",
+        "C001-4 switch",
+        "switch_s",
     ],
     "C001-7": [
         "restart",

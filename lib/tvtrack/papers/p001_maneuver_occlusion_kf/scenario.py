@@ -300,7 +300,8 @@ def _scheme_config(config: dict, sc: Scenario, sizes: dict, **over) -> TrackMode
     return TrackModeConfig(**(kw | over))
 
 
-def run_scheme(z, sc: Scenario, config: dict, sizes: dict, covariance: bool = True):
-    """The paper's scheme (mode logic with the register's threshold, arming and restart) on measurements z."""
-    cfg = _scheme_config(config, sc, sizes)
+def run_scheme(z, sc: Scenario, config: dict, sizes: dict, covariance: bool = True, **over):
+    """The paper's scheme (mode logic with the register's threshold, arming and restart) on measurements z;
+    ``over``: :class:`TrackModeConfig` fields that replace the register's (``force_switch_k``)."""
+    cfg = _scheme_config(config, sc, sizes, **over)
     return run_track_modes(z, sc.visible, cfg, sizes["sigma_eps"], covariance=covariance or cfg.restart == "C")

@@ -24,7 +24,7 @@ from ...montecarlo import Estimate
 from .comparators import _tuning, comparator_positions, compensation_comparator
 from .scenario import COMPARATORS, COMPENSATION_COMPARATORS, _full, config_scenario, measurements, run_scheme, span_mask
 
-__all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff"]
+__all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff", "switch_share"]
 
 #: Readings of "the gain law minimises the RMS error" (register entry ``rms_statistic``).
 RMS_STATISTICS = ("random error (SD)", "total mean square", "|bias| + RMS at 12 s")
@@ -91,7 +91,8 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     the mean square at the last frame before the loss). Ratios > 1: the scheme's error is the smaller.
 
     Config entries read: ``rms_span``, ``rms_statistic``, ``compensation_end_s``, ``compensation_comparator``,
-    ``noise``, ``manoeuvre``, ``frame_rate_hz`` and the scheme's entries (:func:`~.scenario.run_scheme`).
+    ``noise``, ``manoeuvre``, ``frame_rate_hz``, ``C001-4 switch`` (with ``switch_s`` when forced) and the scheme's
+    entries (:func:`~.scenario.run_scheme`).
     """
     config = _full(config, sizes)
     sc = config_scenario(config)
@@ -99,7 +100,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
     truth = sc.truth[None, :, :, 0]
     boot_rng = np.random.default_rng([seed, 4])
-    scheme = run_scheme(z, sc, config, sizes, covariance=False)
+    scheme = run_scheme(z, sc, config, sizes, covariance=False, **_switch(config, sc))
     err_s = scheme.x[..., 0] - truth
     comp = config.get("compensation_comparator", COMPENSATION_COMPARATORS[0])
     err_c = compensation_comparator(comp, z, sc, config, sizes, scheme.detection_frame) - truth
@@ -128,6 +129,47 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
             _columns(err, frames), _columns(err_s, frames), kind, boot_rng
         )
     return {"C001-4": parts}
+
+
+def switch_share(config: dict, seed: int, sizes: dict) -> dict:
+    """How much of the scheme's random error C001-4 reads is the spread of the detection time.
+
+    On the runs of :func:`measure_tradeoff` (same seed, same draws), the scheme with its detector's switch and with
+    the switch forced at ``switch_s`` (the paper's 5.5 s, as Fig. 4 is computed): the ratio of their random errors
+    (mean over the RMS span of the variance over runs, forced over detected, paired bootstrap) and
+    ``share = 1 - ratio``, the part of the detected scheme's random mean square that the detection time's spread
+    adds (the rest is the gain law's).
+
+    Returns
+    -------
+    dict
+        ``{"forced / detected": Estimate, "share": float}`` (dimensionless).
+    """
+    config = _full(config, sizes)
+    sc = config_scenario(config)
+    z = measurements(
+        sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
+    )
+    truth = sc.truth[None, :, :, 0]
+    frames = span_mask(config["rms_span"], sc)
+    errs = [
+        _columns(
+            run_scheme(z, sc, config, sizes, covariance=False, **_switch(config | {"C001-4 switch": r}, sc)).x[..., 0]
+            - truth,
+            frames,
+        )
+        for r in ("forced at the detection time", "detected")
+    ]
+    ratio = paired_functional_ratio(*errs, "random", np.random.default_rng([seed, 5]))
+    return {"forced / detected": ratio, "share": 1.0 - ratio.value}
+
+
+def _switch(config: dict, sc) -> dict:
+    """The scheme's switch under the reading ``C001-4 switch``: when its detector fires (``{}``), or forced at
+    ``switch_s`` (the paper's detection time, 5.5 s), as Fig. 4 is computed (card §4.5; :func:`.curves.forced_output`)."""
+    if config.get("C001-4 switch", "detected") == "detected":
+        return {}
+    return {"force_switch_k": int(round(float(config["switch_s"]) * sc.fps)) + 1}
 
 
 #: The scenario entries besides the frame rate (:func:`~.scenario.config_scenario`) with their defaults.
