@@ -208,7 +208,9 @@ def test_a_batched_measurement_sees_every_configuration_of_a_stage_at_once():
         return [_measure_module_level(c, s) for c, s in zip(configs, seeds)]
 
     ex = explore(batched, REG, {"X": RULES["X"]}, seed=9, replicates=3, batched=True)
-    assert calls == [3, 5]  # the three replicates in one call, then the five one-at-a-time values in one
+    # the three replicates in one call, the five one-at-a-time values in one, then their sizing to the default's
+    # three replicates (two more each) in one
+    assert calls == [3, 5, 10]
     assert ex.record("X")["label"] == "limited"  # a = 2 is a regime of the world
 
 
@@ -341,10 +343,16 @@ def _depends_xy():
 def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_claim_needs():
     asked = []
 
-    def subset(config, seed, claims=None):
-        asked.append((dict(config), claims))
-        out = measure_joint_only(config, seed)
-        return out if claims is None else {k: v for k, v in out.items() if k in claims}
+    from tvtrack.register import Undeclared
+
+    def subset(config, seed, claims=None):  # reads only what the asked claims declare (the guard checks it)
+        asked.append(({k: v for k, v in config.items() if not isinstance(v, Undeclared)}, claims))
+        out = {}
+        if claims is None or "X" in claims:
+            out["X"] = _mean(seed, 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.0)
+        if claims is None or "Y" in claims:
+            out["Y"] = {"p1": _mean(seed, 0.0), "p2": _mean(seed, 3.0 * (config["c"] == "y"))}
+        return out
 
     design = dict(seed=3, replicates=3, joint=8, depends=_depends_xy())
     plain = explore(measure_joint_only, REG, RULES, **design)
@@ -358,7 +366,7 @@ def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_cl
     # a condition measures only the claims that read what it changes; replicates measure all
     default = REG.default()
     for config, claims in asked:
-        changed = {k for k in config if config[k] != default[k]}
+        changed = {k for k in config if config[k] != default[k]}  # only the declared entries (the others guarded)
         if not changed:
             assert claims is None
         else:
