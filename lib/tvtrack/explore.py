@@ -26,7 +26,6 @@ sent to an executor with ``submit`` (a :class:`concurrent.futures.Executor` or a
 
 from __future__ import annotations
 
-import inspect
 import itertools
 import math
 import time
@@ -36,12 +35,13 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
+from .declared import check_declared, takes_claims
 from .conditions import Run, projected_runs, size_conditions, subset_configs, unexplained_flips
 from .labels import label_parts, part_judgements, part_pairs
 from .montecarlo import Estimate
 from .pooling import pool
 from .attribution import MAX_SUBSET
-from .register import Register, UndeclaredEntry
+from .register import Register
 from .register import guard as guarded_config
 from .verdicts import Rule, calibrated, is_decisive
 
@@ -177,60 +177,6 @@ class Exploration:
                 f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}" if rec["where"] else "")
             )
         return "\n".join(lines)
-
-
-def takes_claims(fn: Callable) -> bool:
-    """Whether a measurement function takes a ``claims`` keyword (it can skip the work of claims not asked)."""
-    try:
-        return "claims" in inspect.signature(fn).parameters
-    except (TypeError, ValueError):
-        return False
-
-
-def check_declared(
-    measure: Callable,
-    register: Register,
-    depends: Mapping[str, Sequence[str]],
-    seed: int,
-    claims: Sequence[str] | None = None,
-    **measure_kwargs: Any,
-) -> dict[str, str]:
-    """Each claim measured alone at the default under :func:`tvtrack.register.guard`: the claims whose measurement
-    uses a register entry their ``DEPENDS`` does not declare, each with the one-line message naming the entry.
-
-    A measurement taking ``claims`` is asked for the one claim (``claims=frozenset({claim})``) and may read only
-    that claim's entries; one that does not take ``claims`` measures every claim at once, so its guard allows the
-    union of every claim's entries (it then catches only an entry that no claim declares).
-
-    Parameters
-    ----------
-    measure : callable
-        ``measure(config, seed, **measure_kwargs)`` (unbatched), as :func:`explore` takes it.
-    register : Register
-    depends : mapping claim id -> entry names
-    seed : int
-    claims : sequence of claim ids, optional
-        The claims to check (default: every claim of ``depends``).
-    **measure_kwargs
-        Passed on to ``measure`` (e.g. a smaller size for a quick check).
-
-    Returns
-    -------
-    dict claim id -> str
-        Empty when every claim reads only what it declares.
-    """
-    default = register.default()
-    asks = takes_claims(measure)
-    everything = {k for names in depends.values() for k in names}
-    out = {}
-    for cid in claims if claims is not None else list(depends):
-        allowed = set(depends[cid]) if asks else everything
-        extra = {"claims": frozenset({cid})} if asks else {}
-        try:
-            measure(guarded_config(default, allowed), seed, **measure_kwargs, **extra)
-        except UndeclaredEntry as e:
-            out[cid] = str(e)
-    return out
 
 
 def _configs(measure: Callable, jobs: list[Run], depends: Mapping[str, Sequence[str]] | None) -> list[dict]:
