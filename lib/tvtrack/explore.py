@@ -13,7 +13,14 @@ full-size run of its study at a configuration of the register, every random draw
    interactions that single-axis sweeps miss show up, also at the first replicate's seed;
 4. **adaptive replicates** (optional): while a claim's pooled verdict is not settled (its interval
    straddles a bound, or is undecided) more replicates run, up to ``max_replicates``; a clear claim
-   stops at the minimum.
+   stops at the minimum;
+5. **condition sizing**: every condition gets replicates on the default's seeds until it decides on at least
+   the default's replicates (:mod:`tvtrack.conditions`), and the subsets of every joint flip no single entry
+   explains are measured alone (pairs, then triples), so a flip is named by the smallest subset that flips.
+
+A condition's run for a claim sees only the entries the claim declares (its configuration projected on the
+claim's ``DEPENDS``), and reads them through a guard that raises on any entry the claims asked for do not
+declare (:func:`tvtrack.register.guard`).
 
 The claim's measured value is the replicates pooled (equal weights; on the log scale for positive
 quantities); its label comes from :func:`tvtrack.verdicts.label_parts`, part by part.

@@ -5,26 +5,25 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
 
 - ``unstable``: independent replicates at the default disagree **decisively** (one reproduced, another
   not reproduced); a replicate too small to decide (``undecided``) never makes a part unstable;
-- ``depends``: a configuration that changes only **readings of the paper** (entries of kind reading,
-  statistic, comparator) reaches a decisive verdict other than the default's decisive verdict: the paper's
-  claim is ambiguous there;
-- ``limited``: the verdict holds under every explored reading, and only configurations that change a **world
-  beyond the paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
+- ``depends``: a configuration that changes **readings of the paper's text** (kinds reading, statistic,
+  comparator) or **unreported settings of its own experiment** (kind unreported setting), or a flip mixing those
+  with worlds that no subset isolates (``unattributed``), reaches a decisive verdict other than the default's
+  decisive verdict: the claim depends on what the paper left open;
+- ``limited``: the verdict holds under every explored reading and setting, and only isolated **worlds beyond the
+  paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
 - ``unexplored``: no entry of the world was varied, or the design is too small to estimate a share
   (``provisional``; e.g. the smoke profile);
 - ``robust``: none of the above, over a design large enough for a share.
 
-A condition flips a part only when its verdict is decisive and differs from the default's pooled decisive
-verdict: an interval that straddles (``undecided``) is never a flip. A part whose default verdict is
-undecided has nothing to flip (label ``-``) and carries the runs projected to decide it.
+A condition flips a part only when its verdict, pooled over at least the default's replicates, is decisive and
+differs from the default's pooled decisive verdict: an interval that straddles (``undecided``), or a condition
+smaller than the default, is never a flip. A part whose default verdict is undecided has nothing to flip (label
+``-``) and carries the runs projected to decide it.
 
-Each part also carries the **share** of the explored configurations whose verdict agrees with the
-default's (Clopper-Pearson interval), the **flips** named (single entries first, readings before worlds;
-then the smallest combinations the explorer found; a joint configuration only where no subset of it was
-found to flip), and a **sensitivity** ranking of the entries (main-effect share of the measured value over
-the explored configurations: the correlation ratio eta^2 of the value on the entry's level; with categorical
-entries on a Latin-hypercube design this is the first-order effect a Sobol index estimates, without the
-continuous sampler SALib's estimators need).
+Each part also carries the **share** (agree, flip and undecided over every explored configuration), the
+**flips** named by the smallest subset that flips alone, each with its side, and a **sensitivity** ranking of the
+entries from the one-at-a-time design (:mod:`tvtrack.attribution`); a value over runs some of which lost lock
+(:func:`tvtrack.measured.with_lost_runs`) adds the share lost and the verdict on the runs in lock.
 """
 
 from __future__ import annotations
