@@ -157,7 +157,8 @@ class Exploration:
         return out
 
     def table(self, claim_id: str) -> str:
-        """The claim over its replicates and conditions as a Markdown table (verdict per part)."""
+        """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
+        part)."""
         rec = self.record(claim_id)
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
@@ -166,7 +167,7 @@ class Exploration:
             for r in rec["replicates"]
         ]
         rows += [
-            f"| {c['kind']}: "
+            f"| {c['kind']} ({c.get('runs', 1)} replicates): "
             + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
             + " | "
             + " | ".join(c["parts"].get(p, "-") for p in parts)
