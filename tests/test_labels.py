@@ -504,3 +504,14 @@ def test_a_value_carried_by_runs_that_lost_lock_says_so():
     assert "lost_share" not in plain
     with pytest.raises(ValueError, match="lost 7 of runs 5"):
         with_lost_runs(every, in_lock, lost=7, runs=5)
+
+
+def test_a_screened_value_is_no_replicate_a_counted_condition_is_sized_at_full_size():
+    ex = explore(_single, REG5, {"X": BAND}, seed=4, replicates=3, joint=40, screen=_small_single)
+    screened = [r for r in ex.runs if r.stage == "joint" and "X" in r.screened]
+    assert screened and all(r.outputs["X"].n == 40 for r in screened)  # clear agreements kept the screen's value
+    for r in screened:  # ... and were sized at full size from the first seed on, the screen's value left out
+        assert [s.seed for s in r.sized][:3] == [rep.seed for rep in ex.replicates()][:3]
+        assert r.n_runs("X") >= 3 and all(s.outputs["X"].n == 400 for s in r.sized)
+    rows = [c for c in ex.record("X")["conditions"] if c["kind"] == "joint"]
+    assert all(c["runs"] >= 3 and c["measured"].n >= 1200 for c in rows)

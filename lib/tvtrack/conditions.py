@@ -42,6 +42,7 @@ class Run:
     claims: frozenset | None = None  # the claims this run is asked for (None: all), for a measure taking ``claims``
     scope: frozenset | None = None  # the claims this condition counts for (None: all): its projection's group
     sized: list = field(default_factory=list)  # the condition's further replicates (Run, stage "condition sizing")
+    screened: frozenset = frozenset()  # claims whose value here is a screen's (smaller) measurement, no replicate
 
     def changed(self, default: Mapping[str, Any]) -> dict:
         """The entries whose value differs from ``default``."""
@@ -51,20 +52,23 @@ class Run:
         """Whether this run says something about claim ``cid`` (in its scope and measured)."""
         return (self.scope is None or cid in self.scope) and cid in self.outputs
 
-    def values(self, cid: str) -> list:
-        """Claim ``cid`` over the condition's replicates: this run's, then each further one that asked for it."""
+    def replicates(self, cid: str) -> list:
+        """Claim ``cid`` over the condition's full-size replicates: this run's (unless screened), then each further
+        one that asked for it."""
         if not self.counts_for(cid):
             return []
         more = [r.outputs[cid] for r in self.sized if cid in r.outputs and (r.claims is None or cid in r.claims)]
-        return [self.outputs[cid], *more]
+        return more if cid in self.screened else [self.outputs[cid], *more]
 
     def pooled(self, cid: str) -> Any:
-        """Claim ``cid`` pooled over the condition's replicates (as the default's replicates pool)."""
-        return pool(self.values(cid))
+        """Claim ``cid`` pooled over the condition's replicates (as the default's replicates pool); a claim with
+        only a screened value has that value."""
+        reps = self.replicates(cid)
+        return pool(reps) if reps else self.outputs.get(cid) if self.counts_for(cid) else None
 
     def n_runs(self, cid: str) -> int:
-        """The condition's replicates behind claim ``cid``."""
-        return len(self.values(cid))
+        """The condition's full-size replicates behind claim ``cid`` (0 for a screened value alone)."""
+        return len(self.replicates(cid))
 
 
 def _key(config: Mapping) -> tuple:
@@ -111,9 +115,9 @@ def condition_verdicts(rules: Mapping[str, Rule], run: Run, n_default: Mapping[s
     replicates than the default's (a condition smaller than the default neither flips nor agrees)."""
     out = {}
     for cid, rule in rules.items():
-        k = run.n_runs(cid)
-        if not k:
+        if not run.counts_for(cid):
             continue
+        k = run.n_runs(cid)
         for part, j in part_judgements(rule, run.pooled(cid)).items():
             out[(cid, part)] = j.verdict if k >= n_default.get(cid, 0) else "undecided"
     return out

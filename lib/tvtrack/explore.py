@@ -536,7 +536,9 @@ def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: _C
 
 def _measure_stage(measure, screen, jobs, name, rules, depends, runs, default, clock: _Clock) -> tuple[int, int]:
     """One stage of conditions: at full size, or screened with ``screen`` and the claims that may flip confirmed
-    at full size (the others keep their screened values). Returns (runs confirmed, claims confirmed)."""
+    at full size (the others keep their screened values, marked ``screened``: a screened value is no replicate of
+    the condition, and the condition's sizing measures it at full size where the default decides the claim).
+    Returns (runs confirmed, claims confirmed)."""
     if screen is None or not jobs:
         clock.run(measure, jobs, name)
         return len(jobs), 0
@@ -548,6 +550,10 @@ def _measure_stage(measure, screen, jobs, name, rules, depends, runs, default, c
         if r.claims:
             redo.append(r)
     clock.run(measure, redo, f"{name}, confirmed at full size")
+    everything = not takes_claims(measure)  # a confirmation then re-measures every claim at full size
+    for r in jobs:  # the claims whose value is the screen's: they count only once sized at full size
+        scope = r.scope if r.scope is not None else frozenset(rules)
+        r.screened = frozenset() if r.claims and everything else scope - (r.claims or frozenset())
     return len(redo), sum(len(r.claims) for r in redo)
 
 
