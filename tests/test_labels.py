@@ -394,6 +394,7 @@ def test_an_unreported_setting_flip_depends_a_mixed_joint_flip_is_unattributed_o
     assert both["parts"]["claim"]["flips"][0]["side"] == "setting" and both["label"] == "depends"
     mixed = rec({"sigma": "smoothed", "motion": "weave"})  # a reading with a world, no subset measured alone
     assert mixed["parts"]["claim"]["flips"][0]["side"] == "unattributed" and mixed["label"] == "depends"
+    assert "no subset of them flips it alone" in mixed["parts"]["claim"]["flips"][0]["note"]
     world = rec({"motion": "weave"})
     assert world["label"] == "limited" and world["parts"]["claim"]["flips"][0]["side"] == "world"
 

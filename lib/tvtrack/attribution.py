@@ -137,6 +137,8 @@ def attribute(
         seen.add(key)
         f = {"changed": dict(r["changed"]), "side": side, "kind": kind, "verdict": r["verdict"]}
         f.update({"text": phrase(r["changed"], entries), "runs": r.get("runs", 1)})
+        if side == "unattributed" and not note:
+            note = "readings or unreported settings changed together with worlds, and no subset of them flips it alone"
         out.append({**f, "note": note} if note else f)
 
     for r in sorted(singles, key=lambda r: order[flip_side(r["changed"], entries)]):
