@@ -51,12 +51,14 @@ def _est(v, lo, hi, n=400):
 
 
 def _share(agree, decided, design, lo, hi):
+    """The share record: agree, flip and undecided over every explored configuration; value = agree / design."""
     return {
         "agree": agree,
+        "flip": decided - agree,
         "decided": decided,
         "undecided": design - decided,
         "design": design,
-        "value": agree / decided,
+        "value": agree / design,
         "ci_low": lo,
         "ci_high": hi,
     }

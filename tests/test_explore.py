@@ -208,7 +208,9 @@ def test_a_batched_measurement_sees_every_configuration_of_a_stage_at_once():
         return [_measure_module_level(c, s) for c, s in zip(configs, seeds)]
 
     ex = explore(batched, REG, {"X": RULES["X"]}, seed=9, replicates=3, batched=True)
-    assert calls == [3, 5]  # the three replicates in one call, then the five one-at-a-time values in one
+    # the three replicates in one call, the five one-at-a-time values in one, then their sizing to the default's
+    # three replicates (two more each) in one
+    assert calls == [3, 5, 10]
     assert ex.record("X")["label"] == "limited"  # a = 2 is a regime of the world
 
 
@@ -341,10 +343,16 @@ def _depends_xy():
 def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_claim_needs():
     asked = []
 
-    def subset(config, seed, claims=None):
-        asked.append((dict(config), claims))
-        out = measure_joint_only(config, seed)
-        return out if claims is None else {k: v for k, v in out.items() if k in claims}
+    from tvtrack.register import Undeclared
+
+    def subset(config, seed, claims=None):  # reads only what the asked claims declare (the guard checks it)
+        asked.append(({k: v for k, v in config.items() if not isinstance(v, Undeclared)}, claims))
+        out = {}
+        if claims is None or "X" in claims:
+            out["X"] = _mean(seed, 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.0)
+        if claims is None or "Y" in claims:
+            out["Y"] = {"p1": _mean(seed, 0.0), "p2": _mean(seed, 3.0 * (config["c"] == "y"))}
+        return out
 
     design = dict(seed=3, replicates=3, joint=8, depends=_depends_xy())
     plain = explore(measure_joint_only, REG, RULES, **design)
@@ -358,7 +366,7 @@ def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_cl
     # a condition measures only the claims that read what it changes; replicates measure all
     default = REG.default()
     for config, claims in asked:
-        changed = {k for k in config if config[k] != default[k]}
+        changed = {k for k in config if config[k] != default[k]}  # only the declared entries (the others guarded)
         if not changed:
             assert claims is None
         else:
@@ -525,3 +533,51 @@ def test_check_declared_names_the_claim_that_reads_an_entry_it_does_not_declare(
 
     assert check_declared(asks_all, reg, {"X": ["a"], "Y": ["b"]}, seed=1) == {}
     assert list(check_declared(asks_all, reg, {"X": ["a"], "Y": ["a"]}, seed=1)) == ["X", "Y"]
+
+
+def _leaky(config, seed, claims=None):
+    """X declares only a, but its value moves with b (a leak); Y declares b."""
+    out = {}
+    if claims is None or "X" in claims:
+        out["X"] = _mean(seed, 3.0 * (config["b"] == 1))
+    if claims is None or "Y" in claims:
+        out["Y"] = _mean(seed + 1, 0.0)
+    return out
+
+
+def test_a_condition_runs_each_claim_only_in_the_world_its_depends_declares():
+    depends = {"X": ["a"], "Y": ["b"]}
+    rules = {"X": RULES["X"], "Y": RULES["X"]}
+    ex = explore(_leaky, REG, rules, seed=3, replicates=3, joint=8, depends=depends, guard=False)
+    for r in ex.runs:
+        if r.stage != "replicate" and r.counts_for("X"):
+            assert r.config["b"] == 0 and r.config["c"] == "x"  # projected: only a changes for X
+    rec = ex.record("X")
+    assert rec["parts"]["claim"]["flips"] == [] and all(set(c["changed"]) == {"a"} for c in rec["conditions"])
+
+
+def test_a_measurement_that_reads_an_undeclared_entry_raises_naming_it():
+    from tvtrack.register import UndeclaredEntry
+
+    with pytest.raises(UndeclaredEntry, match="register entry 'b'"):
+        explore(_leaky, REG, {"X": RULES["X"], "Y": RULES["X"]}, seed=3, depends={"X": ["a"], "Y": ["b"]})
+
+
+def test_a_condition_is_sized_on_the_defaults_seeds_until_it_decides():
+    """a = 1 moves the mean to 0.75: one run's interval (n = 25) straddles the band edge 0.5; the replicates the
+    default's sizing rule asks for decide that it flips."""
+
+    def measure(config, seed):
+        return {"X": _mean(seed, 0.75 * (config["a"] == 1), n=25)}
+
+    ex = explore(measure, REG, {"X": RULES["X"]}, seed=2, replicates=3, max_replicates=16, depends={"X": ["a"]})
+    single = next(r for r in ex.runs if r.stage == "single" and r.config["a"] == 1)
+    assert RULES["X"].decide(single.outputs["X"]) == "undecided"  # one run cannot tell
+    assert [s.seed for s in single.sized] == replicate_seeds(2, 16)[1 : len(single.sized) + 1]  # the default's seeds
+    rec = ex.record("X")
+    row = next(c for c in rec["conditions"] if c["changed"] == {"a": 1})
+    # three replicates (the default's) still straddle; two more decide it
+    assert ex.settings["replicates"] == 3 and row["runs"] == 5 and row["parts"]["claim"] == "not reproduced"
+    assert rec["label"] == "limited" and rec["parts"]["claim"]["flips"][0]["runs"] == row["runs"]
+    assert "condition sizing" in ex.settings["timing"] and "every condition" in ex.settings["stopping"]
+    assert ex.settings["condition_runs"] == sum(len(r.sized) for r in ex.runs)

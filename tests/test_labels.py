@@ -218,7 +218,8 @@ def test_sensitivity_needs_a_design_and_ranks_by_main_effect():
     ents = {k: Entry(k, "regime", 0, (0, 1, 2), "w") for k in "ab"}
     ranked = sensitivity(rows * 2, ["a", "b"], ents, {"a": 0, "b": 0})
     assert [r["entry"] for r in ranked] == ["a", "b"] and ranked[0]["score"] > 0.9
-    assert sensitivity(rows[:4], ["a", "b"], ents, {"a": 0, "b": 0}) == []
+    no_default = [r for r in rows if r["config"] != {"a": 0, "b": 0}]
+    assert sensitivity(no_default, ["a", "b"], ents, {"a": 0, "b": 0}) == []  # nothing to compare the values with
 
 
 # --------------------------------------------------------------------------- every reading can decide
@@ -350,7 +351,8 @@ def test_sensitivity_scores_do_not_depend_on_the_string_hash_seed():
         rng = np.random.default_rng(5)
         rows = [{"config": {"a": f"level-{i % 7}", "b": float(i % 3)}, "value": float(v)}
                 for i, v in enumerate(rng.normal(size=40))]
-        print(repr([float(d["score"]) for d in sensitivity(rows, ["a", "b"], {}, {})]))
+        default = {"a": "level-0", "b": 0.0}
+        print(repr([float(d["score"]) for d in sensitivity(rows, ["a", "b"], {}, default)]))
         """
     )
     outs = {
@@ -364,3 +366,141 @@ def test_sensitivity_scores_do_not_depend_on_the_string_hash_seed():
         for seed in (0, 1, 5)  # 5 ordered the levels differently from 0 and 1 before the fix
     }
     assert len(outs) == 1, outs
+
+
+# --------------------------------------------------------------------------- labels that check what they say
+
+
+def _reps(value=0.0):
+    return [{"seed": s, "measured": Estimate.exact(value)} for s in (1, 2, 3)]
+
+
+def _kinds3():
+    return [
+        Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way"),
+        Entry("law", "unreported setting", "linear", ("linear", "sine"), "the rotation-rate law is not printed"),
+        Entry("motion", "regime", "cv", ("cv", "weave"), "a world beyond the paper"),
+    ]
+
+
+def test_an_unreported_setting_flip_depends_a_mixed_joint_flip_is_unattributed_only_a_world_is_limited():
+    def rec(*flipping):
+        conds = [{"changed": ch, "kind": "single" if len(ch) == 1 else "joint", "measured": 3.0} for ch in flipping]
+        return label_parts(BAND, 0.0, _reps(), conds, _kinds3())
+
+    setting = rec({"law": "sine"})
+    assert setting["label"] == "depends" and setting["parts"]["claim"]["flips"][0]["side"] == "setting"
+    both = rec({"sigma": "smoothed", "law": "sine"})  # readings and settings together: a setting
+    assert both["parts"]["claim"]["flips"][0]["side"] == "setting" and both["label"] == "depends"
+    mixed = rec({"sigma": "smoothed", "motion": "weave"})  # a reading with a world, no subset measured alone
+    assert mixed["parts"]["claim"]["flips"][0]["side"] == "unattributed" and mixed["label"] == "depends"
+    world = rec({"motion": "weave"})
+    assert world["label"] == "limited" and world["parts"]["claim"]["flips"][0]["side"] == "world"
+
+
+def test_a_condition_smaller_than_the_default_neither_flips_nor_agrees():
+    ents = [Entry("motion", "regime", "cv", ("cv", "weave", "turn"), "w")]
+    conds = [
+        {"changed": {"motion": "weave"}, "kind": "single", "measured": 3.0, "runs": 1},  # decisive, but one run
+        {"changed": {"motion": "turn"}, "kind": "single", "measured": 0.0, "runs": 3},
+    ]
+    rec = label_parts(BAND, 0.0, _reps(), conds, ents)
+    part = rec["parts"]["claim"]
+    assert part["flips"] == [] and rec["conditions"][0]["parts"] == {"claim": "undecided"}
+    assert rec["conditions"][0]["undersized"] == {"claim": "not reproduced"}
+    assert (part["share"]["agree"], part["share"]["undecided"]) == (1, 1)
+    conds[0]["runs"] = 3  # sized like the default: now a flip
+    assert label_parts(BAND, 0.0, _reps(), conds, ents)["label"] == "limited"
+
+
+def test_the_share_counts_every_explored_configuration_agree_flip_and_undecided():
+    s = share(["reproduced", "not reproduced", "undecided", "reproduced"], "reproduced")
+    assert (s["agree"], s["flip"], s["undecided"], s["design"], s["decided"]) == (2, 1, 1, 4, 3)
+    assert s["value"] == 0.5 and s["ci_low"] < 0.5 < s["ci_high"]  # 2 of 4, not 2 of the 3 decided
+    none_decided = share(["undecided"] * 10, "reproduced")
+    assert none_decided["value"] == 0.0 and none_decided["design"] == 10 and none_decided["ci_high"] < 0.31
+
+
+REG_READINGS = Register([Entry(k, "reading", 0, (0, 1), f"reading {k}") for k in "abcdef"])
+
+
+def _triple(config, seed, claims=None):
+    """Flips only when readings a, b and c change together (a three-way interaction)."""
+    return {"X": _mean(seed, 3.0 if config["a"] == config["b"] == config["c"] == 1 else 0.0, n=400)}
+
+
+def test_the_subset_search_has_no_run_cap_and_names_a_planted_pair():
+    ex = explore(_pair, REG5, {"X": BAND}, seed=4, replicates=3, joint=40, combinations=0)  # a cap of 0 runs
+    flips = ex.record("X")["parts"]["claim"]["flips"]
+    assert flips and all(f["changed"] == {"a": 2, "b": 2} and f["kind"] == "combination" for f in flips)
+    assert ex.settings["combinations"] > 0 and ex.settings["max_subset"] == 3
+
+
+def test_a_triple_of_readings_is_found_and_depends():
+    ex = explore(_triple, REG_READINGS, {"X": BAND}, seed=2, replicates=3, joint=40)
+    rec = ex.record("X")
+    flips = rec["parts"]["claim"]["flips"]
+    assert flips and {tuple(f["changed"]) for f in flips} == {("a", "b", "c")}
+    assert flips[0]["side"] == "reading" and rec["label"] == "depends"
+
+
+def test_a_joint_flip_of_more_than_three_worlds_with_no_flipping_subset_is_unattributed():
+    reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "abcd"])
+
+    def four(config, seed):
+        return {"X": _mean(seed, 3.0 if all(config[k] == 1 for k in "abcd") else 0.0, n=400)}
+
+    rec = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40).record("X")
+    (flip,) = rec["parts"]["claim"]["flips"]
+    assert flip["changed"] == dict.fromkeys("abcd", 1) and flip["side"] == "unattributed"
+    assert "no subset of up to 3" in flip["note"] and rec["label"] == "depends"  # never limited
+
+
+def test_a_reading_that_adds_a_part_to_the_rule_can_flip_the_claim():
+    from tvtrack.verdicts import AllOf, ByReading
+
+    at_zero = AllOf({"P = 0": BAND})
+    every = AllOf({"P = 0": BAND, "every P > 0.5": BAND})  # the reading "at every P > 0.5" adds a part
+    rule = ByReading("scope", {"every P": every}, default=at_zero)
+    ents = [Entry("scope", "reading", "P = 0", ("P = 0", "every P"), "the sentence reads either way")]
+    reps = [{"seed": s, "measured": ByReading.tag("P = 0", {"P = 0": Estimate.exact(0.0)})} for s in (1, 2, 3)]
+    fails = ByReading.tag("every P", {"P = 0": Estimate.exact(0.0), "every P > 0.5": Estimate.exact(3.0)})
+    holds = ByReading.tag("every P", {"P = 0": Estimate.exact(0.0), "every P > 0.5": Estimate.exact(0.1)})
+    cond = {"changed": {"scope": "every P"}, "kind": "single"}
+    rec = label_parts(rule, reps[0]["measured"], reps, [{**cond, "measured": fails}], ents)
+    assert rec["label"] == "depends" and rec["conditions"][0]["parts"] == {"P = 0": "not reproduced"}
+    assert rec["parts"]["P = 0"]["flips"][0]["text"] == "scope = every P"
+    assert label_parts(rule, reps[0]["measured"], reps, [{**cond, "measured": holds}], ents)["label"] != "depends"
+
+
+def test_sensitivity_ranks_the_one_at_a_time_cause_first_not_an_entry_that_co_occurs_with_it():
+    ents = [Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "bcd"] + [Entry("e", "regime", 0, range(8), "w")]
+    one = [{"changed": {k: 1}, "kind": "single", "measured": 3.0 * (k == "c")} for k in "bcd"]
+    one += [{"changed": {"e": i}, "kind": "single", "measured": 0.0} for i in range(1, 8)]  # e moves nothing
+    # in the joint design b = 1 always comes with c = 1 and a large value; c = 1 with d = 1 cancels
+    joint = [{"changed": {"b": 1, "c": 1, "e": i}, "kind": "joint", "measured": 3.0} for i in range(8)]
+    joint += [{"changed": {"c": 1, "d": 1, "e": i}, "kind": "joint", "measured": 0.0} for i in range(8)]
+    rec = label_parts(InBand("m", -10, 10), 0.0, _reps(), one + joint, ents)
+    sens = rec["parts"]["claim"]["sensitivity"]
+    assert [s["entry"] for s in sens][0] == "c" and sens[0]["score"] == 1.0
+    assert "one at a time" in rec["parts"]["claim"]["sensitivity_method"]
+
+
+def test_a_value_carried_by_runs_that_lost_lock_says_so():
+    from tvtrack.explore import pool
+    from tvtrack.measured import with_lost_runs
+
+    every = Estimate(0.9, 0.1, 0.7, 1.1, 60, method="Student t")  # outside [-0.5, 0.5]: not reproduced
+    in_lock = Estimate(0.1, 0.1, -0.1, 0.3, 57, method="Student t")  # the runs in lock: reproduced
+    m = with_lost_runs(every, in_lock, lost=3, runs=60)
+    assert BAND.decide(m) == "not reproduced"  # the rule judges every run
+    pooled = pool([m, m])
+    assert (pooled["lost"], pooled["runs"]) == (6, 120) and pooled["value"].n == 120
+    part = label_parts(BAND, pooled, [{"seed": s, "measured": m} for s in (1, 2)], [], [])["parts"]["claim"]
+    lost = part["lost_share"]
+    assert (lost["lost"], lost["runs"], lost["value"]) == (6, 120, 0.05) and lost["ci_low"] < 0.05 < lost["ci_high"]
+    assert part["in_lock_verdict"] == "reproduced" and part["decided_by_lost_runs"] is True
+    plain = label_parts(BAND, in_lock, [{"seed": 1, "measured": in_lock}], [], [])["parts"]["claim"]
+    assert "lost_share" not in plain
+    with pytest.raises(ValueError, match="lost 7 of runs 5"):
+        with_lost_runs(every, in_lock, lost=7, runs=5)

@@ -226,7 +226,7 @@ def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_thei
 
 def _toy_measure(config, seed):
     rng = np.random.default_rng(seed)
-    shift = {"filtered": 0.0, "raw": 3.0}[config["reading"]] + {"straight": 0.0, "turn": 1.5}[config["motion"]]
+    shift = {"filtered": 0.0, "raw": 3.0}[config["reading"]] + {"straight": 0.0, "turn": 2.0}[config["motion"]]
     x = rng.normal(1.0 + shift, 0.5, 200)
     half = 2 * x.std() / np.sqrt(200)
     return {"C999-1": Estimate(x.mean(), x.std() / np.sqrt(200), x.mean() - half, x.mean() + half, 200)}

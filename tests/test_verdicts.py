@@ -114,7 +114,9 @@ def test_robustness_labels():
         seeds={1: est(0.6, 0.9), 2: est(0.7, 1.0), 3: est(0.5, 0.8)},
     )
     rec = rob.record(rule, est(0.6, 0.9))
-    assert rec["label"] == "limited"  # the flip changes an operating point (a world), not only a reading
+    # the flip changes an operating point (a world) and a reading together, and no subset of them was measured
+    # alone: it is unattributed, and an unattributed flip labels nothing stronger than depends
+    assert rec["label"] == "depends" and rec["parts"]["claim"]["flips"][0]["side"] == "unattributed"
     assert rec["where"] == ["reproduced when epoch = last and designation_sd = 1"]
     assert [c["verdict"] for c in rec["conditions"]] == ["not reproduced", "reproduced"]
     rob.seeds = {1: est(0.6, 0.9), 2: est(3.8, 4.0), 3: est(0.5, 0.8)}

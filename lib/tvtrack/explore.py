@@ -13,7 +13,14 @@ full-size run of its study at a configuration of the register, every random draw
    interactions that single-axis sweeps miss show up, also at the first replicate's seed;
 4. **adaptive replicates** (optional): while a claim's pooled verdict is not settled (its interval
    straddles a bound, or is undecided) more replicates run, up to ``max_replicates``; a clear claim
-   stops at the minimum.
+   stops at the minimum;
+5. **condition sizing**: every condition gets replicates on the default's seeds until it decides on at least
+   the default's replicates (:mod:`tvtrack.conditions`), and the subsets of every joint flip no single entry
+   explains are measured alone (pairs, then triples), so a flip is named by the smallest subset that flips.
+
+A condition's run for a claim sees only the entries the claim declares (its configuration projected on the
+claim's ``DEPENDS``), and reads them through a guard that raises on any entry the claims asked for do not
+declare (:func:`tvtrack.register.guard`).
 
 The claim's measured value is the replicates pooled (equal weights; on the log scale for positive
 quantities); its label comes from :func:`tvtrack.verdicts.label_parts`, part by part.
@@ -26,20 +33,23 @@ sent to an executor with ``submit`` (a :class:`concurrent.futures.Executor` or a
 
 from __future__ import annotations
 
-import inspect
 import itertools
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
+from .declared import check_declared, takes_claims
+from .conditions import Run, projected_runs, size_conditions, subset_configs, unexplained_flips
+from .labels import label_parts, part_judgements, part_pairs
 from .montecarlo import Estimate
-from .register import Register, UndeclaredEntry, guard
-from .labels import label_parts, part_pairs
 from .pooling import pool
+from .attribution import MAX_SUBSET
+from .register import Register
+from .register import guard as guarded_config
 from .verdicts import Rule, calibrated, is_decisive
 
 __all__ = [
@@ -52,21 +62,6 @@ __all__ = [
     "pool",
     "executor_for",
 ]
-
-
-@dataclass
-class Run:
-    """One measurement: a configuration, a seed and what it measured."""
-
-    config: dict
-    seed: int
-    stage: str  # "replicate", "single", "joint" or "pinned" (a joint condition of Register.pinned)
-    outputs: dict = field(default_factory=dict)
-    claims: frozenset | None = None  # the claims this run measures (None: all), for a measure taking ``claims``
-
-    def changed(self, default: Mapping[str, Any]) -> dict:
-        """The entries whose value differs from ``default``."""
-        return {k: v for k, v in self.config.items() if default.get(k) != v}
 
 
 def replicate_seeds(seed: int, n: int) -> list[int]:
@@ -137,20 +132,21 @@ class Exploration:
 
     def _relevant(self, claim_id: str, run: Run) -> bool:
         ch = run.changed(self.default)
-        return bool(ch) and bool(set(ch) & set(self.depends[claim_id])) and claim_id in run.outputs
+        return bool(ch) and bool(set(ch) & set(self.depends[claim_id])) and run.counts_for(claim_id)
 
     def record(self, claim_id: str, rule: Rule | None = None) -> dict:
         """The claim's robustness record (:func:`tvtrack.verdicts.label_parts`) with its register entries."""
         rule = rule or self.rules[claim_id]
         entries = [self.register[k] for k in self.depends[claim_id]]
         reps = [{"seed": r.seed, "measured": r.outputs[claim_id]} for r in self.replicates() if claim_id in r.outputs]
-        reads = set(self.depends[claim_id])  # a joint sample is described by the entries this claim reads
+        reads = set(self.depends[claim_id])  # a condition is described by the entries this claim reads
         conds = [
             {
                 "changed": {k: v for k, v in r.changed(self.default).items() if k in reads},
                 "config": {k: v for k, v in r.config.items() if k in reads},
                 "kind": r.stage,
-                "measured": r.outputs[claim_id],
+                "measured": r.pooled(claim_id),
+                "runs": r.n_runs(claim_id),
             }
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
@@ -161,7 +157,8 @@ class Exploration:
         return out
 
     def table(self, claim_id: str) -> str:
-        """The claim over its replicates and conditions as a Markdown table (verdict per part)."""
+        """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
+        part)."""
         rec = self.record(claim_id)
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
@@ -170,7 +167,7 @@ class Exploration:
             for r in rec["replicates"]
         ]
         rows += [
-            f"| {c['kind']}: "
+            f"| {c['kind']} ({c.get('runs', 1)} replicates): "
             + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
             + " | "
             + " | ".join(c["parts"].get(p, "-") for p in parts)
@@ -190,79 +187,43 @@ class Exploration:
         return "\n".join(lines)
 
 
-def takes_claims(fn: Callable) -> bool:
-    """Whether a measurement function takes a ``claims`` keyword (it can skip the work of claims not asked)."""
-    try:
-        return "claims" in inspect.signature(fn).parameters
-    except (TypeError, ValueError):
-        return False
-
-
-def check_declared(
-    measure: Callable,
-    register: Register,
-    depends: Mapping[str, Sequence[str]],
-    seed: int,
-    claims: Sequence[str] | None = None,
-    **measure_kwargs: Any,
-) -> dict[str, str]:
-    """Each claim measured alone at the default under :func:`tvtrack.register.guard`: the claims whose measurement
-    uses a register entry their ``DEPENDS`` does not declare, each with the one-line message naming the entry.
-
-    A measurement taking ``claims`` is asked for the one claim (``claims=frozenset({claim})``) and may read only
-    that claim's entries; one that does not take ``claims`` measures every claim at once, so its guard allows the
-    union of every claim's entries (it then catches only an entry that no claim declares).
-
-    Parameters
-    ----------
-    measure : callable
-        ``measure(config, seed, **measure_kwargs)`` (unbatched), as :func:`explore` takes it.
-    register : Register
-    depends : mapping claim id -> entry names
-    seed : int
-    claims : sequence of claim ids, optional
-        The claims to check (default: every claim of ``depends``).
-    **measure_kwargs
-        Passed on to ``measure`` (e.g. a smaller size for a quick check).
-
-    Returns
-    -------
-    dict claim id -> str
-        Empty when every claim reads only what it declares.
-    """
-    default = register.default()
-    asks = takes_claims(measure)
+def _configs(measure: Callable, jobs: list[Run], depends: Mapping[str, Sequence[str]] | None) -> list[dict]:
+    """The configurations handed to ``measure``: plain copies, or with ``depends`` guarded
+    (:func:`tvtrack.register.guard`): a job may read only the entries its asked claims declare (a measurement
+    that does not take ``claims`` is asked for every claim: the entries any claim declares)."""
+    if depends is None:
+        return [dict(j.config) for j in jobs]
     everything = {k for names in depends.values() for k in names}
-    out = {}
-    for cid in claims if claims is not None else list(depends):
-        allowed = set(depends[cid]) if asks else everything
-        extra = {"claims": frozenset({cid})} if asks else {}
-        try:
-            measure(guard(default, allowed), seed, **measure_kwargs, **extra)
-        except UndeclaredEntry as e:
-            out[cid] = str(e)
+    kw = takes_claims(measure)
+    out = []
+    for j in jobs:
+        asked = j.claims if kw and j.claims is not None else None
+        allowed = everything if asked is None else {k for c in asked for k in depends.get(c, ())}
+        out.append(guarded_config(j.config, allowed))
     return out
 
 
-def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -> None:
+def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any, depends=None) -> None:
     """Run ``jobs`` through ``measure``; a job's outputs are updated with what it measured (a confirmation at
-    full size replaces the screened values of the claims it re-measures and keeps the others)."""
+    full size replaces the screened values of the claims it re-measures and keeps the others). With ``depends``
+    each configuration is guarded (:func:`_configs`)."""
     if not jobs:
         return
     kw = takes_claims(measure)
+    cfgs = _configs(measure, jobs, depends)
     if batched:
         extra = {"claims": [j.claims for j in jobs]} if kw else {}
-        outs = measure([j.config for j in jobs], [j.seed for j in jobs], **extra)
+        outs = measure(cfgs, [j.seed for j in jobs], **extra)
         if len(outs) != len(jobs):
             raise ValueError(f"a batched measurement returned {len(outs)} results for {len(jobs)} configurations")
         for j, o in zip(jobs, outs):
             j.outputs.update(o)
         return
     if executor is None:
-        for j in jobs:
-            j.outputs.update(measure(dict(j.config), j.seed, **({"claims": j.claims} if kw else {})))
+        for j, c in zip(jobs, cfgs):
+            j.outputs.update(measure(c, j.seed, **({"claims": j.claims} if kw else {})))
         return
-    futures = [executor.submit(measure, dict(j.config), j.seed, **({"claims": j.claims} if kw else {})) for j in jobs]
+    futures = [executor.submit(measure, c, j.seed, **({"claims": j.claims} if kw else {})) for j, c in zip(jobs, cfgs)]
     try:
         for j, f in zip(jobs, futures):
             j.outputs.update(f.result())
@@ -284,7 +245,12 @@ def _part_measured(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
 
 def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
     """``{(claim, part): Judgement}`` of one run's outputs (or of the pooled default)."""
-    return {key: prule.judge(pm) for key, (prule, pm) in _part_measured(rules, outputs).items()}
+    return {
+        (cid, part): j
+        for cid, rule in rules.items()
+        if outputs.get(cid) is not None
+        for part, j in part_judgements(rule, outputs[cid]).items()
+    }
 
 
 def _point(pm: Any) -> Any:
@@ -327,7 +293,8 @@ def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mappi
     out = set()
     for (cid, part), (prule, pm) in _part_measured(rules, run.outputs).items():
         d = default_j.get((cid, part))
-        if cid in out or not changed & set(depends[cid]) or d is None or not is_decisive(d.verdict):
+        in_scope = run.scope is None or cid in run.scope
+        if cid in out or not in_scope or not changed & set(depends[cid]) or d is None or not is_decisive(d.verdict):
             continue
         v = prule.judge(pm).verdict
         if is_decisive(v) and v != d.verdict:
@@ -339,61 +306,6 @@ def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mappi
             except (TypeError, ValueError):
                 out.add(cid)
     return frozenset(out)
-
-
-def _touched(depends: Mapping[str, Sequence[str]], config: Mapping, default_cfg: Mapping) -> frozenset:
-    """The claims that read an entry ``config`` changes (the only ones a condition can say anything about)."""
-    changed = {k for k, v in config.items() if default_cfg.get(k) != v}
-    return frozenset(cid for cid, names in depends.items() if changed & set(names))
-
-
-def _flipping_unexplained(rules, depends, default_j, runs: list[Run], default_cfg) -> list[tuple[Run, set]]:
-    """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or
-    a sub-combination that flips the same part), each with the entries of the flipped claims it changed (only
-    those with more than two: a pair is already the smallest combination)."""
-    explainers = [r for r in runs if r.stage in ("single", "combination")]
-    flips_of = {id(r): _flips(rules, default_j, r) for r in runs if r.stage != "replicate"}
-    out = []
-    for r in runs:
-        if r.stage not in ("joint", "pinned"):
-            continue
-        ch = set(r.changed(default_cfg).items())
-        todo = set()
-        for key in flips_of[id(r)]:
-            explained = any(key in flips_of[id(s)] and set(s.changed(default_cfg).items()) <= ch for s in explainers)
-            if not explained:
-                todo |= {k for k, _ in ch if k in depends[key[0]]}
-        if len(todo) > 2:
-            out.append((r, todo))
-    return out
-
-
-def _flips(rules, default_j, run: Run) -> set:
-    return {
-        key
-        for key, j in _part_verdicts(rules, run.outputs).items()
-        if key in default_j
-        and is_decisive(j.verdict)
-        and is_decisive(default_j[key].verdict)
-        and j.verdict != default_j[key].verdict
-    }
-
-
-def _combination_runs(rules, depends, runs, default_cfg, seed0, cap, size) -> list[Run]:
-    """Sub-combinations of ``size`` entries of every unexplained flipping joint run (not yet measured)."""
-    default_j = _pooled(rules, runs)
-    have = {tuple(sorted(r.changed(default_cfg).items(), key=repr)) for r in runs}
-    out: list[Run] = []
-    for r, names in _flipping_unexplained(rules, depends, default_j, runs, default_cfg):
-        if size >= len(names):
-            continue
-        for combo in itertools.combinations(sorted(names), size):
-            cfg = {**default_cfg, **{k: r.config[k] for k in combo}}
-            key = tuple(sorted(((k, cfg[k]) for k in combo), key=repr))
-            if key not in have and len(out) < cap:
-                have.add(key)
-                out.append(Run(cfg, seed0, "combination"))
-    return out
 
 
 def _n_joint_combinations(register: Register, names: Sequence[str]) -> int:
@@ -417,7 +329,8 @@ def explore(
     one_at_a_time: bool = True,
     screen: Callable | None = None,
     screen_singles: bool = False,
-    combinations: int = 24,
+    combinations: int | None = None,
+    guard: bool = True,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
 
@@ -427,10 +340,13 @@ def explore(
     cap stops adding and its record says how many it needs); **one at a time** (every other value of every
     entry); **joint** (a Latin-hypercube design of ``joint`` configurations, measured with ``screen`` when
     given, and every configuration whose verdict is not decisively the default's re-measured at full size);
-    **pinned** joint conditions; **combinations**: for each joint configuration that flips a part where no
-    single entry does, its pairs of changed entries, then its triples where no pair flips (at most
-    ``combinations`` runs), so a label names the smallest combination that flips. Every non-replicate stage
-    runs on the first replicate's seed (common random numbers).
+    **pinned** joint conditions; **condition sizing**: every condition gets replicates on the default's seeds
+    until it decides on at least the default's replicates (:func:`tvtrack.conditions.size_conditions`);
+    **combinations**: for each joint configuration that flips a part where no single entry does, every pair of its
+    changed entries, then every triple where no pair flips, each sized likewise, so a label names the smallest
+    combination that flips. A condition's run for a claim sees only the changes of the entries the claim
+    declares (:func:`tvtrack.conditions.projected_runs`), and its first replicate runs on the first replicate's
+    seed (common random numbers).
 
     Parameters
     ----------
@@ -466,8 +382,13 @@ def explore(
         A cheaper measurement with ``measure``'s signature (e.g. fewer trials) for the joint design.
     screen_singles : bool
         Screen the one-at-a-time stage too (its configurations confirmed at full size likewise).
-    combinations : int
-        Cap on the sub-combination runs that name the smallest flipping combination.
+    combinations : int, optional
+        Ignored: the subset search that names the smallest flipping combination tries every pair, then every
+        triple, with no run cap (kept so that older callers run).
+    guard : bool
+        Hand every condition's run a guarded configuration (:func:`tvtrack.register.guard`): reading an entry that
+        none of the claims it is asked for declares raises :class:`tvtrack.register.UndeclaredEntry`. A measurement
+        without ``claims`` is asked for every claim, so its guard allows every entry some claim declares.
 
     Returns
     -------
@@ -488,18 +409,22 @@ def explore(
             raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
     seeds = replicate_seeds(seed, cap)
     default = register.default()
-    clock = _Clock(batched, executor)
+    clock = _Clock(batched, executor, depends if guard else None)
     used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
     runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
-    clock.run(measure, runs, "replicates")
+    clock.run(measure, runs, "replicates", guarded=False)
     n = _size(measure, rules, runs, seeds, cap, clock, default)
+    default_j = _pooled(rules, runs)
+    n_default = {cid: sum(cid in r.outputs for r in runs) for cid in rules}
+    have: dict = {}  # projected configuration -> the claims already measured there
 
-    def conditions(cfgs: Sequence[Mapping], stage: str) -> list[Run]:
-        return [Run(dict(c), seeds[0], stage, claims=_touched(depends, c, default)) for c in cfgs]
+    def conditions(cfgs: Sequence[Mapping], stage: str, only=None) -> list[Run]:
+        return projected_runs(cfgs, stage, depends, default, seeds[0], have, only)
 
-    singles = conditions([{**default, k: v} for k in used for v in register[k].alternatives], "single")
-    singles = singles if one_at_a_time else []
-    joints = conditions(joint_sample(register, used, joint, seed + 1) if joint else [], "joint")
+    alternatives = [{**default, k: v} for k in used for v in register[k].alternatives]
+    singles = conditions(alternatives, "single") if one_at_a_time else []
+    joint_cfgs = joint_sample(register, used, joint, seed + 1) if joint else []
+    joints = conditions(joint_cfgs, "joint")
     confirmed = {"runs": 0, "claims": 0}  # runs measured at full size after a screen (an unscreened joint: all)
     for name, jobs, screened in (("one at a time", singles, screen_singles), ("joint", joints, True)):
         stage_screen = screen if screened else None
@@ -510,29 +435,39 @@ def explore(
     pinned = conditions([{**default, **p} for p in register.pinned if set(p) & set(used)], "pinned")
     clock.run(measure, pinned, "pinned")
     runs += pinned
-    n_combo = 0
-    for size in (2, 3):
-        combos = _combination_runs(rules, depends, runs, default, seeds[0], combinations - n_combo, size)
-        for r in combos:
-            r.claims = _touched(depends, r.config, default)
-        clock.run(measure, combos, "combinations")
-        runs += combos
-        n_combo += len(combos)
+    sizing = (measure, rules)
+    conds = [*singles, *joints, *pinned]
+    sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run)
+    combos: list[Run] = []
+    for size in range(2, MAX_SUBSET + 1):  # every pair, then every triple where no pair flips: no run cap
+        unexplained = unexplained_flips(rules, depends, default_j, runs, default, n_default)
+        cfgs, only = subset_configs(unexplained, default, size)
+        found = conditions(cfgs, "combination", only)
+        clock.run(measure, found, "combinations")
+        sized += size_conditions(*sizing, found, default_j, n_default, seeds, cap, clock.run)
+        runs += found
+        combos += found
     settings = {
         "replicates": n,
         "min_replicates": replicates,
         "max_replicates": cap,
         "stopping": "replicates added one at a time while a part is undecided and the replicates projected to "
-        "decide it fit under max_replicates",
+        "decide it fit under max_replicates; every condition (one at a time, joint, pinned, combination) gets "
+        "replicates on the default's replicate seeds until each part the default decides is decisive on at least "
+        "the default's replicates, is projected to need more than max_replicates, or reaches it; a condition "
+        "smaller than the default counts as undecided",
         "joint": joint,
-        "joint_configurations": len(joints),
+        "joint_configurations": len(joint_cfgs),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
         "screened": screen is not None and bool(joints),
         "screened_singles": screen is not None and screen_singles and bool(singles),
         "confirmed_at_full_size": confirmed["runs"],
         "confirmed_claims": confirmed["claims"],
         "measures_claims_asked": takes_claims(measure),
-        "combinations": n_combo,
+        "combinations": len(combos),
+        "max_subset": MAX_SUBSET,
+        "condition_runs": sized,
+        "guarded": bool(guard),
         "one_at_a_time": one_at_a_time,
         "seed": seed,
         "timing": clock.table(),
@@ -560,13 +495,14 @@ class _Clock:
     """Runs the stages' jobs and keeps where the exploration's time goes: per stage its configurations, wall
     seconds and CPU seconds (:func:`cpu_seconds`: this process and an executor's workers)."""
 
-    def __init__(self, batched: bool, executor: Any):
-        self.batched, self.executor = batched, executor
+    def __init__(self, batched: bool, executor: Any, depends: Mapping[str, Sequence[str]] | None = None):
+        self.batched, self.executor, self.depends = batched, executor, depends
         self.rows: dict[str, list] = {}
 
-    def run(self, fn: Callable, jobs: list[Run], stage: str) -> None:
+    def run(self, fn: Callable, jobs: list[Run], stage: str, guarded: bool = True) -> None:
+        """Measure ``jobs`` (their configurations guarded by ``depends`` unless ``guarded`` is False)."""
         t0, c0 = time.perf_counter(), cpu_seconds()
-        _execute(fn, jobs, self.batched, self.executor)
+        _execute(fn, jobs, self.batched, self.executor, self.depends if guarded else None)
         row = self.rows.setdefault(stage, [0, 0.0, 0.0])
         row[0] += len(jobs)
         row[1] += time.perf_counter() - t0
@@ -592,7 +528,7 @@ def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: _C
         target, undecided = sized
         step = max(1, min(target - n, int(getattr(clock.executor, "_max_workers", 1) or 1)))
         extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
-        clock.run(measure, extra, "sizing")
+        clock.run(measure, extra, "sizing", guarded=False)
         runs += extra
         n += step
     return n

@@ -5,26 +5,25 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
 
 - ``unstable``: independent replicates at the default disagree **decisively** (one reproduced, another
   not reproduced); a replicate too small to decide (``undecided``) never makes a part unstable;
-- ``depends``: a configuration that changes only **readings of the paper** (entries of kind reading,
-  statistic, comparator) reaches a decisive verdict other than the default's decisive verdict: the paper's
-  claim is ambiguous there;
-- ``limited``: the verdict holds under every explored reading, and only configurations that change a **world
-  beyond the paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
+- ``depends``: a configuration that changes **readings of the paper's text** (kinds reading, statistic,
+  comparator) or **unreported settings of its own experiment** (kind unreported setting), or a flip mixing those
+  with worlds that no subset isolates (``unattributed``), reaches a decisive verdict other than the default's
+  decisive verdict: the claim depends on what the paper left open;
+- ``limited``: the verdict holds under every explored reading and setting, and only isolated **worlds beyond the
+  paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
 - ``unexplored``: no entry of the world was varied, or the design is too small to estimate a share
   (``provisional``; e.g. the smoke profile);
 - ``robust``: none of the above, over a design large enough for a share.
 
-A condition flips a part only when its verdict is decisive and differs from the default's pooled decisive
-verdict: an interval that straddles (``undecided``) is never a flip. A part whose default verdict is
-undecided has nothing to flip (label ``-``) and carries the runs projected to decide it.
+A condition flips a part only when its verdict, pooled over at least the default's replicates, is decisive and
+differs from the default's pooled decisive verdict: an interval that straddles (``undecided``), or a condition
+smaller than the default, is never a flip. A part whose default verdict is undecided has nothing to flip (label
+``-``) and carries the runs projected to decide it.
 
-Each part also carries the **share** of the explored configurations whose verdict agrees with the
-default's (Clopper-Pearson interval), the **flips** named (single entries first, readings before worlds;
-then the smallest combinations the explorer found; a joint configuration only where no subset of it was
-found to flip), and a **sensitivity** ranking of the entries (main-effect share of the measured value over
-the explored configurations: the correlation ratio eta^2 of the value on the entry's level; with categorical
-entries on a Latin-hypercube design this is the first-order effect a Sobol index estimates, without the
-continuous sampler SALib's estimators need).
+Each part also carries the **share** (agree, flip and undecided over every explored configuration), the
+**flips** named by the smallest subset that flips alone, each with its side, and a **sensitivity** ranking of the
+entries from the one-at-a-time design (:mod:`tvtrack.attribution`); a value over runs some of which lost lock
+(:func:`tvtrack.measured.with_lost_runs`) adds the share lost and the verdict on the runs in lock.
 """
 
 from __future__ import annotations
@@ -33,10 +32,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-import numpy as np
-import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
-
-from .register import WORLD_KINDS, side_of
+from .attribution import SENSITIVITY_METHOD, attribute, phrase, sensitivity, share
+from .measured import lost_runs
+from .register import WORLD_KINDS
 from .verdicts import LABELS, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
 
 __all__ = [
@@ -44,6 +42,7 @@ __all__ = [
     "NO_PART_LABEL",
     "rule_parts",
     "part_pairs",
+    "part_judgements",
     "weakest_label",
     "label_parts",
     "share",
@@ -88,28 +87,38 @@ def part_pairs(rule: Rule, measured: Any) -> dict[str, tuple[Rule, Any]]:
     return {} if measured is None else {"claim": (rule, measured)}
 
 
-def _part_measured(rule: Rule, measured: Any) -> dict[str, Any]:
-    return {n: m for n, (_, m) in part_pairs(rule, measured).items()}
+def _fold(js: Sequence[Judgement]) -> Judgement:
+    """Parts that must all hold, as one: not reproduced when one is, reproduced when all are, else undecided."""
+    if any(j.verdict == "not reproduced" for j in js):
+        return next(j for j in js if j.verdict == "not reproduced")
+    if all(j.verdict == "reproduced" for j in js):
+        return js[0]
+    open_ = [j for j in js if j.verdict != "reproduced"]
+    return Judgement("undecided", "; ".join(j.why for j in open_), False, max(j.runs_factor for j in open_))
+
+
+def part_judgements(rule: Rule, measured: Any) -> dict[str, Judgement]:
+    """``{part: Judgement}`` of one measurement over the parts a label is given for (:func:`rule_parts`).
+
+    A :class:`ByReading` measurement is judged by its reading's own rule; where that rule has parts the default's
+    rule lacks (a reading that says "at every P > 0.5"), those parts must hold too: each labelled part's verdict
+    under the reading is the reading's part and its extra parts held together (not reproduced when one of them
+    is), so a reading's failing extra part flips the claim."""
+    js = {n: r.judge(m) for n, (r, m) in part_pairs(rule, measured).items()}
+    names = rule_parts(rule)
+    extra = [j for n, j in js.items() if n not in names]
+    if not extra:
+        return js
+    out = {}
+    for n in names:
+        if n in js or len(names) == 1:
+            out[n] = _fold([js[n], *extra] if n in js else extra)
+    return out
 
 
 def weakest_label(labels: Sequence[str]) -> str:
     """The weakest of ``labels`` in the order of :data:`tvtrack.verdicts.LABELS`."""
     return min(labels, key=LABELS.index) if labels else "unexplored"
-
-
-def _phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
-    """A configuration's changes in plain words (the entries' phrases)."""
-    out = []
-    for k, v in changed.items():
-        e = entries.get(k)
-        out.append(e.phrase(v) if e is not None else f"{k} = {v}")
-    return " and ".join(out) or "the default reading"  # one configuration: its changes hold together
-
-
-def _side(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
-    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"``."""
-    kinds = [entries[k].kind if k in entries else "reading" for k in changed]
-    return "reading" if all(side_of(k) == "reading" for k in kinds) else "world"
 
 
 def _scalar(m: Any) -> float:
@@ -124,145 +133,6 @@ def _scalar(m: Any) -> float:
         return float(as_estimate(m).value)
     except (TypeError, ValueError):
         return math.nan
-
-
-def share(verdicts: Sequence[str], default: str, confidence: float = 0.95) -> dict | None:
-    """The share of decided configurations whose verdict is the default's, with a Clopper-Pearson interval.
-
-    Parameters
-    ----------
-    verdicts : sequence of str
-        One verdict per distinct explored configuration.
-    default : str
-        The default's pooled verdict (decisive; else there is no share).
-    """
-    if not is_decisive(default):
-        return None
-    decided = [v for v in verdicts if is_decisive(v)]
-    n, k = len(decided), sum(v == default for v in decided)
-    if n == 0:
-        return {
-            "agree": 0,
-            "decided": 0,
-            "undecided": len(verdicts),
-            "design": len(verdicts),
-            "value": math.nan,
-            "ci_low": 0.0,
-            "ci_high": 1.0,
-        }
-    ci = scipy.stats.binomtest(k, n).proportion_ci(confidence, method="exact")
-    return {
-        "agree": k,
-        "decided": n,
-        "undecided": len(verdicts) - n,
-        "design": len(verdicts),
-        "value": k / n,
-        "ci_low": float(ci.low),
-        "ci_high": float(ci.high),
-    }
-
-
-def _subset(a: Mapping, b: Mapping) -> bool:
-    return all(k in b and b[k] == v for k, v in a.items())
-
-
-def attribute(
-    default: str, rows: Sequence[Mapping], entries: Mapping[str, Any], same_seed: str | None = None
-) -> list[dict]:
-    """The configurations that flip a part, named as simply as the runs allow.
-
-    A configuration flips the part when its verdict is decisive and differs from the default's pooled decisive
-    verdict and, where the default's run on the same random numbers (the first replicate) is decisive, from
-    that run's verdict too: a condition that only repeats its own replicate's luck is no flip.
-
-    Parameters
-    ----------
-    default : str
-        The default's pooled decisive verdict.
-    same_seed : str, optional
-        The verdict of the default's run on the conditions' random numbers.
-    rows : sequence of {"changed", "kind", "verdict"}
-        The part under every explored condition (``kind``: single, joint, pinned or combination).
-    entries : mapping name -> Entry
-
-    Returns
-    -------
-    list of dict
-        ``{"changed", "side", "kind", "verdict", "text"}``: single entries first (readings, then worlds),
-        then the smallest combinations that flip a joint configuration no single entry explains (pairs
-        before triples), then joint configurations in which no subset was found to flip.
-    """
-    if not is_decisive(default):
-        return []
-    crn = same_seed if same_seed is not None and is_decisive(same_seed) else default
-    flipped = [r for r in rows if is_decisive(r["verdict"]) and r["verdict"] != default and r["verdict"] != crn]
-    singles = [r for r in flipped if r["kind"] == "single"]
-    combos = [r for r in flipped if r["kind"] == "combination"]
-    out: list[dict] = []
-    seen: set = set()
-
-    def add(r: Mapping, kind: str) -> None:
-        key = tuple(sorted((k, repr(v)) for k, v in r["changed"].items()))
-        if key in seen:
-            return
-        seen.add(key)
-        out.append(
-            {
-                "changed": dict(r["changed"]),
-                "side": _side(r["changed"], entries),
-                "kind": kind,
-                "verdict": r["verdict"],
-                "text": _phrase(r["changed"], entries),
-            }
-        )
-
-    for r in sorted(singles, key=lambda r: _side(r["changed"], entries) != "reading"):
-        add(r, "single")
-    later: list[tuple[int, Mapping, str]] = []
-    for j in (r for r in flipped if r["kind"] in ("joint", "pinned")):
-        if any(_subset(s["changed"], j["changed"]) for s in singles):
-            continue  # a single entry already explains it
-        subs = [c for c in combos if _subset(c["changed"], j["changed"])]
-        if subs:
-            smallest = min(len(c["changed"]) for c in subs)
-            later += [(smallest, c, "combination") for c in subs if len(c["changed"]) == smallest]
-        else:
-            later.append((len(j["changed"]) + 100, j, "joint"))  # after every named combination
-    for _, r, kind in sorted(later, key=lambda t: (t[0], _side(t[1]["changed"], entries) != "reading")):
-        add(r, kind)
-    return out
-
-
-def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[str, Any], default: Mapping) -> list:
-    """Entries ranked by how much they move a part's measured value over the explored configurations.
-
-    The score is the correlation ratio eta^2: the share of the variance of the part's value (its point value;
-    a curve's end-to-end change) between the groups of configurations that give the entry each of its values.
-    Needs at least 8 configurations with a finite value and some spread; else an empty list.
-
-    Parameters
-    ----------
-    rows : sequence of {"config": full configuration, "value": float}
-    names : entry names the claim reads
-    default : the default configuration (an entry missing from a row's config is at its default)
-    """
-    pts = [(r["config"], r["value"]) for r in rows if math.isfinite(r["value"])]
-    if len(pts) < 8:
-        return []
-    y = np.array([v for _, v in pts])
-    total = float(np.sum((y - y.mean()) ** 2))
-    if not total > 0:
-        return []
-    out = []
-    for k in names:
-        levels = [repr(c.get(k, default.get(k))) for c, _ in pts]
-        between = 0.0
-        for lev in dict.fromkeys(levels):  # first-seen order: a set's order changes with the hash seed
-            g = y[[lv == lev for lv in levels]]
-            between += len(g) * (g.mean() - y.mean()) ** 2
-        e = entries.get(k)
-        out.append({"entry": k, "title": (e.title or e.name) if e is not None else k, "score": between / total})
-    return sorted(out, key=lambda d: -d["score"])
 
 
 def _runs_text(j: Judgement, n_reps: int, n_runs: int, cap: int | None) -> dict:
@@ -323,11 +193,13 @@ def label_parts(
         The claim at the default, pooled over the replicates: decides the default's verdict.
     replicates : sequence of {"seed", "measured"}
         Independent full-size runs at the default.
-    conditions : sequence of {"changed": {entry: value}, "kind", "measured", "config" (optional)}
+    conditions : sequence of {"changed": {entry: value}, "kind", "measured", "config" (optional), "runs" (optional)}
         The claim under other configurations: ``single`` (one entry), ``joint`` (the Latin-hypercube design),
         ``pinned`` (known flips measured every run) and ``combination`` (subsets of a flipping joint
-        configuration, run to name the smallest that flips). Conditions ran on the first replicate's random
-        numbers (common random numbers).
+        configuration, run to name the smallest that flips), each pooled over its ``runs`` replicates on the
+        default's replicate seeds (common random numbers). A condition with fewer ``runs`` than the default's
+        replicates counts as ``undecided`` (it can neither flip nor agree); one without ``runs`` (a hand-built
+        record) counts as sized like the default.
     entries : sequence of :class:`tvtrack.register.Entry`
         The register entries the claim depends on.
     deterministic : bool
@@ -340,15 +212,16 @@ def label_parts(
     -------
     dict
         ``label`` (weakest part), ``provisional``, ``where`` (plain lines), ``coverage``, ``parts`` {name:
-        {verdict, label, where, replicate_verdicts, n_conditions, share, flips, sensitivity, runs_to_decide}},
-        ``replicates`` and ``conditions`` with their part verdicts.
+        {verdict, label, where, replicate_verdicts, n_conditions, share, flips, sensitivity, sensitivity_method,
+        runs_to_decide, and for a value with runs that lost lock lost_share, in_lock_verdict,
+        decided_by_lost_runs}}, ``replicates`` and ``conditions`` with their part verdicts.
     """
     design = dict(design or {})
     parts = rule_parts(rule)
     by_name = {e.name: e for e in entries}
     default_cfg = {e.name: e.default for e in entries}
     rep_rows = [_row(rule, parts, r["measured"], {"seed": int(r["seed"])}) for r in replicates]
-    cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg)
+    cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg, max(len(rep_rows), 1))
     world_varied = any(by_name[k].kind in WORLD_KINDS for c in cond_rows for k in c["changed"] if k in by_name)
     explored = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint")])
     need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), _n_combinations(list(by_name), by_name))
@@ -386,22 +259,49 @@ def label_parts(
     }
 
 
-def _condition_rows(rule: Rule, parts: Mapping[str, Rule], conditions, by_name: Mapping, default_cfg: dict) -> list:
-    """One row per condition: its changes in words, its full configuration, its verdicts (:func:`_row`)."""
-    return [
-        _row(
-            rule,
-            parts,
-            c["measured"],
-            {
-                "changed": dict(c["changed"]),
-                "kind": c.get("kind", "single"),
-                "text": _phrase(c["changed"], by_name),
-                "config": {**default_cfg, **dict(c.get("config", c["changed"]))},
-            },
-        )
-        for c in conditions
-    ]
+def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mapping, default_cfg: dict, n: int) -> list:
+    """One row per condition: its changes in words, its full configuration, its runs and its verdicts
+    (:func:`_row`); a condition with fewer runs than the default's ``n`` replicates reads ``undecided`` per part,
+    its own verdicts kept as ``undersized``."""
+    rows = []
+    for c in conditions:
+        extra = {
+            "changed": dict(c["changed"]),
+            "kind": c.get("kind", "single"),
+            "text": phrase(c["changed"], by_name),
+            "config": {**default_cfg, **dict(c.get("config", c["changed"]))},
+        }
+        if c.get("runs") is not None:
+            extra["runs"] = int(c["runs"])
+        row = _row(rule, parts, c["measured"], extra)
+        if row.get("runs", n) < n:
+            row["undersized"] = dict(row["parts"])
+            row["parts"] = {p: "undecided" for p in row["parts"]}
+        rows.append(row)
+    return rows
+
+
+def _lost(prule: Rule, pm: Any, verdict: str) -> dict:
+    """For a value with runs that lost lock (:func:`tvtrack.measured.with_lost_runs`): the share lost (exact
+    Clopper-Pearson), the verdict on the runs in lock, and whether the two verdicts differ."""
+    info = lost_runs(pm)
+    if info is None:
+        return {}
+    from .counts import proportion_ci
+
+    e = proportion_ci(info["lost"], info["runs"])
+    in_lock = prule.judge(info["in lock"]).verdict
+    return {
+        "lost_share": {
+            "lost": info["lost"],
+            "runs": info["runs"],
+            "value": e.value,
+            "ci_low": e.ci_low,
+            "ci_high": e.ci_high,
+        },
+        "in_lock_verdict": in_lock,
+        "decided_by_lost_runs": in_lock != verdict,
+    }
 
 
 def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dict:
@@ -413,10 +313,13 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
     flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None)
     ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
-    sens_rows = [{"config": c["config"], "value": _scalar(c["part_measured"].get(name))} for c in ex_rows]
-    rep0 = ctx["rep_rows"][0]["part_measured"] if ctx["rep_rows"] else {}
-    if name in rep0:
-        sens_rows.append({"config": ctx["default_cfg"], "value": _scalar(rep0[name])})
+    sens_rows = [
+        {"config": c["config"], "value": _scalar(c["part_measured"].get(name))}
+        for c in ex_rows
+        if c["kind"] == "single"
+    ]
+    if pair:
+        sens_rows.append({"config": ctx["default_cfg"], "value": _scalar(pair[1])})
     pwhere: list[str] = []
     runs = None
     if isinstance(prule, NotCheckable):
@@ -440,15 +343,18 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
         "flips": flips,
         "sensitivity": sensitivity(sens_rows, list(ctx["by_name"]), ctx["by_name"], ctx["default_cfg"]),
+        "sensitivity_method": SENSITIVITY_METHOD,
         "runs_to_decide": runs,
+        **(_lost(pair[0], pair[1], j.verdict) if pair else {}),
     }
 
 
 def _decided_label(flips: Sequence[Mapping], open_world: bool) -> str:
     """The label of a part decided at the default with replicates that agree: ``depends`` when a reading of the
-    paper flips it, ``limited`` when only a world beyond it does, else ``robust`` where the explored design was
-    large enough and varied the world (``open_world``), ``unexplored`` where not."""
-    if any(f["side"] == "reading" for f in flips):
+    paper, an unreported setting of its experiment, or a flip no subset attributes flips it; ``limited`` when only
+    isolated worlds beyond it do; else ``robust`` where the explored design was large enough and varied the world
+    (``open_world``), ``unexplored`` where not."""
+    if any(f["side"] in ("reading", "setting", "unattributed") for f in flips):
         return "depends"
     if flips:
         return "limited"
@@ -461,7 +367,7 @@ def _row(rule: Rule, parts: Mapping[str, Rule], measured: Any, extra: dict) -> d
         **extra,
         "measured": measured,
         "verdict": rule.decide(measured),
-        "parts": {n: r.decide(m) for n, (r, m) in pairs.items()},
+        "parts": {n: j.verdict for n, j in part_judgements(rule, measured).items() if n in parts},
         "part_measured": {n: m for n, (_, m) in pairs.items()},
     }
 

@@ -10,7 +10,34 @@ from typing import Any, Mapping, Sequence
 
 from .estimate import Estimate
 
-__all__ = ["as_estimate", "calibrated", "is_undecided", "runs_to_decide"]
+__all__ = ["as_estimate", "calibrated", "is_undecided", "runs_to_decide", "with_lost_runs", "lost_runs"]
+
+
+def with_lost_runs(value: Any, in_lock: Any, lost: int, runs: int) -> dict:
+    """A measured value over runs some of which lost lock or diverged: ``{"value": over every run, "in lock": over
+    the runs in lock, "lost": runs that lost lock, "runs": every run}``. A rule judges ``value`` (:func:`as_estimate`
+    reads it); the label records the share lost and the verdict on ``in lock`` beside it
+    (:func:`tvtrack.labels.label_parts`); replicates pool ``value`` and ``in lock`` as estimates, ``lost`` and
+    ``runs`` as counts (:func:`tvtrack.pooling.pool`).
+
+    Parameters
+    ----------
+    value, in_lock : Estimate, its dict or a number
+        The quantity over every run, and over the runs that kept lock (same unit).
+    lost, runs : int
+        Runs that lost lock or diverged, and all runs (``0 <= lost <= runs``, ``runs >= 1``).
+    """
+    lost, runs = int(lost), int(runs)
+    if runs < 1 or not 0 <= lost <= runs:
+        raise ValueError(f"with_lost_runs: lost {lost} of runs {runs}: need 0 <= lost <= runs and runs >= 1")
+    return {"value": value, "in lock": in_lock, "lost": lost, "runs": runs}
+
+
+def lost_runs(measured: Any) -> dict | None:
+    """The ``{"in lock", "lost", "runs"}`` of a measured value built by :func:`with_lost_runs`, else None."""
+    if isinstance(measured, Mapping) and {"value", "in lock", "lost", "runs"} <= set(measured):
+        return {k: measured[k] for k in ("in lock", "lost", "runs")}
+    return None
 
 
 def as_estimate(measured: Any) -> Estimate:
@@ -18,6 +45,8 @@ def as_estimate(measured: Any) -> Estimate:
     exact: a deterministic computation, its interval the point itself)."""
     if isinstance(measured, Estimate):
         return measured
+    if lost_runs(measured) is not None:  # a value over runs some of which lost lock: the rule judges every run
+        return as_estimate(measured["value"])
     if isinstance(measured, Mapping) and "value" in measured:
         fields = {
             k: measured[k]

@@ -10,6 +10,7 @@ import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .montecarlo import Estimate
+from .measured import lost_runs
 from .verdicts import calibrated
 
 __all__ = ["pool"]
@@ -135,7 +136,8 @@ def pool(measured: Sequence[Any]) -> Any:
     Estimates are averaged with equal weights and their standard errors (from the intervals) combined
     (on the log scale when every interval is positive); exact numbers that vary between replicates get
     a Student-t interval over the replicates; lists and dicts (``Monotone`` points, ``AllOf`` parts)
-    are pooled element by element. An undefined interval in any replicate makes the pooled interval
+    are pooled element by element; a value with runs that lost lock (:func:`tvtrack.measured.with_lost_runs`) pools
+    its two estimates and sums its counts. An undefined interval in any replicate makes the pooled interval
     undefined (the verdict is then ``undecided``).
     """
     ms = [m for m in measured if m is not None]
@@ -147,6 +149,13 @@ def pool(measured: Sequence[Any]) -> Any:
     if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
         es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
         return _pool_estimates(es)
+    if lost_runs(first) is not None and all(lost_runs(m) is not None for m in ms):  # counts add up
+        return {
+            "value": pool([m["value"] for m in ms]),
+            "in lock": pool([m["in lock"] for m in ms]),
+            "lost": int(sum(m["lost"] for m in ms)),
+            "runs": int(sum(m["runs"] for m in ms)),
+        }
     if isinstance(first, Mapping):
         keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
         return {k: pool([m[k] for m in ms]) for k in keys}

@@ -241,6 +241,10 @@ class Register:
         """The default overridden by ``config`` only on the entries ``names`` (:func:`project`)."""
         return project(config, names, self.default())
 
+    def guard(self, config: Mapping[str, Any], allowed: Iterable[str]) -> dict:
+        """``config`` with every entry outside ``allowed`` an :class:`Undeclared` sentinel (:func:`guard`)."""
+        return guard(config, allowed)
+
     def check(self, config: Mapping[str, Any]) -> dict:
         """``config`` completed with defaults, each value checked to be defensible."""
         unknown = set(config) - set(self.names)

@@ -1,0 +1,215 @@
+"""The explorer's conditions: projected to each claim's entries, sized like the default, searched for the smallest
+flipping subset (:mod:`tvtrack.explore`).
+
+- **Projection**: a condition's run for claim ``c`` sees only the changes of the entries ``c`` declares
+  (``DEPENDS``): the claims a configuration touches are grouped by their projected configuration
+  (:func:`tvtrack.register.project`) and one run is made per distinct projected configuration, asking only its
+  group's claims. No claim is measured in a world its ``DEPENDS`` does not declare, and a condition's record for a
+  claim is described by its projected changes.
+- **Sizing** (:func:`size_conditions`): a condition whose part is undecided, or decided on fewer replicates than
+  the default's pooled verdict, gets replicates on the default's replicate seeds (common random numbers: the
+  condition's replicate ``i`` runs on the default's seed ``i``), asking only the claims concerned, until each of its
+  parts is decisive on at least the default's replicates, or is projected to need more than the cap, or reaches
+  the cap. Its replicates pool as the default's do.
+- **Subsets** (:func:`subset_configs`): a joint flip that no single entry (or smaller subset) explains has every
+  pair, then every triple, of its changed entries measured alone (sized like any condition).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+from .labels import part_judgements
+from .pooling import pool
+from .register import project
+from .verdicts import Rule, is_decisive
+
+__all__ = ["Run", "projected_runs", "condition_verdicts", "size_conditions", "unexplained_flips", "subset_configs"]
+
+
+@dataclass
+class Run:
+    """One measurement: a configuration, a seed and what it measured. A condition's run also carries the claims
+    it counts for (``scope``) and its further replicates on the default's seeds (``sized``)."""
+
+    config: dict
+    seed: int
+    stage: str  # "replicate", "single", "joint", "pinned", "combination" or "condition sizing"
+    outputs: dict = field(default_factory=dict)
+    claims: frozenset | None = None  # the claims this run is asked for (None: all), for a measure taking ``claims``
+    scope: frozenset | None = None  # the claims this condition counts for (None: all): its projection's group
+    sized: list = field(default_factory=list)  # the condition's further replicates (Run, stage "condition sizing")
+
+    def changed(self, default: Mapping[str, Any]) -> dict:
+        """The entries whose value differs from ``default``."""
+        return {k: v for k, v in self.config.items() if default.get(k) != v}
+
+    def counts_for(self, cid: str) -> bool:
+        """Whether this run says something about claim ``cid`` (in its scope and measured)."""
+        return (self.scope is None or cid in self.scope) and cid in self.outputs
+
+    def values(self, cid: str) -> list:
+        """Claim ``cid`` over the condition's replicates: this run's, then each further one that asked for it."""
+        if not self.counts_for(cid):
+            return []
+        more = [r.outputs[cid] for r in self.sized if cid in r.outputs and (r.claims is None or cid in r.claims)]
+        return [self.outputs[cid], *more]
+
+    def pooled(self, cid: str) -> Any:
+        """Claim ``cid`` pooled over the condition's replicates (as the default's replicates pool)."""
+        return pool(self.values(cid))
+
+    def n_runs(self, cid: str) -> int:
+        """The condition's replicates behind claim ``cid``."""
+        return len(self.values(cid))
+
+
+def _key(config: Mapping) -> tuple:
+    return tuple(sorted((k, repr(v)) for k, v in config.items()))
+
+
+def projected_runs(
+    cfgs: Sequence[Mapping],
+    stage: str,
+    depends: Mapping[str, Sequence[str]],
+    default: Mapping,
+    seed: int,
+    have: dict,
+    only: Sequence[frozenset | None] | None = None,
+) -> list[Run]:
+    """One run per distinct projected configuration of ``cfgs`` (see the module), each asking its group's claims.
+
+    Parameters
+    ----------
+    have : dict projected-configuration key -> set of claims
+        The conditions already measured for each claim; a claim is not measured again at a projected configuration
+        it already has. Updated in place.
+    only : sequence of frozenset or None, optional
+        Per configuration, the claims it is run for (None: every claim it touches).
+    """
+    out: dict[tuple, Run] = {}
+    for i, cfg in enumerate(cfgs):
+        changed = {k for k, v in cfg.items() if default.get(k) != v}
+        for cid, names in depends.items():
+            if not changed & set(names) or (only is not None and only[i] is not None and cid not in only[i]):
+                continue
+            proj = project(cfg, names, default)
+            key = _key(proj)
+            if cid in have.setdefault(key, set()):
+                continue
+            have[key].add(cid)
+            r = out.setdefault(key, Run(proj, seed, stage, claims=frozenset(), scope=frozenset()))
+            r.scope = r.claims = r.scope | {cid}
+    return list(out.values())
+
+
+def condition_verdicts(rules: Mapping[str, Rule], run: Run, n_default: Mapping[str, int]) -> dict:
+    """``{(claim, part): verdict}`` of a condition pooled over its replicates; ``undecided`` where it has fewer
+    replicates than the default's (a condition smaller than the default neither flips nor agrees)."""
+    out = {}
+    for cid, rule in rules.items():
+        k = run.n_runs(cid)
+        if not k:
+            continue
+        for part, j in part_judgements(rule, run.pooled(cid)).items():
+            out[(cid, part)] = j.verdict if k >= n_default.get(cid, 0) else "undecided"
+    return out
+
+
+def _target(rule: Rule, run: Run, cid: str, default_j: Mapping, nd: int, cap: int) -> int:
+    """The replicates claim ``cid`` of a condition should reach next: the default's ``nd`` while it has fewer, one
+    more while a part the default decides is undecided and projected to decide within ``cap``, else what it has."""
+    k = run.n_runs(cid)
+    judged = {p: j for p, j in part_judgements(rule, run.pooled(cid)).items() if (cid, p) in default_j}
+    relevant = [j for p, j in judged.items() if is_decisive(default_j[(cid, p)].verdict)]
+    if not relevant or k >= cap:
+        return k
+    if k < nd:
+        return min(nd, cap)
+    for j in relevant:
+        if (
+            not is_decisive(j.verdict)
+            and math.isfinite(j.runs_factor)
+            and max(k + 1, math.ceil(k * j.runs_factor)) <= cap
+        ):
+            return k + 1
+    return k
+
+
+def size_conditions(
+    measure: Callable,
+    rules: Mapping[str, Rule],
+    conds: Sequence[Run],
+    default_j: Mapping,
+    n_default: Mapping[str, int],
+    seeds: Sequence[int],
+    cap: int,
+    run_stage: Callable,
+) -> int:
+    """Add replicates to ``conds`` (see the module) in rounds, each round's runs measured together through
+    ``run_stage(measure, jobs, "condition sizing")``. Returns the runs added."""
+    added = 0
+    while True:
+        jobs = []
+        for r in conds:
+            want = {}
+            for cid in sorted(r.scope if r.scope is not None else rules):
+                if cid in rules and r.counts_for(cid):
+                    t = _target(rules[cid], r, cid, default_j, n_default.get(cid, 0), cap)
+                    if t > r.n_runs(cid):
+                        want[cid] = (r.n_runs(cid), t)
+            for i in sorted({i for lo, hi in want.values() for i in range(lo, hi)}):
+                asked = frozenset(c for c, (lo, hi) in want.items() if lo <= i < hi)
+                job = Run(dict(r.config), seeds[i], "condition sizing", claims=asked, scope=asked)
+                r.sized.append(job)
+                jobs.append(job)
+        if not jobs:
+            return added
+        run_stage(measure, jobs, "condition sizing")
+        added += len(jobs)
+
+
+def _flips(rules, default_j, run: Run, n_default) -> set:
+    return {
+        key
+        for key, v in condition_verdicts(rules, run, n_default).items()
+        if key in default_j and is_decisive(v) and is_decisive(default_j[key].verdict) and v != default_j[key].verdict
+    }
+
+
+def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: Mapping, n_default) -> list:
+    """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or a
+    subset that flips the same part), each with the flipped claims and the entries of theirs it changed (only
+    those with more than two: a pair is already the smallest combination)."""
+    explainers = [r for r in runs if r.stage != "replicate"]  # a smaller flipping joint explains a larger one too
+    flips_of = {id(r): _flips(rules, default_j, r, n_default) for r in runs if r.stage != "replicate"}
+    out = []
+    for r in runs:
+        if r.stage not in ("joint", "pinned"):
+            continue
+        ch = set(r.changed(default).items())
+        todo, claims = set(), set()
+        for key in flips_of[id(r)]:
+            explained = any(key in flips_of[id(s)] and set(s.changed(default).items()) < ch for s in explainers)
+            if not explained:
+                todo |= {k for k, _ in ch if k in depends[key[0]]}
+                claims.add(key[0])
+        if len(todo) > 2:
+            out.append((r, todo, frozenset(claims)))
+    return out
+
+
+def subset_configs(unexplained: Sequence[tuple], default: Mapping, size: int) -> tuple[list[dict], list[frozenset]]:
+    """Every subset of ``size`` changed entries of each unexplained flip, as configurations, each with the claims
+    it is run for (those the joint configuration flipped)."""
+    cfgs, only = [], []
+    for r, names, claims in unexplained:
+        if size >= len(names):
+            continue
+        for combo in itertools.combinations(sorted(names), size):
+            cfgs.append({**default, **{k: r.config[k] for k in combo}})
+            only.append(claims)
+    return cfgs, only
