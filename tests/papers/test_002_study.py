@@ -319,7 +319,7 @@ def test_every_register_entry_and_value_is_in_plain_words():
     for e in REGISTER.entries:
         assert e.title and e.title != e.name, e.name
         assert set(e.phrases) == set(e.values), (e.name, set(e.values) - set(e.phrases))
-    assert REGISTER["tracks"].kind == "regime" and REGISTER["EM stopping"].side == "reading"
+    assert REGISTER["tracks"].kind == "unreported setting" and REGISTER["EM stopping"].side == "reading"
 
 
 def test_screen_scale_is_a_quarter_of_the_trials_with_fewer_resamples():
@@ -401,3 +401,15 @@ def test_the_bounds_run_only_where_they_are_read():
     fig = {j[1]._replace(algs="") for j in study.jobs_of(DEFAULT, 7, TINY, figures=True) if j[1].algs == "r"}
     g, _ = study._points(DEFAULT, TINY, figures=True)
     assert {c._replace(algs="") for c in g["4"][50].values()} <= fig and {g["6"][20][2.0]._replace(algs="")} <= fig
+
+
+def test_the_track_geometry_reaches_only_the_claims_that_declare_it():
+    # a crossing-track configuration measured for C002-1 (parallel tracks: it does not declare "tracks") together
+    # with C002-15 (which does): C002-1 is its value at the default, bit for bit, C002-15 its value on crossing tracks
+    assert "tracks" not in DEPENDS["C002-1"] and "tracks" in DEPENDS["C002-15"]
+    crossing = {**DEFAULT, "tracks": "crossing"}
+    both = study.measure(crossing, 7, TINY, claims=frozenset({"C002-1", "C002-15"}))
+    alone = study.measure(DEFAULT, 7, TINY, claims=frozenset({"C002-1"}))
+    assert repr(both["C002-1"]) == repr(alone["C002-1"])
+    c15 = study.measure(DEFAULT, 7, TINY, claims=frozenset({"C002-15"}))
+    assert repr(both["C002-15"]) != repr(c15["C002-15"])

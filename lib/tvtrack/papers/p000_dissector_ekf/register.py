@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...register import Entry, Register
+from .kinds import with_kinds
 from .study import CONVERGENCE_READINGS, DETERMINES_READINGS, JOINT_READING_C6, LOCK_DEFAULT, WINDOW_DEFAULT
 
 __all__ = ["REGISTER", "DEPENDS"]
@@ -457,7 +458,7 @@ def _plain(entry: Entry) -> Entry:
 #: psi_A = 20, P = 0.5; a few runs take 9-16 scans to re-acquire), so C000-1 is not reproduced under that pair.
 PINNED = [{"convergence criterion": CONVERGENCE_READINGS[1], "initial estimate": "random N(0, D11(0))"}]
 
-REGISTER = Register([_plain(e) for e in _ENTRIES], PINNED)
+REGISTER = Register([_plain(e) for e in with_kinds(_ENTRIES)], PINNED)
 
 _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).

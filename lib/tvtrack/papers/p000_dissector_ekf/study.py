@@ -58,16 +58,6 @@ MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
 LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
 #: The claims :func:`measure` measures, in the order it returns them.
 MEASURED_CLAIMS = ("C000-1", "C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-8", "C000-9")
-#: Adversarial entries and the claims that read them; measure() holds them at their default for the other claims
-#: (so those reuse the default's memoised runs).
-ADVERSARIAL_READS = {
-    "sigma_1": ("0.1 T", ("C000-1", "C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
-    "lock threshold": (LOCK_DEFAULT, ("C000-1",)),
-    "C000-3 accuracy": ("Monte Carlo error", ("C000-3",)),
-    "background": ("stationary", ("C000-5", "C000-7")),
-    "manoeuvre": ("none", ("C000-2", "C000-3", "C000-5", "C000-7")),
-    "steady window": (WINDOW_DEFAULT, ("C000-2", "C000-3", "C000-5", "C000-7", "C000-9")),
-}
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
 STEADY_AFTER_T = 5.0
 #: The "manoeuvre" regime: a weave of amplitude 0.1 T (= sigma_1) and this period (T), a random phase per run.
@@ -487,13 +477,18 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes(), claims: frozenset |
     and C000-7 come together: one computation)
     """
 
-    def reads(claim):  # the configuration with the adversarial entries the claim does not read at their default
-        return {**config, **{k: d for k, (d, claims) in ADVERSARIAL_READS.items() if claim not in claims}}
+    from ...register import project
+    from .register import DEPENDS, REGISTER
+
+    def reads(claim):  # the configuration projected onto the claim's DEPENDS: every other entry at its default
+        return project(config, DEPENDS[claim], REGISTER.default())
 
     want = set(MEASURED_CLAIMS) if claims is None else set(claims)
     out = {}
-    if want & {"C000-5", "C000-7"}:
-        out["C000-5"], out["C000-7"] = _c5_c7(reads("C000-5"), seed, sizes)
+    if want & {"C000-5", "C000-7"}:  # C000-5 declares what C000-7 does and its own reading of "substantially"
+        c5, out["C000-7"] = _c5_c7(reads("C000-5" if "C000-5" in want else "C000-7"), seed, sizes)
+        if "C000-5" in want:
+            out["C000-5"] = c5
     single = {"C000-1": _c1, "C000-2": _c2, "C000-3": _c3, "C000-6": _c6, "C000-8": _c8, "C000-9": _c9}
     for cid, fn in single.items():
         if cid in want:

@@ -10,8 +10,10 @@ import numpy as np
 from scipy import stats
 
 from ...filters.polynomial import predict_ahead
+from ...projection import as_declared
 from ...verdicts import ByReading
 from .track_modes import TrackModeConfig, run_track_modes
+from .scenario import declared
 from .scenario import (
     Scenario,
     config_scenario,
@@ -160,6 +162,7 @@ def c8_parts(cur: dict) -> dict:
     }
 
 
+@as_declared(("C001-7", "C001-8"), declared)  # each claim at its configuration projected onto its DEPENDS
 def measure_curves(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), each
     tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone

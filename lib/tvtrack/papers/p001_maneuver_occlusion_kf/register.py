@@ -11,6 +11,7 @@ import dataclasses
 
 from ...register import Register
 from .entries import ENTRIES
+from .kinds import with_kinds
 
 __all__ = ["ENTRIES", "GROUPS", "DEPENDS", "PINNED", "RUN_SIZES", "FIXED_BY_PAPER", "build_register", "group_register"]
 
@@ -145,7 +146,7 @@ def build_register(**defaults) -> Register:
     if unknown:
         raise KeyError(f"no register entries {sorted(unknown)}")
     out = []
-    for e in ENTRIES:
+    for e in with_kinds(ENTRIES):
         if e.name in defaults:
             d = defaults[e.name]
             vals = e.values if d in e.values else (d, *e.values)

@@ -22,6 +22,7 @@ from scipy import signal, stats
 from ...filters.alphabeta import gain_schedule, scheduled_filter
 from ...filters.polynomial import predict_ahead
 from ...montecarlo import Estimate, mean_ci, paired_difference
+from ...projection import as_declared
 from .false_alarm import closed_form_check, closed_form_rate, statistic_impulse_response
 from .maneuver_detector import (
     detection_time_summary,
@@ -33,6 +34,7 @@ from .maneuver_detector import (
     window_sum_of_squares,
 )
 from .track_modes import TrackModeConfig, run_track_modes
+from .scenario import declared
 from .scenario import (
     FPS_REF,
     MOTION,
@@ -249,6 +251,7 @@ def _ump_comparator_statistics(name: str, v_null, v_alt, G, n: int, sigma: float
     return np.abs(tapped_window_statistic(v_null, taps)), np.abs(tapped_window_statistic(v_alt, taps))
 
 
+@as_declared(("C001-1", "C001-2", "C001-3"), declared)  # each claim at its configuration projected onto DEPENDS
 def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-1 (detection time), C001-2 (size, invariance, unbiasedness, optimality) and C001-3 (the paper's
     independence threshold) from one full-size run. Per-test rates are in units of the configuration's alpha.

@@ -15,6 +15,8 @@ from dataclasses import replace
 
 from tvtrack.register import Entry, Register
 
+from .kinds import with_kinds
+
 __all__ = ["REGISTER", "DEPENDS", "PLAIN"]
 
 _FIG1 = {3.0: "pixels 3 sigma wide (Fig 1a)", 1.0: "pixels 1 sigma wide (Fig 1b)"}
@@ -539,7 +541,7 @@ REGISTER = Register(
     ],
 )
 
-REGISTER = Register([_plain(e) for e in REGISTER.entries], REGISTER.pinned)  # every entry in plain words
+REGISTER = Register([_plain(e) for e in with_kinds(REGISTER.entries)], REGISTER.pinned)  # every entry in plain words
 
 _WORLD = ["photon model", "designation error (sigma)", "noise (photons/sigma^2/frame)", "velocity (sigma/frame)"]
 _ULA_ONLY = ["epoch", "statistic", "gross errors", *_WORLD, "EM stopping"]

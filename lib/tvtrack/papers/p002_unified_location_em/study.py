@@ -334,16 +334,25 @@ def measure_batch(configs, seeds, scale: Scale = Scale(), claims=None) -> list[d
     ``scale.n_workers`` processes, then each configuration's claims are measured. ``claims``: one set of claim
     ids per configuration (None, or None for one configuration: all claims); only the jobs those claims read run,
     and each asked claim's value is the one a measurement of every claim gives, bit for bit."""
+    from ...projection import claim_groups
+    from .register import DEPENDS, REGISTER
+
     asked = [None] * len(configs) if claims is None else list(claims)
     if len(asked) != len(configs):
         raise ValueError(f"{len(asked)} claim sets for {len(configs)} configurations")
-    jobs = [j for c, s, k in zip(configs, seeds, asked) for j in jobs_of(c, s, scale, claims=k)]
+    # each claim at its configuration projected onto its DEPENDS (a track geometry reaches only the claims that
+    # declare it, the other two-object claims keep the paper's parallel tracks): one group per distinct projection
+    default = REGISTER.default()
+    groups = [claim_groups(c, k, DEPENDS, default) for c, k in zip(configs, asked)]
+    jobs = [j for gs, s in zip(groups, seeds) for c, k in gs for j in jobs_of(c, s, scale, claims=k)]
     run_jobs(jobs, scale.n_workers)
     out = []
-    for c, s, k in zip(configs, seeds, asked):
-        g, _ = _points(c, scale)
-        res = _Results(settings_of(c, s, scale), scale)
-        out.append(measure_claims(c, g, res, int(s), scale.n_bootstrap, scale.separations, k))
+    for gs, s in zip(groups, seeds):
+        out.append({})
+        for c, k in gs:
+            g, _ = _points(c, scale)
+            res = _Results(settings_of(c, s, scale), scale)
+            out[-1].update(measure_claims(c, g, res, int(s), scale.n_bootstrap, scale.separations, k))
     return out
 
 

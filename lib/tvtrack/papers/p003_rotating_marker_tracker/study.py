@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...projection import as_declared
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
@@ -212,11 +213,19 @@ T_CLAIMS = ("C003-1", "C003-2", "C003-3", "C003-4", "C003-9")
 I_CLAIMS = ("C003-5", "C003-6", "C003-7", "C003-10", "C003-11", "C003-12")
 
 
+def _declared(args, kwargs):
+    """``(DEPENDS, default)``: each claim is measured at its configuration projected onto its DEPENDS."""
+    from .register import DEPENDS, REGISTER
+
+    return DEPENDS, REGISTER.default()
+
+
 def _asked(claims, ids) -> set:
     """The claims of ``ids`` a measurement computes: all with ``claims=None``, else those asked."""
     return set(ids) if claims is None else set(ids) & set(claims)
 
 
+@as_declared(T_CLAIMS, _declared)
 def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes(), claims=None) -> dict:
     """One replicate of the tracking claims at ``config``.
 
@@ -420,6 +429,7 @@ _I_NEEDS = {
 }
 
 
+@as_declared(I_CLAIMS, _declared)
 def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims=None) -> dict:
     """One replicate of the loss-of-lock claims at ``config`` (all curves on :data:`SIR_GRID`, same draws).
 

@@ -276,7 +276,7 @@ ROWS = (
         "the recursion coasts, eq. (4) is solved on the samples present at their true times; the two agree only "
         "on gap-free series, and the register's world loses no frame at its defaults). A world beyond the paper "
         "(kind model, not a reading): the paper's recursion (5)-(6) counts samples on an even grid and says nothing "
-        "of lost frames, so a flip here says C004-4 does not extend to lost frames, not that the paper is ambiguous",
+        "of lost frames, so a flip here says C004-4 does not extend to lost frames, not that the paper can be read two ways",
         "adversarial",
     ),
     (
@@ -548,12 +548,13 @@ PINNED = ({"frame loss": 0.01, "lost frames": "skipped (coast)"},)
 def build():
     """The :class:`tvtrack.register.Register` of :data:`ROWS`, with the joint conditions :data:`PINNED`."""
     from ...register import Entry, Register
+    from .kinds import with_kinds
 
     entries = [
         Entry(name=n, kind=k, default=d, values=v, why=w, origin=o, title=PLAIN[n][0], phrases=PLAIN[n][1])
         for n, k, d, v, w, o in ROWS
     ]
-    return Register(entries, PINNED)
+    return Register(with_kinds(entries), PINNED)
 
 
 def explored(names=(), defaults=None):

@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...projection import as_declared, claim_groups
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
 from .prediction_study import (
@@ -542,10 +543,15 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
         Per configuration, the claims to compute (None: all); the methods no asked claim reads are not run
         (the explorer's ``claims=``). Each claim's value is the same as when all are asked.
     """
-    from .register import DEFAULT
+    from .register import DEFAULT, DEPENDS
 
-    configs = [{**DEFAULT, **c} for c in configs]  # entries left out of a smaller exploration stay at their defaults
-    claims = [None] * len(configs) if claims is None else list(claims)
+    # each claim at its configuration projected onto its DEPENDS (entries left out of a smaller exploration, or
+    # not declared by the claim, stay at their defaults): one item per distinct projection, merged back below
+    asked = [None] * len(configs) if claims is None else list(claims)
+    split = [claim_groups(c, k, DEPENDS, DEFAULT) for c, k in zip(configs, asked)]
+    configs = [c for gs in split for c, _ in gs]
+    claims = [k for gs in split for _, k in gs]
+    seeds = [s for gs, s in zip(split, seeds) for _ in gs]
     groups: dict = {}
     for i, (config, seed) in enumerate(zip(configs, seeds)):
         groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
@@ -559,13 +565,24 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
             results = list(pool.map(_measure_group, items, [size] * len(items)))
     else:
         results = [_measure_group(batch, size) for batch in items]
-    out: list = [None] * len(configs)
+    flat: list = [None] * len(configs)
     for idx, res in zip(groups.values(), results):
         for i, r in zip(idx, res):
-            out[i] = r
+            flat[i] = r
+    out, it = [], iter(flat)
+    for gs in split:
+        out.append({k: v for _ in gs for k, v in next(it).items()})
     return out
 
 
+def _declared(args, kwargs):
+    """``(DEPENDS, default)``: each claim is measured at its configuration projected onto its DEPENDS."""
+    from .register import DEFAULT, DEPENDS
+
+    return DEPENDS, DEFAULT
+
+
+@as_declared(CLAIM_KEYS[:-1], _declared)  # every key but CENTROID, which no claim reads
 def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None) -> dict:
     """The explorer's measurement function: one full-size run at ``config`` with all random draws
     from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`; ``claims``: only those,

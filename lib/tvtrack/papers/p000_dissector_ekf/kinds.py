@@ -1,0 +1,63 @@
+"""Each register entry's kind, with the line of the paper that decides it.
+
+Three kinds: a *reading* of an ambiguous passage of the paper's text (kinds ``reading``, ``statistic``,
+``comparator``), an *unreported setting* of the paper's own experiment that the paper never printed, or a *world*
+beyond the paper (``regime``, ``model``, ``operating point``, ``scale``). A flip under a reading or an unreported
+setting labels the claim ``depends``; only an isolated flip under a world labels it ``limited``. The kind here is
+the entry's kind (it replaces the one the entry was first written with), and its line is appended to the entry's
+``why``: ``tests/test_declared_entries.py`` checks that each entry's words say its own kind and no other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+#: {entry name: (kind, the line of the paper that decides it)}.
+KINDS = {
+    "sample model": (
+        "model",
+        "a world beyond the paper: (E5)-(E6)'s N/dt is the integrating sampler; the point sample is the textbook idealisation",
+    ),
+    "scoring time": ("reading", "a reading of (E9)'s 'X1(k) - X1_hat(k|k)' for an integrated sample"),
+    "photon model": ("model", "a world beyond the paper: eq. (1) makes the shot noise white Gaussian"),
+    "manoeuvre": ("regime", "a world beyond the paper: its message is Gauss-Markov (eq. (8))"),
+    "background": ("regime", "a world beyond the paper: eq. (2) holds N0 constant"),
+    "sigma_sh": ("reading", "a reading of 'psi_A = A / sigma_sh', which names no bandwidth"),
+    "G22": ("reading", "a reading of (E8)'s printed 2 beta_0 dt against eq. (8)"),
+    "v2 noise at": ("reading", "a reading of eq. (9)'s 'at the estimate'"),
+    "initial estimate": ("reading", "a reading of which of Fig. 1's curves (solid or dashed) the claim is about"),
+    "initial position": ("reading", "a reading of 'the image is within the micro-raster'"),
+    "convergence criterion": ("reading", "a reading of 'converge fairly quickly' (Conclusions)"),
+    "lock threshold": ("reading", "a reading of what 'converged' requires of one run"),
+    "C000-6 filter": ("reading", "a reading of the sentence whose opening is lost at a page break"),
+    "potentially achievable": ("comparator", "a reading of 'potentially achievable', which the paper does not define"),
+    "C000-6 joint reading": ("reading", "a reading of the C000-6 sentence together with Fig. 3's convention"),
+    "C000-3 accuracy": ("reading", "a reading of 'give approximately the same estimate of potential accuracy'"),
+    "micro-raster size": ("reading", "a reading of '2 % of the micro-raster size'"),
+    "psi_A": (
+        "unreported setting",
+        "an unreported setting: Figs. 1 and 3 were drawn at an SNR the paper never printed",
+    ),
+    "sigma_1": (
+        "operating point",
+        "a world beyond the paper: it calls sigma_1 / T = 0.1 'typical', 0.2 T is another image spread",
+    ),
+    "contrast": (
+        "unreported setting",
+        "an unreported setting: Figs. 1 and 2 were drawn at a contrast P the paper never printed",
+    ),
+    "contrast convention": (
+        "unreported setting",
+        "an unreported setting: what Fig. 3 held fixed as P varied is never printed",
+    ),
+    "steady window": ("statistic", "a reading of Fig. 2's 'steady' sigma_x^2, whose window is not given"),
+    "C000-4 cost measure": ("reading", "a reading of 'needs more computation'"),
+    "C000-4 batch": ("statistic", "a reading of C000-4's CPU ratio for a tracker that filters one object"),
+    "substantially determines": ("reading", "a reading of 'for P > 0.5 it substantially determines the accuracy'"),
+    "statistic": ("statistic", "a reading of the ensemble-mean sigma_x^2 of (E9) where a few runs lose lock"),
+}
+
+
+def with_kinds(entries) -> list:
+    """``entries`` with their kind from :data:`KINDS` and its line appended to their ``why``."""
+    return [replace(e, kind=KINDS[e.name][0], why=f"{e.why.rstrip('. ')}. Kind: {KINDS[e.name][1]}") for e in entries]

@@ -1,0 +1,84 @@
+"""Each register entry's kind, with the line of the paper that decides it.
+
+Three kinds: a *reading* of an ambiguous passage of the paper's text (kinds ``reading``, ``statistic``,
+``comparator``), an *unreported setting* of the paper's own experiment that the paper never printed, or a *world*
+beyond the paper (``regime``, ``model``, ``operating point``, ``scale``). A flip under a reading or an unreported
+setting labels the claim ``depends``; only an isolated flip under a world labels it ``limited``. The kind here is
+the entry's kind (it replaces the one the entry was first written with), and its line is appended to the entry's
+``why``: ``tests/test_declared_entries.py`` checks that each entry's words say its own kind and no other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+#: {entry name: (kind, the line of the paper that decides it)}.
+KINDS = {
+    "motion": (
+        "unreported setting",
+        "an unreported setting: Fig. 1's 'x random, y a sinusoid' and nothing for the interference runs; the laws are never printed",
+    ),
+    "motion_scale": (
+        "reading",
+        "a reading of Fig. 3 (the marker sweeps the interferers; nothing says the object moved: the hovering object) and of Fig. 1's amplitudes, which are not given (it was filed as a regime)",
+    ),
+    "sinusoid_hz": (
+        "unreported setting",
+        "an unreported setting: Fig. 1's 'Y moves along a sinusoid' at a frequency never printed",
+    ),
+    "rotation_rate": (
+        "unreported setting",
+        "an unreported setting: l. 185 gives the mean rotation frequency; the law of the paper's own runs is never printed",
+    ),
+    "fig2_law": (
+        "unreported setting",
+        "an unreported setting: Fig. 2's omega and r 'vary sinusoidally' at a depth and rate never printed",
+    ),
+    "bandwidth_reading": ("reading", "a reading of 'bandwidths 10; 0.2 and 6 Hz'"),
+    "compensation_reading": ("reading", "a reading of l. 198 and l. 208 on compensation"),
+    "slope_range": ("reading", "a reading of 'the quadrant form restores a linear part'"),
+    "phase_loop": ("reading", "a reading of '6 Hz for omega' (l. 192)"),
+    "noise": (
+        "unreported setting",
+        "an unreported setting: the sensor noise 'white, intensity N' has a value never printed",
+    ),
+    "fps": ("unreported setting", "an unreported setting: the frame rate of the paper's 'TV sensor' is never printed"),
+    "exposure": ("unreported setting", "an unreported setting: the exposure of the paper's sensor is never printed"),
+    "spot": ("reading", "a reading of the spot: a 'diameter' in the simulation, a square spot in eq. (9)"),
+    "compensation": (
+        "model",
+        "a world beyond the paper: its compensation is a hypothesis ('equivalent to reducing the background by an order of magnitude'), the temporal median a method it does not name",
+    ),
+    "residual_background": (
+        "reading",
+        "a reading of 'marker brightness over the background std after compensation 50-100' (it was filed as a regime)",
+    ),
+    "interferer_radius": ("reading", "a reading of Fig. 3's interferers"),
+    "interferer_layout": (
+        "reading",
+        "a reading of l. 198's 'the area where the five powerful stationary interferers are placed'",
+    ),
+    "interferer_size": (
+        "unreported setting",
+        "an unreported setting: the interferers' spots are never printed; what 2D changes is the flux, four times the marker's at the same SIR, so a flip under it comes from the brighter interferer, not from its size",
+    ),
+    "placement": (
+        "unreported setting",
+        "an unreported setting: the centre of Fig. 3's circle of interferers is never printed",
+    ),
+    "loss_window_s": ("statistic", "a reading of 'loss of tracking', which the paper does not define"),
+    "loss_radius": ("statistic", "a reading of 'loss of tracking': leaving the gate or the spot"),
+    "horizon": (
+        "unreported setting",
+        "an unreported setting: the length of the paper's interference runs is never printed",
+    ),
+    "static_gate": ("comparator", "a reading of the static baseline at its own optimum"),
+    "static_form": ("comparator", "a reading of 'the non-modulated' baseline"),
+    "edge_norm": ("comparator", "a reading of the edge form's slope"),
+    "decoy_brightness": ("comparator", "a reading of SIR (l. 198) for a decoy that is not compensated"),
+}
+
+
+def with_kinds(entries) -> list:
+    """``entries`` with their kind from :data:`KINDS` and its line appended to their ``why``."""
+    return [replace(e, kind=KINDS[e.name][0], why=f"{e.why.rstrip('. ')}. Kind: {KINDS[e.name][1]}") for e in entries]

@@ -1,0 +1,63 @@
+"""Each register entry's kind, with the line of the paper that decides it.
+
+Three kinds: a *reading* of an ambiguous passage of the paper's text (kinds ``reading``, ``statistic``,
+``comparator``), an *unreported setting* of the paper's own experiment that the paper never printed, or a *world*
+beyond the paper (``regime``, ``model``, ``operating point``, ``scale``). A flip under a reading or an unreported
+setting labels the claim ``depends``; only an isolated flip under a world labels it ``limited``. The kind here is
+the entry's kind (it replaces the one the entry was first written with), and its line is appended to the entry's
+``why``: ``tests/test_declared_entries.py`` checks that each entry's words say its own kind and no other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+#: {entry name: (kind, the line of the paper that decides it)}.
+KINDS = {
+    "spectral index": (
+        "unreported setting",
+        "an unreported setting: the spectrum of the paper's own laser paths is never printed",
+    ),
+    "roll-off": (
+        "unreported setting",
+        "an unreported setting: the spectrum of the paper's own laser paths is never printed",
+    ),
+    "bandwidth": (
+        "unreported setting",
+        "an unreported setting: the wander speed of the paper's own paths is never printed; the default is calibrated to the middle of its '1...2 pixels', 2.2 to the band's low end, while 1 and 8 leave that band (the paper's filter errs 0.33 and 3.9 px there)",
+    ),
+    "amplitude": (
+        "unreported setting",
+        "an unreported setting: the wander of the paper's own paths is never printed (no trace, only that the spot stays in 128 px)",
+    ),
+    "jitter": ("regime", "a world beyond the paper: frame-uncorrelated tilt its shipped-like paths do not carry"),
+    "frame rate": ("reading", "a reading of '25 frames/s' against 'every 5 ms'"),
+    "read noise": ("model", "a world beyond the paper: its camera's noise is not stated, 64 DN a spot barely above it"),
+    "saturation": ("model", "a world beyond the paper: an 8-bit sensor or none"),
+    "scintillation": ("regime", "a world beyond the paper: turbulence strengths it does not state"),
+    "energy centre": ("reading", "a reading of the paper's energy-centre algorithm (its ref. [1])"),
+    "horizon": ("reading", "a reading of 'prediction mode', which gives no horizon"),
+    "network lags": ("comparator", "a reading of the MLP and RBF inputs, which the paper does not give"),
+    "network inputs": ("comparator", "a reading of what the MLP and RBF network are fed"),
+    "tuning": ("reading", "a reading of the floor and windows, which the paper does not give"),
+    "reference": ("statistic", "a reading of the error the paper could score"),
+    "C004-1 statistic": ("statistic", "a reading of 'does not exceed 2 pixels'"),
+    "spline": ("comparator", "a reading of 'spline extrapolation' [5]"),
+    "exposure": ("regime", "a world beyond the paper: its camera's exposure is not stated"),
+    "spot size": ("model", "a world beyond the paper: a focused, undersampled spot"),
+    "C004-3 statistic": ("statistic", "a reading of 'more accurate'"),
+    "vibration": ("regime", "a world beyond the paper: a mount vibration it shows no spectrum of"),
+    "C004-8 pipeline": ("reading", "a reading of 'functions in real time'"),
+    "C004-8 statistic": ("statistic", "a reading of 'real time' as a deadline"),
+    "C004-8 frame": ("operating point", "a world beyond the paper: the whole 128 x 128 frame against the study's gate"),
+    "C004-8 clock": ("statistic", "a reading of the time per frame"),
+    "lost frames": ("model", "a world beyond the paper: its recursion counts samples on an even grid"),
+    "frame loss": ("regime", "a world beyond the paper: frames lost to obscuration or deep fades"),
+    "C004-5 noise": ("regime", "a world beyond the paper: heavy-tailed noise for the model's variance"),
+    "C004-2 statistic": ("reading", "a reading of '1...2 pixels' (abstract, conclusions)"),
+}
+
+
+def with_kinds(entries) -> list:
+    """``entries`` with their kind from :data:`KINDS` and its line appended to their ``why``."""
+    return [replace(e, kind=KINDS[e.name][0], why=f"{e.why.rstrip('. ')}. Kind: {KINDS[e.name][1]}") for e in entries]

@@ -1,0 +1,214 @@
+"""Every paper's register entries, checked against what they say and what reads them.
+
+1. **Kinds said in words.** An entry's ``why`` says which of the three kinds it is, in words a reader finds, and
+   says no other: the keyword rule is that the text contains a phrase of its own side and none of another's
+   (case-insensitive):
+
+   - a *reading* of the paper's text (kinds ``reading``, ``statistic``, ``comparator``): "a reading of",
+     "readings of", "ambiguous", "the paper says";
+   - an *unreported setting* of the paper's own experiment: "unreported setting", "the paper's own experiment",
+     "never printed";
+   - a *world* beyond the paper (``regime``, ``model``, ``operating point``, ``scale``): "beyond the paper".
+
+   So an entry whose text calls it a reading, or quotes what "the paper says" as the ambiguity, while its kind is
+   a world fails, and so does a world or setting that calls itself a reading. The phrases are few and plain on
+   purpose: each ``why`` justifies its kind with the paper's line in one of them.
+2. **Declared entries.** Each claim of every paper is measured alone, at the default, on small sizes, under
+   :func:`tvtrack.explore.check_declared`: a measurement that uses a register entry its claim's ``DEPENDS``
+   does not declare fails, naming the claim and the entry.
+
+Every paper package the contract finds (:func:`tvtrack.contract.paper_packages`) must have its measurements in
+:data:`MEASUREMENTS` (a new paper adds its own there).
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import re
+
+import pytest
+
+from tvtrack import contract
+from tvtrack.explore import check_declared
+
+PACKAGES = contract.paper_packages()
+
+#: The phrases that say an entry's side (see the module docstring).
+SIDE_PHRASES = {
+    "reading": ("a reading of", "readings of", "ambiguous", "the paper says"),
+    "setting": ("unreported setting", "the paper's own experiment", "never printed"),
+    "world": ("beyond the paper",),
+}
+
+
+def sides_said(why: str) -> set[str]:
+    """The sides whose phrases ``why`` contains."""
+    text = " ".join(why.lower().split())
+    return {side for side, phrases in SIDE_PHRASES.items() if any(p in text for p in phrases)}
+
+
+def test_the_keyword_rule_tells_the_three_sides_apart():
+    assert sides_said("A reading of l. 185's 'mean rotation frequency'") == {"reading"}
+    assert sides_said("the paper's own experiment had a rate law it never printed") == {"setting"}
+    assert sides_said("a world beyond the paper: Poisson counts") == {"world"}
+    assert sides_said("the paper says 1-2 px; a world beyond the paper") == {"reading", "world"}
+    assert sides_said("not stated") == set()
+
+
+def _entries():
+    for name in PACKAGES:
+        package = importlib.import_module(f"tvtrack.papers.{name}")
+        for entry in package.REGISTER:
+            yield pytest.param(entry, id=f"{name[:4]}:{entry.name}")
+
+
+@pytest.mark.parametrize("entry", list(_entries()))
+def test_every_entry_says_its_own_kind_and_no_other(entry):
+    said = sides_said(entry.why)
+    assert said == {entry.side}, (
+        f"{entry.name!r} is a {entry.kind} (side {entry.side!r}) but its why says {sorted(said) or 'no side'}: "
+        f"{entry.why!r}"
+    )
+
+
+# ----------------------------------------------------------------------------------- declared entries
+
+
+def _p000():
+    from tvtrack.papers.p000_dissector_ekf import study
+    from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
+    from tvtrack.register import Register
+
+    sizes = study.Sizes(
+        n_trials=8,
+        duration_T=6.0,
+        window_T=2.0,
+        substeps=2,
+        psi_grid=(5.0, 50.0),
+        contrast_grid=(0.0, 0.5, 0.9),
+        dt_points=((20.0, 0.5),),
+        dt_factor=2,
+        dt_trials=8,
+        dt_duration_T=4.0,
+        grid_trials=4,
+        grid_points=41,
+    )
+    cost = Register([REGISTER[k] for k in DEPENDS["C000-4"]])
+    return [
+        (functools.partial(study.measure, sizes=sizes), REGISTER, DEPENDS, list(study.MEASURED_CLAIMS)),
+        (functools.partial(study.measure_cost, n_trials=4, n_steps=20), cost, DEPENDS, ["C000-4"]),
+    ]
+
+
+def _p001():
+    from tvtrack.papers.p001_maneuver_occlusion_kf import study
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
+
+    reg = build_register()
+    sizes = dict(
+        n_trials=20,
+        n_fa_runs=300,
+        fa_duration_s=12.0,
+        roc_delay_s=0.5,
+        step_dv=1.0,
+        sigma_eps=1.0,
+        n_tradeoff_trials=6,
+        n_train=2,
+        train_seed=5,
+        kb3_grid=[20, 50, 100, 200],
+        loss_grid_s=[6.0, 8.0, 12.0],
+        n_fig4_trials=20,
+        defaults=reg.default(),
+        grids=dict(
+            fixed2=(2, 10), fixed3=(3, 20), imm_q_ca=(1e-3,), imm_p_stay=(0.99,), vdf_q_ca=(1e-5,), vdf_windows=(5,)
+        ),
+        prediction_rms=1.0,
+    )
+    fns = {
+        "detection": study.measure_detection,
+        "tradeoff": study.measure_tradeoff,
+        "curves": study.measure_curves,
+        "spherical": study.measure_spherical,
+    }
+    return [
+        (functools.partial(fn, sizes=sizes), group_register(reg, g), DEPENDS, list(GROUPS[g])) for g, fn in fns.items()
+    ]
+
+
+def _p002():
+    from tvtrack.papers.p002_unified_location_em import study
+    from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
+
+    scale = study.Scale(
+        n_trials=2,
+        n_iter_trials=2,
+        separations=(1.0, 2.0, 3.0, 4.0, 6.0, 8.0),
+        fig3_frames=(5, 10, 50),
+        crb_phases=1,
+        n_bootstrap=20,
+        max_iter=20,
+    )
+    return [(functools.partial(study.measure, scale=scale), REGISTER, DEPENDS, list(DEPENDS))]
+
+
+def _p003():
+    from tvtrack.papers.p003_rotating_marker_tracker import study
+    from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
+
+    sizes = study.Sizes(trials=2, fig1_s=0.6, fig2_s=0.5, transient_s=0.1, horizon_s=0.3)
+    tracking = ["C003-1", "C003-2", "C003-3", "C003-4", "C003-9"]
+    interference = ["C003-5", "C003-6", "C003-7", "C003-10", "C003-11", "C003-12"]
+    return [
+        (functools.partial(study.measure_tracking, sizes=sizes), REGISTER.subset(TRACKING), DEPENDS, tracking),
+        (
+            functools.partial(study.measure_interference, sizes=sizes),
+            REGISTER.subset(INTERFERENCE),
+            DEPENDS,
+            interference,
+        ),
+    ]
+
+
+def _p004():
+    from tvtrack.papers.p004_laser_spot_prediction import REGISTER, study
+    from tvtrack.papers.p004_laser_spot_prediction.register import DEPENDS
+
+    size = study.StudySize(
+        n_paths=3,
+        n_frames=120,
+        floor_grid=(5, 10),
+        window_grid=(4, 10),
+        mlp_hidden_units=4,
+        rbf_centres=8,
+        train_samples=100,
+        n_mc_variance=200,
+        timing_frames=10,
+    )
+    return [(functools.partial(study.measure, size=size), REGISTER, DEPENDS, list(DEPENDS))]
+
+
+#: Per paper package: ``[(measure on small sizes, the register it is explored over, DEPENDS, its claims)]``, as
+#: the notebook calls the explorer.
+MEASUREMENTS = {
+    "p000_dissector_ekf": _p000,
+    "p001_maneuver_occlusion_kf": _p001,
+    "p002_unified_location_em": _p002,
+    "p003_rotating_marker_tracker": _p003,
+    "p004_laser_spot_prediction": _p004,
+}
+
+
+def test_every_paper_package_has_its_measurements_here():
+    assert sorted(MEASUREMENTS) == PACKAGES
+
+
+@pytest.mark.parametrize("name", PACKAGES)
+def test_every_claim_reads_only_the_entries_it_declares(name):
+    if name not in MEASUREMENTS:
+        pytest.fail(f"{name}: add its measurements to MEASUREMENTS")
+    violations = {}
+    for measure, register, depends, claims in MEASUREMENTS[name]():
+        violations.update(check_declared(measure, register, depends, 3, claims))
+    short = {cid: re.sub(r": add it to DEPENDS.*", "", msg) for cid, msg in violations.items()}
+    assert not short, f"{name}: claims read undeclared entries: {short}"
