@@ -83,9 +83,7 @@ def _run_one(
         return name, False, str(exc), 0.0
     left = replace_folder(fresh, Path(folder) / name, legacy_run=True)  # of the earlier run, only what it wrote
     if left:
-        print(
-            f"{name}: {len(left)} files tvtrack did not write were in the earlier run; kept in {Path(left[0]).parent}"
-        )
+        print(f"{name}: the earlier run held {len(left)} file(s) tvtrack did not write; kept in {Path(left[0]).parent}")
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 

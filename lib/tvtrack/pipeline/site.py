@@ -59,7 +59,7 @@ from .report import (
     robustness_where,
 )
 from .report import _plain_coverage as coverage_text
-from .runfiles import load_results, load_run
+from .runfiles import DamagedRun, load_results, load_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, VERDICTS, claim_flips, claim_summary, results_summary
 
@@ -440,15 +440,37 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
     return rows
 
 
+def _read_summary(path: Path) -> list[list[str]]:
+    """A sweep's ``summary.csv`` as rows, checked: a header with ``status``, every row as long.
+
+    Raises
+    ------
+    DamagedRun
+        One line naming the file and what is wrong (running the sweep again writes it anew)."""
+    try:
+        with path.open(newline="") as fh:
+            rows = list(csv.reader(fh))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise DamagedRun(f"{path}: cannot be read as CSV ({exc}); the same sweep command writes it again") from None
+    if not rows or "status" not in rows[0]:
+        raise DamagedRun(f"{path}: no header with a status column; the same sweep command writes it again")
+    short = next((k for k, r in enumerate(rows[1:], start=2) if len(r) != len(rows[0])), None)
+    if short is not None:
+        raise DamagedRun(
+            f"{path}: line {short} has {len(rows[short - 1])} fields, the header {len(rows[0])}; "
+            "the same sweep command writes it again"
+        )
+    return rows
+
+
 def _sweep_page(env, sweep_csv: Path, site: Path) -> dict:
     name = sweep_csv.parent.name
-    with sweep_csv.open(newline="") as fh:
-        rows = list(csv.reader(fh))
+    rows = _read_summary(sweep_csv)
     plot = None
     if (sweep_csv.parent / "summary.png").is_file():
         plot = f"{name}.png"
         shutil.copy2(sweep_csv.parent / "summary.png", site / "sweeps" / plot)
-    failed = sum(1 for r in rows[1:] if "status" in rows[0] and r[rows[0].index("status")] != "ok")
+    failed = sum(1 for r in rows[1:] if r[rows[0].index("status")] != "ok")
     info = {"name": name, "header": rows[0] if rows else [], "rows": rows[1:], "plot": plot, "failed": failed}
     (site / "sweeps" / f"{name}.html").write_text(env.get_template("sweep.html").render(sweep=info, root="../"))
     return info
