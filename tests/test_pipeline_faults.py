@@ -173,6 +173,8 @@ def _paper_run(root: Path, name: str, claims: list, **record) -> Path:
     (run / "run.json").write_text(json.dumps({**base, **record}))
     results = {"notebook": name, "citation": f"A: {name}", "seed": 1, "runtime_s": 10.0, "git_commit": "abc"}
     (run / "results.json").write_text(json.dumps({**results, "metrics": {}, "figures": [], "claims": claims}))
+    notebook = {"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": []}
+    (run / "notebook.ipynb").write_text(json.dumps(notebook))
     return run
 
 
