@@ -33,9 +33,10 @@ kernel: $(STAMP)
 	$(BIN)/python -m tvtrack.pipeline.kernels
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
-# (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)
+# (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs);
+# started again it resumes (runs finished at this commit are kept); FORCE=1 runs every notebook again
 reproduce: $(STAMP) kernel
-	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE))
+	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE)) $(if $(FORCE),--force)
 
 report: $(STAMP)
 	$(BIN)/python -m tvtrack report $(if $(PROFILE),--profile $(PROFILE))
@@ -55,6 +56,7 @@ bench: $(STAMP)
 	$(BIN)/python -m pytest benchmarks -q --benchmark-only --benchmark-json=benchmarks/results/benchmarks.json
 
 # a working copy of a notebook at the smoke profile, opened in JupyterLab: make edit NB=004_laser_spot_prediction
+# (as root, e.g. in a container, JupyterLab is started with --allow-root)
 edit: $(STAMP) kernel
 	$(BIN)/python -m tvtrack edit $(NB) --lab
 

@@ -275,8 +275,9 @@ def test_ctrl_c_during_a_sweep_stops_it_cleanly_and_the_sweep_resumes(tmp_path):
     stdout, stderr = proc.communicate(timeout=30)
     assert time.time() - t0 < wall_budget(10)
     assert proc.returncode == 130, stderr
-    lines = (stdout + stderr).strip().splitlines()
+    lines = stderr.strip().splitlines()  # stdout: the sweep's count, stated before it started
     assert len(lines) == 1 and lines[0].startswith("interrupted: ") and "resumes" in lines[0], stdout + stderr
+    assert stdout.splitlines() == [f"int: 4 runs, 0 finished before, 4 to run (2 at once) -> {out}"], stdout
     assert not list(runs.glob(".tmp-*"))
     assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5), "a kernel outlived the sweep"
     done = {p.name for p in finished()}

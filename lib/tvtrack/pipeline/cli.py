@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 
 from .interrupt import EXIT_INTERRUPTED
-from .paths import JIT_CACHE_DIR, REPO_ROOT, RUNS_DIR, writable_directory
+from .paths import CONFIRM_ABOVE_RUNS, JIT_CACHE_DIR, REPO_ROOT, RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 from .runner import WriteFailed
 
@@ -97,6 +97,7 @@ def _cmd_sweep(args) -> int:
         executor=args.executor,
         scheduler=args.scheduler,
         progress=sys.stderr.isatty(),
+        yes=args.yes,
     )
     return 0 if summary.n_failed == 0 else 1
 
@@ -104,7 +105,7 @@ def _cmd_sweep(args) -> int:
 def _cmd_reproduce(args) -> int:
     from .reproduce import reproduce
 
-    return reproduce(profile=args.profile, only=args.only, jobs=args.jobs)
+    return reproduce(profile=args.profile, only=args.only, jobs=args.jobs, force=args.force)
 
 
 def _cmd_report(args) -> int:
@@ -153,7 +154,13 @@ def _cmd_edit(args) -> int:
 
     install_clone_kernel()  # the clone's own kernel, in this environment, which the copy names
     jupyter = shutil.which("jupyter", path=str(Path(sys.executable).parent)) or "jupyter"
-    os.execv(jupyter, [jupyter, "lab", str(copy)])
+    os.execv(jupyter, lab_command(jupyter, copy))
+
+
+def lab_command(jupyter: str, copy: Path) -> list[str]:
+    """``jupyter lab COPY``, with ``--allow-root`` when this process runs as root (JupyterLab refuses root
+    otherwise: a container's default user)."""
+    return [jupyter, "lab", str(copy)] + (["--allow-root"] if os.geteuid() == 0 else [])
 
 
 def _cmd_view(args) -> int:
@@ -201,18 +208,37 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=_cmd_run)
 
-    s = sub.add_parser("sweep", help="run a TOML sweep spec (grid x repeats) in a process pool")
+    s = sub.add_parser(
+        "sweep",
+        help="run a TOML sweep spec (grid x repeats) in a process pool",
+        description=(
+            "Runs every run of the spec not finished yet, after stating how many. A sweep of more than "
+            f"{CONFIRM_ABOVE_RUNS:,} runs starts only with --yes. Ctrl-C stops it within seconds (no run starts after "
+            "it); the same command resumes."
+        ),
+    )
     s.add_argument("spec", help="sweep spec TOML (see docs/contributing.md, 'Sweeps')")
     s.add_argument("--jobs", type=_positive_int, default=1, help="parallel runs (local executor)")
     s.add_argument("-o", "--output", default=None, help="sweep directory (default papermill_runs/<spec name>)")
     s.add_argument("--executor", choices=["local", "dask"], default="local")
     s.add_argument("--scheduler", default=None, help="Dask scheduler address, with --executor dask")
+    s.add_argument(
+        "--yes",
+        action="store_true",
+        help=f"start a sweep of more than {CONFIRM_ABOVE_RUNS:,} runs (refused without it)",
+    )
     s.set_defaults(func=_cmd_sweep)
 
     rp = sub.add_parser("reproduce", help="run every notebook side by side, then write REPRODUCTION.md")
     rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
     rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
     rp.add_argument("--jobs", type=_positive_int, default=None, help="notebooks at once (default: the usable cores)")
+    rp.add_argument(
+        "--force",
+        action="store_true",
+        help="run every notebook again, also those whose run finished at this commit with the same parameters "
+        "(by default those are kept: the command resumes)",
+    )
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")

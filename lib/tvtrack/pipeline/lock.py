@@ -83,11 +83,23 @@ def output_lock(lock_file: Path, target: Path, what: str = "output folder") -> I
         os.close(fd)
 
 
+def _written_by_tvtrack(path: Path) -> bool:
+    """A lock file tvtrack wrote: empty (killed before it wrote its holder) or ``"<pid> <host>"``."""
+    try:
+        words = path.read_text().split()
+    except (OSError, UnicodeDecodeError):
+        return False
+    return not words or (len(words) == 2 and words[0].isdigit())
+
+
 def remove_stale_locks(folder: Path) -> int:
-    """Delete the lock files in ``folder`` that nobody holds (left by a writer killed with SIGKILL); returns
-    how many. A lock file is taken before it is removed, so a live writer's lock is never touched."""
+    """Delete tvtrack's lock files in ``folder`` that nobody holds (left by a writer killed with SIGKILL: its
+    ``flock`` ended with it, its file stays); returns how many. A lock file is taken before it is removed, so a
+    live writer's lock is never touched, and a ``.*.lock`` file tvtrack did not write is left alone."""
     n = 0
     for path in Path(folder).glob(".*.lock"):
+        if not _written_by_tvtrack(path):
+            continue
         try:
             fd = os.open(path, os.O_RDWR)
         except OSError:

@@ -13,6 +13,8 @@ PROFILE_DIR = RUNS_DIR / "profiles"
 SWEEP_DIR = RUNS_DIR / "sweeps"
 INTERACTIVE_DIR = RUNS_DIR / "interactive"
 PAPER_PROFILE = "paper"
+CONFIRM_ABOVE_RUNS = 1000
+"""A sweep of more runs than this starts only with ``--yes`` (:func:`.sweep.run_sweep`): its count is named."""
 
 
 def profile_name(profile: str | None) -> str:

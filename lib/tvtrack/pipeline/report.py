@@ -17,7 +17,6 @@ register phrases such as ``sigma*2``): everything written to Markdown goes throu
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import time
@@ -48,7 +47,8 @@ from .figures import (
     robustness_where,
 )
 from .paths import PAPER_PROFILE, REPO_ROOT, reproduce_dir as _reproduce_dir
-from .runner import list_notebooks, read_run
+from .runfiles import load_results, load_run
+from .runner import list_notebooks
 
 __all__ = [
     "REPRODUCE_DIR",
@@ -109,14 +109,14 @@ def verdict_summary(claims: list[dict]) -> str:
 
 
 def collect_runs(reproduce_dir: Path, notebooks: list[str]) -> dict[str, tuple[dict | None, dict | None]]:
-    """``{name: (run.json, results.json)}`` for each notebook; ``None`` where missing (not run, or failed)."""
+    """``{name: (run.json, results.json)}`` for each notebook; ``None`` where missing (not run, or failed).
+
+    Both files are checked (:mod:`.runfiles`): a damaged one is a :class:`.runfiles.DamagedRun` naming it."""
     runs = {}
     for name in notebooks:
         run_dir = Path(reproduce_dir) / name
-        record = read_run(run_dir)
-        data = None
-        if record is not None and record.get("status") == "ok":
-            data = json.loads((run_dir / "results.json").read_text())
+        record = load_run(run_dir)
+        data = load_results(run_dir) if record is not None and record["status"] == "ok" else None
         runs[name] = (record, data)
     return runs
 

@@ -10,6 +10,12 @@ keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``
 machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
 parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
 goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal.
+
+Started again, ``reproduce`` resumes: a notebook whose run in the folder finished (status ok) with the same
+parameters from the same code (the commit and any uncommitted change to the code, recorded in its ``run.json``
+as ``git_commit``, ``source_digest`` and ``parameters_digest``) is kept, said in one line; ``--force`` (``make
+reproduce FORCE=1``) runs it again. A new run replaces the earlier one by renames, deleting only the files the
+earlier run wrote (:mod:`.outputs`).
 """
 
 from __future__ import annotations
@@ -23,13 +29,15 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from .interrupt import shielded_spawn, stop_pool, worker_init
-from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir
+from .outputs import replace_folder
+from .paths import PAPER_PROFILE, REPO_ROOT, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError, parameter_defaults
 from .report import README_PATH, REPORT_PATH, write_report
 from .lock import LOCK_NAME, output_lock
-from .runner import WriteFailed, list_notebooks, remove_stale_temporaries, run_notebook
+from .runfiles import DamagedRun, load_run
+from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
 
-__all__ = ["usable_cores", "reproduce"]
+__all__ = ["usable_cores", "reproduce", "source_identity", "parameters_digest", "finished_here"]
 
 # without a previous run to time, the heaviest notebooks start first
 _DEFAULT_ORDER = ("002", "003", "004", "000", "001")
@@ -62,24 +70,78 @@ def _worker_init(threads: int, log_path: str) -> None:
     os.dup2(log, 2)  # kernels inherit this stderr: their transport warnings land in the log
 
 
-def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tuple[str, bool, str | None, float]:
+def _run_one(
+    nb: str, profile: str | None, parameters: dict, folder: str, identity: dict | None = None
+) -> tuple[str, bool, str | None, float]:
     name = Path(nb).stem
     fresh = Path(folder) / f".new-{name}"
     if fresh.exists():
         shutil.rmtree(fresh)
     try:
-        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
+        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False, extra_record=identity)
     except WriteFailed as exc:  # nothing kept; the earlier run of this notebook stays
         return name, False, str(exc), 0.0
-    final = Path(folder) / name
-    if final.exists():
-        shutil.rmtree(final)
-    os.replace(fresh, final)
+    left = replace_folder(fresh, Path(folder) / name, legacy_run=True)  # of the earlier run, only what it wrote
+    if left:
+        print(f"{name}: the earlier run held {len(left)} file(s) tvtrack did not write; kept in {Path(left[0]).parent}")
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 
+def source_identity() -> dict:
+    """What the code of this clone is: ``{"git_commit": HEAD or None, "source_digest": ...}``, the digest of the
+    commit and of any uncommitted change to the code, notebooks, profiles and pins (``None`` outside git)."""
+    import hashlib
+    import subprocess
+
+    paths = ["lib", "notebooks", "papermill_runs/profiles", "environment.txt", "pyproject.toml"]
+    try:
+        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=REPO_ROOT, capture_output=True, text=True, timeout=30)
+        diff = subprocess.run(
+            ["git", "diff", "HEAD", "--", *paths], cwd=REPO_ROOT, capture_output=True, text=True, timeout=60
+        )
+    except (OSError, subprocess.SubprocessError):
+        return {"git_commit": None, "source_digest": None}
+    if head.returncode != 0 or diff.returncode != 0:
+        return {"git_commit": None, "source_digest": None}
+    digest = hashlib.sha256((head.stdout.strip() + "\n" + diff.stdout).encode()).hexdigest()[:16]
+    return {"git_commit": head.stdout.strip(), "source_digest": digest}
+
+
+def parameters_digest(nb: Path, profile: str | None) -> str:
+    """A digest of a notebook's run parameters: its name, the profile and the profile's values (the worker count
+    given to a notebook, which changes no result, left out)."""
+    import hashlib
+
+    blob = json.dumps(
+        {"notebook": nb.stem, "profile": profile_name(profile), "values": load_profile(nb, profile)},
+        sort_keys=True,
+        default=str,
+    )
+    return hashlib.sha256(blob.encode()).hexdigest()[:16]
+
+
+def finished_here(folder: Path, nb: Path, identity: dict) -> bool:
+    """Whether ``folder/<notebook>`` holds a successful run of the same parameters made from the same code
+    (:func:`source_identity`): ``reproduce`` then keeps it instead of running it again. A damaged record is not
+    finished (it is run again and replaced)."""
+    try:
+        record = load_run(folder / nb.stem)
+    except DamagedRun:
+        return False
+    return (
+        record is not None
+        and record["status"] == "ok"
+        and identity.get("source_digest") is not None
+        and all(record.get(k) == v for k, v in identity.items())
+    )
+
+
 def reproduce(
-    profile: str | None = None, only: list[str] | None = None, jobs: int | None = None, runs_dir: Path = RUNS_DIR
+    profile: str | None = None,
+    only: list[str] | None = None,
+    jobs: int | None = None,
+    runs_dir: Path = RUNS_DIR,
+    force: bool = False,
 ) -> int:
     """Run the notebooks (all, or ``only``) side by side, then write the report.
 
@@ -93,6 +155,9 @@ def reproduce(
         Notebooks at once (default: :func:`usable_cores`).
     runs_dir : Path
         The folder holding ``reproduce/`` and ``reproduce-<profile>/`` (default ``papermill_runs/``).
+    force : bool
+        Run every notebook, also those whose run finished with these parameters at this commit
+        (:func:`finished_here`; without it they are kept, said in one line).
 
     Returns
     -------
@@ -120,7 +185,17 @@ def reproduce(
     threads = max(1, usable_cores() // jobs)
     folder.mkdir(parents=True, exist_ok=True)
     with output_lock(folder / LOCK_NAME, folder, "reproduce folder"):
-        failures = _run_notebooks(notebooks, profile, folder, jobs, threads)
+        source = source_identity()
+        identities = {nb.stem: {**source, "parameters_digest": parameters_digest(nb, profile)} for nb in notebooks}
+        kept = [] if force else [nb for nb in notebooks if finished_here(folder, nb, identities[nb.stem])]
+        if kept:
+            print(
+                f"reproduce: kept {len(kept)} run{'s' * (len(kept) > 1)} finished at this commit "
+                f"({str(source['git_commit'])[:10]}) with the same parameters: {', '.join(nb.stem for nb in kept)} "
+                "(--force, or make reproduce FORCE=1, runs them again)"
+            )
+        todo = [nb for nb in notebooks if nb not in kept]
+        failures = _run_notebooks(todo, profile, folder, jobs, threads, identities) if todo else []
         paper = profile_name(profile) == PAPER_PROFILE
         path = write_report(
             folder,
@@ -132,7 +207,9 @@ def reproduce(
     return 1 if failures else 0
 
 
-def _run_notebooks(notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int) -> list[str]:
+def _run_notebooks(
+    notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int, identities: dict
+) -> list[str]:
     """The notebooks in a pool of ``jobs`` workers; returns the names of those that failed."""
     from tqdm import tqdm
 
@@ -153,7 +230,7 @@ def _run_notebooks(notebooks: list[Path], profile: str | None, folder: Path, job
         with shielded_spawn():
             for nb in notebooks:
                 params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
-                futures[pool.submit(_run_one, str(nb), profile, params, str(folder))] = nb.stem
+                futures[pool.submit(_run_one, str(nb), profile, params, str(folder), identities[nb.stem])] = nb.stem
         for fut in as_completed(futures):
             name, ok, error, runtime = fut.result()
             bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s)")

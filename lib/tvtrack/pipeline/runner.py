@@ -9,7 +9,8 @@ its kernel and removes its temporary folder; one left by a killed process (its o
 (:func:`remove_stale_temporaries`). Every run directory holds:
 
 - ``run.json``: notebook, profile, parameters as injected, status (``"ok"`` or ``"failed"``),
-  error and traceback for a failure, runtime;
+  error and traceback for a failure, runtime, and ``files``: every file the run wrote (what replacing it may
+  delete, :mod:`.outputs`);
 - ``notebook.ipynb``: the executed copy;
 - what the notebook wrote: ``results.json``, figures, ``recording.rrd``.
 """
@@ -67,14 +68,34 @@ def list_notebooks() -> list[Path]:
 
 def find_notebook(name: str | Path) -> Path:
     """Resolve a notebook given as a path, a file name or a name without ``.ipynb``
-    (looked up in ``notebooks/``)."""
+    (looked up in ``notebooks/``).
+
+    Raises
+    ------
+    UsageError
+        No such notebook, or a file that is not a notebook (not valid JSON, or no list of cells): one line."""
     p = Path(name)
     candidates = [p, p.with_suffix(".ipynb"), NOTEBOOK_DIR / p.name, NOTEBOOK_DIR / f"{p.name}.ipynb"]
     for c in candidates:
         if c.is_file() and c.suffix == ".ipynb":
+            _check_notebook_file(c)
             return c.resolve()
     known = ", ".join(n.stem for n in list_notebooks()) or "none"
     raise UsageError(f"no notebook {str(name)!r}; notebooks here: {known}")
+
+
+def _check_notebook_file(path: Path) -> None:
+    """Refuse a file that is not a Jupyter notebook (JSON with a list of cells), in one line naming it."""
+    try:
+        data = json.loads(path.read_bytes())
+    except json.JSONDecodeError as exc:
+        raise UsageError(
+            f"{path}: not a notebook: not valid JSON (line {exc.lineno} column {exc.colno}: {exc.msg})"
+        ) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UsageError(f"{path}: not a readable notebook: {getattr(exc, 'strerror', None) or exc}") from None
+    if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
+        raise UsageError(f"{path}: not a notebook: a notebook is a JSON object with a list of 'cells'")
 
 
 def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
@@ -211,6 +232,7 @@ def run_notebook(
             error=error,
             runtime_s=runtime,
             finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+            files=_files_written(tmp, tb),
         )
         try:
             _write_record(tmp, record, tb)
@@ -272,6 +294,13 @@ def _execute_in(tmp: Path, nb: Path, params: dict, kernel_name, timeout_s, progr
         with contextlib.suppress(OSError):
             if log_path.stat().st_size == 0:
                 log_path.unlink()
+
+
+def _files_written(tmp: Path, tb: str | None) -> list[str]:
+    """Every file of the run (relative paths), ``run.json`` included: what replacing the run may delete
+    (:func:`.outputs.replace_folder`)."""
+    written = {str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file()} - {OWNER_FILE}
+    return sorted(written | {"run.json"} | ({"error.txt"} if tb else set()))
 
 
 def _write_record(tmp: Path, record: dict, tb: str | None) -> None:
@@ -359,17 +388,31 @@ def _zombie(pid: int) -> bool:
     return state in ("Z", "X")
 
 
-def remove_stale_temporaries(parent: Path) -> int:
-    """Delete the ``.tmp-*`` folders under ``parent`` left by runs whose process is gone; returns how many.
+def owner_gone(tmp: Path) -> bool:
+    """Whether ``tmp`` is a temporary folder tvtrack made whose process is gone: its owner file names a dead
+    process of this host, or it has none and is an empty folder older than a minute (killed between its creation
+    and its owner file). A folder with content and no owner file may be the user's: never gone."""
+    if (tmp / OWNER_FILE).is_file():
+        return not _owner_alive(tmp)
+    try:
+        return not any(tmp.iterdir()) and not _owner_alive(tmp)
+    except OSError:
+        return False
 
-    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept; lock files
-    nobody holds are removed too (:func:`.lock.remove_stale_locks`)."""
+
+def remove_stale_temporaries(parent: Path) -> int:
+    """Delete the ``.tmp-*`` folders under ``parent`` left by runs whose process is gone (:func:`owner_gone`);
+    returns how many.
+
+    Folders of runs still in progress (another ``tvtrack run`` writing to the same folder) are kept, and so is
+    any folder tvtrack did not make; tvtrack's lock files nobody holds are removed too
+    (:func:`.lock.remove_stale_locks`)."""
     n = 0
     if not Path(parent).is_dir():
         return 0
     remove_stale_locks(Path(parent))
     for tmp in Path(parent).glob(".tmp-*"):
-        if tmp.is_dir() and not _owner_alive(tmp):
+        if tmp.is_dir() and owner_gone(tmp):
             shutil.rmtree(tmp, ignore_errors=True)
             n += 1
     return n

@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import csv
 import html
-import json
 import re
 import shutil
 import time
@@ -41,6 +40,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import lean_imports
+from .outputs import check_replaceable, mark, replace_folder, temporary_beside
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
 from .report import (
@@ -59,7 +59,7 @@ from .report import (
     robustness_where,
 )
 from .report import _plain_coverage as coverage_text
-from .runner import read_run
+from .runfiles import DamagedRun, load_results, load_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, VERDICTS, claim_flips, claim_summary, results_summary
 
@@ -101,12 +101,10 @@ def find_paper_runs(reproduce_dir: Path = REPRODUCE_DIR) -> list[PaperRun]:
     """The run directories under ``reproduce_dir``, in name order (failed runs included)."""
     runs = []
     for run_dir in sorted(p for p in Path(reproduce_dir).glob("*") if p.is_dir() and not p.name.startswith(".")):
-        record = read_run(run_dir)
+        record = load_run(run_dir)  # a damaged run file is one line naming it (:mod:`.runfiles`)
         if record is None:
             continue
-        results = None
-        if record.get("status") == "ok" and (run_dir / "results.json").is_file():
-            results = json.loads((run_dir / "results.json").read_text())
+        results = load_results(run_dir) if record["status"] == "ok" else None
         runs.append(PaperRun(run_dir.name, run_dir, record, results))
     return runs
 
@@ -442,15 +440,37 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
     return rows
 
 
+def _read_summary(path: Path) -> list[list[str]]:
+    """A sweep's ``summary.csv`` as rows, checked: a header with ``status``, every row as long.
+
+    Raises
+    ------
+    DamagedRun
+        One line naming the file and what is wrong (running the sweep again writes it anew)."""
+    try:
+        with path.open(newline="") as fh:
+            rows = list(csv.reader(fh))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise DamagedRun(f"{path}: cannot be read as CSV ({exc}); the same sweep command writes it again") from None
+    if not rows or "status" not in rows[0]:
+        raise DamagedRun(f"{path}: no header with a status column; the same sweep command writes it again")
+    short = next((k for k, r in enumerate(rows[1:], start=2) if len(r) != len(rows[0])), None)
+    if short is not None:
+        raise DamagedRun(
+            f"{path}: line {short} has {len(rows[short - 1])} fields, the header {len(rows[0])}; "
+            "the same sweep command writes it again"
+        )
+    return rows
+
+
 def _sweep_page(env, sweep_csv: Path, site: Path) -> dict:
     name = sweep_csv.parent.name
-    with sweep_csv.open(newline="") as fh:
-        rows = list(csv.reader(fh))
+    rows = _read_summary(sweep_csv)
     plot = None
     if (sweep_csv.parent / "summary.png").is_file():
         plot = f"{name}.png"
         shutil.copy2(sweep_csv.parent / "summary.png", site / "sweeps" / plot)
-    failed = sum(1 for r in rows[1:] if "status" in rows[0] and r[rows[0].index("status")] != "ok")
+    failed = sum(1 for r in rows[1:] if r[rows[0].index("status")] != "ok")
     info = {"name": name, "header": rows[0] if rows else [], "rows": rows[1:], "plot": plot, "failed": failed}
     (site / "sweeps" / f"{name}.html").write_text(env.get_template("sweep.html").render(sweep=info, root="../"))
     return info
@@ -483,9 +503,11 @@ def _first_screen(runs: list[PaperRun], by_name: dict) -> tuple[list[dict], list
 
 def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str | None = None) -> Path:
     """Build the site from ``runs_dir/reproduce`` (``reproduce-<profile>`` for another profile) and the sweeps in
-    ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``)."""
-    nbformat = lean_imports.nbformat()
+    ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``).
 
+    The site is built in a temporary folder beside its own and renamed into place (:mod:`.outputs`): a folder
+    that is not empty and was not built here is refused before anything is written, and of an earlier site only
+    the files it wrote are deleted."""
     runs_dir = Path(runs_dir)
     profile = profile_name(profile)
     source = reproduce_dir(profile, runs_dir)
@@ -495,16 +517,26 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
             f"no runs at the {profile} profile ({source} does not exist): `make reproduce PROFILE={profile}` makes them"
             f" (one notebook: `python -m tvtrack reproduce --profile {profile} --only NAME`)"
         )
-    site = Path(out) if out is not None else default
-    if site.exists() and not site.is_dir():
-        raise UsageError(f"cannot write the site folder {site}: it is a file; give an empty or new folder")
-    if site.exists():
-        if any(site.iterdir()) and not (site / "index.html").is_file():
-            raise UsageError(f"{site} exists and is not a site built here (no index.html): give an empty or new folder")
-        try:
-            shutil.rmtree(site)
-        except OSError as exc:
-            raise UsageError(f"cannot replace the site folder {site}: {exc.strerror or exc}") from exc
+    final = Path(out) if out is not None else default
+    check_replaceable(final, "-o" if out is not None else "site folder", "site")
+    try:
+        site = temporary_beside(final)
+    except OSError as exc:
+        raise UsageError(f"cannot write the site folder {final}: {exc.strerror or exc}") from exc
+    try:
+        _build_into(site, runs_dir, source, profile)
+        mark(site, "site")
+    except BaseException:
+        shutil.rmtree(site, ignore_errors=True)
+        raise
+    replace_folder(site, final)
+    return final / "index.html"
+
+
+def _build_into(site: Path, runs_dir: Path, source: Path, profile: str) -> None:
+    """Every page of the site into the (new, empty) folder ``site``."""
+    nbformat = lean_imports.nbformat()
+
     writable_directory(site / "notebooks", "site folder")
     (site / "sweeps").mkdir()
     env = _environment()
@@ -574,4 +606,3 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
             **common,
         )
     )
-    return index

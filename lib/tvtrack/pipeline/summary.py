@@ -9,6 +9,7 @@ lists are left out of the table.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import difflib
 import json
 import re
@@ -16,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from .preflight import UsageError, _code_cells
-from .runner import read_run
+from .runfiles import load_results, load_run
 
 __all__ = ["flatten_metrics", "notebook_metric_names", "check_metric", "check_metric_in", "collect_summary"]
 
@@ -48,9 +49,42 @@ def notebook_metric_names(notebook: Path) -> list[str] | None:
     return names or None
 
 
+def estimate_parts() -> tuple[str, ...]:
+    """The parts of a metric recorded as an estimate (``NAME.value``, ``NAME.ci_low``, ...)."""
+    from ..montecarlo import Estimate  # heavy (NumPy, SciPy): only when a nested path is checked
+
+    return tuple(f.name for f in dataclasses.fields(Estimate))
+
+
 def _matches(name: str, y: str) -> bool:
+    return _rest(name, y) is not False
+
+
+def _rest(name: str, y: str) -> str | None | bool:
+    """The dotted path of ``y`` below the metric ``name`` (``None``: ``y`` is the metric itself; ``False``: ``y``
+    is not under ``name``)."""
     pattern = ".+".join(re.escape(part) for part in name.split("{...}"))
-    return re.fullmatch(pattern + r"(\..+)?", y) is not None
+    found = re.fullmatch(pattern + r"(?:\.(.+))?", y)
+    return False if found is None else found.group(1)
+
+
+def _check_part(names: list[str], y: str, where: str, notebook: Path) -> None:
+    """Refuse ``y = NAME.PART`` whose PART is a misspelt estimate part (``value`` typed ``valeu``), before any run;
+    a part that is no near miss may be a key of a dict metric: the first run's results decide (:mod:`.sweep`)."""
+    rests = [_rest(n, y) for n in names if _matches(n, y)]
+    if any(r is None or "." in r for r in rests):
+        return
+    parts = estimate_parts()
+    if any(r in parts for r in rests):
+        return
+    for rest in rests:
+        close = difflib.get_close_matches(rest, parts, n=1, cutoff=0.75)
+        if close:
+            head = y[: -len(rest) - 1]
+            raise UsageError(
+                f"{where}{notebook.stem}: {y!r}: an estimate has no part {rest!r}; did you mean "
+                f"'{head}.{close[0]}'? (its parts: {', '.join(parts)})"
+            )
 
 
 def check_metric(notebook: Path, y: str, where: str = "") -> None:
@@ -62,7 +96,10 @@ def check_metric(notebook: Path, y: str, where: str = "") -> None:
         One line naming ``y``, the closest metric names and the notebook's metrics.
     """
     names = notebook_metric_names(notebook)
-    if names is None or any(_matches(n, y) for n in names):
+    if names is None:
+        return
+    if any(_matches(n, y) for n in names):
+        _check_part(names, y, where, notebook)
         return
     close = difflib.get_close_matches(y.split(".")[0], names, n=2, cutoff=0.6)
     hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
@@ -101,7 +138,7 @@ def collect_summary(
     errors = errors or {}
     for run in runs:
         run_dir = sweep_dir / "runs" / run.run_id
-        rec = read_run(run_dir) or {"status": "absent", "error": errors.get(run.run_id, "not run")}
+        rec = load_run(run_dir) or {"status": "absent", "error": errors.get(run.run_id, "not run")}
         row: dict[str, Any] = {
             "run_id": run.run_id,
             "status": rec.get("status"),
@@ -109,9 +146,8 @@ def collect_summary(
             "runtime_s": rec.get("runtime_s"),
         }
         row.update(run.parameters)
-        res = run_dir / "results.json"
-        if res.is_file():
-            data = json.loads(res.read_text())
+        if rec.get("status") == "ok":
+            data = load_results(run_dir, for_report=False)  # a damaged file: one line naming it (:mod:`.runfiles`)
             row.update(flatten_metrics(data.get("metrics", {})))
             row.update({f"verdict {c['id']}": c["verdict"] for c in data.get("claims", [])})
         rows.append(row)

@@ -27,9 +27,10 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 import os
 import shutil
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
@@ -37,14 +38,14 @@ from pathlib import Path
 from ..executors import SchedulerError, connect_dask, parse_scheduler_address
 from .interrupt import EXIT_INTERRUPTED, Interrupted, running_a_task, shielded_spawn, stop_pool, worker_init
 from . import lean_imports
-from .paths import RUNS_DIR, writable_directory
+from .paths import CONFIRM_ABOVE_RUNS, RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
 from .lock import LOCK_NAME, output_lock
+from .runfiles import load_results, load_run
 from .runner import (
     WriteFailed,
     find_notebook,
     load_profile,
-    read_run,
     read_toml,
     remove_stale_temporaries,
     run_notebook,
@@ -150,6 +151,12 @@ def load_spec(path: str | Path) -> SweepSpec:
         zipped=dict(zipped),
         summary=summary,
     )
+
+
+def count_runs(spec: SweepSpec) -> int:
+    """How many runs the spec makes (grid product x zipped rows x repeats), without listing them."""
+    n_zip = len(next(iter(spec.zipped.values()))) if spec.zipped else 1
+    return math.prod(len(v) for v in spec.grid.values()) * n_zip * spec.repeats
 
 
 def run_hash(notebook: str, profile: str | None, parameters: dict) -> str:
@@ -273,6 +280,7 @@ def run_sweep(
     executor: str = "local",
     scheduler: str | None = None,
     progress: bool = True,
+    yes: bool = False,
 ) -> SweepSummary:
     """Run every run of a spec that has not finished yet, then write the summary.
 
@@ -287,6 +295,8 @@ def run_sweep(
         Sweep directory (default ``papermill_runs/<spec name>``).
     executor : {"local", "dask"}
         ``"dask"`` submits the runs to an existing Dask cluster at ``scheduler``.
+    yes : bool
+        Start a sweep of more than :data:`CONFIRM_ABOVE_RUNS` runs (refused without it, naming the count).
 
     Returns
     -------
@@ -300,6 +310,12 @@ def run_sweep(
     if executor == "dask":
         check_scheduler_address(scheduler)
     spec = load_spec(spec_path)
+    n_runs = count_runs(spec)
+    if n_runs > CONFIRM_ABOVE_RUNS and not yes:
+        raise UsageError(
+            f"{spec_path}: {n_runs:,} runs, more than {CONFIRM_ABOVE_RUNS:,}: add --yes to start them "
+            "(Ctrl-C stops the sweep and the same command resumes it), or make the grid smaller"
+        )
     client = _dask_client(scheduler) if executor == "dask" else None  # before the preflight: fail fast
     runs = expand(spec)
     # the pool's workers start (and import what a run needs) while the preflight checks the values: the
@@ -316,7 +332,13 @@ def run_sweep(
         writable_directory(runs_dir, "sweep directory")
         with output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"):
             todo = _runs_to_do(spec, spec_path, sweep_dir, runs)
-            errors = _run_all(spec, runs, todo, (executor, client, pool), runs_dir, progress)
+            at_once = "on the Dask cluster" if executor == "dask" else f"{jobs if pool is not None else 1} at once"
+            print(
+                f"{spec.name}: {len(runs):,} runs, {len(runs) - len(todo):,} finished before, {len(todo):,} to run "
+                f"({at_once}) -> {sweep_dir}",
+                flush=True,
+            )
+            errors = _run_all(spec, spec_path, runs, todo, (executor, client, pool), runs_dir, progress)
             return _finish(spec, sweep_dir, runs, len(runs) - len(todo), errors)
     except BaseException:
         if client is not None:
@@ -330,19 +352,22 @@ def run_sweep(
 
 
 def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]) -> list[RunSpec]:
-    """The runs not finished yet (a failed run is removed and tried again); refuses a summary metric that the
-    finished runs do not hold."""
+    """The runs not finished yet (a failed run is removed and tried again); refuses a damaged run file and a summary
+    metric that the finished runs do not hold."""
     runs_dir = sweep_dir / "runs"
     remove_stale_temporaries(runs_dir)
     (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
     todo = []
+    checked = False
     for run in runs:
-        record = read_run(runs_dir / run.run_id)
-        if record and record.get("status") == "ok":
-            if "y" in spec.summary:
+        record = load_run(runs_dir / run.run_id)  # a damaged run file: one line naming it (:mod:`.runfiles`)
+        if record and record["status"] == "ok":
+            load_results(runs_dir / run.run_id, for_report=False)
+            if "y" in spec.summary and not checked:  # the runs of one notebook hold the same metrics
                 check_metric_in(
                     runs_dir / run.run_id / "results.json", spec.summary["y"], f"{spec_path}: [summary] y: "
                 )
+                checked = True
             continue
         if (runs_dir / run.run_id).exists():  # a failed run is tried again
             shutil.rmtree(runs_dir / run.run_id)
@@ -350,26 +375,38 @@ def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]
     return todo
 
 
-def _run_all(spec, runs, todo, where: tuple, runs_dir: Path, progress: bool) -> dict[str, str]:
+def _run_all(spec, spec_path, runs, todo, where: tuple, runs_dir: Path, progress: bool) -> dict[str, str]:
     """Execute ``todo`` (``where``: the executor's name, the Dask client or None, the local pool or None);
-    returns ``{run id: why}`` for the runs whose outputs could not be written."""
+    returns ``{run id: why}`` for the runs whose outputs could not be written.
+
+    The first run that finishes is checked for the ``[summary]`` metric (:func:`.summary.check_metric_in`): a
+    path its results do not hold stops the sweep there (exit status 2), not after the last run."""
     from tqdm import tqdm
 
     executor, client, pool = where
 
     bar = tqdm(total=len(runs), initial=len(runs) - len(todo), desc=spec.name, disable=not progress, unit="run")
-    failed = 0
+    failed, ok = 0, 0
     errors: dict[str, str] = {}
     nb_path = str(spec.notebook)
+    y_checked = "y" not in spec.summary or len(todo) < len(runs)  # finished runs were checked (:func:`_runs_to_do`)
 
     def tick(result: tuple) -> None:
-        nonlocal failed
+        nonlocal failed, ok, y_checked
         run_id, status, error, _ = result
         failed += status != "ok"
+        ok += status == "ok"
         if status == "absent":
             errors[run_id] = error
         bar.update(1)
         bar.set_postfix(failed=failed, remaining=bar.total - bar.n)
+        if status == "ok" and not y_checked:
+            y_checked = True
+            try:
+                check_metric_in(runs_dir / run_id / "results.json", spec.summary["y"], f"{spec_path}: [summary] y: ")
+            except UsageError as exc:
+                bar.close()
+                raise UsageError(f"{exc}; the sweep stopped after its first run (the same command resumes)") from None
 
     try:
         if executor == "dask":
@@ -382,9 +419,9 @@ def _run_all(spec, runs, todo, where: tuple, runs_dir: Path, progress: bool) -> 
     except KeyboardInterrupt as exc:
         bar.close()
         remove_stale_temporaries(runs_dir)
-        done = sum((read_run(runs_dir / r.run_id) or {}).get("status") == "ok" for r in runs)
+        done = len(runs) - len(todo) + ok
         raise KeyboardInterrupt(
-            f"{spec.name}: {done} of {len(runs)} runs finished, the others cancelled; the same command resumes"
+            f"{spec.name}: {done:,} of {len(runs):,} runs finished, the others cancelled; the same command resumes"
         ) from exc
     bar.close()
     return errors
@@ -394,7 +431,7 @@ def _finish(spec: SweepSpec, sweep_dir: Path, runs: list[RunSpec], n_skipped: in
     """Write the summary and print one line per run that is not ok."""
     runs_dir = sweep_dir / "runs"
     csv_path, plot = collect_summary(sweep_dir, runs, spec.summary, errors)
-    records = [read_run(runs_dir / r.run_id) or {"status": "absent", "error": errors.get(r.run_id)} for r in runs]
+    records = [load_run(runs_dir / r.run_id) or {"status": "absent", "error": errors.get(r.run_id)} for r in runs]
     n_ok = sum(rec.get("status") == "ok" for rec in records)
     n_absent = sum(rec.get("status") == "absent" for rec in records)
     absent = f", {n_absent} absent (outputs not written)" if n_absent else ""
@@ -435,12 +472,27 @@ def _start_pool(jobs: int) -> ProcessPoolExecutor:
 
 
 def _run_in_pool(pool: ProcessPoolExecutor, todo: list[RunSpec], nb_path: str, runs_dir: str, tick) -> None:
-    """The runs in the pool's workers (:func:`_start_pool`); Ctrl-C stops the pool (:func:`.interrupt.stop_pool`)."""
+    """The runs in the pool's workers (:func:`_start_pool`), handed over one per free worker, so that however many
+    runs a sweep has, a Ctrl-C finds only the running ones to stop and none queued to start
+    (:func:`.interrupt.stop_pool`)."""
+    pending = iter(todo)
+    in_flight: set = set()
+
+    def submit_next() -> None:
+        run = next(pending, None)
+        if run is not None:
+            in_flight.add(pool.submit(_execute, run, nb_path, runs_dir))
+
     try:
-        with shielded_spawn():  # a worker replaced by the pool starts with Ctrl-C ignored too
-            futures = [pool.submit(_execute, r, nb_path, runs_dir) for r in todo]
-        for fut in as_completed(futures):
-            tick(fut.result())
+        with shielded_spawn():  # a worker the pool starts now starts with Ctrl-C ignored too
+            for _ in range(pool._max_workers):
+                submit_next()
+        while in_flight:
+            done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
+            for fut in done:
+                in_flight.discard(fut)
+                tick(fut.result())
+                submit_next()
     except KeyboardInterrupt:
         stop_pool(pool)
         raise

@@ -1,0 +1,142 @@
+"""Output folders tvtrack replaces (a site, a reproduce run): never emptied unless tvtrack made them, and replaced
+through a temporary folder and a rename, so no file tvtrack did not write is ever deleted.
+
+A folder tvtrack builds holds the marker :data:`MARKER` (JSON: what it is and the relative path of every file
+written there). Before ``-o DIR`` is written, :func:`check_replaceable` refuses, with one line naming the
+parameter, a folder that is not empty and has no marker, or one that holds a file the marker does not list (a
+file the user added). The new content is built in a sibling ``.tmp-<name>-<random>`` folder (its owner's process id
+in ``.owner``, so a killed build's folder is removed by the next one), marked (:func:`mark`), then put in place by
+:func:`replace_folder`: the old folder is renamed aside, the new one renamed in, and of the old one only the files
+its marker lists are deleted (a file that appeared meanwhile is left in the renamed folder and named).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import socket
+import uuid
+from pathlib import Path
+
+from .preflight import UsageError
+
+__all__ = ["MARKER", "check_replaceable", "mark", "marked_files", "temporary_beside", "replace_folder"]
+
+MARKER = ".tvtrack-output.json"
+OWNER_FILE = ".owner"  # "<host> <pid>" of the process building a temporary folder (as the runner's)
+
+
+def marked_files(folder: Path) -> set[str] | None:
+    """The relative paths tvtrack wrote in ``folder``: those its marker lists, or for a run folder those its
+    ``run.json`` lists (``files``); ``None`` when neither says."""
+    for name in (MARKER, "run.json"):
+        try:
+            data = json.loads((Path(folder) / name).read_text())
+        except (OSError, ValueError):
+            continue
+        if isinstance(data, dict) and isinstance(data.get("files"), list):
+            return {str(f) for f in data["files"]}
+    return None
+
+
+def _files(folder: Path) -> set[str]:
+    return {str(p.relative_to(folder)) for p in Path(folder).rglob("*") if not p.is_dir()}
+
+
+def check_replaceable(folder: Path, parameter: str, kind: str) -> None:
+    """Refuse ``folder`` as the output of a ``kind`` (e.g. "site") unless it is absent, empty or one tvtrack built.
+
+    Raises
+    ------
+    UsageError
+        One line naming ``parameter`` (e.g. ``-o``) and the folder: a file; a non-empty folder without the marker
+        (not built here); a marked folder holding a file tvtrack did not write (named, with how many more).
+    """
+    folder = Path(folder)
+    if not folder.exists():
+        return
+    if not folder.is_dir():
+        raise UsageError(
+            f"{parameter} {folder}: cannot write the {kind} folder there: it is a file; give an empty or new folder"
+        )
+    present = _files(folder)
+    if not present:
+        return
+    listed = marked_files(folder)
+    if listed is None:
+        raise UsageError(
+            f"{parameter} {folder}: not a {kind} built here (no {MARKER}) and not empty; tvtrack never empties a "
+            "folder it did not make: give an empty or new folder"
+        )
+    foreign = sorted(present - listed - {MARKER})
+    if foreign:
+        more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+        raise UsageError(
+            f"{parameter} {folder}: holds {foreign[0]}{more}, which tvtrack did not write; move it out, or give "
+            "another folder (tvtrack never deletes a file it did not write)"
+        )
+
+
+def temporary_beside(final: Path) -> Path:
+    """A new, empty ``.tmp-<name>-<random>`` folder beside ``final`` (owned by this process); stale ones of the same
+    name whose process is gone are removed first."""
+    final = Path(final)
+    final.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_builds(final)
+    tmp = final.parent / f".tmp-{final.name}-{uuid.uuid4().hex[:8]}"
+    tmp.mkdir()
+    (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
+    return tmp
+
+
+def remove_stale_builds(final: Path) -> int:
+    """Remove ``.tmp-<name>-*`` folders beside ``final`` whose owner file names a process of this host that is gone;
+    returns how many. A folder without an owner file is never touched (it may be the user's)."""
+    from .runner import owner_gone
+
+    n = 0
+    for tmp in Path(final).parent.glob(f".tmp-{Path(final).name}-*"):
+        if tmp.is_dir() and (tmp / OWNER_FILE).is_file() and owner_gone(tmp):
+            shutil.rmtree(tmp, ignore_errors=True)
+            n += 1
+    return n
+
+
+def mark(folder: Path, kind: str) -> None:
+    """Write the marker of ``folder``: its kind and every file in it now (the owner file is removed first)."""
+    folder = Path(folder)
+    (folder / OWNER_FILE).unlink(missing_ok=True)
+    files = sorted(_files(folder) - {MARKER})
+    (folder / MARKER).write_text(json.dumps({"kind": kind, "written_by": "tvtrack", "files": files}, indent=0))
+
+
+def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str]:
+    """Put the marked folder ``new`` in place of ``final`` by renames; of the old ``final``, delete only the files its
+    marker lists (with ``legacy_run``, a run folder from before runs listed their files, told by its ``run.json``:
+    all its files). Returns the files left (ones tvtrack did not write, kept in ``.old-<name>-<random>`` beside
+    it)."""
+    new, final = Path(new), Path(final)
+    if not final.exists():
+        os.replace(new, final)
+        return []
+    old = final.parent / f".old-{final.name}-{uuid.uuid4().hex[:8]}"
+    listed = marked_files(final)
+    if listed is None:
+        listed = _files(final) if legacy_run and (final / "run.json").is_file() else set()
+    os.replace(final, old)
+    os.replace(new, final)
+    for rel in sorted(listed | {MARKER}):
+        path = old / rel
+        if path.is_file() or path.is_symlink():
+            path.unlink()
+    for folder in sorted((p for p in old.rglob("*") if p.is_dir()), key=lambda p: -len(p.parts)):
+        try:
+            folder.rmdir()
+        except OSError:
+            pass
+    try:
+        old.rmdir()
+    except OSError:
+        return [str(old / rel) for rel in sorted(_files(old))]
+    return []
