@@ -301,6 +301,21 @@ def test_ctrl_c_during_a_run_ends_the_kernel_and_leaves_nothing(tmp_path):
     assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5)
 
 
+def test_sigterm_to_a_run_ends_its_kernel_like_ctrl_c(tmp_path):
+    """``kill PID`` (SIGTERM: a CI time-out, a process manager) stops a run as Ctrl-C does: the kernel ended (it
+    runs in a session of its own, so it never sees the signal), nothing left, one line, exit 128 + 15."""
+    proc = _tvtrack_in_own_group("run", FIXTURE_NOTEBOOK, "-p", "n_trials", "20000", "-o", tmp_path / "run")
+    assert _wait_for(lambda: _kernels_of_tree(tmp_path), 120)
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGTERM)  # the process alone, not its group
+    stdout, stderr = proc.communicate(timeout=30)
+    assert proc.returncode == 128 + signal.SIGTERM, stderr
+    lines = (stdout + stderr).strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted: "), stdout + stderr
+    assert list(tmp_path.iterdir()) == []
+    assert _wait_for(lambda: not _kernels_of_tree(tmp_path), 5), "a kernel outlived the run"
+
+
 def test_stale_temporaries_of_a_dead_process_are_removed_live_ones_kept(tmp_path):
     from tvtrack.pipeline.runner import OWNER_FILE, remove_stale_temporaries
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import ast
 import os
+import signal
 import sys
 import time
 from pathlib import Path
@@ -297,10 +298,23 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+_stopped_by: list[int] = []  # the signal that stopped the command, if SIGTERM or SIGHUP
+
+
+def _terminate(signum, frame):
+    """SIGTERM or SIGHUP (``kill PID``, a closed terminal, a CI time-out) stops the command as Ctrl-C does: kernels
+    ended, temporaries removed, locks released; the exit status is then 128 + the signal's number."""
+    _stopped_by.append(signum)
+    raise KeyboardInterrupt(f"stopped by {signal.Signals(signum).name}")
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     # the kernels this command starts keep their compiled code in the clone (tvtrack.jit), unless told otherwise
     os.environ.setdefault("TVTRACK_JIT_CACHE", str(JIT_CACHE_DIR))
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(sig) is signal.SIG_DFL:  # a command run in-process by a caller keeps the caller's
+            signal.signal(sig, _terminate)
     try:
         return args.func(args)
     except (UsageError, NotebookBug, WriteFailed) as exc:
@@ -319,4 +333,4 @@ def main(argv=None) -> int:
         if args.debug:
             raise
         print(f"interrupted: {exc or args.command + ' stopped'}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return 128 + _stopped_by[-1] if _stopped_by else EXIT_INTERRUPTED
