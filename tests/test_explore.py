@@ -208,9 +208,10 @@ def test_a_batched_measurement_sees_every_configuration_of_a_stage_at_once():
         return [_measure_module_level(c, s) for c, s in zip(configs, seeds)]
 
     ex = explore(batched, REG, {"X": RULES["X"]}, seed=9, replicates=3, batched=True)
-    # the three replicates in one call, the five one-at-a-time values in one, then their sizing to the default's
-    # three replicates (two more each) in one
-    assert calls == [3, 5, 10]
+    # the three replicates in one call, the five one-at-a-time values in one; the default decided on its first
+    # replicate, so a condition of one replicate is sized like it: no sizing call
+    assert ex.settings["replicates_needed"] == {"X": 1}
+    assert calls == [3, 5]
     assert ex.record("X")["label"] == "limited"  # a = 2 is a regime of the world
 
 
@@ -581,3 +582,28 @@ def test_a_condition_is_sized_on_the_defaults_seeds_until_it_decides():
     assert rec["label"] == "limited" and rec["parts"]["claim"]["flips"][0]["runs"] == row["runs"]
     assert "condition sizing" in ex.settings["timing"] and "every condition" in ex.settings["stopping"]
     assert ex.settings["condition_runs"] == sum(len(r.sized) for r in ex.runs)
+
+
+def test_a_condition_counts_only_at_the_size_the_default_needed_to_decide():
+    """A zero-loss part: each replicate is 6 runs without a loss, and zero events certify a loss rate below 0.1
+    only from 29 runs on, so the default needs 5 replicates (30 runs) to decide it; a clear part decides on its
+    first replicate. A condition with no loss counts as agreeing only once it holds the default's 5 replicates:
+    one 6-run replicate never certifies it, and the record says how many runs each condition had."""
+    from tvtrack.explore import replicates_needed
+    from tvtrack.montecarlo import zero_events_bound
+
+    def zero(n):
+        return Estimate(0.0, float("nan"), 0.0, zero_events_bound(n), n, 0.95, "count: zero events")
+
+    def measure(config, seed):
+        return {"L": zero(6), "X": _mean(seed, 0.0)}
+
+    rules = {"L": InBand("loss rate", None, 0.1), "X": RULES["X"]}
+    ex = explore(measure, REG, rules, seed=5, replicates=3, max_replicates=8, depends={"L": ["a"], "X": ["a"]})
+    assert ex.settings["replicates"] == 5 and ex.settings["replicates_needed"] == {"L": 5, "X": 1}
+    rec = ex.record("L")
+    assert all(c["runs"] == 5 for c in rec["conditions"]) and rec["parts"]["claim"]["share"]["agree"] == 2
+    assert all(c["runs"] == 1 for c in ex.record("X")["conditions"])  # X decided on one replicate: so do they
+    runs = [r for r in ex.runs if r.stage == "replicate"]
+    decided_l = {("L", "claim"): type("J", (), {"verdict": "reproduced"})()}
+    assert replicates_needed(rules, runs[:3], decided_l)["L"] == 3  # three that never decide it: all of them

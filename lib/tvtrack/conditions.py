@@ -7,9 +7,9 @@ flipping subset (:mod:`tvtrack.explore`).
   group's claims. No claim is measured in a world its ``DEPENDS`` does not declare, and a condition's record for a
   claim is described by its projected changes.
 - **Sizing** (:func:`size_conditions`): a condition whose part is undecided, or decided on fewer replicates than
-  the default's pooled verdict, gets replicates on the default's replicate seeds (common random numbers: the
+  the default needed to decide (:func:`tvtrack.explore.replicates_needed`), gets replicates on the default's replicate seeds (common random numbers: the
   condition's replicate ``i`` runs on the default's seed ``i``), asking only the claims concerned, until each of its
-  parts is decisive on at least the default's replicates, or is projected to need more than the cap, or reaches
+  parts is decisive on at least that many replicates, or is projected to need more than the cap, or reaches
   the cap. Its replicates pool as the default's do.
 - **Subsets** (:func:`subset_configs`): a joint flip that no single entry (or smaller subset) explains has every
   pair, then every triple, of its changed entries measured alone (sized like any condition).
@@ -112,7 +112,7 @@ def projected_runs(
 
 def condition_verdicts(rules: Mapping[str, Rule], run: Run, n_default: Mapping[str, int]) -> dict:
     """``{(claim, part): verdict}`` of a condition pooled over its replicates; ``undecided`` where it has fewer
-    replicates than the default's (a condition smaller than the default neither flips nor agrees)."""
+    replicates than the default needed (``n_default``: a condition smaller than that neither flips nor agrees)."""
     out = {}
     for cid, rule in rules.items():
         if not run.counts_for(cid):

@@ -151,7 +151,8 @@ class Exploration:
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
         ]
-        out = label_parts(rule, self.measured(claim_id), reps, conds, entries, design=self.settings)
+        needed = (self.settings.get("replicates_needed") or {}).get(claim_id)
+        out = label_parts(rule, self.measured(claim_id), reps, conds, entries, design=self.settings, needed=needed)
         out["register"] = [e.to_dict() for e in entries]
         out["design"] = dict(self.settings)
         return out
@@ -268,6 +269,25 @@ def _point(pm: Any) -> Any:
 def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
     reps = [r for r in runs if r.stage == "replicate"]
     return _part_verdicts(rules, {cid: pool([r.outputs.get(cid) for r in reps]) for cid in rules})
+
+
+def replicates_needed(rules: Mapping[str, Rule], runs: list[Run], default_j: Mapping) -> dict[str, int]:
+    """Per claim, the replicates the default's sizing rule needed: the fewest first replicates whose pooled value
+    gives every part the default decides its final decisive verdict (a zero-loss part certified by 30 runs needs
+    the replicates holding them; a clear part, one). A condition counts as flipping or agreeing only at this size
+    or more. The minimum of three replicates at the default serves the check that independent replicates agree
+    (``unstable``), not the decision, so it is not asked of every condition."""
+    out = {}
+    for cid, rule in rules.items():
+        reps = [r.outputs[cid] for r in runs if r.stage == "replicate" and r.outputs.get(cid) is not None]
+        decided = {p: j.verdict for (c, p), j in default_j.items() if c == cid and is_decisive(j.verdict)}
+        out[cid] = len(reps)
+        for k in range(1, len(reps)):
+            js = part_judgements(rule, pool(reps[:k]))
+            if all(p in js and js[p].verdict == v for p, v in decided.items()):
+                out[cid] = k
+                break
+    return out
 
 
 def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> tuple[int, frozenset] | None:
@@ -415,7 +435,7 @@ def explore(
     clock.run(measure, runs, "replicates", guarded=False)
     n = _size(measure, rules, runs, seeds, cap, clock, default)
     default_j = _pooled(rules, runs)
-    n_default = {cid: sum(cid in r.outputs for r in runs) for cid in rules}
+    n_default = replicates_needed(rules, runs, default_j)
     have: dict = {}  # projected configuration -> the claims already measured there
 
     def conditions(cfgs: Sequence[Mapping], stage: str, only=None) -> list[Run]:
@@ -454,8 +474,9 @@ def explore(
         "stopping": "replicates added one at a time while a part is undecided and the replicates projected to "
         "decide it fit under max_replicates; every condition (one at a time, joint, pinned, combination) gets "
         "replicates on the default's replicate seeds until each part the default decides is decisive on at least "
-        "the default's replicates, is projected to need more than max_replicates, or reaches it; a condition "
-        "smaller than the default counts as undecided",
+        "the replicates the default needed to decide it (the fewest first replicates whose pooled value decides "
+        "every part as all of them do), is projected to need more than max_replicates, or reaches it; a condition "
+        "smaller than that counts as undecided",
         "joint": joint,
         "joint_configurations": len(joint_cfgs),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
@@ -467,6 +488,7 @@ def explore(
         "combinations": len(combos),
         "max_subset": MAX_SUBSET,
         "condition_runs": sized,
+        "replicates_needed": n_default,
         "guarded": bool(guard),
         "one_at_a_time": one_at_a_time,
         "seed": seed,

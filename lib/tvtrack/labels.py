@@ -15,9 +15,9 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
   (``provisional``; e.g. the smoke profile);
 - ``robust``: none of the above, over a design large enough for a share.
 
-A condition flips a part only when its verdict, pooled over at least the default's replicates, is decisive and
-differs from the default's pooled decisive verdict: an interval that straddles (``undecided``), or a condition
-smaller than the default, is never a flip. A part whose default verdict is undecided has nothing to flip (label
+A condition flips a part only when its verdict, pooled over at least the replicates the default needed to decide,
+is decisive and differs from the default's pooled decisive verdict: an interval that straddles (``undecided``), or
+a condition smaller than that, is never a flip. A part whose default verdict is undecided has nothing to flip (label
 ``-``) and carries the runs projected to decide it.
 
 Each part also carries the **share** (agree, flip and undecided over every explored configuration), the
@@ -182,6 +182,7 @@ def label_parts(
     entries: Sequence[Any] = (),
     deterministic: bool = False,
     design: Mapping | None = None,
+    needed: int | None = None,
 ) -> dict:
     """Part-level robustness labels of one claim (see the module).
 
@@ -197,9 +198,9 @@ def label_parts(
         The claim under other configurations: ``single`` (one entry), ``joint`` (the Latin-hypercube design),
         ``pinned`` (known flips measured every run) and ``combination`` (subsets of a flipping joint
         configuration, run to name the smallest that flips), each pooled over its ``runs`` replicates on the
-        default's replicate seeds (common random numbers). A condition with fewer ``runs`` than the default's
-        replicates counts as ``undecided`` (it can neither flip nor agree); one without ``runs`` (a hand-built
-        record) counts as sized like the default.
+        default's replicate seeds (common random numbers). A condition with fewer ``runs`` than ``needed``
+        counts as ``undecided`` (it can neither flip nor agree); one without ``runs`` (a hand-built record) counts
+        as sized like the default.
     entries : sequence of :class:`tvtrack.register.Entry`
         The register entries the claim depends on.
     deterministic : bool
@@ -207,6 +208,9 @@ def label_parts(
     design : mapping, optional
         The explorer's settings (``max_replicates`` is the sizing cap; ``min_share_design`` overrides
         :data:`MIN_SHARE_DESIGN`).
+    needed : int, optional
+        The replicates the default needed to decide (:func:`tvtrack.explore.replicates_needed`): the size below
+        which a condition counts as undecided; default all of ``replicates``.
 
     Returns
     -------
@@ -221,7 +225,8 @@ def label_parts(
     by_name = {e.name: e for e in entries}
     default_cfg = {e.name: e.default for e in entries}
     rep_rows = [_row(rule, parts, r["measured"], {"seed": int(r["seed"])}) for r in replicates]
-    cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg, max(len(rep_rows), 1))
+    size = needed if needed is not None else len(rep_rows)
+    cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg, max(size, 1))
     world_varied = any(by_name[k].kind in WORLD_KINDS for c in cond_rows for k in c["changed"] if k in by_name)
     explored = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint")])
     need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), _n_combinations(list(by_name), by_name))
@@ -261,7 +266,7 @@ def label_parts(
 
 def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mapping, default_cfg: dict, n: int) -> list:
     """One row per condition: its changes in words, its full configuration, its runs and its verdicts
-    (:func:`_row`); a condition with fewer runs than the default's ``n`` replicates reads ``undecided`` per part,
+    (:func:`_row`); a condition with fewer runs than the ``n`` replicates the default needed reads ``undecided`` per part,
     its own verdicts kept as ``undersized``."""
     rows = []
     for c in conditions:
