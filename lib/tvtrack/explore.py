@@ -195,7 +195,7 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -
     if not jobs:
         return
     kw = takes_claims(measure)
-    if batched:
+    if batched and executor is None:
         extra = {"claims": [j.claims for j in jobs]} if kw else {}
         outs = measure([j.config for j in jobs], [j.seed for j in jobs], **extra)
         if len(outs) != len(jobs):
@@ -207,10 +207,16 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -
         for j in jobs:
             j.outputs.update(measure(dict(j.config), j.seed, **({"claims": j.claims} if kw else {})))
         return
-    futures = [executor.submit(measure, dict(j.config), j.seed, **({"claims": j.claims} if kw else {})) for j in jobs]
+    # on an executor a batched measurement gets one configuration per task (it measures each as in a batch)
+    wrap = (lambda x: [x]) if batched else (lambda x: x)
+    futures = [
+        executor.submit(measure, wrap(dict(j.config)), wrap(j.seed), **({"claims": wrap(j.claims)} if kw else {}))
+        for j in jobs
+    ]
     try:
         for j, f in zip(jobs, futures):
-            j.outputs.update(f.result())
+            out = f.result()
+            j.outputs.update(out[0] if batched else out)
     except BaseException:
         for f in futures:
             f.cancel()
