@@ -33,9 +33,11 @@ kernel: $(STAMP)
 	$(BIN)/python -m tvtrack.pipeline.kernels
 
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
+# (SCHEDULER=tcp://HOST:8786: the explorations on a Dask cluster; MAX_REPLICATES=N: every sizing cap; docs/scale.md)
 # (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs)
 reproduce: $(STAMP) kernel
-	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE))
+	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE)) \
+		$(if $(SCHEDULER),--scheduler $(SCHEDULER)) $(if $(MAX_REPLICATES),--max-replicates $(MAX_REPLICATES))
 
 report: $(STAMP)
 	$(BIN)/python -m tvtrack report $(if $(PROFILE),--profile $(PROFILE))

@@ -50,6 +50,16 @@ def _positive_int(text: str) -> int:
     return value
 
 
+def _replicate_cap(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 3:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer >= 3 (the explorer's minimum of replicates)")
+    return value
+
+
 def _fresh_directory(path: Path) -> Path:
     """A run directory that does not exist yet and whose parent can be created."""
     if path.exists():
@@ -104,7 +114,13 @@ def _cmd_sweep(args) -> int:
 def _cmd_reproduce(args) -> int:
     from .reproduce import reproduce
 
-    return reproduce(profile=args.profile, only=args.only, jobs=args.jobs)
+    return reproduce(
+        profile=args.profile,
+        only=args.only,
+        jobs=args.jobs,
+        scheduler=args.scheduler,
+        max_replicates=args.max_replicates,
+    )
 
 
 def _cmd_report(args) -> int:
@@ -213,6 +229,18 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
     rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
     rp.add_argument("--jobs", type=_positive_int, default=None, help="notebooks at once (default: the usable cores)")
+    rp.add_argument(
+        "--scheduler",
+        default=None,
+        help="Dask scheduler address (tcp://HOST:PORT) every notebook's explorations run on (default: this machine)",
+    )
+    rp.add_argument(
+        "--max-replicates",
+        type=_replicate_cap,
+        default=None,
+        metavar="N",
+        help="every notebook's sizing cap, at least 3 (default: the profile's, else the notebook's own)",
+    )
     rp.set_defaults(func=_cmd_reproduce)
 
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")

@@ -9,7 +9,8 @@ folder (:mod:`.lock`): a second one into the same folder is refused. Ctrl-C stop
 keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``jobs`` notebooks do not oversubscribe the
 machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
 parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
-goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal.
+goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal. ``scheduler`` sends every notebook's
+explorations to a Dask cluster and ``max_replicates`` sets their sizing caps (:mod:`.scale`).
 """
 
 from __future__ import annotations
@@ -24,10 +25,11 @@ from pathlib import Path
 
 from .interrupt import shielded_spawn, stop_pool, worker_init
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir
-from .preflight import UsageError, parameter_defaults
+from .preflight import UsageError
 from .report import README_PATH, REPORT_PATH, write_report
 from .lock import LOCK_NAME, output_lock
-from .runner import WriteFailed, list_notebooks, remove_stale_temporaries, run_notebook
+from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
+from .scale import MIN_REPLICATES, check_caps, check_scheduler, explorer_runs, notebook_overrides, ran_on
 
 __all__ = ["usable_cores", "reproduce"]
 
@@ -62,13 +64,16 @@ def _worker_init(threads: int, log_path: str) -> None:
     os.dup2(log, 2)  # kernels inherit this stderr: their transport warnings land in the log
 
 
-def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tuple[str, bool, str | None, float]:
+def _run_one(
+    nb: str, profile: str | None, parameters: dict, folder: str, where: dict | None = None
+) -> tuple[str, bool, str | None, float]:
     name = Path(nb).stem
     fresh = Path(folder) / f".new-{name}"
     if fresh.exists():
         shutil.rmtree(fresh)
     try:
-        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False)
+        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False, extra_record={"ran_on": where})
+        _record_runs(fresh)
     except WriteFailed as exc:  # nothing kept; the earlier run of this notebook stays
         return name, False, str(exc), 0.0
     final = Path(folder) / name
@@ -78,8 +83,24 @@ def _run_one(nb: str, profile: str | None, parameters: dict, folder: str) -> tup
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 
+def _record_runs(run_dir: Path) -> None:
+    """Add ``explorer_runs`` (configurations the explorer measured) to a finished run's ``run.json``."""
+    path = run_dir / "run.json"
+    try:
+        record = json.loads(path.read_text())
+        record["explorer_runs"] = explorer_runs(run_dir / "results.json")
+        path.write_text(json.dumps(record, indent=2, default=str))
+    except OSError as exc:
+        raise WriteFailed(f"cannot write {path}: {exc.strerror or exc}") from exc
+
+
 def reproduce(
-    profile: str | None = None, only: list[str] | None = None, jobs: int | None = None, runs_dir: Path = RUNS_DIR
+    profile: str | None = None,
+    only: list[str] | None = None,
+    jobs: int | None = None,
+    runs_dir: Path = RUNS_DIR,
+    scheduler: str | None = None,
+    max_replicates: int | None = None,
 ) -> int:
     """Run the notebooks (all, or ``only``) side by side, then write the report.
 
@@ -93,6 +114,10 @@ def reproduce(
         Notebooks at once (default: :func:`usable_cores`).
     runs_dir : Path
         The folder holding ``reproduce/`` and ``reproduce-<profile>/`` (default ``papermill_runs/``).
+    scheduler : str, optional
+        Dask scheduler address (``tcp://host:port``) every notebook's explorations run on (default: this machine).
+    max_replicates : int, optional
+        Every notebook's sizing cap (at least 3; default: the profile's or the notebook's own).
 
     Returns
     -------
@@ -107,6 +132,9 @@ def reproduce(
     jobs = usable_cores() if jobs is None else jobs
     if jobs < 1:
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
+    if max_replicates is not None and max_replicates < MIN_REPLICATES:
+        raise UsageError(f"--max-replicates = {max_replicates}; it must be an integer >= {MIN_REPLICATES}")
+    cluster = check_scheduler(scheduler) if scheduler else None
     notebooks = list_notebooks()
     if only:
         wanted = {Path(n).stem for n in only}
@@ -118,9 +146,13 @@ def reproduce(
     notebooks = _order(notebooks, folder)
     jobs = min(jobs, len(notebooks))
     threads = max(1, usable_cores() // jobs)
+    params = [notebook_overrides(nb, threads, scheduler, max_replicates) for nb in notebooks]
+    if max_replicates is not None:
+        check_caps(notebooks, [load_profile(nb, profile) for nb in notebooks], params, max_replicates)
+    places = [ran_on(p, cluster) for p in params]
     folder.mkdir(parents=True, exist_ok=True)
     with output_lock(folder / LOCK_NAME, folder, "reproduce folder"):
-        failures = _run_notebooks(notebooks, profile, folder, jobs, threads)
+        failures = _run_notebooks(notebooks, profile, folder, jobs, threads, list(zip(params, places)))
         paper = profile_name(profile) == PAPER_PROFILE
         path = write_report(
             folder,
@@ -132,8 +164,23 @@ def reproduce(
     return 1 if failures else 0
 
 
-def _run_notebooks(notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int) -> list[str]:
-    """The notebooks in a pool of ``jobs`` workers; returns the names of those that failed."""
+def _used(run_dir: Path) -> str:
+    """``"; 340 explorer runs on tcp://..."`` from a finished run's ``run.json`` (empty where it has none)."""
+    try:
+        record = json.loads((run_dir / "run.json").read_text())
+    except (OSError, ValueError):
+        return ""
+    where = record.get("ran_on") or {}
+    runs = record.get("explorer_runs")
+    place = where.get("scheduler") if where.get("where") == "dask" else "this machine"
+    return f"; {runs if runs is not None else 'no'} explorer runs on {place}"
+
+
+def _run_notebooks(
+    notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int, setups: list[tuple[dict, dict]]
+) -> list[str]:
+    """The notebooks in a pool of ``jobs`` workers, each with its (parameters, where) of ``setups``; returns the
+    names of those that failed."""
     from tqdm import tqdm
 
     remove_stale_temporaries(folder)
@@ -151,12 +198,11 @@ def _run_notebooks(notebooks: list[Path], profile: str | None, folder: Path, job
     try:
         futures = {}
         with shielded_spawn():
-            for nb in notebooks:
-                params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
-                futures[pool.submit(_run_one, str(nb), profile, params, str(folder))] = nb.stem
+            for nb, (params, where) in zip(notebooks, setups):
+                futures[pool.submit(_run_one, str(nb), profile, params, str(folder), where)] = nb.stem
         for fut in as_completed(futures):
             name, ok, error, runtime = fut.result()
-            bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s)")
+            bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s{_used(folder / name)})")
             if not ok:
                 failures.append(name)
             bar.update(1)
