@@ -35,8 +35,10 @@ kernel: $(STAMP)
 # all notebooks side by side on the usable cores; make reproduce JOBS=1 PROFILE=smoke
 # (another profile runs into papermill_runs/reproduce-<profile>/ and never replaces the paper runs);
 # started again it resumes (runs finished at this commit are kept); FORCE=1 runs every notebook again
+# (SCHEDULER=tcp://HOST:8786: the explorations on a Dask cluster; MAX_REPLICATES=N: every sizing cap; docs/scale.md)
 reproduce: $(STAMP) kernel
-	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE)) $(if $(FORCE),--force)
+	$(BIN)/python -m tvtrack reproduce $(if $(JOBS),--jobs $(JOBS)) $(if $(PROFILE),--profile $(PROFILE)) $(if $(FORCE),--force) \
+		$(if $(SCHEDULER),--scheduler $(SCHEDULER)) $(if $(MAX_REPLICATES),--max-replicates $(MAX_REPLICATES))
 
 report: $(STAMP)
 	$(BIN)/python -m tvtrack report $(if $(PROFILE),--profile $(PROFILE))

@@ -212,7 +212,7 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any, d
         return
     kw = takes_claims(measure)
     cfgs = _configs(measure, jobs, depends)
-    if batched:
+    if batched and executor is None:
         extra = {"claims": [j.claims for j in jobs]} if kw else {}
         outs = measure(cfgs, [j.seed for j in jobs], **extra)
         if len(outs) != len(jobs):
@@ -224,10 +224,16 @@ def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any, d
         for j, c in zip(jobs, cfgs):
             j.outputs.update(measure(c, j.seed, **({"claims": j.claims} if kw else {})))
         return
-    futures = [executor.submit(measure, c, j.seed, **({"claims": j.claims} if kw else {})) for j, c in zip(jobs, cfgs)]
+    # on an executor a batched measurement gets one configuration per task (it measures each as in a batch)
+    wrap = (lambda x: [x]) if batched else (lambda x: x)
+    futures = [
+        executor.submit(measure, wrap(c), wrap(j.seed), **({"claims": wrap(j.claims)} if kw else {}))
+        for j, c in zip(jobs, cfgs)
+    ]
     try:
         for j, f in zip(jobs, futures):
-            j.outputs.update(f.result())
+            out = f.result()
+            j.outputs.update(out[0] if batched else out)
     except BaseException:
         for f in futures:
             f.cancel()

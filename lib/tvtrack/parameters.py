@@ -32,6 +32,7 @@ __all__ = [
     "RealList",
     "IntegerList",
     "OneOfList",
+    "SchedulerAddress",
     "validate_parameters",
     "COMMON_RULES",
 ]
@@ -217,6 +218,28 @@ class OutputDir(ParamRule):
 
     def describe(self) -> str:
         return "a directory path (a non-empty string; an existing non-directory is refused)"
+
+
+@dataclass(frozen=True)
+class SchedulerAddress(ParamRule):
+    """A Dask scheduler address ``tcp://HOST:PORT`` (or ``HOST:PORT``), or ``""`` for this machine. Only its form
+    is checked here; whether a scheduler answers is checked when the notebook connects
+    (:func:`tvtrack.explore.executor_for`)."""
+
+    def check(self, value):
+        if not isinstance(value, str):
+            raise TypeError
+        if value.strip():
+            from .executors import SchedulerError, parse_scheduler_address
+
+            try:
+                parse_scheduler_address(value)
+            except SchedulerError:
+                raise TypeError from None
+        return value.strip()
+
+    def describe(self) -> str:
+        return '"" (this machine) or a Dask scheduler address tcp://HOST:PORT'
 
 
 #: Rules for the parameters every notebook has (see docs/contributing.md, "Writing a notebook").

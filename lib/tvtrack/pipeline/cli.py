@@ -51,6 +51,16 @@ def _positive_int(text: str) -> int:
     return value
 
 
+def _replicate_cap(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 3:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer >= 3 (the explorer's minimum of replicates)")
+    return value
+
+
 def _fresh_directory(path: Path) -> Path:
     """A run directory that does not exist yet and whose parent can be created."""
     if path.exists():
@@ -106,7 +116,14 @@ def _cmd_sweep(args) -> int:
 def _cmd_reproduce(args) -> int:
     from .reproduce import reproduce
 
-    return reproduce(profile=args.profile, only=args.only, jobs=args.jobs, force=args.force)
+    return reproduce(
+        profile=args.profile,
+        only=args.only,
+        jobs=args.jobs,
+        force=args.force,
+        scheduler=args.scheduler,
+        max_replicates=args.max_replicates,
+    )
 
 
 def _cmd_report(args) -> int:
@@ -239,6 +256,18 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="run every notebook again, also those whose run finished at this commit with the same parameters "
         "(by default those are kept: the command resumes)",
+    )
+    rp.add_argument(
+        "--scheduler",
+        default=None,
+        help="Dask scheduler address (tcp://HOST:PORT) every notebook's explorations run on (default: this machine)",
+    )
+    rp.add_argument(
+        "--max-replicates",
+        type=_replicate_cap,
+        default=None,
+        metavar="N",
+        help="every notebook's sizing cap, at least 3 (default: the profile's, else the notebook's own)",
     )
     rp.set_defaults(func=_cmd_reproduce)
 

@@ -9,7 +9,8 @@ folder (:mod:`.lock`): a second one into the same folder is refused. Ctrl-C stop
 keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``jobs`` notebooks do not oversubscribe the
 machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
 parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
-goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal.
+goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal. ``scheduler`` sends every notebook's
+explorations to a Dask cluster and ``max_replicates`` sets their sizing caps (:mod:`.scale`).
 
 Started again, ``reproduce`` resumes: a notebook whose run in the folder finished (status ok) with the same
 parameters from the same code (the commit and any uncommitted change to the code, recorded in its ``run.json``
@@ -31,11 +32,12 @@ from pathlib import Path
 from .interrupt import shielded_spawn, stop_pool, worker_init
 from .outputs import replace_folder
 from .paths import PAPER_PROFILE, REPO_ROOT, RUNS_DIR, profile_name, reproduce_dir
-from .preflight import UsageError, parameter_defaults
+from .preflight import UsageError
 from .report import README_PATH, REPORT_PATH, write_report
 from .lock import LOCK_NAME, output_lock
 from .runfiles import DamagedRun, load_run
 from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
+from .scale import MIN_REPLICATES, check_caps, check_scheduler, explorer_runs, notebook_overrides, ran_on
 
 __all__ = ["usable_cores", "reproduce", "source_identity", "parameters_digest", "finished_here"]
 
@@ -71,14 +73,15 @@ def _worker_init(threads: int, log_path: str) -> None:
 
 
 def _run_one(
-    nb: str, profile: str | None, parameters: dict, folder: str, identity: dict | None = None
+    nb: str, profile: str | None, parameters: dict, folder: str, record: dict | None = None
 ) -> tuple[str, bool, str | None, float]:
     name = Path(nb).stem
     fresh = Path(folder) / f".new-{name}"
     if fresh.exists():
         shutil.rmtree(fresh)
     try:
-        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False, extra_record=identity)
+        outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False, extra_record=record)
+        _record_runs(fresh)
     except WriteFailed as exc:  # nothing kept; the earlier run of this notebook stays
         return name, False, str(exc), 0.0
     left = replace_folder(fresh, Path(folder) / name, legacy_run=True)  # of the earlier run, only what it wrote
@@ -107,13 +110,14 @@ def source_identity() -> dict:
     return {"git_commit": head.stdout.strip(), "source_digest": digest}
 
 
-def parameters_digest(nb: Path, profile: str | None) -> str:
-    """A digest of a notebook's run parameters: its name, the profile and the profile's values (the worker count
-    given to a notebook, which changes no result, left out)."""
+def parameters_digest(nb: Path, profile: str | None, max_replicates: int | None = None) -> str:
+    """A digest of a notebook's run parameters: its name, the profile, the profile's values and a sizing cap set
+    for every notebook (the worker count and the Dask scheduler, which change no result, left out)."""
     import hashlib
 
+    values = {**load_profile(nb, profile), **({"max_replicates": max_replicates} if max_replicates else {})}
     blob = json.dumps(
-        {"notebook": nb.stem, "profile": profile_name(profile), "values": load_profile(nb, profile)},
+        {"notebook": nb.stem, "profile": profile_name(profile), "values": values},
         sort_keys=True,
         default=str,
     )
@@ -136,12 +140,25 @@ def finished_here(folder: Path, nb: Path, identity: dict) -> bool:
     )
 
 
+def _record_runs(run_dir: Path) -> None:
+    """Add ``explorer_runs`` (configurations the explorer measured) to a finished run's ``run.json``."""
+    path = run_dir / "run.json"
+    try:
+        record = json.loads(path.read_text())
+        record["explorer_runs"] = explorer_runs(run_dir / "results.json")
+        path.write_text(json.dumps(record, indent=2, default=str))
+    except OSError as exc:
+        raise WriteFailed(f"cannot write {path}: {exc.strerror or exc}") from exc
+
+
 def reproduce(
     profile: str | None = None,
     only: list[str] | None = None,
     jobs: int | None = None,
     runs_dir: Path = RUNS_DIR,
     force: bool = False,
+    scheduler: str | None = None,
+    max_replicates: int | None = None,
 ) -> int:
     """Run the notebooks (all, or ``only``) side by side, then write the report.
 
@@ -158,6 +175,10 @@ def reproduce(
     force : bool
         Run every notebook, also those whose run finished with these parameters at this commit
         (:func:`finished_here`; without it they are kept, said in one line).
+    scheduler : str, optional
+        Dask scheduler address (``tcp://host:port``) every notebook's explorations run on (default: this machine).
+    max_replicates : int, optional
+        Every notebook's sizing cap (at least 3; default: the profile's or the notebook's own).
 
     Returns
     -------
@@ -172,6 +193,9 @@ def reproduce(
     jobs = usable_cores() if jobs is None else jobs
     if jobs < 1:
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
+    if max_replicates is not None and max_replicates < MIN_REPLICATES:
+        raise UsageError(f"--max-replicates = {max_replicates}; it must be an integer >= {MIN_REPLICATES}")
+    cluster = check_scheduler(scheduler) if scheduler else None
     notebooks = list_notebooks()
     if only:
         wanted = {Path(n).stem for n in only}
@@ -183,10 +207,16 @@ def reproduce(
     notebooks = _order(notebooks, folder)
     jobs = min(jobs, len(notebooks))
     threads = max(1, usable_cores() // jobs)
+    params = [notebook_overrides(nb, threads, scheduler, max_replicates) for nb in notebooks]
+    if max_replicates is not None:
+        check_caps(notebooks, [load_profile(nb, profile) for nb in notebooks], params, max_replicates)
+    places = [ran_on(p, cluster) for p in params]
     folder.mkdir(parents=True, exist_ok=True)
     with output_lock(folder / LOCK_NAME, folder, "reproduce folder"):
         source = source_identity()
-        identities = {nb.stem: {**source, "parameters_digest": parameters_digest(nb, profile)} for nb in notebooks}
+        identities = {
+            nb.stem: {**source, "parameters_digest": parameters_digest(nb, profile, max_replicates)} for nb in notebooks
+        }
         kept = [] if force else [nb for nb in notebooks if finished_here(folder, nb, identities[nb.stem])]
         if kept:
             print(
@@ -194,8 +224,13 @@ def reproduce(
                 f"({str(source['git_commit'])[:10]}) with the same parameters: {', '.join(nb.stem for nb in kept)} "
                 "(--force, or make reproduce FORCE=1, runs them again)"
             )
+        setups = [
+            (p, {**identities[nb.stem], "ran_on": where})
+            for nb, p, where in zip(notebooks, params, places)
+            if nb not in kept
+        ]
         todo = [nb for nb in notebooks if nb not in kept]
-        failures = _run_notebooks(todo, profile, folder, jobs, threads, identities) if todo else []
+        failures = _run_notebooks(todo, profile, folder, jobs, threads, setups) if todo else []
         paper = profile_name(profile) == PAPER_PROFILE
         path = write_report(
             folder,
@@ -207,10 +242,23 @@ def reproduce(
     return 1 if failures else 0
 
 
+def _used(run_dir: Path) -> str:
+    """``"; 340 explorer runs on tcp://..."`` from a finished run's ``run.json`` (empty where it has none)."""
+    try:
+        record = json.loads((run_dir / "run.json").read_text())
+    except (OSError, ValueError):
+        return ""
+    where = record.get("ran_on") or {}
+    runs = record.get("explorer_runs")
+    place = where.get("scheduler") if where.get("where") == "dask" else "this machine"
+    return f"; {runs if runs is not None else 'no'} explorer runs on {place}"
+
+
 def _run_notebooks(
-    notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int, identities: dict
+    notebooks: list[Path], profile: str | None, folder: Path, jobs: int, threads: int, setups: list[tuple[dict, dict]]
 ) -> list[str]:
-    """The notebooks in a pool of ``jobs`` workers; returns the names of those that failed."""
+    """The notebooks in a pool of ``jobs`` workers, each with its (parameters, run record) of ``setups``; returns
+    the names of those that failed."""
     from tqdm import tqdm
 
     remove_stale_temporaries(folder)
@@ -228,12 +276,11 @@ def _run_notebooks(
     try:
         futures = {}
         with shielded_spawn():
-            for nb in notebooks:
-                params = {"n_workers": threads} if "n_workers" in parameter_defaults(nb) else {}
-                futures[pool.submit(_run_one, str(nb), profile, params, str(folder), identities[nb.stem])] = nb.stem
+            for nb, (params, record) in zip(notebooks, setups):
+                futures[pool.submit(_run_one, str(nb), profile, params, str(folder), record)] = nb.stem
         for fut in as_completed(futures):
             name, ok, error, runtime = fut.result()
-            bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s)")
+            bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s{_used(folder / name)})")
             if not ok:
                 failures.append(name)
             bar.update(1)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ...parameters import Integer, Real, RealList
+from ...parameters import Integer, Real, RealList, SchedulerAddress
 
 __all__ = ["RULES", "check_consistency"]
 
@@ -32,7 +32,8 @@ RULES = {
     "acquire_by_T": Real(1.0, 30.0),
     "offsets": RealList(-1.0, 1.0),
     "replicates": Integer(3, 20),
-    "max_replicates": Integer(3, 40),
+    "max_replicates": Integer(3, 1000),
+    "scheduler": SchedulerAddress(),
     "joint": Integer(0, 200),
     "screen_trials": Integer(0, 20_000),
     "combinations": Integer(0, 100),

@@ -3,7 +3,7 @@ every rule names a parameter of the notebook, which ``tests/papers/test_001_stud
 
 from __future__ import annotations
 
-from ...parameters import Integer, IntegerList, OneOf, Real, RealList
+from ...parameters import Integer, IntegerList, OneOf, Real, RealList, SchedulerAddress
 from .study import THRESHOLD_READINGS
 
 __all__ = ["RULES", "check_cross"]
@@ -15,7 +15,8 @@ RULES = {
     "n_tradeoff_trials": Integer(10, 100_000),
     "n_train": Integer(5, 10_000),
     "replicates": Integer(3, 20),
-    "max_replicates": Integer(3, 50),
+    "max_replicates": Integer(3, 1000),
+    "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 200),
     "frame_rate_hz": Real(5.0, 200.0),
     "sigma_eps": Real(0.0, 10.0, low_open=True),

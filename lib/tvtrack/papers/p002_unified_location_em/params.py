@@ -1,6 +1,6 @@
 """Parameter rules of notebook 002 (the ranges written once; the parameters cell's comments repeat them)."""
 
-from tvtrack.parameters import Boolean, Integer, OneOf, Real, RealList, IntegerList
+from tvtrack.parameters import Boolean, Integer, OneOf, Real, RealList, IntegerList, SchedulerAddress
 
 __all__ = ["PARAMETERS"]
 
@@ -12,7 +12,8 @@ PARAMETERS = {
     "crb_phases": Integer(1, 4096),
     "n_bootstrap": Integer(2000, 20_000),
     "replicates": Integer(3, 50),
-    "max_replicates": Integer(3, 50),
+    "max_replicates": Integer(3, 1000),
+    "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 100),
     "screen_fraction": Real(0.0, 1.0, low_open=True),
     "combination_runs": Integer(0, 100),

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...parameters import Boolean, Integer, OneOf, Real
+from ...parameters import Boolean, Integer, OneOf, Real, SchedulerAddress
 
 __all__ = ["RULES", "check_consistency"]
 
@@ -11,7 +11,8 @@ RULES = {
     "n_trials": Integer(2, 1000),
     "loss_trials": Integer(2, 1000),
     "replicates": Integer(3, 20),
-    "max_replicates": Integer(3, 40),
+    "max_replicates": Integer(3, 1000),
+    "scheduler": SchedulerAddress(),
     "joint": Integer(0, 64),
     "screen_joint": Boolean(),
     "n_workers": Integer(1, 16),

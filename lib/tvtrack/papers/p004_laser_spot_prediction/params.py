@@ -5,14 +5,15 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ...parameters import Integer, IntegerList, OneOfList, Real, RealList
+from ...parameters import Integer, IntegerList, OneOfList, Real, RealList, SchedulerAddress
 from .register import DEFAULT, NAMES
 
 __all__ = ["RULES", "check_consistency"]
 
 RULES = {
     "n_trials": Integer(3, 10),
-    "max_replicates": Integer(3, 20),
+    "max_replicates": Integer(3, 1000),
+    "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 64),
     "n_workers": Integer(1, 16),
     "explore_entries": OneOfList(*NAMES, min_len=0),
