@@ -57,6 +57,10 @@ KINDS = {
         "an unreported setting: the paper gives the onset and the acceleration; how long its manoeuvre lasted is never printed",
     ),
     "compensation_comparator": ("comparator", "a reading of what C001-4 credits the switch against"),
+    "C001-4 switch": (
+        "reading",
+        "a reading of 'minimised the RMS': the gain law's error with the switch at Fig. 4's 5.5 s, or the scheme's",
+    ),
     "ump_comparator": ("comparator", "a reading of 'most powerful among invariant rules' (C001-2)"),
     "roc_delay_s": ("reading", "a reading of C001-2's power: a detection within the paper's own 0.5 s delay"),
     "step_dv": ("operating point", "a world beyond the paper: the step alternative is not in it"),
