@@ -39,15 +39,18 @@ from .montecarlo import Estimate
 from .labels import NO_PART_LABEL, Robustness
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
+from .paragraphs import paper_paragraph, results_summary
 from .wording import (
     GLOSSARY,
     LABEL_WORDS,
     VERDICT_WORDS,
+    at_profile,
     claim_flips,
     claim_summary,
     format_measured,
-    results_summary,
+    main_part,
     shown_label,
+    side_words,
 )
 
 __all__ = [
@@ -63,6 +66,10 @@ __all__ = [
     "claim_summary",
     "claim_flips",
     "results_summary",
+    "paper_paragraph",
+    "at_profile",
+    "main_part",
+    "side_words",
     "shown_label",
     "GLOSSARY",
     "VERDICT_WORDS",
