@@ -204,3 +204,47 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
     finally:
         tvtrack.wording.claim_summary = original
         globals()["claim_summary"] = original
+
+
+def test_a_value_that_reverses_the_papers_direction_says_so_in_words():
+    """C002-11: the paper has the ULA 3-6 times better than two-stage processing (rho = two-stage / ULA variance);
+    0.74 means the two-stage beats the ULA. An ordering measured the other way round says which is larger."""
+    from tvtrack.papers.p002_unified_location_em.claims import RULES
+
+    rule = RULES["C002-11"].to_dict()["parts"]["d = 1 sigma (paper x4.5)"]
+    measured = {"value": 0.7403, "ci_low": 0.6042, "ci_high": 0.9071}
+    assert tvtrack.wording.value_clause(rule, measured) == (
+        "gain rho = two-stage / ULA variance at d = 1 sigma, T = 50 is 0.7403 [0.6042, 0.9071] variance ratio, "
+        "where the paper has [3, 6] variance ratio: the two-stage beats the ULA, the reverse of the paper's direction"
+    )
+    inside = {"value": 4.2, "ci_low": 3.9, "ci_high": 4.6}
+    assert "reverse" not in tvtrack.wording.value_clause(rule, inside)
+    better = RULES["C002-8"].to_dict()["parts"]["better than the marks"]  # ULA's variance < two-stage's
+    assert tvtrack.wording.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
+        "ULA variance of x_o, coarse pixels is 1.3 [1.1, 1.5] times two-stage's: larger, where the paper has it smaller"
+    )
+
+
+def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
+    """A reading of the text, an unreported setting of the paper's experiment, a world beyond it: each in plain
+    words, with the register title that flips the most claims (the sides the core's records may carry)."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.results import results_summary
+
+    setting = copy.deepcopy(DEPENDS) | {"id": "C001-8"}
+    setting["robustness"]["register"][1]["kind"] = "unreported setting"
+    setting["robustness"]["register"][1]["side"] = "setting"
+    setting["robustness"]["parts"]["claim"]["flips"] = [
+        {"changed": {"k_bound2": 100}, "side": "setting", "kind": "single", "verdict": "reproduced", "text": "x"}
+    ]
+    text = results_summary([DEPENDS, setting])
+    assert text.endswith(
+        "What the verdicts turn on: a reading of the paper's text flips 1 claim; a setting of the paper's own "
+        "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
+    ), text
+    sentence = claim_summary(setting)
+    assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
+        sentence
+    )
