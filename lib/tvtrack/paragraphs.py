@@ -170,7 +170,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     if labels["unexplored"]:
         out.append(
             f"{_n(labels['unexplored'], 'claim was', 'claims were')} never tried in a world beyond the paper's own: "
-            "nothing says how far they extend."
+            f"nothing says how far {'it extends' if labels['unexplored'] == 1 else 'they extend'}."
         )
     undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
     if undecided:
@@ -178,8 +178,13 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
         out.append(f"Runs that lost lock decide {_join(lost)}; over the runs in lock alone the verdict differs.")
-    if labels[PROVISIONAL] or profile != "paper":
-        out.append("These are smoke-size runs: no verdict is labelled, and none is called robust.")
+    if profile != "paper":
+        out.append(f"These are {profile}-size runs: no verdict is labelled, and none is called robust.")
+    elif labels[PROVISIONAL]:
+        out.append(
+            f"{_n(labels[PROVISIONAL], 'claim comes', 'claims come')} from a design too small to label: none is "
+            "called robust."
+        )
     return out
 
 

@@ -201,7 +201,7 @@ _SIDE_WORDS = {
     "world": "a world beyond the paper",
     "unattributed": "several changes together, none of which flips it alone",
 }
-_READING_KINDS = ("reading", "statistic", "comparator")
+_WORLD_KINDS = ("regime", "operating point", "model", "scale")
 
 
 def side_words() -> dict[str, str]:
@@ -218,7 +218,9 @@ def entry_side(entry: Mapping) -> str:
     if side in SIDE_ORDER:
         return str(side)
     kind = entry.get("kind")
-    return "reading" if kind in _READING_KINDS else ("setting" if kind == "unreported setting" else "world")
+    if kind == "unreported setting":
+        return "setting"
+    return "world" if kind in _WORLD_KINDS else "reading"  # a record without kinds: readings, as it always read
 
 
 def _as_dict(claim: Any) -> Mapping:
@@ -228,15 +230,23 @@ def _as_dict(claim: Any) -> Mapping:
 
 def at_profile(claims: list[Mapping], profile: str | None) -> list[Mapping]:
     """The claims as a reader of runs at ``profile`` sees them: at any profile but ``"paper"`` every record is
-    marked provisional (a smoke-size design is too small to call anything robust, whatever its own flag says).
-    Returns new dicts; the records themselves are not changed."""
-    if not profile or profile == "paper":
-        return list(claims)
+    marked provisional (a smoke-size design is too small to call anything robust, whatever its own flag says),
+    and in a provisional record no part is shown as robust or unexplored either (its parts read
+    :data:`PROVISIONAL`). Returns new dicts; the records themselves are not changed."""
     out = []
     for c in claims:
         c = dict(_as_dict(c))
-        if c.get("robustness"):
-            c["robustness"] = {**c["robustness"], "provisional": True}
+        record = c.get("robustness")
+        if record and (record.get("provisional") or (profile and profile != "paper")):
+            parts = {
+                n: (
+                    {**p, "label": PROVISIONAL}
+                    if isinstance(p, Mapping) and p.get("label") in ("robust", "unexplored")
+                    else p
+                )
+                for n, p in (record.get("parts") or {}).items()
+            }
+            c["robustness"] = {**record, "provisional": True, **({"parts": parts} if record.get("parts") else {})}
         out.append(c)
     return out
 

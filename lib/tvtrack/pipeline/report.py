@@ -191,8 +191,8 @@ def as_shown(runs: dict[str, tuple[dict | None, dict | None]]) -> dict[str, tupl
     record marked provisional (:func:`tvtrack.results.at_profile`: never robust), whatever its design."""
     out = {}
     for name, (record, data) in runs.items():
-        if data is not None and (record or {}).get("profile", PAPER_PROFILE) != PAPER_PROFILE:
-            data = {**data, "claims": at_profile(data.get("claims") or [], record.get("profile"))}
+        if data is not None:
+            data = {**data, "claims": at_profile(data.get("claims") or [], (record or {}).get("profile"))}
         out[name] = (record, data)
     return out
 
