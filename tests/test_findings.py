@@ -248,3 +248,33 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
         sentence
     )
+
+
+def test_a_papers_limitations_come_from_its_records():
+    """Worlds calibrated to the paper's own operating point, what is not checkable and why, runs that lost lock
+    (the fields the core's records may carry), the undecided claims and the notebook's own limitations."""
+    import copy
+
+    from record_fixtures import DEPENDS, NOT_CHECKABLE, UNDECIDED
+    from tvtrack.results import paper_paragraph
+
+    lost = copy.deepcopy(DEPENDS)
+    lost["robustness"]["parts"]["claim"].update(lost_share=0.3, in_lock_verdict="reproduced", decided_by_lost_runs=True)
+    some = copy.deepcopy(UNDECIDED) | {"id": "C004-5"}
+    some["robustness"]["parts"]["claim"]["lost_share"] = 0.04
+    register = copy.deepcopy(DEPENDS["robustness"]["register"])
+    register[2]["why"] = "calibrated so that the paper's filter errs 1.5 px"
+    data = {"claims": [lost, some, NOT_CHECKABLE], "register": register, "limitations": ["No figure survives"]}
+    paragraph, limits = paper_paragraph(data)
+    assert paragraph.startswith("The paper makes 3 claims checked here; 2 can be measured. It does not hold that ")
+    assert limits == [
+        "No figure survives.",
+        "The simulated world is calibrated to the paper's own operating point (how the target moves): agreement at "
+        "that point is partly by construction.",
+        "C001-6 is not checkable: the recording of the real aircraft is not published.",
+        "1 claim was never tried in a world beyond the paper's own: nothing says how far it extends.",
+        "More runs than these would be needed to decide C004-5.",
+        "Runs that lost lock decide C001-3; over the runs in lock alone the verdict differs.",
+        "Some runs lost lock in C004-5 (at most 4 % of them).",
+    ]
+    assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(lost)

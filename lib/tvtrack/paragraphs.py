@@ -178,6 +178,12 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
         out.append(f"Runs that lost lock decide {_join(lost)}; over the runs in lock alone the verdict differs.")
+    shares = {c["id"]: _lost_share(c) for c in claims if c["id"] not in lost}
+    shares = {k: v for k, v in shares.items() if v > 0}
+    if shares:
+        out.append(
+            f"Some runs lost lock in {_join(sorted(shares))} (at most {max(shares.values()) * 100:.0f} % of them)."
+        )
     if profile != "paper":
         out.append(f"These are {profile}-size runs: no verdict is labelled, and none is called robust.")
     elif labels[PROVISIONAL]:
@@ -192,6 +198,14 @@ def _lost(c: Mapping) -> bool:
     record = c.get("robustness") or {}
     spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
     return any(s.get("decided_by_lost_runs") for s in spots)
+
+
+def _lost_share(c: Mapping) -> float:
+    """The largest share of runs that lost lock the record gives (``lost_share``), 0 where it gives none."""
+    record = c.get("robustness") or {}
+    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
+    values = [float(s["lost_share"]) for s in spots if isinstance(s.get("lost_share"), (int, float))]
+    return max(values, default=0.0)
 
 
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:

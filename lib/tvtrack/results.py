@@ -110,7 +110,7 @@ def to_jsonable(value: Any) -> Any:
     return value
 
 
-def claims_table(claims: list, statement_chars: int = 110) -> str:
+def claims_table(claims: list) -> str:
     """The one claims-at-a-glance table (Markdown): per claim what the paper said, the verdict, the robustness
     label (``provisional`` for a design too small to label) and one sentence (:func:`claim_summary`): the
     measured value in its unit against the rule's band, the share of explored configurations that agree, the
@@ -122,8 +122,7 @@ def claims_table(claims: list, statement_chars: int = 110) -> str:
     ]
     for c in claims:
         c = to_jsonable(c if isinstance(c, dict) else c.__dict__)
-        st = " ".join(str(c["statement"]).split())
-        st = st if len(st) <= statement_chars else st[: statement_chars - 1].rstrip() + "…"
+        st = " ".join(str(c["statement"]).split())  # whole: a cut statement misleads
         rows.append(
             f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(shown_label(c))} | "
             f"{md_escape(claim_summary(c))} |"
