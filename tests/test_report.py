@@ -438,7 +438,9 @@ def test_each_paper_opens_with_what_it_claims_what_holds_what_does_not_and_why_t
     paragraph = section.split("\n\n")[2]
     assert paragraph == (
         "The paper makes 4 claims checked here; 3 can be measured. 1 claim holds (C001-7). It does not hold that neighbouring velocity samples correlate by \\<= 0.5, negligibly; the pair distributions may be "
-        "multiplied (C001-3): the two windows overlap. The runs could not decide C004-3b."
+        "multiplied (C001-3): per-test false-alarm rate / alpha is 351.6 \\[350, 353.1\\] x alpha, where the paper "
+        "has \\[0, 2\\] x alpha; it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
+        "increments. The runs could not decide C004-3b."
     )
     limits = section.split("\n\n")[3]
     assert limits.startswith("**Limitations.** C001-6 is not checkable: the recording of the real aircraft is not ")

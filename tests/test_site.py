@@ -304,6 +304,6 @@ def test_each_paper_card_says_what_holds_what_does_not_and_why_then_its_limitati
     card = html[html.index('id="001_explored"') :]
     card = card[: card.index("</article>")]
     assert "The paper makes 5 claims checked here; 4 can be measured. 2 claims hold (C001-7 and C001-5)." in card
-    assert "(C001-3): the two windows overlap." in card
+    assert "it holds under a reading of the paper&#39;s text: sigma read as the SD of the raw velocity" in card
     assert "<strong>Limitations.</strong> C001-6 is not checkable: the recording of the real aircraft" in card
     assert "1 claim comes from a design too small to label: none is called robust." in card

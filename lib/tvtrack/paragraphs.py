@@ -8,9 +8,8 @@ says the same thing in the same words. Import :func:`results_summary` through :m
 
 from __future__ import annotations
 
-import re
 from collections import Counter
-from typing import Any, Mapping
+from typing import Mapping
 
 from .wording import (
     PROVISIONAL,
@@ -19,6 +18,7 @@ from .wording import (
     _phrases,
     at_profile,
     claim_flips,
+    not_checkable_reason,
     shown_label,
     side_words,
     value_clause,
@@ -94,7 +94,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     if labels[PROVISIONAL] or profile != "paper":
         text.append(
             f"{_n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
-            "design too small to label (a smoke-size run): none of them is called robust."
+            f"design too small to label{' (a smoke-size run)' if profile != 'paper' else ''}: none of them is called "
+            "robust."
         )
     else:
         sure = labels["robust"] + labels["limited"]
@@ -115,28 +116,24 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
 # --- one paragraph per paper -------------------------------------------------------------------------------------
 
 
-def _first_sentence(text: Any) -> str:
-    text = " ".join(str(text or "").split())
-    return re.split(r"(?<=[.;])\s+(?=[A-Z(])", text)[0].rstrip(".;") if text else ""
-
-
 def _statement(c: Mapping) -> str:
     return " ".join(str(c.get("statement") or "").split()).rstrip(".")
 
 
 def _why_not(c: Mapping) -> str:
-    """Why a claim does not hold: the notebook's note (its likely reason) where it gives one, else the value
-    against what the paper says."""
-    from .wording import main_part
+    """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
+    direction) and, where one is named, the strongest change under which it would."""
+    from .wording import _in_force, main_part
 
-    note = _first_sentence(c.get("note"))
-    if note:
-        return note
-    rule, measured = c.get("rule") or {}, c.get("measured")
+    rule, measured = _in_force(dict(c.get("rule") or {}), c.get("measured"))
     name = main_part(c)
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
-    return value_clause(rule, measured)
+    text = value_clause(rule, measured)
+    flips = [f for f in claim_flips(c, name) or claim_flips(c) if f.get("verdict") == "reproduced"]
+    if flips:
+        text += f"; it holds under {side_words().get(flips[0]['side'], 'another change')}: {flips[0]['text']}"
+    return text
 
 
 def limitations(data: Mapping, profile: str = "paper") -> list[str]:
@@ -146,7 +143,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     paper's world, the undecided ones, runs that lost lock, and a smoke-size profile."""
     claims = at_profile(list(data.get("claims") or []), profile)
     out = [" ".join(str(t).split()).rstrip(".") + "." for t in data.get("limitations") or [] if str(t).strip()]
-    register = list(data.get("register") or []) or [
+    register = list(data.get("register") or []) + [
         e for c in claims for e in ((c.get("robustness") or {}).get("register") or [])
     ]
     calibrated = sorted(
@@ -164,8 +161,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         )
     for c in claims:
         if c.get("verdict") == "not checkable":
-            why = _first_sentence(c.get("note")) or str((c.get("rule") or {}).get("reason") or "")
-            out.append(f"{c['id']} is not checkable: {why}.")
+            out.append(f"{c['id']} is not checkable: {not_checkable_reason(c)}.")
     labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
     if labels["unexplored"]:
         out.append(

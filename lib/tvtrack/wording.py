@@ -40,6 +40,7 @@ __all__ = [
     "main_part",
     "value_clause",
     "claim_summary",
+    "not_checkable_reason",
 ]
 
 #: What each verdict means, in the words a reader meets on the first screen.
@@ -545,12 +546,15 @@ def _plain(text: str) -> str:
     return " ".join(_CODE.sub("", text).split()).replace(" :", ":").replace(" ,", ",")
 
 
-def _not_checkable(claim: Mapping) -> str:
-    note = _plain(str(claim.get("note") or "").strip())
-    first = re.split(r"(?<=[.;])\s", note)[0].rstrip(".;") if note else ""
-    reason = _plain(str((claim.get("rule") or {}).get("reason") or "").strip()).rstrip(".;")
-    options = [t for t in (first, reason) if t] or ["nothing measurable"]
-    return f"Not checkable: {min(options, key=len) if len(options[0]) > SUMMARY_CHARS - 16 else options[0]}."
+def not_checkable_reason(claim: Mapping) -> str:
+    """Why a claim cannot be checked, in one sentence: the first clause of the rule's reason or of the note,
+    whichever says more."""
+    firsts = []
+    for text in (claim.get("rule") or {}).get("reason"), claim.get("note"):
+        text = _plain(str(text or "").strip())
+        first = re.split(r"(?<=;)\s+|(?<=\.)\s+(?=[A-Z])", text)[0].rstrip(".;") if text else ""
+        firsts.append(first)
+    return max(firsts, key=len) or "nothing measurable"
 
 
 def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
@@ -580,24 +584,23 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     claim = _as_dict(claim)
     verdict = str(claim.get("verdict", ""))
     if verdict == "not checkable":
-        return _not_checkable(claim)
+        return f"Not checkable: {not_checkable_reason(claim)}."
     rule, measured = _in_force(dict(claim.get("rule") or {}), claim.get("measured"))
     name = main_part(claim)
     parts = (claim.get("robustness") or {}).get("parts") or {}
     part = parts.get(name) if isinstance(parts.get(name), Mapping) else {}
-    head = _HEAD.get(verdict, _cap(verdict))
-    if shown_label(claim) == PROVISIONAL:
-        head += " (too few configurations to label)"
+    aside = []
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
         held = sum(1 for p in parts.values() if isinstance(p, Mapping) and p.get("verdict") == "reproduced")
         checked = [n for n, r in (rule.get("parts") or {}).items() if (r or {}).get("kind") != "not_checkable"]
         if len(checked) > 1:
-            head += (
-                f" (all {len(checked)} parts hold)"
-                if held == len(checked)
-                else f" ({held} of {len(checked)} parts hold)"
+            aside.append(
+                f"all {len(checked)} parts hold" if held == len(checked) else f"{held} of {len(checked)} parts hold"
             )
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
+    if shown_label(claim) == PROVISIONAL:
+        aside.append("too few configurations to label")
+    head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
     flips = claim_flips(claim, name) or claim_flips(claim)
     required = [f"{head}: {value_clause(rule, measured)}."]
     required += [s for s in (_flip_sentence(flips[0]) if flips else "", _lock_sentence(claim, part)) if s]
