@@ -259,7 +259,7 @@ def specification_curve(record: dict, part: str | None = None):
     d = next(i for i, r in enumerate(rows) if r["kind"] == "default")
     clipped = (_spec_values if numeric else _spec_verdicts)(top, rows, d, prule)
     top.legend(fontsize=7, loc="upper left")
-    top.set_title(f"{record.get('id', '')}{f' ({part})' if part else ''}: every explored configuration", fontsize=9)
+    top.set_title(f"{record.get('id', '')}{f' ({part})' if part else ''}", fontsize=9, loc="left")
     _spec_matrix(bottom, rows, labels)
     bottom.set_xlabel("configurations, sorted" + (" by value" if numeric else " by verdict"), fontsize=8)
     return fig, _spec_caption(record, part, prule, rows, numeric, clipped)
@@ -293,19 +293,24 @@ def _spec_caption(record: dict, part, prule: dict, rows: list[dict], numeric: bo
 
 
 def _spec_scale(ax, v, prule: dict) -> tuple[float, float]:
-    """Log scale where the values (not their intervals) are positive and span decades; y-limits from the values
-    and the band's ends (an interval beyond them is clipped)."""
+    """Log scale where the values (not their intervals) are positive and span decades; y-limits from the values,
+    the band's ends and the interval ends near them (an interval reaching far beyond is clipped)."""
     import numpy as np
 
     band = [b for b in (prule.get("low"), prule.get("high")) if isinstance(b, (int, float)) and np.isfinite(b)]
-    values = v[:, 0]
+    values, ends = v[:, 0], v[:, 1:].ravel()
     if values.min() > 0 and values.max() / values.min() > 30:
         ax.set_yscale("log")
-        ends = np.concatenate([values, [b for b in band if b > 0]])
-        return float(ends.min()) / 2.5, float(ends.max()) * 2.5
-    ends = np.concatenate([values, band]) if band else values
-    lo, hi = float(ends.min()), float(ends.max())
-    pad = 0.12 * (hi - lo) if hi > lo else max(abs(hi), 1.0) * 0.1
+        core = np.concatenate([values, [b for b in band if b > 0]])
+        lo, hi = float(core.min()), float(core.max())
+        near = ends[(ends >= lo / 10) & (ends <= hi * 10)]
+        return float(min(lo, near.min(initial=lo))) / 1.5, float(max(hi, near.max(initial=hi))) * 1.5
+    core = np.concatenate([values, band]) if band else values
+    lo, hi = float(core.min()), float(core.max())
+    span = hi - lo if hi > lo else max(abs(hi), 1.0) * 0.5
+    near = ends[(ends >= lo - span) & (ends <= hi + span)]
+    lo, hi = min(lo, near.min(initial=lo)), max(hi, near.max(initial=hi))
+    pad = 0.08 * (hi - lo) if hi > lo else max(abs(hi), 1.0) * 0.1
     return lo - pad, hi + pad
 
 
@@ -346,7 +351,13 @@ def _spec_values(ax, rows: list[dict], d: int, prule: dict) -> int:
             ax.axhspan(band_lo, band_hi, color="#dfe8f5", zorder=0, label="the rule's band")
     ax.set_ylim(ymin, ymax)
     unit, quantity = prule.get("unit") or "", prule.get("quantity") or prule.get("measure") or "measured value"
-    ax.set_ylabel(textwrap.fill(f"{quantity}" + (f" ({unit})" if unit else ""), 34), fontsize=8)
+    said = unit and unit != quantity and not unit.startswith("(")
+    ax.set_ylabel(textwrap.fill(f"{quantity}" + (f" ({unit})" if said else ""), 34), fontsize=8)
+    if prule.get("kind") == "ordering":  # no band: the reference the paper's ordering is judged against
+        ref = 1.0 if prule.get("measure") == "ratio" else 0.0
+        if ymin < ref < ymax:
+            side = "above" if prule.get("relation", ">") == ">" else "below"
+            ax.axhline(ref, color="#666666", lw=1, ls="--", zorder=1, label=f"no difference (the paper: {side})")
     if rows[d]["point"] is not None:
         ax.scatter([d], [rows[d]["point"][0]], marker="D", s=70, facecolors="none", edgecolors="black", zorder=4,
                    label="default")  # fmt: skip
