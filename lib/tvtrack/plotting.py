@@ -273,7 +273,7 @@ def _spec_caption(record: dict, part, prule: dict, rows: list[dict], numeric: bo
     valueless = sum(r["point"] is None for r in rows) if numeric else 0
     return (
         f"{record.get('id', '')}{f', part {part}' if part else ''}: the {quantity}"
-        + (f" ({unit})" if unit and numeric else "")
+        + (f" ({unit})" if unit and unit != quantity and not unit.startswith("(") and numeric else "")
         + f" under each of the {len(rows)} configurations the record keeps (the default with its replicates pooled,"
         f" a diamond, and {len(rows) - 1} explored)"
         + (", sorted by value with 95 % intervals" if numeric else ", by verdict")
