@@ -1,7 +1,16 @@
-"""The one claims table, and Markdown escaping of generated text."""
+"""The one claims table, Markdown escaping of generated text, and every claim's sentence: complete, in plain
+words, every number with its unit."""
 
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+import tvtrack.paragraphs
+import tvtrack.wording
 from tvtrack.montecarlo import Estimate
-from tvtrack.results import Results, claims_table, format_measured, md_escape
+from tvtrack.results import Results, claim_summary, claims_table, format_measured, main_part, md_escape
 from tvtrack.labels import Robustness
 from tvtrack.verdicts import InBand
 
@@ -30,3 +39,242 @@ def test_claims_table_one_line_per_claim(tmp_path):
     assert "| provisional |" in lines[2] and "(too few configurations to label)" in lines[2]
     assert claims_table([c.__dict__ for c in res.claims]) == table  # results.json dicts render the same
     assert format_measured({"a": Estimate(1, 0, 1, 1, 1, method="exact")}) == "a: 1"
+
+
+# --- every claim's sentence: complete, in plain words, every number with its unit ------------------------------
+
+
+REPO = Path(__file__).resolve().parents[1]
+_WRITER = Path(tvtrack.wording.__file__).read_text() + Path(tvtrack.paragraphs.__file__).read_text()
+_WORDS = re.compile(r"[A-Za-z]+")
+_COUNTS = (
+    r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
+    r"runs|this run allows"
+)
+
+
+def _strings(x) -> list[str]:
+    if isinstance(x, str):
+        return [x]
+    if isinstance(x, dict):
+        return [s for k, v in x.items() for s in _strings(k) + _strings(v)]
+    if isinstance(x, (list, tuple)):
+        return [s for v in x for s in _strings(v)]
+    return []
+
+
+def _plain_texts(record: dict) -> list[str]:
+    """What a sentence may copy from its record: the paper's words, the rules' quantities and the register's
+    titles and phrases (never its names)."""
+    rob = record.get("robustness") or {}
+    texts = [record.get("statement", ""), record.get("note", "")]
+    texts += [
+        s
+        for r in _rules(record.get("rule") or {})
+        for k in ("quantity", "a", "b", "over", "direction", "unit", "reason")
+        for s in _strings(r.get(k))
+    ]
+    texts += [s for e in rob.get("register") or [] for s in [e.get("title", "")] + _strings(e.get("phrases"))]
+    return sorted((t for t in texts if t), key=len, reverse=True)
+
+
+def _rules(rule: dict) -> list[dict]:
+    out = [rule]
+    for sub in list((rule.get("parts") or {}).values()) + list((rule.get("rules") or {}).values()):
+        out += _rules(sub)
+    if isinstance(rule.get("default"), dict):
+        out += _rules(rule["default"])
+    return out
+
+
+def _sources(record: dict) -> dict:
+    """The record without the text generated from it (flip texts, where, coverage): the words a sentence may use."""
+    import copy
+
+    out = copy.deepcopy(record)
+    rob = out.get("robustness") or {}
+    for k in ("where", "coverage"):
+        rob.pop(k, None)
+    for p in (rob.get("parts") or {}).values():
+        for f in (p or {}).get("flips") or [] if isinstance(p, dict) else []:
+            f.pop("text", None)
+    return out
+
+
+def _shown_rule(record: dict) -> dict:
+    rule, measured = tvtrack.wording._in_force(record.get("rule") or {}, record.get("measured"))
+    if rule.get("kind") == "all_of":
+        rule = (rule.get("parts") or {}).get(main_part(record)) or {}
+    return rule
+
+
+def sentence_faults(record: dict, keys: set[str]) -> list[str]:
+    """What is wrong with a claim's sentence: a cut word or an ellipsis, a "+N more", an unfinished sentence, a
+    register key, a number without its unit."""
+    text = claim_summary(record)
+    faults = []
+    if "…" in text or "..." in text or re.search(r"\+\s*\d+ more", text):
+        faults.append("cut or '+N more'")
+    if not text.endswith(".") or not text[:1].isupper():
+        faults.append("not a complete sentence")
+    vocabulary = set(_WORDS.findall(json.dumps(_sources(record), ensure_ascii=False) + _WRITER))
+    cut = [w for w in _WORDS.findall(text) if w not in vocabulary]
+    if cut:
+        faults.append(f"words found nowhere in the record or the writer (cut?): {cut}")
+    plain = _plain_texts(record)
+    for key in keys:
+        hit = re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text)
+        if hit and not any(re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", t) for t in plain):
+            faults.append(f"register key {key!r}")
+    unit = tvtrack.wording._real_unit(_shown_rule(record))
+    if unit:
+        faults += [f"number without its unit {unit!r}: {n}" for n in _bare_numbers(text, plain, record, unit)]
+    return faults
+
+
+def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[str]:
+    """The numbers of ``text`` that are neither inside a copied phrase or quantity (which carry their own) nor
+    followed by ``unit`` (after an interval or a bound in parentheses) or by a count's noun."""
+    units = {r.get("unit") for r in _rules(record.get("rule") or {})}
+    skip = [m.span() for t in plain if len(t) > 3 and t not in units
+            for m in re.finditer(rf"(?<![\w-]){re.escape(t)}(?![\w-])", text)]  # fmt: skip
+    skip += [m.span(1) for m in re.finditer(r"\d\s*(\[[^\]]*\])", text)]  # an interval after its value
+    skip += [m.span() for m in re.finditer(r"\((?:at most|at least) [^)]*\)", text)]
+    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{re.escape(unit)}|{_COUNTS})"
+    tokens = r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])"
+    bare = []
+    for m in re.finditer(tokens, text):
+        if any(a <= m.start() < b for a, b in skip):
+            continue
+        if not re.match(after, text[m.end() :]):
+            bare.append(f"{m.group()!r} before {text[m.end() : m.end() + 30]!r}")
+    return bare
+
+
+@pytest.fixture(scope="module")
+def keys():
+    from paper_records import register_keys
+
+    return register_keys()
+
+
+def test_every_claim_of_every_paper_reads_as_complete_sentences_in_plain_words_with_units(keys):
+    from paper_records import paper_records
+
+    records = paper_records()
+    assert len({r["id"] for r in records}) == 58  # every claim of the five papers
+    faults = {f"{r['id']} ({r['verdict']})": sentence_faults(r, keys) for r in records}
+    assert not {k: v for k, v in faults.items() if v}
+
+
+def test_the_claims_of_real_paper_runs_read_as_complete_sentences_when_there_are_runs(keys):
+    found = sorted((REPO / "papermill_runs" / "reproduce").glob("*/results.json"))
+    if not found:
+        pytest.skip("no paper-profile runs here (make reproduce makes them)")
+    records = [c for f in found for c in json.loads(f.read_text())["claims"]]
+    faults = {r["id"]: sentence_faults(r, keys) for r in records}
+    assert not {k: v for k, v in faults.items() if v}
+
+
+def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
+    """The faults the sentence test looks for, planted one at a time: each is caught."""
+    import copy
+
+    from record_fixtures import DEPENDS
+
+    assert sentence_faults(DEPENDS, keys) == []
+    cut = copy.deepcopy(DEPENDS)
+    flip = cut["robustness"]["parts"]["claim"]["flips"][0]
+    flip["text"] = "sigma read as the SD of the raw velocity incr"  # the record's phrase, cut mid-word
+    cut["robustness"]["parts"]["claim"]["flips"] = [flip]
+    cut["robustness"]["register"][0]["phrases"]["raw_increments"] = "sigma read as the SD of the raw increments"
+    assert any("cut" in f for f in sentence_faults(cut, keys)), sentence_faults(cut, keys)
+    leak = copy.deepcopy(DEPENDS)
+    leak["robustness"]["parts"]["claim"]["flips"][0]["text"] = "target_motion = weave"
+    assert any("target_motion" in f for f in sentence_faults(leak, keys | {"target_motion"}))
+    bare = copy.deepcopy(DEPENDS)
+    bare["rule"]["unit"] = "px"  # the sentence now owes "px" after each number: the writer gives it ...
+    assert sentence_faults(bare, keys) == []
+    unitless = tvtrack.wording.claim_summary(bare).replace(" px", "")  # ... and a sentence without it is caught
+    original = tvtrack.wording.claim_summary
+    try:
+        tvtrack.wording.claim_summary = lambda c, chars=250: unitless
+        globals()["claim_summary"] = tvtrack.wording.claim_summary
+        assert any("without its unit" in f for f in sentence_faults(bare, keys))
+    finally:
+        tvtrack.wording.claim_summary = original
+        globals()["claim_summary"] = original
+
+
+def test_a_value_that_reverses_the_papers_direction_says_so_in_words():
+    """C002-11: the paper has the ULA 3-6 times better than two-stage processing (rho = two-stage / ULA variance);
+    0.74 means the two-stage beats the ULA. An ordering measured the other way round says which is larger."""
+    from tvtrack.papers.p002_unified_location_em.claims import RULES
+
+    rule = RULES["C002-11"].to_dict()["parts"]["d = 1 sigma (paper x4.5)"]
+    measured = {"value": 0.7403, "ci_low": 0.6042, "ci_high": 0.9071}
+    assert tvtrack.wording.value_clause(rule, measured) == (
+        "gain rho = two-stage / ULA variance at d = 1 sigma, T = 50 is 0.7403 [0.6042, 0.9071] variance ratio, "
+        "where the paper has [3, 6] variance ratio: the two-stage beats the ULA, the reverse of the paper's direction"
+    )
+    inside = {"value": 4.2, "ci_low": 3.9, "ci_high": 4.6}
+    assert "reverse" not in tvtrack.wording.value_clause(rule, inside)
+    better = RULES["C002-8"].to_dict()["parts"]["better than the marks"]  # ULA's variance < two-stage's
+    assert tvtrack.wording.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
+        "ULA variance of x_o, coarse pixels is 1.3 [1.1, 1.5] times two-stage's: larger, where the paper has it smaller"
+    )
+
+
+def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
+    """A reading of the text, an unreported setting of the paper's experiment, a world beyond it: each in plain
+    words, with the register title that flips the most claims (the sides the core's records may carry)."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.results import results_summary
+
+    setting = copy.deepcopy(DEPENDS) | {"id": "C001-8"}
+    setting["robustness"]["register"][1]["kind"] = "unreported setting"
+    setting["robustness"]["register"][1]["side"] = "setting"
+    setting["robustness"]["parts"]["claim"]["flips"] = [
+        {"changed": {"k_bound2": 100}, "side": "setting", "kind": "single", "verdict": "reproduced", "text": "x"}
+    ]
+    text = results_summary([DEPENDS, setting])
+    assert text.endswith(
+        "What the verdicts turn on: a reading of the paper's text flips 1 claim; a setting of the paper's own "
+        "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
+    ), text
+    sentence = claim_summary(setting)
+    assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
+        sentence
+    )
+
+
+def test_a_papers_limitations_come_from_its_records():
+    """Worlds calibrated to the paper's own operating point, what is not checkable and why, runs that lost lock
+    (the fields the core's records may carry), the undecided claims and the notebook's own limitations."""
+    import copy
+
+    from record_fixtures import DEPENDS, NOT_CHECKABLE, UNDECIDED
+    from tvtrack.results import paper_paragraph
+
+    lost = copy.deepcopy(DEPENDS)
+    lost["robustness"]["parts"]["claim"].update(lost_share=0.3, in_lock_verdict="reproduced", decided_by_lost_runs=True)
+    some = copy.deepcopy(UNDECIDED) | {"id": "C004-5"}
+    some["robustness"]["parts"]["claim"]["lost_share"] = 0.04
+    register = copy.deepcopy(DEPENDS["robustness"]["register"])
+    register[2]["why"] = "calibrated so that the paper's filter errs 1.5 px"
+    data = {"claims": [lost, some, NOT_CHECKABLE], "register": register, "limitations": ["No figure survives"]}
+    paragraph, limits = paper_paragraph(data)
+    assert paragraph.startswith("The paper makes 3 claims checked here; 2 can be measured. It does not hold that ")
+    assert limits == [
+        "No figure survives.",
+        "The simulated world is calibrated to the paper's own operating point (how the target moves): agreement at "
+        "that point is partly by construction.",
+        "C001-6 is not checkable: the recording of the real aircraft is not published.",
+        "1 claim was never tried in a world beyond the paper's own: nothing says how far it extends.",
+        "More runs than these would be needed to decide C004-5.",
+        "Runs that lost lock decide C001-3; over the runs in lock alone the verdict differs.",
+        "Some runs lost lock in C004-5 (at most 4 % of them).",
+    ]
+    assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(lost)

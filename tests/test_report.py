@@ -135,12 +135,15 @@ def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     ) in text
     # the flip named by the register's words, not the record's legacy "where" line with its code names
     assert (
-        "| C010-2 | The gain is 4. | **not reproduced** | depends | Not reproduced: 1.5 \\[1.2, 1.8\\] against \\[0, 2\\]. "
-        "Flips when epoch = mid. |"
+        "| C010-2 | The gain is 4. | **not reproduced** | depends | Not reproduced: the measured value is 1.5 \\[1.2, "
+        "1.8\\], where the paper has \\[0, 2\\]. Under another reading of the paper's text it is reproduced: "
+        "epoch = mid. |"
     ) in text
     assert "designation\\_sd" not in text
-    assert "| C010-3 | A claim. | **not checkable** | — | Not checkable: nothing measurable |" in text
-    assert "| C011-1 | A claim. | **partly** | — | Partly: 1.5 \\[1.2, 1.8\\]. |" in text
+    assert "| C010-3 | A claim. | **not checkable** | — | Not checkable: nothing measurable. |" in text
+    assert (
+        "| C011-1 | A claim. | **partly** | — | Partly reproduced: the measured value is 1.5 \\[1.2, 1.8\\]. |" in text
+    )
 
 
 def test_verdict_summary_counts_labels_per_verdict():
@@ -165,8 +168,9 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     assert "**robust**: no explored reading" in text and "**undecided**: the interval straddles" in text  # glossary
     # the headline finding: one line with statement, verdict, label and its sentence
     assert (
-        "- **010 C010-2** (not reproduced, depends) *The gain is 4.* Not reproduced: 1.5 \\[1.2, 1.8\\] against "
-        "\\[0, 2\\]. Flips when epoch = mid."
+        "- **010 C010-2** (not reproduced, depends) *The gain is 4.* Not reproduced: the measured value is 1.5 "
+        "\\[1.2, 1.8\\], where the paper has \\[0, 2\\]. Under another reading of the paper's text it is "
+        "reproduced: epoch = mid."
     ) in text
     assert "C010-1" not in text  # reproduced claims are counted, not listed
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
@@ -190,7 +194,7 @@ def test_generated_text_is_escaped_in_markdown(tmp_path):
     for text in (report, readme.read_text()):
         assert "The error is sigma\\*2 \\* k\\_gain \\| \\<b\\>" in text
         assert "sigma*2" not in text.replace("sigma\\*2", "")
-    assert "Flips when reading = v1 / sigma\\*2." in report
+    assert "Under another reading of the paper's text it is reproduced: reading = v1 / sigma\\*2." in report
 
 
 def test_first_screen_orders_failures_then_dependent_verdicts_and_reads_new_records(tmp_path):
@@ -375,23 +379,28 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
     text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
     cells = _sentence_cells(text)
     assert set(cells) == {c["id"] for c in CLAIMS}
-    assert all(len(s) <= 250 for s in cells.values()), {k: len(s) for k, s in cells.items()}
+    assert all("…" not in s and s.endswith(".") for s in cells.values()), cells
     for key in REGISTER_KEYS:  # phrases only: no register key, plain or escaped, anywhere in the report
         assert key not in text and key.replace("_", "\\_") not in text, key
-    # the reading that flips C001-3 comes before the world it does not extend to
+    # the reading that flips C001-3 is named before the world it does not extend to (which is behind the click)
     assert cells["C001-3"] == (
-        "Not reproduced: 351.6 [350, 353.1] x alpha against [0, 2] x alpha. 29 of 32 explored configurations agree, "
-        "95 % CI 75-98 %. Flips when sigma read as the SD of the raw velocity increments; does not extend to a "
-        "target weaving at 0.1 T."
+        "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper has [0, 2] "
+        "x alpha. Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "velocity increments."
     )
-    assert "About 7 replicates (560 trials) would decide it." in cells["C004-3b"]
+    assert (
+        "flipped by: sigma read as the SD of the raw velocity increments (a reading of the paper's text); a target"
+        in text
+    )
+    assert "About 7 independent replicates would decide it." in cells["C004-3b"]
     # every measured value carries its unit or says what it is a ratio of
     for c in CLAIMS:
         if c["verdict"] == "not checkable":
             continue
         rules = c["rule"].get("parts", {"claim": c["rule"]}).values()
         shown = [r["unit"] for r in rules if r["unit"] in cells[c["id"]]]
-        assert shown or "ratio of" in cells[c["id"]], (c["id"], cells[c["id"]])
+        named = [r["quantity"] for r in rules if r["unit"].startswith("ratio of") and r["quantity"] in cells[c["id"]]]
+        assert shown or named, (c["id"], cells[c["id"]])  # a unit, or a dimensionless ratio said by its quantity
     # deterministic numbers show no interval; the 9-point vector is summarised by its ends and trend
     assert not re.search(r"\[([-\d.e+]+), \1\]", text.replace("\\", ""))
     assert "falls from 2.163e+05 px to 0.178 px over 9 points" in text and "7839" not in text
@@ -412,7 +421,49 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
     head = "\n".join(text.splitlines()[:16])
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
-    assert "The verdicts turn most often on how the target moves (2 claims)" in head
+    assert (
+        "What the verdicts turn on: a reading of the paper's text flips 1 claim; a world beyond the paper flips "
+        "2 claims, most often how the target moves (2 claims)."
+    ) in head
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
     assert "- **001 C001-3** (not reproduced, depends)" in text and "- **001 C004-3b** (undecided, unexplored)" in text
+
+
+def test_each_paper_opens_with_what_it_claims_what_holds_what_does_not_and_why_then_its_limitations(
+    explored_runs, tmp_path
+):
+    text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored"]).read_text()
+    section = text[text.index("## 001_explored") :]
+    paragraph = section.split("\n\n")[2]
+    assert paragraph == (
+        "The paper makes 4 claims checked here; 3 can be measured. 1 claim holds (C001-7). It does not hold that neighbouring velocity samples correlate by \\<= 0.5, negligibly; the pair distributions may be "
+        "multiplied (C001-3): per-test false-alarm rate / alpha is 351.6 \\[350, 353.1\\] x alpha, where the paper "
+        "has \\[0, 2\\] x alpha; it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
+        "increments. The runs could not decide C004-3b."
+    )
+    limits = section.split("\n\n")[3]
+    assert limits.startswith("**Limitations.** C001-6 is not checkable: the recording of the real aircraft is not ")
+    assert "More runs than these would be needed to decide C004-3b." in limits
+    smoke = write_report(explored_runs, tmp_path / "S.md", notebooks=["002_smoke"]).read_text()
+    assert "These are smoke-size runs: no verdict is labelled, and none is called robust." in smoke
+
+
+def test_a_smoke_run_is_never_robust_even_where_its_record_says_robust(tmp_path):
+    """A smoke design small enough that every combination fits is not flagged provisional by the explorer; at the
+    smoke profile it is still never called robust: not in the paragraph, the counts, the table or the sentence."""
+    import copy
+
+    from record_fixtures import SMOKE
+
+    claim = copy.deepcopy(SMOKE)
+    claim["robustness"]["provisional"] = False  # what the smoke site showed as "labels: 6 robust"
+    root = tmp_path / "reproduce-smoke"
+    _synthetic_run(root, "003_smoke", [claim], profile="smoke")
+    readme = tmp_path / "README.md"
+    readme.write_text(f"{README_BEGIN}\n{README_END}\n")
+    text = write_report(root, tmp_path / "R.md", notebooks=["003_smoke"], readme=readme).read_text()
+    assert "1 robust" not in text and "| robust |" not in text and "(1 robust)" not in text
+    assert "1 of the checkable verdicts comes from a design too small to label" in text
+    assert "| 003\\_smoke | 1 | 1 | 0 | 0 | 0 | 0 | 1 provisional |" in text
+    assert "| C001-5 | " in text and "| provisional | Reproduced (too few configurations to label): " in text

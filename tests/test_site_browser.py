@@ -151,7 +151,7 @@ def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_
         curve = page.locator("#specification-curve")
         assert curve.evaluate("i => i.complete && i.naturalWidth") > 400
         assert curve.bounding_box()["width"] > 400
-        assert "Flips when sigma read as the SD" in page.locator("#claim-summary").inner_text()
+        assert "it is reproduced: sigma read as the SD" in page.locator("#claim-summary").inner_text()
         assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]
         _shot(page, "site_claim.png")
         page = w.open((site / "ledger.html").as_uri())

@@ -39,15 +39,18 @@ from .montecarlo import Estimate
 from .labels import NO_PART_LABEL, Robustness
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
+from .paragraphs import paper_paragraph, results_summary
 from .wording import (
     GLOSSARY,
     LABEL_WORDS,
     VERDICT_WORDS,
+    at_profile,
     claim_flips,
     claim_summary,
     format_measured,
-    results_summary,
+    main_part,
     shown_label,
+    side_words,
 )
 
 __all__ = [
@@ -63,6 +66,10 @@ __all__ = [
     "claim_summary",
     "claim_flips",
     "results_summary",
+    "paper_paragraph",
+    "at_profile",
+    "main_part",
+    "side_words",
     "shown_label",
     "GLOSSARY",
     "VERDICT_WORDS",
@@ -103,7 +110,7 @@ def to_jsonable(value: Any) -> Any:
     return value
 
 
-def claims_table(claims: list, statement_chars: int = 110) -> str:
+def claims_table(claims: list) -> str:
     """The one claims-at-a-glance table (Markdown): per claim what the paper said, the verdict, the robustness
     label (``provisional`` for a design too small to label) and one sentence (:func:`claim_summary`): the
     measured value in its unit against the rule's band, the share of explored configurations that agree, the
@@ -115,8 +122,7 @@ def claims_table(claims: list, statement_chars: int = 110) -> str:
     ]
     for c in claims:
         c = to_jsonable(c if isinstance(c, dict) else c.__dict__)
-        st = " ".join(str(c["statement"]).split())
-        st = st if len(st) <= statement_chars else st[: statement_chars - 1].rstrip() + "…"
+        st = " ".join(str(c["statement"]).split())  # whole: a cut statement misleads
         rows.append(
             f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(shown_label(c))} | "
             f"{md_escape(claim_summary(c))} |"

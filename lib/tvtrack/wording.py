@@ -1,9 +1,9 @@
-"""A claim record (``results.json``) in plain words: values with their units, one sentence per claim, one
-paragraph per set of runs, and the glossary of the verdict and label words.
+"""A claim record (``results.json``) in plain words: values with their units, a few sentences per claim, and the
+glossary of the verdict and label words (the paragraphs per set of runs and per paper: :mod:`tvtrack.paragraphs`).
 
 Everything here reads the JSON dicts a run writes (:mod:`tvtrack.results`), so the report, the site and the
 notebooks say the same thing in the same words. Import it through :mod:`tvtrack.results`
-(``claim_summary``, ``format_measured``, ``results_summary``, ``GLOSSARY``).
+(``claim_summary``, ``format_measured``, ``GLOSSARY``).
 
 Conventions
 -----------
@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 import re
-from collections import Counter
 from typing import Any, Mapping
 
 __all__ = [
@@ -32,12 +31,16 @@ __all__ = [
     "format_value",
     "format_measured",
     "unit_text",
-    "band_text",
-    "against",
     "shown_label",
+    "at_profile",
+    "SIDE_ORDER",
+    "side_words",
+    "entry_side",
     "claim_flips",
+    "main_part",
+    "value_clause",
     "claim_summary",
-    "results_summary",
+    "not_checkable_reason",
 ]
 
 #: What each verdict means, in the words a reader meets on the first screen.
@@ -63,7 +66,8 @@ GLOSSARY = {**VERDICT_WORDS, **LABEL_WORDS}
 PROVISIONAL = "provisional"
 """The label shown for a record whose design is too small to label (``robustness.provisional``)."""
 SUMMARY_CHARS = 250
-"""At most this many characters in :func:`claim_summary` (two lines of a page)."""
+""":func:`claim_summary` adds its optional sentences only while the whole stays within this many characters (two
+lines of a page); the sentences it must say are never cut to fit."""
 VECTOR_SHOWN = 4
 """Vectors longer than this are summarised (ends and trend), never printed whole."""
 
@@ -139,11 +143,12 @@ def format_value(value: Any, unit: str = "") -> str:
     return _with_unit(f"{number(v)} ({bound})", unit)
 
 
-def _vector(values: list, unit: str) -> str:
-    """A long vector by its ends and its trend: ``"falls from 2.163e+05 to 0.178 over 9 points"``."""
+def _vector(values: list, unit: str, always: bool = False) -> str:
+    """A long vector (any of two points or more with ``always``) by its ends and its trend: ``"falls from
+    2.163e+05 to 0.178 over 9 points"``."""
     points = [_triple(v) for v in values]
     centres = [p[0] for p in points if p is not None]
-    if len(values) <= VECTOR_SHOWN or len(centres) < 2:
+    if (len(values) <= VECTOR_SHOWN and not always) or len(centres) < 2:
         return ", ".join(format_value(v) for v in values) + (f" {unit}" if unit and values else "")
     steps = [b - a for a, b in zip(centres, centres[1:])]
     if all(s < 0 for s in steps):
@@ -153,7 +158,7 @@ def _vector(values: list, unit: str) -> str:
     elif all(abs(s) <= 1e-12 * max(1.0, abs(c)) for s, c in zip(steps, centres)):
         trend = "stays"
     else:
-        trend = f"ranges {number(min(centres))} to {number(max(centres))}, going"
+        trend = f"ranges {_with_unit(number(min(centres)), unit)} to {_with_unit(number(max(centres)), unit)}, going"
     return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
 
 
@@ -186,50 +191,65 @@ def format_measured(value: Any, rule: Mapping | None = None) -> str:
     return format_value(value, unit_text(rule))
 
 
-def _aside(unit: str) -> bool:
-    """A unit said after the numbers in parentheses ("(ratio of MSEs)", "(quantity)") rather than after each."""
-    return unit.startswith("ratio") or unit.startswith("(")
-
-
-def band_text(rule: Mapping | None, with_unit: bool = True) -> str:
-    """The rule's band in the quantity's unit (``"[0, 2] x alpha"``, ``"<= 2 x alpha"``, ``"5.5 s within a
-    factor 1.2"``), or what an ordering or a trend asks (``"a >= b"``, ``"decreasing in P"``); ``""`` when the
-    rule says nothing."""
-    rule = rule or {}
-    kind, unit = rule.get("kind"), (unit_text(rule) if with_unit else "")
-    if kind == "within_factor" and _finite(rule.get("paper_value")):
-        return f"{_with_unit(number(rule['paper_value']), unit)} within a factor {number(rule.get('factor'))}"
-    lo, hi = rule.get("low"), rule.get("high")
-    if _finite(lo) and _finite(hi):
-        return _with_unit(f"[{number(lo)}, {number(hi)}]", unit)
-    if _finite(hi):
-        return "<= " + _with_unit(number(hi), unit)
-    if _finite(lo):
-        return ">= " + _with_unit(number(lo), unit)
-    if kind == "ordering" and rule.get("relation"):
-        return f"{rule.get('a', 'a')} {rule['relation']} {rule.get('b', 'b')}"
-    if kind == "monotone":
-        return f"{rule.get('direction', 'monotone')} in {rule.get('over', 'its grid')}"
-    return ""
-
-
-def against(measured: Any, rule: Mapping | None) -> str:
-    """``"351.6 [350, 353.1] x alpha against <= 2 x alpha"``; a unit said in parentheses comes once, at the end."""
-    rule = rule or {}
-    unit = unit_text(rule)
-    band = band_text(rule, with_unit=not _aside(unit))
-    if _aside(unit) and band and _triple(measured) is not None:
-        return f"{format_value(measured)} against {band} {unit if unit.startswith('(') else f'({unit})'}"
-    text = format_measured(measured, rule)
-    return f"{text} against {band}" if band and rule.get("kind") != "monotone" else text
-
-
 # --- labels and flips --------------------------------------------------------------------------------------------
+
+#: The sides a flip can be on, strongest first: a reading of the text, an unreported setting of the paper's own
+#: experiment, a world beyond the paper, several changes that no single one explains.
+SIDE_ORDER = ("reading", "setting", "world", "unattributed")
+_SIDE_WORDS = {
+    "reading": "a reading of the paper's text",
+    "setting": "a setting of the paper's own experiment that the paper never printed",
+    "world": "a world beyond the paper",
+    "unattributed": "several changes together, none of which flips it alone",
+}
+_WORLD_KINDS = ("regime", "operating point", "model", "scale")
+
+
+def side_words() -> dict[str, str]:
+    """Each side of a flip in plain words (the core's ``tvtrack.register.SIDE_PHRASES`` where it has them)."""
+    from . import register
+
+    return {**_SIDE_WORDS, **dict(getattr(register, "SIDE_PHRASES", {}) or {})}
+
+
+def entry_side(entry: Mapping) -> str:
+    """A register entry's side (its record's ``side``, else from its kind: a reading of the paper, an unreported
+    setting of its experiment, or a world beyond it)."""
+    side = entry.get("side")
+    if side in SIDE_ORDER:
+        return str(side)
+    kind = entry.get("kind")
+    if kind == "unreported setting":
+        return "setting"
+    return "world" if kind in _WORLD_KINDS else "reading"  # a record without kinds: readings, as it always read
 
 
 def _as_dict(claim: Any) -> Mapping:
     """A claim as ``results.json`` stores it: a dict as it is, a :class:`tvtrack.results.Claim` by its fields."""
     return claim if isinstance(claim, Mapping) else vars(claim)
+
+
+def at_profile(claims: list[Mapping], profile: str | None) -> list[Mapping]:
+    """The claims as a reader of runs at ``profile`` sees them: at any profile but ``"paper"`` every record is
+    marked provisional (a smoke-size design is too small to call anything robust, whatever its own flag says),
+    and in a provisional record no part is shown as robust or unexplored either (its parts read
+    :data:`PROVISIONAL`). Returns new dicts; the records themselves are not changed."""
+    out = []
+    for c in claims:
+        c = dict(_as_dict(c))
+        record = c.get("robustness")
+        if record and (record.get("provisional") or (profile and profile != "paper")):
+            parts = {
+                n: (
+                    {**p, "label": PROVISIONAL}
+                    if isinstance(p, Mapping) and p.get("label") in ("robust", "unexplored")
+                    else p
+                )
+                for n, p in (record.get("parts") or {}).items()
+            }
+            c["robustness"] = {**record, "provisional": True, **({"parts": parts} if record.get("parts") else {})}
+        out.append(c)
+    return out
 
 
 def shown_label(claim: Mapping) -> str:
@@ -252,8 +272,7 @@ def _phrases(record: Mapping) -> dict[str, tuple[str, str, dict]]:
     out = {}
     for e in record.get("register") or []:
         if isinstance(e, Mapping) and "name" in e:
-            side = e.get("side") or ("world" if e.get("kind") in ("regime", "operating point", "model") else "reading")
-            out[str(e["name"])] = (str(e.get("title") or e["name"]), side, dict(e.get("phrases") or {}))
+            out[str(e["name"])] = (str(e.get("title") or e["name"]), entry_side(e), dict(e.get("phrases") or {}))
     return out
 
 
@@ -268,14 +287,29 @@ def describe(changed: Mapping, record: Mapping) -> str:
 
 
 def _side(changed: Mapping, record: Mapping) -> str:
-    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"`` (as the core's flips)."""
+    """The side of a condition from a record without attributed flips: ``"reading"`` (or ``"setting"``) when
+    every changed entry is one, else ``"world"`` (as the core's flips)."""
     known = _phrases(record)
-    return "reading" if all(known.get(str(k), ("", "reading"))[1] == "reading" for k in changed) else "world"
+    sides = {known.get(str(k), ("", "reading"))[1] for k in changed}
+    return sides.pop() if len(sides) == 1 and sides <= {"reading", "setting"} else "world"
+
+
+def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str | None) -> list[dict]:
+    """The conditions whose decisive verdict differs from the claim's (a record without ``parts[].flips``)."""
+    flips = []
+    for c in record.get("conditions") or []:
+        changed = c.get("changed") or c.get("choices") or {}
+        v = (c.get("parts") or {}).get(part) if part else c.get("verdict")
+        if v in ("reproduced", "not reproduced") and v != claim.get("verdict") and changed:
+            kind = "single" if len(changed) == 1 else c.get("kind", "joint")
+            flips.append({"changed": changed, "kind": kind, "verdict": v, "side": _side(changed, record), "part": part})
+    return flips
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
-    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict}]``, single entries
-    first (readings of the paper, then worlds beyond it), then the smallest combinations, each text said once.
+    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]``,
+    single entries first (readings of the paper, then unreported settings, then worlds beyond it), then the
+    smallest combinations, each text said once.
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
     verdict differs from the claim's."""
@@ -283,101 +317,254 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     record = claim.get("robustness") or {}
     parts = record.get("parts") or {}
     names = [part] if part else list(parts)
-    flips = [f for n in names for f in ((parts.get(n) or {}).get("flips") or [])]
+    flips = [{**f, "part": n} for n in names for f in ((parts.get(n) or {}).get("flips") or [])]
     if not flips and not any("flips" in (parts.get(n) or {}) for n in names):
-        decisive = ("reproduced", "not reproduced")
-        for c in record.get("conditions") or []:
-            changed = c.get("changed") or c.get("choices") or {}
-            verdicts = [(c.get("parts") or {}).get(part)] if part else [c.get("verdict")]
-            v = verdicts[0]
-            if v in decisive and v != claim.get("verdict") and changed:
-                kind = "single" if len(changed) == 1 else c.get("kind", "joint")
-                flips.append({"changed": changed, "kind": kind, "verdict": v, "side": _side(changed, record)})
+        flips = _legacy_flips(claim, record, names, part)
     out, seen = [], set()
     order = {"single": 0, "combination": 1, "pinned": 2, "joint": 3}
+    side_rank = {s: i for i, s in enumerate(SIDE_ORDER)}
     for f in sorted(
         flips,
-        key=lambda f: (order.get(f.get("kind"), 4), f.get("side") != "reading", len(f.get("changed") or {})),
+        key=lambda f: (
+            order.get(f.get("kind"), 4),
+            side_rank.get(f.get("side", "reading"), 4),
+            len(f.get("changed") or {}),
+        ),
     ):
         text = str(f.get("text") or describe(f.get("changed") or {}, record))
         if text not in seen:
             seen.add(text)
             out.append(
-                {"text": text, "side": f.get("side", "reading"), "kind": f.get("kind"), "verdict": f.get("verdict")}
+                {
+                    "text": text,
+                    "side": f.get("side", "reading"),
+                    "kind": f.get("kind"),
+                    "verdict": f.get("verdict"),
+                    "part": f.get("part"),
+                    "changed": dict(f.get("changed") or {}),
+                }
             )
     return out
 
 
-# --- one sentence per claim ------------------------------------------------------------------------------------
-
-
-def _clip(text: str, n: int) -> str:
-    text = " ".join(str(text).split())
-    return text if len(text) <= n else text[: n - 1].rstrip(" ,;") + "…"
+def _in_force(rule: Mapping, measured: Any) -> tuple[Mapping, Any]:
+    """A ``by_reading`` rule's rule in force for its tagged measurement (and the measurement itself)."""
+    if rule.get("kind") == "by_reading" and isinstance(measured, Mapping) and "reading" in measured:
+        inner = (rule.get("rules") or {}).get(str(measured.get("reading"))) or rule.get("default") or {}
+        return _in_force(inner, measured.get("measured"))
+    return rule, measured
 
 
 _LABEL_ORDER = ("unstable", "depends", "limited", "unexplored", "robust")
 
 
-def _measured_bits(claim: Mapping, max_parts: int) -> str:
-    rule, measured = claim.get("rule") or {}, claim.get("measured")
-    if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
-        info = {n: p for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items() if isinstance(p, Mapping)}
+def main_part(claim: Mapping) -> str | None:
+    """The part a claim's sentence and its specification curve are about: for a claim that does not hold, its
+    part that does not; for an undecided one, its undecided part; else its weakest-labelled part (a part with
+    named flips before one without). ``None`` for a record without parts."""
+    claim = _as_dict(claim)
+    parts = {n: p for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items() if isinstance(p, Mapping)}
+    rule = _in_force(dict(claim.get("rule") or {}), claim.get("measured"))[0]
+    if rule.get("kind") != "all_of":
+        return next(iter(parts), None)
+    rules = rule.get("parts") or {}
+    names = [n for n in rules if (rules[n] or {}).get("kind") != "not_checkable"] or list(rules)
+    want = {"not reproduced": "not reproduced", "partly": "not reproduced", "undecided": "undecided"}
+    target = want.get(str(claim.get("verdict")), "reproduced")
 
-        def weight(n):  # the parts that do not hold first, then the weakest labels
-            p = info.get(n, {})
-            lab = p.get("label")
-            return (p.get("verdict") == "reproduced", _LABEL_ORDER.index(lab) if lab in _LABEL_ORDER else 9)
+    def key(n: str):
+        p = parts.get(n, {})
+        lab = p.get("label")
+        return (p.get("verdict") != target, not p.get("flips"), _LABEL_ORDER.index(lab) if lab in _LABEL_ORDER else 9)
 
-        shown = sorted(measured, key=weight)[:max_parts]
-        parts = rule.get("parts") or {}
-        text = "; ".join(f"{n}: {against(measured[n], parts.get(n))}" for n in shown)
-        more = len(measured) - len(shown)
-        return text + (f"; {more} more part{'s' * (more > 1)}" if more else "")
-    return against(measured, rule)
-
-
-def _share_text(claim: Mapping, with_ci: bool) -> str:
-    parts = (claim.get("robustness") or {}).get("parts") or {}
-    shares = [
-        (n, p["share"]) for n, p in parts.items() if isinstance(p, Mapping) and (p.get("share") or {}).get("decided")
-    ]
-    if not shares:
-        return ""
-    name, s = min(shares, key=lambda ns: ns[1].get("value") if _finite(ns[1].get("value")) else 1.0)
-    where = "" if len(parts) == 1 else f" ({name})"
-    ci = f", 95 % CI {s['ci_low'] * 100:.0f}-{s['ci_high'] * 100:.0f} %" if with_ci and "ci_low" in s else ""
-    return f"{s.get('agree')} of {s.get('decided', s.get('design'))} explored configurations agree{where}{ci}"
+    return min(names, key=key) if names else None
 
 
-def _runs_text(claim: Mapping) -> str:
-    parts = (claim.get("robustness") or {}).get("parts") or {}
-    for p in parts.values():
-        r = (p or {}).get("runs_to_decide") if isinstance(p, Mapping) else None
-        if r and r.get("text"):  # "undecided at 3 replicates: about 7 ... would decide it" -> what decides it
-            text = str(r["text"])
-            return re.sub(r"^undecided at \d+ replicates?[:;] ", "", text)
+# --- one sentence per claim ------------------------------------------------------------------------------------
+
+_HEAD = {
+    "reproduced": "Reproduced",
+    "not reproduced": "Not reproduced",
+    "partly": "Partly reproduced",
+    "undecided": "Undecided",
+}
+_LOWER_BETTER = ("variance", "error", "miss", "MSE", "RMS", "loss")
+_PREPOSITIONS = ("with ", "at ", "against ", "in ", "for ", "from ", "without ", "over ")
+
+
+def _real_unit(rule: Mapping) -> str:
+    """The rule's unit when it is one ("px", "× alpha", "variance ratio"); ``""`` for a dimensionless quantity
+    (no unit, a parenthesised descriptor such as "(ratio)", or an ordering's "ratio of a to b")."""
+    unit = str(rule.get("unit") or "").strip()
+    return "" if not unit or unit.startswith("(") or unit.startswith("ratio of ") else unit
+
+
+def _band_words(rule: Mapping, unit: str) -> str:
+    """The rule's band in words: ``"[3, 6] px"``, ``"at most 2 px"``, ``"at least 20"``."""
+    lo, hi = rule.get("low"), rule.get("high")
+    if _finite(lo) and _finite(hi):
+        return _with_unit(f"[{number(lo)}, {number(hi)}]", unit)
+    if _finite(hi):
+        return "at most " + _with_unit(number(hi), unit)
+    if _finite(lo):
+        return "at least " + _with_unit(number(lo), unit)
     return ""
 
 
-def _flip_text(flips: list[dict], n_each: int, chars: int) -> str:
-    readings = [f["text"] for f in flips if f["side"] == "reading"]
-    worlds = [f["text"] for f in flips if f["side"] != "reading"]
-    bits = []
-    for what, items in (("flips when", readings), ("does not extend to", worlds)):
-        if items:
-            more = len(items) - n_each
-            bits.append(
-                f"{what} {'; '.join(_clip(t, chars) for t in items[:n_each])}"
-                + (f" (+{more} more)" if more > 0 else "")
-            )
-    return "; ".join(bits)
+def _ratio_names(quantity: str) -> tuple[str, str, bool] | None:
+    """``("two-stage", "ULA", lower is better)`` from a quantity such as "gain rho = two-stage / ULA variance at
+    d = 1 sigma"; ``None`` when the quantity is not of that form."""
+    m = re.search(r"(?:^|= )([\w'-]+(?: [\w'-]+)?) / ([\w'-]+) (\w+)", quantity)
+    if not m:
+        return None
+    return m.group(1), m.group(2), any(w in m.group(3) for w in _LOWER_BETTER)
+
+
+def _band_clause(rule: Mapping, measured: Any) -> str:
+    """``"<quantity> is 0.74 [0.60, 0.91] variance ratio, where the paper has [3, 6] variance ratio"``, and in
+    words when the value reverses the direction the paper's band gives (a ratio below 1 where it has one above)."""
+    unit = _real_unit(rule)
+    quantity = str(rule.get("quantity") or "the measured value")
+    text = f"{quantity} is {format_value(measured, unit)}"
+    band = _band_words(rule, unit)
+    if band:
+        text += f", where the paper has {band}"
+    t, lo, hi = _triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
+    ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
+    if ratio and t[1] is not None and t[2] is not None:
+        above = _finite(lo) and lo > 1 and t[2] < 1  # a band wholly on one side of 1, the interval on the other
+        below = _finite(hi) and hi < 1 and t[1] > 1
+        names = _ratio_names(quantity)
+        if (above or below) and names:
+            a, b, lower_better = names
+            first_wins = above == lower_better
+            winner, loser = (a, b) if first_wins else (b, a)
+            text += f": the {winner} beats the {loser}, the reverse of the paper's direction"
+        elif above or below:
+            text += f": the ratio {'falls below' if above else 'rises above'} one, the reverse of the paper's direction"
+    return text
+
+
+def _ordering_clause(rule: Mapping, measured: Any) -> str:
+    """``"<a> is 0.46 [0.45, 0.47] times <b>: smaller, where the paper has it larger"``."""
+    a, b = str(rule.get("a") or "the first"), str(rule.get("b") or "the second")
+    b = f"that {b}" if b.startswith(_PREPOSITIONS) else b
+    claimed = "larger" if rule.get("relation", ">") == ">" else "smaller"
+    other = "smaller" if claimed == "larger" else "larger"
+    t = _triple(measured)
+    if rule.get("measure") == "ratio":
+        text, ref = f"{a} is {format_value(measured, 'times')} {b}", 1.0
+    else:
+        text, ref = f"{a} minus {b} is {format_value(measured, _real_unit(rule))}", 0.0
+    if t is None or t[1] is None or t[2] is None:
+        return text
+    if t[1] > ref or t[2] < ref:
+        found = "larger" if t[1] > ref else "smaller"
+        return text + (
+            f": {found}, as the paper says" if found == claimed else f": {other}, where the paper has it {claimed}"
+        )
+    return text + f": neither clearly larger nor smaller, where the paper has it {claimed}"
+
+
+def _trend_clause(rule: Mapping, measured: Any) -> str:
+    """``"<quantity> falls from 322 ms to 4.1 ms over 9 points, where the paper has it decreasing in <over>"``."""
+    quantity = str(rule.get("quantity") or "the measured value")
+    unit = _real_unit(rule)
+    shown = (
+        _vector(list(measured), unit, always=True)
+        if isinstance(measured, (list, tuple))
+        else format_value(measured, unit)
+    )
+    return f"{quantity} {shown}, where the paper has it {rule.get('direction', 'monotone')} in {rule.get('over', 'its grid')}"
+
+
+def value_clause(rule: Mapping | None, measured: Any) -> str:
+    """What was measured against what the paper says, in words and units, for one rule (or one part's rule)."""
+    rule, measured = _in_force(dict(rule or {}), measured)
+    kind = rule.get("kind")
+    if kind == "ordering":
+        return _ordering_clause(rule, measured)
+    if kind == "monotone":
+        return _trend_clause(rule, measured)
+    if kind in ("in_band", "within_factor") and _triple(measured) is not None:
+        return _band_clause(rule, measured)
+    return f"{rule.get('quantity') or 'the measured value'} is {format_measured(measured, rule)}"
+
+
+def _cap(text: str) -> str:
+    return text[:1].upper() + text[1:]
+
+
+def _share_sentence(part: Mapping) -> str:
+    share = part.get("share") or {}
+    if not share.get("decided"):
+        return ""
+    agree, decided = share.get("agree"), share.get("decided")
+    return f"{agree} of {decided} explored configurations agree."
+
+
+def _flip_sentence(flip: Mapping) -> str:
+    """The strongest named flip in plain words: what kind of change it is, where it takes the verdict, and the
+    change itself (the register's phrases)."""
+    side, text = flip.get("side", "reading"), _plain(str(flip.get("text") or ""))
+    to = f"it is {flip['verdict']}" if flip.get("verdict") else "the verdict changes"
+    if side == "world":
+        return f"It does not extend to {text}: there {to}."
+    lead = {
+        "reading": "Under another reading of the paper's text",
+        "setting": "Under another setting of the paper's own experiment, one the paper never printed,",
+    }.get(side, "Under several changes together")
+    return f"{lead} {to}: {text}."
+
+
+def _runs_sentence(part: Mapping) -> str:
+    r = part.get("runs_to_decide") or {}
+    if not r:
+        return ""
+    if r.get("replicates"):
+        cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
+        beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
+        return f"About {r['replicates']} independent replicates would decide it{beyond}."
+    return "No practical number of runs is projected to decide it."
+
+
+def _lock_sentence(claim: Mapping, part: Mapping) -> str:
+    """Runs that lost lock, where the record says they decide the verdict."""
+    record = claim.get("robustness") or {}
+    lost = next((s.get("decided_by_lost_runs") for s in (part, record, claim) if "decided_by_lost_runs" in s), None)
+    if not lost:
+        return ""
+    in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
+    return "Runs that lost lock decide it" + (f"; over the runs in lock alone it is {in_lock}." if in_lock else ".")
+
+
+_CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")
+
+
+def _plain(text: str) -> str:
+    """Text without the parentheses that name code (``(..., calibration.calibrate_bandwidth)``)."""
+    return " ".join(_CODE.sub("", text).split()).replace(" :", ":").replace(" ,", ",")
+
+
+def not_checkable_reason(claim: Mapping) -> str:
+    """Why a claim cannot be checked, in one sentence: the first clause of the rule's reason or of the note,
+    whichever says more."""
+    firsts = []
+    for text in (claim.get("rule") or {}).get("reason"), claim.get("note"):
+        text = _plain(str(text or "").strip())
+        first = re.split(r"(?<=;)\s+|(?<=\.)\s+(?=[A-Z])", text)[0].rstrip(".;") if text else ""
+        firsts.append(first)
+    return max(firsts, key=len) or "nothing measurable"
 
 
 def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
-    """The claim in at most ``chars`` characters (two lines): the verdict with the measured value against the
-    rule's band in the same unit; the share of the explored configurations that agree; the readings of the paper
-    that flip it, then the worlds it does not extend to; for an undecided claim, how many runs would decide it.
+    """The claim in a few complete sentences chosen from its record, never cut: the verdict with the measured
+    value in words and units against what the paper says (and the direction in words where it reverses the
+    paper's), the strongest named flip in plain words (a reading of the text, an unreported setting of the
+    paper's experiment, or a world it does not extend to), whether runs that lost lock decide it, for an undecided
+    claim the runs that would decide it; then, while the whole stays within ``chars``, the share of the explored
+    configurations that agree and how many other changes flip it. Everything else is in the record behind the
+    click.
 
     Parameters
     ----------
@@ -385,114 +572,46 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         A claim as ``results.json`` stores it (``id, verdict, measured, rule, robustness, ...``), or as
         :meth:`tvtrack.results.Results.claim` returns it.
     chars : int
-        The longest sentence returned.
+        The length the optional sentences must keep the whole within (the required ones are never cut).
 
     Returns
     -------
     str
-        E.g. ``"Not reproduced: 351.6 [350, 353.1] x alpha against [0, 2] x alpha. 29 of 32 explored
-        configurations agree. Flips when sigma read as the SD of the raw velocity increments."``
+        E.g. ``"Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper
+        has [0, 2] x alpha. Under another reading of the paper's text (sigma read as the SD of the raw velocity
+        increments) it is reproduced. 29 of 32 explored configurations agree."``
     """
     claim = _as_dict(claim)
     verdict = str(claim.get("verdict", ""))
     if verdict == "not checkable":
-        note = claim.get("note") or (claim.get("rule") or {}).get("reason") or "nothing measurable"
-        return _clip(f"Not checkable: {note}", chars)
-    label = shown_label(claim)
-    head = verdict[:1].upper() + verdict[1:]
-    if label == PROVISIONAL:
-        head += " (too few configurations to label)"
-    flips = claim_flips(claim)
-    # from the fullest sentence to the shortest, the first that fits
-    for max_parts, with_ci, n_each, flip_chars in (
-        (2, True, 2, 90),
-        (2, False, 1, 80),
-        (1, False, 1, 60),
-        (1, False, 1, 40),
-    ):
-        bits = [f"{head}: {_measured_bits(claim, max_parts)}."]
-        for extra in (_share_text(claim, with_ci), _flip_text(flips, n_each, flip_chars), _runs_text(claim)):
-            if extra:
-                bits.append(extra[:1].upper() + extra[1:] + ".")
-        text = " ".join(bits)
-        if len(text) <= chars:
-            return text
-    return _clip(text, chars)
-
-
-# --- one paragraph per set of runs ---------------------------------------------------------------------------------
-
-
-def _plural(n: int, word: str) -> str:
-    return f"{n} {word}{'' if n == 1 else 's'}"
-
-
-def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
-    """A short paragraph: what holds, what does not, what the runs could not decide, and on what the main
-    verdicts turn (the register titles whose values flip the most claims); runs of another ``profile`` than
-    ``"paper"`` are said not to be the paper-scale numbers."""
-    if not claims:
-        return "No claim has been checked yet."
-    v = Counter(str(c.get("verdict")) for c in claims)
-    labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
-    checkable = len(claims) - v["not checkable"]
-    sure = labels["robust"] + labels["limited"]
-
-    def n(k: int, one: str, many: str) -> str:
-        return f"{k} {one if k == 1 else many}"
-
-    text = [
-        f"Of {_plural(len(claims), 'claim')} checked, {n(v['reproduced'], 'holds', 'hold')}, "
-        f"{n(v['partly'], 'holds', 'hold')} in part and {n(v['not reproduced'], 'does', 'do')} not; the runs could "
-        f"not decide {v['undecided']}, and {n(v['not checkable'], 'gives', 'give')} nothing to measure."
-    ]
-    if labels[PROVISIONAL]:
-        text.append(
-            f"{n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
-            "design too small to label (a smoke-size run): none of them is called robust."
-        )
-    else:
-        text.append(
-            f"Of the {checkable} checkable verdicts, {n(sure, 'survives', 'survive')} every reading of the paper "
-            f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
-            f"{n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage and "
-            f"{n(labels['unstable'], 'differs', 'differ')} between independent replicates."
-        )
-    turns: Counter = Counter()
-    for c in claims:
-        record = c.get("robustness") or {}
-        known = _phrases(record)
-        seen = set()
-        for f in record_flip_entries(c):
-            title = known.get(f, (f.replace("_", " "), "", {}))[0]
-            if title not in seen:
-                seen.add(title)
-                turns[title] += 1
-    if turns:
-        top = [f"{t} ({_plural(n, 'claim')})" for t, n in turns.most_common(3)]
-        text.append(
-            f"The verdicts turn most often on {', '.join(top[:-1]) + ' and ' if len(top) > 1 else ''}{top[-1]}."
-        )
-    if profile != "paper":
-        text.append(f"These are {profile}-profile runs, not the paper-scale numbers.")
-    return " ".join(text)
-
-
-def record_flip_entries(claim: Mapping) -> list[str]:
-    """The register entry names of the claim's smallest flipping configurations (singles and combinations)."""
-    record = claim.get("robustness") or {}
-    names: list[str] = []
-    for p in (record.get("parts") or {}).values():
-        for f in (p or {}).get("flips", []) if isinstance(p, Mapping) else []:
-            if f.get("kind") in ("single", "combination"):
-                names += [str(k) for k in (f.get("changed") or {}) if str(k) not in names]
-    if not names and not any(isinstance(p, Mapping) and "flips" in p for p in (record.get("parts") or {}).values()):
-        for c in record.get("conditions") or []:
-            changed = c.get("changed") or c.get("choices") or {}
-            if (
-                len(changed) == 1
-                and c.get("verdict") in ("reproduced", "not reproduced")
-                and c.get("verdict") != claim.get("verdict")
-            ):
-                names += [str(k) for k in changed if str(k) not in names]
-    return names
+        return f"Not checkable: {not_checkable_reason(claim)}."
+    rule, measured = _in_force(dict(claim.get("rule") or {}), claim.get("measured"))
+    name = main_part(claim)
+    parts = (claim.get("robustness") or {}).get("parts") or {}
+    part = parts.get(name) if isinstance(parts.get(name), Mapping) else {}
+    aside = []
+    if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
+        held = sum(1 for p in parts.values() if isinstance(p, Mapping) and p.get("verdict") == "reproduced")
+        checked = [n for n, r in (rule.get("parts") or {}).items() if (r or {}).get("kind") != "not_checkable"]
+        if len(checked) > 1:
+            aside.append(
+                f"all {len(checked)} parts hold" if held == len(checked) else f"{held} of {len(checked)} parts hold"
+            )
+        rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
+    if shown_label(claim) == PROVISIONAL:
+        aside.append("too few configurations to label")
+    head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
+    flips = claim_flips(claim, name) or claim_flips(claim)
+    required = [f"{head}: {value_clause(rule, measured)}."]
+    required += [s for s in (_flip_sentence(flips[0]) if flips else "", _lock_sentence(claim, part)) if s]
+    if verdict == "undecided":
+        required.append(_runs_sentence(part))
+    optional = [_share_sentence(part)]
+    if len(flips) > 1:
+        others = len(flips) - 1
+        optional.append(f"{others} other change{'s' if others > 1 else ''} flip{'' if others > 1 else 's'} it too.")
+    text = " ".join(s for s in required if s)
+    for s in optional:
+        if s and len(text) + 1 + len(s) <= chars:
+            text += " " + s
+    return text

@@ -27,11 +27,14 @@ from typing import Any
 from ..results import (
     LABEL_WORDS,
     VERDICT_WORDS,
+    at_profile,
     claim_flips,
     claim_summary,
     format_measured,
     md_escape,
+    paper_paragraph,
     results_summary,
+    side_words,
 )
 from .figures import (
     ALL_LABELS,
@@ -172,15 +175,35 @@ def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None)
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_short(r['statement'], 120))}* "
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_whole(r['statement']))}* "
         f"{md_escape(r['summary'])}"
         for r in rows
     )
 
 
-def _short(text: str, chars: int = 90) -> str:
-    text = " ".join(str(text).split())
-    return text if len(text) <= chars else text[: chars - 1].rstrip() + "…"
+def _whole(text: str) -> str:
+    """A statement on one line, whole (never cut)."""
+    return " ".join(str(text).split())
+
+
+def as_shown(runs: dict[str, tuple[dict | None, dict | None]]) -> dict[str, tuple[dict | None, dict | None]]:
+    """The runs with their claims as a reader sees them: a run at another profile than the paper's has every
+    record marked provisional (:func:`tvtrack.results.at_profile`: never robust), whatever its design."""
+    out = {}
+    for name, (record, data) in runs.items():
+        if data is not None:
+            data = {**data, "claims": at_profile(data.get("claims") or [], (record or {}).get("profile"))}
+        out[name] = (record, data)
+    return out
+
+
+def paper_markdown(data: dict, profile: str = PAPER_PROFILE) -> list[str]:
+    """One paper in plain words (:func:`tvtrack.results.paper_paragraph`): the paragraph, then its limitations."""
+    paragraph, limits = paper_paragraph(data, profile)
+    lines = [md_escape(paragraph), ""]
+    if limits:
+        lines += ["**Limitations.** " + md_escape(" ".join(limits)), ""]
+    return lines
 
 
 def glossary_markdown() -> str:
@@ -254,11 +277,10 @@ def _details(c: dict) -> str:
         bits.append("parts: " + "; ".join(f"{md_escape(p)} {v}, {lab}" for p, v, lab in parts))
     flips = claim_flips(c)
     if flips:
+        sides = side_words()
         bits.append(
             "flipped by: "
-            + "; ".join(
-                f"{md_escape(f['text'])} ({'a reading' if f['side'] == 'reading' else 'a world'})" for f in flips
-            )
+            + "; ".join(f"{md_escape(f['text'])} ({sides.get(f['side'], sides['world'])})" for f in flips)
         )
     if c.get("note"):
         bits.append(f"note: {md_escape(c['note'])}")
@@ -314,10 +336,12 @@ def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce
                 "",
             ]
         head += [
-            "Each claim below: its verdict at the default reading of what the paper left unstated, its label, and "
-            "one sentence: the measured value against the rule's band in the same unit, the share of the explored "
-            "configurations that agree, the readings of the paper that flip it, then the worlds it does not extend "
-            "to. The record behind it (rule, decision, coverage, every flip) opens with a click; each notebook's "
+            "Each paper below: what it claims, what holds, what does not and why, then its limitations. Each claim: "
+            "its verdict at the default reading of what the paper left unstated, its label, and a few sentences: the "
+            "measured value against what the paper says in the same unit (in words where it reverses the paper's "
+            "direction), the strongest change that flips it (a reading of the text, a setting the paper never "
+            "printed, or a world beyond it) and, room permitting, the share of the explored configurations that "
+            "agree. The record behind it (rule, decision, coverage, every flip) opens with a click; each notebook's "
             "exploration section draws every claim's specification curve.",
             "",
         ]
@@ -341,7 +365,7 @@ def write_report(
     """
     if notebooks is None:
         notebooks = [nb.stem for nb in list_notebooks()]
-    runs = collect_runs(reproduce_dir, notebooks)
+    runs = as_shown(collect_runs(reproduce_dir, notebooks))
     sections, claims = [], []
     for name in notebooks:
         run_dir = Path(reproduce_dir) / name
@@ -365,6 +389,7 @@ def write_report(
             "",
             f"*{md_escape(data['citation'])}*",
             "",
+            *paper_markdown(data, record.get("profile") or PAPER_PROFILE),
             f"Profile `{record.get('profile')}`, seed {data['seed']}, runtime {record['runtime_s']:.0f} s "
             f"(notebook {data['runtime_s']:.0f} s), commit `{data.get('git_commit')}`. "
             f"[Executed notebook]({rel}/notebook.ipynb) · [results.json]({rel}/results.json)",
@@ -416,7 +441,7 @@ def results_paragraph(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
     one row per paper and the claims that do not reproduce or were not decided, one sentence each. No date: the
     block changes only when a verdict, a label or a number does, so ``git status`` after ``make reproduce`` is
     itself a reproducibility check."""
-    done = {name: (record, data) for name, (record, data) in runs.items() if data is not None}
+    done = {name: (record, data) for name, (record, data) in as_shown(runs).items() if data is not None}
     missing = sorted(set(runs) - set(done))
     if not any(data["claims"] for _, data in done.values()):
         return (

@@ -61,7 +61,18 @@ from .report import (
 from .report import _plain_coverage as coverage_text
 from .runfiles import DamagedRun, load_results, load_run
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
-from ..results import GLOSSARY, LABEL_WORDS, VERDICT_WORDS, VERDICTS, claim_flips, claim_summary, results_summary
+from ..results import (
+    GLOSSARY,
+    LABEL_WORDS,
+    VERDICT_WORDS,
+    VERDICTS,
+    at_profile,
+    claim_flips,
+    claim_summary,
+    paper_paragraph,
+    results_summary,
+    side_words,
+)
 
 __all__ = [
     "SITE_DIR",
@@ -80,6 +91,8 @@ TEMPLATE_DIR = Path(__file__).with_name("site_templates")
 NOTEBOOK_TEMPLATE = "notebook"
 NOT_SWEEPS = {"reproduce", "runs", "interactive", "site", "profiles", "sweeps", "edit"}
 STILL_MIN_SIDE_PX = 320
+PAGE_CHARS = 400
+"""A claim's own page has room for the optional sentences (the share, the other flips) the ledger leaves out."""
 
 
 @dataclass
@@ -320,6 +333,7 @@ def _environment():
 
     env = Environment(loader=FileSystemLoader(TEMPLATE_DIR), autoescape=select_autoescape(["html"]))
     env.globals.update(
+        side_words=side_words(),
         glossary=GLOSSARY,
         glossary_verdicts=list(VERDICT_WORDS.items()),
         glossary_labels=list(LABEL_WORDS.items()),
@@ -390,7 +404,7 @@ def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
                     c=c,
                     paper=run.name,
                     shown=robustness_label(c),
-                    summary=claim_summary(c),
+                    summary=claim_summary(c, chars=PAGE_CHARS),
                     measured=format_measured(c.get("measured"), c.get("rule")),
                     coverage=coverage_text(c),
                     flips=claim_flips(c),
@@ -541,6 +555,9 @@ def _build_into(site: Path, runs_dir: Path, source: Path, profile: str) -> None:
     (site / "sweeps").mkdir()
     env = _environment()
     runs = find_paper_runs(source)
+    for run in runs:  # at another profile than the paper's, nothing is robust (tvtrack.results.at_profile)
+        if run.ok:
+            run.results = {**run.results, "claims": at_profile(run.results["claims"], run.record.get("profile"))}
     cards = []
     for run in runs:
         card = {
@@ -551,6 +568,9 @@ def _build_into(site: Path, runs_dir: Path, source: Path, profile: str) -> None:
             "shown": _shown(run.run_dir, runs_dir),
         }
         if run.ok:
+            card["paragraph"], card["limitations"] = paper_paragraph(
+                run.results, run.record.get("profile") or PAPER_PROFILE
+            )
             card["recording"] = _recording_info(run, site, runs_dir)
             card["counts"] = _counts(run.results["claims"])
             assets = site / "runs" / run.name

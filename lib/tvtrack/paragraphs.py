@@ -1,0 +1,248 @@
+"""Paragraphs in plain words from claim records (``results.json``): one for a set of runs (the first screen of the
+report, the README and the site) and one per paper (what it claims, what holds, what does not and why, then its
+limitations).
+
+Everything here reads the JSON dicts a run writes and the sentences of :mod:`tvtrack.wording`, so every place
+says the same thing in the same words. Import :func:`results_summary` through :mod:`tvtrack.results`.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from typing import Mapping
+
+from .wording import (
+    PROVISIONAL,
+    SIDE_ORDER,
+    _as_dict,
+    _phrases,
+    at_profile,
+    claim_flips,
+    not_checkable_reason,
+    shown_label,
+    side_words,
+    value_clause,
+)
+
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "record_flip_entries"]
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
+def _n(k: int, one: str, many: str) -> str:
+    return f"{k} {one if k == 1 else many}"
+
+
+def _join(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]]]]:
+    """``{side: (claims, [(entry title, claims), ...] most often first)}``: how many claims a reading of the
+    paper's text, an unreported setting of its experiment, a world beyond it (or several changes together) flips,
+    and the register entries that flip the most of them. A claim counts once per side."""
+    count: dict[str, int] = Counter()
+    titles: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
+    for c in claims:
+        c = _as_dict(c)
+        if c.get("verdict") == "not checkable":
+            continue
+        known = _phrases(c.get("robustness") or {})
+        seen_sides, seen_titles = set(), set()
+        for f in claim_flips(c):
+            side = f["side"] if f["side"] in SIDE_ORDER else "world"
+            if f.get("kind") not in ("single", "combination", None) and side != "unattributed":
+                continue
+            seen_sides.add(side)
+            for k in f.get("changed") or {}:
+                title = known.get(str(k), (str(k).replace("_", " "), "", {}))[0]
+                if (side, title) not in seen_titles:
+                    seen_titles.add((side, title))
+                    titles[side][title] += 1
+        for s in seen_sides:
+            count[s] += 1
+    return {s: (count[s], titles[s].most_common(2)) for s in SIDE_ORDER if count[s]}
+
+
+def _turns_sentence(claims: list[Mapping]) -> str:
+    words = side_words()
+    bits = []
+    for side, (n, top) in turns_on(claims).items():
+        often = f", most often {top[0][0]} ({_plural(top[0][1], 'claim')})" if top and top[0][1] > 1 else ""
+        bits.append(f"{words[side]} flips {_plural(n, 'claim')}{often}")
+    return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
+
+
+def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
+    """A short paragraph: what holds, what does not, what the runs could not decide, how sure the verdicts are,
+    and what they turn on by kind (readings of the paper's text, unreported settings of its experiment, worlds
+    beyond it, each with the register title that flips the most claims); runs of another ``profile`` than
+    ``"paper"`` are said not to be the paper-scale numbers, and none of their verdicts is called robust."""
+    if not claims:
+        return "No claim has been checked yet."
+    claims = at_profile(claims, profile)
+    v = Counter(str(c.get("verdict")) for c in claims)
+    labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
+    checkable = len(claims) - v["not checkable"]
+    text = [
+        f"Of {_plural(len(claims), 'claim')} checked, {_n(v['reproduced'], 'holds', 'hold')}, "
+        f"{_n(v['partly'], 'holds', 'hold')} in part and {_n(v['not reproduced'], 'does', 'do')} not; the runs could "
+        f"not decide {v['undecided']}, and {_n(v['not checkable'], 'gives', 'give')} nothing to measure."
+    ]
+    if labels[PROVISIONAL] or profile != "paper":
+        text.append(
+            f"{_n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
+            f"design too small to label{' (a smoke-size run)' if profile != 'paper' else ''}: none of them is called "
+            "robust."
+        )
+    else:
+        sure = labels["robust"] + labels["limited"]
+        text.append(
+            f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
+            f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
+            f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage and "
+            f"{_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
+        )
+    turns = _turns_sentence(claims)
+    if turns:
+        text.append(turns)
+    if profile != "paper":
+        text.append(f"These are {profile}-profile runs, not the paper-scale numbers.")
+    return " ".join(text)
+
+
+# --- one paragraph per paper -------------------------------------------------------------------------------------
+
+
+def _statement(c: Mapping) -> str:
+    return " ".join(str(c.get("statement") or "").split()).rstrip(".")
+
+
+def _why_not(c: Mapping) -> str:
+    """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
+    direction) and, where one is named, the strongest change under which it would."""
+    from .wording import _in_force, main_part
+
+    rule, measured = _in_force(dict(c.get("rule") or {}), c.get("measured"))
+    name = main_part(c)
+    if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
+        rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
+    text = value_clause(rule, measured)
+    flips = [f for f in claim_flips(c, name) or claim_flips(c) if f.get("verdict") == "reproduced"]
+    if flips:
+        text += f"; it holds under {side_words().get(flips[0]['side'], 'another change')}: {flips[0]['text']}"
+    return text
+
+
+def limitations(data: Mapping, profile: str = "paper") -> list[str]:
+    """What a reader should know before trusting a paper's verdicts, one sentence each, from its records: the
+    limitations the notebook wrote down (``results.json`` ``limitations``), the simulated worlds calibrated to
+    the paper's own operating point, the claims that are not checkable and why, those never tried beyond the
+    paper's world, the undecided ones, runs that lost lock, and a smoke-size profile."""
+    claims = at_profile(list(data.get("claims") or []), profile)
+    out = [" ".join(str(t).split()).rstrip(".") + "." for t in data.get("limitations") or [] if str(t).strip()]
+    register = list(data.get("register") or []) + [
+        e for c in claims for e in ((c.get("robustness") or {}).get("register") or [])
+    ]
+    calibrated = sorted(
+        {
+            str(e.get("title") or e.get("name"))
+            for e in register
+            if isinstance(e, Mapping)
+            and "calibrat" in (str(e.get("why")) + " ".join(map(str, (e.get("phrases") or {}).values())))
+        }
+    )
+    if calibrated:
+        out.append(
+            f"The simulated world is calibrated to the paper's own operating point ({_join(calibrated)}): agreement "
+            "at that point is partly by construction."
+        )
+    for c in claims:
+        if c.get("verdict") == "not checkable":
+            out.append(f"{c['id']} is not checkable: {not_checkable_reason(c)}.")
+    labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
+    if labels["unexplored"]:
+        out.append(
+            f"{_n(labels['unexplored'], 'claim was', 'claims were')} never tried in a world beyond the paper's own: "
+            f"nothing says how far {'it extends' if labels['unexplored'] == 1 else 'they extend'}."
+        )
+    undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
+    if undecided:
+        out.append(f"More runs than these would be needed to decide {_join(undecided)}.")
+    lost = [c["id"] for c in claims if _lost(c)]
+    if lost:
+        out.append(f"Runs that lost lock decide {_join(lost)}; over the runs in lock alone the verdict differs.")
+    shares = {c["id"]: _lost_share(c) for c in claims if c["id"] not in lost}
+    shares = {k: v for k, v in shares.items() if v > 0}
+    if shares:
+        out.append(
+            f"Some runs lost lock in {_join(sorted(shares))} (at most {max(shares.values()) * 100:.0f} % of them)."
+        )
+    if profile != "paper":
+        out.append(f"These are {profile}-size runs: no verdict is labelled, and none is called robust.")
+    elif labels[PROVISIONAL]:
+        out.append(
+            f"{_n(labels[PROVISIONAL], 'claim comes', 'claims come')} from a design too small to label: none is "
+            "called robust."
+        )
+    return out
+
+
+def _lost(c: Mapping) -> bool:
+    record = c.get("robustness") or {}
+    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
+    return any(s.get("decided_by_lost_runs") for s in spots)
+
+
+def _lost_share(c: Mapping) -> float:
+    """The largest share of runs that lost lock the record gives (``lost_share``), 0 where it gives none."""
+    record = c.get("robustness") or {}
+    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
+    values = [float(s["lost_share"]) for s in spots if isinstance(s.get("lost_share"), (int, float))]
+    return max(values, default=0.0)
+
+
+def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:
+    """One paper in plain words: ``(paragraph, limitations)``. The paragraph says how many claims the paper makes
+    and how many can be checked, which hold (and how many of those robustly), which hold in part, which do not
+    and why (the paper's words, then the notebook's reason or the value against the paper's), and which the runs
+    could not decide; the limitations are :func:`limitations`."""
+    claims = at_profile(list(data.get("claims") or []), profile)
+    if not claims:
+        return "No claim of this paper has been checked yet.", limitations(data, profile)
+    by = {v: [c for c in claims if c.get("verdict") == v] for v in ("reproduced", "partly", "not reproduced")}
+    checkable = [c for c in claims if c.get("verdict") != "not checkable"]
+    text = [f"The paper makes {_plural(len(claims), 'claim')} checked here; {len(checkable)} can be measured."]
+    if by["reproduced"]:
+        robust = sum(shown_label(c) == "robust" for c in by["reproduced"])
+        ids = _join([c["id"] for c in by["reproduced"]])
+        text.append(
+            f"{_n(len(by['reproduced']), 'claim holds', 'claims hold')} ({ids})"
+            + (f", {robust} of them under every reading and world explored." if robust else ".")
+        )
+    if by["partly"]:
+        text.append(
+            f"{_n(len(by['partly']), 'claim holds', 'claims hold')} in part ({_join([c['id'] for c in by['partly']])})."
+        )
+    for c in by["not reproduced"]:
+        text.append(f"It does not hold that {_lower(_statement(c))} ({c['id']}): {_why_not(c)}.")
+    undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
+    if undecided:
+        text.append(f"The runs could not decide {_join(undecided)}.")
+    return " ".join(text), limitations(data, profile)
+
+
+def _lower(text: str) -> str:
+    """A statement continued inside a sentence: its first letter lowered unless it starts an acronym or a name."""
+    return text[:1].lower() + text[1:] if text[:2].istitle() and not text[:2].isupper() else text
+
+
+def record_flip_entries(claim: Mapping) -> list[str]:
+    """The register entry names of the claim's smallest flipping configurations (singles and combinations)."""
+    names: list[str] = []
+    for f in claim_flips(claim):
+        if f.get("kind") in ("single", "combination"):
+            names += [str(k) for k in f.get("changed") or {} if str(k) not in names]
+    return names
