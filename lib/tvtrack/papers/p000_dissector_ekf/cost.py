@@ -7,7 +7,8 @@ model (``Phi``, ``G``, ``R``'s coefficients, the scan's timing table) computed b
 and function evaluations (exp, sqrt); ``tests/papers/test_000_cost.py`` checks that the straight-line steps give
 the estimates and variances of the vectorised filters of :mod:`.ekf` (which use the Joseph form of the covariance
 update, algebraically the same). The counts are deterministic, so C000-4's verdict and number are too; the CPU-time
-ratio of the vectorised filters (:func:`.study.cost_ratio`) is the register's other reading.
+ratio of the same steps compiled (:mod:`._kernels`, timed by :func:`.study.cost_ratio`) is the register's other
+reading.
 """
 
 from __future__ import annotations

@@ -215,17 +215,19 @@ _ENTRIES = [
         "operation count",
         ("operation count", "CPU time"),
         "'needs more computation': the arithmetic of one filter step (multiplications, additions and divisions "
-        "of each variant's equations, counted; deterministic), or the CPU time of the vectorised filters (least "
-        "of 5 repeats; it moves between machines and runs, so it never enters the README's results)",
+        "of each variant's equations, counted; deterministic), or the CPU time of the same steps compiled, so "
+        "that no interpreter cost enters (least of 5 repeats; it weighs the exp and sqrt by what they cost; it "
+        "moves between machines and runs, so it never enters the README's results)",
     ),
     Entry(
         "C000-4 batch",
         "statistic",
         "all trials",
         ("all trials", "one trial"),
-        "the paper's tracker filters one object; a Monte Carlo batch amortises the Python overhead per step, so "
-        "the CPU ratio of C000-4 is read both ways (a register row so that joint samples combine it with "
-        "'v2 noise at')",
+        "the paper's tracker filters one object, the Monte Carlo a batch of runs: the CPU ratio of C000-4 is "
+        "timed both ways, on the same compiled steps and the same number of samples (one object over as many "
+        "samples as the batch), so only the memory pattern differs (a register row so that joint samples combine "
+        "it with 'v2 noise at')",
         origin="adversarial",
     ),
     Entry(
