@@ -54,6 +54,7 @@ KINDS = {
     "C000-4 cost measure": ("reading", "a reading of 'needs more computation'"),
     "C000-4 batch": ("statistic", "a reading of C000-4's CPU ratio for a tracker that filters one object"),
     "substantially determines": ("reading", "a reading of 'for P > 0.5 it substantially determines the accuracy'"),
+    "C000-2 contrasts": ("reading", "a reading of the Conclusions' '2 % at psi_A = 20', which names no contrast"),
     "C000-5 comparison": (
         "reading",
         "a reading of the Conclusions' 'accounting for the non-stationary noise component'",

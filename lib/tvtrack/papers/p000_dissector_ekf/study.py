@@ -81,6 +81,10 @@ DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 #: a filter that ignores it over variant 2, which accounts for it, on the same data.
 NOISE_EFFECT, ACCOUNTING = "with the signal noise / without it", "ignoring the signal noise / accounting for it"
 C5_COMPARISONS = (NOISE_EFFECT, ACCOUNTING)
+#: The two readings of the contrasts at which C000-2's "at psi_A = 20 the error was 2 %" holds (register entry
+#: "C000-2 contrasts"; each has its own rule): the card's P = 0 and 0.5, or every contrast of Fig. 3.
+C2_CARD, C2_EVERY = "P = 0 and 0.5", "every Fig. 3 contrast"
+C2_READINGS = (C2_CARD, C2_EVERY)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -330,15 +334,23 @@ def _acquired_at(cfg, seed, sizes, filt, run):
 
 
 def _c2(cfg, seed, sizes):
-    """C000-2: steady RMS error over the micro-raster size at psi_A = 20, P = 0 and 0.5."""
+    """C000-2: steady RMS error over the micro-raster size at psi_A = 20, P = 0 and 0.5 (and, under the reading
+    "C000-2 contrasts" = :data:`C2_EVERY`, both variants at every other contrast of Fig. 3), tagged with the
+    reading."""
     size = 1.0 if cfg["micro-raster size"] == "T" else PULSE_DURATION
+    reading = cfg.get("C000-2 contrasts", C2_CARD)
+    points = [("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")]
+    if reading == C2_EVERY:
+        points += [
+            (f"P={p:g} variant {f[1]}", p, f) for p in sizes.contrast_grid if p not in (0, 0.5) for f in ("v1", "v2")
+        ]
     out = {}
-    for name, p, filt in (("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")):
+    for name, p, filt in points:
         e = rms_ci(np.sqrt(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"])[:, None])
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
-    return out
+    return ByReading.tag(reading, out)
 
 
 def _c3(cfg, seed, sizes):
