@@ -27,29 +27,24 @@ def _claim(statement: str, paper_value: str) -> dict[str, str]:
 
 
 CLAIMS = {
-    "C000-1": _claim("Both algorithms converge fairly quickly.", "fairly quickly (no number)"),
+    "C000-1": _claim("Both algorithms converge fairly quickly (Figs. 1-3).", "fairly quickly (no number)"),
     "C000-2": _claim("At psi_A = 20 the coordinate error is 2 % of the micro-raster size.", "2 %"),
-    "C000-3": _claim(
-        "The two algorithms give approximately the same estimate of potential accuracy.", "approximately equal"
-    ),
-    "C000-4": _claim("Variant 1 is two-dimensional and needs more computation.", "qualitative"),
+    "C000-3": _claim("The two algorithms give approximately the same potential accuracy.", "approximately equal"),
+    "C000-4": _claim("Variant 1 is two-dimensional and needs more computation than variant 2.", "qualitative"),
     "C000-5": _claim(
-        "For P < 0.5 the non-stationary noise does not substantially affect accuracy; for P > 0.5 it "
-        "substantially determines it.",
+        "Below P = 0.5 accounting for the non-stationary noise barely affects accuracy; above 0.5 the noise "
+        "largely determines it.",
         "threshold near P = 0.5",
     ),
-    "C000-6": _claim(
-        "At P = 0.9 the estimate variance exceeds the potentially achievable one by more than 20 times.", "> 20"
-    ),
+    "C000-6": _claim("At P = 0.9 the estimate variance is over 20 times the potentially achievable one.", "> 20"),
     "C000-7": _claim(
-        "sigma_x^2 grows with P relative to sigma_x^2*; the measurement variance grows faster than the "
-        "estimate variance.",
+        "sigma_x^2 / sigma_x^2* grows with P; the measurement variance grows faster than the estimate variance.",
         "monotone growth",
     ),
-    "C000-8": _claim("dt = 0.05 keeps discretisation errors within 3 %.", "<= 3 %"),
-    "C000-9": _claim("sigma_x^2 decreases with psi_A (Fig. 2).", "qualitative"),
+    "C000-8": _claim("A sampling step dt = 0.05 T keeps discretisation errors within 3 %.", "<= 3 %"),
+    "C000-9": _claim("sigma_x^2 decreases as psi_A grows (Fig. 2).", "qualitative"),
     "C000-10": _claim(
-        "Experiment (Fig. 3, triangles) agrees with the model; a practical test confirmed the algorithms.",
+        "Experiment agrees with the model (Fig. 3, triangles); a practical test confirmed the algorithms.",
         "qualitative",
     ),
 }
