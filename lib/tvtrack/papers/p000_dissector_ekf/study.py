@@ -85,6 +85,10 @@ C5_COMPARISONS = (NOISE_EFFECT, ACCOUNTING)
 #: "C000-2 contrasts"; each has its own rule): the card's P = 0 and 0.5, or every contrast of Fig. 3.
 C2_CARD, C2_EVERY = "P = 0 and 0.5", "every Fig. 3 contrast"
 C2_READINGS = (C2_CARD, C2_EVERY)
+#: The two readings of variant 1's signal-noise term (register entry "signal-noise scale"): sqrt(c_s S) X2 with
+#: c_s = N0 P/(1-P), consistent with eq. (2) (the card), or sqrt(A S) X2 as eq. (6) prints it.
+CS_CONSISTENT, CS_LITERAL = "c_s = N0 P/(1-P)", "c_s = A, as printed"
+CS_READINGS = (CS_CONSISTENT, CS_LITERAL)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -227,6 +231,11 @@ def _samples(cfg, seed, scan, pulse, xi):
     return y
 
 
+def _cs(cfg) -> str:
+    """Variant 1's signal-noise scale (:func:`.cost.variant1_step`'s ``signal_noise_scale``) of the configuration."""
+    return "literal" if cfg.get("signal-noise scale", CS_CONSISTENT) == CS_LITERAL else "consistent"
+
+
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
     """One filter at one operating point, summarised (the memo keeps summaries, not the (n_trials, K) histories).
 
@@ -238,7 +247,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
     squared error; ``curve`` and ``d_curve`` (n_steps + 1,) the ensemble mean squared error and mean D11 (T^2)
     """
     reads = {
-        "v1": ("sigma_sh", "G22", "photon model", "background"),
+        "v1": ("sigma_sh", "G22", "photon model", "background", "signal-noise scale"),
         "v2": ("sigma_sh", "v2 noise at", "photon model", "background"),
         "ignoring": ("sigma_sh", "photon model", "background"),
         "stationary": ("sigma_sh", "background"),
@@ -256,7 +265,9 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 if random_init
                 else None
             )
-            e, d = run_steps_variant1(scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"])
+            e, d = run_steps_variant1(
+                scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+            )
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
@@ -440,7 +451,7 @@ def _c8(cfg, seed, sizes):
     one variant changes)."""
     parts = {}
     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-    reads = {"v1": (cfg["G22"],), "v2": (iterations,)}
+    reads = {"v1": (cfg["G22"], _cs(cfg)), "v2": (iterations,)}
     for psi, p in sizes.dt_points:
         psi_p = psi_at(psi, p, cfg["contrast convention"]) if p else psi
         keys = {
@@ -466,7 +477,9 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y, name=name):
                     if name == "v1":
-                        return run_steps_variant1(s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"])[0]
+                        return run_steps_variant1(
+                            s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+                        )[0]
                     return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
