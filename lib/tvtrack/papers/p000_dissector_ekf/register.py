@@ -306,8 +306,8 @@ _PLAIN = {
     "sample model": (
         "how a sample of the dissector current is taken",
         {
-            "integrated": "each sample integrates the current over its interval dt",
-            "point": "each sample is the current at one instant (the filters' own model)",
+            "integrated": "integrated samples: each the current integrated over its interval dt",
+            "point": "point samples: the current at one instant (the filters' own model)",
         },
     ),
     "scoring time": (
@@ -341,37 +341,37 @@ _PLAIN = {
     "sigma_sh": (
         "the background noise that defines the SNR psi_A",
         {
-            "per sample": "psi_A taken as pulse peak / background noise RMS per sample",
-            "unit bandwidth": "psi_A taken per 1/T bandwidth (4.5 times the noise per sample)",
+            "per sample": "psi_A per sample: pulse peak / background noise RMS of one sample",
+            "unit bandwidth": "psi_A per 1/T bandwidth (4.5 times the noise per sample)",
         },
     ),
     "G22": (
         "variant 1's process noise for its signal-noise state X2 (E8)",
         {
-            "paper": "variant 1's signal-noise state X2 driven by 2 beta_0 dt per step (as printed)",
-            "euler": "variant 1's signal-noise state X2 driven by beta_0^2 dt per step (eq. (8))",
-            "matched": "variant 1's signal-noise state X2 matched to the true signal noise per sample",
+            "paper": "G22 = 2 beta_0 dt for variant 1's signal-noise state X2 (E8 as printed)",
+            "euler": "G22 = beta_0^2 dt for variant 1's signal-noise state X2 (Euler, eq. (8))",
+            "matched": "G22 matched: variant 1's X2 carries the true signal noise per sample",
         },
     ),
     "signal-noise scale": (
         "scale c_s of variant 1's signal-noise term sqrt(c_s S) X2 (eqs. (6), (7))",
         {
-            CS_READINGS[0]: "variant 1's signal noise scaled by c_s = N0 P/(1-P), as eq. (2)",
-            CS_READINGS[1]: "variant 1's signal noise scaled by c_s = A, as eq. (6) prints it",
+            CS_READINGS[0]: "c_s = N0 P/(1-P) in variant 1's signal-noise term (as eq. (2))",
+            CS_READINGS[1]: "c_s = A in variant 1's signal-noise term (eq. (6) as printed)",
         },
     ),
     "v2 noise at": (
         "where variant 2 evaluates its signal-dependent noise level (eq. (9))",
         {
             "predicted estimate": "variant 2's noise level taken at the predicted coordinate",
-            "updated estimate": "variant 2's noise level re-evaluated at the updated coordinate",
+            "updated estimate": "variant 2's noise re-evaluated at the updated coordinate (eq. (9))",
         },
     ),
     "initial estimate": (
         "the filters' initial coordinate estimate",
         {
-            "process means": "filters started at the mean coordinate, zero (solid curves of Fig. 1)",
-            "random N(0, D11(0))": "filters started from random estimates of variance 0.2 T^2 (dashed curves)",
+            "process means": "initial estimates at the mean coordinate, zero (solid curves of Fig. 1)",
+            "random N(0, D11(0))": "random initial estimates, variance 0.2 T^2 (dashed curves of Fig. 1)",
         },
     ),
     "initial position": (
@@ -384,8 +384,8 @@ _PLAIN = {
     "convergence criterion": (
         "what 'the algorithms converge fairly quickly' is measured by",
         {
-            "90 % of runs acquired": "convergence read as 90 % of runs in lock by the acquisition time (5 T)",
-            "ensemble mean within 10 %": "convergence read as the mean error variance within 10 % of steady by 5 T",
+            "90 % of runs acquired": "90 % of runs in lock by the acquisition time (5 T) as convergence",
+            "ensemble mean within 10 %": "mean error variance within 10 % of steady by 5 T as convergence",
         },
     ),
     "lock threshold": (
@@ -398,17 +398,17 @@ _PLAIN = {
     "C000-6 filter": (
         "the filter of the truncated 'more than 20 times' sentence",
         {
-            "variant 2": "the 20-times sentence read for variant 2",
-            "variant 1": "the 20-times sentence read for variant 1",
-            "ignoring the signal noise": "the 20-times sentence read for a filter ignoring the signal noise",
+            "variant 2": "variant 2 in the 20-times sentence",
+            "variant 1": "variant 1 in the 20-times sentence",
+            "ignoring the signal noise": "a filter ignoring the signal noise in the 20-times sentence",
         },
     ),
     "potentially achievable": (
         "the 'potentially achievable' accuracy of the 20-times sentence",
         {
-            "sigma_x^2*": "'potentially achievable' read as the variance without signal noise, sigma_x^2*",
-            "PCRLB": "'potentially achievable' read as the posterior Cramer-Rao bound",
-            "grid filter": "'potentially achievable' read as a near-optimal grid filter",
+            "sigma_x^2*": "sigma_x^2*, the variance without signal noise, as 'potentially achievable'",
+            "PCRLB": "the posterior Cramer-Rao bound as 'potentially achievable'",
+            "grid filter": "a near-optimal grid filter as 'potentially achievable'",
         },
     ),
     "C000-6 joint reading": (
@@ -421,8 +421,8 @@ _PLAIN = {
     "C000-3 accuracy": (
         "what 'the same estimate of potential accuracy' compares",
         {
-            "Monte Carlo error": "accuracy read as the error variance each variant achieves",
-            "filters' own D11": "accuracy read as the error variance each variant computes (its D11)",
+            "Monte Carlo error": "the error variance each variant achieves as its accuracy",
+            "filters' own D11": "each variant's own computed variance D11 as its accuracy",
         },
     ),
     "micro-raster size": (
@@ -435,8 +435,8 @@ _PLAIN = {
     "C000-2 contrasts": (
         "the contrasts P at which 'the error at psi_A = 20 was 2 %' is checked",
         {
-            C2_READINGS[0]: "the 2 % checked at contrast P = 0 and 0.5",
-            C2_READINGS[1]: "the 2 % checked at every contrast of Fig. 3, up to P = 0.9",
+            C2_READINGS[0]: "2 % checked at contrast P = 0 and 0.5",
+            C2_READINGS[1]: "2 % checked at every Fig. 3 contrast, up to P = 0.9",
         },
     ),
     "psi_A": (
@@ -446,8 +446,8 @@ _PLAIN = {
     "sigma_1": (
         "spread of the object's random drift sigma_1",
         {
-            "0.1 T": "drift spread sigma_1 = 0.1 T (the paper's typical value)",
-            "0.2 T": "drift spread sigma_1 = 0.2 T (image over the whole micro-raster)",
+            "0.1 T": "sigma_1 = 0.1 T drift spread (the paper's typical value)",
+            "0.2 T": "sigma_1 = 0.2 T drift spread (image over the whole micro-raster)",
         },
     ),
     "contrast": (
@@ -472,8 +472,8 @@ _PLAIN = {
     "C000-4 cost measure": (
         "what 'needs more computation' is measured by",
         {
-            "operation count": "computation read as arithmetic operations per step, counted",
-            "CPU time": "computation read as CPU time per step of the compiled filters",
+            "operation count": "arithmetic operations per step, counted, as the computation",
+            "CPU time": "CPU time per step of the compiled filters as the computation",
         },
     ),
     "C000-4 batch": (
@@ -494,7 +494,7 @@ _PLAIN = {
         "what 'accounting for the non-stationary noise' compares (C000-5)",
         {
             C5_COMPARISONS[0]: "the variance with signal noise over that without it (Fig. 3's ratio)",
-            C5_COMPARISONS[1]: "a filter ignoring the signal noise over variant 2, which accounts for it",
+            C5_COMPARISONS[1]: "a filter ignoring the signal noise over variant 2 (what accounting gains)",
         },
     ),
     "statistic": (
