@@ -148,7 +148,7 @@ def test_c000_7_gap_is_the_crlb_ratio_at_p09_minus_the_estimate_ratio_at_p09(mea
 
 def test_c000_2_parts_are_the_rms_errors_of_their_own_contrast_and_filter(measured):
     """Kills: C000-2's P = 0.5 parts measured on P = 0 data (or the P = 0 part on P = 0.5 data)."""
-    got = measured["C000-2"]
+    got = measured["C000-2"]["measured"]
     assert got["P=0"].value == pytest.approx(np.sqrt(_independent_steady(21, 20.0, 0.0, "star").mean()), rel=1e-9)
     for name, filt in (("P=0.5 variant 1", "v1"), ("P=0.5 variant 2", "v2")):
         rms = np.sqrt(_independent_steady(21, 20.0, 0.5, filt).mean())

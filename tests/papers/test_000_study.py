@@ -55,7 +55,8 @@ def test_measure_returns_every_claim_with_the_parts_its_rule_reads_and_reproduce
     a = study.measure(DEFAULT, 7, SMALL)
     b = study.measure(DEFAULT, 7, SMALL)
     assert set(a) == set(DEPENDS) - {"C000-4"}
-    assert set(a["C000-2"]) == {"P=0", "P=0.5 variant 1", "P=0.5 variant 2"}
+    assert a["C000-2"]["reading"] == study.C2_CARD
+    assert set(a["C000-2"]["measured"]) == {"P=0", "P=0.5 variant 1", "P=0.5 variant 2"}
     assert set(a["C000-3"]) == {"P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"}
     assert set(a["C000-8"]) == {"variant 1 at psi_A=20, P=0.5", "variant 2 at psi_A=20, P=0.5"}
     assert len(a["C000-7"]["trend"]) == 3 and len(a["C000-9"]["variant 2"]) == 2
@@ -145,7 +146,11 @@ def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
 
     rules = {
         "C000-6": vd.InBand("ratio", low=20.0),
-        "C000-2": vd.AllOf({k: vd.InBand(k, 0.01, 0.03) for k in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2")}),
+        "C000-2": vd.ByReading(
+            "C000-2 contrasts",
+            {},
+            vd.AllOf({k: vd.InBand(k, 0.01, 0.03) for k in ("P=0", "P=0.5 variant 1", "P=0.5 variant 2")}),
+        ),
     }
     ex = explore(measure, small, rules, seed=1, replicates=3, depends=depends)
     results = Results(notebook="000_dissector_ekf", citation="x", parameters={"seed": 1, "output_dir": str(tmp_path)})

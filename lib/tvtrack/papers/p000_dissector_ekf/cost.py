@@ -7,7 +7,8 @@ model (``Phi``, ``G``, ``R``'s coefficients, the scan's timing table) computed b
 and function evaluations (exp, sqrt); ``tests/papers/test_000_cost.py`` checks that the straight-line steps give
 the estimates and variances of the vectorised filters of :mod:`.ekf` (which use the Joseph form of the covariance
 update, algebraically the same). The counts are deterministic, so C000-4's verdict and number are too; the CPU-time
-ratio of the vectorised filters (:func:`.study.cost_ratio`) is the register's other reading.
+ratio of the same steps compiled (:mod:`._kernels`, timed by :func:`.study.cost_ratio`) is the register's other
+reading.
 """
 
 from __future__ import annotations
@@ -99,8 +100,25 @@ def _timing(scan: DissectorScan, k: int) -> float:
     return float(scan.phase(k)) - scan.pulse_centre
 
 
-def variant1_step(scan: DissectorScan, message: GaussMarkovMessage, x, d, y, k: int, beta: float = 15.0, g22="paper"):
-    """One step of variant 1 (2-state EKF, eqs. (7), (8), (E1)-(E8), corrected (E5), (E6), ``c_s = N0 P/(1-P)``).
+def _sqrt_c(scan: DissectorScan, signal_noise_scale: str) -> float:
+    """``sqrt(c_s)`` of variant 1's ``sqrt(c_s S) X2``: ``c_s = N0 P/(1-P)`` (consistent with eq. (2)) or ``A``
+    (eq. (6) as printed, ``"literal"``)."""
+    return math.sqrt(scan.amplitude if signal_noise_scale == "literal" else scan.n0 * scan.signal_noise_ratio)
+
+
+def variant1_step(
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    x,
+    d,
+    y,
+    k: int,
+    beta: float = 15.0,
+    g22="paper",
+    signal_noise_scale: str = "consistent",
+):
+    """One step of variant 1 (2-state EKF, eqs. (7), (8), (E1)-(E8), corrected (E5), (E6), ``c_s = N0 P/(1-P)``, or
+    ``c_s = A`` with ``signal_noise_scale="literal"``).
 
     Parameters
     ----------
@@ -117,7 +135,7 @@ def variant1_step(scan: DissectorScan, message: GaussMarkovMessage, x, d, y, k: 
     f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
     f11, f12, f22 = f1 * f1, f1 * f2, f2 * f2  # constants of (E7)
     a, sig2 = scan.amplitude, scan.pulse_sigma**2
-    sqrt_c = math.sqrt(scan.n0 * scan.signal_noise_ratio)
+    sqrt_c = _sqrt_c(scan, signal_noise_scale)
     c_exp, c_h1, c_h2, r = -0.5 / sig2, a / sig2, 0.5 / sig2, scan.n0 / scan.dt
     xp1, xp2 = f1 * x[0], f2 * x[1]  # (E1), (E4)
     p11, p12, p22 = f11 * d[0] + q1, f12 * d[1], f22 * d[2] + q2  # (E7), (E8)
@@ -216,18 +234,27 @@ def _use_kernel(compiled: bool | None) -> bool:
 
 
 def run_steps_variant1(
-    scan, message, y, d0=(0.2, 1.0), init=None, beta: float = 15.0, g22: str = "paper", compiled: bool | None = None
+    scan,
+    message,
+    y,
+    d0=(0.2, 1.0),
+    init=None,
+    beta: float = 15.0,
+    g22: str = "paper",
+    compiled: bool | None = None,
+    signal_noise_scale: str = "consistent",
 ):
     """Variant 1 over samples ``y`` (n_trials, K): :func:`variant1_step` vectorised over the trials, or its compiled
     loop (:func:`._kernels.variant1_loop`, where numba is enabled; ``compiled`` forces either). The same estimates
     and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py`` checks that
-    they agree), several times faster. ``init`` (n_trials, 2) initial estimates (default 0)."""
+    they agree), several times faster. ``init`` (n_trials, 2) initial estimates (default 0); ``signal_noise_scale``
+    as :func:`variant1_step`."""
     n = y.shape[0]
     x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
     if _use_kernel(compiled):
         f1, q1 = message.euler(scan.dt)
         f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
-        sig2, sqrt_c = scan.pulse_sigma**2, math.sqrt(scan.n0 * scan.signal_noise_ratio)
+        sig2, sqrt_c = scan.pulse_sigma**2, _sqrt_c(scan, signal_noise_scale)
         consts = (f1, f2, f1 * f1, f1 * f2, f2 * f2, q1, q2, -0.5 / sig2, scan.amplitude / sig2, 0.5 / sig2)
         tk = _timing_table(scan, y.shape[1])
         return _kernels.variant1_loop(
@@ -242,7 +269,9 @@ def run_steps_variant1(
         )
     x = (x0[:, 0].copy(), x0[:, 1].copy())
     d = (np.full(n, float(d0[0])), np.zeros(n), np.full(n, float(d0[1])))
-    return _run_steps(lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22), y, x, d)
+    return _run_steps(
+        lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22, signal_noise_scale), y, x, d
+    )
 
 
 def run_steps_variant2(

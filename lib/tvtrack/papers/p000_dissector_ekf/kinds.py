@@ -24,6 +24,7 @@ KINDS = {
     "background": ("regime", "a world beyond the paper: eq. (2) holds N0 constant"),
     "sigma_sh": ("reading", "a reading of 'psi_A = A / sigma_sh', which names no bandwidth"),
     "G22": ("reading", "a reading of (E8)'s printed 2 beta_0 dt against eq. (8)"),
+    "signal-noise scale": ("reading", "a reading of eq. (6)'s printed sqrt(A S) against eq. (2)'s N0 P/(1-P) S"),
     "v2 noise at": ("reading", "a reading of eq. (9)'s 'at the estimate'"),
     "initial estimate": ("reading", "a reading of which of Fig. 1's curves (solid or dashed) the claim is about"),
     "initial position": ("reading", "a reading of 'the image is within the micro-raster'"),
@@ -54,6 +55,11 @@ KINDS = {
     "C000-4 cost measure": ("reading", "a reading of 'needs more computation'"),
     "C000-4 batch": ("statistic", "a reading of C000-4's CPU ratio for a tracker that filters one object"),
     "substantially determines": ("reading", "a reading of 'for P > 0.5 it substantially determines the accuracy'"),
+    "C000-2 contrasts": ("reading", "a reading of the Conclusions' '2 % at psi_A = 20', which names no contrast"),
+    "C000-5 comparison": (
+        "reading",
+        "a reading of the Conclusions' 'accounting for the non-stationary noise component'",
+    ),
     "statistic": ("statistic", "a reading of the ensemble-mean sigma_x^2 of (E9) where a few runs lose lock"),
 }
 

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from ... import jit
 from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
-from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -76,6 +76,19 @@ CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
 #: above 0.5 (the adversarial review, docs/adversarial/session4-000-review.md).
 AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
 DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
+#: The two readings of what C000-5 compares (register entry "C000-5 comparison"): the accuracy with the signal noise
+#: over the accuracy without it (Fig. 3's sigma_x^2 / sigma_x^2*), or the Conclusions' "accounting for" the noise:
+#: a filter that ignores it over variant 2, which accounts for it, on the same data.
+NOISE_EFFECT, ACCOUNTING = "with the signal noise / without it", "ignoring the signal noise / accounting for it"
+C5_COMPARISONS = (NOISE_EFFECT, ACCOUNTING)
+#: The two readings of the contrasts at which C000-2's "at psi_A = 20 the error was 2 %" holds (register entry
+#: "C000-2 contrasts"; each has its own rule): the card's P = 0 and 0.5, or every contrast of Fig. 3.
+C2_CARD, C2_EVERY = "P = 0 and 0.5", "every Fig. 3 contrast"
+C2_READINGS = (C2_CARD, C2_EVERY)
+#: The two readings of variant 1's signal-noise term (register entry "signal-noise scale"): sqrt(c_s S) X2 with
+#: c_s = N0 P/(1-P), consistent with eq. (2) (the card), or sqrt(A S) X2 as eq. (6) prints it.
+CS_CONSISTENT, CS_LITERAL = "c_s = N0 P/(1-P)", "c_s = A, as printed"
+CS_READINGS = (CS_CONSISTENT, CS_LITERAL)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -218,6 +231,11 @@ def _samples(cfg, seed, scan, pulse, xi):
     return y
 
 
+def _cs(cfg) -> str:
+    """Variant 1's signal-noise scale (:func:`.cost.variant1_step`'s ``signal_noise_scale``) of the configuration."""
+    return "literal" if cfg.get("signal-noise scale", CS_CONSISTENT) == CS_LITERAL else "consistent"
+
+
 def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
     """One filter at one operating point, summarised (the memo keeps summaries, not the (n_trials, K) histories).
 
@@ -229,7 +247,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
     squared error; ``curve`` and ``d_curve`` (n_steps + 1,) the ensemble mean squared error and mean D11 (T^2)
     """
     reads = {
-        "v1": ("sigma_sh", "G22", "photon model", "background"),
+        "v1": ("sigma_sh", "G22", "photon model", "background", "signal-noise scale"),
         "v2": ("sigma_sh", "v2 noise at", "photon model", "background"),
         "ignoring": ("sigma_sh", "photon model", "background"),
         "stationary": ("sigma_sh", "background"),
@@ -247,7 +265,9 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 if random_init
                 else None
             )
-            e, d = run_steps_variant1(scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"])
+            e, d = run_steps_variant1(
+                scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+            )
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
@@ -287,6 +307,14 @@ def _ratio_to_star(cfg, seed, sizes, contrast, filt="v2"):
     return _ratio(a, steady_runs(cfg, seed, sizes, psi, contrast, "stationary"), cfg["statistic"])
 
 
+def _ratio_to_accounting(cfg, seed, sizes, contrast):
+    """The filter ignoring the signal noise over variant 2 at contrast P (psi_A from the convention), paired on the
+    same data: what accounting for the signal noise gains (1 exactly at P = 0, where the two are one filter)."""
+    psi = psi_at(cfg["psi_A"], contrast, cfg["contrast convention"])
+    a = steady_runs(cfg, seed, sizes, psi, contrast, "ignoring")
+    return _ratio(a, steady_runs(cfg, seed, sizes, psi, contrast, "v2"), cfg["statistic"])
+
+
 def _c1(cfg, seed, sizes):
     """C000-1 from the paper's start (truth stationary, inside the micro-raster; D11(0) = 0.2), per variant.
 
@@ -317,15 +345,23 @@ def _acquired_at(cfg, seed, sizes, filt, run):
 
 
 def _c2(cfg, seed, sizes):
-    """C000-2: steady RMS error over the micro-raster size at psi_A = 20, P = 0 and 0.5."""
+    """C000-2: steady RMS error over the micro-raster size at psi_A = 20, P = 0 and 0.5 (and, under the reading
+    "C000-2 contrasts" = :data:`C2_EVERY`, both variants at every other contrast of Fig. 3), tagged with the
+    reading."""
     size = 1.0 if cfg["micro-raster size"] == "T" else PULSE_DURATION
+    reading = cfg.get("C000-2 contrasts", C2_CARD)
+    points = [("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")]
+    if reading == C2_EVERY:
+        points += [
+            (f"P={p:g} variant {f[1]}", p, f) for p in sizes.contrast_grid if p not in (0, 0.5) for f in ("v1", "v2")
+        ]
     out = {}
-    for name, p, filt in (("P=0", 0.0, "stationary"), ("P=0.5 variant 1", 0.5, "v1"), ("P=0.5 variant 2", 0.5, "v2")):
+    for name, p, filt in points:
         e = rms_ci(np.sqrt(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"])[:, None])
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
-    return out
+    return ByReading.tag(reading, out)
 
 
 def _c3(cfg, seed, sizes):
@@ -347,14 +383,19 @@ def _c3(cfg, seed, sizes):
 
 
 def _c5_c7(cfg, seed, sizes):
-    """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*."""
+    """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*
+    (C000-5's from the filter ignoring the signal noise over variant 2 under its reading "C000-5 comparison" =
+    :data:`ACCOUNTING`)."""
     ratios = [_ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
-    c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, ratios) if 0 < p <= 0.5}
     r9 = ratios[list(sizes.contrast_grid).index(0.9)]
+    c5_ratios = ratios  # C000-5's reading of what it compares; C000-7 reads Fig. 3's ratio under every reading
+    if cfg.get("C000-5 comparison", NOISE_EFFECT) == ACCOUNTING:
+        c5_ratios = [_ratio_to_accounting(cfg, seed, sizes, p) if p > 0 else None for p in sizes.contrast_grid]
+    c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, c5_ratios) if 0 < p <= 0.5}
     above = (
         [0.9] if cfg.get("substantially determines", AT_09) == AT_09 else [p for p in sizes.contrast_grid if p > 0.5]
     )
-    c5.update({f"P={p:g}": ratios[list(sizes.contrast_grid).index(p)] for p in above})
+    c5.update({f"P={p:g}": c5_ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
     crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes)) / scan_crlb(_scan(cfg, psi9, 0.0, sizes))
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
@@ -410,7 +451,7 @@ def _c8(cfg, seed, sizes):
     one variant changes)."""
     parts = {}
     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-    reads = {"v1": (cfg["G22"],), "v2": (iterations,)}
+    reads = {"v1": (cfg["G22"], _cs(cfg)), "v2": (iterations,)}
     for psi, p in sizes.dt_points:
         psi_p = psi_at(psi, p, cfg["contrast convention"]) if p else psi
         keys = {
@@ -436,7 +477,9 @@ def _c8(cfg, seed, sizes):
 
                 def run(s, y, name=name):
                     if name == "v1":
-                        return run_steps_variant1(s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"])[0]
+                        return run_steps_variant1(
+                            s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+                        )[0]
                     return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
@@ -499,41 +542,54 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes(), claims: frozenset |
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
     """C000-4 at ``config``: arithmetic operations per filter step of variant 1 over variant 2
     (:func:`.cost.operation_ratio`, deterministic; the default reading ``"C000-4 cost measure" = "operation
-    count"``), or the CPU-time ratio :func:`cost_ratio` over ``n_trials`` trials (``"C000-4 batch" = "all
-    trials"``) or one; variant 2 re-evaluates eq. (9)'s noise at the updated estimate when ``"v2 noise at"``
-    says so.
+    count"``), or the CPU-time ratio :func:`cost_ratio` of the compiled steps over ``n_trials`` runs of ``n_steps``
+    samples (``"C000-4 batch" = "all trials"``) or over one run of ``n_trials * n_steps`` samples (the same work);
+    variant 2 re-evaluates eq. (9)'s noise at the updated estimate when ``"v2 noise at"`` says so.
 
     Returns
     -------
-    dict  {"C000-4": variant 1 / variant 2 (float)}
+    dict  {"C000-4": variant 1 / variant 2 (float; NaN for CPU time without compiled steps)}
     """
     iterations = 1 if config["v2 noise at"] == "updated estimate" else 0
     if config.get("C000-4 cost measure", "operation count") == "operation count":
         return {"C000-4": operation_ratio(iterations)}
-    n = n_trials if config["C000-4 batch"] == "all trials" else 1
-    return {"C000-4": cost_ratio(n, n_steps, seed, noise_iterations=iterations)}
+    one = config["C000-4 batch"] == "one trial"
+    return {"C000-4": cost_ratio(n_trials, n_steps, seed, noise_iterations=iterations, one_trial=one)}
 
 
-def cost_ratio(n_trials: int, n_steps: int, seed: int, repeats: int = 5, noise_iterations: int = 0) -> float:
-    """CPU time (``time.process_time``, least of ``repeats``) of variant 1 over variant 2 on the same
-    ``n_trials`` x ``n_steps`` samples at psi_A = 20, P = 0.5 (claim C000-4); ``noise_iterations`` re-evaluations
-    of variant 2's noise intensity at the updated estimate."""
+def cost_ratio(
+    n_trials: int, n_steps: int, seed: int, repeats: int = 5, noise_iterations: int = 0, one_trial: bool = False
+) -> float:
+    """CPU time (``time.process_time``, least of ``repeats``) of variant 1 over variant 2 on the same samples at
+    psi_A = 20, P = 0.5 (claim C000-4); ``noise_iterations`` re-evaluations of variant 2's noise intensity at the
+    updated estimate.
+
+    Both variants run as their compiled straight-line steps (:mod:`._kernels`, the operations :mod:`.cost` counts,
+    in the same order), so the time is the arithmetic's, with no interpreter between operations: ``n_trials`` runs
+    of ``n_steps`` samples, or (``one_trial``) one tracked object over ``n_trials * n_steps`` samples. Interpreted
+    steps would time the interpreter's call overhead (one object's step is one call per operation): without
+    compiled steps (:func:`tvtrack.jit.enabled` false) the ratio is NaN.
+    """
+    if not jit.enabled():
+        return float("nan")
     scan = scan_at_snr(20.0, 0.5, 0.05, PULSE_DURATION)
-    noises = draw_noises(np.random.default_rng(seed), n_trials, n_steps, 1)
+    shape = (1, n_trials * n_steps) if one_trial else (n_trials, n_steps)
+    noises = draw_noises(np.random.default_rng(seed), *shape, 1)
     _, pulse = truth_and_pulse(scan, MESSAGE, noises)
     y = samples_from_pulse(scan, pulse, noises["xi"])
+    v1 = lambda y: run_steps_variant1(scan, MESSAGE, y, (D11_0, D22_0), None, BETA_0, compiled=True)  # noqa: E731
+    v2 = lambda y: run_steps_variant2(scan, MESSAGE, y, D11_0, None, None, noise_iterations, compiled=True)  # noqa: E731
 
     def best(run):
+        run(y[:1, :3])  # compiled before the clock starts
         times = []
         for _ in range(repeats):
             t0 = time.process_time()
-            run()
+            run(y)
             times.append(time.process_time() - t0)
         return min(times)
 
-    return best(lambda: run_variant1(variant1_filter(scan, MESSAGE), y)) / best(
-        lambda: run_variant2(variant2_filter(scan, MESSAGE, noise_iterations=noise_iterations), y)
-    )
+    return best(v1) / best(v2)
 
 
 def record_inputs(config: dict, seed: int, sizes: Sizes):
