@@ -15,7 +15,8 @@ from dataclasses import replace
 #: {entry name: (kind, the line of the paper that decides it)}.
 KINDS = {
     "epoch": ("reading", "a reading of 'coordinates' (captions) against 'initial position' and 'parameters' (text)"),
-    "statistic": ("statistic", "a reading of 'sum of variances' and 'x4 difference in accuracy'"),
+    "statistic": ("statistic", "a reading of 'sum of variances'"),
+    "accuracy ratio of C002-11": ("statistic", "a reading of 'x4 difference in accuracy'"),
     "gross errors": ("statistic", "a reading of a 1999 Monte Carlo 'sum of variances'"),
     "photon model": (
         "unreported setting",

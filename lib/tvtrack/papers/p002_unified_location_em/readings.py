@@ -69,7 +69,7 @@ def c6_point(config: dict) -> tuple[float, tuple[int, int]]:
 
 
 #: The "EM tolerance of Fig 7" reading (an adversarial register row): the practical stop of the iteration counts of
-#: Fig 7, the log-likelihood gap (nats) each EM (ULA and per-frame marks alike) may leave, matched as in "EM
+#: Fig 7, the log-likelihood gap (nats) each EM (ULA and per-frame marks alike) may leave, the same gap as in "EM
 #: stopping"; ``None`` keeps the study's own 1e-6 sigma.
 FIG7_TOLERANCE = {"1e-6 sigma": None, "log-likelihood gap 0.01": 0.01, "log-likelihood gap 0.1": 0.1}
 
