@@ -24,6 +24,7 @@ from .readings import (
     TRIMMED,
     c1_point,
     c5_pair,
+    c11_separations,
     c6_point,
     c15_close,
     photons6,
@@ -268,7 +269,7 @@ def _c11(x: _Ctx):
     sd = x.config["accuracy ratio of C002-11"] == "SD"  # "x4 difference in accuracy" as a ratio of SDs
 
     def head(d):
-        c = x.g["5ab"][50][d]
+        c = x.g["head"][d]
         if use_map:
             u = errors(x.res[x.g["head_map"][d]], "map", x.ep)
         elif known:
@@ -277,7 +278,8 @@ def _c11(x: _Ctx):
             return x.rho(c, sd)
         return x.gain(errors(x.res[c], "em_vd" if known else "em", x.ep), u, sd=sd)
 
-    return {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
+    d1, d3 = c11_separations(x.config)  # 1 and 3 sigma, or 1 and 3 pixels under the pixel reading
+    return {"d = 1 sigma (paper x4.5)": head(d1), "d = 3 sigma (paper x4)": head(d3)}
 
 
 def _c12(x: _Ctx):
@@ -349,7 +351,7 @@ def _head(config: dict, g: dict, D=None) -> list:
     extra = g["head_map"] if config["ULA"] == "MAP (designation prior)" else {}
     if not extra and config["velocity knowledge"] == "designated":
         extra = g["head_known"]
-    return [g["5ab"][50][d] for d in (1.0, 3.0)] + list(extra.values())
+    return list(g["head"].values()) + list(extra.values())
 
 
 #: ``{claim id: function (config, point groups g, separations D) -> the Configs the claim reads}``.
