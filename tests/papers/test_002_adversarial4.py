@@ -51,8 +51,9 @@ def test_very_close_at_half_a_sigma_adds_only_ula_points_at_that_separation():
 def test_fig1c_pixel_pair_adds_only_five_sigma_pixel_points_of_c002_5():
     new = _new_points({**DEFAULT, PAIR5: "5 vs 3"})
     d5 = float(DEFAULT["separation of C002-5 (sigma)"])
-    # (5 sigma, T = 10) at d = 2 sigma is Fig 6b's ULA point already: only T = 5 and 50 are new jobs
-    assert {(c.pix, c.T) for c in new} == {(5.0, 5), (5.0, 50)}
+    # C002-5's points run study.C5_TRIALS times the trials, so none is another figure's point
+    assert {(c.pix, c.T) for c in new} == {(5.0, 5), (5.0, 10), (5.0, 50)}
+    assert all(c.n == study.C5_TRIALS * TINY.n_trials for c in new)
     assert all(c.d == d5 and c.algs == "u" for c in new)
     g, _ = study._points({**DEFAULT, PAIR5: "5 vs 3"}, TINY)
     assert set(g["5"]) == {(p, T) for p in (5.0, 3.0) for T in (5, 10, 50)}

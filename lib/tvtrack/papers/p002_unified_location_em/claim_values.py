@@ -24,6 +24,7 @@ from .readings import (
     TRIMMED,
     c1_point,
     c5_pair,
+    c11_separations,
     c6_point,
     c15_close,
     photons6,
@@ -101,20 +102,8 @@ def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance
 
 
 def _efficiency(e, bound: float, statistic: str) -> Estimate:
-    """Spread over the bound; under the "SD ratio" reading the square root (a ratio of standard deviations)."""
-    v = scaled(spread_sum(e, statistic), 1.0 / bound)
-    if statistic == "SD ratio":
-        r = np.sqrt(max(v.value, 0.0))
-        return Estimate(
-            r,
-            v.stderr / (2 * max(r, 1e-300)),
-            float(np.sqrt(max(v.ci_low, 0.0))),
-            float(np.sqrt(max(v.ci_high, 0.0))),
-            v.n,
-            v.confidence,
-            v.method + ", square root",
-        )
-    return v
+    """Spread (the statistic read: variance or MSE sum) over the bound."""
+    return scaled(spread_sum(e, statistic), 1.0 / bound)
 
 
 def scaled(est: Estimate, factor: float) -> Estimate:
@@ -149,13 +138,14 @@ class _Ctx:
         self.ep, self.st = self.config["epoch"], self.config["statistic"]
         if self.config.get("gross errors", "kept") == TRIMMED:
             self.st = "trimmed"
-        self.sp = "trimmed_variance" if self.st == "trimmed" else "variance"  # the log gains read variances else
+        self.sp = _spread(self.st)  # the log gains and C002-6's spreads read the same statistic as the gains
 
     def ula(self, c):
         return errors(self.res[c], "ula", self.ep)
 
-    def gain(self, num, den, paired=True):
-        return gain(num, den, self.rng, self.B, self.st, paired=paired)
+    def gain(self, num, den, paired=True, sd=False):
+        """A ratio of spreads of the statistic read; ``sd``: its square root (a ratio of standard deviations)."""
+        return variance_ratio_ci(num, den, self.rng, self.B, paired=paired, spread=self.sp, sqrt=sd)
 
     def log_gain(self, hi, lo):
         return _mean_log_gain(hi, lo, self.rng, self.B, self.sp)
@@ -168,9 +158,9 @@ class _Ctx:
             :, :1
         ]
 
-    def rho(self, c):
+    def rho(self, c, sd=False):
         r = self.res[c]
-        return self.gain(errors(r, "em", self.ep), errors(r, "ula", self.ep))
+        return self.gain(errors(r, "em", self.ep), errors(r, "ula", self.ep), sd=sd)
 
     def side(self, c):
         r = self.res[c]
@@ -276,18 +266,20 @@ def _c10(x: _Ctx):
 def _c11(x: _Ctx):
     use_map = x.config["ULA"] == "MAP (designation prior)"
     known = x.config["velocity knowledge"] == "designated"
+    sd = x.config["accuracy ratio of C002-11"] == "SD"  # "x4 difference in accuracy" as a ratio of SDs
 
     def head(d):
-        c = x.g["5ab"][50][d]
+        c = x.g["head"][d]
         if use_map:
             u = errors(x.res[x.g["head_map"][d]], "map", x.ep)
         elif known:
             u = errors(x.res[x.g["head_known"][d]], "ula_vd", x.ep)
         else:
-            return x.rho(c)
-        return x.gain(errors(x.res[c], "em_vd" if known else "em", x.ep), u)
+            return x.rho(c, sd)
+        return x.gain(errors(x.res[c], "em_vd" if known else "em", x.ep), u, sd=sd)
 
-    return {"d = 1 sigma (paper x4.5)": head(1.0), "d = 3 sigma (paper x4)": head(3.0)}
+    d1, d3 = c11_separations(x.config)  # 1 and 3 sigma, or 1 and 3 pixels under the pixel reading
+    return {"d = 1 sigma (paper x4.5)": head(d1), "d = 3 sigma (paper x4)": head(d3)}
 
 
 def _c12(x: _Ctx):
@@ -359,7 +351,7 @@ def _head(config: dict, g: dict, D=None) -> list:
     extra = g["head_map"] if config["ULA"] == "MAP (designation prior)" else {}
     if not extra and config["velocity knowledge"] == "designated":
         extra = g["head_known"]
-    return [g["5ab"][50][d] for d in (1.0, 3.0)] + list(extra.values())
+    return list(g["head"].values()) + list(extra.values())
 
 
 #: ``{claim id: function (config, point groups g, separations D) -> the Configs the claim reads}``.

@@ -276,7 +276,9 @@ def unified_location_em(
         McNicholas et al. 2010). The gap to the maximum is half the squared stopping error in units of the
         estimate's own standard error (``L* - L ~ delta' I delta / 2``), whatever the number of frames the
         likelihood pools and whatever EM's rate: the same ``tol_loglik`` stops a joint estimate over ``T``
-        frames and a one-frame mark at the same distance from their maxima relative to their own spread. The
+        frames and a one-frame mark at the same distance from their maxima relative to their own spread. That
+        is not the same error added to a track: the marks' stopping errors all lean towards their starts and do
+        not average out over a line fit of ``T`` marks (the register's "EM stopping" gives it measured). The
         estimate must hold on :data:`CALM` successive steps.
     prior_sd : (float, float), optional
         MAP-EM: a Gaussian prior centred on ``theta0`` (the designation) with standard deviations

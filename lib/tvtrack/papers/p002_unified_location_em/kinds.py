@@ -15,11 +15,17 @@ from dataclasses import replace
 #: {entry name: (kind, the line of the paper that decides it)}.
 KINDS = {
     "epoch": ("reading", "a reading of 'coordinates' (captions) against 'initial position' and 'parameters' (text)"),
-    "statistic": ("statistic", "a reading of 'sum of variances' and 'x4 difference in accuracy'"),
+    "statistic": ("statistic", "a reading of 'sum of variances'"),
+    "accuracy ratio of C002-11": ("statistic", "a reading of 'x4 difference in accuracy'"),
     "gross errors": ("statistic", "a reading of a 1999 Monte Carlo 'sum of variances'"),
     "photon model": (
-        "unreported setting",
-        "an unreported setting: whether the paper's simulation drew 'm_k target photons' as a fixed count or a Poisson mean is never printed",
+        "model",
+        "a world beyond the paper: the paper observes each frame's relative photon frequencies v*_ikl and its "
+        "likelihood (3) gives every frame the same weight, which is its maximum likelihood only when every frame "
+        "holds the same number of photons, so 'the number of target photons m_k' (with p_j its relative weight) is "
+        "a fixed count in the paper's model; Poisson counts per frame are a world it did not model, in which the "
+        "ULA (fed counts, exact there) weighs a bright frame more and the two-stage's unweighted line fit does not: "
+        "C002-12's flip under Poisson counts comes from that line fit",
     ),
     "designation error (sigma)": (
         "unreported setting",
@@ -88,6 +94,10 @@ KINDS = {
     ),
     "T dependence of C002-6": ("statistic", "a reading of Fig 2's lost axis scale"),
     "close separations of C002-10 (sigma)": ("reading", "a reading of 'the gain grows with pixel size and frames'"),
+    "distance unit of C002-11": (
+        "reading",
+        "a reading of 'the reduced distances between the objects 3 and 1', which names no unit",
+    ),
     "bound": ("statistic", "a reading of 'practically potential accuracy', which names no bound"),
     "pixel pair of C002-5": ("reading", "a reading of C002-5's citation of Figs 1c and 2a"),
     "very close separation of C002-15 (sigma)": ("reading", "a reading of 'very close objects'"),

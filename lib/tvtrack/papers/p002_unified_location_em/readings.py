@@ -24,6 +24,7 @@ __all__ = [
     "c1_point",
     "c5_pair",
     "c15_close",
+    "c11_separations",
     "fig7_variant",
 ]
 
@@ -69,7 +70,7 @@ def c6_point(config: dict) -> tuple[float, tuple[int, int]]:
 
 
 #: The "EM tolerance of Fig 7" reading (an adversarial register row): the practical stop of the iteration counts of
-#: Fig 7, the log-likelihood gap (nats) each EM (ULA and per-frame marks alike) may leave, matched as in "EM
+#: Fig 7, the log-likelihood gap (nats) each EM (ULA and per-frame marks alike) may leave, the same gap as in "EM
 #: stopping"; ``None`` keeps the study's own 1e-6 sigma.
 FIG7_TOLERANCE = {"1e-6 sigma": None, "log-likelihood gap 0.01": 0.01, "log-likelihood gap 0.1": 0.1}
 
@@ -97,6 +98,20 @@ def c15_close(config: dict) -> float:
     """The separation d / sigma at which C002-15 reads "very close objects" (an adversarial register row: 1 sigma,
     the smallest separation the text names, or 0.5 sigma, the closest of the study's distance axis)."""
     return float(config.get("very close separation of C002-15 (sigma)", 1.0))
+
+
+#: The unit of C002-11's "reduced distances between the objects 3 and 1" (an adversarial register row): the PSF's
+#: sigma (the card) or the pixel Delta (the paper's other scale).
+C11_UNITS = ("sigma", "pixel")
+
+
+def c11_separations(config: dict) -> tuple[float, float]:
+    """The separations d / sigma of C002-11's two parts, (x4.5 at 1, x4 at 3): 1 and 3 sigma, or under the pixel
+    reading 1 and 3 pixels of Figs 4, 5, 7 (Delta and 3 Delta)."""
+    if config.get("distance unit of C002-11", "sigma") == "pixel":
+        pix = float(config["Delta of Figs 4, 5, 7 (sigma)"])
+        return pix, 3.0 * pix
+    return 1.0, 3.0
 
 
 def fig7_variant(config: dict) -> tuple:

@@ -88,7 +88,7 @@ class StudySettings:
         Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
     tol_loglik : float or None
-        The matched practical stop (nats): every EM of the ULA and of the per-frame marks stops when the
+        The practical stop (nats): every EM of the ULA and of the per-frame marks stops when the
         log-likelihood it can still gain is below this (each on its own likelihood: all frames for the ULA, one
         frame for a mark; ``tol_sigma`` is then not used). ``None``: the parameter-change rule ``tol_sigma``.
     """
