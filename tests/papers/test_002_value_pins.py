@@ -321,3 +321,35 @@ def test_the_practical_stop_needs_calm_successive_small_gaps():
     jumpy = [0.0, 1.0, 1.1, 3.0, 3.01, 3.011]  # small gap at step 2, a fresh climb at 3, small at 4 and 5
     out = [bool(st2.stopped(active, live, _step([x]), 1e-6, 0.05)[0]) for x in jumpy]
     assert out == [False, False, False, False, False, True]
+
+
+def test_the_study_gives_the_two_stage_the_propagated_designation_and_the_ulas_stop(monkeypatch):
+    # at the register's default the marks start from each frame's propagated designation (the whole designated
+    # state, position and velocity) and stop by the same rule as the ULA (tolerance, log-likelihood gap, cap,
+    # acceleration)
+    from tvtrack.papers.p002_unified_location_em import simulation
+    from tvtrack.papers.p002_unified_location_em.study import settings_of
+
+    calls = {"marks": [], "ula": []}
+
+    def spy(kind, real):
+        def f(*args, **kw):
+            calls[kind].append((args, kw))
+            return real(*args, **kw)
+
+        return f
+
+    monkeypatch.setattr(simulation, "em_marks", spy("marks", simulation.em_marks))
+    monkeypatch.setattr(simulation, "unified_location_em", spy("ula", simulation.unified_location_em))
+    settings = settings_of(DEFAULT, 1, Scale(n_trials=4))
+    cfg = simulation.Config(2, 2.0, 3.0, 20, 5, "ue", 0.3, None, None, 4, "pin", 0.0)
+    res = simulation.run_config(settings, cfg)
+    (m_args, m_kw), (u_args, u_kw) = calls["marks"][0], calls["ula"][0]
+    designation = u_args[1]
+    assert designation.shape == (4, 2, 4) and np.any(designation[..., 2:] != 0)
+    np.testing.assert_array_equal(m_args[1], designation)
+    np.testing.assert_array_equal(m_args[2], frame_times(5))
+    assert m_kw["init"] == "designation" and m_kw["association"] == "designation"
+    for k in ("tol_px", "tol_loglik", "max_iter", "accelerate"):
+        assert m_kw[k] == u_kw[k], k
+    assert res["em"].shape == res["ula"].shape == (4, 2, 4)
