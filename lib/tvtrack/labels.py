@@ -107,9 +107,12 @@ def _phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
 
 
 def _side(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
-    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"``."""
-    kinds = [entries[k].kind if k in entries else "reading" for k in changed]
-    return "reading" if all(side_of(k) == "reading" for k in kinds) else "world"
+    """``"reading"`` when every changed entry is a reading of the paper, ``"setting"`` when every one is a reading
+    or an unreported setting of the paper's experiment (one at least), else ``"world"``."""
+    sides = {side_of(entries[k].kind) if k in entries else "reading" for k in changed}
+    if sides <= {"reading"}:
+        return "reading"
+    return "setting" if sides <= {"reading", "setting"} else "world"
 
 
 def _scalar(m: Any) -> float:
@@ -446,9 +449,10 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
 
 def _decided_label(flips: Sequence[Mapping], open_world: bool) -> str:
     """The label of a part decided at the default with replicates that agree: ``depends`` when a reading of the
-    paper flips it, ``limited`` when only a world beyond it does, else ``robust`` where the explored design was
-    large enough and varied the world (``open_world``), ``unexplored`` where not."""
-    if any(f["side"] == "reading" for f in flips):
+    paper or an unreported setting of its experiment flips it, ``limited`` when only a world beyond it does, else
+    ``robust`` where the explored design was large enough and varied the world (``open_world``), ``unexplored``
+    where not."""
+    if any(f["side"] in ("reading", "setting") for f in flips):
         return "depends"
     if flips:
         return "limited"

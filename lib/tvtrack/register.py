@@ -25,10 +25,19 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from .markdown import md_escape
 
-__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "READING_KINDS", "side_of", "Entry", "Register"]
+__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "READING_KINDS", "SETTING_KINDS", "side_of", "Entry", "Register"]
 
 #: What an entry can be.
-ENTRY_KINDS = ("reading", "regime", "operating point", "model", "statistic", "comparator", "scale")
+ENTRY_KINDS = (
+    "reading",
+    "regime",
+    "operating point",
+    "model",
+    "statistic",
+    "comparator",
+    "scale",
+    "unreported setting",
+)
 #: Kinds that vary the simulated world or the figure's operating point: a claim measured over none of
 #: them cannot be labelled ``robust`` (:func:`tvtrack.verdicts.label_parts`).
 WORLD_KINDS = ("regime", "operating point", "model")
@@ -36,13 +45,20 @@ WORLD_KINDS = ("regime", "operating point", "model")
 #: names): a flip under one says the paper's claim is ambiguous. Every other kind (:data:`WORLD_KINDS` and
 #: ``scale``) is a world beyond the paper: a flip there says the claim does not extend to it.
 READING_KINDS = ("reading", "statistic", "comparator")
+#: Kinds that are settings of the paper's own experiment the paper never printed (a rate law, a spread, where in
+#: its stated error band its data sat): neither an ambiguous sentence nor a world beyond the paper. A flip under
+#: one says the claim depends on something the paper did not report.
+SETTING_KINDS = ("unreported setting",)
 #: Who added an entry: the notebook's author, or the adversarial pass hunting for a flip.
 ORIGINS = ("author", "adversarial")
 
 
 def side_of(kind: str) -> str:
-    """``"reading"`` for a reading of the paper (:data:`READING_KINDS`), ``"world"`` for a world beyond it."""
-    return "reading" if kind in READING_KINDS else "world"
+    """``"reading"`` for a reading of the paper (:data:`READING_KINDS`), ``"setting"`` for an unreported setting
+    of its own experiment (:data:`SETTING_KINDS`), ``"world"`` for a world beyond it."""
+    if kind in READING_KINDS:
+        return "reading"
+    return "setting" if kind in SETTING_KINDS else "world"
 
 
 @dataclass(frozen=True)
@@ -69,6 +85,12 @@ class Entry:
     phrases : mapping value -> str
         Each value in plain words ("scored at the end of the integration interval (the paper's filtering
         error)"); a value without a phrase reads ``"<title> = <value>"``.
+    off_operating_point : tuple
+        Values (never the default) at which the world leaves an operating point the paper states and the default
+        world is calibrated to (e.g. a wander so fast that the paper's filter errs outside the paper's own
+        1-2 px), where re-calibrating the world to it is not meaningful: a flip there says the claim does not
+        extend beyond the paper's operating point. Empty: every value keeps it (or the paper states none). The
+        record carries it (:meth:`to_dict`).
     """
 
     name: str
@@ -79,9 +101,17 @@ class Entry:
     origin: str = "author"
     title: str = ""
     phrases: Mapping[Any, str] | None = field(default=None, compare=False)
+    off_operating_point: tuple = ()
 
     def __post_init__(self):
         object.__setattr__(self, "values", tuple(self.values))
+        object.__setattr__(self, "off_operating_point", tuple(self.off_operating_point))
+        off = [v for v in self.off_operating_point if v not in self.values or v == self.default]
+        if off:
+            raise ValueError(
+                f"register entry {self.name!r}: off_operating_point {off} must be values other than the default "
+                f"{self.default!r} among {list(self.values)}"
+            )
         if not self.name or not isinstance(self.name, str):
             raise ValueError(f"register entry name must be a non-empty string, got {self.name!r}")
         if self.kind not in ENTRY_KINDS:
@@ -100,7 +130,8 @@ class Entry:
 
     @property
     def side(self) -> str:
-        """``"reading"`` (a reading of the paper) or ``"world"`` (a world beyond it): :func:`side_of`."""
+        """``"reading"`` (a reading of the paper), ``"setting"`` (an unreported setting of its experiment) or
+        ``"world"`` (a world beyond it): :func:`side_of`."""
         return side_of(self.kind)
 
     def phrase(self, value: Any) -> str:
@@ -116,6 +147,7 @@ class Entry:
         return tuple(v for v in self.values if v != self.default)
 
     def to_dict(self) -> dict:
+        off = {"off_operating_point": list(self.off_operating_point)} if self.off_operating_point else {}
         return {
             "name": self.name,
             "kind": self.kind,
@@ -126,6 +158,7 @@ class Entry:
             "title": self.title or self.name,
             "side": self.side,
             "phrases": {str(v): self.phrase(v) for v in self.values},
+            **off,
         }
 
 

@@ -268,9 +268,13 @@ def describe(changed: Mapping, record: Mapping) -> str:
 
 
 def _side(changed: Mapping, record: Mapping) -> str:
-    """``"reading"`` when every changed entry is a reading of the paper, else ``"world"`` (as the core's flips)."""
+    """``"reading"`` when every changed entry is a reading of the paper, ``"setting"`` when every one is a reading
+    or an unreported setting (one at least), else ``"world"`` (as the core's flips)."""
     known = _phrases(record)
-    return "reading" if all(known.get(str(k), ("", "reading"))[1] == "reading" for k in changed) else "world"
+    sides = {known.get(str(k), ("", "reading"))[1] for k in changed}
+    if sides <= {"reading"}:
+        return "reading"
+    return "setting" if sides <= {"reading", "setting"} else "world"
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
@@ -362,9 +366,14 @@ def _runs_text(claim: Mapping) -> str:
 
 def _flip_text(flips: list[dict], n_each: int, chars: int) -> str:
     readings = [f["text"] for f in flips if f["side"] == "reading"]
-    worlds = [f["text"] for f in flips if f["side"] != "reading"]
+    settings = [f["text"] for f in flips if f["side"] == "setting"]
+    worlds = [f["text"] for f in flips if f["side"] not in ("reading", "setting")]
     bits = []
-    for what, items in (("flips when", readings), ("does not extend to", worlds)):
+    for what, items in (
+        ("flips when", readings),
+        ("flips with a setting the paper did not report:", settings),
+        ("does not extend to", worlds),
+    ):
         if items:
             more = len(items) - n_each
             bits.append(
