@@ -448,3 +448,80 @@ def test_stage_cpu_seconds_count_the_executors_workers():
         clock.run(_burn_cpu, [Run({}, s, "replicate") for s in range(3)], "replicates")
     row = clock.table()["replicates"]
     assert row["configurations"] == 3 and 0.5 < row["cpu_s"] < 1.5 * row["wall_s"] + 0.1, row
+
+
+# --------------------------------------------------------------------------- kinds and entries that cannot leak
+
+
+def test_three_sides_each_with_plain_words():
+    from tvtrack.register import ENTRY_KINDS, SIDE_PHRASES, side_of
+
+    assert "unreported setting" in ENTRY_KINDS
+    assert [side_of(k) for k in ("reading", "statistic", "unreported setting", "regime", "scale")] == [
+        "reading",
+        "reading",
+        "setting",
+        "world",
+        "world",
+    ]
+    e = Entry("law", "unreported setting", "linear", ("linear", "sine"), "the paper's rate law is not printed")
+    assert e.side == "setting" and e.to_dict()["side"] == "setting"
+    assert SIDE_PHRASES["setting"] == "a setting of the paper's own experiment that the paper never printed"
+
+
+def test_a_guarded_configuration_raises_on_every_use_of_an_undeclared_entry_and_copies_freely():
+    import copy
+    import pickle
+
+    from tvtrack.register import UndeclaredEntry, guard
+
+    cfg = guard({"a": 1, "b": "x"}, ["a"])
+    assert dict(cfg)["a"] == 1 and {**cfg}["a"] == 1  # copying does not use the value
+    copy.deepcopy(cfg), pickle.loads(pickle.dumps(cfg))
+    assert "b" in repr(cfg["b"])  # harmless in an error message
+    uses = [
+        lambda v: v == "x",
+        lambda v: "x" == v,
+        lambda v: v != "x",
+        lambda v: v in ("x", "y"),
+        lambda v: hash(v),
+        lambda v: bool(v),
+        lambda v: str(v),
+        lambda v: f"{v:>3}",
+        lambda v: float(v),
+        lambda v: int(v),
+        lambda v: list(v),
+        lambda v: v.lower(),
+        lambda v: v < 1,
+        lambda v: v + 1,
+        lambda v: 2.0 * v,
+        lambda v: np.asarray(v, float),
+    ]
+    for use in uses:
+        with pytest.raises(UndeclaredEntry, match="register entry 'b'"):
+            use(cfg["b"])
+    assert issubclass(UndeclaredEntry, LookupError)
+
+
+def test_check_declared_names_the_claim_that_reads_an_entry_it_does_not_declare():
+    from tvtrack.explore import check_declared
+
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w"), Entry("b", "unreported setting", 0, (0, 1), "w")])
+
+    def leaky(config, seed, claims=None):
+        out = {}
+        if claims is None or "X" in claims:
+            out["X"] = float(config["a"] + config["b"])  # X reads b, which it does not declare
+        if claims is None or "Y" in claims:
+            out["Y"] = float(config["b"])
+        return out
+
+    bad = check_declared(leaky, reg, {"X": ["a"], "Y": ["b"]}, seed=1)
+    assert list(bad) == ["X"] and "'b'" in bad["X"]
+    assert check_declared(leaky, reg, {"X": ["a", "b"], "Y": ["b"]}, seed=1) == {}
+
+    def asks_all(config, seed):  # no ``claims``: everything is measured, the guard allows every declared entry
+        return leaky(config, seed)
+
+    assert check_declared(asks_all, reg, {"X": ["a"], "Y": ["b"]}, seed=1) == {}
+    assert list(check_declared(asks_all, reg, {"X": ["a"], "Y": ["a"]}, seed=1)) == ["X", "Y"]

@@ -37,12 +37,21 @@ import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .montecarlo import Estimate
-from .register import Register
+from .register import Register, UndeclaredEntry, guard
 from .labels import label_parts, part_pairs
 from .pooling import pool
 from .verdicts import Rule, calibrated, is_decisive
 
-__all__ = ["Run", "Exploration", "explore", "replicate_seeds", "joint_sample", "pool", "executor_for"]
+__all__ = [
+    "Run",
+    "Exploration",
+    "explore",
+    "check_declared",
+    "replicate_seeds",
+    "joint_sample",
+    "pool",
+    "executor_for",
+]
 
 
 @dataclass
@@ -187,6 +196,52 @@ def takes_claims(fn: Callable) -> bool:
         return "claims" in inspect.signature(fn).parameters
     except (TypeError, ValueError):
         return False
+
+
+def check_declared(
+    measure: Callable,
+    register: Register,
+    depends: Mapping[str, Sequence[str]],
+    seed: int,
+    claims: Sequence[str] | None = None,
+    **measure_kwargs: Any,
+) -> dict[str, str]:
+    """Each claim measured alone at the default under :func:`tvtrack.register.guard`: the claims whose measurement
+    uses a register entry their ``DEPENDS`` does not declare, each with the one-line message naming the entry.
+
+    A measurement taking ``claims`` is asked for the one claim (``claims=frozenset({claim})``) and may read only
+    that claim's entries; one that does not take ``claims`` measures every claim at once, so its guard allows the
+    union of every claim's entries (it then catches only an entry that no claim declares).
+
+    Parameters
+    ----------
+    measure : callable
+        ``measure(config, seed, **measure_kwargs)`` (unbatched), as :func:`explore` takes it.
+    register : Register
+    depends : mapping claim id -> entry names
+    seed : int
+    claims : sequence of claim ids, optional
+        The claims to check (default: every claim of ``depends``).
+    **measure_kwargs
+        Passed on to ``measure`` (e.g. a smaller size for a quick check).
+
+    Returns
+    -------
+    dict claim id -> str
+        Empty when every claim reads only what it declares.
+    """
+    default = register.default()
+    asks = takes_claims(measure)
+    everything = {k for names in depends.values() for k in names}
+    out = {}
+    for cid in claims if claims is not None else list(depends):
+        allowed = set(depends[cid]) if asks else everything
+        extra = {"claims": frozenset({cid})} if asks else {}
+        try:
+            measure(guard(default, allowed), seed, **measure_kwargs, **extra)
+        except UndeclaredEntry as e:
+            out[cid] = str(e)
+    return out
 
 
 def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any) -> None:

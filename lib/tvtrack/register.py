@@ -25,7 +25,21 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from .markdown import md_escape
 
-__all__ = ["ENTRY_KINDS", "WORLD_KINDS", "READING_KINDS", "SETTING_KINDS", "side_of", "Entry", "Register"]
+__all__ = [
+    "ENTRY_KINDS",
+    "WORLD_KINDS",
+    "READING_KINDS",
+    "SETTING_KINDS",
+    "SIDES",
+    "SIDE_PHRASES",
+    "side_of",
+    "Entry",
+    "Register",
+    "project",
+    "guard",
+    "Undeclared",
+    "UndeclaredEntry",
+]
 
 #: What an entry can be.
 ENTRY_KINDS = (
@@ -45,17 +59,26 @@ WORLD_KINDS = ("regime", "operating point", "model")
 #: names): a flip under one says the paper's claim is ambiguous. Every other kind (:data:`WORLD_KINDS` and
 #: ``scale``) is a world beyond the paper: a flip there says the claim does not extend to it.
 READING_KINDS = ("reading", "statistic", "comparator")
-#: Kinds that are settings of the paper's own experiment the paper never printed (a rate law, a spread, where in
-#: its stated error band its data sat): neither an ambiguous sentence nor a world beyond the paper. A flip under
-#: one says the claim depends on something the paper did not report.
+#: Kinds that are settings of the paper's own experiment the paper never printed (a rotation-rate law, a drift
+#: spread, a track geometry): neither an ambiguous passage of the text nor a world beyond the paper. A flip under
+#: one says the paper's claim depends on something it did not report.
 SETTING_KINDS = ("unreported setting",)
+#: The sides a flip can be on: an entry's side is one of the first three (:func:`side_of`); a flip that changes
+#: entries of several sides and that no subset of them isolates is ``"unattributed"``.
+SIDES = ("reading", "setting", "world", "unattributed")
+#: Each side in plain words, for the report.
+SIDE_PHRASES = {
+    "reading": "a reading of the paper's text",
+    "setting": "a setting of the paper's own experiment that the paper never printed",
+    "world": "a world beyond the paper",
+}
 #: Who added an entry: the notebook's author, or the adversarial pass hunting for a flip.
 ORIGINS = ("author", "adversarial")
 
 
 def side_of(kind: str) -> str:
     """``"reading"`` for a reading of the paper (:data:`READING_KINDS`), ``"setting"`` for an unreported setting
-    of its own experiment (:data:`SETTING_KINDS`), ``"world"`` for a world beyond it."""
+    of its own experiment (:data:`SETTING_KINDS`), ``"world"`` for a world beyond it (every other kind)."""
     if kind in READING_KINDS:
         return "reading"
     return "setting" if kind in SETTING_KINDS else "world"
@@ -130,8 +153,7 @@ class Entry:
 
     @property
     def side(self) -> str:
-        """``"reading"`` (a reading of the paper), ``"setting"`` (an unreported setting of its experiment) or
-        ``"world"`` (a world beyond it): :func:`side_of`."""
+        """``"reading"``, ``"setting"`` or ``"world"`` (:func:`side_of`)."""
         return side_of(self.kind)
 
     def phrase(self, value: Any) -> str:
@@ -231,6 +253,10 @@ class Register:
         parts = [self[k].phrase(v) if k in self else f"{k} = {v}" for k, v in changed.items()]
         return " and ".join(parts) or "the default reading"
 
+    def project(self, config: Mapping[str, Any], names: Iterable[str]) -> dict:
+        """The default overridden by ``config`` only on the entries ``names`` (:func:`project`)."""
+        return project(config, names, self.default())
+
     def check(self, config: Mapping[str, Any]) -> dict:
         """``config`` completed with defaults, each value checked to be defensible."""
         unknown = set(config) - set(self.names)
@@ -263,6 +289,68 @@ class Register:
 
     def _repr_markdown_(self) -> str:
         return self.to_markdown()
+
+
+def project(config: Mapping[str, Any], names: Iterable[str], default: Mapping[str, Any]) -> dict:
+    """``default`` overridden by ``config`` only on the entries ``names``: the configuration a claim that declares
+    ``names`` (its ``DEPENDS``) is measured at, so that no claim is measured in a world it does not declare."""
+    keep = set(names)
+    return {k: (config[k] if k in keep and k in config else v) for k, v in default.items()}
+
+
+class UndeclaredEntry(LookupError):
+    """A measurement used a register entry that the claims it was asked for do not declare."""
+
+
+class Undeclared:
+    """Stands for the value of a register entry the claims asked for do not declare (:func:`guard`): every use of
+    it (comparison, hashing, truth, conversion, arithmetic, iteration, attribute access) raises
+    :class:`UndeclaredEntry` naming the entry; ``repr`` is harmless (for error messages), and copying a guarded
+    configuration (``dict(cfg)``, ``{**cfg}``, ``copy.deepcopy``, pickling) does not use the value."""
+
+    def __init__(self, name: str):
+        object.__setattr__(self, "_undeclared_name", name)
+
+    def _raise(self, *_args, **_kwargs):
+        name = object.__getattribute__(self, "_undeclared_name")
+        raise UndeclaredEntry(
+            f"register entry {name!r} was read by a measurement, but no claim it was asked for declares it in its "
+            "DEPENDS: add it to DEPENDS of the claims that read it, or stop reading it"
+        )
+
+    def __getattr__(self, attr: str):
+        if attr.startswith("__") and attr.endswith("__"):  # copy, pickle and numpy probe dunders: no use of the value
+            raise AttributeError(attr)
+        self._raise()
+
+    def __setattr__(self, attr: str, value: Any):
+        self._raise()
+
+    def __repr__(self) -> str:
+        return f"<undeclared register entry {object.__getattribute__(self, '_undeclared_name')!r}>"
+
+    def __reduce__(self):
+        return (Undeclared, (object.__getattribute__(self, "_undeclared_name"),))
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def __copy__(self):
+        return self
+
+    __eq__ = __ne__ = __lt__ = __le__ = __gt__ = __ge__ = _raise
+    __hash__ = __bool__ = __len__ = __iter__ = __contains__ = __getitem__ = __call__ = _raise
+    __str__ = __format__ = __float__ = __int__ = __index__ = __complex__ = __round__ = __array__ = _raise
+    __add__ = __radd__ = __sub__ = __rsub__ = __mul__ = __rmul__ = __truediv__ = __rtruediv__ = _raise
+    __floordiv__ = __rfloordiv__ = __mod__ = __rmod__ = __pow__ = __rpow__ = __neg__ = __pos__ = __abs__ = _raise
+    __and__ = __rand__ = __or__ = __ror__ = __xor__ = __rxor__ = __invert__ = __matmul__ = __rmatmul__ = _raise
+
+
+def guard(config: Mapping[str, Any], allowed: Iterable[str]) -> dict:
+    """A plain dict of ``config`` in which every entry not in ``allowed`` is an :class:`Undeclared` sentinel: a
+    measurement that uses such an entry raises :class:`UndeclaredEntry` naming it (copying the dict does not)."""
+    keep = set(allowed)
+    return {k: (v if k in keep else Undeclared(k)) for k, v in config.items()}
 
 
 def _md(v: Any) -> str:
