@@ -33,13 +33,13 @@ def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lo
     d = REGISTER.default()
     rule = claim_rules(SIZES)["C000-6"]
     before = study.measure({**d, **JOINT}, 7, SIZES, frozenset({"C000-6"}))["C000-6"]
-    m = lock_loss.measure_in_lock({**d, **JOINT}, 7, SIZES, "C000-6")
+    m = lock_loss.measure_in_lock(study.measure, {**d, **JOINT}, 7, SIZES, "C000-6")
     assert m["all"] == before  # measuring in lock leaves the measurement over all runs as it was
     assert 5 <= m["lost_runs"] <= 20 and m["runs"] == 300
     assert m["lost"].ci_low < m["lost_runs"] / 300 < m["lost"].ci_high  # Clopper-Pearson around the count
     assert m["all"].value > 20 and rule.decide(m["all"]) == "reproduced"
     assert m["in lock"].value == pytest.approx(2.2, rel=0.1) and rule.decide(m["in lock"]) == "not reproduced"
-    rep = lock_loss.lock_report(rule, d, [JOINT], 7, SIZES, "C000-6", REGISTER.describe)
+    rep = lock_loss.lock_report(study.measure, rule, d, [JOINT], 7, SIZES, "C000-6", REGISTER.describe)
     assert "over the runs in lock the verdict is the same" in rep["note"]
     assert "the flip is carried by the runs that lost lock" in rep["note"]
     assert "The mean over all runs decides" in rep["note"]

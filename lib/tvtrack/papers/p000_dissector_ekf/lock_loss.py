@@ -80,8 +80,9 @@ def in_lock(factor: float):
         _ACTIVE = prev
 
 
-def measure_in_lock(config: dict, seed: int, sizes, claim: str) -> dict:
-    """One claim measured over all runs and over the runs in lock, on the same draws.
+def measure_in_lock(measure, config: dict, seed: int, sizes, claim: str) -> dict:
+    """One claim measured over all runs and over the runs in lock, on the same draws (``measure``: the study's
+    :func:`.study.measure`, passed in so that this module imports no study).
 
     Returns
     -------
@@ -90,8 +91,6 @@ def measure_in_lock(config: dict, seed: int, sizes, claim: str) -> dict:
         over the runs in lock; ``"lost"``: the share of runs that lost lock at the operating point where most did
         (Clopper-Pearson), with ``"lost_runs"`` and ``"runs"``, the counts behind it.
     """
-    from .study import measure
-
     asked = frozenset({claim})
     every = measure(config, seed, sizes, asked)[claim]
     with in_lock(sizes.lock_factor) as counts:
@@ -117,12 +116,14 @@ def _lost_text(m: dict) -> str:
     return f"{m['lost_runs']} of {m['runs']} runs lost lock ({e.value:.3f} [{e.ci_low:.3f}, {e.ci_high:.3f}])"
 
 
-def lock_report(rule, default: dict, conditions: list, seed: int, sizes, claim: str, phrase) -> dict:
+def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes, claim: str, phrase) -> dict:
     """The claim at the default and under each condition that flips it: the share of runs that lost lock and the
     verdict over all runs and over the runs in lock (same draws: the first replicate's seed).
 
     Parameters
     ----------
+    measure : callable
+        The study's :func:`.study.measure`.
     rule : Rule
         The claim's rule.
     default : dict
@@ -140,7 +141,7 @@ def lock_report(rule, default: dict, conditions: list, seed: int, sizes, claim: 
     """
     rows = []
     for changed in [{}] + [dict(c) for c in conditions]:
-        m = measure_in_lock({**default, **changed}, seed, sizes, claim)
+        m = measure_in_lock(measure, {**default, **changed}, seed, sizes, claim)
         rows.append((changed, m, rule.decide(m["all"]), rule.decide(m["in lock"])))
     _, m0, v0, k0 = rows[0]
     same = "the same" if k0 == v0 else f"{k0} (over all runs: {v0})"
