@@ -133,6 +133,45 @@ def test_a_reading_flip_is_depends_a_world_flip_is_limited():
     assert world["parts"]["claim"]["flips"][0]["side"] == "world"
 
 
+def test_an_unreported_setting_flip_is_depends_and_said_as_a_setting():
+    """A setting of the paper's own experiment that the paper never printed is neither a reading nor a world: its
+    flip makes ``depends`` (not ``limited``), its side is ``setting``, and the summary does not call it a world the
+    claim does not extend to."""
+    from tvtrack.register import side_of
+    from tvtrack.wording import _flip_text
+
+    reg = [
+        Entry("where in band", "unreported setting", "middle", ("middle", "low end"), "w"),
+        Entry("motion", "regime", "cv", ("cv", "weave"), "w"),
+    ]
+    assert side_of("unreported setting") == "setting" and reg[0].side == "setting"
+    reps = [{"seed": s, "measured": Estimate.exact(0.0)} for s in (1, 2, 3)]
+    rec = label_parts(
+        BAND,
+        0.0,
+        reps,
+        [
+            {"changed": {"where in band": "low end"}, "kind": "single", "measured": Estimate.exact(3.0)},
+            {"changed": {"motion": "weave"}, "kind": "single", "measured": 0.0},
+        ],
+        reg,
+    )
+    flips = rec["parts"]["claim"]["flips"]
+    assert rec["label"] == "depends" and [f["side"] for f in flips] == ["setting"]
+    text = _flip_text([{"text": "low end", "side": "setting"}], 3, 80)
+    assert "setting the paper did not report" in text and "does not extend" not in text
+
+
+def test_an_entry_marks_the_values_that_leave_the_papers_operating_point():
+    e = Entry("bandwidth", "regime", "calibrated", ("calibrated", 1.0, 8.0), "w", off_operating_point=(1.0, 8.0))
+    assert e.to_dict()["off_operating_point"] == [1.0, 8.0]
+    assert "off_operating_point" not in Entry("m", "regime", 0, (0, 1), "w").to_dict()  # records unchanged elsewhere
+    with pytest.raises(ValueError, match="off_operating_point"):
+        Entry("bandwidth", "regime", 3.0, (3.0, 8.0), "w", off_operating_point=(3.0,))  # never the default
+    with pytest.raises(ValueError, match="off_operating_point"):
+        Entry("bandwidth", "regime", 3.0, (3.0, 8.0), "w", off_operating_point=(9.0,))
+
+
 def test_phrases_name_the_flip_in_plain_words():
     e = Entry(
         "paper_sigma",

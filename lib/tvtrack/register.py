@@ -108,6 +108,12 @@ class Entry:
     phrases : mapping value -> str
         Each value in plain words ("scored at the end of the integration interval (the paper's filtering
         error)"); a value without a phrase reads ``"<title> = <value>"``.
+    off_operating_point : tuple
+        Values (never the default) at which the world leaves an operating point the paper states and the default
+        world is calibrated to (e.g. a wander so fast that the paper's filter errs outside the paper's own
+        1-2 px), where re-calibrating the world to it is not meaningful: a flip there says the claim does not
+        extend beyond the paper's operating point. Empty: every value keeps it (or the paper states none). The
+        record carries it (:meth:`to_dict`).
     """
 
     name: str
@@ -118,9 +124,17 @@ class Entry:
     origin: str = "author"
     title: str = ""
     phrases: Mapping[Any, str] | None = field(default=None, compare=False)
+    off_operating_point: tuple = ()
 
     def __post_init__(self):
         object.__setattr__(self, "values", tuple(self.values))
+        object.__setattr__(self, "off_operating_point", tuple(self.off_operating_point))
+        off = [v for v in self.off_operating_point if v not in self.values or v == self.default]
+        if off:
+            raise ValueError(
+                f"register entry {self.name!r}: off_operating_point {off} must be values other than the default "
+                f"{self.default!r} among {list(self.values)}"
+            )
         if not self.name or not isinstance(self.name, str):
             raise ValueError(f"register entry name must be a non-empty string, got {self.name!r}")
         if self.kind not in ENTRY_KINDS:
@@ -155,6 +169,7 @@ class Entry:
         return tuple(v for v in self.values if v != self.default)
 
     def to_dict(self) -> dict:
+        off = {"off_operating_point": list(self.off_operating_point)} if self.off_operating_point else {}
         return {
             "name": self.name,
             "kind": self.kind,
@@ -165,6 +180,7 @@ class Entry:
             "title": self.title or self.name,
             "side": self.side,
             "phrases": {str(v): self.phrase(v) for v in self.values},
+            **off,
         }
 
 

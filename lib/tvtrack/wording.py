@@ -287,11 +287,13 @@ def describe(changed: Mapping, record: Mapping) -> str:
 
 
 def _side(changed: Mapping, record: Mapping) -> str:
-    """The side of a condition from a record without attributed flips: ``"reading"`` (or ``"setting"``) when
-    every changed entry is one, else ``"world"`` (as the core's flips)."""
+    """``"reading"`` when every changed entry is a reading of the paper, ``"setting"`` when every one is a reading
+    or an unreported setting (one at least), else ``"world"`` (as the core's flips)."""
     known = _phrases(record)
     sides = {known.get(str(k), ("", "reading"))[1] for k in changed}
-    return sides.pop() if len(sides) == 1 and sides <= {"reading", "setting"} else "world"
+    if sides <= {"reading"}:
+        return "reading"
+    return "setting" if sides <= {"reading", "setting"} else "world"
 
 
 def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str | None) -> list[dict]:

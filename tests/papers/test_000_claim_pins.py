@@ -176,7 +176,7 @@ def test_c000_6_readings_are_their_filter_over_their_reference(measured):
     v2 = _independent_steady(21, 20.0, 0.9, "v2")
     assert measured["C000-6"].value == pytest.approx(v2.mean() / star, rel=1e-9)
     window = np.arange(SMALL.n_steps + 1) * SMALL.dt > SMALL.duration_T - SMALL.window_T
-    bound = pcrlb_variance(scan_at_snr(20.0, 0.9, SMALL.dt), MSG, SMALL.n_steps)[window].mean()
+    bound = pcrlb_variance(scan_at_snr(20.0, 0.9, SMALL.dt), MSG, SMALL.n_steps, "interval_end")[window].mean()
     pcrlb = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 21, SMALL)["C000-6"]
     assert pcrlb.value == pytest.approx(v2.mean() / bound, rel=1e-9)
     noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)

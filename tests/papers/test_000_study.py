@@ -101,7 +101,7 @@ def test_c000_6_readings_use_their_reference_and_common_random_numbers():
     star = study.measure(DEFAULT, 4, SMALL)["C000-6"]
     assert star.value == pytest.approx(a.mean() / ref.mean(), rel=1e-12)
     scan = study.scan_at_snr(20.0, 0.9, SMALL.dt, 0.5)
-    bound = study.pcrlb_variance(scan, study.MESSAGE, SMALL.n_steps)[SMALL.window()].mean()
+    bound = study.pcrlb_variance(scan, study.MESSAGE, SMALL.n_steps, "interval_end")[SMALL.window()].mean()
     by_bound = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 4, SMALL)["C000-6"]
     assert by_bound.value == pytest.approx(a.mean() / bound, rel=1e-12)
     ignoring = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 4, SMALL)["C000-6"]

@@ -190,7 +190,7 @@ def test_paths_are_drawn_again_until_the_spot_stays_on_the_sensor():
     refuses (a joint configuration crashed the exploration): the set is drawn again from a child of the run's
     stream. A set that stays on the sensor is the first draw, unchanged."""
     size = study.StudySize()
-    scene = study.scene_config(dict(DEFAULT, amplitude=2.0), size)
+    scene = study.scene_config(dict(DEFAULT, amplitude=2.0, bandwidth=3.0), size)  # the factor of these draws
     first = lambda seed: int(study._streams(seed)[0].generate_state(1)[0])  # noqa: E731
     with pytest.raises(ValueError, match="leave the sensor"):
         study.exposed_traces(scene, first(1), "instant")

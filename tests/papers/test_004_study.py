@@ -395,8 +395,8 @@ def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
     spec = np.abs(np.fft.rfft(v[0, :, 0]))
     assert np.argmax(spec) == round(study.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
     small = study.replace(SIZE, n_paths=2, n_frames=100)
-    a = study._scene(dict(DEFAULT), 5, small)
-    b = study._scene(dict(DEFAULT, vibration=1.0), 5, small)
+    a = study._scene(dict(DEFAULT, bandwidth=3.0), 5, small)  # one bandwidth: the vibration world is re-calibrated
+    b = study._scene(dict(DEFAULT, bandwidth=3.0, vibration=1.0), 5, small)
     d = (b.truth - a.truth)[0]  # (P, 2, T)
     np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
     k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly

@@ -61,12 +61,19 @@ def fisher_information(scan: DissectorScan, x, k):
     return mean_part + 0.5 * (dr / r) ** 2, mean_part
 
 
-def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: int):
+def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: int, score_at: str = "sample"):
     """Posterior Cramer-Rao bound on the mean-square error of ``X1`` at every step ``k = 0..n_steps``.
 
     The model of point samples (exact message discretisation, stationary prior ``N(0, sigma_1^2)``, samples
-    of eq. (5) from ``k = 1``; for integrated samples the midpoint rule, scored at the interval centre); the per-sample information :func:`fisher_information` (mean and
-    signal-dependent variance) is averaged over the prior of ``X1`` by Gauss-Hermite quadrature.
+    of eq. (5) from ``k = 1``; for integrated samples the midpoint rule, the sample at its interval centre); the
+    per-sample information :func:`fisher_information` (mean and signal-dependent variance) is averaged over the prior
+    of ``X1`` by Gauss-Hermite quadrature.
+
+    ``score_at``: ``"sample"`` bounds the error at the sample's own time (a point sample's instant, an integrated
+    sample's interval centre); ``"interval_end"`` bounds it half a step later, at the end of an integrated sample's
+    interval, where the filtering error (E9) is scored: the bound at the centre propagated by the message over
+    ``dt / 2`` with no new datum, ``f^2 B + q`` (the exact PCRLB prediction step of linear dynamics), so that the
+    bound refers to the same time as the errors it is compared with.
 
     Returns
     -------
@@ -78,7 +85,13 @@ def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: in
         lambda s: fisher_information(scan, s, kk)[0], np.zeros(kk.size), np.full(kk.size, message.sigma**2)
     )
     jz[0] = 0.0  # no sample at k = 0
-    return pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma**2]], jz[:, None, None])[:, 0, 0]
+    bound = pcrlb_recursion([[f]], [[q]], [[1.0 / message.sigma**2]], jz[:, None, None])[:, 0, 0]
+    if score_at == "sample":
+        return bound
+    if score_at != "interval_end":
+        raise ValueError(f"parameter 'score_at' = {score_at!r}; it must be 'sample' or 'interval_end'")
+    fh, qh = message.exact(scan.dt / 2)
+    return fh**2 * bound + qh
 
 
 def scan_crlb(scan: DissectorScan) -> float:

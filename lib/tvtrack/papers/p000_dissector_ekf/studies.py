@@ -26,6 +26,7 @@ from .study import (
     _ratio_to_star,
     _samples,
     _scan,
+    bound_time,
     psi_at,
     steady_runs,
 )
@@ -44,7 +45,7 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes) -> dict:
             if init == "process means":
                 out[f"{filt} own D11"] = run["d_curve"]
     scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps)
+    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config))
     return out
 
 
@@ -144,6 +145,6 @@ def fig3_curves(config: dict, seed: int, sizes: Sizes) -> dict:
         out["ratio"][v] = [_ratio_to_star(config, seed, sizes, p, filt) for p in sizes.contrast_grid]
     for s, p in zip(psis, sizes.contrast_grid):
         out["sigma_x^2*"].append(mean_square_ci(steady_runs(config, seed, sizes, s, p, "stationary")))
-        bound = pcrlb_variance(_scan(config, s, p, sizes), _message(config), sizes.n_steps)
+        bound = pcrlb_variance(_scan(config, s, p, sizes), _message(config), sizes.n_steps, bound_time(config))
         out["PCRLB"].append(float(bound[sizes.window()].mean()))
     return out

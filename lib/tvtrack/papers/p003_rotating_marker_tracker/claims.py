@@ -70,7 +70,10 @@ CLAIMS = {
 # what each claim's rule reads in the paper, shown with its verdict
 NOTES = {
     "C003-2": "The paper explains the ripple by the wide loops: the 'wide_loops' part asks whether the rotation-"
-    "locked share rises with B_xy; the near control separates a locked ripple from broadband lag error.",
+    "locked share rises with B_xy; the near control separates a locked ripple from broadband lag error. The trend is "
+    "read only over the loop bandwidths at which the tracker keeps lock (at 2 Hz the loop loses lock in every run: "
+    "its error is the distance to the marker it left, not a ripple), each on its runs in lock; the lost points are "
+    "reported as such.",
     "C003-6": "Direct counts at grid SIRs; 'not_lower' wholly below 0.1 means the tracker is loss-free a grid step "
     "below the paper's threshold (better than the paper).",
     "C003-7": "As C003-6; 'rise' is the paired ratio of the thresholds on the same draws.",
@@ -112,8 +115,11 @@ def _tracking_rules(D: float) -> dict[str, Rule]:
                 "far": Ordering(locked, "amplitude locked to a control at 1.5 times the rotation rate", ">", **ratio),
                 "near": Ordering(locked, "amplitude locked to a control 1 Hz above the rotation rate", ">", **ratio),
                 "wide_loops": Monotone(
-                    "rotation-locked over near-control amplitude of the x error (ratio)",
-                    "coordinate-loop bandwidth " + " -> ".join(f"{b:g}" for b in BXY_GRID) + " Hz",
+                    "rotation-locked over near-control amplitude of the x error (ratio), on the runs in lock",
+                    "coordinate-loop bandwidth "
+                    + " -> ".join(f"{b:g}" for b in BXY_GRID)
+                    + " Hz, over the bandwidths at which the tracker keeps lock (a bandwidth where more than 10 % of "
+                    "the runs lost lock is reported as lost, not read)",
                 ),
             }
         ),

@@ -13,7 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, proportion_ci, zero_events_bound
+from ...montecarlo import Estimate, mean_ci, proportion_ci, ratio_ci, zero_events_bound
 
 __all__ = [
     "loss_share",
@@ -25,6 +25,8 @@ __all__ = [
     "COMPENSATION_READINGS",
     "compensation_reading",
     "fold_distance",
+    "LOCK_LIMIT",
+    "grid_in_lock",
 ]
 
 
@@ -345,3 +347,56 @@ def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Esti
         "ratio of thresholds, interval from their bounds",
         extrapolated=bool(u.extrapolated or comp.extrapolated),
     )
+
+
+#: A grid point where more than this share of the runs lost lock is read as lost, not as a point of a trend (the
+#: limit C003-1 asks of a tracker that follows its object).
+LOCK_LIMIT = 0.1
+
+
+def _not_read(n: int, why: str) -> Estimate:
+    return Estimate(float("nan"), float("nan"), float("nan"), float("nan"), int(n), 0.95, why)
+
+
+def grid_in_lock(lost, ripple, control, grid, pair, limit: float = LOCK_LIMIT) -> dict:
+    """A trend along a loop-bandwidth grid read only where the tracker keeps lock, lost points reported as such.
+
+    A tracker that lost lock has no ripple to speak of: its error is the distance to the object it left, and a
+    rotation-locked share of that error says nothing about the loop's width. So each grid point is read on its
+    runs that kept lock, a point where more than ``limit`` of the runs lost lock is left out of the trend, and every
+    point's share of lost runs is reported (Clopper-Pearson).
+
+    Parameters
+    ----------
+    lost : ndarray of bool, shape (G, n)
+        Runs that lost lock at each grid point (the same draws at every point).
+    ripple, control : ndarray, shape (G, n)
+        The rotation-locked amplitude of the error and the amplitude locked to a control frequency, per run.
+    grid : sequence of float
+        The G loop bandwidths, Hz.
+    pair : (float, float)
+        Two grid bandwidths whose locked ripples are compared (the first over the second), Hz.
+    limit : float
+
+    Returns
+    -------
+    dict
+        ``"trend"``: the paired ratio ripple / control at each point in lock, in grid order (two NaN points when
+        fewer than two keep lock: the trend is then undecided); ``"lost"``: ``{"<b> Hz": share of runs that lost
+        lock}``; ``"read"``: the bandwidths in the trend; ``"pair"``: ripple at ``pair[0]`` over ``pair[1]`` on the
+        runs in lock at both (NaN where either point is lost).
+    """
+    lost = np.asarray(lost, bool)
+    n = lost.shape[1]
+    shares = {f"{b:g} Hz": loss_share(lost[i]) for i, b in enumerate(grid)}
+    kept = [i for i in range(len(grid)) if lost[i].mean() <= limit]
+    trend = [ratio_ci(ripple[i][~lost[i]], control[i][~lost[i]]) for i in kept]
+    if len(trend) < 2:
+        trend = [_not_read(n, "fewer than two grid points keep lock")] * 2
+    i, j = (list(grid).index(b) for b in pair)
+    both = ~lost[i] & ~lost[j]
+    if i in kept and j in kept and both.sum() >= 2:
+        ratio = ratio_ci(ripple[i][both], ripple[j][both])
+    else:
+        ratio = _not_read(n, "the tracker lost lock at one of the two bandwidths")
+    return {"trend": trend, "lost": shares, "read": [float(grid[k]) for k in kept], "pair": ratio}

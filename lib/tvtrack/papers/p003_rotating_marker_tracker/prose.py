@@ -5,7 +5,7 @@ from __future__ import annotations
 from ...verdicts import as_estimate, is_undecided
 from .register import REGISTER
 
-__all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions"]
+__all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions", "lost_points"]
 
 
 def show(e, digits: int = 3) -> str:
@@ -103,3 +103,16 @@ def compare(a, b) -> str:
     if a.ci_high < b.ci_low:
         return "below"
     return "overlapping"
+
+
+def lost_points(lock_by_bandwidth: dict, limit: float = 0.1) -> str:
+    """The loop bandwidths at which the tracker lost lock in more than ``limit`` of the runs, in words, with the
+    share of lost runs (Clopper-Pearson; replicates pooled as summed counts): the points a trend leaves out."""
+    lost = {b: as_estimate(e) for b, e in lock_by_bandwidth.items() if as_estimate(e).value > limit}
+    if not lost:
+        return "The tracker kept lock at every loop bandwidth of the grid."
+    bits = [f"{b} (share of runs that lost lock {show(e)}, {e.n} runs)" for b, e in lost.items()]
+    return (
+        "The tracker lost lock at " + "; ".join(bits) + ": its error there is the distance to the marker it left, "
+        "not a ripple, so the trend is read over the other bandwidths only."
+    )

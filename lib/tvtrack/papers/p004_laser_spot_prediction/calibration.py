@@ -33,7 +33,17 @@ from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
 from .prediction_study import FLOOR_EXTENSION, _tuned
 from .register import DEFAULT
 
-__all__ = ["TARGET_PX", "BAND_PX", "Calibration", "paper_filter_rms", "calibrate_bandwidth", "shipped_config_at"]
+__all__ = [
+    "TARGET_PX",
+    "BAND_PX",
+    "Calibration",
+    "paper_filter_rms",
+    "calibrate_bandwidth",
+    "world_bracket",
+    "calibrate_world",
+    "world_table",
+    "shipped_config_at",
+]
 
 #: The paper's own error band, px per axis ("1...2 pixels", abstract and conclusions).
 BAND_PX = (1.0, 2.0)
@@ -156,6 +166,86 @@ def calibrate_bandwidth(
     r = rms(b)
     evaluations = tuple((float(k), float(v)) for k, v in evals.items())
     return Calibration("bandwidth", b, float(r), float(target_px), evaluations)
+
+
+def world_bracket(
+    config: dict, seed: int, size, target_px: float = TARGET_PX, start: float = 3.0, step: float = 2.0
+) -> tuple | None:
+    """Bandwidth factors ``(lo, hi)`` whose errors straddle ``target_px`` in the world ``config`` (its bandwidth
+    aside), stepping from ``start`` by ``step`` towards the target; None where none is found before the fastest
+    corner (0.5 Hz x b) reaches 0.4 x the frame rate or b falls below 0.05 (no bandwidth puts this world at the
+    target: it leaves the paper's operating point).
+
+    Returns
+    -------
+    (float, float) or None
+    """
+    fs = float({**DEFAULT, **config}["frame rate"])
+    b_max, b_min = 0.8 * fs, 0.05
+    b = float(start)
+    r = paper_filter_rms({**config, "bandwidth": b}, seed, size)
+    up = r < target_px
+    while True:
+        nxt = b * step if up else b / step
+        nxt = min(nxt, b_max) if up else max(nxt, b_min)
+        if nxt == b:
+            return None
+        rn = paper_filter_rms({**config, "bandwidth": nxt}, seed, size)
+        if (rn >= target_px) == up:
+            return (b, nxt) if up else (nxt, b)
+        b = nxt
+
+
+def calibrate_world(
+    config: dict, seed: int, size, target_px: float = TARGET_PX, xtol: float = 0.01
+) -> Calibration | None:
+    """:func:`calibrate_bandwidth` in the world ``config`` (a register configuration, its bandwidth aside) from the
+    bracket :func:`world_bracket` finds; None where no bandwidth puts the paper's filter at ``target_px``."""
+    br = world_bracket(config, seed, size, target_px)
+    if br is None:
+        return None
+    return calibrate_bandwidth(seed, size, target_px, br, config=config, xtol=xtol)
+
+
+def world_table(seed: int = 2005, size=None, targets=(1.0, 2.0)) -> dict:
+    """Recompute :mod:`.operating`'s table: per world value (every register world entry but the bandwidth and the
+    band position), the root of :func:`calibrate_world` over the default world's root at 1.5 px, and per band end
+    in ``targets`` the default world's root there over it (one seed, common random numbers).
+
+    Parameters
+    ----------
+    seed : int
+    size : study.StudySize, optional
+        Default: 15 paths x 500 frames (21 root finds, about 30 CPU minutes in all).
+
+    Returns
+    -------
+    dict
+        ``{"world": {(entry, value): ratio}, "targets": {px: ratio}, "no_root": [(entry, value)], "at_default":
+        {(entry, value): filter RMS px at the default world's factor}}``.
+    """
+    from . import study as st
+    from .operating import BAND_POSITION
+    from .register import ROWS, WORLD
+
+    size = size or st.StudySize(n_frames=500)
+    base = calibrate_world({}, seed, size)
+    out = {"world": {}, "targets": {}, "no_root": [], "at_default": {}}
+    for t in targets:
+        out["targets"][t] = calibrate_world({}, seed, size, t).scale / base.scale
+    for name, _, default, values, *_ in ROWS:
+        if name not in WORLD or name in ("bandwidth", BAND_POSITION):
+            continue
+        for v in values:
+            if v == default:
+                continue
+            out["at_default"][(name, v)] = paper_filter_rms({name: v, "bandwidth": base.scale}, seed, size)
+            cal = calibrate_world({name: v}, seed, size)
+            if cal is None:
+                out["no_root"].append((name, v))
+            else:
+                out["world"][(name, v)] = cal.scale / base.scale
+    return out
 
 
 def shipped_config_at(metadata: dict, bandwidth: float) -> BeamWanderConfig:

@@ -30,6 +30,8 @@ __all__ = [
     "budget_sentence",
     "regeneration_sentence",
     "calibration_sentence",
+    "operating_sentence",
+    "c004_1_note",
     "flips_markdown",
     "coverage_lines",
 ]
@@ -366,6 +368,44 @@ def calibration_sentence(cal, default_bandwidth: float, band=(1.0, 2.0)) -> str:
         f"paper's {band[0]:g}-{band[1]:g} px; target {cal.target_px:g} px){earlier}. The register's default "
         f"bandwidth is {default_bandwidth:g} (this root on the shipped-size set, rounded), so the claims below are "
         "judged in a world where the paper's filter errs what the paper says it errs."
+    )
+
+
+def operating_sentence(register) -> str:
+    """How the register's worlds keep the paper's operating point (:mod:`.operating`): how many world values are
+    re-calibrated, the factor range, and the values marked as leaving it (their plain phrases)."""
+    from .operating import DEFAULT_BANDWIDTH, WORLD_FACTORS
+
+    off = [register[n].phrase(v) for n in register.names for v in register[n].off_operating_point]
+    lo, hi = (DEFAULT_BANDWIDTH * f(WORLD_FACTORS.values()) for f in (min, max))
+    return (
+        f"Every other world of the register is re-calibrated the same way ({len(WORLD_FACTORS)} values: the "
+        f"bandwidth that keeps the paper's filter at the band's middle runs from {lo:.2g} to {hi:.2g} across them); "
+        f"{len(off)} leave the paper's operating point and are marked so: " + "; ".join(off) + "."
+    )
+
+
+def c004_1_note(q95, rms, limit: float = 2.0, band=(1.0, 2.0)) -> str:
+    """C004-1's note: the verdict is set by where in the paper's 1-2 px the world sits.
+
+    Parameters
+    ----------
+    q95, rms : Estimate
+        C004-1's pooled value (mean per-path 95th percentile of the per-axis error, px) and C004-2's (the RMS per
+        axis, px), both at the default.
+    limit : float
+        The claim's bound, px.
+    """
+    ratio = q95.value / rms.value
+    cap = limit / ratio
+    where = "inside" if band[0] <= cap <= band[1] else "outside"
+    return (
+        "'Does not exceed' read as the 95th percentile of |e| (the 99th is a register reading); the maximum is "
+        f"noise-dominated. The 95th percentile is {ratio:.2f} x the RMS here ({q95.value:.2f} / {rms.value:.2f} px), "
+        f"so {limit:g} px holds only where the filter errs about {cap:.2f} px RMS or less ({where} the paper's "
+        f"{band[0]:g}-{band[1]:g} px): the verdict is set by where in that band the paper's filter erred, which the "
+        "paper does not report. The default world sits at its middle (1.5 px); the register's 'error in the band' "
+        "(an unreported setting) moves it to either end, and the claim's label names it where it flips."
     )
 
 

@@ -24,7 +24,13 @@ KINDS = {
     ),
     "bandwidth": (
         "unreported setting",
-        "an unreported setting: the wander speed of the paper's own paths is never printed; the default is calibrated to the middle of its '1...2 pixels', 2.2 to the band's low end, while 1 and 8 leave that band (the paper's filter errs 0.33 and 3.9 px there)",
+        "an unreported setting: the wander speed of the paper's own paths is never printed; by default every world is "
+        "re-calibrated to the paper's operating point ('1...2 pixels'), while 1 and 8 leave that band (the paper's "
+        "filter errs 0.33 and 3.9 px there) and are marked as off the paper's operating point",
+    ),
+    "error in the band": (
+        "unreported setting",
+        "an unreported setting: where in its own '1...2 pixels' the paper's filter erred is never printed",
     ),
     "amplitude": (
         "unreported setting",

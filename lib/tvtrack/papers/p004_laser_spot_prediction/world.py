@@ -9,6 +9,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .operating import bandwidth_for
 from .beam_wander import GTILT, BeamWanderConfig, SpotCamera, generate_traces
 from .traces import TraceSet
 
@@ -39,7 +40,9 @@ BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
 def scene_config(config: dict, size, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
     """The generator's configuration at a register configuration (``size``: a :class:`.study.StudySize`).
 
-    ``bandwidth`` scales every corner frequency, ``amplitude`` the wander RMS range; ``frame rate``
+    ``bandwidth`` scales every corner frequency (``"calibrated"``: the factor that keeps the paper's filter at
+    the paper's operating point in this world, :func:`.operating.bandwidth_for`), ``amplitude`` the wander RMS
+    range; ``frame rate``
     changes the sampling at ``n_frames`` images per path (the paper: "up to 1000 images"), the drift
     kept in px/s.
     """
@@ -49,7 +52,7 @@ def scene_config(config: dict, size, base: BeamWanderConfig = BASE_SCENE) -> Bea
         n_paths=size.n_paths,
         n_frames=size.n_frames,
         frame_rate_hz=fs,
-        corner_frequencies_hz=tuple(f * config["bandwidth"] for f in base.corner_frequencies_hz),
+        corner_frequencies_hz=tuple(f * bandwidth_for(config) for f in base.corner_frequencies_hz),
         spectral_index=float(config["spectral index"]),
         rolloff=config["roll-off"],
         rms_min_px=base.rms_min_px * config["amplitude"],
