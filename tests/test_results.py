@@ -188,7 +188,8 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
     )
     # the optional sentences come in while the whole stays within the characters asked for
     assert claim_summary(DEPENDS, chars=400).endswith(
-        "velocity increments. 29 of 32 explored configurations agree. 1 other change flips it too."
+        "velocity increments. 29 agree, 3 flip and 0 stay undecided of 32 explored configurations. 1 other change flips it "
+        "too."
     )
     assert claim_summary(UNDECIDED) == (
         "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], where the paper has [0, 0.625]. "

@@ -252,9 +252,9 @@ def test_each_claim_has_a_page_with_its_specification_curve(explored_site):  # n
     assert Image.open(explored_site / "claims/001_explored/C001-3.png").size[0] > 400
     # one count of configurations on the page: the sentence's share is the caption's
     summary = page[page.index('id="claim-summary"') :]
-    assert "29 of 32 explored configurations agree." in summary[: summary.index("</p>")]
+    assert "29 agree, 3 flip and 0 stay undecided of 32 explored configurations." in summary[: summary.index("</p>")]
     caption = page[page.index("<figcaption") :]
-    assert "29 of the 32 explored configurations with a decisive verdict agree" in caption[: caption.index("</fig")]
+    assert "29 agree with the default, 3 flip and 0 stay undecided of the 32 explored configurations" in caption[: caption.index("</fig")]
     assert (
         "(a reading of the paper&#39;s text: reproduced)" in page and "(a world beyond the paper: reproduced)" in page
     )

@@ -188,8 +188,8 @@ def _share_count(record: dict, part: str | None, rows: list[dict]) -> tuple[int,
     parts = (record.get("robustness") or {}).get("parts") or {}
     p = parts.get(part) if part else (next(iter(parts.values()), None) if len(parts) == 1 else None)
     share = (p or {}).get("share") or {}
-    if share.get("decided"):
-        return int(share["agree"]), int(share["decided"]), int(share.get("design") or share["decided"])
+    if share.get("design") or share.get("decided"):
+        return int(share["agree"]), int(share.get("decided") or 0), int(share.get("design") or share["decided"])
     explored = [r for r in rows[1:] if r["kind"] in ("single", "joint")]
     decided = [r for r in explored if r["verdict"] in ("reproduced", "not reproduced")]
     return sum(r["verdict"] == rows[0]["verdict"] for r in decided), len(decided), len(explored)
@@ -268,7 +268,7 @@ def specification_curve(record: dict, part: str | None = None):
 def _spec_caption(record: dict, part, prule: dict, rows: list[dict], numeric: bool, clipped: int) -> str:
     unit = prule.get("unit") or ""
     quantity = prule.get("quantity") or prule.get("measure") or "measured value"
-    agree, decided, _ = _share_count(record, part, rows)
+    agree, decided, explored = _share_count(record, part, rows)
     flips = sum(r["flip"] for r in rows)
     valueless = sum(r["point"] is None for r in rows) if numeric else 0
     return (
@@ -283,9 +283,9 @@ def _spec_caption(record: dict, part, prule: dict, rows: list[dict], numeric: bo
         + (f"; {valueless} without a value, by verdict at the bottom" if valueless else "")
         + (f"; ringed: the {flips} flip{'s' * (flips != 1)} the page names" if flips else "")
         + (
-            f". {agree} of the {decided} explored configurations with a decisive verdict agree with the default, as "
-            "the claim's sentence says"
-            if decided
+            f". {agree} agree with the default, {decided - agree} flip and {explored - decided} stay undecided of the "
+            f"{explored} explored configurations, as the claim's sentence says"
+            if explored
             else ""
         )
         + ". Below: the register values each configuration changed (dark dots), one row for every value set."

@@ -497,12 +497,22 @@ def _cap(text: str) -> str:
     return text[:1].upper() + text[1:]
 
 
-def _share_sentence(part: Mapping) -> str:
-    share = part.get("share") or {}
-    if not share.get("decided"):
+def share_counts(share: Mapping) -> str:
+    """``"41 agree, 3 flip and 6 stay undecided of 50 explored configurations"``: the share over every explored
+    configuration, never of the decided ones only (a record without ``flip``: agree of decided, as it counted);
+    empty without a share."""
+    if not share or share.get("design", share.get("decided")) in (None, 0):
         return ""
-    agree, decided = share.get("agree"), share.get("decided")
-    return f"{agree} of {decided} explored configurations agree."
+    if "flip" not in share:
+        return f"{share.get('agree')} of {share.get('decided')} explored configurations agree"
+    agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
+    design = int(share.get("design", agree + flip + undecided))
+    return f"{agree} agree, {flip} flip and {undecided} stay undecided of {design} explored configurations"
+
+
+def _share_sentence(part: Mapping) -> str:
+    text = share_counts(part.get("share") or {})
+    return f"{_cap(text)}." if text else ""
 
 
 def _flip_sentence(flip: Mapping) -> str:
@@ -581,7 +591,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     str
         E.g. ``"Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper
         has [0, 2] x alpha. Under another reading of the paper's text (sigma read as the SD of the raw velocity
-        increments) it is reproduced. 29 of 32 explored configurations agree."``
+        increments) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 explored configurations."``
     """
     claim = _as_dict(claim)
     verdict = str(claim.get("verdict", ""))

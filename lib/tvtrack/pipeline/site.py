@@ -73,6 +73,7 @@ from ..results import (
     results_summary,
     side_words,
 )
+from ..wording import share_counts
 
 __all__ = [
     "SITE_DIR",
@@ -360,8 +361,7 @@ def _part_rows(claim: dict) -> list[dict]:
                 "verdict": p.get("verdict", ""),
                 "label": p.get("label", ""),
                 "share": (
-                    f"{share.get('agree')} of {share.get('decided', share.get('design'))} "
-                    f"(95 % CI {share['ci_low'] * 100:.0f}-{share['ci_high'] * 100:.0f} %)"
+                    f"{share_counts(share)} (agree: 95 % CI {share['ci_low'] * 100:.0f}-{share['ci_high'] * 100:.0f} %)"
                     if "ci_low" in share
                     else ""
                 ),
