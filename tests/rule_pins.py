@@ -49,6 +49,7 @@ class Band:
     high: float | None
     inside: tuple[float, ...]
     outside: tuple[float, ...]
+    unit: str | None = None
 
     def probes(self) -> list[tuple[Any, str]]:
         out = [(est(v), YES) for v in self.inside] + [(est(v), NO) for v in self.outside]
@@ -73,6 +74,7 @@ class Order:
     states: str
     yes: tuple[float, ...]
     no: tuple[float, ...]
+    unit: str | None = None
 
     def probes(self) -> list[tuple[Any, str]]:
         return [(est(v), YES) for v in self.yes] + [(est(v), NO) for v in self.no]
@@ -121,25 +123,54 @@ def parts(rule: Rule, prefix: str = "") -> dict[str, Rule]:
     return {prefix: rule}
 
 
+def _words(leaf: Rule) -> list[str]:
+    """What a leaf rule says it measures: its quantity (an ordering's two sides, a trend's axis too)."""
+    names = {
+        "in_band": ("quantity",),
+        "within_factor": ("quantity",),
+        "ordering": ("a", "b"),
+        "monotone": ("quantity", "over"),
+    }
+    return [getattr(leaf, n) for n in names.get(leaf.kind, ())]
+
+
+def wording(leaf: Rule, row) -> list[str]:
+    """What is wrong with how ``leaf`` names its quantity: each name a phrase (not empty, not a relation sign), the
+    unit a string, and the row's unit where the row states one."""
+    out = [f"names {w!r} where a phrase belongs" for w in _words(leaf) if not (isinstance(w, str) and len(w) > 2)]
+    unit = getattr(leaf, "unit", "")
+    if not isinstance(unit, str):
+        out.append(f"unit {unit!r} is not a string")
+    if getattr(row, "unit", None) is not None and unit != row.unit:
+        out.append(f"unit {unit!r}, the paper's quantity is in {row.unit!r}")
+    return out
+
+
 def problems(package: str, pins: dict) -> list[str]:
     """Every disagreement between ``package``'s rules and its pin table, as one line each (empty: all pinned and
-    all decided as the paper says)."""
+    all decided as the paper says).
+
+    The rules are built afresh by the package's ``claims.claim_rules()`` (at its default sizes), so that a mutation
+    tool that changes the function sees its change; ``tests/test_rule_pins.py`` checks that the package's ``RULES``
+    is that table."""
     paper = importlib.import_module(f"tvtrack.papers.{package}")
+    rules = importlib.import_module(f"tvtrack.papers.{package}.claims").claim_rules()
     out = [f"{cid}: no row in the pin table" for cid in paper.CLAIMS if cid not in pins]
     out += [f"{cid}: a pin row but no claim" for cid in pins if cid not in paper.CLAIMS]
     for cid, rows in pins.items():
         if cid not in paper.CLAIMS:
             continue
-        if cid not in paper.RULES:
+        if cid not in rules:
             out.append(f"{cid}: no rule")
             continue
         used = set()
-        for key, leaf in parts(paper.RULES[cid]).items():
+        for key, leaf in parts(rules[cid]).items():
             hit = [pat for pat in rows if fnmatchcase(key, pat)]
             if len(hit) != 1:
                 out.append(f"{cid} part {key!r}: {'no row' if not hit else f'several rows {hit}'}")
                 continue
             used.add(hit[0])
+            out += [f"{cid} part {key!r}: {w}" for w in wording(leaf, rows[hit[0]])]
             for measured, want in rows[hit[0]].probes():
                 got = leaf.decide(measured)
                 if got != want:

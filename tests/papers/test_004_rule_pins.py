@@ -17,6 +17,7 @@ VARIANCE = Band(
     1.1,
     (1.0, 0.95, 1.05),
     (0.8, 1.2, 2.0),
+    unit="ratio",
 )
 
 PINS = {
@@ -28,11 +29,22 @@ PINS = {
             2.0,
             (1.0, 1.9),
             (2.5, 10.0),
+            unit="px",
         )
     },
     "C004-2": {"": Unchecked("accuracy improved to 1...2 pixels", "the simulated world is calibrated to 1.5 px")},
-    "C004-3": {"*": BEATS},
-    "C004-3b": {"*": BEATS},
+    # the paper's Table: finite differences and splines (2-10 px), linear regression (3-10 px); networks 2-3, 2-4 px
+    "C004-3": {
+        b: BEATS
+        for b in (
+            "finite differences, 2 points",
+            "finite differences, 3 points",
+            "cubic spline",
+            "linear regression deg 1",
+            "linear regression deg 2",
+        )
+    },
+    "C004-3b": {"MLP back-prop": BEATS, "RBF network": BEATS},
     "C004-4": {
         "": Band(
             "the recursion reproduces the growing-memory least-squares estimate",
@@ -41,6 +53,7 @@ PINS = {
             1e-9,
             (0.0, 1e-12),
             (1e-6, 1e-3),
+            unit="relative",
         )
     },
     "C004-5": {
@@ -51,8 +64,10 @@ PINS = {
             0.0,
             (-0.5, -1e-6),
             (1e-3, 0.1),
+            unit="gain",
         ),
-        "variance at N=*": VARIANCE,
+        # the card: g_N1 ~ 9/N and the variance sigma^2 g_N1 from the first estimate (N = 3) to long memories
+        **{f"variance at N={n}": VARIANCE for n in (3, 5, 10, 20, 50, 100)},
     },
     "C004-6": {
         "": Band(
@@ -62,6 +77,7 @@ PINS = {
             None,
             (2.5, 10.0),
             (1.0, 1.6),
+            unit="ratio",
         )
     },
     "C004-7": {"": Unchecked("estimates exist from n = 3", "the quadratic through three samples, by construction")},
@@ -73,6 +89,7 @@ PINS = {
             1.0,
             (0.01, 0.5),
             (1.5, 10.0),
+            unit="ratio",
         )
     },
 }
