@@ -89,6 +89,7 @@ class Trend:
     states: str
     yes: tuple[tuple[float, ...], ...]
     no: tuple[tuple[float, ...], ...]
+    unit: str | None = None
 
     def probes(self) -> list[tuple[Any, str]]:
         curve = lambda c: [est(v) for v in c]  # noqa: E731
@@ -124,8 +125,10 @@ def parts(rule: Rule, prefix: str = "") -> dict[str, Rule]:
 
 
 def _words(leaf: Rule) -> list[str]:
-    """What a leaf rule says it measures: its quantity (an ordering's two sides, a trend's axis too)."""
+    """What a leaf rule says it measures: its quantity (an ordering's two sides, a trend's axis too; a claim that
+    cannot be checked, its reason)."""
     names = {
+        "not_checkable": ("reason",),
         "in_band": ("quantity",),
         "within_factor": ("quantity",),
         "ordering": ("a", "b"),
@@ -135,9 +138,10 @@ def _words(leaf: Rule) -> list[str]:
 
 
 def wording(leaf: Rule, row) -> list[str]:
-    """What is wrong with how ``leaf`` names its quantity: each name a phrase (not empty, not a relation sign), the
-    unit a string, and the row's unit where the row states one."""
-    out = [f"names {w!r} where a phrase belongs" for w in _words(leaf) if not (isinstance(w, str) and len(w) > 2)]
+    """What is wrong with how ``leaf`` names its quantity: each name a phrase (not empty, not a relation sign, no
+    "None" formatted into it), the unit a string, and the row's unit where the row states one."""
+    phrase = lambda w: isinstance(w, str) and len(w) > 2 and "None" not in w  # noqa: E731
+    out = [f"names {w!r} where a phrase belongs" for w in _words(leaf) if not phrase(w)]
     unit = getattr(leaf, "unit", "")
     if not isinstance(unit, str):
         out.append(f"unit {unit!r} is not a string")

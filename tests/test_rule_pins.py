@@ -10,7 +10,7 @@ import pytest
 from rule_pins import Band, parts, problems
 
 from tvtrack.contract import paper_packages
-from tvtrack.verdicts import AllOf, InBand
+from tvtrack.verdicts import AllOf, InBand, NotCheckable
 
 PAPERS = Path(__file__).parent / "papers"
 
@@ -74,3 +74,5 @@ def test_the_wording_check_finds_a_lost_side_a_lost_quantity_and_a_changed_unit(
     assert wording(InBand(None, high=2.0, unit="px"), row) == ["names None where a phrase belongs"]
     lost_b = Ordering("MSE of the spline", ">", measure="ratio")  # b dropped: the relation took its place
     assert wording(lost_b, Order("s", "t", (2.0,), (0.5,))) == ["names '>' where a phrase belongs"]
+    assert wording(Ordering("MSE of None", "the filter's"), None) == ["names 'MSE of None' where a phrase belongs"]
+    assert wording(NotCheckable(None), None) == ["names None where a phrase belongs"]

@@ -16,6 +16,7 @@ PINS = {
             5.75,
             (5.5, 5.3, 5.7),
             (5.0, 6.0, 5.1, 5.9),
+            unit="s",
         ),
         "early": Band(
             "detected at 5.5 s, not before the onset",
@@ -35,6 +36,7 @@ PINS = {
             1.5,
             (1.0, 0.8, 1.3),
             (0.5, 2.0),
+            unit="× alpha",
         ),
         "invariance": Unchecked("rule (14) is invariant", "a common shift cancels in a difference of window sums"),
         "unbiased": Band(
@@ -44,6 +46,7 @@ PINS = {
             None,
             (1.5, 50.0),
             (0.5, 0.9),
+            unit="× alpha",
         ),
         "UMP": Order(
             "uniformly most powerful among invariant rules",
@@ -60,6 +63,7 @@ PINS = {
             2.0,
             (1.0, 0.6, 1.8),
             (0.3, 3.0, 350.0),
+            unit="× alpha",
         ),
     },
     "C001-4": {
@@ -79,6 +83,7 @@ PINS = {
             "|dynamic error| decreasing in the loss time",
             ((5.0, 3.0, 1.0, 0.5),),
             ((0.5, 1.0, 3.0, 5.0), (5.0, 1.0, 3.0, 0.5)),
+            unit="el",
         ),
         "curve_tolerance=* / dominates early": Order(
             "dynamic errors substantially affect the prediction",
@@ -93,15 +98,21 @@ PINS = {
             "RMS decreasing in k_b3",
             ((3.0, 2.0, 1.0),),
             ((1.0, 2.0, 3.0),),
+            unit="el",
         ),
         "curve_tolerance=* / interior minimum": Order(
             "an optimal bound is implied (curve 3)",
             "min at the grid's ends - min inside > 0 el",
             (0.5, 2.0),
             (-0.5, -2.0),
+            unit="el",
         ),
         "curve_tolerance=* / dynamic grows beyond the optimum": Trend(
-            "Fig. 4, curve 1", "|dynamic| increasing in k_b3 from the optimum", ((1.0, 2.0, 3.0),), ((3.0, 2.0, 1.0),)
+            "Fig. 4, curve 1",
+            "|dynamic| increasing in k_b3 from the optimum",
+            ((1.0, 2.0, 3.0),),
+            ((3.0, 2.0, 1.0),),
+            unit="el",
         ),
     },
     "C001-9": {
@@ -112,6 +123,7 @@ PINS = {
             1.0,
             (0.2, 0.9),
             (1.5, 10.0),
+            unit="× tolerance",
         ),
         "geometries": Band(
             "linear for the geometries within +-20 deg (the project allows 10 % of them to fail)",
@@ -130,6 +142,7 @@ PINS = {
             1.1,
             (1.0, 0.95),
             (0.8, 1.2, 2.4),
+            unit="el",
         ),
         "0.02°": Band(
             "0.02 deg = 10 elements / frame",
@@ -138,6 +151,7 @@ PINS = {
             11.0,
             (10.0, 9.5),
             (2.4, 8.0, 12.0),
+            unit="el",
         ),
     },
 }

@@ -17,7 +17,9 @@ EFFICIENT = Band(
 )
 
 PINS = {
-    "C002-1": {"": Trend("accuracy falls as objects get closer (Fig 1)", "variance decreasing in d", DOWN, UP)},
+    "C002-1": {
+        "": Trend("accuracy falls as objects get closer (Fig 1)", "variance decreasing in d", DOWN, UP, unit="sigma^2")
+    },
     "C002-2": {
         "weakens": Order(
             "as objects get closer the dependence on photon number weakens", "r_m(6) / r_m(1) > 1", **GREATER

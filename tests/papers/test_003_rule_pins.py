@@ -10,7 +10,13 @@ UP, DOWN = ((1.0, 2.0, 4.0),), ((4.0, 2.0, 1.0),)
 RARE = dict(low=None, high=0.1, inside=(0.0, 0.05), outside=(0.2, 0.8))  # "no loss": probability <= 0.1
 OFTEN = dict(low=0.1, high=None, inside=(0.2, 0.8), outside=(0.0, 0.05))  # "losses occur": probability >= 0.1
 FOLLOWS = Band(
-    "the tracker follows x_r and y_r after a transient", "RMS error < D/2 = 4 px", None, 4.0, (1.0, 3.5), (5.0, 20.0)
+    "the tracker follows x_r and y_r after a transient",
+    "RMS error < D/2 = 4 px",
+    None,
+    4.0,
+    (1.0, 3.5),
+    (5.0, 20.0),
+    unit="px",
 )
 LINEAR = Band(
     "the quadrant form restores a linear part",
@@ -39,7 +45,7 @@ PINS = {
     },
     "C003-3": {
         "omega": Band("angular velocity is tracked", "RMS / mean rate < 5 %", None, 0.05, (0.01, 0.04), (0.1, 0.5)),
-        "r": Band("radius is tracked", "RMS error < 1 px", None, 1.0, (0.2, 0.9), (1.5, 5.0)),
+        "r": Band("radius is tracked", "RMS error < 1 px", None, 1.0, (0.2, 0.9), (1.5, 5.0), unit="px"),
     },
     "C003-4": {
         "spread": Band(
@@ -104,3 +110,15 @@ PINS = {
 
 def test_every_rule_of_003_decides_as_the_paper_says():
     assert not problems("p003_rotating_marker_tracker", PINS), "\n".join(problems("p003_rotating_marker_tracker", PINS))
+
+
+def test_the_tracking_bound_is_half_the_marker_diameter_at_any_diameter():
+    """The card: RMS error < D/2; gates in spot diameters (1.5, 3, 5 D)."""
+    from tvtrack.papers.p003_rotating_marker_tracker.claims import claim_rules
+
+    rules = claim_rules(10.0)
+    assert [rules["C003-1"].parts[k].high for k in ("x_r", "y_r")] == [5.0, 5.0]
+    assert "15 px gate" in rules["C003-11"].parts["dynamics"].quantity
+    assert (
+        "50 px gate" in rules["C003-11"].parts["selection"].a and "30 px gate" in rules["C003-11"].parts["selection"].b
+    )
