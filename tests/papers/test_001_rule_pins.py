@@ -159,3 +159,22 @@ PINS = {
 
 def test_every_rule_of_001_decides_as_the_paper_says():
     assert not problems("p001_maneuver_occlusion_kf", PINS), "\n".join(problems("p001_maneuver_occlusion_kf", PINS))
+
+
+def test_each_curve_tolerance_reading_judges_its_curves_with_that_tolerance():
+    """C001-7 and -8 are deterministic curves: under curve_tolerance t a step of t / 2 is flat (undecided), a step of
+    2 t is a trend."""
+    from rule_pins import est
+
+    from tvtrack.papers.p001_maneuver_occlusion_kf.claims import CURVE_TOLERANCES, claim_rules
+
+    rules = claim_rules()
+    for cid, part, sign in (
+        ("C001-7", "decreasing", -1),
+        ("C001-8", "RMS decreasing", -1),
+        ("C001-8", "dynamic grows beyond the optimum", 1),
+    ):
+        for t in CURVE_TOLERANCES:
+            rule = rules[cid].rules[t].parts[part]
+            assert rule.decide([est(1.0), est(1.0 + sign * t / 2)]) == "undecided", (cid, part, t)
+            assert rule.decide([est(1.0), est(1.0 + sign * 2 * t)]) == "reproduced", (cid, part, t)
