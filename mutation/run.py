@@ -65,6 +65,32 @@ def string_only(diff: str) -> bool:
     return bool(minus) and blank(minus) == blank(plus) and minus != plus
 
 
+#: Arguments equal to their parameter's default in :mod:`tvtrack.verdicts` (Ordering's relation ">" and measure
+#: "difference"): in a claims module a surviving mutant that only drops one builds the same rule (dropped from a
+#: call where a positional argument follows, the next one takes its place and the rule refuses it: killed).
+DEFAULTS = ('">"', '"difference"')
+
+
+def drops_a_default(diff: str) -> bool:
+    """True when the mutant only deletes an argument that equals its default (:data:`DEFAULTS`)."""
+    squash = (
+        lambda sign: "".join(  # noqa: E731
+            ln[1:].replace(" ", "") for ln in diff.splitlines() if ln.startswith(sign) and not ln.startswith(sign * 3)
+        )
+    )
+    minus, plus = squash("-"), squash("+")
+    for arg in DEFAULTS:
+        for form in (arg + ",", "," + arg):
+            at = minus.find(form)
+            while at >= 0:
+                if minus[:at] + minus[at + len(form) :] in (plus, plus.rstrip(",")) or (
+                    (minus[:at] + minus[at + len(form) :]).replace(",)", ")") == plus.replace(",)", ")")
+                ):
+                    return True
+                at = minus.find(form, at + 1)
+    return False
+
+
 def prepare(name: str, target: dict) -> Path:
     """A fresh scratch folder for ``target``, with its mutmut configuration."""
     work = WORK / name
@@ -136,7 +162,10 @@ def measure(name: str, target: dict, ci: bool, equivalent: dict[str, str]) -> tu
     for mutant in alive:
         state, diff = status[mutant], diffs[mutant]
         k = key(mutant, diff)
-        kind = "equivalent" if k in equivalent else ("string-only" if string_only(diff) else "survived")
+        if k in equivalent or (target.get("defaults_equivalent") and drops_a_default(diff)):
+            kind = "equivalent"
+        else:
+            kind = "string-only" if string_only(diff) else "survived"
         counts[kind] += 1
         report += [f"### {mutant}: {state}, {kind}", "", f"key: `{k}`", "", "```diff", diff.strip(), "```", ""]
     return counts, report
