@@ -50,6 +50,7 @@ class Band:
     inside: tuple[float, ...]
     outside: tuple[float, ...]
     unit: str | None = None
+    says: tuple[str, ...] = ()
 
     def probes(self) -> list[tuple[Any, str]]:
         out = [(est(v), YES) for v in self.inside] + [(est(v), NO) for v in self.outside]
@@ -75,6 +76,7 @@ class Order:
     yes: tuple[float, ...]
     no: tuple[float, ...]
     unit: str | None = None
+    says: tuple[str, ...] = ()
 
     def probes(self) -> list[tuple[Any, str]]:
         return [(est(v), YES) for v in self.yes] + [(est(v), NO) for v in self.no]
@@ -90,6 +92,7 @@ class Trend:
     yes: tuple[tuple[float, ...], ...]
     no: tuple[tuple[float, ...], ...]
     unit: str | None = None
+    says: tuple[str, ...] = ()
 
     def probes(self) -> list[tuple[Any, str]]:
         curve = lambda c: [est(v) for v in c]  # noqa: E731
@@ -139,7 +142,8 @@ def _words(leaf: Rule) -> list[str]:
 
 def wording(leaf: Rule, row) -> list[str]:
     """What is wrong with how ``leaf`` names its quantity: each name a phrase (not empty, not a relation sign, no
-    "None" formatted into it), the unit a string, and the row's unit where the row states one."""
+    "None" formatted into it), the unit a string, the row's unit where the row states one, and in its text the
+    conditions the row's ``says`` names (the paper's SIR, interferer count, gate sizes)."""
     phrase = lambda w: isinstance(w, str) and len(w) > 2 and "None" not in w  # noqa: E731
     out = [f"names {w!r} where a phrase belongs" for w in _words(leaf) if not phrase(w)]
     unit = getattr(leaf, "unit", "")
@@ -147,6 +151,8 @@ def wording(leaf: Rule, row) -> list[str]:
         out.append(f"unit {unit!r} is not a string")
     if getattr(row, "unit", None) is not None and unit != row.unit:
         out.append(f"unit {unit!r}, the paper's quantity is in {row.unit!r}")
+    text = leaf.text()
+    out += [f"does not say {w!r} (the paper's condition)" for w in getattr(row, "says", ()) if w not in text]
     return out
 
 

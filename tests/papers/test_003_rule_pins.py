@@ -56,17 +56,41 @@ PINS = {
         ),
     },
     "C003-5": {
-        "no_loss": Band("five interferers cause no loss", "P(loss) at SIR 3 <= 0.1", **RARE),
+        "no_loss": Band(
+            "five interferers cause no loss", "P(loss) at SIR 3 <= 0.1", **RARE, says=("at SIR 3 with 5 interferer",)
+        ),
         "no_capture": Band("... and no switch to an interferer", "P(capture) <= 0.1", **RARE),
     },
     "C003-6": {
-        "finite": Band("one interferer: a finite threshold", "P(loss) at SIR 0.5 >= 0.1", **OFTEN),
-        "loss_free": Band("loss-free at SIR 2", "P(loss) at SIR 2 <= 0.1", **RARE),
-        "not_lower": Band("the threshold is 2, not lower", "P(loss) a grid step below 2 >= 0.1", **OFTEN),
+        "finite": Band(
+            "one interferer: a finite threshold",
+            "P(loss) at SIR 0.5 >= 0.1",
+            **OFTEN,
+            says=("at SIR 0.5 with 1 interferer",),
+        ),
+        "loss_free": Band(
+            "loss-free at SIR 2", "P(loss) at SIR 2 <= 0.1", **RARE, says=("at SIR 2 with 1 interferer",)
+        ),
+        "not_lower": Band(
+            "the threshold is 2, not lower",
+            "P(loss) a grid step below 2 >= 0.1",
+            **OFTEN,
+            says=("at SIR 1.33 with 1 interferer",),
+        ),
     },
     "C003-7": {
-        "loss_free": Band("five interferers: loss-free at SIR 3", "P(loss) at SIR 3 <= 0.1", **RARE),
-        "not_lower": Band("the threshold is 3, not lower", "P(loss) a grid step below 3 >= 0.1", **OFTEN),
+        "loss_free": Band(
+            "five interferers: loss-free at SIR 3",
+            "P(loss) at SIR 3 <= 0.1",
+            **RARE,
+            says=("at SIR 3 with 5 interferer",),
+        ),
+        "not_lower": Band(
+            "the threshold is 3, not lower",
+            "P(loss) a grid step below 3 >= 0.1",
+            **OFTEN,
+            says=("at SIR 2 with 5 interferer",),
+        ),
         "rise": Order("the threshold rises to 3 (from 2)", "threshold(5) / threshold(1) > 1", **GREATER),
     },
     "C003-8": {"": Unchecked("pre-compensation threshold 0.2-0.3", "SIR_0 = kappa SIR by construction here")},
@@ -77,7 +101,13 @@ PINS = {
         "edge_disc": EDGE_WORSE,
     },
     "C003-10": {
-        "gate": Trend("robustness comes mainly from the narrow gate", "threshold increasing in gate size", UP, DOWN),
+        "gate": Trend(
+            "robustness comes mainly from the narrow gate",
+            "threshold increasing in gate size",
+            UP,
+            DOWN,
+            says=("five interferers", "gate side 12 -> 24 -> 40 px"),
+        ),
         "compensation": Band(
             "compensation equal to a 10x background reduction (one-sided, factor 2)",
             "threshold with / without compensation <= 2 x 0.1",
