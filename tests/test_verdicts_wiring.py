@@ -272,3 +272,28 @@ def test_synthetic_values_reach_the_verdict_asked_for_and_nothing_else():
     assert synthetic(InBand("q", 4.0), "reproduced").value == 9.0
     assert synthetic(InBand("q", 4.0), "not reproduced").value == -1.0
     assert synthetic(InBand("q", 1.0, 2.0), "not reproduced").value == 5.0
+
+
+def test_band_ends_are_closed_and_an_ordering_reference_is_not_on_either_side():
+    band = InBand("q", 1.0, 2.0)
+    assert band.decide(est(1.0, 1.5)) == "reproduced" and band.decide(est(1.5, 2.0)) == "reproduced"
+    assert band.decide(est(0.5, 1.0)) == "undecided" and band.decide(est(2.0, 2.5)) == "undecided"
+    for relation in (">", "<"):
+        o = Ordering("a", "b", relation)
+        assert o.decide(est(0.0, 1.0)) == "undecided" and o.decide(est(-1.0, 0.0)) == "undecided"
+    up = Monotone("g", "x", tolerance=1.0)
+    assert up.decide([est(2.0, 3.0), est(0.0, 1.0)]) == "undecided"  # separated by exactly the tolerance: flat
+
+
+def test_an_undecided_judgement_is_never_settled_and_says_why():
+    nan = Estimate(math.nan, 0.1, 0.0, 1.0, 100)
+    for rule in (InBand("q", 1.0, 2.0, "px"), Ordering("a", "b")):
+        j = rule.judge(nan)
+        assert (j.verdict, j.settled) == ("undecided", False) and "so it cannot decide" in j.why
+    j = InBand("q", 1.0, 2.0, "px").judge(est(1.5, 2.5))
+    assert (j.verdict, j.settled) == ("undecided", False) and j.why.startswith("q = 2 [1.5, 2.5] px straddles")
+    assert (
+        InBand("q", 1.0, 2.0).judge(est(0.2, 0.5)).why == "q = 0.35 [0.2, 0.5] lies wholly below the band (in [1, 2])"
+    )
+    j = AllOf({"a": InBand("q", 1.0, 2.0)}).judge({"a": est(1.2, 1.8)})
+    assert j == Judgement("reproduced", "(a) reproduced: q = 1.5 [1.2, 1.8] lies in [1, 2]", True, 1.0)
