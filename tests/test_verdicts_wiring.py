@@ -297,3 +297,17 @@ def test_an_undecided_judgement_is_never_settled_and_says_why():
     )
     j = AllOf({"a": InBand("q", 1.0, 2.0)}).judge({"a": est(1.2, 1.8)})
     assert j == Judgement("reproduced", "(a) reproduced: q = 1.5 [1.2, 1.8] lies in [1, 2]", True, 1.0)
+
+
+def test_ordering_judgements_say_the_difference_and_the_runs_to_decide():
+    o = Ordering("a", "b", ">")
+    assert o.judge(est(0.5, 1.5)) == Judgement("reproduced", "a - b = 1 [0.5, 1.5]: a > b", True, 1.0)
+    assert o.judge(est(-1.5, -0.5)) == Judgement(
+        "not reproduced", "a - b = -1 [-1.5, -0.5]: the opposite ordering holds", True, 1.0
+    )
+    assert o.judge(est(-0.5, 1.5)) == Judgement(
+        "undecided",
+        "a - b = 0.5 [-0.5, 1.5] contains 0: no measurable difference yet; about 4 times the runs would decide it",
+        False,
+        4.0,
+    )
