@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report site kernel sweep edit clean-runs hooks lint
+.PHONY: reproduce test bench report site kernel sweep edit clean-runs hooks lint mutate mutate-ci
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -56,6 +56,15 @@ test: $(STAMP) lint
 bench: $(STAMP)
 	mkdir -p benchmarks/results
 	$(BIN)/python -m pytest benchmarks -q --benchmark-only --benchmark-json=benchmarks/results/benchmarks.json
+
+# mutation testing of the claim wiring (docs/mutation.md): mutmut over each module of mutation/targets.toml with the
+# tests that pin it, one process, survivors per module (make mutate ONLY="verdicts claims_004"); not part of make test
+mutate: $(STAMP)
+	$(BIN)/python mutation/run.py $(if $(ONLY),--only $(ONLY))
+
+# the sampled subset a CI job can afford (each target's `ci` patterns, about two minutes on two cores)
+mutate-ci: $(STAMP)
+	$(BIN)/python mutation/run.py --ci
 
 # a working copy of a notebook at the smoke profile, opened in JupyterLab: make edit NB=004_laser_spot_prediction
 # (as root, e.g. in a container, JupyterLab is started with --allow-root)

@@ -6,11 +6,11 @@ notebook's, written once here).
 
 from __future__ import annotations
 
-from ...verdicts import AllOf, ByReading, InBand, Monotone, NotCheckable, Ordering, WithinFactor
+from ...verdicts import AllOf, ByReading, InBand, Monotone, NotCheckable, Ordering, WithinFactor, Rule
 from .register import ENTRIES
 from .study import COMPARATORS, PAPER_RATES
 
-__all__ = ["CLAIMS", "RULES"]
+__all__ = ["CLAIMS", "RULES", "claim_rules"]
 
 
 def _claim(statement: str, paper_value: str) -> dict[str, str]:
@@ -84,74 +84,82 @@ def _c8(t: float) -> AllOf:
     )
 
 
-RULES = {
-    "C001-1": AllOf(
-        {
-            "median": InBand("median detection time", 5.25, 5.75, "s"),
-            "early": InBand("fraction of runs x channels alarming before the onset", None, 0.05),
-            "missed": InBand("fraction of runs x channels missing the manoeuvre before the loss", None, 0.01),
-        }
-    ),
-    "C001-2": AllOf(
-        {
-            "size": WithinFactor("per-test false-alarm rate (exact sigma_S)", 1.0, 1.5, "× alpha"),
-            "invariance": NotCheckable("S is a difference of two window sums: a common shift cancels by construction"),
-            "unbiased": InBand(
-                "alarm rate after the onset (exact, from the statistic's distribution)", 1.0, None, "× alpha"
-            ),
-            "UMP": Ordering(
-                "P(detection within the delay limit after the onset) of |S|",
-                "that of the other invariant test at the same per-test false-alarm rate",
-                ">",
-            ),
-        }
-    ),
-    # a false-alarm rate in multiples of alpha (not a correlation): the paper's independence threshold is right
-    # only if the neighbouring samples' correlation is negligible; from its Gaussian closed form (false_alarm.py)
-    "C001-3": InBand("per-test false-alarm rate of the paper's independence threshold", 0.5, 2.0, "× alpha"),
-    "C001-4": AllOf(
-        {
-            "faster compensation": Ordering(
-                "mean-square dynamic error (mean error over runs) from the onset to the end of the compensation "
-                "interval, of the filter compared with",
-                "the scheme's",
-                ">",
-                "ratio",
-            ),
-            **{
-                f"min RMS vs {c}": Ordering(
-                    f"RMS error of the tuned {c} (as the register reads 'RMS', over its span)",
+def claim_rules() -> dict[str, Rule]:
+    """``{claim id: rule}``: the rule that decides each claim (built in a function, so that every part of it is
+    open to mutation testing)."""
+    return {
+        "C001-1": AllOf(
+            {
+                "median": InBand("median detection time", 5.25, 5.75, "s"),
+                "early": InBand("fraction of runs x channels alarming before the onset", None, 0.05),
+                "missed": InBand("fraction of runs x channels missing the manoeuvre before the loss", None, 0.01),
+            }
+        ),
+        "C001-2": AllOf(
+            {
+                "size": WithinFactor("per-test false-alarm rate (exact sigma_S)", 1.0, 1.5, "× alpha"),
+                "invariance": NotCheckable(
+                    "S is a difference of two window sums: a common shift cancels by construction"
+                ),
+                "unbiased": InBand(
+                    "alarm rate after the onset (exact, from the statistic's distribution)", 1.0, None, "× alpha"
+                ),
+                "UMP": Ordering(
+                    "P(detection within the delay limit after the onset) of |S|",
+                    "that of the other invariant test at the same per-test false-alarm rate",
+                    ">",
+                ),
+            }
+        ),
+        # a false-alarm rate in multiples of alpha (not a correlation): the paper's independence threshold is right
+        # only if the neighbouring samples' correlation is negligible; from its Gaussian closed form (false_alarm.py)
+        "C001-3": InBand("per-test false-alarm rate of the paper's independence threshold", 0.5, 2.0, "× alpha"),
+        "C001-4": AllOf(
+            {
+                "faster compensation": Ordering(
+                    "mean-square dynamic error (mean error over runs) from the onset to the end of the compensation "
+                    "interval, of the filter compared with",
                     "the scheme's",
                     ">",
                     "ratio",
-                )
-                for c in COMPARATORS
-            },
-        }
-    ),
-    "C001-5": NotCheckable(
-        "true by construction: the growing-memory least-squares schedule frozen at its bound (the paper prints "
-        "none); checks: increases of kappa1 outside the switches, runs at the bound before the loss"
-    ),
-    "C001-6": NotCheckable("an identity of the zero-gain recursion for a polynomial truth of degree <= 2"),
-    # C001-7, -8: deterministic curves judged with the register's curve_tolerance (a smaller step is flat)
-    "C001-7": ByReading("curve_tolerance", {t: _c7(t) for t in CURVE_TOLERANCES}, _c7(CURVE_TOLERANCE)),
-    "C001-8": ByReading("curve_tolerance", {t: _c8(t) for t in CURVE_TOLERANCES}, _c8(CURVE_TOLERANCE)),
-    "C001-9": AllOf(
-        {
-            **{
-                r: InBand(f"largest deviation from the extrapolated angle at {r}", None, 1.0, "× tolerance")
-                for r in PAPER_RATES
-            },
-            "geometries": InBand(
-                "fraction of geometries within ±20° whose extrapolation stays within the tolerance", 0.9, 1.0
-            ),
-        }
-    ),
-    "C001-10": AllOf(
-        {
-            "0.008°": WithinFactor("0.008° in raster elements", 1.0, 1.1, "el"),
-            "0.02°": WithinFactor("0.02° in raster elements", 10.0, 1.1, "el"),
-        }
-    ),
-}
+                ),
+                **{
+                    f"min RMS vs {c}": Ordering(
+                        f"RMS error of the tuned {c} (as the register reads 'RMS', over its span)",
+                        "the scheme's",
+                        ">",
+                        "ratio",
+                    )
+                    for c in COMPARATORS
+                },
+            }
+        ),
+        "C001-5": NotCheckable(
+            "true by construction: the growing-memory least-squares schedule frozen at its bound (the paper prints "
+            "none); checks: increases of kappa1 outside the switches, runs at the bound before the loss"
+        ),
+        "C001-6": NotCheckable("an identity of the zero-gain recursion for a polynomial truth of degree <= 2"),
+        # C001-7, -8: deterministic curves judged with the register's curve_tolerance (a smaller step is flat)
+        "C001-7": ByReading("curve_tolerance", {t: _c7(t) for t in CURVE_TOLERANCES}, _c7(CURVE_TOLERANCE)),
+        "C001-8": ByReading("curve_tolerance", {t: _c8(t) for t in CURVE_TOLERANCES}, _c8(CURVE_TOLERANCE)),
+        "C001-9": AllOf(
+            {
+                **{
+                    r: InBand(f"largest deviation from the extrapolated angle at {r}", None, 1.0, "× tolerance")
+                    for r in PAPER_RATES
+                },
+                "geometries": InBand(
+                    "fraction of geometries within ±20° whose extrapolation stays within the tolerance", 0.9, 1.0
+                ),
+            }
+        ),
+        "C001-10": AllOf(
+            {
+                "0.008°": WithinFactor("0.008° in raster elements", 1.0, 1.1, "el"),
+                "0.02°": WithinFactor("0.02° in raster elements", 10.0, 1.1, "el"),
+            }
+        ),
+    }
+
+
+RULES = claim_rules()

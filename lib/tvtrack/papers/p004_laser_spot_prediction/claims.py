@@ -6,11 +6,11 @@ notebook's, written once here).
 
 from __future__ import annotations
 
-from ...verdicts import AllOf, InBand, NotCheckable, Ordering
+from ...verdicts import AllOf, InBand, NotCheckable, Ordering, Rule
 from .prediction_study import CLASSICAL
 from .study import NETWORKS
 
-__all__ = ["CLAIMS", "RULES"]
+__all__ = ["CLAIMS", "RULES", "claim_rules"]
 
 
 def _claim(statement: str, paper_value: str) -> dict[str, str]:
@@ -47,37 +47,50 @@ def _better(baseline: str) -> Ordering:
     return Ordering(f"mean squared error of {baseline}", "that of the paper's filter", ">", measure="ratio")
 
 
-RULES = {
-    "C004-1": InBand(
-        "mean per-path 95th percentile of the per-axis |prediction error| (or the register's other statistic)",
-        high=2.0,
-        unit="px",
-    ),
-    "C004-2": NotCheckable(
-        "the simulated world is calibrated so that the paper's filter errs 1.5 px (the wander's bandwidth is the root "
-        "of that equation, calibration.calibrate_bandwidth): the paper's 1-2 px is the calibration's input, so at the "
-        "default it holds by construction, and without the paper's recordings nothing else can check it; the "
-        "measured RMS is still shown (per axis, and radial as a reading)"
-    ),
-    "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
-    "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
-    "C004-4": InBand(
-        "largest relative deviation of the recursion (5)-(6) from least squares on eq. (4)", high=1e-9, unit="relative"
-    ),
-    "C004-5": AllOf(
-        {
-            "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0, unit="gain"),
-            **{
-                f"variance at N={n}": InBand(
-                    f"variance of the filtered position / (sigma^2 g_N1) at N = {n}", low=0.9, high=1.1, unit="ratio"
-                )
-                for n in (3, 5, 10, 20, 50, 100)
-            },
-        }
-    ),
-    "C004-6": InBand("RMS error over the second half of the frames, no floor / floor", low=2.0, unit="ratio"),
-    "C004-7": NotCheckable(
-        "true by construction: eq. (4) on the first three samples is the exact interpolating quadratic"
-    ),
-    "C004-8": InBand("time per frame (energy centre + filter + prediction) / frame interval", high=1.0, unit="ratio"),
-}
+def claim_rules() -> dict[str, Rule]:
+    """``{claim id: rule}``: the rule that decides each claim (built in a function, so that every part of it is
+    open to mutation testing)."""
+    return {
+        "C004-1": InBand(
+            "mean per-path 95th percentile of the per-axis |prediction error| (or the register's other statistic)",
+            high=2.0,
+            unit="px",
+        ),
+        "C004-2": NotCheckable(
+            "the simulated world is calibrated so that the paper's filter errs 1.5 px (the wander's bandwidth is the root "
+            "of that equation, calibration.calibrate_bandwidth): the paper's 1-2 px is the calibration's input, so at the "
+            "default it holds by construction, and without the paper's recordings nothing else can check it; the "
+            "measured RMS is still shown (per axis, and radial as a reading)"
+        ),
+        "C004-3": AllOf({b: _better(b) for b in CLASSICAL}),
+        "C004-3b": AllOf({b: _better(b) for b in NETWORKS}),
+        "C004-4": InBand(
+            "largest relative deviation of the recursion (5)-(6) from least squares on eq. (4)",
+            high=1e-9,
+            unit="relative",
+        ),
+        "C004-5": AllOf(
+            {
+                "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0, unit="gain"),
+                **{
+                    f"variance at N={n}": InBand(
+                        f"variance of the filtered position / (sigma^2 g_N1) at N = {n}",
+                        low=0.9,
+                        high=1.1,
+                        unit="ratio",
+                    )
+                    for n in (3, 5, 10, 20, 50, 100)
+                },
+            }
+        ),
+        "C004-6": InBand("RMS error over the second half of the frames, no floor / floor", low=2.0, unit="ratio"),
+        "C004-7": NotCheckable(
+            "true by construction: eq. (4) on the first three samples is the exact interpolating quadratic"
+        ),
+        "C004-8": InBand(
+            "time per frame (energy centre + filter + prediction) / frame interval", high=1.0, unit="ratio"
+        ),
+    }
+
+
+RULES = claim_rules()

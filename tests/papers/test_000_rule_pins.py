@@ -1,0 +1,142 @@
+"""Rule pins of paper 000 (Martyshevsky 1995): each claim's rule decides synthetic values either side of the paper's
+statement as the paper says (tests/rule_pins.py). Sentences and bands from the paper's conclusions and its card's
+claims table; the values are written here, not read from claims.py."""
+
+from rule_pins import Band, Order, Trend, Unchecked, problems
+
+RATIO_UP = "error variance over sigma_x^2* rises with P"
+SAME = Band(
+    "the two algorithms give approximately the same potential accuracy",
+    "v1 / v2 in [0.8, 1.25]",
+    0.8,
+    1.25,
+    (1.0, 0.85, 1.2),
+    (0.7, 1.4),
+    unit="(ratio)",
+)
+DT = Band(
+    "dt = 0.05 keeps discretisation errors within 3 %",
+    "|relative change| <= 0.03",
+    -0.03,
+    0.03,
+    (0.0, 0.02, -0.02),
+    (0.05, -0.05, 0.3),
+    unit="(fraction)",
+)
+SHARE = Band(
+    "both algorithms converge fairly quickly (default reading: 90 % of runs in lock)",
+    "share not in lock <= 0.1",
+    None,
+    0.1,
+    (0.0, 0.05),
+    (0.2, 0.5),
+    unit="of the runs",
+)
+WITHIN_10 = Band(
+    "converge: sigma_x^2 within 10 % of its steady state",
+    "ratio in [0.9, 1.1]",
+    0.9,
+    1.1,
+    (1.0, 0.95, 1.05),
+    (0.8, 1.2),
+    unit="(ratio)",
+)
+LOW_P = Band(
+    "for P < 0.5 the non-stationary noise does not substantially affect accuracy",
+    "ratio <= 1.3",
+    None,
+    1.3,
+    (1.0, 1.2),
+    (1.5, 3.0),
+    unit="(ratio)",
+)
+HIGH_P = Band(
+    "for P > 0.5 it substantially determines accuracy", "ratio >= 2", 2.0, None, (2.5, 10.0), (1.5, 1.0), "(ratio)"
+)
+
+PINS = {
+    "C000-1": {
+        # both algorithms: variants 1 and 2 (the paper's two EKFs)
+        **{f"convergence criterion=90 % of runs acquired / variant {v}": SHARE for v in (1, 2)},
+        **{f"convergence criterion=*default* / variant {v}": SHARE for v in (1, 2)},
+        **{f"convergence criterion=ensemble mean within 10 % / variant {v}": WITHIN_10 for v in (1, 2)},
+    },
+    "C000-2": {
+        "P=*": Band(
+            "at psi_A = 20 the coordinate error is 2 % of the micro-raster size",
+            "sigma_x / T in [0.01, 0.03]",
+            0.01,
+            0.03,
+            (0.02, 0.015, 0.028),
+            (0.005, 0.04, 0.2),
+            unit="(ratio)",
+        ),
+    },
+    "C000-3": {
+        "P=0": Unchecked("same potential accuracy", "at P = 0 the two variants are one filter"),
+        "P=0.*": SAME,
+        "psi_A=*": SAME,
+    },
+    "C000-4": {
+        "": Order("variant 1 needs more computation", "cost v1 / cost v2 > 1", (1.5, 4.0), (0.67, 0.25), "(ratio)")
+    },
+    "C000-5": {
+        "substantially determines=* / P=0.25": LOW_P,
+        "substantially determines=* / P=0.5": LOW_P,
+        "substantially determines=* / P=0.7": HIGH_P,
+        "substantially determines=* / P=0.9": HIGH_P,
+    },
+    "C000-6": {
+        "": Band(
+            "at P = 0.9 the variance exceeds the achievable one by more than 20 times",
+            "ratio > 20",
+            20.0,
+            None,
+            (25.0, 100.0),
+            (15.0, 2.0),
+            unit="(ratio)",
+        ),
+    },
+    "C000-7": {
+        "trend": Trend(
+            "sigma_x^2 grows with P relative to sigma_x^2*",
+            RATIO_UP + " (increasing in P)",
+            ((1.0, 1.5, 3.0, 30.0),),
+            ((30.0, 3.0, 1.5, 1.0), (1.0, 5.0, 2.0, 30.0)),
+            unit="(ratio)",
+        ),
+        "measurement vs estimate": Order(
+            "the measurement variance grows faster than the estimate variance",
+            "measurement ratio - estimate ratio > 0",
+            (1.0, 20.0),
+            (-1.0, -20.0),
+            unit="(ratio)",
+        ),
+    },
+    "C000-8": {f"variant {v} at psi_A=*, P=*": DT for v in (1, 2)},
+    "C000-9": {
+        f"variant {v}": Trend(
+            "sigma_x^2 decreases with psi_A (Fig. 2)",
+            "decreasing in psi_A",
+            ((1e-2, 1e-3, 1e-4),),
+            ((1e-4, 1e-3, 1e-2),),
+            unit="T^2",
+        )
+        for v in (1, 2)
+    },
+    "C000-10": {"": Unchecked("experiment agrees with the model", "no experimental data in the paper")},
+}
+
+
+def test_the_rules_follow_the_run_sizes():
+    """claim_rules(sizes) names its parts from the run's grids, not the defaults'."""
+    from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
+    from tvtrack.papers.p000_dissector_ekf.study import Sizes
+
+    rules = claim_rules(Sizes(contrast_grid=(0.0, 0.3, 0.8), psi_grid=(7.0,), dt_points=((30.0, 0.2),)))
+    assert list(rules["C000-3"].parts) == ["P=0", "P=0.3", "P=0.8", "psi_A=7"]
+    assert list(rules["C000-8"].parts) == ["variant 1 at psi_A=30, P=0.2", "variant 2 at psi_A=30, P=0.2"]
+
+
+def test_every_rule_of_000_decides_as_the_paper_says():
+    assert not problems("p000_dissector_ekf", PINS), "\n".join(problems("p000_dissector_ekf", PINS))
