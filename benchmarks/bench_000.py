@@ -1,6 +1,6 @@
 """Speed of notebook 000, as ratios of CPU time (no absolute wall time: the machine is shared): the filters'
 vectorisation over trials, the cost of variant 1 against variant 2, what the memoised measurement function saves
-on a one-at-a-time configuration of the exploration, and what screening the joint design saves (issue 43)."""
+on a one-at-a-time configuration of the exploration, and what screening the joint design saves."""
 
 import time
 from dataclasses import replace
@@ -124,7 +124,7 @@ def _joint_design(screened: bool) -> tuple[dict, dict]:
 
 
 def test_what_screening_the_joint_design_saves(benchmark, figure):
-    """Issue 43's screening saving, measured both ways in one run: the joint design's CPU seconds at full size over
+    """The screening's saving, measured both ways in one run: the joint design's CPU seconds at full size over
     the screened design's (the screen at a quarter of the runs, plus every claim that may flip confirmed at full
     size, :func:`tvtrack.explore.explore`). Reported without a target: no notebook screens by default, since the
     claims of these papers flip in many joint configurations and each flip must be confirmed at full size (000:

@@ -7,7 +7,7 @@ The reference runs the same logic one trial-channel at a time with ``filterpy.gh
 (gain overrides per update; its ``k`` is kappa3/2). It is timed on a subset of trial-channels in
 the same benchmark run and scaled linearly (a per-trial loop's cost is linear in the number of
 trials); the subset's detections and states must equal the batched ones.
-Target: >= 400x (issue 30, asserted). Timing under load (the machine is shared): every round times the batched
+Target: >= 400x (asserted). Timing under load (the machine is shared): every round times the batched
 run and the filterpy loop on a fresh random subset of ``N_REF`` trial-channels back to back (both sides see the
 same load), and the figure is the ratio of each side's minimum over ``ROUNDS`` rounds (its least-disturbed round,
 as ``timeit`` reports); the median of the per-round ratios and the load averages are printed and noted in the

@@ -21,7 +21,7 @@ Measured increments over a replicate (before the compiled E-step): a faster velo
 sigma for Figs 4, 5, 7 reruns 26 jobs (6.0 s); a statistic or a reading reruns nothing (the job cache keys each
 algorithm's job by the settings it reads).
 
-An exploration at the paper profile (issue 43, measured 2026-11-28 in CPU seconds, one process, ``nice -n 10`` at a
+An exploration at the paper profile (measured 2026-11-28 in CPU seconds, one process, ``nice -n 10`` at a
 load of 2): replicates 21.7 (3), sizing 9.8 (5 more, each measuring only the claims still undecided), one at a time
 104.3 (52 values, each measuring only the claims that read it, at full size reusing the first replicate's jobs),
 joint 439.2 (32 configurations, 13.7 each), pinned 26.8 (2), combinations 17.2 (8); about 620 in all, against about

@@ -20,7 +20,7 @@ per-step overhead (~0.15-0.2 s per 500-frame batch, ~10-20 % of a 240-trial run)
 background generation, the larger share, gains nothing from a JIT (it is already one scipy call) but could be drawn
 once per scene and shared across the configurations that do not change it (common random numbers).
 
-Per configuration, 2026-11-28 (issue 43; CPU s of one process, paper sizes, main and this tree side by side at a
+Per configuration, 2026-11-28 (CPU s of one process, paper sizes, main and this tree side by side at a
 load of 2): ``measure_interference`` at the default 3.6 s (4.8 s before), a joint-like configuration (integrated
 exposure at 250 frames/s, centroid static baseline, 2D interferers, random motion) 4.3 s (5.4 s); the rotating pair
 with the decoy riding as a third block, the static pair, two gate sizes, the uncompensated runs and the bandwidth pair

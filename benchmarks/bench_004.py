@@ -1,6 +1,6 @@
 """Speed of notebook 004: measurement + filter + prediction on gate crops, and one full-size measurement.
 
-Work (issue 3): 15 paths x 1000 frames of 31 x 31 gate crops (rendered and read out beforehand,
+Work: 15 paths x 1000 frames of 31 x 31 gate crops (rendered and read out beforehand,
 not timed): energy centre with border-median background and 3-sigma threshold
 (:func:`tvtrack.measure.centroid`), the growing-memory filter with floor N_f = 10 on x and y and
 its one-frame prediction (:func:`tvtrack.papers.p004_laser_spot_prediction.predictors.growing_memory_forecast`: the core filter for
@@ -8,7 +8,7 @@ the first N_f frames, then the fixed-gain filter as an IIR filter).
 Targets: >= 50,000 gate-crop frames/s on one core; one full-size measurement of the explorer
 (:func:`tvtrack.papers.p004_laser_spot_prediction.study.measure`: 15 paths x 1000 frames rendered and
 measured, 1.3 CPU s, then predicted by the paper's filter and every baseline a claim reads, each tuned; the two
-networks with their lag counts cross-validated are most of it) < 10 s CPU. Measured on one core (issue 43): 6.2
+networks with their lag counts cross-validated are most of it) < 10 s CPU. Measured on one core: 6.2
 CPU s before the measurement ran only what its claims read (the ML Kalman filters, the variant floor and the fading
 memory are the notebook's figures, no claim's value) and the networks were fitted without scikit-learn's per-call
 validation, 4.8 s after. Where the notebook's paper-profile time goes (one run, n_workers=1, nice 10, CPU s): the

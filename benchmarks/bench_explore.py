@@ -1,4 +1,4 @@
-"""Where each notebook's exploration spends its time, and what the screened joint design saves (issue 43).
+"""Where each notebook's exploration spends its time, and what the screened joint design saves.
 
 Read from the last paper-profile ``make reproduce`` (each claim's ``robustness.design.timing`` in
 ``papermill_runs/reproduce/<notebook>/results.json``, written by :func:`tvtrack.explore.explore`: configurations

@@ -1,4 +1,4 @@
-"""Benchmark figures (issue 30): a figure is a ratio against a reference run in the same process or
+"""Benchmark figures: a figure is a ratio against a reference run in the same process or
 work per CPU second, never an absolute wall time; :func:`write_table` merges them into one table,
 ``benchmarks/results/table.md`` (name, value, target, pass), which ``make bench`` writes and docs/benchmarks.md quotes.
 """

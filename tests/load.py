@@ -1,4 +1,4 @@
-"""Wall-clock limits that a loaded machine does not break (issue 43: `make test` passes under load).
+"""Wall-clock limits that a loaded machine does not break (`make test` passes under load).
 
 A test that bounds a wall time (a refusal before any work, a Ctrl-C that stops promptly, a viewer check) states
 the limit for an idle machine; :func:`wall_budget` stretches it by the machine's load, the runnable processes per

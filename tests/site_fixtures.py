@@ -60,7 +60,7 @@ UNDECIDED_CLAIM = {
 
 
 def make_runs_dir(root):
-    """``root/reproduce/{fixture_centroid, old_schema, new_schema, broken}`` (new_schema: issue 22's records with
+    """``root/reproduce/{fixture_centroid, old_schema, new_schema, broken}`` (new_schema: records with
     parts, coverage and register, text that must be escaped, an undecided claim) and
     ``root/fixture_sweep/summary.{csv,png}``."""
     reproduce = root / "reproduce"

@@ -1,4 +1,4 @@
-"""Every register value can decide (issue 34, item 7): under every value of every entry a claim depends on, the rule
+"""Every register value can decide: under every value of every entry a claim depends on, the rule
 in force (:func:`tvtrack.verdicts.for_config`; a :class:`~tvtrack.verdicts.ByReading` rule picks its reading's) can
 reach both ``reproduced`` and ``not reproduced`` on a synthetic measurement (:func:`tvtrack.verdicts.synthetic`).
 A rule that can never reproduce, or never fail, under some reading decides nothing there."""

@@ -334,7 +334,7 @@ def test_a_log_scale_pool_stays_within_the_replicates_intervals():
     assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high and "log scale" in p.method  # was 1.019
 
 
-# --------------------------------------------------------------------------- measuring only the claims asked (issue 43)
+# --------------------------------------------------------------------------- measuring only the claims asked
 
 
 def _depends_xy():

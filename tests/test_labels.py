@@ -1,4 +1,4 @@
-"""Verdicts decided by the data and labels noise cannot make (issue 34), on constructed claims.
+"""Verdicts decided by the data and labels noise cannot make, on constructed claims.
 
 Each test builds a claim whose truth is known: a power-limited claim, a zero-events part, a straddling
 condition, a planted single-entry flip, a planted pair interaction, a reading against a world.

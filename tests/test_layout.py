@@ -137,3 +137,38 @@ def test_the_layout_rules_see_a_planted_offence(tmp_path, monkeypatch):
     assert [
         m for m, deps in graph.items() if not m.startswith("tvtrack.papers") and any(d.startswith(PAPERS) for d in deps)
     ] == ["tvtrack.render"]
+
+
+#: How the project's own making could show in its files: work-item numbers, work sessions, stops, working branches.
+_PROCESS_WORDS = (
+    r"\b(" + "|".join(("iss" + "ue [0-9]+", "sess" + "ion[- ][0-9]", "this st" + "op", "last st" + "op")) + r")\b"
+)
+
+
+def _process_words(root: Path) -> list[str]:
+    import re
+    import subprocess
+
+    files = subprocess.run(["git", "ls-files"], cwd=root, capture_output=True, text=True, check=True).stdout.split()
+    hits = []
+    for name in files:
+        path = root / name
+        if path.suffix not in (".py", ".md", ".ipynb", ".toml", ".txt", ".cff", ".yml", ".yaml") or not path.is_file():
+            continue
+        for n, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+            if re.search(_PROCESS_WORDS, line, re.IGNORECASE):
+                hits.append(f"{name}:{n}: {line.strip()[:100]}")
+    return hits
+
+
+def test_the_project_speaks_of_itself_not_of_how_it_was_made(tmp_path):
+    """No file names the work items, sessions or stops it came from: a maintainer needs what the code does and what
+    was tried against each claim (docs/validity), not a log. The check itself sees a planted line."""
+    root = Path(tvtrack.__file__).resolve().parents[2]
+    assert _process_words(root) == []
+    import subprocess
+
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    (tmp_path / "a.py").write_text("# fixed in " + "iss" + "ue 12\n")
+    subprocess.run(["git", "add", "a.py"], cwd=tmp_path, check=True)
+    assert len(_process_words(tmp_path)) == 1

@@ -1,4 +1,4 @@
-"""A sweep under faults loses nothing (issue 42): interrupted (Ctrl-C) and resumed, kernels killed at random
+"""A sweep under faults loses nothing: interrupted (Ctrl-C) and resumed, kernels killed at random
 (SIGKILL), one run's record that cannot be written (ENOSPC); at every stop each run is either complete and
 valid (``ok`` with its results, or ``failed`` with its error) or absent, and summary.csv says which."""
 

@@ -1,4 +1,4 @@
-"""Kernels that start under load (issue 42): the runner's kernels use ipc sockets (no TCP port to race
+"""Kernels that start under load: the runner's kernels use ipc sockets (no TCP port to race
 for), run this environment's Python whatever kernel specs are installed, print to the run's kernel.log and
 never to the terminal, and many started at once all succeed. The clone's JupyterLab kernel is its own."""
 

@@ -1,4 +1,4 @@
-"""Outputs nobody else can clobber (issue 42): one writer per output folder (a second gets one line naming
+"""Outputs nobody else can clobber: one writer per output folder (a second gets one line naming
 the holder's process id, exit 2), and a write that fails (full disk, read-only) gives one line and leaves
 no temporary folder."""
 

@@ -1,4 +1,4 @@
-"""Sweeps do what their file says (issue 42): a seed list is a seed per run, two runs never share a
+"""Sweeps do what their file says: a seed list is a seed per run, two runs never share a
 directory, every shipped sweep writes its summary, and a summary metric that no run writes, an unknown key
 in a spec or a profile, is refused with one line before any run starts."""
 

@@ -1,4 +1,4 @@
-"""The README is for users (issue 36): short, the two commands and the findings on its first screen, contributor
+"""The README is for users: short, the two commands and the findings on its first screen, contributor
 material in docs/, every link resolving."""
 
 from __future__ import annotations

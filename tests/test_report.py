@@ -351,7 +351,7 @@ def test_ctrl_c_during_reproduce_keeps_earlier_runs_and_leaves_no_temporaries(tm
     assert {p.name: p.read_bytes() for p in earlier.iterdir()} == before
 
 
-# --- the report a reader understands in a minute (issue 36) ------------------------------------------------------
+# --- the report a reader understands in a minute ------------------------------------------------------
 
 
 @pytest.fixture

@@ -145,7 +145,7 @@ def test_results_record_the_kernels_cpu_seconds(tmp_path):
     assert 0.33 <= data["cpu_s"] < data["runtime_s"] - 0.25
 
 
-# --- a claim in plain words (issue 36) ------------------------------------------------------------------------------
+# --- a claim in plain words ------------------------------------------------------------------------------
 
 
 def test_numbers_carry_units_and_deterministic_ones_no_interval():

@@ -254,7 +254,10 @@ def test_each_claim_has_a_page_with_its_specification_curve(explored_site):  # n
     summary = page[page.index('id="claim-summary"') :]
     assert "29 agree, 3 flip and 0 stay undecided of 32 explored configurations." in summary[: summary.index("</p>")]
     caption = page[page.index("<figcaption") :]
-    assert "29 agree with the default, 3 flip and 0 stay undecided of the 32 explored configurations" in caption[: caption.index("</fig")]
+    assert (
+        "29 agree with the default, 3 flip and 0 stay undecided of the 32 explored configurations"
+        in caption[: caption.index("</fig")]
+    )
     assert (
         "(a reading of the paper&#39;s text: reproduced)" in page and "(a world beyond the paper: reproduced)" in page
     )

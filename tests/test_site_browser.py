@@ -134,7 +134,7 @@ def _assert_first_screen(page):
 
 
 def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_path_factory):
-    """Issue 36's acceptance at 1400 x 900: the paragraph and glossary without scrolling, tooltips on every chip
+    """The acceptance at 1400 x 900: the paragraph and glossary without scrolling, tooltips on every chip
     (shown on hover), no horizontal scroll, and a claim page that shows its specification curve."""
     from tvtrack.pipeline.site import build_site
 

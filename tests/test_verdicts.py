@@ -122,7 +122,7 @@ def test_robustness_labels():
     rob.seeds = {1: est(0.6, 0.9), 2: est(3.8, 4.0), 3: est(0.5, 0.8)}
     unstable = rob.record(rule, est(0.6, 0.9))
     assert unstable["label"] == "unstable"
-    # the seeds disagree, and the condition that flips is still reported (issue 24 item 3)
+    # the seeds disagree, and the condition that flips is still reported
     assert any("replicates" in w for w in unstable["where"]) and any("epoch = last" in w for w in unstable["where"])
     reps = [{"seed": s, "measured": 1.0} for s in (1, 2, 3)]
     assert label_parts(InBand("x", 0, 2), 1.0, reps, [])["label"] == "unexplored"  # nothing of the world varied

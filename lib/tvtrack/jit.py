@@ -1,8 +1,8 @@
 """Optional just-in-time compilation (numba) with a pure-NumPy fallback.
 
-A compiled kernel is used only where a loop is dominated by NumPy's per-call overhead or by scalar logic
-(issue 30): notebook 001's mode logic (``papers.p001_maneuver_occlusion_kf._track_modes_kernel``), the IMM on a
-scalar position measurement (``filters._imm_kernel``, notebook 001's comparator, issue 43) and notebook 002's EM
+A compiled kernel is used only where a loop is dominated by NumPy's per-call overhead or by scalar logic:
+notebook 001's mode logic (``papers.p001_maneuver_occlusion_kf._track_modes_kernel``), the IMM on a scalar position
+measurement (``filters._imm_kernel``, notebook 001's comparator) and notebook 002's EM
 E-step (``papers.p002_unified_location_em._kernels``). Every kernel has a NumPy twin that the tests
 always run and compare with it. Set the environment variable ``TVTRACK_NO_JIT=1`` to force the NumPy paths
 (numba absent has the same effect).

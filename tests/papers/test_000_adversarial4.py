@@ -1,4 +1,4 @@
-"""The adversarial review of paper 000 (docs/adversarial/session4-000-review.md): the reading "for P > 0.5 the
+"""The adversarial review of paper 000 (docs/validity/000.md): the reading "for P > 0.5 the
 signal noise substantially determines the accuracy" checked at every Fig. 3 contrast above 0.5, not only at P = 0.9.
 
 Martyshevsky 1995 (Avtometriya No. 3), Conclusions: "for P < 0.5 the non-stationary noise does not substantially

@@ -1,4 +1,4 @@
-"""Claim-level pins of paper 000's default data path (issue 37, item 7): each test kills a planted bug that no
+"""Claim-level pins of paper 000's default data path: each test kills a planted bug that no
 earlier test caught, by checking what a claim rests on against an independent small computation.
 
 Mutations killed (each seen failing with the mutation planted):

@@ -1,5 +1,5 @@
 """Every value of every register entry of paper 000 can reach both verdicts under the rule its reading uses
-(issue 37, item 1): a reading that changes what a claim measures brings its own rule (C000-1's two convergence
+(item 1): a reading that changes what a claim measures brings its own rule (C000-1's two convergence
 criteria, a :class:`tvtrack.verdicts.ByReading` rule)."""
 
 import pytest

@@ -1,4 +1,4 @@
-"""Tests of paper 000 that a planted bug in its core algorithm must fail (issue 24, item 5).
+"""Tests of paper 000 that a planted bug in its core algorithm must fail.
 
 Each test names the mutation it kills; each was seen failing with the mutation planted.
 """

@@ -22,7 +22,7 @@ def test_pull_in_range_walks_out_from_zero_on_each_side():
 
 def test_a_negative_offset_starts_the_truth_on_the_other_side_and_acquisition_is_not_symmetric():
     """The truth starts at -0.3 T in every run; from +-0.3 T (inside the micro-raster) both variants acquire; from
-    -1 T most runs do not, while from +1 T they do (issue 37's finding: the pull-in range is not symmetric)."""
+    -1 T most runs do not, while from +1 T they do (a review's finding: the pull-in range is not symmetric)."""
     acq = studies.acquisition_vs_offset(DEFAULT, 4, SMALL, [-1.0, -0.3, 0.3, 1.0])
     x, *_ = study._path(DEFAULT, 4, SMALL, -0.3)
     np.testing.assert_allclose(x[:, 0], -0.3)

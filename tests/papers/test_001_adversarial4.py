@@ -1,5 +1,5 @@
-"""Adversarial review of paper 001 (Fisenko et al. 2008), session 4: defects the review found, each with a test
-that fails on the defect (docs/adversarial/session4-001-review.md)."""
+"""Adversarial review of paper 001 (Fisenko et al. 2008): defects the review found, each with a test
+that fails on the defect (docs/validity/001.md)."""
 
 import numpy as np
 import pytest

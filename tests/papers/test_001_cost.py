@@ -1,4 +1,4 @@
-"""Issue 43 (notebook 001's cost): the compiled IMM twin equals imm_run to rounding, a batched grid of IMM
+"""Notebook 001's cost: the compiled IMM twin equals imm_run to rounding, a batched grid of IMM
 settings equals the per-setting runs bit for bit, and the cached comparator tuning equals a cold one bit for bit."""
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""C001-3 from the closed form of the per-test false-alarm rate (issue 38 item 3): the impulse response of S, the
+"""C001-3 from the closed form of the per-test false-alarm rate: the impulse response of S, the
 rate under each error model against Monte Carlo, and a raw-increment reading decided without a zero-events
 bound."""
 

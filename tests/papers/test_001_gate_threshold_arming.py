@@ -1,5 +1,5 @@
 """Tests of paper 001's gate, threshold index, arming and coast guards, and of the detection summaries at the
-onset frame (issue 25, items 3 and 4). Each test names the planted bug it kills."""
+onset frame. Each test names the planted bug it kills."""
 
 import numpy as np
 import pytest

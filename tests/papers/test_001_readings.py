@@ -1,6 +1,6 @@
-"""Issue 38's readings of paper 001: every setting a verdict rests on is a register entry or fixed by the paper
-(item 4), plain words for every register value (item 8), Fig. 4's optimum at the dynamic error's sign crossing
-and the curve tolerance (item 5), C001-9 at the paper's two rates (item 6)."""
+"""The readings of paper 001: every setting a verdict rests on is a register entry or fixed by the paper
+(item 4), plain words for every register value, Fig. 4's optimum at the dynamic error's sign crossing
+and the curve tolerance, C001-9 at the paper's two rates."""
 
 import ast
 import re
@@ -70,7 +70,7 @@ def test_every_register_entry_and_value_has_plain_words():
 
 
 def test_fig4_optimum_sits_at_the_sign_crossing_of_the_dynamic_error():
-    """Issue 38: under restart A the signed dynamic error runs +3.67, +3.04, -0.18, -4.58 at k_b3 = 80 ... 110:
+    """Under restart A the signed dynamic error runs +3.67, +3.04, -0.18, -4.58 at k_b3 = 80 ... 110:
     curve 3's minimum at 100 is where it crosses zero (between 90 and 100), not a balance of two monotone errors."""
     sz = dict(sigma_eps=1.0, defaults=REG.default(), kb3_grid=[60, 70, 80, 90, 100, 110, 120])
     cur = study.fig4_curves({}, sz)
@@ -87,7 +87,7 @@ def test_fig4_optimum_sits_at_the_sign_crossing_of_the_dynamic_error():
 
 def test_curve_tolerance_makes_sub_tolerance_steps_flat():
     """A deterministic RMS curve falling from 9 to 4 elements with a 0.0065-element rise in its flat tail (the
-    rise issue 38 saw flip 'RMS decreasing'): flat under the register's default tolerance 0.01 el, a rise at
+    rise a review saw flip 'RMS decreasing'): flat under the register's default tolerance 0.01 el, a rise at
     0.001 el; the measurement is tagged with the configuration's tolerance and C001-8's rule picks its Monotone."""
     from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES
 

@@ -94,7 +94,7 @@ def test_detection_measurement_matches_the_closed_forms():
 
 
 def test_tradeoff_parts_are_the_dynamic_and_random_errors_of_the_figure_study_runs():
-    """C001-4 (issue 38): the 'min RMS' parts read the register's rms_statistic on the same runs as the figure
+    """C001-4: the 'min RMS' parts read the register's rms_statistic on the same runs as the figure
     study: the random error (variance over runs, mean over the span), the total mean square, or |bias| + SD at
     the last frame before the loss; the compensation part is the dynamic (mean) error's mean square."""
     from tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff import error_functional
@@ -232,7 +232,7 @@ def test_explorer_runs_the_curves_group():
 
 
 def test_detector_benchmark_arms_every_detector_before_the_onset():
-    """Issue 25 item 1: with the stated arming k_b2 + 2n, the n = 50 window first tested after the onset and its
+    """With the stated arming k_b2 + 2n, the n = 50 window first tested after the onset and its
     delay row was flat (every run 'detected' at the first test). Each detector now tests before the onset, and a
     higher false-alarm target never lengthens the median delay."""
     sz = SIZES | {"n_trials": 150, "n_fa_runs": 1500}

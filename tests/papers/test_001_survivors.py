@@ -1,4 +1,4 @@
-"""Tests that kill the three planted bugs that survived issue 38's audit of paper 001: Fig. 4's RMS with the
+"""Tests that kill the three planted bugs that survived an audit of paper 001: Fig. 4's RMS with the
 measurement noise left in, the chi-square agreement on the SD instead of the variance, and the quantised error
 model without its -1/12 (each planted, seen failing, removed)."""
 

@@ -1,4 +1,4 @@
-"""Session-4 adversarial review of paper 002: the readings added to the register and what they measure.
+"""Adversarial review of paper 002: the readings added to the register and what they measure.
 
 "Very close objects" read at d = 0.5 sigma (C002-15) and Fig 1c's own pixel pair 5 against 3 sigma (C002-5): each
 test checks that the register value moves only the points it should, and that the measurement behind its flip is

@@ -1,4 +1,4 @@
-"""The compiled E-step of notebook 002's unified location EM against its NumPy twin (issue 30).
+"""The compiled E-step of notebook 002's unified location EM against its NumPy twin.
 
 The NumPy path is always tested (``TVTRACK_NO_JIT=1``); the compiled path only where numba is importable.
 """

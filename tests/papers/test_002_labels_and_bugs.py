@@ -1,4 +1,4 @@
-"""Fourth pass of notebook 002 (issue 39): labels matched over the whole trajectory (crossing tracks), and the
+"""Notebook 002: labels matched over the whole trajectory (crossing tracks), and the
 tests that kill three planted bugs (the Poisson photon model, the noise per pixel, the SQUAREM safeguard)."""
 
 from dataclasses import replace
@@ -80,7 +80,7 @@ def test_the_ula_on_crossing_tracks_is_neither_merged_nor_swapped():
     assert not swapped.any() and np.abs(err[..., :2]).max() < 1.0
 
 
-# -- planted bugs (issue 39): each test below was seen failing on its bug ------------------------------------
+# -- planted bugs: each test below was seen failing on its bug ------------------------------------
 
 
 def test_poisson_photon_model_draws_poisson_counts():
@@ -138,7 +138,7 @@ def test_squarem_never_lowers_the_likelihood():
     assert res.loglik.min() >= L[0].min()
 
 
-# -- the matched practical stop (issue 39) ---------------------------------------------------------------------
+# -- the matched practical stop ---------------------------------------------------------------------
 
 
 def _scene(seed, n, q=2, d=1.0, pix=3.0, m=20, T=10):

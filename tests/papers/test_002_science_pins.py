@@ -1,4 +1,4 @@
-"""Pins of paper 002's science that earlier tests let through (issue 26, item 5).
+"""Pins of paper 002's science that earlier tests let through.
 
 Each test names the planted bug ("mutation") it kills; each was seen failing with the bug planted:
 
@@ -138,7 +138,7 @@ def test_marks_are_the_per_frame_maximum_likelihood_positions():
 
 
 def test_map_comparison_gives_both_algorithms_the_same_velocity_knowledge():
-    """The MAP-ULA's velocity prior is free by default (issue 26: a zero sd pinned it to the true velocity while
+    """The MAP-ULA's velocity prior is free by default (a zero sd pinned it to the true velocity while
     the two-stage fitted its own); with "designated" both get the designated velocity."""
     assert map_prior_sd("free", 0.3, 0.0, 2.0) == (0.6, np.inf)
     assert map_prior_sd("designated", 0.3, 0.05, 2.0) == (0.6, 0.1)

@@ -128,7 +128,7 @@ def test_mean_log_gain_recovers_a_known_ratio_of_gains():
 @pytest.mark.slow
 def test_variance_sum_interval_coverage_near_the_resolution_limit():
     """The variance-sum interval at the sizes used (80 trials a replicate, 3 replicates pooled) at d = sigma, where
-    the errors are heavy-tailed: one replicate's BCa interval covers a little under 95 % (issue 26 measured 0.915;
+    the errors are heavy-tailed: one replicate's BCa interval covers a little under 95 % (a review measured 0.915;
     here 56 of 60), the pooled replicates' interval (what decides) covers. Deterministic seeds."""
     from dataclasses import replace
 

@@ -1,4 +1,4 @@
-"""Adversarial review of paper 003, session 4: the interferers' layout and the words the notebook reads out.
+"""Adversarial review of paper 003: the interferers' layout and the words the notebook reads out.
 
 The card puts five interferers equally spaced on the marker's circle about the object's start, which is where the
 static comparison marker sits: a pattern symmetric about it, so the interferers' pulls on its quadrant discriminator

@@ -791,7 +791,7 @@ def test_static_marker_with_a_centroid_tracker_locks():
 
 
 def test_the_objects_y_phase_is_drawn_per_run_so_interferers_are_not_always_crossed_at_full_speed():
-    """Issue 40: with a fixed y phase every run starts (and has its interferers placed) where the sinusoid is
+    """With a fixed y phase every run starts (and has its interferers placed) where the sinusoid is
     steepest. Each run's phase, recovered from its path, must be spread uniformly over the circle."""
     from scipy import stats
 
@@ -847,7 +847,7 @@ def test_omega_estimate_response_matches_the_simulated_tracker_and_the_uncoupled
     g0 = loop_gains(b_xy=1e-9)
     s = 2j * np.pi * f
     np.testing.assert_allclose(omega_response(g0, w, r, f), g0.k2 / (s**2 + g0.k1 * s + g0.k2), rtol=1e-6)
-    # the designed loop passes far less of a 6 Hz rate change than the retuned one (issue 40: ~0.09 and ~0.46)
+    # the designed loop passes far less of a 6 Hz rate change than the retuned one (~0.09 and ~0.46)
     d, q = omega_bandwidth(loop_gains(), w, r), omega_bandwidth(gains_realising(10.0, 0.2, 6.0), w, r)
     assert 0.06 < d["gain_at"] < 0.11 and 0.38 < q["gain_at"] < 0.5
     assert d["bandwidth_hz"] < q["bandwidth_hz"] < 6.0

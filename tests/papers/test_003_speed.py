@@ -1,4 +1,4 @@
-"""Tests of paper 003's cost cuts (issue 43): each faster path gives the same numbers, bit for bit, as the plain one."""
+"""Tests of paper 003's cost cuts: each faster path gives the same numbers, bit for bit, as the plain one."""
 
 import numpy as np
 import pytest

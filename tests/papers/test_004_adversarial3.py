@@ -1,5 +1,5 @@
 """Notebook 004: the third adversarial pass's C004-8 rows (the whole-frame energy centre and the wall clock),
-each measured by the study (docs/adversarial/session3-004.md)."""
+each measured by the study (docs/validity/004.md)."""
 
 import time
 

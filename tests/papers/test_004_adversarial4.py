@@ -1,4 +1,4 @@
-"""Notebook 004, session-4 adversarial review (docs/adversarial/session4-004-review.md): C004-3 at two other
+"""Notebook 004, adversarial review (docs/validity/004.md): C004-3 at two other
 calibrations of the world, and the scoring start.
 
 Each test measures the package's own claim values (``study.measure_batch``) at a reduced size (6 paths x 500 frames,

@@ -1,4 +1,4 @@
-"""Paper 004: every baseline gets the same tuning effort (issue 28, item 2 and 6).
+"""Paper 004: every baseline gets the same tuning effort.
 
 - a window search starts at the baseline's degree + 1 (a line from 2 samples);
 - the constant-acceleration Kalman filter's noise grid reaches past its optimum;

@@ -1,4 +1,4 @@
-"""Notebook 004, fourth pass: C004-6's scored frames, the register in plain words and honest kinds."""
+"""Notebook 004: C004-6's scored frames, the register in plain words and honest kinds."""
 
 import numpy as np
 import pytest

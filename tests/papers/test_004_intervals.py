@@ -1,4 +1,4 @@
-"""Paper 004: coverage of the intervals its verdicts use, at the 15 paths they use them at (issue 28, item 4).
+"""Paper 004: coverage of the intervals its verdicts use, at the 15 paths they use them at.
 
 004's intervals are the core's (``tvtrack.montecarlo``): the RMS through ``rms_ci`` (bootstrap-t of the mean
 square), ratios through ``ratio_ci`` (paired expanded percentile bootstrap), means through ``mean_ci``

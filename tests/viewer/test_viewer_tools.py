@@ -240,7 +240,7 @@ def test_viewer_process_group_ends(tmp_path):
             pass
 
 
-# -- python -m tvtrack view: checked before it serves, stopped by any signal (issue 42) ----------------------
+# -- python -m tvtrack view: checked before it serves, stopped by any signal ----------------------
 def _view(*args, timeout=60):
     import subprocess
     import sys

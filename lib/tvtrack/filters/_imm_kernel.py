@@ -1,4 +1,4 @@
-"""Compiled per-trial twin of :func:`tvtrack.filters.imm.imm_run` for a scalar position measurement (issue 43).
+"""Compiled per-trial twin of :func:`tvtrack.filters.imm.imm_run` for a scalar position measurement.
 
 :func:`imm_run` is batched NumPy: each frame is ~60 operations on stacks of 3 x 3 matrices, so a grid of IMM
 settings on a few hundred series costs seconds (notebook 001 tunes its IMM comparator over 30 settings for every

@@ -35,7 +35,7 @@ __all__ = [
 NO_LABEL = "—"
 """Shown for a claim without a robustness record (not checkable, or a run from before the verdict standard)."""
 ALL_VERDICTS = tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VERDICTS)
-"""Every verdict a record may carry: the core's, and ``undecided`` (issue 22) where the core predates it."""
+"""Every verdict a record may carry: the core's, and ``undecided`` where the core predates it."""
 _LABEL_ORDER = ("robust", "limited", "unexplored", "depends", "unstable", "provisional")
 ALL_LABELS = tuple(
     lab for lab in _LABEL_ORDER if lab in LABELS or lab in ("limited", "unexplored", "provisional")
@@ -79,7 +79,7 @@ def robustness_where(claim: dict) -> str:
 
 def coverage_text(claim: dict) -> str:
     """The record's sentence saying what its label covers ("robust over 14 readings x 3 replicates: ..."), or
-    for a record without one (before issue 22) what it counted: other readings and seeds."""
+    for a record without one (an older record) what it counted: other readings and seeds."""
     record = claim.get("robustness")
     if not record:
         return ""
@@ -93,7 +93,7 @@ def coverage_text(claim: dict) -> str:
 
 
 def part_labels(claim: dict) -> list[tuple[str, str, str]]:
-    """``[(part, verdict, label)]`` from the record's ``parts`` (issue 22: a label per part of a rule); empty for
+    """``[(part, verdict, label)]`` from the record's ``parts`` (a label per part of a rule); empty for
     records without parts."""
     parts = (claim.get("robustness") or {}).get("parts") or {}
     if isinstance(parts, list):
@@ -240,7 +240,7 @@ def forest_plot(items: list[dict], path: Path) -> Path | None:
 def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[list[str | None]]]:
     """Claims (rows) by register entries (columns): in each cell the verdict that differs from the claim's own
     when that entry takes another value (any condition varying it), else the claim's verdict; ``None`` where the
-    claim was not explored over the entry. Works on records with ``register`` (issue 22) or ``choices``."""
+    claim was not explored over the entry. Works on records with ``register`` or ``choices``."""
     entries: list[str] = []
     rows, cells = [], []
     for c in claims:

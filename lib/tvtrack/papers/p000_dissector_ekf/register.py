@@ -513,7 +513,7 @@ def _plain(entry: Entry) -> Entry:
 
 
 #: Joint conditions the explorer always measures (a joint sample may miss them). The adversarial review
-#: (docs/adversarial/session4-000-review.md): the card's convergence criterion on the paper's own dashed curves of
+#: (docs/validity/000.md): the card's convergence criterion on the paper's own dashed curves of
 #: Fig. 1 (random initial estimates): the ensemble error variance at 5 T is 40-160 times its steady value (300 runs,
 #: psi_A = 20, P = 0.5; a few runs take 9-16 scans to re-acquire), so C000-1 is not reproduced under that pair.
 PINNED = [{"convergence criterion": CONVERGENCE_READINGS[1], "initial estimate": "random N(0, D11(0))"}]

@@ -74,7 +74,7 @@ LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
 CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
 #: The two readings of C000-5's "for P > 0.5 it substantially determines [the accuracy]" (register entry
 #: "substantially determines"; each has its own rule): the paper's one example P = 0.9, or every contrast of Fig. 3
-#: above 0.5 (the adversarial review, docs/adversarial/session4-000-review.md).
+#: above 0.5 (the adversarial review, docs/validity/000.md).
 AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
 DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 #: The two readings of what C000-5 compares (register entry "C000-5 comparison"): the accuracy with the signal noise

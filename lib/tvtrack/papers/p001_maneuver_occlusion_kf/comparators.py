@@ -99,7 +99,7 @@ def tuned_comparators(
     white Gaussian errors and then face every measurement-error model untuned. The VD filter's threshold is the
     ``1 - alpha`` quantile of its statistic before the onset (per-test rate alpha, as the paper's detector).
 
-    The scores are cached by exactly what they read (issue 43): the fixed filters' and the IMM's by the training
+    The scores are cached by exactly what they read: the fixed filters' and the IMM's by the training
     world (frame rate, manoeuvre, acceleration unit, second channel, training runs, grids), the VD filter's by
     that and ``alpha`` (its threshold), its no-detection statistic by the world alone; so configurations that
     differ in alpha, or in entries the tuning never reads, reuse the grid runs (tested equal to a cold run).

@@ -1,5 +1,5 @@
 """The entries of notebook 001's register (:mod:`.register`): what Fisenko et al. (2008) left unstated, each with
-its default, every defensible value and why (issue 22), and the words a reader sees for each value.
+its default, every defensible value and why, and the words a reader sees for each value.
 
 Entries with ``origin="adversarial"`` were added while trying to flip the labels: the measurement-error models of
 a real TV measurer, the arming reading that lets every window and bound test before the onset, the switch time
@@ -464,7 +464,7 @@ ENTRIES = (
         10.0,
         (10.0, 5.0, 2.0),
         "the paper's loss lasts 10 s (12-22 s; Fig. 4's 'at the 10th second'); a cloud or an obstruction can hide "
-        "the object for less. C001-7's sweep and Fig. 4 with a loss of 5 s or 2 s (added by the session-4 review)",
+        "the object for less. C001-7's sweep and Fig. 4 with a loss of 5 s or 2 s (added by an adversarial review)",
         "adversarial",
         title="how long the object stays lost in Fig. 4 and the loss-time sweep (s)",
         phrases={

@@ -1,5 +1,5 @@
 """The register of notebook 001: the entries (:mod:`.entries`: what Fisenko et al. (2008) left unstated, each
-with its default, every defensible value and why, issue 22), which claims read which of them (``DEPENDS``), the
+with its default, every defensible value and why), which claims read which of them (``DEPENDS``), the
 joint conditions measured every run (``PINNED``), the claim groups measured together (``GROUPS``) and the
 notebook's settings that are not entries (``RUN_SIZES``, ``FIXED_BY_PAPER``). The explorer measures every claim
 over these entries (:mod:`.study`).
@@ -55,7 +55,7 @@ DEPENDS = {
         "noise",
         "manoeuvre",
         "compensation_comparator",
-        # the scheme's detection and the scenario, which C001-4's measurement reads too (session-4 review)
+        # the scheme's detection and the scenario, which C001-4's measurement reads too (adversarial review)
         "alpha",
         "arming",
         "window_n",
@@ -76,7 +76,7 @@ DEPENDS = {
         "noise",
         "accel_unit",
         "curve_tolerance",
-        # the TRACK2 state at the forced switch and restart B's window; the loss's length (session-4 review)
+        # the TRACK2 state at the forced switch and restart B's window; the loss's length (adversarial review)
         "k_bound2",
         "window_n",
         "loss_length_s",
@@ -91,7 +91,7 @@ DEPENDS = {
         "noise",
         "accel_unit",
         "curve_tolerance",
-        # the TRACK2 state at the forced switch and restart B's window; the loss's length (session-4 review)
+        # the TRACK2 state at the forced switch and restart B's window; the loss's length (adversarial review)
         "k_bound2",
         "window_n",
         "loss_length_s",
@@ -121,7 +121,7 @@ FIXED_BY_PAPER = {
     "register's k_b3, computed by this run",
 }
 
-#: Joint conditions measured every run (the session-4 review found each flipping a part that no single entry
+#: Joint conditions measured every run (an adversarial review found each flipping a part that no single entry
 #: flips): restart B with the 10-frame detector window turns C001-8's interior minimum and C001-7's "dominates
 #: early"; AR(1) measurement errors judged at the 0.001-element curve tolerance turn C001-8's "RMS decreasing"
 #: (the RMS at reappearance rises by 0.006 el from k_b3 = 160 to 200).

@@ -18,7 +18,7 @@ class Sizes(TypedDict, total=False):
     kb3_grid : the gain bounds of Fig. 4 (frames); loss_grid_s : loss start times (s); n_fig4_trials : runs per
     Fig. 4 point; grids : the comparators' tuning grids; defaults : the register's defaults; prediction_rms : the
     C001-9 tolerance (elements), set after the Fig. 4 study. The delay limit of C001-2 (``roc_delay_s``), its step
-    (``step_dv``) and restart C's prior (``restart_accel_var``) are register entries (issue 38), not sizes; what a
+    (``step_dv``) and restart C's prior (``restart_accel_var``) are register entries, not sizes; what a
     measurement may read besides the register is listed in :data:`.register.RUN_SIZES` and
     :data:`.register.FIXED_BY_PAPER`.
     """

@@ -136,7 +136,7 @@ def match_labels(estimate, reference, times=None):
     squared distance between the estimated and the reference positions summed over every frame time.
 
     Matching over the whole trajectory (not at one epoch) keeps crossing tracks apart: at the frame where two
-    tracks cross, their positions coincide and any order fits equally well there (issue 39: matched at the mean
+    tracks cross, their positions coincide and any order fits equally well there (matched at the mean
     frame time, 26 % of crossing pairs estimated to 0.05 px were declared swapped).
 
     Parameters

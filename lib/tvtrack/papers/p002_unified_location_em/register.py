@@ -4,7 +4,7 @@ Each entry's ``why`` says why its values are defensible; ``origin="adversarial"`
 flip a label (the designation-free and velocity-knowledge readings of the comparison, motionless objects, a
 stopped-early EM, the Bayesian bound; in a second pass the photon pair and the coordinate of C002-6 and the
 practical stopping tolerance of Fig 7's iteration counts; in a fourth the pixel size, the frame pair and the
-T-dependence statistic of C002-6; in the session-4 review the separation that is "very close" in C002-15 and the pixel
+T-dependence statistic of C002-6; in an adversarial review the separation that is "very close" in C002-15 and the pixel
 pair of C002-5; in a fifth the unit of C002-11's distances). :data:`DEPENDS` names the entries each claim's
 measurement reads: an entry left out cannot change that claim's number (it changes only simulation points the claim
 does not use).
@@ -321,7 +321,7 @@ REGISTER = Register(
             ("3 vs 1", "5 vs 3"),
             "C002-5 cites Figs 1c and 2a for 'with more frames the influence of pixel size weakens'; Fig 1c compares "
             "pixels of 3 and 5 sigma, Fig 2a has pixels of 1 sigma only, so the card's 3 against 1 sigma joins two "
-            "figures and Fig 1c's own 5 against 3 sigma is the pair the cited figure draws (session-4 adversarial "
+            "figures and Fig 1c's own 5 against 3 sigma is the pair the cited figure draws (adversarial "
             "review: 5 against 3 sigma, d = 2 sigma, 300 trials per point: the ratio rises from T = 5 to T = 10, "
             "measurably against the trend)",
             origin="adversarial",
@@ -332,7 +332,7 @@ REGISTER = Register(
             1.0,
             (1.0, 0.5),
             "'very close objects' is not quantified; the text names d = 1 sigma as its smallest distance, and the "
-            "study's distance axis (card 5.2) starts at 0.5 sigma, where the images overlap most (session-4 "
+            "study's distance axis (card 5.2) starts at 0.5 sigma, where the images overlap most ("
             "adversarial review, 300 trials: at 0.5 sigma the ULA's variance is 0.31 of the CRB, a biased estimator "
             "the CRB does not bound, and 3.0 times the van Trees bound of its designation prior; its mean squared "
             "error is twice the designation's own)",
@@ -353,7 +353,7 @@ REGISTER = Register(
         ),
     ],
     pinned=[
-        # the joint sample that made C002-1 not reproduced in the paper-profile run of 2026-11-25 (issue 22)
+        # the joint sample that made C002-1 not reproduced in the paper-profile run of 2026-11-25
         {
             "gross errors": "trimmed 10 %",
             "noise (photons/sigma^2/frame)": 0.05,

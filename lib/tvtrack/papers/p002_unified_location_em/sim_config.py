@@ -34,7 +34,7 @@ ALGORITHMS = {
     "r": "the bounds: the CRB and the van Trees bound of the designation prior (no estimator)",
 }
 #: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
-#: runs with other seeds (the explorer's), never thirds of one run (issue 22). Kept as a constant so that the
+#: runs with other seeds (the explorer's), never thirds of one run. Kept as a constant so that the
 #: block machinery (:func:`seed_blocks`) still reads old results.
 N_SEED_BLOCKS = 1
 

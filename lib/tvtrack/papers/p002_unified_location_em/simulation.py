@@ -147,7 +147,7 @@ def map_prior_sd(velocity_knowledge: str, dsd: float, vsd: float, sigma_px: floa
     The position prior is the designation's own error model (``dsd`` sigma per coordinate; at least 1e-6).
     The velocity is free (``inf``) unless ``velocity_knowledge == "designated"``, where the prior sd is the
     designation's velocity error ``vsd`` (sigma per frame; 0 fixes it). The default, free, keeps the MAP-ULA
-    from knowing what its two-stage comparator does not (issue 26: a zero sd pinned it to the truth)."""
+    from knowing what its two-stage comparator does not (a zero sd pinned it to the truth)."""
     if velocity_knowledge not in ("free", "designated"):
         raise ValueError(f"velocity_knowledge = {velocity_knowledge!r} must be 'free' or 'designated'")
     v = np.inf if velocity_knowledge == "free" else vsd * sigma_px

@@ -1,4 +1,4 @@
-"""Results of notebook 003's measurement parts, kept by everything they read (issue 43).
+"""Results of notebook 003's measurement parts, kept by everything they read.
 
 The explorer measures every configuration on the first replicate's seed (common random numbers), so a register
 entry that changes one part of a measurement (the static baseline's gate, the decoy's brightness, the Fig. 2 law,

@@ -105,7 +105,7 @@ def object_motion(
     ``y_phase = None`` (the default) draws the sinusoid's phase per run, uniformly on ``[0, 2 pi)``: the paper
     gives none, and a fixed phase puts every run's start (about which the interferers are placed) at the same
     point of the path, so the object always crosses the interferers at the same speed (at ``y_phase = 0``: its
-    full speed), a geometry one comparator can be more sensitive to than another (issue 40).
+    full speed), a geometry one comparator can be more sensitive to than another.
 
     ``x`` is an Ornstein-Uhlenbeck process (time constant ``x_tau`` s) passed through a first-order
     low-pass of time constant ``x_smooth`` s (so that the path has a finite velocity, as a real

@@ -250,7 +250,7 @@ REGISTER = Register(
             "sweeps: the card's five equally spaced on the circle (a pattern symmetric about the object's start: their "
             "pulls nearly cancel on the static marker's discriminator, and average out over a revolution in the "
             "rotating tracker's centre loop), or each at its "
-            "own random angle (the area holds them, nothing says evenly). Adversarial (session 4 review): at paper size "
+            "own random angle (the area holds them, nothing says evenly). Adversarially: at paper size "
             "it raises the rotating marker's five-interferer threshold from about 1.0 to 1.6-1.9, the static marker's "
             "from about 1.5 to 2.4-2.8",
             origin="adversarial",
@@ -379,7 +379,7 @@ REGISTER = Register(
         ),
     ],
     pinned=[
-        # adversarial review, session 4 (docs/adversarial/session4-003-review.md): twice the card's motion with the
+        # adversarial review (docs/validity/003.md): twice the card's motion with the
         # 1.5 Hz sinusoid, each inside the tracker alone (y_r RMS 1.5-1.6 and 2.5 px, 0 of 10 lost), together lost
         # lock in 10 of 10 Fig. 1 runs (y_r RMS 35 px): the object's peak speed (377 px/s) exceeds what the 10 Hz
         # coordinate loop can follow inside the quadrant discriminator's linear range, K_xy D/2 = 251 px/s

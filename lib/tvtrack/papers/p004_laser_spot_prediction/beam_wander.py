@@ -134,7 +134,7 @@ class BeamWanderConfig:
         ``"f^-6"``: the critically damped sum passed through one more real pole at the fastest corner
         (the discrete one-pole low-pass ``y_t = b y_(t-1) + (1 - b) x_t``, ``b = exp(-2 pi f_max / fs)``,
         started at the first sample), so the spectrum falls as ``f^-6`` above it: the smooth side of the
-        tilt range (Tyler's G-tilt falls as ``f^-17/3``; proposed in ``docs/adversarial/004.md``). The
+        tilt range (Tyler's G-tilt falls as ``f^-17/3``; proposed in ``docs/validity/004.md``). The
         low-pass takes some variance from the fastest component; the generator's state-space model
         (:func:`wander_state_space`) omits the pole, so the "optimal" forecast is model-based, no bound.
         ``"G-tilt"`` replaces the whole sum by Tyler's G-tilt spectrum (:func:`gtilt_psd`): its

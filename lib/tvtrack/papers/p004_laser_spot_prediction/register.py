@@ -35,7 +35,7 @@ ROWS = (
         "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model), a "
         "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), the critically "
         "damped sum through one more pole at the fastest corner (f^-6: the smooth side of the tilt range, proposed by "
-        "the first adversarial pass, docs/adversarial/004.md; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
+        "the first adversarial pass, docs/validity/004.md; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
         "replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 below the corner v/D "
         "(at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry multiplying it by its sinc^2 "
         "exactly; the spectral index does not enter it; content below the record's fundamental, 1/40 s, is left to "
@@ -264,7 +264,7 @@ ROWS = (
         "the streaming pipeline measures each frame in the study's 31 px gate around the prediction; the paper "
         "describes no gate (the energy centre of each 128 x 128 image, 'measured every 5 ms'), so the whole-frame "
         "reading runs the study's energy centre over all 16384 pixels of every frame as it arrives (the window "
-        "started at the prediction), 17x the gate's (the session-3 pass on C004-8; it times the streaming "
+        "started at the prediction), 17x the gate's (an adversarial pass on C004-8; it times the streaming "
         "pipeline)",
         "adversarial",
     ),
@@ -277,7 +277,7 @@ ROWS = (
         "a frame deadline sees: interpreter, allocator and page-fault stalls included); frames another process "
         "preempted are left out (on a loaded 2-core machine such a frame waits one or two scheduler ticks, 4-8 ms, "
         "and the 99th percentile reached 1.7x the 5 ms interval: the machine's other tenants, not the algorithm; "
-        "the paper's PC ran its program alone; session-3 pass on C004-8)",
+        "the paper's PC ran its program alone; an adversarial pass on C004-8)",
         "adversarial",
     ),
     (
@@ -320,8 +320,8 @@ ROWS = (
         ("per-axis RMS", "radial RMS"),
         "what '1...2 pixels' (abstract, conclusions) measures: the RMS error per image axis, or the RMS distance "
         "between the predicted and the measured spot centre (sqrt(2) x the per-axis RMS for isotropic errors); the "
-        "paper says neither, and C004-1's statistic already carries the radial reading (session-4 review, "
-        "docs/adversarial/session4-004-review.md)",
+        "paper says neither, and C004-1's statistic already carries the radial reading (adversarial review, "
+        "docs/validity/004.md)",
         "adversarial",
     ),
 )

@@ -179,7 +179,7 @@ def screen_size(size: StudySize) -> StudySize:
     variance check's series and the lag grid's two ends; a joint configuration whose screened verdict is not
     decisively the default's is measured again at ``size``. A run of fewer than 400 frames (the smoke profile) is
     returned as it is: halving it would leave too few frames. Measured at paper size (32 joint configurations,
-    seed 2005), the screen sent all 32 to full size, so the notebook does not screen (docs/adversarial/session4-004.md)."""
+    seed 2005), the screen sent all 32 to full size, so the notebook does not screen (docs/validity/004.md)."""
     if size.n_frames < 400:
         return size
     lags = tuple(sorted({min(size.lag_grid), max(size.lag_grid)}))
