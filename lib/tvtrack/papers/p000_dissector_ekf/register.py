@@ -11,7 +11,7 @@ from dataclasses import replace
 
 from ...register import Entry, Register
 from .kinds import with_kinds
-from .study import CONVERGENCE_READINGS, DETERMINES_READINGS, JOINT_READING_C6, LOCK_DEFAULT, WINDOW_DEFAULT
+from .readings import CONVERGENCE_READINGS, DETERMINES_READINGS, JOINT_READING_C6, LOCK_DEFAULT, WINDOW_DEFAULT
 
 __all__ = ["REGISTER", "DEPENDS"]
 

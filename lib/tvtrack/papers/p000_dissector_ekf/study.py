@@ -23,6 +23,17 @@ from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
+from .readings import (  # noqa: F401  (the register's named values, importable from here as before)
+    AT_09,
+    CONVERGENCE_READINGS,
+    DETERMINES_READINGS,
+    ENSEMBLE_MEAN,
+    EVERY_ABOVE,
+    JOINT_READING_C6,
+    LATE_SHARE,
+    LOCK_DEFAULT,
+    WINDOW_DEFAULT,
+)
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -53,9 +64,6 @@ MESSAGE = GaussMarkovMessage(0.1, 0.15)
 #: The register's "sigma_1" operating point: the paper's "typical" sigma_1 = 0.1 T, or an image spread over the
 #: micro-raster (sigma_1 = 0.2 T: within +-T/2 of the centre 98 % of the time), alpha_0 T = 0.15 in both.
 MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
-#: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
-#: final window_T), named in plain words (the register table shows them).
-LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
 #: The claims :func:`measure` measures, in the order it returns them.
 MEASURED_CLAIMS = ("C000-1", "C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-8", "C000-9")
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
@@ -65,17 +73,6 @@ WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
 #: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
 BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
-#: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
-#: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
-JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
-#: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
-LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
-CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
-#: The two readings of C000-5's "for P > 0.5 it substantially determines [the accuracy]" (register entry
-#: "substantially determines"; each has its own rule): the paper's one example P = 0.9, or every contrast of Fig. 3
-#: above 0.5 (the adversarial review, docs/adversarial/session4-000-review.md).
-AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
-DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
