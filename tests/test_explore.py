@@ -3,6 +3,7 @@ early on a clear claim and late on a borderline one, labels are per part."""
 
 import math
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -155,6 +156,21 @@ def test_pool_intervals_and_undecided():
     assert InBand("q", 0.5, 2.0).decide(nan) == "undecided"
     assert pool([{"a": es[0]}, {"a": es[1]}])["a"].n == 200
     assert pool([2.0, 2.0, 2.0]).value == 2.0
+
+
+def test_pool_of_replicates_with_no_value_is_undefined_without_a_warning():
+    # every run of every replicate lost lock: the "in lock" value is NaN in each, and so is the pooled one (the
+    # verdict undecided) -- quietly, since a warning on stderr is a fault in a notebook's output
+    none = Estimate(math.nan, math.nan, math.nan, math.nan, 0, method="bootstrap")
+    some = Estimate(2.0, 0.5, 1.0, 3.0, 10, method="bootstrap")
+    lost = [{"value": some, "in lock": none, "lost": 10, "runs": 10}] * 3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        p = pool(lost)
+        assert math.isnan(p["in lock"].value) and math.isnan(p["in lock"].ci_low)
+        assert p["value"].value == pytest.approx(2.0) and (p["lost"], p["runs"]) == (30, 30)
+        assert pool([none, some]).value == 2.0  # the replicates that have a value: their mean, the interval undefined
+        assert math.isnan(pool([none, some]).ci_high)
 
 
 def test_results_claim_from_an_exploration(tmp_path):

@@ -86,8 +86,9 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
             extrap,
         )
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(np.isfinite(vals))):
+        defined = vals[~np.isnan(vals)]  # no replicate with a value (every run lost lock): no value either
         return Estimate(
-            float(np.nanmean(vals)),
+            float(defined.mean()) if defined.size else math.nan,
             math.nan,
             math.nan,
             math.nan,

@@ -163,6 +163,7 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
         record_full_every=10,
         output_dir="/tmp/x",
         rerun_mode="off",
+        scheduler="",
     )
     lowest = min(REGISTER["fps"].values)
     check_consistency(validate_parameters(ns, RULES), lowest)

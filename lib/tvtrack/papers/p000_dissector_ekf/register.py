@@ -11,7 +11,7 @@ from dataclasses import replace
 
 from ...register import Entry, Register
 from .kinds import with_kinds
-from .study import (
+from .readings import (
     C2_READINGS,
     C5_COMPARISONS,
     CS_READINGS,

@@ -24,6 +24,26 @@ from ...verdicts import ByReading
 from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .lock_loss import keep, keep_pair
+from .readings import (  # noqa: F401  (the register's named values, importable from here as before)
+    AT_09,
+    ACCOUNTING,
+    C2_CARD,
+    C2_EVERY,
+    C2_READINGS,
+    C5_COMPARISONS,
+    CONVERGENCE_READINGS,
+    CS_CONSISTENT,
+    CS_LITERAL,
+    CS_READINGS,
+    DETERMINES_READINGS,
+    ENSEMBLE_MEAN,
+    EVERY_ABOVE,
+    JOINT_READING_C6,
+    LATE_SHARE,
+    LOCK_DEFAULT,
+    NOISE_EFFECT,
+    WINDOW_DEFAULT,
+)
 from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
@@ -54,9 +74,6 @@ MESSAGE = GaussMarkovMessage(0.1, 0.15)
 #: The register's "sigma_1" operating point: the paper's "typical" sigma_1 = 0.1 T, or an image spread over the
 #: micro-raster (sigma_1 = 0.2 T: within +-T/2 of the centre 98 % of the time), alpha_0 T = 0.15 in both.
 MESSAGES = {"0.1 T": MESSAGE, "0.2 T": GaussMarkovMessage(0.2, 0.15)}
-#: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
-#: final window_T), named in plain words (the register table shows them).
-LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
 #: The claims :func:`measure` measures, in the order it returns them.
 MEASURED_CLAIMS = ("C000-1", "C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-8", "C000-9")
 #: The "steady window" alternative: every sample after this time (T), the transient from D11(0) = 0.2 over.
@@ -66,30 +83,6 @@ WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
 #: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
 BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
-#: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
-#: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
-JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
-#: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
-LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
-CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)
-#: The two readings of C000-5's "for P > 0.5 it substantially determines [the accuracy]" (register entry
-#: "substantially determines"; each has its own rule): the paper's one example P = 0.9, or every contrast of Fig. 3
-#: above 0.5 (the adversarial review, docs/validity/000.md).
-AT_09, EVERY_ABOVE = "at P = 0.9", "at every P > 0.5"
-DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
-#: The two readings of what C000-5 compares (register entry "C000-5 comparison"): the accuracy with the signal noise
-#: over the accuracy without it (Fig. 3's sigma_x^2 / sigma_x^2*), or the Conclusions' "accounting for" the noise:
-#: a filter that ignores it over variant 2, which accounts for it, on the same data.
-NOISE_EFFECT, ACCOUNTING = "with the signal noise / without it", "ignoring the signal noise / accounting for it"
-C5_COMPARISONS = (NOISE_EFFECT, ACCOUNTING)
-#: The two readings of the contrasts at which C000-2's "at psi_A = 20 the error was 2 %" holds (register entry
-#: "C000-2 contrasts"; each has its own rule): the card's P = 0 and 0.5, or every contrast of Fig. 3.
-C2_CARD, C2_EVERY = "P = 0 and 0.5", "every Fig. 3 contrast"
-C2_READINGS = (C2_CARD, C2_EVERY)
-#: The two readings of variant 1's signal-noise term (register entry "signal-noise scale"): sqrt(c_s S) X2 with
-#: c_s = N0 P/(1-P), consistent with eq. (2) (the card), or sqrt(A S) X2 as eq. (6) prints it.
-CS_CONSISTENT, CS_LITERAL = "c_s = N0 P/(1-P)", "c_s = A, as printed"
-CS_READINGS = (CS_CONSISTENT, CS_LITERAL)
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 

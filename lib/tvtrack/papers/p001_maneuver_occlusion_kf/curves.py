@@ -13,7 +13,7 @@ from ...filters.polynomial import predict_ahead
 from ...projection import as_declared
 from ...verdicts import ByReading
 from .track_modes import TrackModeConfig, run_track_modes
-from .scenario import declared
+from .sizes import declared
 from .scenario import (
     Scenario,
     config_scenario,

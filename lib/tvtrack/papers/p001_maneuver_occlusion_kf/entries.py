@@ -11,19 +11,18 @@ the filter-memory horizon of C001-9.
 from __future__ import annotations
 
 from ...register import Entry
-from .study import (
+from .scenario import (
     ACCEL_UNITS,
     ARMING_RULES,
     CHANNEL_Y,
     COMPENSATION_COMPARATORS,
-    UMP_COMPARATORS,
-    HORIZONS,
     MANOEUVRES,
     NOISE_MODELS,
     RMS_SPANS,
-    TARGET_SETS,
     THRESHOLD_READINGS,
+    UMP_COMPARATORS,
 )
+from .spherical import HORIZONS, TARGET_SETS
 from .tradeoff import RMS_STATISTICS
 
 __all__ = ["ENTRIES"]

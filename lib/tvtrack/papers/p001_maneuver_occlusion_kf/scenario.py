@@ -260,15 +260,6 @@ def arming_count(rule: str, k_bound2: int, n: int, onset: int) -> tuple[int, str
     return arm, rule
 
 
-def declared(args: tuple, kwargs: dict) -> tuple[dict, dict]:
-    """``(DEPENDS, default)`` of a measurement called with ``sizes`` (positional after the seed, or by name): the
-    default is the notebook's (``sizes["defaults"]``), else the register's (:func:`tvtrack.projection.as_declared`)."""
-    from .register import DEPENDS, build_register
-
-    sizes = kwargs.get("sizes", args[0] if args else {})
-    return DEPENDS, sizes.get("defaults") or build_register().default()
-
-
 def _full(config: dict, sizes: dict) -> dict:
     """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
     return {**sizes.get("defaults", {}), **config}

@@ -1,11 +1,15 @@
 """The run sizes of notebook 001: the keys of the ``sizes`` dict the notebook builds from its parameters and
-passes to every measurement function of :mod:`.study`."""
+passes to every measurement function of :mod:`.study`, and the register defaults a measurement projects each
+claim's configuration onto (:func:`declared`).
+
+This module imports the register only inside :func:`declared`, and nothing of the study, so the measurements can
+read the register (whose entries name the study's values) without an import circle."""
 
 from __future__ import annotations
 
 from typing import Any, TypedDict
 
-__all__ = ["Sizes"]
+__all__ = ["Sizes", "declared"]
 
 
 class Sizes(TypedDict, total=False):
@@ -36,3 +40,12 @@ class Sizes(TypedDict, total=False):
     grids: dict
     defaults: dict
     prediction_rms: float
+
+
+def declared(args: tuple, kwargs: dict) -> tuple[dict, dict]:
+    """``(DEPENDS, default)`` of a measurement called with ``sizes`` (positional after the seed, or by name): the
+    default is the notebook's (``sizes["defaults"]``), else the register's (:func:`tvtrack.projection.as_declared`)."""
+    from .register import DEPENDS, build_register
+
+    sizes = kwargs.get("sizes", args[0] if args else {})
+    return DEPENDS, sizes.get("defaults") or build_register().default()

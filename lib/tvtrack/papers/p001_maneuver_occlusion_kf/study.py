@@ -34,7 +34,7 @@ from .maneuver_detector import (
     window_sum_of_squares,
 )
 from .track_modes import TrackModeConfig, run_track_modes
-from .scenario import declared
+from .sizes import declared
 from .scenario import (
     FPS_REF,
     MOTION,
