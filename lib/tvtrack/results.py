@@ -49,12 +49,14 @@ from .wording import (
     claim_summary,
     format_measured,
     main_part,
+    share_counts,
     shown_label,
     side_words,
 )
 
 __all__ = [
     "VERDICTS",
+    "share_counts",
     "Claim",
     "Results",
     "load_results",

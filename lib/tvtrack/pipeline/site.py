@@ -71,9 +71,9 @@ from ..results import (
     claim_summary,
     paper_paragraph,
     results_summary,
+    share_counts,
     side_words,
 )
-from ..wording import share_counts
 
 __all__ = [
     "SITE_DIR",
