@@ -138,7 +138,7 @@ def test_an_unreported_setting_flip_is_depends_and_said_as_a_setting():
     flip makes ``depends`` (not ``limited``), its side is ``setting``, and the summary does not call it a world the
     claim does not extend to."""
     from tvtrack.register import side_of
-    from tvtrack.wording import _flip_text
+    from tvtrack.wording import _flip_sentence
 
     reg = [
         Entry("where in band", "unreported setting", "middle", ("middle", "low end"), "w"),
@@ -158,8 +158,8 @@ def test_an_unreported_setting_flip_is_depends_and_said_as_a_setting():
     )
     flips = rec["parts"]["claim"]["flips"]
     assert rec["label"] == "depends" and [f["side"] for f in flips] == ["setting"]
-    text = _flip_text([{"text": "low end", "side": "setting"}], 3, 80)
-    assert "setting the paper did not report" in text and "does not extend" not in text
+    text = _flip_sentence({"text": "low end", "side": "setting", "verdict": "not reproduced"})
+    assert "setting of the paper's own experiment" in text and "does not extend" not in text
 
 
 def test_an_entry_marks_the_values_that_leave_the_papers_operating_point():

@@ -160,7 +160,8 @@ def test_every_shipped_profile_names_only_parameters_of_its_notebook():
     assert profiles
     for path in profiles:
         stem, profile = path.name.split(".")[:2]
-        assert load_profile(find_notebook(stem), profile)  # raises on an unknown key
+        # raises on an unknown key; a profile may be empty (a decide profile that needs no cap raised)
+        assert isinstance(load_profile(find_notebook(stem), profile), dict)
 
 
 def test_ids_of_a_spec_are_stable_and_distinct_across_the_fixture(tmp_path):

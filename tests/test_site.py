@@ -261,7 +261,10 @@ def test_each_claim_has_a_page_with_its_specification_curve(explored_site):  # n
     assert (
         "(a reading of the paper&#39;s text: reproduced)" in page and "(a world beyond the paper: reproduced)" in page
     )
-    assert "29 of 32 (95 % CI 75-98 %)" in page and "what the paper&#39;s sigma is the SD of (0.81)" in page
+    assert (
+        "29 agree, 3 flip and 0 stay undecided of 32 explored configurations (agree: 95 % CI 75-98 %)" in page
+        and "what the paper&#39;s sigma is the SD of (0.81)" in page
+    )
     assert 'href="../../notebooks/001_explored.html#cell-id=e0"' in page
     assert "paper_sigma" not in page
     vector = (explored_site / "claims/001_explored/C001-7.html").read_text()

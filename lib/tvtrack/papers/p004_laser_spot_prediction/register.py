@@ -63,10 +63,9 @@ ROWS = (
         (1.0, 1.5, 2.0),
         "where in its '1...2 pixels' (abstract, conclusions) the paper's own filter erred on its recordings: the "
         "paper reports the band, not the value, so the world is calibrated to its middle (1.5 px per axis) and to "
-        "either end (the bandwidth that puts the filter there: x0.74 and x1.25 of the middle's). A setting of the "
-        "paper's experiment it never printed, not an ambiguous sentence (the band is stated) and not a world beyond "
-        "the paper (every value is inside the band); C004-1's 'does not exceed 2 px' turns on it (its 95th "
-        "percentile is 1.9-2.0 x the RMS)",
+        "either end (the bandwidth that puts the filter there: x0.74 and x1.25 of the middle's): the band is stated and "
+        "every value is inside it; C004-1's 'does not exceed 2 px' turns on it (its 95th percentile is 1.9-2.0 x "
+        "the RMS)",
         "author",
     ),
     (
