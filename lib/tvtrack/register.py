@@ -36,6 +36,7 @@ __all__ = [
     "Entry",
     "Register",
     "project",
+    "with_kinds",
     "guard",
     "Undeclared",
     "UndeclaredEntry",
@@ -359,3 +360,16 @@ def guard(config: Mapping[str, Any], allowed: Iterable[str]) -> dict:
 
 def _md(v: Any) -> str:
     return md_escape(f"{v:g}" if isinstance(v, float) else str(v))
+
+
+def with_kinds(entries: Iterable[Entry], kinds: Mapping[str, tuple[str, str]]) -> list[Entry]:
+    """``entries`` with each one's kind from ``kinds`` and the line of the paper that decides it appended to its
+    ``why`` (a paper package's ``kinds.KINDS``: ``{entry name: (kind, line)}``).
+
+    Three kinds: a reading of an ambiguous passage (``reading``, ``statistic``, ``comparator``), an unreported
+    setting of the paper's own experiment, or a world beyond the paper (``regime``, ``model``, ``operating point``,
+    ``scale``); ``tests/test_declared_entries.py`` checks that each entry's words say its own kind and no other.
+    """
+    from dataclasses import replace
+
+    return [replace(e, kind=kinds[e.name][0], why=f"{e.why.rstrip('. ')}. Kind: {kinds[e.name][1]}") for e in entries]

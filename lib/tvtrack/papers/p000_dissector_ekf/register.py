@@ -10,7 +10,8 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...register import Entry, Register
-from .kinds import with_kinds
+from ...register import with_kinds
+from .kinds import KINDS
 from .readings import (
     C2_READINGS,
     C5_COMPARISONS,
@@ -518,7 +519,7 @@ def _plain(entry: Entry) -> Entry:
 #: psi_A = 20, P = 0.5; a few runs take 9-16 scans to re-acquire), so C000-1 is not reproduced under that pair.
 PINNED = [{"convergence criterion": CONVERGENCE_READINGS[1], "initial estimate": "random N(0, D11(0))"}]
 
-REGISTER = Register([_plain(e) for e in with_kinds(_ENTRIES)], PINNED)
+REGISTER = Register([_plain(e) for e in with_kinds(_ENTRIES, KINDS)], PINNED)
 
 _DATA = ["sample model", "scoring time", "sigma_sh", "photon model"]
 #: The entries each claim reads (the explorer counts a condition for a claim only if it changes one of them).

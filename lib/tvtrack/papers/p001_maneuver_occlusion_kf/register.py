@@ -11,7 +11,8 @@ import dataclasses
 
 from ...register import Register
 from .entries import ENTRIES
-from .kinds import with_kinds
+from ...register import with_kinds
+from .kinds import KINDS
 
 __all__ = ["ENTRIES", "GROUPS", "DEPENDS", "PINNED", "RUN_SIZES", "FIXED_BY_PAPER", "build_register", "group_register"]
 
@@ -146,7 +147,7 @@ def build_register(**defaults) -> Register:
     if unknown:
         raise KeyError(f"no register entries {sorted(unknown)}")
     out = []
-    for e in with_kinds(ENTRIES):
+    for e in with_kinds(ENTRIES, KINDS):
         if e.name in defaults:
             d = defaults[e.name]
             vals = e.values if d in e.values else (d, *e.values)

@@ -16,7 +16,8 @@ from dataclasses import replace
 
 from tvtrack.register import Entry, Register
 
-from .kinds import with_kinds
+from ...register import with_kinds
+from .kinds import KINDS
 from .plain import PLAIN
 
 __all__ = ["REGISTER", "DEPENDS", "PLAIN"]
@@ -389,7 +390,9 @@ REGISTER = Register(
     ],
 )
 
-REGISTER = Register([_plain(e) for e in with_kinds(REGISTER.entries)], REGISTER.pinned)  # every entry in plain words
+REGISTER = Register(
+    [_plain(e) for e in with_kinds(REGISTER.entries, KINDS)], REGISTER.pinned
+)  # every entry in plain words
 
 _WORLD = ["photon model", "designation error (sigma)", "noise (photons/sigma^2/frame)", "velocity (sigma/frame)"]
 _ULA_ONLY = ["epoch", "statistic", "gross errors", *_WORLD, "EM stopping"]

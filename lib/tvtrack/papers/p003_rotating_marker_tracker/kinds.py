@@ -1,16 +1,7 @@
-"""Each register entry's kind, with the line of the paper that decides it.
-
-Three kinds: a *reading* of an ambiguous passage of the paper's text (kinds ``reading``, ``statistic``,
-``comparator``), an *unreported setting* of the paper's own experiment that the paper never printed, or a *world*
-beyond the paper (``regime``, ``model``, ``operating point``, ``scale``). A flip under a reading or an unreported
-setting labels the claim ``depends``; only an isolated flip under a world labels it ``limited``. The kind here is
-the entry's kind (it replaces the one the entry was first written with), and its line is appended to the entry's
-``why``: ``tests/test_declared_entries.py`` checks that each entry's words say its own kind and no other.
-"""
+"""Each register entry's kind, with the line of the paper that decides it (:func:`tvtrack.register.with_kinds` applies
+them; the three kinds are explained there)."""
 
 from __future__ import annotations
-
-from dataclasses import replace
 
 #: {entry name: (kind, the line of the paper that decides it)}.
 KINDS = {
@@ -77,8 +68,3 @@ KINDS = {
     "edge_norm": ("comparator", "a reading of the edge form's slope"),
     "decoy_brightness": ("comparator", "a reading of SIR (l. 198) for a decoy that is not compensated"),
 }
-
-
-def with_kinds(entries) -> list:
-    """``entries`` with their kind from :data:`KINDS` and its line appended to their ``why``."""
-    return [replace(e, kind=KINDS[e.name][0], why=f"{e.why.rstrip('. ')}. Kind: {KINDS[e.name][1]}") for e in entries]

@@ -8,7 +8,8 @@ and :data:`DEPENDS` the entries each claim depends on, with the reason wherever 
 from __future__ import annotations
 
 from ...register import Entry, Register
-from .kinds import with_kinds
+from ...register import with_kinds
+from .kinds import KINDS
 
 __all__ = ["REGISTER", "TRACKING", "INTERFERENCE", "DEPENDS", "tracking_register", "interference_register"]
 
@@ -387,7 +388,7 @@ REGISTER = Register(
         {"motion_scale": 2.0, "sinusoid_hz": 1.5},
     ],
 )
-REGISTER = Register(with_kinds(REGISTER.entries), REGISTER.pinned)  # each entry's kind and its line
+REGISTER = Register(with_kinds(REGISTER.entries, KINDS), REGISTER.pinned)  # each entry's kind and its line
 
 TRACKING = (
     "motion",

@@ -576,11 +576,12 @@ OFF_OPERATING_POINT = {"bandwidth": (1.0, 8.0)}
 def build():
     """The :class:`tvtrack.register.Register` of :data:`ROWS`, with the joint conditions :data:`PINNED`."""
     from ...register import Entry, Register
-    from .kinds import with_kinds
+    from ...register import with_kinds
+    from .kinds import KINDS
 
     off = OFF_OPERATING_POINT
     entries = [Entry(n, k, d, v, w, o, PLAIN[n][0], PLAIN[n][1], off.get(n, ())) for n, k, d, v, w, o in ROWS]
-    return Register(with_kinds(entries), PINNED)
+    return Register(with_kinds(entries, KINDS), PINNED)
 
 
 def explored(names=(), defaults=None):
