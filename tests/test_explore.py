@@ -623,3 +623,74 @@ def test_a_condition_counts_only_at_the_size_the_default_needed_to_decide():
     runs = [r for r in ex.runs if r.stage == "replicate"]
     decided_l = {("L", "claim"): type("J", (), {"verdict": "reproduced"})()}
     assert replicates_needed(rules, runs[:3], decided_l)["L"] == 3  # three that never decide it: all of them
+
+
+def _zero_loss_or_loss(config, seed):
+    """A loss-rate part certified below 0.1 only from 29 runs (5 replicates of 6 runs): no loss at the default and
+    at a = 1 (leans towards agreement: 0 of 6), every run lost at a = 2 (leans towards a flip: 6 of 6)."""
+    from tvtrack.montecarlo import zero_events_bound
+
+    if config["a"] == 2:
+        return {"L": Estimate(1.0, float("nan"), 0.54, 1.0, 6, 0.95, "count: 6 of 6")}
+    return {"L": Estimate(0.0, float("nan"), 0.0, zero_events_bound(6), 6, 0.95, "count: zero events")}
+
+
+def test_the_sizing_budget_never_holds_back_a_condition_leaning_towards_a_flip():
+    """Budget 0: the condition whose first replicate lies on the other side of the rule (a = 2, every run lost) is
+    still sized to the default's 5 replicates and flips; the one leaning towards agreement (a = 1) stays at one
+    replicate, undecided, marked as left by the budget with the 5 replicates that would decide it, and the share
+    says so. Without a budget both are sized."""
+    from tvtrack.conditions import leans_flip
+    from tvtrack.wording import share_counts
+
+    rules = {"L": InBand("loss rate", None, 0.1)}
+    kw = dict(seed=5, replicates=3, max_replicates=8, depends={"L": ["a"]}, one_at_a_time=True)
+    ex = explore(_zero_loss_or_loss, REG, rules, sizing_budget=0, **kw)
+    rows = {c["changed"]["a"]: c for c in ex.record("L")["conditions"] if c["kind"] == "single"}
+    assert ex.settings["replicates_needed"] == {"L": 5}
+    assert rows[2]["runs"] == 5 and rows[2]["parts"]["claim"] == "not reproduced"
+    assert rows[1]["runs"] == 1 and rows[1]["parts"]["claim"] == "undecided" and rows[1]["left_by_budget"] == 5
+    share = ex.record("L")["parts"]["claim"]["share"]
+    assert (share["agree"], share["flip"], share["undecided"], share["left_by_budget"]) == (0, 1, 1, 1)
+    assert "1 of them lean towards agreement" in share_counts(share)
+    assert ex.settings["left_by_budget"] == 1 and ex.settings["sizing_budget_used"] == 0
+    default_j = {("L", "claim"): type("J", (), {"verdict": "reproduced"})()}
+    single = {r.config["a"]: r for r in ex.runs if r.stage == "single"}
+    assert leans_flip(rules["L"], single[2], "L", default_j) and not leans_flip(rules["L"], single[1], "L", default_j)
+    full = explore(_zero_loss_or_loss, REG, rules, **kw)
+    rows = {c["changed"]["a"]: c for c in full.record("L")["conditions"] if c["kind"] == "single"}
+    assert rows[1]["runs"] == 5 and rows[1]["parts"]["claim"] == "reproduced" and "left_by_budget" not in rows[1]
+    assert full.settings["left_by_budget"] == 0 and full.record("L")["parts"]["claim"]["share"]["left_by_budget"] == 0
+
+
+def test_the_sizing_budget_goes_to_the_conditions_in_order_and_counts_runs():
+    """A budget of 4 runs sizes the first condition leaning towards agreement (one replicate to the default's 5:
+    4 runs) and leaves the next; the budget spent is stated."""
+    from tvtrack.conditions import Run, SizingBudget, size_conditions
+
+    rules = {"L": InBand("loss rate", None, 0.1)}
+    default_j = {("L", "claim"): rules["L"].judge(_zero_loss_or_loss({"a": 0}, 0)["L"])}
+    assert default_j[("L", "claim")].verdict == "undecided"  # one 6-run replicate cannot certify: pool five
+    pooled = pool([_zero_loss_or_loss({"a": 0}, s)["L"] for s in range(5)])
+    default_j = {("L", "claim"): rules["L"].judge(pooled)}
+    assert default_j[("L", "claim")].verdict == "reproduced"
+    conds = []
+    for a in (1, 1):
+        r = Run({"a": a, "b": 0, "c": "x"}, 0, "single", scope=frozenset({"L"}))
+        r.outputs = _zero_loss_or_loss(r.config, 0)
+        conds.append(r)
+    budget = SizingBudget(4)
+    calls = []
+    added = size_conditions(
+        lambda c, s: _zero_loss_or_loss(c, s),
+        rules,
+        conds,
+        default_j,
+        {"L": 5},
+        list(range(10)),
+        8,
+        lambda m, jobs, stage: calls.append(len(jobs)) or [j.outputs.update(m(j.config, j.seed)) for j in jobs],
+        budget,
+    )
+    assert added == 4 and budget.used == 4 and budget.left == 1
+    assert conds[0].n_runs("L") == 5 and conds[1].n_runs("L") == 1 and conds[1].left == {"L": 5}

@@ -11,6 +11,12 @@ flipping subset (:mod:`tvtrack.explore`).
   condition's replicate ``i`` runs on the default's seed ``i``), asking only the claims concerned, until each of its
   parts is decisive on at least that many replicates, or is projected to need more than the cap, or reaches
   the cap. Its replicates pool as the default's do.
+- **Sizing budget**: a condition whose part leans towards a flip (decisive the other way, or undecided with its
+  point estimate on the other side of the rule) is always sized; one that leans towards agreement is sized while
+  the exploration's stated budget of condition runs lasts (the one-at-a-time conditions first, then the joint
+  design in its order, then the pinned ones); one left smaller than the default needed stays ``undecided``, its
+  record marking it ``left by the sizing budget`` with the replicates that would decide it. A sub-combination
+  (searched for a flip only) that leans towards agreement is never sized: it flips nothing at its size.
 - **Subsets** (:func:`subset_configs`): a joint flip that no single entry (or smaller subset) explains has every
   pair, then every triple, of its changed entries measured alone (sized like any condition).
 """
@@ -22,12 +28,23 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
-from .labels import part_judgements
+from .labels import part_judgements, part_pairs
 from .pooling import pool
 from .register import project
-from .verdicts import Rule, is_decisive
+from .montecarlo import Estimate
+from .verdicts import Rule, calibrated, is_decisive
 
-__all__ = ["Run", "projected_runs", "condition_verdicts", "size_conditions", "unexplained_flips", "subset_configs"]
+__all__ = [
+    "Run",
+    "SizingBudget",
+    "projected_runs",
+    "condition_verdicts",
+    "leans_flip",
+    "point",
+    "size_conditions",
+    "unexplained_flips",
+    "subset_configs",
+]
 
 
 @dataclass
@@ -43,6 +60,7 @@ class Run:
     scope: frozenset | None = None  # the claims this condition counts for (None: all): its projection's group
     sized: list = field(default_factory=list)  # the condition's further replicates (Run, stage "condition sizing")
     screened: frozenset = frozenset()  # claims whose value here is a screen's (smaller) measurement, no replicate
+    left: dict = field(default_factory=dict)  # claim -> replicates it needed, where the sizing budget left it smaller
 
     def changed(self, default: Mapping[str, Any]) -> dict:
         """The entries whose value differs from ``default``."""
@@ -143,6 +161,56 @@ def _target(rule: Rule, run: Run, cid: str, default_j: Mapping, nd: int, cap: in
     return k
 
 
+def point(pm: Any) -> Any:
+    """A measured value's point estimate as an exact number (its interval dropped), element by element."""
+    if isinstance(pm, (list, tuple)):
+        return [point(x) for x in pm]
+    if isinstance(pm, Mapping) and "value" not in pm:
+        return {k: point(v) for k, v in pm.items()}
+    try:
+        return Estimate.exact(calibrated(pm).value)
+    except (TypeError, ValueError):
+        return pm
+
+
+def leans_flip(rule: Rule, run: Run, cid: str, default_j: Mapping) -> bool:
+    """Whether a part of claim ``cid`` that the default decides leans towards a flip at ``run``'s present size: its
+    pooled verdict is decisive the other way, or undecided with the point estimate on the other side of the rule (a
+    value that cannot be judged as a point counts as leaning)."""
+    for part, (prule, pm) in part_pairs(rule, run.pooled(cid)).items():
+        d = default_j.get((cid, part))
+        if d is None or not is_decisive(d.verdict):
+            continue
+        v = prule.judge(pm).verdict
+        if is_decisive(v):
+            if v != d.verdict:
+                return True
+            continue
+        try:
+            if prule.judge(point(pm)).verdict != d.verdict:
+                return True
+        except (TypeError, ValueError):
+            return True
+    return False
+
+
+@dataclass
+class SizingBudget:
+    """The condition runs that conditions leaning towards agreement may take (``runs``; None: no limit), and what
+    the sizing spent and left (see the module)."""
+
+    runs: int | None = None
+    used: int = 0
+    left: int = 0  # (condition, claim) pairs left smaller than the default needed
+
+    def grant(self, n: int) -> bool:
+        """Take ``n`` runs from the budget if it holds them."""
+        if self.runs is not None and self.used + n > self.runs:
+            return False
+        self.used += n
+        return True
+
+
 def size_conditions(
     measure: Callable,
     rules: Mapping[str, Rule],
@@ -152,19 +220,30 @@ def size_conditions(
     seeds: Sequence[int],
     cap: int,
     run_stage: Callable,
+    budget: SizingBudget | None = None,
 ) -> int:
     """Add replicates to ``conds`` (see the module) in rounds, each round's runs measured together through
-    ``run_stage(measure, jobs, "condition sizing")``. Returns the runs added."""
+    ``run_stage(measure, jobs, "condition sizing")``. A claim of a condition that leans towards agreement
+    (:func:`leans_flip` false) takes its runs from ``budget`` (in the order of ``conds``); refused, it stays at its
+    size, its ``left`` entry holding the replicates it needed. Returns the runs added."""
+    budget = budget if budget is not None else SizingBudget()
     added = 0
     while True:
         jobs = []
         for r in conds:
             want = {}
             for cid in sorted(r.scope if r.scope is not None else rules):
-                if cid in rules and r.counts_for(cid):
-                    t = _target(rules[cid], r, cid, default_j, n_default.get(cid, 0), cap)
-                    if t > r.n_runs(cid):
-                        want[cid] = (r.n_runs(cid), t)
+                if cid not in rules or not r.counts_for(cid) or cid in r.left:
+                    continue
+                k = r.n_runs(cid)
+                t = _target(rules[cid], r, cid, default_j, n_default.get(cid, 0), cap)
+                if t <= k:
+                    continue
+                if leans_flip(rules[cid], r, cid, default_j) or budget.grant(t - k):
+                    want[cid] = (k, t)
+                else:
+                    r.left[cid] = t
+                    budget.left += 1
             for i in sorted({i for lo, hi in want.values() for i in range(lo, hi)}):
                 asked = frozenset(c for c, (lo, hi) in want.items() if lo <= i < hi)
                 job = Run(dict(r.config), seeds[i], "condition sizing", claims=asked, scope=asked)

@@ -43,14 +43,13 @@ import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .declared import check_declared, takes_claims
-from .conditions import Run, projected_runs, size_conditions, subset_configs, unexplained_flips
+from .conditions import Run, SizingBudget, point, projected_runs, size_conditions, subset_configs, unexplained_flips
 from .labels import label_parts, part_judgements, part_pairs
-from .montecarlo import Estimate
 from .pooling import pool
 from .attribution import MAX_SUBSET
 from .register import Register
 from .register import guard as guarded_config
-from .verdicts import Rule, calibrated, is_decisive
+from .verdicts import Rule, is_decisive
 
 __all__ = [
     "Run",
@@ -147,6 +146,7 @@ class Exploration:
                 "kind": r.stage,
                 "measured": r.pooled(claim_id),
                 "runs": r.n_runs(claim_id),
+                **({"left_by_budget": r.left[claim_id]} if claim_id in r.left else {}),
             }
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
@@ -260,18 +260,6 @@ def _part_verdicts(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
     }
 
 
-def _point(pm: Any) -> Any:
-    """A measured value's point estimate as an exact number (its interval dropped), element by element."""
-    if isinstance(pm, (list, tuple)):
-        return [_point(x) for x in pm]
-    if isinstance(pm, Mapping) and "value" not in pm:
-        return {k: _point(v) for k, v in pm.items()}
-    try:
-        return Estimate.exact(calibrated(pm).value)
-    except (TypeError, ValueError):
-        return pm
-
-
 def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
     reps = [r for r in runs if r.stage == "replicate"]
     return _part_verdicts(rules, {cid: pool([r.outputs.get(cid) for r in reps]) for cid in rules})
@@ -327,7 +315,7 @@ def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mappi
             out.add(cid)
         elif not is_decisive(v):
             try:
-                if prule.judge(_point(pm)).verdict != d.verdict:
+                if prule.judge(point(pm)).verdict != d.verdict:
                     out.add(cid)
             except (TypeError, ValueError):
                 out.add(cid)
@@ -357,6 +345,7 @@ def explore(
     screen_singles: bool = False,
     combinations: int | None = None,
     guard: bool = True,
+    sizing_budget: int | None = None,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
 
@@ -411,6 +400,10 @@ def explore(
     combinations : int, optional
         Ignored: the subset search that names the smallest flipping combination tries every pair, then every
         triple, with no run cap (kept so that older callers run).
+    sizing_budget : int, optional
+        The condition runs that conditions leaning towards agreement may take (None: no limit). A condition leaning
+        towards a flip is always sized; one leaning towards agreement beyond the budget stays undecided, marked as
+        left by the budget with the replicates that would decide it (:mod:`tvtrack.conditions`).
     guard : bool
         Hand every condition's run a guarded configuration (:func:`tvtrack.register.guard`): reading an entry that
         none of the claims it is asked for declares raises :class:`tvtrack.register.UndeclaredEntry`. A measurement
@@ -463,14 +456,15 @@ def explore(
     runs += pinned
     sizing = (measure, rules)
     conds = [*singles, *joints, *pinned]
-    sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run)
+    budget = SizingBudget(None if sizing_budget is None else int(sizing_budget))
+    sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run, budget)
     combos: list[Run] = []
     for size in range(2, MAX_SUBSET + 1):  # every pair, then every triple where no pair flips: no run cap
         unexplained = unexplained_flips(rules, depends, default_j, runs, default, n_default)
         cfgs, only = subset_configs(unexplained, default, size)
         found = conditions(cfgs, "combination", only)
         clock.run(measure, found, "combinations")
-        sized += size_conditions(*sizing, found, default_j, n_default, seeds, cap, clock.run)
+        sized += size_conditions(*sizing, found, default_j, n_default, seeds, cap, clock.run, SizingBudget(0))
         runs += found
         combos += found
     settings = {
@@ -482,7 +476,9 @@ def explore(
         "replicates on the default's replicate seeds until each part the default decides is decisive on at least "
         "the replicates the default needed to decide it (the fewest first replicates whose pooled value decides "
         "every part as all of them do), is projected to need more than max_replicates, or reaches it; a condition "
-        "smaller than that counts as undecided",
+        "smaller than that counts as undecided; a condition leaning towards agreement is sized within the stated "
+        "sizing budget of condition runs (one at a time first, then joint, then pinned; a sub-combination leaning "
+        "towards agreement not at all), one leaning towards a flip always",
         "joint": joint,
         "joint_configurations": len(joint_cfgs),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
@@ -494,6 +490,9 @@ def explore(
         "combinations": len(combos),
         "max_subset": MAX_SUBSET,
         "condition_runs": sized,
+        "sizing_budget": sizing_budget,
+        "sizing_budget_used": budget.used,
+        "left_by_budget": budget.left,
         "replicates_needed": n_default,
         "guarded": bool(guard),
         "one_at_a_time": one_at_a_time,

@@ -278,6 +278,8 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
         }
         if c.get("runs") is not None:
             extra["runs"] = int(c["runs"])
+        if c.get("left_by_budget") is not None:  # leaning towards agreement, left smaller by the sizing budget
+            extra["left_by_budget"] = int(c["left_by_budget"])
         row = _row(rule, parts, c["measured"], extra)
         if row.get("runs", n) < n:
             row["undersized"] = dict(row["parts"])
@@ -345,13 +347,22 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "where": pwhere,
         "replicate_verdicts": rv,
         "n_conditions": len(rows),
-        "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
+        "share": _share(ex_rows, j.verdict) if label != NO_PART_LABEL else None,
         "flips": flips,
         "sensitivity": sensitivity(sens_rows, list(ctx["by_name"]), ctx["by_name"], ctx["default_cfg"]),
         "sensitivity_method": SENSITIVITY_METHOD,
         "runs_to_decide": runs,
         **(_lost(pair[0], pair[1], j.verdict) if pair else {}),
     }
+
+
+def _share(rows: Sequence[Mapping], default: str) -> dict | None:
+    """The part's share (:func:`tvtrack.attribution.share`) with ``left_by_budget``: the undecided configurations
+    that lean towards agreement and were left smaller than the default needed by the exploration's sizing budget."""
+    out = share([c["verdict"] for c in rows], default)
+    if out is not None:
+        out["left_by_budget"] = sum(1 for c in rows if c["verdict"] == "undecided" and c.get("left_by_budget"))
+    return out
 
 
 def _decided_label(flips: Sequence[Mapping], open_world: bool) -> str:

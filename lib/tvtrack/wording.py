@@ -507,7 +507,12 @@ def share_counts(share: Mapping) -> str:
         return f"{share.get('agree')} of {share.get('decided')} explored configurations agree"
     agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
     design = int(share.get("design", agree + flip + undecided))
-    return f"{agree} agree, {flip} flip and {undecided} stay undecided of {design} explored configurations"
+    left = int(share.get("left_by_budget") or 0)
+    why = f" ({left} of them lean towards agreement but were left smaller than the default by the sizing budget)"
+    return (
+        f"{agree} agree, {flip} flip and {undecided} stay undecided{why if left else ''} of {design} explored "
+        "configurations"
+    )
 
 
 def _share_sentence(part: Mapping) -> str:
