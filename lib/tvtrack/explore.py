@@ -401,7 +401,7 @@ def explore(
         Ignored: the subset search that names the smallest flipping combination tries every pair, then every
         triple, with no run cap (kept so that older callers run).
     sizing_budget : int, optional
-        The condition runs that conditions leaning towards agreement may take (None: no limit). A condition leaning
+        The condition runs that conditions leaning towards agreement may take (None or negative: no limit). A condition leaning
         towards a flip is always sized; one leaning towards agreement beyond the budget stays undecided, marked as
         left by the budget with the replicates that would decide it (:mod:`tvtrack.conditions`).
     guard : bool
@@ -456,7 +456,7 @@ def explore(
     runs += pinned
     sizing = (measure, rules)
     conds = [*singles, *joints, *pinned]
-    budget = SizingBudget(None if sizing_budget is None else int(sizing_budget))
+    budget = SizingBudget(None if sizing_budget is None or sizing_budget < 0 else int(sizing_budget))
     sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run, budget)
     combos: list[Run] = []
     for size in range(2, MAX_SUBSET + 1):  # every pair, then every triple where no pair flips: no run cap

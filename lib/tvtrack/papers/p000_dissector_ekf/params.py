@@ -33,6 +33,7 @@ RULES = {
     "offsets": RealList(-1.0, 1.0),
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
+    "sizing_budget": Integer(-1, 100000),
     "scheduler": SchedulerAddress(),
     "joint": Integer(0, 200),
     "screen_trials": Integer(0, 20_000),

@@ -16,6 +16,7 @@ RULES = {
     "n_train": Integer(5, 10_000),
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
+    "sizing_budget": Integer(-1, 100000),
     "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 200),
     "frame_rate_hz": Real(5.0, 200.0),

@@ -13,6 +13,7 @@ PARAMETERS = {
     "n_bootstrap": Integer(2000, 20_000),
     "replicates": Integer(3, 50),
     "max_replicates": Integer(3, 1000),
+    "sizing_budget": Integer(-1, 100000),
     "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 100),
     "screen_fraction": Real(0.0, 1.0, low_open=True),

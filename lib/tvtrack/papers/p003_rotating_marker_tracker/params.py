@@ -12,6 +12,7 @@ RULES = {
     "loss_trials": Integer(2, 1000),
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
+    "sizing_budget": Integer(-1, 100000),
     "scheduler": SchedulerAddress(),
     "joint": Integer(0, 64),
     "screen_joint": Boolean(),

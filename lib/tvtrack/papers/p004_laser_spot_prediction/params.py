@@ -13,6 +13,7 @@ __all__ = ["RULES", "check_consistency"]
 RULES = {
     "n_trials": Integer(3, 10),
     "max_replicates": Integer(3, 1000),
+    "sizing_budget": Integer(-1, 100000),
     "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 64),
     "n_workers": Integer(1, 16),
