@@ -277,12 +277,20 @@ REGISTER = Register(
         ),
         Entry(
             "placement",
-            "regime",
+            "reading",
             "object",
-            ("object", "image"),
-            "the circle of interferers about the object's initial centre (card) or about the image centre",
-            title="centre of the interferers' circle",
-            phrases={"object": "about the object's starting point", "image": "about the image centre"},
+            ("object", "image", "trace"),
+            "where on the image the marker's circle of interferers lies: about the object's initial centre (card), "
+            "about the image centre (the middle of the object's motion), or on the marker's trace, each interferer "
+            "about the object's centre at its own random frame of the run, so that the marker sweeps over each one "
+            "wherever the object has moved by then (with the card's motion the interferers spread along the path, "
+            "a median 22 px from the start against 12 px on the card's circle)",
+            title="where the interferers sit along the object's path",
+            phrases={
+                "object": "on the marker's circle about the object's starting point",
+                "image": "on the marker's circle about the image centre",
+                "trace": "on the marker's trace, each where the marker sweeps at its own moment of the run",
+            },
         ),
         Entry(
             "loss_window_s",
@@ -408,7 +416,7 @@ TRACKING = (
 # compensation is varied in the interference study only: the tracking claims have no interferers, and C003-4's
 # background sweep is a sweep of the kappa model's residual (the median removes the background whatever it is).
 # fig2_law only changes the Fig. 2 runs; bandwidth_reading is left out of the interference study for cost (measured
-# there by the adversarial pass, /work/wt/adv/003.md row 12: it made parts undecided and flipped none)
+# there by the first adversarial pass, docs/validity/003.md row 12: it made parts undecided and flipped none)
 INTERFERENCE = (
     "motion",
     "motion_scale",
