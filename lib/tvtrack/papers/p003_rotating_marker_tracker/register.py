@@ -267,12 +267,15 @@ REGISTER = Register(
             "D",
             ("D", "2D"),
             "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
-            "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux)",
+            "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux). What "
+            "breaks lock under 2D is the flux, not the size: at paper size (18 runs, 5 s) one interferer at SIR 2 "
+            "breaks 16 runs and five at SIR 3 break 12 as 2D spots, none as 2D spots of the marker's flux, and all "
+            "18 as marker-size spots of four times its flux",
             origin="adversarial",
-            title="size of each interferer's spot",
+            title="size of each interferer's spot, and with it its flux at the same SIR",
             phrases={
                 "D": "interferers the size of the marker's spot",
-                "2D": "interferers twice the marker's spot diameter (four times its flux)",
+                "2D": "interferers twice the marker's spot diameter, so four times its flux (the flux breaks lock)",
             },
         ),
         Entry(
