@@ -216,7 +216,10 @@ def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
     assert prose.dependence(rec, ("radius",)) == (
         "changing one of these alone (radius) changes the verdict for C (other): not reproduced with radius = outside"
     )
-    assert prose.dependence(rec, ("placement",)) == "centre of the interferers' circle: not explored in this run"
+    assert (
+        prose.dependence(rec, ("placement",))
+        == "where the interferers sit along the object's path: not explored in this run"
+    )
     assert "radius = outside (1.5" in prose.threshold_conditions(ex, "rotating 5", 1.2)
 
 

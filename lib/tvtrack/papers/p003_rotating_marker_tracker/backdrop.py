@@ -1,6 +1,6 @@
 """The static part of notebook 003's compensated image (moved from :mod:`.imaging`, which re-exports it): the marker
-and interferer spots, the correlated background, stationary interferers on a circle about the object, and what a
-temporal-median compensation leaves (card 8.5).
+and interferer spots, the correlated background, stationary interferers on a circle about the object (its start, or
+its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (card 8.5).
 
 Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = column, ``y`` = row.
 """
@@ -84,6 +84,8 @@ def place_interferers(
     One interferer sits at a uniformly random angle; with ``layout="even"`` several are equally spaced with a
     common random angular offset (a pattern symmetric about ``center``), with ``"independent"`` each at its own
     uniformly random angle. ``radial_jitter`` > 0 draws each radius uniformly in ``[radius - jitter, radius + jitter]``.
+    ``center`` (px) is one point, one per trial (shape (n, 2)), or one per trial and interferer (shape
+    (n, count, 2): each interferer on its own circle, e.g. about the object's centre at its own frame of the run).
 
     Returns
     -------
@@ -99,8 +101,9 @@ def place_interferers(
     else:
         ang = rng.uniform(0, 2 * np.pi, size=(n, 1)) + 2 * np.pi * np.arange(count) / max(count, 1)
     rad = radius + rng.uniform(-radial_jitter, radial_jitter, size=(n, count))
-    c = np.broadcast_to(np.asarray(center, dtype=float), (n, 2))
-    return np.stack([c[:, None, 0] + rad * np.cos(ang), c[:, None, 1] + rad * np.sin(ang)], axis=-1)
+    c = np.asarray(center, dtype=float)
+    c = np.broadcast_to(c if c.ndim == 3 else np.broadcast_to(c, (n, 2))[:, None, :], (n, count, 2))
+    return np.stack([c[..., 0] + rad * np.cos(ang), c[..., 1] + rad * np.sin(ang)], axis=-1)
 
 
 def add_spots(images, centers, brightness, spot: str, diameter: float) -> None:

@@ -351,7 +351,8 @@ def build_scene(
 ):
     """A compensated scene with ``n_interferers`` stationary interferers of post-compensation
     ``SIR = d / b_q`` (scalar or one value per trial; ``b_q`` per fully covered pixel, like ``d``), placed by
-    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre) in
+    :func:`place_interferers` around ``interferer_center`` (default: the object's initial centre; ``"trace"``: each
+    interferer about the object's centre at its own random frame of the run, :func:`_interferer_centres`) in
     ``interferer_layout``, with the marker's spot or one of ``interferer_diameter``.
 
     ``n_common``: draw the background and the interferer positions for ``n_common`` trials and
@@ -377,8 +378,8 @@ def build_scene(
     q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
-        centre = truth.center[first : first + n_common, 0] if interferer_center is None else interferer_center
         count = b.get("n_interferers", n_interferers)
+        centre = _interferer_centres(g, truth, first, n_common, count, interferer_center)
         q.append(
             _tile(
                 place_interferers(g, n_common, count, centre, interferer_radius, radial_jitter, interferer_layout),
@@ -420,6 +421,23 @@ def build_scene(
         exposure_steps,
         decoy_phase,
     )
+
+
+def _interferer_centres(g: np.random.Generator, truth: MarkerTruth, first: int, n_common: int, count: int, where):
+    """The centres of the interferers' circles for the trials ``first .. first + n_common - 1`` (px): the object's
+    initial centre (``where`` None), a fixed point, or with ``"trace"`` the object's centre at a frame drawn uniformly
+    from the run for each interferer (shape (n_common, count, 2)), so that every interferer lies on the marker's trace:
+    the marker passes over it within half a revolution of that frame, off it by at most the object's travel in that
+    time (Fig. 3: the marker "sweeps the area where the interferers are placed")."""
+    if where is None:
+        return truth.center[first : first + n_common, 0]
+    if isinstance(where, str):
+        if where != "trace":
+            raise ValueError(f"parameter 'interferer_center' = {where!r}; it must be None, a point or 'trace'")
+        k = g.integers(0, truth.n_frames, size=(n_common, count))
+        rows = first + np.arange(n_common)[:, None]
+        return np.stack([truth.xr[rows, k], truth.yr[rows, k]], axis=-1)
+    return where
 
 
 def _check_blocks(blocks, n_generators: int, compensation: str) -> list:

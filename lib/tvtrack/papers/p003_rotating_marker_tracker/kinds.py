@@ -54,8 +54,11 @@ KINDS = {
         "an unreported setting: the interferers' spots are never printed; what 2D changes is the flux, four times the marker's at the same SIR, so a flip under it comes from the brighter interferer, not from its size",
     ),
     "placement": (
-        "unreported setting",
-        "an unreported setting: the centre of Fig. 3's circle of interferers is never printed",
+        "reading",
+        "a reading of l. 198: Fig. 3 shows 'the trace of the marker's emitter, which in its rotation sweeps the area "
+        "where the five powerful stationary interferers are placed'; with the object moving, the area the marker "
+        "sweeps is a band along the object's path ('trace', the paper's own description), of which the card's circle "
+        "about the start is one part",
     ),
     "loss_window_s": ("statistic", "a reading of 'loss of tracking', which the paper does not define"),
     "loss_radius": ("statistic", "a reading of 'loss of tracking': leaving the gate or the spot"),

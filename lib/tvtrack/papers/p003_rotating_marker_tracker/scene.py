@@ -103,7 +103,9 @@ class Scenario:
     for the decoy), ``1 / kappa`` at the brightness a stationary interferer *emits* there (equal emitters).
     ``exposure`` ``"instant"`` or ``"integrated"`` over the frame (:attr:`exposure_steps` sub-frame renders);
     ``compensation`` ``"kappa"`` (``kappa`` times the static scene left) or ``"median"`` (a per-pixel temporal median
-    of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`).
+    of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`). ``interferer_centre``
+    (:data:`PLACEMENTS`): the interferers' circle about the object's start, about the image centre, or ``"trace"``,
+    each interferer about the object's centre at its own random frame of the run (on the marker's trace).
     """
 
     fps: float = 500.0
@@ -246,7 +248,9 @@ def scenario_truth(rng: np.random.Generator, n: int, sc: Scenario) -> MarkerTrut
     return marker_truth(xr, yr, r, omega, rng.uniform(0, 2 * np.pi, n), dt)
 
 
-PLACEMENTS = ("object", "image")
+# the interferers' circle about the object's start, about the image centre, or (the marker's trace) about the object's
+# centre at each interferer's own random frame of the run
+PLACEMENTS = ("object", "image", "trace")
 EXPOSURES = ("instant", "integrated")
 
 
@@ -381,7 +385,7 @@ def _scene_of(streams, truth: MarkerTruth, sc: Scenario, sir, decoys, dphi, n_co
         n_interferers=sc.n_interferers,
         sir=sir,
         interferer_radius=sc.radius + sc.interferer_radius_offset,
-        interferer_center=None if sc.interferer_centre == "object" else np.array([c, c]),
+        interferer_center={"object": None, "trace": "trace"}.get(sc.interferer_centre, np.array([c, c])),
         radial_jitter=sc.interferer_jitter,
         interferer_layout=sc.interferer_layout,
         interferer_diameter=sc.interferer_diameter,
