@@ -84,15 +84,15 @@ def test_c8_is_the_coarse_over_fine_variance_minus_one_scored_at_the_newest_datu
     got = study._c8(DEFAULT, 3, SMALL)
     scan = scan_at_snr(20.0, 0.5, 0.05, 0.5)
     d = simulate_two_rates(
-        scan, study.MESSAGE, 4, np.random.default_rng([3, 8]), 24, 60, score_at="interval_end"
-    )  # 3 T at dt = 0.05 T; the steady window is the last third
+        scan, study.MESSAGE, 4, np.random.default_rng([3, 8]), 24, 60, score_at="interval_end", draw_phase=True
+    )  # 3 T at dt = 0.05 T; the steady window is the last third; each run's switch-on phase drawn after the rest
     wc, wf = d["t_coarse"] > 2.0, d["t_fine"] > 2.0
 
     def v2(s, y):
-        return run_steps_variant2(s, study.MESSAGE, y, 0.2, None, None, 0)[0]
+        return run_steps_variant2(s, study.MESSAGE, y, 0.2, None, None, 0, start=d["start"])[0]
 
     def v1(s, y):
-        return run_steps_variant1(s, study.MESSAGE, y, (0.2, 1.0), None, 15.0, "paper")[0]
+        return run_steps_variant1(s, study.MESSAGE, y, (0.2, 1.0), None, 15.0, "paper", start=d["start"])[0]
 
     for name, run in (("variant 2", v2), ("variant 1", v1)):
         a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, wc].mean(axis=1)
