@@ -18,7 +18,7 @@ from tvtrack.papers.p000_dissector_ekf.model import (
     simulate_two_rates,
     truth_and_pulse,
 )
-from tvtrack.papers.p000_dissector_ekf.reference import pcrlb_variance
+from tvtrack.papers.p000_dissector_ekf.reference import pcrlb_variance, scan_crlb
 from tvtrack.papers.p000_dissector_ekf.register import REGISTER
 
 DEFAULT = REGISTER.default()
@@ -118,6 +118,14 @@ def test_the_pcrlb_over_phases_is_the_mean_of_each_phases_bound_and_the_steady_b
     # switched on at the pulse's peak, the first samples see the flat top (no information on x): twice the bound
     assert each[1][2] / each[0][2] > 1.8
     np.testing.assert_allclose(each[0][-40:].mean(), each[1][-40:].mean(), rtol=1e-9)  # two whole scans
+
+
+def test_one_scans_bound_depends_on_the_phase_within_a_sample_and_is_averaged_over_it():
+    scan = scan_at_snr(20.0, 0.9, 0.05)
+    half, whole = scan_crlb(scan, 0.025), scan_crlb(scan, 0.3)  # half a sample, six samples
+    assert whole == pytest.approx(scan_crlb(scan), rel=1e-12)  # the same phases, in another order
+    assert abs(half / scan_crlb(scan) - 1) > 1e-3  # the scan truncates the pulse's tails
+    assert scan_crlb(scan, np.array([0.0, 0.025])) == pytest.approx((scan_crlb(scan) + half) / 2, rel=1e-12)
 
 
 def test_the_discretisation_check_draws_one_phase_per_run_for_both_rates():

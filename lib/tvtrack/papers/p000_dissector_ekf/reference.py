@@ -107,10 +107,14 @@ def pcrlb_variance(scan: DissectorScan, message: GaussMarkovMessage, n_steps: in
     return fh**2 * bound + qh
 
 
-def scan_crlb(scan: DissectorScan) -> float:
+def scan_crlb(scan: DissectorScan, start=0.0) -> float:
     """Cramer-Rao bound of one scan's measurement of ``X1`` at ``x = 0`` (no dynamics, no prior).
 
-    ``1 / sum_k J(0, k)`` over the ``round(1/dt)`` samples of the scan (units of ``T^2``).
+    ``1 / sum_k J(0, k)`` over the ``round(1/dt)`` samples of the scan (units of ``T^2``), the sweep at phase
+    ``start`` (T) at switch-on: the samples sit at the scan phases ``(k - 1/2) dt + start``, so the bound depends on
+    ``start`` modulo ``dt`` (the scan truncates the pulse's tails). With an array of phases, the mean of each one's
+    bound (e.g. a midpoint rule over the uniform law of the runs' phases).
     """
     kk = np.arange(1, int(round(1.0 / scan.dt)) + 1)
-    return 1.0 / fisher_information(scan, 0.0, kk)[0].sum()
+    bounds = [1.0 / fisher_information(scan, 0.0, kk, phi)[0].sum() for phi in np.atleast_1d(start)]
+    return float(np.mean(bounds))

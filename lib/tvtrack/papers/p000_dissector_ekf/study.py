@@ -415,7 +415,7 @@ def _c5_c7(cfg, seed, sizes):
     )
     c5.update({f"P={p:g}": c5_ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
-    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes)) / scan_crlb(_scan(cfg, psi9, 0.0, sizes))
+    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes), PHASE_NODES) / scan_crlb(_scan(cfg, psi9, 0.0, sizes), PHASE_NODES)
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
     return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
         "trend": ratios,
