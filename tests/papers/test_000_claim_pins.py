@@ -17,6 +17,7 @@ from tvtrack.papers.p000_dissector_ekf.ekf import run_variant1, run_variant2, va
 from tvtrack.papers.p000_dissector_ekf.model import (
     GaussMarkovMessage,
     draw_noises,
+    on_sample_clock,
     samples_from_pulse,
     scan_at_snr,
     truth_and_pulse,
@@ -108,7 +109,7 @@ def _independent_steady(seed, psi, p, filt, cfg=DEFAULT, sizes=SMALL):
     phase (the truth's and the filter's)."""
     noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
     score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
-    phi = noises["phase"]
+    phi = on_sample_clock(noises["phase"], sizes.dt)  # the run's sample slot
     x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, sizes.dt, 0.5), MSG, noises, "integrated", score, None, phi)
     scan = scan_at_snr(psi, 0.0 if filt == "star" else p, sizes.dt, 0.5)
     y = samples_from_pulse(scan, pulse, noises["xi"])
@@ -141,9 +142,9 @@ def test_c000_7_gap_is_the_crlb_ratio_at_p09_minus_the_estimate_ratio_at_p09(mea
     """Kills: C000-7's gap taken at another P (its CRLB or its estimate ratio)."""
     from dataclasses import replace
 
-    def bound(p):  # the one-scan bound over the runs' uniform switch-on phase (24 midpoints)
+    def bound(p):  # the one-scan bound over the runs' 20 sample slots
         scan = scan_at_snr(20.0, p, SMALL.dt)
-        return np.mean([scan_crlb(replace(scan, time_offset=scan.time_offset + (i + 0.5) / 24)) for i in range(24)])
+        return np.mean([scan_crlb(replace(scan, time_offset=scan.time_offset + 0.05 * i)) for i in range(20)])
 
     crlb = bound(0.9) / bound(0.0)
     r9 = _independent_steady(21, 20.0, 0.9, "v2").mean() / _independent_steady(21, 20.0, 0.9, "star").mean()
@@ -185,12 +186,12 @@ def test_c000_6_readings_are_their_filter_over_their_reference(measured):
     assert measured["C000-6"].value == pytest.approx(v2.mean() / star, rel=1e-9)
     window = np.arange(SMALL.n_steps + 1) * SMALL.dt > SMALL.duration_T - SMALL.window_T
     scan = scan_at_snr(20.0, 0.9, SMALL.dt)
-    phases = (np.arange(24) + 0.5) / 24  # the bound over the uniform switch-on phase, a midpoint rule
+    phases = np.arange(20) * 0.05  # the bound over the runs' 20 equally likely sample slots
     bound = np.mean([pcrlb_variance(scan, MSG, SMALL.n_steps, "interval_end", phi) for phi in phases], 0)[window].mean()
     pcrlb = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 21, SMALL)["C000-6"]
     assert pcrlb.value == pytest.approx(v2.mean() / bound, rel=1e-9)
     noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
-    phi = noises["phase"]
+    phi = on_sample_clock(noises["phase"], SMALL.dt)
     x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end", None, phi)
     y = samples_from_pulse(scan, pulse, noises["xi"])
     est = run_steps_variant2(scan, MSG, y, 0.2, None, 0.0, start=phi)[0]
@@ -210,7 +211,7 @@ def test_c000_1_share_is_the_runs_out_of_lock_after_the_acquisition_time():
     sizes = replace(SMALL, acquire_by_T=1.0)  # here the share changes from one scan to the next
 
     noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
-    phi = noises["phase"]
+    phi = on_sample_clock(noises["phase"], SMALL.dt)
     x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end", None, phi)
     scan = scan_at_snr(2.0, 0.5, SMALL.dt)
     y = samples_from_pulse(scan, pulse, noises["xi"])

@@ -28,24 +28,23 @@ def test_runs_that_lost_lock_are_dropped_only_inside_the_context():
 
 def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lock():
     """The joint reading (a filter ignoring the signal noise, the background held fixed) reads 'exceeds 20 times'
-    undecided over all runs (ratio about 24 on these draws, its interval from 7 to 49) because about 5 % of the runs
-    lost lock; over the runs in lock the ratio is about 1.4, not reproduced as at the default: the flip is the lost
-    runs'."""
+    reproduced over all runs (ratio about 98 on these draws) because about 3 % of the runs lost lock; over the runs
+    in lock the ratio is about 2.2, as at the default: the flip is the lost runs'."""
     d = REGISTER.default()
     rule = claim_rules(SIZES)["C000-6"]
     before = study.measure({**d, **JOINT}, 7, SIZES, frozenset({"C000-6"}))["C000-6"]
     m = lock_loss.measure_in_lock(study.measure, {**d, **JOINT}, 7, SIZES, "C000-6")
     assert m["all"] == before  # measuring in lock leaves the measurement over all runs as it was
-    assert 10 <= m["lost_runs"] <= 20 and m["runs"] == 300
+    assert 5 <= m["lost_runs"] <= 20 and m["runs"] == 300
     assert m["lost"].ci_low < m["lost_runs"] / 300 < m["lost"].ci_high  # Clopper-Pearson around the count
-    assert m["all"].value > 20 and m["all"].ci_low < 20 and rule.decide(m["all"]) == "undecided"
-    assert m["in lock"].value == pytest.approx(1.4, rel=0.1) and rule.decide(m["in lock"]) == "not reproduced"
+    assert m["all"].value > 20 and rule.decide(m["all"]) == "reproduced"
+    assert m["in lock"].value == pytest.approx(2.2, rel=0.1) and rule.decide(m["in lock"]) == "not reproduced"
     rep = lock_loss.lock_report(study.measure, rule, d, [JOINT], 7, SIZES, "C000-6", REGISTER.describe)
     assert "over the runs in lock the verdict is the same" in rep["note"]
     assert "the flip is carried by the runs that lost lock" in rep["note"]
     assert "The mean over all runs decides" in rep["note"]
     row = rep["metric"][REGISTER.describe(JOINT)]
-    assert (row["verdict_all_runs"], row["verdict_in_lock"]) == ("undecided", "not reproduced")
+    assert (row["verdict_all_runs"], row["verdict_in_lock"]) == ("reproduced", "not reproduced")
     assert rep["metric"]["default"]["lost_runs"] == 0
 
 

@@ -101,7 +101,7 @@ def test_c000_6_readings_use_their_reference_and_common_random_numbers():
     star = study.measure(DEFAULT, 4, SMALL)["C000-6"]
     assert star.value == pytest.approx(a.mean() / ref.mean(), rel=1e-12)
     scan = study.scan_at_snr(20.0, 0.9, SMALL.dt, 0.5)
-    phases = (np.arange(24) + 0.5) / 24  # the runs' switch-on phase is uniform: the bound averaged over it
+    phases = np.arange(20) * SMALL.dt  # the runs' 20 equally likely sample slots: the bound averaged over them
     each = [study.pcrlb_variance(scan, study.MESSAGE, SMALL.n_steps, "interval_end", phi) for phi in phases]
     bound = np.mean(each, axis=0)[SMALL.window()].mean()
     by_bound = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 4, SMALL)["C000-6"]

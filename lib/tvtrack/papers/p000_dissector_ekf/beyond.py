@@ -15,6 +15,7 @@ from ...montecarlo import Estimate, mean_square_ci, ratio_ci
 from .baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
 from .cost import run_steps_variant1, run_steps_variant2
 from .model import scan_at_snr, truth_and_pulse
+from .lock_loss import keep_pair
 from .reference import grid_filter
 from .study import BETA_0, D11_0, D22_0, Sizes, _draws, _message, _path, _samples, _scan, _start, steady_runs
 
@@ -34,7 +35,7 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
     Returns
     -------
     dict  ``baseline`` and ``variant 2`` [Estimate per psi_A] steady mean squared error at the scan ends (T^2);
-    ``ratio`` [Estimate] baseline / variant 2 on the same runs
+    ``ratio`` [Estimate] baseline / variant 2 on the same runs (those in lock by both, inside :func:`.lock_loss.in_lock`)
     """
     x, pulse, xi, _ = _path(config, seed, sizes)
     per_scan, half = sizes.steps_per_scan, sizes.n_trials // 2
@@ -55,7 +56,7 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
         v2 = ((est[:, ends] - truth[half:]) ** 2)[:, steady].mean(axis=1)
         out["baseline"].append(mean_square_ci(base))
         out["variant 2"].append(mean_square_ci(v2))
-        out["ratio"].append(ratio_ci(base, v2))
+        out["ratio"].append(ratio_ci(*keep_pair(base, v2)))  # only the runs in lock inside lock_loss.in_lock
     return out
 
 
@@ -94,24 +95,22 @@ def pulse_and_beta(config: dict, seed: int, sizes: Sizes, durations, betas, cont
     -------
     dict  ``T_u`` {variant: [Estimate per duration]}; ``beta_0`` [Estimate per beta] (variant 1)
     """
-    noises = _draws(seed, sizes)
+    noises, phi = _draws(seed, sizes), _start(seed, sizes)
     score = "interval_centre" if config["scoring time"] == "interval centre" else "interval_end"
     message, window = _message(config), sizes.window()
     sig = "per_sample" if config["sigma_sh"] == "per sample" else "unit_bandwidth"
 
     def runs(tu):
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, tu)
-        x, pulse = truth_and_pulse(geometry, message, noises, config["sample model"], score, None, noises["phase"])
+        x, pulse = truth_and_pulse(geometry, message, noises, config["sample model"], score, None, phi)
 
         def steady(p, filt, beta=BETA_0):
             scan = scan_at_snr(config["psi_A"], p, sizes.dt, tu, sig)
             y = _samples(config, seed, scan, pulse, noises["xi"])
             if filt == "v1":
-                e = run_steps_variant1(
-                    scan, message, y, (D11_0, D22_0), None, beta, config["G22"], start=noises["phase"]
-                )[0]
+                e = run_steps_variant1(scan, message, y, (D11_0, D22_0), None, beta, config["G22"], start=phi)[0]
             else:
-                e = run_steps_variant2(scan, message, y, D11_0, start=noises["phase"])[0]
+                e = run_steps_variant2(scan, message, y, D11_0, start=phi)[0]
             return ((x - e) ** 2)[:, window].mean(axis=1)
 
         return steady

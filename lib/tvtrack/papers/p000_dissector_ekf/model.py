@@ -35,6 +35,7 @@ __all__ = [
     "background_intensity",
     "scan_at_snr",
     "draw_noises",
+    "on_sample_clock",
     "simulate",
     "simulate_integrated",
     "simulate_photon_counts",
@@ -237,7 +238,8 @@ def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps:
     observation noise, ``init`` (n_trials, 2) for random initial estimates, with ``substeps``
     ``w_sub`` (n_trials, 2 substeps n_steps) process noise on half sub-steps, and ``phase`` (n_trials,) each run's
     sweep phase at switch-on, uniform over the scan interval [0, T) (drawn last, so the other draws do not change;
-    the paper does not say where the sweep is when the filter starts).
+    the paper does not say where the sweep is when the filter starts); :func:`on_sample_clock` puts it on the
+    sample clock.
     """
     if n_trials < 1 or n_steps < 1:
         raise ValueError(f"parameters 'n_trials' = {n_trials}, 'n_steps' = {n_steps}; both must be >= 1")
@@ -253,6 +255,17 @@ def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps:
         out["w_sub"] = rng.standard_normal((n_trials, 2 * int(substeps) * n_steps))
     out["phase"] = rng.uniform(0.0, 1.0, n_trials)
     return out
+
+
+def on_sample_clock(phase, dt: float):
+    """The sample slot a uniform phase (T) falls in: ``floor(phase / dt) dt``, uniform over the slots of the scan.
+
+    The paper samples the scan every ``dt = T / 20``, a clock synchronous with the sweep, so a filter switches on at
+    a sample slot and every sample's interval ends at or before the flyback. Off the clock, the interval holding the
+    flyback averages the pulse's two far tails, which the filters' model of a sample (the pulse at the interval
+    centre) does not describe.
+    """
+    return np.floor(np.asarray(phase, dtype=float) / dt) * dt
 
 
 def _starts(start, n_trials: int) -> np.ndarray:
@@ -501,8 +514,9 @@ def simulate_two_rates(
     factor : int           integer >= 2
     n_steps : int          coarse steps; coarse samples ``k = 1..n_steps``
     score_at : {"interval_centre", "interval_end"}   the time of the truths ``x_coarse``, ``x_fine``
-    draw_phase : bool      draw each run's sweep phase at switch-on uniform over [0, T) from ``rng`` (after the
-                           other draws, so they do not change); False: phase 0 for every run
+    draw_phase : bool      draw each run's sweep phase at switch-on uniform over the coarse scan's sample slots
+                           (:func:`on_sample_clock`) from ``rng`` (after the other draws, so they do not change);
+                           False: phase 0 for every run
 
     Returns
     -------
@@ -532,7 +546,7 @@ def simulate_two_rates(
     x_mid = x_half[:, 1::2]  # centres (j + 1/2) dt_f
     j = np.arange(n_fine)
     xi = rng.standard_normal((n_trials, n_fine))
-    start = rng.uniform(0.0, 1.0, n_trials) if draw_phase else np.zeros(n_trials)
+    start = on_sample_clock(rng.uniform(0.0, 1.0, n_trials), scan.dt) if draw_phase else np.zeros(n_trials)
     y_fine = (
         scan.amplitude * scan_fine.shape(x_mid, j, start[:, None])
         + np.sqrt(scan_fine.sample_variance(x_mid, j, None, start[:, None])) * xi

@@ -18,12 +18,12 @@ from .study import (
     BETA_0,
     D11_0,
     D22_0,
-    PHASE_NODES,
     Sizes,
     _acquired_at,
     _errors,
     _message,
     _path,
+    _phase_nodes,
     _ratio_to_star,
     _samples,
     _scan,
@@ -47,7 +47,7 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes) -> dict:
             if init == "process means":
                 out[f"{filt} own D11"] = run["d_curve"]
     scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), PHASE_NODES)
+    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
     return out
 
 
@@ -150,6 +150,6 @@ def fig3_curves(config: dict, seed: int, sizes: Sizes) -> dict:
     for s, p in zip(psis, sizes.contrast_grid):
         out["sigma_x^2*"].append(mean_square_ci(steady_runs(config, seed, sizes, s, p, "stationary")))
         scan = _scan(config, s, p, sizes)
-        bound = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), PHASE_NODES)
+        bound = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
         out["PCRLB"].append(float(bound[sizes.window()].mean()))
     return out

@@ -48,6 +48,7 @@ from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
     draw_noises,
+    on_sample_clock,
     samples_from_pulse,
     scan_at_snr,
     simulate_two_rates,
@@ -83,8 +84,6 @@ WEAVES = {"none": None, "weave 0.1 T / 5 T": 5.0, "weave 0.1 T / 2 T": 2.0}
 #: The drifting background: its noise intensity N0 (1 + 0.5 sin(2 pi t / 10 T + phase)), a random phase per run.
 BACKGROUND_DRIFT, BACKGROUND_PERIOD_T = 0.5, 10.0
 BETA_0, D11_0, D22_0, PULSE_DURATION = 15.0, 0.2, 1.0, 0.5
-#: The sweep's phase at switch-on, for the PCRLB: a midpoint rule over the uniform law of the runs' phases (T).
-PHASE_NODES = (np.arange(24) + 0.5) / 24
 #: What is held fixed as P varies; psi_A scales as P/sqrt(1-P) (total current) or P/(1-P) (background current).
 CONTRAST_CONVENTIONS = ("fixed N0", "fixed total current", "fixed background")
 
@@ -191,8 +190,14 @@ def _draws(seed, sizes):
 
 
 def _start(seed, sizes):
-    """Each run's sweep phase at switch-on (n_trials,), uniform over [0, T): the truth's and the filters' sweep."""
-    return _draws(seed, sizes)["phase"]
+    """Each run's sweep phase at switch-on (n_trials,, T), uniform over the scan's sample slots
+    (:func:`.model.on_sample_clock`): the truth's and the filters' sweep."""
+    return on_sample_clock(_draws(seed, sizes)["phase"], sizes.dt)
+
+
+def _phase_nodes(sizes):
+    """The sample slots a run can switch on at (T), equally likely: what the bounds average over."""
+    return np.arange(int(np.ceil(1.0 / sizes.dt - 1e-9))) * sizes.dt
 
 
 def _path(cfg, seed, sizes, offset=None):
@@ -212,7 +217,9 @@ def _path(cfg, seed, sizes, offset=None):
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
         drift = _drift(cfg, seed, sizes.n_trials)
-        x, pulse = truth_and_pulse(geometry, _message(cfg), noises, cfg["sample model"], score, drift, noises["phase"])
+        x, pulse = truth_and_pulse(
+            geometry, _message(cfg), noises, cfg["sample model"], score, drift, _start(seed, sizes)
+        )
         return x, pulse, noises["xi"], noises["init"]
 
     return _memo(("path", _data_key(cfg), seed, sizes, offset), compute)
@@ -415,7 +422,8 @@ def _c5_c7(cfg, seed, sizes):
     )
     c5.update({f"P={p:g}": c5_ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
-    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes), PHASE_NODES) / scan_crlb(_scan(cfg, psi9, 0.0, sizes), PHASE_NODES)
+    nodes = _phase_nodes(sizes)
+    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes), nodes) / scan_crlb(_scan(cfg, psi9, 0.0, sizes), nodes)
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
     return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
         "trend": ratios,
@@ -435,7 +443,7 @@ def _c6(cfg, seed, sizes):
         return _ratio(a, steady_runs(cfg, seed, sizes, psi, 0.9, "stationary"), cfg["statistic"])
     if reference == "PCRLB":
         scan = _scan(cfg, psi, 0.9, sizes)
-        bound = pcrlb_variance(scan, _message(cfg), sizes.n_steps, bound_time(cfg), PHASE_NODES)
+        bound = pcrlb_variance(scan, _message(cfg), sizes.n_steps, bound_time(cfg), _phase_nodes(sizes))
         bound = float(bound[sizes.window()].mean())
         a = keep(a)
         e = mean_square_ci(a) if cfg["statistic"] == "mean" else quantile_ci(a, 0.5)
