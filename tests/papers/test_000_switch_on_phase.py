@@ -7,7 +7,7 @@ import pytest
 from scipy import stats
 
 from tvtrack import jit
-from tvtrack.papers.p000_dissector_ekf import studies, study
+from tvtrack.papers.p000_dissector_ekf import lock_loss, studies, study
 from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant1, run_steps_variant2
 from tvtrack.papers.p000_dissector_ekf.ekf import run_variant1, run_variant2, variant1_filter, variant2_filter
 from tvtrack.papers.p000_dissector_ekf.model import (
@@ -180,3 +180,18 @@ def test_acquisition_from_an_offset_reads_each_runs_phase():
     run = study._errors(DEFAULT, 4, SMALL, 20.0, DEFAULT["contrast"], "v2", offset=0.3)
     np.testing.assert_allclose(run["curve"], ((x - est) ** 2).mean(axis=0), rtol=1e-9)
     assert acq["v2"]["late"][1].value <= 0.2
+
+
+def test_c000_2_over_the_runs_in_lock_drops_the_runs_lost_at_switch_on():
+    """C000-2's RMS error over all runs carries the runs lost at switch-on (3 of these 100 in each filter); over the
+    runs in lock it is the RMS of the others, about 2 % of T, and the lock report covers the claim."""
+    sizes = study.Sizes(n_trials=100, duration_T=8.0, window_T=3.0, substeps=2, psi_grid=(5.0, 20.0))
+    m = lock_loss.measure_in_lock(study.measure, DEFAULT, 1, sizes, "C000-2")
+    assert m["lost_runs"] == 3 and m["runs"] == 100
+    for name, filt, p in (("P=0", "stationary", 0.0), ("P=0.5 variant 2", "v2", 0.5)):
+        runs = study.steady_runs(DEFAULT, 1, sizes, 20.0, p, filt)
+        kept = runs[~lock_loss.lost(runs, sizes.lock_factor)]
+        assert m["all"]["measured"][name].value == pytest.approx(np.sqrt(runs.mean()), rel=1e-9)
+        assert m["in lock"]["measured"][name].value == pytest.approx(np.sqrt(kept.mean()), rel=1e-9)
+        assert 0.015 < m["in lock"]["measured"][name].value < 0.025 < m["all"]["measured"][name].value
+    assert "C000-2" in lock_loss.LOCK_CLAIMS

@@ -382,7 +382,7 @@ def _c2(cfg, seed, sizes):
         ]
     out = {}
     for name, p, filt in points:
-        e = rms_ci(np.sqrt(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"])[:, None])
+        e = rms_ci(np.sqrt(keep(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"]))[:, None])  # in lock: lock_loss
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
