@@ -17,6 +17,7 @@ from tvtrack.papers.p000_dissector_ekf.ekf import run_variant1, run_variant2, va
 from tvtrack.papers.p000_dissector_ekf.model import (
     GaussMarkovMessage,
     draw_noises,
+    on_sample_clock,
     samples_from_pulse,
     scan_at_snr,
     truth_and_pulse,
@@ -104,16 +105,18 @@ def test_scan_crlb_at_low_snr_and_high_contrast_is_the_inverse_summed_quadrature
 
 def _independent_steady(seed, psi, p, filt, cfg=DEFAULT, sizes=SMALL):
     """Per-run steady mean squared error of one filter, computed from the model and filter functions alone:
-    ``filt`` "v1", "v2", or "star" (variant 2 with P = 0 on P = 0 data)."""
+    ``filt`` "v1", "v2", or "star" (variant 2 with P = 0 on P = 0 data); each run's sweep starts at its drawn
+    phase (the truth's and the filter's)."""
     noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
     score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
-    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, sizes.dt, 0.5), MSG, noises, "integrated", score)
+    phi = on_sample_clock(noises["phase"], sizes.dt)  # the run's sample slot
+    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, sizes.dt, 0.5), MSG, noises, "integrated", score, None, phi)
     scan = scan_at_snr(psi, 0.0 if filt == "star" else p, sizes.dt, 0.5)
     y = samples_from_pulse(scan, pulse, noises["xi"])
     if filt == "v1":
-        est = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", "paper"), y, (0.2, 1.0))[0]
+        est = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", "paper", phi), y, (0.2, 1.0))[0]
     else:
-        est = run_variant2(variant2_filter(scan, MSG), y, 0.2)[0]
+        est = run_variant2(variant2_filter(scan, MSG, None, 0, phi), y, 0.2)[0]
     k = np.arange(sizes.n_steps + 1)
     window = k * sizes.dt > sizes.duration_T - sizes.window_T
     return ((x - est) ** 2)[:, window].mean(axis=1)
@@ -137,7 +140,13 @@ def test_sigma_x2_star_is_variant_2_on_stationary_noise_data(measured):
 
 def test_c000_7_gap_is_the_crlb_ratio_at_p09_minus_the_estimate_ratio_at_p09(measured):
     """Kills: C000-7's gap taken at another P (its CRLB or its estimate ratio)."""
-    crlb = scan_crlb(scan_at_snr(20.0, 0.9, SMALL.dt)) / scan_crlb(scan_at_snr(20.0, 0.0, SMALL.dt))
+    from dataclasses import replace
+
+    def bound(p):  # the one-scan bound over the runs' 20 sample slots
+        scan = scan_at_snr(20.0, p, SMALL.dt)
+        return np.mean([scan_crlb(replace(scan, time_offset=scan.time_offset + 0.05 * i)) for i in range(20)])
+
+    crlb = bound(0.9) / bound(0.0)
     r9 = _independent_steady(21, 20.0, 0.9, "v2").mean() / _independent_steady(21, 20.0, 0.9, "star").mean()
     assert measured["C000-7"]["measurement vs estimate"].value == pytest.approx(crlb - r9, rel=1e-9)
     trend = [e.value for e in measured["C000-7"]["trend"]]
@@ -176,13 +185,16 @@ def test_c000_6_readings_are_their_filter_over_their_reference(measured):
     v2 = _independent_steady(21, 20.0, 0.9, "v2")
     assert measured["C000-6"].value == pytest.approx(v2.mean() / star, rel=1e-9)
     window = np.arange(SMALL.n_steps + 1) * SMALL.dt > SMALL.duration_T - SMALL.window_T
-    bound = pcrlb_variance(scan_at_snr(20.0, 0.9, SMALL.dt), MSG, SMALL.n_steps, "interval_end")[window].mean()
+    scan = scan_at_snr(20.0, 0.9, SMALL.dt)
+    phases = np.arange(20) * 0.05  # the bound over the runs' 20 equally likely sample slots
+    bound = np.mean([pcrlb_variance(scan, MSG, SMALL.n_steps, "interval_end", phi) for phi in phases], 0)[window].mean()
     pcrlb = study.measure({**DEFAULT, "potentially achievable": "PCRLB"}, 21, SMALL)["C000-6"]
     assert pcrlb.value == pytest.approx(v2.mean() / bound, rel=1e-9)
     noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
-    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end")
-    scan = scan_at_snr(20.0, 0.9, SMALL.dt)
-    est = run_steps_variant2(scan, MSG, samples_from_pulse(scan, pulse, noises["xi"]), 0.2, None, 0.0)[0]
+    phi = on_sample_clock(noises["phase"], SMALL.dt)
+    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end", None, phi)
+    y = samples_from_pulse(scan, pulse, noises["xi"])
+    est = run_steps_variant2(scan, MSG, y, 0.2, None, 0.0, start=phi)[0]
     ignoring = ((x - est) ** 2)[:, window].mean()
     got = study.measure({**DEFAULT, "C000-6 filter": "ignoring the signal noise"}, 21, SMALL)["C000-6"]
     assert got.value == pytest.approx(ignoring / star, rel=1e-9)
@@ -199,9 +211,11 @@ def test_c000_1_share_is_the_runs_out_of_lock_after_the_acquisition_time():
     sizes = replace(SMALL, acquire_by_T=1.0)  # here the share changes from one scan to the next
 
     noises = draw_noises(np.random.default_rng(21), SMALL.n_trials, SMALL.n_steps, SMALL.substeps)
-    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end")
+    phi = on_sample_clock(noises["phase"], SMALL.dt)
+    x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, SMALL.dt), MSG, noises, "integrated", "interval_end", None, phi)
     scan = scan_at_snr(2.0, 0.5, SMALL.dt)
-    sq = (x - run_steps_variant2(scan, MSG, samples_from_pulse(scan, pulse, noises["xi"]), 0.2)[0]) ** 2
+    y = samples_from_pulse(scan, pulse, noises["xi"])
+    sq = (x - run_steps_variant2(scan, MSG, y, 0.2, start=phi)[0]) ** 2
     per_scan = sq[:, 1:].reshape(SMALL.n_trials, -1, 20).mean(axis=2)
     threshold = 2.0**2 * _independent_steady(21, 2.0, 0.5, "v2").mean()
     late = (per_scan[:, 1:] > threshold).any(axis=1).mean()

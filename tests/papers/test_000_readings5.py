@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import ratio_ci
-from tvtrack.papers.p000_dissector_ekf import study
+from tvtrack.papers.p000_dissector_ekf import lock_loss, study
 from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
 
@@ -35,11 +35,16 @@ def test_accounting_compares_the_ignoring_filter_with_variant_2_on_the_same_runs
 
 
 def test_accounting_gains_little_below_half_and_less_than_twice_at_0_9():
-    """Measured: 1.01 and 1.04 at P = 0.25, 0.5; 1.6 [1.5, 1.9] at P = 0.9, below the factor 2 the default
-    reading's sigma_x^2 / sigma_x^2* clears (2.1): under this reading C000-5's P = 0.9 part is not reproduced."""
+    """Measured over the runs in lock: 1.00 and 1.03 at P = 0.25, 0.5; 1.5 [1.48, 1.61] at P = 0.9, below the
+    factor 2 the default reading's sigma_x^2 / sigma_x^2* clears (2.2): under this reading C000-5's P = 0.9 part is
+    not reproduced. Over all 120 runs one (switched on just past its pulse) loses lock under a filter of each
+    ratio and leaves the default undecided."""
     rule = claim_rules(SIZES)["C000-5"]
-    default, c7 = study._c5_c7(DEFAULT, 4, SIZES)
-    accounting, c7_acc = study._c5_c7(ACCOUNTING, 4, SIZES)
+    assert rule.judge(study._c5_c7(DEFAULT, 4, SIZES)[0]).verdict == "undecided"
+    with lock_loss.in_lock(5.0) as counts:
+        default, c7 = study._c5_c7(DEFAULT, 4, SIZES)
+        accounting, c7_acc = study._c5_c7(ACCOUNTING, 4, SIZES)
+    assert max(lost for lost, _ in counts) == 1
     got = {k: v.value for k, v in accounting["measured"].items()}
     assert got["P=0.25"] < 1.02 and got["P=0.5"] < 1.1
     assert 1.3 < got["P=0.9"] < 2.0

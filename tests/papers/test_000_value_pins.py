@@ -10,6 +10,8 @@ fine-step steady variance minus one, both scored at their newest datum.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -64,8 +66,15 @@ def test_c5_c7_read_the_ratios_and_the_crlb_gap_at_p_09(convention, factor):
         / np.mean(runs(cfg, study.psi_at(20.0, 0.25, convention), 0.25, "stationary")),
         rel=1e-12,
     )
-    # the measurement's own bound: the one-scan CRLB at P = 0.9 over that at P = 0, both at psi_A(0.9)
-    crlb = scan_crlb(scan_at_snr(psi9, 0.9, 0.05, 0.5)) / scan_crlb(scan_at_snr(psi9, 0.0, 0.05, 0.5))
+    # the measurement's own bound: the one-scan CRLB at P = 0.9 over that at P = 0, both at psi_A(0.9), each the
+    # mean over the runs' 20 equally likely sample slots at switch-on
+    phases = np.arange(20) * 0.05
+
+    def bound(p):
+        scan = scan_at_snr(psi9, p, 0.05, 0.5)
+        return np.mean([scan_crlb(replace(scan, time_offset=scan.time_offset + phi)) for phi in phases])
+
+    crlb = bound(0.9) / bound(0.0)
     assert 1.0 < crlb < 20.0  # the signal's own shot noise widens the one-scan bound
     gap = c7["measurement vs estimate"]
     assert gap.value == pytest.approx(crlb - r9, rel=1e-12)
@@ -84,15 +93,15 @@ def test_c8_is_the_coarse_over_fine_variance_minus_one_scored_at_the_newest_datu
     got = study._c8(DEFAULT, 3, SMALL)
     scan = scan_at_snr(20.0, 0.5, 0.05, 0.5)
     d = simulate_two_rates(
-        scan, study.MESSAGE, 4, np.random.default_rng([3, 8]), 24, 60, score_at="interval_end"
-    )  # 3 T at dt = 0.05 T; the steady window is the last third
+        scan, study.MESSAGE, 4, np.random.default_rng([3, 8]), 24, 60, score_at="interval_end", draw_phase=True
+    )  # 3 T at dt = 0.05 T; the steady window is the last third; each run's switch-on phase drawn after the rest
     wc, wf = d["t_coarse"] > 2.0, d["t_fine"] > 2.0
 
     def v2(s, y):
-        return run_steps_variant2(s, study.MESSAGE, y, 0.2, None, None, 0)[0]
+        return run_steps_variant2(s, study.MESSAGE, y, 0.2, None, None, 0, start=d["start"])[0]
 
     def v1(s, y):
-        return run_steps_variant1(s, study.MESSAGE, y, (0.2, 1.0), None, 15.0, "paper")[0]
+        return run_steps_variant1(s, study.MESSAGE, y, (0.2, 1.0), None, 15.0, "paper", start=d["start"])[0]
 
     for name, run in (("variant 2", v2), ("variant 1", v1)):
         a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, wc].mean(axis=1)

@@ -17,7 +17,7 @@ __all__ = ["variant1_loop", "variant2_loop"]
 
 @njit
 def variant2_loop(y, x0, d0, tk, f1, f11, q1, c_exp, c_h, a, r0, r1, noise_iterations):  # pragma: no cover - compiled
-    """Variant 2 over ``y`` (n, K); ``tk`` (K,) the scan's timing table ``tau_k - tau_c``. Returns (est, var)."""
+    """Variant 2 over ``y`` (n, K); ``tk`` (n, K) each trial's timing table ``tau_k - tau_c``. Returns (est, var)."""
     n, big_k = y.shape
     est = np.empty((n, big_k))
     var = np.empty((n, big_k))
@@ -29,7 +29,7 @@ def variant2_loop(y, x0, d0, tk, f1, f11, q1, c_exp, c_h, a, r0, r1, noise_itera
         for k in range(1, big_k):
             xp = f1 * x
             p = f11 * d + q1
-            u = tk[k] - xp
+            u = tk[i, k] - xp
             s = math.exp(c_exp * (u * u))
             h = a * s
             dh = c_h * (s * u)
@@ -41,7 +41,7 @@ def variant2_loop(y, x0, d0, tk, f1, f11, q1, c_exp, c_h, a, r0, r1, noise_itera
             x = xp + (ph / v) * nu
             d = p * r / v
             for _ in range(noise_iterations):
-                u1 = tk[k] - x
+                u1 = tk[i, k] - x
                 r = r0 + r1 * math.exp(c_exp * (u1 * u1))
                 v = dh_ph + r
                 x = xp + (ph / v) * nu
@@ -53,7 +53,8 @@ def variant2_loop(y, x0, d0, tk, f1, f11, q1, c_exp, c_h, a, r0, r1, noise_itera
 
 @njit
 def variant1_loop(y, x0, d0, tk, f1, f2, f11, f12, f22, q1, q2, c_exp, c_h1, c_h2, a, sqrt_c, r):  # pragma: no cover
-    """Variant 1 over ``y`` (n, K); ``x0`` (n, 2); ``d0`` (d11, d22). Returns (estimate of X1, D11), each (n, K)."""
+    """Variant 1 over ``y`` (n, K); ``x0`` (n, 2); ``d0`` (d11, d22); ``tk`` (n, K) each trial's timing table.
+    Returns (estimate of X1, D11), each (n, K)."""
     n, big_k = y.shape
     est = np.empty((n, big_k))
     var = np.empty((n, big_k))
@@ -71,7 +72,7 @@ def variant1_loop(y, x0, d0, tk, f1, f2, f11, f12, f22, q1, q2, c_exp, c_h1, c_h
             p11 = f11 * d11 + q1
             p12 = f12 * d12
             p22 = f22 * d22 + q2
-            u = tk[k] - xp1
+            u = tk[i, k] - xp1
             s = math.exp(c_exp * (u * u))
             root = sqrt_c * math.sqrt(s)
             h = a * s + root * xp2

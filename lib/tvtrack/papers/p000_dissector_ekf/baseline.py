@@ -10,7 +10,7 @@ from .model import DissectorScan
 __all__ = ["scan_centroids", "fixed_gain_track", "tune_fixed_gain"]
 
 
-def scan_centroids(scan: DissectorScan, y):
+def scan_centroids(scan: DissectorScan, y, start=None):
     """Classical time-of-arrival discriminator: the centroid of each scan's samples (card, beyond the paper, item 6).
 
     ``z_j = sum_k u_k Y_k / sum_k Y_k`` over the ``round(1/dt)`` samples of scan ``j`` (``u_k = tau_k - tau_c``,
@@ -21,19 +21,23 @@ def scan_centroids(scan: DissectorScan, y):
     Parameters
     ----------
     y : ndarray, shape (n_trials, n_steps + 1)   samples from :func:`simulate` (column 0 NaN)
+    start : None or ndarray (n_trials,)
+        Each run's sweep phase at switch-on (T; None: 0). A block of ``round(1/dt)`` consecutive samples sees every
+        phase of the sweep once, wherever it starts, so it holds the pulse once; ``u_k`` is each sample's own phase.
 
     Returns
     -------
-    ndarray, shape (n_trials, n_scans)   one measurement per complete scan, referred to the scan's end
+    ndarray, shape (n_trials, n_scans)   one measurement per block of a scan's length, referred to the block's end
     """
     per_scan = int(round(1.0 / scan.dt))
     n_scans = (y.shape[1] - 1) // per_scan
     k = np.arange(1, 1 + n_scans * per_scan)
-    u = scan.offset(0.0, k).reshape(n_scans, per_scan)
+    phi = np.zeros((y.shape[0], 1)) if start is None else np.asarray(start, dtype=float)[:, None]
+    u = scan.offset(0.0, k, phi).reshape(y.shape[0], n_scans, per_scan)
     blocks = y[:, 1 : 1 + n_scans * per_scan].reshape(y.shape[0], n_scans, per_scan)
-    s0 = scan.shape(0.0, k[:per_scan])
-    slope = np.sum(u[0] ** 2 * s0) / (scan.pulse_sigma**2 * np.sum(s0))
-    return (blocks * u).sum(axis=2) / blocks.sum(axis=2) / slope
+    s0 = scan.shape(0.0, k[:per_scan], phi)
+    slope = np.sum(u[:, 0] ** 2 * s0, axis=1) / (scan.pulse_sigma**2 * np.sum(s0, axis=1))
+    return (blocks * u).sum(axis=2) / blocks.sum(axis=2) / slope[:, None]
 
 
 def fixed_gain_track(z, transition: float, gain: float):

@@ -14,9 +14,10 @@ import numpy as np
 from ...montecarlo import Estimate, mean_square_ci, ratio_ci
 from .baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
 from .cost import run_steps_variant1, run_steps_variant2
-from .model import draw_noises, scan_at_snr, truth_and_pulse
+from .model import scan_at_snr, truth_and_pulse
+from .lock_loss import keep_pair
 from .reference import grid_filter
-from .study import BETA_0, D11_0, D22_0, Sizes, _message, _path, _samples, _scan, steady_runs
+from .study import BETA_0, D11_0, D22_0, Sizes, _draws, _message, _path, _samples, _scan, _start, steady_runs
 
 __all__ = ["centroid_baseline", "grid_over_points", "pulse_and_beta", "mismatched_over_contrast"]
 
@@ -34,7 +35,7 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
     Returns
     -------
     dict  ``baseline`` and ``variant 2`` [Estimate per psi_A] steady mean squared error at the scan ends (T^2);
-    ``ratio`` [Estimate] baseline / variant 2 on the same runs
+    ``ratio`` [Estimate] baseline / variant 2 on the same runs (those in lock by both, inside :func:`.lock_loss.in_lock`)
     """
     x, pulse, xi, _ = _path(config, seed, sizes)
     per_scan, half = sizes.steps_per_scan, sizes.n_trials // 2
@@ -43,18 +44,19 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
     steady = ends * sizes.dt > sizes.duration_T - sizes.window_T
     f = float(np.exp(-_message(config).alpha))  # the message's transition over one scan
     out = {"baseline": [], "variant 2": [], "ratio": []}
+    phi = _start(seed, sizes)
     for psi in sizes.psi_grid:
         scan = _scan(config, psi, config["contrast"], sizes)
         y = _samples(config, seed, scan, pulse, xi)
-        z = scan_centroids(scan, y)
+        z = scan_centroids(scan, y, phi)
         truth = x[:, ends]
         gain = tune_fixed_gain(z[:half], truth[:half], f, GAINS, steady)
         base = ((fixed_gain_track(z[half:], f, gain) - truth[half:]) ** 2)[:, steady].mean(axis=1)
-        est = run_steps_variant2(scan, _message(config), y[half:], D11_0)[0]
+        est = run_steps_variant2(scan, _message(config), y[half:], D11_0, start=phi[half:])[0]
         v2 = ((est[:, ends] - truth[half:]) ** 2)[:, steady].mean(axis=1)
         out["baseline"].append(mean_square_ci(base))
         out["variant 2"].append(mean_square_ci(v2))
-        out["ratio"].append(ratio_ci(base, v2))
+        out["ratio"].append(ratio_ci(*keep_pair(base, v2)))  # only the runs in lock inside lock_loss.in_lock
     return out
 
 
@@ -74,7 +76,8 @@ def grid_over_points(config: dict, seed: int, sizes: Sizes, psis, contrasts) -> 
     def ratio(psi, p):
         scan = _scan(config, psi, p, sizes)
         y = _samples(config, seed, scan, pulse, xi)[:m]
-        g = grid_filter(scan, message, 0.5, sizes.grid_points).run(y, 0.0, message.sigma**2).mean
+        g = grid_filter(scan, message, 0.5, sizes.grid_points, _start(seed, sizes)[:m]).run(y, 0.0, message.sigma**2)
+        g = g.mean
         grid = ((x[:m] - g) ** 2)[:, window].mean(axis=1)
         return ratio_ci(steady_runs(config, seed, sizes, psi, p, "v2")[:m], grid)
 
@@ -92,21 +95,22 @@ def pulse_and_beta(config: dict, seed: int, sizes: Sizes, durations, betas, cont
     -------
     dict  ``T_u`` {variant: [Estimate per duration]}; ``beta_0`` [Estimate per beta] (variant 1)
     """
-    noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
+    noises, phi = _draws(seed, sizes), _start(seed, sizes)
     score = "interval_centre" if config["scoring time"] == "interval centre" else "interval_end"
     message, window = _message(config), sizes.window()
     sig = "per_sample" if config["sigma_sh"] == "per sample" else "unit_bandwidth"
 
     def runs(tu):
-        x, pulse = truth_and_pulse(scan_at_snr(1.0, 0.0, sizes.dt, tu), message, noises, config["sample model"], score)
+        geometry = scan_at_snr(1.0, 0.0, sizes.dt, tu)
+        x, pulse = truth_and_pulse(geometry, message, noises, config["sample model"], score, None, phi)
 
         def steady(p, filt, beta=BETA_0):
             scan = scan_at_snr(config["psi_A"], p, sizes.dt, tu, sig)
             y = _samples(config, seed, scan, pulse, noises["xi"])
             if filt == "v1":
-                e = run_steps_variant1(scan, message, y, (D11_0, D22_0), None, beta, config["G22"])[0]
+                e = run_steps_variant1(scan, message, y, (D11_0, D22_0), None, beta, config["G22"], start=phi)[0]
             else:
-                e = run_steps_variant2(scan, message, y, D11_0)[0]
+                e = run_steps_variant2(scan, message, y, D11_0, start=phi)[0]
             return ((x - e) ** 2)[:, window].mean(axis=1)
 
         return steady

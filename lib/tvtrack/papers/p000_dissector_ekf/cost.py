@@ -94,10 +94,11 @@ def _fn(name: str, f, array_f):
 _exp, _sqrt = _fn("exp", math.exp, np.exp), _fn("sqrt", math.sqrt, np.sqrt)
 
 
-def _timing(scan: DissectorScan, k: int) -> float:
-    """The scan's timing table: ``tau_k - tau_c`` of sample ``k`` (a constant of the scan, not arithmetic of the
-    step)."""
-    return float(scan.phase(k)) - scan.pulse_centre
+def _timing(scan: DissectorScan, k: int, start=0.0):
+    """The scan's timing table: ``tau_k - tau_c`` of sample ``k`` with the sweep at phase ``start`` (T, a number or
+    one per trial) at switch-on (a constant of the scan, not arithmetic of the step)."""
+    tau = scan.phase(k, start) - scan.pulse_centre
+    return float(tau) if np.ndim(tau) == 0 else tau
 
 
 def _sqrt_c(scan: DissectorScan, signal_noise_scale: str) -> float:
@@ -116,6 +117,7 @@ def variant1_step(
     beta: float = 15.0,
     g22="paper",
     signal_noise_scale: str = "consistent",
+    start=0.0,
 ):
     """One step of variant 1 (2-state EKF, eqs. (7), (8), (E1)-(E8), corrected (E5), (E6), ``c_s = N0 P/(1-P)``, or
     ``c_s = A`` with ``signal_noise_scale="literal"``).
@@ -126,6 +128,7 @@ def variant1_step(
     d : (d11, d12, d22)     its covariance ``D(k)`` (symmetric)
     y : float               the sample ``Y(k+1)``
     k : int                 the index ``k + 1`` of that sample
+    start : float or ndarray   the sweep's phase at switch-on (T; one per trial with arrays over trials)
 
     Returns
     -------
@@ -139,7 +142,7 @@ def variant1_step(
     c_exp, c_h1, c_h2, r = -0.5 / sig2, a / sig2, 0.5 / sig2, scan.n0 / scan.dt
     xp1, xp2 = f1 * x[0], f2 * x[1]  # (E1), (E4)
     p11, p12, p22 = f11 * d[0] + q1, f12 * d[1], f22 * d[2] + q2  # (E7), (E8)
-    u = _timing(scan, k) - xp1
+    u = _timing(scan, k, start) - xp1
     s = _exp(c_exp * (u * u))
     root = sqrt_c * _sqrt(s)  # sqrt(c_s S)
     h = a * s + root * xp2  # (E3)
@@ -162,6 +165,7 @@ def variant2_step(
     k: int,
     noise_iterations: int = 0,
     assumed_contrast: float | None = None,
+    start=0.0,
 ):
     """One step of variant 2 (scalar EKF, eq. (9): the noise intensity at the predicted estimate, re-evaluated
     ``noise_iterations`` times at the updated one; ``assumed_contrast`` 0 is the filter ignoring the signal noise).
@@ -171,7 +175,7 @@ def variant2_step(
     f11, a, sig2 = f1 * f1, scan.amplitude, scan.pulse_sigma**2
     c_exp, c_h, r0, r1 = -0.5 / sig2, a / sig2, scan.n0 / scan.dt, scan.n0 * p / (1.0 - p) / scan.dt
     xp, p = f1 * x, f11 * d + q1
-    tk = _timing(scan, k)
+    tk = _timing(scan, k, start)
     u = tk - xp
     s = _exp(c_exp * (u * u))
     h, dh = a * s, c_h * (s * u)
@@ -224,9 +228,21 @@ def _run_steps(step, y, x, d):
     return est, var
 
 
-def _timing_table(scan: DissectorScan, n_columns: int) -> np.ndarray:
-    """:func:`_timing` of the samples ``k = 0..n_columns-1`` (the same values, computed at once)."""
-    return scan.phase(np.arange(n_columns)) - scan.pulse_centre
+def _timing_table(scan: DissectorScan, n_columns: int, start, n_trials: int) -> np.ndarray:
+    """:func:`_timing` of the samples ``k = 0..n_columns-1`` of each trial (the same values, computed at once),
+    shape (n_trials, n_columns)."""
+    start = np.broadcast_to(np.asarray(start, dtype=float), (n_trials,))[:, None]
+    return np.ascontiguousarray(scan.phase(np.arange(n_columns), start) - scan.pulse_centre)
+
+
+def _start(start, n: int):
+    """Switch-on phases as a number or an array of ``n`` (one per trial); None is 0."""
+    if start is None:
+        return 0.0
+    start = np.asarray(start, dtype=float)
+    if start.shape not in ((), (n,)) or not np.all(np.isfinite(start)):
+        raise ValueError(f"parameter 'start' has shape {start.shape}; it must be finite, a number or ({n},)")
+    return start
 
 
 def _use_kernel(compiled: bool | None) -> bool:
@@ -243,20 +259,22 @@ def run_steps_variant1(
     g22: str = "paper",
     compiled: bool | None = None,
     signal_noise_scale: str = "consistent",
+    start=None,
 ):
     """Variant 1 over samples ``y`` (n_trials, K): :func:`variant1_step` vectorised over the trials, or its compiled
     loop (:func:`._kernels.variant1_loop`, where numba is enabled; ``compiled`` forces either). The same estimates
     and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py`` checks that
     they agree), several times faster. ``init`` (n_trials, 2) initial estimates (default 0); ``signal_noise_scale``
-    as :func:`variant1_step`."""
+    as :func:`variant1_step`; ``start`` (n_trials,) each trial's sweep phase at switch-on (T; None: 0)."""
     n = y.shape[0]
+    start = _start(start, n)
     x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
     if _use_kernel(compiled):
         f1, q1 = message.euler(scan.dt)
         f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
         sig2, sqrt_c = scan.pulse_sigma**2, _sqrt_c(scan, signal_noise_scale)
         consts = (f1, f2, f1 * f1, f1 * f2, f2 * f2, q1, q2, -0.5 / sig2, scan.amplitude / sig2, 0.5 / sig2)
-        tk = _timing_table(scan, y.shape[1])
+        tk = _timing_table(scan, y.shape[1], start, n)
         return _kernels.variant1_loop(
             np.ascontiguousarray(y, dtype=float),
             np.ascontiguousarray(x0),
@@ -270,25 +288,27 @@ def run_steps_variant1(
     x = (x0[:, 0].copy(), x0[:, 1].copy())
     d = (np.full(n, float(d0[0])), np.zeros(n), np.full(n, float(d0[1])))
     return _run_steps(
-        lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22, signal_noise_scale), y, x, d
+        lambda x, d, yk, k: variant1_step(scan, message, x, d, yk, k, beta, g22, signal_noise_scale, start), y, x, d
     )
 
 
 def run_steps_variant2(
-    scan, message, y, d0: float = 0.2, init=None, assumed_contrast=None, noise_iterations=0, compiled=None
+    scan, message, y, d0: float = 0.2, init=None, assumed_contrast=None, noise_iterations=0, compiled=None, start=None
 ):
     """Variant 2 (or, with ``assumed_contrast`` 0, the filter ignoring the signal noise) over samples ``y``
     (n_trials, K): :func:`variant2_step` vectorised over the trials, or its compiled loop
     (:func:`._kernels.variant2_loop`); the same estimates and D11 as :func:`.ekf.run_variant2`. ``init``
-    (n_trials,) initial estimates (default 0)."""
+    (n_trials,) initial estimates (default 0); ``start`` (n_trials,) each trial's sweep phase at switch-on (T; None:
+    0)."""
     n = y.shape[0]
+    start = _start(start, n)
     x = np.zeros(n) if init is None else np.asarray(init, dtype=float).copy()
     if _use_kernel(compiled):
         p = scan.contrast if assumed_contrast is None else assumed_contrast
         f1, q1 = message.euler(scan.dt)
         sig2 = scan.pulse_sigma**2
         r0, r1 = scan.n0 / scan.dt, scan.n0 * p / (1.0 - p) / scan.dt
-        tk = _timing_table(scan, y.shape[1])
+        tk = _timing_table(scan, y.shape[1], start, n)
         return _kernels.variant2_loop(
             np.ascontiguousarray(y, dtype=float),
             np.ascontiguousarray(x),
@@ -306,6 +326,6 @@ def run_steps_variant2(
         )
 
     def step(x, d, yk, k):
-        return variant2_step(scan, message, x, d, yk, k, noise_iterations, assumed_contrast)
+        return variant2_step(scan, message, x, d, yk, k, noise_iterations, assumed_contrast, start)
 
     return _run_steps(step, y, x, np.full(n, float(d0)))

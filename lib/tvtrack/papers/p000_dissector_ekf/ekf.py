@@ -35,6 +35,7 @@ def variant1_filter(
     beta: float = 15.0,
     signal_noise_scale: str = "consistent",
     g22: str = "paper",
+    start=0.0,
 ) -> ExtendedKalmanFilter:
     """Two-state EKF of variant 1 (eqs. (7), (8), (E1)-(E8), corrected (E5), (E6)).
 
@@ -46,6 +47,9 @@ def variant1_filter(
     g22 : {"paper", "euler", "matched"}
         ``G22``: ``2 beta dt`` (printed), ``beta^2 dt`` (Euler of (8)), or ``(1-(1-beta dt)^2)/dt``
         (discrete ``X2`` of stationary variance ``1/dt``).
+    start : float or ndarray (n_trials,)
+        The sweep's phase at switch-on (T), one per trial of the samples the filter runs on (the tracker knows its
+        own sweep).
     """
     _check_real("beta", beta, 0.0, 1.0 / scan.dt, low_open=True, high_open=True)
     _check_choice("signal_noise_scale", signal_noise_scale, SIGNAL_NOISE_SCALES)
@@ -57,11 +61,11 @@ def variant1_filter(
     sqrt_c = np.sqrt(c_s)
 
     def h(x, k):  # (E3)
-        s = scan.shape(x[..., 0], k)
+        s = scan.shape(x[..., 0], k, start)
         return (a * s + sqrt_c * np.sqrt(s) * x[..., 1])[..., None]
 
     def jacobian(x, k):
-        u = scan.offset(x[..., 0], k)
+        u = scan.offset(x[..., 0], k, start)
         s = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
         root_s = np.sqrt(s)
         d1 = (
@@ -74,7 +78,11 @@ def variant1_filter(
 
 
 def variant2_filter(
-    scan: DissectorScan, message: GaussMarkovMessage, assumed_contrast: float | None = None, noise_iterations: int = 0
+    scan: DissectorScan,
+    message: GaussMarkovMessage,
+    assumed_contrast: float | None = None,
+    noise_iterations: int = 0,
+    start=0.0,
 ) -> ExtendedKalmanFilter:
     """Scalar EKF of variant 2: noise intensity of eq. (2) at the estimate (eq. (9)).
 
@@ -85,20 +93,23 @@ def variant2_filter(
         (used as the mismatched baseline on non-stationary data).
     noise_iterations : int
         0: intensity at the predicted estimate; 1: re-evaluated once at the updated estimate.
+    start : float or ndarray (n_trials,)
+        The sweep's phase at switch-on (T), as for :func:`variant1_filter`.
     """
     p = scan.contrast if assumed_contrast is None else assumed_contrast
     _check_real("assumed_contrast", p, 0.0, 1.0, high_open=True)
     a, dt = scan.amplitude, scan.dt
     f1, q1 = message.euler(dt)
+    start = np.asarray(start, dtype=float)
 
     def h(x, k):
-        return a * scan.shape(x, k)
+        return a * scan.shape(x, k, start[..., None])
 
     def jacobian(x, k):
-        return a * scan.shape_derivative(x, k)[..., None]
+        return a * scan.shape_derivative(x, k, start[..., None])[..., None]
 
     def noise_cov(x, k):  # (eq. 9)
-        return scan.sample_variance(x, k, p)[..., None]
+        return scan.sample_variance(x, k, p, start[..., None])[..., None]
 
     return ExtendedKalmanFilter(np.array([[f1]]), np.array([[q1]]), h, jacobian, noise_cov, noise_iterations)
 

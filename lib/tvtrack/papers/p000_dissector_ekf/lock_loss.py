@@ -4,7 +4,9 @@ A dissector tracker that loses lock (its estimate leaves the image and the micro
 large fraction of the raster in that run, 25 or more times the mean square of a run in lock. Where a few per cent of
 the runs do so, the ensemble mean square over all runs (the paper's sigma_x^2, what the claims' rules read) is
 carried by them: C000-6's "exceeds 20 times" under its joint reading and C000-7's and C000-9's flips at
-sigma_1 = 0.2 T come from 2-6 % of the runs. So lock loss is its own quantity here: the share of runs that lost
+sigma_1 = 0.2 T come from 2-6 % of the runs. A run whose sweep switches on just past its pulse (the truth left of
+the centre) can lose lock too, about one run in 100-300 at psi_A = 20, which reaches C000-2's RMS error and the
+paired ratios of C000-3 and C000-5. So lock loss is its own quantity here: the share of runs that lost
 lock (exact Clopper-Pearson interval), and each claim is scored again over the runs in lock, beside the mean over
 all runs, with the verdict each gives.
 
@@ -16,9 +18,9 @@ that flips it, stays the same over the runs in lock, so a flip that only the los
 point and filter (:func:`lost`); a paired ratio drops a run lost by either filter. The median, not the mean, is the
 reference: the mean is what the lost runs inflate.
 
-While :func:`in_lock` is active, :mod:`.study`'s paired ratios, C000-6's bound ratio and C000-9's statistics read
-the runs in lock only (:func:`keep`, :func:`keep_pair`) and count the runs dropped; outside it they are untouched
-(the same arrays, bit for bit).
+While :func:`in_lock` is active, :mod:`.study`'s paired ratios, C000-2's RMS errors, C000-6's bound ratio and
+C000-9's statistics read the runs in lock only (:func:`keep`, :func:`keep_pair`) and count the runs dropped; outside
+it they are untouched (the same arrays, bit for bit).
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ from ...counts import proportion_ci
 __all__ = ["lost", "keep", "keep_pair", "in_lock", "measure_in_lock", "flip_changes", "lock_report", "LOCK_CLAIMS"]
 
 #: The claims whose ensemble means lock loss can carry (steady-state variances and their ratios).
-LOCK_CLAIMS = ("C000-6", "C000-7", "C000-9")
+LOCK_CLAIMS = ("C000-2", "C000-3", "C000-5", "C000-6", "C000-7", "C000-9")
 
 _ACTIVE: dict | None = None  # {"factor": float, "counts": [(lost, runs), ...]} while in_lock() is active
 

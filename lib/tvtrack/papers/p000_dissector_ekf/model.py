@@ -35,6 +35,7 @@ __all__ = [
     "background_intensity",
     "scan_at_snr",
     "draw_noises",
+    "on_sample_clock",
     "simulate",
     "simulate_integrated",
     "simulate_photon_counts",
@@ -131,32 +132,34 @@ class DissectorScan:
         """``P / (1 - P)``: signal-noise intensity per unit ``S`` relative to ``N0`` (eq. (2))."""
         return self.contrast / (1.0 - self.contrast)
 
-    def phase(self, k):
-        """Scan phase ``tau = t mod T`` of sample ``k`` (``t_k = k dt + time_offset``)."""
-        return np.mod(np.asarray(k) * self.dt + self.time_offset, 1.0)
+    def phase(self, k, start=0.0):
+        """Scan phase ``tau = (t + start) mod T`` of sample ``k`` (``t_k = k dt + time_offset``); ``start`` is the
+        sweep's phase when the filter switches on (``t = 0``; units of ``T``, a float or an array broadcast
+        against ``k``, e.g. one phase per run of shape (n_trials, 1))."""
+        return np.mod(np.asarray(k) * self.dt + self.time_offset + start, 1.0)
 
-    def offset(self, x, k):
+    def offset(self, x, k, start=0.0):
         """``u = tau_k - tau_c - x``, the pulse argument (units of ``T``)."""
-        return self.phase(k) - self.pulse_centre - x
+        return self.phase(k, start) - self.pulse_centre - x
 
-    def shape(self, x, k):
+    def shape(self, x, k, start=0.0):
         """Normalised pulse ``S(x, t_k) = exp(-u^2 / (2 sigma_t^2))`` (peak 1)."""
-        u = self.offset(x, k)
+        u = self.offset(x, k, start)
         return np.exp(-0.5 * (u / self.pulse_sigma) ** 2)
 
-    def shape_derivative(self, x, k):
+    def shape_derivative(self, x, k, start=0.0):
         """``dS/dx = S u / sigma_t^2``."""
-        u = self.offset(x, k)
+        u = self.offset(x, k, start)
         return np.exp(-0.5 * (u / self.pulse_sigma) ** 2) * u / self.pulse_sigma**2
 
-    def noise_intensity(self, x, k, contrast: float | None = None):
+    def noise_intensity(self, x, k, contrast: float | None = None, start=0.0):
         """``N(t_k) = N0 (1 + P/(1-P) S(x, t_k))`` (eq. (2)); ``contrast`` overrides ``P``."""
         p = self.contrast if contrast is None else contrast
-        return self.n0 * (1.0 + p / (1.0 - p) * self.shape(x, k))
+        return self.n0 * (1.0 + p / (1.0 - p) * self.shape(x, k, start))
 
-    def sample_variance(self, x, k, contrast: float | None = None):
+    def sample_variance(self, x, k, contrast: float | None = None, start=0.0):
         """Variance of one sample's noise, ``N(t_k) / dt``."""
-        return self.noise_intensity(x, k, contrast) / self.dt
+        return self.noise_intensity(x, k, contrast, start) / self.dt
 
 
 @dataclass(frozen=True)
@@ -232,8 +235,11 @@ def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps:
     Returns
     -------
     dict with ``x0`` (n_trials,), ``w`` (n_trials, n_steps) process noise, ``xi`` (n_trials, n_steps)
-    observation noise, ``init`` (n_trials, 2) for random initial estimates, and with ``substeps``
-    ``w_sub`` (n_trials, 2 substeps n_steps) process noise on half sub-steps.
+    observation noise, ``init`` (n_trials, 2) for random initial estimates, with ``substeps``
+    ``w_sub`` (n_trials, 2 substeps n_steps) process noise on half sub-steps, and ``phase`` (n_trials,) each run's
+    sweep phase at switch-on, uniform over the scan interval [0, T) (drawn last, so the other draws do not change;
+    the paper does not say where the sweep is when the filter starts); :func:`on_sample_clock` puts it on the
+    sample clock.
     """
     if n_trials < 1 or n_steps < 1:
         raise ValueError(f"parameters 'n_trials' = {n_trials}, 'n_steps' = {n_steps}; both must be >= 1")
@@ -247,15 +253,38 @@ def draw_noises(rng: np.random.Generator, n_trials: int, n_steps: int, substeps:
     }
     if substeps:
         out["w_sub"] = rng.standard_normal((n_trials, 2 * int(substeps) * n_steps))
+    out["phase"] = rng.uniform(0.0, 1.0, n_trials)
     return out
 
 
-def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
+def on_sample_clock(phase, dt: float):
+    """The sample slot a uniform phase (T) falls in: ``floor(phase / dt) dt``, uniform over the slots of the scan.
+
+    The paper samples the scan every ``dt = T / 20``, a clock synchronous with the sweep, so a filter switches on at
+    a sample slot and every sample's interval ends at or before the flyback. Off the clock, the interval holding the
+    flyback averages the pulse's two far tails, which the filters' model of a sample (the pulse at the interval
+    centre) does not describe.
+    """
+    return np.floor(np.asarray(phase, dtype=float) / dt) * dt
+
+
+def _starts(start, n_trials: int) -> np.ndarray:
+    """Switch-on phases (T) as a column (n_trials, 1): ``None`` is phase 0 for every run."""
+    if start is None:
+        return np.zeros((n_trials, 1))
+    start = np.asarray(start, dtype=float)
+    if start.shape not in ((), (n_trials,)) or not np.all(np.isfinite(start)):
+        raise ValueError(f"parameter 'start' has shape {start.shape}; it must be finite, a number or ({n_trials},)")
+    return np.broadcast_to(start, (n_trials,))[:, None]
+
+
+def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, start=None):
     """Truth and sampled observations (eq. (5)), exact discretisation of the message.
 
     Parameters
     ----------
     noises : dict from :func:`draw_noises` (``x0``, ``w``, ``xi``)
+    start : None, float or ndarray (n_trials,)   the sweep's phase at switch-on per run (T; None: 0)
 
     Returns
     -------
@@ -269,18 +298,23 @@ def simulate(scan: DissectorScan, message: GaussMarkovMessage, noises: dict):
     x[:, 0] = message.sigma * noises["x0"]
     for k in range(n_steps):
         x[:, k + 1] = f * x[:, k] + np.sqrt(q) * w[:, k]
-    k = np.arange(1, n_steps + 1)
+    k, phi = np.arange(1, n_steps + 1), _starts(start, n_trials)
     y = np.full_like(x, np.nan)
-    y[:, 1:] = scan.amplitude * scan.shape(x[:, 1:], k) + np.sqrt(scan.sample_variance(x[:, 1:], k)) * xi  # (eq. 5)
+    y[:, 1:] = (
+        scan.amplitude * scan.shape(x[:, 1:], k, phi) + np.sqrt(scan.sample_variance(x[:, 1:], k, None, phi)) * xi
+    )  # (eq. 5)
     return x, y
 
 
-def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str, drift=None):
+def _integrated_path(
+    scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str, drift=None, start=None
+):
     """The message on half sub-steps and each sample's pulse and noise intensity averaged over its interval.
 
     Returns ``x`` (n_trials, n_steps + 1): ``x(0)`` then the message at the centre ``(k - 1/2) dt`` or the end
     ``k dt`` of sample ``k``'s interval (``score_at``), ``shape`` and ``intensity`` (n_trials, n_steps): the
-    means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``.
+    means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``, the sweep at phase
+    ``start`` (per run, T; None: 0) at ``t = 0``.
     """
     _check_choice("score_at", score_at, SCORING_TIMES)
     if "w_sub" not in noises:
@@ -301,7 +335,7 @@ def _integrated_path(scan: DissectorScan, message: GaussMarkovMessage, noises: d
         x_half = x_half + drift(np.arange(x_half.shape[1]) * 0.5 * scan.dt / m)
     x_mid = x_half[:, 1::2]  # sub-interval centres
     t_mid = (np.arange(m * n_steps) + 0.5) * scan.dt / m
-    u = np.mod(t_mid, 1.0) - scan.pulse_centre - x_mid
+    u = np.mod(t_mid + _starts(start, n_trials), 1.0) - scan.pulse_centre - x_mid
     shape = np.exp(-0.5 * (u / scan.pulse_sigma) ** 2)
     intensity = scan.n0 * (1.0 + scan.signal_noise_ratio * shape)
     mean = lambda a: a.reshape(n_trials, n_steps, m).mean(axis=2)
@@ -318,6 +352,7 @@ def truth_and_pulse(
     sample_model: str = "integrated",
     score_at: str = "interval_centre",
     drift=None,
+    start=None,
 ):
     """The truth and the mean pulse ``S`` each sample sees, under either sample model (common draws ``noises``).
 
@@ -331,16 +366,17 @@ def truth_and_pulse(
     pulse : ndarray, shape (n_trials, n_steps)     mean normalised pulse of samples ``k = 1..n_steps``
 
     ``drift``: optional callable of times ``t`` (T, shape (K,)) returning a motion (T, broadcastable to
-    (n_trials, K)) added to the message: a target that moves outside the filters' model.
+    (n_trials, K)) added to the message: a target that moves outside the filters' model. ``start``: the sweep's
+    phase at switch-on per run (T, shape (n_trials,) or a number; None: 0), e.g. ``noises["phase"]``.
     """
     _check_choice("sample_model", sample_model, SAMPLE_MODELS)
     if sample_model == "integrated":
-        x, pulse, _ = _integrated_path(scan, message, noises, score_at, drift)
+        x, pulse, _ = _integrated_path(scan, message, noises, score_at, drift, start)
         return x, pulse
     x, _ = simulate(scan, message, {**noises, "xi": np.zeros_like(noises["xi"])})
     if drift is not None:
         x = x + drift(np.arange(x.shape[1]) * scan.dt)
-    return x, scan.shape(x[:, 1:], np.arange(1, x.shape[1]))
+    return x, scan.shape(x[:, 1:], np.arange(1, x.shape[1]), _starts(start, x.shape[0]))
 
 
 def samples_from_pulse(scan: DissectorScan, pulse, xi):
@@ -362,7 +398,7 @@ def samples_from_pulse(scan: DissectorScan, pulse, xi):
 
 
 def simulate_integrated(
-    scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str = "interval_centre"
+    scan: DissectorScan, message: GaussMarkovMessage, noises: dict, score_at: str = "interval_centre", start=None
 ):
     """Truth and integrate-and-dump observations: sample ``k`` is the current averaged over ``((k-1) dt, k dt]``.
 
@@ -382,13 +418,14 @@ def simulate_integrated(
     scan : DissectorScan   ``time_offset`` must be ``-dt / 2`` (filters model the pulse at the interval centre)
     noises : dict from :func:`draw_noises` with ``substeps >= 1`` (``x0``, ``xi``, ``w_sub``)
     score_at : {"interval_centre", "interval_end"}   the time of the truth ``x[:, k]``, ``k >= 1``
+    start : None, float or ndarray (n_trials,)        the sweep's phase at switch-on per run (T; None: 0)
 
     Returns
     -------
     x : ndarray, shape (n_trials, n_steps + 1)   ``X1(0)``, then ``X1`` at the centre (or end) of each interval
     y : ndarray, shape (n_trials, n_steps + 1)   samples; ``y[:, 0]`` is NaN
     """
-    x, shape, intensity = _integrated_path(scan, message, noises, score_at)
+    x, shape, intensity = _integrated_path(scan, message, noises, score_at, None, start)
     y = np.full_like(x, np.nan)
     y[:, 1:] = scan.amplitude * shape + np.sqrt(intensity / scan.dt) * noises["xi"]
     return x, y
@@ -419,6 +456,7 @@ def simulate_photon_counts(
     noises: dict,
     rng: np.random.Generator,
     score_at: str = "interval_centre",
+    start=None,
 ):
     """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
 
@@ -443,7 +481,7 @@ def simulate_photon_counts(
     """
     if not scan.contrast > 0:
         raise ValueError(f"parameter 'scan.contrast' = {scan.contrast!r}; photon counts need P > 0")
-    x, shape, _ = _integrated_path(scan, message, noises, score_at)
+    x, shape, _ = _integrated_path(scan, message, noises, score_at, None, start)
     return (x, *counts_from_pulse(scan, shape, rng))
 
 
@@ -455,6 +493,7 @@ def simulate_two_rates(
     n_trials: int,
     n_steps: int,
     score_at: str = "interval_centre",
+    draw_phase: bool = False,
 ):
     """The same continuous-time experiment sampled at ``dt`` and at ``dt_f = dt / factor`` (claim C000-8).
 
@@ -475,13 +514,17 @@ def simulate_two_rates(
     factor : int           integer >= 2
     n_steps : int          coarse steps; coarse samples ``k = 1..n_steps``
     score_at : {"interval_centre", "interval_end"}   the time of the truths ``x_coarse``, ``x_fine``
+    draw_phase : bool      draw each run's sweep phase at switch-on uniform over the coarse scan's sample slots
+                           (:func:`on_sample_clock`) from ``rng`` (after the other draws, so they do not change);
+                           False: phase 0 for every run
 
     Returns
     -------
     dict with ``x_coarse``, ``y_coarse`` (n_trials, n_steps + 1; column 0 is the start, ``y`` NaN),
     ``x_fine``, ``y_fine`` (n_trials, n_steps factor), ``x_mid`` (n_trials, n_steps factor: the message
     at the centre of each fine interval, where the pulse and noise intensity are evaluated),
-    ``t_coarse``, ``t_fine`` (times the estimates refer to), and ``scan_fine`` (the fine :class:`DissectorScan`).
+    ``t_coarse``, ``t_fine`` (times the estimates refer to), ``scan_fine`` (the fine :class:`DissectorScan`) and
+    ``start`` (n_trials,) the switch-on phases (T; the filters' ``start``).
     """
     if isinstance(factor, bool) or int(factor) != factor or factor < 2:
         raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
@@ -502,9 +545,12 @@ def simulate_two_rates(
         x_half[:, i + 1] = f * x_half[:, i] + np.sqrt(q) * w[:, i]
     x_mid = x_half[:, 1::2]  # centres (j + 1/2) dt_f
     j = np.arange(n_fine)
-    y_fine = scan.amplitude * scan_fine.shape(x_mid, j) + np.sqrt(
-        scan_fine.sample_variance(x_mid, j)
-    ) * rng.standard_normal((n_trials, n_fine))
+    xi = rng.standard_normal((n_trials, n_fine))
+    start = on_sample_clock(rng.uniform(0.0, 1.0, n_trials), scan.dt) if draw_phase else np.zeros(n_trials)
+    y_fine = (
+        scan.amplitude * scan_fine.shape(x_mid, j, start[:, None])
+        + np.sqrt(scan_fine.sample_variance(x_mid, j, None, start[:, None])) * xi
+    )
     y_coarse = np.full((n_trials, n_steps + 1), np.nan)
     y_coarse[:, 1:] = y_fine.reshape(n_trials, n_steps, factor).mean(axis=2)  # integrate and dump
     x_coarse = x_half[:, :: 2 * factor].copy()  # times k dt
@@ -524,4 +570,5 @@ def simulate_two_rates(
         "t_coarse": t_coarse,
         "t_fine": t_fine,
         "scan_fine": scan_fine,
+        "start": start,
     }

@@ -23,9 +23,11 @@ from .study import (
     _errors,
     _message,
     _path,
+    _phase_nodes,
     _ratio_to_star,
     _samples,
     _scan,
+    _start,
     bound_time,
     psi_at,
     steady_runs,
@@ -45,7 +47,7 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes) -> dict:
             if init == "process means":
                 out[f"{filt} own D11"] = run["d_curve"]
     scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config))
+    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
     return out
 
 
@@ -89,11 +91,13 @@ def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
             for psi in sizes.psi_grid:
                 scan = _scan(cfg, psi, cfg["contrast"], sizes)
                 y = _samples(cfg, seed, scan, pulse, xi)
+                phi = _start(seed, sizes)
                 if name == "v1":
-                    filt, d0 = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"]), (D11_0, D22_0)
+                    filt = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"], phi)
+                    d0 = (D11_0, D22_0)
                 else:
                     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations), D11_0
+                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations, phi), D11_0
                 nees, _ = consistency(filt, y, x, d0, sizes.window())
                 ests.append(mean_square_ci(nees))
             out[scoring][f"variant {name[1]}"] = ests
@@ -145,6 +149,7 @@ def fig3_curves(config: dict, seed: int, sizes: Sizes) -> dict:
         out["ratio"][v] = [_ratio_to_star(config, seed, sizes, p, filt) for p in sizes.contrast_grid]
     for s, p in zip(psis, sizes.contrast_grid):
         out["sigma_x^2*"].append(mean_square_ci(steady_runs(config, seed, sizes, s, p, "stationary")))
-        bound = pcrlb_variance(_scan(config, s, p, sizes), _message(config), sizes.n_steps, bound_time(config))
+        scan = _scan(config, s, p, sizes)
+        bound = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
         out["PCRLB"].append(float(bound[sizes.window()].mean()))
     return out

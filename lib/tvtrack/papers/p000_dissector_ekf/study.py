@@ -14,7 +14,7 @@ Times are in units of the scan interval ``T``; variances in ``T^2``. The paper's
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import stats
@@ -48,6 +48,7 @@ from .model import (
     GaussMarkovMessage,
     counts_from_pulse,
     draw_noises,
+    on_sample_clock,
     samples_from_pulse,
     scan_at_snr,
     simulate_two_rates,
@@ -180,15 +181,35 @@ def _drift(cfg, seed, n_trials):
     return lambda t: 0.1 * np.sin(2 * np.pi * t / period + phase)
 
 
+def _draws(seed, sizes):
+    """The common unit draws of a seed (:func:`.model.draw_noises`), each run's switch-on phase among them."""
+    return _memo(
+        ("draws", seed, sizes),
+        lambda: draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps),
+    )
+
+
+def _start(seed, sizes):
+    """Each run's sweep phase at switch-on (n_trials,, T), uniform over the scan's sample slots
+    (:func:`.model.on_sample_clock`): the truth's and the filters' sweep."""
+    return on_sample_clock(_draws(seed, sizes)["phase"], sizes.dt)
+
+
+def _phase_nodes(sizes):
+    """The sample slots a run can switch on at (T), equally likely: what the bounds average over."""
+    return np.arange(int(np.ceil(1.0 / sizes.dt - 1e-9))) * sizes.dt
+
+
 def _path(cfg, seed, sizes, offset=None):
-    """Truth and mean pulses of the common draws (one per data model, seed and start).
+    """Truth and mean pulses of the common draws (one per data model, seed and start), each run's sweep starting at
+    its drawn phase (:func:`_start`).
 
     ``offset``: None (the truth from its stationary law), a number (every truth starts there, T) or "uniform" (the
     truth uniform over the micro-raster, [-T/2, T/2], from the same normal draws through their CDF).
     """
 
     def compute():
-        noises = draw_noises(np.random.default_rng(seed), sizes.n_trials, sizes.n_steps, sizes.substeps)
+        noises = _draws(seed, sizes)
         if offset == "uniform":
             noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / _message(cfg).sigma}
         elif offset is not None:  # truth starts at a fixed offset
@@ -196,7 +217,9 @@ def _path(cfg, seed, sizes, offset=None):
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
         drift = _drift(cfg, seed, sizes.n_trials)
-        x, pulse = truth_and_pulse(geometry, _message(cfg), noises, cfg["sample model"], score, drift)
+        x, pulse = truth_and_pulse(
+            geometry, _message(cfg), noises, cfg["sample model"], score, drift, _start(seed, sizes)
+        )
         return x, pulse, noises["xi"], noises["init"]
 
     return _memo(("path", _data_key(cfg), seed, sizes, offset), compute)
@@ -259,7 +282,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
         x, pulse, xi, draws_init = _path(cfg, seed, sizes, offset)
         scan = _scan(cfg, psi, 0.0 if filt == "stationary" else contrast, sizes)
         y = _samples(cfg, seed, scan, pulse, xi)
-        random_init = init != "process means"
+        random_init, phi = init != "process means", _start(seed, sizes)
         if filt == "v1":
             start = (
                 np.stack([np.sqrt(D11_0) * draws_init[:, 0], np.sqrt(D22_0) * draws_init[:, 1]], 1)
@@ -267,13 +290,13 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 else None
             )
             e, d = run_steps_variant1(
-                scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+                scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], None, _cs(cfg), phi
             )
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
-            e, d = run_steps_variant2(scan, _message(cfg), y, D11_0, start, assumed, iterations)
+            e, d = run_steps_variant2(scan, _message(cfg), y, D11_0, start, assumed, iterations, None, phi)
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
@@ -359,7 +382,7 @@ def _c2(cfg, seed, sizes):
         ]
     out = {}
     for name, p, filt in points:
-        e = rms_ci(np.sqrt(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"])[:, None])
+        e = rms_ci(np.sqrt(keep(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"]))[:, None])  # in lock: lock_loss
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
@@ -399,7 +422,8 @@ def _c5_c7(cfg, seed, sizes):
     )
     c5.update({f"P={p:g}": c5_ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
-    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes)) / scan_crlb(_scan(cfg, psi9, 0.0, sizes))
+    nodes = _phase_nodes(sizes)
+    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes), nodes) / scan_crlb(_scan(cfg, psi9, 0.0, sizes), nodes)
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
     return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
         "trend": ratios,
@@ -418,7 +442,8 @@ def _c6(cfg, seed, sizes):
     if reference == "sigma_x^2*":
         return _ratio(a, steady_runs(cfg, seed, sizes, psi, 0.9, "stationary"), cfg["statistic"])
     if reference == "PCRLB":
-        bound = pcrlb_variance(_scan(cfg, psi, 0.9, sizes), _message(cfg), sizes.n_steps, bound_time(cfg))
+        scan = _scan(cfg, psi, 0.9, sizes)
+        bound = pcrlb_variance(scan, _message(cfg), sizes.n_steps, bound_time(cfg), _phase_nodes(sizes))
         bound = float(bound[sizes.window()].mean())
         a = keep(a)
         e = mean_square_ci(a) if cfg["statistic"] == "mean" else quantile_ci(a, 0.5)
@@ -438,7 +463,8 @@ def _c6(cfg, seed, sizes):
         scan = _scan(cfg, psi, 0.9, sizes)
         y = _samples(cfg, seed, scan, pulse, xi)[:m]
         message = _message(cfg)
-        mean = grid_filter(scan, message, 0.5, sizes.grid_points).run(y, 0.0, message.sigma**2).mean
+        phi = _start(seed, sizes)[:m]
+        mean = grid_filter(scan, message, 0.5, sizes.grid_points, phi).run(y, 0.0, message.sigma**2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
 
     g = _memo(
@@ -474,17 +500,18 @@ def _c8(cfg, seed, sizes):
                 sizes.dt_trials,
                 int(round(sizes.dt_duration_T / sizes.dt)),
                 score_at="interval_end",
+                draw_phase=True,
             )
             win_c = d["t_coarse"] > 2 * sizes.dt_duration_T / 3
             win_f = d["t_fine"] > 2 * sizes.dt_duration_T / 3
             for name in missing:
 
-                def run(s, y, name=name):
+                def run(s, y, name=name, phi=d["start"]):
                     if name == "v1":
                         return run_steps_variant1(
-                            s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], signal_noise_scale=_cs(cfg)
+                            s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], None, _cs(cfg), phi
                         )[0]
-                    return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations)[0]
+                    return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations, None, phi)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
@@ -599,6 +626,8 @@ def cost_ratio(
 
 
 def record_inputs(config: dict, seed: int, sizes: Sizes):
-    """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`)."""
+    """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`, which
+    records trial 0: the scan's time offset carries that trial's switch-on phase)."""
     x, pulse, xi, _ = _path(config, seed, sizes)
-    return _scan(config, config["psi_A"], config["contrast"], sizes), x, pulse, xi
+    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
+    return replace(scan, time_offset=scan.time_offset + float(_start(seed, sizes)[0])), x, pulse, xi
