@@ -694,3 +694,27 @@ def test_the_sizing_budget_goes_to_the_conditions_in_order_and_counts_runs():
     )
     assert added == 4 and budget.used == 4 and budget.left == 1
     assert conds[0].n_runs("L") == 5 and conds[1].n_runs("L") == 1 and conds[1].left == {"L": 5}
+
+
+def test_a_sub_combination_leaning_towards_agreement_is_not_sized():
+    """Every run lost only when a = 2, b = 2 and c = y together (a pinned joint configuration): its pairs (no loss
+    in 6 runs) lean towards agreement and are searched for a flip only, so none is sized to the default's 5
+    replicates, while the pinned configuration that flips is; the flip stays a joint one, no smaller subset named."""
+    from tvtrack.montecarlo import zero_events_bound
+
+    def measure(config, seed):
+        if (config["a"], config["b"], config["c"]) == (2, 2, "y"):
+            return {"L": Estimate(1.0, float("nan"), 0.54, 1.0, 6, 0.95, "count: 6 of 6")}
+        return {"L": Estimate(0.0, float("nan"), 0.0, zero_events_bound(6), 6, 0.95, "count: zero events")}
+
+    rules = {"L": InBand("loss rate", None, 0.1)}
+    reg = Register(list(REG), pinned=[{"a": 2, "b": 2, "c": "y"}])
+    ex = explore(measure, reg, rules, seed=5, replicates=3, max_replicates=8)
+    combos = [r for r in ex.runs if r.stage == "combination"]
+    assert len(combos) == 3 and all(r.n_runs("L") == 1 and r.left == {"L": 5} for r in combos)
+    flipped = next(
+        r for r in ex.runs if r.stage == "pinned" and (r.config["a"], r.config["b"], r.config["c"]) == (2, 2, "y")
+    )
+    assert flipped.n_runs("L") == 5
+    flips = ex.record("L")["parts"]["claim"]["flips"]
+    assert len(flips) == 1 and flips[0]["changed"] == {"a": 2, "b": 2, "c": "y"}
