@@ -12,7 +12,7 @@ import pytest
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
 from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location
-from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, RUN_SIZES, build_register
+from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, PROJECT_GRIDS, RUN_SIZES, build_register
 
 ROOT = Path(__file__).parents[2]
 PKG = ROOT / "lib" / "tvtrack" / "papers" / "p001_maneuver_occlusion_kf"
@@ -33,15 +33,14 @@ def test_measurements_read_only_register_entries_or_settings_fixed_by_the_paper(
     config_keys = _reads(r'config\[\s*"([^"]+)"\s*\]') | _reads(r'config\.get\(\s*"([^"]+)"')
     assert config_keys and config_keys <= set(REG.names), config_keys - set(REG.names)
     size_keys = _reads(r'sizes\[\s*"([^"]+)"\s*\]') | _reads(r'sizes\.get\(\s*"([^"]+)"')
-    assert size_keys and size_keys <= set(RUN_SIZES) | set(FIXED_BY_PAPER), (
-        size_keys - set(RUN_SIZES) - set(FIXED_BY_PAPER)
-    )
+    known = set(RUN_SIZES) | set(FIXED_BY_PAPER) | set(PROJECT_GRIDS)
+    assert size_keys and size_keys <= known, size_keys - known
 
 
 def test_the_sizes_a_notebook_passes_are_run_sizes_or_fixed_by_the_paper():
     from tvtrack.papers.p001_maneuver_occlusion_kf.sizes import Sizes
 
-    assert set(Sizes.__annotations__) == set(RUN_SIZES) | set(FIXED_BY_PAPER)
+    assert set(Sizes.__annotations__) == set(RUN_SIZES) | set(FIXED_BY_PAPER) | set(PROJECT_GRIDS)
 
 
 def test_notebook_rules_read_no_unregistered_parameter():
