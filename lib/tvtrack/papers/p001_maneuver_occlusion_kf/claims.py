@@ -63,7 +63,13 @@ def _c7(t: float) -> AllOf:
     """C001-7's rule at the curve tolerance ``t`` (elements)."""
     return AllOf(
         {
-            "decreasing": Monotone("|dynamic error| after a 10 s loss", "loss time", "decreasing", "el", t),
+            "decreasing": Monotone(
+                "|dynamic error| in excess of the random prediction error (RMS) after a 10 s loss",
+                "loss time",
+                "decreasing",
+                "el",
+                t,
+            ),
             "dominates early": Ordering("|dynamic error|", "RMS error for the earliest loss", ">", "ratio"),
         }
     )
