@@ -111,8 +111,9 @@ def test_c001_9_at_the_papers_two_rates():
         assert d["deviation_el"] == pytest.approx(dev, abs=0.01)
     assert not study.paper_rate_deviation(2.107, 10.0)["within_20deg"]  # 20.2° after 10 s
     m = study.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]
-    assert m["2.107°/s (10 el/frame)"] == pytest.approx(104.33, abs=0.01)
+    # the measured part is the worst start over the ±20° field (test_001_c9_field.py), the crossing's path leaving it
+    assert m["2.107°/s (10 el/frame)"] == pytest.approx(115.07, abs=0.01)
     rms = study.measure_spherical(
         {"tolerance": "prediction RMS at k_b3"}, 0, dict(defaults=REG.default(), prediction_rms=7.6)
     )
-    assert rms["C001-9"]["0.5°/s (0.02°/frame)"] == pytest.approx(1.499 / 7.6, abs=1e-3)
+    assert rms["C001-9"]["0.5°/s (0.02°/frame)"] == pytest.approx(1.508 / 7.6, abs=1e-3)

@@ -151,7 +151,12 @@ def claim_rules() -> dict[str, Rule]:
         "C001-9": AllOf(
             {
                 **{
-                    r: InBand(f"largest deviation from the extrapolated angle at {r}", None, 1.0, "× tolerance")
+                    r: InBand(
+                        f"largest deviation from the extrapolated angle at {r} over the paths within ±20°",
+                        None,
+                        1.0,
+                        "× tolerance",
+                    )
                     for r in PAPER_RATES
                 },
                 "geometries": InBand(

@@ -97,6 +97,8 @@ from .spherical import (
     TARGET_SETS,
     PAPER_RATES,
     paper_rate_deviation,
+    field_deviation,
+    start_deviation,
     measure_spherical,
 )
 
@@ -167,6 +169,8 @@ __all__ = [
     "TARGET_SETS",
     "PAPER_RATES",
     "paper_rate_deviation",
+    "field_deviation",
+    "start_deviation",
     "measure_spherical",
 ]
 
