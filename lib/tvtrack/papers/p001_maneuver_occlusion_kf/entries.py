@@ -19,6 +19,7 @@ from .scenario import (
     MANOEUVRES,
     NOISE_MODELS,
     RMS_SPANS,
+    TEST_CADENCES,
     THRESHOLD_READINGS,
     UMP_COMPARATORS,
 )
@@ -73,6 +74,22 @@ ENTRIES = (
         phrases={
             "gains at bound": "the detector starts once both windows hold velocities of the filter at its frozen gains",
             "windows full": "the detector starts as soon as both windows hold fitted velocities",
+        },
+    ),
+    Entry(
+        "test_cadence",
+        "unreported setting",
+        TEST_CADENCES[0],
+        TEST_CADENCES,
+        "the paper observes the output velocities 'on an interval 2T ... following at the frame rate' and splits it "
+        "into T1 and T2; how often decision (14) is taken is never printed: every frame (sliding windows), every n "
+        "frames, or once per interval 2T (disjoint intervals, the literal reading of 'on an interval 2T')",
+        "adversarial",
+        title="how often the armed manoeuvre detector takes its decision",
+        phrases={
+            "every frame": "the detector decides at every frame (sliding windows)",
+            "every n frames": "the detector decides every n frames (windows overlapping by half)",
+            "every 2n frames": "the detector decides once per interval 2T (disjoint intervals)",
         },
     ),
     Entry(

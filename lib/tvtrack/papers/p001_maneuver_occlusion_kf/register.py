@@ -32,6 +32,7 @@ DEPENDS = {
         "threshold",
         "alpha",
         "arming",
+        "test_cadence",
         "window_n",
         "k_bound2",
         "frame_rate_hz",
@@ -69,6 +70,7 @@ DEPENDS = {
         # the scheme's detection and the scenario, which C001-4's measurement reads too (adversarial review)
         "alpha",
         "arming",
+        "test_cadence",
         "window_n",
         "frame_rate_hz",
         "accel_unit",
