@@ -291,8 +291,8 @@ ENTRIES = (
         "statistic",
         0.01,
         (0.001, 0.01, 0.1),
-        "C001-7 and C001-8 judge deterministic curves (noise-free runs, covariance recursion): a step smaller than "
-        "this many elements counts as flat. 0.01 el is 1 % of the measurement RMS, below what Fig. 4's axis (tens "
+        "C001-8 judges deterministic curves (noise-free runs, covariance recursion): a step smaller than this many "
+        "elements counts as flat (C001-7's steps are judged against the random prediction error instead). 0.01 el is 1 % of the measurement RMS, below what Fig. 4's axis (tens "
         "of elements) can show; the curves are flat by construction where the gains never reach the bound before "
         "the loss, and float rounding (1e-6) must not read as a trend",
         title="smallest step of a deterministic error curve that counts as a change (elements)",

@@ -88,7 +88,6 @@ DEPENDS = {
         "manoeuvre",
         "noise",
         "accel_unit",
-        "curve_tolerance",
         # the TRACK2 state at the forced switch and restart B's window; the loss's length (adversarial review)
         "k_bound2",
         "window_n",
