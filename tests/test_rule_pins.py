@@ -58,9 +58,9 @@ def test_the_check_finds_a_reversed_direction_a_moved_end_and_missing_or_stale_r
 
 
 def test_parts_names_readings_and_the_default():
-    rule = importlib.import_module("tvtrack.papers.p001_maneuver_occlusion_kf").RULES["C001-7"]
+    rule = importlib.import_module("tvtrack.papers.p001_maneuver_occlusion_kf").RULES["C001-8"]
     keys = set(parts(rule))
-    assert "curve_tolerance=*default* / decreasing" in keys and "curve_tolerance=0.1 / dominates early" in keys
+    assert "curve_tolerance=*default* / RMS decreasing" in keys and "curve_tolerance=0.1 / interior minimum" in keys
 
 
 def test_the_wording_check_finds_a_lost_side_a_lost_quantity_and_a_changed_unit():

@@ -90,14 +90,15 @@ CURVE_SIZES = SIZES | dict(
 
 
 def _curve_parts(config):
-    """Each part verdict of C001-7 and C001-8 at ``config``, each judged by the rule of its curve tolerance."""
+    """Each part verdict of C001-7 and C001-8 at ``config`` (C001-8 judged by the rule of its curve tolerance)."""
     from tvtrack.papers.p001_maneuver_occlusion_kf import claims
 
     m = study.measure_curves(config, 0, CURVE_SIZES)
     out = {}
-    for cid, make in (("C001-7", claims._c7), ("C001-8", claims._c8)):
-        tol, measured = m[cid]["reading"], m[cid]["measured"]
-        rule = make(tol)
+    for cid, rule, measured in (
+        ("C001-7", claims._c7(), m["C001-7"]),
+        ("C001-8", claims._c8(m["C001-8"]["reading"]), m["C001-8"]["measured"]),
+    ):
         out |= {f"{cid} {k}": r.judge(measured[k]).verdict for k, r in rule.parts.items()}
     return out
 

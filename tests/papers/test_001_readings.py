@@ -12,7 +12,7 @@ import pytest
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
 from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location
-from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, RUN_SIZES, build_register
+from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, PROJECT_GRIDS, RUN_SIZES, build_register
 
 ROOT = Path(__file__).parents[2]
 PKG = ROOT / "lib" / "tvtrack" / "papers" / "p001_maneuver_occlusion_kf"
@@ -33,15 +33,14 @@ def test_measurements_read_only_register_entries_or_settings_fixed_by_the_paper(
     config_keys = _reads(r'config\[\s*"([^"]+)"\s*\]') | _reads(r'config\.get\(\s*"([^"]+)"')
     assert config_keys and config_keys <= set(REG.names), config_keys - set(REG.names)
     size_keys = _reads(r'sizes\[\s*"([^"]+)"\s*\]') | _reads(r'sizes\.get\(\s*"([^"]+)"')
-    assert size_keys and size_keys <= set(RUN_SIZES) | set(FIXED_BY_PAPER), (
-        size_keys - set(RUN_SIZES) - set(FIXED_BY_PAPER)
-    )
+    known = set(RUN_SIZES) | set(FIXED_BY_PAPER) | set(PROJECT_GRIDS)
+    assert size_keys and size_keys <= known, size_keys - known
 
 
 def test_the_sizes_a_notebook_passes_are_run_sizes_or_fixed_by_the_paper():
     from tvtrack.papers.p001_maneuver_occlusion_kf.sizes import Sizes
 
-    assert set(Sizes.__annotations__) == set(RUN_SIZES) | set(FIXED_BY_PAPER)
+    assert set(Sizes.__annotations__) == set(RUN_SIZES) | set(FIXED_BY_PAPER) | set(PROJECT_GRIDS)
 
 
 def test_notebook_rules_read_no_unregistered_parameter():
@@ -112,8 +111,9 @@ def test_c001_9_at_the_papers_two_rates():
         assert d["deviation_el"] == pytest.approx(dev, abs=0.01)
     assert not study.paper_rate_deviation(2.107, 10.0)["within_20deg"]  # 20.2° after 10 s
     m = study.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]
-    assert m["2.107°/s (10 el/frame)"] == pytest.approx(104.33, abs=0.01)
+    # the measured part is the worst start over the ±20° field (test_001_c9_field.py), the crossing's path leaving it
+    assert m["2.107°/s (10 el/frame)"] == pytest.approx(115.07, abs=0.01)
     rms = study.measure_spherical(
         {"tolerance": "prediction RMS at k_b3"}, 0, dict(defaults=REG.default(), prediction_rms=7.6)
     )
-    assert rms["C001-9"]["0.5°/s (0.02°/frame)"] == pytest.approx(1.499 / 7.6, abs=1e-3)
+    assert rms["C001-9"]["0.5°/s (0.02°/frame)"] == pytest.approx(1.508 / 7.6, abs=1e-3)

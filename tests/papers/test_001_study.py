@@ -270,8 +270,8 @@ def test_a_manoeuvre_that_ends_continues_uniformly():
 
 def test_adversarial_regimes_reach_the_measurements():
     # the manoeuvre that ends makes C001-7's dynamic error rise again after the acceleration stops (restart A)
-    const = study.measure_curves({}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
-    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["measured"]["decreasing"]
+    const = study.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]
+    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]
     assert np.all(np.diff(const) < 0) and short[1] > short[0]
     # a weaker second channel is detected later (pooled median); a 4 s horizon curves less than a 10 s one
     weak = study.measure_detection({"channel_y": "v -6, a -0.05"}, 1, SIZES)["C001-1"]["median"].value
@@ -343,6 +343,6 @@ def test_acceleration_unit_reading_scales_the_manoeuvre():
     )
     # C001-7: the dynamic error scales with the acceleration, the RMS does not
     sz = SIZES | {"loss_grid_s": [6.0, 8.0]}
-    a = study.measure_curves({}, 0, sz)["C001-7"]["measured"]
-    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]["measured"]
+    a = study.measure_curves({}, 0, sz)["C001-7"]
+    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
     np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)

@@ -142,10 +142,20 @@ def loss_sweep(config: dict, sizes: dict) -> dict:
 
 
 def c7_parts(sweep: dict) -> dict:
-    """C001-7's parts: |dynamic| (elements) along the loss times; |dynamic| / RMS for the earliest loss."""
+    """C001-7's parts: |dynamic| along the loss times in multiples of the smallest random prediction error (RMS) of
+    the sweep; |dynamic| / RMS for the earliest loss.
+
+    The paper says dynamic errors "substantially affect the prediction" ("существенно влияют на прогноз") when the
+    object is lost before they are worked off, and plots them beside the random error (Fig. 4, curves 1 and 2; the
+    figure itself is not in the text). A change of the dynamic error smaller than the random error of the
+    prediction is no substantial change of its effect, so the trend is read in units of the smallest random error
+    along the sweep (7.6 el at the default, the gains at their bound) and C001-7's rule counts a step within one
+    unit as flat: the tolerance the paper's curve allows.
+    """
+    dyn, rms = np.abs(np.asarray(sweep["dyn"], float)), np.asarray(sweep["rms"], float)
     return {
-        "decreasing": [float(v) for v in np.abs(sweep["dyn"])],
-        "dominates early": float(abs(sweep["dyn"][0]) / sweep["rms"][0]),
+        "decreasing": [float(v) for v in dyn / rms.min()],
+        "dominates early": float(dyn[0] / rms[0]),
     }
 
 
@@ -164,16 +174,15 @@ def c8_parts(cur: dict) -> dict:
 
 @as_declared(("C001-7", "C001-8"), declared)  # each claim at its configuration projected onto its DEPENDS
 def measure_curves(config: dict, seed: int, sizes: dict, claims=None) -> dict:
-    """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), each
+    """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), C001-8
     tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone
     rules count a step below it as flat, :mod:`.claims`); only the claims in ``claims`` (None: both)."""
     config = _full(config, sizes)
-    tol = float(config["curve_tolerance"])
     out = {}
     if claims is None or "C001-7" in claims:
-        out["C001-7"] = ByReading.tag(tol, c7_parts(loss_sweep(config, sizes)))
+        out["C001-7"] = c7_parts(loss_sweep(config, sizes))
     if claims is None or "C001-8" in claims:
-        out["C001-8"] = ByReading.tag(tol, c8_parts(fig4_curves(config, sizes)))
+        out["C001-8"] = ByReading.tag(float(config["curve_tolerance"]), c8_parts(fig4_curves(config, sizes)))
     return out
 
 

@@ -19,6 +19,7 @@ from .scenario import (
     MANOEUVRES,
     NOISE_MODELS,
     RMS_SPANS,
+    TEST_CADENCES,
     THRESHOLD_READINGS,
     UMP_COMPARATORS,
 )
@@ -73,6 +74,22 @@ ENTRIES = (
         phrases={
             "gains at bound": "the detector starts once both windows hold velocities of the filter at its frozen gains",
             "windows full": "the detector starts as soon as both windows hold fitted velocities",
+        },
+    ),
+    Entry(
+        "test_cadence",
+        "unreported setting",
+        TEST_CADENCES[0],
+        TEST_CADENCES,
+        "the paper observes the output velocities 'on an interval 2T ... following at the frame rate' and splits it "
+        "into T1 and T2; how often decision (14) is taken is never printed: every frame (sliding windows), every n "
+        "frames, or once per interval 2T (disjoint intervals, the literal reading of 'on an interval 2T')",
+        "adversarial",
+        title="how often the armed manoeuvre detector takes its decision",
+        phrases={
+            "every frame": "the detector decides at every frame (sliding windows)",
+            "every n frames": "the detector decides every n frames (windows overlapping by half)",
+            "every 2n frames": "the detector decides once per interval 2T (disjoint intervals)",
         },
     ),
     Entry(
@@ -274,8 +291,8 @@ ENTRIES = (
         "statistic",
         0.01,
         (0.001, 0.01, 0.1),
-        "C001-7 and C001-8 judge deterministic curves (noise-free runs, covariance recursion): a step smaller than "
-        "this many elements counts as flat. 0.01 el is 1 % of the measurement RMS, below what Fig. 4's axis (tens "
+        "C001-8 judges deterministic curves (noise-free runs, covariance recursion): a step smaller than this many "
+        "elements counts as flat (C001-7's steps are judged against the random prediction error instead). 0.01 el is 1 % of the measurement RMS, below what Fig. 4's axis (tens "
         "of elements) can show; the curves are flat by construction where the gains never reach the bound before "
         "the loss, and float rounding (1e-6) must not read as a trend",
         title="smallest step of a deterministic error curve that counts as a change (elements)",

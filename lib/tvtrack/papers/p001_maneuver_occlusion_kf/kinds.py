@@ -14,6 +14,11 @@ KINDS = {
         "an unreported setting: 'c(alpha) computed from the given alpha', a value the paper never printed",
     ),
     "arming": ("unreported setting", "an unreported setting: when the paper's detector first tests is never printed"),
+    "test_cadence": (
+        "unreported setting",
+        "an unreported setting: the velocities are observed 'on an interval 2T' at the frame rate (before (3)); how "
+        "often (14) decides is never printed",
+    ),
     "window_n": ("unreported setting", "an unreported setting: the half-window n = T f of (14) is never printed"),
     "k_bound2": (
         "unreported setting",

@@ -1,7 +1,7 @@
 """The register of notebook 001: the entries (:mod:`.entries`: what Fisenko et al. (2008) left unstated, each
 with its default, every defensible value and why), which claims read which of them (``DEPENDS``), the
 joint conditions measured every run (``PINNED``), the claim groups measured together (``GROUPS``) and the
-notebook's settings that are not entries (``RUN_SIZES``, ``FIXED_BY_PAPER``). The explorer measures every claim
+notebook's settings that are not entries (``RUN_SIZES``, ``FIXED_BY_PAPER``, ``PROJECT_GRIDS``). The explorer measures every claim
 over these entries (:mod:`.study`).
 """
 
@@ -14,7 +14,17 @@ from .entries import ENTRIES
 from ...register import with_kinds
 from .kinds import KINDS
 
-__all__ = ["ENTRIES", "GROUPS", "DEPENDS", "PINNED", "RUN_SIZES", "FIXED_BY_PAPER", "build_register", "group_register"]
+__all__ = [
+    "ENTRIES",
+    "GROUPS",
+    "DEPENDS",
+    "PINNED",
+    "RUN_SIZES",
+    "FIXED_BY_PAPER",
+    "PROJECT_GRIDS",
+    "build_register",
+    "group_register",
+]
 
 #: The entries each claim depends on (every entry that can change what the claim's measurement reads).
 DEPENDS = {
@@ -22,6 +32,7 @@ DEPENDS = {
         "threshold",
         "alpha",
         "arming",
+        "test_cadence",
         "window_n",
         "k_bound2",
         "frame_rate_hz",
@@ -59,6 +70,7 @@ DEPENDS = {
         # the scheme's detection and the scenario, which C001-4's measurement reads too (adversarial review)
         "alpha",
         "arming",
+        "test_cadence",
         "window_n",
         "frame_rate_hz",
         "accel_unit",
@@ -76,7 +88,6 @@ DEPENDS = {
         "manoeuvre",
         "noise",
         "accel_unit",
-        "curve_tolerance",
         # the TRACK2 state at the forced switch and restart B's window; the loss's length (adversarial review)
         "k_bound2",
         "window_n",
@@ -113,13 +124,22 @@ RUN_SIZES = (
     "grids",
     "defaults",
 )
-#: ... and settings fixed by the paper (or derived from the run), each with where it comes from.
+#: ... settings fixed by the paper (or derived from the run), each with where it comes from ...
 FIXED_BY_PAPER = {
     "sigma_eps": "the measurement-error RMS, 0.008° = 1 raster element (the paper's simulation paragraph)",
-    "kb3_grid": "Fig. 4's x-axis, the 3rd-order gain bound from 20 to 200 frames",
-    "loss_grid_s": "C001-7: loss times from just after the detection (5.5 s) to the scenario's loss at 12 s",
     "prediction_rms": "C001-9's 'prediction RMS' tolerance: the random prediction error at reappearance at the "
     "register's k_b3, computed by this run",
+}
+#: ... and the project's grids, which the paper does not fix: each in the unit the paper's line decides, with that
+#: line. A grid sets where a curve is sampled, not a reading (its points are the curves' own).
+PROJECT_GRIDS = {
+    "kb3_grid": "the project's grid of the 3rd-order gain bound, in frames (the card's 20-200): the paper's Fig. 4 "
+    "axis is 'the number of the frame at which the lower bound of the filter's coefficients is set' (Fig. 4 text), "
+    "so the bound is counted in frames whatever the frame rate; the axis' range is not in the text (the figure "
+    "itself is lost)",
+    "loss_grid_s": "the project's grid of loss times for C001-7, in seconds, from just after the detection (5.5 s) "
+    "to the scenario's loss at 12 s: the paper states the detection 'at the 5.5th second' and the loss 'at the "
+    "12th' (simulation paragraph) and sweeps no loss time",
 }
 
 #: Joint conditions measured every run (an adversarial review found each flipping a part that no single entry

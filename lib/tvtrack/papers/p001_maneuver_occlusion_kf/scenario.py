@@ -48,6 +48,8 @@ __all__ = [
     "measurements",
     "detector_threshold",
     "arming_count",
+    "TEST_CADENCES",
+    "cadence_threshold",
     "span_mask",
     "run_scheme",
 ]
@@ -68,6 +70,11 @@ THRESHOLD_READINGS = ("exact", "stationary", "independent", "raw increments")
 
 
 ARMING_RULES = ("gains at bound", "windows full")
+
+
+#: How often the armed detector takes decision (14): every frame (sliding windows), every n frames (windows
+#: overlapping by half) or every 2n frames (disjoint intervals 2T), from the first armed frame on.
+TEST_CADENCES = ("every frame", "every n frames", "every 2n frames")
 
 
 RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s", "end of the loss")
@@ -260,6 +267,19 @@ def arming_count(rule: str, k_bound2: int, n: int, onset: int) -> tuple[int, str
     return arm, rule
 
 
+def cadence_threshold(threshold, cadence: str, n: int, arm_k: int) -> np.ndarray:
+    """The per-frame threshold (T,) with the frames the detector does not test set to infinity: ``cadence`` one of
+    :data:`TEST_CADENCES`, the tests every 1, ``n`` or ``2n`` frames from the first armed frame ``arm_k - 1`` (the
+    TRACK2 count ``arm_k``; frames before it are left as they are, the mode logic does not test them)."""
+    if cadence not in TEST_CADENCES:
+        raise ValueError(f"test cadence {cadence!r}; it must be one of {TEST_CADENCES}")
+    out = np.array(threshold, dtype=float)
+    step = {"every frame": 1, "every n frames": n, "every 2n frames": 2 * n}[cadence]
+    f = np.arange(out.size)
+    out[(f >= arm_k - 1) & ((f - (arm_k - 1)) % step != 0)] = np.inf
+    return out
+
+
 def _full(config: dict, sizes: dict) -> dict:
     """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
     return {**sizes.get("defaults", {}), **config}
@@ -287,6 +307,7 @@ def _scheme_config(config: dict, sc: Scenario, sizes: dict, **over) -> TrackMode
     n, kb2 = int(config["window_n"]), int(config["k_bound2"])
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     thr = detector_threshold(config["threshold"], sc.visible, kb2, n, float(config["alpha"]), sizes["sigma_eps"])
+    thr = cadence_threshold(thr, config["test_cadence"], n, arm_k)
     kw = dict(
         k_bound2=kb2,
         k_bound3=int(config["k_bound3"]),

@@ -23,8 +23,8 @@ class Sizes(TypedDict, total=False):
     Fig. 4 point; grids : the comparators' tuning grids; defaults : the register's defaults; prediction_rms : the
     C001-9 tolerance (elements), set after the Fig. 4 study. The delay limit of C001-2 (``roc_delay_s``), its step
     (``step_dv``) and restart C's prior (``restart_accel_var``) are register entries, not sizes; what a
-    measurement may read besides the register is listed in :data:`.register.RUN_SIZES` and
-    :data:`.register.FIXED_BY_PAPER`.
+    measurement may read besides the register is listed in :data:`.register.RUN_SIZES`,
+    :data:`.register.FIXED_BY_PAPER` and :data:`.register.PROJECT_GRIDS`.
     """
 
     n_trials: int

@@ -63,6 +63,7 @@ from .scenario import (
     measurements,
     detector_threshold,
     arming_count,
+    cadence_threshold,
     _full,
     span_mask,
     run_scheme,
@@ -97,6 +98,8 @@ from .spherical import (
     TARGET_SETS,
     PAPER_RATES,
     paper_rate_deviation,
+    field_deviation,
+    start_deviation,
     measure_spherical,
 )
 
@@ -167,6 +170,8 @@ __all__ = [
     "TARGET_SETS",
     "PAPER_RATES",
     "paper_rate_deviation",
+    "field_deviation",
+    "start_deviation",
     "measure_spherical",
 ]
 
@@ -309,6 +314,7 @@ def _c001_1(config: dict, sc: Scenario, z, arm_k: int, sigma: float) -> dict:
     """C001-1's parts on the scenario runs z (runs, 2, Tl): the scheme with the reading's threshold."""
     n, kb2, alpha, Tl = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sc.f_loss
     c1 = detector_threshold(config["threshold"], np.ones(Tl, bool), kb2, n, alpha, sigma)
+    c1 = cadence_threshold(c1, config["test_cadence"], n, arm_k)
     cfg = TrackModeConfig(k_bound2=kb2, window=n, threshold=c1, threshold_index="frame", arm_k=arm_k)
     det = run_track_modes(z, np.ones(Tl, bool), cfg, sigma, covariance=False).detection_frame
     s = detection_time_summary(det, sc.onset, Tl, sc.fps)
