@@ -13,7 +13,7 @@ flipping subset (:mod:`tvtrack.explore`).
   the cap. Its replicates pool as the default's do.
 - **Sizing budget**: a condition whose part leans towards a flip (decisive the other way, or undecided with its
   point estimate on the other side of the rule) is always sized; one that leans towards agreement is sized while
-  the exploration's stated budget of condition runs lasts (the one-at-a-time conditions first, then the joint
+  the exploration's stated budget of claim runs lasts (one claim measured at one replicate of a condition) (the one-at-a-time conditions first, then the joint
   design in its order, then the pinned ones); one left smaller than the default needed stays ``undecided``, its
   record marking it ``left by the sizing budget`` with the replicates that would decide it. A sub-combination
   (searched for a flip only) that leans towards agreement is never sized: it flips nothing at its size.
@@ -196,7 +196,7 @@ def leans_flip(rule: Rule, run: Run, cid: str, default_j: Mapping) -> bool:
 
 @dataclass
 class SizingBudget:
-    """The condition runs that conditions leaning towards agreement may take (``runs``; None: no limit), and what
+    """The claim runs (a claim at one replicate of a condition) that conditions leaning towards agreement may take (``runs``; None: no limit), and what
     the sizing spent and left (see the module)."""
 
     runs: int | None = None

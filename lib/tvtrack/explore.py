@@ -401,7 +401,8 @@ def explore(
         Ignored: the subset search that names the smallest flipping combination tries every pair, then every
         triple, with no run cap (kept so that older callers run).
     sizing_budget : int, optional
-        The condition runs that conditions leaning towards agreement may take (None or negative: no limit). A condition leaning
+        The claim runs (one claim at one replicate of a condition) that conditions leaning towards agreement may
+        take (None or negative: no limit). A condition leaning
         towards a flip is always sized; one leaning towards agreement beyond the budget stays undecided, marked as
         left by the budget with the replicates that would decide it (:mod:`tvtrack.conditions`).
     guard : bool
@@ -477,7 +478,7 @@ def explore(
         "the replicates the default needed to decide it (the fewest first replicates whose pooled value decides "
         "every part as all of them do), is projected to need more than max_replicates, or reaches it; a condition "
         "smaller than that counts as undecided; a condition leaning towards agreement is sized within the stated "
-        "sizing budget of condition runs (one at a time first, then joint, then pinned; a sub-combination leaning "
+        "sizing budget of claim runs (one at a time first, then joint, then pinned; a sub-combination leaning "
         "towards agreement not at all), one leaning towards a flip always",
         "joint": joint,
         "joint_configurations": len(joint_cfgs),
