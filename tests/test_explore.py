@@ -465,11 +465,12 @@ def test_stage_cpu_seconds_count_the_executors_workers():
     exploration reported 656 configurations per CPU second in `make bench`)."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from tvtrack.explore import Run, _Clock
+    from tvtrack.explore import Run
+    from tvtrack.jobs import StageClock
 
     with ProcessPoolExecutor(1) as pool:
         pool.submit(int).result()  # the worker is up before the stage: its start-up is not the stage's
-        clock = _Clock(batched=False, executor=pool)
+        clock = StageClock(batched=False, executor=pool)
         clock.run(_burn_cpu, [Run({}, s, "replicate") for s in range(3)], "replicates")
     row = clock.table()["replicates"]
     assert row["configurations"] == 3 and 0.5 < row["cpu_s"] < 1.5 * row["wall_s"] + 0.1, row

@@ -172,3 +172,48 @@ def test_the_project_speaks_of_itself_not_of_how_it_was_made(tmp_path):
     (tmp_path / "a.py").write_text("# fixed in " + "iss" + "ue 12\n")
     subprocess.run(["git", "add", "a.py"], cwd=tmp_path, check=True)
     assert len(_process_words(tmp_path)) == 1
+
+
+#: The size budgets of the library: a module's lines, and a function's lines below its docstring.
+MODULE_LINES, FUNCTION_LINES = 600, 80
+
+
+def _docstring_end(node: ast.AST) -> int:
+    """The first line of a function's code: below its docstring where it has one (and more than it)."""
+    body = node.body
+    first = body[0]
+    doc = isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str)
+    return first.end_lineno + 1 if doc and len(body) > 1 else first.lineno
+
+
+def over_budget(root: Path) -> list[str]:
+    """Modules of more than :data:`MODULE_LINES` lines and functions whose code (below the docstring) runs over
+    :data:`FUNCTION_LINES` lines, under ``root``."""
+    out = []
+    for path in sorted(root.rglob("*.py")):
+        text = path.read_text()
+        n = len(text.splitlines())
+        if n > MODULE_LINES:
+            out.append(f"{path.relative_to(root)}: {n} lines")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                lines = node.end_lineno - _docstring_end(node) + 1
+                if lines > FUNCTION_LINES:
+                    out.append(f"{path.relative_to(root)}: {node.name} has {lines} lines of code")
+    return out
+
+
+def test_modules_and_functions_keep_their_size_budgets():
+    """Every module of the library within 600 lines and every function's code within 80: a module split along an
+    idea, a function that does one thing."""
+    assert over_budget(PKG) == []
+
+
+def test_the_size_budgets_see_a_planted_offence(tmp_path):
+    body = "\n".join(f"    x{i} = {i}" for i in range(FUNCTION_LINES + 1))
+    (tmp_path / "long.py").write_text(f'def f():\n    """Doc."""\n{body}\n    return x0\n')
+    (tmp_path / "short.py").write_text(
+        'def g():\n    """Doc\n    over\n    lines."""\n' + "    y = 1\n" * 78 + "    return y\n"
+    )
+    (tmp_path / "big.py").write_text("x = 1\n" * (MODULE_LINES + 1))
+    assert over_budget(tmp_path) == ["big.py: 601 lines", "long.py: f has 82 lines of code"]

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from site_fixtures import built_site, explored_site, runs_dir  # noqa: F401 - fixtures
-from tvtrack.pipeline.site import claim_cells, recording_still, tex_to_html
+from tvtrack.pipeline.site import claim_cells, tex_to_html
+from tvtrack.pipeline.stills import recording_still
 
 
 def test_index_has_a_card_per_run_with_counts(built_site):  # noqa: F811 - pytest fixture from site_fixtures

@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
@@ -43,12 +42,12 @@ import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .declared import check_declared, takes_claims
+from .jobs import StageClock
 from .conditions import Run, SizingBudget, point, projected_runs, size_conditions, subset_configs, unexplained_flips
 from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
 from .register import Register
-from .register import guard as guarded_config
 from .verdicts import Rule, is_decisive
 
 __all__ = [
@@ -61,6 +60,19 @@ __all__ = [
     "pool",
     "executor_for",
 ]
+
+
+#: How the exploration stops adding runs (its record's ``design["stopping"]``).
+STOPPING = (
+    "replicates added one at a time while a part is undecided and the replicates projected to "
+    "decide it fit under max_replicates; every condition (one at a time, joint, pinned, combination) gets "
+    "replicates on the default's replicate seeds until each part the default decides is decisive on at least "
+    "the replicates the default needed to decide it (the fewest first replicates whose pooled value decides "
+    "every part as all of them do), is projected to need more than max_replicates, or reaches it; a condition "
+    "smaller than that counts as undecided; a condition leaning towards agreement is sized within the stated "
+    "sizing budget of claim runs (one at a time first, then joint, then pinned; a sub-combination leaning "
+    "towards agreement not at all), one leaning towards a flip always"
+)
 
 
 def replicate_seeds(seed: int, n: int) -> list[int]:
@@ -186,58 +198,6 @@ class Exploration:
                 f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}" if rec["where"] else "")
             )
         return "\n".join(lines)
-
-
-def _configs(measure: Callable, jobs: list[Run], depends: Mapping[str, Sequence[str]] | None) -> list[dict]:
-    """The configurations handed to ``measure``: plain copies, or with ``depends`` guarded
-    (:func:`tvtrack.register.guard`): a job may read only the entries its asked claims declare (a measurement
-    that does not take ``claims`` is asked for every claim: the entries any claim declares)."""
-    if depends is None:
-        return [dict(j.config) for j in jobs]
-    everything = {k for names in depends.values() for k in names}
-    kw = takes_claims(measure)
-    out = []
-    for j in jobs:
-        asked = j.claims if kw and j.claims is not None else None
-        allowed = everything if asked is None else {k for c in asked for k in depends.get(c, ())}
-        out.append(guarded_config(j.config, allowed))
-    return out
-
-
-def _execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any, depends=None) -> None:
-    """Run ``jobs`` through ``measure``; a job's outputs are updated with what it measured (a confirmation at
-    full size replaces the screened values of the claims it re-measures and keeps the others). With ``depends``
-    each configuration is guarded (:func:`_configs`)."""
-    if not jobs:
-        return
-    kw = takes_claims(measure)
-    cfgs = _configs(measure, jobs, depends)
-    if batched and executor is None:
-        extra = {"claims": [j.claims for j in jobs]} if kw else {}
-        outs = measure(cfgs, [j.seed for j in jobs], **extra)
-        if len(outs) != len(jobs):
-            raise ValueError(f"a batched measurement returned {len(outs)} results for {len(jobs)} configurations")
-        for j, o in zip(jobs, outs):
-            j.outputs.update(o)
-        return
-    if executor is None:
-        for j, c in zip(jobs, cfgs):
-            j.outputs.update(measure(c, j.seed, **({"claims": j.claims} if kw else {})))
-        return
-    # on an executor a batched measurement gets one configuration per task (it measures each as in a batch)
-    wrap = (lambda x: [x]) if batched else (lambda x: x)
-    futures = [
-        executor.submit(measure, wrap(c), wrap(j.seed), **({"claims": wrap(j.claims)} if kw else {}))
-        for j, c in zip(jobs, cfgs)
-    ]
-    try:
-        for j, f in zip(jobs, futures):
-            out = f.result()
-            j.outputs.update(out[0] if batched else out)
-    except BaseException:
-        for f in futures:
-            f.cancel()
-        raise
 
 
 def _part_measured(rules: Mapping[str, Rule], outputs: Mapping) -> dict:
@@ -429,7 +389,7 @@ def explore(
             raise KeyError(f"explore: claim {cid} depends on unknown register entries {sorted(unknown)}")
     seeds = replicate_seeds(seed, cap)
     default = register.default()
-    clock = _Clock(batched, executor, depends if guard else None)
+    clock = StageClock(batched, executor, depends if guard else None)
     used = sorted({k for names in depends.values() for k in names}, key=register.names.index)
     runs = [Run(dict(default), s, "replicate") for s in seeds[:replicates]]
     clock.run(measure, runs, "replicates", guarded=False)
@@ -461,25 +421,18 @@ def explore(
     sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run, budget)
     combos: list[Run] = []
     for size in range(2, MAX_SUBSET + 1):  # every pair, then every triple where no pair flips: no run cap
-        unexplained = unexplained_flips(rules, depends, default_j, runs, default, n_default)
-        cfgs, only = subset_configs(unexplained, default, size)
+        cfgs, only = subset_configs(
+            unexplained_flips(rules, depends, default_j, runs, default, n_default), default, size
+        )
         found = conditions(cfgs, "combination", only)
         clock.run(measure, found, "combinations")
         sized += size_conditions(*sizing, found, default_j, n_default, seeds, cap, clock.run, SizingBudget(0))
-        runs += found
-        combos += found
+        runs, combos = runs + found, combos + found
     settings = {
         "replicates": n,
         "min_replicates": replicates,
         "max_replicates": cap,
-        "stopping": "replicates added one at a time while a part is undecided and the replicates projected to "
-        "decide it fit under max_replicates; every condition (one at a time, joint, pinned, combination) gets "
-        "replicates on the default's replicate seeds until each part the default decides is decisive on at least "
-        "the replicates the default needed to decide it (the fewest first replicates whose pooled value decides "
-        "every part as all of them do), is projected to need more than max_replicates, or reaches it; a condition "
-        "smaller than that counts as undecided; a condition leaning towards agreement is sized within the stated "
-        "sizing budget of claim runs (one at a time first, then joint, then pinned; a sub-combination leaning "
-        "towards agreement not at all), one leaning towards a flip always",
+        "stopping": STOPPING,
         "joint": joint,
         "joint_configurations": len(joint_cfgs),
         "joint_exhaustive": bool(joints) and _n_joint_combinations(register, used) <= joint,
@@ -503,48 +456,7 @@ def explore(
     return Exploration(register, rules, depends, runs, settings)
 
 
-def cpu_seconds() -> float:
-    """CPU seconds of this process and of its live child processes (an executor's workers, which the process's
-    own clock does not see). A child that ends between two readings takes its seconds with it: the stages
-    read it around a pool that lives through the exploration."""
-    import psutil
-
-    total = time.process_time()
-    for child in psutil.Process().children(recursive=True):
-        try:
-            t = child.cpu_times()
-        except psutil.Error:  # ended meanwhile
-            continue
-        total += t.user + t.system
-    return total
-
-
-class _Clock:
-    """Runs the stages' jobs and keeps where the exploration's time goes: per stage its configurations, wall
-    seconds and CPU seconds (:func:`cpu_seconds`: this process and an executor's workers)."""
-
-    def __init__(self, batched: bool, executor: Any, depends: Mapping[str, Sequence[str]] | None = None):
-        self.batched, self.executor, self.depends = batched, executor, depends
-        self.rows: dict[str, list] = {}
-
-    def run(self, fn: Callable, jobs: list[Run], stage: str, guarded: bool = True) -> None:
-        """Measure ``jobs`` (their configurations guarded by ``depends`` unless ``guarded`` is False)."""
-        t0, c0 = time.perf_counter(), cpu_seconds()
-        _execute(fn, jobs, self.batched, self.executor, self.depends if guarded else None)
-        row = self.rows.setdefault(stage, [0, 0.0, 0.0])
-        row[0] += len(jobs)
-        row[1] += time.perf_counter() - t0
-        row[2] += max(0.0, cpu_seconds() - c0)
-
-    def table(self) -> dict:
-        return {
-            k: {"configurations": n, "wall_s": round(w, 3), "cpu_s": round(c, 3)}
-            for k, (n, w, c) in self.rows.items()
-            if n
-        }
-
-
-def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: _Clock, default: dict) -> int:
+def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: StageClock, default: dict) -> int:
     """Sizing: one replicate at a time (as many at once as an executor has workers), re-judged after each, while
     a part is undecided and projected to decide under ``cap``; a measurement taking ``claims`` measures only the
     claims still undecided. Appends to ``runs``; returns the replicates run."""
@@ -562,7 +474,7 @@ def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: _C
     return n
 
 
-def _measure_stage(measure, screen, jobs, name, rules, depends, runs, default, clock: _Clock) -> tuple[int, int]:
+def _measure_stage(measure, screen, jobs, name, rules, depends, runs, default, clock: StageClock) -> tuple[int, int]:
     """One stage of conditions: at full size, or screened with ``screen`` and the claims that may flip confirmed
     at full size (the others keep their screened values, marked ``screened``: a screened value is no replicate of
     the condition, and the condition's sizing measures it at full size where the default decides the claim).

@@ -40,6 +40,7 @@ from .labels import NO_PART_LABEL, Robustness
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .paragraphs import paper_paragraph, results_summary
+from .numbers import format_measured
 from .wording import (
     GLOSSARY,
     LABEL_WORDS,
@@ -47,7 +48,6 @@ from .wording import (
     at_profile,
     claim_flips,
     claim_summary,
-    format_measured,
     main_part,
     share_counts,
     shown_label,

@@ -16,9 +16,10 @@ Conventions
 
 from __future__ import annotations
 
-import math
 import re
 from typing import Any, Mapping
+
+from .numbers import finite, format_measured, format_value, number, triple, vector_text, with_unit
 
 __all__ = [
     "VERDICT_WORDS",
@@ -26,11 +27,6 @@ __all__ = [
     "GLOSSARY",
     "PROVISIONAL",
     "SUMMARY_CHARS",
-    "VECTOR_SHOWN",
-    "number",
-    "format_value",
-    "format_measured",
-    "unit_text",
     "shown_label",
     "at_profile",
     "SIDE_ORDER",
@@ -68,131 +64,6 @@ PROVISIONAL = "provisional"
 SUMMARY_CHARS = 250
 """:func:`claim_summary` adds its optional sentences only while the whole stays within this many characters (two
 lines of a page); the sentences it must say are never cut to fit."""
-VECTOR_SHOWN = 4
-"""Vectors longer than this are summarised (ends and trend), never printed whole."""
-
-
-# --- numbers ---------------------------------------------------------------------------------------------------
-
-
-def number(x: Any, digits: int = 4) -> str:
-    """A number in ``digits`` significant figures (``"351.6"``, ``"2.16e+05"``); text as it is."""
-    if isinstance(x, bool) or x is None:
-        return str(x)
-    if isinstance(x, (int, float)) or hasattr(x, "__float__"):
-        v = float(x)
-        if not math.isfinite(v):
-            return "∞" if v > 0 else ("-∞" if v < 0 else "NaN")
-        return f"{v:.{digits}g}"
-    return str(x)
-
-
-def _finite(x: Any) -> bool:
-    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x))
-
-
-def _triple(value: Any) -> tuple[float, float | None, float | None] | None:
-    """``(value, low, high)`` of an Estimate (or its dict) or a number (missing or infinite ends are ``None``)."""
-    if hasattr(value, "to_dict") and not isinstance(value, Mapping):
-        value = value.to_dict()
-    if isinstance(value, Mapping) and "value" in value:
-        v = value.get("value")
-        if not _finite(v):
-            return None
-        lo, hi = value.get("ci_low"), value.get("ci_high")
-        return float(v), (float(lo) if _finite(lo) else None), (float(hi) if _finite(hi) else None)
-    if _finite(value):
-        return float(value), float(value), float(value)
-    return None
-
-
-def _with_unit(text: str, unit: str) -> str:
-    if not unit:
-        return text
-    if unit.startswith("("):
-        return f"{text} {unit}"
-    if unit.startswith("ratio"):
-        return f"{text} ({unit})"
-    return f"{text} {unit}" if unit not in ("%",) else f"{text} %"
-
-
-def format_value(value: Any, unit: str = "") -> str:
-    """One estimate or number with its unit: ``"351.6 [350, 353.1] x alpha"``.
-
-    A zero-width interval (a deterministic number) shows no interval; the interval's ends get as many figures
-    as they need to differ from the value (up to 6); a one-sided interval reads ``"(at most b)"``."""
-    t = _triple(value)
-    if t is None:
-        if isinstance(value, Mapping) and "value" in value:
-            return "no value"
-        return _with_unit(number(value), unit) if value is not None else "no value"
-    v, lo, hi = t
-    if lo is None and hi is None:
-        return _with_unit(number(v), unit)
-    if lo is not None and hi is not None:
-        if hi - lo <= 1e-12 * max(1.0, abs(v)):
-            return _with_unit(number(v), unit)
-        for digits in (4, 5, 6):
-            shown = [number(x, digits) for x in (lo, v, hi)]
-            if len(set(shown)) == 3 or (lo == v and shown[0] != shown[2]) or (hi == v and shown[0] != shown[2]):
-                break
-        else:
-            return _with_unit(number(v), unit)
-        return _with_unit(f"{shown[1]} [{shown[0]}, {shown[2]}]", unit)
-    bound = f"at least {number(lo)}" if lo is not None else f"at most {number(hi)}"
-    return _with_unit(f"{number(v)} ({bound})", unit)
-
-
-def _vector(values: list, unit: str, always: bool = False) -> str:
-    """A long vector (any of two points or more with ``always``) by its ends and its trend: ``"falls from
-    2.163e+05 to 0.178 over 9 points"``."""
-    points = [_triple(v) for v in values]
-    centres = [p[0] for p in points if p is not None]
-    if (len(values) <= VECTOR_SHOWN and not always) or len(centres) < 2:
-        return ", ".join(format_value(v) for v in values) + (f" {unit}" if unit and values else "")
-    steps = [b - a for a, b in zip(centres, centres[1:])]
-    if all(s < 0 for s in steps):
-        trend = "falls"
-    elif all(s > 0 for s in steps):
-        trend = "rises"
-    elif all(abs(s) <= 1e-12 * max(1.0, abs(c)) for s, c in zip(steps, centres)):
-        trend = "stays"
-    else:
-        trend = f"ranges {_with_unit(number(min(centres)), unit)} to {_with_unit(number(max(centres)), unit)}, going"
-    return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
-
-
-def unit_text(rule: Mapping | None) -> str:
-    """The unit a rule's quantity is measured in, else the quantity's own name in parentheses, else ``""``."""
-    rule = rule or {}
-    unit = str(rule.get("unit") or "").strip()
-    if unit:
-        return unit
-    quantity = str(rule.get("quantity") or rule.get("measure") or "").strip()
-    return f"({quantity})" if quantity else ""
-
-
-def format_measured(value: Any, rule: Mapping | None = None) -> str:
-    """Short text for a claim's ``measured`` field: each number with its unit (from ``rule``; an ``all_of``
-    rule gives each part its own), deterministic numbers without an interval, long vectors summarised.
-
-    ``"a: 2 px; b: 0.5 (ratio of MSEs)"`` for parts; ``"falls from 322 to 4.14 px over 15 points"`` for a
-    long vector."""
-    rule = rule or {}
-    if hasattr(value, "to_dict") and not isinstance(value, Mapping):  # an Estimate
-        value = value.to_dict()
-    if isinstance(value, Mapping) and "value" in value and "ci_low" in value:
-        return format_value(value, unit_text(rule))
-    if isinstance(value, Mapping):
-        parts = rule.get("parts") or {}
-        return "; ".join(f"{k}: {format_measured(v, parts.get(k, {}))}" for k, v in value.items())
-    if isinstance(value, (list, tuple)):
-        return _vector(list(value), unit_text(rule))
-    return format_value(value, unit_text(rule))
-
-
-# --- labels and flips --------------------------------------------------------------------------------------------
-
 #: The sides a flip can be on, strongest first: a reading of the text, an unreported setting of the paper's own
 #: experiment, a world beyond the paper, several changes that no single one explains.
 SIDE_ORDER = ("reading", "setting", "world", "unattributed")
@@ -282,7 +153,7 @@ def describe(changed: Mapping, record: Mapping) -> str:
     bits = []
     for k, v in changed.items():
         title, _, phrases = known.get(str(k), (str(k).replace("_", " "), "reading", {}))
-        bits.append(phrases.get(str(v)) or f"{title} = {number(v) if _finite(v) else v}")
+        bits.append(phrases.get(str(v)) or f"{title} = {number(v) if finite(v) else v}")
     return " and ".join(bits) or "the default reading"  # one configuration: its changes hold together
 
 
@@ -404,12 +275,12 @@ def _real_unit(rule: Mapping) -> str:
 def _band_words(rule: Mapping, unit: str) -> str:
     """The rule's band in words: ``"[3, 6] px"``, ``"at most 2 px"``, ``"at least 20"``."""
     lo, hi = rule.get("low"), rule.get("high")
-    if _finite(lo) and _finite(hi):
-        return _with_unit(f"[{number(lo)}, {number(hi)}]", unit)
-    if _finite(hi):
-        return "at most " + _with_unit(number(hi), unit)
-    if _finite(lo):
-        return "at least " + _with_unit(number(lo), unit)
+    if finite(lo) and finite(hi):
+        return with_unit(f"[{number(lo)}, {number(hi)}]", unit)
+    if finite(hi):
+        return "at most " + with_unit(number(hi), unit)
+    if finite(lo):
+        return "at least " + with_unit(number(lo), unit)
     return ""
 
 
@@ -431,11 +302,11 @@ def _band_clause(rule: Mapping, measured: Any) -> str:
     band = _band_words(rule, unit)
     if band:
         text += f", where the paper has {band}"
-    t, lo, hi = _triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
+    t, lo, hi = triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
     ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
     if ratio and t[1] is not None and t[2] is not None:
-        above = _finite(lo) and lo > 1 and t[2] < 1  # a band wholly on one side of 1, the interval on the other
-        below = _finite(hi) and hi < 1 and t[1] > 1
+        above = finite(lo) and lo > 1 and t[2] < 1  # a band wholly on one side of 1, the interval on the other
+        below = finite(hi) and hi < 1 and t[1] > 1
         names = _ratio_names(quantity)
         if (above or below) and names:
             a, b, lower_better = names
@@ -453,7 +324,7 @@ def _ordering_clause(rule: Mapping, measured: Any) -> str:
     b = f"that {b}" if b.startswith(_PREPOSITIONS) else b
     claimed = "larger" if rule.get("relation", ">") == ">" else "smaller"
     other = "smaller" if claimed == "larger" else "larger"
-    t = _triple(measured)
+    t = triple(measured)
     if rule.get("measure") == "ratio":
         text, ref = f"{a} is {format_value(measured, 'times')} {b}", 1.0
     else:
@@ -473,7 +344,7 @@ def _trend_clause(rule: Mapping, measured: Any) -> str:
     quantity = str(rule.get("quantity") or "the measured value")
     unit = _real_unit(rule)
     shown = (
-        _vector(list(measured), unit, always=True)
+        vector_text(list(measured), unit, always=True)
         if isinstance(measured, (list, tuple))
         else format_value(measured, unit)
     )
@@ -488,7 +359,7 @@ def value_clause(rule: Mapping | None, measured: Any) -> str:
         return _ordering_clause(rule, measured)
     if kind == "monotone":
         return _trend_clause(rule, measured)
-    if kind in ("in_band", "within_factor") and _triple(measured) is not None:
+    if kind in ("in_band", "within_factor") and triple(measured) is not None:
         return _band_clause(rule, measured)
     return f"{rule.get('quantity') or 'the measured value'} is {format_measured(measured, rule)}"
 

@@ -205,11 +205,8 @@ def _cmd_new(args) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="python -m tvtrack", description=__doc__)
-    p.add_argument("--debug", action="store_true", help="show the traceback of an error")
-    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
-
+def _add_run(sub) -> None:
+    """The ``run`` command: one notebook through papermill."""
     r = sub.add_parser("run", help="execute one notebook through papermill into its own directory")
     r.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
     r.add_argument(
@@ -226,6 +223,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=_cmd_run)
 
+
+def _add_sweep(sub) -> None:
+    """The ``sweep`` command: a TOML sweep spec."""
     s = sub.add_parser(
         "sweep",
         help="run a TOML sweep spec (grid x repeats) in a process pool",
@@ -247,6 +247,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     s.set_defaults(func=_cmd_sweep)
 
+
+def _add_reproduce(sub) -> None:
+    """The ``reproduce`` command: every notebook side by side."""
     rp = sub.add_parser("reproduce", help="run every notebook side by side, then write REPRODUCTION.md")
     rp.add_argument("--profile", default=None, help="profile for every notebook (default: paper)")
     rp.add_argument("--only", nargs="*", default=None, help="notebook names to run (default: all)")
@@ -271,6 +274,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     rp.set_defaults(func=_cmd_reproduce)
 
+
+def _add_report(sub) -> None:
+    """The ``report`` command: REPRODUCTION.md from existing outputs."""
     rep = sub.add_parser("report", help="rebuild REPRODUCTION.md from existing outputs")
     rep.add_argument(
         "--profile",
@@ -279,6 +285,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     rep.set_defaults(func=_cmd_report)
 
+
+def _add_site(sub) -> None:
+    """The ``site`` command: the offline HTML site."""
     st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
     st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
     st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
@@ -287,6 +296,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     st.set_defaults(func=_cmd_site)
 
+
+def _add_edit(sub) -> None:
+    """The ``edit`` command: a working copy of a notebook."""
     e = sub.add_parser("edit", help="a working copy of a notebook at the smoke profile, to edit and run in JupyterLab")
     e.add_argument("notebook", help="name in notebooks/ (with or without .ipynb) or a path")
     e.add_argument("--profile", default="smoke", help="profile injected into the copy (default: smoke)")
@@ -294,6 +306,9 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--lab", action="store_true", help="then start JupyterLab on it")
     e.set_defaults(func=_cmd_edit)
 
+
+def _add_view(sub) -> None:
+    """The ``view`` command: a run's recording in the web viewer."""
     from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT
 
     v = sub.add_parser("view", help="serve a run's recording in the Rerun web viewer (Ctrl-C stops)")
@@ -309,6 +324,9 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--no-browser", action="store_true", help="only print the URL")
     v.set_defaults(func=_cmd_view)
 
+
+def _add_new(sub) -> None:
+    """The ``new`` command: a new paper from the template."""
     n = sub.add_parser(
         "new",
         help="a new paper's package, notebook, tests and smoke profile from the template",
@@ -324,6 +342,20 @@ def build_parser() -> argparse.ArgumentParser:
     n.add_argument("name", help="lower case, digits and '_', e.g. spot_tracker")
     n.add_argument("--title", default=None, help="the paper's title in a few words (default: the name)")
     n.set_defaults(func=_cmd_new)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="python -m tvtrack", description=__doc__)
+    p.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_run(sub)
+    _add_sweep(sub)
+    _add_reproduce(sub)
+    _add_report(sub)
+    _add_site(sub)
+    _add_edit(sub)
+    _add_view(sub)
+    _add_new(sub)
     return p
 
 

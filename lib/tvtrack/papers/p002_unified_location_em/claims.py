@@ -22,9 +22,9 @@ _U = dict(measure="ratio", paired=False)  # between independent configurations
 _V, _R = "sigma^2", "variance ratio"  # units: PSF variances; ratios of variance sums
 
 
-def claim_rules() -> dict[str, Rule]:
-    """``{claim id: rule}``: the rule that decides each claim (built in a function, so that every part of it is
-    open to mutation testing)."""
+def _one_algorithm_rules() -> dict[str, Rule]:
+    """The rules of C002-1 to C002-6: how the unified location algorithm's variance moves with separation, photons,
+    pixels and frames."""
     return {
         "C002-1": Monotone(
             "ULA total position variance (Fig 1a, 20 photons)", "separation d / sigma", "decreasing", unit=_V
@@ -59,6 +59,13 @@ def claim_rules() -> dict[str, Rule]:
             paired=False,
             unit="|ln r_T| difference",
         ),
+    }
+
+
+def _comparison_rules() -> dict[str, Rule]:
+    """The rules of C002-7 to C002-16: the unified location algorithm against two-stage tracking, its iterations and
+    its efficiency."""
+    return {
         "C002-7": AllOf(
             {
                 "fine pixels": InBand("two-stage / ULA variance of x_o, 1-sigma pixels", None, 1.2, unit=_R),
@@ -129,6 +136,12 @@ def claim_rules() -> dict[str, Rule]:
         ),
         "C002-16": NotCheckable("a summary of C002-7, C002-10, C002-12 and C002-15"),
     }
+
+
+def claim_rules() -> dict[str, Rule]:
+    """``{claim id: rule}``: the rule that decides each claim (built in functions, so that every part of it is
+    open to mutation testing)."""
+    return {**_one_algorithm_rules(), **_comparison_rules()}
 
 
 RULES = claim_rules()

@@ -1,0 +1,148 @@
+"""Values in words: a measured value (an estimate with its interval, a number, a vector along a grid) as a reader
+meets it in the report, the site and the notebooks, with its rule's unit (:mod:`tvtrack.wording` builds the
+sentences around it).
+
+- A number carries its rule's unit, or the quantity's name where the rule has no unit ("0.62 (MSE ratio
+  network / filter)").
+- A deterministic number (a zero-width interval) is shown without an interval.
+- A vector of more than :data:`VECTOR_SHOWN` points is summarised by its ends and its trend.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+__all__ = [
+    "VECTOR_SHOWN",
+    "number",
+    "finite",
+    "triple",
+    "with_unit",
+    "format_value",
+    "vector_text",
+    "format_measured",
+    "unit_text",
+]
+
+VECTOR_SHOWN = 4
+"""Vectors longer than this are summarised (ends and trend), never printed whole."""
+
+
+def number(x: Any, digits: int = 4) -> str:
+    """A number in ``digits`` significant figures (``"351.6"``, ``"2.16e+05"``); text as it is."""
+    if isinstance(x, bool) or x is None:
+        return str(x)
+    if isinstance(x, (int, float)) or hasattr(x, "__float__"):
+        v = float(x)
+        if not math.isfinite(v):
+            return "∞" if v > 0 else ("-∞" if v < 0 else "NaN")
+        return f"{v:.{digits}g}"
+    return str(x)
+
+
+def finite(x: Any) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x))
+
+
+def triple(value: Any) -> tuple[float, float | None, float | None] | None:
+    """``(value, low, high)`` of an Estimate (or its dict) or a number (missing or infinite ends are ``None``)."""
+    if hasattr(value, "to_dict") and not isinstance(value, Mapping):
+        value = value.to_dict()
+    if isinstance(value, Mapping) and "value" in value:
+        v = value.get("value")
+        if not finite(v):
+            return None
+        lo, hi = value.get("ci_low"), value.get("ci_high")
+        return float(v), (float(lo) if finite(lo) else None), (float(hi) if finite(hi) else None)
+    if finite(value):
+        return float(value), float(value), float(value)
+    return None
+
+
+def with_unit(text: str, unit: str) -> str:
+    if not unit:
+        return text
+    if unit.startswith("("):
+        return f"{text} {unit}"
+    if unit.startswith("ratio"):
+        return f"{text} ({unit})"
+    return f"{text} {unit}" if unit not in ("%",) else f"{text} %"
+
+
+def format_value(value: Any, unit: str = "") -> str:
+    """One estimate or number with its unit: ``"351.6 [350, 353.1] x alpha"``.
+
+    A zero-width interval (a deterministic number) shows no interval; the interval's ends get as many figures
+    as they need to differ from the value (up to 6); a one-sided interval reads ``"(at most b)"``."""
+    t = triple(value)
+    if t is None:
+        if isinstance(value, Mapping) and "value" in value:
+            return "no value"
+        return with_unit(number(value), unit) if value is not None else "no value"
+    v, lo, hi = t
+    if lo is None and hi is None:
+        return with_unit(number(v), unit)
+    if lo is not None and hi is not None:
+        if hi - lo <= 1e-12 * max(1.0, abs(v)):
+            return with_unit(number(v), unit)
+        for digits in (4, 5, 6):
+            shown = [number(x, digits) for x in (lo, v, hi)]
+            if len(set(shown)) == 3 or (lo == v and shown[0] != shown[2]) or (hi == v and shown[0] != shown[2]):
+                break
+        else:
+            return with_unit(number(v), unit)
+        return with_unit(f"{shown[1]} [{shown[0]}, {shown[2]}]", unit)
+    bound = f"at least {number(lo)}" if lo is not None else f"at most {number(hi)}"
+    return with_unit(f"{number(v)} ({bound})", unit)
+
+
+def vector_text(values: list, unit: str, always: bool = False) -> str:
+    """A long vector (any of two points or more with ``always``) by its ends and its trend: ``"falls from
+    2.163e+05 to 0.178 over 9 points"``."""
+    points = [triple(v) for v in values]
+    centres = [p[0] for p in points if p is not None]
+    if (len(values) <= VECTOR_SHOWN and not always) or len(centres) < 2:
+        return ", ".join(format_value(v) for v in values) + (f" {unit}" if unit and values else "")
+    steps = [b - a for a, b in zip(centres, centres[1:])]
+    if all(s < 0 for s in steps):
+        trend = "falls"
+    elif all(s > 0 for s in steps):
+        trend = "rises"
+    elif all(abs(s) <= 1e-12 * max(1.0, abs(c)) for s, c in zip(steps, centres)):
+        trend = "stays"
+    else:
+        trend = f"ranges {with_unit(number(min(centres)), unit)} to {with_unit(number(max(centres)), unit)}, going"
+    return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
+
+
+def unit_text(rule: Mapping | None) -> str:
+    """The unit a rule's quantity is measured in, else the quantity's own name in parentheses, else ``""``."""
+    rule = rule or {}
+    unit = str(rule.get("unit") or "").strip()
+    if unit:
+        return unit
+    quantity = str(rule.get("quantity") or rule.get("measure") or "").strip()
+    return f"({quantity})" if quantity else ""
+
+
+def format_measured(value: Any, rule: Mapping | None = None) -> str:
+    """Short text for a claim's ``measured`` field: each number with its unit (from ``rule``; an ``all_of``
+    rule gives each part its own), deterministic numbers without an interval, long vectors summarised.
+
+    ``"a: 2 px; b: 0.5 (ratio of MSEs)"`` for parts; ``"falls from 322 to 4.14 px over 15 points"`` for a
+    long vector."""
+    rule = rule or {}
+    if hasattr(value, "to_dict") and not isinstance(value, Mapping):  # an Estimate
+        value = value.to_dict()
+    if isinstance(value, Mapping) and "value" in value and "ci_low" in value:
+        return format_value(value, unit_text(rule))
+    if isinstance(value, Mapping):
+        parts = rule.get("parts") or {}
+        return "; ".join(f"{k}: {format_measured(v, parts.get(k, {}))}" for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        return vector_text(list(value), unit_text(rule))
+    return format_value(value, unit_text(rule))
+
+
+# --- labels and flips --------------------------------------------------------------------------------------------
