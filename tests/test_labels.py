@@ -556,3 +556,23 @@ def test_a_screened_value_is_no_replicate_a_counted_condition_is_sized_at_full_s
         assert r.n_runs("X") >= k and all(s.outputs["X"].n == 400 for s in r.sized)
     rows = [c for c in ex.record("X")["conditions"] if c["kind"] == "joint"]
     assert all(c["runs"] >= k and c["measured"].n >= 400 * k for c in rows)
+
+
+def test_a_part_no_explored_configuration_decided_is_unexplored_never_robust():
+    """A register whose every combination was explored (no share needed beyond it) but whose only other value
+    leaves the part undecided (no interval: C004-5's heavy-tailed noise) has shown nothing beyond the default: the
+    part is unexplored, and becomes robust only once a configuration decides and agrees."""
+    reg = Register([Entry("noise", "regime", "gaussian", ("gaussian", "heavy"), "w")])
+    inside = Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")
+    straddles = Estimate(0.5, 0.5, -0.5, 1.5, 100, method="Student t")
+
+    def measure(config, seed):
+        return {"C": inside if config["noise"] == "gaussian" else straddles}
+
+    rec = explore(measure, reg, {"C": BAND}, seed=1, replicates=3).record("C")
+    part = rec["parts"]["claim"]
+    assert part["verdict"] == "reproduced" and not rec["provisional"]
+    assert (part["share"]["agree"], part["share"]["flip"], part["share"]["undecided"]) == (0, 0, 1)
+    assert part["label"] == rec["label"] == "unexplored"
+    agreed = explore(lambda c, s: {"C": inside}, reg, {"C": BAND}, seed=1, replicates=3).record("C")
+    assert agreed["parts"]["claim"]["share"]["agree"] == 1 and agreed["label"] == "robust"

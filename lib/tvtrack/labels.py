@@ -11,8 +11,9 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
   decisive verdict: the claim depends on what the paper left open;
 - ``limited``: the verdict holds under every explored reading and setting, and only isolated **worlds beyond the
   paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
-- ``unexplored``: no entry of the world was varied, or the design is too small to estimate a share
-  (``provisional``; e.g. the smoke profile);
+- ``unexplored``: no entry of the world was varied, the design is too small to estimate a share
+  (``provisional``; e.g. the smoke profile), or no explored configuration decided the part (every one undecided:
+  nothing showed that it holds anywhere but at the default);
 - ``robust``: none of the above, over a design large enough for a share.
 
 A condition flips a part only when its verdict, pooled over at least the replicates the default needed to decide,
@@ -338,6 +339,9 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         pwhere.append(runs["text"])
     else:
         label = _decided_label(flips, ctx["open_world"])
+    part_share = share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None
+    if label == "robust" and not (part_share or {}).get("agree"):
+        label = "unexplored"  # no explored configuration decided the part: nothing showed that it holds elsewhere
     pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
     return {
         "verdict": j.verdict,
@@ -345,7 +349,7 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "where": pwhere,
         "replicate_verdicts": rv,
         "n_conditions": len(rows),
-        "share": share([c["verdict"] for c in ex_rows], j.verdict) if label != NO_PART_LABEL else None,
+        "share": part_share,
         "flips": flips,
         "sensitivity": sensitivity(sens_rows, list(ctx["by_name"]), ctx["by_name"], ctx["default_cfg"]),
         "sensitivity_method": SENSITIVITY_METHOD,

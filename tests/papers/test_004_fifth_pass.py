@@ -49,3 +49,38 @@ def test_scintillation_does_not_lead_c004_1s_ranking_by_co_occurring(c004_1_desi
     assert [d["entry"] for d in with_joint] == [HORIZON, STAT, SCINT]
     assert with_joint[-1]["score"] < 0.01 and with_joint[0]["score"] > 0.9
     assert [(d["entry"], d["score"]) for d in with_joint] == [(d["entry"], d["score"]) for d in alone]
+
+
+def test_c004_5_with_no_decided_alternative_is_unexplored_not_robust():
+    """C004-5's only entry is the noise law; under Student t3 the variance parts carry no interval (no fourth
+    moment), so for six of its seven parts no explored configuration decided anything. Those parts, and so the
+    claim, read unexplored, in the record and in the words a reader sees; the gain part, which t3 leaves decided
+    and agreeing, is robust."""
+    from dataclasses import replace
+
+    from tvtrack.explore import explore
+    from tvtrack.papers.p004_laser_spot_prediction.register import explored
+    from tvtrack.results import claim_summary
+    from tvtrack.wording import shown_label
+
+    reg, depends = explored(["C004-5 noise"])
+    rules = {"C004-5": RULES["C004-5"]}
+    size = replace(SIZE, n_mc_variance=4000)  # decides every Gaussian part
+
+    def measure(configs, seeds, claims=None):  # only C004-5 is asked, the replicates included
+        return study.measure_batch(configs, seeds, size, claims=[{"C004-5"}] * len(configs))
+
+    ex = explore(measure, reg, rules, seed=5, replicates=3, max_replicates=3, depends=depends, batched=True)
+    rec = ex.record("C004-5")
+    parts = rec["parts"]
+    assert not rec["provisional"] and parts["g1 decreasing"]["label"] == "robust"
+    variance = [p for n, p in parts.items() if n.startswith("variance")]
+    assert len(variance) == 6 and all(p["verdict"] == "reproduced" for p in variance)
+    assert all((p["share"]["agree"], p["share"]["undecided"], p["label"]) == (0, 1, "unexplored") for p in variance)
+    claim = {"id": "C004-5", "verdict": "reproduced", "rule": RULES["C004-5"].to_dict(), "measured": None}
+    claim["robustness"] = rec
+    assert rec["label"] == shown_label(claim) == "unexplored"
+    assert "robust" not in rec["coverage"].split(" over ")[0]
+    assert "robust" not in claim_summary(
+        {**claim, "measured": {k: v.to_dict() for k, v in ex.measured("C004-5").items()}}
+    )
