@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...montecarlo import Estimate
+from ...wording import share_counts
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
@@ -420,12 +421,9 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
         for part, v in rec["parts"].items():
             head = cid if len(rec["parts"]) == 1 else f"{cid} ({part})"
             text = f"- **{head}**: {v['verdict']}, {v['label']}"
-            sh = v.get("share")
-            if sh and sh.get("decided"):
-                text += (
-                    f"; {sh['agree']} of {sh['decided']} decided explored configurations (one at a time and joint) "
-                    f"agree with the default (share {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
-                )
+            sh = v.get("share") or {}
+            if share_counts(sh):  # over every explored configuration (one at a time and joint), as the core says it
+                text += f"; {share_counts(sh)} (share agreeing {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
             flips = v.get("flips") or []
             if flips:
                 shown = [f"{f['verdict']} when {f['text']} ({f['side']})" for f in flips[:max_flips]]
