@@ -84,3 +84,44 @@ def test_c004_5_with_no_decided_alternative_is_unexplored_not_robust():
     assert "robust" not in claim_summary(
         {**claim, "measured": {k: v.to_dict() for k, v in ex.measured("C004-5").items()}}
     )
+
+
+def _claim_cell(cid: str) -> str:
+    from tests.test_notebooks import read
+
+    nb = read("004_laser_spot_prediction")
+    return next(c.source for c in nb.cells if c.cell_type == "code" and f"results.claim(id='{cid}'" in c.source)
+
+
+def test_c004_3_note_opens_with_the_result_and_the_model_order_finding():
+    """C004-3's sentence names the main part only; its note (shown beside it in the report) must say the result
+    part by part (a line beats the quadratic filter, the quadratics and the spline lose to it) and why (the model
+    order, from the fitted correlation time), before any method detail."""
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+
+    def est(v):
+        return Estimate(v, 0.01, v - 0.02, v + 0.02, 15, method="t")
+
+    verdicts = {"finite differences, 2 points": "not reproduced", "cubic spline": "reproduced", "deg 2": "undecided"}
+    ratios = {"finite differences, 2 points": est(0.62), "cubic spline": est(3.5), "deg 2": est(1.0)}
+    order = {"ratio_2_over_1": est(1.43), "tau_over_horizon": 0.01}
+    text = fd.c004_3_note(verdicts, ratios, order)
+    assert text.startswith("Result: these beat the paper's filter: finite differences, 2 points (0.62x the filter's")
+    assert "the filter beats cubic spline (3.50x" in text and "no decided difference from deg 2 (1.00x" in text
+    assert "Model order: a line (first order) predicts best" in text and "1.43 [1.41, 1.45]" in text
+    assert "shorter than the horizon" in text
+    flipped = fd.c004_3_note(verdicts, ratios, {"ratio_2_over_1": est(0.8), "tau_over_horizon": 3.0})
+    assert "a quadratic (second order) predicts best" in flipped and "longer than the horizon" in flipped
+    cell = _claim_cell("C004-3")
+    flat = cell.replace(" ", "").replace("\n", "")
+    assert flat.startswith("c3=fd.c004_3_note(") and "note=c3+" in flat
+
+
+def test_c004_2_note_says_what_the_calibration_makes_of_it():
+    """C004-2 is not checkable (the world is calibrated on it): its note opens with that, never with a sentence of
+    a band rule (which side of 1-2 px is better), which the earlier note opened with."""
+    cell = _claim_cell("C004-2")
+    note = cell[cell.index("note=") :]
+    assert note.split('"')[1].startswith("The world is calibrated so that the paper's filter errs the band's middle")
+    assert "Below the band" not in note and "better than the paper's number" not in note

@@ -33,6 +33,7 @@ __all__ = [
     "calibration_sentence",
     "operating_sentence",
     "c004_1_note",
+    "c004_3_note",
     "flips_markdown",
     "coverage_lines",
 ]
@@ -407,6 +408,40 @@ def c004_1_note(q95, rms, limit: float = 2.0, band=(1.0, 2.0)) -> str:
         f"{band[0]:g}-{band[1]:g} px): the verdict is set by where in that band the paper's filter erred, which the "
         "paper does not report. The default world sits at its middle (1.5 px); the register's 'error in the band' "
         "(an unreported setting) moves it to either end, and the claim's label names it where it flips."
+    )
+
+
+def c004_3_note(verdicts: dict, ratios: dict, order: dict) -> str:
+    """C004-3's result first: which baselines the paper's filter beats and which beat it (each part's pooled
+    verdict and paired MSE ratio, baseline over filter), then the model-order finding that explains it.
+
+    Parameters
+    ----------
+    verdicts : dict
+        {baseline: the part's verdict} (reproduced: the filter is better; not reproduced: the baseline is).
+    ratios : dict
+        {baseline: Estimate}, the paired per-path MSE ratio baseline / filter (dimensionless).
+    order : dict
+        :func:`.side_studies.model_order_summary` of the shipped paths.
+    """
+    groups = {"reproduced": [], "not reproduced": [], "other": []}
+    for b, v in verdicts.items():
+        groups[v if v in groups else "other"].append(f"{b} ({ratios[b].value:.2f}x the filter's MSE)")
+    said = []
+    if groups["not reproduced"]:
+        said.append("these beat the paper's filter: " + ", ".join(groups["not reproduced"]))
+    if groups["reproduced"]:
+        said.append("the filter beats " + ", ".join(groups["reproduced"]))
+    if groups["other"]:
+        said.append("no decided difference from " + ", ".join(groups["other"]))
+    r = order["ratio_2_over_1"]
+    winner = compare_word(r, above="a line (first order)", below="a quadratic (second order)", same="neither order")
+    memory = "shorter" if order["tau_over_horizon"] < 1 else "longer"
+    return (
+        "Result: " + "; ".join(said) + ". "
+        f"Model order: {winner} predicts best (MSE of the best quadratic over the best line {fmt(r)}): the "
+        f"acceleration's fitted correlation time is {memory} than the horizon, so extrapolating it "
+        + ("adds noise more than it removes bias." if memory == "shorter" else "carries information.")
     )
 
 
