@@ -125,3 +125,31 @@ def test_c004_2_note_says_what_the_calibration_makes_of_it():
     note = cell[cell.index("note=") :]
     assert note.split('"')[1].startswith("The world is calibrated so that the paper's filter errs the band's middle")
     assert "Below the band" not in note and "better than the paper's number" not in note
+
+
+def test_the_floor_form_reading_makes_the_variant_floor_the_paper_s_filter():
+    """'Forbid further decrease of the correction term' read as a bound on the position gain alone: every prediction
+    claim then reads the card's variant floor (cross-validated alike; at the fixed floor under the fixed tuning),
+    recomputed here from the forecasts; the default reading keeps the frozen gain vector."""
+    from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+    from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER, VARIANT, per_trial_path_mse
+
+    variant = dict(DEFAULT, **{"floor form": study.VARIANT_FLOOR})
+    configs = [dict(DEFAULT), variant, dict(variant, tuning="fixed")]
+    study.clear_cache()
+    got = study.measure_batch(configs, [7] * 3, SIZE, claims=[{"C004-2", "C004-6"}] * 3)
+    run = study._methods(study._scene(variant, 7, SIZE), variant, 7, frozenset({"variant"}))  # no networks: cheap
+    study.clear_cache()
+
+    def rms(fc):
+        return float(per_trial_path_mse(fc, run.z_meas, 1, SIZE.eval_start)[0].mean() ** 0.5)
+
+    assert got[0]["C004-2"].value == pytest.approx(rms(run.forecasts[PAPER]), rel=1e-12)
+    assert got[1]["C004-2"].value == pytest.approx(rms(run.forecasts[VARIANT]), rel=1e-12)
+    fixed = pr.g1_floor_forecast(run.z, SIZE.fixed_floor, 1, 2)
+    assert got[2]["C004-2"].value == pytest.approx(rms(fixed), rel=1e-12)
+    assert len({round(g["C004-2"].value, 9) for g in got}) == 3  # three different filters
+    late = study.late_rms_ratio(
+        pr.growing_memory_forecast(run.z, 1, 2, None), run.forecasts[VARIANT], run.z_meas, 1, SIZE.n_frames // 2
+    )
+    assert got[1]["C004-6"].value == pytest.approx(late.value, rel=1e-12)
