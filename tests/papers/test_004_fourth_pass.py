@@ -98,7 +98,8 @@ def test_model_order_result_states_its_numbers(run):
 
 def test_flips_markdown_is_short_and_plain():
     """One line per claim part with its flips in plain words (each marked reading or world), at most max_flips
-    named and the rest counted, and the entries its value moves with by title; no run table."""
+    named and the rest counted, the share in the core's three numbers, and the entries its value moves with by title;
+    no run table."""
     from tvtrack.papers.p004_laser_spot_prediction import findings as fd
 
     flips = [
@@ -107,7 +108,15 @@ def test_flips_markdown_is_short_and_plain():
     part = {
         "verdict": "not reproduced",
         "label": "depends",
-        "share": {"agree": 20, "decided": 30, "ci_low": 0.47, "ci_high": 0.83},
+        "share": {
+            "agree": 20,
+            "flip": 10,
+            "undecided": 8,
+            "design": 38,
+            "decided": 30,
+            "ci_low": 0.36,
+            "ci_high": 0.69,
+        },
         "flips": flips,
         "runs_to_decide": None,
         "sensitivity": [{"title": "prediction horizon", "score": 0.6}, {"title": "spline", "score": 0.05}],
@@ -122,7 +131,10 @@ def test_flips_markdown_is_short_and_plain():
     assert len(lines) == 2 and lines[0].startswith("- **C004-3 (a)**: not reproduced, depends")
     assert "reproduced when condition 0 (world); reproduced when condition 1 (reading)" in lines[0]
     assert "condition 3" not in lines[0] and "; 6 more" in lines[0]
-    assert "20 of 30" in lines[0] and "moves most with: prediction horizon." in lines[0]
+    # the share over every explored configuration, as the core says it; never agree of the decided ones only
+    assert "20 agree, 10 flip and 8 stay undecided of 38 explored configurations" in lines[0]
+    assert "20 of 30" not in lines[0] and "(share agreeing 0.36-0.69, 95 %)" in lines[0]
+    assert "moves most with: prediction horizon." in lines[0]
     assert "flips" not in lines[1] and "spline" not in lines[1]
 
 

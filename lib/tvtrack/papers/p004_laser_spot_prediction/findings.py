@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...montecarlo import Estimate
+from ...wording import share_counts
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
@@ -32,6 +33,7 @@ __all__ = [
     "calibration_sentence",
     "operating_sentence",
     "c004_1_note",
+    "c004_3_note",
     "flips_markdown",
     "coverage_lines",
 ]
@@ -409,6 +411,40 @@ def c004_1_note(q95, rms, limit: float = 2.0, band=(1.0, 2.0)) -> str:
     )
 
 
+def c004_3_note(verdicts: dict, ratios: dict, order: dict) -> str:
+    """C004-3's result first: which baselines the paper's filter beats and which beat it (each part's pooled
+    verdict and paired MSE ratio, baseline over filter), then the model-order finding that explains it.
+
+    Parameters
+    ----------
+    verdicts : dict
+        {baseline: the part's verdict} (reproduced: the filter is better; not reproduced: the baseline is).
+    ratios : dict
+        {baseline: Estimate}, the paired per-path MSE ratio baseline / filter (dimensionless).
+    order : dict
+        :func:`.side_studies.model_order_summary` of the shipped paths.
+    """
+    groups = {"reproduced": [], "not reproduced": [], "other": []}
+    for b, v in verdicts.items():
+        groups[v if v in groups else "other"].append(f"{b} ({ratios[b].value:.2f}x the filter's MSE)")
+    said = []
+    if groups["not reproduced"]:
+        said.append("these beat the paper's filter: " + ", ".join(groups["not reproduced"]))
+    if groups["reproduced"]:
+        said.append("the filter beats " + ", ".join(groups["reproduced"]))
+    if groups["other"]:
+        said.append("no decided difference from " + ", ".join(groups["other"]))
+    r = order["ratio_2_over_1"]
+    winner = compare_word(r, above="a line (first order)", below="a quadratic (second order)", same="neither order")
+    memory = "shorter" if order["tau_over_horizon"] < 1 else "longer"
+    return (
+        "Result: " + "; ".join(said) + ". "
+        f"Model order: {winner} predicts best (MSE of the best quadratic over the best line {fmt(r)}): the "
+        f"acceleration's fitted correlation time is {memory} than the horizon, so extrapolating it "
+        + ("adds noise more than it removes bias." if memory == "shorter" else "carries information.")
+    )
+
+
 def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
     """Per claim part: its verdict and label, the share of explored configurations that agree with the default, the
     plain-words conditions that flip it (at most ``max_flips``, single entries first, then the smallest
@@ -420,12 +456,9 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
         for part, v in rec["parts"].items():
             head = cid if len(rec["parts"]) == 1 else f"{cid} ({part})"
             text = f"- **{head}**: {v['verdict']}, {v['label']}"
-            sh = v.get("share")
-            if sh and sh.get("decided"):
-                text += (
-                    f"; {sh['agree']} of {sh['decided']} decided explored configurations (one at a time and joint) "
-                    f"agree with the default (share {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
-                )
+            sh = v.get("share") or {}
+            if share_counts(sh):  # over every explored configuration (one at a time and joint), as the core says it
+                text += f"; {share_counts(sh)} (share agreeing {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
             flips = v.get("flips") or []
             if flips:
                 shown = [f"{f['verdict']} when {f['text']} ({f['side']})" for f in flips[:max_flips]]

@@ -52,4 +52,5 @@ KINDS = {
     "frame loss": ("regime", "a world beyond the paper: frames lost to obscuration or deep fades"),
     "C004-5 noise": ("regime", "a world beyond the paper: heavy-tailed noise for the model's variance"),
     "C004-2 statistic": ("reading", "a reading of '1...2 pixels' (abstract, conclusions)"),
+    "floor form": ("reading", "a reading of 'forbid further decrease of the correction term' (after eq. (6))"),
 }

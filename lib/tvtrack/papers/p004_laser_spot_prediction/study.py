@@ -30,6 +30,7 @@ from .prediction_study import (
     PAPER,
     PARTS,
     SINGER,
+    VARIANT,
     Comparison,
     ComparisonSetup,
     WINDOW_EXTENSION,
@@ -56,6 +57,9 @@ from .world import (
     traces_on_sensor,
     vibration,
 )
+
+#: The ``floor form`` reading under which the paper's filter is the card's variant floor (position gain bounded).
+VARIANT_FLOOR = "first gain bounded"
 
 __all__ = [
     "ENTRIES",
@@ -325,6 +329,8 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
         fc[OPTIMAL] = optimal_wander_forecast(run.z, run.scene, run.path_rms, noise, m)
     fixed = dict(fc)
     fixed[PAPER] = pr.growing_memory_forecast(run.z, m, s.order, s.fixed_floor)
+    if "variant" in parts:
+        fixed[VARIANT] = pr.g1_floor_forecast(run.z, s.fixed_floor, m, s.order)
     if "classical" in parts:
         fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
         fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
@@ -462,6 +468,8 @@ def _prediction_values(run: StudyRun, want) -> dict:
     m = int(c["horizon"])
     start = run.size.eval_start
     fc = dict(run.forecasts if c["tuning"] == "cross-validated" else run.fixed_forecasts)
+    if c["floor form"] == VARIANT_FLOOR:
+        fc[PAPER] = fc[VARIANT]  # the floor read as a bound on the position gain alone
     if c["spline"] == "least-squares cubic":
         fc["cubic spline"] = fc[LSQ_CUBIC]
     elif c["spline"] == "natural cubic":
@@ -517,6 +525,8 @@ def _measure_group(items, size: StudySize) -> list[dict]:
             _CACHE[sk] = _scene(config, seed, size)
         run = _CACHE[sk]
         parts = parts_for(claims)
+        if parts is not None and config["floor form"] == VARIANT_FLOOR:  # the paper's filter read as the variant
+            parts = parts | {"variant"}
         if parts is not None:
             rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
             have = _CACHE.get(rk)
