@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import coverage_at, coverage_reached, stated_coverage
-from tvtrack.papers.p004_laser_spot_prediction.study import mean_ci_t, ratio_of_means_ci, root_mean_ci
+from tvtrack.papers.p004_laser_spot_prediction.intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
 
 N_PATHS = 15
 

@@ -10,6 +10,7 @@ from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction import recording, study
 from tvtrack.papers.p004_laser_spot_prediction import side_studies as side
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import one_frame_motion_rms
+from tvtrack.papers.p004_laser_spot_prediction.intervals import root_mean_ci
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL, PAPER, per_trial_path_mse
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, NAMES, ROWS, build, explored
 
@@ -219,7 +220,7 @@ def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
     for name in (CA_KALMAN, study.SINGER, PAPER):
         mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
-        _same(study.root_mean_ci(mse), reused["rms"][name][2])
+        _same(root_mean_ci(mse), reused["rms"][name][2])
 
 
 def test_horizon_sentence_names_the_settings_on_a_grid_edge():

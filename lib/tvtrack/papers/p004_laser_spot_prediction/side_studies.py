@@ -30,9 +30,8 @@ from .study import (
     OPTIMAL,
     StudyRun,
     _setup,
-    ratio_of_means_ci,
-    root_mean_ci,
 )
+from .intervals import ratio_of_means_ci, root_mean_ci
 
 __all__ = [
     "scores",

@@ -17,11 +17,13 @@ measurement budget, model order, horizon) are :mod:`.side_studies`.
 
 from __future__ import annotations
 
+from .intervals import mean_ci_t, ratio_of_means_ci, root_mean_ci
+
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...montecarlo import Estimate
 from ...projection import as_declared, claim_groups
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
@@ -109,24 +111,6 @@ CENTROID = "centroid error"
 OPTIMAL = "optimal (true model)"
 
 _SCENE_KEYS = WORLD  # the entries that change the rendered scene
-
-
-def root_mean_ci(mean_squares) -> Estimate:
-    """RMS of per-path mean squares ``m`` (px^2), px: :func:`tvtrack.montecarlo.rms_ci` with each path one
-    trial (the square root of the bootstrap-t interval of the mean square; its measured coverage in
-    ``method``)."""
-    return rms_ci(np.sqrt(np.asarray(mean_squares, dtype=float))[:, None])
-
-
-def ratio_of_means_ci(numerator, denominator) -> Estimate:
-    """Paired ratio of per-path means (the same paths under two methods):
-    :func:`tvtrack.montecarlo.ratio_ci` (expanded percentile bootstrap over paths; coverage in ``method``)."""
-    return ratio_ci(numerator, denominator, paired=True)
-
-
-def mean_ci_t(samples) -> Estimate:
-    """Mean of one value per path: :func:`tvtrack.montecarlo.mean_ci`, bootstrap-t (coverage in ``method``)."""
-    return mean_ci(samples, method="bootstrap-t")
 
 
 @dataclass(frozen=True)
