@@ -20,6 +20,4 @@ CITATION = (
     'television tracking system based on an image dissector", Avtometriya, 1995, No. 3.'
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"PARAMETERS": "params:RULES"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

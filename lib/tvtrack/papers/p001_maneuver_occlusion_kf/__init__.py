@@ -22,6 +22,4 @@ CITATION = (
     "unverified)."
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"REGISTER": "register:build_register()", "PARAMETERS": "params:RULES", "Sizes": "sizes:Sizes"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

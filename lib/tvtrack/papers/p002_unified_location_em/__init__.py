@@ -26,4 +26,4 @@ CITATION = (
     'objects", Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).'
 )
 
-__getattr__, __dir__ = lazy_exports(__name__, {"Sizes": "study:Scale"})  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

@@ -24,6 +24,4 @@ CITATION = (
     'emission", Avtometriya, 2025, No. 3, doi:10.15372/AUT20250302.'
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"PARAMETERS": "params:RULES"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

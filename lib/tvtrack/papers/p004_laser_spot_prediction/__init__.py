@@ -27,6 +27,4 @@ CITATION = (
     "2005."
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"REGISTER": "register:build()", "PARAMETERS": "params:RULES", "Sizes": "study:StudySize"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it
