@@ -13,8 +13,9 @@ the temporal median), :mod:`.register` (what the paper left unstated), :mod:`.cl
 and their rules), :mod:`.params` (parameter rules), :mod:`.plots`, :mod:`.prose` (generated sentences) and
 :mod:`.recording` (Rerun layout).
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
