@@ -62,7 +62,7 @@ SMALLEST = {
     "p003_rotating_marker_tracker": dict(transient_s=0.2, fig1_duration_s=0.6, fig2_duration_s=0.8, loss_duration_s=0.4),
     "p004_laser_spot_prediction": dict(
         train_samples=200, n_mc_variance=1000, rbf_centres=10, mlp_hidden_units=2, floor_grid=[3, 10],
-        window_grid=[4], lag_grid=[1], n_folds=2,
+        window_grid=[4], lag_grid=[1],
     ),
 }  # fmt: skip
 
@@ -197,6 +197,10 @@ def _words(config: dict, seed: int, sizes) -> dict:
     return {"C999-1": "about half a pixel"}
 
 
+def _raises(config: dict, seed: int, sizes) -> dict:
+    raise ValueError(f"{sizes.n_trials} trials: too few")
+
+
 @pytest.mark.parametrize(
     "override, expected",
     [
@@ -219,6 +223,10 @@ def _words(config: dict, seed: int, sizes) -> dict:
         (
             {"measurements": {"error": Measurement(_words, ("C999-1",))}},
             "999_fake: measurement 'error': claim C999-1 is not what its rule reads",
+        ),
+        (
+            {"measurements": {"error": Measurement(_raises, ("C999-1",))}},
+            "999_fake: measurement 'error' fails at smoke size: ValueError: 12 trials: too few",
         ),
     ],
 )
