@@ -56,7 +56,7 @@ def test_it_writes_the_package_notebook_tests_profile_and_a_reference(tree):
     rel = sorted(str(p.relative_to(root)) for p in written)
     assert rel == sorted(
         [f"lib/tvtrack/papers/{PACKAGE}/{m}.py" for m in ("__init__", "claims", "params", "plots", "recording")]
-        + [f"lib/tvtrack/papers/{PACKAGE}/{m}.py" for m in ("register", "study")]
+        + [f"lib/tvtrack/papers/{PACKAGE}/{m}.py" for m in ("paper", "register", "study")]
         + [f"notebooks/{STEM}.ipynb", f"tests/papers/test_{STEM}.py", f"papermill_runs/profiles/{STEM}.smoke.toml"]
         + ["CITATION.cff"]
     )
@@ -74,6 +74,8 @@ def test_the_generated_paper_passes_ruff(tree):
 
 def test_the_generated_paper_conforms_to_the_contract(paper):
     assert contract.check(paper) == []
+    assert contract.check_paper(paper.PAPER) == []  # runs its measurement at smoke size
+    assert paper.PAPER.parameters()["spot_sigma_px"].unit == "px" and paper.PAPER.smoke_profile()["n_trials"] == 20
     assert list(paper.CLAIMS) == [f"C{NUMBER}-1"] and paper.REGISTER.names == ["read noise"]
 
 

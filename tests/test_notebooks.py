@@ -106,8 +106,9 @@ def test_parameters_cell_follows_the_contract(name):
 @pytest.mark.parametrize("name", NOTEBOOK_NAMES)
 def test_validation_is_the_next_code_cell(name):
     code = [c for c in read(name).cells if c.cell_type == "code"]
-    assert "validate_parameters(globals()" in code[1].source, (
-        f"{name}: the cell after the parameters must validate them with validate_parameters(globals(), ...)"
+    assert "validate_parameters(globals()" in code[1].source or "PAPER.validate(globals())" in code[1].source, (
+        f"{name}: the cell after the parameters must validate them with PAPER.validate(globals()) or "
+        "validate_parameters(globals(), ...)"
     )
 
 

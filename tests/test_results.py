@@ -267,3 +267,29 @@ def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp
     assert claim_summary(load_results(r.write())["claims"][0]) == text
     fig, caption = specification_curve(claim)
     assert "under each of" in caption and len(fig.axes) == 2
+
+
+def test_a_claim_over_an_exploration_takes_its_rule_from_it(tmp_path):
+    """The rule is given once, to the explorer: ``Results.claim`` reads it from the exploration, and the claim is
+    the one recorded with the rule passed again."""
+    from tvtrack.explore import explore
+    from tvtrack.register import Register
+
+    reg = Register(
+        [
+            Entry("reading", "reading", "filtered", ("filtered", "raw"), "what sigma is of"),
+            Entry("motion", "regime", "straight", ("straight", "turn"), "one pass"),
+        ]
+    )
+    rule = InBand("per-test false-alarm rate / alpha", 0.0, 2.5, unit="x alpha")
+    ex = explore(_toy_measure, reg, {"C999-1": rule}, seed=3)
+    given, taken = make(tmp_path), make(tmp_path)
+    a = given.claim("C999-1", "s", "rho <= 0.5", rule, exploration=ex)
+    b = taken.claim("C999-1", "s", "rho <= 0.5", exploration=ex)
+    assert b.rule == a.rule and b.acceptance == a.acceptance == rule.text()
+    assert (b.verdict, b.decision, b.measured) == (a.verdict, a.decision, a.measured)
+    assert b.robustness == a.robustness
+    with pytest.raises(ValueError, match="claim C999-2: the exploration has no rule for it"):
+        taken.claim("C999-2", "s", "v", exploration=ex)
+    with pytest.raises(TypeError, match="claim C999-3: rule must be a tvtrack.verdicts.Rule, got NoneType"):
+        taken.claim("C999-3", "s", "v", measured=1.0)

@@ -251,7 +251,7 @@ class Results:
         id: str,
         statement: str,
         paper_value: str,
-        rule: Rule,
+        rule: Rule | None = None,
         measured: Any = None,
         note: str = "",
         robustness: Robustness | None = None,
@@ -263,8 +263,9 @@ class Results:
         ----------
         id, statement, paper_value, note
             See :class:`Claim`.
-        rule : tvtrack.verdicts.Rule
-            The acceptance rule, fixed before the run.
+        rule : tvtrack.verdicts.Rule, optional
+            The acceptance rule, fixed before the run; with ``exploration`` it defaults to the rule the
+            exploration decided the claim with (``exploration.rules[id]``), so it is not passed twice.
         measured : Estimate, number, or what ``rule`` reads (a list for :class:`~tvtrack.verdicts.Monotone`,
             a dict of parts for :class:`~tvtrack.verdicts.AllOf`)
             The claim at the default reading. Omit it with ``exploration`` (the replicates pooled).
@@ -281,6 +282,10 @@ class Results:
         Claim
             Shown in a notebook as one line: verdict, robustness label, the rule's reason.
         """
+        if rule is None and exploration is not None:
+            if id not in exploration.rules:
+                raise ValueError(f"claim {id}: the exploration has no rule for it; pass rule=")
+            rule = exploration.rules[id]
         if not isinstance(rule, Rule):
             raise TypeError(f"claim {id}: rule must be a tvtrack.verdicts.Rule, got {type(rule).__name__}")
         if exploration is not None:

@@ -9,8 +9,9 @@ Modules: :mod:`.model` (the scan, the message, the data generators), :mod:`.ekf`
 choices), :mod:`.claims` (the claims and their rules), :mod:`.params` (parameter rules), :mod:`.plots`,
 :mod:`.findings` and :mod:`.recording` (Rerun layout).
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
@@ -20,6 +21,4 @@ CITATION = (
     'television tracking system based on an image dissector", Avtometriya, 1995, No. 3.'
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"PARAMETERS": "params:RULES"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

@@ -10,8 +10,9 @@ the explorer calls), :mod:`.register` (the notebook's register of unstated choic
 :mod:`.entries`), :mod:`.claims` (the claims and their rules), :mod:`.sizes` (the run sizes), :mod:`.params`
 (parameter rules), :mod:`.plots` and :mod:`.recording` (Rerun layout).
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
@@ -22,6 +23,4 @@ CITATION = (
     "unverified)."
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"REGISTER": "register:build_register()", "PARAMETERS": "params:RULES", "Sizes": "sizes:Sizes"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

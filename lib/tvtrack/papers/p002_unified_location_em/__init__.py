@@ -15,8 +15,9 @@ compare), ``claim_values`` (what each claim computes from the points, and the se
 ``params`` (the notebook's parameter rules), ``plots`` (one function per figure) and ``recording`` (the Rerun
 layout of one trial).
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
@@ -26,4 +27,4 @@ CITATION = (
     'objects", Kharkiv Military University, 1999 (journal probably Radioelectronics and Informatics; unverified).'
 )
 
-__getattr__, __dir__ = lazy_exports(__name__, {"Sizes": "study:Scale"})  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

@@ -13,8 +13,9 @@ the temporal median), :mod:`.register` (what the paper left unstated), :mod:`.cl
 and their rules), :mod:`.params` (parameter rules), :mod:`.plots`, :mod:`.prose` (generated sentences) and
 :mod:`.recording` (Rerun layout).
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
@@ -24,6 +25,4 @@ CITATION = (
     'emission", Avtometriya, 2025, No. 3, doi:10.15372/AUT20250302.'
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"PARAMETERS": "params:RULES"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it

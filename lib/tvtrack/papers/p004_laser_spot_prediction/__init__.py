@@ -15,8 +15,9 @@ Modules:
 - :mod:`.study`: the measurement functions the explorer calls; :mod:`.register`: the unstated choices;
   :mod:`.claims`: the claims and their rules; :mod:`.params`: parameter rules; :mod:`.recording`: Rerun layout.
 
-The paper contract (:mod:`tvtrack.contract`): ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``,
-``CLAIMS``, ``Sizes`` and ``recording``, each imported on first use.
+The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
+use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and
+``recording`` read from it.
 """
 
 from ...contract import lazy_exports
@@ -27,6 +28,4 @@ CITATION = (
     "2005."
 )
 
-__getattr__, __dir__ = lazy_exports(
-    __name__, {"REGISTER": "register:build()", "PARAMETERS": "params:RULES", "Sizes": "study:StudySize"}
-)  # the rest where tvtrack.contract.SOURCES says
+__getattr__, __dir__ = lazy_exports(__name__)  # PAPER from paper.py, and each name read from it
