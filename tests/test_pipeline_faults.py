@@ -227,6 +227,43 @@ def test_a_sweep_states_its_count_and_a_large_one_needs_yes(tmp_path):
     assert "1,000 runs starts only with --yes" in " ".join(tvtrack("sweep", "--help").stdout.split())
 
 
+def test_a_ctrl_c_while_the_pool_starts_its_workers_is_held_and_raised_after_never_lost():
+    # the shield ignores SIGINT so that spawned workers inherit it ignored; a Ctrl-C in that window used to be
+    # dropped (a sweep then ran on through its 20,000 runs)
+    code = (
+        "import os, signal, time\n"
+        "from tvtrack.pipeline.interrupt import shielded_spawn\n"
+        "try:\n"
+        "    with shielded_spawn():\n"
+        "        os.kill(os.getpid(), signal.SIGINT)\n"
+        "        time.sleep(0.3)\n"
+        "        print('inside', flush=True)\n"
+        "    print('lost')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('raised', signal.getsignal(signal.SIGINT) is signal.default_int_handler)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.stdout.split() == ["inside", "raised", "True"], proc.stdout + proc.stderr
+
+
+def test_a_pool_worker_ignores_ctrl_c_and_does_not_keep_it_blocked():
+    from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import get_context
+
+    from tvtrack.pipeline.interrupt import shielded_spawn, worker_init
+
+    pool = ProcessPoolExecutor(1, mp_context=get_context("spawn"), initializer=worker_init, initargs=(1,))
+    try:
+        with shielded_spawn():
+            handler = pool.submit(signal.getsignal, signal.SIGINT)
+        blocked = pool.submit(signal.pthread_sigmask, signal.SIG_BLOCK, set())
+        assert handler.result(timeout=120) == signal.SIG_IGN
+        assert signal.SIGINT not in blocked.result(timeout=120)
+    finally:
+        pool.shutdown()
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, set())
+
+
 def test_ctrl_c_stops_a_sweep_of_twenty_thousand_runs_within_10_s_and_no_run_starts_after(tmp_path):
     spec = tmp_path / "huge.toml"
     spec.write_text(

@@ -38,16 +38,22 @@ class Interrupted(KeyboardInterrupt):
 
 @contextlib.contextmanager
 def shielded_spawn():
-    """Ignore SIGINT while worker processes are started in this block, so they inherit the ignored disposition.
+    """Ignore SIGINT while worker processes are started in this block, so they inherit the ignored disposition;
+    a Ctrl-C that arrives meanwhile is held and raised in this process when the block ends, never lost.
 
     Python installs its KeyboardInterrupt handler only where SIGINT is not ignored at start-up, so a spawned
     worker keeps ignoring Ctrl-C from the first instruction on (an initializer would leave a window in which
-    a Ctrl-C prints the worker's traceback)."""
+    a Ctrl-C prints the worker's traceback). SIGINT is also blocked in the calling thread for the block: the
+    kernel then keeps a Ctrl-C pending instead of discarding it as ignored, and delivers it once the handler
+    is back. Threads started in the block (a pool's manager and feeder threads) inherit the block, so they
+    never take a Ctrl-C meant for this thread; the workers unblock it in :func:`worker_init`."""
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         yield
     finally:
         signal.signal(signal.SIGINT, previous)
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)  # a Ctrl-C held meanwhile is delivered now
 
 
 _busy = False  # a pool worker inside a task that must clean up when stopped (:func:`running_a_task`)
@@ -80,6 +86,7 @@ def worker_init(threads: int | None = None) -> None:
     :class:`Interrupted` in the run; with ``threads``, the worker's kernels get that many BLAS/OpenMP threads
     (so that ``jobs`` kernels at once do not oversubscribe the cores)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})  # started blocked (:func:`shielded_spawn`)
     signal.signal(signal.SIGTERM, _end_kernels_and_raise_interrupted)
     if threads is not None:
         for var in THREAD_VARS:

@@ -264,20 +264,21 @@ def _run_notebooks(
     remove_stale_temporaries(folder)
     log = folder / "kernels.log"
     failures = []
-    bar = tqdm(
-        total=len(notebooks),
-        desc=f"reproduce {profile_name(profile)} ({jobs} at once)",
-        unit="notebook",
-        disable=not sys.stderr.isatty(),
-    )
     pool = ProcessPoolExecutor(
         jobs, mp_context=get_context("spawn"), initializer=_worker_init, initargs=(threads, str(log))
     )
+    bar = None
     try:
         futures = {}
-        with shielded_spawn():
+        with shielded_spawn():  # before the progress bar's thread starts: no thread but this one takes a Ctrl-C
             for nb, (params, record) in zip(notebooks, setups):
                 futures[pool.submit(_run_one, str(nb), profile, params, str(folder), record)] = nb.stem
+        bar = tqdm(
+            total=len(notebooks),
+            desc=f"reproduce {profile_name(profile)} ({jobs} at once)",
+            unit="notebook",
+            disable=not sys.stderr.isatty(),
+        )
         for fut in as_completed(futures):
             name, ok, error, runtime = fut.result()
             bar.write(f"{name}: {'ok' if ok else 'FAILED: ' + str(error)} ({runtime:.0f} s{_used(folder / name)})")
@@ -286,7 +287,8 @@ def _run_notebooks(
             bar.update(1)
     except KeyboardInterrupt as exc:
         stop_pool(pool)
-        bar.close()
+        if bar is not None:
+            bar.close()
         remove_stale_temporaries(folder)
         for fresh in folder.glob(".new-*"):
             shutil.rmtree(fresh, ignore_errors=True)

@@ -484,9 +484,11 @@ def _run_in_pool(pool: ProcessPoolExecutor, todo: list[RunSpec], nb_path: str, r
             in_flight.add(pool.submit(_execute, run, nb_path, runs_dir))
 
     try:
-        with shielded_spawn():  # a worker the pool starts now starts with Ctrl-C ignored too
-            for _ in range(pool._max_workers):
-                submit_next()
+        # no shield here: the workers all started in :func:`_start_pool` (a submit spawns one only while the
+        # pool has fewer than max_workers), and a thread started since (the progress bar's) could take a
+        # Ctrl-C the shield holds for this thread and drop it as ignored
+        for _ in range(pool._max_workers):
+            submit_next()
         while in_flight:
             done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
             for fut in done:
