@@ -185,6 +185,8 @@ def test_a_condition_row_defaults_to_one_at_a_time_keeps_its_configuration_and_i
     assert rows[1]["config"] == {"motion": "turn", "sigma": "smoothed"}
     assert rows[2]["left_by_budget"] == 4 and isinstance(rows[2]["left_by_budget"], int)
     assert "left_by_budget" not in rows[0] and "runs" not in rows[0]
+    assert [r["text"] for r in rows] == ["motion = weave", "sigma = smoothed", "motion = turn"]
+    assert [r["seed"] for r in rec["replicates"]] == [1, 2, 3]
     assert rec["coverage"].startswith("unexplored over 3 distinct configurations (2 one at a time")
     assert all("part_measured" not in r for r in (*rec["replicates"], *rows))
 
@@ -220,6 +222,7 @@ def test_a_part_not_measured_is_undecided_with_no_projection_share_or_label():
     }
     assert rec["where"] == ["(p2) undecided at 3 replicates; no number of runs is projected to decide it"]
     assert rec["parts"]["p1"]["share"]["agree"] == 1
+    assert (rec["parts"]["p1"]["n_conditions"], p2["n_conditions"]) == (1, 0)
 
 
 def test_every_parts_where_lines_are_kept_each_named_by_its_part():
@@ -325,6 +328,7 @@ def test_a_hand_built_record_names_single_and_joint_conditions_and_keeps_determi
     conds = [labels.Condition({"motion": "weave"}, 0.0), labels.Condition({"motion": "turn", "sigma": "raw"}, 0.0)]
     rec = Robustness([WORLD, READING], conds, {1: 0.0, 2: 0.0, 3: 0.0}).record(BAND, 0.0)
     assert [c["kind"] for c in rec["conditions"]] == ["single", "joint"]
-    assert rec["deterministic"] is False and rec["built"] == "by hand"
+    assert rec["deterministic"] is False and rec["built"] == "by hand" and rec["note"] == ""
+    assert rec["register"] == [WORLD.to_dict(), READING.to_dict()]
     det = Robustness([WORLD], conds[:1], {1: 0.0}, note="a closed form", deterministic=True).record(BAND, 0.0)
     assert det["deterministic"] is True and det["coverage"].endswith("x deterministic (no random draw)")
