@@ -415,6 +415,12 @@ def test_a_flipping_pair_inside_a_pinned_triple_is_searched_sized_and_asked_only
     conds = [r for r in ex.runs if r.stage != "replicate"]
     assert ex.settings["condition_runs"] == sum(len(r.sized) for r in conds) > need - 1
     assert ex.settings["combinations"] == 3 and ex.settings["timing"]["combinations"]["configurations"] == 3
+    assert ex.table("L").splitlines()[-4:] == [  # each condition with its own replicates, every changed entry
+        f"| pinned ({need} replicates): a = 2, b = 2, c = y | not reproduced |",
+        f"| combination ({need} replicates): a = 2, b = 2 | not reproduced |",
+        "| combination (1 replicates): a = 2, c = y | undecided |",
+        "| combination (1 replicates): b = 2, c = y | undecided |",
+    ]
 
 
 def test_the_subset_search_stops_at_triples():
