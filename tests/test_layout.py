@@ -217,3 +217,185 @@ def test_the_size_budgets_see_a_planted_offence(tmp_path):
     )
     (tmp_path / "big.py").write_text("x = 1\n" * (MODULE_LINES + 1))
     assert over_budget(tmp_path) == ["big.py: 601 lines", "long.py: f has 82 lines of code"]
+
+
+def _modules(root: Path) -> dict[str, ast.Module]:
+    """``dotted module name -> its parsed source`` for every module under the package directory ``root``."""
+    return {
+        ".".join(p.relative_to(root.parent).with_suffix("").parts).removesuffix(".__init__"): ast.parse(p.read_text())
+        for p in sorted(root.rglob("*.py"))
+    }
+
+
+def _is_private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def _from_imports(module: str, tree: ast.Module, is_package: bool):
+    """``(imported module, name, bound as)`` for every ``from ... import`` in ``tree``, at any depth."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            base = _resolve(module, node, is_package)[0]
+            for alias in node.names:
+                yield base, alias.name, alias.asname or alias.name
+
+
+def private_imports(root: Path) -> list[str]:
+    """``"importer: module._name"`` for every private name (one leading underscore) a module under ``root`` takes
+    from another: ``from module import _name``, or ``module._name`` on a module it imported. A private module's
+    public names are not counted (``from ._kernel import step`` is the package's own seam)."""
+    trees = _modules(root)
+    packages = {m for m in trees if (root.parent / Path(*m.split("."), "__init__.py")).exists()}
+    out = set()
+    for m, tree in trees.items():
+        bound = {}  # local name -> module it stands for
+        for base, name, asname in _from_imports(m, tree, m in packages):
+            if f"{base}.{name}" in trees:
+                bound[asname] = f"{base}.{name}"
+            elif base in trees and base != m and _is_private(name):
+                out.add(f"{m}: {base}.{name}")
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                bound.update({a.asname: a.name for a in node.names if a.asname and a.name in trees})
+            elif isinstance(node, ast.Attribute) and _is_private(node.attr):
+                chain, value = [], node.value
+                while isinstance(value, ast.Attribute):
+                    chain, value = [value.attr, *chain], value.value
+                if isinstance(value, ast.Name):
+                    head = bound.get(value.id, value.id)
+                    owner = ".".join([head, *chain])
+                    if owner in trees and owner != m:
+                        out.add(f"{m}: {owner}.{node.attr}")
+    return sorted(out)
+
+
+def _defined(body: list[ast.stmt]) -> set[str]:
+    """Names a module's top level binds other than by importing them (in branches and ``try`` blocks too)."""
+    out = set()
+    for node in body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            out.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            out |= {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+        elif isinstance(node, (ast.If, ast.Try, ast.With, ast.For)):
+            inner = [getattr(node, f, []) for f in ("body", "orelse", "finalbody")]
+            out |= _defined([s for block in inner for s in block])
+            out |= {s for h in getattr(node, "handlers", []) for s in _defined(h.body)}
+    return out
+
+
+def facade_imports(root: Path) -> list[str]:
+    """``"importer: facade.name"`` for every name a module under ``root`` imports from another module that does not
+    define it but imported it itself (a re-export: the import points at a facade, not where the name lives)."""
+    trees = _modules(root)
+    packages = {m for m in trees if (root.parent / Path(*m.split("."), "__init__.py")).exists()}
+    defined = {m: _defined(t.body) for m, t in trees.items()}
+    out = set()
+    for m, tree in trees.items():
+        for base, name, _ in _from_imports(m, tree, m in packages):
+            if base in trees and base != m and name != "*" and f"{base}.{name}" not in trees:
+                if name not in defined[base]:
+                    out.add(f"{m}: {base}.{name}")
+    return sorted(out)
+
+
+#: Private names still imported across modules: each one left is to be made public where it lives (this set only
+#: shrinks).
+PRIVATE_IMPORTS_ALLOWED: set[str] = {
+    "tvtrack.montecarlo: tvtrack.coverage._coverage_text",
+    "tvtrack.montecarlo: tvtrack.resampling._expanded_alpha",
+    "tvtrack.montecarlo: tvtrack.resampling._expanded_percentile_ratio",
+    "tvtrack.montecarlo: tvtrack.resampling._grouped_bootstrap",
+    "tvtrack.montecarlo: tvtrack.resampling._studentized_mean_interval",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._draws",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._message",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._path",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._samples",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._scan",
+    "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._start",
+    "tvtrack.papers.p000_dissector_ekf.cost: tvtrack.papers.p000_dissector_ekf.ekf._g22",
+    "tvtrack.papers.p000_dissector_ekf.ekf: tvtrack.papers.p000_dissector_ekf.model._check_choice",
+    "tvtrack.papers.p000_dissector_ekf.ekf: tvtrack.papers.p000_dissector_ekf.model._check_real",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._acquired_at",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._errors",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._message",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._path",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._phase_nodes",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._ratio_to_star",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._samples",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._scan",
+    "tvtrack.papers.p000_dissector_ekf.studies: tvtrack.papers.p000_dissector_ekf.study._start",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.curves: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.spherical: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.study: tvtrack.papers.p001_maneuver_occlusion_kf.comparators._tuning",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.study: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.track_modes: tvtrack.papers.p001_maneuver_occlusion_kf._track_modes_kernel._record_compile",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff: tvtrack.papers.p001_maneuver_occlusion_kf.comparators._tuning",
+    "tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._Work",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._axis_tables",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._e_step",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._e_step_numpy",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._m_step",
+    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._sigma_update",
+    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._Work",
+    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._m_step",
+    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._sigma_update",
+    "tvtrack.papers.p002_unified_location_em.simulation: tvtrack.papers.p002_unified_location_em.sim_config._scene_key",
+    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._efficiency",
+    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._mean_log_gain",
+    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._vsum",
+    "tvtrack.papers.p003_rotating_marker_tracker.beyond: tvtrack.papers.p003_rotating_marker_tracker.study._rng",
+    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.backdrop._check_spot",
+    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.draws._generator_blocks",
+    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.draws._tile",
+    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._check_spot",
+    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._generator_blocks",
+    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._tile",
+    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._compensation_factor",
+    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._estimate",
+    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._half_step",
+    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._share_difference",
+    "tvtrack.papers.p004_laser_spot_prediction.beam_wander: tvtrack.papers.p004_laser_spot_prediction.gtilt._gtilt_wander",
+    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
+    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.study._scene",
+    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.study._setup",
+    "tvtrack.papers.p004_laser_spot_prediction.kalman_baselines: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
+    "tvtrack.papers.p004_laser_spot_prediction.kalman_baselines: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
+    "tvtrack.papers.p004_laser_spot_prediction.learned: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
+    "tvtrack.papers.p004_laser_spot_prediction.learned: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
+    "tvtrack.papers.p004_laser_spot_prediction.predictors: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
+    "tvtrack.papers.p004_laser_spot_prediction.predictors: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
+    "tvtrack.papers.p004_laser_spot_prediction.side_studies: tvtrack.papers.p004_laser_spot_prediction.study._setup",
+    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.derivation._recursion_check",
+    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
+    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.timing._frame_time_ms",
+    "tvtrack.paragraphs: tvtrack.wording._as_dict",
+    "tvtrack.paragraphs: tvtrack.wording._in_force",
+    "tvtrack.paragraphs: tvtrack.wording._phrases",
+    "tvtrack.pipeline.site: tvtrack.pipeline.report._plain_coverage",
+    "tvtrack.pipeline.summary: tvtrack.pipeline.preflight._code_cells",
+    "tvtrack.pipeline.viewer.headless: tvtrack.pipeline.viewer.pixels._decode_png",
+    "tvtrack.plotting: tvtrack.wording._in_force",
+}
+
+
+def test_no_private_name_is_imported_across_modules():
+    """A name another module uses is part of its module's interface: public, documented, in ``__all__``."""
+    assert sorted(set(private_imports(PKG)) - PRIVATE_IMPORTS_ALLOWED) == []
+
+
+def test_the_seam_rules_see_planted_offences(tmp_path):
+    pkg = tmp_path / "pkg"
+    (pkg / "sub").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "sub" / "__init__.py").write_text("from .b import helper\n")
+    (pkg / "a.py").write_text("_hidden = 1\nshown = 2\n")
+    (pkg / "sub" / "b.py").write_text(
+        "from ..a import _hidden, shown\nfrom .. import a\nimport pkg.a as aa\n\n"
+        "def helper():\n    return a._hidden + aa._hidden + shown\n"
+    )
+    (pkg / "c.py").write_text("from .sub import helper\nfrom .sub.b import shown\nfrom .a import shown as s\n")
+    assert private_imports(pkg) == ["pkg.sub.b: pkg.a._hidden"]
+    assert facade_imports(pkg) == ["pkg.c: pkg.sub.b.shown", "pkg.c: pkg.sub.helper"]
