@@ -303,11 +303,6 @@ def facade_imports(root: Path) -> list[str]:
 #: Private names still imported across modules: each one left is to be made public where it lives (this set only
 #: shrinks).
 PRIVATE_IMPORTS_ALLOWED: set[str] = {
-    "tvtrack.montecarlo: tvtrack.coverage._coverage_text",
-    "tvtrack.montecarlo: tvtrack.resampling._expanded_alpha",
-    "tvtrack.montecarlo: tvtrack.resampling._expanded_percentile_ratio",
-    "tvtrack.montecarlo: tvtrack.resampling._grouped_bootstrap",
-    "tvtrack.montecarlo: tvtrack.resampling._studentized_mean_interval",
     "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._draws",
     "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._message",
     "tvtrack.papers.p000_dissector_ekf.beyond: tvtrack.papers.p000_dissector_ekf.study._path",
@@ -371,13 +366,6 @@ PRIVATE_IMPORTS_ALLOWED: set[str] = {
     "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.derivation._recursion_check",
     "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
     "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.timing._frame_time_ms",
-    "tvtrack.paragraphs: tvtrack.wording._as_dict",
-    "tvtrack.paragraphs: tvtrack.wording._in_force",
-    "tvtrack.paragraphs: tvtrack.wording._phrases",
-    "tvtrack.pipeline.site: tvtrack.pipeline.report._plain_coverage",
-    "tvtrack.pipeline.summary: tvtrack.pipeline.preflight._code_cells",
-    "tvtrack.pipeline.viewer.headless: tvtrack.pipeline.viewer.pixels._decode_png",
-    "tvtrack.plotting: tvtrack.wording._in_force",
 }
 
 

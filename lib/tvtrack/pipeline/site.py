@@ -58,7 +58,7 @@ from .report import (
     robustness_picture,
     robustness_where,
 )
-from .report import _plain_coverage as coverage_text
+from .report import plain_coverage
 from .runfiles import DamagedRun, load_results, load_run
 from .stills import recording_still
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
@@ -325,7 +325,7 @@ def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
                     shown=robustness_label(c),
                     summary=claim_summary(c, chars=PAGE_CHARS),
                     measured=format_measured(c.get("measured"), c.get("rule")),
-                    coverage=coverage_text(c),
+                    coverage=plain_coverage(c),
                     flips=claim_flips(c),
                     parts=_part_rows(c),
                     curve=curve,
@@ -365,7 +365,7 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                     "flips": claim_flips(c),
                     "page": claim_page_href(run.name, c["id"]),
                     "note": c.get("note", ""),
-                    "coverage": coverage_text(c),
+                    "coverage": plain_coverage(c),
                     "parts": part_labels(c),
                     "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else ""),
                 }
