@@ -303,13 +303,6 @@ def facade_imports(root: Path) -> list[str]:
 #: Private names still imported across modules: each one left is to be made public where it lives (this set only
 #: shrinks).
 PRIVATE_IMPORTS_ALLOWED: set[str] = {
-    "tvtrack.papers.p001_maneuver_occlusion_kf.curves: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.spherical: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.study: tvtrack.papers.p001_maneuver_occlusion_kf.comparators._tuning",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.study: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.track_modes: tvtrack.papers.p001_maneuver_occlusion_kf._track_modes_kernel._record_compile",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff: tvtrack.papers.p001_maneuver_occlusion_kf.comparators._tuning",
-    "tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff: tvtrack.papers.p001_maneuver_occlusion_kf.scenario._full",
     "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._Work",
     "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._axis_tables",
     "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._e_step",

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
-from tvtrack.papers.p001_maneuver_occlusion_kf.comparators import _tuning
+from tvtrack.papers.p001_maneuver_occlusion_kf.comparators import comparator_tuning
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
 
 REG = build_register()
@@ -44,7 +44,7 @@ def test_c4_comparators_face_the_schemes_truth(world):
     sc = study.config_scenario(cfg)
     z = study.measurements(sc.truth[:, :, 0], cfg["noise"], SIZES["n_tradeoff_trials"], np.random.default_rng(seed))
     truth = sc.truth[None, :, :, 0]
-    setting = _tuning(cfg, SIZES)[cfg["rms_span"]][name][0]
+    setting = comparator_tuning(cfg, SIZES)[cfg["rms_span"]][name][0]
     frames = study.span_mask(cfg["rms_span"], sc)
     err_c = (study.comparator_positions(name, setting, z, sc, 1.0) - truth)[..., frames]
     err_s = (study.run_scheme(z, sc, cfg, SIZES, covariance=False).x[..., 0] - truth)[..., frames]
@@ -55,8 +55,8 @@ def test_c4_comparators_tuned_for_the_configurations_manoeuvre():
     """The fixed 2nd-order comparator tuned for the per-second acceleration reading (25 times weaker) settles on a
     narrower band (a larger gain bound) than for the paper's manoeuvre: its tuning sees that scenario."""
     span = REG.default()["rms_span"]
-    strong = _tuning(REG.default(), SIZES)[span]["fixed 2nd order"][0][0]
-    weak = _tuning(REG.default() | {"accel_unit": "el/frame per s"}, SIZES)[span]["fixed 2nd order"][0][0]
+    strong = comparator_tuning(REG.default(), SIZES)[span]["fixed 2nd order"][0][0]
+    weak = comparator_tuning(REG.default() | {"accel_unit": "el/frame per s"}, SIZES)[span]["fixed 2nd order"][0][0]
     assert weak > strong
 
 

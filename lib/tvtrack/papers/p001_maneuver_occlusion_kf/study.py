@@ -64,14 +64,14 @@ from .scenario import (
     detector_threshold,
     arming_count,
     cadence_threshold,
-    _full,
+    with_defaults,
     span_mask,
     run_scheme,
 )
 from .comparators import (
     comparator_positions,
     tuned_comparators,
-    _tuning,
+    comparator_tuning,
     compensation_ms,
     raised_second_order,
     compensation_comparator,
@@ -271,7 +271,7 @@ def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict
     asked = set(GROUP_DETECTION if claims is None else claims) & set(GROUP_DETECTION)
     if not asked:
         return {}
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
@@ -400,7 +400,7 @@ def _c001_3(config: dict, sigma: float, G0, null: tuple, rng: np.random.Generato
 def c3_closed_form_check(config: dict, seed: int, sizes: dict) -> dict:
     """C001-3's closed form against a Monte Carlo of the same per-test rate (in units of alpha) on
     ``n_fa_runs`` fresh no-manoeuvre runs of ``fa_duration_s``: :func:`.false_alarm.closed_form_check`."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
@@ -428,12 +428,12 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
         switch"`` (the scheme's own TRACK2 filter, never switching) and each comparator tuned for the config's
         ``rms_span``; ``tuning`` (settings, training RMS, on-edge flags); ``z`` the measurements.
     """
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
-    tuning = _tuning(config, sizes)[config["rms_span"]]
+    tuning = comparator_tuning(config, sizes)[config["rms_span"]]
     pos = {
         "adaptive": run_scheme(z, sc, config, sizes, covariance=False).x[..., 0],
         "2nd order without the switch": comparator_positions(
@@ -448,7 +448,7 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
 def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")) -> dict:
     """The paper's scenario (both channels, ``sizes["n_trials"]`` runs) through the scheme under each restart rule,
     with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     z = measurements(
         sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
@@ -497,7 +497,7 @@ def sigma_s_readings(config: dict, sizes: dict) -> dict:
     stationarity (Gaussian: 2 Phi(-c_ind / sigma_S))."""
     from ...filters.alphabeta import lagged_covariances
 
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
     K2 = gain_schedule(1, kb2)[-1]
     C = lagged_covariances(K2, sizes["sigma_eps"], 2)
@@ -546,7 +546,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
         velocity_jump_signature,
     )
 
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)
