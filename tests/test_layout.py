@@ -303,19 +303,6 @@ def facade_imports(root: Path) -> list[str]:
 #: Private names still imported across modules: each one left is to be made public where it lives (this set only
 #: shrinks).
 PRIVATE_IMPORTS_ALLOWED: set[str] = {
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._Work",
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._axis_tables",
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._e_step",
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._e_step_numpy",
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._m_step",
-    "tvtrack.papers.p002_unified_location_em.em: tvtrack.papers.p002_unified_location_em.em_steps._sigma_update",
-    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._Work",
-    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._m_step",
-    "tvtrack.papers.p002_unified_location_em.em_loop: tvtrack.papers.p002_unified_location_em.em_steps._sigma_update",
-    "tvtrack.papers.p002_unified_location_em.simulation: tvtrack.papers.p002_unified_location_em.sim_config._scene_key",
-    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._efficiency",
-    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._mean_log_gain",
-    "tvtrack.papers.p002_unified_location_em.study: tvtrack.papers.p002_unified_location_em.claim_values._vsum",
     "tvtrack.papers.p003_rotating_marker_tracker.beyond: tvtrack.papers.p003_rotating_marker_tracker.study._rng",
     "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.backdrop._check_spot",
     "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.draws._generator_blocks",

@@ -8,7 +8,7 @@ what the algorithm gives (numbers that would be wrong if the ULA or the bound we
 import numpy as np
 
 from tvtrack.papers.p002_unified_location_em import simulation as sim
-from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em import claim_values, study
 from tvtrack.papers.p002_unified_location_em.claims import RULES
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
@@ -83,8 +83,8 @@ def test_at_half_a_sigma_the_ula_sits_far_below_the_crb_and_far_above_the_van_tr
     larger than the designation's own (0.36 sigma^2: four coordinates at 0.3 sigma), and below the CRB (1.7)."""
     r = _ula_at(0.5, 3.0, 10, 80)
     e = study.errors(r, "ula", "first")
-    crb = study._efficiency(e, r["crb_pos"], "variance")
-    vt = study._efficiency(e, r["bcrb_pos"], "variance")
+    crb = claim_values.efficiency(e, r["crb_pos"], "variance")
+    vt = claim_values.efficiency(e, r["bcrb_pos"], "variance")
     assert crb.ci_high < 0.6, crb
     assert vt.ci_low > 1.5, vt
     for bound, est in (("CRB", crb), ("van Trees", vt)):

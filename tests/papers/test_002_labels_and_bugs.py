@@ -26,7 +26,7 @@ from tvtrack.papers.p002_unified_location_em.model import (
 from tvtrack.papers.p002_unified_location_em.simulation import (
     CANONICAL_SETTINGS,
     Config,
-    _scene_key,
+    scene_key,
     errors_vs_truth,
     run_config,
     seed_sequence,
@@ -111,7 +111,7 @@ def test_noise_per_pixel_scales_with_the_pixel_area():
     cfg = Config(1, 0.0, 3.0, 20, 5, "cr", 0.3, None, None, 8, "t", 0.0)
     res = run_config(st, cfg)
     g = scene_geometry(1, 5, 0.0, 3.0, (0.2, 0.1))
-    th = draw_truth(np.random.default_rng(seed_sequence(st.seed, _scene_key(cfg) + ("crb",))), 4, g)
+    th = draw_truth(np.random.default_rng(seed_sequence(st.seed, scene_key(cfg) + ("crb",))), 4, g)
     for noise, same in ((9.0, True), (3.0, False)):
         crb = crb_linear_motion(th, frame_times(5), g.shape, g.sigma_px, 20, noise)
         bound = float(np.mean(position_crb_sum(crb))) / g.sigma_px**2

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import Estimate
-from tvtrack.papers.p002_unified_location_em import extras, study
+from tvtrack.papers.p002_unified_location_em import claim_values, extras, study
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
 TINY = study.Scale(
@@ -115,7 +115,7 @@ def test_mean_log_gain_recovers_a_known_ratio_of_gains():
             [rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))]
         )
 
-    est = study._mean_log_gain(
+    est = claim_values.mean_log_gain(
         [pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)], np.random.default_rng(0), 1000
     )
     assert est.ci_low < 2.0 < est.ci_high and abs(est.value - 2.0) < 0.25
@@ -277,7 +277,10 @@ def test_c002_6_pixel_frame_pair_and_gap_readings():
     assert len({o["C002-6"].value for o in out}) == 4 and all(np.isfinite(o["C002-6"].value) for o in out)
     # the gap reading: mean over d <= 2 sigma of |Sigma^2(5) - Sigma^2(10)| at 20 photons minus that at 10 photons
     g, res = study.figure_data(DEFAULT, 7, TINY)
-    v = {k: [study._vsum(study.errors(res[g["2"][k][d]], "ula")[None])[0] for d in (1.0, 2.0)] for k in g["2"]}
+    v = {
+        k: [claim_values.spread_total(study.errors(res[g["2"][k][d]], "ula")[None])[0] for d in (1.0, 2.0)]
+        for k in g["2"]
+    }
     want = np.mean(np.abs(np.subtract(v[(5, 20)], v[(10, 20)]))) - np.mean(np.abs(np.subtract(v[(5, 10)], v[(10, 10)])))
     assert out[3]["C002-6"].value == pytest.approx(want, rel=1e-9)
     assert all(o[c].value == out[0][c].value for o in out[1:] for c in ("C002-3", "C002-13"))

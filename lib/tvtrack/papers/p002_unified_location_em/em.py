@@ -44,12 +44,9 @@ from . import _kernels
 from .em_loop import CALM, EMModel, EMState, MapPrior, iterate  # noqa: F401 - CALM: the stop of tol_loglik, read here
 from .em_steps import (  # noqa: F401 - the entries and the steps (tests and the kernel's twin read them here)
     PixelEntries,
-    _axis_tables,
-    _e_step,
-    _e_step_numpy,
-    _m_step,
-    _sigma_update,
-    _Work,
+    ActiveEntries,
+    expectation_step,
+    expectation_step_numpy,
     per_frame_entries,
     pixel_entries,
 )
@@ -309,7 +306,7 @@ def unified_location_em(
         estimate_sigma=estimate_sigma,
         prior=prior,
         span=span,
-        e_step=_kernels.e_step if fast else _e_step_numpy,
+        e_step=_kernels.e_step if fast else expectation_step_numpy,
         fast=fast,
     )
     photons = entries.photons_per_trial()
@@ -396,8 +393,8 @@ def _final_loglik(entries: PixelEntries, state: EMState, times, photons) -> None
     trials with photons (``photons``, shape (N,), their total counts; the prior's term left out)."""
     live = np.flatnonzero(photons > 0)
     if live.size:
-        _, state.loglik[live] = _e_step(
-            _Work(entries, live),
+        _, state.loglik[live] = expectation_step(
+            ActiveEntries(entries, live),
             state.theta[live],
             state.pw[live],
             state.p0[live],

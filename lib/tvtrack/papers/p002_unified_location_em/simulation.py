@@ -40,7 +40,7 @@ from .sim_config import (  # noqa: F401  (re-exported: the configuration lived h
     N_SEED_BLOCKS,
     Config,
     StudySettings,
-    _scene_key,
+    scene_key,
     base,
     seed_sequence,
 )
@@ -119,7 +119,7 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
     s, seed = g.sigma_px, settings.seed
     sizes = np.diff(np.linspace(0, cfg.n, N_SEED_BLOCKS + 1).round().astype(int))
     for k, n_k in enumerate(sizes):
-        rng = np.random.default_rng(seed_sequence(seed + k, _scene_key(cfg)))
+        rng = np.random.default_rng(seed_sequence(seed + k, scene_key(cfg)))
         for b in scene_batches(
             rng,
             g,
@@ -411,7 +411,7 @@ def _run_extras(x, out: dict) -> None:
         )
         out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "s" in algs:
-        ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
+        ms_rng = np.random.default_rng(seed_sequence(block, scene_key(cfg) + ("ms",)))
         out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))
     if "b" in algs:
         out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
@@ -424,7 +424,7 @@ def _bounds(s_: StudySettings, cfg: Config, g, times, noise_pp: float) -> dict:
     q, m, dsd, s = cfg.q, cfg.m, cfg.dsd, g.sigma_px
     res = {}
     # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
-    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, _scene_key(cfg) + ("crb",))), s_.crb_phases, g)
+    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, scene_key(cfg) + ("crb",))), s_.crb_phases, g)
     fim = fisher_linear_motion(th, times, g.shape, s, m, noise_pp)
     crb = crb_from_fisher(fim)
     # van Trees (Bayesian) bound with the designation as the prior of the initial positions (velocity free): it

@@ -24,9 +24,6 @@ from dataclasses import dataclass, replace
 
 
 from .claim_values import (  # noqa: F401 - the statistics the notebook and the tests read through study
-    _efficiency,
-    _mean_log_gain,
-    _vsum,
     errors,
     exp_estimate,
     gain,
