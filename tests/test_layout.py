@@ -303,17 +303,6 @@ def facade_imports(root: Path) -> list[str]:
 #: Private names still imported across modules: each one left is to be made public where it lives (this set only
 #: shrinks).
 PRIVATE_IMPORTS_ALLOWED: set[str] = {
-    "tvtrack.papers.p003_rotating_marker_tracker.beyond: tvtrack.papers.p003_rotating_marker_tracker.study._rng",
-    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.backdrop._check_spot",
-    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.draws._generator_blocks",
-    "tvtrack.papers.p003_rotating_marker_tracker.imaging: tvtrack.papers.p003_rotating_marker_tracker.draws._tile",
-    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._check_spot",
-    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._generator_blocks",
-    "tvtrack.papers.p003_rotating_marker_tracker.scene: tvtrack.papers.p003_rotating_marker_tracker.imaging._tile",
-    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._compensation_factor",
-    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._estimate",
-    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._half_step",
-    "tvtrack.papers.p003_rotating_marker_tracker.study: tvtrack.papers.p003_rotating_marker_tracker.estimators._share_difference",
     "tvtrack.papers.p004_laser_spot_prediction.beam_wander: tvtrack.papers.p004_laser_spot_prediction.gtilt._gtilt_wander",
     "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
     "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.study._scene",

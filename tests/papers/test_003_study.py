@@ -9,7 +9,7 @@ from scipy import stats
 
 from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
-from tvtrack.papers.p003_rotating_marker_tracker import beyond, study
+from tvtrack.papers.p003_rotating_marker_tracker import beyond, estimators, study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
 from tvtrack.verdicts import InBand, Ordering, is_undecided
@@ -92,10 +92,10 @@ def test_compensation_ratio_is_a_bound_when_uncompensated_runs_lose_everywhere()
     usirs = np.array(study.UNCOMPENSATED_GRID)
     comp = _lost_from_thresholds([1.2] * 6)
     unc_all = np.ones((usirs.size, 6), bool)
-    e = study._compensation_factor(unc_all, usirs, comp, SIRS, 0.1)
+    e = estimators.compensation_factor(unc_all, usirs, comp, SIRS, 0.1)
     assert e.value == 0.0 and e.ci_low == 0.0 and 0 < e.ci_high < 0.05 and not e.extrapolated
     unc = _lost_from_thresholds([6.0] * 6, usirs)
-    e = study._compensation_factor(unc, usirs, comp, SIRS, 0.1)
+    e = estimators.compensation_factor(unc, usirs, comp, SIRS, 0.1)
     assert e.ci_low < 0.1 * np.sqrt(1.0 * 4 / 3) / np.sqrt(4.0 * 8.0) < e.ci_high
 
 
@@ -262,7 +262,7 @@ def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
     assert t["C003-9"]["disc_linear"] == pytest.approx(0.960, abs=0.005)
     assert t["C003-9"]["square_linear"] == pytest.approx(1.0, abs=1e-9)
     sc = study.scenario(cfg)
-    tr, _, h = run_scenario([study._rng(1, 1)], sz.trials, replace(sc, duration_s=sz.fig1_s))
+    tr, _, h = run_scenario([study.stream_rng(1, 1)], sz.trials, replace(sc, duration_s=sz.fig1_s))
     k0 = int(round(sz.transient_s * sc.fps))
     y = np.sqrt(np.mean(state_errors(tr, h)[:, k0:, 1] ** 2))
     assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)
@@ -323,8 +323,8 @@ def test_a_curve_run_at_one_more_sir_repeats_the_grid_runs_draws():
     from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
 
     sc = study.scenario({}, study.Sizes(trials=2, horizon_s=0.3), n_interferers=1)
-    grid = interference_runs([study._rng(10, 5)], 2, sc, [0.5, 1.0])
-    one = interference_runs([study._rng(10, 5)], 2, sc, [1.0])
+    grid = interference_runs([study.stream_rng(10, 5)], 2, sc, [0.5, 1.0])
+    one = interference_runs([study.stream_rng(10, 5)], 2, sc, [1.0])
     np.testing.assert_array_equal(one["miss"], grid["miss"][2:])
     assert np.ptp(grid["miss"][:2] - grid["miss"][2:]) > 0  # the SIR does change the runs
 

@@ -19,14 +19,14 @@ from ...render import disc_area, disc_spot
 from .backdrop import (  # noqa: F401 (re-exported: moved from this module)
     LAYOUTS,
     SPOTS,
-    _check_spot,
+    check_spot,
     add_spots,
     correlated_background,
     median_residual,
     place_interferers,
     render_spot,
 )
-from .draws import BlockNormal, CommonNormal, _generator_blocks, _tile  # noqa: F401 (re-exported)
+from .draws import BlockNormal, CommonNormal, generator_blocks, tile_rows  # noqa: F401 (re-exported)
 from .motion import MarkerTruth
 
 __all__ = [
@@ -97,7 +97,7 @@ class RotatingMarkerScene:
         exposure_steps: int = 1,
         decoy_phase=None,
     ):
-        _check_spot(spot)
+        check_spot(spot)
         if int(exposure_steps) < 1:
             raise ValueError(f"parameter 'exposure_steps' = {exposure_steps}; it must be >= 1")
         if noise_std < 0:
@@ -373,7 +373,7 @@ def build_scene(
     RotatingMarkerScene
     """
     n = truth.xr.shape[0]
-    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     blocks = _check_blocks(blocks, len(rngs), compensation)
     q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
@@ -381,7 +381,7 @@ def build_scene(
         count = b.get("n_interferers", n_interferers)
         centre = _interferer_centres(g, truth, first, n_common, count, interferer_center)
         q.append(
-            _tile(
+            tile_rows(
                 place_interferers(g, n_common, count, centre, interferer_radius, radial_jitter, interferer_layout),
                 n_block,
             )
@@ -392,7 +392,7 @@ def build_scene(
             brightness, noise_std,
         )  # fmt: skip
         by_median.append(np.full(n_block, med))
-        residual.append(_tile(res, n_block))
+        residual.append(tile_rows(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]

@@ -44,15 +44,13 @@ from .motion import (  # noqa: F401 (re-exported: moved from this module)
     object_motion,
     ornstein_uhlenbeck,
 )
+from .draws import generator_blocks, tile_rows
 from .imaging import (  # noqa: F401 (re-exported: moved from this module)
     BlockNormal,
     COMPENSATIONS,
     CommonNormal,
     RotatingMarkerScene,
     SPOTS,
-    _check_spot,
-    _generator_blocks,
-    _tile,
     add_spots,
     build_scene,
     correlated_background,
@@ -303,13 +301,16 @@ def run_scenario(
     scene : RotatingMarkerScene
     history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
     """
-    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
     streams = [g.spawn(4) for g in rngs]  # truth, decoy, scene, noise
     bases = [scenario_truth(st[0], n_common, sc) for st in streams]
     truth = MarkerTruth(
-        *(np.concatenate([_tile(getattr(b, f), n_block) for b in bases]) for f in ("xr", "yr", "r", "theta", "omega")),
+        *(
+            np.concatenate([tile_rows(getattr(b, f), n_block) for b in bases])
+            for f in ("xr", "yr", "r", "theta", "omega")
+        ),
         bases[0].t,
     )
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
@@ -344,12 +345,15 @@ def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: in
         return None, None
     zero = np.zeros(n_common)
     ang = np.concatenate(
-        [_tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block) for st, o in zip(streams, offsets)]
+        [
+            tile_rows(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
+            for st, o in zip(streams, offsets)
+        ]
     )[:, None]
     dphi = (
         np.concatenate(
             [
-                _tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
+                tile_rows(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
                 for st, o in zip(streams, offsets)
             ]
         )[:, None]
