@@ -302,22 +302,7 @@ def facade_imports(root: Path) -> list[str]:
 
 #: Private names still imported across modules: each one left is to be made public where it lives (this set only
 #: shrinks).
-PRIVATE_IMPORTS_ALLOWED: set[str] = {
-    "tvtrack.papers.p004_laser_spot_prediction.beam_wander: tvtrack.papers.p004_laser_spot_prediction.gtilt._gtilt_wander",
-    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
-    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.study._scene",
-    "tvtrack.papers.p004_laser_spot_prediction.calibration: tvtrack.papers.p004_laser_spot_prediction.study._setup",
-    "tvtrack.papers.p004_laser_spot_prediction.kalman_baselines: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
-    "tvtrack.papers.p004_laser_spot_prediction.kalman_baselines: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
-    "tvtrack.papers.p004_laser_spot_prediction.learned: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
-    "tvtrack.papers.p004_laser_spot_prediction.learned: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
-    "tvtrack.papers.p004_laser_spot_prediction.predictors: tvtrack.papers.p004_laser_spot_prediction._checks._check_steps",
-    "tvtrack.papers.p004_laser_spot_prediction.predictors: tvtrack.papers.p004_laser_spot_prediction._checks._check_z",
-    "tvtrack.papers.p004_laser_spot_prediction.side_studies: tvtrack.papers.p004_laser_spot_prediction.study._setup",
-    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.derivation._recursion_check",
-    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.prediction_study._tuned",
-    "tvtrack.papers.p004_laser_spot_prediction.study: tvtrack.papers.p004_laser_spot_prediction.timing._frame_time_ms",
-}
+PRIVATE_IMPORTS_ALLOWED: set[str] = set()
 
 
 def test_no_private_name_is_imported_across_modules():

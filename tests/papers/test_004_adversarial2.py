@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.papers.p004_laser_spot_prediction import derivation, study
+from tvtrack.papers.p004_laser_spot_prediction import derivation, study, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS
 
 SIZE = study.StudySize(
@@ -25,7 +25,7 @@ SIZE = study.StudySize(
 
 @pytest.fixture(scope="module")
 def scene():
-    return study._scene(dict(DEFAULT), 3, SIZE)
+    return study.study_run(dict(DEFAULT), 3, SIZE)
 
 
 def test_streaming_pipeline_runs_the_paper_recursion_frame_by_frame(scene):
@@ -44,8 +44,8 @@ def test_streaming_pipeline_runs_the_paper_recursion_frame_by_frame(scene):
 def test_c004_8_readings_change_what_is_timed(scene):
     """The streaming reading's 99th percentile is at least its mean; the readings are in the claim's dependencies."""
     rng = lambda: np.random.default_rng(1)  # noqa: E731
-    stream_mean = study._frame_time_ms(scene, rng(), {"C004-8 pipeline": "streaming, the study's energy centre"})
-    stream_p99 = study._frame_time_ms(scene, rng(), {"C004-8 statistic": "99th percentile"})
+    stream_mean = timing.frame_time_ms(scene, rng(), {"C004-8 pipeline": "streaming, the study's energy centre"})
+    stream_p99 = timing.frame_time_ms(scene, rng(), {"C004-8 statistic": "99th percentile"})
     assert 0 < stream_mean <= stream_p99
     assert {"energy centre", "C004-8 pipeline", "C004-8 statistic"} <= set(DEPENDS["C004-8"])
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
-from tvtrack.papers.p004_laser_spot_prediction import study, timing
+from tvtrack.papers.p004_laser_spot_prediction import derivation, study, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, ROWS
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
@@ -51,7 +51,7 @@ def test_c004_8_frame_and_clock_readings_are_measured_and_registered(scene):
     assert study.CLOCKS == {"CPU": time.process_time, "wall": time.perf_counter}
     rng = lambda: np.random.default_rng(1)  # noqa: E731
     for reading in ({"C004-8 frame": "whole frame"}, {"C004-8 clock": "wall"}):
-        t = study._frame_time_ms(scene, rng(), reading)
+        t = timing.frame_time_ms(scene, rng(), reading)
         assert 0 < t < 40.0  # ms per frame: the readings run and return a time, not a share
     rows = {r[0]: r for r in ROWS}
     assert rows["C004-8 frame"][1:4] == ("operating point", "gate", ("gate", "whole frame"))
@@ -76,7 +76,7 @@ def test_wall_clock_leaves_out_the_frames_another_process_preempted(scene, monke
     monkeypatch.setattr(timing, "_involuntary_switches", every_other_frame)
     t = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isnan(t[1::2])) and np.all(np.isfinite(t[0::2]))
-    ms = study._frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
+    ms = timing.frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
     assert np.isfinite(ms) and ms > 0
     monkeypatch.setattr(timing, "_involuntary_switches", lambda: 0)
     kept = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
@@ -100,14 +100,13 @@ def test_c004_4_reads_every_paths_series_so_a_loss_rate_always_acts():
     frames for some seeds (the pinned flip then went unseen and C004-4 read robust), fifteen practically never."""
     import numpy as np
 
-    from tvtrack.papers.p004_laser_spot_prediction import study
 
     rng = np.random.default_rng(3)
     t = np.arange(200.0)
     z = 5 + 0.01 * t**2 / 2 + 0.3 * np.cumsum(rng.standard_normal((15, 200)), axis=1)
-    one_quiet = [s for s in range(40) if study._recursion_check(z[:1], [s, 4004], 0.01, held=False) <= 1e-9]
+    one_quiet = [s for s in range(40) if derivation.recursion_check(z[:1], [s, 4004], 0.01, held=False) <= 1e-9]
     assert one_quiet  # a single series misses the losses at some seeds
     for s in one_quiet:
-        assert study._recursion_check(z, [s, 4004], 0.01, held=False) > 1e-3  # skipped frames: eq. (4) differs
-        assert study._recursion_check(z, [s, 4004], 0.01, held=True) <= 1e-9  # held frames: exact again
-    assert study._recursion_check(z, [0, 4004], 0.0, held=False) <= 1e-9  # no loss: the recursion is exact
+        assert derivation.recursion_check(z, [s, 4004], 0.01, held=False) > 1e-3  # skipped frames: eq. (4) differs
+        assert derivation.recursion_check(z, [s, 4004], 0.01, held=True) <= 1e-9  # held frames: exact again
+    assert derivation.recursion_check(z, [0, 4004], 0.0, held=False) <= 1e-9  # no loss: the recursion is exact

@@ -105,10 +105,10 @@ def test_a_tuning_grid_is_extended_until_the_folds_leave_its_top():
         made.append(c)
         return np.full(z.shape, abs(c - 5.0))
 
-    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP, more=(4, 5, 6, 7))
+    _, _, chosen, _, _ = ps.tuned_forecast((1, 2, 3), make, z, z, folds, SETUP, more=(4, 5, 6, 7))
     assert np.all(chosen == 5) and made == [1, 2, 3, 4, 5, 6]  # 7 is never needed
     made.clear()
-    _, _, chosen, _, _ = ps._tuned((4, 5, 6), make, z, z, folds, SETUP, more=(7,))
+    _, _, chosen, _, _ = ps.tuned_forecast((4, 5, 6), make, z, z, folds, SETUP, more=(7,))
     assert np.all(chosen == 5) and made == [4, 5, 6]  # an interior optimum extends nothing
-    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP)
+    _, _, chosen, _, _ = ps.tuned_forecast((1, 2, 3), make, z, z, folds, SETUP)
     assert np.all(chosen == 3)  # without an extension the top stays the grid's limit (reported as an edge)

@@ -162,10 +162,10 @@ def test_the_bound_gets_the_measurement_variance_not_its_square_root(monkeypatch
 
 
 def test_scene_jitter_and_saturation():
-    r = study._scene(dict(DEFAULT, jitter=2.0), 5, SIZE)
+    r = study.study_run(dict(DEFAULT, jitter=2.0), 5, SIZE)
     np.testing.assert_allclose(r.jitter_rms, 2.0 * one_frame_motion_rms(r.scene, r.path_rms))
-    assert 0.05 < study._scene(dict(DEFAULT), 5, SIZE).clipped_share < 0.6  # 200 DN peak x scintillation, 8 bits
-    assert study._scene(dict(DEFAULT, saturation="none"), 5, SIZE).clipped_share == 0.0
+    assert 0.05 < study.study_run(dict(DEFAULT), 5, SIZE).clipped_share < 0.6  # 200 DN peak x scintillation, 8 bits
+    assert study.study_run(dict(DEFAULT, saturation="none"), 5, SIZE).clipped_share == 0.0
     assert study.scene_config(dict(DEFAULT, **{"frame rate": 200.0}), SIZE).drift_max_px_per_frame == pytest.approx(
         0.02 * 25 / 200
     )
@@ -216,7 +216,7 @@ def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     # the Kalman fits made once are those a fresh comparison at horizon 2 makes
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CA_KALMAN, compare_methods
 
-    s2 = study.replace(study._setup(dict(run.config, horizon=2), SIZE), learned_kw={})
+    s2 = study.replace(study.comparison_setup(dict(run.config, horizon=2), SIZE), learned_kw={})
     direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
     for name in (CA_KALMAN, study.SINGER, PAPER):
         mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
@@ -396,8 +396,8 @@ def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
     spec = np.abs(np.fft.rfft(v[0, :, 0]))
     assert np.argmax(spec) == round(study.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
     small = study.replace(SIZE, n_paths=2, n_frames=100)
-    a = study._scene(dict(DEFAULT, bandwidth=3.0), 5, small)  # one bandwidth: the vibration world is re-calibrated
-    b = study._scene(dict(DEFAULT, bandwidth=3.0, vibration=1.0), 5, small)
+    a = study.study_run(dict(DEFAULT, bandwidth=3.0), 5, small)  # one bandwidth: the vibration world is re-calibrated
+    b = study.study_run(dict(DEFAULT, bandwidth=3.0, vibration=1.0), 5, small)
     d = (b.truth - a.truth)[0]  # (P, 2, T)
     np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
     k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly

@@ -50,7 +50,7 @@ from .predictors import kalman_forecast
 from .traces import TraceSet, save_traces, sha256_file
 from .gtilt import (
     GTILT,
-    _gtilt_wander,
+    gtilt_wander,
     exposure_gain,
     gtilt_crossing,
     gtilt_asymptotes,
@@ -396,7 +396,7 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     angle = rng.uniform(0.0, 2 * np.pi, size=P)
     drift = speed[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)  # (P, 2) px/frame
     if c.rolloff == GTILT:
-        wander = _gtilt_wander(c, rms, rng)
+        wander = gtilt_wander(c, rms, rng)
     else:
         sig = component_sigmas(c, rms)  # (P, K)
         order = 1 if c.rolloff == "f^-2" else 2

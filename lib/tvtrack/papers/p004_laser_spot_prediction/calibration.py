@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
-from .prediction_study import FLOOR_EXTENSION, _tuned
+from .prediction_study import FLOOR_EXTENSION, tuned_forecast
 from .register import DEFAULT
 
 __all__ = [
@@ -99,11 +99,11 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
         scene = st.scene_config(cfg, size)
         big = replace(scene, n_paths=max(scene.n_paths, st.BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
         traces = generate_traces(big, int(traces_seed))
-    run = st._scene(cfg, seed, size, traces)
-    s = st._setup(cfg, size)
+    run = st.study_run(cfg, seed, size, traces)
+    s = st.comparison_setup(cfg, size)
     folds = pr.path_folds(size.n_paths, size.n_folds)
     T = run.z.shape[-1]
-    _, mse, _, _, _ = _tuned(
+    _, mse, _, _, _ = tuned_forecast(
         s.floor_grid,
         lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
         run.z,

@@ -37,6 +37,7 @@ import numpy as np
 from . import predictors as pr
 
 __all__ = [
+    "tuned_forecast",
     "PAPER",
     "VARIANT",
     "CLASSICAL",
@@ -201,10 +202,32 @@ FLOOR_EXTENSION = (350, 600, 1000)
 WINDOW_EXTENSION = (45, 70, 100)
 
 
-def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
+def tuned_forecast(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
     """Forecast with every candidate setting, pick per fold on the training paths (pooled
     trials), and assemble the cross-validated forecast and per-trial-path MSE. While a fold picks the
-    last candidate, the next value of ``more`` is tried too (the grid reaches the method's optimum)."""
+    last candidate, the next value of ``more`` is tried too (the grid reaches the method's optimum).
+
+    Parameters
+    ----------
+    candidates : sequence
+        The settings tried (a floor, a window, a lag count...).
+    make : callable
+        ``make(setting) -> forecast`` (trials, paths, axes, T), px.
+    z, ref : numpy.ndarray or float
+        The measured series and the reference the MSE is taken against, px.
+    folds : sequence
+        The cross-validation folds of the paths.
+    s : ComparisonSetup
+        Horizon (frames) and the first frame scored.
+    more : sequence
+        Settings beyond ``candidates``, tried in turn while a fold picks the largest.
+
+    Returns
+    -------
+    tuple
+        ``(forecast, per-trial-path MSE (px^2), the setting each path's fold chose, every candidate's forecast,
+        every candidate's MSE (candidates, trials, paths))``.
+    """
     candidates, more = list(candidates), [c for c in more if c > max(candidates)]
     fcs = [make(c) for c in candidates]
     mse = np.stack([per_trial_path_mse(f, ref, s.steps, s.start) for f in fcs])  # (C, trials, P)
@@ -337,11 +360,11 @@ def compare_methods(
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
     more = sorted({min(int(v), z.shape[-1]) for v in FLOOR_EXTENSION})
-    fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = _tuned(
+    fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = tuned_forecast(
         s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s, more=more
     )
     if "variant" in parts:  # the card's variant floor, tuned alike
-        fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = _tuned(
+        fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = tuned_forecast(
             s.floor_grid, lambda nf: pr.g1_floor_forecast(z, nf, m, s.order), z, reference, folds, s, more=more
         )
         fixed[VARIANT] = per_trial_path_mse(pr.g1_floor_forecast(z, s.fixed_floor, m, s.order), reference, m, s.start)
@@ -349,7 +372,7 @@ def compare_methods(
     if "classical" in parts:
         _classical(z, reference, folds, s, (mse, fixed, chosen, fcs))
     if "fading" in parts:
-        fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
+        fcs[FADING], mse[FADING], chosen[FADING], _, _ = tuned_forecast(
             s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s
         )
         fixed[FADING] = mse[FADING]
@@ -376,7 +399,7 @@ def _classical(z, reference, folds, s: ComparisonSetup, out) -> None:
         "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m),
     }
     for name, make in windowed.items():
-        fcs[name], mse[name], chosen[name], _, _ = _tuned(
+        fcs[name], mse[name], chosen[name], _, _ = tuned_forecast(
             window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=WINDOW_EXTENSION
         )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
