@@ -300,14 +300,33 @@ def facade_imports(root: Path) -> list[str]:
     return sorted(out)
 
 
-#: Private names still imported across modules: each one left is to be made public where it lives (this set only
-#: shrinks).
+#: Private names allowed to cross a module, each with why (none: a name another module needs is public).
 PRIVATE_IMPORTS_ALLOWED: set[str] = set()
 
 
 def test_no_private_name_is_imported_across_modules():
     """A name another module uses is part of its module's interface: public, documented, in ``__all__``."""
     assert sorted(set(private_imports(PKG)) - PRIVATE_IMPORTS_ALLOWED) == []
+
+
+#: The one door the pipeline has into the science (the pipeline rule above): it reads the claim words through
+#: :mod:`tvtrack.results` and estimates through :mod:`tvtrack.montecarlo`, which re-export them for it.
+PIPELINE_DOORS = ("tvtrack.results", "tvtrack.montecarlo")
+#: Imports through a re-export still allowed, each with why.
+FACADE_IMPORTS_ALLOWED = {
+    "tvtrack.labels: tvtrack.verdicts.as_estimate",  # pending: labels.py is being pinned by its own tests first
+}
+
+
+def test_imports_point_where_names_live():
+    """A module imports a name from the module that defines it, not through another that re-exports it."""
+    offenders = [
+        f
+        for f in facade_imports(PKG)
+        if f not in FACADE_IMPORTS_ALLOWED
+        and not (f.startswith("tvtrack.pipeline.") and f.split(": ")[1].rsplit(".", 1)[0] in PIPELINE_DOORS)
+    ]
+    assert offenders == []
 
 
 def test_the_seam_rules_see_planted_offences(tmp_path):

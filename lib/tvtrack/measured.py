@@ -84,7 +84,7 @@ def calibrated(measured: Any) -> Estimate:
     """The estimate a rule decides on: an interval whose helper states a measured coverage short of its
     nominal level at this sample size (:func:`tvtrack.montecarlo.coverage_reached`) is widened to it
     (:func:`tvtrack.montecarlo.widen_to_nominal`; the method says so); others are returned as they are."""
-    from .montecarlo import coverage_reached, stated_coverage, widen_to_nominal
+    from .coverage import coverage_reached, stated_coverage, widen_to_nominal
 
     e = as_estimate(measured)
     s = stated_coverage(e)
@@ -97,7 +97,7 @@ def is_undecided(measured: Any) -> bool:
     """True when an estimate cannot decide anything: NaN value, NaN interval or a degenerate interval
     (``ci_low == ci_high``) of a random quantity, a value extrapolated beyond the data, or an interval
     whose coverage at its sample size was never measured ("coverage unmeasured")."""
-    from .montecarlo import stated_coverage
+    from .coverage import stated_coverage
 
     e = as_estimate(measured)
     if getattr(e, "extrapolated", False) or math.isnan(e.value):

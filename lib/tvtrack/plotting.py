@@ -421,7 +421,7 @@ def errorbars(ax, x, estimates, *, horizontal: bool = False, **style):
     """
     import numpy as np
 
-    from .verdicts import as_estimate
+    from .measured import as_estimate
 
     es = [as_estimate(e) for e in estimates]
     v = np.array([e.value for e in es], dtype=float)

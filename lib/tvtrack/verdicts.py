@@ -31,7 +31,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-from .montecarlo import Estimate
+from .estimate import Estimate
 from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated, is_undecided, runs_to_decide
     decide_note,
     short_number,

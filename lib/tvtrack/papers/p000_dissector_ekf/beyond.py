@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_square_ci, ratio_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_square_ci, ratio_ci
 from .baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
 from .cost import run_steps_variant1, run_steps_variant2
 from .model import scan_at_snr, truth_and_pulse
@@ -21,7 +22,6 @@ from .study import (
     BETA_0,
     D11_0,
     D22_0,
-    Sizes,
     common_draws,
     cfg_message,
     truth_paths,
@@ -30,6 +30,7 @@ from .study import (
     switch_on_phases,
     steady_runs,
 )
+from .sizes import Sizes
 
 __all__ = ["centroid_baseline", "grid_over_points", "pulse_and_beta", "mismatched_over_contrast"]
 

@@ -11,14 +11,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import mean_square_ci, proportion_ci, quantile_ci
+from ...montecarlo import mean_square_ci, quantile_ci
+from ...counts import proportion_ci
 from .ekf import consistency, variant1_filter, variant2_filter
 from .reference import pcrlb_variance
 from .study import (
     BETA_0,
     D11_0,
     D22_0,
-    Sizes,
     acquired_at,
     filter_errors,
     cfg_message,
@@ -32,6 +32,7 @@ from .study import (
     psi_at,
     steady_runs,
 )
+from .sizes import Sizes
 
 __all__ = ["fig1_curves", "acquisition_vs_offset", "pull_in_range", "consistency_over_psi", "fig3_curves"]
 

@@ -21,7 +21,9 @@ from scipy import stats
 
 from ... import jit
 from ...verdicts import ByReading
-from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_square_ci, quantile_ci, ratio_ci, rms_ci
+from ...counts import proportion_ci
 from .sizes import Sizes
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .lock_loss import keep, keep_pair

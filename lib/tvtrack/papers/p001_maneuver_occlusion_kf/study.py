@@ -21,7 +21,8 @@ from scipy import signal, stats
 
 from ...filters.alphabeta import gain_schedule, scheduled_filter
 from ...filters.polynomial import predict_ahead
-from ...montecarlo import Estimate, mean_ci, paired_difference
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, paired_difference
 from ...projection import as_declared
 from .false_alarm import closed_form_check, closed_form_rate, statistic_impulse_response
 from .maneuver_detector import (

@@ -20,7 +20,7 @@ import functools
 
 import numpy as np
 
-from ...montecarlo import Estimate
+from ...estimate import Estimate
 from .comparators import comparator_tuning, comparator_positions, compensation_comparator
 from .scenario import (
     COMPARATORS,

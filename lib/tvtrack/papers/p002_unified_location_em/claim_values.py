@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tvtrack.montecarlo import Estimate, ratio_ci
+from tvtrack.estimate import Estimate
+from tvtrack.montecarlo import ratio_ci
 from .readings import (
     CLOSE,
     COORDINATE6,
@@ -29,15 +30,8 @@ from .readings import (
     c15_close,
     photons6,
 )
-from .simulation import (
-    SPREADS,
-    bootstrap_groups,
-    mse_sum,
-    position_errors,
-    seed_sequence,
-    variance_ratio_ci,
-    variance_sum,
-)
+from .summaries import SPREADS, bootstrap_groups, mse_sum, position_errors, variance_ratio_ci, variance_sum
+from .sim_config import seed_sequence
 
 __all__ = [
     "errors",

@@ -23,7 +23,8 @@ from types import SimpleNamespace
 import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_from_fisher, fisher_linear_motion, position_crb_sum
-from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em import match_labels, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,

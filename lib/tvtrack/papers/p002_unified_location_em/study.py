@@ -51,7 +51,8 @@ from .readings import (  # noqa: F401 - the readings the tests read through stud
     fig7_variant,
     photons6,
 )
-from .simulation import CANONICAL_SETTINGS, Config, StudySettings, run_config
+from .sim_config import CANONICAL_SETTINGS, Config, StudySettings
+from .simulation import run_config
 
 __all__ = [
     "Scale",

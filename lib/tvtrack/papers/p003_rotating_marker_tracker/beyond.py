@@ -8,7 +8,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from .scene import Scenario, median_residual, place_interferers, scenario_truth
+from .scene import Scenario, scenario_truth
+from .backdrop import median_residual, place_interferers
 from .study import Sizes, stream_rng, measure_interference, measure_tracking, scenario
 
 __all__ = ["exposure_study", "median_example"]

@@ -13,7 +13,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, proportion_ci, ratio_ci, zero_events_bound
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, ratio_ci
+from ...counts import proportion_ci, zero_events_bound
 
 __all__ = [
     "loss_share",

@@ -29,14 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .loops import (
-    EKFTracker,
-    RotatingGateTracker,
-    ekf_noise_from_bandwidths,
-    gains_realising,
-    loop_gains,
-    run_closed_loop,
-)
+from .ekf import EKFTracker, ekf_noise_from_bandwidths
+from .loops import RotatingGateTracker, gains_realising, loop_gains, run_closed_loop
 from .motion import (  # noqa: F401 (re-exported: moved from this module)
     MOTIONS,
     MarkerTruth,
@@ -45,19 +39,9 @@ from .motion import (  # noqa: F401 (re-exported: moved from this module)
     ornstein_uhlenbeck,
 )
 from .draws import generator_blocks, tile_rows
-from .imaging import (  # noqa: F401 (re-exported: moved from this module)
-    BlockNormal,
-    COMPENSATIONS,
-    CommonNormal,
-    RotatingMarkerScene,
-    SPOTS,
-    add_spots,
-    build_scene,
-    correlated_background,
-    median_residual,
-    place_interferers,
-    render_spot,
-)
+from .draws import BlockNormal, CommonNormal  # noqa: F401
+from .imaging import COMPENSATIONS, RotatingMarkerScene, build_scene  # noqa: F401
+from .backdrop import SPOTS, add_spots, correlated_background, median_residual, place_interferers, render_spot  # noqa: F401
 
 __all__ = [
     "render_spot",

@@ -24,7 +24,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, ratio_ci, rms_ci
 from ...projection import as_declared
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria

@@ -46,7 +46,7 @@ from scipy.linalg import block_diag, expm
 from scipy.signal import lfilter
 
 from .camera import GateTrack, SpotCamera, track_spot
-from .predictors import kalman_forecast
+from .kalman_baselines import kalman_forecast
 from .traces import TraceSet, save_traces, sha256_file
 from .gtilt import (
     GTILT,

@@ -8,7 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...filters.polynomial import growing_memory_filter, growing_memory_gains
-from ...montecarlo import Estimate, variance_ci
+from ...estimate import Estimate
+from ...montecarlo import variance_ci
 from . import predictors as pr
 
 __all__ = ["recursion_vs_batch", "recursion_check", "drop_frames", "variance_ratios", "HEAVY_TAIL_METHOD"]

@@ -10,7 +10,8 @@ from dataclasses import replace
 import numpy as np
 
 from ...render import gaussian_spot, sensor_readout
-from .beam_wander import SpotCamera, optimal_wander_forecast
+from .camera import SpotCamera
+from .beam_wander import optimal_wander_forecast
 from .prediction_study import (
     CA_KALMAN,
     FADING,
@@ -22,15 +23,8 @@ from .prediction_study import (
     compare_methods,
     per_trial_path_mse,
 )
-from .study import (
-    BASE_CAMERA,
-    LSQ_CUBIC,
-    NATURAL_SPLINE,
-    NETWORKS,
-    OPTIMAL,
-    StudyRun,
-    comparison_setup,
-)
+from .world import BASE_CAMERA
+from .study import LSQ_CUBIC, NATURAL_SPLINE, NETWORKS, OPTIMAL, StudyRun, comparison_setup
 from .intervals import ratio_of_means_ci, root_mean_ci
 
 __all__ = [

@@ -23,10 +23,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import Estimate
+from ...estimate import Estimate
 from ...projection import as_declared, claim_groups
 from . import predictors as pr
-from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
+from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
+from .camera import SpotCamera, track_spot
 from .prediction_study import (
     CLASSICAL,
     PAPER,

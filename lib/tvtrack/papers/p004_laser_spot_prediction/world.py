@@ -10,7 +10,9 @@ from dataclasses import replace
 import numpy as np
 
 from .operating import bandwidth_for
-from .beam_wander import GTILT, BeamWanderConfig, SpotCamera, generate_traces
+from .gtilt import GTILT
+from .beam_wander import BeamWanderConfig, generate_traces
+from .camera import SpotCamera
 from .traces import TraceSet
 
 __all__ = [
