@@ -8,7 +8,8 @@ import pytest
 
 from tvtrack import jit
 from tvtrack.papers.p002_unified_location_em import _kernels, em_steps
-from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
+from tvtrack.papers.p002_unified_location_em.em import unified_location_em
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,

@@ -7,13 +7,8 @@ import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
 
-from tvtrack.papers.p002_unified_location_em.em import (
-    match_labels,
-    per_frame_entries,
-    pixel_entries,
-    track_distance,
-    unified_location_em,
-)
+from tvtrack.papers.p002_unified_location_em.em import match_labels, track_distance, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import per_frame_entries, pixel_entries
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,
@@ -23,8 +18,8 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
     simulate_counts,
 )
+from tvtrack.papers.p002_unified_location_em.sim_config import CANONICAL_SETTINGS
 from tvtrack.papers.p002_unified_location_em.simulation import (
-    CANONICAL_SETTINGS,
     Config,
     scene_key,
     errors_vs_truth,

@@ -32,7 +32,7 @@ def test_streaming_pipeline_runs_the_paper_recursion_frame_by_frame(scene):
     """The timed streaming loop is the real filter: its states equal growing_memory_filter (fixed floor) on the
     centres it was fed (a wrong gain index or a missing prediction step fails), and its gates follow the spot
     (the measured centres lie within 0.5 px of the truth)."""
-    times, states, z = study.streaming_frame_times(scene, np.random.default_rng(0))
+    times, states, z = timing.streaming_frame_times(scene, np.random.default_rng(0))
     ref = growing_memory_filter(z.T, 2, SIZE.fixed_floor)  # (2 axes, T, 3)
     np.testing.assert_allclose(states[2:], np.moveaxis(ref, 0, 1)[2:], rtol=0, atol=1e-9)
     assert np.all(np.isnan(states[:2]))
@@ -63,8 +63,8 @@ def test_lost_frames_skipped_break_the_equality_only_where_a_frame_is_lost():
     lags = np.arange(80, -1, -1.0)[keep]
     H = np.stack([np.ones_like(lags), -lags, lags**2 / 2], axis=1)
     np.testing.assert_allclose(b[80], np.linalg.lstsq(H, gap[:81][keep], rcond=None)[0], rtol=1e-10)
-    assert study.recursion_vs_batch(z)[0] < 1e-9
-    assert study.recursion_vs_batch(gap)[0] > 1e-6
+    assert derivation.recursion_vs_batch(z)[0] < 1e-9
+    assert derivation.recursion_vs_batch(gap)[0] > 1e-6
 
 
 def test_heavy_tailed_noise_is_a_reading_the_rule_cannot_decide():

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
-from tvtrack.papers.p004_laser_spot_prediction import derivation, study, timing
+from tvtrack.papers.p004_laser_spot_prediction import derivation, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, ROWS
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
@@ -25,7 +25,7 @@ def test_whole_frame_streaming_measures_the_spot_and_runs_the_recursion(scene, m
     from dataclasses import replace
 
     run = replace(scene, camera=replace(scene.camera, centroid_mode=mode))
-    times, states, z = study.streaming_frame_times(run, np.random.default_rng(0), whole_frame=True)
+    times, states, z = timing.streaming_frame_times(run, np.random.default_rng(0), whole_frame=True)
     truth = np.moveaxis(run.truth[0, 0, :, : len(z)], 0, -1)
     assert np.max(np.abs(z - truth)) < tol_px
     ref = growing_memory_filter(z.T, 2, SIZE.fixed_floor)
@@ -48,7 +48,7 @@ def test_windowed_centroid_start_moves_only_the_first_window():
 def test_c004_8_frame_and_clock_readings_are_measured_and_registered(scene):
     """The whole-frame reading times the streaming pipeline over all pixels; the wall clock reading reads
     time.perf_counter; both rows are adversarial and in the claim's dependencies."""
-    assert study.CLOCKS == {"CPU": time.process_time, "wall": time.perf_counter}
+    assert timing.CLOCKS == {"CPU": time.process_time, "wall": time.perf_counter}
     rng = lambda: np.random.default_rng(1)  # noqa: E731
     for reading in ({"C004-8 frame": "whole frame"}, {"C004-8 clock": "wall"}):
         t = timing.frame_time_ms(scene, rng(), reading)
@@ -74,12 +74,14 @@ def test_wall_clock_leaves_out_the_frames_another_process_preempted(scene, monke
         return flips["n"]
 
     monkeypatch.setattr(timing, "_involuntary_switches", every_other_frame)
-    t = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
+    t = timing.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isnan(t[1::2])) and np.all(np.isfinite(t[0::2]))
     ms = timing.frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
     assert np.isfinite(ms) and ms > 0
     monkeypatch.setattr(timing, "_involuntary_switches", lambda: 0)
-    kept = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
+    kept = timing.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[
+        0
+    ]
     assert np.all(np.isfinite(kept))
 
 
@@ -99,7 +101,6 @@ def test_c004_4_reads_every_paths_series_so_a_loss_rate_always_acts():
     """C004-4 under 'frame loss' reads every path's series: at a 0.01 loss rate one 200-frame series keeps all its
     frames for some seeds (the pinned flip then went unseen and C004-4 read robust), fifteen practically never."""
     import numpy as np
-
 
     rng = np.random.default_rng(3)
     t = np.arange(200.0)

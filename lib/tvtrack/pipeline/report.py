@@ -45,7 +45,6 @@ from .figures import (
     forest_plot,
     part_labels,
     robustness_label,
-    robustness_matrix,
     robustness_picture,
     robustness_where,
 )
@@ -80,7 +79,6 @@ __all__ = [
     "first_screen_list",
     "forest_items",
     "forest_plot",
-    "robustness_matrix",
     "robustness_picture",
     "profiles_shown",
 ]

@@ -27,7 +27,7 @@ from ...counts import proportion_ci
 from .sizes import Sizes
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .lock_loss import keep, keep_pair
-from .readings import (  # noqa: F401  (the register's named values, importable from here as before)
+from .readings import (
     AT_09,
     ACCOUNTING,
     C2_CARD,

@@ -1,7 +1,7 @@
 """Study drivers of paper 001 (Fisenko et al. 2008): the measurement functions the explorer calls and the studies
 the notebook shows. The scenario lives in :mod:`.scenario`, the comparators in :mod:`.comparators`, the curves of
 Fig. 4 and the loss-time sweep in :mod:`.curves`, C001-9 in :mod:`.spherical`, C001-4's measurement in
-:mod:`.tradeoff` and C001-3's closed form in :mod:`.false_alarm`; their names are re-exported here.
+:mod:`.tradeoff` and C001-3's closed form in :mod:`.false_alarm`.
 
 A measurement function is ``measure(config, seed, sizes) -> {claim id: measured}``: one full-size run of the
 study at ``config`` (a dict with every register entry of :mod:`.register`), every random draw from
@@ -20,7 +20,6 @@ import numpy as np
 from scipy import signal, stats
 
 from ...filters.alphabeta import gain_schedule, scheduled_filter
-from ...filters.polynomial import predict_ahead
 from ...estimate import Estimate
 from ...montecarlo import mean_ci, paired_difference
 from ...projection import as_declared
@@ -39,73 +38,20 @@ from .sizes import declared
 from .scenario import (
     FPS_REF,
     MOTION,
-    NOISE_MODELS,
     THRESHOLD_READINGS,
-    ARMING_RULES,
-    RMS_SPANS,
-    TUNING_SPANS,
-    MANOEUVRES,
-    CHANNEL_Y,
-    ACCEL_UNITS,
-    COMPENSATION_COMPARATORS,
-    RAISED2_GRID,
     UMP_COMPARATORS,
-    COMPARATORS,
-    FIXED2_GRID,
-    FIXED3_GRID,
-    IMM_Q_CA_GRID,
-    IMM_P_STAY_GRID,
-    VDF_Q_CA_GRID,
-    VDF_WINDOWS,
-    FLOORS,
     Scenario,
-    scenario,
     config_scenario,
     measurements,
     detector_threshold,
     arming_count,
     cadence_threshold,
     with_defaults,
-    span_mask,
     run_scheme,
 )
-from .comparators import (
-    comparator_positions,
-    tuned_comparators,
-    comparator_tuning,
-    compensation_ms,
-    raised_second_order,
-    compensation_comparator,
-    tuning_phrase,
-)
-from .curves import (
-    optimum_location,
-    forced_output,
-    prediction_error,
-    occlusion_frames,
-    fig4_curves,
-    loss_sweep,
-    c7_parts,
-    c8_parts,
-    measure_curves,
-    fig4_monte_carlo,
-    curve_agreement,
-    agreement_word,
-    unbiased_prediction_bound,
-)
-from .spherical import (
-    HORIZONS,
-    spherical_deviations,
-    TARGET_SETS,
-    PAPER_RATES,
-    paper_rate_deviation,
-    field_deviation,
-    start_deviation,
-    measure_spherical,
-)
+from .comparators import comparator_positions, comparator_tuning
 
 __all__ = [
-    "predict_ahead",
     "detection_time_summary",
     "gls_window_taps",
     "tapped_window_statistic",
@@ -120,60 +66,15 @@ __all__ = [
     "detector_benchmark",
     "FPS_REF",
     "MOTION",
-    "NOISE_MODELS",
     "THRESHOLD_READINGS",
-    "ARMING_RULES",
-    "RMS_SPANS",
-    "TUNING_SPANS",
-    "MANOEUVRES",
-    "CHANNEL_Y",
-    "ACCEL_UNITS",
-    "COMPENSATION_COMPARATORS",
-    "RAISED2_GRID",
     "UMP_COMPARATORS",
-    "COMPARATORS",
-    "FIXED2_GRID",
-    "FIXED3_GRID",
-    "IMM_Q_CA_GRID",
-    "IMM_P_STAY_GRID",
-    "VDF_Q_CA_GRID",
-    "VDF_WINDOWS",
-    "FLOORS",
     "Scenario",
-    "scenario",
     "config_scenario",
     "measurements",
     "detector_threshold",
     "arming_count",
-    "span_mask",
     "run_scheme",
     "comparator_positions",
-    "tuned_comparators",
-    "compensation_ms",
-    "raised_second_order",
-    "compensation_comparator",
-    "tuning_phrase",
-    "optimum_location",
-    "forced_output",
-    "prediction_error",
-    "occlusion_frames",
-    "fig4_curves",
-    "loss_sweep",
-    "c7_parts",
-    "c8_parts",
-    "measure_curves",
-    "fig4_monte_carlo",
-    "curve_agreement",
-    "agreement_word",
-    "unbiased_prediction_bound",
-    "HORIZONS",
-    "spherical_deviations",
-    "TARGET_SETS",
-    "PAPER_RATES",
-    "paper_rate_deviation",
-    "field_deviation",
-    "start_deviation",
-    "measure_spherical",
 ]
 
 

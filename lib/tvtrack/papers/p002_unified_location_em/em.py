@@ -41,21 +41,17 @@ from scipy.special import ndtr
 from tvtrack import jit
 
 from . import _kernels
-from .em_loop import CALM, EMModel, EMState, MapPrior, iterate  # noqa: F401 - CALM: the stop of tol_loglik, read here
-from .em_steps import (  # noqa: F401 - the entries and the steps (tests and the kernel's twin read them here)
+from .em_loop import EMModel, EMState, MapPrior, iterate
+from .em_steps import (
     PixelEntries,
     ActiveEntries,
     expectation_step,
     expectation_step_numpy,
-    per_frame_entries,
-    pixel_entries,
 )
 from .model import pixel_probabilities
 
 __all__ = [
     "PixelEntries",
-    "pixel_entries",
-    "per_frame_entries",
     "EMResult",
     "unified_location_em",
     "match_labels",

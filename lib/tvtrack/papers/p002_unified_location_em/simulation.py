@@ -35,29 +35,12 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
 )
 
-from .sim_config import (  # noqa: F401  (re-exported: the configuration lived here before)
-    ALGORITHMS,
-    CANONICAL_SETTINGS,
+from .sim_config import (
     N_SEED_BLOCKS,
     Config,
     StudySettings,
     scene_key,
-    base,
     seed_sequence,
-)
-from .summaries import (  # noqa: F401  (re-exported: the summaries lived here before)
-    FLAG_NAMES,
-    SPREADS,
-    bootstrap_groups,
-    centred_squares,
-    failure_metrics,
-    failure_rate,
-    gross_errors,
-    mse_sum,
-    position_errors,
-    seed_blocks,
-    variance_ratio_ci,
-    variance_sum,
 )
 
 

@@ -1,4 +1,4 @@
-"""The static part of notebook 003's compensated image (moved from :mod:`.imaging`, which re-exports it): the marker
+"""The static part of notebook 003's compensated image: the marker
 and interferer spots, the correlated background, stationary interferers on a circle about the object (its start, or
 its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (card 8.5).
 

@@ -1,4 +1,4 @@
-"""Common random numbers of notebook 003's batched runs (moved from :mod:`.imaging`, which re-exports them): trials
+"""Common random numbers of notebook 003's batched runs: trials
 that share their draws across SIR values or markers, and blocks of trials drawing from one generator each.
 """
 

@@ -1,6 +1,5 @@
 """Direct-count estimators of notebook 003's verdicts: loss shares, grid-censored thresholds and their ratios, the
-adaptive grid extension, fold distances and C003-10's compensation ratio (moved from :mod:`.study`, which re-exports
-them).
+adaptive grid extension, fold distances and C003-10's compensation ratio.
 
 Every estimate reads direct counts, never a fitted tail: the probability of loss at a grid SIR is a count with its
 Clopper-Pearson interval (zero events: the one-sided bound they certify); a threshold is the geometric mean of the

@@ -1,7 +1,7 @@
-"""The compensated TV image of notebook 003 (moved from :mod:`.scene`, which re-exports it): the scene object that
+"""The compensated TV image of notebook 003: the scene object that
 renders each frame's gate crop, and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
 correlated background, interferers, the temporal-median residual) and the common random numbers of batched runs in
-:mod:`.draws`; both are re-exported here.
+:mod:`.draws`.
 
 Model (Yukhno 2025, eqs. (9), (10), (19), with the compensation model of the paper card, section 4.2)::
 
@@ -16,9 +16,7 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
 from ...render import disc_area, disc_spot
-from .backdrop import (  # noqa: F401 (re-exported: moved from this module)
-    LAYOUTS,
-    SPOTS,
+from .backdrop import (
     check_spot,
     add_spots,
     correlated_background,
@@ -26,18 +24,15 @@ from .backdrop import (  # noqa: F401 (re-exported: moved from this module)
     place_interferers,
     render_spot,
 )
-from .draws import BlockNormal, CommonNormal, generator_blocks, tile_rows  # noqa: F401 (re-exported)
+from .draws import generator_blocks, tile_rows
 from .motion import MarkerTruth
 
 __all__ = [
-    "SPOTS",
     "render_spot",
     "correlated_background",
     "place_interferers",
     "add_spots",
     "RotatingMarkerScene",
-    "CommonNormal",
-    "BlockNormal",
     "median_residual",
     "build_scene",
     "COMPENSATIONS",

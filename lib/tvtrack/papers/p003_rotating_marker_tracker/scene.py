@@ -1,6 +1,6 @@
 """TV scene of an object carrying a rotating-emitter marker, seen through interference: the experiment
 (:class:`Scenario`) and its runner (:func:`run_scenario`, :func:`interference_runs`). The truth lives in
-:mod:`.motion` and the image in :mod:`.imaging`; both are re-exported here.
+:mod:`.motion` and the image in :mod:`.imaging`.
 
 Model (Yukhno 2025, eqs. (7)-(13), with the compensation model of the paper card, section 4.2)::
 
@@ -31,40 +31,33 @@ import numpy as np
 
 from .ekf import EKFTracker, ekf_noise_from_bandwidths
 from .loops import RotatingGateTracker, gains_realising, loop_gains, run_closed_loop
-from .motion import (  # noqa: F401 (re-exported: moved from this module)
+from .motion import (
     MOTIONS,
     MarkerTruth,
     marker_truth,
     object_motion,
-    ornstein_uhlenbeck,
 )
 from .draws import generator_blocks, tile_rows
-from .draws import BlockNormal, CommonNormal  # noqa: F401
-from .imaging import COMPENSATIONS, RotatingMarkerScene, build_scene  # noqa: F401
-from .backdrop import SPOTS, add_spots, correlated_background, median_residual, place_interferers, render_spot  # noqa: F401
+from .draws import BlockNormal, CommonNormal
+from .imaging import COMPENSATIONS, build_scene
+from .backdrop import render_spot
 
 __all__ = [
     "render_spot",
-    "correlated_background",
-    "ornstein_uhlenbeck",
     "marker_truth",
     "MarkerTruth",
-    "place_interferers",
-    "add_spots",
     "object_motion",
     "MOTIONS",
     "build_scene",
     "Scenario",
     "scenario_truth",
     "run_scenario",
-    "RotatingMarkerScene",
     "state_errors",
     "interference_runs",
     "CommonNormal",
     "PLACEMENTS",
     "EXPOSURES",
     "COMPENSATIONS",
-    "median_residual",
 ]
 
 

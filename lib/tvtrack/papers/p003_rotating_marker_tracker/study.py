@@ -1,5 +1,5 @@
 """Measurement functions of notebook 003 (what the explorer calls); the direct-count estimators they use live in
-:mod:`.estimators` (re-exported here).
+:mod:`.estimators`.
 
 Two measurement functions, each a pure function of ``(config, seed)`` with every draw from generators seeded by
 ``seed`` (common random numbers: the same streams whatever the configuration):
@@ -30,15 +30,14 @@ from ...projection import as_declared
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
-from .memo import clear_cache, memo, scenario_key
+from .memo import memo, scenario_key
 from .scene import (
     Scenario,
     interference_runs,
     run_scenario,
     state_errors,
 )
-from .estimators import (  # noqa: F401 (re-exported: moved from this module)
-    COMPENSATION_READINGS,
+from .estimators import (
     compensation_factor,
     interval_estimate,
     share_difference,
@@ -46,7 +45,6 @@ from .estimators import (  # noqa: F401 (re-exported: moved from this module)
     extend_grid,
     grid_in_lock,
     fold_distance,
-    log_thresholds,
     loss_share,
     threshold,
     threshold_bound,
@@ -66,14 +64,12 @@ __all__ = [
     "screen_sizes",
     "criterion",
     "loss_share",
-    "log_thresholds",
     "threshold",
     "threshold_bound",
     "threshold_ratio",
     "fold_distance",
     "measure_tracking",
     "measure_interference",
-    "clear_cache",
 ]
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5

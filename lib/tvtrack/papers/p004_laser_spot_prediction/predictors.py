@@ -48,17 +48,6 @@ from ...filters.polynomial import (
     taylor_transition,
 )
 from ._checks import check_steps, check_z
-from .kalman_baselines import (
-    constant_acceleration_forecast,
-    constant_acceleration_model,
-    fit_constant_acceleration,
-    fit_constant_acceleration_folds,
-    fit_singer,
-    fit_singer_folds,
-    kalman_forecast,
-    singer_forecast,
-    singer_model,
-)
 
 __all__ = [
     "forecast_errors",
@@ -70,25 +59,11 @@ __all__ = [
     "g1_floor_forecast",
     "sliding_regression_forecast",
     "spline_forecast",
-    "lag_features",
-    "fit_learned_predictor",
-    "learned_forecast",
-    "constant_acceleration_model",
-    "kalman_forecast",
-    "fit_constant_acceleration",
-    "path_folds",
-    "cross_validated_pick",
     "hold_last",
     "errors_by_path",
     "forecast_rms_ci",
     "error_summary",
     "batch_least_squares_states",
-    "fit_constant_acceleration_folds",
-    "constant_acceleration_forecast",
-    "singer_model",
-    "fit_singer",
-    "fit_singer_folds",
-    "singer_forecast",
 ]
 
 
@@ -424,10 +399,3 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
 
 
 # the learned predictors (scikit-learn networks) and their cross-validation live in .learned
-from .learned import (  # noqa: E402
-    cross_validated_pick,
-    fit_learned_predictor,
-    lag_features,
-    learned_forecast,
-    path_folds,
-)

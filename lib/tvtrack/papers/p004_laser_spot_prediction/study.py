@@ -11,7 +11,7 @@ drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
 
 The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
 Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run. The world a run draws (generator,
-camera, exposure, vibration) is :mod:`.world`, re-exported here; the notebook's studies beyond the claims (scores,
+camera, exposure, vibration) is :mod:`.world`; the notebook's studies beyond the claims (scores,
 measurement budget, model order, horizon) are :mod:`.side_studies`.
 """
 
@@ -32,7 +32,6 @@ from .prediction_study import (
     CLASSICAL,
     PAPER,
     PARTS,
-    SINGER,
     VARIANT,
     Comparison,
     ComparisonSetup,
@@ -42,24 +41,11 @@ from .prediction_study import (
     per_trial_path_mse,
     window_candidates,
 )
-from .derivation import recursion_check, recursion_vs_batch, variance_ratios
+from .derivation import recursion_check, variance_ratios
 from .register import NAMES, WORLD
-from .timing import CLOCKS, frame_time_ms, streaming_frame_times
+from .timing import frame_time_ms
 from .traces import TraceSet
-from .world import (
-    BASE_CAMERA,
-    BASE_SCENE,
-    EXPOSURE_SUBSAMPLES,
-    EXPOSURES,
-    MAX_DRAWS,
-    VIBRATION_HZ,
-    camera_for,
-    exposed_traces,
-    exposure_weights,
-    scene_config,
-    traces_on_sensor,
-    vibration,
-)
+from .world import camera_for, scene_config, traces_on_sensor, vibration
 
 #: The ``floor form`` reading under which the paper's filter is the card's variant floor (position gain bounded).
 VARIANT_FLOOR = "first gain bounded"
@@ -71,16 +57,9 @@ __all__ = [
     "CENTROID",
     "NETWORKS",
     "OPTIMAL",
-    "SINGER",
     "StudySize",
     "screen_size",
     "StudyRun",
-    "BASE_SCENE",
-    "BASE_CAMERA",
-    "EXPOSURE_SUBSAMPLES",
-    "EXPOSURES",
-    "VIBRATION_HZ",
-    "MAX_DRAWS",
     "scene_config",
     "traces_on_sensor",
     "camera_for",
@@ -89,13 +68,8 @@ __all__ = [
     "parts_for",
     "measure",
     "measure_batch",
-    "exposure_weights",
-    "exposed_traces",
     "vibration",
     "late_rms_ratio",
-    "streaming_frame_times",
-    "CLOCKS",
-    "recursion_vs_batch",
     "variance_ratios",
     "clear_cache",
 ]

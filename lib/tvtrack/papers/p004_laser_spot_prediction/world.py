@@ -1,6 +1,6 @@
 """The world of one run of study 004 (Kokryatska and Hrynchyshyn 2005): the beam-wander generator and the camera at
 a register configuration, the exposure readings, the mount vibration and the paths drawn until the spot stays on the
-sensor. :mod:`.study` builds a run's scene from them (and re-exports them).
+sensor. :mod:`.study` builds a run's scene from them.
 """
 
 from __future__ import annotations
