@@ -286,17 +286,26 @@ def _defined(body: list[ast.stmt]) -> set[str]:
 
 
 def facade_imports(root: Path) -> list[str]:
-    """``"importer: facade.name"`` for every name a module under ``root`` imports from another module that does not
-    define it but imported it itself (a re-export: the import points at a facade, not where the name lives)."""
+    """``"importer: facade.name"`` for every name a module under ``root`` takes from another module that does not
+    define it but imported it itself (``from facade import name`` or ``facade.name`` on a module it imported): the
+    import points at a facade, not where the name lives."""
     trees = _modules(root)
     packages = {m for m in trees if (root.parent / Path(*m.split("."), "__init__.py")).exists()}
     defined = {m: _defined(t.body) for m, t in trees.items()}
     out = set()
     for m, tree in trees.items():
-        for base, name, _ in _from_imports(m, tree, m in packages):
-            if base in trees and base != m and name != "*" and f"{base}.{name}" not in trees:
-                if name not in defined[base]:
-                    out.add(f"{m}: {base}.{name}")
+        bound = {}  # local name -> module it stands for
+        for base, name, asname in _from_imports(m, tree, m in packages):
+            if f"{base}.{name}" in trees:
+                bound[asname] = f"{base}.{name}"
+            elif base in trees and base != m and name != "*" and name not in defined[base]:
+                out.add(f"{m}: {base}.{name}")
+        bound.update({a.asname: a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname})
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in bound:
+                owner = bound[node.value.id]
+                if owner in trees and f"{owner}.{node.attr}" not in trees and node.attr not in defined[owner]:
+                    out.add(f"{m}: {owner}.{node.attr}")
     return sorted(out)
 
 
@@ -370,7 +379,9 @@ def test_the_seam_rules_see_planted_offences(tmp_path):
         "from ..a import _hidden, shown\nfrom .. import a\nimport pkg.a as aa\n\n"
         "def helper():\n    return a._hidden + aa._hidden + shown\n"
     )
-    (pkg / "c.py").write_text("from .sub import helper\nfrom .sub.b import shown\nfrom .a import shown as s\n")
+    (pkg / "c.py").write_text(
+        "from .sub import helper\nfrom .sub.b import shown\nfrom .a import shown as s\nfrom .sub import b\n\nx = b.shown\n"
+    )
     assert private_imports(pkg) == ["pkg.sub.b: pkg.a._hidden"]
-    assert facade_imports(pkg) == ["pkg.c: pkg.sub.b.shown", "pkg.c: pkg.sub.helper"]
+    assert facade_imports(pkg) == ["pkg.c: pkg.sub.b.shown", "pkg.c: pkg.sub.helper"]  # b.shown: an attribute
     assert reexports(pkg) == ["pkg.c: helper", "pkg.c: s", "pkg.c: shown", "pkg.sub.b: _hidden", "pkg.sub: helper"]

@@ -34,6 +34,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import kalman_baselines as kb
+from . import learned as lm
 from . import predictors as pr
 
 __all__ = [
@@ -231,12 +233,12 @@ def tuned_forecast(candidates, make, z, ref, folds, s: ComparisonSetup, more=())
     candidates, more = list(candidates), [c for c in more if c > max(candidates)]
     fcs = [make(c) for c in candidates]
     mse = np.stack([per_trial_path_mse(f, ref, s.steps, s.start) for f in fcs])  # (C, trials, P)
-    pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+    pick = lm.cross_validated_pick(mse.mean(axis=1), folds)
     while more and np.any(pick == len(candidates) - 1):
         candidates.append(more.pop(0))
         fcs.append(make(candidates[-1]))
         mse = np.concatenate([mse, per_trial_path_mse(fcs[-1], ref, s.steps, s.start)[None]])
-        pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+        pick = lm.cross_validated_pick(mse.mean(axis=1), folds)
     P = z.shape[1]
     fc = np.stack([fcs[pick[p]][:, p] for p in range(P)], axis=1)
     return fc, mse[pick, :, np.arange(P)].T, np.asarray(candidates)[pick], fcs, mse
@@ -277,9 +279,9 @@ def tune_learned_lags(kind: str, z, reference, folds, s: ComparisonSetup, rng: n
     ref = np.broadcast_to(reference, z.shape)
     for c, L in enumerate(grid):
         for g, grp in enumerate(groups):
-            model = pr.fit_learned_predictor(kind, z[0, grp], L, s.steps, seed=int(seeds[c, g]), **kw)
+            model = lm.fit_learned_predictor(kind, z[0, grp], L, s.steps, seed=int(seeds[c, g]), **kw)
             out = np.setdiff1d(np.arange(P), grp)
-            f = pr.learned_forecast(model, z[:1, out])
+            f = lm.learned_forecast(model, z[:1, out])
             per_path[c, g, out] = per_trial_path_mse(f, ref[:1, out], s.steps, s.start)[0]
     loss = np.empty((K, len(grid)))
     for i in range(K):
@@ -295,7 +297,7 @@ def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Ge
     lagged inputs in fold ``i`` (default ``s.learned_lags`` in every fold)."""
     lags = [s.learned_lags] * len(folds) if lags is None else [int(L) for L in lags]
     return [
-        pr.fit_learned_predictor(kind, z[0, train], L, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw)
+        lm.fit_learned_predictor(kind, z[0, train], L, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw)
         for (train, _), L in zip(folds, lags)
     ]
 
@@ -304,7 +306,7 @@ def apply_learned_folds(models, z, folds) -> np.ndarray:
     """Forecasts of each fold's model on its test paths (all trials)."""
     out = np.full(z.shape, np.nan)
     for model, (_, test) in zip(models, folds):
-        out[:, test] = pr.learned_forecast(model, z[:, test])
+        out[:, test] = lm.learned_forecast(model, z[:, test])
     return out
 
 
@@ -430,13 +432,13 @@ def _kalman(z, reference, folds, s: ComparisonSetup, out, fitted=None) -> None:
     m = s.steps
     if fitted is None:
         fitted = (
-            pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
-            pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
+            kb.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
+            kb.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
         )
     fits, singer_fits = fitted
-    fcs[CA_KALMAN] = pr.constant_acceleration_forecast(z, fits, folds, m)
+    fcs[CA_KALMAN] = kb.constant_acceleration_forecast(z, fits, folds, m)
     mse[CA_KALMAN] = fixed[CA_KALMAN] = per_trial_path_mse(fcs[CA_KALMAN], reference, m, s.start)
     chosen[CA_KALMAN] = np.array(fits)
-    fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)
+    fcs[SINGER] = kb.singer_forecast(z, singer_fits, folds, m)
     mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
     chosen[SINGER] = np.array(singer_fits)

@@ -25,6 +25,7 @@ import numpy as np
 
 from ...estimate import Estimate
 from ...projection import as_declared, claim_groups
+from . import learned as lm
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
 from .camera import SpotCamera, track_spot
@@ -283,7 +284,7 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
     size = run.size
     s = comparison_setup(config, size)
     m = s.steps
-    folds = pr.path_folds(size.n_paths, size.n_folds)
+    folds = lm.path_folds(size.n_paths, size.n_folds)
     rng = np.random.default_rng(_streams(seed)[3])
     cmp = compare_methods(run.z, run.z_meas, folds, s, rng, parts=parts & PARTS)
     fc = dict(cmp.forecasts)
