@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import prediction_study as ps
-from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction import kalman_baselines
 from tvtrack.papers.p004_laser_spot_prediction import learned
 
@@ -74,7 +73,7 @@ def test_learned_models_never_train_on_their_test_paths(monkeypatch):
         seen.append(np.array(z_train, copy=True))
         return real(kind, z_train, *args, **kw)
 
-    monkeypatch.setattr(pr, "fit_learned_predictor", spy)
+    monkeypatch.setattr(learned, "fit_learned_predictor", spy)
     rng = np.random.default_rng(6)
     z = 60 + np.cumsum(rng.standard_normal((1, 6, 2, 120)), axis=-1) * 0.1
     z += np.arange(6)[None, :, None, None] * 1000.0  # every path identifiable by its level
