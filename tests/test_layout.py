@@ -300,7 +300,9 @@ def facade_imports(root: Path) -> list[str]:
                 bound[asname] = f"{base}.{name}"
             elif base in trees and base != m and name != "*" and name not in defined[base]:
                 out.add(f"{m}: {base}.{name}")
-        bound.update({a.asname: a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname})
+        bound.update(
+            {a.asname: a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname}
+        )
         for node in ast.walk(tree):
             if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in bound:
                 owner = bound[node.value.id]
