@@ -33,7 +33,7 @@ screened against 180 unscreened). A default replicate costs 6.5-9.5 s of CPU, of
 What more a JIT would save (measured 2026-11-25, load ~3, before the compiled E-step): the per-frame EM at
 Delta = 5 sigma on 40 trials (static, 2 objects) takes 0.70 s of CPU, almost all of it the loop passes needed by the
 7 trials that reach the 5000-step cap: 139 us per pass whatever the number of trials still iterating
-(``_axis_tables`` 0.46 s, ``_e_step`` 0.18 s, ``_m_step`` 0.09 s of a 1.36 s profiled run). The compiled E-step
+(``axis_tables`` 0.46 s, ``expectation_step`` 0.18 s, ``maximisation_step`` 0.09 s of a 1.36 s profiled run). The compiled E-step
 removes the first two; the M-step, the SQUAREM extrapolation and the convergence test still run in NumPy per pass.
 A per-trial compiled E+M loop (about 1 us a pass for a capped trial) would save an estimated further 25-35 % of
 002's CPU; not done (the EM's accelerated, MAP, sigma- and weight-estimating variants would all need compiled twins
@@ -47,7 +47,8 @@ import pytest
 
 from tvtrack import jit
 from tvtrack.papers.p002_unified_location_em import study
-from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
+from tvtrack.papers.p002_unified_location_em.em import unified_location_em
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,

@@ -32,7 +32,7 @@ from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centr
 from tvtrack.papers.p004_laser_spot_prediction.predictors import growing_memory_forecast
 from tvtrack.papers.p004_laser_spot_prediction.traces import DATA_DIR
 from tvtrack.render import gate_origin, gaussian_spot, sensor_readout
-from tvtrack.papers.p004_laser_spot_prediction.beam_wander import SpotCamera
+from tvtrack.papers.p004_laser_spot_prediction.camera import SpotCamera
 from tvtrack.papers.p004_laser_spot_prediction.traces import load_traces
 
 TARGET_FRAMES_PER_S = 50_000

@@ -10,6 +10,7 @@ import numpy as np
 from scipy import stats
 
 from tvtrack import montecarlo as mc
+from tvtrack import resampling
 
 SIZES = (5, 10, 15, 30, 48, 100)
 N_EXPERIMENTS = 2000
@@ -74,15 +75,15 @@ def intervals(helper: str, data, method: str = "new"):
     the interval it used before (``"BCa"`` bootstrap via scipy, batched; for ``"mean"`` Student t)."""
     rng = np.random.default_rng(mc.BOOTSTRAP_SEED)
     if method == "new" and helper == "mean_square":
-        lo, hi, _ = mc._studentized_mean_interval(data, 0.95, mc.N_BOOTSTRAP, rng)
+        lo, hi, _ = resampling.studentized_mean_interval(data, 0.95, mc.N_BOOTSTRAP, rng)
         return np.maximum(lo, 0.0), hi
     if method == "new" and helper == "ratio":
-        lo, hi, _ = mc._expanded_percentile_ratio(data[0], data[1], 0.95, True, mc.N_BOOTSTRAP, rng)
+        lo, hi, _ = resampling.expanded_percentile_ratio(data[0], data[1], 0.95, True, mc.N_BOOTSTRAP, rng)
         return lo, hi
     if helper == "mean":
         x = data
         if method == "new":
-            lo, hi, _ = mc._studentized_mean_interval(x, 0.95, mc.N_BOOTSTRAP, rng)
+            lo, hi, _ = resampling.studentized_mean_interval(x, 0.95, mc.N_BOOTSTRAP, rng)
             return lo, hi
         half = stats.t.ppf(0.975, x.shape[1] - 1) * x.std(axis=1, ddof=1) / np.sqrt(x.shape[1])
         return x.mean(axis=1) - half, x.mean(axis=1) + half

@@ -102,7 +102,7 @@ def _p000():
 
 
 def _p001():
-    from tvtrack.papers.p001_maneuver_occlusion_kf import study
+    from tvtrack.papers.p001_maneuver_occlusion_kf import curves, spherical, study
     from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
 
     reg = build_register()
@@ -128,8 +128,8 @@ def _p001():
     fns = {
         "detection": study.measure_detection,
         "tradeoff": study.measure_tradeoff,
-        "curves": study.measure_curves,
-        "spherical": study.measure_spherical,
+        "curves": curves.measure_curves,
+        "spherical": spherical.measure_spherical,
     }
     return [
         (functools.partial(fn, sizes=sizes), group_register(reg, g), DEPENDS, list(GROUPS[g])) for g, fn in fns.items()

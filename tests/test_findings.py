@@ -102,7 +102,7 @@ def _sources(record: dict) -> dict:
 
 
 def _shown_rule(record: dict) -> dict:
-    rule, measured = tvtrack.wording._in_force(record.get("rule") or {}, record.get("measured"))
+    rule, measured = tvtrack.wording.rule_in_force(record.get("rule") or {}, record.get("measured"))
     if rule.get("kind") == "all_of":
         rule = (rule.get("parts") or {}).get(main_part(record)) or {}
     return rule

@@ -238,7 +238,8 @@ def test_first_screen_orders_failures_then_dependent_verdicts_and_reads_new_reco
 def test_report_has_the_forest_plot_and_the_robustness_picture(synthetic_runs, tmp_path):
     from PIL import Image
 
-    from tvtrack.pipeline.report import collect_runs, forest_items, robustness_matrix
+    from tvtrack.pipeline.report import collect_runs, forest_items
+    from tvtrack.pipeline.figures import robustness_matrix
 
     text = write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"]).read_text()
     assert "![forest plot" in text and "![robustness" in text

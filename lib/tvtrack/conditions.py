@@ -31,8 +31,9 @@ from typing import Any, Callable, Mapping, Sequence
 from .labels import part_judgements, part_pairs
 from .pooling import pool
 from .register import project
-from .montecarlo import Estimate
-from .verdicts import Rule, calibrated, is_decisive
+from .estimate import Estimate
+from .verdicts import Rule, is_decisive
+from .measured import calibrated
 
 __all__ = [
     "Run",

@@ -16,7 +16,15 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 
 from .estimate import Estimate
 
-__all__ = ["COVERAGE", "COVERAGE_FLOOR", "coverage_at", "stated_coverage", "coverage_reached", "widen_to_nominal"]
+__all__ = [
+    "COVERAGE",
+    "COVERAGE_FLOOR",
+    "coverage_at",
+    "coverage_note",
+    "stated_coverage",
+    "coverage_reached",
+    "widen_to_nominal",
+]
 
 #: Coverage of the 95 % intervals measured by simulation (2000 experiments per cell, re-measured by
 #: ``tests/test_intervals.py``, which fails if a value here drifts): helper -> {n: (skewed, heavy)}.
@@ -74,7 +82,23 @@ def coverage_at(helper: str, n: int) -> tuple[float, float]:
     return table[below[-1]] if below else (float("nan"), float("nan"))
 
 
-def _coverage_text(helper: str, n: int) -> str:
+def coverage_note(helper: str, n: int) -> str:
+    """The words an interval's ``method`` carries about its measured coverage (read back by
+    :func:`stated_coverage`).
+
+    Parameters
+    ----------
+    helper : str
+        A key of :data:`COVERAGE` (the interval helper, e.g. ``"mean t"``).
+    n : int
+        The sample size (trials or clusters).
+
+    Returns
+    -------
+    str
+        ``"coverage 0.944 at n = 30 (skewed samples; heavy tails 0.923)"``, or ``"coverage unmeasured at n = ..."``
+        below the smallest size measured.
+    """
     skewed, heavy = coverage_at(helper, n)
     if np.isnan(skewed):
         return f"coverage unmeasured at n = {n} (below n = {min(COVERAGE[helper])}, the smallest size measured)"

@@ -10,7 +10,19 @@ from typing import Any, Mapping, Sequence
 
 from .estimate import Estimate
 
-__all__ = ["as_estimate", "calibrated", "is_undecided", "runs_to_decide", "with_lost_runs", "lost_runs"]
+__all__ = [
+    "as_estimate",
+    "calibrated",
+    "is_undecided",
+    "runs_to_decide",
+    "with_lost_runs",
+    "lost_runs",
+    "interval_of",
+    "why_undecided",
+    "short_number",
+    "show_estimate",
+    "decide_note",
+]
 
 
 def with_lost_runs(value: Any, in_lock: Any, lost: int, runs: int) -> dict:
@@ -72,7 +84,7 @@ def calibrated(measured: Any) -> Estimate:
     """The estimate a rule decides on: an interval whose helper states a measured coverage short of its
     nominal level at this sample size (:func:`tvtrack.montecarlo.coverage_reached`) is widened to it
     (:func:`tvtrack.montecarlo.widen_to_nominal`; the method says so); others are returned as they are."""
-    from .montecarlo import coverage_reached, stated_coverage, widen_to_nominal
+    from .coverage import coverage_reached, stated_coverage, widen_to_nominal
 
     e = as_estimate(measured)
     s = stated_coverage(e)
@@ -85,7 +97,7 @@ def is_undecided(measured: Any) -> bool:
     """True when an estimate cannot decide anything: NaN value, NaN interval or a degenerate interval
     (``ci_low == ci_high``) of a random quantity, a value extrapolated beyond the data, or an interval
     whose coverage at its sample size was never measured ("coverage unmeasured")."""
-    from .montecarlo import stated_coverage
+    from .coverage import stated_coverage
 
     e = as_estimate(measured)
     if getattr(e, "extrapolated", False) or math.isnan(e.value):
@@ -100,14 +112,38 @@ def is_undecided(measured: Any) -> bool:
     return a == b
 
 
-def _interval(e: Estimate) -> tuple[float, float]:
-    """The estimate's interval (the point itself for an exact number)."""
+def interval_of(e: Estimate) -> tuple[float, float]:
+    """The interval a rule judges.
+
+    Parameters
+    ----------
+    e : Estimate
+        A measured value (in its own unit).
+
+    Returns
+    -------
+    tuple of float
+        ``(low, high)`` in the estimate's unit: its interval, or the point itself for an exact number whose
+        interval is NaN.
+    """
     if _is_exact(e) and (math.isnan(e.ci_low) or math.isnan(e.ci_high)):
         return e.value, e.value
     return e.ci_low, e.ci_high
 
 
-def _why_undecided(e: Estimate) -> str:
+def why_undecided(e: Estimate) -> str:
+    """Why an undecided estimate (:func:`is_undecided`) cannot decide a rule, in words for a verdict's reason.
+
+    Parameters
+    ----------
+    e : Estimate
+        An estimate :func:`is_undecided` holds undecided.
+
+    Returns
+    -------
+    str
+        One clause: extrapolated, not measured, coverage unmeasured, or an undefined or degenerate interval.
+    """
     if getattr(e, "extrapolated", False):
         return "extrapolated beyond the data"
     if math.isnan(e.value):
@@ -117,17 +153,33 @@ def _why_undecided(e: Estimate) -> str:
     return "its interval is undefined or degenerate"
 
 
-def _g(x: float) -> str:
+def short_number(x: float) -> str:
+    """A number as a verdict's words show it: four significant digits (``format(x, ".4g")``), unit-free."""
     return f"{x:.4g}"
 
 
-def _show(e: Estimate, unit: str = "") -> str:
-    a, b = _interval(e)
+def show_estimate(e: Estimate, unit: str = "") -> str:
+    """An estimate in a verdict's words: ``"value [low, high] unit"``, or the bare value for an exact number.
+
+    Parameters
+    ----------
+    e : Estimate
+        The measured value.
+    unit : str
+        Its unit, appended after the numbers (none when empty).
+
+    Returns
+    -------
+    str
+        The value and its interval (:func:`interval_of`) with :func:`short_number`, and a note when the interval
+        was widened to its nominal coverage.
+    """
+    a, b = interval_of(e)
     u = f" {unit}" if unit else ""
     if math.isnan(a) or math.isnan(b) or a == b == e.value:
-        return f"{_g(e.value)}{u}"
+        return f"{short_number(e.value)}{u}"
     widened = " (interval widened to its nominal coverage)" if "widened" in (e.method or "") else ""
-    return f"{_g(e.value)} [{_g(a)}, {_g(b)}]{u}{widened}"
+    return f"{short_number(e.value)} [{short_number(a)}, {short_number(b)}]{u}{widened}"
 
 
 def _zero_count(e: Estimate) -> bool:
@@ -148,7 +200,7 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
     point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
     """
-    a, b = _interval(e)
+    a, b = interval_of(e)
     v = e.value
     inside = [c for c in edges if c is not None and math.isfinite(c) and a < c < b]
     if not inside:
@@ -174,7 +226,19 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     return max(factors)
 
 
-def _decide_note(factor: float) -> str:
+def decide_note(factor: float) -> str:
+    """The words of a verdict that a straddled band edge leaves undecided.
+
+    Parameters
+    ----------
+    factor : float
+        The multiple of the runs projected to decide it (:func:`runs_to_decide`; ``inf`` when none would).
+
+    Returns
+    -------
+    str
+        ``"about F times the runs would decide it"``, or that no number of runs would.
+    """
     if not math.isfinite(factor):
         return "no number of runs is projected to decide it (the point sits on the edge)"
     return f"about {factor:.2g} times the runs would decide it"

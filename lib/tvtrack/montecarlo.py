@@ -18,14 +18,14 @@ from .counts import events_statement, mark_extrapolated, proportion_ci, rate_fro
 from .coverage import (
     COVERAGE,
     COVERAGE_FLOOR,
-    _coverage_text,
+    coverage_note,
     coverage_at,
     coverage_reached,
     stated_coverage,
     widen_to_nominal,
 )
 from .estimate import Estimate
-from .resampling import _expanded_alpha, _expanded_percentile_ratio, _grouped_bootstrap, _studentized_mean_interval
+from .resampling import expanded_alpha, expanded_percentile_ratio, grouped_bootstrap, studentized_mean_interval
 
 __all__ = [
     "make_rng",
@@ -102,7 +102,7 @@ def mean_ci(samples, confidence: float = 0.95, method: str = "t", rng: np.random
         return Estimate(mean, 0.0, mean, mean, n, confidence, "degenerate (all samples equal)")
     if method == "bootstrap-t":
         rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
-        lo, hi, _ = _studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
+        lo, hi, _ = studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
         return Estimate(
             mean,
             se,
@@ -110,10 +110,10 @@ def mean_ci(samples, confidence: float = 0.95, method: str = "t", rng: np.random
             float(hi[0]),
             n,
             confidence,
-            f"bootstrap-t ({N_BOOTSTRAP} resamples); " + _coverage_text("mean bootstrap-t", n),
+            f"bootstrap-t ({N_BOOTSTRAP} resamples); " + coverage_note("mean bootstrap-t", n),
         )
     half = float(scipy.stats.t.ppf(0.5 + confidence / 2, n - 1) * se)
-    text = "Student t" + (f"; {_coverage_text('mean t', n)}" if n < 100 else "")
+    text = "Student t" + (f"; {coverage_note('mean t', n)}" if n < 100 else "")
     return Estimate(mean, se, mean - half, mean + half, n, confidence, text)
 
 
@@ -175,10 +175,10 @@ def bootstrap_ci(
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant sample)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     if groups is not None:
-        return _grouped_bootstrap(data, statistic, value, groups, paired, n_resamples, confidence, rng, method)
+        return grouped_bootstrap(data, statistic, value, groups, paired, n_resamples, confidence, rng, method)
     level = confidence
     if method == "expanded percentile":
-        level = 1 - _expanded_alpha(1 - confidence, n)
+        level = 1 - expanded_alpha(1 - confidence, n)
     elif method not in ("BCa", "percentile"):
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
     res = scipy.stats.bootstrap(
@@ -231,7 +231,7 @@ def mean_square_ci(
     if np.ptp(x) == 0:
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant sample)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
-    lo, hi, sd = _studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
+    lo, hi, sd = studentized_mean_interval(x[None], confidence, N_BOOTSTRAP, rng)
     return Estimate(
         value,
         float(sd[0]),
@@ -239,7 +239,7 @@ def mean_square_ci(
         float(hi[0]),
         n,
         confidence,
-        f"bootstrap-t ({N_BOOTSTRAP} resamples); {_coverage_text('mean_square', n)}",
+        f"bootstrap-t ({N_BOOTSTRAP} resamples); {coverage_note('mean_square', n)}",
     )
 
 
@@ -346,7 +346,7 @@ def ratio_ci(
     if np.ptp(a) == 0 and np.ptp(b) == 0:
         return Estimate(value, 0.0, value, value, n, confidence, "exact (constant samples)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
-    lo, hi, sd = _expanded_percentile_ratio(a[None], b[None], confidence, paired, N_BOOTSTRAP, rng)
+    lo, hi, sd = expanded_percentile_ratio(a[None], b[None], confidence, paired, N_BOOTSTRAP, rng)
     return Estimate(
         value,
         float(sd[0]),
@@ -355,7 +355,7 @@ def ratio_ci(
         n,
         confidence,
         f"expanded percentile bootstrap ({N_BOOTSTRAP} resamples{', paired' if paired else ''}); "
-        + _coverage_text("ratio", n),
+        + coverage_note("ratio", n),
     )
 
 

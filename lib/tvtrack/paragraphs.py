@@ -14,8 +14,8 @@ from typing import Mapping
 from .wording import (
     PROVISIONAL,
     SIDE_ORDER,
-    _as_dict,
-    _phrases,
+    claim_fields,
+    register_phrases,
     at_profile,
     claim_flips,
     not_checkable_reason,
@@ -46,10 +46,10 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]
     count: dict[str, int] = Counter()
     titles: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
     for c in claims:
-        c = _as_dict(c)
+        c = claim_fields(c)
         if c.get("verdict") == "not checkable":
             continue
-        known = _phrases(c.get("robustness") or {})
+        known = register_phrases(c.get("robustness") or {})
         seen_sides, seen_titles = set(), set()
         for f in claim_flips(c):
             side = f["side"] if f["side"] in SIDE_ORDER else "world"
@@ -123,9 +123,9 @@ def _statement(c: Mapping) -> str:
 def _why_not(c: Mapping) -> str:
     """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
     direction) and, where one is named, the strongest change under which it would."""
-    from .wording import _in_force, main_part
+    from .wording import rule_in_force, main_part
 
-    rule, measured = _in_force(dict(c.get("rule") or {}), c.get("measured"))
+    rule, measured = rule_in_force(dict(c.get("rule") or {}), c.get("measured"))
     name = main_part(c)
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)

@@ -98,9 +98,9 @@ def _spec_point(measured, part: str | None, rule: dict) -> tuple[float, float, f
     """``(value, low, high)`` of a configuration's measured value (or its part's); ``None`` for a vector."""
     import math
 
-    from .wording import _in_force
+    from .wording import rule_in_force
 
-    rule, measured = _in_force(rule, measured)
+    rule, measured = rule_in_force(rule, measured)
     if part is not None and rule.get("kind") == "all_of":
         measured = measured.get(part) if isinstance(measured, dict) else None
     if isinstance(measured, dict) and "value" in measured:
@@ -222,14 +222,14 @@ def specification_curve(record: dict, part: str | None = None):
     """
     import matplotlib.pyplot as plt
 
-    from .wording import _in_force
+    from .wording import rule_in_force
 
     if not isinstance(record, dict):  # a Claim object: its JSON form
         from .results import to_jsonable
 
         record = to_jsonable(vars(record))
     part = _spec_part(record, part)
-    rule = _in_force(record.get("rule") or {}, record.get("measured"))[0]
+    rule = rule_in_force(record.get("rule") or {}, record.get("measured"))[0]
     prule = (rule.get("parts") or {}).get(part, rule) if part and rule.get("kind") == "all_of" else rule
     rows = specification_rows(record, part)
     numeric = any(r["point"] is not None for r in rows)
@@ -421,7 +421,7 @@ def errorbars(ax, x, estimates, *, horizontal: bool = False, **style):
     """
     import numpy as np
 
-    from .verdicts import as_estimate
+    from .measured import as_estimate
 
     es = [as_estimate(e) for e in estimates]
     v = np.array([e.value for e in es], dtype=float)

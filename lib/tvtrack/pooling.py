@@ -9,9 +9,9 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
-from .montecarlo import Estimate
+from .estimate import Estimate
 from .measured import lost_runs
-from .verdicts import calibrated
+from .measured import calibrated
 
 __all__ = ["pool"]
 
@@ -27,7 +27,7 @@ def _is_count(e: Estimate) -> bool:
 def _pool_counts(es: list[Estimate]) -> Estimate:
     """Shares from direct counts pool as counts: ``sum k`` of ``sum n``, with the Clopper-Pearson interval (zero or
     all events: the one-sided bound they certify), never by averaging intervals (which under-covers for zero events)."""
-    from .montecarlo import proportion_ci, zero_events_bound
+    from .counts import proportion_ci, zero_events_bound
 
     n = int(sum(e.n for e in es))
     k = int(sum(round(e.value * e.n) for e in es))

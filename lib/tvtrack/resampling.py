@@ -1,6 +1,7 @@
 """The bootstrap machinery behind :mod:`tvtrack.montecarlo`'s intervals: resample weights in memory-bounded
 blocks, the studentised (bootstrap-t) interval of a mean, the expanded percentile interval of a ratio
-(Hesterberg 2015) and the cluster bootstrap. Internal: use the interval functions of :mod:`tvtrack.montecarlo`."""
+(Hesterberg 2015) and the cluster bootstrap. A notebook uses the interval functions of :mod:`tvtrack.montecarlo`,
+which call these."""
 
 from __future__ import annotations
 
@@ -9,11 +10,26 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 
 from .estimate import Estimate
 
+__all__ = ["expanded_alpha", "studentized_mean_interval", "expanded_percentile_ratio", "grouped_bootstrap"]
 
-def _expanded_alpha(alpha: float, n: int) -> float:
+
+def expanded_alpha(alpha: float, n: int) -> float:
     """Tail probability of the expanded percentile bootstrap (Hesterberg 2015, "What teachers should
     know about the bootstrap", sec. 5.4): ``2 Phi(-sqrt(n/(n-1)) t_{alpha/2, n-1})``, which widens
-    the percentile interval by the t and ``n/(n-1)`` factors its narrowness at small n lacks."""
+    the percentile interval by the t and ``n/(n-1)`` factors its narrowness at small n lacks.
+
+    Parameters
+    ----------
+    alpha : float
+        The nominal two-sided tail probability (``1 - confidence``).
+    n : int
+        The sample size (at least 2).
+
+    Returns
+    -------
+    float
+        The smaller tail probability whose percentile interval the expanded method reads.
+    """
     return float(2 * scipy.stats.norm.cdf(np.sqrt(n / (n - 1)) * scipy.stats.t.ppf(alpha / 2, n - 1)))
 
 
@@ -35,7 +51,7 @@ def _blocks(n_resamples: int, width: int):
     return [slice(j, min(j + step, n_resamples)) for j in range(0, n_resamples, step)]
 
 
-def _studentized_mean_interval(
+def studentized_mean_interval(
     x: np.ndarray, confidence: float, n_resamples: int, rng: np.random.Generator
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bootstrap-t (studentised) interval of the mean of each row of ``x`` (R, n).
@@ -84,12 +100,31 @@ def _ratio_replicates(
     return out
 
 
-def _expanded_percentile_ratio(
+def expanded_percentile_ratio(
     a: np.ndarray, b: np.ndarray, confidence: float, paired: bool, n_resamples: int, rng: np.random.Generator
 ):
-    """Expanded percentile interval of ``mean(a) / mean(b)`` per row: ``lo, hi, se_boot`` (R,)."""
+    """Expanded percentile interval of ``mean(a) / mean(b)`` per row (Hesterberg 2015; :func:`expanded_alpha`).
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray
+        Samples (R, n) of numerator and denominator, in any one unit each.
+    confidence : float
+        The nominal coverage (e.g. 0.95).
+    paired : bool
+        Resample ``a`` and ``b`` jointly (common random numbers) or independently.
+    n_resamples : int
+        Bootstrap resamples.
+    rng : numpy.random.Generator
+        The seeded generator the resamples are drawn from.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``lo, hi, se_boot``, each (R,), in the unit of the ratio.
+    """
     n = min(a.shape[1], b.shape[1])
-    a2 = _expanded_alpha(1 - confidence, n) / 2
+    a2 = expanded_alpha(1 - confidence, n) / 2
     boot = _ratio_replicates(a, b, paired, n_resamples, rng)
     lo, hi = _quantiles(boot, [a2, 1 - a2])
     with np.errstate(invalid="ignore"):
@@ -124,7 +159,7 @@ def _cluster_statistics(data, statistic, members, picks) -> np.ndarray:
         )
 
 
-def _grouped_bootstrap(
+def grouped_bootstrap(
     data,
     statistic,
     value: float,
@@ -135,8 +170,35 @@ def _grouped_bootstrap(
     rng: np.random.Generator,
     method: str,
 ) -> Estimate:
-    """Cluster bootstrap of :func:`bootstrap_ci`: whole clusters resampled with replacement, jointly
-    across paired samples (one label array) or independently per sample (one label array each)."""
+    """Cluster bootstrap of :func:`tvtrack.montecarlo.bootstrap_ci`: whole clusters resampled with replacement,
+    jointly across paired samples (one label array) or independently per sample (one label array each).
+
+    Parameters
+    ----------
+    data : sequence of array_like
+        The samples ``statistic`` reads (one per argument).
+    statistic : callable
+        ``statistic(*samples) -> float``, in the unit of the result.
+    value : float
+        The statistic on the data as they are.
+    groups : array_like or sequence of array_like
+        Cluster labels of the trials: one array for all samples, or one per sample.
+    paired : bool
+        Resample the samples' clusters jointly.
+    n_resamples : int
+        Bootstrap resamples.
+    confidence : float
+        The nominal coverage.
+    rng : numpy.random.Generator
+        The seeded generator the resamples are drawn from.
+    method : str
+        The interval method, ``"percentile"`` or ``"expanded"`` (as :func:`tvtrack.montecarlo.bootstrap_ci`).
+
+    Returns
+    -------
+    Estimate
+        The value with its cluster-bootstrap interval.
+    """
     labels = (
         [np.asarray(groups).ravel()] * len(data)
         if paired or np.ndim(groups[0]) == 0
@@ -161,7 +223,7 @@ def _grouped_bootstrap(
     if method == "percentile":
         probs = [a / 2, 1 - a / 2]
     elif method == "expanded percentile":
-        a2 = _expanded_alpha(a, C) / 2
+        a2 = expanded_alpha(a, C) / 2
         probs = [a2, 1 - a2]
     elif method == "BCa":
         if not paired:

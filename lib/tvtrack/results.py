@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from .montecarlo import Estimate
+from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule

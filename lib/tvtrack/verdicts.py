@@ -31,13 +31,13 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-from .montecarlo import Estimate
+from .estimate import Estimate
 from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated, is_undecided, runs_to_decide
-    _decide_note,
-    _g,
-    _interval,
-    _show,
-    _why_undecided,
+    decide_note,
+    short_number,
+    interval_of,
+    show_estimate,
+    why_undecided,
     as_estimate,
     calibrated,
     is_undecided,
@@ -160,10 +160,10 @@ class InBand(Rule):
     def _band(self) -> str:
         u = f" {self.unit}" if self.unit else ""
         if self.low is None:
-            return f"at most {_g(self.high)}{u}"
+            return f"at most {short_number(self.high)}{u}"
         if self.high is None:
-            return f"at least {_g(self.low)}{u}"
-        return f"in [{_g(self.low)}, {_g(self.high)}]{u}"
+            return f"at least {short_number(self.low)}{u}"
+        return f"in [{short_number(self.low)}, {short_number(self.high)}]{u}"
 
     def text(self) -> str:
         t = (
@@ -182,10 +182,10 @@ class InBand(Rule):
 
     def judge(self, measured):
         e = calibrated(measured)
-        m = _show(e, self.unit)
+        m = show_estimate(e, self.unit)
         if is_undecided(e):
-            return Judgement("undecided", f"{self.quantity} = {m}: {_why_undecided(e)}, so it cannot decide", False)
-        a, b = _interval(e)
+            return Judgement("undecided", f"{self.quantity} = {m}: {why_undecided(e)}, so it cannot decide", False)
+        a, b = interval_of(e)
         lo = -math.inf if self.low is None else self.low
         hi = math.inf if self.high is None else self.high
         if lo <= a and b <= hi:
@@ -202,7 +202,7 @@ class InBand(Rule):
         f = runs_to_decide(e, (self.low, self.high))
         return Judgement(
             "undecided",
-            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): {_decide_note(f)}",
+            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): {decide_note(f)}",
             False,
             f,
         )
@@ -227,8 +227,8 @@ class WithinFactor(InBand):
     def _band(self) -> str:
         u = f" {self.unit}" if self.unit else ""
         return (
-            f"within a factor {_g(self.factor)} of the paper's {_g(self.paper_value)}{u} "
-            f"([{_g(self.low)}, {_g(self.high)}])"
+            f"within a factor {short_number(self.factor)} of the paper's {short_number(self.paper_value)}{u} "
+            f"([{short_number(self.low)}, {short_number(self.high)}])"
         )
 
     def params(self) -> dict:
@@ -271,8 +271,8 @@ class Ordering(Rule):
         how = "paired" if self.paired else "unpaired (independent samples)"
         return (
             f"{self.a} {self.relation} {self.b}, judged on the {how} {self.measure} {self._what()}: reproduced "
-            f"if its 95 % interval lies wholly {side} {_g(self.reference)}, not reproduced if wholly on the "
-            f"other side, undecided if it contains {_g(self.reference)}"
+            f"if its 95 % interval lies wholly {side} {short_number(self.reference)}, not reproduced if wholly on the "
+            f"other side, undecided if it contains {short_number(self.reference)}"
         )
 
     @property
@@ -295,10 +295,10 @@ class Ordering(Rule):
 
     def judge(self, measured):
         e = calibrated(measured)
-        m = f"{self._what()} = {_show(e)}"
+        m = f"{self._what()} = {show_estimate(e)}"
         if is_undecided(e):
-            return Judgement("undecided", f"{m}: {_why_undecided(e)}, so it cannot decide", False)
-        lo, hi = _interval(e)
+            return Judgement("undecided", f"{m}: {why_undecided(e)}, so it cannot decide", False)
+        lo, hi = interval_of(e)
         r = self.reference
         claimed_side = lo > r if self.relation == ">" else hi < r
         other_side = hi < r if self.relation == ">" else lo > r
@@ -308,7 +308,7 @@ class Ordering(Rule):
             return Judgement("not reproduced", f"{m}: the opposite ordering holds")
         f = runs_to_decide(e, (r,))
         return Judgement(
-            "undecided", f"{m} contains {_g(r)}: no measurable difference yet; {_decide_note(f)}", False, f
+            "undecided", f"{m} contains {short_number(r)}: no measurable difference yet; {decide_note(f)}", False, f
         )
 
 
@@ -348,7 +348,11 @@ class Monotone(Rule):
             raise ValueError(f"Monotone: tolerance {self.tolerance!r} must be >= 0")
 
     def text(self) -> str:
-        tol = f" by more than {_g(self.tolerance)}{' ' + self.unit if self.unit else ''}" if self.tolerance else ""
+        tol = (
+            f" by more than {short_number(self.tolerance)}{' ' + self.unit if self.unit else ''}"
+            if self.tolerance
+            else ""
+        )
         return (
             f"{self.quantity} is {self.direction} in {self.over}: reproduced if the first and last 95 % intervals "
             f"are separated{tol} in that direction and no neighbouring pair is separated the other way; not "
@@ -367,8 +371,8 @@ class Monotone(Rule):
 
     def _sep(self, e0: Estimate, e1: Estimate) -> int:
         """+1 when ``e1`` is measurably beyond ``e0`` in the claimed direction, -1 the other way, 0 else."""
-        a0, b0 = _interval(e0)
-        a1, b1 = _interval(e1)
+        a0, b0 = interval_of(e0)
+        a1, b1 = interval_of(e1)
         up = a1 - b0 > self.tolerance
         down = a0 - b1 > self.tolerance
         s = 1 if up else (-1 if down else 0)
@@ -376,8 +380,8 @@ class Monotone(Rule):
 
     def _ends_factor(self, e0: Estimate, e1: Estimate) -> float:
         """Runs projected to separate the end intervals: ``((h0 + h1) / |v1 - v0|)^2``."""
-        a0, b0 = _interval(e0)
-        a1, b1 = _interval(e1)
+        a0, b0 = interval_of(e0)
+        a1, b1 = interval_of(e1)
         d = abs(e1.value - e0.value) - self.tolerance
         h = (b0 - a0) / 2 + (b1 - a1) / 2
         if not (d > 0 and math.isfinite(h)):
@@ -403,7 +407,7 @@ class Monotone(Rule):
         up, down = steps.count(1), steps.count(-1)
         u = f" {self.unit}" if self.unit else ""
         m = (
-            f"{self.quantity}: {_show(keep[0])}{u} at the first point, {_show(keep[-1])}{u} at the last; "
+            f"{self.quantity}: {show_estimate(keep[0])}{u} at the first point, {show_estimate(keep[-1])}{u} at the last; "
             f"{up} of {len(steps)} steps measurably {self.direction}, {down} the other way"
             + (f" ({len(bad)} undecided points left out)" if bad else "")
         )
@@ -414,7 +418,7 @@ class Monotone(Rule):
         if ends == 1:
             return Judgement("reproduced", m)
         f = self._ends_factor(keep[0], keep[-1])
-        return Judgement("undecided", m + f" (no measurable trend yet; {_decide_note(f)})", False, f)
+        return Judgement("undecided", m + f" (no measurable trend yet; {decide_note(f)})", False, f)
 
 
 @dataclass(frozen=True)

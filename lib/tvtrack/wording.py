@@ -37,6 +37,9 @@ __all__ = [
     "value_clause",
     "claim_summary",
     "not_checkable_reason",
+    "claim_fields",
+    "register_phrases",
+    "rule_in_force",
 ]
 
 #: What each verdict means, in the words a reader meets on the first screen.
@@ -95,8 +98,19 @@ def entry_side(entry: Mapping) -> str:
     return "world" if kind in _WORLD_KINDS else "reading"  # a record without kinds: readings, as it always read
 
 
-def _as_dict(claim: Any) -> Mapping:
-    """A claim as ``results.json`` stores it: a dict as it is, a :class:`tvtrack.results.Claim` by its fields."""
+def claim_fields(claim: Any) -> Mapping:
+    """A claim as ``results.json`` stores it.
+
+    Parameters
+    ----------
+    claim : Mapping or tvtrack.results.Claim
+        A claim record as read from ``results.json``, or the object a notebook builds.
+
+    Returns
+    -------
+    Mapping
+        The dict as it is, or the claim's fields (``vars``) for an object.
+    """
     return claim if isinstance(claim, Mapping) else vars(claim)
 
 
@@ -107,7 +121,7 @@ def at_profile(claims: list[Mapping], profile: str | None) -> list[Mapping]:
     :data:`PROVISIONAL`). Returns new dicts; the records themselves are not changed."""
     out = []
     for c in claims:
-        c = dict(_as_dict(c))
+        c = dict(claim_fields(c))
         record = c.get("robustness")
         if record and (record.get("provisional") or (profile and profile != "paper")):
             parts = {
@@ -127,7 +141,7 @@ def shown_label(claim: Mapping) -> str:
     """The label a reader sees: the record's; :data:`PROVISIONAL` in place of ``robust`` or ``unexplored`` when
     the design is too small to estimate a share (a smoke run is never shown as robust; a flip it found still
     shows as ``depends``, ``limited`` or ``unstable``); ``"—"`` without a record."""
-    record = _as_dict(claim).get("robustness") or {}
+    record = claim_fields(claim).get("robustness") or {}
     if not record:
         return "—"
     label = str(record.get("label", "—"))
@@ -138,8 +152,20 @@ def shown_label(claim: Mapping) -> str:
     return label
 
 
-def _phrases(record: Mapping) -> dict[str, tuple[str, str, dict]]:
-    """``{entry name: (title, side, {str(value): phrase})}`` from the record's register."""
+def register_phrases(record: Mapping) -> dict[str, tuple[str, str, dict]]:
+    """The words a claim record's register gives each entry and each of its values.
+
+    Parameters
+    ----------
+    record : Mapping
+        A claim's robustness record (its ``register``: a list of entry dicts).
+
+    Returns
+    -------
+    dict
+        ``{entry name: (title, side, {str(value): phrase})}``, the side ``"reading"`` or ``"world"``
+        (:func:`entry_side`).
+    """
     out = {}
     for e in record.get("register") or []:
         if isinstance(e, Mapping) and "name" in e:
@@ -149,7 +175,7 @@ def _phrases(record: Mapping) -> dict[str, tuple[str, str, dict]]:
 
 def describe(changed: Mapping, record: Mapping) -> str:
     """A configuration's changes in plain words (the register's phrases; ``"<title> = <value>"`` without one)."""
-    known = _phrases(record)
+    known = register_phrases(record)
     bits = []
     for k, v in changed.items():
         title, _, phrases = known.get(str(k), (str(k).replace("_", " "), "reading", {}))
@@ -160,7 +186,7 @@ def describe(changed: Mapping, record: Mapping) -> str:
 def _side(changed: Mapping, record: Mapping) -> str:
     """``"reading"`` when every changed entry is a reading of the paper, ``"setting"`` when every one is a reading
     or an unreported setting (one at least), else ``"world"`` (as the core's flips)."""
-    known = _phrases(record)
+    known = register_phrases(record)
     sides = {known.get(str(k), ("", "reading"))[1] for k in changed}
     if sides <= {"reading"}:
         return "reading"
@@ -186,7 +212,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
     verdict differs from the claim's."""
-    claim = _as_dict(claim)
+    claim = claim_fields(claim)
     record = claim.get("robustness") or {}
     parts = record.get("parts") or {}
     names = [part] if part else list(parts)
@@ -220,11 +246,25 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     return out
 
 
-def _in_force(rule: Mapping, measured: Any) -> tuple[Mapping, Any]:
-    """A ``by_reading`` rule's rule in force for its tagged measurement (and the measurement itself)."""
+def rule_in_force(rule: Mapping, measured: Any) -> tuple[Mapping, Any]:
+    """The rule that judges a measurement: for a ``by_reading`` rule, the one in force for the reading the
+    measurement is tagged with (nested ones followed down), else the rule itself.
+
+    Parameters
+    ----------
+    rule : Mapping
+        A rule as ``results.json`` stores it (``kind``, and for ``by_reading`` its ``rules`` and ``default``).
+    measured : Any
+        The claim's measured value (for ``by_reading``: ``{"reading": ..., "measured": ...}``).
+
+    Returns
+    -------
+    tuple
+        ``(rule in force, the measurement it judges)``.
+    """
     if rule.get("kind") == "by_reading" and isinstance(measured, Mapping) and "reading" in measured:
         inner = (rule.get("rules") or {}).get(str(measured.get("reading"))) or rule.get("default") or {}
-        return _in_force(inner, measured.get("measured"))
+        return rule_in_force(inner, measured.get("measured"))
     return rule, measured
 
 
@@ -235,9 +275,9 @@ def main_part(claim: Mapping) -> str | None:
     """The part a claim's sentence and its specification curve are about: for a claim that does not hold, its
     part that does not; for an undecided one, its undecided part; else its weakest-labelled part (a part with
     named flips before one without). ``None`` for a record without parts."""
-    claim = _as_dict(claim)
+    claim = claim_fields(claim)
     parts = {n: p for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items() if isinstance(p, Mapping)}
-    rule = _in_force(dict(claim.get("rule") or {}), claim.get("measured"))[0]
+    rule = rule_in_force(dict(claim.get("rule") or {}), claim.get("measured"))[0]
     if rule.get("kind") != "all_of":
         return next(iter(parts), None)
     rules = rule.get("parts") or {}
@@ -353,7 +393,7 @@ def _trend_clause(rule: Mapping, measured: Any) -> str:
 
 def value_clause(rule: Mapping | None, measured: Any) -> str:
     """What was measured against what the paper says, in words and units, for one rule (or one part's rule)."""
-    rule, measured = _in_force(dict(rule or {}), measured)
+    rule, measured = rule_in_force(dict(rule or {}), measured)
     kind = rule.get("kind")
     if kind == "ordering":
         return _ordering_clause(rule, measured)
@@ -469,11 +509,11 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         has [0, 2] x alpha. Under another reading of the paper's text (sigma read as the SD of the raw velocity
         increments) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 explored configurations."``
     """
-    claim = _as_dict(claim)
+    claim = claim_fields(claim)
     verdict = str(claim.get("verdict", ""))
     if verdict == "not checkable":
         return f"Not checkable: {not_checkable_reason(claim)}."
-    rule, measured = _in_force(dict(claim.get("rule") or {}), claim.get("measured"))
+    rule, measured = rule_in_force(dict(claim.get("rule") or {}), claim.get("measured"))
     name = main_part(claim)
     parts = (claim.get("robustness") or {}).get("parts") or {}
     part = parts.get(name) if isinstance(parts.get(name), Mapping) else {}

@@ -8,7 +8,7 @@ affect the accuracy; for P > 0.5 it substantially determines it".
 import pytest
 
 from tvtrack import verdicts as vd
-from tvtrack.papers.p000_dissector_ekf import lock_loss, study
+from tvtrack.papers.p000_dissector_ekf import lock_loss, readings, study
 from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
 
@@ -45,7 +45,7 @@ def test_entry_is_a_reading_of_the_paper_read_by_c000_5_only():
 
 def test_each_reading_can_reach_both_verdicts():
     rule = claim_rules(SIZES)["C000-5"]
-    for value in study.DETERMINES_READINGS:
+    for value in readings.DETERMINES_READINGS:
         sub = vd.for_config(rule, {"substantially determines": value})
         for verdict in ("reproduced", "not reproduced"):
             assert sub.judge(vd.synthetic(sub, verdict)).verdict == verdict
@@ -60,7 +60,7 @@ def test_every_p_above_half_measures_p_0_7_and_flips_that_part():
     assert rule.judge(_c5(study.AT_09)[0]).verdict == "undecided"
     with lock_loss.in_lock(5.0) as counts:
         default, c7 = _c5(study.AT_09)
-        every, _ = _c5(study.EVERY_ABOVE)
+        every, _ = _c5(readings.EVERY_ABOVE)
     assert max(lost for lost, _ in counts) == 1
     assert set(default["measured"]) == {"P=0.25", "P=0.5", "P=0.9"}
     assert set(every["measured"]) == {"P=0.25", "P=0.5", "P=0.7", "P=0.9"}
@@ -70,7 +70,7 @@ def test_every_p_above_half_measures_p_0_7_and_flips_that_part():
     assert rule.judge(default).verdict == "reproduced"
     flipped = rule.judge(every)
     assert flipped.verdict == "partly"  # P = 0.25, 0.5 and 0.9 still hold; P = 0.7 decisively fails
-    assert vd.for_config(rule, {"substantially determines": study.EVERY_ABOVE}).parts["P=0.7"].decide(r7) == (
+    assert vd.for_config(rule, {"substantially determines": readings.EVERY_ABOVE}).parts["P=0.7"].decide(r7) == (
         "not reproduced"
     )
 

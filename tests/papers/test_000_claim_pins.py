@@ -60,9 +60,9 @@ def test_samples_carry_the_noise_variance_of_eq_2_at_high_contrast():
 def test_the_default_data_path_draws_samples_with_the_closed_form_noise_law():
     """The same law where the notebook's samples are made (study's default path, P = 0.9): the residual over the
     stored unit draws is the closed-form standard deviation of each sample's mean pulse."""
-    x, pulse, xi, _ = study._path(DEFAULT, 11, SMALL)
-    scan = study._scan(DEFAULT, 20.0, 0.9, SMALL)
-    y = study._samples(DEFAULT, 11, scan, pulse, xi)
+    x, pulse, xi, _ = study.truth_paths(DEFAULT, 11, SMALL)
+    scan = study.operating_scan(DEFAULT, 20.0, 0.9, SMALL)
+    y = study.photon_samples(DEFAULT, 11, scan, pulse, xi)
     sd = np.sqrt((0.05 / 400.0) * (1.0 + 9.0 * pulse) / 0.05)
     np.testing.assert_allclose((y[:, 1:] - pulse) / sd, xi, rtol=1e-9, atol=1e-12)
 

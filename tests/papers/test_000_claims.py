@@ -9,7 +9,7 @@ from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p000_dissector_ekf import study
 from tvtrack.papers.p000_dissector_ekf.claims import RULES, claim_rules
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
-from tvtrack.papers.p000_dissector_ekf.study import ENSEMBLE_MEAN, LATE_SHARE
+from tvtrack.papers.p000_dissector_ekf.readings import ENSEMBLE_MEAN, LATE_SHARE
 
 CASES = [
     (entry.name, value, claim)

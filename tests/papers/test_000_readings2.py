@@ -7,7 +7,7 @@ import pytest
 
 from tvtrack import verdicts as vd
 from tvtrack.montecarlo import rms_ci
-from tvtrack.papers.p000_dissector_ekf import study
+from tvtrack.papers.p000_dissector_ekf import readings, study
 from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
 from tvtrack.papers.p000_dissector_ekf.register import DEPENDS, REGISTER
 
@@ -24,7 +24,7 @@ def test_the_entry_is_an_adversarial_reading_read_by_c000_2_only():
 
 def test_each_reading_can_reach_both_verdicts():
     rule = claim_rules(SIZES)["C000-2"]
-    for value in study.C2_READINGS:
+    for value in readings.C2_READINGS:
         sub = vd.for_config(rule, {"C000-2 contrasts": value})
         for verdict in ("reproduced", "not reproduced"):
             assert sub.judge(vd.synthetic(sub, verdict)).verdict == verdict

@@ -34,9 +34,9 @@ def test_the_literal_scale_is_the_core_filter_with_c_s_equal_to_a(compiled):
     if compiled and not jit.available():
         pytest.skip("numba is not installed")
     cfg = DEFAULT
-    x, pulse, xi, _ = study._path(cfg, 2, SIZES)
-    scan = study._scan(cfg, 20.0, 0.5, SIZES)
-    y = study._samples(cfg, 2, scan, pulse, xi)[:20]
+    x, pulse, xi, _ = study.truth_paths(cfg, 2, SIZES)
+    scan = study.operating_scan(cfg, 20.0, 0.5, SIZES)
+    y = study.photon_samples(cfg, 2, scan, pulse, xi)[:20]
     want, want_d = run_variant1(variant1_filter(scan, study.MESSAGE, signal_noise_scale="literal"), y)
     got, got_d = run_steps_variant1(scan, study.MESSAGE, y, compiled=compiled, signal_noise_scale="literal")
     np.testing.assert_allclose(got, want, rtol=1e-7, atol=1e-10)

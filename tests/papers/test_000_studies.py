@@ -26,7 +26,7 @@ def test_a_negative_offset_starts_the_truth_on_the_other_side_and_acquisition_is
     finding: the pull-in range is not symmetric, and with the switch-on phase drawn it is narrower than with the
     sweep at phase 0 in every run, where -0.3 T and +1 T were acquired in every run)."""
     acq = studies.acquisition_vs_offset(DEFAULT, 4, SMALL, [-1.0, -0.3, 0.3, 1.0])
-    x, *_ = study._path(DEFAULT, 4, SMALL, -0.3)
+    x, *_ = study.truth_paths(DEFAULT, 4, SMALL, -0.3)
     np.testing.assert_allclose(x[:, 0], -0.3)
     for a in acq.values():
         late = [e.value for e in a["late"]]

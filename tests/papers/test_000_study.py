@@ -181,7 +181,7 @@ def test_reproduced_where_reads_a_rule_or_the_parts_of_an_all_of_rule():
 
 
 def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_counts_change_the_data():
-    x, _, _, _ = study._path(DEFAULT, 9, SMALL, "uniform")
+    x, _, _, _ = study.truth_paths(DEFAULT, 9, SMALL, "uniform")
     assert np.all(np.abs(x[:, 0]) <= 0.5) and x[:, 0].std() > 0.2  # uniform on [-1/2, 1/2]: sd 0.29
     gauss = study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "v2")
     counts = study.steady_runs({**DEFAULT, "photon model": "Poisson counts"}, 9, SMALL, 20.0, 0.9, "v2")
@@ -229,8 +229,8 @@ def test_c000_9_reads_the_statistic_median_of_runs():
 def test_c000_3_own_covariance_reading_is_the_ratio_of_the_filters_steady_d11():
     got = study.measure({**DEFAULT, "C000-3 accuracy": "filters' own D11"}, 3, SMALL)["C000-3"]["P=0.5"]
     psi = DEFAULT["psi_A"]
-    d1 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
-    d2 = study._errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
+    d1 = study.filter_errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
+    d2 = study.filter_errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
     assert got.value == pytest.approx(d1.mean() / d2.mean())
 
 
@@ -239,11 +239,11 @@ def test_the_drifting_background_scales_only_the_background_part_of_the_noise_in
     pulse = np.zeros((4000, 200))  # no pulse: the noise is the background's alone
     xi = np.random.default_rng(0).standard_normal(pulse.shape)
     cfg = {**DEFAULT, "background": "drifting +-50 %"}
-    y = study._samples(cfg, 7, scan, pulse, xi)[:, 1:]
+    y = study.photon_samples(cfg, 7, scan, pulse, xi)[:, 1:]
     ratio = (y / study.samples_from_pulse(scan, pulse, xi)[:, 1:]) ** 2  # b(t) per run and sample
     assert ratio.min() >= 0.5 - 1e-9 and ratio.max() <= 1.5 + 1e-9 and ratio.mean() == pytest.approx(1.0, abs=0.02)
     full = study.scan_at_snr(20.0, 0.5, 0.05)
-    peak = study._samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
+    peak = study.photon_samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
     assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
     base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
     assert (
@@ -255,9 +255,9 @@ def test_the_drifting_background_scales_only_the_background_part_of_the_noise_in
 def test_a_stricter_lock_threshold_acquires_no_earlier():
     later = 0
     for seed in (2, 3, 4):  # three seeds' runs, so that some run is later (seed 3's 40 alone have none)
-        run = study._errors(DEFAULT, seed, SMALL, DEFAULT["psi_A"], DEFAULT["contrast"], "v2")
-        loose = study._acquired_at(DEFAULT, seed, SMALL, "v2", run)
-        strict = study._acquired_at({**DEFAULT, "lock threshold": "2 x steady RMS"}, seed, SMALL, "v2", run)
+        run = study.filter_errors(DEFAULT, seed, SMALL, DEFAULT["psi_A"], DEFAULT["contrast"], "v2")
+        loose = study.acquired_at(DEFAULT, seed, SMALL, "v2", run)
+        strict = study.acquired_at({**DEFAULT, "lock threshold": "2 x steady RMS"}, seed, SMALL, "v2", run)
         assert np.all(strict >= loose)
         later += int(np.sum(strict > loose))
     assert later > 0
@@ -309,13 +309,13 @@ def test_each_variant_is_in_lock_against_its_own_steady_level():
     levels = {}
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
-        run = study._errors(
+        run = study.filter_errors(
             cfg, 9, SMALL, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"]
         )
-        steady = study._errors(cfg, 9, SMALL, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
+        steady = study.filter_errors(cfg, 9, SMALL, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
         factor = 2.0 if cfg["lock threshold"] == "2 x steady RMS" else SMALL.lock_factor
         levels[filt] = thr = factor**2 * steady
-        t = study._acquired_at(cfg, 9, SMALL, filt, run)
+        t = study.acquired_at(cfg, 9, SMALL, filt, run)
         scans = run["scans"]
         for i in range(scans.shape[0]):
             if not np.isfinite(t[i]):
@@ -327,5 +327,5 @@ def test_each_variant_is_in_lock_against_its_own_steady_level():
     assert levels["v1"] > 1.2 * levels["v2"]  # the two thresholds differ
     # scans between the two levels: in lock against variant 1's own level, out of lock against variant 2's
     between = {"scans": np.full((3, 6), (levels["v1"] + levels["v2"]) / 2)}
-    assert np.all(study._acquired_at(cfg, 9, SMALL, "v1", between) == scan_s)
-    assert np.all(np.isinf(study._acquired_at(cfg, 9, SMALL, "v2", between)))
+    assert np.all(study.acquired_at(cfg, 9, SMALL, "v1", between) == scan_s)
+    assert np.all(np.isinf(study.acquired_at(cfg, 9, SMALL, "v2", between)))

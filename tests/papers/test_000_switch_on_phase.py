@@ -58,25 +58,29 @@ def test_each_run_draws_its_switch_on_phase_uniform_over_the_scan_after_the_othe
 def test_the_studys_runs_start_at_their_own_drawn_phases():
     """The study's truth: each run's first pulse peaks where its drawn phase puts it. With one phase for every run
     (the sweep at 0 whenever a filter switches on) every run's read-back phase is within dt of 0."""
-    x, pulse, _, _ = study._path(DEFAULT, 3, SMALL)
+    x, pulse, _, _ = study.truth_paths(DEFAULT, 3, SMALL)
     got = _peak_phase(x, pulse, SMALL.dt)
     assert 0.3 < np.mean(_circular_distance(got, 0.0) > 0.25) < 0.7  # half the runs start in the far half
-    assert np.all(_circular_distance(got, study._start(3, SMALL)) < 0.05)  # dt/2, the motion, a truncated pulse
-    assert len(np.unique(np.round(study._start(3, SMALL), 6))) >= 15  # of the 20 sample slots
+    assert np.all(
+        _circular_distance(got, study.switch_on_phases(3, SMALL)) < 0.05
+    )  # dt/2, the motion, a truncated pulse
+    assert len(np.unique(np.round(study.switch_on_phases(3, SMALL), 6))) >= 15  # of the 20 sample slots
     other = study.Sizes(n_trials=60, duration_T=6.0, window_T=2.0, substeps=2, acquire_by_T=2.0, lock_factor=4.0)
-    np.testing.assert_array_equal(study._start(3, other), study._start(3, SMALL))  # a seed's runs, not a reading's
-    assert not np.allclose(study._start(4, SMALL), study._start(3, SMALL))
+    np.testing.assert_array_equal(
+        study.switch_on_phases(3, other), study.switch_on_phases(3, SMALL)
+    )  # a seed's runs, not a reading's
+    assert not np.allclose(study.switch_on_phases(4, SMALL), study.switch_on_phases(3, SMALL))
 
 
 def test_the_studys_phases_sit_on_the_sample_clock_and_reach_every_slot():
     """The sample clock is synchronous with the sweep (T = 20 dt): a run switches on at one of the scan's 20 sample
     slots, so every sample's interval ends at or before the flyback, as the filters' model of a sample assumes."""
     sizes = study.Sizes(n_trials=400, duration_T=6.0, window_T=2.0, substeps=2)
-    start = study._start(8, sizes)
+    start = study.switch_on_phases(8, sizes)
     slots = start / sizes.dt
     np.testing.assert_allclose(slots, np.round(slots), atol=1e-9)
     assert set(np.round(slots).astype(int)) == set(range(20))
-    np.testing.assert_array_equal(study._phase_nodes(sizes), np.arange(20) * sizes.dt)
+    np.testing.assert_array_equal(study.phase_nodes(sizes), np.arange(20) * sizes.dt)
 
 
 def test_a_phase_between_sample_slots_puts_one_sample_per_scan_across_the_flyback():
@@ -173,11 +177,11 @@ def test_acquisition_from_an_offset_reads_each_runs_phase():
     """The pull-in study's runs are the claims' runs: from a zero offset the acquisition runs are the stationary
     ones with the truth at 0, each at its own phase (a filter told phase 0 loses a share of them)."""
     acq = studies.acquisition_vs_offset(DEFAULT, 4, SMALL, [-0.3, 0.3])
-    x, pulse, xi, _ = study._path(DEFAULT, 4, SMALL, 0.3)
-    scan = study._scan(DEFAULT, 20.0, DEFAULT["contrast"], SMALL)
-    y = study._samples(DEFAULT, 4, scan, pulse, xi)
-    est = run_steps_variant2(scan, study.MESSAGE, y, 0.2, start=study._start(4, SMALL))[0]
-    run = study._errors(DEFAULT, 4, SMALL, 20.0, DEFAULT["contrast"], "v2", offset=0.3)
+    x, pulse, xi, _ = study.truth_paths(DEFAULT, 4, SMALL, 0.3)
+    scan = study.operating_scan(DEFAULT, 20.0, DEFAULT["contrast"], SMALL)
+    y = study.photon_samples(DEFAULT, 4, scan, pulse, xi)
+    est = run_steps_variant2(scan, study.MESSAGE, y, 0.2, start=study.switch_on_phases(4, SMALL))[0]
+    run = study.filter_errors(DEFAULT, 4, SMALL, 20.0, DEFAULT["contrast"], "v2", offset=0.3)
     np.testing.assert_allclose(run["curve"], ((x - est) ** 2).mean(axis=0), rtol=1e-9)
     assert acq["v2"]["late"][1].value <= 0.2
 

@@ -44,7 +44,7 @@ def test_ratio_to_star_is_the_statistic_of_variant_2_over_the_stationary_filter(
     cfg = {**DEFAULT, "statistic": statistic}
     a, b = runs(cfg, 20.0, 0.5, "v2"), runs(cfg, 20.0, 0.5, "stationary")
     f = np.mean if statistic == "mean" else np.median
-    got = study._ratio_to_star(cfg, 3, SMALL, 0.5)
+    got = study.ratio_to_star(cfg, 3, SMALL, 0.5)
     assert got.value == pytest.approx(f(a) / f(b), rel=1e-12)
     assert got.value != pytest.approx({"mean": np.median, "median": np.mean}[statistic](a) / f(b), rel=1e-3)
 

@@ -5,8 +5,10 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
-from tvtrack.papers.p001_maneuver_occlusion_kf.comparators import _tuning
+from tvtrack.papers.p001_maneuver_occlusion_kf.comparators import comparator_tuning
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
+from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+from tvtrack.papers.p001_maneuver_occlusion_kf import scenario
 
 REG = build_register()
 SIZES = dict(
@@ -44,8 +46,8 @@ def test_c4_comparators_face_the_schemes_truth(world):
     sc = study.config_scenario(cfg)
     z = study.measurements(sc.truth[:, :, 0], cfg["noise"], SIZES["n_tradeoff_trials"], np.random.default_rng(seed))
     truth = sc.truth[None, :, :, 0]
-    setting = _tuning(cfg, SIZES)[cfg["rms_span"]][name][0]
-    frames = study.span_mask(cfg["rms_span"], sc)
+    setting = comparator_tuning(cfg, SIZES)[cfg["rms_span"]][name][0]
+    frames = scenario.span_mask(cfg["rms_span"], sc)
     err_c = (study.comparator_positions(name, setting, z, sc, 1.0) - truth)[..., frames]
     err_s = (study.run_scheme(z, sc, cfg, SIZES, covariance=False).x[..., 0] - truth)[..., frames]
     assert measured.value == pytest.approx((err_c**2).mean() / (err_s**2).mean(), rel=1e-9)
@@ -55,8 +57,8 @@ def test_c4_comparators_tuned_for_the_configurations_manoeuvre():
     """The fixed 2nd-order comparator tuned for the per-second acceleration reading (25 times weaker) settles on a
     narrower band (a larger gain bound) than for the paper's manoeuvre: its tuning sees that scenario."""
     span = REG.default()["rms_span"]
-    strong = _tuning(REG.default(), SIZES)[span]["fixed 2nd order"][0][0]
-    weak = _tuning(REG.default() | {"accel_unit": "el/frame per s"}, SIZES)[span]["fixed 2nd order"][0][0]
+    strong = comparator_tuning(REG.default(), SIZES)[span]["fixed 2nd order"][0][0]
+    weak = comparator_tuning(REG.default() | {"accel_unit": "el/frame per s"}, SIZES)[span]["fixed 2nd order"][0][0]
     assert weak > strong
 
 
@@ -93,7 +95,7 @@ def _curve_parts(config):
     """Each part verdict of C001-7 and C001-8 at ``config`` (C001-8 judged by the rule of its curve tolerance)."""
     from tvtrack.papers.p001_maneuver_occlusion_kf import claims
 
-    m = study.measure_curves(config, 0, CURVE_SIZES)
+    m = curves.measure_curves(config, 0, CURVE_SIZES)
     out = {}
     for cid, rule, measured in (
         ("C001-7", claims._c7(), m["C001-7"]),
@@ -136,8 +138,8 @@ def test_loss_length_moves_the_loss_and_not_the_optimum(length):
     restart A's dynamic error crosses zero (100 frames), whatever the loss's length: the optimum is set by the
     restart's transient, not by a balance with the prediction horizon."""
     sc = study.config_scenario(REG.default())
-    assert study.occlusion_frames("scenario 12-22 s", sc, length) == (sc.f_loss, sc.f_loss + int(length * sc.fps))
-    f = study.fig4_curves({"loss_length_s": length}, CURVE_SIZES)
-    f10 = study.fig4_curves({}, CURVE_SIZES)
+    assert curves.occlusion_frames("scenario 12-22 s", sc, length) == (sc.f_loss, sc.f_loss + int(length * sc.fps))
+    f = curves.fig4_curves({"loss_length_s": length}, CURVE_SIZES)
+    f10 = curves.fig4_curves({}, CURVE_SIZES)
     assert f["rms"][-1] < f10["rms"][-1]  # a shorter coast, a smaller random prediction error
     assert f["kb3"][np.argmin(f["sum"])] == f10["kb3"][np.argmin(f10["sum"])] == 100

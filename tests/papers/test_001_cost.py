@@ -8,6 +8,9 @@ from tvtrack import jit
 from tvtrack.filters._imm_kernel import imm_states
 from tvtrack.filters.imm import cv_ca_models, imm_run
 from tvtrack.papers.p001_maneuver_occlusion_kf import comparators, study
+from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+from tvtrack.papers.p001_maneuver_occlusion_kf import scenario
+from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
 
 GRIDS = (
     ("fixed2", (2, 10, 50)),
@@ -20,7 +23,7 @@ GRIDS = (
 
 
 def _series(n=6, seed=1):
-    sc = study.scenario()
+    sc = scenario.scenario()
     z = study.measurements(sc.truth[:, :, 0], "white Gaussian", n, np.random.default_rng(seed))
     return sc, np.where(sc.visible, z, np.nan)
 
@@ -115,15 +118,15 @@ def test_detection_measures_only_the_asked_claims_and_each_as_in_a_full_run(cfg,
 
 
 def test_the_other_measurements_take_claims(sizes):
-    full = study.measure_curves({}, 0, sizes)
+    full = curves.measure_curves({}, 0, sizes)
     for cid in ("C001-7", "C001-8"):
-        assert repr(study.measure_curves({}, 0, sizes, claims=frozenset({cid}))) == repr({cid: full[cid]})
+        assert repr(curves.measure_curves({}, 0, sizes, claims=frozenset({cid}))) == repr({cid: full[cid]})
     assert study.measure_tradeoff({}, 3, sizes, claims=frozenset({"C001-1"})) == {}
     assert repr(study.measure_tradeoff({}, 3, sizes, claims=frozenset({"C001-4"}))) == repr(
         study.measure_tradeoff({}, 3, sizes)
     )
-    assert study.measure_spherical({}, 0, sizes, claims=frozenset()) == {}
-    assert set(study.measure_spherical({}, 0, sizes, claims=None)) == {"C001-9"}
+    assert spherical.measure_spherical({}, 0, sizes, claims=frozenset()) == {}
+    assert set(spherical.measure_spherical({}, 0, sizes, claims=None)) == {"C001-9"}
 
 
 def test_vd_filter_over_a_grid_of_process_noises_equals_one_run_per_setting():

@@ -10,9 +10,10 @@ import nbformat
 import numpy as np
 import pytest
 
-from tvtrack.papers.p001_maneuver_occlusion_kf import study
 from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import FIXED_BY_PAPER, PROJECT_GRIDS, RUN_SIZES, build_register
+from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
 
 ROOT = Path(__file__).parents[2]
 PKG = ROOT / "lib" / "tvtrack" / "papers" / "p001_maneuver_occlusion_kf"
@@ -72,7 +73,7 @@ def test_fig4_optimum_sits_at_the_sign_crossing_of_the_dynamic_error():
     """Under restart A the signed dynamic error runs +3.67, +3.04, -0.18, -4.58 at k_b3 = 80 ... 110:
     curve 3's minimum at 100 is where it crosses zero (between 90 and 100), not a balance of two monotone errors."""
     sz = dict(sigma_eps=1.0, defaults=REG.default(), kb3_grid=[60, 70, 80, 90, 100, 110, 120])
-    cur = study.fig4_curves({}, sz)
+    cur = curves.fig4_curves({}, sz)
     np.testing.assert_allclose(cur["dyn"][2:6], [3.671, 3.039, -0.178, -4.582], atol=2e-3)
     o = optimum_location(cur)
     assert o["kb3"] == 100 and o["at_crossing"] and 90 < o["nearest_crossing"] < 100
@@ -96,24 +97,24 @@ def test_curve_tolerance_makes_sub_tolerance_steps_flat():
     assert rms_rule[0.01].judge(curve).verdict == "reproduced"
     assert rms_rule[0.001].judge(curve).verdict == "not reproduced"
     sz = dict(sigma_eps=1.0, defaults=REG.default(), kb3_grid=[50, 100, 200], loss_grid_s=[6.0, 8.0])
-    m = study.measure_curves({"curve_tolerance": 0.1}, 0, sz)["C001-8"]
+    m = curves.measure_curves({"curve_tolerance": 0.1}, 0, sz)["C001-8"]
     assert m["reading"] == 0.1 and RULES["C001-8"].for_value(m["reading"]).parts["RMS decreasing"].tolerance == 0.1
-    assert RULES["C001-8"].decide(study.measure_curves({}, 0, sz)["C001-8"]) == "reproduced"
+    assert RULES["C001-8"].decide(curves.measure_curves({}, 0, sz)["C001-8"]) == "reproduced"
 
 
 def test_c001_9_at_the_papers_two_rates():
     """2.107°/s (10 el/frame at 25 Hz) and 0.5°/s (0.02°/frame): a crossing target from closest approach deviates
     from its extrapolation by omega H - atan(omega H) over the 10 s loss: 104.3 and 1.50 elements."""
     for rate, dev in ((10 * 25 * 6 / 712, 104.33), (0.5, 1.499)):
-        d = study.paper_rate_deviation(rate, 10.0)
+        d = spherical.paper_rate_deviation(rate, 10.0)
         x = np.deg2rad(rate) * 10.0
         assert d["deviation_el"] == pytest.approx(np.degrees(x - np.arctan(x)) / (6 / 712), rel=1e-6)
         assert d["deviation_el"] == pytest.approx(dev, abs=0.01)
-    assert not study.paper_rate_deviation(2.107, 10.0)["within_20deg"]  # 20.2° after 10 s
-    m = study.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]
+    assert not spherical.paper_rate_deviation(2.107, 10.0)["within_20deg"]  # 20.2° after 10 s
+    m = spherical.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]
     # the measured part is the worst start over the ±20° field (test_001_c9_field.py), the crossing's path leaving it
     assert m["2.107°/s (10 el/frame)"] == pytest.approx(115.07, abs=0.01)
-    rms = study.measure_spherical(
+    rms = spherical.measure_spherical(
         {"tolerance": "prediction RMS at k_b3"}, 0, dict(defaults=REG.default(), prediction_rms=7.6)
     )
     assert rms["C001-9"]["0.5°/s (0.02°/frame)"] == pytest.approx(1.508 / 7.6, abs=1e-3)

@@ -15,6 +15,11 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
 )
 from tvtrack.papers.p001_maneuver_occlusion_kf.params import RULES
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, GROUPS, build_register, group_register
+from tvtrack.filters import polynomial
+from tvtrack.papers.p001_maneuver_occlusion_kf import comparators
+from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+from tvtrack.papers.p001_maneuver_occlusion_kf import scenario
+from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
 
 REG = build_register()
 SIZES = dict(
@@ -42,7 +47,7 @@ SIZES = dict(
 )
 
 
-@pytest.mark.parametrize("model", study.NOISE_MODELS)
+@pytest.mark.parametrize("model", scenario.NOISE_MODELS)
 def test_measurement_models_have_the_stated_rms(model):
     z = study.measurements(np.zeros(400), model, 400, np.random.default_rng(1), sigma_eps=1.5)
     if model == "quantised":  # rounding of a zero truth: RMS of round(N(0, s^2 - 1/12))
@@ -102,13 +107,13 @@ def test_tradeoff_parts_are_the_dynamic_and_random_errors_of_the_figure_study_ru
     cfg = {"rms_span": "onset to loss"}
     tr = study.tradeoff_runs(cfg, 4, SIZES)
     sc = tr["scenario"]
-    mask = study.span_mask("onset to loss", sc)
+    mask = scenario.span_mask("onset to loss", sc)
     err = {k: (p - sc.truth[None, :, :, 0])[..., mask] for k, p in tr["positions"].items()}
     var = {k: e.var(axis=0).mean() for k, e in err.items()}
     ms = {k: (e**2).mean() for k, e in err.items()}
     m = study.measure_tradeoff(cfg, 4, SIZES)["C001-4"]
     t = study.measure_tradeoff(cfg | {"rms_statistic": "total mean square"}, 4, SIZES)["C001-4"]
-    for name in study.COMPARATORS:
+    for name in scenario.COMPARATORS:
         assert m[f"min RMS vs {name}"].value == pytest.approx(var[name] / var["adaptive"], rel=1e-9)
         assert t[f"min RMS vs {name}"].value == pytest.approx(ms[name] / ms["adaptive"], rel=1e-9)
         assert m[f"min RMS vs {name}"].ci_low < m[f"min RMS vs {name}"].value < m[f"min RMS vs {name}"].ci_high
@@ -125,10 +130,10 @@ def test_tradeoff_parts_are_the_dynamic_and_random_errors_of_the_figure_study_ru
 
 
 def test_tuning_picks_the_grid_minimum():
-    t = study.tuned_comparators(25.0, 6, 5, 1e-3, 1.0, tuple((k, tuple(v)) for k, v in SIZES["grids"].items()))
-    sc = study.scenario()
+    t = comparators.tuned_comparators(25.0, 6, 5, 1e-3, 1.0, tuple((k, tuple(v)) for k, v in SIZES["grids"].items()))
+    sc = scenario.scenario()
     z = study.measurements(sc.truth[:, :, 0], "white Gaussian", 6, np.random.default_rng(5))
-    mask = study.span_mask("4 s to loss", sc)
+    mask = scenario.span_mask("4 s to loss", sc)
     rms = {
         kb: np.sqrt(
             np.mean(
@@ -144,40 +149,40 @@ def test_tuning_picks_the_grid_minimum():
 
 
 def test_unbiased_bound_at_zero_lead_is_the_growing_memory_variance():
-    sc = study.scenario()
+    sc = scenario.scenario()
     for n in (5, 40, 150):
-        b = study.unbiased_prediction_bound(sc, 0, n - 1, n - 1)
+        b = curves.unbiased_prediction_bound(sc, 0, n - 1, n - 1)
         assert b**2 == pytest.approx(3 * (3 * n**2 - 3 * n + 2) / (n * (n + 1) * (n + 2)), rel=1e-9)
     # one frame ahead: the growing-memory 3rd-order filter's own prediction variance (independent recursion)
     G = gain_schedule(2, 10_000, 60)
     e = scheduled_filter(np.random.default_rng(0).standard_normal((20000, 60)), G)
     pred = e[:, -1, 0] + e[:, -1, 1] + 0.5 * e[:, -1, 2]
-    assert np.std(pred) == pytest.approx(study.unbiased_prediction_bound(sc, 0, 59, 60), rel=0.03)
+    assert np.std(pred) == pytest.approx(curves.unbiased_prediction_bound(sc, 0, 59, 60), rel=0.03)
 
 
 def test_curve_agreement_and_its_word():
     cur = {"dyn": np.array([1.0, 2.0]), "rms": np.array([1.0, 1.0])}
     mc = {"mean": np.array([1.0, 2.0]), "se": np.array([0.1, 0.1]), "sd": np.array([1.0, 1.0])}
-    a = study.curve_agreement(cur, mc, 1000)
+    a = curves.curve_agreement(cur, mc, 1000)
     assert a["p_mean"] == 1.0 and a["p_var"] > 0.5
     mc["mean"] = np.array([2.0, 3.0])
-    assert study.curve_agreement(cur, mc, 1000)["p_mean"] < 1e-6
-    assert study.agreement_word(0.2) == "agree with" and study.agreement_word(0.01) == "differ from"
+    assert curves.curve_agreement(cur, mc, 1000)["p_mean"] < 1e-6
+    assert curves.agreement_word(0.2) == "agree with" and curves.agreement_word(0.01) == "differ from"
 
 
 def test_curve_parts_on_a_constructed_curve():
     cur = {"dyn": np.array([0.0, 1.0, 2.0, 4.0]), "rms": np.array([9.0, 4.0, 2.0, 1.0])}
     cur["sum"] = np.abs(cur["dyn"]) + cur["rms"]
-    p = study.c8_parts(cur)
+    p = curves.c8_parts(cur)
     assert p["interior minimum"] == pytest.approx(min(9.0, 5.0) - 4.0)
     assert p["dynamic grows beyond the optimum"] == [2.0, 4.0]
 
 
 def test_fig4_monte_carlo_checks_the_noise_free_curve():
     cfg = {"restart": "A"}
-    cur = study.fig4_curves(cfg, SIZES)
-    mc = study.fig4_monte_carlo(cfg, SIZES, np.random.default_rng(9))
-    a = study.curve_agreement(cur, mc, SIZES["n_fig4_trials"])
+    cur = curves.fig4_curves(cfg, SIZES)
+    mc = curves.fig4_monte_carlo(cfg, SIZES, np.random.default_rng(9))
+    a = curves.curve_agreement(cur, mc, SIZES["n_fig4_trials"])
     assert a["p_mean"] > 1e-3 and a["p_var"] > 1e-3
 
 
@@ -206,8 +211,8 @@ def test_every_claim_depends_on_register_entries_and_the_rules_name_the_notebook
 
 def test_spherical_measurement_by_target_set():
     sz = SIZES | {"prediction_rms": 4.0}
-    near = study.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
-    far = study.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]["geometries"]
+    near = spherical.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
+    far = spherical.measure_spherical({"targets": "20-100 km, 50-250 m/s"}, 0, sz)["C001-9"]["geometries"]
     assert 0 <= near < far <= 1  # farther, slower targets curve less in angle
 
 
@@ -216,7 +221,7 @@ def test_explorer_runs_the_curves_group():
     from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES as CLAIM_RULES
 
     ex = explore(
-        functools.partial(study.measure_curves, sizes=SIZES),
+        functools.partial(curves.measure_curves, sizes=SIZES),
         group_register(REG, "curves"),
         {c: CLAIM_RULES[c] for c in GROUPS["curves"]},
         seed=1,
@@ -237,7 +242,7 @@ def test_detector_benchmark_arms_every_detector_before_the_onset():
     higher false-alarm target never lengthens the median delay."""
     sz = SIZES | {"n_trials": 150, "n_fa_runs": 1500}
     b = study.detector_benchmark({}, 2, sz)
-    onset = study.scenario().onset
+    onset = scenario.scenario().onset
     assert all(f < onset for f in b["arming_frame"].values())
     for name, cur in b.items():
         if name != "arming_frame":
@@ -258,7 +263,7 @@ def test_replicates_measure_every_part_afresh():
 
 
 def test_a_manoeuvre_that_ends_continues_uniformly():
-    const, short = study.scenario(), study.scenario(accel_duration_s=2.0)
+    const, short = scenario.scenario(), scenario.scenario(accel_duration_s=2.0)
     end = short.onset + 50  # 2 s at 25 Hz
     np.testing.assert_array_equal(short.truth[:, : end + 1, :2], const.truth[:, : end + 1, :2])
     a = np.array([m[1] for m in study.MOTION])[:, None]
@@ -270,8 +275,8 @@ def test_a_manoeuvre_that_ends_continues_uniformly():
 
 def test_adversarial_regimes_reach_the_measurements():
     # the manoeuvre that ends makes C001-7's dynamic error rise again after the acceleration stops (restart A)
-    const = study.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]
-    short = study.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]
+    const = curves.measure_curves({}, 0, SIZES)["C001-7"]["decreasing"]
+    short = curves.measure_curves({"manoeuvre": "2 s acceleration"}, 0, SIZES)["C001-7"]["decreasing"]
     assert np.all(np.diff(const) < 0) and short[1] > short[0]
     # a weaker second channel is detected later (pooled median); a 4 s horizon curves less than a 10 s one
     weak = study.measure_detection({"channel_y": "v -6, a -0.05"}, 1, SIZES)["C001-1"]["median"].value
@@ -279,40 +284,40 @@ def test_adversarial_regimes_reach_the_measurements():
     assert weak > paper
     sz = SIZES | {"prediction_rms": 4.0}
     assert (
-        study.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]["geometries"]
-        > study.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
+        spherical.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]["geometries"]
+        > spherical.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
     )
-    assert study.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"]["geometries"] == 1.0
+    assert spherical.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"]["geometries"] == 1.0
 
 
 def test_raised_second_order_limits():
-    sc = study.scenario()
+    sc = scenario.scenario()
     truth = sc.truth[:, :, 0]
-    never = study.raised_second_order(truth, sc, np.full(2, -1), 50, 3)
+    never = comparators.raised_second_order(truth, sc, np.full(2, -1), 50, 3)
     np.testing.assert_array_equal(never, study.comparator_positions("fixed 2nd order", (50,), truth, sc, 1.0))
     # raised at the onset and frozen at k = 3 (alpha 5/6, beta 1/2): the alpha-beta lag under constant
     # acceleration a is a (1 - alpha) / beta (Kalata), reached well before the loss
-    x = study.raised_second_order(truth, sc, np.full(2, sc.onset), 50, 3)
+    x = comparators.raised_second_order(truth, sc, np.full(2, sc.onset), 50, 3)
     a = np.array([m[1] for m in study.MOTION])
     np.testing.assert_allclose(x[:, sc.f_loss - 1] - truth[:, sc.f_loss - 1], -a * (1 / 6) / 0.5, rtol=1e-6)
 
 
 def test_compensation_comparator_reaches_the_measurement():
     base = study.measure_tradeoff({}, 1, SIZES)["C001-4"]["faster compensation"].value
-    raised = study.measure_tradeoff({"compensation_comparator": study.COMPENSATION_COMPARATORS[1]}, 1, SIZES)["C001-4"][
-        "faster compensation"
-    ].value
+    raised = study.measure_tradeoff({"compensation_comparator": scenario.COMPENSATION_COMPARATORS[1]}, 1, SIZES)[
+        "C001-4"
+    ]["faster compensation"].value
     assert raised < 1 < base  # raising the 2nd-order gains at the detection compensates faster than the switch
 
 
 def test_ar1_prediction_rms_matches_monte_carlo():
-    sc = study.scenario()
+    sc = scenario.scenario()
     cfg = REG.default() | {"noise": "AR(1), rho = 0.5"}
-    _, rms_white = study.prediction_error(sc, REG.default(), SIZES, 100, sc.f_loss, sc.f_back)
-    dyn, rms = study.prediction_error(sc, cfg, SIZES, 100, sc.f_loss, sc.f_back)
+    _, rms_white = curves.prediction_error(sc, REG.default(), SIZES, 100, sc.f_loss, sc.f_back)
+    dyn, rms = curves.prediction_error(sc, cfg, SIZES, 100, sc.f_loss, sc.f_back)
     z = study.measurements(sc.truth[0, :, 0], "AR(1), rho = 0.5", 3000, np.random.default_rng(3), 1.0)
-    o = study.forced_output(sc, cfg, SIZES, 100, sc.visible, z=z, covariance=False)
-    e = study.predict_ahead(o.x[:, sc.f_back - 1], 1) - sc.truth[0, sc.f_back, 0]
+    o = curves.forced_output(sc, cfg, SIZES, 100, sc.visible, z=z, covariance=False)
+    e = polynomial.predict_ahead(o.x[:, sc.f_back - 1], 1) - sc.truth[0, sc.f_back, 0]
     assert abs(e.mean() - dyn) < 4 * e.std() / np.sqrt(e.size)
     assert abs(e.std(ddof=1) / rms - 1) < 4 / np.sqrt(2 * e.size)  # SD of an SD estimate ~ 1/sqrt(2n)
     assert rms > 1.2 * rms_white  # positively correlated errors average out less
@@ -343,6 +348,6 @@ def test_acceleration_unit_reading_scales_the_manoeuvre():
     )
     # C001-7: the dynamic error scales with the acceleration, the RMS does not
     sz = SIZES | {"loss_grid_s": [6.0, 8.0]}
-    a = study.measure_curves({}, 0, sz)["C001-7"]
-    b = study.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
+    a = curves.measure_curves({}, 0, sz)["C001-7"]
+    b = curves.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
     np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)

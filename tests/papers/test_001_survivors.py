@@ -8,6 +8,9 @@ from scipy import stats
 
 from tvtrack.papers.p001_maneuver_occlusion_kf import study
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
+from tvtrack.filters import polynomial
+from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+from tvtrack.papers.p001_maneuver_occlusion_kf import scenario
 
 REG = build_register()
 SIZES = dict(sigma_eps=1.0, defaults=REG.default(), restart_accel_var=1e4)
@@ -17,19 +20,19 @@ def test_fig4_rms_is_the_prediction_sd_against_monte_carlo_at_kb3_200():
     """Fig. 4's RMS is the SD of the predicted position's error, not of a measurement at reappearance: at
     k_b3 = 200 the measurement's variance (sigma² = 1) would add 2.9 % (4.136 -> 4.255 elements). Checked against
     20,000 Monte Carlo runs (SE of an SD ~ 1/sqrt(2 n) = 0.5 %) and against the filter's exact impulse response."""
-    sc = study.scenario()
+    sc = scenario.scenario()
     cfg = REG.default()
-    dyn, rms = study.prediction_error(sc, cfg, SIZES, 200, sc.f_loss, sc.f_back)
+    dyn, rms = curves.prediction_error(sc, cfg, SIZES, 200, sc.f_loss, sc.f_back)
     n = 20_000
     z = study.measurements(sc.truth[0, :, 0], "white Gaussian", n, np.random.default_rng(38), 1.0)
-    o = study.forced_output(sc, cfg, SIZES, 200, sc.visible, z=z, covariance=False)
-    e = study.predict_ahead(o.x[:, sc.f_back - 1], 1) - sc.truth[0, sc.f_back, 0]
+    o = curves.forced_output(sc, cfg, SIZES, 200, sc.visible, z=z, covariance=False)
+    e = polynomial.predict_ahead(o.x[:, sc.f_back - 1], 1) - sc.truth[0, sc.f_back, 0]
     assert abs(e.mean() - dyn) < 4 * e.std() / np.sqrt(n)
     assert abs(e.std(ddof=1) / rms - 1) < 3 / np.sqrt(2 * n)
     # the linear filter's response to unit impulses at every visible frame: variance sigma² w·w (deterministic)
     imp = np.eye(sc.f_loss, sc.T)  # every frame seen before the loss
-    o_imp = study.forced_output(sc, cfg, SIZES, 200, sc.visible, z=imp, covariance=False)
-    w = study.predict_ahead(o_imp.x[:, sc.f_back - 1], 1)
+    o_imp = curves.forced_output(sc, cfg, SIZES, 200, sc.visible, z=imp, covariance=False)
+    w = polynomial.predict_ahead(o_imp.x[:, sc.f_back - 1], 1)
     assert rms == pytest.approx(np.sqrt(w @ w), abs=2e-6)  # prediction_error rounds to 1e-6
 
 
@@ -41,12 +44,12 @@ def test_curve_agreement_tests_the_variance_not_the_sd():
     mc = {"mean": np.zeros(2), "se": np.full(2, 0.1), "sd": np.array([2.1, 2.1])}
     chi2 = 2 * (n - 1) * 1.05**2
     expected = 2 * stats.chi2.sf(chi2, 2 * (n - 1))
-    a = study.curve_agreement(cur, mc, n)
+    a = curves.curve_agreement(cur, mc, n)
     assert a["p_var"] == pytest.approx(expected, rel=1e-9)
-    assert a["p_var"] < 0.01 and study.agreement_word(a["p_var"]) == "differ from"
+    assert a["p_var"] < 0.01 and curves.agreement_word(a["p_var"]) == "differ from"
     # SD equal to the RMS but not 1: the statistic is exactly its mean, (n - 1) per point
     mc["sd"] = np.array([2.0, 2.0])
-    same = study.curve_agreement(cur, mc, n)["p_var"]
+    same = curves.curve_agreement(cur, mc, n)["p_var"]
     assert same == pytest.approx(
         2 * min(stats.chi2.sf(2 * (n - 1), 2 * (n - 1)), stats.chi2.cdf(2 * (n - 1), 2 * (n - 1)))
     )

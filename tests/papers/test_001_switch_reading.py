@@ -10,7 +10,7 @@ import pytest
 from tvtrack.papers.p001_maneuver_occlusion_kf import study, tradeoff
 from tvtrack.papers.p001_maneuver_occlusion_kf.curves import forced_output
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS, build_register
-from tvtrack.papers.p001_maneuver_occlusion_kf.scenario import _full, config_scenario, measurements, span_mask
+from tvtrack.papers.p001_maneuver_occlusion_kf.scenario import with_defaults, config_scenario, measurements, span_mask
 
 sys.path.insert(0, str(__import__("pathlib").Path(__file__).parent))
 from test_001_study import SIZES  # noqa: E402
@@ -27,7 +27,7 @@ def test_the_switch_reading_is_declared_with_the_forced_time():
 def test_forced_reading_switches_at_switch_s_as_fig4_does():
     """Under the forced reading the scheme is the Fig. 4 filter: on the same measurements its channel-x positions
     equal curves.forced_output's (an independent path to the forced switch), and its switch frame is 5.5 s."""
-    cfg = _full(build_register().default() | {"C001-4 switch": "forced at the detection time"}, SZ)
+    cfg = with_defaults(build_register().default() | {"C001-4 switch": "forced at the detection time"}, SZ)
     sc = config_scenario(cfg)
     z = measurements(sc.truth[:, :, 0], cfg["noise"], 5, np.random.default_rng(1), 1.0)
     got = study.run_scheme(z, sc, cfg, SZ, covariance=False, **tradeoff._switch(cfg, sc))
@@ -39,7 +39,7 @@ def test_forced_reading_switches_at_switch_s_as_fig4_does():
 def test_switch_share_is_one_minus_the_forced_over_detected_random_error():
     """The share recomputed from the two filters' errors directly (variance over runs, mean over the RMS span),
     and it is positive: the detector's random switch time adds random error to the scheme's."""
-    cfg = _full(build_register().default(), SZ)
+    cfg = with_defaults(build_register().default(), SZ)
     sc = config_scenario(cfg)
     got = tradeoff.switch_share({}, 9, SZ)
     z = measurements(sc.truth[:, :, 0], cfg["noise"], SZ["n_tradeoff_trials"], np.random.default_rng(9), 1.0)

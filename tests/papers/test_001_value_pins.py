@@ -26,6 +26,7 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
 )
 from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
 from tvtrack.papers.p001_maneuver_occlusion_kf.spherical import TARGET_SETS, spherical_deviations
+from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
 
 REG = build_register()
 SIZES = dict(n_trials=60, n_fa_runs=400, fa_duration_s=6.0, roc_delay_s=0.5, step_dv=1.0, sigma_eps=1.0)
@@ -109,6 +110,6 @@ def test_c9_geometries_share_is_taken_over_the_targets_that_stay_inside():
     assert 0 < inside.sum() < len(rows)  # some geometries leave the field: the selection matters
     np.testing.assert_array_equal(rows[:, 4] > 0, inside)
     want = np.mean(rows[inside, 6] < 1.0)  # quadratic extrapolation within one element
-    got = study.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]["geometries"]
+    got = spherical.measure_spherical({}, 0, dict(defaults=REG.default(), prediction_rms=7.6))["C001-9"]["geometries"]
     assert got == pytest.approx(want, rel=1e-12)
     assert got != pytest.approx(np.mean(rows[:, 6] < 1.0))

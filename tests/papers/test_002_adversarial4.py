@@ -8,7 +8,7 @@ what the algorithm gives (numbers that would be wrong if the ULA or the bound we
 import numpy as np
 
 from tvtrack.papers.p002_unified_location_em import simulation as sim
-from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em import claim_values, study
 from tvtrack.papers.p002_unified_location_em.claims import RULES
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
@@ -82,9 +82,9 @@ def test_at_half_a_sigma_the_ula_sits_far_below_the_crb_and_far_above_the_van_tr
     Measured 0.31 [0.28, 0.34] and 3.0 [2.7, 3.3] at 300 trials. Its mean squared error (about 0.7 sigma^2) is even
     larger than the designation's own (0.36 sigma^2: four coordinates at 0.3 sigma), and below the CRB (1.7)."""
     r = _ula_at(0.5, 3.0, 10, 80)
-    e = study.errors(r, "ula", "first")
-    crb = study._efficiency(e, r["crb_pos"], "variance")
-    vt = study._efficiency(e, r["bcrb_pos"], "variance")
+    e = claim_values.errors(r, "ula", "first")
+    crb = claim_values.efficiency(e, r["crb_pos"], "variance")
+    vt = claim_values.efficiency(e, r["bcrb_pos"], "variance")
     assert crb.ci_high < 0.6, crb
     assert vt.ci_low > 1.5, vt
     for bound, est in (("CRB", crb), ("van Trees", vt)):
@@ -96,6 +96,6 @@ def test_fig1c_pair_the_influence_of_pixel_size_does_not_weaken_from_five_to_ten
     """Fig 1c's pixel pair at d = 2 sigma: the variance ratio 5 / 3 sigma grows from T = 5 to T = 10 (measured
     4.46 -> 6.95 at 300 trials, seed 11), while the card's 3 / 1 sigma falls (2.81 -> 2.54)."""
     rng = np.random.default_rng(0)
-    v = {(p, T): study.errors(_ula_at(2.0, p, T, 120), "ula", "first") for p in (3.0, 5.0) for T in (5, 10)}
-    r5, r10 = (study.gain(v[5.0, T], v[3.0, T], rng, 500, "variance", paired=False) for T in (5, 10))
+    v = {(p, T): claim_values.errors(_ula_at(2.0, p, T, 120), "ula", "first") for p in (3.0, 5.0) for T in (5, 10)}
+    r5, r10 = (claim_values.gain(v[5.0, T], v[3.0, T], rng, 500, "variance", paired=False) for T in (5, 10))
     assert r10.value > 1.2 * r5.value, (r5, r10)

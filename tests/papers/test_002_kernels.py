@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 from tvtrack import jit
-from tvtrack.papers.p002_unified_location_em import _kernels, em
-from tvtrack.papers.p002_unified_location_em.em import pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em import _kernels, em_steps
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
+from tvtrack.papers.p002_unified_location_em.em import unified_location_em
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,
@@ -36,14 +37,14 @@ def test_compiled_e_step_equals_the_numpy_e_step(q, pix, second):
     g, counts, desig, p, p0 = _scene(q=q, pix=pix)
     entries = pixel_entries(counts)
     n = counts.shape[0]
-    work = em._Work(entries, np.arange(n))
+    work = em_steps.ActiveEntries(entries, np.arange(n))
     rng = np.random.default_rng(3)
     theta = desig + 0.3 * rng.standard_normal(desig.shape)  # off the designation: every term non-trivial
     pw = np.broadcast_to(p, (n, q)).copy()
     p0v = np.full(n, p0)
     sigma = np.full((n, q), g.sigma_px) * (1 + 0.1 * rng.random((n, q)))
     times = frame_times(counts.shape[1])
-    ref_sums, ref_ll = em._e_step_numpy(work, theta, pw, p0v, sigma, times, entries.shape, second)
+    ref_sums, ref_ll = em_steps.expectation_step_numpy(work, theta, pw, p0v, sigma, times, entries.shape, second)
     sums, ll = _kernels.e_step(work, theta, pw, p0v, sigma, times, entries.shape, second)
     assert sums.shape == ref_sums.shape == (n, q, 9 if second else 7)
     np.testing.assert_allclose(sums, ref_sums, rtol=1e-11, atol=1e-12)
@@ -87,7 +88,7 @@ def test_compiled_m_step_is_the_numpy_m_step_bit_for_bit(static):
     sums[1, 1, 2] = sums[1, 1, 1] ** 2 / sums[1, 1, 0]  # singular
     sums[2, 0, 3] = np.inf
     theta = rng.normal(size=(40, 2, 4))
-    ref_new, ref_bad = em._m_step(sums, theta, static)
+    ref_new, ref_bad = em_steps.maximisation_step(sums, theta, static)
     new, bad = _kernels.m_step(sums, theta, static)
     assert ref_bad[:3].any() and ref_bad.tolist() == bad.tolist()
     assert np.array_equal(ref_new, new)

@@ -7,13 +7,8 @@ import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_linear_motion, position_crb_sum
 
-from tvtrack.papers.p002_unified_location_em.em import (
-    match_labels,
-    per_frame_entries,
-    pixel_entries,
-    track_distance,
-    unified_location_em,
-)
+from tvtrack.papers.p002_unified_location_em.em import match_labels, track_distance, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import per_frame_entries, pixel_entries
 from tvtrack.papers.p002_unified_location_em.model import (
     designate,
     draw_truth,
@@ -23,10 +18,10 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
     simulate_counts,
 )
+from tvtrack.papers.p002_unified_location_em.sim_config import CANONICAL_SETTINGS
 from tvtrack.papers.p002_unified_location_em.simulation import (
-    CANONICAL_SETTINGS,
     Config,
-    _scene_key,
+    scene_key,
     errors_vs_truth,
     run_config,
     seed_sequence,
@@ -111,7 +106,7 @@ def test_noise_per_pixel_scales_with_the_pixel_area():
     cfg = Config(1, 0.0, 3.0, 20, 5, "cr", 0.3, None, None, 8, "t", 0.0)
     res = run_config(st, cfg)
     g = scene_geometry(1, 5, 0.0, 3.0, (0.2, 0.1))
-    th = draw_truth(np.random.default_rng(seed_sequence(st.seed, _scene_key(cfg) + ("crb",))), 4, g)
+    th = draw_truth(np.random.default_rng(seed_sequence(st.seed, scene_key(cfg) + ("crb",))), 4, g)
     for noise, same in ((9.0, True), (3.0, False)):
         crb = crb_linear_motion(th, frame_times(5), g.shape, g.sigma_px, 20, noise)
         bound = float(np.mean(position_crb_sum(crb))) / g.sigma_px**2

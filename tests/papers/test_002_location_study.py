@@ -6,14 +6,13 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p002_unified_location_em.location_study import LocationStudy
-from tvtrack.papers.p002_unified_location_em.simulation import (
-    Config,
-    CANONICAL_SETTINGS,
+from tvtrack.papers.p002_unified_location_em.simulation import Config, seed_sequence
+from tvtrack.papers.p002_unified_location_em.sim_config import CANONICAL_SETTINGS
+from tvtrack.papers.p002_unified_location_em.summaries import (
     bootstrap_groups,
     failure_metrics,
     position_errors,
     seed_blocks,
-    seed_sequence,
     variance_ratio_ci,
     variance_sum,
 )

@@ -14,13 +14,14 @@ from tvtrack.papers.p002_unified_location_em import simulation as sim
 from tvtrack.papers.p002_unified_location_em import study
 from tvtrack.papers.p002_unified_location_em.register import REGISTER
 from tvtrack.papers.p002_unified_location_em.summaries import position_errors
+from tvtrack.papers.p002_unified_location_em import sim_config
 
 STOP = REGISTER["EM stopping"]
 
 
 def _added(n=40, T=50, d=3.0, seed=11):
     """Relative mean squared distance of the practically stopped estimates from the converged ones (ULA, marks)."""
-    base = replace(sim.CANONICAL_SETTINGS, seed=seed, designation_sd_sigma=0.3, n_trials=n, n_bootstrap=200)
+    base = replace(sim_config.CANONICAL_SETTINGS, seed=seed, designation_sd_sigma=0.3, n_trials=n, n_bootstrap=200)
     cfg = sim.Config(2, d, 3.0, 20, T, "ue", 0.3, None, None, n, "explore", 0.0)
     conv = sim.run_config(base, cfg)
     prac = sim.run_config(replace(base, accelerate="none", tol_loglik=0.1), cfg)
@@ -63,7 +64,7 @@ def test_no_record_calls_the_practical_stop_matched():
 def test_the_converged_default_does_not_move_with_a_tighter_tolerance():
     """Convergence in effect: at the default's 1e-6 sigma both estimates stay within 1e-3 sigma of a 1e-9 run (the
     errors are about 0.3 sigma; a slow mark at d = sigma moved 1.4e-4 sigma)."""
-    base = replace(sim.CANONICAL_SETTINGS, seed=4, designation_sd_sigma=0.3, n_trials=8, n_bootstrap=200)
+    base = replace(sim_config.CANONICAL_SETTINGS, seed=4, designation_sd_sigma=0.3, n_trials=8, n_bootstrap=200)
     cfg = sim.Config(2, 1.0, 3.0, 20, 10, "ue", 0.3, None, None, 8, "explore", 0.0)
     a, b = sim.run_config(base, cfg), sim.run_config(replace(base, tol_sigma=1e-9), cfg)
     for alg in ("ula", "em"):

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from tvtrack.papers.p002_unified_location_em import study
+from tvtrack.papers.p002_unified_location_em import claim_values, study
 from tvtrack.papers.p002_unified_location_em.claims import RULES
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 from tvtrack.verdicts import synthetic
@@ -111,7 +111,7 @@ def test_mse_reaches_the_log_gains():
     args = (np.random.default_rng(1), 200)
 
     def weakens(n, spread):
-        return study._mean_log_gain([np.hstack(far)], [np.hstack(n)], *args, spread=spread).value
+        return claim_values.mean_log_gain([np.hstack(far)], [np.hstack(n)], *args, spread=spread).value
 
     assert weakens(shifted, "variance") == pytest.approx(weakens(near, "variance"), rel=1e-12)
     v_far = [(x**2).mean(0).sum() for x in far]

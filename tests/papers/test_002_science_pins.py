@@ -16,15 +16,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from tvtrack.papers.p002_unified_location_em.em import log_likelihood, pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em import log_likelihood, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
 from tvtrack.papers.p002_unified_location_em.model import frame_times, mixture_weights, scene_batches, scene_geometry
-from tvtrack.papers.p002_unified_location_em.simulation import (
-    Config,
-    CANONICAL_SETTINGS,
-    centre_gate_half_px,
-    map_prior_sd,
-    run_config,
-)
+from tvtrack.papers.p002_unified_location_em.simulation import Config, centre_gate_half_px, map_prior_sd, run_config
+from tvtrack.papers.p002_unified_location_em.sim_config import CANONICAL_SETTINGS
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, propagate
 
 

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from tvtrack.montecarlo import Estimate
-from tvtrack.papers.p002_unified_location_em import extras, study
+from tvtrack.papers.p002_unified_location_em import claim_values, extras, study
+from tvtrack.papers.p002_unified_location_em.readings import COORDINATE6, FIG1_PANEL, TRIMMED
 from tvtrack.papers.p002_unified_location_em.register import DEPENDS, REGISTER
 
 TINY = study.Scale(
@@ -77,7 +78,10 @@ def test_map_headline_compares_with_the_twin_of_the_same_knowledge():
     g, res = study.figure_data(cfg, 3, TINY)
     r, rm = res[g["5ab"][50][1.0]], res[g["head_map"][1.0]]
     # the same statistic computed here from the free-velocity twin (the plain line fit) and the MAP-ULA
-    direct = study.errors(r, "em").var(axis=0, ddof=1).sum() / study.errors(rm, "map").var(axis=0, ddof=1).sum()
+    direct = (
+        claim_values.errors(r, "em").var(axis=0, ddof=1).sum()
+        / claim_values.errors(rm, "map").var(axis=0, ddof=1).sum()
+    )
     assert out["d = 1 sigma (paper x4.5)"].value == pytest.approx(direct)
 
 
@@ -115,13 +119,13 @@ def test_mean_log_gain_recovers_a_known_ratio_of_gains():
             [rng.normal(scale=np.sqrt(var_num), size=(n, 2)), rng.normal(scale=np.sqrt(var_den), size=(n, 2))]
         )
 
-    est = study._mean_log_gain(
+    est = claim_values.mean_log_gain(
         [pair(4.0, 1.0), pair(8.0, 2.0)], [pair(2.0, 1.0), pair(1.0, 0.5)], np.random.default_rng(0), 1000
     )
     assert est.ci_low < 2.0 < est.ci_high and abs(est.value - 2.0) < 0.25
     e = rng.normal(size=(n, 2))
-    v = study.gain(2 * e, e, np.random.default_rng(0), 2000)
-    s = study.gain(2 * e, e, np.random.default_rng(0), 2000, statistic="SD ratio")
+    v = claim_values.gain(2 * e, e, np.random.default_rng(0), 2000)
+    s = claim_values.gain(2 * e, e, np.random.default_rng(0), 2000, statistic="SD ratio")
     assert v.value == pytest.approx(4.0) and s.value == pytest.approx(2.0)
 
 
@@ -133,10 +137,11 @@ def test_variance_sum_interval_coverage_near_the_resolution_limit():
     from dataclasses import replace
 
     from tvtrack.explore import pool
-    from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config, variance_sum
+    from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config
+    from tvtrack.papers.p002_unified_location_em.summaries import variance_sum
 
     errs = [
-        study.errors(
+        claim_values.errors(
             run_config(
                 replace(study._CANON, seed=1000 + k), Config(2, 1.0, 3.0, 20, 10, "u", 0.3, None, None, 80, "cov", 0.0)
             ),
@@ -189,13 +194,13 @@ def test_wrong_q_and_estimated_weights_are_reported_on_the_same_trials():
 
 def test_trimmed_reading_reruns_nothing_and_ignores_a_few_gross_errors():
     base = _letters(study.jobs_of(DEFAULT, 7, TINY))
-    assert _letters(study.jobs_of({**DEFAULT, "gross errors": study.TRIMMED}, 7, TINY)) == base
+    assert _letters(study.jobs_of({**DEFAULT, "gross errors": TRIMMED}, 7, TINY)) == base
     e = np.random.default_rng(3).standard_normal((400, 2))
     e[:5] = 1e3  # five lost objects
-    assert study.spread_sum(e).value > 1e4
-    trimmed = study.spread_sum(e, "trimmed")
+    assert claim_values.spread_sum(e).value > 1e4
+    trimmed = claim_values.spread_sum(e, "trimmed")
     assert 1.0 < trimmed.value < 2.0 and trimmed.ci_low <= trimmed.value <= trimmed.ci_high
-    g = study.gain(e * 2.0, e, np.random.default_rng(4), 400, "trimmed")
+    g = claim_values.gain(e * 2.0, e, np.random.default_rng(4), 400, "trimmed")
     assert g.value == pytest.approx(4.0)
 
 
@@ -238,8 +243,8 @@ def test_c002_6_photon_pair_and_coordinate_readings():
     whole = _letters(study.jobs_of({**DEFAULT, "small separations of C002-6 (sigma)": 8.0}, 7, TINY))
     assert {k[0].d for k in set(whole) - set(base)} == {d for d in TINY.separations if d > 2.0}
     e = np.arange(12.0).reshape(3, 4)  # columns x1, y1, x2, y2; the objects are separated along y
-    assert e[:, study.COORDINATE6["along the separation"]].tolist() == e[:, [1, 3]].tolist()
-    assert e[:, study.COORDINATE6["across the separation"]].tolist() == e[:, [0, 2]].tolist()
+    assert e[:, COORDINATE6["along the separation"]].tolist() == e[:, [1, 3]].tolist()
+    assert e[:, COORDINATE6["across the separation"]].tolist() == e[:, [0, 2]].tolist()
     study.clear_cache()
     out = study.measure_batch(
         [
@@ -277,7 +282,10 @@ def test_c002_6_pixel_frame_pair_and_gap_readings():
     assert len({o["C002-6"].value for o in out}) == 4 and all(np.isfinite(o["C002-6"].value) for o in out)
     # the gap reading: mean over d <= 2 sigma of |Sigma^2(5) - Sigma^2(10)| at 20 photons minus that at 10 photons
     g, res = study.figure_data(DEFAULT, 7, TINY)
-    v = {k: [study._vsum(study.errors(res[g["2"][k][d]], "ula")[None])[0] for d in (1.0, 2.0)] for k in g["2"]}
+    v = {
+        k: [claim_values.spread_total(claim_values.errors(res[g["2"][k][d]], "ula")[None])[0] for d in (1.0, 2.0)]
+        for k in g["2"]
+    }
     want = np.mean(np.abs(np.subtract(v[(5, 20)], v[(10, 20)]))) - np.mean(np.abs(np.subtract(v[(5, 10)], v[(10, 10)])))
     assert out[3]["C002-6"].value == pytest.approx(want, rel=1e-9)
     assert all(o[c].value == out[0][c].value for o in out[1:] for c in ("C002-3", "C002-13"))
@@ -309,9 +317,10 @@ def test_c002_1_panel_readings_read_that_panels_whole_distance_axis(reading, pix
     study.clear_cache()
     got = study.measure({**DEFAULT, **reading}, 7, TINY)["C002-1"]
     g, res = study.figure_data({**DEFAULT, **reading}, 7, TINY)
-    panel = g[study.FIG1_PANEL[pix]][m]
+    panel = g[FIG1_PANEL[pix]][m]
     assert [e.value for e in got] == [
-        study.spread_sum(study.errors(res[panel[d]], "ula", "first"), "variance").value for d in TINY.separations
+        claim_values.spread_sum(claim_values.errors(res[panel[d]], "ula", "first"), "variance").value
+        for d in TINY.separations
     ]
 
 
@@ -366,7 +375,7 @@ def _flat(x):
         (DEFAULT, {"C002-11"}),
         (DEFAULT, {"C002-6", "C002-15"}),
         ({**DEFAULT, "ULA": "MAP (designation prior)", "statistic": "MSE"}, {"C002-11", "C002-2"}),
-        ({**DEFAULT, "velocity knowledge": "designated", "gross errors": study.TRIMMED}, {"C002-11", "C002-9"}),
+        ({**DEFAULT, "velocity knowledge": "designated", "gross errors": TRIMMED}, {"C002-11", "C002-9"}),
     ],
 )
 def test_a_claims_subset_measures_those_claims_bit_for_bit_and_runs_only_their_jobs(config, subset):

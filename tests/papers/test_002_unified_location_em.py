@@ -9,10 +9,10 @@ from tvtrack.bounds.poisson_crb import crb_linear_motion, fisher_linear_motion, 
 from tvtrack.papers.p002_unified_location_em.em import (
     log_likelihood,
     match_labels,
-    pixel_entries,
     responsibility_maps,
     unified_location_em,
 )
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
 from tvtrack.papers.p002_unified_location_em.two_stage import (
     Marks,
     associate,

@@ -5,7 +5,7 @@ import pytest
 from scipy.linalg import expm
 
 from tvtrack.papers.p003_rotating_marker_tracker import crb
-from tvtrack.papers.p003_rotating_marker_tracker.loops import VelocityEKFTracker, velocity_model
+from tvtrack.papers.p003_rotating_marker_tracker.ekf import VelocityEKFTracker, velocity_model
 
 
 def _overlap(lo, hi, n):

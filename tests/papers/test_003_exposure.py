@@ -3,12 +3,8 @@
 import numpy as np
 import pytest
 
-from tvtrack.papers.p003_rotating_marker_tracker.scene import (
-    RotatingMarkerScene,
-    Scenario,
-    marker_truth,
-    run_scenario,
-)
+from tvtrack.papers.p003_rotating_marker_tracker.imaging import RotatingMarkerScene
+from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, marker_truth, run_scenario
 
 FPS, R, OMEGA, PHI = 50.0, 12.0, 2 * np.pi * 8.0, 0.3
 
@@ -92,7 +88,8 @@ def test_median_compensation_cancels_background_and_interferers_exactly():
 
 def test_median_compensation_removes_a_marker_that_stood_still():
     """A non-rotating marker on a still object is part of the static scene: the median takes it away whole."""
-    from tvtrack.papers.p003_rotating_marker_tracker.scene import median_residual, render_spot
+    from tvtrack.papers.p003_rotating_marker_tracker.backdrop import median_residual
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import render_spot
 
     truth = _still_truth(51, r=0.0, omega=0.0)
     res = median_residual(np.random.default_rng(0), truth, 51, (256, 256), "disc", 8.0, 1.0, 0.0)
@@ -105,7 +102,7 @@ def test_median_ring_and_noise_follow_the_sample_median_laws():
     -sigma Phi^-1(1 / (2 (1 - p))) (the faint ring)."""
     from scipy.stats import norm
 
-    from tvtrack.papers.p003_rotating_marker_tracker.scene import median_residual
+    from tvtrack.papers.p003_rotating_marker_tracker.backdrop import median_residual
 
     N, sigma = 1001, 0.02
     truth = _still_truth(N)

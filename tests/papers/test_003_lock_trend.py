@@ -8,13 +8,14 @@ from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.estimators import grid_in_lock
 from tvtrack.papers.p003_rotating_marker_tracker.prose import lost_points
 from tvtrack.papers.p003_rotating_marker_tracker.register import REGISTER
+from tvtrack.papers.p003_rotating_marker_tracker import memo
 
 
 @pytest.fixture(autouse=True)
 def _fresh_memo():
-    study.clear_cache()
+    memo.clear_cache()
     yield
-    study.clear_cache()
+    memo.clear_cache()
 
 
 def test_a_lost_grid_point_is_reported_and_left_out_of_the_trend():

@@ -33,15 +33,9 @@ from tvtrack.papers.p003_rotating_marker_tracker.loops import (
     run_closed_loop,
     simulate_two_emitter_1d,
 )
-from tvtrack.papers.p003_rotating_marker_tracker.scene import (
-    RotatingMarkerScene,
-    Scenario,
-    correlated_background,
-    marker_truth,
-    place_interferers,
-    render_spot,
-    run_scenario,
-)
+from tvtrack.papers.p003_rotating_marker_tracker.imaging import RotatingMarkerScene
+from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, marker_truth, render_spot, run_scenario
+from tvtrack.papers.p003_rotating_marker_tracker.backdrop import correlated_background, place_interferers
 from tvtrack.render import box_spot, pixel_fractions_box
 
 D, A = 8.0, 12.0
@@ -388,7 +382,7 @@ def test_rotation_synchronous_error_component():
 def test_ekf_step_matches_filterpy():
     from filterpy.kalman import ExtendedKalmanFilter
 
-    from tvtrack.papers.p003_rotating_marker_tracker.loops import EKFTracker
+    from tvtrack.papers.p003_rotating_marker_tracker.ekf import EKFTracker
 
     x0 = np.array([[100.0, 90.0, 12.0, 0.7, 50.0]])
     P0 = np.diag([4.0, 3.0, 2.0, 0.05, 1.0])

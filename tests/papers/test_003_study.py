@@ -9,18 +9,19 @@ from scipy import stats
 
 from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
-from tvtrack.papers.p003_rotating_marker_tracker import beyond, study
+from tvtrack.papers.p003_rotating_marker_tracker import beyond, estimators, study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
 from tvtrack.verdicts import InBand, Ordering, is_undecided
+from tvtrack.papers.p003_rotating_marker_tracker import memo
 
 
 @pytest.fixture(autouse=True)
 def _fresh_memo():
-    """Tests here replace the runners: no measurement part kept from another test (study.clear_cache)."""
-    study.clear_cache()
+    """Tests here replace the runners: no measurement part kept from another test (memo.clear_cache)."""
+    memo.clear_cache()
     yield
-    study.clear_cache()
+    memo.clear_cache()
 
 
 SIRS = np.array([0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5])
@@ -51,7 +52,7 @@ def test_zero_event_shares_pool_across_replicates_as_one_count():
 
 def test_log_thresholds_are_grid_midpoints_and_flag_censoring():
     thr = np.array([0.9, 1.6, 2.5, 0.6, 10.0, 0.3])
-    tau, cens = study.log_thresholds(_lost_from_thresholds(thr), SIRS)
+    tau, cens = estimators.log_thresholds(_lost_from_thresholds(thr), SIRS)
     # a run with threshold in (s_{k-1}, s_k] gets the log midpoint of that step
     k = np.searchsorted(SIRS, thr)
     inside = (k > 0) & (k < SIRS.size)
@@ -92,10 +93,10 @@ def test_compensation_ratio_is_a_bound_when_uncompensated_runs_lose_everywhere()
     usirs = np.array(study.UNCOMPENSATED_GRID)
     comp = _lost_from_thresholds([1.2] * 6)
     unc_all = np.ones((usirs.size, 6), bool)
-    e = study._compensation_factor(unc_all, usirs, comp, SIRS, 0.1)
+    e = estimators.compensation_factor(unc_all, usirs, comp, SIRS, 0.1)
     assert e.value == 0.0 and e.ci_low == 0.0 and 0 < e.ci_high < 0.05 and not e.extrapolated
     unc = _lost_from_thresholds([6.0] * 6, usirs)
-    e = study._compensation_factor(unc, usirs, comp, SIRS, 0.1)
+    e = estimators.compensation_factor(unc, usirs, comp, SIRS, 0.1)
     assert e.ci_low < 0.1 * np.sqrt(1.0 * 4 / 3) / np.sqrt(4.0 * 8.0) < e.ci_high
 
 
@@ -262,7 +263,7 @@ def test_tracking_judges_c003_1_on_the_configured_coordinate_loop():
     assert t["C003-9"]["disc_linear"] == pytest.approx(0.960, abs=0.005)
     assert t["C003-9"]["square_linear"] == pytest.approx(1.0, abs=1e-9)
     sc = study.scenario(cfg)
-    tr, _, h = run_scenario([study._rng(1, 1)], sz.trials, replace(sc, duration_s=sz.fig1_s))
+    tr, _, h = run_scenario([study.stream_rng(1, 1)], sz.trials, replace(sc, duration_s=sz.fig1_s))
     k0 = int(round(sz.transient_s * sc.fps))
     y = np.sqrt(np.mean(state_errors(tr, h)[:, k0:, 1] ** 2))
     assert t["C003-1"]["y_r"].value == pytest.approx(y, rel=1e-9)
@@ -284,7 +285,7 @@ def test_compensation_reading_one_sided_keeps_the_ratio_and_two_sided_folds_it_a
     folded = study.compensation_reading(about, 0.1, "two-sided")
     assert (folded.value, folded.ci_low, folded.ci_high) == pytest.approx((0.125, 0.1, 0.01 / 0.06))
     assert rule.decide(folded) == "reproduced"  # 0.06 and 0.15 both lie within a factor 2 of kappa
-    for reading in study.COMPENSATION_READINGS:  # a weak compensation fails under both readings
+    for reading in estimators.COMPENSATION_READINGS:  # a weak compensation fails under both readings
         assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
         assert rule.decide(study.compensation_reading(edge, 0.1, reading)) == "undecided"
     low = Estimate(0.04, float("nan"), 0.03, 0.06, 6, 0.95, "ratio")  # below kappa / 2: one-sided yes, two-sided no
@@ -323,8 +324,8 @@ def test_a_curve_run_at_one_more_sir_repeats_the_grid_runs_draws():
     from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
 
     sc = study.scenario({}, study.Sizes(trials=2, horizon_s=0.3), n_interferers=1)
-    grid = interference_runs([study._rng(10, 5)], 2, sc, [0.5, 1.0])
-    one = interference_runs([study._rng(10, 5)], 2, sc, [1.0])
+    grid = interference_runs([study.stream_rng(10, 5)], 2, sc, [0.5, 1.0])
+    one = interference_runs([study.stream_rng(10, 5)], 2, sc, [1.0])
     np.testing.assert_array_equal(one["miss"], grid["miss"][2:])
     assert np.ptp(grid["miss"][:2] - grid["miss"][2:]) > 0  # the SIR does change the runs
 
@@ -335,8 +336,8 @@ def test_threshold_ratio_is_an_upper_bound_when_the_first_curve_breaks_below_the
     e = study.threshold_ratio(_lost_from_thresholds(thr_a), _lost_from_thresholds(thr_b), SIRS)
     assert not e.extrapolated and e.ci_low == 0.0
     ls = np.log(SIRS)
-    tau_b = study.log_thresholds(_lost_from_thresholds(thr_b), SIRS)[0]
-    ub_a = np.where(thr_a < SIRS[0], ls[0], study.log_thresholds(_lost_from_thresholds(thr_a), SIRS)[0])
+    tau_b = estimators.log_thresholds(_lost_from_thresholds(thr_b), SIRS)[0]
+    ub_a = np.where(thr_a < SIRS[0], ls[0], estimators.log_thresholds(_lost_from_thresholds(thr_a), SIRS)[0])
     d = ub_a - tau_b
     t = stats.t.ppf(0.975, d.size - 1)
     assert e.ci_high == pytest.approx(np.exp(d.mean() + t * d.std(ddof=1) / np.sqrt(d.size) + np.log(1.5) / 2))

@@ -6,7 +6,7 @@ import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
-from tvtrack.papers.p004_laser_spot_prediction import derivation, study
+from tvtrack.papers.p004_laser_spot_prediction import derivation, study, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS
 
 SIZE = study.StudySize(
@@ -25,14 +25,14 @@ SIZE = study.StudySize(
 
 @pytest.fixture(scope="module")
 def scene():
-    return study._scene(dict(DEFAULT), 3, SIZE)
+    return study.study_run(dict(DEFAULT), 3, SIZE)
 
 
 def test_streaming_pipeline_runs_the_paper_recursion_frame_by_frame(scene):
     """The timed streaming loop is the real filter: its states equal growing_memory_filter (fixed floor) on the
     centres it was fed (a wrong gain index or a missing prediction step fails), and its gates follow the spot
     (the measured centres lie within 0.5 px of the truth)."""
-    times, states, z = study.streaming_frame_times(scene, np.random.default_rng(0))
+    times, states, z = timing.streaming_frame_times(scene, np.random.default_rng(0))
     ref = growing_memory_filter(z.T, 2, SIZE.fixed_floor)  # (2 axes, T, 3)
     np.testing.assert_allclose(states[2:], np.moveaxis(ref, 0, 1)[2:], rtol=0, atol=1e-9)
     assert np.all(np.isnan(states[:2]))
@@ -44,8 +44,8 @@ def test_streaming_pipeline_runs_the_paper_recursion_frame_by_frame(scene):
 def test_c004_8_readings_change_what_is_timed(scene):
     """The streaming reading's 99th percentile is at least its mean; the readings are in the claim's dependencies."""
     rng = lambda: np.random.default_rng(1)  # noqa: E731
-    stream_mean = study._frame_time_ms(scene, rng(), {"C004-8 pipeline": "streaming, the study's energy centre"})
-    stream_p99 = study._frame_time_ms(scene, rng(), {"C004-8 statistic": "99th percentile"})
+    stream_mean = timing.frame_time_ms(scene, rng(), {"C004-8 pipeline": "streaming, the study's energy centre"})
+    stream_p99 = timing.frame_time_ms(scene, rng(), {"C004-8 statistic": "99th percentile"})
     assert 0 < stream_mean <= stream_p99
     assert {"energy centre", "C004-8 pipeline", "C004-8 statistic"} <= set(DEPENDS["C004-8"])
 
@@ -63,8 +63,8 @@ def test_lost_frames_skipped_break_the_equality_only_where_a_frame_is_lost():
     lags = np.arange(80, -1, -1.0)[keep]
     H = np.stack([np.ones_like(lags), -lags, lags**2 / 2], axis=1)
     np.testing.assert_allclose(b[80], np.linalg.lstsq(H, gap[:81][keep], rcond=None)[0], rtol=1e-10)
-    assert study.recursion_vs_batch(z)[0] < 1e-9
-    assert study.recursion_vs_batch(gap)[0] > 1e-6
+    assert derivation.recursion_vs_batch(z)[0] < 1e-9
+    assert derivation.recursion_vs_batch(gap)[0] > 1e-6
 
 
 def test_heavy_tailed_noise_is_a_reading_the_rule_cannot_decide():

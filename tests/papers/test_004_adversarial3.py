@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack.filters.polynomial import growing_memory_filter
-from tvtrack.papers.p004_laser_spot_prediction import study, timing
+from tvtrack.papers.p004_laser_spot_prediction import derivation, timing
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, ROWS
 from tvtrack.papers.p004_laser_spot_prediction.spot_centre import windowed_centroid
 
@@ -25,7 +25,7 @@ def test_whole_frame_streaming_measures_the_spot_and_runs_the_recursion(scene, m
     from dataclasses import replace
 
     run = replace(scene, camera=replace(scene.camera, centroid_mode=mode))
-    times, states, z = study.streaming_frame_times(run, np.random.default_rng(0), whole_frame=True)
+    times, states, z = timing.streaming_frame_times(run, np.random.default_rng(0), whole_frame=True)
     truth = np.moveaxis(run.truth[0, 0, :, : len(z)], 0, -1)
     assert np.max(np.abs(z - truth)) < tol_px
     ref = growing_memory_filter(z.T, 2, SIZE.fixed_floor)
@@ -48,10 +48,10 @@ def test_windowed_centroid_start_moves_only_the_first_window():
 def test_c004_8_frame_and_clock_readings_are_measured_and_registered(scene):
     """The whole-frame reading times the streaming pipeline over all pixels; the wall clock reading reads
     time.perf_counter; both rows are adversarial and in the claim's dependencies."""
-    assert study.CLOCKS == {"CPU": time.process_time, "wall": time.perf_counter}
+    assert timing.CLOCKS == {"CPU": time.process_time, "wall": time.perf_counter}
     rng = lambda: np.random.default_rng(1)  # noqa: E731
     for reading in ({"C004-8 frame": "whole frame"}, {"C004-8 clock": "wall"}):
-        t = study._frame_time_ms(scene, rng(), reading)
+        t = timing.frame_time_ms(scene, rng(), reading)
         assert 0 < t < 40.0  # ms per frame: the readings run and return a time, not a share
     rows = {r[0]: r for r in ROWS}
     assert rows["C004-8 frame"][1:4] == ("operating point", "gate", ("gate", "whole frame"))
@@ -74,12 +74,14 @@ def test_wall_clock_leaves_out_the_frames_another_process_preempted(scene, monke
         return flips["n"]
 
     monkeypatch.setattr(timing, "_involuntary_switches", every_other_frame)
-    t = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
+    t = timing.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
     assert np.all(np.isnan(t[1::2])) and np.all(np.isfinite(t[0::2]))
-    ms = study._frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
+    ms = timing.frame_time_ms(scene, np.random.default_rng(0), {"C004-8 clock": "wall", "C004-8 frame": "whole frame"})
     assert np.isfinite(ms) and ms > 0
     monkeypatch.setattr(timing, "_involuntary_switches", lambda: 0)
-    kept = study.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[0]
+    kept = timing.streaming_frame_times(scene, np.random.default_rng(0), clock=time.perf_counter, drop_preempted=True)[
+        0
+    ]
     assert np.all(np.isfinite(kept))
 
 
@@ -100,14 +102,12 @@ def test_c004_4_reads_every_paths_series_so_a_loss_rate_always_acts():
     frames for some seeds (the pinned flip then went unseen and C004-4 read robust), fifteen practically never."""
     import numpy as np
 
-    from tvtrack.papers.p004_laser_spot_prediction import study
-
     rng = np.random.default_rng(3)
     t = np.arange(200.0)
     z = 5 + 0.01 * t**2 / 2 + 0.3 * np.cumsum(rng.standard_normal((15, 200)), axis=1)
-    one_quiet = [s for s in range(40) if study._recursion_check(z[:1], [s, 4004], 0.01, held=False) <= 1e-9]
+    one_quiet = [s for s in range(40) if derivation.recursion_check(z[:1], [s, 4004], 0.01, held=False) <= 1e-9]
     assert one_quiet  # a single series misses the losses at some seeds
     for s in one_quiet:
-        assert study._recursion_check(z, [s, 4004], 0.01, held=False) > 1e-3  # skipped frames: eq. (4) differs
-        assert study._recursion_check(z, [s, 4004], 0.01, held=True) <= 1e-9  # held frames: exact again
-    assert study._recursion_check(z, [0, 4004], 0.0, held=False) <= 1e-9  # no loss: the recursion is exact
+        assert derivation.recursion_check(z, [s, 4004], 0.01, held=False) > 1e-3  # skipped frames: eq. (4) differs
+        assert derivation.recursion_check(z, [s, 4004], 0.01, held=True) <= 1e-9  # held frames: exact again
+    assert derivation.recursion_check(z, [0, 4004], 0.0, held=False) <= 1e-9  # no loss: the recursion is exact

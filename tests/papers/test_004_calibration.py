@@ -24,7 +24,7 @@ def test_paper_filter_rms_is_the_filters_error_at_its_one_floor():
     one-step RMS against the measured centre, recomputed here from the forecast."""
     size = study.StudySize(n_paths=6, n_frames=200, n_folds=3, floor_grid=(1000,))
     cfg = dict(DEFAULT, bandwidth=2.0)
-    run = study._scene(cfg, 11, size)
+    run = study.study_run(cfg, 11, size)
     fc = pr.growing_memory_forecast(run.z, 1, 2, 200)
     e = (fc[..., :-1] - run.z_meas[..., 1:])[..., size.eval_start - 1 :]
     want = np.sqrt(np.mean(e**2))

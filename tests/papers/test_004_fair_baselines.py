@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import prediction_study as ps
-from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+from tvtrack.papers.p004_laser_spot_prediction import kalman_baselines
+from tvtrack.papers.p004_laser_spot_prediction import learned
 
 SETUP = ps.ComparisonSetup(
     floor_grid=(3, 10),
@@ -37,11 +38,11 @@ def test_a_line_on_a_fast_clean_random_walk_chooses_two_samples():
     rng = np.random.default_rng(4)
     w = rng.standard_normal((1, 6, 2, 300))
     z = 60 + np.cumsum(np.cumsum(w, axis=-1), axis=-1) * 0.05
-    c = ps.compare_methods(z, z, pr.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
+    c = ps.compare_methods(z, z, learned.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
     assert set(c.chosen["linear regression deg 1"]) == {2}
     np.testing.assert_array_equal(c.mse["linear regression deg 1"], c.mse["finite differences, 2 points"])
     z3 = 60 + np.cumsum(np.cumsum(np.cumsum(w, axis=-1), axis=-1), axis=-1) * 1e-3
-    c3 = ps.compare_methods(z3, z3, pr.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
+    c3 = ps.compare_methods(z3, z3, learned.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
     assert set(c3.chosen["linear regression deg 2"]) == {3}
 
 
@@ -57,7 +58,7 @@ def test_ca_kalman_noise_fit_is_inside_the_default_grid_at_large_jitter():
     truth = 60 + 5 * np.sin(2 * np.pi * t / 300)[None] + np.zeros((6, 1))
     z = truth + 2.0 * rng.standard_normal(truth.shape)
     s = ps.ComparisonSetup()
-    (q, r), _ = pr.fit_constant_acceleration(z, s.jerk_grid, s.meas_var_grid)
+    (q, r), _ = kalman_baselines.fit_constant_acceleration(z, s.jerk_grid, s.meas_var_grid)
     assert ps.grid_edges([r], s.meas_var_grid)[0] == 0
     assert 1.0 < r < 20.0
 
@@ -66,17 +67,17 @@ def test_learned_models_never_train_on_their_test_paths(monkeypatch):
     """Each fold's MLP/RBF network is trained on the training paths of its fold only (planted bug:
     the networks trained on the test paths too)."""
     seen = []
-    real = pr.fit_learned_predictor
+    real = learned.fit_learned_predictor
 
     def spy(kind, z_train, *args, **kw):
         seen.append(np.array(z_train, copy=True))
         return real(kind, z_train, *args, **kw)
 
-    monkeypatch.setattr(pr, "fit_learned_predictor", spy)
+    monkeypatch.setattr(learned, "fit_learned_predictor", spy)
     rng = np.random.default_rng(6)
     z = 60 + np.cumsum(rng.standard_normal((1, 6, 2, 120)), axis=-1) * 0.1
     z += np.arange(6)[None, :, None, None] * 1000.0  # every path identifiable by its level
-    folds = pr.path_folds(6, 3)
+    folds = learned.path_folds(6, 3)
     models = ps.fit_learned_folds("mlp", z, folds, SETUP, np.random.default_rng(0))
     assert len(models) == len(seen) == len(folds)
     for z_train, (train, test) in zip(seen, folds):
@@ -86,7 +87,7 @@ def test_learned_models_never_train_on_their_test_paths(monkeypatch):
 
 @pytest.mark.parametrize("n_paths, n_folds", [(6, 3), (9, 3), (15, 3), (15, 5)])
 def test_folds_partition_the_paths(n_paths, n_folds):
-    folds = pr.path_folds(n_paths, n_folds)
+    folds = learned.path_folds(n_paths, n_folds)
     tests = np.concatenate([t for _, t in folds])
     assert sorted(tests.tolist()) == list(range(n_paths))
     for train, test in folds:
@@ -98,17 +99,17 @@ def test_a_tuning_grid_is_extended_until_the_folds_leave_its_top():
     """The floor's grid reaches the paper filter's optimum (at horizon 10 the old grid's top, 200, was picked):
     while a fold picks the last candidate the next extension value is tried, and only then."""
     z = np.zeros((2, 6, 2, 60))
-    folds = pr.path_folds(6, 3)
+    folds = learned.path_folds(6, 3)
     made = []
 
     def make(c):  # a forecast whose error is |c - 5| everywhere: the optimum is 5
         made.append(c)
         return np.full(z.shape, abs(c - 5.0))
 
-    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP, more=(4, 5, 6, 7))
+    _, _, chosen, _, _ = ps.tuned_forecast((1, 2, 3), make, z, z, folds, SETUP, more=(4, 5, 6, 7))
     assert np.all(chosen == 5) and made == [1, 2, 3, 4, 5, 6]  # 7 is never needed
     made.clear()
-    _, _, chosen, _, _ = ps._tuned((4, 5, 6), make, z, z, folds, SETUP, more=(7,))
+    _, _, chosen, _, _ = ps.tuned_forecast((4, 5, 6), make, z, z, folds, SETUP, more=(7,))
     assert np.all(chosen == 5) and made == [4, 5, 6]  # an interior optimum extends nothing
-    _, _, chosen, _, _ = ps._tuned((1, 2, 3), make, z, z, folds, SETUP)
+    _, _, chosen, _, _ = ps.tuned_forecast((1, 2, 3), make, z, z, folds, SETUP)
     assert np.all(chosen == 3)  # without an extension the top stays the grid's limit (reported as an edge)

@@ -138,7 +138,7 @@ def test_the_floor_form_reading_makes_the_variant_floor_the_paper_s_filter():
     configs = [dict(DEFAULT), variant, dict(variant, tuning="fixed")]
     study.clear_cache()
     got = study.measure_batch(configs, [7] * 3, SIZE, claims=[{"C004-2", "C004-6"}] * 3)
-    run = study._methods(study._scene(variant, 7, SIZE), variant, 7, frozenset({"variant"}))  # no networks: cheap
+    run = study._methods(study.study_run(variant, 7, SIZE), variant, 7, frozenset({"variant"}))  # no networks: cheap
     study.clear_cache()
 
     def rms(fc):

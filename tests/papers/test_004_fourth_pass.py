@@ -10,6 +10,7 @@ from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, PINNED, build
 
 from . import test_004_study as _study
+from tvtrack.papers.p004_laser_spot_prediction import world
 
 SIZE, run = _study.SIZE, _study.run  # the study tests' reduced size and their default run (fixture)
 
@@ -205,9 +206,9 @@ def test_paths_are_drawn_again_until_the_spot_stays_on_the_sensor():
     scene = study.scene_config(dict(DEFAULT, amplitude=2.0, bandwidth=3.0), size)  # the factor of these draws
     first = lambda seed: int(study._streams(seed)[0].generate_state(1)[0])  # noqa: E731
     with pytest.raises(ValueError, match="leave the sensor"):
-        study.exposed_traces(scene, first(1), "instant")
+        world.exposed_traces(scene, first(1), "instant")
     tr, draws = study.traces_on_sensor(scene, study._streams(1)[0], "instant")
     assert draws == 2 and tr.centres_px.min() >= -0.5 and tr.centres_px.max() <= 127.5
     same, one = study.traces_on_sensor(scene, study._streams(0)[0], "instant")
     assert one == 1
-    np.testing.assert_array_equal(same.centres_px, study.exposed_traces(scene, first(0), "instant").centres_px)
+    np.testing.assert_array_equal(same.centres_px, world.exposed_traces(scene, first(0), "instant").centres_px)

@@ -9,13 +9,15 @@ from scipy.integrate import quad
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (
     GTILT,
     BeamWanderConfig,
-    exposure_gain,
     generate_traces,
+    one_frame_motion_rms,
+)
+from tvtrack.papers.p004_laser_spot_prediction.gtilt import (
+    exposure_gain,
     gtilt_asymptotes,
     gtilt_crossing,
     gtilt_psd,
     gtilt_shape,
-    one_frame_motion_rms,
 )
 
 #: Slope tolerance of a periodogram fit: the shape itself departs from its asymptote by up to 0.04 over the

@@ -5,13 +5,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import BeamWanderConfig, generate_traces
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (
     ComparisonSetup,
     compare_methods,
     tune_learned_lags,
 )
+from tvtrack.papers.p004_laser_spot_prediction import learned
 
 SETUP = ComparisonSetup(
     start=30,
@@ -40,7 +40,7 @@ def test_tuning_of_a_fold_never_sees_its_test_paths(kind):
     identical to the last bit, while the other folds' losses change (they do use those paths). A leak (a
     model trained on, or a score taken on, the fold's test paths) fails."""
     z = _z(1)
-    folds = pr.path_folds(z.shape[1], 3)
+    folds = learned.path_folds(z.shape[1], 3)
     lags, loss = tune_learned_lags(kind, z, z, folds, SETUP, np.random.default_rng(7))
     assert loss.shape == (3, 4) and np.all(np.isfinite(loss)) and set(lags) <= {1, 2, 4, 8}
     other = _z(2)
@@ -56,8 +56,8 @@ def test_tuning_of_a_fold_never_sees_its_test_paths(kind):
 def test_lag_tuning_needs_three_folds_and_reaches_the_comparison():
     z = _z(3)
     with pytest.raises(ValueError, match="3 folds"):
-        tune_learned_lags("rbf", z, z, pr.path_folds(6, 2), SETUP, np.random.default_rng(0))
-    folds = pr.path_folds(6, 3)
+        tune_learned_lags("rbf", z, z, learned.path_folds(6, 2), SETUP, np.random.default_rng(0))
+    folds = learned.path_folds(6, 3)
     cmp = compare_methods(z, z, folds, SETUP, np.random.default_rng(0))
     for name in ("MLP back-prop", "RBF network"):
         assert cmp.chosen[name].shape == (3,) and set(cmp.chosen[name]) <= set(SETUP.lag_grid)

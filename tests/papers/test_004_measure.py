@@ -5,7 +5,7 @@ import pytest
 
 from tvtrack.measure import centroid
 from tvtrack.render import gaussian_spot, gate_origin, sensor_readout
-from tvtrack.papers.p004_laser_spot_prediction.beam_wander import SpotCamera, track_spot
+from tvtrack.papers.p004_laser_spot_prediction.camera import SpotCamera, track_spot
 
 
 @pytest.mark.parametrize("cx, cy", [(31.0, 31.0), (20.37, 41.81), (33.5, 28.5), (30.5, 30.0)])

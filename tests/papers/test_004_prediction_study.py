@@ -15,6 +15,7 @@ from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (
     per_trial_path_mse,
     radial_error_summary,
 )
+from tvtrack.papers.p004_laser_spot_prediction import learned
 
 SETUP = ComparisonSetup(
     floor_grid=(3, 5, 10, 30),
@@ -41,7 +42,7 @@ def test_polynomial_methods_are_exact_on_noiseless_quadratics():
     """Exact quadratics: the growing-memory filter (any floor), 3-point differences and degree-2
     regression predict without error; the MSE helper agrees with a direct computation."""
     z = _series()
-    c = compare_methods(z, z, pr.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
+    c = compare_methods(z, z, learned.path_folds(6, 3), SETUP, np.random.default_rng(1), learned=False)
     for name in (PAPER, FADING, "finite differences, 3 points", "linear regression deg 2"):
         assert np.max(c.mse[name]) < 1e-16, name
         assert np.max(c.mse_fixed[name]) < 1e-16, name
@@ -54,7 +55,7 @@ def test_polynomial_methods_are_exact_on_noiseless_quadratics():
 def test_a_path_never_tunes_its_own_setting():
     """Changing one path's data changes the settings chosen for the *other* folds' paths only."""
     z = _series(noise=0.05, seed=3)
-    folds = pr.path_folds(6, 3)
+    folds = learned.path_folds(6, 3)
     a = compare_methods(z, z, folds, SETUP, np.random.default_rng(1), learned=False)
     z2 = z.copy()
     z2[:, 0] += 3.0 * np.random.default_rng(9).standard_normal(z2[:, 0].shape)  # path 0 becomes very noisy
@@ -67,7 +68,7 @@ def test_a_path_never_tunes_its_own_setting():
 @pytest.mark.slow
 def test_learned_models_train_on_other_paths_and_can_be_reused():
     z = _series(noise=0.02, seed=5)
-    folds = pr.path_folds(6, 3)
+    folds = learned.path_folds(6, 3)
     c = compare_methods(z, z, folds, SETUP, np.random.default_rng(2))
     assert set(c.mse) == {PAPER, VARIANT, FADING, *CLASSICAL, *FITTED}
     again = compare_methods(z, z, folds, SETUP, np.random.default_rng(7), learned_models=c.learned_models)

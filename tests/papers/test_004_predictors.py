@@ -5,6 +5,8 @@ import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.filters.polynomial import growing_memory_filter, predict_ahead
+from tvtrack.papers.p004_laser_spot_prediction import kalman_baselines
+from tvtrack.papers.p004_laser_spot_prediction import learned
 
 
 def test_forecast_errors_alignment():
@@ -43,10 +45,10 @@ def test_ca_kalman_without_process_noise_equals_growing_memory():
     """The card's equivalent form: zero process noise + diffuse prior = growing-memory LS."""
     rng = np.random.default_rng(0)
     z = np.cumsum(rng.normal(0, 1, (2, 60)), axis=-1)
-    F, Q, H, R = pr.constant_acceleration_model(0.0, 1.0)
+    F, Q, H, R = kalman_baselines.constant_acceleration_model(0.0, 1.0)
     # prior 1e10: diffuse enough that its weight is negligible, small enough that the Joseph update
     # (core, any gain) does not lose the digits a 1e12 prior costs it (2.8e-5 px there, 4e-8 px here)
-    f_kf, _ = pr.kalman_forecast(z, F, Q, H, R, np.zeros(3), np.diag([1e10, 1e8, 1e6]), 1)
+    f_kf, _ = kalman_baselines.kalman_forecast(z, F, Q, H, R, np.zeros(3), np.diag([1e10, 1e8, 1e6]), 1)
     f_gm = predict_ahead(growing_memory_filter(z, 2, None), 1)
     np.testing.assert_allclose(f_kf[:, 5:], f_gm[:, 5:], atol=1e-6)
 
@@ -55,9 +57,9 @@ def test_kalman_forecast_matches_filterpy():
     filterpy = pytest.importorskip("filterpy.kalman")
     rng = np.random.default_rng(1)
     z = np.cumsum(rng.normal(0, 1, 40))
-    F, Q, H, R = pr.constant_acceleration_model(0.05, 0.3)
+    F, Q, H, R = kalman_baselines.constant_acceleration_model(0.05, 0.3)
     x0, P0 = np.zeros(3), np.diag([100.0, 10.0, 1.0])
-    ours, ll = pr.kalman_forecast(z, F, Q, H, R, x0, P0, 2)
+    ours, ll = kalman_baselines.kalman_forecast(z, F, Q, H, R, x0, P0, 2)
     kf = filterpy.KalmanFilter(dim_x=3, dim_z=1)
     kf.x, kf.P, kf.F, kf.Q, kf.H, kf.R = x0.copy(), P0.copy(), F, Q, H, R
     ref, ll_ref = [], 0.0
@@ -75,7 +77,7 @@ def test_ml_fit_recovers_noise_levels_roughly():
     """White-jerk data with known q, r: the grid maximum lands on the true cell or a neighbour."""
     rng = np.random.default_rng(3)
     q_true, r_true, T = 1e-2, 0.25, 600
-    F, Q, H, R = pr.constant_acceleration_model(q_true, r_true)
+    F, Q, H, R = kalman_baselines.constant_acceleration_model(q_true, r_true)
     L = np.linalg.cholesky(Q)
     x = np.zeros((6, 3))
     zs = []
@@ -84,7 +86,7 @@ def test_ml_fit_recovers_noise_levels_roughly():
         zs.append(x[:, 0] + np.sqrt(r_true) * rng.standard_normal(6))
     z = np.stack(zs, axis=-1)
     grid_q, grid_r = np.logspace(-4, 0, 9), np.logspace(-2, 0, 5)
-    (q, r), ll = pr.fit_constant_acceleration(z, grid_q, grid_r)
+    (q, r), ll = kalman_baselines.fit_constant_acceleration(z, grid_q, grid_r)
     assert ll.shape == (9, 5)
     assert abs(np.log10(q / q_true)) <= 0.51 and abs(np.log10(r / r_true)) <= 0.51
 
@@ -95,8 +97,8 @@ def test_learned_predictors_beat_last_value_on_smooth_series(kind):
     t = np.arange(400)
     phases = rng.uniform(0, 2 * np.pi, (6, 1))
     z = 10 * np.sin(2 * np.pi * t / 60 + phases) + rng.normal(0, 0.01, (6, 400))
-    model = pr.fit_learned_predictor(kind, z[:4], 5, 1, hidden_units=8, rbf_centres=50, seed=0)
-    f = pr.learned_forecast(model, z[4:])
+    model = learned.fit_learned_predictor(kind, z[:4], 5, 1, hidden_units=8, rbf_centres=50, seed=0)
+    f = learned.learned_forecast(model, z[4:])
     e = pr.forecast_errors(f, z[4:], 1)[:, 10:]
     naive = np.diff(z[4:], axis=-1)[:, 9:]
     assert np.sqrt(np.nanmean(e**2)) < 0.3 * np.sqrt(np.mean(naive**2))
@@ -104,10 +106,10 @@ def test_learned_predictors_beat_last_value_on_smooth_series(kind):
 
 def test_lag_features_and_folds():
     z = np.arange(10.0) ** 2
-    X, y = pr.lag_features(z, 3, 2)
+    X, y = learned.lag_features(z, 3, 2)
     np.testing.assert_allclose(X[5], [16 - 25, 9 - 25, 4 - 25])
     assert y[5] == 49 - 25 and np.isnan(y[-1]) and np.all(np.isnan(X[:3]))
-    folds = pr.path_folds(15, 3)
+    folds = learned.path_folds(15, 3)
     assert sorted(np.concatenate([te for _, te in folds]).tolist()) == list(range(15))
     assert all(np.intersect1d(tr, te).size == 0 for tr, te in folds)
 
@@ -118,8 +120,8 @@ def test_lag_features_and_folds():
         (lambda: pr.sliding_regression_forecast(np.arange(10.0), 2, 2), "window"),
         (lambda: pr.spline_forecast(np.arange(10.0), 3), "window"),
         (lambda: pr.growing_memory_forecast(np.arange(10.0), 0), "steps"),
-        (lambda: pr.fit_learned_predictor("svm", np.zeros((2, 50)), 3), "kind"),
-        (lambda: pr.path_folds(3, 5), "n_folds"),
+        (lambda: learned.fit_learned_predictor("svm", np.zeros((2, 50)), 3), "kind"),
+        (lambda: learned.path_folds(3, 5), "n_folds"),
     ],
 )
 def test_bad_arguments_name_the_parameter(call, name):
@@ -156,19 +158,19 @@ def test_error_summary_of_a_known_error_pattern():
 def test_constant_acceleration_forecast_uses_each_folds_fit_on_its_test_paths():
     rng = np.random.default_rng(3)
     z = np.cumsum(np.cumsum(rng.normal(0, 0.05, (2, 6, 80)), -1), -1) + rng.normal(0, 0.1, (2, 6, 80))
-    folds = pr.path_folds(6, 2)
+    folds = learned.path_folds(6, 2)
     fits = [(1e-3, 1e-2), (1e-1, 1e-3)]
-    out = pr.constant_acceleration_forecast(z, fits, folds, 2)
+    out = kalman_baselines.constant_acceleration_forecast(z, fits, folds, 2)
     for (q, r), (_, test) in zip(fits, folds):
-        F, Q, H, R = pr.constant_acceleration_model(q, r)
-        ref = pr.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), np.diag([1e4, 1e2, 1e1]), 2)[0]
+        F, Q, H, R = kalman_baselines.constant_acceleration_model(q, r)
+        ref = kalman_baselines.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), np.diag([1e4, 1e2, 1e1]), 2)[0]
         np.testing.assert_array_equal(out[:, test], ref)
-    fitted = pr.fit_constant_acceleration_folds(z[0], folds, [1e-4, 1e-2], [1e-2, 1e-1])
+    fitted = kalman_baselines.fit_constant_acceleration_folds(z[0], folds, [1e-4, 1e-2], [1e-2, 1e-1])
     assert len(fitted) == 2 and all(q in (1e-4, 1e-2) and r in (1e-2, 1e-1) for q, r in fitted)
 
 
 def test_cross_validated_pick_never_uses_the_test_path():
-    from tvtrack.papers.p004_laser_spot_prediction.predictors import cross_validated_pick, path_folds
+    from tvtrack.papers.p004_laser_spot_prediction.learned import cross_validated_pick, path_folds
 
     # candidate 1 is best on paths 0-3, candidate 0 on paths 4-5; a fold picks from its training paths only,
     # so paths 0-3 get candidate 0 (their training sets include 4-5) and paths 4-5 get candidate 1
@@ -199,7 +201,7 @@ def test_singer_model_is_the_exact_discretisation_and_batches():
     from scipy.linalg import expm
 
     taus, s2 = np.array([0.01, 0.3, 3.0, 10.0, 30.0, 1000.0, 1e5]), 0.2
-    F, Q, H, R = pr.singer_model(taus, s2, 0.01)
+    F, Q, H, R = kalman_baselines.singer_model(taus, s2, 0.01)
     assert F.shape == Q.shape == (7, 3, 3) and R.shape == (1, 1)
     for i, tau in enumerate(taus):
         A = np.array([[0, 1, 0], [0, 0, 1], [0, 0, -1 / tau]])
@@ -212,14 +214,14 @@ def test_singer_model_is_the_exact_discretisation_and_batches():
 def test_singer_model_tends_to_white_jerk_for_long_correlation_times():
     """tau -> inf with 2 accel_var / tau = q fixed: the constant-acceleration white-jerk model."""
     q, tau = 0.03, 1e5
-    F, Q, _, _ = pr.singer_model(tau, q * tau / 2, 1.0)
-    F_ca, Q_ca, _, _ = pr.constant_acceleration_model(q, 1.0)
+    F, Q, _, _ = kalman_baselines.singer_model(tau, q * tau / 2, 1.0)
+    F_ca, Q_ca, _, _ = kalman_baselines.constant_acceleration_model(q, 1.0)
     np.testing.assert_allclose(F, F_ca, atol=1e-4)
     np.testing.assert_allclose(Q, Q_ca, rtol=1e-4)
 
 
 def _simulate_singer(tau, accel_var, meas_var, n_series, T, rng):
-    F, Q, _, _ = pr.singer_model(tau, accel_var, meas_var)
+    F, Q, _, _ = kalman_baselines.singer_model(tau, accel_var, meas_var)
     L = np.linalg.cholesky(Q)
     x = np.zeros((n_series, 3))
     x[:, 2] = np.sqrt(accel_var) * rng.standard_normal(n_series)
@@ -238,27 +240,32 @@ def test_singer_ml_fit_recovers_parameters_and_its_likelihood_is_the_full_one():
     tau, s2, r = 5.0, 0.01, 0.04
     z = _simulate_singer(tau, s2, r, 8, 800, rng)
     tau_grid, ratio_grid = np.array([1.0, 2.5, 5.0, 10.0, 20.0]), np.logspace(-2, 1, 13)
-    (tau_f, s2_f, r_f), ll = pr.fit_singer(z, tau_grid, ratio_grid)
+    (tau_f, s2_f, r_f), ll = kalman_baselines.fit_singer(z, tau_grid, ratio_grid)
     assert ll.shape == (5, 13)
     assert tau_f in (2.5, 5.0, 10.0)
     assert abs(s2_f / s2 - 1) < 0.3 and abs(r_f / r - 1) < 0.3
-    F, Q, H, R = pr.singer_model(tau_f, s2_f, r_f)
-    _, ll_full = pr.kalman_forecast(z, F, Q, H, R, np.zeros(3), r_f * np.diag([1e4, 1e2, 1e1]), burn_in=10)
+    F, Q, H, R = kalman_baselines.singer_model(tau_f, s2_f, r_f)
+    _, ll_full = kalman_baselines.kalman_forecast(
+        z, F, Q, H, R, np.zeros(3), r_f * np.diag([1e4, 1e2, 1e1]), burn_in=10
+    )
     assert ll_full.sum() == pytest.approx(ll.max(), rel=1e-10)
 
 
 def test_singer_forecast_uses_each_folds_fit_and_beats_constant_acceleration_on_singer_data():
     rng = np.random.default_rng(12)
     z = _simulate_singer(2.0, 0.05, 0.01, 12, 500, rng).reshape(2, 6, 500)
-    folds = pr.path_folds(6, 2)
-    fits = pr.fit_singer_folds(z[0], folds, [0.5, 2.0, 8.0], np.logspace(-1, 2, 7))
-    out = pr.singer_forecast(z, fits, folds, 1)
+    folds = learned.path_folds(6, 2)
+    fits = kalman_baselines.fit_singer_folds(z[0], folds, [0.5, 2.0, 8.0], np.logspace(-1, 2, 7))
+    out = kalman_baselines.singer_forecast(z, fits, folds, 1)
     for (tau, s2, r), (_, test) in zip(fits, folds):
-        F, Q, H, R = pr.singer_model(tau, s2, r)
-        ref = pr.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), r * np.diag([1e4, 1e2, 1e1]), 1)[0]
+        F, Q, H, R = kalman_baselines.singer_model(tau, s2, r)
+        ref = kalman_baselines.kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), r * np.diag([1e4, 1e2, 1e1]), 1)[0]
         np.testing.assert_array_equal(out[:, test], ref)
-    ca = pr.constant_acceleration_forecast(
-        z, pr.fit_constant_acceleration_folds(z[0], folds, np.logspace(-5, 0, 11), np.logspace(-3, 0, 7)), folds, 1
+    ca = kalman_baselines.constant_acceleration_forecast(
+        z,
+        kalman_baselines.fit_constant_acceleration_folds(z[0], folds, np.logspace(-5, 0, 11), np.logspace(-3, 0, 7)),
+        folds,
+        1,
     )
     mse = lambda f: np.mean(pr.forecast_errors(f, z, 1)[..., 20:-1] ** 2)
     assert mse(out) < mse(ca)
@@ -266,11 +273,7 @@ def test_singer_forecast_uses_each_folds_fit_and_beats_constant_acceleration_on_
 
 def test_absolute_centre_inputs_are_the_last_centres_and_the_target_the_next():
     # the third adversarial pass's reading of what the networks are fed ("network inputs" = absolute centres)
-    from tvtrack.papers.p004_laser_spot_prediction.predictors import (
-        fit_learned_predictor,
-        lag_features,
-        learned_forecast,
-    )
+    from tvtrack.papers.p004_laser_spot_prediction.learned import fit_learned_predictor, lag_features, learned_forecast
 
     z = np.arange(10.0)
     X, y = lag_features(z, 3, inputs="absolute centres")

@@ -3,12 +3,8 @@
 import numpy as np
 import pytest
 
-from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (
-    BeamWanderConfig,
-    SpotCamera,
-    generate_traces,
-    track_spot,
-)
+from tvtrack.papers.p004_laser_spot_prediction.beam_wander import BeamWanderConfig, generate_traces
+from tvtrack.papers.p004_laser_spot_prediction.camera import SpotCamera, track_spot
 from tvtrack.papers.p004_laser_spot_prediction.params import check_consistency
 from tvtrack.papers.p004_laser_spot_prediction.register import explored
 

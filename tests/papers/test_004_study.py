@@ -13,6 +13,10 @@ from tvtrack.papers.p004_laser_spot_prediction.beam_wander import one_frame_moti
 from tvtrack.papers.p004_laser_spot_prediction.intervals import root_mean_ci
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CLASSICAL, PAPER, per_trial_path_mse
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, NAMES, ROWS, build, explored
+from tvtrack.papers.p004_laser_spot_prediction import derivation
+from tvtrack.papers.p004_laser_spot_prediction import learned
+from tvtrack.papers.p004_laser_spot_prediction import prediction_study
+from tvtrack.papers.p004_laser_spot_prediction import world
 
 SIZE = study.StudySize(
     n_paths=6,
@@ -104,7 +108,7 @@ def test_claims_asked_are_computed_alone_bit_for_bit():
             _same(full[cid], got[cid])
     runs = [r for k, r in study._CACHE.items() if k[0] == "scene" and r.parts]
     assert len(runs) == 1 and runs[0].parts == {"classical", "learned"}  # no Kalman filter: no claim reads it
-    assert "MLP back-prop" in runs[0].forecasts and study.SINGER not in runs[0].forecasts
+    assert "MLP back-prop" in runs[0].forecasts and prediction_study.SINGER not in runs[0].forecasts
     study.clear_cache()
     assert study.parts_for({"C004-5", "C004-8"}) is None and study.parts_for({"C004-3"}) == {"classical"}
 
@@ -162,10 +166,10 @@ def test_the_bound_gets_the_measurement_variance_not_its_square_root(monkeypatch
 
 
 def test_scene_jitter_and_saturation():
-    r = study._scene(dict(DEFAULT, jitter=2.0), 5, SIZE)
+    r = study.study_run(dict(DEFAULT, jitter=2.0), 5, SIZE)
     np.testing.assert_allclose(r.jitter_rms, 2.0 * one_frame_motion_rms(r.scene, r.path_rms))
-    assert 0.05 < study._scene(dict(DEFAULT), 5, SIZE).clipped_share < 0.6  # 200 DN peak x scintillation, 8 bits
-    assert study._scene(dict(DEFAULT, saturation="none"), 5, SIZE).clipped_share == 0.0
+    assert 0.05 < study.study_run(dict(DEFAULT), 5, SIZE).clipped_share < 0.6  # 200 DN peak x scintillation, 8 bits
+    assert study.study_run(dict(DEFAULT, saturation="none"), 5, SIZE).clipped_share == 0.0
     assert study.scene_config(dict(DEFAULT, **{"frame rate": 200.0}), SIZE).drift_max_px_per_frame == pytest.approx(
         0.02 * 25 / 200
     )
@@ -186,11 +190,11 @@ def test_horizon_study_retunes_the_floor_at_every_horizon(run):
             return per_trial_path_mse(f, run.z_meas, h, SIZE.eval_start).mean(axis=0)
 
         loss = [loss_of(nf) for nf in grid]
-        pick = pr.cross_validated_pick(np.stack(loss), run.folds)
+        pick = learned.cross_validated_pick(np.stack(loss), run.folds)
         while more and np.any(pick == len(grid) - 1):  # the grid extended while a fold picks its top
             grid.append(more.pop(0))
             loss.append(loss_of(grid[-1]))
-            pick = pr.cross_validated_pick(np.stack(loss), run.folds)
+            pick = learned.cross_validated_pick(np.stack(loss), run.folds)
         pick = np.asarray(grid)[pick]
         assert hz["floor"][h] == float(np.median(pick))
         top = max((*SIZE.floor_grid, *FLOOR_EXTENSION))
@@ -216,9 +220,9 @@ def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     # the Kalman fits made once are those a fresh comparison at horizon 2 makes
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CA_KALMAN, compare_methods
 
-    s2 = study.replace(study._setup(dict(run.config, horizon=2), SIZE), learned_kw={})
+    s2 = study.replace(study.comparison_setup(dict(run.config, horizon=2), SIZE), learned_kw={})
     direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
-    for name in (CA_KALMAN, study.SINGER, PAPER):
+    for name in (CA_KALMAN, prediction_study.SINGER, PAPER):
         mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
         _same(root_mean_ci(mse), reused["rms"][name][2])
 
@@ -272,7 +276,7 @@ def test_variance_ratios_are_one_for_the_model_and_the_gain_falls():
 
 
 def test_recursion_vs_batch_is_exact_and_starts_at_three():
-    dev, first = study.recursion_vs_batch(np.cumsum(np.random.default_rng(3).standard_normal(80)))
+    dev, first = derivation.recursion_vs_batch(np.cumsum(np.random.default_rng(3).standard_normal(80)))
     assert dev < 1e-9 and first == 3
 
 
@@ -310,10 +314,10 @@ def test_full_frame_exposure_is_the_mean_of_the_path_over_the_frame_interval():
     from tvtrack.papers.p004_laser_spot_prediction.beam_wander import generate_traces
 
     scene = study.scene_config(dict(DEFAULT), SIZE)
-    k = study.EXPOSURE_SUBSAMPLES
-    inst = study.exposed_traces(scene, 3, "instant")
+    k = world.EXPOSURE_SUBSAMPLES
+    inst = world.exposed_traces(scene, 3, "instant")
     np.testing.assert_array_equal(inst.centres_px, generate_traces(scene, 3).centres_px)
-    full = study.exposed_traces(scene, 3, "full frame")
+    full = world.exposed_traces(scene, 3, "full frame")
     fine = generate_traces(
         replace(
             scene,
@@ -330,11 +334,11 @@ def test_full_frame_exposure_is_the_mean_of_the_path_over_the_frame_interval():
     d2 = lambda x: np.sqrt(np.mean(np.diff(x, 2, axis=1) ** 2))  # noqa: E731
     assert d2(full.centres_px) < d2(fine.centres_px[:, k - 1 :: k])
     with pytest.raises(ValueError, match="exposure"):
-        study.exposed_traces(scene, 3, "half")
+        world.exposed_traces(scene, 3, "half")
     # interlaced frame integration: two fields of one frame interval each, half a frame apart, averaged
-    w = study.exposure_weights("interlaced, frame integration", 4)
+    w = world.exposure_weights("interlaced, frame integration", 4)
     np.testing.assert_allclose(w, [0.125, 0.125, 0.25, 0.25, 0.125, 0.125])
-    il = study.exposed_traces(scene, 3, "interlaced, frame integration")
+    il = world.exposed_traces(scene, 3, "interlaced, frame integration")
     a = fine.centres_px[:, k * t : k * t + k].mean(axis=1)
     b = fine.centres_px[:, k * t - k // 2 : k * t + k // 2].mean(axis=1)
     np.testing.assert_allclose(il.centres_px[:, t], (a + b) / 2)
@@ -394,13 +398,13 @@ def test_vibration_regime_adds_a_sinusoid_to_the_true_path():
     v = study.vibration(1.5, 25.0, (3, 50, 2), np.random.default_rng(0))
     assert v.shape == (3, 50, 2) and np.max(np.abs(v)) <= 1.5 and np.max(np.abs(v)) > 1.4
     spec = np.abs(np.fft.rfft(v[0, :, 0]))
-    assert np.argmax(spec) == round(study.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
+    assert np.argmax(spec) == round(world.VIBRATION_HZ / 25.0 * 50)  # 8 Hz on a 0.5 Hz grid
     small = study.replace(SIZE, n_paths=2, n_frames=100)
-    a = study._scene(dict(DEFAULT, bandwidth=3.0), 5, small)  # one bandwidth: the vibration world is re-calibrated
-    b = study._scene(dict(DEFAULT, bandwidth=3.0, vibration=1.0), 5, small)
+    a = study.study_run(dict(DEFAULT, bandwidth=3.0), 5, small)  # one bandwidth: the vibration world is re-calibrated
+    b = study.study_run(dict(DEFAULT, bandwidth=3.0, vibration=1.0), 5, small)
     d = (b.truth - a.truth)[0]  # (P, 2, T)
     np.testing.assert_allclose(np.max(np.abs(d), axis=-1), 1.0, atol=0.02)
-    k = -4 * np.sin(np.pi * study.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly
+    k = -4 * np.sin(np.pi * world.VIBRATION_HZ / 25.0) ** 2  # a sampled sinusoid: d'' = k d exactly
     np.testing.assert_allclose(np.diff(d, 2, axis=-1), k * d[..., 1:-1], atol=1e-9)
 
 

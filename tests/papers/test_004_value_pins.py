@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from tvtrack.papers.p004_laser_spot_prediction import calibration
-from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FADING, PAPER, SINGER, _tuned
+from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FADING, PAPER, SINGER, tuned_forecast
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT
 from tvtrack.papers.p004_laser_spot_prediction.side_studies import model_order_summary
 from tvtrack.papers.p004_laser_spot_prediction.study import OPTIMAL, StudySize
@@ -45,12 +45,14 @@ def test_tuning_extends_the_grid_while_the_last_value_wins():
     # optimum 70 beyond the grid (5, 10, 20): 45 is tried (the last won), then 70 (45 won), then 100 (70 won);
     # 100 loses, so the extension stops there and every fold picks 70
     z = np.zeros((1, 4, 2, 12))
-    fc, mse, chosen, fcs, all_mse = _tuned((5, 10, 20), _maker(70.0), z, 0.0, FOLDS, SETUP, more=(10, 45, 70, 100))
+    fc, mse, chosen, fcs, all_mse = tuned_forecast(
+        (5, 10, 20), _maker(70.0), z, 0.0, FOLDS, SETUP, more=(10, 45, 70, 100)
+    )
     assert all_mse.shape[0] == 6 and len(fcs) == 6  # 5, 10, 20, 45, 70, 100 (10 is already in the grid)
     np.testing.assert_array_equal(chosen, [70, 70, 70, 70])
     np.testing.assert_allclose(mse, 1.0)
     # an optimum inside the grid: nothing is added
-    _, _, chosen_in, fcs_in, _ = _tuned((5, 10, 20), _maker(10.0), z, 0.0, FOLDS, SETUP, more=(45, 70, 100))
+    _, _, chosen_in, fcs_in, _ = tuned_forecast((5, 10, 20), _maker(10.0), z, 0.0, FOLDS, SETUP, more=(45, 70, 100))
     assert len(fcs_in) == 3
     np.testing.assert_array_equal(chosen_in, [10, 10, 10, 10])
 
@@ -64,7 +66,7 @@ def test_tuning_extends_the_grid_when_any_fold_picks_the_last_value():
         return np.broadcast_to((1.0 + w * np.abs(np.log(c / opt)))[None, :, None, None], (1, 4, 2, 12)).copy()
 
     z = np.zeros((1, 4, 2, 12))
-    _, _, chosen, fcs, _ = _tuned((5, 10, 20), make, z, 0.0, FOLDS, SETUP, more=(45, 70, 100))
+    _, _, chosen, fcs, _ = tuned_forecast((5, 10, 20), make, z, 0.0, FOLDS, SETUP, more=(45, 70, 100))
     assert len(fcs) == 6
     np.testing.assert_array_equal(chosen, [10, 10, 10, 70])
 

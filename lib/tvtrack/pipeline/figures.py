@@ -12,8 +12,8 @@ from pathlib import Path
 from typing import Any
 
 from ..plotting import VERDICT_COLOURS as _CORE_VERDICT_COLOURS
-from ..results import VERDICTS, shown_label
-from ..verdicts import LABELS
+from ..results import shown_label
+from ..verdicts import LABELS, VERDICTS
 
 __all__ = [
     "NO_LABEL",

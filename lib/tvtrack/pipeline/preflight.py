@@ -22,6 +22,7 @@ from typing import Any, Iterable
 
 __all__ = [
     "UsageError",
+    "code_cells",
     "NotebookBug",
     "parameter_defaults",
     "check_names",
@@ -43,8 +44,24 @@ class NotebookBug(RuntimeError):
     (shown as one line, exit status 1)."""
 
 
-def _code_cells(notebook: Path) -> list[str]:
-    """Sources of the code cells (read as plain JSON: nbformat's import alone takes seconds)."""
+def code_cells(notebook: Path) -> list[str]:
+    """The sources of a notebook's code cells, read as plain JSON (nbformat's import alone takes seconds).
+
+    Parameters
+    ----------
+    notebook : pathlib.Path
+        The ``.ipynb`` file.
+
+    Returns
+    -------
+    list of str
+        One source per code cell, the ``parameters`` cell first.
+
+    Raises
+    ------
+    UsageError
+        When the first code cell is not tagged ``parameters``.
+    """
     cells = [c for c in json.loads(Path(notebook).read_text())["cells"] if c["cell_type"] == "code"]
     if not cells or "parameters" not in cells[0].get("metadata", {}).get("tags", []):
         raise UsageError(f"{notebook.name}: the first code cell is not tagged 'parameters'")
@@ -54,7 +71,7 @@ def _code_cells(notebook: Path) -> list[str]:
 def parameter_defaults(notebook: Path) -> dict[str, Any]:
     """``{name: default}`` from the notebook's ``parameters`` cell (literal values only)."""
     out = {}
-    for node in ast.parse(_code_cells(notebook)[0]).body:
+    for node in ast.parse(code_cells(notebook)[0]).body:
         if isinstance(node, ast.Assign):
             for target in node.targets:
                 if isinstance(target, ast.Name):
@@ -143,7 +160,7 @@ def check_values_many(notebook: Path, override_sets: list[dict[str, Any]], timeo
     NotebookBug
         The validation cell failed otherwise: a bug in the notebook, not in the user's input.
     """
-    cells = _code_cells(notebook)
+    cells = code_cells(notebook)
     if len(cells) < 2:
         raise UsageError(f"{notebook.name}: no validation cell after the parameters cell")
     with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:

@@ -45,7 +45,6 @@ from .figures import (
     forest_plot,
     part_labels,
     robustness_label,
-    robustness_matrix,
     robustness_picture,
     robustness_where,
 )
@@ -68,6 +67,7 @@ __all__ = [
     "robustness_label",
     "robustness_where",
     "coverage_text",
+    "plain_coverage",
     "part_labels",
     "verdict_summary",
     "glossary_markdown",
@@ -79,7 +79,6 @@ __all__ = [
     "first_screen_list",
     "forest_items",
     "forest_plot",
-    "robustness_matrix",
     "robustness_picture",
     "profiles_shown",
 ]
@@ -253,8 +252,20 @@ def _in_short(runs: dict, shown: str) -> list[str]:
 # --- REPRODUCTION.md -----------------------------------------------------------------------------------------------
 
 
-def _plain_coverage(c: dict) -> str:
-    """What the label covers, with register keys replaced by their titles."""
+def plain_coverage(c: dict) -> str:
+    """What a claim's robustness label covers, in plain words.
+
+    Parameters
+    ----------
+    c : dict
+        A claim record of ``results.json``.
+
+    Returns
+    -------
+    str
+        :func:`coverage_text` with every register entry's key replaced by its title (empty when nothing is
+        covered).
+    """
     text = coverage_text(c)
     for e in (c.get("robustness") or {}).get("register") or []:
         if isinstance(e, dict) and e.get("title") and e.get("name"):
@@ -270,8 +281,8 @@ def _details(c: dict) -> str:
         bits.append(f"measured: {md_escape(format_measured(c.get('measured'), c.get('rule')))}")
     if c.get("decision"):
         bits.append(f"decision: {md_escape(c['decision'])}")
-    if _plain_coverage(c):
-        bits.append(f"covers: {md_escape(_plain_coverage(c))}")
+    if plain_coverage(c):
+        bits.append(f"covers: {md_escape(plain_coverage(c))}")
     parts = part_labels(c)
     if parts:
         bits.append("parts: " + "; ".join(f"{md_escape(p)} {v}, {lab}" for p, v, lab in parts))

@@ -43,22 +43,18 @@ from . import lean_imports
 from .outputs import check_replaceable, mark, replace_folder, temporary_beside
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
-from .report import (
+from .figures import (
     ALL_LABELS,
     ALL_VERDICTS,
     NO_LABEL,
-    REPRODUCE_DIR,
-    first_screen,
     forest_items,
     forest_plot,
-    format_measured,
     part_labels,
-    profiles_shown,
     robustness_label,
     robustness_picture,
     robustness_where,
 )
-from .report import _plain_coverage as coverage_text
+from .report import REPRODUCE_DIR, first_screen, plain_coverage, profiles_shown
 from .runfiles import DamagedRun, load_results, load_run
 from .stills import recording_still
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
@@ -66,8 +62,8 @@ from ..results import (
     GLOSSARY,
     LABEL_WORDS,
     VERDICT_WORDS,
-    VERDICTS,
     at_profile,
+    format_measured,
     claim_flips,
     claim_summary,
     paper_paragraph,
@@ -75,6 +71,7 @@ from ..results import (
     share_counts,
     side_words,
 )
+from ..verdicts import VERDICTS
 
 __all__ = [
     "SITE_DIR",
@@ -325,7 +322,7 @@ def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
                     shown=robustness_label(c),
                     summary=claim_summary(c, chars=PAGE_CHARS),
                     measured=format_measured(c.get("measured"), c.get("rule")),
-                    coverage=coverage_text(c),
+                    coverage=plain_coverage(c),
                     flips=claim_flips(c),
                     parts=_part_rows(c),
                     curve=curve,
@@ -365,7 +362,7 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                     "flips": claim_flips(c),
                     "page": claim_page_href(run.name, c["id"]),
                     "note": c.get("note", ""),
-                    "coverage": coverage_text(c),
+                    "coverage": plain_coverage(c),
                     "parts": part_labels(c),
                     "href": f"notebooks/{run.name}.html" + (f"#cell-id={cell}" if cell else ""),
                 }

@@ -16,7 +16,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-from .preflight import UsageError, _code_cells
+from .preflight import UsageError, code_cells
 from .runfiles import load_results, load_run
 
 __all__ = ["flatten_metrics", "notebook_metric_names", "check_metric", "check_metric_in", "collect_summary"]
@@ -41,7 +41,7 @@ def notebook_metric_names(notebook: Path) -> list[str] | None:
     """The metric names a notebook writes (``results.metric("NAME", ...)`` calls; an f-string's fields read as
     ``{...}``), or ``None`` when a name is computed (a variable) and cannot be read from the source."""
     names: list[str] = []
-    for source in _code_cells(notebook):
+    for source in code_cells(notebook):
         for fstring, arg in _METRIC_CALL.findall(source):
             if arg[0] not in "\"'":
                 return None

@@ -3,7 +3,7 @@ introduction criticises, the near-optimal grid filter over psi_A and P (what the
 sensitivity to the pulse duration T_u and to beta_0, and the filter that ignores the signal noise over P.
 
 Every function reads a register configuration and a seed, draws from ``numpy.random.default_rng(seed)`` through
-:func:`.study._path` (common random numbers with the claims, whose memoised runs it reuses) and returns
+:func:`.study.truth_paths` (common random numbers with the claims, whose memoised runs it reuses) and returns
 :class:`~tvtrack.montecarlo.Estimate` values; variances in T^2, times in T.
 """
 
@@ -11,13 +11,26 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_square_ci, ratio_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_square_ci, ratio_ci
 from .baseline import fixed_gain_track, scan_centroids, tune_fixed_gain
 from .cost import run_steps_variant1, run_steps_variant2
 from .model import scan_at_snr, truth_and_pulse
 from .lock_loss import keep_pair
 from .reference import grid_filter
-from .study import BETA_0, D11_0, D22_0, Sizes, _draws, _message, _path, _samples, _scan, _start, steady_runs
+from .study import (
+    BETA_0,
+    D11_0,
+    D22_0,
+    common_draws,
+    cfg_message,
+    truth_paths,
+    photon_samples,
+    operating_scan,
+    switch_on_phases,
+    steady_runs,
+)
+from .sizes import Sizes
 
 __all__ = ["centroid_baseline", "grid_over_points", "pulse_and_beta", "mismatched_over_contrast"]
 
@@ -37,22 +50,22 @@ def centroid_baseline(config: dict, seed: int, sizes: Sizes) -> dict:
     dict  ``baseline`` and ``variant 2`` [Estimate per psi_A] steady mean squared error at the scan ends (T^2);
     ``ratio`` [Estimate] baseline / variant 2 on the same runs (those in lock by both, inside :func:`.lock_loss.in_lock`)
     """
-    x, pulse, xi, _ = _path(config, seed, sizes)
+    x, pulse, xi, _ = truth_paths(config, seed, sizes)
     per_scan, half = sizes.steps_per_scan, sizes.n_trials // 2
     n_scans = sizes.n_steps // per_scan
     ends = per_scan * np.arange(1, n_scans + 1)
     steady = ends * sizes.dt > sizes.duration_T - sizes.window_T
-    f = float(np.exp(-_message(config).alpha))  # the message's transition over one scan
+    f = float(np.exp(-cfg_message(config).alpha))  # the message's transition over one scan
     out = {"baseline": [], "variant 2": [], "ratio": []}
-    phi = _start(seed, sizes)
+    phi = switch_on_phases(seed, sizes)
     for psi in sizes.psi_grid:
-        scan = _scan(config, psi, config["contrast"], sizes)
-        y = _samples(config, seed, scan, pulse, xi)
+        scan = operating_scan(config, psi, config["contrast"], sizes)
+        y = photon_samples(config, seed, scan, pulse, xi)
         z = scan_centroids(scan, y, phi)
         truth = x[:, ends]
         gain = tune_fixed_gain(z[:half], truth[:half], f, GAINS, steady)
         base = ((fixed_gain_track(z[half:], f, gain) - truth[half:]) ** 2)[:, steady].mean(axis=1)
-        est = run_steps_variant2(scan, _message(config), y[half:], D11_0, start=phi[half:])[0]
+        est = run_steps_variant2(scan, cfg_message(config), y[half:], D11_0, start=phi[half:])[0]
         v2 = ((est[:, ends] - truth[half:]) ** 2)[:, steady].mean(axis=1)
         out["baseline"].append(mean_square_ci(base))
         out["variant 2"].append(mean_square_ci(v2))
@@ -69,14 +82,16 @@ def grid_over_points(config: dict, seed: int, sizes: Sizes, psis, contrasts) -> 
     -------
     dict  ``over psi_A`` and ``over P``: [Estimate] steady variance of variant 2 / of the grid filter (paired)
     """
-    x, pulse, xi, _ = _path(config, seed, sizes)
-    m, message = min(sizes.grid_trials, sizes.n_trials), _message(config)
+    x, pulse, xi, _ = truth_paths(config, seed, sizes)
+    m, message = min(sizes.grid_trials, sizes.n_trials), cfg_message(config)
     window = sizes.window()
 
     def ratio(psi, p):
-        scan = _scan(config, psi, p, sizes)
-        y = _samples(config, seed, scan, pulse, xi)[:m]
-        g = grid_filter(scan, message, 0.5, sizes.grid_points, _start(seed, sizes)[:m]).run(y, 0.0, message.sigma**2)
+        scan = operating_scan(config, psi, p, sizes)
+        y = photon_samples(config, seed, scan, pulse, xi)[:m]
+        g = grid_filter(scan, message, 0.5, sizes.grid_points, switch_on_phases(seed, sizes)[:m]).run(
+            y, 0.0, message.sigma**2
+        )
         g = g.mean
         grid = ((x[:m] - g) ** 2)[:, window].mean(axis=1)
         return ratio_ci(steady_runs(config, seed, sizes, psi, p, "v2")[:m], grid)
@@ -95,9 +110,9 @@ def pulse_and_beta(config: dict, seed: int, sizes: Sizes, durations, betas, cont
     -------
     dict  ``T_u`` {variant: [Estimate per duration]}; ``beta_0`` [Estimate per beta] (variant 1)
     """
-    noises, phi = _draws(seed, sizes), _start(seed, sizes)
+    noises, phi = common_draws(seed, sizes), switch_on_phases(seed, sizes)
     score = "interval_centre" if config["scoring time"] == "interval centre" else "interval_end"
-    message, window = _message(config), sizes.window()
+    message, window = cfg_message(config), sizes.window()
     sig = "per_sample" if config["sigma_sh"] == "per sample" else "unit_bandwidth"
 
     def runs(tu):
@@ -106,7 +121,7 @@ def pulse_and_beta(config: dict, seed: int, sizes: Sizes, durations, betas, cont
 
         def steady(p, filt, beta=BETA_0):
             scan = scan_at_snr(config["psi_A"], p, sizes.dt, tu, sig)
-            y = _samples(config, seed, scan, pulse, noises["xi"])
+            y = photon_samples(config, seed, scan, pulse, noises["xi"])
             if filt == "v1":
                 e = run_steps_variant1(scan, message, y, (D11_0, D22_0), None, beta, config["G22"], start=phi)[0]
             else:

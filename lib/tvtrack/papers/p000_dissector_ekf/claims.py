@@ -18,7 +18,7 @@ from __future__ import annotations
 from ... import verdicts as vd
 from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, Rule
 from .readings import AT_09, C2_EVERY, ENSEMBLE_MEAN, EVERY_ABOVE, LATE_SHARE
-from .study import Sizes
+from .sizes import Sizes
 
 __all__ = ["CLAIMS", "RULES", "claim_rules", "cost_rule"]
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from ... import jit
 from . import _kernels
-from .ekf import _g22
+from .ekf import g22_variance
 from .model import DissectorScan, GaussMarkovMessage
 
 __all__ = [
@@ -135,7 +135,7 @@ def variant1_step(
     (x1, x2), (d11, d12, d22)   ``X(k+1)`` and ``D(k+1)``
     """
     f1, q1 = message.euler(scan.dt)
-    f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
+    f2, q2 = 1.0 - beta * scan.dt, g22_variance(g22, beta, scan.dt)
     f11, f12, f22 = f1 * f1, f1 * f2, f2 * f2  # constants of (E7)
     a, sig2 = scan.amplitude, scan.pulse_sigma**2
     sqrt_c = _sqrt_c(scan, signal_noise_scale)
@@ -271,7 +271,7 @@ def run_steps_variant1(
     x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
     if _use_kernel(compiled):
         f1, q1 = message.euler(scan.dt)
-        f2, q2 = 1.0 - beta * scan.dt, _g22(g22, beta, scan.dt)
+        f2, q2 = 1.0 - beta * scan.dt, g22_variance(g22, beta, scan.dt)
         sig2, sqrt_c = scan.pulse_sigma**2, _sqrt_c(scan, signal_noise_scale)
         consts = (f1, f2, f1 * f1, f1 * f2, f2 * f2, q1, q2, -0.5 / sig2, scan.amplitude / sig2, 0.5 / sig2)
         tk = _timing_table(scan, y.shape[1], start, n)

@@ -14,14 +14,29 @@ from __future__ import annotations
 import numpy as np
 
 from ...filters.ekf import ExtendedKalmanFilter
-from .model import G22_MODES, SIGNAL_NOISE_SCALES, DissectorScan, GaussMarkovMessage, _check_choice, _check_real
+from .model import G22_MODES, SIGNAL_NOISE_SCALES, DissectorScan, GaussMarkovMessage, check_choice, check_real
 
-__all__ = ["variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "consistency"]
+__all__ = ["variant1_filter", "variant2_filter", "run_variant1", "run_variant2", "consistency", "g22_variance"]
 
 
-def _g22(mode: str, beta: float, dt: float) -> float:
-    """Process-noise variance of ``X2`` per step (eq. (E8) and its alternatives)."""
-    _check_choice("g22", mode, G22_MODES)
+def g22_variance(mode: str, beta: float, dt: float) -> float:
+    """Process-noise variance of ``X2`` per step (eq. (E8) and its alternatives).
+
+    Parameters
+    ----------
+    mode : str
+        One of ``G22_MODES``: ``"paper"`` (eq. (E8) as printed), ``"euler"`` or the stationary sampled white noise.
+    beta : float
+        The velocity's bandwidth (1/T).
+    dt : float
+        The step (T).
+
+    Returns
+    -------
+    float
+        The variance added to ``X2`` per step (in ``X2``'s unit squared).
+    """
+    check_choice("g22", mode, G22_MODES)
     if mode == "paper":
         return 2.0 * beta * dt  # (E8) as printed: unit-variance X2
     if mode == "euler":
@@ -51,13 +66,13 @@ def variant1_filter(
         The sweep's phase at switch-on (T), one per trial of the samples the filter runs on (the tracker knows its
         own sweep).
     """
-    _check_real("beta", beta, 0.0, 1.0 / scan.dt, low_open=True, high_open=True)
-    _check_choice("signal_noise_scale", signal_noise_scale, SIGNAL_NOISE_SCALES)
+    check_real("beta", beta, 0.0, 1.0 / scan.dt, low_open=True, high_open=True)
+    check_choice("signal_noise_scale", signal_noise_scale, SIGNAL_NOISE_SCALES)
     a, dt = scan.amplitude, scan.dt
     c_s = scan.n0 * scan.signal_noise_ratio if signal_noise_scale == "consistent" else a
     f1, q1 = message.euler(dt)
     F = np.diag([f1, 1.0 - beta * dt])  # (E4)
-    Q = np.diag([q1, _g22(g22, beta, dt)])  # (E8)
+    Q = np.diag([q1, g22_variance(g22, beta, dt)])  # (E8)
     sqrt_c = np.sqrt(c_s)
 
     def h(x, k):  # (E3)
@@ -97,7 +112,7 @@ def variant2_filter(
         The sweep's phase at switch-on (T), as for :func:`variant1_filter`.
     """
     p = scan.contrast if assumed_contrast is None else assumed_contrast
-    _check_real("assumed_contrast", p, 0.0, 1.0, high_open=True)
+    check_real("assumed_contrast", p, 0.0, 1.0, high_open=True)
     a, dt = scan.amplitude, scan.dt
     f1, q1 = message.euler(dt)
     start = np.asarray(start, dtype=float)

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...verdicts import ByReading, as_estimate
+from ...verdicts import ByReading
+from ...measured import as_estimate
 
 __all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows", "beside"]
 

@@ -21,6 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = [
+    "check_real",
+    "check_choice",
     "DissectorScan",
     "GaussMarkovMessage",
     "SIGMA_SH_DEFINITIONS",
@@ -57,7 +59,9 @@ SCORING_TIMES = ("interval_centre", "interval_end")
 SAMPLE_MODELS = ("integrated", "point")
 
 
-def _check_real(name, value, low=None, high=None, low_open=False, high_open=False):
+def check_real(name, value, low=None, high=None, low_open=False, high_open=False):
+    """Refuse a parameter that is not a finite number in ``[low, high]`` (each end open where flagged, unbounded
+    where None): ``ValueError`` naming the parameter and the interval allowed."""
     ok = np.isfinite(value)
     if ok and low is not None:
         ok = value > low if low_open else value >= low
@@ -69,7 +73,8 @@ def _check_real(name, value, low=None, high=None, low_open=False, high_open=Fals
         raise ValueError(f"parameter {name!r} = {value!r}; it must be in {left}{low}, {high}{right}")
 
 
-def _check_choice(name, value, options):
+def check_choice(name, value, options):
+    """Refuse a parameter that is not one of ``options``: ``ValueError`` naming the parameter and the choices."""
     if value not in options:
         raise ValueError(f"parameter {name!r} = {value!r}; it must be one of {options}")
 
@@ -87,10 +92,10 @@ def background_intensity(psi_a: float, amplitude: float, dt: float, sigma_sh: st
         ``"unit_bandwidth"``: ``sigma_sh = sqrt(N0)``, the RMS in a unit (1/T) bandwidth, so
         ``N0 = (A/psi)^2``.
     """
-    _check_real("psi_a", psi_a, 0.0, None, low_open=True)
-    _check_real("amplitude", amplitude, 0.0, None, low_open=True)
-    _check_real("dt", dt, 0.0, None, low_open=True)
-    _check_choice("sigma_sh", sigma_sh, SIGMA_SH_DEFINITIONS)
+    check_real("psi_a", psi_a, 0.0, None, low_open=True)
+    check_real("amplitude", amplitude, 0.0, None, low_open=True)
+    check_real("dt", dt, 0.0, None, low_open=True)
+    check_choice("sigma_sh", sigma_sh, SIGMA_SH_DEFINITIONS)
     n0 = (amplitude / psi_a) ** 2
     return n0 * dt if sigma_sh == "per_sample" else n0
 
@@ -119,13 +124,13 @@ class DissectorScan:
     time_offset: float = 0.0
 
     def __post_init__(self):
-        _check_real("n0", self.n0, 0.0, None, low_open=True)
-        _check_real("contrast", self.contrast, 0.0, 1.0, high_open=True)
-        _check_real("amplitude", self.amplitude, 0.0, None, low_open=True)
-        _check_real("dt", self.dt, 0.0, 1.0, low_open=True)
-        _check_real("pulse_sigma", self.pulse_sigma, 0.0, None, low_open=True)
-        _check_real("pulse_centre", self.pulse_centre, 0.0, 1.0)
-        _check_real("time_offset", self.time_offset, -1.0, 1.0)
+        check_real("n0", self.n0, 0.0, None, low_open=True)
+        check_real("contrast", self.contrast, 0.0, 1.0, high_open=True)
+        check_real("amplitude", self.amplitude, 0.0, None, low_open=True)
+        check_real("dt", self.dt, 0.0, 1.0, low_open=True)
+        check_real("pulse_sigma", self.pulse_sigma, 0.0, None, low_open=True)
+        check_real("pulse_centre", self.pulse_centre, 0.0, 1.0)
+        check_real("time_offset", self.time_offset, -1.0, 1.0)
 
     @property
     def signal_noise_ratio(self) -> float:
@@ -176,8 +181,8 @@ class GaussMarkovMessage:
     alpha: float = 0.15
 
     def __post_init__(self):
-        _check_real("sigma", self.sigma, 0.0, None, low_open=True)
-        _check_real("alpha", self.alpha, 0.0, None, low_open=True)
+        check_real("sigma", self.sigma, 0.0, None, low_open=True)
+        check_real("alpha", self.alpha, 0.0, None, low_open=True)
 
     def euler(self, dt):
         """Euler discretisation used by the paper's filters: ``(1 - alpha dt, 2 alpha sigma^2 dt)``
@@ -216,7 +221,7 @@ def scan_at_snr(
     -------
     DissectorScan  with the pulse centred in the scan (``tau_c = T/2``)
     """
-    _check_choice("sample_at", sample_at, SAMPLE_PHASES)
+    check_choice("sample_at", sample_at, SAMPLE_PHASES)
     offset = -0.5 * dt if sample_at == "interval_centre" else 0.0
     return DissectorScan(
         background_intensity(psi_a, amplitude, dt, sigma_sh), contrast, amplitude, dt, 0.5 * pulse_duration, 0.5, offset
@@ -316,7 +321,7 @@ def _integrated_path(
     means of ``S`` and ``N`` over the ``m`` sub-interval centres of sample ``k = 1..n_steps``, the sweep at phase
     ``start`` (per run, T; None: 0) at ``t = 0``.
     """
-    _check_choice("score_at", score_at, SCORING_TIMES)
+    check_choice("score_at", score_at, SCORING_TIMES)
     if "w_sub" not in noises:
         raise ValueError("parameter 'noises' lacks 'w_sub': draw it with draw_noises(..., substeps >= 1)")
     if not np.isclose(scan.time_offset, -0.5 * scan.dt):
@@ -369,7 +374,7 @@ def truth_and_pulse(
     (n_trials, K)) added to the message: a target that moves outside the filters' model. ``start``: the sweep's
     phase at switch-on per run (T, shape (n_trials,) or a number; None: 0), e.g. ``noises["phase"]``.
     """
-    _check_choice("sample_model", sample_model, SAMPLE_MODELS)
+    check_choice("sample_model", sample_model, SAMPLE_MODELS)
     if sample_model == "integrated":
         x, pulse, _ = _integrated_path(scan, message, noises, score_at, drift, start)
         return x, pulse
@@ -528,7 +533,7 @@ def simulate_two_rates(
     """
     if isinstance(factor, bool) or int(factor) != factor or factor < 2:
         raise ValueError(f"parameter 'factor' = {factor!r}; it must be an integer >= 2")
-    _check_choice("score_at", score_at, SCORING_TIMES)
+    check_choice("score_at", score_at, SCORING_TIMES)
     if not np.isclose(scan.time_offset, -0.5 * scan.dt):
         raise ValueError(f"parameter 'scan.time_offset' = {scan.time_offset!r}; it must be -dt/2 = {-0.5 * scan.dt}")
     factor = int(factor)

@@ -12,7 +12,8 @@ from .claims import CLAIMS, RULES, claim_rules
 from .params import RULES as PARAMETERS
 from .params import check_consistency
 from .register import DEPENDS, REGISTER
-from .study import Sizes, measure, measure_cost
+from .sizes import Sizes
+from .study import measure, measure_cost
 
 __all__ = ["PAPER", "sizes"]
 

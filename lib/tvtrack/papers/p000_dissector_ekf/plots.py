@@ -7,7 +7,7 @@ import textwrap
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ...verdicts import as_estimate
+from ...measured import as_estimate
 
 __all__ = ["errorbars", "fig1", "acquisition", "fig2", "fig3", "conditions", "discretisation", "consistency", "panels"]
 

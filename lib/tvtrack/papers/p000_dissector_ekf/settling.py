@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import Estimate, bootstrap_ci
+from ...estimate import Estimate
+from ...montecarlo import bootstrap_ci
 
 __all__ = [
     "lock_lost",

@@ -11,27 +11,28 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import mean_square_ci, proportion_ci, quantile_ci
+from ...montecarlo import mean_square_ci, quantile_ci
+from ...counts import proportion_ci
 from .ekf import consistency, variant1_filter, variant2_filter
 from .reference import pcrlb_variance
 from .study import (
     BETA_0,
     D11_0,
     D22_0,
-    Sizes,
-    _acquired_at,
-    _errors,
-    _message,
-    _path,
-    _phase_nodes,
-    _ratio_to_star,
-    _samples,
-    _scan,
-    _start,
+    acquired_at,
+    filter_errors,
+    cfg_message,
+    truth_paths,
+    phase_nodes,
+    ratio_to_star,
+    photon_samples,
+    operating_scan,
+    switch_on_phases,
     bound_time,
     psi_at,
     steady_runs,
 )
+from .sizes import Sizes
 
 __all__ = ["fig1_curves", "acquisition_vs_offset", "pull_in_range", "consistency_over_psi", "fig3_curves"]
 
@@ -42,12 +43,12 @@ def fig1_curves(config: dict, seed: int, sizes: Sizes) -> dict:
     out = {}
     for filt in ("v1", "v2"):
         for init in ("process means", "random N(0, D11(0))"):
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
+            run = filter_errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, init=init)
             out[f"{filt}, {init}"] = run["curve"]
             if init == "process means":
                 out[f"{filt} own D11"] = run["d_curve"]
-    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    out["PCRLB"] = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
+    scan = operating_scan(config, config["psi_A"], config["contrast"], sizes)
+    out["PCRLB"] = pcrlb_variance(scan, cfg_message(config), sizes.n_steps, bound_time(config), phase_nodes(sizes))
     return out
 
 
@@ -64,8 +65,8 @@ def acquisition_vs_offset(config: dict, seed: int, sizes: Sizes, offsets) -> dic
     for filt in ("v1", "v2"):
         q90, late, lost = [], [], []
         for off in offsets:
-            run = _errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
-            t = _acquired_at(config, seed, sizes, filt, run)
+            run = filter_errors(config, seed, sizes, config["psi_A"], config["contrast"], filt, offset=float(off))
+            t = acquired_at(config, seed, sizes, filt, run)
             q90.append(quantile_ci(np.where(np.isfinite(t), t, 2 * sizes.duration_T), 0.9))
             late.append(proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size))
             lost.append(float(np.mean(~np.isfinite(t))))
@@ -84,20 +85,20 @@ def consistency_over_psi(config: dict, seed: int, sizes: Sizes) -> dict:
     out = {}
     for scoring in ("interval centre", "interval end"):
         cfg = {**config, "scoring time": scoring}
-        x, pulse, xi, _ = _path(cfg, seed, sizes)
+        x, pulse, xi, _ = truth_paths(cfg, seed, sizes)
         out[scoring] = {}
         for name in ("v1", "v2"):
             ests = []
             for psi in sizes.psi_grid:
-                scan = _scan(cfg, psi, cfg["contrast"], sizes)
-                y = _samples(cfg, seed, scan, pulse, xi)
-                phi = _start(seed, sizes)
+                scan = operating_scan(cfg, psi, cfg["contrast"], sizes)
+                y = photon_samples(cfg, seed, scan, pulse, xi)
+                phi = switch_on_phases(seed, sizes)
                 if name == "v1":
-                    filt = variant1_filter(scan, _message(cfg), BETA_0, "consistent", cfg["G22"], phi)
+                    filt = variant1_filter(scan, cfg_message(cfg), BETA_0, "consistent", cfg["G22"], phi)
                     d0 = (D11_0, D22_0)
                 else:
                     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
-                    filt, d0 = variant2_filter(scan, _message(cfg), None, iterations, phi), D11_0
+                    filt, d0 = variant2_filter(scan, cfg_message(cfg), None, iterations, phi), D11_0
                 nees, _ = consistency(filt, y, x, d0, sizes.window())
                 ests.append(mean_square_ci(nees))
             out[scoring][f"variant {name[1]}"] = ests
@@ -146,10 +147,10 @@ def fig3_curves(config: dict, seed: int, sizes: Sizes) -> dict:
         out["sigma_x^2"][v] = [
             mean_square_ci(steady_runs(config, seed, sizes, s, p, filt)) for s, p in zip(psis, sizes.contrast_grid)
         ]
-        out["ratio"][v] = [_ratio_to_star(config, seed, sizes, p, filt) for p in sizes.contrast_grid]
+        out["ratio"][v] = [ratio_to_star(config, seed, sizes, p, filt) for p in sizes.contrast_grid]
     for s, p in zip(psis, sizes.contrast_grid):
         out["sigma_x^2*"].append(mean_square_ci(steady_runs(config, seed, sizes, s, p, "stationary")))
-        scan = _scan(config, s, p, sizes)
-        bound = pcrlb_variance(scan, _message(config), sizes.n_steps, bound_time(config), _phase_nodes(sizes))
+        scan = operating_scan(config, s, p, sizes)
+        bound = pcrlb_variance(scan, cfg_message(config), sizes.n_steps, bound_time(config), phase_nodes(sizes))
         out["PCRLB"].append(float(bound[sizes.window()].mean()))
     return out

@@ -21,26 +21,21 @@ from scipy import stats
 
 from ... import jit
 from ...verdicts import ByReading
-from ...montecarlo import Estimate, mean_square_ci, proportion_ci, quantile_ci, ratio_ci, rms_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_square_ci, quantile_ci, ratio_ci, rms_ci
+from ...counts import proportion_ci
 from .sizes import Sizes
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .lock_loss import keep, keep_pair
-from .readings import (  # noqa: F401  (the register's named values, importable from here as before)
+from .readings import (
     AT_09,
     ACCOUNTING,
     C2_CARD,
     C2_EVERY,
-    C2_READINGS,
-    C5_COMPARISONS,
-    CONVERGENCE_READINGS,
     CS_CONSISTENT,
     CS_LITERAL,
-    CS_READINGS,
-    DETERMINES_READINGS,
     ENSEMBLE_MEAN,
-    EVERY_ABOVE,
     JOINT_READING_C6,
-    LATE_SHARE,
     LOCK_DEFAULT,
     NOISE_EFFECT,
     WINDOW_DEFAULT,
@@ -69,6 +64,16 @@ __all__ = [
     "cost_ratio",
     "measure_cost",
     "record_inputs",
+    "cfg_message",
+    "common_draws",
+    "switch_on_phases",
+    "phase_nodes",
+    "truth_paths",
+    "operating_scan",
+    "photon_samples",
+    "filter_errors",
+    "ratio_to_star",
+    "acquired_at",
 ]
 
 #: The paper's message: sigma_1 = 0.1 T, alpha_0 T = 0.15 (eqs. (3), (4)).
@@ -115,7 +120,7 @@ def psi_at(psi_anchor: float, contrast: float, convention: str) -> float:
     return float(psi_anchor * g(contrast) / g(0.5))
 
 
-def _message(cfg) -> GaussMarkovMessage:
+def cfg_message(cfg) -> GaussMarkovMessage:
     """The message (eqs. (3), (4)) of the configuration's "sigma_1" operating point (the paper's by default)."""
     return MESSAGES[cfg.get("sigma_1", "0.1 T")]
 
@@ -133,7 +138,7 @@ def _drift(cfg, seed, n_trials):
     return lambda t: 0.1 * np.sin(2 * np.pi * t / period + phase)
 
 
-def _draws(seed, sizes):
+def common_draws(seed, sizes):
     """The common unit draws of a seed (:func:`.model.draw_noises`), each run's switch-on phase among them."""
     return _memo(
         ("draws", seed, sizes),
@@ -141,36 +146,36 @@ def _draws(seed, sizes):
     )
 
 
-def _start(seed, sizes):
+def switch_on_phases(seed, sizes):
     """Each run's sweep phase at switch-on (n_trials,, T), uniform over the scan's sample slots
     (:func:`.model.on_sample_clock`): the truth's and the filters' sweep."""
-    return on_sample_clock(_draws(seed, sizes)["phase"], sizes.dt)
+    return on_sample_clock(common_draws(seed, sizes)["phase"], sizes.dt)
 
 
-def _phase_nodes(sizes):
+def phase_nodes(sizes):
     """The sample slots a run can switch on at (T), equally likely: what the bounds average over."""
     return np.arange(int(np.ceil(1.0 / sizes.dt - 1e-9))) * sizes.dt
 
 
-def _path(cfg, seed, sizes, offset=None):
+def truth_paths(cfg, seed, sizes, offset=None):
     """Truth and mean pulses of the common draws (one per data model, seed and start), each run's sweep starting at
-    its drawn phase (:func:`_start`).
+    its drawn phase (:func:`switch_on_phases`).
 
     ``offset``: None (the truth from its stationary law), a number (every truth starts there, T) or "uniform" (the
     truth uniform over the micro-raster, [-T/2, T/2], from the same normal draws through their CDF).
     """
 
     def compute():
-        noises = _draws(seed, sizes)
+        noises = common_draws(seed, sizes)
         if offset == "uniform":
-            noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / _message(cfg).sigma}
+            noises = {**noises, "x0": (stats.norm.cdf(noises["x0"]) - 0.5) / cfg_message(cfg).sigma}
         elif offset is not None:  # truth starts at a fixed offset
-            noises = {**noises, "x0": np.full_like(noises["x0"], offset / _message(cfg).sigma)}
+            noises = {**noises, "x0": np.full_like(noises["x0"], offset / cfg_message(cfg).sigma)}
         geometry = scan_at_snr(1.0, 0.0, sizes.dt, PULSE_DURATION)
         score = "interval_centre" if cfg["scoring time"] == "interval centre" else "interval_end"
         drift = _drift(cfg, seed, sizes.n_trials)
         x, pulse = truth_and_pulse(
-            geometry, _message(cfg), noises, cfg["sample model"], score, drift, _start(seed, sizes)
+            geometry, cfg_message(cfg), noises, cfg["sample model"], score, drift, switch_on_phases(seed, sizes)
         )
         return x, pulse, noises["xi"], noises["init"]
 
@@ -184,12 +189,13 @@ def bound_time(cfg) -> str:
     return "interval_end" if end else "sample"
 
 
-def _scan(cfg, psi, contrast, sizes):
+def operating_scan(cfg, psi, contrast, sizes):
+    """The scan at ``psi`` (psi_A) and contrast P with the configuration's sigma_sh convention (sample period T)."""
     sig = "per_sample" if cfg["sigma_sh"] == "per sample" else "unit_bandwidth"
     return scan_at_snr(psi, contrast, sizes.dt, PULSE_DURATION, sig)
 
 
-def _samples(cfg, seed, scan, pulse, xi):
+def photon_samples(cfg, seed, scan, pulse, xi):
     """The samples of one operating point under the photon model (Gaussian noise, or photo-electron counts where
     there is a signal current to count, P > 0)."""
     if cfg["photon model"] == "Poisson counts" and scan.contrast > 0:
@@ -212,7 +218,7 @@ def _cs(cfg) -> str:
     return "literal" if cfg.get("signal-noise scale", CS_CONSISTENT) == CS_LITERAL else "consistent"
 
 
-def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
+def filter_errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process means"):
     """One filter at one operating point, summarised (the memo keeps summaries, not the (n_trials, K) histories).
 
     ``filt``: "v1", "v2", "ignoring" (variant 2 assuming P = 0) or "stationary" (variant 2 on P = 0 data).
@@ -231,10 +237,10 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
     key = ("err", _data_key(cfg), tuple(cfg.get(r) for r in reads), seed, sizes, psi, contrast, filt, offset, init)
 
     def compute():
-        x, pulse, xi, draws_init = _path(cfg, seed, sizes, offset)
-        scan = _scan(cfg, psi, 0.0 if filt == "stationary" else contrast, sizes)
-        y = _samples(cfg, seed, scan, pulse, xi)
-        random_init, phi = init != "process means", _start(seed, sizes)
+        x, pulse, xi, draws_init = truth_paths(cfg, seed, sizes, offset)
+        scan = operating_scan(cfg, psi, 0.0 if filt == "stationary" else contrast, sizes)
+        y = photon_samples(cfg, seed, scan, pulse, xi)
+        random_init, phi = init != "process means", switch_on_phases(seed, sizes)
         if filt == "v1":
             start = (
                 np.stack([np.sqrt(D11_0) * draws_init[:, 0], np.sqrt(D22_0) * draws_init[:, 1]], 1)
@@ -242,13 +248,13 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
                 else None
             )
             e, d = run_steps_variant1(
-                scan, _message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], None, _cs(cfg), phi
+                scan, cfg_message(cfg), y, (D11_0, D22_0), start, BETA_0, cfg["G22"], None, _cs(cfg), phi
             )
         else:
             start = np.sqrt(D11_0) * draws_init[:, 0] if random_init else None
             assumed = 0.0 if filt == "ignoring" else None
             iterations = 1 if (filt == "v2" and cfg["v2 noise at"] == "updated estimate") else 0
-            e, d = run_steps_variant2(scan, _message(cfg), y, D11_0, start, assumed, iterations, None, phi)
+            e, d = run_steps_variant2(scan, cfg_message(cfg), y, D11_0, start, assumed, iterations, None, phi)
         sq = (x - e) ** 2
         return {
             "steady": sq[:, sizes.window()].mean(axis=1),
@@ -267,7 +273,7 @@ def _errors(cfg, seed, sizes, psi, contrast, filt, offset=None, init="process me
 
 def steady_runs(cfg, seed, sizes, psi, contrast, filt):
     """Per-trial steady-state mean squared error, shape (n_trials,), of one filter at one point (T^2)."""
-    return _errors(cfg, seed, sizes, psi, contrast, filt)["steady"]
+    return filter_errors(cfg, seed, sizes, psi, contrast, filt)["steady"]
 
 
 def _ratio(a, b, statistic):
@@ -277,7 +283,7 @@ def _ratio(a, b, statistic):
     return ratio_ci(a, b) if statistic == "mean" else median_ratio_ci(a, b)
 
 
-def _ratio_to_star(cfg, seed, sizes, contrast, filt="v2"):
+def ratio_to_star(cfg, seed, sizes, contrast, filt="v2"):
     """sigma_x^2 / sigma_x^2* at contrast P (psi_A from the convention), paired on the same runs."""
     psi = psi_at(cfg["psi_A"], contrast, cfg["contrast convention"])
     a = steady_runs(cfg, seed, sizes, psi, contrast, filt)
@@ -304,19 +310,21 @@ def _c1(cfg, seed, sizes):
     scan_end = int(round(sizes.acquire_by_T * sizes.steps_per_scan * sizes.dt))  # scans up to acquire_by_T
     for filt in ("v1", "v2"):
         start = "uniform" if cfg["initial position"] == "uniform in the micro-raster" else None
-        run = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"])
+        run = filter_errors(
+            cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt, offset=start, init=cfg["initial estimate"]
+        )
         if cfg["convergence criterion"] == ENSEMBLE_MEAN:  # its own rule judges it (.claims, a ByReading rule)
             parts[f"variant {filt[1]}"] = ratio_ci(run["scans"][:, scan_end - 1], run["steady"])
             continue
-        t = _acquired_at(cfg, seed, sizes, filt, run)
+        t = acquired_at(cfg, seed, sizes, filt, run)
         parts[f"variant {filt[1]}"] = proportion_ci(int(np.sum(t > sizes.acquire_by_T + 1e-9)), t.size)
     return ByReading.tag(cfg["convergence criterion"], parts)
 
 
-def _acquired_at(cfg, seed, sizes, filt, run):
+def acquired_at(cfg, seed, sizes, filt, run):
     """Acquisition times (T) of a run; out of lock: a scan's mean square above lock_factor^2 x the steady mean
     square of the same filter from the paper's start."""
-    ref = _errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
+    ref = filter_errors(cfg, seed, sizes, cfg["psi_A"], cfg["contrast"], filt)["steady"].mean()
     factor = 2.0 if cfg.get("lock threshold", LOCK_DEFAULT) == "2 x steady RMS" else sizes.lock_factor
     return acquisition_times_from_scans(run["scans"], factor**2 * ref, sizes.steps_per_scan * sizes.dt)
 
@@ -334,7 +342,9 @@ def _c2(cfg, seed, sizes):
         ]
     out = {}
     for name, p, filt in points:
-        e = rms_ci(np.sqrt(keep(_errors(cfg, seed, sizes, 20.0, p, filt)["steady"]))[:, None])  # in lock: lock_loss
+        e = rms_ci(
+            np.sqrt(keep(filter_errors(cfg, seed, sizes, 20.0, p, filt)["steady"]))[:, None]
+        )  # in lock: lock_loss
         out[name] = Estimate(
             e.value / size, e.stderr / size, e.ci_low / size, e.ci_high / size, e.n, e.confidence, e.method
         )
@@ -346,7 +356,7 @@ def _c3(cfg, seed, sizes):
     field = "d_steady" if cfg.get("C000-3 accuracy", "Monte Carlo error") == "filters' own D11" else "steady"
 
     def runs(psi, p, filt):
-        return _errors(cfg, seed, sizes, psi, p, filt)[field]
+        return filter_errors(cfg, seed, sizes, psi, p, filt)[field]
 
     parts = {}
     for p in sizes.contrast_grid:
@@ -363,7 +373,7 @@ def _c5_c7(cfg, seed, sizes):
     """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*
     (C000-5's from the filter ignoring the signal noise over variant 2 under its reading "C000-5 comparison" =
     :data:`ACCOUNTING`)."""
-    ratios = [_ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
+    ratios = [ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
     r9 = ratios[list(sizes.contrast_grid).index(0.9)]
     c5_ratios = ratios  # C000-5's reading of what it compares; C000-7 reads Fig. 3's ratio under every reading
     if cfg.get("C000-5 comparison", NOISE_EFFECT) == ACCOUNTING:
@@ -374,8 +384,10 @@ def _c5_c7(cfg, seed, sizes):
     )
     c5.update({f"P={p:g}": c5_ratios[list(sizes.contrast_grid).index(p)] for p in above})
     psi9 = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
-    nodes = _phase_nodes(sizes)
-    crlb = scan_crlb(_scan(cfg, psi9, 0.9, sizes), nodes) / scan_crlb(_scan(cfg, psi9, 0.0, sizes), nodes)
+    nodes = phase_nodes(sizes)
+    crlb = scan_crlb(operating_scan(cfg, psi9, 0.9, sizes), nodes) / scan_crlb(
+        operating_scan(cfg, psi9, 0.0, sizes), nodes
+    )
     gap = Estimate(crlb - r9.value, r9.stderr, crlb - r9.ci_high, crlb - r9.ci_low, r9.n, r9.confidence, r9.method)
     return ByReading.tag(cfg.get("substantially determines", AT_09), c5), {
         "trend": ratios,
@@ -394,8 +406,8 @@ def _c6(cfg, seed, sizes):
     if reference == "sigma_x^2*":
         return _ratio(a, steady_runs(cfg, seed, sizes, psi, 0.9, "stationary"), cfg["statistic"])
     if reference == "PCRLB":
-        scan = _scan(cfg, psi, 0.9, sizes)
-        bound = pcrlb_variance(scan, _message(cfg), sizes.n_steps, bound_time(cfg), _phase_nodes(sizes))
+        scan = operating_scan(cfg, psi, 0.9, sizes)
+        bound = pcrlb_variance(scan, cfg_message(cfg), sizes.n_steps, bound_time(cfg), phase_nodes(sizes))
         bound = float(bound[sizes.window()].mean())
         a = keep(a)
         e = mean_square_ci(a) if cfg["statistic"] == "mean" else quantile_ci(a, 0.5)
@@ -411,11 +423,11 @@ def _c6(cfg, seed, sizes):
     m = sizes.grid_trials
 
     def grid():
-        x, pulse, xi, _ = _path(cfg, seed, sizes)
-        scan = _scan(cfg, psi, 0.9, sizes)
-        y = _samples(cfg, seed, scan, pulse, xi)[:m]
-        message = _message(cfg)
-        phi = _start(seed, sizes)[:m]
+        x, pulse, xi, _ = truth_paths(cfg, seed, sizes)
+        scan = operating_scan(cfg, psi, 0.9, sizes)
+        y = photon_samples(cfg, seed, scan, pulse, xi)[:m]
+        message = cfg_message(cfg)
+        phi = switch_on_phases(seed, sizes)[:m]
         mean = grid_filter(scan, message, 0.5, sizes.grid_points, phi).run(y, 0.0, message.sigma**2).mean
         return ((x[:m] - mean) ** 2)[:, sizes.window()].mean(axis=1)
 
@@ -443,10 +455,10 @@ def _c8(cfg, seed, sizes):
         got = {name: _MEMO[key] for name, key in keys.items() if key in _MEMO}
         missing = [name for name in keys if name not in got]
         if missing:
-            scan = _scan(cfg, psi_p, p, sizes)
+            scan = operating_scan(cfg, psi_p, p, sizes)
             d = simulate_two_rates(
                 scan,
-                _message(cfg),
+                cfg_message(cfg),
                 sizes.dt_factor,
                 np.random.default_rng([seed, 8]),
                 sizes.dt_trials,
@@ -461,9 +473,9 @@ def _c8(cfg, seed, sizes):
                 def run(s, y, name=name, phi=d["start"]):
                     if name == "v1":
                         return run_steps_variant1(
-                            s, _message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], None, _cs(cfg), phi
+                            s, cfg_message(cfg), y, (D11_0, D22_0), None, BETA_0, cfg["G22"], None, _cs(cfg), phi
                         )[0]
-                    return run_steps_variant2(s, _message(cfg), y, D11_0, None, None, iterations, None, phi)[0]
+                    return run_steps_variant2(s, cfg_message(cfg), y, D11_0, None, None, iterations, None, phi)[0]
 
                 a = ((d["x_coarse"] - run(scan, d["y_coarse"])) ** 2)[:, win_c].mean(axis=1)
                 b = ((d["x_fine"] - run(d["scan_fine"], d["y_fine"])) ** 2)[:, win_f].mean(axis=1)
@@ -580,6 +592,6 @@ def cost_ratio(
 def record_inputs(config: dict, seed: int, sizes: Sizes):
     """The scan, truth, mean pulses and noise draws of the default run (for :func:`.recording.record_trial`, which
     records trial 0: the scan's time offset carries that trial's switch-on phase)."""
-    x, pulse, xi, _ = _path(config, seed, sizes)
-    scan = _scan(config, config["psi_A"], config["contrast"], sizes)
-    return replace(scan, time_offset=scan.time_offset + float(_start(seed, sizes)[0])), x, pulse, xi
+    x, pulse, xi, _ = truth_paths(config, seed, sizes)
+    scan = operating_scan(config, config["psi_A"], config["contrast"], sizes)
+    return replace(scan, time_offset=scan.time_offset + float(switch_on_phases(seed, sizes)[0])), x, pulse, xi

@@ -40,7 +40,7 @@ import numpy as np
 from tvtrack import jit
 
 __all__ = ["RESTART_CODES", "available", "compile_seconds", "get_kernel", "kernel_fast_python", "kernel_python"]
-__all__ += ["use_jit_default", "COAST", "TRACK2", "TRACK3"]
+__all__ += ["use_jit_default", "COAST", "TRACK2", "TRACK3", "record_compile"]
 
 #: Mode codes the kernels write (``in3 + TRACK2`` while seen), :attr:`.track_modes.TrackModeOutput.mode`.
 COAST, TRACK2, TRACK3 = 0, 2, 3
@@ -552,5 +552,14 @@ def compile_seconds(covariance: bool = False) -> float | None:
     return _compile_s.get("general" if covariance else "fast")
 
 
-def _record_compile(covariance: bool, t0: float) -> None:
+def record_compile(covariance: bool, t0: float) -> None:
+    """Note the first (compiling) call's duration for :func:`compile_seconds`; later calls keep the first.
+
+    Parameters
+    ----------
+    covariance : bool
+        Whether the general (covariance-carrying) kernel was called, else the fast one.
+    t0 : float
+        ``time.perf_counter()`` at the call's start (s).
+    """
     _compile_s.setdefault("general" if covariance else "fast", time.perf_counter() - t0)

@@ -7,8 +7,9 @@ notebook's, written once here).
 from __future__ import annotations
 
 from ...verdicts import AllOf, ByReading, InBand, Monotone, NotCheckable, Ordering, WithinFactor, Rule
-from .register import ENTRIES
-from .study import COMPARATORS, PAPER_RATES
+from .entries import ENTRIES
+from .scenario import COMPARATORS
+from .spherical import PAPER_RATES
 
 __all__ = ["CLAIMS", "RULES", "claim_rules"]
 

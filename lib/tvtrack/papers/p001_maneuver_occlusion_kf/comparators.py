@@ -34,6 +34,7 @@ from .scenario import (
 )
 
 __all__ = [
+    "comparator_tuning",
     "comparator_positions",
     "tuned_comparators",
     "compensation_ms",
@@ -199,7 +200,22 @@ def _on_edge(name: str, best: tuple, g: dict) -> bool:
     return any(len(v_) > 1 and v in (min(v_), max(v_)) and v not in FLOORS[name] for v_, v in zip(grids, best))
 
 
-def _tuning(config: dict, sizes: dict) -> dict:
+def comparator_tuning(config: dict, sizes: dict) -> dict:
+    """The comparators tuned for a configuration (:func:`tuned_comparators` on its frame rate, alpha and the run's
+    training sizes and grids).
+
+    Parameters
+    ----------
+    config : dict
+        A complete configuration (``frame_rate_hz`` in Hz, ``alpha``).
+    sizes : dict
+        The run's sizes (``n_train``, ``train_seed``, ``sigma_eps`` and the tuning ``grids``).
+
+    Returns
+    -------
+    dict
+        What :func:`tuned_comparators` returns: per RMS span, each comparator's tuned setting.
+    """
     grids = tuple((k, tuple(v)) for k, v in sizes.get("grids", {}).items())
     return tuned_comparators(
         float(config["frame_rate_hz"]),

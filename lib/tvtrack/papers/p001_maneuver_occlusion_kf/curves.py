@@ -18,7 +18,7 @@ from .scenario import (
     Scenario,
     config_scenario,
     measurements,
-    _full,
+    with_defaults,
 )
 
 __all__ = [
@@ -118,7 +118,7 @@ def occlusion_frames(reading: str, sc: Scenario, length_s: float = 10.0) -> tupl
 
 def fig4_curves(config: dict, sizes: dict) -> dict:
     """Fig. 4: dynamic error, RMS and their sum at reappearance over ``sizes["kb3_grid"]`` (deterministic)."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc, config.get("loss_length_s", 10.0))
     dyn, rms = np.array([prediction_error(sc, config, sizes, kb, fl, fb) for kb in sizes["kb3_grid"]]).T
@@ -128,7 +128,7 @@ def fig4_curves(config: dict, sizes: dict) -> dict:
 def loss_sweep(config: dict, sizes: dict) -> dict:
     """C001-7: a loss of ``loss_length_s`` (default the paper's 10 s) starting at each of ``sizes["loss_grid_s"]``
     (deterministic)."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     length = float(config.get("loss_length_s", 10.0))
     rows = [
@@ -177,7 +177,7 @@ def measure_curves(config: dict, seed: int, sizes: dict, claims=None) -> dict:
     """C001-7 and C001-8 from the noise-free runs and the covariance recursion (``seed`` unused: no draw), C001-8
     tagged with the register's ``curve_tolerance`` (:class:`~tvtrack.verdicts.ByReading`: the claims' Monotone
     rules count a step below it as flat, :mod:`.claims`); only the claims in ``claims`` (None: both)."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     out = {}
     if claims is None or "C001-7" in claims:
         out["C001-7"] = c7_parts(loss_sweep(config, sizes))
@@ -188,7 +188,7 @@ def measure_curves(config: dict, seed: int, sizes: dict, claims=None) -> dict:
 
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
     """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc, config.get("loss_length_s", 10.0))
     vis = (sc.frames < fl) | (sc.frames >= fb)

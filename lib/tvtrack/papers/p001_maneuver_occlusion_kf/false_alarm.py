@@ -21,7 +21,8 @@ import numpy as np
 from scipy import stats
 
 from ...filters.alphabeta import scheduled_filter
-from ...montecarlo import Estimate, mean_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_ci
 from .maneuver_detector import window_statistic
 
 __all__ = ["statistic_impulse_response", "closed_form_rate", "closed_form_check", "CLOSED_FORM_MODELS"]

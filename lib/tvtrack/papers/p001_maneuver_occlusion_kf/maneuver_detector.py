@@ -34,7 +34,9 @@ from ...filters.alphabeta import (
     scheduled_filter,
 )
 from ...filters.polynomial import taylor_transition
-from ...montecarlo import Estimate, mean_ci, proportion_ci, quantile_ci, zero_events_bound
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, quantile_ci
+from ...counts import proportion_ci, zero_events_bound
 
 __all__ = [
     "window_statistic",

@@ -4,7 +4,7 @@ every rule names a parameter of the notebook, which ``tests/papers/test_001_stud
 from __future__ import annotations
 
 from ...parameters import Integer, IntegerList, OneOf, Real, RealList, SchedulerAddress
-from .study import THRESHOLD_READINGS
+from .scenario import THRESHOLD_READINGS
 
 __all__ = ["RULES", "check_cross"]
 

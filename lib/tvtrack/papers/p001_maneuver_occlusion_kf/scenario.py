@@ -21,6 +21,7 @@ from .maneuver_detector import (
 from .track_modes import TrackModeConfig, manoeuvre_truth, run_track_modes
 
 __all__ = [
+    "with_defaults",
     "FPS_REF",
     "MOTION",
     "NOISE_MODELS",
@@ -280,8 +281,21 @@ def cadence_threshold(threshold, cadence: str, n: int, arm_k: int) -> np.ndarray
     return out
 
 
-def _full(config: dict, sizes: dict) -> dict:
-    """``config`` completed with the register's defaults (``sizes["defaults"]``)."""
+def with_defaults(config: dict, sizes: dict) -> dict:
+    """A configuration completed with the register's defaults.
+
+    Parameters
+    ----------
+    config : dict
+        Register entry name -> value (the entries a run varies).
+    sizes : dict
+        The run's sizes; ``sizes["defaults"]`` holds every entry's default.
+
+    Returns
+    -------
+    dict
+        Every entry's value: ``config``'s where it names one, the default elsewhere.
+    """
     return {**sizes.get("defaults", {}), **config}
 
 

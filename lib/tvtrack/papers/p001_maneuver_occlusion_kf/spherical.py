@@ -8,7 +8,7 @@ import itertools
 
 import numpy as np
 
-from .scenario import FPS_REF, _full
+from .scenario import FPS_REF, with_defaults
 
 __all__ = [
     "HORIZONS",
@@ -145,7 +145,7 @@ def measure_spherical(config: dict, seed: int, sizes: dict, claims=None) -> dict
     :data:`HORIZONS`; NaN when no geometry stays within ±20°); ``{}`` when ``claims`` does not ask for C001-9."""
     if claims is not None and "C001-9" not in claims:
         return {}
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     H = HORIZONS[config.get("horizon", "10 s loss")]
     tol = 1.0 if config["tolerance"] == "1 element" else float(sizes["prediction_rms"])
     parts = {

@@ -1,7 +1,7 @@
 """Study drivers of paper 001 (Fisenko et al. 2008): the measurement functions the explorer calls and the studies
 the notebook shows. The scenario lives in :mod:`.scenario`, the comparators in :mod:`.comparators`, the curves of
 Fig. 4 and the loss-time sweep in :mod:`.curves`, C001-9 in :mod:`.spherical`, C001-4's measurement in
-:mod:`.tradeoff` and C001-3's closed form in :mod:`.false_alarm`; their names are re-exported here.
+:mod:`.tradeoff` and C001-3's closed form in :mod:`.false_alarm`.
 
 A measurement function is ``measure(config, seed, sizes) -> {claim id: measured}``: one full-size run of the
 study at ``config`` (a dict with every register entry of :mod:`.register`), every random draw from
@@ -20,8 +20,8 @@ import numpy as np
 from scipy import signal, stats
 
 from ...filters.alphabeta import gain_schedule, scheduled_filter
-from ...filters.polynomial import predict_ahead
-from ...montecarlo import Estimate, mean_ci, paired_difference
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, paired_difference
 from ...projection import as_declared
 from .false_alarm import closed_form_check, closed_form_rate, statistic_impulse_response
 from .maneuver_detector import (
@@ -38,73 +38,20 @@ from .sizes import declared
 from .scenario import (
     FPS_REF,
     MOTION,
-    NOISE_MODELS,
     THRESHOLD_READINGS,
-    ARMING_RULES,
-    RMS_SPANS,
-    TUNING_SPANS,
-    MANOEUVRES,
-    CHANNEL_Y,
-    ACCEL_UNITS,
-    COMPENSATION_COMPARATORS,
-    RAISED2_GRID,
     UMP_COMPARATORS,
-    COMPARATORS,
-    FIXED2_GRID,
-    FIXED3_GRID,
-    IMM_Q_CA_GRID,
-    IMM_P_STAY_GRID,
-    VDF_Q_CA_GRID,
-    VDF_WINDOWS,
-    FLOORS,
     Scenario,
-    scenario,
     config_scenario,
     measurements,
     detector_threshold,
     arming_count,
     cadence_threshold,
-    _full,
-    span_mask,
+    with_defaults,
     run_scheme,
 )
-from .comparators import (
-    comparator_positions,
-    tuned_comparators,
-    _tuning,
-    compensation_ms,
-    raised_second_order,
-    compensation_comparator,
-    tuning_phrase,
-)
-from .curves import (
-    optimum_location,
-    forced_output,
-    prediction_error,
-    occlusion_frames,
-    fig4_curves,
-    loss_sweep,
-    c7_parts,
-    c8_parts,
-    measure_curves,
-    fig4_monte_carlo,
-    curve_agreement,
-    agreement_word,
-    unbiased_prediction_bound,
-)
-from .spherical import (
-    HORIZONS,
-    spherical_deviations,
-    TARGET_SETS,
-    PAPER_RATES,
-    paper_rate_deviation,
-    field_deviation,
-    start_deviation,
-    measure_spherical,
-)
+from .comparators import comparator_positions, comparator_tuning
 
 __all__ = [
-    "predict_ahead",
     "detection_time_summary",
     "gls_window_taps",
     "tapped_window_statistic",
@@ -119,60 +66,15 @@ __all__ = [
     "detector_benchmark",
     "FPS_REF",
     "MOTION",
-    "NOISE_MODELS",
     "THRESHOLD_READINGS",
-    "ARMING_RULES",
-    "RMS_SPANS",
-    "TUNING_SPANS",
-    "MANOEUVRES",
-    "CHANNEL_Y",
-    "ACCEL_UNITS",
-    "COMPENSATION_COMPARATORS",
-    "RAISED2_GRID",
     "UMP_COMPARATORS",
-    "COMPARATORS",
-    "FIXED2_GRID",
-    "FIXED3_GRID",
-    "IMM_Q_CA_GRID",
-    "IMM_P_STAY_GRID",
-    "VDF_Q_CA_GRID",
-    "VDF_WINDOWS",
-    "FLOORS",
     "Scenario",
-    "scenario",
     "config_scenario",
     "measurements",
     "detector_threshold",
     "arming_count",
-    "span_mask",
     "run_scheme",
     "comparator_positions",
-    "tuned_comparators",
-    "compensation_ms",
-    "raised_second_order",
-    "compensation_comparator",
-    "tuning_phrase",
-    "optimum_location",
-    "forced_output",
-    "prediction_error",
-    "occlusion_frames",
-    "fig4_curves",
-    "loss_sweep",
-    "c7_parts",
-    "c8_parts",
-    "measure_curves",
-    "fig4_monte_carlo",
-    "curve_agreement",
-    "agreement_word",
-    "unbiased_prediction_bound",
-    "HORIZONS",
-    "spherical_deviations",
-    "TARGET_SETS",
-    "PAPER_RATES",
-    "paper_rate_deviation",
-    "field_deviation",
-    "start_deviation",
-    "measure_spherical",
 ]
 
 
@@ -271,7 +173,7 @@ def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict
     asked = set(GROUP_DETECTION if claims is None else claims) & set(GROUP_DETECTION)
     if not asked:
         return {}
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
@@ -400,7 +302,7 @@ def _c001_3(config: dict, sigma: float, G0, null: tuple, rng: np.random.Generato
 def c3_closed_form_check(config: dict, seed: int, sizes: dict) -> dict:
     """C001-3's closed form against a Monte Carlo of the same per-test rate (in units of alpha) on
     ``n_fa_runs`` fresh no-manoeuvre runs of ``fa_duration_s``: :func:`.false_alarm.closed_form_check`."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, alpha, sigma = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"]), sizes["sigma_eps"]
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
@@ -428,12 +330,12 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
         switch"`` (the scheme's own TRACK2 filter, never switching) and each comparator tuned for the config's
         ``rms_span``; ``tuning`` (settings, training RMS, on-edge flags); ``z`` the measurements.
     """
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     sigma = sizes["sigma_eps"]
     rng = np.random.default_rng(seed)
     z = measurements(sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], rng, sigma)
-    tuning = _tuning(config, sizes)[config["rms_span"]]
+    tuning = comparator_tuning(config, sizes)[config["rms_span"]]
     pos = {
         "adaptive": run_scheme(z, sc, config, sizes, covariance=False).x[..., 0],
         "2nd order without the switch": comparator_positions(
@@ -448,7 +350,7 @@ def tradeoff_runs(config: dict, seed: int, sizes: dict) -> dict:
 def scenario_runs(config: dict, seed: int, sizes: dict, restarts=("A", "B", "C")) -> dict:
     """The paper's scenario (both channels, ``sizes["n_trials"]`` runs) through the scheme under each restart rule,
     with the covariance (gate): ``{"scenario", "z", "outs": {restart: TrackModeOutput}}``."""
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     z = measurements(
         sc.truth[:, :, 0], config["noise"], sizes["n_trials"], np.random.default_rng(seed), sizes["sigma_eps"]
@@ -497,7 +399,7 @@ def sigma_s_readings(config: dict, sizes: dict) -> dict:
     stationarity (Gaussian: 2 Phi(-c_ind / sigma_S))."""
     from ...filters.alphabeta import lagged_covariances
 
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
     K2 = gain_schedule(1, kb2)[-1]
     C = lagged_covariances(K2, sizes["sigma_eps"], 2)
@@ -546,7 +448,7 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
         velocity_jump_signature,
     )
 
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     n, kb2, sigma = int(config["window_n"]), int(config["k_bound2"]), sizes["sigma_eps"]
     targets = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5]) if fa_targets is None else np.asarray(fa_targets)

@@ -376,7 +376,7 @@ def _run_jit(zt, vis, cfg: TrackModeConfig, prep: _Prepared, sigma_eps: float, c
             pinv_w, out_x, out_row, out_mode, out_S, out_c, det,
         )  # fmt: skip
         gain_kw = {"gain_rows": out_row.reshape(batch + (T,)), "gain_table": table}
-    _kernel._record_compile(covariance, t0)
+    _kernel.record_compile(covariance, t0)
     return _output(batch, T, out_x, out_var, out_gate, out_mode, out_S, out_c, det, **gain_kw)
 
 

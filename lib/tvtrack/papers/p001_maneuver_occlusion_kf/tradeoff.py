@@ -20,9 +20,17 @@ import functools
 
 import numpy as np
 
-from ...montecarlo import Estimate
-from .comparators import _tuning, comparator_positions, compensation_comparator
-from .scenario import COMPARATORS, COMPENSATION_COMPARATORS, _full, config_scenario, measurements, run_scheme, span_mask
+from ...estimate import Estimate
+from .comparators import comparator_tuning, comparator_positions, compensation_comparator
+from .scenario import (
+    COMPARATORS,
+    COMPENSATION_COMPARATORS,
+    with_defaults,
+    config_scenario,
+    measurements,
+    run_scheme,
+    span_mask,
+)
 
 __all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff", "switch_share"]
 
@@ -94,7 +102,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     ``noise``, ``manoeuvre``, ``frame_rate_hz``, ``C001-4 switch`` (with ``switch_s`` when forced) and the scheme's
     entries (:func:`~.scenario.run_scheme`).
     """
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     sigma, n = sizes["sigma_eps"], sizes["n_tradeoff_trials"]
     z = measurements(sc.truth[:, :, 0], config["noise"], n, np.random.default_rng(seed), sigma)
@@ -117,7 +125,7 @@ def measure_tradeoff(config: dict, seed: int, sizes: dict) -> dict:
     else:
         span, kind = config["rms_span"], {"random error (SD)": "random", "total mean square": "total"}[stat]
     frames = span_mask(span, sc)
-    tuning = _tuning(config, sizes)[span]
+    tuning = comparator_tuning(config, sizes)[span]
     # the comparators run on the configuration's own scenario (the scheme's truth): its frame rate, manoeuvre,
     # acceleration unit and second channel
     world = tuple(config.get(k, d) for k, d in _WORLD)
@@ -145,7 +153,7 @@ def switch_share(config: dict, seed: int, sizes: dict) -> dict:
     dict
         ``{"forced / detected": Estimate, "share": float}`` (dimensionless).
     """
-    config = _full(config, sizes)
+    config = with_defaults(config, sizes)
     sc = config_scenario(config)
     z = measurements(
         sc.truth[:, :, 0], config["noise"], sizes["n_tradeoff_trials"], np.random.default_rng(seed), sizes["sigma_eps"]

@@ -1,4 +1,4 @@
-"""Compiled E-step of the unified location EM (numba), the twin of :func:`em._e_step`.
+"""Compiled E-step of the unified location EM (numba), the twin of :func:`em.expectation_step`.
 
 The EM of the study runs tens of thousands of E-steps on small windows (4 x 4 to 9 x 9 pixels, a few
 non-zero pixels per frame), where NumPy's per-call overhead, not arithmetic, sets the cost. This kernel
@@ -114,7 +114,7 @@ def _e_step_entries(
 
 
 def e_step(work, theta, p, p_noise, sigma, times, shape, second: bool):
-    """Compiled :func:`em._e_step` (same arguments, same returns: ``sums (n_act, Q, 7 or 9)``, ``loglik``)."""
+    """Compiled :func:`em.expectation_step` (same arguments, same returns: ``sums (n_act, Q, 7 or 9)``, ``loglik``)."""
     rows, cols = shape
     if work.kernel_arrays is None:  # the working set's entries, typed once per working set
         work.kernel_arrays = (
@@ -171,7 +171,7 @@ def _m_step_entries(sums, theta, static):  # pragma: no cover - compiled
 
 
 def m_step(sums, theta, static: bool):
-    """Compiled :func:`em_steps._m_step` without a prior (same arguments, same returns: ``new theta (N, Q, 4)``,
+    """Compiled :func:`em_steps.maximisation_step` without a prior (same arguments, same returns: ``new theta (N, Q, 4)``,
     ``degenerate (N,)``), the same arithmetic element by element (bit for bit; tests/papers/test_002_kernels.py)."""
     return _m_step_entries(
         np.ascontiguousarray(sums, dtype=np.float64), np.ascontiguousarray(theta, dtype=np.float64), bool(static)

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tvtrack.montecarlo import Estimate, ratio_ci
+from tvtrack.estimate import Estimate
+from tvtrack.montecarlo import ratio_ci
 from .readings import (
     CLOSE,
     COORDINATE6,
@@ -29,17 +30,22 @@ from .readings import (
     c15_close,
     photons6,
 )
-from .simulation import (
-    SPREADS,
-    bootstrap_groups,
-    mse_sum,
-    position_errors,
-    seed_sequence,
-    variance_ratio_ci,
-    variance_sum,
-)
+from .summaries import SPREADS, bootstrap_groups, mse_sum, position_errors, variance_ratio_ci, variance_sum
+from .sim_config import seed_sequence
 
-__all__ = ["errors", "spread_sum", "gain", "exp_estimate", "scaled", "NEEDS", "needed_points", "measure_claims"]
+__all__ = [
+    "errors",
+    "spread_sum",
+    "spread_total",
+    "mean_log_gain",
+    "efficiency",
+    "gain",
+    "exp_estimate",
+    "scaled",
+    "NEEDS",
+    "needed_points",
+    "measure_claims",
+]
 
 
 # -- statistics -----------------------------------------------------------------------------------------------
@@ -77,20 +83,56 @@ def exp_estimate(e: Estimate) -> Estimate:
     return Estimate(v, v * e.stderr, float(np.exp(e.ci_low)), float(np.exp(e.ci_high)), e.n, e.confidence, e.method)
 
 
-def _vsum(e, spread: str = "variance"):
+def spread_total(e, spread: str = "variance"):
+    """The spread of position errors summed over the coordinates, per row (no interval).
+
+    Parameters
+    ----------
+    e : numpy.ndarray
+        Errors (R, n_trials, n_coordinates), in sigma.
+    spread : str
+        ``"variance"`` (over the trials, ``ddof=1``) or another key of ``SPREADS`` (``"mse"``,
+        ``"trimmed_variance"``, ``"median_square"``).
+
+    Returns
+    -------
+    numpy.ndarray
+        The summed spread (R,), sigma^2.
+    """
     return e.var(axis=1, ddof=1).sum(axis=-1) if spread == "variance" else SPREADS[spread](e)
 
 
-def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:
-    """exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo`` groups); each group holds the
-    paired [num | den] errors of one point side by side (rows resampled jointly, groups independently)."""
+def mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:
+    """The ratio of two geometric-mean gains: exp(mean log rho over the ``hi`` groups - mean log rho over the ``lo``
+    groups), rho a group's spread ratio numerator / denominator.
+
+    Parameters
+    ----------
+    pairs_hi, pairs_lo : list of numpy.ndarray
+        One array per point, the paired [numerator | denominator] errors side by side on the last axis (sigma);
+        rows are resampled jointly, groups independently.
+    rng : numpy.random.Generator
+        The seeded generator of the bootstrap.
+    n_bootstrap : int
+        Bootstrap resamples.
+    spread : str
+        The spread read (:func:`spread_total`).
+
+    Returns
+    -------
+    Estimate
+        The gain ratio (unit-free) with its bootstrap interval.
+    """
     k = len(pairs_hi)
 
     def stat(*g):
         def mlog(h):
             return np.mean(
                 [
-                    np.log(_vsum(x[..., : x.shape[-1] // 2], spread) / _vsum(x[..., x.shape[-1] // 2 :], spread))
+                    np.log(
+                        spread_total(x[..., : x.shape[-1] // 2], spread)
+                        / spread_total(x[..., x.shape[-1] // 2 :], spread)
+                    )
                     for x in h
                 ],
                 axis=0,
@@ -101,8 +143,23 @@ def _mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance
     return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
 
 
-def _efficiency(e, bound: float, statistic: str) -> Estimate:
-    """Spread (the statistic read: variance or MSE sum) over the bound."""
+def efficiency(e, bound: float, statistic: str) -> Estimate:
+    """An estimator's efficiency: its spread over a bound (1 at the bound).
+
+    Parameters
+    ----------
+    e : numpy.ndarray
+        Position errors (n_trials, n_coordinates), in sigma.
+    bound : float
+        The bound on the summed variance (sigma^2).
+    statistic : str
+        The spread read: variance or MSE sum (:func:`spread_sum`).
+
+    Returns
+    -------
+    Estimate
+        The ratio (unit-free) with its interval.
+    """
     return scaled(spread_sum(e, statistic), 1.0 / bound)
 
 
@@ -148,7 +205,7 @@ class _Ctx:
         return variance_ratio_ci(num, den, self.rng, self.B, paired=paired, spread=self.sp, sqrt=sd)
 
     def log_gain(self, hi, lo):
-        return _mean_log_gain(hi, lo, self.rng, self.B, self.sp)
+        return mean_log_gain(hi, lo, self.rng, self.B, self.sp)
 
     def r_m(self, key, d):
         return self.ula(self.g[key][10][d]), self.ula(self.g[key][20][d])
@@ -215,7 +272,7 @@ def _c6(x: _Ctx):
         return [np.hstack([x.ula(g2[(t_lo, m)][d])[:, cols], x.ula(g2[(t_hi, m)][d])[:, cols]]) for d in small]
 
     def dep(a):
-        u, v = _vsum(a[..., : a.shape[-1] // 2], x.sp), _vsum(a[..., a.shape[-1] // 2 :], x.sp)
+        u, v = spread_total(a[..., : a.shape[-1] // 2], x.sp), spread_total(a[..., a.shape[-1] // 2 :], x.sp)
         return np.abs(u - v) if gap else np.abs(np.log(u / v))
 
     def stat6(*gr):
@@ -316,9 +373,9 @@ def _c15(x: _Ctx) -> dict:
     cs, close = x.g["c15"], c15_close(config)
     for d, name in ((close, "very close"), (2.0, "d = 2 sigma"), (4.0, "d = 4 sigma")):
         r = x.res[cs[d]]
-        parts[name] = _efficiency(errors(r, "ula", "first"), r[key_pos], st)
+        parts[name] = efficiency(errors(r, "ula", "first"), r[key_pos], st)
     r = x.res[cs[close]]
-    parts["velocities, very close"] = _efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
+    parts["velocities, very close"] = efficiency(position_errors(r, "ula", "velocity"), r[key_vel], st)
     return parts
 
 

@@ -41,24 +41,17 @@ from scipy.special import ndtr
 from tvtrack import jit
 
 from . import _kernels
-from .em_loop import CALM, EMModel, EMState, MapPrior, iterate  # noqa: F401 - CALM: the stop of tol_loglik, read here
-from .em_steps import (  # noqa: F401 - the entries and the steps (tests and the kernel's twin read them here)
+from .em_loop import EMModel, EMState, MapPrior, iterate
+from .em_steps import (
     PixelEntries,
-    _axis_tables,
-    _e_step,
-    _e_step_numpy,
-    _m_step,
-    _sigma_update,
-    _Work,
-    per_frame_entries,
-    pixel_entries,
+    ActiveEntries,
+    expectation_step,
+    expectation_step_numpy,
 )
 from .model import pixel_probabilities
 
 __all__ = [
     "PixelEntries",
-    "pixel_entries",
-    "per_frame_entries",
     "EMResult",
     "unified_location_em",
     "match_labels",
@@ -309,7 +302,7 @@ def unified_location_em(
         estimate_sigma=estimate_sigma,
         prior=prior,
         span=span,
-        e_step=_kernels.e_step if fast else _e_step_numpy,
+        e_step=_kernels.e_step if fast else expectation_step_numpy,
         fast=fast,
     )
     photons = entries.photons_per_trial()
@@ -396,8 +389,8 @@ def _final_loglik(entries: PixelEntries, state: EMState, times, photons) -> None
     trials with photons (``photons``, shape (N,), their total counts; the prior's term left out)."""
     live = np.flatnonzero(photons > 0)
     if live.size:
-        _, state.loglik[live] = _e_step(
-            _Work(entries, live),
+        _, state.loglik[live] = expectation_step(
+            ActiveEntries(entries, live),
             state.theta[live],
             state.pw[live],
             state.p0[live],

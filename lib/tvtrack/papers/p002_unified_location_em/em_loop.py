@@ -6,7 +6,7 @@ M-step (11), optionally with a Gaussian prior (MAP-EM) and the weight and PSF-wi
 (:class:`EMModel`). :func:`iterate` runs the steps, plain or SQUAREM-accelerated, on every trial still iterating
 and records the iterates in an :class:`EMState` until each trial stops (converged, degenerate or at its cap).
 
-Trials are independent and vectorised: the working set (:class:`~.em_steps._Work`) holds the trials still
+Trials are independent and vectorised: the working set (:class:`~.em_steps.ActiveEntries`) holds the trials still
 iterating plus a few that stopped recently; it is rebuilt (entries regrouped) only when fewer than 60 % of it
 still iterate.
 
@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import _kernels
-from .em_steps import PixelEntries, _m_step, _sigma_update, _Work
+from .em_steps import PixelEntries, maximisation_step, sigma_update, ActiveEntries
 
 __all__ = ["CALM", "MapPrior", "EMModel", "EMState", "Step", "iterate"]
 
@@ -64,7 +64,7 @@ class MapPrior:
     sigma: np.ndarray
 
     def rows(self, rows) -> tuple:
-        """``(mean, a, c)`` of the trials ``rows`` (index array, shape (n,)), as :func:`~.em_steps._m_step` takes
+        """``(mean, a, c)`` of the trials ``rows`` (index array, shape (n,)), as :func:`~.em_steps.maximisation_step` takes
         them."""
         return tuple(x[rows] for x in (self.mean, self.a, self.c))
 
@@ -156,15 +156,15 @@ class EMModel:
         """Closed-form M-step (11) (with the prior's terms under MAP-EM): new states (n, Q, 4) and the singular
         flag (n,) from the E-step ``sums`` (n, Q, 7 or 9) of the trials ``trials`` (n,)."""
         if self.prior is None:
-            return _kernels.m_step(sums, th, self.static) if self.fast else _m_step(sums, th, self.static)
-        return _m_step(sums, th, self.static, self.prior.rows(trials))
+            return _kernels.m_step(sums, th, self.static) if self.fast else maximisation_step(sums, th, self.static)
+        return maximisation_step(sums, th, self.static, self.prior.rows(trials))
 
-    def step(self, work: _Work, th, pw, p0, sg):
+    def step(self, work: ActiveEntries, th, pw, p0, sg):
         """One EM step (eqs. (10)-(11)) of the working set's trials.
 
         Parameters
         ----------
-        work : _Work
+        work : ActiveEntries
             The working set (n trials).
         th : ndarray, shape (n, Q, 4)
             States, px and px/frame.
@@ -186,7 +186,7 @@ class EMModel:
         new, bad = self.m_step(sums, th, work.trials)
         ll = ll + self.log_prior(th, work.trials)
         if self.estimate_sigma:
-            sg = _sigma_update(sums, new, sg, bad)
+            sg = sigma_update(sums, new, sg, bad)
         if self.estimate_weights:
             tot = np.add.reduceat(work.count, work.starts)[:, None]
             pw = np.where(bad[:, None], pw, np.maximum(sums[..., 0] / tot, 1e-12))
@@ -200,7 +200,7 @@ class EMModel:
         return np.maximum(d[..., :2].max(axis=(1, 2)), self.span * d[..., 2:].max(axis=(1, 2)))
 
 
-def plain_update(model: EMModel, work: _Work, th, pw, p0, sg) -> Step:
+def plain_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg) -> Step:
     """One plain EM step (eqs. (10)-(11)) of the working set's trials; arguments as :meth:`EMModel.step`."""
     new, pw_n, p0_n, sg_n, ll, bad = model.step(work, th, pw, p0, sg)
     delta = model.change(new, th)
@@ -211,7 +211,7 @@ def plain_update(model: EMModel, work: _Work, th, pw, p0, sg) -> Step:
     return Step(new, pw_n, p0_n, sg_n, ll, bad, delta, 1)
 
 
-def squarem_update(model: EMModel, work: _Work, th, pw, p0, sg) -> Step:
+def squarem_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg) -> Step:
     """One SQUAREM cycle (Varadhan & Roland 2008, scheme S3 with a monotone safeguard) of the motion states: two EM
     steps, the quadratic extrapolation ``th - 2 alpha r + alpha^2 v`` (``alpha = min(-|r| / |v|, -1)``) and a
     stabilising EM step, kept where the log-likelihood did not fall (else the plain two-step result); arguments as
@@ -327,12 +327,12 @@ class EMState:
         self.hist_l.append(self.loglik.copy())
 
 
-def _regroup(entries: PixelEntries, active, work: _Work, live):
+def _regroup(entries: PixelEntries, active, work: ActiveEntries, live):
     """The working set after a step: rebuilt from the trials still iterating when fewer than 60 % of it do, else
     unchanged. Returns ``(active, work, live)``."""
     if live.sum() < 0.6 * live.size:
         active = active[live]
-        return active, _Work(entries, active), np.ones(active.size, dtype=bool)
+        return active, ActiveEntries(entries, active), np.ones(active.size, dtype=bool)
     return active, work, live
 
 
@@ -350,7 +350,7 @@ def iterate(
     takes ``max_iter`` steps; ``state`` is updated in place. Options as :func:`.em.unified_location_em`."""
     update = plain_update if accelerate is None else squarem_update
     active = np.flatnonzero(~state.degenerate)
-    work = _Work(model.entries, active)
+    work = ActiveEntries(model.entries, active)
     live = np.ones(active.size, dtype=bool)
     while live.any():
         th = state.theta[active]

@@ -1,12 +1,12 @@
 """The steps of the unified location EM (:mod:`.em`): the sparse photon counts it reads, its E-step and M-step.
 
 The counts of ``N`` trials of ``T`` frames enter as their non-zero pixels (:class:`PixelEntries`, sorted by trial);
-:class:`_Work` holds those of the trials still iterating. The E-step (:func:`_e_step`, eq. (10) with the
+:class:`ActiveEntries` holds those of the trials still iterating. The E-step (:func:`expectation_step`, eq. (10) with the
 posterior shares ``lambda_jikl`` and the local means (U6)) tabulates the 1-D pixel fractions and local means once
 per (trial, frame, object) from the pixel edges and sums over the non-zero pixels only, compiled
-(:mod:`._kernels`) or in NumPy (:func:`_e_step_numpy`, its reference). The M-step (:func:`_m_step`, eq. (11)) is
+(:mod:`._kernels`) or in NumPy (:func:`expectation_step_numpy`, its reference). The M-step (:func:`maximisation_step`, eq. (11)) is
 the weighted least-squares line per object and axis, with an optional Gaussian prior (MAP-EM), and
-:func:`_sigma_update` the PSF width update of card 8.4.
+:func:`sigma_update` the PSF width update of card 8.4.
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row) and frames.
 """
@@ -22,7 +22,17 @@ from tvtrack import jit
 
 from . import _kernels
 
-__all__ = ["PixelEntries", "pixel_entries", "per_frame_entries"]
+__all__ = [
+    "PixelEntries",
+    "pixel_entries",
+    "per_frame_entries",
+    "ActiveEntries",
+    "axis_tables",
+    "expectation_step",
+    "expectation_step_numpy",
+    "maximisation_step",
+    "sigma_update",
+]
 
 _SQRT_2PI = np.sqrt(2.0 * np.pi)
 _TINY = 1e-300
@@ -95,7 +105,7 @@ def per_frame_entries(entries: PixelEntries) -> PixelEntries:
     )
 
 
-class _Work:
+class ActiveEntries:
     """Entries of the trials still iterating, with their segment starts for reduceat."""
 
     def __init__(self, entries: PixelEntries, trials: np.ndarray):
@@ -122,7 +132,7 @@ class _Work:
         return self._index[key]
 
 
-def _axis_tables(mu, s, n_cells: int, second: bool):
+def axis_tables(mu, s, n_cells: int, second: bool):
     """1-D pixel fractions (U3), local means (U6) and ``E[z^2 | pixel]`` for every pixel of one
     axis, evaluated once per (trial, frame, object) from the ``n_cells + 1`` pixel edges.
 
@@ -161,7 +171,7 @@ def _axis_tables(mu, s, n_cells: int, second: bool):
     return F, np.asarray(mean), np.maximum(ez2, mean * mean)
 
 
-def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
+def expectation_step(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool):
     """E-step sums per active trial and object.
 
     Returns
@@ -171,17 +181,17 @@ def _e_step(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
     """
     if jit.enabled():
         return _kernels.e_step(work, theta, p, p_noise, sigma, times, shape, second)
-    return _e_step_numpy(work, theta, p, p_noise, sigma, times, shape, second)
+    return expectation_step_numpy(work, theta, p, p_noise, sigma, times, shape, second)
 
 
-def _e_step_numpy(work: _Work, theta, p, p_noise, sigma, times, shape, second: bool):
-    """:func:`_e_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_NO_JIT=1`` or without
+def expectation_step_numpy(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool):
+    """:func:`expectation_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_NO_JIT=1`` or without
     numba)."""
     rows, cols = shape
     t = times[None, :, None]
     s = sigma[:, None, :]
-    Fx, mx, sx = _axis_tables(theta[:, None, :, 0] + theta[:, None, :, 2] * t, s, cols, second)
-    Fy, my, sy = _axis_tables(theta[:, None, :, 1] + theta[:, None, :, 3] * t, s, rows, second)
+    Fx, mx, sx = axis_tables(theta[:, None, :, 0] + theta[:, None, :, 2] * t, s, cols, second)
+    Fy, my, sy = axis_tables(theta[:, None, :, 1] + theta[:, None, :, 3] * t, s, rows, second)
     ix, iy = work.index(theta.shape[1], cols), work.index(theta.shape[1], rows, rows=True)
     fx, fy = Fx.ravel()[ix], Fy.ravel()[iy]  # (nnz, Q)
     pv = p[work.loc] * (fx * fy)  # p_j F_jikl
@@ -198,7 +208,7 @@ def _e_step_numpy(work: _Work, theta, p, p_noise, sigma, times, shape, second: b
     return sums, loglik
 
 
-def _m_step(sums, theta, static: bool, prior=None):
+def maximisation_step(sums, theta, static: bool, prior=None):
     """Closed-form M-step (11) per object and axis; returns new theta and a degenerate flag.
 
     ``prior = (mean (N, Q, 4), a (N, Q), c (N, Q))`` adds a Gaussian prior (MAP-EM): ``a`` and ``c``
@@ -231,8 +241,25 @@ def _m_step(sums, theta, static: bool, prior=None):
     return new, bad.any(axis=-1)
 
 
-def _sigma_update(sums, theta_new, sigma, bad):
-    """sigma_j^2 = sum_pixels w E[(z - mu_new)^2 | pixel] over both axes / (2 A) (card 8.4)."""
+def sigma_update(sums, theta_new, sigma, bad):
+    """The spot widths' update: sigma_j^2 = sum_pixels w E[(z - mu_new)^2 | pixel] over both axes / (2 A).
+
+    Parameters
+    ----------
+    sums : numpy.ndarray
+        E-step sums (n_act, Q, 9) with the second moments (:func:`expectation_step` with ``second=True``).
+    theta_new : numpy.ndarray
+        The M-step's new ``(x0, y0, Vx, Vy)`` (n_act, Q, 4), pixels and pixels per frame time.
+    sigma : numpy.ndarray
+        The current widths (n_act, Q), pixels.
+    bad : numpy.ndarray
+        Trials whose M-step was degenerate (n_act,): their widths are kept.
+
+    Returns
+    -------
+    numpy.ndarray
+        The new widths (n_act, Q), pixels; the current one wherever the update is not a positive finite number.
+    """
     A, B, C, Dx, Dtx, Dy, Dty, Sxx, Syy = (sums[..., k] for k in range(9))
     x0, y0, vx, vy = (theta_new[..., k] for k in range(4))
     qx = Sxx - 2 * x0 * Dx - 2 * vx * Dtx + x0 * x0 * A + 2 * x0 * vx * B + vx * vx * C

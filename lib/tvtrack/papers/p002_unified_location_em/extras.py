@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from tvtrack.montecarlo import Estimate, proportion_ci
+from tvtrack.estimate import Estimate
+from tvtrack.counts import proportion_ci
 
-from .study import errors, gain
+from .claim_values import errors, gain
 from .summaries import FLAG_NAMES, gross_errors
 
 __all__ = [

@@ -11,7 +11,7 @@ from functools import partial
 
 import numpy as np
 
-from tvtrack.montecarlo import Estimate
+from tvtrack.estimate import Estimate
 from .sim_config import Config, StudySettings, base, seed_sequence
 from .simulation import run_config
 from .summaries import bootstrap_groups, variance_ratio_ci

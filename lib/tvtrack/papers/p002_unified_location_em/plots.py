@@ -11,7 +11,7 @@ import matplotlib.ticker
 import numpy as np
 
 from tvtrack.montecarlo import mean_ci
-from .study import errors, gain, spread_sum
+from .claim_values import errors, gain, spread_sum
 
 __all__ = [
     "ula_distance_figure",

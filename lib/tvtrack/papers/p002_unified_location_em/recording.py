@@ -13,7 +13,8 @@ import numpy as np
 
 from tvtrack.plotting import colour, rgb
 from tvtrack.recordings import Recorder, image_and_series_blueprint
-from .em import match_labels, pixel_entries, responsibility_maps, unified_location_em
+from .em import match_labels, responsibility_maps, unified_location_em
+from .em_steps import pixel_entries
 from .model import designate, draw_truth, frame_times, mixture_weights, noise_per_pixel, scene_geometry, simulate_counts
 from .two_stage import em_marks, fit_lines, propagate
 

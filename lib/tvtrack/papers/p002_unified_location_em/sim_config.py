@@ -16,7 +16,16 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["ALGORITHMS", "N_SEED_BLOCKS", "StudySettings", "CANONICAL_SETTINGS", "Config", "seed_sequence", "base"]
+__all__ = [
+    "ALGORITHMS",
+    "N_SEED_BLOCKS",
+    "StudySettings",
+    "CANONICAL_SETTINGS",
+    "Config",
+    "seed_sequence",
+    "base",
+    "scene_key",
+]
 
 #: Algorithm letters of :attr:`Config.algs`.
 ALGORITHMS = {
@@ -185,7 +194,18 @@ def base(c) -> tuple:
     return tuple(c[:5]) + ("",) + tuple(c[6:])
 
 
-def _scene_key(c: Config) -> tuple:
-    """What a configuration's scene seed derives from: everything but the algorithm letters and the
-    settings variant, so a variant redraws exactly its default's scenes."""
+def scene_key(c: Config) -> tuple:
+    """What a configuration's scene seed derives from (:func:`seed_sequence`).
+
+    Parameters
+    ----------
+    c : Config
+        A simulation configuration.
+
+    Returns
+    -------
+    tuple
+        :func:`base` of ``c`` without the settings variant, the algorithm letters already left out: a variant
+        redraws exactly its default's scenes.
+    """
     return base(c)[:-1]

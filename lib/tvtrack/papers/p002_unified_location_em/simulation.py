@@ -23,7 +23,8 @@ from types import SimpleNamespace
 import numpy as np
 
 from tvtrack.bounds.poisson_crb import crb_from_fisher, fisher_linear_motion, position_crb_sum
-from tvtrack.papers.p002_unified_location_em.em import match_labels, pixel_entries, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em import match_labels, unified_location_em
+from tvtrack.papers.p002_unified_location_em.em_steps import pixel_entries
 from tvtrack.papers.p002_unified_location_em.two_stage import centre_of_region_marks, em_marks, fit_lines, propagate
 from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,
@@ -34,29 +35,12 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
 )
 
-from .sim_config import (  # noqa: F401  (re-exported: the configuration lived here before)
-    ALGORITHMS,
-    CANONICAL_SETTINGS,
+from .sim_config import (
     N_SEED_BLOCKS,
     Config,
     StudySettings,
-    _scene_key,
-    base,
+    scene_key,
     seed_sequence,
-)
-from .summaries import (  # noqa: F401  (re-exported: the summaries lived here before)
-    FLAG_NAMES,
-    SPREADS,
-    bootstrap_groups,
-    centred_squares,
-    failure_metrics,
-    failure_rate,
-    gross_errors,
-    mse_sum,
-    position_errors,
-    seed_blocks,
-    variance_ratio_ci,
-    variance_sum,
 )
 
 
@@ -119,7 +103,7 @@ def _seeded_batches(settings: StudySettings, cfg: Config, g, noise_pp: float):
     s, seed = g.sigma_px, settings.seed
     sizes = np.diff(np.linspace(0, cfg.n, N_SEED_BLOCKS + 1).round().astype(int))
     for k, n_k in enumerate(sizes):
-        rng = np.random.default_rng(seed_sequence(seed + k, _scene_key(cfg)))
+        rng = np.random.default_rng(seed_sequence(seed + k, scene_key(cfg)))
         for b in scene_batches(
             rng,
             g,
@@ -411,7 +395,7 @@ def _run_extras(x, out: dict) -> None:
         )
         out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "s" in algs:
-        ms_rng = np.random.default_rng(seed_sequence(block, _scene_key(cfg) + ("ms",)))
+        ms_rng = np.random.default_rng(seed_sequence(block, scene_key(cfg) + ("ms",)))
         out["ms_gap"].append(multi_start_gap(ent, b.designation, s, p, p0, tol, s_.max_iter, accel, ms_rng))
     if "b" in algs:
         out["bic"].append(bic_orders(s_, ent, b.designation, s, m, noise_pp, g.n_pixels))
@@ -424,7 +408,7 @@ def _bounds(s_: StudySettings, cfg: Config, g, times, noise_pp: float) -> dict:
     q, m, dsd, s = cfg.q, cfg.m, cfg.dsd, g.sigma_px
     res = {}
     # CRB averaged over the sub-pixel phase (the Monte Carlo averages over it too)
-    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, _scene_key(cfg) + ("crb",))), s_.crb_phases, g)
+    th = draw_truth(np.random.default_rng(seed_sequence(s_.seed, scene_key(cfg) + ("crb",))), s_.crb_phases, g)
     fim = fisher_linear_motion(th, times, g.shape, s, m, noise_pp)
     crb = crb_from_fisher(fim)
     # van Trees (Bayesian) bound with the designation as the prior of the initial positions (velocity free): it

@@ -11,7 +11,7 @@ explorer passes the same seed to every configuration of a stage). :func:`measure
 configurations and runs the missing ones in worker processes. Asked for some claims only (``claims=``), a
 measurement runs only the jobs those claims read (:data:`.claim_values.NEEDS`) and gives them the values a
 measurement of every claim gives, bit for bit (each claim bootstraps from its own stream). The claims' statistics
-live in :mod:`.claim_values`, the register's point readings in :mod:`.readings` (both re-exported here).
+live in :mod:`.claim_values`, the register's point readings in :mod:`.readings`.
 
 Units: sigma (PSF standard deviation) for lengths, frames for time.
 """
@@ -23,29 +23,13 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
 
-from .claim_values import (  # noqa: F401 - the statistics the notebook and the tests read through study
-    _efficiency,
-    _mean_log_gain,
-    _vsum,
-    errors,
-    exp_estimate,
-    gain,
+from .claim_values import (
     measure_claims,
     needed_points,
-    scaled,
-    spread_sum,
 )
-from .readings import (  # noqa: F401 - the readings the tests read through study
+from .readings import (
     CLOSE,
-    COORDINATE6,
     D_GRID,
-    FIG1_PANEL,
-    FIG7_TOLERANCE,
-    FRAMES6,
-    PHOTONS6,
-    PIXELS5,
-    T_DEPENDENCE6,
-    TRIMMED,
     c1_point,
     c5_pair,
     c11_separations,
@@ -54,7 +38,8 @@ from .readings import (  # noqa: F401 - the readings the tests read through stud
     fig7_variant,
     photons6,
 )
-from .simulation import CANONICAL_SETTINGS, Config, StudySettings, run_config
+from .sim_config import CANONICAL_SETTINGS, Config, StudySettings
+from .simulation import run_config
 
 __all__ = [
     "Scale",
@@ -66,11 +51,6 @@ __all__ = [
     "measure_batch",
     "screen_scale",
     "figure_data",
-    "errors",
-    "gain",
-    "spread_sum",
-    "exp_estimate",
-    "scaled",
     "clear_cache",
 ]
 

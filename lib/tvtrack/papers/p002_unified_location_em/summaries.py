@@ -8,7 +8,9 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from tvtrack.montecarlo import N_BOOTSTRAP, Estimate, bootstrap_ci, mean_square_ci, proportion_ci
+from tvtrack.montecarlo import N_BOOTSTRAP, bootstrap_ci, mean_square_ci
+from tvtrack.estimate import Estimate
+from tvtrack.counts import proportion_ci
 
 __all__ = [
     "FLAG_NAMES",

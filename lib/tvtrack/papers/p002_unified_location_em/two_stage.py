@@ -41,7 +41,8 @@ from scipy.ndimage import uniform_filter
 
 from tvtrack.measure import crop
 from tvtrack.render import gate_origin
-from .em import per_frame_entries, pixel_entries, unified_location_em
+from .em_steps import per_frame_entries, pixel_entries
+from .em import unified_location_em
 
 __all__ = [
     "Marks",

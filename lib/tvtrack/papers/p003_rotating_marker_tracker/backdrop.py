@@ -1,4 +1,4 @@
-"""The static part of notebook 003's compensated image (moved from :mod:`.imaging`, which re-exports it): the marker
+"""The static part of notebook 003's compensated image: the marker
 and interferer spots, the correlated background, stationary interferers on a circle about the object (its start, or
 its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (card 8.5).
 
@@ -14,6 +14,7 @@ from ...render import box_spot, disc_area, disc_spot
 from .motion import MarkerTruth
 
 __all__ = [
+    "check_spot",
     "SPOTS",
     "LAYOUTS",
     "render_spot",
@@ -27,7 +28,8 @@ __all__ = [
 SPOTS = ("disc", "square")
 
 
-def _check_spot(spot: str) -> None:
+def check_spot(spot: str) -> None:
+    """Refuse a spot shape not in :data:`SPOTS` (``ValueError`` naming the parameter and the shapes allowed)."""
     if spot not in SPOTS:
         raise ValueError(f"parameter 'spot' = {spot!r}; it must be one of {SPOTS}")
 
@@ -35,7 +37,7 @@ def _check_spot(spot: str) -> None:
 def render_spot(spot: str, centers, shape, diameter, brightness=1.0, origin=(0, 0)) -> np.ndarray:
     """A marker or interferer spot: ``"disc"`` (diameter ``D``) or ``"square"`` (side ``D``),
     ``brightness`` per fully covered pixel; shape ``(..., rows, cols)``."""
-    _check_spot(spot)
+    check_spot(spot)
     b = np.asarray(brightness, dtype=float)
     if spot == "disc":
         return disc_spot(centers, shape, diameter, b * disc_area(diameter), origin)

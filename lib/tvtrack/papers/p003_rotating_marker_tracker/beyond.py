@@ -8,8 +8,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from .scene import Scenario, median_residual, place_interferers, scenario_truth
-from .study import Sizes, _rng, measure_interference, measure_tracking, scenario
+from .scene import Scenario, scenario_truth
+from .backdrop import median_residual, place_interferers
+from .study import Sizes, stream_rng, measure_interference, measure_tracking, scenario
 
 __all__ = ["exposure_study", "median_example"]
 
@@ -51,7 +52,7 @@ def median_example(seed: int, sc: Scenario) -> dict:
     dict
         ``residual`` (rows, cols), ``truth`` (one trial), ``interferers`` (count, 2) px, ``n_frames``, ``noise_std``.
     """
-    rng = _rng(50, seed)
+    rng = stream_rng(50, seed)
     n_frames = int(np.ceil(sc.median_revolutions * sc.fps / sc.rotation_hz))
     truth = scenario_truth(rng, 1, replace(sc, duration_s=max(sc.duration_s, (n_frames + 1) / sc.fps)))
     q = place_interferers(rng, 1, sc.n_interferers, truth.center[:, 0], sc.radius)

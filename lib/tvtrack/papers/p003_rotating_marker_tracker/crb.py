@@ -23,16 +23,12 @@ import numpy as np
 
 from ...bounds.pcrlb import pcrlb_recursion
 from ...montecarlo import rms_ci
-from .loops import (
-    EKFTracker,
-    RotatingGateTracker,
-    VelocityEKFTracker,
-    ekf_noise_from_bandwidths,
-    marker_jacobian,
-    run_closed_loop,
-    velocity_model,
-)
-from .scene import MarkerTruth, Scenario, build_scene, render_spot
+from .ekf import EKFTracker, VelocityEKFTracker, ekf_noise_from_bandwidths, marker_jacobian, velocity_model
+from .loops import RotatingGateTracker, run_closed_loop
+from .motion import MarkerTruth
+from .scene import Scenario
+from .imaging import build_scene
+from .backdrop import render_spot
 
 __all__ = [
     "MODEL",

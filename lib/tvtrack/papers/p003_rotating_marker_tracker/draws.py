@@ -1,4 +1,4 @@
-"""Common random numbers of notebook 003's batched runs (moved from :mod:`.imaging`, which re-exports them): trials
+"""Common random numbers of notebook 003's batched runs: trials
 that share their draws across SIR values or markers, and blocks of trials drawing from one generator each.
 """
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["CommonNormal", "BlockNormal"]
+__all__ = ["CommonNormal", "BlockNormal", "tile_rows", "generator_blocks"]
 
 
 class CommonNormal:
@@ -46,13 +46,13 @@ class BlockNormal:
         return np.concatenate([g.standard_normal((self.block, *shape[1:]), dtype=dtype) for g in self.sources])
 
 
-def _tile(a, n: int):
+def tile_rows(a, n: int):
     """Repeat the leading axis of ``a`` until it has ``n`` rows (``n`` a multiple of its length)."""
     a = np.asarray(a)
     return np.tile(a, (n // a.shape[0],) + (1,) * (a.ndim - 1))
 
 
-def _generator_blocks(rng, n: int, n_common: int | None):
+def generator_blocks(rng, n: int, n_common: int | None):
     """Split ``n`` trials into one consecutive block per generator (``rng`` one or a list), and check
     that ``n_common`` (trials sharing common random numbers; default: the whole block) divides a block.
 

@@ -1,4 +1,4 @@
-"""The EKF trackers of notebook 003 (moved from :mod:`.loops`, which re-exports them): the discrete EKF form of
+"""The EKF trackers of notebook 003: the discrete EKF form of
 eqs. (16)-(17) (corrected Riccati sign; card, section 4.4) on the quadrant discriminator, and the velocity-state EKF
 of the seven-state model (card item 8.4) with its process model and measurement Jacobian.
 """

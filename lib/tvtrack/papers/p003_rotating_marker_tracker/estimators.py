@@ -1,6 +1,5 @@
 """Direct-count estimators of notebook 003's verdicts: loss shares, grid-censored thresholds and their ratios, the
-adaptive grid extension, fold distances and C003-10's compensation ratio (moved from :mod:`.study`, which re-exports
-them).
+adaptive grid extension, fold distances and C003-10's compensation ratio.
 
 Every estimate reads direct counts, never a fitted tail: the probability of loss at a grid SIR is a count with its
 Clopper-Pearson interval (zero events: the one-sided bound they certify); a threshold is the geometric mean of the
@@ -13,7 +12,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, proportion_ci, ratio_ci, zero_events_bound
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, ratio_ci
+from ...counts import proportion_ci, zero_events_bound
 
 __all__ = [
     "loss_share",
@@ -27,10 +28,31 @@ __all__ = [
     "fold_distance",
     "LOCK_LIMIT",
     "grid_in_lock",
+    "interval_estimate",
+    "share_difference",
+    "compensation_factor",
 ]
 
 
-def _estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
+def interval_estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
+    """An estimate known by its value and 95 % interval only (no standard error).
+
+    Parameters
+    ----------
+    value, lo, hi : float
+        The value and its interval's ends (in the quantity's unit).
+    n : int
+        The runs behind it.
+    method : str
+        How the interval was obtained.
+    extrapolated : bool
+        Whether the value lies beyond the measured grid.
+
+    Returns
+    -------
+    Estimate
+        At 95 % confidence, ``stderr`` NaN.
+    """
     return Estimate(float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, bool(extrapolated))
 
 
@@ -47,9 +69,9 @@ def loss_share(events) -> Estimate:
     e = np.asarray(events, bool).ravel()
     n, k = e.size, int(e.sum())
     if k == 0:
-        return _estimate(0.0, 0.0, zero_events_bound(n), n, "count: zero events, one-sided 95 % bound")
+        return interval_estimate(0.0, 0.0, zero_events_bound(n), n, "count: zero events, one-sided 95 % bound")
     if k == n:
-        return _estimate(1.0, 1 - zero_events_bound(n), 1.0, n, "count: all events, one-sided 95 % bound")
+        return interval_estimate(1.0, 1 - zero_events_bound(n), 1.0, n, "count: all events, one-sided 95 % bound")
     return proportion_ci(k, n)
 
 
@@ -85,6 +107,8 @@ def log_thresholds(lost, sirs) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _half_step(sirs) -> float:
+    """Half the widest step of an SIR grid on the log scale (natural log units): how far a threshold read off the
+    grid can lie from its true place."""
     return float(np.max(np.diff(np.log(np.asarray(sirs, float)))) / 2)
 
 
@@ -98,7 +122,7 @@ def threshold(lost, sirs) -> Estimate:
     tau, cens = log_thresholds(lost, sirs)
     h = _half_step(sirs)
     m = mean_ci(tau)
-    return _estimate(
+    return interval_estimate(
         np.exp(m.value),
         np.exp(m.ci_low - h),
         np.exp(m.ci_high + h),
@@ -128,7 +152,7 @@ def threshold_bound(lost, sirs) -> Estimate:
     h = _half_step(sirs)
     lo = 0.0 if low_c.any() else float(np.exp(mean_ci(np.where(high_c, ls[-1], tau)).ci_low - h))
     hi = float("inf") if high_c.any() else float(np.exp(mean_ci(np.where(low_c, ls[0], tau)).ci_high + h))
-    return _estimate(
+    return interval_estimate(
         point.value,
         lo,
         hi,
@@ -160,7 +184,7 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
         ub = np.where(~La[0], ta + steps[0] / 2, ta)  # a: kept lock at the bottom, threshold below it
         lb = np.where(Lb[-1], tb + steps[-1] / 2, tb)  # b: lost at the top, threshold above it
         m = mean_ci(ub - lb)
-        return _estimate(
+        return interval_estimate(
             np.exp(m.value),
             0.0,
             np.exp(m.ci_high + h),
@@ -172,7 +196,7 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
         lb = np.where(La[-1], ta + steps[-1] / 2, ta)  # a: lost at the top, threshold above it
         ub = np.where(~Lb[0], tb + steps[0] / 2, tb)  # b: kept lock at the bottom, threshold below it
         m = mean_ci(lb - ub)
-        return _estimate(
+        return interval_estimate(
             np.exp(m.value),
             np.exp(m.ci_low - h),
             np.inf,
@@ -181,7 +205,7 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
             f"{int((~Lb[0]).sum())} of the second kept it at its bottom; paired t bound + half a grid step",
         )
     m = mean_ci(ta - tb)
-    return _estimate(
+    return interval_estimate(
         np.exp(m.value),
         np.exp(m.ci_low - h),
         np.exp(m.ci_high + h),
@@ -234,14 +258,14 @@ def extend_grid(
     return np.asarray(s), out
 
 
-def _share_difference(a, b) -> Estimate:
+def share_difference(a, b) -> Estimate:
     """Paired difference of two loss shares on the same runs (Student t on per-run differences; all-equal runs:
     the zero-events bound on discordant runs)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     d = a - b
     if np.all(d == d[0]):
         bnd = zero_events_bound(d.size)
-        return _estimate(
+        return interval_estimate(
             d[0],
             d[0] - bnd if d[0] <= 0 else 1 - bnd,
             min(d[0] + bnd, 1.0) if d[0] < 1 else 1.0,
@@ -249,7 +273,9 @@ def _share_difference(a, b) -> Estimate:
             "no discordant runs: one-sided 95 % bound",
         )
     m = mean_ci(d)
-    return _estimate(m.value, max(m.ci_low, -1.0), min(m.ci_high, 1.0), d.size, "paired t on per-run differences")
+    return interval_estimate(
+        m.value, max(m.ci_low, -1.0), min(m.ci_high, 1.0), d.size, "paired t on per-run differences"
+    )
 
 
 COMPENSATION_READINGS = ("one-sided", "two-sided")
@@ -273,7 +299,7 @@ def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimat
     Parameters
     ----------
     ratio : Estimate
-        Compensated over uncompensated SIR_0 threshold (:func:`_compensation_factor`).
+        Compensated over uncompensated SIR_0 threshold (:func:`compensation_factor`).
     kappa : float
         Compensation residual.
     reading : {"one-sided", "two-sided"}
@@ -316,7 +342,7 @@ def fold_distance(ratio: Estimate, reference: float) -> Estimate:
     )
 
 
-def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
+def compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estimate:
     """Compensated SIR_0 threshold (``kappa`` x its SIR threshold) over the uncompensated SIR_0 threshold: about
     ``kappa`` if compensation is worth its 1/kappa background reduction (C003-10), 0 if the raw background alone
     breaks lock.
@@ -329,7 +355,7 @@ def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Esti
     comp = threshold(lost_comp, sirs)
     if unc[-1].any():
         hi = kappa * comp.ci_high / float(usirs[-1])
-        return _estimate(
+        return interval_estimate(
             0.0,
             0.0,
             hi,
@@ -339,7 +365,7 @@ def _compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Esti
             extrapolated=comp.extrapolated,
         )
     u = threshold(unc, usirs)
-    return _estimate(
+    return interval_estimate(
         kappa * comp.value / u.value,
         kappa * comp.ci_low / u.ci_high,
         kappa * comp.ci_high / u.ci_low,

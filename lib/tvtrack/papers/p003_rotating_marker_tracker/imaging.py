@@ -1,7 +1,7 @@
-"""The compensated TV image of notebook 003 (moved from :mod:`.scene`, which re-exports it): the scene object that
+"""The compensated TV image of notebook 003: the scene object that
 renders each frame's gate crop, and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
 correlated background, interferers, the temporal-median residual) and the common random numbers of batched runs in
-:mod:`.draws`; both are re-exported here.
+:mod:`.draws`.
 
 Model (Yukhno 2025, eqs. (9), (10), (19), with the compensation model of the paper card, section 4.2)::
 
@@ -16,28 +16,23 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
 from ...render import disc_area, disc_spot
-from .backdrop import (  # noqa: F401 (re-exported: moved from this module)
-    LAYOUTS,
-    SPOTS,
-    _check_spot,
+from .backdrop import (
+    check_spot,
     add_spots,
     correlated_background,
     median_residual,
     place_interferers,
     render_spot,
 )
-from .draws import BlockNormal, CommonNormal, _generator_blocks, _tile  # noqa: F401 (re-exported)
+from .draws import generator_blocks, tile_rows
 from .motion import MarkerTruth
 
 __all__ = [
-    "SPOTS",
     "render_spot",
     "correlated_background",
     "place_interferers",
     "add_spots",
     "RotatingMarkerScene",
-    "CommonNormal",
-    "BlockNormal",
     "median_residual",
     "build_scene",
     "COMPENSATIONS",
@@ -97,7 +92,7 @@ class RotatingMarkerScene:
         exposure_steps: int = 1,
         decoy_phase=None,
     ):
-        _check_spot(spot)
+        check_spot(spot)
         if int(exposure_steps) < 1:
             raise ValueError(f"parameter 'exposure_steps' = {exposure_steps}; it must be >= 1")
         if noise_std < 0:
@@ -373,7 +368,7 @@ def build_scene(
     RotatingMarkerScene
     """
     n = truth.xr.shape[0]
-    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     blocks = _check_blocks(blocks, len(rngs), compensation)
     q, residual, by_median = [], [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
@@ -381,7 +376,7 @@ def build_scene(
         count = b.get("n_interferers", n_interferers)
         centre = _interferer_centres(g, truth, first, n_common, count, interferer_center)
         q.append(
-            _tile(
+            tile_rows(
                 place_interferers(g, n_common, count, centre, interferer_radius, radial_jitter, interferer_layout),
                 n_block,
             )
@@ -392,7 +387,7 @@ def build_scene(
             brightness, noise_std,
         )  # fmt: skip
         by_median.append(np.full(n_block, med))
-        residual.append(_tile(res, n_block))
+        residual.append(tile_rows(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
     residual = np.concatenate(residual) if len(residual) > 1 else residual[0]

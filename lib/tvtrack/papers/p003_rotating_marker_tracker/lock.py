@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...montecarlo import Estimate, proportion_ci
+from ...estimate import Estimate
+from ...counts import proportion_ci
 
 __all__ = [
     "LossCriterion",

@@ -34,13 +34,6 @@ from .discriminators import (
 )
 from ...measure import gate_crop_size
 from ...render import pixel_fractions_box
-from .ekf import (  # noqa: F401 (re-exported: moved from this module)
-    EKFTracker,
-    VelocityEKFTracker,
-    ekf_noise_from_bandwidths,
-    marker_jacobian,
-    velocity_model,
-)
 
 __all__ = [
     "LoopGains",
@@ -53,11 +46,6 @@ __all__ = [
     "realised_phase_bandwidth",
     "gains_realising",
     "stack_gains",
-    "EKFTracker",
-    "ekf_noise_from_bandwidths",
-    "velocity_model",
-    "marker_jacobian",
-    "VelocityEKFTracker",
     "simulate_two_emitter_1d",
     "band_power_share",
     "phase_locked_amplitude",

@@ -1,4 +1,4 @@
-"""The object's and the marker's truth (moved from :mod:`.scene`, which re-exports it): the Fig. 1 object paths
+"""The object's and the marker's truth: the Fig. 1 object paths
 (eq. (7); an Ornstein-Uhlenbeck x and a sinusoidal y whose phase is drawn per run) and the marker on its circle
 (eq. (8), exact phase integral).
 

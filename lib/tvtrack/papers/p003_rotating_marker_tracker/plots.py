@@ -6,7 +6,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ...explore import Exploration
-from ...montecarlo import proportion_ci
+from ...counts import proportion_ci
 from .discriminators import quadrant_slope_fit, static_characteristic
 from .loops import phase_response
 from .scene import Scenario

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...verdicts import as_estimate, is_undecided
+from ...measured import as_estimate, is_undecided
 from .register import REGISTER
 
 __all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions", "lost_points"]

@@ -1,6 +1,6 @@
 """TV scene of an object carrying a rotating-emitter marker, seen through interference: the experiment
 (:class:`Scenario`) and its runner (:func:`run_scenario`, :func:`interference_runs`). The truth lives in
-:mod:`.motion` and the image in :mod:`.imaging`; both are re-exported here.
+:mod:`.motion` and the image in :mod:`.imaging`.
 
 Model (Yukhno 2025, eqs. (7)-(13), with the compensation model of the paper card, section 4.2)::
 
@@ -29,60 +29,35 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .loops import (
-    EKFTracker,
-    RotatingGateTracker,
-    ekf_noise_from_bandwidths,
-    gains_realising,
-    loop_gains,
-    run_closed_loop,
-)
-from .motion import (  # noqa: F401 (re-exported: moved from this module)
+from .ekf import EKFTracker, ekf_noise_from_bandwidths
+from .loops import RotatingGateTracker, gains_realising, loop_gains, run_closed_loop
+from .motion import (
     MOTIONS,
     MarkerTruth,
     marker_truth,
     object_motion,
-    ornstein_uhlenbeck,
 )
-from .imaging import (  # noqa: F401 (re-exported: moved from this module)
-    BlockNormal,
-    COMPENSATIONS,
-    CommonNormal,
-    RotatingMarkerScene,
-    SPOTS,
-    _check_spot,
-    _generator_blocks,
-    _tile,
-    add_spots,
-    build_scene,
-    correlated_background,
-    median_residual,
-    place_interferers,
-    render_spot,
-)
+from .draws import generator_blocks, tile_rows
+from .draws import BlockNormal, CommonNormal
+from .imaging import COMPENSATIONS, build_scene
+from .backdrop import render_spot
 
 __all__ = [
     "render_spot",
-    "correlated_background",
-    "ornstein_uhlenbeck",
     "marker_truth",
     "MarkerTruth",
-    "place_interferers",
-    "add_spots",
     "object_motion",
     "MOTIONS",
     "build_scene",
     "Scenario",
     "scenario_truth",
     "run_scenario",
-    "RotatingMarkerScene",
     "state_errors",
     "interference_runs",
     "CommonNormal",
     "PLACEMENTS",
     "EXPOSURES",
     "COMPENSATIONS",
-    "median_residual",
 ]
 
 
@@ -303,13 +278,16 @@ def run_scenario(
     scene : RotatingMarkerScene
     history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
     """
-    rngs, n_block, n_common = _generator_blocks(rng, n, n_common)
+    rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
     streams = [g.spawn(4) for g in rngs]  # truth, decoy, scene, noise
     bases = [scenario_truth(st[0], n_common, sc) for st in streams]
     truth = MarkerTruth(
-        *(np.concatenate([_tile(getattr(b, f), n_block) for b in bases]) for f in ("xr", "yr", "r", "theta", "omega")),
+        *(
+            np.concatenate([tile_rows(getattr(b, f), n_block) for b in bases])
+            for f in ("xr", "yr", "r", "theta", "omega")
+        ),
         bases[0].t,
     )
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
@@ -344,12 +322,15 @@ def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: in
         return None, None
     zero = np.zeros(n_common)
     ang = np.concatenate(
-        [_tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block) for st, o in zip(streams, offsets)]
+        [
+            tile_rows(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
+            for st, o in zip(streams, offsets)
+        ]
     )[:, None]
     dphi = (
         np.concatenate(
             [
-                _tile(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
+                tile_rows(st[1].uniform(0, 2 * np.pi, n_common) if o > 0 else zero, n_block)
                 for st, o in zip(streams, offsets)
             ]
         )[:, None]

@@ -1,5 +1,5 @@
 """Measurement functions of notebook 003 (what the explorer calls); the direct-count estimators they use live in
-:mod:`.estimators` (re-exported here).
+:mod:`.estimators`.
 
 Two measurement functions, each a pure function of ``(config, seed)`` with every draw from generators seeded by
 ``seed`` (common random numbers: the same streams whatever the configuration):
@@ -24,29 +24,27 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, ratio_ci, rms_ci
 from ...projection import as_declared
 from .discriminators import quadrant_slope_fit
 from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
 from .loops import phase_locked_amplitude, stack_gains
-from .memo import clear_cache, memo, scenario_key
+from .memo import memo, scenario_key
 from .scene import (
     Scenario,
     interference_runs,
     run_scenario,
     state_errors,
 )
-from .estimators import (  # noqa: F401 (re-exported: moved from this module)
-    COMPENSATION_READINGS,
-    _compensation_factor,
-    _estimate,
-    _half_step,
-    _share_difference,
+from .estimators import (
+    compensation_factor,
+    interval_estimate,
+    share_difference,
     compensation_reading,
     extend_grid,
     grid_in_lock,
     fold_distance,
-    log_thresholds,
     loss_share,
     threshold,
     threshold_bound,
@@ -54,6 +52,7 @@ from .estimators import (  # noqa: F401 (re-exported: moved from this module)
 )
 
 __all__ = [
+    "stream_rng",
     "SIR_GRID",
     "UNCOMPENSATED_GRID",
     "BXY_GRID",
@@ -65,14 +64,12 @@ __all__ = [
     "screen_sizes",
     "criterion",
     "loss_share",
-    "log_thresholds",
     "threshold",
     "threshold_bound",
     "threshold_ratio",
     "fold_distance",
     "measure_tracking",
     "measure_interference",
-    "clear_cache",
 ]
 
 SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
@@ -197,7 +194,8 @@ def criterion(config: dict, sc: Scenario) -> LossCriterion:
     return LossCriterion(radius, max(1, int(round(float(config.get("loss_window_s", 0.5)) * sc.fps))), 0.5)
 
 
-def _rng(stream: int, seed: int) -> np.random.Generator:
+def stream_rng(stream: int, seed: int) -> np.random.Generator:
+    """The seeded generator of one study stream: ``default_rng([stream, seed])`` (a stream per claim or figure)."""
     return np.random.default_rng([int(stream), int(seed)])
 
 
@@ -282,7 +280,9 @@ def _fig1(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> dic
     and the first run's arrays (``figure``)."""
     grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)  # the grid follows the bandwidth reading
     gains = [replace(sc1, b_xy=b).gains() for b in grid]
-    tr, _, h = run_scenario([_rng(1, seed) for _ in grid], n * len(grid), sc1, gains=stack_gains(gains, n), n_common=n)
+    tr, _, h = run_scenario(
+        [stream_rng(1, seed) for _ in grid], n * len(grid), sc1, gains=stack_gains(gains, n), n_common=n
+    )
     e = state_errors(tr, h)
     ex, th = e[:, k0:, 0], tr.theta[:, k0:]
     f_near = (sc1.rotation_hz + 1.0) / sc1.rotation_hz
@@ -316,7 +316,7 @@ def _fig1(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> dic
 
 def _fig2(sc2: Scenario, n: int, seed: int, k2: int) -> dict:
     """Fig. 2 (varying rotation rate and radius, stream 2): C003-3 and the first run's arrays (``figure``)."""
-    tr, _, h = run_scenario(_rng(2, seed), n, sc2)
+    tr, _, h = run_scenario(stream_rng(2, seed), n, sc2)
     e = state_errors(tr, h)[:, k2:]
     return {
         "C003-3": {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])},
@@ -338,26 +338,26 @@ def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCrite
     cases = ((50.0, 8.0), (100.0, 8.0), (50.0, 4.0), (50.0, 16.0))
     blocks = [dict(kappa=sc1.kappa, background_std=1.0 / (sc1.kappa * r), corr_length=c) for r, c in cases]
     blocks.append(dict(kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0))
-    rngs = [_rng(3, seed) for _ in blocks]
+    rngs = [stream_rng(3, seed) for _ in blocks]
     h = run_scenario(rngs, n * len(blocks), sc1, keep_full=False, n_common=n, blocks=blocks)[2]
     ms, lo = _miss_stats(h, k0, crit)
     ms, lo = ms.reshape(len(blocks), n), lo.reshape(len(blocks), n)
     rms = [mean_ci(np.sqrt(m)) for m in ms[:-1]]
     big, small = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
-    spread = _estimate(
+    spread = interval_estimate(
         big.value / small.value,
         max(big.ci_low / small.ci_high, 0.0),
         big.ci_high / max(small.ci_low, 1e-12),
         big.n,
         "max/min of per-case RMS miss; interval from the per-case 95 % bounds (conservative)",
     )
-    return {"spread": spread, "compensation": _share_difference(lo[-1], lo[0])}, [r.value for r in rms]
+    return {"spread": spread, "compensation": share_difference(lo[-1], lo[0])}, [r.value for r in rms]
 
 
 def _miss_ms(sc: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> np.ndarray:
     """Per-run mean-square marker miss (px^2, frames from ``k0``) of ``n`` runs of ``sc`` on the Fig. 1 draws."""
     key = ("miss_ms", scenario_key(sc), n, seed, k0, crit)
-    return memo(key, lambda: _miss_stats(run_scenario(_rng(1, seed), n, sc, keep_full=False)[2], k0, crit)[0])
+    return memo(key, lambda: _miss_stats(run_scenario(stream_rng(1, seed), n, sc, keep_full=False)[2], k0, crit)[0])
 
 
 def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int, crit, quad_ms: dict) -> dict:
@@ -399,7 +399,7 @@ def _curve_runs(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, coun
             {"n_interferers": c} if isinstance(c, int) else {"n_interferers": 0, "decoy_offset": c[1]} for c in counts
         ]
     )
-    runs = interference_runs([_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
+    runs = interference_runs([stream_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
     fl = first_loss(runs["miss"], crit, runs["inside"])
     shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
     lost = (fl >= 0).reshape(shape)
@@ -521,7 +521,7 @@ def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
     its fold distance, :func:`fold_distance`)."""
     bw = BANDWIDTH_PAIR
     h = run_scenario(
-        [_rng(1, seed) for _ in bw],
+        [stream_rng(1, seed) for _ in bw],
         2 * n,
         base,
         keep_full=False,
@@ -560,7 +560,7 @@ def _interference_claims(
                 threshold_bound(curves["gate", 5.0], sirs),
             ],
             "compensation": compensation_reading(
-                _compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
+                compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
                 base.kappa,
                 config.get("compensation_reading", "one-sided"),
             ),

@@ -27,7 +27,7 @@ paper's 15 "laser paths" were different recordings), split over the components a
 The processes are sampled exactly at the frame interval (matrix exponential and Van Loan's
 integral for the discrete process noise), so no discretisation error depends on the frame rate.
 
-The camera that images the paths (:class:`SpotCamera`, :func:`track_spot`) is :mod:`.camera`, re-exported here.
+The camera that images the paths (:class:`SpotCamera`, :func:`track_spot`) is :mod:`.camera`.
 
 Command line (writes the data set shipped in ``data/laser_traces``)::
 
@@ -45,20 +45,9 @@ import numpy as np
 from scipy.linalg import block_diag, expm
 from scipy.signal import lfilter
 
-from .camera import GateTrack, SpotCamera, track_spot
-from .predictors import kalman_forecast
+from .kalman_baselines import kalman_forecast
 from .traces import TraceSet, save_traces, sha256_file
-from .gtilt import (
-    GTILT,
-    _gtilt_wander,
-    exposure_gain,
-    gtilt_crossing,
-    gtilt_asymptotes,
-    gtilt_discrete_psd,
-    gtilt_frame_step_rms,
-    gtilt_psd,
-    gtilt_shape,
-)
+from .gtilt import GTILT, gtilt_wander, gtilt_frame_step_rms
 
 __all__ = [
     "BeamWanderConfig",
@@ -69,18 +58,9 @@ __all__ = [
     "with_frame_jitter",
     "gauss_markov_discrete",
     "GTILT",
-    "exposure_gain",
-    "gtilt_crossing",
-    "gtilt_shape",
-    "gtilt_asymptotes",
-    "gtilt_psd",
-    "gtilt_discrete_psd",
     "generate_traces",
     "wander_state_space",
     "optimal_wander_forecast",
-    "SpotCamera",
-    "GateTrack",
-    "track_spot",
 ]
 
 #: The generator's name as the shipped data set records it (``metadata["generator"]``). The module has
@@ -396,7 +376,7 @@ def generate_traces(config: BeamWanderConfig = BeamWanderConfig(), seed: int = 0
     angle = rng.uniform(0.0, 2 * np.pi, size=P)
     drift = speed[:, None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)  # (P, 2) px/frame
     if c.rolloff == GTILT:
-        wander = _gtilt_wander(c, rms, rng)
+        wander = gtilt_wander(c, rms, rng)
     else:
         sig = component_sigmas(c, rms)  # (P, K)
         order = 1 if c.rolloff == "f^-2" else 2

@@ -28,10 +28,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
+from . import learned as lm
 from . import predictors as pr
 from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
-from .prediction_study import FLOOR_EXTENSION, _tuned
+from .prediction_study import FLOOR_EXTENSION, tuned_forecast
 from .register import DEFAULT
+from .world import BASE_SCENE, scene_config
 
 __all__ = [
     "TARGET_PX",
@@ -96,14 +98,14 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
     cfg = {**DEFAULT, **config}
     traces = None
     if traces_seed is not None:  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
-        scene = st.scene_config(cfg, size)
-        big = replace(scene, n_paths=max(scene.n_paths, st.BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
+        scene = scene_config(cfg, size)
+        big = replace(scene, n_paths=max(scene.n_paths, BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
         traces = generate_traces(big, int(traces_seed))
-    run = st._scene(cfg, seed, size, traces)
-    s = st._setup(cfg, size)
-    folds = pr.path_folds(size.n_paths, size.n_folds)
+    run = st.study_run(cfg, seed, size, traces)
+    s = st.comparison_setup(cfg, size)
+    folds = lm.path_folds(size.n_paths, size.n_folds)
     T = run.z.shape[-1]
-    _, mse, _, _, _ = _tuned(
+    _, mse, _, _, _ = tuned_forecast(
         s.floor_grid,
         lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
         run.z,

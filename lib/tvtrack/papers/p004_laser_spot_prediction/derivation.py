@@ -8,10 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from ...filters.polynomial import growing_memory_filter, growing_memory_gains
-from ...montecarlo import Estimate, variance_ci
+from ...estimate import Estimate
+from ...montecarlo import variance_ci
 from . import predictors as pr
 
-__all__ = ["recursion_vs_batch", "drop_frames", "variance_ratios", "HEAVY_TAIL_METHOD"]
+__all__ = ["recursion_vs_batch", "recursion_check", "drop_frames", "variance_ratios", "HEAVY_TAIL_METHOD"]
 
 #: The sample counts N at which C004-5's variance is checked.
 _CHECK_N = (3, 5, 10, 20, 50, 100)
@@ -28,7 +29,7 @@ def recursion_vs_batch(series, order: int = 2) -> tuple[float, int]:
     return dev, int(np.argmax(np.isfinite(rec[:, 0]))) + 1
 
 
-def _recursion_check(series, seed, rate: float, held: bool) -> float:
+def recursion_check(series, seed, rate: float, held: bool) -> float:
     """C004-4: :func:`recursion_vs_batch`'s largest deviation over every path's series (P, T), each with its own
     obscurations (:func:`drop_frames`, one stream in path order): one 200-frame series at a 0.01 loss rate loses no
     frame one time in eight, every path's series (3000 frames) practically never."""

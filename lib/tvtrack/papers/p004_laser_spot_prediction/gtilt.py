@@ -14,6 +14,7 @@ BeamWanderConfig = Any
 
 __all__ = [
     "GTILT",
+    "gtilt_wander",
     "gtilt_asymptotes",
     "gtilt_shape",
     "gtilt_crossing",
@@ -168,7 +169,7 @@ def _gtilt_fft_size(config: BeamWanderConfig) -> int:
     return 4 * config.n_frames
 
 
-def _gtilt_wander(config: BeamWanderConfig, rms: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+def gtilt_wander(config: BeamWanderConfig, rms: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """G-tilt wander by spectral synthesis (:func:`gtilt_discrete_psd`), shape (P, T, 2), px: each bin
     a Gaussian of variance ``S_d df``, one period of ``4 n_frames`` frames, the first record kept."""
     M = _gtilt_fft_size(config)

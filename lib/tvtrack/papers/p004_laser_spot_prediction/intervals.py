@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...montecarlo import Estimate, mean_ci, ratio_ci, rms_ci
+from ...estimate import Estimate
+from ...montecarlo import mean_ci, ratio_ci, rms_ci
 
 __all__ = ["root_mean_ci", "ratio_of_means_ci", "mean_ci_t"]
 

@@ -10,7 +10,7 @@ from scipy.linalg import expm
 
 from ...filters.kalman import kf_predict, kf_update
 from ...filters.polynomial import taylor_transition
-from ._checks import _check_steps, _check_z
+from ._checks import check_steps, check_z
 
 __all__ = [
     "constant_acceleration_model",
@@ -85,8 +85,8 @@ def kalman_forecast(z, F, Q, H, R, x0, P0, steps: int = 1, burn_in: int = 0):
 def _kalman_pass(z, F, Q, H, R, x0, P0, steps: int, burn_in: int):
     """The loop of :func:`kalman_forecast`: forecasts and, over frames ``>= burn_in``, the sums of
     normalised squared innovations ``nu^2 / S`` and of ``log S``, and their count."""
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not np.all(np.isfinite(z)):
         raise ValueError("parameter 'z' holds NaN; kalman_forecast needs complete sequences")
     T = z.shape[-1]
@@ -130,7 +130,7 @@ def fit_constant_acceleration(z, jerk_grid, meas_var_grid, burn_in: int = 10):
     (jerk_psd, meas_var) : floats at the grid maximum of the summed log-likelihood
     loglik : ndarray, shape (A, B)
     """
-    z = _check_z(z).reshape(-1, np.shape(z)[-1])
+    z = check_z(z).reshape(-1, np.shape(z)[-1])
     q = np.asarray(jerk_grid, dtype=float)[:, None, None]
     r = np.asarray(meas_var_grid, dtype=float)[None, :, None]
     F, Q, H, R = constant_acceleration_model(q, r)  # Q (A,1,1,3,3), R (A,B,1,1,1)
@@ -158,7 +158,7 @@ def fit_constant_acceleration_folds(z, folds, jerk_grid, meas_var_grid) -> list[
 def _fold_forecasts(z, models, folds, steps: int) -> np.ndarray:
     """Kalman forecasts of each fold's test paths with that fold's ``(F, Q, H, R, P0)``;
     ``z`` (trials, paths, ..., T) px, the result shaped like ``z`` (NaN where not forecast)."""
-    z = _check_z(z)
+    z = check_z(z)
     out = np.full(z.shape, np.nan)
     for (F, Q, H, R, P0), (_, test) in zip(models, folds):
         out[:, test] = kalman_forecast(z[:, test], F, Q, H, R, np.zeros(3), P0, steps)[0]
@@ -285,7 +285,7 @@ def fit_singer(z, tau_grid, ratio_grid, burn_in: int = 10):
     loglik : ndarray, shape (A, B)
         Concentrated log-likelihood, summed over the series.
     """
-    z = _check_z(z).reshape(-1, np.shape(z)[-1])
+    z = check_z(z).reshape(-1, np.shape(z)[-1])
     tau = np.asarray(tau_grid, dtype=float)[:, None, None]
     ratio = np.asarray(ratio_grid, dtype=float)[None, :, None]
     F, Q, H, R = singer_model(tau, ratio, 1.0)  # F (A,1,1,3,3), Q (A,B,1,3,3)

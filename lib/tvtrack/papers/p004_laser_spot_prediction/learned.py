@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from ._checks import _check_steps, _check_z
+from ._checks import check_steps, check_z
 
 __all__ = [
     "LEARNED_INPUTS",
@@ -34,8 +34,8 @@ def lag_features(z, n_lags: int, steps: int = 1, inputs: str = "increments"):
     y : ndarray, shape (..., T)
         NaN where ``n + steps >= T``.
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not (isinstance(n_lags, (int, np.integer)) and 1 <= n_lags < z.shape[-1]):
         raise ValueError(f"parameter 'n_lags' = {n_lags!r}; it must be an integer in [1, T-1]")
     if inputs not in LEARNED_INPUTS:
@@ -150,7 +150,7 @@ def fit_learned_predictor(
 
 def learned_forecast(model, z) -> np.ndarray:
     """Apply a model from :func:`fit_learned_predictor`: ``forecast = z + model(lags)``."""
-    z = _check_z(z)
+    z = check_z(z)
     inputs = getattr(model, "inputs_", "increments")
     X, _ = lag_features(z, model.n_lags_, model.steps_, inputs)
     flat = X.reshape(-1, model.n_lags_)

@@ -34,9 +34,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import kalman_baselines as kb
+from . import learned as lm
 from . import predictors as pr
 
 __all__ = [
+    "tuned_forecast",
     "PAPER",
     "VARIANT",
     "CLASSICAL",
@@ -201,19 +204,41 @@ FLOOR_EXTENSION = (350, 600, 1000)
 WINDOW_EXTENSION = (45, 70, 100)
 
 
-def _tuned(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
+def tuned_forecast(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
     """Forecast with every candidate setting, pick per fold on the training paths (pooled
     trials), and assemble the cross-validated forecast and per-trial-path MSE. While a fold picks the
-    last candidate, the next value of ``more`` is tried too (the grid reaches the method's optimum)."""
+    last candidate, the next value of ``more`` is tried too (the grid reaches the method's optimum).
+
+    Parameters
+    ----------
+    candidates : sequence
+        The settings tried (a floor, a window, a lag count...).
+    make : callable
+        ``make(setting) -> forecast`` (trials, paths, axes, T), px.
+    z, ref : numpy.ndarray or float
+        The measured series and the reference the MSE is taken against, px.
+    folds : sequence
+        The cross-validation folds of the paths.
+    s : ComparisonSetup
+        Horizon (frames) and the first frame scored.
+    more : sequence
+        Settings beyond ``candidates``, tried in turn while a fold picks the largest.
+
+    Returns
+    -------
+    tuple
+        ``(forecast, per-trial-path MSE (px^2), the setting each path's fold chose, every candidate's forecast,
+        every candidate's MSE (candidates, trials, paths))``.
+    """
     candidates, more = list(candidates), [c for c in more if c > max(candidates)]
     fcs = [make(c) for c in candidates]
     mse = np.stack([per_trial_path_mse(f, ref, s.steps, s.start) for f in fcs])  # (C, trials, P)
-    pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+    pick = lm.cross_validated_pick(mse.mean(axis=1), folds)
     while more and np.any(pick == len(candidates) - 1):
         candidates.append(more.pop(0))
         fcs.append(make(candidates[-1]))
         mse = np.concatenate([mse, per_trial_path_mse(fcs[-1], ref, s.steps, s.start)[None]])
-        pick = pr.cross_validated_pick(mse.mean(axis=1), folds)
+        pick = lm.cross_validated_pick(mse.mean(axis=1), folds)
     P = z.shape[1]
     fc = np.stack([fcs[pick[p]][:, p] for p in range(P)], axis=1)
     return fc, mse[pick, :, np.arange(P)].T, np.asarray(candidates)[pick], fcs, mse
@@ -254,9 +279,9 @@ def tune_learned_lags(kind: str, z, reference, folds, s: ComparisonSetup, rng: n
     ref = np.broadcast_to(reference, z.shape)
     for c, L in enumerate(grid):
         for g, grp in enumerate(groups):
-            model = pr.fit_learned_predictor(kind, z[0, grp], L, s.steps, seed=int(seeds[c, g]), **kw)
+            model = lm.fit_learned_predictor(kind, z[0, grp], L, s.steps, seed=int(seeds[c, g]), **kw)
             out = np.setdiff1d(np.arange(P), grp)
-            f = pr.learned_forecast(model, z[:1, out])
+            f = lm.learned_forecast(model, z[:1, out])
             per_path[c, g, out] = per_trial_path_mse(f, ref[:1, out], s.steps, s.start)[0]
     loss = np.empty((K, len(grid)))
     for i in range(K):
@@ -272,7 +297,7 @@ def fit_learned_folds(kind: str, z, folds, s: ComparisonSetup, rng: np.random.Ge
     lagged inputs in fold ``i`` (default ``s.learned_lags`` in every fold)."""
     lags = [s.learned_lags] * len(folds) if lags is None else [int(L) for L in lags]
     return [
-        pr.fit_learned_predictor(kind, z[0, train], L, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw)
+        lm.fit_learned_predictor(kind, z[0, train], L, s.steps, seed=int(rng.integers(2**31)), **s.learned_kw)
         for (train, _), L in zip(folds, lags)
     ]
 
@@ -281,7 +306,7 @@ def apply_learned_folds(models, z, folds) -> np.ndarray:
     """Forecasts of each fold's model on its test paths (all trials)."""
     out = np.full(z.shape, np.nan)
     for model, (_, test) in zip(models, folds):
-        out[:, test] = pr.learned_forecast(model, z[:, test])
+        out[:, test] = lm.learned_forecast(model, z[:, test])
     return out
 
 
@@ -337,11 +362,11 @@ def compare_methods(
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
     more = sorted({min(int(v), z.shape[-1]) for v in FLOOR_EXTENSION})
-    fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = _tuned(
+    fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = tuned_forecast(
         s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s, more=more
     )
     if "variant" in parts:  # the card's variant floor, tuned alike
-        fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = _tuned(
+        fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = tuned_forecast(
             s.floor_grid, lambda nf: pr.g1_floor_forecast(z, nf, m, s.order), z, reference, folds, s, more=more
         )
         fixed[VARIANT] = per_trial_path_mse(pr.g1_floor_forecast(z, s.fixed_floor, m, s.order), reference, m, s.start)
@@ -349,7 +374,7 @@ def compare_methods(
     if "classical" in parts:
         _classical(z, reference, folds, s, (mse, fixed, chosen, fcs))
     if "fading" in parts:
-        fcs[FADING], mse[FADING], chosen[FADING], _, _ = _tuned(
+        fcs[FADING], mse[FADING], chosen[FADING], _, _ = tuned_forecast(
             s.theta_grid, lambda th: pr.fading_memory_forecast(z, th, m), z, reference, folds, s
         )
         fixed[FADING] = mse[FADING]
@@ -376,7 +401,7 @@ def _classical(z, reference, folds, s: ComparisonSetup, out) -> None:
         "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m),
     }
     for name, make in windowed.items():
-        fcs[name], mse[name], chosen[name], _, _ = _tuned(
+        fcs[name], mse[name], chosen[name], _, _ = tuned_forecast(
             window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=WINDOW_EXTENSION
         )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
@@ -407,13 +432,13 @@ def _kalman(z, reference, folds, s: ComparisonSetup, out, fitted=None) -> None:
     m = s.steps
     if fitted is None:
         fitted = (
-            pr.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
-            pr.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
+            kb.fit_constant_acceleration_folds(z[0], folds, s.jerk_grid, s.meas_var_grid),
+            kb.fit_singer_folds(z[0], folds, s.singer_tau_grid, s.singer_ratio_grid),
         )
     fits, singer_fits = fitted
-    fcs[CA_KALMAN] = pr.constant_acceleration_forecast(z, fits, folds, m)
+    fcs[CA_KALMAN] = kb.constant_acceleration_forecast(z, fits, folds, m)
     mse[CA_KALMAN] = fixed[CA_KALMAN] = per_trial_path_mse(fcs[CA_KALMAN], reference, m, s.start)
     chosen[CA_KALMAN] = np.array(fits)
-    fcs[SINGER] = pr.singer_forecast(z, singer_fits, folds, m)
+    fcs[SINGER] = kb.singer_forecast(z, singer_fits, folds, m)
     mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
     chosen[SINGER] = np.array(singer_fits)

@@ -47,18 +47,7 @@ from ...filters.polynomial import (
     predict_ahead,
     taylor_transition,
 )
-from ._checks import _check_steps, _check_z
-from .kalman_baselines import (
-    constant_acceleration_forecast,
-    constant_acceleration_model,
-    fit_constant_acceleration,
-    fit_constant_acceleration_folds,
-    fit_singer,
-    fit_singer_folds,
-    kalman_forecast,
-    singer_forecast,
-    singer_model,
-)
+from ._checks import check_steps, check_z
 
 __all__ = [
     "forecast_errors",
@@ -70,25 +59,11 @@ __all__ = [
     "g1_floor_forecast",
     "sliding_regression_forecast",
     "spline_forecast",
-    "lag_features",
-    "fit_learned_predictor",
-    "learned_forecast",
-    "constant_acceleration_model",
-    "kalman_forecast",
-    "fit_constant_acceleration",
-    "path_folds",
-    "cross_validated_pick",
     "hold_last",
     "errors_by_path",
     "forecast_rms_ci",
     "error_summary",
     "batch_least_squares_states",
-    "fit_constant_acceleration_folds",
-    "constant_acceleration_forecast",
-    "singer_model",
-    "fit_singer",
-    "fit_singer_folds",
-    "singer_forecast",
 ]
 
 
@@ -102,7 +77,7 @@ def forecast_errors(forecast, reference, steps: int) -> np.ndarray:
     reference : ndarray, broadcastable to (..., T)
         Measured or true coordinate per frame, px.
     """
-    steps = _check_steps(steps)
+    steps = check_steps(steps)
     f = np.asarray(forecast, dtype=float)
     r = np.broadcast_to(np.asarray(reference, dtype=float), f.shape)
     e = np.full(f.shape, np.nan)
@@ -222,8 +197,8 @@ def growing_memory_forecast(z, steps: int = 1, order: int = 2, floor_memory: int
     after the core filter's vectorised start-up this is ~12x faster than its loop over frames on
     the notebook's paper-profile calls (205 calls: 0.7 s against 8 s CPU).
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     T = z.shape[-1]
     if floor_memory is None or floor_memory >= T or not np.all(np.isfinite(z)):
         return predict_ahead(growing_memory_filter(z, order, floor_memory), steps)
@@ -283,8 +258,8 @@ def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
     z : ndarray, shape (..., T)
         Complete measurements, px.
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not np.all(np.isfinite(z)) or z.shape[-1] < 4:
         raise ValueError("parameter 'z' must be complete (no NaN) with at least 4 samples")
     head = growing_memory_filter(z[..., :3], 2, None)
@@ -327,7 +302,7 @@ def g1_floor_filter(z, g1_min: float, order: int = 2) -> np.ndarray:
     ndarray, shape (..., T, order+1)
         States; NaN for the first ``order`` samples.
     """
-    z = _check_z(z)
+    z = check_z(z)
     if not np.all(np.isfinite(z)):
         raise ValueError("parameter 'z' holds NaN; g1_floor_filter needs complete sequences")
     n = order + 1
@@ -361,7 +336,7 @@ def g1_floor_forecast(z, floor_memory: int, steps: int = 1, order: int = 2) -> n
     ndarray, shape like ``z``, px (NaN for the first ``order`` samples).
     """
     g1_min = float(growing_memory_gains(order, int(floor_memory))[-1, 0])
-    return predict_ahead(g1_floor_filter(z, g1_min, order), _check_steps(steps))
+    return predict_ahead(g1_floor_filter(z, g1_min, order), check_steps(steps))
 
 
 # -- window methods -------------------------------------------------------------------------------
@@ -370,8 +345,8 @@ def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> 
     ``steps`` ahead. Linear in the data, so it is one fixed FIR filter applied to all windows;
     ``window = degree + 1`` is exact finite-difference (Newton) extrapolation.
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not (isinstance(degree, (int, np.integer)) and 0 <= degree <= 5):
         raise ValueError(f"parameter 'degree' = {degree!r}; it must be an integer in [0, 5]")
     if not (isinstance(window, (int, np.integer)) and degree + 1 <= window <= z.shape[-1]):
@@ -393,8 +368,8 @@ def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     The spline is linear in its data, so its extrapolation is one FIR filter: the weights are
     the spline's extrapolations of the ``window`` unit vectors, applied to every window.
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
         raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
     spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, extrapolate=True)
@@ -412,8 +387,8 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
 
     Like :func:`spline_forecast` it is one FIR filter applied to every window.
     """
-    steps = _check_steps(steps)
-    z = _check_z(z)
+    steps = check_steps(steps)
+    z = check_z(z)
     if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
         raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
     spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, bc_type="natural")
@@ -424,10 +399,3 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
 
 
 # the learned predictors (scikit-learn networks) and their cross-validation live in .learned
-from .learned import (  # noqa: E402
-    cross_validated_pick,
-    fit_learned_predictor,
-    lag_features,
-    learned_forecast,
-    path_folds,
-)

@@ -10,7 +10,8 @@ from dataclasses import replace
 import numpy as np
 
 from ...render import gaussian_spot, sensor_readout
-from .beam_wander import SpotCamera, optimal_wander_forecast
+from .camera import SpotCamera
+from .beam_wander import optimal_wander_forecast
 from .prediction_study import (
     CA_KALMAN,
     FADING,
@@ -22,15 +23,8 @@ from .prediction_study import (
     compare_methods,
     per_trial_path_mse,
 )
-from .study import (
-    BASE_CAMERA,
-    LSQ_CUBIC,
-    NATURAL_SPLINE,
-    NETWORKS,
-    OPTIMAL,
-    StudyRun,
-    _setup,
-)
+from .world import BASE_CAMERA
+from .study import LSQ_CUBIC, NATURAL_SPLINE, NETWORKS, OPTIMAL, StudyRun, comparison_setup
 from .intervals import ratio_of_means_ci, root_mean_ci
 
 __all__ = [
@@ -56,7 +50,7 @@ def scores(run: StudyRun) -> tuple[dict, dict]:
 def grid_edge_report(run: StudyRun) -> dict:
     """Share of the tuned settings that sit on an edge of their grid, per method and setting (a fit on
     an edge may be the grid's limit rather than the method's optimum)."""
-    return _edge_shares(run.comparison.chosen, _setup(run.config, run.size))
+    return _edge_shares(run.comparison.chosen, comparison_setup(run.config, run.size))
 
 
 def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
@@ -176,7 +170,7 @@ def model_order_summary(run: StudyRun) -> dict:
         "best_order2": b2,
         "ratio_2_over_1": ratio_of_means_ci(mse[b2], mse[b1]),
         "singer_tau_frames": tau,
-        "tau_grid_min": float(min(_setup(c, run.size).singer_tau_grid)),
+        "tau_grid_min": float(min(comparison_setup(c, run.size).singer_tau_grid)),
         "tau_over_horizon": float(np.median(tau) / m),
         "frame_ms": 1e3 / float(run.scene.frame_rate_hz),
     }
@@ -198,7 +192,7 @@ def horizon_study(run: StudyRun, horizons, seed: int) -> dict:
     rms, floors, edges = {}, {}, {}
     fits = None  # the Kalman filters' ML fits read no horizon: fitted once, forecast at every horizon
     for h in horizons:
-        s = replace(_setup({**run.config, "horizon": h}, run.size), learned_kw={})
+        s = replace(comparison_setup({**run.config, "horizon": h}, run.size), learned_kw={})
         cmp = _run_comparison_at(run, h)
         if cmp is None:
             rng = np.random.default_rng(0)

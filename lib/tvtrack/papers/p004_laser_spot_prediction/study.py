@@ -11,7 +11,7 @@ drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
 
 The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
 Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run. The world a run draws (generator,
-camera, exposure, vibration) is :mod:`.world`, re-exported here; the notebook's studies beyond the claims (scores,
+camera, exposure, vibration) is :mod:`.world`; the notebook's studies beyond the claims (scores,
 measurement budget, model order, horizon) are :mod:`.side_studies`.
 """
 
@@ -23,61 +23,44 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...montecarlo import Estimate
+from ...estimate import Estimate
 from ...projection import as_declared, claim_groups
+from . import learned as lm
 from . import predictors as pr
-from .beam_wander import BeamWanderConfig, SpotCamera, one_frame_motion_rms, optimal_wander_forecast, track_spot
+from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
+from .camera import SpotCamera, track_spot
 from .prediction_study import (
     CLASSICAL,
     PAPER,
     PARTS,
-    SINGER,
     VARIANT,
     Comparison,
     ComparisonSetup,
     WINDOW_EXTENSION,
-    _tuned,
+    tuned_forecast,
     compare_methods,
     per_trial_path_mse,
     window_candidates,
 )
-from .derivation import _recursion_check, recursion_vs_batch, variance_ratios
+from .derivation import recursion_check, variance_ratios
 from .register import NAMES, WORLD
-from .timing import CLOCKS, _frame_time_ms, streaming_frame_times
+from .timing import frame_time_ms
 from .traces import TraceSet
-from .world import (
-    BASE_CAMERA,
-    BASE_SCENE,
-    EXPOSURE_SUBSAMPLES,
-    EXPOSURES,
-    MAX_DRAWS,
-    VIBRATION_HZ,
-    camera_for,
-    exposed_traces,
-    exposure_weights,
-    scene_config,
-    traces_on_sensor,
-    vibration,
-)
+from .world import camera_for, scene_config, traces_on_sensor, vibration
 
 #: The ``floor form`` reading under which the paper's filter is the card's variant floor (position gain bounded).
 VARIANT_FLOOR = "first gain bounded"
 
 __all__ = [
+    "study_run",
+    "comparison_setup",
     "ENTRIES",
     "CENTROID",
     "NETWORKS",
     "OPTIMAL",
-    "SINGER",
     "StudySize",
     "screen_size",
     "StudyRun",
-    "BASE_SCENE",
-    "BASE_CAMERA",
-    "EXPOSURE_SUBSAMPLES",
-    "EXPOSURES",
-    "VIBRATION_HZ",
-    "MAX_DRAWS",
     "scene_config",
     "traces_on_sensor",
     "camera_for",
@@ -86,13 +69,8 @@ __all__ = [
     "parts_for",
     "measure",
     "measure_batch",
-    "exposure_weights",
-    "exposed_traces",
     "vibration",
     "late_rms_ratio",
-    "streaming_frame_times",
-    "CLOCKS",
-    "recursion_vs_batch",
     "variance_ratios",
     "clear_cache",
 ]
@@ -213,7 +191,8 @@ def _streams(seed: int):
     return np.random.SeedSequence(int(seed)).spawn(6)
 
 
-def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
+def study_run(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
+    """One configuration's scene (traces on the sensor, jitter, vibration) tracked by the camera (positions in px)."""
     s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
     scene = scene_config(config, size)
     draws = 0
@@ -250,7 +229,8 @@ def _scene(config: dict, seed: int, size: StudySize, traces: TraceSet | None = N
     )
 
 
-def _setup(config: dict, size: StudySize) -> ComparisonSetup:
+def comparison_setup(config: dict, size: StudySize) -> ComparisonSetup:
+    """The forecast comparison's settings (horizon in frames, tuning grids, folds) of a configuration and size."""
     return ComparisonSetup(
         steps=int(config["horizon"]),
         start=size.eval_start,
@@ -302,9 +282,9 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
         raise ValueError("the spot was never measured on some path: nothing to predict")
     parts = frozenset(parts)
     size = run.size
-    s = _setup(config, size)
+    s = comparison_setup(config, size)
     m = s.steps
-    folds = pr.path_folds(size.n_paths, size.n_folds)
+    folds = lm.path_folds(size.n_paths, size.n_folds)
     rng = np.random.default_rng(_streams(seed)[3])
     cmp = compare_methods(run.z, run.z_meas, folds, s, rng, parts=parts & PARTS)
     fc = dict(cmp.forecasts)
@@ -327,7 +307,7 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
             NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
         }
         for name, make in readings.items():
-            fc[name], _, cmp.chosen[name], _, _ = _tuned(
+            fc[name], _, cmp.chosen[name], _, _ = tuned_forecast(
                 window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
             )
             fixed[name] = make(s.fixed_window)
@@ -367,7 +347,7 @@ def run_study(
     keep : tuple, optional
         Batch index whose gate images to keep (figures, recording), e.g. ``(0, 0)``.
     """
-    return _methods(_scene(config, seed, size, traces, keep), config, seed)
+    return _methods(study_run(config, seed, size, traces, keep), config, seed)
 
 
 def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
@@ -420,12 +400,12 @@ def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
     held = c.get("lost frames", "held") == "held"
     if "C004-4" in want:
         z4 = (run.z if held else run.z_meas)[0, :, 0, : min(T, 200)]
-        out["C004-4"] = _recursion_check(z4, [seed, 4004], float(c.get("frame loss", 0.0)), held)
+        out["C004-4"] = recursion_check(z4, [seed, 4004], float(c.get("frame loss", 0.0)), held)
     if "C004-5" in want:  # each stream is its own: skipping one claim leaves the others' draws as they were
         out["C004-5"] = _variance_check(seed, run.size.n_mc_variance, c.get("C004-5 noise", "Gaussian"))
     if "C004-8" in want:
         rng_t = np.random.default_rng(_streams(seed)[5])
-        out["C004-8"] = _frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
+        out["C004-8"] = frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
     out[CENTROID] = root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1)))
     return out
 
@@ -506,7 +486,7 @@ def _measure_group(items, size: StudySize) -> list[dict]:
     for config, seed, claims in items:
         sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
         if sk not in _CACHE:
-            _CACHE[sk] = _scene(config, seed, size)
+            _CACHE[sk] = study_run(config, seed, size)
         run = _CACHE[sk]
         parts = parts_for(claims)
         if parts is not None and config["floor form"] == VARIANT_FLOOR:  # the paper's filter read as the variant
@@ -584,7 +564,7 @@ def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None)
     from .register import DEFAULT
 
     config = {**DEFAULT, **config}
-    run = _scene(config, seed, size)
+    run = study_run(config, seed, size)
     parts = parts_for(claims)
     if parts is not None:
         run = _methods(run, config, seed, parts)

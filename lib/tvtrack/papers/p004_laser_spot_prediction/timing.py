@@ -22,14 +22,14 @@ from ...render import gate_origin, gaussian_spot, sensor_readout
 # ``run`` below is a :class:`.study.StudyRun` (not imported: study imports this module)
 StudyRun = Any
 
-__all__ = ["CLOCKS", "streaming_frame_times"]
+__all__ = ["CLOCKS", "streaming_frame_times", "frame_time_ms"]
 
 
 #: The clocks of the "C004-8 clock" reading: CPU time of the process, or wall-clock time.
 CLOCKS = {"CPU": time.process_time, "wall": time.perf_counter}
 
 
-def _frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
+def frame_time_ms(run: StudyRun, rng: np.random.Generator, config: dict) -> float:
     """Time per frame, ms, at the C004-8 readings: the batched plain centroid's mean (default), or the
     streaming pipeline's mean or 99th percentile over frames after the first (warm-up); the streaming
     pipeline measures in the gate or (``C004-8 frame`` = "whole frame") over the whole frame, and

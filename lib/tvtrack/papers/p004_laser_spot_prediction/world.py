@@ -1,6 +1,6 @@
 """The world of one run of study 004 (Kokryatska and Hrynchyshyn 2005): the beam-wander generator and the camera at
 a register configuration, the exposure readings, the mount vibration and the paths drawn until the spot stays on the
-sensor. :mod:`.study` builds a run's scene from them (and re-exports them).
+sensor. :mod:`.study` builds a run's scene from them.
 """
 
 from __future__ import annotations
@@ -10,7 +10,9 @@ from dataclasses import replace
 import numpy as np
 
 from .operating import bandwidth_for
-from .beam_wander import GTILT, BeamWanderConfig, SpotCamera, generate_traces
+from .gtilt import GTILT
+from .beam_wander import BeamWanderConfig, generate_traces
+from .camera import SpotCamera
 from .traces import TraceSet
 
 __all__ = [

@@ -24,7 +24,7 @@ from typing import Sequence
 
 import numpy as np
 
-from .pixels import OverlayPixels, _decode_png, coloured_mask, dominant_colours
+from .pixels import OverlayPixels, decode_png, coloured_mask, dominant_colours
 from .environment import INSTALL_HINT, ViewerUnavailable, free_port, rerun_executable, vulkan_problem
 
 __all__ = ["LoadedRecording", "HeadlessViewer"]
@@ -301,7 +301,7 @@ class HeadlessViewer:
 
     def screenshot(self, view_id: str | None = None) -> np.ndarray:
         """RGB array (H, W, 3) uint8 of one view or of the whole viewer."""
-        return _decode_png(self.screenshot_png(view_id))
+        return decode_png(self.screenshot_png(view_id))
 
     def overlay_pixels(
         self, view, entities: Sequence[str], shown: np.ndarray | None = None, min_chroma: int = 60

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["coloured_mask", "dominant_colours", "OverlayPixels"]
+__all__ = ["coloured_mask", "dominant_colours", "OverlayPixels", "decode_png"]
 
 
 def coloured_mask(image: np.ndarray, min_chroma: int = 60) -> np.ndarray:
@@ -44,7 +44,19 @@ def dominant_colours(image: np.ndarray, mask: np.ndarray, n: int = 3, quantum: i
     return [(tuple(int(c) for c in colours[i]), int(counts[i])) for i in order]
 
 
-def _decode_png(png: bytes) -> np.ndarray:
+def decode_png(png: bytes) -> np.ndarray:
+    """A PNG image as an RGB array.
+
+    Parameters
+    ----------
+    png : bytes
+        The encoded image (a viewer's screenshot).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``uint8`` pixels, shape (height, width, 3).
+    """
     from PIL import Image
 
     with Image.open(io.BytesIO(png)) as im:
