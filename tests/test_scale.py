@@ -42,7 +42,10 @@ def _reproduce(tmp_path, monkeypatch, name, **kw):
     return runs / "reproduce-smoke" / NB
 
 
-CAP = 8  # the decide profile's raised cap at reduced size: the smoke profile's sizes, its cap of 3 raised to 8
+# The decide profile's raised cap at reduced size: the smoke profile's sizes, its cap of 3 raised to 5 (the
+# notebook's default). At 5 as at 8 the same five claims' explorations are sized, each to the cap, and the same six
+# stay at three: 8 only added nine explorer runs (37 against 28) to each of the two reproduces compared.
+CAP = 5
 
 
 def _sized_by_the_rule(data: dict) -> list[int]:
@@ -65,7 +68,7 @@ def _sized_by_the_rule(data: dict) -> list[int]:
 
 @pytest.mark.determinism
 def test_a_reproduce_on_a_local_cluster_gives_the_local_results(tmp_path, monkeypatch):
-    """003's smoke profile with the decide profile's raised cap at reduced size (8), on this machine and on a
+    """003's smoke profile with the decide profile's raised cap at reduced size (5), on this machine and on a
     LocalCluster of two worker processes: the same claims, verdicts, labels and numbers; the records say where
     each ran and how many explorer runs it used."""
     distributed = pytest.importorskip("distributed")

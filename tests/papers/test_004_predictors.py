@@ -1,5 +1,7 @@
 """Notebook 004: baseline predictors (exactness on polynomials, Kalman equivalences, learned models)."""
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -287,3 +289,36 @@ def test_absolute_centre_inputs_are_the_last_centres_and_the_target_the_next():
     f = learned_forecast(model, paths[:1])
     err = (f[0, 3:-1] - paths[0, 4:]).std()
     assert model.inputs_ == "absolute centres" and err < 0.4  # the next centre, not an increment (~60 px off)
+
+
+@pytest.mark.parametrize("inputs", ["increments", "absolute centres"])
+def test_the_early_stopped_network_is_scikit_learns_bit_for_bit(inputs, monkeypatch):
+    """The network's early-stopping score skips scikit-learn's input checks: every epoch's validation score, the
+    epoch it stops at and the weights it keeps are those of ``MLPRegressor`` itself, to the last bit."""
+    from sklearn.metrics import r2_score
+    from sklearn.neural_network import MLPRegressor
+
+    from tvtrack.papers.p004_laser_spot_prediction import learned
+
+    z = np.cumsum(np.random.default_rng(3).standard_normal((4, 2, 300)), axis=-1)
+    for seed in range(3):
+        fast = pr.fit_learned_predictor("mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs)
+        with monkeypatch.context() as m:
+            m.setattr(learned, "_mlp_regressor", lambda: MLPRegressor)
+            stock = pr.fit_learned_predictor("mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs)
+        a, b = (getattr(p, "regressor_", p)[-1] for p in (fast, stock))
+        assert type(a) is not MLPRegressor and type(b) is MLPRegressor
+        assert a.n_iter_ == b.n_iter_ > 10 and a.validation_scores_ == b.validation_scores_
+        for u, v in zip(a.coefs_ + a.intercepts_, b.coefs_ + b.intercepts_):
+            assert np.array_equal(u, v)
+    rng = np.random.default_rng(4)
+    for y, p in (
+        (rng.standard_normal(37), rng.standard_normal(37)),
+        (np.full(5, 2.0), np.full(5, 2.0)),  # a perfect forecast of a constant: 1
+        (np.full(5, 2.0), np.full(5, 2.5)),  # a constant missed: 0, not -inf
+        (np.arange(4.0), np.arange(4.0)),
+    ):
+        assert learned._r2(y[:, None], p) == r2_score(y[:, None], p)
+    assert np.isnan(learned._r2(np.ones(1), np.ones(1)))
+    back = pickle.loads(pickle.dumps(fast))  # a model pickled in one process is read in another by the class's name
+    assert type(getattr(back, "regressor_", back)[-1]) is type(a)
