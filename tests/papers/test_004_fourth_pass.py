@@ -65,7 +65,7 @@ def test_spline_readings_are_tuned_on_the_extended_window_grid():
     size = study.replace(SIZE, window_grid=(4,))
     cfg = dict(DEFAULT, bandwidth=1.0, **{"read noise": 64.0})  # slow, noisy: long windows
     # every method but the networks, which nothing here reads: each part's numbers are those of a full run
-    r = study._methods(study._scene(cfg, 7, size), cfg, 7, study.ALL_PARTS - {"learned"})
+    r = study._methods(study.study_run(cfg, 7, size), cfg, 7, study.ALL_PARTS - {"learned"})
     for name, make in (
         (study.LSQ_CUBIC, lambda L: pr.sliding_regression_forecast(r.z, L, 3, 1)),
         (study.NATURAL_SPLINE, lambda L: pr.natural_spline_forecast(r.z, L, 1)),

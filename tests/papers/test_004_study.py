@@ -166,7 +166,7 @@ def test_the_bound_gets_the_measurement_variance_not_its_square_root(monkeypatch
 
     monkeypatch.setattr(study, "optimal_wander_forecast", spy)
     cfg = dict(DEFAULT, jitter=1.0)
-    r = study._methods(study._scene(cfg, 3, SIZE), cfg, 3, {"optimal"})  # the bound alone: what the spy watches
+    r = study._methods(study.study_run(cfg, 3, SIZE), cfg, 3, {"optimal"})  # the bound alone: what the spy watches
     np.testing.assert_allclose(seen["meas_var"], r.centroid_rms**2 + r.jitter_rms**2)
 
 
