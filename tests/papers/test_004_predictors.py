@@ -305,7 +305,9 @@ def test_the_early_stopped_network_is_scikit_learns_bit_for_bit(inputs, monkeypa
         fast = learned.fit_learned_predictor("mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs)
         with monkeypatch.context() as m:
             m.setattr(learned, "_mlp_regressor", lambda: MLPRegressor)
-            stock = learned.fit_learned_predictor("mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs)
+            stock = learned.fit_learned_predictor(
+                "mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs
+            )
         a, b = (getattr(p, "regressor_", p)[-1] for p in (fast, stock))
         assert type(a) is not MLPRegressor and type(b) is MLPRegressor
         assert a.n_iter_ == b.n_iter_ > 10 and a.validation_scores_ == b.validation_scores_
