@@ -240,6 +240,16 @@ def _from_imports(module: str, tree: ast.Module, is_package: bool):
                 yield base, alias.name, alias.asname or alias.name
 
 
+def _names_taken(module: str, tree: ast.Module, trees: dict, is_package: bool, bound: dict):
+    """``(module, name)`` for every name ``module`` takes by ``from ... import`` from another module under the root;
+    a submodule taken that way is recorded in ``bound`` (local name -> module it stands for) instead."""
+    for base, name, asname in _from_imports(module, tree, is_package):
+        if f"{base}.{name}" in trees:
+            bound[asname] = f"{base}.{name}"
+        elif base in trees and base != module:
+            yield base, name
+
+
 def private_imports(root: Path) -> list[str]:
     """``"importer: module._name"`` for every private name (one leading underscore) a module under ``root`` takes
     from another: ``from module import _name``, or ``module._name`` on a module it imported. A private module's
@@ -249,11 +259,11 @@ def private_imports(root: Path) -> list[str]:
     out = set()
     for m, tree in trees.items():
         bound = {}  # local name -> module it stands for
-        for base, name, asname in _from_imports(m, tree, m in packages):
-            if f"{base}.{name}" in trees:
-                bound[asname] = f"{base}.{name}"
-            elif base in trees and base != m and _is_private(name):
-                out.add(f"{m}: {base}.{name}")
+        out |= {
+            f"{m}: {base}.{name}"
+            for base, name in _names_taken(m, tree, trees, m in packages, bound)
+            if _is_private(name)
+        }
         for node in ast.walk(tree):
             if isinstance(node, ast.Import):
                 bound.update({a.asname: a.name for a in node.names if a.asname and a.name in trees})
@@ -295,10 +305,8 @@ def facade_imports(root: Path) -> list[str]:
     out = set()
     for m, tree in trees.items():
         bound = {}  # local name -> module it stands for
-        for base, name, asname in _from_imports(m, tree, m in packages):
-            if f"{base}.{name}" in trees:
-                bound[asname] = f"{base}.{name}"
-            elif base in trees and base != m and name != "*" and name not in defined[base]:
+        for base, name in _names_taken(m, tree, trees, m in packages, bound):
+            if name != "*" and name not in defined[base]:
                 out.add(f"{m}: {base}.{name}")
         bound.update(
             {a.asname: a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname}
