@@ -36,6 +36,7 @@ from ..results import (
     results_summary,
     side_words,
 )
+from .audit import audit_markdown, audit_runs
 from .figures import (
     ALL_LABELS,
     ALL_VERDICTS,
@@ -366,7 +367,8 @@ def write_report(
     readme: Path | None = None,
 ) -> Path:
     """Rebuild ``REPRODUCTION.md`` from the run directories under ``reproduce_dir``
-    (one section per notebook of ``notebooks``, default: all in ``notebooks/``).
+    (one section per notebook of ``notebooks``, default: all in ``notebooks/``), closed by the label audit of
+    every finished run (:mod:`.audit`; its count is also printed).
 
     The report opens with the profile it shows and its date, the first screen (:func:`first_screen`), the forest
     plot and the robustness picture (saved in ``reproduce_dir/figures/``), then one section per notebook with a
@@ -430,8 +432,11 @@ def write_report(
             lines += [f"- [{_cell(f['caption'])}]({rel}/{f['file']})" for f in data["figures"]]
         sections.append("\n".join(lines) + "\n")
     head = _report_head(runs, claims, notebooks, Path(reproduce_dir), path)
+    problems = audit_runs(runs)
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(head + sections))
+    path.write_text("\n".join(head + sections + audit_markdown(problems)))
+    n_problems = sum(len(v) for v in problems.values())
+    print(f"label audit: {n_problems} problem(s) in the records of {len(problems)} notebook(s)")
     if readme is not None:
         incomplete = [
             name for name, (record, data) in runs.items() if data is None or record.get("profile") != PAPER_PROFILE

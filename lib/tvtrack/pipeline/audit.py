@@ -1,0 +1,158 @@
+"""An independent check of the robustness labels in finished runs, from their ``results.json`` alone.
+
+The label machinery (:mod:`tvtrack.labels`, :mod:`tvtrack.attribution`) writes, per claim, every condition it
+measured with its runs and verdicts, and per part the share, the named flips and the label. This module re-reads
+those records against the rules ``docs/verdicts.md`` states, without the code that wrote them, so that a label
+that says more than its own record shows is found in the records a reader sees:
+
+* **sized**: a condition with a decisive part verdict ran at least the replicates the default needed to decide
+  (``design["replicates_needed"]``); so did every named flip;
+* **declared**: every condition changes only entries of the claim's register (the entries its measurement
+  declares it reads);
+* **share**: the part's agree / flip / undecided equal the counts over its distinct one-at-a-time and joint
+  configurations, and add up to all of them;
+* **sides**: a flip's side is the side of its entries (a reading, an unreported setting, a world; ``unattributed``
+  when readings or settings mix with worlds), and never ``world`` when it changes a reading or a setting;
+* **smallest**: no sized configuration that changes a strict subset of a named flip's changes flips the part
+  too; every sized configuration that flips the part contains a named flip;
+* **label**: ``robust`` and ``unexplored`` parts have no flip, a ``limited`` part only flips on the world side,
+  a ``depends`` part has a flip by a reading, a setting or an unattributed mix.
+
+``tvtrack report`` prints the count of problems, and REPRODUCTION.md lists each one.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Sequence
+
+from ..register import side_of
+
+__all__ = ["audit_claim", "audit_runs", "audit_markdown"]
+
+_DECISIVE = ("reproduced", "not reproduced", "partly")
+
+
+def _items(changed: Mapping[str, Any]) -> set:
+    return {(k, repr(v)) for k, v in changed.items()}
+
+
+def _distinct(conditions: Sequence[Mapping]) -> list[Mapping]:
+    """The one-at-a-time and joint configurations, each once (as the share counts them)."""
+    out, seen = [], set()
+    for c in conditions:
+        key = frozenset(_items(c["changed"]))
+        if c.get("kind") in ("single", "joint") and c["changed"] and key not in seen:
+            seen.add(key)
+            out.append(c)
+    return out
+
+
+def _expected_side(changed: Mapping[str, Any], kinds: Mapping[str, str]) -> str:
+    sides = {side_of(kinds.get(k, "reading")) for k in changed}
+    if sides == {"world"}:
+        return "world"
+    if "world" in sides:
+        return "unattributed"
+    return "setting" if "setting" in sides else "reading"
+
+
+def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int, kinds: Mapping) -> list[str]:
+    """The problems of one part's share, flips and label (see the module)."""
+    where = cid if len(rb["parts"]) == 1 else f"{cid} ({name})"
+    default, out = part["verdict"], []
+    rows = [c for c in rb["conditions"] if name in c.get("parts", {})]
+    share = part.get("share")
+    if share:
+        verdicts = [c["parts"][name] for c in _distinct(rows)]
+        agree = sum(v == default for v in verdicts)
+        flip = sum(v in _DECISIVE and v != default for v in verdicts)
+        counted = (agree, flip, len(verdicts) - agree - flip, len(verdicts))
+        shown = (share["agree"], share["flip"], share["undecided"], share["design"])
+        if counted != shown:
+            out.append(
+                f"{where}: the share reads {shown[:3]} of {shown[3]}, its configurations give {counted[:3]} of {counted[3]}"
+            )
+    flipping = [
+        c
+        for c in rows
+        if c["parts"][name] in _DECISIVE and c["parts"][name] != default and c.get("runs", needed) >= needed
+    ]
+    flips = part.get("flips") or []
+    for f in flips:
+        changes = ", ".join(f"{k} = {v}" for k, v in f["changed"].items())
+        if f.get("runs", needed) < needed:
+            out.append(f"{where}: the flip at {changes} ran {f['runs']} replicates, the default needed {needed}")
+        side = _expected_side(f["changed"], kinds)
+        if f["side"] != side and not (f["side"] == "unattributed" and f.get("note")):
+            out.append(f"{where}: the flip at {changes} is filed as {f['side']}, its entries make it {side}")
+        smaller = [c for c in flipping if _items(c["changed"]) < _items(f["changed"])]
+        if smaller:
+            out.append(f"{where}: the flip at {changes} is not the smallest: {smaller[0]['text']} flips it too")
+    for c in flipping:
+        if not any(_items(f["changed"]) <= _items(c["changed"]) for f in flips):
+            out.append(f"{where}: {c['text']} flips the part and no named flip explains it")
+    sides = {f["side"] for f in flips}
+    label = part.get("label")
+    if label in ("robust", "unexplored") and flips:
+        out.append(f"{where}: labelled {label} with {len(flips)} flip(s)")
+    if label == "limited" and (not flips or sides != {"world"}):
+        out.append(f"{where}: labelled limited, but its flips are on the sides {sorted(sides) or 'none'}")
+    if label == "depends" and not sides & {"reading", "setting", "unattributed"}:
+        out.append(f"{where}: labelled depends without a flip by a reading, a setting or an unattributed mix")
+    return out
+
+
+def audit_claim(claim: Mapping) -> list[str]:
+    """The problems of one claim's robustness record (see the module); an empty list when it has none.
+
+    Parameters
+    ----------
+    claim : mapping
+        One entry of ``results.json``'s ``claims``.
+    """
+    rb = claim.get("robustness")
+    if not rb or not rb.get("parts"):
+        return []
+    cid = claim["id"]
+    design = rb.get("design") or {}
+    needed = (design.get("replicates_needed") or {}).get(cid)
+    needed = int(needed) if needed is not None else len(rb.get("replicates") or ())
+    kinds = {e["name"]: e.get("kind", "reading") for e in rb.get("register") or ()}
+    out = []
+    for c in rb.get("conditions") or ():
+        unknown = sorted(set(c["changed"]) - set(kinds))
+        if unknown:
+            out.append(f"{cid}: a {c.get('kind', 'single')} condition changes {unknown}, not in the claim's register")
+        decisive = [p for p, v in c.get("parts", {}).items() if v in _DECISIVE]
+        if decisive and c.get("runs", needed) < needed:
+            out.append(f"{cid}: {c['text']} counts at {c['runs']} replicates, the default needed {needed}")
+    for name, part in rb["parts"].items():
+        out += _part_problems(cid, name, part, rb, needed, kinds)
+    return out
+
+
+def audit_runs(runs: Mapping[str, tuple[dict | None, dict | None]]) -> dict[str, list[str]]:
+    """Every finished notebook's problems: ``{notebook: [problem, ...]}`` over the (run record, results) pairs of
+    :func:`tvtrack.pipeline.report.collect_runs`; a notebook without results is left out."""
+    return {nb: [p for c in data.get("claims", ()) for p in audit_claim(c)] for nb, (_, data) in runs.items() if data}
+
+
+def audit_markdown(problems: Mapping[str, Sequence[str]]) -> list[str]:
+    """The audit as a section of REPRODUCTION.md: the count, then each problem by notebook."""
+    total = sum(len(v) for v in problems.values())
+    head = [
+        "## The labels checked against their own records",
+        "",
+        "Each claim's record was re-read without the code that wrote it: conditions sized as the default needed, "
+        "entries the claim declares, shares that count every configuration, flips on the side of their entries "
+        "and named by the smallest configuration that flips, labels that follow from the flips.",
+        "",
+    ]
+    if not problems:
+        return head + ["No finished run to check.", ""]
+    if not total:
+        return head + [f"No problem in {len(problems)} notebook(s).", ""]
+    lines = head + [f"{total} problem(s):", ""]
+    for nb, items in problems.items():
+        lines += [f"- `{nb}`: {p}" for p in items]
+    return lines + [""]

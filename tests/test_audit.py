@@ -1,0 +1,146 @@
+"""The label audit (tvtrack.pipeline.audit): a record the label machinery writes passes it, and each way a label can
+say more than its record shows is found, one planted fault at a time."""
+
+import copy
+
+import pytest
+
+from tvtrack.labels import label_parts
+from tvtrack.montecarlo import Estimate
+from tvtrack.pipeline.audit import audit_claim, audit_markdown, audit_runs
+from tvtrack.register import Entry
+from tvtrack.verdicts import InBand
+
+BAND = InBand("mean", -0.5, 0.5, "px")
+READING = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+SETTING = Entry("law", "unreported setting", "linear", ("linear", "step"), "the paper used one and never said which")
+WORLD = Entry("motion", "regime", "cv", ("cv", "turn"), "a world beyond the paper")
+LOUD = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
+ENTRIES = (READING, SETTING, WORLD, LOUD)
+IN, OUT = Estimate.exact(0.0), Estimate.exact(3.0)
+
+
+def _cond(changed, measured, kind="single", runs=2):
+    return {"changed": changed, "kind": kind, "measured": measured, "runs": runs, "config": changed}
+
+
+def _claim():
+    """A claim the default needs 2 replicates to decide: the reading flips it alone, the setting agrees, the world
+    agrees alone and flips together with the loud world (a combination isolates the pair); one joint configuration
+    has a single replicate."""
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    conds = [
+        _cond({"sigma": "smoothed"}, OUT),
+        _cond({"law": "step"}, IN),
+        _cond({"motion": "turn"}, IN),
+        _cond({"noise": "high"}, IN),
+        _cond({"sigma": "raw", "law": "step", "motion": "turn", "noise": "high"}, OUT, "joint"),
+        _cond({"motion": "turn", "noise": "high"}, OUT, "combination"),
+        _cond({"law": "step", "motion": "turn"}, IN, "joint", runs=1),  # smaller than the default needed: undecided
+    ]
+    rb = label_parts(BAND, IN, reps, conds, ENTRIES, design={"min_share_design": 4}, needed=2)
+    rb["register"] = [e.to_dict() for e in ENTRIES]
+    rb["design"] = {"replicates_needed": {"C9-1": 2}}
+    return {"id": "C9-1", "robustness": rb}
+
+
+def _flip(claim, changed_keys):
+    return next(f for f in claim["robustness"]["parts"]["claim"]["flips"] if set(f["changed"]) == set(changed_keys))
+
+
+def test_the_machinery_s_own_record_passes_with_its_flips_on_their_sides():
+    claim = _claim()
+    part = claim["robustness"]["parts"]["claim"]
+    assert part["label"] == "depends"
+    assert {tuple(sorted(f["changed"])): f["side"] for f in part["flips"]} == {
+        ("sigma",): "reading",
+        ("motion", "noise"): "world",
+    }
+    assert audit_claim(claim) == []
+
+
+def test_a_decisive_condition_smaller_than_the_default_needed_is_found():
+    claim = _claim()
+    claim["robustness"]["conditions"][1]["runs"] = 1
+    assert audit_claim(claim) == [
+        f"C9-1: {claim['robustness']['conditions'][1]['text']} counts at 1 replicates, the default needed 2"
+    ]
+
+
+def test_an_entry_the_claim_does_not_declare_is_found():
+    claim = _claim()
+    claim["robustness"]["register"] = [e.to_dict() for e in ENTRIES if e.name != "noise"]
+    problems = audit_claim(claim)
+    assert sum("changes ['noise'], not in the claim's register" in p for p in problems) == 3  # single, joint, combo
+
+
+def test_a_share_of_the_decided_configurations_only_is_found():
+    claim = _claim()
+    share = claim["robustness"]["parts"]["claim"]["share"]
+    assert (share["agree"], share["flip"], share["undecided"], share["design"]) == (3, 2, 1, 6)
+    share["undecided"], share["design"] = 0, share["decided"]  # the decided configurations only
+    assert audit_claim(claim) == ["C9-1: the share reads (3, 2, 0) of 5, its configurations give (3, 2, 1) of 6"]
+
+
+@pytest.mark.parametrize("side", ["world", "setting", "unattributed"])
+def test_a_flip_filed_on_another_side_than_its_entries_is_found(side):
+    claim = _claim()
+    _flip(claim, ["sigma"])["side"] = side
+    assert f"the flip at sigma = smoothed is filed as {side}, its entries make it reading" in audit_claim(claim)[0]
+
+
+def test_a_flip_mixing_a_reading_with_worlds_filed_as_world_is_found():
+    claim = _claim()
+    f = _flip(claim, ["motion", "noise"])
+    f["changed"] = {"sigma": "raw", "motion": "turn", "noise": "high"}
+    problems = audit_claim(claim)
+    assert any("is filed as world, its entries make it unattributed" in p for p in problems)
+
+
+def test_a_flip_named_by_more_than_the_smallest_configuration_is_found():
+    claim = _claim()
+    f = _flip(claim, ["motion", "noise"])
+    f["changed"] = {"sigma": "raw", "law": "step", "motion": "turn", "noise": "high"}
+    f["side"] = "unattributed"
+    problems = audit_claim(claim)
+    assert any("is not the smallest" in p and "turn" in p for p in problems)
+
+
+def test_a_flip_the_record_drops_is_found():
+    claim = _claim()
+    part = claim["robustness"]["parts"]["claim"]
+    part["flips"] = [f for f in part["flips"] if f["side"] != "reading"]
+    problems = audit_claim(claim)
+    assert any("flips the part and no named flip explains it" in p and "smoothed" in p for p in problems)
+    assert "C9-1: labelled depends without a flip by a reading, a setting or an unattributed mix" in problems
+
+
+def test_a_flip_smaller_than_the_default_needed_is_found():
+    claim = _claim()
+    _flip(claim, ["sigma"])["runs"] = 1
+    assert "C9-1: the flip at sigma = smoothed ran 1 replicates, the default needed 2" in audit_claim(claim)
+
+
+@pytest.mark.parametrize(
+    "label, words",
+    [
+        ("limited", "labelled limited, but its flips are on the sides ['reading', 'world']"),
+        ("robust", "labelled robust with 2 flip(s)"),
+        ("unexplored", "labelled unexplored with 2 flip(s)"),
+    ],
+)
+def test_a_label_stronger_than_its_flips_is_found(label, words):
+    claim = _claim()
+    claim["robustness"]["parts"]["claim"]["label"] = label
+    assert audit_claim(claim) == [f"C9-1: {words}"]
+
+
+def test_the_audit_reads_finished_runs_and_writes_its_section():
+    good, bad = _claim(), copy.deepcopy(_claim())
+    bad["robustness"]["parts"]["claim"]["label"] = "robust"
+    runs = {"a": ({}, {"claims": [good]}), "b": ({}, {"claims": [bad]}), "c": ({"status": "failed"}, None)}
+    problems = audit_runs(runs)
+    assert problems == {"a": [], "b": ["C9-1: labelled robust with 2 flip(s)"]}
+    text = "\n".join(audit_markdown(problems))
+    assert "1 problem(s):" in text and "- `b`: C9-1: labelled robust with 2 flip(s)" in text
+    assert "No problem in 1 notebook(s)." in "\n".join(audit_markdown({"a": []}))
