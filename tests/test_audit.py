@@ -144,3 +144,12 @@ def test_the_audit_reads_finished_runs_and_writes_its_section():
     text = "\n".join(audit_markdown(problems))
     assert "1 problem(s):" in text and "- `b`: C9-1: labelled robust with 2 flip(s)" in text
     assert "No problem in 1 notebook(s)." in "\n".join(audit_markdown({"a": []}))
+
+
+def test_a_flip_of_more_entries_than_the_subset_search_tries_filed_as_a_world_is_found():
+    claim = _claim()
+    claim["robustness"]["design"]["max_subset"] = 1
+    problems = audit_claim(claim)
+    assert problems == [
+        "C9-1: the flip at motion = turn, noise = high changes more than 1 entries and is filed as world"
+    ]

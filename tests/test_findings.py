@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+import tvtrack.numbers
 import tvtrack.paragraphs
 import tvtrack.wording
 from tvtrack.montecarlo import Estimate
@@ -45,11 +46,11 @@ def test_claims_table_one_line_per_claim(tmp_path):
 
 
 REPO = Path(__file__).resolve().parents[1]
-_WRITER = Path(tvtrack.wording.__file__).read_text() + Path(tvtrack.paragraphs.__file__).read_text()
+_WRITER = "".join(Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.paragraphs, tvtrack.numbers))
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
     r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
-    r"runs|this run allows"
+    r"runs|this run allows|agree|flips?\b|stay undecided"
 )
 
 

@@ -576,3 +576,45 @@ def test_a_part_no_explored_configuration_decided_is_unexplored_never_robust():
     assert part["label"] == rec["label"] == "unexplored"
     agreed = explore(lambda c, s: {"C": inside}, reg, {"C": BAND}, seed=1, replicates=3).record("C")
     assert agreed["parts"]["claim"]["share"]["agree"] == 1 and agreed["label"] == "robust"
+
+
+def test_a_combination_that_flips_a_part_its_joint_configuration_did_not_is_named():
+    # the combination was searched for another part's joint flip (or a joint a single explains): it flips this part
+    # on its own, sized, so it is a flip of this part and is named, after the flips that explain their joints
+    entries = {
+        "sigma": Entry("sigma", "reading", "raw", ("raw", "smoothed"), "w"),
+        "motion": Entry("motion", "regime", "cv", ("cv", "weave"), "w"),
+        "noise": Entry("noise", "regime", "low", ("low", "high"), "w"),
+    }
+    rows = [
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "verdict": "not reproduced", "runs": 2},
+        {"changed": {"motion": "weave"}, "kind": "single", "verdict": "reproduced", "runs": 2},
+        {
+            "changed": {"sigma": "smoothed", "motion": "weave", "noise": "high"},
+            "kind": "joint",
+            "verdict": "not reproduced",
+            "runs": 2,
+        },
+        {
+            "changed": {"motion": "weave", "noise": "high"},
+            "kind": "combination",
+            "verdict": "not reproduced",
+            "runs": 2,
+        },
+        {
+            "changed": {"sigma": "smoothed", "noise": "high"},
+            "kind": "combination",
+            "verdict": "not reproduced",
+            "runs": 2,
+        },
+    ]
+    flips = attribute("reproduced", rows, entries)
+    assert [(f["changed"], f["kind"], f["side"]) for f in flips] == [
+        ({"sigma": "smoothed"}, "single", "reading"),
+        ({"motion": "weave", "noise": "high"}, "combination", "world"),
+    ]  # the pair with the reading is explained by the reading alone
+    # an unsized combination (one run repeating the default's own replicate) stays no flip
+    rows[3] = {**rows[3], "runs": 1}
+    assert [f["changed"] for f in attribute("reproduced", rows, entries, same_seed="not reproduced")] == [
+        {"sigma": "smoothed"}
+    ]

@@ -113,7 +113,8 @@ def attribute(
         worlds), then the smallest combinations that flip a joint configuration no single entry explains (pairs
         before triples), then joint configurations no subset of which flips: ``side`` from their entries (mixed
         sides: ``unattributed``), and ``unattributed`` with a ``note`` for one with more than :data:`MAX_SUBSET`
-        changed entries.
+        changed entries; last, every combination that flips the part alone and contains no flip named before it
+        (one searched for another part, or inside a joint configuration a single entry explains).
     """
     if not is_decisive(default):
         return []
@@ -163,6 +164,10 @@ def attribute(
             later.append((len(j["changed"]) + 100, j, "joint", ""))
     for _, r, kind, note in sorted(later, key=lambda t: (t[0], order[flip_side(t[1]["changed"], entries)])):
         add(r, kind, "unattributed" if note else flip_side(r["changed"], entries), note)
+    # a combination searched for another part (or inside a joint a single explains) that flips this part alone
+    for c in sorted(combos, key=lambda r: (len(r["changed"]), order[flip_side(r["changed"], entries)])):
+        if not any(_subset(f["changed"], c["changed"]) for f in out):
+            add(c, "combination", flip_side(c["changed"], entries))
     return out
 
 

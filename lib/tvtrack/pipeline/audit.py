@@ -12,9 +12,11 @@ that says more than its own record shows is found in the records a reader sees:
 * **share**: the part's agree / flip / undecided equal the counts over its distinct one-at-a-time and joint
   configurations, and add up to all of them;
 * **sides**: a flip's side is the side of its entries (a reading, an unreported setting, a world; ``unattributed``
-  when readings or settings mix with worlds), and never ``world`` when it changes a reading or a setting;
+  when readings or settings mix with worlds), never ``world`` when it changes a reading or a setting, and
+  ``unattributed`` when it changes more entries than the subset search tries (``design["max_subset"]``);
 * **smallest**: no sized configuration that changes a strict subset of a named flip's changes flips the part
-  too; every sized configuration that flips the part contains a named flip;
+  too; every sized configuration that flips the part contains a named flip (a configuration of one run flips
+  only where it also differs from the default's run on the same random numbers);
 * **label**: ``robust`` and ``unexplored`` parts have no flip, a ``limited`` part only flips on the world side,
   a ``depends`` part has a flip by a reading, a setting or an unattributed mix.
 
@@ -58,8 +60,11 @@ def _expected_side(changed: Mapping[str, Any], kinds: Mapping[str, str]) -> str:
 
 def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int, kinds: Mapping) -> list[str]:
     """The problems of one part's share, flips and label (see the module)."""
+    max_subset = int((rb.get("design") or {}).get("max_subset", 3))
     where = cid if len(rb["parts"]) == 1 else f"{cid} ({name})"
     default, out = part["verdict"], []
+    if default not in _DECISIVE:  # nothing to flip: no share, no flips, no label to check
+        return out
     rows = [c for c in rb["conditions"] if name in c.get("parts", {})]
     share = part.get("share")
     if share:
@@ -72,10 +77,15 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
             out.append(
                 f"{where}: the share reads {shown[:3]} of {shown[3]}, its configurations give {counted[:3]} of {counted[3]}"
             )
+    first = (part.get("replicate_verdicts") or [None])[0]  # the default's run on the conditions' random numbers
+    crn = first if first in _DECISIVE else default
     flipping = [
         c
         for c in rows
-        if c["parts"][name] in _DECISIVE and c["parts"][name] != default and c.get("runs", needed) >= needed
+        if c["parts"][name] in _DECISIVE
+        and c["parts"][name] != default
+        and c.get("runs", needed) >= needed
+        and (c.get("runs", 1) > 1 or c["parts"][name] != crn)  # one run must differ from its own default run too
     ]
     flips = part.get("flips") or []
     for f in flips:
@@ -83,6 +93,10 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
         if f.get("runs", needed) < needed:
             out.append(f"{where}: the flip at {changes} ran {f['runs']} replicates, the default needed {needed}")
         side = _expected_side(f["changed"], kinds)
+        if len(f["changed"]) > max_subset and f["side"] != "unattributed":
+            out.append(
+                f"{where}: the flip at {changes} changes more than {max_subset} entries and is filed as {f['side']}"
+            )
         if f["side"] != side and not (f["side"] == "unattributed" and f.get("note")):
             out.append(f"{where}: the flip at {changes} is filed as {f['side']}, its entries make it {side}")
         smaller = [c for c in flipping if _items(c["changed"]) < _items(f["changed"])]
