@@ -332,3 +332,15 @@ def test_a_hand_built_record_names_single_and_joint_conditions_and_keeps_determi
     assert rec["register"] == [WORLD.to_dict(), READING.to_dict()]
     det = Robustness([WORLD], conds[:1], {1: 0.0}, note="a closed form", deterministic=True).record(BAND, 0.0)
     assert det["deterministic"] is True and det["coverage"].endswith("x deterministic (no random draw)")
+
+
+def test_a_part_the_measurement_left_out_is_undecided_in_the_claim_and_its_record():
+    rule = AllOf({"a": BAND, "b": BAND})
+    j = rule.judge({"a": Estimate.exact(0.0), "b": None})
+    assert (j.verdict, j.settled, j.runs_factor) == ("undecided", False, math.inf)
+    assert "(b) undecided: not measured" in j.why
+    assert rule.judge({"a": Estimate.exact(3.0), "b": None}).verdict == "undecided"  # the open part could be partly
+    reps = [{"seed": s, "measured": {"a": Estimate.exact(0.0), "b": Estimate.exact(0.0)}} for s in (1, 2, 3)]
+    cond = _single({"motion": "weave"}, {"a": Estimate.exact(0.0), "b": None}, runs=3)
+    rec = label_parts(rule, reps[0]["measured"], reps, [cond], [WORLD])
+    assert rec["conditions"][0]["verdict"] == "undecided" and rec["conditions"][0]["parts"] == {"a": "reproduced"}

@@ -36,7 +36,7 @@ from typing import Any, Mapping, Sequence
 from .attribution import SENSITIVITY_METHOD, attribute, phrase, sensitivity, share
 from .measured import lost_runs
 from .register import WORLD_KINDS
-from .verdicts import LABELS, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
+from .verdicts import LABELS, NOT_MEASURED, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
 
 __all__ = [
     "MIN_SHARE_DESIGN",
@@ -316,7 +316,7 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     """One part's record: its pooled verdict (``pair``: (rule, measured) at the default, None when the part was
     not measured), label, where-lines, replicate verdicts, share, flips, sensitivity and runs to decide;
     ``ctx`` holds the claim's rows and design (:func:`label_parts`)."""
-    j = pair[0].judge(pair[1]) if pair else Judgement("undecided", "not measured", False, math.inf)
+    j = pair[0].judge(pair[1]) if pair else NOT_MEASURED
     rv = [r["parts"][name] for r in ctx["rep_rows"] if name in r["parts"]]
     rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
     flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None)

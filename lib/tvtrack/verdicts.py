@@ -47,6 +47,7 @@ from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated
 __all__ = [
     "VERDICTS",
     "LABELS",
+    "NOT_MEASURED",
     "as_estimate",
     "calibrated",
     "is_undecided",
@@ -91,6 +92,10 @@ class Judgement:
     why: str
     settled: bool = True
     runs_factor: float = 1.0
+
+
+#: A part whose value the measurement left out (``None``): undecided, and no number of runs decides it.
+NOT_MEASURED = Judgement("undecided", "not measured", False, math.inf)
 
 
 class Rule(ABC):
@@ -426,7 +431,8 @@ class AllOf(Rule):
     """Every part of a composite claim, each by its own rule: ``reproduced`` when all parts are,
     ``not reproduced`` when all decided parts are not, ``partly`` only when decided parts disagree,
     ``undecided`` when the decided parts agree but some part is undecided (it could still go either
-    way) -- a part too small to decide never makes a claim ``partly``."""
+    way) -- a part too small to decide never makes a claim ``partly``. A part measured as ``None`` (left
+    out by the measurement) is undecided (:data:`NOT_MEASURED`)."""
 
     parts: Mapping[str, Rule] = field(default_factory=dict)
     kind = "all_of"
@@ -445,7 +451,10 @@ class AllOf(Rule):
         missing = [name for name in self.parts if name not in measured]
         if missing:
             raise ValueError(f"AllOf: measured lacks the parts {missing}")
-        decided = {name: rule.judge(measured[name]) for name, rule in self.parts.items()}
+        decided = {
+            name: NOT_MEASURED if measured[name] is None else rule.judge(measured[name])
+            for name, rule in self.parts.items()
+        }
         checked = {n: j for n, j in decided.items() if j.verdict != "not checkable"}
         why = "; ".join(f"({name}) {j.verdict}: {j.why}" for name, j in decided.items())
         if not checked:
