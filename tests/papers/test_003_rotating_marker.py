@@ -411,19 +411,6 @@ def test_state_errors_wrap_the_phase():
     np.testing.assert_allclose(e[0, :, 3], [2 * np.pi - 6.2, 6.2 - 2 * np.pi], atol=1e-12)
 
 
-def test_band_power_share_of_a_tone_and_of_white_noise():
-    from tvtrack.papers.p003_rotating_marker_tracker.loops import band_power_share
-
-    fs, t = 500.0, np.arange(4000) / 500.0
-    rng = np.random.default_rng(8)
-    tone = np.sin(2 * np.pi * 8.0 * t) + 0.01 * rng.standard_normal((3, t.size))
-    share, f, p = band_power_share(tone, fs, 7.0, 9.0)
-    assert np.all(share > 0.85) and p.shape == (3, f.size)  # the Hann window leaks ~10 % out of the band
-    white, _, _ = band_power_share(rng.standard_normal((3, t.size)), fs, 7.0, 9.0)
-    in_band = np.sum((f >= 7.0) & (f <= 9.0))  # a flat PSD: the band's share of the bins
-    assert np.all(np.abs(white - in_band / f.size) < 0.006)
-
-
 def test_slope_helpers_match_the_predicted_slopes():
     from tvtrack.papers.p003_rotating_marker_tracker.discriminators import quadrant_slope_fit, two_emitter_slope
 
