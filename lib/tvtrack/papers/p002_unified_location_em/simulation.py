@@ -7,8 +7,7 @@ initialisation/association and the number of trials. :func:`run_config` draws it
 which other configurations are computed), runs the unified location EM
 (:func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em`), the two-stage algorithms of
 :mod:`tvtrack.papers.p002_unified_location_em.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb`
-on the same samples, and returns the per-trial errors (cached by :mod:`.study` and by
-:class:`~.location_study.LocationStudy`).
+on the same samples, and returns the per-trial errors (cached by :mod:`.study`).
 
 Units: errors are in sigma (the PSF standard deviation), after matching the estimated labels to
 the truth (all ``Q!`` orders, :func:`~tvtrack.papers.p002_unified_location_em.em.match_labels`).
