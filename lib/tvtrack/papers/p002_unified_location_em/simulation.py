@@ -354,44 +354,19 @@ def _run_extras(x, out: dict) -> None:
     algs = cfg.algs
     q, m, vsd = cfg.q, cfg.m, cfg.vsd
     g, noise_pp, block = x.g, x.noise_pp, x.block
+
+    def em(designation, p_, p0_, **options):
+        return unified_location_em(ent, designation, s, p_, p0_, tol_px=tol, max_iter=s_.max_iter, **options)
+
     if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
-        r = unified_location_em(
-            ent,
-            b.designation,
-            s,
-            p,
-            p0,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            accelerate=accel,
-            prior_sd=(1e6 * s, vsd * s),
-        )
+        r = em(b.designation, p, p0, accelerate=accel, prior_sd=(1e6 * s, vsd * s))
         out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
         p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
-        r = unified_location_em(
-            ent,
-            b.designation.mean(axis=1, keepdims=True),
-            s,
-            p1,
-            p01,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            accelerate=accel,
-        )
+        r = em(b.designation.mean(axis=1, keepdims=True), p1, p01, accelerate=accel)
         out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
     if "w" in algs:
-        r = unified_location_em(
-            ent,
-            b.designation,
-            s,
-            p,
-            p0,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            estimate_weights=True,
-            estimate_sigma=True,
-        )
+        r = em(b.designation, p, p0, estimate_weights=True, estimate_sigma=True)
         out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "s" in algs:
         ms_rng = np.random.default_rng(seed_sequence(block, scene_key(cfg) + ("ms",)))
