@@ -13,7 +13,6 @@ from tvtrack.papers.p003_rotating_marker_tracker.discriminators import (
     polar_errors,
     quadrant_discriminator,
     quadrant_noise,
-    quadrant_sums,
     quadrant_weights,
     static_characteristic,
     two_emitter_discriminator,
@@ -37,6 +36,17 @@ from tvtrack.papers.p003_rotating_marker_tracker.backdrop import correlated_back
 from tvtrack.render import box_spot, pixel_fractions_box
 
 D, A = 8.0, 12.0
+
+
+def quadrant_sums(crops, origin, centre, half):
+    """The paper's four quadrant integrals ``u1..u4`` (u1: x < x_m, y > y_m; u2: x > x_m, y > y_m; u3: x < x_m,
+    y < y_m; u4: x > x_m, y < y_m), each ``half x half`` px, from the pixels' overlaps with each half-gate."""
+    rows, cols = crops.shape[-2:]
+    cx, cy, ox, oy = centre[:, 0], centre[:, 1], origin[:, 0], origin[:, 1]
+    xl, xr = interval_weights(cx - half, cx, cols, ox), interval_weights(cx, cx + half, cols, ox)
+    yl, yu = interval_weights(cy - half, cy, rows, oy), interval_weights(cy, cy + half, rows, oy)
+    pairs = ((yu, xl), (yu, xr), (yl, xl), (yl, xr))
+    return np.stack([np.einsum("ny,nyx,nx->n", wy, crops, wx) for wy, wx in pairs], axis=-1)
 
 
 def _renderer(spot):
