@@ -20,7 +20,6 @@ is built by the package and handed to the core.
 
 from __future__ import annotations
 
-import ast
 import json
 import tomllib
 from collections.abc import Callable, Mapping
@@ -29,7 +28,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from .parameters import COMMON_RULES, ParamRule, validate_parameters
+from .parameters import COMMON_RULES, ParamRule, cell_literals, validate_parameters
 from .register import Register
 from .verdicts import Rule
 
@@ -92,19 +91,6 @@ class Measurement:
         return self.function(dict(config), seed, **{self.keyword: sizes})
 
 
-def _cell_literals(source: str) -> dict[str, Any]:
-    out = {}
-    for node in ast.parse(source).body:
-        if isinstance(node, ast.Assign):
-            for target in node.targets:
-                if isinstance(target, ast.Name):
-                    try:
-                        out[target.id] = ast.literal_eval(node.value)
-                    except ValueError:
-                        out[target.id] = None
-    return out
-
-
 def notebook_defaults(notebook: Path) -> dict[str, Any]:
     """``{name: value}`` of a notebook's first code cell (its ``parameters`` cell; literal values only).
 
@@ -117,7 +103,7 @@ def notebook_defaults(notebook: Path) -> dict[str, Any]:
     if not cells or "parameters" not in cells[0].get("metadata", {}).get("tags", []):
         raise ValueError(f"{Path(notebook).name}: the first code cell is not tagged 'parameters'")
     source = cells[0]["source"]
-    return _cell_literals("".join(source) if isinstance(source, list) else source)
+    return cell_literals("".join(source) if isinstance(source, list) else source)
 
 
 @dataclass(frozen=True, eq=False)

@@ -24,7 +24,7 @@ from .wording import (
     value_clause,
 )
 
-__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "record_flip_entries"]
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations"]
 
 
 def _plural(n: int, word: str) -> str:
@@ -237,12 +237,3 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
 def _lower(text: str) -> str:
     """A statement continued inside a sentence: its first letter lowered unless it starts an acronym or a name."""
     return text[:1].lower() + text[1:] if text[:2].istitle() and not text[:2].isupper() else text
-
-
-def record_flip_entries(claim: Mapping) -> list[str]:
-    """The register entry names of the claim's smallest flipping configurations (singles and combinations)."""
-    names: list[str] = []
-    for f in claim_flips(claim):
-        if f.get("kind") in ("single", "combination"):
-            names += [str(k) for k in f.get("changed") or {} if str(k) not in names]
-    return names

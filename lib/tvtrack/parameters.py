@@ -16,6 +16,7 @@ allowed range before any simulation starts::
 from __future__ import annotations
 
 import abc
+import ast
 import math
 import numbers
 from dataclasses import dataclass
@@ -35,6 +36,7 @@ __all__ = [
     "SchedulerAddress",
     "validate_parameters",
     "COMMON_RULES",
+    "cell_literals",
 ]
 
 
@@ -284,3 +286,18 @@ def validate_parameters(namespace: Mapping[str, Any], rules: Mapping[str, ParamR
         except (TypeError, ValueError):
             raise ValueError(f"parameter {name!r} = {value!r} is out of range; it must be {rule.describe()}") from None
     return checked
+
+
+def cell_literals(source: str) -> dict[str, Any]:
+    """``{name: value}`` of every assignment in a notebook's ``parameters`` cell: the literal value, or ``None``
+    where the value is not a Python literal."""
+    out = {}
+    for node in ast.parse(source).body:
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                if isinstance(target, ast.Name):
+                    try:
+                        out[target.id] = ast.literal_eval(node.value)
+                    except ValueError:
+                        out[target.id] = None
+    return out

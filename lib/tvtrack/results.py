@@ -41,6 +41,7 @@ from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .paragraphs import paper_paragraph, results_summary
 from .numbers import format_measured
+from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
     GLOSSARY,
     LABEL_WORDS,
@@ -77,6 +78,7 @@ __all__ = [
     "VERDICT_WORDS",
     "LABEL_WORDS",
     "FINDINGS_ID",
+    "cell_literals",
 ]
 
 #: The display id of a notebook's findings cell, filled in when the run finishes.

@@ -6,7 +6,6 @@ import pytest
 from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import (
     detection_time_summary,
     false_alarm_rates,
-    first_detection_roc,
 )
 from tvtrack.papers.p001_maneuver_occlusion_kf.track_modes import manoeuvre_truth
 
@@ -36,23 +35,6 @@ def test_detection_time_summary_splits_early_hits_and_misses():
     assert s["median_s"].value == pytest.approx(1.25)  # hits at 1.2 1.2 1.2 1.3 1.4 3.0 s (after the loss too)
     assert s["mean_s"].value == pytest.approx(np.mean([1.2, 1.3, 1.4, 3.0, 1.2, 1.2]))
     assert detection_time_summary(np.array([-1, -1]), 10, 20, 10.0)["median_s"] is None
-
-
-def test_first_detection_roc_ideal_and_useless_statistics():
-    rng = np.random.default_rng(1)
-    T, onset = 30, 20
-    armed = np.arange(T) >= 5
-    null = rng.standard_normal((4000, T))
-    alt = rng.standard_normal((500, T))
-    pfa_targets = np.array([1e-2, 1e-1])
-    pfa, pd = first_detection_roc(alt, null, armed, onset, pfa_targets)
-    np.testing.assert_allclose(pfa, pfa_targets, rtol=0.05)
-    # a useless statistic: detection needs no alarm in the 15 armed frames before the onset, then one in 10
-    expect = (1 - pfa_targets) ** 15 * (1 - (1 - pfa_targets) ** 10)
-    np.testing.assert_allclose(pd, expect, atol=0.05)
-    alt[:, onset:] += 100.0  # an ideal one: always detects at the onset
-    _, pd = first_detection_roc(alt, null, armed, onset, pfa_targets)
-    np.testing.assert_allclose(pd, (1 - pfa_targets) ** 15, atol=0.06)
 
 
 def test_manoeuvre_truth_is_uniform_then_quadratic():

@@ -5,14 +5,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from tvtrack.papers.p002_unified_location_em.location_study import LocationStudy
-from tvtrack.papers.p002_unified_location_em.simulation import Config, seed_sequence
+from tvtrack.papers.p002_unified_location_em.simulation import Config, run_config, seed_sequence
 from tvtrack.papers.p002_unified_location_em.sim_config import CANONICAL_SETTINGS
 from tvtrack.papers.p002_unified_location_em.summaries import (
     bootstrap_groups,
-    failure_metrics,
     position_errors,
-    seed_blocks,
     variance_ratio_ci,
     variance_sum,
 )
@@ -27,6 +24,26 @@ SETTINGS = replace(
     crb_phases=2,
     n_trials=24,
 )
+
+
+def _config(q, d, pix, m, T, algs, variant=()) -> Config:
+    """A configuration at the test settings' designation errors and trial count."""
+    st = SETTINGS
+    return Config(
+        q,
+        d,
+        pix,
+        m,
+        T,
+        algs,
+        st.designation_sd_sigma,
+        None,
+        None,
+        st.n_trials,
+        "main",
+        st.designation_velocity_sd,
+        tuple(sorted(dict(variant).items())),
+    )
 
 
 def test_variance_ratio_ci_matches_closed_form_and_covers_truth():
@@ -77,51 +94,34 @@ def test_seed_sequence_depends_on_values_only():
     assert not np.array_equal(a, seed_sequence(6, (2, 1.0, "u", None)).generate_state(2))
 
 
-def test_study_shares_scenes_between_algorithms_and_is_reproducible():
-    study = LocationStudy(SETTINGS, n_workers=1)
-    c_u = study.config(2, 3.0, 1.0, 20, 4, "ur")
-    c_e = study.config(2, 3.0, 1.0, 20, 4, "e")
-    assert isinstance(c_u, Config) and c_u.n == 24 and c_u.dsd == 0.3
-    study.compute([c_u, c_e])
-    assert len(study) == 1 and c_e in study
-    r = study[c_u]
+def test_a_configuration_shares_its_scenes_between_algorithms_and_is_reproducible():
+    c_u = _config(2, 3.0, 1.0, 20, 4, "u")
+    c_ue = _config(2, 3.0, 1.0, 20, 4, "ue")
+    assert c_ue.n == 24 and c_ue.dsd == 0.3
+    r = run_config(SETTINGS, c_ue)
     assert r["ula"].shape == (24, 2, 4) and r["em"].shape == (24, 2, 4)
-    blocks = seed_blocks(r)
-    assert sorted(blocks) == [7] and blocks[7].sum() == 24  # one seed: replicates are whole runs
+    assert np.unique(r["seed"]).tolist() == [7]  # one seed: replicates are whole runs
+    # the ULA alone sees the scenes it sees beside the marks
+    np.testing.assert_array_equal(run_config(SETTINGS, c_u)["ula"], r["ula"])
     # epochs: the mid-frame error is the first-frame error plus (T-1)/2 velocity errors
     mid = position_errors(r, "ula", "mid")
     np.testing.assert_allclose(mid, (r["ula"][..., :2] + 1.5 * r["ula"][..., 2:]).reshape(24, -1))
-    assert position_errors(r, "ula", "velocity", blocks[7]).shape == (24, 4)
-    assert np.isfinite(r["crb_pos"]) and r["crb_pos"] > 0
+    assert position_errors(r, "ula", "velocity", r["seed"] == 7).shape == (24, 4)
     # the ULA on well-separated objects is near its CRB (loose: 24 trials)
+    r_crb = run_config(SETTINGS, _config(2, 3.0, 1.0, 20, 4, "ur"))
+    assert np.isfinite(r_crb["crb_pos"]) and r_crb["crb_pos"] > 0
     v = variance_sum(position_errors(r, "ula"))
-    assert 0.3 < v.value / r["crb_pos"] < 3.0
-    again = LocationStudy(SETTINGS, n_workers=1)
-    again.compute([c_u])
-    np.testing.assert_array_equal(again[c_u]["ula"], r["ula"])
-    rates = failure_metrics(r)
-    assert set(rates) >= {"ula/gross_rate", "ula/merge_rate", "em/gross_rate", "em/missing_marks_rate"}
-    assert not any("swap" in k for k in rates)  # a label swap costs nothing: not a failure
-
-
-def test_bad_workers_raise():
-    with pytest.raises(ValueError, match="n_workers"):
-        LocationStudy(SETTINGS, n_workers=0)
+    assert 0.3 < v.value / r_crb["crb_pos"] < 3.0
 
 
 def test_settings_variant_redraws_the_default_scenes_and_applies_its_settings():
-    study = LocationStudy(SETTINGS, n_workers=1)
-    default = study.config(2, 1.0, 3.0, 20, 6, "ue")
-    capped = study.config(2, 1.0, 3.0, 20, 6, "ue", variant={"max_iter": 1, "accelerate": "none"})
-    same = study.config(2, 1.0, 3.0, 20, 6, "ue", variant={"max_iter": SETTINGS.max_iter})
-    study.compute([default, capped, same])
-    assert len(study) == 3
+    default = run_config(SETTINGS, _config(2, 1.0, 3.0, 20, 6, "ue"))
+    capped = run_config(SETTINGS, _config(2, 1.0, 3.0, 20, 6, "ue", {"max_iter": 1, "accelerate": "none"}))
+    same = run_config(SETTINGS, _config(2, 1.0, 3.0, 20, 6, "ue", {"max_iter": SETTINGS.max_iter}))
     # common random numbers: the same truth, and a variant equal to the settings gives the same estimates
-    np.testing.assert_array_equal(study[capped]["truth"], study[default]["truth"])
-    np.testing.assert_array_equal(study[same]["ula"], study[default]["ula"])
+    np.testing.assert_array_equal(capped["truth"], default["truth"])
+    np.testing.assert_array_equal(same["ula"], default["ula"])
     # the cap applies: one plain EM step per ULA fit (and per frame for the marks), so the estimates differ
-    assert study[capped]["ula_iter"].max() == 1 and study[default]["ula_iter"].max() > 1
-    assert study[capped]["em_iter"].max() <= 6
-    assert not np.array_equal(study[capped]["ula"], study[default]["ula"])
-    with pytest.raises(ValueError, match="variant"):
-        study.config(2, 1.0, 3.0, 20, 6, variant={"max_iterations": 3})
+    assert capped["ula_iter"].max() == 1 and default["ula_iter"].max() > 1
+    assert capped["em_iter"].max() <= 6
+    assert not np.array_equal(capped["ula"], default["ula"])

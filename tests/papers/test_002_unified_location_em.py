@@ -25,7 +25,6 @@ from tvtrack.papers.p002_unified_location_em.two_stage import (
 )
 from tvtrack.papers.p002_unified_location_em.model import (
     draw_truth,
-    expected_counts,
     frame_times,
     mixture_weights,
     pixel_probabilities,
@@ -33,6 +32,12 @@ from tvtrack.papers.p002_unified_location_em.model import (
     scene_geometry,
     simulate_counts,
 )
+
+
+def expected_counts(theta, times, shape, sigma_px, photons: float, noise_per_pixel: float) -> np.ndarray:
+    """Expected photon counts ``m sum_j F_j + b`` per pixel, shape (..., T, rows, cols): the mean the simulated
+    counts must reach."""
+    return photons * pixel_probabilities(theta, times, shape, sigma_px).sum(axis=-4) + noise_per_pixel
 
 
 def _batch(seed, n, q=2, T=5, d=3.0, pix=1.0, m=20, rho=0.01, dsd=0.3, model="fixed"):

@@ -13,7 +13,6 @@ from tvtrack.papers.p004_laser_spot_prediction.prediction_study import (
     ComparisonSetup,
     compare_methods,
     per_trial_path_mse,
-    radial_error_summary,
 )
 from tvtrack.papers.p004_laser_spot_prediction import learned
 
@@ -75,12 +74,3 @@ def test_learned_models_train_on_other_paths_and_can_be_reused():
     for name in ("MLP back-prop", "RBF network"):
         np.testing.assert_array_equal(again.mse[name], c.mse[name])  # the given models, not retrained
         assert np.all(np.isfinite(c.mse[name]))
-
-
-def test_radial_summary_of_a_known_error():
-    fc = np.zeros((1, 1, 2, 50))
-    ref = np.zeros((1, 1, 2, 50))
-    ref[..., 0, :] = 3.0
-    ref[..., 1, :] = 4.0
-    s = radial_error_summary(fc, ref, 1, 5)
-    assert s["rms"] == pytest.approx(5.0) and s["max"] == pytest.approx(5.0) and s["p95"] == pytest.approx(5.0)

@@ -138,25 +138,6 @@ def test_hold_last_fills_gaps_forward_and_leading_gaps_backward():
     assert np.all(np.isnan(out[1]))
 
 
-def test_error_summary_of_a_known_error_pattern():
-    # trials x paths x axes x T; forecast = reference shifted by one frame plus a path-dependent error
-    T = 30
-    ref = np.zeros((2, 3, 2, T))
-    fc = ref + np.array([0.5, 1.0, 2.0])[None, :, None, None]
-    fc[0, 2, 0, 10] = 7.0  # one outlier on path 3
-    s = pr.error_summary(fc, ref, 1, start=5)
-    np.testing.assert_allclose(s["per_path_rms"][:2], [0.5, 1.0])
-    n3 = 2 * 2 * (T - 5)
-    np.testing.assert_allclose(s["per_path_rms"][2], np.sqrt(((n3 - 1) * 4.0 + 49.0) / n3))
-    assert s["max"] == 7.0
-    np.testing.assert_allclose(s["per_path_p95"], [0.5, 1.0, 2.0])
-    direct = pr.forecast_rms_ci(fc, ref, 1, start=5)
-    assert s["rms"].n == 3 and s["rms"].value == direct.value and s["rms"].method == direct.method
-    # three paths are too few for a measured coverage: the interval is left undefined (undecided), not made up
-    assert np.isnan(s["rms"].ci_low) and np.isnan(direct.ci_low) and "coverage unmeasured" in direct.method
-    assert pr.errors_by_path(pr.forecast_errors(fc, ref, 1), 5).shape == (3, n3)
-
-
 def test_constant_acceleration_forecast_uses_each_folds_fit_on_its_test_paths():
     rng = np.random.default_rng(3)
     z = np.cumsum(np.cumsum(rng.normal(0, 0.05, (2, 6, 80)), -1), -1) + rng.normal(0, 0.1, (2, 6, 80))

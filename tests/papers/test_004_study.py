@@ -241,26 +241,6 @@ def test_horizon_sentence_names_the_settings_on_a_grid_edge():
     assert fd._horizon_edges({}) == ""
 
 
-def test_conclusion_lines_state_every_part_as_the_claims_table_does():
-    from types import SimpleNamespace
-
-    parts = {
-        "finite differences, 2 points": {"verdict": "not reproduced", "label": "depends"},
-        "cubic spline": {"verdict": "reproduced", "label": "robust"},
-    }
-    claims = [
-        SimpleNamespace(id="C004-3", verdict="partly", robustness={"label": "depends", "parts": parts}),
-        SimpleNamespace(id="C004-1", verdict="reproduced", robustness={"label": "robust", "parts": {"claim": {}}}),
-        SimpleNamespace(id="C004-7", verdict="not checkable", robustness=None),
-    ]
-    text = fd.verdict_lines(claims).splitlines()
-    assert text[0] == (
-        "- C004-3: partly, depends (finite differences, 2 points: not reproduced, depends; "
-        "cubic spline: reproduced, robust)"
-    )
-    assert text[1:] == ["- C004-1: reproduced, robust", "- C004-7: not checkable, -"]
-
-
 def test_late_rms_ratio_is_the_root_of_the_mean_square_ratio():
     rng = np.random.default_rng(1)
     ref = np.zeros((1, 5, 2, 100))

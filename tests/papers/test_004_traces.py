@@ -17,7 +17,6 @@ from tvtrack.papers.p004_laser_spot_prediction.beam_wander import (
     one_frame_motion_rms,
     optimal_wander_forecast,
     scaled_config,
-    with_frame_jitter,
     wander_state_space,
 )
 from tvtrack.papers.p004_laser_spot_prediction.traces import TraceSet, load_traces, save_traces, sha256_file
@@ -209,21 +208,6 @@ def test_one_frame_motion_matches_the_generated_increments():
     assert abs(np.sqrt(np.mean(d**2)) / expected - 1) < 0.03  # 120k increments, correlated over ~1 s
     shares = [c["variance_share"] for c in component_table(cfg)]
     np.testing.assert_allclose(sum(shares), 1.0)
-
-
-def test_frame_jitter_variant_is_white_with_the_stated_rms_and_leaves_the_data_alone():
-    tr = _small(n_paths=3, n_frames=800)
-    before = tr.centres_px.copy()
-    v = with_frame_jitter(tr, 2.0, seed=9)
-    np.testing.assert_array_equal(tr.centres_px, before)
-    j = v.centres_px - tr.centres_px
-    sd = np.asarray(v.metadata["variant"]["jitter_rms_px"])
-    cfg = BeamWanderConfig(n_paths=3, n_frames=800)
-    np.testing.assert_allclose(sd, 2.0 * one_frame_motion_rms(cfg, np.asarray(tr.metadata["wander_rms_px"])))
-    np.testing.assert_allclose(j.std(axis=1) / sd[:, None], 1.0, atol=0.1)  # 1600 draws per path: sd 1.8 %
-    r1 = np.mean(j[:, 1:] * j[:, :-1]) / np.mean(j * j)
-    assert abs(r1) < 0.03
-    np.testing.assert_array_equal(with_frame_jitter(tr, 2.0, seed=9).centres_px, v.centres_px)
 
 
 def test_aliased_corners_only_on_request_and_not_recorded_by_default():

@@ -16,26 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["gaussian_fisher_information", "expected_over_gaussian", "pcrlb_recursion"]
-
-
-def gaussian_fisher_information(dmean, var, dvar=0.0):
-    """Fisher information of a scalar Gaussian sample about a scalar parameter.
-
-    Parameters
-    ----------
-    dmean : array_like   derivative of the mean ``d mu / dx``
-    var : array_like     variance ``R`` (> 0)
-    dvar : array_like    derivative of the variance ``d R / dx``
-
-    Returns
-    -------
-    ndarray  ``dmean^2 / var + dvar^2 / (2 var^2)`` (broadcast shape)
-    """
-    var = np.asarray(var, dtype=float)
-    if np.any(var <= 0):
-        raise ValueError("parameter 'var' must be > 0 everywhere")
-    return np.asarray(dmean) ** 2 / var + 0.5 * (np.asarray(dvar) / var) ** 2
+__all__ = ["expected_over_gaussian", "pcrlb_recursion"]
 
 
 def expected_over_gaussian(func, mean, var, order: int = 41):

@@ -17,8 +17,7 @@ cross-covariance is ``E[e_{k+m} e_k^T] = A^m P``.
 
 A growing-memory filter floored at ``N_f`` (gains frozen at ``K(N_f)``) is a fixed-gain
 alpha-beta-gamma filter with ``alpha = g_1``, ``beta = g_2``, ``gamma = g_3 / 2`` (the g-h-k form
-``x'' += 2 gamma e``); :func:`floor_bandwidth_map` gives its noise reduction and bandwidth as
-functions of ``N_f``.
+``x'' += 2 gamma e``), whose stationary error is :func:`steady_state_covariance`.
 
 All filter functions broadcast over leading batch axes (trials, channels); time is the axis
 just before the state axis.
@@ -44,9 +43,6 @@ __all__ = [
     "filter_step",
     "GainScheduleFilter",
     "scheduled_filter",
-    "abg_variance_reduction",
-    "floor_variance_reduction",
-    "floor_bandwidth_map",
 ]
 
 _ORDERS = (1, 2)
@@ -320,104 +316,3 @@ class GainScheduleFilter(SequentialFilter):
             x_new = np.where(m[..., None], x_new, x)
             P_new = np.where(m[..., None, None], P_new, P)
         return x_new, P_new, nu, S
-
-
-def abg_variance_reduction(K):
-    """Variance reduction ratios (white measurement noise in, position error out, per sigma^2) of a
-    fixed-gain alpha-beta-gamma filter, closed forms (Brookner 1998, Sect. 1.3; Asquith & Woods
-    1970), with ``g = K_1``, ``h = K_2``, ``k = K_3 / 2``:
-
-    - filtered, ``x_{n,n}``: ``[h(2g^2 + 2h - 3gh) - gk(4 - 2g - h)] / [(4 - 2g - h)(gh + gk - 2k)]``;
-    - one-step prediction, ``x_{n+1,n}``:
-      ``[gk(2g + h - 4) + h(g(2g + h) + 2h)] / [(2k - g(h + k))(2g + h - 4)]``.
-
-    (They equal the ``[0, 0]`` entries of :func:`steady_state_covariance` and of ``F P F^T``;
-    filterpy's ``GHKFilter.VRF`` groups the denominators differently and does not.)
-
-    Parameters
-    ----------
-    K : array_like, shape (..., 3)
-        Gains ``(g_1, g_2, g_3)`` per frame; the closed loop must be stable.
-
-    Returns
-    -------
-    filtered, predicted : ndarray, shape (...)
-    """
-    K = np.asarray(K, dtype=float)
-    if K.shape[-1] != 3:
-        raise ValueError(f"parameter 'K' has {K.shape[-1]} components; it must have 3 (alpha-beta-gamma)")
-    g, h, k = K[..., 0], K[..., 1], K[..., 2] / 2
-    filtered = (h * (2 * g**2 + 2 * h - 3 * g * h) - g * k * (4 - 2 * g - h)) / (
-        (4 - 2 * g - h) * (g * h + g * k - 2 * k)
-    )
-    predicted = (g * k * (2 * g + h - 4) + h * (g * (2 * g + h) + 2 * h)) / ((2 * k - g * (h + k)) * (2 * g + h - 4))
-    return filtered, predicted
-
-
-def floor_variance_reduction(floor_memory):
-    """:func:`abg_variance_reduction` of the growing-memory filter frozen at ``N_f`` = ``floor_memory``
-    (order 2), as rational functions of ``N = N_f`` (the gains of :func:`closed_form_gains` substituted
-    and simplified):
-
-    ``filtered = 3(51N^4 - 264N^3 + 478N^2 - 373N + 114) / D``,
-    ``predicted = 3(51N^4 + 60N^3 - 8N^2 + 5N + 6) / D``,
-    ``D = (2N - 1)(N^2 - N - 3)(11N^2 - 11N - 6)``;
-
-    both ``-> 153 / (22 N)`` as ``N -> inf``, against ``g_{N,1} -> 9 / N`` for the growing memory at
-    ``N`` samples: a frozen filter smooths like a growing memory of about ``1.29 N_f`` samples.
-
-    Parameters
-    ----------
-    floor_memory : int or array_like, shape (...)
-        ``N_f >= 3``.
-
-    Returns
-    -------
-    filtered, predicted : ndarray, shape (...)
-    """
-    N = np.asarray(floor_memory, dtype=float)
-    if np.any(N < 3):
-        raise ValueError(f"parameter 'floor_memory' has values < 3 (min {N.min()}); it must be >= 3")
-    D = (2 * N - 1) * (N**2 - N - 3) * (11 * N**2 - 11 * N - 6)
-    return (
-        3 * (51 * N**4 - 264 * N**3 + 478 * N**2 - 373 * N + 114) / D,
-        3 * (51 * N**4 + 60 * N**3 - 8 * N**2 + 5 * N + 6) / D,
-    )
-
-
-def floor_bandwidth_map(floor_memory, frame_rate_hz: float) -> dict:
-    """The floor ``N_f`` as an alpha-beta-gamma filter: gains, noise reduction, bandwidth.
-
-    Parameters
-    ----------
-    floor_memory : array_like of int, shape (M,)
-        ``N_f >= 3``.
-    frame_rate_hz : float
-        Frame rate, Hz (> 0).
-
-    Returns
-    -------
-    dict of ndarray, shape (M,)
-        ``alpha, beta, gamma`` (per frame: ``g_1, g_2, g_3 / 2``); ``vrr_filtered``,
-        ``vrr_predicted`` (:func:`floor_variance_reduction`); ``noise_bandwidth_hz``, the one-sided
-        noise-equivalent bandwidth of the filtered position, ``vrr_filtered * frame_rate_hz / 2``
-        (white noise of variance ``sigma^2`` over ``[0, f_s/2]`` passes ``sigma^2 * 2B / f_s``);
-        ``equivalent_memory``, the number of samples ``N`` at which the *growing* memory has the same
-        variance, ``g_{N,1} = vrr_filtered`` (largest root of ``3(3N^2 - 3N + 2) = v N(N+1)(N+2)``).
-    """
-    if not frame_rate_hz > 0:
-        raise ValueError(f"parameter 'frame_rate_hz' = {frame_rate_hz!r}; it must be > 0")
-    N = np.atleast_1d(np.asarray(floor_memory, dtype=float))
-    K = closed_form_gains(2, N)
-    filtered, predicted = floor_variance_reduction(N)
-    # v N^3 + 3v N^2 + 2v N - 9N^2 + 9N - 6 = 0
-    memory = np.array([np.max(np.roots([v, 3 * v - 9, 2 * v + 9, -6]).real) for v in filtered])
-    return {
-        "alpha": K[:, 0],
-        "beta": K[:, 1],
-        "gamma": K[:, 2] / 2,
-        "vrr_filtered": filtered,
-        "vrr_predicted": predicted,
-        "noise_bandwidth_hz": filtered * frame_rate_hz / 2,
-        "equivalent_memory": memory,
-    }

@@ -1,6 +1,6 @@
-"""The claims as the report and the site draw and count them: the verdict and label words in their order, one
-colour per verdict, the label a reader sees for a claim, and the two overview pictures (every claim against its
-band; claims by register entries).
+"""The claims as the report and the site draw and count them: the verdict and label words in their order, the label
+a reader sees for a claim, and the two overview pictures (every claim against its band; claims by register entries)
+in the colours of :data:`tvtrack.plotting.VERDICT_COLOURS`.
 
 Reads ``results.json`` claim dicts only (schema: :mod:`tvtrack.results`).
 """
@@ -11,7 +11,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from ..plotting import VERDICT_COLOURS as _CORE_VERDICT_COLOURS
+from ..plotting import VERDICT_COLOURS
 from ..results import shown_label
 from ..verdicts import LABELS, VERDICTS
 
@@ -19,7 +19,6 @@ __all__ = [
     "NO_LABEL",
     "ALL_VERDICTS",
     "ALL_LABELS",
-    "VERDICT_COLOURS",
     "LABEL_MARKERS",
     "robustness_label",
     "robustness_where",
@@ -42,17 +41,6 @@ ALL_LABELS = tuple(
 ) + tuple(lab for lab in LABELS if lab not in _LABEL_ORDER)
 """Every label a reader may see, strongest first (``provisional``: a design too small to label, a smoke run;
 ``limited``: holds under every reading of the paper but not in a named world beyond it)."""
-VERDICT_COLOURS = {
-    **{
-        "reproduced": "#009E73",
-        "partly": "#E69F00",
-        "not reproduced": "#D55E00",
-        "undecided": "#999999",
-        "not checkable": "#56B4E9",
-    },
-    **_CORE_VERDICT_COLOURS,
-}
-"""One colour per verdict, the palette of :mod:`tvtrack.plotting` (figures, recordings, report and site)."""
 LABEL_MARKERS = {
     "robust": "o",
     "limited": "P",

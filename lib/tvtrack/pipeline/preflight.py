@@ -10,7 +10,6 @@ throw-away ``output_dir``, before a run starts.
 
 from __future__ import annotations
 
-import ast
 import difflib
 import json
 import os
@@ -19,6 +18,8 @@ import sys
 import tempfile
 from pathlib import Path
 from typing import Any, Iterable
+
+from ..results import cell_literals
 
 __all__ = [
     "UsageError",
@@ -70,16 +71,7 @@ def code_cells(notebook: Path) -> list[str]:
 
 def parameter_defaults(notebook: Path) -> dict[str, Any]:
     """``{name: default}`` from the notebook's ``parameters`` cell (literal values only)."""
-    out = {}
-    for node in ast.parse(code_cells(notebook)[0]).body:
-        if isinstance(node, ast.Assign):
-            for target in node.targets:
-                if isinstance(target, ast.Name):
-                    try:
-                        out[target.id] = ast.literal_eval(node.value)
-                    except ValueError:
-                        out[target.id] = None
-    return out
+    return cell_literals(code_cells(notebook)[0])
 
 
 def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:

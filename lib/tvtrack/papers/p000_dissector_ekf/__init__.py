@@ -5,7 +5,7 @@ tracking system based on an image dissector", Avtometriya, 1995, No. 3.
 
 Modules: :mod:`.model` (the scan, the message, the data generators), :mod:`.ekf` (the paper's two EKFs),
 :mod:`.reference` (grid filter, PCRLB), :mod:`.baseline` (centroid + fixed-gain tracker), :mod:`.settling`
-(steady state, settling and acquisition), :mod:`.study` (measurement functions), :mod:`.register` (unstated
+(per-scan errors, acquisition times, the median ratio), :mod:`.study` (measurement functions), :mod:`.register` (unstated
 choices), :mod:`.claims` (the claims and their rules), :mod:`.params` (parameter rules), :mod:`.plots`,
 :mod:`.findings` and :mod:`.recording` (Rerun layout).
 

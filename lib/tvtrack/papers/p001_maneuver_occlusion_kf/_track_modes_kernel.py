@@ -16,6 +16,9 @@ They are a second implementation of the same equations (Fisenko et al. 2008, eq.
 - :func:`kernel_fast_python`: ``covariance=False`` (restarts A and B), the same steps minus the covariance;
   writes each frame's gain-table row (int16), which :attr:`~.track_modes.TrackModeOutput.gains` expands on access.
 
+The kernels write the Joseph step inline (:func:`_correct_covariance`): numba compiles scalar code per trial and
+cannot call the core's batched :func:`tvtrack.filters.kalman.joseph_covariance`, which the NumPy path uses.
+
 Both loop over trials and frames calling the steps of a frame (:func:`_count`, :func:`_predict_covariance`,
 :func:`_kalman_gains`, :func:`_correct_covariance`, :func:`_predict_state`, :func:`_correct_state`,
 :func:`_detect`, :func:`_restart_state`, :func:`_restart_covariance`), which numba inlines (:func:`_step`).

@@ -2,13 +2,16 @@
 mode logic of Fisenko et al. (2008) (eq. 1, eq. 14, E1 and the card §4.4-4.5 recursions) batched over trials, one
 Python loop over the frames of in-place operations on contiguous ``(B,)`` arrays (:class:`_FrameLoop`). The
 compiled per-trial kernels of :mod:`._track_modes_kernel` are a second implementation of the same steps, tested
-equal to this one (``tests/papers/test_001_track_modes_jit.py``)."""
+equal to this one (``tests/papers/test_001_track_modes_jit.py``). The covariance correction is the core's Joseph
+update (:func:`tvtrack.filters.kalman.joseph_covariance`); the state update stays inline, a fixed-gain table of eq. 1
+with its modes, not a Kalman filter's predict/update."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ...filters.alphabeta import observation_row
+from ...filters.kalman import joseph_covariance
 from ...filters.polynomial import polynomial_observation_row, taylor_transition
 from ._track_modes_kernel import COAST, TRACK2
 
@@ -155,9 +158,7 @@ class _FrameLoop:
             self.kalman = self.kalman & ~reached
             K0, K1, K2 = (np.where(self.kalman, Kk[:, i], Ki) for i, Ki in enumerate((K0, K1, K2)))
         Kc = np.stack(np.broadcast_arrays(K0, K1, K2), axis=-1) * seen[:, None]
-        IKh = np.eye(3) - Kc[:, :, None] * h
-        P = IKh @ Pp @ np.swapaxes(IKh, -1, -2) + s2 * Kc[:, :, None] * Kc[:, None, :]
-        self.P = 0.5 * (P + np.swapaxes(P, -1, -2))
+        self.P = joseph_covariance(Pp, Kc[:, :, None], h[None, :], s2)
         return K0, K1, K2
 
     def filter(self, t: int, K0, K1, K2) -> None:

@@ -17,8 +17,7 @@ Under no manoeuvre ``S ~ N(0, sigma_S^2)`` and ``c(alpha) = sigma_S Phi^{-1}(1 -
   :func:`variance_stationary` (``r`` from :func:`tvtrack.filters.alphabeta.lagged_covariances`);
 * exactly for a time-varying gain schedule by a state-space recursion on the filter's error
   augmented with the two window sums (memory linear in the run length),
-  :func:`scheduled_statistic_std`;
-* or by simulation under no manoeuvre, :func:`calibrate_threshold`.
+  :func:`scheduled_statistic_std` (checked against a simulation under no manoeuvre in the tests).
 """
 
 from __future__ import annotations
@@ -31,7 +30,6 @@ from ...filters.alphabeta import (
     gain_schedule,
     lagged_covariances,
     observation_row,
-    scheduled_filter,
 )
 from ...filters.polynomial import taylor_transition
 from ...estimate import Estimate
@@ -47,10 +45,8 @@ __all__ = [
     "velocity_autocovariance",
     "statistic_std",
     "scheduled_statistic_std",
-    "calibrate_threshold",
     "false_alarm_rates",
     "detection_time_summary",
-    "first_detection_roc",
     "null_quantile_threshold",
     "first_alarm_within",
     "track2_thresholds",
@@ -270,51 +266,6 @@ def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: f
     return np.where(np.isfinite(c), c, np.inf)
 
 
-def calibrate_threshold(
-    gains,
-    n: int,
-    alpha: float,
-    frames,
-    n_sims: int,
-    rng: np.random.Generator,
-    sigma_eps: float = 1.0,
-    confidence: float = 0.95,
-) -> Estimate:
-    """Threshold by simulation under no manoeuvre: the ``1 - alpha`` quantile of ``|S_t|``.
-
-    White Gaussian noise of RMS ``sigma_eps`` on a constant-velocity truth (the filter is
-    invariant to it, so zero truth is used) runs through the filter with ``gains``; ``|S_t|`` is
-    pooled over ``frames`` (marginal quantile), one value per simulation and frame.
-
-    Parameters
-    ----------
-    gains : array_like, shape (T, order+1)
-    frames : array_like of int
-        Frames at which the test is made (each >= 2n-1).
-    n_sims : int
-        Independent simulated runs.
-
-    Returns
-    -------
-    Estimate
-        The quantile with its order-statistic confidence interval (over simulations x frames;
-        the interval assumes independent values, so it is optimistic when several correlated
-        frames are pooled).
-    """
-    n = _check_window(n)
-    _check_alpha(alpha)
-    frames = np.atleast_1d(np.asarray(frames, dtype=int))
-    if np.any(frames < 2 * n - 1) or np.any(frames >= np.asarray(gains).shape[0]):
-        raise ValueError(f"parameter 'frames' must lie in [{2 * n - 1}, {np.asarray(gains).shape[0] - 1}]")
-    if n_sims < 1:
-        raise ValueError(f"parameter 'n_sims' = {n_sims}; it must be >= 1")
-    T = int(frames.max()) + 1
-    eps = sigma_eps * rng.standard_normal((n_sims, T))
-    v = scheduled_filter(eps, np.asarray(gains, dtype=float)[:T])[..., 1]
-    S = window_statistic(v, n)[:, frames]
-    return quantile_ci(np.abs(S), 1 - alpha, confidence)
-
-
 def false_alarm_rates(S, threshold, armed, before_onset, test_frame: int, arming_frame: int) -> dict:
     """False-alarm rates of ``|S| > c`` on no-manoeuvre runs, per test and per run.
 
@@ -404,40 +355,6 @@ def detection_time_summary(detection_frames, onset: int, loss_frame: int, frame_
         "false_alarm_before_onset": proportion_ci(int(early.sum()), d.size),
         "missed_by_loss": proportion_ci(int((missed | (d >= loss_frame)).sum()), d.size),
     }
-
-
-def first_detection_roc(stat_alt, stat_null, armed, onset: int, pfa_targets):
-    """ROC of a first-detection rule: detect within ``[onset, T)`` with no alarm before the onset.
-
-    Both statistics must already be normalised by their null scale per frame, so one threshold
-    applies to every frame. Thresholds are the ``1 - pfa`` quantiles of the null statistic pooled
-    over the armed frames.
-
-    Parameters
-    ----------
-    stat_alt : array_like, shape (..., T)
-        Statistic on manoeuvre runs, frames 0..T-1 (onset + allowed delay = T - 1); NaN = not yet
-        defined.
-    stat_null : array_like, shape (runs, T)
-        Statistic on independent no-manoeuvre runs.
-    armed : array_like of bool, shape (T,)
-    onset : int
-    pfa_targets : array_like, shape (m,)
-        Per-test false-alarm probabilities at which to set the thresholds.
-
-    Returns
-    -------
-    pfa, pd : ndarray, shape (m,)
-        Empirical per-test false-alarm rate of each threshold, and the fraction of manoeuvre
-        runs whose first alarm falls in ``[onset, T)``.
-    """
-    armed = np.asarray(armed, bool)
-    m_ = np.where(armed, np.nan_to_num(np.asarray(stat_alt, dtype=float), nan=0.0), 0.0)
-    null = np.asarray(stat_null, dtype=float)[:, armed].ravel()
-    before = m_[..., :onset].max(axis=-1).ravel()
-    within = m_.max(axis=-1).ravel()
-    g_ = np.quantile(null, 1 - np.asarray(pfa_targets, dtype=float))
-    return (np.array([np.mean(null > g) for g in g_]), np.array([np.mean((before <= g) & (within > g)) for g in g_]))
 
 
 def null_quantile_threshold(stat_null, armed, pfa: float) -> float:

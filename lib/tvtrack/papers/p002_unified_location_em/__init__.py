@@ -8,7 +8,7 @@ over all frames, eqs. (10)-(11), with SQUAREM and the MAP variant; its E- and M-
 iteration and stopping rules in ``em_loop``),
 ``two_stage`` (per-frame marks and line fits, the paper's comparator), ``sim_config`` (a simulation's settings,
 point and seeds), ``simulation`` (one configuration's Monte Carlo: every algorithm on the same scenes, errors,
-bounds), ``location_study`` (an on-demand cache of configurations), ``study`` (the measurement functions the
+bounds), ``study`` (the measurement functions the
 explorer calls and the figure data), ``readings`` (which points and statistics a configuration's claims
 compare), ``claim_values`` (what each claim computes from the points, and the sentences' statistics),
 ``register`` (the unstated choices and which claim reads which), ``claims`` (the claims and their rules),

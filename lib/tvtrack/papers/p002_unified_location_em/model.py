@@ -30,7 +30,6 @@ __all__ = [
     "designate",
     "frame_times",
     "pixel_probabilities",
-    "expected_counts",
     "simulate_counts",
     "scene_batches",
     "SceneBatch",
@@ -200,11 +199,6 @@ def pixel_probabilities(theta, times, shape, sigma_px) -> np.ndarray:
     """
     pos = np.moveaxis(_positions(theta, times), -2, -3)  # (..., Q, T, 2)
     return gaussian_spot(pos, shape, sigma_px)
-
-
-def expected_counts(theta, times, shape, sigma_px, photons: float, noise_per_pixel: float) -> np.ndarray:
-    """Expected photon counts ``m sum_j F_j + b`` per pixel, shape (..., T, rows, cols)."""
-    return photons * pixel_probabilities(theta, times, shape, sigma_px).sum(axis=-4) + noise_per_pixel
 
 
 def simulate_counts(

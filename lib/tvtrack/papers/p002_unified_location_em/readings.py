@@ -100,11 +100,6 @@ def c15_close(config: dict) -> float:
     return float(config.get("very close separation of C002-15 (sigma)", 1.0))
 
 
-#: The unit of C002-11's "reduced distances between the objects 3 and 1" (an adversarial register row): the PSF's
-#: sigma (the card) or the pixel Delta (the paper's other scale).
-C11_UNITS = ("sigma", "pixel")
-
-
 def c11_separations(config: dict) -> tuple[float, float]:
     """The separations d / sigma of C002-11's two parts, (x4.5 at 1, x4 at 3): 1 and 3 sigma, or under the pixel
     reading 1 and 3 pixels of Figs 4, 5, 7 (Delta and 3 Delta)."""

@@ -43,8 +43,7 @@ ALGORITHMS = {
     "r": "the bounds: the CRB and the van Trees bound of the designation prior (no estimator)",
 }
 #: Every configuration's trials are drawn from one seed (``settings.seed``): independent replicates are whole
-#: runs with other seeds (the explorer's), never thirds of one run. Kept as a constant so that the
-#: block machinery (:func:`seed_blocks`) still reads old results.
+#: runs with other seeds (the explorer's), never thirds of one run.
 N_SEED_BLOCKS = 1
 
 
@@ -94,7 +93,7 @@ class StudySettings:
         ``2 d / (T - 1)``: the tracks cross at mid-sequence (diverge from ``d`` to ``3 d``); see
         :func:`track_velocities`.
     n_bootstrap : int
-        Bootstrap resamples of :meth:`LocationStudy.variance_ratio` (at least 2000: intervals at
+        Bootstrap resamples of a claim's intervals (at least 2000: intervals at
         the 2.5 % and 97.5 % tails need thousands).
     tol_loglik : float or None
         The practical stop (nats): every EM of the ULA and of the per-frame marks stops when the

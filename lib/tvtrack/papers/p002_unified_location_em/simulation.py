@@ -7,8 +7,7 @@ initialisation/association and the number of trials. :func:`run_config` draws it
 which other configurations are computed), runs the unified location EM
 (:func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em`), the two-stage algorithms of
 :mod:`tvtrack.papers.p002_unified_location_em.two_stage` and the Poisson CRB of :mod:`tvtrack.bounds.poisson_crb`
-on the same samples, and returns the per-trial errors (cached by :mod:`.study` and by
-:class:`~.location_study.LocationStudy`).
+on the same samples, and returns the per-trial errors (cached by :mod:`.study`).
 
 Units: errors are in sigma (the PSF standard deviation), after matching the estimated labels to
 the truth (all ``Q!`` orders, :func:`~tvtrack.papers.p002_unified_location_em.em.match_labels`).
@@ -355,44 +354,19 @@ def _run_extras(x, out: dict) -> None:
     algs = cfg.algs
     q, m, vsd = cfg.q, cfg.m, cfg.vsd
     g, noise_pp, block = x.g, x.noise_pp, x.block
+
+    def em(designation, p_, p0_, **options):
+        return unified_location_em(ent, designation, s, p_, p0_, tol_px=tol, max_iter=s_.max_iter, **options)
+
     if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
-        r = unified_location_em(
-            ent,
-            b.designation,
-            s,
-            p,
-            p0,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            accelerate=accel,
-            prior_sd=(1e6 * s, vsd * s),
-        )
+        r = em(b.designation, p, p0, accelerate=accel, prior_sd=(1e6 * s, vsd * s))
         out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
         p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
-        r = unified_location_em(
-            ent,
-            b.designation.mean(axis=1, keepdims=True),
-            s,
-            p1,
-            p01,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            accelerate=accel,
-        )
+        r = em(b.designation.mean(axis=1, keepdims=True), p1, p01, accelerate=accel)
         out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)
     if "w" in algs:
-        r = unified_location_em(
-            ent,
-            b.designation,
-            s,
-            p,
-            p0,
-            tol_px=tol,
-            max_iter=s_.max_iter,
-            estimate_weights=True,
-            estimate_sigma=True,
-        )
+        r = em(b.designation, p, p0, estimate_weights=True, estimate_sigma=True)
         out["ula_w"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
     if "s" in algs:
         ms_rng = np.random.default_rng(seed_sequence(block, scene_key(cfg) + ("ms",)))

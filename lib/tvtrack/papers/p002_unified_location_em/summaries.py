@@ -10,21 +10,17 @@ from scipy import stats
 
 from tvtrack.montecarlo import N_BOOTSTRAP, bootstrap_ci, mean_square_ci
 from tvtrack.estimate import Estimate
-from tvtrack.counts import proportion_ci
 
 __all__ = [
     "FLAG_NAMES",
     "SPREADS",
     "position_errors",
-    "seed_blocks",
     "centred_squares",
     "variance_sum",
     "mse_sum",
     "bootstrap_groups",
     "variance_ratio_ci",
-    "failure_rate",
     "gross_errors",
-    "failure_metrics",
 ]
 
 #: Columns of the per-trial flag arrays ``ula_flags``, ``em_flags`` and ``cr_flags``.
@@ -49,7 +45,7 @@ def position_errors(result: dict, alg: str, epoch: str = "first", trials=None) -
         extrapolated end of the fitted line), at the middle ``t = (T-1)/2`` (where a line fit is
         most accurate), at the last frame ``t = T-1``, or the velocity error.
     trials : array of bool or int, optional
-        The trials to keep (e.g. one seed block, :func:`seed_blocks`).
+        The trials to keep.
     """
     e = result[alg] if trials is None else result[alg][trials]
     t_last = result["T"] - 1
@@ -58,11 +54,6 @@ def position_errors(result: dict, alg: str, epoch: str = "first", trials=None) -
         raise ValueError(f"epoch = {epoch!r} must be one of {list(t)}")
     out = e[..., 2:4] if epoch == "velocity" else e[..., :2] + t[epoch] * e[..., 2:4]
     return out.reshape(len(e), -1)
-
-
-def seed_blocks(result: dict) -> dict[int, np.ndarray]:
-    """``{seed: boolean mask of the trials drawn from it}`` (:data:`N_SEED_BLOCKS` blocks)."""
-    return {int(s): result["seed"] == s for s in np.unique(result["seed"])}
 
 
 def centred_squares(e) -> np.ndarray:
@@ -225,27 +216,6 @@ def variance_ratio_ci(
     return r
 
 
-def failure_rate(flags) -> Estimate:
-    """Proportion of true flags with a Clopper-Pearson interval."""
-    return proportion_ci(int(np.sum(flags)), len(flags))
-
-
 def gross_errors(result: dict, alg: str, limit_sigma: float = 2.0) -> np.ndarray:
     """Trials (n,) in which some position error exceeds ``limit_sigma``."""
     return (np.abs(result[alg][..., :2]) > limit_sigma).any(axis=(1, 2))
-
-
-def failure_metrics(result: dict, algs=("ula", "em")) -> dict[str, Estimate]:
-    """Failure rates of one configuration: ``<alg>/gross_rate`` and ``<alg>/<flag>_rate`` for the
-    estimator-failure flags of :data:`FLAG_NAMES` (ULA and iterative marks). A label swap is not a
-    failure (errors are taken after the best label order, so it costs nothing) and is left out."""
-    out = {}
-    for a in algs:
-        if a not in result:
-            continue
-        out[f"{a}/gross_rate"] = failure_rate(gross_errors(result, a))
-        if a in ("ula", "em"):
-            for k, name in enumerate(FLAG_NAMES[a]):
-                if name != "swap":
-                    out[f"{a}/{name}_rate"] = failure_rate(result[f"{a}_flags"][:, k])
-    return out

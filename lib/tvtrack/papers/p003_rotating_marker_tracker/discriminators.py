@@ -34,7 +34,6 @@ __all__ = [
     "interval_weights",
     "quadrant_weights",
     "quadrant_noise",
-    "quadrant_sums",
     "quadrant_discriminator",
     "centroid_discriminator",
     "edge_discriminator",
@@ -144,36 +143,6 @@ def quadrant_noise(wy, wx, sigma: float, rng: np.random.Generator) -> np.ndarray
     l22 = np.sqrt(np.maximum(vyy - l21**2, 0.0))
     z = rng.standard_normal((wy.shape[0], 2))
     return sigma * np.stack([l11 * z[:, 0], l21 * z[:, 0] + l22 * z[:, 1]], axis=1)
-
-
-def quadrant_sums(crops, origin, center, half) -> np.ndarray:
-    """The four quadrant integrals ``u1..u4`` of the paper (pixel-fractional weights).
-
-    Parameters
-    ----------
-    crops : ndarray, shape (n, rows, cols)
-        Compensated signal ``u_d`` in crops.
-    origin : array_like of int, shape (n, 2)
-        ``(x0, y0)`` of each crop's first pixel.
-    center : array_like, shape (n, 2)
-        Gate centre ``(x_m_hat, y_m_hat)``.
-    half : float
-        Gate half-size ``A`` (px); each quadrant is ``A x A``.
-
-    Returns
-    -------
-    ndarray, shape (n, 4)
-        ``u1`` (x < x_m, y > y_m), ``u2`` (x > x_m, y > y_m), ``u3`` (x < x_m, y < y_m),
-        ``u4`` (x > x_m, y < y_m).
-    """
-    u = np.asarray(crops)
-    o = np.asarray(origin)
-    c = np.asarray(center, dtype=float)
-    rows, cols = u.shape[-2:]
-    xl, xr = _halves(c[..., 0], half, cols, o[..., 0])
-    yl, yu = _halves(c[..., 1], half, rows, o[..., 1])
-    sums = [np.einsum("...y,...yx,...x->...", wy, u, wx) for wy, wx in ((yu, xl), (yu, xr), (yl, xl), (yl, xr))]
-    return np.stack(sums, axis=-1)
 
 
 def quadrant_discriminator(crops, origin, center, half):

@@ -22,7 +22,6 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal
 
 from .discriminators import (
     centroid_discriminator,
@@ -47,7 +46,6 @@ __all__ = [
     "gains_realising",
     "stack_gains",
     "simulate_two_emitter_1d",
-    "band_power_share",
     "phase_locked_amplitude",
     "omega_response",
     "omega_bandwidth",
@@ -466,34 +464,6 @@ def simulate_two_emitter_1d(
         e = two_emitter_discriminator(line, 0, lh, beta=beta, a=a, c1=c1, c2=c2, form=form, half_gate=half_gate)
         lh = lh + dt * K * e / (unit_slope * (c1**2 + c2**2))  # (5)
     return est
-
-
-def band_power_share(err, fs: float, f_lo: float, f_hi: float, nperseg: int = 512):
-    """Share of a tracking error's power in a frequency band (Welch PSD, mean removed).
-
-    Parameters
-    ----------
-    err : ndarray, shape (n, T)
-        Error series per trial (e.g. px), sampled at ``fs``.
-    fs : float
-        Sampling rate, frames/s.
-    f_lo, f_hi : float
-        Band edges, Hz (inclusive).
-    nperseg : int
-        Welch segment length (capped at ``T``).
-
-    Returns
-    -------
-    share : ndarray, shape (n,)
-        Band power over total power, in [0, 1].
-    f : ndarray, shape (k,)
-        Frequencies, Hz.
-    psd : ndarray, shape (n, k)
-        One-sided PSD, units of ``err``^2 / Hz.
-    """
-    f, p = signal.welch(err, fs=fs, nperseg=min(nperseg, err.shape[-1]), axis=-1, detrend="constant")
-    band = (f >= f_lo) & (f <= f_hi)
-    return p[:, band].sum(axis=1) / p.sum(axis=1), f, p
 
 
 def phase_locked_amplitude(err, phase) -> np.ndarray:

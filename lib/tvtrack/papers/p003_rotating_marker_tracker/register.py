@@ -11,7 +11,7 @@ from ...register import Entry, Register
 from ...register import with_kinds
 from .kinds import KINDS
 
-__all__ = ["REGISTER", "TRACKING", "INTERFERENCE", "DEPENDS", "tracking_register", "interference_register"]
+__all__ = ["REGISTER", "TRACKING", "INTERFERENCE", "DEPENDS"]
 
 REGISTER = Register(
     [
@@ -462,13 +462,3 @@ DEPENDS = {
     "C003-11": _NO_STATIC,
     "C003-12": _I_ALL,
 }
-
-
-def tracking_register() -> Register:
-    """The entries :func:`.study.measure_tracking` reads."""
-    return REGISTER.subset(TRACKING)
-
-
-def interference_register() -> Register:
-    """The entries :func:`.study.measure_interference` reads."""
-    return REGISTER.subset(INTERFERENCE)

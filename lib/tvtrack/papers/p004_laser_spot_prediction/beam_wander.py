@@ -55,7 +55,6 @@ __all__ = [
     "component_sigmas",
     "component_table",
     "one_frame_motion_rms",
-    "with_frame_jitter",
     "gauss_markov_discrete",
     "GTILT",
     "generate_traces",
@@ -258,38 +257,6 @@ def one_frame_motion_rms(config: BeamWanderConfig, rms_px) -> np.ndarray:
     return np.sqrt(np.sum(2 * sig**2 * (1 - rho), axis=-1))
 
 
-def with_frame_jitter(traces: TraceSet, jitter_over_step: float, seed: int) -> TraceSet:
-    """A named variant of a trace set: the centres plus frame-uncorrelated jitter.
-
-    Real tilt at 25 frames/s has content far above the frame rate (frozen-flow tilt time scales of
-    tens to hundreds of Hz), which the frames sample as jitter uncorrelated from frame to frame;
-    speckle moves the centroid the same way. Per path and axis the jitter is white Gaussian with
-    RMS ``jitter_over_step`` times the path's one-frame motion RMS (:func:`one_frame_motion_rms`),
-    drawn from ``numpy.random.default_rng(seed)``.
-
-    Returns
-    -------
-    TraceSet
-        Same intensity; metadata adds ``variant`` = {``frame_jitter_over_step``, ``jitter_seed``,
-        ``jitter_rms_px`` (n_paths,)}.
-    """
-    if not (jitter_over_step >= 0):
-        raise ValueError(f"parameter 'jitter_over_step' = {jitter_over_step!r}; it must be >= 0")
-    meta = dict(traces.metadata)
-    cfg = BeamWanderConfig(
-        **{**meta["config"], "corner_frequencies_hz": tuple(meta["config"]["corner_frequencies_hz"])}
-    )
-    step = one_frame_motion_rms(cfg, np.asarray(meta["wander_rms_px"]))
-    sd = jitter_over_step * step
-    jitter = sd[:, None, None] * np.random.default_rng(seed).standard_normal(traces.centres_px.shape)
-    meta["variant"] = {
-        "frame_jitter_over_step": float(jitter_over_step),
-        "jitter_seed": int(seed),
-        "jitter_rms_px": sd.tolist(),
-    }
-    return TraceSet(traces.centres_px + jitter, traces.intensity, traces.frame_rate_hz, traces.image_size_px, meta)
-
-
 def gauss_markov_discrete(omega, sigma, dt: float, order: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Exact discrete model of critically damped Gauss-Markov processes.
 
@@ -485,7 +452,7 @@ def optimal_wander_forecast(z, config: BeamWanderConfig, rms_px, meas_var: float
         Wander RMS of each path, px.
     meas_var : float or array_like, shape (P,)
         White measurement noise variance per axis, px^2 (per path: e.g. centroid noise plus a
-        path's frame jitter, :func:`with_frame_jitter`).
+        path's frame jitter).
 
     Returns
     -------

@@ -27,7 +27,6 @@ __all__ = [
     "adversarial_summary",
     "edge_sentence",
     "scintillation_table",
-    "verdict_lines",
     "budget_sentence",
     "regeneration_sentence",
     "calibration_sentence",
@@ -311,21 +310,6 @@ def scintillation_table(exploration, entry: str = "scintillation") -> str:
         f"{overlap(centroid[lo], centroid[hi])}) and the prediction error {word(prediction[lo], prediction[hi])} "
         f"(x{p_ratio:.2f}{overlap(prediction[lo], prediction[hi])})."
     )
-
-
-def verdict_lines(claims) -> str:
-    """One line per claim of the run (``Results.claims``): its verdict and label and, for a claim of several
-    parts, each part's verdict and label, read from the claim's record (so the conclusions say what the
-    claims table says)."""
-    lines = []
-    for c in claims:
-        rob = c.robustness or {}
-        text = f"- {c.id}: {c.verdict}, {rob.get('label', '-')}"
-        parts = rob.get("parts", {})
-        if len(parts) > 1:
-            text += " (" + "; ".join(f"{p}: {v['verdict']}, {v['label']}" for p, v in parts.items()) + ")"
-        lines.append(text)
-    return "\n".join(lines)
 
 
 def budget_sentence(budget: dict, read_noise_dn: float, prediction_rms: Estimate) -> str:

@@ -56,7 +56,6 @@ __all__ = [
     "tune_learned_lags",
     "fit_learned_folds",
     "apply_learned_folds",
-    "radial_error_summary",
     "window_candidates",
     "grid_edges",
 ]
@@ -124,29 +123,6 @@ def per_trial_path_mse(forecast, reference, steps: int, start: int) -> np.ndarra
     """
     e = pr.forecast_errors(forecast, reference, steps)[..., start:]
     return np.nanmean(e.reshape(e.shape[0], e.shape[1], -1) ** 2, axis=-1)
-
-
-def radial_error_summary(forecast, reference, steps: int, start: int) -> dict:
-    """Radial ``steps``-ahead error ``|e| = sqrt(e_x^2 + e_y^2)`` over frames ``>= start``, px.
-
-    Parameters
-    ----------
-    forecast, reference : ndarray, shape (trials, paths, 2, T) (reference broadcastable)
-
-    Returns
-    -------
-    dict
-        ``rms`` (RMS over all trials, paths, frames), ``p95`` (95th percentile), ``max``, and
-        ``per_path_rms`` (paths,); NaN (lost frames) skipped.
-    """
-    e = pr.forecast_errors(forecast, reference, steps)[..., start:]
-    r = np.hypot(e[:, :, 0], e[:, :, 1])  # (trials, paths, T)
-    return {
-        "rms": float(np.sqrt(np.nanmean(r**2))),
-        "p95": float(np.nanquantile(r, 0.95)),
-        "max": float(np.nanmax(r)),
-        "per_path_rms": np.sqrt(np.nanmean(r**2, axis=(0, 2))),
-    }
 
 
 @dataclass(frozen=True)

@@ -28,8 +28,7 @@ Methods (Kokryatska & Hrynchyshyn 2005 name them as baselines, Sect. "results"):
 
 Fitted methods are scored by cross-validation over paths (:func:`path_folds`; the learned networks through
 ``prediction_study.fit_learned_folds``; :func:`fit_constant_acceleration_folds`,
-:func:`constant_acceleration_forecast`, :func:`fit_singer_folds`, :func:`singer_forecast`); :func:`hold_last` fills lost measurements and
-:func:`error_summary` reduces errors to per-path RMS / 95th percentile / maximum.
+:func:`constant_acceleration_forecast`, :func:`fit_singer_folds`, :func:`singer_forecast`); :func:`hold_last` fills lost measurements.
 :func:`batch_least_squares_states` is the direct eq. (4) the recursion must reproduce.
 """
 
@@ -39,7 +38,6 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 from scipy.interpolate import CubicSpline
 
-from ...montecarlo import mean_ci, rms_ci
 from ...filters.polynomial import (
     growing_memory_filter,
     growing_memory_gains,
@@ -60,9 +58,6 @@ __all__ = [
     "sliding_regression_forecast",
     "spline_forecast",
     "hold_last",
-    "errors_by_path",
-    "forecast_rms_ci",
-    "error_summary",
     "batch_least_squares_states",
 ]
 
@@ -105,53 +100,6 @@ def hold_last(z) -> np.ndarray:
     first = np.argmax(ok, axis=-1)[..., None]
     idx = np.where(np.cumsum(ok, axis=-1) == 0, first, idx)
     return np.take_along_axis(z, idx, axis=-1)
-
-
-def errors_by_path(errors, start: int = 0) -> np.ndarray:
-    """Errors ``(trials, paths, ..., T)`` from frame ``start`` on, as ``(paths, n)`` rows
-    (one row of all trials, axes and frames per path; NaN kept), for per-path statistics."""
-    e = np.asarray(errors, dtype=float)[..., start:]
-    return np.moveaxis(e, 1, 0).reshape(e.shape[1], -1)
-
-
-def forecast_rms_ci(forecast, reference, steps: int, start: int = 0):
-    """RMS prediction error over frames ``>= start`` with its 95% interval over paths
-    (:func:`tvtrack.montecarlo.rms_ci` of :func:`errors_by_path`), px.
-
-    Parameters
-    ----------
-    forecast : ndarray, shape (trials, paths, ..., T)
-    reference : ndarray, broadcastable to ``forecast``
-    """
-    return rms_ci(errors_by_path(forecast_errors(forecast, reference, steps), start))
-
-
-def error_summary(forecast, reference, steps: int, start: int = 0) -> dict:
-    """Prediction-error statistics over paths (px), frames ``>= start``, NaN ignored.
-
-    Parameters
-    ----------
-    forecast : ndarray, shape (trials, paths, ..., T)
-        ``forecast[..., n]`` predicts frame ``n + steps``.
-    reference : ndarray, broadcastable to ``forecast``
-        Measured or true coordinate per frame, px.
-
-    Returns
-    -------
-    dict
-        ``rms`` (:func:`tvtrack.montecarlo.rms_ci`, paths as trials), ``per_path_rms`` (paths,),
-        ``p95`` (mean over paths of the per-path 95th percentile of ``|e|``, :func:`mean_ci`),
-        ``per_path_p95`` (paths,), ``max`` (largest ``|e|``, float).
-    """
-    e = errors_by_path(forecast_errors(forecast, reference, steps), start)
-    a = np.abs(e)
-    return {
-        "rms": rms_ci(e),
-        "per_path_rms": np.sqrt(np.nanmean(e**2, axis=1)),
-        "p95": mean_ci(np.nanquantile(a, 0.95, axis=1)),
-        "max": float(np.nanmax(a)),
-        "per_path_p95": np.nanquantile(a, 0.95, axis=1),
-    }
 
 
 def batch_least_squares_states(z, order: int = 2) -> np.ndarray:
