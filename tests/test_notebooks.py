@@ -17,6 +17,7 @@ import nbformat
 import pytest
 
 from conftest import NOTEBOOK_NAMES
+from tvtrack.pipeline.audit import audit_claim
 from tvtrack.pipeline.paths import NOTEBOOK_DIR, PROFILE_DIR, SWEEP_DIR
 from tvtrack.results import VERDICTS, load_results
 from tvtrack.labels import NO_PART_LABEL
@@ -168,6 +169,16 @@ def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
         timeout=120,
     )
     assert verify.returncode == 0, verify.stderr
+
+
+@pytest.mark.notebook
+@pytest.mark.parametrize("name", NOTEBOOK_NAMES)
+def test_smoke_run_labels_pass_the_label_audit(name, smoke_run):
+    # the labels the machinery wrote, re-read against their own records (tvtrack.pipeline.audit)
+    outcome = smoke_run(name)
+    assert outcome.ok, f"{name} failed: {outcome.error}"
+    data = load_results(outcome.run_dir / "results.json")
+    assert [p for claim in data["claims"] for p in audit_claim(claim)] == []
 
 
 # An output that is only a bare repr: a text/plain result with no richer form, e.g. PosixPath('x'),
