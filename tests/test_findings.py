@@ -12,8 +12,9 @@ import tvtrack.paragraphs
 import tvtrack.wording
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Results, claim_summary, claims_table, format_measured, main_part, md_escape
-from tvtrack.labels import Robustness
-from tvtrack.verdicts import InBand
+from tvtrack.labels import Robustness, label_parts
+from tvtrack.register import Entry
+from tvtrack.verdicts import AllOf, InBand
 
 
 def test_generated_text_is_escaped_for_markdown():
@@ -65,8 +66,8 @@ def _strings(x) -> list[str]:
 
 
 def _plain_texts(record: dict) -> list[str]:
-    """What a sentence may copy from its record: the paper's words, the rules' quantities and the register's
-    titles and phrases (never its names)."""
+    """What a sentence may copy from its record: the paper's words, the rules' quantities, the parts' names and
+    the register's titles and phrases (never its names)."""
     rob = record.get("robustness") or {}
     texts = [record.get("statement", ""), record.get("note", "")]
     texts += [
@@ -76,6 +77,7 @@ def _plain_texts(record: dict) -> list[str]:
         for s in _strings(r.get(k))
     ]
     texts += [s for e in rob.get("register") or [] for s in [e.get("title", "")] + _strings(e.get("phrases"))]
+    texts += list(rob.get("parts") or {})  # a part's name, as its rule names it
     return sorted((t for t in texts if t), key=len, reverse=True)
 
 
@@ -224,6 +226,26 @@ def test_a_value_that_reverses_the_papers_direction_says_so_in_words():
     assert tvtrack.wording.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
         "ULA variance of x_o, coarse pixels is 1.3 [1.1, 1.5] times two-stage's: larger, where the paper has it smaller"
     )
+
+
+def test_a_flip_of_one_part_says_the_whole_claims_verdict_there():
+    """A reading that flips one part of a claim of several does not make the claim that verdict: the sentence
+    says what the whole claim is under that reading, and the part's verdict beside it."""
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    rule = AllOf({"early": InBand("mean", -0.5, 0.5, "px"), "late": InBand("mean", -0.5, 0.5, "px")})
+    held = {"early": Estimate.exact(0.0), "late": Estimate.exact(0.0)}
+    reps = [{"seed": s, "measured": held} for s in (1, 2, 3)]
+    half = {"early": Estimate.exact(3.0), "late": Estimate.exact(0.0)}  # the reading fails one part only
+    conds = [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": half, "runs": 3}]
+    rob = label_parts(rule, held, reps, conds, [reading])
+    claim = {"id": "C9-1", "verdict": "reproduced", "rule": rule.to_dict(), "measured": held, "robustness": rob}
+    assert (
+        "Under another reading of the paper's text the claim is partly reproduced (its part early: not "
+        "reproduced): sigma = smoothed." in claim_summary(claim)
+    )
+    whole = {"early": Estimate.exact(3.0), "late": Estimate.exact(3.0)}  # both parts fail: the claim's verdict
+    rob = label_parts(rule, held, reps, [{**conds[0], "measured": whole}], [reading])
+    assert "the paper's text it is not reproduced: sigma = smoothed." in claim_summary({**claim, "robustness": rob})
 
 
 def test_the_first_screen_says_what_verdicts_turn_on_by_kind():

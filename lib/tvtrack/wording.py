@@ -431,11 +431,31 @@ def _share_sentence(part: Mapping) -> str:
     return f"{_cap(text)}." if text else ""
 
 
-def _flip_sentence(flip: Mapping) -> str:
-    """The strongest named flip in plain words: what kind of change it is, where it takes the verdict, and the
-    change itself (the register's phrases)."""
+def _claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
+    """The whole claim's verdict under the condition that changes ``changed`` (None where no condition does)."""
+    for c in (claim.get("robustness") or {}).get("conditions") or ():
+        if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict"):
+            return str(c["verdict"])
+    return None
+
+
+def _flip_to(flip: Mapping, claim: Mapping, n_parts: int) -> str:
+    """Where a flip takes the claim: the part's verdict is the claim's only for a claim of one part; a claim of
+    several says the whole claim's verdict there, and the part's where the two differ."""
+    verdict = flip.get("verdict")
+    if not verdict:
+        return "the verdict changes"
+    whole = _claim_verdict_at(claim, flip.get("changed") or {}) if n_parts > 1 else None
+    if whole is None or whole == verdict:
+        return f"it is {verdict}"
+    return f"the claim is {_HEAD.get(whole, whole).lower()} (its part {flip.get('part')}: {verdict})"
+
+
+def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1) -> str:
+    """The strongest named flip in plain words: what kind of change it is, where it takes the claim (and its part,
+    for a claim of several parts), and the change itself (the register's phrases)."""
     side, text = flip.get("side", "reading"), _plain(str(flip.get("text") or ""))
-    to = f"it is {flip['verdict']}" if flip.get("verdict") else "the verdict changes"
+    to = _flip_to(flip, claim or {}, n_parts)
     if side == "world":
         return f"It does not extend to {text}: there {to}."
     lead = {
@@ -531,7 +551,8 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
     flips = claim_flips(claim, name) or claim_flips(claim)
     required = [f"{head}: {value_clause(rule, measured)}."]
-    required += [s for s in (_flip_sentence(flips[0]) if flips else "", _lock_sentence(claim, part)) if s]
+    first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
+    required += [s for s in (first, _lock_sentence(claim, part)) if s]
     if verdict == "undecided":
         required.append(_runs_sentence(part))
     optional = [_share_sentence(part)]
