@@ -301,3 +301,17 @@ def test_a_papers_limitations_come_from_its_records():
         "Some runs lost lock in C004-5 (at most 4 % of them).",
     ]
     assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(lost)
+
+
+def test_a_joint_reading_flip_counts_where_the_verdicts_turn():
+    """A joint configuration is named only where no subset flips alone: a flip of two readings together counts as a
+    reading on the first screen, as it does for the claim's label (``depends``)."""
+    from tvtrack.paragraphs import turns_on
+
+    flip = {"changed": {"cost": "CPU time", "noise at": "updated"}, "side": "reading", "kind": "joint"}
+    claim = {
+        "id": "C9-4",
+        "verdict": "reproduced",
+        "robustness": {"parts": {"claim": {"flips": [{**flip, "verdict": "not reproduced", "text": "both"}]}}},
+    }
+    assert turns_on([claim]) == {"reading": (1, [("cost", 1), ("noise at", 1)])}

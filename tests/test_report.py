@@ -112,7 +112,7 @@ def test_report_counts_claims_and_links_outputs(reproduce_dir, tmp_path):
     path = write_report(reproduce_dir, tmp_path / "REPRODUCTION.md", notebooks=["fixture_centroid", "broken", "absent"])
     text = path.read_text()
     assert (
-        "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims, 3 notebooks); "
+        "**Claims: 1 reproduced · 0 partly · 0 not reproduced · 0 not checkable** (1 claims from 1 of 3 notebooks); "
         "of the checkable verdicts **0 robust · 0 limited · 0 unexplored · 0 depends · 0 unstable · 1 provisional**"
     ) in text
     # the fixture's design is far too small for a share: never robust, shown as provisional

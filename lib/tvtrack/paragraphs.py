@@ -42,7 +42,8 @@ def _join(items: list[str]) -> str:
 def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]]]]:
     """``{side: (claims, [(entry title, claims), ...] most often first)}``: how many claims a reading of the
     paper's text, an unreported setting of its experiment, a world beyond it (or several changes together) flips,
-    and the register entries that flip the most of them. A claim counts once per side."""
+    and the register entries that flip the most of them. A claim counts once per side; every named flip counts
+    (a joint configuration is named only where no subset of it flips alone, so it is the smallest found)."""
     count: dict[str, int] = Counter()
     titles: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
     for c in claims:
@@ -53,8 +54,6 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]
         seen_sides, seen_titles = set(), set()
         for f in claim_flips(c):
             side = f["side"] if f["side"] in SIDE_ORDER else "world"
-            if f.get("kind") not in ("single", "combination", None) and side != "unattributed":
-                continue
             seen_sides.add(side)
             for k in f.get("changed") or {}:
                 title = known.get(str(k), (str(k).replace("_", " "), "", {}))[0]

@@ -54,7 +54,8 @@ VERDICT_WORDS = {
 LABEL_WORDS = {
     "robust": "no explored reading of the paper and no world beyond it changes the verdict",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
-    "depends": "another reading of an ambiguous passage of the paper changes the verdict",
+    "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
+    "never printed, changes the verdict",
     "unstable": "independent replicates of the same run disagree decisively",
     "unexplored": "no world beyond the paper was varied: nothing to say how far it extends",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",

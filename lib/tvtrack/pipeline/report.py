@@ -299,6 +299,11 @@ def _details(c: dict) -> str:
     return f"- **{c['id']}** " + " · ".join(bits)
 
 
+def _n_run(runs: dict) -> int:
+    """The notebooks with results to show."""
+    return sum(1 for _, data in runs.values() if data is not None)
+
+
 def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce_dir: Path, path: Path) -> list[str]:
     """The report's first screen (profile and date, :func:`_in_short`, the counts) and its two pictures."""
     shown = profiles_shown(runs)
@@ -319,7 +324,7 @@ def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce
             *_in_short(runs, shown),
             "**Claims: "
             + " · ".join(f"{counts[v]} {v}" for v in ALL_VERDICTS if v != "undecided" or counts[v])
-            + f"** ({len(claims)} claims, {len(notebooks)} notebooks); of the checkable verdicts **"
+            + f"** ({len(claims)} claims from {_n_run(runs)} of {len(notebooks)} notebooks); of the checkable verdicts **"
             + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab != "provisional" or labels[lab])
             + "**"
             + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
