@@ -315,3 +315,23 @@ def test_a_joint_reading_flip_counts_where_the_verdicts_turn():
         "robustness": {"parts": {"claim": {"flips": [{**flip, "verdict": "not reproduced", "text": "both"}]}}},
     }
     assert turns_on([claim]) == {"reading": (1, [("cost", 1), ("noise at", 1)])}
+
+
+def test_an_undecided_claim_says_the_runs_its_slowest_part_needs():
+    """The claim is decided only when every part is: the sentence gives the largest need, not the shown part's."""
+    rule = AllOf({"a": InBand("mean", -0.5, 0.5, "px"), "b": InBand("mean", -0.5, 0.5, "px")})
+    straddles = {"value": 0.45, "ci_low": 0.3, "ci_high": 0.6}
+    parts = {
+        "a": {"verdict": "undecided", "label": "-", "runs_to_decide": {"replicates": 14, "now": 3}},
+        "b": {"verdict": "undecided", "label": "-", "runs_to_decide": {"replicates": 95, "now": 3}},
+    }
+    claim = {
+        "id": "C9-5",
+        "verdict": "undecided",
+        "rule": rule.to_dict(),
+        "measured": {"a": straddles, "b": straddles},
+        "robustness": {"parts": parts},
+    }
+    assert "About 95 independent replicates would decide it." in claim_summary(claim)
+    parts["b"]["runs_to_decide"] = {"replicates": None, "now": 3}  # no practical number of runs decides b
+    assert "No practical number of runs is projected to decide it." in claim_summary(claim)

@@ -16,6 +16,7 @@ Conventions
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Any, Mapping
 
@@ -466,6 +467,15 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     return f"{lead} {to}: {text}."
 
 
+def _slowest_part(parts: Mapping, main: Mapping) -> Mapping:
+    """The undecided part that needs the most runs (one no practical number of runs decides first): the claim
+    is decided only when every part is."""
+    opened = [p for p in parts.values() if isinstance(p, Mapping) and p.get("runs_to_decide")]
+    if not opened:
+        return main
+    return max(opened, key=lambda p: p["runs_to_decide"].get("replicates") or math.inf)
+
+
 def _runs_sentence(part: Mapping) -> str:
     r = part.get("runs_to_decide") or {}
     if not r:
@@ -555,7 +565,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     required += [s for s in (first, _lock_sentence(claim, part)) if s]
     if verdict == "undecided":
-        required.append(_runs_sentence(part))
+        required.append(_runs_sentence(_slowest_part(parts, part)))
     optional = [_share_sentence(part)]
     if len(flips) > 1:
         others = len(flips) - 1
