@@ -267,6 +267,7 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
         "What the verdicts turn on: a reading of the paper's text flips 1 claim; a setting of the paper's own "
         "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
     ), text
+    assert "2 turn on a reading of an ambiguous passage or a setting the paper never printed, and 0 differ" in text
     sentence = claim_summary(setting)
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
         sentence

@@ -101,7 +101,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
         text.append(
             f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
             f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
-            f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage and "
+            f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
+            "never printed, and "
             f"{_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
         )
     turns = _turns_sentence(claims)
