@@ -340,6 +340,8 @@ def test_a_part_the_measurement_left_out_is_undecided_in_the_claim_and_its_recor
     assert (j.verdict, j.settled, j.runs_factor) == ("undecided", False, math.inf)
     assert "(b) undecided: not measured" in j.why
     assert rule.judge({"a": Estimate.exact(3.0), "b": None}).verdict == "undecided"  # the open part could be partly
+    with_reason = AllOf({"a": BAND, "why": NotCheckable("true by construction")})  # needs no value
+    assert with_reason.judge({"a": Estimate.exact(0.0), "why": None}).verdict == "reproduced"
     reps = [{"seed": s, "measured": {"a": Estimate.exact(0.0), "b": Estimate.exact(0.0)}} for s in (1, 2, 3)]
     cond = _single({"motion": "weave"}, {"a": Estimate.exact(0.0), "b": None}, runs=3)
     rec = label_parts(rule, reps[0]["measured"], reps, [cond], [WORLD])

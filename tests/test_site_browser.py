@@ -146,7 +146,9 @@ def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_
         page = w.open((site / "index.html").as_uri())
         _assert_first_screen(page)
         chip = page.locator("#glossary .pill.l-depends").first
-        assert "reading of an ambiguous passage of the paper changes the verdict" in chip.get_attribute("title")
+        assert "a setting of its experiment that the paper never printed, changes the verdict" in chip.get_attribute(
+            "title"
+        )
         page.click('#first a:has-text("C001-3")')
         assert page.url.endswith("claims/001_explored/C001-3.html")
         curve = page.locator("#specification-curve")

@@ -431,8 +431,9 @@ class AllOf(Rule):
     """Every part of a composite claim, each by its own rule: ``reproduced`` when all parts are,
     ``not reproduced`` when all decided parts are not, ``partly`` only when decided parts disagree,
     ``undecided`` when the decided parts agree but some part is undecided (it could still go either
-    way) -- a part too small to decide never makes a claim ``partly``. A part measured as ``None`` (left
-    out by the measurement) is undecided (:data:`NOT_MEASURED`)."""
+    way) -- a part too small to decide never makes a claim ``partly``. A checkable part measured as ``None``
+    (left out by the measurement) is undecided (:data:`NOT_MEASURED`); a :class:`NotCheckable` part needs no
+    value."""
 
     parts: Mapping[str, Rule] = field(default_factory=dict)
     kind = "all_of"
@@ -452,7 +453,9 @@ class AllOf(Rule):
         if missing:
             raise ValueError(f"AllOf: measured lacks the parts {missing}")
         decided = {
-            name: NOT_MEASURED if measured[name] is None else rule.judge(measured[name])
+            name: NOT_MEASURED
+            if measured[name] is None and not isinstance(rule, NotCheckable)
+            else rule.judge(measured[name])
             for name, rule in self.parts.items()
         }
         checked = {n: j for n, j in decided.items() if j.verdict != "not checkable"}
