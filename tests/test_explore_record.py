@@ -63,6 +63,7 @@ def test_the_settings_record_the_design_as_run():
         "measures_claims_asked": False,
         "combinations": 0,
         "max_subset": 3,
+        "subset_round": 4,
         "condition_runs": 0,
         "sizing_budget": None,
         "sizing_budget_used": 0,
@@ -432,6 +433,37 @@ def test_the_subset_search_stops_at_triples():
     ex = explore(four, reg, {"X": BAND}, seed=3)
     sizes = sorted(len(r.changed(ex.default)) for r in ex.runs if r.stage == "combination")
     assert sizes == [2] * 6 + [3] * 4
+
+
+def _six_pinned(lean: bool):
+    """Six worlds a..f pinned together; only e = f = 1 flips X. With ``lean``, e or f alone moves the point
+    estimate out of the band with an interval that straddles its edge (leans towards a flip, undecided)."""
+    reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "abcdef"], pinned=[dict.fromkeys("abcdef", 1)])
+
+    def measure(config, seed):
+        if config["e"] == 1 and config["f"] == 1:
+            return {"X": X(3.0)}
+        if lean and (config["e"] == 1 or config["f"] == 1):
+            return {"X": Estimate(0.6, math.nan, 0.3, 0.9, 6, 0.95, "mean")}
+        return {"X": X(0.0)}
+
+    return explore(measure, reg, {"X": BAND}, seed=3)
+
+
+def test_the_subset_search_tries_the_pairs_whose_entries_lean_first_and_stops_at_the_first_that_flips():
+    ex = _six_pinned(lean=True)
+    pairs = [tuple(sorted(r.changed(ex.default))) for r in ex.runs if r.stage == "combination"]
+    # one round: (e, f) both lean, then the pairs with one leaning entry in name order; (e, f) flips: no round 2
+    assert pairs == [("e", "f"), ("a", "e"), ("a", "f"), ("b", "e")]
+    flips = ex.record("X")["parts"]["claim"]["flips"]
+    assert [f["changed"] for f in flips] == [{"e": 1, "f": 1}]
+
+
+def test_without_a_leaning_entry_the_subset_search_tries_every_pair_before_it_finds_the_last():
+    ex = _six_pinned(lean=False)
+    pairs = [tuple(sorted(r.changed(ex.default))) for r in ex.runs if r.stage == "combination"]
+    assert len(pairs) == 15 and pairs[-1] == ("e", "f")  # name order: (e, f) is the last pair; no triple follows
+    assert ex.settings["timing"]["combinations"]["configurations"] == 15
 
 
 def test_the_subset_search_never_measures_one_entry_or_more_than_three_as_a_combination():

@@ -17,8 +17,11 @@ flipping subset (:mod:`tvtrack.explore`).
   design in its order, then the pinned ones); one left smaller than the default needed stays ``undecided``, its
   record marking it ``left by the sizing budget`` with the replicates that would decide it. A sub-combination
   (searched for a flip only) that leans towards agreement is never sized: it flips nothing at its size.
-- **Subsets** (:func:`subset_configs`): a joint flip that no single entry (or smaller subset) explains has every
-  pair, then every triple, of its changed entries measured alone (sized like any condition).
+- **Subsets** (:func:`search_subsets`): a joint flip that no single entry (or smaller subset) explains has its
+  pairs measured alone (sized like any condition) in rounds of :data:`SUBSET_ROUND`, those whose entries lean
+  towards the flip alone first, until a pair flips it or every pair was tried; then its triples likewise. The
+  flip is named by the first subset found: a smallest one (no single entry, and for a triple no pair, flips it),
+  not necessarily the only one.
 """
 
 from __future__ import annotations
@@ -45,6 +48,9 @@ __all__ = [
     "size_conditions",
     "unexplained_flips",
     "subset_configs",
+    "lean_of_singles",
+    "search_subsets",
+    "SUBSET_ROUND",
 ]
 
 
@@ -286,14 +292,79 @@ def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: M
     return out
 
 
-def subset_configs(unexplained: Sequence[tuple], default: Mapping, size: int) -> tuple[list[dict], list[frozenset]]:
-    """Every subset of ``size`` changed entries of each unexplained flip, as configurations, each with the claims
-    it is run for (those the joint configuration flipped)."""
+#: Subsets of one unexplained flip measured per round of the search (:func:`search_subsets`).
+SUBSET_ROUND = 4
+
+
+def lean_of_singles(rules: Mapping[str, Rule], runs: Sequence[Run], default: Mapping, default_j: Mapping) -> dict:
+    """``{(claim, entry, repr(value)): True}`` for each one-at-a-time condition that leans towards a flip of the
+    claim (:func:`leans_flip`) at its final size: the order in which :func:`subset_configs` tries subsets."""
+    out = {}
+    for r in runs:
+        ch = r.changed(default) if r.stage == "single" else {}
+        if len(ch) != 1:
+            continue
+        ((k, v),) = ch.items()
+        for cid in rules:
+            if r.counts_for(cid) and leans_flip(rules[cid], r, cid, default_j):
+                out[(cid, k, repr(v))] = True
+    return out
+
+
+def subset_configs(
+    unexplained: Sequence[tuple],
+    default: Mapping,
+    size: int,
+    tried: dict | None = None,
+    lean: Mapping | None = None,
+    per_flip: int | None = None,
+) -> tuple[list[dict], list[frozenset]]:
+    """The next subsets of ``size`` changed entries of each unexplained flip, as configurations, each with the
+    claims it is run for (those the joint configuration flipped).
+
+    Subsets are ordered by how many of their entries lean towards flipping one of those claims alone (``lean``,
+    :func:`lean_of_singles`; most first), then by name; those in ``tried`` (``{id(joint run): set of subsets}``,
+    updated) are skipped; at most ``per_flip`` per flip (None: all)."""
+    tried = {} if tried is None else tried
+    lean = lean or {}
     cfgs, only = [], []
     for r, names, claims in unexplained:
         if size >= len(names):
             continue
-        for combo in itertools.combinations(sorted(names), size):
+        done = tried.setdefault(id(r), set())
+        combos = [c for c in itertools.combinations(sorted(names), size) if c not in done]
+        combos.sort(key=lambda c: -sum(bool(lean.get((cid, k, repr(r.config[k])))) for k in c for cid in claims))
+        for combo in combos[:per_flip]:
+            done.add(combo)
             cfgs.append({**default, **{k: r.config[k] for k in combo}})
             only.append(claims)
     return cfgs, only
+
+
+def search_subsets(measure, rules, depends, default_j, n_default, default, seeds, cap, run_stage, conditions, runs):
+    """Name each unexplained joint flip by a smallest subset that flips it alone (see the module).
+
+    Rounds: every still-unexplained flip has its next :data:`SUBSET_ROUND` untried pairs (most leaning first)
+    measured together, then sized (:func:`size_conditions`, no budget for agreement); a flip that a sized pair
+    flips is explained and leaves the search. A flip whose every pair was tried without one flipping goes on to
+    triples likewise. ``conditions(cfgs, stage, only)`` makes the projected runs. Returns ``(runs, combinations,
+    sizing runs added)``."""
+    from .attribution import MAX_SUBSET
+
+    lean = lean_of_singles(rules, runs, default, default_j)
+    tried: dict = {}
+    combos: list[Run] = []
+    sized = 0
+    for size in range(2, MAX_SUBSET + 1):
+        while True:
+            pending = unexplained_flips(rules, depends, default_j, runs, default, n_default)
+            cfgs, only = subset_configs(pending, default, size, tried, lean, SUBSET_ROUND)
+            if not cfgs:
+                break
+            found = conditions(cfgs, "combination", only)
+            run_stage(measure, found, "combinations")
+            sized += size_conditions(
+                measure, rules, found, default_j, n_default, seeds, cap, run_stage, SizingBudget(0)
+            )
+            runs, combos = runs + found, combos + found
+    return runs, combos, sized

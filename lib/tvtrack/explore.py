@@ -43,7 +43,7 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 
 from .declared import check_declared, takes_claims
 from .jobs import StageClock
-from .conditions import Run, SizingBudget, point, projected_runs, size_conditions, subset_configs, unexplained_flips
+from .conditions import SUBSET_ROUND, Run, SizingBudget, point, projected_runs, search_subsets, size_conditions
 from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
@@ -317,9 +317,10 @@ def explore(
     given, and every configuration whose verdict is not decisively the default's re-measured at full size);
     **pinned** joint conditions; **condition sizing**: every condition gets replicates on the default's seeds
     until it decides on at least the default's replicates (:func:`tvtrack.conditions.size_conditions`);
-    **combinations**: for each joint configuration that flips a part where no single entry does, every pair of its
-    changed entries, then every triple where no pair flips, each sized likewise, so a label names the smallest
-    combination that flips. A condition's run for a claim sees only the changes of the entries the claim
+    **combinations**: for each joint configuration that flips a part where no single entry does, its pairs of
+    changed entries in rounds (those whose entries lean towards the flip alone first) until one flips it or all
+    were tried, then its triples likewise, each sized like any condition, so a label names a smallest
+    combination that flips (:func:`tvtrack.conditions.search_subsets`). A condition's run for a claim sees only the changes of the entries the claim
     declares (:func:`tvtrack.conditions.projected_runs`), and its first replicate runs on the first replicate's
     seed (common random numbers).
 
@@ -358,8 +359,8 @@ def explore(
     screen_singles : bool
         Screen the one-at-a-time stage too (its configurations confirmed at full size likewise).
     combinations : int, optional
-        Ignored: the subset search that names the smallest flipping combination tries every pair, then every
-        triple, with no run cap (kept so that older callers run).
+        Ignored: the subset search that names a smallest flipping combination tries pairs, then triples, until
+        one flips or all were tried, with no run cap (kept so that older callers run).
     sizing_budget : int, optional
         The claim runs (one claim at one replicate of a condition) that conditions leaning towards agreement may
         take (None or negative: no limit). A condition leaning
@@ -419,15 +420,10 @@ def explore(
     conds = [*singles, *joints, *pinned]
     budget = SizingBudget(None if sizing_budget is None or sizing_budget < 0 else int(sizing_budget))
     sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run, budget)
-    combos: list[Run] = []
-    for size in range(2, MAX_SUBSET + 1):  # every pair, then every triple where no pair flips: no run cap
-        cfgs, only = subset_configs(
-            unexplained_flips(rules, depends, default_j, runs, default, n_default), default, size
-        )
-        found = conditions(cfgs, "combination", only)
-        clock.run(measure, found, "combinations")
-        sized += size_conditions(*sizing, found, default_j, n_default, seeds, cap, clock.run, SizingBudget(0))
-        runs, combos = runs + found, combos + found
+    runs, combos, added = search_subsets(
+        measure, rules, depends, default_j, n_default, default, seeds, cap, clock.run, conditions, runs
+    )
+    sized += added
     settings = {
         "replicates": n,
         "min_replicates": replicates,
@@ -443,6 +439,7 @@ def explore(
         "measures_claims_asked": takes_claims(measure),
         "combinations": len(combos),
         "max_subset": MAX_SUBSET,
+        "subset_round": SUBSET_ROUND,
         "condition_runs": sized,
         "sizing_budget": sizing_budget,
         "sizing_budget_used": budget.used,
