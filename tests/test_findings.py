@@ -336,3 +336,49 @@ def test_an_undecided_claim_says_the_runs_its_slowest_part_needs():
     assert "About 95 independent replicates would decide it." in claim_summary(claim)
     parts["b"]["runs_to_decide"] = {"replicates": None, "now": 3}  # no practical number of runs decides b
     assert "No practical number of runs is projected to decide it." in claim_summary(claim)
+
+
+def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_limitations():
+    """A paper's own count of the runs that lost lock (Results.claim(lost_runs=...)): a named flip whose verdict
+    over the runs in lock is the default's is carried by those runs, and the claim's sentence and the paper's
+    limitations say so; a flip that holds over the runs in lock too is said as before."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+    from tvtrack.results import paper_paragraph
+
+    plain = claim_summary(DEPENDS)
+    claim = copy.deepcopy(DEPENDS)
+    reading = {"paper_sigma": "raw_increments"}
+    row = {"changed": reading, "lost": 27, "runs": 600, "verdict": "reproduced", "in_lock_verdict": "not reproduced"}
+    mark_lost_runs(claim["robustness"], [row], claim["verdict"])
+    text = claim_summary(claim)
+    assert (
+        "it is reproduced: sigma read as the SD of the raw velocity increments. The 27 of 600 runs that lost lock "
+        "there carry that flip: over the runs in lock alone the claim is not reproduced." in text
+    ), text
+    _, limits = paper_paragraph({"claims": [claim], "register": claim["robustness"]["register"]})
+    assert any(x.startswith("Runs that lost lock carry flips of C001-3") for x in limits), limits
+    held = copy.deepcopy(DEPENDS)
+    mark_lost_runs(held["robustness"], [{**row, "in_lock_verdict": "reproduced"}], held["verdict"])
+    assert claim_summary(held) == plain  # the flip holds over the runs in lock: nothing to add
+    _, limits = paper_paragraph({"claims": [held], "register": held["robustness"]["register"]})
+    assert not any("carry" in x for x in limits)
+
+
+def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+    from tvtrack.paragraphs import _lost_share
+
+    claim = copy.deepcopy(DEPENDS)
+    row = {"changed": {}, "lost": 6, "runs": 200, "verdict": "not reproduced", "in_lock_verdict": "reproduced"}
+    mark_lost_runs(claim["robustness"], [row], claim["verdict"])
+    assert claim["robustness"]["decided_by_lost_runs"] is True
+    assert _lost_share(claim) == pytest.approx(0.03)
+    assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(claim)
+    with pytest.raises(ValueError, match="lost 7 of runs 6"):
+        mark_lost_runs(claim["robustness"], [{**row, "lost": 7, "runs": 6}], claim["verdict"])

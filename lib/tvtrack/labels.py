@@ -312,6 +312,55 @@ def _lost(prule: Rule, pm: Any, verdict: str) -> dict:
     }
 
 
+def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
+    """Mark a claim's record with a paper's own count of the runs that lost lock, at the default and under
+    named flips: where the claim's verdict over the runs in lock differs from its verdict over every run, those
+    runs carry it, and the claim's sentence says so (:func:`tvtrack.wording.claim_summary`).
+
+    Parameters
+    ----------
+    record : dict
+        The claim's robustness record (:meth:`tvtrack.explore.Exploration.record`); marked in place.
+    rows : sequence of dict
+        ``{"changed": {entry: value} ({} for the default), "lost": int, "runs": int, "verdict": str (over every
+        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws.
+    verdict : str
+        The claim's verdict at the default (every replicate pooled).
+
+    Returns
+    -------
+    dict
+        ``record``: at the default ``lost_share``, ``in_lock_verdict`` and ``decided_by_lost_runs`` (the
+        verdicts of the same run over every run and over the runs in lock differ); each flip of a part whose
+        changes a row names gains ``lost_runs`` ({lost, runs, verdict, in_lock_verdict, carried}).
+    """
+    for row in rows:
+        lost, runs = int(row["lost"]), int(row["runs"])
+        if runs < 1 or not 0 <= lost <= runs:
+            raise ValueError(f"mark_lost_runs: lost {lost} of runs {runs}: need 0 <= lost <= runs and runs >= 1")
+        carried = row["in_lock_verdict"] != row["verdict"]
+        info = {"lost": lost, "runs": runs, "verdict": row["verdict"], "in_lock_verdict": row["in_lock_verdict"]}
+        if not row.get("changed"):
+            from .counts import proportion_ci
+
+            e = proportion_ci(lost, runs)
+            record["lost_share"] = {
+                "lost": lost,
+                "runs": runs,
+                "value": e.value,
+                "ci_low": e.ci_low,
+                "ci_high": e.ci_high,
+            }
+            record["in_lock_verdict"] = row["in_lock_verdict"] if carried else verdict
+            record["decided_by_lost_runs"] = carried
+            continue
+        for part in (record.get("parts") or {}).values():
+            for f in part.get("flips") or ():
+                if dict(f.get("changed") or {}) == dict(row["changed"]):
+                    f["lost_runs"] = {**info, "carried": carried}
+    return record
+
+
 def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dict:
     """One part's record: its pooled verdict (``pair``: (rule, measured) at the default, None when the part was
     not measured), label, where-lines, replicate verdicts, share, flips, sensitivity and runs to decide;

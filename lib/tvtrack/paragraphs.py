@@ -174,6 +174,12 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
         out.append(f"Runs that lost lock decide {_join(lost)}; over the runs in lock alone the verdict differs.")
+    carried = [c["id"] for c in claims if _carried_flips(c)]
+    if carried:
+        out.append(
+            f"Runs that lost lock carry flips of {_join(carried)}: over the runs in lock alone those changes do not "
+            "flip the verdict."
+        )
     shares = {c["id"]: _lost_share(c) for c in claims if c["id"] not in lost}
     shares = {k: v for k, v in shares.items() if v > 0}
     if shares:
@@ -200,8 +206,19 @@ def _lost_share(c: Mapping) -> float:
     """The largest share of runs that lost lock the record gives (``lost_share``), 0 where it gives none."""
     record = c.get("robustness") or {}
     spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
-    values = [float(s["lost_share"]) for s in spots if isinstance(s.get("lost_share"), (int, float))]
+    shares = [s.get("lost_share") for s in spots]
+    values = [
+        float(v["value"] if isinstance(v, Mapping) else v) for v in shares if isinstance(v, (int, float, Mapping))
+    ]
     return max(values, default=0.0)
+
+
+def _carried_flips(c: Mapping) -> bool:
+    """Whether a named flip of the claim is carried by the runs that lost lock under it (its record's
+    ``lost_runs``, :func:`tvtrack.labels.mark_lost_runs`)."""
+    parts = ((c.get("robustness") or {}).get("parts") or {}).values()
+    flips = [f for p in parts if isinstance(p, Mapping) for f in p.get("flips") or ()]
+    return any((f.get("lost_runs") or {}).get("carried") for f in flips)
 
 
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:

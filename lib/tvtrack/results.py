@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from .estimate import Estimate
-from .labels import NO_PART_LABEL, Robustness
+from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .paragraphs import paper_paragraph, results_summary
@@ -258,6 +258,7 @@ class Results:
         note: str = "",
         robustness: Robustness | None = None,
         exploration: Any = None,
+        lost_runs: Any = None,
     ) -> Claim:
         """Record a claim; ``rule`` decides its verdict from ``measured``.
 
@@ -276,6 +277,9 @@ class Results:
             robustness record (part-level labels, coverage, register entries).
         robustness : tvtrack.verdicts.Robustness
             A hand-built record, where no exploration applies.
+        lost_runs : sequence of dict, optional
+            The paper's own count of runs that lost lock, at the default (``changed`` {}) and under named flips
+            (:func:`tvtrack.labels.mark_lost_runs`): the sentence says where those runs carry the verdict.
 
         A checkable claim needs ``exploration`` or ``robustness``.
 
@@ -303,6 +307,8 @@ class Results:
         else:
             record = robustness.record(rule, measured) if robustness is not None else None
         verdict, decision = rule.explain(measured)
+        if lost_runs and record is not None:
+            mark_lost_runs(record, lost_runs, verdict)
         c = Claim(
             id=id,
             statement=statement,

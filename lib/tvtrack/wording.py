@@ -208,7 +208,8 @@ def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str |
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
-    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]``,
+    """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]`` (and
+    ``lost_runs`` where the paper counted the runs that lost lock under it),
     single entries first (readings of the paper, then unreported settings, then worlds beyond it), then the
     smallest combinations, each text said once.
 
@@ -243,6 +244,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
                     "verdict": f.get("verdict"),
                     "part": f.get("part"),
                     "changed": dict(f.get("changed") or {}),
+                    **({"lost_runs": f["lost_runs"]} if f.get("lost_runs") else {}),
                 }
             )
     return out
@@ -458,13 +460,20 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     for a claim of several parts), and the change itself (the register's phrases)."""
     side, text = flip.get("side", "reading"), _plain(str(flip.get("text") or ""))
     to = _flip_to(flip, claim or {}, n_parts)
+    lost = flip.get("lost_runs") or {}
+    carried = (
+        f" The {lost['lost']} of {lost['runs']} runs that lost lock there carry that flip: over the runs in lock "
+        f"alone the claim is {lost['in_lock_verdict']}."
+        if lost.get("carried")
+        else ""
+    )
     if side == "world":
-        return f"It does not extend to {text}: there {to}."
+        return f"It does not extend to {text}: there {to}.{carried}"
     lead = {
         "reading": "Under another reading of the paper's text",
         "setting": "Under another setting of the paper's own experiment, one the paper never printed,",
     }.get(side, "Under several changes together")
-    return f"{lead} {to}: {text}."
+    return f"{lead} {to}: {text}.{carried}"
 
 
 def _slowest_part(parts: Mapping, main: Mapping) -> Mapping:

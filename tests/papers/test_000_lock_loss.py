@@ -46,6 +46,9 @@ def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lo
     row = rep["metric"][REGISTER.describe(JOINT)]
     assert (row["verdict_all_runs"], row["verdict_in_lock"]) == ("reproduced", "not reproduced")
     assert rep["metric"]["default"]["lost_runs"] == 0
+    flip = next(r for r in rep["rows"] if r["changed"] == JOINT)  # what Results.claim(lost_runs=...) marks
+    assert (flip["verdict"], flip["in_lock_verdict"], flip["runs"]) == ("reproduced", "not reproduced", 300)
+    assert flip["lost"] == m["lost_runs"] and rep["rows"][0]["changed"] == {}
 
 
 def test_flip_changes_reads_every_part_once():

@@ -139,7 +139,8 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
     -------
     dict
         ``"note"``: one paragraph for the claim's record; ``"metric"``: per configuration (``"default"`` or its
-        phrase) the lost share, the counts and both verdicts.
+        phrase) the lost share, the counts and both verdicts; ``"rows"``: the same per configuration as
+        ``Results.claim(lost_runs=...)`` reads them (:func:`tvtrack.labels.mark_lost_runs`).
     """
     rows = []
     for changed in [{}] + [dict(c) for c in conditions]:
@@ -171,4 +172,8 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
         }
         for c, m, v, k in rows
     }
-    return {"note": " ".join(bits), "metric": metric}
+    marks = [
+        {"changed": c, "lost": m["lost_runs"], "runs": m["runs"], "verdict": v, "in_lock_verdict": k}
+        for c, m, v, k in rows
+    ]
+    return {"note": " ".join(bits), "metric": metric, "rows": marks}
