@@ -66,10 +66,10 @@ def _strings(x) -> list[str]:
 
 
 def _plain_texts(record: dict) -> list[str]:
-    """What a sentence may copy from its record: the paper's words, the rules' quantities, the parts' names and
+    """What a sentence may copy from its record: the paper's words (its statement and value), the rules' quantities, the parts' names and
     the register's titles and phrases (never its names)."""
     rob = record.get("robustness") or {}
-    texts = [record.get("statement", ""), record.get("note", "")]
+    texts = [record.get("statement", ""), record.get("note", ""), record.get("paper_value", "")]
     texts += [
         s
         for r in _rules(record.get("rule") or {})
@@ -382,3 +382,28 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(claim)
     with pytest.raises(ValueError, match="lost 7 of runs 6"):
         mark_lost_runs(claim["robustness"], [{**row, "lost": 7, "runs": 6}], claim["verdict"])
+
+
+def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_gives_no_number():
+    from tvtrack.wording import against_paper, value_clause
+
+    band = "at most 10 % of the runs"
+    assert against_paper(band, "fairly quickly (no number)") == (
+        ', where the paper says "fairly quickly" (read here as at most 10 % of the runs)'
+    )
+    assert (
+        against_paper(band, "qualitative (Fig. 3)")
+        == ", against at most 10 % of the runs, set here (the paper gives no number)"
+    )
+    assert against_paper("[5.25, 5.75] s", "5.5 s (one run)") == ", against [5.25, 5.75] s (the paper: 5.5 s)"
+    assert against_paper("[3, 6]", "x4 (d = 3 sigma), x4.5 (d = 1 sigma)").endswith(
+        "(the paper: x4 (d = 3 sigma), x4.5 (d = 1 sigma))"
+    )
+    assert against_paper("[0, 2]", None) == ", where the paper has [0, 2]"  # a bare rule: its band is all there is
+    # a share of runs in per cent, its band too
+    rule = {"kind": "in_band", "quantity": "share of runs not in lock", "low": None, "high": 0.1, "unit": "of the runs"}
+    measured = Estimate(0.0078, float("nan"), 0.0043, 0.013, 900, 0.95, "count")
+    assert value_clause(rule, measured, "fairly quickly (no number)") == (
+        'share of runs not in lock is 0.78 [0.43, 1.3] % of the runs, where the paper says "fairly quickly" (read '
+        "here as at most 10 % of the runs)"
+    )

@@ -136,7 +136,7 @@ def test_report_shows_labels_where_and_old_schema(synthetic_runs, tmp_path):
     # the flip named by the register's words, not the record's legacy "where" line with its code names
     assert (
         "| C010-2 | The gain is 4. | **not reproduced** | depends | Not reproduced: the measured value is 1.5 \\[1.2, "
-        "1.8\\], where the paper has \\[0, 2\\]. Under another reading of the paper's text it is reproduced: "
+        "1.8\\], against \\[0, 2\\] (the paper: 1). Under another reading of the paper's text it is reproduced: "
         "epoch = mid. |"
     ) in text
     assert "designation\\_sd" not in text
@@ -169,7 +169,7 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     # the headline finding: one line with statement, verdict, label and its sentence
     assert (
         "- **010 C010-2** (not reproduced, depends) *The gain is 4.* Not reproduced: the measured value is 1.5 "
-        "\\[1.2, 1.8\\], where the paper has \\[0, 2\\]. Under another reading of the paper's text it is "
+        "\\[1.2, 1.8\\], against \\[0, 2\\] (the paper: 1). Under another reading of the paper's text it is "
         "reproduced: epoch = mid."
     ) in text
     assert "C010-1" not in text  # reproduced claims are counted, not listed
@@ -385,8 +385,8 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
         assert key not in text and key.replace("_", "\\_") not in text, key
     # the reading that flips C001-3 is named before the world it does not extend to (which is behind the click)
     assert cells["C001-3"] == (
-        "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper has [0, 2] "
-        "x alpha. Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, against [0, 2] "
+        "x alpha (the paper: rho <= 0.5). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
         "velocity increments."
     )
     assert (

@@ -182,8 +182,8 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
     from tvtrack.results import claim_summary
 
     assert claim_summary(DEPENDS) == (
-        "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper has "
-        "[0, 2] x alpha. Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, against [0, 2] x alpha "
+        "(the paper: rho <= 0.5). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
         "velocity increments."
     )
     # the optional sentences come in while the whole stays within the characters asked for
@@ -192,7 +192,8 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
         "too."
     )
     assert claim_summary(UNDECIDED) == (
-        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], where the paper has [0, 0.625]. "
+        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (the paper: filter "
+        "1-2 px; MLP 2-3 px). "
         "About 7 independent replicates would decide it."
     )
     assert claim_summary(SMOKE).startswith("Reproduced (too few configurations to label): ")
@@ -261,7 +262,7 @@ def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp
     r = make(tmp_path)
     claim = r.claim("C999-1", "s", "rho <= 0.5", rule, exploration=ex)
     text = claim_summary(claim)
-    assert text.startswith("Reproduced: ") and " x alpha, where the paper has [0, 2.5] x alpha." in text
+    assert text.startswith("Reproduced: ") and " x alpha, against [0, 2.5] x alpha (the paper: rho <= 0.5)." in text
     assert "Under another reading of the paper's text it is not reproduced: sigma of the raw increments." in text
     assert "reading =" not in text and "motion" not in text  # the phrases, not the register keys
     assert claim_summary(load_results(r.write())["claims"][0]) == text

@@ -337,15 +337,46 @@ def _ratio_names(quantity: str) -> tuple[str, str, bool] | None:
     return m.group(1), m.group(2), any(w in m.group(3) for w in _LOWER_BETTER)
 
 
-def _band_clause(rule: Mapping, measured: Any) -> str:
-    """``"<quantity> is 0.74 [0.60, 0.91] variance ratio, where the paper has [3, 6] variance ratio"``, and in
-    words when the value reverses the direction the paper's band gives (a ratio below 1 where it has one above)."""
+_SHARE_UNITS = ("of the runs", "of runs", "of the paths", "of the frames")
+
+
+def _percent(measured: Any, rule: Mapping) -> tuple[Any, Mapping, str] | None:
+    """A share of runs (unit "of the runs") as a percentage: the value, its interval and the band times 100."""
     unit = _real_unit(rule)
+    t = triple(measured)
+    if unit not in _SHARE_UNITS or t is None:
+        return None
+    scaled = {"value": t[0] * 100, "ci_low": None if t[1] is None else t[1] * 100}
+    scaled["ci_high"] = None if t[2] is None else t[2] * 100
+    band = {k: (rule[k] * 100 if finite(rule.get(k)) else rule.get(k)) for k in ("low", "high")}
+    return scaled, {**rule, **band}, f"% {unit}"
+
+
+def against_paper(band: str, paper_value: str | None) -> str:
+    """What the rule's band stands for: ``", against [5.25, 5.75] s (the paper: 5.5 s)"``, or, where the paper
+    gives no number, ``', where the paper says "fairly quickly" (read here as at most 10 %)'``; ``", where the
+    paper has <band>"`` when the paper's value is not known (a bare rule)."""
+    if not band:
+        return ""
+    said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
+    if not said:
+        return f", where the paper has {band}"
+    if said.lower() == "qualitative":
+        return f", against {band}, set here (the paper gives no number)"
+    if not re.search(r"\d", said):
+        return f', where the paper says "{said}" (read here as {band})'
+    return f", against {band} (the paper: {said})"
+
+
+def _band_clause(rule: Mapping, measured: Any, paper_value: str | None = None) -> str:
+    """``"<quantity> is 0.74 [0.60, 0.91] variance ratio, where the paper has [3, 6] variance ratio"``, and in
+    words when the value reverses the direction the paper's band gives (a ratio below 1 where it has one above).
+    A share of runs is given in per cent; with ``paper_value`` the band is said as what the paper's words are read
+    as (:func:`against_paper`)."""
+    shown, shown_rule, unit = _percent(measured, rule) or (measured, rule, _real_unit(rule))
     quantity = str(rule.get("quantity") or "the measured value")
-    text = f"{quantity} is {format_value(measured, unit)}"
-    band = _band_words(rule, unit)
-    if band:
-        text += f", where the paper has {band}"
+    text = f"{quantity} is {format_value(shown, unit)}"
+    text += against_paper(_band_words(shown_rule, unit), paper_value)
     t, lo, hi = triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
     ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
     if ratio and t[1] is not None and t[2] is not None:
@@ -395,8 +426,9 @@ def _trend_clause(rule: Mapping, measured: Any) -> str:
     return f"{quantity} {shown}, where the paper has it {rule.get('direction', 'monotone')} in {rule.get('over', 'its grid')}"
 
 
-def value_clause(rule: Mapping | None, measured: Any) -> str:
-    """What was measured against what the paper says, in words and units, for one rule (or one part's rule)."""
+def value_clause(rule: Mapping | None, measured: Any, paper_value: str | None = None) -> str:
+    """What was measured against what the paper says, in words and units, for one rule (or one part's rule);
+    ``paper_value``: the paper's own words or number for the claim (the band is then said as its reading)."""
     rule, measured = rule_in_force(dict(rule or {}), measured)
     kind = rule.get("kind")
     if kind == "ordering":
@@ -404,7 +436,7 @@ def value_clause(rule: Mapping | None, measured: Any) -> str:
     if kind == "monotone":
         return _trend_clause(rule, measured)
     if kind in ("in_band", "within_factor") and triple(measured) is not None:
-        return _band_clause(rule, measured)
+        return _band_clause(rule, measured, paper_value)
     return f"{rule.get('quantity') or 'the measured value'} is {format_measured(measured, rule)}"
 
 
@@ -570,7 +602,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         aside.append("too few configurations to label")
     head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
     flips = claim_flips(claim, name) or claim_flips(claim)
-    required = [f"{head}: {value_clause(rule, measured)}."]
+    required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     required += [s for s in (first, _lock_sentence(claim, part)) if s]
     if verdict == "undecided":

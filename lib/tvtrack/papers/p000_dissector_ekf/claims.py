@@ -83,10 +83,7 @@ def _contrast_threshold(grid_p) -> vd.ByReading:
     adversarial reading "at every P > 0.5": the paper's threshold is P = 0.5, not 0.9)."""
 
     def ratio(p):  # the reading "C000-5 comparison" puts the filter ignoring the noise over variant 2 instead
-        return (
-            f"error variance with the signal noise / with background noise only (sigma_x^2*) at P={p:g} (or a "
-            "filter ignoring the signal noise / variant 2, under that reading)"
-        )
+        return f"error variance with the signal noise / with background noise only (sigma_x^2*) at P = {p:g}"
 
     below = {f"P={p:g}": InBand(ratio(p), high=1.3, unit="(ratio)") for p in grid_p if 0 < p <= 0.5}
 

@@ -134,7 +134,7 @@ def claim_rules() -> dict[str, Rule]:
                 ),
                 **{
                     f"min RMS vs {c}": Ordering(
-                        f"RMS error of the tuned {c} (as the register reads 'RMS', over its span)",
+                        f"RMS error of the tuned {c} over the compensation span",
                         "the scheme's",
                         ">",
                         "ratio",
