@@ -172,7 +172,8 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
         "\\[1.2, 1.8\\], against \\[0, 2\\] (the paper: 1). Under another reading of the paper's text it is "
         "reproduced: epoch = mid."
     ) in text
-    assert "C010-1" not in text  # reproduced claims are counted, not listed
+    assert "- **Hold** (label in brackets): 010: C010-1 (robust)." in text  # a claim that holds: named, no sentence
+    assert "- **010 C010-1**" not in text
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
     before = readme.stat().st_mtime_ns
     write_report(synthetic_runs, tmp_path / "R.md", notebooks=["010_new", "011_old"], readme=readme)
@@ -439,8 +440,8 @@ def test_each_paper_opens_with_what_it_claims_what_holds_what_does_not_and_why_t
     paragraph = section.split("\n\n")[2]
     assert paragraph == (
         "The paper makes 4 claims checked here; 3 can be measured. 1 claim holds (C001-7). It does not hold that neighbouring velocity samples correlate by \\<= 0.5, negligibly; the pair distributions may be "
-        "multiplied (C001-3): per-test false-alarm rate / alpha is 351.6 \\[350, 353.1\\] x alpha, where the paper "
-        "has \\[0, 2\\] x alpha; it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
+        "multiplied (C001-3): per-test false-alarm rate / alpha is 351.6 \\[350, 353.1\\] x alpha, against "
+        "\\[0, 2\\] x alpha (the paper: rho \\<= 0.5); it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
         "increments. The runs could not decide C004-3b."
     )
     limits = section.split("\n\n")[3]
@@ -468,3 +469,23 @@ def test_a_smoke_run_is_never_robust_even_where_its_record_says_robust(tmp_path)
     assert "1 of the checkable verdicts comes from a design too small to label" in text
     assert "| 003\\_smoke | 1 | 1 | 0 | 0 | 0 | 0 | 1 provisional |" in text
     assert "| C001-5 | " in text and "| provisional | Reproduced (too few configurations to label): " in text
+
+
+def test_the_first_screen_names_the_claims_that_hold_and_those_that_hold_in_part_with_their_labels():
+    import copy
+
+    from record_fixtures import DEPENDS, NOT_CHECKABLE, SMOKE
+    from tvtrack.pipeline.report import holding_lines
+
+    part = copy.deepcopy(DEPENDS) | {"id": "C001-4", "verdict": "partly"}
+    held = copy.deepcopy(DEPENDS) | {"id": "C001-7", "verdict": "reproduced"}
+    runs = {
+        "001_maneuver": (None, {"claims": [DEPENDS, part, held, NOT_CHECKABLE]}),
+        "003_marker": (None, {"claims": [SMOKE | {"id": "C003-1"}]}),
+        "004_laser": (None, None),
+    }
+    assert holding_lines(runs) == [
+        "- **Hold** (label in brackets): 001: C001-7 (depends); 003: C003-1 (provisional).",
+        "- **Hold in part** (label in brackets): 001: C001-4 (depends).",
+    ]
+    assert holding_lines({"001_maneuver": (None, {"claims": [DEPENDS]})}) == []  # nothing holds: no line

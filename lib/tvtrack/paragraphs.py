@@ -129,7 +129,7 @@ def _why_not(c: Mapping) -> str:
     name = main_part(c)
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
-    text = value_clause(rule, measured)
+    text = value_clause(rule, measured, c.get("paper_value"))
     flips = [f for f in claim_flips(c, name) or claim_flips(c) if f.get("verdict") == "reproduced"]
     if flips:
         text += f"; it holds under {side_words().get(flips[0]['side'], 'another change')}: {flips[0]['text']}"

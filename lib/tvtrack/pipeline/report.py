@@ -233,9 +233,27 @@ def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
     return "\n".join(lines)
 
 
+def holding_lines(runs: dict) -> list[str]:
+    """Which claims hold and which hold in part, by paper, each with its label where it has one (one bullet per
+    verdict)."""
+    out = []
+    for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part")):
+        bits = []
+        for name, (_, data) in runs.items():
+            cs = [c for c in (data or {}).get("claims", []) if c["verdict"] == verdict]
+            ids = [c["id"] + ("" if robustness_label(c) == NO_LABEL else f" ({robustness_label(c)})") for c in cs]
+            if ids:
+                bits.append(f"{name.split('_')[0]}: {', '.join(ids)}")
+        if bits:
+            out.append(f"- **{lead}** (label in brackets): " + "; ".join(bits) + ".")
+    return out
+
+
 def _in_short(runs: dict, shown: str) -> list[str]:
-    """The first screen: the paragraph, the glossary, the table of papers and the claims that do not hold."""
+    """The first screen: the paragraph, the glossary, the table of papers, the claims that hold and those that do
+    not."""
     claims = [c for _, data in runs.values() if data for c in data["claims"]]
+    held = holding_lines(runs)
     return [
         md_escape(results_summary(claims, shown)),
         "",
@@ -243,6 +261,7 @@ def _in_short(runs: dict, shown: str) -> list[str]:
         "",
         papers_table(runs),
         "",
+        *(["The claims that hold:", "", *held, ""] if held else []),
         "The claims that do not reproduce, and those the runs could not decide:",
         "",
         first_screen_list(first_screen(runs), NOT_HOLDING),
