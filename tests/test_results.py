@@ -171,7 +171,10 @@ def test_long_vectors_are_summarised_by_their_ends_and_trend():
     falling = [{"value": v, "ci_low": v, "ci_high": v} for v in (322.3, 119.4, 60.07, 35.64, 23.45, 16.56)]
     assert format_measured(falling, ms) == "falls from 322.3 ms to 16.56 ms over 6 points"
     assert format_measured([1, 2, 3, 4, 5], ms) == "rises from 1 ms to 5 ms over 5 points"
-    assert format_measured([1, 3, 2, 4, 0.5], ms) == "ranges 0.5 ms to 4 ms, going from 1 ms to 0.5 ms over 5 points"
+    assert (
+        format_measured([1, 3, 2, 4, 0.5], ms)
+        == "goes from 1 ms to 0.5 ms over 5 points, not steadily (between 0.5 and 4 ms)"
+    )
     assert format_measured([1, 2], ms) == "1, 2 ms"  # short vectors are shown whole
 
 

@@ -111,8 +111,11 @@ def vector_text(values: list, unit: str, always: bool = False) -> str:
         trend = "rises"
     elif all(abs(s) <= 1e-12 * max(1.0, abs(c)) for s, c in zip(steps, centres)):
         trend = "stays"
-    else:
-        trend = f"ranges {with_unit(number(min(centres)), unit)} to {with_unit(number(max(centres)), unit)}, going"
+    else:  # neither falls nor rises throughout: its ends, then how far it strays between them
+        ends = (
+            f"goes from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
+        )
+        return f"{ends}, not steadily (between {number(min(centres))} and {with_unit(number(max(centres)), unit)})"
     return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
 
 
