@@ -213,3 +213,21 @@ def test_a_notebooks_scheduler_parameter_is_an_address_with_a_port_or_empty(tmp_
     for bad in ("localhost", "tcp://host:99999", "http://host:8786", 8786):
         with pytest.raises(ValueError, match="'scheduler'.*tcp://HOST:PORT"):
             validate_parameters({**base, "scheduler": bad}, rules)
+
+
+def test_each_notebook_gets_a_worker_per_usable_core_and_its_share_of_the_blas_threads(tmp_path, monkeypatch):
+    """Side by side, each kernel keeps its share of the BLAS threads (cores // jobs), but a notebook with an
+    ``n_workers`` parameter gets a worker per usable core: the one left running when the others end uses them all."""
+    seen = {}
+
+    def fake_run(notebooks, profile, folder, jobs, threads, setups):
+        seen.update(jobs=jobs, threads=threads, workers={nb.stem: p.get("n_workers") for nb, (p, _) in zip(notebooks, setups)})
+        return []
+
+    monkeypatch.setattr(rep, "usable_cores", lambda: 4)
+    monkeypatch.setattr(rep, "_run_notebooks", fake_run)
+    monkeypatch.setattr(rep, "write_report", lambda *a, **k: tmp_path / "REPRODUCTION.md")
+    names = ["000_dissector_ekf", "004_laser_spot_prediction"]
+    assert rep.reproduce(profile="smoke", jobs=2, runs_dir=tmp_path, only=names) == 0
+    # 000 has no n_workers parameter (its filters run in the kernel)
+    assert seen == {"jobs": 2, "threads": 2, "workers": {"004_laser_spot_prediction": 4, "000_dissector_ekf": None}}

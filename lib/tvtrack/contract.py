@@ -16,7 +16,7 @@ name            what it is (the ``Paper`` attribute)
                 only), built at the notebook's default parameters (``claim_rules``)
 ``PARAMETERS``  ``{notebook parameter: ParamRule}``: the rules :meth:`tvtrack.paper.Paper.validate` applies to
                 the notebook's parameters cell (ranges written once; ``rules``); a notebook that spreads work
-                over processes names their number ``n_workers`` (``make reproduce`` sets it to cores // jobs)
+                over processes names their number ``n_workers`` (``make reproduce`` sets it to the usable cores)
 ``CLAIMS``      ``{claim id: {"statement": str, "paper_value": str}}``: what the paper says, in its words
 ``Sizes``       the class that holds one full-size run's Monte Carlo sizes and grids (``Paper.sizes`` fills it
                 from the parameters)
@@ -170,7 +170,7 @@ def _parameters_problems(parameters: Any) -> list[str]:
         for k, v in parameters.items()
         if not isinstance(v, ParamRule)
     ] + [
-        f"PARAMETERS[{k!r}]: name the number of worker processes n_workers (make reproduce sets it to cores // jobs)"
+        f"PARAMETERS[{k!r}]: name the number of worker processes n_workers (make reproduce sets it to the usable cores)"
         for k in parameters
         if k in WORKER_ALIASES
     ]

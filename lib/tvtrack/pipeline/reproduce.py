@@ -7,8 +7,10 @@ into ``papermill_runs/reproduce-<profile>/`` with its own ``REPRODUCTION.md`` th
 paper runs, the repository's ``REPRODUCTION.md`` and the README alone. A reproduce holds the lock of its
 folder (:mod:`.lock`): a second one into the same folder is refused. Ctrl-C stops the notebooks,
 keeps the earlier runs and exits with status 130 (:mod:`.interrupt`). So that ``jobs`` notebooks do not oversubscribe the
-machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads and a notebook with an ``n_workers``
-parameter gets that many worker processes. Kernel chatter on stderr (ipykernel's transport warning)
+machine, each kernel gets ``cores // jobs`` BLAS/OpenMP threads; a notebook with an ``n_workers`` parameter gets
+as many worker processes as the machine has usable cores, so that the notebook still running when the others have
+ended does not keep to its share of the cores while the rest stand idle (while several run, the system shares the
+cores between their workers; results do not depend on the number of workers). Kernel chatter on stderr (ipykernel's transport warning)
 goes to ``papermill_runs/reproduce/kernels.log``, not to the terminal. ``scheduler`` sends every notebook's
 explorations to a Dask cluster and ``max_replicates`` sets their sizing caps (:mod:`.scale`).
 
@@ -207,7 +209,7 @@ def reproduce(
     notebooks = _order(notebooks, folder)
     jobs = min(jobs, len(notebooks))
     threads = max(1, usable_cores() // jobs)
-    params = [notebook_overrides(nb, threads, scheduler, max_replicates) for nb in notebooks]
+    params = [notebook_overrides(nb, usable_cores(), scheduler, max_replicates) for nb in notebooks]
     if max_replicates is not None:
         check_caps(notebooks, [load_profile(nb, profile) for nb in notebooks], params, max_replicates)
     places = [ran_on(p, cluster) for p in params]
