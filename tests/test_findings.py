@@ -407,3 +407,61 @@ def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_
         'share of runs not in lock is 0.78 [0.43, 1.3] % of the runs, where the paper says "fairly quickly" (read '
         "here as at most 10 % of the runs)"
     )
+
+
+def _lost_row(changed, verdict, in_lock, **more):
+    return {"changed": changed, "lost": 27, "runs": 600, "verdict": verdict, "in_lock_verdict": in_lock, **more}
+
+
+def test_a_flip_the_same_draws_do_not_show_over_every_run_is_never_said_carried_by_lost_runs():
+    """The lock report runs on the first replicate's draws while a flip pools every replicate: where those draws
+    over every run read the default's verdict and only the runs in lock read the flip's, the lost runs carry
+    nothing (they hide the flip on that draw); the sentence must not say they carry it."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+
+    claim = copy.deepcopy(DEPENDS)  # not reproduced; the reading flips it to reproduced
+    row = _lost_row({"paper_sigma": "raw_increments"}, "not reproduced", "reproduced")
+    mark_lost_runs(claim["robustness"], [row], claim["verdict"])
+    flip = claim["robustness"]["parts"]["claim"]["flips"][0]
+    assert flip["lost_runs"]["carried"] is False
+    assert "carry that flip" not in claim_summary(claim)
+
+
+def test_runs_that_lost_lock_are_not_said_to_decide_a_verdict_the_same_draws_over_every_run_do_not_give():
+    """At the default the claim pools its replicates; the lock report's draws (the first replicate) may read
+    otherwise over every run. Runs that lost lock decide the verdict only where those draws give it over every
+    run and another over the runs in lock."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+
+    claim = copy.deepcopy(DEPENDS)  # not reproduced
+    mark_lost_runs(claim["robustness"], [_lost_row({}, "reproduced", "not reproduced")], claim["verdict"])
+    assert claim["robustness"]["decided_by_lost_runs"] is False
+    assert "Runs that lost lock decide it" not in claim_summary(claim)
+
+
+def test_a_flip_of_one_part_is_said_carried_by_lost_runs_only_by_that_part_s_own_verdicts():
+    """A claim of several parts: the whole claim's verdicts over every run and over the runs in lock may differ
+    through another part. Each flip is judged by its own part's verdicts where the row gives them, and is never
+    said carried where only the whole claim's are given."""
+    from tvtrack.labels import mark_lost_runs
+
+    at = {"sigma_1": 0.2}
+    record = {
+        "parts": {
+            "p1": {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]},
+            "p2": {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]},
+        }
+    }
+    parts = {"parts": {"p1": "not reproduced", "p2": "not reproduced"}}
+    in_lock = {"in_lock_parts": {"p1": "not reproduced", "p2": "reproduced"}}
+    mark_lost_runs(record, [_lost_row(at, "not reproduced", "partly", **parts, **in_lock)], "reproduced")
+    carried = {p: v["flips"][0]["lost_runs"]["carried"] for p, v in record["parts"].items()}
+    assert carried == {"p1": False, "p2": True}  # p1 flips over the runs in lock too
+    mark_lost_runs(record, [_lost_row(at, "not reproduced", "partly")], "reproduced")  # whole-claim verdicts only
+    assert [v["flips"][0]["lost_runs"]["carried"] for v in record["parts"].values()] == [False, False]
