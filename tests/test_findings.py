@@ -9,6 +9,7 @@ import pytest
 
 import tvtrack.numbers
 import tvtrack.paragraphs
+import tvtrack.value_words
 import tvtrack.wording
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Results, claim_summary, claims_table, format_measured, main_part, md_escape
@@ -47,7 +48,9 @@ def test_claims_table_one_line_per_claim(tmp_path):
 
 
 REPO = Path(__file__).resolve().parents[1]
-_WRITER = "".join(Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.paragraphs, tvtrack.numbers))
+_WRITER = "".join(
+    Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.value_words, tvtrack.paragraphs, tvtrack.numbers)
+)
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
     r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
@@ -105,7 +108,7 @@ def _sources(record: dict) -> dict:
 
 
 def _shown_rule(record: dict) -> dict:
-    rule, measured = tvtrack.wording.rule_in_force(record.get("rule") or {}, record.get("measured"))
+    rule, measured = tvtrack.value_words.rule_in_force(record.get("rule") or {}, record.get("measured"))
     if rule.get("kind") == "all_of":
         rule = (rule.get("parts") or {}).get(main_part(record)) or {}
     return rule
@@ -129,7 +132,7 @@ def sentence_faults(record: dict, keys: set[str]) -> list[str]:
         hit = re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text)
         if hit and not any(re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", t) for t in plain):
             faults.append(f"register key {key!r}")
-    unit = tvtrack.wording._real_unit(_shown_rule(record))
+    unit = tvtrack.value_words.real_unit(_shown_rule(record))
     if unit:
         faults += [f"number without its unit {unit!r}: {n}" for n in _bare_numbers(text, plain, record, unit)]
     return faults
@@ -216,14 +219,14 @@ def test_a_value_that_reverses_the_papers_direction_says_so_in_words():
 
     rule = RULES["C002-11"].to_dict()["parts"]["d = 1 sigma (paper x4.5)"]
     measured = {"value": 0.7403, "ci_low": 0.6042, "ci_high": 0.9071}
-    assert tvtrack.wording.value_clause(rule, measured) == (
+    assert tvtrack.value_words.value_clause(rule, measured) == (
         "gain rho = two-stage / ULA variance at d = 1 sigma, T = 50 is 0.7403 [0.6042, 0.9071] variance ratio, "
         "where the paper has [3, 6] variance ratio: the two-stage beats the ULA, the reverse of the paper's direction"
     )
     inside = {"value": 4.2, "ci_low": 3.9, "ci_high": 4.6}
-    assert "reverse" not in tvtrack.wording.value_clause(rule, inside)
+    assert "reverse" not in tvtrack.value_words.value_clause(rule, inside)
     better = RULES["C002-8"].to_dict()["parts"]["better than the marks"]  # ULA's variance < two-stage's
-    assert tvtrack.wording.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
+    assert tvtrack.value_words.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
         "ULA variance of x_o, coarse pixels is 1.3 [1.1, 1.5] times two-stage's: larger, where the paper has it smaller"
     )
 
@@ -385,7 +388,7 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
 
 
 def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_gives_no_number():
-    from tvtrack.wording import against_paper, value_clause
+    from tvtrack.value_words import against_paper, value_clause
 
     band = "at most 10 % of the runs"
     assert against_paper(band, "fairly quickly (no number)") == (
