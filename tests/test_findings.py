@@ -468,3 +468,32 @@ def test_a_flip_of_one_part_is_said_carried_by_lost_runs_only_by_that_part_s_own
     assert carried == {"p1": False, "p2": True}  # p1 flips over the runs in lock too
     mark_lost_runs(record, [_lost_row(at, "not reproduced", "partly")], "reproduced")  # whole-claim verdicts only
     assert [v["flips"][0]["lost_runs"]["carried"] for v in record["parts"].values()] == [False, False]
+
+
+def test_a_paper_number_the_band_does_not_hold_is_said_as_what_the_band_is_read_from_not_as_the_paper_s_value():
+    """A claim's paper value may be of another quantity than the part its sentence shows (a threshold SIR beside a
+    probability of losing lock, a contrast beside a variance ratio): "(the paper: 2)" after "at least 0.1" would
+    say the paper has 2 for the probability. A paper number inside a two-sided band (or on a one-sided band's edge;
+    a per cent as a share) is the paper's value; else the band is said as read from the paper's words."""
+    from tvtrack.value_words import against_paper
+
+    assert against_paper("at least 0.1", "2", 0.1, None) == ', against at least 0.1 (read here from the paper\'s "2")'
+    assert against_paper("at most 1.3", "threshold near P = 0.5", None, 1.3) == (
+        ', against at most 1.3 (read here from the paper\'s "threshold near P = 0.5")'
+    )
+    assert against_paper("at least 20", "> 20", 20, None) == ", against at least 20 (the paper: > 20)"
+    assert against_paper("[0.01, 0.03]", "2 %", 0.01, 0.03) == ", against [0.01, 0.03] (the paper: 2 %)"
+    assert (
+        against_paper("[5.25, 5.75] s", "5.5 s (one run)", 5.25, 5.75) == ", against [5.25, 5.75] s (the paper: 5.5 s)"
+    )
+    assert against_paper("[0, 0.625]", "filter 1-2 px; MLP 2-3 px", 0, 0.625).endswith(
+        'from the paper\'s "filter 1-2 px; MLP 2-3 px")'
+    )
+
+
+def test_the_paper_s_words_in_their_own_quotes_are_quoted_once():
+    from tvtrack.value_words import against_paper
+
+    assert against_paper("[0.8, 1.5]", "'practically potential'") == (
+        ', where the paper says "practically potential" (read here as [0.8, 1.5])'
+    )

@@ -6,6 +6,7 @@ The sentences around the clause are :mod:`tvtrack.wording`'s.
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Any, Mapping
 
@@ -83,19 +84,41 @@ def _percent(measured: Any, rule: Mapping) -> tuple[Any, Mapping, str] | None:
     return scaled, {**rule, **band}, f"% {unit}"
 
 
-def against_paper(band: str, paper_value: str | None) -> str:
+def _holds_paper_number(said: str, low: Any, high: Any) -> bool:
+    """Whether a number of the paper's words is the band's own: inside a two-sided band, on a one-sided band's
+    edge, as written or (a per cent) as a share; True where the band has no finite end to compare."""
+    lo, hi = (float(x) if finite(x) else None for x in (low, high))
+    if lo is None and hi is None:
+        return True
+    nums = [float(x) for x in re.findall(r"(?<![\d.])-?\d+(?:\.\d+)?", said)]
+    for x in [*nums, *(n / 100 for n in nums if "%" in said)]:
+        if lo is not None and hi is not None and lo - 1e-12 <= x <= hi + 1e-12:
+            return True
+        if any(e is not None and math.isclose(x, e, rel_tol=1e-9, abs_tol=1e-12) for e in (lo, hi)):
+            return True
+    return False
+
+
+def against_paper(band: str, paper_value: str | None, low: Any = None, high: Any = None) -> str:
     """What the rule's band stands for: ``", against [5.25, 5.75] s (the paper: 5.5 s)"``, or, where the paper
     gives no number, ``', where the paper says "fairly quickly" (read here as at most 10 %)'``; ``", where the
-    paper has <band>"`` when the paper's value is not known (a bare rule)."""
+    paper has <band>"`` when the paper's value is not known (a bare rule). With the band's ends ``low`` and
+    ``high``, a paper value none of whose numbers the band holds (:func:`_holds_paper_number`: the value of
+    another quantity, as a threshold beside a probability) is said as what the band is read from:
+    ``', against at least 0.1 (read here from the paper's "2")'``."""
     if not band:
         return ""
     said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
+    if len(said) > 1 and said[0] == said[-1] and said[0] in "'\"":  # the paper's words in their own quotes
+        said = said[1:-1].strip()
     if not said:
         return f", where the paper has {band}"
     if said.lower() == "qualitative":
         return f", against {band}, set here (the paper gives no number)"
     if not re.search(r"\d", said):
         return f', where the paper says "{said}" (read here as {band})'
+    if not _holds_paper_number(said, low, high):
+        return f', against {band} (read here from the paper\'s "{said}")'
     return f", against {band} (the paper: {said})"
 
 
@@ -107,7 +130,7 @@ def _band_clause(rule: Mapping, measured: Any, paper_value: str | None = None) -
     shown, shown_rule, unit = _percent(measured, rule) or (measured, rule, real_unit(rule))
     quantity = str(rule.get("quantity") or "the measured value")
     text = f"{quantity} is {format_value(shown, unit)}"
-    text += against_paper(_band_words(shown_rule, unit), paper_value)
+    text += against_paper(_band_words(shown_rule, unit), paper_value, rule.get("low"), rule.get("high"))
     t, lo, hi = triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
     ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
     if ratio and t[1] is not None and t[2] is not None:
