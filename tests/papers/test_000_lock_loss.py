@@ -111,3 +111,35 @@ def test_the_lock_report_gives_each_part_its_own_verdicts_so_a_flip_is_carried_o
     flips = {p: {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]} for p in "ab"}
     record = mark_lost_runs({"parts": flips}, rep["rows"], "reproduced")
     assert {p: v["flips"][0]["lost_runs"]["carried"] for p, v in record["parts"].items()} == {"a": False, "b": True}
+
+
+def test_a_condition_whose_draws_read_the_default_s_verdict_over_every_run_is_never_said_carried_by_lost_runs():
+    """The lock report runs one replicate's draws; a flip pools every replicate. Where those draws read the
+    default's verdict over every run and the flip's only over the runs in lock, the lost runs hide the flip on
+    that draw: the note must not say they carry it, and the row is not marked carried."""
+    from types import SimpleNamespace
+
+    from tvtrack.labels import mark_lost_runs
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.verdicts import InBand
+
+    def measure(config, seed, sizes, claims):
+        b = 0.01 + np.random.default_rng(seed).uniform(0.0, 0.01, 40)
+        if config["x"]:
+            b[:10] = 5.0  # lost lock: 10 runs about 300 times the median run's mean square
+            return {"C": Estimate.exact(1.2 - float(np.mean(lock_loss.keep(b))))}  # 1.2 - 1.26 over every run
+        return {"C": Estimate.exact(0.0)}
+
+    rule, at = InBand("mean", -0.5, 0.5, "px"), {"x": 1}
+    rep = lock_loss.lock_report(measure, rule, {"x": 0}, [at], 7, SimpleNamespace(lock_factor=5.0), "C", str)
+    row = rep["rows"][1]
+    assert (rep["rows"][0]["verdict"], row["verdict"], row["in_lock_verdict"]) == (
+        "reproduced",
+        "reproduced",
+        "not reproduced",
+    )
+    assert "carried by the runs that lost lock" not in rep["note"], rep["note"]
+    assert "the runs that lost lock carry no flip" in rep["note"]
+    part = {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]}
+    record = mark_lost_runs({"parts": {"claim": part}}, rep["rows"], "reproduced")
+    assert record["parts"]["claim"]["flips"][0]["lost_runs"]["carried"] is False

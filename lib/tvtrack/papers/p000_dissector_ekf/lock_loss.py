@@ -159,7 +159,12 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
         f"where most did; over the runs in lock the verdict is {same}."
     ]
     for changed, m, v, k in rows[1:]:
-        if k == v:
+        if v == v0 and k != v:  # these draws show no flip over all runs: the lost runs hide it, carry none
+            how = (
+                f"over the runs in lock it reads {k}: over all runs these draws read as at the default, so the runs "
+                "that lost lock carry no flip"
+            )
+        elif k == v:
             how = f"over the runs in lock it still reads {k}: the flip is not made by the runs that lost lock"
         else:
             how = f"over the runs in lock it reads {k}: the flip is carried by the runs that lost lock"
