@@ -9,6 +9,7 @@ import pytest
 
 import tvtrack.numbers
 import tvtrack.paragraphs
+import tvtrack.value_words
 import tvtrack.wording
 from tvtrack.montecarlo import Estimate
 from tvtrack.results import Results, claim_summary, claims_table, format_measured, main_part, md_escape
@@ -47,7 +48,9 @@ def test_claims_table_one_line_per_claim(tmp_path):
 
 
 REPO = Path(__file__).resolve().parents[1]
-_WRITER = "".join(Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.paragraphs, tvtrack.numbers))
+_WRITER = "".join(
+    Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.value_words, tvtrack.paragraphs, tvtrack.numbers)
+)
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
     r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
@@ -105,7 +108,7 @@ def _sources(record: dict) -> dict:
 
 
 def _shown_rule(record: dict) -> dict:
-    rule, measured = tvtrack.wording.rule_in_force(record.get("rule") or {}, record.get("measured"))
+    rule, measured = tvtrack.value_words.rule_in_force(record.get("rule") or {}, record.get("measured"))
     if rule.get("kind") == "all_of":
         rule = (rule.get("parts") or {}).get(main_part(record)) or {}
     return rule
@@ -129,7 +132,7 @@ def sentence_faults(record: dict, keys: set[str]) -> list[str]:
         hit = re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text)
         if hit and not any(re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", t) for t in plain):
             faults.append(f"register key {key!r}")
-    unit = tvtrack.wording._real_unit(_shown_rule(record))
+    unit = tvtrack.value_words.real_unit(_shown_rule(record))
     if unit:
         faults += [f"number without its unit {unit!r}: {n}" for n in _bare_numbers(text, plain, record, unit)]
     return faults
@@ -216,14 +219,14 @@ def test_a_value_that_reverses_the_papers_direction_says_so_in_words():
 
     rule = RULES["C002-11"].to_dict()["parts"]["d = 1 sigma (paper x4.5)"]
     measured = {"value": 0.7403, "ci_low": 0.6042, "ci_high": 0.9071}
-    assert tvtrack.wording.value_clause(rule, measured) == (
+    assert tvtrack.value_words.value_clause(rule, measured) == (
         "gain rho = two-stage / ULA variance at d = 1 sigma, T = 50 is 0.7403 [0.6042, 0.9071] variance ratio, "
         "where the paper has [3, 6] variance ratio: the two-stage beats the ULA, the reverse of the paper's direction"
     )
     inside = {"value": 4.2, "ci_low": 3.9, "ci_high": 4.6}
-    assert "reverse" not in tvtrack.wording.value_clause(rule, inside)
+    assert "reverse" not in tvtrack.value_words.value_clause(rule, inside)
     better = RULES["C002-8"].to_dict()["parts"]["better than the marks"]  # ULA's variance < two-stage's
-    assert tvtrack.wording.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
+    assert tvtrack.value_words.value_clause(better, {"value": 1.3, "ci_low": 1.1, "ci_high": 1.5}) == (
         "ULA variance of x_o, coarse pixels is 1.3 [1.1, 1.5] times two-stage's: larger, where the paper has it smaller"
     )
 
@@ -385,7 +388,7 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
 
 
 def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_gives_no_number():
-    from tvtrack.wording import against_paper, value_clause
+    from tvtrack.value_words import against_paper, value_clause
 
     band = "at most 10 % of the runs"
     assert against_paper(band, "fairly quickly (no number)") == (
@@ -406,4 +409,91 @@ def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_
     assert value_clause(rule, measured, "fairly quickly (no number)") == (
         'share of runs not in lock is 0.78 [0.43, 1.3] % of the runs, where the paper says "fairly quickly" (read '
         "here as at most 10 % of the runs)"
+    )
+
+
+def _lost_row(changed, verdict, in_lock, **more):
+    return {"changed": changed, "lost": 27, "runs": 600, "verdict": verdict, "in_lock_verdict": in_lock, **more}
+
+
+def test_a_flip_the_same_draws_do_not_show_over_every_run_is_never_said_carried_by_lost_runs():
+    """The lock report runs on the first replicate's draws while a flip pools every replicate: where those draws
+    over every run read the default's verdict and only the runs in lock read the flip's, the lost runs carry
+    nothing (they hide the flip on that draw); the sentence must not say they carry it."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+
+    claim = copy.deepcopy(DEPENDS)  # not reproduced; the reading flips it to reproduced
+    row = _lost_row({"paper_sigma": "raw_increments"}, "not reproduced", "reproduced")
+    mark_lost_runs(claim["robustness"], [row], claim["verdict"])
+    flip = claim["robustness"]["parts"]["claim"]["flips"][0]
+    assert flip["lost_runs"]["carried"] is False
+    assert "carry that flip" not in claim_summary(claim)
+
+
+def test_runs_that_lost_lock_are_not_said_to_decide_a_verdict_the_same_draws_over_every_run_do_not_give():
+    """At the default the claim pools its replicates; the lock report's draws (the first replicate) may read
+    otherwise over every run. Runs that lost lock decide the verdict only where those draws give it over every
+    run and another over the runs in lock."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.labels import mark_lost_runs
+
+    claim = copy.deepcopy(DEPENDS)  # not reproduced
+    mark_lost_runs(claim["robustness"], [_lost_row({}, "reproduced", "not reproduced")], claim["verdict"])
+    assert claim["robustness"]["decided_by_lost_runs"] is False
+    assert "Runs that lost lock decide it" not in claim_summary(claim)
+
+
+def test_a_flip_of_one_part_is_said_carried_by_lost_runs_only_by_that_part_s_own_verdicts():
+    """A claim of several parts: the whole claim's verdicts over every run and over the runs in lock may differ
+    through another part. Each flip is judged by its own part's verdicts where the row gives them, and is never
+    said carried where only the whole claim's are given."""
+    from tvtrack.labels import mark_lost_runs
+
+    at = {"sigma_1": 0.2}
+    record = {
+        "parts": {
+            "p1": {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]},
+            "p2": {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]},
+        }
+    }
+    parts = {"parts": {"p1": "not reproduced", "p2": "not reproduced"}}
+    in_lock = {"in_lock_parts": {"p1": "not reproduced", "p2": "reproduced"}}
+    mark_lost_runs(record, [_lost_row(at, "not reproduced", "partly", **parts, **in_lock)], "reproduced")
+    carried = {p: v["flips"][0]["lost_runs"]["carried"] for p, v in record["parts"].items()}
+    assert carried == {"p1": False, "p2": True}  # p1 flips over the runs in lock too
+    mark_lost_runs(record, [_lost_row(at, "not reproduced", "partly")], "reproduced")  # whole-claim verdicts only
+    assert [v["flips"][0]["lost_runs"]["carried"] for v in record["parts"].values()] == [False, False]
+
+
+def test_a_paper_number_the_band_does_not_hold_is_said_as_what_the_band_is_read_from_not_as_the_paper_s_value():
+    """A claim's paper value may be of another quantity than the part its sentence shows (a threshold SIR beside a
+    probability of losing lock, a contrast beside a variance ratio): "(the paper: 2)" after "at least 0.1" would
+    say the paper has 2 for the probability. A paper number inside a two-sided band (or on a one-sided band's edge;
+    a per cent as a share) is the paper's value; else the band is said as read from the paper's words."""
+    from tvtrack.value_words import against_paper
+
+    assert against_paper("at least 0.1", "2", 0.1, None) == ', against at least 0.1 (read here from the paper\'s "2")'
+    assert against_paper("at most 1.3", "threshold near P = 0.5", None, 1.3) == (
+        ', against at most 1.3 (read here from the paper\'s "threshold near P = 0.5")'
+    )
+    assert against_paper("at least 20", "> 20", 20, None) == ", against at least 20 (the paper: > 20)"
+    assert against_paper("[0.01, 0.03]", "2 %", 0.01, 0.03) == ", against [0.01, 0.03] (the paper: 2 %)"
+    assert (
+        against_paper("[5.25, 5.75] s", "5.5 s (one run)", 5.25, 5.75) == ", against [5.25, 5.75] s (the paper: 5.5 s)"
+    )
+    assert against_paper("[0, 0.625]", "filter 1-2 px; MLP 2-3 px", 0, 0.625).endswith(
+        'from the paper\'s "filter 1-2 px; MLP 2-3 px")'
+    )
+
+
+def test_the_paper_s_words_in_their_own_quotes_are_quoted_once():
+    from tvtrack.value_words import against_paper
+
+    assert against_paper("[0.8, 1.5]", "'practically potential'") == (
+        ', where the paper says "practically potential" (read here as [0.8, 1.5])'
     )

@@ -195,8 +195,8 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
         "too."
     )
     assert claim_summary(UNDECIDED) == (
-        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (the paper: filter "
-        "1-2 px; MLP 2-3 px). "
+        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (read here from the "
+        'paper\'s "filter 1-2 px; MLP 2-3 px"). '
         "About 7 independent replicates would decide it."
     )
     assert claim_summary(SMOKE).startswith("Reproduced (too few configurations to label): ")

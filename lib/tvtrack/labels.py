@@ -312,9 +312,22 @@ def _lost(prule: Rule, pm: Any, verdict: str) -> dict:
     }
 
 
+def _carried(row: Mapping, name: str, flip: Mapping, n_parts: int) -> bool:
+    """Whether the runs that lost lock carry a flip of part ``name``: on the row's draws the part reads the flip's
+    verdict over every run and another over the runs in lock. The part's own verdicts (``parts``,
+    ``in_lock_parts``) where the row gives them; the whole claim's only for a claim of one part (another part's
+    verdict may move the whole claim's)."""
+    every, kept = (row.get("parts") or {}).get(name), (row.get("in_lock_parts") or {}).get(name)
+    if every is None or kept is None:
+        if n_parts != 1:
+            return False
+        every, kept = row["verdict"], row["in_lock_verdict"]
+    return every == flip.get("verdict") and kept != every
+
+
 def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
     """Mark a claim's record with a paper's own count of the runs that lost lock, at the default and under
-    named flips: where the claim's verdict over the runs in lock differs from its verdict over every run, those
+    named flips: where the rows' draws read the verdict over every run and another over the runs in lock, those
     runs carry it, and the claim's sentence says so (:func:`tvtrack.wording.claim_summary`).
 
     Parameters
@@ -323,22 +336,26 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
         The claim's robustness record (:meth:`tvtrack.explore.Exploration.record`); marked in place.
     rows : sequence of dict
         ``{"changed": {entry: value} ({} for the default), "lost": int, "runs": int, "verdict": str (over every
-        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws.
+        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws (one replicate's); for a claim
+        of several parts also ``"parts"`` and ``"in_lock_parts"``: ``{part: verdict}`` over every run and over the
+        runs in lock.
     verdict : str
         The claim's verdict at the default (every replicate pooled).
 
     Returns
     -------
     dict
-        ``record``: at the default ``lost_share``, ``in_lock_verdict`` and ``decided_by_lost_runs`` (the
-        verdicts of the same run over every run and over the runs in lock differ); each flip of a part whose
-        changes a row names gains ``lost_runs`` ({lost, runs, verdict, in_lock_verdict, carried}).
+        ``record``: at the default ``lost_share``, ``in_lock_verdict`` (on the row's draws) and
+        ``decided_by_lost_runs`` (those draws give ``verdict`` over every run and another over the runs in lock);
+        each flip of a part whose changes a row names gains ``lost_runs`` ({lost, runs, verdict, in_lock_verdict,
+        carried}): ``carried`` where the part reads the flip's verdict over every run of the row and another over
+        its runs in lock (never from the whole claim's verdicts for a claim of several parts).
     """
+    parts = record.get("parts") or {}
     for row in rows:
         lost, runs = int(row["lost"]), int(row["runs"])
         if runs < 1 or not 0 <= lost <= runs:
             raise ValueError(f"mark_lost_runs: lost {lost} of runs {runs}: need 0 <= lost <= runs and runs >= 1")
-        carried = row["in_lock_verdict"] != row["verdict"]
         info = {"lost": lost, "runs": runs, "verdict": row["verdict"], "in_lock_verdict": row["in_lock_verdict"]}
         if not row.get("changed"):
             from .counts import proportion_ci
@@ -351,13 +368,13 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
                 "ci_low": e.ci_low,
                 "ci_high": e.ci_high,
             }
-            record["in_lock_verdict"] = row["in_lock_verdict"] if carried else verdict
-            record["decided_by_lost_runs"] = carried
+            record["in_lock_verdict"] = row["in_lock_verdict"]
+            record["decided_by_lost_runs"] = row["verdict"] == verdict and row["in_lock_verdict"] != verdict
             continue
-        for part in (record.get("parts") or {}).values():
+        for name, part in parts.items():
             for f in part.get("flips") or ():
                 if dict(f.get("changed") or {}) == dict(row["changed"]):
-                    f["lost_runs"] = {**info, "carried": carried}
+                    f["lost_runs"] = {**info, "carried": _carried(row, name, f, len(parts))}
     return record
 
 

@@ -21,8 +21,8 @@ from .wording import (
     not_checkable_reason,
     shown_label,
     side_words,
-    value_clause,
 )
+from .value_words import value_clause
 
 __all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations"]
 
@@ -123,7 +123,8 @@ def _statement(c: Mapping) -> str:
 def _why_not(c: Mapping) -> str:
     """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
     direction) and, where one is named, the strongest change under which it would."""
-    from .wording import rule_in_force, main_part
+    from .value_words import rule_in_force
+    from .wording import main_part
 
     rule, measured = rule_in_force(dict(c.get("rule") or {}), c.get("measured"))
     name = main_part(c)

@@ -98,7 +98,7 @@ def _spec_point(measured, part: str | None, rule: dict) -> tuple[float, float, f
     """``(value, low, high)`` of a configuration's measured value (or its part's); ``None`` for a vector."""
     import math
 
-    from .wording import rule_in_force
+    from .value_words import rule_in_force
 
     rule, measured = rule_in_force(rule, measured)
     if part is not None and rule.get("kind") == "all_of":
@@ -222,7 +222,7 @@ def specification_curve(record: dict, part: str | None = None):
     """
     import matplotlib.pyplot as plt
 
-    from .wording import rule_in_force
+    from .value_words import rule_in_force
 
     if not isinstance(record, dict):  # a Claim object: its JSON form
         from .results import to_jsonable

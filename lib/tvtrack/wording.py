@@ -20,7 +20,8 @@ import math
 import re
 from typing import Any, Mapping
 
-from .numbers import finite, format_measured, format_value, number, triple, vector_text, with_unit
+from .numbers import finite, number
+from .value_words import rule_in_force, value_clause
 
 __all__ = [
     "VERDICT_WORDS",
@@ -35,12 +36,10 @@ __all__ = [
     "entry_side",
     "claim_flips",
     "main_part",
-    "value_clause",
     "claim_summary",
     "not_checkable_reason",
     "claim_fields",
     "register_phrases",
-    "rule_in_force",
 ]
 
 #: What each verdict means, in the words a reader meets on the first screen.
@@ -250,28 +249,6 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     return out
 
 
-def rule_in_force(rule: Mapping, measured: Any) -> tuple[Mapping, Any]:
-    """The rule that judges a measurement: for a ``by_reading`` rule, the one in force for the reading the
-    measurement is tagged with (nested ones followed down), else the rule itself.
-
-    Parameters
-    ----------
-    rule : Mapping
-        A rule as ``results.json`` stores it (``kind``, and for ``by_reading`` its ``rules`` and ``default``).
-    measured : Any
-        The claim's measured value (for ``by_reading``: ``{"reading": ..., "measured": ...}``).
-
-    Returns
-    -------
-    tuple
-        ``(rule in force, the measurement it judges)``.
-    """
-    if rule.get("kind") == "by_reading" and isinstance(measured, Mapping) and "reading" in measured:
-        inner = (rule.get("rules") or {}).get(str(measured.get("reading"))) or rule.get("default") or {}
-        return rule_in_force(inner, measured.get("measured"))
-    return rule, measured
-
-
 _LABEL_ORDER = ("unstable", "depends", "limited", "unexplored", "robust")
 
 
@@ -305,139 +282,6 @@ _HEAD = {
     "partly": "Partly reproduced",
     "undecided": "Undecided",
 }
-_LOWER_BETTER = ("variance", "error", "miss", "MSE", "RMS", "loss")
-_PREPOSITIONS = ("with ", "at ", "against ", "in ", "for ", "from ", "without ", "over ")
-
-
-def _real_unit(rule: Mapping) -> str:
-    """The rule's unit when it is one ("px", "× alpha", "variance ratio"); ``""`` for a dimensionless quantity
-    (no unit, a parenthesised descriptor such as "(ratio)", or an ordering's "ratio of a to b")."""
-    unit = str(rule.get("unit") or "").strip()
-    return "" if not unit or unit.startswith("(") or unit.startswith("ratio of ") else unit
-
-
-def _band_words(rule: Mapping, unit: str) -> str:
-    """The rule's band in words: ``"[3, 6] px"``, ``"at most 2 px"``, ``"at least 20"``."""
-    lo, hi = rule.get("low"), rule.get("high")
-    if finite(lo) and finite(hi):
-        return with_unit(f"[{number(lo)}, {number(hi)}]", unit)
-    if finite(hi):
-        return "at most " + with_unit(number(hi), unit)
-    if finite(lo):
-        return "at least " + with_unit(number(lo), unit)
-    return ""
-
-
-def _ratio_names(quantity: str) -> tuple[str, str, bool] | None:
-    """``("two-stage", "ULA", lower is better)`` from a quantity such as "gain rho = two-stage / ULA variance at
-    d = 1 sigma"; ``None`` when the quantity is not of that form."""
-    m = re.search(r"(?:^|= )([\w'-]+(?: [\w'-]+)?) / ([\w'-]+) (\w+)", quantity)
-    if not m:
-        return None
-    return m.group(1), m.group(2), any(w in m.group(3) for w in _LOWER_BETTER)
-
-
-_SHARE_UNITS = ("of the runs", "of runs", "of the paths", "of the frames")
-
-
-def _percent(measured: Any, rule: Mapping) -> tuple[Any, Mapping, str] | None:
-    """A share of runs (unit "of the runs") as a percentage: the value, its interval and the band times 100."""
-    unit = _real_unit(rule)
-    t = triple(measured)
-    if unit not in _SHARE_UNITS or t is None:
-        return None
-    scaled = {"value": t[0] * 100, "ci_low": None if t[1] is None else t[1] * 100}
-    scaled["ci_high"] = None if t[2] is None else t[2] * 100
-    band = {k: (rule[k] * 100 if finite(rule.get(k)) else rule.get(k)) for k in ("low", "high")}
-    return scaled, {**rule, **band}, f"% {unit}"
-
-
-def against_paper(band: str, paper_value: str | None) -> str:
-    """What the rule's band stands for: ``", against [5.25, 5.75] s (the paper: 5.5 s)"``, or, where the paper
-    gives no number, ``', where the paper says "fairly quickly" (read here as at most 10 %)'``; ``", where the
-    paper has <band>"`` when the paper's value is not known (a bare rule)."""
-    if not band:
-        return ""
-    said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
-    if not said:
-        return f", where the paper has {band}"
-    if said.lower() == "qualitative":
-        return f", against {band}, set here (the paper gives no number)"
-    if not re.search(r"\d", said):
-        return f', where the paper says "{said}" (read here as {band})'
-    return f", against {band} (the paper: {said})"
-
-
-def _band_clause(rule: Mapping, measured: Any, paper_value: str | None = None) -> str:
-    """``"<quantity> is 0.74 [0.60, 0.91] variance ratio, where the paper has [3, 6] variance ratio"``, and in
-    words when the value reverses the direction the paper's band gives (a ratio below 1 where it has one above).
-    A share of runs is given in per cent; with ``paper_value`` the band is said as what the paper's words are read
-    as (:func:`against_paper`)."""
-    shown, shown_rule, unit = _percent(measured, rule) or (measured, rule, _real_unit(rule))
-    quantity = str(rule.get("quantity") or "the measured value")
-    text = f"{quantity} is {format_value(shown, unit)}"
-    text += against_paper(_band_words(shown_rule, unit), paper_value)
-    t, lo, hi = triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
-    ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
-    if ratio and t[1] is not None and t[2] is not None:
-        above = finite(lo) and lo > 1 and t[2] < 1  # a band wholly on one side of 1, the interval on the other
-        below = finite(hi) and hi < 1 and t[1] > 1
-        names = _ratio_names(quantity)
-        if (above or below) and names:
-            a, b, lower_better = names
-            first_wins = above == lower_better
-            winner, loser = (a, b) if first_wins else (b, a)
-            text += f": the {winner} beats the {loser}, the reverse of the paper's direction"
-        elif above or below:
-            text += f": the ratio {'falls below' if above else 'rises above'} one, the reverse of the paper's direction"
-    return text
-
-
-def _ordering_clause(rule: Mapping, measured: Any) -> str:
-    """``"<a> is 0.46 [0.45, 0.47] times <b>: smaller, where the paper has it larger"``."""
-    a, b = str(rule.get("a") or "the first"), str(rule.get("b") or "the second")
-    b = f"that {b}" if b.startswith(_PREPOSITIONS) else b
-    claimed = "larger" if rule.get("relation", ">") == ">" else "smaller"
-    other = "smaller" if claimed == "larger" else "larger"
-    t = triple(measured)
-    if rule.get("measure") == "ratio":
-        text, ref = f"{a} is {format_value(measured, 'times')} {b}", 1.0
-    else:
-        text, ref = f"{a} minus {b} is {format_value(measured, _real_unit(rule))}", 0.0
-    if t is None or t[1] is None or t[2] is None:
-        return text
-    if t[1] > ref or t[2] < ref:
-        found = "larger" if t[1] > ref else "smaller"
-        return text + (
-            f": {found}, as the paper says" if found == claimed else f": {other}, where the paper has it {claimed}"
-        )
-    return text + f": neither clearly larger nor smaller, where the paper has it {claimed}"
-
-
-def _trend_clause(rule: Mapping, measured: Any) -> str:
-    """``"<quantity> falls from 322 ms to 4.1 ms over 9 points, where the paper has it decreasing in <over>"``."""
-    quantity = str(rule.get("quantity") or "the measured value")
-    unit = _real_unit(rule)
-    shown = (
-        vector_text(list(measured), unit, always=True)
-        if isinstance(measured, (list, tuple))
-        else format_value(measured, unit)
-    )
-    return f"{quantity} {shown}, where the paper has it {rule.get('direction', 'monotone')} in {rule.get('over', 'its grid')}"
-
-
-def value_clause(rule: Mapping | None, measured: Any, paper_value: str | None = None) -> str:
-    """What was measured against what the paper says, in words and units, for one rule (or one part's rule);
-    ``paper_value``: the paper's own words or number for the claim (the band is then said as its reading)."""
-    rule, measured = rule_in_force(dict(rule or {}), measured)
-    kind = rule.get("kind")
-    if kind == "ordering":
-        return _ordering_clause(rule, measured)
-    if kind == "monotone":
-        return _trend_clause(rule, measured)
-    if kind in ("in_band", "within_factor") and triple(measured) is not None:
-        return _band_clause(rule, measured, paper_value)
-    return f"{rule.get('quantity') or 'the measured value'} is {format_measured(measured, rule)}"
 
 
 def _cap(text: str) -> str:

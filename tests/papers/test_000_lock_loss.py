@@ -80,3 +80,66 @@ def test_the_pcrlb_refers_to_the_time_the_errors_are_scored_at():
     assert study.bound_time({**d, "sample model": "point"}) == "sample"
     with pytest.raises(ValueError, match="score_at"):
         pcrlb_variance(scan, study.MESSAGE, 10, "end")
+
+
+def test_the_lock_report_gives_each_part_its_own_verdicts_so_a_flip_is_carried_only_where_its_part_is():
+    """Two parts flip at one condition: part a over every run and over the runs in lock alike, part b only over
+    every run (10 runs of 40 lost lock). The whole claim's verdicts differ (not reproduced, partly); the rows say
+    per part which flip the lost runs carry."""
+    from types import SimpleNamespace
+
+    from tvtrack.labels import mark_lost_runs
+    from tvtrack.montecarlo import mean_ci
+    from tvtrack.verdicts import AllOf, InBand
+
+    def measure(config, seed, sizes, claims):
+        rng = np.random.default_rng(seed)
+        a = (3.0 if config["x"] else 0.2) + rng.uniform(0.0, 0.01, 40)
+        b = 0.01 + rng.uniform(0.0, 0.01, 40)
+        if config["x"]:
+            b[:10] = 5.0  # lost lock: 10 runs about 300 times the median run's mean square
+        return {"C": {"a": mean_ci(lock_loss.keep(a)), "b": mean_ci(lock_loss.keep(b))}}
+
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"a": band, "b": band})
+    at = {"x": 1}
+    rep = lock_loss.lock_report(measure, rule, {"x": 0}, [at], 7, SimpleNamespace(lock_factor=5.0), "C", str)
+    row = rep["rows"][1]
+    assert (row["verdict"], row["in_lock_verdict"]) == ("not reproduced", "partly")
+    assert row["parts"] == {"a": "not reproduced", "b": "not reproduced"}
+    assert row["in_lock_parts"] == {"a": "not reproduced", "b": "reproduced"}
+    flips = {p: {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]} for p in "ab"}
+    record = mark_lost_runs({"parts": flips}, rep["rows"], "reproduced")
+    assert {p: v["flips"][0]["lost_runs"]["carried"] for p, v in record["parts"].items()} == {"a": False, "b": True}
+
+
+def test_a_condition_whose_draws_read_the_default_s_verdict_over_every_run_is_never_said_carried_by_lost_runs():
+    """The lock report runs one replicate's draws; a flip pools every replicate. Where those draws read the
+    default's verdict over every run and the flip's only over the runs in lock, the lost runs hide the flip on
+    that draw: the note must not say they carry it, and the row is not marked carried."""
+    from types import SimpleNamespace
+
+    from tvtrack.labels import mark_lost_runs
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.verdicts import InBand
+
+    def measure(config, seed, sizes, claims):
+        b = 0.01 + np.random.default_rng(seed).uniform(0.0, 0.01, 40)
+        if config["x"]:
+            b[:10] = 5.0  # lost lock: 10 runs about 300 times the median run's mean square
+            return {"C": Estimate.exact(1.2 - float(np.mean(lock_loss.keep(b))))}  # 1.2 - 1.26 over every run
+        return {"C": Estimate.exact(0.0)}
+
+    rule, at = InBand("mean", -0.5, 0.5, "px"), {"x": 1}
+    rep = lock_loss.lock_report(measure, rule, {"x": 0}, [at], 7, SimpleNamespace(lock_factor=5.0), "C", str)
+    row = rep["rows"][1]
+    assert (rep["rows"][0]["verdict"], row["verdict"], row["in_lock_verdict"]) == (
+        "reproduced",
+        "reproduced",
+        "not reproduced",
+    )
+    assert "carried by the runs that lost lock" not in rep["note"], rep["note"]
+    assert "the runs that lost lock carry no flip" in rep["note"]
+    part = {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]}
+    record = mark_lost_runs({"parts": {"claim": part}}, rep["rows"], "reproduced")
+    assert record["parts"]["claim"]["flips"][0]["lost_runs"]["carried"] is False

@@ -30,6 +30,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from ...counts import proportion_ci
+from ...labels import part_judgements
 
 __all__ = ["lost", "keep", "keep_pair", "in_lock", "measure_in_lock", "flip_changes", "lock_report", "LOCK_CLAIMS"]
 
@@ -118,6 +119,11 @@ def _lost_text(m: dict) -> str:
     return f"{m['lost_runs']} of {m['runs']} runs lost lock ({e.value:.3f} [{e.ci_low:.3f}, {e.ci_high:.3f}])"
 
 
+def _part_verdicts(rule, measured) -> dict:
+    """``{part: verdict}`` of one measurement (a flip is per part: the whole claim's verdict may move by another)."""
+    return {name: j.verdict for name, j in part_judgements(rule, measured).items()}
+
+
 def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes, claim: str, phrase) -> dict:
     """The claim at the default and under each condition that flips it: the share of runs that lost lock and the
     verdict over all runs and over the runs in lock (same draws: the first replicate's seed).
@@ -140,7 +146,7 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
     dict
         ``"note"``: one paragraph for the claim's record; ``"metric"``: per configuration (``"default"`` or its
         phrase) the lost share, the counts and both verdicts; ``"rows"``: the same per configuration as
-        ``Results.claim(lost_runs=...)`` reads them (:func:`tvtrack.labels.mark_lost_runs`).
+        ``Results.claim(lost_runs=...)`` reads them, with each part's verdicts (:func:`tvtrack.labels.mark_lost_runs`).
     """
     rows = []
     for changed in [{}] + [dict(c) for c in conditions]:
@@ -153,7 +159,12 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
         f"where most did; over the runs in lock the verdict is {same}."
     ]
     for changed, m, v, k in rows[1:]:
-        if k == v:
+        if v == v0 and k != v:  # these draws show no flip over all runs: the lost runs hide it, carry none
+            how = (
+                f"over the runs in lock it reads {k}: over all runs these draws read as at the default, so the runs "
+                "that lost lock carry no flip"
+            )
+        elif k == v:
             how = f"over the runs in lock it still reads {k}: the flip is not made by the runs that lost lock"
         else:
             how = f"over the runs in lock it reads {k}: the flip is carried by the runs that lost lock"
@@ -174,6 +185,7 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
     }
     marks = [
         {"changed": c, "lost": m["lost_runs"], "runs": m["runs"], "verdict": v, "in_lock_verdict": k}
+        | {"parts": _part_verdicts(rule, m["all"]), "in_lock_parts": _part_verdicts(rule, m["in lock"])}
         for c, m, v, k in rows
     ]
     return {"note": " ".join(bits), "metric": metric, "rows": marks}
