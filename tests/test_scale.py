@@ -221,7 +221,9 @@ def test_each_notebook_gets_a_worker_per_usable_core_and_its_share_of_the_blas_t
     seen = {}
 
     def fake_run(notebooks, profile, folder, jobs, threads, setups):
-        seen.update(jobs=jobs, threads=threads, workers={nb.stem: p.get("n_workers") for nb, (p, _) in zip(notebooks, setups)})
+        seen.update(
+            jobs=jobs, threads=threads, workers={nb.stem: p.get("n_workers") for nb, (p, _) in zip(notebooks, setups)}
+        )
         return []
 
     monkeypatch.setattr(rep, "usable_cores", lambda: 4)
