@@ -54,7 +54,7 @@ _WRITER = "".join(
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
     r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
-    r"runs|this run allows|agree|flips?\b|stay undecided"
+    r"runs|this run allows|agree|flips?\b|stay undecided|fails?\b|undecided\b"
 )
 
 
@@ -301,10 +301,12 @@ def test_a_papers_limitations_come_from_its_records():
         "C001-6 is not checkable: the recording of the real aircraft is not published.",
         "1 claim was never tried in a world beyond the paper's own: nothing says how far it extends.",
         "More runs than these would be needed to decide C004-5.",
-        "Runs that lost lock decide C001-3; over the runs in lock alone the verdict differs.",
+        "Runs that lost lock carry the verdict of C001-3: over the runs in lock alone it differs.",
         "Some runs lost lock in C004-5 (at most 4 % of them).",
     ]
-    assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(lost)
+    assert "Runs that lost lock carry this verdict: over the runs in lock alone it is reproduced." in claim_summary(
+        lost
+    )
 
 
 def test_a_joint_reading_flip_counts_where_the_verdicts_turn():
@@ -382,7 +384,13 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     mark_lost_runs(claim["robustness"], [row], claim["verdict"])
     assert claim["robustness"]["decided_by_lost_runs"] is True
     assert _lost_share(claim) == pytest.approx(0.03)
-    assert "Runs that lost lock decide it; over the runs in lock alone it is reproduced." in claim_summary(claim)
+    # how many, and never "decide" (an undecided claim's sentence says what would decide it)
+    assert "6 of 200 runs lost lock and carry this verdict: over the runs in lock alone it is reproduced." in (
+        claim_summary(claim)
+    )
+    one = copy.deepcopy(DEPENDS)
+    mark_lost_runs(one["robustness"], [{**row, "lost": 1, "runs": 600}], one["verdict"])
+    assert "1 of 600 runs lost lock and carries this verdict: over the runs in lock alone" in claim_summary(one)
     with pytest.raises(ValueError, match="lost 7 of runs 6"):
         mark_lost_runs(claim["robustness"], [{**row, "lost": 7, "runs": 6}], claim["verdict"])
 
@@ -445,7 +453,7 @@ def test_runs_that_lost_lock_are_not_said_to_decide_a_verdict_the_same_draws_ove
     claim = copy.deepcopy(DEPENDS)  # not reproduced
     mark_lost_runs(claim["robustness"], [_lost_row({}, "reproduced", "not reproduced")], claim["verdict"])
     assert claim["robustness"]["decided_by_lost_runs"] is False
-    assert "Runs that lost lock decide it" not in claim_summary(claim)
+    assert "lost lock and carr" not in claim_summary(claim)
 
 
 def test_a_flip_of_one_part_is_said_carried_by_lost_runs_only_by_that_part_s_own_verdicts():
@@ -497,3 +505,45 @@ def test_the_paper_s_words_in_their_own_quotes_are_quoted_once():
     assert against_paper("[0.8, 1.5]", "'practically potential'") == (
         ', where the paper says "practically potential" (read here as [0.8, 1.5])'
     )
+
+
+def test_a_claims_parts_are_tallied_by_verdict_never_as_held_of_all():
+    from tvtrack.wording import parts_tally
+
+    assert parts_tally(["reproduced"] * 3) == "all 3 parts hold"
+    assert (
+        parts_tally(["reproduced"] * 5 + ["not reproduced"] + ["undecided"] * 4) == "5 parts hold, 1 fails, 4 undecided"
+    )
+    assert parts_tally(["reproduced", "undecided", "undecided"]) == "1 part holds, 2 undecided"
+    assert parts_tally(["not reproduced"] * 3) == "no part holds, 3 fail"
+
+
+def test_a_change_that_moves_one_part_but_not_the_claim_is_said_as_such():
+    from tvtrack.wording import _flip_to
+
+    claim = {
+        "verdict": "partly",
+        "robustness": {"conditions": [{"changed": {"g": "euler"}, "verdict": "partly"}]},
+    }
+    flip = {"verdict": "reproduced", "part": "variant 1", "changed": {"g": "euler"}}
+    assert _flip_to(flip, claim, 3) == "the claim stays partly reproduced, but its part variant 1 is reproduced"
+    claim["robustness"]["conditions"][0]["verdict"] = "reproduced"
+    assert _flip_to(flip, claim, 3) == "it is reproduced"
+    claim["robustness"]["conditions"][0]["verdict"] = "not reproduced"
+    assert _flip_to(flip, claim, 3) == "the claim is not reproduced (its part variant 1: reproduced)"
+
+
+def test_a_papers_paragraph_says_the_whole_claims_verdict_under_the_flip_and_the_lost_runs_that_carry_it():
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.paragraphs import _why_not
+
+    claim = copy.deepcopy(DEPENDS)
+    reading = {"paper_sigma": "raw_increments"}
+    others = [c for c in claim["robustness"]["conditions"] if c.get("changed") != reading]
+    claim["robustness"]["conditions"] = [*others, {"changed": reading, "verdict": "partly"}]  # the whole claim there
+    text = _why_not(claim)
+    assert "; it holds in part under a reading of the paper's text: sigma read as the SD" in text, text
+    claim["robustness"]["parts"]["claim"]["flips"][0]["lost_runs"] = {"lost": 27, "runs": 600, "carried": True}
+    assert _why_not(claim).endswith(", but only through the 27 of 600 runs that lost lock there"), _why_not(claim)

@@ -122,7 +122,8 @@ def _statement(c: Mapping) -> str:
 
 def _why_not(c: Mapping) -> str:
     """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
-    direction) and, where one is named, the strongest change under which it would."""
+    direction) and, where one is named, the strongest change under which it would (the whole claim's verdict
+    there, and whether only runs that lost lock make it)."""
     from .value_words import rule_in_force
     from .wording import main_part
 
@@ -131,9 +132,17 @@ def _why_not(c: Mapping) -> str:
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
     text = value_clause(rule, measured, c.get("paper_value"))
+    from .wording import claim_verdict_at
+
     flips = [f for f in claim_flips(c, name) or claim_flips(c) if f.get("verdict") == "reproduced"]
     if flips:
-        text += f"; it holds under {side_words().get(flips[0]['side'], 'another change')}: {flips[0]['text']}"
+        f = flips[0]
+        whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's
+        how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
+        text += f"; {how} under {side_words().get(f['side'], 'another change')}: {f['text']}"
+        lost = f.get("lost_runs") or {}
+        if lost.get("carried"):
+            text += f", but only through the {lost['lost']} of {lost['runs']} runs that lost lock there"
     return text
 
 
@@ -174,7 +183,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         out.append(f"More runs than these would be needed to decide {_join(undecided)}.")
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
-        out.append(f"Runs that lost lock decide {_join(lost)}; over the runs in lock alone the verdict differs.")
+        out.append(f"Runs that lost lock carry the verdict of {_join(lost)}: over the runs in lock alone it differs.")
     carried = [c["id"] for c in claims if _carried_flips(c)]
     if carried:
         out.append(
@@ -185,7 +194,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     shares = {k: v for k, v in shares.items() if v > 0}
     if shares:
         out.append(
-            f"Some runs lost lock in {_join(sorted(shares))} (at most {max(shares.values()) * 100:.0f} % of them)."
+            f"Some runs lost lock in {_join(sorted(shares))} (at most {max(shares.values()) * 100:.2g} % of them)."
         )
     if profile != "paper":
         out.append(f"These are {profile}-size runs: no verdict is labelled, and none is called robust.")

@@ -35,6 +35,8 @@ __all__ = [
     "side_words",
     "entry_side",
     "claim_flips",
+    "claim_verdict_at",
+    "parts_tally",
     "main_part",
     "claim_summary",
     "not_checkable_reason",
@@ -311,12 +313,26 @@ def _share_sentence(part: Mapping) -> str:
     return f"{_cap(text)}." if text else ""
 
 
-def _claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
+def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
     """The whole claim's verdict under the condition that changes ``changed`` (None where no condition does)."""
     for c in (claim.get("robustness") or {}).get("conditions") or ():
         if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict"):
             return str(c["verdict"])
     return None
+
+
+def parts_tally(verdicts: list) -> str:
+    """A claim's checkable parts by verdict: ``"all 3 parts hold"``, ``"5 parts hold, 1 fails, 4 undecided"``."""
+    n = len(verdicts)
+    held = sum(v == "reproduced" for v in verdicts)
+    if held == n:
+        return f"all {n} parts hold"
+    failed = sum(v == "not reproduced" for v in verdicts)
+    open_ = n - held - failed
+    bits = [f"{held} part{'s' * (held != 1)} hold{'s' * (held == 1)}" if held else "no part holds"]
+    bits += [f"{failed} fail{'s' * (failed == 1)}"] if failed else []
+    bits += [f"{open_} undecided"] if open_ else []
+    return ", ".join(bits)
 
 
 def _flip_to(flip: Mapping, claim: Mapping, n_parts: int) -> str:
@@ -325,10 +341,13 @@ def _flip_to(flip: Mapping, claim: Mapping, n_parts: int) -> str:
     verdict = flip.get("verdict")
     if not verdict:
         return "the verdict changes"
-    whole = _claim_verdict_at(claim, flip.get("changed") or {}) if n_parts > 1 else None
+    whole = claim_verdict_at(claim, flip.get("changed") or {}) if n_parts > 1 else None
     if whole is None or whole == verdict:
         return f"it is {verdict}"
-    return f"the claim is {_HEAD.get(whole, whole).lower()} (its part {flip.get('part')}: {verdict})"
+    said = _HEAD.get(whole, whole).lower()
+    if whole == claim.get("verdict"):  # the whole claim keeps its verdict: only one part moves
+        return f"the claim stays {said}, but its part {flip.get('part')} is {verdict}"
+    return f"the claim is {said} (its part {flip.get('part')}: {verdict})"
 
 
 def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1) -> str:
@@ -373,13 +392,20 @@ def _runs_sentence(part: Mapping) -> str:
 
 
 def _lock_sentence(claim: Mapping, part: Mapping) -> str:
-    """Runs that lost lock, where the record says they decide the verdict."""
+    """Runs that lost lock, where the record says they carry the verdict: how many, and the verdict without them
+    (never "decide", which an undecided claim's sentence uses for the runs that would decide it)."""
     record = claim.get("robustness") or {}
     lost = next((s.get("decided_by_lost_runs") for s in (part, record, claim) if "decided_by_lost_runs" in s), None)
     if not lost:
         return ""
     in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
-    return "Runs that lost lock decide it" + (f"; over the runs in lock alone it is {in_lock}." if in_lock else ".")
+    share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
+    if {"lost", "runs"} <= set(share):
+        k, n = share["lost"], share["runs"]
+        lead = f"{k} of {n} runs lost lock and " + ("carries" if k == 1 else "carry") + " this verdict"
+    else:
+        lead = "Runs that lost lock carry this verdict"
+    return lead + (f": over the runs in lock alone it is {in_lock}." if in_lock else ".")
 
 
 _CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")
@@ -435,12 +461,9 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     part = parts.get(name) if isinstance(parts.get(name), Mapping) else {}
     aside = []
     if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
-        held = sum(1 for p in parts.values() if isinstance(p, Mapping) and p.get("verdict") == "reproduced")
         checked = [n for n, r in (rule.get("parts") or {}).items() if (r or {}).get("kind") != "not_checkable"]
         if len(checked) > 1:
-            aside.append(
-                f"all {len(checked)} parts hold" if held == len(checked) else f"{held} of {len(checked)} parts hold"
-            )
+            aside.append(parts_tally([(parts.get(n) or {}).get("verdict") for n in checked]))
         rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
     if shown_label(claim) == PROVISIONAL:
         aside.append("too few configurations to label")
