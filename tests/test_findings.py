@@ -320,7 +320,7 @@ def test_a_joint_reading_flip_counts_where_the_verdicts_turn():
         "verdict": "reproduced",
         "robustness": {"parts": {"claim": {"flips": [{**flip, "verdict": "not reproduced", "text": "both"}]}}},
     }
-    assert turns_on([claim]) == {"reading": (1, [("cost", 1), ("noise at", 1)])}
+    assert turns_on([claim]) == {"reading": (1, [("cost", "9", 1), ("noise at", "9", 1)])}
 
 
 def test_an_undecided_claim_says_the_runs_its_slowest_part_needs():
@@ -547,3 +547,18 @@ def test_a_papers_paragraph_says_the_whole_claims_verdict_under_the_flip_and_the
     assert "; it holds in part under a reading of the paper's text: sigma read as the SD" in text, text
     claim["robustness"]["parts"]["claim"]["flips"][0]["lost_runs"] = {"lost": 27, "runs": 600, "carried": True}
     assert _why_not(claim).endswith(", but only through the 27 of 600 runs that lost lock there"), _why_not(claim)
+
+
+def test_what_the_verdicts_turn_on_names_each_entry_with_its_paper_and_keeps_ties():
+    from tvtrack.paragraphs import _turns_sentence
+
+    def claim(cid, title):
+        flip = {"changed": {title: 1}, "side": "world", "kind": "single", "verdict": "not reproduced", "text": "x"}
+        return {"id": cid, "verdict": "reproduced", "robustness": {"parts": {"claim": {"flips": [flip]}}}}
+
+    claims = [claim("C000-1", "drift"), claim("C000-2", "drift"), claim("C001-1", "drift"), claim("C001-2", "rate")]
+    claims.append(claim("C001-3", "rate"))
+    assert _turns_sentence(claims) == (
+        "What the verdicts turn on: a world beyond the paper flips 5 claims, most often drift (2 claims of 000) and "
+        "rate (2 claims of 001)."
+    )

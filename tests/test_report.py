@@ -425,7 +425,7 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
     assert (
         "What the verdicts turn on: a reading of the paper's text flips 1 claim; a world beyond the paper flips "
-        "2 claims, most often how the target moves (2 claims)."
+        "2 claims, most often how the target moves (2 claims of 001)."
     ) in head
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head

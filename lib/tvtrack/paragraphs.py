@@ -8,6 +8,7 @@ says the same thing in the same words. Import :func:`results_summary` through :m
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from typing import Mapping
 
@@ -39,11 +40,18 @@ def _join(items: list[str]) -> str:
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
-def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]]]]:
-    """``{side: (claims, [(entry title, claims), ...] most often first)}``: how many claims a reading of the
+def _paper_of(claim_id: str) -> str:
+    """The notebook number of a claim id (``"C000-6"`` -> ``"000"``), ``""`` for another form."""
+    m = re.match(r"C(\d+)-", str(claim_id))
+    return m.group(1) if m else ""
+
+
+def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, str, int]]]]:
+    """``{side: (claims, [(entry title, paper, claims), ...] most often first)}``: how many claims a reading of the
     paper's text, an unreported setting of its experiment, a world beyond it (or several changes together) flips,
-    and the register entries that flip the most of them. A claim counts once per side; every named flip counts
-    (a joint configuration is named only where no subset of it flips alone, so it is the smallest found)."""
+    and the register entries (each of one paper's register, named with the paper's number) that flip the most of
+    them, every entry tied with the first kept. A claim counts once per side; every named flip counts (a joint
+    configuration is named only where no subset of it flips alone, so it is the smallest found)."""
     count: dict[str, int] = Counter()
     titles: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
     for c in claims:
@@ -51,6 +59,7 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]
         if c.get("verdict") == "not checkable":
             continue
         known = register_phrases(c.get("robustness") or {})
+        paper = _paper_of(c.get("id", ""))
         seen_sides, seen_titles = set(), set()
         for f in claim_flips(c):
             side = f["side"] if f["side"] in SIDE_ORDER else "world"
@@ -59,17 +68,25 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, int]
                 title = known.get(str(k), (str(k).replace("_", " "), "", {}))[0]
                 if (side, title) not in seen_titles:
                     seen_titles.add((side, title))
-                    titles[side][title] += 1
+                    titles[side][(title, paper)] += 1
         for s in seen_sides:
             count[s] += 1
-    return {s: (count[s], titles[s].most_common(2)) for s in SIDE_ORDER if count[s]}
+    out = {}
+    for s in SIDE_ORDER:
+        if count[s]:
+            ranked = titles[s].most_common()
+            top = [(t, p, n) for (t, p), n in ranked if n == ranked[0][1]] if ranked else []
+            out[s] = (count[s], top[:3] if len(top) > 1 else [(t, p, n) for (t, p), n in ranked[:2]])
+    return out
 
 
 def _turns_sentence(claims: list[Mapping]) -> str:
     words = side_words()
     bits = []
     for side, (n, top) in turns_on(claims).items():
-        often = f", most often {top[0][0]} ({_plural(top[0][1], 'claim')})" if top and top[0][1] > 1 else ""
+        best = [(t, p, k) for t, p, k in top if k == top[0][2]] if top else []
+        named = [f"{t} ({_plural(k, 'claim')}{f' of {p}' if p else ''})" for t, p, k in best]
+        often = f", most often {_join(named)}" if best and best[0][2] > 1 else ""
         bits.append(f"{words[side]} flips {_plural(n, 'claim')}{often}")
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
