@@ -77,7 +77,7 @@ _SIDE_WORDS = {
     "reading": "a reading of the paper's text",
     "setting": "a setting of the paper's own experiment that the paper never printed",
     "world": "a world beyond the paper",
-    "unattributed": "several changes together, none of which flips it alone",
+    "unattributed": "a combination of changes (none of them flips the claim alone)",
 }
 _WORLD_KINDS = ("regime", "operating point", "model", "scale")
 
