@@ -562,3 +562,28 @@ def test_what_the_verdicts_turn_on_names_each_entry_with_its_paper_and_keeps_tie
         "What the verdicts turn on: a world beyond the paper flips 5 claims, most often drift (2 claims of 000) and "
         "rate (2 claims of 001)."
     )
+
+
+def test_the_sentence_names_the_flip_the_label_rests_on_a_reading_before_a_world():
+    """A claim labelled ``depends`` by a pair of readings and also flipped by one world: its sentence names the
+    pair (the label's reason), not the world."""
+    import copy
+
+    from record_fixtures import DEPENDS
+
+    claim = copy.deepcopy(DEPENDS)
+    world, reading = (
+        claim["robustness"]["parts"]["claim"]["flips"][1],
+        claim["robustness"]["parts"]["claim"]["flips"][0],
+    )
+    pair = {**reading, "kind": "combination", "changed": {**reading["changed"], "gain_bound": 100}}
+    claim["robustness"]["parts"]["claim"]["flips"] = [world, pair]
+    text = claim_summary(claim)
+    assert "Under another reading of the paper's text it is reproduced" in text and "does not extend" not in text
+    assert share_words(0, 1, 1) == "0 agree, 1 flips and 1 stays undecided of 2 explored configurations"
+
+
+def share_words(agree, flip, undecided):
+    from tvtrack.wording import share_counts
+
+    return share_counts({"agree": agree, "flip": flip, "undecided": undecided, "design": agree + flip + undecided})

@@ -222,15 +222,15 @@ def test_a_record_without_attributed_flips_names_the_flipping_conditions_by_thei
     for part in legacy["robustness"]["parts"].values():
         del part["flips"]
     flips = claim_flips(legacy)
-    # the decisive conditions whose verdict differs from the claim's: singles (readings, then worlds), then the
-    # smallest combinations, then joint samples
+    # the decisive conditions whose verdict differs from the claim's, by side as the label reads them (readings,
+    # then worlds), within a side singles, then the smallest combinations, then joint samples
     assert [f["text"] for f in flips] == [
         "sigma read as the SD of the raw velocity increments",
-        "a target weaving at 0.1 T",
         "sigma read as the SD of the raw velocity increments and gain bound set at frame 100",
+        "a target weaving at 0.1 T",
         "sigma read as the SD of the raw velocity increments and a target weaving at 0.1 T",
     ]
-    assert [f["side"] for f in flips] == ["reading", "world", "reading", "world"]  # a world changed: a world
+    assert [f["side"] for f in flips] == ["reading", "reading", "world", "world"]  # a world changed: a world
 
 
 def _toy_measure(config, seed):

@@ -211,8 +211,9 @@ def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str |
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]`` (and
     ``lost_runs`` where the paper counted the runs that lost lock under it),
-    single entries first (readings of the paper, then unreported settings, then worlds beyond it), then the
-    smallest combinations, each text said once.
+    by side as the label reads them (readings of the paper, then unreported settings, then worlds beyond it, then
+    combinations of mixed sides), within a side single entries before the smallest combinations, each text said
+    once: the first is the flip that the claim's label rests on.
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
     verdict differs from the claim's."""
@@ -228,9 +229,9 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     side_rank = {s: i for i, s in enumerate(SIDE_ORDER)}
     for f in sorted(
         flips,
-        key=lambda f: (
-            order.get(f.get("kind"), 4),
+        key=lambda f: (  # the side first, as the label reads it (a reading before a world), then the smallest
             side_rank.get(f.get("side", "reading"), 4),
+            order.get(f.get("kind"), 4),
             len(f.get("changed") or {}),
         ),
     ):
@@ -303,8 +304,9 @@ def share_counts(share: Mapping) -> str:
     left = int(share.get("left_by_budget") or 0)
     why = f" ({left} of them lean towards agreement but were left smaller than the default by the sizing budget)"
     return (
-        f"{agree} agree, {flip} flip and {undecided} stay undecided{why if left else ''} of {design} explored "
-        "configurations"
+        f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
+        f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
+        f"configuration{'s' * (design != 1)}"
     )
 
 

@@ -52,7 +52,7 @@ def claim_rules() -> dict[str, Rule]:
     open to mutation testing)."""
     return {
         "C004-1": InBand(
-            "mean per-path 95th percentile of the per-axis |prediction error| (or the register's other statistic)",
+            "mean per-path 95th percentile of the per-axis |prediction error| at the default statistic",
             high=2.0,
             unit="px",
         ),
