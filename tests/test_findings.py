@@ -587,3 +587,15 @@ def share_words(agree, flip, undecided):
     from tvtrack.wording import share_counts
 
     return share_counts({"agree": agree, "flip": flip, "undecided": undecided, "design": agree + flip + undecided})
+
+
+def test_a_depends_label_resting_on_an_unattributed_mix_is_named_before_a_world():
+    import copy
+
+    from record_fixtures import DEPENDS
+
+    claim = copy.deepcopy(DEPENDS)
+    world = claim["robustness"]["parts"]["claim"]["flips"][1]
+    mix = {**world, "side": "unattributed", "kind": "combination", "text": "a target weaving and sigma as raw"}
+    claim["robustness"]["parts"]["claim"]["flips"] = [world, mix]
+    assert "Under several changes together it is reproduced: a target weaving and sigma as raw." in claim_summary(claim)

@@ -211,8 +211,8 @@ def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str |
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]`` (and
     ``lost_runs`` where the paper counted the runs that lost lock under it),
-    by side as the label reads them (readings of the paper, then unreported settings, then worlds beyond it, then
-    combinations of mixed sides), within a side single entries before the smallest combinations, each text said
+    by side as the label reads them (readings of the paper, then unreported settings, then combinations of mixed
+    sides that no subset isolates, all of which make ``depends``, then worlds beyond it), within a side single entries before the smallest combinations, each text said
     once: the first is the flip that the claim's label rests on.
 
     Reads ``parts[].flips`` (the explorer's attribution); for a record without it, the conditions whose decisive
@@ -226,7 +226,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
         flips = _legacy_flips(claim, record, names, part)
     out, seen = [], set()
     order = {"single": 0, "combination": 1, "pinned": 2, "joint": 3}
-    side_rank = {s: i for i, s in enumerate(SIDE_ORDER)}
+    side_rank = {"reading": 0, "setting": 1, "unattributed": 2, "world": 3}  # what a label rests on, strongest first
     for f in sorted(
         flips,
         key=lambda f: (  # the side first, as the label reads it (a reading before a world), then the smallest
