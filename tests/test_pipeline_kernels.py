@@ -111,3 +111,18 @@ def test_the_runner_names_a_kernel_spec_only_through_tvtrack_kernel(name, monkey
     monkeypatch.setenv("TVTRACK_KERNEL", "my-kernel")
     with KernelSetup(tmp_path / "k2.log") as setup:
         assert setup.kernel_name == "my-kernel"
+
+
+def test_a_kernel_log_with_only_the_shutdown_interrupt_line_is_not_kept(tmp_path):
+    """jupyter_client interrupts every kernel at shutdown; on a loaded machine ipykernel may log it. That line
+    alone is no reason to keep a log; any other line is."""
+    from tvtrack.pipeline.runner import SHUTDOWN_CHATTER, drop_quiet_log
+
+    quiet, empty, loud = tmp_path / "quiet.log", tmp_path / "empty.log", tmp_path / "loud.log"
+    quiet.write_text(SHUTDOWN_CHATTER + "\n")
+    empty.write_text("")
+    loud.write_text(SHUTDOWN_CHATTER + "\nTraceback (most recent call last):\n")
+    assert drop_quiet_log(quiet) and not quiet.exists()
+    assert drop_quiet_log(empty) and not empty.exists()
+    assert not drop_quiet_log(loud) and loud.exists()
+    assert not drop_quiet_log(tmp_path / "absent.log")

@@ -55,6 +55,9 @@ KERNEL_NAME = os.environ.get("TVTRACK_KERNEL", "python3")
 kernel specs are installed (a per-user ``python3`` spec of another environment is never used); the variable
 ``TVTRACK_KERNEL`` names an installed kernel spec instead."""
 KERNEL_LOG = "kernel.log"
+#: What ipykernel may print when jupyter_client interrupts it at every shutdown (SIGINT before the shutdown
+#: request): chatter of a run that ended well, not worth a log of its own.
+SHUTDOWN_CHATTER = "[IPKernelApp] ERROR | KeyboardInterrupt caught in kernel."
 KERNEL_START_ATTEMPTS = 3
 OWNER_FILE = ".owner"  # "<host> <pid>" of the process running a temporary run folder
 # papermill's 60 s default is too short for a kernel to start while a sweep loads every core
@@ -291,9 +294,16 @@ def _execute_in(tmp: Path, nb: Path, params: dict, kernel_name, timeout_s, progr
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
-        with contextlib.suppress(OSError):
-            if log_path.stat().st_size == 0:
-                log_path.unlink()
+        drop_quiet_log(log_path)
+
+
+def drop_quiet_log(log_path: Path) -> bool:
+    """Remove a kernel log that holds nothing but :data:`SHUTDOWN_CHATTER` (or nothing); returns whether it did."""
+    with contextlib.suppress(OSError):
+        if not log_path.read_text(errors="replace").replace(SHUTDOWN_CHATTER, "").strip():
+            log_path.unlink()
+            return True
+    return False
 
 
 def _files_written(tmp: Path, tb: str | None) -> list[str]:
