@@ -420,6 +420,22 @@ def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_
     )
 
 
+def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from_not_as_the_band():
+    """C001-3: the paper bounds the correlation (rho <= 0.5) while the rule measures a false-alarm rate in
+    multiples of alpha whose band happens to start at 0.5; "(the paper: rho <= 0.5)" would say the band is the
+    paper's number. Where the quantity names the symbol, the paper's number is the band's."""
+    from tvtrack.value_words import against_paper
+
+    rate = "per-test false-alarm rate of the threshold set as if neighbouring velocity samples were independent"
+    assert against_paper("[0.5, 2] × alpha", "rho <= 0.5", 0.5, 2.0, rate) == (
+        ', against [0.5, 2] × alpha (read here from the paper\'s "rho <= 0.5")'
+    )
+    assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5, "lag-1 correlation rho of the samples") == (
+        ", against at most 0.5 (the paper: rho <= 0.5)"
+    )
+    assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5) == ", against at most 0.5 (the paper: rho <= 0.5)"
+
+
 def _lost_row(changed, verdict, in_lock, **more):
     return {"changed": changed, "lost": 27, "runs": 600, "verdict": verdict, "in_lock_verdict": in_lock, **more}
 

@@ -99,13 +99,25 @@ def _holds_paper_number(said: str, low: Any, high: Any) -> bool:
     return False
 
 
-def against_paper(band: str, paper_value: str | None, low: Any = None, high: Any = None) -> str:
+def _names_another_quantity(said: str, quantity: str | None) -> bool:
+    """Whether the paper's words state a bound on a symbol the rule's quantity never names (``"rho <= 0.5"``
+    beside a false-alarm rate): its number is then not the band's, whatever their values."""
+    m = re.match(r"\s*([A-Za-z_][\w^*]*)\s*(?:<=|>=|<|>|=|~|≤|≥)", said)
+    if not m or quantity is None:
+        return False
+    return re.search(rf"(?<![\w]){re.escape(m.group(1))}(?![\w])", quantity) is None
+
+
+def against_paper(
+    band: str, paper_value: str | None, low: Any = None, high: Any = None, quantity: str | None = None
+) -> str:
     """What the rule's band stands for: ``", against [5.25, 5.75] s (the paper: 5.5 s)"``, or, where the paper
     gives no number, ``', where the paper says "fairly quickly" (read here as at most 10 %)'``; ``", where the
     paper has <band>"`` when the paper's value is not known (a bare rule). With the band's ends ``low`` and
     ``high``, a paper value none of whose numbers the band holds (:func:`_holds_paper_number`: the value of
     another quantity, as a threshold beside a probability) is said as what the band is read from:
-    ``', against at least 0.1 (read here from the paper's "2")'``."""
+    ``', against at least 0.1 (read here from the paper's "2")'``; so is a bound on a symbol the rule's
+    ``quantity`` never names (:func:`_names_another_quantity`)."""
     if not band:
         return ""
     said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
@@ -117,7 +129,7 @@ def against_paper(band: str, paper_value: str | None, low: Any = None, high: Any
         return f", against {band}, set here (the paper gives no number)"
     if not re.search(r"\d", said):
         return f', where the paper says "{said}" (read here as {band})'
-    if not _holds_paper_number(said, low, high):
+    if not _holds_paper_number(said, low, high) or _names_another_quantity(said, quantity):
         return f', against {band} (read here from the paper\'s "{said}")'
     return f", against {band} (the paper: {said})"
 
@@ -130,7 +142,7 @@ def _band_clause(rule: Mapping, measured: Any, paper_value: str | None = None) -
     shown, shown_rule, unit = _percent(measured, rule) or (measured, rule, real_unit(rule))
     quantity = str(rule.get("quantity") or "the measured value")
     text = f"{quantity} is {format_value(shown, unit)}"
-    text += against_paper(_band_words(shown_rule, unit), paper_value, rule.get("low"), rule.get("high"))
+    text += against_paper(_band_words(shown_rule, unit), paper_value, rule.get("low"), rule.get("high"), quantity)
     t, lo, hi = triple(measured) or (None, None, None), rule.get("low"), rule.get("high")
     ratio = "ratio" in str(rule.get("unit") or "") or " / " in quantity
     if ratio and t[1] is not None and t[2] is not None:

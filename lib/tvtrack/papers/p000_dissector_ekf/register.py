@@ -349,9 +349,9 @@ _PLAIN = {
     "G22": (
         "variant 1's process noise for its signal-noise state X2 (E8)",
         {
-            "paper": "G22 = 2 beta_0 dt for variant 1's signal-noise state X2 (E8 as printed)",
-            "euler": "G22 = beta_0^2 dt for variant 1's signal-noise state X2 (Euler, eq. (8))",
-            "matched": "G22 matched: variant 1's X2 carries the true signal noise per sample",
+            "paper": "variant 1's signal-noise process noise G22 = 2 beta_0 dt, as eq. (8) prints it",
+            "euler": "variant 1's signal-noise process noise G22 = beta_0^2 dt (eq. (8) discretised by Euler's rule)",
+            "matched": "variant 1's signal-noise process noise matched to the true signal noise per sample",
         },
     ),
     "signal-noise scale": (

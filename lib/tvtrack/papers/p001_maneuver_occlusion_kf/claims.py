@@ -78,16 +78,20 @@ def _c7() -> AllOf:
     )
 
 
+#: C001-8's curve axis: the frame from which the 3rd-order gains stay at their bound (the paper's Fig. 4)
+KB3_AXIS = "the frame the 3rd-order gains are bounded from (k_b3)"
+
+
 def _c8(t: float) -> AllOf:
     """C001-8's rule at the curve tolerance ``t`` (elements)."""
     return AllOf(
         {
-            "RMS decreasing": Monotone("RMS prediction error at reappearance", "k_b3", "decreasing", "el", t),
+            "RMS decreasing": Monotone("RMS prediction error at reappearance", KB3_AXIS, "decreasing", "el", t),
             "interior minimum": Ordering(
                 "smallest |dynamic|+RMS at the ends of the grid", "the smallest inside it", ">", unit="el"
             ),
             "dynamic grows beyond the optimum": Monotone(
-                "|dynamic error| from the optimum on", "k_b3", "increasing", "el", t
+                "|dynamic error| from the optimum on", KB3_AXIS, "increasing", "el", t
             ),
         }
     )
@@ -122,7 +126,12 @@ def claim_rules() -> dict[str, Rule]:
         ),
         # a false-alarm rate in multiples of alpha (not a correlation): the paper's independence threshold is right
         # only if the neighbouring samples' correlation is negligible; from its Gaussian closed form (false_alarm.py)
-        "C001-3": InBand("per-test false-alarm rate of the paper's independence threshold", 0.5, 2.0, "× alpha"),
+        "C001-3": InBand(
+            "per-test false-alarm rate of the threshold set as if neighbouring velocity samples were independent",
+            0.5,
+            2.0,
+            "× alpha",
+        ),
         "C001-4": AllOf(
             {
                 "faster compensation": Ordering(
