@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: reproduce test bench report site kernel sweep edit clean-runs hooks lint mutate mutate-ci
+.PHONY: reproduce test bench report site screenshots kernel sweep edit clean-runs hooks lint mutate mutate-ci
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -45,6 +45,11 @@ report: $(STAMP)
 
 # offline HTML site from papermill_runs/ (after make reproduce): papermill_runs/site/index.html
 # (make site PROFILE=smoke: the smoke runs, in papermill_runs/site-smoke/)
+# the README's screenshots (docs/screenshots/) from the paper runs: the site's first screen, a claim's page and a
+# recording in the web viewer (make screenshots CLAIM=C004-1 RECORDING=004_laser_spot_prediction)
+screenshots: $(STAMP)
+	$(BIN)/python -m tvtrack screenshots $(if $(CLAIM),--claim $(CLAIM)) $(if $(RECORDING),--recording $(RECORDING))
+
 site: $(STAMP)
 	$(BIN)/python -m tvtrack site $(if $(PROFILE),--profile $(PROFILE))
 

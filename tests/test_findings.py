@@ -114,15 +114,22 @@ def _shown_rule(record: dict) -> dict:
     return rule
 
 
+#: words of the project's machinery a reader of the paper does not know (a reader's test found each in a sentence)
+PROJECT_TAGS = ("register", "earlier world", "default reading", "the reading's", "at the default statistic")
+
+
 def sentence_faults(record: dict, keys: set[str]) -> list[str]:
-    """What is wrong with a claim's sentence: a cut word or an ellipsis, a "+N more", an unfinished sentence, a
-    register key, a number without its unit."""
+    """What is wrong with a claim's sentence: a cut word or an ellipsis, a "+N more", an unfinished sentence, the
+    project's own terms, a register key, a number without its unit."""
     text = claim_summary(record)
     faults = []
     if "…" in text or "..." in text or re.search(r"\+\s*\d+ more", text):
         faults.append("cut or '+N more'")
     if not text.endswith(".") or not text[:1].isupper():
         faults.append("not a complete sentence")
+    tags = [t for t in PROJECT_TAGS if t in text]
+    if tags:
+        faults.append(f"the project's own terms: {tags}")
     vocabulary = set(_WORDS.findall(json.dumps(_sources(record), ensure_ascii=False) + _WRITER))
     cut = [w for w in _WORDS.findall(text) if w not in vocabulary]
     if cut:
@@ -198,6 +205,9 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
     leak = copy.deepcopy(DEPENDS)
     leak["robustness"]["parts"]["claim"]["flips"][0]["text"] = "target_motion = weave"
     assert any("target_motion" in f for f in sentence_faults(leak, keys | {"target_motion"}))
+    tag = copy.deepcopy(DEPENDS)
+    tag["robustness"]["parts"]["claim"]["flips"][0]["text"] = "slow wander, the earlier world"
+    assert any("the project's own terms" in f for f in sentence_faults(tag, keys)), sentence_faults(tag, keys)
     bare = copy.deepcopy(DEPENDS)
     bare["rule"]["unit"] = "px"  # the sentence now owes "px" after each number: the writer gives it ...
     assert sentence_faults(bare, keys) == []
@@ -249,6 +259,53 @@ def test_a_flip_of_one_part_says_the_whole_claims_verdict_there():
     whole = {"early": Estimate.exact(3.0), "late": Estimate.exact(3.0)}  # both parts fail: the claim's verdict
     rob = label_parts(rule, held, reps, [{**conds[0], "measured": whole}], [reading])
     assert "the paper's text it is not reproduced: sigma = smoothed." in claim_summary({**claim, "robustness": rob})
+
+
+def test_the_flip_named_is_the_strongest_of_every_part_not_only_the_main_parts():
+    """A claim that holds is said through its first part; where that part is flipped only by a mix no subset
+    isolates and another part by a single reading, the sentence names the reading (the label rests on it), with
+    the whole claim's verdict there and the part it moves."""
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    world = Entry("motion", "model", "still", ("still", "weave"), "beyond the paper")
+    rule = AllOf({"early": InBand("mean", -0.5, 0.5, "px"), "late": InBand("mean", -0.5, 0.5, "px")})
+    held = {"early": Estimate.exact(0.0), "late": Estimate.exact(0.0)}
+    reps = [{"seed": s, "measured": held} for s in (1, 2, 3)]
+    fails = (
+        {"early": Estimate.exact(3.0), "late": Estimate.exact(0.0)},
+        {"early": Estimate.exact(0.0), "late": Estimate.exact(3.0)},
+    )
+    conds = [
+        {"changed": {"sigma": "smoothed", "motion": "weave"}, "kind": "joint", "measured": fails[0], "runs": 3},
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "measured": fails[1], "runs": 3},
+        {"changed": {"motion": "weave"}, "kind": "single", "measured": held, "runs": 3},
+    ]
+    rob = label_parts(rule, held, reps, conds, [reading, world])
+    claim = {"id": "C9-1", "verdict": "reproduced", "rule": rule.to_dict(), "measured": held, "robustness": rob}
+    assert rob["parts"]["early"]["flips"][0]["side"] == "unattributed"
+    text = claim_summary(claim)
+    assert (
+        "Under another reading of the paper's text the claim is partly reproduced (its part late: not reproduced): "
+        "sigma = smoothed." in text
+    ), text
+    assert "changes together" not in text
+
+
+def test_a_flip_that_takes_several_changes_says_how_many():
+    from tvtrack.wording import _flip_sentence
+
+    two = {"changed": {"a": 1, "b": 2}, "verdict": "reproduced", "text": "x and y"}
+    assert _flip_sentence({**two, "side": "reading"}) == (
+        "Under two other readings of the paper's text together it is reproduced: x and y."
+    )
+    assert _flip_sentence({**two, "side": "setting"}).startswith(
+        "Under two changes together, each a reading of the paper's text or a setting of its own experiment that it "
+        "never printed, it is reproduced"
+    )
+    three = {**two, "changed": {"a": 1, "b": 2, "c": 3}, "side": "unattributed"}
+    assert _flip_sentence(three) == "Under three changes together it is reproduced: x and y."
+    assert _flip_sentence({**two, "changed": {"a": 1}, "side": "setting"}) == (
+        "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x and y."
+    )
 
 
 def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
@@ -361,7 +418,8 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
     text = claim_summary(claim)
     assert (
         "it is reproduced: sigma read as the SD of the raw velocity increments. The 27 of 600 runs that lost lock "
-        "there carry that flip: over the runs in lock alone the claim is not reproduced." in text
+        "there carry that flip: over the runs in lock alone the claim is not reproduced, but the verdict counts every "
+        "run, so the flip stands." in text
     ), text
     _, limits = paper_paragraph({"claims": [claim], "register": claim["robustness"]["register"]})
     assert any(x.startswith("Runs that lost lock carry flips of C001-3") for x in limits), limits
@@ -595,7 +653,8 @@ def test_the_sentence_names_the_flip_the_label_rests_on_a_reading_before_a_world
     pair = {**reading, "kind": "combination", "changed": {**reading["changed"], "gain_bound": 100}}
     claim["robustness"]["parts"]["claim"]["flips"] = [world, pair]
     text = claim_summary(claim)
-    assert "Under another reading of the paper's text it is reproduced" in text and "does not extend" not in text
+    assert "Under two other readings of the paper's text together it is reproduced" in text
+    assert "does not extend" not in text
     assert share_words(0, 1, 1) == "0 agree, 1 flips and 1 stays undecided of 2 explored configurations"
 
 
@@ -613,5 +672,6 @@ def test_a_depends_label_resting_on_an_unattributed_mix_is_named_before_a_world(
     claim = copy.deepcopy(DEPENDS)
     world = claim["robustness"]["parts"]["claim"]["flips"][1]
     mix = {**world, "side": "unattributed", "kind": "combination", "text": "a target weaving and sigma as raw"}
+    mix["changed"] = {**world["changed"], "paper_sigma": "raw_increments"}
     claim["robustness"]["parts"]["claim"]["flips"] = [world, mix]
-    assert "Under several changes together it is reproduced: a target weaving and sigma as raw." in claim_summary(claim)
+    assert "Under two changes together it is reproduced: a target weaving and sigma as raw." in claim_summary(claim)

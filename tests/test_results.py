@@ -186,7 +186,7 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
 
     assert claim_summary(DEPENDS) == (
         "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, against [0, 2] x alpha "
-        "(the paper: rho <= 0.5). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "(read here from the paper's \"rho <= 0.5\"). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
         "velocity increments."
     )
     # the optional sentences come in while the whole stays within the characters asked for
@@ -265,7 +265,10 @@ def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp
     r = make(tmp_path)
     claim = r.claim("C999-1", "s", "rho <= 0.5", rule, exploration=ex)
     text = claim_summary(claim)
-    assert text.startswith("Reproduced: ") and " x alpha, against [0, 2.5] x alpha (the paper: rho <= 0.5)." in text
+    assert (
+        text.startswith("Reproduced: ")
+        and ' x alpha, against [0, 2.5] x alpha (read here from the paper\'s "rho <= 0.5").' in text
+    )
     assert "Under another reading of the paper's text it is not reproduced: sigma of the raw increments." in text
     assert "reading =" not in text and "motion" not in text  # the phrases, not the register keys
     assert claim_summary(load_results(r.write())["claims"][0]) == text

@@ -2,7 +2,8 @@
 
 Skipped (with the install command) when Chromium or Playwright is missing, unless
 ``TVTRACK_REQUIRE_BROWSER=1`` (set by ``.ci/run``), which makes a missing browser a failure.
-``TVTRACK_UPDATE_SCREENSHOTS=1`` also writes the README's screenshots to ``docs/screenshots/``.
+The README's screenshots are taken from the paper runs by ``python -m tvtrack screenshots`` (tested here on the
+fixture runs).
 """
 
 from __future__ import annotations
@@ -14,31 +15,15 @@ import time
 from pathlib import Path
 from urllib.parse import urlparse
 
-import numpy as np
 import pytest
 
-from conftest import NOTEBOOK_NAMES, REPO
+from conftest import NOTEBOOK_NAMES
 from load import wall_budget
 from site_fixtures import make_explored_runs, make_runs_dir
-from tvtrack.pipeline.viewer import coloured_mask, free_port
+from tvtrack.pipeline.screenshots import CHROMIUM, FIRST_SCREEN, FLAGS, LOOPBACK, is_drawn, viewer_drawn
+from tvtrack.pipeline.viewer import free_port
 
-CHROMIUM = "/usr/bin/chromium"
 INSTALL = "apt-get install -y chromium && pip install playwright==1.65.2 (Playwright never downloads a browser here)"
-# Flags measured to work for Rerun's web viewer on CPU-only machines (shared/notes/web-viewer-in-browser.md).
-FLAGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-    "--enable-unsafe-swiftshader",
-]
-LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
-SCREENSHOTS = REPO / "docs" / "screenshots"
-UPDATE_SCREENSHOTS = os.environ.get("TVTRACK_UPDATE_SCREENSHOTS") == "1"
 
 
 def _browser_problem() -> str | None:
@@ -108,15 +93,6 @@ def smoke_site(tmp_path_factory, smoke_run):
     return index.parent, time.process_time() - t0
 
 
-def _shot(page, name: str):
-    if UPDATE_SCREENSHOTS:
-        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-        page.screenshot(path=str(SCREENSHOTS / name))
-
-
-FIRST_SCREEN = (1400, 900)
-
-
 def _assert_first_screen(page):
     """The paragraph and the glossary lie wholly on the first screen (no scrolling), every verdict and label chip
     has its meaning as a tooltip, and the page is no wider than the window."""
@@ -156,7 +132,6 @@ def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_
         assert curve.bounding_box()["width"] > 400
         assert "it is reproduced: sigma read as the SD" in page.locator("#claim-summary").inner_text()
         assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]
-        _shot(page, "site_claim.png")
         page = w.open((site / "ledger.html").as_uri())
         assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]
         titles = page.locator(".pill").evaluate_all("ps => ps.map(p => p.getAttribute('title') || '')")
@@ -178,7 +153,6 @@ def test_site_in_browser(browser, smoke_site):
         images = w.images_decoded()
         assert images and all(width > 0 for _, width in images), images
         _assert_first_screen(page)
-        _shot(page, "site_index.png")
         w.page.set_viewport_size({"width": 1200, "height": 800})
 
         ok_notebooks = [
@@ -214,7 +188,6 @@ def test_site_in_browser(browser, smoke_site):
         ids = [t.strip() for t in page.locator("#ledger tbody tr td:nth-child(2)").all_inner_texts()]
         # natural order, as the page's localeCompare(numeric) gives it: C004-3 < C004-3b < C004-10
         assert ids == sorted(ids, key=lambda s: [int(x) if i % 2 else x for i, x in enumerate(re.split(r"(\d+)", s))])
-        _shot(page, "site_ledger.png")
         page = w.open((site / "ledger.html").as_uri() + "#paper=old_schema")
         assert visible.count() == 1
         assert w.errors == [], w.errors
@@ -272,24 +245,6 @@ def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture
         w.close()
 
 
-def _viewer_drawn(png: bytes) -> dict:
-    """Coarse measures of a web-viewer screenshot: grey levels and coloured pixels in the left (image)
-    view, and coloured pixels in the right (plot) view."""
-    import io
-
-    from PIL import Image
-
-    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
-    body = img[60:-60]
-    left, right = body[:, : body.shape[1] // 2], body[:, body.shape[1] // 2 :]
-    grey = left[(np.ptp(left.astype(int), axis=-1) < 8)]
-    return {
-        "grey_levels": len(np.unique(grey[:, 0])),
-        "left_colour": int(coloured_mask(left).sum()),
-        "right_colour": int(coloured_mask(right).sum()),
-    }
-
-
 def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_for_viewer):
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
     from tvtrack.pipeline.webview import WebViewer
@@ -309,16 +264,12 @@ def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_
                 except PlaywrightTimeout:
                     seen = {"screenshot": f"no frame within {left_ms / 1000:.0f} s"}
                     break
-                seen = _viewer_drawn(png)
-                # the recording's frame (many grey levels), its gate/points, and the plotted lines
-                if seen["grey_levels"] > 20 and seen["left_colour"] > 100 and seen["right_colour"] > 100:
+                seen = viewer_drawn(png)
+                if is_drawn(seen):  # the recording's frame (many grey levels), its gate/points, the plotted lines
                     break
                 time.sleep(0.5)
-            assert seen["grey_levels"] > 20 and seen["left_colour"] > 100 and seen["right_colour"] > 100, seen
+            assert is_drawn(seen), seen
             assert viewer.process.poll() is None  # our own server answered, not a stale one
-            if UPDATE_SCREENSHOTS:
-                SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-                (SCREENSHOTS / "web_viewer.png").write_bytes(png)
         # the viewer asks for fonts, an examples manifest, its latest release and telemetry on the internet:
         # all refused here, and it draws the recording without them
         assert all(
@@ -342,3 +293,32 @@ def runs_dir_for_viewer(smoke_run, tmp_path_factory):
     run = run_notebook(FIXTURE_NOTEBOOK, tmp_path_factory.mktemp("viewer") / "fixture", {"n_trials": 5, "n_frames": 10})
     assert run.ok
     return run.run_dir
+
+
+def test_the_readme_screenshots_are_taken_from_the_runs_the_site_shows(browser, smoke_site, tmp_path):
+    """``python -m tvtrack screenshots``: the site's first screen, the page of the first claim that does not
+    reproduce (the reader's first question) and a run's recording drawn in the web viewer, as PNG files of the
+    stated sizes; a claim no run has is one line naming the option."""
+    import json
+
+    from PIL import Image
+    from tvtrack.pipeline.preflight import UsageError
+    from tvtrack.pipeline.screenshots import NAMES, VIEWER_SCREEN, pick_claim, take_screenshots
+
+    site, _ = smoke_site
+    root = site.parent
+    notebook, cid = pick_claim(root / "reproduce")
+    records = {
+        c["id"]: c["verdict"]
+        for p in (root / "reproduce").glob("*/results.json")
+        for c in json.loads(p.read_text()).get("claims", [])
+    }
+    assert records[cid] == "not reproduced"  # smoke runs and fixtures hold some: the first is photographed
+    paths = take_screenshots(root, tmp_path / "shots", recording="003_rotating_marker_tracker", site=site)
+    assert [p.name for p in paths] == list(NAMES)
+    sizes = [Image.open(p).size for p in paths]
+    assert sizes == [FIRST_SCREEN, FIRST_SCREEN, VIEWER_SCREEN]
+    assert is_drawn(viewer_drawn(paths[2].read_bytes()))
+    assert paths[0].read_bytes() != paths[1].read_bytes()
+    with pytest.raises(UsageError, match="--claim: no claim C999-1"):
+        pick_claim(root / "reproduce", "C999-1")

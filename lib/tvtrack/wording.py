@@ -208,6 +208,20 @@ def _legacy_flips(claim: Mapping, record: Mapping, names: list[str], part: str |
     return flips
 
 
+_KIND_ORDER = {"single": 0, "combination": 1, "pinned": 2, "joint": 3}
+_SIDE_RANK = {"reading": 0, "setting": 1, "unattributed": 2, "world": 3}  # what a label rests on, strongest first
+
+
+def flip_strength(flip: Mapping) -> tuple:
+    """Sort key of a flip, strongest first: its side as the label reads it (a reading before a world), then a
+    single entry before a combination, then the fewest entries changed."""
+    return (
+        _SIDE_RANK.get(flip.get("side", "reading"), 4),
+        _KIND_ORDER.get(flip.get("kind"), 4),
+        len(flip.get("changed") or {}),
+    )
+
+
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     """The configurations that flip the claim (or one part): ``[{text, side, kind, verdict, part, changed}]`` (and
     ``lost_runs`` where the paper counted the runs that lost lock under it),
@@ -225,16 +239,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     if not flips and not any("flips" in (parts.get(n) or {}) for n in names):
         flips = _legacy_flips(claim, record, names, part)
     out, seen = [], set()
-    order = {"single": 0, "combination": 1, "pinned": 2, "joint": 3}
-    side_rank = {"reading": 0, "setting": 1, "unattributed": 2, "world": 3}  # what a label rests on, strongest first
-    for f in sorted(
-        flips,
-        key=lambda f: (  # the side first, as the label reads it (a reading before a world), then the smallest
-            side_rank.get(f.get("side", "reading"), 4),
-            order.get(f.get("kind"), 4),
-            len(f.get("changed") or {}),
-        ),
-    ):
+    for f in sorted(flips, key=flip_strength):
         text = str(f.get("text") or describe(f.get("changed") or {}, record))
         if text not in seen:
             seen.add(text)
@@ -360,17 +365,32 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     lost = flip.get("lost_runs") or {}
     carried = (
         f" The {lost['lost']} of {lost['runs']} runs that lost lock there carry that flip: over the runs in lock "
-        f"alone the claim is {lost['in_lock_verdict']}."
+        f"alone the claim is {lost['in_lock_verdict']}, but the verdict counts every run, so the flip stands."
         if lost.get("carried")
         else ""
     )
     if side == "world":
         return f"It does not extend to {text}: there {to}.{carried}"
-    lead = {
-        "reading": "Under another reading of the paper's text",
-        "setting": "Under another setting of the paper's own experiment, one the paper never printed,",
-    }.get(side, "Under several changes together")
-    return f"{lead} {to}: {text}.{carried}"
+    return f"{_flip_lead(side, len(flip.get('changed') or {}))} {to}: {text}.{carried}"
+
+
+_COUNT_WORDS = {2: "two", 3: "three", 4: "four", 5: "five"}
+
+
+def _flip_lead(side: str, n: int) -> str:
+    """How a flip that is not a world is introduced: its kind and, for a combination, how many changes it takes
+    (a combination is a setting where one of its entries is; :func:`tvtrack.attribution.flip_side`)."""
+    if n <= 1:
+        return {
+            "reading": "Under another reading of the paper's text",
+            "setting": "Under another setting of the paper's own experiment, one the paper never printed,",
+        }.get(side, "Under another change")
+    w = _COUNT_WORDS.get(n, str(n))
+    return {
+        "reading": f"Under {w} other readings of the paper's text together",
+        "setting": f"Under {w} changes together, each a reading of the paper's text or a setting of its own "
+        "experiment that it never printed,",
+    }.get(side, f"Under {w} changes together")
 
 
 def _slowest_part(parts: Mapping, main: Mapping) -> Mapping:
@@ -470,7 +490,9 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     if shown_label(claim) == PROVISIONAL:
         aside.append("too few configurations to label")
     head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
-    flips = claim_flips(claim, name) or claim_flips(claim)
+    flips, every = claim_flips(claim, name), claim_flips(claim)
+    if not flips or (every and flip_strength(every[0]) < flip_strength(flips[0])):
+        flips = every  # a stronger flip of another part is the one the label rests on
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     required += [s for s in (first, _lock_sentence(claim, part)) if s]

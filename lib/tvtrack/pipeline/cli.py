@@ -153,6 +153,14 @@ def _cmd_site(args) -> int:
     return 0
 
 
+def _cmd_screenshots(args) -> int:
+    from .screenshots import take_screenshots
+
+    paths = take_screenshots(Path(args.runs), Path(args.output), claim=args.claim, recording=args.recording)
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
 def _cmd_edit(args) -> int:
     import os
     import shutil
@@ -297,6 +305,20 @@ def _add_site(sub) -> None:
     st.set_defaults(func=_cmd_site)
 
 
+def _add_screenshots(sub) -> None:
+    """The ``screenshots`` command: the README's pictures of the site and a recording, from the paper runs."""
+    sc = sub.add_parser(
+        "screenshots", help="photograph the site of the paper runs and one recording for the README (Chromium)"
+    )
+    sc.add_argument("--runs", default=str(RUNS_DIR), help="runs directory holding reproduce/ (default papermill_runs/)")
+    sc.add_argument(
+        "-o", "--output", default="docs/screenshots", help="folder of the PNG files (default docs/screenshots)"
+    )
+    sc.add_argument("--claim", default=None, help="claim whose page is shown (default: the first not reproduced)")
+    sc.add_argument("--recording", default=None, help="notebook whose recording is shown (default: the last with one)")
+    sc.set_defaults(func=_cmd_screenshots)
+
+
 def _add_edit(sub) -> None:
     """The ``edit`` command: a working copy of a notebook."""
     e = sub.add_parser("edit", help="a working copy of a notebook at the smoke profile, to edit and run in JupyterLab")
@@ -353,6 +375,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_reproduce(sub)
     _add_report(sub)
     _add_site(sub)
+    _add_screenshots(sub)
     _add_edit(sub)
     _add_view(sub)
     _add_new(sub)

@@ -165,7 +165,7 @@ def claim_rules() -> dict[str, Rule]:
                 **{
                     r: InBand(
                         f"largest deviation from the extrapolated angle at {r} over the paths within ±20°, in "
-                        "multiples of the prediction tolerance (one raster element at the default reading)",
+                        "multiples of the prediction tolerance (one raster element unless a reading sets it otherwise)",
                         None,
                         1.0,
                         "× tolerance",

@@ -38,8 +38,7 @@ PLAIN = {
     "bandwidth": (
         "speed of the wander (corner frequencies x this)",
         {
-            1.0: "slow wander, the earlier world (fastest corner 0.5 Hz; the filter errs 0.33 px, below the paper's "
-            "1-2 px)",
+            1.0: "slow wander (fastest corner 0.5 Hz; the filter errs 0.33 px, below the paper's 1-2 px)",
             "calibrated": "wander re-calibrated in every world to the paper's 1-2 px (fastest corner 1.5 Hz in the "
             "default world)",
             8.0: "fast wander (fastest corner 4 Hz; the filter errs 3.9 px, above the paper's 1-2 px)",

@@ -297,7 +297,7 @@ def calibration_figure(cal, band=(1.0, 2.0)):
     ax.set_xscale("log")
     ax.set_yscale("log")
     plain_log(ax)
-    ax.set_xlabel("bandwidth factor (every corner frequency x this; 1 = the earlier world)")
+    ax.set_xlabel("bandwidth factor (every corner frequency x this; 1 = slow wander, fastest corner 0.5 Hz)")
     ax.set_ylabel("RMS one-step prediction error per axis (px)")
     ax.legend(fontsize=8, loc="upper left")
     return fig
