@@ -416,7 +416,8 @@ _PLAIN = {
         "the joint reading of the 20-times sentence",
         {
             "the entries above": "the 20-times sentence read through its filter and reference entries",
-            JOINT_READING_C6: "a filter ignoring the signal noise, with the background current held fixed as P varies",
+            JOINT_READING_C6: "a filter ignoring the signal noise in the 20-times sentence, with the background "
+            "current held fixed as P varies (psi_A grows with P)",
         },
     ),
     "C000-3 accuracy": (
