@@ -633,8 +633,8 @@ def test_what_the_verdicts_turn_on_names_each_entry_with_its_paper_and_keeps_tie
     claims = [claim("C000-1", "drift"), claim("C000-2", "drift"), claim("C001-1", "drift"), claim("C001-2", "rate")]
     claims.append(claim("C001-3", "rate"))
     assert _turns_sentence(claims) == (
-        "What the verdicts turn on: a world beyond the paper flips 5 claims, most often drift (2 claims of 000) and "
-        "rate (2 claims of 001)."
+        "What the verdicts turn on: a world beyond the paper flips 5 claims (2 of 000 and 3 of 001), most often "
+        "drift (2 claims of 000) and rate (2 claims of 001)."
     )
 
 

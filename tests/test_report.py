@@ -471,7 +471,7 @@ def test_a_smoke_run_is_never_robust_even_where_its_record_says_robust(tmp_path)
     assert "| C001-5 | " in text and "| provisional | Reproduced (too few configurations to label): " in text
 
 
-def test_the_first_screen_names_the_claims_that_hold_and_those_that_hold_in_part_with_their_labels():
+def test_the_first_screen_names_the_claims_that_hold_hold_in_part_or_give_nothing_to_measure():
     import copy
 
     from record_fixtures import DEPENDS, NOT_CHECKABLE, SMOKE
@@ -487,5 +487,6 @@ def test_the_first_screen_names_the_claims_that_hold_and_those_that_hold_in_part
     assert holding_lines(runs) == [
         "- **Hold** (label in brackets): 001: C001-7 (depends); 003: C003-1 (provisional).",
         "- **Hold in part** (label in brackets): 001: C001-4 (depends).",
+        "- **Not checkable**: 001: C001-6.",  # a reader asks which claims give nothing to measure, too
     ]
     assert holding_lines({"001_maneuver": (None, {"claims": [DEPENDS]})}) == []  # nothing holds: no line

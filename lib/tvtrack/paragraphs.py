@@ -80,14 +80,32 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, str,
     return out
 
 
+def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
+    """``{side: Counter(paper: claims)}``: how many claims of each paper a change of each side flips (as
+    :func:`turns_on` counts them), so that the kind that dominates one paper is not hidden by the totals."""
+    out: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
+    for c in claims:
+        c = claim_fields(c)
+        if c.get("verdict") == "not checkable":
+            continue
+        for side in {f["side"] if f["side"] in SIDE_ORDER else "world" for f in claim_flips(c)}:
+            out[side][_paper_of(c.get("id", ""))] += 1
+    return out
+
+
 def _turns_sentence(claims: list[Mapping]) -> str:
     words = side_words()
+    per_paper = turns_by_paper(claims)
     bits = []
     for side, (n, top) in turns_on(claims).items():
         best = [(t, p, k) for t, p, k in top if k == top[0][2]] if top else []
         named = [f"{t} ({_plural(k, 'claim')}{f' of {p}' if p else ''})" for t, p, k in best]
         often = f", most often {_join(named)}" if best and best[0][2] > 1 else ""
-        bits.append(f"{words[side]} flips {_plural(n, 'claim')}{often}")
+        papers = sorted(per_paper[side].items())
+        split = (
+            f" ({_join([f'{k} of {p}' for p, k in papers])})" if len(papers) > 1 and all(p for p, _ in papers) else ""
+        )
+        bits.append(f"{words[side]} flips {_plural(n, 'claim')}{split}{often}")
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
 
@@ -119,8 +137,14 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
             f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
             f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
-            "never printed, and "
-            f"{_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
+            "never printed, "
+            + (
+                f"{_n(labels['unexplored'], 'has', 'have')} nothing explored to show how far "
+                f"{'it extends' if labels['unexplored'] == 1 else 'they extend'} (unexplored), "
+                if labels["unexplored"]
+                else ""
+            )
+            + f"and {_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
         )
     turns = _turns_sentence(claims)
     if turns:

@@ -59,7 +59,8 @@ LABEL_WORDS = {
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
     "never printed, changes the verdict",
     "unstable": "independent replicates of the same run disagree decisively",
-    "unexplored": "no world beyond the paper was varied: nothing to say how far it extends",
+    "unexplored": "no world beyond the paper was varied, or no explored configuration was decided: nothing to say "
+    "how far it extends",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }

@@ -234,10 +234,10 @@ def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
 
 
 def holding_lines(runs: dict) -> list[str]:
-    """Which claims hold and which hold in part, by paper, each with its label where it has one (one bullet per
-    verdict)."""
+    """Which claims hold, which hold in part and which give nothing to measure, by paper, each with its label where
+    it has one (one bullet per verdict)."""
     out = []
-    for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part")):
+    for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part"), ("not checkable", "Not checkable")):
         bits = []
         for name, (_, data) in runs.items():
             cs = [c for c in (data or {}).get("claims", []) if c["verdict"] == verdict]
@@ -245,7 +245,8 @@ def holding_lines(runs: dict) -> list[str]:
             if ids:
                 bits.append(f"{name.split('_')[0]}: {', '.join(ids)}")
         if bits:
-            out.append(f"- **{lead}** (label in brackets): " + "; ".join(bits) + ".")
+            brackets = "" if verdict == "not checkable" else " (label in brackets)"
+            out.append(f"- **{lead}**{brackets}: " + "; ".join(bits) + ".")
     return out
 
 
@@ -261,7 +262,7 @@ def _in_short(runs: dict, shown: str) -> list[str]:
         "",
         papers_table(runs),
         "",
-        *(["The claims that hold:", "", *held, ""] if held else []),
+        *(["The claims that hold, and those that give nothing to measure:", "", *held, ""] if held else []),
         "The claims that do not reproduce, and those the runs could not decide:",
         "",
         first_screen_list(first_screen(runs), NOT_HOLDING),

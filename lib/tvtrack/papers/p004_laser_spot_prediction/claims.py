@@ -52,7 +52,7 @@ def claim_rules() -> dict[str, Rule]:
     open to mutation testing)."""
     return {
         "C004-1": InBand(
-            "mean per-path 95th percentile of the per-axis |prediction error| (the paper's \"does not exceed\" read as "
+            'mean per-path 95th percentile of the per-axis |prediction error| (the paper\'s "does not exceed" read as '
             "a 95th percentile)",
             high=2.0,
             unit="px",
