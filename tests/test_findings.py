@@ -478,6 +478,21 @@ def test_the_band_is_said_as_what_the_paper_says_or_as_set_here_where_the_paper_
     )
 
 
+def test_a_fraction_the_paper_gives_in_per_cent_is_said_in_per_cent():
+    """C000-2: the paper's "2 %" of the micro-raster against a measured fraction 0.0233 reads as 2.33 %; a ratio
+    the paper gives as a plain number, or a band beyond one, stays as it is."""
+    from tvtrack.value_words import value_clause
+
+    rule = {"kind": "in_band", "quantity": "RMS error / raster size", "low": 0.01, "high": 0.03, "unit": ""}
+    measured = Estimate(0.02327, float("nan"), 0.01784, 0.03578, 600, 0.95, "bootstrap")
+    assert value_clause(rule, measured, "2 %") == (
+        "RMS error / raster size is 2.327 [1.784, 3.578] %, against [1, 3] % (the paper: 2 %)"
+    )
+    assert value_clause(rule, measured, "0.02").startswith("RMS error / raster size is 0.02327 [0.01784, 0.03578],")
+    wide = {**rule, "low": 0.5, "high": 2.0}
+    assert "%" not in value_clause(wide, measured, "2 %").split(", against")[0]
+
+
 def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from_not_as_the_band():
     """C001-3: the paper bounds the correlation (rho <= 0.5) while the rule measures a false-alarm rate in
     multiples of alpha whose band happens to start at 0.5; "(the paper: rho <= 0.5)" would say the band is the

@@ -72,16 +72,29 @@ def _ratio_names(quantity: str) -> tuple[str, str, bool] | None:
 _SHARE_UNITS = ("of the runs", "of runs", "of the paths", "of the frames")
 
 
-def _percent(measured: Any, rule: Mapping) -> tuple[Any, Mapping, str] | None:
-    """A share of runs (unit "of the runs") as a percentage: the value, its interval and the band times 100."""
+def _fraction_band(rule: Mapping) -> bool:
+    """Whether the rule's band is of a dimensionless fraction: a finite end, and every finite end within [-1, 1]."""
+    ends = [float(rule[k]) for k in ("low", "high") if finite(rule.get(k))]
+    return bool(ends) and all(abs(e) <= 1 for e in ends)
+
+
+def _percent(measured: Any, rule: Mapping, paper_value: str | None = None) -> tuple[Any, Mapping, str] | None:
+    """A share of runs (unit "of the runs") as a percentage, and a dimensionless fraction where the paper gives
+    its number in per cent (C000-2's "2 %"): the value, its interval and the band times 100."""
     unit = real_unit(rule)
     t = triple(measured)
-    if unit not in _SHARE_UNITS or t is None:
+    if t is None:
+        return None
+    if unit in _SHARE_UNITS:
+        suffix = f"% {unit}"
+    elif not unit and "%" in str(paper_value or "") and _fraction_band(rule):
+        suffix = "%"
+    else:
         return None
     scaled = {"value": t[0] * 100, "ci_low": None if t[1] is None else t[1] * 100}
     scaled["ci_high"] = None if t[2] is None else t[2] * 100
     band = {k: (rule[k] * 100 if finite(rule.get(k)) else rule.get(k)) for k in ("low", "high")}
-    return scaled, {**rule, **band}, f"% {unit}"
+    return scaled, {**rule, **band}, suffix
 
 
 def _holds_paper_number(said: str, low: Any, high: Any) -> bool:
@@ -139,7 +152,7 @@ def _band_clause(rule: Mapping, measured: Any, paper_value: str | None = None) -
     words when the value reverses the direction the paper's band gives (a ratio below 1 where it has one above).
     A share of runs is given in per cent; with ``paper_value`` the band is said as what the paper's words are read
     as (:func:`against_paper`)."""
-    shown, shown_rule, unit = _percent(measured, rule) or (measured, rule, real_unit(rule))
+    shown, shown_rule, unit = _percent(measured, rule, paper_value) or (measured, rule, real_unit(rule))
     quantity = str(rule.get("quantity") or "the measured value")
     text = f"{quantity} is {format_value(shown, unit)}"
     text += against_paper(_band_words(shown_rule, unit), paper_value, rule.get("low"), rule.get("high"), quantity)
