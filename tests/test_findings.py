@@ -507,6 +507,11 @@ def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from
         ", against at most 0.5 (the paper: rho <= 0.5)"
     )
     assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5) == ", against at most 0.5 (the paper: rho <= 0.5)"
+    # a paper value in pieces, one per part: the band's own piece
+    assert against_paper("[9.091, 11] el", "1 element; 10 elements/frame", 9.091, 11.0) == (
+        ", against [9.091, 11] el (the paper: 10 elements/frame)"
+    )
+    assert against_paper("[0.5, 1.5] el", "1 element; 10 elements/frame", 0.5, 1.5).endswith("(the paper: 1 element)")
 
 
 def _lost_row(changed, verdict, in_lock, **more):

@@ -130,7 +130,8 @@ def against_paper(
     ``high``, a paper value none of whose numbers the band holds (:func:`_holds_paper_number`: the value of
     another quantity, as a threshold beside a probability) is said as what the band is read from:
     ``', against at least 0.1 (read here from the paper's "2")'``; so is a bound on a symbol the rule's
-    ``quantity`` never names (:func:`_names_another_quantity`)."""
+    ``quantity`` never names (:func:`_names_another_quantity`). Of a paper value in pieces (``"1 element;
+    10 elements/frame"``, one per part) only the one piece whose number the band holds is said."""
     if not band:
         return ""
     said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
@@ -142,6 +143,10 @@ def against_paper(
         return f", against {band}, set here (the paper gives no number)"
     if not re.search(r"\d", said):
         return f', where the paper says "{said}" (read here as {band})'
+    pieces = [p.strip() for p in said.split(";") if p.strip()]
+    own = [p for p in pieces if re.search(r"\d", p) and _holds_paper_number(p, low, high)]
+    if len(pieces) > 1 and len(own) == 1:  # "1 element; 10 elements/frame": the piece that is this band's
+        said = own[0]
     if not _holds_paper_number(said, low, high) or _names_another_quantity(said, quantity):
         return f', against {band} (read here from the paper\'s "{said}")'
     return f", against {band} (the paper: {said})"

@@ -66,9 +66,9 @@ def _c7() -> AllOf:
     return AllOf(
         {
             "decreasing": Monotone(
-                "|dynamic error| after a 10 s loss, in multiples of the smallest random prediction error (RMS) of "
-                "the sweep",
-                "loss time",
+                "|dynamic error| of the prediction through a 10 s loss, in multiples of the smallest random "
+                "prediction error (RMS) of the sweep",
+                "the time the object is lost (s; the manoeuvre is detected at 5.5 s)",
                 "decreasing",
                 "× smallest RMS",
                 1.0,
@@ -119,7 +119,8 @@ def claim_rules() -> dict[str, Rule]:
                 ),
                 "UMP": Ordering(
                     "P(detection within the delay limit after the onset) of |S|",
-                    "that of the other invariant test at the same per-test false-alarm rate",
+                    "that of another test a common shift leaves unchanged (the window's sum of squares Q, or a "
+                    "GLS-weighted sum) at the same per-test false-alarm rate",
                     ">",
                 ),
             }
@@ -137,14 +138,15 @@ def claim_rules() -> dict[str, Rule]:
                 "faster compensation": Ordering(
                     "mean-square dynamic error (mean error over runs) from the onset to the end of the compensation "
                     "interval, of the filter compared with",
-                    "the scheme's",
+                    "the paper's switching scheme's",
                     ">",
                     "ratio",
                 ),
                 **{
                     f"min RMS vs {c}": Ordering(
-                        f"RMS error of the tuned {c} over the compensation span",
-                        "the scheme's",
+                        f"RMS error of the tuned {c}{'' if c.endswith('filter') else ' filter'} over the compensation "
+                        "span",
+                        "the paper's switching scheme's",
                         ">",
                         "ratio",
                     )
