@@ -139,10 +139,21 @@ def sentence_faults(record: dict, keys: set[str]) -> list[str]:
         hit = re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text)
         if hit and not any(re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", t) for t in plain):
             faults.append(f"register key {key!r}")
-    unit = tvtrack.value_words.real_unit(_shown_rule(record))
+    unit = _owed_unit(record)
     if unit:
         faults += [f"number without its unit {unit!r}: {n}" for n in _bare_numbers(text, plain, record, unit)]
     return faults
+
+
+def _owed_unit(record: dict) -> str:
+    """The unit every number of the sentence owes: the main part's rule's, or "%" for a dimensionless fraction the
+    paper gives in per cent (C000-2's "2 %" of the micro-raster: the sentence says 2.3 %, never a bare 0.023)."""
+    rule = _shown_rule(record)
+    unit = tvtrack.value_words.real_unit(rule)
+    ends = [rule.get(k) for k in ("low", "high") if tvtrack.numbers.finite(rule.get(k))]
+    if not unit and "%" in str(record.get("paper_value") or "") and ends and all(abs(e) <= 1 for e in ends):
+        return "%"
+    return unit
 
 
 def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[str]:
@@ -189,7 +200,7 @@ def test_the_claims_of_real_paper_runs_read_as_complete_sentences_when_there_are
     assert not {k: v for k, v in faults.items() if v}
 
 
-def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
+def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, monkeypatch):
     """The faults the sentence test looks for, planted one at a time: each is caught."""
     import copy
 
@@ -208,6 +219,15 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
     tag = copy.deepcopy(DEPENDS)
     tag["robustness"]["parts"]["claim"]["flips"][0]["text"] = "slow wander, the earlier world"
     assert any("the project's own terms" in f for f in sentence_faults(tag, keys)), sentence_faults(tag, keys)
+    share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
+    share["rule"].update(low=0.01, high=0.03, unit="")
+    share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
+    share["paper_value"] = "2 %"
+    assert sentence_faults(share, keys) == []
+    said = tvtrack.value_words._percent  # ... and a writer that scales the value but drops the "%" is caught
+    monkeypatch.setattr(tvtrack.value_words, "_percent", lambda *a: (lambda r: r and (*r[:2], ""))(said(*a)))
+    assert any("number without its unit '%'" in f for f in sentence_faults(share, keys)), sentence_faults(share, keys)
+    monkeypatch.undo()
     bare = copy.deepcopy(DEPENDS)
     bare["rule"]["unit"] = "px"  # the sentence now owes "px" after each number: the writer gives it ...
     assert sentence_faults(bare, keys) == []
