@@ -354,6 +354,30 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
     )
 
 
+def test_the_sentence_on_how_sure_the_verdicts_are_accounts_for_every_checkable_verdict():
+    """Its counts add up to the checkable verdicts: one that decides no part (or has no record) carries no label,
+    and is said so rather than left out of the sum."""
+    from tvtrack.results import results_summary
+
+    def claim(cid, verdict, label):
+        return {"id": cid, "verdict": verdict, "robustness": {"label": label}}
+
+    claims = [claim("C001-1", "reproduced", "robust"), claim("C001-2", "undecided", "-")]
+    claims += [claim("C001-3", "not reproduced", "unexplored"), claim("C001-4", "not checkable", "-")]
+    text = results_summary(claims)
+    assert (
+        "Of the 3 checkable verdicts, 1 survives every reading of the paper (1 robust, 0 only within the paper's "
+        "world), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
+        "explored to show how far it extends (unexplored), 1 has no label (no part of it decided, or no record of "
+        "what was explored), and 0 differ between independent replicates." in text
+    ), text
+    two = claims + [{"id": "C001-5", "verdict": "reproduced"}]
+    assert "2 have no label (no part of them decided, or no record of what was explored), and 0 differ" in (
+        results_summary(two)
+    )
+    assert "no label" not in results_summary(claims[:1] + claims[2:])
+
+
 def test_a_papers_limitations_come_from_its_records():
     """Worlds calibrated to the paper's own operating point, what is not checkable and why, runs that lost lock
     (the fields the core's records may carry), the undecided claims and the notebook's own limitations."""
