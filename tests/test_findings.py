@@ -535,6 +535,14 @@ def test_a_fraction_the_paper_gives_in_per_cent_is_said_in_per_cent():
     assert value_clause(rule, measured, "0.02").startswith("RMS error / raster size is 0.02327 [0.01784, 0.03578],")
     wide = {**rule, "low": 0.5, "high": 2.0}
     assert "%" not in value_clause(wide, measured, "2 %").split(", against")[0]
+    # of a paper value in pieces, the per cent is the other piece's: the correlation stays a plain number
+    rho = {"kind": "in_band", "quantity": "lag-1 correlation rho", "low": 0.4, "high": 0.6, "unit": ""}
+    assert value_clause(rho, Estimate.exact(0.5), "rho <= 0.5; false alarms within 5 %") == (
+        "lag-1 correlation rho is 0.5, against [0.4, 0.6] (the paper: rho <= 0.5)"
+    )
+    assert value_clause({**rho, "high": None}, Estimate.exact(0.5), "rho >= 40 %").startswith(
+        "lag-1 correlation rho is 50 %, against at least 40 %"
+    )
 
 
 def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from_not_as_the_band():
@@ -551,6 +559,9 @@ def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from
         ", against at most 0.5 (the paper: rho <= 0.5)"
     )
     assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5) == ", against at most 0.5 (the paper: rho <= 0.5)"
+    assert against_paper("[0.5, 2] × alpha", "ρ ≤ 0.5", 0.5, 2.0, rate).endswith(
+        '(read here from the paper\'s "ρ ≤ 0.5")'
+    )
     # a paper value in pieces, one per part: the band's own piece
     assert against_paper("[9.091, 11] el", "1 element; 10 elements/frame", 9.091, 11.0) == (
         ", against [9.091, 11] el (the paper: 10 elements/frame)"
