@@ -124,3 +124,16 @@ def test_a_failed_photograph_leaves_every_earlier_screenshot_as_it_was(runs, tmp
         b"drawn",
     ]
     assert sorted(p.name for p in out.parent.iterdir()) == ["screenshots"]
+
+
+def test_an_output_that_is_a_file_is_refused_before_any_photograph(runs, tmp_path, monkeypatch):
+    taken = []
+    monkeypatch.setattr(screenshots, "CHROMIUM", sys.executable)
+    monkeypatch.setattr(_Page, "screenshot", lambda self, path: taken.append(path))
+    monkeypatch.setitem(sys.modules, "playwright.sync_api", types.SimpleNamespace(sync_playwright=_Playwright))
+    monkeypatch.setattr(screenshots, "_viewer_shot", lambda *a: taken.append(a))
+    out = tmp_path / "shots.png"
+    out.write_bytes(b"a picture of the user's")
+    with pytest.raises(UsageError, match=r"^-o .*shots\.png: a file, not a folder"):
+        screenshots.take_screenshots(runs, out, site=tmp_path / "site")
+    assert taken == [] and out.read_bytes() == b"a picture of the user's"

@@ -168,6 +168,9 @@ def take_screenshots(
     """
     from .site import build_site
 
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"-o {out}: a file, not a folder; give the folder the three PNG files go to")
     source = reproduce_dir(None, Path(runs_dir))
     if not source.is_dir():
         raise UsageError(f"no paper runs in {source}: `make reproduce` makes them")
@@ -181,7 +184,6 @@ def take_screenshots(
         raise UsageError("no Playwright here: pip install playwright==1.65.2 (it drives the system Chromium)") from None
 
     site = (Path(site) if site is not None else build_site(Path(runs_dir)).parent).resolve()
-    out = Path(out)
     shots = temporary_beside(out)  # all three are taken before any is replaced: never a half-updated set
     try:
         with sync_playwright() as p:
