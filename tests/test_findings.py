@@ -139,10 +139,21 @@ def sentence_faults(record: dict, keys: set[str]) -> list[str]:
         hit = re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", text)
         if hit and not any(re.search(rf"(?<![\w-]){re.escape(key)}(?![\w-])", t) for t in plain):
             faults.append(f"register key {key!r}")
-    unit = tvtrack.value_words.real_unit(_shown_rule(record))
+    unit = _owed_unit(record)
     if unit:
         faults += [f"number without its unit {unit!r}: {n}" for n in _bare_numbers(text, plain, record, unit)]
     return faults
+
+
+def _owed_unit(record: dict) -> str:
+    """The unit every number of the sentence owes: the main part's rule's, or "%" for a dimensionless fraction the
+    paper gives in per cent (C000-2's "2 %" of the micro-raster: the sentence says 2.3 %, never a bare 0.023)."""
+    rule = _shown_rule(record)
+    unit = tvtrack.value_words.real_unit(rule)
+    ends = [rule.get(k) for k in ("low", "high") if tvtrack.numbers.finite(rule.get(k))]
+    if not unit and "%" in str(record.get("paper_value") or "") and ends and all(abs(e) <= 1 for e in ends):
+        return "%"
+    return unit
 
 
 def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[str]:
@@ -189,7 +200,7 @@ def test_the_claims_of_real_paper_runs_read_as_complete_sentences_when_there_are
     assert not {k: v for k, v in faults.items() if v}
 
 
-def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
+def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, monkeypatch):
     """The faults the sentence test looks for, planted one at a time: each is caught."""
     import copy
 
@@ -208,6 +219,15 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys):
     tag = copy.deepcopy(DEPENDS)
     tag["robustness"]["parts"]["claim"]["flips"][0]["text"] = "slow wander, the earlier world"
     assert any("the project's own terms" in f for f in sentence_faults(tag, keys)), sentence_faults(tag, keys)
+    share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
+    share["rule"].update(low=0.01, high=0.03, unit="")
+    share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
+    share["paper_value"] = "2 %"
+    assert sentence_faults(share, keys) == []
+    said = tvtrack.value_words._percent  # ... and a writer that scales the value but drops the "%" is caught
+    monkeypatch.setattr(tvtrack.value_words, "_percent", lambda *a: (lambda r: r and (*r[:2], ""))(said(*a)))
+    assert any("number without its unit '%'" in f for f in sentence_faults(share, keys)), sentence_faults(share, keys)
+    monkeypatch.undo()
     bare = copy.deepcopy(DEPENDS)
     bare["rule"]["unit"] = "px"  # the sentence now owes "px" after each number: the writer gives it ...
     assert sentence_faults(bare, keys) == []
@@ -332,6 +352,30 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
         sentence
     )
+
+
+def test_the_sentence_on_how_sure_the_verdicts_are_accounts_for_every_checkable_verdict():
+    """Its counts add up to the checkable verdicts: one that decides no part (or has no record) carries no label,
+    and is said so rather than left out of the sum."""
+    from tvtrack.results import results_summary
+
+    def claim(cid, verdict, label):
+        return {"id": cid, "verdict": verdict, "robustness": {"label": label}}
+
+    claims = [claim("C001-1", "reproduced", "robust"), claim("C001-2", "undecided", "-")]
+    claims += [claim("C001-3", "not reproduced", "unexplored"), claim("C001-4", "not checkable", "-")]
+    text = results_summary(claims)
+    assert (
+        "Of the 3 checkable verdicts, 1 survives every reading of the paper (1 robust, 0 only within the paper's "
+        "world), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
+        "explored to show how far it extends (unexplored), 1 has no label (no part of it decided, or no record of "
+        "what was explored), and 0 differ between independent replicates." in text
+    ), text
+    two = claims + [{"id": "C001-5", "verdict": "reproduced"}]
+    assert "2 have no label (no part of them decided, or no record of what was explored), and 0 differ" in (
+        results_summary(two)
+    )
+    assert "no label" not in results_summary(claims[:1] + claims[2:])
 
 
 def test_a_papers_limitations_come_from_its_records():
@@ -491,6 +535,14 @@ def test_a_fraction_the_paper_gives_in_per_cent_is_said_in_per_cent():
     assert value_clause(rule, measured, "0.02").startswith("RMS error / raster size is 0.02327 [0.01784, 0.03578],")
     wide = {**rule, "low": 0.5, "high": 2.0}
     assert "%" not in value_clause(wide, measured, "2 %").split(", against")[0]
+    # of a paper value in pieces, the per cent is the other piece's: the correlation stays a plain number
+    rho = {"kind": "in_band", "quantity": "lag-1 correlation rho", "low": 0.4, "high": 0.6, "unit": ""}
+    assert value_clause(rho, Estimate.exact(0.5), "rho <= 0.5; false alarms within 5 %") == (
+        "lag-1 correlation rho is 0.5, against [0.4, 0.6] (the paper: rho <= 0.5)"
+    )
+    assert value_clause({**rho, "high": None}, Estimate.exact(0.5), "rho >= 40 %").startswith(
+        "lag-1 correlation rho is 50 %, against at least 40 %"
+    )
 
 
 def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from_not_as_the_band():
@@ -507,6 +559,9 @@ def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from
         ", against at most 0.5 (the paper: rho <= 0.5)"
     )
     assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5) == ", against at most 0.5 (the paper: rho <= 0.5)"
+    assert against_paper("[0.5, 2] × alpha", "ρ ≤ 0.5", 0.5, 2.0, rate).endswith(
+        '(read here from the paper\'s "ρ ≤ 0.5")'
+    )
     # a paper value in pieces, one per part: the band's own piece
     assert against_paper("[9.091, 11] el", "1 element; 10 elements/frame", 9.091, 11.0) == (
         ", against [9.091, 11] el (the paper: 10 elements/frame)"

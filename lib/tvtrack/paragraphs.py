@@ -109,6 +109,32 @@ def _turns_sentence(claims: list[Mapping]) -> str:
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
 
+def _sure_sentence(labels: Counter, checkable: int) -> str:
+    """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
+    part, or has no record, carries no label and is counted so)."""
+    sure = labels["robust"] + labels["limited"]
+    unexplored, bare = labels["unexplored"], labels["—"]
+    return (
+        f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
+        f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
+        f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
+        "never printed, "
+        + (
+            f"{_n(unexplored, 'has', 'have')} nothing explored to show how far "
+            f"{'it extends' if unexplored == 1 else 'they extend'} (unexplored), "
+            if unexplored
+            else ""
+        )
+        + (
+            f"{_n(bare, 'has', 'have')} no label (no part of {'it' if bare == 1 else 'them'} decided, or no record "
+            "of what was explored), "
+            if bare
+            else ""
+        )
+        + f"and {_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
+    )
+
+
 def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     """A short paragraph: what holds, what does not, what the runs could not decide, how sure the verdicts are,
     and what they turn on by kind (readings of the paper's text, unreported settings of its experiment, worlds
@@ -132,20 +158,7 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        sure = labels["robust"] + labels["limited"]
-        text.append(
-            f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-            f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
-            f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
-            "never printed, "
-            + (
-                f"{_n(labels['unexplored'], 'has', 'have')} nothing explored to show how far "
-                f"{'it extends' if labels['unexplored'] == 1 else 'they extend'} (unexplored), "
-                if labels["unexplored"]
-                else ""
-            )
-            + f"and {_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
-        )
+        text.append(_sure_sentence(labels, checkable))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)

@@ -80,14 +80,19 @@ def _fraction_band(rule: Mapping) -> bool:
 
 def _percent(measured: Any, rule: Mapping, paper_value: str | None = None) -> tuple[Any, Mapping, str] | None:
     """A share of runs (unit "of the runs") as a percentage, and a dimensionless fraction where the paper gives
-    its number in per cent (C000-2's "2 %"): the value, its interval and the band times 100."""
+    its number in per cent (C000-2's "2 %"; of a paper value in pieces, the piece that is the band's own): the
+    value, its interval and the band times 100."""
     unit = real_unit(rule)
     t = triple(measured)
     if t is None:
         return None
     if unit in _SHARE_UNITS:
         suffix = f"% {unit}"
-    elif not unit and "%" in str(paper_value or "") and _fraction_band(rule):
+    elif (
+        not unit
+        and _fraction_band(rule)
+        and "%" in _own_piece(_paper_words(paper_value), rule.get("low"), rule.get("high"))
+    ):
         suffix = "%"
     else:
         return None
@@ -112,10 +117,26 @@ def _holds_paper_number(said: str, low: Any, high: Any) -> bool:
     return False
 
 
+def _paper_words(paper_value: str | None) -> str:
+    """The paper's value as said: one line, without a closing remark in parentheses ("(one run)") or its quotes."""
+    said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
+    if len(said) > 1 and said[0] == said[-1] and said[0] in "'\"":  # the paper's words in their own quotes
+        said = said[1:-1].strip()
+    return said
+
+
+def _own_piece(said: str, low: Any, high: Any) -> str:
+    """Of a paper value in pieces (``"1 element; 10 elements/frame"``, one per part), the one piece whose number
+    the band holds; else the whole value."""
+    pieces = [p.strip() for p in said.split(";") if p.strip()]
+    own = [p for p in pieces if re.search(r"\d", p) and _holds_paper_number(p, low, high)]
+    return own[0] if len(pieces) > 1 and len(own) == 1 else said
+
+
 def _names_another_quantity(said: str, quantity: str | None) -> bool:
     """Whether the paper's words state a bound on a symbol the rule's quantity never names (``"rho <= 0.5"``
     beside a false-alarm rate): its number is then not the band's, whatever their values."""
-    m = re.match(r"\s*([A-Za-z_][\w^*]*)\s*(?:<=|>=|<|>|=|~|≤|≥)", said)
+    m = re.match(r"\s*([^\W\d][\w^*]*)\s*(?:<=|>=|<|>|=|~|≤|≥)", said)  # "rho <= 0.5", "ρ ≤ 0.5"
     if not m or quantity is None:
         return False
     return re.search(rf"(?<![\w]){re.escape(m.group(1))}(?![\w])", quantity) is None
@@ -134,19 +155,14 @@ def against_paper(
     10 elements/frame"``, one per part) only the one piece whose number the band holds is said."""
     if not band:
         return ""
-    said = re.sub(r"\s*\([^()=]*\)\s*$", "", " ".join(str(paper_value or "").split())).strip()  # "(one run)"
-    if len(said) > 1 and said[0] == said[-1] and said[0] in "'\"":  # the paper's words in their own quotes
-        said = said[1:-1].strip()
+    said = _paper_words(paper_value)
     if not said:
         return f", where the paper has {band}"
     if said.lower() == "qualitative":
         return f", against {band}, set here (the paper gives no number)"
     if not re.search(r"\d", said):
         return f', where the paper says "{said}" (read here as {band})'
-    pieces = [p.strip() for p in said.split(";") if p.strip()]
-    own = [p for p in pieces if re.search(r"\d", p) and _holds_paper_number(p, low, high)]
-    if len(pieces) > 1 and len(own) == 1:  # "1 element; 10 elements/frame": the piece that is this band's
-        said = own[0]
+    said = _own_piece(said, low, high)
     if not _holds_paper_number(said, low, high) or _names_another_quantity(said, quantity):
         return f', against {band} (read here from the paper\'s "{said}")'
     return f", against {band} (the paper: {said})"

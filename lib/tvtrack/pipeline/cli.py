@@ -312,7 +312,10 @@ def _add_screenshots(sub) -> None:
     )
     sc.add_argument("--runs", default=str(RUNS_DIR), help="runs directory holding reproduce/ (default papermill_runs/)")
     sc.add_argument(
-        "-o", "--output", default="docs/screenshots", help="folder of the PNG files (default docs/screenshots)"
+        "-o",
+        "--output",
+        default=str(REPO_ROOT / "docs" / "screenshots"),
+        help="folder of the PNG files (default: the clone's docs/screenshots, wherever the command is run from)",
     )
     sc.add_argument("--claim", default=None, help="claim whose page is shown (default: the first not reproduced)")
     sc.add_argument("--recording", default=None, help="notebook whose recording is shown (default: the last with one)")

@@ -9,13 +9,15 @@ to any other host are refused.
 from __future__ import annotations
 
 import io
-import json
+import os
+import shutil
 import time
 from pathlib import Path
 
 import numpy as np
 
-from .paths import RUNS_DIR, reproduce_dir
+from .outputs import temporary_beside
+from .paths import REPO_ROOT, RUNS_DIR, reproduce_dir
 from .preflight import UsageError
 from .viewer.environment import free_port
 from .viewer.pixels import coloured_mask
@@ -36,7 +38,7 @@ FLAGS = [
 LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
 FIRST_SCREEN = (1400, 900)  # px, the window a reader opens the site in
 VIEWER_SCREEN = (1200, 700)  # px
-SCREENSHOTS = Path("docs") / "screenshots"
+SCREENSHOTS = REPO_ROOT / "docs" / "screenshots"
 NAMES = ("site_index.png", "site_claim.png", "web_viewer.png")
 #: the order in which a claim is picked for its page: a verdict a reader most needs to see explained first
 VERDICT_ORDER = ("not reproduced", "partly", "undecided", "reproduced")
@@ -64,26 +66,23 @@ def is_drawn(seen: dict) -> bool:
 
 
 def pick_claim(source: Path, claim: str | None = None) -> tuple[str, str]:
-    """``(notebook, claim id)`` whose page is photographed: ``claim`` where given (found in any run's record),
-    else the first claim in notebook order with the first verdict of :data:`VERDICT_ORDER` that has one."""
-    found: list[tuple[str, str, str]] = []
-    for results in sorted(source.glob("*/results.json")):
-        try:
-            record = json.loads(results.read_text())
-        except (OSError, ValueError):
-            continue
-        for c in record.get("claims", []):
-            found.append((results.parent.name, str(c.get("id")), str(c.get("verdict"))))
+    """``(notebook, claim id)`` whose page is photographed: ``claim`` where given (found in a run the site shows:
+    one whose ``run.json`` says it finished), else the first claim in notebook order with the first verdict of
+    :data:`VERDICT_ORDER` that has one. A failed run's ``results.json`` has no page on the site."""
+    from .site import find_paper_runs
+
+    found = [(r.name, str(c.get("id")), str(c.get("verdict"))) for r in find_paper_runs(source) if r.ok
+             for c in r.results.get("claims", [])]  # fmt: skip
     if claim is not None:
         for nb, cid, _ in found:
             if cid == claim:
                 return nb, cid
-        raise UsageError(f"--claim: no claim {claim} in the runs of {source} (give an id such as C004-1)")
+        raise UsageError(f"--claim: no claim {claim} in the finished runs of {source} (give an id such as C004-1)")
     for verdict in VERDICT_ORDER:
         for nb, cid, v in found:
             if v == verdict:
                 return nb, cid
-    raise UsageError(f"no run with claims in {source}: `make reproduce` makes them")
+    raise UsageError(f"no finished run with claims in {source}: `make reproduce` makes them")
 
 
 def pick_recording(source: Path, notebook: str | None = None) -> Path:
@@ -151,7 +150,8 @@ def take_screenshots(
     runs_dir : Path
         Runs directory holding ``reproduce/`` (the paper runs).
     out : Path
-        Folder the three PNG files are written to (created; only those files are replaced).
+        Folder the three PNG files are written to (created; only those files are replaced, and only once all
+        three are taken: a failure leaves the earlier ones as they were).
     claim : str, optional
         Claim id whose page is photographed (default: :func:`pick_claim`).
     recording : str, optional
@@ -168,6 +168,9 @@ def take_screenshots(
     """
     from .site import build_site
 
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"-o {out}: a file, not a folder; give the folder the three PNG files go to")
     source = reproduce_dir(None, Path(runs_dir))
     if not source.is_dir():
         raise UsageError(f"no paper runs in {source}: `make reproduce` makes them")
@@ -175,22 +178,29 @@ def take_screenshots(
     rrd = pick_recording(source, recording)
     if not Path(CHROMIUM).is_file():
         raise UsageError(f"no Chromium at {CHROMIUM}: apt-get install -y chromium")
-    from playwright.sync_api import sync_playwright
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        raise UsageError("no Playwright here: pip install playwright==1.65.2 (it drives the system Chromium)") from None
 
     site = (Path(site) if site is not None else build_site(Path(runs_dir)).parent).resolve()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = [out / n for n in NAMES]
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        try:
-            page = _page(browser, FIRST_SCREEN)
-            page.goto((site / "index.html").as_uri())
-            page.screenshot(path=str(paths[0]))
-            page.goto((site / "claims" / notebook / f"{cid}.html").as_uri())
-            page.screenshot(path=str(paths[1]))
-            page.close()
-            _viewer_shot(browser, rrd, paths[2], wait_s)
-        finally:
-            browser.close()
-    return paths
+    shots = temporary_beside(out)  # all three are taken before any is replaced: never a half-updated set
+    try:
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+            try:
+                page = _page(browser, FIRST_SCREEN)
+                page.goto((site / "index.html").as_uri())
+                page.screenshot(path=str(shots / NAMES[0]))
+                page.goto((site / "claims" / notebook / f"{cid}.html").as_uri())
+                page.screenshot(path=str(shots / NAMES[1]))
+                page.close()
+                _viewer_shot(browser, rrd.resolve(), shots / NAMES[2], wait_s)
+            finally:
+                browser.close()
+        out.mkdir(parents=True, exist_ok=True)
+        for name in NAMES:
+            os.replace(shots / name, out / name)
+    finally:
+        shutil.rmtree(shots, ignore_errors=True)
+    return [out / n for n in NAMES]
