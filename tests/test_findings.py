@@ -317,12 +317,11 @@ def test_a_flip_that_takes_several_changes_says_how_many():
     assert _flip_sentence({**two, "side": "reading"}) == (
         "Under two other readings of the paper's text together it is reproduced: x and y."
     )
-    assert _flip_sentence({**two, "side": "setting"}).startswith(
-        "Under two changes together, each a reading of the paper's text or a setting of its own experiment that it "
-        "never printed, it is reproduced"
-    )
+    assert _flip_sentence({**two, "side": "setting"}) == "Under two changes together it is reproduced: x and y."
     three = {**two, "changed": {"a": 1, "b": 2, "c": 3}, "side": "unattributed"}
-    assert _flip_sentence(three) == "Under three changes together it is reproduced: x and y."
+    assert (
+        _flip_sentence(three) == "Under three changes together (none of them flips it alone) it is reproduced: x and y."
+    )
     assert _flip_sentence({**two, "changed": {"a": 1}, "side": "setting"}) == (
         "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x and y."
     )
@@ -553,14 +552,14 @@ def test_a_paper_bound_on_a_symbol_the_quantity_never_names_is_said_as_read_from
 
     rate = "per-test false-alarm rate of the threshold set as if neighbouring velocity samples were independent"
     assert against_paper("[0.5, 2] × alpha", "rho <= 0.5", 0.5, 2.0, rate) == (
-        ', against [0.5, 2] × alpha (read here from the paper\'s "rho <= 0.5")'
+        ', against [0.5, 2] × alpha (set here to check the paper\'s "rho <= 0.5")'
     )
     assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5, "lag-1 correlation rho of the samples") == (
         ", against at most 0.5 (the paper: rho <= 0.5)"
     )
     assert against_paper("at most 0.5", "rho <= 0.5", None, 0.5) == ", against at most 0.5 (the paper: rho <= 0.5)"
     assert against_paper("[0.5, 2] × alpha", "ρ ≤ 0.5", 0.5, 2.0, rate).endswith(
-        '(read here from the paper\'s "ρ ≤ 0.5")'
+        '(set here to check the paper\'s "ρ ≤ 0.5")'
     )
     # a paper value in pieces, one per part: the band's own piece
     assert against_paper("[9.091, 11] el", "1 element; 10 elements/frame", 9.091, 11.0) == (
@@ -634,9 +633,11 @@ def test_a_paper_number_the_band_does_not_hold_is_said_as_what_the_band_is_read_
     a per cent as a share) is the paper's value; else the band is said as read from the paper's words."""
     from tvtrack.value_words import against_paper
 
-    assert against_paper("at least 0.1", "2", 0.1, None) == ', against at least 0.1 (read here from the paper\'s "2")'
+    assert (
+        against_paper("at least 0.1", "2", 0.1, None) == ', against at least 0.1 (set here to check the paper\'s "2")'
+    )
     assert against_paper("at most 1.3", "threshold near P = 0.5", None, 1.3) == (
-        ', against at most 1.3 (read here from the paper\'s "threshold near P = 0.5")'
+        ', against at most 1.3 (set here to check the paper\'s "threshold near P = 0.5")'
     )
     assert against_paper("at least 20", "> 20", 20, None) == ", against at least 20 (the paper: > 20)"
     assert against_paper("[0.01, 0.03]", "2 %", 0.01, 0.03) == ", against [0.01, 0.03] (the paper: 2 %)"
@@ -644,7 +645,7 @@ def test_a_paper_number_the_band_does_not_hold_is_said_as_what_the_band_is_read_
         against_paper("[5.25, 5.75] s", "5.5 s (one run)", 5.25, 5.75) == ", against [5.25, 5.75] s (the paper: 5.5 s)"
     )
     assert against_paper("[0, 0.625]", "filter 1-2 px; MLP 2-3 px", 0, 0.625).endswith(
-        'from the paper\'s "filter 1-2 px; MLP 2-3 px")'
+        'check the paper\'s "filter 1-2 px; MLP 2-3 px")'
     )
 
 
@@ -749,4 +750,44 @@ def test_a_depends_label_resting_on_an_unattributed_mix_is_named_before_a_world(
     mix = {**world, "side": "unattributed", "kind": "combination", "text": "a target weaving and sigma as raw"}
     mix["changed"] = {**world["changed"], "paper_sigma": "raw_increments"}
     claim["robustness"]["parts"]["claim"]["flips"] = [world, mix]
-    assert "Under two changes together it is reproduced: a target weaving and sigma as raw." in claim_summary(claim)
+    assert (
+        "Under two changes together (none of them flips it alone) it is reproduced: a target weaving at 0.1 T (a world "
+        "beyond the paper) and sigma read as the SD of the raw velocity increments (a reading of the paper's text)."
+        in claim_summary(claim)
+    )
+
+
+def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_counted_so():
+    """A reader took "unexplored" to mean no world was varied where one was and left the part undecided, and a
+    "depends" resting only on a mix of settings with a world for one a reading or setting flips alone: the
+    sentence says which, and the first screen counts the second kind."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.paragraphs import depends_only_with_a_world, results_summary
+
+    claim = copy.deepcopy(DEPENDS)
+    part = claim["robustness"]["parts"]["claim"]
+    claim["robustness"]["label"] = part["label"] = "unexplored"
+    part["flips"] = []
+    part["share"] = {"agree": 0, "flip": 0, "undecided": 1, "design": 1}
+    assert claim_summary(claim).endswith(
+        "The one configuration explored was not decided, so nothing shows how far it extends."
+    )
+    part["share"] = {"agree": 0, "flip": 0, "undecided": 0, "design": 0}
+    assert claim_summary(claim).endswith("Nothing was varied for it, so nothing shows how far it extends.")
+    part["share"] = {"agree": 6, "flip": 0, "undecided": 0, "design": 6}
+    assert claim_summary(claim).endswith(
+        "No world beyond the paper was varied for it, so nothing shows how far it extends."
+    )
+
+    mixed = copy.deepcopy(DEPENDS) | {"id": "C001-4"}
+    world = mixed["robustness"]["parts"]["claim"]["flips"][1]
+    mix = {**world, "side": "unattributed", "kind": "combination"}
+    mix["changed"] = {**world["changed"], "paper_sigma": "raw_increments"}
+    mixed["robustness"]["parts"]["claim"]["flips"] = [world, mix]
+    assert depends_only_with_a_world([DEPENDS, mixed]) == 1
+    assert (
+        "turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them only together "
+        "with a world beyond it)" in results_summary([DEPENDS, mixed])
+    )

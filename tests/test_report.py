@@ -387,7 +387,7 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
     # the reading that flips C001-3 is named before the world it does not extend to (which is behind the click)
     assert cells["C001-3"] == (
         "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, against [0, 2] "
-        "x alpha (read here from the paper's \"rho <= 0.5\"). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "x alpha (set here to check the paper's \"rho <= 0.5\"). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
         "velocity increments."
     )
     assert (
@@ -441,7 +441,7 @@ def test_each_paper_opens_with_what_it_claims_what_holds_what_does_not_and_why_t
     assert paragraph == (
         "The paper makes 4 claims checked here; 3 can be measured. 1 claim holds (C001-7). It does not hold that neighbouring velocity samples correlate by \\<= 0.5, negligibly; the pair distributions may be "
         "multiplied (C001-3): per-test false-alarm rate / alpha is 351.6 \\[350, 353.1\\] x alpha, against "
-        "\\[0, 2\\] x alpha (read here from the paper's \"rho \\<= 0.5\"); it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
+        "\\[0, 2\\] x alpha (set here to check the paper's \"rho \\<= 0.5\"); it holds under a reading of the paper's text: sigma read as the SD of the raw velocity "
         "increments. The runs could not decide C004-3b."
     )
     limits = section.split("\n\n")[3]

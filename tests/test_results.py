@@ -186,7 +186,7 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
 
     assert claim_summary(DEPENDS) == (
         "Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, against [0, 2] x alpha "
-        "(read here from the paper's \"rho <= 0.5\"). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
+        "(set here to check the paper's \"rho <= 0.5\"). Under another reading of the paper's text it is reproduced: sigma read as the SD of the raw "
         "velocity increments."
     )
     # the optional sentences come in while the whole stays within the characters asked for
@@ -195,7 +195,7 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
         "too."
     )
     assert claim_summary(UNDECIDED) == (
-        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (read here from the "
+        "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (set here to check the "
         'paper\'s "filter 1-2 px; MLP 2-3 px"). '
         "About 7 independent replicates would decide it."
     )
@@ -267,7 +267,7 @@ def test_a_claim_from_the_explorer_reads_in_one_sentence_and_draws_its_curve(tmp
     text = claim_summary(claim)
     assert (
         text.startswith("Reproduced: ")
-        and ' x alpha, against [0, 2.5] x alpha (read here from the paper\'s "rho <= 0.5").' in text
+        and ' x alpha, against [0, 2.5] x alpha (set here to check the paper\'s "rho <= 0.5").' in text
     )
     assert "Under another reading of the paper's text it is not reproduced: sigma of the raw increments." in text
     assert "reading =" not in text and "motion" not in text  # the phrases, not the register keys

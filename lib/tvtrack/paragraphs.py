@@ -109,16 +109,31 @@ def _turns_sentence(claims: list[Mapping]) -> str:
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
 
-def _sure_sentence(labels: Counter, checkable: int) -> str:
+def depends_only_with_a_world(claims: list[Mapping]) -> int:
+    """How many claims labelled ``depends`` rest only on combinations that mix a reading or a setting with a world
+    beyond the paper, none of whose changes flips the claim alone (no reading or setting flips them alone)."""
+    n = 0
+    for c in claims:
+        c = claim_fields(c)
+        if shown_label(c) != "depends" or c.get("verdict") == "not checkable":
+            continue
+        sides = {f["side"] for f in claim_flips(c)}
+        n += bool(sides) and not sides & {"reading", "setting"}
+    return n
+
+
+def _sure_sentence(labels: Counter, checkable: int, with_world: int = 0) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
-    part, or has no record, carries no label and is counted so)."""
+    part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
+    on a reading or setting together with a world (:func:`depends_only_with_a_world`)."""
     sure = labels["robust"] + labels["limited"]
     unexplored, bare = labels["unexplored"], labels["—"]
+    mixed = f" ({with_world} of them only together with a world beyond it)" if with_world else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
         f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
-        "never printed, "
+        f"never printed{mixed}, "
         + (
             f"{_n(unexplored, 'has', 'have')} nothing explored to show how far "
             f"{'it extends' if unexplored == 1 else 'they extend'} (unexplored), "
@@ -158,7 +173,7 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        text.append(_sure_sentence(labels, checkable))
+        text.append(_sure_sentence(labels, checkable, depends_only_with_a_world(claims)))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)

@@ -150,7 +150,7 @@ def against_paper(
     paper has <band>"`` when the paper's value is not known (a bare rule). With the band's ends ``low`` and
     ``high``, a paper value none of whose numbers the band holds (:func:`_holds_paper_number`: the value of
     another quantity, as a threshold beside a probability) is said as what the band is read from:
-    ``', against at least 0.1 (read here from the paper's "2")'``; so is a bound on a symbol the rule's
+    ``', against at least 0.1 (set here to check the paper's "2")'``; so is a bound on a symbol the rule's
     ``quantity`` never names (:func:`_names_another_quantity`). Of a paper value in pieces (``"1 element;
     10 elements/frame"``, one per part) only the one piece whose number the band holds is said."""
     if not band:
@@ -164,7 +164,7 @@ def against_paper(
         return f', where the paper says "{said}" (read here as {band})'
     said = _own_piece(said, low, high)
     if not _holds_paper_number(said, low, high) or _names_another_quantity(said, quantity):
-        return f', against {band} (read here from the paper\'s "{said}")'
+        return f', against {band} (set here to check the paper\'s "{said}")'
     return f", against {band} (the paper: {said})"
 
 

@@ -57,10 +57,11 @@ LABEL_WORDS = {
     "robust": "no explored reading of the paper and no world beyond it changes the verdict",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
-    "never printed, changes the verdict",
+    "never printed, changes the verdict (alone, or together with a world beyond the paper where no single change "
+    "does)",
     "unstable": "independent replicates of the same run disagree decisively",
-    "unexplored": "no world beyond the paper was varied, or no explored configuration was decided: nothing to say "
-    "how far it extends",
+    "unexplored": "nothing explored shows how far it extends: no world beyond the paper was varied, or none of the "
+    "configurations explored was decided (the claim's sentence says which)",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }
@@ -372,10 +373,33 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     )
     if side == "world":
         return f"It does not extend to {text}: there {to}.{carried}"
-    return f"{_flip_lead(side, len(flip.get('changed') or {}))} {to}: {text}.{carried}"
+    changed = flip.get("changed") or {}
+    if len(changed) > 1 and side != "reading":  # a mix: each change with its kind, so the reader sees which is which
+        text = _kinds_of_changes(changed, (claim or {}).get("robustness") or {}) or text
+    return f"{_flip_lead(side, len(changed))} {to}: {text}.{carried}"
 
 
 _COUNT_WORDS = {2: "two", 3: "three", 4: "four", 5: "five"}
+_KIND_TAGS = {
+    "reading": "a reading of the paper's text",
+    "setting": "a setting the paper never printed",
+    "world": "a world beyond the paper",
+}
+
+
+def _kinds_of_changes(changed: Mapping, record: Mapping) -> str:
+    """The changes of a combination in plain words, each followed by its kind (``"fast wander (a setting the
+    paper never printed) and lost frames skipped (a world beyond the paper)"``); ``""`` where the record's
+    register does not know an entry."""
+    known = register_phrases(record)
+    bits = []
+    for k, v in changed.items():
+        if str(k) not in known:
+            return ""
+        title, side, phrases = known[str(k)]
+        phrase = _plain(str(phrases.get(str(v)) or f"{title} = {v}"))
+        bits.append(f"{phrase} ({_KIND_TAGS.get(side, _KIND_TAGS['reading'])})")
+    return " and ".join(bits) if len(bits) < 3 else ", ".join(bits[:-1]) + " and " + bits[-1]
 
 
 def _flip_lead(side: str, n: int) -> str:
@@ -389,9 +413,25 @@ def _flip_lead(side: str, n: int) -> str:
     w = _COUNT_WORDS.get(n, str(n))
     return {
         "reading": f"Under {w} other readings of the paper's text together",
-        "setting": f"Under {w} changes together, each a reading of the paper's text or a setting of its own "
-        "experiment that it never printed,",
-    }.get(side, f"Under {w} changes together")
+        "setting": f"Under {w} changes together",
+    }.get(side, f"Under {w} changes together (none of them flips it alone)")
+
+
+def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
+    """Why a claim is ``unexplored``: nothing was varied for it, none of its explored configurations was decided,
+    or no world beyond the paper was among them (its first part so labelled says which)."""
+    if shown_label(claim) != "unexplored" or claim.get("verdict") == "undecided":  # undecided: its runs come first
+        return ""
+    part = next((p for p in parts.values() if isinstance(p, Mapping) and p.get("label") == "unexplored"), {})
+    share = part.get("share") or {}
+    design = int(share.get("design") or 0)
+    if not design:
+        return "Nothing was varied for it, so nothing shows how far it extends."
+    if not share.get("agree"):
+        which = "The one configuration explored was not" if design == 1 else f"None of the {design} configurations "
+        which += "" if design == 1 else "explored was"
+        return f"{which} decided, so nothing shows how far it extends."
+    return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 
 def _slowest_part(parts: Mapping, main: Mapping) -> Mapping:
@@ -496,7 +536,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         flips = every  # a stronger flip of another part is the one the label rests on
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
-    required += [s for s in (first, _lock_sentence(claim, part)) if s]
+    required += [s for s in (first, _lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         required.append(_runs_sentence(_slowest_part(parts, part)))
     optional = [_share_sentence(part)]
