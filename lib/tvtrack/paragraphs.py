@@ -242,10 +242,17 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         if c.get("verdict") == "not checkable":
             out.append(f"{c['id']} is not checkable: {not_checkable_reason(c)}.")
     labels = Counter(shown_label(c) for c in claims if c.get("verdict") != "not checkable")
-    if labels["unexplored"]:
+    unexplored = [  # an undecided claim's limitation is the runs that would decide it (below)
+        c["id"]
+        for c in claims
+        if c.get("verdict") not in ("not checkable", "undecided") and shown_label(c) == "unexplored"
+    ]
+    if unexplored:
+        one = len(unexplored) == 1
         out.append(
-            f"{_n(labels['unexplored'], 'claim was', 'claims were')} never tried in a world beyond the paper's own: "
-            f"nothing says how far {'it extends' if labels['unexplored'] == 1 else 'they extend'}."
+            f"Nothing explored shows how far {_join(unexplored)} {'extends' if one else 'extend'}: no world beyond "
+            f"the paper was varied for {'it' if one else 'them'}, or nothing explored was decided (the claim's "
+            "sentence says which)."
         )
     undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
     if undecided:
