@@ -314,7 +314,9 @@ def test_the_readme_screenshots_are_taken_from_the_runs_the_site_shows(browser, 
         for c in json.loads(p.read_text()).get("claims", [])
     }
     assert records[cid] == "not reproduced"  # smoke runs and fixtures hold some: the first is photographed
-    paths = take_screenshots(root, tmp_path / "shots", recording="003_rotating_marker_tracker", site=site)
+    paths = take_screenshots(
+        root, tmp_path / "shots", recording="003_rotating_marker_tracker", site=site, browser=browser
+    )  # the module's Chromium: a second Playwright may not start inside the first one's event loop
     assert [p.name for p in paths] == list(NAMES)
     sizes = [Image.open(p).size for p in paths]
     assert sizes == [FIRST_SCREEN, FIRST_SCREEN, VIEWER_SCREEN]

@@ -57,11 +57,9 @@ LABEL_WORDS = {
     "robust": "no explored reading of the paper and no world beyond it changes the verdict",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
-    "never printed, changes the verdict (alone, or together with a world beyond the paper where no single change "
-    "does)",
+    "never printed, changes the verdict (alone, or only with a world beyond it)",
     "unstable": "independent replicates of the same run disagree decisively",
-    "unexplored": "nothing explored shows how far it extends: no world beyond the paper was varied, or none of the "
-    "configurations explored was decided (the claim's sentence says which)",
+    "unexplored": "nothing explored shows how far it extends (no world varied, or none of it decided)",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }

@@ -135,6 +135,17 @@ def _viewer_shot(browser, recording: Path, out: Path, wait_s: float) -> dict:
     return seen
 
 
+def _photograph(browser, site: Path, claim: tuple[str, str], recording: Path, shots: Path, wait_s: float) -> None:
+    """The three pictures into ``shots``: the site's first screen, the claim's page, the recording drawn."""
+    page = _page(browser, FIRST_SCREEN)
+    page.goto((site / "index.html").as_uri())
+    page.screenshot(path=str(shots / NAMES[0]))
+    page.goto((site / "claims" / claim[0] / f"{claim[1]}.html").as_uri())
+    page.screenshot(path=str(shots / NAMES[1]))
+    page.close()
+    _viewer_shot(browser, recording, shots / NAMES[2], wait_s)
+
+
 def take_screenshots(
     runs_dir: Path = RUNS_DIR,
     out: Path = SCREENSHOTS,
@@ -142,6 +153,7 @@ def take_screenshots(
     recording: str | None = None,
     wait_s: float = 120.0,
     site: Path | None = None,
+    browser=None,
 ) -> list[Path]:
     """Build the site of the paper runs in ``runs_dir`` and photograph it into ``out`` (:data:`NAMES`).
 
@@ -160,6 +172,9 @@ def take_screenshots(
         Seconds the viewer may take to draw the recording (software rendering is slow on a loaded machine).
     site : Path, optional
         A site already built from ``runs_dir`` (default: built now into ``runs_dir/site``).
+    browser : playwright.sync_api.Browser, optional
+        A Chromium already launched (as the site's browser tests hold one); default: the system Chromium, launched
+        and closed here.
 
     Returns
     -------
@@ -186,18 +201,15 @@ def take_screenshots(
     site = (Path(site) if site is not None else build_site(Path(runs_dir)).parent).resolve()
     shots = temporary_beside(out)  # all three are taken before any is replaced: never a half-updated set
     try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-            try:
-                page = _page(browser, FIRST_SCREEN)
-                page.goto((site / "index.html").as_uri())
-                page.screenshot(path=str(shots / NAMES[0]))
-                page.goto((site / "claims" / notebook / f"{cid}.html").as_uri())
-                page.screenshot(path=str(shots / NAMES[1]))
-                page.close()
-                _viewer_shot(browser, rrd.resolve(), shots / NAMES[2], wait_s)
-            finally:
-                browser.close()
+        if browser is not None:
+            _photograph(browser, site, (notebook, cid), rrd.resolve(), shots, wait_s)
+        else:
+            with sync_playwright() as p:
+                launched = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+                try:
+                    _photograph(launched, site, (notebook, cid), rrd.resolve(), shots, wait_s)
+                finally:
+                    launched.close()
         out.mkdir(parents=True, exist_ok=True)
         for name in NAMES:
             os.replace(shots / name, out / name)
