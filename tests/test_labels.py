@@ -484,6 +484,26 @@ def test_a_triple_of_readings_is_found_and_depends():
     assert flips[0]["side"] == "reading" and rec["label"] == "depends"
 
 
+def test_a_search_stopped_at_pairs_tries_no_triple_and_says_so_where_it_leaves_a_flip_unattributed():
+    reg = Register([Entry(k, "reading", 0, (0, 1), f"reading {k}") for k in "abcdefgh"])
+
+    def four(config, seed):
+        return {"X": _mean(seed, 3.0 if all(config[k] == 1 for k in "abcd") else 0.0, n=400)}
+
+    def sizes(ex):
+        return {len(r.changed(ex.register.default())) for r in ex.runs if r.stage == "combination"}
+
+    full = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40)
+    pairs = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40, max_subset=2)
+    assert 3 in sizes(full) and sizes(pairs) == {2} and pairs.settings["max_subset"] == 2
+    flips = pairs.record("X")["parts"]["claim"]["flips"]
+    assert flips and all(f["side"] == "unattributed" and "no subset of up to 2 of them" in f["note"] for f in flips)
+    none = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40, max_subset=1)
+    assert none.settings["combinations"] == 0 and none.record("X")["label"] == "depends"
+    with pytest.raises(ValueError, match=r"max_subset must be an integer in \[1, 3\], got 4"):
+        explore(four, reg, {"X": BAND}, seed=3, replicates=3, max_subset=4)
+
+
 def test_a_joint_flip_of_more_than_three_worlds_with_no_flipping_subset_is_unattributed():
     reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "abcd"])
 

@@ -22,7 +22,8 @@ from .verdicts import is_decisive
 
 __all__ = ["MAX_SUBSET", "SENSITIVITY_METHOD", "share", "attribute", "sensitivity", "flip_side", "phrase"]
 
-#: The largest subset of a joint flip's changed entries the explorer tries alone (pairs, then triples).
+#: The largest subset of a joint flip's changed entries the explorer tries alone by default (pairs, then
+#: triples); ``explore(max_subset=...)`` states another, recorded in the design.
 MAX_SUBSET = 3
 
 SENSITIVITY_METHOD = (
@@ -87,7 +88,11 @@ def _subset(a: Mapping, b: Mapping) -> bool:
 
 
 def attribute(
-    default: str, rows: Sequence[Mapping], entries: Mapping[str, Any], same_seed: str | None = None
+    default: str,
+    rows: Sequence[Mapping],
+    entries: Mapping[str, Any],
+    same_seed: str | None = None,
+    max_subset: int = MAX_SUBSET,
 ) -> list[dict]:
     """The configurations that flip a part, each named by the smallest set of entries found to flip it alone.
 
@@ -105,6 +110,9 @@ def attribute(
     entries : mapping name -> Entry
     same_seed : str, optional
         The verdict of the default's run on the conditions' first random numbers.
+    max_subset : int, optional
+        The largest subset the explorer searched (its design's ``max_subset``): a joint flip of more entries that
+        no searched subset explains is ``unattributed``.
 
     Returns
     -------
@@ -113,7 +121,7 @@ def attribute(
         worlds), then the smallest combinations that flip a joint configuration no single entry explains (pairs
         before triples), then joint configurations no subset of which flips: ``side`` from their entries (mixed
         sides: ``unattributed``), and ``unattributed`` with a ``note`` for one with more than :data:`MAX_SUBSET`
-        changed entries; last, every combination that flips the part alone and contains no flip named before it
+        changed entries (``max_subset``); last, every combination that flips the part alone and contains no flip named before it
         (one searched for another part, or inside a joint configuration a single entry explains).
     """
     if not is_decisive(default):
@@ -154,9 +162,9 @@ def attribute(
             if any(len(c["changed"]) == smallest and c["kind"] != "combination" for c in subs):
                 continue  # the smaller joint flip is named in its own right
             later += [(smallest, c, "combination", "") for c in subs if len(c["changed"]) == smallest]
-        elif len(j["changed"]) > MAX_SUBSET:
+        elif len(j["changed"]) > max_subset:
             note = (
-                f"{len(j['changed'])} entries changed together and no subset of up to {MAX_SUBSET} of them flips it "
+                f"{len(j['changed'])} entries changed together and no subset of up to {max_subset} of them flips it "
                 "alone: unattributed"
             )
             later.append((len(j["changed"]) + 100, j, "joint", note))  # after every named combination

@@ -19,7 +19,8 @@ flipping subset (:mod:`tvtrack.explore`).
   (searched for a flip only) that leans towards agreement is never sized: it flips nothing at its size.
 - **Subsets** (:func:`search_subsets`): a joint flip that no single entry (or smaller subset) explains has its
   pairs measured alone (sized like any condition) in rounds of :data:`SUBSET_ROUND`, those whose entries lean
-  towards the flip alone first, until a pair flips it or every pair was tried; then its triples likewise. The
+  towards the flip alone first, until a pair flips it or every pair was tried; then its triples likewise (up to
+  the exploration's stated ``max_subset``: 2 stops at pairs, and the flips they leave read ``unattributed``). The
   flip is named by the first subset found: a smallest one (no single entry, and for a triple no pair, flips it),
   not necessarily the only one.
 """
@@ -341,21 +342,24 @@ def subset_configs(
     return cfgs, only
 
 
-def search_subsets(measure, rules, depends, default_j, n_default, default, seeds, cap, run_stage, conditions, runs):
+def search_subsets(
+    measure, rules, depends, default_j, n_default, default, seeds, cap, run_stage, conditions, runs, max_subset=None
+):
     """Name each unexplained joint flip by a smallest subset that flips it alone (see the module).
 
     Rounds: every still-unexplained flip has its next :data:`SUBSET_ROUND` untried pairs (most leaning first)
     measured together, then sized (:func:`size_conditions`, no budget for agreement); a flip that a sized pair
     flips is explained and leaves the search. A flip whose every pair was tried without one flipping goes on to
     triples likewise. ``conditions(cfgs, stage, only)`` makes the projected runs. Returns ``(runs, combinations,
-    sizing runs added)``."""
+    sizing runs added)``. ``max_subset`` (default :data:`tvtrack.attribution.MAX_SUBSET`) is the largest subset
+    tried: 2 stops at pairs, 1 searches nothing."""
     from .attribution import MAX_SUBSET
 
     lean = lean_of_singles(rules, runs, default, default_j)
     tried: dict = {}
     combos: list[Run] = []
     sized = 0
-    for size in range(2, MAX_SUBSET + 1):
+    for size in range(2, (MAX_SUBSET if max_subset is None else int(max_subset)) + 1):
         while True:
             pending = unexplained_flips(rules, depends, default_j, runs, default, n_default)
             cfgs, only = subset_configs(pending, default, size, tried, lean, SUBSET_ROUND)

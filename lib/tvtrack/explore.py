@@ -306,6 +306,7 @@ def explore(
     combinations: int | None = None,
     guard: bool = True,
     sizing_budget: int | None = None,
+    max_subset: int = MAX_SUBSET,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
 
@@ -361,6 +362,10 @@ def explore(
     combinations : int, optional
         Ignored: the subset search that names a smallest flipping combination tries pairs, then triples, until
         one flips or all were tried, with no run cap (kept so that older callers run).
+    max_subset : int
+        The largest subset of a joint flip's changed entries the search tries alone, 1 to
+        :data:`tvtrack.attribution.MAX_SUBSET` (1: no search; 2: pairs only). A joint flip of more entries that no
+        subset up to this size explains is ``unattributed``, its record saying so; the design records the size.
     sizing_budget : int, optional
         The claim runs (one claim at one replicate of a condition) that conditions leaning towards agreement may
         take (None or negative: no limit). A condition leaning
@@ -377,6 +382,8 @@ def explore(
     """
     if replicates < 3:
         raise ValueError(f"explore: replicates must be at least 3 independent runs, got {replicates}")
+    if not 1 <= int(max_subset) <= MAX_SUBSET:
+        raise ValueError(f"explore: max_subset must be an integer in [1, {MAX_SUBSET}], got {max_subset}")
     cap = replicates if max_replicates is None else int(max_replicates)
     if cap < replicates:
         raise ValueError(f"explore: max_replicates {cap} < replicates {replicates}")
@@ -421,7 +428,7 @@ def explore(
     budget = SizingBudget(None if sizing_budget is None or sizing_budget < 0 else int(sizing_budget))
     sized = size_conditions(*sizing, conds, default_j, n_default, seeds, cap, clock.run, budget)
     runs, combos, added = search_subsets(
-        measure, rules, depends, default_j, n_default, default, seeds, cap, clock.run, conditions, runs
+        measure, rules, depends, default_j, n_default, default, seeds, cap, clock.run, conditions, runs, max_subset
     )
     sized += added
     settings = {
@@ -438,7 +445,7 @@ def explore(
         "confirmed_claims": confirmed["claims"],
         "measures_claims_asked": takes_claims(measure),
         "combinations": len(combos),
-        "max_subset": MAX_SUBSET,
+        "max_subset": int(max_subset),
         "subset_round": SUBSET_ROUND,
         "condition_runs": sized,
         "sizing_budget": sizing_budget,

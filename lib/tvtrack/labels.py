@@ -33,7 +33,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-from .attribution import SENSITIVITY_METHOD, attribute, phrase, sensitivity, share
+from .attribution import MAX_SUBSET, SENSITIVITY_METHOD, attribute, phrase, sensitivity, share
 from .measured import lost_runs
 from .register import WORLD_KINDS
 from .verdicts import LABELS, NOT_MEASURED, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
@@ -207,8 +207,8 @@ def label_parts(
     deterministic : bool
         No random draw is involved (replicates cannot differ).
     design : mapping, optional
-        The explorer's settings (``max_replicates`` is the sizing cap; ``min_share_design`` overrides
-        :data:`MIN_SHARE_DESIGN`).
+        The explorer's settings (``max_replicates`` is the sizing cap; ``max_subset`` the largest subset searched,
+        default :data:`tvtrack.attribution.MAX_SUBSET`; ``min_share_design`` overrides :data:`MIN_SHARE_DESIGN`).
     needed : int, optional
         The replicates the default needed to decide (:func:`tvtrack.explore.replicates_needed`): the size below
         which a condition counts as undecided; default all of ``replicates``.
@@ -242,6 +242,7 @@ def label_parts(
         "n_reps": len(rep_rows),
         "pooled_n": _runs_behind(measured),
         "max_replicates": design.get("max_replicates"),
+        "max_subset": int(design.get("max_subset", MAX_SUBSET)),
     }
     part_out, where = {}, []
     pairs = part_pairs(rule, measured)
@@ -385,7 +386,7 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     j = pair[0].judge(pair[1]) if pair else NOT_MEASURED
     rv = [r["parts"][name] for r in ctx["rep_rows"] if name in r["parts"]]
     rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
-    flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None)
+    flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None, ctx["max_subset"])
     ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
     sens_rows = [
         {"config": c["config"], "value": _scalar(c["part_measured"].get(name))}

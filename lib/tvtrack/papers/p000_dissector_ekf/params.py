@@ -34,10 +34,10 @@ RULES = {
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
     "sizing_budget": Integer(-1, 100000),
+    "max_subset": Integer(1, 3),
     "scheduler": SchedulerAddress(),
     "joint": Integer(0, 200),
     "screen_trials": Integer(0, 20_000),
-    "combinations": Integer(0, 100),
     "record_scans": Integer(1, 1000),
 }
 

@@ -17,6 +17,7 @@ RULES = {
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
     "sizing_budget": Integer(-1, 100000),
+    "max_subset": Integer(1, 3),
     "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 200),
     "frame_rate_hz": Real(5.0, 200.0),

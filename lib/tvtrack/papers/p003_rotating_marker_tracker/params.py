@@ -13,6 +13,7 @@ RULES = {
     "replicates": Integer(3, 20),
     "max_replicates": Integer(3, 1000),
     "sizing_budget": Integer(-1, 100000),
+    "max_subset": Integer(1, 3),
     "scheduler": SchedulerAddress(),
     "joint": Integer(0, 64),
     "screen_joint": Boolean(),

@@ -14,6 +14,7 @@ RULES = {
     "n_trials": Integer(3, 10),
     "max_replicates": Integer(3, 1000),
     "sizing_budget": Integer(-1, 100000),
+    "max_subset": Integer(1, 3),
     "scheduler": SchedulerAddress(),
     "joint_samples": Integer(0, 64),
     "n_workers": Integer(1, 16),
