@@ -466,6 +466,12 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
     ), text
     _, limits = paper_paragraph({"claims": [claim], "register": claim["robustness"]["register"]})
     assert any(x.startswith("Runs that lost lock carry flips of C001-3") for x in limits), limits
+    one = copy.deepcopy(DEPENDS)  # a count over one replicate's draws says so: the pooled verdict rests on more
+    mark_lost_runs(one["robustness"], [{**row, "replicates": 1}], one["verdict"])
+    assert (
+        "In one replicate, the 27 of its 600 runs that lost lock there carry that flip: over that replicate's runs in "
+        "lock alone the claim is not reproduced, but the verdict counts every run, so the flip stands."
+    ) in claim_summary(one)
     held = copy.deepcopy(DEPENDS)
     mark_lost_runs(held["robustness"], [{**row, "in_lock_verdict": "reproduced"}], held["verdict"])
     assert claim_summary(held) == plain  # the flip holds over the runs in lock: nothing to add
@@ -492,6 +498,13 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     one = copy.deepcopy(DEPENDS)
     mark_lost_runs(one["robustness"], [{**row, "lost": 1, "runs": 600}], one["verdict"])
     assert "1 of 600 runs lost lock and carries this verdict: over the runs in lock alone" in claim_summary(one)
+    rep = copy.deepcopy(DEPENDS)
+    mark_lost_runs(rep["robustness"], [{**row, "lost": 1, "runs": 600, "replicates": 1}], rep["verdict"])
+    assert rep["robustness"]["lost_share"]["replicates"] == 1
+    assert (
+        "In one replicate, 1 of its 600 runs lost lock and carries this verdict there: over that replicate's runs in "
+        "lock alone it is reproduced."
+    ) in claim_summary(rep)
     with pytest.raises(ValueError, match="lost 7 of runs 6"):
         mark_lost_runs(claim["robustness"], [{**row, "lost": 7, "runs": 6}], claim["verdict"])
 

@@ -337,7 +337,9 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
         The claim's robustness record (:meth:`tvtrack.explore.Exploration.record`); marked in place.
     rows : sequence of dict
         ``{"changed": {entry: value} ({} for the default), "lost": int, "runs": int, "verdict": str (over every
-        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws (one replicate's); for a claim
+        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws (one replicate's), optionally
+        ``"replicates"`` (how many of the claim's replicates those draws are: the sentence then says the count is
+        of that many, not of the pooled verdict's); for a claim
         of several parts also ``"parts"`` and ``"in_lock_parts"``: ``{part: verdict}`` over every run and over the
         runs in lock.
     verdict : str
@@ -358,6 +360,7 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
         if runs < 1 or not 0 <= lost <= runs:
             raise ValueError(f"mark_lost_runs: lost {lost} of runs {runs}: need 0 <= lost <= runs and runs >= 1")
         info = {"lost": lost, "runs": runs, "verdict": row["verdict"], "in_lock_verdict": row["in_lock_verdict"]}
+        info |= {"replicates": int(row["replicates"])} if row.get("replicates") else {}
         if not row.get("changed"):
             from .counts import proportion_ci
 
@@ -368,7 +371,7 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
                 "value": e.value,
                 "ci_low": e.ci_low,
                 "ci_high": e.ci_high,
-            }
+            } | ({"replicates": info["replicates"]} if "replicates" in info else {})
             record["in_lock_verdict"] = row["in_lock_verdict"]
             record["decided_by_lost_runs"] = row["verdict"] == verdict and row["in_lock_verdict"] != verdict
             continue

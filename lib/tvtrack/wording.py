@@ -364,8 +364,9 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     to = _flip_to(flip, claim or {}, n_parts)
     lost = flip.get("lost_runs") or {}
     carried = (
-        f" The {lost['lost']} of {lost['runs']} runs that lost lock there carry that flip: over the runs in lock "
-        f"alone the claim is {lost['in_lock_verdict']}, but the verdict counts every run, so the flip stands."
+        f" {_lost_lead(lost, 'the {k} of {n} runs that lost lock there')} carry that flip: over "
+        f"{_lost_basis(lost)}runs in lock alone the claim is {lost['in_lock_verdict']}, but the verdict counts every "
+        "run, so the flip stands."
         if lost.get("carried")
         else ""
     )
@@ -462,11 +463,29 @@ def _lock_sentence(claim: Mapping, part: Mapping) -> str:
     in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
     share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
     if {"lost", "runs"} <= set(share):
-        k, n = share["lost"], share["runs"]
-        lead = f"{k} of {n} runs lost lock and " + ("carries" if k == 1 else "carry") + " this verdict"
+        k = share["lost"]
+        lead = f"{_lost_lead(share, '{k} of {n} runs')} lost lock and " + ("carries" if k == 1 else "carry")
+        lead += " this verdict" + (" there" if share.get("replicates") else "")
     else:
         lead = "Runs that lost lock carry this verdict"
-    return lead + (f": over the runs in lock alone it is {in_lock}." if in_lock else ".")
+    return lead + (f": over {_lost_basis(share)}runs in lock alone it is {in_lock}." if in_lock else ".")
+
+
+def _lost_lead(lost: Mapping, counts: str) -> str:
+    """``counts`` (a template of ``{k}`` lost of ``{n}`` runs), said as a count over the draws of ``replicates``
+    replicates where the record says so (the pooled verdict then rests on more)."""
+    k, n, reps = lost["lost"], lost["runs"], lost.get("replicates")
+    if not reps:
+        return counts.format(k=k, n=n)[:1].upper() + counts.format(k=k, n=n)[1:]
+    where = "one replicate" if reps == 1 else f"{reps} replicates"
+    text = counts.replace(" of {n} runs", " of its {n} runs" if reps == 1 else " of their {n} runs")
+    return f"In {where}, " + text.format(k=k, n=n)
+
+
+def _lost_basis(lost: Mapping) -> str:
+    """Whose runs in lock: that replicate's where the count is over a stated number of replicates, else "the"."""
+    reps = lost.get("replicates")
+    return "the " if not reps else "that replicate's " if reps == 1 else "those replicates' "
 
 
 _CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")

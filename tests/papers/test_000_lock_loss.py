@@ -40,7 +40,8 @@ def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lo
     assert m["all"].value > 20 and rule.decide(m["all"]) == "reproduced"
     assert m["in lock"].value == pytest.approx(2.2, rel=0.1) and rule.decide(m["in lock"]) == "not reproduced"
     rep = lock_loss.lock_report(study.measure, rule, d, [JOINT], 7, SIZES, "C000-6", REGISTER.describe)
-    assert "over the runs in lock the verdict is the same" in rep["note"]
+    assert "over all its runs and the same over its runs in lock (the claim's verdict pools" in rep["note"]
+    assert all(row["replicates"] == 1 for row in rep["rows"])  # one replicate's draws, said in the sentence
     assert "the flip is carried by the runs that lost lock" in rep["note"]
     assert "The mean over all runs decides" in rep["note"]
     row = rep["metric"][REGISTER.describe(JOINT)]

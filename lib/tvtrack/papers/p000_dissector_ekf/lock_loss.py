@@ -153,10 +153,11 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
         m = measure_in_lock(measure, {**default, **changed}, seed, sizes, claim)
         rows.append((changed, m, rule.decide(m["all"]), rule.decide(m["in lock"])))
     _, m0, v0, k0 = rows[0]
-    same = "the same" if k0 == v0 else f"{k0} (over all runs: {v0})"
+    same = "the same" if k0 == v0 else k0
     bits = [
-        f"Lock loss, its own quantity: at the default (first replicate) {_lost_text(m0)} at the operating point "
-        f"where most did; over the runs in lock the verdict is {same}."
+        f"Lock loss, its own quantity: in the default's first replicate {_lost_text(m0)} at the operating point "
+        f"where most did; that replicate alone reads {v0} over all its runs and {same} over its runs in lock (the "
+        "claim's verdict pools every replicate)."
     ]
     for changed, m, v, k in rows[1:]:
         if v == v0 and k != v:  # these draws show no flip over all runs: the lost runs hide it, carry none
@@ -184,7 +185,7 @@ def lock_report(measure, rule, default: dict, conditions: list, seed: int, sizes
         for c, m, v, k in rows
     }
     marks = [
-        {"changed": c, "lost": m["lost_runs"], "runs": m["runs"], "verdict": v, "in_lock_verdict": k}
+        {"changed": c, "lost": m["lost_runs"], "runs": m["runs"], "verdict": v, "in_lock_verdict": k, "replicates": 1}
         | {"parts": _part_verdicts(rule, m["all"]), "in_lock_parts": _part_verdicts(rule, m["in lock"])}
         for c, m, v, k in rows
     ]
