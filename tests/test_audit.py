@@ -148,8 +148,11 @@ def test_the_audit_reads_finished_runs_and_writes_its_section():
 
 def test_a_flip_of_more_entries_than_the_subset_search_tries_filed_as_a_world_is_found():
     claim = _claim()
-    claim["robustness"]["design"]["max_subset"] = 1
+    claim["robustness"]["design"]["max_subset"] = 1  # singles tried: a pair is its own smallest, a world
+    assert audit_claim(claim) == []
+    claim["robustness"]["design"]["max_subset"] = 0  # nothing tried, not even singles: the pair is not isolated
     problems = audit_claim(claim)
     assert problems == [
-        "C9-1: the flip at motion = turn, noise = high changes more than 1 entries and is filed as world"
+        "C9-1: the flip at motion = turn, noise = high changes 2 entries, more than one beyond the 0 the subset "
+        "search tried, and is filed as world"
     ]

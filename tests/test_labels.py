@@ -504,16 +504,22 @@ def test_a_search_stopped_at_pairs_tries_no_triple_and_says_so_where_it_leaves_a
         explore(four, reg, {"X": BAND}, seed=3, replicates=3, max_subset=4)
 
 
-def test_a_joint_flip_of_more_than_three_worlds_with_no_flipping_subset_is_unattributed():
-    reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "abcd"])
+def test_a_joint_flip_one_entry_beyond_the_search_is_its_own_smallest_and_more_is_unattributed():
+    def flips_when_all_change(names):
+        reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in names])
 
-    def four(config, seed):
-        return {"X": _mean(seed, 3.0 if all(config[k] == 1 for k in "abcd") else 0.0, n=400)}
+        def measure(config, seed):
+            return {"X": _mean(seed, 3.0 if all(config[k] == 1 for k in names) else 0.0, n=400)}
 
-    rec = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40).record("X")
-    (flip,) = rec["parts"]["claim"]["flips"]
-    assert flip["changed"] == dict.fromkeys("abcd", 1) and flip["side"] == "unattributed"
-    assert "no subset of up to 3" in flip["note"] and rec["label"] == "depends"  # never limited
+        return explore(measure, reg, {"X": BAND}, seed=3, replicates=3, joint=40).record("X")
+
+    four = flips_when_all_change("abcd")  # every pair and triple tried: the four worlds are the smallest
+    (flip,) = four["parts"]["claim"]["flips"]
+    assert flip["changed"] == dict.fromkeys("abcd", 1) and flip["side"] == "world" and four["label"] == "limited"
+    five = flips_when_all_change("abcde")  # no subset of four was tried: the five are not shown to be the smallest
+    (flip,) = five["parts"]["claim"]["flips"]
+    assert flip["changed"] == dict.fromkeys("abcde", 1) and flip["side"] == "unattributed"
+    assert "no subset of up to 3" in flip["note"] and five["label"] == "depends"  # never limited
 
 
 def test_a_reading_that_adds_a_part_to_the_rule_can_flip_the_claim():

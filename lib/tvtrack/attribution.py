@@ -4,8 +4,8 @@
   agrees of all of them (Clopper-Pearson), never a share of the decided ones only;
 - :func:`attribute`: each flip named by the smallest set of entries that flips it alone, with its **side**
   (:data:`tvtrack.register.SIDES`): a reading of the paper's text, an unreported setting of its own experiment, a
-  world beyond it, or ``unattributed`` (a flip mixing sides that no subset isolates, or one with more than
-  :data:`MAX_SUBSET` changed entries of which no subset of up to that size flips);
+  world beyond it, or ``unattributed`` (a flip mixing sides that no subset isolates, or one with more than one entry
+  beyond the searched size, :data:`MAX_SUBSET` by default, of which no subset of up to that size flips);
 - :func:`sensitivity`: the entries ranked by the spread of the part's value over their one-at-a-time values.
 """
 
@@ -111,8 +111,9 @@ def attribute(
     same_seed : str, optional
         The verdict of the default's run on the conditions' first random numbers.
     max_subset : int, optional
-        The largest subset the explorer searched (its design's ``max_subset``): a joint flip of more entries that
-        no searched subset explains is ``unattributed``.
+        The largest subset the explorer searched (its design's ``max_subset``): a joint flip of ``max_subset + 1``
+        entries that no searched subset explains is its own smallest flipping subset (every smaller one was tried);
+        one of more entries is ``unattributed``.
 
     Returns
     -------
@@ -120,8 +121,8 @@ def attribute(
         ``{"changed", "side", "kind", "verdict", "text", "runs"}``: single entries first (readings, settings,
         worlds), then the smallest combinations that flip a joint configuration no single entry explains (pairs
         before triples), then joint configurations no subset of which flips: ``side`` from their entries (mixed
-        sides: ``unattributed``), and ``unattributed`` with a ``note`` for one with more than :data:`MAX_SUBSET`
-        changed entries (``max_subset``); last, every combination that flips the part alone and contains no flip named before it
+        sides: ``unattributed``), and ``unattributed`` with a ``note`` for one with more than ``max_subset + 1``
+        changed entries; last, every combination that flips the part alone and contains no flip named before it
         (one searched for another part, or inside a joint configuration a single entry explains).
     """
     if not is_decisive(default):
@@ -162,7 +163,7 @@ def attribute(
             if any(len(c["changed"]) == smallest and c["kind"] != "combination" for c in subs):
                 continue  # the smaller joint flip is named in its own right
             later += [(smallest, c, "combination", "") for c in subs if len(c["changed"]) == smallest]
-        elif len(j["changed"]) > max_subset:
+        elif len(j["changed"]) > max_subset + 1:  # every smaller subset of one entry more was searched
             note = (
                 f"{len(j['changed'])} entries changed together and no subset of up to {max_subset} of them flips it "
                 "alone: unattributed"

@@ -13,7 +13,8 @@ that says more than its own record shows is found in the records a reader sees:
   configurations, and add up to all of them;
 * **sides**: a flip's side is the side of its entries (a reading, an unreported setting, a world; ``unattributed``
   when readings or settings mix with worlds), never ``world`` when it changes a reading or a setting, and
-  ``unattributed`` when it changes more entries than the subset search tries (``design["max_subset"]``);
+  ``unattributed`` when it changes more than one entry beyond the largest subset the search tries
+  (``design["max_subset"]``: a flip of one entry more is its own smallest, every smaller subset tried);
 * **smallest**: no sized configuration that changes a strict subset of a named flip's changes flips the part
   too; every sized configuration that flips the part contains a named flip (a configuration of one run flips
   only where it also differs from the default's run on the same random numbers);
@@ -93,9 +94,10 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
         if f.get("runs", needed) < needed:
             out.append(f"{where}: the flip at {changes} ran {f['runs']} replicates, the default needed {needed}")
         side = _expected_side(f["changed"], kinds)
-        if len(f["changed"]) > max_subset and f["side"] != "unattributed":
+        if len(f["changed"]) > max_subset + 1 and f["side"] != "unattributed":
             out.append(
-                f"{where}: the flip at {changes} changes more than {max_subset} entries and is filed as {f['side']}"
+                f"{where}: the flip at {changes} changes {len(f['changed'])} entries, more than one beyond the "
+                f"{max_subset} the subset search tried, and is filed as {f['side']}"
             )
         if f["side"] != side and not (f["side"] == "unattributed" and f.get("note")):
             out.append(f"{where}: the flip at {changes} is filed as {f['side']}, its entries make it {side}")
