@@ -310,6 +310,36 @@ def test_the_flip_named_is_the_strongest_of_every_part_not_only_the_main_parts()
     assert "changes together" not in text
 
 
+def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_part():
+    """A claim partly reproduced (early and mid hold, late fails): a reading that makes early fail leaves it partly
+    (only a part moves); an unreported setting that makes late hold changes the whole verdict to reproduced. Both
+    make ``depends``; the sentence names the setting, and the first screen counts the claim under settings only."""
+    from tvtrack.paragraphs import part_only, turns_on
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    setting = Entry("rate", "unreported setting", 25, (25, 50), "the paper never printed it")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "mid": band, "late": band})
+    ok, bad = Estimate.exact(0.0), Estimate.exact(3.0)
+    partly = {"early": ok, "mid": ok, "late": bad}
+    reps = [{"seed": s, "measured": partly} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": {**partly, "early": bad}},
+        {"changed": {"rate": 50}, "kind": "single", "runs": 3, "measured": {**partly, "late": ok}},
+    ]
+    rob = label_parts(rule, partly, reps, conds, [reading, setting])
+    claim = {"id": "C9-2", "verdict": "partly", "rule": rule.to_dict(), "measured": partly, "robustness": rob}
+    assert rob["label"] == "depends" and rob["parts"]["early"]["flips"][0]["side"] == "reading"
+    text = claim_summary(claim)
+    assert text.endswith(
+        "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: rate = 50."
+    )
+    assert "sigma" not in text  # the reading that moves only the part early is not the one named
+    assert set(turns_on([claim])) == {"setting"} and part_only([claim]) == 0
+    only_part = {**claim, "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}}}
+    assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
+
+
 def test_a_flip_that_takes_several_changes_says_how_many():
     from tvtrack.wording import _flip_sentence
 
@@ -346,7 +376,10 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
         "What the verdicts turn on: a reading of the paper's text flips 1 claim; a setting of the paper's own "
         "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
     ), text
-    assert "2 turn on a reading of an ambiguous passage or a setting the paper never printed, and 0 differ" in text
+    assert (
+        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them also changes "
+        "under a world beyond the paper alone), and 0 differ" in text
+    )  # DEPENDS is flipped by a world too: the label names the reading, the count says what it hides
     sentence = claim_summary(setting)
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
         sentence
@@ -438,9 +471,12 @@ def test_an_undecided_claim_says_the_runs_its_slowest_part_needs():
         "measured": {"a": straddles, "b": straddles},
         "robustness": {"parts": parts},
     }
-    assert "About 95 independent replicates would decide it." in claim_summary(claim)
+    assert "About 95 independent replicates would decide its part b." in claim_summary(claim)  # a's value is shown
     parts["b"]["runs_to_decide"] = {"replicates": None, "now": 3}  # no practical number of runs decides b
-    assert "No practical number of runs is projected to decide it." in claim_summary(claim)
+    assert "No practical number of runs is projected to decide its part b." in claim_summary(claim)
+    parts["a"]["runs_to_decide"] = {"replicates": 140, "now": 3}  # the shown part is the slowest: "it"
+    parts["b"]["runs_to_decide"] = {"replicates": 95, "now": 3}
+    assert "About 140 independent replicates would decide it." in claim_summary(claim)
 
 
 def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_limitations():
@@ -801,6 +837,7 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
     mixed["robustness"]["parts"]["claim"]["flips"] = [world, mix]
     assert depends_only_with_a_world([DEPENDS, mixed]) == 1
     assert (
-        "turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them only together "
-        "with a world beyond it)" in results_summary([DEPENDS, mixed])
+        "turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them also changes under "
+        "a world beyond the paper alone, and 1 only together with a world beyond it)"
+        in results_summary([DEPENDS, mixed])
     )

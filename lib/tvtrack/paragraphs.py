@@ -19,6 +19,7 @@ from .wording import (
     register_phrases,
     at_profile,
     claim_flips,
+    moves_verdict,
     not_checkable_reason,
     shown_label,
     side_words,
@@ -50,8 +51,10 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, str,
     """``{side: (claims, [(entry title, paper, claims), ...] most often first)}``: how many claims a reading of the
     paper's text, an unreported setting of its experiment, a world beyond it (or several changes together) flips,
     and the register entries (each of one paper's register, named with the paper's number) that flip the most of
-    them, every entry tied with the first kept. A claim counts once per side; every named flip counts (a joint
-    configuration is named only where no subset of it flips alone, so it is the smallest found)."""
+    them, every entry tied with the first kept. A claim counts once per side; every named flip that changes the
+    whole claim's verdict counts (:func:`tvtrack.wording.moves_verdict`: one that moves only a part is counted by
+    :func:`part_only`; a joint configuration is named only where no subset of it flips alone, so it is the smallest
+    found)."""
     count: dict[str, int] = Counter()
     titles: dict[str, Counter] = {s: Counter() for s in SIDE_ORDER}
     for c in claims:
@@ -61,7 +64,7 @@ def turns_on(claims: list[Mapping]) -> dict[str, tuple[int, list[tuple[str, str,
         known = register_phrases(c.get("robustness") or {})
         paper = _paper_of(c.get("id", ""))
         seen_sides, seen_titles = set(), set()
-        for f in claim_flips(c):
+        for f in _whole_flips(c):
             side = f["side"] if f["side"] in SIDE_ORDER else "world"
             seen_sides.add(side)
             for k in f.get("changed") or {}:
@@ -88,9 +91,25 @@ def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
         c = claim_fields(c)
         if c.get("verdict") == "not checkable":
             continue
-        for side in {f["side"] if f["side"] in SIDE_ORDER else "world" for f in claim_flips(c)}:
+        for side in {f["side"] if f["side"] in SIDE_ORDER else "world" for f in _whole_flips(c)}:
             out[side][_paper_of(c.get("id", ""))] += 1
     return out
+
+
+def _whole_flips(claim: Mapping) -> list[dict]:
+    """The claim's named flips that change its whole verdict (not only one part's)."""
+    return [f for f in claim_flips(claim) if moves_verdict(claim, f)]
+
+
+def part_only(claims: list[Mapping]) -> int:
+    """How many checkable claims have named flips, none of which changes the whole claim's verdict (each moves
+    only a part, the claim's verdict staying as it is)."""
+    n = 0
+    for c in claims:
+        c = claim_fields(c)
+        if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c):
+            n += 1
+    return n
 
 
 def _turns_sentence(claims: list[Mapping]) -> str:
@@ -106,6 +125,12 @@ def _turns_sentence(claims: list[Mapping]) -> str:
             f" ({_join([f'{k} of {p}' for p, k in papers])})" if len(papers) > 1 and all(p for p, _ in papers) else ""
         )
         bits.append(f"{words[side]} flips {_plural(n, 'claim')}{split}{often}")
+    only = part_only(claims)
+    if only:
+        bits.append(
+            f"{_n(only, 'claim moves', 'claims move')} only in a part under every change explored (the whole "
+            f"verdict stays{' as it is' if only == 1 else ''})"
+        )
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
 
@@ -122,13 +147,29 @@ def depends_only_with_a_world(claims: list[Mapping]) -> int:
     return n
 
 
-def _sure_sentence(labels: Counter, checkable: int, with_world: int = 0) -> str:
+def depends_also_on_a_world(claims: list[Mapping]) -> int:
+    """How many claims labelled ``depends`` a world beyond the paper also flips alone (a named world flip that
+    changes the whole claim's verdict): the label names the reading or setting, and this counts what it hides."""
+    n = 0
+    for c in claims:
+        c = claim_fields(c)
+        if shown_label(c) == "depends" and c.get("verdict") != "not checkable":
+            n += any(f["side"] == "world" for f in _whole_flips(c))
+    return n
+
+
+def _sure_sentence(labels: Counter, checkable: int, with_world: int = 0, also_world: int = 0) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
-    on a reading or setting together with a world (:func:`depends_only_with_a_world`)."""
+    on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
+    changes ``also_world`` of them (:func:`depends_also_on_a_world`)."""
     sure = labels["robust"] + labels["limited"]
     unexplored, bare = labels["unexplored"], labels["—"]
-    mixed = f" ({with_world} of them only together with a world beyond it)" if with_world else ""
+    verb = "changes" if also_world == 1 else "change"
+    notes = [f"{also_world} of them also {verb} under a world beyond the paper alone"]
+    notes = notes if also_world else []
+    notes += [f"{with_world}{'' if notes else ' of them'} only together with a world beyond it"] if with_world else []
+    mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
         f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
@@ -173,7 +214,9 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        text.append(_sure_sentence(labels, checkable, depends_only_with_a_world(claims)))
+        text.append(
+            _sure_sentence(labels, checkable, depends_only_with_a_world(claims), depends_also_on_a_world(claims))
+        )
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)

@@ -36,6 +36,8 @@ __all__ = [
     "entry_side",
     "claim_flips",
     "claim_verdict_at",
+    "moves_verdict",
+    "summary_strength",
     "parts_tally",
     "main_part",
     "claim_summary",
@@ -220,6 +222,27 @@ def flip_strength(flip: Mapping) -> tuple:
         _KIND_ORDER.get(flip.get("kind"), 4),
         len(flip.get("changed") or {}),
     )
+
+
+def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
+    """Whether a flip changes the whole claim's verdict (not only one part's); true where the record has no
+    condition at the flip's changes to tell (:func:`claim_verdict_at`), and for a claim of one part."""
+    claim = claim_fields(claim)
+    parts = max(
+        len((claim.get("robustness") or {}).get("parts") or {}), len((claim.get("rule") or {}).get("parts") or {})
+    )
+    if parts <= 1:
+        return True
+    whole = claim_verdict_at(claim, flip.get("changed") or {})
+    return whole is None or whole != claim.get("verdict")
+
+
+def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
+    """Sort key of the flip a claim's sentence names, strongest first: a reading or an unreported setting before a
+    mix no subset isolates, before a world (so the named flip is one the label rests on); then one that changes
+    the whole claim's verdict before one that moves only a part; then :func:`flip_strength`."""
+    group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
+    return (group, not moves_verdict(claim, flip), *flip_strength(flip))
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
@@ -433,24 +456,28 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 
-def _slowest_part(parts: Mapping, main: Mapping) -> Mapping:
-    """The undecided part that needs the most runs (one no practical number of runs decides first): the claim
-    is decided only when every part is."""
-    opened = [p for p in parts.values() if isinstance(p, Mapping) and p.get("runs_to_decide")]
+def _slowest_part(parts: Mapping, main: Mapping) -> tuple[str | None, Mapping]:
+    """The undecided part that needs the most runs (one no practical number of runs decides first), with its
+    name where it is not ``main`` (the part whose value the sentence shows): the claim is decided only when every
+    part is."""
+    opened = [(n, p) for n, p in parts.items() if isinstance(p, Mapping) and p.get("runs_to_decide")]
     if not opened:
-        return main
-    return max(opened, key=lambda p: p["runs_to_decide"].get("replicates") or math.inf)
+        return None, main
+    name, part = max(opened, key=lambda np: np[1]["runs_to_decide"].get("replicates") or math.inf)
+    return (None if part is main else name), part
 
 
-def _runs_sentence(part: Mapping) -> str:
+def _runs_sentence(part: Mapping, name: str | None = None) -> str:
+    """How many replicates would decide the claim, said of part ``name`` where that is not the part shown."""
     r = part.get("runs_to_decide") or {}
     if not r:
         return ""
+    it = f"its part {name}" if name else "it"
     if r.get("replicates"):
         cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
         beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
-        return f"About {r['replicates']} independent replicates would decide it{beyond}."
-    return "No practical number of runs is projected to decide it."
+        return f"About {r['replicates']} independent replicates would decide {it}{beyond}."
+    return f"No practical number of runs is projected to decide {it}."
 
 
 def _lock_sentence(claim: Mapping, part: Mapping) -> str:
@@ -549,13 +576,19 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         aside.append("too few configurations to label")
     head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
     flips, every = claim_flips(claim, name), claim_flips(claim)
-    if not flips or (every and flip_strength(every[0]) < flip_strength(flips[0])):
+
+    def strength(f: Mapping) -> tuple:
+        return summary_strength(claim, f)
+
+    if not flips or (every and min(map(strength, every)) < min(map(strength, flips))):
         flips = every  # a stronger flip of another part is the one the label rests on
+    flips = sorted(flips, key=strength)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     required += [s for s in (first, _lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
-        required.append(_runs_sentence(_slowest_part(parts, part)))
+        slow_name, slow = _slowest_part(parts, part)
+        required.append(_runs_sentence(slow, slow_name))
     optional = [_share_sentence(part)]
     if len(flips) > 1:
         others = len(flips) - 1
