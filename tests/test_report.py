@@ -405,7 +405,7 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
         assert shown or named, (c["id"], cells[c["id"]])  # a unit, or a dimensionless ratio said by its quantity
     # deterministic numbers show no interval; the 9-point vector is summarised by its ends and trend
     assert not re.search(r"\[([-\d.e+]+), \1\]", text.replace("\\", ""))
-    assert "falls from 2.163e+05 px to 0.178 px over 9 points" in text and "7839" not in text
+    assert "falls from 216300 px to 0.178 px over 9 points" in text and "7839" not in text
 
 
 def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
