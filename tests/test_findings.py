@@ -340,6 +340,27 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
 
 
+def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_it():
+    """Two unreported settings flip the claim alone; the first in the record leaves the operating point the paper
+    states (the register marks it ``off_operating_point``): the sentence names the one that keeps it."""
+    wander = Entry(
+        "bandwidth", "unreported setting", 2.0, (1.0, 2.0), "speed of the wander", off_operating_point=(1.0,)
+    )
+    band = Entry("error in the band", "unreported setting", 1.5, (1.0, 1.5), "where the world is calibrated")
+    rule = InBand("95th percentile", None, 2.0, "px")
+    fails, holds = Estimate.exact(2.7), Estimate.exact(1.0)
+    reps = [{"seed": s, "measured": fails} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"bandwidth": 1.0}, "kind": "single", "runs": 3, "measured": holds},
+        {"changed": {"error in the band": 1.0}, "kind": "single", "runs": 3, "measured": holds},
+    ]
+    rob = label_parts(rule, fails, reps, conds, [wander, band])
+    rob["register"] = [wander.to_dict(), band.to_dict()]
+    claim = {"id": "C9-3", "verdict": "not reproduced", "rule": rule.to_dict(), "measured": fails, "robustness": rob}
+    assert [f["changed"] for f in rob["parts"]["claim"]["flips"]][0] == {"bandwidth": 1.0}  # first in the record
+    assert claim_summary(claim).split("it is reproduced: ")[1].startswith("error in the band = 1")
+
+
 def test_a_flip_that_takes_several_changes_says_how_many():
     from tvtrack.wording import _flip_sentence
 

@@ -237,12 +237,23 @@ def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
     return whole is None or whole != claim.get("verdict")
 
 
+def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
+    """Whether a flip changes an entry to a value the register marks as leaving the operating point the paper
+    states (``off_operating_point`` in the record's register)."""
+    register = (claim_fields(claim).get("robustness") or {}).get("register") or []
+    off = {e.get("name"): e.get("off_operating_point") or [] for e in register if isinstance(e, Mapping)}
+    return any(
+        v in off.get(k, ()) or repr(v) in map(repr, off.get(k, ())) for k, v in (flip.get("changed") or {}).items()
+    )
+
+
 def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     """Sort key of the flip a claim's sentence names, strongest first: a reading or an unreported setting before a
-    mix no subset isolates, before a world (so the named flip is one the label rests on); then one that changes
-    the whole claim's verdict before one that moves only a part; then :func:`flip_strength`."""
+    mix no subset isolates, before a world (so the named flip is one the label rests on); then one that keeps the
+    paper's stated operating point before one that leaves it (:func:`leaves_operating_point`); then one that
+    changes the whole claim's verdict before one that moves only a part; then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
-    return (group, not moves_verdict(claim, flip), *flip_strength(flip))
+    return (group, leaves_operating_point(claim, flip), not moves_verdict(claim, flip), *flip_strength(flip))
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
