@@ -338,6 +338,9 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     assert set(turns_on([claim])) == {"setting"} and part_only([claim]) == 0
     only_part = {**claim, "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}}}
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
+    from tvtrack.wording import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
+
+    assert label_basis(claim) == "an unprinted setting" and label_basis(only_part) == "a reading, in a part only"
 
 
 def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_it():
@@ -398,8 +401,8 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
         "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
     ), text
     assert (
-        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them also changes "
-        "under a world beyond the paper alone), and 0 differ" in text
+        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them a world "
+        "beyond the paper, changed by itself, also flips the verdict), and 0 differ" in text
     )  # DEPENDS is flipped by a world too: the label names the reading, the count says what it hides
     sentence = claim_summary(setting)
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
@@ -780,7 +783,7 @@ def test_what_the_verdicts_turn_on_names_each_entry_with_its_paper_and_keeps_tie
     claims.append(claim("C001-3", "rate"))
     assert _turns_sentence(claims) == (
         "What the verdicts turn on: a world beyond the paper flips 5 claims (2 of 000 and 3 of 001), most often "
-        "drift (2 claims of 000) and rate (2 claims of 001)."
+        "“drift” (2 claims of 000) and “rate” (2 claims of 001)."
     )
 
 
@@ -858,7 +861,7 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
     mixed["robustness"]["parts"]["claim"]["flips"] = [world, mix]
     assert depends_only_with_a_world([DEPENDS, mixed]) == 1
     assert (
-        "turn on a reading of an ambiguous passage or a setting the paper never printed (1 of them also changes under "
-        "a world beyond the paper alone, and 1 only together with a world beyond it)"
+        "turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them a world beyond "
+        "the paper, changed by itself, also flips the verdict, and 1 (C001-4) only together with a world beyond it)"
         in results_summary([DEPENDS, mixed])
     )

@@ -172,7 +172,9 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
         "\\[1.2, 1.8\\], against \\[0, 2\\] (the paper: 1). Under another reading of the paper's text it is "
         "reproduced: epoch = mid."
     ) in text
-    assert "- **Hold** (label in brackets): 010: C010-1 (robust)." in text  # a claim that holds: named, no sentence
+    assert (
+        "- **Hold** (label in brackets, and the kind of change it rests on): 010: C010-1 (robust)." in text
+    )  # a claim that holds: named, no sentence
     assert "- **010 C010-1**" not in text
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
     before = readme.stat().st_mtime_ns
@@ -425,7 +427,7 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
     assert (
         "What the verdicts turn on: a reading of the paper's text flips 1 claim; a world beyond the paper flips "
-        "1 claim; 1 claim moves only in a part under every change explored (the whole verdict stays as it is)."
+        "1 claim; 1 claim (C001-7) moves only in a part under every change explored (the whole verdict stays as it is)."
     ) in head  # a flip counts where it changes the whole claim's verdict, not only a part's
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
@@ -485,8 +487,9 @@ def test_the_first_screen_names_the_claims_that_hold_hold_in_part_or_give_nothin
         "004_laser": (None, None),
     }
     assert holding_lines(runs) == [
-        "- **Hold** (label in brackets): 001: C001-7 (depends); 003: C003-1 (provisional).",
-        "- **Hold in part** (label in brackets): 001: C001-4 (depends).",
+        "- **Hold** (label in brackets, and the kind of change it rests on): 001: C001-7 (depends: a reading); 003: "
+        "C003-1 (provisional).",
+        "- **Hold in part** (label in brackets, and the kind of change it rests on): 001: C001-4 (depends: a reading).",
         "- **Not checkable**: 001: C001-6.",  # a reader asks which claims give nothing to measure, too
     ]
     assert holding_lines({"001_maneuver": (None, {"claims": [DEPENDS]})}) == []  # nothing holds: no line

@@ -104,12 +104,22 @@ def _whole_flips(claim: Mapping) -> list[dict]:
 def part_only(claims: list[Mapping]) -> int:
     """How many checkable claims have named flips, none of which changes the whole claim's verdict (each moves
     only a part, the claim's verdict staying as it is)."""
-    n = 0
+    return len(_part_only_ids(claims))
+
+
+def _part_only_ids(claims: list[Mapping]) -> list[str]:
+    out = []
     for c in claims:
         c = claim_fields(c)
         if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c):
-            n += 1
-    return n
+            out.append(str(c.get("id", "")))
+    return out
+
+
+def _ids(ids: list[str]) -> str:
+    """`` (C000-8)``: a few claim ids in brackets, for a count a reader wants to look up (none beyond three)."""
+    ids = [i for i in ids if i]
+    return f" ({_join(ids)})" if 0 < len(ids) <= 3 else ""
 
 
 def _turns_sentence(claims: list[Mapping]) -> str:
@@ -118,18 +128,19 @@ def _turns_sentence(claims: list[Mapping]) -> str:
     bits = []
     for side, (n, top) in turns_on(claims).items():
         best = [(t, p, k) for t, p, k in top if k == top[0][2]] if top else []
-        named = [f"{t} ({_plural(k, 'claim')}{f' of {p}' if p else ''})" for t, p, k in best]
+        named = [f"“{t}” ({_plural(k, 'claim')}{f' of {p}' if p else ''})" for t, p, k in best]
         often = f", most often {_join(named)}" if best and best[0][2] > 1 else ""
         papers = sorted(per_paper[side].items())
         split = (
             f" ({_join([f'{k} of {p}' for p, k in papers])})" if len(papers) > 1 and all(p for p, _ in papers) else ""
         )
         bits.append(f"{words[side]} flips {_plural(n, 'claim')}{split}{often}")
-    only = part_only(claims)
+    only = _part_only_ids(claims)
     if only:
         bits.append(
-            f"{_n(only, 'claim moves', 'claims move')} only in a part under every change explored (the whole "
-            f"verdict stays{' as it is' if only == 1 else ''})"
+            f"{_n(len(only), 'claim', 'claims')}{_ids(only)} {'moves' if len(only) == 1 else 'move'} only in a part "
+            "under every change explored "
+            f"(the whole verdict stays{' as it is' if len(only) == 1 else ''})"
         )
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
 
@@ -137,14 +148,19 @@ def _turns_sentence(claims: list[Mapping]) -> str:
 def depends_only_with_a_world(claims: list[Mapping]) -> int:
     """How many claims labelled ``depends`` rest only on combinations that mix a reading or a setting with a world
     beyond the paper, none of whose changes flips the claim alone (no reading or setting flips them alone)."""
-    n = 0
+    return len(_only_with_a_world_ids(claims))
+
+
+def _only_with_a_world_ids(claims: list[Mapping]) -> list[str]:
+    out = []
     for c in claims:
         c = claim_fields(c)
         if shown_label(c) != "depends" or c.get("verdict") == "not checkable":
             continue
         sides = {f["side"] for f in claim_flips(c)}
-        n += bool(sides) and not sides & {"reading", "setting"}
-    return n
+        if sides and not sides & {"reading", "setting"}:
+            out.append(str(c.get("id", "")))
+    return out
 
 
 def depends_also_on_a_world(claims: list[Mapping]) -> int:
@@ -158,17 +174,20 @@ def depends_also_on_a_world(claims: list[Mapping]) -> int:
     return n
 
 
-def _sure_sentence(labels: Counter, checkable: int, with_world: int = 0, also_world: int = 0) -> str:
+def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
     changes ``also_world`` of them (:func:`depends_also_on_a_world`)."""
     sure = labels["robust"] + labels["limited"]
     unexplored, bare = labels["unexplored"], labels["—"]
-    verb = "changes" if also_world == 1 else "change"
-    notes = [f"{also_world} of them also {verb} under a world beyond the paper alone"]
+    notes = [f"for {also_world} of them a world beyond the paper, changed by itself, also flips the verdict"]
     notes = notes if also_world else []
-    notes += [f"{with_world}{'' if notes else ' of them'} only together with a world beyond it"] if with_world else []
+    named = _ids(with_world) if isinstance(with_world, list) else ""
+    with_world = len(with_world) if isinstance(with_world, list) else with_world
+    notes += (
+        [f"{with_world}{'' if notes else ' of them'}{named} only together with a world beyond it"] if with_world else []
+    )
     mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
@@ -214,9 +233,7 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        text.append(
-            _sure_sentence(labels, checkable, depends_only_with_a_world(claims), depends_also_on_a_world(claims))
-        )
+        text.append(_sure_sentence(labels, checkable, _only_with_a_world_ids(claims), depends_also_on_a_world(claims)))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)

@@ -36,6 +36,7 @@ __all__ = [
     "entry_side",
     "claim_flips",
     "claim_verdict_at",
+    "label_basis",
     "moves_verdict",
     "summary_strength",
     "parts_tally",
@@ -56,10 +57,10 @@ VERDICT_WORDS = {
 }
 #: What each robustness label means (a label is about how sure the verdict is, not about the verdict).
 LABEL_WORDS = {
-    "robust": "no explored reading of the paper and no world beyond it changes the verdict",
+    "robust": "no explored reading of the paper and no world beyond it changes the verdict (nor a part's)",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
-    "never printed, changes the verdict (alone, or only with a world beyond it)",
+    "never printed, changes the verdict, or a part's (alone, or only with a world beyond it)",
     "unstable": "independent replicates of the same run disagree decisively",
     "unexplored": "nothing explored shows how far it extends (no world varied, or none of it decided)",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
@@ -254,6 +255,26 @@ def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     changes the whole claim's verdict before one that moves only a part; then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
     return (group, leaves_operating_point(claim, flip), not moves_verdict(claim, flip), *flip_strength(flip))
+
+
+_SIDE_SHORT = {
+    "reading": "a reading",
+    "setting": "an unprinted setting",
+    "world": "a world",
+    "unattributed": "a mix with a world",
+}
+
+
+def label_basis(claim: Mapping) -> str:
+    """What a claim's label rests on, in two or three words for a list: the kind of the flip its sentence names
+    (:func:`summary_strength`), and "in a part only" where no named flip changes the whole claim's verdict
+    (``""`` for a claim no change flips)."""
+    flips = claim_flips(claim)
+    if not flips:
+        return ""
+    first = min(flips, key=lambda f: summary_strength(claim, f))
+    whole = any(moves_verdict(claim, f) for f in flips)
+    return _SIDE_SHORT.get(first.get("side", "reading"), "a change") + ("" if whole else ", in a part only")
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:

@@ -31,6 +31,7 @@ from ..results import (
     claim_flips,
     claim_summary,
     format_measured,
+    label_basis,
     md_escape,
     paper_paragraph,
     results_summary,
@@ -235,19 +236,28 @@ def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
 
 def holding_lines(runs: dict) -> list[str]:
     """Which claims hold, which hold in part and which give nothing to measure, by paper, each with its label where
-    it has one (one bullet per verdict)."""
+    it has one and what the label rests on (:func:`tvtrack.wording.label_basis`; one bullet per verdict)."""
     out = []
     for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part"), ("not checkable", "Not checkable")):
         bits = []
         for name, (_, data) in runs.items():
             cs = [c for c in (data or {}).get("claims", []) if c["verdict"] == verdict]
-            ids = [c["id"] + ("" if robustness_label(c) == NO_LABEL else f" ({robustness_label(c)})") for c in cs]
+            ids = [c["id"] + _label_brackets(c) for c in cs]
             if ids:
                 bits.append(f"{name.split('_')[0]}: {', '.join(ids)}")
         if bits:
-            brackets = "" if verdict == "not checkable" else " (label in brackets)"
+            brackets = "" if verdict == "not checkable" else " (label in brackets, and the kind of change it rests on)"
             out.append(f"- **{lead}**{brackets}: " + "; ".join(bits) + ".")
     return out
+
+
+def _label_brackets(claim: dict) -> str:
+    """`` (depends: a reading)``: a claim's label and what it rests on; `` (robust)``; ``""`` without a label."""
+    label = robustness_label(claim)
+    if label == NO_LABEL:
+        return ""
+    basis = label_basis(claim) if label in ("depends", "limited") else ""
+    return f" ({label}: {basis})" if basis else f" ({label})"
 
 
 def _in_short(runs: dict, shown: str) -> list[str]:
