@@ -125,7 +125,7 @@ ENTRIES = (
         (25.0, 50.0),
         "not stated; TV frame (25 Hz) or field (50 Hz) rate; motion fixed in elements/s",
         "adversarial",
-        title="camera frame rate (Hz), the motion fixed in elements per second",
+        title="camera frame rate (Hz) at a fixed motion in elements per second",
         phrases={25.0: "25 frames per second (TV frame rate)", 50.0: "50 frames per second (TV field rate)"},
     ),
     Entry(

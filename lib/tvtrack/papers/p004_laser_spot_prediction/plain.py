@@ -36,7 +36,7 @@ PLAIN = {
         },
     ),
     "bandwidth": (
-        "speed of the wander (corner frequencies x this)",
+        "speed of the wander (a factor on its corner frequencies)",
         {
             1.0: "slow wander (fastest corner 0.5 Hz; the filter errs 0.33 px, below the paper's 1-2 px)",
             "calibrated": "wander re-calibrated in every world to the paper's 1-2 px (fastest corner 1.5 Hz in the "
