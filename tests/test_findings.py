@@ -364,6 +364,29 @@ def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_
     assert claim_summary(claim).split("it is reproduced: ")[1].startswith("error in the band = 1")
 
 
+def test_a_change_every_flip_shares_is_named_with_its_kind():
+    """Flips that are all combinations sharing one change (a world): the sentence names the shared change, which a
+    list of combinations hides; flips sharing nothing add no such sentence."""
+    import copy
+
+    from record_fixtures import DEPENDS
+
+    claim = copy.deepcopy(DEPENDS)
+    mixes = [
+        {"paper_sigma": "raw_increments", "target_motion": "weave"},
+        {"k_bound2": 100, "target_motion": "weave"},
+    ]
+    claim["robustness"]["parts"]["claim"]["flips"] = [
+        {"changed": c, "side": "unattributed", "kind": "combination", "verdict": "reproduced", "text": f"mix {i}"}
+        for i, c in enumerate(mixes)
+    ]
+    assert "Every change that flips it includes a target weaving at 0.1 T (a world beyond the paper)." in claim_summary(
+        claim
+    )
+    claim["robustness"]["parts"]["claim"]["flips"][1]["changed"] = {"k_bound2": 100, "paper_sigma": "raw"}
+    assert "Every change" not in claim_summary(claim)
+
+
 def test_a_flip_that_takes_several_changes_says_how_many():
     from tvtrack.wording import _flip_sentence
 

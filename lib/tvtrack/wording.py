@@ -441,6 +441,22 @@ _KIND_TAGS = {
 }
 
 
+def _common_sentence(flips: list, record: Mapping) -> str:
+    """Where every named flip (two at least, one a combination) shares a change, that change and its kind: the
+    common cause a list of combinations hides ("Every change that flips it includes lost frames skipped (a world
+    beyond the paper)."); ``""`` otherwise."""
+    if len(flips) < 2 or all(len(f.get("changed") or {}) < 2 for f in flips):
+        return ""
+    items = [{(k, repr(v)) for k, v in (f.get("changed") or {}).items()} for f in flips]
+    common = set.intersection(*items)
+    if not common:
+        return ""
+    first = flips[0].get("changed") or {}
+    shared = {k: v for k, v in first.items() if (k, repr(v)) in common}
+    text = _kinds_of_changes(shared, record)
+    return f"Every change that flips it includes {text}." if text else ""
+
+
 def _kinds_of_changes(changed: Mapping, record: Mapping) -> str:
     """The changes of a combination in plain words, each followed by its kind (``"fast wander (a setting the
     paper never printed) and lost frames skipped (a world beyond the paper)"``); ``""`` where the record's
@@ -617,7 +633,8 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     flips = sorted(flips, key=strength)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
-    required += [s for s in (first, _lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
+    common = _common_sentence(flips, claim.get("robustness") or {})
+    required += [s for s in (first, common, _lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         slow_name, slow = _slowest_part(parts, part)
         required.append(_runs_sentence(slow, slow_name))
