@@ -175,7 +175,7 @@ def test_long_vectors_are_summarised_by_their_ends_and_trend():
     assert format_measured([1, 2, 3, 4, 5], ms) == "rises from 1 ms to 5 ms over 5 points"
     assert (
         format_measured([1, 3, 2, 4, 0.5], ms)
-        == "goes from 1 ms to 0.5 ms over 5 points, not steadily (between 0.5 and 4 ms)"
+        == "goes from 1 ms to 0.5 ms over 5 points, not steadily (2 of its 4 steps rise and 2 fall; between 0.5 and 4 ms)"
     )
     assert format_measured([1, 2], ms) == "1, 2 ms"  # short vectors are shown whole
 

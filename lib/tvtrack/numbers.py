@@ -117,7 +117,9 @@ def vector_text(values: list, unit: str, always: bool = False) -> str:
         ends = (
             f"goes from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
         )
-        return f"{ends}, not steadily (between {number(min(centres))} and {with_unit(number(max(centres)), unit)})"
+        up, down = sum(s > 0 for s in steps), sum(s < 0 for s in steps)
+        moves = f"{up} of its {len(steps)} steps rise{'s' if up == 1 else ''} and {down} fall{'s' if down == 1 else ''}"
+        return f"{ends}, not steadily ({moves}; between {number(min(centres))} and {with_unit(number(max(centres)), unit)})"
     return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
 
 
