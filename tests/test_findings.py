@@ -340,6 +340,30 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
 
 
+def test_a_part_flip_of_an_undecided_claim_counts_in_the_first_screen():
+    """An undecided claim (early holds, late straddles the band) whose early part a reading makes fail: the whole
+    verdict reads undecided there too, but whatever late turns out to be, the claim's verdict differs under the
+    reading (reproduced or partly at the default, partly or not reproduced there). The first screen counts it under
+    readings, as its label ``depends`` does, never as a claim whose whole verdict stays."""
+    from tvtrack.paragraphs import part_only, results_summary, turns_on
+    from tvtrack.wording import moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "late": band})
+    open_late = {"early": Estimate.exact(0.0), "late": Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")}
+    reps = [{"seed": s, "measured": open_late} for s in (1, 2, 3)]
+    fails = {**open_late, "early": Estimate.exact(3.0)}
+    conds = [{"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": fails}]
+    rob = label_parts(rule, open_late, reps, conds, [reading])
+    claim = {"id": "C9-4", "verdict": "undecided", "rule": rule.to_dict(), "measured": open_late, "robustness": rob}
+    assert rob["label"] == "depends" and rob["conditions"][0]["verdict"] == "undecided"
+    (flip,) = rob["parts"]["early"]["flips"]
+    assert moves_verdict(claim, flip)
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
+    assert "What the verdicts turn on: a reading of the paper's text flips 1 claim." in results_summary([claim])
+
+
 def test_a_flip_that_takes_several_changes_says_how_many():
     from tvtrack.wording import _flip_sentence
 

@@ -226,7 +226,9 @@ def flip_strength(flip: Mapping) -> tuple:
 
 def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
     """Whether a flip changes the whole claim's verdict (not only one part's); true where the record has no
-    condition at the flip's changes to tell (:func:`claim_verdict_at`), and for a claim of one part."""
+    condition at the flip's changes to tell (:func:`claim_verdict_at`), for a claim of one part, and where the whole
+    verdict reads ``undecided`` both there and at the default: a part decided one way at the default and the other
+    way there gives, for every outcome of the undecided parts, another whole verdict."""
     claim = claim_fields(claim)
     parts = max(
         len((claim.get("robustness") or {}).get("parts") or {}), len((claim.get("rule") or {}).get("parts") or {})
@@ -234,7 +236,7 @@ def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
     if parts <= 1:
         return True
     whole = claim_verdict_at(claim, flip.get("changed") or {})
-    return whole is None or whole != claim.get("verdict")
+    return whole is None or whole != claim.get("verdict") or whole == "undecided"
 
 
 def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
