@@ -511,7 +511,13 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
 
     from record_fixtures import DEPENDS
     from tvtrack.labels import mark_lost_runs
+    from tvtrack.paragraphs import _why_not
     from tvtrack.results import paper_paragraph
+
+    def mark_lost_runs_copy(claim: dict, row: dict) -> dict:
+        out = copy.deepcopy(claim)
+        mark_lost_runs(out["robustness"], [row], out["verdict"])
+        return out
 
     plain = claim_summary(DEPENDS)
     claim = copy.deepcopy(DEPENDS)
@@ -532,6 +538,16 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
         "In one replicate, the 27 of its 600 runs that lost lock there carry that flip: over that replicate's runs in "
         "lock alone the claim is not reproduced, but the verdict counts every run, so the flip stands."
     ) in claim_summary(one)
+    assert _why_not(one).endswith(
+        "but in one replicate only through the 27 of its 600 runs that lost lock there"
+    )  # the list of claims that do not reproduce says whose runs it counts, as the sentence does
+    few = copy.deepcopy(DEPENDS)
+    mark_lost_runs(few["robustness"], [{**row, "lost": 1, "replicates": 3}], few["verdict"])
+    assert "In 3 replicates, the 1 of their 600 runs that lost lock there carries that flip: over" in claim_summary(few)
+    assert _why_not(few).endswith("but in 3 replicates only through the 1 of their 600 runs that lost lock there")
+    assert "The 1 of 600 runs that lost lock there carries that flip" in claim_summary(
+        mark_lost_runs_copy(DEPENDS, {**row, "lost": 1})
+    )
     held = copy.deepcopy(DEPENDS)
     mark_lost_runs(held["robustness"], [{**row, "in_lock_verdict": "reproduced"}], held["verdict"])
     assert claim_summary(held) == plain  # the flip holds over the runs in lock: nothing to add

@@ -253,8 +253,11 @@ def _why_not(c: Mapping) -> str:
         how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
         text += f"; {how} under {side_words().get(f['side'], 'another change')}: {f['text']}"
         lost = f.get("lost_runs") or {}
-        if lost.get("carried"):
-            text += f", but only through the {lost['lost']} of {lost['runs']} runs that lost lock there"
+        if lost.get("carried"):  # a count over a stated number of replicates' draws says so (the claim pools more)
+            reps = lost.get("replicates")
+            where = "" if not reps else "in one replicate " if reps == 1 else f"in {reps} replicates "
+            of = "of" if not reps else "of its" if reps == 1 else "of their"
+            text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
     return text
 
 

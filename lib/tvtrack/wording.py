@@ -389,7 +389,8 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     to = _flip_to(flip, claim or {}, n_parts)
     lost = flip.get("lost_runs") or {}
     carried = (
-        f" {_lost_lead(lost, 'the {k} of {n} runs that lost lock there')} carry that flip: over "
+        f" {_lost_lead(lost, 'the {k} of {n} runs that lost lock there')} "
+        f"{'carries' if lost.get('lost') == 1 else 'carry'} that flip: over "
         f"{_lost_basis(lost)}runs in lock alone the claim is {lost['in_lock_verdict']}, but the verdict counts every "
         "run, so the flip stands."
         if lost.get("carried")
