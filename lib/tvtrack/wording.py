@@ -230,10 +230,8 @@ def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
     verdict reads ``undecided`` both there and at the default: a part decided one way at the default and the other
     way there gives, for every outcome of the undecided parts, another whole verdict."""
     claim = claim_fields(claim)
-    parts = max(
-        len((claim.get("robustness") or {}).get("parts") or {}), len((claim.get("rule") or {}).get("parts") or {})
-    )
-    if parts <= 1:
+    parts = ((claim.get("robustness") or {}).get("parts") or {}), ((claim.get("rule") or {}).get("parts") or {})
+    if max(map(len, parts)) <= 1:
         return True
     whole = claim_verdict_at(claim, flip.get("changed") or {})
     return whole is None or whole != claim.get("verdict") or whole == "undecided"
@@ -390,9 +388,8 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     lost = flip.get("lost_runs") or {}
     carried = (
         f" {_lost_lead(lost, 'the {k} of {n} runs that lost lock there')} "
-        f"{'carries' if lost.get('lost') == 1 else 'carry'} that flip: over "
-        f"{_lost_basis(lost)}runs in lock alone the claim is {lost['in_lock_verdict']}, but the verdict counts every "
-        "run, so the flip stands."
+        f"{'carries' if lost['lost'] == 1 else 'carry'} that flip: over {_lost_basis(lost)}runs in lock alone the "
+        f"claim is {lost['in_lock_verdict']}, but the verdict counts every run, so the flip stands."
         if lost.get("carried")
         else ""
     )
@@ -493,8 +490,7 @@ def _lock_sentence(claim: Mapping, part: Mapping) -> str:
     in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
     share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
     if {"lost", "runs"} <= set(share):
-        k = share["lost"]
-        lead = f"{_lost_lead(share, '{k} of {n} runs')} lost lock and " + ("carries" if k == 1 else "carry")
+        lead = f"{_lost_lead(share, '{k} of {n} runs')} lost lock and {'carries' if share['lost'] == 1 else 'carry'}"
         lead += " this verdict" + (" there" if share.get("replicates") else "")
     else:
         lead = "Runs that lost lock carry this verdict"
