@@ -541,6 +541,11 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
     assert _why_not(one).endswith(
         "but in one replicate only through the 27 of its 600 runs that lost lock there"
     )  # the list of claims that do not reproduce says whose runs it counts, as the sentence does
+    _, limits = paper_paragraph({"claims": [one], "register": one["robustness"]["register"]})
+    assert (
+        "Runs that lost lock carry flips of C001-3: over the runs in lock alone those changes do not flip the verdict "
+        "(counted over one replicate's draws)." in limits
+    ), limits
     few = copy.deepcopy(DEPENDS)
     mark_lost_runs(few["robustness"], [{**row, "lost": 1, "replicates": 3}], few["verdict"])
     assert "In 3 replicates, the 1 of their 600 runs that lost lock there carries that flip: over" in claim_summary(few)
@@ -561,6 +566,7 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     from record_fixtures import DEPENDS
     from tvtrack.labels import mark_lost_runs
     from tvtrack.paragraphs import _lost_share
+    from tvtrack.results import paper_paragraph
 
     claim = copy.deepcopy(DEPENDS)
     row = {"changed": {}, "lost": 6, "runs": 200, "verdict": "not reproduced", "in_lock_verdict": "reproduced"}
@@ -577,6 +583,11 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     rep = copy.deepcopy(DEPENDS)
     mark_lost_runs(rep["robustness"], [{**row, "lost": 1, "runs": 600, "replicates": 1}], rep["verdict"])
     assert rep["robustness"]["lost_share"]["replicates"] == 1
+    _, limits = paper_paragraph({"claims": [rep], "register": rep["robustness"]["register"]})
+    assert (
+        "Runs that lost lock carry the verdict of C001-3: over the runs in lock alone it differs (counted over one "
+        "replicate's draws)." in limits
+    ), limits
     assert (
         "In one replicate, 1 of its 600 runs lost lock and carries this verdict there: over that replicate's runs in "
         "lock alone it is reproduced."

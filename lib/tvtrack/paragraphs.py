@@ -305,12 +305,16 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         out.append(f"More runs than these would be needed to decide {_join(undecided)}.")
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
-        out.append(f"Runs that lost lock carry the verdict of {_join(lost)}: over the runs in lock alone it differs.")
+        basis = _counted_over([s.get("lost_share") for c in claims for s in _spots(c) if s.get("decided_by_lost_runs")])
+        out.append(
+            f"Runs that lost lock carry the verdict of {_join(lost)}: over the runs in lock alone it differs{basis}."
+        )
     carried = [c["id"] for c in claims if _carried_flips(c)]
     if carried:
+        basis = _counted_over([f["lost_runs"] for c in claims for f in _carried_flips(c)])
         out.append(
             f"Runs that lost lock carry flips of {_join(carried)}: over the runs in lock alone those changes do not "
-            "flip the verdict."
+            f"flip the verdict{basis}."
         )
     shares = {c["id"]: _lost_share(c) for c in claims if c["id"] not in lost}
     shares = {k: v for k, v in shares.items() if v > 0}
@@ -328,29 +332,42 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     return out
 
 
-def _lost(c: Mapping) -> bool:
+def _spots(c: Mapping) -> list[Mapping]:
+    """Where a claim's record may count runs that lost lock: the claim, its record, each of its parts."""
     record = c.get("robustness") or {}
-    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
-    return any(s.get("decided_by_lost_runs") for s in spots)
+    return [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
+
+
+def _lost(c: Mapping) -> bool:
+    return any(s.get("decided_by_lost_runs") for s in _spots(c))
 
 
 def _lost_share(c: Mapping) -> float:
     """The largest share of runs that lost lock the record gives (``lost_share``), 0 where it gives none."""
-    record = c.get("robustness") or {}
-    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
-    shares = [s.get("lost_share") for s in spots]
+    shares = [s.get("lost_share") for s in _spots(c)]
     values = [
         float(v["value"] if isinstance(v, Mapping) else v) for v in shares if isinstance(v, (int, float, Mapping))
     ]
     return max(values, default=0.0)
 
 
-def _carried_flips(c: Mapping) -> bool:
-    """Whether a named flip of the claim is carried by the runs that lost lock under it (its record's
-    ``lost_runs``, :func:`tvtrack.labels.mark_lost_runs`)."""
+def _carried_flips(c: Mapping) -> list[Mapping]:
+    """The named flips of the claim that the runs that lost lock under them carry (their record's ``lost_runs``,
+    :func:`tvtrack.labels.mark_lost_runs`); empty where none is."""
     parts = ((c.get("robustness") or {}).get("parts") or {}).values()
     flips = [f for p in parts if isinstance(p, Mapping) for f in p.get("flips") or ()]
-    return any((f.get("lost_runs") or {}).get("carried") for f in flips)
+    return [f for f in flips if (f.get("lost_runs") or {}).get("carried")]
+
+
+def _counted_over(counts: list) -> str:
+    """`` (counted over one replicate's draws)`` where every count of lost runs behind a limitation says it is of
+    the same stated number of replicates (the claims' verdicts pool more); empty otherwise."""
+    reps = {c.get("replicates") if isinstance(c, Mapping) else None for c in counts}
+    if len(reps) != 1 or None in reps:
+        return ""
+    (n,) = reps
+    what = "one replicate's" if n == 1 else f"{n} replicates'"
+    return f" (counted over {what} draws)"
 
 
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:
