@@ -336,8 +336,42 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     )
     assert "sigma" not in text  # the reading that moves only the part early is not the one named
     assert set(turns_on([claim])) == {"setting"} and part_only([claim]) == 0
-    only_part = {**claim, "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}}}
+    only_part = {
+        **claim,
+        "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}, "conditions": rob["conditions"][:1]},
+    }
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
+
+
+def test_part_flips_that_together_change_the_whole_verdict_count_in_the_first_screen():
+    """A claim partly reproduced (early and mid hold, late fails): one reading makes early fail, another mid, each
+    leaving it partly; both together make it not reproduced. The joint configuration is not named (each part's flip
+    is explained by its single reading), but the first screen counts the claim under readings and never says that
+    its whole verdict stays under every change explored."""
+    from tvtrack.paragraphs import part_only, results_summary, turns_on
+
+    sigma = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    gate = Entry("gate", "reading", "wide", ("wide", "narrow"), "the text reads either way")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "mid": band, "late": band})
+    ok, bad = Estimate.exact(0.0), Estimate.exact(3.0)
+    partly = {"early": ok, "mid": ok, "late": bad}
+    reps = [{"seed": s, "measured": partly} for s in (1, 2, 3)]
+    both = {"sigma": "smoothed", "gate": "narrow"}
+    conds = [
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": {**partly, "early": bad}},
+        {"changed": {"gate": "narrow"}, "kind": "single", "runs": 3, "measured": {**partly, "mid": bad}},
+        {"changed": both, "kind": "joint", "runs": 3, "measured": {"early": bad, "mid": bad, "late": bad}},
+    ]
+    rob = label_parts(rule, partly, reps, conds, [sigma, gate])
+    claim = {"id": "C9-5", "verdict": "partly", "rule": rule.to_dict(), "measured": partly, "robustness": rob}
+    assert [c["verdict"] for c in rob["conditions"]] == ["partly", "partly", "not reproduced"]
+    assert all(f["changed"] != both for p in rob["parts"].values() for f in p["flips"])  # the joint is not named
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1), ("gate", "9", 1)])} and part_only([claim]) == 0
+    assert "only in a part" not in results_summary([claim])
+    undersized = {**claim, "robustness": {**rob, "conditions": [*rob["conditions"][:2], {**rob["conditions"][2]}]}}
+    undersized["robustness"]["conditions"][2]["undersized"] = {}  # too small to count: the screen does not lean on it
+    assert part_only([undersized]) == 1 and turns_on([undersized]) == {}
 
 
 def test_a_part_flip_of_an_undecided_claim_counts_in_the_first_screen():

@@ -96,18 +96,40 @@ def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
     return out
 
 
+def _whole_changes(claim: Mapping) -> list[dict]:
+    """The changes of the claim's sized conditions whose whole verdict is decided (reproduced, partly, not
+    reproduced) and not the claim's."""
+    rows = (claim.get("robustness") or {}).get("conditions") or ()
+    decided = ("reproduced", "partly", "not reproduced")
+    return [
+        dict(c.get("changed") or {})
+        for c in rows
+        if "undersized" not in c and c.get("verdict") in decided and c.get("verdict") != claim.get("verdict")
+    ]
+
+
 def _whole_flips(claim: Mapping) -> list[dict]:
-    """The claim's named flips that change its whole verdict (not only one part's)."""
-    return [f for f in claim_flips(claim) if moves_verdict(claim, f)]
+    """The claim's named flips that change its whole verdict (not only one part's): alone
+    (:func:`tvtrack.wording.moves_verdict`), or together with other named flips, where a condition made of their
+    changes alone changes it (each part's flip named by its own entry, the joint configuration not named)."""
+    claim = claim_fields(claim)
+    flips = claim_flips(claim)
+    out = [f for f in flips if moves_verdict(claim, f)]
+    for ch in _whole_changes(claim):
+        inside = [f for f in flips if f["changed"].items() <= ch.items()]
+        if {k for f in inside for k in f["changed"]} == set(ch):
+            out += [f for f in inside if f not in out]
+    return out
 
 
 def part_only(claims: list[Mapping]) -> int:
-    """How many checkable claims have named flips, none of which changes the whole claim's verdict (each moves
-    only a part, the claim's verdict staying as it is)."""
+    """How many checkable claims have named flips, none of which changes the whole claim's verdict alone or with
+    others (:func:`_whole_flips`), and no sized condition that changes it (each flip moves only a part, the
+    claim's verdict staying as it is under every change explored)."""
     n = 0
     for c in claims:
         c = claim_fields(c)
-        if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c):
+        if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c) and not _whole_changes(c):
             n += 1
     return n
 
