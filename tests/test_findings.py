@@ -348,7 +348,7 @@ def test_part_flips_that_together_change_the_whole_verdict_count_in_the_first_sc
     leaving it partly; both together make it not reproduced. The joint configuration is not named (each part's flip
     is explained by its single reading), but the first screen counts the claim under readings and never says that
     its whole verdict stays under every change explored."""
-    from tvtrack.paragraphs import part_only, results_summary, turns_on
+    from tvtrack.paragraphs import depends_also_on_a_world, part_only, results_summary, turns_on
 
     sigma = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
     gate = Entry("gate", "reading", "wide", ("wide", "narrow"), "the text reads either way")
@@ -372,6 +372,11 @@ def test_part_flips_that_together_change_the_whole_verdict_count_in_the_first_sc
     undersized = {**claim, "robustness": {**rob, "conditions": [*rob["conditions"][:2], {**rob["conditions"][2]}]}}
     undersized["robustness"]["conditions"][2]["undersized"] = {}  # too small to count: the screen does not lean on it
     assert part_only([undersized]) == 1 and turns_on([undersized]) == {}
+    world = Entry("gate", "regime", "wide", ("wide", "narrow"), "a world beyond the paper")
+    mixed = label_parts(rule, partly, reps, conds, [sigma, world])  # a reading and a world only together
+    claim = {**claim, "robustness": mixed}
+    assert mixed["label"] == "depends" and depends_also_on_a_world([claim]) == 0  # the world alone moves a part
+    assert turns_on([claim]) == {} and part_only([claim]) == 0  # counted under neither side, never "stays"
 
 
 def test_a_part_flip_of_an_undecided_claim_counts_in_the_first_screen():

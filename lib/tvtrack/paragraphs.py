@@ -110,14 +110,16 @@ def _whole_changes(claim: Mapping) -> list[dict]:
 
 def _whole_flips(claim: Mapping) -> list[dict]:
     """The claim's named flips that change its whole verdict (not only one part's): alone
-    (:func:`tvtrack.wording.moves_verdict`), or together with other named flips, where a condition made of their
-    changes alone changes it (each part's flip named by its own entry, the joint configuration not named)."""
+    (:func:`tvtrack.wording.moves_verdict`), or together with other named flips of the same side, where a condition
+    made of their changes alone changes it (each part's flip named by its own entry, the joint configuration not
+    named; flips of several sides that change it only together are counted under none)."""
     claim = claim_fields(claim)
     flips = claim_flips(claim)
     out = [f for f in flips if moves_verdict(claim, f)]
     for ch in _whole_changes(claim):
         inside = [f for f in flips if f["changed"].items() <= ch.items()]
-        if {k for f in inside for k in f["changed"]} == set(ch):
+        one_side = len({f["side"] if f["side"] in SIDE_ORDER else "world" for f in inside}) == 1
+        if one_side and {k for f in inside for k in f["changed"]} == set(ch):
             out += [f for f in inside if f not in out]
     return out
 
