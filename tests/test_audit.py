@@ -156,3 +156,45 @@ def test_a_flip_of_more_entries_than_the_subset_search_tries_filed_as_a_world_is
         "C9-1: the flip at motion = turn, noise = high changes 2 entries, more than one beyond the 0 the subset "
         "search tried, and is filed as world"
     ]
+
+
+def test_a_flip_named_as_its_own_smallest_whose_subsets_were_never_measured_is_found():
+    """A flip one entry beyond the searched size is its own smallest only where every smaller subset was measured:
+    the pairs and triples the search tries, and each single entry where the one-at-a-time stage ran."""
+    claim = _claim()
+    claim["robustness"]["design"] |= {"max_subset": 1, "one_at_a_time": True}
+    assert audit_claim(claim) == []  # both single entries of the named pair were measured
+    claim["robustness"]["conditions"] = [
+        c for c in claim["robustness"]["conditions"] if c["changed"] != {"noise": "high"}
+    ]
+    untried = "C9-1: the flip at motion = turn, noise = high is named with noise = 'high' never measured"
+    assert untried in audit_claim(claim)
+    claim["robustness"]["design"]["one_at_a_time"] = False  # no single entry tried: none is missing, none shown
+    assert not any("never measured" in p for p in audit_claim(claim))
+
+
+def test_the_explorer_measures_every_subset_of_a_flip_one_entry_beyond_its_search():
+    """Four worlds that flip the claim only together, measured as a pinned joint condition (no joint design): the
+    search measures every pair and triple of them, so the four are named as their own smallest flip (a world) and
+    the audit finds nothing; stopped at pairs, the record holds no triple and the four read unattributed."""
+    import numpy as np
+
+    from tvtrack.explore import explore
+    from tvtrack.montecarlo import mean_ci
+    from tvtrack.register import Register
+
+    four = dict.fromkeys("abcd", 1)
+    reg = Register([Entry(k, "regime", 0, (0, 1), f"world {k}") for k in "abcde"], pinned=[four])
+
+    def measure(config, seed):
+        shift = 3.0 if all(config[k] == 1 for k in "abcd") else 0.0
+        return {"X": mean_ci(np.random.default_rng(seed).normal(shift, 1.0, 400))}
+
+    for max_subset, side in ((3, "world"), (2, "unattributed")):
+        ex = explore(measure, reg, {"X": BAND}, seed=3, replicates=3, max_subset=max_subset)
+        claim = {"id": "X", "robustness": ex.record("X")}
+        (flip,) = claim["robustness"]["parts"]["claim"]["flips"]
+        assert flip["changed"] == four and flip["side"] == side
+        assert audit_claim(claim) == []
+        combos = [c["changed"] for c in claim["robustness"]["conditions"] if c["kind"] == "combination"]
+        assert sorted(map(len, combos)) == [2] * 6 + [3] * 4 * (max_subset == 3)  # every pair (and triple) of four

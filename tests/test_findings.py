@@ -9,6 +9,7 @@ import pytest
 
 import tvtrack.numbers
 import tvtrack.paragraphs
+import tvtrack.run_words
 import tvtrack.value_words
 import tvtrack.wording
 from tvtrack.montecarlo import Estimate
@@ -49,7 +50,8 @@ def test_claims_table_one_line_per_claim(tmp_path):
 
 REPO = Path(__file__).resolve().parents[1]
 _WRITER = "".join(
-    Path(m.__file__).read_text() for m in (tvtrack.wording, tvtrack.value_words, tvtrack.paragraphs, tvtrack.numbers)
+    Path(m.__file__).read_text()
+    for m in (tvtrack.wording, tvtrack.value_words, tvtrack.paragraphs, tvtrack.numbers, tvtrack.run_words)
 )
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
@@ -336,7 +338,10 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     )
     assert "sigma" not in text  # the reading that moves only the part early is not the one named
     assert set(turns_on([claim])) == {"setting"} and part_only([claim]) == 0
-    only_part = {**claim, "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}}}
+    only_part = {
+        **claim,
+        "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}, "conditions": rob["conditions"][:1]},
+    }
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
     from tvtrack.wording import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
 
@@ -385,6 +390,66 @@ def test_a_change_every_flip_shares_is_named_with_its_kind():
     )
     claim["robustness"]["parts"]["claim"]["flips"][1]["changed"] = {"k_bound2": 100, "paper_sigma": "raw"}
     assert "Every change" not in claim_summary(claim)
+
+
+def test_part_flips_that_together_change_the_whole_verdict_count_in_the_first_screen():
+    """A claim partly reproduced (early and mid hold, late fails): one reading makes early fail, another mid, each
+    leaving it partly; both together make it not reproduced. The joint configuration is not named (each part's flip
+    is explained by its single reading), but the first screen counts the claim under readings and never says that
+    its whole verdict stays under every change explored."""
+    from tvtrack.paragraphs import depends_also_on_a_world, part_only, results_summary, turns_on
+
+    sigma = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    gate = Entry("gate", "reading", "wide", ("wide", "narrow"), "the text reads either way")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "mid": band, "late": band})
+    ok, bad = Estimate.exact(0.0), Estimate.exact(3.0)
+    partly = {"early": ok, "mid": ok, "late": bad}
+    reps = [{"seed": s, "measured": partly} for s in (1, 2, 3)]
+    both = {"sigma": "smoothed", "gate": "narrow"}
+    conds = [
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": {**partly, "early": bad}},
+        {"changed": {"gate": "narrow"}, "kind": "single", "runs": 3, "measured": {**partly, "mid": bad}},
+        {"changed": both, "kind": "joint", "runs": 3, "measured": {"early": bad, "mid": bad, "late": bad}},
+    ]
+    rob = label_parts(rule, partly, reps, conds, [sigma, gate])
+    claim = {"id": "C9-5", "verdict": "partly", "rule": rule.to_dict(), "measured": partly, "robustness": rob}
+    assert [c["verdict"] for c in rob["conditions"]] == ["partly", "partly", "not reproduced"]
+    assert all(f["changed"] != both for p in rob["parts"].values() for f in p["flips"])  # the joint is not named
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1), ("gate", "9", 1)])} and part_only([claim]) == 0
+    assert "only in a part" not in results_summary([claim])
+    undersized = {**claim, "robustness": {**rob, "conditions": [*rob["conditions"][:2], {**rob["conditions"][2]}]}}
+    undersized["robustness"]["conditions"][2]["undersized"] = {}  # too small to count: the screen does not lean on it
+    assert part_only([undersized]) == 1 and turns_on([undersized]) == {}
+    world = Entry("gate", "regime", "wide", ("wide", "narrow"), "a world beyond the paper")
+    mixed = label_parts(rule, partly, reps, conds, [sigma, world])  # a reading and a world only together
+    claim = {**claim, "robustness": mixed}
+    assert mixed["label"] == "depends" and depends_also_on_a_world([claim]) == 0  # the world alone moves a part
+    assert turns_on([claim]) == {} and part_only([claim]) == 0  # counted under neither side, never "stays"
+
+
+def test_a_part_flip_of_an_undecided_claim_counts_in_the_first_screen():
+    """An undecided claim (early holds, late straddles the band) whose early part a reading makes fail: the whole
+    verdict reads undecided there too, but whatever late turns out to be, the claim's verdict differs under the
+    reading (reproduced or partly at the default, partly or not reproduced there). The first screen counts it under
+    readings, as its label ``depends`` does, never as a claim whose whole verdict stays."""
+    from tvtrack.paragraphs import part_only, results_summary, turns_on
+    from tvtrack.wording import moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "late": band})
+    open_late = {"early": Estimate.exact(0.0), "late": Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")}
+    reps = [{"seed": s, "measured": open_late} for s in (1, 2, 3)]
+    fails = {**open_late, "early": Estimate.exact(3.0)}
+    conds = [{"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": fails}]
+    rob = label_parts(rule, open_late, reps, conds, [reading])
+    claim = {"id": "C9-4", "verdict": "undecided", "rule": rule.to_dict(), "measured": open_late, "robustness": rob}
+    assert rob["label"] == "depends" and rob["conditions"][0]["verdict"] == "undecided"
+    (flip,) = rob["parts"]["early"]["flips"]
+    assert moves_verdict(claim, flip)
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
+    assert "What the verdicts turn on: a reading of the paper's text flips 1 claim." in results_summary([claim])
 
 
 def test_a_flip_that_takes_several_changes_says_how_many():
@@ -534,7 +599,13 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
 
     from record_fixtures import DEPENDS
     from tvtrack.labels import mark_lost_runs
+    from tvtrack.paragraphs import _why_not
     from tvtrack.results import paper_paragraph
+
+    def mark_lost_runs_copy(claim: dict, row: dict) -> dict:
+        out = copy.deepcopy(claim)
+        mark_lost_runs(out["robustness"], [row], out["verdict"])
+        return out
 
     plain = claim_summary(DEPENDS)
     claim = copy.deepcopy(DEPENDS)
@@ -555,6 +626,21 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
         "In one replicate, the 27 of its 600 runs that lost lock there carry that flip: over that replicate's runs in "
         "lock alone the claim is not reproduced, but the verdict counts every run, so the flip stands."
     ) in claim_summary(one)
+    assert _why_not(one).endswith(
+        "but in one replicate only through the 27 of its 600 runs that lost lock there"
+    )  # the list of claims that do not reproduce says whose runs it counts, as the sentence does
+    _, limits = paper_paragraph({"claims": [one], "register": one["robustness"]["register"]})
+    assert (
+        "Runs that lost lock carry flips of C001-3: over the runs in lock alone those changes do not flip the verdict "
+        "(counted over one replicate's draws)." in limits
+    ), limits
+    few = copy.deepcopy(DEPENDS)
+    mark_lost_runs(few["robustness"], [{**row, "lost": 1, "replicates": 3}], few["verdict"])
+    assert "In 3 replicates, the 1 of their 600 runs that lost lock there carries that flip: over" in claim_summary(few)
+    assert _why_not(few).endswith("but in 3 replicates only through the 1 of their 600 runs that lost lock there")
+    assert "The 1 of 600 runs that lost lock there carries that flip" in claim_summary(
+        mark_lost_runs_copy(DEPENDS, {**row, "lost": 1})
+    )
     held = copy.deepcopy(DEPENDS)
     mark_lost_runs(held["robustness"], [{**row, "in_lock_verdict": "reproduced"}], held["verdict"])
     assert claim_summary(held) == plain  # the flip holds over the runs in lock: nothing to add
@@ -568,6 +654,7 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     from record_fixtures import DEPENDS
     from tvtrack.labels import mark_lost_runs
     from tvtrack.paragraphs import _lost_share
+    from tvtrack.results import paper_paragraph
 
     claim = copy.deepcopy(DEPENDS)
     row = {"changed": {}, "lost": 6, "runs": 200, "verdict": "not reproduced", "in_lock_verdict": "reproduced"}
@@ -584,6 +671,11 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     rep = copy.deepcopy(DEPENDS)
     mark_lost_runs(rep["robustness"], [{**row, "lost": 1, "runs": 600, "replicates": 1}], rep["verdict"])
     assert rep["robustness"]["lost_share"]["replicates"] == 1
+    _, limits = paper_paragraph({"claims": [rep], "register": rep["robustness"]["register"]})
+    assert (
+        "Runs that lost lock carry the verdict of C001-3: over the runs in lock alone it differs (counted over one "
+        "replicate's draws)." in limits
+    ), limits
     assert (
         "In one replicate, 1 of its 600 runs lost lock and carries this verdict there: over that replicate's runs in "
         "lock alone it is reproduced."

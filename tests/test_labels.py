@@ -500,8 +500,9 @@ def test_a_search_stopped_at_pairs_tries_no_triple_and_says_so_where_it_leaves_a
     assert flips and all(f["side"] == "unattributed" and "no subset of up to 2 of them" in f["note"] for f in flips)
     none = explore(four, reg, {"X": BAND}, seed=3, replicates=3, joint=40, max_subset=1)
     assert none.settings["combinations"] == 0 and none.record("X")["label"] == "depends"
-    with pytest.raises(ValueError, match=r"max_subset must be an integer in \[1, 3\], got 4"):
-        explore(four, reg, {"X": BAND}, seed=3, replicates=3, max_subset=4)
+    for bad in (4, 2.5, True, "2"):  # never truncated or coerced to another size than the one stated
+        with pytest.raises(ValueError, match=rf"max_subset must be an integer in \[1, 3\], got {bad!r}"):
+            explore(four, reg, {"X": BAND}, seed=3, replicates=3, max_subset=bad)
 
 
 def test_a_joint_flip_one_entry_beyond_the_search_is_its_own_smallest_and_more_is_unattributed():

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
@@ -382,8 +383,8 @@ def explore(
     """
     if replicates < 3:
         raise ValueError(f"explore: replicates must be at least 3 independent runs, got {replicates}")
-    if not 1 <= int(max_subset) <= MAX_SUBSET:
-        raise ValueError(f"explore: max_subset must be an integer in [1, {MAX_SUBSET}], got {max_subset}")
+    if not _is_subset_size(max_subset):
+        raise ValueError(f"explore: max_subset must be an integer in [1, {MAX_SUBSET}], got {max_subset!r}")
     cap = replicates if max_replicates is None else int(max_replicates)
     if cap < replicates:
         raise ValueError(f"explore: max_replicates {cap} < replicates {replicates}")
@@ -458,6 +459,12 @@ def explore(
         "timing": clock.table(),
     }
     return Exploration(register, rules, depends, runs, settings)
+
+
+def _is_subset_size(n: Any) -> bool:
+    """Whether ``n`` is a subset size the search takes: an integer (never a bool, a float or a string, which would
+    be coerced to another size than the one stated) in 1 to :data:`tvtrack.attribution.MAX_SUBSET`."""
+    return isinstance(n, numbers.Integral) and not isinstance(n, bool) and 1 <= n <= MAX_SUBSET
 
 
 def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: StageClock, default: dict) -> int:

@@ -96,14 +96,38 @@ def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
     return out
 
 
+def _whole_changes(claim: Mapping) -> list[dict]:
+    """The changes of the claim's sized conditions whose whole verdict is decided (reproduced, partly, not
+    reproduced) and not the claim's."""
+    rows = (claim.get("robustness") or {}).get("conditions") or ()
+    decided = ("reproduced", "partly", "not reproduced")
+    return [
+        dict(c.get("changed") or {})
+        for c in rows
+        if "undersized" not in c and c.get("verdict") in decided and c.get("verdict") != claim.get("verdict")
+    ]
+
+
 def _whole_flips(claim: Mapping) -> list[dict]:
-    """The claim's named flips that change its whole verdict (not only one part's)."""
-    return [f for f in claim_flips(claim) if moves_verdict(claim, f)]
+    """The claim's named flips that change its whole verdict (not only one part's): alone
+    (:func:`tvtrack.wording.moves_verdict`), or together with other named flips of the same side, where a condition
+    made of their changes alone changes it (each part's flip named by its own entry, the joint configuration not
+    named; flips of several sides that change it only together are counted under none)."""
+    claim = claim_fields(claim)
+    flips = claim_flips(claim)
+    out = [f for f in flips if moves_verdict(claim, f)]
+    for ch in _whole_changes(claim):
+        inside = [f for f in flips if f["changed"].items() <= ch.items()]
+        one_side = len({f["side"] if f["side"] in SIDE_ORDER else "world" for f in inside}) == 1
+        if one_side and {k for f in inside for k in f["changed"]} == set(ch):
+            out += [f for f in inside if f not in out]
+    return out
 
 
 def part_only(claims: list[Mapping]) -> int:
-    """How many checkable claims have named flips, none of which changes the whole claim's verdict (each moves
-    only a part, the claim's verdict staying as it is)."""
+    """How many checkable claims have named flips, none of which changes the whole claim's verdict alone or with
+    others (:func:`_whole_flips`), and no sized condition that changes it (each flip moves only a part, the
+    claim's verdict staying as it is under every change explored)."""
     return len(_part_only_ids(claims))
 
 
@@ -111,7 +135,7 @@ def _part_only_ids(claims: list[Mapping]) -> list[str]:
     out = []
     for c in claims:
         c = claim_fields(c)
-        if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c):
+        if c.get("verdict") != "not checkable" and claim_flips(c) and not _whole_flips(c) and not _whole_changes(c):
             out.append(str(c.get("id", "")))
     return out
 
@@ -270,8 +294,11 @@ def _why_not(c: Mapping) -> str:
         how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
         text += f"; {how} under {side_words().get(f['side'], 'another change')}: {f['text']}"
         lost = f.get("lost_runs") or {}
-        if lost.get("carried"):
-            text += f", but only through the {lost['lost']} of {lost['runs']} runs that lost lock there"
+        if lost.get("carried"):  # a count over a stated number of replicates' draws says so (the claim pools more)
+            reps = lost.get("replicates")
+            where = "" if not reps else "in one replicate " if reps == 1 else f"in {reps} replicates "
+            of = "of" if not reps else "of its" if reps == 1 else "of their"
+            text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
     return text
 
 
@@ -319,12 +346,16 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         out.append(f"More runs than these would be needed to decide {_join(undecided)}.")
     lost = [c["id"] for c in claims if _lost(c)]
     if lost:
-        out.append(f"Runs that lost lock carry the verdict of {_join(lost)}: over the runs in lock alone it differs.")
+        basis = _counted_over([s.get("lost_share") for c in claims for s in _spots(c) if s.get("decided_by_lost_runs")])
+        out.append(
+            f"Runs that lost lock carry the verdict of {_join(lost)}: over the runs in lock alone it differs{basis}."
+        )
     carried = [c["id"] for c in claims if _carried_flips(c)]
     if carried:
+        basis = _counted_over([f["lost_runs"] for c in claims for f in _carried_flips(c)])
         out.append(
             f"Runs that lost lock carry flips of {_join(carried)}: over the runs in lock alone those changes do not "
-            "flip the verdict."
+            f"flip the verdict{basis}."
         )
     shares = {c["id"]: _lost_share(c) for c in claims if c["id"] not in lost}
     shares = {k: v for k, v in shares.items() if v > 0}
@@ -342,29 +373,42 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     return out
 
 
-def _lost(c: Mapping) -> bool:
+def _spots(c: Mapping) -> list[Mapping]:
+    """Where a claim's record may count runs that lost lock: the claim, its record, each of its parts."""
     record = c.get("robustness") or {}
-    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
-    return any(s.get("decided_by_lost_runs") for s in spots)
+    return [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
+
+
+def _lost(c: Mapping) -> bool:
+    return any(s.get("decided_by_lost_runs") for s in _spots(c))
 
 
 def _lost_share(c: Mapping) -> float:
     """The largest share of runs that lost lock the record gives (``lost_share``), 0 where it gives none."""
-    record = c.get("robustness") or {}
-    spots = [c, record, *[p for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)]]
-    shares = [s.get("lost_share") for s in spots]
+    shares = [s.get("lost_share") for s in _spots(c)]
     values = [
         float(v["value"] if isinstance(v, Mapping) else v) for v in shares if isinstance(v, (int, float, Mapping))
     ]
     return max(values, default=0.0)
 
 
-def _carried_flips(c: Mapping) -> bool:
-    """Whether a named flip of the claim is carried by the runs that lost lock under it (its record's
-    ``lost_runs``, :func:`tvtrack.labels.mark_lost_runs`)."""
+def _carried_flips(c: Mapping) -> list[Mapping]:
+    """The named flips of the claim that the runs that lost lock under them carry (their record's ``lost_runs``,
+    :func:`tvtrack.labels.mark_lost_runs`); empty where none is."""
     parts = ((c.get("robustness") or {}).get("parts") or {}).values()
     flips = [f for p in parts if isinstance(p, Mapping) for f in p.get("flips") or ()]
-    return any((f.get("lost_runs") or {}).get("carried") for f in flips)
+    return [f for f in flips if (f.get("lost_runs") or {}).get("carried")]
+
+
+def _counted_over(counts: list) -> str:
+    """`` (counted over one replicate's draws)`` where every count of lost runs behind a limitation says it is of
+    the same stated number of replicates (the claims' verdicts pool more); empty otherwise."""
+    reps = {c.get("replicates") if isinstance(c, Mapping) else None for c in counts}
+    if len(reps) != 1 or None in reps:
+        return ""
+    (n,) = reps
+    what = "one replicate's" if n == 1 else f"{n} replicates'"
+    return f" (counted over {what} draws)"
 
 
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:

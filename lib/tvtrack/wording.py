@@ -16,11 +16,11 @@ Conventions
 
 from __future__ import annotations
 
-import math
 import re
 from typing import Any, Mapping
 
 from .numbers import finite, number
+from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -227,15 +227,15 @@ def flip_strength(flip: Mapping) -> tuple:
 
 def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
     """Whether a flip changes the whole claim's verdict (not only one part's); true where the record has no
-    condition at the flip's changes to tell (:func:`claim_verdict_at`), and for a claim of one part."""
+    condition at the flip's changes to tell (:func:`claim_verdict_at`), for a claim of one part, and where the whole
+    verdict reads ``undecided`` both there and at the default: a part decided one way at the default and the other
+    way there gives, for every outcome of the undecided parts, another whole verdict."""
     claim = claim_fields(claim)
-    parts = max(
-        len((claim.get("robustness") or {}).get("parts") or {}), len((claim.get("rule") or {}).get("parts") or {})
-    )
-    if parts <= 1:
+    parts = ((claim.get("robustness") or {}).get("parts") or {}), ((claim.get("rule") or {}).get("parts") or {})
+    if max(map(len, parts)) <= 1:
         return True
     whole = claim_verdict_at(claim, flip.get("changed") or {})
-    return whole is None or whole != claim.get("verdict")
+    return whole is None or whole != claim.get("verdict") or whole == "undecided"
 
 
 def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
@@ -419,9 +419,9 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     to = _flip_to(flip, claim or {}, n_parts)
     lost = flip.get("lost_runs") or {}
     carried = (
-        f" {_lost_lead(lost, 'the {k} of {n} runs that lost lock there')} carry that flip: over "
-        f"{_lost_basis(lost)}runs in lock alone the claim is {lost['in_lock_verdict']}, but the verdict counts every "
-        "run, so the flip stands."
+        f" {lost_lead(lost, 'the {k} of {n} runs that lost lock there')} "
+        f"{'carries' if lost['lost'] == 1 else 'carry'} that flip: over {lost_basis(lost)}runs in lock alone the "
+        f"claim is {lost['in_lock_verdict']}, but the verdict counts every run, so the flip stands."
         if lost.get("carried")
         else ""
     )
@@ -504,65 +504,6 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 
-def _slowest_part(parts: Mapping, main: Mapping) -> tuple[str | None, Mapping]:
-    """The undecided part that needs the most runs (one no practical number of runs decides first), with its
-    name where it is not ``main`` (the part whose value the sentence shows): the claim is decided only when every
-    part is."""
-    opened = [(n, p) for n, p in parts.items() if isinstance(p, Mapping) and p.get("runs_to_decide")]
-    if not opened:
-        return None, main
-    name, part = max(opened, key=lambda np: np[1]["runs_to_decide"].get("replicates") or math.inf)
-    return (None if part is main else name), part
-
-
-def _runs_sentence(part: Mapping, name: str | None = None) -> str:
-    """How many replicates would decide the claim, said of part ``name`` where that is not the part shown."""
-    r = part.get("runs_to_decide") or {}
-    if not r:
-        return ""
-    it = f"its part {name}" if name else "it"
-    if r.get("replicates"):
-        cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
-        beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
-        return f"About {r['replicates']} independent replicates would decide {it}{beyond}."
-    return f"No practical number of runs is projected to decide {it}."
-
-
-def _lock_sentence(claim: Mapping, part: Mapping) -> str:
-    """Runs that lost lock, where the record says they carry the verdict: how many, and the verdict without them
-    (never "decide", which an undecided claim's sentence uses for the runs that would decide it)."""
-    record = claim.get("robustness") or {}
-    lost = next((s.get("decided_by_lost_runs") for s in (part, record, claim) if "decided_by_lost_runs" in s), None)
-    if not lost:
-        return ""
-    in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
-    share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
-    if {"lost", "runs"} <= set(share):
-        k = share["lost"]
-        lead = f"{_lost_lead(share, '{k} of {n} runs')} lost lock and " + ("carries" if k == 1 else "carry")
-        lead += " this verdict" + (" there" if share.get("replicates") else "")
-    else:
-        lead = "Runs that lost lock carry this verdict"
-    return lead + (f": over {_lost_basis(share)}runs in lock alone it is {in_lock}." if in_lock else ".")
-
-
-def _lost_lead(lost: Mapping, counts: str) -> str:
-    """``counts`` (a template of ``{k}`` lost of ``{n}`` runs), said as a count over the draws of ``replicates``
-    replicates where the record says so (the pooled verdict then rests on more)."""
-    k, n, reps = lost["lost"], lost["runs"], lost.get("replicates")
-    if not reps:
-        return counts.format(k=k, n=n)[:1].upper() + counts.format(k=k, n=n)[1:]
-    where = "one replicate" if reps == 1 else f"{reps} replicates"
-    text = counts.replace(" of {n} runs", " of its {n} runs" if reps == 1 else " of their {n} runs")
-    return f"In {where}, " + text.format(k=k, n=n)
-
-
-def _lost_basis(lost: Mapping) -> str:
-    """Whose runs in lock: that replicate's where the count is over a stated number of replicates, else "the"."""
-    reps = lost.get("replicates")
-    return "the " if not reps else "that replicate's " if reps == 1 else "those replicates' "
-
-
 _CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")
 
 
@@ -634,10 +575,10 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     common = _common_sentence(flips, claim.get("robustness") or {})
-    required += [s for s in (first, common, _lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
+    required += [s for s in (first, common, lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
-        slow_name, slow = _slowest_part(parts, part)
-        required.append(_runs_sentence(slow, slow_name))
+        slow_name, slow = slowest_part(parts, part)
+        required.append(runs_sentence(slow, slow_name))
     optional = [_share_sentence(part)]
     if len(flips) > 1:
         others = len(flips) - 1

@@ -15,8 +15,10 @@ that says more than its own record shows is found in the records a reader sees:
   when readings or settings mix with worlds), never ``world`` when it changes a reading or a setting, and
   ``unattributed`` when it changes more than one entry beyond the largest subset the search tries
   (``design["max_subset"]``: a flip of one entry more is its own smallest, every smaller subset tried);
-* **smallest**: no sized configuration that changes a strict subset of a named flip's changes flips the part
-  too; every sized configuration that flips the part contains a named flip (a configuration of one run flips
+* **smallest**: every strict subset of a named flip's changes that the search tries (2 up to
+  ``design["max_subset"]`` entries) was measured, and so was each single entry where the one-at-a-time stage ran;
+  no sized configuration that changes a strict subset of a named flip's changes flips the part too; every sized
+  configuration that flips the part contains a named flip (a configuration of one run flips
   only where it also differs from the default's run on the same random numbers);
 * **label**: ``robust`` and ``unexplored`` parts have no flip, a ``limited`` part only flips on the world side,
   a ``depends`` part has a flip by a reading, a setting or an unattributed mix.
@@ -26,6 +28,7 @@ that says more than its own record shows is found in the records a reader sees:
 
 from __future__ import annotations
 
+import itertools
 from typing import Any, Mapping, Sequence
 
 from ..register import side_of
@@ -57,6 +60,18 @@ def _expected_side(changed: Mapping[str, Any], kinds: Mapping[str, str]) -> str:
     if "world" in sides:
         return "unattributed"
     return "setting" if "setting" in sides else "reading"
+
+
+def _untried(flip: Mapping, rb: Mapping, max_subset: int) -> list[str]:
+    """The strict subsets of a named flip's changes that its record should hold and does not: every one of 2 up
+    to ``max_subset`` entries (the subset search tries them before it names a larger flip), and each single entry
+    where the one-at-a-time stage ran (``design["one_at_a_time"]``)."""
+    items = sorted(_items(flip["changed"]))
+    have = {frozenset(_items(c["changed"])) for c in rb.get("conditions") or ()}
+    first = 1 if (rb.get("design") or {}).get("one_at_a_time") else 2
+    sizes = range(first, min(len(items) - 1, max_subset) + 1)
+    missing = [sub for n in sizes for sub in itertools.combinations(items, n) if frozenset(sub) not in have]
+    return [", ".join(f"{k} = {v}" for k, v in sub) for sub in missing]
 
 
 def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int, kinds: Mapping) -> list[str]:
@@ -101,6 +116,7 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
             )
         if f["side"] != side and not (f["side"] == "unattributed" and f.get("note")):
             out.append(f"{where}: the flip at {changes} is filed as {f['side']}, its entries make it {side}")
+        out += [f"{where}: the flip at {changes} is named with {u} never measured" for u in _untried(f, rb, max_subset)]
         smaller = [c for c in flipping if _items(c["changed"]) < _items(f["changed"])]
         if smaller:
             out.append(f"{where}: the flip at {changes} is not the smallest: {smaller[0]['text']} flips it too")

@@ -1,0 +1,69 @@
+"""Sentences about a claim's runs (:func:`tvtrack.wording.claim_summary`): how many independent replicates would
+decide an undecided claim, and where runs that lost lock carry its verdict or a flip, said over the replicates
+whose draws they were counted on."""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Mapping
+
+__all__ = ["slowest_part", "runs_sentence", "lock_sentence", "lost_lead", "lost_basis"]
+
+
+def slowest_part(parts: Mapping, main: Mapping) -> tuple[str | None, Mapping]:
+    """The undecided part that needs the most runs (one no practical number of runs decides first), with its
+    name where it is not ``main`` (the part whose value the sentence shows): the claim is decided only when every
+    part is."""
+    opened = [(n, p) for n, p in parts.items() if isinstance(p, Mapping) and p.get("runs_to_decide")]
+    if not opened:
+        return None, main
+    name, part = max(opened, key=lambda np: np[1]["runs_to_decide"].get("replicates") or math.inf)
+    return (None if part is main else name), part
+
+
+def runs_sentence(part: Mapping, name: str | None = None) -> str:
+    """How many replicates would decide the claim, said of part ``name`` where that is not the part shown."""
+    r = part.get("runs_to_decide") or {}
+    if not r:
+        return ""
+    it = f"its part {name}" if name else "it"
+    if r.get("replicates"):
+        cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
+        beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
+        return f"About {r['replicates']} independent replicates would decide {it}{beyond}."
+    return f"No practical number of runs is projected to decide {it}."
+
+
+def lock_sentence(claim: Mapping, part: Mapping) -> str:
+    """Runs that lost lock, where the record says they carry the verdict: how many, and the verdict without them
+    (never "decide", which an undecided claim's sentence uses for the runs that would decide it)."""
+    record = claim.get("robustness") or {}
+    lost = next((s.get("decided_by_lost_runs") for s in (part, record, claim) if "decided_by_lost_runs" in s), None)
+    if not lost:
+        return ""
+    in_lock = next((s.get("in_lock_verdict") for s in (part, record, claim) if s.get("in_lock_verdict")), None)
+    share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
+    if {"lost", "runs"} <= set(share):
+        lead = f"{lost_lead(share, '{k} of {n} runs')} lost lock and {'carries' if share['lost'] == 1 else 'carry'}"
+        lead += " this verdict" + (" there" if share.get("replicates") else "")
+    else:
+        lead = "Runs that lost lock carry this verdict"
+    return lead + (f": over {lost_basis(share)}runs in lock alone it is {in_lock}." if in_lock else ".")
+
+
+def lost_lead(lost: Mapping, counts: str) -> str:
+    """``counts`` (a template of ``{k}`` lost of ``{n}`` runs), said as a count over the draws of ``replicates``
+    replicates where the record says so (the pooled verdict then rests on more)."""
+    k, n, reps = lost["lost"], lost["runs"], lost.get("replicates")
+    if not reps:
+        return counts.format(k=k, n=n)[:1].upper() + counts.format(k=k, n=n)[1:]
+    where = "one replicate" if reps == 1 else f"{reps} replicates"
+    text = counts.replace(" of {n} runs", " of its {n} runs" if reps == 1 else " of their {n} runs")
+    return f"In {where}, " + text.format(k=k, n=n)
+
+
+def lost_basis(lost: Mapping) -> str:
+    """Whose runs in lock: that replicate's where the count is over a stated number of replicates, else "the"."""
+    reps = lost.get("replicates")
+    return "the " if not reps else "that replicate's " if reps == 1 else "those replicates' "
