@@ -148,6 +148,7 @@ def test_validation_refuses_a_rotation_at_or_above_the_frame_rate_nyquist():
         replicates=3,
         max_replicates=5,
         sizing_budget=150,
+        max_subset=2,
         joint=3,
         screen_joint=False,
         n_workers=2,
