@@ -369,6 +369,22 @@ def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_
     assert claim_summary(claim).split("it is reproduced: ")[1].startswith("error in the band = 1")
 
 
+def test_a_caveat_the_record_carries_is_said_in_the_claims_sentence():
+    """A default calibrated to the claim's own value is a consistency check: the record's caveat is a sentence the
+    summary must carry, right after the value; a claim without one reads as before."""
+    import copy
+
+    from record_fixtures import DEPENDS
+
+    claim = copy.deepcopy(DEPENDS) | {"caveat": "The window was chosen to give the delay, so it is a consistency check"}
+    text = claim_summary(claim)
+    plain = claim_summary(DEPENDS)
+    assert text.startswith(
+        plain.split(". ")[0] + ". The window was chosen to give the delay, so it is a consistency check."
+    )
+    assert "consistency" not in plain
+
+
 def test_a_change_every_flip_shares_is_named_with_its_kind():
     """Flips that are all combinations sharing one change (a world): the sentence names the shared change, which a
     list of combinations hides; flips sharing nothing add no such sentence."""

@@ -166,6 +166,9 @@ class Claim:
         The rule's sentence saying why, with the numbers.
     note : str
         What the numbers alone do not say; for a claim that did not reproduce, the likely reason.
+    caveat : str
+        One sentence the claim's summary must carry, where the verdict shows less than it seems (a default world
+        calibrated to the claim's own value: a consistency check); ``""`` where none applies.
     robustness : dict or None
         The robustness record (:meth:`tvtrack.verdicts.Robustness.record`); None only when not checkable.
     """
@@ -180,6 +183,7 @@ class Claim:
     decision: str = ""
     note: str = ""
     robustness: dict | None = None
+    caveat: str = ""
 
     def __post_init__(self):
         if not _CLAIM_ID.match(self.id):
@@ -261,6 +265,7 @@ class Results:
         robustness: Robustness | None = None,
         exploration: Any = None,
         lost_runs: Any = None,
+        caveat: str = "",
     ) -> Claim:
         """Record a claim; ``rule`` decides its verdict from ``measured``.
 
@@ -282,6 +287,8 @@ class Results:
         lost_runs : sequence of dict, optional
             The paper's own count of runs that lost lock, at the default (``changed`` {}) and under named flips
             (:func:`tvtrack.labels.mark_lost_runs`): the sentence says where those runs carry the verdict.
+        caveat : str, optional
+            One sentence the claim's summary must say (:class:`Claim`).
 
         A checkable claim needs ``exploration`` or ``robustness``.
 
@@ -322,6 +329,7 @@ class Results:
             decision=decision,
             note=note,
             robustness=record,
+            caveat=caveat,
         )
         if any(existing.id == c.id for existing in self.claims):
             raise ValueError(f"claim {c.id} recorded twice")

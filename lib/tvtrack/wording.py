@@ -573,6 +573,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         flips = every  # a stronger flip of another part is the one the label rests on
     flips = sorted(flips, key=strength)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
+    required += [_plain(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     common = _common_sentence(flips, claim.get("robustness") or {})
     required += [s for s in (first, common, lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
