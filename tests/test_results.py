@@ -175,7 +175,12 @@ def test_long_vectors_are_summarised_by_their_ends_and_trend():
     assert format_measured([1, 2, 3, 4, 5], ms) == "rises from 1 ms to 5 ms over 5 points"
     assert (
         format_measured([1, 3, 2, 4, 0.5], ms)
-        == "goes from 1 ms to 0.5 ms over 5 points, not steadily (2 of its 4 steps rise and 2 fall; between 0.5 and 4 ms)"
+        == "goes from 1 ms to 0.5 ms over 5 points, not steadily (2 of its 4 steps measurably rise and 2 fall; between "
+        "0.5 and 4 ms)"
+    )
+    noisy = [{"value": v, "ci_low": v - 0.4, "ci_high": v + 0.4} for v in (1.0, 1.2, 1.1, 1.3, 0.2)]
+    assert format_measured(noisy, ms).endswith(  # rises within the noise are not counted: only the last step falls
+        "not steadily (none of its 4 steps measurably rise and 1 falls; between 0.2 and 1.3 ms)"
     )
     assert format_measured([1, 2], ms) == "1, 2 ms"  # short vectors are shown whole
 

@@ -117,10 +117,25 @@ def vector_text(values: list, unit: str, always: bool = False) -> str:
         ends = (
             f"goes from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
         )
-        up, down = sum(s > 0 for s in steps), sum(s < 0 for s in steps)
-        moves = f"{up} of its {len(steps)} steps rise{'s' if up == 1 else ''} and {down} fall{'s' if down == 1 else ''}"
+        up, down = _measured_steps([p for p in points if p is not None])
+        moves = (
+            f"{up or 'none'} of its {len(steps)} steps measurably rise{'s' if up == 1 else ''} and "
+            f"{down or 'none'} fall{'s' if down == 1 else ''}"
+        )
         return f"{ends}, not steadily ({moves}; between {number(min(centres))} and {with_unit(number(max(centres)), unit)})"
     return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
+
+
+def _measured_steps(points: list) -> tuple[int, int]:
+    """Steps that measurably rise and fall: the next point's interval wholly above (below) this one's (a point
+    without an interval is its own)."""
+    up = down = 0
+    for (a, alo, ahi), (b, blo, bhi) in zip(points, points[1:]):
+        alo, ahi = a if alo is None else alo, a if ahi is None else ahi
+        blo, bhi = b if blo is None else blo, b if bhi is None else bhi
+        up += blo > ahi
+        down += bhi < alo
+    return up, down
 
 
 def unit_text(rule: Mapping | None) -> str:

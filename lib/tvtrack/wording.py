@@ -250,31 +250,36 @@ def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
 
 def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     """Sort key of the flip a claim's sentence names, strongest first: a reading or an unreported setting before a
-    mix no subset isolates, before a world (so the named flip is one the label rests on); then one that keeps the
-    paper's stated operating point before one that leaves it (:func:`leaves_operating_point`); then one that
-    changes the whole claim's verdict before one that moves only a part; then :func:`flip_strength`."""
+    mix no subset isolates, before a world (so the named flip is one the label rests on); then one that changes
+    the whole claim's verdict before one that moves only a part; then one that keeps the paper's stated operating
+    point before one that leaves it (:func:`leaves_operating_point`); then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
-    return (group, leaves_operating_point(claim, flip), not moves_verdict(claim, flip), *flip_strength(flip))
+    return (group, not moves_verdict(claim, flip), leaves_operating_point(claim, flip), *flip_strength(flip))
 
 
 _SIDE_SHORT = {
-    "reading": "a reading",
-    "setting": "an unprinted setting",
-    "world": "a world",
-    "unattributed": "a mix with a world",
+    "reading": ("a reading", "readings together"),
+    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
+    "world": ("a world", "worlds together"),
+    "unattributed": ("a mix with a world", "a mix with a world"),
 }
 
 
 def label_basis(claim: Mapping) -> str:
-    """What a claim's label rests on, in two or three words for a list: the kind of the flip its sentence names
-    (:func:`summary_strength`), and "in a part only" where no named flip changes the whole claim's verdict
-    (``""`` for a claim no change flips)."""
+    """What flips a claim, in a few words for a list: the kind of the flip its sentence names
+    (:func:`summary_strength`), with how many changes it takes; "in a part only" where no flip the label rests on
+    changes the whole claim's verdict; "a world too" where a world alone also changes a ``depends`` claim's whole
+    verdict (``""`` for a claim no change flips)."""
     flips = claim_flips(claim)
     if not flips:
         return ""
     first = min(flips, key=lambda f: summary_strength(claim, f))
-    whole = any(moves_verdict(claim, f) for f in flips)
-    return _SIDE_SHORT.get(first.get("side", "reading"), "a change") + ("" if whole else ", in a part only")
+    side, n = first.get("side", "reading"), len(first.get("changed") or {})
+    one, many = _SIDE_SHORT.get(side, ("a change", "changes together"))
+    text = one if n <= 1 or side == "unattributed" else f"{_COUNT_WORDS.get(n, n)} {many}"
+    text += "" if moves_verdict(claim, first) else ", in a part only"
+    world = side != "world" and any(f.get("side") == "world" and moves_verdict(claim, f) for f in flips)
+    return text + ("; a world too" if world else "")
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:

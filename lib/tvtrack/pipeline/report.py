@@ -246,7 +246,9 @@ def holding_lines(runs: dict) -> list[str]:
             if ids:
                 bits.append(f"{name.split('_')[0]}: {', '.join(ids)}")
         if bits:
-            brackets = "" if verdict == "not checkable" else " (label in brackets, and the kind of change it rests on)"
+            brackets = (
+                "" if verdict == "not checkable" else " (label in brackets, and the kind of change that flips it)"
+            )
             out.append(f"- **{lead}**{brackets}: " + "; ".join(bits) + ".")
     return out
 
