@@ -129,7 +129,7 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
         ),
         "C000-5": _contrast_threshold(grid_p),
         "C000-6": band(
-            "error variance at P = 0.9 / the potentially achievable variance (filter and bound as the reading defines them)",
+            "error variance of the filter at P = 0.9 / the potentially achievable variance",
             20.0,
             unit="(ratio)",
         ),

@@ -399,13 +399,13 @@ _PLAIN = {
     "C000-6 filter": (
         "the filter of the truncated 'more than 20 times' sentence",
         {
-            "variant 2": "variant 2 in the 20-times sentence",
-            "variant 1": "variant 1 in the 20-times sentence",
-            "ignoring the signal noise": "a filter ignoring the signal noise in the 20-times sentence",
+            "variant 2": "variant 2 in the paper's 'more than 20 times' sentence",
+            "variant 1": "variant 1 in the paper's 'more than 20 times' sentence",
+            "ignoring the signal noise": "a filter ignoring the signal noise in the paper's 'more than 20 times' sentence",
         },
     ),
     "potentially achievable": (
-        "the 'potentially achievable' accuracy of the 20-times sentence",
+        "the 'potentially achievable' accuracy of the paper's 'more than 20 times' sentence",
         {
             "sigma_x^2*": "sigma_x^2*, the variance without signal noise, as 'potentially achievable'",
             "PCRLB": "the posterior Cramer-Rao bound as 'potentially achievable'",
@@ -413,10 +413,10 @@ _PLAIN = {
         },
     ),
     "C000-6 joint reading": (
-        "the joint reading of the 20-times sentence",
+        "the joint reading of the paper's 'more than 20 times' sentence",
         {
-            "the entries above": "the 20-times sentence read through its filter and reference entries",
-            JOINT_READING_C6: "a filter ignoring the signal noise in the 20-times sentence, with the background "
+            "the entries above": "the 'more than 20 times' sentence read through its filter and reference entries",
+            JOINT_READING_C6: "a filter ignoring the signal noise in the paper's 'more than 20 times' sentence, with the background "
             "current held fixed as P varies (psi_A grows with P)",
         },
     ),

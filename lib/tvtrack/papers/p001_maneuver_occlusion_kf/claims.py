@@ -171,7 +171,7 @@ def claim_rules() -> dict[str, Rule]:
                 **{
                     r: InBand(
                         f"largest deviation from the extrapolated angle at {r} over the paths within ±20°, in "
-                        "multiples of the prediction tolerance (one raster element unless a reading sets it otherwise)",
+                        "multiples of the prediction tolerance (one raster element, as read from the paper)",
                         None,
                         1.0,
                         "× tolerance",
