@@ -1005,3 +1005,35 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
         "the paper, changed by itself, also flips the verdict, and 1 (C001-4) only together with a world beyond it)"
         in results_summary([DEPENDS, mixed])
     )
+
+
+def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_setting_alone():
+    """A joint flip mixing a reading of the text and an unprinted setting is filed under neither: the paper's
+    paragraph and the record's list of flips name each change's own kind; one kind keeps the one bracket."""
+    from tvtrack.paragraphs import _under, flip_with_kind
+
+    record = {
+        "register": [
+            {"name": "pixel", "title": "pixel size", "kind": "unreported setting", "phrases": {"5": "pixels 5 wide"}},
+            {"name": "dist", "title": "distances", "kind": "reading", "phrases": {"px": "distances in pixels"}},
+            {"name": "stop", "title": "EM stop", "kind": "reading", "phrases": {"loose": "a loose stop"}},
+        ]
+    }
+    mixed = {"text": "pixels 5 wide and distances in pixels", "side": "setting", "changed": {"pixel": 5, "dist": "px"}}
+    kinds = "pixels 5 wide (a setting the paper never printed) and distances in pixels (a reading of the paper's text)"
+    assert flip_with_kind(mixed, record) == f"{kinds}, together"
+    assert _under(mixed, record) == f"two changes together: {kinds}"
+    both = {
+        "text": "distances in pixels and a loose stop",
+        "side": "reading",
+        "changed": {"dist": "px", "stop": "loose"},
+    }
+    assert flip_with_kind(both, record) == "distances in pixels and a loose stop (a reading of the paper's text)"
+    assert (
+        _under(both, record) == "two other readings of the paper's text together: distances in pixels and a loose stop"
+    )
+    one = {"text": "pixels 5 wide", "side": "setting", "changed": {"pixel": 5}}
+    assert _under(one, record) == "a setting of the paper's own experiment that the paper never printed: pixels 5 wide"
+    assert flip_with_kind(one, record) == (
+        "pixels 5 wide (a setting of the paper's own experiment that the paper never printed)"
+    )

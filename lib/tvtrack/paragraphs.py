@@ -16,6 +16,7 @@ from .wording import (
     PROVISIONAL,
     SIDE_ORDER,
     claim_fields,
+    kinds_of_changes,
     register_phrases,
     at_profile,
     claim_flips,
@@ -26,7 +27,7 @@ from .wording import (
 )
 from .value_words import value_clause
 
-__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations"]
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "flip_with_kind"]
 
 
 def _plural(n: int, word: str) -> str:
@@ -292,7 +293,7 @@ def _why_not(c: Mapping) -> str:
         f = flips[0]
         whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's
         how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
-        text += f"; {how} under {side_words().get(f['side'], 'another change')}: {f['text']}"
+        text += f"; {how} under {_under(f, c.get('robustness') or {})}"
         lost = f.get("lost_runs") or {}
         if lost.get("carried"):  # a count over a stated number of replicates' draws says so (the claim pools more)
             reps = lost.get("replicates")
@@ -300,6 +301,52 @@ def _why_not(c: Mapping) -> str:
             of = "of" if not reps else "of its" if reps == 1 else "of their"
             text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
     return text
+
+
+_COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
+
+
+def _mixed(flip: Mapping, record: Mapping) -> str:
+    """A flip of several changes of different kinds, each change with its own kind (``"pixels 5 sigma wide (a
+    setting the paper never printed) and distances of 3 and 1 pixels (a reading of the paper's text)"``); ``""``
+    for one change, changes of one kind, or an entry the record's register does not know."""
+    changed = flip.get("changed") or {}
+    known = register_phrases(record)
+    if len(changed) < 2 or len({known.get(str(k), ("", "reading"))[1] for k in changed}) < 2:
+        return ""
+    return kinds_of_changes(changed, record)
+
+
+def _under(flip: Mapping, record: Mapping) -> str:
+    """What a named flip changes, introduced by its kind: one kind for one change or several of one kind, each
+    change's own kind for a mix (a reading and a setting together are not filed under the setting)."""
+    n = len(flip.get("changed") or {})
+    mixed = _mixed(flip, record)
+    if mixed:
+        return f"{_COUNT.get(n, n)} changes together: {mixed}"
+    if n > 1 and flip.get("side") == "reading":
+        return f"{_COUNT.get(n, n)} other readings of the paper's text together: {flip['text']}"
+    return f"{side_words().get(flip['side'], 'another change')}: {flip['text']}"
+
+
+def flip_with_kind(flip: Mapping, record: Mapping) -> str:
+    """A named flip and its kind in plain words, as a record's list of flips shows it: the change, then its kind
+    in brackets; a mix of kinds names each change's own kind, so a reading and a setting together are not filed
+    under the setting alone.
+
+    Parameters
+    ----------
+    flip : Mapping
+        A named flip (``text``, ``side``, ``changed``), as :func:`tvtrack.wording.claim_flips` lists them.
+    record : Mapping
+        The claim's robustness record (its ``register`` gives each entry's phrase and kind).
+    """
+    sides = side_words()
+    mixed = _mixed(flip, record)
+    if mixed:
+        alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
+        return f"{mixed}, together{alone}"
+    return f"{flip['text']} ({sides.get(flip['side'], sides['world'])})"
 
 
 def limitations(data: Mapping, profile: str = "paper") -> list[str]:

@@ -434,7 +434,7 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
         return f"It does not extend to {text}: there {to}.{carried}"
     changed = flip.get("changed") or {}
     if len(changed) > 1 and side != "reading":  # a mix: each change with its kind, so the reader sees which is which
-        text = _kinds_of_changes(changed, (claim or {}).get("robustness") or {}) or text
+        text = kinds_of_changes(changed, (claim or {}).get("robustness") or {}) or text
     return f"{_flip_lead(side, len(changed))} {to}: {text}.{carried}"
 
 
@@ -458,11 +458,11 @@ def _common_sentence(flips: list, record: Mapping) -> str:
         return ""
     first = flips[0].get("changed") or {}
     shared = {k: v for k, v in first.items() if (k, repr(v)) in common}
-    text = _kinds_of_changes(shared, record)
+    text = kinds_of_changes(shared, record)
     return f"Every change that flips it includes {text}." if text else ""
 
 
-def _kinds_of_changes(changed: Mapping, record: Mapping) -> str:
+def kinds_of_changes(changed: Mapping, record: Mapping) -> str:
     """The changes of a combination in plain words, each followed by its kind (``"fast wander (a setting the
     paper never printed) and lost frames skipped (a world beyond the paper)"``); ``""`` where the record's
     register does not know an entry."""

@@ -30,12 +30,12 @@ from ..results import (
     at_profile,
     claim_flips,
     claim_summary,
+    flip_with_kind,
     format_measured,
     label_basis,
     md_escape,
     paper_paragraph,
     results_summary,
-    side_words,
 )
 from .audit import audit_markdown, audit_runs
 from .figures import (
@@ -321,11 +321,8 @@ def _details(c: dict) -> str:
         bits.append("parts: " + "; ".join(f"{md_escape(p)} {v}, {lab}" for p, v, lab in parts))
     flips = claim_flips(c)
     if flips:
-        sides = side_words()
-        bits.append(
-            "flipped by: "
-            + "; ".join(f"{md_escape(f['text'])} ({sides.get(f['side'], sides['world'])})" for f in flips)
-        )
+        record = c.get("robustness") or {}
+        bits.append("flipped by: " + "; ".join(md_escape(flip_with_kind(f, record)) for f in flips))
     if c.get("note"):
         bits.append(f"note: {md_escape(c['note'])}")
     return f"- **{c['id']}** " + " · ".join(bits)
