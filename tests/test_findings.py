@@ -1037,3 +1037,15 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
     assert flip_with_kind(one, record) == (
         "pixels 5 wide (a setting of the paper's own experiment that the paper never printed)"
     )
+    from tvtrack.wording import label_basis
+
+    def claim_with(flip: dict) -> dict:
+        part = {"verdict": "reproduced", "label": "depends", "flips": [{**flip, "verdict": "not reproduced"}]}
+        rob = {**record, "label": "depends", "parts": {"claim": part}, "conditions": []}
+        return {"id": "C9-1", "verdict": "reproduced", "robustness": rob}
+
+    settings = {"text": "pixels 5 wide and 20 frames", "side": "setting", "changed": {"pixel": 5, "frames": 20}}
+    record["register"].append({"name": "frames", "title": "frames", "kind": "unreported setting", "phrases": {}})
+    assert label_basis(claim_with(mixed)) == "two changes together, an unprinted setting among them"
+    assert label_basis(claim_with(settings)) == "two unprinted settings together"
+    assert label_basis(claim_with(both)) == "two readings together"

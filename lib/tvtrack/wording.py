@@ -276,6 +276,10 @@ def label_basis(claim: Mapping) -> str:
     first = min(flips, key=lambda f: summary_strength(claim, f))
     side, n = first.get("side", "reading"), len(first.get("changed") or {})
     one, many = _SIDE_SHORT.get(side, ("a change", "changes together"))
+    kinds = {
+        register_phrases(claim.get("robustness") or {}).get(str(k), ("", ""))[1] for k in first.get("changed") or {}
+    }
+    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
     text = one if n <= 1 or side == "unattributed" else f"{_COUNT_WORDS.get(n, n)} {many}"
     text += "" if moves_verdict(claim, first) else ", in a part only"
     world = side != "world" and any(f.get("side") == "world" and moves_verdict(claim, f) for f in flips)
