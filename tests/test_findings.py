@@ -1049,3 +1049,7 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
     assert label_basis(claim_with(mixed)) == "two changes together, an unprinted setting among them"
     assert label_basis(claim_with(settings)) == "two unprinted settings together"
     assert label_basis(claim_with(both)) == "two readings together"
+    from tvtrack.pipeline.site import _flips  # the site's claim page and ledger show the same kinds
+
+    shown = _flips(claim_with(mixed)) + _flips(claim_with(both))
+    assert [f["kinds"] for f in shown] == [kinds, ""]

@@ -27,7 +27,7 @@ from .wording import (
 )
 from .value_words import value_clause
 
-__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "flip_with_kind"]
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "flip_with_kind", "mixed_kinds"]
 
 
 def _plural(n: int, word: str) -> str:
@@ -306,7 +306,7 @@ def _why_not(c: Mapping) -> str:
 _COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
 
 
-def _mixed(flip: Mapping, record: Mapping) -> str:
+def mixed_kinds(flip: Mapping, record: Mapping) -> str:
     """A flip of several changes of different kinds, each change with its own kind (``"pixels 5 sigma wide (a
     setting the paper never printed) and distances of 3 and 1 pixels (a reading of the paper's text)"``); ``""``
     for one change, changes of one kind, or an entry the record's register does not know."""
@@ -321,7 +321,7 @@ def _under(flip: Mapping, record: Mapping) -> str:
     """What a named flip changes, introduced by its kind: one kind for one change or several of one kind, each
     change's own kind for a mix (a reading and a setting together are not filed under the setting)."""
     n = len(flip.get("changed") or {})
-    mixed = _mixed(flip, record)
+    mixed = mixed_kinds(flip, record)
     if mixed:
         return f"{_COUNT.get(n, n)} changes together: {mixed}"
     if n > 1 and flip.get("side") == "reading":
@@ -342,7 +342,7 @@ def flip_with_kind(flip: Mapping, record: Mapping) -> str:
         The claim's robustness record (its ``register`` gives each entry's phrase and kind).
     """
     sides = side_words()
-    mixed = _mixed(flip, record)
+    mixed = mixed_kinds(flip, record)
     if mixed:
         alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
         return f"{mixed}, together{alone}"

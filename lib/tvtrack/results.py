@@ -39,7 +39,7 @@ from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
-from .paragraphs import flip_with_kind, paper_paragraph, results_summary
+from .paragraphs import flip_with_kind, mixed_kinds, paper_paragraph, results_summary
 from .numbers import format_measured
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
@@ -70,6 +70,7 @@ __all__ = [
     "claim_summary",
     "claim_flips",
     "flip_with_kind",
+    "mixed_kinds",
     "label_basis",
     "results_summary",
     "paper_paragraph",

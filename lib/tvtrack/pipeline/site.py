@@ -65,6 +65,7 @@ from ..results import (
     at_profile,
     format_measured,
     claim_flips,
+    mixed_kinds,
     claim_summary,
     paper_paragraph,
     results_summary,
@@ -106,6 +107,13 @@ class PaperRun:
     @property
     def ok(self) -> bool:
         return self.results is not None
+
+
+def _flips(claim: dict) -> list[dict]:
+    """A claim's named flips for its page and the ledger, a mix of kinds with each change's own kind
+    (``kinds``), so a reading and a setting together are not shown under the setting alone."""
+    record = claim.get("robustness") or {}
+    return [{**f, "kinds": mixed_kinds(f, record)} for f in claim_flips(claim)]
 
 
 def find_paper_runs(reproduce_dir: Path = REPRODUCE_DIR) -> list[PaperRun]:
@@ -323,7 +331,7 @@ def _claim_pages(env, runs: list[PaperRun], site: Path, common: dict) -> None:
                     summary=claim_summary(c, chars=PAGE_CHARS),
                     measured=format_measured(c.get("measured"), c.get("rule")),
                     coverage=plain_coverage(c),
-                    flips=claim_flips(c),
+                    flips=_flips(c),
                     parts=_part_rows(c),
                     curve=curve,
                     caption=caption,
@@ -359,7 +367,7 @@ def _ledger_rows(runs: list[PaperRun]) -> list[dict]:
                     "label": robustness_label(c),
                     "where": robustness_where(c),
                     "summary": claim_summary(c),
-                    "flips": claim_flips(c),
+                    "flips": _flips(c),
                     "page": claim_page_href(run.name, c["id"]),
                     "note": c.get("note", ""),
                     "coverage": plain_coverage(c),
