@@ -352,7 +352,7 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
         "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}, "conditions": rob["conditions"][:1]},
     }
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
-    from tvtrack.wording import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
+    from tvtrack.paragraphs import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
 
     assert label_basis(claim) == "an unprinted setting" and label_basis(only_part) == "a reading, in a part only"
 
@@ -1037,7 +1037,7 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
     assert flip_with_kind(one, record) == (
         "pixels 5 wide (a setting of the paper's own experiment that the paper never printed)"
     )
-    from tvtrack.wording import label_basis
+    from tvtrack.paragraphs import label_basis
 
     def claim_with(flip: dict) -> dict:
         part = {"verdict": "reproduced", "label": "depends", "flips": [{**flip, "verdict": "not reproduced"}]}
@@ -1053,3 +1053,27 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
 
     shown = _flips(claim_with(mixed)) + _flips(claim_with(both))
     assert [f["kinds"] for f in shown] == [kinds, ""]
+
+
+def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_as_a_mix_with_a_world():
+    """A joint flip larger than the subset search (side ``unattributed``, with the search's note) holds a world only
+    where one of its entries is one: the first screen's bracket and its count of claims that depend only together
+    with a world read the entries, not the side."""
+    from tvtrack.paragraphs import _only_with_a_world_ids, label_basis
+
+    kinds = {"a": "reading", "b": "reading", "c": "unreported setting", "w": "regime"}
+    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
+
+    def claim_with(changed: dict) -> dict:
+        flip = {"text": "t", "side": "unattributed", "changed": changed, "verdict": "not reproduced"}
+        flip["note"] = "no subset of up to 1 entry flips it alone: unattributed"
+        part = {"verdict": "reproduced", "label": "depends", "flips": [flip]}
+        rob = {"register": register, "label": "depends", "parts": {"claim": part}, "conditions": []}
+        return {"id": "C9-1", "verdict": "reproduced", "robustness": rob}
+
+    no_world = claim_with({"a": 1, "b": 1, "c": 1})
+    with_world = claim_with({"a": 1, "w": 1, "c": 1})
+    assert label_basis(no_world) == "three changes together, an unprinted setting among them"
+    assert label_basis(claim_with({"a": 1, "b": 1})) == "two readings together"
+    assert label_basis(with_world) == "a mix with a world"
+    assert _only_with_a_world_ids([no_world, with_world]) == ["C9-1"] and _only_with_a_world_ids([no_world]) == []

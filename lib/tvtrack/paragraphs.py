@@ -24,10 +24,21 @@ from .wording import (
     not_checkable_reason,
     shown_label,
     side_words,
+    summary_strength,
 )
 from .value_words import value_clause
 
-__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "flip_with_kind", "mixed_kinds"]
+_COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
+
+__all__ = [
+    "results_summary",
+    "turns_on",
+    "paper_paragraph",
+    "limitations",
+    "flip_with_kind",
+    "mixed_kinds",
+    "label_basis",
+]
 
 
 def _plural(n: int, word: str) -> str:
@@ -182,9 +193,9 @@ def _only_with_a_world_ids(claims: list[Mapping]) -> list[str]:
         c = claim_fields(c)
         if shown_label(c) != "depends" or c.get("verdict") == "not checkable":
             continue
-        sides = {f["side"] for f in claim_flips(c)}
-        if sides and not sides & {"reading", "setting"}:
-            out.append(str(c.get("id", "")))
+        flips, record = claim_flips(c), c.get("robustness") or {}
+        if flips and all("world" in flip_kinds(f, record) for f in flips):  # a combination too large to search
+            out.append(str(c.get("id", "")))  # need not hold a world: its entries say
     return out
 
 
@@ -197,6 +208,41 @@ def depends_also_on_a_world(claims: list[Mapping]) -> int:
         if shown_label(c) == "depends" and c.get("verdict") != "not checkable":
             n += any(f["side"] == "world" for f in _whole_flips(c))
     return n
+
+
+def flip_kinds(flip: Mapping, record: Mapping) -> set[str]:
+    """The kinds of the entries a flip changes (``reading``, ``setting``, ``world``; an entry the record's register
+    does not know reads as a reading, as the core reads it)."""
+    known = register_phrases(record)
+    return {known.get(str(k), ("", "reading"))[1] for k in flip.get("changed") or {}}
+
+
+_SIDE_SHORT = {
+    "reading": ("a reading", "readings together"),
+    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
+    "world": ("a world", "worlds together"),
+}
+
+
+def label_basis(claim: Mapping) -> str:
+    """What flips a claim, in a few words for a list: the kind of the flip its sentence names
+    (:func:`tvtrack.wording.summary_strength`), with how many changes it takes; "in a part only" where no flip the
+    label rests on changes the whole claim's verdict; "a world too" where a world alone also changes a
+    ``depends`` claim's whole verdict (``""`` for a claim no change flips). A combination no searched subset
+    isolates is named by its entries' kinds: "a mix with a world" only where one of them is a world."""
+    flips = claim_flips(claim)
+    if not flips:
+        return ""
+    first = min(flips, key=lambda f: summary_strength(claim, f))
+    n, kinds, side = len(first.get("changed") or {}), flip_kinds(first, claim.get("robustness") or {}), first["side"]
+    if side == "unattributed":
+        side = "mix" if "world" in kinds else "setting" if "setting" in kinds else "reading"
+    one, many = _SIDE_SHORT.get(side, ("a mix with a world", "a mix with a world"))
+    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
+    text = one if n <= 1 or side == "mix" else f"{_COUNT.get(n, n)} {many}"
+    text += "" if moves_verdict(claim, first) else ", in a part only"
+    world = first["side"] != "world" and any(f.get("side") == "world" and moves_verdict(claim, f) for f in flips)
+    return text + ("; a world too" if world else "")
 
 
 def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0) -> str:
@@ -301,9 +347,6 @@ def _why_not(c: Mapping) -> str:
             of = "of" if not reps else "of its" if reps == 1 else "of their"
             text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
     return text
-
-
-_COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
 
 
 def mixed_kinds(flip: Mapping, record: Mapping) -> str:

@@ -39,7 +39,7 @@ from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
-from .paragraphs import flip_with_kind, mixed_kinds, paper_paragraph, results_summary
+from .paragraphs import flip_with_kind, label_basis, mixed_kinds, paper_paragraph, results_summary
 from .numbers import format_measured
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
@@ -49,7 +49,6 @@ from .wording import (
     at_profile,
     claim_flips,
     claim_summary,
-    label_basis,
     main_part,
     share_counts,
     shown_label,

@@ -36,7 +36,6 @@ __all__ = [
     "entry_side",
     "claim_flips",
     "claim_verdict_at",
-    "label_basis",
     "moves_verdict",
     "summary_strength",
     "parts_tally",
@@ -255,35 +254,6 @@ def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     point before one that leaves it (:func:`leaves_operating_point`); then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
     return (group, not moves_verdict(claim, flip), leaves_operating_point(claim, flip), *flip_strength(flip))
-
-
-_SIDE_SHORT = {
-    "reading": ("a reading", "readings together"),
-    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
-    "world": ("a world", "worlds together"),
-    "unattributed": ("a mix with a world", "a mix with a world"),
-}
-
-
-def label_basis(claim: Mapping) -> str:
-    """What flips a claim, in a few words for a list: the kind of the flip its sentence names
-    (:func:`summary_strength`), with how many changes it takes; "in a part only" where no flip the label rests on
-    changes the whole claim's verdict; "a world too" where a world alone also changes a ``depends`` claim's whole
-    verdict (``""`` for a claim no change flips)."""
-    flips = claim_flips(claim)
-    if not flips:
-        return ""
-    first = min(flips, key=lambda f: summary_strength(claim, f))
-    side, n = first.get("side", "reading"), len(first.get("changed") or {})
-    one, many = _SIDE_SHORT.get(side, ("a change", "changes together"))
-    kinds = {
-        register_phrases(claim.get("robustness") or {}).get(str(k), ("", ""))[1] for k in first.get("changed") or {}
-    }
-    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
-    text = one if n <= 1 or side == "unattributed" else f"{_COUNT_WORDS.get(n, n)} {many}"
-    text += "" if moves_verdict(claim, first) else ", in a part only"
-    world = side != "world" and any(f.get("side") == "world" and moves_verdict(claim, f) for f in flips)
-    return text + ("; a world too" if world else "")
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
