@@ -56,7 +56,7 @@ _WRITER = "".join(
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
     r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
-    r"runs|this run allows|agree|flips?\b|stay undecided|fails?\b|undecided\b"
+    r"runs|this run allows|agree|flips?\b|stay undecided|fails?\b|undecided\b|of (?:its|their) \d|steps?\b|fall\b|rises?\b"
 )
 
 
@@ -175,6 +175,7 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
             for m in re.finditer(rf"(?<![\w-]){re.escape(t)}(?![\w-])", text)]  # fmt: skip
     skip += [m.span(1) for m in re.finditer(r"\d\s*(\[[^\]]*\])", text)]  # an interval after its value
     skip += [m.span() for m in re.finditer(r"\((?:at most|at least) [^)]*\)", text)]
+    skip += [m.span(1) for m in re.finditer(r"between (-?[\d.e+-]+) and ", text)]  # a range: its end has the unit
     after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{re.escape(unit)}|{_COUNTS})"
     tokens = r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])"
     bare = []
