@@ -20,6 +20,7 @@ from .wording import (
     register_phrases,
     at_profile,
     claim_flips,
+    differs_whatever_is_open,
     moves_verdict,
     not_checkable_reason,
     shown_label,
@@ -110,13 +111,14 @@ def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
 
 def _whole_changes(claim: Mapping) -> list[dict]:
     """The changes of the claim's sized conditions whose whole verdict is decided (reproduced, partly, not
-    reproduced) and not the claim's."""
+    reproduced) and not the claim's, whatever its parts undecided at the default turn out to be
+    (:func:`tvtrack.wording.differs_whatever_is_open`)."""
     rows = (claim.get("robustness") or {}).get("conditions") or ()
     decided = ("reproduced", "partly", "not reproduced")
     return [
         dict(c.get("changed") or {})
         for c in rows
-        if "undersized" not in c and c.get("verdict") in decided and c.get("verdict") != claim.get("verdict")
+        if "undersized" not in c and c.get("verdict") in decided and differs_whatever_is_open(claim, c)
     ]
 
 

@@ -16,6 +16,7 @@ Conventions
 
 from __future__ import annotations
 
+import itertools
 import re
 from typing import Any, Mapping
 
@@ -37,6 +38,7 @@ __all__ = [
     "claim_flips",
     "claim_verdict_at",
     "moves_verdict",
+    "differs_whatever_is_open",
     "summary_strength",
     "parts_tally",
     "main_part",
@@ -225,16 +227,39 @@ def flip_strength(flip: Mapping) -> tuple:
 
 
 def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
-    """Whether a flip changes the whole claim's verdict (not only one part's); true where the record has no
-    condition at the flip's changes to tell (:func:`claim_verdict_at`), for a claim of one part, and where the whole
-    verdict reads ``undecided`` both there and at the default: a part decided one way at the default and the other
-    way there gives, for every outcome of the undecided parts, another whole verdict."""
+    """Whether a flip changes the whole claim's verdict (not only one part's): true for a claim of one part or no
+    condition at the flip's changes to tell; else :func:`differs_whatever_is_open` (an undecided claim that reads
+    ``partly`` under the flip may read ``partly`` at the default too)."""
     claim = claim_fields(claim)
     parts = ((claim.get("robustness") or {}).get("parts") or {}), ((claim.get("rule") or {}).get("parts") or {})
     if max(map(len, parts)) <= 1:
         return True
-    whole = claim_verdict_at(claim, flip.get("changed") or {})
-    return whole is None or whole != claim.get("verdict") or whole == "undecided"
+    row = _condition_at(claim, flip.get("changed") or {})
+    return row is None or differs_whatever_is_open(claim, row)
+
+
+def differs_whatever_is_open(claim: Mapping, row: Mapping) -> bool:
+    """Whether the whole claim's verdict under a condition (``row``, a record's ``conditions`` item) differs from
+    the default's for every outcome of the parts undecided on either side: a part undecided on both sides is
+    taken to come out the same way on both, one undecided on one side only either way. Two decided verdicts
+    compare as they are; a row without its parts' verdicts compares its whole verdict (``undecided`` there
+    counting as moved, as a part decided the other way leaves it)."""
+    here, there = claim_fields(claim).get("verdict"), row.get("verdict")
+    if "undecided" not in (here, there):
+        return there != here
+    default = {n: p.get("verdict") for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items()}
+    at = row.get("parts")
+    if not isinstance(at, Mapping) or not default or set(at) != set(default):
+        return there != here or there == "undecided"
+    names = [n for n in default if "not checkable" not in (default[n], at[n])]
+    open_ = [n for n in names if "undecided" in (default[n], at[n])]
+    for outcome in itertools.product(("reproduced", "not reproduced"), repeat=len(open_)):
+        pick = dict(zip(open_, outcome))
+        a = {default[n] if default[n] != "undecided" else pick[n] for n in names}
+        b = {at[n] if at[n] != "undecided" else pick[n] for n in names}
+        if (a if len(a) == 1 else {"partly"}) == (b if len(b) == 1 else {"partly"}):
+            return False
+    return True
 
 
 def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
@@ -356,9 +381,14 @@ def _share_sentence(part: Mapping) -> str:
 
 def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
     """The whole claim's verdict under the condition that changes ``changed`` (None where no condition does)."""
+    return None if (row := _condition_at(claim, changed)) is None else str(row["verdict"])
+
+
+def _condition_at(claim: Mapping, changed: Mapping) -> Mapping | None:
+    """The record's condition that changes ``changed`` and carries a verdict (None where none does)."""
     for c in (claim.get("robustness") or {}).get("conditions") or ():
         if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict"):
-            return str(c["verdict"])
+            return c
     return None
 
 

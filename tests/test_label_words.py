@@ -1,0 +1,66 @@
+"""The report's label words against the record: a count, a kind or a label word says no more about a flip than
+the claim's record holds (its parts' verdicts, the whole claim's verdict under each condition)."""
+
+from tvtrack.labels import label_parts
+from tvtrack.montecarlo import Estimate
+from tvtrack.register import Entry
+from tvtrack.verdicts import AllOf, InBand
+
+BAND = InBand("mean", -0.5, 0.5, "px")
+HOLDS, FAILS = Estimate.exact(0.0), Estimate.exact(3.0)
+OPEN = Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")  # straddles the band's upper edge
+
+
+def _claim(cid: str, measured: dict, conds: list, entries: list) -> dict:
+    rule = AllOf({n: BAND for n in measured})
+    reps = [{"seed": s, "measured": measured} for s in (1, 2, 3)]
+    rob = label_parts(rule, measured, reps, conds, entries)
+    verdict = rule.judge(measured).verdict
+    return {"id": cid, "verdict": verdict, "rule": rule.to_dict(), "measured": measured, "robustness": rob}
+
+
+def test_a_part_flip_an_undecided_claim_may_read_at_the_default_too_is_not_counted_as_moving_it():
+    """An undecided claim (a and c hold, b straddles) under a reading that makes a fail and b hold: the whole claim
+    reads ``partly`` there, which it also reads at the default should b fail. The reading moves a part, not surely
+    the whole verdict: the first screen counts the claim as moving only in a part, not as one a reading flips."""
+    from tvtrack.paragraphs import label_basis, part_only, turns_on
+    from tvtrack.wording import claim_verdict_at, moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    default = {"a": HOLDS, "b": OPEN, "c": HOLDS}
+    there = {"a": FAILS, "b": HOLDS, "c": HOLDS}
+    claim = _claim(
+        "C9-7", default, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": there}], [reading]
+    )
+    assert claim["verdict"] == "undecided" and claim["robustness"]["label"] == "depends"
+    (flip,) = claim["robustness"]["parts"]["a"]["flips"]
+    assert claim_verdict_at(claim, flip["changed"]) == "partly"
+    assert not moves_verdict(claim, flip)
+    assert turns_on([claim]) == {} and part_only([claim]) == 1
+    assert label_basis(claim) == "a reading, in a part only"
+    # a and c fail at the default and hold there, b open on both sides: for either outcome of b the two whole
+    # verdicts differ (partly against reproduced, not reproduced against partly), so the reading moves it
+    both_open = {"a": FAILS, "b": OPEN, "c": FAILS}
+    claim = _claim(
+        "C9-8", both_open, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": default}], [reading]
+    )
+    assert claim["verdict"] == "undecided"
+    (flip,) = [f for p in claim["robustness"]["parts"].values() for f in p["flips"]][:1]
+    assert claim_verdict_at(claim, flip["changed"]) == "undecided" and moves_verdict(claim, flip)
+
+
+def test_a_part_flip_that_moves_an_undecided_claim_whatever_its_open_part_counts():
+    """The same reading making a and c fail: the whole claim reads partly or not reproduced there (b open there
+    too), reproduced or partly at the default, never the same for one outcome of b: it moves the whole verdict."""
+    from tvtrack.paragraphs import part_only, turns_on
+    from tvtrack.wording import moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    default = {"a": HOLDS, "b": OPEN, "c": HOLDS}
+    there = {"a": FAILS, "b": OPEN, "c": FAILS}
+    claim = _claim(
+        "C9-9", default, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": there}], [reading]
+    )
+    flip = claim["robustness"]["parts"]["a"]["flips"][0]
+    assert moves_verdict(claim, flip)
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
