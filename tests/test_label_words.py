@@ -64,3 +64,65 @@ def test_a_part_flip_that_moves_an_undecided_claim_whatever_its_open_part_counts
     flip = claim["robustness"]["parts"]["a"]["flips"][0]
     assert moves_verdict(claim, flip)
     assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
+
+
+def test_an_undecided_claim_labelled_robust_is_said_to_be_so_in_its_decided_parts_only():
+    """C002-7's record: one part holds under every explored configuration (robust), the other straddles the band
+    at the default and fails under some configurations (the whole claim reads partly there). Its label speaks for
+    its decided part: the first screen does not count its undecided verdict among those that survive every reading
+    without saying so, and its table row and first-screen line say the label is of its decided parts."""
+    from tvtrack.paragraphs import results_summary
+    from tvtrack.pipeline.report import first_screen, first_screen_list
+    from tvtrack.results import claims_table
+
+    world = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
+    default = {"fine": HOLDS, "coarse": OPEN}
+    conds = [{"changed": {"noise": "high"}, "kind": "single", "measured": {"fine": HOLDS, "coarse": FAILS}}]
+    claim = _claim("C9-1", default, conds, [world])
+    claim["statement"] = "One object: the ULA beats two-stage processing only for large pixels."
+    claim["robustness"] = {**claim["robustness"], "provisional": False}
+    assert claim["verdict"] == "undecided" and claim["robustness"]["label"] == "robust"
+    assert claim["robustness"]["conditions"][0]["verdict"] == "partly"  # a world moves its undecided part
+    held = {"id": "C9-2", "verdict": "reproduced", "robustness": {"label": "robust"}}
+    text = results_summary([claim, held])
+    assert (
+        "Of the 2 checkable verdicts, 2 survive every reading of the paper (2 robust, 0 only within the paper's "
+        "world; 1 of them (C9-1) undecided, labelled by its decided parts only)" in text
+    ), text
+    assert "| **undecided** | robust in its decided parts only |" in claims_table([claim])
+    rows = first_screen({"009_t": (None, {"claims": [claim, held]})})
+    assert "**009 C9-1** (undecided, robust in its decided parts only)" in first_screen_list(rows)
+    assert "(1 robust, 0 only within the paper's world)" in results_summary([held])
+
+
+def test_the_sites_ledger_and_first_screen_say_an_undecided_claims_label_is_of_its_decided_parts():
+    """The site's chips: the ledger row and the index's first screen of an undecided claim labelled robust say, beside
+    the chip, that the label is of its decided parts only; a reproduced claim's chip stands alone."""
+    from types import SimpleNamespace
+
+    from tvtrack.pipeline.site import _environment, _ledger_rows
+
+    claim = {"id": "C9-1", "statement": "s", "paper_value": "v", "verdict": "undecided", "measured": None}
+    claim["robustness"] = {"label": "robust", "provisional": False}
+    held = {**claim, "id": "C9-2", "verdict": "reproduced"}
+    run = SimpleNamespace(name="009_t", results={"claims": [claim, held]}, cells={})
+    rows = _ledger_rows([run])
+    common = {"root": "", "built": "now", "profile": "paper", "paper_scale": True, "source": "runs"}
+    env = _environment()
+    page = env.get_template("ledger.html").render(rows=rows, papers=["009_t"], verdicts=[], labels=(), **common)
+    assert page.count("in its decided parts only") == 1
+    assert page.index(">C9-1<") < page.index("in its decided parts only") < page.index(">C9-2<")
+    first = [{**r, "summary": ""} for r in rows]
+    index = env.get_template("index.html").render(
+        cards=[],
+        sweeps=[],
+        totals={"verdicts": [], "labels": []},
+        n_claims=2,
+        first=first,
+        summary="",
+        papers=[],
+        forest=None,
+        robustness=None,
+        **common,
+    )
+    assert index.count("in its decided parts only") == 1

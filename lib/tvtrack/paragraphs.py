@@ -39,6 +39,7 @@ __all__ = [
     "flip_with_kind",
     "mixed_kinds",
     "label_basis",
+    "label_words",
 ]
 
 
@@ -247,12 +248,27 @@ def label_basis(claim: Mapping) -> str:
     return text + ("; a world too" if world else "")
 
 
-def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0) -> str:
+_PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
+
+
+def label_words(verdict: str, label: str) -> str:
+    """A claim's label as its line shows it: ``"robust in its decided parts only"`` for an undecided verdict
+    labelled robust or limited (the label speaks for the parts the default decides; a change may still move the
+    undecided one), else the label as it is."""
+    return f"{label} in its decided parts only" if verdict == "undecided" and label in _PARTIAL_SCOPE else label
+
+
+def _sure_sentence(
+    labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0, partial: list = ()
+) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
-    changes ``also_world`` of them (:func:`depends_also_on_a_world`)."""
+    changes ``also_world`` of them (:func:`depends_also_on_a_world`); ``partial`` names the undecided claims among
+    those that survive, labelled by their decided parts only (:func:`label_words`)."""
     sure = labels["robust"] + labels["limited"]
+    part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
+    part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
     unexplored, bare = labels["unexplored"], labels["—"]
     notes = [f"for {also_world} of them a world beyond the paper, changed by itself, also flips the verdict"]
     notes = notes if also_world else []
@@ -264,7 +280,7 @@ def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, 
     mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-        f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
+        f"({labels['robust']} robust, {labels['limited']} only within the paper's world{part}), "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
         f"never printed{mixed}, "
         + (
@@ -306,7 +322,9 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        text.append(_sure_sentence(labels, checkable, _only_with_a_world_ids(claims), depends_also_on_a_world(claims)))
+        partial = [c["id"] for c in claims if label_words(str(c.get("verdict")), shown_label(c)) != shown_label(c)]
+        with_world, also_world = _only_with_a_world_ids(claims), depends_also_on_a_world(claims)
+        text.append(_sure_sentence(labels, checkable, with_world, also_world, partial))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)

@@ -58,7 +58,7 @@ VERDICT_WORDS = {
 }
 #: What each robustness label means (a label is about how sure the verdict is, not about the verdict).
 LABEL_WORDS = {
-    "robust": "no explored reading of the paper and no world beyond it changes the verdict (nor a part's)",
+    "robust": "no explored reading of the paper and no world beyond it changes the verdict (nor a decided part's)",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
     "never printed, changes the verdict, or a part's (alone, or only with a world beyond it)",

@@ -33,6 +33,7 @@ from ..results import (
     flip_with_kind,
     format_measured,
     label_basis,
+    label_words,
     md_escape,
     paper_paragraph,
     results_summary,
@@ -176,7 +177,8 @@ def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None)
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_whole(r['statement']))}* "
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r['verdict'], r['label'])}) "
+        f"*{md_escape(_whole(r['statement']))}* "
         f"{md_escape(r['summary'])}"
         for r in rows
     )
