@@ -126,3 +126,46 @@ def test_the_sites_ledger_and_first_screen_say_an_undecided_claims_label_is_of_i
         **common,
     )
     assert index.count("in its decided parts only") == 1
+
+
+def _robust(cid: str, agree: int, undecided: int) -> dict:
+    """A reproduced claim labelled robust: no explored configuration flips it, ``agree`` agree, ``undecided`` stay
+    undecided (too small, or straddling)."""
+    n = agree + undecided
+    share = {"agree": agree, "flip": 0, "undecided": undecided, "design": n, "decided": agree, "value": agree / n}
+    part = {"verdict": "reproduced", "label": "robust", "share": {**share, "ci_low": 0.0, "ci_high": 1.0}}
+    record = {"label": "robust", "provisional": False, "parts": {"claim": part}}
+    return {
+        "id": cid,
+        "statement": "s",
+        "verdict": "reproduced",
+        "rule": BAND.to_dict(),
+        "measured": HOLDS,
+        "robustness": record,
+    }
+
+
+def test_a_robust_claim_most_of_whose_configurations_stayed_undecided_is_not_said_to_hold_under_all():
+    """C002-3's record: robust over 43 configurations of which 4 agree and 39 stay undecided. No explored change
+    flips it, but it is not shown to hold under every one: the paper's paragraph says none flips it, the first
+    screen names it among the robust ones most of whose configurations stayed undecided, and its own sentence
+    gives the share whatever its length."""
+    from tvtrack.paragraphs import paper_paragraph, results_summary
+    from tvtrack.wording import claim_summary
+
+    thin, firm = _robust("C9-3", 4, 39), _robust("C9-4", 43, 1)
+    paragraph, _ = paper_paragraph({"claims": [thin, firm]})
+    assert (
+        "2 claims hold (C9-3 and C9-4), 2 of them flipped by no reading or world explored (most explored "
+        "configurations stayed undecided for C9-3)." in paragraph
+    )
+    assert "under every reading and world explored" not in paragraph
+    text = results_summary([thin, firm])
+    assert (
+        "2 survive every reading of the paper (2 robust, 0 only within the paper's world; for 1 (C9-3) "
+        "most explored configurations stayed undecided)" in text
+    ), text
+    assert claim_summary(thin, chars=0).endswith(
+        " 4 agree, 0 flip and 39 stay undecided of 43 explored configurations."
+    )
+    assert "explored configurations" not in claim_summary(firm, chars=0)  # a firm share stays optional

@@ -27,6 +27,7 @@ from .wording import (
     side_words,
     summary_strength,
 )
+from .run_words import thin_share
 from .value_words import value_clause
 
 _COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
@@ -259,16 +260,23 @@ def label_words(verdict: str, label: str) -> str:
 
 
 def _sure_sentence(
-    labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0, partial: list = ()
+    labels: Counter,
+    checkable: int,
+    with_world: int | list = 0,
+    also_world: int = 0,
+    partial: list = (),
+    thin: list = (),
 ) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
     changes ``also_world`` of them (:func:`depends_also_on_a_world`); ``partial`` names the undecided claims among
-    those that survive, labelled by their decided parts only (:func:`label_words`)."""
+    those that survive, labelled by their decided parts only (:func:`label_words`), and ``thin`` the robust ones
+    most of whose explored configurations stayed undecided (:func:`tvtrack.run_words.thin_share`)."""
     sure = labels["robust"] + labels["limited"]
     part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
     part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
+    part += f"; for {len(thin)}{_ids(list(thin))} most explored configurations stayed undecided" if thin else ""
     unexplored, bare = labels["unexplored"], labels["—"]
     notes = [f"for {also_world} of them a world beyond the paper, changed by itself, also flips the verdict"]
     notes = notes if also_world else []
@@ -324,7 +332,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
     else:
         partial = [c["id"] for c in claims if label_words(str(c.get("verdict")), shown_label(c)) != shown_label(c)]
         with_world, also_world = _only_with_a_world_ids(claims), depends_also_on_a_world(claims)
-        text.append(_sure_sentence(labels, checkable, with_world, also_world, partial))
+        thin = [c["id"] for c in claims if shown_label(c) == "robust" and _thin(c)]
+        text.append(_sure_sentence(labels, checkable, with_world, also_world, partial, thin))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)
@@ -533,11 +542,13 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
     checkable = [c for c in claims if c.get("verdict") != "not checkable"]
     text = [f"The paper makes {_plural(len(claims), 'claim')} checked here; {len(checkable)} can be measured."]
     if by["reproduced"]:
-        robust = sum(shown_label(c) == "robust" for c in by["reproduced"])
+        robust = [c for c in by["reproduced"] if shown_label(c) == "robust"]
+        thin = [c["id"] for c in robust if _thin(c)]
+        thin_words = f" (most explored configurations stayed undecided for {_join(thin)})" if thin else ""
         ids = _join([c["id"] for c in by["reproduced"]])
         text.append(
             f"{_n(len(by['reproduced']), 'claim holds', 'claims hold')} ({ids})"
-            + (f", {robust} of them under every reading and world explored." if robust else ".")
+            + (f", {len(robust)} of them flipped by no reading or world explored{thin_words}." if robust else ".")
         )
     if by["partly"]:
         text.append(
@@ -549,6 +560,11 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
     if undecided:
         text.append(f"The runs could not decide {_join(undecided)}.")
     return " ".join(text), limitations(data, profile)
+
+
+def _thin(c: Mapping) -> bool:
+    """Whether a claim's robust label rests on a part most of whose explored configurations stayed undecided."""
+    return thin_share((c.get("robustness") or {}).get("parts") or {}) is not None
 
 
 def _lower(text: str) -> str:

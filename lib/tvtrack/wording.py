@@ -21,7 +21,7 @@ import re
 from typing import Any, Mapping
 
 from .numbers import finite, number
-from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part
+from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -374,9 +374,10 @@ def share_counts(share: Mapping) -> str:
     )
 
 
-def _share_sentence(part: Mapping) -> str:
+def _share_sentence(part: Mapping, name: str | None = None) -> str:
+    """A part's share as a sentence, said of its part ``name`` where that is not the part the sentence shows."""
     text = share_counts(part.get("share") or {})
-    return f"{_cap(text)}." if text else ""
+    return "" if not text else f"For its part {name}, {text}." if name else f"{_cap(text)}."
 
 
 def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
@@ -386,10 +387,8 @@ def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
 
 def _condition_at(claim: Mapping, changed: Mapping) -> Mapping | None:
     """The record's condition that changes ``changed`` and carries a verdict (None where none does)."""
-    for c in (claim.get("robustness") or {}).get("conditions") or ():
-        if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict"):
-            return c
-    return None
+    rows = (claim.get("robustness") or {}).get("conditions") or ()
+    return next((c for c in rows if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict")), None)
 
 
 def parts_tally(verdicts: list) -> str:
@@ -537,9 +536,9 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     value in words and units against what the paper says (and the direction in words where it reverses the
     paper's), the strongest named flip in plain words (a reading of the text, an unreported setting of the
     paper's experiment, or a world it does not extend to), whether runs that lost lock decide it, for an undecided
-    claim the runs that would decide it; then, while the whole stays within ``chars``, the share of the explored
-    configurations that agree and how many other changes flip it. Everything else is in the record behind the
-    click.
+    claim the runs that would decide it, for a robust one resting on few decided configurations its share
+    (:func:`tvtrack.run_words.thin_share`); then, while the whole stays within ``chars``, the share and how many
+    other changes flip it. Everything else is in the record behind the click.
 
     Parameters
     ----------
@@ -552,9 +551,8 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     Returns
     -------
     str
-        E.g. ``"Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper
-        has [0, 2] x alpha. Under another reading of the paper's text (sigma read as the SD of the raw velocity
-        increments) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 explored configurations."``
+        E.g. ``"Not reproduced: ... is 351.6 [350, 353.1] x alpha, where the paper has [0, 2] x alpha. Under another
+        reading of the paper's text (...) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 ..."``
     """
     claim = claim_fields(claim)
     verdict = str(claim.get("verdict", ""))
@@ -589,7 +587,9 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     if verdict == "undecided":
         slow_name, slow = slowest_part(parts, part)
         required.append(runs_sentence(slow, slow_name))
-    optional = [_share_sentence(part)]
+    thin = thin_share(parts) if shown_label(claim) == "robust" else None  # a label resting on few: its share
+    required += [_share_sentence(thin[1], thin[0] if thin[1] is not part else None)] if thin else []
+    optional = [] if thin else [_share_sentence(part)]
     if len(flips) > 1:
         others = len(flips) - 1
         optional.append(f"{others} other change{'s' if others > 1 else ''} flip{'' if others > 1 else 's'} it too.")
