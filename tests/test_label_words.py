@@ -169,3 +169,20 @@ def test_a_robust_claim_most_of_whose_configurations_stayed_undecided_is_not_sai
         " 4 agree, 0 flip and 39 stay undecided of 43 explored configurations."
     )
     assert "explored configurations" not in claim_summary(firm, chars=0)  # a firm share stays optional
+
+
+def test_a_claim_whose_record_decides_no_part_is_not_said_to_have_no_record():
+    """C002-6: undecided at the default in its only part, explored over 43 configurations, so its record carries
+    the label ``-`` (nothing to flip). The report's counts by verdict and of the checkable verdicts say it has no
+    part decided, and keep "no record" for a claim without one."""
+    from tvtrack.pipeline.report import verdict_summary
+
+    explored = {"id": "C9-6", "verdict": "undecided", "robustness": {"label": "-", "parts": {"claim": {}}}}
+    bare = {"id": "C9-5", "verdict": "undecided"}
+    assert verdict_summary([explored, bare]) == (
+        "0 reproduced · 0 partly · 0 not reproduced · 2 undecided (1 no part decided, 1 no record) · 0 not checkable"
+    )
+    assert verdict_summary([explored]).endswith("1 undecided (1 no part decided) · 0 not checkable")
+    from tvtrack.pipeline.report import label_counts
+
+    assert label_counts([explored, bare]) == " · 1 without a decided part · 1 without a robustness record"
