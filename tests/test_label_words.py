@@ -186,3 +186,28 @@ def test_a_claim_whose_record_decides_no_part_is_not_said_to_have_no_record():
     from tvtrack.pipeline.report import label_counts
 
     assert label_counts([explored, bare]) == " · 1 without a decided part · 1 without a robustness record"
+
+
+def test_every_change_that_flips_a_claim_means_every_part_s():
+    """A claim of two parts: readings x and y together, and x and v together, flip part a; z and w together flip
+    part b. The sentence names a flip of part a, and does not say that every change that flips the claim includes
+    x (z and w flip it without x)."""
+    from tvtrack.wording import claim_summary
+
+    entries = [Entry(k, "reading", "0", ("0", "1"), "the text reads either way") for k in "vwxyz"]
+    default = {"a": HOLDS, "b": HOLDS}
+    conds = [
+        {"changed": {"x": "1", "y": "1"}, "kind": "combination", "measured": {"a": FAILS, "b": HOLDS}},
+        {"changed": {"x": "1", "v": "1"}, "kind": "combination", "measured": {"a": FAILS, "b": HOLDS}},
+        {"changed": {"z": "1", "w": "1"}, "kind": "combination", "measured": {"a": HOLDS, "b": FAILS}},
+    ]
+    register = [{"name": k, "kind": "reading", "title": k} for k in "vwxyz"]
+    claim = _claim("C9-10", default, conds, entries)
+    claim["robustness"]["register"] = register
+    assert [len(p["flips"]) for p in claim["robustness"]["parts"].values()] == [2, 1]
+    text = claim_summary(claim, chars=0)
+    assert "Under two other readings of the paper's text together the claim is partly reproduced" in text, text
+    assert "Every change that flips it" not in text
+    only_a = _claim("C9-11", default, conds[:2], entries)
+    only_a["robustness"]["register"] = register
+    assert "Every change that flips it includes x = 1 (a reading of the paper's text)." in claim_summary(only_a, 0)

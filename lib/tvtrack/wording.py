@@ -582,7 +582,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     required += [_plain(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
-    common = _common_sentence(flips, claim.get("robustness") or {})
+    common = _common_sentence(every, claim.get("robustness") or {})  # "it": the claim, every part's flips
     required += [s for s in (first, common, lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         slow_name, slow = slowest_part(parts, part)
