@@ -23,7 +23,7 @@ def test_a_part_flip_an_undecided_claim_may_read_at_the_default_too_is_not_count
     """An undecided claim (a and c hold, b straddles) under a reading that makes a fail and b hold: the whole claim
     reads ``partly`` there, which it also reads at the default should b fail. The reading moves a part, not surely
     the whole verdict: the first screen counts the claim as moving only in a part, not as one a reading flips."""
-    from tvtrack.paragraphs import label_basis, part_only, turns_on
+    from tvtrack.paragraphs import label_basis, part_only, results_summary, turns_on
     from tvtrack.wording import claim_verdict_at, moves_verdict
 
     reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
@@ -38,6 +38,10 @@ def test_a_part_flip_an_undecided_claim_may_read_at_the_default_too_is_not_count
     assert not moves_verdict(claim, flip)
     assert turns_on([claim]) == {} and part_only([claim]) == 1
     assert label_basis(claim) == "a reading, in a part only"
+    assert (
+        "1 claim (C9-7) moves only in a part under every change explored (its whole verdict is not shown to move: "
+        "it is undecided, or undecided there)" in results_summary([claim])
+    )
     # a and c fail at the default and hold there, b open on both sides: for either outcome of b the two whole
     # verdicts differ (partly against reproduced, not reproduced against partly), so the reading moves it
     both_open = {"a": FAILS, "b": OPEN, "c": FAILS}

@@ -20,6 +20,7 @@ from .wording import (
     register_phrases,
     at_profile,
     claim_flips,
+    claim_verdict_at,
     differs_whatever_is_open,
     moves_verdict,
     not_checkable_reason,
@@ -177,12 +178,27 @@ def _turns_sentence(claims: list[Mapping]) -> str:
         bits.append(f"{words[side]} flips {_plural(n, 'claim')}{split}{often}")
     only = _part_only_ids(claims)
     if only:
+        stays = all(_stays(c) for c in claims if str(claim_fields(c).get("id", "")) in only)
+        its = "its" if len(only) == 1 else "their"
+        why = f"{'it is' if len(only) == 1 else 'they are'} undecided, or undecided there"
         bits.append(
             f"{_n(len(only), 'claim', 'claims')}{_ids(only)} {'moves' if len(only) == 1 else 'move'} only in a part "
             "under every change explored "
-            f"(the whole verdict stays{' as it is' if len(only) == 1 else ''})"
+            + (
+                f"(the whole verdict stays{' as it is' if len(only) == 1 else ''})"
+                if stays
+                else f"({its} whole verdict is not shown to move: {why})"
+            )
         )
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
+
+
+def _stays(claim: Mapping) -> bool:
+    """Whether a claim's whole verdict is decided and reads the same under every one of its named flips (a claim
+    undecided at the default, or under a flip, may still move as its open parts turn out)."""
+    claim = claim_fields(claim)
+    here = claim.get("verdict")
+    return here != "undecided" and all(claim_verdict_at(claim, f["changed"]) == here for f in claim_flips(claim))
 
 
 def depends_only_with_a_world(claims: list[Mapping]) -> int:
