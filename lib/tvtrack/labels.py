@@ -6,9 +6,10 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
 - ``unstable``: independent replicates at the default disagree **decisively** (one reproduced, another
   not reproduced); a replicate too small to decide (``undecided``) never makes a part unstable;
 - ``depends``: a configuration that changes **readings of the paper's text** (kinds reading, statistic,
-  comparator) or **unreported settings of its own experiment** (kind unreported setting), or a flip mixing those
-  with worlds that no subset isolates (``unattributed``), reaches a decisive verdict other than the default's
-  decisive verdict: the claim depends on what the paper left open;
+  comparator) or **unreported settings of its own experiment** (kind unreported setting), or a combination that no
+  searched subset isolates (``unattributed``: those mixed with worlds, or more entries than the search reaches),
+  reaches a decisive verdict other than the default's decisive verdict: the claim depends on what the paper left
+  open;
 - ``limited``: the verdict holds under every explored reading and setting, and only isolated **worlds beyond the
   paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
 - ``unexplored``: no entry of the world was varied, the design is too small to estimate a share

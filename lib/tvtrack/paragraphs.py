@@ -20,12 +20,15 @@ from .wording import (
     register_phrases,
     at_profile,
     claim_flips,
+    claim_verdict_at,
+    differs_whatever_is_open,
     moves_verdict,
     not_checkable_reason,
     shown_label,
     side_words,
     summary_strength,
 )
+from .run_words import thin_share
 from .value_words import value_clause
 
 _COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
@@ -38,6 +41,7 @@ __all__ = [
     "flip_with_kind",
     "mixed_kinds",
     "label_basis",
+    "label_words",
 ]
 
 
@@ -110,13 +114,14 @@ def turns_by_paper(claims: list[Mapping]) -> dict[str, Counter]:
 
 def _whole_changes(claim: Mapping) -> list[dict]:
     """The changes of the claim's sized conditions whose whole verdict is decided (reproduced, partly, not
-    reproduced) and not the claim's."""
+    reproduced) and not the claim's, whatever its parts undecided at the default turn out to be
+    (:func:`tvtrack.wording.differs_whatever_is_open`)."""
     rows = (claim.get("robustness") or {}).get("conditions") or ()
     decided = ("reproduced", "partly", "not reproduced")
     return [
         dict(c.get("changed") or {})
         for c in rows
-        if "undersized" not in c and c.get("verdict") in decided and c.get("verdict") != claim.get("verdict")
+        if "undersized" not in c and c.get("verdict") in decided and differs_whatever_is_open(claim, c)
     ]
 
 
@@ -173,12 +178,27 @@ def _turns_sentence(claims: list[Mapping]) -> str:
         bits.append(f"{words[side]} flips {_plural(n, 'claim')}{split}{often}")
     only = _part_only_ids(claims)
     if only:
+        stays = all(_stays(c) for c in claims if str(claim_fields(c).get("id", "")) in only)
+        its = "its" if len(only) == 1 else "their"
+        why = f"{'it is' if len(only) == 1 else 'they are'} undecided, or undecided there"
         bits.append(
             f"{_n(len(only), 'claim', 'claims')}{_ids(only)} {'moves' if len(only) == 1 else 'move'} only in a part "
             "under every change explored "
-            f"(the whole verdict stays{' as it is' if len(only) == 1 else ''})"
+            + (
+                f"(the whole verdict stays{' as it is' if len(only) == 1 else ''})"
+                if stays
+                else f"({its} whole verdict is not shown to move: {why})"
+            )
         )
     return f"What the verdicts turn on: {'; '.join(bits)}." if bits else ""
+
+
+def _stays(claim: Mapping) -> bool:
+    """Whether a claim's whole verdict is decided and reads the same under every one of its named flips (a claim
+    undecided at the default, or under a flip, may still move as its open parts turn out)."""
+    claim = claim_fields(claim)
+    here = claim.get("verdict")
+    return here != "undecided" and all(claim_verdict_at(claim, f["changed"]) == here for f in claim_flips(claim))
 
 
 def depends_only_with_a_world(claims: list[Mapping]) -> int:
@@ -245,12 +265,34 @@ def label_basis(claim: Mapping) -> str:
     return text + ("; a world too" if world else "")
 
 
-def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, also_world: int = 0) -> str:
+_PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
+
+
+def label_words(verdict: str, label: str) -> str:
+    """A claim's label as its line shows it: ``"robust in its decided parts only"`` for an undecided verdict
+    labelled robust or limited (the label speaks for the parts the default decides; a change may still move the
+    undecided one), else the label as it is."""
+    return f"{label} in its decided parts only" if verdict == "undecided" and label in _PARTIAL_SCOPE else label
+
+
+def _sure_sentence(
+    labels: Counter,
+    checkable: int,
+    with_world: int | list = 0,
+    also_world: int = 0,
+    partial: list = (),
+    thin: list = (),
+) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
-    changes ``also_world`` of them (:func:`depends_also_on_a_world`)."""
+    changes ``also_world`` of them (:func:`depends_also_on_a_world`); ``partial`` names the undecided claims among
+    those that survive, labelled by their decided parts only (:func:`label_words`), and ``thin`` the robust ones
+    most of whose explored configurations stayed undecided (:func:`tvtrack.run_words.thin_share`)."""
     sure = labels["robust"] + labels["limited"]
+    part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
+    part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
+    part += f"; for {len(thin)}{_ids(list(thin))} most explored configurations stayed undecided" if thin else ""
     unexplored, bare = labels["unexplored"], labels["—"]
     notes = [f"for {also_world} of them a world beyond the paper, changed by itself, also flips the verdict"]
     notes = notes if also_world else []
@@ -262,7 +304,7 @@ def _sure_sentence(labels: Counter, checkable: int, with_world: int | list = 0, 
     mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-        f"({labels['robust']} robust, {labels['limited']} only within the paper's world), "
+        f"({labels['robust']} robust, {labels['limited']} only within the paper's world{part}), "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
         f"never printed{mixed}, "
         + (
@@ -304,7 +346,10 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        text.append(_sure_sentence(labels, checkable, _only_with_a_world_ids(claims), depends_also_on_a_world(claims)))
+        partial = [c["id"] for c in claims if label_words(str(c.get("verdict")), shown_label(c)) != shown_label(c)]
+        with_world, also_world = _only_with_a_world_ids(claims), depends_also_on_a_world(claims)
+        thin = [c["id"] for c in claims if shown_label(c) == "robust" and _thin(c)]
+        text.append(_sure_sentence(labels, checkable, with_world, also_world, partial, thin))
     turns = _turns_sentence(claims)
     if turns:
         text.append(turns)
@@ -513,11 +558,13 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
     checkable = [c for c in claims if c.get("verdict") != "not checkable"]
     text = [f"The paper makes {_plural(len(claims), 'claim')} checked here; {len(checkable)} can be measured."]
     if by["reproduced"]:
-        robust = sum(shown_label(c) == "robust" for c in by["reproduced"])
+        robust = [c for c in by["reproduced"] if shown_label(c) == "robust"]
+        thin = [c["id"] for c in robust if _thin(c)]
+        thin_words = f" (most explored configurations stayed undecided for {_join(thin)})" if thin else ""
         ids = _join([c["id"] for c in by["reproduced"]])
         text.append(
             f"{_n(len(by['reproduced']), 'claim holds', 'claims hold')} ({ids})"
-            + (f", {robust} of them under every reading and world explored." if robust else ".")
+            + (f", {len(robust)} of them flipped by no reading or world explored{thin_words}." if robust else ".")
         )
     if by["partly"]:
         text.append(
@@ -529,6 +576,11 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
     if undecided:
         text.append(f"The runs could not decide {_join(undecided)}.")
     return " ".join(text), limitations(data, profile)
+
+
+def _thin(c: Mapping) -> bool:
+    """Whether a claim's robust label rests on a part most of whose explored configurations stayed undecided."""
+    return thin_share((c.get("robustness") or {}).get("parts") or {}) is not None
 
 
 def _lower(text: str) -> str:

@@ -39,7 +39,7 @@ from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
-from .paragraphs import flip_with_kind, label_basis, mixed_kinds, paper_paragraph, results_summary
+from .paragraphs import flip_with_kind, label_basis, label_words, mixed_kinds, paper_paragraph, results_summary
 from .numbers import format_measured
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
@@ -71,6 +71,7 @@ __all__ = [
     "flip_with_kind",
     "mixed_kinds",
     "label_basis",
+    "label_words",
     "results_summary",
     "paper_paragraph",
     "at_profile",
@@ -131,7 +132,7 @@ def claims_table(claims: list) -> str:
         c = to_jsonable(c if isinstance(c, dict) else c.__dict__)
         st = " ".join(str(c["statement"]).split())  # whole: a cut statement misleads
         rows.append(
-            f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(shown_label(c))} | "
+            f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(label_words(c['verdict'], shown_label(c)))} | "
             f"{md_escape(claim_summary(c))} |"
         )
     return "\n".join(rows)

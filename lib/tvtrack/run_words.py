@@ -1,6 +1,6 @@
 """Sentences about a claim's runs (:func:`tvtrack.wording.claim_summary`): how many independent replicates would
-decide an undecided claim, and where runs that lost lock carry its verdict or a flip, said over the replicates
-whose draws they were counted on."""
+decide an undecided claim, where runs that lost lock carry its verdict or a flip, said over the replicates
+whose draws they were counted on, and how many explored configurations agree, flip or stay undecided."""
 
 from __future__ import annotations
 
@@ -8,7 +8,14 @@ import math
 import re
 from typing import Mapping
 
-__all__ = ["slowest_part", "runs_sentence", "lock_sentence", "lost_lead", "lost_basis"]
+__all__ = [
+    "slowest_part",
+    "runs_sentence",
+    "lock_sentence",
+    "lost_lead",
+    "lost_basis",
+    "thin_share",
+]
 
 
 def slowest_part(parts: Mapping, main: Mapping) -> tuple[str | None, Mapping]:
@@ -67,3 +74,17 @@ def lost_basis(lost: Mapping) -> str:
     """Whose runs in lock: that replicate's where the count is over a stated number of replicates, else "the"."""
     reps = lost.get("replicates")
     return "the " if not reps else "that replicate's " if reps == 1 else "those replicates' "
+
+
+def thin_share(parts: Mapping) -> tuple[str, Mapping] | None:
+    """The robust part whose explored configurations mostly stayed undecided (more undecided than agreeing; the
+    fewest agreeing first), with its name: its label rests on few decided configurations, so its share is said
+    with it. ``None`` where every robust part's agreeing configurations outnumber its undecided ones."""
+    thin = [
+        (n, p)
+        for n, p in parts.items()
+        if isinstance(p, Mapping)
+        and p.get("label") == "robust"
+        and int((p.get("share") or {}).get("undecided") or 0) > int((p.get("share") or {}).get("agree") or 0)
+    ]
+    return min(thin, key=lambda np: int(np[1]["share"]["agree"])) if thin else None

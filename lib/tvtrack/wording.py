@@ -16,11 +16,12 @@ Conventions
 
 from __future__ import annotations
 
+import itertools
 import re
 from typing import Any, Mapping
 
 from .numbers import finite, number
-from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part
+from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "claim_flips",
     "claim_verdict_at",
     "moves_verdict",
+    "differs_whatever_is_open",
     "summary_strength",
     "parts_tally",
     "main_part",
@@ -56,7 +58,7 @@ VERDICT_WORDS = {
 }
 #: What each robustness label means (a label is about how sure the verdict is, not about the verdict).
 LABEL_WORDS = {
-    "robust": "no explored reading of the paper and no world beyond it changes the verdict (nor a part's)",
+    "robust": "no explored reading of the paper and no world beyond it changes the verdict (nor a decided part's)",
     "limited": "holds under every reading of the paper, but not in a named world beyond it",
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
     "never printed, changes the verdict, or a part's (alone, or only with a world beyond it)",
@@ -225,16 +227,39 @@ def flip_strength(flip: Mapping) -> tuple:
 
 
 def moves_verdict(claim: Mapping, flip: Mapping) -> bool:
-    """Whether a flip changes the whole claim's verdict (not only one part's); true where the record has no
-    condition at the flip's changes to tell (:func:`claim_verdict_at`), for a claim of one part, and where the whole
-    verdict reads ``undecided`` both there and at the default: a part decided one way at the default and the other
-    way there gives, for every outcome of the undecided parts, another whole verdict."""
+    """Whether a flip changes the whole claim's verdict (not only one part's): true for a claim of one part or no
+    condition at the flip's changes to tell; else :func:`differs_whatever_is_open` (an undecided claim that reads
+    ``partly`` under the flip may read ``partly`` at the default too)."""
     claim = claim_fields(claim)
     parts = ((claim.get("robustness") or {}).get("parts") or {}), ((claim.get("rule") or {}).get("parts") or {})
     if max(map(len, parts)) <= 1:
         return True
-    whole = claim_verdict_at(claim, flip.get("changed") or {})
-    return whole is None or whole != claim.get("verdict") or whole == "undecided"
+    row = _condition_at(claim, flip.get("changed") or {})
+    return row is None or differs_whatever_is_open(claim, row)
+
+
+def differs_whatever_is_open(claim: Mapping, row: Mapping) -> bool:
+    """Whether the whole claim's verdict under a condition (``row``, a record's ``conditions`` item) differs from
+    the default's for every outcome of the parts undecided on either side: a part undecided on both sides is
+    taken to come out the same way on both, one undecided on one side only either way. Two decided verdicts
+    compare as they are; a row without its parts' verdicts compares its whole verdict (``undecided`` there
+    counting as moved, as a part decided the other way leaves it)."""
+    here, there = claim_fields(claim).get("verdict"), row.get("verdict")
+    if "undecided" not in (here, there):
+        return there != here
+    default = {n: p.get("verdict") for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items()}
+    at = row.get("parts")
+    if not isinstance(at, Mapping) or not default or set(at) != set(default):
+        return there != here or there == "undecided"
+    names = [n for n in default if "not checkable" not in (default[n], at[n])]
+    open_ = [n for n in names if "undecided" in (default[n], at[n])]
+    for outcome in itertools.product(("reproduced", "not reproduced"), repeat=len(open_)):
+        pick = dict(zip(open_, outcome))
+        a = {default[n] if default[n] != "undecided" else pick[n] for n in names}
+        b = {at[n] if at[n] != "undecided" else pick[n] for n in names}
+        if (a if len(a) == 1 else {"partly"}) == (b if len(b) == 1 else {"partly"}):
+            return False
+    return True
 
 
 def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
@@ -349,17 +374,21 @@ def share_counts(share: Mapping) -> str:
     )
 
 
-def _share_sentence(part: Mapping) -> str:
+def _share_sentence(part: Mapping, name: str | None = None) -> str:
+    """A part's share as a sentence, said of its part ``name`` where that is not the part the sentence shows."""
     text = share_counts(part.get("share") or {})
-    return f"{_cap(text)}." if text else ""
+    return "" if not text else f"For its part {name}, {text}." if name else f"{_cap(text)}."
 
 
 def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
     """The whole claim's verdict under the condition that changes ``changed`` (None where no condition does)."""
-    for c in (claim.get("robustness") or {}).get("conditions") or ():
-        if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict"):
-            return str(c["verdict"])
-    return None
+    return None if (row := _condition_at(claim, changed)) is None else str(row["verdict"])
+
+
+def _condition_at(claim: Mapping, changed: Mapping) -> Mapping | None:
+    """The record's condition that changes ``changed`` and carries a verdict (None where none does)."""
+    rows = (claim.get("robustness") or {}).get("conditions") or ()
+    return next((c for c in rows if dict(c.get("changed") or {}) == dict(changed) and c.get("verdict")), None)
 
 
 def parts_tally(verdicts: list) -> str:
@@ -507,9 +536,9 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     value in words and units against what the paper says (and the direction in words where it reverses the
     paper's), the strongest named flip in plain words (a reading of the text, an unreported setting of the
     paper's experiment, or a world it does not extend to), whether runs that lost lock decide it, for an undecided
-    claim the runs that would decide it; then, while the whole stays within ``chars``, the share of the explored
-    configurations that agree and how many other changes flip it. Everything else is in the record behind the
-    click.
+    claim the runs that would decide it, for a robust one resting on few decided configurations its share
+    (:func:`tvtrack.run_words.thin_share`); then, while the whole stays within ``chars``, the share and how many
+    other changes flip it. Everything else is in the record behind the click.
 
     Parameters
     ----------
@@ -522,9 +551,8 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     Returns
     -------
     str
-        E.g. ``"Not reproduced: per-test false-alarm rate / alpha is 351.6 [350, 353.1] x alpha, where the paper
-        has [0, 2] x alpha. Under another reading of the paper's text (sigma read as the SD of the raw velocity
-        increments) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 explored configurations."``
+        E.g. ``"Not reproduced: ... is 351.6 [350, 353.1] x alpha, where the paper has [0, 2] x alpha. Under another
+        reading of the paper's text (...) it is reproduced. 29 agree, 3 flip and 0 stay undecided of 32 ..."``
     """
     claim = claim_fields(claim)
     verdict = str(claim.get("verdict", ""))
@@ -554,12 +582,14 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     required += [_plain(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
-    common = _common_sentence(flips, claim.get("robustness") or {})
+    common = _common_sentence(every, claim.get("robustness") or {})  # "it": the claim, every part's flips
     required += [s for s in (first, common, lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         slow_name, slow = slowest_part(parts, part)
         required.append(runs_sentence(slow, slow_name))
-    optional = [_share_sentence(part)]
+    thin = thin_share(parts) if shown_label(claim) == "robust" else None  # a label resting on few: its share
+    required += [_share_sentence(thin[1], thin[0] if thin[1] is not part else None)] if thin else []
+    optional = [] if thin else [_share_sentence(part)]
     if len(flips) > 1:
         others = len(flips) - 1
         optional.append(f"{others} other change{'s' if others > 1 else ''} flip{'' if others > 1 else 's'} it too.")

@@ -33,6 +33,7 @@ from ..results import (
     flip_with_kind,
     format_measured,
     label_basis,
+    label_words,
     md_escape,
     paper_paragraph,
     results_summary,
@@ -98,7 +99,8 @@ def _cell(text: Any) -> str:
 
 def verdict_summary(claims: list[dict]) -> str:
     """``"3 reproduced (2 robust, 1 depends) · 1 partly (1 unstable) · ..."``: each verdict's
-    count with its robustness labels (a claim without a record counts as "no record")."""
+    count with its robustness labels (a claim whose record decides no part counts as "no part decided", one
+    without a record as "no record")."""
     parts = []
     for verdict in ALL_VERDICTS:
         these = [c for c in claims if c["verdict"] == verdict]
@@ -106,10 +108,28 @@ def verdict_summary(claims: list[dict]) -> str:
             continue
         labels = Counter(robustness_label(c) for c in these)
         detail = [f"{labels[label]} {label}" for label in ALL_LABELS if labels[label]]
-        if verdict != "not checkable" and labels[NO_LABEL]:
-            detail.append(f"{labels[NO_LABEL]} no record")
+        if verdict != "not checkable":
+            bare = _unlabelled(these)
+            detail += [f"{n} {what}" for n, what in zip(bare, ("no part decided", "no record")) if n]
         parts.append(f"{len(these)} {verdict}" + (f" ({', '.join(detail)})" if detail else ""))
     return " · ".join(parts)
+
+
+def _unlabelled(claims: list[dict]) -> tuple[int, int]:
+    """How many of ``claims`` carry no label though their record explored them (no part decided at the default:
+    nothing to flip), and how many have no robustness record at all."""
+    bare = [c for c in claims if robustness_label(c) == NO_LABEL]
+    explored = sum(bool(c.get("robustness")) for c in bare)
+    return explored, len(bare) - explored
+
+
+def label_counts(claims: list[dict]) -> str:
+    """`` · 1 without a decided part · 2 without a robustness record``: the checkable claims the label counts leave
+    out, by why (``""`` where none is)."""
+    explored, bare = _unlabelled([c for c in claims if c["verdict"] != "not checkable"])
+    return (f" · {explored} without a decided part" if explored else "") + (
+        f" · {bare} without a robustness record" if bare else ""
+    )
 
 
 def collect_runs(reproduce_dir: Path, notebooks: list[str]) -> dict[str, tuple[dict | None, dict | None]]:
@@ -176,7 +196,8 @@ def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None)
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {r['label']}) *{md_escape(_whole(r['statement']))}* "
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r['verdict'], r['label'])}) "
+        f"*{md_escape(_whole(r['statement']))}* "
         f"{md_escape(r['summary'])}"
         for r in rows
     )
@@ -356,7 +377,7 @@ def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce
             + f"** ({len(claims)} claims from {_n_run(runs)} of {len(notebooks)} notebooks); of the checkable verdicts **"
             + " · ".join(f"{labels[lab]} {lab}" for lab in ALL_LABELS if lab != "provisional" or labels[lab])
             + "**"
-            + (f" · {labels[NO_LABEL]} without a robustness record" if labels[NO_LABEL] else ""),
+            + label_counts(claims),
             "",
             f"By verdict: {verdict_summary(claims)}.",
             "",

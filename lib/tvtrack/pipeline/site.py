@@ -67,6 +67,7 @@ from ..results import (
     claim_flips,
     mixed_kinds,
     claim_summary,
+    label_words,
     paper_paragraph,
     results_summary,
     share_counts,
@@ -263,6 +264,7 @@ def _environment():
         glossary_verdicts=list(VERDICT_WORDS.items()),
         glossary_labels=list(LABEL_WORDS.items()),
         verdict_words=[v for v in ALL_VERDICTS],
+        label_scope=lambda verdict, label: label_words(verdict, label)[len(label) :].strip(),
     )
     return env
 

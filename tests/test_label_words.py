@@ -1,0 +1,217 @@
+"""The report's label words against the record: a count, a kind or a label word says no more about a flip than
+the claim's record holds (its parts' verdicts, the whole claim's verdict under each condition)."""
+
+from tvtrack.labels import label_parts
+from tvtrack.montecarlo import Estimate
+from tvtrack.register import Entry
+from tvtrack.verdicts import AllOf, InBand
+
+BAND = InBand("mean", -0.5, 0.5, "px")
+HOLDS, FAILS = Estimate.exact(0.0), Estimate.exact(3.0)
+OPEN = Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")  # straddles the band's upper edge
+
+
+def _claim(cid: str, measured: dict, conds: list, entries: list) -> dict:
+    rule = AllOf({n: BAND for n in measured})
+    reps = [{"seed": s, "measured": measured} for s in (1, 2, 3)]
+    rob = label_parts(rule, measured, reps, conds, entries)
+    verdict = rule.judge(measured).verdict
+    return {"id": cid, "verdict": verdict, "rule": rule.to_dict(), "measured": measured, "robustness": rob}
+
+
+def test_a_part_flip_an_undecided_claim_may_read_at_the_default_too_is_not_counted_as_moving_it():
+    """An undecided claim (a and c hold, b straddles) under a reading that makes a fail and b hold: the whole claim
+    reads ``partly`` there, which it also reads at the default should b fail. The reading moves a part, not surely
+    the whole verdict: the first screen counts the claim as moving only in a part, not as one a reading flips."""
+    from tvtrack.paragraphs import label_basis, part_only, results_summary, turns_on
+    from tvtrack.wording import claim_verdict_at, moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    default = {"a": HOLDS, "b": OPEN, "c": HOLDS}
+    there = {"a": FAILS, "b": HOLDS, "c": HOLDS}
+    claim = _claim(
+        "C9-7", default, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": there}], [reading]
+    )
+    assert claim["verdict"] == "undecided" and claim["robustness"]["label"] == "depends"
+    (flip,) = claim["robustness"]["parts"]["a"]["flips"]
+    assert claim_verdict_at(claim, flip["changed"]) == "partly"
+    assert not moves_verdict(claim, flip)
+    assert turns_on([claim]) == {} and part_only([claim]) == 1
+    assert label_basis(claim) == "a reading, in a part only"
+    assert (
+        "1 claim (C9-7) moves only in a part under every change explored (its whole verdict is not shown to move: "
+        "it is undecided, or undecided there)" in results_summary([claim])
+    )
+    # a and c fail at the default and hold there, b open on both sides: for either outcome of b the two whole
+    # verdicts differ (partly against reproduced, not reproduced against partly), so the reading moves it
+    both_open = {"a": FAILS, "b": OPEN, "c": FAILS}
+    claim = _claim(
+        "C9-8", both_open, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": default}], [reading]
+    )
+    assert claim["verdict"] == "undecided"
+    (flip,) = [f for p in claim["robustness"]["parts"].values() for f in p["flips"]][:1]
+    assert claim_verdict_at(claim, flip["changed"]) == "undecided" and moves_verdict(claim, flip)
+
+
+def test_a_part_flip_that_moves_an_undecided_claim_whatever_its_open_part_counts():
+    """The same reading making a and c fail: the whole claim reads partly or not reproduced there (b open there
+    too), reproduced or partly at the default, never the same for one outcome of b: it moves the whole verdict."""
+    from tvtrack.paragraphs import part_only, turns_on
+    from tvtrack.wording import moves_verdict
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    default = {"a": HOLDS, "b": OPEN, "c": HOLDS}
+    there = {"a": FAILS, "b": OPEN, "c": FAILS}
+    claim = _claim(
+        "C9-9", default, [{"changed": {"sigma": "smoothed"}, "kind": "single", "measured": there}], [reading]
+    )
+    flip = claim["robustness"]["parts"]["a"]["flips"][0]
+    assert moves_verdict(claim, flip)
+    assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
+
+
+def test_an_undecided_claim_labelled_robust_is_said_to_be_so_in_its_decided_parts_only():
+    """C002-7's record: one part holds under every explored configuration (robust), the other straddles the band
+    at the default and fails under some configurations (the whole claim reads partly there). Its label speaks for
+    its decided part: the first screen does not count its undecided verdict among those that survive every reading
+    without saying so, and its table row and first-screen line say the label is of its decided parts."""
+    from tvtrack.paragraphs import results_summary
+    from tvtrack.pipeline.report import first_screen, first_screen_list
+    from tvtrack.results import claims_table
+
+    world = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
+    default = {"fine": HOLDS, "coarse": OPEN}
+    conds = [{"changed": {"noise": "high"}, "kind": "single", "measured": {"fine": HOLDS, "coarse": FAILS}}]
+    claim = _claim("C9-1", default, conds, [world])
+    claim["statement"] = "One object: the ULA beats two-stage processing only for large pixels."
+    claim["robustness"] = {**claim["robustness"], "provisional": False}
+    assert claim["verdict"] == "undecided" and claim["robustness"]["label"] == "robust"
+    assert claim["robustness"]["conditions"][0]["verdict"] == "partly"  # a world moves its undecided part
+    held = {"id": "C9-2", "verdict": "reproduced", "robustness": {"label": "robust"}}
+    text = results_summary([claim, held])
+    assert (
+        "Of the 2 checkable verdicts, 2 survive every reading of the paper (2 robust, 0 only within the paper's "
+        "world; 1 of them (C9-1) undecided, labelled by its decided parts only)" in text
+    ), text
+    assert "| **undecided** | robust in its decided parts only |" in claims_table([claim])
+    rows = first_screen({"009_t": (None, {"claims": [claim, held]})})
+    assert "**009 C9-1** (undecided, robust in its decided parts only)" in first_screen_list(rows)
+    assert "(1 robust, 0 only within the paper's world)" in results_summary([held])
+
+
+def test_the_sites_ledger_and_first_screen_say_an_undecided_claims_label_is_of_its_decided_parts():
+    """The site's chips: the ledger row and the index's first screen of an undecided claim labelled robust say, beside
+    the chip, that the label is of its decided parts only; a reproduced claim's chip stands alone."""
+    from types import SimpleNamespace
+
+    from tvtrack.pipeline.site import _environment, _ledger_rows
+
+    claim = {"id": "C9-1", "statement": "s", "paper_value": "v", "verdict": "undecided", "measured": None}
+    claim["robustness"] = {"label": "robust", "provisional": False}
+    held = {**claim, "id": "C9-2", "verdict": "reproduced"}
+    run = SimpleNamespace(name="009_t", results={"claims": [claim, held]}, cells={})
+    rows = _ledger_rows([run])
+    common = {"root": "", "built": "now", "profile": "paper", "paper_scale": True, "source": "runs"}
+    env = _environment()
+    page = env.get_template("ledger.html").render(rows=rows, papers=["009_t"], verdicts=[], labels=(), **common)
+    assert page.count("in its decided parts only") == 1
+    assert page.index(">C9-1<") < page.index("in its decided parts only") < page.index(">C9-2<")
+    first = [{**r, "summary": ""} for r in rows]
+    index = env.get_template("index.html").render(
+        cards=[],
+        sweeps=[],
+        totals={"verdicts": [], "labels": []},
+        n_claims=2,
+        first=first,
+        summary="",
+        papers=[],
+        forest=None,
+        robustness=None,
+        **common,
+    )
+    assert index.count("in its decided parts only") == 1
+
+
+def _robust(cid: str, agree: int, undecided: int) -> dict:
+    """A reproduced claim labelled robust: no explored configuration flips it, ``agree`` agree, ``undecided`` stay
+    undecided (too small, or straddling)."""
+    n = agree + undecided
+    share = {"agree": agree, "flip": 0, "undecided": undecided, "design": n, "decided": agree, "value": agree / n}
+    part = {"verdict": "reproduced", "label": "robust", "share": {**share, "ci_low": 0.0, "ci_high": 1.0}}
+    record = {"label": "robust", "provisional": False, "parts": {"claim": part}}
+    return {
+        "id": cid,
+        "statement": "s",
+        "verdict": "reproduced",
+        "rule": BAND.to_dict(),
+        "measured": HOLDS,
+        "robustness": record,
+    }
+
+
+def test_a_robust_claim_most_of_whose_configurations_stayed_undecided_is_not_said_to_hold_under_all():
+    """C002-3's record: robust over 43 configurations of which 4 agree and 39 stay undecided. No explored change
+    flips it, but it is not shown to hold under every one: the paper's paragraph says none flips it, the first
+    screen names it among the robust ones most of whose configurations stayed undecided, and its own sentence
+    gives the share whatever its length."""
+    from tvtrack.paragraphs import paper_paragraph, results_summary
+    from tvtrack.wording import claim_summary
+
+    thin, firm = _robust("C9-3", 4, 39), _robust("C9-4", 43, 1)
+    paragraph, _ = paper_paragraph({"claims": [thin, firm]})
+    assert (
+        "2 claims hold (C9-3 and C9-4), 2 of them flipped by no reading or world explored (most explored "
+        "configurations stayed undecided for C9-3)." in paragraph
+    )
+    assert "under every reading and world explored" not in paragraph
+    text = results_summary([thin, firm])
+    assert (
+        "2 survive every reading of the paper (2 robust, 0 only within the paper's world; for 1 (C9-3) "
+        "most explored configurations stayed undecided)" in text
+    ), text
+    assert claim_summary(thin, chars=0).endswith(
+        " 4 agree, 0 flip and 39 stay undecided of 43 explored configurations."
+    )
+    assert "explored configurations" not in claim_summary(firm, chars=0)  # a firm share stays optional
+
+
+def test_a_claim_whose_record_decides_no_part_is_not_said_to_have_no_record():
+    """C002-6: undecided at the default in its only part, explored over 43 configurations, so its record carries
+    the label ``-`` (nothing to flip). The report's counts by verdict and of the checkable verdicts say it has no
+    part decided, and keep "no record" for a claim without one."""
+    from tvtrack.pipeline.report import verdict_summary
+
+    explored = {"id": "C9-6", "verdict": "undecided", "robustness": {"label": "-", "parts": {"claim": {}}}}
+    bare = {"id": "C9-5", "verdict": "undecided"}
+    assert verdict_summary([explored, bare]) == (
+        "0 reproduced · 0 partly · 0 not reproduced · 2 undecided (1 no part decided, 1 no record) · 0 not checkable"
+    )
+    assert verdict_summary([explored]).endswith("1 undecided (1 no part decided) · 0 not checkable")
+    from tvtrack.pipeline.report import label_counts
+
+    assert label_counts([explored, bare]) == " · 1 without a decided part · 1 without a robustness record"
+
+
+def test_every_change_that_flips_a_claim_means_every_part_s():
+    """A claim of two parts: readings x and y together, and x and v together, flip part a; z and w together flip
+    part b. The sentence names a flip of part a, and does not say that every change that flips the claim includes
+    x (z and w flip it without x)."""
+    from tvtrack.wording import claim_summary
+
+    entries = [Entry(k, "reading", "0", ("0", "1"), "the text reads either way") for k in "vwxyz"]
+    default = {"a": HOLDS, "b": HOLDS}
+    conds = [
+        {"changed": {"x": "1", "y": "1"}, "kind": "combination", "measured": {"a": FAILS, "b": HOLDS}},
+        {"changed": {"x": "1", "v": "1"}, "kind": "combination", "measured": {"a": FAILS, "b": HOLDS}},
+        {"changed": {"z": "1", "w": "1"}, "kind": "combination", "measured": {"a": HOLDS, "b": FAILS}},
+    ]
+    register = [{"name": k, "kind": "reading", "title": k} for k in "vwxyz"]
+    claim = _claim("C9-10", default, conds, entries)
+    claim["robustness"]["register"] = register
+    assert [len(p["flips"]) for p in claim["robustness"]["parts"].values()] == [2, 1]
+    text = claim_summary(claim, chars=0)
+    assert "Under two other readings of the paper's text together the claim is partly reproduced" in text, text
+    assert "Every change that flips it" not in text
+    only_a = _claim("C9-11", default, conds[:2], entries)
+    only_a["robustness"]["register"] = register
+    assert "Every change that flips it includes x = 1 (a reading of the paper's text)." in claim_summary(only_a, 0)
