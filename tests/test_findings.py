@@ -702,10 +702,14 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
         "Runs that lost lock carry the verdict of C001-3: over the runs in lock alone it differs (counted over one "
         "replicate's draws)." in limits
     ), limits
-    assert (
-        "In one replicate, 1 of its 600 runs lost lock and carries this verdict there: over that replicate's runs in "
+    said = claim_summary(rep)
+    lock = (
+        "In one replicate, 1 of its 600 runs lost lock and carries this verdict: over that replicate's runs in "
         "lock alone it is reproduced."
-    ) in claim_summary(rep)
+    )
+    assert lock in said and " there" not in said.split(lock)[0][-10:]
+    first_flip = min(said.find(w) for w in ("Under ", "It does not extend") if w in said)
+    assert said.index(lock) < first_flip  # the default's lost runs come before any flip: "this verdict" is its
     with pytest.raises(ValueError, match="lost 7 of runs 6"):
         mark_lost_runs(claim["robustness"], [{**row, "lost": 7, "runs": 6}], claim["verdict"])
 

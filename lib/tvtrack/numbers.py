@@ -113,17 +113,31 @@ def vector_text(values: list, unit: str, always: bool = False) -> str:
         trend = "rises"
     elif all(abs(s) <= 1e-12 * max(1.0, abs(c)) for s, c in zip(steps, centres)):
         trend = "stays"
-    else:  # neither falls nor rises throughout: its ends, then how far it strays between them
-        ends = (
-            f"goes from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
-        )
+    else:  # neither falls nor rises throughout: its measured net trend, then how far it strays between them
         up, down = _measured_steps([p for p in points if p is not None])
         moves = (
             f"{up or 'none'} of its {len(steps)} steps measurably rise{'s' if up == 1 else ''} and "
             f"{down or 'none'} fall{'s' if down == 1 else ''}"
         )
-        return f"{ends}, not steadily ({moves}; between {number(min(centres))} and {with_unit(number(max(centres)), unit)})"
+        net = net_trend(points[0], points[-1])
+        against = {"falls": up, "rises": down}.get(net, 1)  # a net trend no measured step goes against is steady
+        ends = (
+            f"{net} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
+        )
+        spread = f"between {number(min(centres))} and {with_unit(number(max(centres)), unit)}"
+        return f"{ends}{', not steadily' if against else ''} ({moves}; {spread})"
     return f"{trend} from {format_value(values[0], unit)} to {format_value(values[-1], unit)} over {len(values)} points"
+
+
+def net_trend(first: tuple | None, last: tuple | None) -> str:
+    """``"falls"`` or ``"rises"`` where the last point's interval lies wholly below (above) the first's (a point
+    without an interval is its own), else ``"goes"``."""
+    if first is None or last is None:
+        return "goes"
+    (a, alo, ahi), (b, blo, bhi) = first, last
+    alo, ahi = a if alo is None else alo, a if ahi is None else ahi
+    blo, bhi = b if blo is None else blo, b if bhi is None else bhi
+    return "falls" if bhi < alo else "rises" if blo > ahi else "goes"
 
 
 def _measured_steps(points: list) -> tuple[int, int]:

@@ -53,7 +53,7 @@ def lock_sentence(claim: Mapping, part: Mapping) -> str:
     share = next((s.get("lost_share") for s in (part, record, claim) if isinstance(s.get("lost_share"), Mapping)), {})
     if {"lost", "runs"} <= set(share):
         lead = f"{lost_lead(share, '{k} of {n} runs')} lost lock and {'carries' if share['lost'] == 1 else 'carry'}"
-        lead += " this verdict" + (" there" if share.get("replicates") else "")
+        lead += " this verdict"  # the default's: the sentence comes before any flip
     else:
         lead = "Runs that lost lock carry this verdict"
     return lead + (f": over {lost_basis(share)}runs in lock alone it is {in_lock}." if in_lock else ".")

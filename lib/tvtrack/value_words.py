@@ -10,7 +10,7 @@ import math
 import re
 from typing import Any, Mapping
 
-from .numbers import finite, format_measured, format_value, number, triple, vector_text, with_unit
+from .numbers import net_trend, finite, format_measured, format_value, number, triple, vector_text, with_unit
 
 __all__ = ["value_clause", "against_paper", "rule_in_force", "real_unit"]
 
@@ -223,7 +223,12 @@ def _trend_clause(rule: Mapping, measured: Any) -> str:
         if isinstance(measured, (list, tuple))
         else format_value(measured, unit)
     )
-    return f"{quantity} {shown}, where the paper has it {rule.get('direction', 'monotone')} in {rule.get('over', 'its grid')}"
+    direction = rule.get("direction", "monotone")
+    text = f"{quantity} {shown}, where the paper has it {direction} in {rule.get('over', 'its grid')}"
+    ends = [triple(measured[0]), triple(measured[-1])] if isinstance(measured, (list, tuple)) and measured else []
+    net = net_trend(*ends) if ends else ""  # the ends' intervals separate: a measured net trend
+    reverse = {"decreasing": "rises", "increasing": "falls"}.get(str(direction))
+    return text + (": the reverse of the paper's direction" if net and net == reverse else "")
 
 
 def value_clause(rule: Mapping | None, measured: Any, paper_value: str | None = None) -> str:

@@ -581,9 +581,10 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     flips = sorted(flips, key=strength)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     required += [_plain(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
+    required += [s for s in (lock_sentence(claim, part),) if s]  # the default's own lost runs, before any flip
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     common = _common_sentence(every, claim.get("robustness") or {})  # "it": the claim, every part's flips
-    required += [s for s in (first, common, lock_sentence(claim, part), _unexplored_sentence(claim, parts)) if s]
+    required += [s for s in (first, common, _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         slow_name, slow = slowest_part(parts, part)
         required.append(runs_sentence(slow, slow_name))
