@@ -475,7 +475,10 @@ def test_a_part_flip_of_an_undecided_claim_counts_in_the_first_screen():
     (flip,) = rob["parts"]["early"]["flips"]
     assert moves_verdict(claim, flip)
     assert turns_on([claim]) == {"reading": (1, [("sigma", "9", 1)])} and part_only([claim]) == 0
-    assert "What the verdicts turn on: a reading of the paper's text flips 1 claim." in results_summary([claim])
+    assert (
+        "What the verdicts turn on: a reading of the paper's text (alone or with other readings) flips 1 claim."
+        in results_summary([claim])
+    )
 
 
 def test_a_flip_that_takes_several_changes_says_how_many():
@@ -511,12 +514,14 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
     ]
     text = results_summary([DEPENDS, setting])
     assert text.endswith(
-        "What the verdicts turn on: a reading of the paper's text flips 1 claim; a setting of the paper's own "
-        "experiment that the paper never printed flips 1 claim; a world beyond the paper flips 1 claim."
+        "What the verdicts turn on: a reading of the paper's text (alone or with other readings) flips 1 claim; "
+        "a setting of the paper's own experiment that the paper never printed (alone or with readings or other settings) flips 1 claim; "
+        "a world beyond the paper (alone or with other worlds) flips 1 claim."
     ), text
     assert (
-        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them a world "
-        "beyond the paper, changed by itself, also flips the verdict), and 0 differ" in text
+        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them "
+        "worlds beyond the paper (one or several), with no reading or setting changed, also flip the verdict), and 0 differ"
+        in text
     )  # DEPENDS is flipped by a world too: the label names the reading, the count says what it hides
     sentence = claim_summary(setting)
     assert "Under another setting of the paper's own experiment, one the paper never printed, it is reproduced: x." in (
@@ -927,7 +932,7 @@ def test_what_the_verdicts_turn_on_names_each_entry_with_its_paper_and_keeps_tie
     claims = [claim("C000-1", "drift"), claim("C000-2", "drift"), claim("C001-1", "drift"), claim("C001-2", "rate")]
     claims.append(claim("C001-3", "rate"))
     assert _turns_sentence(claims) == (
-        "What the verdicts turn on: a world beyond the paper flips 5 claims (2 of 000 and 3 of 001), most often "
+        "What the verdicts turn on: a world beyond the paper (alone or with other worlds) flips 5 claims (2 of 000 and 3 of 001), most often "
         "“drift” (2 claims of 000) and “rate” (2 claims of 001)."
     )
 
@@ -1006,8 +1011,8 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
     mixed["robustness"]["parts"]["claim"]["flips"] = [world, mix]
     assert depends_only_with_a_world([DEPENDS, mixed]) == 1
     assert (
-        "turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them a world beyond "
-        "the paper, changed by itself, also flips the verdict, and 1 (C001-4) only together with a world beyond it)"
+        "turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them "
+        "worlds beyond the paper (one or several), with no reading or setting changed, also flip the verdict, and 1 (C001-4) only together with a world beyond it)"
         in results_summary([DEPENDS, mixed])
     )
 
@@ -1082,3 +1087,28 @@ def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_a
     assert label_basis(claim_with({"a": 1, "b": 1})) == "two readings together"
     assert label_basis(with_world) == "a mix with a world"
     assert _only_with_a_world_ids([no_world, with_world]) == ["C9-1"] and _only_with_a_world_ids([no_world]) == []
+
+
+def test_the_first_screens_bracket_says_a_setting_or_worlds_also_flip_a_claim_a_reading_flips():
+    """Beside the reading it names, the bracket says that an unprinted setting alone ("a setting too") or several
+    worlds together ("worlds together too", not "a world") also change the whole verdict."""
+    from tvtrack.paragraphs import label_basis
+
+    kinds = {"r": "reading", "s": "unreported setting", "w": "regime", "v": "model"}
+    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
+
+    def claim(*flips: tuple) -> dict:
+        named = [{"text": t, "side": side, "changed": ch, "verdict": "not reproduced"} for t, side, ch in flips]
+        rob = {"register": register, "label": "depends", "parts": {"claim": {"verdict": "reproduced", "flips": named}}}
+        return {"id": "C9-1", "verdict": "reproduced", "robustness": {**rob, "conditions": []}}
+
+    reading, setting = ("r", "reading", {"r": 1}), ("s", "setting", {"s": 1})
+    worlds = ("w and v", "world", {"w": 1, "v": 1})
+    assert label_basis(claim(reading)) == "a reading"
+    assert label_basis(claim(reading, setting)) == "a reading; a setting too"
+    assert label_basis(claim(reading, worlds)) == "a reading; worlds together too"
+    assert (
+        label_basis(claim(reading, setting, worlds, ("w", "world", {"w": 1})))
+        == "a reading; a setting too; a world too"
+    )
+    assert label_basis(claim(setting, ("r and s", "setting", {"r": 1, "s": 1}))) == "an unprinted setting"

@@ -426,7 +426,7 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     head = "\n".join(text.splitlines()[:16])
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
     assert (
-        "What the verdicts turn on: a reading of the paper's text flips 1 claim; a world beyond the paper flips "
+        "What the verdicts turn on: a reading of the paper's text (alone or with other readings) flips 1 claim; a world beyond the paper (alone or with other worlds) flips "
         "1 claim."
     ) in head  # a flip counts where it changes the whole claim's verdict, not only a part's; C001-7's named flip
     # moves only a part, but its record has a condition (sigma read from the raw increments) whose whole verdict

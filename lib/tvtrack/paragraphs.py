@@ -163,8 +163,19 @@ def _ids(ids: list[str]) -> str:
     return f" ({_join(ids)})" if 0 < len(ids) <= 3 else ""
 
 
+#: Each side as the first screen's count of what the verdicts turn on says it: a side holds combinations too.
+_TURN_WORDS = {
+    "reading": "a reading of the paper's text (alone or with other readings)",
+    "setting": "a setting of the paper's own experiment that the paper never printed (alone or with readings or "
+    "other settings)",
+    "world": "a world beyond the paper (alone or with other worlds)",
+    "unattributed": "a combination that no smaller subset explains (a reading or setting with a world, or more "
+    "changes than the search tried; none of them flips the claim alone)",
+}
+
+
 def _turns_sentence(claims: list[Mapping]) -> str:
-    words = side_words()
+    words = {**side_words(), **_TURN_WORDS}
     per_paper = turns_by_paper(claims)
     bits = []
     for side, (n, top) in turns_on(claims).items():
@@ -247,8 +258,8 @@ _SIDE_SHORT = {
 def label_basis(claim: Mapping) -> str:
     """What flips a claim, in a few words for a list: the kind of the flip its sentence names
     (:func:`tvtrack.wording.summary_strength`), with how many changes it takes; "in a part only" where no flip the
-    label rests on changes the whole claim's verdict; "a world too" where a world alone also changes a
-    ``depends`` claim's whole verdict (``""`` for a claim no change flips). A combination no searched subset
+    label rests on changes the whole claim's verdict; "a setting too", "a world too" where a setting or a world
+    alone also changes the claim's whole verdict (:func:`_also`) (``""`` for a claim no change flips). A combination no searched subset
     isolates is named by its entries' kinds: "a mix with a world" only where one of them is a world."""
     flips = claim_flips(claim)
     if not flips:
@@ -261,8 +272,20 @@ def label_basis(claim: Mapping) -> str:
     many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
     text = one if n <= 1 or side == "mix" else f"{_COUNT.get(n, n)} {many}"
     text += "" if moves_verdict(claim, first) else ", in a part only"
-    world = first["side"] != "world" and any(f.get("side") == "world" and moves_verdict(claim, f) for f in flips)
-    return text + ("; a world too" if world else "")
+    return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world"))
+
+
+def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
+    """ "; a setting too" ("; a world too") where a flip of that kind other than the one named changes the whole
+    verdict: one change alone, else "; settings with other changes too" ("; worlds together too")."""
+    if shown == kind:
+        return ""
+    moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
+    if not moving:
+        return ""
+    if any(len(f.get("changed") or {}) <= 1 for f in moving):
+        return f"; a {kind} too"
+    return "; worlds together too" if kind == "world" else "; a setting with other changes too"
 
 
 _PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
@@ -294,7 +317,8 @@ def _sure_sentence(
     part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
     part += f"; for {len(thin)}{_ids(list(thin))} most explored configurations stayed undecided" if thin else ""
     unexplored, bare = labels["unexplored"], labels["—"]
-    notes = [f"for {also_world} of them a world beyond the paper, changed by itself, also flips the verdict"]
+    notes = [f"for {also_world} of them worlds beyond the paper (one or several), with no reading or setting changed, "
+             "also flip the verdict"]  # fmt: skip
     notes = notes if also_world else []
     named = _ids(with_world) if isinstance(with_world, list) else ""
     with_world = len(with_world) if isinstance(with_world, list) else with_world
