@@ -995,7 +995,8 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
     part["flips"] = []
     part["share"] = {"agree": 0, "flip": 0, "undecided": 1, "design": 1}
     assert claim_summary(claim).endswith(
-        "The one configuration explored was not decided, so nothing shows how far it extends."
+        "Beyond the paper's default, the one change explored for it left it undecided, so nothing shows how far it "
+        "extends."
     )
     part["share"] = {"agree": 0, "flip": 0, "undecided": 0, "design": 0}
     assert claim_summary(claim).endswith("Nothing was varied for it, so nothing shows how far it extends.")

@@ -506,9 +506,8 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     if not design:
         return "Nothing was varied for it, so nothing shows how far it extends."
     if not share.get("agree"):
-        which = "The one configuration explored was not" if design == 1 else f"None of the {design} configurations "
-        which += "" if design == 1 else "explored was"
-        return f"{which} decided, so nothing shows how far it extends."
+        which = "the one change" if design == 1 else f"each of the {design} changes"
+        return f"Beyond the paper's default, {which} explored for it left it undecided, so nothing shows how far it extends."
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 
