@@ -148,12 +148,12 @@ PINS = {
         ),
         "0.02°": Band(
             "0.02 deg = 10 elements / frame",
-            "within a factor 1.1 of 10 el",
+            "within a factor 1.1 of 10 el/frame (the paper's unit: a rate of 0.02 deg per frame)",
             10 / 1.1,
             11.0,
             (10.0, 9.5),
             (2.4, 8.0, 12.0),
-            unit="el",
+            unit="el/frame",
         ),
     },
 }

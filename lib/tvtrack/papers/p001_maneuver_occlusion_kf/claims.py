@@ -186,7 +186,7 @@ def claim_rules() -> dict[str, Rule]:
         "C001-10": AllOf(
             {
                 "0.008°": WithinFactor("0.008° in raster elements", 1.0, 1.1, "el"),
-                "0.02°": WithinFactor("0.02° in raster elements", 10.0, 1.1, "el"),
+                "0.02°": WithinFactor("a rate of 0.02° per frame in raster elements per frame", 10.0, 1.1, "el/frame"),
             }
         ),
     }
