@@ -156,7 +156,7 @@ def test_numbers_carry_units_and_deterministic_ones_no_interval():
     # a zero-width interval is a deterministic number: no interval
     assert format_measured({"value": 2.163e5, "ci_low": 2.163e5, "ci_high": 2.163e5}, px) == "216300 px"
     assert format_measured({"value": 2.163e6, "ci_low": 2.163e6, "ci_high": 2.163e6}, px) == "2.163e+06 px"
-    assert format_measured({"value": 28386.4, "ci_low": 28386.4, "ci_high": 28386.4}, px) == "28390 px"  # 4 figures
+    assert format_measured({"value": 28386.4, "ci_low": 28386.4, "ci_high": 28386.4}, px) == "28386 px"  # every digit
     # ends that round to the value get the figures they need to differ from it
     assert format_measured({"value": 0.1667, "ci_low": 0.16668, "ci_high": 0.16672}) == "0.1667 [0.16668, 0.16672]"
     # a one-sided interval; a ratio says what it is a ratio of; no unit: the quantity's name

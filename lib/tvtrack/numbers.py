@@ -30,14 +30,16 @@ VECTOR_SHOWN = 4
 
 
 def number(x: Any, digits: int = 4) -> str:
-    """A number in ``digits`` significant figures (``"351.6"``, ``"28390"``, ``"2.163e+06"``); below a million it
-    is written out in full, as a reader writes it, beyond it with an exponent; text as it is."""
+    """A number in ``digits`` significant figures (``"351.6"``, ``"2.163e+06"``); below a million it
+    is written out in full, as a reader writes it, every integer digit shown (``"28395"``, not ``"28390"``), beyond it with an exponent; text as it is."""
     if isinstance(x, bool) or x is None:
         return str(x)
     if isinstance(x, (int, float)) or hasattr(x, "__float__"):
         v = float(x)
         if not math.isfinite(v):
             return "∞" if v > 0 else ("-∞" if v < 0 else "NaN")
+        if 10**digits <= abs(v) < 1e6:  # more integer digits than figures: all of them, as a reader writes it
+            return f"{v:.0f}"
         text = f"{v:.{digits}g}"
         return f"{float(text):.0f}" if "e+" in text and abs(float(text)) < 1e6 else text
     return str(x)
