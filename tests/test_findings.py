@@ -353,7 +353,7 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
         "robustness": {**rob, "parts": {"early": rob["parts"]["early"]}, "conditions": rob["conditions"][:1]},
     }
     assert part_only([only_part]) == 1 and turns_on([only_part]) == {}
-    from tvtrack.paragraphs import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
+    from tvtrack.flip_words import label_basis  # the first screen's "(depends: ...)" beside each claim that holds
 
     assert label_basis(claim) == "an unprinted setting" and label_basis(only_part) == "a reading, in a part only"
 
@@ -1021,7 +1021,7 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
 def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_setting_alone():
     """A joint flip mixing a reading of the text and an unprinted setting is filed under neither: the paper's
     paragraph and the record's list of flips name each change's own kind; one kind keeps the one bracket."""
-    from tvtrack.paragraphs import _under, flip_with_kind
+    from tvtrack.flip_words import flip_with_kind, under_words as _under
 
     record = {
         "register": [
@@ -1048,7 +1048,7 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
     assert flip_with_kind(one, record) == (
         "pixels 5 wide (a setting of the paper's own experiment that the paper never printed)"
     )
-    from tvtrack.paragraphs import label_basis
+    from tvtrack.flip_words import label_basis
 
     def claim_with(flip: dict) -> dict:
         part = {"verdict": "reproduced", "label": "depends", "flips": [{**flip, "verdict": "not reproduced"}]}
@@ -1070,7 +1070,8 @@ def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_a
     """A joint flip larger than the subset search (side ``unattributed``, with the search's note) holds a world only
     where one of its entries is one: the first screen's bracket and its count of claims that depend only together
     with a world read the entries, not the side."""
-    from tvtrack.paragraphs import _only_with_a_world_ids, label_basis
+    from tvtrack.flip_words import label_basis
+    from tvtrack.paragraphs import _only_with_a_world_ids
 
     kinds = {"a": "reading", "b": "reading", "c": "unreported setting", "w": "regime"}
     register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
@@ -1093,7 +1094,7 @@ def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_a
 def test_the_first_screens_bracket_says_a_setting_or_worlds_also_flip_a_claim_a_reading_flips():
     """Beside the reading it names, the bracket says that an unprinted setting alone ("a setting too") or several
     worlds together ("worlds together too", not "a world") also change the whole verdict."""
-    from tvtrack.paragraphs import label_basis
+    from tvtrack.flip_words import label_basis
 
     kinds = {"r": "reading", "s": "unreported setting", "w": "regime", "v": "model"}
     register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]

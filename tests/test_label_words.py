@@ -23,7 +23,8 @@ def test_a_part_flip_an_undecided_claim_may_read_at_the_default_too_is_not_count
     """An undecided claim (a and c hold, b straddles) under a reading that makes a fail and b hold: the whole claim
     reads ``partly`` there, which it also reads at the default should b fail. The reading moves a part, not surely
     the whole verdict: the first screen counts the claim as moving only in a part, not as one a reading flips."""
-    from tvtrack.paragraphs import label_basis, part_only, results_summary, turns_on
+    from tvtrack.flip_words import label_basis
+    from tvtrack.paragraphs import part_only, results_summary, turns_on
     from tvtrack.wording import claim_verdict_at, moves_verdict
 
     reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")

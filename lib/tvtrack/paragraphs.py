@@ -16,7 +16,6 @@ from .wording import (
     PROVISIONAL,
     SIDE_ORDER,
     claim_fields,
-    kinds_of_changes,
     register_phrases,
     at_profile,
     claim_flips,
@@ -26,23 +25,12 @@ from .wording import (
     not_checkable_reason,
     shown_label,
     side_words,
-    summary_strength,
 )
+from .flip_words import flip_kinds, under_words
 from .run_words import thin_share
 from .value_words import value_clause
 
-_COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
-
-__all__ = [
-    "results_summary",
-    "turns_on",
-    "paper_paragraph",
-    "limitations",
-    "flip_with_kind",
-    "mixed_kinds",
-    "label_basis",
-    "label_words",
-]
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "label_words"]
 
 
 def _plural(n: int, word: str) -> str:
@@ -241,53 +229,6 @@ def depends_also_on_a_world(claims: list[Mapping]) -> int:
     return n
 
 
-def flip_kinds(flip: Mapping, record: Mapping) -> set[str]:
-    """The kinds of the entries a flip changes (``reading``, ``setting``, ``world``; an entry the record's register
-    does not know reads as a reading, as the core reads it)."""
-    known = register_phrases(record)
-    return {known.get(str(k), ("", "reading"))[1] for k in flip.get("changed") or {}}
-
-
-_SIDE_SHORT = {
-    "reading": ("a reading", "readings together"),
-    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
-    "world": ("a world", "worlds together"),
-}
-
-
-def label_basis(claim: Mapping) -> str:
-    """What flips a claim, in a few words for a list: the kind of the flip its sentence names
-    (:func:`tvtrack.wording.summary_strength`), with how many changes it takes; "in a part only" where no flip the
-    label rests on changes the whole claim's verdict; "a setting too", "a world too" where a setting or a world
-    alone also changes the claim's whole verdict (:func:`_also`) (``""`` for a claim no change flips). A combination no searched subset
-    isolates is named by its entries' kinds: "a mix with a world" only where one of them is a world."""
-    flips = claim_flips(claim)
-    if not flips:
-        return ""
-    first = min(flips, key=lambda f: summary_strength(claim, f))
-    n, kinds, side = len(first.get("changed") or {}), flip_kinds(first, claim.get("robustness") or {}), first["side"]
-    if side == "unattributed":
-        side = "mix" if "world" in kinds else "setting" if "setting" in kinds else "reading"
-    one, many = _SIDE_SHORT.get(side, ("a mix with a world", "a mix with a world"))
-    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
-    text = one if n <= 1 or side == "mix" else f"{_COUNT.get(n, n)} {many}"
-    text += "" if moves_verdict(claim, first) else ", in a part only"
-    return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world"))
-
-
-def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
-    """ "; a setting too" ("; a world too") where a flip of that kind other than the one named changes the whole
-    verdict: one change alone, else "; settings with other changes too" ("; worlds together too")."""
-    if shown == kind:
-        return ""
-    moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
-    if not moving:
-        return ""
-    if any(len(f.get("changed") or {}) <= 1 for f in moving):
-        return f"; a {kind} too"
-    return "; worlds together too" if kind == "world" else "; a setting with other changes too"
-
-
 _PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
 
 
@@ -408,7 +349,7 @@ def _why_not(c: Mapping) -> str:
         f = flips[0]
         whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's
         how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
-        text += f"; {how} under {_under(f, c.get('robustness') or {})}"
+        text += f"; {how} under {under_words(f, c.get('robustness') or {})}"
         lost = f.get("lost_runs") or {}
         if lost.get("carried"):  # a count over a stated number of replicates' draws says so (the claim pools more)
             reps = lost.get("replicates")
@@ -416,49 +357,6 @@ def _why_not(c: Mapping) -> str:
             of = "of" if not reps else "of its" if reps == 1 else "of their"
             text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
     return text
-
-
-def mixed_kinds(flip: Mapping, record: Mapping) -> str:
-    """A flip of several changes of different kinds, each change with its own kind (``"pixels 5 sigma wide (a
-    setting the paper never printed) and distances of 3 and 1 pixels (a reading of the paper's text)"``); ``""``
-    for one change, changes of one kind, or an entry the record's register does not know."""
-    changed = flip.get("changed") or {}
-    known = register_phrases(record)
-    if len(changed) < 2 or len({known.get(str(k), ("", "reading"))[1] for k in changed}) < 2:
-        return ""
-    return kinds_of_changes(changed, record)
-
-
-def _under(flip: Mapping, record: Mapping) -> str:
-    """What a named flip changes, introduced by its kind: one kind for one change or several of one kind, each
-    change's own kind for a mix (a reading and a setting together are not filed under the setting)."""
-    n = len(flip.get("changed") or {})
-    mixed = mixed_kinds(flip, record)
-    if mixed:
-        return f"{_COUNT.get(n, n)} changes together: {mixed}"
-    if n > 1 and flip.get("side") == "reading":
-        return f"{_COUNT.get(n, n)} other readings of the paper's text together: {flip['text']}"
-    return f"{side_words().get(flip['side'], 'another change')}: {flip['text']}"
-
-
-def flip_with_kind(flip: Mapping, record: Mapping) -> str:
-    """A named flip and its kind in plain words, as a record's list of flips shows it: the change, then its kind
-    in brackets; a mix of kinds names each change's own kind, so a reading and a setting together are not filed
-    under the setting alone.
-
-    Parameters
-    ----------
-    flip : Mapping
-        A named flip (``text``, ``side``, ``changed``), as :func:`tvtrack.wording.claim_flips` lists them.
-    record : Mapping
-        The claim's robustness record (its ``register`` gives each entry's phrase and kind).
-    """
-    sides = side_words()
-    mixed = mixed_kinds(flip, record)
-    if mixed:
-        alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
-        return f"{mixed}, together{alone}"
-    return f"{flip['text']} ({sides.get(flip['side'], sides['world'])})"
 
 
 def limitations(data: Mapping, profile: str = "paper") -> list[str]:

@@ -39,7 +39,8 @@ from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
-from .paragraphs import flip_with_kind, label_basis, label_words, mixed_kinds, paper_paragraph, results_summary
+from .flip_words import flip_with_kind, label_basis, mixed_kinds
+from .paragraphs import label_words, paper_paragraph, results_summary
 from .numbers import format_measured
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (

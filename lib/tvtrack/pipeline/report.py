@@ -257,7 +257,7 @@ def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
 
 def holding_lines(runs: dict) -> list[str]:
     """Which claims hold, which hold in part and which give nothing to measure, by paper, each with its label where
-    it has one and what the label rests on (:func:`tvtrack.paragraphs.label_basis`; one bullet per verdict)."""
+    it has one and what the label rests on (:func:`tvtrack.flip_words.label_basis`; one bullet per verdict)."""
     out = []
     for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part"), ("not checkable", "Not checkable")):
         bits = []

@@ -1,0 +1,104 @@
+"""How a named flip's kind is said: the first screen's bracket beside each claim that holds (what flips it, and
+which other kinds also do), and a flip of several changes of different kinds with each change's own kind (a
+reading and a setting together are never filed under the setting alone; a combination beyond the subset search is
+"a mix with a world" only where one of its entries is a world)."""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+from .wording import claim_flips, kinds_of_changes, moves_verdict, register_phrases, side_words, summary_strength
+
+__all__ = ["flip_kinds", "label_basis", "mixed_kinds", "flip_with_kind", "under_words"]
+
+_COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
+
+
+def flip_kinds(flip: Mapping, record: Mapping) -> set[str]:
+    """The kinds of the entries a flip changes (``reading``, ``setting``, ``world``; an entry the record's register
+    does not know reads as a reading, as the core reads it)."""
+    known = register_phrases(record)
+    return {known.get(str(k), ("", "reading"))[1] for k in flip.get("changed") or {}}
+
+
+_SIDE_SHORT = {
+    "reading": ("a reading", "readings together"),
+    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
+    "world": ("a world", "worlds together"),
+}
+
+
+def label_basis(claim: Mapping) -> str:
+    """What flips a claim, in a few words for a list: the kind of the flip its sentence names
+    (:func:`tvtrack.wording.summary_strength`), with how many changes it takes; "in a part only" where no flip the
+    label rests on changes the whole claim's verdict; "a setting too", "a world too" where a setting or a world
+    alone also changes the claim's whole verdict (:func:`_also`) (``""`` for a claim no change flips). A combination no searched subset
+    isolates is named by its entries' kinds: "a mix with a world" only where one of them is a world."""
+    flips = claim_flips(claim)
+    if not flips:
+        return ""
+    first = min(flips, key=lambda f: summary_strength(claim, f))
+    n, kinds, side = len(first.get("changed") or {}), flip_kinds(first, claim.get("robustness") or {}), first["side"]
+    if side == "unattributed":
+        side = "mix" if "world" in kinds else "setting" if "setting" in kinds else "reading"
+    one, many = _SIDE_SHORT.get(side, ("a mix with a world", "a mix with a world"))
+    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
+    text = one if n <= 1 or side == "mix" else f"{_COUNT.get(n, n)} {many}"
+    text += "" if moves_verdict(claim, first) else ", in a part only"
+    return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world"))
+
+
+def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
+    """ "; a setting too" ("; a world too") where a flip of that kind other than the one named changes the whole
+    verdict: one change alone, else "; settings with other changes too" ("; worlds together too")."""
+    if shown == kind:
+        return ""
+    moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
+    if not moving:
+        return ""
+    if any(len(f.get("changed") or {}) <= 1 for f in moving):
+        return f"; a {kind} too"
+    return "; worlds together too" if kind == "world" else "; a setting with other changes too"
+
+
+def mixed_kinds(flip: Mapping, record: Mapping) -> str:
+    """A flip of several changes of different kinds, each change with its own kind (``"pixels 5 sigma wide (a
+    setting the paper never printed) and distances of 3 and 1 pixels (a reading of the paper's text)"``); ``""``
+    for one change, changes of one kind, or an entry the record's register does not know."""
+    changed = flip.get("changed") or {}
+    known = register_phrases(record)
+    if len(changed) < 2 or len({known.get(str(k), ("", "reading"))[1] for k in changed}) < 2:
+        return ""
+    return kinds_of_changes(changed, record)
+
+
+def under_words(flip: Mapping, record: Mapping) -> str:
+    """What a named flip changes, introduced by its kind: one kind for one change or several of one kind, each
+    change's own kind for a mix (a reading and a setting together are not filed under the setting)."""
+    n = len(flip.get("changed") or {})
+    mixed = mixed_kinds(flip, record)
+    if mixed:
+        return f"{_COUNT.get(n, n)} changes together: {mixed}"
+    if n > 1 and flip.get("side") == "reading":
+        return f"{_COUNT.get(n, n)} other readings of the paper's text together: {flip['text']}"
+    return f"{side_words().get(flip['side'], 'another change')}: {flip['text']}"
+
+
+def flip_with_kind(flip: Mapping, record: Mapping) -> str:
+    """A named flip and its kind in plain words, as a record's list of flips shows it: the change, then its kind
+    in brackets; a mix of kinds names each change's own kind, so a reading and a setting together are not filed
+    under the setting alone.
+
+    Parameters
+    ----------
+    flip : Mapping
+        A named flip (``text``, ``side``, ``changed``), as :func:`tvtrack.wording.claim_flips` lists them.
+    record : Mapping
+        The claim's robustness record (its ``register`` gives each entry's phrase and kind).
+    """
+    sides = side_words()
+    mixed = mixed_kinds(flip, record)
+    if mixed:
+        alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
+        return f"{mixed}, together{alone}"
+    return f"{flip['text']} ({sides.get(flip['side'], sides['world'])})"
