@@ -176,7 +176,8 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     skip += [m.span(1) for m in re.finditer(r"\d\s*(\[[^\]]*\])", text)]  # an interval after its value
     skip += [m.span() for m in re.finditer(r"\((?:at most|at least) [^)]*\)", text)]
     skip += [m.span(1) for m in re.finditer(r"between (-?[\d.e+-]+) and ", text)]  # a range: its end has the unit
-    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{re.escape(unit)}|{_COUNTS})"
+    said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
+    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{said}|{_COUNTS})"
     tokens = r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])"
     bare = []
     for m in re.finditer(tokens, text):
@@ -1114,3 +1115,20 @@ def test_the_first_screens_bracket_says_a_setting_or_worlds_also_flip_a_claim_a_
         == "a reading; a setting too; a world too"
     )
     assert label_basis(claim(setting, ("r and s", "setting", {"r": 1, "s": 1}))) == "an unprinted setting"
+
+
+def test_a_part_name_and_a_not_checkable_reason_read_as_words_in_a_sentence():
+    """A rule part named for the code (``no_loss``) is said "no loss" where a sentence names it, and a reason after
+    "Not checkable:" starts in lower case where its second letter is lower case (not an acronym)."""
+    from tvtrack.wording import _flip_to, not_checkable_reason
+
+    claim = {"verdict": "reproduced", "robustness": {"conditions": [{"changed": {"k": 1}, "verdict": "partly"}]}}
+    flip = {"verdict": "not reproduced", "part": "no_loss", "changed": {"k": 1}}
+    assert _flip_to(flip, claim, 2) == "the claim is partly reproduced (its part no loss: not reproduced)"
+    assert not_checkable_reason({"rule": {"reason": "In this model SIR_0 = kappa SIR by construction."}}) == (
+        "in this model SIR_0 = kappa SIR by construction"
+    )
+    assert not_checkable_reason({"rule": {"reason": "SIR_0 is set by construction."}}).startswith("SIR_0")
+    from tvtrack.run_words import part_name
+
+    assert part_name("not_lower") == "not lower" and part_name("psi_A=5, P=0.5") == "psi_A=5, P=0.5"

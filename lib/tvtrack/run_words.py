@@ -15,6 +15,8 @@ __all__ = [
     "lost_lead",
     "lost_basis",
     "thin_share",
+    "part_name",
+    "plain_text",
 ]
 
 
@@ -34,7 +36,7 @@ def runs_sentence(part: Mapping, name: str | None = None) -> str:
     r = part.get("runs_to_decide") or {}
     if not r:
         return ""
-    it = f"its part {name}" if name else "it"
+    it = f"its part {part_name(name)}" if name else "it"
     if r.get("replicates"):
         cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
         beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
@@ -88,3 +90,18 @@ def thin_share(parts: Mapping) -> tuple[str, Mapping] | None:
         and int((p.get("share") or {}).get("undecided") or 0) > int((p.get("share") or {}).get("agree") or 0)
     ]
     return min(thin, key=lambda np: int(np[1]["share"]["agree"])) if thin else None
+
+
+_CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")
+
+
+def plain_text(text: str) -> str:
+    """Text without the parentheses that name code (``(..., calibration.calibrate_bandwidth)``)."""
+    return " ".join(_CODE.sub("", text).split()).replace(" :", ":").replace(" ,", ",")
+
+
+def part_name(name: object) -> str:
+    """A rule part's name as a sentence says it: ``no_loss`` -> ``no loss`` (a name written for the code); a
+    name with symbols (``psi_A=5, P=0.5``) as it is."""
+    text = str(name)
+    return text.replace("_", " ") if re.fullmatch(r"[a-z]+(?:_[a-z]+)+", text) else text  # psi_A=5 stays

@@ -21,7 +21,8 @@ import re
 from typing import Any, Mapping
 
 from .numbers import finite, number
-from .run_words import lock_sentence, lost_basis, lost_lead, runs_sentence, slowest_part, thin_share
+from .run_words import lock_sentence, lost_basis, lost_lead, part_name, plain_text
+from .run_words import runs_sentence, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -377,7 +378,7 @@ def share_counts(share: Mapping) -> str:
 def _share_sentence(part: Mapping, name: str | None = None) -> str:
     """A part's share as a sentence, said of its part ``name`` where that is not the part the sentence shows."""
     text = share_counts(part.get("share") or {})
-    return "" if not text else f"For its part {name}, {text}." if name else f"{_cap(text)}."
+    return "" if not text else f"For its part {part_name(name)}, {text}." if name else f"{_cap(text)}."
 
 
 def claim_verdict_at(claim: Mapping, changed: Mapping) -> str | None:
@@ -416,14 +417,14 @@ def _flip_to(flip: Mapping, claim: Mapping, n_parts: int) -> str:
         return f"it is {verdict}"
     said = _HEAD.get(whole, whole).lower()
     if whole == claim.get("verdict"):  # the whole claim keeps its verdict: only one part moves
-        return f"the claim stays {said}, but its part {flip.get('part')} is {verdict}"
-    return f"the claim is {said} (its part {flip.get('part')}: {verdict})"
+        return f"the claim stays {said}, but its part {part_name(flip.get('part'))} is {verdict}"
+    return f"the claim is {said} (its part {part_name(flip.get('part'))}: {verdict})"
 
 
 def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1) -> str:
     """The strongest named flip in plain words: what kind of change it is, where it takes the claim (and its part,
     for a claim of several parts), and the change itself (the register's phrases)."""
-    side, text = flip.get("side", "reading"), _plain(str(flip.get("text") or ""))
+    side, text = flip.get("side", "reading"), plain_text(str(flip.get("text") or ""))
     to = _flip_to(flip, claim or {}, n_parts)
     lost = flip.get("lost_runs") or {}
     carried = (
@@ -475,7 +476,7 @@ def kinds_of_changes(changed: Mapping, record: Mapping) -> str:
         if str(k) not in known:
             return ""
         title, side, phrases = known[str(k)]
-        phrase = _plain(str(phrases.get(str(v)) or f"{title} = {v}"))
+        phrase = plain_text(str(phrases.get(str(v)) or f"{title} = {v}"))
         bits.append(f"{phrase} ({_KIND_TAGS.get(side, _KIND_TAGS['reading'])})")
     return " and ".join(bits) if len(bits) < 3 else ", ".join(bits[:-1]) + " and " + bits[-1]
 
@@ -511,23 +512,16 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 
-_CODE = re.compile(r"\([^()]*\b[a-z]\w*\.[a-z_]\w*\b[^()]*\)|\([^()]*\w\(\)[^()]*\)")
-
-
-def _plain(text: str) -> str:
-    """Text without the parentheses that name code (``(..., calibration.calibrate_bandwidth)``)."""
-    return " ".join(_CODE.sub("", text).split()).replace(" :", ":").replace(" ,", ",")
-
-
 def not_checkable_reason(claim: Mapping) -> str:
     """Why a claim cannot be checked, in one sentence: the first clause of the rule's reason or of the note,
     whichever says more."""
     firsts = []
     for text in (claim.get("rule") or {}).get("reason"), claim.get("note"):
-        text = _plain(str(text or "").strip())
+        text = plain_text(str(text or "").strip())
         first = re.split(r"(?<=;)\s+|(?<=\.)\s+(?=[A-Z])", text)[0].rstrip(".;") if text else ""
         firsts.append(first)
-    return max(firsts, key=len) or "nothing measurable"
+    reason = max(firsts, key=len) or "nothing measurable"
+    return reason[:1].lower() + reason[1:] if reason[1:2].islower() else reason  # after a colon: "In this" -> "in this"
 
 
 def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
@@ -579,7 +573,7 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
         flips = every  # a stronger flip of another part is the one the label rests on
     flips = sorted(flips, key=strength)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
-    required += [_plain(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
+    required += [plain_text(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
     required += [s for s in (lock_sentence(claim, part),) if s]  # the default's own lost runs, before any flip
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
     common = _common_sentence(every, claim.get("robustness") or {})  # "it": the claim, every part's flips
