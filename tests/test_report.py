@@ -168,7 +168,7 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
     assert "**robust**: no explored reading" in text and "**undecided**: the interval straddles" in text  # glossary
     # the headline finding: one line with statement, verdict, label and its sentence
     assert (
-        "- **010 C010-2** (not reproduced, depends) *The gain is 4.* Not reproduced: the measured value is 1.5 "
+        "- **010 C010-2** (not reproduced, depends: a reading) *The gain is 4.* Not reproduced: the measured value is 1.5 "
         "\\[1.2, 1.8\\], against \\[0, 2\\] (the paper: 1). Under another reading of the paper's text it is "
         "reproduced: epoch = mid."
     ) in text
@@ -426,14 +426,20 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     head = "\n".join(text.splitlines()[:16])
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
     assert (
-        "What the verdicts turn on: a reading of the paper's text (alone or with other readings) flips 1 claim; a world beyond the paper (alone or with other worlds) flips "
-        "1 claim."
-    ) in head  # a flip counts where it changes the whole claim's verdict, not only a part's; C001-7's named flip
+        (
+            "\n\nWhat the verdicts turn on: a reading of the paper's text (alone or with other readings) flips 1 claim; "
+            "a world beyond the paper (alone or with other worlds) flips 1 claim.\n\n"
+        )
+        in head
+    )  # a paragraph of its own, after the counts  # a flip counts where it changes the whole claim's verdict, not only a part's; C001-7's named flip
     # moves only a part, but its record has a condition (sigma read from the raw increments) whose whole verdict
     # differs, so it is never said to stay under every change explored
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
-    assert "- **001 C001-3** (not reproduced, depends)" in text and "- **001 C004-3b** (undecided, unexplored)" in text
+    assert (
+        "- **001 C001-3** (not reproduced, depends: a reading; a world too)" in text
+        and "- **001 C004-3b** (undecided, unexplored)" in text
+    )
 
 
 def test_each_paper_opens_with_what_it_claims_what_holds_what_does_not_and_why_then_its_limitations(

@@ -180,8 +180,8 @@ def test_long_vectors_are_summarised_by_their_ends_and_trend():
     )
     wavy = [{"value": v, "ci_low": v - 0.05, "ci_high": v + 0.05} for v in (0.83, 0.5, 0.52, 0.3, 0.25)]
     assert format_measured(wavy, ms) == (  # a measured net fall no measured step goes against is not 'unsteady'
-        "falls from 0.83 [0.78, 0.88] ms to 0.25 [0.2, 0.3] ms over 5 points (none of its 4 steps measurably rise "
-        "and 2 fall; between 0.25 and 0.83 ms)"
+        "falls from 0.83 [0.78, 0.88] ms to 0.25 [0.2, 0.3] ms over 5 points (no single one of its 4 steps measurably "
+        "rises and 2 fall; between 0.25 and 0.83 ms)"
     )
     from tvtrack.value_words import value_clause
 
@@ -193,7 +193,7 @@ def test_long_vectors_are_summarised_by_their_ends_and_trend():
     assert not value_clause(rule, wavy).endswith("direction")
     noisy = [{"value": v, "ci_low": v - 0.4, "ci_high": v + 0.4} for v in (1.0, 1.2, 1.1, 1.3, 0.2)]
     assert format_measured(noisy, ms).endswith(  # rises within the noise are not counted: only the last step falls
-        "not steadily (none of its 4 steps measurably rise and 1 falls; between 0.2 and 1.3 ms)"
+        "not steadily (no single one of its 4 steps measurably rises and 1 falls; between 0.2 and 1.3 ms)"
     )
     assert format_measured([1, 2], ms) == "1, 2 ms"  # short vectors are shown whole
 

@@ -117,10 +117,9 @@ def vector_text(values: list, unit: str, always: bool = False) -> str:
         trend = "stays"
     else:  # neither falls nor rises throughout: its measured net trend, then how far it strays between them
         up, down = _measured_steps([p for p in points if p is not None])
-        moves = (
-            f"{up or 'none'} of its {len(steps)} steps measurably rise{'s' if up == 1 else ''} and "
-            f"{down or 'none'} fall{'s' if down == 1 else ''}"
-        )
+        rise = f"{up} of its {len(steps)} steps measurably rise{'s' if up == 1 else ''}" if up else None
+        rise = rise or f"no single one of its {len(steps)} steps measurably rises"  # a net rise may still be measured
+        moves = f"{rise} and {down or 'none'} fall{'s' if down == 1 or not down else ''}"
         net = net_trend(points[0], points[-1])
         against = {"falls": up, "rises": down}.get(net, 1)  # a net trend no measured step goes against is steady
         ends = (

@@ -315,12 +315,10 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
         with_world, also_world = _only_with_a_world_ids(claims), depends_also_on_a_world(claims)
         thin = [c["id"] for c in claims if shown_label(c) == "robust" and _thin(c)]
         text.append(_sure_sentence(labels, checkable, with_world, also_world, partial, thin))
-    turns = _turns_sentence(claims)
-    if turns:
-        text.append(turns)
     if profile != "paper":
         text.append(f"These are {profile}-profile runs, not the paper-scale numbers.")
-    return " ".join(text)
+    turns = _turns_sentence(claims)  # a paragraph of its own: the counts first, what they turn on after
+    return " ".join(text) + (f"\n\n{turns}" if turns else "")
 
 
 # --- one paragraph per paper -------------------------------------------------------------------------------------

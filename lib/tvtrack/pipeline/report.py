@@ -162,8 +162,9 @@ def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
     """The claims a researcher asks about first, one row each: every claim that does not reproduce or is
     undecided, then every other checkable claim whose verdict depends on a reading or is unstable.
 
-    Rows: ``{paper, id, statement, paper_value, measured, verdict, label, where, summary}`` (measured with its
-    unit and interval; ``summary``: :func:`tvtrack.results.claim_summary`)."""
+    Rows: ``{paper, id, statement, paper_value, measured, verdict, label, where, summary, basis}`` (measured with
+    its unit and interval; ``summary``: :func:`tvtrack.results.claim_summary`; ``basis``: what flips a
+    ``depends`` or ``limited`` claim, every kind that does, :func:`tvtrack.flip_words.label_basis`)."""
     rows = []
     for name, (_, data) in runs.items():
         for c in (data or {}).get("claims", []):
@@ -180,6 +181,7 @@ def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
                         "label": label,
                         "where": robustness_where(c),
                         "summary": claim_summary(c),
+                        "basis": label_basis(c) if label in ("depends", "limited") else "",
                     }
                 )
     return sorted(rows, key=lambda r: (_FIRST_ORDER.get(r["verdict"], 2), r["paper"], _claim_order(r["id"])))
@@ -191,12 +193,14 @@ def _claim_order(cid: str):
 
 def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None) -> str:
     """Rows of :func:`first_screen` (those with ``verdicts``, default all) as a Markdown list, one claim a line:
-    its id, statement, verdict and label, then its sentence; a sentence when there are none."""
+    its id, statement, verdict and label with every kind of change that flips it, then its sentence; a sentence
+    when there are none."""
     rows = [r for r in rows if verdicts is None or r["verdict"] in verdicts]
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r['verdict'], r['label'])}) "
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r['verdict'], r['label'])}"
+        f"{': ' + r['basis'] if r.get('basis') else ''}) "
         f"*{md_escape(_whole(r['statement']))}* "
         f"{md_escape(r['summary'])}"
         for r in rows
@@ -288,9 +292,9 @@ def _in_short(runs: dict, shown: str) -> list[str]:
     not."""
     claims = [c for _, data in runs.values() if data for c in data["claims"]]
     held = holding_lines(runs)
+    paragraphs = [md_escape(p) for p in results_summary(claims, shown).split("\n\n")]  # the counts, what they turn on
     return [
-        md_escape(results_summary(claims, shown)),
-        "",
+        *[line for p in paragraphs for line in (p, "")],
         glossary_markdown(),
         "",
         papers_table(runs),
