@@ -367,7 +367,8 @@ def share_counts(share: Mapping) -> str:
     agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
     design = int(share.get("design", agree + flip + undecided))
     left = int(share.get("left_by_budget") or 0)
-    why = f" ({left} of them lean towards agreement but were left smaller than the default by the sizing budget)"
+    why = f" ({left} of them lean towards agreement but were given fewer runs than the default: a cap limits the runs"
+    why += " spent confirming agreement)"
     return (
         f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
         f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
