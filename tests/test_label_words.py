@@ -216,3 +216,21 @@ def test_every_change_that_flips_a_claim_means_every_part_s():
     only_a = _claim("C9-11", default, conds[:2], entries)
     only_a["robustness"]["register"] = register
     assert "Every change that flips it includes x = 1 (a reading of the paper's text)." in claim_summary(only_a, 0)
+
+
+def test_an_undecided_claim_still_undecided_under_a_flip_without_part_verdicts_is_not_shown_to_move():
+    """A condition row without its parts' verdicts, where the whole claim reads undecided on both sides: the flip
+    moves a part, and the first screen says so ("in a part only") as the claim's sentence ("stays undecided")."""
+    from tvtrack.flip_words import label_basis
+    from tvtrack.wording import moves_verdict
+
+    flip = {"text": "x", "side": "setting", "changed": {"k": 1}, "verdict": "not reproduced", "part": "one"}
+    parts = {"one": {"verdict": "reproduced", "flips": [flip]}, "two": {"verdict": "undecided"}}
+    rob = {"register": [{"name": "k", "title": "k", "kind": "unreported setting", "phrases": {}}], "parts": parts}
+    rob["conditions"] = [{"changed": {"k": 1}, "verdict": "undecided"}]
+    claim = {"id": "C9-1", "verdict": "undecided", "rule": {"kind": "all_of", "parts": {"one": {}, "two": {}}}}
+    claim["robustness"] = {**rob, "label": "depends"}
+    assert moves_verdict(claim, flip) is False
+    assert label_basis(claim) == "an unprinted setting, in a part only"
+    claim["robustness"]["conditions"] = [{"changed": {"k": 1}, "verdict": "not reproduced"}]
+    assert moves_verdict(claim, flip) is True

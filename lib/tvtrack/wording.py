@@ -243,15 +243,15 @@ def differs_whatever_is_open(claim: Mapping, row: Mapping) -> bool:
     """Whether the whole claim's verdict under a condition (``row``, a record's ``conditions`` item) differs from
     the default's for every outcome of the parts undecided on either side: a part undecided on both sides is
     taken to come out the same way on both, one undecided on one side only either way. Two decided verdicts
-    compare as they are; a row without its parts' verdicts compares its whole verdict (``undecided`` there
-    counting as moved, as a part decided the other way leaves it)."""
+    compare as they are; a row without its parts' verdicts compares its whole verdict (undecided on both sides is
+    not shown to move: the claim's sentence says it "stays undecided")."""
     here, there = claim_fields(claim).get("verdict"), row.get("verdict")
     if "undecided" not in (here, there):
         return there != here
     default = {n: p.get("verdict") for n, p in ((claim.get("robustness") or {}).get("parts") or {}).items()}
     at = row.get("parts")
     if not isinstance(at, Mapping) or not default or set(at) != set(default):
-        return there != here or there == "undecided"
+        return there != here  # undecided on both sides: not shown to move, as the claim's sentence says
     names = [n for n in default if "not checkable" not in (default[n], at[n])]
     open_ = [n for n in names if "undecided" in (default[n], at[n])]
     for outcome in itertools.product(("reproduced", "not reproduced"), repeat=len(open_)):
