@@ -234,3 +234,15 @@ def test_an_undecided_claim_still_undecided_under_a_flip_without_part_verdicts_i
     assert label_basis(claim) == "an unprinted setting, in a part only"
     claim["robustness"]["conditions"] = [{"changed": {"k": 1}, "verdict": "not reproduced"}]
     assert moves_verdict(claim, flip) is True
+    from tvtrack.wording import _flip_to
+
+    row = {"changed": {"k": 1}, "verdict": "undecided", "parts": {"one": "not reproduced", "two": "undecided"}}
+    claim["robustness"]["conditions"] = [row]
+    said = _flip_to(flip, claim, 2)
+    if moves_verdict(claim, flip):  # whatever part two turns out to be, the claim cannot read as at the default
+        assert (
+            said
+            == "the claim stays undecided, but its part one is not reproduced, so it cannot come out as at the default"
+        )
+    claim["robustness"]["conditions"] = [{"changed": {"k": 1}, "verdict": "undecided"}]
+    assert _flip_to(flip, claim, 2) == "the claim stays undecided, but its part one is not reproduced"

@@ -417,8 +417,11 @@ def _flip_to(flip: Mapping, claim: Mapping, n_parts: int) -> str:
     if whole is None or whole == verdict:
         return f"it is {verdict}"
     said = _HEAD.get(whole, whole).lower()
-    if whole == claim.get("verdict"):  # the whole claim keeps its verdict: only one part moves
-        return f"the claim stays {said}, but its part {part_name(flip.get('part'))} is {verdict}"
+    if whole == claim.get("verdict"):  # the whole claim keeps its word; undecided, it may still not end the same
+        late = (
+            ", so it cannot come out as at the default" if whole == "undecided" and moves_verdict(claim, flip) else ""
+        )
+        return f"the claim stays {said}, but its part {part_name(flip.get('part'))} is {verdict}{late}"
     return f"the claim is {said} (its part {part_name(flip.get('part'))}: {verdict})"
 
 
