@@ -542,7 +542,7 @@ def test_the_sentence_on_how_sure_the_verdicts_are_accounts_for_every_checkable_
     claims += [claim("C001-3", "not reproduced", "unexplored"), claim("C001-4", "not checkable", "-")]
     text = results_summary(claims)
     assert (
-        "Of the 3 checkable verdicts, 1 survives every reading of the paper (1 robust, 0 only within the paper's "
+        "Of the 3 checkable verdicts, 1 survives every reading of the paper (it holds; 1 robust, 0 only within the paper's "
         "world), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
         "explored to show how far it extends (unexplored), 1 has no label (no part of it decided, or no record of "
         "what was explored), and 0 differ between independent replicates." in text
@@ -1132,3 +1132,68 @@ def test_a_part_name_and_a_not_checkable_reason_read_as_words_in_a_sentence():
     from tvtrack.run_words import part_name
 
     assert part_name("not_lower") == "not lower" and part_name("psi_A=5, P=0.5") == "psi_A=5, P=0.5"
+
+
+def test_the_first_screen_says_which_surviving_verdicts_hold_and_names_a_claim_counted_in_both_world_groups():
+    """ "7 survive every reading" is not "7 hold": the count says how many of them hold, do not hold or are
+    undecided. A claim that a reading or setting flips only together with a world, and that worlds alone also flip,
+    is in both counts of the ``depends`` ones; the sentence names it as among the others, so the counts are not
+    read as disjoint."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from tvtrack.results import results_summary
+
+    def claim(cid, verdict, label):
+        return {"id": cid, "verdict": verdict, "robustness": {"label": label}}
+
+    robust = [claim("C9-1", "reproduced", "robust"), claim("C9-2", "not reproduced", "robust")]
+    robust += [claim("C9-3", "not reproduced", "limited"), claim("C9-4", "partly", "robust")]
+    text = results_summary(robust + [claim("C9-5", "reproduced", "unexplored")])
+    assert "4 survive every reading of the paper (of them 1 holds, 1 holds in part and 2 do not hold; 3 robust" in text
+    assert "(none of them holds; 1 robust, 1 only within" in results_summary(robust[1:3])
+    assert "(all hold; 2 robust" in results_summary([robust[0], claim("C9-6", "reproduced", "robust")])
+
+    both = copy.deepcopy(DEPENDS) | {"id": "C004-4"}
+    world = both["robustness"]["parts"]["claim"]["flips"][1]
+    mix = {**world, "side": "unattributed", "kind": "combination", "text": "weave with raw increments"}
+    mix["changed"] = {**world["changed"], "paper_sigma": "raw_increments"}
+    both["robustness"]["parts"]["claim"]["flips"] = [world, mix]
+    text = results_summary([DEPENDS, both])
+    assert (
+        "(for 2 of them worlds beyond the paper (one or several), with no reading or setting changed, also flip the "
+        "verdict, and 1 (C004-4) only together with a world beyond it (C004-4 is also among the 2))" in text
+    ), text
+
+
+def test_the_first_screen_bracket_names_a_kind_that_leaves_a_decided_claim_undecided():
+    """A claim partly reproduced (early and mid hold, late fails): a reading makes late hold (the whole verdict
+    moves to reproduced); a world makes early fail and leaves mid open, so the whole claim reads undecided there,
+    partly or not reproduced as mid turns out. That is no flip of the whole verdict, but the bracket says it, so a
+    reader can tell what the claim turns on: "a reading; a world leaves it undecided"."""
+    from tvtrack.flip_words import label_basis
+
+    reading = Entry("sigma", "reading", "raw", ("raw", "smoothed"), "the text reads either way")
+    world = Entry("motion", "regime", "none", ("none", "weave"), "beyond the paper")
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = AllOf({"early": band, "mid": band, "late": band})
+    ok, bad = Estimate.exact(0.0), Estimate.exact(3.0)
+    straddles = Estimate(value=0.5, stderr=0.1, ci_low=0.3, ci_high=0.7, n=30, confidence=0.95, method="t")
+    partly = {"early": ok, "mid": ok, "late": bad}
+    reps = [{"seed": s, "measured": partly} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"sigma": "smoothed"}, "kind": "single", "runs": 3, "measured": {**partly, "late": ok}},
+        {
+            "changed": {"motion": "weave"},
+            "kind": "single",
+            "runs": 3,
+            "measured": {**partly, "early": bad, "mid": straddles},
+        },
+    ]
+    rob = label_parts(rule, partly, reps, conds, [reading, world])
+    claim = {"id": "C9-3", "verdict": "partly", "rule": rule.to_dict(), "measured": partly, "robustness": rob}
+    assert [r["verdict"] for r in rob["conditions"]] == ["reproduced", "undecided"]
+    assert label_basis(claim) == "a reading; a world leaves it undecided"
+    from tvtrack.paragraphs import turns_on
+
+    assert set(turns_on([claim])) == {"reading"}  # the count of what flips verdicts still leaves the world out

@@ -7,7 +7,15 @@ from __future__ import annotations
 
 from typing import Mapping
 
-from .wording import claim_flips, kinds_of_changes, moves_verdict, register_phrases, side_words, summary_strength
+from .wording import (
+    claim_flips,
+    claim_verdict_at,
+    kinds_of_changes,
+    moves_verdict,
+    register_phrases,
+    side_words,
+    summary_strength,
+)
 
 __all__ = ["flip_kinds", "label_basis", "mixed_kinds", "flip_with_kind", "under_words"]
 
@@ -50,12 +58,17 @@ def label_basis(claim: Mapping) -> str:
 
 def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
     """ "; a setting too" ("; a world too") where a flip of that kind other than the one named changes the whole
-    verdict: one change alone, else "; settings with other changes too" ("; worlds together too")."""
+    verdict: one change alone, else "; settings with other changes too" ("; worlds together too"); where none of
+    that kind changes it but one turns a part so that the decided claim reads undecided there, "; a world leaves it
+    undecided" (more runs there would tell whether it flips)."""
     if shown == kind:
         return ""
     moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
     if not moving:
-        return ""
+        opened = claim.get("verdict") != "undecided" and any(  # a part's flip that leaves the whole claim open
+            f.get("side") == kind and claim_verdict_at(claim, f.get("changed") or {}) == "undecided" for f in flips
+        )
+        return f"; a {kind} leaves it undecided" if opened else ""
     if any(len(f.get("changed") or {}) <= 1 for f in moving):
         return f"; a {kind} too"
     return "; worlds together too" if kind == "world" else "; a setting with other changes too"

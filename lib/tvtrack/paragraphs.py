@@ -221,12 +221,40 @@ def _only_with_a_world_ids(claims: list[Mapping]) -> list[str]:
 def depends_also_on_a_world(claims: list[Mapping]) -> int:
     """How many claims labelled ``depends`` a world beyond the paper also flips alone (a named world flip that
     changes the whole claim's verdict): the label names the reading or setting, and this counts what it hides."""
-    n = 0
+    return len(_also_world_ids(claims))
+
+
+def _also_world_ids(claims: list[Mapping]) -> list[str]:
+    out = []
     for c in claims:
         c = claim_fields(c)
         if shown_label(c) == "depends" and c.get("verdict") != "not checkable":
-            n += any(f["side"] == "world" for f in _whole_flips(c))
-    return n
+            out += [str(c.get("id", ""))] if any(f["side"] == "world" for f in _whole_flips(c)) else []
+    return out
+
+
+#: How the claims that survive every reading are split by verdict (the first screen's count says which hold).
+_SURVIVING = (
+    ("reproduced", "holds", "hold"),
+    ("partly", "holds in part", "hold in part"),
+    ("not reproduced", "does not hold", "do not hold"),
+    ("undecided", "is undecided", "are undecided"),
+)
+
+
+_ALL = {key: many for key, _, many in _SURVIVING}
+
+
+def _surviving_split(claims: list[Mapping]) -> str:
+    """``"of them 4 hold, 2 do not hold and 1 is undecided"`` (``"it holds"`` for one): the verdicts of the claims
+    labelled robust or limited (those that survive every reading of the paper), so that a reader does not take
+    surviving for holding."""
+    v = Counter(str(c.get("verdict")) for c in claims if shown_label(c) in _PARTIAL_SCOPE)
+    if sum(v.values()) == 1:
+        return "it " + next(one for key, one, _ in _SURVIVING if v[key])
+    if len(+v) == 1:  # one verdict for all of them
+        return {"not reproduced": "none of them holds"}.get(next(iter(v)), "all " + _ALL.get(next(iter(v)), ""))
+    return ("of them " + _join([_n(v[key], one, many) for key, one, many in _SURVIVING if v[key]])) if v else ""
 
 
 _PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
@@ -246,13 +274,17 @@ def _sure_sentence(
     also_world: int = 0,
     partial: list = (),
     thin: list = (),
+    split: str = "",
+    both: list = (),
 ) -> str:
     """How sure the checkable verdicts are, by label; the counts add up to ``checkable`` (a verdict that decides no
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
     changes ``also_world`` of them (:func:`depends_also_on_a_world`); ``partial`` names the undecided claims among
     those that survive, labelled by their decided parts only (:func:`label_words`), and ``thin`` the robust ones
-    most of whose explored configurations stayed undecided (:func:`tvtrack.run_words.thin_share`)."""
+    most of whose explored configurations stayed undecided (:func:`tvtrack.run_words.thin_share`); ``split`` says
+    the surviving verdicts by verdict (:func:`_surviving_split`) and ``both`` names the ``with_world`` claims that a
+    world alone also flips (counted in both groups, and said so)."""
     sure = labels["robust"] + labels["limited"]
     part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
     part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
@@ -263,13 +295,17 @@ def _sure_sentence(
     notes = notes if also_world else []
     named = _ids(with_world) if isinstance(with_world, list) else ""
     with_world = len(with_world) if isinstance(with_world, list) else with_world
+    among = f" ({_join(list(both))} {'is' if len(both) == 1 else 'are'} also among the {also_world})" if both else ""
     notes += (
-        [f"{with_world}{'' if notes else ' of them'}{named} only together with a world beyond it"] if with_world else []
+        [f"{with_world}{'' if notes else ' of them'}{named} only together with a world beyond it{among}"]
+        if with_world
+        else []
     )
     mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-        f"({labels['robust']} robust, {labels['limited']} only within the paper's world{part}), "
+        f"({f'{split}; ' if split else ''}{labels['robust']} robust, {labels['limited']} only within the paper's "
+        f"world{part}), "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
         f"never printed{mixed}, "
         + (
@@ -312,9 +348,11 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
         )
     else:
         partial = [c["id"] for c in claims if label_words(str(c.get("verdict")), shown_label(c)) != shown_label(c)]
-        with_world, also_world = _only_with_a_world_ids(claims), depends_also_on_a_world(claims)
+        with_world, also_world = _only_with_a_world_ids(claims), _also_world_ids(claims)
         thin = [c["id"] for c in claims if shown_label(c) == "robust" and _thin(c)]
-        text.append(_sure_sentence(labels, checkable, with_world, also_world, partial, thin))
+        both = [i for i in with_world if i in also_world]
+        split = _surviving_split([c for c in claims if c.get("verdict") != "not checkable"])
+        text.append(_sure_sentence(labels, checkable, with_world, len(also_world), partial, thin, split, both))
     if profile != "paper":
         text.append(f"These are {profile}-profile runs, not the paper-scale numbers.")
     turns = _turns_sentence(claims)  # a paragraph of its own: the counts first, what they turn on after
