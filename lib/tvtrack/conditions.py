@@ -271,21 +271,50 @@ def _flips(rules, default_j, run: Run, n_default) -> set:
     }
 
 
-def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: Mapping, n_default) -> list:
+def _changed_items(run: Run, default: Mapping, cache: dict | None) -> frozenset:
+    """``run``'s changed ``(entry, value)`` pairs (kept in ``cache``: a run's configuration never changes)."""
+    if cache is None:
+        return frozenset(run.changed(default).items())
+    hit = cache.get(("changed", id(run)))
+    if hit is None or hit[0] is not run:
+        hit = cache[("changed", id(run))] = (run, frozenset(run.changed(default).items()))
+    return hit[1]
+
+
+def _flips_kept(rules, default_j, run: Run, n_default, cache: dict | None) -> set:
+    """:func:`_flips` of ``run``, kept in ``cache`` while the run is as it was (its outputs, its further replicates
+    and their outputs, its screened claims): a run's verdicts change only when one of those does."""
+    if cache is None:
+        return _flips(rules, default_j, run, n_default)
+    state = (len(run.outputs), run.scope, run.screened, tuple((id(s), len(s.outputs)) for s in run.sized))
+    hit = cache.get(("flips", id(run)))
+    if hit is None or hit[0] is not run or hit[1] != state:
+        hit = cache[("flips", id(run))] = (run, state, _flips(rules, default_j, run, n_default))
+    return hit[2]
+
+
+def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: Mapping, n_default, cache=None) -> list:
     """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or a
     subset that flips the same part), each with the flipped claims and the entries of theirs it changed (only
-    those with more than two: a pair is already the smallest combination)."""
-    explainers = [r for r in runs if r.stage != "replicate"]  # a smaller flipping joint explains a larger one too
-    flips_of = {id(r): _flips(rules, default_j, r, n_default) for r in runs if r.stage != "replicate"}
+    those with more than two: a pair is already the smallest combination).
+
+    ``cache`` (a dict kept by the caller across calls on the same growing ``runs``, optional) keeps each run's
+    changed entries and its flips while the run is unchanged, so a search that asks again after each round
+    recomputes only the runs that round measured or sized; the answer is the same with or without it."""
+    conds = [r for r in runs if r.stage != "replicate"]  # a smaller flipping joint explains a larger one too
+    flips_of = {id(r): _flips_kept(rules, default_j, r, n_default, cache) for r in conds}
+    flipping: dict = {}  # (claim, part) -> the changed entries of every condition that flips it
+    for r in conds:
+        for key in flips_of[id(r)]:
+            flipping.setdefault(key, []).append(_changed_items(r, default, cache))
     out = []
     for r in runs:
         if r.stage not in ("joint", "pinned"):
             continue
-        ch = set(r.changed(default).items())
+        ch = _changed_items(r, default, cache)
         todo, claims = set(), set()
         for key in flips_of[id(r)]:
-            explained = any(key in flips_of[id(s)] and set(s.changed(default).items()) < ch for s in explainers)
-            if not explained:
+            if not any(s < ch for s in flipping[key]):
                 todo |= {k for k, _ in ch if k in depends[key[0]]}
                 claims.add(key[0])
         if len(todo) > 2:
@@ -357,11 +386,12 @@ def search_subsets(
 
     lean = lean_of_singles(rules, runs, default, default_j)
     tried: dict = {}
+    kept: dict = {}  # each run's changed entries and flips while unchanged (:func:`unexplained_flips`)
     combos: list[Run] = []
     sized = 0
     for size in range(2, (MAX_SUBSET if max_subset is None else int(max_subset)) + 1):
         while True:
-            pending = unexplained_flips(rules, depends, default_j, runs, default, n_default)
+            pending = unexplained_flips(rules, depends, default_j, runs, default, n_default, kept)
             cfgs, only = subset_configs(pending, default, size, tried, lean, SUBSET_ROUND)
             if not cfgs:
                 break
