@@ -5,7 +5,10 @@ flipping subset (:mod:`tvtrack.explore`).
   (``DEPENDS``): the claims a configuration touches are grouped by their projected configuration
   (:func:`tvtrack.register.project`) and one run is made per distinct projected configuration, asking only its
   group's claims. No claim is measured in a world its ``DEPENDS`` does not declare, and a condition's record for a
-  claim is described by its projected changes.
+  claim is described by its projected changes. A claim is asked at most once per projected configuration and seed:
+  a projection it already has (a subset of one joint equal to another's, to a one-at-a-time condition or to an
+  earlier round's) is not run again, and a condition's further replicates start at the seed after the last it has.
+  A projection that another claim shares may still be run again for that claim alone (its claims differ).
 - **Sizing** (:func:`size_conditions`): a condition whose part is undecided, or decided on fewer replicates than
   the default needed to decide (:func:`tvtrack.explore.replicates_needed`), gets replicates on the default's replicate seeds (common random numbers: the
   condition's replicate ``i`` runs on the default's seed ``i``), asking only the claims concerned, until each of its
