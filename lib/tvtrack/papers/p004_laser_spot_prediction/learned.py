@@ -82,6 +82,41 @@ def _r2(y_true, y_pred) -> float:
     return float(np.average(scores))
 
 
+def _tanh_backprop(net, X, y) -> tuple:
+    """scikit-learn's ``MLPRegressor._backprop`` for one tanh hidden layer, an identity output and the squared loss
+    without sample weights (what :func:`fit_learned_predictor` trains): the same NumPy operations in the same
+    order on the same arrays (so the same bits), without the per-call dispatch of ``safe_sparse_dot`` and the
+    layer loops.
+
+    Returns
+    -------
+    (loss, [coefficient gradients], [intercept gradients])
+    """
+    (w0, w1), (b0, b1) = net.coefs_, net.intercepts_
+    n = X.shape[0]
+    hidden = X @ w0
+    hidden += b0
+    np.tanh(hidden, out=hidden)
+    out = hidden @ w1
+    out += b1
+    loss = 0.5 * np.average((y - out) ** 2, weights=None, axis=0).mean()
+    values = 0
+    for w in (w0, w1):
+        w = w.ravel()
+        values += np.dot(w, w)
+    loss += (0.5 * net.alpha) * values / n
+    delta1 = out - y
+    g1 = hidden.T @ delta1
+    g1 += net.alpha * w1
+    g1 /= n
+    delta0 = delta1 @ w1.T
+    delta0 *= 1 - hidden**2  # tanh's derivative, in place as scikit-learn's
+    g0 = X.T @ delta0
+    g0 += net.alpha * w0
+    g0 /= n
+    return loss, [g0, g1], [np.sum(delta0, axis=0) / n, np.sum(delta1, axis=0) / n]
+
+
 def _adam_epochs(net, X, y) -> None:
     """scikit-learn's ``MLPRegressor._fit_stochastic`` for what :func:`fit_learned_predictor` trains (Adam, early
     stopping, shuffled mini-batches, no sample weights, a fresh fit), step for step and draw for draw, with the
@@ -108,6 +143,7 @@ def _adam_epochs(net, X, y) -> None:
     coef_grads = [np.empty_like(c) for c in net.coefs_]
     intercept_grads = [np.empty_like(b) for b in net.intercepts_]
     net.n_iter_ = 0
+    lean = (net.n_layers_, net.activation, net.out_activation_, net.loss) == (3, "tanh", "identity", "squared_error")
     for _ in range(net.max_iter):
         order = np.arange(n_samples)  # sklearn.utils.shuffle: the same permutation of the same generator
         rs.shuffle(order)
@@ -116,10 +152,13 @@ def _adam_epochs(net, X, y) -> None:
         for batch_slice in gen_batches(n_samples, batch_size):
             batch_idx = sample_idx[batch_slice]
             X_batch = X_train[batch_idx]
-            activations[0] = X_batch
-            batch_loss, coef_grads, intercept_grads = net._backprop(
-                X_batch, y_train[batch_idx], None, activations, deltas, coef_grads, intercept_grads
-            )
+            if lean:
+                batch_loss, coef_grads, intercept_grads = _tanh_backprop(net, X_batch, y_train[batch_idx])
+            else:
+                activations[0] = X_batch
+                batch_loss, coef_grads, intercept_grads = net._backprop(
+                    X_batch, y_train[batch_idx], None, activations, deltas, coef_grads, intercept_grads
+                )
             accumulated_loss += batch_loss * (batch_slice.stop - batch_slice.start)
             net._optimizer.update_params(params, coef_grads + intercept_grads)
         net.n_iter_ += 1
