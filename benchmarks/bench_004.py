@@ -12,10 +12,12 @@ networks with their lag counts cross-validated are most of it) < 10 s CPU. Measu
 CPU s before the measurement ran only what its claims read (the ML Kalman filters, the variant floor and the fading
 memory are the notebook's figures, no claim's value) and the networks were fitted without scikit-learn's per-call
 validation, 4.8 s after. Measured again on the shared two-core machine (one BLAS thread, as ``make reproduce`` gives each
-kernel; best of 3, process CPU, ``measure_batch`` of one configuration at seed 1): 7.97 CPU s at the default before the
-networks' training loop indexed its arrays directly (:func:`.learned._adam_epochs`: scikit-learn's ``_safe_indexing``
-asked for every mini-batch whether the array was a data frame; the same networks bit for bit), 6.21 after; absolute
-centres fed to the networks 13.9 -> 8.1; 200 frames/s at horizon 10 10.3 -> 8.6. With ``n_workers`` > 1 the scenes
+kernel; ``measure_batch`` of one configuration at seed 1, process CPU, the old and the new code run alternately, best
+of 3): 6.89 CPU s at the default before the networks' training loop indexed its arrays directly and back-propagated
+without scikit-learn's per-call dispatch (:func:`.learned._adam_epochs`: ``_safe_indexing`` asked for every
+mini-batch whether the array was a data frame; the same networks bit for bit), 5.80 after; absolute centres fed to the
+networks 9.57 -> 7.30; 200 frames/s at horizon 10 9.04 -> 8.11 (a network fit: 0.45 -> 0.29 CPU s at 500 pairs,
+1.65 -> 1.0 at 4000). With ``n_workers`` > 1 the scenes
 and runs a worker process computed used to end with the call's process pool, so the subset search rendered and fitted
 again what the one-at-a-time and joint stages had measured; a worker now sends them back to the parent's cache, and a
 scene is keyed by what it reads (a bandwidth set by hand makes the band position no input): four pairs reusing three
