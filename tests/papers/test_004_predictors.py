@@ -274,16 +274,21 @@ def test_absolute_centre_inputs_are_the_last_centres_and_the_target_the_next():
 
 @pytest.mark.parametrize("inputs", ["increments", "absolute centres"])
 def test_the_early_stopped_network_is_scikit_learns_bit_for_bit(inputs, monkeypatch):
-    """The network's early-stopping score skips scikit-learn's input checks: every epoch's validation score, the
-    epoch it stops at and the weights it keeps are those of ``MLPRegressor`` itself, to the last bit."""
+    """The network's early-stopping score skips scikit-learn's input checks and its training loop indexes the
+    arrays directly (``learned._adam_epochs``): every epoch's validation score, the epoch it stops at and the
+    weights it keeps are those of ``MLPRegressor`` itself, to the last bit (300 pairs: two mini-batches an epoch)."""
     from sklearn.metrics import r2_score
     from sklearn.neural_network import MLPRegressor
 
     from tvtrack.papers.p004_laser_spot_prediction import learned
 
+    epochs_run = []
+    plain_loop = learned._adam_epochs
+    monkeypatch.setattr(learned, "_adam_epochs", lambda *a: epochs_run.append(1) or plain_loop(*a))
     z = np.cumsum(np.random.default_rng(3).standard_normal((4, 2, 300)), axis=-1)
     for seed in range(3):
         fast = learned.fit_learned_predictor("mlp", z, 3, seed=seed, hidden_units=4, max_samples=300, inputs=inputs)
+        assert len(epochs_run) == seed + 1  # the lean loop trained it
         with monkeypatch.context() as m:
             m.setattr(learned, "_mlp_regressor", lambda: MLPRegressor)
             stock = learned.fit_learned_predictor(

@@ -345,7 +345,7 @@ DEFAULT = {name: default for name, _, default, *_ in ROWS}
 NAMES = tuple(DEFAULT)
 
 #: Entries that change the simulated scene (the world): every claim in pixels depends on them, and the study
-#: renders one scene per combination of them (``study._SCENE_KEYS``).
+#: renders one scene per combination of them (``study._scene_key``).
 WORLD = (
     "spectral index",
     "roll-off",

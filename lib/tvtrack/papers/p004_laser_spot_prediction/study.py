@@ -27,6 +27,7 @@ from ...estimate import Estimate
 from ...projection import as_declared, claim_groups
 from . import learned as lm
 from . import predictors as pr
+from . import shipping
 from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
 from .camera import SpotCamera, track_spot
 from .prediction_study import (
@@ -43,7 +44,7 @@ from .prediction_study import (
     window_candidates,
 )
 from .derivation import recursion_check, variance_ratios
-from .register import NAMES, WORLD
+from .register import NAMES
 from .timing import frame_time_ms
 from .traces import TraceSet
 from .world import camera_for, scene_config, traces_on_sensor, vibration
@@ -87,8 +88,6 @@ NATURAL_SPLINE = "natural cubic spline"
 CENTROID = "centroid error"
 #: The optimal predictor of the generator's own model: a bound, not a method.
 OPTIMAL = "optimal (true model)"
-
-_SCENE_KEYS = WORLD  # the entries that change the rendered scene
 
 
 @dataclass(frozen=True)
@@ -476,15 +475,31 @@ def _key(config: dict, names) -> tuple:
     return tuple((n, config[n]) for n in names)
 
 
+def _scene_key(config: dict, seed: int, size: StudySize) -> tuple:
+    """What :func:`study_run` reads of a configuration, resolved: the generator's configuration (the bandwidth
+    factor resolved, so the band position of a world whose bandwidth is set by hand adds nothing), the exposure,
+    jitter, vibration and camera, with the seed and sizes. Configurations with one key have one scene."""
+    return (
+        "scene",
+        size,
+        int(seed),
+        scene_config(config, size),
+        config.get("exposure", "instant"),
+        float(config["jitter"]),
+        float(config.get("vibration", 0.0)),
+        camera_for(config),
+    )
+
+
 def _measure_group(items, size: StudySize) -> list[dict]:
     """Claim values of (configuration, seed, claims) triples that share one scene (same scene entries and seed).
 
-    The scene is cached by the entries it reads and the seed; the methods by those and the entries they read
+    The scene is cached by what it reads (:func:`_scene_key`); the methods by that and the entries they read
     (horizon, the networks' lags and inputs), with the parts run so far: a configuration that asks for a part
     not yet run adds it to the cached run (the parts share no draw, so the numbers are those of one run of all)."""
     out = []
     for config, seed, claims in items:
-        sk = ("scene", size, int(seed)) + _key(config, _SCENE_KEYS)
+        sk = _scene_key(config, seed, size)
         if sk not in _CACHE:
             _CACHE[sk] = study_run(config, seed, size)
         run = _CACHE[sk]
@@ -503,16 +518,26 @@ def _measure_group(items, size: StudySize) -> list[dict]:
     return out
 
 
+def _measure_shipped(items, size: StudySize) -> tuple:
+    """:func:`_measure_group` in a worker process, with the scenes, runs and C004-5 checks it added to the caches
+    (a worker's caches end with it: the parent keeps them for the later calls of the exploration)."""
+    runs, checks = dict(_CACHE), set(_VARIANCE)
+    out = _measure_group(items, size)
+    added = {k: v for k, v in _CACHE.items() if runs.get(k) is not v}
+    return out, shipping.dumps((added, {k: v for k, v in _VARIANCE.items() if k not in checks}))  # layouts kept
+
+
 def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1, claims=None) -> list[dict]:
-    """:func:`measure` of many (configuration, seed) pairs; configurations with the same scene entries
-    and seed share one rendered scene, and those that also share the horizon and the networks' lags
-    share one run of the methods (``tuning``, ``reference`` and the statistic are readings of it).
+    """:func:`measure` of many (configuration, seed) pairs; configurations whose scenes read the same (the
+    world's entries resolved, and the seed: :func:`_scene_key`) share one rendered scene, and those that also
+    share the horizon and the networks' lags share one run of the methods (``tuning``, ``reference`` and the
+    statistic are readings of it).
 
     Parameters
     ----------
     workers : int
-        Processes the scene groups are spread over (1: this process, whose cache then also serves
-        later calls, e.g. the adaptive replicates).
+        Processes the scene groups are spread over (1: this process). Either way the scenes and runs stay in this
+        process's cache (a worker sends back what it added) and serve the later calls of the exploration.
     claims : list of (set of str or None), optional
         Per configuration, the claims to compute (None: all); the methods no asked claim reads are not run
         (the explorer's ``claims=``). Each claim's value is the same as when all are asked.
@@ -528,7 +553,7 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     seeds = [s for gs, s in zip(split, seeds) for _ in gs]
     groups: dict = {}
     for i, (config, seed) in enumerate(zip(configs, seeds)):
-        groups.setdefault((int(seed),) + _key(config, _SCENE_KEYS), []).append(i)
+        groups.setdefault(_scene_key(config, seed, size), []).append(i)
     items = [[(dict(configs[i]), int(seeds[i]), claims[i]) for i in idx] for idx in groups.values()]
     if workers > 1 and len(items) > 1:
         import multiprocessing
@@ -536,7 +561,11 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
 
         ctx = multiprocessing.get_context("fork")
         with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
-            results = list(pool.map(_measure_group, items, [size] * len(items)))
+            shipped = list(pool.map(_measure_shipped, items, [size] * len(items)))
+        results = [out for out, _ in shipped]
+        for runs, checks in (shipping.loads(blob) for _, blob in shipped):
+            _CACHE.update(runs)
+            _VARIANCE.update(checks)
     else:
         results = [_measure_group(batch, size) for batch in items]
     flat: list = [None] * len(configs)
