@@ -79,3 +79,29 @@ def test_scenes_from_worker_processes_stay_cached_and_give_the_same_numbers(monk
         assert _values(got) == _values(one)
         study.clear_cache()
     assert _values(first) != _values(again)  # the reading is read: the truth is another reference
+
+
+def test_the_cache_keeps_within_its_byte_budget_and_what_it_drops_is_recomputed_to_the_same_numbers(monkeypatch):
+    """The scenes and runs kept between the calls of an exploration stay within the cache's budget (least recently
+    used dropped first, never the entry just stored); a configuration measured after its scene was dropped gives the
+    numbers of the first measurement, bit for bit."""
+    import numpy as np
+
+    from tvtrack.papers.p004_laser_spot_prediction.cache import BoundedCache, nbytes
+
+    small = BoundedCache(max_bytes=3000)
+    small["a"], small["b"] = np.zeros(200), np.zeros(150)  # 1600 + 1200 bytes
+    assert small["a"].shape == (200,)  # read: "b" is now the least recently used
+    small["c"] = np.zeros(100)  # 800 more: over 3000, so "b" goes
+    assert set(small) == {"a", "c"} and small.held == 2400
+    small["d"] = np.zeros(1000)  # alone over the budget: kept, everything older goes
+    assert set(small) == {"d"} and nbytes({"x": [np.zeros(3), (np.zeros(2),)]}) == 40
+
+    first = study.measure_batch([dict(DEFAULT)], [11], size=SIZE, claims=[CLAIMS])
+    one_run = study._CACHE.held
+    assert one_run > 0
+    monkeypatch.setattr(study, "_CACHE", BoundedCache(max_bytes=one_run))  # room for about one scene and run
+    other = dict(DEFAULT, jitter=0.5)
+    again = study.measure_batch([dict(DEFAULT), other, dict(DEFAULT)], [11, 11, 11], size=SIZE, claims=[CLAIMS] * 3)
+    assert study._CACHE.held <= one_run or len(study._CACHE) == 1
+    assert _values(again[0]) == _values(first[0]) == _values(again[2])

@@ -28,6 +28,7 @@ from ...projection import as_declared, claim_groups
 from . import learned as lm
 from . import predictors as pr
 from . import shipping
+from .cache import BoundedCache
 from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
 from .camera import SpotCamera, track_spot
 from .prediction_study import (
@@ -462,7 +463,7 @@ def _prediction_values(run: StudyRun, want) -> dict:
     return out
 
 
-_CACHE: dict = {}
+_CACHE = BoundedCache()  # scenes and runs, within a byte budget (:mod:`.cache`)
 
 
 def clear_cache() -> None:
@@ -519,8 +520,7 @@ def _measure_group(items, size: StudySize) -> list[dict]:
 
 
 def _measure_shipped(items, size: StudySize) -> tuple:
-    """:func:`_measure_group` in a worker process, with the scenes, runs and C004-5 checks it added to the caches
-    (a worker's caches end with it: the parent keeps them for the later calls of the exploration)."""
+    """:func:`_measure_group` in a worker, with the scenes, runs and C004-5 checks it added (the parent keeps them)."""
     runs, checks = dict(_CACHE), set(_VARIANCE)
     out = _measure_group(items, size)
     added = {k: v for k, v in _CACHE.items() if runs.get(k) is not v}
