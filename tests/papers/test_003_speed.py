@@ -115,7 +115,7 @@ def test_reused_parts_give_the_numbers_of_a_fresh_measurement(monkeypatch, measu
     measure(default, 5, TINY)  # the default's parts kept
     calls = []
     monkeypatch.setattr(study, "run_scenario", _counting(study.run_scenario, calls))
-    monkeypatch.setattr(study, "interference_runs", _counting(study.interference_runs, calls))
+    monkeypatch.setattr(study, "run_together", _counting(study.run_together, calls))
     reused = measure(changed, 5, TINY)
     assert len(calls) == reruns
     _same(reused, fresh)
@@ -123,8 +123,10 @@ def test_reused_parts_give_the_numbers_of_a_fresh_measurement(monkeypatch, measu
 
 
 def _counting(f, calls):
+    """``f`` logging the batches of runs it is asked for (one a call, or a list of prepared batches)."""
+
     def g(*a, **k):
-        calls.append(1)
+        calls.extend(a[0] if isinstance(a[0], list) else [1])
         return f(*a, **k)
 
     return g
@@ -142,3 +144,57 @@ def test_the_decoy_riding_in_the_rotating_markers_batch_gets_the_runs_it_gets_al
     assert np.array_equal(lost[2], alone_d)
     assert lost[2].any() and not lost[2].all()  # a curve that tells the two apart
     memo.clear_cache()
+
+
+# --- batches run side by side in one frame loop: each run's numbers as alone -----------------------------------------
+
+from dataclasses import replace  # noqa: E402
+
+from tvtrack.papers.p003_rotating_marker_tracker.lockstep import run_together  # noqa: E402
+from tvtrack.papers.p003_rotating_marker_tracker.loops import run_closed_loop, stack_gains  # noqa: E402
+from tvtrack.papers.p003_rotating_marker_tracker.scene import (  # noqa: E402
+    Scenario,
+    prepare_interference,
+    prepare_scenario,
+)
+
+
+def _batches(exposure: str) -> list:
+    """Batches of every kind the measurements run together: rotating with a decoy block, static (quadrant and
+    centroid), another gate, no compensation, per-run gains with full histories, the edge form, another spot, and one
+    of other frame times (runs alone)."""
+    base = Scenario(duration_s=0.16, n_interferers=5, exposure=exposure)
+    sirs, D, g = [0.5, 2.0], base.diameter, lambda s: np.random.default_rng([s, 3])
+    quiet = replace(base, n_interferers=0)
+    return [
+        prepare_interference(
+            [g(10) for _ in range(3)],
+            3,
+            base,
+            sirs,
+            [{"n_interferers": 1}, {}, {"n_interferers": 0, "decoy_offset": 2 * D}],
+        ),
+        prepare_interference(
+            [g(10) for _ in range(2)], 3, replace(base, rotating=False), sirs, [{"n_interferers": 1}, {}]
+        ),
+        prepare_interference([g(10)], 3, replace(base, rotating=False, form="centroid"), sirs),
+        prepare_interference([g(10)], 3, replace(base, gate_half=6.0), sirs),
+        prepare_interference([g(10)], 3, replace(base, kappa=1.0), [1.0, 4.0]),
+        prepare_scenario(
+            [g(1), g(1)], 6, quiet, n_common=3, gains=stack_gains([replace(quiet, b_xy=b).gains() for b in (5, 20)], 3)
+        ),
+        prepare_scenario(g(1), 3, replace(quiet, form="edge", spot="square"), keep_full=True),
+        prepare_scenario(g(1), 3, replace(quiet, spot="square"), keep_full=False),
+        prepare_scenario(g(2), 2, replace(quiet, duration_s=0.1)),
+    ]
+
+
+@pytest.mark.parametrize("exposure", ["instant", "integrated"])
+def test_batches_run_side_by_side_give_each_run_its_numbers_alone_bit_for_bit(exposure):
+    alone = [run_closed_loop(p.scene, p.tracker, p.rng, **p.loop) for p in _batches(exposure)]
+    together = [h for _, _, h in run_together(_batches(exposure))]
+    for i, (a, b) in enumerate(zip(alone, together)):
+        for f in ("estimate", "gate", "disc", "miss", "inside", "omega"):
+            x, y = getattr(a, f), getattr(b, f)
+            assert (x is None) == (y is None), (i, f)
+            assert x is None or (x.dtype == y.dtype and np.array_equal(x, y)), (i, f)

@@ -107,6 +107,7 @@ class RotatingMarkerScene:
         self.interferers = np.zeros((self.n, 0, 2)) if interferers is None else np.asarray(interferers, float)
         self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
         self.decoy_brightness = np.broadcast_to(np.asarray(decoy_brightness, dtype=float), (self.n,))
+        self._lit = np.flatnonzero(self.decoy_brightness != 0)  # trials whose decoy adds light
         m = self.MARGIN
         rows, cols = self.image_shape
         self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
@@ -124,6 +125,50 @@ class RotatingMarkerScene:
             if self.decoys is not None and decoy_phase is None:
                 raise ValueError("an integrated exposure with a decoy needs 'decoy_phase'")
             self.decoy_phase = None if decoy_phase is None else np.asarray(decoy_phase, float).reshape(self.n)
+
+    @classmethod
+    def joined(cls, scenes) -> "RotatingMarkerScene":
+        """One scene holding the trials of ``scenes`` one after the other (the same image, spot, brightness, sensor
+        noise, exposure and frame times): each trial's crops are those its own scene gives, bit for bit. A scene
+        without a decoy contributes a dark one (no light, :meth:`gate_crops` skips it). The static images are moved
+        into the joined scene's and each scene keeps a view of its part, so no memory is doubled."""
+        first = scenes[0]
+        same = ("image_shape", "spot", "diameter", "brightness", "noise_std", "exposure_steps")
+        if any(getattr(s, a) != getattr(first, a) for s in scenes for a in same) or any(
+            not np.array_equal(s.truth.t, first.truth.t) for s in scenes
+        ):
+            raise ValueError(f"parameter 'scenes' must agree in {', '.join(same)} and frame times")
+        out = cls.__new__(cls)
+        out.__dict__.update({a: getattr(first, a) for a in same + ("truth",)})
+        fields = ("xr", "yr", "r", "theta", "omega")
+        out.truth = MarkerTruth(*(np.concatenate([getattr(s.truth, f) for s in scenes]) for f in fields), first.truth.t)
+        out.n = sum(s.n for s in scenes)
+        q = max(s.interferers.shape[1] for s in scenes)
+        out.interferers = np.concatenate(
+            [np.concatenate([s.interferers, np.full((s.n, q - s.interferers.shape[1], 2), -1e4)], 1) for s in scenes]
+        )
+        lit = any(s.decoys is not None for s in scenes)
+        out.decoys = (
+            np.concatenate([s.decoys if s.decoys is not None else s.truth.marker for s in scenes]) if lit else None
+        )
+        out.decoy_brightness = np.concatenate(
+            [s.decoy_brightness if s.decoys is not None else np.zeros(s.n) for s in scenes]
+        )
+        out._lit = np.flatnonzero(out.decoy_brightness != 0)
+        out._padded = np.concatenate([s._padded for s in scenes])
+        start = 0
+        for s in scenes:  # each scene reads its part of the joined images
+            s._padded, s._windows, start = out._padded[start : start + s.n], {}, start + s.n
+        out._base = np.arange(out.n) * out._padded.shape[1] * out._padded.shape[2]
+        out._windows, out._trials, out._marker = {}, np.arange(out.n), None
+        if out.exposure_steps > 1:
+            out._dt, out._velocity = first._dt, np.concatenate([s._velocity for s in scenes])
+            out.decoy_phase = (
+                np.concatenate([s.decoy_phase if s.decoys is not None else np.zeros(s.n) for s in scenes])
+                if lit
+                else None
+            )
+        return out
 
     def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
         """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
@@ -219,8 +264,12 @@ class RotatingMarkerScene:
         marker = self._marker[:, k]
         if self.exposure_steps == 1:
             self._add_spot(crops, marker, origin, self.brightness)
-            if self.decoys is not None:
-                self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
+            if self.decoys is not None and self._lit.size:  # a dark decoy adds zeros: rendered only where it shines
+                lit = self._lit
+                if lit.size == self.n:
+                    self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
+                else:
+                    self._add_spot(crops, self.decoys[lit, k], origin[lit], self.decoy_brightness[lit], lit)
         else:
             sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
             steps = self.exposure_steps
@@ -240,16 +289,17 @@ class RotatingMarkerScene:
     # lower thresholds, faster per call with the 9-pixel box, made the tracking study's 24-30-run batches slower)
     BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
 
-    def _add_spot(self, crops, centers, origin, brightness) -> None:
+    def _add_spot(self, crops, centers, origin, brightness, trials=None) -> None:
         """Add spots centred at ``centers`` (n, 2) px, or (m, n, 2): ``m`` spots per crop added one after the other
-        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place.
+        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place; with
+        ``trials`` (indices, shape (n,)) to those crops of ``crops`` only.
 
         All the spots are rendered in one call (the spot functions are pixel by pixel: the same numbers as one call
         each), then added in order. Large batches render only the box of pixels a spot can reach (centres within
         ``D/2 + 1/2`` of the spot's centre, for the disc and the square alike) and add it where it overlaps its crop:
         every pixel gets the same float32 number as rendering the whole crop (the other pixels get 0).
         """
-        n, size = crops.shape[0], crops.shape[-1]
+        n, size = (crops.shape[0] if trials is None else len(trials)), crops.shape[-1]
         c = np.asarray(centers, dtype=float)
         m = 1 if c.ndim == 2 else c.shape[0]
         if m > 1:  # one render of every spot: centres, origins and brightnesses flattened to (m n, ...)
@@ -259,7 +309,10 @@ class RotatingMarkerScene:
         if crops.size <= self.BOX_MIN_PIXELS[self.spot]:
             spots = self._spot(c, size, origin, brightness)
             for j in range(m):
-                crops += spots[j * n : (j + 1) * n]
+                if trials is None:
+                    crops += spots[j * n : (j + 1) * n]
+                else:
+                    crops[trials] += spots[j * n : (j + 1) * n]
             return
         reach = self.diameter / 2 + 0.5
         # pixels up to c - reach and from c + reach get nothing: floor(c - reach) + 1 .. + side - 1 hold the rest
@@ -269,27 +322,27 @@ class RotatingMarkerScene:
         rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
         win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
-        trials, every = np.arange(n), inside.all()
+        trials, every = (np.arange(n) if trials is None else np.asarray(trials)), inside.all()
         for j in range(m):
             sl = slice(j * n, (j + 1) * n)
             if every:
                 win[trials, rel[sl, 1], rel[sl, 0]] += patch[sl]
             else:
-                self._place(crops, win, patch[sl], rel[sl], inside[sl], side)
+                self._place(crops, win, patch[sl], rel[sl], inside[sl], side, trials)
 
     @staticmethod
-    def _place(crops, win, patch, rel, inside, side: int) -> None:
-        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
-        within the crops, where they overlap (``win``: the crops' side x side windows; ``inside``: the boxes wholly
-        inside their crops)."""
+    def _place(crops, win, patch, rel, inside, side: int, trials) -> None:
+        """Add boxes ``patch`` (n, side, side) to the crops ``trials`` (n,) of ``crops`` (., size, size) with their
+        first pixels at ``rel`` (n, 2) within the crops, where they overlap (``win``: the crops' side x side windows;
+        ``inside``: the boxes wholly inside their crops)."""
         size = crops.shape[-1]
         t = np.flatnonzero(inside)
-        win[t, rel[t, 1], rel[t, 0]] += patch[t]
+        win[trials[t], rel[t, 1], rel[t, 0]] += patch[t]
         part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
         if part.size:  # boxes wholly outside add nothing
             ar = np.arange(side)
             cx, cy = rel[part, 0, None] + ar, rel[part, 1, None] + ar
-            idx = (part[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
+            idx = (trials[part][:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
             ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
             crops.reshape(-1)[idx[ok]] += patch[part][ok]  # indices unique: each box pixel inside is one crop pixel
 
