@@ -39,9 +39,15 @@ def curve_part(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, count
     )
     return (
         key,
-        lambda: prepare_interference([stream_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks),
+        lambda: _stopping(prepare_interference([stream_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks), crit),
         lambda p, r: curve_outcome(sc, sirs, n, crit, counts, criteria, interference_outcome(p, r[2])),
     )
+
+
+def _stopping(p, crit: LossCriterion):
+    """A curve's batch, its runs dropped once lost by ``crit`` (all a curve reads of a run ends at its first loss)."""
+    p.stop = crit
+    return p
 
 
 def curve_outcome(sc: Scenario, sirs, n: int, crit: LossCriterion, counts, criteria: bool, runs: dict):

@@ -108,6 +108,7 @@ class RotatingMarkerScene:
         self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
         self.decoy_brightness = np.broadcast_to(np.asarray(decoy_brightness, dtype=float), (self.n,))
         self._lit = np.flatnonzero(self.decoy_brightness != 0)  # trials whose decoy adds light
+        self._box_cache: dict = {}  # spot boxes of the frames at hand (:meth:`_boxes`)
         m = self.MARGIN
         rows, cols = self.image_shape
         self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
@@ -155,6 +156,7 @@ class RotatingMarkerScene:
             [s.decoy_brightness if s.decoys is not None else np.zeros(s.n) for s in scenes]
         )
         out._lit = np.flatnonzero(out.decoy_brightness != 0)
+        out._box_cache = {}
         out._padded = np.concatenate([s._padded for s in scenes])
         start = 0
         for s in scenes:  # each scene reads its part of the joined images
@@ -225,7 +227,7 @@ class RotatingMarkerScene:
         add_spots(out, q, b, spot, diameter)
         return out
 
-    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None):
+    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None, trials=None):
         """Compensated signal ``u_d`` in square crops of side ``size`` around ``centres`` at frame ``k``.
 
         Parameters
@@ -238,6 +240,8 @@ class RotatingMarkerScene:
             Crop side (px), e.g. :func:`tvtrack.measure.gate_crop_size`.
         rng : numpy.random.Generator or None
             Draws the sensor noise (None: noise-free).
+        trials : ndarray of int, shape (n,), optional
+            The trials whose crops are read (default: all, in order); ``centres`` are theirs.
 
         Returns
         -------
@@ -257,32 +261,70 @@ class RotatingMarkerScene:
         ox, oy = o[:, 0], o[:, 1]
         if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
             self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
-        crops = self._windows[size][self._trials, oy, ox]  # (n, size, size), a copy
+        t = self._trials if trials is None else np.asarray(trials)
+        crops = self._windows[size][t, oy, ox]  # (n, size, size), a copy
         if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
             tr = self.truth
             self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
-        marker = self._marker[:, k]
-        if self.exposure_steps == 1:
-            self._add_spot(crops, marker, origin, self.brightness)
+        marker = self._marker[:, k] if trials is None else self._marker[t, k]
+        db = self.decoy_brightness if trials is None else self.decoy_brightness[t]
+        if self.exposure_steps == 1:  # the spots' boxes rendered ahead (_boxes), added where they meet the crops
+            box0, patch = self._boxes(k, False)
+            self._add_boxes(crops, *((box0, patch) if trials is None else (box0[t], patch[t])), origin)
             if self.decoys is not None and self._lit.size:  # a dark decoy adds zeros: rendered only where it shines
-                lit = self._lit
-                if lit.size == self.n:
-                    self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
-                else:
-                    self._add_spot(crops, self.decoys[lit, k], origin[lit], self.decoy_brightness[lit], lit)
+                lit = self._lit if trials is None else np.flatnonzero(db != 0)
+                box0, patch = self._boxes(k, True)  # the lit trials', in order
+                if trials is not None:
+                    rows = np.searchsorted(self._lit, t[lit])
+                    box0, patch = box0[rows], patch[rows]
+                if lit.size:
+                    self._add_boxes(crops, box0, patch, origin[lit], None if lit.size == t.size else lit)
         else:
             sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
+            if trials is not None:
+                sub_m, sub_d = sub_m[:, t], (None if sub_d is None else sub_d[:, t])
             steps = self.exposure_steps
-            b = np.full((steps, self.n), self.brightness / steps)
+            b = np.full((steps, t.size), self.brightness / steps)
             if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
-                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, self.n, 2)
-                b = np.stack([b, np.broadcast_to(self.decoy_brightness / steps, b.shape)], axis=1).reshape(
-                    2 * steps, -1
-                )
+                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, t.size, 2)
+                b = np.stack([b, np.broadcast_to(db / steps, b.shape)], axis=1).reshape(2 * steps, -1)
             self._add_spot(crops, sub_m, origin, b)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
+
+    CHUNK = 64  # frames whose spot boxes :meth:`_boxes` renders in one call
+
+    def _boxes(self, k: int, decoy: bool) -> tuple[np.ndarray, np.ndarray]:
+        """First pixels, shape (n, 2), and renders, shape (n, side, side) float32, of the boxes of pixels the marker's
+        spots (``decoy``: the lit decoys', trials ``_lit``) reach at frame ``k`` (see :meth:`_add_spot`), rendered
+        :data:`CHUNK` frames at a time: they follow the truth alone, and the spot functions work pixel by pixel, so
+        these are the numbers a render of frame ``k`` alone gives."""
+        got = self._box_cache.get(decoy)
+        if got is None or not got[0] <= k < got[0] + got[1].shape[1]:
+            k1 = min(k + self.CHUNK, self.truth.n_frames)
+            if decoy:
+                c = self.decoys[self._lit, k:k1]
+                b = np.broadcast_to(self.decoy_brightness[self._lit, None], c.shape[:2])
+            else:
+                c, b = self._marker[:, k:k1], self.brightness
+            reach = self.diameter / 2 + 0.5
+            box0 = np.floor(c - reach).astype(np.int64) + 1
+            got = self._box_cache[decoy] = (k, box0, self._spot(c, int(np.ceil(2 * reach)), box0, b))
+        return got[1][:, k - got[0]], got[2][:, k - got[0]]
+
+    def _add_boxes(self, crops, box0, patch, origin, trials=None) -> None:
+        """Add the spot boxes ``patch`` (n, side, side) with first pixels ``box0`` (n, 2) to the crops (first pixels
+        ``origin``) of ``crops`` (the crops ``trials``, default all) where they overlap them, in place."""
+        size, side = crops.shape[-1], patch.shape[-1]
+        rel = box0 - origin  # each box's first pixel within its crop
+        inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
+        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
+        trials = np.arange(len(rel)) if trials is None else np.asarray(trials)
+        if inside.all():
+            win[trials, rel[:, 1], rel[:, 0]] += patch
+        else:
+            self._place(crops, win, patch, rel, inside, side, trials)
 
     # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
     # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares;

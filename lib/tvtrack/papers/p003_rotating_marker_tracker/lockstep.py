@@ -9,6 +9,12 @@ alike (gate size, form, noise, spot, exposure) become one scene (:meth:`.imaging
 frames are read in one call. Every step is elementwise or per run (per-run matrix products, per-row sums), so each
 run's numbers do not depend on its neighbours; a static-marker tracker runs as a rotating one with zero radius and
 zero radius and phase gains, which leaves its radius, phase and rate exactly as they are (tested).
+
+A batch whose ``stop`` is a loss criterion (the loss curves: what they read of a run ends at its first loss of lock,
+:func:`.lock.first_loss` and :func:`.lock.loss_criteria`) drops a run from the loop once the run has lost lock by that
+criterion, looked for every :data:`CHECK_EVERY` frames over the frames since the last look (with the window before
+them): about a third of the loss curves' run-frames come after a loss. A dropped run's later frames read as outside
+the image (its gate and rate NaN); its first loss and everything before it are those of the full run, bit for bit.
 """
 
 from __future__ import annotations
@@ -17,9 +23,12 @@ import numpy as np
 
 from ...measure import gate_crop_size
 from .imaging import RotatingMarkerScene
+from .lock import first_loss
 from .loops import LoopGains, RotatingGateTracker, TrackHistory, discriminate, run_closed_loop
 
-__all__ = ["run_together"]
+__all__ = ["run_together", "CHECK_EVERY"]
+
+CHECK_EVERY = 25  # frames between looks for runs that have lost lock (batches with a ``stop`` criterion)
 
 _GAINS = ("k_xy", "k_r", "k1", "k2", "k_phi", "k_om")
 
@@ -28,7 +37,8 @@ def run_together(batches) -> list:
     """Run prepared batches (:class:`.scene.Prepared`), those that can share a frame loop side by side.
 
     Batches share a loop when their trackers are :class:`.loops.RotatingGateTracker` of variant ``"S"`` and they
-    have the same frame times and no crop callback; the others run alone.
+    have the same frame times and no crop callback; the others run alone (a batch with a ``stop`` criterion in a loop
+    of its own, to drop its lost runs).
 
     Returns
     -------
@@ -42,13 +52,19 @@ def run_together(batches) -> list:
         if _shareable(b):
             loops.setdefault(b.truth.t.tobytes(), []).append(i)
     for idx in loops.values():
-        if len(idx) > 1:
+        if len(idx) > 1 or _stop(batches[idx[0]]) is not None:
             for i, h in zip(idx, _run_shared([batches[i] for i in idx])):
                 hist[i] = h
     for i, b in enumerate(batches):
         if hist[i] is None:
             hist[i] = run_closed_loop(b.scene, b.tracker, b.rng, **b.loop)
     return [(b.truth, b.scene, h) for b, h in zip(batches, hist)]
+
+
+def _stop(b):
+    """The batch's loss criterion for dropping lost runs (the sliding-window kind only), or None."""
+    crit = getattr(b, "stop", None)
+    return crit if crit is not None and crit.kind == "window" else None
 
 
 def _shareable(b) -> bool:
@@ -77,18 +93,20 @@ def _group_key(b):
 
 class _Stacked:
     """Standard normal draws of several sources (generators, :class:`.draws.CommonNormal`, ...), each drawing its
-    own rows as it would alone, stacked along the leading axis."""
+    own rows as it would alone, stacked along the leading axis; of those only the rows ``active`` (None: all)."""
 
     def __init__(self, sources, rows):
-        self.sources, self.rows = list(sources), list(rows)
+        self.sources, self.rows, self.active = list(sources), list(rows), None
 
     def standard_normal(self, shape, dtype=np.float64):
         shape = tuple(shape)
-        return np.concatenate([g.standard_normal((m,) + shape[1:], dtype) for g, m in zip(self.sources, self.rows)])
+        z = np.concatenate([g.standard_normal((m,) + shape[1:], dtype) for g, m in zip(self.sources, self.rows)])
+        return z if self.active is None else z[self.active]
 
 
 class _Group:
-    """Batches discriminated alike: their joined scene, trial slice of the shared tracker and settings."""
+    """Batches discriminated alike: their joined scene, trial slice of the shared tracker and settings; ``act`` the
+    scene's trials still run (None: all) at ``a:b`` of the loop's running trials."""
 
     def __init__(self, batches, start: int):
         lp = batches[0].loop
@@ -97,6 +115,14 @@ class _Group:
         self.gate_half, self.form, self.edge_a, self.noise = lp["gate_half"], lp["form"], lp["edge_a"], lp["noise"]
         self.size = gate_crop_size(max(self.edge_a or 0.0, self.gate_half) if self.form == "edge" else self.gate_half)
         self.rng = None if batches[0].rng is None else _Stacked([b.rng for b in batches], [b.scene.n for b in batches])
+        self.act, self.a, self.b = None, start, start + self.scene.n
+
+    def keep(self, active) -> None:
+        """Run only the trials ``active`` (sorted indices into the loop's trials) from now on."""
+        self.a, self.b = np.searchsorted(active, [self.sl.start, self.sl.stop])
+        self.act = active[self.a : self.b] - self.sl.start
+        if self.rng is not None:
+            self.rng.active = self.act
 
 
 def _joined_tracker(trackers) -> RotatingGateTracker:
@@ -111,8 +137,31 @@ def _joined_tracker(trackers) -> RotatingGateTracker:
         gains[f] = np.concatenate(parts)
     joint = RotatingGateTracker(np.concatenate([t.state for t in trackers]), LoopGains(**gains), 1.0, "S", True)
     joint.slope = np.concatenate([np.full(m, t.slope) for t, m in zip(trackers, rows)])
-    joint.still = np.flatnonzero(np.concatenate([np.full(m, not t.rotating) for t, m in zip(trackers, rows)]))
+    joint.is_still = np.concatenate([np.full(m, not t.rotating) for t, m in zip(trackers, rows)])
+    joint.still = np.flatnonzero(joint.is_still)
     return joint
+
+
+def _kept_runs(trk: RotatingGateTracker, keep) -> RotatingGateTracker:
+    """The joined tracker ``trk`` of the runs ``keep`` (boolean mask) only, their states as they are."""
+    out = RotatingGateTracker(trk.state[keep], LoopGains(*(getattr(trk.g, f)[keep] for f in _GAINS)), 1.0, "S", True)
+    out.slope, out.is_still = trk.slope[keep], trk.is_still[keep]
+    out.still = np.flatnonzero(out.is_still)
+    return out
+
+
+def _lost(watch, gate, inside, active, checked: int, k: int) -> np.ndarray:
+    """The running trials of the watched batches (``(trials slice, criterion, marker positions)``) that have lost lock
+    by frame ``k``, judged on the frames from ``checked`` (and the window before them: the same loss frames as
+    :func:`.lock.first_loss` over the whole run; a window cut at the chunk's start can only miss a loss)."""
+    out = []
+    for sl, crit, marker in watch:
+        rows = active[(active >= sl.start) & (active < sl.stop)]
+        if rows.size:
+            s = max(0, checked - (crit.window - 1))
+            miss = np.linalg.norm(gate[rows, s : k + 1] - marker[rows - sl.start, s : k + 1], axis=-1)
+            out.append(rows[first_loss(miss.astype(np.float32), crit, inside[rows, s : k + 1]) >= 0])
+    return np.concatenate(out) if out else np.zeros(0, int)
 
 
 def _run_shared(batches) -> list:
@@ -126,27 +175,51 @@ def _run_shared(batches) -> list:
         start += groups[-1].scene.n
     trk = _joined_tracker([batches[i].tracker for i in order])
     full = any(b.loop["keep_full"] for b in batches)
-    n, T = start, batches[0].truth.t.size
-    t = batches[0].truth.t
+    n, t = start, batches[0].truth.t
+    T, at, watch = t.size, 0, []
+    for i in order:
+        if _stop(batches[i]) is not None:
+            watch.append((slice(at, at + batches[i].scene.n), _stop(batches[i]), batches[i].truth.marker))
+        at += batches[i].scene.n
     dt = float(t[1] - t[0]) if T > 1 else 1.0
     est = np.empty((n, T, 5), np.float32) if full else None
     disc = np.empty((n, T, 4), np.float32) if full else None
-    gate, inside, omega = np.empty((n, T, 2), np.float32), np.empty((n, T), bool), np.empty((n, T), np.float32)
-    dx, dy = np.empty(n), np.empty(n)
+    gate, inside, omega = (
+        np.full((n, T, 2), np.nan, np.float32),
+        np.zeros((n, T), bool),
+        np.full((n, T), np.nan, np.float32),
+    )
+    active, rows, checked = np.arange(n), slice(None), 0
     for k in range(T):
         c = trk.gate_center()
-        omega[:, k] = trk.state[:, 4]
+        omega[rows, k] = trk.state[:, 4]
         if full:
-            est[:, k] = trk.state
+            est[rows, k] = trk.state
+        dx, dy, ins = np.empty(active.size), np.empty(active.size), np.empty(active.size, bool)
         for g in groups:
-            dx[g.sl], dy[g.sl], inside[g.sl, k] = discriminate(
-                g.scene, k, c[g.sl], g.size, g.gate_half, g.form, g.edge_a, g.noise, g.rng
-            )
+            if g.b > g.a:
+                dx[g.a : g.b], dy[g.a : g.b], ins[g.a : g.b] = discriminate(
+                    g.scene, k, c[g.a : g.b], g.size, g.gate_half, g.form, g.edge_a, g.noise, g.rng, None, g.act
+                )
         e_r, e_th = trk.update(dx, dy, dt)
-        gate[:, k] = c
+        gate[rows, k], inside[rows, k] = c, ins
         if full:
             e_r[trk.still], e_th[trk.still] = 0.0, 0.0  # what a static tracker reports
-            disc[:, k] = np.stack([dx, dy, e_r, e_th], axis=1) / trk.slope[:, None]
+            disc[rows, k] = np.stack([dx, dy, e_r, e_th], axis=1) / trk.slope[:, None]
+        if watch and (k + 1) % CHECK_EVERY == 0 and k + 1 < T:
+            lost = _lost(watch, gate, inside, active, checked, k)
+            checked = k + 1
+            if lost.size:  # the runs that lost lock leave the loop
+                keep = ~np.isin(active, lost)
+                active, trk = active[keep], _kept_runs(trk, keep)
+                rows = active
+                for g in groups:
+                    g.keep(active)
+    return _split(batches, order, gate, inside, omega, est, disc)
+
+
+def _split(batches, order, gate, inside, omega, est, disc) -> list:
+    """The joined loop's histories, one :class:`.loops.TrackHistory` per batch (in batch order)."""
     out, at = [None] * len(batches), 0
     for i in order:
         b = batches[i]

@@ -239,9 +239,12 @@ def run_closed_loop(
     return TrackHistory(est, gate, disc, miss, inside, omega)
 
 
-def discriminate(scene, k: int, c, size: int, gate_half: float, form: str, edge_a, noise: str, rng, crop_callback=None):
+def discriminate(
+    scene, k: int, c, size: int, gate_half: float, form: str, edge_a, noise: str, rng, crop_callback=None, trials=None
+):
     """One frame of :func:`run_closed_loop` before the loop update: the gate crops of frame ``k`` at the gate centres
-    ``c`` (n, 2) px, read by the discriminator ``form``, with the sensor noise of ``noise`` drawn from ``rng``.
+    ``c`` (n, 2) px (of the scene's ``trials``, default all), read by the discriminator ``form``, with the sensor noise
+    of ``noise`` drawn from ``rng``.
 
     Returns
     -------
@@ -250,7 +253,7 @@ def discriminate(scene, k: int, c, size: int, gate_half: float, form: str, edge_
     inside : ndarray of bool, shape (n,)
         Whether each gate centre is inside the image.
     """
-    crops, origin, inside = scene.gate_crops(k, c, size, rng if noise == "pixel" else None)
+    crops, origin, inside = scene.gate_crops(k, c, size, rng if noise == "pixel" else None, trials)
     if crop_callback is not None:
         crop_callback(k, crops, origin)
     if form == "quadrant":

@@ -306,6 +306,7 @@ class Prepared:
     rng: object
     loop: dict
     meta: dict | None = None
+    stop: object = None  # a LossCriterion: runs may leave the loop once lost by it (:func:`.lockstep.run_together`)
 
 
 def prepare_scenario(
