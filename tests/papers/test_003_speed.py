@@ -198,3 +198,48 @@ def test_batches_run_side_by_side_give_each_run_its_numbers_alone_bit_for_bit(ex
             x, y = getattr(a, f), getattr(b, f)
             assert (x is None) == (y is None), (i, f)
             assert x is None or (x.dtype == y.dtype and np.array_equal(x, y)), (i, f)
+
+
+def test_gate_crops_with_spot_boxes_rendered_ahead_equal_a_plain_render_bit_for_bit():
+    """Crops at frames in any order (across the chunks of :meth:`_boxes`), of all trials or a subset, with the decoy lit
+    in some trials only, equal the static image plus the marker's and the decoy's spots rendered over the whole crop."""
+    sc = Scenario(duration_s=0.4, n_interferers=5, decoy_offset=16.0)
+    p = prepare_interference([np.random.default_rng([10, 2]) for _ in range(2)], 3, sc, [0.5, 2.0], [{}, {}])
+    scene, m, size = p.scene, RotatingMarkerScene.MARGIN, 26
+    scene.decoy_brightness = np.where(np.arange(scene.n) % 3 == 0, 0.0, scene.decoy_brightness)
+    scene._lit = np.flatnonzero(scene.decoy_brightness != 0)
+    marker, decoys = scene.truth.marker, scene.decoys
+    rng = np.random.default_rng(0)
+    for k in (150, 3, 70, 63, 64, 199, 0):
+        trials = np.arange(scene.n) if k % 2 else np.sort(rng.choice(scene.n, 7, replace=False))
+        c = marker[trials, k] + rng.normal(0, 6.0, (trials.size, 2))
+        got, origin, _ = scene.gate_crops(k, c, size, None, None if k % 2 else trials)
+        for i, t in enumerate(trials):
+            ox, oy = origin[i] + m
+            want = scene._padded[t, oy : oy + size, ox : ox + size].copy()
+            want += scene._spot(marker[t, k][None], size, origin[i][None], 1.0)[0]
+            if scene.decoy_brightness[t]:
+                want += scene._spot(decoys[t, k][None], size, origin[i][None], scene.decoy_brightness[t : t + 1])[0]
+            assert np.array_equal(got[i], want), (k, t)
+
+
+def test_loss_curves_with_lost_runs_dropped_equal_the_full_runs_bit_for_bit():
+    """A loss curve's batch drops its runs once they have lost lock (lockstep ``stop``): the loss indicators and the
+    loss criteria met equal those of the full runs (:func:`.scene.interference_runs`, read by :func:`.lock.first_loss`
+    and :func:`.lock.loss_criteria` directly), and runs were dropped."""
+    from tvtrack.papers.p003_rotating_marker_tracker.curves import curve_part
+    from tvtrack.papers.p003_rotating_marker_tracker.lock import LossCriterion, first_loss, loss_criteria
+    from tvtrack.papers.p003_rotating_marker_tracker.scene import interference_runs
+
+    sc, crit, sirs, counts = Scenario(duration_s=0.4, n_interferers=5), LossCriterion(12.0, 20), [0.5, 1.0, 3.0], (1, 5)
+    key, prepare, finish = curve_part(sc, sirs, 4, 3, crit, counts, True)
+    p = prepare()
+    ((_, _, h),) = run_together([p])
+    lost, met = finish(p, (None, None, h))
+    runs = interference_runs(
+        [np.random.default_rng([10, 3]) for _ in counts], 4, sc, sirs, blocks=[{"n_interferers": 1}, {}]
+    )
+    fl = first_loss(runs["miss"], crit, runs["inside"])
+    want = loss_criteria(fl, runs["gate"], runs["interferers"], runs["miss"], runs["omega_error"], 20, 4.5, 0.5)
+    assert np.array_equal(lost, (fl >= 0).reshape(2, 3, 4)) and np.array_equal(met, want.reshape(2, 3, 4, 3))
+    assert np.isnan(h.gate[:, -1]).any() and 0 < lost.sum() < lost.size  # runs were dropped; the curve tells apart

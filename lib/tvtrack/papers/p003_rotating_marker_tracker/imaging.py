@@ -266,7 +266,6 @@ class RotatingMarkerScene:
         if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
             tr = self.truth
             self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
-        marker = self._marker[:, k] if trials is None else self._marker[t, k]
         db = self.decoy_brightness if trials is None else self.decoy_brightness[t]
         if self.exposure_steps == 1:  # the spots' boxes rendered ahead (_boxes), added where they meet the crops
             box0, patch = self._boxes(k, False)
