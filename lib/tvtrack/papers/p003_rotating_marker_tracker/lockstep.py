@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...measure import gate_crop_size
+from .draws import BlockNormal, CommonNormal
 from .imaging import RotatingMarkerScene
 from .lock import first_loss
 from .loops import LoopGains, RotatingGateTracker, TrackHistory, discriminate, run_closed_loop
@@ -93,15 +94,39 @@ def _group_key(b):
 
 class _Stacked:
     """Standard normal draws of several sources (generators, :class:`.draws.CommonNormal`, ...), each drawing its
-    own rows as it would alone, stacked along the leading axis; of those only the rows ``active`` (None: all)."""
+    own rows as it would alone, stacked along the leading axis; of those only the rows ``active`` (None: all).
 
-    def __init__(self, sources, rows):
-        self.sources, self.rows, self.active = list(sources), list(rows), None
+    The loop asks one draw of one shape a frame, for ``frames`` frames: the draws of :data:`CHECK_EVERY` frames are
+    made in one call per generator (a generator's draws in one call are those of successive calls, in order)."""
+
+    def __init__(self, sources, rows, frames: int):
+        self.sources, self.rows, self.active, self.left = list(sources), list(rows), None, int(frames)
+        self._ahead, self._at, self._kind = None, 0, None
 
     def standard_normal(self, shape, dtype=np.float64):
-        shape = tuple(shape)
-        z = np.concatenate([g.standard_normal((m,) + shape[1:], dtype) for g, m in zip(self.sources, self.rows)])
+        kind = (tuple(shape)[1:], np.dtype(dtype))
+        if self._ahead is None or self._at == len(self._ahead):
+            if self._kind not in (None, kind) or self.left < 1:
+                raise ValueError("the stacked draws serve one shape a frame, for the frames given")
+            m, self._kind, self._at = min(CHECK_EVERY, self.left), kind, 0
+            self._ahead = np.concatenate([_ahead(g, r, kind[0], dtype, m) for g, r in zip(self.sources, self.rows)], 1)
+            self.left -= m
+        elif kind != self._kind:
+            raise ValueError("the stacked draws serve one shape a frame, for the frames given")
+        z, self._at = self._ahead[self._at], self._at + 1
         return z if self.active is None else z[self.active]
+
+
+def _ahead(g, rows: int, rest: tuple, dtype, m: int) -> np.ndarray:
+    """``m`` successive draws ``g.standard_normal((rows,) + rest, dtype)`` of a source, shape (m, rows, *rest)."""
+    if isinstance(g, np.random.Generator):
+        return g.standard_normal((m, rows) + rest, dtype)
+    if isinstance(g, CommonNormal):
+        z = g.rng.standard_normal((m, g.n_common) + rest, dtype)
+        return np.tile(z, (1, rows // g.n_common) + (1,) * len(rest))
+    if isinstance(g, BlockNormal):
+        return np.concatenate([_ahead(s, g.block, rest, dtype, m) for s in g.sources], axis=1)
+    return np.stack([g.standard_normal((rows,) + rest, dtype) for _ in range(m)])
 
 
 class _Group:
@@ -114,7 +139,8 @@ class _Group:
         self.sl = slice(start, start + self.scene.n)
         self.gate_half, self.form, self.edge_a, self.noise = lp["gate_half"], lp["form"], lp["edge_a"], lp["noise"]
         self.size = gate_crop_size(max(self.edge_a or 0.0, self.gate_half) if self.form == "edge" else self.gate_half)
-        self.rng = None if batches[0].rng is None else _Stacked([b.rng for b in batches], [b.scene.n for b in batches])
+        sources, rows = [b.rng for b in batches], [b.scene.n for b in batches]
+        self.rng = None if batches[0].rng is None else _Stacked(sources, rows, batches[0].truth.t.size)
         self.act, self.a, self.b = None, start, start + self.scene.n
 
     def keep(self, active) -> None:
