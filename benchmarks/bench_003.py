@@ -36,14 +36,15 @@ load of 8, 4.8 s at 2).
 Per measurement call, 2026-12-04 (process CPU s, one process, paper sizes, seed 3, the memo empty, best of 3 at the
 default and of 2 elsewhere, main and this tree run alternately at a load of 2.5-4.5: the absolute numbers run high,
 the ratios hold): ``measure_interference`` at the default 8.0 s (11.3 s before, 1.40x), fps 1000 18.1 s (24.3 s,
-1.34x), integrated exposure 16.8 s (22.9 s, 1.37x), horizon 2T 15.6 s (24.7 s, 1.58x); ``measure_tracking`` at the default 5.1 s (6.9 s, 1.36x), fps 1000
-10.1 s (16.3 s, 1.61x), integrated exposure 8.7 s (12.2 s, 1.40x). The cuts, all bit for bit (every output of both
-measurements at 3 configurations x 2 seeds, a memo sequence and the paper-size default compared): a measurement's
-batches run side by side in one frame loop (``lockstep.run_together``: one tracker with per-run gains, one scene and
-one set of discriminator calls per crop size and form; the interference study's six loops become one with three crop
-groups, the tracking study's five one with four), a loss curve's runs leave the loop once lost (nothing it reads comes
-after a run's first loss: ~30 % of the curves' run-frames at the default), the marker's and lit decoys' spot boxes
-rendered 64 frames at a time (dark decoys not at all), the noise drawn 25 frames at a time.
+1.34x), integrated exposure 16.8 s (22.9 s, 1.37x), horizon 2T 15.6 s (24.7 s, 1.58x); ``measure_tracking`` at the
+default 5.1 s (6.9 s, 1.36x), fps 1000 10.1 s (16.3 s, 1.61x), integrated exposure 8.7 s (12.2 s, 1.40x). The cuts,
+all bit for bit (every output of both measurements at 3 configurations x 2 seeds, a memo sequence and the paper-size
+default compared): a measurement's batches run side by side in one frame loop (``lockstep.run_together``: one tracker
+with per-run gains, one scene and one set of discriminator calls per crop size and form; the interference study's six
+loops become one with three crop groups, the tracking study's five one with four), a loss curve's runs leave the loop
+once lost (nothing it reads comes after a run's first loss: ~30 % of the curves' run-frames at the default), the
+marker's and lit decoys' spot boxes rendered 64 frames at a time (dark decoys not at all), the noise drawn 25 frames
+at a time.
 """
 
 import time
