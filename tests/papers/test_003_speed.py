@@ -243,3 +243,35 @@ def test_loss_curves_with_lost_runs_dropped_equal_the_full_runs_bit_for_bit():
     want = loss_criteria(fl, runs["gate"], runs["interferers"], runs["miss"], runs["omega_error"], 20, 4.5, 0.5)
     assert np.array_equal(lost, (fl >= 0).reshape(2, 3, 4)) and np.array_equal(met, want.reshape(2, 3, 4, 3))
     assert np.isnan(h.gate[:, -1]).any() and 0 < lost.sum() < lost.size  # runs were dropped; the curve tells apart
+
+
+def test_integrated_exposure_crops_with_boxes_rendered_ahead_equal_a_plain_render_bit_for_bit():
+    """An integrated exposure's crops (sub-frame boxes rendered ahead, :meth:`_sub_boxes`) equal the static image plus
+    the marker's and the decoy's sub-frame spots, interleaved, rendered over the whole crop frame by frame."""
+    sc = Scenario(duration_s=0.2, fps=250.0, n_interferers=1, decoy_offset=16.0, exposure="integrated")
+    p = prepare_interference([np.random.default_rng([10, 4])], 2, sc, [0.5, 2.0])
+    scene, m, size, tr = p.scene, RotatingMarkerScene.MARGIN, 26, p.truth
+    steps, dt = scene.exposure_steps, float(tr.t[1] - tr.t[0])
+    tau = ((np.arange(steps) + 0.5) / steps - 0.5) * dt
+    vel = np.gradient(tr.center, dt, axis=1)
+    assert steps > 1
+    for k in (40, 2, 17, 16, 49):
+        c = tr.marker[:, k] + 2.0
+        got, origin, _ = scene.gate_crops(k, c, size, None)
+        for t in range(scene.n):
+            ox, oy = origin[t] + m
+            want = scene._padded[t, oy : oy + size, ox : ox + size].copy()
+            a0 = tr.theta[t, k] + scene.decoy_phase[t]
+            own = scene.decoys[t, k] - tr.r[t, k] * np.array([np.cos(a0), np.sin(a0)])
+            for j in range(steps):
+                ang = tr.theta[t, k] + tr.omega[t, k] * tau[j]
+                pm = (
+                    np.array([tr.xr[t, k], tr.yr[t, k]])
+                    + tau[j] * vel[t, k]
+                    + tr.r[t, k] * np.array([np.cos(ang), np.sin(ang)])
+                )
+                a = ang + scene.decoy_phase[t]
+                pd = own + tau[j] * vel[t, k] + tr.r[t, k] * np.array([np.cos(a), np.sin(a)])
+                want += scene._spot(pm[None], size, origin[t][None], 1.0 / steps)[0]
+                want += scene._spot(pd[None], size, origin[t][None], scene.decoy_brightness[t : t + 1] / steps)[0]
+            assert np.array_equal(got[t], want), (k, t, np.abs(got[t] - want).max())

@@ -157,9 +157,10 @@ class RotatingMarkerScene:
         )
         out._lit = np.flatnonzero(out.decoy_brightness != 0)
         out._box_cache = {}
-        out._padded = np.concatenate([s._padded for s in scenes])
+        out._padded = np.empty((out.n,) + first._padded.shape[1:], np.float32)
         start = 0
-        for s in scenes:  # each scene reads its part of the joined images
+        for s in scenes:  # each scene's images moved into the joined ones (freed one by one); it reads its part
+            out._padded[start : start + s.n] = s._padded
             s._padded, s._windows, start = out._padded[start : start + s.n], {}, start + s.n
         out._base = np.arange(out.n) * out._padded.shape[1] * out._padded.shape[2]
         out._windows, out._trials, out._marker = {}, np.arange(out.n), None
@@ -172,21 +173,41 @@ class RotatingMarkerScene:
             )
         return out
 
-    def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
-        """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
-        tr, m = self.truth, self.exposure_steps
+    def _sub_positions(self, k: int, k1: int) -> tuple[np.ndarray, np.ndarray | None]:
+        """Marker (and decoy) positions at the ``m`` sub-frame times of frames ``k`` to ``k1 - 1``, shape
+        (m, n, k1 - k, 2) each (elementwise: the numbers of each frame alone)."""
+        tr, m, s = self.truth, self.exposure_steps, slice(k, k1)
         tau = ((np.arange(m) + 0.5) / m - 0.5) * self._dt
-        shift = tau[:, None, None] * self._velocity[None, :, k]  # object motion within the frame
-        ang = tr.theta[None, :, k] + tr.omega[None, :, k] * tau[:, None]
-        r = tr.r[None, :, k]
-        centre = np.stack([tr.xr[:, k], tr.yr[:, k]], axis=-1)[None]
+        shift = tau[:, None, None, None] * self._velocity[None, :, s]  # object motion within the frame
+        ang = tr.theta[None, :, s] + tr.omega[None, :, s] * tau[:, None, None]
+        r = tr.r[None, :, s]
+        centre = np.stack([tr.xr[:, s], tr.yr[:, s]], axis=-1)[None]
         marker = centre + shift + r[..., None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
         if self.decoys is None:
             return marker, None
-        a0 = tr.theta[:, k] + self.decoy_phase
-        own = self.decoys[:, k] - r[0][:, None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
-        a = ang + self.decoy_phase[None]
+        a0 = tr.theta[:, s] + self.decoy_phase[:, None]
+        own = self.decoys[:, s] - r[0][..., None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
+        a = ang + self.decoy_phase[None, :, None]
         return marker, own[None] + shift + r[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+    def _sub_boxes(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """An integrated exposure's spot boxes at frame ``k``, layer by layer in the order they add up (marker and
+        decoy interleaved, sub-step by sub-step): first pixels (L, n, 2) and renders (L, n, side, side), rendered
+        :data:`SUB_CHUNK` frames at a time (the numbers of frame ``k`` alone, see :meth:`_boxes`)."""
+        got = self._box_cache.get("sub")
+        if got is None or not got[0] <= k < got[0] + got[1].shape[2]:
+            k1 = min(k + self.SUB_CHUNK, self.truth.n_frames)
+            sub_m, sub_d = self._sub_positions(k, k1)  # (steps, n, frames, 2) each
+            steps = self.exposure_steps
+            b = np.full(sub_m.shape[:3], self.brightness / steps)
+            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
+                sub_m = np.stack([sub_m, sub_d], axis=1).reshape((2 * steps,) + sub_d.shape[1:])
+                db = np.broadcast_to((self.decoy_brightness / steps)[:, None], b.shape[1:])
+                b = np.stack([b, np.broadcast_to(db, b.shape)], axis=1).reshape((2 * steps,) + b.shape[1:])
+            reach = self.diameter / 2 + 0.5
+            box0 = np.floor(sub_m - reach).astype(np.int64) + 1
+            got = self._box_cache["sub"] = (k, box0, self._spot(sub_m, int(np.ceil(2 * reach)), box0, b))
+        return got[1][:, :, k - got[0]], got[2][:, :, k - got[0]]
 
     @staticmethod
     def static_residual(
@@ -279,20 +300,15 @@ class RotatingMarkerScene:
                 if lit.size:
                     self._add_boxes(crops, box0, patch, origin[lit], None if lit.size == t.size else lit)
         else:
-            sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
-            if trials is not None:
-                sub_m, sub_d = sub_m[:, t], (None if sub_d is None else sub_d[:, t])
-            steps = self.exposure_steps
-            b = np.full((steps, t.size), self.brightness / steps)
-            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
-                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, t.size, 2)
-                b = np.stack([b, np.broadcast_to(db / steps, b.shape)], axis=1).reshape(2 * steps, -1)
-            self._add_spot(crops, sub_m, origin, b)
+            box0, patch = self._sub_boxes(k)  # (layers, n, ...): added layer by layer
+            for j in range(box0.shape[0]):
+                self._add_boxes(crops, *((box0[j], patch[j]) if trials is None else (box0[j, t], patch[j, t])), origin)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
 
     CHUNK = 64  # frames whose spot boxes :meth:`_boxes` renders in one call
+    SUB_CHUNK = 16  # frames whose sub-frame spot boxes :meth:`_sub_boxes` renders in one call
 
     def _boxes(self, k: int, decoy: bool) -> tuple[np.ndarray, np.ndarray]:
         """First pixels, shape (n, 2), and renders, shape (n, side, side) float32, of the boxes of pixels the marker's
