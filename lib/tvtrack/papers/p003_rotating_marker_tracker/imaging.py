@@ -301,8 +301,7 @@ class RotatingMarkerScene:
                     self._add_boxes(crops, box0, patch, origin[lit], None if lit.size == t.size else lit)
         else:
             box0, patch = self._sub_boxes(k)  # (layers, n, ...): added layer by layer
-            for j in range(box0.shape[0]):
-                self._add_boxes(crops, *((box0[j], patch[j]) if trials is None else (box0[j, t], patch[j, t])), origin)
+            self._add_boxes(crops, *((box0, patch) if trials is None else (box0[:, t], patch[:, t])), origin)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
@@ -329,17 +328,21 @@ class RotatingMarkerScene:
         return got[1][:, k - got[0]], got[2][:, k - got[0]]
 
     def _add_boxes(self, crops, box0, patch, origin, trials=None) -> None:
-        """Add the spot boxes ``patch`` (n, side, side) with first pixels ``box0`` (n, 2) to the crops (first pixels
-        ``origin``) of ``crops`` (the crops ``trials``, default all) where they overlap them, in place."""
+        """Add the spot boxes ``patch`` (n, side, side) with first pixels ``box0`` (n, 2), or layers of them (shapes
+        (L, n, ...), added one layer after the other), to the crops (first pixels ``origin``) of ``crops`` (the crops
+        ``trials``, default all) where they overlap them, in place."""
+        if box0.ndim == 2:
+            box0, patch = box0[None], patch[None]
         size, side = crops.shape[-1], patch.shape[-1]
         rel = box0 - origin  # each box's first pixel within its crop
-        inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
+        inside = ((rel >= 0) & (rel <= size - side)).all(axis=-1)
         win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
-        trials = np.arange(len(rel)) if trials is None else np.asarray(trials)
-        if inside.all():
-            win[trials, rel[:, 1], rel[:, 0]] += patch
-        else:
-            self._place(crops, win, patch, rel, inside, side, trials)
+        trials, every = (np.arange(rel.shape[1]) if trials is None else np.asarray(trials)), inside.all()
+        for j in range(rel.shape[0]):
+            if every:
+                win[trials, rel[j, :, 1], rel[j, :, 0]] += patch[j]
+            else:
+                self._place(crops, win, patch[j], rel[j], inside[j], side, trials)
 
     # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
     # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares;
