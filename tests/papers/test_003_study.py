@@ -82,7 +82,7 @@ def test_threshold_estimate_covers_the_geometric_mean_and_is_extrapolated_outsid
 def test_threshold_ratio_is_paired_and_not_degenerate_when_every_run_agrees():
     a = _lost_from_thresholds([1.6] * 8)
     b = _lost_from_thresholds([0.9] * 8)
-    r = study.threshold_ratio(a, b, SIRS)
+    r = estimators.threshold_ratio(a, b, SIRS)
     # all runs in the same grid steps: the ratio of the step midpoints, widened by half a grid step (never degenerate)
     mid = lambda lo, hi: np.sqrt(lo * hi)
     assert r.value == pytest.approx(mid(4 / 3, 2.0) / mid(0.75, 1.0))
@@ -232,7 +232,7 @@ def test_threshold_ratio_covers_the_population_ratio_of_paired_runs():
     for _ in range(300):
         tb = np.exp(rng.normal(np.log(1.0), 0.25, 15))
         ta = tb * 1.5 * np.exp(rng.normal(0.0, 0.1, 15))  # the same runs, 1.5 times harder to break
-        r = study.threshold_ratio(_lost_from_thresholds(ta), _lost_from_thresholds(tb), SIRS)
+        r = estimators.threshold_ratio(_lost_from_thresholds(ta), _lost_from_thresholds(tb), SIRS)
         if not r.extrapolated:
             done += 1
             hits += r.ci_low <= 1.5 <= r.ci_high
@@ -278,22 +278,22 @@ def test_compensation_reading_one_sided_keeps_the_ratio_and_two_sided_folds_it_a
     weak = Estimate(0.5, float("nan"), 0.4, 0.6, 6, 0.95, "ratio")  # compensation worth only 2x
     about = Estimate(0.08, float("nan"), 0.06, 0.15, 6, 0.95, "ratio")  # within a factor 2 of kappa, straddling it
     edge = Estimate(0.15, float("nan"), 0.05, 0.3, 6, 0.95, "ratio")  # interval reaching past 2 kappa
-    assert study.compensation_reading(strong, 0.1, "one-sided") is strong  # the measured ratio, unmapped
-    assert rule.decide(study.compensation_reading(strong, 0.1, "one-sided")) == "reproduced"
-    two = study.compensation_reading(strong, 0.1, "two-sided")  # q <= 0.04: at least 2.5-fold from kappa
+    assert estimators.compensation_reading(strong, 0.1, "one-sided") is strong  # the measured ratio, unmapped
+    assert rule.decide(estimators.compensation_reading(strong, 0.1, "one-sided")) == "reproduced"
+    two = estimators.compensation_reading(strong, 0.1, "two-sided")  # q <= 0.04: at least 2.5-fold from kappa
     assert two.ci_low == pytest.approx(0.25) and two.value == pytest.approx(0.25) and two.ci_high == np.inf
     assert rule.decide(two) == "not reproduced"
-    folded = study.compensation_reading(about, 0.1, "two-sided")
+    folded = estimators.compensation_reading(about, 0.1, "two-sided")
     assert (folded.value, folded.ci_low, folded.ci_high) == pytest.approx((0.125, 0.1, 0.01 / 0.06))
     assert rule.decide(folded) == "reproduced"  # 0.06 and 0.15 both lie within a factor 2 of kappa
     for reading in estimators.COMPENSATION_READINGS:  # a weak compensation fails under both readings
-        assert rule.decide(study.compensation_reading(weak, 0.1, reading)) == "not reproduced"
-        assert rule.decide(study.compensation_reading(edge, 0.1, reading)) == "undecided"
+        assert rule.decide(estimators.compensation_reading(weak, 0.1, reading)) == "not reproduced"
+        assert rule.decide(estimators.compensation_reading(edge, 0.1, reading)) == "undecided"
     low = Estimate(0.04, float("nan"), 0.03, 0.06, 6, 0.95, "ratio")  # below kappa / 2: one-sided yes, two-sided no
-    assert rule.decide(study.compensation_reading(low, 0.1, "one-sided")) == "reproduced"
-    assert rule.decide(study.compensation_reading(low, 0.1, "two-sided")) == "undecided"  # fold [0.167, 0.333]
+    assert rule.decide(estimators.compensation_reading(low, 0.1, "one-sided")) == "reproduced"
+    assert rule.decide(estimators.compensation_reading(low, 0.1, "two-sided")) == "undecided"  # fold [0.167, 0.333]
     with pytest.raises(ValueError):
-        study.compensation_reading(weak, 0.1, "both")
+        estimators.compensation_reading(weak, 0.1, "both")
 
 
 def test_extend_grid_decides_thresholds_outside_the_grid_and_fills_by_monotonicity():
@@ -334,7 +334,7 @@ def test_a_curve_run_at_one_more_sir_repeats_the_grid_runs_draws():
 def test_threshold_ratio_is_an_upper_bound_when_the_first_curve_breaks_below_the_grid():
     thr_a = np.array([0.4, 0.3, 0.6, 0.45, 0.8])  # static marker: three runs keep lock at the bottom 0.5
     thr_b = np.array([2.1, 1.9, 2.4, 2.2, 2.0])
-    e = study.threshold_ratio(_lost_from_thresholds(thr_a), _lost_from_thresholds(thr_b), SIRS)
+    e = estimators.threshold_ratio(_lost_from_thresholds(thr_a), _lost_from_thresholds(thr_b), SIRS)
     assert not e.extrapolated and e.ci_low == 0.0
     ls = np.log(SIRS)
     tau_b = estimators.log_thresholds(_lost_from_thresholds(thr_b), SIRS)[0]
@@ -344,13 +344,13 @@ def test_threshold_ratio_is_an_upper_bound_when_the_first_curve_breaks_below_the
     assert e.ci_high == pytest.approx(np.exp(d.mean() + t * d.std(ddof=1) / np.sqrt(d.size) + np.log(1.5) / 2))
     assert e.ci_high < 1  # the static marker's threshold is certainly below the rotating one's
     # the mirror (a above the grid, b inside it): a lower bound, at the grid's top over b's breaking SIRs
-    hi = study.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b), SIRS)
+    hi = estimators.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b), SIRS)
     assert not hi.extrapolated and hi.ci_high == np.inf
     d = ls[-1] - tau_b
     assert hi.ci_low == pytest.approx(np.exp(d.mean() - t * d.std(ddof=1) / np.sqrt(d.size) - np.log(1.5) / 2))
     assert hi.ci_low > 1 and Ordering("decoy", "stationary", ">", measure="ratio").decide(hi) == "reproduced"
     # censored on the same side in both curves: undecided
-    both = study.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b * 4), SIRS)
+    both = estimators.threshold_ratio(_lost_from_thresholds(thr_b * 5), _lost_from_thresholds(thr_b * 4), SIRS)
     assert both.extrapolated
 
 
@@ -426,6 +426,7 @@ def _spy_curves(monkeypatch):
             self.miss = np.ones((n, frames))
 
     monkeypatch.setattr(study, "_curve", curve)
+    monkeypatch.setattr(study, "_together", lambda parts: None)  # the curves and runs come from the stubs
     monkeypatch.setattr(study, "run_scenario", lambda rng, n, sc, **kw: (None, None, _H(n, sc.n_frames)))
     return seen
 
@@ -471,11 +472,11 @@ def test_c003_2_near_control_sits_one_hertz_above_the_rotation(monkeypatch, rota
 
 def test_fold_distance_is_two_sided_about_its_reference():
     e = Estimate(0.5, float("nan"), 0.4, 0.625, 6, 0.95, "t")
-    f = study.fold_distance(e, 1.0)
+    f = estimators.fold_distance(e, 1.0)
     assert (f.value, f.ci_low, f.ci_high) == pytest.approx((2.0, 1.6, 2.5))
-    up = study.fold_distance(Estimate(2.0, float("nan"), 1.6, 2.5, 6, 0.95, "t"), 1.0)
+    up = estimators.fold_distance(Estimate(2.0, float("nan"), 1.6, 2.5, 6, 0.95, "t"), 1.0)
     assert (up.value, up.ci_low, up.ci_high) == pytest.approx((2.0, 1.6, 2.5))
-    straddle = study.fold_distance(Estimate(1.1, float("nan"), 0.5, 1.5, 6, 0.95, "t"), 1.0)
+    straddle = estimators.fold_distance(Estimate(1.1, float("nan"), 0.5, 1.5, 6, 0.95, "t"), 1.0)
     assert (straddle.ci_low, straddle.ci_high) == pytest.approx((1.0, 2.0))
     rule = InBand("fold change", low=1.25)
     assert rule.decide(f) == rule.decide(up) == "reproduced"

@@ -86,6 +86,7 @@ def interference():
     curves = Curves()
     mp = pytest.MonkeyPatch()
     mp.setattr(study, "_curve", curves)
+    mp.setattr(study, "_together", lambda parts: None)  # the curves come from the stand-in, one by one
     mp.setattr(study, "_bandwidth_ratio", lambda *a: Estimate(0.4, np.nan, 0.3, 0.5, N))
     try:
         out = study.measure_interference(DEFAULT, 0, study.Sizes(trials=N, horizon_s=1.0))

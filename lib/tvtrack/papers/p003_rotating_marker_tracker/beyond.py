@@ -10,7 +10,8 @@ import numpy as np
 
 from .scene import Scenario, scenario_truth
 from .backdrop import median_residual, place_interferers
-from .study import Sizes, stream_rng, measure_interference, measure_tracking, scenario
+from .draws import stream_rng
+from .study import Sizes, measure_interference, measure_tracking, scenario
 
 __all__ = ["exposure_study", "median_example"]
 

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, Rule
 from .scene import Scenario
-from .study import BANDWIDTH_PAIR, BXY_GRID, LINEAR_BAND, SIR_GRID
+from .curves import SIR_GRID
+from .study import BANDWIDTH_PAIR, BXY_GRID, LINEAR_BAND
 
 __all__ = ["CLAIMS", "NOTES", "RULES", "claim_rules"]
 

@@ -236,8 +236,12 @@ def _interp(profile, origin, x):
     pos = np.clip(np.asarray(x, dtype=float) - origin, 0, n - 1)
     i0 = np.minimum(np.floor(pos).astype(int), n - 2)
     f = pos - i0
-    p0 = np.take_along_axis(profile, i0[..., None], -1)[..., 0]
-    p1 = np.take_along_axis(profile, i0[..., None] + 1, -1)[..., 0]
+    if profile.ndim == 2 and i0.shape == profile.shape[:1]:  # one point per profile (the frame loop): a plain gather
+        rows = np.arange(profile.shape[0])
+        p0, p1 = profile[rows, i0], profile[rows, i0 + 1]
+    else:
+        p0 = np.take_along_axis(profile, i0[..., None], -1)[..., 0]
+        p1 = np.take_along_axis(profile, i0[..., None] + 1, -1)[..., 0]
     return (1 - f) * p0 + f * p1
 
 

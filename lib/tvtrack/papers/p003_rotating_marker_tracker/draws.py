@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["CommonNormal", "BlockNormal", "tile_rows", "generator_blocks"]
+__all__ = ["CommonNormal", "BlockNormal", "tile_rows", "generator_blocks", "stream_rng"]
 
 
 class CommonNormal:
@@ -66,3 +66,8 @@ def generator_blocks(rng, n: int, n_common: int | None):
             f"{len(rngs)} generators)"
         )
     return rngs, n_block, n_common
+
+
+def stream_rng(stream: int, seed: int) -> np.random.Generator:
+    """The seeded generator of one study stream: ``default_rng([stream, seed])`` (a stream per claim or figure)."""
+    return np.random.default_rng([int(stream), int(seed)])

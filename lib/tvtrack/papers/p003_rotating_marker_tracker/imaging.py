@@ -107,6 +107,8 @@ class RotatingMarkerScene:
         self.interferers = np.zeros((self.n, 0, 2)) if interferers is None else np.asarray(interferers, float)
         self.decoys = None if decoys is None else np.asarray(decoys, dtype=float)
         self.decoy_brightness = np.broadcast_to(np.asarray(decoy_brightness, dtype=float), (self.n,))
+        self._lit = np.flatnonzero(self.decoy_brightness != 0)  # trials whose decoy adds light
+        self._box_cache: dict = {}  # spot boxes of the frames at hand (:meth:`_boxes`)
         m = self.MARGIN
         rows, cols = self.image_shape
         self._padded = np.zeros((self.n, rows + 2 * m, cols + 2 * m), dtype=np.float32)
@@ -125,21 +127,87 @@ class RotatingMarkerScene:
                 raise ValueError("an integrated exposure with a decoy needs 'decoy_phase'")
             self.decoy_phase = None if decoy_phase is None else np.asarray(decoy_phase, float).reshape(self.n)
 
-    def _sub_positions(self, k: int) -> tuple[np.ndarray, np.ndarray | None]:
-        """Marker (and decoy) positions at the ``m`` sub-frame times of frame ``k``, shape (m, n, 2) each."""
-        tr, m = self.truth, self.exposure_steps
+    @classmethod
+    def joined(cls, scenes) -> "RotatingMarkerScene":
+        """One scene holding the trials of ``scenes`` one after the other (the same image, spot, brightness, sensor
+        noise, exposure and frame times): each trial's crops are those its own scene gives, bit for bit. A scene
+        without a decoy contributes a dark one (no light, :meth:`gate_crops` skips it). The static images are moved
+        into the joined scene's and each scene keeps a view of its part, so no memory is doubled."""
+        first = scenes[0]
+        same = ("image_shape", "spot", "diameter", "brightness", "noise_std", "exposure_steps")
+        if any(getattr(s, a) != getattr(first, a) for s in scenes for a in same) or any(
+            not np.array_equal(s.truth.t, first.truth.t) for s in scenes
+        ):
+            raise ValueError(f"parameter 'scenes' must agree in {', '.join(same)} and frame times")
+        out = cls.__new__(cls)
+        out.__dict__.update({a: getattr(first, a) for a in same + ("truth",)})
+        fields = ("xr", "yr", "r", "theta", "omega")
+        out.truth = MarkerTruth(*(np.concatenate([getattr(s.truth, f) for s in scenes]) for f in fields), first.truth.t)
+        out.n = sum(s.n for s in scenes)
+        q = max(s.interferers.shape[1] for s in scenes)
+        out.interferers = np.concatenate(
+            [np.concatenate([s.interferers, np.full((s.n, q - s.interferers.shape[1], 2), -1e4)], 1) for s in scenes]
+        )
+        lit = any(s.decoys is not None for s in scenes)
+        out.decoys = (
+            np.concatenate([s.decoys if s.decoys is not None else s.truth.marker for s in scenes]) if lit else None
+        )
+        out.decoy_brightness = np.concatenate(
+            [s.decoy_brightness if s.decoys is not None else np.zeros(s.n) for s in scenes]
+        )
+        out._lit = np.flatnonzero(out.decoy_brightness != 0)
+        out._box_cache = {}
+        out._padded = np.empty((out.n,) + first._padded.shape[1:], np.float32)
+        start = 0
+        for s in scenes:  # each scene's images moved into the joined ones (freed one by one); it reads its part
+            out._padded[start : start + s.n] = s._padded
+            s._padded, s._windows, start = out._padded[start : start + s.n], {}, start + s.n
+        out._base = np.arange(out.n) * out._padded.shape[1] * out._padded.shape[2]
+        out._windows, out._trials, out._marker = {}, np.arange(out.n), None
+        if out.exposure_steps > 1:
+            out._dt, out._velocity = first._dt, np.concatenate([s._velocity for s in scenes])
+            out.decoy_phase = (
+                np.concatenate([s.decoy_phase if s.decoys is not None else np.zeros(s.n) for s in scenes])
+                if lit
+                else None
+            )
+        return out
+
+    def _sub_positions(self, k: int, k1: int) -> tuple[np.ndarray, np.ndarray | None]:
+        """Marker (and decoy) positions at the ``m`` sub-frame times of frames ``k`` to ``k1 - 1``, shape
+        (m, n, k1 - k, 2) each (elementwise: the numbers of each frame alone)."""
+        tr, m, s = self.truth, self.exposure_steps, slice(k, k1)
         tau = ((np.arange(m) + 0.5) / m - 0.5) * self._dt
-        shift = tau[:, None, None] * self._velocity[None, :, k]  # object motion within the frame
-        ang = tr.theta[None, :, k] + tr.omega[None, :, k] * tau[:, None]
-        r = tr.r[None, :, k]
-        centre = np.stack([tr.xr[:, k], tr.yr[:, k]], axis=-1)[None]
+        shift = tau[:, None, None, None] * self._velocity[None, :, s]  # object motion within the frame
+        ang = tr.theta[None, :, s] + tr.omega[None, :, s] * tau[:, None, None]
+        r = tr.r[None, :, s]
+        centre = np.stack([tr.xr[:, s], tr.yr[:, s]], axis=-1)[None]
         marker = centre + shift + r[..., None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
         if self.decoys is None:
             return marker, None
-        a0 = tr.theta[:, k] + self.decoy_phase
-        own = self.decoys[:, k] - r[0][:, None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
-        a = ang + self.decoy_phase[None]
+        a0 = tr.theta[:, s] + self.decoy_phase[:, None]
+        own = self.decoys[:, s] - r[0][..., None] * np.stack([np.cos(a0), np.sin(a0)], axis=-1)  # decoy's centre
+        a = ang + self.decoy_phase[None, :, None]
         return marker, own[None] + shift + r[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+    def _sub_boxes(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """An integrated exposure's spot boxes at frame ``k``, layer by layer in the order they add up (marker and
+        decoy interleaved, sub-step by sub-step): first pixels (L, n, 2) and renders (L, n, side, side), rendered
+        :data:`SUB_CHUNK` frames at a time (the numbers of frame ``k`` alone, see :meth:`_boxes`)."""
+        got = self._box_cache.get("sub")
+        if got is None or not got[0] <= k < got[0] + got[1].shape[2]:
+            k1 = min(k + self.SUB_CHUNK, self.truth.n_frames)
+            sub_m, sub_d = self._sub_positions(k, k1)  # (steps, n, frames, 2) each
+            steps = self.exposure_steps
+            b = np.full(sub_m.shape[:3], self.brightness / steps)
+            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
+                sub_m = np.stack([sub_m, sub_d], axis=1).reshape((2 * steps,) + sub_d.shape[1:])
+                db = np.broadcast_to((self.decoy_brightness / steps)[:, None], b.shape[1:])
+                b = np.stack([b, np.broadcast_to(db, b.shape)], axis=1).reshape((2 * steps,) + b.shape[1:])
+            reach = self.diameter / 2 + 0.5
+            box0 = np.floor(sub_m - reach).astype(np.int64) + 1
+            got = self._box_cache["sub"] = (k, box0, self._spot(sub_m, int(np.ceil(2 * reach)), box0, b))
+        return got[1][:, :, k - got[0]], got[2][:, :, k - got[0]]
 
     @staticmethod
     def static_residual(
@@ -180,7 +248,7 @@ class RotatingMarkerScene:
         add_spots(out, q, b, spot, diameter)
         return out
 
-    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None):
+    def gate_crops(self, k: int, centres, size: int, rng: np.random.Generator | None, trials=None):
         """Compensated signal ``u_d`` in square crops of side ``size`` around ``centres`` at frame ``k``.
 
         Parameters
@@ -193,6 +261,8 @@ class RotatingMarkerScene:
             Crop side (px), e.g. :func:`tvtrack.measure.gate_crop_size`.
         rng : numpy.random.Generator or None
             Draws the sensor noise (None: noise-free).
+        trials : ndarray of int, shape (n,), optional
+            The trials whose crops are read (default: all, in order); ``centres`` are theirs.
 
         Returns
         -------
@@ -212,44 +282,84 @@ class RotatingMarkerScene:
         ox, oy = o[:, 0], o[:, 1]
         if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
             self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
-        crops = self._windows[size][self._trials, oy, ox]  # (n, size, size), a copy
+        t = self._trials if trials is None else np.asarray(trials)
+        crops = self._windows[size][t, oy, ox]  # (n, size, size), a copy
         if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
             tr = self.truth
             self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
-        marker = self._marker[:, k]
-        if self.exposure_steps == 1:
-            self._add_spot(crops, marker, origin, self.brightness)
-            if self.decoys is not None:
-                self._add_spot(crops, self.decoys[:, k], origin, self.decoy_brightness)
+        db = self.decoy_brightness if trials is None else self.decoy_brightness[t]
+        if self.exposure_steps == 1:  # the spots' boxes rendered ahead (_boxes), added where they meet the crops
+            box0, patch = self._boxes(k, False)
+            self._add_boxes(crops, *((box0, patch) if trials is None else (box0[t], patch[t])), origin)
+            if self.decoys is not None and self._lit.size:  # a dark decoy adds zeros: rendered only where it shines
+                lit = self._lit if trials is None else np.flatnonzero(db != 0)
+                box0, patch = self._boxes(k, True)  # the lit trials', in order
+                if trials is not None:
+                    rows = np.searchsorted(self._lit, t[lit])
+                    box0, patch = box0[rows], patch[rows]
+                if lit.size:
+                    self._add_boxes(crops, box0, patch, origin[lit], None if lit.size == t.size else lit)
         else:
-            sub_m, sub_d = self._sub_positions(k)  # (steps, n, 2) each
-            steps = self.exposure_steps
-            b = np.full((steps, self.n), self.brightness / steps)
-            if sub_d is not None:  # marker and decoy interleaved, step by step, as they add up
-                sub_m = np.stack([sub_m, sub_d], axis=1).reshape(2 * steps, self.n, 2)
-                b = np.stack([b, np.broadcast_to(self.decoy_brightness / steps, b.shape)], axis=1).reshape(
-                    2 * steps, -1
-                )
-            self._add_spot(crops, sub_m, origin, b)
+            box0, patch = self._sub_boxes(k)  # (layers, n, ...): added layer by layer
+            self._add_boxes(crops, *((box0, patch) if trials is None else (box0[:, t], patch[:, t])), origin)
         if rng is not None and self.noise_std > 0:
             crops += self.noise_std * rng.standard_normal(crops.shape, dtype=np.float32)
         return crops, origin, inside
+
+    CHUNK = 64  # frames whose spot boxes :meth:`_boxes` renders in one call
+    SUB_CHUNK = 16  # frames whose sub-frame spot boxes :meth:`_sub_boxes` renders in one call
+
+    def _boxes(self, k: int, decoy: bool) -> tuple[np.ndarray, np.ndarray]:
+        """First pixels, shape (n, 2), and renders, shape (n, side, side) float32, of the boxes of pixels the marker's
+        spots (``decoy``: the lit decoys', trials ``_lit``) reach at frame ``k`` (see :meth:`_add_spot`), rendered
+        :data:`CHUNK` frames at a time: they follow the truth alone, and the spot functions work pixel by pixel, so
+        these are the numbers a render of frame ``k`` alone gives."""
+        got = self._box_cache.get(decoy)
+        if got is None or not got[0] <= k < got[0] + got[1].shape[1]:
+            k1 = min(k + self.CHUNK, self.truth.n_frames)
+            if decoy:
+                c = self.decoys[self._lit, k:k1]
+                b = np.broadcast_to(self.decoy_brightness[self._lit, None], c.shape[:2])
+            else:
+                c, b = self._marker[:, k:k1], self.brightness
+            reach = self.diameter / 2 + 0.5
+            box0 = np.floor(c - reach).astype(np.int64) + 1
+            got = self._box_cache[decoy] = (k, box0, self._spot(c, int(np.ceil(2 * reach)), box0, b))
+        return got[1][:, k - got[0]], got[2][:, k - got[0]]
+
+    def _add_boxes(self, crops, box0, patch, origin, trials=None) -> None:
+        """Add the spot boxes ``patch`` (n, side, side) with first pixels ``box0`` (n, 2), or layers of them (shapes
+        (L, n, ...), added one layer after the other), to the crops (first pixels ``origin``) of ``crops`` (the crops
+        ``trials``, default all) where they overlap them, in place."""
+        if box0.ndim == 2:
+            box0, patch = box0[None], patch[None]
+        size, side = crops.shape[-1], patch.shape[-1]
+        rel = box0 - origin  # each box's first pixel within its crop
+        inside = ((rel >= 0) & (rel <= size - side)).all(axis=-1)
+        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
+        trials, every = (np.arange(rel.shape[1]) if trials is None else np.asarray(trials)), inside.all()
+        for j in range(rel.shape[0]):
+            if every:
+                win[trials, rel[j, :, 1], rel[j, :, 0]] += patch[j]
+            else:
+                self._place(crops, win, patch[j], rel[j], inside[j], side, trials)
 
     # crops holding more pixels than this get their spots rendered box by box: faster from about 48 disc or 96
     # square-spot crops of 26 x 26 px (measured: 84 against 121 us a frame for 96 discs, 90 against 95 for squares;
     # lower thresholds, faster per call with the 9-pixel box, made the tracking study's 24-30-run batches slower)
     BOX_MIN_PIXELS = {"disc": 30000, "square": 60000}
 
-    def _add_spot(self, crops, centers, origin, brightness) -> None:
+    def _add_spot(self, crops, centers, origin, brightness, trials=None) -> None:
         """Add spots centred at ``centers`` (n, 2) px, or (m, n, 2): ``m`` spots per crop added one after the other
-        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place.
+        (``brightness`` then (m, n)), to ``crops`` (n, size, size), first pixels at ``origin``, in place; with
+        ``trials`` (indices, shape (n,)) to those crops of ``crops`` only.
 
         All the spots are rendered in one call (the spot functions are pixel by pixel: the same numbers as one call
         each), then added in order. Large batches render only the box of pixels a spot can reach (centres within
         ``D/2 + 1/2`` of the spot's centre, for the disc and the square alike) and add it where it overlaps its crop:
         every pixel gets the same float32 number as rendering the whole crop (the other pixels get 0).
         """
-        n, size = crops.shape[0], crops.shape[-1]
+        n, size = (crops.shape[0] if trials is None else len(trials)), crops.shape[-1]
         c = np.asarray(centers, dtype=float)
         m = 1 if c.ndim == 2 else c.shape[0]
         if m > 1:  # one render of every spot: centres, origins and brightnesses flattened to (m n, ...)
@@ -259,7 +369,10 @@ class RotatingMarkerScene:
         if crops.size <= self.BOX_MIN_PIXELS[self.spot]:
             spots = self._spot(c, size, origin, brightness)
             for j in range(m):
-                crops += spots[j * n : (j + 1) * n]
+                if trials is None:
+                    crops += spots[j * n : (j + 1) * n]
+                else:
+                    crops[trials] += spots[j * n : (j + 1) * n]
             return
         reach = self.diameter / 2 + 0.5
         # pixels up to c - reach and from c + reach get nothing: floor(c - reach) + 1 .. + side - 1 hold the rest
@@ -269,27 +382,27 @@ class RotatingMarkerScene:
         rel = box0 - origin  # (m n, 2): each box's first pixel within its crop
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=1)
         win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
-        trials, every = np.arange(n), inside.all()
+        trials, every = (np.arange(n) if trials is None else np.asarray(trials)), inside.all()
         for j in range(m):
             sl = slice(j * n, (j + 1) * n)
             if every:
                 win[trials, rel[sl, 1], rel[sl, 0]] += patch[sl]
             else:
-                self._place(crops, win, patch[sl], rel[sl], inside[sl], side)
+                self._place(crops, win, patch[sl], rel[sl], inside[sl], side, trials)
 
     @staticmethod
-    def _place(crops, win, patch, rel, inside, side: int) -> None:
-        """Add boxes ``patch`` (n, side, side) to ``crops`` (n, size, size) with their first pixels at ``rel`` (n, 2)
-        within the crops, where they overlap (``win``: the crops' side x side windows; ``inside``: the boxes wholly
-        inside their crops)."""
+    def _place(crops, win, patch, rel, inside, side: int, trials) -> None:
+        """Add boxes ``patch`` (n, side, side) to the crops ``trials`` (n,) of ``crops`` (., size, size) with their
+        first pixels at ``rel`` (n, 2) within the crops, where they overlap (``win``: the crops' side x side windows;
+        ``inside``: the boxes wholly inside their crops)."""
         size = crops.shape[-1]
         t = np.flatnonzero(inside)
-        win[t, rel[t, 1], rel[t, 0]] += patch[t]
+        win[trials[t], rel[t, 1], rel[t, 0]] += patch[t]
         part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
         if part.size:  # boxes wholly outside add nothing
             ar = np.arange(side)
             cx, cy = rel[part, 0, None] + ar, rel[part, 1, None] + ar
-            idx = (part[:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
+            idx = (trials[part][:, None, None] * size + cy[:, :, None]) * size + cx[:, None, :]
             ok = ((cy >= 0) & (cy < size))[:, :, None] & ((cx >= 0) & (cx < size))[:, None, :]
             crops.reshape(-1)[idx[ok]] += patch[part][ok]  # indices unique: each box pixel inside is one crop pixel
 

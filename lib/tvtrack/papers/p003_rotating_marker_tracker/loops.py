@@ -40,6 +40,7 @@ __all__ = [
     "RotatingGateTracker",
     "TrackHistory",
     "run_closed_loop",
+    "discriminate",
     "loop_poles",
     "phase_response",
     "realised_phase_bandwidth",
@@ -224,32 +225,49 @@ def run_closed_loop(
     gate = np.empty((n, T, 2), np.float32)
     inside = np.empty((n, T), bool)
     omega = np.empty((n, T), np.float32)
-    pixel_rng = rng if noise == "pixel" else None
     for k in range(T):
         c = tracker.gate_center()
         omega[:, k] = tracker.state[:, 4]
         if keep_full:
             est[:, k] = tracker.state
-        crops, origin, inside[:, k] = scene.gate_crops(k, c, size, pixel_rng)
-        if crop_callback is not None:
-            crop_callback(k, crops, origin)
-        if form == "quadrant":
-            wy, wx = quadrant_weights(origin, c, gate_half, (size, size), np.float32)
-            m = wy @ (crops @ wx)
-            dx, dy = m[:, 0, 1].astype(float), m[:, 1, 0].astype(float)
-            if noise == "projected" and rng is not None and scene.noise_std > 0:
-                w = quadrant_noise(wy, wx, scene.noise_std, rng)
-                dx, dy = dx + w[:, 0], dy + w[:, 1]
-        elif form == "centroid":
-            dx, dy = centroid_discriminator(crops, origin, c, gate_half)
-        else:
-            dx, dy = edge_discriminator(crops, origin, c, edge_a)
+        dx, dy, inside[:, k] = discriminate(scene, k, c, size, gate_half, form, edge_a, noise, rng, crop_callback)
         e_r, e_th = tracker.update(dx, dy, dt)
         gate[:, k] = c
         if keep_full:
             disc[:, k] = np.stack([dx, dy, e_r, e_th], axis=1) / tracker.slope
     miss = np.linalg.norm(gate - scene.truth.marker, axis=-1).astype(np.float32)
     return TrackHistory(est, gate, disc, miss, inside, omega)
+
+
+def discriminate(
+    scene, k: int, c, size: int, gate_half: float, form: str, edge_a, noise: str, rng, crop_callback=None, trials=None
+):
+    """One frame of :func:`run_closed_loop` before the loop update: the gate crops of frame ``k`` at the gate centres
+    ``c`` (n, 2) px (of the scene's ``trials``, default all), read by the discriminator ``form``, with the sensor noise
+    of ``noise`` drawn from ``rng``.
+
+    Returns
+    -------
+    dx, dy : ndarray, shape (n,)
+        Cartesian discriminator outputs.
+    inside : ndarray of bool, shape (n,)
+        Whether each gate centre is inside the image.
+    """
+    crops, origin, inside = scene.gate_crops(k, c, size, rng if noise == "pixel" else None, trials)
+    if crop_callback is not None:
+        crop_callback(k, crops, origin)
+    if form == "quadrant":
+        wy, wx = quadrant_weights(origin, c, gate_half, (size, size), np.float32)
+        m = wy @ (crops @ wx)
+        dx, dy = m[:, 0, 1].astype(float), m[:, 1, 0].astype(float)
+        if noise == "projected" and rng is not None and scene.noise_std > 0:
+            w = quadrant_noise(wy, wx, scene.noise_std, rng)
+            dx, dy = dx + w[:, 0], dy + w[:, 1]
+    elif form == "centroid":
+        dx, dy = centroid_discriminator(crops, origin, c, gate_half)
+    else:
+        dx, dy = edge_discriminator(crops, origin, c, edge_a)
+    return dx, dy, inside
 
 
 def loop_poles(gains: LoopGains, omega: float, r: float) -> np.ndarray:

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-__all__ = ["memo", "clear_cache", "scenario_key", "MAX_ENTRIES"]
+__all__ = ["memo", "memo_together", "clear_cache", "scenario_key", "MAX_ENTRIES"]
 
 MAX_ENTRIES = 2048  # oldest forgotten first; one configuration keeps about 10 entries of a few kB
 _MEMO: dict = {}
@@ -57,7 +57,28 @@ def memo(key: tuple, compute):
         No arguments; returns the part's result (arrays in it are made read-only).
     """
     if key not in _MEMO:
-        if len(_MEMO) >= MAX_ENTRIES:
-            _MEMO.pop(next(iter(_MEMO)))
-        _MEMO[key] = _freeze(compute())
+        _keep(key, compute())
     return copy.deepcopy(_MEMO[key])
+
+
+def _keep(key, value) -> None:
+    if len(_MEMO) >= MAX_ENTRIES:
+        _MEMO.pop(next(iter(_MEMO)))
+    _MEMO[key] = _freeze(value)
+
+
+def memo_together(parts, run) -> list:
+    """:func:`memo` of several parts whose computations run together: ``parts`` holds ``(key, prepare, finish)``
+    triples; the parts not kept are prepared (``prepare()``), run in one call (``run(list of prepared)``, one result
+    each, in order) and finished (``finish(prepared, result)``, the part's value). Returns the parts' values (copies),
+    in order."""
+    todo = {}
+    for key, prepare, finish in parts:
+        if key not in _MEMO and key not in todo:
+            todo[key] = (prepare, finish)
+    if todo:
+        ready = [prepare() for prepare, _ in todo.values()]
+        got = {key: fin(p, r) for (key, (_, fin)), p, r in zip(todo.items(), ready, run(ready))}
+        for key, value in got.items():
+            _keep(key, value)
+    return [copy.deepcopy(_MEMO[key] if key in _MEMO else _freeze(got[key])) for key, _, _ in parts]

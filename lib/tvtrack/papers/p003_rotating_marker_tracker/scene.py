@@ -278,6 +278,54 @@ def run_scenario(
     scene : RotatingMarkerScene
     history : tvtrack.papers.p003_rotating_marker_tracker.loops.TrackHistory
     """
+    p = prepare_scenario(
+        rng,
+        n,
+        sc,
+        sir,
+        tracker=tracker,
+        ekf_meas_var=ekf_meas_var,
+        noise=noise,
+        keep_full=keep_full,
+        crop_callback=crop_callback,
+        n_common=n_common,
+        gains=gains,
+        blocks=blocks,
+    )
+    return p.truth, p.scene, run_closed_loop(p.scene, p.tracker, p.rng, **p.loop)
+
+
+@dataclass
+class Prepared:
+    """A batch of runs set up and not yet run (:func:`prepare_scenario`): ``run_closed_loop(scene, tracker, rng,
+    **loop)`` runs it; :func:`.lockstep.run_together` runs several side by side."""
+
+    truth: MarkerTruth
+    scene: object
+    tracker: object
+    rng: object
+    loop: dict
+    meta: dict | None = None
+    stop: object = None  # a LossCriterion: runs may leave the loop once lost by it (:func:`.lockstep.run_together`)
+
+
+def prepare_scenario(
+    rng,
+    n: int,
+    sc: Scenario,
+    sir=np.inf,
+    *,
+    tracker: str = "loops",
+    ekf_meas_var: float = 0.05,
+    noise: str = "projected",
+    keep_full: bool = True,
+    crop_callback=None,
+    n_common: int | None = None,
+    gains=None,
+    blocks=None,
+) -> Prepared:
+    """The truth, scene, tracker and sensor-noise source of :func:`run_scenario` (same arguments), drawn exactly as
+    it draws them, with the closed loop's settings; nothing is run."""
     rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     if sc.interferer_centre not in PLACEMENTS:
         raise ValueError(f"parameter 'interferer_centre' = {sc.interferer_centre!r}; it must be one of {PLACEMENTS}")
@@ -297,10 +345,7 @@ def run_scenario(
     noise_rng = (
         streams[0][3] if n_common == n else BlockNormal([CommonNormal(st[3], n_common) for st in streams], n_block)
     )
-    hist = run_closed_loop(
-        scene,
-        trk,
-        noise_rng,
+    loop = dict(
         gate_half=sc.gate_half,
         form=sc.form,
         edge_a=sc.diameter / 2,
@@ -308,7 +353,7 @@ def run_scenario(
         keep_full=keep_full,
         crop_callback=crop_callback,
     )
-    return truth, scene, hist
+    return Prepared(truth, scene, trk, noise_rng, loop)
 
 
 def _decoy_paths(streams, truth: MarkerTruth, sc: Scenario, n: int, n_common: int, n_block: int, blocks=None):
@@ -461,10 +506,25 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
         of generators the blocks follow each other: ``block`` (k m n,) says which generator
         (``blocks``: scene settings per generator, see :func:`build_scene`).
     """
+    p = prepare_interference(rng, n, sc, sir_values, blocks)
+    return interference_outcome(p, run_closed_loop(p.scene, p.tracker, p.rng, **p.loop))
+
+
+def prepare_interference(rng, n: int, sc: Scenario, sir_values, blocks=None) -> Prepared:
+    """The batch of :func:`interference_runs` set up (:func:`prepare_scenario`), not run; with ``sir``, ``n``,
+    ``generators`` and ``fps`` in its ``meta`` for :func:`interference_outcome`."""
     rngs = list(rng) if isinstance(rng, (list, tuple)) else [rng]
-    m = np.asarray(sir_values, float).size
     sir = np.tile(np.repeat(np.asarray(sir_values, float), n), len(rngs))
-    truth, scene, h = run_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n, blocks=blocks)
+    p = prepare_scenario(rngs, sir.size, sc, sir, keep_full=False, n_common=n, blocks=blocks)
+    p.meta = dict(sir=sir, n=n, generators=len(rngs), fps=sc.fps)
+    return p
+
+
+def interference_outcome(p: Prepared, h) -> dict:
+    """:func:`interference_runs`' dict from its prepared batch ``p`` (:func:`prepare_interference`) and the batch's
+    closed-loop history ``h``."""
+    truth, scene, sir, n, k = p.truth, p.scene, p.meta["sir"], p.meta["n"], p.meta["generators"]
+    m = sir.size // (n * k)
     with np.errstate(divide="ignore", invalid="ignore"):
         omega_error = np.where(truth.omega != 0, h.omega / truth.omega - 1, np.nan).astype(np.float32)
     return dict(
@@ -475,7 +535,7 @@ def interference_runs(rng: np.random.Generator, n: int, sc: Scenario, sir_values
         interferers=scene.interferers,
         omega_hat=h.omega,
         omega_error=omega_error,
-        trial=np.tile(np.arange(n), m * len(rngs)),
-        block=np.repeat(np.arange(len(rngs)), m * n),
-        dt=1.0 / sc.fps,
+        trial=np.tile(np.arange(n), m * k),
+        block=np.repeat(np.arange(k), m * n),
+        dt=1.0 / p.meta["fps"],
     )

@@ -27,28 +27,22 @@ import numpy as np
 from ...estimate import Estimate
 from ...montecarlo import mean_ci, ratio_ci, rms_ci
 from ...projection import as_declared
+from .curves import SIR_GRID, UNCOMPENSATED_GRID, curve_part, interference_claims, loss_mechanisms
 from .discriminators import quadrant_slope_fit
-from .lock import CRITERIA, LossCriterion, first_loss, loss_criteria
+from .draws import stream_rng
+from .lock import LossCriterion, first_loss
+from .lockstep import run_together
 from .loops import phase_locked_amplitude, stack_gains
-from .memo import memo, scenario_key
-from .scene import (
-    Scenario,
-    interference_runs,
-    run_scenario,
-    state_errors,
-)
+from .memo import memo, memo_together, scenario_key
+from .scene import Scenario, prepare_scenario, run_scenario, state_errors
 from .estimators import (
-    compensation_factor,
-    interval_estimate,
-    share_difference,
-    compensation_reading,
     extend_grid,
     grid_in_lock,
-    fold_distance,
+    interval_estimate,
     loss_share,
+    share_difference,
     threshold,
     threshold_bound,
-    threshold_ratio,
 )
 
 __all__ = [
@@ -66,14 +60,10 @@ __all__ = [
     "loss_share",
     "threshold",
     "threshold_bound",
-    "threshold_ratio",
-    "fold_distance",
     "measure_tracking",
     "measure_interference",
 ]
 
-SIR_GRID = (0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75)  # post-compensation SIR, steps of 1.33-1.5
-UNCOMPENSATED_GRID = (1.0, 2.0, 4.0, 8.0, 16.0)  # SIR_0 without compensation (kappa = 1)
 LINEAR_BAND = (0.9, 1.1)  # C003-9: quadrant slope / 2dD counted "linear" (the rule and the s-curve caption)
 BXY_GRID = (2.0, 5.0, 10.0, 20.0)  # coordinate-loop bandwidths of the C003-2 mechanism, Hz
 RIPPLE_TREND = (20.0, 10.0)  # C003-2: the locked ripple at the widest B_xy over the paper's, runs in lock at both, Hz
@@ -194,11 +184,6 @@ def criterion(config: dict, sc: Scenario) -> LossCriterion:
     return LossCriterion(radius, max(1, int(round(float(config.get("loss_window_s", 0.5)) * sc.fps))), 0.5)
 
 
-def stream_rng(stream: int, seed: int) -> np.random.Generator:
-    """The seeded generator of one study stream: ``default_rng([stream, seed])`` (a stream per claim or figure)."""
-    return np.random.default_rng([int(stream), int(seed)])
-
-
 # ----------------------------------------------------------------------------------------------------------------
 # tracking claims
 
@@ -250,24 +235,24 @@ def measure_tracking(config: dict, seed: int, sizes: Sizes = Sizes(), claims=Non
     k0 = int(round(sizes.transient_s * sc1.fps))
     crit = criterion(config, sc1)
     out, fig, quad_ms = {}, {}, {}
+    om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
+    sc2 = replace(sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz)
+    k2 = int(round(max(sizes.transient_s, 0.25 * sizes.fig2_s) * sc2.fps))
+    runs = [_fig1_spec(sc1, n, seed, k0, crit)] if asked & {"C003-1", "C003-2", "C003-9"} else []
+    runs += [_fig2_spec(sc2, n, seed, k2)] if "C003-3" in asked else []
+    runs += [_background_spec(sc1, n, seed, k0, crit)] if "C003-4" in asked else []
+    runs += [_miss_spec(s, n, seed, k0, crit) for s in _form_runs(sc1)] if "C003-9" in asked else []
+    _together([_part(x) for x in runs])  # side by side in one frame loop where they can; the calls below find them
     if asked & {"C003-1", "C003-2", "C003-9"}:
-        f1 = memo(("fig1", scenario_key(sc1), n, seed, k0, crit), lambda: _fig1(sc1, n, seed, k0, crit))
+        f1 = _kept(_fig1_spec(sc1, n, seed, k0, crit))
         out.update({k: f1[k] for k in ("C003-1", "C003-2", "_ripple_trend", "_lock_by_bandwidth")})
         quad_ms, fig = dict(f1["quad_ms"]), dict(f1["figure"])
     if "C003-3" in asked:  # Fig. 2: varying rotation rate and radius
-        om, om_hz, rm, rm_hz = FIG2_LAWS[config.get("fig2_law", "card")]
-        sc2 = replace(
-            sc1, duration_s=sizes.fig2_s, omega_mod=om, omega_mod_hz=om_hz, radius_mod=rm, radius_mod_hz=rm_hz
-        )
-        k2 = int(round(max(sizes.transient_s, 0.25 * sizes.fig2_s) * sc2.fps))
-        f2 = memo(("fig2", scenario_key(sc2), n, seed, k2), lambda: _fig2(sc2, n, seed, k2))
+        f2 = _kept(_fig2_spec(sc2, n, seed, k2))
         out["C003-3"] = f2["C003-3"]
         fig.update(f2["figure"])
     if "C003-4" in asked:  # background sweep (compensated) and the ablation without compensation, same draws
-        bg = memo(
-            ("background", scenario_key(sc1), n, seed, k0, crit), lambda: _background_sweep(sc1, n, seed, k0, crit)
-        )
-        out["C003-4"], fig["background_rms"] = bg
+        out["C003-4"], fig["background_rms"] = _kept(_background_spec(sc1, n, seed, k0, crit))
     if "C003-9" in asked:
         out["C003-9"] = _discriminator_forms(config, sc1, n, seed, k0, crit, quad_ms)
     out["_figure"] = fig
@@ -278,11 +263,22 @@ def _fig1(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> dic
     """Fig. 1 at every coordinate-loop bandwidth of the C003-2 mechanism, one batch on the same draws (stream 1):
     C003-1, C003-2, the locked ripple's trend, the quadrant runs' mean-square miss by spot (``quad_ms``, for C003-9)
     and the first run's arrays (``figure``)."""
+    return _run(_fig1_spec(sc1, n, seed, k0, crit))
+
+
+def _fig1_spec(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> tuple:
+    """:func:`_fig1` as ``(key, run_scenario's arguments, its keywords, finish(truth, history))``."""
     grid = tuple(b * sc1.b_xy / Scenario().b_xy for b in BXY_GRID)  # the grid follows the bandwidth reading
     gains = [replace(sc1, b_xy=b).gains() for b in grid]
-    tr, _, h = run_scenario(
-        [stream_rng(1, seed) for _ in grid], n * len(grid), sc1, gains=stack_gains(gains, n), n_common=n
+    return (
+        ("fig1", scenario_key(sc1), n, seed, k0, crit),
+        ([stream_rng(1, seed) for _ in grid], n * len(grid), sc1),
+        dict(gains=stack_gains(gains, n), n_common=n),
+        lambda tr, h: _fig1_outcome(sc1, n, k0, crit, tr, h),
     )
+
+
+def _fig1_outcome(sc1: Scenario, n: int, k0: int, crit: LossCriterion, tr, h) -> dict:
     e = state_errors(tr, h)
     ex, th = e[:, k0:, 0], tr.theta[:, k0:]
     f_near = (sc1.rotation_hz + 1.0) / sc1.rotation_hz
@@ -316,7 +312,15 @@ def _fig1(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> dic
 
 def _fig2(sc2: Scenario, n: int, seed: int, k2: int) -> dict:
     """Fig. 2 (varying rotation rate and radius, stream 2): C003-3 and the first run's arrays (``figure``)."""
-    tr, _, h = run_scenario(stream_rng(2, seed), n, sc2)
+    return _run(_fig2_spec(sc2, n, seed, k2))
+
+
+def _fig2_spec(sc2: Scenario, n: int, seed: int, k2: int) -> tuple:
+    key = ("fig2", scenario_key(sc2), n, seed, k2)
+    return key, (stream_rng(2, seed), n, sc2), {}, lambda tr, h: _fig2_outcome(sc2, k2, tr, h)
+
+
+def _fig2_outcome(sc2: Scenario, k2: int, tr, h) -> dict:
     e = state_errors(tr, h)[:, k2:]
     return {
         "C003-3": {"omega": rms_ci(e[:, :, 4] / sc2.omega0), "r": rms_ci(e[:, :, 2])},
@@ -335,13 +339,24 @@ def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCrite
     ablation without compensation (d/sigma_f = 5), one batch on the same draws (stream 3).
 
     Returns ``({"spread", "compensation"}, per-case RMS miss in px)``."""
+    return _run(_background_spec(sc1, n, seed, k0, crit))
+
+
+def _background_spec(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> tuple:
     cases = ((50.0, 8.0), (100.0, 8.0), (50.0, 4.0), (50.0, 16.0))
     blocks = [dict(kappa=sc1.kappa, background_std=1.0 / (sc1.kappa * r), corr_length=c) for r, c in cases]
     blocks.append(dict(kappa=1.0, background_std=1.0 / 5.0, corr_length=8.0))
-    rngs = [stream_rng(3, seed) for _ in blocks]
-    h = run_scenario(rngs, n * len(blocks), sc1, keep_full=False, n_common=n, blocks=blocks)[2]
+    return (
+        ("background", scenario_key(sc1), n, seed, k0, crit),
+        ([stream_rng(3, seed) for _ in blocks], n * len(blocks), sc1),
+        dict(keep_full=False, n_common=n, blocks=blocks),
+        lambda tr, h: _background_outcome(h, len(blocks), n, k0, crit),
+    )
+
+
+def _background_outcome(h, m: int, n: int, k0: int, crit: LossCriterion) -> tuple[dict, list]:
     ms, lo = _miss_stats(h, k0, crit)
-    ms, lo = ms.reshape(len(blocks), n), lo.reshape(len(blocks), n)
+    ms, lo = ms.reshape(m, n), lo.reshape(m, n)
     rms = [mean_ci(np.sqrt(m)) for m in ms[:-1]]
     big, small = max(rms, key=lambda x: x.value), min(rms, key=lambda x: x.value)
     spread = interval_estimate(
@@ -356,8 +371,37 @@ def _background_sweep(sc1: Scenario, n: int, seed: int, k0: int, crit: LossCrite
 
 def _miss_ms(sc: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> np.ndarray:
     """Per-run mean-square marker miss (px^2, frames from ``k0``) of ``n`` runs of ``sc`` on the Fig. 1 draws."""
+    return _kept(_miss_spec(sc, n, seed, k0, crit))
+
+
+def _miss_spec(sc: Scenario, n: int, seed: int, k0: int, crit: LossCriterion) -> tuple:
     key = ("miss_ms", scenario_key(sc), n, seed, k0, crit)
-    return memo(key, lambda: _miss_stats(run_scenario(stream_rng(1, seed), n, sc, keep_full=False)[2], k0, crit)[0])
+    return key, (stream_rng(1, seed), n, sc), dict(keep_full=False), lambda tr, h: _miss_stats(h, k0, crit)[0]
+
+
+def _form_runs(sc1: Scenario) -> list:
+    """The C003-9 runs beyond the Fig. 1 batch (:func:`_discriminator_forms`): the quadrant form with the other spot,
+    the edge form with both."""
+    other = replace(sc1, spot="square" if sc1.spot == "disc" else "disc")
+    return [other] + [replace(sc1, spot=spot, form="edge") for spot in ("square", "disc")]
+
+
+def _run(spec):
+    """A spec's value computed alone (``run_scenario``)."""
+    _, args, kw, finish = spec
+    tr, _, h = run_scenario(*args, **kw)
+    return finish(tr, h)
+
+
+def _part(spec):
+    """A spec as a part of :func:`.memo.memo_together`."""
+    _, args, kw, finish = spec
+    return spec[0], lambda: prepare_scenario(*args, **kw), lambda p, r: finish(r[0], r[2])
+
+
+def _kept(spec):
+    """A spec's value, kept by its key (computed alone where not kept yet)."""
+    return memo_together([_part(spec)], run_together)[0]
 
 
 def _discriminator_forms(config: dict, sc1: Scenario, n: int, seed: int, k0: int, crit, quad_ms: dict) -> dict:
@@ -385,37 +429,7 @@ def _curve(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts=No
     offset, px) one batch of blocks, shape (len(counts), m, n); each block gets the runs it would get alone. With
     ``criteria`` also the loss criteria each loss meets (:func:`.lock.loss_criteria`, capture judged off the marker),
     shape (..., m, n, 3)."""
-    key = ("curve", scenario_key(sc), tuple(float(x) for x in sirs), n, seed, crit, counts and tuple(counts), criteria)
-    return memo(key, lambda: _curve_runs(sc, sirs, n, seed, crit, counts, criteria))
-
-
-def _curve_runs(sc: Scenario, sirs, n: int, seed: int, crit: LossCriterion, counts, criteria: bool):
-    """:func:`_curve`, computed."""
-    k = 1 if counts is None else len(counts)
-    blocks = (
-        None
-        if counts is None
-        else [
-            {"n_interferers": c} if isinstance(c, int) else {"n_interferers": 0, "decoy_offset": c[1]} for c in counts
-        ]
-    )
-    runs = interference_runs([stream_rng(10, seed) for _ in range(k)], n, sc, sirs, blocks=blocks)
-    fl = first_loss(runs["miss"], crit, runs["inside"])
-    shape = (len(sirs), n) if counts is None else (k, len(sirs), n)
-    lost = (fl >= 0).reshape(shape)
-    if not criteria:
-        return lost, None
-    met = loss_criteria(
-        fl,
-        runs["gate"],
-        runs["interferers"],
-        runs["miss"],
-        runs["omega_error"],
-        crit.window,
-        sc.diameter / 2 + 0.5,
-        crit.fraction,
-    )
-    return lost, met.reshape(shape + (3,))
+    return memo_together([curve_part(sc, sirs, n, seed, crit, counts, criteria)], run_together)[0]
 
 
 # the loss curves each interference claim reads (the rotating marker's, with one and five interferers, all do)
@@ -461,27 +475,34 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
     curves, met = {}, {}
     # the decoy's runs (C003-12) ride in the rotating marker's batch as a third block: the same runs as alone
     fam = (1, 5, ("decoy", 2 * D)) if "decoy" in need else (1, 5)
+    st = replace(base, rotating=False, gate_half=static_half, form=config.get("static_form", "quadrant"))
+    gates = {gf: replace(base, n_interferers=5, gate_half=gf * D / 2) for gf in (1.5, 5.0)}
+    usirs, unc = np.asarray(UNCOMPENSATED_GRID), replace(base, n_interferers=5, kappa=1.0)
+    k0 = int(round(sizes.transient_s * base.fps))
+    _together(  # the curves and runs not kept yet, side by side in one frame loop; the calls below find them
+        [curve_part(base, sirs, n, seed, crit, fam, True)]
+        + ([curve_part(st, sirs, n, seed, criterion(config, st), (1, 5), True)] if "static" in need else [])
+        + ([curve_part(g, sirs, n, seed, criterion(config, g)) for g in gates.values()] if "gate" in need else [])
+        + ([curve_part(unc, usirs, n, seed, crit)] if "uncompensated" in need else [])
+        + ([_bandwidth_part(base, n, seed, k0)] if "bandwidth" in need else [])
+    )
     lost_r, met_r = _curve(base, sirs, n, seed, crit, fam, True)
     curves["rotating", 1], curves["rotating", 5], met["rotating"] = lost_r[0], lost_r[1], met_r[:2]
-    st = replace(base, rotating=False, gate_half=static_half, form=config.get("static_form", "quadrant"))
     if "static" in need:
         (curves["static", 1], curves["static", 5]), met["static"] = _curve(
             st, sirs, n, seed, criterion(config, st), (1, 5), True
         )
     capt = met["rotating"][1, :, :, 0]
     if "gate" in need:
-        for gf in (1.5, 5.0):
-            g = replace(base, n_interferers=5, gate_half=gf * D / 2)
+        for gf, g in gates.items():
             curves["gate", gf], _ = _curve(g, sirs, n, seed, criterion(config, g))
     if "decoy" in need:
         curves["decoy"] = lost_r[2]
-    usirs = np.asarray(UNCOMPENSATED_GRID)
     if "uncompensated" in need:
-        curves["uncompensated"], _ = _curve(replace(base, n_interferers=5, kappa=1.0), usirs, n, seed, crit)
+        curves["uncompensated"], _ = _curve(unc, usirs, n, seed, crit)
     bw_ratio = None
     if "bandwidth" in need:
-        k0 = int(round(sizes.transient_s * base.fps))
-        bw_ratio = memo(("bandwidth", scenario_key(base), n, seed, k0), lambda: _bandwidth_ratio(base, n, seed, k0))
+        bw_ratio = memo(_bandwidth_part(base, n, seed, k0)[0], lambda: _bandwidth_ratio(base, n, seed, k0))
 
     def more(keys, sir):  # the C003-7/-12 curves at one more SIR, only the families asked for (same draws)
         got = {}
@@ -498,10 +519,12 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
     # marker's and the decoy's breaking below it certify an upper bound on C003-12's ratios (threshold_ratio); the
     # rotating curves' extension does not depend on which other curves are extended with them
     xsirs, xc = extend_grid({k: curves[k] for k in pair_keys}, sirs, more, max_points=1, trigger=pair_keys[:2])
-    out = _interference_claims(config, base, curves, capt, xc, xsirs, bw_ratio, asked)
+    out = interference_claims(config, base, curves, capt, xc, xsirs, bw_ratio, asked)
     if bw_ratio is not None:
         out["_bandwidth_ratio"] = bw_ratio
-    out["_mechanisms"] = {f"{m} {k}": _mechanisms(curves[m, k], met[m][j]) for m in met for j, k in enumerate((1, 5))}
+    out["_mechanisms"] = {
+        f"{m} {k}": loss_mechanisms(curves[m, k], met[m][j]) for m in met for j, k in enumerate((1, 5))
+    }
     if "static" in met:
         out["_map"] = {f"{m} {k}": threshold(xc[m, k], xsirs) for m in ("rotating", "static") for k in (1, 5)}
         # the side of a paper value each _map threshold certifies, also when runs broke outside the grid (prose)
@@ -518,74 +541,36 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
 def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
     """C003-11: mean-square marker miss (frames from ``k0``, no interferers) with the wider loop of
     :data:`BANDWIDTH_PAIR` over the narrower, paired on the Fig. 1 draws (stream 1), with its direction (the rule reads
-    its fold distance, :func:`fold_distance`)."""
-    bw = BANDWIDTH_PAIR
-    h = run_scenario(
-        [stream_rng(1, seed) for _ in bw],
-        2 * n,
-        base,
-        keep_full=False,
-        n_common=n,
-        gains=stack_gains([replace(base, b_xy=b).gains() for b in bw], n),
-    )[2]
+    its fold distance, :func:`.estimators.fold_distance`)."""
+    return _bandwidth_outcome(
+        run_scenario(*_bandwidth_runs(base, n, seed), keep_full=False, **_bandwidth_kw(base, n))[2], n, k0
+    )
+
+
+def _bandwidth_runs(base: Scenario, n: int, seed: int) -> tuple:
+    return [stream_rng(1, seed) for _ in BANDWIDTH_PAIR], 2 * n, base
+
+
+def _bandwidth_kw(base: Scenario, n: int) -> dict:
+    return dict(n_common=n, gains=stack_gains([replace(base, b_xy=b).gains() for b in BANDWIDTH_PAIR], n))
+
+
+def _bandwidth_part(base: Scenario, n: int, seed: int, k0: int):
+    """:func:`_bandwidth_ratio` as a part of :func:`.memo.memo_together`: ``(key, prepare, finish)``."""
+    return (
+        ("bandwidth", scenario_key(base), n, seed, k0),
+        lambda: prepare_scenario(*_bandwidth_runs(base, n, seed), keep_full=False, **_bandwidth_kw(base, n)),
+        lambda p, r: _bandwidth_outcome(r[2], n, k0),
+    )
+
+
+def _bandwidth_outcome(h, n: int, k0: int) -> Estimate:
     ms = np.mean(h.miss[:, k0:].astype(float) ** 2, axis=1).reshape(2, n)
     return ratio_ci(ms[1], ms[0])
 
 
-def _interference_claims(
-    config: dict, base: Scenario, curves: dict, capt, xc: dict, xsirs, bw_ratio, asked=I_CLAIMS
-) -> dict:
-    """The claim parts of :func:`measure_interference` from its loss curves (``curves`` on :data:`SIR_GRID`, ``xc`` on
-    the extended grid ``xsirs``), the capture indicators ``capt`` (five interferers, per SIR and run) and C003-11's
-    bandwidth ratio; only the ``asked`` claims (their curves present)."""
-    sirs, usirs, at = np.asarray(SIR_GRID), np.asarray(UNCOMPENSATED_GRID), {s: i for i, s in enumerate(SIR_GRID)}
-    r1, r5 = curves["rotating", 1], curves["rotating", 5]
-    parts = {
-        "C003-5": lambda: {"no_loss": loss_share(r5[at[3.0]]), "no_capture": loss_share(capt[at[3.0]])},
-        "C003-6": lambda: {
-            "finite": loss_share(r1[at[0.5]]),
-            "loss_free": loss_share(r1[at[2.0]]),
-            "not_lower": loss_share(r1[at[4 / 3]]),
-        },
-        "C003-7": lambda: {
-            "loss_free": loss_share(r5[at[3.0]]),
-            "not_lower": loss_share(r5[at[2.0]]),
-            "rise": threshold_ratio(xc["rotating", 5], xc["rotating", 1], xsirs),
-        },
-        "C003-10": lambda: {
-            # the side a grid-censored threshold certifies decides (threshold_bound), as in the prose's map
-            "gate": [
-                threshold_bound(curves["gate", 1.5], sirs),
-                threshold_bound(r5, sirs),
-                threshold_bound(curves["gate", 5.0], sirs),
-            ],
-            "compensation": compensation_reading(
-                compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
-                base.kappa,
-                config.get("compensation_reading", "one-sided"),
-            ),
-        },
-        "C003-11": lambda: {
-            "dynamics": loss_share(curves["gate", 1.5][-1]),
-            "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
-            # l. 192 says the errors depend substantially on the bandwidths, not which way: two-sided (fold distance)
-            "bandwidth": fold_distance(bw_ratio, 1.0),
-        },
-        "C003-12": lambda: {
-            "one": threshold_ratio(xc["static", 1], xc["rotating", 1], xsirs),
-            "five": threshold_ratio(xc["static", 5], xc["rotating", 5], xsirs),
-            "imitator": threshold_ratio(xc["decoy"], xc["rotating", 1], xsirs),
-        },
-    }
-    return {c: f() for c, f in parts.items() if c in asked}
-
-
-def _mechanisms(lost, met) -> dict:
-    """Counts of the losses (all SIRs) and of those meeting each loss criterion (a loss may meet several)."""
-    lost = np.asarray(lost, bool)
-    m = np.asarray(met, bool)[lost]
-    return {
-        "losses": int(lost.sum()),
-        **{c: int(m[:, j].sum()) for j, c in enumerate(CRITERIA)},
-        "none (drift)": int((~m.any(axis=1)).sum()),
-    }
+def _together(parts) -> None:
+    """Run the ``parts`` (``(key, prepare, finish)``) of a measurement not kept yet side by side in one frame loop
+    (:func:`.lockstep.run_together`: each with its own numbers, bit for bit) and keep them (:func:`.memo.memo_together`)
+    for the calls that follow."""
+    memo_together(parts, run_together)
