@@ -226,12 +226,12 @@ def m_step(sums, theta, static: bool):
 
 @njit
 def _trial_e_step(
-    e0, e1, frame, row, col, count, span, r, th, pw, p0, sg, times, shape, tables, sums
+    e0, e1, frame, row, col, count, span, r, th, pw, p0, sg, times, shape, tables, sums, want_ll=True
 ):  # pragma: no cover
     """The E-step of trial ``r`` (its entries ``e0:e1``) at ``th`` (Q, 4): ``sums`` (Q, 7) filled as the rows of
-    :func:`_e_step_entries`, the log-likelihood returned."""
+    :func:`_e_step_entries`, the log-likelihood returned (0.0 without ``want_ll``: not evaluated)."""
     rows, cols = shape
-    fx, mx, fy, my, scratch = tables
+    fx, mx, fy, my, scratch, pv = tables
     q_n = th.shape[0]
     for f in range(times.shape[0]):
         if span[1, r, f] < 0:
@@ -243,7 +243,6 @@ def _trial_e_step(
             _axis_table(th[q, 1] + th[q, 3] * t, s, span[2, r, f], span[3, r, f], False, fy[f, q], my[f, q], scratch)
     sums[:] = 0.0
     loglik = 0.0
-    pv = np.empty(q_n)
     area = rows * cols
     for e in range(e0, e1):
         fr = frame[e]
@@ -256,7 +255,8 @@ def _trial_e_step(
             total += pv[q]
         v = max(p0 / area + total, _TINY)
         c = count[e]
-        loglik += c * math.log(v)
+        if want_ll:
+            loglik += c * math.log(v)
         cv = c / v
         for q in range(q_n):
             w = pv[q] * cv
@@ -330,7 +330,7 @@ def _squarem(ent, r, th, pw, p0, sg, times, shape, static, span_t, tables, sums,
     t1, t2, tx, t3, d1, d2 = work[0], work[1], work[2], work[3], work[4], work[5]
     l0 = _trial_e_step(*ent, r, th, pw, p0, sg, times, shape, tables, sums)
     bad1 = _m_step_row(sums, th, static, t1)
-    _trial_e_step(*ent, r, t1, pw, p0, sg, times, shape, tables, sums)
+    _trial_e_step(*ent, r, t1, pw, p0, sg, times, shape, tables, sums, False)  # its log-likelihood is not read
     bad2 = _m_step_row(sums, t1, static, t2)
     for q in range(th.shape[0]):
         for k in range(4):
@@ -381,6 +381,7 @@ def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma:
         np.empty((n_t, q_n, rows)),
         np.empty((n_t, q_n, rows)),
         np.empty(1),
+        np.empty(q_n),
     )
     sums = np.empty((q_n, 7))
     work = np.empty((6, q_n, 4))
