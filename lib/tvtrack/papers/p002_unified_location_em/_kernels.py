@@ -6,7 +6,13 @@ walks the non-zero pixels once per step and evaluates the pixel fractions (U3), 
 sigma is estimated, ``E[z^2 | pixel]`` directly at each entry's pixel, accumulating the sums of eq. (10)
 per trial and object. It is the same arithmetic as the NumPy path (up to the last bits of ``erfc`` against
 ``scipy.special.ndtr`` and the order of summation); ``tests/papers/test_002_kernels.py`` pins the two
-together.
+together. Each (trial, frame) tabulates only the pixel range its photons fall in (a pixel's values depend on its
+two edges only, so they are the full table's), and the trials that stopped are skipped.
+
+:func:`em_trials` runs the whole EM (plain or SQUAREM, either stopping rule, no prior, fixed weights and widths)
+one trial at a time with these steps: the vectorised loop's arithmetic element by element, so its estimates,
+step counts and flags bit for bit (``tests/papers/test_002_em_trials.py``), without NumPy's per-pass cost, which
+dominated the long tails (coarse pixels, the 5000-step cap).
 """
 
 from __future__ import annotations

@@ -24,7 +24,8 @@ edges (``Q T (rows + cols)`` normal-CDF evaluations), and only pixels with a non
 splitting and the sums, so the work per iteration is ``O(Q T (rows + cols) + Q nnz)``, not
 ``O(Q T rows cols)``. Trials are independent and vectorised: every pixel entry carries its trial
 index; sums per trial use :func:`numpy.add.reduceat` over the trial-sorted entries, and converged
-trials are dropped from the working set.
+trials are dropped from the working set. With numba, the maximum-likelihood EM with fixed weights and widths
+runs compiled one trial at a time instead (:func:`._kernels.em_trials`; the same numbers bit for bit).
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row)
 and frames, as in :mod:`tvtrack.papers.p002_unified_location_em.model`.
