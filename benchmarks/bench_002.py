@@ -30,14 +30,22 @@ measured in every run, and a screen whose confirmations cost as much as it spare
 screened against 180 unscreened). A default replicate costs 6.5-9.5 s of CPU, of which C002-10's points (the
 8-separation gain curve and Fig 6b's coarse pixels) are about 60 %.
 
-What more a JIT would save (measured 2026-11-25, load ~3, before the compiled E-step): the per-frame EM at
-Delta = 5 sigma on 40 trials (static, 2 objects) takes 0.70 s of CPU, almost all of it the loop passes needed by the
-7 trials that reach the 5000-step cap: 139 us per pass whatever the number of trials still iterating
-(``axis_tables`` 0.46 s, ``expectation_step`` 0.18 s, ``maximisation_step`` 0.09 s of a 1.36 s profiled run). The compiled E-step
-removes the first two; the M-step, the SQUAREM extrapolation and the convergence test still run in NumPy per pass.
-A per-trial compiled E+M loop (about 1 us a pass for a capped trial) would save an estimated further 25-35 % of
-002's CPU; not done (the EM's accelerated, MAP, sigma- and weight-estimating variants would all need compiled twins
-tested equal to the NumPy path).
+The compiled trial loop (measured 2026-12-04, CPU seconds per measurement call at the paper profile, best of 3,
+``n_workers = 1``, ``nice -n 10`` at a load of 2-5; before is the vectorised NumPy loop with the compiled E-step): the
+maximum-likelihood EM with fixed weights and widths (the ULA, the plain-EM counts, the per-frame marks, the
+multi-start and one-track fits) runs one trial at a time compiled (``_kernels.em_trials``), with the same arithmetic
+element by element, so the same numbers bit for bit (``tests/papers/test_002_em_trials.py``; 3 configurations x 2
+seeds of the whole measurement compared equal, every job output and every claim value); the E-step tabulates only the
+pixel range each frame's photons fall in and skips stopped trials. A default replicate takes 8.0 s instead of 14.1
+(x1.76); a faster velocity (every job reruns) 9.6 instead of 16.0 (x1.66); Delta = 5 sigma for Figs 4, 5, 7 after the
+default (its capped tails) 18.9 instead of 35.6 (x1.88); plain EM capped at 100 after the default 9.8 instead of 17.9
+(x1.83); the designation-free two-stage after the default 4.3 instead of 6.7 (x1.57). The coarse-pixel marks alone
+(the benchmark below) run about 4 times faster. What remains is mostly arithmetic: about two thirds of a replicate is
+the compiled loop, whose work is the erfc and exp at each pixel edge (about 28 ns an edge measured alone; about 110
+million edges a default replicate), a fifth the claims' bootstrap (2.6 s at the default, in
+:mod:`tvtrack.resampling`). The MAP-ULA (a prior) and the weight- and width-estimating fits still run the vectorised
+loop. Compiling the loop takes about 15-20 s of CPU once per source digest (kept on disk under ``TVTRACK_JIT_CACHE``;
+about 1 s to load).
 """
 
 import time
