@@ -1,4 +1,5 @@
-"""The compiled one-trial-at-a-time EM of notebook 002 against the vectorised loop it replaces, bit for bit.
+"""The compiled one-trial-at-a-time EM of notebook 002 against the vectorised loop it replaces, bit for bit (and the
+compiled variance sums of the claims' bootstrap against NumPy's).
 
 The per-trial loop (:func:`tvtrack.papers.p002_unified_location_em._kernels.em_trials`) must give the vectorised
 loop's (:func:`tvtrack.papers.p002_unified_location_em.em_loop.iterate`) estimates, log-likelihoods, step counts and
@@ -11,6 +12,7 @@ import pytest
 
 from tvtrack import jit
 from tvtrack.papers.p002_unified_location_em import _kernels, em_steps
+from tvtrack.papers.p002_unified_location_em._spread_kernel import variance_sum_rows
 from tvtrack.papers.p002_unified_location_em.em import unified_location_em
 from tvtrack.papers.p002_unified_location_em.em_steps import per_frame_entries, pixel_entries
 from tvtrack.papers.p002_unified_location_em.model import (
@@ -158,3 +160,15 @@ def test_the_e_step_over_photon_ranges_and_live_trials_is_the_full_one():
         em_steps.ActiveEntries(entries, np.arange(1, n)), theta, pw, p0v, sigma, times, entries.shape, False
     )
     assert np.array_equal(all_sums[live], sums[live]) and np.array_equal(all_ll[live], ll[live])
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 8, 9])
+def test_the_compiled_variance_sum_is_numpys_bit_for_bit(k):
+    """The claims' resampled variance sums (B, n, k): paired halves side by side, fancy-indexed resamples, one row
+    (the point estimate), values over 20 orders of magnitude; one column falls back to NumPy (which then sums the
+    trials pairwise)."""
+    rng = np.random.default_rng(k)
+    data = rng.standard_normal((80, 2 * k)) * np.exp(rng.uniform(-23, 23, (80, 2 * k))) + 1.5
+    res = data[rng.integers(0, 80, (300, 80))]  # (B, n, 2k) as the bootstrap hands it over
+    for e in (res[..., :k], res[..., k:], np.ascontiguousarray(res[..., :k]), data[None], res[:, :2]):
+        assert np.array_equal(variance_sum_rows(e), e.var(axis=1, ddof=1).sum(axis=-1))
