@@ -36,17 +36,18 @@ maximum-likelihood EM with fixed weights and widths (the ULA, the plain-EM count
 multi-start and one-track fits) runs one trial at a time compiled (``_kernels.em_trials``), with the same arithmetic
 element by element, so the same numbers bit for bit (``tests/papers/test_002_em_trials.py``; 3 configurations x 2
 seeds of the whole measurement compared equal, every job output and every claim value); the E-step tabulates only the
-pixel range each frame's photons fall in and skips stopped trials. A default replicate takes 8.0-8.7 s instead of 14.1
-(x1.6-1.8); a faster velocity (every job reruns) 9.6-11.6 instead of 16.0-18.0 (x1.5-1.7); Delta = 5 sigma for Figs 4, 5,
-7 after the default (its capped tails) 18.7-20.1 instead of 35.6 (x1.8-1.9); plain EM capped at 100 after the default
-9.3-10.4 instead of 17.9 (x1.7-1.9); the designation-free two-stage after the default 4.1-4.9 instead of 6.7
-(x1.4-1.6) (ranges: three runs at loads 2-5). The coarse-pixel marks alone (the benchmark below) run about 4 times
-faster. What remains is mostly arithmetic: about two thirds of a replicate is the compiled loop, whose work is the
-erfc and exp at each pixel edge (about 28 ns an edge measured alone; about 110 million edges a default replicate), the
-rest mostly the claims' bootstrap (1.3 s at the default, from 2.6: its variance sums now run compiled in NumPy's
-summation order, the same bits, ``_spread_kernel``; the resampling itself is :mod:`tvtrack.resampling`'s). The MAP-ULA
-(a prior) and the weight- and width-estimating fits still run the vectorised loop. Compiling the loop takes about
-15-20 s of CPU once per source digest (kept on disk under ``TVTRACK_JIT_CACHE``; about 1 s to load).
+pixel range each frame's photons fall in and skips stopped trials. A default replicate takes 8.0-8.7 s instead of
+14.1-17.4 (x1.6-2.0); a faster velocity (every job reruns) 9.6-11.6 instead of 16.0-17.9 (x1.5-1.9); Delta = 5 sigma
+for Figs 4, 5, 7 after the default (its capped tails) 18.7-20.1 instead of 35.6 (x1.8-1.9); plain EM capped at 100
+after the default 9.3-10.4 instead of 16.3-17.9 (x1.6-1.9); the designation-free two-stage after the default 4.1-4.9
+instead of 6.7-7.7 (x1.4-1.9) (ranges: three runs of each at loads 2-5, one pair side by side). The coarse-pixel marks
+alone (the benchmark below) run about 4 times faster. What remains is mostly arithmetic: about two thirds of a
+replicate is the compiled loop, whose work is the erfc and exp at each pixel edge (about 28 ns an edge measured alone;
+about 110 million edges a default replicate), the rest mostly the claims' bootstrap (1.3 s at the default, from 2.6:
+its variance sums now run compiled in NumPy's summation order, the same bits, ``_spread_kernel``; the resampling
+itself is :mod:`tvtrack.resampling`'s). The MAP-ULA (a prior) and the weight- and width-estimating fits still run the
+vectorised loop. Compiling the loop takes about 15-20 s of CPU once per source digest (kept on disk under
+``TVTRACK_JIT_CACHE``; about 1 s to load).
 """
 
 import time
