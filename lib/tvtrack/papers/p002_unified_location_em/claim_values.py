@@ -32,6 +32,7 @@ from .readings import (
 )
 from .summaries import SPREADS, bootstrap_groups, mse_sum, position_errors, variance_ratio_ci, variance_sum
 from .sim_config import seed_sequence
+from ._spread_kernel import variance_sum_rows
 
 __all__ = [
     "errors",
@@ -99,7 +100,7 @@ def spread_total(e, spread: str = "variance"):
     numpy.ndarray
         The summed spread (R,), sigma^2.
     """
-    return e.var(axis=1, ddof=1).sum(axis=-1) if spread == "variance" else SPREADS[spread](e)
+    return variance_sum_rows(e) if spread == "variance" else SPREADS[spread](e)
 
 
 def mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance") -> Estimate:

@@ -24,7 +24,8 @@ edges (``Q T (rows + cols)`` normal-CDF evaluations), and only pixels with a non
 splitting and the sums, so the work per iteration is ``O(Q T (rows + cols) + Q nnz)``, not
 ``O(Q T rows cols)``. Trials are independent and vectorised: every pixel entry carries its trial
 index; sums per trial use :func:`numpy.add.reduceat` over the trial-sorted entries, and converged
-trials are dropped from the working set.
+trials are dropped from the working set. With numba, the maximum-likelihood EM with fixed weights and widths
+runs compiled one trial at a time instead (:func:`._kernels.em_trials`; the same numbers bit for bit).
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row)
 and frames, as in :mod:`tvtrack.papers.p002_unified_location_em.model`.
@@ -307,9 +308,11 @@ def unified_location_em(
     )
     photons = entries.photons_per_trial()
     state = EMState.start(theta0, static, pw, p0, sigma, photons)
-    iterate(
-        model, state, accelerate=accelerate, tol_px=tol_px, tol_loglik=tol_loglik, max_iter=max_iter, history=history
-    )
+    stop = dict(accelerate=accelerate, tol_px=tol_px, tol_loglik=tol_loglik, max_iter=max_iter)
+    # the plain ML EM runs compiled one trial at a time (the same numbers, without NumPy's per-pass cost)
+    compiled = fast and prior is None and not (estimate_weights or estimate_sigma or history)
+    if not (compiled and _kernels.em_trials(entries, times, static, span, state, **stop)):
+        iterate(model, state, **stop, history=history)
     _final_loglik(entries, state, times, photons)
     return _result(state, theta0, times, entries.shape, max_iter, merge_px, min_in_frame_mass)
 

@@ -27,8 +27,8 @@ from .em_steps import PixelEntries, maximisation_step, sigma_update, ActiveEntri
 __all__ = ["CALM", "MapPrior", "EMModel", "EMState", "Step", "iterate"]
 
 #: Successive steps whose Aitken estimate of the remaining gain must be below ``tol_loglik`` before a trial stops (one
-#: such step can be a lull of EM's rate while two images split).
-CALM = 2
+#: such step can be a lull of EM's rate while two images split); the compiled loop's own (:mod:`._kernels`).
+CALM = _kernels.CALM
 
 
 def _aitken_gap(ll, prev_ll, prev_rise):
@@ -159,7 +159,7 @@ class EMModel:
             return _kernels.m_step(sums, th, self.static) if self.fast else maximisation_step(sums, th, self.static)
         return maximisation_step(sums, th, self.static, self.prior.rows(trials))
 
-    def step(self, work: ActiveEntries, th, pw, p0, sg):
+    def step(self, work: ActiveEntries, th, pw, p0, sg, live=None):
         """One EM step (eqs. (10)-(11)) of the working set's trials.
 
         Parameters
@@ -172,6 +172,9 @@ class EMModel:
             Object weights and PSF standard deviations (px).
         p0 : ndarray, shape (n,)
             Noise weight.
+        live : ndarray of bool, shape (n,), optional
+            The trials still iterating (None: all); the E-step may skip the others, whose returns are then not
+            meaningful.
 
         Returns
         -------
@@ -182,7 +185,7 @@ class EMModel:
             Log-likelihood (plus the log prior) at ``th``, nats.
         bad : ndarray of bool, shape (n,)
         """
-        sums, ll = self.e_step(work, th, pw, p0, sg, self.times, self.entries.shape, self.estimate_sigma)
+        sums, ll = self.e_step(work, th, pw, p0, sg, self.times, self.entries.shape, self.estimate_sigma, live)
         new, bad = self.m_step(sums, th, work.trials)
         ll = ll + self.log_prior(th, work.trials)
         if self.estimate_sigma:
@@ -200,9 +203,9 @@ class EMModel:
         return np.maximum(d[..., :2].max(axis=(1, 2)), self.span * d[..., 2:].max(axis=(1, 2)))
 
 
-def plain_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg) -> Step:
+def plain_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg, live=None) -> Step:
     """One plain EM step (eqs. (10)-(11)) of the working set's trials; arguments as :meth:`EMModel.step`."""
-    new, pw_n, p0_n, sg_n, ll, bad = model.step(work, th, pw, p0, sg)
+    new, pw_n, p0_n, sg_n, ll, bad = model.step(work, th, pw, p0, sg, live)
     delta = model.change(new, th)
     if model.estimate_sigma:
         delta = np.maximum(delta, np.abs(sg_n - sg).max(axis=1))
@@ -211,20 +214,20 @@ def plain_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg) -> Step:
     return Step(new, pw_n, p0_n, sg_n, ll, bad, delta, 1)
 
 
-def squarem_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg) -> Step:
+def squarem_update(model: EMModel, work: ActiveEntries, th, pw, p0, sg, live=None) -> Step:
     """One SQUAREM cycle (Varadhan & Roland 2008, scheme S3 with a monotone safeguard) of the motion states: two EM
     steps, the quadratic extrapolation ``th - 2 alpha r + alpha^2 v`` (``alpha = min(-|r| / |v|, -1)``) and a
     stabilising EM step, kept where the log-likelihood did not fall (else the plain two-step result); arguments as
     :meth:`EMModel.step` (the weights and widths are not updated)."""
-    t1, *_, l0, bad1 = model.step(work, th, pw, p0, sg)
-    t2, *_, l1, bad2 = model.step(work, t1, pw, p0, sg)
+    t1, *_, l0, bad1 = model.step(work, th, pw, p0, sg, live)
+    t2, *_, l1, bad2 = model.step(work, t1, pw, p0, sg, live)
     r = t1 - th
     v = t2 - t1 - r
     nr = np.sqrt((r**2).sum(axis=(1, 2)))
     nv = np.sqrt((v**2).sum(axis=(1, 2)))
     alpha = np.where(nv > 0, np.minimum(-nr / np.where(nv > 0, nv, 1.0), -1.0), -1.0)
     tx = th - 2 * alpha[:, None, None] * r + alpha[:, None, None] ** 2 * v
-    t3, *_, lx, bad3 = model.step(work, tx, pw, p0, sg)
+    t3, *_, lx, bad3 = model.step(work, tx, pw, p0, sg, live)
     ok = (lx >= l0) & np.isfinite(lx) & ~bad3
     new = np.where(ok[:, None, None], t3, t2)
     delta = np.where(ok, model.change(t3, tx), model.change(t2, t1))
@@ -354,7 +357,7 @@ def iterate(
     live = np.ones(active.size, dtype=bool)
     while live.any():
         th = state.theta[active]
-        step = update(model, work, th, state.pw[active], state.p0[active], state.sigma[active])
+        step = update(model, work, th, state.pw[active], state.p0[active], state.sigma[active], live)
         state.take(active, live, th, step)
         conv = state.stopped(active, live, step, tol_px, tol_loglik)
         state.flag(active, live, conv, step.bad)

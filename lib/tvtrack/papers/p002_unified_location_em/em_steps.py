@@ -171,22 +171,24 @@ def axis_tables(mu, s, n_cells: int, second: bool):
     return F, np.asarray(mean), np.maximum(ez2, mean * mean)
 
 
-def expectation_step(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool):
+def expectation_step(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool, live=None):
     """E-step sums per active trial and object.
 
     Returns
     -------
     sums : (n_act, Q, 7 or 9) = A, B, C, Dx, Dtx, Dy, Dty [, Sxx, Syy]  (eq. (10))
     loglik : (n_act,)  sum n ln v at ``theta``
+
+    ``live`` ((n_act,) bool, optional): the trials still iterating; the compiled step leaves the others' rows zero.
     """
     if jit.enabled():
-        return _kernels.e_step(work, theta, p, p_noise, sigma, times, shape, second)
+        return _kernels.e_step(work, theta, p, p_noise, sigma, times, shape, second, live)
     return expectation_step_numpy(work, theta, p, p_noise, sigma, times, shape, second)
 
 
-def expectation_step_numpy(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool):
+def expectation_step_numpy(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool, live=None):
     """:func:`expectation_step` in NumPy (the reference of the compiled kernel; used when ``TVTRACK_NO_JIT=1`` or without
-    numba)."""
+    numba); it computes every row, ``live`` or not."""
     rows, cols = shape
     t = times[None, :, None]
     s = sigma[:, None, :]
