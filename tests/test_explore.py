@@ -476,6 +476,26 @@ def test_stage_cpu_seconds_count_the_executors_workers():
     assert row["configurations"] == 3 and 0.5 < row["cpu_s"] < 1.5 * row["wall_s"] + 0.1, row
 
 
+def _burn_in_a_pool_of_its_own(config: dict, seed: int) -> dict:
+    """A measurement that, as 004's does, starts a process pool for its call and shuts it down before returning."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(1) as pool:
+        return pool.submit(_burn_cpu, config, seed).result()
+
+
+def test_stage_cpu_seconds_count_the_pools_a_measurement_starts_and_ends():
+    """A worker that ended inside the stage is charged to it: the live-children reading alone lost it (004's
+    paper-profile record charged its subset search a fraction of the CPU the run's `time -v` counted)."""
+    from tvtrack.explore import Run
+    from tvtrack.jobs import StageClock
+
+    clock = StageClock(batched=False, executor=None)
+    clock.run(_burn_in_a_pool_of_its_own, [Run({}, s, "replicate") for s in range(3)], "replicates")
+    row = clock.table()["replicates"]
+    assert row["configurations"] == 3 and 0.55 < row["cpu_s"] < 2 * row["wall_s"] + 0.1, row
+
+
 # --------------------------------------------------------------------------- kinds and entries that cannot leak
 
 

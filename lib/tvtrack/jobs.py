@@ -1,10 +1,12 @@
 """Running the explorer's jobs (:mod:`tvtrack.explore`): each stage's configurations handed to the measurement in
 process, as one batch, or on an executor (``concurrent.futures`` or a ``dask.distributed.Client``), guarded so that a
 job reads only the register entries its claims declare; and the stage clock that keeps, per stage, the
-configurations, wall seconds and CPU seconds (this process and an executor's workers)."""
+configurations, wall seconds and CPU seconds (this process, an executor's workers and the pools a measurement
+starts)."""
 
 from __future__ import annotations
 
+import os
 import time
 from typing import Any, Callable, Mapping, Sequence
 
@@ -68,18 +70,21 @@ def execute(measure: Callable, jobs: list[Run], batched: bool, executor: Any, de
 
 
 def cpu_seconds() -> float:
-    """CPU seconds of this process and of its live child processes (an executor's workers, which the process's
-    own clock does not see). A child that ends between two readings takes its seconds with it: the stages
-    read it around a pool that lives through the exploration."""
+    """CPU seconds of this process, of its children that ended and were waited for (a pool a measurement
+    starts and shuts down) and of its live children with what each has waited for (an executor's workers, which
+    the other clocks do not see until they end). A child counted live at one reading and ended at the next is
+    counted in full at the next, so the difference of two readings charges each child's seconds between them
+    once."""
     import psutil
 
-    total = time.process_time()
+    t = os.times()
+    total = t.user + t.system + t.children_user + t.children_system
     for child in psutil.Process().children(recursive=True):
         try:
-            t = child.cpu_times()
+            c = child.cpu_times()
         except psutil.Error:  # ended meanwhile
             continue
-        total += t.user + t.system
+        total += c.user + c.system + getattr(c, "children_user", 0.0) + getattr(c, "children_system", 0.0)
     return total
 
 
