@@ -542,8 +542,8 @@ def test_the_sentence_on_how_sure_the_verdicts_are_accounts_for_every_checkable_
     claims += [claim("C001-3", "not reproduced", "unexplored"), claim("C001-4", "not checkable", "-")]
     text = results_summary(claims)
     assert (
-        "Of the 3 checkable verdicts, 1 survives every reading of the paper (it holds; 1 robust, 0 only within the paper's "
-        "world), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
+        "Of the 3 checkable verdicts, 1 survives every reading of the paper (it holds; 1 robust, 0 limited (holding only "
+        "within the paper's world)), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
         "explored to show how far it extends (unexplored), 1 has no label (no part of it decided, or no record of "
         "what was explored), and 0 differ between independent replicates." in text
     ), text
@@ -1058,7 +1058,7 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
 
     settings = {"text": "pixels 5 wide and 20 frames", "side": "setting", "changed": {"pixel": 5, "frames": 20}}
     record["register"].append({"name": "frames", "title": "frames", "kind": "unreported setting", "phrases": {}})
-    assert label_basis(claim_with(mixed)) == "two changes together, an unprinted setting among them"
+    assert label_basis(claim_with(mixed)) == "an unprinted setting with a reading"
     assert label_basis(claim_with(settings)) == "two unprinted settings together"
     assert label_basis(claim_with(both)) == "two readings together"
     from tvtrack.pipeline.site import _flips  # the site's claim page and ledger show the same kinds
@@ -1067,7 +1067,7 @@ def test_a_flip_of_a_reading_and_a_setting_together_names_each_kind_not_the_sett
     assert [f["kinds"] for f in shown] == [kinds, ""]
 
 
-def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_as_a_mix_with_a_world():
+def test_a_combination_beyond_the_subsets_searched_is_named_a_combination_with_its_entries_kinds():
     """A joint flip larger than the subset search (side ``unattributed``, with the search's note) holds a world only
     where one of its entries is one: the first screen's bracket and its count of claims that depend only together
     with a world read the entries, not the side."""
@@ -1086,9 +1086,9 @@ def test_a_combination_beyond_the_subsets_searched_is_named_by_its_entries_not_a
 
     no_world = claim_with({"a": 1, "b": 1, "c": 1})
     with_world = claim_with({"a": 1, "w": 1, "c": 1})
-    assert label_basis(no_world) == "three changes together, an unprinted setting among them"
-    assert label_basis(claim_with({"a": 1, "b": 1})) == "two readings together"
-    assert label_basis(with_world) == "a mix with a world"
+    assert label_basis(no_world) == "a combination of three changes, an unprinted setting among them"
+    assert label_basis(claim_with({"a": 1, "b": 1})) == "a combination of two changes, all readings"
+    assert label_basis(with_world) == "a combination with a world"
     assert _only_with_a_world_ids([no_world, with_world]) == ["C9-1"] and _only_with_a_world_ids([no_world]) == []
 
 
@@ -1115,6 +1115,31 @@ def test_the_first_screens_bracket_says_a_setting_or_worlds_also_flip_a_claim_a_
         == "a reading; a setting too; a world too"
     )
     assert label_basis(claim(setting, ("r and s", "setting", {"r": 1, "s": 1}))) == "an unprinted setting"
+
+
+def test_the_bracket_names_every_kind_the_first_screens_count_files_the_claim_under():
+    """A reader checks the brackets against the count of what the verdicts turn on: a claim counted under "a
+    combination" says "a combination too" in its bracket, and a setting flipped with a reading reads as a setting
+    (the count files it there), not as "two changes together"."""
+    from tvtrack.flip_words import label_basis
+    from tvtrack.paragraphs import turns_on
+
+    kinds = {"r": "reading", "r2": "reading", "s": "unreported setting", "w": "regime"}
+    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
+
+    def claim(*flips: tuple) -> dict:
+        named = [{"text": t, "side": side, "changed": ch, "verdict": "not reproduced"} for t, side, ch in flips]
+        rob = {"register": register, "label": "depends", "parts": {"claim": {"verdict": "reproduced", "flips": named}}}
+        return {"id": "C9-1", "verdict": "reproduced", "robustness": {**rob, "conditions": []}}
+
+    reading, joint = ("r", "reading", {"r": 1}), ("r, s and w", "unattributed", {"r": 2, "s": 1, "w": 1})
+    both = claim(reading, joint)
+    assert sorted(turns_on([both])) == ["reading", "unattributed"]
+    assert label_basis(both) == "a reading; a combination too"
+    assert label_basis(claim(("r and s", "setting", {"r": 1, "s": 1}))) == "an unprinted setting with a reading"
+    assert label_basis(claim(("r, r2 and s", "setting", {"r": 1, "r2": 1, "s": 1}))) == (
+        "an unprinted setting with two other changes"
+    )
 
 
 def test_a_part_name_and_a_not_checkable_reason_read_as_words_in_a_sentence():
@@ -1151,7 +1176,7 @@ def test_the_first_screen_says_which_surviving_verdicts_hold_and_names_a_claim_c
     robust += [claim("C9-3", "not reproduced", "limited"), claim("C9-4", "partly", "robust")]
     text = results_summary(robust + [claim("C9-5", "reproduced", "unexplored")])
     assert "4 survive every reading of the paper (of them 1 holds, 1 holds in part and 2 do not hold; 3 robust" in text
-    assert "(none of them holds; 1 robust, 1 only within" in results_summary(robust[1:3])
+    assert "(none of them holds; 1 robust, 1 limited (holding only within" in results_summary(robust[1:3])
     assert "(all hold; 2 robust" in results_summary([robust[0], claim("C9-6", "reproduced", "robust")])
 
     both = copy.deepcopy(DEPENDS) | {"id": "C004-4"}

@@ -1,7 +1,7 @@
 """How a named flip's kind is said: the first screen's bracket beside each claim that holds (what flips it, and
 which other kinds also do), and a flip of several changes of different kinds with each change's own kind (a
-reading and a setting together are never filed under the setting alone; a combination beyond the subset search is
-"a mix with a world" only where one of its entries is a world)."""
+reading and a setting together are never filed under the setting alone; a combination no smaller subset isolates
+is "a combination", "with a world" only where one of its entries is a world)."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def flip_kinds(flip: Mapping, record: Mapping) -> set[str]:
 
 _SIDE_SHORT = {
     "reading": ("a reading", "readings together"),
-    "setting": ("an unprinted setting", "changes together, an unprinted setting among them"),
+    "setting": ("an unprinted setting", "unprinted settings together"),
     "world": ("a world", "worlds together"),
 }
 
@@ -39,21 +39,42 @@ _SIDE_SHORT = {
 def label_basis(claim: Mapping) -> str:
     """What flips a claim, in a few words for a list: the kind of the flip its sentence names
     (:func:`tvtrack.wording.summary_strength`), with how many changes it takes; "in a part only" where no flip the
-    label rests on changes the whole claim's verdict; "a setting too", "a world too" where a setting or a world
-    alone also changes the claim's whole verdict (:func:`_also`) (``""`` for a claim no change flips). A combination no searched subset
-    isolates is named by its entries' kinds: "a mix with a world" only where one of them is a world."""
+    label rests on changes the whole claim's verdict; "a setting too", "a world too", "a combination too" where a
+    setting, a world or a combination no smaller subset isolates also changes the claim's whole verdict
+    (:func:`_also`), so the bracket names every kind the first screen's count files the claim under (``""`` for a
+    claim no change flips). A combination is named with its entries' kinds (:func:`_combination`)."""
     flips = claim_flips(claim)
     if not flips:
         return ""
     first = min(flips, key=lambda f: summary_strength(claim, f))
     n, kinds, side = len(first.get("changed") or {}), flip_kinds(first, claim.get("robustness") or {}), first["side"]
     if side == "unattributed":
-        side = "mix" if "world" in kinds else "setting" if "setting" in kinds else "reading"
-    one, many = _SIDE_SHORT.get(side, ("a mix with a world", "a mix with a world"))
-    many = "unprinted settings together" if side == "setting" and kinds == {"setting"} else many
-    text = one if n <= 1 or side == "mix" else f"{_COUNT.get(n, n)} {many}"
+        text = _combination(n, kinds)
+    else:
+        one, many = _SIDE_SHORT.get(side, ("a world", "worlds together"))
+        text = one if n <= 1 else f"{_COUNT.get(n, n)} {many}"
+        if side == "setting" and n > 1:  # filed under the setting, as the first screen's count files it
+            others = (
+                "a reading"
+                if n == 2 and kinds == {"setting", "reading"}
+                else f"{_COUNT.get(n - 1, n - 1)} other changes"
+            )
+            text = (
+                f"{_COUNT.get(n, n)} unprinted settings together"
+                if kinds == {"setting"}
+                else f"an unprinted setting with {others}"
+            )
     text += "" if moves_verdict(claim, first) else ", in a part only"
-    return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world"))
+    return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world", "unattributed"))
+
+
+def _combination(n: int, kinds: set[str]) -> str:
+    """A flip no smaller subset isolates, as the first screen counts it (a combination), with its entries' kinds:
+    "a combination with a world" only where one of them is a world."""
+    if "world" in kinds:
+        return "a combination with a world"
+    among = ", an unprinted setting among them" if "setting" in kinds else ", all readings"
+    return f"a combination of {_COUNT.get(n, n)} changes{among}"
 
 
 def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
@@ -64,6 +85,8 @@ def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
     if shown == kind:
         return ""
     moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
+    if kind == "unattributed":
+        return "; a combination too" if moving else ""
     if not moving:
         opened = claim.get("verdict") != "undecided" and any(  # a part's flip that leaves the whole claim open
             f.get("side") == kind and claim_verdict_at(claim, f.get("changed") or {}) == "undecided" for f in flips

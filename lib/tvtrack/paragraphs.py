@@ -304,8 +304,8 @@ def _sure_sentence(
     mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-        f"({f'{split}; ' if split else ''}{labels['robust']} robust, {labels['limited']} only within the paper's "
-        f"world{part}), "
+        f"({f'{split}; ' if split else ''}{labels['robust']} robust, {labels['limited']} limited (holding only within the "
+        f"paper's world){part}), "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
         f"never printed{mixed}, "
         + (
