@@ -520,8 +520,9 @@ def test_the_first_screen_says_what_verdicts_turn_on_by_kind():
         "a world beyond the paper (alone or with other worlds) flips 1 claim."
     ), text
     assert (
-        "2 turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them "
-        "worlds beyond the paper (one or several), with no reading or setting changed, also flip the verdict), and 0 differ"
+        "2 turn on a reading of an ambiguous passage or a setting the paper never printed, and 0 differ" in text
+        and "Of the 2 that turn on a reading or setting, for 1 of them worlds beyond the paper (one or several), with "
+        "no reading or setting changed, also flip the verdict."
         in text
     )  # DEPENDS is flipped by a world too: the label names the reading, the count says what it hides
     sentence = claim_summary(setting)
@@ -542,10 +543,11 @@ def test_the_sentence_on_how_sure_the_verdicts_are_accounts_for_every_checkable_
     claims += [claim("C001-3", "not reproduced", "unexplored"), claim("C001-4", "not checkable", "-")]
     text = results_summary(claims)
     assert (
-        "Of the 3 checkable verdicts, 1 survives every reading of the paper (it holds; 1 robust, 0 limited (holding only "
-        "within the paper's world)), 0 turn on a reading of an ambiguous passage or a setting the paper never printed, 1 has nothing "
-        "explored to show how far it extends (unexplored), 1 has no label (no part of it decided, or no record of "
-        "what was explored), and 0 differ between independent replicates." in text
+        "Of the 3 checkable verdicts, 1 survives every reading of the paper, 0 turn on a reading of an ambiguous "
+        "passage or a setting the paper never printed, 1 has nothing explored to show how far it extends "
+        "(unexplored), 1 has no label (no part of it decided, or no record of what was explored), and 0 differ "
+        "between independent replicates. The one that survives every reading: it holds; 1 robust, 0 limited "
+        "(holding only within the paper's world)." in text
     ), text
     two = claims + [{"id": "C001-5", "verdict": "reproduced"}]
     assert "2 have no label (no part of them decided, or no record of what was explored), and 0 differ" in (
@@ -1013,8 +1015,8 @@ def test_an_unexplored_claim_says_why_and_a_depends_resting_on_a_world_mix_is_co
     mixed["robustness"]["parts"]["claim"]["flips"] = [world, mix]
     assert depends_only_with_a_world([DEPENDS, mixed]) == 1
     assert (
-        "turn on a reading of an ambiguous passage or a setting the paper never printed (for 1 of them "
-        "worlds beyond the paper (one or several), with no reading or setting changed, also flip the verdict, and 1 (C001-4) only together with a world beyond it)"
+        "Of the 2 that turn on a reading or setting, for 1 of them worlds beyond the paper (one or several), with "
+        "no reading or setting changed, also flip the verdict, and 1 (C001-4) only together with a world beyond it."
         in results_summary([DEPENDS, mixed])
     )
 
@@ -1175,9 +1177,9 @@ def test_the_first_screen_says_which_surviving_verdicts_hold_and_names_a_claim_c
     robust = [claim("C9-1", "reproduced", "robust"), claim("C9-2", "not reproduced", "robust")]
     robust += [claim("C9-3", "not reproduced", "limited"), claim("C9-4", "partly", "robust")]
     text = results_summary(robust + [claim("C9-5", "reproduced", "unexplored")])
-    assert "4 survive every reading of the paper (of them 1 holds, 1 holds in part and 2 do not hold; 3 robust" in text
-    assert "(none of them holds; 1 robust, 1 limited (holding only within" in results_summary(robust[1:3])
-    assert "(all hold; 2 robust" in results_summary([robust[0], claim("C9-6", "reproduced", "robust")])
+    assert "The 4 that survive every reading: 1 holds, 1 holds in part and 2 do not hold; 3 robust" in text
+    assert ": none of them holds; 1 robust, 1 limited (holding only within" in results_summary(robust[1:3])
+    assert ": all hold; 2 robust" in results_summary([robust[0], claim("C9-6", "reproduced", "robust")])
 
     both = copy.deepcopy(DEPENDS) | {"id": "C004-4"}
     world = both["robustness"]["parts"]["claim"]["flips"][1]
@@ -1186,8 +1188,8 @@ def test_the_first_screen_says_which_surviving_verdicts_hold_and_names_a_claim_c
     both["robustness"]["parts"]["claim"]["flips"] = [world, mix]
     text = results_summary([DEPENDS, both])
     assert (
-        "(for 2 of them worlds beyond the paper (one or several), with no reading or setting changed, also flip the "
-        "verdict, and 1 (C004-4) only together with a world beyond it (C004-4 is also among the 2))" in text
+        "for 2 of them worlds beyond the paper (one or several), with no reading or setting changed, also flip the "
+        "verdict, and 1 (C004-4) only together with a world beyond it (C004-4 is also among the 2)." in text
     ), text
 
 

@@ -91,14 +91,16 @@ def test_an_undecided_claim_labelled_robust_is_said_to_be_so_in_its_decided_part
     held = {"id": "C9-2", "verdict": "reproduced", "robustness": {"label": "robust"}}
     text = results_summary([claim, held])
     assert (
-        "Of the 2 checkable verdicts, 2 survive every reading of the paper (of them 1 holds and 1 is undecided; "
-        "2 robust, 0 limited (holding only within the paper's world); 1 of them (C9-1) undecided, labelled by its decided parts only)"
-        in text
+        "The 2 that survive every reading: 1 holds and 1 is undecided; 2 robust, 0 limited (holding only within the "
+        "paper's world); 1 of them (C9-1) undecided, labelled by its decided parts only." in text
     ), text
     assert "| **undecided** | robust in its decided parts only |" in claims_table([claim])
     rows = first_screen({"009_t": (None, {"claims": [claim, held]})})
     assert "**009 C9-1** (undecided, robust in its decided parts only)" in first_screen_list(rows)
-    assert "(it holds; 1 robust, 0 limited (holding only within the paper's world))" in results_summary([held])
+    assert (
+        "The one that survives every reading: it holds; 1 robust, 0 limited (holding only within the paper's world)."
+        in (results_summary([held]))
+    )
 
 
 def test_the_sites_ledger_and_first_screen_say_an_undecided_claims_label_is_of_its_decided_parts():
@@ -168,8 +170,8 @@ def test_a_robust_claim_most_of_whose_configurations_stayed_undecided_is_not_sai
     assert "under every reading and world explored" not in paragraph
     text = results_summary([thin, firm])
     assert (
-        "2 survive every reading of the paper (all hold; 2 robust, 0 limited (holding only within the paper's world); for 1 (C9-3) "
-        "most explored configurations stayed undecided)" in text
+        "The 2 that survive every reading: all hold; 2 robust, 0 limited (holding only within the paper's world); for 1 "
+        "(C9-3) most explored configurations stayed undecided." in text
     ), text
     assert claim_summary(thin, chars=0).endswith(
         " 4 agree, 0 flip and 39 stay undecided of 43 explored configurations."

@@ -289,7 +289,6 @@ def _sure_sentence(
     part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
     part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
     part += f"; for {len(thin)}{_ids(list(thin))} most explored configurations stayed undecided" if thin else ""
-    unexplored, bare = labels["unexplored"], labels["—"]
     notes = [f"for {also_world} of them worlds beyond the paper (one or several), with no reading or setting changed, "
              "also flip the verdict"]  # fmt: skip
     notes = notes if also_world else []
@@ -301,13 +300,20 @@ def _sure_sentence(
         if with_world
         else []
     )
-    mixed = f" ({', and '.join(notes)})" if notes else ""
     return (
-        f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper "
-        f"({f'{split}; ' if split else ''}{labels['robust']} robust, {labels['limited']} limited (holding only within the "
-        f"paper's world){part}), "
+        _counts_sentence(labels, checkable)
+        + _survive_sentence(sure, labels, split, part)
+        + _world_sentence(labels["depends"], notes)
+    )
+
+
+def _counts_sentence(labels: Counter, checkable: int) -> str:
+    """The checkable verdicts by how sure they are, in one sentence whose counts add up to ``checkable``."""
+    sure, unexplored, bare = labels["robust"] + labels["limited"], labels["unexplored"], labels["—"]
+    return (
+        f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper, "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
-        f"never printed{mixed}, "
+        "never printed, "
         + (
             f"{_n(unexplored, 'has', 'have')} nothing explored to show how far "
             f"{'it extends' if unexplored == 1 else 'they extend'} (unexplored), "
@@ -322,6 +328,25 @@ def _sure_sentence(
         )
         + f"and {_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
     )
+
+
+def _survive_sentence(sure: int, labels: Counter, split: str, part: str) -> str:
+    """What the verdicts that survive every reading say, and how they are labelled (``""`` for none)."""
+    if not sure:
+        return ""
+    split = split.removeprefix("of them ")
+    who = "The one that survives every reading" if sure == 1 else f"The {sure} that survive every reading"
+    return (
+        f" {who}: {f'{split}; ' if split else ''}{labels['robust']} robust, {labels['limited']} limited (holding "
+        f"only within the paper's world){part}."
+    )
+
+
+def _world_sentence(depends: int, notes: list[str]) -> str:
+    """Which of the verdicts that turn on a reading or setting a world also flips (``""`` for none)."""
+    if not notes:
+        return ""
+    return f" Of the {depends} that turn on a reading or setting, {', and '.join(notes)}."
 
 
 def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
