@@ -1094,19 +1094,22 @@ def test_a_combination_beyond_the_subsets_searched_is_named_a_combination_with_i
     assert _only_with_a_world_ids([no_world, with_world]) == ["C9-1"] and _only_with_a_world_ids([no_world]) == []
 
 
+def _claim_with_flips(*flips: tuple) -> dict:
+    """A reproduced claim whose one part has the named ``(text, side, changed)`` flips, over a register of readings
+    ``r``, ``r2``, an unreported setting ``s`` and worlds ``w``, ``v``."""
+    kinds = {"r": "reading", "r2": "reading", "s": "unreported setting", "w": "regime", "v": "model"}
+    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
+    named = [{"text": t, "side": side, "changed": ch, "verdict": "not reproduced"} for t, side, ch in flips]
+    rob = {"register": register, "label": "depends", "parts": {"claim": {"verdict": "reproduced", "flips": named}}}
+    return {"id": "C9-1", "verdict": "reproduced", "robustness": {**rob, "conditions": []}}
+
+
 def test_the_first_screens_bracket_says_a_setting_or_worlds_also_flip_a_claim_a_reading_flips():
     """Beside the reading it names, the bracket says that an unprinted setting alone ("a setting too") or several
     worlds together ("worlds together too", not "a world") also change the whole verdict."""
     from tvtrack.flip_words import label_basis
 
-    kinds = {"r": "reading", "s": "unreported setting", "w": "regime", "v": "model"}
-    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
-
-    def claim(*flips: tuple) -> dict:
-        named = [{"text": t, "side": side, "changed": ch, "verdict": "not reproduced"} for t, side, ch in flips]
-        rob = {"register": register, "label": "depends", "parts": {"claim": {"verdict": "reproduced", "flips": named}}}
-        return {"id": "C9-1", "verdict": "reproduced", "robustness": {**rob, "conditions": []}}
-
+    claim = _claim_with_flips
     reading, setting = ("r", "reading", {"r": 1}), ("s", "setting", {"s": 1})
     worlds = ("w and v", "world", {"w": 1, "v": 1})
     assert label_basis(claim(reading)) == "a reading"
@@ -1126,14 +1129,7 @@ def test_the_bracket_names_every_kind_the_first_screens_count_files_the_claim_un
     from tvtrack.flip_words import label_basis
     from tvtrack.paragraphs import turns_on
 
-    kinds = {"r": "reading", "r2": "reading", "s": "unreported setting", "w": "regime"}
-    register = [{"name": k, "title": k, "kind": v, "phrases": {}} for k, v in kinds.items()]
-
-    def claim(*flips: tuple) -> dict:
-        named = [{"text": t, "side": side, "changed": ch, "verdict": "not reproduced"} for t, side, ch in flips]
-        rob = {"register": register, "label": "depends", "parts": {"claim": {"verdict": "reproduced", "flips": named}}}
-        return {"id": "C9-1", "verdict": "reproduced", "robustness": {**rob, "conditions": []}}
-
+    claim = _claim_with_flips
     reading, joint = ("r", "reading", {"r": 1}), ("r, s and w", "unattributed", {"r": 2, "s": 1, "w": 1})
     both = claim(reading, joint)
     assert sorted(turns_on([both])) == ["reading", "unattributed"]
