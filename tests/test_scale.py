@@ -140,9 +140,7 @@ def test_the_decide_profile_caps_every_undecided_claims_projection():
             cells = [c.strip() for c in line.strip("|").split("|")]
             if len(cells) > 3 and cells[0] == nb.stem[:3] and cells[2].isdigit():
                 if "beyond the cap" in line:  # said so only where no cap the notebook accepts reaches it
-                    assert int(cells[2]) > 1000 and check_values_many(nb, [{**values, "max_replicates": 1001}]) != [
-                        None
-                    ]
+                    assert int(cells[2]) > 1000 and "integer in [3, 1000]" in nb.read_text(), (nb.stem, cells)
                 else:
                     assert values["max_replicates"] >= int(cells[2]), (nb.stem, cells)
 
