@@ -36,6 +36,20 @@ if not Path(tvtrack.__file__).resolve().is_relative_to(REPO / "lib"):
 if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
+# BLAS threads under pytest-xdist: `make test` runs a worker per core, and each worker (with the kernels and pools it
+# starts) would otherwise run a BLAS thread per core as well: on two busy cores that made BLAS-bound work (004's
+# networks) several times slower. Each worker gets cores // workers, as `tvtrack reproduce` gives its kernels; a
+# value the caller set stands. numba keeps its threads: a test compares its kernel on one thread and on all.
+BLAS_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def pytest_configure(config):
+    workers = getattr(config.option, "numprocesses", None)
+    if isinstance(workers, int) and workers > 1 and not os.environ.get("PYTEST_XDIST_WORKER"):
+        for var in BLAS_VARS:  # set in the controller, before the workers start and load BLAS
+            os.environ.setdefault(var, str(max(1, len(os.sched_getaffinity(0)) // workers)))
+
+
 FIXTURES = Path(__file__).parent / "fixtures"
 FIXTURE_NOTEBOOK = FIXTURES / "fixture_centroid.ipynb"
 FIXTURE_SWEEP = FIXTURES / "fixture_sweep.toml"

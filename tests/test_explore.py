@@ -496,6 +496,30 @@ def test_stage_cpu_seconds_count_the_pools_a_measurement_starts_and_ends():
     assert row["configurations"] == 3 and 0.55 < row["cpu_s"] < 2 * row["wall_s"] + 0.1, row
 
 
+def _blas_threads(_=None) -> int:
+    from threadpoolctl import threadpool_info
+
+    return max(i["num_threads"] for i in threadpool_info())
+
+
+def test_a_measurements_pool_gives_each_worker_its_share_of_the_blas_threads(monkeypatch):
+    """Each forked worker keeps to cores // workers BLAS threads (at least 1), and never to more than its parent
+    had: two workers with a thread per core each ran a BLAS-bound batch several times slower on two cores."""
+    import os
+
+    from tvtrack.jobs import blas_share, fork_pool
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(8)))
+    assert [blas_share(w) for w in (1, 2, 3, 8, 16)] == [8, 4, 2, 1, 1]
+    monkeypatch.undo()
+    cores = len(os.sched_getaffinity(0))
+    parent = _blas_threads()
+    for workers in (1, 2, 2 * cores):
+        with fork_pool(workers) as pool:
+            seen = set(pool.map(_blas_threads, range(2 * workers)))
+        assert seen == {min(parent, max(1, cores // workers))}, (workers, seen, parent)
+
+
 # --------------------------------------------------------------------------- kinds and entries that cannot leak
 
 

@@ -2,7 +2,8 @@
 process, as one batch, or on an executor (``concurrent.futures`` or a ``dask.distributed.Client``), guarded so that a
 job reads only the register entries its claims declare; and the stage clock that keeps, per stage, the
 configurations, wall seconds and CPU seconds (this process, an executor's workers and the pools a measurement
-starts)."""
+starts); and the pool of forked processes a measurement spreads a batch over, each with its share of the BLAS
+threads."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from .conditions import Run
 from .declared import takes_claims
 from .register import guard as guarded_config
 
-__all__ = ["StageClock", "cpu_seconds", "execute"]
+__all__ = ["StageClock", "blas_share", "cpu_seconds", "execute", "fork_pool"]
 
 
 def _configs(measure: Callable, jobs: list[Run], depends: Mapping[str, Sequence[str]] | None) -> list[dict]:
@@ -111,3 +112,35 @@ class StageClock:
             for k, (n, w, c) in self.rows.items()
             if n
         }
+
+
+def blas_share(workers: int) -> int:
+    """BLAS/OpenMP threads for each of ``workers`` processes on this process's usable cores: ``cores // workers``,
+    at least 1. Each worker keeping to its share keeps the machine from running more threads than cores: on two
+    busy cores, OpenBLAS's default of a thread per core made a 4000 x 101 SVD about five times slower."""
+    return max(1, len(os.sched_getaffinity(0)) // max(1, int(workers)))
+
+
+def _limit_blas(threads: int) -> None:
+    """Pool initializer: at most ``threads`` BLAS/OpenMP threads in this process (never more than it had: a
+    limit the parent was given, e.g. by ``tvtrack reproduce``, stands)."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    have = [i["num_threads"] for i in threadpool_info()]
+    if have and threads < max(have):
+        threadpool_limits(limits=threads)
+
+
+def fork_pool(workers: int):
+    """A ``ProcessPoolExecutor`` of ``workers`` forked processes (they inherit the caller's caches), each limited to
+    :func:`blas_share` BLAS threads, for a measurement that spreads a batch over processes. Results do not depend
+    on the limit (each process computes whole configurations)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(
+        workers,
+        mp_context=multiprocessing.get_context("fork"),
+        initializer=_limit_blas,
+        initargs=(blas_share(workers),),
+    )

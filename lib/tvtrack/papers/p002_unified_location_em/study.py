@@ -18,11 +18,10 @@ Units: sigma (PSF standard deviation) for lengths, frames for time.
 
 from __future__ import annotations
 
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
 
+from ...jobs import fork_pool
 from .claim_values import (
     measure_claims,
     needed_points,
@@ -298,7 +297,7 @@ def run_jobs(jobs, n_workers: int = 1) -> None:
     todo = [j for j in dict.fromkeys(jobs) if j not in _CACHE]
     todo.sort(key=lambda j: -j[1].T * j[1].n * (1 + 2 * (j[1].algs in "epqs")))
     if n_workers > 1 and len(todo) > 1:
-        with ProcessPoolExecutor(n_workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        with fork_pool(n_workers) as pool:
             for j, r in zip(todo, pool.map(_run_job, todo, chunksize=1)):
                 _CACHE[j] = r
     else:

@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...estimate import Estimate
+from ...jobs import fork_pool
 from ...projection import as_declared, claim_groups
 from . import learned as lm
 from . import predictors as pr
@@ -556,11 +557,7 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
         groups.setdefault(_scene_key(config, seed, size), []).append(i)
     items = [[(dict(configs[i]), int(seeds[i]), claims[i]) for i in idx] for idx in groups.values()]
     if workers > 1 and len(items) > 1:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        ctx = multiprocessing.get_context("fork")
-        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        with fork_pool(workers) as pool:
             shipped = list(pool.map(_measure_shipped, items, [size] * len(items)))
         results = [out for out, _ in shipped]
         for runs, checks in (shipping.loads(blob) for _, blob in shipped):
