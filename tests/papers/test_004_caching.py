@@ -81,6 +81,34 @@ def test_scenes_from_worker_processes_stay_cached_and_give_the_same_numbers(monk
     assert _values(first) != _values(again)  # the reading is read: the truth is another reference
 
 
+def test_groups_sharing_a_scene_find_it_rendered_once_and_give_the_numbers_of_one_process(monkeypatch, tmp_path):
+    """Two scenes, each read at two horizons: four groups (a scene and one run of the methods each) over two
+    workers. Each scene is rendered once, before the groups run (two missing: side by side; one shared by two
+    groups: in the parent), and every value is that of one process."""
+    log = tmp_path / "renders"
+    real = study.study_run
+
+    def counted(*args, **kwargs):  # forked workers inherit it: the file counts their renders too
+        with open(log, "a") as f:
+            f.write("x")
+        return real(*args, **kwargs)
+
+    for configs, renders in (
+        ([dict(DEFAULT, jitter=j, horizon=h) for j in (0.0, 1.0) for h in (1, 10)], 2),
+        ([dict(DEFAULT, horizon=h) for h in (1, 10)], 1),
+    ):
+        log.write_text("")
+        seeds, asked = [5] * len(configs), [CLAIMS] * len(configs)
+        with monkeypatch.context() as m:
+            m.setattr(study, "study_run", counted)
+            got = study.measure_batch(configs, seeds, SIZE, workers=2, claims=asked)
+        assert log.read_text() == "x" * renders
+        study.clear_cache()
+        assert _values(got) == _values(study.measure_batch(configs, seeds, SIZE, workers=1, claims=asked))
+        assert _values(got[0]) != _values(got[1])  # the horizon is read
+        study.clear_cache()
+
+
 def test_the_cache_keeps_within_its_byte_budget_and_what_it_drops_is_recomputed_to_the_same_numbers(monkeypatch):
     """The scenes and runs kept between the calls of an exploration stay within the cache's budget (least recently
     used dropped first, never the entry just stored); a configuration measured after its scene was dropped gives the

@@ -8,6 +8,7 @@ from tvtrack.papers.p004_laser_spot_prediction import side_studies as side
 from tvtrack.papers.p004_laser_spot_prediction import study
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, DEPENDS, PINNED, build
+from tvtrack.papers.p004_laser_spot_prediction.sizes import screen_size
 
 from . import test_004_study as _study
 from tvtrack.papers.p004_laser_spot_prediction import world
@@ -146,7 +147,7 @@ def test_screen_is_the_same_study_on_less_data():
     same comparisons) and halves the frames, quarters the training pairs and the variance check, and keeps the
     lag grid's two ends; never below the smallest run the parameters allow, and no screen below 400 frames."""
     full = study.StudySize()
-    s = study.screen_size(full)
+    s = screen_size(full)
     assert (s.n_paths, s.n_folds, s.floor_grid, s.window_grid) == (
         full.n_paths,
         full.n_folds,
@@ -154,8 +155,8 @@ def test_screen_is_the_same_study_on_less_data():
         full.window_grid,
     )
     assert (s.n_frames, s.train_samples, s.n_mc_variance, s.lag_grid) == (500, 1000, 5000, (1, 16))
-    assert study.screen_size(SIZE) == SIZE  # 200 frames: nothing to halve, so no screen
-    mid = study.screen_size(study.replace(SIZE, n_frames=400))
+    assert screen_size(SIZE) == SIZE  # 200 frames: nothing to halve, so no screen
+    mid = screen_size(study.replace(SIZE, n_frames=400))
     assert mid.n_frames == 200 and mid.train_samples == 300 and mid.lag_tuning_samples <= mid.train_samples
 
 

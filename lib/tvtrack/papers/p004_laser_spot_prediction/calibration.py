@@ -33,6 +33,7 @@ from . import predictors as pr
 from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
 from .prediction_study import FLOOR_EXTENSION, tuned_forecast
 from .register import DEFAULT
+from .sizes import StudySize
 from .world import BASE_SCENE, scene_config
 
 __all__ = [
@@ -88,7 +89,7 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
         Register configuration (entries left out stay at the register's defaults).
     seed : int
         The run's seed (sensor noise; the paths too unless ``traces_seed`` is given).
-    size : study.StudySize
+    size : sizes.StudySize
     traces_seed : int, optional
         Draw the paths with this generator seed at the configuration's scene (e.g. the shipped data set's seed:
         the shipped paths, faster or slower).
@@ -217,7 +218,7 @@ def world_table(seed: int = 2005, size=None, targets=(1.0, 2.0)) -> dict:
     Parameters
     ----------
     seed : int
-    size : study.StudySize, optional
+    size : sizes.StudySize, optional
         Default: 15 paths x 500 frames (21 root finds, about 30 CPU minutes in all).
 
     Returns
@@ -226,11 +227,10 @@ def world_table(seed: int = 2005, size=None, targets=(1.0, 2.0)) -> dict:
         ``{"world": {(entry, value): ratio}, "targets": {px: ratio}, "no_root": [(entry, value)], "at_default":
         {(entry, value): filter RMS px at the default world's factor}}``.
     """
-    from . import study as st
     from .operating import BAND_POSITION
     from .register import ROWS, WORLD
 
-    size = size or st.StudySize(n_frames=500)
+    size = size or StudySize(n_frames=500)
     base = calibrate_world({}, seed, size)
     out = {"world": {}, "targets": {}, "no_root": [], "at_default": {}}
     for t in targets:

@@ -12,7 +12,8 @@ from .claims import CLAIMS, RULES
 from .params import RULES as PARAMETERS
 from .params import check_consistency
 from .register import DEPENDS, build
-from .study import StudySize, measure_batch
+from .sizes import StudySize
+from .study import measure_batch
 
 __all__ = ["PAPER", "sizes"]
 

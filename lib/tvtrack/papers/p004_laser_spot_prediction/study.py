@@ -46,6 +46,7 @@ from .prediction_study import (
     window_candidates,
 )
 from .derivation import recursion_check, variance_ratios
+from .sizes import StudySize
 from .register import NAMES
 from .timing import frame_time_ms
 from .traces import TraceSet
@@ -61,8 +62,6 @@ __all__ = [
     "CENTROID",
     "NETWORKS",
     "OPTIMAL",
-    "StudySize",
-    "screen_size",
     "StudyRun",
     "scene_config",
     "traces_on_sensor",
@@ -90,75 +89,6 @@ NATURAL_SPLINE = "natural cubic spline"
 CENTROID = "centroid error"
 #: The optimal predictor of the generator's own model: a bound, not a method.
 OPTIMAL = "optimal (true model)"
-
-
-@dataclass(frozen=True)
-class StudySize:
-    """Sizes of one run (fixed for a notebook run; the register varies the world, not these).
-
-    Attributes
-    ----------
-    n_paths, n_frames : int
-        Paths per run and frames per path (the paper: 15 paths of up to 1000 images).
-    eval_start : int
-        First frame scored for every method (start-up excluded), frames.
-    n_folds : int
-        Cross-validation folds over paths.
-    floor_grid, window_grid : tuple of int
-        Candidates of the floor ``N_f`` and of the windows (each baseline's search starts at its
-        degree + 1, :func:`.prediction_study.window_candidates`).
-    fixed_floor, fixed_window : int
-        The "fixed" tuning reading.
-    mlp_hidden_units, rbf_centres, train_samples : int
-        Network sizes and training pairs per fold.
-    lag_grid : tuple of int
-        Candidate lag counts of the networks when the register's "network lags" is "cross-validated"
-        (:func:`.prediction_study.tune_learned_lags`).
-    lag_tuning_samples : int
-        Training pairs of each tuning model (at most ``train_samples``): the tuning fits ``len(lag_grid)``
-        models per fold, so they are trained on fewer pairs than the final ones.
-    n_mc_variance : int
-        Monte Carlo series of the C004-5 variance check.
-    timing_frames : int
-        Full frames timed for C004-8.
-    """
-
-    n_paths: int = 15
-    n_frames: int = 1000
-    eval_start: int = 40
-    n_folds: int = 3
-    floor_grid: tuple = (3, 4, 5, 7, 10, 15, 20, 30, 50, 100, 200)
-    window_grid: tuple = (4, 6, 8, 10, 15, 20, 30)
-    fixed_floor: int = 10
-    fixed_window: int = 10
-    mlp_hidden_units: int = 16
-    rbf_centres: int = 100
-    train_samples: int = 4000
-    n_mc_variance: int = 20000
-    timing_frames: int = 200
-    lag_grid: tuple = (1, 2, 4, 8, 16)
-    lag_tuning_samples: int = 500
-
-
-def screen_size(size: StudySize) -> StudySize:
-    """The explorer's cheaper screen of the joint design (``explore(screen=...)``): the same paths and folds at
-    half the frames (at least 200), a quarter of the networks' training pairs (at least 300), a quarter of the
-    variance check's series and the lag grid's two ends; a joint configuration whose screened verdict is not
-    decisively the default's is measured again at ``size``. A run of fewer than 400 frames (the smoke profile) is
-    returned as it is: halving it would leave too few frames. Measured at paper size (32 joint configurations,
-    seed 2005), the screen sent all 32 to full size, so the notebook does not screen (docs/validity/004.md)."""
-    if size.n_frames < 400:
-        return size
-    lags = tuple(sorted({min(size.lag_grid), max(size.lag_grid)}))
-    return replace(
-        size,
-        n_frames=max(200, size.n_frames // 2),
-        train_samples=max(300, size.train_samples // 4),
-        lag_tuning_samples=min(size.lag_tuning_samples, max(300, size.train_samples // 4)),
-        n_mc_variance=max(1000, size.n_mc_variance // 4),
-        lag_grid=lags,
-        timing_frames=min(size.timing_frames, 100),
-    )
 
 
 @dataclass
@@ -473,6 +403,11 @@ def clear_cache() -> None:
     _VARIANCE.clear()
 
 
+#: The entries the methods' run reads beyond the scene (the readings of ``tuning``, ``reference`` and the statistic
+#: are read off one run).
+METHOD_ENTRIES = ("horizon", "network lags", "network inputs")
+
+
 def _key(config: dict, names) -> tuple:
     return tuple((n, config[n]) for n in names)
 
@@ -509,7 +444,7 @@ def _measure_group(items, size: StudySize) -> list[dict]:
         if parts is not None and config["floor form"] == VARIANT_FLOOR:  # the paper's filter read as the variant
             parts = parts | {"variant"}
         if parts is not None:
-            rk = sk + _key(config, ("horizon", "network lags", "network inputs"))
+            rk = sk + _key(config, METHOD_ENTRIES)
             have = _CACHE.get(rk)
             if have is None:
                 _CACHE[rk] = _methods(run, config, seed, parts)
@@ -528,6 +463,43 @@ def _measure_shipped(items, size: StudySize) -> tuple:
     return out, shipping.dumps((added, {k: v for k, v in _VARIANCE.items() if k not in checks}))  # layouts kept
 
 
+def _run_key(config: dict, seed: int, size: StudySize, claims) -> tuple:
+    """What one group of :func:`measure_batch` shares: the scene (:func:`_scene_key`) and, where the claims read a
+    method, the entries the methods' run reads (one cached run of them)."""
+    methods = ("scene only",) if parts_for(claims) is None else _key(config, METHOD_ENTRIES)
+    return _scene_key(config, seed, size), methods
+
+
+def _cost(claims) -> float:
+    """A group's relative cost, for handing the longest out first: the networks dominate, then the baselines."""
+    parts = parts_for(claims)
+    return 1.0 if parts is None else 2.0 + 5.0 * ("learned" in parts) + 1.0 * ("classical" in parts)
+
+
+def _scene_shipped(config: dict, seed: int, size: StudySize) -> bytes:
+    return shipping.dumps(study_run(config, seed, size))
+
+
+def _render_scenes(groups: dict, items: list, size: StudySize, workers: int) -> None:
+    """The scenes of the ``groups`` (keyed by :func:`_run_key`) not in the cache, rendered before the groups run and
+    kept (layouts too, :mod:`.shipping`), so that groups sharing a scene each find it: side by side in ``workers``
+    processes where two or more are missing; one shared by several groups, here. A scene of one group alone is left
+    to it."""
+    todo, shared = {}, {}
+    for (sk, _), batch in zip(groups, items):
+        if sk not in _CACHE:
+            todo.setdefault(sk, batch[0][:2])
+            shared[sk] = shared.get(sk, 0) + 1
+    if len(todo) == 1 and max(shared.values()) > 1:
+        ((sk, (config, seed)),) = todo.items()
+        _CACHE[sk] = study_run(config, seed, size)
+    elif len(todo) > 1:
+        with fork_pool(workers) as pool:
+            blobs = pool.map(_scene_shipped, *zip(*todo.values()), [size] * len(todo))
+            for k, blob in zip(todo, blobs):
+                _CACHE[k] = shipping.loads(blob)
+
+
 def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 1, claims=None) -> list[dict]:
     """:func:`measure` of many (configuration, seed) pairs; configurations whose scenes read the same (the
     world's entries resolved, and the seed: :func:`_scene_key`) share one rendered scene, and those that also
@@ -537,8 +509,10 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     Parameters
     ----------
     workers : int
-        Processes the scene groups are spread over (1: this process). Either way the scenes and runs stay in this
-        process's cache (a worker sends back what it added) and serve the later calls of the exploration.
+        Processes the groups are spread over (1: this process), longest first; a group shares a scene and one run of
+        the methods (:func:`_run_key`), and the scenes several groups share are rendered first (:func:`_render_scenes`).
+        Either way the scenes and runs stay in this process's cache (a worker sends back what it added) and serve
+        the later calls of the exploration; the numbers are the same for any ``workers``.
     claims : list of (set of str or None), optional
         Per configuration, the claims to compute (None: all); the methods no asked claim reads are not run
         (the explorer's ``claims=``). Each claim's value is the same as when all are asked.
@@ -554,10 +528,12 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     seeds = [s for gs, s in zip(split, seeds) for _ in gs]
     groups: dict = {}
     for i, (config, seed) in enumerate(zip(configs, seeds)):
-        groups.setdefault(_scene_key(config, seed, size), []).append(i)
+        groups.setdefault(_run_key(config, seed, size, claims[i]), []).append(i)
+    groups = dict(sorted(groups.items(), key=lambda kv: -sum(_cost(claims[i]) for i in kv[1])))  # longest first
     items = [[(dict(configs[i]), int(seeds[i]), claims[i]) for i in idx] for idx in groups.values()]
     if workers > 1 and len(items) > 1:
-        with fork_pool(workers) as pool:
+        _render_scenes(groups, items, size, workers)
+        with fork_pool(workers) as pool:  # forked after the scenes: every worker has them
             shipped = list(pool.map(_measure_shipped, items, [size] * len(items)))
         results = [out for out, _ in shipped]
         for runs, checks in (shipping.loads(blob) for _, blob in shipped):

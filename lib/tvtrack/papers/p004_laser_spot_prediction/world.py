@@ -40,7 +40,7 @@ BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
 
 
 def scene_config(config: dict, size, base: BeamWanderConfig = BASE_SCENE) -> BeamWanderConfig:
-    """The generator's configuration at a register configuration (``size``: a :class:`.study.StudySize`).
+    """The generator's configuration at a register configuration (``size``: a :class:`.sizes.StudySize`).
 
     ``bandwidth`` scales every corner frequency (``"calibrated"``: the factor that keeps the paper's filter at
     the paper's operating point in this world, :func:`.operating.bandwidth_for`), ``amplitude`` the wander RMS
