@@ -81,24 +81,11 @@ class Watched:
 
 
 @pytest.fixture(scope="module")
-def fixture_runs(tmp_path_factory):
-    """The fixture runs (:func:`site_fixtures.make_runs_dir`: two kernel runs), made once for the module; each site
-    is built from its own copy."""
-    return make_runs_dir(tmp_path_factory.mktemp("fixture-runs"))
-
-
-def _copy_runs(fixture_runs, tmp_path_factory, name: str) -> Path:
-    root = tmp_path_factory.mktemp(name) / "runs"
-    shutil.copytree(fixture_runs, root)
-    return root
-
-
-@pytest.fixture(scope="module")
 def smoke_site(tmp_path_factory, smoke_run, fixture_runs):
     """The site built from the fixture runs plus every notebook's smoke run (shared with the other tests)."""
     from tvtrack.pipeline.site import build_site
 
-    root = _copy_runs(fixture_runs, tmp_path_factory, "browser-runs")
+    root = make_runs_dir(tmp_path_factory.mktemp("browser-runs"), fixture_runs)
     for name in NOTEBOOK_NAMES:
         shutil.copytree(smoke_run(name).run_dir, root / "reproduce" / name)
     t0 = time.process_time()  # CPU seconds: a loaded machine stretches the wall time, not the work
@@ -128,7 +115,7 @@ def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_
     (shown on hover), no horizontal scroll, and a claim page that shows its specification curve."""
     from tvtrack.pipeline.site import build_site
 
-    root = make_explored_runs(_copy_runs(fixture_runs, tmp_path_factory, "first-screen-runs"))
+    root = make_explored_runs(make_runs_dir(tmp_path_factory.mktemp("first-screen-runs"), fixture_runs))
     site = build_site(root).parent
     w = Watched(browser, viewport=FIRST_SCREEN)
     try:
@@ -214,7 +201,7 @@ def fixture_site(tmp_path_factory, fixture_runs):
     """The site of the fixture runs alone (no paper notebook runs): first screen, pictures, ledger, sweep."""
     from tvtrack.pipeline.site import build_site
 
-    return build_site(_copy_runs(fixture_runs, tmp_path_factory, "fixture-site-runs")).parent
+    return build_site(make_runs_dir(tmp_path_factory.mktemp("fixture-site-runs"), fixture_runs)).parent
 
 
 def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture_site):
