@@ -5,6 +5,7 @@ from __future__ import annotations
 import fcntl
 import os
 import pickle
+import shutil
 import signal
 from pathlib import Path
 
@@ -95,3 +96,33 @@ def smoke_run(tmp_path_factory):
         return cache[name]
 
     return get
+
+
+#: The fixture notebook's two runs the site and report tests read: one that finishes, one its validation refuses.
+FIXTURE_RUNS = {"fixture_centroid": {"n_trials": 10, "n_frames": 3}, "broken": {"n_trials": 0}}
+
+
+@pytest.fixture(scope="session")
+def fixture_runs(tmp_path_factory) -> Path:
+    """A folder holding the runs of :data:`FIXTURE_RUNS` (``fixture_centroid``: ok; ``broken``: failed), made once
+    per session; under pytest-xdist once for both workers, as :func:`smoke_run`. Tests copy the runs they use
+    (:func:`copy_fixture_runs`) and never write here."""
+    shared = bool(os.environ.get("PYTEST_XDIST_WORKER"))
+    parent = tmp_path_factory.getbasetemp().parent if shared else tmp_path_factory.mktemp("fixture-runs")
+    root = parent / "fixture-runs-shared"
+    with open(parent / "fixture-runs-shared.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if not (parent / "fixture-runs-shared.done").exists():
+            shutil.rmtree(root, ignore_errors=True)  # what a worker killed midway left
+            for name, params in FIXTURE_RUNS.items():
+                outcome = run_notebook(FIXTURE_NOTEBOOK, root / name, params)
+                assert outcome.ok == (name == "fixture_centroid"), (name, outcome.error)
+            (parent / "fixture-runs-shared.done").write_text("")
+    return root
+
+
+def copy_fixture_runs(fixture_runs: Path, folder: Path) -> Path:
+    """``folder/fixture_centroid`` and ``folder/broken``, copies of the session's :func:`fixture_runs`."""
+    for name in FIXTURE_RUNS:
+        shutil.copytree(fixture_runs / name, folder / name)
+    return folder

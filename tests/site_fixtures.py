@@ -1,5 +1,5 @@
 """A small runs directory for the site tests: one real run of the fixture notebook, a run written before the
-verdict standard, a failed run and a sweep summary (built once per test session)."""
+verdict standard, a failed run and a sweep summary (built once per test session; the two runs of the fixture notebook are the session's, copied)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
-from conftest import FIXTURE_NOTEBOOK  # noqa: E402
-from tvtrack.pipeline.runner import run_notebook  # noqa: E402
+from conftest import copy_fixture_runs  # noqa: E402
 
 OLD_CLAIM = {
     "id": "C911-1",
@@ -59,12 +58,12 @@ UNDECIDED_CLAIM = {
 }
 
 
-def make_runs_dir(root):
+def make_runs_dir(root, fixture_runs):
     """``root/reproduce/{fixture_centroid, old_schema, new_schema, broken}`` (new_schema: records with
     parts, coverage and register, text that must be escaped, an undecided claim) and
-    ``root/fixture_sweep/summary.{csv,png}``."""
-    reproduce = root / "reproduce"
-    assert run_notebook(FIXTURE_NOTEBOOK, reproduce / "fixture_centroid", {"n_trials": 10, "n_frames": 3}).ok
+    ``root/fixture_sweep/summary.{csv,png}``; fixture_centroid and broken are copies of the session's
+    ``fixture_runs`` (tests/conftest.py)."""
+    reproduce = copy_fixture_runs(fixture_runs, root / "reproduce")
     old = reproduce / "old_schema"
     old.mkdir()
     (old / "run.json").write_text(
@@ -172,7 +171,6 @@ def make_runs_dir(root):
     for name in ("run.json", "results.json", "notebook.ipynb"):
         text = (old / name).read_text()
         (smoke / name).write_text(text.replace('"profile": "paper"', '"profile": "smoke"'))
-    assert not run_notebook(FIXTURE_NOTEBOOK, reproduce / "broken", {"n_trials": 0}).ok
     sweep = root / "fixture_sweep"
     sweep.mkdir()
     (sweep / "summary.csv").write_text(
@@ -186,8 +184,8 @@ def make_runs_dir(root):
 
 
 @pytest.fixture(scope="session")
-def runs_dir(tmp_path_factory):
-    return make_runs_dir(tmp_path_factory.mktemp("site-runs"))
+def runs_dir(tmp_path_factory, fixture_runs):
+    return make_runs_dir(tmp_path_factory.mktemp("site-runs"), fixture_runs)
 
 
 @pytest.fixture(scope="session")

@@ -3,7 +3,7 @@ import re
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import FIXTURE_NOTEBOOK, copy_fixture_runs
 from tvtrack.pipeline.report import (
     README_BEGIN,
     README_END,
@@ -12,15 +12,13 @@ from tvtrack.pipeline.report import (
     verdict_summary,
     write_report,
 )
-from tvtrack.pipeline.runner import read_run, run_notebook
+from tvtrack.pipeline.runner import read_run
 
 
 @pytest.fixture(scope="module")
-def reproduce_dir(tmp_path_factory):
-    root = tmp_path_factory.mktemp("reproduce")
-    assert run_notebook(FIXTURE_NOTEBOOK, root / "fixture_centroid", {"n_trials": 10, "n_frames": 3}).ok
-    assert not run_notebook(FIXTURE_NOTEBOOK, root / "broken", {"n_trials": 0}).ok
-    return root
+def reproduce_dir(tmp_path_factory, fixture_runs):
+    """``fixture_centroid`` (ok) and ``broken`` (failed): copies of the session's fixture runs (tests/conftest.py)."""
+    return copy_fixture_runs(fixture_runs, tmp_path_factory.mktemp("reproduce"))
 
 
 def _robust(verdict="reproduced"):

@@ -177,20 +177,25 @@ def test_failed_run_is_isolated_and_recorded(tmp_path):
 
 
 @pytest.mark.determinism
-def test_dask_executor_on_a_local_cluster(tmp_path):
+def test_dask_executor_on_a_local_cluster(sweep_two_jobs, tmp_path):
+    """Two runs of the fixture sweep (its first seed, two spot widths), one for each of the cluster's two workers,
+    give the metrics the module's two-job sweep on this machine gave for the same parameters."""
     distributed = pytest.importorskip("distributed")
     spec = write_spec(
         tmp_path / "dask.toml",
-        'repeats = 1\n[fixed]\nn_trials = 10\nn_frames = 3\nrerun_mode = "off"\n[grid]\nspot_sigma_px = [1.0, 2.0]\n',
-    )  # one run for each of the cluster's two workers
+        "repeats = 1\n[fixed]\n"
+        + "".join(f"{k} = {json.dumps(v)}\n" for k, v in SWEEP_PARAMS.items())
+        + "[grid]\nspot_sigma_px = [1.0, 2.0]\n",
+    )
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         s = run_sweep(
             spec, output=tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address, progress=False
         )
     assert (s.n_runs, s.n_ok) == (2, 2)
-    local = run_sweep(spec, jobs=1, output=tmp_path / "local", progress=False)
+    here = {json.dumps(r.parameters, sort_keys=True): r.run_id for r in expand(load_spec(FIXTURE_SWEEP))}
     for run in expand(load_spec(spec)):
-        assert metrics(s.sweep_dir / "runs" / run.run_id) == metrics(local.sweep_dir / "runs" / run.run_id)
+        local = sweep_two_jobs.sweep_dir / "runs" / here[json.dumps(run.parameters, sort_keys=True)]
+        assert metrics(s.sweep_dir / "runs" / run.run_id) == metrics(local)
 
 
 def test_the_notebooks_default_output_dir_resolves_inside_the_clone_whatever_the_working_directory(

@@ -17,6 +17,11 @@ from tvtrack.pipeline.runner import find_notebook, read_run
 from tvtrack.pipeline.scale import decide_plan, explorer_runs
 
 NB = "003_rotating_marker_tracker"  # its smoke profile: one register entry, three replicates, about 10 s
+# The cluster test's profile: 003's smoke profile with shorter runs (Fig. 1 and Fig. 2 runs of 0.4 s and 0.3 s,
+# interference runs of 0.2 s, a 0.1 s transient): with the cap below, each of the two reproduces it compares ran in
+# about 22 s against 52-76 s at the smoke lengths and a cap of 5, and both explorations are still sized to the cap.
+SHORT = {"transient_s": 0.1, "fig1_duration_s": 0.4, "fig2_duration_s": 0.3, "loss_duration_s": 0.2}
+PROFILE = "cluster"
 VOLATILE = {"timing", "runtime_s", "cpu_s", "started_utc", "finished_utc", "versions", "git_commit", "parameters"}
 
 
@@ -32,20 +37,22 @@ def _stable(value):
 def _reproduce(tmp_path, monkeypatch, name, **kw):
     nb = tmp_path / "nbs" / f"{NB}.ipynb"
     if not nb.exists():
+        assert not (PROFILE_DIR / f"{NB}.{PROFILE}.toml").exists()  # load_profile would read that one first
         nb.parent.mkdir()
         shutil.copy(find_notebook(NB), nb)
-        shutil.copy(PROFILE_DIR / f"{NB}.smoke.toml", nb.parent / f"{NB}.smoke.toml")
+        values = {**_profile(f"{NB}.smoke.toml"), **SHORT}  # found beside the notebook (no such profile in PROFILE_DIR)
+        (nb.parent / f"{NB}.{PROFILE}.toml").write_text("".join(f"{k} = {json.dumps(v)}\n" for k, v in values.items()))
     monkeypatch.setattr(rep, "list_notebooks", lambda: [nb])
     monkeypatch.setattr(rep, "usable_cores", lambda: 1)  # n_workers = 1 in the local run: one replicate at a time
     runs = tmp_path / name
-    assert rep.reproduce(profile="smoke", jobs=1, runs_dir=runs, **kw) == 0
-    return runs / "reproduce-smoke" / NB
+    assert rep.reproduce(profile=PROFILE, jobs=1, runs_dir=runs, **kw) == 0
+    return runs / f"reproduce-{PROFILE}" / NB
 
 
-# The decide profile's raised cap at reduced size: the smoke profile's sizes, its cap of 3 raised to 5 (the
-# notebook's default). At 5 as at 8 the same five claims' explorations are sized, each to the cap, and the same six
-# stay at three: 8 only added nine explorer runs (37 against 28) to each of the two reproduces compared.
-CAP = 5
+# The decide profile's raised cap at reduced size: the smoke profile's cap of 3 raised to 4. With the shorter runs
+# both explorations (tracking and interference: all eleven claims) are sized to it, 21 explorer runs in each of the
+# two reproduces compared (32 at 5: the same explorations sized, each to 5).
+CAP = 4
 
 
 def _sized_by_the_rule(data: dict) -> list[int]:
@@ -68,9 +75,9 @@ def _sized_by_the_rule(data: dict) -> list[int]:
 
 @pytest.mark.determinism
 def test_a_reproduce_on_a_local_cluster_gives_the_local_results(tmp_path, monkeypatch):
-    """003's smoke profile with the decide profile's raised cap at reduced size (5), on this machine and on a
-    LocalCluster of two worker processes: the same claims, verdicts, labels and numbers; the records say where
-    each ran and how many explorer runs it used."""
+    """003's smoke profile with shorter runs (``SHORT``) and the decide profile's raised cap at reduced size (4), on
+    this machine and on a LocalCluster of two worker processes: the same claims, verdicts, labels and numbers; the
+    records say where each ran and how many explorer runs it used."""
     distributed = pytest.importorskip("distributed")
     local = _reproduce(tmp_path, monkeypatch, "local", max_replicates=CAP)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl:

@@ -81,11 +81,11 @@ class Watched:
 
 
 @pytest.fixture(scope="module")
-def smoke_site(tmp_path_factory, smoke_run):
+def smoke_site(tmp_path_factory, smoke_run, fixture_runs):
     """The site built from the fixture runs plus every notebook's smoke run (shared with the other tests)."""
     from tvtrack.pipeline.site import build_site
 
-    root = make_runs_dir(tmp_path_factory.mktemp("browser-runs"))
+    root = make_runs_dir(tmp_path_factory.mktemp("browser-runs"), fixture_runs)
     for name in NOTEBOOK_NAMES:
         shutil.copytree(smoke_run(name).run_dir, root / "reproduce" / name)
     t0 = time.process_time()  # CPU seconds: a loaded machine stretches the wall time, not the work
@@ -110,12 +110,12 @@ def _assert_first_screen(page):
     assert page.evaluate("document.documentElement.scrollWidth") <= width
 
 
-def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_path_factory):
+def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_path_factory, fixture_runs):
     """The acceptance at 1400 x 900: the paragraph and glossary without scrolling, tooltips on every chip
     (shown on hover), no horizontal scroll, and a claim page that shows its specification curve."""
     from tvtrack.pipeline.site import build_site
 
-    root = make_explored_runs(make_runs_dir(tmp_path_factory.mktemp("first-screen-runs")))
+    root = make_explored_runs(make_runs_dir(tmp_path_factory.mktemp("first-screen-runs"), fixture_runs))
     site = build_site(root).parent
     w = Watched(browser, viewport=FIRST_SCREEN)
     try:
@@ -197,11 +197,11 @@ def test_site_in_browser(browser, smoke_site):
 
 
 @pytest.fixture(scope="module")
-def fixture_site(tmp_path_factory):
+def fixture_site(tmp_path_factory, fixture_runs):
     """The site of the fixture runs alone (no paper notebook runs): first screen, pictures, ledger, sweep."""
     from tvtrack.pipeline.site import build_site
 
-    return build_site(make_runs_dir(tmp_path_factory.mktemp("fixture-site-runs"))).parent
+    return build_site(make_runs_dir(tmp_path_factory.mktemp("fixture-site-runs"), fixture_runs)).parent
 
 
 def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture_site):
