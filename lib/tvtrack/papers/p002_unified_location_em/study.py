@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-
 from ...jobs import fork_pool
 from .claim_values import (
     measure_claims,
