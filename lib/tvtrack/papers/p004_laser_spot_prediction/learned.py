@@ -73,13 +73,14 @@ def _r2(y_true, y_pred) -> float:
     yp = np.asarray(y_pred, dtype=np.float64).reshape(-1, 1)
     if yt.shape[0] < 2:
         return float("nan")
-    numerator = np.sum(1.0 * (yt - yp) ** 2, axis=0)
-    denominator = np.sum(1.0 * (yt - np.average(yt, axis=0)) ** 2, axis=0)
+    # np.sum and np.average as the reductions they call (the same numbers): a sum over the axis, divided by the count
+    numerator = np.add.reduce(1.0 * (yt - yp) ** 2, axis=0)
+    denominator = np.add.reduce(1.0 * (yt - np.add.reduce(yt, axis=0) / yt.shape[0]) ** 2, axis=0)
     scores = np.ones([1], dtype=numerator.dtype)
     valid = (denominator != 0) & (numerator != 0)
     scores[valid] = 1 - (numerator[valid] / denominator[valid])
     scores[(numerator != 0) & (denominator == 0)] = 0.0
-    return float(np.average(scores))
+    return float(scores[0])  # the average of one score
 
 
 def _tanh_backprop(net, X, y) -> tuple:
@@ -99,7 +100,8 @@ def _tanh_backprop(net, X, y) -> tuple:
     np.tanh(hidden, out=hidden)
     out = hidden @ w1
     out += b1
-    loss = 0.5 * (np.add.reduce((y - out) ** 2, axis=0) / n).mean()  # np.average's numbers, without its checks
+    per_output = np.add.reduce((y - out) ** 2, axis=0) / n  # np.average's numbers, without its checks
+    loss = 0.5 * (per_output[0] if per_output.shape == (1,) else per_output.mean())  # the mean of one: itself
     values = 0
     for w in (w0, w1):
         w = w.ravel()
