@@ -92,7 +92,7 @@ def windowed_centroid(
         raise ValueError(f"parameter 'n_iter' = {n_iter!r}; it must be an integer >= 0")
     level, rms = border_statistics(a)
     w = a - level[..., None, None]
-    np.copyto(w, 0.0, where=~(w > (threshold_sigma * rms)[..., None, None]))  # np.where's numbers, in place
+    w = np.where(w > (threshold_sigma * rms)[..., None, None], w, 0.0)
     batch = a.shape[:-2]
     c = np.empty((2,) + batch)  # (cx, cy): one soft window of both axes per step where the gate is square
     cx, cy = c[0, ...], c[1, ...]  # views (0-d for one image)
