@@ -253,9 +253,10 @@ def sensor_readout(
     electrons = np.asarray(signal, dtype=float) + background
     if photon_noise:
         electrons = rng.poisson(electrons).astype(float)
+    out = electrons if isinstance(electrons, np.ndarray) else None  # a new array: the steps below work in place
     if read_noise > 0:
-        electrons = electrons + rng.normal(0.0, read_noise, size=electrons.shape)
-    dn = electrons / gain
+        electrons = np.add(electrons, rng.normal(0.0, read_noise, size=np.shape(electrons)), out=out)
+    dn = np.divide(electrons, gain, out=out)
     if bit_depth is not None:
-        dn = np.clip(np.rint(dn), 0, 2**bit_depth - 1)
+        dn = np.clip(np.rint(dn, out=out), 0, 2**bit_depth - 1, out=out)
     return dn

@@ -73,13 +73,14 @@ def _r2(y_true, y_pred) -> float:
     yp = np.asarray(y_pred, dtype=np.float64).reshape(-1, 1)
     if yt.shape[0] < 2:
         return float("nan")
-    numerator = np.sum(1.0 * (yt - yp) ** 2, axis=0)
-    denominator = np.sum(1.0 * (yt - np.average(yt, axis=0)) ** 2, axis=0)
+    # np.sum and np.average as the reductions they call (the same numbers): a sum over the axis, divided by the count
+    numerator = np.add.reduce(1.0 * (yt - yp) ** 2, axis=0)
+    denominator = np.add.reduce(1.0 * (yt - np.add.reduce(yt, axis=0) / yt.shape[0]) ** 2, axis=0)
     scores = np.ones([1], dtype=numerator.dtype)
     valid = (denominator != 0) & (numerator != 0)
     scores[valid] = 1 - (numerator[valid] / denominator[valid])
     scores[(numerator != 0) & (denominator == 0)] = 0.0
-    return float(np.average(scores))
+    return float(scores[0])  # the average of one score
 
 
 def _tanh_backprop(net, X, y) -> tuple:
@@ -99,7 +100,8 @@ def _tanh_backprop(net, X, y) -> tuple:
     np.tanh(hidden, out=hidden)
     out = hidden @ w1
     out += b1
-    loss = 0.5 * np.average((y - out) ** 2, weights=None, axis=0).mean()
+    per_output = np.add.reduce((y - out) ** 2, axis=0) / n  # np.average's numbers, without its checks
+    loss = 0.5 * (per_output[0] if per_output.shape == (1,) else per_output.mean())  # the mean of one: itself
     values = 0
     for w in (w0, w1):
         w = w.ravel()
@@ -110,11 +112,54 @@ def _tanh_backprop(net, X, y) -> tuple:
     g1 += net.alpha * w1
     g1 /= n
     delta0 = delta1 @ w1.T
-    delta0 *= 1 - hidden**2  # tanh's derivative, in place as scikit-learn's
+    slope = np.square(hidden)
+    delta0 *= np.subtract(1, slope, out=slope)  # tanh's derivative 1 - h^2, in place as scikit-learn's
     g0 = X.T @ delta0
     g0 += net.alpha * w0
     g0 /= n
-    return loss, [g0, g1], [np.sum(delta0, axis=0) / n, np.sum(delta1, axis=0) / n]
+    return loss, [g0, g1], [np.add.reduce(delta0, axis=0) / n, np.add.reduce(delta1, axis=0) / n]  # np.sum's numbers
+
+
+class _FlatAdam:
+    """scikit-learn's ``AdamOptimizer.update_params`` on one flat buffer of every weight and bias: the network's
+    ``coefs_`` and ``intercepts_`` become views into it, and each step runs the optimiser's element-wise operations
+    once over the buffer instead of once per array (an element-wise operation gives each element the same number
+    whatever array it sits in, so the same bits), in the same order, with the same scalars."""
+
+    def __init__(self, net):
+        self.opt = net._optimizer
+        params = net.coefs_ + net.intercepts_
+        self.p = np.concatenate([q.ravel() for q in params])
+        self.m, self.v, self.g = np.zeros_like(self.p), np.zeros_like(self.p), np.empty_like(self.p)
+        self.u, self.d = np.empty_like(self.p), np.empty_like(self.p)
+        ends = np.cumsum([0] + [q.size for q in params])
+
+        def views(buf):
+            return [buf[a:b].reshape(q.shape) for a, b, q in zip(ends[:-1], ends[1:], params)]
+
+        k = len(net.coefs_)
+        views_p = views(self.p)
+        net.coefs_, net.intercepts_ = views_p[:k], views_p[k:]
+        self.grads = views(self.g)
+        self.opt.ms, self.opt.vs = views(self.m), views(self.v)  # the optimiser's state, as it would hold it
+
+    def step(self, grads) -> None:
+        """One update: ``m = b1 m + (1 - b1) g``, ``v = b2 v + (1 - b2) g^2``, ``p += -lr m / (sqrt(v) + eps)``."""
+        o = self.opt
+        for view, g in zip(self.grads, grads):
+            view[...] = g
+        o.t += 1
+        np.multiply(self.m, o.beta_1, out=self.m)
+        self.m += np.multiply(self.g, 1 - o.beta_1, out=self.u)
+        np.multiply(self.v, o.beta_2, out=self.v)
+        np.square(self.g, out=self.u)
+        self.v += np.multiply(self.u, 1 - o.beta_2, out=self.u)
+        o.learning_rate = o.learning_rate_init * np.sqrt(1 - o.beta_2**o.t) / (1 - o.beta_1**o.t)
+        np.multiply(self.m, -o.learning_rate, out=self.u)
+        np.sqrt(self.v, out=self.d)
+        self.d += o.epsilon
+        self.u /= self.d
+        self.p += self.u
 
 
 def _adam_epochs(net, X, y) -> None:
@@ -130,8 +175,10 @@ def _adam_epochs(net, X, y) -> None:
     from sklearn.neural_network._stochastic_optimizers import AdamOptimizer
     from sklearn.utils import gen_batches
 
-    params = net.coefs_ + net.intercepts_
-    net._optimizer = AdamOptimizer(params, net.learning_rate_init, net.beta_1, net.beta_2, net.epsilon)
+    net._optimizer = AdamOptimizer(
+        net.coefs_ + net.intercepts_, net.learning_rate_init, net.beta_1, net.beta_2, net.epsilon
+    )
+    adam = _FlatAdam(net)
     rs = net._random_state
     X_train, X_val, y_train, y_val = train_test_split(X, y, random_state=rs, test_size=net.validation_fraction)
     if X_val.shape[0] < 2:
@@ -160,7 +207,7 @@ def _adam_epochs(net, X, y) -> None:
                     X_batch, y_train[batch_idx], None, activations, deltas, coef_grads, intercept_grads
                 )
             accumulated_loss += batch_loss * (batch_slice.stop - batch_slice.start)
-            net._optimizer.update_params(params, coef_grads + intercept_grads)
+            adam.step(coef_grads + intercept_grads)
         net.n_iter_ += 1
         net.loss_ = accumulated_loss / X_train.shape[0]
         net.t_ += n_samples

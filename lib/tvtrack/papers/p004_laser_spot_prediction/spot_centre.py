@@ -46,6 +46,17 @@ def soft_window(centre, half: float, n: int) -> np.ndarray:
     return np.clip(np.minimum(i + 0.5, c + half) - np.maximum(i - 0.5, c - half), 0.0, 1.0)
 
 
+def _soft_windows(centre, half: float, edges: tuple) -> np.ndarray:
+    """:func:`soft_window` by the same operations on the same numbers (so the same bits), with fewer temporaries:
+    ``edges`` = ``(i + 0.5, i - 0.5)`` of the pixels ``i``, and the clip to [0, 1] as a maximum then a minimum in
+    place (the overlap is never -0.0, the one value where the two could differ)."""
+    c = centre[..., None]
+    out = np.minimum(edges[0], c + half)
+    out -= np.maximum(edges[1], c - half)
+    np.maximum(out, 0.0, out=out)
+    return np.minimum(out, 1.0, out=out)
+
+
 def windowed_centroid(
     images, origin=(0, 0), *, window_px: float, threshold_sigma: float = 3.0, n_iter: int = 4, start=None
 ) -> Centroid:
@@ -83,24 +94,32 @@ def windowed_centroid(
     w = a - level[..., None, None]
     w = np.where(w > (threshold_sigma * rms)[..., None, None], w, 0.0)
     batch = a.shape[:-2]
-    cx = np.full(batch, (cols - 1) / 2.0)
-    cy = np.full(batch, (rows - 1) / 2.0)
+    c = np.empty((2,) + batch)  # (cx, cy): one soft window of both axes per step where the gate is square
+    cx, cy = c[0, ...], c[1, ...]  # views (0-d for one image)
+    cx[...], cy[...] = (cols - 1) / 2.0, (rows - 1) / 2.0
     if start is not None:
         st = np.asarray(start, dtype=float) - np.asarray(origin, dtype=float)
-        cx, cy = np.broadcast_to(st[..., 0], batch).copy(), np.broadcast_to(st[..., 1], batch).copy()
+        cx[...], cy[...] = np.broadcast_to(st[..., 0], batch), np.broadcast_to(st[..., 1], batch)
     half = window_px / 2.0
     xs, ys = np.arange(cols, dtype=float), np.arange(rows, dtype=float)
-    valid = np.ones(batch, dtype=bool)
-    mass = np.zeros(batch)
+    ex, ey = (xs + 0.5, xs - 0.5), (ys + 0.5, ys - 0.5)
     for _ in range(n_iter + 1):
-        wx, wy = soft_window(cx, half, cols), soft_window(cy, half, rows)
+        if rows == cols:
+            wx, wy = _soft_windows(c, half, ex)
+        else:
+            wx, wy = _soft_windows(cx, half, ex), _soft_windows(cy, half, ey)
         col_sum = (wy[..., None, :] @ w)[..., 0, :]  # window-weighted column profile (matmul: BLAS, not einsum)
         row_sum = (w @ wx[..., :, None])[..., 0]
         mass = np.einsum("...c,...c->...", col_sum, wx)
         valid = mass > 0
-        safe = np.where(valid, mass, 1.0)
-        cx = np.where(valid, np.einsum("...c,c->...", col_sum * wx, xs) / safe, cx)
-        cy = np.where(valid, np.einsum("...r,r->...", row_sum * wy, ys) / safe, cy)
+        x_new = np.einsum("...c,c->...", col_sum * wx, xs)
+        y_new = np.einsum("...r,r->...", row_sum * wy, ys)
+        if valid.all():  # the usual case: np.where's numbers without its temporaries
+            np.divide(x_new, mass, out=cx)
+            np.divide(y_new, mass, out=cy)
+        else:
+            safe = np.where(valid, mass, 1.0)
+            cx[...], cy[...] = np.where(valid, x_new / safe, cx), np.where(valid, y_new / safe, cy)
     o = np.asarray(origin, dtype=float)
     xy = np.stack([cx + o[..., 0], cy + o[..., 1]], axis=-1)
     return Centroid(xy=np.where(valid[..., None], xy, np.nan), mass=mass, valid=valid)
