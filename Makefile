@@ -56,7 +56,7 @@ site: $(STAMP)
 # every core: test files are spread over pytest-xdist workers (one file stays on one worker, so its module
 # fixtures run once); the notebooks' smoke runs are shared between workers (tests/conftest.py)
 test: $(STAMP) lint
-	$(BIN)/python -m pytest -q -n auto --dist loadfile --durations=15
+	$(BIN)/python -m pytest -q -n auto --dist loadfile --no-loadscope-reorder --durations=15
 
 bench: $(STAMP)
 	mkdir -p benchmarks/results

@@ -51,6 +51,49 @@ def pytest_configure(config):
             os.environ.setdefault(var, str(max(1, len(os.sched_getaffinity(0)) // workers)))
 
 
+#: The test files that take longest, run first (longest first, in this order), the rest after them in collection
+#: order. ``make test`` hands whole files to its two workers (``--dist loadfile``) in collection order
+#: (``--no-loadscope-reorder``; by default xdist would order files by their number of tests, which put the longest
+#: files, few tests each, last, where one of them could run alone at the end): so the short files fill in at the end.
+#: The first two share no compiled kernel: test_declared_entries compiles 001's and 002's kernels (tvtrack.jit) once,
+#: alone, into the session's cache, and the smoke runs and paper tests that follow load them instead of compiling
+#: them again at the same time in the other worker. A file missing here only runs later; a file listed and gone is
+#: ignored.
+LONGEST_FIRST = (
+    "test_declared_entries.py",
+    "test_scale.py",
+    "test_notebooks.py",
+    "test_site_browser.py",
+    "test_intervals.py",
+    "test_pipeline_faults.py",
+    "test_runner.py",
+    "test_runner_interrupts.py",
+    "test_cli.py",
+    "papers/test_004_lag_tuning.py",
+    "papers/test_002_study.py",
+    "papers/test_002_readings_act.py",
+    "test_pipeline_kernels.py",
+    "papers/test_004_study.py",
+    "viewer/test_viewer_recordings.py",
+    "papers/test_001_cost.py",
+    "papers/test_003_speed.py",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The files of :data:`LONGEST_FIRST` first, in its order; each file's tests keep their order."""
+    rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
+    here = Path(__file__).parent
+
+    def key(item):
+        try:
+            return rank.get(Path(item.path).relative_to(here).as_posix(), len(rank))
+        except ValueError:  # a file outside tests/ (make bench's benchmarks/)
+            return len(rank)
+
+    items.sort(key=key)  # stable
+
+
 FIXTURES = Path(__file__).parent / "fixtures"
 FIXTURE_NOTEBOOK = FIXTURES / "fixture_centroid.ipynb"
 FIXTURE_SWEEP = FIXTURES / "fixture_sweep.toml"

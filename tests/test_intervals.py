@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from interval_cases import CASES, SIZES, coverage, draw, intervals
+from interval_cases import CASES, SIZES, bca_interval, coverage, draw, intervals
 from tvtrack.verdicts import is_undecided
 from tvtrack.montecarlo import (
     Estimate,
@@ -110,6 +110,28 @@ def test_public_helpers_equal_the_batched_intervals_they_are_tested_through():
     lo, hi = intervals("mean", x[:1])
     est = mean_ci(x[0], method="bootstrap-t")
     assert (est.ci_low, est.ci_high) == pytest.approx((lo[0], hi[0]), rel=1e-12)
+
+
+@pytest.mark.parametrize("helper, n", [("mean_square", 5), ("mean_square", 30), ("ratio", 10), ("ratio", 15)])
+def test_the_bca_reference_is_scipys_bootstrap(helper, n):
+    """The BCa interval the tables compare with (``interval_cases.bca_interval``, computed through resample
+    counts) is scipy's paired BCa bootstrap on the same draws: 200 experiments at sizes where the draw holds
+    resamples that permute the sample (5 trials) and where it holds none (30)."""
+    data, _ = draw(helper, next(iter(CASES[helper])), n, r=200)
+    samples = (data,) if helper == "mean_square" else data
+    res = stats.bootstrap(
+        samples,
+        lambda *x, axis: x[0].mean(axis=axis) if len(x) == 1 else x[0].mean(axis=axis) / x[1].mean(axis=axis),
+        paired=True,
+        vectorized=True,
+        axis=-1,
+        n_resamples=2000,
+        method="BCa",
+        rng=np.random.default_rng(1),
+    )
+    lo, hi = bca_interval(samples, 2000, np.random.default_rng(1))
+    assert lo == pytest.approx(res.confidence_interval.low, rel=1e-12)
+    assert hi == pytest.approx(res.confidence_interval.high, rel=1e-12)
 
 
 def test_helpers_state_coverage_and_the_flag_reads_it():

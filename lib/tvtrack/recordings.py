@@ -15,16 +15,31 @@ Entity paths explain themselves, e.g. ``camera/image``, ``camera/gate``, ``camer
 
 from __future__ import annotations
 
+import importlib
 import re
 import uuid
 from pathlib import Path
 from typing import Sequence
 
 import numpy as np
-import rerun as rr
-import rerun.blueprint as rrb
 
 __all__ = ["Recorder", "image_and_series_blueprint", "ellipse_outline", "RECORDING_FILE"]
+
+
+class _ImportedOnUse:
+    """The module ``name``, imported at the first attribute read: ``rerun`` takes about 1 s to import, which a
+    process that imports this module and records nothing never pays (the subprocess that checks a notebook's values
+    before a run, a run whose validation refuses its values)."""
+
+    def __init__(self, name: str):
+        self._name = name
+
+    def __getattr__(self, attr: str):
+        return getattr(importlib.import_module(self._name), attr)
+
+
+rr = _ImportedOnUse("rerun")
+rrb = _ImportedOnUse("rerun.blueprint")
 
 RECORDING_FILE = "recording.rrd"
 

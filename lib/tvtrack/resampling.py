@@ -34,9 +34,20 @@ def expanded_alpha(alpha: float, n: int) -> float:
 
 
 def _quantiles(boot: np.ndarray, probs) -> np.ndarray:
-    """Quantiles over the last axis ignoring NaN (``boot`` (..., B)), shape (len(probs), ...)."""
-    with np.errstate(invalid="ignore"):
-        return np.nanquantile(boot, probs, axis=-1)
+    """Quantiles over the last axis ignoring NaN (``boot`` (..., B)), shape (len(probs), ...).
+
+    Rows without NaN go through ``numpy.quantile`` in one vectorised call (the same numbers as ``nanquantile``,
+    which works row by row and took most of an interval's time at 2000 rows); only rows holding a NaN are
+    read by ``nanquantile``."""
+    boot = np.asarray(boot)
+    nan_rows = np.isnan(boot).any(axis=-1)
+    with np.errstate(invalid="ignore"):  # infinite replicates: inf - inf between two of them, as in nanquantile
+        if boot.ndim < 2 or nan_rows.all():
+            return np.nanquantile(boot, probs, axis=-1)
+        out = np.quantile(boot, probs, axis=-1)
+        if nan_rows.any():
+            out[:, nan_rows] = np.nanquantile(boot[nan_rows], probs, axis=-1)
+    return out
 
 
 def _resample_weights(idx: np.ndarray, n: int) -> np.ndarray:
