@@ -389,3 +389,33 @@ def test_robust_summary_counts_divergence_by_its_rule():
     assert s["divergence_rate"].value == pytest.approx(0.05)
     assert s["median"].value == 1.0 and s["mean_without_diverged"].value == 1.0
     assert s["trimmed_mean"].value == pytest.approx(1.0) and "> 100" in s["divergence_rule"]
+
+
+def test_a_row_bootstrap_copies_the_values_one_index_per_value_picks(monkeypatch):
+    """Trials as clusters of k consecutive values (the 002 claims' row bootstrap) are gathered as whole rows: the
+    same values in the same order as one index per value, so the same interval bit for bit; other layouts keep the
+    index."""
+    from tvtrack import resampling
+
+    rng = np.random.default_rng(3)
+    for labels in (np.repeat(np.arange(40), 6), np.tile(np.arange(40), 6), np.repeat(rng.permutation(40), 6)):
+        x = rng.standard_normal(labels.size)
+        members = resampling._cluster_members(labels)
+        picks = rng.integers(0, 40, (300, 40))
+        got = resampling._picked_rows(x, members, picks)
+        ref = x[resampling._cluster_indices(members, picks)]
+        assert got.shape == ref.shape == (300, 240) and got.flags.c_contiguous and np.array_equal(got, ref)
+    e = rng.standard_normal((50, 4)) * [1.0, 2.0, 1.0, 2.0]
+    labels = np.repeat(np.arange(50), 4)
+
+    def ratio(v, axis=-1):
+        rows = np.asarray(v).reshape(*np.shape(v)[:-1], -1, 4)
+        return rows[..., :2].var(axis=-2).sum(axis=-1) / rows[..., 2:].var(axis=-2).sum(axis=-1)
+
+    def interval():
+        run = dict(groups=labels, rng=np.random.default_rng(9), n_resamples=500, method="percentile")
+        return bootstrap_ci([e.ravel()], ratio, **run)
+
+    rows = interval()
+    monkeypatch.setattr(resampling, "_picked_rows", lambda x, m, p: x[resampling._cluster_indices(m, p)])
+    assert interval() == rows and np.isfinite(rows.ci_low) and rows.ci_low < rows.value < rows.ci_high

@@ -157,14 +157,26 @@ def _cluster_indices(members: list[np.ndarray], picks: np.ndarray) -> np.ndarray
     return [np.concatenate([members[k] for k in row]) for row in picks]
 
 
+def _picked_rows(x: np.ndarray, members: list[np.ndarray], picks: np.ndarray) -> np.ndarray:
+    """``x[_cluster_indices(members, picks)]`` for clusters of equal size m, shape (B, c * m): where the clusters are
+    the consecutive blocks of m trials in order (a row bootstrap: trial i the values ``x[i m : (i + 1) m]``), whole
+    blocks are copied, the same values in the same order without an index per value."""
+    stacked = np.stack(members)
+    if x.size == stacked.size and np.array_equal(stacked.ravel(), np.arange(x.size)):
+        return x.reshape(stacked.shape)[picks].reshape(len(picks), -1)
+    return x[stacked[picks].reshape(len(picks), -1)]
+
+
 def _cluster_statistics(data, statistic, members, picks) -> np.ndarray:
     """``statistic`` on the picked clusters of each sample (B,): ``members`` and ``picks`` hold one
     entry per sample (the same entry for paired samples). Equal cluster sizes are evaluated in one
     vectorised call, unequal sizes resample by resample."""
+    if all(len({len(k) for k in m}) == 1 for m in members):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rows = (_picked_rows(x, m, p) for x, m, p in zip(data, members, picks))
+            return np.asarray(statistic(*rows, axis=-1), dtype=float)
     idx = [_cluster_indices(m, p) for m, p in zip(members, picks)]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if all(isinstance(i, np.ndarray) for i in idx):
-            return np.asarray(statistic(*(x[i] for x, i in zip(data, idx)), axis=-1), dtype=float)
         return np.array(
             [float(statistic(*(x[i[j]] for x, i in zip(data, idx)), axis=-1)) for j in range(len(picks[0]))]
         )

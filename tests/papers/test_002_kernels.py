@@ -92,3 +92,30 @@ def test_compiled_m_step_is_the_numpy_m_step_bit_for_bit(static):
     new, bad = _kernels.m_step(sums, theta, static)
     assert ref_bad[:3].any() and ref_bad.tolist() == bad.tolist()
     assert np.array_equal(ref_new, new)
+
+
+@needs_numba
+@pytest.mark.parametrize("limited", [False, True])
+def test_compiled_photon_histogram_is_the_numpy_one(limited):
+    """The scene's photon counts, compiled and in NumPy, from the same draws: photons near pixel edges (offsets
+    that land on x.5 before rounding), outside the window on every side, and (``limited``) only the first k of
+    the m drawn per object and frame (the Poisson photon model)."""
+    from tvtrack.papers.p002_unified_location_em._photon_kernel import add_photons, add_photons_numpy
+
+    rng = np.random.default_rng(4)
+    n, t, q, m, rows, cols = 30, 6, 2, 25, 5, 7
+    pos = rng.uniform(-3, 10, (n, t, q, 2))
+    pos[0, 0, 0] = (2.5, 1.5)  # on a pixel edge: z = 0 rounds up
+    z = rng.standard_normal((n, t, q, m, 2))
+    z[0, 0, 0, :3] = 0.0
+    k = rng.integers(0, m + 1, (n, t, q)) if limited else None
+    if limited:
+        k[0, 0, 0] = m
+    noise = rng.poisson(0.3, (n, t, rows, cols)).astype(np.int32)
+    fast, slow = noise.copy(), noise.copy()
+    add_photons(fast, pos, z, 1.3, k)
+    add_photons_numpy(slow, pos, z, 1.3, k)
+    assert np.array_equal(fast, slow) and fast.dtype == np.int32
+    kept = (fast - noise).sum()
+    assert 0 < kept < (k.sum() if limited else n * t * q * m)  # some photons left the window
+    assert fast[0, 0, 2, 3] - noise[0, 0, 2, 3] >= 3  # the three photons on the corner, in the pixel beyond it

@@ -216,7 +216,8 @@ def test_fig7_tolerance_reruns_only_the_iteration_points_on_the_same_scenes():
     loose = _letters(study.jobs_of({**DEFAULT, "EM tolerance of Fig 7": "log-likelihood gap 0.1"}, 7, TINY))
     new = set(loose) - set(base)
     assert new and all(k[0].variant == (("tol_loglik", 0.1),) and k[0].n == TINY.n_iter_trials for k in new)
-    assert {k[1] for k in new} == {"u", "p", "q"}  # the Fig 7 points only, every letter they hold
+    # the Fig 7 points only, the letters the claims read of them (the plain EM's counts; 'u' runs with the figures)
+    assert {k[1] for k in new} == {"p", "q"}
     # what the loose reading no longer asks for is the default's Fig 7 points (a 'u' point may be shared)
     assert set(base) - set(loose) <= {(k[0]._replace(variant=()), k[1]) for k in new}
     assert study.fig7_variant(DEFAULT) == ()  # the default's cache keys are those of before the row
@@ -392,11 +393,41 @@ def test_a_claims_subset_measures_those_claims_bit_for_bit_and_runs_only_their_j
     assert _flat(batch[0]) == _flat(part) and set(batch[1]) == set(whole)
 
 
+@pytest.mark.parametrize(
+    "config, subset, letters",
+    [
+        (DEFAULT, {"C002-13"}, {"p"}),
+        (DEFAULT, {"C002-14"}, {"p", "q"}),
+        (DEFAULT, {"C002-7", "C002-8"}, {"u", "e"}),
+        ({**DEFAULT, "velocity knowledge": "designated"}, {"C002-11"}, {"e", "k"}),
+        ({**DEFAULT, "ULA": "MAP (designation prior)"}, {"C002-11"}, {"e", "m"}),
+    ],
+)
+def test_a_claim_runs_only_the_algorithms_it_reads_and_keeps_its_value_bit_for_bit(config, subset, letters):
+    """Of its points a claim runs only the algorithms it reads (C002-13 the plain ULA's counts, not the accelerated
+    ULA or the marks that share its points); its value is the one with every algorithm of those points run."""
+    study.clear_cache()
+    g, _ = study._points(config, TINY)
+    settings = study.settings_of(config, 5, TINY)
+    every = [
+        (study._job_settings(settings, a, TINY, c.q), c._replace(algs=a))
+        for c in claim_values.needed_points(config, g, TINY.separations, subset)
+        for a in c.algs
+    ]
+    study.run_jobs(every)
+    assert {j[1].algs for j in every} > letters  # the points hold algorithms the claims do not read
+    ref = study.measure(config, 5, TINY, claims=frozenset(subset))  # every algorithm cached: nothing more runs
+    study.clear_cache()
+    part = study.measure(config, 5, TINY, claims=frozenset(subset))
+    assert {j[1].algs for j in study._CACHE} == letters
+    assert _flat(part) == _flat(ref) and set(part) == subset
+
+
 def test_every_claims_points_are_among_the_studys_points():
     g, asked = study._points(DEFAULT, TINY)
     for cid in study.CLAIMS:
         if cid != "C002-16":
-            need = study.needed_points(DEFAULT, g, TINY.separations, {cid})
+            need = claim_values.needed_points(DEFAULT, g, TINY.separations, {cid})
             assert need and set(need) <= set(asked), cid
 
 

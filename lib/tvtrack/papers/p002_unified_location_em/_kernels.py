@@ -374,8 +374,9 @@ def _aitken(ll, prev_ll, prev_rise):  # pragma: no cover - compiled
 @njit
 def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma: no cover - compiled
     """:func:`.em_loop.iterate` one trial at a time (the trials are independent): ``state = (loglik, n_iter,
-    converged, degenerate)`` and ``theta`` (N, Q, 4) updated in place; ``options = (static, squarem, tol_px,
-    tol_loglik (< 0: none), max_iter, span)``."""
+    converged, degenerate)`` and ``theta`` (N, Q, 4) updated in place, ``loglik`` the log-likelihood at the returned
+    estimates (trials degenerate from the start keep theirs); ``options = (static, squarem, tol_px, tol_loglik
+    (< 0: none), max_iter, span)``."""
     static, squarem, tol_px, tol_ll, max_iter, span_t = options
     loglik, n_iter, converged, degenerate = state
     starts = ent[0]
@@ -405,8 +406,8 @@ def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma:
                     trial, r, th, pw[r], p0[r], sg[r], times, shape, static, span_t, tables, sums, work, new
                 )
                 n_iter[r] += 3
-            else:
-                ll = _trial_e_step(*trial, r, th, pw[r], p0[r], sg[r], times, shape, tables, sums)
+            else:  # the step's log-likelihood is read only by the log-likelihood stop (the returned one is below)
+                ll = _trial_e_step(*trial, r, th, pw[r], p0[r], sg[r], times, shape, tables, sums, tol_ll >= 0)
                 bad = _m_step_row(sums, th, static, new)
                 delta = _change(new, th, span_t)
                 n_iter[r] += 1
@@ -424,12 +425,16 @@ def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma:
             degenerate[r] = bad
             if conv or bad or n_iter[r] >= max_iter:
                 break
+        # the log-likelihood at the returned estimates (what :func:`.em._final_loglik` evaluates, the same sums)
+        loglik[r] = _trial_e_step(*trial, r, theta[r], pw[r], p0[r], sg[r], times, shape, tables, sums)
 
 
 def em_trials(entries, times, static: bool, span: float, state, *, accelerate, tol_px, tol_loglik, max_iter) -> bool:
     """Run the EM of :func:`.em_loop.iterate` (no prior, fixed weights and widths, no history) compiled, one trial
-    at a time, on ``state`` (an :class:`.em_loop.EMState`, updated in place): the same estimates, log-likelihoods,
-    step counts and flags bit for bit. Returns False, doing nothing, where the entries are not sorted by trial."""
+    at a time, on ``state`` (an :class:`.em_loop.EMState`, updated in place), followed by :func:`.em._final_loglik`
+    (``state.loglik`` the log-likelihood at the returned estimates of every trial not degenerate from the start):
+    the same estimates, log-likelihoods, step counts and flags bit for bit. Returns False, doing nothing, where the
+    entries are not sorted by trial."""
     trial = np.asarray(entries.trial, dtype=np.int64)
     if trial.size and np.any(np.diff(trial) < 0):
         return False

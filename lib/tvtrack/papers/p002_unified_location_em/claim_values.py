@@ -44,7 +44,9 @@ __all__ = [
     "exp_estimate",
     "scaled",
     "NEEDS",
+    "LETTERS",
     "needed_points",
+    "needed_letters",
     "measure_claims",
 ]
 
@@ -434,11 +436,45 @@ NEEDS = {
 }
 
 
+def _c11_letters(config: dict) -> str:
+    """C002-11's algorithms: the marks with the ULA, or with its MAP or known-velocity twin instead (then the ULA's
+    letter of the headline points is not read)."""
+    if config["ULA"] == "MAP (designation prior)" or config["velocity knowledge"] == "designated":
+        return "emk"
+    return "ue"
+
+
+#: ``{claim id: function (config) -> the algorithm letters the claim reads of its points}`` where it reads fewer than
+#: its points hold (the others read every letter): C002-7 and -8 compare the iterative marks with the ULA (not the
+#: centre of region), C002-13 counts the plain ULA's steps and C002-14 those and the plain marks'.
+LETTERS = {
+    "C002-7": lambda c: "ue",
+    "C002-8": lambda c: "ue",
+    "C002-11": _c11_letters,
+    "C002-13": lambda c: "p",
+    "C002-14": lambda c: "pq",
+}
+
+
 def needed_points(config: dict, g: dict, D, claims=None) -> list:
     """The simulation points (:class:`~.simulation.Config`) that the ``claims`` (None: all) read, without repeats,
     in the claims' order."""
     asked = _MEASURES if claims is None else [c for c in _MEASURES if c in claims]
     return list(dict.fromkeys(p for cid in asked for p in NEEDS[cid](config, g, list(D))))
+
+
+def needed_letters(config: dict, g: dict, D, claims=None) -> dict:
+    """``{point: the algorithm letters of it that the claims (None: all) read}`` (:data:`LETTERS`), the points in
+    :func:`needed_points`' order and each one's letters in its own order; a point none of whose letters is read is
+    left out. The algorithms of a point run as separate jobs on the same scenes, so leaving one out changes no
+    other's numbers."""
+    asked = _MEASURES if claims is None else [c for c in _MEASURES if c in claims]
+    read: dict = {}
+    for cid in asked:
+        keep = LETTERS[cid](config) if cid in LETTERS else None
+        for p in NEEDS[cid](config, g, list(D)):
+            read.setdefault(p, set()).update(a for a in p.algs if keep is None or a in keep)
+    return {p: "".join(a for a in p.algs if a in s) for p, s in read.items() if s}
 
 
 def measure_claims(config: dict, g: dict, res, seed: int, n_bootstrap: int, D, claims=None) -> dict:

@@ -311,9 +311,10 @@ def unified_location_em(
     stop = dict(accelerate=accelerate, tol_px=tol_px, tol_loglik=tol_loglik, max_iter=max_iter)
     # the plain ML EM runs compiled one trial at a time (the same numbers, without NumPy's per-pass cost)
     compiled = fast and prior is None and not (estimate_weights or estimate_sigma or history)
+    # (it also sets the final log-likelihood, as :func:`_final_loglik` does after the vectorised loop)
     if not (compiled and _kernels.em_trials(entries, times, static, span, state, **stop)):
         iterate(model, state, **stop, history=history)
-    _final_loglik(entries, state, times, photons)
+        _final_loglik(entries, state, times, photons)
     return _result(state, theta0, times, entries.shape, max_iter, merge_px, min_in_frame_mass)
 
 

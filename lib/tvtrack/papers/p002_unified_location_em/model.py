@@ -23,6 +23,8 @@ import numpy as np
 
 from tvtrack.render import gaussian_spot
 
+from ._photon_kernel import add_photons
+
 __all__ = [
     "SceneGeometry",
     "scene_geometry",
@@ -255,23 +257,12 @@ def simulate_counts(
         return counts
     pos = _positions(theta, times)  # (N, T, Q, 2)
     if photon_model == "fixed":
-        m = int(photons)
-        xy = pos[..., None, :] + sigma_px * rng.normal(size=(n_trials, n_frames, n_obj, m, 2))
-        keep = None
+        k, m = None, int(photons)
     else:
         k = rng.poisson(photons, size=(n_trials, n_frames, n_obj))
         m = int(k.max()) if k.size else 0
-        xy = pos[..., None, :] + sigma_px * rng.normal(size=(n_trials, n_frames, n_obj, m, 2))
-        keep = np.arange(m) < k[..., None]
-    u = np.floor(xy[..., 0] + 0.5).astype(np.int64)  # column of each photon
-    v = np.floor(xy[..., 1] + 0.5).astype(np.int64)  # row
-    inside = (u >= 0) & (u < cols) & (v >= 0) & (v < rows)
-    if keep is not None:
-        inside &= keep
-    n_idx = np.arange(n_trials)[:, None, None, None]
-    l_idx = np.arange(n_frames)[None, :, None, None]
-    flat = ((n_idx * n_frames + l_idx) * rows + v) * cols + u
-    counts += np.bincount(flat[inside], minlength=counts.size).reshape(counts.shape).astype(np.int32)
+    # each photon at pos + sigma z, counted in the nearest pixel (the first k of the m drawn per object and frame)
+    add_photons(counts, pos, rng.normal(size=(n_trials, n_frames, n_obj, m, 2)), sigma_px, k)
     return counts
 
 

@@ -9,9 +9,10 @@ Jobs are cached by ``(settings, Config)``, so a register value that changes only
 only the two-stage jobs, and a value that changes only a statistic reruns nothing (common random numbers: the
 explorer passes the same seed to every configuration of a stage). :func:`measure_batch` collects the jobs of many
 configurations and runs the missing ones in worker processes. Asked for some claims only (``claims=``), a
-measurement runs only the jobs those claims read (:data:`.claim_values.NEEDS`) and gives them the values a
-measurement of every claim gives, bit for bit (each claim bootstraps from its own stream). The claims' statistics
-live in :mod:`.claim_values`, the register's point readings in :mod:`.readings`.
+measurement runs only the jobs those claims read (:data:`.claim_values.NEEDS`; of a point only the algorithms they
+read, :data:`.claim_values.LETTERS`) and gives them the values a measurement of every claim gives, bit for bit
+(each claim bootstraps from its own stream, each algorithm runs apart on the point's scenes). The claims'
+statistics live in :mod:`.claim_values`, the register's point readings in :mod:`.readings`.
 
 Units: sigma (PSF standard deviation) for lengths, frames for time.
 """
@@ -23,7 +24,7 @@ from dataclasses import dataclass, replace
 from ...jobs import fork_pool
 from .claim_values import (
     measure_claims,
-    needed_points,
+    needed_letters,
 )
 from .readings import (
     CLOSE,
@@ -278,10 +279,10 @@ def jobs_of(
     those of the points the ``claims`` read (None: every claim), or with ``figures`` every point of the figures."""
     settings = settings_of(config, seed, scale)
     g, asked = _points(config, scale, figures)
-    points = asked if figures else needed_points(config, g, scale.separations, claims)
+    points = {c: c.algs for c in asked} if figures else needed_letters(config, g, scale.separations, claims)
     out = {}
-    for c in points:
-        for a in c.algs:
+    for c, letters in points.items():
+        for a in letters:
             job = (_job_settings(settings, a, scale, c.q), c._replace(algs=a))
             out[job] = None
     return list(out)
@@ -305,7 +306,9 @@ def run_jobs(jobs, n_workers: int = 1) -> None:
 
 
 class _Results:
-    """``res[c]``: the merged results of every letter of a point (from the cache)."""
+    """``res[c]``: the merged results of the letters of a point that ran (from the cache; a measurement of some claims
+    runs only the letters they read, :func:`.claim_values.needed_letters`, and a key of another letter is then
+    missing)."""
 
     def __init__(self, settings: StudySettings, scale: Scale):
         self.settings = settings
@@ -313,8 +316,11 @@ class _Results:
 
     def __getitem__(self, c: Config) -> dict:
         out = {}
-        for a in c.algs:
-            r = _CACHE[(_job_settings(self.settings, a, self.scale, c.q), c._replace(algs=a))]
+        jobs = [(_job_settings(self.settings, a, self.scale, c.q), c._replace(algs=a)) for a in c.algs]
+        if not any(j in _CACHE for j in jobs):
+            raise KeyError(f"no algorithm of {c} ran")
+        for job in (j for j in jobs if j in _CACHE):
+            r = _CACHE[job]
             out.update({k: v for k, v in r.items() if k != "timing"})
             out.setdefault("timing", {}).update({k: v for k, v in r["timing"].items() if v})
         return out
