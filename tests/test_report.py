@@ -421,7 +421,7 @@ def test_a_smoke_design_is_never_shown_as_robust(explored_runs, tmp_path):
 
 def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explored_runs, tmp_path):
     text = write_report(explored_runs, tmp_path / "R.md", notebooks=["001_explored", "002_smoke"]).read_text()
-    head = "\n".join(text.splitlines()[:16])
+    head = "\n".join(text.splitlines()[:18])
     assert "\nOf 5 claims checked, 2 hold, 0 hold in part and 1 does not; the runs could not decide 1" in head
     assert (
         (
@@ -433,6 +433,8 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     # moves only a part, but its record has a condition (sigma read from the raw increments) whose whole verdict
     # differs, so it is never said to stay under every change explored
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
+    assert "\n\nWhat counts as a flip: a change (another reading, setting or world) flips a verdict only when" in head
+    assert "it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided.\n" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
     assert (
         "- **001 C001-3** (not reproduced, depends: a reading; a world too)" in text

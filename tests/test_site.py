@@ -229,6 +229,11 @@ def test_index_opens_with_the_paragraph_the_glossary_and_tooltips(explored_site)
     glossary = short[short.index('id="glossary"') :]
     for word in GLOSSARY:  # every verdict and label word defined right there
         assert f">{word}</span></dt><dd>" in glossary, word
+    assert (
+        '<dt><span class="term" title="flip: a change (another reading, setting or world) flips a verdict only'
+        in glossary
+    )
+    assert "flip</span></dt><dd>decisive the other way, from no fewer runs than the default needed</dd>" in glossary
     pills = re.findall(
         r'<span class="pill [^"]*"( title="[^"]*")?>', html + (explored_site / "ledger.html").read_text()
     )

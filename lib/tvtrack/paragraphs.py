@@ -22,12 +22,11 @@ from .wording import (
     claim_verdict_at,
     differs_whatever_is_open,
     moves_verdict,
-    not_checkable_reason,
     shown_label,
     side_words,
 )
 from .flip_words import flip_kinds, under_words
-from .run_words import thin_share
+from .run_words import not_checkable_reason, thin_share
 from .value_words import value_clause
 
 __all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "label_words"]

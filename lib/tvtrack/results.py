@@ -44,6 +44,8 @@ from .paragraphs import label_words, paper_paragraph, results_summary
 from .numbers import format_measured
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
+    FLIP_SHORT,
+    FLIP_WORDS,
     GLOSSARY,
     LABEL_WORDS,
     VERDICT_WORDS,
@@ -82,6 +84,8 @@ __all__ = [
     "GLOSSARY",
     "VERDICT_WORDS",
     "LABEL_WORDS",
+    "FLIP_WORDS",
+    "FLIP_SHORT",
     "FINDINGS_ID",
     "cell_literals",
 ]

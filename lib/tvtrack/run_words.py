@@ -1,6 +1,7 @@
 """Sentences about a claim's runs (:func:`tvtrack.wording.claim_summary`): how many independent replicates would
 decide an undecided claim, where runs that lost lock carry its verdict or a flip, said over the replicates
-whose draws they were counted on, and how many explored configurations agree, flip or stay undecided."""
+whose draws they were counted on, how many explored configurations agree, flip or stay undecided, and why a
+claim cannot be checked."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ __all__ = [
     "thin_share",
     "part_name",
     "plain_text",
+    "not_checkable_reason",
 ]
 
 
@@ -105,3 +107,15 @@ def part_name(name: object) -> str:
     name with symbols (``psi_A=5, P=0.5``) as it is."""
     text = str(name)
     return text.replace("_", " ") if re.fullmatch(r"[a-z]+(?:_[a-z]+)+", text) else text  # psi_A=5 stays
+
+
+def not_checkable_reason(claim: Mapping) -> str:
+    """Why a claim cannot be checked, in one sentence: the first clause of the rule's reason or of the note,
+    whichever says more."""
+    firsts = []
+    for text in (claim.get("rule") or {}).get("reason"), claim.get("note"):
+        text = plain_text(str(text or "").strip())
+        first = re.split(r"(?<=;)\s+|(?<=\.)\s+(?=[A-Z])", text)[0].rstrip(".;") if text else ""
+        firsts.append(first)
+    reason = max(firsts, key=len) or "nothing measurable"
+    return reason[:1].lower() + reason[1:] if reason[1:2].islower() else reason  # after a colon: "In this" -> "in this"

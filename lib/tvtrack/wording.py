@@ -17,17 +17,18 @@ Conventions
 from __future__ import annotations
 
 import itertools
-import re
 from typing import Any, Mapping
 
 from .numbers import finite, number
-from .run_words import lock_sentence, lost_basis, lost_lead, part_name, plain_text
+from .run_words import lock_sentence, lost_basis, lost_lead, not_checkable_reason, part_name, plain_text
 from .run_words import runs_sentence, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
     "VERDICT_WORDS",
     "LABEL_WORDS",
+    "FLIP_WORDS",
+    "FLIP_SHORT",
     "GLOSSARY",
     "PROVISIONAL",
     "SUMMARY_CHARS",
@@ -44,7 +45,6 @@ __all__ = [
     "parts_tally",
     "main_part",
     "claim_summary",
-    "not_checkable_reason",
     "claim_fields",
     "register_phrases",
 ]
@@ -68,6 +68,13 @@ LABEL_WORDS = {
     "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }
+#: What counts as a flip (:mod:`tvtrack.labels`: a condition sized to the default's runs, decisive the other way).
+FLIP_WORDS = (
+    "a change (another reading, setting or world) flips a verdict only when, run at least as often as the default "
+    "needed to decide, it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided"
+)
+FLIP_SHORT = "decisive the other way, from no fewer runs than the default needed"
+""":data:`FLIP_WORDS` in one line (the site's glossary, with the whole as its tooltip)."""
 GLOSSARY = {**VERDICT_WORDS, **LABEL_WORDS}
 """Every verdict and label word with its meaning (the site's tooltips, the report's glossary)."""
 PROVISIONAL = "provisional"
@@ -514,18 +521,6 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
         which = "the one change" if design == 1 else f"each of the {design} changes"
         return f"Beyond the paper's default, {which} explored for it left it undecided, so nothing shows how far it extends."
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
-
-
-def not_checkable_reason(claim: Mapping) -> str:
-    """Why a claim cannot be checked, in one sentence: the first clause of the rule's reason or of the note,
-    whichever says more."""
-    firsts = []
-    for text in (claim.get("rule") or {}).get("reason"), claim.get("note"):
-        text = plain_text(str(text or "").strip())
-        first = re.split(r"(?<=;)\s+|(?<=\.)\s+(?=[A-Z])", text)[0].rstrip(".;") if text else ""
-        firsts.append(first)
-    reason = max(firsts, key=len) or "nothing measurable"
-    return reason[:1].lower() + reason[1:] if reason[1:2].islower() else reason  # after a colon: "In this" -> "in this"
 
 
 def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..results import (
+    FLIP_WORDS,
     LABEL_WORDS,
     VERDICT_WORDS,
     at_profile,
@@ -233,10 +234,14 @@ def paper_markdown(data: dict, profile: str = PAPER_PROFILE) -> list[str]:
 
 
 def glossary_markdown() -> str:
-    """The verdict and label words with their meanings: two paragraphs, for the first screen."""
+    """The verdict and label words with their meanings, and what counts as a flip: three paragraphs, for the
+    first screen."""
     verdicts = "; ".join(f"**{w}**: {m}" for w, m in VERDICT_WORDS.items())
     labels = "; ".join(f"**{md_escape(w)}**: {m}" for w, m in LABEL_WORDS.items())
-    return f"Verdicts (what the runs say): {verdicts}.\n\nLabels (how sure, and why): {labels}."
+    return (
+        f"Verdicts (what the runs say): {verdicts}.\n\nLabels (how sure, and why): {labels}.\n\n"
+        f"What counts as a flip: {FLIP_WORDS}."
+    )
 
 
 def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:

@@ -59,6 +59,8 @@ from .runfiles import DamagedRun, load_results, load_run
 from .stills import recording_still
 from .webview import DEFAULT_GRPC_PORT, DEFAULT_HOST, DEFAULT_WEB_PORT, viewer_url
 from ..results import (
+    FLIP_SHORT,
+    FLIP_WORDS,
     GLOSSARY,
     LABEL_WORDS,
     VERDICT_WORDS,
@@ -263,6 +265,8 @@ def _environment():
         glossary=GLOSSARY,
         glossary_verdicts=list(VERDICT_WORDS.items()),
         glossary_labels=list(LABEL_WORDS.items()),
+        flip_words=FLIP_WORDS,
+        flip_short=FLIP_SHORT,
         verdict_words=[v for v in ALL_VERDICTS],
         label_scope=lambda verdict, label: label_words(verdict, label)[len(label) :].strip(),
     )
