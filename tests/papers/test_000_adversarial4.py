@@ -76,8 +76,8 @@ def test_every_p_above_half_measures_p_0_7_and_flips_that_part():
 
 
 def test_pinned_ensemble_criterion_on_random_initial_estimates_fails_c000_1():
-    """The card's criterion (ensemble error variance within 10 % of its steady value by 5 T) on the paper's dashed
-    curves (random initial estimates, N(0, D11(0))): a few runs re-acquire only after many scans and carry the
+    """The ensemble-mean criterion (ensemble error variance within 10 % of its steady value by 5 T) on the paper's
+    dashed curves (random initial estimates, N(0, D11(0))): a few runs re-acquire only after many scans and carry the
     ensemble mean, so it is tens of times its steady value at 5 T. From the process means the same criterion holds.
     """
     pin = {"convergence criterion": study.ENSEMBLE_MEAN, "initial estimate": "random N(0, D11(0))"}

@@ -1,6 +1,6 @@
 """The adversarial reading of C000-2's Conclusions sentence "the coordinate error at psi_A = 20 was 2 % of the
 micro-raster size": it names no contrast and follows "the results of Figs. 1-3", so a reviewer checks it at every
-contrast of Fig. 3 (register entry "C000-2 contrasts"), not only at the card's P = 0 and 0.5."""
+contrast of Fig. 3 (register entry "C000-2 contrasts"), not only at P = 0 and 0.5 (this project's default)."""
 
 import numpy as np
 import pytest
@@ -31,7 +31,7 @@ def test_each_reading_can_reach_both_verdicts():
 
 
 def test_every_contrast_adds_both_variants_at_each_other_fig_3_contrast_at_psi_20():
-    """Planting 'the reading is ignored' (the card's three parts only), or the added parts measured at the
+    """Planting 'the reading is ignored' (the default's three parts only), or the added parts measured at the
     convention's psi_A or on another filter, fails here."""
     card = study._c2(DEFAULT, 5, SIZES)
     every = study._c2(EVERY, 5, SIZES)

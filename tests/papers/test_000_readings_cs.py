@@ -1,5 +1,5 @@
 """The adversarial reading of eq. (6) as printed: variant 1's signal-noise term sqrt(A S) X2 (c_s = A) instead of
-the card's sqrt(c_s S) X2 with c_s = N0 P / (1 - P), which makes (6) agree with eq. (2) (register entry
+this project's default sqrt(c_s S) X2 with c_s = N0 P / (1 - P), which makes (6) agree with eq. (2) (register entry
 "signal-noise scale")."""
 
 import numpy as np

@@ -1,6 +1,6 @@
 """Rule pins of paper 000 (Martyshevsky 1995): each claim's rule decides synthetic values either side of the paper's
-statement as the paper says (tests/rule_pins.py). Sentences and bands from the paper's conclusions and its card's
-claims table; the values are written here, not read from claims.py."""
+statement as the paper says (tests/rule_pins.py). Sentences from the paper's conclusions, acceptance bands
+set in this project; the values are written here, not read from claims.py."""
 
 from rule_pins import Band, Order, Trend, Unchecked, problems
 

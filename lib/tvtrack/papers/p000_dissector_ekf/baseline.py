@@ -1,5 +1,5 @@
 """The classical tracker the paper's introduction criticises: a per-scan centroid discriminator followed by a
-fixed-gain smoother (paper card 000, beyond the paper, item 6)."""
+fixed-gain smoother (a study beyond the paper)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ __all__ = ["scan_centroids", "fixed_gain_track", "tune_fixed_gain"]
 
 
 def scan_centroids(scan: DissectorScan, y, start=None):
-    """Classical time-of-arrival discriminator: the centroid of each scan's samples (card, beyond the paper, item 6).
+    """Classical time-of-arrival discriminator: the centroid of each scan's samples (a study beyond the paper).
 
     ``z_j = sum_k u_k Y_k / sum_k Y_k`` over the ``round(1/dt)`` samples of scan ``j`` (``u_k = tau_k - tau_c``,
     the pulse offset the sample sees for ``x = 0``), divided by the discriminator slope at ``x = 0``,

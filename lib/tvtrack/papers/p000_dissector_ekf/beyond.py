@@ -1,6 +1,6 @@
-"""Studies of paper 000 beyond its claims (paper card, "Beyond the paper"): the classical centroid tracker the
-introduction criticises, the near-optimal grid filter over psi_A and P (what the EKF approximation costs), the
-sensitivity to the pulse duration T_u and to beta_0, and the filter that ignores the signal noise over P.
+"""Studies of paper 000 beyond its claims (the notebook's section 9, "Beyond the paper"): the classical centroid
+tracker the introduction criticises, the near-optimal grid filter over psi_A and P (what the EKF approximation
+costs), the sensitivity to the pulse duration T_u and to beta_0, and the filter that ignores the signal noise over P.
 
 Every function reads a register configuration and a seed, draws from ``numpy.random.default_rng(seed)`` through
 :func:`.study.truth_paths` (common random numbers with the claims, whose memoised runs it reuses) and returns

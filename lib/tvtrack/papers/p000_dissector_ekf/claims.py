@@ -7,10 +7,10 @@ at the default sizes. The notebook passes its own :class:`~.study.Sizes`.
 
 C000-1's two readings of "converge fairly quickly" (register entry "convergence criterion") measure different
 quantities, so each brings its rule (:class:`tvtrack.verdicts.ByReading`): the default reading measures the share of
-runs not in lock for good by ``acquire_by_T`` (at most 0.1); the card's reading measures the ensemble sigma_x^2 over
-the scan ending at ``acquire_by_T`` over its steady value, a ratio. The card says "within 10 % of its steady state":
-"within" is two-sided, so that reading is judged by ``ratio in [0.9, 1.1]`` (an ensemble variance still 10 % below its
-steady value has not converged either).
+runs not in lock for good by ``acquire_by_T`` (at most 0.1); the other reading measures the ensemble sigma_x^2 over
+the scan ending at ``acquire_by_T`` over its steady value, a ratio. Its acceptance band, set here, is "within 10 %
+of its steady state": "within" is two-sided, so that reading is judged by ``ratio in [0.9, 1.1]`` (an ensemble
+variance still 10 % below its steady value has not converged either).
 """
 
 from __future__ import annotations
@@ -97,8 +97,9 @@ def _contrast_threshold(grid_p) -> vd.ByReading:
 
 def _two_percent(grid_p) -> vd.ByReading:
     """C000-2's rule, per reading of the contrasts at which "at psi_A = 20 the error was 2 %" holds: the RMS error
-    within [1 %, 3 %] of the micro-raster at P = 0 and at P = 0.5 for both variants (the card), or also for both
-    variants at every other Fig. 3 contrast (the adversarial reading "C000-2 contrasts" = every Fig. 3 contrast)."""
+    within [1 %, 3 %] of the micro-raster at P = 0 and at P = 0.5 for both variants (this project's default), or
+    also for both variants at every other Fig. 3 contrast (the adversarial reading "C000-2 contrasts" = every Fig. 3
+    contrast)."""
 
     def part(k):
         return InBand(f"steady RMS coordinate error / micro-raster size at psi_A = 20, {k}", 0.01, 0.03, "(ratio)")

@@ -1,14 +1,14 @@
 """C000-4 ("variant 1 is two-dimensional and needs more computation"): the arithmetic of one filter step, counted.
 
-Each variant's step is written here once as straight-line scalar code, the card's section 4 equations (E1)-(E8)
-with the corrected (E5), (E6) for variant 1 and the scalar EKF of eq. (9) for variant 2, with every constant of the
-model (``Phi``, ``G``, ``R``'s coefficients, the scan's timing table) computed before the step. Run on
-:class:`Counted` numbers, the step counts its own multiplications, additions (subtractions included), divisions
-and function evaluations (exp, sqrt); ``tests/papers/test_000_cost.py`` checks that the straight-line steps give
-the estimates and variances of the vectorised filters of :mod:`.ekf` (which use the Joseph form of the covariance
-update, algebraically the same). The counts are deterministic, so C000-4's verdict and number are too; the CPU-time
-ratio of the same steps compiled (:mod:`._kernels`, timed by :func:`.study.cost_ratio`) is the register's other
-reading.
+Each variant's step is written here once as straight-line scalar code, the paper's unnumbered filter equations
+(labelled (E1)-(E8) here, in the order printed) with the corrected (E5), (E6) for variant 1 and the scalar EKF of
+eq. (9) for variant 2, with every constant of the model (``Phi``, ``G``, ``R``'s coefficients, the scan's timing
+table) computed before the step. Run on :class:`Counted` numbers, the step counts its own multiplications, additions
+(subtractions included), divisions and function evaluations (exp, sqrt); ``tests/papers/test_000_cost.py`` checks
+that the straight-line steps give the estimates and variances of the vectorised filters of :mod:`.ekf` (which use
+the Joseph form of the covariance update, algebraically the same). The counts are deterministic, so C000-4's verdict
+and number are too; the CPU-time ratio of the same steps compiled (:mod:`._kernels`, timed by
+:func:`.study.cost_ratio`) is the register's other reading.
 """
 
 from __future__ import annotations

@@ -437,9 +437,10 @@ def simulate_integrated(
 
 
 def counts_from_pulse(scan: DissectorScan, pulse, rng: np.random.Generator):
-    """Samples from photo-electron counts with the mean pulses ``pulse`` (n_trials, n_steps) (card, beyond the
-    paper, item 5): ``n_k ~ Poisson((I_b + A S_k) dt / q)``, ``Y(k) = q n_k / dt - I_b`` with ``I_b = A (1-P)/P``
-    and ``q = N0 / I_b`` (the Gaussian model's mean ``A S_k`` and variance ``N_k / dt``, the Poisson shape).
+    """Samples from photo-electron counts with the mean pulses ``pulse`` (n_trials, n_steps) (a study beyond
+    the paper, of its Gaussian noise model at low counts): ``n_k ~ Poisson((I_b + A S_k) dt / q)``,
+    ``Y(k) = q n_k / dt - I_b`` with ``I_b = A (1-P)/P`` and ``q = N0 / I_b`` (the Gaussian model's mean ``A S_k``
+    and variance ``N_k / dt``, the Poisson shape).
 
     Returns
     -------
@@ -463,7 +464,7 @@ def simulate_photon_counts(
     score_at: str = "interval_centre",
     start=None,
 ):
-    """Truth and samples from photo-electron counts instead of Gaussian noise (card, beyond the paper, item 5).
+    """Truth and samples from photo-electron counts instead of Gaussian noise (a study beyond the paper).
 
     Shot noise is the count statistics of the photo-electrons: with background current ``I_b`` and
     charge ``q`` per electron, ``N0 = q I_b`` and ``P / (1-P) = A / I_b`` (eq. (2)), so

@@ -48,10 +48,10 @@ DETERMINES_READINGS = (AT_09, EVERY_ABOVE)
 NOISE_EFFECT, ACCOUNTING = "with the signal noise / without it", "ignoring the signal noise / accounting for it"
 C5_COMPARISONS = (NOISE_EFFECT, ACCOUNTING)
 #: The two readings of the contrasts at which C000-2's "at psi_A = 20 the error was 2 %" holds (register entry
-#: "C000-2 contrasts"; each has its own rule): the card's P = 0 and 0.5, or every contrast of Fig. 3.
+#: "C000-2 contrasts"; each has its own rule): P = 0 and 0.5 (this project's default), or every contrast of Fig. 3.
 C2_CARD, C2_EVERY = "P = 0 and 0.5", "every Fig. 3 contrast"
 C2_READINGS = (C2_CARD, C2_EVERY)
 #: The two readings of variant 1's signal-noise term (register entry "signal-noise scale"): sqrt(c_s S) X2 with
-#: c_s = N0 P/(1-P), consistent with eq. (2) (the card), or sqrt(A S) X2 as eq. (6) prints it.
+#: c_s = N0 P/(1-P), consistent with eq. (2) (this project's default), or sqrt(A S) X2 as eq. (6) prints it.
 CS_CONSISTENT, CS_LITERAL = "c_s = N0 P/(1-P)", "c_s = A, as printed"
 CS_READINGS = (CS_CONSISTENT, CS_LITERAL)

@@ -98,7 +98,7 @@ _ENTRIES = [
         CS_READINGS,
         origin="adversarial",
         why="eq. (6) and (7) print variant 1's signal-noise term as sqrt(A S) X2, eq. (2) gives the signal noise "
-        "the intensity N0 P/(1-P) S: the two agree only where A = N0 P/(1-P); the card reads c_s = N0 P/(1-P) "
+        "the intensity N0 P/(1-P) S: the two agree only where A = N0 P/(1-P); this project reads c_s = N0 P/(1-P) "
         "(the filters' model then matches the data), a reviewer reads the equation as printed, c_s = A. Measured "
         "(200 runs, psi_A = 20): variant 1 / variant 2 = 9.4 [8.5, 10.2] at P = 0, 7.7 at 0.5, 4.4 at 0.9; "
         "variant 1's RMS error 6 % of T",
@@ -134,7 +134,7 @@ _ENTRIES = [
         CONVERGENCE_READINGS[0],
         CONVERGENCE_READINGS,
         "'converge fairly quickly' (Conclusions) gives no measure: the time by which 90 % of runs are in lock for "
-        "good, or the card's ensemble-mean sigma_x^2 within 10 % of its steady value",
+        "good, or (this project's other reading) the ensemble-mean sigma_x^2 within 10 % of its steady value",
     ),
     Entry(
         "lock threshold",
@@ -271,7 +271,7 @@ _ENTRIES = [
         C2_READINGS,
         origin="adversarial",
         why="C000-2 (Conclusions): 'the results of Figs. 1-3 show fairly fast convergence ... the coordinate error at "
-        "psi_A = 20 was 2 % of the micro-raster size' names no contrast; the card checks P = 0 and 0.5, a reviewer "
+        "psi_A = 20 was 2 % of the micro-raster size' names no contrast; this project checks P = 0 and 0.5, a reviewer "
         "the whole of Fig. 3, whose contrasts the same paragraph summarises (P up to 0.9). Measured (300 runs, two "
         "seeds): at P = 0.9 variant 2's RMS error is 2.8-2.9 %, variant 1's 3.2-3.3 % [3.2, 3.3], above the 3 % edge",
     ),
@@ -283,7 +283,7 @@ _ENTRIES = [
         origin="adversarial",
         why="C000-5 (Conclusions): 'for P < 0.5 accounting for the non-stationary noise component of the dissector "
         "does not substantially affect the accuracy; for P > 0.5 [it] already substantially determines the "
-        "accuracy': the card reads the effect of the signal noise itself (Fig. 3's sigma_x^2 / sigma_x^2*); the "
+        "accuracy': the default reads the effect of the signal noise itself (Fig. 3's sigma_x^2 / sigma_x^2*); the "
         "sentence's subject is 'accounting for' the component and its paragraph opens with 'the results of the "
         "study of the algorithms' efficiency', so a reviewer compares a filter that ignores the signal noise with "
         "variant 2, which accounts for it, on the same data, in both halves (the same thresholds: at most 1.3 at "
@@ -515,9 +515,10 @@ def _plain(entry: Entry) -> Entry:
 
 
 #: Joint conditions the explorer always measures (a joint sample may miss them). The adversarial review
-#: (docs/validity/000.md): the card's convergence criterion on the paper's own dashed curves of
-#: Fig. 1 (random initial estimates): the ensemble error variance at 5 T is 40-160 times its steady value (300 runs,
-#: psi_A = 20, P = 0.5; a few runs take 9-16 scans to re-acquire), so C000-1 is not reproduced under that pair.
+#: (docs/validity/000.md): the ensemble-mean convergence criterion (within 10 % of its steady value by 5 T) on the
+#: paper's own dashed curves of Fig. 1 (random initial estimates): the ensemble error variance at 5 T is 40-160 times
+#: its steady value (300 runs, psi_A = 20, P = 0.5; a few runs take 9-16 scans to re-acquire), so C000-1 is not
+#: reproduced under that pair.
 PINNED = [{"convergence criterion": CONVERGENCE_READINGS[1], "initial estimate": "random N(0, D11(0))"}]
 
 REGISTER = Register([_plain(e) for e in with_kinds(_ENTRIES, KINDS)], PINNED)

@@ -26,7 +26,7 @@ class Sizes:
     dt_duration_T : float        run length of the check (its steady window: the last third)
     grid_trials, grid_points     runs and nodes of the grid filter (only where a reading asks for it)
     lock_factor : float          out of lock: a scan's RMS error above lock_factor x the steady sigma
-    acquire_by_T : float         "converges fairly quickly": within this many scans (card: 5 T)
+    acquire_by_T : float         "converges fairly quickly": within this many scans (this project's choice: 5 T)
     """
 
     n_trials: int = 600
