@@ -1,6 +1,6 @@
 """Rule pins of paper 001 (Fisenko et al. 2008): each claim's rule decides synthetic values either side of the
-paper's statement as the paper says (tests/rule_pins.py). Sentences and bands from the paper's text and its card's
-claims table; the values are written here, not read from claims.py."""
+paper's statement as the paper says (tests/rule_pins.py). Sentences from the paper's text, bands as this
+project's claims set them; the values are written here, not read from claims.py."""
 
 import pytest
 from rule_pins import Band, Order, Trend, Unchecked, problems

@@ -124,7 +124,7 @@ def test_tradeoff_parts_are_the_dynamic_and_random_errors_of_the_figure_study_ru
     assert m["faster compensation"].value == pytest.approx(
         bias2["2nd order without the switch"] / bias2["adaptive"], rel=1e-9
     )
-    # the card's reading: |mean| + SD at 12 s (the last frame before the loss), channels averaged
+    # the '|bias| + RMS at 12 s' reading: |mean| + SD at 12 s (the last frame before the loss), channels averaged
     e12 = np.random.default_rng(0).normal(2.0, 3.0, (4000, 2))
     assert error_functional(e12.mean(0), (e12**2).mean(0), "|bias| + SD") == pytest.approx(5.0, rel=0.05)
 

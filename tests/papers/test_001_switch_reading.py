@@ -1,5 +1,5 @@
 """C001-4's switch reading: the scheme's errors with its detector's switch (the default) or with the switch forced at
-the paper's detection time, as Fig. 4 is computed (card §4.5), and how much of the random error the detection
+the paper's detection time, as Fig. 4 is computed here, and how much of the random error the detection
 time's spread makes."""
 
 import sys

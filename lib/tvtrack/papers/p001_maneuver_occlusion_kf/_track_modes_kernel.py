@@ -7,9 +7,10 @@ frames, as scalar code compiled by numba (no ``fastmath``), the trials spread ov
 bound by memory bandwidth: each trial-frame writes 43 bytes of outputs, 54 MB for the 001 benchmark's 2000 x 625
 (about 9.5 ms on one core of the 2-core machine, 4 ms on two). The thread count is numba's
 (``NUMBA_NUM_THREADS``); ``tvtrack reproduce`` and the sweep runner give each notebook kernel ``cores // jobs``.
-They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1 and the card
-§4.4-4.5 recursions), tested equal to the NumPy path (``tests/papers/test_001_track_modes_jit.py``; every test of
-``tests/papers/test_001_track_modes.py`` runs with both engines):
+They are a second implementation of the same equations (Fisenko et al. 2008, eq. 1, eq. 14, E1, with the mode
+steps and covariance recursion set out here), tested equal to the NumPy path
+(``tests/papers/test_001_track_modes_jit.py``; every test of ``tests/papers/test_001_track_modes.py`` runs with both
+engines):
 
 - :func:`kernel_python`: everything, with the noise-driven covariance (gates, variances, restart C's Kalman
   gains); writes the gains per frame;
@@ -92,7 +93,7 @@ def _count(seen, t, gap_start, k, row, cap, since):
 @_step
 def _congruence(X, M, work, out):
     """``out = X M X^T`` for 3 x 3 arrays (``work``: ``X M``), summed in index order (the covariance recursions
-    of card §4.5)."""
+    derived here)."""
     for i in range(3):
         for j in range(3):
             s = 0.0
@@ -109,7 +110,7 @@ def _congruence(X, M, work, out):
 
 @_step
 def _predict_covariance(F, P, A, Pp):
-    """Noise-driven covariance prediction ``Pp = F P F^T`` (card §4.5; no process noise).
+    """Noise-driven covariance prediction ``Pp = F P F^T`` (derived here; no process noise).
 
     Parameters
     ----------
@@ -162,7 +163,7 @@ def _gains_used(seen, K0, K1, K2):
 
 @_step
 def _correct_covariance(h, Pp, sigma2, c0, c1, c2, A, IKh, P):
-    """Covariance after the correction with the gains used ``c`` (card §4.5):
+    """Covariance after the correction with the gains used ``c`` (exact for any gains; derived here):
     ``P = (I - c h) Pp (I - c h)^T + sigma² c c^T``, symmetrised.
 
     Parameters
@@ -321,9 +322,9 @@ def _least_squares_fit(z, b, t, n, pinv_w):
 
 @_step
 def _restart_state(restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2):
-    """The state and counters after a switch to TRACK3 (card §4.4 step 4): restart A keeps ``x, v``, sets ``a = 0``
-    and continues the 3rd-order law at ``restart_k``; B fits a quadratic (:func:`_least_squares_fit`) and continues
-    at ``w``; C keeps ``x, v``, sets ``a = 0`` and starts at the bound's row with ``k = 0``.
+    """The state and counters after a switch to TRACK3 (restart rules chosen here): restart A keeps ``x, v``, sets
+    ``a = 0`` and continues the 3rd-order law at ``restart_k``; B fits a quadratic (:func:`_least_squares_fit`) and
+    continues at ``w``; C keeps ``x, v``, sets ``a = 0`` and starts at the bound's row with ``k = 0``.
 
     Returns
     -------
@@ -342,7 +343,7 @@ def _restart_state(restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3,
 def _switch(
     restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced, sum_new, detected
 ):
-    """The switch to TRACK3 at an alarm at frame ``t`` (card §4.4 step 4), common to both kernels: the restarted
+    """The switch to TRACK3 at an alarm at frame ``t`` (the paper's Fig. 1 text), common to both kernels: the restarted
     state, count and gain row (:func:`_restart_state`); the detector's new-window sum takes the restart's velocity
     jump (elements/frame) unless the switch was forced; ``detected`` becomes ``t`` at the first alarm.
 
@@ -456,7 +457,7 @@ def kernel_python(
             )  # fmt: skip
             out_S[b, t] = S
             out_c[b, t] = c
-            if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
+            if alarm:  # switch to TRACK3 with raised gains (the paper's Fig. 1 text)
                 x0, x1, x2, k, row, sum_new, detected = _switch(
                     restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced,
                     sum_new, detected,
@@ -513,7 +514,7 @@ def kernel_fast_python(
             )  # fmt: skip
             out_S[b, t] = S
             out_c[b, t] = c
-            if alarm:  # switch to TRACK3 with raised gains (card §4.4 step 4)
+            if alarm:  # switch to TRACK3 with raised gains (the paper's Fig. 1 text)
                 x0, x1, x2, k, row, sum_new, detected = _switch(
                     restart, z, b, t, n, kmax, kb3, restart_k, restart_row, cap3, pinv_w, x0, x1, x2, forced,
                     sum_new, detected,

@@ -1,10 +1,10 @@
 """The NumPy engine of :func:`~.track_modes.run_track_modes` (``engine="numpy"``, the fallback without numba): the
-mode logic of Fisenko et al. (2008) (eq. 1, eq. 14, E1 and the card §4.4-4.5 recursions) batched over trials, one
-Python loop over the frames of in-place operations on contiguous ``(B,)`` arrays (:class:`_FrameLoop`). The
-compiled per-trial kernels of :mod:`._track_modes_kernel` are a second implementation of the same steps, tested
-equal to this one (``tests/papers/test_001_track_modes_jit.py``). The covariance correction is the core's Joseph
-update (:func:`tvtrack.filters.kalman.joseph_covariance`); the state update stays inline, a fixed-gain table of eq. 1
-with its modes, not a Kalman filter's predict/update."""
+mode logic of Fisenko et al. (2008) (eq. 1, eq. 14, E1, with the mode steps and covariance recursion set out
+here) batched over trials, one Python loop over the frames of in-place operations on contiguous ``(B,)`` arrays
+(:class:`_FrameLoop`). The compiled per-trial kernels of :mod:`._track_modes_kernel` are a second implementation of
+the same steps, tested equal to this one (``tests/papers/test_001_track_modes_jit.py``). The covariance correction
+is the core's Joseph update (:func:`tvtrack.filters.kalman.joseph_covariance`); the state update stays inline, a
+fixed-gain table of eq. 1 with its modes, not a Kalman filter's predict/update."""
 
 from __future__ import annotations
 
@@ -146,9 +146,10 @@ class _FrameLoop:
             self.since_visible = np.where(seen, self.since_visible + 1, 0)
 
     def propagate_covariance(self, t: int, seen, K0, K1, K2):
-        """Noise-driven covariance (card §4.5): predict, write the gate ``[F P F^T]_00 + sigma²``, correct with the
-        gains in force; restart C's Kalman gains replace the table's ``K0, K1, K2`` (each (B,) or a scalar) until
-        ``kappa1`` reaches the 3rd-order bound. Returns the gains in force."""
+        """Noise-driven covariance (derived here; no process noise): predict, write the gate
+        ``[F P F^T]_00 + sigma²``, correct with the gains in force; restart C's Kalman gains replace the table's
+        ``K0, K1, K2`` (each (B,) or a scalar) until ``kappa1`` reaches the 3rd-order bound. Returns the gains in
+        force."""
         F, h, s2 = self.F, self.h, self.sigma_eps**2
         Pp = F @ self.P @ F.T
         self.out_gate[t] = Pp[:, 0, 0] + s2
@@ -218,8 +219,8 @@ class _FrameLoop:
         return testing & (np.abs(S) > c)
 
     def switch(self, t: int, alarm) -> None:
-        """Switch the alarmed trials to TRACK3 with raised gains (card §4.4 step 4), restart A, B or C
-        (:class:`TrackModeConfig`)."""
+        """Switch the alarmed trials to TRACK3 with raised gains (the paper's Fig. 1 text), restart A, B or C
+        (:class:`TrackModeConfig`; the restart rule is this project's choice)."""
         cfg, p = self.cfg, self.p
         self.detected_at = np.where(alarm & (self.detected_at < 0), t, self.detected_at)
         x1_before = self.x1

@@ -73,8 +73,8 @@ def optimum_location(cur: dict) -> dict:
 
 
 def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=None, covariance=True):
-    """The scheme with the switch forced at ``switch_s`` (the filter is then linear, card §4.5), on the noise-free
-    truth of channel x (``z=None``) or on measurements ``z``."""
+    """The scheme with the switch forced at ``switch_s`` (the filter is then linear; this project's Fig. 4
+    computation), on the noise-free truth of channel x (``z=None``) or on measurements ``z``."""
     k_switch = int(round(float(config["switch_s"]) * sc.fps)) + 1
     cfg = TrackModeConfig(
         k_bound2=int(config["k_bound2"]),
@@ -90,10 +90,10 @@ def forced_output(sc: Scenario, config: dict, sizes: dict, kb3: int, visible, z=
 
 def prediction_error(sc: Scenario, config: dict, sizes: dict, kb3: int, f_loss: int, f_back: int):
     """Noise-free dynamic error and RMS (elements) of the prediction at ``f_back`` after a loss ``[f_loss, f_back)``
-    (card §4.5). The RMS is the covariance recursion's for white errors (also the RMS of the quantised and
-    Student-t models, white with the same variance); for ``config["noise"]`` = AR(1) it is exact for the correlated
-    errors: the forced filter is linear, so the prediction error is ``w @ e`` with ``w`` its response to unit
-    impulses and variance ``sigma² w R w``, ``R_ij = 0.5^|i-j|``."""
+    (this project's Fig. 4 computation). The RMS is the covariance recursion's for white errors (also the RMS of the
+    quantised and Student-t models, white with the same variance); for ``config["noise"]`` = AR(1) it is exact for
+    the correlated errors: the forced filter is linear, so the prediction error is ``w @ e`` with ``w`` its response
+    to unit impulses and variance ``sigma² w R w``, ``R_ij = 0.5^|i-j|``."""
     vis = (sc.frames < f_loss) | (sc.frames >= f_back)
     o = forced_output(sc, config, sizes, kb3, vis)
     dyn = float(predict_ahead(o.x[f_back - 1], 1) - sc.truth[0, f_back, 0])
@@ -219,7 +219,7 @@ def agreement_word(p: float, level: float = 0.05) -> str:
 
 def unbiased_prediction_bound(sc: Scenario, f_first: int, f_last: int, f_pred: int, sigma_eps: float = 1.0) -> float:
     """SD bound for any *unbiased* predictor of the position at ``f_pred`` from the measurements ``f_first`` ..
-    ``f_last`` of a quadratic in white noise (the least-squares fit is the MVU estimator, card §8.3), elements."""
+    ``f_last`` of a quadratic in white noise (the least-squares fit is the MVU estimator), elements."""
     lags = np.arange(f_last - f_first, -1, -1, dtype=float)
     H = np.stack([np.ones_like(lags), -lags, 0.5 * lags**2], axis=-1)
     m = f_pred - f_last

@@ -51,9 +51,9 @@ ENTRIES = (
         "reading",
         1e-3,
         (1e-4, 1e-3, 1e-2),
-        "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (card) gives few false alarms in the "
-        "5 s before the manoeuvre; a decade either side. C001-1, -2 and -3 are each judged at this alpha (their "
-        "rates in multiples of it)",
+        "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (this project's choice) gives few false "
+        "alarms in the 5 s before the manoeuvre; a decade either side. C001-1, -2 and -3 are each judged at this "
+        "alpha (their rates in multiples of it)",
         title="false-alarm probability per test alpha the detector is designed for (and C001-1 to -3 judged at)",
         phrases={
             1e-4: "detector designed for one false alarm in 10,000 tests",
@@ -97,7 +97,7 @@ ENTRIES = (
         "reading",
         25,
         (10, 25, 50),
-        "half-window n = T f not stated; 25 frames (1 s, card) matches the 0.5 s delay; 0.4 s and 2 s",
+        "half-window n = T f not stated; 25 frames (1 s, chosen here) matches the 0.5 s delay; 0.4 s and 2 s",
         title="detector half-window n (frames per window)",
         phrases={
             10: "detector windows of 10 frames (0.4 s at 25 Hz)",
@@ -110,7 +110,7 @@ ENTRIES = (
         "reading",
         50,
         (30, 50, 100),
-        "2nd-order gain bound not stated ('narrow band'); 50 frames (card) matches the 0.5 s delay",
+        "2nd-order gain bound not stated ('narrow band'); 50 frames (chosen here) matches the 0.5 s delay",
         title="frame at which the 2nd-order filter's gains stop decreasing (k_b2)",
         phrases={
             30: "2nd-order gains frozen at frame 30 (wider band)",
@@ -218,13 +218,14 @@ ENTRIES = (
         RMS_STATISTICS,
         "C001-4: 'sped up the transient of the dynamic error and minimised the RMS (СКО)' keeps the two errors "
         "apart (Fig. 4's curves 1 and 2 too), so the RMS is the random error (SD over runs); the total mean "
-        "square (bias and random together) and the card's acceptance '|bias| + RMS at 12 s' are the other readings",
+        "square (bias and random together) and '|bias| + RMS at 12 s' (the acceptance first set here) are the "
+        "other readings",
         title="what 'the gain law minimises the RMS error' measures (C001-4)",
         phrases={
             "random error (SD)": "RMS read as the random error (spread over runs), the dynamic error judged apart",
             "total mean square": "RMS read as the total mean-square error (dynamic and random together)",
             "|bias| + RMS at 12 s": "RMS read as |mean error| + random error at 12 s, when the object is lost "
-            "(the card's acceptance)",
+            "(the acceptance first set here)",
         },
     ),
     Entry(
@@ -364,10 +365,10 @@ ENTRIES = (
         "reading",
         "detected",
         ("detected", "forced at the detection time"),
-        "C001-4 credits the gain law with the smaller RMS; the paper's Fig. 4 and card §4.5 compute the errors with "
-        "the switch at the paper's detection time 5.5 s (the filter then linear), while in the scheme the switch "
-        "comes when the detector fires, so the spread of the detection time enters the random error; the text "
-        "does not say which error the sentence means",
+        "C001-4 credits the gain law with the smaller RMS; Fig. 4 is computed here with the switch at the paper's "
+        "detection time 5.5 s (the filter then linear), while in the scheme the switch comes when the detector "
+        "fires, so the spread of the detection time enters the random error; the text does not say which error the "
+        "sentence means",
         "adversarial",
         title="when the scheme switches to 3rd order in C001-4's errors",
         phrases={
@@ -424,12 +425,12 @@ ENTRIES = (
         "reading",
         "el/frame²",
         tuple(ACCEL_UNITS),
-        "'acceleration 0.2 raster elements per frame': per frame² (card), or 0.2 el/frame of velocity gained per "
-        "second, the paper giving every time in seconds (0.008 el/frame² at 25 Hz)",
+        "'acceleration 0.2 raster elements per frame': per frame² (this project's default), or 0.2 el/frame of "
+        "velocity gained per second, the paper giving every time in seconds (0.008 el/frame² at 25 Hz)",
         "adversarial",
         title="unit of the paper's 'acceleration 0.2 raster elements per frame'",
         phrases={
-            "el/frame²": "acceleration of 0.2 element per frame² (the card's reading)",
+            "el/frame²": "acceleration of 0.2 element per frame² (this project's default reading)",
             "el/frame per s": "acceleration of 0.2 element/frame gained per second (25 times smaller)",
         },
     ),
@@ -438,8 +439,8 @@ ENTRIES = (
         "regime",
         "v -6, a -0.2",
         tuple(CHANNEL_Y),
-        "the paper simulated one channel; the second channel's motion is the card's; a turn mostly in x gives y a "
-        "quarter of x's acceleration (C001-1 pools both channels)",
+        "the paper simulated one channel; the second channel's motion is this project's choice; a turn mostly in x "
+        "gives y a quarter of x's acceleration (C001-1 pools both channels)",
         "adversarial",
         title="motion of the second (elevation) channel",
         phrases={

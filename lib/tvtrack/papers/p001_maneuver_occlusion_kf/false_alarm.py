@@ -1,5 +1,5 @@
 """Per-test false-alarm rate of a fixed threshold on the statistic S of eq. (14), from its closed form where one
-exists (Fisenko et al. 2008; card §4.3), so that C001-3 never rests on a zero-events bound.
+exists (derived here; Fisenko et al. 2008), so that C001-3 never rests on a zero-events bound.
 
 S_t is linear in the measurements: ``S_t = sum_j H[j, t] z_j`` with ``H`` the TRACK2 filter's impulse response
 passed through the two windows (:func:`statistic_impulse_response`). Then, for a threshold ``c_t``:

@@ -9,10 +9,10 @@ likelihood ratio of ``z`` is monotone in ``sum z_k``, so the invariant test is (
     |S| > c(alpha),   S = sum_{k=1}^n (v_1k - v_2k).
 
 Under no manoeuvre ``S ~ N(0, sigma_S^2)`` and ``c(alpha) = sigma_S Phi^{-1}(1 - alpha/2)``
-(card §4.3). ``sigma_S`` is computed
+(derived here from eq. 14). ``sigma_S`` is computed
 
 * as the paper assumes, from independent samples: ``sigma_S^2 = 2 n sigma_v^2`` (eq. 12 with
-  the card's factor-2 correction), :func:`variance_independent`;
+  the factor 2 it misses: ``var z_k = 2 sigma_v^2``), :func:`variance_independent`;
 * correctly, from the autocovariance ``r(m)`` of the stationary velocity error,
   :func:`variance_stationary` (``r`` from :func:`tvtrack.filters.alphabeta.lagged_covariances`);
 * exactly for a time-varying gain schedule by a state-space recursion on the filter's error
@@ -97,7 +97,7 @@ def window_sum_of_squares(v, n: int) -> np.ndarray:
     """``Q_t = sum_k (v_1k - v_2k)^2`` over the two windows ending at ``t`` (last axis).
 
     The invariant GLR statistic against an *arbitrary* offset vector between the windows
-    (card §3, "gap in the derivation"), for comparison with :func:`window_statistic`, which
+    (derived here), for comparison with :func:`window_statistic`, which
     is optimal only against a common offset. NaN for ``t < 2n-1``.
     """
     n = _check_window(n)
@@ -126,7 +126,7 @@ def variance_independent(n: int, sigma_v: float) -> float:
 
 
 def variance_stationary(r, n: int) -> float:
-    """``var S`` for a stationary sequence with autocovariance ``r(m)``, m = 0..2n-1 (card §4.3b)::
+    """``var S`` for a stationary sequence with autocovariance ``r(m)``, m = 0..2n-1 (derived here)::
 
         var S = 2 [n r(0) + 2 sum_{m=1}^{n-1} (n-m) r(m)] - 2 sum_{L=1}^{2n-1} (n - |L-n|) r(L)
 
@@ -147,7 +147,7 @@ def variance_stationary(r, n: int) -> float:
 
 def velocity_autocovariance(K, sigma_eps: float, max_lag: int) -> np.ndarray:
     """``r(m) = [A^m P]_{vv}``, m = 0..max_lag: autocovariance of the velocity error of the
-    frozen filter with gains ``K`` (card §4.2). Shape (max_lag+1,)."""
+    frozen filter with gains ``K`` (its Lyapunov equation). Shape (max_lag+1,)."""
     return lagged_covariances(K, sigma_eps, max_lag)[:, 1, 1]
 
 
@@ -174,13 +174,13 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     """Exact ``sigma_S(t)`` for a filter with time-varying gains started at frame 0.
 
     The noise part of the filter's error obeys ``e_k = A_k e_{k-1} + K_k eps_k`` with
-    ``A_k = (I - K_k h) F`` (card §4.5), and ``P_k = cov(e_k)`` follows the covariance recursion
+    ``A_k = (I - K_k h) F``, and ``P_k = cov(e_k)`` follows the covariance recursion
     (:func:`tvtrack.filters.alphabeta.error_covariance_sequence`). For each window end ``t`` the
     state is augmented with the two running window sums of the output velocity,
     ``y = (e, s_old, s_new)``; starting from ``cov(y) = blockdiag(P_{t-2n}, 0, 0)`` the ``2n``
     frames of the windows propagate ``cov(y) <- M cov(y) M^T + sigma_eps^2 L L^T`` (``M`` adds
     the new velocity ``[A e]_v`` to the sum whose window the frame belongs to), and then
-    ``sigma_S(t)^2 = var(s_old - s_new)`` (card §4.3, "time-varying gains"). All window ends are
+    ``sigma_S(t)^2 = var(s_old - s_new)``. All window ends are
     propagated together, so memory is linear in the run length (``T (d+2)^2`` numbers) and the
     work is ``2n`` batched steps.
 
@@ -230,7 +230,7 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
 
 
 def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: float = 1.0) -> np.ndarray:
-    """Exact ``c(alpha)`` per *frame* for the TRACK2 filter of a run with losses (card §4.3, time-varying gains).
+    """Exact ``c(alpha)`` per *frame* for the TRACK2 filter of a run with losses (derived here for time-varying gains).
 
     While lost the filter coasts (zero gains, (E1)) and its error grows; after re-arming the window sums carry
     that error for many frames, so a threshold computed for a run without loss (indexed by the measurement count)

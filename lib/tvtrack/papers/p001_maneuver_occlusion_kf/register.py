@@ -133,7 +133,7 @@ FIXED_BY_PAPER = {
 #: ... and the project's grids, which the paper does not fix: each in the unit the paper's line decides, with that
 #: line. A grid sets where a curve is sampled, not a reading (its points are the curves' own).
 PROJECT_GRIDS = {
-    "kb3_grid": "the project's grid of the 3rd-order gain bound, in frames (the card's 20-200): the paper's Fig. 4 "
+    "kb3_grid": "the project's grid of the 3rd-order gain bound, in frames (20-200): the paper's Fig. 4 "
     "axis is 'the number of the frame at which the lower bound of the filter's coefficients is set' (Fig. 4 text), "
     "so the bound is counted in frames whatever the frame rate; the axis' range is not in the text (the figure "
     "itself is lost)",

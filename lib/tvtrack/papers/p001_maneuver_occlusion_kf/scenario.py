@@ -81,8 +81,8 @@ TEST_CADENCES = ("every frame", "every n frames", "every 2n frames")
 RMS_SPANS = ("4 s to loss", "onset to loss", "visible after 4 s", "end of the loss")
 
 
-#: The spans the comparators are tuned for: the register's, and the last frame before the loss (the card's
-#: "|bias| + RMS at 12 s" reading of C001-4).
+#: The spans the comparators are tuned for: the register's, and the last frame before the loss (the
+#: "|bias| + RMS at 12 s" reading of C001-4, the acceptance first set here).
 TUNING_SPANS = RMS_SPANS + ("last frame before the loss",)
 
 
@@ -95,8 +95,9 @@ MANOEUVRES = {"constant acceleration": None, "2 s acceleration": 2.0}
 CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
 
 
-#: The unit of the paper's "acceleration 0.2 raster elements per frame": el/frame² (the card), or a velocity change of
-#: 0.2 el/frame per second (the paper's times are in seconds): the factor on the accelerations of ``MOTION``.
+#: The unit of the paper's "acceleration 0.2 raster elements per frame": el/frame² (this project's default), or a
+#: velocity change of 0.2 el/frame per second (the paper's times are in seconds): the factor on the accelerations of
+#: ``MOTION``.
 ACCEL_UNITS = {"el/frame²": 1.0, "el/frame per s": 1.0 / FPS_REF}
 
 
@@ -198,7 +199,7 @@ def scenario(
 
 def config_scenario(config: dict) -> Scenario:
     """The scenario of a configuration: its frame rate, its manoeuvre (``MANOEUVRES``; default constant) and the
-    second channel's motion (``CHANNEL_Y``; default the card's) and the acceleration's unit (``ACCEL_UNITS``)."""
+    second channel's motion (``CHANNEL_Y``; default this project's) and the acceleration's unit (``ACCEL_UNITS``)."""
     u = ACCEL_UNITS[config.get("accel_unit", "el/frame²")]
     return scenario(
         config["frame_rate_hz"],
@@ -231,7 +232,7 @@ def measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_
 
 
 def detector_threshold(reading: str, visible, k_bound2: int, n: int, alpha: float, sigma_eps: float = 1.0):
-    """``c(alpha)`` per frame (T,) under one reading of the paper's sigma_S (card §4.3).
+    """``c(alpha)`` per frame (T,) under one reading of the paper's sigma_S (eq. 14's threshold).
 
     ``"exact"``: time-varying gains including any coast (:func:`track2_thresholds`); ``"stationary"``: the
     correlated Lyapunov value; ``"independent"``: the paper's independence with the filter-output velocity RMS;

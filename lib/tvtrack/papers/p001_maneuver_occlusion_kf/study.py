@@ -427,8 +427,9 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     """Delay against per-run false alarms of the paper's |S| (several half-windows), Q and three innovation tests
     (chi-square over n frames, two-sided CUSUM with drift 0.5, the Willsky-Jones GLR for a velocity jump) on the
     TRACK2 filter: thresholds from no-manoeuvre runs of ``fa_duration_s`` for each per-run false-alarm target,
-    median first-alarm delay after the onset on the scenario's runs up to the loss (card §8.1). The no-manoeuvre
-    runs last at least as long as those (a shorter ``fa_duration_s`` has no null statistic for the last frames).
+    median first-alarm delay after the onset on the scenario's runs up to the loss (a study beyond the paper). The
+    no-manoeuvre runs last at least as long as those (a shorter ``fa_duration_s`` has no null statistic for the last
+    frames).
 
     Every detector is armed by the configuration's arming rule for its own window (:func:`arming_count`), so each
     tests before the onset; a detector first armed after the onset would "detect" at its first test in every run.

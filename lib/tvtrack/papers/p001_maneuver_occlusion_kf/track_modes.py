@@ -1,8 +1,8 @@
 """Per-channel track mode logic of Fisenko et al. (2008), batched over trials and channels.
 
-Modes (card §4.4): ``TRACK2`` (alpha-beta, narrow band), ``TRACK3`` (alpha-beta-gamma entered
-on a manoeuvre detection with raised gains decaying to a lower bound) and ``COAST`` (object lost:
-zero gains, pure prediction (E1)). Every frame::
+Modes (names given here to the scheme of the paper's Fig. 1): ``TRACK2`` (alpha-beta, narrow band), ``TRACK3``
+(alpha-beta-gamma entered on a manoeuvre detection with raised gains decaying to a lower bound) and ``COAST``
+(object lost: zero gains, pure prediction (E1)). Every frame::
 
     visible, TRACK2: k += 1; x = F x + K2(min(k, kb2)) (Z - h F x)   (eq. 1), push v into the
                      detector window; if armed and |S| > c: switch to TRACK3 (restart A, B or C)
@@ -11,7 +11,7 @@ zero gains, pure prediction (E1)). Every frame::
 
 The state is always ``(x, v, a)``; in TRACK2 the acceleration stays 0 (its gain is 0), so
 ``F`` of order 2 acts as the order-1 ``F``. Alongside the estimate the noise-driven error
-covariance (card §4.5 recursion) is propagated per trial, giving the predicted gate at
+covariance (the recursion derived here) is propagated per trial, giving the predicted gate at
 reappearance. Choices the paper leaves open are fields of :class:`TrackModeConfig`.
 """
 
@@ -35,7 +35,7 @@ COAST, TRACK2, TRACK3 = _kernel.COAST, _kernel.TRACK2, _kernel.TRACK3
 
 @dataclass(frozen=True)
 class TrackModeConfig:
-    """Open choices of the mode logic (defaults = the card's suggestions, §5).
+    """Open choices of the mode logic (defaults = this project's choices).
 
     Attributes
     ----------
@@ -77,7 +77,7 @@ class TrackModeConfig:
         (the window must not span predicted velocities); default ``2 window``.
     force_switch_k : int or None
         Switch to TRACK3 at this TRACK2 count regardless of the detector (which is then off):
-        makes the filter linear, for the Fig. 4 computations (card §4.5).
+        makes the filter linear, for this project's Fig. 4 computations.
     """
 
     k_bound2: int = 50

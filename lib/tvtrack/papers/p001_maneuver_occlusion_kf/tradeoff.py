@@ -6,8 +6,8 @@ minimised the RMS (СКО) error", two errors the paper keeps apart (Fig. 4's cu
   comparator's over the scheme's).
 * The **RMS** the gain law minimises is read by the register entry ``rms_statistic``: the random error (the SD over
   runs at each frame, mean square over ``rms_span``; the paper's СКО, default), the total mean square over the
-  span (bias and random together; the earlier reading), or the card's acceptance ``|bias| + RMS at 12 s`` (at the
-  last frame before the loss). Each ``min RMS vs <comparator>`` part is the comparator's value over the
+  span (bias and random together; the earlier reading), or ``|bias| + RMS at 12 s``, the acceptance first set here
+  (at the last frame before the loss). Each ``min RMS vs <comparator>`` part is the comparator's value over the
   scheme's.
 
 Every ratio is of functionals of the per-frame mean and second moment over runs, so its interval is a paired
@@ -174,7 +174,7 @@ def switch_share(config: dict, seed: int, sizes: dict) -> dict:
 
 def _switch(config: dict, sc) -> dict:
     """The scheme's switch under the reading ``C001-4 switch``: when its detector fires (``{}``), or forced at
-    ``switch_s`` (the paper's detection time, 5.5 s), as Fig. 4 is computed (card §4.5; :func:`.curves.forced_output`)."""
+    ``switch_s`` (the paper's detection time, 5.5 s), as Fig. 4 is computed here (:func:`.curves.forced_output`)."""
     if config.get("C001-4 switch", "detected") == "detected":
         return {}
     return {"force_switch_k": int(round(float(config["switch_s"]) * sc.fps)) + 1}
