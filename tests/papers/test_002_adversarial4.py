@@ -94,7 +94,7 @@ def test_at_half_a_sigma_the_ula_sits_far_below_the_crb_and_far_above_the_van_tr
 
 def test_fig1c_pair_the_influence_of_pixel_size_does_not_weaken_from_five_to_ten_frames():
     """Fig 1c's pixel pair at d = 2 sigma: the variance ratio 5 / 3 sigma grows from T = 5 to T = 10 (measured
-    4.46 -> 6.95 at 300 trials, seed 11), while the card's 3 / 1 sigma falls (2.81 -> 2.54)."""
+    4.46 -> 6.95 at 300 trials, seed 11), while the default 3 / 1 sigma falls (2.81 -> 2.54)."""
     rng = np.random.default_rng(0)
     v = {(p, T): claim_values.errors(_ula_at(2.0, p, T, 120), "ula", "first") for p in (3.0, 5.0) for T in (5, 10)}
     r5, r10 = (claim_values.gain(v[5.0, T], v[3.0, T], rng, 500, "variance", paired=False) for T in (5, 10))

@@ -1,6 +1,6 @@
 """Rule pins of paper 002 (Savanevich 1999): each claim's rule decides synthetic values either side of the paper's
-statement as the paper says (tests/rule_pins.py). Sentences and bands from the paper's text and its card's claims
-table; the values are written here, not read from claims.py."""
+statement as the paper says (tests/rule_pins.py). Sentences from the paper's text, bands as this project sets
+them; the values are written here, not read from claims.py."""
 
 from rule_pins import Band, Order, Trend, Unchecked, problems
 
@@ -10,7 +10,7 @@ GREATER = dict(yes=(1.3, 3.0), no=(0.7, 0.3), unit=VR)  # a ratio a / b: above 1
 SMALLER = dict(yes=(0.7, 0.3), no=(1.3, 3.0), unit=VR)
 EFFICIENT = Band(
     "for very close objects with known Q the ULA gives practically potential accuracy",
-    "variance / bound in [0.8, 1.5] (card: <= 1.5; below 0.8 beats an unbiased bound)",
+    "variance / bound in [0.8, 1.5] (<= 1.5 set here; below 0.8 beats an unbiased bound)",
     0.8,
     1.5,
     (1.0, 1.4, 0.9),

@@ -1,5 +1,5 @@
 """Tests for notebook 002: the photon-counting scene, the unified location EM, the two-stage
-baseline and the Poisson CRB (Savanevich 1999, paper card 002)."""
+baseline and the Poisson CRB (Savanevich 1999)."""
 
 import numpy as np
 import pytest

@@ -2,7 +2,7 @@
 
 Savanevich (1999) estimates the linear-motion states ``theta_j = (x0_j, y0_j, Vx_j, Vy_j)``
 of ``Q`` objects directly from the photon counts of ``T`` CCD frames. The pixel probability
-(U1, with the card's normalisation of eq. (2)) is
+(U1, with eq. (2) normalised here so that ``p_o + sum_j p_j = 1``) is
 
     v_ikl = p_o / M + sum_j p_j F_xji(mu_xjl) F_yjk(mu_yjl),   mu_xjl = x0_j + Vx_j t_l,
 
@@ -13,11 +13,11 @@ which is the EM algorithm for binned Gaussian-mixture data:
   in pixel (i, k) of frame l came from object j; eqs. (10) text) and the *local means* (U6),
   the truncated-normal means of the landing coordinate inside the pixel;
 * M-step: per object and axis the weighted least-squares line through the local means, eq. (11),
-  with the card's corrections: the sign in (10) is ``D - x0 A - V B = 0`` and the velocity row of
+  with two corrections made here: the sign in (10) is ``D - x0 A - V B = 0`` and the velocity row of
   (11) uses the *new* ``x0``.
 
-Counts ``n_ikl`` are used in place of the frequencies ``v*_ikl`` (card, note under (3)); the two
-coincide when every frame holds the same number of photons.
+Counts ``n_ikl`` are used in place of the frequencies ``v*_ikl`` (derived here from the likelihood
+behind (3)); the two coincide when every frame holds the same number of photons.
 
 The 1-D pixel fractions and local means are tabulated once per (trial, frame, object) from the pixel
 edges (``Q T (rows + cols)`` normal-CDF evaluations), and only pixels with a non-zero count enter the
@@ -256,7 +256,7 @@ def unified_location_em(
         motion parameters (not with ``estimate_weights``/``estimate_sigma``).
     estimate_weights, estimate_sigma : bool
         Also update ``p_j`` (``sum w_j / sum n``) and ``sigma_j`` (truncated second moments),
-        the extension the paper calls feasible (card 8.4).
+        the extension the paper calls feasible (text after eq. (3)).
     merge_px : float
         Root-mean-square distance over the frames (px) below which two estimated tracks count as merged (>= 0).
     min_in_frame_mass : float

@@ -2,9 +2,10 @@
 
 Savanevich (1999) solves the maximum-likelihood equations (3) by the "splitting" iteration of eqs. (9)-(11);
 one step here is an E-step (eq. (10): posterior shares and local means, :mod:`.em_steps`) and the closed-form
-M-step (11), optionally with a Gaussian prior (MAP-EM) and the weight and PSF-width updates of card 8.4
-(:class:`EMModel`). :func:`iterate` runs the steps, plain or SQUAREM-accelerated, on every trial still iterating
-and records the iterates in an :class:`EMState` until each trial stops (converged, degenerate or at its cap).
+M-step (11), optionally with a Gaussian prior (MAP-EM) and the weight and PSF-width updates the paper calls
+feasible (:class:`EMModel`). :func:`iterate` runs the steps, plain or SQUAREM-accelerated, on every trial still
+iterating and records the iterates in an :class:`EMState` until each trial stops (converged, degenerate or at its
+cap).
 
 Trials are independent and vectorised: the working set (:class:`~.em_steps.ActiveEntries`) holds the trials still
 iterating plus a few that stopped recently; it is rebuilt (entries regrouped) only when fewer than 60 % of it
@@ -124,7 +125,7 @@ class EMModel:
     static : bool
         Fit positions only (``V = 0``).
     estimate_weights, estimate_sigma : bool
-        Also update ``p_j`` and ``sigma_j`` (card 8.4).
+        Also update ``p_j`` and ``sigma_j`` (the extension the paper calls feasible).
     prior : MapPrior or None
         The MAP-EM prior (None: maximum likelihood).
     span : float

@@ -6,7 +6,7 @@ posterior shares ``lambda_jikl`` and the local means (U6)) tabulates the 1-D pix
 per (trial, frame, object) from the pixel edges and sums over the non-zero pixels only, compiled
 (:mod:`._kernels`) or in NumPy (:func:`expectation_step_numpy`, its reference). The M-step (:func:`maximisation_step`, eq. (11)) is
 the weighted least-squares line per object and axis, with an optional Gaussian prior (MAP-EM), and
-:func:`sigma_update` the PSF width update of card 8.4.
+:func:`sigma_update` the PSF width update (an extension the paper calls feasible, derived here).
 
 Units: pixels (centres at integers, window origin at pixel (0, 0); ``x`` = column, ``y`` = row) and frames.
 """

@@ -1,6 +1,6 @@
-"""What notebook 002 reports beside the claims' verdicts (paper card 002, section 8): how often the algorithms fail,
-swap labels or hit their iteration cap at the configurations of Figs 4-7 (card 8.2), how often the number of objects
-is chosen right by BIC when it is not known (card 8.3), SQUAREM against plain EM, local maxima, the cost of estimating
+"""What notebook 002 reports beside the claims' verdicts (studies beyond the paper): how often the algorithms fail,
+swap labels or hit their iteration cap at the configurations of Figs 4-7, how often the number of objects
+is chosen right by BIC when it is not known, SQUAREM against plain EM, local maxima, the cost of estimating
 p_j and sigma or of a wrong Q, and the words and tables the notebook's prose is generated with.
 
 Both read the simulation points of :func:`.study.figure_data` (``g``: named groups of configurations, ``res``: their
@@ -129,14 +129,15 @@ def squarem_vs_plain(g: dict, res) -> dict:
 
 
 def estimation_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
-    """The accuracy cost of estimating p_j and sigma as well (card 8.4): Sigma^2 with them estimated over Sigma^2
-    with them known, paired on the same trials, per separation."""
+    """The accuracy cost of estimating p_j and sigma as well (an extension the paper calls feasible): Sigma^2 with
+    them estimated over Sigma^2 with them known, paired on the same trials, per separation."""
     return {d: gain(errors(res[c], "ula_w"), errors(res[c], "ula"), rng, n_bootstrap) for d, c in g["w"].items()}
 
 
 def wrong_q_cost(g: dict, res, rng, n_bootstrap: int) -> dict:
-    """The cost of a wrong number of objects (card 8.3): the variance sum of the group's mean initial position when
-    one track is fitted to the pair (Q' = 1) over the same with Q = 2 known, paired on the same trials, per d."""
+    """The cost of a wrong number of objects (a study beyond the paper): the variance sum of the group's mean
+    initial position when one track is fitted to the pair (Q' = 1) over the same with Q = 2 known, paired on the
+    same trials, per d."""
     out = {}
     for d, c in g["w"].items():
         r = res[c]

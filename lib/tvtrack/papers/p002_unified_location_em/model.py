@@ -1,6 +1,6 @@
 """Photon-counting CCD scene: ``Q`` point objects in linear motion seen through a Gaussian PSF.
 
-Model (Savanevich 1999, eqs. (1)-(2) with the normalisation correction of paper card 002):
+Model (Savanevich 1999, eqs. (1)-(2), with eq. (2) normalised here so that it integrates to 1):
 object ``j`` sits at ``(x_j(t), y_j(t)) = (x0_j + Vx_j t, y0_j + Vy_j t)``; each of its photons
 lands at a point drawn from the circular normal ``N((x_j(t), y_j(t)), sigma^2 I)``; noise photons
 land uniformly over the window. A pixel counts the photons that land inside it, so the expected
@@ -154,7 +154,7 @@ def designate(rng: np.random.Generator, truth, position_sd_px: float, velocity_s
 
 
 def mixture_weights(photons: float, noise_per_pixel: float, n_pixels: int, n_objects: int):
-    """Relative weights of eq. (2) with the card's normalisation: ``p_j = m / (Q m + b M)``,
+    """Relative weights of eq. (2), normalised here: ``p_j = m / (Q m + b M)``,
     ``p_o = b M / (Q m + b M)``.
 
     Returns
@@ -175,7 +175,8 @@ def noise_per_pixel(noise_density: float, sigma_px: float) -> float:
     Parameters
     ----------
     noise_density : float
-        Uniform noise photons per sigma^2 per frame (>= 0; card 4.1: rho_o = 0.01).
+        Uniform noise photons per sigma^2 per frame (>= 0; the paper gives none; this project's default is
+        rho_o = 0.01).
     sigma_px : float
         PSF standard deviation in px (> 0), i.e. ``sigma / Delta``.
     """

@@ -187,7 +187,7 @@ PLAIN = {
     "distance unit of C002-11": (
         "unit of C002-11's 'reduced distances 3 and 1'",
         {
-            "sigma": "distances of 3 and 1 PSF sigmas (the card)",
+            "sigma": "distances of 3 and 1 PSF sigmas (this project's default)",
             "pixel": "distances of 3 and 1 pixels of Fig 5 (3 and 1 Delta)",
         },
     ),

@@ -28,7 +28,7 @@ __all__ = [
     "fig7_variant",
 ]
 
-#: Separations d / sigma of the distance axes (card 5.2).
+#: Separations d / sigma of the distance axes (this project's choice; the text names 1, 3 and > 8).
 D_GRID = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)
 #: Separations (sigma) over which C002-10's "coarser pixels" and "more frames" gains are averaged (up to the
 #: register's "close separations" value): the text names d = 1 and 3 sigma.
@@ -85,7 +85,7 @@ def c1_point(config: dict) -> tuple[int, float]:
 
 
 #: The pixel sizes Delta / sigma (coarser, finer) whose variance ratio C002-5 reads (an adversarial register row): the
-#: card's 3 against 1 sigma (Figs 1c and 2a together), or Fig 1c's own pair, 5 against 3 sigma.
+#: default 3 against 1 sigma (Figs 1c and 2a together), or Fig 1c's own pair, 5 against 3 sigma.
 PIXELS5 = {"3 vs 1": (3.0, 1.0), "5 vs 3": (5.0, 3.0)}
 
 

@@ -35,7 +35,8 @@ ALGORITHMS = {
     "e": "two-stage, iterative (per-frame EM) marks",
     "k": "ULA (ML) with the designated velocity kept (its error as the velocity prior), no position prior",
     "1": "ULA with Q' = 1: one track fitted to all objects (errors against their mean)",
-    "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; card 8.4)",
+    "w": "ULA with the weights p_j and the PSF width sigma estimated too (plain EM; an extension the paper calls "
+    "feasible)",
     "s": "multi-start ULA: the log-likelihood the designation start leaves below the best of 4 starts",
     "q": "two-stage, iterative marks by plain EM (iteration counts)",
     "c": "two-stage, centre-of-region marks",

@@ -361,7 +361,7 @@ def _run_extras(x, out: dict) -> None:
     if "k" in algs:  # the ML ULA given the designated velocity (its error vsd as the only prior)
         r = em(b.designation, p, p0, accelerate=accel, prior_sd=(1e6 * s, vsd * s))
         out["ula_vd"].append(errors_vs_truth(r.theta, b.truth, s, times)[0])
-    if "1" in algs:  # the wrong number of objects: one track fitted to the pair (card 8.3)
+    if "1" in algs:  # the wrong number of objects: one track fitted to the pair (a study beyond the paper)
         p1, p01 = mixture_weights(q * m, noise_pp, g.n_pixels, 1)
         r = em(b.designation.mean(axis=1, keepdims=True), p1, p01, accelerate=accel)
         out["ula_q1"].append((r.theta - b.truth.mean(axis=1, keepdims=True)) / s)

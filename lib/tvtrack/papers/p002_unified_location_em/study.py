@@ -268,7 +268,7 @@ def _points(config: dict, scale: Scale, figures: bool = False):
     if figures:
         g["ms"] = {d: P(2, d, pix, 20, T4, "s", n=scale.n_iter_trials) for d in (min(D), 1.0)}
         g["w"] = {d: P(2, d, pix, 20, T4, "uw1", n=scale.n_iter_trials) for d in (1.0, 2.0, 4.0)}
-        g["bic"] = {d: P(2, d, pix, 20, T4, "b", n=scale.n_iter_trials) for d in D}  # unknown Q (card 8.3)
+        g["bic"] = {d: P(2, d, pix, 20, T4, "b", n=scale.n_iter_trials) for d in D}  # unknown Q (beyond the paper)
     return g, P.asked
 
 
@@ -382,7 +382,7 @@ def figure_data(config: dict, seed: int, scale: Scale = Scale()) -> tuple[dict, 
     return _points(config, scale, figures=True)[0], _Results(settings_of(config, seed, scale), scale)
 
 
-#: The paper's claims: statement and the paper's value (paper card 002, section 7).
+#: The paper's claims: statement and the paper's value.
 CLAIMS = {
     "C002-1": ("Accuracy falls as the objects get closer (Fig 1).", "qualitative"),
     "C002-2": (

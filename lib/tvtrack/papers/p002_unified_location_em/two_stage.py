@@ -4,11 +4,11 @@ This is the baseline of Savanevich (1999, Figs 3-6): primary processing forms a 
 estimate) for each object in each frame on its own; secondary processing fits the linear-motion
 model (1) to the marks by ordinary least squares, i.e. eq. (11) with unit weights.
 
-Marks (paper card 002, section 4.4):
+Marks (the two kinds of Fig. 3a):
 
 * :func:`centre_of_region_marks` -- "by the centre of the region" (Fig. 3a, curve 1): the
   count-weighted centroid of the pixel centres inside a square gate around the designated
-  position in that frame (the paper does not define the region; this is the card's choice).
+  position in that frame (the paper does not define the region; the gate is this project's choice).
 * :func:`em_marks` -- the iterative mark formation of ref. [5] (Fig. 3a curve 2, Figs 4-6
   curve 1): the EM of :func:`tvtrack.papers.p002_unified_location_em.em.unified_location_em` applied to one
   frame with a static model, ``x = D_x / A``.
