@@ -1,6 +1,6 @@
 """Adversarial review of paper 003: the interferers' layout and the words the notebook reads out.
 
-The card puts five interferers equally spaced on the marker's circle about the object's start, which is where the
+The default has five interferers equally spaced on the marker's circle about the object's start, which is where the
 static comparison marker sits: a pattern symmetric about it, so the interferers' pulls on its quadrant discriminator
 nearly cancel (and the rotating tracker's centre loop averages them over a revolution). The register's ``interferer_layout`` entry reads l. 198's "area where the interferers are placed" with each
 interferer at its own random angle as well; these tests pin that the reading reaches the scene and what it changes.
@@ -138,7 +138,7 @@ def _lost(cfg: dict, seed: int = 21, n: int = 3, duration_s: float = 3.0) -> np.
 
 
 def test_pinned_fast_object_loses_lock_where_each_half_alone_does_not():
-    """The pinned joint condition (twice the card's motion with the 1.5 Hz sinusoid): the object's peak y speed
+    """The pinned joint condition (twice the default motion with the 1.5 Hz sinusoid): the object's peak y speed
     2 pi f A = 377 px/s exceeds K_xy D/2 (the coordinate loop's slew inside the quadrant discriminator's linear
     range, 251 px/s at 10 Hz), while each half alone stays below it (126 and 188 px/s): every run loses lock with the
     joint, none with either half (review: 10 of 10 and 0 of 20, 5 s runs; 3 runs of 3 s here)."""

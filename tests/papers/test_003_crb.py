@@ -1,4 +1,4 @@
-"""Tests of paper 003's posterior CRB and the velocity-state EKF (card 4.4 and 8.4)."""
+"""Tests of paper 003's posterior CRB and the velocity-state EKF (beyond the paper)."""
 
 import numpy as np
 import pytest
@@ -31,7 +31,7 @@ def test_square_spot_information_has_its_closed_form():
 
 def test_disc_information_converges_with_supersampling_to_the_rim_integral():
     """Supersampled renders tend to exact pixel areas: the information converges (within 5 % from s = 4 to 16,
-    the resolution dependence the card warns of) to the order of the rim's, d^2 (pi D) <n_x^2> / sigma^2 per unit
+    the resolution dependence of a sharp-edged spot) to the order of the rim's, d^2 (pi D) <n_x^2> / sigma^2 per unit
     rim length crossing a pixel: between a half and twice pi D / 2 for d = sigma = 1."""
     vals = [crb.spot_position_information("disc", 8.0, 1.0, 1.0, supersample=s)[0, 0] for s in (4, 8, 16)]
     assert max(vals) / min(vals) < 1.05

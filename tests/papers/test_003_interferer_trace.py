@@ -2,7 +2,7 @@
 
 l. 198 describes Fig. 3 as the trace of the marker's emitter, "which in its rotation sweeps the area where the five
 powerful stationary interferers are placed". With the object moving, the area the marker sweeps is a band along the
-object's path, not only the circle about its starting point that the card draws. The register's ``placement`` entry
+object's path, not only the circle about its starting point that the default draws. The register's ``placement`` entry
 carries that geometry as its value ``"trace"``: each interferer on the marker's circle about the object's centre at
 its own random frame of the run. These tests pin that the value reaches the scene the interference study builds, that
 the interferers then lie where the marker sweeps (and along the path, not about the start), and the entry's kind.
@@ -18,7 +18,7 @@ from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, scen
 
 
 def _trace_geometry(placement: str, n: int = 120, seed: int = 4):
-    """Five interferers of the card's world (its motion, 5 s) placed by ``placement``: their nearest approach to the
+    """Five interferers of the default world (its motion, 5 s) placed by ``placement``: their nearest approach to the
     rotating marker's true path and their distance from the object's start (px), shape (n, 5) each."""
     sc = study.scenario({"placement": placement}, study.Sizes(), n_interferers=5)
     truth = scenario_truth(np.random.default_rng(seed), n, sc)
@@ -38,9 +38,9 @@ def _trace_geometry(placement: str, n: int = 120, seed: int = 4):
 
 
 def test_trace_interferers_lie_where_the_marker_sweeps_and_spread_along_the_objects_path():
-    """With the card's motion (20 px at 0.5 Hz in y, 10 px RMS in x) every interferer on the trace is passed by the
+    """With the default motion (20 px at 0.5 Hz in y, 10 px RMS in x) every interferer on the trace is passed by the
     marker's centre closer than half a spot (the marker's spot covers it), and the interferers spread along the path:
-    their median distance from the object's start is about 22 px (measured 21.6 over 200 runs), where the card's
+    their median distance from the object's start is about 22 px (measured 21.6 over 200 runs), where the default
     circle keeps every one at exactly r0 = 12 px."""
     D, r0 = 8.0, 12.0
     near_t, start_t = _trace_geometry("trace")

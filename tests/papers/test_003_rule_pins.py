@@ -1,6 +1,6 @@
 """Rule pins of paper 003 (Yukhno 2025): each claim's rule decides synthetic values either side of the paper's
 statement as the paper says (tests/rule_pins.py), for the default marker of diameter D = 8 px. Sentences and bands
-from the paper's text and its card's claims table; the values are written here, not read from claims.py. "No loss"
+from the paper's text and the acceptance bands set here; the values are written here, not read from claims.py. "No loss"
 over a run count is read as a loss probability at most 0.1 (the project's reading of 0 of 20 runs)."""
 
 from rule_pins import Band, Order, Trend, Unchecked, problems
@@ -27,7 +27,7 @@ LINEAR = Band(
     (0.5, 0.85, 1.2),
 )
 EDGE_WORSE = Order(
-    "edge discriminators become relay-like or lose function (card: >= 2x; the rule reads > 1)",
+    "edge discriminators become relay-like or lose function (no factor given; >= 2x suggested here; rule: > 1)",
     "edge / quadrant mean-square miss > 1",
     **GREATER,
 )
@@ -143,7 +143,7 @@ def test_every_rule_of_003_decides_as_the_paper_says():
 
 
 def test_the_tracking_bound_is_half_the_marker_diameter_at_any_diameter():
-    """The card: RMS error < D/2; gates in spot diameters (1.5, 3, 5 D)."""
+    """The acceptance set here: RMS error < D/2; gates in spot diameters (1.5, 3, 5 D)."""
     from tvtrack.papers.p003_rotating_marker_tracker.claims import claim_rules
 
     rules = claim_rules(10.0)

@@ -6,7 +6,7 @@ a closed form: a loss share at a named SIR is the share of runs that break above
 of the runs' geometric grid midpoints, a ratio the quotient of the two curves' thresholds. The same stand-in
 records which scenarios the curves were asked for (the decoy's offset, the gates, the uncompensated tracker). The
 tracking claims are re-computed from the study's own raw outputs at a small size, and the scenario's settings from
-the card's stated values.
+this project's stated defaults.
 """
 
 from __future__ import annotations
@@ -157,7 +157,7 @@ def test_the_loss_criterion_is_the_gate_half_size_over_half_a_second():
 
 def test_the_motion_scale_scales_both_axes():
     base = study.scenario(DEFAULT)
-    assert (base.x_std, base.y_amplitude, base.y_freq) == (10.0, 20.0, 0.5)  # card: sigma_x 10 px, A_y 20 px
+    assert (base.x_std, base.y_amplitude, base.y_freq) == (10.0, 20.0, 0.5)  # the defaults: sigma_x 10 px, A_y 20 px
     big = study.scenario({**DEFAULT, "motion_scale": 2.0})
     assert (big.x_std, big.y_amplitude, big.y_freq) == (20.0, 40.0, 0.5)
 

@@ -1,6 +1,7 @@
 """The static part of notebook 003's compensated image: the marker
 and interferer spots, the correlated background, stationary interferers on a circle about the object (its start, or
-its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (card 8.5).
+its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (beyond the
+paper).
 
 Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = column, ``y`` = row.
 """
@@ -147,13 +148,13 @@ def median_residual(
     """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
 
     The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
-    ``f + interferers + s_t + n_t`` (card 8.5: a median over >= 2 revolutions). Everything static -- background and
-    stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the marker's
-    sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the frames
-    reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for more
-    than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
-    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``.
-    Instant exposure, and no decoy, in the median frames.
+    ``f + interferers + s_t + n_t`` (this project's choice: a median over >= 2 revolutions). Everything static --
+    background and stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the
+    marker's sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the
+    frames reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for
+    more than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
+    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``. Instant
+    exposure, and no decoy, in the median frames.
 
     Parameters
     ----------

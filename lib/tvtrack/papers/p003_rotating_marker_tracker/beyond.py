@@ -17,7 +17,7 @@ __all__ = ["exposure_study", "median_example"]
 
 
 def exposure_study(seed: int, sizes: Sizes, sizes_i: Sizes, fps: float) -> dict:
-    """Frame-rate smear (card 8.5) and the static baseline at matched exposure, at frame rate ``fps``.
+    """Frame-rate smear (beyond the paper) and the static baseline at matched exposure, at frame rate ``fps``.
 
     Both exposure models on the same draws: ``"instant"`` (the marker sampled at the frame time) and ``"integrated"``
     (the sensor integrates over the frame, so the rotating marker is smeared along the arc ``2 pi f_rot r / fps`` it
@@ -44,7 +44,7 @@ def exposure_study(seed: int, sizes: Sizes, sizes_i: Sizes, fps: float) -> dict:
 
 
 def median_example(seed: int, sc: Scenario) -> dict:
-    """One trial of the temporal-median compensation (card 8.5) for :func:`.plots.median_figure`: the truth, the
+    """One trial of the temporal-median compensation (beyond the paper) for :func:`.plots.median_figure`: the truth, the
     interferers about its start and the residual the median of the first ``sc.median_revolutions`` revolutions leaves
     (:func:`.scene.median_residual`; the static scene cancels, so the interferers leave nothing).
 

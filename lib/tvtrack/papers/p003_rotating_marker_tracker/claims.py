@@ -82,8 +82,8 @@ NOTES = {
     "отношение ... до компенсации ... уменьшается до 0,2-0,3» (if compensation equals an order-of-"
     "magnitude background reduction, the pre-compensation threshold falls to 0.2-0.3); l. 208 names "
     "compensation a main factor. The order of magnitude is a hypothesis: read one-sided (compensation "
-    "lowers the threshold at least about 1/kappa-fold: the ratio at most 2 x 0.1); the card's two-sided "
-    "'about 1/kappa' is the register's compensation_reading (the ratio's fold distance from kappa). A "
+    "lowers the threshold at least about 1/kappa-fold: the ratio at most 2 x 0.1); this project's stricter "
+    "two-sided 'about 1/kappa' is the register's compensation_reading (the ratio's fold distance from kappa). A "
     "bound certifies when every uncompensated run loses.",
     "C003-11": "l. 192 says the errors depend substantially on the loop bandwidths without a direction: the "
     "'bandwidth' part is two-sided, the fold change max(q, 1/q) of the mean-square miss, 'substantial' "

@@ -1,4 +1,4 @@
-"""Posterior Cramer-Rao bound of the rotating-marker tracker and the trackers measured against it (card 4.4, 8.4).
+"""Posterior Cramer-Rao bound of the rotating-marker tracker and the trackers measured against it (beyond the paper).
 
 The bound is for the seven-state model of :func:`.loops.velocity_model` (object position and velocity, radius,
 phase, rate; linear-Gaussian dynamics) observed through every pixel of the rendered marker spot in white sensor noise
@@ -8,7 +8,7 @@ information of the spot's position (the rendered spot's gradient by central diff
 positions) and ``M = dm/dlambda`` the Jacobian of the marker position of eq. (8), averaged over the uniformly
 distributed phase (the expectation the bound takes). The spot can be rendered supersampled (each pixel the mean of
 ``s x s`` sub-pixel renders): ``s = 1`` is the scene's own renderer (the data the simulated trackers see), larger
-``s`` tends to exact pixel-area integration (card 4.4: sharp edges make the information resolution-dependent).
+``s`` tends to exact pixel-area integration (derived here: sharp edges make the information resolution-dependent).
 
 :func:`compare_with_bound` runs the fixed-gain loops (over a bandwidth grid, the best reported), the five-state EKF
 and the velocity EKF on truths drawn from that model, on the same draws, and compares their RMS errors with the
@@ -40,9 +40,10 @@ __all__ = [
     "compare_with_bound",
 ]
 
-#: The world of the comparison (card 8.4 leaves it open): noise densities of :func:`.loops.velocity_model` and the
-#: prior standard deviations of ``(x_r, y_r, r, theta, omega, v_x, v_y)``. Speeds of 10-20 px/s (the card's
-#: Fig. 1 motion moves at up to 60 px/s) keep a 3 s run inside the image; the rate wanders by ~2 % over 3 s.
+#: The world of the comparison (this project's choice; the paper has none): noise densities of
+#: :func:`.loops.velocity_model` and the prior standard deviations of ``(x_r, y_r, r, theta, omega, v_x, v_y)``. Speeds
+#: of 10-20 px/s (this project's Fig. 1 motion moves at up to 60 px/s) keep a 3 s run inside the image; the rate wanders
+#: by ~2 % over 3 s.
 MODEL = dict(q_acc=100.0, q_r=0.05, q_omega=1.0, prior_std=(2.0, 2.0, 1.0, 0.2, 1.0, 10.0, 10.0))
 
 

@@ -1,5 +1,5 @@
 """Discriminators of the generalised Stratonovich tracker (Yukhno 2025), with the corrections
-of the paper card (003, section 3).
+to the printed equations derived here.
 
 All discriminators here return ``+grad Pi`` (up to the positive factor ``d / N``): positive when
 the true spot lies at larger ``x`` (``y``) than the gate centre, so loops use *positive* gains.

@@ -1,6 +1,6 @@
 """The EKF trackers of notebook 003: the discrete EKF form of
-eqs. (16)-(17) (corrected Riccati sign; card, section 4.4) on the quadrant discriminator, and the velocity-state EKF
-of the seven-state model (card item 8.4) with its process model and measurement Jacobian.
+eqs. (16)-(17) (Riccati sign corrected here) on the quadrant discriminator, and the velocity-state EKF
+of the seven-state model (beyond the paper) with its process model and measurement Jacobian.
 
 Both update in the information form of the paper's corrected (17), ``P = (P^-1 + H^T H / s^2)^-1``, not through
 :func:`tvtrack.filters.kf_update`: the two are equal in exact arithmetic but not to the bit, and the claims'
@@ -37,7 +37,7 @@ def ekf_noise_from_bandwidths(
 
 
 class EKFTracker:
-    """Discrete EKF form of eqs. (16)-(17) (corrected Riccati sign; card, section 4.4) on the
+    """Discrete EKF form of eqs. (16)-(17) (Riccati sign corrected here) on the
     quadrant discriminator.
 
     State ``(x_r, y_r, r, theta, omega)`` with ``theta' = omega``. The measurement is the marker

@@ -291,10 +291,10 @@ def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimat
     order of magnitude, the no-loss threshold SIR before compensation ... decreases to 0.2-0.3"), and l. 208 names
     compensation one of the main factors of the robustness. The order of magnitude is a hypothesis, not a measured
     ratio: "one-sided" (the paper's reading, the default) keeps the ratio as measured, and a ratio below ``kappa``
-    (the uncompensated tracker fails even harder) meets the rule. "two-sided" (the card's "about 1/kappa-fold")
-    judges the ratio's fold distance from ``kappa``: ``kappa exp|log(q / kappa)|`` (``q`` itself for ``q >= kappa``,
-    ``kappa^2 / q`` below it), at most ``2 kappa`` exactly when ``q`` lies within a factor 2 of ``kappa``; an
-    interval straddling ``kappa`` starts at ``kappa``.
+    (the uncompensated tracker fails even harder) meets the rule. "two-sided" (this project's stricter
+    "about 1/kappa-fold") judges the ratio's fold distance from ``kappa``: ``kappa exp|log(q / kappa)|`` (``q`` itself
+    for ``q >= kappa``, ``kappa^2 / q`` below it), at most ``2 kappa`` exactly when ``q`` lies within a factor 2 of
+    ``kappa``; an interval straddling ``kappa`` starts at ``kappa``.
 
     Parameters
     ----------

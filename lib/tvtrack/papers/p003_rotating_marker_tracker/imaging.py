@@ -3,7 +3,7 @@ renders each frame's gate crop, and its builder. The static parts it adds up liv
 correlated background, interferers, the temporal-median residual) and the common random numbers of batched runs in
 :mod:`.draws`.
 
-Model (Yukhno 2025, eqs. (9), (10), (19), with the compensation model of the paper card, section 4.2)::
+Model (Yukhno 2025, eqs. (9), (10), (19), with this project's compensation model)::
 
     u_d(x, y, t) = s(x - x_m(t), y - y_m(t)) + kappa * f(x, y) + sum_q (d / SIR) * spot(x - x_q, y - y_q) + n
 

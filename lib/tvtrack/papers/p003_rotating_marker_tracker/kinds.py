@@ -57,7 +57,7 @@ KINDS = {
         "reading",
         "a reading of l. 198: Fig. 3 shows 'the trace of the marker's emitter, which in its rotation sweeps the area "
         "where the five powerful stationary interferers are placed'; with the object moving, the area the marker "
-        "sweeps is a band along the object's path ('trace', the paper's own description), of which the card's circle "
+        "sweeps is a band along the object's path ('trace', the paper's own description), of which the default circle "
         "about the start is one part",
     ),
     "loss_window_s": ("statistic", "a reading of 'loss of tracking', which the paper does not define"),

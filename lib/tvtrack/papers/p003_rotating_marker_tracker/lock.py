@@ -1,7 +1,7 @@
 """Loss-of-lock detection for gate trackers, with the criterion as a parameter.
 
 The paper (Yukhno 2025) speaks only of "loss of tracking or switching to a stationary source";
-the criteria here follow the paper card (003, section 4.5):
+the criteria here are this project's choice:
 
 - ``"window"`` (default): loss at the first frame where more than ``fraction`` of the last
   ``window`` frames had a miss distance above ``threshold``. Robust to a gate captured by an

@@ -2,7 +2,7 @@
 form, and the 1-D two-emitter tracker.
 
 Five-state tracker (eq. (16) with diagonal gains, "chosen by classical automatic-control
-methods"; paper card, section 4.3). With normalised discriminator outputs
+methods"; the gain rule is this project's choice). With normalised discriminator outputs
 ``eps_x = Delta_x / S``, ``eps_y = Delta_y / S``, ``eps_r = e_r / S``, ``eps_th = e_th / (S r_hat)``
 (``S`` = discriminator slope, e.g. ``2 d D`` for the quadrant form), per frame of length ``dt``::
 
@@ -83,7 +83,7 @@ def loop_gains(
 ) -> LoopGains:
     """Gains from closed-loop -3 dB bandwidths (Hz): 10 / 0.2 / 6 Hz in the paper.
 
-    Variant P uses ``k_phi = 2 pi B_om`` and ``k_om = k_phi / T_rot^2`` (card, section 4.3).
+    Variant P uses ``k_phi = 2 pi B_om`` and ``k_om = k_phi / T_rot^2`` (this project's choice; not from the paper).
     """
     for name, v in (("b_xy", b_xy), ("b_r", b_r), ("b_omega", b_omega), ("zeta", zeta), ("rotation_hz", rotation_hz)):
         if not v > 0:
@@ -306,7 +306,7 @@ def phase_response(gains: LoopGains, omega: float, r: float, freqs_hz) -> np.nda
     the error state of :func:`loop_poles` obeys ``x' = A x + b p'`` with ``b = -e_dtheta``, so
     ``theta_hat - theta_0 - omega t = p + dtheta`` and
 
-    ``H(s) = 1 + s e_dtheta^T (s I - A)^{-1} b``  (card item 5; the loops of eq. (16) linearised).
+    ``H(s) = 1 + s e_dtheta^T (s I - A)^{-1} b``  (derived here; the loops of eq. (16) linearised).
 
     Uncoupled (``K_xy = 0``) this is the type-2 PLL ``(K1 s + K2) / (s^2 + K1 s + K2)`` with its
     design -3 dB bandwidth; the coordinate loops also correct the tangential error and lower it.

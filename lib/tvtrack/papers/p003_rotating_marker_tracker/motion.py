@@ -100,7 +100,7 @@ def object_motion(
     y_phase: float | None = None,
 ):
     """Object centre paths of Fig. 1: ``x`` random, ``y`` a sinusoid of amplitude ``y_amplitude`` px
-    at ``y_freq`` Hz and phase ``y_phase`` rad (``kind = "card"``).
+    at ``y_freq`` Hz and phase ``y_phase`` rad (``kind = "card"``, this project's default).
 
     ``y_phase = None`` (the default) draws the sinusoid's phase per run, uniformly on ``[0, 2 pi)``: the paper
     gives none, and a fixed phase puts every run's start (about which the interferers are placed) at the same
@@ -113,7 +113,7 @@ def object_motion(
     paper gives no amplitudes and no law for the interference runs): ``"sinusoids"``, ``x`` a
     sinusoid of amplitude ``sqrt 2 x_std`` (the same RMS) at ``0.7 y_freq`` Hz with a random phase;
     ``"random"``, ``y`` also such a smoothed OU process, of standard deviation ``y_amplitude / sqrt 2``
-    (the sinusoid's RMS). Every kind first draws the card's ``x`` (common random numbers across kinds).
+    (the sinusoid's RMS). Every kind first draws the default kind's ``x`` (common random numbers across kinds).
 
     Returns
     -------
@@ -132,7 +132,7 @@ def object_motion(
         return std * ou
 
     ou_x = smoothed_ou(x_std) if x_std > 0 else np.zeros((n, n_frames))
-    # the y phase is drawn right after the card's x in every kind (common random numbers across kinds)
+    # the y phase is drawn right after the default kind's x in every kind (common random numbers across kinds)
     psi = rng.uniform(0, 2 * np.pi, size=(n, 1)) if y_phase is None else np.full((n, 1), float(y_phase))
     ou_y = smoothed_ou(y_amplitude / np.sqrt(2)) if kind == "random" and y_amplitude > 0 else None
     if kind == "sinusoids":

@@ -228,7 +228,7 @@ def trace_figure(truth, scene, hist, k_show: int, n_rev: int, rng, sir: float, d
 
 
 def bound_figure(cb: dict):
-    """Card items 4.4/8.4: each tracker's RMS object-position error against the posterior CRB
+    """Beyond the paper: each tracker's RMS object-position error against the posterior CRB
     (:func:`.crb.compare_with_bound`'s result); the caption gives the velocity EKF's and the best loops' distance
     from the bound."""
     names = list(cb["rms"])
@@ -292,7 +292,7 @@ def _separated(a, b) -> bool:
 
 
 def median_figure(residual: np.ndarray, truth, interferers: np.ndarray, n_frames: int, noise_std: float):
-    """Card 8.5: what a temporal median of the first ``n_frames`` frames leaves of the static scene
+    """Beyond the paper: what a temporal median of the first ``n_frames`` frames leaves of the static scene
     (:func:`.scene.median_residual`, one trial): the interferers cancel and a faint ring stays where the marker
     swept; the caption gives the ring's depth against the sensor noise."""
     c = truth.center[0, 0]

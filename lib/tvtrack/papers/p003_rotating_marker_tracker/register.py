@@ -20,13 +20,13 @@ REGISTER = Register(
             "regime",
             "card",
             ("card", "sinusoids", "random"),
-            "Fig. 1 says only 'x random, y a sinusoid' and nothing for the interference runs: the card's OU x with a "
-            "0.5 Hz y, both axes sinusoidal, or both random, at the same RMS",
+            "Fig. 1 says only 'x random, y a sinusoid' and nothing for the interference runs: this project's default, "
+            "an OU x with a 0.5 Hz y, both axes sinusoidal, or both random, at the same RMS",
             title="law of the object's motion (Fig. 1 and the interference runs)",
             phrases={
-                "card": "x a random (smoothed Ornstein-Uhlenbeck) walk of 10 px RMS, y a 20 px sinusoid at 0.5 Hz with a random phase (the card)",
-                "sinusoids": "both coordinates sinusoidal (x at 0.35 Hz), the same RMS as the card's motion",
-                "random": "both coordinates random walks, the same RMS as the card's motion",
+                "card": "x a random (smoothed Ornstein-Uhlenbeck) walk of 10 px RMS, y a 20 px sinusoid at 0.5 Hz with a random phase (this project's default)",
+                "sinusoids": "both coordinates sinusoidal (x at 0.35 Hz), the same RMS as the default motion",
+                "random": "both coordinates random walks, the same RMS as the default motion",
             },
         ),
         Entry(
@@ -35,14 +35,14 @@ REGISTER = Register(
             1.0,
             (0.0, 0.25, 1.0, 2.0),
             "no amplitudes are given: 0 a hovering object (adversarial: Fig. 3 shows the marker sweeping the "
-            "interferers, nothing says the object moved), 0.25 the card's slow object (5 px), 2 doubles the speed "
+            "interferers, nothing says the object moved), 0.25 a slow object (5 px), 2 doubles the speed "
             "(40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, still well inside the gate)",
             title="amplitude of the object's motion, relative to the card's (10 px RMS in x, 20 px in y)",
             phrases={
                 0.0: "a hovering object (no motion)",
                 0.25: "a slow object (5 px in y)",
-                1.0: "the card's motion (20 px in y)",
-                2.0: "twice the card's motion (40 px in y)",
+                1.0: "the default motion (20 px in y)",
+                2.0: "twice the default motion (40 px in y)",
             },
         ),
         Entry(
@@ -50,12 +50,12 @@ REGISTER = Register(
             "regime",
             0.5,
             (0.5, 1.5),
-            "Fig. 1: 'Y moves along a sinusoid', no frequency: 0.5 Hz (card) or 1.5 Hz (15 % of the 10 Hz loop, a "
-            "lag of ~3 px inside the 12 px gate half-width)",
+            "Fig. 1: 'Y moves along a sinusoid', no frequency: 0.5 Hz (this project's default) or 1.5 Hz (15 % of "
+            "the 10 Hz loop, a lag of ~3 px inside the 12 px gate half-width)",
             origin="adversarial",
             title="frequency of the object's y sinusoid in Fig. 1",
             phrases={
-                0.5: "y sinusoid at 0.5 Hz (the card)",
+                0.5: "y sinusoid at 0.5 Hz (this project's default)",
                 1.5: "y sinusoid at 1.5 Hz (15 % of the 10 Hz coordinate loop)",
             },
         ),
@@ -80,14 +80,14 @@ REGISTER = Register(
             "regime",
             "card",
             ("card", "omega 2 Hz", "r 0.2 Hz"),
-            "Fig. 2: omega and r 'vary sinusoidally', no depth or rate: the card's 10 %/0.5 Hz and 15 %/0.05 Hz, "
-            "omega at 2 Hz (inside the stated 6 Hz loop), r 25 % at 0.2 Hz (the stated r-loop bandwidth)",
+            "Fig. 2: omega and r 'vary sinusoidally', no depth or rate: this project's default 10 %/0.5 Hz and "
+            "15 %/0.05 Hz, omega at 2 Hz (inside the stated 6 Hz loop), r 25 % at 0.2 Hz (the stated r-loop bandwidth)",
             origin="adversarial",
             title="how the rotation rate and radius vary in the Fig. 2 runs",
             phrases={
-                "card": "rate 10 % at 0.5 Hz, radius 15 % at 0.05 Hz (the card)",
-                "omega 2 Hz": "rate 10 % at 2 Hz (inside the 6 Hz loop), radius as the card",
-                "r 0.2 Hz": "radius 25 % at 0.2 Hz (the radius loop's own bandwidth), rate as the card",
+                "card": "rate 10 % at 0.5 Hz, radius 15 % at 0.05 Hz (this project's default)",
+                "omega 2 Hz": "rate 10 % at 2 Hz (inside the 6 Hz loop), radius as the default",
+                "r 0.2 Hz": "radius 25 % at 0.2 Hz (the radius loop's own bandwidth), rate as the default",
             },
         ),
         Entry(
@@ -112,11 +112,11 @@ REGISTER = Register(
             "C003-10 from l. 198 ('if compensation is equivalent to reducing the background by an order of magnitude, "
             "the threshold SIR before compensation ... decreases to 0.2-0.3') and l. 208 (compensation is one of the "
             "main factors): the order of magnitude is a hypothesis, so compensation lowers the SIR_0 threshold at "
-            "least about 1/kappa-fold (one-sided); the card's reading asks for about 1/kappa (two-sided)",
+            "least about 1/kappa-fold (one-sided); a stricter reading asks for about 1/kappa (two-sided)",
             title="how much C003-10 asks background compensation to lower the pre-compensation threshold",
             phrases={
                 "one-sided": "at least about tenfold (the paper's 'order of magnitude' as a hypothesis: more is also fine)",
-                "two-sided": "about tenfold, within a factor 2 either way (the card's reading)",
+                "two-sided": "about tenfold, within a factor 2 either way (a stricter reading)",
             },
         ),
         Entry(
@@ -125,11 +125,11 @@ REGISTER = Register(
             "+-D/2",
             ("+-D/2", "small errors"),
             "C003-9: 'the quadrant form restores a linear part' without its extent: the slope fitted over +-D/2 (the "
-            "card's acceptance) or the slope of the linear part at small errors (+-D/8, +-D/4)",
+            "acceptance band set here) or the slope of the linear part at small errors (+-D/8, +-D/4)",
             origin="adversarial",
             title="error range over which C003-9's 'linear part' of the quadrant discriminator is measured",
             phrases={
-                "+-D/2": "slope fitted over errors up to half a spot diameter (4 px, the card)",
+                "+-D/2": "slope fitted over errors up to half a spot diameter (4 px, this project's default)",
                 "small errors": "slope at small errors (1-2 px)",
             },
         ),
@@ -152,11 +152,11 @@ REGISTER = Register(
             "regime",
             0.02,
             (0.01, 0.02, 0.05),
-            "sensor noise is 'white, intensity N' with no value: d/50 (card), from d/100 to d/20",
+            "sensor noise is 'white, intensity N' with no value: d/50 (this project's default), from d/100 to d/20",
             title="sensor noise per pixel and frame, in units of the marker brightness d",
             phrases={
                 0.01: "sensor noise d/100 per pixel",
-                0.02: "sensor noise d/50 per pixel (the card)",
+                0.02: "sensor noise d/50 per pixel (this project's default)",
                 0.05: "sensor noise d/20 per pixel",
             },
         ),
@@ -171,7 +171,7 @@ REGISTER = Register(
             phrases={
                 50.0: "50 frames/s (TV field rate, 6 frames per revolution)",
                 250.0: "250 frames/s (31 frames per revolution)",
-                500.0: "500 frames/s (62 frames per revolution, the card)",
+                500.0: "500 frames/s (62 frames per revolution, this project's default)",
                 1000.0: "1000 frames/s (125 frames per revolution)",
             },
         ),
@@ -206,7 +206,7 @@ REGISTER = Register(
             ("kappa", "temporal median"),
             "'compensation equivalent to reducing the background by an order of magnitude' names no method: kappa "
             "times the static scene left (the paper's hypothesis), or a data-driven per-pixel temporal median of the "
-            "first two revolutions' frames (card 8.5), which cancels stationary interferers whatever their "
+            "first two revolutions' frames (a method added here), which cancels stationary interferers whatever their "
             "brightness and leaves a faint ring where the marker swept (and a still marker's own spot)",
             title="how the background is compensated",
             phrases={
@@ -247,17 +247,16 @@ REGISTER = Register(
             "reading",
             "even",
             ("even", "independent"),
-            "a reading of l. 198's 'the area where the five powerful stationary interferers are placed', which the marker "
-            "sweeps: the card's five equally spaced on the circle (a pattern symmetric about the object's start: their "
-            "pulls nearly cancel on the static marker's discriminator, and average out over a revolution in the "
-            "rotating tracker's centre loop), or each at its "
-            "own random angle (the area holds them, nothing says evenly). Adversarially: at paper size "
-            "it raises the rotating marker's five-interferer threshold from about 1.0 to 1.6-1.9, the static marker's "
-            "from about 1.5 to 2.4-2.8",
+            "a reading of l. 198's 'the area where the five powerful stationary interferers are placed', which the "
+            "marker sweeps: this project's default, five equally spaced on the circle (a pattern symmetric about the "
+            "object's start: their pulls nearly cancel on the static marker's discriminator, and average out over a "
+            "revolution in the rotating tracker's centre loop), or each at its own random angle (the area holds them, "
+            "nothing says evenly). Adversarially: at paper size it raises the rotating marker's five-interferer "
+            "threshold from about 1.0 to 1.6-1.9, the static marker's from about 1.5 to 2.4-2.8",
             origin="adversarial",
             title="how several interferers are spread around the marker's circle",
             phrases={
-                "even": "equally spaced around the marker's circle (the card)",
+                "even": "equally spaced around the marker's circle (this project's default)",
                 "independent": "each at its own random angle on the marker's circle",
             },
         ),
@@ -266,11 +265,11 @@ REGISTER = Register(
             "regime",
             "D",
             ("D", "2D"),
-            "the interferers' spots are not described: the marker's own (card), or twice its diameter at the same "
-            "brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four times the flux). What "
-            "breaks lock under 2D is the flux, not the size: at paper size (18 runs, 5 s) one interferer at SIR 2 "
-            "breaks 16 runs and five at SIR 3 break 12 as 2D spots, none as 2D spots of the marker's flux, and all "
-            "18 as marker-size spots of four times its flux",
+            "the interferers' spots are not described: the marker's own (this project's default), or twice its "
+            "diameter at the same brightness per pixel (SIR is a brightness ratio, so a larger emitter carries four "
+            "times the flux). What breaks lock under 2D is the flux, not the size: at paper size (18 runs, 5 s) one "
+            "interferer at SIR 2 breaks 16 runs and five at SIR 3 break 12 as 2D spots, none as 2D spots of the "
+            "marker's flux, and all 18 as marker-size spots of four times its flux",
             origin="adversarial",
             title="size of each interferer's spot, and with it its flux at the same SIR",
             phrases={
@@ -283,11 +282,11 @@ REGISTER = Register(
             "reading",
             "object",
             ("object", "image", "trace"),
-            "where on the image the marker's circle of interferers lies: about the object's initial centre (card), "
-            "about the image centre (the middle of the object's motion), or on the marker's trace, each interferer "
-            "about the object's centre at its own random frame of the run, so that the marker sweeps over each one "
-            "wherever the object has moved by then (with the card's motion the interferers spread along the path, "
-            "a median 22 px from the start against 12 px on the card's circle)",
+            "where on the image the marker's circle of interferers lies: about the object's initial centre (this "
+            "project's default), about the image centre (the middle of the object's motion), or on the marker's trace, "
+            "each interferer about the object's centre at its own random frame of the run, so that the marker sweeps "
+            "over each one wherever the object has moved by then (with the default motion the interferers spread along "
+            "the path, a median 22 px from the start against 12 px on the default circle)",
             title="where the interferers sit along the object's path",
             phrases={
                 "object": "on the marker's circle about the object's starting point",
@@ -301,11 +300,11 @@ REGISTER = Register(
             0.5,
             (0.25, 0.5, 1.0),
             "'loss of tracking' is not defined: the miss beyond the loss radius for more than half of a window of "
-            "0.25-1 s (card section 4.5: 0.5 s)",
+            "0.25-1 s (this project's default: 0.5 s)",
             title="window over which a loss of lock is declared (the marker off the gate more than half of it)",
             phrases={
                 0.25: "loss: off the gate for most of 0.25 s",
-                0.5: "loss: off the gate for most of 0.5 s (4 revolutions, the card)",
+                0.5: "loss: off the gate for most of 0.5 s (4 revolutions, this project's default)",
                 1.0: "loss: off the gate for most of 1 s",
             },
         ),
@@ -327,9 +326,12 @@ REGISTER = Register(
             "T",
             ("T", "2T"),
             "run lengths of the interference runs are not given and P(loss within T) grows with T: the notebook's "
-            "T (5 s at paper scale, for cost) and twice it (the card's 10 s)",
+            "T (5 s at paper scale, for cost) and twice it (10 s, the length first planned for these runs)",
             title="length of each interference run (a loss is counted within it)",
-            phrases={"T": "runs of T = 5 s at paper scale", "2T": "runs of 2T = 10 s (the card's length)"},
+            phrases={
+                "T": "runs of T = 5 s at paper scale",
+                "2T": "runs of 2T = 10 s (the length first planned for these runs)",
+            },
         ),
         Entry(
             "static_gate",
@@ -351,7 +353,7 @@ REGISTER = Register(
             "quadrant",
             ("quadrant", "centroid"),
             "the non-modulated baseline with the paper's quadrant discriminator, or with the classical gate centroid "
-            "(card section 8.1), each with the same gate, loops and information",
+            "(a baseline added here), each with the same gate, loops and information",
             origin="adversarial",
             title="discriminator of the non-rotating comparison marker (C003-12)",
             phrases={
@@ -391,7 +393,7 @@ REGISTER = Register(
         ),
     ],
     pinned=[
-        # adversarial review (docs/validity/003.md): twice the card's motion with the
+        # adversarial review (docs/validity/003.md): twice the default motion with the
         # 1.5 Hz sinusoid, each inside the tracker alone (y_r RMS 1.5-1.6 and 2.5 px, 0 of 10 lost), together lost
         # lock in 10 of 10 Fig. 1 runs (y_r RMS 35 px): the object's peak speed (377 px/s) exceeds what the 10 Hz
         # coordinate loop can follow inside the quadrant discriminator's linear range, K_xy D/2 = 251 px/s

@@ -2,7 +2,7 @@
 (:class:`Scenario`) and its runner (:func:`run_scenario`, :func:`interference_runs`). The truth lives in
 :mod:`.motion` and the image in :mod:`.imaging`.
 
-Model (Yukhno 2025, eqs. (7)-(13), with the compensation model of the paper card, section 4.2)::
+Model (Yukhno 2025, eqs. (7)-(13), with this project's compensation model)::
 
     u_d(x, y, t) = s(x - x_m(t), y - y_m(t)) + kappa * f(x, y) + sum_q (d / SIR) * spot(x - x_q, y - y_q) + n
 
@@ -63,7 +63,7 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Scenario:
-    """One tracking experiment (defaults: the paper card's choices, sections 4.2-4.5 and 5).
+    """One tracking experiment (defaults: the paper's stated values, and this project's choices where it states none).
 
     Units: px, s, Hz; brightness in units of the marker brightness ``d``.
     ``kappa`` = compensation residual (1 = none); ``noise_std`` and ``background_std`` are

@@ -76,18 +76,20 @@ ROTATION_LAWS = {
     "modulated fast": (0.15, 1.0),
     "modulated strong": (0.2, 1.0),
 }
-# background compensation: the paper's kappa model or a temporal median of the first two revolutions (card 8.5)
+# background compensation: the paper's kappa model or a temporal median of the first two revolutions (beyond the paper)
 COMPENSATION_MODELS = {"kappa": "kappa", "temporal median": "median"}
 # what SIR means for the law-following decoy of C003-12: the brightness a stationary interferer keeps after
 # compensation (the paper's SIR, l. 198, read for the decoy: equal brightness at the tracker), or the brightness it
 # emits (equal emitters: compensation cannot remove a moving decoy, so it reaches the tracker 1/kappa brighter)
 DECOY_BRIGHTNESS = ("residual", "emitted")
-# C003-9: the quadrant slope read over +-D/2 (the card) or at small errors +-D/8, +-D/4 (the slope at zero error)
+# C003-9: the quadrant slope read over +-D/2 (this project's default) or at small errors +-D/8, +-D/4 (the slope at
+# zero error)
 SLOPE_RANGES = {"+-D/2": "fit_slope_halfD", "small errors": "slope_at_zero"}
 # "bandwidth" read as the -3 dB bandwidth (design) or as the noise-equivalent bandwidth: factors on the -3 dB design
 # of the xy, r (first order: B_n = K/4 -> K = 4 B_n) and omega loops (2nd order, zeta 0.707: B_n = 0.53 w_n)
 BANDWIDTH_READINGS = {"-3 dB": (1.0, 1.0, 1.0), "noise-equivalent": (2 / np.pi, 2 / np.pi, 0.617)}
-# Fig. 2 laws (omega depth, omega Hz, r depth, r Hz): the card's, and rates inside the stated loop bandwidths
+# Fig. 2 laws (omega depth, omega Hz, r depth, r Hz): this project's defaults, and rates inside the stated loop
+# bandwidths
 FIG2_LAWS = {"card": (0.1, 0.5, 0.15, 0.05), "omega 2 Hz": (0.1, 2.0, 0.15, 0.05), "r 0.2 Hz": (0.1, 0.5, 0.25, 0.2)}
 
 
