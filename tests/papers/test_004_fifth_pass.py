@@ -129,7 +129,7 @@ def test_c004_2_note_says_what_the_calibration_makes_of_it():
 
 def test_the_floor_form_reading_makes_the_variant_floor_the_paper_s_filter():
     """'Forbid further decrease of the correction term' read as a bound on the position gain alone: every prediction
-    claim then reads the card's variant floor (cross-validated alike; at the fixed floor under the fixed tuning),
+    claim then reads this project's variant floor (cross-validated alike; at the fixed floor under the fixed tuning),
     recomputed here from the forecasts; the default reading keeps the frozen gain vector."""
     from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import PAPER, VARIANT, per_trial_path_mse

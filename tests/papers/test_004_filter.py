@@ -70,7 +70,7 @@ def test_filtered_variance_equals_sigma2_g1():
 
 
 def test_forward_transition_is_inverse_of_backward():
-    """Card's sign correction: F_{+1} = F_{-1}^{-1}."""
+    """Sign correction of eq. (5), derived here: F_{+1} = F_{-1}^{-1}."""
     np.testing.assert_allclose(taylor_transition(2, 1.0) @ taylor_transition(2, -1.0), np.eye(3), atol=1e-15)
 
 

@@ -24,7 +24,7 @@ def _late_ratio(fc_a, fc_b, ref, first: int) -> float:
 
 
 def test_c004_6_scores_the_second_half_of_the_frames(run):
-    """C004-6 is the RMS over frames T/2..T-1 (the card's 'frames 500-1000' of 1000) without the floor over with
+    """C004-6 is the RMS over frames T/2..T-1 (frames 500-1000 of 1000, as set here) without the floor over with
     the cross-validated floor, against the measured centre; recomputed here from the forecasts. The ratio over all
     scored frames differs, so a run scoring the wrong frames fails."""
     T = run.truth.shape[-1]

@@ -44,7 +44,7 @@ def test_spline_extrapolation_exact_on_cubics_and_batched():
 
 
 def test_ca_kalman_without_process_noise_equals_growing_memory():
-    """The card's equivalent form: zero process noise + diffuse prior = growing-memory LS."""
+    """Equivalent form (derived here): zero process noise + diffuse prior = growing-memory LS."""
     rng = np.random.default_rng(0)
     z = np.cumsum(rng.normal(0, 1, (2, 60)), axis=-1)
     F, Q, H, R = kalman_baselines.constant_acceleration_model(0.0, 1.0)

@@ -1,6 +1,6 @@
 """Rule pins of paper 004 (Kokryatska and Hrynchyshyn 2005): each claim's rule decides synthetic values either side
-of the paper's statement as the paper says (tests/rule_pins.py). Sentences and bands from the paper's text and its
-card's claims table; the values are written here, not read from claims.py."""
+of the paper's statement as the paper says (tests/rule_pins.py). Sentences from the paper's text, bands from this
+project's acceptance rules; the values are written here, not read from claims.py."""
 
 from rule_pins import Band, Order, Unchecked, problems
 
@@ -66,7 +66,7 @@ PINS = {
             (1e-3, 0.1),
             unit="gain",
         ),
-        # the card: g_N1 ~ 9/N and the variance sigma^2 g_N1 from the first estimate (N = 3) to long memories
+        # derived here: g_N1 ~ 9/N and the variance sigma^2 g_N1 from the first estimate (N = 3) to long memories
         **{f"variance at N={n}": VARIANCE for n in (3, 5, 10, 20, 50, 100)},
     },
     "C004-6": {

@@ -90,17 +90,17 @@ class BeamWanderConfig:
         Side of the square sensor, px (default 128, the paper's).
     corner_frequencies_hz : tuple of float
         Corner frequency ``f_k`` of each Gauss-Markov component, Hz (default 0.02, 0.1, 0.5:
-        the card's 0.5 Hz as the fastest, with slower wander a factor 5 and 25 below it; the
+        0.5 Hz (this project's choice) as the fastest, with slower wander a factor 5 and 25 below it; the
         trace length, 40 s, is about one period of the slowest).
     spectral_index : float
         ``alpha`` of the spectral envelope ``PSD ~ f^-alpha`` between the corners (default 2/3).
     rms_min_px, rms_max_px : float
         Range of the per-path total wander RMS per axis, px, drawn log-uniformly
-        (default 3..8 px around the card's 5 px).
+        (default 3..8 px around 5 px, this project's choice).
     drift_max_px_per_frame : float
         Largest drift speed, px/frame (default 0.02, i.e. <= 20 px over 1000 frames).
     scintillation_sigma_ln : float
-        Standard deviation of ln(total intensity) (default 0.3, the card's).
+        Standard deviation of ln(total intensity) (default 0.3, this project's choice).
     aliased_corners : bool
         Allow corners at or above the Nyquist frequency ``frame_rate_hz / 2`` (default False). The
         exact discretisation holds for any corner; such a component is nearly uncorrelated from

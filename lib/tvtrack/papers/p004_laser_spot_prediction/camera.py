@@ -19,7 +19,7 @@ __all__ = ["SpotCamera", "GateTrack", "track_spot"]
 
 @dataclass(frozen=True)
 class SpotCamera:
-    """How the laser spot is imaged (the card's suggested defaults; the paper states none).
+    """How the laser spot is imaged (this project's defaults; the paper states none).
 
     Attributes
     ----------

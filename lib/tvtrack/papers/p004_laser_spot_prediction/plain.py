@@ -15,7 +15,7 @@ PLAIN = {
         "what the floor on the correction freezes",
         {
             "whole gain frozen": "the whole gain vector frozen at the floor",
-            "first gain bounded": "only the position gain bounded at the floor (the card's variant floor)",
+            "first gain bounded": "only the position gain bounded at the floor (a variant set here)",
         },
     ),
     "spectral index": (

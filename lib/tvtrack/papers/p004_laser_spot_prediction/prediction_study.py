@@ -62,7 +62,8 @@ __all__ = [
 
 #: The paper's filter.
 PAPER = "growing memory (paper)"
-#: The card's labelled variant of the paper's floor: only ``g_1 >= g_{N_f,1}``, ``g_2, g_3`` scaled by the same factor.
+#: This project's labelled variant of the paper's floor: only ``g_1 >= g_{N_f,1}``, ``g_2, g_3`` scaled by the same
+#: factor.
 VARIANT = "growing memory, g1 floor (variant)"
 #: Baselines the paper names whose errors it quotes as 2-10 px (finite differences, splines, regression).
 CLASSICAL = (
@@ -286,7 +287,7 @@ def apply_learned_folds(models, z, folds) -> np.ndarray:
     return out
 
 
-#: The parts of :func:`compare_methods` beyond the paper's filter (always run): the card's variant floor, the
+#: The parts of :func:`compare_methods` beyond the paper's filter (always run): the variant floor, the
 #: classical baselines (finite differences, cubic spline, regression), Morrison's fading memory, the networks
 #: and the two ML Kalman filters.
 PARTS = frozenset({"variant", "classical", "fading", "learned", "kalman"})
@@ -341,7 +342,7 @@ def compare_methods(
     fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = tuned_forecast(
         s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s, more=more
     )
-    if "variant" in parts:  # the card's variant floor, tuned alike
+    if "variant" in parts:  # the variant floor, tuned alike
         fcs[VARIANT], mse[VARIANT], chosen[VARIANT], _, _ = tuned_forecast(
             s.floor_grid, lambda nf: pr.g1_floor_forecast(z, nf, m, s.order), z, reference, folds, s, more=more
         )

@@ -10,7 +10,7 @@ Methods (Kokryatska & Hrynchyshyn 2005 name them as baselines, Sect. "results"):
 
 - :func:`growing_memory_forecast`: the paper's filter (eqs. (2)-(6)), via
   :func:`tvtrack.filters.polynomial.growing_memory_filter`, with the frozen-gain floor;
-- :func:`g1_floor_filter`: the card's *variant* floor (only ``g_1`` floored, ``g_2, g_3`` scaled
+- :func:`g1_floor_filter`: this project's *variant* floor (only ``g_1`` floored, ``g_2, g_3`` scaled
   by the same factor), which the core filter does not offer;
 - :func:`sliding_regression_forecast`: least-squares polynomial of degree ``d`` on the last ``L``
   samples, extrapolated; ``L = d + 1`` is finite-difference (Newton) extrapolation;

@@ -34,7 +34,7 @@ ROWS = (
         "regime",
         "f^-4",
         ("f^-4", "f^-2", "f^-6", "G-tilt"),
-        "the spectrum above each corner: a critically damped process (smooth paths, f^-4, the card's model), a "
+        "the spectrum above each corner: a critically damped process (smooth paths, f^-4, this project's default), a "
         "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), the critically "
         "damped sum through one more pole at the fastest corner (f^-6: the smooth side of the tilt range, proposed by "
         "the first adversarial pass, docs/validity/004.md; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
@@ -120,7 +120,7 @@ ROWS = (
         (0.3, 0.8),
         "sigma of ln(total irradiance) per frame (log-normal, mean 1; scintillation index exp(sigma^2) - 1 = "
         "0.09 and 0.90): whole-spot fading, i.i.d. per frame, the spot's shape kept (scintillation averaged over "
-        "the receiving aperture, no speckle inside the spot); the card's 0.3, 0.8 for strong turbulence",
+        "the receiving aperture, no speckle inside the spot); 0.3 is this project's default, 0.8 for strong turbulence",
         "author",
     ),
     (
@@ -138,7 +138,7 @@ ROWS = (
         1,
         (1, 3, 10),
         "the prediction horizon is not stated: one frame is the natural reading of 'prediction mode', 10 frames "
-        "(0.4 s) the card's upper end; every method re-tuned at each horizon",
+        "(0.4 s) the upper end of the sweep set here; every method re-tuned at each horizon",
         "author",
     ),
     (
@@ -184,9 +184,9 @@ ROWS = (
         "statistic",
         "95th percentile",
         ("95th percentile", "99th percentile", "radial 95th percentile"),
-        "'does not exceed 2 pixels' read as the 95th percentile of the per-axis |e| (the card's); the 99th is a "
-        "stricter reading short of the noise-dominated maximum; the radial one reads the error as the distance "
-        "between predicted and reference centres (the paper plots x and y, but a spot's error is a distance)",
+        "'does not exceed 2 pixels' read as the 95th percentile of the per-axis |e| (this project's reading); the "
+        "99th is a stricter reading short of the noise-dominated maximum; the radial one reads the error as the "
+        "distance between predicted and reference centres (the paper plots x and y, but a spot's error is a distance)",
         "adversarial",
     ),
     (
@@ -215,8 +215,9 @@ ROWS = (
         "model",
         4.0,
         (4.0, 0.6),
-        "Gaussian spot sigma in px (the card's 1/e^2 radius 8 px); not stated: 0.6 px is a focused, undersampled "
-        "spot whose centroid locks to pixels (7x the centroid error, a position-dependent, frame-correlated bias)",
+        "Gaussian spot sigma in px (this project's default: 1/e^2 radius 8 px); not stated: 0.6 px is a focused, "
+        "undersampled spot whose centroid locks to pixels (7x the centroid error, a position-dependent, "
+        "frame-correlated bias)",
         "adversarial",
     ),
     (
@@ -332,7 +333,7 @@ ROWS = (
         ("whole gain frozen", "first gain bounded"),
         "what 'forbid further decrease of the correction term' (after eq. (6)) freezes: the whole gain vector at "
         "N_f (a fixed-gain alpha-beta-gamma filter), or only the position gain g_N1 held at its N_f value with the "
-        "velocity and acceleration gains scaled by the same factor (the card's variant); the paper implements it in "
+        "velocity and acceleration gains scaled by the same factor (a variant set here); the paper implements it in "
         "software and gives neither; each floor is cross-validated alike, and the world stays calibrated on the first",
         "adversarial",
     ),

@@ -52,7 +52,7 @@ from .timing import frame_time_ms
 from .traces import TraceSet
 from .world import camera_for, scene_config, traces_on_sensor, vibration
 
-#: The ``floor form`` reading under which the paper's filter is the card's variant floor (position gain bounded).
+#: The ``floor form`` reading under which the paper's filter is this project's variant floor (position gain bounded).
 VARIANT_FLOOR = "first gain bounded"
 
 __all__ = [

@@ -34,7 +34,7 @@ __all__ = [
 EXPOSURE_SUBSAMPLES = 4
 
 
-#: The shipped data set's generator configuration and the card's camera (21 px centroid window).
+#: The shipped data set's generator configuration and this project's default camera (21 px centroid window).
 BASE_SCENE = BeamWanderConfig()
 BASE_CAMERA = SpotCamera(centroid_window_px=21.0)
 
