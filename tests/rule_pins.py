@@ -2,7 +2,7 @@
 
 Each paper's ``tests/papers/test_NNN_rule_pins.py`` holds a table ``PINS = {claim id: {part pattern: row}}``: the
 paper's sentence (short), the direction or band it states, and synthetic measured values, one set the paper's
-statement calls reproduced and one it calls not reproduced, written from the paper (its card's claims table), not
+statement calls reproduced and one it calls not reproduced, written from the paper's own text and figures, not
 from ``claims.py``. :func:`check` feeds every part of every rule its row's values as narrow
 :class:`tvtrack.montecarlo.Estimate` s and asserts the verdict; a band row also probes just inside and just outside
 each end it states, so a moved end fails too. A claim id or part with no row, or a row that matches no part, fails:

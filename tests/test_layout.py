@@ -395,3 +395,60 @@ def test_the_seam_rules_see_planted_offences(tmp_path):
     assert private_imports(pkg) == ["pkg.sub.b: pkg.a._hidden"]
     assert facade_imports(pkg) == ["pkg.c: pkg.sub.b.shown", "pkg.c: pkg.sub.helper"]  # b.shown: an attribute
     assert reexports(pkg) == ["pkg.c: helper", "pkg.c: s", "pkg.c: shown", "pkg.sub.b: _hidden", "pkg.sub: helper"]
+
+
+#: "card" as a citation: the project's texts cite the paper itself (its equations, figures, sections) or say what is
+#: this project's own choice; nothing points a reader at a document the repository does not ship.
+_CARD_WORD = r"\bcards?\b|\bcard's\b"
+_CARD_SCOPE, _CARD_SUFFIXES = ("lib/", "notebooks/", "docs/", "README.md"), (".py", ".md", ".ipynb", ".tmpl", ".html")
+#: The site's UI cards (one box per paper run on the site's first page) are a layout element, not a citation.
+_CARD_UI = ("lib/tvtrack/pipeline/site.py", "lib/tvtrack/pipeline/site_templates/")
+#: Pending: phrases kept, with why, until what they wait for lands.
+_CARD_PENDING = dict.fromkeys(
+    ("relative to the card's (10 px RMS in x, 20 px in y)", "**card's** motion"),
+    "quoted in the README's generated block; reworded with 003's next paper-profile run",
+)
+
+
+def _card_citations(root: Path) -> list[str]:
+    """``file:line: text`` for each "card"/"cards"/"card's" in the project's texts, less the UI and pending ones."""
+    import re
+    import subprocess
+
+    files = subprocess.run(["git", "ls-files"], cwd=root, capture_output=True, text=True, check=True).stdout.split()
+    pending = [re.compile(r"\s+".join(map(re.escape, p.split()))) for p in _CARD_PENDING]
+    hits = []
+    for name in files:
+        path = root / name
+        if not name.startswith(_CARD_SCOPE) or not name.endswith(_CARD_SUFFIXES) or name.startswith(_CARD_UI):
+            continue
+        text = path.read_text(errors="replace")
+        kept = [m.span() for p in pending for m in p.finditer(text)]  # a quoted phrase may wrap over lines
+        for m in re.finditer(_CARD_WORD, text, re.IGNORECASE):
+            if not any(a <= m.start() < b for a, b in kept):
+                line = text.count("\n", 0, m.start()) + 1
+                hits.append(f"{name}:{line}: {text.splitlines()[line - 1].strip()[:100]}")
+    return hits
+
+
+def test_no_text_cites_the_paper_cards(tmp_path):
+    """No docstring, comment, notebook, doc or README line cites the paper cards the project was built from: they
+    are not shipped, so a reader could not look the citation up. The check sees a planted line, and passes the
+    site's UI cards and a pending phrase (even wrapped over two lines)."""
+    root = Path(tvtrack.__file__).resolve().parents[2]
+    assert _card_citations(root) == []
+    import subprocess
+
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    (tmp_path / "lib/tvtrack/pipeline/site_templates").mkdir(parents=True)
+    (tmp_path / "lib/a.py").write_text("x = 1\n# the gain (card 4.1)\n")
+    (tmp_path / "lib/b.md").write_text(
+        "The Card's default; amplitude, relative to the card's (10 px RMS\nin x, 20 px in y).\n"
+    )
+    (tmp_path / "docs.md").write_text("as in the cards\n")  # outside the scanned folders
+    (tmp_path / "lib/tvtrack/pipeline/site_templates/index.html").write_text('<div class="cards">\n')
+    subprocess.run(["git", "add", "."], cwd=tmp_path, check=True)
+    assert _card_citations(tmp_path) == [
+        "lib/a.py:2: # the gain (card 4.1)",
+        "lib/b.md:1: The Card's default; amplitude, relative to the card's (10 px RMS",
+    ]

@@ -156,7 +156,7 @@ class Claim:
     Attributes
     ----------
     id : str
-        As in the paper card, e.g. ``"C001-3"``.
+        This project's claim id: ``"C"``, the paper number, ``"-"``, the claim's number, e.g. ``"C001-3"``.
     statement : str
         What the paper claims, in words.
     paper_value : str

@@ -1,12 +1,12 @@
 """Cramer-Rao bound for binned Poisson photon counts of ``Q`` objects in linear motion.
 
-Model (paper card 002, section 8.1): the count of pixel ``(row k, col i)`` in frame ``l`` is
-Poisson with mean
+Model (this project's addition to paper 002, on the paper's imaging model): the count of pixel
+``(row k, col i)`` in frame ``l`` is Poisson with mean
 
     Lambda_ikl = m sum_j F_xji(mu_xjl) F_yjk(mu_yjl) + b,   mu_xjl = x0_j + Vx_j t_l,
 
-with the pixel-integrated Gaussian fractions ``F`` (U3). The Fisher information of the motion
-states ``theta = (x0_1, y0_1, Vx_1, Vy_1, ..., x0_Q, ..., Vy_Q)`` is
+with the pixel-integrated Gaussian fractions ``F`` (unnumbered in the paper; (U3) in this project).
+The Fisher information of the motion states ``theta = (x0_1, y0_1, Vx_1, Vy_1, ..., x0_Q, ..., Vy_Q)`` is
 
     I = sum_{l,i,k} grad Lambda_ikl grad Lambda_ikl^T / Lambda_ikl,
 

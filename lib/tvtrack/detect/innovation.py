@@ -1,4 +1,4 @@
-"""Innovation-based manoeuvre detectors for notebook 001's benchmark (card §8.1).
+"""Innovation-based manoeuvre detectors for notebook 001's benchmark (this project's addition).
 
 The TRACK2 filter's innovation ``nu_t = Z_t - h F x_{t-1}`` is, under no manoeuvre, zero-mean with
 variance ``s_t^2 = [F P_{t-1} F^T]_00 + sigma_eps^2`` (noise covariance recursion); a manoeuvre

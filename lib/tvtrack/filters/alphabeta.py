@@ -2,16 +2,18 @@
 
 State per channel ``x = (x, v, a)`` (order 2) or ``(x, v)`` (order 1) in per-frame units
 (elements, elements/frame, elements/frame^2). One frame of the filter (Fisenko et al. 2008,
-eq. (1) with the card's scalar innovation)::
+eq. (1), with the innovation made the scalar ``Z_k - h F x_{k-1}``: as printed it subtracts the
+vector ``F x_{k-1}`` from the scalar coordinate)::
 
     x_k = F x_{k-1} + K_k (Z_k - h F x_{k-1}),    F = taylor_transition(order),  h = (1, 0, ..)
 
-The gain schedule is the growing-memory least-squares law (card §4.1, from
+The gain schedule is the growing-memory least-squares law (this project's reading: the paper describes
+gains that decay with the frame number down to a lower bound but does not print them; from
 :func:`tvtrack.filters.polynomial.growing_memory_gains`) with a *lower bound*:
 ``K_k = K(min(k, k_bound))``. ``K = 0`` is the paper's zero-gain prediction mode (E1).
 
 With frozen gains ``K`` the estimation error ``e_k = x_k - x^true_k`` obeys
-``e_k = A e_{k-1} + K eps_k`` with ``A = (I - K h) F`` (card §4.2), so its stationary covariance
+``e_k = A e_{k-1} + K eps_k`` with ``A = (I - K h) F`` (derived here), so its stationary covariance
 solves the discrete Lyapunov equation ``P = A P A^T + sigma^2 K K^T`` and the lag-``m``
 cross-covariance is ``E[e_{k+m} e_k^T] = A^m P``.
 
@@ -62,7 +64,7 @@ def _order_of(K) -> int:
 
 
 def closed_form_gains(order: int, k) -> np.ndarray:
-    """Growing-memory gains from the card's closed forms (§4.1), valid for every ``k >= 1``.
+    """Growing-memory gains in closed form (derived here; they reproduce batch least squares), every ``k >= 1``.
 
     Order 1: ``(2(2k-1), 6) / (k(k+1))``; order 2:
     ``(3(3k^2-3k+2), 18(2k-1), 60) / (k(k+1)(k+2))``. For ``k <= order`` the least-squares fit
@@ -99,7 +101,7 @@ def gain_schedule(order: int, k_bound: int, n_max: int | None = None) -> np.ndar
     ----------
     order : {1, 2}
     k_bound : int
-        Frame number at which the gains stop decreasing (the card's ``k_b``), >= 1.
+        Frame number at which the gains stop decreasing (``k_b``; the paper's Fig. 4 parameter), >= 1.
     n_max : int, optional
         Table length; default ``k_bound`` (every later row equals the last).
 
@@ -129,7 +131,7 @@ def observation_row(order: int) -> np.ndarray:
 
 
 def closed_loop_matrix(K) -> np.ndarray:
-    """``A = (I - K h) F`` for a frozen gain vector ``K`` of shape (order+1,) (card §4.2)."""
+    """``A = (I - K h) F`` for a frozen gain vector ``K`` of shape (order+1,) (derived here)."""
     K = np.asarray(K, dtype=float)
     order = _order_of(K)
     n = order + 1
@@ -139,7 +141,7 @@ def closed_loop_matrix(K) -> np.ndarray:
 def steady_state_covariance(K, sigma_eps: float = 1.0) -> np.ndarray:
     """Stationary filtered-error covariance of the frozen filter.
 
-    Solves ``P = A P A^T + sigma_eps^2 K K^T`` (card §4.2) with
+    Solves ``P = A P A^T + sigma_eps^2 K K^T`` (derived here) with
     :func:`scipy.linalg.solve_discrete_lyapunov`.
 
     Parameters
@@ -184,7 +186,7 @@ def lagged_covariances(K, sigma_eps: float = 1.0, max_lag: int = 1) -> np.ndarra
 
 
 def error_covariance_sequence(gains, sigma_eps: float = 1.0, P0=None) -> np.ndarray:
-    """Noise-driven error covariance of a filter with arbitrary gains (card §4.5).
+    """Noise-driven error covariance of a filter with arbitrary gains (derived here).
 
     ``P_k = (I - K_k h) F P_{k-1} F^T (I - K_k h)^T + sigma_eps^2 K_k K_k^T``; a zero gain row
     is a coasting frame (``P_k = F P_{k-1} F^T``). Exact for any linear filter with no

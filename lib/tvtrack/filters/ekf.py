@@ -1,6 +1,7 @@
 """Extended Kalman filter batched over trials, with a state-dependent observation-noise variance.
 
-The model (Sage & Melsa; Martyshevsky 1995, eqs. (E1)-(E7) of paper card 000)::
+The model (Sage & Melsa; Martyshevsky 1995, its unnumbered prediction/correction equations, labelled
+(E1)-(E7) in this project)::
 
     x(k+1) = F x(k) + w(k),          w ~ N(0, Q)
     z(k)   = h(x(k), k) + v(k),      v ~ N(0, R(x, k))

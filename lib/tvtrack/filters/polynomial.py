@@ -2,9 +2,10 @@
 
 The state of an order-``r`` filter is ``X_n = (x_n, x'_n, ..., x^(r)_n)``, derivatives per
 sample (unit time step). An observation ``j`` samples back is ``Z_{n-j} = h_j X_n + noise`` with
-``h_j = ((-j)^k / k!)_{k=0..r}`` (Kokryatska & Hrynchyshyn 2005, eqs. (2)-(3) with the card's
-corrections). With no process noise the least-squares estimate over all ``N`` observations,
-eq. (4), obeys the recursion (5)-(6)::
+``h_j = ((-j)^k / k!)_{k=0..r}`` (Kokryatska & Hrynchyshyn 2005, eqs. (2)-(3) as corrected
+here: the entry printed ``i^2/i`` is ``i^2/2``, and the rows run over the lags ``j = 0..k-1``
+where the printed matrix starts at lag ``k``). With no process noise the least-squares estimate
+over all ``N`` observations, eq. (4), obeys the recursion (5)-(6)::
 
     X^- = F_{+1} X            (eq. 5, with the forward matrix F_{+1} = F_{-1}^{-1})
     X   = X^- + g_N (Z - x^-) (eq. 6, g_N = M_N^{-1} h_0^T,  M_N = sum_{j<N} h_j^T h_j)
