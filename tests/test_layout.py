@@ -424,6 +424,9 @@ def _card_citations(root: Path) -> list[str]:
             continue
         text = path.read_text(errors="replace")
         kept = [m.span() for p in pending for m in p.finditer(text)]  # a quoted phrase may wrap over lines
+        # a register value whose code name is "card" (003's default motion and Fig. 2 law) is a name, not a
+        # citation: renaming it would change every record's configurations, so it stays, quoted as code
+        kept += [m.span() for m in re.finditer(r"([\"'`])card\1", text)]
         for m in re.finditer(_CARD_WORD, text, re.IGNORECASE):
             if not any(a <= m.start() < b for a, b in kept):
                 line = text.count("\n", 0, m.start()) + 1
@@ -446,6 +449,7 @@ def test_no_text_cites_the_paper_cards(tmp_path):
         "The Card's default; amplitude, relative to the card's (10 px RMS\nin x, 20 px in y).\n"
     )
     (tmp_path / "docs.md").write_text("as in the cards\n")  # outside the scanned folders
+    (tmp_path / "lib/c.py").write_text('MOTIONS = ("card", "sinusoids")  # a value\'s code name: `card`\n')
     (tmp_path / "lib/tvtrack/pipeline/site_templates/index.html").write_text('<div class="cards">\n')
     subprocess.run(["git", "add", "."], cwd=tmp_path, check=True)
     assert _card_citations(tmp_path) == [

@@ -104,9 +104,9 @@ def _two_percent(grid_p) -> vd.ByReading:
     def part(k):
         return InBand(f"steady RMS coordinate error / micro-raster size at psi_A = 20, {k}", 0.01, 0.03, "(ratio)")
 
-    card = ["P=0", "P=0.5 variant 1", "P=0.5 variant 2"]
-    every = card + [f"P={p:g} variant {v}" for p in grid_p if p not in (0, 0.5) for v in (1, 2)]
-    default = AllOf({k: part(k) for k in card})
+    named = ["P=0", "P=0.5 variant 1", "P=0.5 variant 2"]
+    every = named + [f"P={p:g} variant {v}" for p in grid_p if p not in (0, 0.5) for v in (1, 2)]
+    default = AllOf({k: part(k) for k in named})
     return vd.ByReading("C000-2 contrasts", {C2_EVERY: AllOf({k: part(k) for k in every})}, default)
 
 
