@@ -10,9 +10,9 @@ from conftest import REPO
 from tvtrack.pipeline.report import README_BEGIN, README_END, results_paragraph, update_readme
 
 README = REPO / "README.md"
-DOCS = ("docs/contributing.md", "docs/benchmarks.md")
-#: The hand-written definitions of the block's symbols, right after the block and its paragraph.
-TERMS_HEADING = "### Terms used in the results"
+DOCS = ("docs/contributing.md", "docs/benchmarks.md", "docs/terms.md")
+#: The hand-written definitions of the block's symbols, linked right after the block and its paragraph.
+TERMS = REPO / "docs" / "terms.md"
 #: Symbols of the generated block, as the block escapes them, that the terms section must define.
 KEY_SYMBOLS = (
     "psi\\_A",
@@ -50,10 +50,7 @@ KEY_SYMBOLS = (
 
 def _first_screen_ok(text: str) -> None:
     lines = text.splitlines()
-    start = text.index(TERMS_HEADING)
-    terms = text[start : text.index("\n## ", start)].count("\n") + 1  # with the blank line above it
-    assert terms <= 60, terms  # the definitions of the block's symbols, a reference below the block
-    assert len(lines) - terms <= 160, len(lines) - terms
+    assert len(lines) <= 160, len(lines)
     head = "\n".join(lines[:40])
     assert "make reproduce" in head and "make test" in head
     block = head[head.index(README_BEGIN) + len(README_BEGIN) :].strip()
@@ -103,39 +100,36 @@ def _plain(markdown: str) -> str:
     return " ".join(re.sub(r"\\(.)", r"\1", markdown).lower().split())
 
 
-def _terms_check(text: str) -> tuple[list[str], list[str]]:
-    """``(stale, undefined)``: the bold names of the terms section that the generated block does not contain, and
-    the :data:`KEY_SYMBOLS` that no bold name of the section holds."""
+def _terms_check(text: str, terms: str) -> tuple[list[str], list[str]]:
+    """``(stale, undefined)``: the bold names of the terms page ``terms`` that the README ``text``'s generated block
+    does not contain, and the :data:`KEY_SYMBOLS` that no bold name of the page holds."""
     block = text[text.index(README_BEGIN) + len(README_BEGIN) : text.index(README_END)]
-    start = text.index(TERMS_HEADING)
-    section = text[start : text.index("\n## ", start)]
-    names = [_plain(n) for n in re.findall(r"\*\*(.+?)\*\*", section, flags=re.S)]
+    names = [_plain(n) for n in re.findall(r"\*\*(.+?)\*\*", terms, flags=re.S)]
     names = [n for n in names if not re.fullmatch(r"\d{3}", n)]  # the papers' numbers that head the bullets
     stale = [n for n in names if n not in _plain(block)]
     undefined = [s for s in KEY_SYMBOLS if not any(_plain(s) in n for n in names)]
     return stale, undefined
 
 
-def test_the_terms_section_follows_the_block_and_defines_its_symbols():
-    """Every term the section defines is in the generated block (a definition left behind by a rewording fails),
-    and every key symbol of the block has a definition there."""
-    text = README.read_text()
+def test_the_terms_page_is_linked_after_the_block_and_defines_its_symbols():
+    """Every term docs/terms.md defines is in the generated block (a definition left behind by a rewording fails),
+    every key symbol of the block has a definition there, and the README links the page right after the block."""
+    text, terms = README.read_text(), TERMS.read_text()
     end = text.index(README_END) + len(README_END)
-    between = text[end : text.index(TERMS_HEADING)].strip()
-    assert between.startswith("The block carries no date") and "\n\n" not in between, between[:200]
-    assert text.index(TERMS_HEADING) < text.index("## Where to look next")
+    after = text[end : text.index("## Where to look next")].strip()
+    assert after.startswith("The block carries no date") and "\n\n" not in after and "](docs/terms.md)" in after, after
     block = text[text.index(README_BEGIN) : end]
     assert all(s in block for s in KEY_SYMBOLS), [s for s in KEY_SYMBOLS if s not in block]
-    assert _terms_check(text) == ([], [])
-    for line in text[text.index(TERMS_HEADING) : text.index("## Where to look next")].splitlines():
+    assert _terms_check(text, terms) == ([], [])
+    for line in terms.splitlines():
         assert len(line) <= 118, line
 
 
 def test_the_terms_check_catches_a_stale_and_a_missing_definition():
     """A symbol renamed in the block leaves its definition stale; a definition dropped leaves its symbol undefined."""
-    text = README.read_text()
+    text, terms = README.read_text(), TERMS.read_text()
     end = text.index(README_END)
     renamed = text[:end].replace("psi\\_A", "psi\\_B") + text[end:]
-    assert _terms_check(renamed) == (["psi_a"], [])
-    dropped = text.replace("**van Trees bound**", "van Trees bound")
-    assert _terms_check(dropped) == ([], ["van Trees bound"])
+    assert _terms_check(renamed, terms) == (["psi_a"], [])
+    dropped = terms.replace("**van Trees bound**", "van Trees bound")
+    assert _terms_check(text, dropped) == ([], ["van Trees bound"])
