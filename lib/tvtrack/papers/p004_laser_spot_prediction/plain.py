@@ -45,11 +45,11 @@ PLAIN = {
         },
     ),
     "error in the band": (
-        "where in the paper's 1-2 px its filter erred (the world calibrated to it)",
+        "where in the paper's 1-2 px its filter erred (the wander's speed set to put it there)",
         {
-            1.0: "the world calibrated to the low end of the paper's 1-2 px (the filter errs 1 px)",
-            1.5: "the world calibrated to the middle of the paper's 1-2 px (the filter errs 1.5 px)",
-            2.0: "the world calibrated to the top of the paper's 1-2 px (the filter errs 2 px)",
+            1.0: "the wander's speed set so that the filter errs 1 px, the low end of the paper's 1-2 px",
+            1.5: "the wander's speed set so that the filter errs 1.5 px, the middle of the paper's 1-2 px",
+            2.0: "the wander's speed set so that the filter errs 2 px, the top of the paper's 1-2 px",
         },
     ),
     "amplitude": (
