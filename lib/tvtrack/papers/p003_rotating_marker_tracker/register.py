@@ -37,7 +37,7 @@ REGISTER = Register(
             "no amplitudes are given: 0 a hovering object (adversarial: Fig. 3 shows the marker sweeping the "
             "interferers, nothing says the object moved), 0.25 a slow object (5 px), 2 doubles the speed "
             "(40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, still well inside the gate)",
-            title="amplitude of the object's motion, relative to the card's (10 px RMS in x, 20 px in y)",
+            title="amplitude of the object's motion, relative to the default (10 px RMS in x, 20 px in y)",
             phrases={
                 0.0: "a hovering object (no motion)",
                 0.25: "a slow object (5 px in y)",
