@@ -21,7 +21,6 @@ from conftest import NOTEBOOK_NAMES
 from load import wall_budget
 from site_fixtures import make_explored_runs, make_runs_dir
 from tvtrack.pipeline.screenshots import CHROMIUM, FIRST_SCREEN, FLAGS, LOOPBACK, is_drawn, viewer_drawn
-from tvtrack.pipeline.viewer import free_port
 
 INSTALL = "apt-get install -y chromium && pip install playwright==1.65.2 (Playwright never downloads a browser here)"
 
@@ -245,65 +244,49 @@ def test_first_screen_forest_plot_and_compact_ledger_in_browser(browser, fixture
         w.close()
 
 
-def test_view_serves_a_recording_the_browser_draws(browser, smoke_run, runs_dir_for_viewer):
-    from playwright.sync_api import TimeoutError as PlaywrightTimeout
-    from tvtrack.pipeline.webview import WebViewer
+class RecordedBrowser:
+    """The module's browser, whose pages record the non-loopback requests they make (the screenshots' own route
+    refuses them)."""
 
-    w = Watched(browser, viewport=(1200, 700))
-    try:
-        with WebViewer(runs_dir_for_viewer, web_port=free_port(), grpc_port=free_port()) as viewer:
-            assert urlparse(viewer.url).hostname == "127.0.0.1"
-            page = w.open(viewer.url)
-            # ~20 s on an idle 2-core machine; a screenshot waits for the page's next frame, which a software-rendered
-            # viewer on a loaded machine may take long to give: each one may use what is left of the deadline
-            deadline, seen = time.monotonic() + wall_budget(90), {}
-            while time.monotonic() < deadline:
-                left_ms = max(1000.0, (deadline - time.monotonic()) * 1000)
-                try:
-                    png = page.screenshot(timeout=left_ms)
-                except PlaywrightTimeout:
-                    seen = {"screenshot": f"no frame within {left_ms / 1000:.0f} s"}
-                    break
-                seen = viewer_drawn(png)
-                if is_drawn(seen):  # the recording's frame (many grey levels), its gate/points, the plotted lines
-                    break
-                time.sleep(0.5)
-            assert is_drawn(seen), seen
-            assert viewer.process.poll() is None  # our own server answered, not a stale one
-        # the viewer asks for fonts, an examples manifest, its latest release and telemetry on the internet:
-        # all refused here, and it draws the recording without them
-        assert all(
-            urlparse(u).hostname
-            in {"fonts.googleapis.com", "fonts.gstatic.com", "app.rerun.io", "tel.rerun.io", "api.github.com"}
-            for u in w.outside
-        ), w.outside
-    finally:
-        w.close()
+    def __init__(self, browser):
+        self.browser, self.outside = browser, []
+
+    def new_page(self, **kwargs):
+        page = self.browser.new_page(**kwargs)
+        page.on("request", self._seen)
+        return page
+
+    def _seen(self, request):
+        url = urlparse(request.url)
+        if url.scheme in ("http", "https", "ws", "wss") and url.hostname not in LOOPBACK:
+            self.outside.append(request.url)
 
 
-@pytest.fixture(scope="module")
-def runs_dir_for_viewer(smoke_run, tmp_path_factory):
-    """003's smoke recording when that notebook runs, else the fixture notebook's (image + gate + series)."""
-    outcome = smoke_run("003_rotating_marker_tracker")
-    if outcome.ok and (outcome.run_dir / "recording.rrd").is_file():
-        return outcome.run_dir
-    from conftest import FIXTURE_NOTEBOOK
-    from tvtrack.pipeline.runner import run_notebook
-
-    run = run_notebook(FIXTURE_NOTEBOOK, tmp_path_factory.mktemp("viewer") / "fixture", {"n_trials": 5, "n_frames": 10})
-    assert run.ok
-    return run.run_dir
-
-
-def test_the_readme_screenshots_are_taken_from_the_runs_the_site_shows(browser, smoke_site, tmp_path):
+def test_the_readme_screenshots_are_taken_from_the_runs_the_site_shows(browser, smoke_site, tmp_path, monkeypatch):
     """``python -m tvtrack screenshots``: the site's first screen, the page of the first claim that does not
     reproduce (the reader's first question) and a run's recording drawn in the web viewer, as PNG files of the
-    stated sizes; a claim no run has is one line naming the option."""
+    stated sizes; a claim no run has is one line naming the option.
+
+    The viewer's picture is also the check of :class:`tvtrack.pipeline.webview.WebViewer` in a browser (003's smoke
+    recording; drawing it takes ~20 s on an idle 2-core machine, so it is drawn once): it serves on this machine,
+    its own server answered (alive when the picture was taken), and what it asks for on the internet (fonts, an
+    examples manifest, its latest release, telemetry) is refused and not needed to draw the recording."""
     import json
 
     from PIL import Image
+    from tvtrack.pipeline import webview
     from tvtrack.pipeline.preflight import UsageError
     from tvtrack.pipeline.screenshots import NAMES, VIEWER_SCREEN, pick_claim, take_screenshots
+
+    viewers = []
+
+    class KeptViewer(webview.WebViewer):
+        def __exit__(self, *exc):
+            viewers.append((urlparse(self.url).hostname, self.process.poll() is None))
+            return super().__exit__(*exc)
+
+    monkeypatch.setattr(webview, "WebViewer", KeptViewer)
+    recorded = RecordedBrowser(browser)
 
     site, _ = smoke_site
     root = site.parent
@@ -315,8 +298,16 @@ def test_the_readme_screenshots_are_taken_from_the_runs_the_site_shows(browser, 
     }
     assert records[cid] == "not reproduced"  # smoke runs and fixtures hold some: the first is photographed
     paths = take_screenshots(
-        root, tmp_path / "shots", recording="003_rotating_marker_tracker", site=site, browser=browser
+        root,
+        tmp_path / "shots",
+        recording="003_rotating_marker_tracker",
+        wait_s=max(120.0, wall_budget(90)),
+        site=site,
+        browser=recorded,
     )  # the module's Chromium: a second Playwright may not start inside the first one's event loop
+    assert viewers == [("127.0.0.1", True)]
+    hosts = {"fonts.googleapis.com", "fonts.gstatic.com", "app.rerun.io", "tel.rerun.io", "api.github.com"}
+    assert all(urlparse(u).hostname in hosts for u in recorded.outside), recorded.outside
     assert [p.name for p in paths] == list(NAMES)
     sizes = [Image.open(p).size for p in paths]
     assert sizes == [FIRST_SCREEN, FIRST_SCREEN, VIEWER_SCREEN]
