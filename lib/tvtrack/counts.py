@@ -7,6 +7,7 @@ marked extrapolated and never decides. Re-exported by :mod:`tvtrack.montecarlo`.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
 import numpy as np
@@ -24,8 +25,16 @@ def proportion_ci(successes: int, n: int, confidence: float = 0.95) -> Estimate:
         raise ValueError(f"proportion_ci needs n >= 1, got n={n}")
     k = int(successes)
     p = k / n
+    low, high = _clopper_pearson(k, n, confidence)
+    return Estimate(p, float(np.sqrt(p * (1 - p) / n)), low, high, n, confidence, "Clopper-Pearson")
+
+
+@functools.lru_cache(maxsize=4096)
+def _clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:
+    """The exact interval's ends for ``k`` of ``n`` (scipy's root search, a few ms a call), kept for the next call
+    with the same counts: an exploration asks the same few counts again in many of its runs."""
     ci = scipy.stats.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
-    return Estimate(p, float(np.sqrt(p * (1 - p) / n)), float(ci.low), float(ci.high), n, confidence, "Clopper-Pearson")
+    return float(ci.low), float(ci.high)
 
 
 def zero_events_bound(n: int, confidence: float = 0.95) -> float:
