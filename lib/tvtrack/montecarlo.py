@@ -10,6 +10,8 @@ intervals (:mod:`tvtrack.coverage`) and the probabilities from event counts (:mo
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
@@ -478,10 +480,7 @@ def quantile_ci(samples, q: float, confidence: float = 0.95) -> Estimate:
     if n == 0:
         raise ValueError("quantile_ci needs at least one sample")
     value = float(np.quantile(x, q))
-    lo_rank = int(scipy.stats.binom.ppf((1 - confidence) / 2, n, q))  # l: P(K < l) <= a/2
-    hi_rank = int(scipy.stats.binom.ppf(0.5 + confidence / 2, n, q))  # u - 1: P(K >= u) <= a/2
-    l, u = max(lo_rank, 1), min(hi_rank + 1, n)  # 1-based ranks that exist
-    coverage = float(scipy.stats.binom.cdf(u - 1, n, q) - scipy.stats.binom.cdf(l - 1, n, q))
+    l, u, coverage = _order_ranks(n, q, confidence)
     lo = float(x[l - 1])
     hi = float(x[u - 1])
     note = "" if coverage >= confidence else ", too few samples for both ranks"
@@ -494,3 +493,13 @@ def quantile_ci(samples, q: float, confidence: float = 0.95) -> Estimate:
         confidence,
         f"order statistics (coverage {coverage:.3f} at n = {n}, exact for continuous samples{note})",
     )
+
+
+@functools.lru_cache(maxsize=1024)
+def _order_ranks(n: int, q: float, confidence: float) -> tuple[int, int, float]:
+    """:func:`quantile_ci`'s 1-based ranks ``(l, u)`` and their exact coverage ``P(l <= K < u)``, ``K ~
+    Binomial(n, q)``: a function of the sizes alone, kept for the next call with the same ones."""
+    lo_rank = int(scipy.stats.binom.ppf((1 - confidence) / 2, n, q))  # l: P(K < l) <= a/2
+    hi_rank = int(scipy.stats.binom.ppf(0.5 + confidence / 2, n, q))  # u - 1: P(K >= u) <= a/2
+    l, u = max(lo_rank, 1), min(hi_rank + 1, n)  # 1-based ranks that exist
+    return l, u, float(scipy.stats.binom.cdf(u - 1, n, q) - scipy.stats.binom.cdf(l - 1, n, q))
