@@ -133,51 +133,42 @@ def _profile(name):
         return tomllib.load(fh)
 
 
-# Every notebook's parameters and validation cells, each pair in a namespace of its own, in one fresh process: what
-# the preflight (tvtrack.pipeline.preflight.check_values_many) runs in a process per notebook, at one start-up of
-# Python and the library instead of five. Prints {notebook: the validation cell's ValueError message, or None}; any
-# other error ends the process non-zero, as the preflight's NotebookBug.
-_VALIDATE_EACH = r"""
-import json, sys
-answers = {}
-for name, cells, values in json.loads(sys.stdin.read()):
-    namespace = {"__name__": "__preflight__"}
-    exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
-    namespace.update(values)
-    try:
-        exec(compile(cells[1], "<validation cell>", "exec"), namespace)
-    except ValueError as exc:
-        answers[name] = str(exc)
-    else:
-        answers[name] = None
-print(json.dumps(answers))
-"""
+def _validated_notebook(path: Path, validation: str) -> Path:
+    import nbformat
+
+    nb = nbformat.v4.new_notebook()
+    params = nbformat.v4.new_code_cell("x = 1\noutput_dir = 'out'")
+    params.metadata["tags"] = ["parameters"]
+    nb.cells = [params, nbformat.v4.new_code_cell(validation)]
+    nbformat.write(nb, path)
+    return path
 
 
-def test_the_decide_profile_caps_every_undecided_claims_projection(tmp_path):
+def test_the_preflight_checks_several_notebooks_in_one_process_and_names_a_broken_one(tmp_path):
+    """Each override set gets its own answer, in order, per notebook; a validation cell that fails otherwise than with
+    ValueError is a bug of that notebook, named."""
+    from tvtrack.pipeline.preflight import NotebookBug, check_values_each
+
+    check = "if x < 0:\n    raise ValueError(f'parameter x = {x}; it must be >= 0')"
+    first = _validated_notebook(tmp_path / "first.ipynb", check)
+    second = _validated_notebook(tmp_path / "second.ipynb", check.replace("x < 0", "x > 5").replace(">= 0", "<= 5"))
+    broken = _validated_notebook(tmp_path / "broken.ipynb", "1 / 0")
+    answers = check_values_each([(first, [{"x": 1}, {"x": -1}]), (second, [{"x": 6}])])
+    assert answers == [[None, "parameter x = -1; it must be >= 0"], ["parameter x = 6; it must be <= 5"]]
+    with pytest.raises(NotebookBug, match=r"validation cell of broken failed: ZeroDivisionError"):
+        check_values_each([(first, [{"x": 1}]), (broken, [{}]), (second, [{"x": 1}])])
+
+
+def test_the_decide_profile_caps_every_undecided_claims_projection():
     """Each notebook has a decide profile; where a claim or part is undecided its cap covers the replicates the docs'
     table projects for it (a row beyond every cap the notebook accepts says so), and the notebook's own validation
     accepts the profile."""
-    import os
-
-    from tvtrack.pipeline.preflight import code_cells
+    from tvtrack.pipeline.preflight import check_values_each
 
     notebooks = sorted(Path("notebooks").glob("*.ipynb"))
-    sets = [
-        (nb.stem, code_cells(nb)[:2], {**_profile(f"{nb.stem}.decide.toml"), "output_dir": str(tmp_path / nb.stem)})
-        for nb in notebooks
-    ]
-    proc = subprocess.run(
-        [sys.executable, "-c", _VALIDATE_EACH],
-        input=json.dumps(sets),
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        env={**os.environ, "MPLBACKEND": "Agg"},
-        timeout=120,
-    )
-    assert proc.returncode == 0, proc.stderr
-    assert json.loads(proc.stdout.strip().splitlines()[-1]) == {nb.stem: None for nb in notebooks}
+    # every notebook's validation in one process (the preflight's own, as `reproduce --max-replicates` runs it)
+    answers = check_values_each([(nb, [_profile(f"{nb.stem}.decide.toml")]) for nb in notebooks])
+    assert answers == [[None]] * len(notebooks)
     table = (Path(__file__).parents[1] / "docs" / "scale.md").read_text()
     for nb in notebooks:
         values = _profile(f"{nb.stem}.decide.toml")

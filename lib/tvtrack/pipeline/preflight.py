@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import re
 import os
 import subprocess
 import sys
@@ -103,18 +104,20 @@ def refuse_unknown_keys(table: dict, allowed: Iterable[str], where: str = "") ->
 
 _PREFLIGHT = r"""
 import json, sys
-cells, override_sets = json.loads(sys.stdin.read())
 answers = []
-for overrides in override_sets:
-    namespace = {"__name__": "__preflight__"}
-    exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
-    namespace.update(overrides)
-    try:
-        exec(compile(cells[1], "<validation cell>", "exec"), namespace)
-    except ValueError as exc:
-        answers.append(str(exc))
-        continue
-    answers.append(None)
+for index, (cells, override_sets) in enumerate(json.loads(sys.stdin.read())):
+    print(f"notebook {index}", file=sys.stderr, flush=True)  # names the notebook of a traceback below it
+    answers.append([])
+    for overrides in override_sets:
+        namespace = {"__name__": "__preflight__"}
+        exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
+        namespace.update(overrides)
+        try:
+            exec(compile(cells[1], "<validation cell>", "exec"), namespace)
+        except ValueError as exc:
+            answers[-1].append(str(exc))
+            continue
+        answers[-1].append(None)
 print(json.dumps(answers))
 """
 
@@ -152,26 +155,50 @@ def check_values_many(notebook: Path, override_sets: list[dict[str, Any]], timeo
     NotebookBug
         The validation cell failed otherwise: a bug in the notebook, not in the user's input.
     """
-    cells = code_cells(notebook)
-    if len(cells) < 2:
-        raise UsageError(f"{notebook.name}: no validation cell after the parameters cell")
+    return check_values_each([(notebook, override_sets)], timeout_s)[0]
+
+
+def check_values_each(sets: list[tuple[Path, list[dict[str, Any]]]], timeout_s: float = 120) -> list[list[str | None]]:
+    """:func:`check_values_many` for several notebooks, in one subprocess (one start-up of Python for all).
+
+    Parameters
+    ----------
+    sets : list of (Path, list of dict)
+        Per notebook, its override sets.
+    timeout_s : float
+        Limit for the whole subprocess, in seconds.
+
+    Returns
+    -------
+    list of list of str or None
+        Per notebook and override set, the validation cell's ``ValueError`` message, or ``None``.
+
+    Raises
+    ------
+    NotebookBug
+        A validation cell failed otherwise (named by its notebook): a bug in the notebook, not in the user's input.
+    """
+    cells = [code_cells(nb) for nb, _ in sets]
+    for (nb, _), own in zip(sets, cells):
+        if len(own) < 2:
+            raise UsageError(f"{nb.name}: no validation cell after the parameters cell")
     with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
-        payload = json.dumps([cells[:2], [{**o, "output_dir": scratch} for o in override_sets]], default=str)
-        env = {**os.environ, "MPLBACKEND": "Agg"}
+        payload = [(own[:2], [{**o, "output_dir": scratch} for o in sets_]) for own, (_, sets_) in zip(cells, sets)]
         proc = subprocess.run(
             [sys.executable, "-c", _PREFLIGHT],
-            input=payload,
+            input=json.dumps(payload, default=str),
             capture_output=True,
             text=True,
             cwd=scratch,
-            env=env,
+            env={**os.environ, "MPLBACKEND": "Agg"},
             timeout=timeout_s,
         )
     if proc.returncode != 0:
-        last = (proc.stderr.strip().splitlines() or ["(no message)"])[-1]
+        lines = proc.stderr.strip().splitlines() or ["(no message)"]
+        started = [int(line.split()[1]) for line in lines if re.fullmatch(r"notebook \d+", line)]
+        stem = sets[started[-1] if started else 0][0].stem
         raise NotebookBug(
-            f"the validation cell of {notebook.stem} failed: {last} (a bug in the notebook; "
-            f"--debug shows the traceback)"
+            f"the validation cell of {stem} failed: {lines[-1]} (a bug in the notebook; --debug shows the traceback)"
         )
     return json.loads(proc.stdout.strip().splitlines()[-1])
 

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from ..executors import SchedulerError, connect_dask
-from .preflight import UsageError, check_values_many, name_given, parameter_defaults
+from .preflight import UsageError, check_values_each, name_given, parameter_defaults
 
 __all__ = [
     "MIN_REPLICATES",
@@ -93,11 +93,13 @@ def check_caps(notebooks: list[Path], profiles: list[dict], overrides: list[dict
     UsageError
         One line naming ``--max-replicates`` and the notebook whose validation refused the value.
     """
-    for nb, prof, extra in zip(notebooks, profiles, overrides):
-        if "max_replicates" not in extra:
-            continue
-        values = {**prof, **{k: v for k, v in extra.items() if k != "scheduler"}}
-        (error,) = check_values_many(nb, [values])
+    asked = [
+        (nb, extra, {**prof, **{k: v for k, v in extra.items() if k != "scheduler"}})
+        for nb, prof, extra in zip(notebooks, profiles, overrides)
+        if "max_replicates" in extra
+    ]
+    errors = check_values_each([(nb, [values]) for nb, _, values in asked]) if asked else []
+    for (nb, extra, _), (error,) in zip(asked, errors):
         if error:
             raise UsageError(f"--max-replicates {max_replicates}: {nb.stem}: {name_given(error, extra)}")
 
