@@ -224,40 +224,20 @@ def test_overlay_outside_the_image_view_is_reported(headless_viewer, tmp_path):
     assert any("'errors'" in p for p in check.problems)
 
 
-def _process_group(viewer) -> list[int]:
-    group = [viewer._proc.pid] + [c.pid for c in psutil.Process(viewer._proc.pid).children(recursive=True)]
-    assert len(group) >= 2, "expected the rerun wrapper and the viewer binary"
-    return group
-
-
-def _assert_ended(group: list[int]) -> None:
-    for pid in group:
-        try:
-            assert psutil.Process(pid).status() == psutil.STATUS_ZOMBIE, f"viewer process {pid} still runs"
-        except psutil.NoSuchProcess:
-            pass
-
-
-def test_viewer_process_group_ends_also_on_restart(tmp_path):
-    """``close`` ends the wrapper and the binary; ``restart`` ends them and answers from a fresh process group
-    that renders the recording it is given."""
+def test_viewer_process_group_ends(tmp_path):
     viewer = HeadlessViewer()
     try:
         viewer.start()
     except ViewerUnavailable as exc:
         pytest.skip(f"Rerun viewer check cannot run: {exc}")
-    first = _process_group(viewer)
-    try:
-        viewer.open(_write_recording(tmp_path))
-        viewer.restart()
-        _assert_ended(first)
-        assert viewer.recording is None and viewer._proc.pid not in first
-        check = check_recording(viewer, _write_recording(tmp_path))
-        assert check.problems == [] and check.pixels["gate"].coloured >= 10, check.problems
-        second = _process_group(viewer)
-    finally:
-        viewer.close()
-    _assert_ended(second)
+    group = [viewer._proc.pid] + [c.pid for c in psutil.Process(viewer._proc.pid).children(recursive=True)]
+    assert len(group) >= 2, "expected the rerun wrapper and the viewer binary"
+    viewer.close()
+    for pid in group:
+        try:
+            assert psutil.Process(pid).status() == psutil.STATUS_ZOMBIE, f"viewer process {pid} still runs"
+        except psutil.NoSuchProcess:
+            pass
 
 
 # -- python -m tvtrack view: checked before it serves, stopped by any signal ----------------------

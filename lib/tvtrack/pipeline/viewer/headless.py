@@ -211,12 +211,6 @@ class HeadlessViewer:
         if self._own_log:
             self.log_path.unlink(missing_ok=True)
 
-    def restart(self) -> None:
-        """Close the viewer and start a fresh one (same window size; a new port); no recording is open after."""
-        self.close()
-        self.recording = None
-        self.start()
-
     @property
     def client(self):
         """The connected ``rerun.experimental.ViewerClient``."""
