@@ -32,9 +32,10 @@ from tvtrack.pipeline.viewer import (
 YELLOW, GREEN, RED = (255, 215, 0), (0, 200, 0), (255, 40, 40)
 
 
-def _write_recording(out, *, gate=True, series_view=True, n_frames=12):
+def _write_recording(out, *, gate=True, series_view=True, n_frames=12, first=0):
     """A small tracking recording: a grey spot image, a yellow gate, green truth, red estimate,
-    error series; ``gate=False`` leaves the gate out, ``series_view=False`` shows no time series."""
+    error series, from frame ``first`` on; ``gate=False`` leaves the gate out, ``series_view=False`` shows no time
+    series."""
     blueprint = (
         image_and_series_blueprint("camera", ["errors"])
         if series_view
@@ -42,7 +43,7 @@ def _write_recording(out, *, gate=True, series_view=True, n_frames=12):
     )
     rec = Recorder(out, "file", "tvtrack-viewer-test", blueprint=blueprint)
     yy, xx = np.mgrid[0:32, 0:32]
-    for k in range(n_frames):
+    for k in range(first, first + n_frames):
         rec.set_frame(k)
         c = np.array([12.0 + 0.5 * k, 15.0])
         img = 20 + 200 * np.exp(-((xx - c[0]) ** 2 + (yy - c[1]) ** 2) / 8.0)
@@ -195,6 +196,25 @@ def test_good_recording_passes_with_the_logged_colours(headless_viewer, tmp_path
         assert px.coloured >= 10, (role, px)
         assert np.abs(top - colour).max() <= 48, (role, px.colours)
     assert check.pixels["series:errors"].coloured >= 150
+
+
+def test_the_check_sees_the_frame_it_set_not_the_one_the_file_opened_on(headless_viewer, tmp_path):
+    """The viewer opens a file at frame 0; a recording whose overlays start at frame 1 (as 000's scans do) is blank
+    there. ``set_time`` returns only once the viewer reports its cursor at the frame asked for, so every screenshot
+    of the check is of that frame."""
+    path = _write_recording(tmp_path, n_frames=40, first=1)
+    store_id = headless_viewer.open(path).store_id
+    view = next(v for v in headless_viewer.views() if v.view_class == "2D")
+    assert coloured_mask(headless_viewer.screenshot(view.view_id)).sum() == 0  # frame 0: nothing logged yet
+    for frame in (31, 7):
+        headless_viewer.set_time("frame", frame)
+        # the very next picture is of that frame (without the wait it was still frame 0's: 0 coloured px)
+        assert coloured_mask(headless_viewer.screenshot(view.view_id)).sum() >= 30, frame
+        rec = next(r for r in headless_viewer.state().recordings if r.store_id == store_id)
+        assert (rec.current_timeline, rec.current_time) == ("frame", frame)
+    check = check_recording(headless_viewer, path)
+    assert check.frame == 20 and check.problems == [], check.problems
+    assert min(check.pixels[role].coloured for role in ("gate", "truth", "estimate")) >= 10, check.pixels
 
 
 def test_missing_gate_and_series_view_are_reported(headless_viewer, tmp_path):

@@ -259,9 +259,26 @@ class HeadlessViewer:
         )
         return self.recording
 
-    def set_time(self, timeline: str, sequence: int) -> None:
-        """Pause the active recording at ``sequence`` on a sequence timeline (e.g. ``frame``)."""
+    def set_time(self, timeline: str, sequence: int, timeout_s: float = 30.0) -> None:
+        """Pause the active recording at ``sequence`` on a sequence timeline (e.g. ``frame``), and return once the
+        viewer reports its cursor there and has painted a frame at it.
+
+        The viewer applies the command at its next frame: a view's screenshot taken before then shows the time the
+        file opened on (frame 0, where a view whose entities start at frame 1 is blank).
+        """
         self.client.set_time(timeline, sequence=int(sequence), play_state="paused")
+        store_id, t0 = self._store_id(), time.monotonic()
+        while True:
+            self.client.take_screenshot(max_size=64)  # one painted frame applies the queued command
+            rec = next((r for r in self.client.get_state().recordings if r.store_id == store_id), None)
+            if rec is not None and (rec.current_timeline, rec.current_time) == (timeline, int(sequence)):
+                return
+            if time.monotonic() - t0 > timeout_s:
+                raise TimeoutError(
+                    f"the viewer's time cursor did not reach {timeline} {sequence} in {timeout_s:.0f} s (at "
+                    f"{None if rec is None else (rec.current_timeline, rec.current_time)})"
+                )
+            time.sleep(0.05)
 
     def state(self):
         """``ViewerState`` of the viewer (views with their reports, recordings, loading)."""
