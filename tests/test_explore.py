@@ -452,6 +452,41 @@ def test_sizing_measures_every_undecided_claim_not_only_those_projected_to_decid
     assert len(undecided_far) == n - 3  # undecided at n = 3 and every step: measured in every sizing replicate
 
 
+def _edge_and_near(config, seed, claims=None):
+    out = {"edge": _mean(seed + 7, 0.42, n=100), "near": _mean(seed + 11, 0.35, n=60)}
+    return out if claims is None else {k: out[k] for k in claims}
+
+
+@pytest.mark.parametrize("seed", [0, 4, 6, 9])
+def test_the_sizing_keeps_the_same_replicates_whatever_the_number_of_workers(seed):
+    """Three workers measure up to three sizing replicates at once; the explorer keeps exactly the replicates,
+    and the claims in each, that one at a time would have given (a replicate after which the sizing would have
+    stopped is dropped, one measured for a claim decided meanwhile is measured again without it). These seeds
+    kept more replicates, or more claims in them, with three workers before."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    reg = Register([Entry("a", "regime", 0, (0, 1), "w")])
+    rules = {"edge": InBand("m", -0.5, 0.5), "near": InBand("m", -0.5, 0.5)}
+    kw = dict(seed=seed, replicates=3, max_replicates=20, one_at_a_time=False)
+    alone = explore(_edge_and_near, reg, rules, **kw)
+    with ThreadPoolExecutor(3) as pool_:
+        wide = explore(_edge_and_near, reg, rules, executor=pool_, **kw)
+
+    def replicates(ex):
+        return [
+            (r.seed, r.claims, {c: e.value for c, e in r.outputs.items()}) for r in ex.runs if r.stage == "replicate"
+        ]
+
+    assert alone.settings["replicates"] > 3  # the sizing ran
+    assert replicates(wide) == replicates(alone)
+    assert wide.settings["replicates"] == alone.settings["replicates"]
+    for cid in rules:
+        assert wide.measured(cid) == alone.measured(cid)
+        assert wide.record(cid)["replicates"] == alone.record(cid)["replicates"]
+    measured = wide.settings["timing"]["sizing"]["configurations"]
+    assert measured >= wide.settings["replicates"] - 3  # dropped replicates are measured, not kept
+
+
 def _burn_cpu(config: dict, seed: int) -> dict:
     """A measurement that spends 0.2 s of CPU in whichever process runs it."""
     t = time.process_time()

@@ -468,20 +468,30 @@ def _is_subset_size(n: Any) -> bool:
 
 
 def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: StageClock, default: dict) -> int:
-    """Sizing: one replicate at a time (as many at once as an executor has workers), re-judged after each, while
-    a part is undecided and projected to decide under ``cap``; a measurement taking ``claims`` measures only the
-    claims still undecided. Appends to ``runs``; returns the replicates run."""
+    """Sizing: one replicate at a time, re-judged after each, while a part is undecided and projected to decide
+    under ``cap``; a measurement taking ``claims`` measures only the claims still undecided. Appends to ``runs``;
+    returns the replicates run.
+
+    An executor with several workers measures as many replicates at once (up to the projection), and they are
+    then taken in order as the one-at-a-time sizing would take them: one after which the sizing would have
+    stopped is dropped, and so is one measured for other claims than the sizing then asks (it is measured again
+    with those). The replicates kept, and so every result, do not depend on the number of workers."""
     n = len(runs)
+    width = max(1, int(getattr(clock.executor, "_max_workers", 1) or 1))
     while n < cap:
         sized = _sizing_target(rules, runs, n, cap)
         if sized is None:
             break
         target, undecided = sized
-        step = max(1, min(target - n, int(getattr(clock.executor, "_max_workers", 1) or 1)))
+        step = max(1, min(target - n, width))
         extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
         clock.run(measure, extra, "sizing", guarded=False)
-        runs += extra
-        n += step
+        for i, run in enumerate(extra):
+            again = sized if i == 0 else _sizing_target(rules, runs, n, cap)
+            if again is None or again[1] != run.claims:
+                break
+            runs.append(run)
+            n += 1
     return n
 
 
