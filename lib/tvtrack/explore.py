@@ -486,8 +486,8 @@ def _size(measure, rules, runs: list[Run], seeds: list[int], cap: int, clock: St
         step = max(1, min(target - n, width))
         extra = [Run(dict(default), s, "replicate", claims=undecided) for s in seeds[n : n + step]]
         clock.run(measure, extra, "sizing", guarded=False)
-        for i, run in enumerate(extra):
-            again = sized if i == 0 else _sizing_target(rules, runs, n, cap)
+        for run in extra:  # the first is what the sizing asks now; each later one, what it asks after those kept
+            again = _sizing_target(rules, runs, n, cap)
             if again is None or again[1] != run.claims:
                 break
             runs.append(run)
