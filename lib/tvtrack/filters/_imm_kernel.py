@@ -136,9 +136,11 @@ def kernel_python(zs, Fs, Qs, R, M, x0, P0, mu0, coast, out):
     for b in range(B):
         xs, Ps = np.empty((r, n)), np.empty((r, n, n))
         xm, Pm = np.empty((r, n)), np.empty((r, n, n))
-        for j in range(r):
-            xs[j] = x0
-            Ps[j] = P0
+        for j in range(r):  # element by element: no shape check, whose error message numba would compile
+            for a in range(n):
+                xs[j, a] = x0[a]
+                for c in range(n):
+                    Ps[j, a, c] = P0[a, c]
         mu, cbar = mu0.copy(), np.empty(r)
         Mt, w, K, tmp = np.empty((r, r)), np.empty(r), np.empty(n), np.empty((n, n))
         for t in range(T):

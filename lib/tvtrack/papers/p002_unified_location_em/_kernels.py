@@ -330,6 +330,15 @@ def _change(a, b, span):  # pragma: no cover - compiled
 
 
 @njit
+def _copy_rows(dst, src):  # pragma: no cover - compiled
+    """``dst[:] = src`` for two (Q, 4) arrays, element by element: the same bits, without the shape check whose
+    error message numba would compile (seconds of string code at every first compile)."""
+    for q in range(dst.shape[0]):
+        for k in range(4):
+            dst[q, k] = src[q, k]
+
+
+@njit
 def _squarem(ent, r, th, pw, p0, sg, times, shape, static, span_t, tables, sums, work, new):  # pragma: no cover
     """One SQUAREM cycle of trial ``r`` from ``th`` (:func:`.em_loop.squarem_update`): ``new`` (Q, 4) receives the
     update; returns ``(log-likelihood at th, singular, largest change)``."""
@@ -354,9 +363,9 @@ def _squarem(ent, r, th, pw, p0, sg, times, shape, static, span_t, tables, sums,
     lx = _trial_e_step(*ent, r, tx, pw, p0, sg, times, shape, tables, sums)
     bad3 = _m_step_row(sums, tx, static, t3)
     if lx >= l0 and math.isfinite(lx) and not bad3:
-        new[:] = t3
+        _copy_rows(new, t3)
         return l0, bad1 or bad2, _change(t3, tx, span_t)
-    new[:] = t2
+    _copy_rows(new, t2)
     return l0, bad1 or bad2, _change(t2, t1, span_t)
 
 
@@ -400,7 +409,7 @@ def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma:
         trial = (starts[r], starts[r + 1]) + ent[1:]
         prev_ll, prev_rise, calm = -math.inf, math.nan, 0
         while True:
-            th[:] = theta[r]
+            _copy_rows(th, theta[r])
             if squarem:
                 ll, bad, delta = _squarem(
                     trial, r, th, pw[r], p0[r], sg[r], times, shape, static, span_t, tables, sums, work, new
@@ -413,7 +422,7 @@ def _em_trials(ent, theta, pw, p0, sg, times, shape, options, state):  # pragma:
                 n_iter[r] += 1
             loglik[r] = ll
             if not bad:
-                theta[r] = new
+                _copy_rows(theta[r], new)
             if tol_ll < 0:
                 conv = delta < tol_px and not bad
             else:
@@ -435,7 +444,7 @@ def em_trials(entries, times, static: bool, span: float, state, *, accelerate, t
     (``state.loglik`` the log-likelihood at the returned estimates of every trial not degenerate from the start):
     the same estimates, log-likelihoods, step counts and flags bit for bit. Returns False, doing nothing, where the
     entries are not sorted by trial."""
-    trial = np.asarray(entries.trial, dtype=np.int64)
+    trial = np.ascontiguousarray(entries.trial, dtype=np.int64)  # one compiled layout of _cell_ranges, as e_step's
     if trial.size and np.any(np.diff(trial) < 0):
         return False
     n, n_t = entries.n_trials, entries.n_frames

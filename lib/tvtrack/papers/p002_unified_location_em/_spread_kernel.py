@@ -72,7 +72,7 @@ def variance_sum_rows(e) -> np.ndarray:
     e = np.asarray(e)
     if not jit.enabled() or e.ndim != 3 or e.dtype != np.float64 or not _rows_outer(e):
         return e.var(axis=1, ddof=1).sum(axis=-1)
-    return _variance_sum_rows(e)
+    return _variance_sum_rows(np.ascontiguousarray(e))  # one compiled layout (the same sums: it reads by index)
 
 
 def _rows_outer(e) -> bool:
