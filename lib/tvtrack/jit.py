@@ -2,9 +2,11 @@
 
 A compiled kernel is used only where a loop is dominated by NumPy's per-call overhead or by scalar logic:
 notebook 001's mode logic (``papers.p001_maneuver_occlusion_kf._track_modes_kernel``), the IMM on a scalar position
-measurement (``filters._imm_kernel``, notebook 001's comparator) and notebook 002's EM
-E-step (``papers.p002_unified_location_em._kernels``). Every kernel has a NumPy twin that the tests
-always run and compare with it. Set the environment variable ``TVTRACK_NO_JIT=1`` to force the NumPy paths
+measurement (``filters._imm_kernel``, notebook 001's comparator), notebook 000's filter steps
+(``papers.p000_dissector_ekf._kernels``), notebook 002's EM E-step, photon histogram and bootstrap variances
+(``papers.p002_unified_location_em._kernels``, ``._photon_kernel``, ``._spread_kernel``) and notebook 003's gate crops
+(``papers.p003_rotating_marker_tracker._crop_kernel``). Every kernel has a NumPy twin that the tests always run and
+compare with it. Set the environment variable ``TVTRACK_NO_JIT=1`` to force the NumPy paths
 (numba absent has the same effect).
 
 Compiled code is kept on disk only where ``TVTRACK_JIT_CACHE`` names a folder (``tvtrack run``, ``sweep``,

@@ -1,7 +1,6 @@
-"""The compensated TV image of notebook 003: the scene object that
-renders each frame's gate crop, and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
-correlated background, interferers, the temporal-median residual) and the common random numbers of batched runs in
-:mod:`.draws`.
+"""The compensated TV image of notebook 003: the scene object that renders each frame's gate crop (compiled where numba
+is used: :mod:`._crop_kernel`), and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
+correlated background, interferers, the temporal-median residual), the common random numbers in :mod:`.draws`.
 
 Model (Yukhno 2025, eqs. (9), (10), (19), with this project's compensation model)::
 
@@ -15,7 +14,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
+from ... import jit
 from ...render import disc_area, disc_spot
+from ._crop_kernel import add_box_layers, gather_windows
 from .backdrop import (
     check_spot,
     add_spots,
@@ -280,10 +281,13 @@ class RotatingMarkerScene:
         o = np.minimum(np.maximum(origin + m, 0), (cols + 2 * m - size, rows + 2 * m - size))  # (x, y) in the padding
         origin = o - m
         ox, oy = o[:, 0], o[:, 1]
-        if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
-            self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
         t = self._trials if trials is None else np.asarray(trials)
-        crops = self._windows[size][t, oy, ox]  # (n, size, size), a copy
+        if jit.enabled():  # the compiled twin (the same bits, see ._crop_kernel)
+            crops = gather_windows(self._padded, t.astype(np.int64), oy.copy(), ox.copy(), size)
+        else:
+            if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
+                self._windows[size] = sliding_window_view(self._padded, (size, size), axis=(1, 2))
+            crops = self._windows[size][t, oy, ox]  # (n, size, size), a copy
         if self._marker is None:  # eq. (8) for every frame at once (elementwise: the same numbers frame by frame)
             tr = self.truth
             self._marker = np.stack([tr.xr + tr.r * np.cos(tr.theta), tr.yr + tr.r * np.sin(tr.theta)], axis=-1)
@@ -333,6 +337,9 @@ class RotatingMarkerScene:
         ``trials``, default all) where they overlap them, in place."""
         if box0.ndim == 2:
             box0, patch = box0[None], patch[None]
+        if jit.enabled():  # the compiled twin (the same bits, see ._crop_kernel); contiguous: one compiled layout
+            rows = np.arange(box0.shape[1]) if trials is None else np.asarray(trials, dtype=np.int64)
+            return add_box_layers(crops, *map(np.ascontiguousarray, (box0, patch, origin)), rows)
         size, side = crops.shape[-1], patch.shape[-1]
         rel = box0 - origin  # each box's first pixel within its crop
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=-1)
