@@ -5,7 +5,7 @@ notebook 001's mode logic (``papers.p001_maneuver_occlusion_kf._track_modes_kern
 measurement (``filters._imm_kernel``, notebook 001's comparator), notebook 000's filter steps
 (``papers.p000_dissector_ekf._kernels``), notebook 002's EM E-step, photon histogram and bootstrap variances
 (``papers.p002_unified_location_em._kernels``, ``._photon_kernel``, ``._spread_kernel``) and notebook 003's gate crops
-(``papers.p003_rotating_marker_tracker._crop_kernel``). Every kernel has a NumPy twin that the tests always run and
+(``papers.p003_rotating_marker_tracker._frame_kernels``). Every kernel has a NumPy twin that the tests always run and
 compare with it. Set the environment variable ``TVTRACK_NO_JIT=1`` to force the NumPy paths
 (numba absent has the same effect).
 

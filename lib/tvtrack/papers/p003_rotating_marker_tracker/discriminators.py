@@ -27,7 +27,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ... import jit
 from ...render import pixel_fractions_box
+from ._frame_kernels import quadrant_weights_f32
 
 
 __all__ = [
@@ -101,6 +103,15 @@ def quadrant_weights(origin, center, half, shape, dtype=np.float64):
     o = np.asarray(origin)
     c = np.asarray(center, dtype=float)
     rows, cols = shape
+    if (
+        jit.enabled()
+        and rows == cols
+        and np.ndim(half) == 0
+        and c.ndim == 2
+        and o.shape == c.shape
+        and dtype == np.float32
+    ):
+        return quadrant_weights_f32(o.astype(np.int64), np.ascontiguousarray(c), float(half), rows)  # the same bits
     if rows == cols and np.ndim(half) == 0 and o.shape == c.shape:
         # both axes and the centre and both gate edges in one pass (the frame loop's case): the same numbers
         p = np.empty(c.shape + (3,))

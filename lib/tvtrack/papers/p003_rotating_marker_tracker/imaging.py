@@ -1,5 +1,5 @@
 """The compensated TV image of notebook 003: the scene object that renders each frame's gate crop (compiled where numba
-is used: :mod:`._crop_kernel`), and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
+is used: :mod:`._frame_kernels`), and its builder. The static parts it adds up live in :mod:`.backdrop` (spots, the
 correlated background, interferers, the temporal-median residual), the common random numbers in :mod:`.draws`.
 
 Model (Yukhno 2025, eqs. (9), (10), (19), with this project's compensation model)::
@@ -16,7 +16,7 @@ from numpy.lib.stride_tricks import sliding_window_view
 
 from ... import jit
 from ...render import disc_area, disc_spot
-from ._crop_kernel import add_box_layers, gather_windows
+from ._frame_kernels import add_box_layers, gather_windows
 from .backdrop import (
     check_spot,
     add_spots,
@@ -282,7 +282,7 @@ class RotatingMarkerScene:
         origin = o - m
         ox, oy = o[:, 0], o[:, 1]
         t = self._trials if trials is None else np.asarray(trials)
-        if jit.enabled():  # the compiled twin (the same bits, see ._crop_kernel)
+        if jit.enabled():  # the compiled twin (the same bits, see ._frame_kernels)
             crops = gather_windows(self._padded, t.astype(np.int64), oy.copy(), ox.copy(), size)
         else:
             if size not in self._windows:  # every size x size window of the padded image, a view (no copy), by side
@@ -337,7 +337,7 @@ class RotatingMarkerScene:
         ``trials``, default all) where they overlap them, in place."""
         if box0.ndim == 2:
             box0, patch = box0[None], patch[None]
-        if jit.enabled():  # the compiled twin (the same bits, see ._crop_kernel); contiguous: one compiled layout
+        if jit.enabled():  # the compiled twin (the same bits, see ._frame_kernels); contiguous: one compiled layout
             rows = np.arange(box0.shape[1]) if trials is None else np.asarray(trials, dtype=np.int64)
             return add_box_layers(crops, *map(np.ascontiguousarray, (box0, patch, origin)), rows)
         size, side = crops.shape[-1], patch.shape[-1]

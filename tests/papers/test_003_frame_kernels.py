@@ -1,5 +1,5 @@
-"""Paper 003's compiled gate crops (``._crop_kernel``) against their NumPy twin: the same crops, bit for bit, and the
-same closed-loop histories."""
+"""Paper 003's compiled frame-loop steps (``._frame_kernels``) against their NumPy twins: the same gate crops and
+quadrant weights, bit for bit, and the same closed-loop histories."""
 
 from dataclasses import replace
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tvtrack import jit
-from tvtrack.papers.p003_rotating_marker_tracker import imaging
+from tvtrack.papers.p003_rotating_marker_tracker import discriminators, imaging
 from tvtrack.papers.p003_rotating_marker_tracker.lockstep import run_together
 from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, prepare_interference
 
@@ -15,7 +15,8 @@ pytestmark = pytest.mark.skipif(not jit.enabled(), reason="numba switched off: o
 
 
 def _numpy_path(monkeypatch):
-    monkeypatch.setattr(imaging.jit, "enabled", lambda: False)
+    monkeypatch.setattr(imaging.jit, "enabled", lambda: False)  # the one switch both modules read
+    assert discriminators.jit is imaging.jit
 
 
 def _scene(exposure: str):
@@ -77,3 +78,24 @@ def test_compiled_crops_give_the_numpy_twins_closed_loop_histories(monkeypatch):
     for a, b in zip(compiled, twin):
         for f in ("gate", "miss", "inside", "omega"):
             assert np.array_equal(getattr(a, f), getattr(b, f), equal_nan=True), f
+
+
+@pytest.mark.parametrize("size", [14, 26, 42])
+def test_compiled_quadrant_weights_equal_the_numpy_twin_bit_for_bit(size, monkeypatch):
+    """Gate centres inside the crop, on pixel centres and edges, across its edges and far outside it (every
+    coverage clipped to 0 or 1), a NaN centre, half-sizes of a few pixels to more than the crop."""
+    rng = np.random.default_rng(size)
+    n = 300
+    origin = rng.integers(-60, 300, (n, 2))
+    centre = origin + rng.uniform(-20.0, size + 20.0, (n, 2))
+    centre[:40] = np.round(centre[:40]) + 0.5 * rng.integers(0, 2, (40, 2))  # on pixel centres and edges
+    centre[40] = np.nan
+    for half in (3.0, 6.5, size / 2, 2.0 * size):
+        got = discriminators.quadrant_weights(origin, centre, half, (size, size), np.float32)
+        with monkeypatch.context() as m:
+            _numpy_path(m)
+            want = discriminators.quadrant_weights(origin, centre, half, (size, size), np.float32)
+        for a, b in zip(got, want):
+            assert a.dtype == b.dtype == np.float32 and a.shape == b.shape
+            assert np.array_equal(a, b, equal_nan=True), (half, np.nanmax(np.abs(a - b)))
+        assert np.isnan(got[0][40]).all() and not np.isnan(got[0][41:]).any()
