@@ -99,3 +99,9 @@ def test_compiled_quadrant_weights_equal_the_numpy_twin_bit_for_bit(size, monkey
             assert a.dtype == b.dtype == np.float32 and a.shape == b.shape
             assert np.array_equal(a, b, equal_nan=True), (half, np.nanmax(np.abs(a - b)))
         assert np.isnan(got[0][40]).all() and not np.isnan(got[0][41:]).any()
+    shifted = origin + 0.25  # an origin off the pixel grid is the NumPy path's alone (the kernel takes integers)
+    got = discriminators.quadrant_weights(shifted, centre, 3.0, (size, size), np.float32)
+    with monkeypatch.context() as m:
+        _numpy_path(m)
+        want = discriminators.quadrant_weights(shifted, centre, 3.0, (size, size), np.float32)
+    assert all(np.array_equal(a, b, equal_nan=True) for a, b in zip(got, want))

@@ -103,16 +103,11 @@ def quadrant_weights(origin, center, half, shape, dtype=np.float64):
     o = np.asarray(origin)
     c = np.asarray(center, dtype=float)
     rows, cols = shape
-    if (
-        jit.enabled()
-        and rows == cols
-        and np.ndim(half) == 0
-        and c.ndim == 2
-        and o.shape == c.shape
-        and dtype == np.float32
-    ):
-        return quadrant_weights_f32(o.astype(np.int64), np.ascontiguousarray(c), float(half), rows)  # the same bits
-    if rows == cols and np.ndim(half) == 0 and o.shape == c.shape:
+    square = rows == cols and np.ndim(half) == 0 and o.shape == c.shape
+    if square and jit.enabled() and dtype == np.float32 and c.ndim == 2 and o.dtype.kind in "iu":
+        # the frame loop's case, compiled (._frame_kernels): the same bits
+        return quadrant_weights_f32(o.astype(np.int64), np.ascontiguousarray(c), float(half), rows)
+    if square:
         # both axes and the centre and both gate edges in one pass (the frame loop's case): the same numbers
         p = np.empty(c.shape + (3,))
         p[..., 0], p[..., 1], p[..., 2] = c, c - half, c + half
