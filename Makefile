@@ -10,6 +10,9 @@ $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q -r environment.txt
 	$(BIN)/python -m pip install -q --no-deps -e .
+	@# pip compiles what it installs but not an editable checkout: compile lib/ once here, so each process (a
+	@# kernel, a pool worker, a CLI call) reads bytecode instead of compiling the sources it imports
+	$(BIN)/python -m compileall -q lib/tvtrack
 	$(MAKE) --no-print-directory hooks
 	touch $(STAMP)
 

@@ -1,11 +1,19 @@
 """The library's two layers: science modules never import the pipeline, and no import circle."""
 
 import ast
+import functools
 from pathlib import Path
 
 import tvtrack
 
 PKG = Path(tvtrack.__file__).resolve().parent
+
+
+@functools.cache
+def parse(source: str) -> ast.Module:
+    """``ast.parse(source)``, once per distinct text: every rule here walks the whole library, and the trees are only
+    read (never changed), so the rules share them."""
+    return ast.parse(source)
 
 
 def _module_name(path: Path) -> str:
@@ -30,7 +38,7 @@ def import_graph() -> dict[str, set[str]]:
     graph = {}
     for name, path in files.items():
         deps = set()
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parse(path.read_text())):
             if isinstance(node, ast.ImportFrom):
                 targets = _resolve(name, node, path.name == "__init__.py")
             elif isinstance(node, ast.Import):
@@ -195,7 +203,7 @@ def over_budget(root: Path) -> list[str]:
         n = len(text.splitlines())
         if n > MODULE_LINES:
             out.append(f"{path.relative_to(root)}: {n} lines")
-        for node in ast.walk(ast.parse(text)):
+        for node in ast.walk(parse(text)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 lines = node.end_lineno - _docstring_end(node) + 1
                 if lines > FUNCTION_LINES:
@@ -222,7 +230,7 @@ def test_the_size_budgets_see_a_planted_offence(tmp_path):
 def _modules(root: Path) -> dict[str, ast.Module]:
     """``dotted module name -> its parsed source`` for every module under the package directory ``root``."""
     return {
-        ".".join(p.relative_to(root.parent).with_suffix("").parts).removesuffix(".__init__"): ast.parse(p.read_text())
+        ".".join(p.relative_to(root.parent).with_suffix("").parts).removesuffix(".__init__"): parse(p.read_text())
         for p in sorted(root.rglob("*.py"))
     }
 
