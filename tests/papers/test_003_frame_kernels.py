@@ -105,3 +105,72 @@ def test_compiled_quadrant_weights_equal_the_numpy_twin_bit_for_bit(size, monkey
         _numpy_path(m)
         want = discriminators.quadrant_weights(shifted, centre, 3.0, (size, size), np.float32)
     assert all(np.array_equal(a, b, equal_nan=True) for a, b in zip(got, want))
+
+
+def _both_paths(monkeypatch, fn, *args):
+    """``fn(*args)`` on the compiled path, then on the NumPy twin: the two outcomes (a value, or the exception's
+    type)."""
+
+    def outcome():
+        try:
+            return fn(*args)
+        except (IndexError, ValueError) as e:
+            return type(e)
+
+    compiled = outcome()
+    with monkeypatch.context() as m:
+        _numpy_path(m)
+        return compiled, outcome()
+
+
+@pytest.mark.parametrize("size", [1, 4, 8, 9])
+def test_crops_smaller_than_the_spot_box_are_the_same_both_ways(size, monkeypatch):
+    """A gate smaller than the spot's 9-px box (D = 8): the twin added no box to such a crop (its window view raised);
+    both paths give the pixels of a large crop at the same image positions, every box clipped to its crop."""
+    scene = _scene("instant")
+    k = 21
+    c = scene.truth.marker[:, k] + np.random.default_rng(5).normal(0.0, 3.0, (scene.n, 2))
+    compiled, twin = _both_paths(monkeypatch, scene.gate_crops, k, c, size, None)
+    big, bo, _ = scene.gate_crops(k, c, 26, None)
+    for crops, origin, _ in (compiled, twin):
+        assert crops.shape == (scene.n, size, size) and crops.any()
+        for i, ((x, y), (bx, by)) in enumerate(zip(origin, bo)):
+            assert np.array_equal(crops[i], big[i, y - by : y - by + size, x - bx : x - bx + size])
+    assert all(np.array_equal(a, b) for a, b in zip(compiled, twin))
+
+
+def test_a_bad_crop_request_is_the_same_error_both_ways_and_a_mask_reads_its_trials(monkeypatch):
+    """The compiled crops do not check their indices (an index past the trials read memory it does not own): the
+    request is checked for both paths. A trial index out of range or not an integer, a crop side of 0 or wider than the
+    padded image, and centres that do not broadcast to one per trial are the same error both ways; a boolean mask
+    reads its true trials, and one centre serves every trial, as NumPy's indexing has it."""
+    scene = _scene("instant")
+    k, c = 7, scene.truth.marker[:, 7]
+    side = scene._padded.shape[1]
+    bad = [
+        (c[:1], 26, [scene.n]),
+        (c[:1], 26, [-scene.n - 1]),
+        (c[:1], 26, [0.0]),
+        (c, 0, None),
+        (c, side + 2, None),
+        (c[:3], 26, [0, 1]),
+    ]
+    for centres, size, trials in bad:
+        compiled, twin = _both_paths(monkeypatch, scene.gate_crops, k, centres, size, None, trials)
+        assert compiled is twin and twin in (IndexError, ValueError), (size, trials, compiled, twin)
+    mask = np.arange(scene.n) % 2 == 0
+    for centres, trials in ((c[mask], mask), (c[:1], np.flatnonzero(mask)), (c[:1], None)):
+        compiled, twin = _both_paths(monkeypatch, scene.gate_crops, k, centres, 26, None, trials)
+        assert all(np.array_equal(a, b) for a, b in zip(compiled, twin))
+    by_mask = scene.gate_crops(k, c[mask], 26, None, mask)[0]
+    assert np.array_equal(by_mask, scene.gate_crops(k, c[mask], 26, None, np.flatnonzero(mask))[0])
+
+
+def test_unsigned_origins_keep_the_numpy_weights(monkeypatch):
+    """An unsigned origin past int64's range would wrap in the kernel's integer cast: such origins keep the NumPy
+    path, as float origins do."""
+    origin = np.array([[2**63, 0]], dtype=np.uint64)  # the centre's pixel, 3000 px of half-size: every weight 1
+    args = (origin, np.array([[2.0**63, 1.0]]), 3000.0, (3, 3), np.float32)
+    compiled, twin = _both_paths(monkeypatch, discriminators.quadrant_weights, *args)
+    assert all(np.array_equal(a, b) for a, b in zip(compiled, twin))
+    assert np.all(compiled[1][0, :, 0] == 1.0)

@@ -5,6 +5,9 @@
   window of the static image copied, then each pre-rendered spot box pixel that falls inside its crop added once,
   layer after layer in the order NumPy adds them (the marker, then a lit decoy; an integrated exposure's sub-steps in
   order). A copy and one float32 addition per pixel and layer do not depend on the order the pixels are visited in.
+  The kernels do not check their indices: :func:`crop_request` checks a request for both paths, so a bad one is the
+  same error both ways (never a read of memory the images do not own), and a crop smaller than a spot's box gets the
+  box's overlap on either path.
 - :func:`quadrant_weights_f32`, for :func:`.discriminators.quadrant_weights` in the frame loop's case (a square crop,
   one gate half-size, float32 weights): each pixel's covered lengths ``clip(p - e, 0, 1)`` in float64, their
   differences, sums and differences, one rounding to float32, as NumPy computes them elementwise.
@@ -20,7 +23,25 @@ import numpy as np
 
 from tvtrack.jit import njit
 
-__all__ = ["gather_windows", "add_box_layers", "quadrant_weights_f32"]
+__all__ = ["crop_request", "gather_windows", "add_box_layers", "quadrant_weights_f32"]
+
+
+def crop_request(padded_shape, every, centres, size, trials=None) -> tuple[np.ndarray, np.ndarray]:
+    """The trials (indices; a boolean mask read as its true entries; None: ``every``) and centres (n, 2) of a crop
+    request on padded images of shape ``padded_shape`` (trials, rows, cols), checked as NumPy's indexing and window
+    views check them, so that :func:`gather_windows` and :func:`add_box_layers` (which do not check) meet the same
+    errors as the NumPy path: an index out of range, a crop side outside ``[1, rows]``, centres that do not broadcast
+    to one per trial."""
+    n_all, side = padded_shape[0], min(padded_shape[1:])
+    t = every if trials is None else np.asarray(trials)
+    if trials is not None:
+        t = np.flatnonzero(t) if t.dtype == bool else t
+        if t.dtype.kind not in "iu" or (t.size and not -n_all <= t.min() <= t.max() < n_all):
+            raise IndexError(f"parameter 'trials': integer indices in [-{n_all}, {n_all}) or a mask, got {trials!r}")
+    if not 1 <= size <= side:
+        raise ValueError(f"parameter 'size' = {size!r}: a crop side in [1, {side}] px (the padded image's)")
+    c = np.asarray(centres, dtype=float)
+    return t, (c if c.shape == (len(t), 2) else np.broadcast_to(c, (len(t), 2)))
 
 
 @njit

@@ -104,7 +104,7 @@ def quadrant_weights(origin, center, half, shape, dtype=np.float64):
     c = np.asarray(center, dtype=float)
     rows, cols = shape
     square = rows == cols and np.ndim(half) == 0 and o.shape == c.shape
-    if square and jit.enabled() and dtype == np.float32 and c.ndim == 2 and o.dtype.kind in "iu":
+    if square and jit.enabled() and dtype == np.float32 and c.ndim == 2 and o.dtype.kind == "i":
         # the frame loop's case, compiled (._frame_kernels): the same bits
         return quadrant_weights_f32(o.astype(np.int64), np.ascontiguousarray(c), float(half), rows)
     if square:

@@ -16,15 +16,8 @@ from numpy.lib.stride_tricks import sliding_window_view
 
 from ... import jit
 from ...render import disc_area, disc_spot
-from ._frame_kernels import add_box_layers, gather_windows
-from .backdrop import (
-    check_spot,
-    add_spots,
-    correlated_background,
-    median_residual,
-    place_interferers,
-    render_spot,
-)
+from ._frame_kernels import add_box_layers, crop_request, gather_windows
+from .backdrop import add_spots, check_spot, correlated_background, median_residual, place_interferers, render_spot
 from .draws import generator_blocks, tile_rows
 from .motion import MarkerTruth
 
@@ -273,15 +266,14 @@ class RotatingMarkerScene:
         inside : ndarray of bool, shape (n,)
             Whether the gate centre is inside the image.
         """
-        c = np.asarray(centres, dtype=float)
-        origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
         m = self.MARGIN
         rows, cols = self.image_shape
+        t, c = crop_request(self._padded.shape, self._trials, centres, size, trials)  # checked for both paths
+        origin = np.floor(c - (size - 1) / 2.0).astype(np.int64)
         inside = ((c >= 0) & (c <= (cols - 1, rows - 1))).all(axis=1)
         o = np.minimum(np.maximum(origin + m, 0), (cols + 2 * m - size, rows + 2 * m - size))  # (x, y) in the padding
         origin = o - m
         ox, oy = o[:, 0], o[:, 1]
-        t = self._trials if trials is None else np.asarray(trials)
         if jit.enabled():  # the compiled twin (the same bits, see ._frame_kernels)
             crops = gather_windows(self._padded, t.astype(np.int64), oy.copy(), ox.copy(), size)
         else:
@@ -343,8 +335,10 @@ class RotatingMarkerScene:
         size, side = crops.shape[-1], patch.shape[-1]
         rel = box0 - origin  # each box's first pixel within its crop
         inside = ((rel >= 0) & (rel <= size - side)).all(axis=-1)
-        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True)  # each trial writes its own crop
-        trials, every = (np.arange(rel.shape[1]) if trials is None else np.asarray(trials)), inside.all()
+        # each trial writes its own crop's windows; a box larger than the crop is never wholly inside it (no windows)
+        win = sliding_window_view(crops, (side, side), axis=(1, 2), writeable=True) if side <= size else None
+        trials = np.arange(rel.shape[1]) if trials is None else np.asarray(trials)
+        every = win is not None and inside.all()
         for j in range(rel.shape[0]):
             if every:
                 win[trials, rel[j, :, 1], rel[j, :, 0]] += patch[j]
@@ -404,7 +398,8 @@ class RotatingMarkerScene:
         ``inside``: the boxes wholly inside their crops)."""
         size = crops.shape[-1]
         t = np.flatnonzero(inside)
-        win[trials[t], rel[t, 1], rel[t, 0]] += patch[t]
+        if t.size:
+            win[trials[t], rel[t, 1], rel[t, 0]] += patch[t]
         part = np.flatnonzero(~inside & ((rel > -side) & (rel < size)).all(axis=1))  # boxes across a crop's edge
         if part.size:  # boxes wholly outside add nothing
             ar = np.arange(side)
