@@ -100,3 +100,56 @@ def test_the_vectorised_runners_the_study_uses_are_the_core_filters(compiled):
         mine = run_steps_variant2(scan, MSG, y, 0.2, init[:, 0], assumed, iterations, compiled)
         np.testing.assert_allclose(mine[0], core[0], rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose(mine[1], core[1], rtol=1e-9)
+
+
+@pytest.mark.parametrize("compiled", [False, True, None])
+def test_one_initial_estimate_is_every_trials_on_both_paths(compiled):
+    """A scalar or one-row ``init`` starts every trial there, compiled or not (the compiled loops read ``init[i]``
+    of every trial: trials past the first once started from whatever memory followed the array)."""
+    from tvtrack import jit
+    from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant1, run_steps_variant2
+
+    if compiled and not jit.available():
+        pytest.skip("numba is not installed: the compiled loops are not used")
+    scan, y = _samples(20.0, 0.5, n_steps=40)
+    y = np.concatenate([y, y[::-1]])  # 6 trials
+    phi = np.linspace(0.0, 0.9, len(y))
+    for one, every in ((0.05, np.full(len(y), 0.05)), ([0.05], np.full(len(y), 0.05))):
+        got = run_steps_variant2(scan, MSG, y, 0.2, one, None, 1, compiled, phi)
+        want = run_steps_variant2(scan, MSG, y, 0.2, every, None, 1, compiled, phi)
+        np.testing.assert_array_equal(got, want)
+    got = run_steps_variant1(scan, MSG, y, (0.2, 1.0), [[0.05, 0.3]], compiled=compiled, start=phi)
+    want = run_steps_variant1(scan, MSG, y, (0.2, 1.0), np.tile([0.05, 0.3], (len(y), 1)), compiled=compiled, start=phi)
+    np.testing.assert_array_equal(got, want)
+    numpy = run_steps_variant1(scan, MSG, y, (0.2, 1.0), [[0.05, 0.3]], compiled=False, start=phi)
+    np.testing.assert_allclose(got, numpy, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("compiled", [False, True, None])
+@pytest.mark.parametrize(
+    "variant, kwargs, name",
+    [
+        (1, {"init": np.ones((2, 2))}, "init"),  # fewer rows than trials
+        (1, {"init": np.ones(2)}, "init"),
+        (2, {"init": [0.05, 0.02]}, "init"),
+        (2, {"init": np.ones((4, 1))}, "init"),
+        (1, {"y": np.zeros((4, 0))}, "y"),  # no column for the prior
+        (2, {"y": np.zeros((4, 0))}, "y"),
+        (2, {"y": np.zeros(4)}, "y"),
+        (2, {"noise_iterations": 1.5}, "noise_iterations"),
+        (2, {"noise_iterations": -1}, "noise_iterations"),
+    ],
+)
+def test_the_runners_refuse_what_either_path_cannot_run(compiled, variant, kwargs, name):
+    """Inputs the NumPy path cannot run are refused on both paths with the parameter named (the compiled loops do
+    not check: they read past ``init``, wrote into an empty ``y``'s results, truncated a fractional count)."""
+    from tvtrack import jit
+    from tvtrack.papers.p000_dissector_ekf.cost import run_steps_variant1, run_steps_variant2
+
+    if compiled and not jit.available():
+        pytest.skip("numba is not installed: the compiled loops are not used")
+    scan = scan_at_snr(20.0, 0.5, 0.05)
+    kwargs = {"y": 0.3 * np.random.default_rng(0).standard_normal((4, 30)), **kwargs}
+    run = run_steps_variant1 if variant == 1 else run_steps_variant2
+    with pytest.raises(ValueError, match=f"parameter '{name}'"):
+        run(scan, MSG, compiled=compiled, **kwargs)

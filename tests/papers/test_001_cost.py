@@ -1,6 +1,8 @@
 """Notebook 001's cost: the compiled IMM twin equals imm_run to rounding, a batched grid of IMM
 settings equals the per-setting runs bit for bit, and the cached comparator tuning equals a cold one bit for bit."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -42,6 +44,67 @@ def test_compiled_imm_equals_imm_run(coast):
         # the sums run in another order than BLAS's: equal to rounding, errors of hundreds of elements while lost
         np.testing.assert_allclose(got, ref, rtol=1e-9, atol=1e-9)
         assert np.array_equal(imm_states(zz, *args, engine="numpy"), ref)
+
+
+_FS, _QS = cv_ca_models(0.01, 0.1)
+_M = np.array([[0.95, 0.05], [0.05, 0.95]])
+_IMM = dict(Fs=_FS, Qs=_QS, R=2.0, transition=_M, x0=np.zeros(3), P0=np.diag([10.0, 1.0, 0.1]), mu0=[0.5, 0.5])
+#: arguments imm_run refuses, on which the compiled kernel ran (reading past its arrays' ends, or on numbers that
+#: are not probabilities); Fs, Qs (2, 3, 3), two trials
+_REFUSED = {
+    "x0 of length 2": dict(x0=np.zeros(2)),
+    "x0 of other trials": dict(x0=np.zeros((3, 3))),
+    "P0 2 x 2": dict(P0=np.eye(2)),
+    "Qs (2, 2, 2)": dict(Qs=np.ones((2, 2, 2))),
+    "Fs (2, 3, 4)": dict(Fs=np.zeros((2, 3, 4)), Qs=np.zeros((2, 3, 4)), x0=np.zeros(4), P0=np.eye(4)),
+    "mu0 of length 1": dict(mu0=[1.0]),
+    "mu0 summing to 1.8": dict(mu0=[0.9, 0.9]),
+    "mu0 negative": dict(mu0=[1.5, -0.5]),
+    "transition 1 x 1": dict(transition=[[1.0]]),
+    "transition 3 x 3": dict(transition=np.eye(3)),
+    "transition not stochastic": dict(transition=[[0.5, 0.2], [0.9, 0.9]]),
+    "transition negative": dict(transition=[[1.1, -0.1], [0.05, 0.95]]),
+}
+
+
+def _zz(n=2, seed=2):
+    z = 0.5 * np.arange(50.0) ** 1.2 + np.random.default_rng(seed).standard_normal((n, 50))
+    z[:, 20:26] = np.nan
+    return z
+
+
+@pytest.mark.parametrize("case", list(_REFUSED))
+def test_compiled_imm_refuses_what_imm_run_refuses(case):
+    args = _IMM | _REFUSED[case]
+    with pytest.raises(ValueError, match="parameter|inconsistent IMM shapes") as refused:
+        imm_states(_zz(), **args, engine="numpy")
+    with pytest.raises(ValueError, match=re.escape(str(refused.value))):
+        imm_states(_zz(), **args, engine="jit")
+
+
+@pytest.mark.skipif(not jit.enabled(), reason="numba absent or switched off")
+@pytest.mark.parametrize("coast", ["mix", "mode"])
+def test_compiled_imm_broadcasts_its_parameters_as_imm_run(coast):
+    """A scalar x0 made the kernel read past the array's end (other numbers at each call); a scalar P0 and parameters
+    per trial (a grid of settings) did not compile. The kernel takes them as imm_run does, and a parameter per trial
+    gives each trial the numbers of its own call, bit for bit."""
+    rng = np.random.default_rng(4)
+    per_trial = dict(
+        Qs=np.stack([_QS, 3 * _QS, 0.5 * _QS]),
+        transition=np.stack([_M, np.eye(2), [[0.9, 0.1], [0.2, 0.8]]]),
+        x0=rng.standard_normal((3, 3)),
+        P0=np.stack([np.eye(3), np.diag([10.0, 1.0, 0.1]), 2 * np.eye(3)]),
+    )
+    zz = _zz(3)
+    cases = [dict(x0=5.0), dict(x0=[[5.0, 1.0, 0.5]]), dict(P0=4.0), dict(x0=per_trial["x0"]), per_trial]
+    for case in cases:
+        args = _IMM | case | dict(coast=coast)
+        got = imm_states(zz, **args, engine="jit")
+        np.testing.assert_allclose(got, imm_states(zz, **args, engine="numpy"), rtol=1e-9, atol=1e-9)
+        assert np.array_equal(got, imm_states(zz, **args, engine="jit"))  # the same numbers at each call
+    for b in range(3):
+        one = args | {k: v[b] for k, v in per_trial.items()}
+        assert np.array_equal(got[b], imm_states(zz[b], **one, engine="jit"))
 
 
 def test_imm_run_over_a_grid_of_settings_equals_one_run_per_setting():

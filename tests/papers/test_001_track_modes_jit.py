@@ -145,3 +145,13 @@ def test_reproduce_and_sweep_workers_cap_numba_threads(monkeypatch):
     monkeypatch.setattr("signal.signal", lambda *a: None)
     worker_init(1)
     assert all(os.environ[var] == "1" for var in THREAD_VARS)
+
+
+@pytest.mark.parametrize("sigma_eps", [0.0, -1.0, np.inf, np.nan])
+@pytest.mark.parametrize("engine", ["numpy", "auto"])
+def test_a_noise_sd_that_is_not_finite_and_positive_is_refused_by_both_engines(sigma_eps, engine):
+    """An infinite noise SD passed the old ``> 0`` check, and the engines disagreed at the detection frame (NaN
+    against 0 in the acceleration variance): it is refused, naming the parameter, before either engine runs."""
+    z, vis, thr = _scenario(shape=(1, 2))
+    with pytest.raises(ValueError, match="parameter 'sigma_eps'.*finite and > 0"):
+        run_track_modes(z, vis["gap"], TrackModeConfig(threshold=thr), sigma_eps, engine=engine)

@@ -13,10 +13,12 @@ Without numba (or with ``TVTRACK_NO_JIT=1``) :func:`imm_states` runs :func:`imm_
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .. import jit
-from .imm import imm_run
+from .imm import imm_inputs, imm_run
 
 __all__ = ["COASTS", "imm_states", "kernel_python"]
 
@@ -167,19 +169,35 @@ def _kernel():
     return _compiled["imm"]
 
 
+def _per_trial(a: np.ndarray, core: tuple, batch: tuple) -> np.ndarray:
+    """``a`` (checked to broadcast to ``batch + core``) as the C-contiguous ``core`` array the kernel takes when its
+    leading axes are all of length 1 (or absent), else broadcast to one per trial, shape ``(B,) + core``."""
+    if a.shape == core:
+        return np.ascontiguousarray(a)
+    lead = a.shape[: max(a.ndim - len(core), 0)]
+    if all(k == 1 for k in lead):
+        return np.ascontiguousarray(np.broadcast_to(a.reshape(a.shape[len(lead) :]), core))
+    return np.ascontiguousarray(np.broadcast_to(a, batch + core).reshape((math.prod(batch),) + core))
+
+
 def imm_states(zs, Fs, Qs, R: float, transition, x0, P0, mu0, coast: str = "mix", engine: str = "auto") -> np.ndarray:
     """Combined posterior states (..., T, n) of :func:`imm_run` on scalar position measurements.
+
+    Both engines check and broadcast the parameters as :func:`imm_run` does
+    (:func:`tvtrack.filters.imm.imm_inputs`); parameters with batch axes (a grid of settings) run the kernel one
+    trial at a time, the numbers of one call per setting.
 
     Parameters
     ----------
     zs : array_like, shape (..., T)
         Measured position (``H = (1, 0, ..., 0)``), elements; NaN where missing.
-    Fs, Qs : array_like, shape (r, n, n)
+    Fs : array_like, shape (r, n, n)
+    Qs : array_like, shape (r, n, n) or (..., r, n, n)
     R : float
         Measurement variance, elements².
-    transition : array_like, shape (r, r)
-    x0 : array_like, shape (n,)
-    P0 : array_like, shape (n, n)
+    transition : array_like, shape (r, r) or (..., r, r)
+    x0 : array_like, shape (n,) or (..., n)
+    P0 : array_like, shape (n, n) or (..., n, n)
     mu0 : array_like, shape (r,)
     coast : {"mix", "frozen", "mode"}
     engine : {"auto", "jit", "numpy"}
@@ -189,6 +207,11 @@ def imm_states(zs, Fs, Qs, R: float, transition, x0, P0, mu0, coast: str = "mix"
     Returns
     -------
     ndarray, shape (..., T, n)
+
+    Raises
+    ------
+    ValueError
+        As :func:`imm_run`: shapes that do not fit, ``transition`` or ``mu0`` not probabilities, an unknown ``coast``.
     """
     zs = np.asarray(zs, dtype=float)
     if engine == "auto":
@@ -196,22 +219,17 @@ def imm_states(zs, Fs, Qs, R: float, transition, x0, P0, mu0, coast: str = "mix"
     if engine == "numpy":
         H, Rm = np.eye(1, np.shape(Fs)[-1]), np.array([[float(R)]])
         return imm_run(zs[..., None], Fs, Qs, H, Rm, transition, x0, P0, mu0, coast=coast).x
-    if coast not in COASTS:
-        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")
     batch, T = zs.shape[:-1], zs.shape[-1]
-    Fs, Qs = np.ascontiguousarray(Fs, float), np.ascontiguousarray(Qs, float)
-    n = Fs.shape[-1]
-    out = np.empty((int(np.prod(batch, dtype=np.int64)), T, n))
-    _kernel()(
-        np.ascontiguousarray(zs.reshape(-1, T)),
-        Fs,
-        Qs,
-        float(R),
-        np.ascontiguousarray(transition, float),
-        np.ascontiguousarray(x0, float),
-        np.ascontiguousarray(P0, float),
-        np.ascontiguousarray(mu0, float),
-        COASTS[coast],
-        out,
-    )
+    Fs, Qs, M, x0, P0, mu0 = imm_inputs(batch, Fs, Qs, transition, x0, P0, mu0, coast)
+    r, n = Fs.shape[:2]
+    Qs, M, x0, P0 = (_per_trial(a, c, batch) for a, c in ((Qs, (r, n, n)), (M, (r, r)), (x0, (n,)), (P0, (n, n))))
+    zs = np.ascontiguousarray(zs.reshape(-1, T))
+    out = np.empty((zs.shape[0], T, n))
+    Fs, mu0, R, code, kernel = np.ascontiguousarray(Fs), np.ascontiguousarray(mu0), float(R), COASTS[coast], _kernel()
+    if Qs.ndim == 3 and M.ndim == 2 and x0.ndim == 1 and P0.ndim == 2:
+        kernel(zs, Fs, Qs, R, M, x0, P0, mu0, code, out)
+    else:  # a parameter per trial: the kernel one trial at a time (its trials are independent)
+        for b in range(zs.shape[0]):
+            Qb, Mb, xb, Pb = (a[b] if a.ndim > k else a for a, k in ((Qs, 3), (M, 2), (x0, 1), (P0, 2)))
+            kernel(zs[b : b + 1], Fs, Qb, R, Mb, xb, Pb, mu0, code, out[b : b + 1])
     return out.reshape(batch + (T, n))

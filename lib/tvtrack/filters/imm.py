@@ -94,6 +94,68 @@ def _combine(xs, Ps, w):
     return x, 0.5 * (P + np.swapaxes(P, -1, -2))
 
 
+#: the tolerance of ``np.isclose(s, 1.0)`` (``atol + rtol * 1.0``), written out: ``np.isclose`` costs ~10 us a call
+#: and the checks run on every call of the compiled twin
+_ONE_TOL = 1e-8 + 1e-5 * 1.0
+
+
+def _check_broadcast(name: str, a: np.ndarray, shape: tuple) -> None:
+    """Raise a ValueError naming parameter ``name`` unless ``a`` broadcasts to ``shape``."""
+    if a.ndim <= len(shape) and a.shape == shape[len(shape) - a.ndim :]:
+        return  # the usual case, without NumPy's broadcasting machinery
+    try:
+        ok = np.broadcast_shapes(a.shape, shape) == shape
+    except ValueError:
+        ok = False
+    if not ok:
+        raise ValueError(f"parameter '{name}' has shape {a.shape}; it must broadcast to {shape}")
+
+
+def imm_inputs(batch: tuple, Fs, Qs, transition, x0, P0, mu0, coast: str):
+    """The parameters of :func:`imm_run` as checked float arrays: the one check of :func:`imm_run` and of its
+    compiled twin :func:`tvtrack.filters._imm_kernel.imm_states`.
+
+    Parameters
+    ----------
+    batch : tuple of int
+        Batch shape of the measurements (``zs.shape[:-2]`` in :func:`imm_run`).
+    Fs, Qs, transition, x0, P0, mu0, coast
+        As for :func:`imm_run`.
+
+    Returns
+    -------
+    Fs : ndarray, shape (r, n, n)
+    Qs, M, x0, P0 : ndarray
+        Of shapes (..., r, n, n), (..., r, r), (..., n) and (..., n, n) broadcasting to the batch axes (not broadcast).
+    mu0 : ndarray, shape (r,)
+
+    Raises
+    ------
+    ValueError
+        A shape that does not fit, ``transition`` not row-stochastic, ``mu0`` not probabilities summing to 1, or an
+        unknown ``coast``.
+    """
+    Fs, Qs = np.asarray(Fs, float), np.asarray(Qs, float)
+    M = np.asarray(transition, dtype=float)
+    if Fs.ndim != 3 or Fs.shape[0] < 1 or Fs.shape[1] != Fs.shape[2]:
+        raise ValueError(f"parameter 'Fs' has shape {Fs.shape}; it must be (r, n, n) with r >= 1")
+    r, n = Fs.shape[:2]
+    if Qs.shape[-3:] != Fs.shape or M.shape[-2:] != (r, r):
+        raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
+    # not np.any(M < 0) and np.allclose(row sums, 1.0), cheaper (a NaN fails either way)
+    if M.size and not (M.min() >= 0 and all(abs(s - 1.0) <= _ONE_TOL for s in M.sum(axis=-1).ravel().tolist())):
+        raise ValueError("parameter 'transition' must be a row-stochastic matrix")
+    if coast not in ("mix", "frozen", "mode"):
+        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")
+    mu0 = np.asarray(mu0, dtype=float)
+    if mu0.shape != (r,) or not (mu0.min() >= 0 and abs(mu0.sum() - 1.0) <= _ONE_TOL):
+        raise ValueError(f"parameter 'mu0' = {mu0}; it must be {r} probabilities summing to 1")
+    x0, P0 = np.asarray(x0, float), np.asarray(P0, float)
+    for name, a, core in (("Qs", Qs, Fs.shape), ("transition", M, (r, r)), ("x0", x0, (n,)), ("P0", P0, (n, n))):
+        _check_broadcast(name, a, batch + core)
+    return Fs, Qs, M, x0, P0, mu0
+
+
 def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IMMOutput:
     """Run the IMM over measurements ``zs``.
 
@@ -125,21 +187,11 @@ def imm_run(zs, Fs, Qs, H, R, transition, x0, P0, mu0, coast: str = "mix") -> IM
     IMMOutput
     """
     zs = np.asarray(zs, dtype=float)
-    Fs, Qs = np.asarray(Fs, float), np.asarray(Qs, float)
-    M = np.asarray(transition, dtype=float)
-    r, n = Fs.shape[0], Fs.shape[-1]
-    if Qs.shape[-3:] != Fs.shape or M.shape[-2:] != (r, r):
-        raise ValueError(f"inconsistent IMM shapes: Fs {Fs.shape}, Qs {Qs.shape}, transition {M.shape}")
-    if np.any(M < 0) or not np.allclose(M.sum(axis=-1), 1.0):
-        raise ValueError("parameter 'transition' must be a row-stochastic matrix")
-    if coast not in ("mix", "frozen", "mode"):
-        raise ValueError(f"parameter 'coast' = {coast!r}; it must be 'mix', 'frozen' or 'mode'")
-    mu0 = np.asarray(mu0, dtype=float)
-    if mu0.shape != (r,) or np.any(mu0 < 0) or not np.isclose(mu0.sum(), 1.0):
-        raise ValueError(f"parameter 'mu0' = {mu0}; it must be {r} probabilities summing to 1")
     batch, T = zs.shape[:-2], zs.shape[-2]
-    xs = np.broadcast_to(np.asarray(x0, float), batch + (n,))[..., None, :].repeat(r, axis=-2)
-    Ps = np.broadcast_to(np.asarray(P0, float), batch + (n, n))[..., None, :, :].repeat(r, axis=-3)
+    Fs, Qs, M, x0, P0, mu0 = imm_inputs(batch, Fs, Qs, transition, x0, P0, mu0, coast)
+    r, n = Fs.shape[:2]
+    xs = np.broadcast_to(x0, batch + (n,))[..., None, :].repeat(r, axis=-2)
+    Ps = np.broadcast_to(P0, batch + (n, n))[..., None, :, :].repeat(r, axis=-3)
     mu = np.broadcast_to(mu0, batch + (r,)).copy()
     out = {k: [] for k in ("x", "P", "mu", "x_prior", "P_prior")}
     loglik_total = np.zeros(batch)

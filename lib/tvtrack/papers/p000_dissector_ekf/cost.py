@@ -245,6 +245,45 @@ def _start(start, n: int):
     return start
 
 
+def _runner_inputs(y, init, start, width: int | None):
+    """The inputs of :func:`run_steps_variant1` (``width`` 2) or :func:`run_steps_variant2` (``width`` None), checked
+    and shaped for both paths: the compiled loops index ``y[i, 0]`` and ``init[i]`` of every trial ``i`` unchecked,
+    so what the NumPy path refuses is refused here (``ValueError``) and an ``init`` of one row is broadcast to one
+    row per trial here, the same numbers both ways.
+
+    Returns
+    -------
+    n : int                    the number of trials, ``y.shape[0]``
+    x0 : ndarray               initial estimates, (n,) or (n, width), a C-contiguous copy
+    start : float or ndarray   as :func:`_start`
+    """
+    if y.ndim != 2 or y.shape[1] < 1:
+        raise ValueError(f"parameter 'y' has shape {y.shape}; it must be (n_trials, K), K >= 1 (column 0: the prior)")
+    n = y.shape[0]
+    start = _start(start, n)
+    want = (n,) if width is None else (n, width)
+    if init is None:
+        return n, np.zeros(want), start
+    x0 = np.asarray(init, dtype=float)
+    allowed = ((), (1,), want) if width is None else ((1, width), want)
+    if x0.shape not in allowed:
+        shapes = " or ".join(map(str, allowed))
+        raise ValueError(f"parameter 'init' has shape {x0.shape}; it must be {shapes} (one row: the same for all)")
+    return n, (x0 if x0.shape == want else np.broadcast_to(x0, want)).copy(), start
+
+
+def _count(name: str, value) -> int:
+    """Refuse a count that is not an integer >= 0 (a float with an integer value is one): ``ValueError`` naming
+    the parameter."""
+    try:
+        ok = not isinstance(value, bool) and int(value) == value and value >= 0
+    except (TypeError, ValueError, OverflowError):
+        ok = False
+    if not ok:
+        raise ValueError(f"parameter {name!r} = {value!r}; it must be an integer >= 0")
+    return int(value)
+
+
 def _use_kernel(compiled: bool | None) -> bool:
     return jit.enabled() if compiled is None else bool(compiled)
 
@@ -264,11 +303,10 @@ def run_steps_variant1(
     """Variant 1 over samples ``y`` (n_trials, K): :func:`variant1_step` vectorised over the trials, or its compiled
     loop (:func:`._kernels.variant1_loop`, where numba is enabled; ``compiled`` forces either). The same estimates
     and D11 as :func:`.ekf.run_variant1` (which uses the Joseph form; ``tests/papers/test_000_cost.py`` checks that
-    they agree), several times faster. ``init`` (n_trials, 2) initial estimates (default 0); ``signal_noise_scale``
-    as :func:`variant1_step`; ``start`` (n_trials,) each trial's sweep phase at switch-on (T; None: 0)."""
-    n = y.shape[0]
-    start = _start(start, n)
-    x0 = np.zeros((n, 2)) if init is None else np.asarray(init, dtype=float)
+    they agree), several times faster. ``init`` (n_trials, 2) initial estimates, or (1, 2) for every trial (default
+    0); ``y`` needs K >= 1; ``signal_noise_scale`` as :func:`variant1_step`; ``start`` (n_trials,) each trial's sweep
+    phase at switch-on (T; None: 0)."""
+    n, x0, start = _runner_inputs(y, init, start, 2)
     if _use_kernel(compiled):
         f1, q1 = message.euler(scan.dt)
         f2, q2 = 1.0 - beta * scan.dt, g22_variance(g22, beta, scan.dt)
@@ -298,11 +336,11 @@ def run_steps_variant2(
     """Variant 2 (or, with ``assumed_contrast`` 0, the filter ignoring the signal noise) over samples ``y``
     (n_trials, K): :func:`variant2_step` vectorised over the trials, or its compiled loop
     (:func:`._kernels.variant2_loop`); the same estimates and D11 as :func:`.ekf.run_variant2`. ``init``
-    (n_trials,) initial estimates (default 0); ``start`` (n_trials,) each trial's sweep phase at switch-on (T; None:
+    (n_trials,) initial estimates, or a number for every trial (default 0); ``y`` needs K >= 1;
+    ``noise_iterations`` an integer >= 0; ``start`` (n_trials,) each trial's sweep phase at switch-on (T; None:
     0)."""
-    n = y.shape[0]
-    start = _start(start, n)
-    x = np.zeros(n) if init is None else np.asarray(init, dtype=float).copy()
+    n, x, start = _runner_inputs(y, init, start, None)
+    noise_iterations = _count("noise_iterations", noise_iterations)
     if _use_kernel(compiled):
         p = scan.contrast if assumed_contrast is None else assumed_contrast
         f1, q1 = message.euler(scan.dt)
@@ -322,7 +360,7 @@ def run_steps_variant2(
             scan.amplitude,
             r0,
             r1,
-            int(noise_iterations),
+            noise_iterations,
         )
 
     def step(x, d, yk, k):

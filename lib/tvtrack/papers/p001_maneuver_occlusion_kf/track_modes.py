@@ -206,8 +206,8 @@ class _Prepared:
 def _resolve_engine(engine: str, sigma_eps: float, cfg: TrackModeConfig, covariance: bool) -> str:
     """Check the arguments of :func:`run_track_modes` that the config does not; the engine to run ("jit" or
     "numpy")."""
-    if not sigma_eps > 0:
-        raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be > 0")
+    if not 0 < sigma_eps < np.inf:
+        raise ValueError(f"parameter 'sigma_eps' = {sigma_eps!r}; it must be finite and > 0")
     if engine not in ("auto", "jit", "numpy"):
         raise ValueError(f"parameter 'engine' = {engine!r}; it must be 'auto', 'jit' or 'numpy'")
     if engine == "auto":

@@ -50,6 +50,38 @@ def add_photons_numpy(counts, pos, z, sigma_px: float, k=None) -> None:
     counts += np.bincount(flat[inside], minlength=counts.size).reshape(counts.shape).astype(counts.dtype)
 
 
+def _checked_inputs(counts, pos, z, k):
+    """``pos``, ``z`` and ``k`` of :func:`add_photons` as float, float and integer arrays of the shapes the kernel
+    indexes, ``pos`` and ``k`` broadcast to them."""
+    if not isinstance(counts, np.ndarray) or counts.ndim != 4:
+        raise ValueError(
+            f"parameter 'counts' has shape {np.shape(counts)}; it must be an array (n_trials, T, rows, cols)"
+        )
+    pos, z = np.asarray(pos, dtype=float), np.asarray(z, dtype=float)
+    n, t = counts.shape[:2]
+    if z.ndim != 5 or z.shape[:2] != (n, t) or z.shape[4] != 2:
+        raise ValueError(f"parameter 'z' has shape {z.shape}; it must be ({n}, {t}, Q, m, 2) for counts {counts.shape}")
+    q = z.shape[2]
+    pos = _broadcast(pos, (n, t, q, 2), "pos")
+    if k is not None:
+        k = np.asarray(k)
+        if k.dtype.kind not in "iu":
+            raise ValueError(f"parameter 'k' has dtype {k.dtype}; it must hold integers (photons per object and frame)")
+        k = _broadcast(k, (n, t, q), "k")
+    return pos, z, k
+
+
+def _broadcast(a, shape, name):
+    """``a`` broadcast to ``shape`` (a read-only view; ``a`` itself where it has that shape), or ``ValueError``
+    naming the parameter ``name``."""
+    if a.shape == shape:
+        return a
+    try:
+        return np.broadcast_to(a, shape)
+    except ValueError:
+        raise ValueError(f"parameter '{name}' has shape {a.shape}; it must broadcast to {shape}") from None
+
+
 def add_photons(counts, pos, z, sigma_px: float, k=None) -> None:
     """Count photons into ``counts`` (n_trials, T, rows, cols; integers, updated in place).
 
@@ -65,8 +97,15 @@ def add_photons(counts, pos, z, sigma_px: float, k=None) -> None:
         PSF standard deviation, px.
     k : ndarray of int, shape (n_trials, T, Q), optional
         Photons of each object in each frame (only the first ``k`` of the ``m`` drawn count); None: all ``m``.
+
+    Raises
+    ------
+    ValueError
+        ``counts`` not 4-D, ``z`` not (n_trials, T, Q, m, 2) for the trials and frames of ``counts``, ``pos`` or
+        ``k`` not broadcastable to (n_trials, T, Q, 2) or (n_trials, T, Q) (they are broadcast, as NumPy does), or
+        ``k`` not integers: the compiled histogram indexes them unchecked.
     """
-    pos, z = np.asarray(pos, dtype=float), np.asarray(z, dtype=float)
+    pos, z, k = _checked_inputs(counts, pos, z, k)
     if not jit.enabled() or counts.dtype != np.int32 or not counts.flags.c_contiguous:
         add_photons_numpy(counts, pos, z, sigma_px, k)
         return

@@ -46,6 +46,7 @@ from .em_loop import EMModel, EMState, MapPrior, iterate
 from .em_steps import (
     PixelEntries,
     ActiveEntries,
+    check_entries,
     expectation_step,
     expectation_step_numpy,
 )
@@ -229,7 +230,8 @@ def unified_location_em(
     ----------
     entries : PixelEntries
         Non-zero pixels of the count tensor (:func:`pixel_entries`; for per-frame marks use
-        :func:`per_frame_entries` with ``motion="static"``).
+        :func:`per_frame_entries` with ``motion="static"``); a hand-built one must be sorted by trial, with its
+        indices inside ``n_trials``, ``n_frames`` and ``shape`` and counts >= 0 (else ``ValueError``).
     theta0 : array_like, shape (N, Q, 4)
         Initialisation (the target designation), px and px/frame.
     sigma_px : float or array_like, shape (Q,) or (N, Q)
@@ -319,7 +321,9 @@ def unified_location_em(
 
 
 def _checked_start(entries: PixelEntries, theta0) -> np.ndarray:
-    """``theta0`` as a float array, shape (N, Q, 4) with ``N = entries.n_trials`` (px, px/frame), checked finite."""
+    """``theta0`` as a float array, shape (N, Q, 4) with ``N = entries.n_trials`` (px, px/frame), checked finite,
+    after the entries (:func:`.em_steps.check_entries`: the compiled steps index their tables with them unchecked)."""
+    check_entries(entries)
     theta0 = np.asarray(theta0, dtype=float)
     if theta0.ndim != 3 or theta0.shape[-1] != 4 or theta0.shape[0] != entries.n_trials:
         raise ValueError(f"theta0 has shape {theta0.shape}; it must be ({entries.n_trials}, Q, 4)")

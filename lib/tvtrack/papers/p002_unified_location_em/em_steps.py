@@ -26,6 +26,7 @@ __all__ = [
     "PixelEntries",
     "pixel_entries",
     "per_frame_entries",
+    "check_entries",
     "ActiveEntries",
     "axis_tables",
     "expectation_step",
@@ -105,6 +106,41 @@ def per_frame_entries(entries: PixelEntries) -> PixelEntries:
     )
 
 
+def check_entries(entries: PixelEntries) -> None:
+    """Raise ``ValueError`` unless ``entries`` is a table the E-steps can read: the five arrays one-dimensional of one
+    length, ``trial`` and ``frame`` integers, ``trial`` sorted and in ``[0, n_trials)``, ``frame`` in
+    ``[0, n_frames)``, ``row`` and ``col`` whole pixel indices inside ``shape``, ``count`` finite and >= 0.
+
+    :func:`pixel_entries` always builds such a table; a hand-built one that is not would make the compiled steps read
+    and write past their tables (they index them unchecked). One vectorised pass over the entries: checked once per
+    EM call (:func:`.em.unified_location_em`), not per step.
+    """
+    names = ("trial", "frame", "row", "col", "count")
+    arrays = {name: np.asarray(getattr(entries, name)) for name in names}
+    shapes = [a.shape for a in arrays.values()]
+    if arrays["trial"].ndim != 1 or len(set(shapes)) != 1:
+        raise ValueError(f"parameter 'entries' has {', '.join(names)} of shapes {shapes}; they must be (nnz,) each")
+    shape = tuple(entries.shape)
+    if len(shape) != 2:
+        raise ValueError(f"parameter 'entries' has shape {entries.shape}; it must be the window (rows, cols)")
+    for name in ("trial", "frame"):
+        if arrays[name].dtype.kind not in "iu":
+            raise ValueError(f"parameter 'entries' has {name} of dtype {arrays[name].dtype}; it must hold integers")
+    limits = {"trial": entries.n_trials, "frame": entries.n_frames, "row": shape[0], "col": shape[1]}
+    for name, limit in limits.items():
+        a = arrays[name]
+        if a.size and not (a.min() >= 0 and a.max() < limit):  # NaN fails both comparisons
+            raise ValueError(f"parameter 'entries' has {name} from {a.min()} to {a.max()}; it must lie in [0, {limit})")
+    for name in ("row", "col"):
+        if np.any(arrays[name] != np.floor(arrays[name])):
+            raise ValueError(f"parameter 'entries' has a {name} that is not a whole number; pixel centres are integers")
+    if np.any(np.diff(arrays["trial"]) < 0):
+        raise ValueError("parameter 'entries' is not sorted by trial; it must be (as pixel_entries builds it)")
+    count = arrays["count"]
+    if count.size and not (np.isfinite(count).all() and count.min() >= 0):
+        raise ValueError(f"parameter 'entries' has a count {count.min()}; counts must be finite and >= 0")
+
+
 class ActiveEntries:
     """Entries of the trials still iterating, with their segment starts for reduceat."""
 
@@ -119,6 +155,7 @@ class ActiveEntries:
         self.col = entries.col[keep]
         self.count = entries.count[keep]
         self.n_frames = entries.n_frames
+        self.shape = tuple(entries.shape)
         self._index = {}
         self.kernel_arrays = None  # the entries typed for the compiled E-step, made at its first use
 
@@ -180,10 +217,30 @@ def expectation_step(work: ActiveEntries, theta, p, p_noise, sigma, times, shape
     loglik : (n_act,)  sum n ln v at ``theta``
 
     ``live`` ((n_act,) bool, optional): the trials still iterating; the compiled step leaves the others' rows zero.
+    ``theta`` (n_act, Q, 4), ``p`` and ``sigma`` (n_act, Q), ``p_noise`` (n_act,), ``times`` (T,) and ``shape`` (the
+    window of the entries) are checked against ``work`` (``ValueError``): the compiled step indexes them unchecked.
     """
+    _check_step_inputs(work, theta, p, p_noise, sigma, times, shape, live)
     if jit.enabled():
         return _kernels.e_step(work, theta, p, p_noise, sigma, times, shape, second, live)
     return expectation_step_numpy(work, theta, p, p_noise, sigma, times, shape, second)
+
+
+def _check_step_inputs(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, live) -> None:
+    """Raise ``ValueError`` unless the arguments of :func:`expectation_step` fit the working set ``work``."""
+    n = work.trials.size
+    q = np.shape(theta)[1] if np.ndim(theta) == 3 else "Q"
+    wanted = {"theta": (n, q, 4), "p": (n, q), "p_noise": (n,), "sigma": (n, q), "times": (work.n_frames,)}
+    given = {"theta": theta, "p": p, "p_noise": p_noise, "sigma": sigma, "times": times}
+    if live is not None:
+        wanted["live"], given["live"] = (n,), live
+    for name, value in given.items():
+        if np.shape(value) != wanted[name]:
+            raise ValueError(
+                f"parameter '{name}' has shape {np.shape(value)}; it must be {wanted[name]} to match 'work'"
+            )
+    if tuple(shape) != work.shape:
+        raise ValueError(f"parameter 'shape' is {tuple(shape)}; it must be the entries' window {work.shape}")
 
 
 def expectation_step_numpy(work: ActiveEntries, theta, p, p_noise, sigma, times, shape, second: bool, live=None):
