@@ -64,6 +64,9 @@ _REFUSED = {
     "transition 3 x 3": dict(transition=np.eye(3)),
     "transition not stochastic": dict(transition=[[0.5, 0.2], [0.9, 0.9]]),
     "transition negative": dict(transition=[[1.1, -0.1], [0.05, 0.95]]),
+    "R negative": dict(R=-2.0),  # both engines ran, to different meaningless numbers (imm_run's log|S|)
+    "R NaN": dict(R=np.nan),
+    "R infinite": dict(R=np.inf),
 }
 
 

@@ -211,9 +211,12 @@ def imm_states(zs, Fs, Qs, R: float, transition, x0, P0, mu0, coast: str = "mix"
     Raises
     ------
     ValueError
-        As :func:`imm_run`: shapes that do not fit, ``transition`` or ``mu0`` not probabilities, an unknown ``coast``.
+        As :func:`imm_run`: shapes that do not fit, ``transition`` or ``mu0`` not probabilities, an unknown ``coast``;
+        and ``R`` negative or not finite.
     """
     zs = np.asarray(zs, dtype=float)
+    if not 0 <= float(R) < np.inf:  # a negative variance ran on both engines, to different meaningless numbers
+        raise ValueError(f"parameter 'R' = {R!r}; a measurement variance must be finite and >= 0 (elements^2)")
     if engine == "auto":
         engine = "jit" if jit.enabled() else "numpy"
     if engine == "numpy":
