@@ -152,3 +152,21 @@ def test_stale_temporaries_of_a_dead_process_are_removed_live_ones_kept(tmp_path
         (tmp_path / name / OWNER_FILE).write_text(f"{host} {pid}")
     assert remove_stale_temporaries(tmp_path) == 1
     assert [p.name for p in tmp_path.iterdir()] == [".tmp-b-2"]
+
+
+@pytest.mark.parametrize("stage", ["import", "record"])
+def test_a_stop_outside_the_kernels_lifetime_leaves_no_temporary_folder(tmp_path, monkeypatch, stage):
+    # a Ctrl-C while papermill was still being imported (before the kernel's start), or while the run's record
+    # was written, left the run's .tmp-* folder behind under a line saying nothing was written
+    from tvtrack.pipeline import lean_imports, runner
+
+    def stopped(*args, **kwargs):
+        raise KeyboardInterrupt()
+
+    if stage == "import":
+        monkeypatch.setattr(lean_imports, "papermill", stopped)
+    else:
+        monkeypatch.setattr(runner, "_write_record", stopped)
+    with pytest.raises(KeyboardInterrupt):
+        runner.run_notebook(FIXTURE_NOTEBOOK, tmp_path / "run", {"n_trials": 20, "n_frames": 2, "rerun_mode": "off"})
+    assert sorted(p.name for p in tmp_path.iterdir()) == []

@@ -217,9 +217,8 @@ def run_notebook(
         tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
         try:
             tmp.mkdir()
-            (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
         except OSError as exc:
-            _write_failed(tmp, run_dir, exc)
+            raise WriteFailed(f"cannot write the run {run_dir}: {exc.strerror or exc}") from exc
         record = {
             "notebook": nb.stem,
             "notebook_path": str(nb),
@@ -227,22 +226,30 @@ def run_notebook(
             "parameters": params,
             **(extra_record or {}),
         }
-        t0 = time.perf_counter()
-        status, error, tb = _execute_in(tmp, nb, params, kernel_name, timeout_s, progress, run_dir)
-        runtime = time.perf_counter() - t0
-        record.update(
-            status=status,
-            error=error,
-            runtime_s=runtime,
-            finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-            files=_files_written(tmp, tb),
-        )
-        try:
-            _write_record(tmp, record, tb)
-            (tmp / OWNER_FILE).unlink(missing_ok=True)
-            os.replace(tmp, run_dir)
-        except OSError as exc:
-            _write_failed(tmp, run_dir, exc)
+        try:  # from here on, whatever stops the run (Ctrl-C at any moment, a failed write) removes the folder
+            try:
+                (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
+            except OSError as exc:
+                _write_failed(tmp, run_dir, exc)
+            t0 = time.perf_counter()
+            status, error, tb = _execute_in(tmp, nb, params, kernel_name, timeout_s, progress, run_dir)
+            runtime = time.perf_counter() - t0
+            record.update(
+                status=status,
+                error=error,
+                runtime_s=runtime,
+                finished_utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+                files=_files_written(tmp, tb),
+            )
+            try:
+                _write_record(tmp, record, tb)
+                (tmp / OWNER_FILE).unlink(missing_ok=True)
+                os.replace(tmp, run_dir)
+            except OSError as exc:
+                _write_failed(tmp, run_dir, exc)
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)  # gone already once renamed into run_dir
+            raise
     return RunOutcome(run_dir=run_dir, status=status, runtime_s=runtime, error=error, record=record)
 
 
