@@ -246,6 +246,92 @@ def test_a_ctrl_c_while_the_pool_starts_its_workers_is_held_and_raised_after_nev
     assert proc.stdout.split() == ["inside", "raised", "True"], proc.stdout + proc.stderr
 
 
+@pytest.mark.parametrize("where", ["pool worker", "single run"])
+def test_a_stop_that_cuts_a_kernel_launch_short_prints_no_warning(where):
+    # a stop that lands while jupyter_client has made its launch coroutine but not yet awaited it left Python's
+    # "coroutine ... was never awaited" warning on the user's terminal before the one "interrupted:" line
+    stop = (
+        "interrupt.worker_init()\nctx = interrupt.running_a_task()\nsig = signal.SIGTERM\n"
+        if where == "pool worker"
+        else "ctx = interrupt.kernels_end_on_ctrl_c()\nsig = signal.SIGINT\n"
+    )
+    code = (
+        "import gc, os, signal, time\n"
+        "from tvtrack.pipeline import interrupt\n"
+        "async def launch_kernel():\n"
+        "    pass\n"
+        "async def earlier():\n"
+        "    pass\n"
+        "earlier()\n"  # until a stop, an unawaited coroutine still warns: nothing is silenced at import
+        f"{stop}"
+        "try:\n"
+        "    with ctx:\n"
+        "        cut = launch_kernel()\n"
+        "        os.kill(os.getpid(), sig)\n"
+        "        time.sleep(5)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('stopped', flush=True)\n"
+        "del cut\n"
+        "gc.collect()\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.stdout.split() == ["stopped"], proc.stdout + proc.stderr
+    assert "launch_kernel" not in proc.stderr and "'earlier' was never awaited" in proc.stderr, proc.stderr
+
+
+def test_a_ctrl_c_with_nothing_to_say_still_prints_a_whole_line(monkeypatch, capsys):
+    # a KeyboardInterrupt without a message used to print "interrupted: " and nothing after it
+    from tvtrack.pipeline import cli
+
+    def stopped(args):
+        raise KeyboardInterrupt()
+
+    monkeypatch.setattr(cli, "_cmd_report", stopped)
+    assert cli.main(["report"]) == 130
+    assert capsys.readouterr().err == "interrupted: report stopped\n"
+
+
+@pytest.mark.parametrize("phase", ["preflight", "_finish"])
+def test_a_ctrl_c_before_the_runs_or_while_summing_up_names_the_sweep(tmp_path, monkeypatch, phase):
+    # a Ctrl-C outside the runs themselves (the values' checks, the summary) reached the command line bare
+    from tvtrack.pipeline import sweep
+
+    spec = tmp_path / "edges.toml"
+    spec.write_text(f'notebook = "{FIXTURE_NOTEBOOK}"\n[fixed]\nn_trials = 20\nn_frames = 2\nrerun_mode = "off"\n')
+
+    def stopped(*args, **kwargs):
+        raise KeyboardInterrupt()
+
+    monkeypatch.setattr(sweep, phase, stopped)
+    with pytest.raises(KeyboardInterrupt) as caught:
+        sweep.run_sweep(spec, output=tmp_path / "out", progress=False)
+    assert str(caught.value) == "edges: sweep stopped; the runs finished so far are kept and the same command resumes"
+    assert not list((tmp_path / "out").glob("runs/.tmp*"))
+
+
+def test_a_ctrl_c_after_the_command_finished_leaves_its_exit_status_and_output():
+    # a Ctrl-C while Python shut down after a finished sweep ended the process by SIGINT: status -2, no line
+    code = (
+        "import atexit, os, signal, sys, time\n"
+        "def late():\n"
+        "    os.kill(os.getpid(), signal.SIGINT)\n"
+        "    os.kill(os.getpid(), signal.SIGTERM)\n"
+        "    time.sleep(0.3)\n"
+        "atexit.register(late)\n"
+        "sys.argv = ['tvtrack', 'sweep', 'no-such-spec.toml']\n"
+        "import tvtrack.__main__\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert (proc.returncode, proc.stderr) == (-signal.SIGTERM, "error: no sweep spec 'no-such-spec.toml'\n")
+    proc = subprocess.run(
+        [sys.executable, "-c", code.replace("    os.kill(os.getpid(), signal.SIGTERM)\n", "")],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert (proc.returncode, proc.stderr) == (2, "error: no sweep spec 'no-such-spec.toml'\n")
+
+
 def test_a_pool_worker_ignores_ctrl_c_and_does_not_keep_it_blocked():
     from concurrent.futures import ProcessPoolExecutor
     from multiprocessing import get_context

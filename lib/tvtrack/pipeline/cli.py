@@ -19,7 +19,7 @@ import sys
 import time
 from pathlib import Path
 
-from .interrupt import EXIT_INTERRUPTED
+from .interrupt import EXIT_INTERRUPTED, quiet_cut_coroutines
 from .paths import CONFIRM_ABOVE_RUNS, JIT_CACHE_DIR, REPO_ROOT, RUNS_DIR, writable_directory
 from .preflight import NotebookBug, UsageError, check_names, check_values
 from .runner import WriteFailed
@@ -392,7 +392,28 @@ def _terminate(signum, frame):
     """SIGTERM or SIGHUP (``kill PID``, a closed terminal, a CI time-out) stops the command as Ctrl-C does: kernels
     ended, temporaries removed, locks released; the exit status is then 128 + the signal's number."""
     _stopped_by.append(signum)
+    quiet_cut_coroutines()
     raise KeyboardInterrupt(f"stopped by {signal.Signals(signum).name}")
+
+
+def program() -> int:
+    """The ``tvtrack`` program (``python -m tvtrack`` and the installed script): :func:`main`, then Ctrl-C ignored.
+
+    Once the command has done its work and printed its last line, a Ctrl-C during Python's shut-down would end
+    the process by SIGINT, with no line and an exit status that says "interrupted" for a command that finished.
+    :func:`main` itself leaves signals as they were, for callers that run a command in their own process."""
+    code = None
+    try:
+        code = main()
+    except KeyboardInterrupt:
+        if code is None:  # not from the command (main handles its own), e.g. while Python read the arguments
+            raise
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        for sig in (signal.SIGTERM, signal.SIGHUP):  # still stop the process, no longer through KeyboardInterrupt
+            if signal.getsignal(sig) is _terminate:
+                signal.signal(sig, signal.SIG_DFL)
+    return code
 
 
 def main(argv=None) -> int:
@@ -419,5 +440,6 @@ def main(argv=None) -> int:
     except KeyboardInterrupt as exc:
         if args.debug:
             raise
-        print(f"interrupted: {exc or args.command + ' stopped'}", file=sys.stderr)
+        quiet_cut_coroutines()  # one collected at exit would print after the line below
+        print(f"interrupted: {str(exc) or args.command + ' stopped'}", file=sys.stderr)
         return 128 + _stopped_by[-1] if _stopped_by else EXIT_INTERRUPTED

@@ -15,6 +15,7 @@ import contextlib
 import os
 import signal
 import time
+import warnings
 
 __all__ = [
     "EXIT_INTERRUPTED",
@@ -25,6 +26,7 @@ __all__ = [
     "stop_pool",
     "end_children",
     "child_pids",
+    "quiet_cut_coroutines",
 ]
 
 EXIT_INTERRUPTED = 130
@@ -71,9 +73,21 @@ def running_a_task():
         _busy = False
 
 
+def quiet_cut_coroutines() -> None:
+    """Silence, from now on in this process, Python's warning for a coroutine that was made but never awaited.
+
+    A stop raises its exception wherever the process is, possibly between the moment jupyter_client makes its
+    kernel-launch coroutine and the moment it awaits it. Python then prints ``RuntimeWarning: coroutine ...
+    was never awaited`` (when the coroutine is collected, during the unwinding or at exit) on the user's
+    terminal, before the command's one ``interrupted:`` line. After a stop such a coroutine is expected and
+    harmless, so the handlers that raise the stop call this first; until a stop nothing is silenced."""
+    warnings.filterwarnings("ignore", message=r"coroutine .* was never awaited", category=RuntimeWarning)
+
+
 def _end_kernels_and_raise_interrupted(signum, frame):
     if not _busy:  # idle, waiting for a task or starting up: nothing to clean up, and no traceback to print
         os._exit(EXIT_INTERRUPTED)
+    quiet_cut_coroutines()
     end_children()
     raise Interrupted()
 
@@ -111,6 +125,7 @@ def kernels_end_on_ctrl_c():
     spare = child_pids()
 
     def end_kernels_and_raise(signum, frame):
+        quiet_cut_coroutines()
         end_children(spare=spare)
         raise KeyboardInterrupt()
 

@@ -340,11 +340,15 @@ def run_sweep(
             )
             errors = _run_all(spec, spec_path, runs, todo, (executor, client, pool), runs_dir, progress)
             return _finish(spec, sweep_dir, runs, len(runs) - len(todo), errors)
-    except BaseException:
+    except BaseException as exc:
         if client is not None:
             client.close()
         if pool is not None:
             stop_pool(pool)
+        if isinstance(exc, KeyboardInterrupt) and not str(exc):  # before the runs started, or while summing up
+            raise KeyboardInterrupt(
+                f"{spec.name}: sweep stopped; the runs finished so far are kept and the same command resumes"
+            ) from exc
         raise
     finally:
         if pool is not None:
