@@ -12,6 +12,7 @@ from tvtrack.pipeline.report import (
     verdict_summary,
     write_report,
 )
+from tvtrack.pipeline.preflight import UsageError
 from tvtrack.pipeline.runner import read_run
 
 
@@ -296,6 +297,66 @@ def test_update_readme_needs_markers(tmp_path):
     readme.write_text("no markers\n")
     with pytest.raises(ValueError, match="markers"):
         update_readme(readme, "x")
+
+
+@pytest.mark.parametrize("failure", ["write", "ctrl-c"])
+def test_a_readme_update_that_fails_midway_leaves_the_readme_as_it_was(tmp_path, monkeypatch, failure):
+    # the README (and REPRODUCTION.md, a run's run.json) were rewritten in place: a full disk or a Ctrl-C between
+    # the truncation and the write left an empty or cut file
+    from tvtrack.pipeline import outputs
+
+    readme = tmp_path / "README.md"
+    readme.write_text(f"intro\n{README_BEGIN}\nold block\n{README_END}\noutro\n")
+    readme.chmod(0o640)
+    before = readme.read_bytes()
+    if failure == "write":
+        paragraph = "new block \udc80"  # cannot be encoded: the write fails after the file was opened
+        expected = UnicodeEncodeError
+    else:
+
+        def stopped(*args):
+            raise KeyboardInterrupt()
+
+        monkeypatch.setattr(outputs.os, "replace", stopped)
+        paragraph, expected = "new block", KeyboardInterrupt
+    with pytest.raises(expected):
+        update_readme(readme, paragraph)
+    assert readme.read_bytes() == before and [p.name for p in tmp_path.iterdir()] == ["README.md"]
+    monkeypatch.undo()
+    update_readme(readme, "new block")
+    assert readme.read_text() == f"intro\n{README_BEGIN}\nnew block\n{README_END}\noutro\n"
+    assert readme.stat().st_mode & 0o777 == 0o640 and [p.name for p in tmp_path.iterdir()] == ["README.md"]
+
+
+@pytest.mark.parametrize(
+    "damage, fragment",
+    [
+        ("no markers\n", "(found 0 and 0)"),
+        (f"{README_END}\n{README_BEGIN}\n", "(found 1 and 1, reversed)"),
+        (f"{README_BEGIN}\n{README_BEGIN}\n{README_END}\n", "(found 2 and 1)"),
+        (b"\xff\xfe not text", "not UTF-8 text"),
+    ],
+    ids=["no-markers", "reversed", "twice", "not-utf8"],
+)
+def test_a_readme_the_block_cannot_go_into_stops_report_and_reproduce_before_any_work(
+    tmp_path, monkeypatch, capsys, damage, fragment
+):
+    # the README was read only at the very end: after an hour of paper-profile runs (and REPRODUCTION.md written),
+    # a README without its markers gave a ValueError traceback
+    from tvtrack.pipeline import cli, report
+    from tvtrack.pipeline import reproduce as rep
+
+    readme = tmp_path / "README.md"
+    readme.write_bytes(damage if isinstance(damage, bytes) else damage.encode())
+    for module in (report, rep):
+        monkeypatch.setattr(module, "README_PATH", readme)
+        monkeypatch.setattr(module, "REPORT_PATH", tmp_path / "REPRODUCTION.md")
+    assert cli.main(["report"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {readme}: ") and fragment in err and err.count("\n") == 1, err
+    with pytest.raises(UsageError, match=re.escape(fragment)):
+        rep.reproduce(jobs=1, runs_dir=tmp_path / "runs")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["README.md"]
 
 
 def test_report_without_notebooks_says_so(tmp_path):

@@ -128,7 +128,7 @@ def _cmd_reproduce(args) -> int:
 
 def _cmd_report(args) -> int:
     from .paths import PAPER_PROFILE, profile_name, reproduce_dir
-    from .report import README_PATH, REPORT_PATH, write_report
+    from .report import README_PATH, REPORT_PATH, check_readme, write_report
 
     folder = reproduce_dir(args.profile)
     if profile_name(args.profile) != PAPER_PROFILE and not folder.is_dir():
@@ -138,6 +138,7 @@ def _cmd_report(args) -> int:
             f"`python -m tvtrack reproduce --profile {args.profile} --only NAME`)"
         )
     if profile_name(args.profile) == PAPER_PROFILE:
+        check_readme(README_PATH)
         path = write_report(folder, REPORT_PATH, readme=README_PATH)
     else:
         path = write_report(folder, writable_directory(folder, "report folder") / "REPRODUCTION.md")

@@ -12,6 +12,7 @@ import json
 import re
 from pathlib import Path
 
+from .outputs import replace_text
 from .paths import REPO_ROOT
 from .preflight import UsageError
 
@@ -122,6 +123,6 @@ def new_paper(number: str, name: str, root: Path = REPO_ROOT, title: str | None 
     written.append(notebook)
     cff = root / "CITATION.cff"
     if cff.is_file():
-        cff.write_text(cff.read_text().rstrip("\n") + "\n" + _REFERENCE.format(title=values["title"]))
+        replace_text(cff, cff.read_text().rstrip("\n") + "\n" + _REFERENCE.format(title=values["title"]))
         written.append(cff)
     return written

@@ -21,7 +21,15 @@ from pathlib import Path
 
 from .preflight import UsageError
 
-__all__ = ["MARKER", "check_replaceable", "mark", "marked_files", "temporary_beside", "replace_folder"]
+__all__ = [
+    "MARKER",
+    "check_replaceable",
+    "mark",
+    "marked_files",
+    "temporary_beside",
+    "replace_folder",
+    "replace_text",
+]
 
 MARKER = ".tvtrack-output.json"
 OWNER_FILE = ".owner"  # "<host> <pid>" of the process building a temporary folder (as the runner's)
@@ -140,3 +148,20 @@ def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str
     except OSError:
         return [str(old / rel) for rel in sorted(_files(old))]
     return []
+
+
+def replace_text(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` whole or not at all: into a sibling ``.tmp-<name>-<random>`` file, then renamed over
+    ``path`` (its permission bits kept). A full disk, a write error or a Ctrl-C midway leaves ``path`` as it was
+    (the README, ``REPRODUCTION.md``, a finished run's ``run.json``), never truncated; the partial file is removed."""
+    path = Path(path)
+    tmp = path.parent / f".tmp-{path.name}-{uuid.uuid4().hex[:8]}"
+    try:
+        with open(tmp, "x", encoding="utf-8") as f:
+            f.write(text)
+        if path.exists():
+            shutil.copymode(path, tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise

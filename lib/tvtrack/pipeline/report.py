@@ -40,6 +40,7 @@ from ..results import (
     results_summary,
 )
 from .audit import audit_markdown, audit_runs
+from .outputs import replace_text
 from .figures import (
     ALL_LABELS,
     ALL_VERDICTS,
@@ -53,6 +54,7 @@ from .figures import (
     robustness_where,
 )
 from .paths import PAPER_PROFILE, REPO_ROOT, reproduce_dir as _reproduce_dir
+from .preflight import UsageError
 from .runfiles import load_results, load_run
 from .runner import list_notebooks
 
@@ -78,6 +80,7 @@ __all__ = [
     "papers_table",
     "results_paragraph",
     "update_readme",
+    "check_readme",
     "collect_runs",
     "first_screen",
     "first_screen_list",
@@ -498,7 +501,7 @@ def write_report(
     head = _report_head(runs, claims, notebooks, Path(reproduce_dir), path)
     problems = audit_runs(runs)
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(head + sections + audit_markdown(problems)))
+    replace_text(path, "\n".join(head + sections + audit_markdown(problems)))
     n_problems = sum(len(v) for v in problems.values())
     print(f"label audit: {n_problems} problem(s) in the records of {len(problems)} notebook(s)")
     if readme is not None:
@@ -538,12 +541,37 @@ def results_paragraph(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
     return "\n".join(lines)
 
 
+def check_readme(readme: Path) -> str:
+    """The text of ``readme``, checked to hold the results block's markers once each, in order.
+
+    ``reproduce`` and ``report`` call it before any work, so that a README the block cannot go into stops them
+    at once, not after an hour of runs.
+
+    Raises
+    ------
+    UsageError
+        One line naming the file: unreadable, not UTF-8 text, or without the two markers (once each, in order).
+    """
+    fix = "put them back (`git checkout README.md` restores the file)"
+    try:
+        text = Path(readme).read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise UsageError(f"{readme}: not UTF-8 text, so its results block cannot be regenerated; {fix}") from None
+    except OSError as exc:
+        raise UsageError(f"cannot read {readme}: {exc.strerror or exc}") from None
+    begin, end = text.count(README_BEGIN), text.count(README_END)
+    if begin != 1 or end != 1 or text.index(README_BEGIN) > text.index(README_END):
+        raise UsageError(
+            f"{readme}: the results block's markers '{README_BEGIN}' and '{README_END}' must each appear once, "
+            f"in that order (found {begin} and {end}{', reversed' * (begin == end == 1)}); {fix}"
+        )
+    return text
+
+
 def update_readme(readme: Path, paragraph: str) -> None:
-    """Replace the text between :data:`README_BEGIN` and :data:`README_END` in ``readme``."""
-    text = Path(readme).read_text()
+    """Replace the text between :data:`README_BEGIN` and :data:`README_END` in ``readme`` (:func:`check_readme`)."""
+    text = check_readme(readme)
     pattern = re.compile(re.escape(README_BEGIN) + r".*?" + re.escape(README_END), re.S)
-    if not pattern.search(text):
-        raise ValueError(f"{readme}: no '{README_BEGIN}' ... '{README_END}' markers to put the results between")
     new = pattern.sub(lambda _: f"{README_BEGIN}\n{paragraph}\n{README_END}", text, count=1)
     if new != text:  # an unchanged block leaves the file (and its timestamp) alone
-        Path(readme).write_text(new)
+        replace_text(Path(readme), new)  # whole or not at all: a full disk never truncates the README

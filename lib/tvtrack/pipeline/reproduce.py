@@ -32,10 +32,10 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from .interrupt import shielded_spawn, stop_pool, worker_init
-from .outputs import replace_folder
+from .outputs import replace_folder, replace_text
 from .paths import PAPER_PROFILE, REPO_ROOT, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError
-from .report import README_PATH, REPORT_PATH, write_report
+from .report import README_PATH, REPORT_PATH, check_readme, write_report
 from .lock import LOCK_NAME, output_lock
 from .runfiles import DamagedRun, load_run
 from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
@@ -148,7 +148,7 @@ def _record_runs(run_dir: Path) -> None:
     try:
         record = json.loads(path.read_text())
         record["explorer_runs"] = explorer_runs(run_dir / "results.json")
-        path.write_text(json.dumps(record, indent=2, default=str))
+        replace_text(path, json.dumps(record, indent=2, default=str))
     except OSError as exc:
         raise WriteFailed(f"cannot write {path}: {exc.strerror or exc}") from exc
 
@@ -197,6 +197,8 @@ def reproduce(
         raise UsageError(f"--jobs = {jobs}; it must be an integer >= 1")
     if max_replicates is not None and max_replicates < MIN_REPLICATES:
         raise UsageError(f"--max-replicates = {max_replicates}; it must be an integer >= {MIN_REPLICATES}")
+    if profile_name(profile) == PAPER_PROFILE:
+        check_readme(README_PATH)  # the results block goes there at the end: a README it cannot go into stops now
     cluster = check_scheduler(scheduler) if scheduler else None
     notebooks = list_notebooks()
     if only:
