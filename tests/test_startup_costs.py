@@ -56,6 +56,39 @@ def test_without_the_variable_every_process_compiles_and_nothing_is_written(tmp_
     assert sorted(p.name for p in tmp_path.iterdir() if p.name != "__pycache__") == ["kern.py"]
 
 
+def test_only_the_cache_folders_tvtrack_made_are_ever_removed(tmp_path):
+    # TVTRACK_JIT_CACHE may name a folder with other things in it (a user's ~/.cache): every subfolder unused for a
+    # day was removed, a user's own included
+    import time
+
+    base = tmp_path / "cache"
+    keep = base / jit.source_digest()
+    ours, theirs, lookalike, linked = (
+        base / "0123456789abcdef",
+        base / "my_backup",
+        base / "fedcba9876543210",
+        base / "aaaaaaaaaaaaaaaa",
+    )
+    for folder in (keep, ours, theirs, lookalike, tmp_path / "elsewhere"):
+        folder.mkdir(parents=True)
+        (folder / "thesis.tex").write_text("x")
+    for folder in (keep, ours, tmp_path / "elsewhere"):
+        (folder / jit._MARKER).write_text("")
+    linked.symlink_to(tmp_path / "elsewhere", target_is_directory=True)
+    old = time.time() - 3 * 86_400
+    for folder in (ours, theirs, lookalike, linked, tmp_path / "elsewhere"):
+        os.utime(folder, (old, old), follow_symlinks=False)
+    jit._prune(base, keep)
+    assert sorted(p.name for p in base.iterdir()) == sorted([keep.name, theirs.name, lookalike.name, linked.name])
+    assert (theirs / "thesis.tex").is_file() and (tmp_path / "elsewhere" / "thesis.tex").is_file()
+
+
+def test_the_folder_a_process_keeps_its_kernels_in_is_marked_as_tvtrack_s(tmp_path):
+    (tmp_path / "kern.py").write_text(KERNEL_MODULE)
+    folder = Path(_call(tmp_path, str(tmp_path / "cache"))["folder"])
+    assert (folder / jit._MARKER).is_file()
+
+
 def test_an_edit_anywhere_in_the_package_names_a_new_folder(tmp_path):
     """numba checks only the cached function's own file: a callee edited in another file would run stale code.
     The folder is named by every source file of the package, so any edit compiles afresh."""

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import shutil
 import time
 from collections.abc import Callable
@@ -34,6 +35,9 @@ __all__ = ["available", "switched_off", "enabled", "njit", "prange", "cache_fold
 CACHE_ENV = "TVTRACK_JIT_CACHE"
 #: a digest folder not used for this many seconds is removed when another one is made
 _STALE_S = 86_400.0
+#: the file tvtrack writes in every digest folder it makes: only folders holding it are ever removed
+_MARKER = ".tvtrack-jit"
+_DIGEST_NAME = re.compile(r"[0-9a-f]{16}")
 
 try:  # numba is pinned in environment.txt; a bare install without it still works
     import numba as _numba
@@ -72,10 +76,20 @@ def source_digest(root: Path | None = None) -> str:
 
 
 def _prune(base: Path, keep: Path) -> None:
-    """Remove the digest folders of ``base`` other than ``keep`` that no process used for a day."""
+    """Remove the digest folders of ``base`` other than ``keep`` that no process used for a day.
+
+    Only folders tvtrack made are candidates: named by a digest (16 hex digits), not a symbolic link, and holding
+    the marker file :data:`_MARKER`. ``TVTRACK_JIT_CACHE`` may name a folder that holds other things (a user's
+    cache folder), and nothing else in it is ever touched."""
     for other in base.iterdir():
         try:
-            if other != keep and other.is_dir() and time.time() - other.stat().st_mtime > _STALE_S:
+            if (
+                other != keep
+                and _DIGEST_NAME.fullmatch(other.name)
+                and not other.is_symlink()
+                and (other / _MARKER).is_file()
+                and time.time() - other.stat().st_mtime > _STALE_S
+            ):
                 shutil.rmtree(other, ignore_errors=True)
         except OSError:
             pass
@@ -90,6 +104,8 @@ def cache_folder() -> Path | None:
     folder = Path(base) / source_digest()
     try:
         folder.mkdir(parents=True, exist_ok=True)
+        if not (folder / _MARKER).is_file():
+            (folder / _MARKER).write_text("compiled kernels of tvtrack; removed after a day unused\n")
         os.utime(folder)
         _prune(Path(base), folder)
     except OSError:
