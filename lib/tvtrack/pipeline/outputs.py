@@ -7,7 +7,9 @@ parameter, a folder that is not empty and has no marker, or one that holds a fil
 file the user added). The new content is built in a sibling ``.tmp-<name>-<random>`` folder (its owner's process id
 in ``.owner``, so a killed build's folder is removed by the next one), marked (:func:`mark`), then put in place by
 :func:`replace_folder`: the old folder is renamed aside, the new one renamed in, and of the old one only the files
-its marker lists are deleted (a file that appeared meanwhile is left in the renamed folder and named).
+its marker lists are deleted (a file that appeared meanwhile is left in the renamed folder and named). A listed
+name is deleted only if it is a relative path inside the folder (:func:`listed_inside`); a marker listing another
+is refused, and a damaged ``run.json`` deletes nothing.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ __all__ = [
     "check_replaceable",
     "mark",
     "marked_files",
+    "listed_inside",
     "temporary_beside",
     "replace_folder",
     "replace_text",
@@ -35,17 +38,68 @@ MARKER = ".tvtrack-output.json"
 OWNER_FILE = ".owner"  # "<host> <pid>" of the process building a temporary folder (as the runner's)
 
 
-def marked_files(folder: Path) -> set[str] | None:
-    """The relative paths tvtrack wrote in ``folder``: those its marker lists, or for a run folder those its
-    ``run.json`` lists (``files``); ``None`` when neither says."""
+def listed_inside(folder: Path, rel: object) -> bool:
+    """Whether ``rel``, a file name listed in a record of ``folder`` (a marker's or ``run.json``'s ``files``,
+    ``results.json``'s figures and recording), names a file inside ``folder``: a non-empty relative path without a
+    ``..`` part that, symbolic links followed, stays in ``folder``.
+
+    Parameters
+    ----------
+    folder : Path
+        The folder the record describes.
+    rel : object
+        The entry as the record holds it (anything but a string is refused).
+
+    Returns
+    -------
+    bool
+        ``False`` for an absolute path, one with ``..``, one resolving outside ``folder``, or not a string.
+    """
+    if not isinstance(rel, str) or not rel.strip() or "\0" in rel:
+        return False
+    path = Path(rel)
+    if path.is_absolute() or ".." in path.parts or path == Path("."):
+        return False
+    try:
+        return (Path(folder) / path).resolve().is_relative_to(Path(folder).resolve())
+    except (OSError, RuntimeError):  # a symbolic link loop
+        return False
+
+
+def _listing(folder: Path) -> tuple[Path, list] | None:
+    """The record of ``folder`` listing the files tvtrack wrote there (its marker, else its ``run.json``) and its
+    ``files`` as written; ``None`` when neither is a JSON object with a ``files`` list."""
     for name in (MARKER, "run.json"):
         try:
             data = json.loads((Path(folder) / name).read_text())
         except (OSError, ValueError):
             continue
         if isinstance(data, dict) and isinstance(data.get("files"), list):
-            return {str(f) for f in data["files"]}
+            return Path(folder) / name, data["files"]
     return None
+
+
+def marked_files(folder: Path) -> set[str] | None:
+    """The relative paths tvtrack wrote in ``folder``: those its marker lists, or for a run folder those its
+    ``run.json`` lists (``files``); ``None`` when neither says.
+
+    Raises
+    ------
+    UsageError
+        One line naming the record and its first entry that is not a file inside ``folder``
+        (:func:`listed_inside`): such a record was not written by tvtrack, and nothing it lists is deleted.
+    """
+    listing = _listing(folder)
+    if listing is None:
+        return None
+    record, files = listing
+    outside = [f for f in files if not listed_inside(folder, f)]
+    if outside:
+        raise UsageError(
+            f"{record}: 'files' lists {outside[0]!r}, which is not a file inside {Path(folder)} (allowed: relative "
+            "paths without '..'); tvtrack did not write this record: move the folder aside or give another one"
+        )
+    return set(files)
 
 
 def _files(folder: Path) -> set[str]:
@@ -59,7 +113,8 @@ def check_replaceable(folder: Path, parameter: str, kind: str) -> None:
     ------
     UsageError
         One line naming ``parameter`` (e.g. ``-o``) and the folder: a file; a non-empty folder without the marker
-        (not built here); a marked folder holding a file tvtrack did not write (named, with how many more).
+        (not built here); a marked folder holding a file tvtrack did not write (named, with how many more); a
+        marker listing a file outside the folder (:func:`marked_files`).
     """
     folder = Path(folder)
     if not folder.exists():
@@ -129,9 +184,7 @@ def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str
         os.replace(new, final)
         return []
     old = final.parent / f".old-{final.name}-{uuid.uuid4().hex[:8]}"
-    listed = marked_files(final)
-    if listed is None:
-        listed = _files(final) if legacy_run and (final / "run.json").is_file() else set()
+    listed = _deletable(final, legacy_run)
     os.replace(final, old)
     os.replace(new, final)
     for rel in sorted(listed | {MARKER}):
@@ -148,6 +201,23 @@ def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str
     except OSError:
         return [str(old / rel) for rel in sorted(_files(old))]
     return []
+
+
+def _deletable(final: Path, legacy_run: bool) -> set[str]:
+    """The files of ``final`` that :func:`replace_folder` may delete: those its record lists that lie inside it
+    (:func:`listed_inside`; any other entry is ignored), or with ``legacy_run`` and a ``run.json`` that is a JSON
+    object without ``files`` (a run from before runs listed them), all of its files. A damaged ``run.json`` (not
+    JSON, ``files`` not a list) deletes nothing."""
+    listing = _listing(final)
+    if listing is not None:
+        return {f for f in listing[1] if listed_inside(final, f)}
+    if not legacy_run:
+        return set()
+    try:
+        record = json.loads((final / "run.json").read_text())
+    except (OSError, ValueError):
+        return set()
+    return _files(final) if isinstance(record, dict) and "files" not in record else set()
 
 
 def replace_text(path: Path, text: str) -> None:

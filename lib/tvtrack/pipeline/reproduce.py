@@ -32,16 +32,16 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from .interrupt import shielded_spawn, stop_pool, worker_init
-from .outputs import replace_folder, replace_text
+from .outputs import marked_files, replace_folder, replace_text
 from .paths import PAPER_PROFILE, REPO_ROOT, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError
-from .report import README_PATH, REPORT_PATH, check_readme, write_report
+from .report import README_PATH, REPORT_PATH, check_readme, collect_runs, write_report
 from .lock import LOCK_NAME, output_lock
 from .runfiles import DamagedRun, load_run
 from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
 from .scale import MIN_REPLICATES, check_caps, check_scheduler, explorer_runs, notebook_overrides, ran_on
 
-__all__ = ["usable_cores", "reproduce", "source_identity", "parameters_digest", "finished_here"]
+__all__ = ["usable_cores", "reproduce", "source_identity", "parameters_digest", "finished_here", "check_records"]
 
 # without a previous run to time, the heaviest notebooks start first
 _DEFAULT_ORDER = ("002", "003", "004", "000", "001")
@@ -88,7 +88,10 @@ def _run_one(
         return name, False, str(exc), 0.0
     left = replace_folder(fresh, Path(folder) / name, legacy_run=True)  # of the earlier run, only what it wrote
     if left:
-        print(f"{name}: the earlier run held {len(left)} file(s) tvtrack did not write; kept in {Path(left[0]).parent}")
+        print(
+            f"{name}: the earlier run held {len(left)} file(s) its run.json does not list as tvtrack's (or a damaged "
+            f"run.json); kept in {Path(left[0]).parent}"
+        )
     return name, outcome.ok, outcome.error, outcome.runtime_s
 
 
@@ -140,6 +143,31 @@ def finished_here(folder: Path, nb: Path, identity: dict) -> bool:
         and identity.get("source_digest") is not None
         and all(record.get(k) == v for k, v in identity.items())
     )
+
+
+def check_records(folder: Path, names: list[str], to_run: list[str]) -> None:
+    """Check, before any notebook runs, the run files the report will read as they are (those of ``names`` not in
+    ``to_run``: :func:`.report.collect_runs`) and the file lists of the runs ``to_run`` will replace.
+
+    Parameters
+    ----------
+    folder : Path
+        The reproduce folder.
+    names : list of str
+        Every notebook the report shows.
+    to_run : list of str
+        The notebooks about to run (their earlier runs are replaced, not read).
+
+    Raises
+    ------
+    UsageError
+        One line naming the damaged file (:mod:`.runfiles`), or the ``run.json`` whose ``files`` lists a path
+        outside its run folder (:func:`.outputs.marked_files`).
+    """
+    collect_runs(folder, [name for name in names if name not in to_run])
+    for name in to_run:
+        if (folder / name).is_dir():
+            marked_files(folder / name)
 
 
 def _record_runs(run_dir: Path) -> None:
@@ -215,13 +243,14 @@ def reproduce(
     if max_replicates is not None:
         check_caps(notebooks, [load_profile(nb, profile) for nb in notebooks], params, max_replicates)
     places = [ran_on(p, cluster) for p in params]
+    # before the folder is made: an unknown profile stops here and leaves nothing
+    digests = {nb.stem: parameters_digest(nb, profile, max_replicates) for nb in notebooks}
     folder.mkdir(parents=True, exist_ok=True)
     with output_lock(folder / LOCK_NAME, folder, "reproduce folder"):
         source = source_identity()
-        identities = {
-            nb.stem: {**source, "parameters_digest": parameters_digest(nb, profile, max_replicates)} for nb in notebooks
-        }
+        identities = {nb.stem: {**source, "parameters_digest": digests[nb.stem]} for nb in notebooks}
         kept = [] if force else [nb for nb in notebooks if finished_here(folder, nb, identities[nb.stem])]
+        check_records(folder, [nb.stem for nb in list_notebooks()], [nb.stem for nb in notebooks if nb not in kept])
         if kept:
             print(
                 f"reproduce: kept {len(kept)} run{'s' * (len(kept) > 1)} finished at this commit "

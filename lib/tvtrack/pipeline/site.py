@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import lean_imports
-from .outputs import check_replaceable, mark, replace_folder, temporary_beside
+from .outputs import check_replaceable, listed_inside, mark, replace_folder, temporary_beside
 from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
 from .preflight import UsageError
 from .figures import (
@@ -86,6 +86,7 @@ __all__ = [
     "claim_cells",
     "recording_still",
     "render_notebook",
+    "read_notebook",
     "build_site",
 ]
 
@@ -106,6 +107,7 @@ class PaperRun:
     record: dict
     results: dict | None = None
     cells: dict = field(default_factory=dict)  # claim id -> notebook cell id
+    notebook: object = None  # the executed notebook (an nbformat node) of a finished run, read by :func:`read_notebook`
 
     @property
     def ok(self) -> bool:
@@ -202,6 +204,29 @@ def claim_cells(notebook: dict, claim_ids: list[str]) -> dict[str, str]:
     return found
 
 
+def read_notebook(run_dir: Path):
+    """The executed notebook of a finished run (an ``nbformat`` node), checked to hold a list of cells.
+
+    Raises
+    ------
+    DamagedRun
+        One line naming ``notebook.ipynb``: missing, unreadable, not a notebook (truncated, of another program).
+    """
+    nbformat = lean_imports.nbformat()
+    path = Path(run_dir) / "notebook.ipynb"
+    fix = f"the run folder is damaged: remove {path.parent} and run it again (the same command re-runs a missing run)"
+    try:
+        nb = nbformat.read(path, as_version=4)
+    except OSError as exc:
+        raise DamagedRun(f"{path}: cannot be read ({exc.strerror or exc}); {fix}") from None
+    except Exception as exc:  # noqa: BLE001 - nbformat's many errors on content that is not a notebook
+        raise DamagedRun(f"{path}: not an executed notebook ({type(exc).__name__}); {fix}") from None
+    cells = nb.get("cells")
+    if not isinstance(cells, list) or not all(isinstance(c, dict) and "cell_type" in c for c in cells):
+        raise DamagedRun(f"{path}: not an executed notebook (its 'cells' is not a list of cells); {fix}")
+    return nb
+
+
 def has_inline_images(notebook: dict) -> bool:
     """Whether any output of the notebook is an image (runs from before the verdict standard have none)."""
     return any(
@@ -241,11 +266,17 @@ def _shown(run_dir: Path, runs_dir: Path) -> Path:
 def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
     """Still image (relative to the site root), the serving command and the URL it serves at."""
     name = (run.results or {}).get("recording")
-    rrd = run.run_dir / name if name else None
+    rrd = run.run_dir / name if name and listed_inside(run.run_dir, name) else None
     if rrd is None or not rrd.is_file():
         return None
     still = site / "runs" / run.name / "recording.png"
-    has_still = recording_still(rrd, still)
+    try:
+        has_still = recording_still(rrd, still)
+    except (RuntimeError, OSError, ValueError) as exc:
+        raise DamagedRun(
+            f"{rrd}: not a readable recording ({str(exc).splitlines()[0] if str(exc) else type(exc).__name__}); "
+            f"the run folder is damaged: remove {run.run_dir} and run it again"
+        ) from None
     return {
         "still": f"runs/{run.name}/recording.png" if has_still else None,
         "command": f"python -m tvtrack view {_shown(run.run_dir, runs_dir)}",
@@ -425,8 +456,8 @@ def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
     if has_inline_images(nb):
         return []
     shown = []
-    for fig in run.results.get("figures", []):
-        if (run.run_dir / fig["file"]).is_file():
+    for fig in run.results.get("figures") or []:
+        if listed_inside(run.run_dir, fig["file"]) and (run.run_dir / fig["file"]).is_file():
             shutil.copy2(run.run_dir / fig["file"], assets / fig["file"])
             shown.append({"src": f"../runs/{run.name}/{fig['file']}", "caption": fig["caption"]})
     return shown
@@ -463,12 +494,16 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
         )
     final = Path(out) if out is not None else default
     check_replaceable(final, "-o" if out is not None else "site folder", "site")
+    runs = find_paper_runs(source)  # every run file checked before anything is written
+    for run in runs:
+        if run.ok:
+            run.notebook = read_notebook(run.run_dir)
     try:
         site = temporary_beside(final)
     except OSError as exc:
         raise UsageError(f"cannot write the site folder {final}: {exc.strerror or exc}") from exc
     try:
-        _build_into(site, runs_dir, source, profile)
+        _build_into(site, runs_dir, source, profile, runs)
         mark(site, "site")
     except BaseException:
         shutil.rmtree(site, ignore_errors=True)
@@ -477,14 +512,12 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     return final / "index.html"
 
 
-def _build_into(site: Path, runs_dir: Path, source: Path, profile: str) -> None:
-    """Every page of the site into the (new, empty) folder ``site``."""
-    nbformat = lean_imports.nbformat()
-
+def _build_into(site: Path, runs_dir: Path, source: Path, profile: str, runs: list[PaperRun]) -> None:
+    """Every page of the site into the (new, empty) folder ``site`` from ``runs`` (:func:`find_paper_runs`, each
+    finished one with its notebook read)."""
     writable_directory(site / "notebooks", "site folder")
     (site / "sweeps").mkdir()
     env = _environment()
-    runs = find_paper_runs(source)
     for run in runs:  # at another profile than the paper's, nothing is robust (tvtrack.results.at_profile)
         if run.ok:
             run.results = {**run.results, "claims": at_profile(run.results["claims"], run.record.get("profile"))}
@@ -506,7 +539,7 @@ def _build_into(site: Path, runs_dir: Path, source: Path, profile: str) -> None:
             assets = site / "runs" / run.name
             assets.mkdir(parents=True, exist_ok=True)
             shutil.copy2(run.run_dir / "results.json", assets / "results.json")
-            nb = nbformat.read(run.run_dir / "notebook.ipynb", as_version=4)
+            nb = run.notebook
             render_notebook(
                 nb,
                 site / "notebooks" / f"{run.name}.html",
