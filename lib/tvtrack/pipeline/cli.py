@@ -1,7 +1,8 @@
 """Command line: ``python -m tvtrack {run, sweep, reproduce, report, site, edit, view, new}``.
 
 A user error (a missing notebook, profile or spec, an unknown parameter or a bad value, an output
-directory that exists or that another tvtrack is writing, an unreachable scheduler) prints one line
+directory that exists or that another tvtrack is writing, an unreachable scheduler, a ``TVTRACK_KERNEL`` that names
+no installed kernel spec, a notebook whose cells are not notebook cells) prints one line
 ``error: ...`` on stderr and exits with status 2 before any kernel starts; ``--debug`` shows the traceback
 instead. Outputs that cannot be written during a run (a full disk, a read-only folder) print one line,
 leave no temporary folder and exit with status 1. Ctrl-C ends the
@@ -32,13 +33,23 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"error: {message} (see {self.prog} --help)\n")
 
 
-def _parse_value(text: str):
-    """A ``-p NAME VALUE`` value: a Python literal (number, string in quotes, list, bool),
-    else the plain string."""
+def _parse_value(name: str, text: str):
+    """A ``-p NAME VALUE`` value: a Python literal (number, string in quotes, list, bool), else the plain string.
+
+    Raises
+    ------
+    UsageError
+        ``text`` is Python but no value (``{[1]: 2}``: a list as a key) or nested too deeply to read.
+    """
     try:
         return ast.literal_eval(text)
     except (ValueError, SyntaxError):
         return text
+    except (TypeError, RecursionError, MemoryError) as exc:
+        shown = text if len(text) <= 60 else text[:57] + "..."
+        raise UsageError(
+            f"-p {name} {shown!r}: not a value ({type(exc).__name__}); give a number, a string, a list or a bool"
+        ) from None
 
 
 def _positive_int(text: str) -> int:
@@ -63,7 +74,7 @@ def _replicate_cap(text: str) -> int:
 
 def _fresh_directory(path: Path) -> Path:
     """A run directory that does not exist yet and whose parent can be created."""
-    if path.exists():
+    if os.path.lexists(path):  # a symbolic link too, even one that leads nowhere or to itself
         raise UsageError(f"output directory {path} exists already; choose another -o or remove it")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -76,11 +87,14 @@ def _fresh_directory(path: Path) -> Path:
 def _cmd_run(args) -> int:
     from .runner import find_notebook, load_profile, remove_stale_temporaries, run_notebook
 
+    from .kernels import check_kernel_variable
+
     nb = find_notebook(args.notebook)
-    params = {name: _parse_value(value) for name, value in args.parameter}
+    params = {name: _parse_value(name, value) for name, value in args.parameter}
     check_names(nb, params)
     profile = load_profile(nb, args.profile)
     check_values(nb, {**profile, **params}, given=params)
+    check_kernel_variable()
     out = _fresh_directory(
         Path(args.output)
         if args.output
@@ -99,8 +113,11 @@ def _cmd_run(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
+    from .kernels import check_kernel_variable
     from .sweep import run_sweep
 
+    if args.executor == "local":  # a Dask worker reads its own environment
+        check_kernel_variable()
     summary = run_sweep(
         args.spec,
         jobs=args.jobs,
@@ -114,8 +131,10 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_reproduce(args) -> int:
+    from .kernels import check_kernel_variable
     from .reproduce import reproduce
 
+    check_kernel_variable()
     return reproduce(
         profile=args.profile,
         only=args.only,

@@ -74,10 +74,10 @@ def working_copy(
         Unknown notebook or profile, profile values the notebook refuses, a folder that cannot be written.
     """
     nb = find_notebook(notebook)
+    parameters = load_profile(nb, profile)  # an unknown profile is refused also when the copy is kept
     copy = Path(folder) / f"{nb.stem}.ipynb"
     if copy.exists() and not fresh:
         return copy, False
-    parameters = load_profile(nb, profile)
     check_values(nb, parameters)
     writable_directory(Path(folder), "edit folder")
     output_dir = (Path(folder) / f"{nb.stem}-out").resolve()

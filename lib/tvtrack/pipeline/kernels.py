@@ -31,7 +31,7 @@ from pathlib import Path
 
 from .paths import REPO_ROOT
 
-__all__ = ["KernelSetup", "clone_kernel_name", "install_clone_kernel", "IPC_PATH_MAX"]
+__all__ = ["KernelSetup", "check_kernel_variable", "clone_kernel_name", "install_clone_kernel", "IPC_PATH_MAX"]
 
 IPC_PATH_MAX = 90
 """Longest socket path prefix used (Unix socket paths are limited to 107 bytes; ``-N`` is appended)."""
@@ -112,6 +112,29 @@ class KernelSetup:
                 return await super()._async_launch_kernel(kernel_cmd, **kw)
 
         return RunKernelManager
+
+
+def check_kernel_variable() -> None:
+    """Refuse a ``TVTRACK_KERNEL`` that names no installed kernel spec, before any run starts.
+
+    Raises
+    ------
+    UsageError
+        One line naming the variable, its value and the kernel specs installed.
+    """
+    name = os.environ.get("TVTRACK_KERNEL")
+    if not name:
+        return
+    from jupyter_client.kernelspec import KernelSpecManager
+
+    from .preflight import UsageError
+
+    installed = sorted(KernelSpecManager().find_kernel_specs())
+    if name.lower() not in installed:  # jupyter_client looks kernel specs up in lower case
+        raise UsageError(
+            f"TVTRACK_KERNEL={name!r} names no installed kernel spec; installed: {', '.join(installed) or 'none'} "
+            "(or unset TVTRACK_KERNEL: the runner then starts this environment's Python)"
+        )
 
 
 class _LogHandler(logging.Handler):

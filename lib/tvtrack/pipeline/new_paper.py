@@ -8,6 +8,7 @@ through what to change. Nothing here imports a paper.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import re
 from pathlib import Path
@@ -19,8 +20,11 @@ from .preflight import UsageError
 __all__ = ["TEMPLATE_DIR", "new_paper", "notebook_from_cells"]
 
 TEMPLATE_DIR = Path(__file__).resolve().parent / "templates" / "paper"
-_NUMBER = re.compile(r"^\d{3}$")
-_NAME = re.compile(r"^[a-z][a-z0-9_]*[a-z0-9]$")
+_NUMBER = re.compile(r"[0-9]{3}")  # ASCII digits only (``\d`` takes any script's), matched whole (``fullmatch``)
+_NAME = re.compile(r"[a-z][a-z0-9_]*[a-z0-9]")
+NAME_MAX = 60
+"""Longest paper name: its files' names (``<NNN>_<name>.smoke.toml``) stay far below the file systems' 255 bytes."""
+_PLACEHOLDER = re.compile(r"\{\{(\w+)\}\}")
 _CELL = re.compile(r"^# %%(?: (\[markdown\]|parameters))?\s*$")
 
 
@@ -59,12 +63,17 @@ def notebook_from_cells(text: str) -> dict:
 
 
 def _fill(text: str, values: dict[str, str]) -> str:
-    for key, value in values.items():
-        text = text.replace("{{" + key + "}}", value)
-    left = re.findall(r"\{\{\w+\}\}", text)
+    """``text`` with each ``{{key}}`` replaced by its value, in one pass: a value is never read as a placeholder.
+
+    Raises
+    ------
+    ValueError
+        The template holds a placeholder without a value (a bug in the template).
+    """
+    left = sorted({m.group(0) for m in _PLACEHOLDER.finditer(text) if m.group(1) not in values})
     if left:
-        raise ValueError(f"template placeholders without a value: {sorted(set(left))}")
-    return text
+        raise ValueError(f"template placeholders without a value: {left}")
+    return _PLACEHOLDER.sub(lambda m: values[m.group(1)], text)
 
 
 _REFERENCE = """  - type: article
@@ -73,6 +82,79 @@ _REFERENCE = """  - type: article
       - name: "TODO: the paper's authors"
     year: 2026
 """
+
+
+def _check_arguments(number: str, name: str, title: str | None) -> None:
+    """Refuse a malformed number, name or title in one line, before anything is written.
+
+    Raises
+    ------
+    UsageError
+        The number is not three ASCII digits, the name not lower case ASCII letters, digits and ``_`` (at most
+        :data:`NAME_MAX` characters), or the title not one printable line without ``"``, ``\\``, ``{{`` or
+        ``}}`` (it is written into Python docstrings and a double-quoted YAML string, and ``{{`` marks a
+        template's placeholder).
+    """
+    if not _NUMBER.fullmatch(number):
+        raise UsageError(f"paper number {number!r} must be three digits 0-9, e.g. 005")
+    if not _NAME.fullmatch(name) or len(name) > NAME_MAX:
+        raise UsageError(
+            f"paper name {name!r} must be lower case letters a-z, digits and '_' (a letter first, at most "
+            f"{NAME_MAX} characters), e.g. spot_tracker"
+        )
+    if title is not None and (
+        not title.strip() or not title.isprintable() or any(s in title for s in ('"', "\\", "{{", "}}"))
+    ):
+        raise UsageError(
+            f'paper title {title!r} must be one printable line without double quotes ("), backslashes or '
+            "double braces ({{ }})"
+        )
+
+
+def _render(root: Path, number: str, name: str, title: str | None) -> dict[Path, str]:
+    """Every file of the new paper and its text, ``CITATION.cff`` (when there is one) last."""
+    stem, package = f"{number}_{name}", f"p{number}_{name}"
+    papers = root / "lib" / "tvtrack" / "papers"
+    values = {"NNN": number, "name": name, "stem": stem, "package": package, "title": title or name.replace("_", " ")}
+    texts = {
+        papers / package / t.name.removesuffix(".tmpl"): _fill(t.read_text(), values)
+        for t in sorted((TEMPLATE_DIR / "package").glob("*.py.tmpl"))
+    }
+    texts[root / "tests" / "papers" / f"test_{stem}.py"] = _fill((TEMPLATE_DIR / "test.py.tmpl").read_text(), values)
+    texts[root / "papermill_runs" / "profiles" / f"{stem}.smoke.toml"] = _fill(
+        (TEMPLATE_DIR / "smoke.toml.tmpl").read_text(), values
+    )
+    nb = notebook_from_cells(_fill((TEMPLATE_DIR / "notebook.cells.tmpl").read_text(), values))
+    texts[root / "notebooks" / f"{stem}.ipynb"] = json.dumps(nb, indent=1, ensure_ascii=False) + "\n"
+    cff = root / "CITATION.cff"
+    if cff.is_file():
+        texts[cff] = cff.read_text().rstrip("\n") + "\n" + _REFERENCE.format(title=values["title"])
+    return texts
+
+
+def _write_all(texts: dict[Path, str], cff: Path) -> list[Path]:
+    """Write ``texts`` (new files, then ``cff`` replaced whole); a write that fails removes the files and folders
+    written before it, so that the same command can be run again."""
+    written: list[Path] = []
+    made: list[Path] = []
+    try:
+        for path, text in texts.items():
+            if path == cff:
+                replace_text(cff, text)
+            else:
+                made += [d for d in reversed(path.parents) if not d.exists()]
+                path.parent.mkdir(parents=True, exist_ok=True)
+                with open(path, "x", encoding="utf-8") as fh:  # "x": never over a file that appeared meanwhile
+                    written.append(path)
+                    fh.write(text)
+    except BaseException:
+        for path in written:
+            path.unlink(missing_ok=True)
+        for folder in reversed(made):
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # only if empty: never a file it did not write
+        raise
+    return list(texts)
 
 
 def new_paper(number: str, name: str, root: Path = REPO_ROOT, title: str | None = None) -> list[Path]:
@@ -85,44 +167,18 @@ def new_paper(number: str, name: str, root: Path = REPO_ROOT, title: str | None 
     Raises
     ------
     UsageError
-        A malformed number or name, or a paper of that number or a file to write that exists already.
+        A malformed number, name or title, or a paper of that number or a file to write that exists already;
+        nothing is written then.
     """
-    if not _NUMBER.match(number):
-        raise UsageError(f"paper number {number!r} must be three digits, e.g. 005")
-    if not _NAME.match(name):
-        raise UsageError(f"paper name {name!r} must be lower case letters, digits and '_', e.g. spot_tracker")
-    if title is not None and ('"' in title or "\n" in title or not title.strip()):
-        raise UsageError(f"paper title {title!r} must be one line without double quotes")
+    _check_arguments(number, name, title)
     root = Path(root)
-    stem, package = f"{number}_{name}", f"p{number}_{name}"
     papers = root / "lib" / "tvtrack" / "papers"
     taken = sorted(p.name for p in papers.glob(f"p{number}_*")) if papers.is_dir() else []
     if taken:
         raise UsageError(f"paper {number} exists already: {', '.join(taken)}")
-    values = {"NNN": number, "name": name, "stem": stem, "package": package, "title": title or name.replace("_", " ")}
-    targets = {
-        **{
-            papers / package / t.name.removesuffix(".tmpl"): t
-            for t in sorted((TEMPLATE_DIR / "package").glob("*.py.tmpl"))
-        },
-        root / "tests" / "papers" / f"test_{stem}.py": TEMPLATE_DIR / "test.py.tmpl",
-        root / "papermill_runs" / "profiles" / f"{stem}.smoke.toml": TEMPLATE_DIR / "smoke.toml.tmpl",
-    }
-    notebook = root / "notebooks" / f"{stem}.ipynb"
-    existing = [str(p) for p in [*targets, notebook] if p.exists()]
+    cff = root / "CITATION.cff"
+    texts = _render(root, number, name, title)
+    existing = [str(p) for p in texts if p != cff and p.exists()]
     if existing:
         raise UsageError(f"would overwrite {', '.join(existing)}")
-    written = []
-    for path, template in targets.items():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(_fill(template.read_text(), values))
-        written.append(path)
-    nb = notebook_from_cells(_fill((TEMPLATE_DIR / "notebook.cells.tmpl").read_text(), values))
-    notebook.parent.mkdir(parents=True, exist_ok=True)
-    notebook.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n")
-    written.append(notebook)
-    cff = root / "CITATION.cff"
-    if cff.is_file():
-        replace_text(cff, cff.read_text().rstrip("\n") + "\n" + _REFERENCE.format(title=values["title"]))
-        written.append(cff)
-    return written
+    return _write_all(texts, cff)

@@ -46,6 +46,34 @@ class NotebookBug(RuntimeError):
     (shown as one line, exit status 1)."""
 
 
+def check_cells(notebook: Path, cells: list) -> None:
+    """Refuse cells that are not notebook cells, in one line naming the notebook and the cell.
+
+    Parameters
+    ----------
+    notebook : pathlib.Path
+        The ``.ipynb`` file (named in the message).
+    cells : list
+        Its ``cells``: each a JSON object with a ``cell_type`` and a ``source`` (a string or a list of strings).
+
+    Raises
+    ------
+    UsageError
+        The first cell that is not one.
+    """
+    for index, cell in enumerate(cells, start=1):
+        where = f"{notebook}: not a notebook: cell {index}"
+        if not isinstance(cell, dict):
+            raise UsageError(f"{where} is {type(cell).__name__}, not a JSON object with 'cell_type' and 'source'")
+        if not isinstance(cell.get("cell_type"), str):
+            raise UsageError(f"{where} has no 'cell_type' (code, markdown or raw)")
+        source = cell.get("source")
+        if not (isinstance(source, str) or isinstance(source, list) and all(isinstance(s, str) for s in source)):
+            raise UsageError(f"{where} has a 'source' that is not a string or a list of strings")
+        if not isinstance(cell.get("metadata", {}), dict):
+            raise UsageError(f"{where} has a 'metadata' that is not a JSON object")
+
+
 def code_cells(notebook: Path) -> list[str]:
     """The sources of a notebook's code cells, read as plain JSON (nbformat's import alone takes seconds).
 
@@ -62,17 +90,40 @@ def code_cells(notebook: Path) -> list[str]:
     Raises
     ------
     UsageError
-        When the first code cell is not tagged ``parameters``.
+        When a cell is not a notebook cell, or the first code cell is not tagged ``parameters``.
     """
-    cells = [c for c in json.loads(Path(notebook).read_text())["cells"] if c["cell_type"] == "code"]
-    if not cells or "parameters" not in cells[0].get("metadata", {}).get("tags", []):
+    data = json.loads(Path(notebook).read_text())
+    if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
+        raise UsageError(f"{notebook}: not a notebook: a notebook is a JSON object with a list of 'cells'")
+    check_cells(notebook, data["cells"])
+    cells = [c for c in data["cells"] if c["cell_type"] == "code"]
+    tags = cells[0].get("metadata", {}).get("tags", []) if cells else []
+    if not isinstance(tags, list) or "parameters" not in tags:
         raise UsageError(f"{notebook.name}: the first code cell is not tagged 'parameters'")
     return ["".join(c["source"]) if isinstance(c["source"], list) else c["source"] for c in cells]
 
 
 def parameter_defaults(notebook: Path) -> dict[str, Any]:
-    """``{name: default}`` from the notebook's ``parameters`` cell (literal values only)."""
-    return cell_literals(code_cells(notebook)[0])
+    """``{name: default}`` from the notebook's ``parameters`` cell (literal values only).
+
+    Raises
+    ------
+    NotebookBug
+        The ``parameters`` cell is not valid Python (named with the notebook and the line).
+    """
+    source = code_cells(notebook)[0]
+    try:
+        return cell_literals(source)
+    except SyntaxError as exc:
+        raise NotebookBug(
+            f"the parameters cell of {notebook.stem} is not valid Python: {exc.msg} (line {exc.lineno} of the cell; "
+            "a bug in the notebook)"
+        ) from exc
+    except (ValueError, TypeError, RecursionError, MemoryError) as exc:  # null bytes, {[1]: 2}, deep nesting
+        raise NotebookBug(
+            f"the parameters cell of {notebook.stem} cannot be read: {type(exc).__name__}: {exc} "
+            "(a bug in the notebook)"
+        ) from exc
 
 
 def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
@@ -110,15 +161,20 @@ for index, (cells, override_sets) in enumerate(json.loads(sys.stdin.read())):
     answers.append([])
     for overrides in override_sets:
         namespace = {"__name__": "__preflight__"}
-        exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
-        namespace.update(overrides)
         try:
-            exec(compile(cells[1], "<validation cell>", "exec"), namespace)
-        except ValueError as exc:
-            answers[-1].append(str(exc))
-            continue
+            exec(compile(cells[0], "<parameters cell>", "exec"), namespace)
+            namespace.update(overrides)
+            try:
+                exec(compile(cells[1], "<validation cell>", "exec"), namespace)
+            except ValueError as exc:
+                answers[-1].append(str(exc))
+                continue
+        except SystemExit as exc:
+            print(f"SystemExit: it calls sys.exit({exc.code!r})", file=sys.stderr)
+            sys.exit(3)
         answers[-1].append(None)
-print(json.dumps(answers))
+with open(sys.argv[1], "w") as fh:  # a file, not stdout: what the cells print does not mix with the answers
+    json.dump(answers, fh)
 """
 
 OUTPUT_DIR_REASON = (
@@ -182,25 +238,36 @@ def check_values_each(sets: list[tuple[Path, list[dict[str, Any]]]], timeout_s: 
     for (nb, _), own in zip(sets, cells):
         if len(own) < 2:
             raise UsageError(f"{nb.name}: no validation cell after the parameters cell")
-    with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as scratch:
+    with tempfile.TemporaryDirectory(prefix="tvtrack-preflight-") as work:
+        scratch, answers = os.path.join(work, "output"), Path(work) / "answers.json"
+        os.mkdir(scratch)
         payload = [(own[:2], [{**o, "output_dir": scratch} for o in sets_]) for own, (_, sets_) in zip(cells, sets)]
-        proc = subprocess.run(
-            [sys.executable, "-c", _PREFLIGHT],
-            input=json.dumps(payload, default=str),
-            capture_output=True,
-            text=True,
-            cwd=scratch,
-            env={**os.environ, "MPLBACKEND": "Agg"},
-            timeout=timeout_s,
-        )
-    if proc.returncode != 0:
+        try:
+            proc = subprocess.run(
+                [sys.executable, "-c", _PREFLIGHT, str(answers)],
+                input=json.dumps(payload, default=str),
+                capture_output=True,
+                text=True,
+                cwd=scratch,
+                env={**os.environ, "MPLBACKEND": "Agg"},
+                timeout=timeout_s,
+            )
+        except subprocess.TimeoutExpired:
+            names = ", ".join(nb.stem for nb, _ in sets)
+            raise NotebookBug(
+                f"the validation cell of {names} did not finish within {timeout_s:g} s (it must be cheap and do no "
+                "simulation; a bug in the notebook)"
+            ) from None
+        answered = answers.read_text() if proc.returncode == 0 and answers.is_file() else None
+    if answered is None:
         lines = proc.stderr.strip().splitlines() or ["(no message)"]
         started = [int(line.split()[1]) for line in lines if re.fullmatch(r"notebook \d+", line)]
         stem = sets[started[-1] if started else 0][0].stem
+        why = lines[-1] if proc.returncode != 0 else "Python ended before it answered (os._exit?)"
         raise NotebookBug(
-            f"the validation cell of {stem} failed: {lines[-1]} (a bug in the notebook; --debug shows the traceback)"
+            f"the validation cell of {stem} failed: {why} (a bug in the notebook; --debug shows the traceback)"
         )
-    return json.loads(proc.stdout.strip().splitlines()[-1])
+    return json.loads(answered)
 
 
 def check_values(

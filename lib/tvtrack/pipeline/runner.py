@@ -36,7 +36,7 @@ from .kernels import KernelSetup as _KernelSetup
 from .lock import output_lock, remove_stale_locks
 from . import lean_imports
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
-from .preflight import UsageError, check_names
+from .preflight import UsageError, check_cells, check_names
 
 __all__ = [
     "find_notebook",
@@ -76,15 +76,25 @@ def find_notebook(name: str | Path) -> Path:
     Raises
     ------
     UsageError
-        No such notebook, or a file that is not a notebook (not valid JSON, or no list of cells): one line."""
+        No such notebook (an empty name, a folder, a name too long for the file system), or a file that is not a
+        notebook (not valid JSON, or cells that are not notebook cells): one line."""
     p = Path(name)
-    candidates = [p, p.with_suffix(".ipynb"), NOTEBOOK_DIR / p.name, NOTEBOOK_DIR / f"{p.name}.ipynb"]
-    for c in candidates:
-        if c.is_file() and c.suffix == ".ipynb":
-            _check_notebook_file(c)
-            return c.resolve()
+    if p.name:  # "" and "/" name no file (and ``with_suffix`` refuses them)
+        candidates = [p, p.with_suffix(".ipynb"), NOTEBOOK_DIR / p.name, NOTEBOOK_DIR / f"{p.name}.ipynb"]
+        for c in candidates:
+            if _is_file(c) and c.suffix == ".ipynb":
+                _check_notebook_file(c)
+                return c.resolve()
     known = ", ".join(n.stem for n in list_notebooks()) or "none"
-    raise UsageError(f"no notebook {str(name)!r}; notebooks here: {known}")
+    raise UsageError(f"no notebook {str(name)!r} (a name in notebooks/ or an .ipynb file); notebooks here: {known}")
+
+
+def _is_file(path: Path) -> bool:
+    """``path.is_file()``, false also for a path the file system refuses (a name too long, a symbolic link loop)."""
+    try:
+        return path.is_file()
+    except (OSError, RuntimeError):
+        return False
 
 
 def _check_notebook_file(path: Path) -> None:
@@ -95,10 +105,11 @@ def _check_notebook_file(path: Path) -> None:
         raise UsageError(
             f"{path}: not a notebook: not valid JSON (line {exc.lineno} column {exc.colno}: {exc.msg})"
         ) from None
-    except (OSError, UnicodeDecodeError) as exc:
+    except (OSError, UnicodeDecodeError, RecursionError) as exc:
         raise UsageError(f"{path}: not a readable notebook: {getattr(exc, 'strerror', None) or exc}") from None
     if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
         raise UsageError(f"{path}: not a notebook: a notebook is a JSON object with a list of 'cells'")
+    check_cells(path, data["cells"])
 
 
 def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
@@ -115,7 +126,7 @@ def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
         return {}
     for folder in (PROFILE_DIR, notebook.parent):
         path = folder / f"{notebook.stem}.{profile}.toml"
-        if path.is_file():
+        if "/" not in profile and _is_file(path):
             values = read_toml(path)
             check_names(notebook, values, where=f"{path}: ")
             return values
@@ -131,12 +142,25 @@ def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
 
 
 def read_toml(path: Path) -> dict[str, Any]:
-    """A TOML file as a dict; a syntax error is a :class:`UsageError` naming the file and line."""
+    """A TOML file as a dict.
+
+    Raises
+    ------
+    UsageError
+        A syntax error (naming the file and line), or a file that is not UTF-8 text (naming the file and the
+        byte's offset)."""
     try:
         with path.open("rb") as fh:
             return dict(tomllib.load(fh))
     except tomllib.TOMLDecodeError as exc:
         raise UsageError(f"{path}: invalid TOML: {exc}") from exc
+    except UnicodeDecodeError as exc:
+        raise UsageError(
+            f"{path}: invalid TOML: not UTF-8 text (byte {exc.object[exc.start]:#04x} at offset {exc.start}); "
+            "TOML files are UTF-8"
+        ) from exc
+    except RecursionError as exc:
+        raise UsageError(f"{path}: invalid TOML: nested too deeply") from exc
 
 
 class WriteFailed(RuntimeError):
@@ -208,7 +232,7 @@ def run_notebook(
         removed and nothing is kept.
     """
     nb = find_notebook(notebook)
-    run_dir = Path(run_dir).resolve()
+    run_dir = _resolved(run_dir)
     params = {**load_profile(nb, profile), **(parameters or {}), "output_dir": "."}
     run_dir.parent.mkdir(parents=True, exist_ok=True)
     with output_lock(run_dir.parent / f".{run_dir.name}.lock", run_dir, "run directory"):
@@ -251,6 +275,14 @@ def run_notebook(
             shutil.rmtree(tmp, ignore_errors=True)  # gone already once renamed into run_dir
             raise
     return RunOutcome(run_dir=run_dir, status=status, runtime_s=runtime, error=error, record=record)
+
+
+def _resolved(run_dir: str | Path) -> Path:
+    """``run_dir`` made absolute, its symbolic links followed; a link loop is a :class:`UsageError` naming it."""
+    try:
+        return Path(run_dir).resolve()
+    except (OSError, RuntimeError) as exc:  # a symbolic link loop: RuntimeError before Python 3.13
+        raise UsageError(f"cannot use the run directory {run_dir}: {exc}") from None
 
 
 def _execute_in(tmp: Path, nb: Path, params: dict, kernel_name, timeout_s, progress, run_dir: Path):
