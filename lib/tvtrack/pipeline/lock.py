@@ -20,7 +20,7 @@ from typing import Iterator
 
 from .preflight import UsageError
 
-__all__ = ["FolderBusy", "output_lock", "remove_stale_locks", "LOCK_NAME"]
+__all__ = ["FolderBusy", "output_lock", "remove_stale_locks", "written_by_tvtrack", "LOCK_NAME"]
 
 LOCK_NAME = ".tvtrack.lock"
 
@@ -83,7 +83,7 @@ def output_lock(lock_file: Path, target: Path, what: str = "output folder") -> I
         os.close(fd)
 
 
-def _written_by_tvtrack(path: Path) -> bool:
+def written_by_tvtrack(path: Path) -> bool:
     """A lock file tvtrack wrote: empty (killed before it wrote its holder) or ``"<pid> <host>"``."""
     try:
         words = path.read_text().split()
@@ -98,7 +98,7 @@ def remove_stale_locks(folder: Path) -> int:
     live writer's lock is never touched, and a ``.*.lock`` file tvtrack did not write is left alone."""
     n = 0
     for path in Path(folder).glob(".*.lock"):
-        if not _written_by_tvtrack(path):
+        if not written_by_tvtrack(path):
             continue
         try:
             fd = os.open(path, os.O_RDWR)

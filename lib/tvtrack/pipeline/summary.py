@@ -19,9 +19,20 @@ from typing import Any
 from .preflight import UsageError, code_cells
 from .runfiles import load_results, load_run
 
-__all__ = ["flatten_metrics", "notebook_metric_names", "check_metric", "check_metric_in", "collect_summary"]
+__all__ = [
+    "flatten_metrics",
+    "notebook_metric_names",
+    "check_summary_table",
+    "check_metric",
+    "check_metric_in",
+    "collect_summary",
+    "SCALES",
+]
 
 MAX_DEPTH = 6
+#: The axis scales ``[summary] xscale``/``yscale`` may name (Matplotlib's scales that need no arguments).
+SCALES = ("linear", "log", "symlog", "logit")
+_TEXT_KEYS = ("x", "y", "hue", "xlabel", "ylabel", "title")
 _METRIC_CALL = re.compile(r"\.metric\(\s*(f?)(\"[^\"\n]*\"|'[^'\n]*'|[^,\s)]+)")
 
 
@@ -85,6 +96,31 @@ def _check_part(names: list[str], y: str, where: str, notebook: Path) -> None:
                 f"{where}{notebook.stem}: {y!r}: an estimate has no part {rest!r}; did you mean "
                 f"'{head}.{close[0]}'? (its parts: {', '.join(parts)})"
             )
+
+
+def check_summary_table(summary: dict, where: str = "") -> None:
+    """Refuse a ``[summary]`` value of the wrong type before any run: the names and labels are strings, the
+    scales are among :data:`SCALES`.
+
+    Parameters
+    ----------
+    summary : dict
+        The spec's ``[summary]`` table (its keys checked already).
+    where : str
+        Prefix of the message (the spec file and the table).
+
+    Raises
+    ------
+    UsageError
+        One line naming the key, its value and what it may be.
+    """
+    for key in _TEXT_KEYS:
+        if key in summary and not isinstance(summary[key], str):
+            what = "a metric name" if key == "y" else "a parameter name" if key in ("x", "hue") else "a text"
+            raise UsageError(f"{where}{key} = {summary[key]!r}; it must be {what} (a string)")
+    for key in ("xscale", "yscale"):
+        if key in summary and summary[key] not in SCALES:
+            raise UsageError(f"{where}{key} = {summary[key]!r}; it must be one of {', '.join(repr(s) for s in SCALES)}")
 
 
 def check_metric(notebook: Path, y: str, where: str = "") -> None:

@@ -20,6 +20,10 @@ run otherwise: :mod:`.summary`). A run
 that fails is recorded in its directory (``run.json`` with the error, ``error.txt``) and never
 stops the others; the sweep exits non-zero if any run failed. A run's directory appears only
 when the run has ended (see :mod:`tvtrack.pipeline.runner`).
+
+A sweep writes only into a folder that is new, empty or a sweep's (:func:`check_sweep_folder`: its marker lists
+the files the sweep wrote there), and never deletes a file it did not write: a failed run tried again loses the
+files its ``run.json`` lists, and a run folder holding anything else is refused in one line.
 """
 
 from __future__ import annotations
@@ -29,7 +33,6 @@ import itertools
 import json
 import math
 import os
-import shutil
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from multiprocessing import get_context
@@ -41,16 +44,17 @@ from . import lean_imports
 from .paths import CONFIRM_ABOVE_RUNS, RUNS_DIR, writable_directory
 from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
 from .lock import LOCK_NAME, output_lock
+from .sweepcheck import SEED_HOWTO, SEED_RULE, check_given_seeds, check_top_level, seed_refused, spec_table
+from .sweepfolder import SWEEP_FILES, check_sweep_folder, clear_run, files_to_clear, mark_sweep
 from .runfiles import load_results, load_run
 from .runner import (
     WriteFailed,
-    find_notebook,
     load_profile,
     read_toml,
     remove_stale_temporaries,
     run_notebook,
 )
-from .summary import check_metric, check_metric_in, collect_summary
+from .summary import check_metric, check_metric_in, check_summary_table, collect_summary
 
 __all__ = [
     "SweepSpec",
@@ -63,15 +67,12 @@ __all__ = [
     "collect_summary",
     "preflight",
     "check_scheduler_address",
+    "check_sweep_folder",
 ]
 
 DASK_CONNECT_TIMEOUT_S = 8
 _SPEC_KEYS = {"notebook", "profile", "repeats", "fixed", "grid", "zip", "summary", "seed"}
 _SUMMARY_KEYS = {"x", "y", "hue", "xlabel", "ylabel", "title", "xscale", "yscale"}
-SEED_HOWTO = (
-    "vary seeds either with a [grid] (or [zip]) list `seed = [...]` and repeats = 1, or with repeats = N "
-    "(seeds base, base+1, ..., the base from [fixed] seed)"
-)
 
 
 @dataclass(frozen=True)
@@ -94,24 +95,26 @@ class SweepSpec:
     grid: dict
     zipped: dict
     summary: dict = field(default_factory=dict)
+    path: Path | None = None
 
 
 def load_spec(path: str | Path) -> SweepSpec:
-    """Read and check a sweep spec; raises :class:`UsageError` naming the file and the bad key,
-    a parameter the notebook does not define, or the TOML line with a syntax error."""
+    """Read and check a sweep spec.
+
+    Raises
+    ------
+    UsageError
+        One line naming the file and the bad key: a value of the wrong type, a parameter the notebook does not
+        define, a seed that is no integer in [0, 2**63-1], a ``[summary]`` scale Matplotlib has not, or the TOML
+        line with a syntax error.
+    """
     path = Path(path)
     if not path.is_file():
         raise UsageError(f"no sweep spec {str(path)!r}")
     raw = read_toml(path)
     refuse_unknown_keys(raw, _SPEC_KEYS, f"{path}: ")
-    if "notebook" not in raw:
-        raise UsageError(f"{path}: 'notebook' is required")
-    nb_name = raw["notebook"]
-    nb = find_notebook(path.parent / nb_name) if (path.parent / nb_name).exists() else find_notebook(nb_name)
-    repeats = raw.get("repeats", 1)
-    if not isinstance(repeats, int) or repeats < 1:
-        raise UsageError(f"{path}: 'repeats' = {repeats!r}; it must be an integer >= 1")
-    grid, zipped = raw.get("grid", {}), raw.get("zip", {})
+    nb, repeats = check_top_level(raw, path)
+    fixed, grid, zipped, summary = (spec_table(raw, key, path) for key in ("fixed", "grid", "zip", "summary"))
     for key, values in {**grid, **zipped}.items():
         if not isinstance(values, list) or not values:
             raise UsageError(f"{path}: grid/zip entry {key!r} must be a non-empty list")
@@ -119,38 +122,28 @@ def load_spec(path: str | Path) -> SweepSpec:
         raise UsageError(
             f"{path}: all [zip] lists must have the same length, got { {k: len(v) for k, v in zipped.items()} }"
         )
-    overlap = (set(grid) & set(zipped)) | ((set(grid) | set(zipped)) & set(raw.get("fixed", {})))
+    overlap = (set(grid) & set(zipped)) | ((set(grid) | set(zipped)) & set(fixed))
     if overlap:
         raise UsageError(f"{path}: parameters {sorted(overlap)} appear in more than one of fixed/grid/zip")
-    summary = raw.get("summary", {})
     refuse_unknown_keys(summary, _SUMMARY_KEYS, f"{path}: [summary]: ")
     if summary and not {"x", "y"} <= set(summary):
         raise UsageError(f"{path}: [summary] needs both 'x' and 'y'")
+    check_summary_table(summary, f"{path}: [summary] ")
     if ("seed" in grid or "seed" in zipped) and repeats > 1:
         raise UsageError(
             f"{path}: a seed list in [grid]/[zip] and repeats = {repeats} both vary the seed; {SEED_HOWTO}"
         )
+    check_given_seeds(fixed, grid, zipped, path)
     for table, names in (
-        ("[fixed]", raw.get("fixed", {})),
+        ("[fixed]", fixed),
         ("[grid]", grid),
         ("[zip]", zipped),
         ("[summary] x/hue", [summary[k] for k in ("x", "hue") if k in summary]),
     ):
         check_names(nb, names, where=f"{path}: {table}: ")
-    if "y" in summary and not isinstance(summary["y"], str):
-        raise UsageError(f"{path}: [summary] y = {summary['y']!r}; it must be a metric name (a string)")
     if "y" in summary:
         check_metric(nb, summary["y"], where=f"{path}: [summary] y: ")
-    return SweepSpec(
-        name=path.stem,
-        notebook=nb,
-        profile=raw.get("profile"),
-        repeats=repeats,
-        fixed=dict(raw.get("fixed", {})),
-        grid=dict(grid),
-        zipped=dict(zipped),
-        summary=summary,
-    )
+    return SweepSpec(path.stem, nb, raw.get("profile"), repeats, dict(fixed), dict(grid), dict(zipped), summary, path)
 
 
 def count_runs(spec: SweepSpec) -> int:
@@ -180,6 +173,10 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
     """
     base_params = {**load_profile(spec.notebook, spec.profile), **spec.fixed}
     base_seed = base_params.get("seed", _default_seed(spec.notebook))
+    where = f"{spec.path or spec.name}: "
+    if seed_refused(base_seed):
+        source = "[fixed]" if "seed" in spec.fixed else f"profile {spec.profile!r}" if spec.profile else "notebook"
+        raise UsageError(f"{where}the base seed {base_seed!r} ({source}) is not {SEED_RULE}; no run started")
     grid_keys = list(spec.grid)
     grid_rows = [dict(zip(grid_keys, combo)) for combo in itertools.product(*(spec.grid[k] for k in grid_keys))]
     zip_keys = list(spec.zipped)
@@ -196,11 +193,17 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
                         spec.notebook.stem, spec.profile, params, run_hash(spec.notebook.stem, spec.profile, params)
                     )
                 )
+    last = max(runs, key=lambda r: r.parameters["seed"])
+    if seed_refused(last.parameters["seed"]):
+        raise UsageError(
+            f"{where}repeats = {spec.repeats} from the base seed {base_seed} reach seed {last.parameters['seed']}, "
+            f"and a seed is {SEED_RULE}: lower the base seed ([fixed] seed) or the repeats; no run started"
+        )
     seen: dict[str, RunSpec] = {}
     for run in runs:
         if run.run_id in seen:
             raise UsageError(
-                f"{spec.name}: two runs have the same parameters {run.parameters} (a value listed twice in "
+                f"{where}two runs have the same parameters {run.parameters} (a value listed twice in "
                 "[grid]/[zip]?); each run needs its own directory: remove the repeated value"
             )
         seen[run.run_id] = run
@@ -224,13 +227,16 @@ def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
     """Check every distinct parameter set of the sweep with the notebook's validation cell (as ``tvtrack run``
     does) before any kernel starts; raise one :class:`UsageError` naming the first refused set and how many.
 
-    The sets differ from each other by the swept values only (seeds aside), so one subprocess checks them all
-    (:func:`.preflight.check_values_many`)."""
+    The sets differ from each other by the swept values only, so one subprocess checks them all
+    (:func:`.preflight.check_values_many`). Of the seeds (each an integer in [0, 2**63-1] already: :func:`expand`),
+    the lowest and the highest are checked too, for a notebook whose own seed rule is narrower."""
     base = load_profile(spec.notebook, spec.profile)
     distinct: dict[str, RunSpec] = {}
     for run in runs:
         key = json.dumps({k: v for k, v in run.parameters.items() if k != "seed"}, sort_keys=True, default=str)
         distinct.setdefault(key, run)
+    for run in (min(runs, key=lambda r: r.parameters["seed"]), max(runs, key=lambda r: r.parameters["seed"])):
+        distinct.setdefault(run.run_id, run)
     sets = list(distinct.values())
     errors = check_values_many(spec.notebook, [{**base, **r.parameters} for r in sets])
     refused = [(r, e) for r, e in zip(sets, errors) if e]
@@ -316,6 +322,7 @@ def run_sweep(
             f"{spec_path}: {n_runs:,} runs, more than {CONFIRM_ABOVE_RUNS:,}: add --yes to start them "
             "(Ctrl-C stops the sweep and the same command resumes it), or make the grid smaller"
         )
+    sweep_dir = _sweep_folder(spec, output)
     client = _dask_client(scheduler) if executor == "dask" else None  # before the preflight: fail fast
     runs = expand(spec)
     # the pool's workers start (and import what a run needs) while the preflight checks the values: the
@@ -323,7 +330,6 @@ def run_sweep(
     pool = _start_pool(jobs) if executor == "local" and jobs > 1 and len(runs) > 1 else None
     try:
         preflight(spec, runs, where=f"{spec_path}: ")
-        sweep_dir = Path(output) if output else RUNS_DIR / spec.name
         runs_dir = sweep_dir / "runs"
         try:
             runs_dir.mkdir(parents=True, exist_ok=True)
@@ -355,13 +361,22 @@ def run_sweep(
             pool.shutdown()
 
 
+def _sweep_folder(spec: SweepSpec, output: str | Path | None) -> Path:
+    """The sweep's folder (``output``, or ``papermill_runs/<spec name>``), checked (:func:`check_sweep_folder`)."""
+    sweep_dir = Path(output) if output else RUNS_DIR / spec.name
+    check_sweep_folder(sweep_dir, "-o" if output else "sweep folder")
+    return sweep_dir
+
+
 def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]) -> list[RunSpec]:
-    """The runs not finished yet (a failed run is removed and tried again); refuses a damaged run file and a summary
-    metric that the finished runs do not hold."""
+    """The runs not finished yet (a failed run's files are removed and it is tried again); refuses a damaged run
+    file, a run folder holding files its run did not write, and a summary metric that the finished runs do not
+    hold, before anything is removed."""
     runs_dir = sweep_dir / "runs"
     remove_stale_temporaries(runs_dir)
+    mark_sweep(sweep_dir, set(SWEEP_FILES))  # the names the sweep writes, listed before any is written
     (sweep_dir / "spec.toml").write_bytes(Path(spec_path).read_bytes())
-    todo = []
+    todo, retried = [], []
     checked = False
     for run in runs:
         record = load_run(runs_dir / run.run_id)  # a damaged run file: one line naming it (:mod:`.runfiles`)
@@ -373,9 +388,11 @@ def _runs_to_do(spec: SweepSpec, spec_path, sweep_dir: Path, runs: list[RunSpec]
                 )
                 checked = True
             continue
-        if (runs_dir / run.run_id).exists():  # a failed run is tried again
-            shutil.rmtree(runs_dir / run.run_id)
+        if os.path.lexists(runs_dir / run.run_id):  # a failed run is tried again
+            retried.append(files_to_clear(runs_dir / run.run_id, record))
         todo.append(run)
+    for run_dir, files in retried:
+        clear_run(run_dir, files)
     return todo
 
 
