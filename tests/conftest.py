@@ -169,3 +169,30 @@ def copy_fixture_runs(fixture_runs: Path, folder: Path) -> Path:
     for name in FIXTURE_RUNS:
         shutil.copytree(fixture_runs / name, folder / name)
     return folder
+
+
+def one_line_error(proc, *fragments, status=(2,)) -> str:
+    """The single ``error: ...`` line of a refused command: its exit status in ``status``, no traceback, every one
+    of ``fragments`` in the line."""
+    assert proc.returncode in status, (proc.returncode, proc.stdout, proc.stderr)
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout
+    for fragment in fragments:
+        assert fragment in lines[0], (fragment, lines[0])
+    return lines[0]
+
+
+def minimal_claim(cid: str = "C1-1", verdict: str = "reproduced") -> dict:
+    """A claim record with every key a report needs, for run files written by hand."""
+    return {
+        "id": cid,
+        "statement": "A claim.",
+        "paper_value": "1",
+        "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
+        "acceptance": "in [0, 2]",
+        "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
+        "verdict": verdict,
+        "note": "",
+        "robustness": None,
+    }

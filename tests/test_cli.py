@@ -9,7 +9,7 @@ import time
 import pytest
 from load import wall_budget
 
-from conftest import FIXTURE_NOTEBOOK, FIXTURE_SWEEP
+from conftest import one_line_error, FIXTURE_NOTEBOOK, FIXTURE_SWEEP
 
 
 def tvtrack(*args, timeout=60):
@@ -19,13 +19,7 @@ def tvtrack(*args, timeout=60):
 
 
 def assert_one_line_error(proc, *fragments):
-    assert proc.returncode == 2, (proc.returncode, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
-    assert "Traceback" not in proc.stderr + proc.stdout
-    for f in fragments:
-        assert f in lines[0], (f, lines[0])
-    return lines[0]
+    return one_line_error(proc, *fragments)
 
 
 def spec(tmp_path, body, name="spec.toml"):

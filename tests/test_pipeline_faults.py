@@ -19,7 +19,7 @@ import numpy as np
 import psutil
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import minimal_claim, FIXTURE_NOTEBOOK
 from load import wall_budget
 from tvtrack.pipeline.lock import LOCK_NAME
 from tvtrack.pipeline.sweep import expand, load_spec, run_sweep
@@ -152,17 +152,7 @@ def one_line(proc, code, *fragments) -> str:
 
 
 def _claim(cid: str, verdict: str) -> dict:
-    return {
-        "id": cid,
-        "statement": "A claim.",
-        "paper_value": "1",
-        "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
-        "acceptance": "in [0, 2]",
-        "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
-        "verdict": verdict,
-        "note": "",
-        "robustness": None,
-    }
+    return minimal_claim(cid, verdict)
 
 
 def _paper_run(root: Path, name: str, claims: list, **record) -> Path:

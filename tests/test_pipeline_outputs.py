@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import one_line_error, FIXTURE_NOTEBOOK
 from tvtrack.pipeline import runner
 from tvtrack.pipeline.lock import LOCK_NAME, FolderBusy, output_lock
 
@@ -36,13 +36,7 @@ def hold_lock(lock_file, target):
 
 
 def one_line(proc, code, *fragments):
-    assert proc.returncode == code, (proc.returncode, proc.stdout, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
-    assert "Traceback" not in proc.stderr + proc.stdout
-    for f in fragments:
-        assert f in lines[0], (f, lines[0])
-    return lines[0]
+    return one_line_error(proc, *fragments, status=(code,))
 
 
 def test_a_second_writer_of_a_run_directory_is_refused_naming_the_holder(tmp_path):

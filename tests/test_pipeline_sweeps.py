@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import one_line_error as conftest_one_line_error, FIXTURE_NOTEBOOK
 from tvtrack.pipeline.paths import SWEEP_DIR
 from tvtrack.pipeline.preflight import UsageError
 from tvtrack.pipeline.summary import check_metric_in, collect_summary, flatten_metrics
@@ -26,13 +26,7 @@ def tvtrack(*args, timeout=60):
 
 
 def one_line_error(proc, *fragments, code=2):
-    assert proc.returncode == code, (proc.returncode, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
-    assert "Traceback" not in proc.stderr + proc.stdout
-    for f in fragments:
-        assert f in lines[0], (f, lines[0])
-    return lines[0]
+    return conftest_one_line_error(proc, *fragments, status=(code,))
 
 
 def spec(tmp_path, body, name="spec.toml"):

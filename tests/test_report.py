@@ -3,7 +3,7 @@ import re
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK, copy_fixture_runs
+from conftest import FIXTURE_NOTEBOOK, copy_fixture_runs, minimal_claim
 from tvtrack.pipeline.report import (
     README_BEGIN,
     README_END,
@@ -34,17 +34,7 @@ def _robust(verdict="reproduced"):
 
 
 def _claim(cid, verdict, robustness, statement="A claim."):
-    return {
-        "id": cid,
-        "statement": statement,
-        "paper_value": "1",
-        "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
-        "acceptance": "in [0, 2]",
-        "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
-        "verdict": verdict,
-        "note": "",
-        "robustness": robustness,
-    }
+    return {**minimal_claim(cid, verdict), "statement": statement, "robustness": robustness}
 
 
 def _synthetic_run(root, name, claims, profile="paper", old_schema=False):

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import one_line_error, FIXTURE_NOTEBOOK
 from tvtrack.pipeline.cli import _parse_value, main
 from tvtrack.pipeline.preflight import NotebookBug, UsageError, check_values
 from tvtrack.pipeline.paths import REPO_ROOT
@@ -34,13 +34,7 @@ def tvtrack(*args, env=None, timeout=60):
 
 def one_line(proc, *fragments, status=(2,)):
     """The single ``error: ...`` line of a refused command, after checking its form."""
-    assert proc.returncode in status, (proc.returncode, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
-    assert "Traceback" not in proc.stderr + proc.stdout
-    for f in fragments:
-        assert f in lines[0], (f, lines[0])
-    return lines[0]
+    return one_line_error(proc, *fragments, status=status)
 
 
 @pytest.fixture

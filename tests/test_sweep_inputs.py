@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK
+from conftest import one_line_error, FIXTURE_NOTEBOOK
 from tvtrack.pipeline.outputs import MARKER
 from tvtrack.pipeline.preflight import UsageError, check_values_many
 from tvtrack.pipeline.sweep import check_sweep_folder, expand, load_spec, run_sweep
@@ -26,13 +26,7 @@ def tvtrack(*args, timeout=120):
 
 def one_line(proc, *fragments):
     """The one ``error:`` line of a refused command (exit status 2, no traceback), holding every fragment."""
-    assert proc.returncode == 2, (proc.returncode, proc.stdout, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), proc.stderr
-    assert "Traceback" not in proc.stderr + proc.stdout
-    for fragment in fragments:
-        assert fragment in lines[0], (fragment, lines[0])
-    return lines[0]
+    return one_line_error(proc, *fragments)
 
 
 def write_spec(tmp_path, body, name="spec.toml", notebook=True):

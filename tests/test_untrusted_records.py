@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import minimal_claim, one_line_error
+
 from tvtrack.pipeline import outputs, site
 from tvtrack.pipeline import reproduce as rep
 from tvtrack.pipeline.outputs import MARKER, replace_folder
@@ -28,26 +30,11 @@ def tvtrack(*args, timeout=120):
 
 
 def one_line(proc, *fragments) -> str:
-    assert proc.returncode == 2, (proc.returncode, proc.stdout, proc.stderr)
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: ") and "Traceback" not in proc.stderr, proc.stderr
-    for fragment in fragments:
-        assert fragment in lines[0], (fragment, lines[0])
-    return lines[0]
+    return one_line_error(proc, *fragments)
 
 
 def _claim(cid: str = "C1-1") -> dict:
-    return {
-        "id": cid,
-        "statement": "A claim.",
-        "paper_value": "1",
-        "rule": {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0},
-        "acceptance": "in [0, 2]",
-        "measured": {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50},
-        "verdict": "reproduced",
-        "note": "",
-        "robustness": None,
-    }
+    return minimal_claim(cid)
 
 
 def _run(root: Path, name: str = "p1", record: dict | None = None, results: dict | None = None) -> Path:

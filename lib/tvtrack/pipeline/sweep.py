@@ -235,6 +235,7 @@ def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
     for run in runs:
         key = json.dumps({k: v for k, v in run.parameters.items() if k != "seed"}, sort_keys=True, default=str)
         distinct.setdefault(key, run)
+    n_sets = len(distinct)  # the sweep's parameter sets; the seed checks below are not counted among them
     for run in (min(runs, key=lambda r: r.parameters["seed"]), max(runs, key=lambda r: r.parameters["seed"])):
         distinct.setdefault(run.run_id, run)
     sets = list(distinct.values())
@@ -243,7 +244,8 @@ def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
     if refused:
         run, error = refused[0]
         given = {k: v for k, v in run.parameters.items() if k in {**spec.grid, **spec.zipped, **spec.fixed}}
-        more = f" (and {len(refused) - 1} more of the {len(sets)} parameter sets)" if len(refused) > 1 else ""
+        n_refused = sum(bool(e) for e in errors[:n_sets])
+        more = f" (and {n_refused - 1} more of the {n_sets} parameter sets)" if n_refused > 1 else ""
         raise UsageError(f"{where}{spec.notebook.stem}: {name_given(error, given)}{more}; no run started")
 
 
