@@ -22,7 +22,7 @@ from tvtrack.pipeline.paths import REPO_ROOT
 QUICK = ["-p", "n_trials", "20", "-p", "n_frames", "2", "-p", "rerun_mode", "off"]
 
 
-def tvtrack(*args, env=None, timeout=60):
+def tvtrack(*args, env=None, timeout=180):  # a hang guard only: a loaded machine stretches a run
     return subprocess.run(
         [sys.executable, "-m", "tvtrack", *map(str, args)],
         capture_output=True,
