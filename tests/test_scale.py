@@ -122,6 +122,8 @@ def test_bad_scheduler_or_cap_is_one_line_before_any_work(tmp_path):
     before = sorted(Path("papermill_runs").glob("reproduce*"))
     _one_line(_tvtrack("reproduce", "--scheduler", f"127.0.0.1:{port}"), "--scheduler", f"127.0.0.1:{port}")
     _one_line(_tvtrack("reproduce", "--scheduler", "localhost"), "--scheduler", "no port")
+    # an empty address ran everything on this machine, as if no --scheduler had been given
+    _one_line(_tvtrack("reproduce", "--scheduler", "", "--only", NB, "--profile", "smoke"), "--scheduler", "''")
     _one_line(_tvtrack("reproduce", "--max-replicates", "2"), "--max-replicates", ">= 3")
     _one_line(_tvtrack("reproduce", "--max-replicates", "many"), "--max-replicates", "'many'")
     _one_line(_tvtrack("reproduce", "--only", NB, "--max-replicates", "5000"), "--max-replicates 5000", NB, "1000")

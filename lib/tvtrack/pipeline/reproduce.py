@@ -227,7 +227,7 @@ def reproduce(
         raise UsageError(f"--max-replicates = {max_replicates}; it must be an integer >= {MIN_REPLICATES}")
     if profile_name(profile) == PAPER_PROFILE:
         check_readme(README_PATH)  # the results block goes there at the end: a README it cannot go into stops now
-    cluster = check_scheduler(scheduler) if scheduler else None
+    cluster = check_scheduler(scheduler) if scheduler is not None else None  # "" is a malformed address, not "here"
     notebooks = list_notebooks()
     if only:
         wanted = {Path(n).stem for n in only}
