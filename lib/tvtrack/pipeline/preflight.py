@@ -24,6 +24,9 @@ from ..results import cell_literals
 
 __all__ = [
     "UsageError",
+    "CELL_TYPES",
+    "check_notebook",
+    "check_cells",
     "code_cells",
     "NotebookBug",
     "parameter_defaults",
@@ -46,6 +49,61 @@ class NotebookBug(RuntimeError):
     (shown as one line, exit status 1)."""
 
 
+#: The cell types of an nbformat-4 notebook.
+CELL_TYPES = ("code", "markdown", "raw")
+NOTEBOOK_FORM = "a notebook is a JSON object with 'cells', 'metadata', 'nbformat' = 4 and 'nbformat_minor'"
+
+
+def check_notebook(notebook: Path, data: Any) -> None:
+    """Refuse what papermill cannot run as an nbformat-4 notebook, in one line naming the file and what is missing.
+
+    Parameters
+    ----------
+    notebook : pathlib.Path
+        The ``.ipynb`` file (named in the message).
+    data : object
+        Its JSON: an object with a list of ``cells`` (:func:`check_cells`), an object ``metadata`` that names the
+        notebook's language (``kernelspec.language`` or ``language_info.name``), ``nbformat`` = 4 and an integer
+        ``nbformat_minor`` >= 0.
+
+    Raises
+    ------
+    UsageError
+        The first thing missing or of the wrong kind.
+    """
+    where = f"{notebook}: not a notebook:"
+    if not isinstance(data, dict):
+        raise UsageError(f"{where} the file holds a JSON {type(data).__name__}; {NOTEBOOK_FORM}")
+    for key, kind in (("cells", list), ("metadata", dict)):
+        if not isinstance(data.get(key), kind):
+            what = "no" if key not in data else f"a {type(data[key]).__name__} as its"
+            raise UsageError(f"{where} {what} '{key}'; {NOTEBOOK_FORM}")
+    version, minor = data.get("nbformat"), data.get("nbformat_minor")
+    if type(version) is not int or version != 4:
+        got = "no 'nbformat'" if "nbformat" not in data else f"'nbformat' = {version!r}"
+        raise UsageError(f"{where} {got}; it must be 4 (Jupyter's notebook format: open and save it in JupyterLab)")
+    if type(minor) is not int or minor < 0:
+        got = "no 'nbformat_minor'" if "nbformat_minor" not in data else f"'nbformat_minor' = {minor!r}"
+        raise UsageError(f"{where} {got}; it must be an integer >= 0 (5 for Jupyter's current format)")
+    meta = data["metadata"]
+    for key in ("kernelspec", "language_info"):
+        if not isinstance(meta.get(key, {}), dict):
+            raise UsageError(f"{where} 'metadata' has a '{key}' that is not a JSON object")
+    if not any(
+        isinstance(v, str) and v for v in (_language_of(meta, "kernelspec"), _language_of(meta, "language_info"))
+    ):
+        raise UsageError(
+            f"{where} its 'metadata' names no language (a 'kernelspec' with a 'language', or a 'language_info' "
+            "with a 'name', e.g. \"python\"); open and save it in JupyterLab to add them"
+        )
+    check_cells(notebook, data["cells"])
+
+
+def _language_of(metadata: dict, key: str) -> Any:
+    """The language ``metadata[key]`` names (``kernelspec.language``, ``language_info.name``), or ``None``."""
+    return metadata.get(key, {}).get("language" if key == "kernelspec" else "name")
+
+
 def check_cells(notebook: Path, cells: list) -> None:
     """Refuse cells that are not notebook cells, in one line naming the notebook and the cell.
 
@@ -54,7 +112,9 @@ def check_cells(notebook: Path, cells: list) -> None:
     notebook : pathlib.Path
         The ``.ipynb`` file (named in the message).
     cells : list
-        Its ``cells``: each a JSON object with a ``cell_type`` and a ``source`` (a string or a list of strings).
+        Its ``cells``: each a JSON object with a ``cell_type`` (code, markdown or raw), a ``source`` (a string or a
+        list of strings) and a ``metadata`` object; a code cell's ``outputs``, where present, a list of JSON
+        objects, a cell's ``attachments`` a JSON object.
 
     Raises
     ------
@@ -65,13 +125,21 @@ def check_cells(notebook: Path, cells: list) -> None:
         where = f"{notebook}: not a notebook: cell {index}"
         if not isinstance(cell, dict):
             raise UsageError(f"{where} is {type(cell).__name__}, not a JSON object with 'cell_type' and 'source'")
-        if not isinstance(cell.get("cell_type"), str):
-            raise UsageError(f"{where} has no 'cell_type' (code, markdown or raw)")
+        if cell.get("cell_type") not in CELL_TYPES:
+            got = "no 'cell_type'" if "cell_type" not in cell else f"'cell_type' = {cell['cell_type']!r}"
+            raise UsageError(f"{where} has {got}; a cell is code, markdown or raw")
         source = cell.get("source")
         if not (isinstance(source, str) or isinstance(source, list) and all(isinstance(s, str) for s in source)):
-            raise UsageError(f"{where} has a 'source' that is not a string or a list of strings")
-        if not isinstance(cell.get("metadata", {}), dict):
-            raise UsageError(f"{where} has a 'metadata' that is not a JSON object")
+            what = "no 'source'" if "source" not in cell else "a 'source' that is not a string or a list of strings"
+            raise UsageError(f"{where} has {what}; a cell's 'source' is a string or a list of strings")
+        if not isinstance(cell.get("metadata"), dict):
+            what = "no 'metadata'" if "metadata" not in cell else "a 'metadata' that is not a JSON object"
+            raise UsageError(f"{where} has {what}; a cell's 'metadata' is a JSON object ({{}} when empty)")
+        outputs = cell.get("outputs", []) if cell["cell_type"] == "code" else []
+        if not isinstance(outputs, list) or not all(isinstance(o, dict) for o in outputs):
+            raise UsageError(f"{where} has 'outputs' that are not a list of JSON objects ([] when empty)")
+        if not isinstance(cell.get("attachments", {}), dict):
+            raise UsageError(f"{where} has 'attachments' that are not a JSON object")
 
 
 def code_cells(notebook: Path) -> list[str]:
@@ -139,6 +207,8 @@ def check_names(notebook: Path, names: Iterable[str], where: str = "") -> None:
                 f"; did you mean {' or '.join(repr(c) for c in close)}?"
                 if close
                 else f"; its parameters are {', '.join(sorted(known))}"
+                if known
+                else "; its parameters cell assigns none"
             )
             raise UsageError(f"{where}{notebook.stem} has no parameter {name!r}{hint}")
 

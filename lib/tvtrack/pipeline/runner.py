@@ -36,7 +36,7 @@ from .kernels import KernelSetup as _KernelSetup
 from .lock import output_lock, remove_stale_locks
 from . import lean_imports
 from .paths import NOTEBOOK_DIR, PROFILE_DIR
-from .preflight import UsageError, check_cells, check_names
+from .preflight import UsageError, check_names, check_notebook
 
 __all__ = [
     "find_notebook",
@@ -77,7 +77,8 @@ def find_notebook(name: str | Path) -> Path:
     ------
     UsageError
         No such notebook (an empty name, a folder, a name too long for the file system), or a file that is not a
-        notebook (not valid JSON, or cells that are not notebook cells): one line."""
+        notebook papermill can run (not valid JSON, no ``metadata`` naming its language, an ``nbformat`` other than
+        4, cells that are not notebook cells: :func:`.preflight.check_notebook`): one line."""
     p = Path(name)
     if p.name:  # "" and "/" name no file (and ``with_suffix`` refuses them)
         candidates = [p, p.with_suffix(".ipynb"), NOTEBOOK_DIR / p.name, NOTEBOOK_DIR / f"{p.name}.ipynb"]
@@ -98,7 +99,8 @@ def _is_file(path: Path) -> bool:
 
 
 def _check_notebook_file(path: Path) -> None:
-    """Refuse a file that is not a Jupyter notebook (JSON with a list of cells), in one line naming it."""
+    """Refuse a file that is not a Jupyter notebook papermill can run (:func:`.preflight.check_notebook`), in one
+    line naming it."""
     try:
         data = json.loads(path.read_bytes())
     except json.JSONDecodeError as exc:
@@ -107,9 +109,7 @@ def _check_notebook_file(path: Path) -> None:
         ) from None
     except (OSError, UnicodeDecodeError, RecursionError) as exc:
         raise UsageError(f"{path}: not a readable notebook: {getattr(exc, 'strerror', None) or exc}") from None
-    if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
-        raise UsageError(f"{path}: not a notebook: a notebook is a JSON object with a list of 'cells'")
-    check_cells(path, data["cells"])
+    check_notebook(path, data)
 
 
 def load_profile(notebook: Path, profile: str | None) -> dict[str, Any]:
@@ -225,6 +225,8 @@ def run_notebook(
 
     Raises
     ------
+    UsageError
+        ``run_dir`` exists already (checked under its lock; nothing in it is touched).
     FolderBusy
         Another process writes ``run_dir`` (:mod:`.lock`).
     WriteFailed
@@ -236,8 +238,8 @@ def run_notebook(
     params = {**load_profile(nb, profile), **(parameters or {}), "output_dir": "."}
     run_dir.parent.mkdir(parents=True, exist_ok=True)
     with output_lock(run_dir.parent / f".{run_dir.name}.lock", run_dir, "run directory"):
-        if run_dir.exists():
-            raise FileExistsError(f"run directory {run_dir} exists already")
+        if os.path.lexists(run_dir):  # made since the caller checked (another run, or the user's folder)
+            raise UsageError(f"output directory {run_dir} exists already; choose another -o or remove it")
         tmp = run_dir.parent / f".tmp-{run_dir.name}-{uuid.uuid4().hex[:8]}"
         try:
             tmp.mkdir()

@@ -13,6 +13,7 @@ import dataclasses
 import difflib
 import json
 import re
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +24,7 @@ __all__ = [
     "flatten_metrics",
     "notebook_metric_names",
     "check_summary_table",
+    "check_plot_values",
     "check_metric",
     "check_metric_in",
     "collect_summary",
@@ -123,6 +125,52 @@ def check_summary_table(summary: dict, where: str = "") -> None:
             raise UsageError(f"{where}{key} = {summary[key]!r}; it must be one of {', '.join(repr(s) for s in SCALES)}")
 
 
+def _axis_kind(value: Any) -> str | None:
+    """``"number"``, ``"string"`` or ``"boolean"``: what an axis can place; ``None`` for anything else (a list, a
+    table, a date)."""
+    if isinstance(value, bool):
+        return "boolean"
+    if isinstance(value, (int, float)):
+        return "number"
+    return "string" if isinstance(value, str) else None
+
+
+def check_plot_values(summary: dict, values: dict[str, list], where: str = "") -> None:
+    """Refuse, before any run, a ``[summary] x`` whose values the plot cannot place on its axis.
+
+    ``x`` must take numbers, strings or booleans, all of one kind (a sorted axis), and numbers in (0, 1) on a
+    ``logit`` axis. ``hue`` may take any value: each of its lines is named by the value (a list by its JSON form).
+
+    Parameters
+    ----------
+    summary : dict
+        The spec's ``[summary]`` table (checked by :func:`check_summary_table`).
+    values : dict
+        ``{parameter: the values the sweep gives it}`` (``[fixed]`` one, ``[grid]``/``[zip]`` their lists).
+    where : str
+        Prefix of the message (the spec file and the table).
+
+    Raises
+    ------
+    UsageError
+        One line naming ``x``, the first value refused and what ``x`` may take.
+    """
+    x = summary.get("x")
+    taken = values.get(x, [])
+    kinds = [_axis_kind(v) for v in taken]
+    allowed = "x must take numbers, strings or booleans, all of one kind"
+    for value, kind in zip(taken, kinds):
+        if kind is None:
+            raise UsageError(
+                f"{where}x = {x!r} takes {json.dumps(value, default=str)} ({type(value).__name__}), which the plot "
+                f"cannot place on its x axis; {allowed} (a parameter of list values can be the hue: a line per value)"
+            )
+        if kind != kinds[0]:
+            raise UsageError(f"{where}x = {x!r} takes {value!r} beside {taken[0]!r}; {allowed} (a sorted axis)")
+        if summary.get("xscale") == "logit" and not (kind == "number" and 0 < value < 1):
+            raise UsageError(f"{where}xscale = 'logit' needs x values in (0, 1); x = {x!r} takes {value!r}")
+
+
 def check_metric(notebook: Path, y: str, where: str = "") -> None:
     """Refuse a summary metric ``y`` whose first part is none of the metrics the notebook writes.
 
@@ -163,13 +211,19 @@ def check_metric_in(results: Path, y: str, where: str = "") -> None:
 
 
 def collect_summary(
-    sweep_dir: Path, runs: list, summary: dict | None = None, errors: dict[str, str] | None = None
+    sweep_dir: Path,
+    runs: list,
+    summary: dict | None = None,
+    errors: dict[str, str] | None = None,
+    notes: list[str] | None = None,
 ) -> tuple[Path, Path | None]:
     """Write ``summary.csv`` (one row per run: id, status, error, parameters, metrics, verdicts)
     and, if ``summary`` names ``x`` and ``y``, ``summary.png``.
 
     ``status`` is ``ok``, ``failed`` (the run's directory holds its error) or ``absent`` (no directory: the
-    run was not done, or its outputs could not be written; ``errors`` maps such a run's id to why)."""
+    run was not done, or its outputs could not be written; ``errors`` maps such a run's id to why). A plot
+    Matplotlib cannot draw from the runs' values (a ``logit`` axis whose values reach 0 or 1) is left out, and why
+    is appended to ``notes``: the runs and ``summary.csv`` stand."""
     rows = []
     errors = errors or {}
     for run in runs:
@@ -196,30 +250,63 @@ def collect_summary(
         writer.writeheader()
         for row in rows:
             writer.writerow({k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in row.items()})
-    plot = _summary_plot(sweep_dir, rows, summary) if summary else None
+    plot = _summary_plot(sweep_dir, rows, summary, [] if notes is None else notes) if summary else None
     return csv_path, plot
 
 
-def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | None:
+def _plot_key(value: Any) -> str:
+    """A hue value as a key of its line: its JSON form, so that a list or a table names a line too, and ``1``,
+    ``1.0`` and ``true`` name three."""
+    return json.dumps(value, sort_keys=True, default=str)
+
+
+def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict, notes: list[str]) -> Path | None:
+    """``summary.png``: ``y`` against ``x``, a line per ``hue`` value; ``None`` (and why, in ``notes``) where the
+    runs' values give Matplotlib nothing it can draw."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import numpy as np
 
     x, y, hue = summary["x"], summary["y"], summary.get("hue")
     ok = [r for r in rows if r.get("status") == "ok" and r.get(y) is not None and x in r]
     if not ok:
         return None
-    groups: dict[Any, list[dict]] = {}
+    groups: dict[str, list[dict]] = {}
     for r in ok:
-        groups.setdefault(r.get(hue) if hue else None, []).append(r)
+        groups.setdefault(_plot_key(r.get(hue)) if hue else "", []).append(r)
     fig, ax = plt.subplots(figsize=(6, 4))
+    path = sweep_dir / "summary.png"
+    try:
+        with warnings.catch_warnings():  # Matplotlib's remarks on values a log or logit axis cannot show: not on stderr
+            warnings.simplefilter("ignore", UserWarning)
+            warnings.simplefilter("ignore", RuntimeWarning)
+            try:
+                _draw(ax, groups, summary, sweep_dir.name)
+                fig.canvas.draw()  # what Matplotlib cannot draw fails here, before the file is opened
+            except (ValueError, TypeError, OverflowError) as exc:
+                scales = f"xscale {summary.get('xscale', 'linear')!r}, yscale {summary.get('yscale', 'linear')!r}"
+                notes.append(f"Matplotlib cannot draw {y!r} against {x!r} ({scales}): {type(exc).__name__}: {exc}")
+                path.unlink(missing_ok=True)  # an earlier sweep's plot (the sweep's own file) would not match the csv
+                return None
+            fig.savefig(path, dpi=110, bbox_inches="tight")
+        return path
+    finally:
+        plt.close(fig)
+
+
+def _draw(ax, groups: dict[str, list[dict]], summary: dict, title: str) -> None:
+    """A line (and its confidence band, where every run has one) per group of rows, the mean ``y`` at each ``x``;
+    the axes' scales, labels, title and legend from ``summary``."""
+    import numpy as np
+
+    x, y, hue = summary["x"], summary["y"], summary.get("hue")
     base = y[: -len(".value")] if y.endswith(".value") else None
-    for key, items in groups.items():
+    for items in groups.values():
         xs = sorted({r[x] for r in items})
         mean = [np.mean([r[y] for r in items if r[x] == v]) for v in xs]
-        label = f"{hue} = {key}" if hue else None
+        value = items[0].get(hue) if hue else None
+        label = f"{hue} = {_plot_key(value) if isinstance(value, (list, dict)) else value}" if hue else None
         (line,) = ax.plot(xs, mean, marker="o", label=label)
         if base and all(r.get(f"{base}.ci_low") is not None and r.get(f"{base}.ci_high") is not None for r in items):
             lo = [np.mean([r[f"{base}.ci_low"] for r in items if r[x] == v]) for v in xs]
@@ -229,11 +316,7 @@ def _summary_plot(sweep_dir: Path, rows: list[dict], summary: dict) -> Path | No
     ax.set_yscale(summary.get("yscale", "linear"))
     ax.set_xlabel(summary.get("xlabel", x))
     ax.set_ylabel(summary.get("ylabel", y))
-    ax.set_title(summary.get("title", sweep_dir.name))
+    ax.set_title(summary.get("title", title))
     if hue:
         ax.legend()
     ax.grid(alpha=0.3)
-    path = sweep_dir / "summary.png"
-    fig.savefig(path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return path

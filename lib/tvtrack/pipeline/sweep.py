@@ -41,11 +41,18 @@ from pathlib import Path
 from ..executors import SchedulerError, connect_dask, parse_scheduler_address
 from .interrupt import EXIT_INTERRUPTED, Interrupted, running_a_task, shielded_spawn, stop_pool, worker_init
 from . import lean_imports
-from .paths import CONFIRM_ABOVE_RUNS, RUNS_DIR, writable_directory
+from .paths import CONFIRM_ABOVE_RUNS, RUNS_DIR
 from .preflight import UsageError, check_names, check_values_many, name_given, refuse_unknown_keys
-from .lock import LOCK_NAME, output_lock
-from .sweepcheck import SEED_HOWTO, SEED_RULE, check_given_seeds, check_top_level, seed_refused, spec_table
-from .sweepfolder import SWEEP_FILES, check_sweep_folder, clear_run, files_to_clear, mark_sweep
+from .sweepcheck import (
+    SEED_HOWTO,
+    SEED_RULE,
+    check_given_seeds,
+    check_top_level,
+    notebook_seed,
+    seed_refused,
+    spec_table,
+)
+from .sweepfolder import SWEEP_FILES, check_sweep_folder, clear_run, files_to_clear, held_sweep_folder, mark_sweep
 from .runfiles import load_results, load_run
 from .runner import (
     WriteFailed,
@@ -54,7 +61,7 @@ from .runner import (
     remove_stale_temporaries,
     run_notebook,
 )
-from .summary import check_metric, check_metric_in, check_summary_table, collect_summary
+from .summary import check_metric, check_metric_in, check_plot_values, check_summary_table, collect_summary
 
 __all__ = [
     "SweepSpec",
@@ -129,6 +136,7 @@ def load_spec(path: str | Path) -> SweepSpec:
     if summary and not {"x", "y"} <= set(summary):
         raise UsageError(f"{path}: [summary] needs both 'x' and 'y'")
     check_summary_table(summary, f"{path}: [summary] ")
+    check_plot_values(summary, {**{k: [v] for k, v in fixed.items()}, **grid, **zipped}, f"{path}: [summary] ")
     if ("seed" in grid or "seed" in zipped) and repeats > 1:
         raise UsageError(
             f"{path}: a seed list in [grid]/[zip] and repeats = {repeats} both vary the seed; {SEED_HOWTO}"
@@ -172,8 +180,8 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
         Two runs would be the same run (the same parameters, so the same directory): a value listed twice.
     """
     base_params = {**load_profile(spec.notebook, spec.profile), **spec.fixed}
-    base_seed = base_params.get("seed", _default_seed(spec.notebook))
     where = f"{spec.path or spec.name}: "
+    base_seed = base_params["seed"] if "seed" in base_params else notebook_seed(spec.notebook, where)
     if seed_refused(base_seed):
         source = "[fixed]" if "seed" in spec.fixed else f"profile {spec.profile!r}" if spec.profile else "notebook"
         raise UsageError(f"{where}the base seed {base_seed!r} ({source}) is not {SEED_RULE}; no run started")
@@ -208,19 +216,6 @@ def expand(spec: SweepSpec) -> list[RunSpec]:
             )
         seen[run.run_id] = run
     return runs
-
-
-def _default_seed(notebook: Path) -> int:
-    """The ``seed`` default in the notebook's parameters cell."""
-    import ast
-
-    nb = lean_imports.nbformat().read(notebook, as_version=4)
-    for cell in nb.cells:
-        if cell.cell_type == "code" and "parameters" in cell.metadata.get("tags", []):
-            for node in ast.parse(cell.source).body:
-                if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "seed" for t in node.targets):
-                    return int(ast.literal_eval(node.value))
-    return 0
 
 
 def preflight(spec: SweepSpec, runs: list[RunSpec], where: str = "") -> None:
@@ -292,8 +287,9 @@ def run_sweep(
 ) -> SweepSummary:
     """Run every run of a spec that has not finished yet, then write the summary.
 
-    The sweep holds the lock of its folder (:mod:`.lock`) from its first write to its summary: a second
-    sweep into the same folder is refused with one line naming this one's process id.
+    The sweep holds the lock of its folder (:mod:`.lock`) from its first write to its summary, and checks the folder
+    again once it holds it (:func:`.sweepfolder.held_sweep_folder`): a second sweep into the same folder is refused
+    with one line naming this one's process id.
 
     Parameters
     ----------
@@ -332,13 +328,7 @@ def run_sweep(
     pool = _start_pool(jobs) if executor == "local" and jobs > 1 and len(runs) > 1 else None
     try:
         preflight(spec, runs, where=f"{spec_path}: ")
-        runs_dir = sweep_dir / "runs"
-        try:
-            runs_dir.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
-        writable_directory(runs_dir, "sweep directory")
-        with output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"):
+        with held_sweep_folder(sweep_dir, "-o" if output else "sweep folder") as runs_dir:  # checked again, locked
             todo = _runs_to_do(spec, spec_path, sweep_dir, runs)
             at_once = "on the Dask cluster" if executor == "dask" else f"{jobs if pool is not None else 1} at once"
             print(
@@ -453,7 +443,8 @@ def _run_all(spec, spec_path, runs, todo, where: tuple, runs_dir: Path, progress
 def _finish(spec: SweepSpec, sweep_dir: Path, runs: list[RunSpec], n_skipped: int, errors: dict) -> SweepSummary:
     """Write the summary and print one line per run that is not ok."""
     runs_dir = sweep_dir / "runs"
-    csv_path, plot = collect_summary(sweep_dir, runs, spec.summary, errors)
+    notes: list[str] = []  # why no plot was drawn, where Matplotlib could not draw it
+    csv_path, plot = collect_summary(sweep_dir, runs, spec.summary, errors, notes)
     records = [load_run(runs_dir / r.run_id) or {"status": "absent", "error": errors.get(r.run_id)} for r in runs]
     n_ok = sum(rec.get("status") == "ok" for rec in records)
     n_absent = sum(rec.get("status") == "absent" for rec in records)
@@ -465,7 +456,9 @@ def _finish(spec: SweepSpec, sweep_dir: Path, runs: list[RunSpec], n_skipped: in
     for r, rec in zip(runs, records):
         if rec.get("status") != "ok":
             print(f"  {rec.get('status')} {r.run_id} {r.parameters}: {rec.get('error')}")
-    if spec.summary and plot is None and n_ok:
+    if notes:
+        print(f"  no summary.png: {notes[0]}")
+    elif spec.summary and plot is None and n_ok:
         first = next(r for r, rec in zip(runs, records) if rec.get("status") == "ok")
         try:
             check_metric_in(runs_dir / first.run_id / "results.json", spec.summary["y"])

@@ -7,10 +7,19 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .preflight import UsageError
+from .preflight import UsageError, parameter_defaults
 from .runner import find_notebook
 
-__all__ = ["SEED_MAX", "SEED_RULE", "SEED_HOWTO", "check_top_level", "spec_table", "seed_refused", "check_given_seeds"]
+__all__ = [
+    "SEED_MAX",
+    "SEED_RULE",
+    "SEED_HOWTO",
+    "check_top_level",
+    "spec_table",
+    "seed_refused",
+    "check_given_seeds",
+    "notebook_seed",
+]
 
 #: The notebooks' seed rule (``COMMON_RULES["seed"]`` of :mod:`tvtrack.parameters`; the pipeline imports no core
 #: module, and a test holds the two equal).
@@ -70,3 +79,22 @@ def check_given_seeds(fixed: dict, grid: dict, zipped: dict, path: Path) -> None
     for table, seed in given:
         if seed_refused(seed):
             raise UsageError(f"{path}: {table} seed: {seed!r} is not {SEED_RULE}; no run started")
+
+
+def notebook_seed(notebook: Path, where: str = "") -> object:
+    """The ``seed`` default of the notebook's ``parameters`` cell (0 where it assigns none), as written: a value that
+    is no integer in [0, 2**63-1] is refused by the caller (:func:`seed_refused`), naming it.
+
+    Raises
+    ------
+    UsageError
+        The cell computes the seed (``seed = 2**3``) or sets it to ``None``: a sweep numbers its seeds from a base it
+        reads before any run.
+    """
+    defaults = parameter_defaults(notebook)
+    if "seed" in defaults and defaults["seed"] is None:
+        raise UsageError(
+            f"{where}the parameters cell of {notebook.stem} sets no literal integer seed (seed = None, or a computed "
+            "value), and a sweep numbers its seeds from a base it reads before any run: give it in [fixed] (seed = 0)"
+        )
+    return defaults.get("seed", 0)

@@ -3,20 +3,25 @@
 A sweep writes only into a folder that is new, empty or a sweep's (:func:`check_sweep_folder`: its marker,
 :data:`.outputs.MARKER` of kind ``sweep``, lists the files the sweep wrote there), and never deletes a file it did
 not write: a failed run tried again loses the files its ``run.json`` lists (:func:`files_to_clear`,
-:func:`clear_run`), and a run folder holding anything else is refused in one line.
+:func:`clear_run`), and a run folder holding anything else is refused in one line. The folder is checked once
+before the sweep's own checks (a refusal then writes nothing) and again under the folder's lock
+(:func:`held_sweep_folder`), since another process may have written into it meanwhile.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from pathlib import Path
+from typing import Iterator
 
-from .lock import LOCK_NAME, written_by_tvtrack
+from .lock import LOCK_NAME, output_lock, written_by_tvtrack
 from .outputs import MARKER, replace_text
+from .paths import writable_directory
 from .preflight import UsageError
 
-__all__ = ["SWEEP_FILES", "mark_sweep", "check_sweep_folder", "files_to_clear", "clear_run"]
+__all__ = ["SWEEP_FILES", "mark_sweep", "check_sweep_folder", "held_sweep_folder", "files_to_clear", "clear_run"]
 
 #: The files a sweep writes in its folder, beside ``runs/`` (and its marker, :data:`.outputs.MARKER`).
 SWEEP_FILES = ("spec.toml", "summary.csv", "summary.png")
@@ -79,6 +84,38 @@ def check_sweep_folder(sweep_dir: Path, parameter: str = "-o") -> None:
             raise UsageError(f"{parameter} {sweep_dir}: holds {name}, which no sweep wrote there; {how}")
         if (sweep_dir / name).is_symlink() or not (sweep_dir / name).is_file():
             raise UsageError(f"{parameter} {sweep_dir}: {name} is not a plain file, so no sweep wrote it; {how}")
+
+
+@contextlib.contextmanager
+def held_sweep_folder(sweep_dir: Path, parameter: str = "-o") -> Iterator[Path]:
+    """Create the sweep folder's ``runs/``, hold the folder's lock (:mod:`.lock`) and check the folder again under
+    it (:func:`check_sweep_folder`): what was checked before the lock may have changed since (a file of the user's,
+    a site built into it). Yields ``runs/``.
+
+    Raises
+    ------
+    UsageError
+        The folder or ``runs/`` cannot be written, another tvtrack holds the lock (:class:`.lock.FolderBusy`), or the
+        folder is no longer one a sweep may write into: one line, the same as before the lock; a ``runs/`` made
+        here is removed again (when still empty).
+    """
+    runs_dir = sweep_dir / "runs"
+    made = not os.path.lexists(runs_dir)
+    try:
+        runs_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"cannot create the sweep directory {sweep_dir}: {exc.strerror}") from exc
+    writable_directory(runs_dir, "sweep directory")
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(output_lock(sweep_dir / LOCK_NAME, sweep_dir, "sweep directory"))
+            check_sweep_folder(sweep_dir, parameter)
+        except UsageError:
+            if made:
+                with contextlib.suppress(OSError):  # only an empty folder goes
+                    runs_dir.rmdir()
+            raise
+        yield runs_dir
 
 
 def _legacy_sweep_files(sweep_dir: Path, present: set[str]) -> set[str] | None:
