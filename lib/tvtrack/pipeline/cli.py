@@ -318,7 +318,9 @@ def _add_site(sub) -> None:
     """The ``site`` command: the offline HTML site."""
     st = sub.add_parser("site", help="build the offline HTML site from papermill_runs/ into papermill_runs/site/")
     st.add_argument("--runs", default=str(RUNS_DIR), help="runs directory (default papermill_runs/)")
-    st.add_argument("-o", "--output", default=None, help="site directory (default RUNS/site; replaced)")
+    st.add_argument(
+        "-o", "--output", default=None, help="site directory (default RUNS/site; replaced; not a symbolic link)"
+    )
     st.add_argument(
         "--profile", default=None, help="show RUNS/reproduce-PROFILE/ in RUNS/site-PROFILE/ (default: the paper runs)"
     )

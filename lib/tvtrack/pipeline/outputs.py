@@ -3,22 +3,26 @@ through a temporary folder and a rename, so no file tvtrack did not write is eve
 
 A folder tvtrack builds holds the marker :data:`MARKER` (JSON: what it is and the relative path of every file
 written there). Before ``-o DIR`` is written, :func:`check_replaceable` refuses, with one line naming the
-parameter, a folder that is not empty and has no marker, or one that holds a file the marker does not list (a
-file the user added). The new content is built in a sibling ``.tmp-<name>-<random>`` folder (its owner's process id
-in ``.owner``, so a killed build's folder is removed by the next one), marked (:func:`mark`), then put in place by
-:func:`replace_folder`: the old folder is renamed aside, the new one renamed in, and of the old one only the files
-its marker lists are deleted (a file that appeared meanwhile is left in the renamed folder and named). A listed
-name is deleted only if it is a relative path inside the folder (:func:`listed_inside`); a marker listing another
-is refused, and a damaged ``run.json`` deletes nothing.
+parameter, a symbolic link (the rename would replace the link, not the folder it leads to), a folder that is not
+empty and has no marker, or one that holds a file the marker does not list (a file the user added). The new content
+is built in a sibling ``.tmp-<name>-<random>`` folder (its owner's process id in ``.owner``, so a killed build's
+folder is removed by the next one), marked (:func:`mark`), then put in place by :func:`replace_folder`: the old
+folder is renamed aside, the new one renamed in (should that fail, the old one is renamed back), and of the old one
+only the files its marker lists are deleted (a file that appeared meanwhile is left in the renamed folder and
+named). A listed name is deleted only if it is a relative path inside the folder (:func:`listed_inside`); a marker
+listing another is refused, and a damaged ``run.json`` deletes nothing. :func:`build_folder` does all of this for a
+builder, and a write that fails midway (a full disk) is one line, with the temporary folder removed.
 """
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import shutil
 import socket
 import uuid
+from collections.abc import Callable
 from pathlib import Path
 
 from .preflight import UsageError
@@ -32,6 +36,8 @@ __all__ = [
     "temporary_beside",
     "replace_folder",
     "replace_text",
+    "build_folder",
+    "disk_refused",
 ]
 
 MARKER = ".tvtrack-output.json"
@@ -112,11 +118,17 @@ def check_replaceable(folder: Path, parameter: str, kind: str) -> None:
     Raises
     ------
     UsageError
-        One line naming ``parameter`` (e.g. ``-o``) and the folder: a file; a non-empty folder without the marker
-        (not built here); a marked folder holding a file tvtrack did not write (named, with how many more); a
-        marker listing a file outside the folder (:func:`marked_files`).
+        One line naming ``parameter`` (e.g. ``-o``) and the folder: a symbolic link (the folder is replaced by
+        renames, which would replace the link itself: the folder it leads to is to be given); a file; a non-empty
+        folder without the marker (not built here); a marked folder holding a file tvtrack did not write (named,
+        with how many more); a marker listing a file outside the folder (:func:`marked_files`).
     """
     folder = Path(folder)
+    if folder.is_symlink():
+        raise UsageError(
+            f"{parameter} {folder}: a symbolic link (to {os.readlink(folder)}); the {kind} folder is replaced by "
+            "renames, which would replace the link: give the folder it leads to, or another one"
+        )
     if not folder.exists():
         return
     if not folder.is_dir():
@@ -149,7 +161,11 @@ def temporary_beside(final: Path) -> Path:
     remove_stale_builds(final)
     tmp = final.parent / f".tmp-{final.name}-{uuid.uuid4().hex[:8]}"
     tmp.mkdir()
-    (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
+    try:
+        (tmp / OWNER_FILE).write_text(f"{socket.gethostname()} {os.getpid()}")
+    except BaseException:  # a full disk: without its owner file the folder would never be removed
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
     return tmp
 
 
@@ -178,7 +194,7 @@ def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str
     """Put the marked folder ``new`` in place of ``final`` by renames; of the old ``final``, delete only the files its
     marker lists (with ``legacy_run``, a run folder from before runs listed their files, told by its ``run.json``:
     all its files). Returns the files left (ones tvtrack did not write, kept in ``.old-<name>-<random>`` beside
-    it)."""
+    it). Should ``new`` not go in place, the old ``final`` is put back before the error is raised."""
     new, final = Path(new), Path(final)
     if not final.exists():
         os.replace(new, final)
@@ -186,11 +202,18 @@ def replace_folder(new: Path, final: Path, legacy_run: bool = False) -> list[str
     old = final.parent / f".old-{final.name}-{uuid.uuid4().hex[:8]}"
     listed = _deletable(final, legacy_run)
     os.replace(final, old)
-    os.replace(new, final)
+    try:
+        os.replace(new, final)
+    except BaseException:
+        os.replace(old, final)
+        raise
     for rel in sorted(listed | {MARKER}):
         path = old / rel
         if path.is_file() or path.is_symlink():
-            path.unlink()
+            try:
+                path.unlink()
+            except OSError:  # the new folder is in place: what cannot be deleted is left aside, and named
+                pass
     for folder in sorted((p for p in old.rglob("*") if p.is_dir()), key=lambda p: -len(p.parts)):
         try:
             folder.rmdir()
@@ -223,8 +246,11 @@ def _deletable(final: Path, legacy_run: bool) -> set[str]:
 def replace_text(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` whole or not at all: into a sibling ``.tmp-<name>-<random>`` file, then renamed over
     ``path`` (its permission bits kept). A full disk, a write error or a Ctrl-C midway leaves ``path`` as it was
-    (the README, ``REPRODUCTION.md``, a finished run's ``run.json``), never truncated; the partial file is removed."""
+    (the README, ``REPRODUCTION.md``, a finished run's ``run.json``), never truncated; the partial file is removed.
+    A ``path`` that is a symbolic link stays one: the file it leads to is written."""
     path = Path(path)
+    if path.is_symlink():
+        path = Path(os.path.realpath(path))
     tmp = path.parent / f".tmp-{path.name}-{uuid.uuid4().hex[:8]}"
     try:
         with open(tmp, "x", encoding="utf-8") as f:
@@ -234,4 +260,53 @@ def replace_text(path: Path, text: str) -> None:
         os.replace(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
+        raise
+
+
+#: The errors of a write the file system refuses (no room left, a quota, a file too large, read-only), whatever
+#: was being read.
+DISK_REFUSALS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EROFS)
+
+
+def disk_refused(exc: BaseException) -> bool:
+    """Whether ``exc`` is a write the file system refused (a full disk, a quota, a read-only file system): a
+    failure to write the output, never a sign that what was being read is damaged."""
+    return isinstance(exc, OSError) and exc.errno in DISK_REFUSALS
+
+
+def build_folder(final: Path, kind: str, build: Callable[[Path], None]) -> None:
+    """Build a ``kind`` folder (e.g. "site") with ``build(folder)`` in a temporary folder beside ``final``, mark it
+    (:func:`mark`) and put it in place of ``final`` (:func:`replace_folder`).
+
+    Raises
+    ------
+    UsageError
+        The temporary folder cannot be made (one line naming ``final``), before anything is built.
+    WriteFailed
+        A write failed midway (a full disk, a read-only file system): one line naming ``final``, the file where
+        known and the system's reason. The temporary folder is removed and ``final`` is left as it was.
+    """
+    from .runner import WriteFailed
+
+    final = Path(final)
+    try:
+        tmp = temporary_beside(final)
+    except OSError as exc:
+        raise UsageError(f"cannot write the {kind} folder {final}: {exc.strerror or exc}") from exc
+    try:
+        build(tmp)
+        mark(tmp, kind)
+        replace_folder(tmp, final)
+    except OSError as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        name = exc.filename if isinstance(exc.filename, str) else None
+        if name and Path(name).is_relative_to(tmp):  # a file of the new folder, as it would have been named
+            name = str(final / Path(name).relative_to(tmp))
+        where = f"{name}: " if name else ""
+        raise WriteFailed(
+            f"cannot write the {kind} folder {final}: {where}{exc.strerror or exc}; nothing of the new {kind} is "
+            f"kept, {final} is as it was"
+        ) from exc
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
         raise

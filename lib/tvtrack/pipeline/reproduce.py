@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import sys
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
@@ -39,6 +38,7 @@ from .report import README_PATH, REPORT_PATH, check_readme, collect_runs, write_
 from .lock import LOCK_NAME, output_lock
 from .runfiles import DamagedRun, load_run
 from .runner import WriteFailed, list_notebooks, load_profile, remove_stale_temporaries, run_notebook
+from .sweepfolder import clear_run, files_to_clear
 from .scale import MIN_REPLICATES, check_caps, check_scheduler, explorer_runs, notebook_overrides, ran_on
 
 __all__ = ["usable_cores", "reproduce", "source_identity", "parameters_digest", "finished_here", "check_records"]
@@ -79,8 +79,8 @@ def _run_one(
 ) -> tuple[str, bool, str | None, float]:
     name = Path(nb).stem
     fresh = Path(folder) / f".new-{name}"
-    if fresh.exists():
-        shutil.rmtree(fresh)
+    if os.path.lexists(fresh):  # a run that a killed reproduce left before its rename (checked: check_records)
+        remove_new_run(fresh)
     try:
         outcome = run_notebook(nb, fresh, parameters, profile=profile, progress=False, extra_record=record)
         _record_runs(fresh)
@@ -93,6 +93,33 @@ def _run_one(
             f"run.json); kept in {Path(left[0]).parent}"
         )
     return name, outcome.ok, outcome.error, outcome.runtime_s
+
+
+def remove_new_run(fresh: Path, dry_run: bool = False) -> bool:
+    """Remove a ``.new-<notebook>`` run folder (a run made but not yet put in place when reproduce was stopped) if
+    it holds only the files its ``run.json`` lists (:func:`.sweepfolder.files_to_clear`).
+
+    Parameters
+    ----------
+    fresh : Path
+        The folder.
+    dry_run : bool
+        Only tell whether it would be removed.
+
+    Returns
+    -------
+    bool
+        Whether it is (or would be) removed. A folder holding anything else, or no sound ``run.json``, is not
+        tvtrack's alone and is left as it is.
+    """
+    try:
+        record = load_run(fresh) if fresh.is_dir() and not fresh.is_symlink() else None
+        files = files_to_clear(fresh, record)  # no run.json: only an empty folder goes
+        if not dry_run:
+            clear_run(*files)
+    except (UsageError, DamagedRun, OSError):
+        return False
+    return True
 
 
 def source_identity() -> dict:
@@ -161,11 +188,25 @@ def check_records(folder: Path, names: list[str], to_run: list[str]) -> None:
     Raises
     ------
     UsageError
-        One line naming the damaged file (:mod:`.runfiles`), or the ``run.json`` whose ``files`` lists a path
-        outside its run folder (:func:`.outputs.marked_files`).
+        One line naming the damaged file (:mod:`.runfiles`), the ``run.json`` whose ``files`` lists a path
+        outside its run folder (:func:`.outputs.marked_files`), a run folder to replace that is a symbolic link
+        (the new run is put in place by renames, which would replace the link), or a ``.new-<notebook>`` folder
+        left in the way that holds more than a stopped reproduce's run (:func:`remove_new_run`).
     """
     collect_runs(folder, [name for name in names if name not in to_run])
     for name in to_run:
+        fresh = folder / f".new-{name}"
+        if os.path.lexists(fresh) and not remove_new_run(fresh, dry_run=True):
+            raise UsageError(
+                f"{fresh}: the place of {name}'s new run holds what no stopped reproduce wrote alone (files its "
+                "run.json does not list, or no sound run.json); move it out of the way (tvtrack never deletes a file "
+                "it did not write), then run reproduce again"
+            )
+        if (folder / name).is_symlink():
+            raise UsageError(
+                f"{folder / name}: a symbolic link (to {os.readlink(folder / name)}); its new run is put in place by "
+                "renames, which would replace the link: remove the link, or move the run folder it leads to here"
+            )
         if (folder / name).is_dir():
             marked_files(folder / name)
 
@@ -324,7 +365,7 @@ def _run_notebooks(
             bar.close()
         remove_stale_temporaries(folder)
         for fresh in folder.glob(".new-*"):
-            shutil.rmtree(fresh, ignore_errors=True)
+            remove_new_run(fresh)
         raise KeyboardInterrupt(f"reproduce: notebooks stopped; the runs finished before are kept in {folder}") from exc
     pool.shutdown()
     bar.close()

@@ -1,15 +1,20 @@
 """Reading a run's files (``run.json``, ``results.json``) with every reader's checks in one place.
 
 Every reader of run files (``report``, ``site``, the sweep's resume and summary, ``reproduce``'s resume) reads them
-through :func:`load_run` and :func:`load_results`: a file that is not valid JSON, not an object, lacks what the
-readers use, or holds a verdict this library does not know is a :class:`DamagedRun`, one line naming the file and
-what is wrong and how to get a sound one (exit status 2). Nothing is dropped silently: a claim whose verdict is
-unknown would leave the counts short of the claims, so it stops the reader instead.
+through :func:`load_run` and :func:`load_results`: a file that is not a regular file (a folder of that name), not
+valid JSON, not an object, lacks what the readers use, holds a value of the wrong kind (a runtime that is NaN or
+negative, a file list that is not a list), two claims of one id, or a verdict this library does not know is a
+:class:`DamagedRun`, one line naming the file and what is wrong and how to get a sound one (exit status 2). Nothing
+is dropped silently: a claim whose verdict is unknown would leave the counts short of the claims, so it stops the
+reader instead.
 """
 
 from __future__ import annotations
 
 import json
+import math
+import os
+import stat
 from pathlib import Path
 from typing import Any
 
@@ -40,7 +45,21 @@ def known_verdicts() -> tuple[str, ...]:
     return tuple(VERDICTS) + tuple(v for v in ("undecided",) if v not in VERDICTS)
 
 
+def _check_regular(path: Path) -> None:
+    """A run file that exists (its name is taken) but is not a regular file: a folder, a device, a pipe, a symbolic
+    link that leads nowhere or to itself. Such a file is never read (a device could be endless)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as exc:
+        raise _damaged(path, f"cannot be read: {exc.strerror or exc}") from None
+    if stat.S_ISDIR(mode):
+        raise _damaged(path, "is a folder, not a file")
+    if not stat.S_ISREG(mode):
+        raise _damaged(path, "is not a regular file (a device, a pipe or a socket)")
+
+
 def _read_object(path: Path) -> dict[str, Any]:
+    _check_regular(path)
     try:
         text = path.read_text()
     except UnicodeDecodeError:
@@ -63,25 +82,55 @@ def load_run(run_dir: str | Path) -> dict[str, Any] | None:
     Raises
     ------
     DamagedRun
-        Not valid JSON, not an object, a ``status`` other than ``ok``/``failed``, no numeric ``runtime_s``, a
-        ``profile`` that is not a string.
+        A folder or anything else but a regular file by that name, not valid JSON, not an object, a ``status``
+        other than ``ok``/``failed``, a ``runtime_s`` that is not a finite number of seconds at least 0, a
+        ``profile``, ``error`` or ``finished_utc`` that is not a string, a ``files`` that is not a list of
+        relative paths inside the run folder.
     """
     path = Path(run_dir) / "run.json"
-    if not path.is_file():
+    if not os.path.lexists(path):
         return None
     record = _read_object(path)
     if record.get("status") not in RUN_STATUSES:
         raise _damaged(path, f"status {record.get('status')!r}; a run's status is one of {', '.join(RUN_STATUSES)}")
-    runtime = record.get("runtime_s")
-    if not _is_number(runtime):
-        raise _damaged(path, f"runtime_s {runtime!r} is not a number of seconds")
+    _check_seconds(path, record.get("runtime_s"))
     if record.get("profile") is not None and not isinstance(record["profile"], str):
         raise _damaged(path, f"profile {record['profile']!r} is not a profile name (a string)")
+    for key, what in (("error", "the run's error"), ("finished_utc", "the time it finished")):
+        if record.get(key) is not None and not isinstance(record[key], str):
+            raise _damaged(path, f"{key!r} is {_json_kind(record[key])}, not {what} (a string or null)")
+    _check_files(path, record)
     return record
 
 
 def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _json_kind(value: Any) -> str:
+    """What a JSON value is, as the messages name it ("null", "a JSON list", "a JSON str")."""
+    return "null" if value is None else f"a JSON {type(value).__name__}"
+
+
+def _check_seconds(path: Path, runtime: Any) -> None:
+    """``runtime_s`` of a record: a number of seconds, finite and not negative (JSON lets NaN and Infinity in)."""
+    if not _is_number(runtime) or not math.isfinite(runtime) or runtime < 0:
+        raise _damaged(path, f"runtime_s {runtime!r} is not a number of seconds (finite, at least 0)")
+
+
+def _check_files(path: Path, record: dict[str, Any]) -> None:
+    """``files`` of a ``run.json`` (absent in runs from before runs listed them): a list of the files the run
+    wrote, each a relative path inside the run folder (:func:`.outputs.listed_inside`)."""
+    from .outputs import listed_inside
+
+    if "files" not in record:
+        return
+    files = record["files"]
+    if not isinstance(files, list):
+        raise _damaged(path, f"'files' is {_json_kind(files)}, not a list of the files the run wrote")
+    outside = [f for f in files if not listed_inside(path.parent, f)]
+    if outside:
+        raise _damaged(path, f"'files' lists {outside[0]!r}: allowed are files in the run folder (no '..')")
 
 
 def _check_named_files(path: Path, data: dict[str, Any]) -> None:
@@ -134,11 +183,12 @@ def load_results(run_dir: str | Path, for_report: bool = True) -> dict[str, Any]
     Raises
     ------
     DamagedRun
-        The file is missing, not valid JSON or an object, lacks a key, a claim's verdict is unknown, a value has
-        the wrong type, or (with ``for_report``) a figure or the recording names a file outside the run folder.
+        The file is missing, not a regular file, not valid JSON or an object, lacks a key, a claim's verdict is
+        unknown, two claims share an id, a value has the wrong type, or (with ``for_report``) a runtime that is not
+        a finite number of seconds at least 0, or a figure or the recording naming a file outside the run folder.
     """
     path = Path(run_dir) / "results.json"
-    if not path.is_file():
+    if not os.path.lexists(path):
         raise _damaged(path, "missing, though run.json says the run finished (status ok)")
     data = _read_object(path)
     missing = [k for k in ("claims", *(_REPORT_KEYS if for_report else ())) if k not in data]
@@ -149,9 +199,17 @@ def load_results(run_dir: str | Path, for_report: bool = True) -> dict[str, Any]
     if not isinstance(data.get("metrics", {}), dict):
         raise _damaged(path, "'metrics' is not an object")
     if for_report:
-        if not _is_number(data["runtime_s"]):
-            raise _damaged(path, f"runtime_s {data['runtime_s']!r} is not a number of seconds")
+        _check_seconds(path, data["runtime_s"])
+        if not isinstance(data["citation"], str):
+            raise _damaged(path, f"'citation' is {_json_kind(data['citation'])}, not the paper's citation (a string)")
         _check_named_files(path, data)
+    first = {}  # claim id -> its place
     for k, claim in enumerate(data["claims"], start=1):
         _check_claim(path, k, claim, _CLAIM_KEYS if for_report else ("id", "verdict"))
+        if claim["id"] in first:
+            raise _damaged(
+                path,
+                f"claim {claim['id']} appears twice (claims {first[claim['id']]} and {k}); each claim has its own id",
+            )
+        first[claim["id"]] = k
     return data

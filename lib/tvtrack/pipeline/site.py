@@ -40,8 +40,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import lean_imports
-from .outputs import check_replaceable, listed_inside, mark, replace_folder, temporary_beside
-from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir, writable_directory
+from .outputs import build_folder, check_replaceable, disk_refused, listed_inside
+from .paths import PAPER_PROFILE, RUNS_DIR, profile_name, reproduce_dir
 from .preflight import UsageError
 from .figures import (
     ALL_LABELS,
@@ -273,6 +273,8 @@ def _recording_info(run: PaperRun, site: Path, runs_dir: Path) -> dict | None:
     try:
         has_still = recording_still(rrd, still)
     except (RuntimeError, OSError, ValueError) as exc:
+        if disk_refused(exc):  # the still could not be written: the recording is sound
+            raise
         raise DamagedRun(
             f"{rrd}: not a readable recording ({str(exc).splitlines()[0] if str(exc) else type(exc).__name__}); "
             f"the run folder is damaged: remove {run.run_dir} and run it again"
@@ -458,6 +460,7 @@ def _figures_not_inline(run: PaperRun, nb, assets: Path) -> list[dict]:
     shown = []
     for fig in run.results.get("figures") or []:
         if listed_inside(run.run_dir, fig["file"]) and (run.run_dir / fig["file"]).is_file():
+            (assets / fig["file"]).parent.mkdir(parents=True, exist_ok=True)  # a figure in a folder of the run
             shutil.copy2(run.run_dir / fig["file"], assets / fig["file"])
             shown.append({"src": f"../runs/{run.name}/{fig['file']}", "caption": fig["caption"]})
     return shown
@@ -480,9 +483,10 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     """Build the site from ``runs_dir/reproduce`` (``reproduce-<profile>`` for another profile) and the sweeps in
     ``runs_dir``; returns ``index.html``. The default folder is ``runs_dir/site`` (``site-<profile>``).
 
-    The site is built in a temporary folder beside its own and renamed into place (:mod:`.outputs`): a folder
-    that is not empty and was not built here is refused before anything is written, and of an earlier site only
-    the files it wrote are deleted."""
+    The site is built in a temporary folder beside its own and renamed into place (:func:`.outputs.build_folder`):
+    a symbolic link, or a folder that is not empty and was not built here, is refused before anything is written;
+    of an earlier site only the files it wrote are deleted; a write that fails (a full disk) keeps nothing of the
+    new site (:class:`.runner.WriteFailed`)."""
     runs_dir = Path(runs_dir)
     profile = profile_name(profile)
     source = reproduce_dir(profile, runs_dir)
@@ -498,24 +502,14 @@ def build_site(runs_dir: Path = RUNS_DIR, out: Path | None = None, profile: str 
     for run in runs:
         if run.ok:
             run.notebook = read_notebook(run.run_dir)
-    try:
-        site = temporary_beside(final)
-    except OSError as exc:
-        raise UsageError(f"cannot write the site folder {final}: {exc.strerror or exc}") from exc
-    try:
-        _build_into(site, runs_dir, source, profile, runs)
-        mark(site, "site")
-    except BaseException:
-        shutil.rmtree(site, ignore_errors=True)
-        raise
-    replace_folder(site, final)
+    build_folder(final, "site", lambda site: _build_into(site, runs_dir, source, profile, runs))
     return final / "index.html"
 
 
 def _build_into(site: Path, runs_dir: Path, source: Path, profile: str, runs: list[PaperRun]) -> None:
     """Every page of the site into the (new, empty) folder ``site`` from ``runs`` (:func:`find_paper_runs`, each
     finished one with its notebook read)."""
-    writable_directory(site / "notebooks", "site folder")
+    (site / "notebooks").mkdir()
     (site / "sweeps").mkdir()
     env = _environment()
     for run in runs:  # at another profile than the paper's, nothing is robust (tvtrack.results.at_profile)
