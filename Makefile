@@ -17,13 +17,15 @@ $(STAMP): environment.txt pyproject.toml
 	touch $(STAMP)
 
 # notebooks enter git without outputs (nbstripout as a git filter; see .gitattributes), so editing
-# and running a notebook in JupyterLab never dirties a tracked file
+# and running a notebook in JupyterLab never dirties a tracked file; the index is refreshed once here, so that
+# the `git status` each run records does not pass every notebook of a fresh clone through the filter again
 hooks:
 	@if git rev-parse --git-dir >/dev/null 2>&1; then \
 	  git config filter.nbstripout.clean "$(abspath $(BIN))/python -m nbstripout --keep-id"; \
 	  git config filter.nbstripout.smudge cat; \
 	  git config filter.nbstripout.required true; \
 	  git config diff.ipynb.textconv "$(abspath $(BIN))/python -m nbstripout -t --keep-id"; \
+	  git update-index -q --refresh >/dev/null 2>&1 || true; \
 	fi
 
 lint: $(STAMP)

@@ -16,6 +16,12 @@ def parse(source: str) -> ast.Module:
     return ast.parse(source)
 
 
+@functools.cache
+def walk(tree: ast.AST) -> tuple[ast.AST, ...]:
+    """Every node of ``tree`` (``ast.walk``), listed once per tree: the rules walk the same trees many times."""
+    return tuple(ast.walk(tree))
+
+
 def _module_name(path: Path) -> str:
     parts = path.relative_to(PKG.parent).with_suffix("").parts
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
@@ -32,13 +38,14 @@ def _resolve(module: str, node: ast.ImportFrom, is_package: bool) -> list[str]:
     return [base] + names
 
 
+@functools.cache
 def import_graph() -> dict[str, set[str]]:
     """``module -> tvtrack modules it imports`` (at any depth of the file, lazy imports included)."""
     files = {_module_name(p): p for p in PKG.rglob("*.py")}
     graph = {}
     for name, path in files.items():
         deps = set()
-        for node in ast.walk(parse(path.read_text())):
+        for node in walk(parse(path.read_text())):
             if isinstance(node, ast.ImportFrom):
                 targets = _resolve(name, node, path.name == "__init__.py")
             elif isinstance(node, ast.Import):
@@ -203,7 +210,7 @@ def over_budget(root: Path) -> list[str]:
         n = len(text.splitlines())
         if n > MODULE_LINES:
             out.append(f"{path.relative_to(root)}: {n} lines")
-        for node in ast.walk(parse(text)):
+        for node in walk(parse(text)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 lines = node.end_lineno - _docstring_end(node) + 1
                 if lines > FUNCTION_LINES:
@@ -241,7 +248,7 @@ def _is_private(name: str) -> bool:
 
 def _from_imports(module: str, tree: ast.Module, is_package: bool):
     """``(imported module, name, bound as)`` for every ``from ... import`` in ``tree``, at any depth."""
-    for node in ast.walk(tree):
+    for node in walk(tree):
         if isinstance(node, ast.ImportFrom):
             base = _resolve(module, node, is_package)[0]
             for alias in node.names:
@@ -272,7 +279,7 @@ def private_imports(root: Path) -> list[str]:
             for base, name in _names_taken(m, tree, trees, m in packages, bound)
             if _is_private(name)
         }
-        for node in ast.walk(tree):
+        for node in walk(tree):
             if isinstance(node, ast.Import):
                 bound.update({a.asname: a.name for a in node.names if a.asname and a.name in trees})
             elif isinstance(node, ast.Attribute) and _is_private(node.attr):
@@ -316,10 +323,8 @@ def facade_imports(root: Path) -> list[str]:
         for base, name in _names_taken(m, tree, trees, m in packages, bound):
             if name != "*" and name not in defined[base]:
                 out.add(f"{m}: {base}.{name}")
-        bound.update(
-            {a.asname: a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname}
-        )
-        for node in ast.walk(tree):
+        bound.update({a.asname: a.name for n in walk(tree) if isinstance(n, ast.Import) for a in n.names if a.asname})
+        for node in walk(tree):
             if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in bound:
                 owner = bound[node.value.id]
                 if owner in trees and f"{owner}.{node.attr}" not in trees and node.attr not in defined[owner]:
@@ -363,7 +368,7 @@ def reexports(root: Path) -> list[str]:
     packages = {m for m in trees if (root.parent / Path(*m.split("."), "__init__.py")).exists()}
     out = []
     for m, tree in trees.items():
-        used = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+        used = {n.id for n in walk(tree) if isinstance(n, ast.Name)}
         for base, name, bound in _from_imports(m, ast.Module(body=tree.body, type_ignores=[]), m in packages):
             if base in trees and f"{base}.{name}" not in trees and bound not in used:
                 out.append(f"{m}: {bound}")
