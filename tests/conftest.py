@@ -196,3 +196,49 @@ def minimal_claim(cid: str = "C1-1", verdict: str = "reproduced") -> dict:
         "note": "",
         "robustness": None,
     }
+
+
+def finished_run(root: Path, name: str = "p1", record: dict | None = None, results: dict | None = None) -> Path:
+    """``root/name``: a finished smoke run as the runner leaves it (``run.json`` lists its files), with a hand-made
+    ``results.json`` of one :func:`minimal_claim`; ``record`` and ``results`` override their keys."""
+    import json
+
+    run = root / name
+    run.mkdir(parents=True)
+    data = {"notebook": name, "citation": "A: p", "seed": 1, "runtime_s": 10.0, "git_commit": None, "metrics": {}}
+    data.update({"figures": [], "recording": None, "claims": [minimal_claim()], **(results or {})})
+    (run / "results.json").write_text(json.dumps(data))
+    (run / "notebook.ipynb").write_text(json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": []}))
+    base = {"notebook": name, "profile": "smoke", "status": "ok", "runtime_s": 12.0, "finished_utc": "2026-12-01"}
+    files = sorted(p.name for p in run.iterdir()) + ["run.json"]
+    (run / "run.json").write_text(json.dumps({**base, "files": files, **(record or {})}))
+    return run
+
+
+def damaged_notebook(folder: Path, name: str, change) -> Path:
+    """``folder/name.ipynb``: a copy of the fixture notebook, its JSON changed by ``change(data)``."""
+    import json
+
+    data = json.loads(FIXTURE_NOTEBOOK.read_text())
+    change(data)
+    path = folder / f"{name}.ipynb"
+    path.write_text(json.dumps(data))
+    return path
+
+
+def code_cell(data: dict, index: int) -> dict:
+    """The ``index``-th code cell of a notebook's JSON."""
+    return [c for c in data["cells"] if c["cell_type"] == "code"][index]
+
+
+def cli_here(capsys, *args):
+    """``python -m tvtrack ARGS`` run in this process (no interpreter start): ``returncode``, ``stdout`` and
+    ``stderr``, as :func:`subprocess.run` gives them, for :func:`one_line_error`."""
+    from types import SimpleNamespace
+
+    from tvtrack.pipeline import cli
+
+    capsys.readouterr()
+    code = cli.main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return SimpleNamespace(returncode=code, stdout=out, stderr=err)

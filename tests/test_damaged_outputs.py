@@ -8,13 +8,12 @@ import errno
 import json
 import os
 from pathlib import Path
-from types import SimpleNamespace
 
 import pytest
 
-from conftest import minimal_claim, one_line_error
+from conftest import cli_here, finished_run, minimal_claim, one_line_error
 
-from tvtrack.pipeline import cli, outputs
+from tvtrack.pipeline import outputs
 from tvtrack.pipeline import reproduce as rep
 from tvtrack.pipeline import site as site_module
 from tvtrack.pipeline.outputs import MARKER, replace_folder
@@ -23,28 +22,6 @@ from tvtrack.pipeline.report import collect_runs
 from tvtrack.pipeline.runfiles import DamagedRun
 
 FULL = OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-
-def finished_run(root: Path, name: str = "p1", record: dict | None = None, results: dict | None = None) -> Path:
-    """A finished smoke run as the runner leaves it (``run.json`` lists its files), with a hand-made results.json."""
-    run = root / name
-    run.mkdir(parents=True)
-    data = {"notebook": name, "citation": "A: p", "seed": 1, "runtime_s": 10.0, "git_commit": None, "metrics": {}}
-    data.update({"figures": [], "recording": None, "claims": [minimal_claim()], **(results or {})})
-    (run / "results.json").write_text(json.dumps(data))
-    (run / "notebook.ipynb").write_text(json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": []}))
-    base = {"notebook": name, "profile": "smoke", "status": "ok", "runtime_s": 12.0, "finished_utc": "2026-12-01"}
-    files = sorted(p.name for p in run.iterdir()) + ["run.json"]
-    (run / "run.json").write_text(json.dumps({**base, "files": files, **(record or {})}))
-    return run
-
-
-def tvtrack(capsys, *args) -> SimpleNamespace:
-    """``python -m tvtrack ARGS`` in this process: its exit status and what it printed."""
-    capsys.readouterr()
-    code = cli.main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return SimpleNamespace(returncode=code, stdout=out, stderr=err)
 
 
 def earlier_site(folder: Path) -> dict[str, str]:
@@ -80,7 +57,7 @@ def test_site_refuses_an_output_that_is_a_symbolic_link_and_keeps_it(tmp_path, c
     link = tmp_path / "out" / "site"
     link.parent.mkdir()
     link.symlink_to(real)
-    proc = tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", link)
+    proc = cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", link)
     one_line_error(proc, f"-o {link}", "symbolic link", str(real))
     assert link.is_symlink() and os.readlink(link) == str(real)
     assert leftovers(link.parent) == [] and (not real.exists() or files_of(real) == content)
@@ -90,7 +67,7 @@ def test_site_refuses_a_default_site_folder_that_is_a_symbolic_link(tmp_path, ca
     finished_run(tmp_path / "reproduce-smoke")
     (tmp_path / "elsewhere").mkdir()
     (tmp_path / "site-smoke").symlink_to(tmp_path / "elsewhere")
-    proc = tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke")
+    proc = cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke")
     one_line_error(proc, f"site folder {tmp_path / 'site-smoke'}", "symbolic link")
     assert (tmp_path / "site-smoke").is_symlink() and list((tmp_path / "elsewhere").iterdir()) == []
 
@@ -117,7 +94,7 @@ def test_a_full_disk_while_the_site_is_written_is_one_line_and_keeps_nothing_of_
     out = tmp_path / "sites" / "s"
     content = earlier_site(out) if earlier else None
     _full_when_writing(monkeypatch, "ledger.html")
-    proc = tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
+    proc = cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
     one_line_error(proc, f"cannot write the site folder {out}", "No space left on device", status=(1,))
     assert leftovers(out.parent) == []
     assert (files_of(out) == content) if earlier else not out.exists()
@@ -132,7 +109,7 @@ def test_a_full_disk_while_the_recording_still_is_written_is_not_a_damaged_recor
 
     monkeypatch.setattr(site_module, "recording_still", still)
     out = tmp_path / "sites" / "s"
-    proc = tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
+    proc = cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
     line = one_line_error(proc, f"{out}/runs/p1/recording.png", "No space left on device", status=(1,))
     assert "damaged" not in line and ".tmp-" not in line
     assert leftovers(out.parent) == [] and not out.exists() and (run / "recording.rrd").is_file()
@@ -232,7 +209,7 @@ def test_site_stops_at_a_damaged_run_record_before_writing(tmp_path, capsys, nam
     damage(run)
     before = sorted(p.name for p in run.iterdir())
     out = tmp_path / "sites" / "s"
-    one_line_error(tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out), str(run / name), said)
+    one_line_error(cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out), str(run / name), said)
     assert not out.parent.exists() and sorted(p.name for p in run.iterdir()) == before
 
 
@@ -278,7 +255,7 @@ def test_site_shows_a_figure_saved_in_a_folder_of_the_run(tmp_path, capsys):
     (run / "figs").mkdir()
     (run / "figs" / "a.png").write_bytes(b"a figure")
     out = tmp_path / "s"
-    proc = tvtrack(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
+    proc = cli_here(capsys, "site", "--runs", tmp_path, "--profile", "smoke", "-o", out)
     assert proc.returncode == 0, proc.stderr
     assert (out / "runs" / "p1" / "figs" / "a.png").read_bytes() == b"a figure"
     assert "../runs/p1/figs/a.png" in (out / "notebooks" / "p1.html").read_text()
@@ -326,4 +303,3 @@ def test_a_new_run_left_by_a_stopped_reproduce_is_removed_only_when_it_holds_its
     empty.mkdir()
     rep.check_records(tmp_path, ["p3"], ["p3"])
     assert rep.remove_new_run(empty) and not empty.exists()
-

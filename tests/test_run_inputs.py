@@ -5,16 +5,14 @@ one line ``error: ...`` before any kernel starts and before anything is written.
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
-from conftest import one_line_error, FIXTURE_NOTEBOOK
+from conftest import FIXTURE_NOTEBOOK, code_cell, damaged_notebook, one_line_error
 from tvtrack.pipeline.cli import _parse_value, main
 from tvtrack.pipeline.preflight import NotebookBug, UsageError, check_values
 from tvtrack.pipeline.paths import REPO_ROOT
@@ -43,19 +41,6 @@ def notebook(tmp_path):
     nb = tmp_path / "fx.ipynb"
     shutil.copy(FIXTURE_NOTEBOOK, nb)
     return nb
-
-
-def damaged(tmp_path: Path, name: str, change) -> Path:
-    """A copy of the fixture notebook called ``name``, its JSON changed by ``change(data)``."""
-    data = json.loads(Path(FIXTURE_NOTEBOOK).read_text())
-    change(data)
-    path = tmp_path / f"{name}.ipynb"
-    path.write_text(json.dumps(data))
-    return path
-
-
-def code(data: dict, index: int) -> dict:
-    return [c for c in data["cells"] if c["cell_type"] == "code"][index]
 
 
 def test_a_profile_or_a_sweep_spec_that_is_not_utf8_is_one_line_naming_it(notebook, tmp_path):
@@ -102,7 +87,7 @@ def test_an_output_that_is_a_symbolic_link_loop_or_leads_nowhere_is_one_line(tmp
 
 
 def _param_syntax(data):
-    code(data, 0)["source"] = "seed = 1\nn_trials = (20\n"
+    code_cell(data, 0)["source"] = "seed = 1\nn_trials = (20\n"
 
 
 def _cell_text(data):
@@ -114,15 +99,15 @@ def _no_cell_type(data):
 
 
 def _source_number(data):
-    code(data, 0)["source"] = 5
+    code_cell(data, 0)["source"] = 5
 
 
 def _tags_text(data):
-    code(data, 0)["metadata"]["tags"] = "parameters"
+    code_cell(data, 0)["metadata"]["tags"] = "parameters"
 
 
 def _exits(data):
-    code(data, 1)["source"] = "import sys\nsys.exit(0)\n"
+    code_cell(data, 1)["source"] = "import sys\nsys.exit(0)\n"
 
 
 @pytest.mark.parametrize(
@@ -137,16 +122,16 @@ def _exits(data):
     ],
 )
 def test_a_damaged_notebook_is_one_line_naming_it_and_the_cell(tmp_path, change, status, fragments):
-    nb = damaged(tmp_path, "damaged", change)
+    nb = damaged_notebook(tmp_path, "damaged", change)
     one_line(tvtrack("run", nb, "-p", "n_trials", "20", "-o", tmp_path / "r"), "damaged", *fragments, status=(status,))
     assert not (tmp_path / "r").exists()
 
 
 def test_what_the_validation_cell_prints_does_not_spoil_its_answer(tmp_path):
     def prints(data):
-        code(data, 1)["source"] = "".join(code(data, 1)["source"]) + '\nprint("no newline", end="")\n'
+        code_cell(data, 1)["source"] = "".join(code_cell(data, 1)["source"]) + '\nprint("no newline", end="")\n'
 
-    nb = damaged(tmp_path, "printer", prints)
+    nb = damaged_notebook(tmp_path, "printer", prints)
     check_values(nb, {"n_trials": 20})
     with pytest.raises(UsageError, match="n_trials"):
         check_values(nb, {"n_trials": 0})
@@ -154,10 +139,10 @@ def test_what_the_validation_cell_prints_does_not_spoil_its_answer(tmp_path):
 
 def test_a_validation_cell_that_ends_python_is_a_bug_of_the_notebook(tmp_path):
     def quits(data):
-        code(data, 1)["source"] = "import os\nos._exit(0)\n"
+        code_cell(data, 1)["source"] = "import os\nos._exit(0)\n"
 
     with pytest.raises(NotebookBug, match="validation cell of quits"):
-        check_values(damaged(tmp_path, "quits", quits), {})
+        check_values(damaged_notebook(tmp_path, "quits", quits), {})
 
 
 def test_an_unknown_tvtrack_kernel_is_refused_before_any_run(tmp_path, notebook):

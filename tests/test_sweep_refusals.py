@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from types import SimpleNamespace
 
 import pytest
 
-from conftest import FIXTURE_NOTEBOOK, one_line_error
-from tvtrack.pipeline import cli, preflight, runner, sweep
+from conftest import FIXTURE_NOTEBOOK, cli_here, code_cell, damaged_notebook, one_line_error
+from tvtrack.pipeline import preflight, runner, sweep
 from tvtrack.pipeline.outputs import MARKER
 from tvtrack.pipeline.preflight import UsageError
 from tvtrack.pipeline.summary import collect_summary
@@ -33,27 +32,6 @@ def no_work(monkeypatch):
     monkeypatch.setattr(runner, "run_notebook", ran)
     monkeypatch.setattr(sweep, "run_notebook", ran)
     monkeypatch.setattr(preflight, "check_values_each", ran)
-
-
-def tvtrack(capsys, *args) -> SimpleNamespace:
-    """``python -m tvtrack ARGS`` in this process: its exit status and what it printed."""
-    capsys.readouterr()
-    code = cli.main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return SimpleNamespace(returncode=code, stdout=out, stderr=err)
-
-
-def damaged(tmp_path: Path, name: str, change) -> Path:
-    """A copy of the fixture notebook called ``name``, its JSON changed by ``change(data)``."""
-    data = json.loads(Path(FIXTURE_NOTEBOOK).read_text())
-    change(data)
-    path = tmp_path / f"{name}.ipynb"
-    path.write_text(json.dumps(data))
-    return path
-
-
-def code(data: dict, index: int) -> dict:
-    return [c for c in data["cells"] if c["cell_type"] == "code"][index]
 
 
 def spec_file(tmp_path: Path, body: str, notebook: Path = FIXTURE_NOTEBOOK, name: str = "spec.toml") -> Path:
@@ -75,34 +53,34 @@ DAMAGE = {
     "nbformat_3": (lambda d: d.update(nbformat=3), ["'nbformat' = 3", "must be 4"]),
     "nbformat_text": (lambda d: d.update(nbformat="4"), ["'nbformat' = '4'", "must be 4"]),
     "no_nbformat_minor": (lambda d: d.pop("nbformat_minor"), ["no 'nbformat_minor'", "integer >= 0"]),
-    "cell_without_source": (lambda d: code(d, 0).pop("source"), ["cell 2", "no 'source'"]),
-    "cell_without_metadata": (lambda d: code(d, 1).pop("metadata"), ["cell 3", "no 'metadata'"]),
+    "cell_without_source": (lambda d: code_cell(d, 0).pop("source"), ["cell 2", "no 'source'"]),
+    "cell_without_metadata": (lambda d: code_cell(d, 1).pop("metadata"), ["cell 3", "no 'metadata'"]),
     "cell_of_no_type": (lambda d: d["cells"][0].update(cell_type="text"), ["cell 1", "'text'", "code, markdown"]),
-    "outputs_a_number": (lambda d: code(d, 1).update(outputs=5), ["cell 3", "'outputs'", "list of JSON objects"]),
-    "no_parameters_cell": (lambda d: code(d, 0)["metadata"].update(tags=[]), ["not tagged 'parameters'"]),
+    "outputs_a_number": (lambda d: code_cell(d, 1).update(outputs=5), ["cell 3", "'outputs'", "list of JSON objects"]),
+    "no_parameters_cell": (lambda d: code_cell(d, 0)["metadata"].update(tags=[]), ["not tagged 'parameters'"]),
 }
 
 
 @pytest.mark.parametrize("name", list(DAMAGE))
 def test_a_notebook_papermill_cannot_run_is_one_line_naming_it_before_any_work(tmp_path, capsys, no_work, name):
     change, fragments = DAMAGE[name]
-    nb = damaged(tmp_path, name, change)
-    one_line_error(tvtrack(capsys, "run", nb, "-p", "n_trials", "20", "-o", tmp_path / "r"), nb.name, *fragments)
+    nb = damaged_notebook(tmp_path, name, change)
+    one_line_error(cli_here(capsys, "run", nb, "-p", "n_trials", "20", "-o", tmp_path / "r"), nb.name, *fragments)
     spec = spec_file(tmp_path, QUICK, nb)
-    one_line_error(tvtrack(capsys, "sweep", spec, "-o", tmp_path / "sw"), nb.name, *fragments)
+    one_line_error(cli_here(capsys, "sweep", spec, "-o", tmp_path / "sw"), nb.name, *fragments)
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([nb.name, spec.name])
 
 
 def test_the_notebooks_that_run_still_pass_the_check_without_a_kernel(tmp_path):
     for nb in [FIXTURE_NOTEBOOK, *runner.list_notebooks()]:
         assert runner.find_notebook(nb) == Path(nb).resolve()
-    lean = damaged(tmp_path, "lean", lambda d: d.update(metadata={"language_info": {"name": "python"}}))
+    lean = damaged_notebook(tmp_path, "lean", lambda d: d.update(metadata={"language_info": {"name": "python"}}))
     assert runner.find_notebook(lean) == lean.resolve()  # a language named by language_info alone is enough
 
 
 def test_a_parameters_cell_that_assigns_nothing_says_so(tmp_path, capsys, no_work):
-    nb = damaged(tmp_path, "bare", lambda d: code(d, 0).update(source="# nothing here\n"))
-    line = one_line_error(tvtrack(capsys, "run", nb, "-p", "n_trials", "20"), "bare has no parameter 'n_trials'")
+    nb = damaged_notebook(tmp_path, "bare", lambda d: code_cell(d, 0).update(source="# nothing here\n"))
+    line = one_line_error(cli_here(capsys, "run", nb, "-p", "n_trials", "20"), "bare has no parameter 'n_trials'")
     assert line.endswith("its parameters cell assigns none")
 
 
@@ -112,7 +90,9 @@ def test_a_parameters_cell_that_assigns_nothing_says_so(tmp_path, capsys, no_wor
 @pytest.fixture
 def list_notebook(tmp_path) -> Path:
     """The fixture notebook with a parameter of list values, ``weights`` (read by nothing)."""
-    return damaged(tmp_path, "lists", lambda d: code(d, 0)["source"].append("\nweights = [1.0]  # reals\n"))
+    return damaged_notebook(
+        tmp_path, "lists", lambda d: code_cell(d, 0)["source"].append("\nweights = [1.0]  # reals\n")
+    )
 
 
 def test_a_summary_x_of_list_values_is_refused_before_any_run_naming_x(tmp_path, list_notebook):
@@ -194,7 +174,7 @@ def test_a_folder_written_into_between_the_first_check_and_the_lock_is_refused_u
 
     monkeypatch.setattr(sweep, "preflight", meanwhile)
     spec = spec_file(tmp_path, QUICK + '[summary]\nx = "n_trials"\ny = "centroid_rms_px.value"\n')
-    one_line_error(tvtrack(capsys, "sweep", spec, "-o", out), f"-o {out}", fragment)
+    one_line_error(cli_here(capsys, "sweep", spec, "-o", out), f"-o {out}", fragment)
     assert {p.name: p.read_text() for p in out.iterdir()} == files  # nothing written, no runs/ left behind
 
 
@@ -208,7 +188,7 @@ def test_a_run_folder_made_between_the_check_and_the_runs_lock_is_one_line_and_k
 
     monkeypatch.setattr(runner, "remove_stale_temporaries", meanwhile)
     one_line_error(
-        tvtrack(capsys, "run", FIXTURE_NOTEBOOK, "-p", "n_trials", "20", "-o", out), str(out), "exists already"
+        cli_here(capsys, "run", FIXTURE_NOTEBOOK, "-p", "n_trials", "20", "-o", out), str(out), "exists already"
     )
     assert [p.name for p in out.iterdir()] == ["notes.md"] and (out / "notes.md").read_text() == "mine"
 
@@ -225,6 +205,6 @@ def test_a_run_folder_made_between_the_check_and_the_runs_lock_is_one_line_and_k
     ],
 )
 def test_a_notebook_seed_a_sweep_cannot_number_from_is_one_line(tmp_path, capsys, no_work, line, fragment):
-    nb = damaged(tmp_path, "seeded", lambda d: code(d, 0)["source"].__setitem__(0, line))
-    one_line_error(tvtrack(capsys, "sweep", spec_file(tmp_path, QUICK, nb), "-o", tmp_path / "sw"), fragment)
+    nb = damaged_notebook(tmp_path, "seeded", lambda d: code_cell(d, 0)["source"].__setitem__(0, line))
+    one_line_error(cli_here(capsys, "sweep", spec_file(tmp_path, QUICK, nb), "-o", tmp_path / "sw"), fragment)
     assert not (tmp_path / "sw").exists()

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import minimal_claim, one_line_error
+from conftest import finished_run, minimal_claim, one_line_error
 
 from tvtrack.pipeline import outputs, site
 from tvtrack.pipeline import reproduce as rep
@@ -37,20 +37,6 @@ def _claim(cid: str = "C1-1") -> dict:
     return minimal_claim(cid)
 
 
-def _run(root: Path, name: str = "p1", record: dict | None = None, results: dict | None = None) -> Path:
-    """A finished smoke run as the runner leaves it (run.json lists its files), with a hand-made results.json."""
-    run = root / name
-    run.mkdir(parents=True)
-    data = {"notebook": name, "citation": "A: p", "seed": 1, "runtime_s": 10.0, "git_commit": None, "metrics": {}}
-    data.update({"figures": [], "recording": None, "claims": [_claim()], **(results or {})})
-    (run / "results.json").write_text(json.dumps(data))
-    (run / "notebook.ipynb").write_text(json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": []}))
-    base = {"notebook": name, "profile": "smoke", "status": "ok", "runtime_s": 12.0, "finished_utc": "2026-12-01"}
-    files = sorted(p.name for p in run.iterdir()) + ["run.json"]
-    (run / "run.json").write_text(json.dumps({**base, "files": files, **(record or {})}))
-    return run
-
-
 def _fresh(tmp_path: Path) -> Path:
     new = tmp_path / "new"
     new.mkdir()
@@ -62,7 +48,7 @@ def _fresh(tmp_path: Path) -> Path:
 
 
 def test_a_truncated_run_json_deletes_nothing_of_the_run_it_replaces(tmp_path):
-    run = _run(tmp_path / "reproduce-smoke")
+    run = finished_run(tmp_path / "reproduce-smoke")
     (run / "my_notes.md").write_text("mine")
     (run / "run.json").write_text((run / "run.json").read_text()[:40])
     left = replace_folder(_fresh(tmp_path), run, legacy_run=True)
@@ -75,7 +61,7 @@ def test_a_truncated_run_json_deletes_nothing_of_the_run_it_replaces(tmp_path):
 def test_a_listed_file_outside_the_folder_is_never_deleted(tmp_path, entry):
     victim = tmp_path / "victim.txt"
     victim.write_text("user data")
-    run = _run(tmp_path / "reproduce-smoke")
+    run = finished_run(tmp_path / "reproduce-smoke")
     entry = str(victim) if entry == "ABSOLUTE" else entry
     record = json.loads((run / "run.json").read_text())
     (run / "run.json").write_text(json.dumps({**record, "files": [*record["files"], entry]}))
@@ -105,7 +91,7 @@ def test_reproduce_refuses_a_run_json_listing_a_file_outside_before_any_run(tmp_
     ran = _no_runs(monkeypatch)
     victim = tmp_path / "victim.txt"
     victim.write_text("user data")
-    run = _run(tmp_path / "reproduce-smoke", NOTEBOOK)
+    run = finished_run(tmp_path / "reproduce-smoke", NOTEBOOK)
     record = json.loads((run / "run.json").read_text())
     (run / "run.json").write_text(json.dumps({**record, "files": [*record["files"], "../../victim.txt"]}))
     with pytest.raises(UsageError, match=r"run\.json: 'files' lists '\.\./\.\./victim\.txt'"):
@@ -152,7 +138,9 @@ def test_site_refuses_a_figure_or_recording_outside_the_run(tmp_path):
     out = tmp_path / "sites" / "fig" / "out"
     out.parent.mkdir(parents=True)
     (out.parent / "victim4.txt").write_text("user file")
-    run = _run(tmp_path / "reproduce-smoke", results={"figures": [{"file": "../../victim4.txt", "caption": "x"}]})
+    run = finished_run(
+        tmp_path / "reproduce-smoke", results={"figures": [{"file": "../../victim4.txt", "caption": "x"}]}
+    )
     line = one_line(tvtrack("site", "--runs", tmp_path, "--profile", "smoke", "-o", out), f"{run}/results.json")
     assert "figure 1" in line and "'../../victim4.txt'" in line
     assert (out.parent / "victim4.txt").read_text() == "user file" and not out.exists()
@@ -180,7 +168,7 @@ SHAPES = [
 
 @pytest.mark.parametrize(("name", "change", "said"), SHAPES, ids=[s[2] for s in SHAPES])
 def test_a_run_file_of_the_wrong_shape_is_one_line_naming_the_file_and_field(tmp_path, name, change, said):
-    run = _run(tmp_path / "reproduce-smoke")
+    run = finished_run(tmp_path / "reproduce-smoke")
     data = json.loads((run / name).read_text())
     (run / name).write_text(json.dumps({**data, **change}))
     with pytest.raises(DamagedRun, match=f"{run / name}: ") as caught:
@@ -189,7 +177,7 @@ def test_a_run_file_of_the_wrong_shape_is_one_line_naming_the_file_and_field(tmp
 
 
 def test_a_damaged_notebook_or_recording_is_one_line_naming_it(tmp_path):
-    run = _run(tmp_path / "reproduce-smoke")
+    run = finished_run(tmp_path / "reproduce-smoke")
     for text in ('{"cells": [', "[]"):
         (run / "notebook.ipynb").write_text(text)
         with pytest.raises(DamagedRun, match="notebook.ipynb: not an executed notebook"):
