@@ -47,7 +47,7 @@ def equivalents() -> dict[str, str]:
     out = {}
     for line in (HERE / "equivalent.txt").read_text().splitlines():
         if line.strip() and not line.startswith("#"):
-            k, _, why = line.partition("  # ")
+            k, _, why = line.rpartition("  # ")  # the last one: a mutated line may hold a comment of its own
             out[k.strip()] = why.strip()
     return out
 
