@@ -35,11 +35,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
-from .labels import part_judgements, part_pairs
+from .labels import part_judgements
 from .pooling import pool
 from .register import project
 from .estimate import Estimate
-from .verdicts import Rule, is_decisive
+from .verdicts import ByReading, Rule, is_decisive
 from .measured import calibrated
 
 __all__ = [
@@ -184,21 +184,31 @@ def point(pm: Any) -> Any:
         return pm
 
 
+def _at_point(rule: Rule, pm: Any) -> Any:
+    """A claim's measured value with each part's value at its point (:func:`point`), a reading's tag kept as it is
+    (a reading may be a number). Asked only of a value with parts, so a :class:`ByReading` value is tagged."""
+    if isinstance(rule, ByReading):
+        return {**pm, "measured": _at_point(rule.for_value(pm["reading"]), pm["measured"])}
+    return point(pm)
+
+
 def leans_flip(rule: Rule, run: Run, cid: str, default_j: Mapping) -> bool:
     """Whether a part of claim ``cid`` that the default decides leans towards a flip at ``run``'s present size: its
     pooled verdict is decisive the other way, or undecided with the point estimate on the other side of the rule (a
-    value that cannot be judged as a point counts as leaning)."""
-    for part, (prule, pm) in part_pairs(rule, run.pooled(cid)).items():
+    value that cannot be judged as a point counts as leaning). A part is judged as a condition's verdict judges it
+    (:func:`tvtrack.labels.part_judgements`): with the parts a reading's rule has beyond the default reading's, which
+    must hold too, so a condition that flips a part through one of them leans towards that flip."""
+    pm = run.pooled(cid)
+    for part, j in part_judgements(rule, pm).items():
         d = default_j.get((cid, part))
         if d is None or not is_decisive(d.verdict):
             continue
-        v = prule.judge(pm).verdict
-        if is_decisive(v):
-            if v != d.verdict:
+        if is_decisive(j.verdict):
+            if j.verdict != d.verdict:
                 return True
             continue
-        try:
-            if prule.judge(point(pm)).verdict != d.verdict:
+        try:  # the same parts at their points (point keeps every part's place)
+            if part_judgements(rule, _at_point(rule, pm))[part].verdict != d.verdict:
                 return True
         except (TypeError, ValueError):
             return True

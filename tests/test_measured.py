@@ -1,0 +1,316 @@
+"""A measured value read as an estimate (:mod:`tvtrack.measured`): what it reads, the widening to its nominal coverage
+(:func:`calibrated`), when it is undecided, the runs projected to decide it (:func:`runs_to_decide`, closed forms) and
+its words. Every expected number is worked out by hand here, never by calling the code a second time."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.special import ndtri
+
+from tvtrack.estimate import Estimate
+from tvtrack.measured import (
+    as_estimate,
+    calibrated,
+    decide_note,
+    interval_of,
+    is_undecided,
+    lost_runs,
+    runs_to_decide,
+    short_number,
+    show_estimate,
+    why_undecided,
+    with_lost_runs,
+)
+
+NAN = float("nan")
+SHORT = "Student t; coverage 0.882 at n = 5 (skewed samples; heavy tails 0.815)"  # below the 0.93 floor
+REACHED = "bootstrap-t; coverage 0.936 at n = 5 (skewed samples; heavy tails 0.898)"  # at the floor, short of 0.95
+UNMEASURED = "Student t; coverage unmeasured at n = 3 (below n = 5, the smallest size measured)"
+
+
+def _est(value, low, high, method="large-sample normal", n=10, confidence=0.95, extrapolated=False):
+    return Estimate(value, NAN, low, high, n, confidence, method, extrapolated)
+
+
+# --- lost runs ---------------------------------------------------------------------------------------------------
+
+
+def test_with_lost_runs_keeps_both_values_and_the_counts_as_integers():
+    v, lock = _est(2.0, 1.0, 3.0), _est(1.5, 1.0, 2.0)
+    got = with_lost_runs(v, lock, 3.0, 10.0)
+    assert got == {"value": v, "in lock": lock, "lost": 3, "runs": 10}
+    assert type(got["lost"]) is int and type(got["runs"]) is int
+    assert with_lost_runs(1.0, 1.0, 0, 1)["lost"] == 0  # no run lost, a single run: allowed
+    assert with_lost_runs(1.0, 1.0, 1, 1)["lost"] == 1  # every run lost: allowed
+
+
+@pytest.mark.parametrize("lost, runs", [(-1, 5), (6, 5), (0, 0), (1, 0)])
+def test_with_lost_runs_refuses_counts_outside_0_lost_runs(lost, runs):
+    with pytest.raises(ValueError, match=f"lost {lost} of runs {runs}"):
+        with_lost_runs(1.0, 1.0, lost, runs)
+
+
+def test_lost_runs_reads_back_only_a_value_with_all_four_keys():
+    v = with_lost_runs(_est(2.0, 1.0, 3.0), 1.5, 2, 8)
+    assert lost_runs(v) == {"in lock": 1.5, "lost": 2, "runs": 8}
+    assert lost_runs({"value": 1.0, "in lock": 1.0, "lost": 0}) is None  # no runs: an ordinary estimate dict
+    assert lost_runs(2.0) is None and lost_runs([1.0, 2.0]) is None
+
+
+# --- as_estimate -------------------------------------------------------------------------------------------------
+
+
+def test_a_plain_number_is_exact_its_interval_the_point():
+    assert as_estimate(3) == Estimate(3.0, 0.0, 3.0, 3.0, 1, 0.95, "exact")
+    assert as_estimate(2.5) == Estimate(2.5, 0.0, 2.5, 2.5, 1, 0.95, "exact")
+
+    assert as_estimate(np.float32(2.5)) == Estimate(2.5, 0.0, 2.5, 2.5, 1, 0.95, "exact")  # not a float subclass
+    assert as_estimate(np.int64(4)) == Estimate(4.0, 0.0, 4.0, 4.0, 1, 0.95, "exact")
+
+    class Number:
+        def __float__(self):
+            return 7.25
+
+    assert as_estimate(Number()) == Estimate(7.25, 0.0, 7.25, 7.25, 1, 0.95, "exact")
+
+
+def test_an_estimate_is_read_as_it_is():
+    e = _est(1.0, 0.5, 1.5, SHORT)
+    assert as_estimate(e) is e
+
+
+def test_an_estimate_dict_is_read_field_by_field_with_none_as_nan():
+    d = {"value": 2.0, "stderr": None, "ci_low": 1.0, "ci_high": None, "n": 7, "confidence": 0.9, "method": "m"}
+    e = as_estimate({**d, "unused": 1})
+    assert (e.value, e.ci_low, e.n, e.confidence, e.method, e.extrapolated) == (2.0, 1.0, 7, 0.9, "m", False)
+    assert math.isnan(e.stderr) and math.isnan(e.ci_high)
+    bare = as_estimate({"value": 4.0, "ci_low": 3.0, "ci_high": 5.0})  # stderr, n, confidence, method left out
+    assert (bare.value, bare.ci_low, bare.ci_high, bare.n, bare.confidence, bare.method) == (4.0, 3.0, 5.0, 1, 0.95, "")
+    assert math.isnan(bare.stderr) and bare.extrapolated is False
+    assert as_estimate({"value": 4.0, "stderr": 0.5, "ci_low": 3.0, "ci_high": 5.0}).stderr == 0.5
+    interval = {"value": 4.0, "ci_low": 3.0, "ci_high": 5.0}
+    assert as_estimate({**interval, "method": None}).method is None  # a method of None stays None, not NaN
+    assert as_estimate({**interval, "extrapolated": None}).extrapolated is False
+    assert as_estimate({**interval, "extrapolated": 1}).extrapolated is True
+
+
+def test_a_value_with_lost_runs_is_judged_on_every_run():
+    every, lock = _est(3.0, 2.0, 4.0), _est(1.0, 0.5, 1.5)
+    assert as_estimate(with_lost_runs(every, lock, 2, 10)) is every
+    assert as_estimate(with_lost_runs({"value": 3.0, "ci_low": 2.0, "ci_high": 4.0}, lock, 2, 10)).ci_high == 4.0
+    assert as_estimate(with_lost_runs(5, lock, 0, 10)) == Estimate(5.0, 0.0, 5.0, 5.0, 1, 0.95, "exact")
+
+
+@pytest.mark.parametrize(
+    "bad, named", [("1.0", "str: '1.0'"), (None, "NoneType: None"), ([1.0], r"list: \[1.0\]"), ({"n": 1}, "dict")]
+)
+def test_what_is_no_measured_value_is_refused_naming_its_type(bad, named):
+    with pytest.raises(TypeError, match=f"^cannot read a measured value from {named}"):
+        as_estimate(bad)
+
+
+# --- calibrated --------------------------------------------------------------------------------------------------
+
+
+def test_an_interval_short_of_its_coverage_is_widened_by_the_ratio_of_normal_quantiles():
+    """Coverage 0.882 stated for a 95 % interval: each side stretched about the value by z(0.975) / z(0.941)
+    (linear scale: the interval reaches below zero)."""
+    f = ndtri(0.975) / ndtri(0.5 + 0.882 / 2)
+    assert f == pytest.approx(1.9600 / 1.5632, rel=1e-3)  # 1.254: a widening, not a narrowing
+    e = calibrated(_est(1.0, -1.0, 2.0, SHORT))
+    assert e.value == 1.0
+    assert e.ci_low == pytest.approx(1.0 - 2.0 * f) and e.ci_high == pytest.approx(1.0 + 1.0 * f)
+    assert "measured coverage 0.882" in e.method and f"widened x{f:.3f} to 95%" in e.method
+
+
+def test_a_positive_interval_short_of_its_coverage_is_widened_on_the_log_scale():
+    f = ndtri(0.975) / ndtri(0.5 + 0.882 / 2)
+    e = calibrated({"value": 2.0, "ci_low": 1.0, "ci_high": 8.0, "n": 5, "method": SHORT})
+    assert e.ci_low == pytest.approx(2.0 * 0.5**f) and e.ci_high == pytest.approx(2.0 * 4.0**f)
+
+
+def test_an_interval_that_reaches_its_floor_or_states_no_coverage_is_not_widened():
+    reached = _est(1.0, 0.5, 1.5, REACHED)  # 0.936 >= the 0.93 floor, though short of 0.95: decided as it is
+    assert calibrated(reached) is reached
+    unmeasured = _est(1.0, 0.5, 1.5, UNMEASURED)  # nothing to calibrate by (is_undecided holds it undecided)
+    assert calibrated(unmeasured) is unmeasured
+    plain = _est(1.0, 0.5, 1.5)  # no coverage stated: its nominal level
+    assert calibrated(plain) is plain
+    assert calibrated(2.0) == Estimate(2.0, 0.0, 2.0, 2.0, 1, 0.95, "exact")
+
+
+# --- is_undecided, interval_of, why_undecided ---------------------------------------------------------------------
+
+
+def test_a_random_quantity_with_a_proper_interval_decides():
+    assert not is_undecided(_est(1.0, 0.5, 1.5))
+    assert not is_undecided(_est(1.0, 0.5, 1.5, SHORT))  # short coverage: widened, still decides
+    assert not is_undecided(2.0) and not is_undecided(0)  # an exact number decides, its interval the point
+
+
+@pytest.mark.parametrize(
+    "e, why",
+    [
+        (_est(1.0, 0.5, 1.5, extrapolated=True), "extrapolated beyond the data"),
+        (_est(NAN, 0.5, 1.5), "not measured (NaN)"),
+        (_est(1.0, 0.5, 1.5, UNMEASURED), "its interval's coverage at this sample size is unmeasured"),
+        (_est(1.0, NAN, 1.5), "its interval is undefined or degenerate"),
+        (_est(1.0, 0.5, NAN), "its interval is undefined or degenerate"),
+        (_est(1.0, 1.0, 1.0), "its interval is undefined or degenerate"),  # degenerate, not exact: random
+    ],
+)
+def test_each_undecided_estimate_and_its_reason(e, why):
+    assert is_undecided(e) and is_undecided(e.to_dict())
+    assert why_undecided(e) == why
+
+
+def test_an_exact_number_is_decided_even_with_an_undefined_interval_but_not_as_nan():
+    exact_nan_interval = Estimate(2.0, 0.0, NAN, NAN, 1, 0.95, "exact")
+    assert not is_undecided(exact_nan_interval)
+    assert interval_of(exact_nan_interval) == (2.0, 2.0)
+    assert is_undecided(Estimate.exact(NAN))
+    assert is_undecided(Estimate(2.0, 0.0, 2.0, 2.0, 1, 0.95, "exact", True))  # extrapolated: never decides
+
+
+def test_interval_of_is_the_interval_itself_otherwise():
+    assert interval_of(_est(1.0, 0.5, 1.5)) == (0.5, 1.5)
+    assert interval_of(Estimate(2.0, 0.0, 1.0, 3.0, 1, 0.95, "exact")) == (1.0, 3.0)
+    lo_nan = interval_of(Estimate(2.0, 0.0, NAN, 3.0, 1, 0.95, "exact"))  # one side undefined: the point
+    assert lo_nan == (2.0, 2.0)
+    hi_nan = interval_of(Estimate(2.0, 0.0, 1.0, NAN, 1, 0.95, "exact"))
+    assert hi_nan == (2.0, 2.0)
+    random = interval_of(_est(2.0, NAN, 3.0))  # a random quantity's undefined interval stays undefined
+    assert math.isnan(random[0]) and random[1] == 3.0
+
+
+def test_why_undecided_reads_none_as_an_empty_method():
+    e = Estimate(1.0, NAN, 1.0, 1.0, 10, 0.95, None)
+    assert why_undecided(e) == "its interval is undefined or degenerate"
+
+
+# --- runs_to_decide: closed forms ---------------------------------------------------------------------------------
+
+
+def test_a_straddled_edge_leaves_at_the_squared_ratio_of_half_width_to_distance():
+    """Point 1 in [0, 4]: an edge at 0.5 is 0.5 away with the lower half-width 1 -> (1 / 0.5)^2 = 4; an edge at 2 is
+    1 away with the upper half-width 3 -> (3 / 1)^2 = 9; both straddled: the larger."""
+    e = _est(1.0, 0.0, 4.0)
+    assert runs_to_decide(e, (0.5,)) == pytest.approx(4.0)
+    assert runs_to_decide(e, (2.0,)) == pytest.approx(9.0)
+    assert runs_to_decide(e, (0.5, 2.0)) == pytest.approx(9.0)
+    assert runs_to_decide(e, (2.0, 0.5)) == pytest.approx(9.0)
+    assert runs_to_decide(e, (None, 2.0)) == pytest.approx(9.0)  # an open band end is no edge
+    assert runs_to_decide(e, (0.5, None)) == pytest.approx(4.0)
+
+
+def test_the_projection_is_the_interval_width_shrinking_as_one_over_root_n():
+    """Multiplying the runs by the factor shrinks the half-width by its square root: exactly onto the edge."""
+    e = _est(3.0, 1.0, 4.0)  # lower half-width 2, upper 1
+    for edge in (1.5, 2.0, 2.9, 3.5, 3.99):
+        k = runs_to_decide(e, (edge,))
+        half = (3.0 - 1.0) if edge < 3.0 else (4.0 - 3.0)
+        assert half / math.sqrt(k) == pytest.approx(abs(3.0 - edge))
+
+
+def test_nothing_straddled_takes_the_runs_it_has():
+    e = _est(1.0, 0.0, 4.0)
+    assert runs_to_decide(e, ()) == 1.0
+    assert runs_to_decide(e, (None, None)) == 1.0
+    assert runs_to_decide(e, (-1.0, 5.0)) == 1.0  # both edges outside the interval
+    assert runs_to_decide(e, (0.0,)) == 1.0 and runs_to_decide(e, (4.0,)) == 1.0  # an edge on an end: not inside
+    assert runs_to_decide(e, (math.inf, -math.inf)) == 1.0
+    on_end = _est(NAN, 0.0, 4.0)  # even with no point: an edge on the interval's end is not straddled
+    assert runs_to_decide(on_end, (0.0,)) == 1.0 and runs_to_decide(on_end, (4.0,)) == 1.0
+
+
+def test_no_number_of_runs_decides_a_point_on_the_edge_or_an_undefined_point():
+    assert runs_to_decide(_est(1.0, 0.0, 4.0), (1.0,)) == math.inf
+    assert runs_to_decide(_est(1.0, 0.0, 4.0), (0.5, 1.0)) == math.inf  # one edge on the point: inf over all
+    assert runs_to_decide(_est(NAN, 0.0, 4.0), (1.0,)) == math.inf
+    assert runs_to_decide(Estimate(2.0, 0.0, 2.0, 2.0, 1, 0.95, "exact"), (2.0,)) == 1.0  # exact: nothing inside
+
+
+def test_zero_events_certify_an_upper_edge_at_ln_alpha_over_ln_one_minus_edge_runs():
+    """No loss in 6 runs certifies p <= 1 - 0.05^(1/6) = 0.393; the edge 0.1 is certified at
+    ln(0.05) / ln(0.9) = 28.4 runs: 4.74 times the 6."""
+    b6 = 1 - 0.05 ** (1 / 6)
+    e = Estimate(0.0, NAN, 0.0, b6, 6, 0.95, "count: zero events")
+    assert runs_to_decide(e, (0.1,)) == pytest.approx(math.log(0.05) / math.log(0.9) / 6)
+    assert 6 * runs_to_decide(e, (0.1,)) == pytest.approx(28.433, abs=1e-3)  # 29 runs at 95 %
+    # two edges straddled: the smaller rate needs more runs
+    assert runs_to_decide(e, (0.2, 0.1)) == pytest.approx(math.log(0.05) / math.log(0.9) / 6)
+    # the confidence sets alpha: 90 % certifies 0.1 at ln(0.1) / ln(0.9) = 21.9 runs
+    e90 = Estimate(0.0, NAN, 0.0, 1 - 0.1 ** (1 / 6), 6, 0.90, "Clopper-Pearson")
+    assert runs_to_decide(e90, (0.1,)) == pytest.approx(math.log(0.1) / math.log(0.9) / 6)
+
+
+def test_zero_events_in_a_single_run_still_certify_by_the_count():
+    """One run, no event: p <= 0.95 certified; the edge 0.1 needs 28.4 runs, not the half-width's (0.95 / 0.1)^2."""
+    e = Estimate(0.0, NAN, 0.0, 0.95, 1, 0.95, "count: zero events")
+    assert runs_to_decide(e, (0.1,)) == pytest.approx(math.log(0.05) / math.log(0.9))
+
+
+def test_all_events_certify_a_lower_edge_by_its_complement():
+    b10 = 1 - 0.05 ** (1 / 10)
+    e = Estimate(1.0, NAN, 1.0 - b10, 1.0, 10, 0.95, "Clopper-Pearson")
+    # the complement 0.2 must be certified: ln(0.05) / ln(1 - 0.2) = 13.4 runs, 1.34 times the 10
+    assert runs_to_decide(e, (0.8,)) == pytest.approx(math.log(0.05) / math.log(0.8) / 10)
+    assert runs_to_decide(e, (0.8,)) == pytest.approx(1.3425, abs=1e-4)
+
+
+def test_a_count_with_some_events_or_none_counted_is_projected_by_its_half_width():
+    """Only zero (or all) events in a direct count certify a bound; a count of 1 in 10 whose interval reaches 0, an
+    interval of no count method, or a count over no runs is read by its half-width: (0.3 / 0.2)^2 = 2.25."""
+    assert runs_to_decide(Estimate(0.1, NAN, 0.0, 0.4, 10, 0.95, "Clopper-Pearson"), (0.3,)) == pytest.approx(2.25)
+    assert runs_to_decide(Estimate(0.0, NAN, 0.0, 0.4, 10, 0.95, "bootstrap"), (0.2,)) == pytest.approx(4.0)
+    assert runs_to_decide(Estimate(0.0, NAN, 0.0, 0.4, 0, 0.95, "count: zero events"), (0.2,)) == pytest.approx(4.0)
+    # "count" must open the method; a method merely mentioning counts is no count
+    assert runs_to_decide(Estimate(0.0, NAN, 0.0, 0.4, 10, 0.95, "mean of counts"), (0.2,)) == pytest.approx(4.0)
+    # all events but an interval not reaching 1: no certified bound either
+    assert runs_to_decide(Estimate(1.0, NAN, 0.6, 0.9, 10, 0.95, "count: 10 of 10"), (0.8,)) == pytest.approx(4.0)
+    assert runs_to_decide(Estimate(0.0, NAN, -0.2, 0.4, 10, 0.95, "count: 0 of 10"), (0.2,)) == pytest.approx(4.0)
+
+
+def test_a_zero_count_edge_outside_the_rates_is_never_certified():
+    e = Estimate(0.0, NAN, 0.0, 2.0, 6, 0.95, "count: zero events")  # an interval beyond 1: no rate there
+    assert runs_to_decide(e, (1.5,)) == math.inf
+    assert runs_to_decide(e, (1.0,)) == math.inf
+    e1 = Estimate(1.0, NAN, -1.0, 1.0, 6, 0.95, "count: 6 of 6")
+    assert runs_to_decide(e1, (0.0,)) == math.inf
+
+
+# --- words -------------------------------------------------------------------------------------------------------
+
+
+def test_short_number_is_four_significant_digits():
+    assert short_number(3.14159) == "3.142" and short_number(123456.0) == "1.235e+05" and short_number(0.5) == "0.5"
+
+
+def test_show_estimate_gives_value_interval_unit_and_a_widening_note():
+    e = _est(1.23456, 0.5, 2.0)
+    assert show_estimate(e) == "1.235 [0.5, 2]"
+    assert show_estimate(e, "px") == "1.235 [0.5, 2] px"
+    widened = calibrated(_est(1.0, -1.0, 2.0, SHORT))
+    assert show_estimate(widened, "s").endswith(" s (interval widened to its nominal coverage)")
+    assert show_estimate(_est(1.0, -1.0, 2.0, None)) == "1 [-1, 2]"
+
+
+def test_show_estimate_gives_the_bare_value_for_a_point_or_an_undefined_interval():
+    assert show_estimate(Estimate.exact(2.5), "px") == "2.5 px"
+    assert show_estimate(Estimate.exact(2.5)) == "2.5"
+    assert show_estimate(_est(2.5, NAN, 3.0), "px") == "2.5 px"
+    assert show_estimate(_est(2.5, 2.0, NAN)) == "2.5"
+    assert show_estimate(_est(2.5, 2.5, 2.5)) == "2.5"
+    assert show_estimate(_est(2.5, 2.0, 2.0)) == "2.5 [2, 2]"  # degenerate away from the point: shown as it is
+    assert show_estimate(_est(2.5, 2.5, 3.0)) == "2.5 [2.5, 3]"
+
+
+def test_decide_note_gives_the_factor_or_says_none_decides():
+    assert decide_note(4.0) == "about 4 times the runs would decide it"
+    assert decide_note(28.433) == "about 28 times the runs would decide it"
+    assert decide_note(1.26) == "about 1.3 times the runs would decide it"
+    no = "no number of runs is projected to decide it (the point sits on the edge)"
+    assert decide_note(math.inf) == no and decide_note(NAN) == no
