@@ -187,6 +187,11 @@ DAMAGES = [
     ("results.json", _edit("results.json", {"claims": [minimal_claim("C1-1"), minimal_claim("C1-1")]}), "twice"),
     ("results.json", _replace_results_by_folder, "a folder, not a file"),
     ("results.json", _edit("results.json", {"citation": 5}), "'citation' is a JSON int"),
+    # integers JSON allows of any size: beyond any float, and beyond the digits Python converts
+    ("run.json", _edit("run.json", text=('"runtime_s": 12.0', '"runtime_s": 1' + "0" * 400)), "(401 digits)"),
+    ("results.json", _edit("results.json", text=('"runtime_s": 10.0', '"runtime_s": 1' + "0" * 400)), "401 digits"),
+    ("run.json", _edit("run.json", text=('"runtime_s": 12.0', '"runtime_s": 1' + "0" * 5000)), "not JSON a record"),
+    ("run.json", _edit("run.json", text=('"runtime_s": 12.0', '"runtime_s": ' + "[" * 100_000)), "not JSON a record"),
 ]
 DAMAGE_IDS = [d[2] for d in DAMAGES]
 
@@ -303,3 +308,36 @@ def test_a_new_run_left_by_a_stopped_reproduce_is_removed_only_when_it_holds_its
     empty.mkdir()
     rep.check_records(tmp_path, ["p3"], ["p3"])
     assert rep.remove_new_run(empty) and not empty.exists()
+
+
+def test_a_run_json_that_links_out_of_its_folder_says_so(tmp_path):
+    """A ``run.json`` that is a symbolic link to a sound record elsewhere names itself outside the folder: the line
+    says a link leading out of it is not allowed, not only "no '..'"; nothing is deleted."""
+    run = finished_run(tmp_path / "reproduce-smoke")
+    outside = tmp_path / "elsewhere.json"
+    outside.write_text((run / "run.json").read_text())
+    (run / "run.json").unlink()
+    (run / "run.json").symlink_to(outside)
+    with pytest.raises(DamagedRun, match="no link leading out of it"):
+        collect_runs(run.parent, ["p1"])
+    assert outside.is_file() and (run / "run.json").is_symlink()
+
+
+def test_a_stopped_reproduce_removes_only_the_new_runs_of_its_own_notebooks(tmp_path, monkeypatch):
+    """Ctrl-C while the notebooks run: the ``.new-`` run of a notebook of this command goes; that of another
+    notebook, which this command never checked, is left."""
+    mine = finished_run(tmp_path, ".new-p1")
+    other = finished_run(tmp_path, ".new-p2")
+
+    class Pool:
+        def __init__(self, *args, **kwargs):
+            pass
+
+        def submit(self, *args, **kwargs):
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(rep, "ProcessPoolExecutor", Pool)
+    monkeypatch.setattr(rep, "stop_pool", lambda pool: None)
+    with pytest.raises(KeyboardInterrupt, match="notebooks stopped"):
+        rep._run_notebooks([Path("p1.ipynb")], "smoke", tmp_path, 1, 1, [({}, {})])
+    assert not mine.exists() and (other / "run.json").is_file()

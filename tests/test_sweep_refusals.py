@@ -208,3 +208,18 @@ def test_a_notebook_seed_a_sweep_cannot_number_from_is_one_line(tmp_path, capsys
     nb = damaged_notebook(tmp_path, "seeded", lambda d: code_cell(d, 0)["source"].__setitem__(0, line))
     one_line_error(cli_here(capsys, "sweep", spec_file(tmp_path, QUICK, nb), "-o", tmp_path / "sw"), fragment)
     assert not (tmp_path / "sw").exists()
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        (lambda t: "\ufeff" + t, "Unexpected UTF-8 BOM"),  # Jupyter and papermill read no byte-order mark
+        (lambda t: t.replace('"nbformat_minor": 5', '"nbformat_minor": 1' + "0" * 5000), "not a notebook"),
+    ],
+    ids=["byte-order mark", "an integer of 5001 digits"],
+)
+def test_a_notebook_json_cannot_read_as_papermill_does_is_one_line(tmp_path, capsys, no_work, text, fragment):
+    nb = tmp_path / "odd.ipynb"
+    nb.write_text(text(Path(FIXTURE_NOTEBOOK).read_text()), encoding="utf-8")
+    one_line_error(cli_here(capsys, "run", nb, "-o", tmp_path / "r"), nb.name, fragment)
+    assert not (tmp_path / "r").exists()

@@ -364,8 +364,8 @@ def _run_notebooks(
         if bar is not None:
             bar.close()
         remove_stale_temporaries(folder)
-        for fresh in folder.glob(".new-*"):
-            remove_new_run(fresh)
+        for nb in notebooks:  # only the new runs of this command's notebooks
+            remove_new_run(folder / f".new-{nb.stem}")
         raise KeyboardInterrupt(f"reproduce: notebooks stopped; the runs finished before are kept in {folder}") from exc
     pool.shutdown()
     bar.close()

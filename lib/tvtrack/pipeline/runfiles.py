@@ -71,6 +71,8 @@ def _read_object(path: Path) -> dict[str, Any]:
     except json.JSONDecodeError as exc:
         where = "empty" if not text.strip() else f"line {exc.lineno} column {exc.colno}: {exc.msg}"
         raise _damaged(path, f"not valid JSON ({where})") from None
+    except (ValueError, RecursionError) as exc:  # a number of more digits than Python converts, nesting too deep
+        raise _damaged(path, f"not JSON a record can hold ({type(exc).__name__}: {str(exc)[:80]})") from None
     if not isinstance(data, dict):
         raise _damaged(path, f"holds a JSON {type(data).__name__}, not an object")
     return data
@@ -113,9 +115,15 @@ def _json_kind(value: Any) -> str:
 
 
 def _check_seconds(path: Path, runtime: Any) -> None:
-    """``runtime_s`` of a record: a number of seconds, finite and not negative (JSON lets NaN and Infinity in)."""
-    if not _is_number(runtime) or not math.isfinite(runtime) or runtime < 0:
-        raise _damaged(path, f"runtime_s {runtime!r} is not a number of seconds (finite, at least 0)")
+    """``runtime_s`` of a record: a number of seconds, finite and not negative (JSON lets NaN, Infinity and integers
+    of any size in)."""
+    try:
+        seconds = float(runtime) if _is_number(runtime) else math.nan
+    except OverflowError:  # an integer beyond any float
+        seconds = math.inf
+    if not math.isfinite(seconds) or seconds < 0:
+        shown = repr(runtime) if len(repr(runtime)) <= 40 else f"{repr(runtime)[:20]}... ({len(repr(runtime))} digits)"
+        raise _damaged(path, f"runtime_s {shown} is not a number of seconds (finite, at least 0)")
 
 
 def _check_files(path: Path, record: dict[str, Any]) -> None:
@@ -130,7 +138,10 @@ def _check_files(path: Path, record: dict[str, Any]) -> None:
         raise _damaged(path, f"'files' is {_json_kind(files)}, not a list of the files the run wrote")
     outside = [f for f in files if not listed_inside(path.parent, f)]
     if outside:
-        raise _damaged(path, f"'files' lists {outside[0]!r}: allowed are files in the run folder (no '..')")
+        raise _damaged(
+            path,
+            f"'files' lists {outside[0]!r}: allowed are files in the run folder (no '..', no link leading out of it)",
+        )
 
 
 def _check_named_files(path: Path, data: dict[str, Any]) -> None:

@@ -101,14 +101,16 @@ def _is_file(path: Path) -> bool:
 def _check_notebook_file(path: Path) -> None:
     """Refuse a file that is not a Jupyter notebook papermill can run (:func:`.preflight.check_notebook`), in one
     line naming it."""
-    try:
-        data = json.loads(path.read_bytes())
+    try:  # UTF-8 text, as Jupyter and papermill read it (a byte-order mark is not valid JSON to them)
+        data = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as exc:
         raise UsageError(
             f"{path}: not a notebook: not valid JSON (line {exc.lineno} column {exc.colno}: {exc.msg})"
         ) from None
     except (OSError, UnicodeDecodeError, RecursionError) as exc:
         raise UsageError(f"{path}: not a readable notebook: {getattr(exc, 'strerror', None) or exc}") from None
+    except ValueError as exc:  # a number of more digits than Python converts
+        raise UsageError(f"{path}: not a notebook: {str(exc)[:100]}") from None
     check_notebook(path, data)
 
 
