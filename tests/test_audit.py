@@ -198,3 +198,57 @@ def test_the_explorer_measures_every_subset_of_a_flip_one_entry_beyond_its_searc
         assert audit_claim(claim) == []
         combos = [c["changed"] for c in claim["robustness"]["conditions"] if c["kind"] == "combination"]
         assert sorted(map(len, combos)) == [2] * 6 + [3] * 4 * (max_subset == 3)  # every pair (and triple) of four
+
+
+def _claim_with_pinned():
+    """:func:`_claim` with two pinned configurations (known flips outside the design): one flips, one agrees."""
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    conds = [
+        _cond({"sigma": "smoothed"}, OUT),
+        _cond({"law": "step"}, IN),
+        _cond({"motion": "turn"}, IN),
+        _cond({"noise": "high"}, IN),
+        _cond({"law": "step", "noise": "high"}, OUT, "pinned"),
+        _cond({"law": "step", "motion": "turn"}, IN, "pinned"),
+        _cond({"noise": "high", "law": "linear"}, OUT, "combination"),
+    ]
+    rb = label_parts(BAND, IN, reps, conds, ENTRIES, design={"min_share_design": 4}, needed=2)
+    rb["register"] = [e.to_dict() for e in ENTRIES]
+    rb["design"] = {"replicates_needed": {"C9-1": 2}}
+    return {"id": "C9-1", "robustness": rb}
+
+
+def test_pinned_configurations_are_counted_beside_the_share_and_a_share_that_drops_them_is_found():
+    claim = _claim_with_pinned()
+    share = claim["robustness"]["parts"]["claim"]["share"]
+    # the share stays over the design (4 one-at-a-time configurations); the two pinned ones are counted beside it
+    assert (share["agree"], share["flip"], share["undecided"], share["design"]) == (3, 1, 0, 4)
+    assert share["pinned"] == {"agree": 1, "flip": 1, "undecided": 0}
+    assert audit_claim(claim) == []
+    del share["pinned"]  # a record whose share hides the pinned flip beside it
+    assert audit_claim(claim) == [
+        "C9-1: the pinned configurations beside the share read {'agree': 0, 'flip': 0, 'undecided': 0}, "
+        "their verdicts give {'agree': 1, 'flip': 1, 'undecided': 0}"
+    ]
+    share["pinned"] = {"agree": 2, "flip": 0, "undecided": 0}  # the flip counted as agreeing
+    assert len(audit_claim(claim)) == 1
+
+
+def test_a_claim_without_pinned_configurations_has_no_pinned_count():
+    share = _claim()["robustness"]["parts"]["claim"]["share"]
+    assert "pinned" not in share
+
+
+def test_the_share_words_say_the_pinned_configurations_beside_the_design():
+    from tvtrack.wording import share_counts
+
+    share = _claim_with_pinned()["robustness"]["parts"]["claim"]["share"]
+    assert share_counts(share) == (
+        "3 agree, 1 flips and 0 stay undecided of 4 explored configurations; of 2 pinned configurations measured "
+        "beside them (joint configurations every run measures), 1 flips, 1 agrees and 0 stay undecided"
+    )
+    one = share_counts({**share, "pinned": {"agree": 0, "flip": 1, "undecided": 0}})
+    assert one.endswith(
+        "of 1 pinned configuration measured beside them (joint configurations every run measures), "
+        "1 flips, 0 agree and 0 stay undecided"
+    )

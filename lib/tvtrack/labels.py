@@ -412,7 +412,8 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         pwhere.append(runs["text"])
     else:
         label = _decided_label(flips, ctx["open_world"])
-    part_share = _share(ex_rows, j.verdict) if label != NO_PART_LABEL else None
+    pinned = _distinct([r for r in rows if r["kind"] == "pinned"])
+    part_share = _share(ex_rows, j.verdict, pinned) if label != NO_PART_LABEL else None
     if label == "robust" and not (part_share or {}).get("agree"):
         label = "unexplored"  # no explored configuration decided the part: nothing showed that it holds elsewhere
     pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
@@ -431,12 +432,19 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     }
 
 
-def _share(rows: Sequence[Mapping], default: str) -> dict | None:
+def _share(rows: Sequence[Mapping], default: str, pinned: Sequence[Mapping] = ()) -> dict | None:
     """The part's share (:func:`tvtrack.attribution.share`) with ``left_by_budget``: the undecided configurations
-    that lean towards agreement and were left smaller than the default needed by the exploration's sizing budget."""
+    that lean towards agreement and were left smaller than the default needed by the exploration's sizing budget.
+
+    The share is over the design (one at a time and joint). The register's pinned configurations, known flips
+    measured every run, are chosen for flipping, so they stay out of it and are counted beside it (``pinned``:
+    agree, flip and undecided), so that a flip they name is never shown beside a share without one."""
     out = share([c["verdict"] for c in rows], default)
     if out is not None:
         out["left_by_budget"] = sum(1 for c in rows if c["verdict"] == "undecided" and c.get("left_by_budget"))
+        if pinned:
+            beside = share([c["verdict"] for c in pinned], default)
+            out["pinned"] = {k: beside[k] for k in ("agree", "flip", "undecided")}
     return out
 
 

@@ -379,7 +379,21 @@ def share_counts(share: Mapping) -> str:
     return (
         f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
         f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
-        f"configuration{'s' * (design != 1)}"
+        f"configuration{'s' * (design != 1)}{_pinned_counts(share.get('pinned'))}"
+    )
+
+
+def _pinned_counts(pinned: Mapping | None) -> str:
+    """``"; of 2 pinned configurations measured beside them (joint configurations every run measures), 1 flips,
+    1 agrees and 0 stay undecided"``; empty without pinned configurations."""
+    if not pinned:
+        return ""
+    agree, flip, undecided = (int(pinned.get(k) or 0) for k in ("agree", "flip", "undecided"))
+    n = agree + flip + undecided
+    return (
+        f"; of {n} pinned configuration{'s' * (n != 1)} measured beside them (joint configurations every run "
+        f"measures), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
+        f"stay{'s' * (undecided == 1)} undecided"
     )
 
 

@@ -10,7 +10,8 @@ that says more than its own record shows is found in the records a reader sees:
 * **declared**: every condition changes only entries of the claim's register (the entries its measurement
   declares it reads);
 * **share**: the part's agree / flip / undecided equal the counts over its distinct one-at-a-time and joint
-  configurations, and add up to all of them;
+  configurations, and add up to all of them; the pinned configurations (known flips outside the design) are
+  counted beside it as their verdicts give;
 * **sides**: a flip's side is the side of its entries (a reading, an unreported setting, a world; ``unattributed``
   when readings or settings mix with worlds), never ``world`` when it changes a reading or a setting, and
   ``unattributed`` when it changes more than one entry beyond the largest subset the search tries
@@ -42,15 +43,30 @@ def _items(changed: Mapping[str, Any]) -> set:
     return {(k, repr(v)) for k, v in changed.items()}
 
 
-def _distinct(conditions: Sequence[Mapping]) -> list[Mapping]:
-    """The one-at-a-time and joint configurations, each once (as the share counts them)."""
+def _distinct(conditions: Sequence[Mapping], kinds: tuple[str, ...] = ("single", "joint")) -> list[Mapping]:
+    """The configurations of ``kinds`` (default one at a time and joint, as the share counts them), each once."""
     out, seen = [], set()
     for c in conditions:
         key = frozenset(_items(c["changed"]))
-        if c.get("kind") in ("single", "joint") and c["changed"] and key not in seen:
+        if c.get("kind") in kinds and c["changed"] and key not in seen:
             seen.add(key)
             out.append(c)
     return out
+
+
+def _pinned_problems(where: str, share: Mapping, pinned: Sequence[Mapping], name: str, default: str) -> list[str]:
+    """The pinned configurations (known flips, outside the design) must be counted beside the share
+    (``share["pinned"]``) as their verdicts give, so that a flip they name is never shown beside a share without it."""
+    if not pinned and "pinned" not in share:
+        return []
+    verdicts = [c["parts"][name] for c in pinned]
+    agree = sum(v == default for v in verdicts)
+    flip = sum(v in _DECISIVE and v != default for v in verdicts)
+    counted = {"agree": agree, "flip": flip, "undecided": len(verdicts) - agree - flip}
+    shown = {k: int((share.get("pinned") or {}).get(k) or 0) for k in counted}
+    if counted == shown:
+        return []
+    return [f"{where}: the pinned configurations beside the share read {shown}, their verdicts give {counted}"]
 
 
 def _expected_side(changed: Mapping[str, Any], kinds: Mapping[str, str]) -> str:
@@ -93,6 +109,7 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
             out.append(
                 f"{where}: the share reads {shown[:3]} of {shown[3]}, its configurations give {counted[:3]} of {counted[3]}"
             )
+        out += _pinned_problems(where, share, _distinct(rows, ("pinned",)), name, default)
     first = (part.get("replicate_verdicts") or [None])[0]  # the default's run on the conditions' random numbers
     crn = first if first in _DECISIVE else default
     flipping = [
