@@ -645,3 +645,40 @@ def test_a_combination_that_flips_a_part_its_joint_configuration_did_not_is_name
     assert [f["changed"] for f in attribute("reproduced", rows, entries, same_seed="not reproduced")] == [
         {"sigma": "smoothed"}
     ]
+
+
+def test_an_entry_that_chooses_another_rule_is_not_ranked_on_the_default_s_scale():
+    """A reading under which the claim measures another quantity (a share of runs against a variance ratio) has
+    values on another scale: the sensitivity leaves it out instead of ranking it first by the gap between scales."""
+    from tvtrack.verdicts import ByReading
+
+    share_rule = InBand("share of runs not in lock", high=0.1)
+    rule = ByReading("criterion", {"ensemble": InBand("variance ratio", high=20.0)}, share_rule)
+    entries = (
+        Entry("criterion", "reading", "share", ("share", "ensemble"), "the text reads either way"),
+        Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper"),
+    )
+    at = ByReading.tag
+    reps = [
+        {"seed": s, "measured": at("share", Estimate(0.01, 0.002, 0.006, 0.014, 600, method="t"))} for s in (1, 2, 3)
+    ]
+    conds = [
+        {
+            "changed": {"criterion": "ensemble"},
+            "kind": "single",
+            "runs": 3,
+            "measured": at("ensemble", Estimate(11.4, 5.3, 2.8, 19.9, 600, method="t")),
+        },
+        {
+            "changed": {"noise": "high"},
+            "kind": "single",
+            "runs": 3,
+            "measured": at("share", Estimate(0.03, 0.004, 0.022, 0.038, 600, method="t")),
+        },
+    ]
+    for c in conds:
+        c["config"] = c["changed"]
+    rec = label_parts(rule, reps[0]["measured"], reps, conds, entries, design={"min_share_design": 2}, needed=1)
+    ranked = rec["parts"]["claim"]["sensitivity"]
+    assert [r["entry"] for r in ranked] == ["noise"] and ranked[0]["score"] == pytest.approx(1.0)
+    assert "not ranked" in rec["parts"]["claim"]["sensitivity_method"]

@@ -29,7 +29,8 @@ MAX_SUBSET = 3
 SENSITIVITY_METHOD = (
     "one at a time: each entry's score is the variance of the part's value over the entry's one-at-a-time values "
     "(the default's value included), as a share of the sum over the entries; joint configurations are left out, "
-    "so an entry that only co-occurs with the real cause scores nothing"
+    "so an entry that only co-occurs with the real cause scores nothing; an entry whose values choose another rule "
+    "(a reading under which the claim measures another quantity) is not ranked, its values being on other scales"
 )
 
 

@@ -244,6 +244,7 @@ def label_parts(
         "pooled_n": _runs_behind(measured),
         "max_replicates": design.get("max_replicates"),
         "max_subset": int(design.get("max_subset", MAX_SUBSET)),
+        "unranked": _rule_selectors(rule),
     }
     part_out, where = {}, []
     pairs = part_pairs(rule, measured)
@@ -392,10 +393,11 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
     flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None, ctx["max_subset"])
     ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
+    unranked = ctx["unranked"] | _rule_selectors(prule)  # their values measure other quantities: not one scale
     sens_rows = [
         {"config": c["config"], "value": _scalar(c["part_measured"].get(name))}
         for c in ex_rows
-        if c["kind"] == "single"
+        if c["kind"] == "single" and not set(c["changed"]) & unranked
     ]
     if pair:
         sens_rows.append({"config": ctx["default_cfg"], "value": _scalar(pair[1])})
@@ -425,11 +427,22 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "n_conditions": len(rows),
         "share": part_share,
         "flips": flips,
-        "sensitivity": sensitivity(sens_rows, list(ctx["by_name"]), ctx["by_name"], ctx["default_cfg"]),
+        "sensitivity": sensitivity(
+            sens_rows, [k for k in ctx["by_name"] if k not in unranked], ctx["by_name"], ctx["default_cfg"]
+        ),
         "sensitivity_method": SENSITIVITY_METHOD,
         "runs_to_decide": runs,
         **(_lost(pair[0], pair[1], j.verdict) if pair else {}),
     }
+
+
+def _rule_selectors(rule: Rule) -> frozenset:
+    """The entries whose values choose another rule (:class:`tvtrack.verdicts.ByReading` with a rule of its own
+    for some value): under those values the claim measures another quantity, so the sensitivity does not rank
+    them on the default's scale (their flips say what they do)."""
+    if isinstance(rule, ByReading) and any(r != rule.default for r in rule.rules.values()):
+        return frozenset({rule.entry})
+    return frozenset()
 
 
 def _share(rows: Sequence[Mapping], default: str, pinned: Sequence[Mapping] = ()) -> dict | None:
