@@ -128,11 +128,10 @@ def test_unbiased_part_is_the_exact_rate_of_the_noise_free_mean():
     assert a.value == pytest.approx(rate[:, post].mean() / alpha, rel=1e-9)
 
 
-def test_unbiasedness_of_a_late_alternative_is_decided_exactly_not_by_a_few_alarms():
+def test_unbiasedness_of_a_late_alternative_is_the_theorem_not_a_finding():
     """Where the filter-output velocity barely moves within the delay limit (the acceleration read per second),
-    the rate after the onset is 1.014 alpha: just above alpha, as the two-sided test guarantees. Counted over the
-    runs it is a handful of alarms whose normal interval could lie below alpha (a false 'not reproduced', by
-    seed); the exact rate decides the part 'reproduced' for every seed."""
+    the rate after the onset is 1.014 alpha: just above alpha, as the two-sided test guarantees. The part is
+    measured (the record shows it) but is not checkable: no measured value could fall below alpha."""
     from tvtrack.papers.p001_maneuver_occlusion_kf.claims import RULES
 
     cfg = build_register().default() | {"accel_unit": "el/frame per s"}
@@ -140,4 +139,25 @@ def test_unbiasedness_of_a_late_alternative_is_decided_exactly_not_by_a_few_alar
     rule = RULES["C001-2"].parts["unbiased"]
     for seed in (1, 2, 3):
         m = study.measure_detection(cfg, seed, sizes, claims=frozenset({"C001-2"}))["C001-2"]["unbiased"]
-        assert m.value == pytest.approx(1.014, abs=5e-4) and rule.decide(m) == "reproduced"
+        assert m.value == pytest.approx(1.014, abs=5e-4) and rule.decide(m) == "not checkable"
+
+
+@pytest.mark.parametrize("model", ["white Gaussian", "AR(1), rho = 0.5", "Student t, 3 dof"])
+def test_two_sided_rate_is_never_below_the_null_rate_under_any_mean_shift(model):
+    """Why C001-2's 'size' and 'unbiased' parts are not checkable: with the project's exact threshold, the closed
+    form of the alarm rate under any mean shift of S (both signs, tiny to large, frame by frame) is at least the
+    rate at no shift, and the rate at no shift is alpha under white Gaussian errors. Under AR(1) and Student-t
+    errors the null rate moves away from alpha (the threshold assumes white Gaussian errors), but the shifted rate
+    still never falls below the test's own null rate: unbiased whatever the model (the same scales drawn for both,
+    Student t)."""
+    H = statistic_impulse_response(G0, N)
+    c = stats.norm.isf(ALPHA / 2) * scheduled_statistic_std(G0, N, 1.0)
+    sd = scheduled_statistic_std(G0, N, 1.0)[ARMED]
+    shifts = np.outer([-3.0, -1e-3, 1e-6, 1e-2, 0.3, 1.0, 5.0], sd)  # (shifts, armed frames), in units of sd
+    mean = np.zeros((shifts.shape[0], T0))
+    mean[:, ARMED] = shifts
+    null = closed_form_rate(H, c, ARMED, model, rng=np.random.default_rng(7), runs=200)
+    alt = [closed_form_rate(H, c, ARMED, model, rng=np.random.default_rng(7), runs=200, mean=m[None]) for m in mean]
+    assert all(a.value >= null.value * (1 - 1e-12) for a in alt)
+    if model == "white Gaussian":
+        assert null.value == pytest.approx(ALPHA, rel=1e-9)

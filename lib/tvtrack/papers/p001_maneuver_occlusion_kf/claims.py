@@ -134,12 +134,18 @@ def claim_rules() -> dict[str, Rule]:
         ),
         "C001-2": AllOf(
             {
-                "size": WithinFactor("per-test false-alarm rate (exact sigma_S)", 1.0, 1.5, "× alpha"),
+                # the size and unbiasedness parts are measured (the record shows them) but decide nothing:
+                "size": NotCheckable(
+                    "the threshold is this project's, z(alpha/2) times the exact sigma_S of the filter's gains, so its "
+                    "per-test false-alarm rate is alpha by construction; the paper's own threshold is C001-3's"
+                ),
                 "invariance": NotCheckable(
                     "S is a difference of two window sums: a common shift cancels by construction"
                 ),
-                "unbiased": InBand(
-                    "alarm rate after the onset (exact, from the statistic's distribution)", 1.0, None, "× alpha"
+                "unbiased": NotCheckable(
+                    "the symmetric two-sided test on a Gaussian (white, AR(1) errors) or conditionally Gaussian "
+                    "(Student-t errors) S is unbiased: Phi((mu - c)/sd) + Phi((-mu - c)/sd) >= 2 Phi(-c/sd) for "
+                    "every mean shift mu (rounded errors move it by about exp(-2 pi² 0.92) ~ 1e-8, beyond any run)"
                 ),
                 "UMP": Ordering(
                     "P(detection within the delay limit after the onset) of |S|",
