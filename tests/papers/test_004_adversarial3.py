@@ -54,7 +54,7 @@ def test_c004_8_frame_and_clock_readings_are_measured_and_registered(scene):
         t = timing.frame_time_ms(scene, rng(), reading)
         assert 0 < t < 40.0  # ms per frame: the readings run and return a time, not a share
     rows = {r[0]: r for r in ROWS}
-    assert rows["C004-8 frame"][1:4] == ("operating point", "gate", ("gate", "whole frame"))
+    assert rows["C004-8 frame"][1:4] == ("unreported setting", "gate", ("gate", "whole frame"))
     assert rows["C004-8 clock"][1:4] == ("statistic", "CPU", ("CPU", "wall"))
     assert rows["C004-8 frame"][5] == rows["C004-8 clock"][5] == "adversarial"
     assert {"C004-8 frame", "C004-8 clock"} <= set(DEPENDS["C004-8"])

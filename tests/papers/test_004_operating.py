@@ -68,6 +68,30 @@ def test_the_band_position_is_an_unreported_setting_that_c004_1_reads():
     assert BAND_POSITION in DEPENDS["C004-1"] and BAND_POSITION not in DEPENDS["C004-8"]
 
 
+def test_the_bandwidth_set_by_hand_is_a_world_and_the_band_position_the_setting():
+    """The bandwidth's only values besides 'calibrated' leave the paper's operating point ('1...2 pixels', abstract
+    and conclusions: its filter errs 0.33 and 3.9 px there): a flip there is a world beyond the paper, not a
+    setting of the paper's own experiment; the setting inside the band is 'error in the band'. A flip that needs
+    such a world and a reading together is unattributed, not a setting."""
+    from tvtrack.attribution import flip_side
+
+    reg = build()
+    bw = reg["bandwidth"]
+    assert bw.kind == "operating point" and bw.side == "world"
+    assert set(bw.alternatives) == set(bw.off_operating_point) == {1.0, 8.0} and bw.default == CALIBRATED
+    entries = {n: reg[n] for n in reg.names}
+    assert flip_side({"bandwidth": 1.0}, entries) == "world"
+    assert flip_side({"bandwidth": 1.0, "network inputs": "absolute centres"}, entries) == "unattributed"
+    assert flip_side({BAND_POSITION: 1.0}, entries) == "setting"
+
+
+def test_the_area_the_papers_program_measured_is_an_unreported_setting():
+    """The paper finds each 128 x 128 image's energy centre by its ref. [1] and shows a 'cut' window (Fig. 2); it
+    never says over what area: a setting of its own experiment, not a world beyond it."""
+    e = build()["C004-8 frame"]
+    assert e.kind == "unreported setting" and e.side == "setting" and e.default == "gate"
+
+
 def test_c004_1_note_says_where_in_the_band_the_verdict_turns():
     """95th percentile 2.80 px at RMS 1.45 px: 1.93 x, so 2 px holds only up to 2 / 1.93 = 1.04 px RMS."""
     q95 = Estimate(2.80, 0.05, 2.70, 2.90, 45)
@@ -75,3 +99,4 @@ def test_c004_1_note_says_where_in_the_band_the_verdict_turns():
     note = findings.c004_1_note(q95, rms)
     assert "1.93 x the RMS" in note and "1.04 px RMS or less (inside the paper's 1-2 px)" in note
     assert "unreported setting" in note and "does not report" in note
+    assert "the ratio is measured (a Gaussian error's is 1.96)" in note and "only at about 1 px RMS or less" in note

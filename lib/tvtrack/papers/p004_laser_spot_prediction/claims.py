@@ -70,19 +70,12 @@ def claim_rules() -> dict[str, Rule]:
             high=1e-9,
             unit="relative",
         ),
-        "C004-5": AllOf(
-            {
-                "g1 decreasing": InBand("largest step g_{N+1,1} - g_{N,1} over N >= 3", high=0.0, unit="gain"),
-                **{
-                    f"variance at N={n}": InBand(
-                        f"variance of the filtered position / (sigma^2 g_N1) at N = {n}",
-                        low=0.9,
-                        high=1.1,
-                        unit="ratio",
-                    )
-                    for n in (3, 5, 10, 20, 50, 100)
-                },
-            }
+        "C004-5": NotCheckable(
+            "a statement about the derivation, true by construction: the paper reads it off eq. (6) ('from formula "
+            "(6) it is obvious'); the gain g_N1 = 3(3N^2 - 3N + 2) / (N(N+1)(N+2)) falls as 9/N in closed form, and "
+            "the filtered position's variance sigma^2 g_N1 is an identity of least squares under the uncorrelated "
+            "noise of eq. (1), whatever its law (Student t3 included); the Monte Carlo checks the code, not the paper; "
+            "the gains and variances are still shown"
         ),
         "C004-6": InBand("RMS error over the second half of the frames, no floor / floor", low=2.0, unit="ratio"),
         "C004-7": NotCheckable(

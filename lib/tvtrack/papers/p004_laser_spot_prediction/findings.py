@@ -391,7 +391,10 @@ def c004_1_note(q95, rms, limit: float = 2.0, band=(1.0, 2.0)) -> str:
         f"so {limit:g} px holds only where the filter errs about {cap:.2f} px RMS or less ({where} the paper's "
         f"{band[0]:g}-{band[1]:g} px): the verdict is set by where in that band the paper's filter erred, which the "
         "paper does not report. The default world sits at its middle (1.5 px); the register's 'error in the band' "
-        "(an unreported setting) moves it to either end, and the claim's label names it where it flips."
+        "(an unreported setting) moves it to either end, and the claim's label names it where it flips. The "
+        "calibration sets only the RMS; the ratio is measured (a Gaussian error's is 1.96), so the finding is about "
+        f"the paper's two numbers together: with an error shaped like this world's they agree only at about "
+        f"{cap:.2g} px RMS or less."
     )
 
 

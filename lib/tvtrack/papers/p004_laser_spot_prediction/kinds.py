@@ -14,10 +14,10 @@ KINDS = {
         "an unreported setting: the spectrum of the paper's own laser paths is never printed",
     ),
     "bandwidth": (
-        "unreported setting",
-        "an unreported setting: the wander speed of the paper's own paths is never printed; by default every world is "
-        "re-calibrated to the paper's operating point ('1...2 pixels'), while 1 and 8 leave that band (the paper's "
-        "filter errs 0.33 and 3.9 px there) and are marked as off the paper's operating point",
+        "operating point",
+        "a world beyond the paper: its default re-calibrates every world to the paper's operating point ('1...2 "
+        "pixels'; where in that band is the entry 'error in the band'), and its only other values, 1 and 8, set the "
+        "wander's speed by hand outside it (the paper's filter errs 0.33 and 3.9 px there)",
     ),
     "error in the band": (
         "unreported setting",
@@ -46,7 +46,11 @@ KINDS = {
     "vibration": ("regime", "a world beyond the paper: a mount vibration it shows no spectrum of"),
     "C004-8 pipeline": ("reading", "a reading of 'functions in real time'"),
     "C004-8 statistic": ("statistic", "a reading of 'real time' as a deadline"),
-    "C004-8 frame": ("operating point", "a world beyond the paper: the whole 128 x 128 frame against the study's gate"),
+    "C004-8 frame": (
+        "unreported setting",
+        "an unreported setting: the image area the paper's own program measured each frame over (the whole 128 x 128 "
+        "image or a cut of it, its Fig. 2 'cut' option; the algorithm is its ref. [1]) is never printed",
+    ),
     "C004-8 clock": ("statistic", "a reading of the time per frame"),
     "lost frames": ("model", "a world beyond the paper: its recursion counts samples on an even grid"),
     "frame loss": ("regime", "a world beyond the paper: frames lost to obscuration or deep fades"),

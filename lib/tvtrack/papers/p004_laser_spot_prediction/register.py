@@ -46,7 +46,7 @@ ROWS = (
     ),
     (
         "bandwidth",
-        "regime",
+        "operating point",
         "calibrated",
         ("calibrated", 1.0, 8.0),
         "every corner frequency x this (today's 0.02, 0.1, 0.5 Hz at 1); the paper gives no turbulence strength, range "
@@ -260,7 +260,7 @@ ROWS = (
     ),
     (
         "C004-8 frame",
-        "operating point",
+        "unreported setting",
         "gate",
         ("gate", "whole frame"),
         "the streaming pipeline measures each frame in the study's 31 px gate around the prediction; the paper "
@@ -311,8 +311,9 @@ ROWS = (
         ("Gaussian", "Student t3"),
         "the model's noise law is not stated: heavy-tailed white noise (Student t, 3 d.o.f., unit variance; a "
         "centroid with outliers) leaves Var = sigma^2 g_N1 exact, but t3 has no fourth moment: the Monte Carlo "
-        "variance has infinite variance and no interval of it has a stated coverage, so this world's variance parts "
-        "carry no interval and the rule cannot decide them (a heavy tail never makes a label; the g_N1 part is exact)",
+        "variance has infinite variance and no interval of it has a stated coverage, so this world's variances "
+        "carry no interval; both laws leave the identity exact, so C004-5 is not checkable under either and the "
+        "entry only changes the values shown",
         "adversarial",
     ),
     (
@@ -373,7 +374,8 @@ DEPENDS = {
     "C004-3b": list(WORLD) + ["horizon", "tuning", "reference", "network lags", "network inputs", "floor form"],
     "C004-4": ["lost frames", "frame loss"]
     + list(WORLD),  # exact on gap-free series; the world decides whether frames are lost
-    "C004-5": ["C004-5 noise"],  # the model's own signal (quadratic + white noise): only the noise law enters
+    # the model's own signal (quadratic + white noise): only the noise law enters the values shown (not checkable)
+    "C004-5": ["C004-5 noise"],
     "C004-6": list(WORLD) + ["horizon", "tuning", "reference", "floor form"],
     # the per-frame work (the energy centre is timed in the streaming reading) and the frame interval
     "C004-8": [
