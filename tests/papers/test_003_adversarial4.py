@@ -100,18 +100,18 @@ def test_the_layout_entry_is_a_reading_every_interference_claim_depends_on():
 
 def test_dependence_sentence_speaks_in_the_registers_words_not_code_names():
     """The notebook's generated sentence on which motion entries flip which parts names each entry by its title and
-    each value by its phrase (a domain reader does not know 'motion_scale = 0.0')."""
+    each value by its phrase (a domain reader does not know 'motion_scale = 0.25')."""
     rec = {
         "C003-12": {
             "register": [{"name": "motion_scale"}],
             "replicates": [{"parts": {"one": "reproduced"}}],
             "parts": {"one": "reproduced"},
-            "conditions": [{"kind": "single", "changed": {"motion_scale": 0.0}, "parts": {"one": "not reproduced"}}],
+            "conditions": [{"kind": "single", "changed": {"motion_scale": 0.25}, "parts": {"one": "not reproduced"}}],
         }
     }
     text = prose.dependence(rec)
     assert "motion_scale" not in text and "=" not in text
-    assert REGISTER["motion_scale"].phrase(0.0) in text
+    assert REGISTER["motion_scale"].phrase(0.25) in text
     assert "not reproduced" in text and "C003-12" in text
     none = prose.dependence({}, entries=("interferer_radius", "placement"))
     assert "interferer_radius" not in none and REGISTER["placement"].title in none

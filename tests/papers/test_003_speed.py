@@ -106,8 +106,6 @@ def test_a_measurement_of_some_claims_equals_the_full_one_on_those_claims(measur
         # at its configuration projected onto its DEPENDS, the claims that do not read the gate ask their family of
         # curves as a batch of their own, not found under the full run's key: one batch more (a known cost)
         (study.measure_interference, {}, {"static_gate": "2D"}, 2),
-        # the compensation reading changes no run; the projected group's own batch is the one run (same cost)
-        (study.measure_interference, {}, {"compensation_reading": "two-sided"}, 1),
         # the Fig. 2 law changes only the Fig. 2 runs; the edge form's normalisation only the two edge-form runs
         (study.measure_tracking, {}, {"fig2_law": "omega 2 Hz"}, 1),
         (study.measure_tracking, {}, {"edge_norm": "slew"}, 2),

@@ -1,12 +1,14 @@
 """The static part of notebook 003's compensated image: the marker
 and interferer spots, the correlated background, stationary interferers on a circle about the object (its start, or
-its centre at each interferer's own frame of the run), and what a temporal-median compensation leaves (beyond the
-paper).
+its centre at each interferer's own frame of the run), and what a temporal-median compensation, the marker masked
+out, leaves (beyond the paper).
 
 Coordinates follow :mod:`tvtrack.render`: pixel centres at integers, ``x`` = column, ``y`` = row.
 """
 
 from __future__ import annotations
+
+import warnings
 
 import numpy as np
 from scipy import ndimage
@@ -145,16 +147,20 @@ def median_residual(
     brightness: float,
     noise_std: float,
 ) -> np.ndarray:
-    """What a temporal-median background estimate leaves of a static scene: ``-median_t(s_t + n_t)``.
+    """What a temporal-median background estimate leaves of a static scene, the marker masked out.
 
     The compensation subtracts, from every frame, the per-pixel median of the first ``n_frames`` raw frames
-    ``f + interferers + s_t + n_t`` (this project's choice: a median over >= 2 revolutions). Everything static --
-    background and stationary interferers -- cancels exactly, whatever its brightness; left is minus the median of the
-    marker's sweep plus noise: a faint ring where the marker passes (a pixel it covers in a share ``p < 1/2`` of the
-    frames reads ``-sigma Phi^-1(1 / (2 (1 - p)))`` for ``d >> sigma``), or the whole marker where it stood still for
-    more than half of them. The median is computed exactly inside the box the marker visits (plus a spot); outside it,
-    where only noise enters, it is drawn from the sample median's normal law, variance ``pi sigma^2 / (2 N)``. Instant
-    exposure, and no decoy, in the median frames.
+    ``f + interferers + s_t + n_t`` (this project's choice: a median over >= 2 revolutions), each pixel's median taken
+    over the frames in which the object's own marker spot does not cover it: eq. (19) subtracts ``f``, "the scene
+    without the object" (eq. (10)), so neither marker (rotating, or still at the object's centre) enters the
+    estimate. The background cancels exactly, whatever its brightness; left is minus the median of the noise over the
+    frames the marker left free. (Without the mask the median would erase the whole marker where it stood still for
+    more than half of the frames -- a non-rotating marker on a hovering object -- and leave a faint ring where it
+    swept.) The interferers are added afterwards at their post-compensation brightness ``d / SIR`` (the paper's SIR,
+    l. 198; :func:`.imaging.build_scene`). The median is computed exactly inside the box the marker visits (plus a
+    spot); outside it, where only noise enters, it is drawn from the sample median's normal law, variance
+    ``pi sigma^2 / (2 N)``, as are the pixels the marker covers in every frame (their ``f`` is estimated from no
+    frame; taken as well as elsewhere). Instant exposure, and no decoy, in the median frames.
 
     Parameters
     ----------
@@ -178,13 +184,15 @@ def median_residual(
     m = truth.marker[:, :N]  # (n, N, 2)
     lo = np.floor(m.min(axis=1) - diameter / 2 - 2).astype(np.int64)
     size = int(np.max(np.ceil(m.max(axis=1) + diameter / 2 + 2).astype(np.int64) - lo)) + 1
-    frames = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None])  # (N, n, s, s)
-    if noise_std > 0:
-        frames = frames + noise_std * rng.standard_normal(frames.shape)
-    box = -np.median(frames, axis=0)
+    covered = render_spot(spot, np.swapaxes(m, 0, 1), (size, size), diameter, brightness, lo[None]) > 0
+    noise = noise_std * rng.standard_normal(covered.shape) if noise_std > 0 else np.zeros(covered.shape)
+    free = ~covered.all(axis=0)  # pixels some frame shows without the marker
+    with warnings.catch_warnings():  # an all-masked pixel's median is NaN; it keeps the normal-law draw below
+        warnings.simplefilter("ignore", RuntimeWarning)
+        box = -np.nanmedian(np.where(covered, np.nan, noise), axis=0)
     ar = np.arange(size)
     ys, xs = lo[:, 1, None] + ar, lo[:, 0, None] + ar
-    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :]
+    ok = ((ys >= 0) & (ys < rows))[:, :, None] & ((xs >= 0) & (xs < cols))[:, None, :] & free
     trial = np.arange(n)[:, None, None]
     yi, xi = np.clip(ys, 0, rows - 1)[:, :, None], np.clip(xs, 0, cols - 1)[:, None, :]
     out[trial, yi, xi] = np.where(ok, box, out[trial, yi, xi])

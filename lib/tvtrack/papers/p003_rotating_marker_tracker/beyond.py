@@ -46,7 +46,8 @@ def exposure_study(seed: int, sizes: Sizes, sizes_i: Sizes, fps: float) -> dict:
 def median_example(seed: int, sc: Scenario) -> dict:
     """One trial of the temporal-median compensation (beyond the paper) for :func:`.plots.median_figure`: the truth, the
     interferers about its start and the residual the median of the first ``sc.median_revolutions`` revolutions leaves
-    (:func:`.scene.median_residual`; the static scene cancels, so the interferers leave nothing).
+    (:func:`.scene.median_residual`, the marker masked out: the background cancels; the interferers are added at
+    ``d / SIR`` in the runs).
 
     Returns
     -------

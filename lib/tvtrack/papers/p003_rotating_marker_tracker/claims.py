@@ -81,10 +81,12 @@ NOTES = {
     "C003-10": "l. 198: «если ... компенсации ... эквивалентно уменьшению яркости фона на порядок, то пороговое "
     "отношение ... до компенсации ... уменьшается до 0,2-0,3» (if compensation equals an order-of-"
     "magnitude background reduction, the pre-compensation threshold falls to 0.2-0.3); l. 208 names "
-    "compensation a main factor. The order of magnitude is a hypothesis: read one-sided (compensation "
-    "lowers the threshold at least about 1/kappa-fold: the ratio at most 2 x 0.1); this project's stricter "
-    "two-sided 'about 1/kappa' is the register's compensation_reading (the ratio's fold distance from kappa). A "
-    "bound certifies when every uncompensated run loses.",
+    "compensation a main factor. Decided by 'gate' alone: in the kappa model an uncompensated scene at SIR_0 = x "
+    "holds the interferers of a compensated scene at SIR = x with 1/kappa times its background, so the "
+    "compensated over uncompensated SIR_0 threshold is at most kappa whenever more background does not help "
+    "tracking ('compensation' not checkable, as C003-8; its ratio is reported, a bound [0, b] when any "
+    "uncompensated run lost lock at the grid's top SIR_0; C003-4's 'compensation' part measures the losses "
+    "without compensation).",
     "C003-11": "l. 192 says the errors depend substantially on the loop bandwidths without a direction: the "
     "'bandwidth' part is two-sided, the fold change max(q, 1/q) of the mean-square miss, 'substantial' "
     "from 1.25 (the 25 % that C003-4's insensitivity allows); the signed ratio is in section 7.",
@@ -203,9 +205,11 @@ def _interference_rules(D: float) -> dict[str, Rule]:
                 "gate": Monotone(
                     "SIR threshold, five interferers", f"gate side {gates} px (1.5, 3, 5 spot diameters)", "increasing"
                 ),
-                # the paper's order of magnitude, factor 2
-                "compensation": InBand(
-                    "pre-compensation SIR threshold with over without compensation (ratio, see note)", high=2 * 0.1
+                "compensation": NotCheckable(
+                    "In this compensation model the uncompensated scene at SIR_0 = x has the interferers of the "
+                    "compensated scene at SIR = x and 1/kappa times its background, so the pre-compensation threshold "
+                    "with compensation is at most kappa times the one without by construction (unless more background "
+                    "helps tracking); the 1/kappa itself is C003-8's arithmetic."
                 ),
             }
         ),

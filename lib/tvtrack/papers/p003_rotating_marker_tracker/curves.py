@@ -10,7 +10,6 @@ import numpy as np
 from .draws import stream_rng
 from .estimators import (
     compensation_factor,
-    compensation_reading,
     fold_distance,
     loss_share,
     threshold_bound,
@@ -96,11 +95,8 @@ def interference_claims(config: dict, base: Scenario, curves: dict, capt, xc: di
                 threshold_bound(r5, sirs),
                 threshold_bound(curves["gate", 5.0], sirs),
             ],
-            "compensation": compensation_reading(
-                compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
-                base.kappa,
-                config.get("compensation_reading", "one-sided"),
-            ),
+            # reported, not judged: at most kappa by construction (claims.py, C003-10's compensation part)
+            "compensation": compensation_factor(curves["uncompensated"], usirs, r5, sirs, base.kappa),
         },
         "C003-11": lambda: {
             "dynamics": loss_share(curves["gate", 1.5][-1]),

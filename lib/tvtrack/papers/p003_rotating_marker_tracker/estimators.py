@@ -23,8 +23,6 @@ __all__ = [
     "threshold_bound",
     "threshold_ratio",
     "extend_grid",
-    "COMPENSATION_READINGS",
-    "compensation_reading",
     "fold_distance",
     "LOCK_LIMIT",
     "grid_in_lock",
@@ -278,39 +276,6 @@ def share_difference(a, b) -> Estimate:
     )
 
 
-COMPENSATION_READINGS = ("one-sided", "two-sided")
-
-
-def compensation_reading(ratio: Estimate, kappa: float, reading: str) -> Estimate:
-    """C003-10's compensation ratio as its reading judges it (the rule: at most ``2 kappa``, i.e. compensation lowers
-    the SIR_0 threshold at least about 1/kappa-fold, within the rule's factor 2).
-
-    The paper (l. 198): "Если использование процедуры компенсации фоновых излучений эквивалентно уменьшению яркости
-    фона на порядок, то пороговое отношение сигнал/помеха, имевшее место до компенсации фона и гарантирующее отсутствие
-    срывов слежения, ... уменьшается до 0,2-0,3" ("if compensation is equivalent to reducing the background by an
-    order of magnitude, the no-loss threshold SIR before compensation ... decreases to 0.2-0.3"), and l. 208 names
-    compensation one of the main factors of the robustness. The order of magnitude is a hypothesis, not a measured
-    ratio: "one-sided" (the paper's reading, the default) keeps the ratio as measured, and a ratio below ``kappa``
-    (the uncompensated tracker fails even harder) meets the rule. "two-sided" (this project's stricter
-    "about 1/kappa-fold") judges the ratio's fold distance from ``kappa``: ``kappa exp|log(q / kappa)|`` (``q`` itself
-    for ``q >= kappa``, ``kappa^2 / q`` below it), at most ``2 kappa`` exactly when ``q`` lies within a factor 2 of
-    ``kappa``; an interval straddling ``kappa`` starts at ``kappa``.
-
-    Parameters
-    ----------
-    ratio : Estimate
-        Compensated over uncompensated SIR_0 threshold (:func:`compensation_factor`).
-    kappa : float
-        Compensation residual.
-    reading : {"one-sided", "two-sided"}
-    """
-    if reading not in COMPENSATION_READINGS:
-        raise ValueError(f"parameter 'reading' = {reading!r}; it must be one of {COMPENSATION_READINGS}")
-    if reading == "one-sided":
-        return ratio
-    return fold_distance(ratio, kappa)
-
-
 def fold_distance(ratio: Estimate, reference: float) -> Estimate:
     """A ratio's fold distance from ``reference``, either direction: ``k exp|log(q / k)|`` (``q`` itself for
     ``q >= k``, ``k^2 / q`` below it), so a two-sided rule ("depends on", "about k") is one band on one number.
@@ -323,7 +288,7 @@ def fold_distance(ratio: Estimate, reference: float) -> Estimate:
     ratio : Estimate
         A ratio (positive), with its 95 % interval.
     reference : float
-        The ratio of no change (``1`` for C003-11's bandwidth part, ``kappa`` for C003-10's two-sided reading).
+        The ratio of no change (``1`` for C003-11's bandwidth part).
     """
     k = float(reference)
 
@@ -347,8 +312,8 @@ def compensation_factor(lost_unc, usirs, lost_comp, sirs, kappa: float) -> Estim
     ``kappa`` if compensation is worth its 1/kappa background reduction (C003-10), 0 if the raw background alone
     breaks lock.
 
-    When a run without compensation lost lock at every grid SIR_0, its threshold lies above the grid: the ratio is
-    then bounded above by the compensated threshold's upper bound over the grid's top (a direct-count bound,
+    When any run without compensation lost lock at the grid's top SIR_0, its loss-free threshold lies above the grid:
+    the ratio is then bounded above by the compensated threshold's upper bound over the grid's top (a direct-count bound,
     reported as ``[0, bound]``); a run that broke below the grid leaves the ratio undecided (extrapolated).
     """
     unc = np.asarray(lost_unc, bool)

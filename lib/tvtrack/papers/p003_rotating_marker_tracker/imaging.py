@@ -474,9 +474,10 @@ def build_scene(
     far outside the image).
 
     ``compensation``: ``"kappa"`` leaves ``kappa`` times the static scene (:meth:`RotatingMarkerScene.
-    static_residual`); ``"median"`` subtracts the temporal median of the first ``median_frames`` frames
-    (:func:`median_residual`: background and interferers cancel) in every block with ``kappa < 1`` (a block with
-    ``kappa = 1`` stays uncompensated).
+    static_residual`); ``"median"`` subtracts the temporal median of the first ``median_frames`` frames, the
+    marker's own spot masked out (:func:`median_residual`: the background cancels), in every block with ``kappa < 1``
+    (a block with ``kappa = 1`` stays uncompensated). Either way each interferer keeps ``d / SIR``: the paper's SIR is
+    the brightness an interferer keeps after compensation (l. 198).
 
     Returns
     -------
@@ -485,7 +486,7 @@ def build_scene(
     n = truth.xr.shape[0]
     rngs, n_block, n_common = generator_blocks(rng, n, n_common)
     blocks = _check_blocks(blocks, len(rngs), compensation)
-    q, residual, by_median = [], [], []
+    q, residual = [], []
     for j, (g, b) in enumerate(zip(rngs, blocks)):
         first = j * n_block
         count = b.get("n_interferers", n_interferers)
@@ -497,11 +498,10 @@ def build_scene(
             )
         )
         static = dict(kappa=kappa, background_std=background_std, corr_length=corr_length)
-        res, med = _block_residual(
+        res = _block_residual(
             g, {**static, **b}, truth, first, n_common, compensation, median_frames, image_shape, spot, diameter,
             brightness, noise_std,
         )  # fmt: skip
-        by_median.append(np.full(n_block, med))
         residual.append(tile_rows(res, n_block))
     n_q = max(x.shape[1] for x in q)
     q = np.concatenate([np.concatenate([x, np.full((x.shape[0], n_q - x.shape[1], 2), -1e4)], axis=1) for x in q])
@@ -509,11 +509,12 @@ def build_scene(
     sir = np.broadcast_to(np.asarray(sir, dtype=float), (n,))
     if np.any(sir <= 0):
         raise ValueError(f"parameter 'sir' has values <= 0 ({sir.min()}); it must be > 0")
-    cancelled = np.concatenate(by_median)[:, None]  # a temporal median removes stationary interferers exactly
+    # SIR is the marker's brightness over what each interferer keeps after compensation (l. 198), whatever the
+    # compensation: d / SIR under the median too (one that removed them would leave no SIR to set)
     add_spots(
         residual,
         q,
-        np.where((q[..., 0] > -1e3) & ~cancelled, (brightness / sir)[:, None], 0.0),
+        np.where(q[..., 0] > -1e3, (brightness / sir)[:, None], 0.0),
         spot,
         diameter if interferer_diameter is None else interferer_diameter,
     )
@@ -569,14 +570,14 @@ def _block_residual(
     g, b: dict, truth, first: int, n_common: int, compensation: str, median_frames: int, image_shape, spot: str,
     diameter: float, brightness: float, noise_std: float,
 ):  # fmt: skip
-    """One generator block's static residual, shape (n_common, rows, cols), and whether a temporal median made it
-    (stationary interferers then cancel): the median of the first ``median_frames`` frames when ``compensation`` is
-    ``"median"`` and the block compensates (``kappa < 1``), else ``kappa`` times the background (``b``'s settings)."""
+    """One generator block's static residual without its interferers, shape (n_common, rows, cols): what the median of
+    the first ``median_frames`` frames leaves (:func:`median_residual`) when ``compensation`` is ``"median"`` and the
+    block compensates (``kappa < 1``), else ``kappa`` times the background (``b``'s settings)."""
     if compensation == "median" and b["kappa"] < 1:
         part = MarkerTruth(
             *(getattr(truth, f)[first : first + n_common] for f in ("xr", "yr", "r", "theta", "omega")), truth.t
         )
-        return median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std), True
+        return median_residual(g, part, median_frames, image_shape, spot, diameter, brightness, noise_std)
     res = RotatingMarkerScene.static_residual(
         g,
         n_common,
@@ -589,7 +590,7 @@ def _block_residual(
         spot=spot,
         diameter=diameter,
     )
-    return res, False
+    return res
 
 
 COMPENSATIONS = ("kappa", "median")

@@ -10,8 +10,14 @@ KINDS = {
         "an unreported setting: Fig. 1's 'x random, y a sinusoid' and nothing for the interference runs; the laws are never printed",
     ),
     "motion_scale": (
+        "unreported setting",
+        "an unreported setting: Fig. 1's 'Y: sinusoid, X: random' at amplitudes never printed (it was filed as a "
+        "reading, with a hovering object that Fig. 1's moving object rules out; that is now interference_motion)",
+    ),
+    "interference_motion": (
         "reading",
-        "a reading of Fig. 3 (the marker sweeps the interferers; nothing says the object moved: the hovering object) and of Fig. 1's amplitudes, which are not given (it was filed as a regime)",
+        "a reading of Fig. 3 (l. 198): the marker sweeps the interferers, and nothing says the object moved in the "
+        "interference runs",
     ),
     "sinusoid_hz": (
         "unreported setting",
@@ -26,7 +32,6 @@ KINDS = {
         "an unreported setting: Fig. 2's omega and r 'vary sinusoidally' at a depth and rate never printed",
     ),
     "bandwidth_reading": ("reading", "a reading of 'bandwidths 10; 0.2 and 6 Hz'"),
-    "compensation_reading": ("reading", "a reading of l. 198 and l. 208 on compensation"),
     "slope_range": ("reading", "a reading of 'the quadrant form restores a linear part'"),
     "phase_loop": ("reading", "a reading of '6 Hz for omega' (l. 192)"),
     "noise": (

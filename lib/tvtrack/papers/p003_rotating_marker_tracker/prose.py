@@ -42,7 +42,7 @@ def _title(name: str) -> str:
     return REGISTER[name].title if name in REGISTER else name
 
 
-def dependence(records: dict, entries=("motion", "motion_scale")) -> str:
+def dependence(records: dict, entries=("motion", "motion_scale", "interference_motion")) -> str:
     """Which parts of which claims change verdict when one of the named register entries alone changes (the
     one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records; each
     entry named by its title and each value by its phrase (:class:`tvtrack.register.Entry`), never by code names."""
@@ -74,8 +74,8 @@ def threshold_conditions(ex, key: str, paper: float) -> str:
 
     The word comes from ``_map_bound`` where the run has it (:func:`.study.threshold_bound`): a threshold whose runs
     broke outside the grid on one side only still lies measurably below (or above) the paper's value. Runs that
-    measured no thresholds (asked only for claims without the static curves, e.g. a change of the compensation
-    reading alone, which changes no run) are left out."""
+    measured no thresholds (asked only for claims without the static curves, e.g. a sizing replicate of other
+    claims) are left out."""
     hits = []
     for r in ex.runs:
         if r.stage == "replicate" or "_map" not in r.outputs:

@@ -78,7 +78,8 @@ class Scenario:
     for the decoy), ``1 / kappa`` at the brightness a stationary interferer *emits* there (equal emitters).
     ``exposure`` ``"instant"`` or ``"integrated"`` over the frame (:attr:`exposure_steps` sub-frame renders);
     ``compensation`` ``"kappa"`` (``kappa`` times the static scene left) or ``"median"`` (a per-pixel temporal median
-    of the first ``median_revolutions`` revolutions subtracted, :func:`median_residual`). ``interferer_centre``
+    of the first ``median_revolutions`` revolutions, the marker masked out, subtracted, :func:`median_residual`; the
+    interferers keep ``d / SIR`` either way). ``interferer_centre``
     (:data:`PLACEMENTS`): the interferers' circle about the object's start, about the image centre, or ``"trace"``,
     each interferer about the object's centre at its own random frame of the run (on the marker's trace).
     """

@@ -55,6 +55,7 @@ __all__ = [
     "BANDWIDTH_PAIR",
     "Sizes",
     "scenario",
+    "interference_scenario",
     "screen_sizes",
     "criterion",
     "loss_share",
@@ -139,7 +140,7 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
 
     Keys read: ``motion``, ``motion_scale``, ``rotation_rate``, ``phase_loop``, ``residual_background``,
     ``noise``, ``fps``, ``spot``, ``exposure``, ``compensation``, ``interferer_radius``, ``interferer_layout``, ``placement``, ``horizon``, ``edge_norm``,
-    ``decoy_brightness``.
+    ``decoy_brightness`` (``interference_motion`` is read by :func:`interference_scenario`).
     """
     c = config
     base = Scenario()
@@ -177,6 +178,15 @@ def scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
     )
     kw.update(over)
     return Scenario(**kw)
+
+
+def interference_scenario(config: dict, sizes: Sizes = Sizes(), **over) -> Scenario:
+    """The :class:`Scenario` of the interference runs: :func:`scenario`, with the object held still where
+    ``interference_motion`` is "hovering" (a reading of Fig. 3 that the Fig. 1 runs, whose object moves, never
+    read)."""
+    if config.get("interference_motion", "moving") == "hovering":
+        over = {"x_std": 0.0, "y_amplitude": 0.0, **over}
+    return scenario(config, sizes, **over)
 
 
 def criterion(config: dict, sc: Scenario) -> LossCriterion:
@@ -470,7 +480,7 @@ def measure_interference(config: dict, seed: int, sizes: Sizes = Sizes(), claims
     asked = _asked(claims, I_CLAIMS)
     need = set().union(*(_I_NEEDS[c] for c in asked)) if asked else set()
     n, sirs = sizes.trials, np.asarray(SIR_GRID)
-    base = scenario(config, sizes)
+    base = interference_scenario(config, sizes)
     D = base.diameter
     crit = criterion(config, base)
     static_half = {"3D": 1.5 * D, "2D": D}[config.get("static_gate", "3D")]
