@@ -42,6 +42,7 @@ from .verdicts import LABELS, VERDICTS, Rule
 from .flip_words import flip_with_kind, label_basis, mixed_kinds
 from .paragraphs import label_words, paper_paragraph, results_summary
 from .numbers import format_measured
+from .run_words import share_counts
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
     FLIP_SHORT,
@@ -53,7 +54,6 @@ from .wording import (
     claim_flips,
     claim_summary,
     main_part,
-    share_counts,
     shown_label,
     side_words,
 )

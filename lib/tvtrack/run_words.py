@@ -19,6 +19,7 @@ __all__ = [
     "part_name",
     "plain_text",
     "not_checkable_reason",
+    "share_counts",
 ]
 
 
@@ -119,3 +120,37 @@ def not_checkable_reason(claim: Mapping) -> str:
         firsts.append(first)
     reason = max(firsts, key=len) or "nothing measurable"
     return reason[:1].lower() + reason[1:] if reason[1:2].islower() else reason  # after a colon: "In this" -> "in this"
+
+
+def share_counts(share: Mapping) -> str:
+    """``"41 agree, 3 flip and 6 stay undecided of 50 explored configurations"``: the share over every explored
+    configuration, never of the decided ones only (a record without ``flip``: agree of decided, as it counted);
+    empty without a share."""
+    if not share or share.get("design", share.get("decided")) in (None, 0):
+        return ""
+    if "flip" not in share:
+        return f"{share.get('agree')} of {share.get('decided')} explored configurations agree"
+    agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
+    design = int(share.get("design", agree + flip + undecided))
+    left = int(share.get("left_by_budget") or 0)
+    why = f" ({left} of them lean towards agreement but were given fewer runs than the default: a cap limits the runs"
+    why += " spent confirming agreement)"
+    return (
+        f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
+        f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
+        f"configuration{'s' * (design != 1)}{_pinned_counts(share.get('pinned'))}"
+    )
+
+
+def _pinned_counts(pinned: Mapping | None) -> str:
+    """``"; of 2 pinned configurations measured beside them (joint configurations every run measures), 1 flips,
+    1 agrees and 0 stay undecided"``; empty without pinned configurations."""
+    if not pinned:
+        return ""
+    agree, flip, undecided = (int(pinned.get(k) or 0) for k in ("agree", "flip", "undecided"))
+    n = agree + flip + undecided
+    return (
+        f"; of {n} pinned configuration{'s' * (n != 1)} measured beside them (joint configurations every run "
+        f"measures), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
+        f"stay{'s' * (undecided == 1)} undecided"
+    )

@@ -21,7 +21,7 @@ from typing import Any, Mapping
 
 from .numbers import finite, number
 from .run_words import lock_sentence, lost_basis, lost_lead, not_checkable_reason, part_name, plain_text
-from .run_words import runs_sentence, slowest_part, thin_share
+from .run_words import runs_sentence, share_counts, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -361,40 +361,6 @@ _HEAD = {
 
 def _cap(text: str) -> str:
     return text[:1].upper() + text[1:]
-
-
-def share_counts(share: Mapping) -> str:
-    """``"41 agree, 3 flip and 6 stay undecided of 50 explored configurations"``: the share over every explored
-    configuration, never of the decided ones only (a record without ``flip``: agree of decided, as it counted);
-    empty without a share."""
-    if not share or share.get("design", share.get("decided")) in (None, 0):
-        return ""
-    if "flip" not in share:
-        return f"{share.get('agree')} of {share.get('decided')} explored configurations agree"
-    agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
-    design = int(share.get("design", agree + flip + undecided))
-    left = int(share.get("left_by_budget") or 0)
-    why = f" ({left} of them lean towards agreement but were given fewer runs than the default: a cap limits the runs"
-    why += " spent confirming agreement)"
-    return (
-        f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
-        f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
-        f"configuration{'s' * (design != 1)}{_pinned_counts(share.get('pinned'))}"
-    )
-
-
-def _pinned_counts(pinned: Mapping | None) -> str:
-    """``"; of 2 pinned configurations measured beside them (joint configurations every run measures), 1 flips,
-    1 agrees and 0 stay undecided"``; empty without pinned configurations."""
-    if not pinned:
-        return ""
-    agree, flip, undecided = (int(pinned.get(k) or 0) for k in ("agree", "flip", "undecided"))
-    n = agree + flip + undecided
-    return (
-        f"; of {n} pinned configuration{'s' * (n != 1)} measured beside them (joint configurations every run "
-        f"measures), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
-        f"stay{'s' * (undecided == 1)} undecided"
-    )
 
 
 def _share_sentence(part: Mapping, name: str | None = None) -> str:

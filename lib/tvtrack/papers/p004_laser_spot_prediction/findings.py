@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...estimate import Estimate
-from ...wording import share_counts
+from ...run_words import share_counts
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
