@@ -169,7 +169,7 @@ def test_c000_3_and_c000_9_read_their_own_filters_and_points(measured):
     """Kills: C000-3's ratio or C000-9's curve taken from another filter or another operating point."""
     v1 = _independent_steady(21, 20.0, 0.9, "v1").mean()
     v2 = _independent_steady(21, 20.0, 0.9, "v2").mean()
-    assert measured["C000-3"]["P=0.9"].value == pytest.approx(v1 / v2, rel=1e-9)
+    assert measured["C000-3"]["measured"]["P=0.9"].value == pytest.approx(v1 / v2, rel=1e-9)
     for v, filt in ((1, "v1"), (2, "v2")):
         expect = [_independent_steady(21, psi, 0.5, filt).mean() for psi in SMALL.psi_grid]
         np.testing.assert_allclose([e.value for e in measured["C000-9"][f"variant {v}"]], expect, rtol=1e-9)

@@ -2,7 +2,9 @@
 statement as the paper says (tests/rule_pins.py). Sentences from the paper's conclusions, acceptance bands
 set in this project; the values are written here, not read from claims.py."""
 
-from rule_pins import Band, Order, Trend, Unchecked, problems
+from rule_pins import Band, Order, Trend, Unchecked, est, problems
+
+from tvtrack.montecarlo import Estimate
 
 RATIO_UP = "error variance over sigma_x^2* rises with P"
 SAME = Band(
@@ -41,13 +43,15 @@ WITHIN_10 = Band(
     (0.8, 1.2),
     unit="(ratio)",
 )
+# "не оказывает существенного влияния на точность" (Conclusions): no substantial influence either way, so the band
+# is two-sided, a factor 1.3 each side of 1 (a ratio of 0.7, 30 % below sigma_x^2*, is as substantial as 1.4)
 LOW_P = Band(
     "for P < 0.5 the non-stationary noise does not substantially affect accuracy",
-    "ratio <= 1.3",
-    None,
+    "ratio in [1/1.3, 1.3]",
+    1 / 1.3,
     1.3,
-    (1.0, 1.2),
-    (1.5, 3.0),
+    (1.0, 1.2, 0.85),
+    (1.5, 3.0, 0.7, 0.5),
     unit="(ratio)",
 )
 HIGH_P = Band(
@@ -74,9 +78,10 @@ PINS = {
         ),
     },
     "C000-3": {
-        "P=0": Unchecked("same potential accuracy", "at P = 0 the two variants are one filter"),
-        "P=0.*": SAME,
-        "psi_A=*": SAME,
+        # at P = 0 the two variants are one filter: not checkable, and Fig. 2 read at P = 0 has no parts
+        "contrast=* / P=0": Unchecked("same potential accuracy", "at P = 0 the two variants are one filter"),
+        "contrast=* / P=0.*": SAME,
+        "contrast=*default* / psi_A=*": SAME,
     },
     "C000-4": {
         "": Order("variant 1 needs more computation", "cost v1 / cost v2 > 1", (1.5, 4.0), (0.67, 0.25), "(ratio)")
@@ -134,9 +139,41 @@ def test_the_rules_follow_the_run_sizes():
     from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
     from tvtrack.papers.p000_dissector_ekf.study import Sizes
 
-    rules = claim_rules(Sizes(contrast_grid=(0.0, 0.3, 0.8), psi_grid=(7.0,), dt_points=((30.0, 0.2),)))
-    assert list(rules["C000-3"].parts) == ["P=0", "P=0.3", "P=0.8", "psi_A=7"]
+    rules = claim_rules(Sizes(contrast_grid=(0.0, 0.3, 0.8), psi_grid=(7.0, 20.0), dt_points=((30.0, 0.2),)))
+    assert list(rules["C000-3"].default.parts) == ["P=0", "P=0.3", "P=0.8", "psi_A=7", "psi_A=20"]
     assert list(rules["C000-8"].parts) == ["variant 1 at psi_A=30, P=0.2", "variant 2 at psi_A=30, P=0.2"]
+
+
+def test_c000_3_measures_each_configuration_once_and_nothing_true_by_construction():
+    """Fig. 2's psi_A = 20 at the default P = 0.5 is Fig. 3's P = 0.5 at the default psi_A = 20: one part, not two
+    (the record showed the same ratio and runs to decide twice). At the register's contrast = 0 both variants are
+    one filter at every psi_A: the Fig. 2 parts are not judged (they were seven configurations reading 1.0 [1.0,
+    1.0] as agreement)."""
+    from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
+    from tvtrack.papers.p000_dissector_ekf.study import Sizes
+    from tvtrack.verdicts import NotCheckable, for_config
+
+    rule = claim_rules(Sizes(contrast_grid=(0.0, 0.5, 0.9), psi_grid=(5.0, 20.0, 50.0)))["C000-3"]
+    assert list(for_config(rule, {"contrast": 0.5}).parts) == ["P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"]
+    assert list(for_config(rule, {"contrast": 0.9}).parts) == ["P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"]
+    at_zero = for_config(rule, {"contrast": 0.0})
+    assert list(at_zero.parts) == ["P=0", "P=0.5", "P=0.9"]
+    assert isinstance(at_zero.parts["P=0"], NotCheckable)
+    one = {"P=0": None, "P=0.5": est(1.0), "P=0.9": est(1.0), "psi_A=5": est(1.0), "psi_A=50": est(1.0)}
+    assert rule.judge({"reading": 0.0, "measured": one}).why.count("psi_A=") == 0
+
+
+def test_c000_5_reads_a_ratio_far_below_one_as_a_substantial_effect():
+    """The record's P = 0.25 ratio 0.809 [0.661, 0.990] read "reproduced" under the one-sided "at most 1.3", while the
+    same 0.81 made C000-7's trend "separated against the trend": one number, a substantial change and no effect.
+    Two-sided, it straddles 1/1.3 = 0.769 (undecided), and a ratio wholly below it is not reproduced."""
+    from tvtrack.papers.p000_dissector_ekf.claims import RULES
+
+    rule = RULES["C000-5"].default.parts["P=0.25"]
+    assert rule.decide(Estimate(0.809, 0.084, 0.661, 0.990, 2400, 0.95, "t")) == "undecided"
+    assert rule.decide(est(0.7)) == "not reproduced"
+    assert rule.decide(Estimate(0.9, 0.094, 0.733, 1.106, 2400, 0.95, "t")) == "undecided"
+    assert rule.decide(est(1.1)) == "reproduced"
 
 
 def test_every_rule_of_000_decides_as_the_paper_says():

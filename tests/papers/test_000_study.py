@@ -57,7 +57,8 @@ def test_measure_returns_every_claim_with_the_parts_its_rule_reads_and_reproduce
     assert set(a) == set(DEPENDS) - {"C000-4"}
     assert a["C000-2"]["reading"] == study.C2_CARD
     assert set(a["C000-2"]["measured"]) == {"P=0", "P=0.5 variant 1", "P=0.5 variant 2"}
-    assert set(a["C000-3"]) == {"P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"}
+    assert a["C000-3"]["reading"] == DEFAULT["contrast"]
+    assert set(a["C000-3"]["measured"]) == {"P=0", "P=0.5", "P=0.9", "psi_A=5", "psi_A=50"}
     assert set(a["C000-8"]) == {"variant 1 at psi_A=20, P=0.5", "variant 2 at psi_A=20, P=0.5"}
     assert len(a["C000-7"]["trend"]) == 3 and len(a["C000-9"]["variant 2"]) == 2
     assert a["C000-6"].value == b["C000-6"].value
@@ -89,7 +90,7 @@ def test_measure_asked_for_some_claims_measures_only_those_with_the_same_values(
 
 def test_at_zero_contrast_the_variants_are_the_same_filter_and_the_ratio_is_exact():
     m = study.measure(DEFAULT, 3, SMALL)
-    e = m["C000-3"]["P=0"]
+    e = m["C000-3"]["measured"]["P=0"]
     assert (e.value, e.ci_low, e.ci_high, e.method) == (1.0, 1.0, 1.0, "exact")
     assert m["C000-7"]["trend"][0].method == "exact"
     assert not vd.is_undecided(e)
@@ -227,7 +228,7 @@ def test_c000_9_reads_the_statistic_median_of_runs():
 
 
 def test_c000_3_own_covariance_reading_is_the_ratio_of_the_filters_steady_d11():
-    got = study.measure({**DEFAULT, "C000-3 accuracy": "filters' own D11"}, 3, SMALL)["C000-3"]["P=0.5"]
+    got = study.measure({**DEFAULT, "C000-3 accuracy": "filters' own D11"}, 3, SMALL)["C000-3"]["measured"]["P=0.5"]
     psi = DEFAULT["psi_A"]
     d1 = study.filter_errors(DEFAULT, 3, SMALL, psi, 0.5, "v1")["d_steady"]
     d2 = study.filter_errors(DEFAULT, 3, SMALL, psi, 0.5, "v2")["d_steady"]
@@ -296,8 +297,8 @@ def test_c000_4_cost_reads_its_register_entries():
     base = {**{k: REGISTER.default()[k] for k in DEPENDS["C000-4"]}, "C000-4 cost measure": "CPU time"}
     fixed = measure_cost(base, 1, n_trials=200, n_steps=100)["C000-4"]
     updated = measure_cost({**base, "v2 noise at": "updated estimate"}, 1, n_trials=200, n_steps=100)["C000-4"]
-    assert fixed > 1.0  # variant 1's 2 x 2 algebra costs more per step than variant 2's scalar EKF
-    assert updated < fixed  # the re-evaluation of eq. (9) at the update adds to variant 2's work
+    assert fixed.value > 1.0  # variant 1's 2 x 2 algebra costs more per step than variant 2's scalar EKF
+    assert updated.value < fixed.value  # the re-evaluation of eq. (9) at the update adds to variant 2's work
 
 
 def test_each_variant_is_in_lock_against_its_own_steady_level():
@@ -329,3 +330,40 @@ def test_each_variant_is_in_lock_against_its_own_steady_level():
     between = {"scans": np.full((3, 6), (levels["v1"] + levels["v2"]) / 2)}
     assert np.all(study.acquired_at(cfg, 9, SMALL, "v1", between) == scan_s)
     assert np.all(np.isinf(study.acquired_at(cfg, 9, SMALL, "v2", between)))
+
+
+def test_c000_3_at_zero_contrast_measures_no_fig2_part_and_tags_its_contrast():
+    """At the register's contrast = 0 both variants are one filter at every psi_A (their ratio read 1.0 [1.0, 1.0]
+    and counted as agreement in 7 of 54 configurations): the Fig. 2 parts are not measured there, and the rule in
+    force for that contrast has none. Fig. 2's psi_A = 20 at P = 0.5 is Fig. 3's P = 0.5 part, measured once."""
+    sizes = study.Sizes(**{**SMALL.__dict__, "psi_grid": (5.0, 20.0)})
+    at_zero = study.measure({**DEFAULT, "contrast": 0.0}, 3, sizes, claims=frozenset({"C000-3"}))["C000-3"]
+    assert at_zero["reading"] == 0.0 and set(at_zero["measured"]) == {"P=0", "P=0.5", "P=0.9"}
+    default = study.measure(DEFAULT, 3, sizes, claims=frozenset({"C000-3"}))["C000-3"]["measured"]
+    assert set(default) == {"P=0", "P=0.5", "P=0.9", "psi_A=5"}
+    from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
+
+    rule = claim_rules(sizes)["C000-3"]
+    assert rule.judge(at_zero).verdict != "not checkable" and "psi_A=" not in rule.judge(at_zero).why
+
+
+def test_c000_8_runs_each_point_at_its_own_psi_a_under_every_contrast_convention():
+    """The sentence on the sampling step («ошибки за счет дискретизации не превышали 3 %») names no Fig. 3 point:
+    C000-8's part 'variant 2 at psi_A=20, P=0.9' is run at psi_A = 20 under every convention (under 'fixed
+    background' it ran at psi_A = 180 and kept the name of 20)."""
+    assert "contrast convention" not in DEPENDS["C000-8"]
+    sizes = study.Sizes(**{**SMALL.__dict__, "dt_points": ((20.0, 0.9),)})
+    base = study.measure(DEFAULT, 5, sizes, claims=frozenset({"C000-8"}))["C000-8"]
+    for convention in ("fixed total current", "fixed background"):
+        other = study._c8({**DEFAULT, "contrast convention": convention}, 5, sizes)
+        assert repr(other) == repr(base)
+
+
+def test_the_kinds_of_the_sample_model_and_the_median():
+    """How the paper's own Monte Carlo sampled the current is a setting it never printed ((E5)-(E6)'s N0/dt fits
+    both samplers); the median run is no reading of (E9), which prints sigma_x^2 as the ensemble mean (overline): a
+    yardstick beyond the paper."""
+    from tvtrack.register import side_of
+
+    assert side_of(REGISTER["sample model"].kind) == "setting"
+    assert side_of(REGISTER["statistic"].kind) == "world"

@@ -11,6 +11,16 @@ runs not in lock for good by ``acquire_by_T`` (at most 0.1); the other reading m
 the scan ending at ``acquire_by_T`` over its steady value, a ratio. Its acceptance band, set here, is "within 10 %
 of its steady state": "within" is two-sided, so that reading is judged by ``ratio in [0.9, 1.1]`` (an ensemble
 variance still 10 % below its steady value has not converged either).
+
+C000-5's "does not substantially affect the accuracy" (Conclusions: «не оказывает существенного влияния на
+точность») is two-sided too: an effect is substantial either way, so a ratio to sigma_x^2* below ``1 / 1.3`` is as
+substantial as one above ``1.3`` (:data:`NOT_SUBSTANTIAL`, symmetric on the ratio's log scale).
+
+C000-3 judges no comparison at P = 0: there, with c_s = N0 P/(1-P), the variants are one filter and the ratio is 1
+by construction. Its P = 0 part is not checkable, and at the register's "contrast" = 0 (Fig. 2 read at P = 0) its
+Fig. 2 parts are not measured (:class:`tvtrack.verdicts.ByReading` on "contrast": that value's rule has the Fig. 3
+parts only). The Fig. 2 point psi_A = 20 at the default contrast P = 0.5 is Fig. 3's P = 0.5 point at the default
+psi_A = 20, one measurement: it is the part "P=0.5" only.
 """
 
 from __future__ import annotations
@@ -18,9 +28,16 @@ from __future__ import annotations
 from ... import verdicts as vd
 from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, Rule
 from .readings import AT_09, C2_EVERY, ENSEMBLE_MEAN, EVERY_ABOVE, LATE_SHARE
+from .register import REGISTER
 from .sizes import Sizes
 
-__all__ = ["CLAIMS", "RULES", "claim_rules", "cost_rule"]
+__all__ = ["CLAIMS", "RULES", "NOT_SUBSTANTIAL", "claim_rules", "cost_rule", "fig2_points"]
+
+#: C000-5's "not substantially" as a band on the ratio to sigma_x^2*: within a factor 1.3 either way.
+NOT_SUBSTANTIAL = (1 / 1.3, 1.3)
+#: The register defaults of Fig. 2's contrast and Fig. 3's psi_A (register entries "contrast" and "psi_A"): C000-3's
+#: Fig. 2 point at psi_A = 20 is its Fig. 3 point at P = 0.5 there, one measurement.
+CONTRAST_DEFAULT, PSI_DEFAULT = REGISTER["contrast"].default, REGISTER["psi_A"].default
 
 
 def _claim(statement: str, paper_value: str) -> dict[str, str]:
@@ -78,14 +95,16 @@ def _convergence(acquire_by: float) -> vd.ByReading:
 
 
 def _contrast_threshold(grid_p) -> vd.ByReading:
-    """C000-5's rule, per reading of "for P > 0.5 it substantially determines": at most 1.3 at every Fig. 3
-    contrast in (0, 0.5]; at least 2 at P = 0.9 (the default), or at every Fig. 3 contrast above 0.5 (the
-    adversarial reading "at every P > 0.5": the paper's threshold is P = 0.5, not 0.9)."""
+    """C000-5's rule, per reading of "for P > 0.5 it substantially determines": within a factor 1.3 either way
+    (:data:`NOT_SUBSTANTIAL`: "does not substantially affect" is two-sided) at every Fig. 3 contrast in (0, 0.5]; at
+    least 2 at P = 0.9 (the default), or at every Fig. 3 contrast above 0.5 (the adversarial reading "at every
+    P > 0.5": the paper's threshold is P = 0.5, not 0.9)."""
 
     def ratio(p):  # the reading "C000-5 comparison" puts the filter ignoring the noise over variant 2 instead
         return f"error variance with the signal noise / with background noise only (sigma_x^2*) at P = {p:g}"
 
-    below = {f"P={p:g}": InBand(ratio(p), high=1.3, unit="(ratio)") for p in grid_p if 0 < p <= 0.5}
+    low, high = NOT_SUBSTANTIAL
+    below = {f"P={p:g}": InBand(ratio(p), low, high, unit="(ratio)") for p in grid_p if 0 < p <= 0.5}
 
     def rule(above):
         return AllOf({**below, **{f"P={p:g}": InBand(ratio(p), 2.0, unit="(ratio)") for p in above}})
@@ -110,24 +129,38 @@ def _two_percent(grid_p) -> vd.ByReading:
     return vd.ByReading("C000-2 contrasts", {C2_EVERY: AllOf({k: part(k) for k in every})}, default)
 
 
+def fig2_points(grid_p, grid_psi) -> list[float]:
+    """The psi_A of C000-3's Fig. 2 parts: the psi grid without the default psi_A where the contrast grid holds the
+    default contrast (that point is Fig. 3's, the part "P=0.5")."""
+    return [p for p in grid_psi if not (p == PSI_DEFAULT and CONTRAST_DEFAULT in grid_p)]
+
+
+def _same_accuracy(grid_p, grid_psi) -> vd.ByReading:
+    """C000-3's rule: variant 1 / variant 2 within [0.8, 1.25] at every Fig. 3 contrast but P = 0 and at every Fig. 2
+    SNR (:func:`fig2_points`); at the register's contrast = 0 the Fig. 2 parts are left out (the same filter twice)."""
+    identity = NotCheckable(
+        "at P = 0 both variants are the same filter (c_s = N0 P/(1-P) = 0: variant 1's signal-noise state is not "
+        "observed): the ratio is 1 by construction, at every psi_A"
+    )
+
+    def part(k):
+        return InBand(f"error variance of variant 1 / of variant 2 at {k}", 0.8, 1.25, "(ratio)")
+
+    fig3 = {f"P={p:g}": identity if p == 0 else part(f"P={p:g}") for p in grid_p}
+    fig2 = {f"psi_A={p:g}": part(f"psi_A={p:g}") for p in fig2_points(grid_p, grid_psi)}
+    return vd.ByReading("contrast", {0.0: AllOf(fig3)}, AllOf({**fig3, **fig2}))
+
+
 def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
     """The claim rules of C000-1, -2, -3, -5, -6, -7, -8, -9 for a run of ``sizes`` (:class:`.study.Sizes`: its
     grids name the parts; the defaults if None). C000-4 has its own measurement (:func:`.study.measure_cost`)."""
     sizes = Sizes() if sizes is None else sizes
     band = InBand
-    identity = NotCheckable("at P = 0 both variants are the same filter: the ratio is 1 by construction")
     grid_p, grid_psi = sizes.contrast_grid, sizes.psi_grid
     return {
         "C000-1": _convergence(sizes.acquire_by_T),
         "C000-2": _two_percent(grid_p),
-        "C000-3": AllOf(
-            {
-                k: identity
-                if k == "P=0"
-                else band(f"error variance of variant 1 / of variant 2 at {k}", 0.8, 1.25, "(ratio)")
-                for k in [f"P={p:g}" for p in grid_p] + [f"psi_A={p:g}" for p in grid_psi]
-            }
-        ),
+        "C000-3": _same_accuracy(grid_p, grid_psi),
         "C000-5": _contrast_threshold(grid_p),
         "C000-6": band(
             "error variance of the filter at P = 0.9 / the potentially achievable variance",

@@ -6,8 +6,9 @@ from __future__ import annotations
 #: {entry name: (kind, the line of the paper that decides it)}.
 KINDS = {
     "sample model": (
-        "model",
-        "a world beyond the paper: (E5)-(E6)'s N/dt is the integrating sampler; the point sample is the textbook idealisation",
+        "unreported setting",
+        "an unreported setting: how the paper's own Monte Carlo sampled the dissector current is never printed; "
+        "(E5)-(E6)'s N0/dt fits the integrating sampler and the point sample alike",
     ),
     "scoring time": ("reading", "a reading of (E9)'s 'X1(k) - X1_hat(k|k)' for an integrated sample"),
     "photon model": ("model", "a world beyond the paper: eq. (1) makes the shot noise white Gaussian"),
@@ -55,5 +56,9 @@ KINDS = {
         "reading",
         "a reading of the Conclusions' 'accounting for the non-stationary noise component'",
     ),
-    "statistic": ("statistic", "a reading of the ensemble-mean sigma_x^2 of (E9) where a few runs lose lock"),
+    "statistic": (
+        "scale",
+        "a world beyond the paper: (E9) prints sigma_x^2 as the ensemble mean (its overline); the median run's "
+        "variance is a yardstick the paper does not use, and a flip under it says a claim does not extend to it",
+    ),
 }

@@ -29,7 +29,7 @@ _ENTRIES = [
     # ---- the data model: decided once, the filters, the grid likelihood and the PCRLB model the same sample
     Entry(
         "sample model",
-        "model",
+        "unreported setting",
         "integrated",
         ("integrated", "point"),
         "a sampled tracker integrates the current over each dt (integrate and dump: the noise variance N/dt of the "
@@ -238,8 +238,9 @@ _ENTRIES = [
         ("operation count", "CPU time"),
         "'needs more computation': the arithmetic of one filter step (multiplications, additions and divisions "
         "of each variant's equations, counted; deterministic), or the CPU time of the same steps compiled, so "
-        "that no interpreter cost enters (least of 5 repeats; it weighs the exp and sqrt by what they cost; it "
-        "moves between machines and runs, so it never enters the README's results)",
+        "that no interpreter cost enters (it weighs the exp and sqrt by what they cost): the geometric mean of 11 "
+        "paired timings with its 95 % interval, so that timing noise decides nothing; it is the timing of the "
+        "machine that ran it, never the headline number",
     ),
     Entry(
         "C000-4 batch",
@@ -286,13 +287,13 @@ _ENTRIES = [
         "accuracy': the default reads the effect of the signal noise itself (Fig. 3's sigma_x^2 / sigma_x^2*); the "
         "sentence's subject is 'accounting for' the component and its paragraph opens with 'the results of the "
         "study of the algorithms' efficiency', so a reviewer compares a filter that ignores the signal noise with "
-        "variant 2, which accounts for it, on the same data, in both halves (the same thresholds: at most 1.3 at "
-        "P <= 0.5, at least 2 above). Measured (300 runs, two seeds): 1.006 and 1.04 at P = 0.25 and 0.5, 1.12 at "
+        "variant 2, which accounts for it, on the same data, in both halves (the same thresholds: within a factor "
+        "1.3 either way at P <= 0.5, at least 2 above). Measured (300 runs, two seeds): 1.006 and 1.04 at P = 0.25 and 0.5, 1.12 at "
         "0.7, 1.59-1.67 [1.53, 1.91] at 0.9",
     ),
     Entry(
         "statistic",
-        "statistic",
+        "scale",
         "mean",
         ("mean", "median"),
         "the paper's sigma_x^2 is an ensemble mean (E9); the median of per-run variances is not carried by the few "
@@ -554,7 +555,7 @@ DEPENDS = {
     "C000-7": _DATA
     + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"]
     + ["manoeuvre"],
-    "C000-8": ["sigma_sh", "G22", "v2 noise at", "contrast convention", "signal-noise scale"],
+    "C000-8": ["sigma_sh", "G22", "v2 noise at", "signal-noise scale"],
     "C000-9": _DATA
     + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1", "steady window"]
     + ["signal-noise scale"],

@@ -13,7 +13,6 @@ Times are in units of the scan interval ``T``; variances in ``T^2``. The paper's
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
 import numpy as np
@@ -25,7 +24,9 @@ from ...estimate import Estimate
 from ...montecarlo import mean_square_ci, quantile_ci, ratio_ci, rms_ci
 from ...counts import proportion_ci
 from .sizes import Sizes
+from .claims import fig2_points
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
+from .cpu_time import paired_time_ratio
 from .lock_loss import keep, keep_pair
 from .readings import (
     AT_09,
@@ -352,7 +353,9 @@ def _c2(cfg, seed, sizes):
 
 
 def _c3(cfg, seed, sizes):
-    """C000-3: v1 / v2 steady variance over the Fig. 3 contrasts (at psi_A) and the Fig. 2 SNRs (at P)."""
+    """C000-3: v1 / v2 steady variance over the Fig. 3 contrasts (at psi_A) and the Fig. 2 SNRs (at P; the point
+    that is Fig. 3's P = 0.5 at the default psi_A is left to Fig. 3, :func:`.claims.fig2_points`), tagged with the
+    "contrast" it was measured at: at P = 0 the Fig. 2 parts are the same filter twice and are not measured."""
     field = "d_steady" if cfg.get("C000-3 accuracy", "Monte Carlo error") == "filters' own D11" else "steady"
 
     def runs(psi, p, filt):
@@ -362,11 +365,12 @@ def _c3(cfg, seed, sizes):
     for p in sizes.contrast_grid:
         psi = psi_at(cfg["psi_A"], p, cfg["contrast convention"])
         parts[f"P={p:g}"] = _ratio(runs(psi, p, "v1"), runs(psi, p, "v2"), cfg["statistic"])
-    for psi in sizes.psi_grid:
-        parts[f"psi_A={psi:g}"] = _ratio(
-            runs(psi, cfg["contrast"], "v1"), runs(psi, cfg["contrast"], "v2"), cfg["statistic"]
-        )
-    return parts
+    if cfg["contrast"] != 0:
+        for psi in fig2_points(sizes.contrast_grid, sizes.psi_grid):
+            parts[f"psi_A={psi:g}"] = _ratio(
+                runs(psi, cfg["contrast"], "v1"), runs(psi, cfg["contrast"], "v2"), cfg["statistic"]
+            )
+    return ByReading.tag(cfg["contrast"], parts)
 
 
 def _c5_c7(cfg, seed, sizes):
@@ -441,13 +445,15 @@ def _c8(cfg, seed, sizes):
     """C000-8: sigma_x^2(dt) / sigma_x^2(dt / factor) - 1 over the Figs. 2-3 range, both variants, one continuous
     experiment (integrated samples at both rates, each estimate scored at its newest datum: the same information).
 
+    Each (psi_A, P) of ``sizes.dt_points`` is run at that psi_A: the sentence («ошибки за счет дискретизации не
+    превышали 3 %») is about the simulation's step, not about a point of Fig. 3, so C000-8 reads no "contrast
+    convention" (under "fixed background" its P = 0.9 point moved to psi_A = 180 while its part still said 20).
     The memo keeps each variant's result, not the two-rate data (regenerated from the same seed when a reading of
     one variant changes)."""
     parts = {}
     iterations = 1 if cfg["v2 noise at"] == "updated estimate" else 0
     reads = {"v1": (cfg["G22"], _cs(cfg)), "v2": (iterations,)}
-    for psi, p in sizes.dt_points:
-        psi_p = psi_at(psi, p, cfg["contrast convention"]) if p else psi
+    for psi_p, p in sizes.dt_points:  # each point at its own psi_A under every "contrast convention"
         keys = {
             name: ("dt", cfg["sigma_sh"], cfg.get("sigma_1", "0.1 T"), seed, sizes, psi_p, p, name, reads[name])
             for name in ("v1", "v2")
@@ -487,7 +493,7 @@ def _c8(cfg, seed, sizes):
                     ),
                 )
         for name in ("v1", "v2"):
-            parts[f"variant {name[1]} at psi_A={psi:g}, P={p:g}"] = got[name]
+            parts[f"variant {name[1]} at psi_A={psi_p:g}, P={p:g}"] = got[name]
     return parts
 
 
@@ -545,7 +551,8 @@ def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> 
 
     Returns
     -------
-    dict  {"C000-4": variant 1 / variant 2 (float; NaN for CPU time without compiled steps)}
+    dict  {"C000-4": variant 1 / variant 2: the exact operation-count ratio (float), or the CPU-time ratio with the
+    interval of its repeated paired timings (:class:`~tvtrack.estimate.Estimate`; NaN without compiled steps)}
     """
     iterations = 1 if config["v2 noise at"] == "updated estimate" else 0
     if config.get("C000-4 cost measure", "operation count") == "operation count":
@@ -555,20 +562,21 @@ def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> 
 
 
 def cost_ratio(
-    n_trials: int, n_steps: int, seed: int, repeats: int = 5, noise_iterations: int = 0, one_trial: bool = False
-) -> float:
-    """CPU time (``time.process_time``, least of ``repeats``) of variant 1 over variant 2 on the same samples at
-    psi_A = 20, P = 0.5 (claim C000-4); ``noise_iterations`` re-evaluations of variant 2's noise intensity at the
-    updated estimate.
+    n_trials: int, n_steps: int, seed: int, repeats: int = 11, noise_iterations: int = 0, one_trial: bool = False
+) -> Estimate:
+    """CPU time of variant 1 over variant 2 on the same samples at psi_A = 20, P = 0.5 (claim C000-4), with the
+    interval of ``repeats`` paired timings (:func:`.cpu_time.paired_time_ratio`); ``noise_iterations``
+    re-evaluations of variant 2's noise intensity at the updated estimate.
 
     Both variants run as their compiled straight-line steps (:mod:`._kernels`, the operations :mod:`.cost` counts,
     in the same order), so the time is the arithmetic's, with no interpreter between operations: ``n_trials`` runs
     of ``n_steps`` samples, or (``one_trial``) one tracked object over ``n_trials * n_steps`` samples. Interpreted
-    steps would time the interpreter's call overhead (one object's step is one call per operation): without
-    compiled steps (:func:`tvtrack.jit.enabled` false) the ratio is NaN.
+    steps would time the interpreter's call overhead: without compiled steps (:func:`tvtrack.jit.enabled` false)
+    the ratio is NaN (undecided).
     """
     if not jit.enabled():
-        return float("nan")
+        nan = float("nan")
+        return Estimate(nan, nan, nan, nan, 0, 0.95, "none (no compiled steps: the interpreter would be timed)")
     scan = scan_at_snr(20.0, 0.5, 0.05, PULSE_DURATION)
     shape = (1, n_trials * n_steps) if one_trial else (n_trials, n_steps)
     noises = draw_noises(np.random.default_rng(seed), *shape, 1)
@@ -576,17 +584,7 @@ def cost_ratio(
     y = samples_from_pulse(scan, pulse, noises["xi"])
     v1 = lambda y: run_steps_variant1(scan, MESSAGE, y, (D11_0, D22_0), None, BETA_0, compiled=True)  # noqa: E731
     v2 = lambda y: run_steps_variant2(scan, MESSAGE, y, D11_0, None, None, noise_iterations, compiled=True)  # noqa: E731
-
-    def best(run):
-        run(y[:1, :3])  # compiled before the clock starts
-        times = []
-        for _ in range(repeats):
-            t0 = time.process_time()
-            run(y)
-            times.append(time.process_time() - t0)
-        return min(times)
-
-    return best(v1) / best(v2)
+    return paired_time_ratio(v1, v2, y, repeats)
 
 
 def record_inputs(config: dict, seed: int, sizes: Sizes):
