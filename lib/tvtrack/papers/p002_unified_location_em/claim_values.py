@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tvtrack.estimate import Estimate
+from tvtrack.measured import calibrated
 from tvtrack.montecarlo import ratio_ci
 from .readings import (
     CLOSE,
@@ -43,6 +44,7 @@ __all__ = [
     "gain",
     "exp_estimate",
     "scaled",
+    "fold_change",
     "NEEDS",
     "LETTERS",
     "needed_points",
@@ -351,9 +353,37 @@ def _iterations(x: _Ctx):
     return it, min(it), max(it)
 
 
+def fold_change(ratio: Estimate) -> Estimate:
+    """A positive ratio's fold change from 1 either way, ``max(q, 1 / q)``: a dependence whose direction is not
+    stated (C002-13) is one number that grows with the dependence whichever way it runs.
+
+    The interval is the ratio's after :func:`tvtrack.measured.calibrated` (widened where its coverage falls short),
+    mapped end by end; one that holds 1 starts at 1 (no measurable dependence). The method keeps the signed ratio.
+    """
+    e = calibrated(ratio)
+    q, a, b = e.value, e.ci_low, e.ci_high
+    if not np.isfinite([q, a, b]).all():
+        return e
+
+    def fold(r):
+        return r if r >= 1.0 else (1.0 / r if r > 0 else np.inf)
+
+    ends = sorted((fold(a), fold(b)))
+    return Estimate(
+        float(fold(q)),
+        float(e.stderr if q >= 1.0 else e.stderr / q**2),  # delta method for 1 / q
+        1.0 if a < 1.0 < b else float(ends[0]),
+        float(ends[1]),
+        e.n,
+        e.confidence,
+        f"{e.method}; fold change from 1 either way, max(q, 1/q), of the signed ratio q = {q:.4g} [{a:.4g}, {b:.4g}]",
+        e.extrapolated,
+    )
+
+
 def _c13(x: _Ctx):
     it, lo, hi = _iterations(x)
-    return ratio_ci(it[lo]["plain_iter"], it[hi]["plain_iter"], paired=False)
+    return fold_change(ratio_ci(it[lo]["plain_iter"], it[hi]["plain_iter"], paired=False))
 
 
 def _c14(x: _Ctx):

@@ -80,8 +80,9 @@ KINDS = {
         "a world beyond the paper: Fig 2 is drawn at Delta = sigma, 3 sigma is Fig 1a's",
     ),
     "T pair of C002-6": (
-        "reading",
-        "a reading of 'the number of analysed frames', which gives no range (it was filed as an operating point)",
+        "operating point",
+        "a world beyond the paper: Fig 2 is drawn at T = 10 and 5 (l. 105, 'T=10,5', curves 1 and 2), 5 against 50 "
+        "frames is Fig 5's frame span",
     ),
     "T dependence of C002-6": ("statistic", "a reading of Fig 2's lost axis scale"),
     "close separations of C002-10 (sigma)": ("reading", "a reading of 'the gain grows with pixel size and frames'"),
