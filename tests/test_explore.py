@@ -799,3 +799,23 @@ def test_a_sub_combination_leaning_towards_agreement_is_not_sized():
     assert flipped.n_runs("L") == 5
     flips = ex.record("L")["parts"]["claim"]["flips"]
     assert len(flips) == 1 and flips[0]["changed"] == {"a": 2, "b": 2, "c": "y"}
+
+
+def test_pooling_keeps_a_numeric_reading_tag_and_pools_what_was_measured():
+    """A reading named by a number (a contrast of 0) selects a rule: pooled over replicates it stays that number,
+    never an Estimate of it, so the rule of that reading judges the pooled value."""
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.verdicts import AllOf, ByReading, InBand
+
+    tags = [ByReading.tag(0.0, {"a": Estimate(v, 0.1, v - 0.2, v + 0.2, 50, method="t")}) for v in (1.0, 1.2)]
+    pooled = pool(tags)
+    assert pooled["reading"] == 0.0 and isinstance(pooled["reading"], float)
+    assert pooled["measured"]["a"].value == pytest.approx(1.2**0.5)  # pooled on the log scale
+    rule = ByReading(
+        "contrast",
+        {0.0: AllOf({"a": InBand("x", 0.5, 2.0)})},
+        AllOf({"a": InBand("x", 0.5, 2.0), "b": InBand("y", 0.5, 2.0)}),
+    )
+    assert rule.decide(pooled) == "reproduced"  # judged by the zero-contrast rule, whose parts were measured
+    with pytest.raises(ValueError, match="different readings"):
+        pool([tags[0], ByReading.tag(0.5, tags[1]["measured"])])

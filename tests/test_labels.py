@@ -682,3 +682,85 @@ def test_an_entry_that_chooses_another_rule_is_not_ranked_on_the_default_s_scale
     ranked = rec["parts"]["claim"]["sensitivity"]
     assert [r["entry"] for r in ranked] == ["noise"] and ranked[0]["score"] == pytest.approx(1.0)
     assert "not ranked" in rec["parts"]["claim"]["sensitivity_method"]
+
+
+def test_an_unranked_reading_never_joins_the_default_s_values():
+    """The rows of a reading that chooses another rule are left out of the sensitivity's rows, not counted as the
+    default's: its 11.4 (a variance ratio) would otherwise swamp the default's 0.01 (a share) and tie the entries."""
+    from tvtrack.verdicts import ByReading
+
+    rule = ByReading("criterion", {"ensemble": InBand("ratio", high=20.0)}, InBand("share", high=0.1))
+    entries = (
+        Entry("criterion", "reading", "share", ("share", "ensemble"), "the text reads either way"),
+        Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper"),
+        Entry("law", "unreported setting", "linear", ("linear", "step"), "never printed"),
+    )
+    at, est = ByReading.tag, (lambda v: Estimate(v, 0.001, v - 0.002, v + 0.002, 600, method="t"))
+    reps = [{"seed": s, "measured": at("share", est(0.01))} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"criterion": "ensemble"}, "measured": at("ensemble", est(11.4))},
+        {"changed": {"noise": "high"}, "measured": at("share", est(0.03))},
+        {"changed": {"law": "step"}, "measured": at("share", est(0.012))},
+    ]
+    for c in conds:
+        c.update(kind="single", runs=3, config=c["changed"])
+    rec = label_parts(rule, reps[0]["measured"], reps, conds, entries, design={"min_share_design": 3}, needed=1)
+    ranked = {r["entry"]: r["score"] for r in rec["parts"]["claim"]["sensitivity"]}
+    assert set(ranked) == {"noise", "law"}
+    assert ranked["noise"] == pytest.approx(0.01**2 / (0.01**2 + 0.001**2))  # (0.03 - 0.01)^2 against (0.002)^2
+
+
+def test_a_part_whose_own_rule_is_chosen_by_a_reading_leaves_that_reading_unranked():
+    from tvtrack.verdicts import AllOf, ByReading
+
+    part = ByReading("criterion", {"ensemble": InBand("ratio", high=20.0)}, InBand("share", high=0.1))
+    rule = AllOf({"a": part, "b": InBand("other", high=1.0)})
+    entries = (
+        Entry("criterion", "reading", "share", ("share", "ensemble"), "the text reads either way"),
+        Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper"),
+    )
+    at, est = ByReading.tag, (lambda v: Estimate(v, 0.001, v - 0.002, v + 0.002, 600, method="t"))
+    reps = [{"seed": s, "measured": {"a": at("share", est(0.01)), "b": est(0.5)}} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"criterion": "ensemble"}, "measured": {"a": at("ensemble", est(11.4)), "b": est(0.5)}},
+        {"changed": {"noise": "high"}, "measured": {"a": at("share", est(0.03)), "b": est(0.6)}},
+    ]
+    for c in conds:
+        c.update(kind="single", runs=3, config=c["changed"])
+    rec = label_parts(rule, reps[0]["measured"], reps, conds, entries, design={"min_share_design": 2}, needed=1)
+    assert [r["entry"] for r in rec["parts"]["a"]["sensitivity"]] == ["noise"]
+
+
+def test_mark_lost_runs_takes_every_run_lost_and_says_the_default_is_decided_by_them_only_where_it_is():
+    from tvtrack.labels import mark_lost_runs
+
+    row = {"changed": {}, "lost": 6, "runs": 6, "verdict": "not reproduced", "in_lock_verdict": "reproduced"}
+    rec = mark_lost_runs({"parts": {}}, [row], "not reproduced")  # every run lost: a count it takes
+    assert rec["lost_share"]["lost"] == rec["lost_share"]["runs"] == 6 and rec["decided_by_lost_runs"] is True
+    with pytest.raises(ValueError, match="need 0 <= lost <= runs"):
+        mark_lost_runs({"parts": {}}, [{**row, "lost": 7}], "not reproduced")
+    # the rows' draws read another verdict over every run than the pooled one: the lost runs decide nothing
+    other = mark_lost_runs({"parts": {}}, [{**row, "verdict": "reproduced"}], "not reproduced")
+    assert other["decided_by_lost_runs"] is False
+    # the same verdict over the runs in lock: nothing carried by the lost runs either
+    same = mark_lost_runs({"parts": {}}, [{**row, "in_lock_verdict": "not reproduced"}], "not reproduced")
+    assert same["decided_by_lost_runs"] is False
+
+
+def test_a_flip_of_one_part_of_several_is_never_carried_on_the_whole_claim_s_verdicts():
+    from tvtrack.labels import mark_lost_runs
+
+    flip = {"changed": {"noise": "high"}, "verdict": "not reproduced"}
+    row = {
+        "changed": {"noise": "high"},
+        "lost": 3,
+        "runs": 6,
+        "verdict": "not reproduced",
+        "in_lock_verdict": "reproduced",
+        "parts": {"a": "not reproduced"},
+    }  # no in-lock verdict of part a
+    rec = mark_lost_runs({"parts": {"a": {"flips": [dict(flip)]}, "b": {"flips": []}}}, [row], "reproduced")
+    assert rec["parts"]["a"]["flips"][0]["lost_runs"]["carried"] is False
+    both = {**row, "in_lock_parts": {"a": "reproduced"}}
+    rec = mark_lost_runs({"parts": {"a": {"flips": [dict(flip)]}, "b": {"flips": []}}}, [both], "reproduced")
+    assert rec["parts"]["a"]["flips"][0]["lost_runs"]["carried"] is True

@@ -127,6 +127,8 @@ def _scalar(m: Any) -> float:
     """One number for a part's measured value: an estimate's value, a curve's end-to-end change."""
     if m is None:
         return math.nan
+    if isinstance(m, Mapping) and set(m) == {"reading", "measured"}:  # a part's ByReading tag: its value
+        return _scalar(m["measured"])
     if isinstance(m, (list, tuple)):
         if len(m) < 2:
             return math.nan

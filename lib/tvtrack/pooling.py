@@ -131,6 +131,11 @@ def _is_estimate_like(x: Any) -> bool:
     return isinstance(x, Estimate) or (isinstance(x, Mapping) and "value" in x and "ci_low" in x)
 
 
+def _is_reading_tag(m: Any) -> bool:
+    """Whether ``m`` is what :meth:`tvtrack.verdicts.ByReading.tag` returns: ``{"reading": value, "measured": ...}``."""
+    return isinstance(m, Mapping) and set(m) == {"reading", "measured"}
+
+
 def pool(measured: Sequence[Any]) -> Any:
     """Pool a claim's measured values from independent replicates.
 
@@ -138,7 +143,8 @@ def pool(measured: Sequence[Any]) -> Any:
     (on the log scale when every interval is positive); exact numbers that vary between replicates get
     a Student-t interval over the replicates; lists and dicts (``Monotone`` points, ``AllOf`` parts)
     are pooled element by element; a value with runs that lost lock (:func:`tvtrack.measured.with_lost_runs`) pools
-    its two estimates and sums its counts. An undefined interval in any replicate makes the pooled interval
+    its two estimates and sums its counts; a :class:`tvtrack.verdicts.ByReading` tag keeps its reading (a number
+    such as a contrast of 0 names a rule, it is not averaged) and pools what was measured. An undefined interval in any replicate makes the pooled interval
     undefined (the verdict is then ``undecided``).
     """
     ms = [m for m in measured if m is not None]
@@ -157,6 +163,10 @@ def pool(measured: Sequence[Any]) -> Any:
             "lost": int(sum(m["lost"] for m in ms)),
             "runs": int(sum(m["runs"] for m in ms)),
         }
+    if _is_reading_tag(first):  # a ByReading tag: the reading names a rule, never a number to average
+        if not all(_is_reading_tag(m) and m["reading"] == first["reading"] for m in ms):
+            raise ValueError(f"pool: replicates measured under different readings {[m.get('reading') for m in ms]}")
+        return {"reading": first["reading"], "measured": pool([m["measured"] for m in ms])}
     if isinstance(first, Mapping):
         keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
         return {k: pool([m[k] for m in ms]) for k in keys}
