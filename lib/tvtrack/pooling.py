@@ -163,10 +163,8 @@ def pool(measured: Sequence[Any]) -> Any:
             "lost": int(sum(m["lost"] for m in ms)),
             "runs": int(sum(m["runs"] for m in ms)),
         }
-    if _is_reading_tag(first):  # a ByReading tag: the reading names a rule, never a number to average
-        if not all(_is_reading_tag(m) and m["reading"] == first["reading"] for m in ms):
-            raise ValueError(f"pool: replicates measured under different readings {[m.get('reading') for m in ms]}")
-        return {"reading": first["reading"], "measured": pool([m["measured"] for m in ms])}
+    if _is_reading_tag(first) and all(_is_reading_tag(m) for m in ms):  # the reading names a rule: not averaged
+        return {"reading": first["reading"], "measured": pool([m["measured"] for m in ms])}  # the first's, as a text
     if isinstance(first, Mapping):
         keys = [k for k in first if all(isinstance(m, Mapping) and k in m for m in ms)]
         return {k: pool([m[k] for m in ms]) for k in keys}
