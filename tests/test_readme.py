@@ -19,7 +19,6 @@ KEY_SYMBOLS = (
     "micro-raster",
     "potentially achievable",
     "variant 1",
-    "sigma\\_1",
     "alpha",
     "rho",
     "raster element",
