@@ -18,6 +18,7 @@ WORLD = Entry("motion", "regime", "cv", ("cv", "turn"), "a world beyond the pape
 LOUD = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
 ENTRIES = (READING, SETTING, WORLD, LOUD)
 IN, OUT = Estimate.exact(0.0), Estimate.exact(3.0)
+SINGLES_THAT_AGREE = ({"law": "step"}, {"motion": "turn"}, {"noise": "high"})
 
 
 def _cond(changed, measured, kind="single", runs=2):
@@ -28,17 +29,19 @@ def _claim():
     """A claim the default needs 2 replicates to decide: the reading flips it alone, the setting agrees, the world
     agrees alone and flips together with the loud world (a combination isolates the pair); one joint configuration
     has a single replicate."""
-    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
-    conds = [
-        _cond({"sigma": "smoothed"}, OUT),
-        _cond({"law": "step"}, IN),
-        _cond({"motion": "turn"}, IN),
-        _cond({"noise": "high"}, IN),
+    return _recorded(
         _cond({"sigma": "raw", "law": "step", "motion": "turn", "noise": "high"}, OUT, "joint"),
         _cond({"motion": "turn", "noise": "high"}, OUT, "combination"),
         _cond({"law": "step", "motion": "turn"}, IN, "joint", runs=1),  # smaller than the default needed: undecided
-    ]
-    rb = label_parts(BAND, IN, reps, conds, ENTRIES, design={"min_share_design": 4}, needed=2)
+    )
+
+
+def _recorded(*extra):
+    """The record of a claim the default needs 2 replicates to decide, over the four single conditions (the reading
+    flips it alone, the others agree) and ``extra`` conditions."""
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    singles = [_cond({"sigma": "smoothed"}, OUT), *(_cond(c, IN) for c in SINGLES_THAT_AGREE)]
+    rb = label_parts(BAND, IN, reps, [*singles, *extra], ENTRIES, design={"min_share_design": 4}, needed=2)
     rb["register"] = [e.to_dict() for e in ENTRIES]
     rb["design"] = {"replicates_needed": {"C9-1": 2}}
     return {"id": "C9-1", "robustness": rb}
@@ -201,21 +204,12 @@ def test_the_explorer_measures_every_subset_of_a_flip_one_entry_beyond_its_searc
 
 
 def _claim_with_pinned():
-    """:func:`_claim` with two pinned configurations (known flips outside the design): one flips, one agrees."""
-    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
-    conds = [
-        _cond({"sigma": "smoothed"}, OUT),
-        _cond({"law": "step"}, IN),
-        _cond({"motion": "turn"}, IN),
-        _cond({"noise": "high"}, IN),
+    """:func:`_claim`'s single conditions with two pinned configurations (outside the design): one flips, one agrees."""
+    return _recorded(
         _cond({"law": "step", "noise": "high"}, OUT, "pinned"),
         _cond({"law": "step", "motion": "turn"}, IN, "pinned"),
         _cond({"noise": "high", "law": "linear"}, OUT, "combination"),
-    ]
-    rb = label_parts(BAND, IN, reps, conds, ENTRIES, design={"min_share_design": 4}, needed=2)
-    rb["register"] = [e.to_dict() for e in ENTRIES]
-    rb["design"] = {"replicates_needed": {"C9-1": 2}}
-    return {"id": "C9-1", "robustness": rb}
+    )
 
 
 def test_pinned_configurations_are_counted_beside_the_share_and_a_share_that_drops_them_is_found():
