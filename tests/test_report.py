@@ -248,6 +248,31 @@ def test_report_has_the_forest_plot_and_the_robustness_picture(synthetic_runs, t
     assert (rows, entries, cells) == (["C1-1"], ["epoch"], [["reproduced"]])
 
 
+def test_the_robustness_picture_reads_each_entry_varied_alone():
+    """A cell is the verdict when its entry alone changes: a joint condition colours no column (every explorer
+    condition carries its whole configuration, which once coloured every entry of the row), an undecided condition
+    does not count as a flip, and an entry whose conditions all stay undecided reads undecided."""
+    from tvtrack.pipeline.figures import robustness_matrix
+
+    register = [{"name": n, "default": 0, "values": [0, 1]} for n in ("a", "b", "c", "d")]
+    everything = {"a": 1, "b": 1, "c": 1, "d": 0}
+
+    def cond(kind, changed, verdict):
+        return {"kind": kind, "changed": changed, "config": everything, "verdict": verdict}
+
+    conditions = [
+        cond("single", {"a": 1}, "reproduced"),
+        cond("single", {"b": 1}, "not reproduced"),
+        cond("single", {"c": 1}, "undecided"),
+        cond("joint", {"a": 1, "d": 1}, "not reproduced"),
+        cond("combination", {"c": 1, "d": 1}, "partly"),
+    ]
+    record = {**_robust(), "register": register, "conditions": conditions}
+    rows, entries, cells = robustness_matrix([_claim("C1-2", "reproduced", record)])
+    assert rows == ["C1-2"] and entries == ["a", "b", "c", "d"]
+    assert cells == [["reproduced", "not reproduced", "undecided", None]]
+
+
 def test_readme_left_alone_without_complete_paper_runs(synthetic_runs, tmp_path, capsys):
     _synthetic_run(synthetic_runs, "012_smoke", [_claim("C012-1", "reproduced", _robust())], profile="smoke")
     readme = tmp_path / "README.md"
@@ -445,7 +470,7 @@ def test_each_claim_in_one_plain_sentence_with_units_and_no_register_keys(explor
         "flipped by: sigma read as the SD of the raw velocity increments (a reading of the paper's text); a target"
         in text
     )
-    assert "About 7 independent replicates would decide it." in cells["C004-3b"]
+    assert "About 7 independent replicates are projected to decide it." in cells["C004-3b"]
     # every measured value carries its unit or says what it is a ratio of
     for c in CLAIMS:
         if c["verdict"] == "not checkable":
@@ -552,3 +577,25 @@ def test_the_first_screen_names_the_claims_that_hold_hold_in_part_or_give_nothin
         "- **Not checkable**: 001: C001-6.",  # a reader asks which claims give nothing to measure, too
     ]
     assert holding_lines({"001_maneuver": (None, {"claims": [DEPENDS]})}) == []  # nothing holds: no line
+
+
+def test_the_forest_plot_opens_a_rule_chosen_by_a_reading():
+    """A claim judged by a rule that a reading chooses is drawn with the chosen rule's band and parts (once left
+    out, the forest plot missing every claim of that kind)."""
+    from tvtrack.pipeline.figures import forest_items
+
+    part = {"kind": "in_band", "text": "in [0, 2]", "low": 0.0, "high": 2.0}
+    other = {"kind": "in_band", "text": "in [10, 20]", "low": 10.0, "high": 20.0}
+    rule = {
+        "kind": "by_reading",
+        "entry": "criterion",
+        "default": {"kind": "all_of", "parts": {"x": part, "y": part}},
+        "rules": {"other": other},
+    }
+    est = {"value": 1.5, "ci_low": 1.2, "ci_high": 1.8, "n": 50}
+    tagged = {**minimal_claim("C9-1"), "rule": rule, "measured": {"reading": "usual", "measured": {"x": est, "y": est}}}
+    chosen = {**minimal_claim("C9-2"), "rule": rule, "measured": {"reading": "other", "measured": {**est, "value": 15}}}
+    items = forest_items({"009_x": (None, {"claims": [tagged, chosen]})})
+    assert [i["name"] for i in items] == ["009 C9-1 x", "009 C9-1 y", "009 C9-2"]
+    assert items[0]["band"] == (0.0, 2.0) and items[0]["value"] == pytest.approx(0.75)
+    assert items[2]["band"] == (10.0, 20.0) and items[2]["value"] == pytest.approx(0.5)

@@ -13,7 +13,7 @@ from typing import Any
 
 from ..plotting import VERDICT_COLOURS
 from ..results import shown_label
-from ..verdicts import LABELS, VERDICTS
+from ..verdicts import LABELS, VERDICTS, is_decisive
 
 __all__ = [
     "NO_LABEL",
@@ -142,6 +142,15 @@ def _relative(x: float, band: tuple[float | None, float | None]) -> float:
     return 1.0 + (x - hi) / (abs(hi) or 1.0)
 
 
+def _reading_rule(rule: dict, measured: Any) -> tuple[dict, Any]:
+    """The rule that judged ``measured`` and what it judged: a rule chosen by a reading (``by_reading``) opened to
+    the reading's own rule (the default's where the reading has none of its own) and the value measured under it."""
+    if rule.get("kind") == "by_reading" and isinstance(measured, dict) and set(measured) == {"reading", "measured"}:
+        chosen = (rule.get("rules") or {}).get(str(measured["reading"])) or rule.get("default") or {}
+        return _reading_rule(chosen, measured["measured"])
+    return rule, measured
+
+
 def forest_items(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]:
     """One row per checkable claim (one per part for an ``all of`` rule) that has an interval and a band:
     ``{name, verdict, label, band, value, low, high}`` with the value and interval on the band's scale
@@ -151,7 +160,7 @@ def forest_items(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
         for c in (data or {}).get("claims", []):
             if c["verdict"] == "not checkable":
                 continue
-            rule, measured = c.get("rule") or {}, c["measured"]
+            rule, measured = _reading_rule(c.get("rule") or {}, c["measured"])
             pairs = [(c["id"], rule, measured, c["verdict"])]
             if rule.get("kind") == "all_of" and isinstance(measured, dict):
                 parts = dict(((p, (v, lab)) for p, v, lab in part_labels(c)))
@@ -226,9 +235,12 @@ def forest_plot(items: list[dict], path: Path) -> Path | None:
 
 
 def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[list[str | None]]]:
-    """Claims (rows) by register entries (columns): in each cell the verdict that differs from the claim's own
-    when that entry takes another value (any condition varying it), else the claim's verdict; ``None`` where the
-    claim was not explored over the entry. Works on records with ``register`` or ``choices``."""
+    """Claims (rows) by register entries (columns), from the one-at-a-time design: in each cell the decided
+    verdict that differs from the claim's own when that entry alone takes another value (the first such condition),
+    else the claim's verdict where a condition varying the entry decided as the default did, else ``undecided``
+    (no condition varying it decided); ``None`` where no condition varied the entry alone. Joint conditions are
+    left out: a flip that needs two entries changed together belongs to neither column. Records written before
+    conditions named what they changed (``choices``) are read the same way."""
     entries: list[str] = []
     rows, cells = [], []
     for c in claims:
@@ -236,22 +248,17 @@ def robustness_matrix(claims: list[dict]) -> tuple[list[str], list[str], list[li
             continue
         names = register_names(c)
         entries += [n for n in names if n not in entries]
-        row = {}
+        seen: dict[str, list[str]] = {}
         for cond in c["robustness"].get("conditions", []):
-            choices = cond.get("choices") or cond.get("config") or {}
-            for entry in choices:
-                differs = cond.get("verdict") != c["verdict"]
-                if differs or entry not in row:
-                    row[entry] = cond.get("verdict") if differs else c["verdict"]
-                    if differs:
-                        row[f"!{entry}"] = True
-        for n in names:
-            row.setdefault(
-                n,
-                c["verdict"]
-                if any(n in (cond.get("choices") or {}) for cond in c["robustness"].get("conditions", []))
-                else None,
-            )
+            changed = cond.get("changed") if "changed" in cond else cond.get("choices")
+            if not isinstance(changed, dict) or len(changed) != 1 or cond.get("kind", "single") != "single":
+                continue
+            seen.setdefault(next(iter(changed)), []).append(str(cond.get("verdict")))
+        row = {}
+        for entry, verdicts in seen.items():
+            differs = [v for v in verdicts if is_decisive(v) and v != c["verdict"]]
+            agrees = any(v == c["verdict"] and is_decisive(v) for v in verdicts)
+            row[entry] = differs[0] if differs else c["verdict"] if agrees else "undecided"
         rows.append(c["id"])
         cells.append(row)
     return rows, entries, [[row.get(e) for e in entries] for row in cells]
@@ -263,7 +270,7 @@ def _short(text: str, chars: int) -> str:
 
 def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: Path) -> Path | None:
     """One panel per notebook: its claims (rows) by its register entries (columns), each cell coloured by the
-    verdict under that entry's other values (see :func:`robustness_matrix`; blank: not explored)."""
+    verdict when that entry alone takes another value (see :func:`robustness_matrix`; blank: not varied alone)."""
     panels = []
     for name, (_, data) in runs.items():
         rows, entries, cells = robustness_matrix((data or {}).get("claims", []))
@@ -314,13 +321,13 @@ def robustness_picture(runs: dict[str, tuple[dict | None, dict | None]], path: P
     )
     fig.legend(
         handles=[Patch(color=VERDICT_COLOURS.get(v, "k"), label=v) for v in used]
-        + [Patch(color="#f4f4f4", label="not explored")],
+        + [Patch(color="#f4f4f4", label="not varied alone")],
         loc="lower center",
         ncol=len(used) + 1,
         fontsize=7,
         frameon=False,
     )
-    fig.suptitle("Claims by register entries: the verdict when the entry takes its other values", fontsize=9)
+    fig.suptitle("Claims by register entries: the verdict when that entry alone takes another value", fontsize=9)
     fig.tight_layout(rect=(0, 0.03, 1, 0.98))
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)

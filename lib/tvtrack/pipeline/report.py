@@ -410,8 +410,11 @@ def _report_head(runs: dict, claims: list[dict], notebooks: list[str], reproduce
             head += [
                 f"![robustness: claims by register entries]({os.path.relpath(picture, path.parent)})",
                 "",
-                "Each notebook's claims by the register entries they were explored over: a cell's colour is the "
-                "verdict when that entry takes its other values (the claim's own verdict where none differs).",
+                "Each notebook's claims by the register entries they were explored over, from the one-at-a-time "
+                "design: a cell's colour is the decided verdict when that entry alone takes another value where "
+                "one differs from the claim's own, the claim's own verdict where they agree, undecided where none "
+                "decided (grey: the entry was not varied alone). A flip that needs two entries changed together "
+                "is in the claim's record below, not in a column.",
                 "",
             ]
         head += [
