@@ -339,7 +339,10 @@ def test_a_linear_pool_stays_within_the_replicates_intervals():
     reps = [Estimate(0.97, 0.04, 0.85, 1.0, 6, 0.95, "paired t"), Estimate(0.97, 0.03, 0.9, 1.0, 6, 0.95, "paired t")]
     reps.append(Estimate(0.96, 0.05, -0.2, 1.0, 6, 0.95, "paired t"))
     p = pool(reps)
-    assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high  # a linear pool gave 1.2
+    assert p.ci_high <= 1.0 and p.ci_low < p.value < p.ci_high  # a linear pool gave 1.2
+    # replicates that disagree are widened to Student's t over their values, which the hull stops at 1
+    apart = pool([*reps[:2], Estimate(0.2, 0.03, 0.15, 0.25, 6, 0.95, "paired t")])
+    assert (apart.ci_low, apart.ci_high) == (0.15, 1.0) and "disagree" in apart.method
 
 
 def test_a_log_scale_pool_stays_within_the_replicates_intervals():
@@ -347,7 +350,9 @@ def test_a_log_scale_pool_stays_within_the_replicates_intervals():
     reps = [Estimate(0.97, 0.05, 0.8, 1.0, 6, 0.95, "paired t"), Estimate(0.97, 0.04, 0.85, 1.0, 6, 0.95, "paired t")]
     reps.append(Estimate(0.97, 0.03, 0.9, 1.0, 6, 0.95, "paired t"))
     p = pool(reps)
-    assert p.ci_high == 1.0 and p.ci_low < p.value < p.ci_high and "log scale" in p.method  # was 1.019
+    assert p.ci_high <= 1.0 and p.ci_low < p.value < p.ci_high and "log scale" in p.method  # was 1.019
+    apart = pool([*reps[:2], Estimate(0.3, 0.03, 0.25, 0.35, 6, 0.95, "paired t")])
+    assert apart.ci_high == 1.0 and "log scale" in apart.method and "disagree" in apart.method
 
 
 # --------------------------------------------------------------------------- measuring only the claims asked
@@ -398,7 +403,7 @@ def test_sizing_adds_replicates_only_to_the_claims_still_undecided():
 
     def measure(config, seed, claims=None):
         asked.append(claims)
-        out = {"clear": _mean(seed, 0.0), "edge": _mean(seed + 7, 0.45, n=100)}
+        out = {"clear": _mean(seed, 0.0), "edge": _mean(seed + 12, 0.45, n=100)}
         return out if claims is None else {k: out[k] for k in claims}
 
     ex = explore(measure, reg, rules, seed=2, replicates=3, max_replicates=12, one_at_a_time=False)
@@ -441,7 +446,7 @@ def test_sizing_measures_every_undecided_claim_not_only_those_projected_to_decid
 
     def measure(config, seed, claims=None):
         asked.append(claims)
-        out = {"edge": _mean(seed + 7, 0.45, n=100), "far": _mean(seed + 11, 0.5, n=100)}
+        out = {"edge": _mean(seed + 12, 0.45, n=100), "far": _mean(seed + 11, 0.5, n=100)}
         return out if claims is None else {k: out[k] for k in claims}
 
     ex = explore(measure, reg, rules, seed=2, replicates=3, max_replicates=12, one_at_a_time=False)
@@ -457,12 +462,13 @@ def _edge_and_near(config, seed, claims=None):
     return out if claims is None else {k: out[k] for k in claims}
 
 
-@pytest.mark.parametrize("seed", [0, 4, 6, 9])
+@pytest.mark.parametrize("seed", [0, 1, 6, 9])
 def test_the_sizing_keeps_the_same_replicates_whatever_the_number_of_workers(seed):
     """Three workers measure up to three sizing replicates at once; the explorer keeps exactly the replicates,
     and the claims in each, that one at a time would have given (a replicate after which the sizing would have
     stopped is dropped, one measured for a claim decided meanwhile is measured again without it). These seeds
-    kept more replicates, or more claims in them, with three workers before."""
+    kept more replicates, or more claims in them, with three workers before (1 stands in for 4, whose first three
+    replicates disagree beyond their intervals, so that the pool is widened and its sizing stops at three)."""
     from concurrent.futures import ThreadPoolExecutor
 
     reg = Register([Entry("a", "regime", 0, (0, 1), "w")])

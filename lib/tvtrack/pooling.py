@@ -1,5 +1,6 @@
 """Pooling a claim's measured values over independent replicates (equal weights; counts as counts; certified
-bounds to their envelope; positive quantities on the log scale), for :mod:`tvtrack.explore`."""
+bounds to their envelope; positive quantities on the log scale; replicates that disagree beyond their own intervals
+by Student's t over their values), for :mod:`tvtrack.explore`."""
 
 from __future__ import annotations
 
@@ -40,9 +41,11 @@ def _pool_counts(es: list[Estimate]) -> Estimate:
 
 
 def _is_bound(e: Estimate) -> bool:
-    """A one-sided interval of a non-negative quantity: ``[0, b]`` (a certified upper bound, e.g. no run of a
-    threshold ratio's denominator broke on the grid, or an interval clipped at zero) or ``[a, inf)``."""
-    return (e.ci_low == 0.0 < e.ci_high and e.value >= 0.0) or e.ci_high == math.inf
+    """A one-sided interval: ``[a, inf)``, or ``[0, b]`` of a non-negative quantity that its method certifies as a
+    bound (a count's, or e.g. no run of a threshold ratio's denominator broke on the grid). An interval merely
+    clipped at zero (a bootstrap's lower end below zero) is no bound: it pools as an interval."""
+    certified = _is_count(e) or "bound" in e.method
+    return (e.ci_low == 0.0 < e.ci_high and e.value >= 0.0 and certified) or e.ci_high == math.inf
 
 
 def _pool_estimates(es: list[Estimate]) -> Estimate:
@@ -97,33 +100,51 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
             f"pooled over {k} replicates: some intervals undefined",
             extrap,
         )
-    if np.all(lo > 0) and np.all(vals > 0):
-        lv, lse = np.log(vals), (np.log(hi) - np.log(lo)) / (2 * z)
-        m, se = lv.mean(), math.sqrt(float(np.sum(lse**2))) / k
-        return Estimate(
-            float(math.exp(m)),
-            float(math.exp(m) * se),
-            max(float(math.exp(m - z * se)), float(lo.min())),  # within the replicates' hull, as below
-            min(float(math.exp(m + z * se)), float(hi.max())),
-            n,
-            conf,
-            f"pooled over {k} independent replicates (equal weights, log scale)",
-            extrap,
-        )
-    se_i = (hi - lo) / (2 * z)
-    m, se = vals.mean(), math.sqrt(float(np.sum(se_i**2))) / k
+    if np.all(lo > 0) and np.all(vals > 0):  # positive quantities on the log scale
+        m, a, b, se, how = _combine(np.log(vals), np.log(lo), np.log(hi), conf, ", log scale")
+        a, b = max(math.exp(a), float(lo.min())), min(math.exp(b), float(hi.max()))  # within the hull, as below
+        return Estimate(float(math.exp(m)), float(math.exp(m) * se), a, b, n, conf, how, extrap)
+    m, a, b, se, how = _combine(vals, lo, hi, conf, "")
     # never beyond every replicate's interval (a share difference's pooled interval stays within [-1, 1]): the truth
     # lies outside the hull only when it lies outside every replicate's interval
-    a, b = max(float(m - z * se), float(lo.min())), min(float(m + z * se), float(hi.max()))
-    return Estimate(
-        float(m),
-        float(se),
-        a,
-        b,
-        n,
-        conf,
-        f"pooled over {k} independent replicates (equal weights)",
-        extrap,
+    a, b = max(a, float(lo.min())), min(b, float(hi.max()))
+    return Estimate(float(m), float(se), a, b, n, conf, how, extrap)
+
+
+#: The agreement test's level: replicates whose values scatter more than their own intervals allow at this level
+#: are pooled by the t interval over their values (see :func:`_combine`).
+AGREEMENT_LEVEL = 0.05
+
+
+def _combine(vals: np.ndarray, lo: np.ndarray, hi: np.ndarray, conf: float, scale: str) -> tuple:
+    """``(value, low, high, stderr, method)`` of equal-weight replicates on one scale.
+
+    The standard errors read from the replicates' intervals combine into the pooled one. The replicates must also
+    agree with each other: Cochran's Q of their values about the pooled one, each weighed by its own standard
+    error, against chi-square with ``k - 1`` degrees of freedom. Where they disagree at :data:`AGREEMENT_LEVEL` (a
+    rare event, such as a run that loses lock, moved one replicate's value far beyond what the others' intervals,
+    which never saw one, allow), the interval is widened to Student's t over the replicates' values, which needs no
+    replicate's interval to be right."""
+    k, z = len(vals), _z(conf)
+    se_i = (hi - lo) / (2 * z)
+    m = float(vals.mean())
+    se = math.sqrt(float(np.sum(se_i**2))) / k
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = float(np.sum(np.where(vals == m, 0.0, ((vals - m) / se_i) ** 2)))
+    p = float(scipy.stats.chi2.sf(q, k - 1)) if math.isfinite(q) else 0.0
+    if p >= AGREEMENT_LEVEL:
+        return m, m - z * se, m + z * se, se, f"pooled over {k} independent replicates (equal weights{scale})"
+    spread = float(vals.std(ddof=1)) / math.sqrt(k)
+    half = max(z * se, float(scipy.stats.t.ppf(0.5 + conf / 2, k - 1)) * spread)
+    return (
+        m,
+        m - half,
+        m + half,
+        max(se, spread),
+        (
+            f"pooled over {k} independent replicates that disagree beyond their own intervals (agreement test "
+            f"p = {p:.2g}): widened to Student's t over their values{scale}"
+        ),
     )
 
 
