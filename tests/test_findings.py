@@ -617,12 +617,14 @@ def test_an_undecided_claim_says_the_runs_its_slowest_part_needs():
         "measured": {"a": straddles, "b": straddles},
         "robustness": {"parts": parts},
     }
-    assert "About 95 independent replicates would decide its part b." in claim_summary(claim)  # a's value is shown
+    assert "About 95 independent replicates are projected to decide its part b." in claim_summary(
+        claim
+    )  # a's value is shown
     parts["b"]["runs_to_decide"] = {"replicates": None, "now": 3}  # no practical number of runs decides b
     assert "No practical number of runs is projected to decide its part b." in claim_summary(claim)
     parts["a"]["runs_to_decide"] = {"replicates": 140, "now": 3}  # the shown part is the slowest: "it"
     parts["b"]["runs_to_decide"] = {"replicates": 95, "now": 3}
-    assert "About 140 independent replicates would decide it." in claim_summary(claim)
+    assert "About 140 independent replicates are projected to decide it." in claim_summary(claim)
 
 
 def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_limitations():

@@ -30,7 +30,7 @@ def test_a_straddling_interval_is_undecided_with_the_runs_that_would_decide_it()
     j = BAND.judge(Estimate(0.56, 0.05, 0.46, 0.66, 100, method="Student t"))
     assert j.verdict == "undecided" and not j.settled
     assert j.runs_factor == pytest.approx((0.10 / 0.06) ** 2)  # (half-width / distance to the edge) squared
-    assert "times the runs would decide it" in j.why
+    assert "times the runs are projected to decide it" in j.why
     # decided verdicts need no more runs
     assert BAND.judge(Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")).runs_factor == 1.0
     # a point on the edge is never projected to leave it

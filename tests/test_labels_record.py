@@ -54,7 +54,7 @@ def test_the_runs_to_decide_say_how_many_replicates_and_runs_with_the_cap():
         "now": 3,
         "factor": 2.0,
         "runs": 600,
-        "text": "undecided at 3 replicates: about 6 independent replicates (600 runs) would decide it, beyond the "
+        "text": "undecided at 3 replicates: about 6 independent replicates (600 runs) are projected to decide it, beyond the "
         "cap of 5",
     }
     # at least one more replicate; runs only where a replicate pools more than one run; a cap reached is no cap passed
@@ -63,7 +63,7 @@ def test_the_runs_to_decide_say_how_many_replicates_and_runs_with_the_cap():
         "now": 3,
         "factor": 1.0,
         "runs": None,
-        "text": "undecided at 3 replicates: about 4 independent replicates would decide it",
+        "text": "undecided at 3 replicates: about 4 independent replicates are projected to decide it",
     }
     assert rt(Judgement("undecided", "", False, 1000.0), 2, 2, None)["replicates"] == 2000  # the practical edge
     assert rt(Judgement("undecided", "", False, 1001.0), 2, 2, None) == {

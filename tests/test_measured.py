@@ -309,8 +309,8 @@ def test_show_estimate_gives_the_bare_value_for_a_point_or_an_undefined_interval
 
 
 def test_decide_note_gives_the_factor_or_says_none_decides():
-    assert decide_note(4.0) == "about 4 times the runs would decide it"
-    assert decide_note(28.433) == "about 28 times the runs would decide it"
-    assert decide_note(1.26) == "about 1.3 times the runs would decide it"
+    assert decide_note(4.0) == "about 4 times the runs are projected to decide it"
+    assert decide_note(28.433) == "about 28 times the runs are projected to decide it"
+    assert decide_note(1.26) == "about 1.3 times the runs are projected to decide it"
     no = "no number of runs is projected to decide it (the point sits on the edge)"
     assert decide_note(math.inf) == no and decide_note(NAN) == no

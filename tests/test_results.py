@@ -217,7 +217,7 @@ def test_claim_summary_says_the_verdict_the_value_and_the_strongest_flip_in_comp
     assert claim_summary(UNDECIDED) == (
         "Undecided: MSE ratio network / filter is 0.6209 [0.6162, 0.6256], against [0, 0.625] (set here to check the "
         'paper\'s "filter 1-2 px; MLP 2-3 px"). '
-        "About 7 independent replicates would decide it."
+        "About 7 independent replicates are projected to decide it."
     )
     assert claim_summary(SMOKE).startswith("Reproduced (too few configurations to label): ")
     assert claim_summary(NOT_CHECKABLE) == "Not checkable: the recording of the real aircraft is not published."

@@ -276,7 +276,7 @@ def test_each_claim_has_a_page_with_its_specification_curve(explored_site):  # n
     vector = (explored_site / "claims/001_explored/C001-7.html").read_text()
     assert "falls from 216300 px to 0.178 px over 9 points" in vector and "7839" not in vector
     undecided = (explored_site / "claims/001_explored/C004-3b.html").read_text()
-    assert "About 7 independent replicates would decide it." in undecided
+    assert "About 7 independent replicates are projected to decide it." in undecided
     nothing = (explored_site / "claims/001_explored/C001-6.html").read_text()
     assert "no specification curve" in nothing
 

@@ -182,7 +182,7 @@ def test_monotone_judgements_say_the_ends_and_the_steps():
     assert m.judge([est(0, 2), est(1, 3)]) == _j(
         "undecided",
         "g: 1 [0, 2] el at the first point, 2 [1, 3] el at the last; 0 of 1 steps measurably increasing, 0 the other "
-        "way (no measurable trend yet; about 4 times the runs would decide it)",
+        "way (no measurable trend yet; about 4 times the runs are projected to decide it)",
         False,
         4.0,
     )
@@ -307,7 +307,7 @@ def test_ordering_judgements_say_the_difference_and_the_runs_to_decide():
     )
     assert o.judge(est(-0.5, 1.5)) == Judgement(
         "undecided",
-        "a - b = 0.5 [-0.5, 1.5] contains 0: no measurable difference yet; about 4 times the runs would decide it",
+        "a - b = 0.5 [-0.5, 1.5] contains 0: no measurable difference yet; about 4 times the runs are projected to decide it",
         False,
         4.0,
     )

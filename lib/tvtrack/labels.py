@@ -165,7 +165,7 @@ def _runs_text(j: Judgement, n_reps: int, n_runs: int, cap: int | None) -> dict:
         "now": n_reps,
         "factor": f,
         "runs": runs,
-        "text": f"undecided at {n_reps} replicates: {what} would decide it{beyond}",
+        "text": f"undecided at {n_reps} replicates: {what} are projected to decide it{beyond}",
     }
 
 

@@ -237,8 +237,8 @@ def decide_note(factor: float) -> str:
     Returns
     -------
     str
-        ``"about F times the runs would decide it"``, or that no number of runs would.
+        ``"about F times the runs are projected to decide it"``, or that no number of runs is.
     """
     if not math.isfinite(factor):
         return "no number of runs is projected to decide it (the point sits on the edge)"
-    return f"about {factor:.2g} times the runs would decide it"
+    return f"about {factor:.2g} times the runs are projected to decide it"

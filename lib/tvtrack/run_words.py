@@ -43,7 +43,7 @@ def runs_sentence(part: Mapping, name: str | None = None) -> str:
     if r.get("replicates"):
         cap = re.search(r"beyond the cap of (\d+)", str(r.get("text") or ""))
         beyond = f", more than the {cap.group(1)} this run allows" if cap else ""
-        return f"About {r['replicates']} independent replicates would decide {it}{beyond}."
+        return f"About {r['replicates']} independent replicates are projected to decide {it}{beyond}."
     return f"No practical number of runs is projected to decide {it}."
 
 

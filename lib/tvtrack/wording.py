@@ -54,7 +54,8 @@ VERDICT_WORDS = {
     "reproduced": "the whole 95 % interval lies where the paper's value (the rule's band) says",
     "partly": "the claim's parts disagree: some reproduced, some not",
     "not reproduced": "the whole 95 % interval lies outside the paper's band",
-    "undecided": "the interval straddles an edge of the band: more runs would decide it",
+    "undecided": "the interval straddles an edge of the band: more runs may decide it (the runs quoted are "
+    "projected from its width: at that size an estimate that holds clears the edge about half the time)",
     "not checkable": "the paper gives nothing this project can measure",
 }
 #: What each robustness label means (a label is about how sure the verdict is, not about the verdict).
@@ -65,7 +66,8 @@ LABEL_WORDS = {
     "never printed, changes the verdict, or a part's (alone, or only with a world beyond it)",
     "unstable": "independent replicates of the same run disagree decisively",
     "unexplored": "nothing explored shows how far it extends (no world varied, or none of it decided)",
-    "provisional": "too few configurations explored to label the verdict (a smoke-size run): never robust",
+    "provisional": "too few configurations explored to label the verdict (a smoke-size run, or a claim explored "
+    "over few entries): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
 }
 #: What counts as a flip (:mod:`tvtrack.labels`: a condition sized to the default's runs, decisive the other way).
