@@ -14,13 +14,22 @@ from .study import BANDWIDTH_PAIR, BXY_GRID, LINEAR_BAND
 __all__ = ["CLAIMS", "NOTES", "RULES", "claim_rules"]
 
 
+# the words that reach a reader without the notebook (the report's tables): every symbol of the model defined
+_DD = "(d the spot's brightness, D its width)"
+_COMPENSATION_MODEL = (
+    "Compensation is modelled as leaving a tenth of the whole static scene, interferers included (the paper's "
+    "'equivalent to reducing the background by an order of magnitude', l. 198)."
+)
+
+
 def _claim(statement: str, paper_value: str) -> dict[str, str]:
     return {"statement": statement, "paper_value": paper_value}
 
 
 CLAIMS = {
     "C003-1": _claim(
-        "The derived tracker follows x_r (random) and y_r (sinusoid) after a transient (Fig. 1).",
+        "The derived tracker follows the object's x coordinate (random motion) and y coordinate (a sinusoid) after a "
+        "transient (Fig. 1).",
         "qualitative (Fig. 1)",
     ),
     "C003-2": _claim(
@@ -40,7 +49,7 @@ CLAIMS = {
     "C003-8": _claim(
         "With compensation equal to a 10x background reduction the pre-compensation threshold is 0.2-0.3 (five "
         "interferers need >= 0.3).",
-        "SIR_0 0.2 (one), 0.3 (five)",
+        "0.2 (one interferer), 0.3 (five), as marker-to-interferer brightness ratios before compensation",
     ),
     "C003-9": _claim(
         "Edge discriminators become relay-like or lose function for a round spot; the quadrant form restores a "
@@ -71,7 +80,8 @@ CLAIMS = {
 # what each claim's rule reads in the paper, shown with its verdict
 NOTES = {
     "C003-2": "The paper explains the ripple by the wide loops: the 'wide_loops' part asks whether the rotation-"
-    "locked share rises with B_xy; the near control separates a locked ripple from broadband lag error. The trend is "
+    "locked share rises with the coordinate-loop bandwidth; the near control (1 Hz above the rotation rate) separates "
+    "a locked ripple from broadband lag error. The trend is "
     "read only over the loop bandwidths at which the tracker keeps lock (at 2 Hz the loop loses lock in every run: "
     "its error is the distance to the marker it left, not a ripple), each on its runs in lock; the lost points are "
     "reported as such.",
@@ -81,23 +91,25 @@ NOTES = {
     "C003-10": "l. 198: «если ... компенсации ... эквивалентно уменьшению яркости фона на порядок, то пороговое "
     "отношение ... до компенсации ... уменьшается до 0,2-0,3» (if compensation equals an order-of-"
     "magnitude background reduction, the pre-compensation threshold falls to 0.2-0.3); l. 208 names "
-    "compensation a main factor. Decided by 'gate' alone: in the kappa model an uncompensated scene at SIR_0 = x "
-    "holds the interferers of a compensated scene at SIR = x with 1/kappa times its background, so the "
-    "compensated over uncompensated SIR_0 threshold is at most kappa whenever more background does not help "
-    "tracking ('compensation' not checkable, as C003-8; its ratio is reported, a bound [0, b] when any "
-    "uncompensated run lost lock at the grid's top SIR_0; C003-4's 'compensation' part measures the losses "
+    "compensation a main factor. Decided by the 'gate' part alone. " + _COMPENSATION_MODEL + " A scene without "
+    "compensation at a brightness ratio x before compensation therefore holds the interferers of a compensated "
+    "scene at SIR x with ten times its background, so the compensated scene's threshold in the ratio before "
+    "compensation is at most a tenth of the uncompensated scene's whenever more background does not help tracking "
+    "(the 'compensation' part is not checkable, as C003-8; its ratio is reported, as an upper bound when any run "
+    "without compensation lost lock at the grid's highest ratio; C003-4's 'compensation' part measures the losses "
     "without compensation).",
     "C003-11": "l. 192 says the errors depend substantially on the loop bandwidths without a direction: the "
-    "'bandwidth' part is two-sided, the fold change max(q, 1/q) of the mean-square miss, 'substantial' "
-    "from 1.25 (the 25 % that C003-4's insensitivity allows); the signed ratio is in section 7.",
+    "'bandwidth' part is two-sided, the fold change of the mean-square miss (the larger of the ratio and its "
+    "inverse), 'substantial' from 1.25 (the 25 % that C003-4's insensitivity allows); the signed ratio is in the "
+    "notebook's section 7.",
     "C003-12": "From the introduction: an imitator must reproduce the emitter's law of motion, so it is harder to "
     "build; 'imitator' asks whether a decoy following the law breaks lock at higher SIR than a "
     "stationary emitter (the modulation then rejects the cheap interference), 'one'/'five' whether "
-    "the modulation beats the static marker against stationary interferers (its 'static_gate' "
-    "comparator tuned to 2D as well). A static marker or decoy that keeps lock below the grid "
-    "bounds the ratio above, one that loses it above the grid bounds it below. What SIR means for the "
-    "decoy is the register's decoy_brightness (the paper's SIR, l. 198, is the brightness an "
-    "interferer keeps after compensation; a moving decoy is not compensated).",
+    "the modulation beats the static marker against stationary interferers (the static marker also run with a "
+    "gate of 2 spot diameters, a reading of the comparator). A static marker or decoy that keeps lock below the "
+    "grid bounds the ratio above, one that loses it above the grid bounds it below. What SIR means for the "
+    "decoy is a register entry, the brightness of the law-following decoy at a given SIR (the paper's SIR, "
+    "l. 198, is the brightness an interferer keeps after compensation; a moving decoy is not compensated).",
 }
 
 
@@ -147,10 +159,10 @@ def _tracking_rules(D: float) -> dict[str, Rule]:
         "C003-9": AllOf(
             {
                 "square_linear": InBand(
-                    "quadrant discriminator slope over its design value 2dD, square spot (ratio)", *LINEAR_BAND
+                    f"quadrant discriminator slope over its design value 2dD {_DD}, square spot (ratio)", *LINEAR_BAND
                 ),
                 "disc_linear": InBand(
-                    "quadrant discriminator slope over its design value 2dD, round spot (ratio)", *LINEAR_BAND
+                    f"quadrant discriminator slope over its design value 2dD {_DD}, round spot (ratio)", *LINEAR_BAND
                 ),
                 "edge_square": Ordering(
                     "mean-square marker miss of the edge discriminator (px^2)",
@@ -206,10 +218,11 @@ def _interference_rules(D: float) -> dict[str, Rule]:
                     "SIR threshold, five interferers", f"gate side {gates} px (1.5, 3, 5 spot diameters)", "increasing"
                 ),
                 "compensation": NotCheckable(
-                    "In this compensation model the uncompensated scene at SIR_0 = x has the interferers of the "
-                    "compensated scene at SIR = x and 1/kappa times its background, so the pre-compensation threshold "
-                    "with compensation is at most kappa times the one without by construction (unless more background "
-                    "helps tracking); the 1/kappa itself is C003-8's arithmetic."
+                    _COMPENSATION_MODEL + " A scene without compensation at a brightness ratio x before compensation "
+                    "therefore holds the interferers of a compensated scene at SIR x with ten times its background, so "
+                    "the threshold in the ratio before compensation is, with compensation, at most a tenth of the one "
+                    "without by construction (unless more background helps tracking); the tenth itself is C003-8's "
+                    "arithmetic."
                 ),
             }
         ),
@@ -226,8 +239,8 @@ def _interference_rules(D: float) -> dict[str, Rule]:
                 # l. 192: the errors depend substantially on the bandwidths, no direction: two-sided, 'substantially'
                 # from C003-4's 25 %
                 "bandwidth": InBand(
-                    "fold change of the mean-square miss between B_xy = {:g} and {:g} Hz, either way "
-                    "(max(q, 1/q))".format(*BANDWIDTH_PAIR),
+                    "fold change of the mean-square miss between coordinate-loop bandwidths of {:g} and {:g} Hz, "
+                    "either way (the larger of the ratio and its inverse)".format(*BANDWIDTH_PAIR),
                     low=1.25,
                 ),
             }
@@ -252,9 +265,9 @@ def claim_rules(diameter: float | None = None) -> dict[str, Rule]:
     D = Scenario().diameter if diameter is None else diameter
     rules = _tracking_rules(D) | _interference_rules(D)
     rules["C003-8"] = NotCheckable(
-        "In this compensation model SIR_0 = kappa SIR by construction (compensation scales the whole static scene, "
-        "interferers included), so the pre-compensation thresholds are kappa times C003-6/7's and carry no "
-        "separate evidence."
+        _COMPENSATION_MODEL + " The marker-to-interferer brightness ratio before compensation is therefore a tenth "
+        "of the one after it (the paper's SIR) by construction, so the thresholds before compensation are a tenth "
+        "of C003-6's and C003-7's and carry no separate evidence."
     )
     rules["C003-13"] = NotCheckable("A statement about the derivation, not about tracker behaviour.")
     return {cid: rules[cid] for cid in CLAIMS}

@@ -53,8 +53,9 @@ def s_curves(sc: Scenario, band: tuple = LINEAR_BAND):
         word = ["inside" if band[0] <= r <= band[1] else "outside" for r in (r0, r1)]
         parts.append(f"{spot} {r0:.3g} ({word[0]}) and {r1:.3g} ({word[1]})")
     return fig, (
-        f"Static discriminator characteristics (D = {D:g} px, gate {2 * A:g} px). Quadrant form: slope over the "
-        f"dotted 2dD at small errors (+-D/8, +-D/4) and fitted over +-D/2 (grey), against the band "
+        f"Static discriminator characteristics (spot width D = {D:g} px, gate {2 * A:g} px). Quadrant form: slope "
+        f"over the dotted design slope 2dD (d the spot's brightness) at small errors (+-D/8, +-D/4) and fitted over "
+        f"+-D/2 (grey), against the band "
         f"[{band[0]:g}, {band[1]:g}]: " + "; ".join(parts) + ". Edge form: the output against the spot offset, for "
         "the square a step at zero (a relay), for the disc a smooth S over the spot's width."
     )
@@ -313,7 +314,7 @@ def median_figure(residual: np.ndarray, truth, interferers: np.ndarray, n_frames
     return fig, (
         f"The static scene left by a per-pixel temporal median over the first {n_frames} frames, each pixel's median "
         f"taken over the frames the marker (green) leaves it free (eq. (19) subtracts the scene without the object): "
-        f"the background cancels to a residual of standard deviation {crop.std():.3g} d, "
+        f"the background cancels to a residual of standard deviation {crop.std():.3g} d (d the marker's brightness), "
         f"{crop.std() / noise_std:.3g} times the sensor noise per pixel, and the largest residual is "
         f"{np.abs(crop).max():.3g} d. The interferers (red) keep d / SIR after compensation, the paper's SIR."
     )

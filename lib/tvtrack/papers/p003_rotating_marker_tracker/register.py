@@ -156,9 +156,9 @@ REGISTER = Register(
             "sensor noise is 'white, intensity N' with no value: d/50 (this project's default), from d/100 to d/20",
             title="sensor noise per pixel and frame, in units of the marker brightness d",
             phrases={
-                0.01: "sensor noise d/100 per pixel",
-                0.02: "sensor noise d/50 per pixel (this project's default)",
-                0.05: "sensor noise d/20 per pixel",
+                0.01: "sensor noise a hundredth of the marker's brightness per pixel",
+                0.02: "sensor noise a fiftieth of the marker's brightness per pixel (this project's default)",
+                0.05: "sensor noise a twentieth of the marker's brightness per pixel",
             },
         ),
         Entry(
@@ -332,8 +332,8 @@ REGISTER = Register(
             "T (5 s at paper scale, for cost) and twice it (10 s, the length first planned for these runs)",
             title="length of each interference run (a loss is counted within it)",
             phrases={
-                "T": "runs of T = 5 s at paper scale",
-                "2T": "runs of 2T = 10 s (the length first planned for these runs)",
+                "T": "runs of 5 s at paper scale",
+                "2T": "runs of 10 s, twice the default (the length first planned for these runs)",
             },
         ),
         Entry(

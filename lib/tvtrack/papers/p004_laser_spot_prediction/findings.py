@@ -238,7 +238,8 @@ def amplitude_sentence(values: dict) -> str:
 
 def adversarial_summary(exploration, rules: dict) -> str:
     """What each entry added by the adversarial pass did: the claim parts whose verdict differs from the
-    first replicate's (same random numbers) when that entry alone is changed, or that none did."""
+    first replicate's (same random numbers) when that entry alone is changed, or that none did; each entry named
+    by its title and each value by its phrase (the register's plain words, never the code's names)."""
     lines = []
     for entry in exploration.register:
         if entry.origin != "adversarial":
@@ -254,8 +255,11 @@ def adversarial_summary(exploration, rules: dict) -> str:
                     for p, v in c["parts"].items():
                         if p in ref and v != ref[p]:
                             where = cid if p == "claim" else f"{cid} ({p})"
-                            flips.append(f"{where} {ref[p]} -> {v} at {c['changed'][entry.name]}")
-        lines.append(f"- `{entry.name}`: " + ("; ".join(flips) if flips else "no verdict changed") + ".")
+                            flips.append(f"{where} {ref[p]} -> {v} with {entry.phrase(c['changed'][entry.name])}")
+        title = entry.title or entry.name
+        lines.append(
+            f"- {title[:1].upper() + title[1:]}: " + ("; ".join(flips) if flips else "no verdict changed") + "."
+        )
     return "\n".join(lines) if lines else "- no entry was added by the adversarial pass."
 
 
