@@ -9,7 +9,7 @@ from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
 from tvtrack.papers.p000_dissector_ekf.register import REGISTER
 
 SIZES = study.Sizes(n_trials=300)
-JOINT = {"C000-6 joint reading": study.JOINT_READING_C6}
+JOINT = {"C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}  # pinned
 
 
 def test_runs_that_lost_lock_are_dropped_only_inside_the_context():
@@ -26,10 +26,10 @@ def test_runs_that_lost_lock_are_dropped_only_inside_the_context():
     assert counts == [(3, 40), (2, 40)]
 
 
-def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lock():
-    """The joint reading (a filter ignoring the signal noise, the background held fixed) reads 'exceeds 20 times'
-    reproduced over all runs (ratio about 98 on these draws) because about 3 % of the runs lost lock; over the runs
-    in lock the ratio is about 2.2, as at the default: the flip is the lost runs'."""
+def test_c000_6_flip_under_its_joint_condition_is_carried_by_the_runs_that_lost_lock():
+    """The pinned joint condition (a filter ignoring the signal noise, the background held fixed) reads 'exceeds 20
+    times' reproduced over all runs (ratio about 98 on these draws) because about 3 % of the runs lost lock; over the
+    runs in lock the ratio is about 2.2, as at the default: the flip is the lost runs'."""
     d = REGISTER.default()
     rule = claim_rules(SIZES)["C000-6"]
     before = study.measure({**d, **JOINT}, 7, SIZES, frozenset({"C000-6"}))["C000-6"]
@@ -40,7 +40,8 @@ def test_c000_6_flip_under_its_joint_reading_is_carried_by_the_runs_that_lost_lo
     assert m["all"].value > 20 and rule.decide(m["all"]) == "reproduced"
     assert m["in lock"].value == pytest.approx(2.2, rel=0.1) and rule.decide(m["in lock"]) == "not reproduced"
     rep = lock_loss.lock_report(study.measure, rule, d, [JOINT], 7, SIZES, "C000-6", REGISTER.describe)
-    assert "over all its runs and the same over its runs in lock (the claim's verdict pools" in rep["note"]
+    assert "over the default's one replicate (every one the claim pools)" in rep["note"]
+    assert "they read not reproduced over all runs and the same over the runs in lock" in rep["note"]
     assert all(row["replicates"] == 1 for row in rep["rows"])  # one replicate's draws, said in the sentence
     assert "the flip is carried by the runs that lost lock" in rep["note"]
     assert "The mean over all runs decides" in rep["note"]
@@ -109,15 +110,20 @@ def test_the_lock_report_gives_each_part_its_own_verdicts_so_a_flip_is_carried_o
     assert (row["verdict"], row["in_lock_verdict"]) == ("not reproduced", "partly")
     assert row["parts"] == {"a": "not reproduced", "b": "not reproduced"}
     assert row["in_lock_parts"] == {"a": "not reproduced", "b": "reproduced"}
+    carried = "of its parts, part b reads not reproduced over all runs and reproduced over the runs in lock: that flip"
+    assert carried + " is carried by the runs that lost lock" in rep["note"], rep["note"]
+    assert (
+        "part a reads" not in rep["note"]
+    )  # its flip stands over the runs in lock too: the whole claim's words say so
     flips = {p: {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]} for p in "ab"}
     record = mark_lost_runs({"parts": flips}, rep["rows"], "reproduced")
     assert {p: v["flips"][0]["lost_runs"]["carried"] for p, v in record["parts"].items()} == {"a": False, "b": True}
 
 
 def test_a_condition_whose_draws_read_the_default_s_verdict_over_every_run_is_never_said_carried_by_lost_runs():
-    """The lock report runs one replicate's draws; a flip pools every replicate. Where those draws read the
-    default's verdict over every run and the flip's only over the runs in lock, the lost runs hide the flip on
-    that draw: the note must not say they carry it, and the row is not marked carried."""
+    """Where the lock report's draws read the default's verdict over every run and the flip's only over the runs in
+    lock, the lost runs hide the flip on those draws: the note must not say they carry it, and the row is not marked
+    carried."""
     from types import SimpleNamespace
 
     from tvtrack.labels import mark_lost_runs
@@ -144,3 +150,119 @@ def test_a_condition_whose_draws_read_the_default_s_verdict_over_every_run_is_ne
     part = {"verdict": "reproduced", "flips": [{"changed": dict(at), "verdict": "not reproduced"}]}
     record = mark_lost_runs({"parts": {"claim": part}}, rep["rows"], "reproduced")
     assert record["parts"]["claim"]["flips"][0]["lost_runs"]["carried"] is False
+
+
+def _two_seed_measure(config, seed, sizes, claims):
+    """40 runs per seed; at the condition (x = 1) seed 11 loses no run and seed 12 loses 3 (about 300 times the
+    median run's mean square); a dict seed lookup, so that a list of seeds is never taken for one seed."""
+    from tvtrack.montecarlo import mean_ci
+
+    b = 0.01 + np.random.default_rng(seed).uniform(0.0, 0.01, 40)
+    b[: {11: 0, 12: 3}[seed] if config["x"] else 0] = 3.0
+    return {"C": mean_ci(lock_loss.keep(b))}
+
+
+def test_the_lock_report_counts_the_lost_runs_of_every_replicate_seed_and_pools_the_runs_in_lock():
+    """The claim pools two replicates; only the second lost runs. A report on the first replicate alone said none
+    lost lock; over both seeds it counts the second's 3 of their 80 runs, says so with both replicates, and its
+    values are the two replicates pooled as the claim's are (:func:`tvtrack.pooling.pool`)."""
+    from types import SimpleNamespace
+
+    from tvtrack.pooling import pool
+    from tvtrack.verdicts import InBand
+
+    sizes, at = SimpleNamespace(lock_factor=5.0), {"x": 1}
+    one = [lock_loss.measure_in_lock(_two_seed_measure, at, s, sizes, "C") for s in (11, 12)]
+    m = lock_loss.measure_in_lock(_two_seed_measure, at, [11, 12], sizes, "C")
+    assert [o["lost_runs"] for o in one] == [0, 3]
+    assert (m["lost_runs"], m["runs"], m["replicates"]) == (3, 80, 2)
+    assert m["lost"].ci_low < 3 / 80 < m["lost"].ci_high
+    assert m["all"] == pool([o["all"] for o in one]) and m["in lock"] == pool([o["in lock"] for o in one])
+    assert m["in lock"].value < 0.02 < m["all"].value  # the second replicate's lost runs carry the mean
+    rule = InBand("mean", -0.5, 0.5, "px")
+    rep = lock_loss.lock_report(_two_seed_measure, rule, {"x": 0}, [at], [11, 12], sizes, "C", str)
+    flip = rep["rows"][1]
+    assert (flip["lost"], flip["runs"], flip["replicates"]) == (3, 80, 2)
+    assert (rep["rows"][0]["lost"], rep["rows"][0]["runs"], rep["rows"][0]["replicates"]) == (0, 80, 2)
+    assert "over its 2 replicates 3 of 80 runs lost lock" in rep["note"], rep["note"]
+    assert "over the default's 2 replicates (every one the claim pools) 0 of 80 runs" in rep["note"]
+    assert rep["metric"][str(at)]["replicates"] == 2
+
+
+def test_a_condition_runs_on_the_seeds_of_its_own_replicates():
+    """``lock_draws`` reads a claim's record: the default on every replicate seed the claim pools, each flipping
+    condition on the seeds its own replicates ran on (the default's first ones, past the claim's own up to the
+    exploration's max_replicates); ``lock_report`` measures each on those seeds."""
+    from types import SimpleNamespace
+
+    from tvtrack.explore import replicate_seeds
+    from tvtrack.verdicts import InBand
+
+    spawned = replicate_seeds(1995, 6)
+    record = {
+        "replicates": [{"seed": s} for s in spawned[:3]],
+        "design": {"seed": 1995, "max_replicates": 6},
+        "parts": {
+            "a": {"flips": [{"changed": {"x": 1}, "runs": 1}, {"changed": {"y": 2}, "runs": 5}]},
+            "b": {"flips": [{"changed": {"x": 1}, "runs": 1}]},
+        },
+    }
+    conditions, seeds = lock_loss.lock_draws(record)
+    assert seeds == spawned[:3]
+    assert conditions == [({"x": 1}, spawned[:1]), ({"y": 2}, spawned[:5])]
+    asked = []
+
+    def measure(config, seed, sizes, claims):
+        asked.append((config["x"], config["y"], seed))
+        return {"C": _two_seed_measure({"x": 0}, 11, sizes, claims)["C"]}
+
+    rule = InBand("mean", -0.5, 0.5, "px")
+    rep = lock_loss.lock_report(
+        measure, rule, {"x": 0, "y": 0}, conditions, seeds, SimpleNamespace(lock_factor=5.0), "C", str
+    )
+    assert [r["replicates"] for r in rep["rows"]] == [3, 1, 5]
+    assert sorted({s for x, y, s in asked if (x, y) == (0, 2)}) == sorted(spawned[:5])
+    assert {s for x, y, s in asked if (x, y) == (0, 0)} == set(spawned[:3])
+
+
+def test_a_condition_left_undecided_over_every_run_is_never_said_a_flip():
+    """Over every run the condition's interval straddles the band's end (undecided), over the runs in lock it lies
+    inside (reproduced): the draws show no flip, so the note must not say the lost runs carry one."""
+    from types import SimpleNamespace
+
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.verdicts import InBand
+
+    def measure(config, seed, sizes, claims):
+        b = np.full(40, 0.01)
+        if config["x"]:
+            b[:10] = 2.0  # lost lock: the mean over every run about 0.51
+        m = float(np.mean(lock_loss.keep(b)))
+        return {"C": Estimate(m, 0.1, m - 0.2, m + 0.2, 40)}
+
+    rule, at = InBand("mean", -0.5, 0.5, "px"), {"x": 1}
+    rep = lock_loss.lock_report(measure, rule, {"x": 0}, [at], 7, SimpleNamespace(lock_factor=5.0), "C", str)
+    row = rep["rows"][1]
+    assert (rep["rows"][0]["verdict"], row["verdict"], row["in_lock_verdict"]) == (
+        "reproduced",
+        "undecided",
+        "reproduced",
+    )
+    assert "flip is carried" not in rep["note"] and "the flip is not made" not in rep["note"], rep["note"]
+    assert "over all runs these draws leave the claim as a whole undecided, so they show no flip" in rep["note"]
+
+
+def test_c000_2_lock_report_counts_every_replicate_s_lost_runs():
+    """C000-2 on two replicate seeds of the study: the runs lost at switch-on are counted over both, each
+    replicate's count the same as alone, the values pooled as the claim's replicates are."""
+    from tvtrack.pooling import pool
+
+    sizes = study.Sizes(n_trials=100, duration_T=8.0, window_T=3.0, substeps=2, psi_grid=(5.0, 20.0))
+    d = REGISTER.default()
+    one = [lock_loss.measure_in_lock(study.measure, d, s, sizes, "C000-2") for s in (1, 2)]
+    both = lock_loss.measure_in_lock(study.measure, d, [1, 2], sizes, "C000-2")
+    assert one[0]["lost_runs"] == 3 and both["runs"] == 200 and both["replicates"] == 2
+    assert both["lost_runs"] >= max(o["lost_runs"] for o in one)
+    assert both["lost_runs"] <= sum(o["lost_runs"] for o in one)
+    assert both["all"] == pool([o["all"] for o in one])
+    assert both["in lock"] == pool([o["in lock"] for o in one])

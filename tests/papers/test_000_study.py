@@ -167,6 +167,35 @@ def test_explore_runs_the_measurement_and_the_prose_reads_the_records(tmp_path):
     assert "Of 2 checkable claims" in text
 
 
+def test_the_register_and_the_condition_names_show_no_code_name_to_a_reader():
+    """The register table's texts name no parameter of the notebook by its code name (the run's lock factor, not
+    ``lock_factor``); the conditions a prose sentence lists, and the scoring-time table's headers, are in the
+    register's plain words; a figure's axis names each condition by its entry and value, a float without a
+    trailing ".0"."""
+    from types import SimpleNamespace
+
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p000_dissector_ekf.findings import beside, condition_rows
+    from tvtrack.papers.p000_dissector_ekf.params import RULES as PARAMETERS
+
+    code = [n for n in PARAMETERS if "_" in n] + ["window_T"]
+    for e in REGISTER:
+        for text in (e.why, e.title, *e.phrases.values()):
+            assert not [n for n in code if n in text], (e.name, text)
+    est = Estimate(2.0, 0.1, 1.8, 2.2, 40, 0.95, "test")
+    conds = [
+        {"changed": {"psi_A": 100.0}, "kind": "single", "measured": est},
+        {"changed": {"scoring time": "interval centre"}, "kind": "single", "measured": est},
+    ]
+    ex = SimpleNamespace(register=REGISTER, measured=lambda cid: est, record=lambda cid: {"conditions": conds})
+    assert [r[0] for r in condition_rows(ex, "C000-6")][1:] == ["psi_A = 100", "scoring time = interval centre"]
+    plain = [r[0] for r in condition_rows(ex, "C000-6", plain=True)][1:]
+    assert plain == [REGISTER["psi_A"].phrase(100.0), REGISTER["scoring time"].phrase("interval centre")]
+    table = beside(ex, {"C000-6": vd.InBand("ratio", low=20.0)}, ["C000-6"], "scoring time", "interval centre")
+    header = table.splitlines()[0]
+    assert "scoring time =" not in header and REGISTER["scoring time"].phrase("interval end") in header
+
+
 def test_the_recording_is_off_when_asked(tmp_path):
     scan, x, pulse, xi = study.record_inputs(DEFAULT, 2, SMALL)
     assert record_trial(tmp_path, "off", scan, x, pulse, xi, n_scans=2) is None
@@ -191,16 +220,32 @@ def test_the_uniform_start_puts_every_truth_inside_the_micro_raster_and_photon_c
     np.testing.assert_array_equal(ref, study.steady_runs(DEFAULT, 9, SMALL, 20.0, 0.9, "stationary"))
 
 
-def test_the_joint_reading_of_c000_6_is_the_ignoring_filter_at_fixed_background_current():
-    joint = study.measure({**DEFAULT, "C000-6 joint reading": study.JOINT_READING_C6}, 4, SMALL)["C000-6"]
-    both = study.measure(
-        {**DEFAULT, "C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}, 4, SMALL
-    )["C000-6"]
-    assert joint.value == both.value
+#: C000-6's joint condition: the sentence's lost opening read as «Неучёт» (a reading) with the background current held
+#: fixed as P varies in Fig. 3 (a setting the paper never printed).
+C6_PIN = {"C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}
+
+
+def test_c000_6s_joint_condition_is_pinned_and_its_flip_named_by_each_entrys_own_kind():
+    """The pair is a pinned joint condition of two entries C000-6 declares, not one register entry of the kind
+    "unreported setting": its flip reads "an unprinted setting with a reading", each change with its own kind."""
+    from tvtrack.flip_words import flip_with_kind, label_basis
+
+    assert "C000-6 joint reading" not in REGISTER and "C000-6 joint reading" not in DEPENDS["C000-6"]
+    assert C6_PIN in REGISTER.pinned and set(C6_PIN) <= set(DEPENDS["C000-6"])
+    assert [REGISTER[k].side for k in C6_PIN] == ["reading", "setting"]
+    flip = {"changed": C6_PIN, "side": "setting", "kind": "joint", "verdict": "reproduced", "runs": 1}
+    flip["text"] = REGISTER.describe(C6_PIN)
+    record = {"register": REGISTER.to_dict(), "parts": {"claim": {"verdict": "not reproduced", "flips": [flip]}}}
+    claim = {"id": "C000-6", "verdict": "not reproduced", "robustness": record}
+    assert label_basis(claim) == "an unprinted setting with a reading"
+    words = flip_with_kind(flip, record)
+    assert "(a reading of the paper's text)" in words and "(a setting the paper never printed)" in words
+
+
+def test_c000_6s_joint_condition_measures_the_ignoring_filter_at_fixed_background_current():
+    both = study.measure({**DEFAULT, **C6_PIN}, 4, SMALL)["C000-6"]
     a = study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "ignoring")
-    assert joint.value == pytest.approx(
-        a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean()
-    )
+    assert both.value == pytest.approx(a.mean() / study.steady_runs(DEFAULT, 4, SMALL, 180.0, 0.9, "stationary").mean())
 
 
 def test_nees_is_near_one_at_the_time_the_model_refers_to_and_grows_when_scored_at_the_interval_end():

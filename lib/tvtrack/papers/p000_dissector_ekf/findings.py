@@ -67,12 +67,21 @@ def reproduced_where(rule, named: dict) -> list:
     return [k for k, m in named.items() if (parts[k] if parts else rule).decide(m) == "reproduced"]
 
 
-def condition_rows(ex, claim_id: str) -> list:
-    """``(description, measured)`` of the claim pooled at the default, then under each condition of its exploration."""
+def condition_rows(ex, claim_id: str, plain: bool = False) -> list:
+    """``(description, measured)`` of the claim pooled at the default, then under each condition of its exploration:
+    each condition named by the register entries it changes and their values, as the register's table shows them
+    (short, for a figure's axis), or in the register's plain words (``plain``, for prose)."""
     rows = [("default (pooled replicates)", ex.measured(claim_id))]
     for c in ex.record(claim_id)["conditions"]:
-        rows.append((", ".join(f"{k} = {v}" for k, v in c["changed"].items()), c["measured"]))
+        name = (
+            ex.register.describe(c["changed"]) if plain else ", ".join(_setting(k, v) for k, v in c["changed"].items())
+        )
+        rows.append((name, c["measured"]))
     return rows
+
+
+def _setting(entry: str, value) -> str:
+    return f"{entry} = {value:g}" if isinstance(value, float) else f"{entry} = {value}"
 
 
 def _fmt(measured) -> str:
@@ -88,10 +97,10 @@ def _measured(m):
 def beside(ex, rules: dict, claim_ids, entry: str, value) -> str:
     """A Markdown table: each part of each claim at the default (pooled replicates) and with ``entry = value``
     (the one-at-a-time condition, first replicate's draws), values with 95 % intervals and each verdict (a list
-    part, a trend, shows its last point)."""
-    default = ex.register.default()[entry]
+    part, a trend, shows its last point); the two columns are headed by the register's plain words."""
+    words = ex.register[entry]
     lines = [
-        f"| claim, part | {entry} = {default} (default) | verdict | {entry} = {value} | verdict |",
+        f"| claim, part | {words.phrase(words.default)} (default) | verdict | {words.phrase(value)} | verdict |",
         "|---|---|---|---|---|",
     ]
     for cid in claim_ids:

@@ -24,11 +24,6 @@ KINDS = {
     "lock threshold": ("reading", "a reading of what 'converged' requires of one run"),
     "C000-6 filter": ("reading", "a reading of the sentence whose opening is lost at a page break"),
     "potentially achievable": ("comparator", "a reading of 'potentially achievable', which the paper does not define"),
-    "C000-6 joint reading": (
-        "unreported setting",
-        "an unreported setting with a reading: the C000-6 sentence's filter read as 'ignoring' together with what "
-        "Fig. 3 held fixed as P varied, which the paper never printed (a change that takes a setting is a setting)",
-    ),
     "C000-3 accuracy": ("reading", "a reading of 'give approximately the same estimate of potential accuracy'"),
     "micro-raster size": ("reading", "a reading of '2 % of the micro-raster size'"),
     "psi_A": (

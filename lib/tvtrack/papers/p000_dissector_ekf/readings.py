@@ -10,7 +10,6 @@ from __future__ import annotations
 __all__ = [
     "LOCK_DEFAULT",
     "WINDOW_DEFAULT",
-    "JOINT_READING_C6",
     "LATE_SHARE",
     "ENSEMBLE_MEAN",
     "CONVERGENCE_READINGS",
@@ -31,9 +30,6 @@ __all__ = [
 #: The default values of the register entries "lock threshold" (the run's lock_factor) and "steady window" (the run's
 #: final window_T), named in plain words (the register table shows them).
 LOCK_DEFAULT, WINDOW_DEFAULT = "the run's lock factor", "final window"
-#: The adversarial pass's joint reading of C000-6 (the lost opening «Неучёт», ignoring, with the background current
-#: held fixed as P varies); the explorer's one-at-a-time runs see it as one value of one register entry.
-JOINT_READING_C6 = "ignoring the signal noise, fixed background current"
 #: The two readings of "converge fairly quickly" (register entry "convergence criterion"; each has its own rule).
 LATE_SHARE, ENSEMBLE_MEAN = "90 % of runs acquired", "ensemble mean within 10 %"
 CONVERGENCE_READINGS = (LATE_SHARE, ENSEMBLE_MEAN)

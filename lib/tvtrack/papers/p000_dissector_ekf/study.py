@@ -36,7 +36,6 @@ from .readings import (
     CS_CONSISTENT,
     CS_LITERAL,
     ENSEMBLE_MEAN,
-    JOINT_READING_C6,
     LOCK_DEFAULT,
     NOISE_EFFECT,
     WINDOW_DEFAULT,
@@ -401,8 +400,6 @@ def _c5_c7(cfg, seed, sizes):
 
 def _c6(cfg, seed, sizes):
     """C000-6: the reading's filter over the reading's "potentially achievable" accuracy at P = 0.9."""
-    if cfg["C000-6 joint reading"] == JOINT_READING_C6:
-        cfg = {**cfg, "C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"}
     psi = psi_at(cfg["psi_A"], 0.9, cfg["contrast convention"])
     filt = {"variant 2": "v2", "variant 1": "v1", "ignoring the signal noise": "ignoring"}[cfg["C000-6 filter"]]
     a = steady_runs(cfg, seed, sizes, psi, 0.9, filt)
