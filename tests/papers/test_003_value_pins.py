@@ -19,8 +19,9 @@ import pytest
 from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.lock import first_loss
+from tvtrack.papers.p003_rotating_marker_tracker.loops import phase_locked_amplitude
 from tvtrack.papers.p003_rotating_marker_tracker.register import REGISTER
-from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, run_scenario, scenario_truth
+from tvtrack.papers.p003_rotating_marker_tracker.scene import Scenario, run_scenario, scenario_truth, state_errors
 
 DEFAULT = REGISTER.default()
 SIRS = np.asarray(study.SIR_GRID)  # 0.5, 0.75, 1, 4/3, 2, 3, 4.5, 6.75
@@ -187,6 +188,60 @@ def test_c2_ripple_trend_is_the_wide_loop_over_the_narrow_loop():
     lost = f1["_lock_by_bandwidth"]
     assert lost["10 Hz"].value == lost["20 Hz"].value == 0.0  # both loops keep lock here: the pair reads every run
     assert f1["_ripple_trend"].value == pytest.approx(locked[3] / locked[2], rel=1e-12)  # 20 Hz over 10 Hz, in lock
+
+
+@pytest.fixture(scope="module")
+def fig1_runs():
+    """The Fig. 1 batch at a small size: its claim parts, and the truth and history of its runs (caught on their way
+    to the claims), with the frame the transient ends at."""
+    sc1 = study.scenario(DEFAULT, SMALL, duration_s=SMALL.fig1_s)
+    k0 = int(round(SMALL.transient_s * sc1.fps))
+    seen = []
+    real = study.state_errors
+
+    def catch(tr, h):
+        seen.append((tr, h))
+        return real(tr, h)
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(study, "state_errors", catch)
+    try:
+        f1 = study._fig1(sc1, SMALL.trials, 5, k0, study.criterion(DEFAULT, sc1))
+    finally:
+        mp.undo()
+    (tr, h) = seen[0]
+    return sc1, k0, f1, tr, h
+
+
+def _default_block(n_runs: int) -> slice:
+    """The runs of the Fig. 1 batch at this project's default coordinate-loop bandwidth (10 Hz)."""
+    j = study.BXY_GRID.index(Scenario().b_xy)
+    return slice(j * n_runs, (j + 1) * n_runs)
+
+
+def test_c1_x_error_is_read_after_the_transient(fig1_runs):
+    """C003-1: "post-transient (t > 2 s) RMS of x_r_hat - x_r ... < D/2 = 4 px": the RMS of the x error over the
+    frames from round(transient_s * fps) on, on the runs at the default (10 Hz) coordinate loops, not over the whole
+    run with its initial transient."""
+    sc1, k0, f1, tr, h = fig1_runs
+    ex = state_errors(tr, h)[_default_block(SMALL.trials), :, 0]
+    after = np.sqrt(np.mean(np.mean(ex[:, k0:] ** 2, axis=1)))
+    whole = np.sqrt(np.mean(np.mean(ex**2, axis=1)))
+    assert abs(whole - after) > 0.05 * after  # the transient weighs: the two readings differ at this size
+    assert f1["C003-1"]["x_r"].value == pytest.approx(after, rel=1e-9)
+
+
+def test_c2_near_part_is_the_locked_amplitude_over_the_near_control(fig1_runs):
+    """C003-2: "clear local maximum within f_rot +- 1 Hz, holding >= 10 % of the error power": the post-transient x
+    error's amplitude locked to the marker's rotation is the numerator, the amplitude locked to a control at
+    f_rot + 1 Hz the denominator (the rule asks locked > control), on the runs at the default coordinate loops."""
+    sc1, k0, f1, tr, h = fig1_runs
+    sel = _default_block(SMALL.trials)
+    ex, th = state_errors(tr, h)[sel, k0:, 0], tr.theta[sel, k0:]
+    locked = phase_locked_amplitude(ex, th)
+    near = phase_locked_amplitude(ex, th * (sc1.rotation_hz + 1.0) / sc1.rotation_hz)
+    assert np.mean(locked) != pytest.approx(np.mean(near), rel=0.05)  # the order of the quotient is visible
+    assert f1["C003-2"]["near"].value == pytest.approx(np.mean(locked) / np.mean(near), rel=1e-9)
 
 
 def test_c3_rate_error_is_relative_to_the_nominal_rate():
