@@ -172,7 +172,7 @@ def _p003():
 
 def _p004():
     from tvtrack.papers.p004_laser_spot_prediction import REGISTER, study
-    from tvtrack.papers.p004_laser_spot_prediction.register import DEPENDS
+    from tvtrack.papers.p004_laser_spot_prediction.register import DEPENDS, WORLD
 
     size = study.StudySize(
         n_paths=3,
@@ -185,7 +185,18 @@ def _p004():
         n_mc_variance=200,
         timing_frames=10,
     )
-    return [(functools.partial(study.measure, size=size), REGISTER, DEPENDS, list(DEPENDS))]
+    # study.measure projects each claim's configuration onto its DEPENDS (tvtrack.projection.as_declared): an entry
+    # the claim does not declare reaches it as the register's default, never as the guard's stand-in, so the guard
+    # watches the measurement beneath the projection, asked for the one claim at the same configuration. There it
+    # also sees entries read for every claim whose values only other claims use; these alone are let through:
+    used_by = {"lost frames": "C004-4", "spline": "C004-3", "network lags": "C004-3b"}
+    unused = {cid: {e for e, user in used_by.items() if user != cid} for cid in DEPENDS}
+    # the scene is rendered before the claims are read: C004-5 uses none of it, C004-8 times the per-frame work of
+    # the camera (read noise, saturation, energy centre) at the frame rate, not the paths or the spot's size
+    unused["C004-5"] |= set(WORLD)
+    unused["C004-8"] |= set(WORLD) - {"frame rate", "read noise", "saturation", "energy centre"}
+    depends = {cid: [*names, *sorted(unused[cid] - set(names))] for cid, names in DEPENDS.items()}
+    return [(functools.partial(study.measure.__wrapped__, size=size), REGISTER, depends, list(DEPENDS))]
 
 
 #: Per paper package: ``[(measure on small sizes, the register it is explored over, DEPENDS, its claims)]``, as

@@ -113,3 +113,26 @@ def test_a_tuning_grid_is_extended_until_the_folds_leave_its_top():
     assert np.all(chosen == 5) and made == [4, 5, 6]  # an interior optimum extends nothing
     _, _, chosen, _, _ = ps.tuned_forecast((1, 2, 3), make, z, z, folds, SETUP)
     assert np.all(chosen == 3)  # without an extension the top stays the grid's limit (reported as an edge)
+
+
+def test_windowed_baselines_search_past_the_window_grid_like_the_filter(monkeypatch):
+    """The card, C004-3: "Implement the baselines (§8) on identical data, horizon and metric" -- with the same tuning
+    effort: the spline's and the regressions' windows, like the paper filter's floor, are searched past the grid
+    (:data:`~.prediction_study.WINDOW_EXTENSION`) while a fold picks its top, so none stays at the grid's limit."""
+    asked = []
+    tuned = ps.tuned_forecast
+
+    def spy(candidates, make, z, ref, folds, s, more=()):
+        asked.append((tuple(candidates), tuple(more)))
+        return tuned(candidates, make, z, ref, folds, s, more=more)
+
+    monkeypatch.setattr(ps, "tuned_forecast", spy)
+    rng = np.random.default_rng(1)
+    t = np.arange(150)
+    z = 50.0 + rng.uniform(-0.3, 0.3, (1, 4, 2, 1)) * t + rng.standard_normal((1, 4, 2, 150))  # noisy lines
+    s = ps.ComparisonSetup(floor_grid=(3, 10), window_grid=(4,), start=30)
+    cmp = ps.compare_methods(z, z, learned.path_folds(4, 4), s, rng, parts={"classical"})
+    for name, lowest in ps.MIN_WINDOW.items():
+        assert (ps.window_candidates(lowest, s.window_grid), ps.WINDOW_EXTENSION) in asked, name
+    # a line through noisy samples errs least on the longest window: the search leaves the one-value grid
+    assert np.all(cmp.chosen["linear regression deg 1"] > max(s.window_grid))
