@@ -1,6 +1,8 @@
 """The study functions of paper 000 that the verdicts rest on: the measurement function, the contrast conventions,
 the generated prose."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -292,10 +294,35 @@ def test_the_drifting_background_scales_only_the_background_part_of_the_noise_in
     peak = study.photon_samples(cfg, 7, full, np.ones((2, 5)), np.ones((2, 5)))[:, 1:] - full.amplitude
     assert np.all(peak > 0)  # the mean pulse is untouched: only the noise is rescaled
     base, drift = study.measure(DEFAULT, 3, SMALL), study.measure(cfg, 3, SMALL)
-    assert (
-        drift["C000-1"] == base["C000-1"]
-        and drift["C000-5"]["measured"]["P=0.9"].value != base["C000-5"]["measured"]["P=0.9"].value
-    )
+    # every claim computed from the shared filter runs declares it; C000-8's two-rate runs are its own, stationary
+    assert drift["C000-5"]["measured"]["P=0.9"].value != base["C000-5"]["measured"]["P=0.9"].value
+    assert drift["C000-9"] != base["C000-9"] and drift["C000-8"] == base["C000-8"]
+
+
+@pytest.mark.parametrize(
+    ("claim", "entry", "value"),
+    [
+        ("C000-1", "manoeuvre", "weave 0.1 T / 2 T"),
+        ("C000-1", "background", "drifting +-50 %"),
+        ("C000-1", "steady window", "after 5 T"),
+        ("C000-2", "background", "drifting +-50 %"),
+        ("C000-3", "background", "drifting +-50 %"),
+        ("C000-6", "manoeuvre", "weave 0.1 T / 2 T"),
+        ("C000-6", "background", "drifting +-50 %"),
+        ("C000-6", "steady window", "after 5 T"),
+        ("C000-9", "manoeuvre", "weave 0.1 T / 2 T"),
+        ("C000-9", "background", "drifting +-50 %"),
+    ],
+)
+def test_the_worlds_and_window_of_the_shared_runs_reach_the_claims_measured_from_them(claim, entry, value):
+    """measure() projects each claim's configuration onto its DEPENDS: a claim computed from the shared filter runs
+    (their truth path, photon samples and steady error) is measured under the entry's other value only if it declares
+    it; else the exploration would count it as measured there while it was measured at the default."""
+    reading = {"C000-1": {"convergence criterion": "ensemble mean within 10 %"}}.get(claim, {})
+    sizes = dataclasses.replace(SMALL, window_T=2.0)  # the final window then differs from "after 5 T"
+    base = study.measure({**DEFAULT, **reading}, 3, sizes, frozenset({claim}))[claim]
+    moved = study.measure({**DEFAULT, **reading, entry: value}, 3, sizes, frozenset({claim}))[claim]
+    assert moved != base
 
 
 def test_a_stricter_lock_threshold_acquires_no_earlier():

@@ -521,13 +521,13 @@ DEPENDS = {
     "C000-4": ["C000-4 cost measure", "v2 noise at", "C000-4 batch"],
     "C000-1": _DATA
     + ["G22", "v2 noise at", "initial estimate", "initial position", "convergence criterion", "psi_A", "contrast"]
-    + ["sigma_1", "lock threshold", "signal-noise scale"],
+    + ["sigma_1", "lock threshold", "signal-noise scale", "manoeuvre", "background", "steady window"],
     "C000-2": _DATA
     + ["G22", "v2 noise at", "micro-raster size", "sigma_1", "manoeuvre", "steady window", "C000-2 contrasts"]
-    + ["signal-noise scale"],
+    + ["signal-noise scale", "background"],
     "C000-3": _DATA
     + ["G22", "v2 noise at", "psi_A", "contrast", "contrast convention", "statistic", "sigma_1"]
-    + ["C000-3 accuracy", "manoeuvre", "steady window", "signal-noise scale"],
+    + ["C000-3 accuracy", "manoeuvre", "steady window", "signal-noise scale", "background"],
     "C000-5": _DATA
     + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"]
     + ["manoeuvre", "substantially determines", "C000-5 comparison"],
@@ -541,6 +541,9 @@ DEPENDS = {
         "contrast convention",
         "statistic",
         "signal-noise scale",
+        "manoeuvre",
+        "background",
+        "steady window",
     ],
     "C000-7": _DATA
     + ["v2 noise at", "psi_A", "contrast convention", "statistic", "sigma_1", "background", "steady window"]
@@ -548,5 +551,5 @@ DEPENDS = {
     "C000-8": ["sigma_sh", "G22", "v2 noise at", "signal-noise scale"],
     "C000-9": _DATA
     + ["G22", "v2 noise at", "contrast", "statistic", "sigma_1", "steady window"]
-    + ["signal-noise scale"],
+    + ["signal-noise scale", "manoeuvre", "background"],
 }
