@@ -55,7 +55,7 @@ _WRITER = "".join(
 )
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
-    r"times|%|of \d|explored configurations|independent replicates|parts? hold|other changes?|points?|"
+    r"times|%|of \d|explored configurations|independent replicates|replicates?,|parts? hold|other changes?|points?|"
     r"runs|this run allows|agree|flips?\b|stay undecided|fails?\b|undecided\b|of (?:its|their) \d|steps?\b|fall\b|rises?\b"
 )
 

@@ -599,3 +599,16 @@ def test_the_forest_plot_opens_a_rule_chosen_by_a_reading():
     assert [i["name"] for i in items] == ["009 C9-1 x", "009 C9-1 y", "009 C9-2"]
     assert items[0]["band"] == (0.0, 2.0) and items[0]["value"] == pytest.approx(0.75)
     assert items[2]["band"] == (10.0, 20.0) and items[2]["value"] == pytest.approx(0.5)
+
+
+def test_a_paper_profile_with_one_provisional_claim_keeps_every_labels_count():
+    """At the paper profile a claim explored over too few configurations is provisional; the summary counts it
+    beside the other labels (once, its presence replaced the whole sentence of how sure the verdicts are)."""
+    from tvtrack.paragraphs import results_summary
+
+    def claim(cid, label, provisional=False):
+        return {**minimal_claim(cid), "robustness": {"label": label, "provisional": provisional, "parts": {}}}
+
+    text = results_summary([claim("C1-1", "robust"), claim("C1-2", "unexplored", True), claim("C1-3", "depends")])
+    assert "Of the 3 checkable verdicts, 1 survives every reading of the paper, 1 turns on a reading" in text
+    assert "1 comes from a design too small to label (provisional: never called robust)" in text

@@ -309,6 +309,7 @@ def _sure_sentence(
 def _counts_sentence(labels: Counter, checkable: int) -> str:
     """The checkable verdicts by how sure they are, in one sentence whose counts add up to ``checkable``."""
     sure, unexplored, bare = labels["robust"] + labels["limited"], labels["unexplored"], labels["—"]
+    small = labels[PROVISIONAL]
     return (
         f"Of the {checkable} checkable verdicts, {_n(sure, 'survives', 'survive')} every reading of the paper, "
         f"{_n(labels['depends'], 'turns', 'turn')} on a reading of an ambiguous passage or a setting the paper "
@@ -323,6 +324,11 @@ def _counts_sentence(labels: Counter, checkable: int) -> str:
             f"{_n(bare, 'has', 'have')} no label (no part of {'it' if bare == 1 else 'them'} decided, or no record "
             "of what was explored), "
             if bare
+            else ""
+        )
+        + (
+            f"{_n(small, 'comes', 'come')} from a design too small to label (provisional: never called robust), "
+            if small
             else ""
         )
         + f"and {_n(labels['unstable'], 'differs', 'differ')} between independent replicates."
@@ -364,7 +370,7 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
         f"{_n(v['partly'], 'holds', 'hold')} in part and {_n(v['not reproduced'], 'does', 'do')} not; the runs could "
         f"not decide {v['undecided']}, and {_n(v['not checkable'], 'gives', 'give')} nothing to measure."
     ]
-    if labels[PROVISIONAL] or profile != "paper":
+    if profile != "paper":  # a smoke-size run: every label provisional (at the paper profile, counted beside them)
         text.append(
             f"{_n(labels[PROVISIONAL], 'of the checkable verdicts comes', 'of the checkable verdicts come')} from a "
             f"design too small to label{' (a smoke-size run)' if profile != 'paper' else ''}: none of them is called "
