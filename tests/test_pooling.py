@@ -98,3 +98,268 @@ def test_an_ordering_of_disagreeing_replicates_is_not_decided_by_one_of_them():
     # a difference whose replicates straddle zero far beyond their own intervals does not decide an ordering
     reps = [_est(0.2, 0.19, 0.21), _est(-0.3, -0.31, -0.29), _est(0.25, 0.24, 0.26)]
     assert Ordering("a", "b", ">").decide(pool(reps)) == "undecided"
+
+
+# --- closed forms of each way of pooling ---------------------------------------------------------------------------
+
+Z95 = scipy.stats.norm.ppf(0.975)
+
+
+def _clopper_pearson(k, n, conf):
+    a = 1 - conf
+    return scipy.stats.beta.ppf(a / 2, k, n - k + 1), scipy.stats.beta.ppf(1 - a / 2, k + 1, n - k)
+
+
+def test_counts_pool_as_summed_counts_with_the_exact_interval():
+    from tvtrack.counts import proportion_ci
+
+    p = pool([proportion_ci(3, 100, 0.9), proportion_ci(5, 100, 0.9)])
+    lo, hi = _clopper_pearson(8, 200, 0.9)
+    assert (p.value, p.n, p.confidence, p.method) == (pytest.approx(0.04), 200, 0.9, "Clopper-Pearson")
+    assert (p.ci_low, p.ci_high) == (pytest.approx(lo, rel=1e-9), pytest.approx(hi, rel=1e-9))
+
+
+def test_a_single_event_over_the_replicates_is_a_two_sided_count():
+    from tvtrack.counts import proportion_ci, rate_from_counts
+
+    p = pool([proportion_ci(1, 100, 0.9), rate_from_counts(0, 100, 0.9)])
+    lo, hi = _clopper_pearson(1, 200, 0.9)
+    assert (p.value, p.n, p.method) == (pytest.approx(0.005), 200, "Clopper-Pearson")
+    assert (p.ci_low, p.ci_high) == (pytest.approx(lo, rel=1e-9), pytest.approx(hi, rel=1e-9))
+
+
+def test_zero_events_over_the_replicates_certify_the_one_sided_bound_at_their_confidence():
+    from tvtrack.counts import rate_from_counts
+
+    p = pool([rate_from_counts(0, 100, 0.9), rate_from_counts(0, 50, 0.9)])
+    b = 1 - 0.1 ** (1 / 150)
+    assert (p.value, p.ci_low, p.ci_high, p.n, p.confidence) == (0.0, 0.0, pytest.approx(b, rel=1e-12), 150, 0.9)
+    assert math.isnan(p.stderr)
+    assert p.method == "count over 2 replicates: 0 of 150, one-sided bound"
+
+
+def test_all_events_over_the_replicates_certify_the_one_sided_bound_from_above():
+    from tvtrack.counts import proportion_ci
+
+    p = pool([proportion_ci(100, 100, 0.9), proportion_ci(50, 50, 0.9)])
+    b = 1 - 0.1 ** (1 / 150)
+    assert (p.value, p.ci_high, p.n, p.confidence) == (1.0, 1.0, 150, 0.9)
+    assert p.ci_low == pytest.approx(1 - b, rel=1e-12)
+    assert math.isnan(p.stderr)
+    assert p.method == "count over 2 replicates: 150 of 150, one-sided bound"
+
+
+def test_counts_pool_at_the_first_replicates_confidence():
+    from tvtrack.counts import proportion_ci
+
+    p = pool([proportion_ci(3, 100, 0.9), proportion_ci(5, 100, 0.95)])
+    lo, hi = _clopper_pearson(8, 200, 0.9)
+    assert p.confidence == 0.9 and p.ci_low == pytest.approx(lo, rel=1e-9) and p.ci_high == pytest.approx(hi, rel=1e-9)
+
+
+def test_exact_numbers_that_vary_pool_by_the_t_interval_over_the_replicates():
+    p = pool([1, 2, 3])
+    h = scipy.stats.t.ppf(0.975, 2) / math.sqrt(3)
+    assert (p.value, p.stderr) == (pytest.approx(2.0), pytest.approx(1 / math.sqrt(3)))
+    assert (p.ci_low, p.ci_high) == (pytest.approx(2 - h), pytest.approx(2 + h))
+    assert (p.n, p.confidence, p.method, p.extrapolated) == (3, 0.95, "t interval over 3 independent replicates", False)
+
+
+def test_the_t_interval_of_exact_numbers_is_at_the_first_replicates_confidence_and_carries_extrapolation():
+    reps = [
+        Estimate(1.0, 0.0, 1.0, 1.0, 1, 0.9, "exact"),
+        Estimate(2.0, 0.0, 2.0, 2.0, 1, 0.95, "exact"),
+        Estimate(4.0, 0.0, 4.0, 4.0, 1, 0.95, "exact", True),
+        Estimate(5.0, 0.0, 5.0, 5.0, 1, 0.95, "exact"),
+    ]
+    p = pool(reps)
+    s = np.std([1.0, 2.0, 4.0, 5.0], ddof=1) / 2
+    h = scipy.stats.t.ppf(0.95, 3) * s
+    assert (p.value, p.stderr, p.ci_low, p.ci_high) == pytest.approx((3.0, s, 3.0 - h, 3.0 + h))
+    assert (p.n, p.confidence, p.extrapolated) == (4, 0.9, True)
+
+
+def test_an_exact_number_equal_in_every_replicate_is_the_first_replicate_as_is():
+    first = Estimate(2.0, 0.0, 2.0, 2.0, 1, 0.95, "exact")
+    assert pool([first, Estimate(2.0, 0.0, 2.0, 2.0, 3, 0.9, "exact")]) is first
+
+
+def test_none_is_skipped_and_a_single_replicate_is_returned_as_is():
+    e = _est(1.0, 0.9, 1.1)
+    assert pool([None, e, None]) is e
+    assert pool([None, None]) is None and pool([]) is None
+
+
+def _log_pool(reps, conf=0.95):
+    z = scipy.stats.norm.ppf(0.5 + conf / 2)
+    v, lo, hi = (np.log([getattr(r, f) for r in reps]) for f in ("value", "ci_low", "ci_high"))
+    m, se = v.mean(), math.sqrt(np.sum(((hi - lo) / (2 * z)) ** 2)) / len(reps)
+    return m, se, z
+
+
+def test_agreeing_positive_replicates_pool_on_the_log_scale_with_the_combined_standard_error():
+    reps = [_est(1.00, 0.90, 1.10), _est(1.05, 0.95, 1.15), _est(0.98, 0.88, 1.08)]
+    reps[1] = Estimate(1.05, 0.05, 0.95, 1.15, 200, 0.95, reps[1].method, True)
+    p = pool(reps)
+    m, se, z = _log_pool(reps)
+    assert p.value == pytest.approx(math.exp(m)) and p.stderr == pytest.approx(math.exp(m) * se)
+    assert p.ci_low == pytest.approx(max(math.exp(m - z * se), 0.88))
+    assert p.ci_high == pytest.approx(min(math.exp(m + z * se), 1.15))
+    assert (p.n, p.confidence, p.extrapolated) == (600, 0.95, True)
+    assert p.method == "pooled over 3 independent replicates (equal weights, log scale)"
+
+
+def test_the_log_scale_interval_stays_within_the_replicates_hull():
+    # equal values with intervals reaching far below and barely above: exp(m + z se) would pass every upper end
+    reps = [_est(1.0, 0.5, 1.01), _est(1.0, 0.5, 1.01), _est(1.0, 0.5, 1.01)]
+    p = pool(reps)
+    m, se, z = _log_pool(reps)
+    assert "disagree" not in p.method and math.exp(m + z * se) > 1.01
+    assert p.ci_high == 1.01 and p.ci_low == pytest.approx(math.exp(m - z * se))
+
+
+def test_agreeing_replicates_of_a_signed_quantity_pool_linearly():
+    reps = [_est(-0.1, -0.3, 0.1), _est(0.0, -0.2, 0.2), Estimate(0.05, 0.1, -0.15, 0.25, 100, 0.95, "t", True)]
+    p = pool(reps)
+    se = math.sqrt(3 * (0.4 / (2 * Z95)) ** 2) / 3
+    m = np.mean([-0.1, 0.0, 0.05])
+    assert (p.value, p.stderr, p.ci_low, p.ci_high) == pytest.approx((m, se, m - Z95 * se, m + Z95 * se))
+    assert (p.n, p.confidence, p.extrapolated) == (500, 0.95, True)
+    assert p.method == "pooled over 3 independent replicates (equal weights)"
+
+
+def test_a_zero_value_is_pooled_linearly_not_on_the_log_scale():
+    p = pool([_est(0.0, 0.1, 0.3), _est(0.2, 0.1, 0.3)])
+    assert p.value == pytest.approx(0.1) and "log scale" not in p.method
+
+
+def _three_around_zero(q):
+    """Values -1, 0, 1 with equal intervals whose Cochran's Q about their mean 0 is ``q`` (chi-square, 2 df)."""
+    s = math.sqrt(2 / q)
+    return [_est(v, v - Z95 * s, v + Z95 * s) for v in (-1.0, 0.0, 1.0)], s
+
+
+def test_replicates_agree_just_above_the_agreement_level():
+    reps, s = _three_around_zero(5.9)  # p = exp(-2.95) = 0.052
+    p = pool(reps)
+    se = s / math.sqrt(3)
+    assert p.method == "pooled over 3 independent replicates (equal weights)"
+    assert (p.value, p.stderr, p.ci_low, p.ci_high) == pytest.approx((0.0, se, -Z95 * se, Z95 * se), abs=1e-12)
+
+
+def test_replicates_disagree_just_below_the_agreement_level_on_k_minus_1_degrees_of_freedom():
+    reps, s = _three_around_zero(6.1)  # p = exp(-3.05) = 0.047 with 2 degrees of freedom (0.19 with 4)
+    p = pool(reps)
+    h = min(scipy.stats.t.ppf(0.975, 2) * 1.0 / math.sqrt(3), 1 + Z95 * s)  # within the replicates' hull
+    assert p.method == (
+        "pooled over 3 independent replicates that disagree beyond their own intervals (agreement test p = 0.047):"
+        " widened to Student's t over their values"
+    )
+    assert (p.value, p.stderr, p.ci_low, p.ci_high) == pytest.approx((0.0, 1 / math.sqrt(3), -h, h), abs=1e-12)
+
+
+def test_zero_width_intervals_pool_without_floating_point_warnings():
+    import warnings
+
+    same = [Estimate(0.003, 0.0, 0.003, 0.003, 6, 0.95, "t")] * 2
+    degenerate_bound = Estimate(0.0, 0.0, 0.0, 0.0, 6, 0.95, "upper bound: no run broke on the grid")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        p = pool(same)  # equal values, no spread: they agree
+        assert (p.value, p.ci_low, p.ci_high) == pytest.approx((0.003, 0.003, 0.003))
+        assert "disagree" not in p.method
+        # a zero-width interval at 0 is no certified bound; a value it cannot hold disagrees with it
+        q = pool([degenerate_bound, _est(0.004, 0.002, 0.006, 6)])
+    assert "envelope" not in q.method and "disagree beyond their own intervals" in q.method
+    assert q.value == pytest.approx(0.002)
+
+
+def test_certified_bounds_pool_to_the_envelope_of_the_replicates_intervals():
+    bound = Estimate(0.0, math.nan, 0.0, 0.004, 6, 0.9, "upper bound: 3 run(s) kept lock at the grid's bottom")
+    other = Estimate(0.003, 0.001, 0.001, 0.006, 8, 0.95, "t", True)
+    p = pool([bound, other, _est(0.002, -0.001, 0.0025, 6)])  # a signed replicate below the bound
+    z = scipy.stats.norm.ppf(0.95)
+    assert (p.value, p.ci_low, p.ci_high) == (0.002, -0.001, 0.006)
+    assert p.stderr == pytest.approx(0.007 / (2 * z))
+    assert (p.n, p.confidence, p.extrapolated) == (20, 0.9, True)
+    assert p.method == "envelope of 3 independent replicates' intervals (some are certified bounds)"
+
+
+def test_the_envelope_value_is_clipped_to_the_envelope():
+    # values beyond their own one-sided intervals: the median is brought back within the envelope, at either end
+    lower = [Estimate(1.0, math.nan, 2.0, math.inf, 5, 0.95, "t"), Estimate(1.5, math.nan, 3.0, math.inf, 5, 0.95, "t")]
+    assert pool(lower).value == 2.0
+    method = "upper bound: no run broke"
+    upper = [
+        Estimate(0.01, math.nan, 0.0, 0.004, 5, 0.95, method),
+        Estimate(0.02, math.nan, 0.0, 0.006, 5, 0.95, method),
+    ]
+    assert pool(upper).value == 0.006
+
+
+@pytest.mark.parametrize("undefined", ["ci_low", "ci_high"])
+def test_an_undefined_end_beside_a_certified_bound_leaves_the_pooled_interval_undefined(undefined):
+    bound = Estimate(0.0, math.nan, 0.0, 0.004, 6, 0.95, "upper bound: 3 run(s) kept lock at the grid's bottom")
+    ends = {"ci_low": 0.001, "ci_high": 0.006, undefined: math.nan}
+    other = Estimate(0.003, math.nan, ends["ci_low"], ends["ci_high"], 8, 0.95, "t", True)
+    p = pool([bound, other])
+    assert p.value == pytest.approx(0.0015)
+    assert all(math.isnan(x) for x in (p.stderr, p.ci_low, p.ci_high))
+    assert (p.n, p.confidence, p.extrapolated) == (14, 0.95, True)
+    assert p.method == "pooled over 2 replicates: some intervals undefined"
+
+
+@pytest.mark.parametrize("undefined", ["ci_low", "ci_high"])
+def test_an_undefined_end_of_an_interval_leaves_the_pooled_interval_undefined(undefined):
+    ends = {"ci_low": 0.9, "ci_high": 1.1, undefined: math.nan}
+    p = pool([_est(1.0, 0.9, 1.1), Estimate(2.0, math.nan, ends["ci_low"], ends["ci_high"], 5, 0.95, "t")])
+    assert p.value == pytest.approx(1.5) and math.isnan(p.ci_low) and math.isnan(p.ci_high) and math.isnan(p.stderr)
+    assert (p.n, p.extrapolated) == (205, False)
+    assert p.method == "pooled over 2 replicates: some intervals undefined"
+
+
+def test_replicates_without_any_value_pool_to_no_value():
+    nan = Estimate(math.nan, math.nan, math.nan, math.nan, 4, 0.95, "t")
+    p = pool([nan, nan])
+    assert math.isnan(p.value) and p.n == 8
+
+
+def test_estimate_dicts_pool_as_the_estimates_they_hold():
+    reps = [_est(1.00, 0.90, 1.10), _est(1.05, 0.95, 1.15), _est(0.98, 0.88, 1.08)]
+    assert pool([r.to_dict() for r in reps]) == pool(reps)
+
+
+def test_a_lost_runs_record_pools_its_estimates_and_sums_its_counts():
+    from tvtrack.measured import with_lost_runs
+
+    a, b = _est(1.0, 0.9, 1.1), _est(1.05, 0.95, 1.15)
+    reps = [with_lost_runs(a, b, 2, 50), with_lost_runs(b, a, 3, 60)]
+    assert pool(reps) == {"value": pool([a, b]), "in lock": pool([b, a]), "lost": 5, "runs": 110}
+    # beside a replicate that records no lost runs, only what both hold is pooled
+    assert pool([with_lost_runs(a, b, 2, 50), {"value": b}]) == {"value": pool([a, b])}
+
+
+def test_a_reading_tag_keeps_the_first_replicates_reading_and_pools_what_was_measured():
+    a, b = _est(1.0, 0.9, 1.1), _est(1.05, 0.95, 1.15)
+    assert pool([{"reading": 0, "measured": a}, {"reading": 1, "measured": b}]) == {
+        "reading": 0,
+        "measured": pool([a, b]),
+    }
+    # a replicate with no reading: no tag, the measured values pooled as a dict's entries
+    assert pool([{"reading": 0, "measured": a}, {"measured": b}]) == {"measured": pool([a, b])}
+
+
+def test_dicts_pool_key_by_key_dropping_keys_missing_in_some_replicates():
+    a, b = _est(1.0, 0.9, 1.1), _est(1.05, 0.95, 1.15)
+    assert pool([{"x": a, "y": 1, "z": 3}, {"y": 3, "x": b}, {"x": a, "y": 2, "w": 0}]) == {
+        "x": pool([a, b, a]),
+        "y": pool([1, 3, 2]),
+    }
+
+
+def test_lists_pool_element_by_element_and_lists_of_other_lengths_keep_the_first():
+    a, b = _est(1.0, 0.9, 1.1), _est(1.05, 0.95, 1.15)
+    assert pool([[a, 1], (b, 3)]) == [pool([a, b]), pool([1, 3])]
+    first = [a, b]
+    assert pool([first, [b, a, a]]) is first
+    assert pool([[a, b, a], [b, a]]) == [a, b, a]
