@@ -127,7 +127,11 @@ def test_first_screen_glossary_tooltips_and_claim_pages_in_browser(browser, tmp_
         page.click('#first a:has-text("C001-3")')
         assert page.url.endswith("claims/001_explored/C001-3.html")
         curve = page.locator("#specification-curve")
-        assert curve.evaluate("i => i.complete && i.naturalWidth") > 400
+        # the page is there once the click returns, its image maybe not yet (a loaded machine): wait for it to load
+        page.wait_for_function(
+            "() => { const i = document.querySelector('#specification-curve'); return i && i.complete && i.naturalWidth > 400; }",
+            timeout=1000 * wall_budget(15),
+        )
         assert curve.bounding_box()["width"] > 400
         assert "it is reproduced: sigma read as the SD" in page.locator("#claim-summary").inner_text()
         assert page.evaluate("document.documentElement.scrollWidth") <= FIRST_SCREEN[0]

@@ -56,8 +56,8 @@ def test_c003_10_compensation_part_is_not_checkable_and_its_reading_is_gone():
     assert not isinstance(rule.parts["gate"], NotCheckable)  # the claim is decided by the gate alone
     assert "compensation_reading" not in REGISTER.names
     assert all("compensation_reading" not in DEPENDS[c] for c in DEPENDS)
-    assert "any uncompensated run" in claims.NOTES["C003-10"]  # what the bound in the estimator tests
-    assert "every uncompensated run" not in claims.NOTES["C003-10"]
+    assert "any run without compensation lost lock" in claims.NOTES["C003-10"]  # what the bound in the estimator tests
+    assert "every run without compensation" not in claims.NOTES["C003-10"]
 
 
 def test_the_compensation_entry_stays_declared_by_the_sir_claims_including_the_comparison():
