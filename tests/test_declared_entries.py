@@ -274,13 +274,7 @@ def test_every_paper_package_has_its_measurements_here():
 #: (so the exploration never varies them for it): open until the register declares them (or the measurement stops
 #: reading them). The paper's check lets them through, then checks that each is still read and marks the paper an
 #: expected failure naming them.
-UNDECLARED_READS = {
-    "p001_maneuver_occlusion_kf": {
-        # C001-2's step runs are drawn before C001-3's closed form from the same stream: under the Student-t errors
-        # C001-3's value moves with C001-2's alternative and, under the step, with roc_delay_s (the runs' length)
-        "C001-3": ("alternative", "roc_delay_s"),
-    },
-}
+UNDECLARED_READS: dict[str, dict[str, tuple[str, ...]]] = {}
 
 
 class UndeclaredReads(AssertionError):

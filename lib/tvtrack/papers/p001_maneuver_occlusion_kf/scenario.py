@@ -217,6 +217,25 @@ def measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_
     """
     truth_pos = np.asarray(truth_pos, dtype=float)
     e = rng.standard_normal((n,) + truth_pos.shape)
+    chi2 = rng.chisquare(3, e.shape) if model == "Student t, 3 dof" else None
+    return _with_errors(truth_pos, model, e, chi2, sigma_eps)
+
+
+def prefix_stable_measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_eps: float = 1.0):
+    """:func:`measurements` of one track ``truth_pos`` (T,) -> (n, T), drawn frame by frame so that the first
+    frames' errors do not depend on the length T: the standard normals are drawn frame-major from one child of
+    ``rng`` and the Student-t chi-squares from another. A claim that reads only the first frames of a longer run
+    therefore reads the same numbers whatever sets the run's length."""
+    truth_pos = np.asarray(truth_pos, dtype=float)
+    normals, scales = rng.spawn(2)
+    e = normals.standard_normal(truth_pos.shape[::-1] + (n,)).T
+    chi2 = scales.chisquare(3, truth_pos.shape[::-1] + (n,)).T if model == "Student t, 3 dof" else None
+    return _with_errors(truth_pos, model, e, chi2, sigma_eps)
+
+
+def _with_errors(truth_pos: np.ndarray, model: str, e: np.ndarray, chi2, sigma_eps: float) -> np.ndarray:
+    """``truth_pos`` plus the errors of ``model`` made from standard normals ``e`` (n, ..., T) and, for the
+    Student-t model, chi-square(3) draws ``chi2`` of the same shape."""
     if model == "white Gaussian":
         return truth_pos + sigma_eps * e
     if model == "quantised":
@@ -226,7 +245,6 @@ def measurements(truth_pos, model: str, n: int, rng: np.random.Generator, sigma_
         x[..., 0] = e[..., 0]
         return truth_pos + sigma_eps * signal.lfilter([1.0], [1.0, -0.5], x, axis=-1)
     if model == "Student t, 3 dof":
-        chi2 = rng.chisquare(3, e.shape)
         return truth_pos + sigma_eps * np.sqrt(1 / 3) * e / np.sqrt(chi2 / 3)
     raise ValueError(f"measurement-error model {model!r}; it must be one of {NOISE_MODELS}")
 

@@ -43,6 +43,7 @@ from .scenario import (
     Scenario,
     config_scenario,
     measurements,
+    prefix_stable_measurements,
     detector_threshold,
     arming_count,
     cadence_threshold,
@@ -184,27 +185,29 @@ def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict
     out = {"C001-1": _c001_1(config, sc, z, arm_k, sigma)} if "C001-1" in asked else {}
     if asked <= {"C001-1"}:
         return out
-    # no-manoeuvre runs: uniform motion of channel x
-    d_roc = int(round(float(config["roc_delay_s"]) * sc.fps))
-    Tr = sc.onset + d_roc + 1
-    T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), Tr, arm_k + 1)
-    scale = FPS_REF / sc.fps
-    z0 = measurements(MOTION[0][0] * scale * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
+    # no-manoeuvre runs of channel x (uniform motion) on their own stream, drawn frame by frame: C001-3 reads their
+    # first T3 frames, which neither C001-2's alternative nor its response delay (the runs' length T0) can move
+    T3 = max(int(round(sizes["fa_duration_s"] * sc.fps)), arm_k + 1)
+    if "C001-2" in asked:  # the alternative's runs end roc_delay_s after the onset
+        Tr = sc.onset + int(round(float(config["roc_delay_s"]) * sc.fps)) + 1
+    T0 = max(T3, Tr) if "C001-2" in asked else T3
+    truth0 = MOTION[0][0] * FPS_REF / sc.fps * np.arange(T0)
+    z0 = prefix_stable_measurements(truth0, config["noise"], sizes["n_fa_runs"], _child_rng(seed, 4), sigma)
     G0 = gain_schedule(1, kb2, T0)
     v0_hat = scheduled_filter(z0, G0)[..., 1]
     S0 = window_statistic(v0_hat, n)
     f0 = np.arange(T0)
     armed0 = f0 >= arm_k - 1
     null = (S0, armed0, armed0 & (f0 < sc.onset), T0, arm_k)
-    # C001-2's draws come before C001-3's: made whether or not C001-2 is asked
-    ramp = config["alternative"] == "ramp"
-    za = z[..., :Tr] if ramp else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
-    shift = 50 * rng.standard_normal((5, n))
     if "C001-2" in asked:
-        alt = (sc.truth[:, :Tr, 0] if ramp else _step_truth(config, sc, Tr), _closed_form_rng(seed))
+        ramp = config["alternative"] == "ramp"
+        za = z[..., :Tr] if ramp else _step_runs(config, sc, Tr, sizes["n_trials"], rng, sigma)
+        shift = 50 * rng.standard_normal((5, n))
+        alt = (sc.truth[:, :Tr, 0] if ramp else _step_truth(config, sc, Tr), _child_rng(seed, 2))
         out["C001-2"] = _c001_2(config, sc, sigma, za, v0_hat, G0, null, shift, Tr, alt)
     if "C001-3" in asked:
-        out["C001-3"] = _c001_3(config, sigma, G0, null, rng)
+        null3 = (S0[:, :T3], armed0[:T3], null[2][:T3], T3, arm_k)
+        out["C001-3"] = _c001_3(config, sigma, G0[:T3], null3, _child_rng(seed, 3))
     return out
 
 
@@ -227,10 +230,11 @@ def _c001_1(config: dict, sc: Scenario, z, arm_k: int, sigma: float) -> dict:
     }
 
 
-def _closed_form_rng(seed: int) -> np.random.Generator:
-    """The stream of C001-2's conditional closed form (Student-t scales): its own child of the run's seed, so the
-    other claims' draws do not depend on whether C001-2 is asked."""
-    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2,)))
+def _child_rng(seed: int, key: int) -> np.random.Generator:
+    """A child stream of the run's seed: 2 for C001-2's conditional closed form (Student-t scales), 3 for C001-3's,
+    4 for the no-manoeuvre runs. Each claim's draws are then the same whichever other claims are asked and
+    whatever the others' entries are."""
+    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(key,)))
 
 
 def _c001_2(config: dict, sc: Scenario, sigma: float, za, v0_hat, G0, null: tuple, shift, Tr: int, alt) -> dict:
