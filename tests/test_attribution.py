@@ -10,7 +10,7 @@ import math
 import pytest
 from scipy import stats
 
-from tvtrack.attribution import attribute, flip_side, phrase, sensitivity, share
+from tvtrack.attribution import attribute, beside_operating_point, flip_side, paired_rows, phrase, sensitivity, share
 from tvtrack.register import Entry
 
 NO = "not reproduced"
@@ -287,3 +287,46 @@ def test_sensitivity_needs_the_default_and_some_spread():
     flat = [{"config": {"a": a}, "value": 1.0} for a in (0, 1, 2)]
     assert sensitivity(flat, ["a"], {}, {"a": 0}) == []
     assert sensitivity(flat[1:], ["a"], {}, {"a": 0}) == []
+
+
+def test_sensitivity_ranks_no_entry_whose_moves_stay_under_the_floor():
+    """Round-off far inside a band (C004-4's identity: values of 1e-13 against a bound of 1e-9) ranks nothing;
+    a move above the floor ranks as before."""
+    d = {"a": 0, "b": 0}
+    rows = [
+        {"config": d, "value": 1.00e-13},
+        {"config": {"a": 1, "b": 0}, "value": 1.12e-13},
+        {"config": {"a": 0, "b": 1}, "value": 0.93e-13},
+    ]
+    assert [r["entry"] for r in sensitivity(rows, ["a", "b"], {}, d)] == ["a", "b"]  # no floor: the old ranking
+    assert sensitivity(rows, ["a", "b"], {}, d, floor=1e-11) == []
+    rows[2]["value"] = 5e-11  # b moves by more than the floor, a does not
+    out = sensitivity(rows, ["a", "b"], {}, d, floor=1e-11)
+    assert [(r["entry"], r["score"]) for r in out] == [("b", 1.0), ("a", 0.0)]
+
+
+def test_paired_rows_compare_each_condition_with_the_default_over_its_own_replicates():
+    """A condition run on the first replicate's seed alone is compared with that replicate, not with the pool: a
+    condition that equals its own replicate's value moves nothing."""
+    reps = [-0.679, -0.55, -0.532]  # the default's replicates; their mean is -0.587
+    conds = [{"config": {"a": 1}, "runs": 1}, {"config": {"b": 1}, "runs": 3}, {"config": {"c": 1}}]
+    out = paired_rows(conds, [-0.679, -0.4, -0.3], reps)
+    mean = sum(reps) / 3
+    assert out[0]["value"] == pytest.approx(mean)  # the same as its own replicate: no move from the default
+    assert out[1]["value"] == pytest.approx(-0.4) and out[2]["value"] == pytest.approx(-0.3)  # every replicate
+    nan = paired_rows(conds[:1], [-0.679], [-0.679, math.nan])  # a replicate without a value: compared as it is
+    assert nan[0]["value"] == pytest.approx(-0.679)
+
+
+def test_beside_operating_point_counts_each_configuration_once_and_lists_its_flips():
+    rows = [
+        {"changed": {"w": 8}, "verdict": "reproduced", "text": "w = 8", "off_operating_point": True},
+        {"changed": {"w": 8}, "verdict": "reproduced", "text": "w = 8", "off_operating_point": True},
+        {"changed": {"w": 8, "r": 1}, "verdict": "undecided", "text": "w = 8, r = 1", "off_operating_point": True},
+        {"changed": {"w": 1, "r": 1}, "verdict": "not reproduced", "text": "w = 1, r = 1", "off_operating_point": True},
+        {"changed": {"r": 1}, "verdict": "reproduced", "text": "r = 1"},
+    ]
+    out = beside_operating_point(rows, "not reproduced")
+    assert (out["agree"], out["flip"], out["undecided"]) == (1, 1, 1)
+    assert out["flips"] == [{"changed": {"w": 8}, "verdict": "reproduced", "text": "w = 8"}]
+    assert beside_operating_point(rows[4:], "not reproduced") is None

@@ -246,3 +246,54 @@ def test_the_share_words_say_the_pinned_configurations_beside_the_design():
         "of 1 pinned configuration measured beside them (joint configurations every run measures), "
         "1 flips, 0 agree and 0 stay undecided"
     )
+
+
+def _off_point_claim():
+    """A claim whose world entry has a value off the paper's operating point that flips it alone, and a setting
+    that agrees: the machinery keeps the flip out of the label and counts it beside."""
+    fast = Entry("speed", "unreported setting", 3.0, (1.0, 3.0, 8.0), "never printed", off_operating_point=(8.0,))
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    conds = [_cond({"speed": 8.0}, OUT), _cond({"speed": 1.0}, IN), _cond({"law": "step"}, IN)]
+    rb = label_parts(BAND, IN, reps, conds, (fast, SETTING), design={"min_share_design": 2}, needed=2)
+    rb["register"] = [fast.to_dict(), SETTING.to_dict()]
+    rb["design"] = {"replicates_needed": {"C9-2": 2}}
+    return {"id": "C9-2", "robustness": rb}
+
+
+def test_a_flip_off_the_operating_point_is_counted_beside_the_label_and_the_audit_checks_it():
+    claim = _off_point_claim()
+    part = claim["robustness"]["parts"]["claim"]
+    assert part["flips"] == [] and part["label"] == "unexplored"  # no world varied at the operating point
+    assert {k: part["off_operating_point"][k] for k in ("agree", "flip", "undecided")} == {
+        "agree": 0,
+        "flip": 1,
+        "undecided": 0,
+    }
+    assert part["share"]["design"] == 2 and part["share"]["off_operating_point"]["flip"] == 1
+    assert audit_claim(claim) == []
+    planted = copy.deepcopy(claim)  # the flip filed in the label, as the records before counted it
+    p = planted["robustness"]["parts"]["claim"]
+    p["flips"] = [
+        {
+            "changed": {"speed": 8.0},
+            "side": "setting",
+            "kind": "single",
+            "verdict": "not reproduced",
+            "text": "speed = 8",
+        }
+    ]
+    p["label"] = "depends"
+    assert any("leaves the paper's operating point and is counted in the label" in m for m in audit_claim(planted))
+    miscounted = copy.deepcopy(claim)
+    miscounted["robustness"]["parts"]["claim"]["off_operating_point"]["flip"] = 0
+    assert any("outside the operating point the record counts" in m for m in audit_claim(miscounted))
+
+
+def test_the_share_words_say_the_configurations_outside_the_operating_point_beside_the_design():
+    from tvtrack.wording import share_counts
+
+    share = _off_point_claim()["robustness"]["parts"]["claim"]["share"]
+    assert share_counts(share) == (
+        "2 agree, 0 flip and 0 stay undecided of 2 explored configurations; of 1 configuration outside the paper's "
+        "operating point (counted beside the label, not in it), 1 flips, 0 agree and 0 stay undecided"
+    )

@@ -359,9 +359,10 @@ def test_the_flip_named_changes_the_whole_verdict_before_one_that_moves_only_a_p
     assert label_basis(claim) == "an unprinted setting" and label_basis(only_part) == "a reading, in a part only"
 
 
-def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_it():
+def test_a_flip_that_leaves_the_papers_operating_point_is_counted_beside_the_label_not_in_it():
     """Two unreported settings flip the claim alone; the first in the record leaves the operating point the paper
-    states (the register marks it ``off_operating_point``): the sentence names the one that keeps it."""
+    states (the register marks it ``off_operating_point``): it is no flip of the label, it is counted beside it
+    with its own where-line, and the sentence names the one that keeps the operating point."""
     wander = Entry(
         "bandwidth", "unreported setting", 2.0, (1.0, 2.0), "speed of the wander", off_operating_point=(1.0,)
     )
@@ -376,8 +377,21 @@ def test_the_flip_named_keeps_the_papers_operating_point_before_one_that_leaves_
     rob = label_parts(rule, fails, reps, conds, [wander, band])
     rob["register"] = [wander.to_dict(), band.to_dict()]
     claim = {"id": "C9-3", "verdict": "not reproduced", "rule": rule.to_dict(), "measured": fails, "robustness": rob}
-    assert [f["changed"] for f in rob["parts"]["claim"]["flips"]][0] == {"bandwidth": 1.0}  # first in the record
+    part = rob["parts"]["claim"]
+    assert [f["changed"] for f in part["flips"]] == [{"error in the band": 1.0}]
+    assert part["off_operating_point"] == {
+        "agree": 0,
+        "flip": 1,
+        "undecided": 0,
+        "flips": [{"changed": {"bandwidth": 1.0}, "verdict": "reproduced", "text": "bandwidth = 1"}],
+    }
+    assert part["where"][-1] == "reproduced when bandwidth = 1 (outside the paper's operating point)"
+    assert part["share"]["design"] == 1  # the share is over the configurations at the operating point
+    assert [c.get("off_operating_point", False) for c in rob["conditions"]] == [True, False]
     assert claim_summary(claim).split("it is reproduced: ")[1].startswith("error in the band = 1")
+    # alone, the flip outside the operating point leaves the part without a flip: robust where the world was varied
+    alone = label_parts(rule, fails, reps, conds[:1], [wander, band], design={"min_share_design": 1})
+    assert alone["parts"]["claim"]["flips"] == [] and alone["parts"]["claim"]["off_operating_point"]["flip"] == 1
 
 
 def test_a_caveat_the_record_carries_is_said_in_the_claims_sentence():
@@ -634,7 +648,7 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
     import copy
 
     from record_fixtures import DEPENDS
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
     from tvtrack.paragraphs import _why_not
     from tvtrack.results import paper_paragraph
 
@@ -688,7 +702,7 @@ def test_runs_that_lost_lock_deciding_the_default_are_said_and_counted():
     import copy
 
     from record_fixtures import DEPENDS
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
     from tvtrack.paragraphs import _lost_share
     from tvtrack.results import paper_paragraph
 
@@ -807,7 +821,7 @@ def test_a_flip_the_same_draws_do_not_show_over_every_run_is_never_said_carried_
     import copy
 
     from record_fixtures import DEPENDS
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
 
     claim = copy.deepcopy(DEPENDS)  # not reproduced; the reading flips it to reproduced
     row = _lost_row({"paper_sigma": "raw_increments"}, "not reproduced", "reproduced")
@@ -824,7 +838,7 @@ def test_runs_that_lost_lock_are_not_said_to_decide_a_verdict_the_same_draws_ove
     import copy
 
     from record_fixtures import DEPENDS
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
 
     claim = copy.deepcopy(DEPENDS)  # not reproduced
     mark_lost_runs(claim["robustness"], [_lost_row({}, "reproduced", "not reproduced")], claim["verdict"])
@@ -836,7 +850,7 @@ def test_a_flip_of_one_part_is_said_carried_by_lost_runs_only_by_that_part_s_own
     """A claim of several parts: the whole claim's verdicts over every run and over the runs in lock may differ
     through another part. Each flip is judged by its own part's verdicts where the row gives them, and is never
     said carried where only the whole claim's are given."""
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
 
     at = {"sigma_1": 0.2}
     record = {

@@ -732,7 +732,7 @@ def test_a_part_whose_own_rule_is_chosen_by_a_reading_leaves_that_reading_unrank
 
 
 def test_mark_lost_runs_takes_every_run_lost_and_says_the_default_is_decided_by_them_only_where_it_is():
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
 
     row = {"changed": {}, "lost": 6, "runs": 6, "verdict": "not reproduced", "in_lock_verdict": "reproduced"}
     rec = mark_lost_runs({"parts": {}}, [row], "not reproduced")  # every run lost: a count it takes
@@ -748,7 +748,7 @@ def test_mark_lost_runs_takes_every_run_lost_and_says_the_default_is_decided_by_
 
 
 def test_a_flip_of_one_part_of_several_is_never_carried_on_the_whole_claim_s_verdicts():
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
 
     flip = {"changed": {"noise": "high"}, "verdict": "not reproduced"}
     row = {
@@ -764,3 +764,31 @@ def test_a_flip_of_one_part_of_several_is_never_carried_on_the_whole_claim_s_ver
     both = {**row, "in_lock_parts": {"a": "reproduced"}}
     rec = mark_lost_runs({"parts": {"a": {"flips": [dict(flip)]}, "b": {"flips": []}}}, [both], "reproduced")
     assert rec["parts"]["a"]["flips"][0]["lost_runs"]["carried"] is True
+
+
+def test_the_ranking_counts_no_round_off_far_inside_the_band_and_pairs_each_condition_with_its_replicates():
+    """C004-4's shape: a relative deviation of 1e-13 against a bound of 1e-9 moves by round-off only under every
+    entry, and nothing is ranked. C002-1's shape: conditions on the first replicate's seed alone are compared with
+    that replicate, so the replicates' scatter is no entry's effect."""
+    from tvtrack.register import Entry
+    from tvtrack.verdicts import InBand
+
+    a = Entry("a", "regime", 0, (0, 1), "a world beyond the paper")
+    b = Entry("b", "regime", 0, (0, 1), "a world beyond the paper")
+    rule = InBand("deviation", None, 1e-9, "relative")
+    reps = [{"seed": s, "measured": Estimate.exact(v)} for s, v in ((1, 1.0e-13), (2, 1.02e-13))]
+    conds = [
+        {"changed": {"a": 1}, "kind": "single", "runs": 2, "measured": Estimate.exact(1.12e-13)},
+        {"changed": {"b": 1}, "kind": "single", "runs": 2, "measured": Estimate.exact(0.93e-13)},
+    ]
+    rb = label_parts(rule, Estimate.exact(1.01e-13), reps, conds, [a, b], design={"min_share_design": 2})
+    assert rb["parts"]["claim"]["sensitivity"] == []
+    band = InBand("gain", -1.0, 0.0, "")
+    reps = [{"seed": s, "measured": Estimate.exact(v)} for s, v in ((1, -0.679), (2, -0.55), (3, -0.532))]
+    conds = [  # a: the first replicate's own value (no effect); b: 0.1 above its replicate (an effect)
+        {"changed": {"a": 1}, "kind": "single", "runs": 1, "measured": Estimate.exact(-0.679)},
+        {"changed": {"b": 1}, "kind": "single", "runs": 1, "measured": Estimate.exact(-0.579)},
+    ]
+    rb = label_parts(band, Estimate.exact(-0.587), reps, conds, [a, b], design={"min_share_design": 2}, needed=1)
+    ranked = rb["parts"]["claim"]["sensitivity"]
+    assert ranked[0]["entry"] == "b" and ranked[0]["score"] > 0.99

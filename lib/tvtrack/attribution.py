@@ -20,7 +20,17 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 from .register import side_of
 from .verdicts import is_decisive
 
-__all__ = ["MAX_SUBSET", "SENSITIVITY_METHOD", "share", "attribute", "sensitivity", "flip_side", "phrase"]
+__all__ = [
+    "MAX_SUBSET",
+    "SENSITIVITY_METHOD",
+    "share",
+    "attribute",
+    "sensitivity",
+    "paired_rows",
+    "beside_operating_point",
+    "flip_side",
+    "phrase",
+]
 
 #: The largest subset of a joint flip's changed entries the explorer tries alone by default (pairs, then
 #: triples); ``explore(max_subset=...)`` states another, recorded in the design.
@@ -30,7 +40,10 @@ SENSITIVITY_METHOD = (
     "one at a time: each entry's score is the variance of the part's value over the entry's one-at-a-time values "
     "(the default's value included), as a share of the sum over the entries; joint configurations are left out, "
     "so an entry that only co-occurs with the real cause scores nothing; an entry whose values choose another rule "
-    "(a reading under which the claim measures another quantity) is not ranked, its values being on other scales"
+    "(a reading under which the claim measures another quantity) is not ranked, its values being on other scales; "
+    "each configuration's value is compared with the default's over the same replicate seeds; an entry that moves "
+    "the value by less than a hundredth of the default's distance to its band's nearest edge scores nothing; "
+    "configurations outside the paper's stated operating point are left out"
 )
 
 
@@ -181,19 +194,23 @@ def attribute(
     return out
 
 
-def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[str, Any], default: Mapping) -> list:
+def sensitivity(
+    rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[str, Any], default: Mapping, floor: float = 0.0
+) -> list:
     """Entries ranked by how much their one-at-a-time values move a part's value (:data:`SENSITIVITY_METHOD`).
 
     Only rows at the default and rows that change one entry count: an entry's score is the variance of the
     part's value over its values (each value's rows averaged; the default's value included), as a share of the
     sum over the entries. Joint rows are left out, so an entry that co-occurs with the real cause in the joint
-    design scores nothing it did not move alone. Needs the default's row and some spread; else an empty list.
+    design scores nothing it did not move alone. An entry none of whose values moves the value by more than
+    ``floor`` from the default's scores nothing. Needs the default's row and some spread; else an empty list.
 
     Parameters
     ----------
     rows : sequence of {"config": full configuration, "value": float}
     names : entry names the claim reads
     default : the default configuration (an entry missing from a row's config is at its default)
+    floor : the least change of the value that counts as a move (same unit as the value)
     """
     pts = [(r["config"], r["value"]) for r in rows if math.isfinite(r["value"])]
 
@@ -209,7 +226,9 @@ def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[
         for c, v in pts:
             if changes(c) == [k]:
                 levels.setdefault(repr(c.get(k)), []).append(v)
-        spread[k] = float(np.var([np.mean(v) for v in levels.values()])) if len(levels) > 1 else 0.0
+        means = [float(np.mean(v)) for v in levels.values()]
+        moved = max(abs(m - means[0]) for m in means) > floor
+        spread[k] = float(np.var(means)) if len(levels) > 1 and moved else 0.0
     total = sum(spread.values())
     if not total > 0:
         return []
@@ -217,3 +236,37 @@ def sensitivity(rows: Sequence[Mapping], names: Sequence[str], entries: Mapping[
         {"entry": k, "title": (entries[k].title or k) if k in entries else k, "score": spread[k] / total} for k in names
     ]
     return sorted(out, key=lambda d: -d["score"])
+
+
+def paired_rows(conditions: Sequence[Mapping], values: Sequence[float], replicates: Sequence[float]) -> list:
+    """Sensitivity rows (``{"config", "value"}``) of one-at-a-time ``conditions`` whose ``values`` were pooled
+    over their first ``runs`` replicate seeds, each compared with the default over the same seeds (common random
+    numbers): a condition's value is moved by the default's mean over all its ``replicates`` minus its mean over
+    those seeds, so the replicates' own scatter does not score as an entry's effect."""
+    reps = [float(r) for r in replicates]
+    out = []
+    for c, v in zip(conditions, values):
+        k = int(c.get("runs") or len(reps))
+        same = reps[:k]
+        shift = float(np.mean(reps) - np.mean(same)) if same and all(map(math.isfinite, reps)) else 0.0
+        out.append({"config": c["config"], "value": float(v) + shift})
+    return out
+
+
+def beside_operating_point(rows: Sequence[Mapping], default: str) -> dict | None:
+    """The configurations of one part that leave the paper's stated operating point (``off_operating_point``),
+    counted beside its label: ``{"agree", "flip", "undecided", "flips": [{"changed", "verdict", "text"}]}`` (each
+    configuration once); None when there are none."""
+    seen, out = set(), {"agree": 0, "flip": 0, "undecided": 0, "flips": []}
+    for r in rows:
+        key = frozenset((k, repr(v)) for k, v in r["changed"].items())
+        if not r.get("off_operating_point") or key in seen:
+            continue
+        seen.add(key)
+        v = r["verdict"]
+        kind = "agree" if v == default else "flip" if v in ("reproduced", "not reproduced") else "undecided"
+        out[kind] += 1
+        if kind == "flip":
+            out["flips"].append({"changed": dict(r["changed"]), "verdict": v, "text": r["text"]})
+    out["flips"].sort(key=lambda f: len(f["changed"]))
+    return out if seen else None

@@ -34,10 +34,30 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-from .attribution import MAX_SUBSET, SENSITIVITY_METHOD, attribute, phrase, sensitivity, share
-from .measured import lost_runs
-from .register import WORLD_KINDS
-from .verdicts import LABELS, NOT_MEASURED, AllOf, ByReading, Judgement, NotCheckable, Rule, as_estimate, is_decisive
+from .attribution import (
+    MAX_SUBSET,
+    SENSITIVITY_METHOD,
+    attribute,
+    beside_operating_point,
+    paired_rows,
+    phrase,
+    sensitivity,
+    share,
+)
+from .lost_labels import lost_fields
+from .register import WORLD_KINDS, leaves_operating_point
+from .verdicts import (
+    LABELS,
+    NOT_MEASURED,
+    AllOf,
+    ByReading,
+    InBand,
+    Judgement,
+    NotCheckable,
+    Rule,
+    as_estimate,
+    is_decisive,
+)
 
 __all__ = [
     "MIN_SHARE_DESIGN",
@@ -274,7 +294,7 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
     """One row per condition: its changes in words, its full configuration, its runs and its verdicts
     (:func:`_row`); a condition with fewer runs than the ``n`` replicates the default needed reads ``undecided`` per part,
     its own verdicts kept as ``undersized``."""
-    rows = []
+    rows, off = [], {k: getattr(e, "off_operating_point", ()) for k, e in by_name.items()}
     for c in conditions:
         extra = {
             "changed": dict(c["changed"]),
@@ -286,6 +306,8 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
             extra["runs"] = int(c["runs"])
         if c.get("left_by_budget") is not None:  # leaning towards agreement, left smaller by the sizing budget
             extra["left_by_budget"] = int(c["left_by_budget"])
+        if leaves_operating_point(c["changed"], off):
+            extra["off_operating_point"] = True
         row = _row(rule, parts, c["measured"], extra)
         if row.get("runs", n) < n:
             row["undersized"] = dict(row["parts"])
@@ -294,113 +316,22 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
     return rows
 
 
-def _lost(prule: Rule, pm: Any, verdict: str) -> dict:
-    """For a value with runs that lost lock (:func:`tvtrack.measured.with_lost_runs`): the share lost (exact
-    Clopper-Pearson), the verdict on the runs in lock, and whether the two verdicts differ."""
-    info = lost_runs(pm)
-    if info is None:
-        return {}
-    from .counts import proportion_ci
-
-    e = proportion_ci(info["lost"], info["runs"])
-    in_lock = prule.judge(info["in lock"]).verdict
-    return {
-        "lost_share": {
-            "lost": info["lost"],
-            "runs": info["runs"],
-            "value": e.value,
-            "ci_low": e.ci_low,
-            "ci_high": e.ci_high,
-        },
-        "in_lock_verdict": in_lock,
-        "decided_by_lost_runs": in_lock != verdict,
-    }
-
-
-def _carried(row: Mapping, name: str, flip: Mapping, n_parts: int) -> bool:
-    """Whether the runs that lost lock carry a flip of part ``name``: on the row's draws the part reads the flip's
-    verdict over every run and another over the runs in lock. The part's own verdicts (``parts``,
-    ``in_lock_parts``) where the row gives them; the whole claim's only for a claim of one part (another part's
-    verdict may move the whole claim's)."""
-    every, kept = (row.get("parts") or {}).get(name), (row.get("in_lock_parts") or {}).get(name)
-    if every is None or kept is None:
-        if n_parts != 1:
-            return False
-        every, kept = row["verdict"], row["in_lock_verdict"]
-    return every == flip.get("verdict") and kept != every
-
-
-def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
-    """Mark a claim's record with a paper's own count of the runs that lost lock, at the default and under
-    named flips: where the rows' draws read the verdict over every run and another over the runs in lock, those
-    runs carry it, and the claim's sentence says so (:func:`tvtrack.wording.claim_summary`).
-
-    Parameters
-    ----------
-    record : dict
-        The claim's robustness record (:meth:`tvtrack.explore.Exploration.record`); marked in place.
-    rows : sequence of dict
-        ``{"changed": {entry: value} ({} for the default), "lost": int, "runs": int, "verdict": str (over every
-        run), "in_lock_verdict": str (over the runs in lock)}``, on the same draws (one replicate's), optionally
-        ``"replicates"`` (how many of the claim's replicates those draws are: the sentence then says the count is
-        of that many, not of the pooled verdict's); for a claim
-        of several parts also ``"parts"`` and ``"in_lock_parts"``: ``{part: verdict}`` over every run and over the
-        runs in lock.
-    verdict : str
-        The claim's verdict at the default (every replicate pooled).
-
-    Returns
-    -------
-    dict
-        ``record``: at the default ``lost_share``, ``in_lock_verdict`` (on the row's draws) and
-        ``decided_by_lost_runs`` (those draws give ``verdict`` over every run and another over the runs in lock);
-        each flip of a part whose changes a row names gains ``lost_runs`` ({lost, runs, verdict, in_lock_verdict,
-        carried}): ``carried`` where the part reads the flip's verdict over every run of the row and another over
-        its runs in lock (never from the whole claim's verdicts for a claim of several parts).
-    """
-    parts = record.get("parts") or {}
-    for row in rows:
-        lost, runs = int(row["lost"]), int(row["runs"])
-        if runs < 1 or not 0 <= lost <= runs:
-            raise ValueError(f"mark_lost_runs: lost {lost} of runs {runs}: need 0 <= lost <= runs and runs >= 1")
-        info = {"lost": lost, "runs": runs, "verdict": row["verdict"], "in_lock_verdict": row["in_lock_verdict"]}
-        info |= {"replicates": int(row["replicates"])} if row.get("replicates") else {}
-        if not row.get("changed"):
-            from .counts import proportion_ci
-
-            e = proportion_ci(lost, runs)
-            record["lost_share"] = {
-                "lost": lost,
-                "runs": runs,
-                "value": e.value,
-                "ci_low": e.ci_low,
-                "ci_high": e.ci_high,
-            } | ({"replicates": info["replicates"]} if "replicates" in info else {})
-            record["in_lock_verdict"] = row["in_lock_verdict"]
-            record["decided_by_lost_runs"] = row["verdict"] == verdict and row["in_lock_verdict"] != verdict
-            continue
-        for name, part in parts.items():
-            for f in part.get("flips") or ():
-                if dict(f.get("changed") or {}) == dict(row["changed"]):
-                    f["lost_runs"] = {**info, "carried": _carried(row, name, f, len(parts))}
-    return record
-
-
 def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dict:
     """One part's record: its pooled verdict (``pair``: (rule, measured) at the default, None when the part was
     not measured), label, where-lines, replicate verdicts, share, flips, sensitivity and runs to decide;
     ``ctx`` holds the claim's rows and design (:func:`label_parts`)."""
     j = pair[0].judge(pair[1]) if pair else NOT_MEASURED
     rv = [r["parts"][name] for r in ctx["rep_rows"] if name in r["parts"]]
-    rows = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
+    # a configuration that leaves the paper's stated operating point is counted beside the label, never in it
+    every = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
+    rows = [c for c in every if not c.get("off_operating_point")]
     flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None, ctx["max_subset"])
     ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
+    ex_rows = [c for c in ex_rows if not c.get("off_operating_point")]
     unranked = ctx["unranked"] | _rule_selectors(prule)  # their values measure other quantities: not one scale
-    sens_rows = [
-        {"config": c["config"], "value": _scalar(c["part_measured"].get(name))}
-        for c in ex_rows
-        if c["kind"] == "single" and not set(c["changed"]) & unranked
-    ]
+    reps = [_scalar(r["part_measured"].get(name)) for r in ctx["rep_rows"] if name in r["parts"]]
+    singles = [c for c in ex_rows if c["kind"] == "single" and not set(c["changed"]) & unranked]
+    sens_rows = paired_rows(singles, [_scalar(c["part_measured"].get(name)) for c in singles], reps)
     if pair:
         sens_rows.append({"config": ctx["default_cfg"], "value": _scalar(pair[1])})
     pwhere: list[str] = []
@@ -421,6 +352,12 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     if label == "robust" and not (part_share or {}).get("agree"):
         label = "unexplored"  # no explored configuration decided the part: nothing showed that it holds elsewhere
     pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
+    off = beside_operating_point(every, j.verdict) if is_decisive(j.verdict) else None
+    if off and part_share:  # counted beside the share, as the pinned ones are
+        part_share["off_operating_point"] = {k: off[k] for k in ("agree", "flip", "undecided")}
+    pwhere += [
+        f"{f['verdict']} when {f['text']} (outside the paper's operating point)" for f in (off or {}).get("flips", ())
+    ]
     return {
         "verdict": j.verdict,
         "label": label,
@@ -430,12 +367,27 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "share": part_share,
         "flips": flips,
         "sensitivity": sensitivity(
-            sens_rows, [k for k in ctx["by_name"] if k not in unranked], ctx["by_name"], ctx["default_cfg"]
+            sens_rows,
+            [k for k in ctx["by_name"] if k not in unranked],
+            ctx["by_name"],
+            ctx["default_cfg"],
+            floor=_moving_floor(prule, pair[1] if pair else None),
         ),
         "sensitivity_method": SENSITIVITY_METHOD,
         "runs_to_decide": runs,
-        **(_lost(pair[0], pair[1], j.verdict) if pair else {}),
+        **({"off_operating_point": off} if off else {}),
+        **(lost_fields(pair[0], pair[1], j.verdict) if pair else {}),
     }
+
+
+def _moving_floor(rule: Rule, measured: Any) -> float:
+    """The least change of a part's value that the ranking counts as a move: a hundredth of the default's distance
+    to its band's nearest edge (a band rule; 0 for others), so that round-off far inside a band ranks nothing."""
+    value = _scalar(measured)
+    edges = [e for e in (getattr(rule, "low", None), getattr(rule, "high", None)) if e is not None]
+    if not isinstance(rule, InBand) or not edges or not math.isfinite(value):
+        return 0.0
+    return 0.01 * min(abs(value - float(e)) for e in edges)
 
 
 def _rule_selectors(rule: Rule) -> frozenset:

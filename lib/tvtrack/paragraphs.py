@@ -517,7 +517,7 @@ def _lost_share(c: Mapping) -> float:
 
 def _carried_flips(c: Mapping) -> list[Mapping]:
     """The named flips of the claim that the runs that lost lock under them carry (their record's ``lost_runs``,
-    :func:`tvtrack.labels.mark_lost_runs`); empty where none is."""
+    :func:`tvtrack.lost_labels.mark_lost_runs`); empty where none is."""
     parts = ((c.get("robustness") or {}).get("parts") or {}).values()
     flips = [f for p in parts if isinstance(p, Mapping) for f in p.get("flips") or ()]
     return [f for f in flips if (f.get("lost_runs") or {}).get("carried")]

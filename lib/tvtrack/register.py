@@ -26,6 +26,7 @@ from typing import Any, Iterable, Mapping, Sequence
 from .markdown import md_escape
 
 __all__ = [
+    "leaves_operating_point",
     "ENTRY_KINDS",
     "WORLD_KINDS",
     "READING_KINDS",
@@ -294,6 +295,17 @@ class Register:
 
     def _repr_markdown_(self) -> str:
         return self.to_markdown()
+
+
+def leaves_operating_point(changed: Mapping[str, Any], off: Mapping[str, Iterable[Any]]) -> bool:
+    """Whether a configuration's ``changed`` entries set one to a value that leaves the operating point the paper
+    states: ``off`` maps an entry's name to its ``off_operating_point`` values (:class:`Entry`; a record's
+    register carries them as lists, so values are compared as written, 8 and 8.0 alike)."""
+
+    def same(a: Any, b: Any) -> bool:
+        return a == b or repr(a) == repr(b)
+
+    return any(any(same(v, o) for o in off.get(k) or ()) for k, v in changed.items())
 
 
 def project(config: Mapping[str, Any], names: Iterable[str], default: Mapping[str, Any]) -> dict:

@@ -36,7 +36,8 @@ from typing import Any
 import numpy as np
 
 from .estimate import Estimate
-from .labels import NO_PART_LABEL, Robustness, mark_lost_runs
+from .labels import NO_PART_LABEL, Robustness
+from .lost_labels import mark_lost_runs
 from .markdown import md_escape
 from .verdicts import LABELS, VERDICTS, Rule
 from .flip_words import flip_with_kind, label_basis, mixed_kinds
@@ -293,7 +294,7 @@ class Results:
             A hand-built record, where no exploration applies.
         lost_runs : sequence of dict, optional
             The paper's own count of runs that lost lock, at the default (``changed`` {}) and under named flips
-            (:func:`tvtrack.labels.mark_lost_runs`): the sentence says where those runs carry the verdict.
+            (:func:`tvtrack.lost_labels.mark_lost_runs`): the sentence says where those runs carry the verdict.
         caveat : str, optional
             One sentence the claim's summary must say (:class:`Claim`).
 

@@ -139,6 +139,21 @@ def share_counts(share: Mapping) -> str:
         f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
         f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
         f"configuration{'s' * (design != 1)}{_pinned_counts(share.get('pinned'))}"
+        f"{_off_point_counts(share.get('off_operating_point'))}"
+    )
+
+
+def _off_point_counts(off: Mapping | None) -> str:
+    """``"; of 4 configurations outside the paper's operating point (counted beside the label, not in it), 2 flip,
+    2 agree and 0 stay undecided"``; empty without such configurations."""
+    if not off:
+        return ""
+    agree, flip, undecided = (int(off.get(k) or 0) for k in ("agree", "flip", "undecided"))
+    n = agree + flip + undecided
+    return (
+        f"; of {n} configuration{'s' * (n != 1)} outside the paper's operating point (counted beside the label, "
+        f"not in it), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
+        f"stay{'s' * (undecided == 1)} undecided"
     )
 
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 import itertools
 from typing import Any, Mapping
 
+from .register import leaves_operating_point
 from .numbers import finite, number
 from .run_words import lock_sentence, lost_basis, lost_lead, not_checkable_reason, part_name, plain_text
 from .run_words import runs_sentence, share_counts, slowest_part, thin_share
@@ -272,23 +273,21 @@ def differs_whatever_is_open(claim: Mapping, row: Mapping) -> bool:
     return True
 
 
-def leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
+def flip_leaves_operating_point(claim: Mapping, flip: Mapping) -> bool:
     """Whether a flip changes an entry to a value the register marks as leaving the operating point the paper
     states (``off_operating_point`` in the record's register)."""
     register = (claim_fields(claim).get("robustness") or {}).get("register") or []
     off = {e.get("name"): e.get("off_operating_point") or [] for e in register if isinstance(e, Mapping)}
-    return any(
-        v in off.get(k, ()) or repr(v) in map(repr, off.get(k, ())) for k, v in (flip.get("changed") or {}).items()
-    )
+    return leaves_operating_point(flip.get("changed") or {}, off)
 
 
 def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     """Sort key of the flip a claim's sentence names, strongest first: a reading or an unreported setting before a
     mix no subset isolates, before a world (so the named flip is one the label rests on); then one that changes
     the whole claim's verdict before one that moves only a part; then one that keeps the paper's stated operating
-    point before one that leaves it (:func:`leaves_operating_point`); then :func:`flip_strength`."""
+    point before one that leaves it (:func:`flip_leaves_operating_point`); then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
-    return (group, not moves_verdict(claim, flip), leaves_operating_point(claim, flip), *flip_strength(flip))
+    return (group, not moves_verdict(claim, flip), flip_leaves_operating_point(claim, flip), *flip_strength(flip))
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:

@@ -90,7 +90,7 @@ def test_the_lock_report_gives_each_part_its_own_verdicts_so_a_flip_is_carried_o
     per part which flip the lost runs carry."""
     from types import SimpleNamespace
 
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
     from tvtrack.montecarlo import mean_ci
     from tvtrack.verdicts import AllOf, InBand
 
@@ -126,7 +126,7 @@ def test_a_condition_whose_draws_read_the_default_s_verdict_over_every_run_is_ne
     carried."""
     from types import SimpleNamespace
 
-    from tvtrack.labels import mark_lost_runs
+    from tvtrack.lost_labels import mark_lost_runs
     from tvtrack.montecarlo import Estimate
     from tvtrack.verdicts import InBand
 

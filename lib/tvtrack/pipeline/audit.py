@@ -32,7 +32,7 @@ from __future__ import annotations
 import itertools
 from typing import Any, Mapping, Sequence
 
-from ..register import side_of
+from ..register import leaves_operating_point, side_of
 
 __all__ = ["audit_claim", "audit_runs", "audit_markdown"]
 
@@ -69,6 +69,30 @@ def _pinned_problems(where: str, share: Mapping, pinned: Sequence[Mapping], name
     return [f"{where}: the pinned configurations beside the share read {shown}, their verdicts give {counted}"]
 
 
+def _off_point_problems(where: str, part: Mapping, off_rows: Sequence[Mapping], name: str, default: str) -> list[str]:
+    """The configurations outside the paper's stated operating point (the register's ``off_operating_point``) must
+    be counted beside the label (``part["off_operating_point"]``) as their verdicts give, never among its flips."""
+    kinds = ("single", "joint", "pinned", "combination")
+    verdicts = [c["parts"][name] for c in _distinct(off_rows, kinds)]
+    agree = sum(v == default for v in verdicts)
+    flip = sum(v in _DECISIVE and v != default for v in verdicts)
+    counted = {"agree": agree, "flip": flip, "undecided": len(verdicts) - agree - flip} if verdicts else {}
+    beside = part.get("off_operating_point") or {}
+    shown = {k: int(beside[k]) for k in ("agree", "flip", "undecided") if k in beside}
+    out = (
+        []
+        if counted == shown
+        else [f"{where}: outside the operating point the record counts {shown}, its rows give {counted}"]
+    )
+    outside = [_items(c["changed"]) for c in off_rows]
+    for f in part.get("flips") or ():
+        if _items(f["changed"]) in outside:
+            out.append(
+                f"{where}: the flip at {f['text']} leaves the paper's operating point and is counted in the label"
+            )
+    return out
+
+
 def _expected_side(changed: Mapping[str, Any], kinds: Mapping[str, str]) -> str:
     sides = {side_of(kinds.get(k, "reading")) for k in changed}
     if sides == {"world"}:
@@ -97,7 +121,10 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
     default, out = part["verdict"], []
     if default not in _DECISIVE:  # nothing to flip: no share, no flips, no label to check
         return out
-    rows = [c for c in rb["conditions"] if name in c.get("parts", {})]
+    off = {e["name"]: e.get("off_operating_point") or [] for e in rb.get("register") or () if "name" in e}
+    every = [c for c in rb["conditions"] if name in c.get("parts", {})]
+    rows = [c for c in every if not leaves_operating_point(c["changed"], off)]  # outside it: beside the label
+    out += _off_point_problems(where, part, [c for c in every if c not in rows], name, default)
     share = part.get("share")
     if share:
         verdicts = [c["parts"][name] for c in _distinct(rows)]

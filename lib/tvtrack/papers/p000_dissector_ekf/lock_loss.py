@@ -209,7 +209,7 @@ def _part_verdicts(rule, measured) -> dict:
 def _how(v0: str, v: str, k: str) -> str:
     """What the runs that lost lock do to a flipping condition's verdict on the report's draws: ``v0`` the
     default's (over all runs), ``v`` and ``k`` the condition's over all runs and over the runs in lock (the whole
-    claim's: a part's flip is marked on its part, :func:`tvtrack.labels.mark_lost_runs`)."""
+    claim's: a part's flip is marked on its part, :func:`tvtrack.lost_labels.mark_lost_runs`)."""
     if v == "undecided":  # no verdict over all runs: no flip on these draws, for the lost runs to carry or to hide
         if k == v:
             return "over the runs in lock it reads undecided too: on these draws the claim as a whole shows no flip"
@@ -282,7 +282,7 @@ def lock_report(measure, rule, default: dict, conditions: list, seeds, sizes, cl
         ``"note"``: one paragraph for the claim's record; ``"metric"``: per configuration (``"default"`` or its
         phrase) the lost share, the counts, the replicates and both verdicts; ``"rows"``: the same per configuration
         as ``Results.claim(lost_runs=...)`` reads them, with each part's verdicts and the replicates the counts
-        cover (:func:`tvtrack.labels.mark_lost_runs`).
+        cover (:func:`tvtrack.lost_labels.mark_lost_runs`).
     """
     base, rows = _seeds(seeds), []
     for changed, at in [({}, _seeds(seeds))] + [_draws(c, base) for c in conditions]:
