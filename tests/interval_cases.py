@@ -6,6 +6,8 @@ trials or clusters per grid point (003), 100 trials (002 headline sweeps). The e
 one call resamples all ``R`` experiments at once through the helpers' own batched interval code.
 """
 
+import hashlib
+
 import numpy as np
 from scipy import stats
 
@@ -75,7 +77,7 @@ def intervals(helper: str, data, method: str = "new"):
     the interval it used before (``"BCa"`` bootstrap via scipy, batched; for ``"mean"`` Student t)."""
     rng = np.random.default_rng(mc.BOOTSTRAP_SEED)
     if method == "new" and helper == "mean_square":
-        lo, hi, _ = resampling.studentized_mean_interval(data, 0.95, mc.N_BOOTSTRAP, rng)
+        lo, hi = _studentized(data)
         return np.maximum(lo, 0.0), hi
     if method == "new" and helper == "ratio":
         lo, hi, _ = resampling.expanded_percentile_ratio(data[0], data[1], 0.95, True, mc.N_BOOTSTRAP, rng)
@@ -83,8 +85,7 @@ def intervals(helper: str, data, method: str = "new"):
     if helper == "mean":
         x = data
         if method == "new":
-            lo, hi, _ = resampling.studentized_mean_interval(x, 0.95, mc.N_BOOTSTRAP, rng)
-            return lo, hi
+            return _studentized(x)
         half = stats.t.ppf(0.975, x.shape[1] - 1) * x.std(axis=1, ddof=1) / np.sqrt(x.shape[1])
         return x.mean(axis=1) - half, x.mean(axis=1) + half
     # the BCa interval the helpers used before: scipy.stats.bootstrap's paired BCa, batched (bca_interval)
@@ -95,6 +96,24 @@ def intervals(helper: str, data, method: str = "new"):
         lo.append(chunk_lo)
         hi.append(chunk_hi)
     return np.concatenate(lo), np.concatenate(hi)
+
+
+#: the bootstrap-t bounds of each set of experiments already resampled, by a digest of its values
+_STUDENTIZED: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _studentized(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The bootstrap-t bounds of every row of ``x`` (R, n), from the generator seeded as each helper's, computed once
+    per set of values: the mean and mean-square tables resample the same exponential draws (the same seed and
+    position of the case), which gave the same bounds twice. The bounds depend on the values and the seed alone,
+    so a set seen before gets the very arrays it gave then."""
+    key = hashlib.sha256(np.ascontiguousarray(x).tobytes() + repr((x.shape, x.dtype.str)).encode()).hexdigest()
+    if key not in _STUDENTIZED:
+        lo, hi, _ = resampling.studentized_mean_interval(
+            x, 0.95, mc.N_BOOTSTRAP, np.random.default_rng(mc.BOOTSTRAP_SEED)
+        )
+        _STUDENTIZED[key] = (lo, hi)
+    return _STUDENTIZED[key]
 
 
 def _ratio_of_means(samples, n: int | None = None):

@@ -45,10 +45,12 @@ def test_a_lost_grid_point_is_reported_and_left_out_of_the_trend():
 def test_the_default_loop_ripple_grows_with_the_bandwidth_among_loops_in_lock():
     """At the default the 2 Hz loop loses lock in every run; read against it, the paper's 10 Hz ripple looked
     smaller than at 2 Hz (10/2 Hz = 0.44 here: the lost loop's error, not a ripple). Over the loops in lock the
-    locked ripple grows with the bandwidth (20/10 Hz = 1.6), as the paper's explanation asks."""
-    t = study.measure_tracking(REGISTER.default(), 11, study.Sizes(trials=6), claims={"C003-2"})
+    locked ripple grows with the bandwidth (20/10 Hz about 1.3-1.5 over seeds 11-13 at 20 runs, each interval
+    above 1), as the paper's explanation asks. Six runs were too few: the interval's lower end crossed 1 with the
+    draws (seed 11 gave 1.30 [0.76, 2.71] once the scene stopped drawing for interferers it does not have)."""
+    t = study.measure_tracking(REGISTER.default(), 11, study.Sizes(trials=20), claims={"C003-2"})
     assert t["_lock_by_bandwidth"]["2 Hz"].value == 1.0
     assert all(t["_lock_by_bandwidth"][f"{b:g} Hz"].value == 0.0 for b in (5.0, 10.0, 20.0))
     assert len(t["C003-2"]["wide_loops"]) == 3
     assert study.RIPPLE_TREND == (20.0, 10.0)
-    assert t["_ripple_trend"].value > 1.3 and t["_ripple_trend"].ci_low > 1.0
+    assert t["_ripple_trend"].value > 1.2 and t["_ripple_trend"].ci_low > 1.0

@@ -31,6 +31,9 @@ from .readings import (
     c15_close,
     photons6,
 )
+from . import gain_coverage as _gc
+from . import ratio_coverage as _rc
+from .gain_coverage import stated
 from .summaries import SPREADS, bootstrap_groups, mse_sum, position_errors, variance_ratio_ci, variance_sum
 from .sim_config import seed_sequence
 from ._spread_kernel import variance_sum_rows
@@ -40,6 +43,8 @@ __all__ = [
     "spread_sum",
     "spread_total",
     "mean_log_gain",
+    "frame_dependence",
+    "gain_interval_coverage",
     "efficiency",
     "gain",
     "exp_estimate",
@@ -145,7 +150,67 @@ def mean_log_gain(pairs_hi, pairs_lo, rng, n_bootstrap, spread: str = "variance"
 
         return mlog(g[:k]) - mlog(g[k:])
 
-    return exp_estimate(bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap))
+    e = bootstrap_groups(list(pairs_hi) + list(pairs_lo), stat, rng, n_bootstrap)
+    return exp_estimate(stated(e, "log gain", min(k, len(pairs_lo)), spread))
+
+
+def frame_dependence(groups_hi, groups_lo, rng, n_bootstrap, spread: str = "variance", gap: bool = False) -> Estimate:
+    """C002-6's contrast: the mean frame dependence of the ``hi`` groups minus that of the ``lo`` groups, a group's
+    dependence |ln(u / v)| (or, ``gap``, |u - v|), u and v the spreads of its two halves.
+
+    Parameters
+    ----------
+    groups_hi, groups_lo : list of numpy.ndarray
+        One array per separation, the errors at the fewer and the more frames side by side on the last axis (sigma);
+        rows are resampled jointly, groups independently.
+    rng : numpy.random.Generator
+        The seeded generator of the bootstrap.
+    n_bootstrap : int
+        Bootstrap resamples.
+    spread : str
+        The spread read (:func:`spread_total`).
+    gap : bool
+        The absolute dependence |u - v| (sigma^2) instead of the relative |ln(u / v)|.
+
+    Returns
+    -------
+    Estimate
+        The contrast (unit-free, sigma^2 under ``gap``) with its bootstrap interval; the relative one states its
+        measured coverage (:mod:`.gain_coverage`).
+    """
+    k = len(groups_hi)
+
+    def dep(a):
+        u, v = spread_total(a[..., : a.shape[-1] // 2], spread), spread_total(a[..., a.shape[-1] // 2 :], spread)
+        return np.abs(u - v) if gap else np.abs(np.log(u / v))
+
+    def stat(*gr):
+        return np.mean([dep(a) for a in gr[:k]], axis=0) - np.mean([dep(a) for a in gr[k:]], axis=0)
+
+    e = bootstrap_groups(list(groups_hi) + list(groups_lo), stat, rng, n_bootstrap)
+    return e if gap else stated(e, "frame dependence", min(k, len(groups_lo)), spread)
+
+
+def gain_interval_coverage(
+    statistic: str,
+    case: str,
+    n: int,
+    groups: int,
+    experiments: int = _gc.N_EXPERIMENTS,
+    n_bootstrap: int = _gc.SIM_BOOTSTRAP,
+    correlation: float = 0.0,
+) -> float:
+    """The share of the first ``experiments`` simulated experiments of ``case`` (``n`` trials a group, ``groups``
+    groups a side, :func:`.gain_coverage.draw_groups`) whose interval of ``statistic`` (``"log gain"``:
+    :func:`mean_log_gain`, ``"frame dependence"``: :func:`frame_dependence`, ``n_bootstrap`` resamples) holds the
+    true value: what :data:`.gain_coverage.COVERAGE` tabulates."""
+    fn = mean_log_gain if statistic == "log gain" else frame_dependence
+    truth, hits = _gc.STATISTICS[statistic], 0
+    for r in range(experiments):
+        hi, lo = _gc.draw_groups(case, n, r, groups, correlation)
+        e = fn(hi, lo, np.random.default_rng([_rc.SEED, n, groups, r]), n_bootstrap)
+        hits += e.ci_low <= truth <= e.ci_high
+    return hits / experiments
 
 
 def efficiency(e, bound: float, statistic: str) -> Estimate:
@@ -276,16 +341,8 @@ def _c6(x: _Ctx):
         g2 = x.g["2"]
         return [np.hstack([x.ula(g2[(t_lo, m)][d])[:, cols], x.ula(g2[(t_hi, m)][d])[:, cols]]) for d in small]
 
-    def dep(a):
-        u, v = spread_total(a[..., : a.shape[-1] // 2], x.sp), spread_total(a[..., a.shape[-1] // 2 :], x.sp)
-        return np.abs(u - v) if gap else np.abs(np.log(u / v))
-
-    def stat6(*gr):
-        k = len(small)
-        return np.mean([dep(a) for a in gr[:k]], axis=0) - np.mean([dep(a) for a in gr[k:]], axis=0)
-
     m_hi, m_lo = photons6(x.config)
-    return bootstrap_groups(rt(m_hi) + rt(m_lo), stat6, x.rng, x.B)
+    return frame_dependence(rt(m_hi), rt(m_lo), x.rng, x.B, x.sp, gap)
 
 
 def _pc(config: dict) -> float:
@@ -517,3 +574,10 @@ def measure_claims(config: dict, g: dict, res, seed: int, n_bootstrap: int, D, c
             rng = np.random.default_rng(seed_sequence(seed, ("bootstrap", cid)))
             out[cid] = fn(_Ctx(config, g, res, rng, n_bootstrap, list(D)))
     return out
+
+
+if __name__ == "__main__":  # prints gain_coverage.COVERAGE (several CPU minutes)
+    for _stat in _gc.STATISTICS:
+        for _size in _gc.COVERAGE[_stat]:
+            _cov = ", ".join(f"{gain_interval_coverage(_stat, c, *_size):.3f}" for c in _rc.CASES)
+            print(f"    {_stat!r} {_size}: ({_cov}),", flush=True)

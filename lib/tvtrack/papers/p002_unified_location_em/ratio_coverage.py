@@ -58,14 +58,21 @@ def _unit(rng: np.random.Generator, heavy: bool, shape) -> np.ndarray:
     return rng.standard_t(5, shape) / np.sqrt(5.0 / 3.0) if heavy else rng.normal(size=shape)
 
 
-def draw(case: str, n: int, r: int) -> tuple:
+def draw(case: str, n: int, r: int, group: int = 0, correlation: float = CORRELATION) -> tuple:
     """Experiment ``r`` of ``case`` at ``n`` trials: the numerator and denominator errors (n, 4), each unit variance
-    per coordinate up to the true ratio (its own seed, so an experiment is the same however many are run)."""
-    rng = np.random.default_rng([SEED, CASES.index(case), n, r])
+    per coordinate up to the true ratio (its own seed, so an experiment is the same however many are run).
+
+    ``group`` and ``correlation`` give the independent groups of a statistic over several of them
+    (:mod:`.gain_coverage`: group ``g`` of experiment ``r`` has its own seed) and the correlation of the numerator's
+    and denominator's errors (0: two configurations run on their own scenes); the defaults are the gain rho's draws.
+    """
+    own = group == 0 and correlation == CORRELATION
+    key = [SEED, CASES.index(case), n, r] + ([] if own else [group, int(round(100 * correlation))])
+    rng = np.random.default_rng(key)
     heavy = case == CASES[1]
     z1, z2 = _unit(rng, heavy, (n, COORDINATES)), _unit(rng, heavy, (n, COORDINATES))
     den = z1
-    num = np.sqrt(TRUE_RATIO) * (CORRELATION * z1 + np.sqrt(1.0 - CORRELATION**2) * z2)
+    num = np.sqrt(TRUE_RATIO) * (correlation * z1 + np.sqrt(1.0 - correlation**2) * z2)
     if case == CASES[2]:  # each algorithm's gross errors on their own trials: scale-contaminated, mean still 0
         num = num * np.where(rng.random(n) < GROSS_SHARE, GROSS_SCALE, 1.0)[:, None]
         den = den * np.where(rng.random(n) < GROSS_SHARE, GROSS_SCALE, 1.0)[:, None]

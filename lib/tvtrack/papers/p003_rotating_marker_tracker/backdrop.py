@@ -101,6 +101,8 @@ def place_interferers(
         raise ValueError(f"parameter 'count' = {count}; it must be >= 0")
     if layout not in LAYOUTS:
         raise ValueError(f"parameter 'layout' = {layout!r}; it must be one of {LAYOUTS}")
+    if count == 0:  # no interferer, no draw: a scene without interferers is the same whatever their layout
+        return np.zeros((n, 0, 2))
     if layout == "independent":
         ang = rng.uniform(0, 2 * np.pi, size=(n, count))
     else:
