@@ -4,7 +4,7 @@ words of C004-2 and C004-3."""
 import pytest
 
 from tvtrack.labels import Condition, Robustness
-from tvtrack.papers.p004_laser_spot_prediction import study
+from tvtrack.papers.p004_laser_spot_prediction import prediction_study, study
 from tvtrack.papers.p004_laser_spot_prediction.claims import RULES
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT, build
 
@@ -140,7 +140,7 @@ def test_the_floor_form_reading_makes_the_variant_floor_the_paper_s_filter():
     fixed = pr.g1_floor_forecast(run.z, SIZE.fixed_floor, 1, 2)
     assert got[2]["C004-2"].value == pytest.approx(rms(fixed), rel=1e-12)
     assert len({round(g["C004-2"].value, 9) for g in got}) == 3  # three different filters
-    late = study.late_rms_ratio(
+    late = prediction_study.late_rms_ratio(
         pr.growing_memory_forecast(run.z, 1, 2, None), run.forecasts[VARIANT], run.z_meas, 1, SIZE.n_frames // 2
     )
     assert got[1]["C004-6"].value == pytest.approx(late.value, rel=1e-12)

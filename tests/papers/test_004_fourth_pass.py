@@ -207,11 +207,11 @@ def test_paths_are_drawn_again_until_the_spot_stays_on_the_sensor():
     stream. A set that stays on the sensor is the first draw, unchanged."""
     size = study.StudySize()
     scene = study.scene_config(dict(DEFAULT, amplitude=2.0, bandwidth=3.0), size)  # the factor of these draws
-    first = lambda seed: int(study._streams(seed)[0].generate_state(1)[0])  # noqa: E731
+    first = lambda seed: int(study.run_streams(seed)[0].generate_state(1)[0])  # noqa: E731
     with pytest.raises(ValueError, match="leave the sensor"):
         world.exposed_traces(scene, first(1), "instant")
-    tr, draws = study.traces_on_sensor(scene, study._streams(1)[0], "instant")
+    tr, draws = study.traces_on_sensor(scene, study.run_streams(1)[0], "instant")
     assert draws == 2 and tr.centres_px.min() >= -0.5 and tr.centres_px.max() <= 127.5
-    same, one = study.traces_on_sensor(scene, study._streams(0)[0], "instant")
+    same, one = study.traces_on_sensor(scene, study.run_streams(0)[0], "instant")
     assert one == 1
     np.testing.assert_array_equal(same.centres_px, world.exposed_traces(scene, first(0), "instant").centres_px)

@@ -124,7 +124,7 @@ def test_the_cached_variance_check_is_the_uncached_one():
     bit for bit a fresh run from the seed's own stream, for each noise law and seed."""
     study.clear_cache()
     for seed, noise in ((7, "Gaussian"), (7, "Student t3"), (8, "Gaussian"), (7, "Gaussian")):
-        fresh = study.variance_ratios(np.random.default_rng(study._streams(seed)[4]), 1000, noise=noise)
+        fresh = study.variance_ratios(np.random.default_rng(study.run_streams(seed)[4]), 1000, noise=noise)
         _same(fresh, study._variance_check(seed, 1000, noise))
     assert len(study._VARIANCE) == 3
     study.clear_cache()
@@ -227,7 +227,7 @@ def test_horizon_study_reuses_the_runs_comparison_bit_for_bit(run):
     # the Kalman fits made once are those a fresh comparison at horizon 2 makes
     from tvtrack.papers.p004_laser_spot_prediction.prediction_study import CA_KALMAN, compare_methods
 
-    s2 = study.replace(study.comparison_setup(dict(run.config, horizon=2), SIZE), learned_kw={})
+    s2 = study.replace(prediction_study.comparison_setup(dict(run.config, horizon=2), SIZE), learned_kw={})
     direct = compare_methods(run.z, run.z_meas, run.folds, s2, np.random.default_rng(0), learned=False)
     for name in (CA_KALMAN, prediction_study.SINGER, PAPER):
         mse = per_trial_path_mse(direct.forecasts[name], run.z_meas, 2, SIZE.eval_start)[0]
@@ -248,7 +248,7 @@ def test_late_rms_ratio_is_the_root_of_the_mean_square_ratio():
     ref = np.zeros((1, 5, 2, 100))
     a = 3.0 * rng.standard_normal(ref.shape)
     b = 1.0 * rng.standard_normal(ref.shape)
-    e = study.late_rms_ratio(a, b, ref, 1, 50)
+    e = prediction_study.late_rms_ratio(a, b, ref, 1, 50)
     ma = per_trial_path_mse(a, ref, 1, 50)[0].mean()
     mb = per_trial_path_mse(b, ref, 1, 50)[0].mean()
     assert e.value == pytest.approx(np.sqrt(ma / mb)) and e.ci_low < e.value < e.ci_high

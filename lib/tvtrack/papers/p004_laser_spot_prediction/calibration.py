@@ -28,19 +28,15 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from . import learned as lm
-from . import predictors as pr
-from .beam_wander import BeamWanderConfig, generate_traces, scaled_config
-from .prediction_study import FLOOR_EXTENSION, tuned_forecast
+from .beam_wander import BeamWanderConfig, scaled_config
 from .register import DEFAULT
 from .sizes import StudySize
-from .world import BASE_SCENE, scene_config
+from .study import paper_filter_rms
 
 __all__ = [
     "TARGET_PX",
     "BAND_PX",
     "Calibration",
-    "paper_filter_rms",
     "calibrate_bandwidth",
     "world_bracket",
     "calibrate_world",
@@ -77,45 +73,6 @@ class Calibration:
     rms_px: float
     target_px: float
     evaluations: tuple
-
-
-def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = None) -> float:
-    """Per-axis RMS error (px) of the paper's filter, floor cross-validated over paths, at ``config``'s horizon
-    against the measured centre, on ``size.n_paths`` x ``size.n_frames`` paths of the world ``config``.
-
-    Parameters
-    ----------
-    config : dict
-        Register configuration (entries left out stay at the register's defaults).
-    seed : int
-        The run's seed (sensor noise; the paths too unless ``traces_seed`` is given).
-    size : sizes.StudySize
-    traces_seed : int, optional
-        Draw the paths with this generator seed at the configuration's scene (e.g. the shipped data set's seed:
-        the shipped paths, faster or slower).
-    """
-    from . import study as st
-
-    cfg = {**DEFAULT, **config}
-    traces = None
-    if traces_seed is not None:  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
-        scene = scene_config(cfg, size)
-        big = replace(scene, n_paths=max(scene.n_paths, BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
-        traces = generate_traces(big, int(traces_seed))
-    run = st.study_run(cfg, seed, size, traces)
-    s = st.comparison_setup(cfg, size)
-    folds = lm.path_folds(size.n_paths, size.n_folds)
-    T = run.z.shape[-1]
-    _, mse, _, _, _ = tuned_forecast(
-        s.floor_grid,
-        lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
-        run.z,
-        run.z_meas,
-        folds,
-        s,
-        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
-    )
-    return float(np.sqrt(np.mean(mse)))
 
 
 def calibrate_bandwidth(

@@ -17,11 +17,22 @@ paths x 500 frames, common random numbers: the seed's own error in the root canc
 applied is :data:`DEFAULT_BANDWIDTH` x that ratio. :data:`TARGET_FACTORS` does the same for the band's ends (the
 default world at 1.0 and 2.0 px). :func:`.calibration.world_table` recomputes both (21 root finds, about 30 CPU
 minutes on a loaded core: so the table is kept, not recomputed per run; the explorer pays nothing for it); a test
-checks three rows on other paths. A configuration that changes several world entries at once gets the product of
-their ratios (the filter's error is close to separable in them: amplitude x a function of the spectrum's shape and time
-scale). Checked on three joint worlds (same seed and size): f^-6 with double amplitude errs 1.12 px, a flat
-spectrum with jitter 1.64 px, 200 frames/s with 64 DN read noise and half the amplitude 1.50 px: inside the
-paper's band, not at its middle. A value with no row (a default moved by a sweep) keeps the default's factor.
+checks three rows on other paths. A value with no row (a default moved by a sweep) keeps the default's factor.
+
+**Joint worlds.** The product of the ratios is only a first guess where a configuration changes two or more
+tabled values (the band position counts as one): the error is not separable where a source that does not scale
+with the wander (jitter, mount vibration, the camera's noise) meets one that changes the wander's speed or the
+sampling. At the product, 200 frames/s with the f^-5/3 spectrum, 16 DN read noise, no saturation, the whole gate's
+energy centre and 1 px vibration errs 0.49 x the default world (about 0.7 px at the paper profile, below the
+paper's 1-2 px; each value alone is inside it). So :func:`joint_factor` corrects the product on the table's own
+paths (seed 2005, the first :data:`JOINT_PATHS` of its 15 x 500 frames: within 2 % of all 15 in the error's
+ratio): it measures the error at the product; if that is more than :data:`JOINT_TOL` from the default world's at
+the band position (same paths), one power-law step with the default world's exponent (:data:`BAND_SLOPE`, from
+:data:`TARGET_FACTORS`' band ends) and, if still outside, one secant step on the two measured points. At most two
+evaluations per distinct world combination (about 0.5 CPU s each), cached per combination, the same for every
+replicate and seed. A world whose error hardly moves with the bandwidth (secant exponent below
+:data:`MIN_SLOPE`: a noise floor above the band, or jitter below it) has no bandwidth at the band position; it
+keeps the measured factor nearer to it and is listed in :data:`JOINT_OUT_OF_REACH` (docs/validity/004.md).
 
 **Where re-calibration is not meaningful** the register marks the value ``off_operating_point``: the bandwidth's
 own other values (the knob itself set by hand: the slow world, 0.33 px, and the fast one, 3.9 px), and any world in
@@ -29,6 +40,8 @@ which no bandwidth up to 0.4 x the frame rate puts the filter at 1.5 px (:data:`
 """
 
 from __future__ import annotations
+
+import math
 
 from .register import DEFAULT, WORLD
 
@@ -40,6 +53,13 @@ __all__ = [
     "TARGET_FACTORS",
     "NO_ROOT",
     "bandwidth_for",
+    "joint_factor",
+    "table_factors",
+    "BAND_SLOPE",
+    "JOINT_TOL",
+    "JOINT_PATHS",
+    "MIN_SLOPE",
+    "JOINT_OUT_OF_REACH",
 ]
 
 #: The bandwidth entry's default: re-calibrated in every world (:func:`bandwidth_for`).
@@ -76,12 +96,46 @@ TARGET_FACTORS: dict = {1.0: 0.7382, 1.5: 1.0, 2.0: 1.2464}
 NO_ROOT: tuple = ()
 
 
+#: The default world's exponent of the error in the bandwidth (error ~ b^k) between the band's ends: log 2 over
+#: log of the ratio of their roots (about 1.32).
+BAND_SLOPE = math.log(2.0) / math.log(TARGET_FACTORS[2.0] / TARGET_FACTORS[1.0])
+#: A joint world's error may differ from the default world's at the band position by this share (same paths).
+JOINT_TOL = 0.05
+#: Paths of the table's 15 x 500 frames a joint world's correction is measured on.
+JOINT_PATHS = 8
+#: Below this secant exponent the bandwidth hardly moves the error: no bandwidth puts the world in the band.
+MIN_SLOPE = 0.25
+#: Bandwidth factors of a joint world: [lowest, highest x frame rate] (as :func:`.calibration.world_bracket`).
+FACTOR_RANGE = (0.05, 0.8)
+#: {world combination: factor} of :func:`joint_factor` (this process; the explorer's workers inherit it).
+_JOINT: dict = {}
+_REFERENCE: dict = {}  # {band position: the default world's error there on the joint worlds' paths}
+#: {world combination: (factor, error ratio to the default world's)} of joint worlds no bandwidth puts in the band.
+JOINT_OUT_OF_REACH: dict = {}
+
+
+def table_factors(config: dict) -> tuple:
+    """``(product, world, rows)``: :data:`DEFAULT_BANDWIDTH` x the band position's ratio x the ratio of every
+    world entry changed from its default that has a row in :data:`WORLD_FACTORS`; the configuration's changed world
+    entries (bandwidth aside) as a tuple of (entry, value) in the register's order, the key of
+    :func:`joint_factor`; and how many of them have a row (the band position's in :data:`TARGET_FACTORS`)."""
+    cfg = {**DEFAULT, **config}
+    band = cfg.get(BAND_POSITION, 1.5)
+    out = DEFAULT_BANDWIDTH * TARGET_FACTORS.get(band, 1.0)
+    world = tuple((n, cfg[n]) for n in WORLD if n != "bandwidth" and cfg[n] != DEFAULT[n])
+    rows = sum((n, v) in WORLD_FACTORS or (n == BAND_POSITION and v in TARGET_FACTORS) for n, v in world)
+    for name, v in world:
+        if name != BAND_POSITION:
+            out *= WORLD_FACTORS.get((name, v), 1.0)
+    return float(out), world, int(rows)
+
+
 def bandwidth_for(config: dict) -> float:
     """The wander's bandwidth factor of a register configuration (entries left out at their defaults).
 
     A number is used as it is (the bandwidth entry's uncalibrated worlds, or a factor set by hand).
-    :data:`CALIBRATED` gives :data:`DEFAULT_BANDWIDTH` x the band position's ratio x the ratio of every world
-    entry changed from its default that has a row in :data:`WORLD_FACTORS`.
+    :data:`CALIBRATED` gives :func:`table_factors`' product where at most one tabled value is changed (a table
+    row, exactly), and :func:`joint_factor` where two or more are.
 
     Returns
     -------
@@ -89,11 +143,55 @@ def bandwidth_for(config: dict) -> float:
         Factor on every corner frequency (dimensionless).
     """
     cfg = {**DEFAULT, **config}
-    b = cfg["bandwidth"]
-    if b != CALIBRATED:
-        return float(b)
-    out = DEFAULT_BANDWIDTH * TARGET_FACTORS.get(cfg.get(BAND_POSITION, 1.5), 1.0)
-    for name in WORLD:
-        if name != BAND_POSITION and cfg[name] != DEFAULT[name]:
-            out *= WORLD_FACTORS.get((name, cfg[name]), 1.0)
-    return float(out)
+    if cfg["bandwidth"] != CALIBRATED:
+        return float(cfg["bandwidth"])
+    product, world, rows = table_factors(cfg)
+    if rows < 2:
+        return product
+    if world not in _JOINT:
+        raise LookupError(
+            f"the joint world {dict(world)} has no corrected bandwidth yet: "
+            "study.resolve_operating_point(config) corrects it before its scene is drawn"
+        )
+    return _JOINT[world]
+
+
+def _within(r: float, ref: float) -> bool:
+    return abs(math.log(r / ref)) <= math.log1p(JOINT_TOL)
+
+
+def joint_factor(world: tuple, rms) -> float:
+    """The bandwidth factor of a joint world ``world`` ((entry, value) pairs, :func:`table_factors`): the
+    product of its rows, corrected with ``rms`` (a configuration with a numeric bandwidth -> the paper's filter's
+    per-axis error on the table's paths, px: :func:`.study.table_paths_rms` on the first :data:`JOINT_PATHS`)
+    towards the default world's error at the band position on the same paths: kept if within
+    :data:`JOINT_TOL`; else one power-law step (:data:`BAND_SLOPE`); if still outside, one secant step on the two
+    measured points (exponent at least :data:`MIN_SLOPE`; below it the world is out of reach,
+    :data:`JOINT_OUT_OF_REACH`, and keeps the measured factor nearer the target). Cached per ``world``."""
+    if world in _JOINT:
+        return _JOINT[world]
+    config = {**dict(world), "bandwidth": CALIBRATED}
+    band = config.get(BAND_POSITION, DEFAULT[BAND_POSITION])
+    lo, hi = FACTOR_RANGE[0], FACTOR_RANGE[1] * float({**DEFAULT, **config}["frame rate"])
+    clip = lambda b: min(max(b, lo), hi)  # noqa: E731
+    if band not in _REFERENCE:  # the default world at the band position, on the same paths
+        b_ref = table_factors({BAND_POSITION: band})[0]
+        _REFERENCE[band] = rms({BAND_POSITION: band, "bandwidth": b_ref})
+    ref = _REFERENCE[band]
+    at = lambda b: rms({**config, "bandwidth": b})  # noqa: E731
+    b0 = table_factors(config)[0]
+    r0 = at(b0)
+    out = b0
+    if not _within(r0, ref):
+        b1 = clip(b0 * (ref / r0) ** (1.0 / BAND_SLOPE))
+        r1 = at(b1) if b1 != b0 else r0
+        out = b1
+        if not _within(r1, ref):
+            k = math.log(r1 / r0) / math.log(b1 / b0) if b1 != b0 else 0.0
+            if k < MIN_SLOPE:
+                out = min((b0, r0), (b1, r1), key=lambda p: abs(math.log(p[1] / ref)))[0]
+                JOINT_OUT_OF_REACH[world] = (out, (r0 if out == b0 else r1) / ref)
+            else:
+                out = clip(b1 * (ref / r1) ** (1.0 / k))
+    _JOINT[world] = float(out)
+    return _JOINT[world]

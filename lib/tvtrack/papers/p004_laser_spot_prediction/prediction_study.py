@@ -34,6 +34,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...estimate import Estimate
+from .intervals import ratio_of_means_ci
+from .sizes import StudySize
+
 from . import kalman_baselines as kb
 from . import learned as lm
 from . import predictors as pr
@@ -53,6 +57,9 @@ __all__ = [
     "PARTS",
     "compare_methods",
     "per_trial_path_mse",
+    "comparison_setup",
+    "late_rms_ratio",
+    "path_quantile",
     "tune_learned_lags",
     "fit_learned_folds",
     "apply_learned_folds",
@@ -419,3 +426,48 @@ def _kalman(z, reference, folds, s: ComparisonSetup, out, fitted=None) -> None:
     fcs[SINGER] = kb.singer_forecast(z, singer_fits, folds, m)
     mse[SINGER] = fixed[SINGER] = per_trial_path_mse(fcs[SINGER], reference, m, s.start)
     chosen[SINGER] = np.array(singer_fits)
+
+
+def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
+    """RMS over the late frames without / with the floor: square root of the paired ratio of per-path
+    mean squares (:func:`ratio_of_means_ci`)."""
+    a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
+    b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
+    r = ratio_of_means_ci(a, b)
+    return Estimate(
+        float(np.sqrt(r.value)),
+        r.stderr / (2 * np.sqrt(r.value)),
+        float(np.sqrt(r.ci_low)),
+        float(np.sqrt(r.ci_high)),
+        r.n,
+        r.confidence,
+        "square root of the " + r.method,
+    )
+
+
+def path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.ndarray:
+    """Per path: the ``q`` quantile of the per-axis ``|e|`` over both axes and the frames from
+    ``start`` on, px; shape (P,)."""
+    e = np.abs(pr.forecast_errors(forecast, reference, steps)[0, ..., start:])
+    return np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
+
+
+def comparison_setup(config: dict, size: StudySize) -> ComparisonSetup:
+    """The forecast comparison's settings (horizon in frames, tuning grids, folds) of a configuration and size."""
+    return ComparisonSetup(
+        steps=int(config["horizon"]),
+        start=size.eval_start,
+        floor_grid=tuple(size.floor_grid),
+        window_grid=tuple(size.window_grid),
+        fixed_floor=size.fixed_floor,
+        fixed_window=size.fixed_window,
+        learned_lags=None if config["network lags"] == "cross-validated" else int(config["network lags"]),
+        lag_grid=tuple(size.lag_grid),
+        lag_tuning_samples=min(size.lag_tuning_samples, size.train_samples),
+        learned_kw=dict(
+            hidden_units=size.mlp_hidden_units,
+            rbf_centres=size.rbf_centres,
+            max_samples=size.train_samples,
+            inputs=config["network inputs"],
+        ),
+    )

@@ -24,7 +24,8 @@ from .prediction_study import (
     per_trial_path_mse,
 )
 from .world import BASE_CAMERA
-from .study import LSQ_CUBIC, NATURAL_SPLINE, NETWORKS, OPTIMAL, StudyRun, comparison_setup
+from .prediction_study import comparison_setup
+from .study import LSQ_CUBIC, NATURAL_SPLINE, NETWORKS, OPTIMAL, StudyRun
 from .intervals import ratio_of_means_ci, root_mean_ci
 
 __all__ = [

@@ -23,7 +23,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...estimate import Estimate
 from ...jobs import fork_pool
 from ...projection import as_declared, claim_groups
 from . import learned as lm
@@ -34,14 +33,17 @@ from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_
 from .camera import SpotCamera, track_spot
 from .prediction_study import (
     CLASSICAL,
+    FLOOR_EXTENSION,
     PAPER,
     PARTS,
     VARIANT,
     Comparison,
-    ComparisonSetup,
     WINDOW_EXTENSION,
+    comparison_setup,
     tuned_forecast,
     compare_methods,
+    late_rms_ratio,
+    path_quantile,
     per_trial_path_mse,
     window_candidates,
 )
@@ -50,14 +52,16 @@ from .sizes import StudySize
 from .register import NAMES
 from .timing import frame_time_ms
 from .traces import TraceSet
-from .world import camera_for, scene_config, traces_on_sensor, vibration
+from .world import BASE_SCENE, camera_for, scene_config, traces_on_sensor, vibration
+from .beam_wander import generate_traces
+from .operating import CALIBRATED, JOINT_PATHS, joint_factor, table_factors
+from .register import DEFAULT
 
 #: The ``floor form`` reading under which the paper's filter is this project's variant floor (position gain bounded).
 VARIANT_FLOOR = "first gain bounded"
 
 __all__ = [
     "study_run",
-    "comparison_setup",
     "ENTRIES",
     "CENTROID",
     "NETWORKS",
@@ -72,7 +76,6 @@ __all__ = [
     "measure",
     "measure_batch",
     "vibration",
-    "late_rms_ratio",
     "variance_ratios",
     "clear_cache",
 ]
@@ -117,14 +120,15 @@ class StudyRun:
     parts: frozenset = frozenset()  # the methods run besides the paper's filter (:data:`ALL_PARTS`)
 
 
-def _streams(seed: int):
+def run_streams(seed: int):
     """Independent streams (traces, jitter, sensor, models, Monte Carlo, timing) of one run."""
     return np.random.SeedSequence(int(seed)).spawn(6)
 
 
 def study_run(config: dict, seed: int, size: StudySize, traces: TraceSet | None = None, keep=None) -> StudyRun:
     """One configuration's scene (traces on the sensor, jitter, vibration) tracked by the camera (positions in px)."""
-    s_tr, s_jit, s_sens, _, _, _ = _streams(seed)
+    resolve_operating_point(config)
+    s_tr, s_jit, s_sens, _, _, _ = run_streams(seed)
     scene = scene_config(config, size)
     draws = 0
     if traces is None:
@@ -157,27 +161,6 @@ def study_run(config: dict, seed: int, size: StudySize, traces: TraceSet | None 
         intensity=intensity,
         track=trk,
         draws=draws,
-    )
-
-
-def comparison_setup(config: dict, size: StudySize) -> ComparisonSetup:
-    """The forecast comparison's settings (horizon in frames, tuning grids, folds) of a configuration and size."""
-    return ComparisonSetup(
-        steps=int(config["horizon"]),
-        start=size.eval_start,
-        floor_grid=tuple(size.floor_grid),
-        window_grid=tuple(size.window_grid),
-        fixed_floor=size.fixed_floor,
-        fixed_window=size.fixed_window,
-        learned_lags=None if config["network lags"] == "cross-validated" else int(config["network lags"]),
-        lag_grid=tuple(size.lag_grid),
-        lag_tuning_samples=min(size.lag_tuning_samples, size.train_samples),
-        learned_kw=dict(
-            hidden_units=size.mlp_hidden_units,
-            rbf_centres=size.rbf_centres,
-            max_samples=size.train_samples,
-            inputs=config["network inputs"],
-        ),
     )
 
 
@@ -216,7 +199,7 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
     s = comparison_setup(config, size)
     m = s.steps
     folds = lm.path_folds(size.n_paths, size.n_folds)
-    rng = np.random.default_rng(_streams(seed)[3])
+    rng = np.random.default_rng(run_streams(seed)[3])
     cmp = compare_methods(run.z, run.z_meas, folds, s, rng, parts=parts & PARTS)
     fc = dict(cmp.forecasts)
     if "optimal" in parts:
@@ -281,30 +264,6 @@ def run_study(
     return _methods(study_run(config, seed, size, traces, keep), config, seed)
 
 
-def late_rms_ratio(fc_nofloor, fc_floor, reference, steps: int, late_start: int) -> Estimate:
-    """RMS over the late frames without / with the floor: square root of the paired ratio of per-path
-    mean squares (:func:`ratio_of_means_ci`)."""
-    a = per_trial_path_mse(fc_nofloor, reference, steps, late_start)[0]
-    b = per_trial_path_mse(fc_floor, reference, steps, late_start)[0]
-    r = ratio_of_means_ci(a, b)
-    return Estimate(
-        float(np.sqrt(r.value)),
-        r.stderr / (2 * np.sqrt(r.value)),
-        float(np.sqrt(r.ci_low)),
-        float(np.sqrt(r.ci_high)),
-        r.n,
-        r.confidence,
-        "square root of the " + r.method,
-    )
-
-
-def _path_quantile(forecast, reference, steps: int, start: int, q: float) -> np.ndarray:
-    """Per path: the ``q`` quantile of the per-axis ``|e|`` over both axes and the frames from
-    ``start`` on, px; shape (P,)."""
-    e = np.abs(pr.forecast_errors(forecast, reference, steps)[0, ..., start:])
-    return np.nanquantile(e.reshape(e.shape[0], -1), q, axis=1)
-
-
 def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
     """What each claim's rule reads, from one run at its configuration.
 
@@ -335,7 +294,7 @@ def claim_values(run: StudyRun, seed: int = 0, claims=None) -> dict:
     if "C004-5" in want:  # each stream is its own: skipping one claim leaves the others' draws as they were
         out["C004-5"] = _variance_check(seed, run.size.n_mc_variance, c.get("C004-5 noise", "Gaussian"))
     if "C004-8" in want:
-        rng_t = np.random.default_rng(_streams(seed)[5])
+        rng_t = np.random.default_rng(run_streams(seed)[5])
         out["C004-8"] = frame_time_ms(run, rng_t, c) / (1e3 / run.scene.frame_rate_hz)
     out[CENTROID] = root_mean_ci(np.nanmean((run.z_meas - run.truth)[0, ..., start:] ** 2, axis=(-2, -1)))
     return out
@@ -350,7 +309,7 @@ def _variance_check(seed: int, n_series: int, noise: str) -> dict:
     """:func:`.derivation.variance_ratios` from the seed's own stream, computed once per (seed, series, noise)."""
     key = (int(seed), int(n_series), noise)
     if key not in _VARIANCE:
-        _VARIANCE[key] = variance_ratios(np.random.default_rng(_streams(seed)[4]), n_series, noise=noise)
+        _VARIANCE[key] = variance_ratios(np.random.default_rng(run_streams(seed)[4]), n_series, noise=noise)
     return dict(_VARIANCE[key])
 
 
@@ -384,7 +343,7 @@ def _prediction_values(run: StudyRun, want) -> dict:
     if "C004-3" in want:
         rank = mse  # what C004-3 compares: per-path MSE, or (a reading) per-path q95 of |e|, the tail
         if c["C004-3 statistic"] == "95th percentile":
-            rank = {name: _path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
+            rank = {name: path_quantile(fc[name], ref, m, start, 0.95) for name in (PAPER, *CLASSICAL)}
         out["C004-3"] = {b: ratio_of_means_ci(rank[b], rank[PAPER]) for b in CLASSICAL}
     if "C004-3b" in want:
         out["C004-3b"] = {b: ratio_of_means_ci(mse[b], mse[PAPER]) for b in NETWORKS}
@@ -416,6 +375,7 @@ def _scene_key(config: dict, seed: int, size: StudySize) -> tuple:
     """What :func:`study_run` reads of a configuration, resolved: the generator's configuration (the bandwidth
     factor resolved, so the band position of a world whose bandwidth is set by hand adds nothing), the exposure,
     jitter, vibration and camera, with the seed and sizes. Configurations with one key have one scene."""
+    resolve_operating_point(config)
     return (
         "scene",
         size,
@@ -551,6 +511,70 @@ def measure_batch(configs, seeds, size: StudySize = StudySize(), workers: int = 
     return out
 
 
+def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = None, traces=None) -> float:
+    """Per-axis RMS error (px) of the paper's filter, floor cross-validated over paths, at ``config``'s horizon
+    against the measured centre, on ``size.n_paths`` x ``size.n_frames`` paths of the world ``config``.
+
+    Parameters
+    ----------
+    config : dict
+        Register configuration (entries left out stay at the register's defaults).
+    seed : int
+        The run's seed (sensor noise; the paths too unless ``traces_seed`` is given).
+    size : sizes.StudySize
+    traces_seed : int, optional
+        Draw the paths with this generator seed at the configuration's scene (e.g. the shipped data set's seed:
+        the shipped paths, faster or slower).
+    traces : TraceSet, optional
+        The paths themselves (their first ``size.n_paths`` x ``size.n_frames`` are used; overrides
+        ``traces_seed``).
+    """
+    cfg = {**DEFAULT, **config}
+    if (
+        traces is None and traces_seed is not None
+    ):  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
+        scene = scene_config(cfg, size)
+        big = replace(scene, n_paths=max(scene.n_paths, BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
+        traces = generate_traces(big, int(traces_seed))
+    run = study_run(cfg, seed, size, traces)
+    s = comparison_setup(cfg, size)
+    folds = lm.path_folds(size.n_paths, size.n_folds)
+    T = run.z.shape[-1]
+    _, mse, _, _, _ = tuned_forecast(
+        s.floor_grid,
+        lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
+        run.z,
+        run.z_meas,
+        folds,
+        s,
+        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
+    )
+    return float(np.sqrt(np.mean(mse)))
+
+
+def table_paths_rms(config: dict, n_paths: int, seed: int = 2005, size=None) -> float:
+    """:func:`paper_filter_rms` on the first ``n_paths`` of the paths the world table was found on (``seed``,
+    ``size``: 15 paths x 500 frames by default, drawn as a run of that size draws them, the spot kept on the sensor):
+    the same paths whatever ``n_paths``, so fewer of them cost less and still share the table's draws."""
+
+    size = size or StudySize(n_frames=500)
+    cfg = {**DEFAULT, **config}
+    traces, _ = traces_on_sensor(scene_config(cfg, size), run_streams(seed)[0], cfg["exposure"])
+    return paper_filter_rms(cfg, seed, replace(size, n_paths=int(n_paths)), traces=traces)
+
+
+def resolve_operating_point(config: dict) -> None:
+    """Correct the wander's bandwidth of a joint world (two or more tabled world values changed) to the paper's
+    operating point before its scene is drawn (:func:`.operating.joint_factor` on :func:`table_paths_rms`); a
+    single world keeps its table row. Idempotent: each world combination is corrected once in a process."""
+    cfg = {**DEFAULT, **config}
+    if cfg["bandwidth"] != CALIBRATED:
+        return
+    _, world, rows = table_factors(cfg)
+    if rows >= 2:
+        joint_factor(world, lambda c: table_paths_rms(c, JOINT_PATHS))
+
+
 def _declared(args, kwargs):
     """``(DEPENDS, default)``: each claim is measured at its configuration projected onto its DEPENDS."""
     from .register import DEFAULT, DEPENDS
@@ -563,8 +587,6 @@ def measure(config: dict, seed: int, size: StudySize = StudySize(), claims=None)
     """The explorer's measurement function: one full-size run at ``config`` with all random draws
     from ``seed``, reduced to what each claim's rule reads (:func:`claim_values`; ``claims``: only those,
     running only the methods they read)."""
-    from .register import DEFAULT
-
     config = {**DEFAULT, **config}
     run = study_run(config, seed, size)
     parts = parts_for(claims)
