@@ -176,3 +176,10 @@ def test_c004_1_note_says_where_in_the_band_the_verdict_turns():
     assert "1.93 x the RMS" in note and "1.04 px RMS or less (inside the paper's 1-2 px)" in note
     assert "unreported setting" in note and "does not report" in note
     assert "the ratio is measured (a Gaussian error's is 1.96)" in note and "only at about 1 px RMS or less" in note
+
+
+def test_the_notebook_says_how_joint_worlds_and_marked_values_are_treated():
+    text = findings.operating_sentence(build())
+    assert "2 leave the paper's operating point and are marked so" in text
+    assert "corrected on the calibration's own paths" in text
+    assert "counted beside each claim's label, not in it" in text

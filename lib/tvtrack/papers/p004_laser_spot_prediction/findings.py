@@ -371,7 +371,9 @@ def operating_sentence(register) -> str:
     return (
         f"Every other world of the register is re-calibrated the same way ({len(WORLD_FACTORS)} values: the "
         f"bandwidth that keeps the paper's filter at the band's middle runs from {lo:.2g} to {hi:.2g} across them); "
-        f"{len(off)} leave the paper's operating point and are marked so: " + "; ".join(off) + "."
+        f"{len(off)} leave the paper's operating point and are marked so: " + "; ".join(off) + ". A configuration "
+        "that changes two or more of these worlds at once is corrected on the calibration's own paths to the same "
+        "error; a configuration at a marked value is counted beside each claim's label, not in it."
     )
 
 
