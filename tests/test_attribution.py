@@ -330,3 +330,24 @@ def test_beside_operating_point_counts_each_configuration_once_and_lists_its_fli
     assert (out["agree"], out["flip"], out["undecided"]) == (1, 1, 1)
     assert out["flips"] == [{"changed": {"w": 8}, "verdict": "reproduced", "text": "w = 8"}]
     assert beside_operating_point(rows[4:], "not reproduced") is None
+
+
+def test_beside_operating_point_counts_every_agreeing_configuration_and_lists_smaller_flips_first():
+    rows = [
+        {"changed": {"w": 8, "r": 1}, "verdict": "reproduced", "text": "w = 8, r = 1", "off_operating_point": True},
+        {"changed": {"w": 8}, "verdict": "reproduced", "text": "w = 8", "off_operating_point": True},
+        {"changed": {"w": 1}, "verdict": "not reproduced", "text": "w = 1", "off_operating_point": True},
+        {"changed": {"w": 1, "r": 1}, "verdict": "not reproduced", "text": "w = 1, r = 1", "off_operating_point": True},
+    ]
+    out = beside_operating_point(rows, "not reproduced")
+    assert (out["agree"], out["flip"]) == (2, 2)
+    assert [f["text"] for f in out["flips"]] == ["w = 8", "w = 8, r = 1"]
+
+
+def test_sensitivity_floor_is_a_distance_from_the_default_and_a_move_at_the_floor_does_not_count():
+    d = {"a": 0}
+    rows = [{"config": d, "value": -1.0}, {"config": {"a": 1}, "value": -1.0005}]
+    assert sensitivity(rows, ["a"], {}, d, floor=0.001) == []  # moved 0.0005 from -1.0, not 2.0005
+    rows = [{"config": d, "value": 0.0}, {"config": {"a": 1}, "value": 0.25}]
+    assert sensitivity(rows, ["a"], {}, d, floor=0.25) == []  # exactly the floor: not more than it
+    assert [r["entry"] for r in sensitivity(rows, ["a"], {}, d, floor=0.2)] == ["a"]

@@ -792,3 +792,37 @@ def test_the_ranking_counts_no_round_off_far_inside_the_band_and_pairs_each_cond
     rb = label_parts(band, Estimate.exact(-0.587), reps, conds, [a, b], design={"min_share_design": 2}, needed=1)
     ranked = rb["parts"]["claim"]["sensitivity"]
     assert ranked[0]["entry"] == "b" and ranked[0]["score"] > 0.99
+
+
+def test_the_moving_floor_is_a_hundredth_of_the_distance_to_the_nearest_edge():
+    from tvtrack.labels import _moving_floor
+
+    assert _moving_floor(InBand("x", None, 2.0, ""), Estimate.exact(1.0)) == pytest.approx(0.01)
+    assert _moving_floor(InBand("x", 1.0, 10.0, ""), Estimate.exact(1.5)) == pytest.approx(0.005)
+    assert _moving_floor(InBand("x", 1.0, 10.0, ""), Estimate.exact(math.nan)) == 0.0
+    assert _moving_floor(Ordering("a", "b"), Estimate.exact(1.5)) == 0.0
+
+
+def test_configurations_off_the_operating_point_are_counted_only_beside_a_decided_default():
+    from tvtrack.register import Entry
+
+    fast = Entry("speed", "regime", 3.0, (3.0, 8.0, 9.0), "a world beyond the paper", off_operating_point=(8.0, 9.0))
+    other = Entry("law", "unreported setting", "a", ("a", "b"), "never printed")
+    band = InBand("mean", -0.5, 0.5, "px")
+    inside, outside, edge = Estimate.exact(0.0), Estimate.exact(3.0), Estimate(0.5, 0.1, 0.3, 0.7, 10)
+    reps = [{"seed": s, "measured": inside} for s in (1, 2)]
+    conds = [
+        {"changed": {"speed": 8.0}, "kind": "single", "runs": 2, "measured": inside},
+        {"changed": {"speed": 9.0}, "kind": "single", "runs": 2, "measured": inside},
+        {"changed": {"law": "b"}, "kind": "single", "runs": 2, "measured": outside},
+    ]
+    part = label_parts(band, inside, reps, conds, [fast, other], design={"min_share_design": 1})["parts"]["claim"]
+    assert {k: part["off_operating_point"][k] for k in ("agree", "flip", "undecided")} == {
+        "agree": 2,
+        "flip": 0,
+        "undecided": 0,
+    }
+    undecided = label_parts(band, edge, [{"seed": 1, "measured": edge}], conds, [fast, other])["parts"]["claim"]
+    assert "off_operating_point" not in undecided  # nothing to flip: nothing counted beside
+    plain = label_parts(band, inside, reps, conds[2:], [fast, other], design={"min_share_design": 1})
+    assert "off_operating_point" not in plain["parts"]["claim"]
