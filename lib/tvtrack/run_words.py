@@ -146,26 +146,22 @@ def share_counts(share: Mapping) -> str:
 def _off_point_counts(off: Mapping | None) -> str:
     """``"; of 4 configurations outside the paper's operating point (counted beside the label, not in it), 2 flip,
     2 agree and 0 stay undecided"``; empty without such configurations."""
-    if not off:
-        return ""
-    agree, flip, undecided = (int(off.get(k) or 0) for k in ("agree", "flip", "undecided"))
-    n = agree + flip + undecided
-    return (
-        f"; of {n} configuration{'s' * (n != 1)} outside the paper's operating point (counted beside the label, "
-        f"not in it), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
-        f"stay{'s' * (undecided == 1)} undecided"
-    )
+    return _beside(off, "configuration{s} outside the paper's operating point (counted beside the label, not in it)")
 
 
 def _pinned_counts(pinned: Mapping | None) -> str:
     """``"; of 2 pinned configurations measured beside them (joint configurations every run measures), 1 flips,
     1 agrees and 0 stay undecided"``; empty without pinned configurations."""
-    if not pinned:
+    return _beside(pinned, "pinned configuration{s} measured beside them (joint configurations every run measures)")
+
+
+def _beside(counts: Mapping | None, what: str) -> str:
+    """``"; of N <what>, F flip(s), A agree(s) and U stay(s) undecided"`` (``{s}`` in ``what`` agrees with N)."""
+    if not counts:
         return ""
-    agree, flip, undecided = (int(pinned.get(k) or 0) for k in ("agree", "flip", "undecided"))
+    agree, flip, undecided = (int(counts.get(k) or 0) for k in ("agree", "flip", "undecided"))
     n = agree + flip + undecided
     return (
-        f"; of {n} pinned configuration{'s' * (n != 1)} measured beside them (joint configurations every run "
-        f"measures), {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} and {undecided} "
-        f"stay{'s' * (undecided == 1)} undecided"
+        f"; of {n} {what.format(s='s' * (n != 1))}, {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} "
+        f"and {undecided} stay{'s' * (undecided == 1)} undecided"
     )
