@@ -137,7 +137,9 @@ def test_flips_markdown_is_short_and_plain():
     assert "condition 3" not in lines[0] and "; 6 more" in lines[0]
     # the share over every explored configuration, as the core says it; never agree of the decided ones only
     assert "20 agree, 10 flip and 8 stay undecided of 38 explored configurations" in lines[0]
-    assert "20 of 30" not in lines[0] and "(share agreeing 0.36-0.69, 95 %)" in lines[0]
+    assert (
+        "20 of 30" not in lines[0] and "(share of the 38 explored configurations agreeing 0.36-0.69, 95 %)" in lines[0]
+    )
     assert "moves most with: prediction horizon." in lines[0]
     assert "flips" not in lines[1] and "spline" not in lines[1]
 

@@ -451,7 +451,10 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
             text = f"- **{head}**: {v['verdict']}, {v['label']}"
             sh = v.get("share") or {}
             if share_counts(sh):  # over every explored configuration (one at a time and joint), as the core says it
-                text += f"; {share_counts(sh)} (share agreeing {sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
+                # the interval is of the explored configurations' share, not of those counted beside it
+                design = sh.get("design", sh.get("decided"))
+                text += f"; {share_counts(sh)} (share of the {design} explored configurations agreeing "
+                text += f"{sh['ci_low']:.2f}-{sh['ci_high']:.2f}, 95 %)"
             flips = v.get("flips") or []
             if flips:
                 shown = [f"{f['verdict']} when {f['text']} ({f['side']})" for f in flips[:max_flips]]
