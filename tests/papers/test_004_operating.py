@@ -111,9 +111,10 @@ def test_a_joint_world_is_corrected_to_the_band_position():
     assert bandwidth_for(JOINT) > 1.5 * product and table_factors(JOINT)[1] not in JOINT_OUT_OF_REACH
 
 
-def test_a_joint_world_not_yet_corrected_is_refused_not_drawn_at_the_product():
+def test_a_joint_world_not_yet_corrected_is_refused_not_drawn_at_the_product(monkeypatch):
     """A joint world's scene drawn at the uncorrected product would leave the paper's operating point silently:
     bandwidth_for refuses it until the study has corrected it."""
+    monkeypatch.setattr(operating, "_JOINT", {})  # as in a fresh process, whatever ran before in this one
     world = {"roll-off": "f^-6", "amplitude": 0.5, "scintillation": 0.8}
     assert table_factors(world)[2] == 3
     with pytest.raises(LookupError, match="resolve_operating_point"):
