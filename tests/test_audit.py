@@ -289,6 +289,28 @@ def test_a_flip_off_the_operating_point_is_counted_beside_the_label_and_the_audi
     assert any("outside the operating point the record counts" in m for m in audit_claim(miscounted))
 
 
+def test_a_joint_the_exploration_could_not_keep_at_the_operating_point_is_counted_beside_and_audited():
+    # a joint world that no re-calibration brings back to the paper's error: no register value alone marks it, the
+    # exploration's reason does; its flip must stay out of the label as a marked value's does
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    lost = {**_cond({"law": "step", "motion": "turn"}, OUT, kind="joint"), "operating_point_lost": "no bandwidth fits"}
+    conds = [lost, _cond({"law": "step"}, IN), _cond({"motion": "turn"}, IN)]
+    rb = label_parts(BAND, IN, reps, conds, (SETTING, WORLD), design={"min_share_design": 2}, needed=2)
+    rb["register"] = [SETTING.to_dict(), WORLD.to_dict()]
+    rb["design"] = {"replicates_needed": {"C9-3": 2}}
+    claim = {"id": "C9-3", "robustness": rb}
+    part = rb["parts"]["claim"]
+    assert part["flips"] == [] and part["label"] == "robust" and part["share"]["design"] == 2
+    assert part["off_operating_point"]["flip"] == 1 and part["off_operating_point"]["flips"][0]["why"]
+    assert any(w.endswith("(outside the paper's operating point: no bandwidth fits)") for w in part["where"])
+    assert audit_claim(claim) == []
+    planted = copy.deepcopy(claim)  # the flip filed in the label
+    p = planted["robustness"]["parts"]["claim"]
+    p["flips"] = [dict(part["off_operating_point"]["flips"][0], side="unattributed", kind="joint")]
+    p["label"] = "depends"
+    assert any("leaves the paper's operating point and is counted in the label" in m for m in audit_claim(planted))
+
+
 def test_the_share_words_say_the_configurations_outside_the_operating_point_beside_the_design():
     from tvtrack.wording import share_counts
 

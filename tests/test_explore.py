@@ -55,6 +55,39 @@ def test_a_flip_under_a_joint_combination_only_is_caught():
     assert rec0["label"] == "unexplored" and rec0["provisional"] and rec0["parts"]["claim"]["flips"] == []
 
 
+def kept_unless_a_and_b_are_both_2(config):
+    """The exploration's ``operating_point``: the joint a = b = 2 cannot be kept at the paper's operating point."""
+    return "no re-calibration reaches it" if config["a"] == 2 and config["b"] == 2 else None
+
+
+def test_a_joint_flip_the_exploration_cannot_keep_at_the_operating_point_is_counted_beside_the_label():
+    seen = []
+
+    def hook(config):
+        seen.append(dict(config))
+        return kept_unless_a_and_b_are_both_2(config)
+
+    ex = explore(measure_joint_only, REG, {"X": RULES["X"]}, seed=7, replicates=3, joint=40, operating_point=hook)
+    part = ex.record("X")["parts"]["claim"]
+    assert part["flips"] == [] and part["label"] == "robust"  # the only flip is the joint the hook marks
+    assert part["off_operating_point"]["flip"] >= 1 and part["share"]["flip"] == 0
+    assert all("no re-calibration reaches it" in w for w in part["where"] if "a = 2" in w and "b = 2" in w)
+    assert seen and all(set(c) == {"a", "b", "c"} for c in seen)  # every entry, the others at their defaults
+    seen.clear()  # a claim that reads only a sees every configuration at b's default: nothing it reads leaves
+    ex_a = explore(
+        lambda config, seed: {"X": _mean(seed, 0.0)},
+        REG,
+        {"X": RULES["X"]},
+        seed=7,
+        replicates=3,
+        joint=40,
+        depends={"X": ["a"]},
+        operating_point=hook,
+    )
+    assert "off_operating_point" not in ex_a.record("X")["parts"]["claim"]
+    assert seen and all(c["b"] == 0 and c["c"] == "x" for c in seen)
+
+
 def test_replicates_are_independent_full_size_runs():
     seen = []
 
@@ -187,6 +220,26 @@ def test_joint_sample_is_space_filling_and_skips_single_axis_configs():
     cfgs = joint_sample(REG, ["a", "b", "c"], 30, seed=0)
     assert all(sum(cfg[k] != REG.default()[k] for k in "abc") >= 2 for cfg in cfgs)
     assert {cfg["a"] for cfg in cfgs} >= {1, 2} and {cfg["b"] for cfg in cfgs} >= {1, 2}
+
+
+def test_the_joint_design_combines_only_values_at_the_papers_operating_point():
+    # a value marked off the operating point is counted beside the label: a joint sample spent there would leave the
+    # label resting on fewer joints (004's design spent about two thirds of its joints on its marked bandwidths)
+    reg = Register(
+        [
+            Entry("a", "regime", 0, (0, 1, 2, 3), "w", off_operating_point=(2, 3)),
+            Entry("b", "regime", 0, (0, 1, 2), "w"),
+            Entry("c", "reading", "x", ("x", "y"), "w"),
+            Entry("d", "regime", 0, (0, 9), "w", off_operating_point=(9,)),
+        ]
+    )
+    assert reg["a"].operating_values == (0, 1) and reg["d"].operating_values == (0,)
+    cfgs = joint_sample(reg, ["a", "b", "c", "d"], 40, seed=3)
+    assert cfgs and all(c["a"] in (0, 1) and c["d"] == 0 for c in cfgs)
+    assert {c["a"] for c in cfgs} == {0, 1} and {c["b"] for c in cfgs} == {0, 1, 2}
+    ex = explore(lambda cfg, seed: {"X": _mean(seed, 0.0)}, reg, {"X": InBand(-0.5, 0.5)}, seed=1, joint=12)
+    tried = [r.changed(reg.default()) for r in ex.runs if r.stage == "single"]
+    assert {"a": 2} in tried and {"a": 3} in tried and {"d": 9} in tried  # still tried one at a time
 
 
 def test_bad_designs_are_refused():

@@ -256,7 +256,8 @@ def paired_rows(conditions: Sequence[Mapping], values: Sequence[float], replicat
 def beside_operating_point(rows: Sequence[Mapping], default: str) -> dict | None:
     """The configurations of one part that leave the paper's stated operating point (``off_operating_point``),
     counted beside its label: ``{"agree", "flip", "undecided", "flips": [{"changed", "verdict", "text"}]}`` (each
-    configuration once); None when there are none."""
+    configuration once; a flip whose configuration the exploration marked also says ``why``); None when there are
+    none."""
     seen, out = set(), {"agree": 0, "flip": 0, "undecided": 0, "flips": []}
     for r in rows:
         key = frozenset((k, repr(v)) for k, v in r["changed"].items())
@@ -267,6 +268,7 @@ def beside_operating_point(rows: Sequence[Mapping], default: str) -> dict | None
         kind = "agree" if v == default else "flip" if v in ("reproduced", "not reproduced") else "undecided"
         out[kind] += 1
         if kind == "flip":
-            out["flips"].append({"changed": dict(r["changed"]), "verdict": v, "text": r["text"]})
+            why = {"why": r["operating_point_lost"]} if r.get("operating_point_lost") else {}
+            out["flips"].append({"changed": dict(r["changed"]), "verdict": v, "text": r["text"], **why})
     out["flips"].sort(key=lambda f: len(f["changed"]))
     return out if seen else None

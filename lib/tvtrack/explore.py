@@ -84,22 +84,25 @@ def replicate_seeds(seed: int, n: int) -> list[int]:
 def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) -> list[dict]:
     """``n`` configurations from a scrambled Latin hypercube over the entries ``names``.
 
-    Each dimension is cut into as many equal strata as the entry has values. Configurations equal to
-    the default or differing from it in fewer than two entries (those are the one-at-a-time runs) are
-    dropped, as are duplicates; so fewer than ``n`` may come back. A register so small that all its joint
+    Each dimension is cut into as many equal strata as the entry has values at the paper's operating point: a
+    value the register marks ``off_operating_point`` is tried one at a time only (its configurations are counted
+    beside a label, never in it: a joint design spent there would leave the labels resting on fewer joints).
+    Configurations equal to the default or differing from it in fewer than two entries (those are the one-at-a-time
+    runs) are dropped, as are duplicates; so fewer than ``n`` may come back. A register so small that all its joint
     combinations (two or more entries off their defaults) number at most ``n`` gets every one of them.
     """
-    names = [k for k in names if len(register[k].values) > 1]
+    values = {k: register[k].operating_values for k in names}
+    names = [k for k in names if len(values[k]) > 1]
     if n <= 0 or len(names) < 2:
         return []
     default = register.default()
     full = (
         [
             {**default, **dict(zip(names, combo))}
-            for combo in itertools.product(*(register[k].values for k in names))
+            for combo in itertools.product(*(values[k] for k in names))
             if sum(v != default[k] for k, v in zip(names, combo)) >= 2
         ]
-        if math.prod(len(register[k].values) for k in names) <= 4 * n
+        if math.prod(len(values[k]) for k in names) <= 4 * n
         else None
     )
     if full is not None and len(full) <= n:  # a small register: every joint combination, not a sample
@@ -109,7 +112,7 @@ def joint_sample(register: Register, names: Sequence[str], n: int, seed: int) ->
     for row in u:
         cfg = dict(default)
         for k, x in zip(names, row):
-            vals = register[k].values
+            vals = values[k]
             cfg[k] = vals[min(int(x * len(vals)), len(vals) - 1)]
         key = tuple(repr(cfg[k]) for k in names)
         if sum(cfg[k] != default[k] for k in names) >= 2 and key not in seen:
@@ -130,6 +133,7 @@ class Exploration:
     depends: dict
     runs: list
     settings: dict
+    operating_point: Callable | None = None  # configuration -> why it leaves the paper's operating point, or None
 
     @property
     def default(self) -> dict:
@@ -160,6 +164,7 @@ class Exploration:
                 "measured": r.pooled(claim_id),
                 "runs": r.n_runs(claim_id),
                 **({"left_by_budget": r.left[claim_id]} if claim_id in r.left else {}),
+                **self._operating_point_lost({k: v for k, v in r.config.items() if k in reads}),
             }
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
@@ -169,6 +174,13 @@ class Exploration:
         out["register"] = [e.to_dict() for e in entries]
         out["design"] = dict(self.settings)
         return out
+
+    def _operating_point_lost(self, config: Mapping) -> dict:
+        """``{"operating_point_lost": why}`` where the exploration's ``operating_point`` says that ``config`` (a
+        condition as one claim reads it, the other entries at their defaults) cannot be kept at the paper's stated
+        operating point; else ``{}``."""
+        why = self.operating_point({**self.default, **config}) if self.operating_point is not None else None
+        return {"operating_point_lost": str(why)} if why else {}
 
     def table(self, claim_id: str) -> str:
         """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
@@ -284,8 +296,9 @@ def _to_confirm(rules, depends, default_j: Mapping, run: Run, default_cfg: Mappi
 
 
 def _n_joint_combinations(register: Register, names: Sequence[str]) -> int:
-    """Configurations with at least two of ``names`` off their defaults."""
-    sizes = [len(register[k].values) for k in names]
+    """Configurations with at least two of ``names`` off their defaults, at values that keep the paper's operating
+    point (those :func:`joint_sample` draws from)."""
+    sizes = [len(register[k].operating_values) for k in names]
     return math.prod(sizes) - 1 - sum(m - 1 for m in sizes)
 
 
@@ -308,6 +321,7 @@ def explore(
     guard: bool = True,
     sizing_budget: int | None = None,
     max_subset: int = MAX_SUBSET,
+    operating_point: Callable | None = None,
 ) -> Exploration:
     """Measure every claim over the register and over independent replicates.
 
@@ -372,6 +386,13 @@ def explore(
         take (None or negative: no limit). A condition leaning
         towards a flip is always sized; one leaning towards agreement beyond the budget stays undecided, marked as
         left by the budget with the replicates that would decide it (:mod:`tvtrack.conditions`).
+    operating_point : callable, optional
+        ``operating_point(config) -> str or None``: why a configuration (as one claim reads it, every other entry
+        at its default) cannot be kept at the operating point the paper states, where no register value says so
+        alone (e.g. a joint world that no re-calibration brings back to the paper's error); None where it is kept.
+        Such a condition is counted beside the claim's labels, as one at a register value marked
+        ``off_operating_point`` is (:func:`tvtrack.verdicts.label_parts`). Called in this process when the
+        labels are made; a module-level function (the exploration may be pickled).
     guard : bool
         Hand every condition's run a guarded configuration (:func:`tvtrack.register.guard`): reading an entry that
         none of the claims it is asked for declares raises :class:`tvtrack.register.UndeclaredEntry`. A measurement
@@ -458,7 +479,7 @@ def explore(
         "seed": seed,
         "timing": clock.table(),
     }
-    return Exploration(register, rules, depends, runs, settings)
+    return Exploration(register, rules, depends, runs, settings, operating_point)
 
 
 def _is_subset_size(n: Any) -> bool:

@@ -224,7 +224,8 @@ def label_parts(
         configuration, run to name the smallest that flips), each pooled over its ``runs`` replicates on the
         default's replicate seeds (common random numbers). A condition with fewer ``runs`` than ``needed``
         counts as ``undecided`` (it can neither flip nor agree); one without ``runs`` (a hand-built record) counts
-        as sized like the default.
+        as sized like the default. A condition at a register value marked ``off_operating_point``, or with an
+        ``operating_point_lost`` reason (the exploration's ``operating_point``), is counted beside the label.
     entries : sequence of :class:`tvtrack.register.Entry`
         The register entries the claim depends on.
     deterministic : bool
@@ -306,7 +307,9 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
             extra["runs"] = int(c["runs"])
         if c.get("left_by_budget") is not None:  # leaning towards agreement, left smaller by the sizing budget
             extra["left_by_budget"] = int(c["left_by_budget"])
-        if leaves_operating_point(c["changed"], off):
+        if c.get("operating_point_lost"):  # the exploration says why no register value alone does
+            extra["operating_point_lost"] = str(c["operating_point_lost"])
+        if leaves_operating_point(c["changed"], off) or c.get("operating_point_lost"):
             extra["off_operating_point"] = True
         row = _row(rule, parts, c["measured"], extra)
         if row.get("runs", n) < n:
@@ -356,7 +359,8 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     if off and part_share:  # counted beside the share, as the pinned ones are
         part_share["off_operating_point"] = {k: off[k] for k in ("agree", "flip", "undecided")}
     pwhere += [
-        f"{f['verdict']} when {f['text']} (outside the paper's operating point)" for f in (off or {}).get("flips", ())
+        f"{f['verdict']} when {f['text']} (outside the paper's operating point{': ' + f['why'] if f.get('why') else ''})"
+        for f in (off or {}).get("flips", ())
     ]
     return {
         "verdict": j.verdict,

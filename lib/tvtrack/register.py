@@ -170,6 +170,12 @@ class Entry:
         """The defensible values other than the default."""
         return tuple(v for v in self.values if v != self.default)
 
+    @property
+    def operating_values(self) -> tuple:
+        """The values that keep the paper's operating point (:attr:`values` less :attr:`off_operating_point`):
+        those a joint design combines (:func:`tvtrack.explore.joint_sample`)."""
+        return tuple(v for v in self.values if v not in self.off_operating_point)
+
     def to_dict(self) -> dict:
         off = {"off_operating_point": list(self.off_operating_point)} if self.off_operating_point else {}
         return {

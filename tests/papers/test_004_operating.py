@@ -121,6 +121,33 @@ def test_a_joint_world_not_yet_corrected_is_refused_not_drawn_at_the_product(mon
         bandwidth_for(world)
 
 
+def test_a_joint_world_no_bandwidth_reaches_is_reported_to_the_explorer(monkeypatch):
+    """A joint world whose filter error hardly moves with the wander's bandwidth (a noise floor above the band) has
+    no bandwidth at the band position: the secant exponent is below MIN_SLOPE, the world keeps the factor nearer
+    the band and resolve_operating_point says why, so the explorer counts its configurations beside the labels.
+    The error is a stand-in flat in the bandwidth (1.5 x the default world's at any factor); one in reach (the
+    error proportional to the factor to the band slope) says nothing."""
+    for name in ("_JOINT", "_REFERENCE", "JOINT_OUT_OF_REACH"):
+        monkeypatch.setattr(operating, name, {})
+    monkeypatch.setattr(study, "JOINT_OUT_OF_REACH", operating.JOINT_OUT_OF_REACH)
+    world = {"jitter": 4.0, "amplitude": 2.0}
+    flat = lambda c, n: 1.0 if c.get("jitter", 0.0) == 0.0 else 1.5  # noqa: E731
+    monkeypatch.setattr(study, "table_paths_rms", flat)
+    why = study.resolve_operating_point(world)
+    assert why == (
+        "no wander bandwidth puts the paper's filter at 1.5 px in this joint world (the nearest errs 1.50 x the "
+        "default world's error)"
+    )
+    assert table_factors(world)[1] in operating.JOINT_OUT_OF_REACH
+    assert study.resolve_operating_point({**world, "bandwidth": 8.0}) is None  # set by hand: the register marks it
+    reach = {"roll-off": "f^-6", "amplitude": 0.5}
+    b0 = table_factors(reach)[0]
+    steep = lambda c, n: (c["bandwidth"] / (0.7 * b0)) ** operating.BAND_SLOPE if "roll-off" in c else 1.0  # noqa: E731
+    monkeypatch.setattr(study, "table_paths_rms", steep)
+    assert study.resolve_operating_point(reach) is None
+    assert bandwidth_for(reach) == pytest.approx(0.7 * b0, rel=1e-9)  # one power-law step lands on it
+
+
 @pytest.mark.parametrize(
     "config, at_default",
     [({"roll-off": "f^-6"}, (0.0, BAND_PX[0])), ({"jitter": 1.0}, (BAND_PX[1], 9.0))],
@@ -184,3 +211,33 @@ def test_the_notebook_says_how_joint_worlds_and_marked_values_are_treated():
     assert "2 leave the paper's operating point and are marked so" in text
     assert "corrected on the calibration's own paths" in text
     assert "counted beside each claim's label, not in it" in text
+
+
+def test_the_notebook_counts_the_joint_worlds_no_bandwidth_reaches(monkeypatch):
+    """The sentence counts the distinct joint worlds of the exploration's conditions (a hand-set bandwidth and a
+    single world are no joint world) and those resolve_operating_point reports lost."""
+    from types import SimpleNamespace
+
+    lost = {"jitter": 4.0, "amplitude": 2.0}
+    kept = {"roll-off": "f^-6", "amplitude": 0.5}
+    seen = []
+
+    def resolve(config):
+        seen.append(table_factors(config)[1])
+        return "out of reach" if config.get("jitter") == 4.0 else None
+
+    monkeypatch.setattr(study, "resolve_operating_point", resolve)
+    run = lambda c, stage="joint": SimpleNamespace(config={**DEFAULT, **c}, stage=stage)  # noqa: E731
+    ex = SimpleNamespace(
+        runs=[
+            run(lost),
+            run({**lost, "horizon": 2}, "combination"),  # the same world again
+            run(kept),
+            run({**lost, "bandwidth": 8.0}),  # set by hand: the register marks it
+            run({"jitter": 4.0}, "single"),
+            run({}, "replicate"),
+        ]
+    )
+    text = findings.operating_sentence(build(), ex)
+    assert "Of the 2 joint worlds the exploration drew, 1 have no bandwidth that brings" in text
+    assert len(seen) == 2

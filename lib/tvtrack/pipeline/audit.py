@@ -70,8 +70,8 @@ def _pinned_problems(where: str, share: Mapping, pinned: Sequence[Mapping], name
 
 
 def _off_point_problems(where: str, part: Mapping, off_rows: Sequence[Mapping], name: str, default: str) -> list[str]:
-    """The configurations outside the paper's stated operating point (the register's ``off_operating_point``) must
-    be counted beside the label (``part["off_operating_point"]``) as their verdicts give, never among its flips."""
+    """The configurations outside the paper's stated operating point (the register's ``off_operating_point``, or an
+    ``operating_point_lost`` reason the exploration gave) must be counted beside the label (``part["off_operating_point"]``) as their verdicts give, never among its flips."""
     kinds = ("single", "joint", "pinned", "combination")
     verdicts = [c["parts"][name] for c in _distinct(off_rows, kinds)]
     agree = sum(v == default for v in verdicts)
@@ -123,7 +123,8 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
         return out
     off = {e["name"]: e.get("off_operating_point") or [] for e in rb.get("register") or () if "name" in e}
     every = [c for c in rb["conditions"] if name in c.get("parts", {})]
-    rows = [c for c in every if not leaves_operating_point(c["changed"], off)]  # outside it: beside the label
+    # outside it (a marked register value, or a configuration the exploration said it could not keep there): beside
+    rows = [c for c in every if not (leaves_operating_point(c["changed"], off) or c.get("operating_point_lost"))]
     out += _off_point_problems(where, part, [c for c in every if c not in rows], name, default)
     share = part.get("share")
     if share:

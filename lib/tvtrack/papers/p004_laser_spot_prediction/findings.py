@@ -361,9 +361,10 @@ def calibration_sentence(cal, default_bandwidth: float, band=(1.0, 2.0)) -> str:
     )
 
 
-def operating_sentence(register) -> str:
+def operating_sentence(register, exploration=None) -> str:
     """How the register's worlds keep the paper's operating point (:mod:`.operating`): how many world values are
-    re-calibrated, the factor range, and the values marked as leaving it (their plain phrases)."""
+    re-calibrated, the factor range, the values marked as leaving it (their plain phrases) and, given the
+    ``exploration``, how many of the joint worlds it drew no bandwidth brings to the band (counted beside too)."""
     from .operating import DEFAULT_BANDWIDTH, WORLD_FACTORS
 
     off = [register[n].phrase(v) for n in register.names for v in register[n].off_operating_point]
@@ -374,6 +375,26 @@ def operating_sentence(register) -> str:
         f"{len(off)} leave the paper's operating point and are marked so: " + "; ".join(off) + ". A configuration "
         "that changes two or more of these worlds at once is corrected on the calibration's own paths to the same "
         "error; a configuration at a marked value is counted beside each claim's label, not in it."
+        + ("" if exploration is None else " " + _joint_worlds_sentence(exploration))
+    )
+
+
+def _joint_worlds_sentence(exploration) -> str:
+    """How many distinct joint worlds (two or more tabled world values) the exploration's conditions drew, and how
+    many of them no bandwidth brings to the band position (:func:`.study.resolve_operating_point`)."""
+    from .operating import CALIBRATED, table_factors
+    from .study import resolve_operating_point
+
+    worlds = {}
+    for r in exploration.runs:
+        _, world, rows = table_factors(r.config)
+        if r.stage != "replicate" and rows >= 2 and r.config.get("bandwidth", CALIBRATED) == CALIBRATED:
+            worlds.setdefault(world, r.config)
+    lost = sum(bool(resolve_operating_point(c)) for c in worlds.values())
+    return (
+        f"Of the {len(worlds)} joint worlds the exploration drew, {lost} have no bandwidth that brings the paper's "
+        "filter to the band (its error hardly moves with the bandwidth there); their configurations are counted "
+        "beside the labels too."
     )
 
 

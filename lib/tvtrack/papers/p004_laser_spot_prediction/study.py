@@ -29,7 +29,7 @@ from . import learned as lm
 from . import predictors as pr
 from . import shipping
 from .cache import BoundedCache
-from .beam_wander import BeamWanderConfig, one_frame_motion_rms, optimal_wander_forecast
+from .beam_wander import BeamWanderConfig, generate_traces, one_frame_motion_rms, optimal_wander_forecast
 from .camera import SpotCamera, track_spot
 from .prediction_study import (
     CLASSICAL,
@@ -49,13 +49,11 @@ from .prediction_study import (
 )
 from .derivation import recursion_check, variance_ratios
 from .sizes import StudySize
-from .register import NAMES
 from .timing import frame_time_ms
 from .traces import TraceSet
 from .world import BASE_SCENE, camera_for, scene_config, traces_on_sensor, vibration
-from .beam_wander import generate_traces
-from .operating import CALIBRATED, JOINT_PATHS, joint_factor, table_factors
-from .register import DEFAULT
+from .operating import BAND_POSITION, CALIBRATED, JOINT_OUT_OF_REACH, JOINT_PATHS, joint_factor, table_factors
+from .register import DEFAULT, NAMES
 
 #: The ``floor form`` reading under which the paper's filter is this project's variant floor (position gain bounded).
 VARIANT_FLOOR = "first gain bounded"
@@ -526,13 +524,12 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
         Draw the paths with this generator seed at the configuration's scene (e.g. the shipped data set's seed:
         the shipped paths, faster or slower).
     traces : TraceSet, optional
-        The paths themselves (their first ``size.n_paths`` x ``size.n_frames`` are used; overrides
-        ``traces_seed``).
+        The paths themselves (their first ``size.n_paths`` x ``size.n_frames``; overrides ``traces_seed``).
     """
     cfg = {**DEFAULT, **config}
     if (
         traces is None and traces_seed is not None
-    ):  # drawn at the shipped size at least, so a smaller run reads the shipped paths' start
+    ):  # drawn at the shipped size at least: a smaller run reads their start
         scene = scene_config(cfg, size)
         big = replace(scene, n_paths=max(scene.n_paths, BASE_SCENE.n_paths), n_frames=max(scene.n_frames, 1000))
         traces = generate_traces(big, int(traces_seed))
@@ -563,16 +560,24 @@ def table_paths_rms(config: dict, n_paths: int, seed: int = 2005, size=None) -> 
     return paper_filter_rms(cfg, seed, replace(size, n_paths=int(n_paths)), traces=traces)
 
 
-def resolve_operating_point(config: dict) -> None:
+def resolve_operating_point(config: dict) -> str | None:
     """Correct the wander's bandwidth of a joint world (two or more tabled world values changed) to the paper's
     operating point before its scene is drawn (:func:`.operating.joint_factor` on :func:`table_paths_rms`); a
-    single world keeps its table row. Idempotent: each world combination is corrected once in a process."""
+    single world keeps its table row. Idempotent: each world combination is corrected once in a process.
+
+    Returns why the world cannot be kept at the operating point (the explorer's ``operating_point``): a joint world
+    no bandwidth brings to the band position (:data:`.operating.JOINT_OUT_OF_REACH`); None otherwise (a bandwidth
+    set by hand is marked by the register)."""
     cfg = {**DEFAULT, **config}
-    if cfg["bandwidth"] != CALIBRATED:
-        return
     _, world, rows = table_factors(cfg)
-    if rows >= 2:
-        joint_factor(world, lambda c: table_paths_rms(c, JOINT_PATHS))
+    if cfg["bandwidth"] != CALIBRATED or rows < 2:
+        return None
+    joint_factor(world, lambda c: table_paths_rms(c, JOINT_PATHS))
+    lost, band = JOINT_OUT_OF_REACH.get(world), cfg[BAND_POSITION]
+    return lost and (
+        f"no wander bandwidth puts the paper's filter at {band:g} px in this joint world (the nearest errs "
+        f"{lost[1]:.2f} x the default world's error)"
+    )
 
 
 def _declared(args, kwargs):
