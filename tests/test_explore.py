@@ -88,6 +88,49 @@ def test_a_joint_flip_the_exploration_cannot_keep_at_the_operating_point_is_coun
     assert seen and all(c["b"] == 0 and c["c"] == "x" for c in seen)
 
 
+FIVE = Register([Entry(k, "regime", 0, (0, 1), "w") for k in "abcde"], pinned=[dict.fromkeys("abcde", 1)])
+
+
+def measure_ab(config, seed):
+    return {"X": _mean(seed, 3.0 if config["a"] == 1 and config["b"] == 1 else 0.0)}
+
+
+def pair_ab_alone_is_lost(config):
+    return "the pair alone leaves it" if [k for k in "abcde" if config[k]] == ["a", "b"] else None
+
+
+def test_a_flip_off_the_operating_point_explains_no_larger_flip_in_the_subset_search():
+    # a = b = 1 flips the claim; the pair alone leaves the paper's operating point, the pinned five-entry joint does
+    # not: the search must go on to a triple at the operating point, not stop at the pair and call the joint
+    # unattributed
+    plain = explore(measure_ab, FIVE, {"X": RULES["X"]}, seed=3, replicates=3, max_subset=3).record("X")
+    assert plain["label"] == "limited" and [f["changed"] for f in plain["parts"]["claim"]["flips"]] == [
+        {"a": 1, "b": 1}
+    ]
+    ex = explore(
+        measure_ab, FIVE, {"X": RULES["X"]}, seed=3, replicates=3, max_subset=3, operating_point=pair_ab_alone_is_lost
+    )
+    part = ex.record("X")["parts"]["claim"]
+    named = [f["changed"] for f in part["flips"]]
+    assert named and all(len(ch) == 3 and {"a", "b"} <= set(ch) for ch in named), named
+    assert part["label"] == "limited" and not any(f.get("note") for f in part["flips"])
+    assert part["off_operating_point"]["flip"] == 1 and "the pair alone leaves it" in " ".join(part["where"])
+    assert [r.off_point for r in ex.runs if r.changed(FIVE.default()) == {"a": 1, "b": 1}] == [
+        "the pair alone leaves it"
+    ]
+
+
+def test_the_design_counts_only_values_at_the_operating_point():
+    from tvtrack.explore import _n_joint_combinations
+
+    reg = Register(
+        [Entry("a", "regime", 0, (0, 1, 9), "w", off_operating_point=(9,)), Entry("b", "regime", 0, (0, 1, 2), "w")]
+    )
+    assert _n_joint_combinations(reg, ["a", "b"]) == 2  # (1, 1), (1, 2): a = 9 is tried one at a time only
+    ex = explore(lambda c, s: {"X": _mean(s, 0.0)}, reg, {"X": RULES["X"]}, seed=1, joint=2)
+    assert ex.settings["joint_exhaustive"] and ex.settings["joint_configurations"] == 2
+
+
 def test_replicates_are_independent_full_size_runs():
     seen = []
 

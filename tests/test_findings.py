@@ -1236,3 +1236,52 @@ def test_the_first_screen_bracket_names_a_kind_that_leaves_a_decided_claim_undec
     from tvtrack.paragraphs import turns_on
 
     assert set(turns_on([claim])) == {"reading"}  # the count of what flips verdicts still leaves the world out
+
+
+def test_a_joint_outside_the_operating_point_explains_no_change_of_the_whole_verdict():
+    """Two worlds each flip one part and the whole verdict moves only where both are changed, in a joint that
+    leaves the paper's operating point: it is counted beside the label, so the README says the claim moves only in
+    a part, not that worlds flip it."""
+    from tvtrack.paragraphs import part_only, turns_on
+
+    reg = [{"name": k, "kind": "regime", "values": [0, 1], "default": 0, "title": f"world {k}"} for k in "xy"]
+
+    def flip(k):
+        return {"changed": {k: 1}, "side": "world", "kind": "single", "verdict": "not reproduced", "text": f"{k} = 1"}
+
+    def cond(changed, p1, p2, verdict, **kw):
+        parts = {"P1": p1, "P2": p2, "P3": "not reproduced"}
+        return {
+            "changed": changed,
+            "kind": "joint" if len(changed) > 1 else "single",
+            "parts": parts,
+            "verdict": verdict,
+            "runs": 3,
+            **kw,
+        }
+
+    parts = {
+        "P1": {"verdict": "reproduced", "label": "limited", "flips": [flip("x")]},
+        "P2": {"verdict": "reproduced", "label": "limited", "flips": [flip("y")]},
+        "P3": {"verdict": "not reproduced", "label": "robust", "flips": []},
+    }
+    conds = [
+        cond({"x": 1}, "not reproduced", "reproduced", "partly"),
+        cond({"y": 1}, "reproduced", "not reproduced", "partly"),
+    ]
+    lost = cond(
+        {"x": 1, "y": 1},
+        "not reproduced",
+        "not reproduced",
+        "not reproduced",
+        operating_point_lost="no bandwidth reaches it",
+        off_operating_point=True,
+    )
+    claim = {
+        "id": "C9-1",
+        "verdict": "partly",
+        "robustness": {"label": "limited", "parts": parts, "conditions": [*conds, lost], "register": reg},
+    }
+    assert turns_on([claim]) == {} and part_only([claim]) == 1
+    claim["robustness"]["conditions"][-1] = {k: v for k, v in lost.items() if "operating" not in k}
+    assert set(turns_on([claim])) == {"world"} and part_only([claim]) == 0  # at the operating point it would count

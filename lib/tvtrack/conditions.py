@@ -72,6 +72,7 @@ class Run:
     sized: list = field(default_factory=list)  # the condition's further replicates (Run, stage "condition sizing")
     screened: frozenset = frozenset()  # claims whose value here is a screen's (smaller) measurement, no replicate
     left: dict = field(default_factory=dict)  # claim -> replicates it needed, where the sizing budget left it smaller
+    off_point: str = ""  # why the configuration leaves the paper's stated operating point ("": it keeps it)
 
     def changed(self, default: Mapping[str, Any]) -> dict:
         """The entries whose value differs from ``default``."""
@@ -308,7 +309,7 @@ def _flips_kept(rules, default_j, run: Run, n_default, cache: dict | None) -> se
 
 def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: Mapping, n_default, cache=None) -> list:
     """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or a
-    subset that flips the same part), each with the flipped claims and the entries of theirs it changed (only
+    subset that flips the same part, at the paper's operating point: a run with ``off_point`` explains none), each with the flipped claims and the entries of theirs it changed (only
     those with more than two: a pair is already the smallest combination).
 
     ``cache`` (a dict kept by the caller across calls on the same growing ``runs``, optional) keeps each run's
@@ -318,6 +319,8 @@ def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: M
     flips_of = {id(r): _flips_kept(rules, default_j, r, n_default, cache) for r in conds}
     flipping: dict = {}  # (claim, part) -> the changed entries of every condition that flips it
     for r in conds:
+        if r.off_point:  # a flip outside the paper's operating point is counted beside the label: it explains none
+            continue
         for key in flips_of[id(r)]:
             flipping.setdefault(key, []).append(_changed_items(r, default, cache))
     out = []
@@ -327,7 +330,7 @@ def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: M
         ch = _changed_items(r, default, cache)
         todo, claims = set(), set()
         for key in flips_of[id(r)]:
-            if not any(s < ch for s in flipping[key]):
+            if not any(s < ch for s in flipping.get(key, ())):
                 todo |= {k for k, _ in ch if k in depends[key[0]]}
                 claims.add(key[0])
         if len(todo) > 2:

@@ -48,7 +48,7 @@ from .conditions import SUBSET_ROUND, Run, SizingBudget, point, projected_runs, 
 from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
-from .register import Register
+from .register import Register, leaves_operating_point
 from .verdicts import Rule, is_decisive
 
 __all__ = [
@@ -133,7 +133,6 @@ class Exploration:
     depends: dict
     runs: list
     settings: dict
-    operating_point: Callable | None = None  # configuration -> why it leaves the paper's operating point, or None
 
     @property
     def default(self) -> dict:
@@ -164,7 +163,7 @@ class Exploration:
                 "measured": r.pooled(claim_id),
                 "runs": r.n_runs(claim_id),
                 **({"left_by_budget": r.left[claim_id]} if claim_id in r.left else {}),
-                **self._operating_point_lost({k: v for k, v in r.config.items() if k in reads}),
+                **self._operating_point_lost(r),
             }
             for r in self.runs
             if r.stage != "replicate" and self._relevant(claim_id, r)
@@ -175,12 +174,14 @@ class Exploration:
         out["design"] = dict(self.settings)
         return out
 
-    def _operating_point_lost(self, config: Mapping) -> dict:
-        """``{"operating_point_lost": why}`` where the exploration's ``operating_point`` says that ``config`` (a
-        condition as one claim reads it, the other entries at their defaults) cannot be kept at the paper's stated
-        operating point; else ``{}``."""
-        why = self.operating_point({**self.default, **config}) if self.operating_point is not None else None
-        return {"operating_point_lost": str(why)} if why else {}
+    def _operating_point_lost(self, run: Run) -> dict:
+        """``{"operating_point_lost": why}`` where the exploration's ``operating_point`` said that the condition
+        (as the claims of its projection read it) cannot be kept at the paper's stated operating point though no
+        register value marks it; else ``{}``."""
+        off = {k: self.register[k].off_operating_point for k in self.register.names}
+        if not run.off_point or leaves_operating_point(run.changed(self.default), off):
+            return {}
+        return {"operating_point_lost": run.off_point}
 
     def table(self, claim_id: str) -> str:
         """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
@@ -391,8 +392,8 @@ def explore(
         at its default) cannot be kept at the operating point the paper states, where no register value says so
         alone (e.g. a joint world that no re-calibration brings back to the paper's error); None where it is kept.
         Such a condition is counted beside the claim's labels, as one at a register value marked
-        ``off_operating_point`` is (:func:`tvtrack.verdicts.label_parts`). Called in this process when the
-        labels are made; a module-level function (the exploration may be pickled).
+        ``off_operating_point`` is (:func:`tvtrack.verdicts.label_parts`), and explains no other flip in the subset
+        search. Called in this process on each condition as it is made, before it is measured.
     guard : bool
         Hand every condition's run a guarded configuration (:func:`tvtrack.register.guard`): reading an entry that
         none of the claims it is asked for declares raises :class:`tvtrack.register.UndeclaredEntry`. A measurement
@@ -429,7 +430,9 @@ def explore(
     have: dict = {}  # projected configuration -> the claims already measured there
 
     def conditions(cfgs: Sequence[Mapping], stage: str, only=None) -> list[Run]:
-        return projected_runs(cfgs, stage, depends, default, seeds[0], have, only)
+        return _mark_off_point(
+            projected_runs(cfgs, stage, depends, default, seeds[0], have, only), register, operating_point
+        )
 
     alternatives = [{**default, k: v} for k in used for v in register[k].alternatives]
     singles = conditions(alternatives, "single") if one_at_a_time else []
@@ -479,7 +482,23 @@ def explore(
         "seed": seed,
         "timing": clock.table(),
     }
-    return Exploration(register, rules, depends, runs, settings, operating_point)
+    return Exploration(register, rules, depends, runs, settings)
+
+
+def _mark_off_point(runs: list[Run], register: Register, operating_point: Callable | None) -> list[Run]:
+    """Mark each run whose configuration (one claim group's projection) leaves the paper's stated operating point
+    (``Run.off_point``): at a register value marked ``off_operating_point``, or where ``operating_point`` gives a
+    reason. Such a run is measured and sized like any condition and counted beside the labels; it explains no other
+    flip in the subset search (:func:`tvtrack.conditions.unexplained_flips`)."""
+    default = register.default()
+    marked = {k: register[k].off_operating_point for k in register.names}
+    for r in runs:
+        changed = r.changed(default)
+        if leaves_operating_point(changed, marked):
+            r.off_point = "a value the register marks off the paper's operating point"
+        elif operating_point is not None and changed:
+            r.off_point = str(operating_point(dict(r.config)) or "")
+    return runs
 
 
 def _is_subset_size(n: Any) -> bool:

@@ -195,7 +195,8 @@ def _replicate_text(rv: Sequence[str]) -> str:
 
 
 def _n_combinations(names: Sequence[str], entries: Mapping[str, Any]) -> int:
-    return math.prod(len(entries[k].values) for k in names if k in entries) - 1
+    """Configurations of ``names`` other than the default, at values that keep the paper's operating point."""
+    return math.prod(len(getattr(entries[k], "operating_values", entries[k].values)) for k in names if k in entries) - 1
 
 
 def label_parts(
@@ -252,9 +253,12 @@ def label_parts(
     rep_rows = [_row(rule, parts, r["measured"], {"seed": int(r["seed"])}) for r in replicates]
     size = needed if needed is not None else len(rep_rows)
     cond_rows = _condition_rows(rule, parts, conditions, by_name, default_cfg, max(size, 1))
-    world_varied = any(by_name[k].kind in WORLD_KINDS for c in cond_rows for k in c["changed"] if k in by_name)
-    explored = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint")])
-    need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), _n_combinations(list(by_name), by_name))
+    kept = [c for c in cond_rows if not c.get("off_operating_point")]  # the others are counted beside the label
+    world_varied = any(by_name[k].kind in WORLD_KINDS for c in kept for k in c["changed"] if k in by_name)
+    explored = _distinct([c for c in kept if c["kind"] in ("single", "joint")])
+    lost = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint") and c.get("operating_point_lost")])
+    reachable = _n_combinations(list(by_name), by_name) - len(lost)  # those the paper's operating point admits
+    need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), reachable)
     provisional = not deterministic and len(explored) < max(need, 1)
     context = {
         "rep_rows": rep_rows,

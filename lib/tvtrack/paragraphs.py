@@ -108,7 +108,10 @@ def _whole_changes(claim: Mapping) -> list[dict]:
     return [
         dict(c.get("changed") or {})
         for c in rows
-        if "undersized" not in c and c.get("verdict") in decided and differs_whatever_is_open(claim, c)
+        if "undersized" not in c
+        and not c.get("off_operating_point")  # counted beside the label: it explains no change of the verdict
+        and c.get("verdict") in decided
+        and differs_whatever_is_open(claim, c)
     ]
 
 

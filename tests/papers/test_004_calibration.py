@@ -7,8 +7,8 @@ from scipy.signal import welch
 from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
 from tvtrack.papers.p004_laser_spot_prediction import study
 from tvtrack.papers.p004_laser_spot_prediction.beam_wander import BeamWanderConfig, generate_traces
+from tvtrack.papers.p004_laser_spot_prediction.operating import BAND_PX
 from tvtrack.papers.p004_laser_spot_prediction.calibration import (
-    BAND_PX,
     TARGET_PX,
     calibrate_bandwidth,
     paper_filter_rms,

@@ -1,17 +1,19 @@
 """Notebook 004: every world of the register at the paper's operating point (its filter errs the paper's own
 1-2 px), or marked as leaving it; where in the band the world sits is an unreported setting C004-1 turns on."""
 
+import math
+
 import pytest
 
 from tvtrack.montecarlo import Estimate
 from tvtrack.papers.p004_laser_spot_prediction import findings, operating, study
-from tvtrack.papers.p004_laser_spot_prediction.calibration import BAND_PX
 from tvtrack.papers.p004_laser_spot_prediction.study import paper_filter_rms
 from tvtrack.papers.p004_laser_spot_prediction.operating import (
     BAND_POSITION,
     CALIBRATED,
     DEFAULT_BANDWIDTH,
-    JOINT_OUT_OF_REACH,
+    BAND_PX,
+    JOINT_OUTSIDE_BAND,
     TARGET_FACTORS,
     WORLD_FACTORS,
     bandwidth_for,
@@ -108,7 +110,7 @@ def test_a_joint_world_is_corrected_to_the_band_position():
     assert paper_filter_rms({**JOINT, "bandwidth": product}, 7, SIZE) < BAND_PX[0]
     assert paper_filter_rms(JOINT, 7, SIZE) == pytest.approx(1.5, rel=0.15)
     study.resolve_operating_point(JOINT)  # done before any scene of it is drawn (paper_filter_rms did it above)
-    assert bandwidth_for(JOINT) > 1.5 * product and table_factors(JOINT)[1] not in JOINT_OUT_OF_REACH
+    assert bandwidth_for(JOINT) > 1.5 * product and table_factors(JOINT)[1] not in JOINT_OUTSIDE_BAND
 
 
 def test_a_joint_world_not_yet_corrected_is_refused_not_drawn_at_the_product(monkeypatch):
@@ -121,31 +123,56 @@ def test_a_joint_world_not_yet_corrected_is_refused_not_drawn_at_the_product(mon
         bandwidth_for(world)
 
 
-def test_a_joint_world_no_bandwidth_reaches_is_reported_to_the_explorer(monkeypatch):
-    """A joint world whose filter error hardly moves with the wander's bandwidth (a noise floor above the band) has
-    no bandwidth at the band position: the secant exponent is below MIN_SLOPE, the world keeps the factor nearer
-    the band and resolve_operating_point says why, so the explorer counts its configurations beside the labels.
-    The error is a stand-in flat in the bandwidth (1.5 x the default world's at any factor); one in reach (the
-    error proportional to the factor to the band slope) says nothing."""
-    for name in ("_JOINT", "_REFERENCE", "JOINT_OUT_OF_REACH"):
+def _stand_in(monkeypatch, error):
+    """Fresh caches, and ``error(config)`` (px) in place of the paper's filter on the table's paths; the default
+    world errs 1.5 px at the band position."""
+    for name in ("_JOINT", "_REFERENCE", "JOINT_OUTSIDE_BAND"):
         monkeypatch.setattr(operating, name, {})
-    monkeypatch.setattr(study, "JOINT_OUT_OF_REACH", operating.JOINT_OUT_OF_REACH)
-    world = {"jitter": 4.0, "amplitude": 2.0}
-    flat = lambda c, n: 1.0 if c.get("jitter", 0.0) == 0.0 else 1.5  # noqa: E731
-    monkeypatch.setattr(study, "table_paths_rms", flat)
-    why = study.resolve_operating_point(world)
-    assert why == (
-        "no wander bandwidth puts the paper's filter at 1.5 px in this joint world (the nearest errs 1.50 x the "
-        "default world's error)"
+    monkeypatch.setattr(study, "JOINT_OUTSIDE_BAND", operating.JOINT_OUTSIDE_BAND)
+    calls = []
+
+    def rms(config, n_paths):
+        calls.append(config["bandwidth"])
+        return 1.5 if len(config) == 2 else error(config)  # the reference: the band position and its bandwidth
+
+    monkeypatch.setattr(study, "table_paths_rms", rms)
+    return calls
+
+
+def test_a_joint_world_outside_the_papers_band_is_reported_to_the_explorer(monkeypatch):
+    """A joint world whose corrected filter errs outside the paper's 1-2 px is outside the paper's operating point:
+    resolve_operating_point says why, and the explorer counts its configurations beside the labels. One whose
+    error hardly moves with the bandwidth but stays inside the band (1.8 px: it misses the band position, not the
+    paper's band) is kept; so is one a power-law step brings to it. Stand-ins for the filter's error (px)."""
+    _stand_in(monkeypatch, lambda c: 2.6 if c.get("jitter") == 4.0 else 1.8)
+    far, near = {"jitter": 4.0, "amplitude": 2.0}, {"jitter": 1.0, "amplitude": 2.0}
+    assert study.resolve_operating_point(far) == (
+        "the paper's filter errs 2.60 px per axis in this joint world at the bandwidth the correction reached, "
+        "outside the paper's 1-2 px"
     )
-    assert table_factors(world)[1] in operating.JOINT_OUT_OF_REACH
-    assert study.resolve_operating_point({**world, "bandwidth": 8.0}) is None  # set by hand: the register marks it
+    assert operating.JOINT_OUTSIDE_BAND == {table_factors(far)[1]: (pytest.approx(bandwidth_for(far)), 2.6)}
+    assert study.resolve_operating_point(near) is None and bandwidth_for(near) > 0
+    assert study.resolve_operating_point({**far, "bandwidth": 8.0}) is None  # set by hand: the register marks it
     reach = {"roll-off": "f^-6", "amplitude": 0.5}
     b0 = table_factors(reach)[0]
-    steep = lambda c, n: (c["bandwidth"] / (0.7 * b0)) ** operating.BAND_SLOPE if "roll-off" in c else 1.0  # noqa: E731
-    monkeypatch.setattr(study, "table_paths_rms", steep)
+    _stand_in(monkeypatch, lambda c: 1.5 * (c["bandwidth"] / (0.7 * b0)) ** operating.BAND_SLOPE)
     assert study.resolve_operating_point(reach) is None
     assert bandwidth_for(reach) == pytest.approx(0.7 * b0, rel=1e-9)  # one power-law step lands on it
+
+
+def test_a_joint_world_is_judged_by_its_error_where_the_secant_step_ends(monkeypatch):
+    """The secant step's factor is measured, not assumed to land on the band position: an error that jumps from
+    0.6 px to 3 px between the product and the power-law step (exponent 2.3, above MIN_SLOPE) ends at 3 px,
+    outside the paper's band."""
+    world = {"read noise": 64.0, "saturation": "none"}
+    b0 = table_factors(world)[0]
+    calls = _stand_in(monkeypatch, lambda c: 0.6 if c["bandwidth"] < 1.2 * b0 else 3.0)
+    why = study.resolve_operating_point(world)
+    assert why is not None and "errs 3.00 px" in why
+    assert len(calls) == 4  # the reference, the product, the power-law step and the secant step's end
+    step = 2.5 ** (1 / operating.BAND_SLOPE)  # the power-law step from 0.6 px to 1.5 px
+    secant = math.log(3.0 / 0.6) / math.log(step)
+    assert bandwidth_for(world) == pytest.approx(b0 * step * 0.5 ** (1 / secant), rel=1e-12)
 
 
 @pytest.mark.parametrize(

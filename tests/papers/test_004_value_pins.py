@@ -14,7 +14,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from tvtrack.papers.p004_laser_spot_prediction import calibration
+from tvtrack.papers.p004_laser_spot_prediction import calibration, operating
 from tvtrack.papers.p004_laser_spot_prediction.prediction_study import FADING, PAPER, SINGER, tuned_forecast
 from tvtrack.papers.p004_laser_spot_prediction.register import DEFAULT
 from tvtrack.papers.p004_laser_spot_prediction.side_studies import model_order_summary
@@ -23,7 +23,7 @@ from tvtrack.papers.p004_laser_spot_prediction.study import OPTIMAL, StudySize
 
 def test_calibration_aims_at_the_middle_of_the_papers_band():
     # the paper: one-step error "1...2 pixels" (abstract, conclusions); the target is its middle, 1.5 px per axis
-    assert calibration.BAND_PX == (1.0, 2.0)
+    assert operating.BAND_PX == (1.0, 2.0)
     assert calibration.TARGET_PX == pytest.approx(1.5)
     assert inspect.signature(calibration.calibrate_bandwidth).parameters["target_px"].default == 1.5
 

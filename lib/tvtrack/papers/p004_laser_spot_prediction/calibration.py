@@ -35,7 +35,6 @@ from .study import paper_filter_rms
 
 __all__ = [
     "TARGET_PX",
-    "BAND_PX",
     "Calibration",
     "calibrate_bandwidth",
     "world_bracket",
@@ -44,8 +43,6 @@ __all__ = [
     "shipped_config_at",
 ]
 
-#: The paper's own error band, px per axis ("1...2 pixels", abstract and conclusions).
-BAND_PX = (1.0, 2.0)
 #: The calibration's target: the middle of the band, px per axis.
 TARGET_PX = 1.5
 

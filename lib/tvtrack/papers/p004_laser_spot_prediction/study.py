@@ -52,7 +52,7 @@ from .sizes import StudySize
 from .timing import frame_time_ms
 from .traces import TraceSet
 from .world import BASE_SCENE, camera_for, scene_config, traces_on_sensor, vibration
-from .operating import BAND_POSITION, CALIBRATED, JOINT_OUT_OF_REACH, JOINT_PATHS, joint_factor, table_factors
+from .operating import BAND_PX, CALIBRATED, JOINT_OUTSIDE_BAND, JOINT_PATHS, joint_factor, table_factors
 from .register import DEFAULT, NAMES
 
 #: The ``floor form`` reading under which the paper's filter is this project's variant floor (position gain bounded).
@@ -565,18 +565,18 @@ def resolve_operating_point(config: dict) -> str | None:
     operating point before its scene is drawn (:func:`.operating.joint_factor` on :func:`table_paths_rms`); a
     single world keeps its table row. Idempotent: each world combination is corrected once in a process.
 
-    Returns why the world cannot be kept at the operating point (the explorer's ``operating_point``): a joint world
-    no bandwidth brings to the band position (:data:`.operating.JOINT_OUT_OF_REACH`); None otherwise (a bandwidth
-    set by hand is marked by the register)."""
+    Returns why the world is outside the paper's operating point (the explorer's ``operating_point``): a joint
+    world whose filter errs outside the paper's 1-2 px at the corrected bandwidth
+    (:data:`.operating.JOINT_OUTSIDE_BAND`); None otherwise (a bandwidth set by hand is marked by the register)."""
     cfg = {**DEFAULT, **config}
     _, world, rows = table_factors(cfg)
     if cfg["bandwidth"] != CALIBRATED or rows < 2:
         return None
     joint_factor(world, lambda c: table_paths_rms(c, JOINT_PATHS))
-    lost, band = JOINT_OUT_OF_REACH.get(world), cfg[BAND_POSITION]
+    lost = JOINT_OUTSIDE_BAND.get(world)
     return lost and (
-        f"no wander bandwidth puts the paper's filter at {band:g} px in this joint world (the nearest errs "
-        f"{lost[1]:.2f} x the default world's error)"
+        f"the paper's filter errs {lost[1]:.2f} px per axis in this joint world at the bandwidth the correction "
+        f"reached, outside the paper's {BAND_PX[0]:g}-{BAND_PX[1]:g} px"
     )
 
 
