@@ -319,3 +319,37 @@ def test_the_share_words_say_the_configurations_outside_the_operating_point_besi
         "2 agree, 0 flip and 0 stay undecided of 2 explored configurations; of 1 configuration outside the paper's "
         "operating point (counted beside the label, not in it), 1 flips, 0 agree and 0 stay undecided"
     )
+
+
+def test_configurations_outside_the_operating_point_do_not_make_a_design_look_larger_or_vary_the_world():
+    """The design's size, its coverage line and whether it varied the world read only the configurations at the
+    paper's operating point: a register-marked value and a configuration the exploration reported are counted beside,
+    never twice (a marked value is no reachable configuration to begin with), and a design whose every reachable
+    configuration was reported stays provisional."""
+    w = Entry("speed", "regime", 0, (0, 1, 9), "w", off_operating_point=(9,))
+    v = Entry("gust", "regime", 0, (0, 1), "w")
+    reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
+    marked = _cond({"speed": 9}, OUT)
+    lost = {**_cond({"speed": 1, "gust": 1}, OUT, kind="joint"), "operating_point_lost": "outside 1-2 px"}
+    # 3 reachable configurations, 1 reported: 2 needed, 1 explored at the operating point
+    rb = label_parts(BAND, IN, reps, [_cond({"speed": 1}, IN), marked, lost], (w, v), needed=2)
+    assert rb["provisional"] and rb["coverage"].startswith("unexplored over 1 distinct configurations (1 one at a time")
+    assert "2 outside the paper's operating point, counted beside the label" in rb["coverage"]
+    rb = label_parts(BAND, IN, reps, [_cond({"speed": 1}, IN), _cond({"gust": 1}, IN), marked, lost], (w, v), needed=2)
+    assert not rb["provisional"] and rb["label"] == "robust"
+    every = [
+        {**_cond(ch, OUT, kind="joint" if len(ch) > 1 else "single"), "operating_point_lost": "outside 1-2 px"}
+        for ch in ({"speed": 1}, {"gust": 1}, {"speed": 1, "gust": 1})
+    ]
+    rb = label_parts(BAND, IN, reps, every, (w, v), needed=2)
+    assert rb["provisional"] and rb["parts"]["claim"]["off_operating_point"]["flip"] == 3
+    world_only_beside = label_parts(
+        BAND,
+        IN,
+        reps,
+        [_cond({"sigma": "smoothed"}, IN), _cond({"speed": 9}, IN)],
+        (READING, w),
+        design={"min_share_design": 1},
+        needed=2,
+    )
+    assert not world_only_beside["provisional"] and world_only_beside["label"] == "unexplored"  # no world varied

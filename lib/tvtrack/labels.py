@@ -469,6 +469,10 @@ def _runs_behind(measured: Any) -> int:
 
 
 def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, provisional) -> str:
+    """The record's coverage line: the label over the configurations at the paper's operating point, by stage, and
+    how many were outside it (counted beside the label)."""
+    off = [c for c in conds if c.get("off_operating_point")]
+    conds = [c for c in conds if not c.get("off_operating_point")]
     single = [c for c in conds if c["kind"] == "single"]
     joint = [c for c in conds if c["kind"] == "joint"]
     pinned = [c for c in conds if c["kind"] == "pinned"]
@@ -478,6 +482,7 @@ def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, pro
     which = "" if len(parts) == 1 or not weak else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
     extra = [f"{len(pinned)} pinned known flips"] if pinned else []
     extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
+    extra += [f"{len(off)} outside the paper's operating point, counted beside the label"] if off else []
     small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""
     if label == NO_PART_LABEL:
         label, which = "no label (no part decided at the default: nothing to flip)", ""

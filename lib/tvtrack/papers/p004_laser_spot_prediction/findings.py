@@ -381,8 +381,8 @@ def operating_sentence(register, exploration=None) -> str:
 
 def _joint_worlds_sentence(exploration) -> str:
     """How many distinct joint worlds (two or more tabled world values) the exploration's conditions drew, and how
-    many of them no bandwidth brings to the band position (:func:`.study.resolve_operating_point`)."""
-    from .operating import CALIBRATED, table_factors
+    many of them the correction leaves outside the paper's band (:func:`.study.resolve_operating_point`)."""
+    from .operating import CALIBRATED, JOINT_TOL, table_factors
     from .study import resolve_operating_point
 
     worlds = {}
@@ -392,9 +392,9 @@ def _joint_worlds_sentence(exploration) -> str:
             worlds.setdefault(world, r.config)
     lost = sum(bool(resolve_operating_point(c)) for c in worlds.values())
     return (
-        f"Of the {len(worlds)} joint worlds the exploration drew, {lost} have no bandwidth that brings the paper's "
-        "filter to the band (its error hardly moves with the bandwidth there); their configurations are counted "
-        "beside the labels too."
+        f"Of the {len(worlds)} joint worlds the exploration drew, {lost} still put the paper's filter outside its "
+        f"1-2 px once corrected (by more than the correction's {100 * JOINT_TOL:g} % tolerance, at the measured "
+        "bandwidth nearest the band position); their configurations are counted beside the labels too."
     )
 
 

@@ -28,12 +28,13 @@ paper's 1-2 px; each value alone is inside it). So :func:`joint_factor` corrects
 paths (seed 2005, the first :data:`JOINT_PATHS` of its 15 x 500 frames: within 2 % of all 15 in the error's
 ratio): it measures the error at the product; if that is more than :data:`JOINT_TOL` from the default world's at
 the band position (same paths), one power-law step with the default world's exponent (:data:`BAND_SLOPE`, from
-:data:`TARGET_FACTORS`' band ends) and, if still outside, one secant step on the two measured points. At most two
+:data:`TARGET_FACTORS`' band ends) and, if still outside, one secant step on the two measured points, measured
+where it ends; the measured factor nearest the target is kept (a secant step may overshoot). At most three
 evaluations per distinct world combination (about 0.5 CPU s each), cached per combination, the same for every
 replicate and seed. A world whose error hardly moves with the bandwidth (secant exponent below
-:data:`MIN_SLOPE`: a noise floor above the band, or jitter below it) has no bandwidth at the band position; it
-keeps the measured factor nearer to it. A joint world whose filter errs outside the paper's 1-2 px at the factor kept
-(measured there) is listed in :data:`JOINT_OUTSIDE_BAND`: the explorer counts its configurations beside the labels
+:data:`MIN_SLOPE`: a noise floor above the band, or jitter below it) takes no secant step. A joint world whose
+filter, at the factor kept, errs outside the paper's 1-2 px by more than :data:`JOINT_TOL` (read on the table's
+scale) is listed in :data:`JOINT_OUTSIDE_BAND`: the explorer counts its configurations beside the labels
 (docs/validity/004.md).
 
 **Where re-calibration is not meaningful** the register marks the value ``off_operating_point``: the bandwidth's
@@ -115,8 +116,9 @@ _JOINT: dict = {}
 _REFERENCE: dict = {}  # {band position: the default world's error there on the joint worlds' paths}
 #: The paper's own error band, px per axis ("1...2 pixels", abstract and conclusions): its operating point.
 BAND_PX = (1.0, 2.0)
-#: {world combination: (factor, the paper's filter's error there, px per axis on the correction's paths)} of the
-#: joint worlds whose corrected filter still errs outside :data:`BAND_PX`: outside the paper's operating point.
+#: {world combination: (factor, the paper's filter's error there, px per axis on the table's scale)} of the joint
+#: worlds whose corrected filter still errs outside :data:`BAND_PX` (by more than :data:`JOINT_TOL`): outside the
+#: paper's operating point.
 JOINT_OUTSIDE_BAND: dict = {}
 
 
@@ -172,11 +174,12 @@ def joint_factor(world: tuple, rms) -> float:
     per-axis error on the table's paths, px: :func:`.study.table_paths_rms` on the first :data:`JOINT_PATHS`)
     towards the default world's error at the band position on the same paths: kept if within
     :data:`JOINT_TOL`; else one power-law step (:data:`BAND_SLOPE`); if still outside, one secant step on the two
-    measured points (exponent at least :data:`MIN_SLOPE`; below it the bandwidth hardly moves the error and the
-    measured factor nearer the target is kept), its error measured there. A world whose filter still errs outside
-    the paper's :data:`BAND_PX` at the factor kept is outside the paper's operating point
-    (:data:`JOINT_OUTSIDE_BAND`); one that misses the band position but stays in the band is not. Cached per
-    ``world``."""
+    measured points (exponent at least :data:`MIN_SLOPE`; below it the bandwidth hardly moves the error), its error
+    measured there; the measured factor nearest the target is kept (a secant step may overshoot). A world whose
+    filter at the factor kept errs outside the paper's :data:`BAND_PX` by more than :data:`JOINT_TOL` is outside the
+    paper's operating point (:data:`JOINT_OUTSIDE_BAND`); its error is read on the table's scale (times the band
+    position over the default world's error there on the same paths, since those paths err a few per cent off the
+    table's 15). One that misses the band position but stays in the band is kept. Cached per ``world``."""
     if world in _JOINT:
         return _JOINT[world]
     config = {**dict(world), "bandwidth": CALIBRATED}
@@ -189,20 +192,20 @@ def joint_factor(world: tuple, rms) -> float:
     ref = _REFERENCE[band]
     at = lambda b: rms({**config, "bandwidth": b})  # noqa: E731
     b0 = table_factors(config)[0]
-    r0 = at(b0)
-    out, err = b0, r0
-    if not _within(r0, ref):
+    tried = [(b0, at(b0))]
+    if not _within(tried[-1][1], ref):
+        r0 = tried[0][1]
         b1 = clip(b0 * (ref / r0) ** (1.0 / BAND_SLOPE))
-        r1 = at(b1) if b1 != b0 else r0
-        out, err = b1, r1
-        if not _within(r1, ref):
-            k = math.log(r1 / r0) / math.log(b1 / b0) if b1 != b0 else 0.0
-            if k < MIN_SLOPE:  # the error hardly moves with the bandwidth: keep the nearer of the two
-                out, err = min((b0, r0), (b1, r1), key=lambda p: abs(math.log(p[1] / ref)))
-            else:
-                out = clip(b1 * (ref / r1) ** (1.0 / k))
-                err = at(out) if out != b1 else r1  # measured where it ends, not assumed to be at the target
-    if not BAND_PX[0] <= err <= BAND_PX[1]:
-        JOINT_OUTSIDE_BAND[world] = (float(out), float(err))
+        tried.append((b1, at(b1) if b1 != b0 else r0))
+        r1 = tried[-1][1]
+        k = math.log(r1 / r0) / math.log(b1 / b0) if b1 != b0 else 0.0
+        if not _within(r1, ref) and k >= MIN_SLOPE:  # below MIN_SLOPE the bandwidth hardly moves the error
+            b2 = clip(b1 * (ref / r1) ** (1.0 / k))
+            tried.append((b2, at(b2) if b2 != b1 else r1))  # measured where it ends: a secant may overshoot
+    out, err = min(tried, key=lambda p: abs(math.log(p[1] / ref)))  # the measured point nearest the target
+    scaled = err * band / ref  # px on the table's scale: the default world errs ``band`` px there
+    lo, hi = BAND_PX[0] / (1.0 + JOINT_TOL), BAND_PX[1] * (1.0 + JOINT_TOL)  # the band, give the correction's tolerance
+    if not lo <= scaled <= hi:
+        JOINT_OUTSIDE_BAND[world] = (float(out), float(scaled))
     _JOINT[world] = float(out)
     return _JOINT[world]
