@@ -53,7 +53,8 @@ def test_kinds_say_reading_or_world_honestly():
     the paper's text (unstated horizon, '25 frames/s' against 'every 5 ms'); the noise law is a world."""
     reg = build()
     assert reg["lost frames"].side == reg["frame loss"].side == "world"
-    assert all(reg[name].side == "world" for cond in PINNED for name in cond)
+    assert all(reg[name].side == "world" for name in PINNED[0])
+    assert all(reg[name].values.count(v) == 1 for cond in PINNED for name, v in cond.items())  # register values
     assert reg["horizon"].side == reg["frame rate"].side == "reading"
     assert reg["C004-5 noise"].side == "world"
     assert set(DEPENDS["C004-5"]) == {"C004-5 noise"}

@@ -393,7 +393,37 @@ DEPENDS = {
 
 #: Joint conditions measured in every run (a flip found once stays measured, whatever the random joint samples
 #: draw): the third adversarial pass's C004-4 flip needs frames lost in the world *and* skipped by the recursion.
-PINNED = ({"frame loss": 0.01, "lost frames": "skipped (coast)"},)
+#: The others are the flips the paper profile named (record of 2026-12-05 at 1a4ba70) at configurations its next
+#: joint design, drawn at the paper's operating point only, no longer drew: without them a label would turn on which
+#: joints a sample happens to draw (C004-3b's MLP part read robust).
+PINNED = (
+    {"frame loss": 0.01, "lost frames": "skipped (coast)"},
+    {"spectral index": 5 / 3, "floor form": "first gain bounded"},
+    {"amplitude": 2.0, "floor form": "first gain bounded"},
+    {"amplitude": 2.0, "jitter": 4.0, "network inputs": "absolute centres"},
+    {"jitter": 1.0, "network inputs": "absolute centres", "floor form": "first gain bounded"},
+    {
+        "spectral index": 5 / 3,
+        "frame rate": 200.0,
+        "read noise": 16.0,
+        "saturation": "none",
+        "energy centre": "whole gate",
+        "network inputs": "absolute centres",
+        "vibration": 1.0,
+        "floor form": "first gain bounded",
+    },
+    {
+        "roll-off": "f^-2",
+        "jitter": 1.0,
+        "read noise": 16.0,
+        "saturation": "none",
+        "energy centre": "whole gate",
+        "tuning": "fixed",
+        "reference": "true centre",
+        "exposure": "interlaced, frame integration",
+        "spot size": 0.6,
+    },
+)
 
 
 #: Values at which the world leaves the paper's operating point (its filter outside the paper's 1-2 px) and no
