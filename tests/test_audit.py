@@ -343,6 +343,8 @@ def test_configurations_outside_the_operating_point_do_not_make_a_design_look_la
     ]
     rb = label_parts(BAND, IN, reps, every, (w, v), needed=2)
     assert rb["provisional"] and rb["parts"]["claim"]["off_operating_point"]["flip"] == 3
+    one_lost = [every[0], _cond({"gust": 1}, IN), _cond({"speed": 1, "gust": 1}, IN, kind="joint")]
+    assert not label_parts(BAND, IN, reps, one_lost, (w, v), needed=2)["provisional"]  # a reported single counts too
     world_only_beside = label_parts(
         BAND,
         IN,

@@ -809,3 +809,15 @@ def test_the_search_computes_each_runs_flips_and_changes_once_while_it_is_unchan
     # changed entries are asked of the flipping runs only: the joint (every round) and the triple (a, b, c)
     abc = next(r for r in combos if [r.config[k] for k in "abcd"] == [1, 1, 1, 0])
     assert sorted(changed_of) == sorted([id(joint), id(abc)])
+
+
+def test_a_flip_outside_the_operating_point_explains_no_joint_flip_and_the_next_one_still_does():
+    m = _needs("a", "b")
+    depends = {"X": ["a", "b", "c", "d"]}
+    lost = _measured(m, {"a": 1, "b": 1}, "combination")
+    lost.off_point = "outside the paper's band"
+    joint = _measured(m, {"a": 1, "b": 1, "c": 1, "d": 1}, "joint")
+    got = unexplained_flips(RULES, depends, DEFAULT_J, [lost, joint], DEFAULT, {"X": 1})
+    assert got == [(joint, {"a", "b", "c", "d"}, frozenset({"X"}))]  # the lost pair explains nothing
+    kept = _measured(m, {"a": 1, "b": 1, "c": 1}, "combination")  # after the lost one in the list: still read
+    assert unexplained_flips(RULES, depends, DEFAULT_J, [lost, kept, joint], DEFAULT, {"X": 1}) == []

@@ -72,7 +72,7 @@ class Run:
     sized: list = field(default_factory=list)  # the condition's further replicates (Run, stage "condition sizing")
     screened: frozenset = frozenset()  # claims whose value here is a screen's (smaller) measurement, no replicate
     left: dict = field(default_factory=dict)  # claim -> replicates it needed, where the sizing budget left it smaller
-    off_point: str = ""  # why the configuration leaves the paper's stated operating point ("": it keeps it)
+    off_point: str = ""  # why the exploration reports it outside the paper's stated operating point ("": it is not)
 
     def changed(self, default: Mapping[str, Any]) -> dict:
         """The entries whose value differs from ``default``."""

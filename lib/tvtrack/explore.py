@@ -48,7 +48,7 @@ from .conditions import SUBSET_ROUND, Run, SizingBudget, point, projected_runs, 
 from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
-from .register import Register, leaves_operating_point
+from .register import Register
 from .verdicts import Rule, is_decisive
 
 __all__ = [
@@ -175,13 +175,9 @@ class Exploration:
         return out
 
     def _operating_point_lost(self, run: Run) -> dict:
-        """``{"operating_point_lost": why}`` where the exploration's ``operating_point`` said that the condition
-        (as the claims of its projection read it) cannot be kept at the paper's stated operating point though no
-        register value marks it; else ``{}``."""
-        off = {k: self.register[k].off_operating_point for k in self.register.names}
-        if not run.off_point or leaves_operating_point(run.changed(self.default), off):
-            return {}
-        return {"operating_point_lost": run.off_point}
+        """``{"operating_point_lost": why}`` where the exploration's ``operating_point`` reported the condition (as the
+        claims of its projection read it) outside the paper's stated operating point; else ``{}``."""
+        return {"operating_point_lost": run.off_point} if run.off_point else {}
 
     def table(self, claim_id: str) -> str:
         """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
@@ -430,9 +426,7 @@ def explore(
     have: dict = {}  # projected configuration -> the claims already measured there
 
     def conditions(cfgs: Sequence[Mapping], stage: str, only=None) -> list[Run]:
-        return _mark_off_point(
-            projected_runs(cfgs, stage, depends, default, seeds[0], have, only), register, operating_point
-        )
+        return _mark_off_point(projected_runs(cfgs, stage, depends, default, seeds[0], have, only), operating_point)
 
     alternatives = [{**default, k: v} for k in used for v in register[k].alternatives]
     singles = conditions(alternatives, "single") if one_at_a_time else []
@@ -485,19 +479,14 @@ def explore(
     return Exploration(register, rules, depends, runs, settings)
 
 
-def _mark_off_point(runs: list[Run], register: Register, operating_point: Callable | None) -> list[Run]:
-    """Mark each run whose configuration (one claim group's projection) leaves the paper's stated operating point
-    (``Run.off_point``): at a register value marked ``off_operating_point``, or where ``operating_point`` gives a
-    reason. Such a run is measured and sized like any condition and counted beside the labels; it explains no other
-    flip in the subset search (:func:`tvtrack.conditions.unexplained_flips`)."""
-    default = register.default()
-    marked = {k: register[k].off_operating_point for k in register.names}
-    for r in runs:
-        changed = r.changed(default)
-        if leaves_operating_point(changed, marked):
-            r.off_point = "a value the register marks off the paper's operating point"
-        elif operating_point is not None and changed:
-            r.off_point = str(operating_point(dict(r.config)) or "")
+def _mark_off_point(runs: list[Run], operating_point: Callable | None) -> list[Run]:
+    """Mark each run whose configuration (one claim group's projection) the exploration's ``operating_point`` reports
+    outside the paper's stated operating point (``Run.off_point``: its reason). Such a run is measured and sized like
+    any condition and counted beside the labels; it explains no other flip in the subset search
+    (:func:`tvtrack.conditions.unexplained_flips`). A register value marked ``off_operating_point`` needs no mark
+    here: every configuration that contains it leaves the operating point too, so it explains no flip at it."""
+    for r in runs if operating_point is not None else ():
+        r.off_point = str(operating_point(dict(r.config)) or "")
     return runs
 
 

@@ -196,7 +196,7 @@ def _replicate_text(rv: Sequence[str]) -> str:
 
 def _n_combinations(names: Sequence[str], entries: Mapping[str, Any]) -> int:
     """Configurations of ``names`` other than the default, at values that keep the paper's operating point."""
-    return math.prod(len(getattr(entries[k], "operating_values", entries[k].values)) for k in names if k in entries) - 1
+    return math.prod(len(entries[k].operating_values) for k in names if k in entries) - 1
 
 
 def label_parts(
@@ -299,7 +299,7 @@ def _condition_rows(rule, parts: Mapping[str, Rule], conditions, by_name: Mappin
     """One row per condition: its changes in words, its full configuration, its runs and its verdicts
     (:func:`_row`); a condition with fewer runs than the ``n`` replicates the default needed reads ``undecided`` per part,
     its own verdicts kept as ``undersized``."""
-    rows, off = [], {k: getattr(e, "off_operating_point", ()) for k, e in by_name.items()}
+    rows, off = [], {k: e.off_operating_point for k, e in by_name.items()}
     for c in conditions:
         extra = {
             "changed": dict(c["changed"]),
@@ -333,8 +333,7 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
     every = [{**c, "verdict": c["parts"][name]} for c in ctx["cond_rows"] if name in c["parts"]]
     rows = [c for c in every if not c.get("off_operating_point")]
     flips = attribute(j.verdict, rows, ctx["by_name"], rv[0] if rv else None, ctx["max_subset"])
-    ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]
-    ex_rows = [c for c in ex_rows if not c.get("off_operating_point")]
+    ex_rows = [{**c, "verdict": c["parts"][name]} for c in ctx["explored"] if name in c["parts"]]  # at the point
     unranked = ctx["unranked"] | _rule_selectors(prule)  # their values measure other quantities: not one scale
     reps = [_scalar(r["part_measured"].get(name)) for r in ctx["rep_rows"] if name in r["parts"]]
     singles = [c for c in ex_rows if c["kind"] == "single" and not set(c["changed"]) & unranked]
