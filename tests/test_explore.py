@@ -73,17 +73,12 @@ def test_a_joint_flip_the_exploration_cannot_keep_at_the_operating_point_is_coun
     assert part["off_operating_point"]["flip"] >= 1 and part["share"]["flip"] == 0
     assert all("no re-calibration reaches it" in w for w in part["where"] if "a = 2" in w and "b = 2" in w)
     assert seen and all(set(c) == {"a", "b", "c"} for c in seen)  # every entry, the others at their defaults
+    rows = ex.record("X")["conditions"]
+    assert {bool(c.get("operating_point_lost")) for c in rows} == {True, False}
+    assert all(("operating_point_lost" in c) == (c["changed"].get("a") == c["changed"].get("b") == 2) for c in rows)
     seen.clear()  # a claim that reads only a sees every configuration at b's default: nothing it reads leaves
-    ex_a = explore(
-        lambda config, seed: {"X": _mean(seed, 0.0)},
-        REG,
-        {"X": RULES["X"]},
-        seed=7,
-        replicates=3,
-        joint=40,
-        depends={"X": ["a"]},
-        operating_point=hook,
-    )
+    design = {"seed": 7, "replicates": 3, "joint": 40, "depends": {"X": ["a"]}, "operating_point": hook}
+    ex_a = explore(lambda config, seed: {"X": _mean(seed, 0.0)}, REG, {"X": RULES["X"]}, **design)
     assert "off_operating_point" not in ex_a.record("X")["parts"]["claim"]
     assert seen and all(c["b"] == 0 and c["c"] == "x" for c in seen)
 
