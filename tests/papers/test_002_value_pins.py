@@ -353,3 +353,16 @@ def test_the_study_gives_the_two_stage_the_propagated_designation_and_the_ulas_s
     for k in ("tol_px", "tol_loglik", "max_iter", "accelerate"):
         assert m_kw[k] == u_kw[k], k
     assert res["em"].shape == res["ula"].shape == (4, 2, 4)
+
+
+def test_every_claim_value_holds_each_part_its_rule_decides():
+    """A part's value is read by its name (``tvtrack.labels.part_pairs``), and a part whose name the value lacks is
+    dropped without a word: every part of every rule must be measured at the default, under its own name."""
+    from tvtrack.labels import part_pairs, rule_parts
+    from tvtrack.papers.p002_unified_location_em.claims import claim_rules
+
+    rules = claim_rules()
+    m = measured()  # measured here, not from the module's fixture: the test itself calls every claim's function
+    assert set(m) <= set(rules)
+    for cid, value in m.items():
+        assert set(part_pairs(rules[cid], value)) == set(rule_parts(rules[cid])), cid

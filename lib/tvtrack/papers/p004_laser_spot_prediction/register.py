@@ -26,7 +26,7 @@ ROWS = (
         2 / 3,
         (0.0, 2 / 3, 5 / 3),
         "slope alpha of the wander envelope f^-alpha between the corners; 2/3 is the shipped set, 0 puts 80 % of "
-        "the variance in the fastest (0.5 Hz) component, 5/3 (Kolmogorov-like) 69 % in the slowest",
+        "the variance in the fastest corner's component, 5/3 (Kolmogorov-like) 69 % in the slowest",
         "author",
     ),
     (
@@ -53,7 +53,7 @@ ROWS = (
         "or wind speed, so the wander time scale W0/V_perp is unknown within an order of magnitude. 'calibrated' "
         "re-calibrates every world (operating.bandwidth_for: the factor at which the paper's filter errs the entry "
         "'error in the band' one frame ahead on 15 paths; 3 in the default world, the root of "
-        "calibration.calibrate_bandwidth on the shipped paths, rounded). 1 (the world of the first three passes: the "
+        "calibration.calibrate_bandwidth on the shipped paths, rounded). 1 (corners 0.02, 0.1, 0.5 Hz: the "
         "filter errs 0.33 px) and 8 (fastest corner 4 Hz: 3.9 px) are the knob itself set by hand: worlds that "
         "leave the paper's operating point, kept to show what the claims do outside it",
         "author",
@@ -149,7 +149,7 @@ ROWS = (
         "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9]): "
         "chosen per fold from the notebook's lag_grid (1, 2, 4, 8, 16) on the training paths only (each network "
         "at its own optimum, as the filter's floor; each tuning model trained on a third of the paths and 500 "
-        "pairs, which if anything favours fewer lags), or fixed at 10 (the earlier fixed-lag reading)",
+        "pairs, which if anything favours fewer lags), or fixed at 10 (a fixed-lag reading)",
         "author",
     ),
     (
