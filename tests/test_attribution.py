@@ -170,6 +170,21 @@ def test_the_smallest_flipping_subset_is_a_combination_even_beside_a_larger_join
     ]
 
 
+def test_a_joint_flip_that_is_its_own_smallest_subset_comes_before_a_larger_combination():
+    """Pairs before triples whichever search found them: a two-world joint configuration no subset of which flips
+    is listed before a three-world combination found inside another joint configuration."""
+    entries = {**ENTRIES, "w3": Entry("w3", "regime", 0, (0, 1, 2), "test world")}
+    rows = [
+        _row("joint", r1=1, w1=2, w2=2, w3=2),
+        _row("combination", w1=2, w2=2, w3=2),  # names the four-entry joint
+        _row("joint", w1=1, w3=1),  # its own smallest subset
+    ]
+    assert _names(attribute(YES, rows, entries)) == [
+        ("joint", "world", {"w1": 1, "w3": 1}),
+        ("combination", "world", {"w1": 2, "w2": 2, "w3": 2}),
+    ]
+
+
 def test_only_the_smallest_of_the_flipping_subsets_is_named():
     rows = [
         _row("joint", r1=1, r2=1, r3=1, w1=1),

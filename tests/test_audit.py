@@ -43,7 +43,7 @@ def _recorded(*extra):
     singles = [_cond({"sigma": "smoothed"}, OUT), *(_cond(c, IN) for c in SINGLES_THAT_AGREE)]
     rb = label_parts(BAND, IN, reps, [*singles, *extra], ENTRIES, design={"min_share_design": 4}, needed=2)
     rb["register"] = [e.to_dict() for e in ENTRIES]
-    rb["design"] = {"replicates_needed": {"C9-1": 2}}
+    rb["design"] = {"replicates_needed": {"C9-1": 2}, "min_share_design": 4}
     return {"id": "C9-1", "robustness": rb}
 
 
@@ -355,3 +355,19 @@ def test_configurations_outside_the_operating_point_do_not_make_a_design_look_la
         needed=2,
     )
     assert not world_only_beside["provisional"] and world_only_beside["label"] == "unexplored"  # no world varied
+
+
+def test_a_robust_part_decided_in_fewer_configurations_than_a_share_needs_is_found():
+    """Robust over a design most of whose configurations stayed undecided says more than the runs checked: the
+    machinery labels such a part unexplored, and a record that calls it robust is found (the record's stated
+    number, else 32, never more than the design holds)."""
+    claim = _claim()
+    part = claim["robustness"]["parts"]["claim"]
+    part["label"], part["flips"] = "robust", []
+    part["share"].update(agree=3, flip=0, undecided=3, design=6, decided=3)
+    words = "C9-1: labelled robust, but only 3 of its 6 explored configurations decided it (a share needs {})"
+    assert words.format(4) in audit_claim(claim)
+    del claim["robustness"]["design"]["min_share_design"]
+    assert words.format(6) in audit_claim(claim)
+    part["share"].update(agree=6, undecided=0, decided=6)
+    assert not any("labelled robust, but" in p for p in audit_claim(claim))

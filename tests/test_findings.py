@@ -1285,3 +1285,13 @@ def test_a_joint_outside_the_operating_point_explains_no_change_of_the_whole_ver
     assert turns_on([claim]) == {} and part_only([claim]) == 1
     claim["robustness"]["conditions"][-1] = {k: v for k, v in lost.items() if "operating" not in k}
     assert set(turns_on([claim])) == {"world"} and part_only([claim]) == 0  # at the operating point it would count
+
+
+def test_a_range_whose_ends_print_alike_is_one_value():
+    """A setting the same on every path is one number, never a degenerate range ("0.032..0.032 frames")."""
+    from tvtrack.numbers import value_range
+
+    assert value_range(0.0321, 0.0324, ".2g") == "0.032"
+    assert value_range(0.031, 0.052, ".2g") == "0.031..0.052"
+    assert value_range(4, 4, "d") == "4" and value_range(2, 6, "d") == "2..6"
+    assert value_range(0.5, 0.5) == "0.5"

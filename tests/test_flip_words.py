@@ -110,3 +110,18 @@ def test_a_paragraph_counts_six_or_more_changes_in_digits():
     assert under_words(six_mixed, record) == f"6 changes together: {each} and u moved {SETTING_TAG}"
     six_readings = {"text": "six readings", "side": "reading", "changed": {f"a{i}": 1 for i in range(1, 7)}}
     assert under_words(six_readings, record) == "6 other readings of the paper's text together: six readings"
+
+
+def test_the_bracket_names_the_flip_of_fewest_changes_whichever_search_found_it():
+    """A joint configuration of two worlds that is its own smallest flipping subset is named before a combination of
+    three worlds found inside another joint configuration: the fewest changes first, not the search that found it
+    (a label said "three worlds together" where two worlds together flip it)."""
+    register = REGISTER + [{"name": k, "title": k, "kind": "regime", "phrases": {}} for k in ("w2", "w3")]
+    claim = _claim(
+        ("w, w2 and w3", "world", {"w": 1, "w2": 1, "w3": 1}),
+        ("w2 and w3", "world", {"w2": 2, "w3": 2}),
+        register=register,
+    )
+    named = claim["robustness"]["parts"]["claim"]["flips"]
+    named[0]["kind"], named[1]["kind"] = "combination", "joint"
+    assert label_basis(claim) == "two worlds together"

@@ -826,3 +826,31 @@ def test_configurations_off_the_operating_point_are_counted_only_beside_a_decide
     assert "off_operating_point" not in undecided  # nothing to flip: nothing counted beside
     plain = label_parts(band, inside, reps, conds[2:], [fast, other], design={"min_share_design": 1})
     assert "off_operating_point" not in plain["parts"]["claim"]
+
+
+def _world_design(n_agree: int, n_open: int) -> dict:
+    """A reproduced part over ``n_agree + n_open`` explored world values, ``n_open`` of which leave it undecided."""
+    values = tuple(range(n_agree + n_open + 1))
+    e = Entry("w", "regime", 0, values, "a world")
+    inside = Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")
+    straddles = Estimate(0.5, 0.5, -0.5, 1.5, 100, method="Student t")
+    conds = [
+        {"changed": {"w": v}, "kind": "single", "measured": inside if v <= n_agree else straddles, "runs": 3}
+        for v in values[1:]
+    ]
+    reps = [{"seed": s, "measured": inside} for s in (1, 2, 3)]
+    return label_parts(BAND, inside, reps, conds, [e], needed=3)
+
+
+def test_a_part_decided_in_fewer_configurations_than_a_share_needs_is_unexplored_not_robust():
+    """Robust says no explored change flips the part; where most of the design stayed undecided, the runs did not
+    check that: 31 decided of 40 explored is fewer than the 32 a share needs (unexplored, the number recorded),
+    32 decided is enough (robust), whatever the undecided ones beside them."""
+    thin = _world_design(31, 9)["parts"]["claim"]
+    assert (thin["share"]["agree"], thin["share"]["undecided"]) == (31, 9)
+    assert thin["label"] == "unexplored" and thin["share"]["decided_needed"] == 32
+    enough = _world_design(32, 30)
+    assert enough["parts"]["claim"]["label"] == enough["label"] == "robust" and not enough["provisional"]
+    assert "decided_needed" not in enough["parts"]["claim"]["share"]
+    every = _world_design(40, 0)["parts"]["claim"]
+    assert every["label"] == "robust" and every["share"]["agree"] == 40

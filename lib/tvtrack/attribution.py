@@ -133,10 +133,10 @@ def attribute(
     -------
     list of dict
         ``{"changed", "side", "kind", "verdict", "text", "runs"}``: single entries first (readings, settings,
-        worlds), then the smallest combinations that flip a joint configuration no single entry explains (pairs
-        before triples), then joint configurations no subset of which flips: ``side`` from their entries (mixed
-        sides: ``unattributed``), and ``unattributed`` with a ``note`` for one with more than ``max_subset + 1``
-        changed entries; last, every combination that flips the part alone and contains no flip named before it
+        worlds), then the smallest combinations that flip a joint configuration no single entry explains and the
+        joint configurations no subset of which flips (each its own smallest subset), pairs before triples:
+        ``side`` from their entries (mixed sides: ``unattributed``); after them ``unattributed`` with a ``note``,
+        a joint configuration of more than ``max_subset + 1`` changed entries; last, every combination that flips the part alone and contains no flip named before it
         (one searched for another part, or inside a joint configuration a single entry explains).
     """
     if not is_decisive(default):
@@ -184,7 +184,7 @@ def attribute(
             )
             later.append((len(j["changed"]) + 100, j, "joint", note))  # after every named combination
         else:
-            later.append((len(j["changed"]) + 100, j, "joint", ""))
+            later.append((len(j["changed"]), j, "joint", ""))  # its own smallest subset: beside those of its size
     for _, r, kind, note in sorted(later, key=lambda t: (t[0], order[flip_side(t[1]["changed"], entries)])):
         add(r, kind, "unattributed" if note else flip_side(r["changed"], entries), note)
     # a combination searched for another part (or inside a joint a single explains) that flips this part alone

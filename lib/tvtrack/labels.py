@@ -13,9 +13,10 @@ the whole rule otherwise) a label that noise cannot make (docs/verdicts.md):
 - ``limited``: the verdict holds under every explored reading and setting, and only isolated **worlds beyond the
   paper** (regime, model, operating point, scale) flip it: the claim does not extend there;
 - ``unexplored``: no entry of the world was varied, the design is too small to estimate a share
-  (``provisional``; e.g. the smoke profile), or no explored configuration decided the part (every one undecided:
-  nothing showed that it holds anywhere but at the default);
-- ``robust``: none of the above, over a design large enough for a share.
+  (``provisional``; e.g. the smoke profile), or fewer explored configurations decided the part than a share
+  needs (:data:`MIN_SHARE_DESIGN`, or every combination where there are fewer; the others undecided: nothing
+  showed that it holds there);
+- ``robust``: none of the above, over a design large enough for a share, and as many of its configurations decided.
 
 A condition flips a part only when its verdict, pooled over at least the replicates the default needed to decide,
 is decisive and differs from the default's pooled decisive verdict: an interval that straddles (``undecided``), or
@@ -75,7 +76,8 @@ __all__ = [
 ]
 
 #: Distinct explored configurations a claim needs for its share to be estimated to about +-14 points (95 %);
-#: fewer (and not every combination of its entries) makes the label provisional: never ``robust``.
+#: fewer (and not every combination of its entries) makes the label provisional: never ``robust``. A part is
+#: ``robust`` only where as many of them decided it (fewer decided: ``unexplored``).
 MIN_SHARE_DESIGN = 32
 
 #: Beyond this multiple of the runs, a projection says only that no practical run decides the part.
@@ -272,6 +274,7 @@ def label_parts(
         "max_replicates": design.get("max_replicates"),
         "max_subset": int(design.get("max_subset", MAX_SUBSET)),
         "unranked": _rule_selectors(rule),
+        "need_decided": 1 if deterministic else max(need, 1),
     }
     part_out, where = {}, []
     pairs = part_pairs(rule, measured)
@@ -355,8 +358,12 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         label = _decided_label(flips, ctx["open_world"])
     pinned = _distinct([r for r in rows if r["kind"] == "pinned"])
     part_share = _share(ex_rows, j.verdict, pinned) if label != NO_PART_LABEL else None
-    if label == "robust" and not (part_share or {}).get("agree"):
-        label = "unexplored"  # no explored configuration decided the part: nothing showed that it holds elsewhere
+    decided = int((part_share or {}).get("agree") or 0) + int((part_share or {}).get("flip") or 0)
+    if label == "robust" and decided < ctx["need_decided"]:
+        # too few explored configurations decided the part (as many as a share needs): most of the design is open
+        label = "unexplored"
+        if part_share is not None:
+            part_share["decided_needed"] = ctx["need_decided"]
     pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
     off = beside_operating_point(every, j.verdict) if is_decisive(j.verdict) else None
     if off and part_share:  # counted beside the share, as the pinned ones are

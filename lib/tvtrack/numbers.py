@@ -23,6 +23,7 @@ __all__ = [
     "vector_text",
     "format_measured",
     "unit_text",
+    "value_range",
 ]
 
 VECTOR_SHOWN = 4
@@ -43,6 +44,13 @@ def number(x: Any, digits: int = 4) -> str:
         text = f"{v:.{digits}g}"
         return f"{float(text):.0f}" if "e+" in text and abs(float(text)) < 1e6 else text
     return str(x)
+
+
+def value_range(low: Any, high: Any, spec: str = "g") -> str:
+    """The range of a value over paths or trials, ``"0.03..0.05"`` in the format ``spec``; a single value where both
+    ends print alike (``"0.032"``, never ``"0.032..0.032"``)."""
+    a, b = format(low, spec), format(high, spec)
+    return a if a == b else f"{a}..{b}"
 
 
 def finite(x: Any) -> bool:

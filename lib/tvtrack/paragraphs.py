@@ -464,7 +464,7 @@ def limitations(data: Mapping, profile: str = "paper") -> list[str]:
         one = len(unexplored) == 1
         out.append(
             f"Nothing explored shows how far {_join(unexplored)} {'extends' if one else 'extend'}: no world beyond "
-            f"the paper was varied for {'it' if one else 'them'}, or nothing explored was decided (the claim's "
+            f"the paper was varied for {'it' if one else 'them'}, or too little of what was explored was decided (the claim's "
             "sentence says which)."
         )
     undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]

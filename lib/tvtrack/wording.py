@@ -66,7 +66,7 @@ LABEL_WORDS = {
     "depends": "another reading of an ambiguous passage of the paper, or a setting of its experiment that the paper "
     "never printed, changes the verdict, or a part's (alone, or only with a world beyond it)",
     "unstable": "independent replicates of the same run disagree decisively",
-    "unexplored": "nothing explored shows how far it extends (no world varied, or none of it decided)",
+    "unexplored": "nothing explored shows how far it extends (no world varied, or too little of it decided)",
     "provisional": "too few configurations explored to label the verdict (a smoke-size run, or a claim explored "
     "over few entries): never robust",
     "—": "no label: the claim is not checkable, or no part of it is decided (nothing to flip)",
@@ -228,12 +228,14 @@ _SIDE_RANK = {"reading": 0, "setting": 1, "unattributed": 2, "world": 3}  # what
 
 
 def flip_strength(flip: Mapping) -> tuple:
-    """Sort key of a flip, strongest first: its side as the label reads it (a reading before a world), then a
-    single entry before a combination, then the fewest entries changed."""
+    """Sort key of a flip, strongest first: its side as the label reads it (a reading before a world), then the
+    fewest entries changed (a joint configuration that is its own smallest flipping subset counts its entries,
+    like a combination found inside one), then how it was found (a single entry, a searched combination, a pinned
+    or a joint configuration)."""
     return (
         _SIDE_RANK.get(flip.get("side", "reading"), 4),
-        _KIND_ORDER.get(flip.get("kind"), 4),
         len(flip.get("changed") or {}),
+        _KIND_ORDER.get(flip.get("kind"), 4),
     )
 
 
@@ -490,7 +492,7 @@ def _flip_lead(side: str, n: int) -> str:
 
 def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     """Why a claim is ``unexplored``: nothing was varied for it, none of its explored configurations was decided,
-    or no world beyond the paper was among them (its first part so labelled says which)."""
+    fewer were decided than a share needs, or no world beyond the paper was among them (its first part so labelled says which)."""
     if shown_label(claim) != "unexplored" or claim.get("verdict") == "undecided":  # undecided: its runs come first
         return ""
     part = next((p for p in parts.values() if isinstance(p, Mapping) and p.get("label") == "unexplored"), {})
@@ -501,6 +503,13 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     if not share.get("agree"):
         which = "the one change" if design == 1 else f"each of the {design} changes"
         return f"Beyond the paper's default, {which} explored for it left it undecided, so nothing shows how far it extends."
+    if share.get("decided_needed"):
+        decided = int(share.get("agree") or 0) + int(share.get("flip") or 0)
+        return (
+            f"Beyond the paper's default, only {decided} of the {design} changes explored for it decided it (none "
+            f"the other way) and {int(share.get('undecided') or 0)} left it undecided; {share['decided_needed']} "
+            "decided ones are needed to say how far it extends, so nothing shows that yet."
+        )
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 
 

@@ -22,7 +22,8 @@ that says more than its own record shows is found in the records a reader sees:
   configuration that flips the part contains a named flip (a configuration of one run flips
   only where it also differs from the default's run on the same random numbers);
 * **label**: ``robust`` and ``unexplored`` parts have no flip, a ``limited`` part only flips on the world side,
-  a ``depends`` part has a flip by a reading, a setting or an unattributed mix.
+  a ``depends`` part has a flip by a reading, a setting or an unattributed mix; a ``robust`` part with random draws
+  was decided in as many of its explored configurations as a share needs (32, or all of a smaller design).
 
 ``tvtrack report`` prints the count of problems, and REPRODUCTION.md lists each one.
 """
@@ -37,6 +38,9 @@ from ..register import leaves_operating_point, side_of
 __all__ = ["audit_claim", "audit_runs", "audit_markdown"]
 
 _DECISIVE = ("reproduced", "not reproduced", "partly")
+#: Explored configurations a share needs (docs/verdicts.md; a record's ``design["min_share_design"]`` where it
+#: sets another): a robust part must be decided in this many.
+_SHARE_DESIGN = 32
 
 
 def _items(changed: Mapping[str, Any]) -> set:
@@ -172,6 +176,14 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
     label = part.get("label")
     if label in ("robust", "unexplored") and flips:
         out.append(f"{where}: labelled {label} with {len(flips)} flip(s)")
+    share = part.get("share") or {}
+    decided, design = int(share.get("agree") or 0) + int(share.get("flip") or 0), int(share.get("design") or 0)
+    need = min(int((rb.get("design") or {}).get("min_share_design", _SHARE_DESIGN)), design)
+    if label == "robust" and not rb.get("deterministic") and decided < need:
+        out.append(
+            f"{where}: labelled robust, but only {decided} of its {design} explored configurations decided it "
+            f"(a share needs {need})"
+        )
     if label == "limited" and (not flips or sides != {"world"}):
         out.append(f"{where}: labelled limited, but its flips are on the sides {sorted(sides) or 'none'}")
     if label == "depends" and not sides & {"reading", "setting", "unattributed"}:

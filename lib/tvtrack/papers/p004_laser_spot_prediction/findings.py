@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...estimate import Estimate
+from ...numbers import value_range
 from ...run_words import share_counts
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
@@ -112,11 +113,11 @@ def comparison_table(run, rms: dict, ratios: dict) -> str:
         setting = (
             "-"
             if c is None or name.startswith("CA")
-            else f"tau {np.min(c[:, 0]):.2g}..{np.max(c[:, 0]):.2g} frames"
+            else f"tau {value_range(np.min(c[:, 0]), np.max(c[:, 0]), '.2g')} frames"
             if name == SINGER
-            else f"theta {np.min(c):g}..{np.max(c):g}"
+            else f"theta {value_range(np.min(c), np.max(c))}"
             if name == FADING
-            else f"{'N_f' if name in (PAPER, VARIANT) else 'L'} {int(np.min(c))}..{int(np.max(c))}"
+            else f"{'N_f' if name in (PAPER, VARIANT) else 'L'} {value_range(int(np.min(c)), int(np.max(c)), 'd')}"
         )
         r = ratios.get(name)
         rows.append(f"| {name} | {setting} | {fmt(e, '.3f')} | {fmt(r) if r is not None else '-'} |")
@@ -159,7 +160,8 @@ def model_order_sentence(summary: dict) -> str:
         f"Model order (shipped paths, default reading): the best first-order predictor ({b1}, RMS {rms[b1]:.3f} px) "
         f"against the best second-order one ({b2}, RMS {rms[b2]:.3f} px): MSE ratio second/first {fmt(r)}, so "
         f"{winner} wins. The acceleration's correlation time (the Singer filter's maximum-likelihood time constant) "
-        f"is {np.min(tau):.2g}..{np.max(tau):.2g} frames ({np.min(tau) * ms:.2g}..{np.max(tau) * ms:.2g} ms){edge}, "
+        f"is {value_range(np.min(tau), np.max(tau), '.2g')} frames "
+        f"({value_range(np.min(tau) * ms, np.max(tau) * ms, '.2g')} ms){edge}, "
         f"{memory} the horizon: the acceleration the quadratic extrapolates has "
         + (
             "decorrelated before the prediction lands, so the acceleration term adds noise more than it removes bias."
