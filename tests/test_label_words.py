@@ -249,3 +249,29 @@ def test_an_undecided_claim_still_undecided_under_a_flip_without_part_verdicts_i
         )
     claim["robustness"]["conditions"] = [{"changed": {"k": 1}, "verdict": "undecided"}]
     assert _flip_to(flip, claim, 2) == "the claim stays undecided, but its part one is not reproduced"
+
+
+def test_the_papers_paragraph_names_the_flip_the_claims_summary_names():
+    """A claim that fails in both parts: one reading alone makes part "b" hold (the claim partly holds), two readings
+    together make part "a" hold. The summary names the single reading (the stronger flip); the paper's paragraph
+    said "it holds in part under two other readings together" (the main part's own flip), so a reader met two
+    different flips for one claim. Both now name the single reading."""
+    from tvtrack.paragraphs import paper_paragraph
+    from tvtrack.wording import claim_summary, named_flips
+
+    r1 = Entry("r1", "reading", 0, (0, 1), "a reading", phrases={1: "r1 read the other way"})
+    r2 = Entry("r2", "reading", 0, (0, 1), "a reading", phrases={1: "r2 read the other way"})
+    conds = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": FAILS, "b": HOLDS}},
+        {"changed": {"r2": 1}, "kind": "single", "measured": {"a": FAILS, "b": FAILS}},
+        {"changed": {"r1": 1, "r2": 1}, "kind": "joint", "measured": {"a": HOLDS, "b": FAILS}},
+    ]
+    claim = _claim("C9-5", {"a": FAILS, "b": FAILS}, conds, [r1, r2])
+    claim["statement"] = "Both parts hold."
+    assert claim["verdict"] == "not reproduced"
+    first = named_flips(claim)[0]
+    assert first["changed"] == {"r1": 1} and first["part"] == "b"
+    assert "r1 read the other way" in claim_summary(claim, chars=0)
+    paragraph, _ = paper_paragraph({"claims": [claim]})
+    assert "it holds in part under a reading of the paper's text: r1 read the other way." in paragraph, paragraph
+    assert "two other readings" not in paragraph

@@ -20,6 +20,7 @@ from .wording import (
     at_profile,
     claim_flips,
     claim_verdict_at,
+    named_flips,
     differs_whatever_is_open,
     moves_verdict,
     shown_label,
@@ -401,8 +402,9 @@ def _statement(c: Mapping) -> str:
 
 def _why_not(c: Mapping) -> str:
     """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
-    direction) and, where one is named, the strongest change under which it would (the whole claim's verdict
-    there, and whether only runs that lost lock make it)."""
+    direction) and, where one is named, the change under which it would: the flip the claim's summary names
+    (:func:`tvtrack.wording.named_flips`), with the whole claim's verdict there and whether only runs that lost lock
+    make it."""
     from .value_words import rule_in_force
     from .wording import main_part
 
@@ -413,7 +415,7 @@ def _why_not(c: Mapping) -> str:
     text = value_clause(rule, measured, c.get("paper_value"))
     from .wording import claim_verdict_at
 
-    flips = [f for f in claim_flips(c, name) or claim_flips(c) if f.get("verdict") == "reproduced"]
+    flips = [f for f in named_flips(c) if f.get("verdict") == "reproduced"]
     if flips:
         f = flips[0]
         whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's

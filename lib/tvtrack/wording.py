@@ -39,6 +39,7 @@ __all__ = [
     "side_words",
     "entry_side",
     "claim_flips",
+    "named_flips",
     "claim_verdict_at",
     "moves_verdict",
     "differs_whatever_is_open",
@@ -290,6 +291,20 @@ def summary_strength(claim: Mapping, flip: Mapping) -> tuple:
     point before one that leaves it (:func:`flip_leaves_operating_point`); then :func:`flip_strength`."""
     group = {"reading": 0, "setting": 0, "unattributed": 1, "world": 2}.get(flip.get("side", "reading"), 3)
     return (group, not moves_verdict(claim, flip), flip_leaves_operating_point(claim, flip), *flip_strength(flip))
+
+
+def named_flips(claim: Mapping) -> list[dict]:
+    """The flips a claim's sentences name, strongest first (:func:`summary_strength`): its main part's
+    (:func:`main_part`), or every part's where another part has a stronger one (the one the label rests on). The
+    first is the flip the summary, the table and the paper's paragraph all name."""
+    flips, every = claim_flips(claim, main_part(claim)), claim_flips(claim)
+
+    def strength(f: Mapping) -> tuple:
+        return summary_strength(claim, f)
+
+    if not flips or (every and min(map(strength, every)) < min(map(strength, flips))):
+        flips = every  # a stronger flip of another part is the one the label rests on
+    return sorted(flips, key=strength)
 
 
 def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
@@ -553,19 +568,12 @@ def claim_summary(claim: Mapping, chars: int = SUMMARY_CHARS) -> str:
     if shown_label(claim) == PROVISIONAL:
         aside.append("too few configurations to label")
     head = _HEAD.get(verdict, _cap(verdict)) + (f" ({'; '.join(aside)})" if aside else "")
-    flips, every = claim_flips(claim, name), claim_flips(claim)
-
-    def strength(f: Mapping) -> tuple:
-        return summary_strength(claim, f)
-
-    if not flips or (every and min(map(strength, every)) < min(map(strength, flips))):
-        flips = every  # a stronger flip of another part is the one the label rests on
-    flips = sorted(flips, key=strength)
+    flips = named_flips(claim)
     required = [f"{head}: {value_clause(rule, measured, claim.get('paper_value'))}."]
     required += [plain_text(str(claim["caveat"])).rstrip(".") + "."] if claim.get("caveat") else []
     required += [s for s in (lock_sentence(claim, part),) if s]  # the default's own lost runs, before any flip
     first = _flip_sentence(flips[0], claim, len(parts)) if flips else ""
-    common = _common_sentence(every, claim.get("robustness") or {})  # "it": the claim, every part's flips
+    common = _common_sentence(claim_flips(claim), claim.get("robustness") or {})  # "it": the claim, every part's flips
     required += [s for s in (first, common, _unexplored_sentence(claim, parts)) if s]
     if verdict == "undecided":
         slow_name, slow = slowest_part(parts, part)

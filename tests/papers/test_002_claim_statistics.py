@@ -170,3 +170,74 @@ def test_the_frame_dependence_contrast_is_the_hi_groups_mean_dependence_minus_th
         assert (got.ci_low, got.ci_high) == pytest.approx((ref.ci_low, ref.ci_high), rel=1e-9)
     else:  # the relative one states its measured coverage, widening the same bootstrap's interval if anything
         assert got.ci_low <= ref.ci_low + 1e-12 and got.ci_high >= ref.ci_high - 1e-12
+
+
+def _default_points():
+    from tvtrack.papers.p002_unified_location_em import study
+    from tvtrack.papers.p002_unified_location_em.register import REGISTER
+
+    config = REGISTER.default()
+    g, _ = study._points(config, study.Scale())
+    return config, g, list(study.Scale().separations)
+
+
+@pytest.mark.parametrize(
+    "cid, letters, narrower",
+    [
+        ("C002-7", "ue", True),
+        ("C002-8", "ue", True),
+        ("C002-11", "ue", False),  # its points hold the ULA and the marks only at the default
+        ("C002-13", "p", True),
+        ("C002-14", "pq", True),
+        ("C002-2", None, False),
+    ],
+)
+def test_a_claim_asked_alone_runs_the_algorithms_it_reads_and_no_other(cid, letters, narrower):
+    """The algorithms a measurement of one claim runs at each of its points: the letters the claim reads where it
+    reads fewer than the point holds (C002-7 and -8 the ULA and the iterative marks, C002-13 plain EM, C002-14 plain
+    EM and its marks, C002-11 the ULA with the marks), else every letter of the point; a point none of whose letters
+    it reads is left out, and every point it reads is there."""
+    config, g, D = _default_points()
+    points = cv.NEEDS[cid](config, g, D)
+    got = cv.needed_letters(config, g, D, claims=[cid])
+    want = {p: "".join(a for a in p.algs if letters is None or a in letters) for p in points}
+    assert got == {p: s for p, s in want.items() if s}
+    assert list(got) == list(dict.fromkeys(p for p in points if want[p]))
+    assert all(got.values()) and got  # the claim reads something at every point kept
+    assert any(set(p.algs) - set(letters or p.algs) for p in points) == narrower  # points hold more than it reads
+
+
+def test_every_claim_asked_together_runs_the_union_of_their_algorithms_in_each_points_order():
+    config, g, D = _default_points()
+    every = cv.needed_letters(config, g, D)
+    alone = [cv.needed_letters(config, g, D, claims=[c]) for c in cv.NEEDS]
+    union: dict = {}
+    for one in alone:
+        for p, s in one.items():
+            union.setdefault(p, set()).update(s)
+    assert set(every) == set(union) and every == {p: "".join(a for a in p.algs if a in union[p]) for p in every}
+    assert list(every) == cv.needed_points(config, g, D)  # every point read, in the claims' order
+    pair = cv.needed_letters(config, g, D, claims={"C002-13", "C002-14"})
+    assert set(pair.values()) == {"pq"}  # C002-13's p within C002-14's pq at the same points
+
+
+def test_c002_11_under_the_map_ula_reads_the_marks_and_the_map_twin_instead_of_the_ula():
+    config, g, D = _default_points()
+    assert cv._c11_letters(config) == "ue"
+    assert cv._c11_letters({**config, "ULA": "MAP (designation prior)"}) == "emk"
+    assert cv._c11_letters({**config, "velocity knowledge": "designated"}) == "emk"
+
+
+def test_the_claim_context_gain_is_paired_and_not_rooted_unless_asked():
+    """``_Ctx.gain``'s defaults: a paired ratio of the statistic the configuration reads, not its square root."""
+    rng = np.random.default_rng(11)
+    den = rng.standard_normal((40, 2))
+    num = 1.4 * rng.standard_normal((40, 2)) + 0.1
+    ctx = cv._Ctx({"epoch": "first", "statistic": "MSE"}, {}, None, np.random.default_rng(2), 200, [1.0])
+    got = ctx.gain(num, den)
+    ref = variance_ratio_ci(num, den, np.random.default_rng(2), 200, paired=True, spread=ctx.sp, sqrt=False)
+    assert ctx.sp == "mse" and (got.value, got.ci_low, got.ci_high) == (ref.value, ref.ci_low, ref.ci_high)
+    ctx = cv._Ctx({"epoch": "first", "statistic": "MSE"}, {}, None, np.random.default_rng(2), 200, [1.0])
+    rooted = ctx.gain(num, den, paired=False, sd=True)
+    ref = variance_ratio_ci(num, den, np.random.default_rng(2), 200, paired=False, spread="mse", sqrt=True)
+    assert (rooted.value, rooted.ci_low, rooted.ci_high) == (ref.value, ref.ci_low, ref.ci_high)
