@@ -125,3 +125,14 @@ def test_the_bracket_names_the_flip_of_fewest_changes_whichever_search_found_it(
     named = claim["robustness"]["parts"]["claim"]["flips"]
     named[0]["kind"], named[1]["kind"] = "combination", "joint"
     assert label_basis(claim) == "two worlds together"
+
+
+def test_several_changes_of_one_kind_are_counted_in_the_words_that_introduce_them():
+    """Two worlds together are never introduced as "a world beyond the paper", nor two settings as one."""
+    register = REGISTER + [{"name": "w2", "title": "w2", "kind": "regime", "phrases": {}}]
+    worlds = {"text": "w and w2", "side": "world", "changed": {"w": 1, "w2": 1}}
+    assert under_words(worlds, {"register": register}) == "two worlds beyond the paper together: w and w2"
+    settings = {"text": "s and s2", "side": "setting", "changed": {"s": 1, "s2": 1}}
+    assert under_words(settings, {"register": REGISTER}) == ("two settings the paper never printed, together: s and s2")
+    one = {"text": "w", "side": "world", "changed": {"w": 1}}
+    assert under_words(one, {"register": REGISTER}) == "a world beyond the paper: w"

@@ -275,3 +275,24 @@ def test_the_papers_paragraph_names_the_flip_the_claims_summary_names():
     paragraph, _ = paper_paragraph({"claims": [claim]})
     assert "it holds in part under a reading of the paper's text: r1 read the other way." in paragraph, paragraph
     assert "two other readings" not in paragraph
+
+
+def test_the_papers_paragraph_says_what_would_turn_a_claim_that_holds():
+    """A claim that holds names its flip in the paper's paragraph as one that fails does (it used to be named for
+    the failing claims only), with the whole claim's verdict there and how many other changes flip it."""
+    from tvtrack.paragraphs import paper_paragraph
+
+    r1 = Entry("r1", "reading", 0, (0, 1), "a reading", phrases={1: "r1 read the other way"})
+    w1 = Entry("w1", "regime", 0, (0, 1), "a world", phrases={1: "a louder world"})
+    conds = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": FAILS}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": FAILS}},
+    ]
+    held = _claim("C9-6", {"a": HOLDS}, conds, [r1, w1])
+    quiet = _claim("C9-7", {"a": HOLDS}, [{"changed": {"w1": 1}, "kind": "single", "measured": {"a": HOLDS}}], [w1])
+    paragraph, _ = paper_paragraph({"claims": [held, quiet]})
+    assert (
+        "C9-6 does not hold under a reading of the paper's text: r1 read the other way (1 other change flips it too)."
+        in paragraph
+    ), paragraph
+    assert "C9-7 does not hold" not in paragraph  # nothing explored flips it

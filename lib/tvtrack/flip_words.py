@@ -109,14 +109,19 @@ def mixed_kinds(flip: Mapping, record: Mapping) -> str:
 
 
 def under_words(flip: Mapping, record: Mapping) -> str:
-    """What a named flip changes, introduced by its kind: one kind for one change or several of one kind, each
-    change's own kind for a mix (a reading and a setting together are not filed under the setting)."""
+    """What a named flip changes, introduced by its kind: one kind for one change, the count and the kind for several
+    of one kind ("two worlds beyond the paper together: ..."), each change's own kind for a mix (a reading and a
+    setting together are not filed under the setting)."""
     n = len(flip.get("changed") or {})
     mixed = mixed_kinds(flip, record)
     if mixed:
         return f"{_COUNT.get(n, n)} changes together: {mixed}"
     if n > 1 and flip.get("side") == "reading":
         return f"{_COUNT.get(n, n)} other readings of the paper's text together: {flip['text']}"
+    if n > 1 and flip.get("side") == "world":
+        return f"{_COUNT.get(n, n)} worlds beyond the paper together: {flip['text']}"
+    if n > 1 and flip.get("side") == "setting":
+        return f"{_COUNT.get(n, n)} settings the paper never printed, together: {flip['text']}"
     return f"{side_words().get(flip['side'], 'another change')}: {flip['text']}"
 
 

@@ -430,6 +430,23 @@ def _why_not(c: Mapping) -> str:
     return text
 
 
+def _turns_on(c: Mapping) -> str:
+    """What would change a claim that holds (or holds in part), in one sentence: the flip its summary names
+    (:func:`tvtrack.wording.named_flips`) and the whole claim's verdict there; ``""`` where nothing explored flips
+    it."""
+    flips = named_flips(c)
+    if not flips:
+        return ""
+    f = flips[0]
+    whole = claim_verdict_at(c, f.get("changed") or {}) or f.get("verdict")
+    how = {"reproduced": "holds", "partly": "holds only in part", "not reproduced": "does not hold"}.get(whole)
+    if not how or whole == c.get("verdict"):
+        return ""
+    more = len(flips) - 1
+    others = f" ({_plural(more, 'other change')} flip{'s' if more == 1 else ''} it too)" if more else ""
+    return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{others}."
+
+
 def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     """What a reader should know before trusting a paper's verdicts, one sentence each, from its records: the
     limitations the notebook wrote down (``results.json`` ``limitations``), the simulated worlds calibrated to
@@ -541,8 +558,8 @@ def _counted_over(counts: list) -> str:
 
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:
     """One paper in plain words: ``(paragraph, limitations)``. The paragraph says how many claims the paper makes
-    and how many can be checked, which hold (and how many of those robustly), which hold in part, which do not
-    and why (the paper's words, then the notebook's reason or the value against the paper's), and which the runs
+    and how many can be checked, which hold (and how many of those robustly), which hold in part, what would change
+    each of those (:func:`_turns_on`), which do not and why (the paper's words, then the notebook's reason or the value against the paper's), and which the runs
     could not decide; the limitations are :func:`limitations`."""
     claims = at_profile(list(data.get("claims") or []), profile)
     if not claims:
@@ -563,6 +580,7 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
         text.append(
             f"{_n(len(by['partly']), 'claim holds', 'claims hold')} in part ({_join([c['id'] for c in by['partly']])})."
         )
+    text += [s for s in map(_turns_on, by["reproduced"] + by["partly"]) if s]
     for c in by["not reproduced"]:
         text.append(f"It does not hold that {_lower(_statement(c))} ({c['id']}): {_why_not(c)}.")
     undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
