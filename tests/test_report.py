@@ -510,7 +510,9 @@ def test_the_report_opens_with_the_paragraph_the_glossary_and_the_papers(explore
     # differs, so it is never said to stay under every change explored
     assert "Labels (how sure, and why): **robust**: no explored reading" in head and "**provisional**:" in head
     assert "\n\nWhat counts as a flip: a change (another reading, setting or world) flips a verdict only when" in head
-    assert "it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided.\n" in head
+    assert "it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided. " in head
+    # the register, which the claims' sentences name, is defined on the first screen
+    assert "The changes tried are each notebook's register: its list of what the paper left open" in head
     assert "| 001\\_explored | 4 | 1 | 0 | 1 | 1 | 1 | 1 limited, 1 unexplored, 1 depends |" in head
     assert (
         "- **001 C001-3** (not reproduced, depends: a reading; a world too)" in text

@@ -75,7 +75,9 @@ LABEL_WORDS = {
 #: What counts as a flip (:mod:`tvtrack.labels`: a condition sized to the default's runs, decisive the other way).
 FLIP_WORDS = (
     "a change (another reading, setting or world) flips a verdict only when, run at least as often as the default "
-    "needed to decide, it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided"
+    "needed to decide, it decides the other way; an interval across a band edge, or fewer runs, leaves it undecided. "
+    "The changes tried are each notebook's register: its list of what the paper left open (readings of its text, "
+    "settings it never printed) or never tried (worlds beyond it), each entry with the value the default run uses"
 )
 FLIP_SHORT = "decisive the other way, from no fewer runs than the default needed"
 """:data:`FLIP_WORDS` in one line (the site's glossary, with the whole as its tooltip)."""
