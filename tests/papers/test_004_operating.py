@@ -295,5 +295,9 @@ def test_the_notebook_counts_the_joint_worlds_left_outside_the_band(monkeypatch)
         ]
     )
     text = findings.operating_sentence(build(), ex)
-    assert "Of the 2 joint worlds the exploration drew, 1 still put the paper's filter outside its 1-2 px" in text
+    assert (
+        "The exploration's configurations hold 2 distinct joint worlds (two or more of these worlds changed together: "
+        "2 among its joint samples, 1 among the sub-combinations its subset search measured inside flipping ones; one "
+        "met in two stages is counted in each), and 1 of them still put the paper's filter outside its 1-2 px"
+    ) in text
     assert len(seen) == 2

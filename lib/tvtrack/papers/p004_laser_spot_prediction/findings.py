@@ -387,16 +387,24 @@ def _joint_worlds_sentence(exploration) -> str:
     from .operating import CALIBRATED, JOINT_TOL, table_factors
     from .study import resolve_operating_point
 
-    worlds = {}
+    worlds, stages = {}, {}
     for r in exploration.runs:
         _, world, rows = table_factors(r.config)
         if r.stage != "replicate" and rows >= 2 and r.config.get("bandwidth", CALIBRATED) == CALIBRATED:
             worlds.setdefault(world, r.config)
+            stages.setdefault(world, set()).add(r.stage)
     lost = sum(bool(resolve_operating_point(c)) for c in worlds.values())
+    found = {s: sum(s in v for v in stages.values()) for s in ("joint", "combination", "pinned")}
+    where = [
+        f"{found['joint']} among its joint samples",
+        f"{found['combination']} among the sub-combinations its subset search measured inside flipping ones",
+    ] + ([f"{found['pinned']} among the pinned known flips"] if found["pinned"] else [])
     return (
-        f"Of the {len(worlds)} joint worlds the exploration drew, {lost} still put the paper's filter outside its "
-        f"1-2 px once corrected (by more than the correction's {100 * JOINT_TOL:g} % tolerance, at the measured "
-        "bandwidth nearest the band position); their configurations are counted beside the labels too."
+        f"The exploration's configurations hold {len(worlds)} distinct joint worlds (two or more of these worlds "
+        f"changed together: {', '.join(where)}; one met in two stages is counted in each), and {lost} of them "
+        f"still put the paper's filter outside its 1-2 px once corrected (by more than the correction's "
+        f"{100 * JOINT_TOL:g} % tolerance, at the measured bandwidth nearest the band position); their "
+        "configurations are counted beside the labels too."
     )
 
 
