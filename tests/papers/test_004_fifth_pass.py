@@ -104,9 +104,34 @@ def test_c004_3_note_opens_with_the_result_and_the_model_order_finding():
     assert "shorter than the horizon" in text
     flipped = fd.c004_3_note(verdicts, ratios, {"ratio_2_over_1": est(0.8), "tau_over_horizon": 3.0})
     assert "a quadratic (second order) predicts best" in flipped and "longer than the horizon" in flipped
+    assert "one predictor twice" not in text
     cell = _claim_cell("C004-3")
     flat = cell.replace(" ", "").replace("\n", "")
     assert flat.startswith("c3=fd.c004_3_note(") and "note=c3+" in flat
+
+
+def test_c004_3_note_says_when_two_baselines_are_one_predictor():
+    """The record's 2-point finite difference and degree-1 regression had the same ratio, 0.6168 [0.6145, 0.6192]
+    (the regression's tuned window at 2 samples): the note says their two parts are one predictor."""
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+
+    same = Estimate(0.6168, 0.001, 0.6145, 0.6192, 15, method="t")
+    ratios = {
+        "finite differences, 2 points": same,
+        "linear regression deg 1": Estimate(0.6168, 0.001, 0.6145, 0.6192, 15, method="t"),
+    }
+    ratios["cubic spline"] = Estimate(3.5, 0.01, 3.46, 3.55, 15, method="t")
+    verdicts = dict.fromkeys(ratios, "not reproduced") | {"cubic spline": "reproduced"}
+    order = {"ratio_2_over_1": Estimate(1.43, 0.01, 1.41, 1.45, 15, method="t"), "tau_over_horizon": 0.01}
+    text = fd.c004_3_note(verdicts, ratios, order)
+    assert text.endswith(
+        " finite differences, 2 points and linear regression deg 1 make the same predictions here (the same MSE "
+        "ratio and interval: a regression whose window, tuned by cross-validation, is its fewest samples is the "
+        "finite difference of as many points), so their parts count one predictor twice."
+    )
+    ratios["linear regression deg 1"] = Estimate(0.6168, 0.001, 0.6145, 0.6193, 15, method="t")
+    assert "one predictor twice" not in fd.c004_3_note(verdicts, ratios, order)  # another interval: two predictors
 
 
 def test_c004_2_note_says_what_the_calibration_makes_of_it():

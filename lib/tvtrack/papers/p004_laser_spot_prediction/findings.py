@@ -466,6 +466,26 @@ def c004_3_note(verdicts: dict, ratios: dict, order: dict) -> str:
         f"Model order: {winner} predicts best (MSE of the best quadratic over the best line {fmt(r)}): the "
         f"acceleration's fitted correlation time is {memory} than the horizon, so extrapolating it "
         + ("adds noise more than it removes bias." if memory == "shorter" else "carries information.")
+        + _one_predictor(ratios)
+    )
+
+
+def _one_predictor(ratios: dict) -> str:
+    """A sentence for baselines whose paired ratios are identical (the same value and interval: the same errors on
+    every path), so that a reader does not count their parts as two findings; ``""`` where there are none."""
+
+    def key(e) -> tuple:
+        return tuple(round(float(x), 12) for x in (e.value, e.ci_low, e.ci_high))
+
+    groups: dict = {}
+    for b, e in ratios.items():
+        groups.setdefault(key(e), []).append(b)
+    same = [g for g in groups.values() if len(g) > 1]
+    return "".join(
+        f" {' and '.join(g)} make the same predictions here (the same MSE ratio and interval: a regression whose "
+        "window, tuned by cross-validation, is its fewest samples is the finite difference of as many points), so "
+        "their parts count one predictor twice."
+        for g in same
     )
 
 
