@@ -649,7 +649,7 @@ def test_a_flip_carried_by_runs_that_lost_lock_says_so_in_the_sentence_and_the_l
 
     from record_fixtures import DEPENDS
     from tvtrack.lost_labels import mark_lost_runs
-    from tvtrack.paragraphs import _why_not
+    from tvtrack.flip_words import why_not_clause as _why_not
     from tvtrack.results import paper_paragraph
 
     def mark_lost_runs_copy(claim: dict, row: dict) -> dict:
@@ -929,7 +929,7 @@ def test_a_papers_paragraph_says_the_whole_claims_verdict_under_the_flip_and_the
     import copy
 
     from record_fixtures import DEPENDS
-    from tvtrack.paragraphs import _why_not
+    from tvtrack.flip_words import why_not_clause as _why_not
 
     claim = copy.deepcopy(DEPENDS)
     reading = {"paper_sigma": "raw_increments"}

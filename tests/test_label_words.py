@@ -292,7 +292,60 @@ def test_the_papers_paragraph_says_what_would_turn_a_claim_that_holds():
     quiet = _claim("C9-7", {"a": HOLDS}, [{"changed": {"w1": 1}, "kind": "single", "measured": {"a": HOLDS}}], [w1])
     paragraph, _ = paper_paragraph({"claims": [held, quiet]})
     assert (
-        "C9-6 does not hold under a reading of the paper's text: r1 read the other way (1 other change flips it too)."
-        in paragraph
+        "C9-6 does not hold under a reading of the paper's text: r1 read the other way (1 other explored change "
+        "changes its verdict too)." in paragraph
     ), paragraph
     assert "C9-7 does not hold" not in paragraph  # nothing explored flips it
+
+
+def test_the_papers_paragraph_names_a_change_that_turns_the_whole_claim_and_counts_only_those():
+    """A claim holding in part (part "b" fails): one reading makes "b" hold and "a" fail (still partly: a part's flip
+    only), one world makes every part hold, one reading makes "c" fail (still partly). The sentence names the world,
+    the one change that turns the whole claim, and counts no other: the part-only flips change nothing a reader of
+    the claim's verdict sees."""
+    from tvtrack.paragraphs import paper_paragraph
+
+    r1 = Entry("r1", "reading", 0, (0, 1), "a reading", phrases={1: "r1 read the other way"})
+    r2 = Entry("r2", "reading", 0, (0, 1), "a reading", phrases={1: "r2 read the other way"})
+    w1 = Entry("w1", "regime", 0, (0, 1), "a world", phrases={1: "a quieter world"})
+    conds = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": FAILS, "b": HOLDS, "c": HOLDS}},
+        {"changed": {"r2": 1}, "kind": "single", "measured": {"a": HOLDS, "b": FAILS, "c": FAILS}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": HOLDS, "b": HOLDS, "c": HOLDS}},
+    ]
+    claim = _claim("C9-9", {"a": HOLDS, "b": FAILS, "c": HOLDS}, conds, [r1, r2, w1])
+    assert claim["verdict"] == "partly"
+    paragraph, _ = paper_paragraph({"claims": [claim]})
+    assert "C9-9 holds under a world beyond the paper: a quieter world." in paragraph, paragraph
+
+
+def test_the_papers_paragraph_says_when_only_runs_that_lost_lock_carry_the_flip_of_a_claim_that_holds():
+    from tvtrack.paragraphs import paper_paragraph
+
+    lost = {"carried": True, "lost": 5, "runs": 600, "replicates": 1}
+    flip = {"text": "r1 moved", "side": "reading", "changed": {"r1": 1}, "verdict": "not reproduced"}
+    record = {
+        "register": [{"name": "r1", "title": "r1", "kind": "reading", "phrases": {}}],
+        "label": "depends",
+        "parts": {"claim": {"verdict": "reproduced", "label": "depends", "flips": [{**flip, "lost_runs": lost}]}},
+        "conditions": [{"changed": {"r1": 1}, "verdict": "not reproduced"}],
+    }
+    claim = {"id": "C9-8", "verdict": "reproduced", "rule": BAND.to_dict(), "measured": HOLDS, "robustness": record}
+    paragraph, _ = paper_paragraph({"claims": [claim]})
+    assert (
+        "C9-8 does not hold under a reading of the paper's text: r1 moved, but in one replicate only through the 5 "
+        "of its 600 runs that lost lock there."
+    ) in paragraph, paragraph
+
+
+def test_a_claim_unexplored_for_too_few_decided_configurations_says_how_many_and_how_many_are_needed():
+    from tvtrack.wording import claim_summary
+
+    claim = _robust("C9-10", 10, 30)
+    part = claim["robustness"]["parts"]["claim"]
+    part["label"] = claim["robustness"]["label"] = "unexplored"
+    part["share"]["decided_needed"] = 32
+    assert claim_summary(claim, chars=0).endswith(
+        "Beyond the paper's default, only 10 of the 40 changes explored for it decided it and 30 left it undecided; "
+        "32 decided ones are needed to say how far it extends, so nothing shows that yet."
+    )

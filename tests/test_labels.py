@@ -854,3 +854,24 @@ def test_a_part_decided_in_fewer_configurations_than_a_share_needs_is_unexplored
     assert "decided_needed" not in enough["parts"]["claim"]["share"]
     every = _world_design(40, 0)["parts"]["claim"]
     assert every["label"] == "robust" and every["share"]["agree"] == 40
+
+
+def test_a_configuration_lost_at_a_marked_value_does_not_shrink_what_a_share_needs():
+    """The configurations a share needs are those the paper's operating point admits (3 here: the marked value 2 of
+    ``a`` is not among them). A joint configuration at that marked value that the exploration also reports lost was
+    never among them, so it does not lower the 3 to 2: two explored configurations stay too few (provisional)."""
+    a = Entry("a", "reading", 0, (0, 1, 2), "a reading", off_operating_point=(2,))
+    b = Entry("b", "regime", 0, (0, 1), "a world")
+    inside = Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")
+    conds = [
+        {"changed": {"a": 1}, "kind": "single", "measured": inside, "runs": 3},
+        {"changed": {"b": 1}, "kind": "single", "measured": inside, "runs": 3},
+        {"changed": {"a": 2, "b": 1}, "kind": "joint", "measured": inside, "runs": 3, "operating_point_lost": "off"},
+    ]
+    reps = [{"seed": s, "measured": inside} for s in (1, 2, 3)]
+    rec = label_parts(BAND, inside, reps, conds, [a, b], needed=3)
+    assert rec["provisional"] is True and rec["parts"]["claim"]["share"]["design"] == 2
+    kept = label_parts(
+        BAND, inside, reps, [*conds[:2], {**conds[0], "changed": {"a": 1, "b": 1}, "kind": "joint"}], [a, b], needed=3
+    )
+    assert kept["provisional"] is False and kept["label"] == "robust"  # all three reachable explored and decided

@@ -1,23 +1,36 @@
 """How a named flip's kind is said: the first screen's bracket beside each claim that holds (what flips it, and
 which other kinds also do), and a flip of several changes of different kinds with each change's own kind (a
 reading and a setting together are never filed under the setting alone; a combination no smaller subset isolates
-is "a combination", "with a world" only where one of its entries is a world)."""
+is "a combination", "with a world" only where one of its entries is a world); and, for each paper's paragraph, the
+change under which a claim that fails would hold (:func:`why_not_clause`) and the one under which a claim that
+holds would not (:func:`turns_on_sentence`), the flip its summary names."""
 
 from __future__ import annotations
 
 from typing import Mapping
 
+from .value_words import rule_in_force, value_clause
 from .wording import (
     claim_flips,
     claim_verdict_at,
     kinds_of_changes,
+    main_part,
     moves_verdict,
+    named_flips,
     register_phrases,
     side_words,
     summary_strength,
 )
 
-__all__ = ["flip_kinds", "label_basis", "mixed_kinds", "flip_with_kind", "under_words"]
+__all__ = [
+    "flip_kinds",
+    "label_basis",
+    "mixed_kinds",
+    "flip_with_kind",
+    "under_words",
+    "why_not_clause",
+    "turns_on_sentence",
+]
 
 _COUNT = {2: "two", 3: "three", 4: "four", 5: "five"}
 
@@ -143,3 +156,62 @@ def flip_with_kind(flip: Mapping, record: Mapping) -> str:
         alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
         return f"{mixed}, together{alone}"
     return f"{flip['text']} ({sides.get(flip['side'], sides['world'])})"
+
+
+def why_not_clause(c: Mapping) -> str:
+    """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
+    direction) and, where one is named, the change under which it would: the flip the claim's summary names
+    (:func:`tvtrack.wording.named_flips`), with the whole claim's verdict there and whether only runs that lost lock
+    make it."""
+    rule, measured = rule_in_force(dict(c.get("rule") or {}), c.get("measured"))
+    name = main_part(c)
+    if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
+        rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
+    text = value_clause(rule, measured, c.get("paper_value"))
+    flips = [f for f in named_flips(c) if f.get("verdict") == "reproduced"]
+    if flips:
+        f = flips[0]
+        whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's
+        how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
+        text += f"; {how} under {under_words(f, c.get('robustness') or {})}{_lost_clause(f)}"
+    return text
+
+
+def _lost_clause(flip: Mapping) -> str:
+    """``", but in one replicate only through the 5 of its 600 runs that lost lock there"`` where only runs that
+    lost lock carry a flip (a count over a stated number of replicates' draws says so: the claim pools more)."""
+    lost = flip.get("lost_runs") or {}
+    if not lost.get("carried"):
+        return ""
+    reps = lost.get("replicates")
+    where = "" if not reps else "in one replicate " if reps == 1 else f"in {reps} replicates "
+    of = "of" if not reps else "of its" if reps == 1 else "of their"
+    return f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
+
+
+_DECIDED = ("reproduced", "partly", "not reproduced")
+
+
+def turns_on_sentence(c: Mapping) -> str:
+    """What would change a claim that holds (or holds in part), in one sentence: of the flips under which the whole
+    claim's verdict is decided and differs from its own, the first its summary names (:func:`tvtrack.wording.named_flips`, else
+    the strongest), with that verdict, whether only runs that lost lock carry it, and how many other changes
+    change the whole verdict too; ``""`` where no explored change does (a flip of a part only is not counted)."""
+
+    def whole(f: Mapping) -> str | None:
+        return claim_verdict_at(c, f.get("changed") or {}) or f.get("verdict")
+
+    turning = [f for f in claim_flips(c) if whole(f) in _DECIDED and whole(f) != c.get("verdict")]
+    if not turning:
+        return ""
+    texts = {f["text"] for f in turning}
+    named = [f for f in named_flips(c) if f["text"] in texts]
+    f = named[0] if named else min(turning, key=lambda g: summary_strength(c, g))
+    how = {"reproduced": "holds", "partly": "holds only in part", "not reproduced": "does not hold"}[whole(f)]
+    more = len(texts) - 1
+    others = (
+        f" ({more} other explored change{'s' if more > 1 else ''} change{'s' if more == 1 else ''} its verdict too)"
+        if more
+        else ""
+    )
+    return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{_lost_clause(f)}{others}."

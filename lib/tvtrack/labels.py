@@ -258,8 +258,18 @@ def label_parts(
     kept = [c for c in cond_rows if not c.get("off_operating_point")]  # the others are counted beside the label
     world_varied = any(by_name[k].kind in WORLD_KINDS for c in kept for k in c["changed"] if k in by_name)
     explored = _distinct([c for c in kept if c["kind"] in ("single", "joint")])
-    lost = _distinct([c for c in cond_rows if c["kind"] in ("single", "joint") and c.get("operating_point_lost")])
-    reachable = _n_combinations(list(by_name), by_name) - len(lost)  # those the paper's operating point admits
+    # the configurations the paper's operating point admits: its values' combinations, less those the exploration
+    # could not keep there (only those made of such values: one at a marked value was never among them)
+    lost = _distinct(
+        [
+            c
+            for c in cond_rows
+            if c["kind"] in ("single", "joint")
+            and c.get("operating_point_lost")
+            and not leaves_operating_point(c["changed"], {k: e.off_operating_point for k, e in by_name.items()})
+        ]
+    )
+    reachable = _n_combinations(list(by_name), by_name) - len(lost)
     need = min(int(design.get("min_share_design", MIN_SHARE_DESIGN)), reachable)
     provisional = not deterministic and len(explored) < max(need, 1)
     context = {

@@ -20,15 +20,13 @@ from .wording import (
     at_profile,
     claim_flips,
     claim_verdict_at,
-    named_flips,
     differs_whatever_is_open,
     moves_verdict,
     shown_label,
     side_words,
 )
-from .flip_words import flip_kinds, under_words
+from .flip_words import flip_kinds, turns_on_sentence, why_not_clause
 from .run_words import not_checkable_reason, thin_share
-from .value_words import value_clause
 
 __all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "label_words"]
 
@@ -400,53 +398,6 @@ def _statement(c: Mapping) -> str:
     return " ".join(str(c.get("statement") or "").split()).rstrip(".")
 
 
-def _why_not(c: Mapping) -> str:
-    """Why a claim does not hold: the value against what the paper says (in words where it reverses the paper's
-    direction) and, where one is named, the change under which it would: the flip the claim's summary names
-    (:func:`tvtrack.wording.named_flips`), with the whole claim's verdict there and whether only runs that lost lock
-    make it."""
-    from .value_words import rule_in_force
-    from .wording import main_part
-
-    rule, measured = rule_in_force(dict(c.get("rule") or {}), c.get("measured"))
-    name = main_part(c)
-    if rule.get("kind") == "all_of" and isinstance(measured, Mapping):
-        rule, measured = (rule.get("parts") or {}).get(name) or {}, measured.get(name)
-    text = value_clause(rule, measured, c.get("paper_value"))
-    from .wording import claim_verdict_at
-
-    flips = [f for f in named_flips(c) if f.get("verdict") == "reproduced"]
-    if flips:
-        f = flips[0]
-        whole = claim_verdict_at(c, f.get("changed") or {}) or f["verdict"]  # the claim's, not only its part's
-        how = {"reproduced": "it holds", "partly": "it holds in part"}.get(whole, f"it reads {whole}")
-        text += f"; {how} under {under_words(f, c.get('robustness') or {})}"
-        lost = f.get("lost_runs") or {}
-        if lost.get("carried"):  # a count over a stated number of replicates' draws says so (the claim pools more)
-            reps = lost.get("replicates")
-            where = "" if not reps else "in one replicate " if reps == 1 else f"in {reps} replicates "
-            of = "of" if not reps else "of its" if reps == 1 else "of their"
-            text += f", but {where}only through the {lost['lost']} {of} {lost['runs']} runs that lost lock there"
-    return text
-
-
-def _turns_on(c: Mapping) -> str:
-    """What would change a claim that holds (or holds in part), in one sentence: the flip its summary names
-    (:func:`tvtrack.wording.named_flips`) and the whole claim's verdict there; ``""`` where nothing explored flips
-    it."""
-    flips = named_flips(c)
-    if not flips:
-        return ""
-    f = flips[0]
-    whole = claim_verdict_at(c, f.get("changed") or {}) or f.get("verdict")
-    how = {"reproduced": "holds", "partly": "holds only in part", "not reproduced": "does not hold"}.get(whole)
-    if not how or whole == c.get("verdict"):
-        return ""
-    more = len(flips) - 1
-    others = f" ({_plural(more, 'other change')} flip{'s' if more == 1 else ''} it too)" if more else ""
-    return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{others}."
-
-
 def limitations(data: Mapping, profile: str = "paper") -> list[str]:
     """What a reader should know before trusting a paper's verdicts, one sentence each, from its records: the
     limitations the notebook wrote down (``results.json`` ``limitations``), the simulated worlds calibrated to
@@ -559,7 +510,7 @@ def _counted_over(counts: list) -> str:
 def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[str]]:
     """One paper in plain words: ``(paragraph, limitations)``. The paragraph says how many claims the paper makes
     and how many can be checked, which hold (and how many of those robustly), which hold in part, what would change
-    each of those (:func:`_turns_on`), which do not and why (the paper's words, then the notebook's reason or the value against the paper's), and which the runs
+    each of those (:func:`tvtrack.flip_words.turns_on_sentence`), which do not and why (the paper's words, then the notebook's reason or the value against the paper's), and which the runs
     could not decide; the limitations are :func:`limitations`."""
     claims = at_profile(list(data.get("claims") or []), profile)
     if not claims:
@@ -580,9 +531,9 @@ def paper_paragraph(data: Mapping, profile: str = "paper") -> tuple[str, list[st
         text.append(
             f"{_n(len(by['partly']), 'claim holds', 'claims hold')} in part ({_join([c['id'] for c in by['partly']])})."
         )
-    text += [s for s in map(_turns_on, by["reproduced"] + by["partly"]) if s]
+    text += [s for s in map(turns_on_sentence, by["reproduced"] + by["partly"]) if s]
     for c in by["not reproduced"]:
-        text.append(f"It does not hold that {_lower(_statement(c))} ({c['id']}): {_why_not(c)}.")
+        text.append(f"It does not hold that {_lower(_statement(c))} ({c['id']}): {why_not_clause(c)}.")
     undecided = [c["id"] for c in claims if c.get("verdict") == "undecided"]
     if undecided:
         text.append(f"The runs could not decide {_join(undecided)}.")

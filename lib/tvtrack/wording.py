@@ -523,9 +523,9 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     if share.get("decided_needed"):
         decided = int(share.get("agree") or 0) + int(share.get("flip") or 0)
         return (
-            f"Beyond the paper's default, only {decided} of the {design} changes explored for it decided it (none "
-            f"the other way) and {int(share.get('undecided') or 0)} left it undecided; {share['decided_needed']} "
-            "decided ones are needed to say how far it extends, so nothing shows that yet."
+            f"Beyond the paper's default, only {decided} of the {design} changes explored for it decided it and "
+            f"{int(share.get('undecided') or 0)} left it undecided; {share['decided_needed']} decided ones are needed "
+            "to say how far it extends, so nothing shows that yet."
         )
     return "No world beyond the paper was varied for it, so nothing shows how far it extends."
 

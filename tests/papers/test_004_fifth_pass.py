@@ -177,3 +177,15 @@ def test_c004_4_and_c004_5_notes_say_what_is_an_identity():
     c4, c5 = _claim_cell("C004-4"), _claim_cell("C004-5")
     assert "identity of the corrected algebra" in c4 and "lost-frames world" in c4
     assert "Shown, not judged" in c5 and "identity of least squares" in c5
+
+
+def test_identical_baselines_other_than_a_regression_and_a_difference_are_not_given_that_reason():
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction import findings as fd
+
+    same = Estimate(1.2, 0.01, 1.18, 1.22, 15, method="t")
+    text = fd._one_predictor({"cubic spline": same, "RBF network": Estimate(1.2, 0.01, 1.18, 1.22, 15, method="t")})
+    assert text == (
+        " cubic spline and RBF network make the same predictions here (the same MSE ratio and interval), so their "
+        "parts count one predictor twice."
+    )

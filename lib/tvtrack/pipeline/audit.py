@@ -118,6 +118,44 @@ def _untried(flip: Mapping, rb: Mapping, max_subset: int) -> list[str]:
     return [", ".join(f"{k} = {v}" for k, v in sub) for sub in missing]
 
 
+def _reachable(rb: Mapping, off: Mapping[str, Sequence]) -> int:
+    """The configurations of the claim's register entries other than the default that keep the paper's operating
+    point (each entry's values less its marked ones), less those the exploration reports it could not keep there."""
+    n = 1
+    for e in rb.get("register") or ():
+        n *= len([v for v in e.get("values") or [e.get("default")] if v not in (e.get("off_operating_point") or [])])
+    lost = _distinct(
+        [
+            c
+            for c in rb.get("conditions") or ()
+            if c.get("operating_point_lost") and not leaves_operating_point(c["changed"], off)
+        ]
+    )
+    return n - 1 - len(lost)
+
+
+def _robust_problems(where: str, part: Mapping, rb: Mapping, off: Mapping[str, Sequence]) -> list[str]:
+    """A ``robust`` part must rest on a share whose design, and whose decided configurations, each number at least
+    what a share needs: 32 (a record's ``design["min_share_design"]`` where it states another), or every reachable
+    configuration where there are fewer; 1 decided for a record without random draws."""
+    if part.get("label") != "robust":
+        return []
+    share = part.get("share")
+    if not share:
+        return [f"{where}: labelled robust without a share of explored configurations"]
+    decided, design = int(share.get("agree") or 0) + int(share.get("flip") or 0), int(share.get("design") or 0)
+    need = min(int((rb.get("design") or {}).get("min_share_design", _SHARE_DESIGN)), _reachable(rb, off))
+    if rb.get("deterministic"):
+        return [] if decided >= 1 else [f"{where}: labelled robust, but no explored configuration decided it"]
+    out = [f"{where}: labelled robust over {design} explored configurations (a share needs {need})"] * (design < need)
+    if decided < need:
+        out.append(
+            f"{where}: labelled robust, but only {decided} of its {design} explored configurations decided it "
+            f"(a share needs {need})"
+        )
+    return out
+
+
 def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int, kinds: Mapping) -> list[str]:
     """The problems of one part's share, flips and label (see the module)."""
     max_subset = int((rb.get("design") or {}).get("max_subset", 3))
@@ -176,14 +214,7 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
     label = part.get("label")
     if label in ("robust", "unexplored") and flips:
         out.append(f"{where}: labelled {label} with {len(flips)} flip(s)")
-    share = part.get("share") or {}
-    decided, design = int(share.get("agree") or 0) + int(share.get("flip") or 0), int(share.get("design") or 0)
-    need = min(int((rb.get("design") or {}).get("min_share_design", _SHARE_DESIGN)), design)
-    if label == "robust" and not rb.get("deterministic") and decided < need:
-        out.append(
-            f"{where}: labelled robust, but only {decided} of its {design} explored configurations decided it "
-            f"(a share needs {need})"
-        )
+    out += _robust_problems(where, part, rb, off)
     if label == "limited" and (not flips or sides != {"world"}):
         out.append(f"{where}: labelled limited, but its flips are on the sides {sorted(sides) or 'none'}")
     if label == "depends" and not sides & {"reading", "setting", "unattributed"}:

@@ -481,10 +481,14 @@ def _one_predictor(ratios: dict) -> str:
     for b, e in ratios.items():
         groups.setdefault(key(e), []).append(b)
     same = [g for g in groups.values() if len(g) > 1]
+    why = (
+        ": a regression whose window, tuned by cross-validation, is its fewest samples is the finite difference of as "
+        "many points"
+    )
     return "".join(
-        f" {' and '.join(g)} make the same predictions here (the same MSE ratio and interval: a regression whose "
-        "window, tuned by cross-validation, is its fewest samples is the finite difference of as many points), so "
-        "their parts count one predictor twice."
+        f" {' and '.join(g)} make the same predictions here (the same MSE ratio and interval"
+        f"{why if any('regression' in b for b in g) and any('finite differences' in b for b in g) else ''}), so "
+        f"their parts count one predictor {'twice' if len(g) == 2 else f'{len(g)} times'}."
         for g in same
     )
 
