@@ -136,3 +136,110 @@ def test_several_changes_of_one_kind_are_counted_in_the_words_that_introduce_the
     assert under_words(settings, {"register": REGISTER}) == ("two settings the paper never printed, together: s and s2")
     one = {"text": "w", "side": "world", "changed": {"w": 1}}
     assert under_words(one, {"register": REGISTER}) == "a world beyond the paper: w"
+
+
+def _labelled(cid: str, measured: dict, conds: list, entries: list, single: bool = False) -> dict:
+    """A claim the label machinery records: an AllOf of the band per part (``single``: the band alone on part a)."""
+    from tvtrack.labels import label_parts
+    from tvtrack.verdicts import AllOf, InBand
+
+    band = InBand("mean", -0.5, 0.5, "px")
+    rule = band if single else AllOf({n: band for n in measured})
+    m = measured["a"] if single else measured
+    conds = [{**c, "measured": c["measured"]["a"]} for c in conds] if single else conds
+    rob = label_parts(rule, m, [{"seed": s, "measured": m} for s in (1, 2, 3)], conds, entries)
+    rob["register"] = [e.to_dict() for e in entries]  # as the explorer's record carries it
+    verdict = rule.judge(m).verdict
+    return {"id": cid, "verdict": verdict, "rule": rule.to_dict(), "measured": m, "robustness": rob, "paper_value": "0"}
+
+
+def _entries(*names: str) -> list:
+    from tvtrack.register import Entry
+
+    return [
+        Entry(n, "reading" if n.startswith("r") else "regime", 0, (0, 1), "e", phrases={1: f"{n} moved"}) for n in names
+    ]
+
+
+def test_why_a_claim_fails_reads_its_main_parts_value_and_the_flip_its_summary_names():
+    """Whole sentences: the value of the part that fails worst-labelled (3 px, not the other part's 2 px), the whole
+    claim's verdict under the flip ("in part"), a claim of one rule, and a whole verdict left open ("reads")."""
+    from tvtrack.flip_words import why_not_clause
+    from tvtrack.montecarlo import Estimate
+
+    hold, fail, two, open_ = Estimate.exact(0.0), Estimate.exact(3.0), Estimate.exact(2.0), None
+    conds = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": two, "b": hold}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": hold, "b": hold}},
+    ]
+    claim = _labelled("C9-1", {"a": two, "b": fail}, conds, _entries("r1", "w1"))
+    assert why_not_clause(claim) == (
+        "mean is 3 px, against [-0.5, 0.5] px (the paper: 0); it holds in part under a reading of the paper's text: "
+        "r1 moved"
+    )
+    one = _labelled("C9-2", {"a": fail}, conds[1:], _entries("w1"), single=True)
+    assert why_not_clause(one) == (
+        "mean is 3 px, against [-0.5, 0.5] px (the paper: 0); it holds under a world beyond the paper: w1 moved"
+    )
+    open_ = Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")  # straddles the band's edge: part a undecided there
+    left = [{"changed": {"r1": 1}, "kind": "single", "measured": {"a": open_, "b": hold}}]
+    assert why_not_clause(_labelled("C9-3", {"a": fail, "b": fail}, left, _entries("r1"))).endswith(
+        "; it reads undecided under a reading of the paper's text: r1 moved"
+    )
+
+
+def test_what_would_turn_a_claim_falls_back_to_the_strongest_change_that_turns_the_whole_claim():
+    """Part b (the one that fails) is moved only by a reading that leaves the claim partly holding; a world alone and
+    two worlds together break parts a and c, so the whole claim fails: the sentence names the single world and counts the
+    pair, never the reading."""
+    from tvtrack.flip_words import turns_on_sentence
+    from tvtrack.montecarlo import Estimate
+
+    h, f = Estimate.exact(0.0), Estimate.exact(3.0)
+    conds = [
+        {"changed": {"r2": 1}, "kind": "single", "measured": {"a": h, "b": h, "c": f}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": f, "b": f, "c": f}},
+        {"changed": {"w2": 1}, "kind": "single", "measured": {"a": h, "b": f, "c": h}},
+        {"changed": {"w3": 1}, "kind": "single", "measured": {"a": h, "b": f, "c": h}},
+        {"changed": {"w2": 1, "w3": 1}, "kind": "joint", "measured": {"a": f, "b": f, "c": f}},
+    ]
+    claim = _labelled("C9-4", {"a": h, "b": f, "c": h}, conds, _entries("r2", "w1", "w2", "w3"))
+    assert claim["verdict"] == "partly"
+    assert turns_on_sentence(claim) == (
+        "C9-4 does not hold under a world beyond the paper: w1 moved (1 other explored change changes its verdict too)."
+    )
+
+
+def test_more_worlds_or_settings_than_the_count_words_name_are_counted_in_digits():
+    six = {f"w{i}": 1 for i in range(6)}
+    assert under_words({"text": "six", "side": "world", "changed": six}, {"register": []}) == (
+        "6 worlds beyond the paper together: six"
+    )
+    assert under_words({"text": "six", "side": "setting", "changed": six}, {"register": []}) == (
+        "6 settings the paper never printed, together: six"
+    )
+
+
+def test_a_mixed_flip_is_said_with_each_changes_own_kind_in_both_paragraph_sentences():
+    """A reading and a world together (no subset flips alone): each change keeps its own kind in the sentence of a
+    claim that holds and of one that fails, and two other changes are counted in the plural."""
+    from tvtrack.flip_words import turns_on_sentence, why_not_clause
+    from tvtrack.montecarlo import Estimate
+
+    h, f = Estimate.exact(0.0), Estimate.exact(3.0)
+    entries = _entries("r1", "w1", "w2", "w3")
+    held = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": h, "b": h}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": h, "b": h}},
+        {"changed": {"r1": 1, "w1": 1}, "kind": "joint", "measured": {"a": f, "b": h}},
+        {"changed": {"w2": 1}, "kind": "single", "measured": {"a": f, "b": f}},
+        {"changed": {"w3": 1}, "kind": "single", "measured": {"a": f, "b": f}},
+    ]
+    both = "two changes together: r1 moved (a reading of the paper's text) and w1 moved (a world beyond the paper)"
+    assert turns_on_sentence(_labelled("C9-5", {"a": h, "b": h}, held, entries)) == (
+        f"C9-5 holds only in part under {both} (2 other explored changes change its verdict too)."
+    )
+    failed = [{**c, "measured": {"a": f if c["measured"]["a"] is h else h, "b": f}} for c in held[:3]]
+    failed[2]["measured"] = {"a": h, "b": h}
+    claim = _labelled("C9-6", {"a": f, "b": f}, failed, entries)
+    assert why_not_clause(claim).endswith(f"; it holds under {both}")

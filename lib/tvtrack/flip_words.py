@@ -194,8 +194,8 @@ _DECIDED = ("reproduced", "partly", "not reproduced")
 
 def turns_on_sentence(c: Mapping) -> str:
     """What would change a claim that holds (or holds in part), in one sentence: of the flips under which the whole
-    claim's verdict is decided and differs from its own, the first its summary names (:func:`tvtrack.wording.named_flips`, else
-    the strongest), with that verdict, whether only runs that lost lock carry it, and how many other changes
+    claim's verdict is decided and differs from its own, the strongest (:func:`tvtrack.wording.summary_strength`: the
+    flip the claim's summary names wherever that one changes the whole verdict), with that verdict, whether only runs that lost lock carry it, and how many other changes
     change the whole verdict too; ``""`` where no explored change does (a flip of a part only is not counted)."""
 
     def whole(f: Mapping) -> str | None:
@@ -205,8 +205,7 @@ def turns_on_sentence(c: Mapping) -> str:
     if not turning:
         return ""
     texts = {f["text"] for f in turning}
-    named = [f for f in named_flips(c) if f["text"] in texts]
-    f = named[0] if named else min(turning, key=lambda g: summary_strength(c, g))
+    f = min(turning, key=lambda g: summary_strength(c, g))  # the summary's own flip wherever that one turns it
     how = {"reproduced": "holds", "partly": "holds only in part", "not reproduced": "does not hold"}[whole(f)]
     more = len(texts) - 1
     others = (
