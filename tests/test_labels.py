@@ -875,3 +875,36 @@ def test_a_configuration_lost_at_a_marked_value_does_not_shrink_what_a_share_nee
         BAND, inside, reps, [*conds[:2], {**conds[0], "changed": {"a": 1, "b": 1}, "kind": "joint"}], [a, b], needed=3
     )
     assert kept["provisional"] is False and kept["label"] == "robust"  # all three reachable explored and decided
+
+
+def test_a_configuration_that_decided_the_other_way_on_the_defaults_own_draws_counts_as_decided():
+    """A one-run configuration whose verdict differs from the pooled default but equals the default's own run on
+    the same draws (the first replicate) is no flip, yet it decided: with 31 agreeing ones it makes the 32 decided
+    configurations a robust part needs."""
+    e = Entry("w", "regime", 0, tuple(range(34)), "a world")
+    inside = Estimate(0.0, 0.05, -0.1, 0.1, 100, method="Student t")
+    outside = Estimate(0.9, 0.05, 0.8, 1.0, 100, method="Student t")
+    straddles = Estimate(0.5, 0.5, -0.5, 1.5, 100, method="Student t")
+    conds = [{"changed": {"w": v}, "kind": "single", "measured": inside, "runs": 1} for v in range(1, 32)]
+    conds.append({"changed": {"w": 32}, "kind": "single", "measured": outside, "runs": 1})
+    reps = [{"seed": 1, "measured": outside}, {"seed": 2, "measured": straddles}, {"seed": 3, "measured": straddles}]
+    part = label_parts(BAND, inside, reps, conds, [e], needed=1)["parts"]["claim"]
+    assert (part["share"]["agree"], part["share"]["flip"], part["flips"]) == (31, 1, [])
+    assert part["label"] == "robust"
+    conds[-1]["measured"] = straddles  # undecided instead: 31 decided are too few
+    assert label_parts(BAND, inside, reps, conds, [e], needed=1)["parts"]["claim"]["label"] == "unexplored"
+
+
+def test_a_part_without_random_draws_is_robust_on_one_decided_configuration():
+    """A deterministic claim needs no share: one configuration that decided and agreed makes it robust, whatever the
+    others (two reachable here, one left undecided)."""
+    e = Entry("w", "regime", 0, (0, 1, 2), "a world")
+    exact = Estimate.exact(0.0)
+    straddles = Estimate(0.5, 0.5, -0.5, 1.5, 100, method="Student t")
+    conds = [
+        {"changed": {"w": 1}, "kind": "single", "measured": exact, "runs": 3},
+        {"changed": {"w": 2}, "kind": "single", "measured": straddles, "runs": 3},
+    ]
+    reps = [{"seed": s, "measured": exact} for s in (1, 2, 3)]
+    rec = label_parts(BAND, exact, reps, conds, [e], deterministic=True)
+    assert rec["parts"]["claim"]["share"]["agree"] == 1 and rec["label"] == "robust"
