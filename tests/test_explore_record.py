@@ -79,20 +79,19 @@ def test_the_settings_record_the_design_as_run():
 
 def test_the_table_lists_each_replicate_and_condition_with_its_verdict_per_part():
     ex = explore(_two, REG2, RULES2, seed=7)
-    s = replicate_seeds(7, 3)
     assert ex.table("Y") == "\n".join(
         [
             "| run | p1 | p2 |",
             "| --- | --- | --- |",
-            *(f"| replicate (seed {seed}) | reproduced | reproduced |" for seed in s),
-            "| single (1 replicates): a = 1 | not reproduced | reproduced |",
-            "| single (1 replicates): c = y/z | reproduced | not reproduced |",  # a "|" in a value would split the row
+            *(f"| replicate {i} | reproduced | reproduced |" for i in (1, 2, 3)),  # not a 19-digit seed
+            "| single (1 replicate): a = 1 | not reproduced | reproduced |",
+            "| single (1 replicate): c = y/z | reproduced | not reproduced |",  # a "|" in a value would split the row
         ]
     )
     assert ex.table("X").splitlines()[:3] == [
         "| run | claim |",
         "| --- | --- |",
-        f"| replicate (seed {s[0]}) | reproduced |",
+        "| replicate 1 | reproduced |",
     ]
 
 
@@ -419,8 +418,8 @@ def test_a_flipping_pair_inside_a_pinned_triple_is_searched_sized_and_asked_only
     assert ex.table("L").splitlines()[-4:] == [  # each condition with its own replicates, every changed entry
         f"| pinned ({need} replicates): a = 2, b = 2, c = y | not reproduced |",
         f"| combination ({need} replicates): a = 2, b = 2 | not reproduced |",
-        "| combination (1 replicates): a = 2, c = y | undecided |",
-        "| combination (1 replicates): b = 2, c = y | undecided |",
+        "| combination (1 replicate): a = 2, c = y | undecided |",
+        "| combination (1 replicate): b = 2, c = y | undecided |",
     ]
 
 
@@ -491,8 +490,8 @@ def test_a_table_marks_a_part_a_run_did_not_measure():
         return {"Y": ByReading.tag(reading, {"p1": X(0.0)} if reading == "short" else {"p1": X(0.0), "p2": X(0.0)})}
 
     rows = explore(measure, reg, {"Y": rule}, seed=7).table("Y").splitlines()
-    assert rows[2] == f"| replicate (seed {first}) | reproduced | - |"
-    assert rows[-1] == "| single (1 replicates): c = short | reproduced | - |"
+    assert rows[2] == "| replicate 1 | reproduced | - |"
+    assert rows[-1] == "| single (1 replicate): c = short | reproduced | - |"
 
 
 class _PointDiffers(InBand):
@@ -548,3 +547,33 @@ def test_no_sub_combination_leaning_towards_agreement_is_sized_even_when_one_run
     assert ex.settings["replicates_needed"] == {"L": 2}
     combos = [r for r in ex.runs if r.stage == "combination"]
     assert len(combos) == 3 and all(r.n_runs("L") == 1 and r.left == {"L": 2} for r in combos)
+
+
+def test_a_setting_reads_in_four_figures_in_the_table_the_register_and_the_phrases():
+    """A register value is said as a reader writes it, through one formatter (``tvtrack.numbers.setting``): the
+    explorer's table, the register's table and its pinned conditions, and an entry's phrase show 1.667 and 1e+06,
+    never 1.6666666666666667, 1.66667 or 1000000.0."""
+    from tvtrack.numbers import setting
+
+    third, big = 5 / 3, 1e6
+    reg = Register(
+        [Entry("alpha", "regime", 2 / 3, (2 / 3, third), "a world"), Entry("q", "reading", 100.0, (100.0, big), "r")],
+        pinned=[{"alpha": third, "q": big}],
+    )
+
+    def measure(config, seed):
+        return {"Y": X(3.0 * (config["alpha"] == third))}
+
+    rows = explore(measure, reg, {"Y": BAND}, seed=7).table("Y").splitlines()
+    assert "| single (1 replicate): alpha = 1.667 | not reproduced |" in rows
+    assert "| single (1 replicate): q = 1e+06 | reproduced |" in rows
+    md = reg.to_markdown()
+    assert "| `alpha` | regime | 0.6667 | 1.667 | a world |" in md and "- alpha = 1.667, q = 1e+06" in md
+    assert reg["q"].phrase(big) == "q = 1e+06" and reg.describe({"alpha": third}) == "alpha = 1.667"
+    assert [setting("k", v) for v in (25, 0.1, True, "y/z", 123456.0)] == [
+        "k = 25",
+        "k = 0.1",
+        "k = True",
+        "k = y/z",
+        "k = 123456",
+    ]

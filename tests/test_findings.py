@@ -1171,6 +1171,7 @@ def test_a_part_name_and_a_not_checkable_reason_read_as_words_in_a_sentence():
     from tvtrack.run_words import part_name
 
     assert part_name("not_lower") == "not lower" and part_name("psi_A=5, P=0.5") == "psi_A=5, P=0.5"
+    assert part_name("x_r") == "x_r" and part_name("wide_loops") == "wide loops"  # a subscripted symbol stays
 
 
 def test_the_first_screen_says_which_surviving_verdicts_hold_and_names_a_claim_counted_in_both_world_groups():

@@ -17,6 +17,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
+from .numbers import setting
 from .register import side_of
 from .verdicts import is_decisive
 
@@ -52,7 +53,7 @@ def phrase(changed: Mapping[str, Any], entries: Mapping[str, Any]) -> str:
     out = []
     for k, v in changed.items():
         e = entries.get(k)
-        out.append(e.phrase(v) if e is not None else f"{k} = {v}")
+        out.append(e.phrase(v) if e is not None else setting(k, v))
     return " and ".join(out) or "the default reading"  # one configuration: its changes hold together
 
 

@@ -49,6 +49,7 @@ from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
 from .register import Register
+from .numbers import setting
 from .verdicts import Rule, is_decisive
 
 __all__ = [
@@ -186,12 +187,12 @@ class Exploration:
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
         rows = [
-            f"| replicate (seed {r['seed']}) | " + " | ".join(r["parts"].get(p, "-") for p in parts) + " |"
-            for r in rec["replicates"]
+            f"| replicate {i} | " + " | ".join(r["parts"].get(p, "-") for p in parts) + " |"
+            for i, r in enumerate(rec["replicates"], 1)
         ]
         rows += [
-            f"| {c['kind']} ({c.get('runs', 1)} replicates): "
-            + (", ".join(f"{k} = {v}" for k, v in c["changed"].items())).replace("|", "/")
+            f"| {c['kind']} ({_replicates(c.get('runs', 1))}): "
+            + (", ".join(setting(k, v) for k, v in c["changed"].items())).replace("|", "/")
             + " | "
             + " | ".join(c["parts"].get(p, "-") for p in parts)
             + " |"
@@ -208,6 +209,10 @@ class Exploration:
                 f"- **{cid}**: {rec['coverage']}" + (f"; differs: {'; '.join(rec['where'])}" if rec["where"] else "")
             )
         return "\n".join(lines)
+
+
+def _replicates(n: int) -> str:
+    return f"{n} replicate" + ("" if n == 1 else "s")
 
 
 def _part_measured(rules: Mapping[str, Rule], outputs: Mapping) -> dict:

@@ -46,6 +46,7 @@ from .attribution import (
     share,
 )
 from .lost_labels import lost_fields
+from .run_words import part_name
 from .register import WORLD_KINDS, leaves_operating_point
 from .verdicts import (
     LABELS,
@@ -290,7 +291,7 @@ def label_parts(
     pairs = part_pairs(rule, measured)
     for name, prule in parts.items():
         part_out[name] = _label_part(name, prule, pairs.get(name), context)
-        prefix = "" if len(parts) == 1 else f"({name}) "
+        prefix = "" if len(parts) == 1 else f"({part_name(name)}) "
         where += [prefix + w for w in part_out[name]["where"]]
     labels = [p["label"] for p in part_out.values() if p["label"] != NO_PART_LABEL]
     label = weakest_label(labels) if labels else NO_PART_LABEL  # no decided part: nothing to label

@@ -24,6 +24,7 @@ __all__ = [
     "format_measured",
     "unit_text",
     "value_range",
+    "setting",
 ]
 
 VECTOR_SHOWN = 4
@@ -51,6 +52,13 @@ def value_range(low: Any, high: Any, spec: str = "g") -> str:
     ends print alike (``"0.032"``, never ``"0.032..0.032"``)."""
     a, b = format(low, spec), format(high, spec)
     return a if a == b else f"{a}..{b}"
+
+
+def setting(name: Any, value: Any) -> str:
+    """A register entry set to a value, as a reader meets it: ``"spectral index = 1.667"``, ``"restart_accel_var =
+    1e+06"`` (a number in :func:`number`'s four figures, never ``1.6666666666666667`` or ``1000000.0``); text and
+    truth values as they are."""
+    return f"{name} = {number(value)}"
 
 
 def finite(x: Any) -> bool:

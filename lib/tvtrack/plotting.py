@@ -6,6 +6,8 @@ role order, so "truth" and "estimate" look the same in every paper and in the vi
 
 from __future__ import annotations
 
+from .numbers import setting
+
 __all__ = [
     "PALETTE",
     "ROLE_COLOURS",
@@ -177,7 +179,7 @@ def _spec_labels(record: dict, rows: list[dict]) -> list[tuple[str, str, str]]:
         for k, v in r["changed"].items():
             if (k, str(v)) not in seen:
                 e = entries.get(k, {})
-                text = (e.get("phrases") or {}).get(str(v)) or f"{e.get('title') or k} = {v}"
+                text = (e.get("phrases") or {}).get(str(v)) or setting(e.get("title") or k, v)
                 seen[(k, str(v))] = textwrap.fill(text, 56)
     return sorted((k, v, t) for (k, v), t in seen.items())
 

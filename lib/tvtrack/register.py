@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping, Sequence
 
 from .markdown import md_escape
+from .numbers import number, setting
 
 __all__ = [
     "leaves_operating_point",
@@ -162,8 +163,7 @@ class Entry:
         """``value`` in plain words: its phrase, else ``"<title> = <value>"``."""
         if value in self.phrases:
             return self.phrases[value]
-        v = f"{value:g}" if isinstance(value, float) else str(value)
-        return f"{self.title or self.name} = {v}"
+        return setting(self.title or self.name, value)
 
     @property
     def alternatives(self) -> tuple:
@@ -258,7 +258,7 @@ class Register:
     def describe(self, changed: Mapping[str, Any]) -> str:
         """A configuration's changes from the default in plain words, joined by " and " (they hold together;
         entries of other registers are named as they are, no change reads as the default reading)."""
-        parts = [self[k].phrase(v) if k in self else f"{k} = {v}" for k, v in changed.items()]
+        parts = [self[k].phrase(v) if k in self else setting(k, v) for k, v in changed.items()]
         return " and ".join(parts) or "the default reading"
 
     def project(self, config: Mapping[str, Any], names: Iterable[str]) -> dict:
@@ -296,7 +296,7 @@ class Register:
         if self.pinned:
             rows.append("")
             rows.append("Joint conditions pinned (they flipped a claim before; measured every run):")
-            rows += [f"- {md_escape(', '.join(f'{k} = {v}' for k, v in p.items()))}" for p in self.pinned]
+            rows += [f"- {md_escape(', '.join(setting(k, v) for k, v in p.items()))}" for p in self.pinned]
         return "\n".join(rows)
 
     def _repr_markdown_(self) -> str:
@@ -377,7 +377,7 @@ def guard(config: Mapping[str, Any], allowed: Iterable[str]) -> dict:
 
 
 def _md(v: Any) -> str:
-    return md_escape(f"{v:g}" if isinstance(v, float) else str(v))
+    return md_escape(number(v))
 
 
 def with_kinds(entries: Iterable[Entry], kinds: Mapping[str, tuple[str, str]]) -> list[Entry]:

@@ -105,9 +105,9 @@ def plain_text(text: str) -> str:
 
 def part_name(name: object) -> str:
     """A rule part's name as a sentence says it: ``no_loss`` -> ``no loss`` (a name written for the code); a
-    name with symbols (``psi_A=5, P=0.5``) as it is."""
+    name with symbols (``psi_A=5, P=0.5``, a subscripted ``x_r``) as it is."""
     text = str(name)
-    return text.replace("_", " ") if re.fullmatch(r"[a-z]+(?:_[a-z]+)+", text) else text  # psi_A=5 stays
+    return text.replace("_", " ") if re.fullmatch(r"[a-z]{2,}(?:_[a-z]{2,})+", text) else text  # psi_A=5, x_r stay
 
 
 def not_checkable_reason(claim: Mapping) -> str:

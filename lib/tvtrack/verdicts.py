@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
 from .estimate import Estimate
+from .run_words import part_name
 from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated, is_undecided, runs_to_decide
     decide_note,
     short_number,
@@ -443,7 +444,7 @@ class AllOf(Rule):
             raise ValueError("AllOf needs at least one part")
 
     def text(self) -> str:
-        return "all of: " + "; ".join(f"({name}) {rule.text()}" for name, rule in self.parts.items())
+        return "all of: " + "; ".join(f"({part_name(name)}) {rule.text()}" for name, rule in self.parts.items())
 
     def params(self) -> dict:
         return {"parts": {name: rule.to_dict() for name, rule in self.parts.items()}}
@@ -459,7 +460,7 @@ class AllOf(Rule):
             for name, rule in self.parts.items()
         }
         checked = {n: j for n, j in decided.items() if j.verdict != "not checkable"}
-        why = "; ".join(f"({name}) {j.verdict}: {j.why}" for name, j in decided.items())
+        why = "; ".join(f"({part_name(name)}) {j.verdict}: {j.why}" for name, j in decided.items())
         if not checked:
             return Judgement("not checkable", why)
         firm = {j.verdict for j in checked.values() if j.verdict != "undecided"}

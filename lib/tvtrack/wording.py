@@ -20,7 +20,7 @@ import itertools
 from typing import Any, Mapping
 
 from .register import leaves_operating_point
-from .numbers import finite, number
+from .numbers import finite, number, setting
 from .run_words import lock_sentence, lost_basis, lost_lead, not_checkable_reason, part_name, plain_text
 from .run_words import runs_sentence, share_counts, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
@@ -487,7 +487,7 @@ def kinds_of_changes(changed: Mapping, record: Mapping) -> str:
         if str(k) not in known:
             return ""
         title, side, phrases = known[str(k)]
-        phrase = plain_text(str(phrases.get(str(v)) or f"{title} = {v}"))
+        phrase = plain_text(str(phrases.get(str(v)) or setting(title, v)))
         bits.append(f"{phrase} ({_KIND_TAGS.get(side, _KIND_TAGS['reading'])})")
     return " and ".join(bits) if len(bits) < 3 else ", ".join(bits[:-1]) + " and " + bits[-1]
 

@@ -7,6 +7,7 @@ import numpy as np
 
 from ...explore import Exploration
 from ...counts import proportion_ci
+from ...numbers import setting
 from .discriminators import quadrant_slope_fit, static_characteristic
 from .loops import phase_response
 from .scene import Scenario
@@ -168,7 +169,7 @@ def threshold_map_figure(
     named entries (default: motion and geometry; one at a time, first replicate's draws)."""
     rows = [("default", next(r for r in ex.runs if r.stage == "replicate"))]
     rows += [
-        (", ".join(f"{k} = {v}" for k, v in r.changed(ex.default).items()), r)
+        (", ".join(setting(k, v) for k, v in r.changed(ex.default).items()), r)
         for r in ex.runs
         if r.stage == "single" and set(r.changed(ex.default)) & set(entries) and "_map" in r.outputs
     ]
