@@ -577,3 +577,20 @@ def test_a_setting_reads_in_four_figures_in_the_table_the_register_and_the_phras
         "k = y/z",
         "k = 123456",
     ]
+
+
+def test_the_table_says_a_change_in_the_registers_words():
+    """A condition's changes are said by the entry's phrase or title, not its identifier."""
+    reg = Register(
+        [
+            Entry("k_bound2", "unreported setting", 50, (50, 30), "gain bound", title="2nd-order gain bound"),
+            Entry("lost", "regime", "coast", ("coast", "skip"), "a world", phrases={"skip": "lost frames skipped"}),
+        ]
+    )
+
+    def measure(config, seed):
+        return {"Y": X(3.0 * (config["lost"] == "skip"))}
+
+    rows = explore(measure, reg, {"Y": BAND}, seed=7).table("Y").splitlines()
+    assert "| single (1 replicate): 2nd-order gain bound = 30 | reproduced |" in rows
+    assert "| single (1 replicate): lost frames skipped | not reproduced |" in rows

@@ -181,8 +181,8 @@ class Exploration:
         return {"operating_point_lost": run.off_point} if run.off_point else {}
 
     def table(self, claim_id: str) -> str:
-        """The claim over its replicates and conditions (each with its replicates) as a Markdown table (verdict per
-        part)."""
+        """The claim over its replicates and conditions (each with its replicates, its changes in the register's
+        words) as a Markdown table (verdict per part)."""
         rec = self.record(claim_id)
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
@@ -192,13 +192,17 @@ class Exploration:
         ]
         rows += [
             f"| {c['kind']} ({_replicates(c.get('runs', 1))}): "
-            + (", ".join(setting(k, v) for k, v in c["changed"].items())).replace("|", "/")
+            + (", ".join(self._phrase(k, v) for k, v in c["changed"].items())).replace("|", "/")
             + " | "
             + " | ".join(c["parts"].get(p, "-") for p in parts)
             + " |"
             for c in rec["conditions"]
         ]
         return "\n".join([head, *rows])
+
+    def _phrase(self, name: str, value: Any) -> str:
+        """An entry set to a value in the register's plain words (its phrase or title), else ``name = value``."""
+        return self.register[name].phrase(value) if name in self.register else setting(name, value)
 
     def summary(self) -> str:
         """One Markdown line per claim: label and what it covers."""
