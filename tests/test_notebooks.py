@@ -158,6 +158,7 @@ def test_smoke_run_writes_valid_results_and_recording(name, smoke_run):
     assert [p for claim in data["claims"] for p in audit_claim(claim)] == []
     for fig in data["figures"]:
         assert (outcome.run_dir / fig["file"]).is_file() and fig["caption"]
+        assert not fig.get("problems"), f"{name}: {fig['file']}: {fig.get('problems')}"  # labels, colour bars
     written = {p.name for p in outcome.run_dir.iterdir()}
     assert written <= {"results.json", "run.json", "notebook.ipynb", "recording.rrd", "error.txt"} | {
         f["file"] for f in data["figures"]

@@ -124,6 +124,7 @@ def test_figure_is_saved_and_listed(tmp_path):
     r = make(tmp_path)
     fig, ax = plt.subplots()
     ax.plot([0, 1])
+    ax.set(xlabel="frame", ylabel="error (px)")
     r.save_figure(fig, "fig1", "caption")
     assert (tmp_path / "fig1.png").stat().st_size > 0
     assert r.figures == [{"file": "fig1.png", "caption": "caption"}]

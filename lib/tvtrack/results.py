@@ -43,6 +43,7 @@ from .verdicts import LABELS, VERDICTS, Rule
 from .flip_words import flip_with_kind, label_basis, mixed_kinds
 from .paragraphs import label_words, paper_paragraph, results_summary
 from .numbers import format_measured
+from .figure_checks import figure_problems
 from .run_words import share_counts
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
@@ -373,7 +374,8 @@ class Results:
             raise ValueError(f"figure name {name!r} may hold only letters, digits, '_', '.', '-'")
         path = self.output_dir / f"{name}.png"
         fig.savefig(path, dpi=dpi, bbox_inches="tight")
-        self.figures.append({"file": path.name, "caption": caption})
+        problems = figure_problems(fig)  # drawn: its tick labels are known
+        self.figures.append({"file": path.name, "caption": caption, **({"problems": problems} if problems else {})})
         _show_inline(path, f"*Figure {len(self.figures)}.* {caption}", fig)
 
     def to_dict(self) -> dict:

@@ -99,7 +99,7 @@ def velocity_acceleration(t_s, truth, mean_v, sd_v, mean_a, sd_a, p_detected, lo
         ax.plot(t_s[m], truth[m, 1], "k", lw=1.5, label="1: true")
         for r, v in mean_v.items():
             ax.plot(t_s[m], v[m], color=RESTART_COLOURS[r], lw=1.0, label=f"2: filter output, mean (restart {r})")
-        ax.set(ylabel="velocity (elements/frame)", xlim=(lo, hi))
+        ax.set(xlabel="time (s)", ylabel="velocity (elements/frame)", xlim=(lo, hi))
     axs[1].set_ylim(
         truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].min() - 0.6,
         truth[(t_s >= zoom[0]) & (t_s <= zoom[1]), 1].max() + 0.6,

@@ -72,7 +72,8 @@ def measurement_figure(run, frame: int):
     g = cam.gate_size_px
     mask = centroid_mask(img, o, xy[frame], window_px=cam.window_px, threshold_sigma=cam.threshold_sigma)
     fig, axs = plt.subplots(1, 2, figsize=(10, 3.8), width_ratios=[1, 1.6])
-    axs[0].imshow(img, cmap="gray", extent=(o[0] - 0.5, o[0] + g - 0.5, o[1] + g - 0.5, o[1] - 0.5))
+    im = axs[0].imshow(img, cmap="gray", extent=(o[0] - 0.5, o[0] + g - 0.5, o[1] + g - 0.5, o[1] - 0.5))
+    fig.colorbar(im, ax=axs[0], label="pixel value (DN)", shrink=0.85)
     axs[0].contour(
         np.arange(g) + o[0], np.arange(g) + o[1], mask.astype(float), levels=[0.5], colors="c", linewidths=0.8
     )
