@@ -12,8 +12,8 @@ bounds), ``study`` (the measurement functions the
 explorer calls and the figure data), ``readings`` (which points and statistics a configuration's claims
 compare), ``claim_values`` (what each claim computes from the points, and the sentences' statistics),
 ``register`` (the unstated choices and which claim reads which), ``claims`` (the claims and their rules),
-``params`` (the notebook's parameter rules), ``plots`` (one function per figure) and ``recording`` (the Rerun
-layout of one trial).
+``params`` (the notebook's parameter rules), ``plots`` (one function per figure), ``recording`` (the Rerun
+layout of one trial) and ``cap_check`` (whether the EM iteration cap matters where it is reached, Fig 6b).
 
 The paper contract (:mod:`tvtrack.contract`): ``PAPER``, the paper declared in :mod:`.paper` and imported on first
 use, and ``CITATION``, ``REGISTER``, ``DEPENDS``, ``RULES``, ``PARAMETERS``, ``CLAIMS``, ``Sizes`` and

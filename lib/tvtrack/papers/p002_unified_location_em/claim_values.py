@@ -19,12 +19,12 @@ from tvtrack.estimate import Estimate
 from tvtrack.measured import calibrated
 from tvtrack.montecarlo import ratio_ci
 from .readings import (
-    CLOSE,
     COORDINATE6,
     FIG1_PANEL,
     T_DEPENDENCE6,
     TRIMMED,
     c1_point,
+    c10_close,
     c5_pair,
     c11_separations,
     c6_point,
@@ -50,6 +50,8 @@ __all__ = [
     "exp_estimate",
     "scaled",
     "fold_change",
+    "coarser_pixels",
+    "epoch_and_spread",
     "NEEDS",
     "LETTERS",
     "needed_points",
@@ -74,6 +76,10 @@ def spread_sum(e, statistic: str = "variance") -> Estimate:
         rng = np.random.default_rng(seed_sequence(0, ("trimmed spread",)))
         return bootstrap_groups([np.asarray(e, float)], SPREADS["trimmed_variance"], rng, 2000)
     return mse_sum(e) if statistic == "MSE" else variance_sum(e)
+
+
+def _statistic(config: dict) -> str:  # the register's statistic; "trimmed" where "gross errors" drops the largest
+    return "trimmed" if config.get("gross errors", "kept") == TRIMMED else config["statistic"]
 
 
 def _spread(statistic: str) -> str:
@@ -262,9 +268,7 @@ class _Ctx:
     D: list
 
     def __post_init__(self):
-        self.ep, self.st = self.config["epoch"], self.config["statistic"]
-        if self.config.get("gross errors", "kept") == TRIMMED:
-            self.st = "trimmed"
+        self.ep, self.st = self.config["epoch"], _statistic(self.config)
         self.sp = _spread(self.st)  # the log gains and C002-6's spreads read the same statistic as the gains
 
     def ula(self, c):
@@ -294,8 +298,9 @@ class _Ctx:
         return np.hstack([errors(r, "em", self.ep), errors(r, "ula", self.ep)])
 
 
-def _close10(config: dict) -> list:
-    return [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
+def epoch_and_spread(config: dict) -> tuple[str, str]:
+    """The epoch (:func:`errors`' ``epoch``) and the spread (:func:`spread_total`'s) the gains read at ``config``."""
+    return config["epoch"], _spread(_statistic(config))
 
 
 def _small6(config: dict, D) -> list:
@@ -373,11 +378,19 @@ def _c9(x: _Ctx):
     }
 
 
+def coarser_pixels(config: dict, g: dict, res, rng: np.random.Generator, n_bootstrap: int) -> Estimate:
+    """C002-10's part "coarser pixels" at ``config``: the geometric mean of rho over the close separations at Fig 6b's
+    pixels over that at Fig 4a's (unit-free; interval from ``n_bootstrap`` resamples of ``rng``) from ``g``, ``res``."""
+    x = _Ctx(config, g, res, rng, n_bootstrap, [])
+    close = c10_close(config)
+    return x.log_gain([x.side(g["6"][20][d]) for d in close], [x.side(g["4"][20][d]) for d in close])
+
+
 def _c10(x: _Ctx):
-    close, g = _close10(x.config), x.g
+    close, g = c10_close(x.config), x.g
     return {
         "closer": [x.rho(g["4"][20][d]) for d in x.D],
-        "coarser pixels": x.log_gain([x.side(g["6"][20][d]) for d in close], [x.side(g["4"][20][d]) for d in close]),
+        "coarser pixels": coarser_pixels(x.config, g, x.res, x.rng, x.B),
         "more frames": x.log_gain([x.side(g["5ab"][50][d]) for d in close], [x.side(g["5ab"][5][d]) for d in close]),
     }
 
@@ -513,7 +526,7 @@ NEEDS = {
     "C002-8": lambda c, g, D: _fig3(c, g, (1.0, _pc(c))),
     "C002-9": lambda c, g, D: _fig3(c, g, (float(c["Delta of the C002-9 order (sigma)"]),)),
     "C002-10": lambda c, g, D: (
-        [g["4"][20][d] for d in D] + [g[k][s][d] for k, s in (("6", 20), ("5ab", 50), ("5ab", 5)) for d in _close10(c)]
+        [g["4"][20][d] for d in D] + [g[k][s][d] for k, s in (("6", 20), ("5ab", 50), ("5ab", 5)) for d in c10_close(c)]
     ),
     "C002-11": _head,
     "C002-12": lambda c, g, D: list(g["good"].values()),

@@ -23,6 +23,7 @@ __all__ = [
     "c6_point",
     "c1_point",
     "c5_pair",
+    "c10_close",
     "c15_close",
     "c11_separations",
     "fig7_variant",
@@ -92,6 +93,11 @@ PIXELS5 = {"3 vs 1": (3.0, 1.0), "5 vs 3": (5.0, 3.0)}
 def c5_pair(config: dict) -> tuple[float, float]:
     """The (coarser, finer) pixel sizes Delta / sigma of C002-5."""
     return PIXELS5[config.get("pixel pair of C002-5", "3 vs 1")]
+
+
+def c10_close(config: dict) -> list:
+    """C002-10's close separations d / sigma: those of :data:`CLOSE` up to the register's "close separations"."""
+    return [d for d in CLOSE if d <= float(config["close separations of C002-10 (sigma)"])]
 
 
 def c15_close(config: dict) -> float:

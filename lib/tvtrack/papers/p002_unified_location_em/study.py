@@ -46,6 +46,7 @@ __all__ = [
     "settings_of",
     "jobs_of",
     "run_jobs",
+    "rerun",
     "measure",
     "measure_batch",
     "screen_scale",
@@ -324,6 +325,17 @@ class _Results:
             out.update({k: v for k, v in r.items() if k != "timing"})
             out.setdefault("timing", {}).update({k: v for k, v in r["timing"].items() if v})
         return out
+
+
+def rerun(res, c: Config, letters: str, **variant) -> dict:
+    """The algorithms ``letters`` of the point ``c`` of ``res`` (:func:`figure_data`'s results) rerun on the same
+    scenes under the settings ``variant`` (e.g. ``max_iter=10**6``; a variant does not enter the scene seed), not
+    cached: the merged results of :func:`.simulation.run_config` (errors in sigma, flags, iterations)."""
+    out = {}
+    for a in letters:
+        job = _job_settings(res.settings, a, res.scale, c.q)
+        out.update(run_config(job, c._replace(algs=a, variant=tuple(sorted(variant.items())))))
+    return out
 
 
 def measure_batch(configs, seeds, scale: Scale = Scale(), claims=None) -> list[dict]:
