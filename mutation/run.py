@@ -4,8 +4,10 @@ the narrow test selection that pins it, one module at a time, one process.
 For each target the module tree is copied into a scratch folder (``mutation/work/<name>/``, ignored by git) laid out
 as mutmut expects (``src/tvtrack``; the tests copied beside it, ``mutants/src`` a link to ``mutants/lib`` so that
 ``tests/conftest.py`` finds the package inside the checkout), mutmut runs with ``--max-children 1`` over that one
-module, and every surviving mutant's diff is read back and sorted: a reviewed equivalent (``mutation/equivalent.txt``,
-one line each with its reason), a string-only change (a text no test reads: listed, counted apart), or a survivor.
+module (over the mutants of its ``functions`` only, where the target names them: the claim-value functions of a large
+study module), and every surviving mutant's diff is read back and sorted: a reviewed equivalent
+(``mutation/equivalent.txt``, one line each with its reason), a string-only change (a text no test reads: listed,
+counted apart), or a survivor.
 
 Usage::
 
@@ -145,19 +147,26 @@ def _diffs(work: Path, names: list[str]) -> dict[str, str]:
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
+def selected(target: dict, ci: bool) -> list[str]:
+    """The mutmut name patterns a run is restricted to: the target's ``ci`` sample under ``--ci``, else its
+    ``functions`` (a module measured on the functions that compute claim values only), else none (every mutant)."""
+    return list(target.get("ci", []) if ci else target.get("functions", []))
+
+
 def measure(name: str, target: dict, ci: bool, equivalent: dict[str, str]) -> tuple[dict, list[str]]:
     """Run mutmut on one target; ``(counts, report lines)``."""
     work = prepare(name, target)
+    patterns = selected(target, ci)
     start = time.monotonic()
-    run = mutmut(work, "run", "--max-children", "1", *(target.get("ci", []) if ci else []))
+    run = mutmut(work, "run", "--max-children", "1", *patterns)
     seconds = time.monotonic() - start
     if run.returncode != 0:
         tail = (run.stdout + run.stderr)[-3000:]
         raise RuntimeError(f"mutmut failed on {name} (exit {run.returncode}):\n{tail}")
     results = mutmut(work, "results", "--all", "true").stdout
     status = dict(ln.strip().rsplit(": ", 1) for ln in results.splitlines() if "__mutmut_" in ln)
-    if ci:  # only the sampled mutants ran
-        status = {m: v for m, v in status.items() if any(fnmatch.fnmatch(m, p) for p in target.get("ci", []))}
+    if patterns:  # only the selected mutants ran
+        status = {m: v for m, v in status.items() if any(fnmatch.fnmatch(m, p) for p in patterns)}
     counts = {"mutants": len(status), "killed": 0, "equivalent": 0, "string-only": 0, "survived": 0, "seconds": seconds}
     report = [f"## {name} ({target['module']})", ""]
     alive = sorted(m for m, s in status.items() if s not in KILLED)
