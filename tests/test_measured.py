@@ -314,3 +314,17 @@ def test_decide_note_gives_the_factor_or_says_none_decides():
     assert decide_note(1.26) == "about 1.3 times the runs are projected to decide it"
     no = "no number of runs is projected to decide it (the point sits on the edge)"
     assert decide_note(math.inf) == no and decide_note(NAN) == no
+
+
+def test_a_difference_is_widened_on_the_linear_scale_and_may_reach_zero():
+    """A positive interval of a ratio is stretched on the log scale (it stays positive); a difference's on the
+    linear scale, each side by the same factor, so a change whose lower end was just above 0 may reach below it."""
+    from tvtrack.estimate import Estimate
+    from tvtrack.measured import calibrated
+
+    e = Estimate(0.04, 0.02, 0.004, 0.088, 80, 0.95, "bootstrap; coverage 0.895 at n = 80")
+    ratio, diff = calibrated(e), calibrated(e, difference=True)
+    f = ndtri(0.975) / ndtri(0.9475)  # z of the nominal 95 % over z of the measured 89.5 %
+    assert ratio.ci_low > 0 and ratio.ci_low == pytest.approx(0.04 * (0.004 / 0.04) ** f)
+    assert diff.ci_low == pytest.approx(0.04 - f * 0.036) and diff.ci_low < 0
+    assert diff.ci_high == pytest.approx(0.04 + f * 0.048) and "widened x1.209 to 95%" in diff.method

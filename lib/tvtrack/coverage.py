@@ -125,12 +125,13 @@ def coverage_reached(estimate, floor: float = COVERAGE_FLOOR) -> bool:
     return stated_coverage(estimate) >= floor - 1e-12
 
 
-def widen_to_nominal(estimate: Estimate) -> Estimate:
+def widen_to_nominal(estimate: Estimate, difference: bool = False) -> Estimate:
     """The interval widened so that its measured coverage becomes its nominal one (a rule's way to
     decide on a helper whose :func:`stated_coverage` falls short, instead of refusing).
 
     Each side is stretched about the value by ``z_{(1+confidence)/2} / z_{(1+stated)/2}`` (on the log
-    scale when the interval is positive, where the skewed helpers' intervals are closer to symmetric);
+    scale when the interval is positive, where the skewed helpers' intervals are closer to symmetric; on
+    the linear scale for a ``difference``, whose interval may reach 0 and beyond);
     an interval that covers already is returned unchanged. A calibration by the measured coverage on
     skewed samples (:data:`COVERAGE`), not an exact interval: heavy tails stay below nominal.
     """
@@ -140,7 +141,7 @@ def widen_to_nominal(estimate: Estimate) -> Estimate:
     # scipy.stats.norm.ppf's own function (special.ndtri), without the per-call checks: the same numbers
     f = scipy.special.ndtri(0.5 + estimate.confidence / 2) / scipy.special.ndtri(0.5 + stated / 2)
     v, lo, hi = estimate.value, estimate.ci_low, estimate.ci_high
-    if lo > 0 and v > 0:
+    if lo > 0 and v > 0 and not difference:
         lo, hi = v * (lo / v) ** f, v * (hi / v) ** f
     else:
         lo, hi = v - f * (v - lo), v + f * (hi - v)

@@ -80,16 +80,17 @@ def _is_exact(e: Estimate) -> bool:
     return e.method == "exact"
 
 
-def calibrated(measured: Any) -> Estimate:
+def calibrated(measured: Any, difference: bool = False) -> Estimate:
     """The estimate a rule decides on: an interval whose helper states a measured coverage short of its
     nominal level at this sample size (:func:`tvtrack.montecarlo.coverage_reached`) is widened to it
-    (:func:`tvtrack.montecarlo.widen_to_nominal`; the method says so); others are returned as they are."""
+    (:func:`tvtrack.montecarlo.widen_to_nominal`, on the linear scale for a ``difference``; the method says so);
+    others are returned as they are."""
     from .coverage import coverage_reached, stated_coverage, widen_to_nominal
 
     e = as_estimate(measured)
     s = stated_coverage(e)
     if math.isfinite(s) and not coverage_reached(e):
-        return widen_to_nominal(e)
+        return widen_to_nominal(e, difference=difference)
     return e
 
 

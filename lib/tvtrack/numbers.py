@@ -36,6 +36,10 @@ def number(x: Any, digits: int = 4) -> str:
     is written out in full, as a reader writes it, every integer digit shown (``"28395"``, not ``"28390"``), beyond it with an exponent; text as it is."""
     if isinstance(x, bool) or x is None:
         return str(x)
+    if isinstance(x, str):  # numpy's str_ too: it has a __float__
+        return x
+    if getattr(getattr(x, "dtype", None), "kind", "") == "b":  # numpy's bool_: a truth value, not 1 or 0
+        return str(bool(x))
     if isinstance(x, (int, float)) or hasattr(x, "__float__"):
         v = float(x)
         if not math.isfinite(v):

@@ -25,7 +25,11 @@ from tvtrack.papers.p001_maneuver_occlusion_kf.scenario import (
     span_mask,
 )
 
+from tvtrack.papers.p001_maneuver_occlusion_kf import REGISTER
+from tvtrack.papers.p001_maneuver_occlusion_kf.curves import optimum_location
+
 REG = build_register()
+
 DEFAULT = REG.default()
 SIZES = dict(sigma_eps=1.0, kb3_grid=[20, 50, 100], loss_grid_s=[6.0, 8.0, 12.0], defaults=DEFAULT)
 
@@ -442,3 +446,61 @@ def test_the_trade_off_runs_carry_the_sigma_eps_of_the_sizes(c4):
     np.testing.assert_array_equal(
         c4["z"], measurements(sc.truth[:, :, 0], DEFAULT["noise"], 3, np.random.default_rng(5), 2.0)
     )
+
+
+def test_c001_4_reads_the_papers_defaults_where_the_configuration_and_the_sizes_leave_an_entry_out(c4):
+    """``with_defaults`` completes a configuration from ``sizes["defaults"]`` only; sizes without them (``Sizes`` is
+    total=False) leave the statistic, the compensation comparator and the comparators' world to the function's own
+    defaults, which must be the register's: random error (SD), the 2nd-order filter without the switch, and the
+    paper's manoeuvre, acceleration unit and second channel."""
+    left_out = ("rms_statistic", "compensation_comparator", "manoeuvre", "accel_unit", "channel_y")
+    cfg = {k: v for k, v in DEFAULT.items() if k not in left_out}
+    sizes = {k: v for k, v in {**SIZES, "n_tradeoff_trials": 3}.items() if k != "defaults"}
+    got = tradeoff.measure_tradeoff(cfg, 5, sizes)["C001-4"]
+    assert c4["compensation"] == (DEFAULT["compensation_comparator"], "det")
+    assert DEFAULT["compensation_comparator"] == COMPENSATION_COMPARATORS[0] == "2nd order without the switch"
+    assert {got[f"min RMS vs {c}"][2] for c in COMPARATORS} == {"random"}  # random error (SD)
+    world = (DEFAULT["manoeuvre"], DEFAULT["accel_unit"], DEFAULT["channel_y"])
+    assert world == ("constant acceleration", "el/frame²", "v -6, a -0.2")
+    assert [w[-1] for w in c4["comparators"]] == [world] * len(COMPARATORS)
+
+
+# A crossing that rounds onto a grid point, and sizes without defaults (an adversarial review of the equivalents)
+
+
+def _cur(dyn, rms):
+    dyn, rms = np.array(dyn, float), np.array(rms, float)
+    return {"kb3": [10, 11, 12], "dyn": dyn, "rms": rms, "sum": np.abs(dyn) + rms}
+
+
+@pytest.mark.parametrize(
+    "dyn, rms, near, kb3",
+    [
+        ([1e-20, -1.0, -2.0], [5, 0.1, 5], 10.0, 11),  # kills `kb[i - 1] < near`
+        ([2.0, 1.0, -1e-20], [5, 5, 0.1], 12.0, 12),  # kills `near < kb[i]` (minimum at the last point)
+        ([1e-20, -1.0, -2.0], [0.1, 5, 5], 10.0, 10),  # kills `kb[i] < near`
+        ([1.0, -1e-20, -1.0], [0.1, 5, 5], 11.0, 10),  # kills `near < kb[i + 1]`
+    ],
+)
+def test_a_crossing_rounded_onto_a_grid_point_is_adjacent_to_the_minimum(dyn, rms, near, kb3):
+    o = optimum_location(_cur(dyn, rms))
+    assert o["nearest_crossing"] == near and o["kb3"] == kb3  # the interpolated crossing IS a grid point
+    assert o["at_crossing"]  # the minimum is the grid point at / next to the crossing
+
+
+def test_fig4_and_loss_sweep_read_the_papers_10_s_loss_when_sizes_carry_no_defaults(monkeypatch):
+    seen = []
+
+    def fake(sc, config, sizes, kb3, f_loss, f_back):
+        seen.append((f_loss, f_back, sc.fps))
+        return 0.0, 1.0
+
+    monkeypatch.setattr(curves, "prediction_error", fake)
+    cfg = {k: v for k, v in REGISTER.default().items() if k != "loss_length_s"}
+    sizes = {"sigma_eps": 1.0, "kb3_grid": [100], "loss_grid_s": [8.0]}  # no "defaults": with_defaults adds nothing
+    curves.fig4_curves({**cfg, "occlusion": "from 10 s"}, sizes)
+    curves.loss_sweep(cfg, sizes)
+    fps = config_scenario(cfg).fps
+    assert len(seen) == 2
+    for f_loss, f_back, _ in seen:
+        assert f_back - f_loss == int(round(10.0 * fps))  # the paper's 10 s loss (11.0 in the mutant: 11 s)

@@ -168,12 +168,14 @@ def test_the_whole_paragraph_reads_the_numbers_it_is_given():
         "trials at d = 1 sigma. Rerun on the same scenes with a cap of 1000000 iterations, the marks reach it in "
         "0.0% [0.0%, 4.5%] of the trials at d = 1 sigma, the ULA in 0.0% [0.0%, 4.5%] of the trials at d = 1 sigma; "
         "the estimates change in 30 of the 80 trials, every one of them among those that reached the default cap. "
-        "Paired on the same trials (95 % intervals), the larger cap changes the two-stage's variance sum Sigma^2 of "
+        "Paired on the same trials (95 % intervals, widened by the coverage measured for this package's bootstrap of "
+        "a variance ratio at this size), the larger cap changes the two-stage's variance sum Sigma^2 of "
         "the initial positions by +0.1 [+0.01, +0.2] sigma^2 at d = 1 sigma (1.5 -> 1.6: up), and the gain rho = "
         "Sigma^2_two-stage / Sigma^2_ULA by +0.1 [+0.02, +0.2] at d = 1 sigma (0.5 -> 0.6: up). So the default cap "
         "understates the ULA's gain rho (rho rises when the EMs run further) at d = 1 sigma. Of the claims, C002-10 "
         'reads these points (part "coarser pixels": rho at Delta = 5 sigma over rho at Fig 4a\'s pixels, geometric '
-        "mean over d = 1 sigma): on this replicate it is 0.66 [0.55, 0.81] at the default cap and 0.74 [0.61, 0.91] "
+        "mean over d = 1 sigma): on this replicate (intervals from this study's own resamples, as its rule reads "
+        "them) it is 0.66 [0.55, 0.81] at the default cap and 0.74 [0.61, 0.91] "
         'at the larger one, a paired change of +0.08 [+0.04, +0.13] (a measurable change); its rule gives "not '
         'reproduced" at the default cap and "not reproduced" at the larger one, so on this replicate that verdict '
         "does not depend on the cap."
@@ -206,7 +208,8 @@ def test_the_gain_sentence_follows_each_interval(changes, sentence):
 def test_the_verdict_sentence_follows_the_rule_at_each_cap():
     head = (
         'Of the claims, C002-10 reads these points (part "coarser pixels": rho at Delta = 5 sigma over rho at Fig '
-        "4a's pixels, geometric mean over d = 1 sigma): on this replicate it is 0.66 [0.55, 0.81] at the default "
+        "4a's pixels, geometric mean over d = 1 sigma): on this replicate (intervals from this study's own "
+        "resamples, as its rule reads them) it is 0.66 [0.55, 0.81] at the default "
         "cap and 0.74 [0.61, 0.91] at the larger one, a paired change of "
     )
     moved = _out({1.0: UP}, ("undecided", "not reproduced"))
@@ -220,3 +223,35 @@ def test_the_verdict_sentence_follows_the_rule_at_each_cap():
         '"undecided" at the larger one, so on this replicate that verdict does not depend on the cap.'
     )
     assert cc._claims_sentence({**still, "claims": []}) == "No claim reads these points."
+
+
+def test_a_paired_change_is_read_widened_by_the_measured_coverage_and_an_unmeasured_one_decides_nothing():
+    """The paired changes state the coverage measured for the package's bootstrap of a variance ratio at their size
+    (0.895 at n = 80: short of 95 %), so the interval the words read is the widened one; below the smallest size
+    measured nothing is decided; an interval of no width (nothing changed) stays exactly 0."""
+    from tvtrack.papers.p002_unified_location_em.ratio_coverage import ratio_coverage_note
+
+    raw = Estimate(0.04, 0.02, 0.004, 0.088, 80, 0.95, "cluster percentile bootstrap (2000 resamples of 80 clusters)")
+    wide = cc.proxied(raw, ratio_coverage_note(80))
+    assert wide.ci_low < raw.ci_low and wide.ci_high > raw.ci_high and "taken for this paired change" in wide.method
+    assert cc._side(raw) == "up" and cc._side(wide) == "none"  # a lower end of +0.004 does not survive the widening
+    small = cc.proxied(Estimate(0.5, 0.1, 0.3, 0.7, 2, 0.95, "cluster percentile bootstrap"), ratio_coverage_note(2))
+    assert "coverage unmeasured" in small.method and cc._side(small) == "none"
+    zero = Estimate(0.0, 0.0, 0.0, 0.0, 80, 0.95, "cluster percentile bootstrap")
+    assert cc.proxied(zero, ratio_coverage_note(80)) == zero
+
+
+def test_a_rerun_keeps_the_points_own_settings_variant(monkeypatch):
+    """``study.rerun`` adds the cap to a point's variant (e.g. Fig 7's tolerance), never replaces it."""
+    seen = []
+    monkeypatch.setattr(study, "run_config", lambda job, c: seen.append(dict(c.variant)) or {})
+    monkeypatch.setattr(study, "_job_settings", lambda *a: None)
+
+    class Res:
+        settings, scale = None, None
+
+    from tvtrack.papers.p002_unified_location_em.sim_config import Config
+
+    point = Config(2, 1.0, 3.0, 20, 10, "u", 0.3, None, None, 8, "", 0.0, variant=(("tol_px", 1e-3),))
+    study.rerun(Res(), point, "u", max_iter=10**6)
+    assert seen == [{"tol_px": 1e-3, "max_iter": 10**6}]

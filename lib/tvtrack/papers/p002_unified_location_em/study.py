@@ -334,7 +334,8 @@ def rerun(res, c: Config, letters: str, **variant) -> dict:
     out = {}
     for a in letters:
         job = _job_settings(res.settings, a, res.scale, c.q)
-        out.update(run_config(job, c._replace(algs=a, variant=tuple(sorted(variant.items())))))
+        merged = {**dict(c.variant or ()), **variant}  # a point's own variant (e.g. Fig 7's tolerance) is kept
+        out.update(run_config(job, c._replace(algs=a, variant=tuple(sorted(merged.items())))))
     return out
 
 
