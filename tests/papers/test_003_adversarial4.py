@@ -155,3 +155,19 @@ def test_pinned_fast_object_loses_lock_where_each_half_alone_does_not():
     assert _lost(joint).all()
     assert not _lost({"motion_scale": 2.0}).any()
     assert not _lost({"sinusoid_hz": 1.5}).any()
+
+
+def test_dependence_sentence_names_a_part_in_words_not_its_key():
+    """A part keyed ``loss_free`` in the code reads "loss free" in the sentence a reader sees."""
+    rec = {
+        "C003-6": {
+            "register": [{"name": "motion_scale"}],
+            "replicates": [{"parts": {"loss_free": "reproduced"}}],
+            "parts": {"loss_free": "reproduced"},
+            "conditions": [
+                {"kind": "single", "changed": {"motion_scale": 0.25}, "parts": {"loss_free": "not reproduced"}}
+            ],
+        }
+    }
+    text = prose.dependence(rec)
+    assert "C003-6 (loss free): not reproduced with " in text and "loss_free" not in text

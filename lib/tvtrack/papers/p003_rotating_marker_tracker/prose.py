@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ...measured import as_estimate, is_undecided
+from ...run_words import part_name
 from .register import REGISTER
 
 __all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions", "lost_points"]
@@ -61,7 +62,7 @@ def dependence(records: dict, entries=("motion", "motion_scale", "interference_m
                 if k in explored and c["parts"].get(name) != ref.get(name)
             ]
             if flips:
-                hits.append(f"{cid} ({name}): {'; '.join(flips)}")
+                hits.append(f"{cid} ({part_name(name)}): {'; '.join(flips)}")
     names = "; ".join(_title(e) for e in sorted(explored))
     if not hits:
         return f"no part of these claims changed verdict when one of these alone changed: {names}"

@@ -10,7 +10,7 @@ import numpy as np
 
 from ...estimate import Estimate
 from ...numbers import value_range
-from ...run_words import share_counts
+from ...run_words import part_name, share_counts
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
@@ -256,7 +256,7 @@ def adversarial_summary(exploration, rules: dict) -> str:
                 if c["kind"] == "single" and list(c["changed"]) == [entry.name]:
                     for p, v in c["parts"].items():
                         if p in ref and v != ref[p]:
-                            where = cid if p == "claim" else f"{cid} ({p})"
+                            where = cid if p == "claim" else f"{cid} ({part_name(p)})"
                             flips.append(f"{where} {ref[p]} -> {v} with {entry.phrase(c['changed'][entry.name])}")
         title = entry.title or entry.name
         lines.append(
@@ -502,7 +502,7 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
     for cid, rule in rules.items():
         rec = exploration.record(cid, rule)
         for part, v in rec["parts"].items():
-            head = cid if len(rec["parts"]) == 1 else f"{cid} ({part})"
+            head = cid if len(rec["parts"]) == 1 else f"{cid} ({part_name(part)})"
             text = f"- **{head}**: {v['verdict']}, {v['label']}"
             sh = v.get("share") or {}
             if share_counts(sh):  # over every explored configuration (one at a time and joint), as the core says it
