@@ -811,6 +811,20 @@ def test_the_search_computes_each_runs_flips_and_changes_once_while_it_is_unchan
     assert sorted(changed_of) == sorted([id(joint), id(abc)])
 
 
+def test_a_joint_flip_outside_the_operating_point_starts_no_subset_search():
+    # its flips are counted beside the labels, where no flip is named by a subset: searching it only costs runs
+    m = _needs("a", "b", "c")
+    depends = {"X": ["a", "b", "c", "d"]}
+    joint = _measured(m, {"a": 1, "b": 1, "c": 1, "d": 1}, "joint")
+    assert unexplained_flips(RULES, depends, DEFAULT_J, [joint], DEFAULT, {"X": 1}) == [
+        (joint, {"a", "b", "c", "d"}, frozenset({"X"}))
+    ]
+    joint.off_point = "the joint world leaves the paper's band"
+    assert unexplained_flips(RULES, depends, DEFAULT_J, [joint], DEFAULT, {"X": 1}) == []
+    _, combos, _ = _search(m, [joint], depends)
+    assert combos == []
+
+
 def test_a_flip_outside_the_operating_point_explains_no_joint_flip_and_the_next_one_still_does():
     m = _needs("a", "b")
     depends = {"X": ["a", "b", "c", "d"]}

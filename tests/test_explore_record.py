@@ -416,10 +416,10 @@ def test_a_flipping_pair_inside_a_pinned_triple_is_searched_sized_and_asked_only
     assert ex.settings["condition_runs"] == sum(len(r.sized) for r in conds) > need - 1
     assert ex.settings["combinations"] == 3 and ex.settings["timing"]["combinations"]["configurations"] == 3
     assert ex.table("L").splitlines()[-4:] == [  # each condition with its own replicates, every changed entry
-        f"| pinned ({need} replicates): a = 2, b = 2, c = y | not reproduced |",
-        f"| combination ({need} replicates): a = 2, b = 2 | not reproduced |",
-        "| combination (1 replicate): a = 2, c = y | undecided |",
-        "| combination (1 replicate): b = 2, c = y | undecided |",
+        f"| pinned ({need} replicates): a = 2 and b = 2 and c = y | not reproduced |",
+        f"| combination ({need} replicates): a = 2 and b = 2 | not reproduced |",
+        "| combination (1 replicate): a = 2 and c = y | undecided |",
+        "| combination (1 replicate): b = 2 and c = y | undecided |",
     ]
 
 
@@ -584,13 +584,20 @@ def test_the_table_says_a_change_in_the_registers_words():
     reg = Register(
         [
             Entry("k_bound2", "unreported setting", 50, (50, 30), "gain bound", title="2nd-order gain bound"),
-            Entry("lost", "regime", "coast", ("coast", "skip"), "a world", phrases={"skip": "lost frames skipped"}),
-        ]
+            Entry("lost", "regime", "coast", ("coast", "skip"), "a world", phrases={"skip": "lost frames, skipped"}),
+        ],
+        pinned=[{"k_bound2": 30, "lost": "skip"}],
     )
 
     def measure(config, seed):
         return {"Y": X(3.0 * (config["lost"] == "skip"))}
 
-    rows = explore(measure, reg, {"Y": BAND}, seed=7).table("Y").splitlines()
+    ex = explore(measure, reg, {"Y": BAND}, seed=7)
+    rows = ex.table("Y").splitlines()
     assert "| single (1 replicate): 2nd-order gain bound = 30 | reproduced |" in rows
-    assert "| single (1 replicate): lost frames skipped | not reproduced |" in rows
+    assert "| single (1 replicate): lost frames, skipped | not reproduced |" in rows
+    # a configuration reads in the table as in its record and its named flips: changes joined by "and", never by
+    # the commas a phrase may hold itself
+    joint = next(c for c in ex.record("Y")["conditions"] if len(c["changed"]) == 2)
+    assert joint["text"] == "2nd-order gain bound = 30 and lost frames, skipped"
+    assert any(r.endswith(f"): {joint['text']} | not reproduced |") for r in rows), rows

@@ -308,9 +308,11 @@ def _flips_kept(rules, default_j, run: Run, n_default, cache: dict | None) -> se
 
 
 def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: Mapping, n_default, cache=None) -> list:
-    """Joint or pinned runs that flip some part decisively where no smaller run explains it (a single entry or a
-    subset that flips the same part, at the paper's operating point: a run with ``off_point`` explains none), each with the flipped claims and the entries of theirs it changed (only
-    those with more than two: a pair is already the smallest combination).
+    """Joint or pinned runs at the paper's operating point that flip some part decisively where no smaller run
+    explains it (a single entry or a subset that flips the same part, at the operating point), each with the flipped
+    claims and the entries of theirs it changed (only those with more than two: a pair is already the smallest
+    combination). A run with ``off_point`` explains no flip and is not searched: its flips are counted beside the
+    labels, where no flip is named by a subset (:func:`tvtrack.attribution.beside_operating_point`).
 
     ``cache`` (a dict kept by the caller across calls on the same growing ``runs``, optional) keeps each run's
     changed entries and its flips while the run is unchanged, so a search that asks again after each round
@@ -325,7 +327,7 @@ def unexplained_flips(rules, depends, default_j, runs: Sequence[Run], default: M
             flipping.setdefault(key, []).append(_changed_items(r, default, cache))
     out = []
     for r in runs:
-        if r.stage not in ("joint", "pinned"):
+        if r.stage not in ("joint", "pinned") or r.off_point:  # counted beside the labels: no flip there is named
             continue
         ch = _changed_items(r, default, cache)
         todo, claims = set(), set()

@@ -49,7 +49,6 @@ from .labels import label_parts, part_judgements, part_pairs
 from .pooling import pool
 from .attribution import MAX_SUBSET
 from .register import Register
-from .numbers import setting
 from .verdicts import Rule, is_decisive
 
 __all__ = [
@@ -181,8 +180,9 @@ class Exploration:
         return {"operating_point_lost": run.off_point} if run.off_point else {}
 
     def table(self, claim_id: str) -> str:
-        """The claim over its replicates and conditions (each with its replicates, its changes in the register's
-        words) as a Markdown table (verdict per part)."""
+        """The claim over its replicates and conditions (each with its replicates and its changes in the register's
+        words, joined as the named flips join them: :func:`tvtrack.attribution.phrase`) as a Markdown table (verdict
+        per part)."""
         rec = self.record(claim_id)
         parts = list(rec["parts"])
         head = "| run | " + " | ".join(parts) + " |\n|" + " --- |" * (len(parts) + 1)
@@ -192,17 +192,13 @@ class Exploration:
         ]
         rows += [
             f"| {c['kind']} ({_replicates(c.get('runs', 1))}): "
-            + (", ".join(self._phrase(k, v) for k, v in c["changed"].items())).replace("|", "/")
+            + c["text"].replace("|", "/")
             + " | "
             + " | ".join(c["parts"].get(p, "-") for p in parts)
             + " |"
             for c in rec["conditions"]
         ]
         return "\n".join([head, *rows])
-
-    def _phrase(self, name: str, value: Any) -> str:
-        """An entry set to a value in the register's plain words (its phrase or title), else ``name = value``."""
-        return self.register[name].phrase(value) if name in self.register else setting(name, value)
 
     def summary(self) -> str:
         """One Markdown line per claim: label and what it covers."""
@@ -398,7 +394,7 @@ def explore(
         alone (e.g. a joint world that no re-calibration brings back to the paper's error); None where it is kept.
         Such a condition is counted beside the claim's labels, as one at a register value marked
         ``off_operating_point`` is (:func:`tvtrack.verdicts.label_parts`), and explains no other flip in the subset
-        search. Called in this process on each condition as it is made, before it is measured.
+        search, nor has its own flips searched. Called in this process on each condition as it is made, before it is measured.
     guard : bool
         Hand every condition's run a guarded configuration (:func:`tvtrack.register.guard`): reading an entry that
         none of the claims it is asked for declares raises :class:`tvtrack.register.UndeclaredEntry`. A measurement
@@ -491,7 +487,7 @@ def explore(
 def _mark_off_point(runs: list[Run], operating_point: Callable | None) -> list[Run]:
     """Mark each run whose configuration (one claim group's projection) the exploration's ``operating_point`` reports
     outside the paper's stated operating point (``Run.off_point``: its reason). Such a run is measured and sized like
-    any condition and counted beside the labels; it explains no other flip in the subset search
+    any condition and counted beside the labels; it explains no other flip in the subset search and starts none
     (:func:`tvtrack.conditions.unexplained_flips`). A register value marked ``off_operating_point`` needs no mark
     here: every configuration that contains it leaves the operating point too, so it explains no flip at it."""
     for r in runs if operating_point is not None else ():
