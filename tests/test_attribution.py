@@ -366,3 +366,44 @@ def test_sensitivity_floor_is_a_distance_from_the_default_and_a_move_at_the_floo
     rows = [{"config": d, "value": 0.0}, {"config": {"a": 1}, "value": 0.25}]
     assert sensitivity(rows, ["a"], {}, d, floor=0.25) == []  # exactly the floor: not more than it
     assert [r["entry"] for r in sensitivity(rows, ["a"], {}, d, floor=0.2)] == ["a"]
+
+
+def test_a_flip_with_an_undecided_smaller_subset_says_it_is_the_smallest_found_not_shown():
+    # the pair flips; one of its entries alone was left smaller than the default needed (undecided): the pair is
+    # the smallest found, and the flip records which smaller subset stays open
+    rows = [
+        _row("combination", s1=1, w1=1),
+        _row("single", "undecided", runs=1, s1=1),
+        _row("single", YES, w1=1),
+    ]
+    (flip,) = attribute(YES, rows, ENTRIES)
+    assert flip["changed"] == {"s1": 1, "w1": 1} and flip["undecided_subsets"] == ["drift spread = 1"]
+    rows[1] = _row("single", YES, s1=1)  # every smaller subset decided: the smallest shown
+    (flip,) = attribute(YES, rows, ENTRIES)
+    assert "undecided_subsets" not in flip
+
+
+def test_the_where_line_and_the_bracket_say_a_flip_may_not_be_the_smallest():
+    from tvtrack.flip_words import label_basis
+    from tvtrack.labels import label_parts
+    from tvtrack.montecarlo import Estimate
+    from tvtrack.verdicts import InBand
+
+    band = InBand("mean", -0.5, 0.5)
+    ents = [ENTRIES["s1"], Entry("s2", "unreported setting", 0, (0, 1), "test setting", title="gain law")]
+    reps = [{"seed": s, "measured": Estimate.exact(0.0)} for s in (1, 2, 3)]
+    conds = [
+        {"changed": {"s1": 1, "s2": 1}, "kind": "joint", "measured": Estimate.exact(3.0), "runs": 3},
+        {"changed": {"s1": 1}, "kind": "single", "measured": Estimate.exact(3.0), "runs": 1},  # below the size
+        {"changed": {"s2": 1}, "kind": "single", "measured": Estimate.exact(0.1), "runs": 3},
+    ]
+    rb = label_parts(band, Estimate.exact(0.0), reps, conds, ents, needed=3)
+    part = rb["parts"]["claim"]
+    assert part["where"] == [
+        "not reproduced when drift spread = 1 and gain law = 1 (the smallest found: drift spread = 1 stays undecided)"
+    ]
+    rb["register"] = [e.to_dict() for e in ents]
+    claim = {"id": "C9-9", "verdict": "reproduced", "robustness": rb}
+    assert label_basis(claim).startswith(
+        "two unprinted settings together (or fewer: a smaller part of them stays undecided)"
+    )

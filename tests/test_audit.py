@@ -5,6 +5,7 @@ import copy
 
 import pytest
 
+from tvtrack.run_words import share_counts
 from tvtrack.labels import label_parts
 from tvtrack.montecarlo import Estimate
 from tvtrack.pipeline.audit import audit_claim, audit_markdown, audit_runs
@@ -18,6 +19,7 @@ WORLD = Entry("motion", "regime", "cv", ("cv", "turn"), "a world beyond the pape
 LOUD = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
 ENTRIES = (READING, SETTING, WORLD, LOUD)
 IN, OUT = Estimate.exact(0.0), Estimate.exact(3.0)
+MOVED = Estimate.exact(0.1)  # agrees with IN (inside the band), but the condition moved the value: it reached it
 SINGLES_THAT_AGREE = ({"law": "step"}, {"motion": "turn"}, {"noise": "high"})
 
 
@@ -221,11 +223,26 @@ def test_pinned_configurations_are_counted_beside_the_share_and_a_share_that_dro
     assert audit_claim(claim) == []
     del share["pinned"]  # a record whose share hides the pinned flip beside it
     assert audit_claim(claim) == [
-        "C9-1: the pinned configurations beside the share read {'agree': 0, 'flip': 0, 'undecided': 0}, "
+        "C9-1: the pinned beside the share read {'agree': 0, 'flip': 0, 'undecided': 0}, "
         "their verdicts give {'agree': 1, 'flip': 1, 'undecided': 0}"
     ]
     share["pinned"] = {"agree": 2, "flip": 0, "undecided": 0}  # the flip counted as agreeing
     assert len(audit_claim(claim)) == 1
+
+
+def test_a_combinations_flip_is_counted_beside_the_share_and_a_share_that_drops_it_is_found():
+    # the pair (motion, noise) flips the claim alone: a flip the part names, so the share says it beside its design
+    claim = _claim()
+    part = claim["robustness"]["parts"]["claim"]
+    assert {tuple(sorted(f["changed"])) for f in part["flips"]} >= {("motion", "noise")}
+    assert part["share"]["combinations"] == {"agree": 0, "flip": 1, "undecided": 0}
+    assert "of 1 combination of entries searched inside flipping joint ones, 1 flips" in share_counts(part["share"])
+    assert audit_claim(claim) == []
+    del part["share"]["combinations"]
+    assert audit_claim(claim) == [
+        "C9-1: the combinations beside the share read {'agree': 0, 'flip': 0, 'undecided': 0}, "
+        "their verdicts give {'agree': 0, 'flip': 1, 'undecided': 0}"
+    ]
 
 
 def test_a_claim_without_pinned_configurations_has_no_pinned_count():
@@ -239,9 +256,10 @@ def test_the_share_words_say_the_pinned_configurations_beside_the_design():
     share = _claim_with_pinned()["robustness"]["parts"]["claim"]["share"]
     assert share_counts(share) == (
         "3 agree, 1 flips and 0 stay undecided of 4 explored configurations; of 2 pinned configurations measured "
-        "beside them (joint configurations every run measures), 1 flips, 1 agrees and 0 stay undecided"
+        "beside them (joint configurations every run measures), 1 flips, 1 agrees and 0 stay undecided; of 1 "
+        "combination of entries searched inside flipping joint ones, 1 flips, 0 agree and 0 stay undecided"
     )
-    one = share_counts({**share, "pinned": {"agree": 0, "flip": 1, "undecided": 0}})
+    one = share_counts({**share, "pinned": {"agree": 0, "flip": 1, "undecided": 0}, "combinations": None})
     assert one.endswith(
         "of 1 pinned configuration measured beside them (joint configurations every run measures), "
         "1 flips, 0 agree and 0 stay undecided"
@@ -294,7 +312,7 @@ def test_a_joint_the_exploration_could_not_keep_at_the_operating_point_is_counte
     # exploration's reason does; its flip must stay out of the label as a marked value's does
     reps = [{"seed": s, "measured": IN} for s in (1, 2, 3)]
     lost = {**_cond({"law": "step", "motion": "turn"}, OUT, kind="joint"), "operating_point_lost": "no bandwidth fits"}
-    conds = [lost, _cond({"law": "step"}, IN), _cond({"motion": "turn"}, IN)]
+    conds = [lost, _cond({"law": "step"}, MOVED), _cond({"motion": "turn"}, MOVED)]
     rb = label_parts(BAND, IN, reps, conds, (SETTING, WORLD), design={"min_share_design": 2}, needed=2)
     rb["register"] = [SETTING.to_dict(), WORLD.to_dict()]
     rb["design"] = {"replicates_needed": {"C9-3": 2}}
@@ -335,7 +353,9 @@ def test_configurations_outside_the_operating_point_do_not_make_a_design_look_la
     rb = label_parts(BAND, IN, reps, [_cond({"speed": 1}, IN), marked, lost], (w, v), needed=2)
     assert rb["provisional"] and rb["coverage"].startswith("unexplored over 1 distinct configurations (1 one at a time")
     assert "2 outside the paper's operating point, counted beside the label" in rb["coverage"]
-    rb = label_parts(BAND, IN, reps, [_cond({"speed": 1}, IN), _cond({"gust": 1}, IN), marked, lost], (w, v), needed=2)
+    rb = label_parts(
+        BAND, IN, reps, [_cond({"speed": 1}, MOVED), _cond({"gust": 1}, MOVED), marked, lost], (w, v), needed=2
+    )
     assert not rb["provisional"] and rb["label"] == "robust"
     every = [
         {**_cond(ch, OUT, kind="joint" if len(ch) > 1 else "single"), "operating_point_lost": "outside 1-2 px"}

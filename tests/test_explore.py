@@ -29,9 +29,11 @@ def _mean(seed, shift, n=400, sd=1.0):
 
 
 def measure_joint_only(config, seed):
-    """The claim 'mean in [-0.5, 0.5]' flips only when a and b are both 2 (an interaction)."""
-    shift = 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.0
-    return {"X": _mean(seed, shift), "Y": {"p1": _mean(seed, 0.0), "p2": _mean(seed, 3.0 * (config["c"] == "y"))}}
+    """The claim 'mean in [-0.5, 0.5]' flips only when a and b are both 2 (an interaction); elsewhere a and b move
+    it a little (each world reaches it), well inside the band."""
+    shift = 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.01 * (config["a"] + config["b"])
+    y = {"p1": _mean(seed, 0.01 * config["a"]), "p2": _mean(seed, 3.0 * (config["c"] == "y"))}
+    return {"X": _mean(seed, shift), "Y": y}
 
 
 def measure_renamed(config, seed):
@@ -462,7 +464,8 @@ def test_a_measure_taking_claims_gives_the_same_exploration_and_skips_what_no_cl
         asked.append(({k: v for k, v in config.items() if not isinstance(v, Undeclared)}, claims))
         out = {}
         if claims is None or "X" in claims:
-            out["X"] = _mean(seed, 3.0 if (config["a"] == 2 and config["b"] == 2) else 0.0)
+            a, b = config["a"], config["b"]
+            out["X"] = _mean(seed, 3.0 if (a == 2 and b == 2) else 0.01 * (a + b))  # as measure_joint_only
         if claims is None or "Y" in claims:
             out["Y"] = {"p1": _mean(seed, 0.0), "p2": _mean(seed, 3.0 * (config["c"] == "y"))}
         return out

@@ -333,6 +333,54 @@ def test_the_default_needs_one_replicate_per_claim_where_one_decides():
     assert replicates_needed(rules, reps, default_j) == {"X": 1, "Z": 1, "U": 1}
 
 
+def _reps(*outputs):
+    reps = [Run({}, s, "replicate") for s in range(1, len(outputs) + 1)]
+    for r, out in zip(reps, outputs):
+        r.outputs = {"X": out}
+    return reps
+
+
+def _ci(value, half):
+    return Estimate(value, half / 1.959964, value - half, value + half, 100, 0.95, "mean t")
+
+
+def test_one_replicate_is_not_enough_where_only_the_first_replicates_draw_decides():
+    # the first replicate decides inside the band alone, the second and third straddle its edge: the pooled default
+    # decides from the first two on, so a condition must hold two replicates, not the one the lucky draw allowed
+    reps = _reps(_ci(0.0, 0.2), _ci(0.0, 0.7), _ci(0.0, 0.7))
+    default_j = explore_module._pooled({"X": BAND}, reps)
+    assert default_j[("X", "claim")].verdict == "reproduced"
+    assert [BAND.judge(r.outputs["X"]).verdict for r in reps] == ["reproduced", "undecided", "undecided"]
+    assert replicates_needed({"X": BAND}, reps, default_j) == {"X": 2}
+    # each replicate deciding alone: one is enough
+    reps = _reps(_ci(0.0, 0.2), _ci(0.1, 0.2), _ci(-0.1, 0.2))
+    assert replicates_needed({"X": BAND}, reps, explore_module._pooled({"X": BAND}, reps)) == {"X": 1}
+
+
+def test_one_replicate_is_not_enough_where_the_defaults_replicates_disagree_beyond_their_intervals():
+    # each replicate decides alone, but they scatter beyond their own intervals (the agreement test widens the
+    # pooled interval to Student's t over their values): one run's interval is narrower than the default supports
+    reps = _reps(_ci(0.0, 0.01), _ci(0.0, 0.01), _ci(0.05, 0.01))
+    default_j = explore_module._pooled({"X": BAND}, reps)
+    assert default_j[("X", "claim")].verdict == "reproduced"
+    assert "disagree beyond their own intervals" in explore_module.pool([r.outputs["X"] for r in reps]).method
+    assert replicates_needed({"X": BAND}, reps, default_j) == {"X": 2}
+    # the same values with intervals that hold their scatter: one is enough
+    reps = _reps(_ci(0.0, 0.1), _ci(0.0, 0.1), _ci(0.05, 0.1))
+    assert replicates_needed({"X": BAND}, reps, explore_module._pooled({"X": BAND}, reps)) == {"X": 1}
+
+
+def test_a_later_prefix_that_loses_the_decision_raises_the_size():
+    # the first replicate and the first two decide, the first three and four do not, five and six do: five are
+    # needed (the smallest size from which every larger prefix decides as the default), not the first one
+    reps = _reps(_ci(0.0, 0.2), _ci(0.0, 0.2), _ci(0.0, 2.0), *[_ci(0.0, 0.2)] * 3)
+    default_j = explore_module._pooled({"X": BAND}, reps)
+    assert default_j[("X", "claim")].verdict == "reproduced"
+    pools = [BAND.judge(explore_module.pool([r.outputs["X"] for r in reps[:j]])).verdict for j in range(1, 6)]
+    assert pools == ["reproduced", "reproduced", "undecided", "undecided", "reproduced"]
+    assert replicates_needed({"X": BAND}, reps, default_j) == {"X": 5}
+
+
 def _edge(config, seed):
     """Undecided with no projection (the point on the band's edge): no replicate can decide it."""
     return {"X": Estimate(0.5, 0.1, 0.4, 0.6, 10, method="Student t")}

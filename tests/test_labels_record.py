@@ -130,7 +130,7 @@ def test_the_coverage_sentence_counts_each_kind_and_names_the_weakest_parts():
 
 
 def test_label_parts_hands_the_coverage_its_design_deterministic_and_provisional():
-    conds = [_single({"motion": "weave"}, 0.0), _single({"motion": "turn"}, 0.0)]
+    conds = [_single({"motion": "weave"}, 0.1), _single({"motion": "turn"}, 0.2)]
     rec = label_parts(BAND, 0.0, _reps(), conds[:1], [WORLD])
     assert rec["provisional"] is True and rec["deterministic"] is False
     assert rec["coverage"] == (
@@ -146,7 +146,7 @@ def test_label_parts_hands_the_coverage_its_design_deterministic_and_provisional
 
 def test_a_design_smaller_than_every_combination_is_provisional_unless_min_share_design_says_otherwise():
     ents = [WORLD, Entry("speed", "operating point", 1, (1, 2, 3), "a speed beyond the paper")]  # 8 combinations
-    conds = [_single({"motion": "weave"}, 0.0), _single({"speed": 2}, 0.0)]
+    conds = [_single({"motion": "weave"}, 0.1), _single({"speed": 2}, 0.2)]
     assert label_parts(BAND, 0.0, _reps(), conds, ents)["provisional"] is True
     rec = label_parts(BAND, 0.0, _reps(), conds, ents, design={"min_share_design": 2})
     assert rec["provisional"] is False and rec["label"] == "robust"
@@ -240,6 +240,13 @@ def test_a_not_checkable_part_has_no_label_and_no_projection():
     rec = label_parts(rule, {"p1": 0.0, "p2": 0.0}, reps, [], [WORLD])
     p2 = rec["parts"]["p2"]
     assert (p2["label"], p2["runs_to_decide"], p2["where"], p2["share"]) == ("-", None, [], None)
+    # no verdict to move, so nothing ranks what moves it (a round-off of 1e-13 once ranked an entry first)
+    moved = [
+        _single({"motion": "weave"}, {"p1": 0.1, "p2": 1e-13}),
+        _single({"motion": "turn"}, {"p1": 0.2, "p2": 0.0}),
+    ]
+    rec = label_parts(rule, {"p1": 0.0, "p2": 0.0}, reps, moved, [WORLD])
+    assert rec["parts"]["p2"]["sensitivity"] == [] and rec["parts"]["p1"]["sensitivity"]
 
 
 def test_a_one_run_condition_agreeing_with_the_first_replicates_run_is_no_flip():

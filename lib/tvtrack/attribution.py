@@ -192,6 +192,23 @@ def attribute(
     for c in sorted(combos, key=lambda r: (len(r["changed"]), order[flip_side(r["changed"], entries)])):
         if not any(_subset(f["changed"], c["changed"]) for f in out):
             add(c, "combination", flip_side(c["changed"], entries))
+    for f in out:  # named the smallest only as far as its smaller subsets were decided
+        open_ = _undecided_subsets(f["changed"], rows, entries)
+        if open_:
+            f["undecided_subsets"] = open_
+    return out
+
+
+def _undecided_subsets(changed: Mapping, rows: Sequence[Mapping], entries: Mapping[str, Any]) -> list[str]:
+    """The strict subsets of a flip's changes measured and left ``undecided`` (smaller than the default needed: a
+    sizing budget, or a searched combination leaning towards agreement, which is never sized), in words: while one
+    is open, the flip is the smallest found, not the smallest shown."""
+    out: list[str] = []
+    for r in rows:
+        ch = r["changed"]
+        if ch and len(ch) < len(changed) and _subset(ch, changed) and r["verdict"] == "undecided":
+            text = phrase(ch, entries)
+            out += [] if text in out else [text]
     return out
 
 

@@ -43,6 +43,7 @@ import numpy as np
 import scipy  # scipy.stats is imported at its first use (scipy loads submodules lazily)
 
 from .declared import check_declared, takes_claims
+from .estimate import Estimate
 from .jobs import StageClock
 from .conditions import SUBSET_ROUND, Run, SizingBudget, point, projected_runs, search_subsets, size_conditions
 from .labels import label_parts, part_judgements, part_pairs
@@ -241,22 +242,45 @@ def _pooled(rules: Mapping[str, Rule], runs: list[Run]) -> dict:
 
 
 def replicates_needed(rules: Mapping[str, Rule], runs: list[Run], default_j: Mapping) -> dict[str, int]:
-    """Per claim, the replicates the default's sizing rule needed: the fewest first replicates whose pooled value
-    gives every part the default decides its final decisive verdict (a zero-loss part certified by 30 runs needs
-    the replicates holding them; a clear part, one). A condition counts as flipping or agreeing only at this size
-    or more. The minimum of three replicates at the default serves the check that independent replicates agree
-    (``unstable``), not the decision, so it is not asked of every condition."""
+    """Per claim, the replicates the default's sizing rule needed: the fewest ``k`` first replicates such that the
+    pooled value of every prefix of ``k`` or more of them gives every part the default decides its final decisive
+    verdict (a zero-loss part certified by 30 runs needs the replicates holding them; a clear part, one). A
+    condition counts as flipping or agreeing only at this size or more.
+
+    One replicate is enough only where each replicate alone decides as the default does, and the default's
+    replicates agree within their own intervals (no pooled interval of the claim was widened by the agreement test,
+    :func:`tvtrack.pooling.pool`): where only the first replicate's draw decides, or a rare event (a run that loses
+    lock) moved one replicate beyond what the others' intervals allow, one run's interval says more than the
+    default's replicates support. The minimum of three replicates at the default serves the check that independent
+    replicates agree (``unstable``), not the decision, so it is not asked of every condition."""
     out = {}
     for cid, rule in rules.items():
         reps = [r.outputs[cid] for r in runs if r.stage == "replicate" and r.outputs.get(cid) is not None]
         decided = {p: j.verdict for (c, p), j in default_j.items() if c == cid and is_decisive(j.verdict)}
-        out[cid] = len(reps)
-        for k in range(1, len(reps)):
-            js = part_judgements(rule, pool(reps[:k]))
-            if all(p in js and js[p].verdict == v for p, v in decided.items()):
-                out[cid] = k
-                break
+
+        def decides(m: Any, rule: Rule = rule, decided: dict = decided) -> bool:
+            js = part_judgements(rule, m)
+            return all(p in js and js[p].verdict == v for p, v in decided.items())
+
+        one = all(decides(m) for m in reps) and not (decided and _widened(pool(reps)))
+        prefixes = [decides(pool(reps[:j])) for j in range(1, len(reps))]
+        out[cid] = next(
+            (k for k in range(1 if one else 2, len(reps)) if all(prefixes[k - 1 :])),
+            len(reps),
+        )
     return out
+
+
+def _widened(m: Any) -> bool:
+    """Whether a pooled value holds an interval the agreement test widened (:func:`tvtrack.pooling.pool`: replicates
+    that disagree beyond their own intervals), at any depth (an ``AllOf``'s parts, a ``Monotone``'s points)."""
+    if isinstance(m, Estimate) or (isinstance(m, Mapping) and "ci_low" in m and "method" in m):
+        return "disagree beyond their own intervals" in str(m.method if isinstance(m, Estimate) else m["method"])
+    if isinstance(m, Mapping):
+        return any(_widened(v) for v in m.values())
+    if isinstance(m, (list, tuple)):
+        return any(_widened(v) for v in m)
+    return False
 
 
 def _sizing_target(rules: Mapping[str, Rule], runs: list[Run], n: int, cap: int) -> tuple[int, frozenset] | None:

@@ -70,6 +70,8 @@ def label_basis(claim: Mapping) -> str:
             others = (
                 "a reading"
                 if n == 2 and kinds == {"setting", "reading"}
+                else "one other change"
+                if n == 2
                 else f"{_COUNT.get(n - 1, n - 1)} other changes"
             )
             text = (
@@ -77,6 +79,7 @@ def label_basis(claim: Mapping) -> str:
                 if kinds == {"setting"}
                 else f"an unprinted setting with {others}"
             )
+    text += " (or fewer: a smaller part of them stays undecided)" if n > 1 and first.get("undecided_subsets") else ""
     text += "" if moves_verdict(claim, first) else ", in a part only"
     return text + "".join(_also(claim, flips, kind, side) for kind in ("setting", "world", "unattributed"))
 

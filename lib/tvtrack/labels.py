@@ -46,6 +46,7 @@ from .attribution import (
     share,
 )
 from .lost_labels import lost_fields
+from .reach import reached, world_reached
 from .run_words import part_name
 from .register import WORLD_KINDS, leaves_operating_point
 from .verdicts import (
@@ -280,6 +281,7 @@ def label_parts(
         "by_name": by_name,
         "default_cfg": default_cfg,
         "open_world": world_varied and not provisional,
+        "worlds": {k for k, e in by_name.items() if e.kind in WORLD_KINDS},
         "n_reps": len(rep_rows),
         "pooled_n": _runs_behind(measured),
         "max_replicates": design.get("max_replicates"),
@@ -365,17 +367,23 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         label = NO_PART_LABEL
         runs = _runs_text(j, ctx["n_reps"], ctx["pooled_n"], ctx["max_replicates"])
         pwhere.append(runs["text"])
-    else:
-        label = _decided_label(flips, ctx["open_world"])
+    else:  # a world must have reached the part itself, not only another part of the claim (:mod:`tvtrack.reach`)
+        label = _decided_label(flips, ctx["open_world"] and world_reached(rows, name, ctx["rep_rows"], ctx["worlds"]))
     pinned = _distinct([r for r in rows if r["kind"] == "pinned"])
-    part_share = _share(ex_rows, j.verdict, pinned) if label != NO_PART_LABEL else None
+    combos = _distinct([r for r in rows if r["kind"] == "combination"])
+    part_share = _share(ex_rows, j.verdict, pinned, combos) if label != NO_PART_LABEL else None
+    if part_share is not None:  # agreeing configurations that left the part's value as the default's, bit for bit
+        live = reached(ex_rows, name, ctx["rep_rows"])
+        part_share["unchanged"] = sum(1 for c in ex_rows if c["verdict"] == j.verdict) - sum(
+            1 for c in live if c["verdict"] == j.verdict
+        )
     decided = int((part_share or {}).get("agree") or 0) + int((part_share or {}).get("flip") or 0)
     if label == "robust" and decided < ctx["need_decided"]:
         # too few explored configurations decided the part (as many as a share needs): most of the design is open
         label = "unexplored"
         if part_share is not None:
             part_share["decided_needed"] = ctx["need_decided"]
-    pwhere += [f"{f['verdict']} when {f['text']}" for f in flips]
+    pwhere += [f"{f['verdict']} when {f['text']}{_open_subsets(f)}" for f in flips]
     off = beside_operating_point(every, j.verdict) if is_decisive(j.verdict) else None
     if off and part_share:  # counted beside the share, as the pinned ones are
         part_share["off_operating_point"] = {k: off[k] for k in ("agree", "flip", "undecided")}
@@ -391,7 +399,9 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         "n_conditions": len(rows),
         "share": part_share,
         "flips": flips,
-        "sensitivity": sensitivity(
+        "sensitivity": []
+        if isinstance(prule, NotCheckable)
+        else sensitivity(  # no verdict to move: no ranking
             sens_rows,
             [k for k in ctx["by_name"] if k not in unranked],
             ctx["by_name"],
@@ -424,20 +434,32 @@ def _rule_selectors(rule: Rule) -> frozenset:
     return frozenset()
 
 
-def _share(rows: Sequence[Mapping], default: str, pinned: Sequence[Mapping] = ()) -> dict | None:
+def _share(
+    rows: Sequence[Mapping], default: str, pinned: Sequence[Mapping] = (), combinations: Sequence[Mapping] = ()
+) -> dict | None:
     """The part's share (:func:`tvtrack.attribution.share`) with ``left_by_budget``: the undecided configurations
     that lean towards agreement and were left smaller than the default needed by the exploration's sizing budget.
 
     The share is over the design (one at a time and joint). The register's pinned configurations, known flips
     measured every run, are chosen for flipping, so they stay out of it and are counted beside it (``pinned``:
-    agree, flip and undecided), so that a flip they name is never shown beside a share without one."""
+    agree, flip and undecided), so that a flip they name is never shown beside a share without one; so are the
+    combinations the subset search measured inside flipping joint configurations (``combinations``)."""
     out = share([c["verdict"] for c in rows], default)
     if out is not None:
         out["left_by_budget"] = sum(1 for c in rows if c["verdict"] == "undecided" and c.get("left_by_budget"))
-        if pinned:
-            beside = share([c["verdict"] for c in pinned], default)
-            out["pinned"] = {k: beside[k] for k in ("agree", "flip", "undecided")}
+        for key, rows_beside in (("pinned", pinned), ("combinations", combinations)):
+            if rows_beside:
+                beside = share([c["verdict"] for c in rows_beside], default)
+                out[key] = {k: beside[k] for k in ("agree", "flip", "undecided")}
     return out
+
+
+def _open_subsets(flip: Mapping) -> str:
+    """`` (the smallest found: ... stays undecided)`` for a flip with undecided smaller subsets; else empty."""
+    open_ = flip.get("undecided_subsets") or ()
+    return (
+        f" (the smallest found: {'; '.join(open_)} {'stays' if len(open_) == 1 else 'stay'} undecided)" if open_ else ""
+    )
 
 
 def _decided_label(flips: Sequence[Mapping], open_world: bool) -> str:

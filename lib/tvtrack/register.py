@@ -55,9 +55,10 @@ ENTRY_KINDS = (
     "scale",
     "unreported setting",
 )
-#: Kinds that vary the simulated world or the figure's operating point: a claim measured over none of
-#: them cannot be labelled ``robust`` (:func:`tvtrack.verdicts.label_parts`).
-WORLD_KINDS = ("regime", "operating point", "model")
+#: Kinds that vary the simulated world, the figure's operating point or the scale a quantity is summarised on
+#: (every kind :func:`side_of` files as a world): a claim measured over none of them cannot be labelled
+#: ``robust`` (:func:`tvtrack.verdicts.label_parts`).
+WORLD_KINDS = ("regime", "operating point", "model", "scale")
 #: Kinds that are readings of the paper itself (an ambiguous sentence, a statistic, a comparator the paper
 #: names): a flip under one says the paper's claim is ambiguous. Every other kind (:data:`WORLD_KINDS` and
 #: ``scale``) is a world beyond the paper: a flip there says the claim does not extend to it.

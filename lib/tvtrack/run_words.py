@@ -139,6 +139,7 @@ def share_counts(share: Mapping) -> str:
         f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
         f"stay{'s' * (undecided == 1)} undecided{why if left else ''} of {design} explored "
         f"configuration{'s' * (design != 1)}{_pinned_counts(share.get('pinned'))}"
+        f"{_beside(share.get('combinations'), 'combination{s} of entries searched inside flipping joint ones')}"
         f"{_off_point_counts(share.get('off_operating_point'))}"
     )
 

@@ -339,6 +339,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
                     "part": f.get("part"),
                     "changed": dict(f.get("changed") or {}),
                     **({"lost_runs": f["lost_runs"]} if f.get("lost_runs") else {}),
+                    **({"undecided_subsets": list(f["undecided_subsets"])} if f.get("undecided_subsets") else {}),
                 }
             )
     return out

@@ -58,19 +58,22 @@ def _distinct(conditions: Sequence[Mapping], kinds: tuple[str, ...] = ("single",
     return out
 
 
-def _pinned_problems(where: str, share: Mapping, pinned: Sequence[Mapping], name: str, default: str) -> list[str]:
+def _pinned_problems(
+    where: str, share: Mapping, pinned: Sequence[Mapping], name: str, default: str, key: str = "pinned"
+) -> list[str]:
     """The pinned configurations (known flips, outside the design) must be counted beside the share
-    (``share["pinned"]``) as their verdicts give, so that a flip they name is never shown beside a share without it."""
-    if not pinned and "pinned" not in share:
+    (``share["pinned"]``) as their verdicts give, so that a flip they name is never shown beside a share without it;
+    so must the subset search's combinations (``key="combinations"``)."""
+    if not pinned and key not in share:
         return []
     verdicts = [c["parts"][name] for c in pinned]
     agree = sum(v == default for v in verdicts)
     flip = sum(v in _DECISIVE and v != default for v in verdicts)
     counted = {"agree": agree, "flip": flip, "undecided": len(verdicts) - agree - flip}
-    shown = {k: int((share.get("pinned") or {}).get(k) or 0) for k in counted}
+    shown = {k: int((share.get(key) or {}).get(k) or 0) for k in counted}
     if counted == shown:
         return []
-    return [f"{where}: the pinned configurations beside the share read {shown}, their verdicts give {counted}"]
+    return [f"{where}: the {key} beside the share read {shown}, their verdicts give {counted}"]
 
 
 def _off_point_problems(where: str, part: Mapping, off_rows: Sequence[Mapping], name: str, default: str) -> list[str]:
@@ -180,6 +183,7 @@ def _part_problems(cid: str, name: str, part: Mapping, rb: Mapping, needed: int,
                 f"{where}: the share reads {shown[:3]} of {shown[3]}, its configurations give {counted[:3]} of {counted[3]}"
             )
         out += _pinned_problems(where, share, _distinct(rows, ("pinned",)), name, default)
+        out += _pinned_problems(where, share, _distinct(rows, ("combination",)), name, default, "combinations")
     first = (part.get("replicate_verdicts") or [None])[0]  # the default's run on the conditions' random numbers
     crn = first if first in _DECISIVE else default
     flipping = [
