@@ -82,7 +82,8 @@ def test_an_undecided_claim_labelled_robust_is_said_to_be_so_in_its_decided_part
 
     world = Entry("noise", "regime", "low", ("low", "high"), "a world beyond the paper")
     default = {"fine": HOLDS, "coarse": OPEN}
-    conds = [{"changed": {"noise": "high"}, "kind": "single", "measured": {"fine": HOLDS, "coarse": FAILS}}]
+    moved = Estimate.exact(0.1)  # the world moves the held part, inside the band (it reached it)
+    conds = [{"changed": {"noise": "high"}, "kind": "single", "measured": {"fine": moved, "coarse": FAILS}}]
     claim = _claim("C9-1", default, conds, [world])
     claim["statement"] = "One object: the ULA beats two-stage processing only for large pixels."
     claim["robustness"] = {**claim["robustness"], "provisional": False}
