@@ -383,6 +383,25 @@ def test_a_flip_with_an_undecided_smaller_subset_says_it_is_the_smallest_found_n
     assert "undecided_subsets" not in flip
 
 
+def test_the_undecided_subsets_are_the_strict_subsets_of_the_flip_each_named_once():
+    rows = [
+        _row("combination", s1=1, w1=1, r1=1),  # the flip: a triple
+        _row("single", "undecided", runs=1, s1=1),
+        _row("pinned", "undecided", runs=1, s1=1),  # the same subset measured twice: named once
+        _row("combination", "undecided", runs=1, s1=1, w1=1),
+        _row("single", "undecided", runs=1, w2=1),  # another entry: no subset
+        _row("single", "undecided", runs=1, r1=2),  # the same entry at another value: no subset
+        _row("combination", "undecided", runs=1, s1=1, w1=1, r1=2),  # as many changes, another value
+        _row("joint", "undecided", runs=1, s1=1, w1=1, r1=1),  # the flip's own changes again: no smaller subset
+        {"changed": {}, "kind": "replicate", "verdict": "undecided", "runs": 1},  # the default: changes nothing
+        _row("single", YES, w1=1),
+        _row("single", YES, r1=1),
+    ]
+    (flip,) = attribute(YES, rows, ENTRIES)
+    assert flip["changed"] == {"s1": 1, "w1": 1, "r1": 1}
+    assert flip["undecided_subsets"] == ["drift spread = 1", "drift spread = 1 and w1 = 1"]
+
+
 def test_the_where_line_and_the_bracket_say_a_flip_may_not_be_the_smallest():
     from tvtrack.flip_words import label_basis
     from tvtrack.labels import label_parts
@@ -407,3 +426,12 @@ def test_the_where_line_and_the_bracket_say_a_flip_may_not_be_the_smallest():
     assert label_basis(claim).startswith(
         "two unprinted settings together (or fewer: a smaller part of them stays undecided)"
     )
+    conds[2] = {"changed": {"s2": 1}, "kind": "single", "measured": Estimate.exact(3.0), "runs": 1}  # both open
+    part = label_parts(band, Estimate.exact(0.0), reps, conds, ents, needed=3)["parts"]["claim"]
+    assert part["where"] == [
+        "not reproduced when drift spread = 1 and gain law = 1 (the smallest found: drift spread = 1; gain law = 1 "
+        "stay undecided)"
+    ]
+    conds.pop(1), conds.pop(1)  # no smaller subset measured: the pair is the smallest there is, no suffix
+    part = label_parts(band, Estimate.exact(0.0), reps, conds, ents, needed=3)["parts"]["claim"]
+    assert part["where"] == ["not reproduced when drift spread = 1 and gain law = 1"]

@@ -649,3 +649,20 @@ def test_the_table_says_a_change_in_the_registers_words():
     joint = next(c for c in ex.record("Y")["conditions"] if len(c["changed"]) == 2)
     assert joint["text"] == "2nd-order gain bound = 30 and lost frames, skipped"
     assert any(r.endswith(f"): {joint['text']} | not reproduced |") for r in rows), rows
+
+
+def test_a_widened_pooled_value_is_found_at_any_depth_in_any_form():
+    """``explore._widened``: the agreement test's mark (:func:`tvtrack.pooling.pool`) on an interval, found on an
+    :class:`Estimate`, on an estimate's record form (a mapping with ``ci_low`` and ``method``), and in the parts of
+    an ``AllOf`` (a mapping) or a ``Monotone``'s points (a list or tuple)."""
+    mark = "pooled over 3 replicates; replicates disagree beyond their own intervals: widened"
+    wide, plain = Estimate(1.0, 0.1, 0.5, 1.5, 9, method=mark), Estimate(1.0, 0.1, 0.8, 1.2, 9, method="pooled")
+    w = explore_module._widened
+    assert w(wide) and not w(plain)
+    as_record = {"value": 1.0, "ci_low": 0.5, "ci_high": 1.5, "method": mark}
+    assert w(as_record) and not w({**as_record, "method": "pooled"})
+    # a mapping without an interval is a mapping of parts: its own "method" string is no estimate's
+    assert not w({"method": mark}) and not w({"ci_low": 0.5, "note": mark})
+    assert w({"a": plain, "b": {"c": wide}}) and not w({"a": plain, "b": {"c": plain}})
+    assert w([plain, wide]) and w((plain, as_record)) and not w([plain, (plain,)])
+    assert not w(mark) and not w(None) and not w([]) and not w(1.0)

@@ -210,6 +210,8 @@ def test_a_paired_share_difference_is_t_on_the_runs_or_the_zero_event_bound_with
     assert same.method == "no discordant runs: one-sided 95 % bound"
     every = est.share_difference(np.ones(6, bool), np.zeros(6, bool))
     assert (every.value, every.ci_low, every.ci_high) == (1.0, pytest.approx(1 - bnd), 1.0)
+    none = est.share_difference(np.zeros(6, bool), np.ones(6, bool))  # every run lost lock in b only
+    assert (none.value, none.ci_low, none.ci_high) == (-1.0, -1.0, pytest.approx(-1 + bnd))  # a share's floor
 
 
 @pytest.mark.parametrize(
