@@ -212,6 +212,8 @@ def test_a_paired_share_difference_is_t_on_the_runs_or_the_zero_event_bound_with
     assert (every.value, every.ci_low, every.ci_high) == (1.0, pytest.approx(1 - bnd), 1.0)
     none = est.share_difference(np.zeros(6, bool), np.ones(6, bool))  # every run lost lock in b only
     assert (none.value, none.ci_low, none.ci_high) == (-1.0, -1.0, pytest.approx(-1 + bnd))  # a share's floor
+    one = est.share_difference(np.ones(1, bool), np.zeros(1, bool))  # one run: the bound of one run, 0.95
+    assert (one.value, one.ci_low, one.ci_high, one.n) == (1.0, pytest.approx(0.05), 1.0, 1)
 
 
 @pytest.mark.parametrize(

@@ -259,15 +259,15 @@ def extend_grid(
 def share_difference(a, b) -> Estimate:
     """Paired difference of two loss shares on the same runs (Student t on per-run differences; all-equal runs:
     the zero-events bound on discordant runs). Both shares lie in [0, 1], so the difference and its interval lie in
-    [-1, 1]: where every run differs by +1 (or -1) the bound moves the open end only."""
+    [-1, 1]: where every run differs by +1 (or -1) the bound moves the open end only (a single run included)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     d = a - b
     if np.all(d == d[0]):
         bnd = zero_events_bound(d.size)
         return interval_estimate(
             d[0],
-            max(d[0] - bnd, -1.0) if d[0] < 1 else 1.0 - bnd,
-            min(d[0] + bnd, 1.0) if d[0] > -1 else -1.0 + bnd,
+            max(d[0] - bnd, -1.0),
+            min(d[0] + bnd, 1.0),
             d.size,
             "no discordant runs: one-sided 95 % bound",
         )
