@@ -655,8 +655,13 @@ def test_a_widened_pooled_value_is_found_at_any_depth_in_any_form():
     """``explore._widened``: the agreement test's mark (:func:`tvtrack.pooling.pool`) on an interval, found on an
     :class:`Estimate`, on an estimate's record form (a mapping with ``ci_low`` and ``method``), and in the parts of
     an ``AllOf`` (a mapping) or a ``Monotone``'s points (a list or tuple)."""
-    mark = "pooled over 3 replicates; replicates disagree beyond their own intervals: widened"
-    wide, plain = Estimate(1.0, 0.1, 0.5, 1.5, 9, method=mark), Estimate(1.0, 0.1, 0.8, 1.2, 9, method="pooled")
+    from tvtrack.pooling import pool
+
+    def reps(*values):
+        return [Estimate(v, 0.1, v - 0.2, v + 0.2, 9, method="t") for v in values]
+
+    wide, plain = pool(reps(0.0, 0.1, 5.0)), pool(reps(0.0, 0.1, 0.05))  # the third replicate far off; or not
+    mark = wide.method
     w = explore_module._widened
     assert w(wide) and not w(plain)
     as_record = {"value": 1.0, "ci_low": 0.5, "ci_high": 1.5, "method": mark}
