@@ -323,3 +323,32 @@ def test_a_worker_ships_back_the_scenes_runs_and_checks_it_added(fake):
     assert set(added) == set(study._CACHE) - set(before) and len(added) == 2  # the jitter's scene and its run
     assert all(added[k].scene == study._CACHE[k].scene for k in added)
     assert new_checks == {(2, "check"): 2} and (1, "check") in checks
+
+
+def _bare_run(tag: str, parts: frozenset) -> study.StudyRun:
+    """A :class:`study.StudyRun` whose every field names where it came from (no scene is rendered)."""
+    cmp = Comparison(*({f"{tag} {k}": f"{tag} {k} value"} for k in ("mse", "fixed", "chosen", "fc", "models")))
+    return study.StudyRun(
+        {"from": tag}, f"{tag} size", f"{tag} scene", f"{tag} camera", f"{tag} truth", f"{tag} z_meas", f"{tag} z",
+        f"{tag} path_rms", f"{tag} jitter", 1.0, 0.1, 0.01, f"{tag} intensity", track=f"{tag} track", comparison=cmp,
+        forecasts={f"{tag} forecast": 1, "paper": tag}, fixed_forecasts={f"{tag} fixed": 2}, folds=[tag], draws=3,
+        parts=parts,
+    )  # fmt: skip
+
+
+def test_merging_two_method_runs_keeps_the_first_runs_scene_and_adds_the_second_runs_methods():
+    """``study._merged``: the methods of ``more`` (the same scene, other parts) added to ``run``: every comparison
+    table, the forecasts and the parts are the union; the scene, the measured series and everything else are
+    ``run``'s."""
+    a, b = _bare_run("a", frozenset({"classical"})), _bare_run("b", frozenset({"learned", "variant"}))
+    m = study._merged(a, b)
+    for field, k in (("mse", "mse"), ("mse_fixed", "fixed"), ("chosen", "chosen"), ("forecasts", "fc")):
+        assert getattr(m.comparison, field) == {f"a {k}": f"a {k} value", f"b {k}": f"b {k} value"}, field
+    assert m.comparison.learned_models == {"a models": "a models value", "b models": "b models value"}
+    assert m.forecasts == {"a forecast": 1, "b forecast": 1, "paper": "b"}  # the paper's filter: the same either way
+    assert m.fixed_forecasts == {"a fixed": 2, "b fixed": 2}
+    assert m.parts == frozenset({"classical", "learned", "variant"})
+    kept = ("config", "size", "scene", "camera", "truth", "z_meas", "z", "path_rms", "jitter_rms", "intensity")
+    assert all(getattr(m, f) == getattr(a, f) for f in (*kept, "track", "folds", "draws", "centroid_rms"))
+    assert (m.lost_share, m.clipped_share) == (a.lost_share, a.clipped_share)
+    assert (a.parts, a.forecasts) == (frozenset({"classical"}), {"a forecast": 1, "paper": "a"})  # a left as it was
