@@ -155,3 +155,35 @@ def test_the_runners_refuse_what_either_path_cannot_run(compiled, variant, kwarg
     run = run_steps_variant1 if variant == 1 else run_steps_variant2
     with pytest.raises(ValueError, match=f"parameter '{name}'"):
         run(scan, MSG, compiled=compiled, **kwargs)
+
+
+def test_the_counted_steps_follow_the_filters_under_the_other_readings_and_a_sweep_started_off_zero():
+    """Variant 1 with ``c_s = A`` (eq. (6) as printed) and variant 2 with the signal noise ignored, both with the
+    sweep's phase 0.3 T at switch-on: the counted steps are still the notebook's filters under the same reading."""
+    scan, y = _samples(20.0, 0.5)
+    est, var = run_variant1(variant1_filter(scan, MSG, 15.0, "literal", "paper", start=0.3), y, (0.2, 1.0))
+    est0, _ = run_variant1(variant1_filter(scan, MSG, 15.0, "consistent", "paper", start=0.3), y, (0.2, 1.0))
+    assert not np.allclose(est, est0)  # the reading matters here, so the comparison below can tell them apart
+    x, d = (0.0, 0.0), (0.2, 0.0, 1.0)
+    for k in range(1, y.shape[1]):
+        x, d = variant1_step(scan, MSG, x, d, y[0, k], k, 15.0, "paper", "literal", start=0.3)
+        assert (x[0], d[0]) == (pytest.approx(est[0, k], rel=1e-9, abs=1e-12), pytest.approx(var[0, k], rel=1e-8))
+    est, var = run_variant2(variant2_filter(scan, MSG, 0.0, 1, start=0.3), y, 0.2)
+    x, d = 0.0, 0.2
+    for k in range(1, y.shape[1]):
+        x, d = variant2_step(scan, MSG, x, d, y[0, k], k, 1, 0.0, start=0.3)
+        assert (x, d) == (pytest.approx(est[0, k], rel=1e-9, abs=1e-12), pytest.approx(var[0, k], rel=1e-8))
+
+
+def test_the_counted_steps_defaults_are_the_papers_operating_point():
+    """beta = 15, G22 as printed, ``c_s = N0 P/(1-P)``, no re-evaluation of eq. (9), the contrast the scan has and
+    the sweep at phase 0 at switch-on, as the filters' own defaults."""
+    scan, y = _samples(20.0, 0.5, n_steps=8)
+    x1, d1, x2, d2 = (0.1, 0.2), (0.2, 0.01, 1.0), 0.1, 0.2
+    for k in range(1, y.shape[1]):
+        want = variant1_step(scan, MSG, x1, d1, y[0, k], k, 15.0, "paper", "consistent", 0.0)
+        assert variant1_step(scan, MSG, x1, d1, y[0, k], k) == want
+        want2 = variant2_step(scan, MSG, x2, d2, y[0, k], k, 0, scan.contrast, 0.0)
+        assert variant2_step(scan, MSG, x2, d2, y[0, k], k) == want2
+        x1, d1, x2, d2 = *want, *want2
+    assert isinstance(x2, float) and isinstance(x1[0], float)  # numbers in, numbers out: the timing table's too
