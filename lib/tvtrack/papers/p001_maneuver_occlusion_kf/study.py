@@ -402,18 +402,20 @@ def coast_check(out, sc: Scenario) -> dict:
 
 
 def sigma_s_readings(config: dict, sizes: dict) -> dict:
-    """sigma_S (elements/frame) at the detector's arming under each threshold reading, the lag-1 correlation of the
+    """sigma_S (elements/frame) at the detector's first test (the frame of TRACK2 count ``arm_k`` of the
+    configuration's arming rule, :func:`arming_count`) under each threshold reading, the lag-1 correlation of the
     frozen TRACK2 filter's output velocity, and the per-test rate the paper's independence threshold gives at
     stationarity (Gaussian: 2 Phi(-c_ind / sigma_S))."""
     from ...filters.alphabeta import lagged_covariances
 
     config = with_defaults(config, sizes)
     n, kb2, alpha = int(config["window_n"]), int(config["k_bound2"]), float(config["alpha"])
+    arm_k, _ = arming_count(config["arming"], kb2, n, config_scenario(config).onset)
     K2 = gain_schedule(1, kb2)[-1]
     C = lagged_covariances(K2, sizes["sigma_eps"], 2)
     z_a = stats.norm.isf(alpha / 2)
-    sig = {
-        r: float(detector_threshold(r, np.ones(kb2 + 2 * n + 1, bool), kb2, n, alpha, sizes["sigma_eps"])[-1] / z_a)
+    sig = {  # frames 0 .. arm_k - 1: the last is the first tested
+        r: float(detector_threshold(r, np.ones(arm_k, bool), kb2, n, alpha, sizes["sigma_eps"])[-1] / z_a)
         for r in THRESHOLD_READINGS
     }
     return {
