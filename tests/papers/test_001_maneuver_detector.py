@@ -147,3 +147,20 @@ def test_exact_std_memory_is_linear_in_run_length():
     small, large = _peak_bytes(1500, 25), _peak_bytes(3000, 25)
     assert large / small < 2.5, (small, large)
     assert _peak_bytes(200 * 60, 200) < 200e6
+
+
+@pytest.mark.parametrize("k_bound2,n", [(50, 25), (100, 25), (50, 10), (30, 25)])
+def test_windows_of_predicted_velocities_only_get_no_threshold(k_bound2, n):
+    """While lost the filter coasts: from the 2n - 1-th lost frame on, both windows hold one held velocity, S is 0
+    and no test is possible, so the threshold is infinite there at every bound (the exact sigma_S is 0 in
+    arithmetic; computed, it may leave a few 1e-9 of rounding, which must not become a threshold of 1e-8)."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf.maneuver_detector import track2_thresholds
+
+    vis = np.ones(625, bool)
+    vis[300:550] = False  # the scenario's loss, 12 s to 22 s at 25 frames/s
+    c = track2_thresholds(vis, k_bound2, n, 1e-3)
+    coasting = np.zeros(625, bool)
+    coasting[300 + 2 * n - 2 : 550] = True
+    assert np.all(np.isinf(c[coasting]))
+    assert np.all(np.isfinite(c[2 * n - 1 :][~coasting[2 * n - 1 :]]))  # every other full window is tested
+    assert c[~coasting & np.isfinite(c)].min() > 1e-3

@@ -79,7 +79,7 @@ def _card_threshold(fps=25.0, n=25, kb=50, alpha=1e-3, reading="exact", every=1,
     if reading == "exact":
         s = _card_sigma_s(fps, n, kb, sigma)
         c = np.where(np.isnan(s), np.inf, z * s)
-        c[s == 0] = np.nan  # windows of predicted velocities only (while lost): no test, any threshold
+        c[s == 0] = np.nan  # windows of predicted velocities only (while lost): no test (infinite, checked apart)
     else:
         c = np.full(T, z * _card_stationary(n, kb, sigma)[reading])
     f = np.arange(T)
@@ -366,7 +366,8 @@ def test_the_default_fields_have_the_papers_numbers(monkeypatch):
     assert (f["restart_accel_var"], f["threshold_index"], f["detect_in_track3"]) == (1e4, "frame", False)
     assert (f["threshold_track3"], f["rearm_after_gap"], f["force_switch_k"], f["covariance"]) == (None,) * 3 + (False,)
     thr = f["threshold"]
-    assert thr.shape == (625,) and np.isinf(thr[:49]).all() and np.isfinite(thr[49:]).all()  # windows full at 2n
+    assert thr.shape == (625,) and np.isinf(thr[:49]).all() and np.isfinite(thr[49:348]).all()  # windows full at 2n
+    assert np.isinf(thr[348:550]).all() and np.isfinite(thr[550:]).all()  # no test while both windows coast
     stationary = Z3 * math.sqrt(12.3 * 50) * 0.0061  # the card's sigma_S, 12.3 times 2 n sigma_v^2
     assert thr[200:300] == pytest.approx(np.full(100, stationary), rel=2e-3)  # converged before the loss
     assert thr[99] > thr[150] and thr[624] > 2 * stationary  # above it at arming, and with the coast's error after

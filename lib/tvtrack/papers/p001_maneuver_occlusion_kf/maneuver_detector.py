@@ -262,7 +262,11 @@ def track2_thresholds(visible, k_bound2: int, n: int, alpha: float, sigma_eps: f
     k = np.cumsum(vis)
     G = gain_schedule(1, k_bound2, max(int(k[-1]), 1))[np.maximum(k, 1) - 1] * vis[:, None]
     sig = scheduled_statistic_std(G, n, sigma_eps)
-    c = threshold_from_std(alpha, np.where(np.isfinite(sig) & (sig > 0), sig, np.inf))
+    # from the (2n - 1)-th lost frame on both windows hold the one held velocity: S = 0, sigma_S = 0 in arithmetic
+    # (computed, a few 1e-9 of rounding may be left), and no test is possible
+    t = np.arange(vis.size)
+    coasting = t - np.maximum.accumulate(np.where(vis, t, -1)) >= 2 * n - 1
+    c = threshold_from_std(alpha, np.where(np.isfinite(sig) & (sig > 0) & ~coasting, sig, np.inf))
     return np.where(np.isfinite(c), c, np.inf)
 
 
