@@ -24,8 +24,9 @@ def test_sliding_regression_exact_on_polynomials(degree, window):
     z = 1 + 0.3 * t - 0.02 * t**2 * (degree >= 2) + 1e-4 * t**3 * (degree >= 3)
     for steps in (1, 4):
         f = pr.sliding_regression_forecast(z, window, degree, steps)
-        np.testing.assert_allclose(f[window - 1 : -steps], z[window - 1 + steps :], atol=1e-8)
-        assert np.all(np.isnan(f[: window - 1]))
+        # exact from the first degree + 1 samples on: before its window's worth a fit uses all there are
+        np.testing.assert_allclose(f[degree:-steps], z[degree + steps :], atol=1e-8)
+        assert np.all(np.isnan(f[:degree]))
 
 
 def test_finite_difference_formula():
@@ -310,3 +311,61 @@ def test_the_early_stopped_network_is_scikit_learns_bit_for_bit(inputs, monkeypa
     assert np.isnan(learned._r2(np.ones(1), np.ones(1)))
     back = pickle.loads(pickle.dumps(fast))  # a model pickled in one process is read in another by the class's name
     assert type(getattr(back, "regressor_", back)[-1]) is type(a)
+
+
+@pytest.mark.parametrize("name", ["regression 1", "regression 2", "spline", "natural spline"])
+def test_a_window_longer_than_the_samples_so_far_fits_all_of_them(name):
+    """Before ``window`` samples a windowed baseline fits every sample there is (its shortest window first): at
+    frame t < window - 1 it is the same fit on t + 1 samples; from window - 1 on, the sliding fit, unchanged."""
+    from tvtrack.papers.p004_laser_spot_prediction import predictors as pr
+
+    make = {
+        "regression 1": (lambda z, L: pr.sliding_regression_forecast(z, L, 1, 2), 2),
+        "regression 2": (lambda z, L: pr.sliding_regression_forecast(z, L, 2, 2), 3),
+        "spline": (lambda z, L: pr.spline_forecast(z, L, 2), 4),
+        "natural spline": (lambda z, L: pr.natural_spline_forecast(z, L, 2), 4),
+    }
+    f, shortest = make[name]
+    z = np.random.default_rng(8).normal(size=(2, 3, 2, 60)).cumsum(axis=-1)
+    long_ = f(z, 30)
+    assert np.isnan(long_[..., : shortest - 1]).all() and np.isfinite(long_[..., shortest - 1 :]).all()
+    for t in (shortest - 1, 10, 28):
+        np.testing.assert_allclose(long_[..., t], f(z[..., : t + 1], t + 1)[..., t], rtol=1e-10, atol=1e-10)
+    tail = f(z, 30)[..., 29:]
+    np.testing.assert_allclose(tail, f(z[..., :], 30)[..., 29:], rtol=0, atol=0)
+    # a straight line (regression) or a cubic (splines) through the samples so far is extrapolated exactly
+    t = np.arange(60, dtype=float)
+    exact = {"regression 1": 3 + 0.5 * t, "regression 2": 1 + 0.1 * t**2}.get(name, 2 - t + 0.01 * t**3)
+    got = f(np.broadcast_to(exact, (1, 1, 1, 60)).copy(), 30)[0, 0, 0]
+    want = {"regression 1": 3 + 0.5 * (t + 2), "regression 2": 1 + 0.1 * (t + 2) ** 2}.get(
+        name, 2 - (t + 2) + 0.01 * (t + 2) ** 3
+    )
+    if name != "natural spline":  # the natural spline is not exact for a cubic (zero curvature at its ends)
+        np.testing.assert_allclose(got[shortest - 1 : 58], want[shortest - 1 : 58], rtol=1e-8, atol=1e-8)
+
+
+@pytest.mark.parametrize("theta", [0.3, 0.8, 0.95])
+def test_the_fading_memory_is_started_by_the_expanding_memory_until_its_gains_fall_to_the_fading_ones(theta):
+    """Morrison's start: the growing (expanding) memory, whose position gain for order 2 is
+    3 (3N^2 - 3N + 2) / (N (N + 1) (N + 2)), runs until that gain is at most the fading one, 1 - theta^3; the
+    forecasts up to there are the growing memory's, and the fixed fading gains run from there on."""
+    from tvtrack.filters.polynomial import growing_memory_filter
+
+    g1 = [3 * (3 * N * N - 3 * N + 2) / (N * (N + 1) * (N + 2)) for N in range(3, 400)]
+    want = next(N for N, g in zip(range(3, 400), g1) if g <= 1 - theta**3)
+    assert pr.fading_switch(theta, 400) == want
+    assert want == {0.3: 4, 0.8: 15, 0.95: 60}[theta]
+    assert pr.fading_switch(0.999, 50) == 50  # never reached: the growing memory throughout
+    z = np.random.default_rng(2).normal(size=(3, 200)).cumsum(axis=-1)
+    f = pr.fading_memory_forecast(z, theta, 2)
+    grow = pr.predict_ahead(growing_memory_filter(z, 2, None), 2)
+    np.testing.assert_allclose(f[..., 2:want], grow[..., 2:want], rtol=1e-12, atol=1e-12)
+    assert not np.allclose(f[..., want + 5 :], grow[..., want + 5 :])
+    # from the switch on: x <- F x; x <- x + g (z - x), g the fading gains, from the growing memory's state
+    x = growing_memory_filter(z[..., :want], 2, None)[..., -1, :]
+    F = np.array([[1.0, 1.0, 0.5], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]])
+    g = pr.fading_memory_gains(theta)
+    for t in range(want, want + 30):
+        x = x @ F.T
+        x = x + g * (z[..., t] - x[..., 0])[..., None]
+        np.testing.assert_allclose(f[..., t], x[..., 0] + 2 * x[..., 1] + 2 * x[..., 2], rtol=1e-9, atol=1e-9)

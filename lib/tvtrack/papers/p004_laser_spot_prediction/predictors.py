@@ -196,10 +196,21 @@ def fading_memory_gains(theta: float) -> np.ndarray:
     return np.array([1 - theta**3, 1.5 * (1 - theta) ** 2 * (1 + theta), (1 - theta) ** 3])
 
 
+def fading_switch(theta: float, n_max: int) -> int:
+    """The samples the expanding (growing) memory runs before Morrison's fading memory takes over: the first ``N >= 3``
+    whose growing-memory position gain ``g_{N,1}`` is at most the fading one, ``1 - theta^3`` (Morrison 1969; Brookner
+    1998, section 7.4: the expanding-memory filter initialises the fading-memory one), at most ``n_max``."""
+    g1 = growing_memory_gains(2, n_max)[2:, 0]
+    below = np.nonzero(g1 <= fading_memory_gains(theta)[0])[0]
+    return int(3 + below[0]) if below.size else int(n_max)
+
+
 def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
     """Morrison's fading-memory quadratic filter (:func:`fading_memory_gains`) and its
-    ``steps``-ahead prediction. Starts from the exact quadratic through the first three samples
-    (eq. (4)), then runs with the fixed gains (the start-up transient decays as ``theta^n``).
+    ``steps``-ahead prediction. Started by the expanding memory (the growing-memory filter, from the exact quadratic
+    through the first three samples, eq. (4)) until its gains fall to the fading ones (:func:`fading_switch`), then
+    run with the fixed gains: a long memory is not started from three noisy samples, whose velocity and acceleration
+    errors would take many times ``1 / (1 - theta)`` frames to fade.
 
     Parameters
     ----------
@@ -210,10 +221,12 @@ def fading_memory_forecast(z, theta: float, steps: int = 1) -> np.ndarray:
     z = check_z(z)
     if not np.all(np.isfinite(z)) or z.shape[-1] < 4:
         raise ValueError("parameter 'z' must be complete (no NaN) with at least 4 samples")
-    head = growing_memory_filter(z[..., :3], 2, None)
+    n = fading_switch(theta, z.shape[-1])
+    head = growing_memory_filter(z[..., :n], 2, None)
     out = np.empty(z.shape)
-    out[..., :3] = predict_ahead(head, steps)
-    out[..., 3:] = _fixed_gain_forecast(z[..., 3:], head[..., -1, :], 2, fading_memory_gains(theta), steps)
+    out[..., :n] = predict_ahead(head, steps)
+    if n < z.shape[-1]:
+        out[..., n:] = _fixed_gain_forecast(z[..., n:], head[..., -1, :], 2, fading_memory_gains(theta), steps)
     return out
 
 
@@ -288,10 +301,22 @@ def g1_floor_forecast(z, floor_memory: int, steps: int = 1, order: int = 2) -> n
 
 
 # -- window methods -------------------------------------------------------------------------------
+def _windowed(z, window: int, shortest: int, weights) -> np.ndarray:
+    """``weights(n) @`` the last ``n = min(window, t + 1)`` samples at every frame ``t >= shortest - 1`` (NaN
+    before): a frame with fewer than ``window`` samples behind it uses all it has, so a window longer than the first
+    scored frame is scored over the same frames as every other method. ``weights(n)``: (n,), oldest first."""
+    out = np.full(z.shape, np.nan)
+    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ weights(window)
+    for n in range(shortest, window):
+        out[..., n - 1] = z[..., :n] @ weights(n)
+    return out
+
+
 def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> np.ndarray:
     """Least-squares polynomial of ``degree`` on the last ``window`` samples, evaluated
     ``steps`` ahead. Linear in the data, so it is one fixed FIR filter applied to all windows;
-    ``window = degree + 1`` is exact finite-difference (Newton) extrapolation.
+    ``window = degree + 1`` is exact finite-difference (Newton) extrapolation. Before ``window`` samples the fit
+    uses all there are (at least ``degree + 1``, :func:`_windowed`).
     """
     steps = check_steps(steps)
     z = check_z(z)
@@ -301,12 +326,13 @@ def sliding_regression_forecast(z, window: int, degree: int, steps: int = 1) -> 
         raise ValueError(
             f"parameter 'window' = {window!r}; it must be an integer in [degree+1, T] = [{degree + 1}, {z.shape[-1]}]"
         )
-    t = np.arange(window, dtype=float) - (window - 1)  # 0 = newest sample
-    V = np.vander(t, degree + 1, increasing=True)
-    w = np.vander(np.array([float(steps)]), degree + 1, increasing=True) @ np.linalg.pinv(V)  # (1, window)
-    out = np.full(z.shape, np.nan)
-    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w[0]
-    return out
+
+    def weights(n):
+        t = np.arange(n, dtype=float) - (n - 1)  # 0 = newest sample
+        V = np.vander(t, degree + 1, increasing=True)
+        return (np.vander(np.array([float(steps)]), degree + 1, increasing=True) @ np.linalg.pinv(V))[0]
+
+    return _windowed(z, window, degree + 1, weights)
 
 
 def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
@@ -314,17 +340,18 @@ def spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     samples, extrapolated ``steps`` ahead (``window >= 4``).
 
     The spline is linear in its data, so its extrapolation is one FIR filter: the weights are
-    the spline's extrapolations of the ``window`` unit vectors, applied to every window.
+    the spline's extrapolations of the ``window`` unit vectors, applied to every window. Before ``window`` samples
+    the spline runs through all there are (at least 4, :func:`_windowed`).
     """
     steps = check_steps(steps)
     z = check_z(z)
     if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
         raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
-    spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, extrapolate=True)
-    w = spl(window - 1.0 + steps)  # (window,): weight of each sample, oldest first
-    out = np.full(z.shape, np.nan)
-    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w
-    return out
+
+    def weights(n):  # the weight of each sample, oldest first
+        return CubicSpline(np.arange(n, dtype=float), np.eye(n), axis=0, extrapolate=True)(n - 1.0 + steps)
+
+    return _windowed(z, window, 4, weights)
 
 
 def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
@@ -333,17 +360,19 @@ def natural_spline_forecast(z, window: int, steps: int = 1) -> np.ndarray:
     ``S(t_n) + steps * S'(t_n)`` (``window >= 4``; the classical spline of the numerical-methods texts,
     the minimiser of the integrated squared second derivative on the whole line).
 
-    Like :func:`spline_forecast` it is one FIR filter applied to every window.
+    Like :func:`spline_forecast` it is one FIR filter applied to every window, over all the samples there are before
+    ``window`` of them (at least 4).
     """
     steps = check_steps(steps)
     z = check_z(z)
     if not (isinstance(window, (int, np.integer)) and 4 <= window <= z.shape[-1]):
         raise ValueError(f"parameter 'window' = {window!r}; it must be an integer in [4, {z.shape[-1]}]")
-    spl = CubicSpline(np.arange(window, dtype=float), np.eye(window), axis=0, bc_type="natural")
-    w = spl(window - 1.0) + steps * spl.derivative()(window - 1.0)  # (window,), oldest first
-    out = np.full(z.shape, np.nan)
-    out[..., window - 1 :] = sliding_window_view(z, window, axis=-1) @ w
-    return out
+
+    def weights(n):  # (n,), oldest first
+        spl = CubicSpline(np.arange(n, dtype=float), np.eye(n), axis=0, bc_type="natural")
+        return spl(n - 1.0) + steps * spl.derivative()(n - 1.0)
+
+    return _windowed(z, window, 4, weights)
 
 
 # the learned predictors (scikit-learn networks) and their cross-validation live in .learned
