@@ -382,3 +382,22 @@ def test_the_screen_is_a_quarter_of_every_size_with_floors():
     for bad in (0.0, -0.5, 1.5):
         with pytest.raises(ValueError, match="fraction"):
             study.screen_scale(SCALE, bad)
+
+
+def test_an_entry_that_moves_a_claims_points_is_declared_by_that_claim():
+    """Every register value that changes the points a claim reads (``claim_values.NEEDS``) is an entry the claim
+    declares (``DEPENDS``): the measurement projects each claim onto its declared entries first, so an undeclared
+    entry would never reach it and the exploration would silently never vary it for that claim."""
+    from tvtrack.papers.p002_unified_location_em.claim_values import NEEDS
+    from tvtrack.papers.p002_unified_location_em.register import DEPENDS
+
+    D = list(SCALE.separations)
+    g0, _ = study._points(DEFAULT, SCALE)
+    moved = set()
+    for name in REGISTER.names:
+        for value in REGISTER[name].values:
+            cfg = {**DEFAULT, name: value}
+            g1, _ = study._points(cfg, SCALE)
+            moved |= {(cid, name) for cid, need in NEEDS.items() if need(cfg, g1, D) != need(DEFAULT, g0, D)}
+    assert ("C002-12", "T of Figs 4, 6, 7") in moved and ("C002-11", "m_k of Fig 5") in moved  # the check can see
+    assert sorted((cid, name) for cid, name in moved if name not in DEPENDS[cid]) == []

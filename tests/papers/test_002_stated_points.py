@@ -71,3 +71,16 @@ def test_fold_change_maps_the_interval_end_by_end_and_keeps_the_signed_ratio():
     assert (straddles.ci_low, straddles.ci_high) == pytest.approx((1.0, 1.25))  # no measurable dependence: from 1
     above = Estimate(2.0, 0.1, 1.8, 2.2, 40, 0.95, "t")
     assert (claim_values.fold_change(above).value, claim_values.fold_change(above).ci_low) == (2.0, 1.8)
+
+
+def test_c13_compares_the_two_separations_as_unpaired_samples():
+    """The plain-EM step counts at the nearest and the farthest separation come from different scenes, so their
+    ratio's interval is the unpaired one (a paired interval would pretend the runs match)."""
+    rng = np.random.default_rng(5)
+    near = rng.integers(20, 60, 40).astype(float)
+    far = rng.integers(5, 30, 40).astype(float)
+    got = claim_values._c13(_iterations(near, far))
+    unpaired = claim_values.fold_change(ratio_ci(near, far, paired=False))
+    paired = claim_values.fold_change(ratio_ci(near, far))
+    assert (got.value, got.ci_low, got.ci_high) == (unpaired.value, unpaired.ci_low, unpaired.ci_high)
+    assert (paired.ci_low, paired.ci_high) != (unpaired.ci_low, unpaired.ci_high)  # the test can tell them apart

@@ -108,3 +108,20 @@ def test_heavy_tailed_noise_is_a_reading_the_rule_cannot_decide():
     assert "chi-square" in study.variance_ratios(np.random.default_rng(4), 2000)["variance at N=3"].method
     with pytest.raises(ValueError, match="noise"):
         study.variance_ratios(np.random.default_rng(4), 100, noise="Cauchy")
+
+
+def test_c004_8_times_the_energy_centre_of_every_frame(scene, monkeypatch):
+    """The default pipeline's time per frame includes the energy centre: with the batched centre costing one scripted
+    second and nothing else costing any, the time per frame is that second over the frames timed."""
+    now = [0.0]
+    real = timing.centroid
+
+    def slow_centroid(*args, **kwargs):
+        now[0] += 1.0
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(timing, "centroid", slow_centroid)
+    monkeypatch.setitem(timing.CLOCKS, "CPU", lambda: now[0])
+    got = timing.frame_time_ms(scene, np.random.default_rng(1), {})
+    nt = min(SIZE.timing_frames, scene.truth.shape[-1])
+    assert nt > 1 and got == pytest.approx(1e3 / nt, rel=1e-12)
