@@ -437,6 +437,21 @@ def test_a_still_spot_takes_the_floor_and_the_windows_past_their_grids():
     check_tuned(cmp, ps.PAPER, (3, 5, 10), lambda nf: pr.growing_memory_forecast(z, 1, 2, nf), z, s, (160,))
 
 
+def test_on_a_short_series_the_windows_past_the_grid_stop_at_its_length():
+    """The window extension (45, 70, 100) is clipped to the series' frames, as the floors are: on 80 frames a still
+    spot's longest memory is a window of all 80 samples, never a reported window of 100 frames."""
+    rng = np.random.default_rng(7)
+    z = 40.0 + rng.normal(size=(1, 6, 2, 80))
+    s = ps.ComparisonSetup(steps=1, start=60, floor_grid=(3, 5, 10), window_grid=(6, 8), fixed_window=9)
+    cmp = ps.compare_methods(z, z, FOLDS, s, rng, parts={"classical"})
+    np.testing.assert_array_equal(cmp.chosen[ps.PAPER], [80] * 6)
+    chosen = np.concatenate([cmp.chosen[n] for n in ("linear regression deg 1", "linear regression deg 2")])
+    assert set(chosen.tolist()) <= {70, 80} and 80 in chosen  # the extension ran to the series' end, not past it
+    assert ps.clipped_extension(ps.WINDOW_EXTENSION, 80) == [45, 70, 80]
+    assert ps.clipped_extension(ps.FLOOR_EXTENSION, 80) == [80]
+    assert ps.clipped_extension(ps.WINDOW_EXTENSION, 1000) == [45, 70, 100]
+
+
 def test_the_classical_baselines_search_windows_from_their_degree_plus_one_on_the_same_folds():
     z = moving_series()
     ref = z + np.random.default_rng(5).normal(size=z.shape) * 0.2

@@ -184,8 +184,15 @@ class Comparison:
 #: filter's own limit), so the paper's filter is tuned to its optimum at long horizons too (the floor sat at the
 #: old grid's top, 200, at horizon 10).
 FLOOR_EXTENSION = (350, 600, 1000)
-#: Windows tried beyond ``window_grid`` likewise, so each windowed baseline gets the same tuning effort.
+#: Windows tried beyond ``window_grid`` likewise, so each windowed baseline gets the same tuning effort (clipped to
+#: the series' frames as the floors are: a window of ``T`` frames fits every sample so far).
 WINDOW_EXTENSION = (45, 70, 100)
+
+
+def clipped_extension(values, frames: int) -> list:
+    """The extension ``values`` (frames) clipped to the series' ``frames``, in increasing order: a floor or window
+    of ``frames`` or more is the method's own limit (no floor; every sample so far), so none is tried twice."""
+    return sorted({min(int(v), int(frames)) for v in values})
 
 
 def tuned_forecast(candidates, make, z, ref, folds, s: ComparisonSetup, more=()):
@@ -345,7 +352,7 @@ def compare_methods(
     s = setup
     m = s.steps
     mse, fixed, chosen, fcs = {}, {}, {}, {}
-    more = sorted({min(int(v), z.shape[-1]) for v in FLOOR_EXTENSION})
+    more = clipped_extension(FLOOR_EXTENSION, z.shape[-1])
     fcs[PAPER], mse[PAPER], chosen[PAPER], _, _ = tuned_forecast(
         s.floor_grid, lambda nf: pr.growing_memory_forecast(z, m, s.order, nf), z, reference, folds, s, more=more
     )
@@ -384,9 +391,10 @@ def _classical(z, reference, folds, s: ComparisonSetup, out) -> None:
         "linear regression deg 1": lambda L: pr.sliding_regression_forecast(z, L, 1, m),
         "linear regression deg 2": lambda L: pr.sliding_regression_forecast(z, L, 2, m),
     }
+    more = clipped_extension(WINDOW_EXTENSION, z.shape[-1])
     for name, make in windowed.items():
         fcs[name], mse[name], chosen[name], _, _ = tuned_forecast(
-            window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=WINDOW_EXTENSION
+            window_candidates(MIN_WINDOW[name], s.window_grid), make, z, reference, folds, s, more=more
         )
         fixed[name] = per_trial_path_mse(make(s.fixed_window), reference, m, s.start)
 

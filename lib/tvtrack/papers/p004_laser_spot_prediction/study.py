@@ -37,6 +37,7 @@ from .prediction_study import (
     VARIANT,
     Comparison,
     WINDOW_EXTENSION,
+    clipped_extension,
     comparison_setup,
     tuned_forecast,
     compare_methods,
@@ -210,16 +211,16 @@ def _methods(run: StudyRun, config: dict, seed: int, parts=ALL_PARTS) -> StudyRu
         fixed["cubic spline"] = pr.spline_forecast(run.z, s.fixed_window, m)
         fixed["linear regression deg 1"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 1, m)
         fixed["linear regression deg 2"] = pr.sliding_regression_forecast(run.z, s.fixed_window, 2, m)
-        # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, the grid
-        # extended while a fold picks its top): a least-squares cubic over the window (not interpolating), and the
-        # natural cubic spline, extended linearly beyond its last knot
+        # the other readings of "spline extrapolation", tuned as the interpolating spline (windows from 4, extended
+        # alike): a least-squares cubic over the window (not interpolating), the natural spline extended linearly
         readings = {
             LSQ_CUBIC: lambda L: pr.sliding_regression_forecast(run.z, L, 3, m),
             NATURAL_SPLINE: lambda L: pr.natural_spline_forecast(run.z, L, m),
         }
+        ext = clipped_extension(WINDOW_EXTENSION, run.z.shape[-1])
         for name, make in readings.items():
             fc[name], _, cmp.chosen[name], _, _ = tuned_forecast(
-                window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=WINDOW_EXTENSION
+                window_candidates(4, s.window_grid), make, run.z, run.z_meas, folds, s, more=ext
             )
             fixed[name] = make(s.fixed_window)
     return replace(
@@ -534,7 +535,6 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
     run = study_run(cfg, seed, size, traces)
     s = comparison_setup(cfg, size)
     folds = lm.path_folds(size.n_paths, size.n_folds)
-    T = run.z.shape[-1]
     _, mse, _, _, _ = tuned_forecast(
         s.floor_grid,
         lambda nf: pr.growing_memory_forecast(run.z, s.steps, s.order, nf),
@@ -542,7 +542,7 @@ def paper_filter_rms(config: dict, seed: int, size, traces_seed: int | None = No
         run.z_meas,
         folds,
         s,
-        more=sorted({min(int(v), T) for v in FLOOR_EXTENSION}),
+        more=clipped_extension(FLOOR_EXTENSION, run.z.shape[-1]),
     )
     return float(np.sqrt(np.mean(mse)))
 
