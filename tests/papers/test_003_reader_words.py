@@ -61,3 +61,32 @@ def test_the_compensation_model_is_said_in_words_where_c003_8_and_c003_10_rest_o
     for text in (rules["C003-8"].text(), rules["C003-10"].parts["compensation"].text(), claims.NOTES["C003-10"]):
         assert "leaving a tenth of the whole static scene, interferers included" in text
         assert "before compensation" in text
+
+
+def _record(part_verdict: str, first_replicate: str, conditions: list, flips: list) -> dict:
+    """A robustness record as :func:`tvtrack.verdicts.label_parts` leaves it, one part ("no_loss") and the register's
+    motion entries."""
+    return {
+        "register": [REGISTER["motion"].to_dict(), REGISTER["motion_scale"].to_dict()],
+        "replicates": [{"parts": {"no_loss": first_replicate}}],
+        "conditions": conditions,
+        "parts": {"no_loss": {"verdict": part_verdict, "flips": flips}},
+    }
+
+
+def test_the_dependence_sentence_names_only_the_records_flips_not_a_condition_beside_one_replicate():
+    """A one-at-a-time condition that decides like the pooled default, beside a first replicate that is undecided
+    (0 losses in 6 runs), is no flip; only the record's named flips (decisive the other way at the default's size)
+    are named, each with the default's verdict."""
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    same = {"kind": "single", "changed": {"motion": "sinusoids"}, "parts": {"no_loss": "reproduced"}}
+    flip = {"kind": "single", "changed": {"motion_scale": 0.25}, "parts": {"no_loss": "not reproduced"}}
+    joint = {"changed": {"motion": "random", "motion_scale": 2.0}, "kind": "joint", "verdict": "not reproduced"}
+    named = [{"changed": {"motion_scale": 0.25}, "kind": "single", "verdict": "not reproduced"}, joint]
+    text = prose.dependence({"C003-5": _record("reproduced", "undecided", [same, flip], named)})
+    assert REGISTER.describe({"motion_scale": 0.25}) in text and "reproduced by default" in text
+    assert REGISTER.describe({"motion": "sinusoids"}) not in text  # agrees with the pooled default
+    assert REGISTER.describe({"motion": "random"}) not in text  # a joint flip is not one entry alone
+    quiet = prose.dependence({"C003-5": _record("reproduced", "undecided", [same], [])})
+    assert quiet.startswith("no part of these claims flips")

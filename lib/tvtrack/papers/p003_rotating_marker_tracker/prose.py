@@ -44,29 +44,28 @@ def _title(name: str) -> str:
 
 
 def dependence(records: dict, entries=("motion", "motion_scale", "interference_motion")) -> str:
-    """Which parts of which claims change verdict when one of the named register entries alone changes (the
-    one-at-a-time conditions, against the first replicate, whose draws they share), from the claims' records; each
-    entry named by its title and each value by its phrase (:class:`tvtrack.register.Entry`), never by code names."""
+    """Which parts of which claims flip when one of the named register entries alone changes: the records' named flips
+    of one-at-a-time conditions (:func:`tvtrack.verdicts.label_parts`: decisive the other way on at least the
+    replicates the default needed, against the part's pooled verdict), never a condition set beside one replicate.
+    Each entry is named by its title and each value by its phrase (:class:`tvtrack.register.Entry`), never by code
+    names."""
     explored = {e["name"] for rec in records.values() for e in rec.get("register", [])} & set(entries)
     if not explored:
         return f"{'; '.join(_title(e) for e in entries)}: not explored in this run"
     hits = []
     for cid, rec in records.items():
-        ref = rec["replicates"][0]["parts"] if rec.get("replicates") else {}
-        for name in rec["parts"]:
+        for name, part in rec["parts"].items():
             flips = [
-                f"{c['parts'][name]} with {REGISTER.describe({k: v})}"
-                for c in rec["conditions"]
-                if c["kind"] == "single"
-                for k, v in c["changed"].items()
-                if k in explored and c["parts"].get(name) != ref.get(name)
+                f"{f['verdict']} with {REGISTER.describe(f['changed'])}"
+                for f in part.get("flips") or []
+                if f.get("kind") == "single" and set(f["changed"]) <= explored
             ]
             if flips:
-                hits.append(f"{cid} ({part_name(name)}): {'; '.join(flips)}")
+                hits.append(f"{cid} ({part_name(name)}, {part['verdict']} by default): {'; '.join(flips)}")
     names = "; ".join(_title(e) for e in sorted(explored))
     if not hits:
-        return f"no part of these claims changed verdict when one of these alone changed: {names}"
-    return f"changing one of these alone ({names}) changes the verdict for " + " | ".join(hits)
+        return f"no part of these claims flips when one of these alone changes: {names}"
+    return f"changing one of these alone ({names}) flips " + " | ".join(hits)
 
 
 def threshold_conditions(ex, key: str, paper: float) -> str:
