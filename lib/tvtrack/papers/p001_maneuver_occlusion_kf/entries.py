@@ -51,8 +51,8 @@ ENTRIES = (
         "reading",
         1e-3,
         (1e-4, 1e-3, 1e-2),
-        "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (this project's choice) gives few false "
-        "alarms in the 5 s before the manoeuvre; a decade either side. C001-1, -2 and -3 are each judged at this "
+        "'c(alpha) computed from the given alpha', alpha not given; 1e-3 (this project's choice) is meant to keep "
+        "false alarms in the 5 s before the manoeuvre rare; a decade either side. C001-1, -2 and -3 are each judged at this "
         "alpha (their rates in multiples of it)",
         title="false-alarm probability per test alpha the detector is designed for (and C001-1 to -3 judged at)",
         phrases={
@@ -277,8 +277,8 @@ ENTRIES = (
         "operating point",
         5.5,
         (5.3, 5.5, 6.0),
-        "Fig. 4 and C001-7 force the switch at the paper's detection time 5.5 s; 5.3-6.0 s spans the measured "
-        "detection times",
+        "Fig. 4 and C001-7 force the switch at the paper's detection time 5.5 s; 5.3 s and 6.0 s are an early and a "
+        "late detection around it",
         "adversarial",
         title="time of the forced order switch for Fig. 4 and the loss-time sweep (s)",
         phrases={

@@ -43,7 +43,7 @@ KINDS = {
     "occlusion": ("reading", "a reading of Fig. 4's 'disappearance at the 10th second' against the 12-22 s loss"),
     "switch_s": (
         "operating point",
-        "a world beyond the paper: it states the detection at 5.5 s; 5.3-6.0 s are the detection times measured here",
+        "a world beyond the paper: it states the detection at 5.5 s; 5.3 s and 6.0 s are an early and a late detection",
     ),
     "curve_tolerance": ("statistic", "a reading of a 'flat' deterministic curve on Fig. 4's axis"),
     "extrapolation": ("reading", "a reading of C001-9's coasting: the 3rd-order filter, or its own word 'linear'"),
