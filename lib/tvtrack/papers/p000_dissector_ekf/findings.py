@@ -10,6 +10,8 @@ from collections import Counter
 
 from ...verdicts import ByReading
 from ...measured import as_estimate
+from ...run_words import lock_sentence, lost_basis, lost_lead
+from ...wording import claim_fields, main_part
 
 __all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows", "beside"]
 
@@ -55,9 +57,38 @@ def conclusions(claims, ex) -> str:
     if open_:
         lines.append("Where a claim is not reproduced, or its verdict moves with the register (first conditions):")
     for c in sorted(open_, key=lambda c: int(c.id.split("-")[1])):
-        where = f": {'; '.join(c.robustness['where'][:2])}" if c.robustness and c.robustness["where"] else ""
-        lines.append(f"- **{c.id}** {c.verdict}, {c.robustness['label']}{where}.")
+        shown = [w + _lost_flip(c, w) for w in ((c.robustness or {}).get("where") or [])[:2]]
+        where = f": {'; '.join(shown)}" if shown else ""
+        lines.append(f"- **{c.id}** {c.verdict}, {c.robustness['label']}{where}.{_lost_default(c)}")
     return "\n".join(lines)
+
+
+def _lost_flip(claim, where: str) -> str:
+    """Where only runs that lost lock carry the flip a line of ``where`` names (the record's ``lost_runs`` on that
+    flip, as the findings table's sentence says it): how many of how many runs, and the verdict over the runs in
+    lock; ``""`` for a flip the runs in lock carry too, or a line that names no flip."""
+    parts = {n: p for n, p in ((claim.robustness or {}).get("parts") or {}).items() if isinstance(p, dict)}
+    own = [p for n, p in parts.items() if where.startswith(f"({n}) ")]  # a line of a claim of several parts
+    flips = [f for p in own or parts.values() for f in p.get("flips") or ()]
+    named = [f for f in flips if f"{f.get('verdict')} when {f.get('text')}" in where]
+    lost = (max(named, key=lambda f: len(f["text"])).get("lost_runs") or {}) if named else {}
+    if not lost.get("carried"):
+        return ""
+    lead = lost_lead(lost, "the {k} of {n} runs that lost lock there")
+    carry = "carries" if lost["lost"] == 1 else "carry"
+    return (
+        f", but {lead[:1].lower()}{lead[1:]} {carry} that flip: over {lost_basis(lost)}runs in lock alone the claim "
+        f"is {lost['in_lock_verdict']}"
+    )
+
+
+def _lost_default(claim) -> str:
+    """The runs that lost lock where they carry the claim's own verdict at the default (the sentence the findings
+    table gives, :func:`tvtrack.run_words.lock_sentence`), after a space; ``""`` where they do not."""
+    record = claim_fields(claim)
+    part = ((record.get("robustness") or {}).get("parts") or {}).get(main_part(record)) or {}
+    sentence = lock_sentence(record, part)
+    return f" {sentence}" if sentence else ""
 
 
 def reproduced_where(rule, named: dict) -> list:
