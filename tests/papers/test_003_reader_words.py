@@ -90,3 +90,135 @@ def test_the_dependence_sentence_names_only_the_records_flips_not_a_condition_be
     assert REGISTER.describe({"motion": "random"}) not in text  # a joint flip is not one entry alone
     quiet = prose.dependence({"C003-5": _record("reproduced", "undecided", [same], [])})
     assert quiet.startswith("no part of these claims flips")
+
+
+# --- the typical breaking SIR, the register table, the figures' words (a reader review of the executed notebook) ---
+
+_GRID = [0.5, 0.75, 1.0, 4 / 3, 2.0, 3.0, 4.5, 6.75, 10.125]
+
+
+def _lost(thresholds):
+    import numpy as np
+
+    return np.asarray(_GRID)[:, None] < np.asarray(thresholds)[None, :]
+
+
+def _censored_above(config, seed):
+    """Every run loses lock at every SIR of the grid when the object hovers; a typical run otherwise."""
+    from tvtrack.papers.p003_rotating_marker_tracker import estimators
+
+    thr = [20.0] * 6 if config["interference_motion"] == "hovering" else [0.6, 0.7, 0.65, 0.8, 0.6, 0.7]
+    lost = _lost(thr)
+    e = estimators.threshold(lost, _GRID)
+    b = estimators.threshold_bound(lost, _GRID)
+    return {"C": e, "_map": {"rotating 1": e, "rotating 5": e}, "_map_bound": {"rotating 1": b, "rotating 5": b}}
+
+
+def _explored():
+    from tvtrack.explore import explore
+    from tvtrack.register import Register
+    from tvtrack.verdicts import InBand
+
+    reg = Register([REGISTER["interference_motion"]])
+    return explore(_censored_above, reg, {"C": InBand("t", high=100.0)}, seed=1, replicates=3, joint=0)
+
+
+def test_the_threshold_is_called_a_typical_breaking_sir_against_the_papers_loss_free_value():
+    """The geometric mean of the runs' breaking SIRs lies below a loss-free threshold even where the paper holds: the
+    sentences name it a typical breaking SIR and the paper's 2 and 3 loss-free, and say the claims read the loss
+    shares."""
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    text = prose.threshold_conditions(_explored(), "rotating 1", 2.0)
+    assert "typical (geometric-mean) SIR at which lock breaks with 1 interferer" in text
+    assert "the paper's loss-free 2" in text and "marker's threshold" not in text
+    assert "loss-free thresholds" in prose.LOSS_FREE and "shares of runs that lost lock" in prose.LOSS_FREE
+    first = _censored_above({"interference_motion": "moving"}, 0)["_map_bound"]
+    summary = prose.typical_against_paper(first)
+    assert "typical (geometric-mean) SIR at which lock breaks is below the paper's loss-free 3" in summary
+    assert "even where the paper holds" in summary and "The threshold with five" not in summary
+
+
+def test_an_extrapolated_typical_value_leads_with_what_the_runs_show():
+    """'8.27 [6.75, 10.1] (extrapolated)' read as a measured interval; every run lost lock up to the grid's top, so
+    only a lower bound is known and the placed estimate is said to be extrapolated."""
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    text = prose.threshold_conditions(_explored(), "rotating 1", 2.0)
+    assert "at least 8.27 (some runs lost lock even at the highest SIR run" in text
+    assert "placed half a grid step above it: 8.27 [6.75, 10.1], extrapolated)" in text
+    assert "] (extrapolated)" not in text
+    out = _censored_above({"interference_motion": "hovering"}, 0)
+    assert prose.show(out["_map"]["rotating 1"]).endswith("placed half a grid step beyond its edge)")
+
+
+def test_the_register_table_and_the_pinned_conditions_speak_in_titles_and_phrases():
+    from tvtrack.papers.p003_rotating_marker_tracker import prose
+
+    table = prose.register_table(REGISTER)
+    for name in (
+        "motion_scale",
+        "interference_motion",
+        "sinusoid_hz",
+        "fig2_law",
+        "bandwidth_reading",
+        "slope_range",
+        "loss_window_s",
+        "static_gate",
+        "edge_norm",
+        "decoy_brightness",
+        "B_n",
+        "w_n",
+    ):
+        assert name not in table, name
+    assert REGISTER["motion_scale"].title in table
+    assert f"- {REGISTER.describe(REGISTER.pinned[0])}" in table
+    assert "x_r and y_r: the object centre's x and y coordinates" in prose.PART_TAGS and "omega" in prose.PART_TAGS
+
+
+def test_the_threshold_map_labels_rows_by_phrase_and_names_its_axis_in_words():
+    fig, caption = plots.threshold_map_figure(_explored(), ("interference_motion",))
+    labels = [t.get_text().replace("\n", " ") for t in fig.axes[0].get_yticklabels()]
+    xlabel = fig.axes[0].get_xlabel()
+    plt.close(fig)
+    assert REGISTER.describe({"interference_motion": "hovering"}) in labels
+    assert not [x for x in labels if "interference_motion" in x or " = " in x]
+    assert xlabel.startswith("typical (geometric-mean) SIR at which lock breaks")
+    assert "loss-free 2 (one interferer) and 3 (five)" in caption
+
+
+def test_the_loss_curve_caption_says_its_bars_are_two_sided_and_the_verdicts_one_sided():
+    import numpy as np
+
+    from tvtrack.counts import zero_events_bound
+    from tvtrack.papers.p003_rotating_marker_tracker import study
+
+    sirs = np.array(study.SIR_GRID)
+    lost = sirs[:, None] < np.full((1, 6), 1.0)
+    curves = [{f"{m}/{k}": lost for m in ("rotating", "static") for k in (1, 5)}] * 5
+    fig, caption = plots.loss_curves_figure(curves, sirs, 5.0)
+    plt.close(fig)
+    assert "30 runs per point" in caption and "two-sided 95 % Clopper-Pearson" in caption
+    assert f"one-sided 95 % bound ({zero_events_bound(30):.2g} for 0 of 30)" in caption
+
+
+def test_fig2_caption_names_panels_by_place_and_the_bound_figure_keeps_an_interval_to_zero_on_its_axis():
+    import numpy as np
+
+    from tvtrack.montecarlo import Estimate
+
+    t = np.linspace(0, 1, 5)
+    f = {"t2": t, "omega_hat": t, "omega": t, "r_hat": t, "r": t}
+    fig, caption = plots.fig2_figure(f)
+    plt.close(fig)
+    assert "(a)" not in caption and "(top)" in caption and "(bottom)" in caption
+    est = lambda v, lo: Estimate(v, float("nan"), lo, 1.2 * v, 6, 0.95, "t")  # noqa: E731
+    cb = {
+        "rms": {"loops 10 Hz": est(0.5, 0.4), "loops 40 Hz": est(5.0, 0.0), "EKF (velocity)": est(0.3, 0.25)},
+        "bound": {1: 0.1, 8: 0.09},
+        "best_loops": {"bandwidth_hz": 10.0, "edge": False},
+    }
+    fig, caption = plots.bound_figure(cb)
+    left = fig.axes[0].get_xlim()[0]
+    plt.close(fig)
+    assert left > 0 and "drawn to the axis' left edge" in caption

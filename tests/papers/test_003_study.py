@@ -213,11 +213,12 @@ def test_dependence_names_only_the_single_entry_flips_it_is_asked_about():
     # entries are named in plain words (003's register titles; an entry it lacks by its name)
     motion = "law of the object's motion (Fig. 1 and the interference runs)"
     assert prose.dependence(rec, ("motion",)) == (
-        f"changing one of these alone ({motion}) changes the verdict for C (value): not reproduced with {motion} = "
-        f"fast | C (other): not reproduced with {motion} = fast"
+        f"changing one of these alone ({motion}) flips C (value, reproduced by default): not reproduced with {motion} "
+        f"= fast | C (other, reproduced by default): not reproduced with {motion} = fast"
     )
     assert prose.dependence(rec, ("radius",)) == (
-        "changing one of these alone (radius) changes the verdict for C (other): not reproduced with radius = outside"
+        "changing one of these alone (radius) flips C (other, reproduced by default): not reproduced with radius = "
+        "outside"
     )
     assert (
         prose.dependence(rec, ("placement",))
@@ -384,7 +385,8 @@ def test_threshold_conditions_does_not_list_a_threshold_certified_below_the_pape
     reg = Register([Entry("comp", "model", "kappa", ("kappa", "median"), "toy")])
     ex = explore(_censored, reg, {"C": InBand("t", high=10.0)}, seed=1, replicates=3, joint=0)
     assert prose.threshold_conditions(ex, "rotating 1", 2.0) == (
-        "under no condition tried is the rotating marker's threshold with 1 interferer other than below the paper's 2"
+        "under no condition tried is the rotating marker's typical (geometric-mean) SIR at which lock breaks with 1 "
+        "interferer other than below the paper's loss-free 2"
     )
 
 

@@ -12,7 +12,7 @@ KINDS = {
     "motion_scale": (
         "unreported setting",
         "an unreported setting: Fig. 1's 'Y: sinusoid, X: random' at amplitudes never printed (it was filed as a "
-        "reading, with a hovering object that Fig. 1's moving object rules out; that is now interference_motion)",
+        "reading, with a hovering object that Fig. 1's moving object rules out; that is now the entry on whether the object moves in the interference runs)",
     ),
     "interference_motion": (
         "reading",

@@ -2,11 +2,43 @@
 
 from __future__ import annotations
 
+from ...markdown import md_escape
 from ...measured import as_estimate, is_undecided
+from ...register import SIDE_PHRASES
 from ...run_words import part_name
 from .register import REGISTER
 
-__all__ = ["show", "show_bound", "relation", "compare", "dependence", "threshold_conditions", "lost_points"]
+__all__ = [
+    "show",
+    "show_bound",
+    "show_threshold",
+    "relation",
+    "compare",
+    "dependence",
+    "threshold_conditions",
+    "typical_breaking",
+    "typical_against_paper",
+    "lost_points",
+    "register_table",
+    "PART_TAGS",
+    "LOSS_FREE",
+    "TYPICAL",
+]
+
+# what the notebook's "threshold" is: the geometric mean of the runs' breaking SIRs (.estimators.threshold)
+TYPICAL = "typical (geometric-mean) SIR at which lock breaks"
+# said once where the typical value meets the paper's 2 and 3
+LOSS_FREE = (
+    "The paper's 2 (one interferer) and 3 (five) are loss-free thresholds: no run loses lock at or above them. The "
+    f"{TYPICAL} is a typical breaking point, so it lies below a loss-free threshold even where the paper holds; the "
+    "claims are judged on the shares of runs that lost lock at the paper's SIR, not on this typical value."
+)
+# the rule parts' short tags the verdicts print in brackets, in words (the tags themselves are the rules' labels)
+PART_TAGS = (
+    "x_r and y_r: the object centre's x and y coordinates; omega: the marker's rotation rate; r: the radius of the "
+    "marker's circle"
+)
+_OUTSIDE = "some runs broke outside the SIR grid and are placed half a grid step beyond its edge"
 
 
 def show(e, digits: int = 3) -> str:
@@ -14,8 +46,37 @@ def show(e, digits: int = 3) -> str:
     e = as_estimate(e)
     if e.method == "exact":
         return f"{e.value:.{digits}g}"
-    tail = " (extrapolated)" if e.extrapolated else ""
+    tail = f" (extrapolated: {_OUTSIDE})" if e.extrapolated else ""
     return f"{e.value:.{digits}g} [{e.ci_low:.{digits}g}, {e.ci_high:.{digits}g}]{tail}"
+
+
+def show_threshold(e, bound=None, digits: int = 3) -> str:
+    """A typical breaking SIR (:func:`.estimators.threshold`) in words, with the side its censored runs certify
+    (``bound``: :func:`.estimators.threshold_bound` of the same runs): where runs broke outside the SIR grid the
+    estimate rests on their placement half a grid step beyond its edge, so the sentence leads with what the runs
+    show (at least / at most the bound) and gives the placed estimate as extrapolated."""
+    e = as_estimate(e)
+    if not e.extrapolated and (bound is None or not _censored(as_estimate(bound))):
+        return show(e, digits)
+    if bound is None:
+        return show(e, digits)
+    b = as_estimate(bound)
+    placed = f"{e.value:.{digits}g} [{e.ci_low:.{digits}g}, {e.ci_high:.{digits}g}], extrapolated"
+    if b.extrapolated or (b.ci_low <= 0 and b.ci_high == float("inf")):
+        return f"not bounded (runs broke both below and above the SIR grid; placed half a grid step beyond its edges: {placed})"
+    if b.ci_high == float("inf"):
+        return (
+            f"at least {b.ci_low:.{digits}g} (some runs lost lock even at the highest SIR run, so only a lower bound "
+            f"is known; placed half a grid step above it: {placed})"
+        )
+    return (
+        f"at most {b.ci_high:.{digits}g} (some runs kept lock even at the lowest SIR run, so only an upper bound is "
+        f"known; placed half a grid step below it: {placed})"
+    )
+
+
+def _censored(b) -> bool:
+    return bool(b.extrapolated or b.ci_low <= 0 or b.ci_high == float("inf"))
 
 
 def show_bound(e, digits: int = 3) -> str:
@@ -68,9 +129,15 @@ def dependence(records: dict, entries=("motion", "motion_scale", "interference_m
     return f"changing one of these alone ({names}) flips " + " | ".join(hits)
 
 
+def _subject(key: str) -> str:
+    marker, count = key.split()
+    return f"the {marker} marker's {TYPICAL} with {count} interferer{'s' if count != '1' else ''}"
+
+
 def threshold_conditions(ex, key: str, paper: float) -> str:
-    """The register conditions (one at a time and joint) under which the threshold ``key`` of the ``_map`` output
-    (e.g. ``"rotating 5"``) is not measurably below the paper's value, with its estimate; or say there are none.
+    """The register conditions (one at a time and joint) under which the typical breaking SIR ``key`` of the ``_map``
+    output (e.g. ``"rotating 5"``; :data:`TYPICAL`) is not measurably below the paper's loss-free value, with its
+    estimate (:func:`show_threshold`); or say there are none.
 
     The word comes from ``_map_bound`` where the run has it (:func:`.study.threshold_bound`): a threshold whose runs
     broke outside the grid on one side only still lies measurably below (or above) the paper's value. Runs that
@@ -81,15 +148,41 @@ def threshold_conditions(ex, key: str, paper: float) -> str:
         if r.stage == "replicate" or "_map" not in r.outputs:
             continue
         e = r.outputs["_map"][key]
-        word = relation(r.outputs.get("_map_bound", r.outputs["_map"])[key], paper)
+        bound = r.outputs.get("_map_bound", {}).get(key)
+        word = relation(bound if bound is not None else e, paper)
         if word != "below":
             cond = REGISTER.describe(r.changed(ex.default))
-            hits.append(f"{cond} ({show(e)}, {word} {paper:g})")
-    marker, count = key.split()
-    what = f"the {marker} marker's threshold with {count} interferer{'s' if count != '1' else ''}"
+            hits.append(f"{cond} ({show_threshold(e, bound)}; {word} {paper:g})")
+    what = _subject(key)
     if not hits:
-        return f"under no condition tried is {what} other than below the paper's {paper:g}"
-    return f"{what} is not below the paper's {paper:g} under: " + " | ".join(hits)
+        return f"under no condition tried is {what} other than below the paper's loss-free {paper:g}"
+    return f"{what} is not below the paper's loss-free {paper:g} under: " + " | ".join(hits)
+
+
+def typical_breaking(thresholds: dict, bounds: dict | None = None) -> str:
+    """One replicate's typical breaking SIRs (``_map``, with ``_map_bound`` for the censored side) in words: the
+    marker and the number of interferers named, each value by :func:`show_threshold`."""
+    bounds = bounds or {}
+    parts = []
+    for key, e in thresholds.items():
+        marker, count = key.split()
+        parts.append(
+            f"{marker} marker, {count} interferer{'s' if count != '1' else ''}: {show_threshold(e, bounds.get(key))}"
+        )
+    return "; ".join(parts)
+
+
+def typical_against_paper(bounds: dict, paper: dict | None = None) -> str:
+    """Where the default world's typical breaking SIRs (``_map_bound``: the side the censoring certifies) lie against
+    the paper's loss-free thresholds, with the reason a typical value lies below a loss-free one."""
+    paper = {"rotating 5": 3.0, "rotating 1": 2.0} if paper is None else paper
+    five, one = (relation(bounds[k], v) for k, v in paper.items())
+    return (
+        f"The rotating marker's {TYPICAL} is {five} the paper's loss-free {paper['rotating 5']:g} with five "
+        f"interferers and {one} its loss-free {paper['rotating 1']:g} with one in the default world (first "
+        "replicate); a typical breaking point lies below a loss-free threshold even where the paper holds, so the "
+        "claims are judged on the shares of runs that lost lock at the paper's SIR"
+    )
 
 
 def compare(a, b) -> str:
@@ -116,3 +209,24 @@ def lost_points(lock_by_bandwidth: dict, limit: float = 0.1) -> str:
         "The tracker lost lock at " + "; ".join(bits) + ": its error there is the distance to the marker it left, "
         "not a ripple, so the trend is read over the other bandwidths only."
     )
+
+
+def register_table(register=REGISTER) -> str:
+    """The register as a Markdown table in the reader's words: each entry by its title, each value by its phrase
+    (:class:`tvtrack.register.Entry`), its kind with what the kind means, and the pinned joint conditions by
+    :meth:`tvtrack.register.Register.describe` (never the entries' code names)."""
+    esc = lambda t: md_escape(str(t))  # noqa: E731
+    rows = [
+        "| entry | kind | default | other defensible values | why | added by |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for e in register:
+        alts = "; ".join(esc(e.phrase(v)) for v in e.alternatives) or "-"
+        rows.append(
+            f"| {esc(e.title or e.name)} | {e.kind} ({SIDE_PHRASES[e.side]}) | {esc(e.phrase(e.default))} | {alts} "
+            f"| {esc(e.why)} | {e.origin} |"
+        )
+    if register.pinned:
+        rows += ["", "Joint conditions pinned (they flipped a claim before; measured every run):"]
+        rows += [f"- {esc(register.describe(p))}" for p in register.pinned]
+    return "\n".join(rows)

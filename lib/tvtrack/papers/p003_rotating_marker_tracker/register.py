@@ -37,7 +37,7 @@ REGISTER = Register(
             "no amplitudes are given for Fig. 1's 'Y: sinusoid, X: random' (an unreported setting, never printed): "
             "0.25 a slow object (5 px), 2 doubles the speed (40 px at 0.5 Hz, a lag of 2 px in the 10 Hz loops, "
             "still well inside the gate); the interference runs use the same motion unless the object hovers "
-            "(interference_motion)",
+            "(the entry on whether the object moves in the interference runs)",
             title="amplitude of the object's motion, relative to the default (10 px RMS in x, 20 px in y)",
             phrases={
                 0.25: "a slow object (5 px in y)",
@@ -111,8 +111,9 @@ REGISTER = Register(
             "reading",
             "-3 dB",
             ("-3 dB", "noise-equivalent"),
-            "'bandwidths 10; 0.2 and 6 Hz' without saying which: closed-loop -3 dB, or noise-equivalent (K = 4 B_n "
-            "for the first-order loops, B_n = 0.53 w_n for the PLL)",
+            "'bandwidths 10; 0.2 and 6 Hz' without saying which: closed-loop -3 dB, or noise-equivalent (gain 4 times "
+            "the noise bandwidth for the first-order loops; for the PLL a noise bandwidth 0.53 times its natural "
+            "frequency)",
             origin="adversarial",
             title="what the paper's loop 'bandwidths' (10, 0.2 and 6 Hz) measure",
             phrases={
