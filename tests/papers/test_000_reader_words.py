@@ -67,3 +67,85 @@ def test_conclusions_say_when_runs_that_lost_lock_carry_the_default_verdict():
         "In 5 replicates, 6 of their 3000 runs lost lock and carry this verdict: over those replicates' runs in "
         in text
     )
+
+
+def _est(value, low=None, high=None):
+    from tvtrack.estimate import Estimate
+
+    return Estimate(value, 0.1, value if low is None else low, value if high is None else high, 100)
+
+
+def test_pull_in_range_is_said_to_the_grid_and_with_both_sides_shares():
+    from tvtrack.papers.p000_dissector_ekf.findings import pull_in_words
+    from tvtrack.papers.p000_dissector_ekf.studies import pull_in_range
+
+    offsets = [-0.6, -0.4, 0.0, 0.4, 0.6]
+    late = [_est(0.66, 0.6, 0.7), _est(0.28, 0.25, 0.32), _est(0.0, 0.0, 0.01), _est(0.033, 0.02, 0.05), _est(0.12)]
+    acq = {"v1": {"late": late}}
+    text = pull_in_words(offsets, acq, pull_in_range(offsets, acq), 5.0)
+    assert "from 0 T" not in text  # the old wording hid that no offset between -0.4 T and 0 was tried
+    assert "-0.6, -0.4, 0, +0.4, +0.6 T: each edge is known only to the grid's spacing" in text
+    assert "negative side short of -0.4 T, the nearest offset tried (28.0 % not in lock there)" in text
+    assert "positive side to +0.4 T (3.3 % not in lock there, 12.0 % at +0.6 T)" in text
+    assert "-0.4 T and +0.4 T, the runs not in lock for good by 5 T are 28.0 % and 3.3 % (variant 1)" in text
+
+
+class _Ex:
+    """A hand-made exploration of C000-6: the default, two entries changed alone, a pinned pair that flips it and
+    two joint samples, one of which flips it."""
+
+    register = REGISTER
+
+    def __init__(self):
+        def row(kind, changed, value):
+            return {
+                "kind": kind,
+                "changed": changed,
+                "measured": _est(value, value / 2, value * 1.5),
+                "verdict": "reproduced" if value / 2 > 20 else "not reproduced",
+            }
+
+        self.conditions = [
+            row("single", {"G22": "euler"}, 2.0),
+            row("single", {"psi_A": 50.0}, 2.1),
+            row(
+                "pinned",
+                {"C000-6 filter": "ignoring the signal noise", "contrast convention": "fixed background"},
+                190.0,
+            ),
+            row("joint", {"sigma_sh": "unit bandwidth", "psi_A": 100.0}, 1.5),
+            row("joint", {"G22": "matched", "psi_A": 5.0}, 60.0),
+        ]
+
+    def record(self, claim_id):
+        return {"conditions": self.conditions}
+
+    def measured(self, claim_id):
+        return _est(1.5, 0.6, 2.2)
+
+
+def test_c6_figure_draws_each_entry_alone_and_every_flip_in_plain_words():
+    from tvtrack.papers.p000_dissector_ekf.findings import drawn_conditions
+    from tvtrack.verdicts import InBand
+
+    rows, left = drawn_conditions(_Ex(), "C000-6", InBand("ratio", 20.0, None))
+    labels = [r[0] for r in rows]
+    assert not any(" = euler" in t or "sigma_sh" in t for t in labels)  # register keys are not a reader's words
+    assert labels[0] == "the default (replicates pooled)"
+    assert REGISTER.describe({"G22": "euler"}) in labels
+    assert REGISTER.describe({"G22": "matched", "psi_A": 5.0}) in labels  # the flipping joint sample
+    assert REGISTER.describe({"sigma_sh": "unit bandwidth", "psi_A": 100.0}) not in labels
+    assert left == "1 joint sample of the register"
+
+
+def test_c6_list_of_flips_says_what_it_counts():
+    from tvtrack.papers.p000_dissector_ekf.findings import conditions_above
+    from tvtrack.verdicts import InBand
+
+    text = conditions_above(_Ex(), "C000-6", InBand("ratio", 20.0, None), "put the whole 95 % interval above 20")
+    assert "(of " not in text
+    assert text.startswith(
+        "Of the 5 explored conditions (2 register entries changed one at a time, 1 pinned joint condition, 2 joint "
+        "samples of the register), 2 put the whole 95 % interval above 20:\n\n- "
+    )
+    assert f"\n- {REGISTER.describe({'G22': 'matched', 'psi_A': 5.0})}" in text

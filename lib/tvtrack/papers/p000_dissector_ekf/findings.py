@@ -13,7 +13,16 @@ from ...measured import as_estimate
 from ...run_words import lock_sentence, lost_basis, lost_lead
 from ...wording import claim_fields, main_part
 
-__all__ = ["claim_details", "conclusions", "reproduced_where", "condition_rows", "beside"]
+__all__ = [
+    "claim_details",
+    "conclusions",
+    "reproduced_where",
+    "condition_rows",
+    "drawn_conditions",
+    "conditions_above",
+    "pull_in_words",
+    "beside",
+]
 
 
 def claim_details(results, ex, claim_id: str) -> str:
@@ -109,6 +118,94 @@ def condition_rows(ex, claim_id: str, plain: bool = False) -> list:
         )
         rows.append((name, c["measured"]))
     return rows
+
+
+#: A condition's kind (:class:`tvtrack.explore.Exploration`'s records) in a reader's words, one and several.
+_KIND_WORDS = {
+    "single": ("register entry changed alone", "register entries changed one at a time"),
+    "pinned": ("pinned joint condition", "pinned joint conditions"),
+    "joint": ("joint sample of the register", "joint samples of the register"),
+    "combination": (
+        "combination searched inside a flipping joint sample",
+        "combinations searched inside flipping joint samples",
+    ),
+}
+
+
+def _counted(counts: Counter) -> str:
+    """``"23 register entries changed one at a time, 32 joint samples of the register"``: each kind's count."""
+    return ", ".join(f"{n} {_KIND_WORDS.get(k, (k, k))[n != 1]}" for k, n in counts.items())
+
+
+def drawn_conditions(ex, claim_id: str, rule) -> tuple[list, str]:
+    """The rows a figure of one claim over its exploration draws, in the register's plain words: the default
+    (pooled replicates), every entry changed alone, every pinned joint condition and every other condition whose
+    verdict is decided and differs from the default's (each flip); and, for the caption, what is left out, counted
+    by kind (``""`` where nothing is)."""
+    rule = rule.default if isinstance(rule, ByReading) else rule
+    verdict = rule.decide(_measured(ex.measured(claim_id)))
+    rows, left = [("the default (replicates pooled)", ex.measured(claim_id))], Counter()
+    for c in ex.record(claim_id)["conditions"]:
+        flips = c.get("verdict") not in (None, "undecided", verdict)
+        if c["kind"] in ("single", "pinned") or flips:
+            rows.append((ex.register.describe(c["changed"]), c["measured"]))
+        else:
+            left[c["kind"]] += 1
+    return rows, _counted(left)
+
+
+def conditions_above(ex, claim_id: str, rule, line: str) -> str:
+    """A Markdown list of the conditions under which ``rule`` reads the claim reproduced (in the register's plain
+    words), led by how many of how many explored conditions (counted by kind) they are; ``line`` says what
+    reproduced means (``"put the ratio's whole 95 % interval above the paper's 20"``)."""
+    conditions = ex.record(claim_id)["conditions"]
+    named = {ex.register.describe(c["changed"]): c["measured"] for c in conditions}
+    over = reproduced_where(rule, named)
+    counts = Counter(c["kind"] for c in conditions)
+    head = f"Of the {len(conditions)} explored conditions ({_counted(counts)}), {len(over) or 'none'} {line}"
+    return head + (":\n\n" + "\n".join(f"- {o}" for o in over) if over else ".")
+
+
+def pull_in_words(offsets, acq: dict, pull: dict, by_T: float, limit: float = 0.1) -> str:
+    """The pull-in range (:func:`.studies.pull_in_range`) on each side, said to the grid's resolution: the farthest
+    offset tried from which the share of runs not in lock for good by ``by_T`` stays within ``limit`` (its whole
+    95 % interval), with the share there and at the next offset tried beyond it; a side where even the nearest
+    offset fails is said so (its edge lies short of that offset); then the shares at the nearest
+    offset either side, which show how symmetric the range is."""
+    offsets = [float(o) for o in offsets]
+
+    def late(a: dict, o: float) -> str:
+        return f"{100 * a['late'][offsets.index(o)].value:.1f} %"
+
+    def side(a: dict, edge, sign: float) -> str:
+        beyond = sorted((o for o in offsets if sign * o > sign * (edge or 0.0)), key=abs)
+        if edge:
+            nxt = f", {late(a, beyond[0])} at {beyond[0]:+g} T" if beyond else ""
+            return f"to {edge:+g} T ({late(a, edge)} not in lock there{nxt})"
+        if not beyond:
+            return "no offset tried"
+        return f"short of {beyond[0]:+g} T, the nearest offset tried ({late(a, beyond[0])} not in lock there)"
+
+    grid = ", ".join(f"{o:+g}" if o else "0" for o in offsets)
+    said = "; ".join(
+        f"variant {v[1]}, negative side {side(acq[v], p['negative'], -1.0)}, positive side "
+        f"{side(acq[v], p['positive'], 1.0)}"
+        for v, p in pull.items()
+    )
+    near = [min((o for o in offsets if sign * o > 0), key=abs, default=None) for sign in (-1.0, 1.0)]
+    either = (
+        f" At the nearest offsets either side of the start, {near[0]:+g} T and {near[1]:+g} T, the runs not in lock "
+        f"for good by {by_T:g} T are "
+        + "; ".join(f"{late(a, near[0])} and {late(a, near[1])} (variant {v[1]})" for v, a in acq.items())
+        + "."
+        if None not in near
+        else ""
+    )
+    return (
+        f"Pull-in range on the offsets tried ({grid} T: each edge is known only to the grid's spacing), the farthest "
+        f"offset from which at most {100 * limit:g} % of the runs, whole 95 % interval, are not in lock for good by "
+        f"{by_T:g} T: {said}.{either}"
+    )
 
 
 def _setting(entry: str, value) -> str:
