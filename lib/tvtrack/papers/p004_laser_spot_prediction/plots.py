@@ -3,6 +3,8 @@ labelled with units); the notebook saves it with its caption."""
 
 from __future__ import annotations
 
+import textwrap
+
 import matplotlib.pyplot as plt
 import matplotlib.ticker
 import numpy as np
@@ -170,7 +172,9 @@ def horizon_figure(hz: dict, horizons):
 
 def floor_figure(run, floor_grid, late_start: int):
     """Left: RMS error against the floor N_f (all paths) and the optimal predictor; right: RMS over paths
-    against the frame, without and with the cross-validated floor (C004-6)."""
+    against the frame, without and with the cross-validated floor (C004-6). Returns ``(figure, caption)``; the
+    caption gives each curve's RMS over the first and the second half of the scored frames, so it says whether the
+    no-floor error grows over the frames or sits at another level."""
     m = int(run.config["horizon"])
     s = run.size.eval_start
     rms = [
@@ -179,27 +183,50 @@ def floor_figure(run, floor_grid, late_start: int):
     ]
     opt = np.sqrt(per_trial_path_mse(run.forecasts[OPTIMAL], run.z_meas, m, s)[0].mean())
     fig, axs = plt.subplots(1, 2, figsize=(10, 3.6))
-    axs[0].plot(floor_grid, rms, "o-", label="growing memory, frozen gains g_{N_f}")
+    axs[0].plot(floor_grid, rms, "o-", label="growing memory, frozen gains $g_{N_f}$")
     axs[0].axhline(opt, color="k", ls=":", label="optimal predictor")
     axs[0].set_xscale("log")
     axs[0].set_yscale("log")
     plain_log(axs[0], "x")
     plain_log(axs[0], "y", subs=(1.0, 2.0, 3.0, 5.0))  # less than a decade: a label near the optimal line
-    axs[0].set(xlabel="floor N_f (samples)", ylabel=f"RMS {m}-frame prediction error (px)")
+    axs[0].set(xlabel="floor $N_f$ (samples)", ylabel=f"RMS {m}-frame prediction error (px)")
     axs[0].legend(fontsize=8)
     k = np.arange(run.z.shape[-1])
+    halves = {}
     for fc, lab in (
         (pr.growing_memory_forecast(run.z, m, 2, None), "no floor"),
         (run.forecasts[PAPER], "floor (cross-validated)"),
     ):
         e = np.nan_to_num(pr.forecast_errors(fc, run.z_meas, m)[0])
         axs[1].plot(k[s:], np.sqrt(np.mean(e[..., s:] ** 2, axis=(0, 1))), lw=0.6, label=lab)
+        halves[lab] = [float(np.sqrt(np.mean(e[..., a:b] ** 2))) for a, b in ((s, late_start), (late_start, None))]
     axs[1].axvline(late_start, color="gray", ls="--", lw=0.8, label="late half starts")
     axs[1].set_yscale("log")
     plain_log(axs[1], "y")
     axs[1].set(xlabel="frame number", ylabel="RMS error over paths and axes (px)")
     axs[1].legend(fontsize=8)
-    return fig
+    return fig, floor_caption(halves, int(np.argmin(rms)), floor_grid)
+
+
+def floor_caption(halves: dict, best: int, floor_grid) -> str:
+    """The floor figure's caption from its numbers: ``halves`` {curve: [RMS over the first half, over the second]}
+    (px), ``best`` the index of the smallest error on ``floor_grid``."""
+    (a0, a1), (b0, b1) = halves["no floor"], halves["floor (cross-validated)"]
+    change = a1 / a0
+    what = (
+        "grows over the frames"
+        if change > 1.25
+        else "shrinks over the frames"
+        if change < 0.8
+        else "stays at about one level over the frames, above the floored filter's"
+    )
+    return (
+        f"Left: RMS one-step error against the floor $N_f$ (all shipped paths; smallest at $N_f$ = "
+        f"{floor_grid[best]:g}) and the optimal predictor. Right: RMS over paths and axes against the frame, without "
+        f"and with the cross-validated floor. Without a floor the filter errs {a0:.2f} px over the first half of the "
+        f"scored frames and {a1:.2f} px over the second ({change:.2f} times), with the floor {b0:.2f} and {b1:.2f} "
+        f"px: what to see is that the no-floor error {what} (changes within a factor 1.25 read as one level)."
+    )
 
 
 def gains_figure(ratios: dict, floor: int):
@@ -249,16 +276,25 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
     (replicates pooled) and under every one-at-a-time condition of the register; above 1: the filter is better.
     A condition shows the claims it was measured for (a condition that changes only what one claim reads, e.g. the
     networks' lags, measures only that claim)."""
-    rows = [("default (pooled replicates)", {b: e for c in claim_ids for b, e in exploration.measured(c).items()})]
+    rows = [
+        (
+            "the register's default (pooled replicates)",
+            {b: e for c in claim_ids for b, e in exploration.measured(c).items()},
+        )
+    ]
     default = exploration.default
+    register = getattr(exploration, "register", None)
+    if register is None:
+        from .register import build
+
+        register = build()
     for r in exploration.runs:
         if r.stage == "single" and any(c in r.outputs for c in claim_ids):
-            label = ", ".join(
-                f"{k} = {v:.3g}" if isinstance(v, float) else f"{k} = {v}" for k, v in r.changed(default).items()
-            )
+            label = textwrap.fill(register.describe(r.changed(default)), 60)  # each value by its phrase
             rows.append((label, {b: e for c in claim_ids if c in r.outputs for b, e in r.outputs[c].items()}))
     names = list(rows[0][1])
-    fig, ax = plt.subplots(figsize=(8, 0.28 * len(rows) + 1.5))
+    fig, ax = plt.subplots(figsize=(9, 0.42 * len(rows) + 1.5))
+    step = 0.7 / max(len(names), 1)  # the baselines of a row spread symmetrically about its tick
     for j, b in enumerate(names):
         mk, _ = _STYLES[j % len(_STYLES)]
         y = np.array([i for i, (_, row) in enumerate(rows) if b in row])
@@ -266,7 +302,7 @@ def ranking_figure(exploration, claim_ids=("C004-3", "C004-3b")):
         v = np.array([e.value for e in est])
         ax.errorbar(
             v,
-            y + 0.1 * (j - len(names) / 2),
+            y + step * (j - (len(names) - 1) / 2),
             xerr=[v - [e.ci_low for e in est], [e.ci_high for e in est] - v],
             fmt=mk,
             ms=4,

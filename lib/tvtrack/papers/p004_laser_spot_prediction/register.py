@@ -37,7 +37,7 @@ ROWS = (
         "the spectrum above each corner: a critically damped process (smooth paths, f^-4, this project's default), a "
         "first-order one (f^-2: continuous paths without a velocity, rougher than any tilt spectrum), the critically "
         "damped sum through one more pole at the fastest corner (f^-6: the smooth side of the tilt range, proposed by "
-        "the first adversarial pass, docs/validity/004.md; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
+        "the first adversarial pass, see the project's validity notes; Tyler's G-tilt falls as f^-17/3), or the whole spectrum "
         "replaced by Tyler's (1994) G-tilt of a centroid through Kolmogorov turbulence: f^-2/3 below the corner v/D "
         "(at the fastest corner x bandwidth), f^-11/3 above it (the exposure entry multiplying it by its sinc^2 "
         "exactly; the spectral index does not enter it; content below the record's fundamental, 1/40 s, is left to "
@@ -50,10 +50,10 @@ ROWS = (
         "calibrated",
         ("calibrated", 1.0, 8.0),
         "every corner frequency x this (today's 0.02, 0.1, 0.5 Hz at 1); the paper gives no turbulence strength, range "
-        "or wind speed, so the wander time scale W0/V_perp is unknown within an order of magnitude. 'calibrated' "
-        "re-calibrates every world (operating.bandwidth_for: the factor at which the paper's filter errs the entry "
-        "'error in the band' one frame ahead on 15 paths; 3 in the default world, the root of "
-        "calibration.calibrate_bandwidth on the shipped paths, rounded). 1 (corners 0.02, 0.1, 0.5 Hz: the "
+        "or wind speed, so the wander time scale (beam size over cross-wind speed) is unknown within an order of magnitude. 'calibrated' "
+        "re-calibrates every world (the factor at which the paper's filter errs the entry "
+        "'error in the band' one frame ahead on 15 paths; 3 in the default world, the calibration's root "
+        "on the shipped paths, rounded). 1 (corners 0.02, 0.1, 0.5 Hz: the "
         "filter errs 0.33 px) and 8 (fastest corner 4 Hz: 3.9 px) are the knob itself set by hand: worlds that "
         "leave the paper's operating point, kept to show what the claims do outside it",
         "author",
@@ -147,7 +147,7 @@ ROWS = (
         "cross-validated",
         ("cross-validated", 10),
         "lagged centroids fed to the MLP and RBF network; not stated by the paper (nor its refs. [8], [9]): "
-        "chosen per fold from the notebook's lag_grid (1, 2, 4, 8, 16) on the training paths only (each network "
+        "chosen per fold from the lag counts 1, 2, 4, 8 and 16 (a notebook parameter) on the training paths only (each network "
         "at its own optimum, as the filter's floor; each tuning model trained on a third of the paths and 500 "
         "pairs, which if anything favours fewer lags), or fixed at 10 (a fixed-lag reading)",
         "author",
@@ -323,8 +323,8 @@ ROWS = (
         ("per-axis RMS", "radial RMS"),
         "what '1...2 pixels' (abstract, conclusions) measures: the RMS error per image axis, or the RMS distance "
         "between the predicted and the measured spot centre (sqrt(2) x the per-axis RMS for isotropic errors); the "
-        "paper says neither, and C004-1's statistic already carries the radial reading (adversarial review, "
-        "docs/validity/004.md)",
+        "paper says neither, and C004-1's statistic already carries the radial reading (the adversarial review in "
+        "the project's validity notes)",
         "adversarial",
     ),
     (

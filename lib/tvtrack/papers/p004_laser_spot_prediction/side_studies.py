@@ -31,6 +31,7 @@ from .intervals import ratio_of_means_ci, root_mean_ci
 __all__ = [
     "scores",
     "grid_edge_report",
+    "own_minimum_report",
     "single_values",
     "spot_position_crb",
     "measurement_budget",
@@ -81,6 +82,28 @@ def _edge_shares(ch: dict, s: ComparisonSetup) -> dict:
             out[f"{name} lags"] = float(np.mean(grid_edges(ch[name], s.lag_grid) == 1))
     sg = np.asarray(ch[SINGER])
     out["Singer tau"] = float(np.mean(grid_edges(sg[:, 0], s.singer_tau_grid) == 1))  # 0.01 frames: white acceleration
+    return out
+
+
+def own_minimum_report(run: StudyRun) -> dict:
+    """The tuned settings that sit at the smallest value their search allows, the method's own limit (a floor of the
+    grid's smallest number of samples, a window of degree + 1 samples), which :func:`grid_edge_report` rightly does
+    not count as a grid edge: ``{method: (setting name, value, share of paths or folds)}`` for each method with a
+    share above 0."""
+    from .prediction_study import MIN_WINDOW, VARIANT
+
+    ch, s = run.comparison.chosen, comparison_setup(run.config, run.size)
+    lows = {PAPER: ("floor N_f", min(s.floor_grid)), VARIANT: ("floor N_f", min(s.floor_grid))}
+    lows |= {name: ("window L", lo) for name, lo in MIN_WINDOW.items()}
+    lows |= {
+        name: ("window L", 4) for name in (LSQ_CUBIC, NATURAL_SPLINE)
+    }  # the spline's other readings start at 4 too
+    out = {}
+    for name, (what, lo) in lows.items():
+        if name in ch:
+            share = float(np.mean(np.isclose(np.asarray(ch[name], float), lo)))
+            if share > 0:
+                out[name] = (what, int(lo), share)
     return out
 
 
