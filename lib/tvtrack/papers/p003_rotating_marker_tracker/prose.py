@@ -29,8 +29,8 @@ __all__ = [
 TYPICAL = "typical (geometric-mean) SIR at which lock breaks"
 # said once where the typical value meets the paper's 2 and 3
 LOSS_FREE = (
-    "The paper's 2 (one interferer) and 3 (five) are loss-free thresholds: no run loses lock at or above them. The "
-    f"{TYPICAL} is a typical breaking point, so it lies below a loss-free threshold even where the paper holds; the "
+    "The paper's 2 (one interferer) and 3 (five) are loss-free thresholds: at and above them its runs kept lock. The "
+    f"{TYPICAL} is where a typical run breaks, so it lies below a loss-free threshold even where the paper holds; the "
     "claims are judged on the shares of runs that lost lock at the paper's SIR, not on this typical value."
 )
 # the rule parts' short tags the verdicts print in brackets, in words (the tags themselves are the rules' labels)
