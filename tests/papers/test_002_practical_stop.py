@@ -58,7 +58,7 @@ def test_no_record_calls_the_practical_stop_matched():
         low = " ".join(text.lower().split())
         assert "matched between" not in low and "the same for the ula and the marks" not in low, text
     assert "not the same added error" in STOP.phrase(study.PRACTICAL_STOP)
-    assert "0.080" in STOP.why and "0.004" in STOP.why  # the measured added errors (T = 50, d = 3 sigma)
+    assert "not the same added error" in STOP.why  # why, in words: no earlier run's numbers (they are not this run's)
 
 
 def test_the_converged_default_does_not_move_with_a_tighter_tolerance():

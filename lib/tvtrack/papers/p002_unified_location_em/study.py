@@ -52,6 +52,7 @@ __all__ = [
     "screen_scale",
     "figure_data",
     "clear_cache",
+    "cached",
 ]
 
 #: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
@@ -72,7 +73,7 @@ _READS = {
 _CANON = CANONICAL_SETTINGS
 _SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sigma", "crb_phases", "tracks")
 #: The practical stop of the "EM stopping" reading: the same log-likelihood gap for the ULA and each frame's mark
-#: (not the same added error; the register's why gives it measured).
+#: (not the same added error; the register's why says why).
 PRACTICAL_STOP = "plain EM to a log-likelihood gap of 0.1"
 _TWO_STAGE = {
     "designation start, labels by start": ("designation", "designation"),
@@ -135,6 +136,12 @@ class Scale:
 def clear_cache() -> None:
     """Forget every cached simulation job (tests; memory)."""
     _CACHE.clear()
+
+
+def cached(job) -> dict | None:
+    """The cached result of a simulation job ``(settings, Config)`` (:func:`jobs_of`), or None where it has not run
+    in this process."""
+    return _CACHE.get(job)
 
 
 def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
