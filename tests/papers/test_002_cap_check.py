@@ -168,12 +168,13 @@ def test_the_whole_paragraph_reads_the_numbers_it_is_given():
         "trials at d = 1 sigma. Rerun on the same scenes with a cap of 1000000 iterations, the marks reach it in "
         "0.0% [0.0%, 4.5%] of the trials at d = 1 sigma, the ULA in 0.0% [0.0%, 4.5%] of the trials at d = 1 sigma; "
         "the estimates change in 30 of the 80 trials, every one of them among those that reached the default cap. "
-        "Paired on the same trials (95 % intervals, widened by the coverage measured for this package's bootstrap of "
-        "a variance ratio at this size), the larger cap changes the two-stage's variance sum Sigma^2 of "
+        "Paired on the same trials (95 % intervals, widened where a simulation test found the bootstrap interval of "
+        "a ratio of variance sums to cover less than 95 % at this number of trials), the larger cap changes the "
+        "two-stage's variance sum Sigma^2 of "
         "the initial positions by +0.1 [+0.01, +0.2] sigma^2 at d = 1 sigma (1.5 -> 1.6: up), and the gain rho = "
         "Sigma^2_two-stage / Sigma^2_ULA by +0.1 [+0.02, +0.2] at d = 1 sigma (0.5 -> 0.6: up). So the default cap "
-        "understates the ULA's gain rho (rho rises when the EMs run further) at d = 1 sigma. Of the claims, C002-10 "
-        'reads these points (part "coarser pixels": rho at Delta = 5 sigma over rho at Fig 4a\'s pixels, geometric '
+        "understates the ULA's gain rho (rho rises when the EMs run further) at d = 1 sigma. Of the claims at the "
+        'register default, C002-10 reads these points (part "coarser pixels": rho at Delta = 5 sigma over rho at Fig 4a\'s pixels, geometric '
         "mean over d = 1 sigma): on this replicate (intervals from this study's own resamples, as its rule reads "
         "them) it is 0.66 [0.55, 0.81] at the default cap and 0.74 [0.61, 0.91] "
         'at the larger one, a paired change of +0.08 [+0.04, +0.13] (a measurable change); its rule gives "not '
@@ -207,8 +208,9 @@ def test_the_gain_sentence_follows_each_interval(changes, sentence):
 
 def test_the_verdict_sentence_follows_the_rule_at_each_cap():
     head = (
-        'Of the claims, C002-10 reads these points (part "coarser pixels": rho at Delta = 5 sigma over rho at Fig '
-        "4a's pixels, geometric mean over d = 1 sigma): on this replicate (intervals from this study's own "
+        'Of the claims at the register default, C002-10 reads these points (part "coarser pixels": rho at Delta = 5 '
+        "sigma over rho at Fig 4a's pixels, geometric mean over d = 1 sigma): on this replicate (intervals from this "
+        "study's own "
         "resamples, as its rule reads them) it is 0.66 [0.55, 0.81] at the default "
         "cap and 0.74 [0.61, 0.91] at the larger one, a paired change of "
     )
@@ -222,7 +224,7 @@ def test_the_verdict_sentence_follows_the_rule_at_each_cap():
         '+0.08 [-0.01, +0.13] (no measurable change); its rule gives "undecided" at the default cap and '
         '"undecided" at the larger one, so on this replicate that verdict does not depend on the cap.'
     )
-    assert cc._claims_sentence({**still, "claims": []}) == "No claim reads these points."
+    assert cc._claims_sentence({**still, "claims": []}) == "No claim reads these points at the register default."
 
 
 def test_a_paired_change_is_read_widened_by_the_measured_coverage_and_an_unmeasured_one_decides_nothing():

@@ -305,16 +305,17 @@ def _claims_sentence(out: dict) -> str:
     """Which claims read Fig 6b's points, and whether C002-10's "coarser pixels" and its verdict move with the cap."""
     claims, part = out["claims"], out["part"]
     if not claims:
-        return "No claim reads these points."
+        return "No claim reads these points at the register default."
     if "C002-10" not in claims:
-        return f"Of the claims, {', '.join(claims)} read these points; none is rerun here."
+        return f"Of the claims at the register default, {', '.join(claims)} read these points; none is rerun here."
     others = [c for c in claims if c != "C002-10"]
     v0, v1 = part["verdicts"]
     pix = out["pix"]
     moved = _side(part["change"]) != "none"
     text = (
-        f'Of the claims, C002-10 reads these points (part "{_PART}": rho at Delta = {pix:g} sigma over rho at Fig 4a\'s '
-        f"pixels, geometric mean over {_at(out['close'])}): on this replicate (intervals from this study's own "
+        f'Of the claims at the register default, C002-10 reads these points (part "{_PART}": rho at Delta = {pix:g} '
+        f"sigma over rho at Fig 4a's pixels, geometric mean over {_at(out['close'])}): on this replicate (intervals "
+        "from this study's own "
         f"resamples, as its rule reads them) it is {_fmt(part['default'])} at the "
         f"default cap and {_fmt(part['larger'])} at the larger one, a paired change of {_signed(part['change'])} "
         f'({"a measurable change" if moved else "no measurable change"}); its rule gives "{v0}" at the default cap '
@@ -351,8 +352,9 @@ def cap_paragraph(out: dict) -> str:
                 if stray == 0
                 else f", {stray} of them among those that did not reach the default cap."
             ),
-            "Paired on the same trials (95 % intervals, widened by the coverage measured for this package's "
-            "bootstrap of a variance ratio at this size), the larger cap changes the two-stage's variance sum "
+            "Paired on the same trials (95 % intervals, widened where a simulation test found the bootstrap "
+            "interval of a ratio of variance sums to cover less than 95 % at this number of trials), the larger cap "
+            "changes the two-stage's variance sum "
             f"Sigma^2 of the initial positions by {_changes(pts, 'two-stage variance change', 'two-stage variance', ' sigma^2')}"
             f", and the gain rho = Sigma^2_two-stage / Sigma^2_ULA by {_changes(pts, 'rho change', 'rho', '')}.",
             _gain_sentence(pts),

@@ -29,6 +29,8 @@ __all__ = [
     "condition_output",
     "compare",
     "flips_by_entry",
+    "who_wins",
+    "headline_comparisons",
 ]
 
 #: The configurations of Figs 4-7 whose failure rates are reported: ``(group of g, key, label)``.
@@ -188,3 +190,58 @@ def flips_by_entry(exploration, rules, names, kinds=("single",)) -> dict:
                 if k in out and c["parts"] != ref and cid not in out[k]:
                     out[k].append(cid)
     return out
+
+
+def who_wins(rho: Estimate) -> str:
+    """The direction a 95 % interval of rho = Sigma^2_two-stage / Sigma^2_ULA supports: ``"above 1: the ULA more
+    accurate"``, ``"below 1: the two-stage more accurate"`` or ``"not distinguishable from 1"`` (:func:`word`)."""
+    w = word(rho)
+    if w == "above":
+        return "above 1: the ULA more accurate"
+    if w == "below":
+        return "below 1: the two-stage more accurate"
+    return f"{w} 1"
+
+
+def _band_side(rho: Estimate, low: float, high: float) -> str:
+    """Where a 95 % interval lies against the band [low, high]: wholly below, wholly above, inside, or across."""
+    if rho.ci_high < low:
+        return "wholly below"
+    if rho.ci_low > high:
+        return "wholly above"
+    if rho.ci_low >= low and rho.ci_high <= high:
+        return "inside"
+    return "reaching into"
+
+
+def headline_comparisons(rows: dict, part: str, band: tuple, fmt=None) -> str:
+    """C002-11's direction for every comparison the run made, from the numbers: ``rows`` maps each comparison's
+    words (the first: the published ML ULA against the designation-started marks) to its measured parts (``None``
+    where no run made it), ``part`` the part read (e.g. d = 1 sigma), ``band`` the rule's ``(low, high)`` around
+    the paper's number, ``fmt`` the notebook's formatter of an estimate. The direction word of each comparison
+    comes from its own 95 % interval (:func:`who_wins`), and so does its place against the band."""
+    fmt = fmt or (lambda e: f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]")
+    low, high = band
+    made = [(name, m[part]) for name, m in rows.items() if m and part in m]
+    if not made:
+        return ""
+    said = [
+        f"{name}: {fmt(e)}, {who_wins(e)}, {_band_side(e, low, high)} the paper's band [{low:g}, {high:g}]"
+        for name, e in made
+    ]
+    sides = {word(e) for _, e in made}
+    if {"above", "below"} <= sides:
+        end = "so which algorithm is more accurate here depends on what the ULA is given"
+    elif len(sides) == 1:
+        end = (
+            "the same direction in every comparison"
+            if sides & {"above", "below"}
+            else "no comparison tells the algorithms apart"
+        )
+    else:
+        end = "not every comparison tells the algorithms apart"
+    head = part.split(" (")[0]
+    return (
+        f"At {head}, T = 50, rho = Sigma^2_two-stage / Sigma^2_ULA in each comparison the run made (the claim's "
+        "sentence reads the first comparison only): " + "; ".join(said) + f"; {end}."
+    )
