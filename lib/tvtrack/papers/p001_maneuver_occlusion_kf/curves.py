@@ -34,6 +34,8 @@ __all__ = [
     "fig4_monte_carlo",
     "curve_agreement",
     "agreement_word",
+    "smallest_rms_words",
+    "C8_UNITS",
     "unbiased_prediction_bound",
 ]
 
@@ -229,3 +231,20 @@ def unbiased_prediction_bound(sc: Scenario, f_first: int, f_last: int, f_pred: i
     m = f_pred - f_last
     u = np.array([1.0, m, 0.5 * m**2])
     return float(sigma_eps * np.sqrt(u @ np.linalg.solve(H.T @ H, u)))
+
+
+def smallest_rms_words(sweep: dict) -> str:
+    """C001-7's caveat: the unit its values are counted in, the smallest random prediction error (RMS) of the loss
+    sweep (:func:`loss_sweep`), in elements."""
+    return (
+        f"Its unit, the smallest random prediction error (RMS) of the sweep, is "
+        f"{float(np.min(sweep['rms'])):.3g} elements"
+    )
+
+
+#: C001-8's caveat: the unit of its parts (:func:`c8_parts`), which the conclusions' part decisions do not print.
+C8_UNITS = (
+    "Its parts are in raster elements: the RMS prediction error at reappearance, the interior minimum of "
+    "|dynamic error| + RMS (the smallest at the grid's ends less the smallest inside it) and the |dynamic error| "
+    "from the optimum on"
+)

@@ -32,7 +32,15 @@ from .scenario import (
     span_mask,
 )
 
-__all__ = ["RMS_STATISTICS", "error_functional", "paired_functional_ratio", "measure_tradeoff", "switch_share"]
+__all__ = [
+    "RMS_STATISTICS",
+    "error_functional",
+    "paired_functional_ratio",
+    "measure_tradeoff",
+    "switch_share",
+    "span_caveat",
+    "comparators_caption",
+]
 
 #: Readings of "the gain law minimises the RMS error" (register entry ``rms_statistic``).
 RMS_STATISTICS = ("random error (SD)", "total mean square", "|bias| + RMS at 12 s")
@@ -192,3 +200,29 @@ def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, 
     sc = config_scenario({"frame_rate_hz": frame_rate_hz} | {k: v for (k, _), v in zip(_WORLD, world)})
     z = measurements(sc.truth[:, :, 0], noise, n, np.random.default_rng(seed), sigma_eps)
     return comparator_positions(name, setting, z, sc, sigma_eps) - sc.truth[None, :, :, 0]
+
+
+def span_caveat(register) -> str:
+    """C001-4's caveat: the span its minimum-RMS parts are taken over (the rule calls it "the compensation span"),
+    in the register's words at its default, set apart from the compensation interval of its faster-compensation
+    part (entries ``rms_span`` and ``compensation_end_s``)."""
+    span, end = register["rms_span"], register["compensation_end_s"]
+    return (
+        f"The 'compensation span' of its minimum-RMS parts is the register's span for C001-4's RMS "
+        f"({span.phrase(span.default)}, at this run's default), not the interval its faster-compensation part "
+        f"scores ({end.phrase(end.default)})"
+    )
+
+
+def comparators_caption(register) -> str:
+    """The caption of C001-4's comparators figure: panel (a)'s RMS over runs includes the bias (dynamic error),
+    panel (b)'s minimum-RMS ratios use the register's default RMS statistic, said in its words."""
+    stat, span = register["rms_statistic"], register["rms_span"]
+    return (
+        "C001-4: (a) position RMS error over time (both channels; the root mean square over runs of the error, "
+        "dynamic error (bias) and random error together) of the scheme, the 2nd-order filter without the switch "
+        "and every tuned comparator; (b) each part's ratio, the comparator's error over the scheme's, pooled over "
+        "the replicates with 95 % intervals: for the faster compensation the dynamic error's mean square, for the "
+        f"minimum-RMS parts the register's default statistic ({stat.phrase(stat.default)}; "
+        f"{span.phrase(span.default)}), not panel (a)'s RMS."
+    )
