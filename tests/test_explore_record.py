@@ -616,7 +616,9 @@ def test_a_setting_reads_in_four_figures_in_the_table_the_register_and_the_phras
     assert "| single (1 replicate): alpha = 1.667 | not reproduced |" in rows
     assert "| single (1 replicate): q = 1e+06 | reproduced |" in rows
     md = reg.to_markdown()
-    assert "| `alpha` | regime | 0.6667 | 1.667 | a world |" in md and "- alpha = 1.667, q = 1e+06" in md
+    assert "| alpha | regime (a world beyond the paper) | alpha = 0.6667 | alpha = 1.667 | a world | author |" in md
+    assert "| q | reading (a reading of the paper's text) | q = 100 | q = 1e+06 | r | author |" in md
+    assert "- alpha = 1.667 and q = 1e+06" in md and "`" not in md
     assert reg["q"].phrase(big) == "q = 1e+06" and reg.describe({"alpha": third}) == "alpha = 1.667"
     assert [setting("k", v) for v in (25, 0.1, True, "y/z", 123456.0)] == [
         "k = 25",

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping, Sequence
 
 from .markdown import md_escape
-from .numbers import number, setting
+from .numbers import setting
 
 __all__ = [
     "leaves_operating_point",
@@ -286,18 +286,24 @@ class Register:
         return [e.to_dict() for e in self.entries]
 
     def to_markdown(self) -> str:
-        """The register as a Markdown table (name, kind, default, other values, why, origin)."""
+        """The register as a Markdown table in a reader's words: each entry by its title, its kind with what the kind
+        means (:data:`SIDE_PHRASES`), its default and other values by their phrases (:meth:`Entry.phrase`), why,
+        and who added it; then the pinned joint conditions by :meth:`describe`. The code's names appear only
+        where an entry has no title or phrase of its own."""
         rows = [
             "| entry | kind | default | other defensible values | why | added by |",
             "| --- | --- | --- | --- | --- | --- |",
         ]
         for e in self.entries:
-            alts = ", ".join(_md(v) for v in e.alternatives) or "-"
-            rows.append(f"| `{e.name}` | {e.kind} | {_md(e.default)} | {alts} | {md_escape(e.why)} | {e.origin} |")
+            alts = "; ".join(md_escape(e.phrase(v)) for v in e.alternatives) or "-"
+            rows.append(
+                f"| {md_escape(e.title or e.name)} | {e.kind} ({SIDE_PHRASES[e.side]}) | {md_escape(e.phrase(e.default))}"
+                f" | {alts} | {md_escape(e.why)} | {e.origin} |"
+            )
         if self.pinned:
             rows.append("")
             rows.append("Joint conditions pinned (they flipped a claim before; measured every run):")
-            rows += [f"- {md_escape(', '.join(setting(k, v) for k, v in p.items()))}" for p in self.pinned]
+            rows += [f"- {md_escape(self.describe(p))}" for p in self.pinned]
         return "\n".join(rows)
 
     def _repr_markdown_(self) -> str:
@@ -375,10 +381,6 @@ def guard(config: Mapping[str, Any], allowed: Iterable[str]) -> dict:
     measurement that uses such an entry raises :class:`UndeclaredEntry` naming it (copying the dict does not)."""
     keep = set(allowed)
     return {k: (v if k in keep else Undeclared(k)) for k, v in config.items()}
-
-
-def _md(v: Any) -> str:
-    return md_escape(number(v))
 
 
 def with_kinds(entries: Iterable[Entry], kinds: Mapping[str, tuple[str, str]]) -> list[Entry]:

@@ -47,12 +47,10 @@ def test_c7_and_c8_caveats_give_their_units_in_elements():
 
 
 def test_register_table_names_entries_and_pinned_conditions_in_plain_words():
-    from tvtrack.papers.p001_maneuver_occlusion_kf.register import register_table
-
     register = build_register()
-    text = register_table(register)
+    text = register.to_markdown()  # the core's table, in the register's titles and phrases
     for wrong in ("`test_cadence`", "`k_bound2`", "restart = B", "window_n = 10", "curve_tolerance = 0.001"):
         assert wrong not in text
-    assert f"| {register['test_cadence'].title} | unreported setting | " in text
+    assert f"| {register['test_cadence'].title} | unreported setting (a setting of the paper's own experiment" in text
     assert f"- {register.describe({'restart': 'B', 'window_n': 10})}" in text
     assert "curve steps under 0.001 element count as flat" in text

@@ -155,7 +155,7 @@ def test_an_extrapolated_typical_value_leads_with_what_the_runs_show():
 def test_the_register_table_and_the_pinned_conditions_speak_in_titles_and_phrases():
     from tvtrack.papers.p003_rotating_marker_tracker import prose
 
-    table = prose.register_table(REGISTER)
+    table = REGISTER.to_markdown()  # the core's table, in the register's titles and phrases
     for name in (
         "motion_scale",
         "interference_motion",

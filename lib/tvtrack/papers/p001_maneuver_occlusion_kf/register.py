@@ -12,7 +12,6 @@ import dataclasses
 from ...register import Register
 from .entries import ENTRIES
 from ...register import with_kinds
-from ...markdown import md_escape
 from .kinds import KINDS
 
 __all__ = [
@@ -25,7 +24,6 @@ __all__ = [
     "PROJECT_GRIDS",
     "build_register",
     "group_register",
-    "register_table",
 ]
 
 #: The entries each claim depends on (every entry that can change what the claim's measurement reads).
@@ -182,23 +180,3 @@ def group_register(register: Register, group: str) -> Register:
     """The entries the claims of ``group`` depend on."""
     names = {n for cid in GROUPS[group] for n in DEPENDS[cid]}
     return register.subset([n for n in register.names if n in names])
-
-
-def register_table(register: Register) -> str:
-    """The register as a Markdown table in a reader's words: each entry by its title, its default and other values
-    by their phrases, why, and who added it; then the pinned joint conditions, each in the register's words
-    (:meth:`tvtrack.register.Register.describe`), never by the entries' names in the code."""
-    rows = [
-        "| entry | kind | default | other defensible values | why | added by |",
-        "| --- | --- | --- | --- | --- | --- |",
-    ]
-    for e in register:
-        others = "; ".join(md_escape(e.phrase(v)) for v in e.alternatives) or "-"
-        rows.append(
-            f"| {md_escape(e.title or e.name)} | {e.kind} | {md_escape(e.phrase(e.default))} | {others} | "
-            f"{md_escape(e.why)} | {e.origin} |"
-        )
-    if register.pinned:
-        rows += ["", "Joint conditions pinned (they flipped a claim before; measured every run):"]
-        rows += [f"- {md_escape(register.describe(p))}" for p in register.pinned]
-    return "\n".join(rows)

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-from ...markdown import md_escape
 from ...measured import as_estimate, is_undecided
-from ...register import SIDE_PHRASES
 from ...run_words import part_name
 from .register import REGISTER
 
@@ -19,7 +17,6 @@ __all__ = [
     "typical_breaking",
     "typical_against_paper",
     "lost_points",
-    "register_table",
     "PART_TAGS",
     "LOSS_FREE",
     "TYPICAL",
@@ -209,24 +206,3 @@ def lost_points(lock_by_bandwidth: dict, limit: float = 0.1) -> str:
         "The tracker lost lock at " + "; ".join(bits) + ": its error there is the distance to the marker it left, "
         "not a ripple, so the trend is read over the other bandwidths only."
     )
-
-
-def register_table(register=REGISTER) -> str:
-    """The register as a Markdown table in the reader's words: each entry by its title, each value by its phrase
-    (:class:`tvtrack.register.Entry`), its kind with what the kind means, and the pinned joint conditions by
-    :meth:`tvtrack.register.Register.describe` (never the entries' code names)."""
-    esc = lambda t: md_escape(str(t))  # noqa: E731
-    rows = [
-        "| entry | kind | default | other defensible values | why | added by |",
-        "| --- | --- | --- | --- | --- | --- |",
-    ]
-    for e in register:
-        alts = "; ".join(esc(e.phrase(v)) for v in e.alternatives) or "-"
-        rows.append(
-            f"| {esc(e.title or e.name)} | {e.kind} ({SIDE_PHRASES[e.side]}) | {esc(e.phrase(e.default))} | {alts} "
-            f"| {esc(e.why)} | {e.origin} |"
-        )
-    if register.pinned:
-        rows += ["", "Joint conditions pinned (they flipped a claim before; measured every run):"]
-        rows += [f"- {esc(register.describe(p))}" for p in register.pinned]
-    return "\n".join(rows)
