@@ -19,7 +19,8 @@ def test_c4_caveat_names_the_span_its_rms_parts_are_over():
     from tvtrack.papers.p001_maneuver_occlusion_kf.tradeoff import span_caveat
 
     text = span_caveat(build_register())
-    assert "RMS over the tracking from 4 s to the loss at 12 s, at this run's default" in text
+    assert "C001-4's RMS span, over which its minimum-RMS parts are taken, is RMS over the tracking from 4 s to" in text
+    assert "the loss at 12 s at this run's default" in text
     assert "not the interval its faster-compensation part scores (dynamic error scored from the onset to 8 s)" in text
     other = span_caveat(build_register(rms_span="onset to loss", compensation_end_s=6.0))
     assert "RMS over the manoeuvre only, 5 s to the loss at 12 s" in other and "onset to 6 s" in other

@@ -110,7 +110,7 @@ def _c4() -> AllOf:
             ),
             **{
                 f"min RMS vs {c}": Ordering(
-                    f"RMS error of the tuned {c}{'' if c.endswith('filter') else ' filter'} over the compensation span",
+                    f"RMS error of the tuned {c}{'' if c.endswith('filter') else ' filter'} over C001-4's RMS span",
                     "the paper's switching scheme's",
                     ">",
                     "ratio",

@@ -203,13 +203,13 @@ def _comparator_errors(name, setting, seed, noise, frame_rate_hz, n, sigma_eps, 
 
 
 def span_caveat(register) -> str:
-    """C001-4's caveat: the span its minimum-RMS parts are taken over (the rule calls it "the compensation span"),
+    """C001-4's caveat: the span its minimum-RMS parts are taken over (the rule's "C001-4's RMS span"),
     in the register's words at its default, set apart from the compensation interval of its faster-compensation
     part (entries ``rms_span`` and ``compensation_end_s``)."""
     span, end = register["rms_span"], register["compensation_end_s"]
     return (
-        f"The 'compensation span' of its minimum-RMS parts is the register's span for C001-4's RMS "
-        f"({span.phrase(span.default)}, at this run's default), not the interval its faster-compensation part "
+        f"C001-4's RMS span, over which its minimum-RMS parts are taken, is "
+        f"{span.phrase(span.default)} at this run's default, not the interval its faster-compensation part "
         f"scores ({end.phrase(end.default)})"
     )
 
