@@ -149,3 +149,24 @@ def test_c6_list_of_flips_says_what_it_counts():
         "samples of the register), 2 put the whole 95 % interval above 20:\n\n- "
     )
     assert f"\n- {REGISTER.describe({'G22': 'matched', 'psi_A': 5.0})}" in text
+
+
+def test_conclusions_show_the_labels_a_reader_sees_and_every_named_flip():
+    """A record too small to label (``provisional``) reads ``provisional`` in the conclusions, as in the findings
+    table, never the record's raw ``unexplored``; its parts likewise in the claim's details; and every line of
+    ``where`` is named, not the first two."""
+    from types import SimpleNamespace
+
+    from tvtrack.papers.p000_dissector_ekf.findings import claim_details
+
+    claim = _claim(None)
+    extra = [f"not reproduced when change {i}" for i in range(3)]
+    rec = claim.robustness | {"label": "unexplored", "provisional": True, "where": claim.robustness["where"] + extra}
+    rec["parts"] = {"claim": rec["parts"]["claim"] | {"label": "unexplored", "replicate_verdicts": ["undecided"]}}
+    rec["coverage"] = "unexplored; provisional"
+    claim = SimpleNamespace(**{**vars(claim), "robustness": rec, "statement": "s", "acceptance": "a"})
+    text = _conclusions(claim)
+    assert ", provisional:" in text and "unexplored" not in text and "labels 1 provisional" in text
+    assert all(w in text for w in extra) and "first conditions" not in text
+    details = claim_details(SimpleNamespace(claims=[claim]), None, claim.id)
+    assert "| claim | not reproduced | provisional | undecided |" in details

@@ -146,3 +146,24 @@ def test_the_ranking_figure_names_conditions_by_phrase_and_centres_its_markers_o
     plt.close(fig)
     assert register.describe({"bandwidth": 8}) in labels and not [x for x in labels if " = " in x]
     assert np.allclose(np.mean(ys, axis=0), [0, 1])  # the markers of a row spread about its tick
+
+
+def test_the_findings_lines_show_the_label_a_reader_sees():
+    """A record too small to label reads ``provisional`` in the findings, as in the core's table, never its raw
+    ``unexplored`` (nor ``robust``); a record of its own size keeps its label."""
+    from types import SimpleNamespace
+
+    from tvtrack.estimate import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction.findings import findings
+    from tvtrack.verdicts import InBand
+
+    rule = InBand("error", 0.0, 2.0, "px")
+    m = Estimate(1.0, 0.1, 0.8, 1.2, 50)
+
+    def text(**record):
+        rec = {"label": "unexplored", "parts": {"claim": {"verdict": "reproduced", "label": "unexplored"}}} | record
+        ex = SimpleNamespace(rules={"C004-1": rule}, measured=lambda cid: m, record=lambda cid, r: rec)
+        return findings({"C004-1": rule}, ex, {"C004-1": "at most 2 px"})
+
+    assert "**reproduced**, provisional." in text(provisional=True)
+    assert "**reproduced**, unexplored." in text(provisional=False)

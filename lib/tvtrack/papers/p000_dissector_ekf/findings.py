@@ -11,7 +11,7 @@ from collections import Counter
 from ...verdicts import ByReading
 from ...measured import as_estimate
 from ...run_words import lock_sentence, lost_basis, lost_lead
-from ...wording import claim_fields, main_part
+from ...wording import at_profile, claim_fields, main_part, shown_label
 
 __all__ = [
     "claim_details",
@@ -37,7 +37,7 @@ def claim_details(results, ex, claim_id: str) -> str:
         "| part | verdict | label | replicates |",
         "|---|---|---|---|",
     ]
-    for name, p in rec["parts"].items():
+    for name, p in at_profile([c], "paper")[0]["robustness"]["parts"].items():  # the labels as the reader sees them
         lines.append(f"| {name} | {p['verdict']} | {p['label']} | {', '.join(p['replicate_verdicts'])} |")
     if rec["where"]:
         lines += ["", "Where a verdict differs: " + "; ".join(rec["where"]) + "."]
@@ -48,7 +48,7 @@ def conclusions(claims, ex) -> str:
     """The closing section: the verdicts and labels counted, each claim in one line, and what the register tried."""
     checkable = [c for c in claims if c.verdict != "not checkable"]
     verdicts = Counter(c.verdict for c in checkable)
-    labels = Counter(c.robustness["label"] for c in checkable if c.robustness)
+    labels = Counter(shown_label(c) for c in checkable if c.robustness)
     adversarial = [e.name for e in ex.register if e.origin == "adversarial"]
     lines = [
         f"Of {len(checkable)} checkable claims: "
@@ -62,13 +62,13 @@ def conclusions(claims, ex) -> str:
         + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."),
         "",
     ]
-    open_ = [c for c in checkable if c.verdict != "reproduced" or (c.robustness or {}).get("label") != "robust"]
+    open_ = [c for c in checkable if c.verdict != "reproduced" or shown_label(c) != "robust"]
     if open_:
-        lines.append("Where a claim is not reproduced, or its verdict moves with the register (first conditions):")
+        lines.append("Where a claim is not reproduced, or its verdict moves with the register (every named flip):")
     for c in sorted(open_, key=lambda c: int(c.id.split("-")[1])):
-        shown = [w + _lost_flip(c, w) for w in ((c.robustness or {}).get("where") or [])[:2]]
+        shown = [w + _lost_flip(c, w) for w in ((c.robustness or {}).get("where") or [])]
         where = f": {'; '.join(shown)}" if shown else ""
-        lines.append(f"- **{c.id}** {c.verdict}, {c.robustness['label']}{where}.{_lost_default(c)}")
+        lines.append(f"- **{c.id}** {c.verdict}, {shown_label(c)}{where}.{_lost_default(c)}")
     return "\n".join(lines)
 
 

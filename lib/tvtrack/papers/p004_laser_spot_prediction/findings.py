@@ -11,6 +11,7 @@ import numpy as np
 from ...estimate import Estimate
 from ...numbers import value_range
 from ...run_words import part_name, share_counts
+from ...wording import at_profile, shown_label
 from .prediction_study import CLASSICAL, FADING, PAPER, SINGER, VARIANT
 from .study import CENTROID, NETWORKS, OPTIMAL
 
@@ -97,7 +98,7 @@ def findings(
         if cid in exploration.rules:
             m = exploration.measured(cid)
             verdict = rule.decide(m)
-            rec = exploration.record(cid, rule)
+            rec = at_profile([{"robustness": exploration.record(cid, rule)}], "paper")[0]["robustness"]  # as shown
             text = _measured_text(m)
             if isinstance(m, dict) and len(rec["parts"]) > 1:  # one verdict and label per part
                 text = "; ".join(
@@ -105,7 +106,7 @@ def findings(
                     for p, v in rec["parts"].items()
                     if p in m
                 )
-            lines.append(claim_line(cid, paper_values[cid], text, verdict, rec["label"]))
+            lines.append(claim_line(cid, paper_values[cid], text, verdict, shown_label({"robustness": rec})))
             if (beside or {}).get(cid):
                 lines.append(f"  - {beside[cid]}")
         else:
@@ -542,7 +543,7 @@ def flips_markdown(exploration, rules: dict, max_flips: int = 4) -> str:
     most: the short form of the "where" lists."""
     lines = []
     for cid, rule in rules.items():
-        rec = exploration.record(cid, rule)
+        rec = at_profile([{"robustness": exploration.record(cid, rule)}], "paper")[0]["robustness"]  # as shown
         for part, v in rec["parts"].items():
             head = cid if len(rec["parts"]) == 1 else f"{cid} ({part_name(part)})"
             text = f"- **{head}**: {v['verdict']}, {v['label']}"
