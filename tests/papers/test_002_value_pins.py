@@ -366,3 +366,55 @@ def test_every_claim_value_holds_each_part_its_rule_decides():
     assert set(m) <= set(rules)
     for cid, value in m.items():
         assert set(part_pairs(rules[cid], value)) == set(rule_parts(rules[cid])), cid
+
+
+#: The parts whose value is a ratio of two algorithms' errors on the same scenes (the same trials resampled together)
+#: and the parts that compare independent configurations (their trials resampled apart).
+PAIRED_PARTS = [
+    ("C002-7", "fine pixels"),
+    ("C002-7", "coarse pixels"),
+    ("C002-8", "better than the marks"),
+    ("C002-9", "centre-of-region >= iterative marks"),
+    ("C002-9", "iterative marks >= ULA"),
+    ("C002-10", "closer"),
+    ("C002-11", "d = 1 sigma (paper x4.5)"),
+    ("C002-11", "d = 3 sigma (paper x4)"),
+    ("C002-12", "Delta = 0.5 sigma"),
+    ("C002-12", "Delta = 1 sigma"),
+]
+UNPAIRED_PARTS = [("C002-2", "far apart"), ("C002-5", None), ("C002-8", "worse than fine pixels")]
+
+
+def _widths(m, cid, part) -> list:
+    e = m[cid] if part is None else m[cid][part]
+    return [(x.ci_high - x.ci_low) / abs(x.value) for x in (e if isinstance(e, list) else [e])]
+
+
+@pytest.mark.parametrize("cid, part", PAIRED_PARTS)
+def test_a_ratio_on_the_same_scenes_is_resampled_in_pairs(m, cid, part):
+    # every algorithm's errors are a scale times the one sample Z: resampled in pairs, the ratio is the same in every
+    # resample and its interval has no width; resampled apart, it would scatter
+    assert max(_widths(m, cid, part)) < 1e-9
+
+
+@pytest.mark.parametrize("cid, part", UNPAIRED_PARTS)
+def test_a_ratio_between_independent_configurations_is_resampled_apart(m, cid, part):
+    assert min(_widths(m, cid, part)) > 0.1
+
+
+def test_each_rule_says_paired_exactly_where_its_value_is_paired():
+    from tvtrack.papers.p002_unified_location_em.claims import claim_rules
+
+    rules = claim_rules()
+
+    def leaf(cid, part):
+        r = rules[cid]
+        return r if part is None else r.parts[part]
+
+    paired = [("C002-8", "better than the marks"), ("C002-9", "centre-of-region >= iterative marks")]
+    paired += [("C002-9", "iterative marks >= ULA"), ("C002-14", None)]
+    apart = [("C002-2", "weakens"), ("C002-3", None), ("C002-4", None), ("C002-6", None)]
+    apart += [("C002-8", "worse than fine pixels"), ("C002-10", "coarser pixels"), ("C002-10", "more frames")]
+    assert [leaf(c, p).paired for c, p in paired] == [True] * len(paired)
+    assert [leaf(c, p).paired for c, p in apart] == [False] * len(apart)
+    assert all("unpaired" in leaf(c, p).text() for c, p in apart)
