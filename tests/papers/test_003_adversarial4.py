@@ -101,11 +101,12 @@ def test_the_layout_entry_is_a_reading_every_interference_claim_depends_on():
 def test_dependence_sentence_speaks_in_the_registers_words_not_code_names():
     """The notebook's generated sentence on which motion entries flip which parts names each entry by its title and
     each value by its phrase (a domain reader does not know 'motion_scale = 0.25')."""
+    flip = {"kind": "single", "changed": {"motion_scale": 0.25}, "verdict": "not reproduced"}
     rec = {
         "C003-12": {
             "register": [{"name": "motion_scale"}],
             "replicates": [{"parts": {"one": "reproduced"}}],
-            "parts": {"one": "reproduced"},
+            "parts": {"one": {"verdict": "reproduced", "flips": [flip]}},  # a record's part, its flips named
             "conditions": [{"kind": "single", "changed": {"motion_scale": 0.25}, "parts": {"one": "not reproduced"}}],
         }
     }
@@ -163,11 +164,16 @@ def test_dependence_sentence_names_a_part_in_words_not_its_key():
         "C003-6": {
             "register": [{"name": "motion_scale"}],
             "replicates": [{"parts": {"loss_free": "reproduced"}}],
-            "parts": {"loss_free": "reproduced"},
+            "parts": {
+                "loss_free": {
+                    "verdict": "reproduced",
+                    "flips": [{"kind": "single", "changed": {"motion_scale": 0.25}, "verdict": "not reproduced"}],
+                }
+            },
             "conditions": [
                 {"kind": "single", "changed": {"motion_scale": 0.25}, "parts": {"loss_free": "not reproduced"}}
             ],
         }
     }
     text = prose.dependence(rec)
-    assert "C003-6 (loss free): not reproduced with " in text and "loss_free" not in text
+    assert "C003-6 (loss free, reproduced by default): not reproduced with " in text and "loss_free" not in text
