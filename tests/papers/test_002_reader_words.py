@@ -173,7 +173,11 @@ def test_the_sentence_names_the_claims_and_the_shares_from_the_counts():
 
 def test_the_notebook_counts_the_flips_beside_the_cap_paragraph():
     cell = _source("capc = cap_check.cap_check(")
-    assert "flip_caps.flip_caps_sentence(flip_caps.flip_caps(ex, RULES, scale)" in cell
+    assert "fcap = flip_caps.flip_caps(ex, RULES, scale)" in cell
+    assert 'flip_caps.flip_caps_sentence(fcap, capc["cap"])' in cell
+    # and the flips that read capped points are measured again at a larger cap, in words and metrics
+    assert 'flip_caps_check.flips_at_larger_cap(ex, fcap, RULES, scale, capc["cap"])' in cell
+    assert "flip_caps_check.larger_cap_sentence(fcheck)" in cell and "larger_cap_metrics(fcheck)" in cell
     md = _source("## Failures and an unknown number of objects")
     assert "The EM iteration cap is the parameter `em_iteration_cap`" not in md
     assert "It is a parameter of this\nnotebook (named `em_iteration_cap` in the parameters cell" in md

@@ -20,7 +20,7 @@ from tvtrack.projection import claim_groups
 from . import study
 from .register import DEPENDS, REGISTER
 
-__all__ = ["CAPPED", "cap_counts", "flip_caps", "flip_caps_sentence"]
+__all__ = ["CAPPED", "cap_counts", "capped_flags", "capped_shares", "flip_caps", "flip_caps_sentence"]
 
 #: Algorithm letter -> (its name in the words, the result key of its per-trial cap flag).
 CAPPED = {
@@ -32,7 +32,8 @@ CAPPED = {
 _CAP_COLUMN = 2  # the cap-hit column of ula_flags and em_flags (.summaries.FLAG_NAMES)
 
 
-def _capped(result: dict, key: str):
+def capped_flags(result: dict, key: str):
+    """Per trial, whether an EM of ``result`` reached its cap (``key``: the result's cap flags, :data:`CAPPED`)."""
     a = result[key]
     return a[:, _CAP_COLUMN] if a.ndim == 2 else a
 
@@ -56,7 +57,7 @@ def cap_counts(changed: dict, seeds, scale, claim: str, cache=None) -> dict | No
                 letter = job[1].algs
                 if letter in CAPPED:
                     name, key = CAPPED[letter]
-                    hits = _capped(result, key)
+                    hits = capped_flags(result, key)
                     k, n = counts.get(name, (0, 0))
                     counts[name] = (k + int(hits.sum()), n + len(hits))
                     if hits.any():
@@ -92,7 +93,8 @@ def flip_caps(exploration, rules: dict, scale, cache=None) -> dict:
     return out
 
 
-def _capped_names(counts: dict | None) -> dict:
+def capped_shares(counts: dict | None) -> dict:
+    """``{algorithm name: share of trials at the cap}`` of :func:`cap_counts`' result, those that reached it only."""
     return {name: kn[0] / kn[1] for name, kn in (counts or {}).items() if name != "caps" and kn[0]}
 
 
@@ -118,7 +120,7 @@ def flip_caps_sentence(caps: dict, cap: int) -> str:
     said, clean, unknown = [], [], []
     for cid, c in caps.items():
         bits = []
-        at_default = _capped_names(c["default"])
+        at_default = capped_shares(c["default"])
         if at_default:
             bits.append(
                 "at the default (first replicate: "
@@ -127,13 +129,13 @@ def flip_caps_sentence(caps: dict, cap: int) -> str:
             )
         flips = c["flips"]
         counted = [f for f in flips if f["counts"] is not None]
-        capped = [f for f in counted if _capped_names(f["counts"])]
+        capped = [f for f in counted if capped_shares(f["counts"])]
         if len(counted) < len(flips):
             unknown.append(cid)
         if capped:
-            names = dict.fromkeys(n for f in capped for n in _capped_names(f["counts"]))
+            names = dict.fromkeys(n for f in capped for n in capped_shares(f["counts"]))
             spans = ", ".join(
-                f"{name} in {_span([_capped_names(f['counts'])[name] for f in capped if name in _capped_names(f['counts'])])}"
+                f"{name} in {_span([capped_shares(f['counts'])[name] for f in capped if name in capped_shares(f['counts'])])}"
                 for name in names
             )
             bits.append(

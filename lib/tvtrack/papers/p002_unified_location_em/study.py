@@ -53,6 +53,7 @@ __all__ = [
     "figure_data",
     "clear_cache",
     "cached",
+    "remember",
 ]
 
 #: Settings fields each algorithm letter reads besides the scene's (seed, velocity, noise, photon model, margin).
@@ -75,6 +76,8 @@ _SCENE = ("seed", "velocity_sigma", "noise_density", "photon_model", "margin_sig
 #: The practical stop of the "EM stopping" reading: the same log-likelihood gap for the ULA and each frame's mark
 #: (not the same added error; the register's why says why).
 PRACTICAL_STOP = "plain EM to a log-likelihood gap of 0.1"
+#: The register default of "EM stopping" (its cap is the run's).
+DEFAULT_STOP = "SQUAREM to 1e-6 sigma"
 _TWO_STAGE = {
     "designation start, labels by start": ("designation", "designation"),
     "previous start + assignment": ("previous", "assignment"),
@@ -121,6 +124,9 @@ class Scale:
         Worker processes of :func:`run_jobs`.
     max_iter : int, optional
         A lower EM iteration cap than the register's (the smoke profile only: it bounds the slow tails).
+    cap_factor : int
+        The run's EM iteration cap (the register's, or ``max_iter``) multiplied by this (a study of what the cap
+        changes, :mod:`.flip_caps`); a reading that sets its own cap ("plain EM, cap 100") keeps it.
     """
 
     n_trials: int = 100
@@ -131,6 +137,7 @@ class Scale:
     n_bootstrap: int = 2000
     n_workers: int = 1
     max_iter: int | None = None
+    cap_factor: int = 1
 
 
 def clear_cache() -> None:
@@ -144,11 +151,18 @@ def cached(job) -> dict | None:
     return _CACHE.get(job)
 
 
+def remember(job, result: dict) -> None:
+    """Cache ``result`` as job ``job``'s (a study that knows the result without running it, :mod:`.flip_caps_check`)."""
+    _CACHE[job] = result
+
+
 def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
     """The simulation settings of a register configuration and a replicate seed."""
     init, assoc = _TWO_STAGE[config["two-stage"]]
     accel, cap, tol, gap = _EM[config["EM stopping"]]
+    own = cap < _EM[DEFAULT_STOP][1]  # a reading with its own cap keeps it under a larger run cap
     cap = cap if scale.max_iter is None else min(cap, scale.max_iter)
+    cap = cap if own else cap * scale.cap_factor
     vx, vy = (float(v) for v in str(config["velocity (sigma/frame)"]).split(","))
     return replace(
         _CANON,
@@ -183,6 +197,8 @@ def _job_settings(settings: StudySettings, letter: str, scale: Scale, q: int = 2
         out = replace(out, tol_sigma=_CANON.tol_sigma, tol_loglik=_CANON.tol_loglik)
     if letter in "pq" and scale.max_iter is not None:
         out = replace(out, max_iter=min(out.max_iter, scale.max_iter))
+    if letter in "pq" and scale.cap_factor != 1:
+        out = replace(out, max_iter=out.max_iter * scale.cap_factor)
     return out
 
 
