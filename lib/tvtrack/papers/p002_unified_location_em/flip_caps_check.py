@@ -16,9 +16,9 @@ Units: shares of trials; the verdicts are the rules'.
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
+from tvtrack.jobs import cpu_seconds
 from tvtrack.labels import part_judgements
 from tvtrack.pooling import pool
 from tvtrack.projection import claim_groups
@@ -59,6 +59,27 @@ def _reuse_uncapped(changed: dict, seeds, scale, big, claim: str) -> int:
     return left
 
 
+def _measure_all(tasks: list, scale, factor: int) -> list[dict]:
+    """Each task ``(claim, changed, seeds)`` measured at the larger cap, every task's simulations in one batch (the
+    scale's worker processes): per task ``pooled`` (the claim's value pooled over the seeds, as the explorer pools a
+    condition's replicates), ``counts`` (:func:`.flip_caps.cap_counts` at the larger cap) and ``rerun``
+    (simulations run again, the others reused)."""
+    big = replace(scale, cap_factor=int(factor) * scale.cap_factor)
+    rerun = [_reuse_uncapped(changed, seeds, scale, big, cid) for cid, changed, seeds in tasks]
+    default = REGISTER.default()
+    configs = [{**default, **changed} for _, changed, seeds in tasks for _ in seeds]
+    asked = [{cid} for cid, _, seeds in tasks for _ in seeds]
+    ms = iter(study.measure_batch(configs, [s for *_, seeds in tasks for s in seeds], big, asked))
+    return [
+        {
+            "pooled": pool([next(ms)[cid] for _ in seeds]),
+            "counts": cap_counts(changed, seeds, big, cid),
+            "rerun": k,
+        }
+        for (cid, changed, seeds), k in zip(tasks, rerun)
+    ]
+
+
 def at_larger_cap(changed: dict, seeds, scale, claim: str, rule, factor: int = CAP_FACTOR) -> dict:
     """``claim`` measured with the register default changed by ``changed`` on ``seeds`` with the run's EM iteration
     cap ``factor`` times larger, pooled over the seeds (:func:`tvtrack.pooling.pool`).
@@ -69,17 +90,8 @@ def at_larger_cap(changed: dict, seeds, scale, claim: str, rule, factor: int = C
         ``pooled`` (the claim's measured value), ``verdicts`` (``{part: verdict}`` by ``rule``), ``counts``
         (:func:`.flip_caps.cap_counts` at the larger cap), ``rerun`` (simulations run again).
     """
-    big = replace(scale, cap_factor=int(factor) * scale.cap_factor)
-    rerun = _reuse_uncapped(changed, seeds, scale, big, claim)
-    config = {**REGISTER.default(), **changed}
-    ms = study.measure_batch([config] * len(seeds), list(seeds), big, [{claim}] * len(seeds))
-    pooled = pool([m[claim] for m in ms])
-    return {
-        "pooled": pooled,
-        "verdicts": {p: j.verdict for p, j in part_judgements(rule, pooled).items()},
-        "counts": cap_counts(changed, seeds, big, claim),
-        "rerun": rerun,
-    }
+    out = _measure_all([(claim, changed, list(seeds))], scale, factor)[0]
+    return {**out, "verdicts": _verdicts(rule, out["pooled"])}
 
 
 def _run_cap_hit(counts: dict | None, cap: int) -> bool:
@@ -97,33 +109,31 @@ def flips_at_larger_cap(exploration, caps: dict, rules: dict, scale, cap: int, f
     the condition flips; at the default every part), ``seeds``, ``before`` (``{part: verdict}`` at the run's cap,
     the run's own replicates pooled) and :func:`at_larger_cap`'s keys, and ``reference`` (the default's ``{part:
     verdict}`` a flip is judged against: at the larger cap where the default was rerun, else the run's); and
-    ``cap``, ``larger cap``, ``cpu_s``."""
-    t0 = time.process_time()
-    out: dict = {}
+    ``cap``, ``larger cap``, ``cpu_s`` (this process and its workers). Every measurement runs in one batch."""
+    t0 = cpu_seconds()
     reps = [r.seed for r in exploration.replicates()]
+    entries, tasks = {}, []  # tasks: (claim, changed, seeds, the record the measurement completes)
     for cid, c in caps.items():
         rule = rules[cid]
         before = _verdicts(rule, pool([r.outputs[cid] for r in exploration.replicates()]))
-        entry = {"default": None, "flips": [], "reference": before}
-        if _run_cap_hit(c["default"], cap):
+        entry = entries[cid] = {"default": None, "flips": [], "reference": before}
+        if _run_cap_hit(cap_counts({}, reps, scale, cid), cap):  # every replicate of the default, not the first
             entry["default"] = {"changed": {}, "parts": list(before), "seeds": reps, "before": before}
-            entry["default"].update(at_larger_cap({}, reps, scale, cid, rule, factor))
-            entry["reference"] = entry["default"]["verdicts"]
+            tasks.append((cid, {}, reps, entry["default"]))
         for f in c["flips"]:
             if not _run_cap_hit(f["counts"], cap):
                 continue
             run = _run_of(exploration, cid, f["changed"])
-            seeds = _seeds(run, cid)
-            g = {
-                "changed": f["changed"],
-                "parts": f["parts"],
-                "seeds": seeds,
-                "before": _verdicts(rule, run.pooled(cid)),
-            }
-            entry["flips"].append({**g, **at_larger_cap(f["changed"], seeds, scale, cid, rule, factor)})
-        if entry["default"] or entry["flips"]:
-            out[cid] = entry
-    return {"claims": out, "cap": cap, "larger cap": cap * int(factor), "cpu_s": time.process_time() - t0}
+            g = {"changed": f["changed"], "parts": f["parts"], "seeds": _seeds(run, cid)}
+            entry["flips"].append({**g, "before": _verdicts(rule, run.pooled(cid))})
+            tasks.append((cid, f["changed"], g["seeds"], entry["flips"][-1]))
+    for (cid, *_, record), m in zip(tasks, _measure_all([t[:3] for t in tasks], scale, factor)):
+        record.update(m, verdicts=_verdicts(rules[cid], m["pooled"]))
+    for e in entries.values():
+        if e["default"]:
+            e["reference"] = e["default"]["verdicts"]
+    out = {cid: e for cid, e in entries.items() if e["default"] or e["flips"]}
+    return {"claims": out, "cap": cap, "larger cap": cap * int(factor), "cpu_s": cpu_seconds() - t0}
 
 
 def _run_of(exploration, claim: str, changed: dict):
