@@ -60,7 +60,7 @@ def test_uncapped_simulations_are_reused_and_capped_ones_rerun(coarse):
         capped.append(letter in flip_caps.CAPPED and bool(flip_caps.capped_flags(r, flip_caps.CAPPED[letter][1]).any()))
     assert any(capped) and not all(capped)  # the marks reach the smoke cap at 5 sigma pixels, other points do not
     left = fcc._reuse_uncapped(COARSE, SEEDS, SCALE, big, "C002-11")
-    assert left == sum(capped)  # every point of the claim ran at the run's cap: only the capped ones are left
+    assert len(left) == sum(capped)  # every point of the claim ran at the run's cap: only the capped ones are left
     for job, jb, hit in zip(_jobs(SCALE), _jobs(big), capped):
         if hit:
             assert study.cached(jb) is None  # left to run at the larger cap
@@ -84,8 +84,9 @@ def test_the_larger_cap_changes_only_capped_trials_and_counts_its_own_hits(coars
     before = flip_caps.cap_counts(COARSE, SEEDS, SCALE, "C002-11")
     assert out["counts"][marks][1] == before[marks][1]  # the same trials
     assert out["counts"][marks][0] < before[marks][0]  # fewer reach a cap 200 times larger
-    assert out["counts"]["caps"] <= {20_000}
     big = replace(SCALE, cap_factor=200)
+    assert out["counts"] == fcc.raised_counts(COARSE, SEEDS, SCALE, big, "C002-11", larger=True)
+    assert fcc.raised_counts(COARSE, SEEDS, SCALE, big, "C002-11") == {k: v for k, v in before.items() if k != "caps"}
     for job, jb in zip(_jobs(SCALE), _jobs(big)):
         if job[1].algs == "e":
             r0, r1 = study.cached(job), study.cached(jb)
@@ -103,82 +104,117 @@ class _Exploration:
     def replicates(self):
         return self._reps
 
+    def measured(self, claim):  # as tvtrack.explore.Exploration.measured: the replicates pooled, None skipped
+        return pool([r.outputs.get(claim) for r in self._reps])
+
+
+CAP100 = {"EM stopping": "plain EM, cap 100"}
+
+
+def _c11(config, seed):
+    return study.measure(config, seed, SCALE, {"C002-11"})["C002-11"]
+
 
 def test_flips_are_rerun_only_where_the_runs_cap_was_reached(coarse):
-    reps = [
-        Run(DEFAULT, s, "replicate", {"C002-11": study.measure(DEFAULT, s, SCALE, {"C002-11"})["C002-11"]})
-        for s in SEEDS
-    ]
+    reps = [Run(DEFAULT, s, "replicate", {"C002-11": _c11(DEFAULT, s)}) for s in SEEDS]
+    # a replicate the explorer's sizing added for other claims: it holds no C002-11 and is not pooled for it
+    reps.append(Run(DEFAULT, 9, "replicate", {"C002-1": object()}, claims=frozenset({"C002-1"})))
     cond = Run({**DEFAULT, **COARSE}, SEEDS[0], "joint", {"C002-11": coarse[0]})
     cond.sized.append(Run({**DEFAULT, **COARSE}, SEEDS[1], "condition sizing", {"C002-11": coarse[1]}))
-    ex = _Exploration(reps, [cond])
-    marks = "the two-stage's per-frame marks"
-    caps = {
-        "C002-11": {
-            "default": {marks: (0, 12), "caps": set()},
-            "flips": [
-                {"changed": COARSE, "parts": ["d = 1 sigma (paper x4.5)"], "counts": {marks: (9, 12), "caps": {100}}},
-                {
-                    "changed": {"EM stopping": "plain EM, cap 100"},
-                    "parts": ["d = 1 sigma (paper x4.5)"],
-                    "counts": {marks: (9, 12), "caps": {50}},
-                },  # a cap the condition set: not rerun
-            ],
-        }
-    }
-    out = fcc.flips_at_larger_cap(ex, caps, RULES, SCALE, 100, factor=200)
+    # at the smoke profile the condition's own cap of 100 equals the run's: it is not raised, so not rerun
+    own = Run({**DEFAULT, **CAP100}, SEEDS[0], "single", {"C002-11": _c11({**DEFAULT, **CAP100}, SEEDS[0])})
+    ex = _Exploration(reps, [cond, own])
+    part = ["d = 1 sigma (paper x4.5)"]
+    flips = [{"changed": COARSE, "parts": part, "counts": {}}, {"changed": CAP100, "parts": part, "counts": {}}]
+    out = fcc.flips_at_larger_cap(ex, {"C002-11": {"default": {}, "flips": flips}}, RULES, SCALE, 100, factor=200)
     e = out["claims"]["C002-11"]
-    assert len(e["flips"]) == 1
-    # the default's own points reach the smoke cap (counted over its replicates, whatever the first one's counts
-    # given above): it is rerun too, and the flips are judged against its verdicts at the larger cap
+    assert [f["changed"] for f in e["flips"]] == [COARSE]
+    big = replace(SCALE, cap_factor=200)
+    assert fcc.raised_counts(CAP100, [SEEDS[0]], SCALE, big, "C002-11") == {}  # its marks hit its own cap only
+    # the default's own points reach the smoke cap: it is rerun on the replicates that hold the claim, and the flips
+    # are judged against its verdicts at the larger cap
     assert e["default"]["seeds"] == SEEDS and e["reference"] == e["default"]["verdicts"]
+    assert e["default"]["before"] == {
+        p: j.verdict for p, j in part_judgements(RULES["C002-11"], ex.measured("C002-11")).items()
+    }
     f = e["flips"][0]
     assert f["seeds"] == SEEDS
     assert f["before"] == {p: j.verdict for p, j in part_judgements(RULES["C002-11"], pool(coarse)).items()}
-    assert out["larger cap"] == 20_000
+    assert out["larger cap"] == 20_000 and out["rerun"] > 0
 
 
-def _out(after: str, reference: str = "not reproduced"):
+def test_a_readings_own_cap_is_raised_only_up_to_itself():
+    own = {**DEFAULT, **CAP100}
+    low = study.Scale(max_iter=50)  # the run's cap below the reading's: the run's binds
+    assert study.settings_of(own, 1, low).max_iter == 50
+    assert study.settings_of(own, 1, replace(low, cap_factor=200)).max_iter == 100
+    assert study.settings_of(DEFAULT, 1, replace(low, cap_factor=200)).max_iter == 10_000
+
+
+def _out(after: str, reference: str = "not reproduced", n: int = 1):
     marks = "the two-stage's per-frame marks"
     flip = {
         "changed": {"Delta of Figs 4, 5, 7 (sigma)": 5.0},
         "parts": ["d = 3 sigma (paper x4)"],
         "before": {"d = 3 sigma (paper x4)": "reproduced"},
         "verdicts": {"d = 3 sigma (paper x4)": after},
-        "counts": {marks: (3, 240), "the ULA": (0, 240), "caps": {1_000_000}},
+        "counts": {marks: (3, 240), "the ULA": (0, 240)},
         "pooled": {},
     }
-    entry = {"default": None, "flips": [flip], "reference": {"d = 3 sigma (paper x4)": reference}}
+    entry = {"default": None, "flips": [flip] * n, "reference": {"d = 3 sigma (paper x4)": reference}}
     return {"claims": {"C002-11": entry}, "cap": 5000, "larger cap": 1_000_000, "cpu_s": 1.0}
 
 
 def test_the_words_say_whether_each_flip_stands():
     text = fcc.larger_cap_sentence(_out("reproduced"))
     assert "200 times larger (5,000 -> 1,000,000 iterations" in text
-    assert "C002-11 1 of the 1 flipping conditions that read capped points still flip it, 0 do not" in text
+    assert "C002-11: the flipping condition that reads capped points still flips it:" in text
     assert 'part "d = 3 sigma (paper x4)": reproduced -> reproduced' in text
-    assert "the two-stage's per-frame marks still at the cap in 1% of its trials" in text
+    assert "the two-stage's per-frame marks still at the larger cap in 1% of its trials" in text
     assert "the ULA still" not in text  # an algorithm no longer at the cap is not named
     assert REGISTER.describe({"Delta of Figs 4, 5, 7 (sigma)": 5.0}) in text
     for after in ("undecided", "not reproduced"):  # undecided, or back to the default's verdict: the flip is gone
-        assert "0 of the 1 flipping conditions that read capped points still flip it, 1 do not" in (
-            fcc.larger_cap_sentence(_out(after))
-        )
+        assert "the flipping condition that reads capped points no longer does" in fcc.larger_cap_sentence(_out(after))
+    # an undecided default at the larger cap: nothing to flip against
+    assert "has no decisive default verdict to flip at the larger cap" in fcc.larger_cap_sentence(
+        _out("reproduced", "undecided")
+    )
+    assert "of the 2 flipping conditions that read capped points, 2 no longer do:" in fcc.larger_cap_sentence(
+        _out("undecided", n=2)
+    )
     assert fcc.larger_cap_sentence({"claims": {}, "cap": 5000, "larger cap": 10**6, "cpu_s": 0.0}) == ""
+
+
+def test_a_flip_stands_only_where_both_verdicts_are_decisive_and_differ():
+    f = {"parts": ["a"], "before": {"a": "reproduced"}, "verdicts": {"a": "not reproduced"}}
+    assert fcc._outcome(f, {"a": "reproduced"})[0][3] == "stands"
+    assert fcc._outcome(f, {"a": "not reproduced"})[0][3] == "gone"
+    assert fcc._outcome(f, {"a": "undecided"})[0][3] == "no default"
+    assert fcc._outcome({**f, "verdicts": {"a": "undecided"}}, {"a": "reproduced"})[0][3] == "gone"
+    assert fcc._outcome({**f, "verdicts": {"a": "not checkable"}}, {"a": "reproduced"})[0][3] == "gone"
 
 
 def test_the_default_rerun_is_worded_by_its_moves_and_flip_words_are_left_out_without_flips():
     out = _out("reproduced")
     default = {"changed": {}, "parts": ["claim"], "seeds": [1, 2, 3], "before": {"claim": "reproduced"}}
-    out["claims"]["C002-11"].update(default={**default, "verdicts": {"claim": "undecided"}}, flips=[])
+    counts = {"the ULA": (4, 240)}
+    out["claims"]["C002-11"].update(default={**default, "verdicts": {"claim": "undecided"}, "counts": counts}, flips=[])
     text = fcc.larger_cap_sentence(out)
-    assert "C002-11 at the default (3 replicates pooled) its verdict reproduced -> undecided." in text
-    assert "flipping conditions" not in text.split("C002-11", 1)[1]
-    out["claims"]["C002-11"]["default"]["verdicts"] = {"claim": "reproduced"}
-    assert "every verdict is the same as at the run's cap" in fcc.larger_cap_sentence(out)
+    assert (
+        "C002-11: at the default (3 replicates pooled, as for the run's verdict) its verdict reproduced -> undecided"
+        in text
+    )
+    assert "the conditions that agreed with the default at the run's cap were not measured again" in text
+    assert "the ULA still at the larger cap in 2% of its trials" in text
+    assert "flipping condition" not in text.split("C002-11", 1)[1]
+    d = out["claims"]["C002-11"]["default"]
+    d["verdicts"] = {"claim": "reproduced"}
+    assert "every verdict the same as at the run's cap" in fcc.larger_cap_sentence(out)
+    d.update(before={"claim": "undecided"}, verdicts={"claim": "undecided"})
+    assert "undecided at both caps" in fcc.larger_cap_sentence(out)
 
 
 def test_the_metrics_carry_both_verdicts_and_the_value():
     m = fcc.larger_cap_metrics(_out("undecided"))
-    assert m["flip_caps/C002-11/flip 1/d = 3 sigma (paper x4)/verdicts"] == ["reproduced", "undecided"]
+    assert m["flip_caps/C002-11/flip 1/d = 3 sigma (paper x4)/verdicts"] == ["reproduced", "undecided", "gone"]
     assert m["flip_caps/larger_cap"] == 1_000_000

@@ -125,8 +125,9 @@ class Scale:
     max_iter : int, optional
         A lower EM iteration cap than the register's (the smoke profile only: it bounds the slow tails).
     cap_factor : int
-        The run's EM iteration cap (the register's, or ``max_iter``) multiplied by this (a study of what the cap
-        changes, :mod:`.flip_caps`); a reading that sets its own cap ("plain EM, cap 100") keeps it.
+        The run's EM iteration cap (the register's, or ``max_iter`` where lower) multiplied by this (a study of what
+        the cap changes, :mod:`.flip_caps_check`); a reading that sets its own cap ("plain EM, cap 100") keeps it
+        where it is the lower.
     """
 
     n_trials: int = 100
@@ -160,9 +161,10 @@ def settings_of(config: dict, seed: int, scale: Scale) -> StudySettings:
     """The simulation settings of a register configuration and a replicate seed."""
     init, assoc = _TWO_STAGE[config["two-stage"]]
     accel, cap, tol, gap = _EM[config["EM stopping"]]
-    own = cap < _EM[DEFAULT_STOP][1]  # a reading with its own cap keeps it under a larger run cap
-    cap = cap if scale.max_iter is None else min(cap, scale.max_iter)
-    cap = cap if own else cap * scale.cap_factor
+    run_cap = _EM[DEFAULT_STOP][1] if scale.max_iter is None else min(_EM[DEFAULT_STOP][1], scale.max_iter)
+    # the run's cap (times the study's factor) binds every EM; a reading with its own cap ("plain EM, cap 100")
+    # keeps it where that is lower
+    cap = min(cap, run_cap * scale.cap_factor) if cap < _EM[DEFAULT_STOP][1] else run_cap * scale.cap_factor
     vx, vy = (float(v) for v in str(config["velocity (sigma/frame)"]).split(","))
     return replace(
         _CANON,
