@@ -214,6 +214,23 @@ def test_the_default_rerun_is_worded_by_its_moves_and_flip_words_are_left_out_wi
     assert "undecided at both caps" in fcc.larger_cap_sentence(out)
 
 
+def test_the_conclusion_counts_the_flips_that_stand_and_the_defaults_that_move():
+    assert fcc.larger_cap_conclusion({"claims": {}, "cap": 5000, "larger cap": 10**6}) == ""
+    line = fcc.larger_cap_conclusion(_out("reproduced", n=2))
+    assert "200 times larger, 2 of the 2 flips that read points where an EM reached it still stand; no default" in line
+    out = _out("undecided", n=2)
+    d = {"changed": {}, "parts": ["claim"], "seeds": [1], "before": {"claim": "reproduced"}}
+    out["claims"]["C002-14"] = {"default": {**d, "verdicts": {"claim": "undecided"}}, "flips": [], "reference": {}}
+    line = fcc.larger_cap_conclusion(out)
+    assert (
+        "0 of the 2 flips" in line
+        and "no longer do (undecided, or no decisive default to flip against): C002-11 (2 of 2)" in line
+    )
+    assert "the default's verdict moves for C002-14 (its verdict reproduced -> undecided)." in line
+    del out["claims"]["C002-11"]
+    assert "no flip read such a point); the default's verdict moves for C002-14" in fcc.larger_cap_conclusion(out)
+
+
 def test_the_metrics_carry_both_verdicts_and_the_value():
     m = fcc.larger_cap_metrics(_out("undecided"))
     assert m["flip_caps/C002-11/flip 1/d = 3 sigma (paper x4)/verdicts"] == ["reproduced", "undecided", "gone"]

@@ -35,7 +35,14 @@ from .cap_check import CAP_FACTOR
 from .flip_caps import CAPPED, capped_flags, capped_shares
 from .register import DEPENDS, REGISTER
 
-__all__ = ["at_larger_cap", "flips_at_larger_cap", "larger_cap_sentence", "larger_cap_metrics"]
+__all__ = [
+    "at_larger_cap",
+    "flips_at_larger_cap",
+    "larger_cap_sentence",
+    "larger_cap_conclusion",
+    "larger_cap_metrics",
+    "raised_counts",
+]
 
 
 def _jobs(changed: dict, seed: int, scale, claim: str) -> list:
@@ -263,6 +270,40 @@ def larger_cap_sentence(out: dict) -> str:
         "replicate seeds, the claims whose default or flipping conditions read points where an EM reached the run's "
         "cap give (verdict at the run's cap -> at the larger cap): " + ". ".join(said) + "."
     )
+
+
+def larger_cap_conclusion(out: dict) -> str:
+    """One line for the conclusions: of the flips that read capped points, how many still stand at the larger cap,
+    the claims whose flips do not (and how many), and the defaults whose verdict moves; ``""`` where nothing read a
+    capped point."""
+    if not out["claims"]:
+        return ""
+    total = stand = 0
+    gone, moved = [], []
+    for cid, e in out["claims"].items():
+        ok = [{o for *_, o in _outcome(f, e["reference"])} == {"stands"} for f in e["flips"]]
+        total, stand = total + len(ok), stand + sum(ok)
+        if len(ok) > sum(ok):
+            gone.append(f"{cid} ({len(ok) - sum(ok)} of {len(ok)})")
+        d = e["default"]
+        moved += [
+            f"{cid} ({_part(p)} {d['before'][p]} -> {d['verdicts'][p]})"
+            for p in (d or {}).get("parts", ())
+            if d["before"].get(p) != d["verdicts"].get(p)
+        ]
+    head = f"- The EM iteration cap (a study beyond the paper): measured again with the run's cap {out['larger cap'] // out['cap']} times larger, "
+    words = head + (
+        f"{stand} of the {total} flips that read points where an EM reached it still stand"
+        if total
+        else "at the defaults whose points an EM reached it at (no flip read such a point)"
+    )
+    words += (
+        f"; those that no longer do (undecided, or no decisive default to flip against): {', '.join(gone)}"
+        if gone
+        else ""
+    )
+    words += f"; the default's verdict moves for {', '.join(moved)}" if moved else "; no default's verdict moves"
+    return words + "."
 
 
 def larger_cap_metrics(out: dict) -> dict:
