@@ -36,6 +36,12 @@ def test_the_larger_cap_multiplies_the_runs_cap_and_keeps_a_readings_own():
     s = study.settings_of(own, 1, replace(paper, cap_factor=4))
     assert study._job_settings(s, "p", replace(paper, cap_factor=4)).max_iter == 20_000
     assert study._job_settings(s, "q", paper).max_iter == 5000
+    two = replace(paper, cap_factor=2)
+    assert study._job_settings(study.settings_of(DEFAULT, 1, two), "p", two).max_iter == 10_000
+    # the ULA's and the marks' cap is raised once, by settings_of, not again per job
+    big = replace(paper, cap_factor=200)
+    for letter in "ue":
+        assert study._job_settings(study.settings_of(DEFAULT, 1, big), letter, big).max_iter == 1_000_000
 
 
 @pytest.fixture(scope="module")
@@ -125,7 +131,8 @@ def test_flips_are_rerun_only_where_the_runs_cap_was_reached(coarse):
     own = Run({**DEFAULT, **CAP100}, SEEDS[0], "single", {"C002-11": _c11({**DEFAULT, **CAP100}, SEEDS[0])})
     ex = _Exploration(reps, [cond, own])
     part = ["d = 1 sigma (paper x4.5)"]
-    flips = [{"changed": COARSE, "parts": part, "counts": {}}, {"changed": CAP100, "parts": part, "counts": {}}]
+    # the condition with its own cap first: it is passed over, and the next one still checked
+    flips = [{"changed": CAP100, "parts": part, "counts": {}}, {"changed": COARSE, "parts": part, "counts": {}}]
     out = fcc.flips_at_larger_cap(ex, {"C002-11": {"default": {}, "flips": flips}}, RULES, SCALE, 100, factor=200)
     e = out["claims"]["C002-11"]
     assert [f["changed"] for f in e["flips"]] == [COARSE]
@@ -141,6 +148,19 @@ def test_flips_are_rerun_only_where_the_runs_cap_was_reached(coarse):
     assert f["seeds"] == SEEDS
     assert f["before"] == {p: j.verdict for p, j in part_judgements(RULES["C002-11"], pool(coarse)).items()}
     assert out["larger cap"] == 20_000 and out["rerun"] > 0
+    for m in (e["default"], f):  # each verdict at the larger cap is the rule's on the value measured there
+        assert m["verdicts"] == {p: j.verdict for p, j in part_judgements(RULES["C002-11"], m["pooled"]).items()}
+        assert set(m["verdicts"]) == {"d = 1 sigma (paper x4.5)", "d = 3 sigma (paper x4)"}
+    metrics = fcc.larger_cap_metrics(out)
+    assert metrics["flip_caps/rerun"] == out["rerun"]
+    assert metrics["flip_caps/C002-11/default/measured"] is e["default"]["pooled"]
+    assert metrics["flip_caps/C002-11/flip 1/measured"] is f["pooled"]
+    d1 = "d = 1 sigma (paper x4.5)"
+    assert metrics[f"flip_caps/C002-11/default/{d1}/verdicts"] == [
+        e["default"]["before"][d1],
+        e["default"]["verdicts"][d1],
+    ]
+    assert len(metrics[f"flip_caps/C002-11/flip 1/{d1}/verdicts"]) == 3  # a flip's outcome beside its verdicts
 
 
 def test_a_readings_own_cap_is_raised_only_up_to_itself():
@@ -183,6 +203,19 @@ def test_the_words_say_whether_each_flip_stands():
         _out("undecided", n=2)
     )
     assert fcc.larger_cap_sentence({"claims": {}, "cap": 5000, "larger cap": 10**6, "cpu_s": 0.0}) == ""
+    mixed = _out("reproduced", n=3)
+    e = mixed["claims"]["C002-11"]
+    p3 = "d = 3 sigma (paper x4)"
+    e["flips"] = [
+        {**e["flips"][0], "verdicts": {p3: v}, "parts": [p3]} for v in ("reproduced", "not reproduced", "undecided")
+    ]
+    assert "of the 3 flipping conditions that read capped points, 1 still flips it, 2 no longer do:" in (
+        fcc.larger_cap_sentence(mixed)
+    )
+    e["reference"] = {p3: "undecided"}
+    assert "of the 3 flipping conditions that read capped points, 3 have no decisive default verdict" in (
+        fcc.larger_cap_sentence(mixed)
+    )
 
 
 def test_a_flip_stands_only_where_both_verdicts_are_decisive_and_differ():
