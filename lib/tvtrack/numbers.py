@@ -25,6 +25,7 @@ __all__ = [
     "unit_text",
     "value_range",
     "setting",
+    "percent",
 ]
 
 VECTOR_SHOWN = 4
@@ -49,6 +50,17 @@ def number(x: Any, digits: int = 4) -> str:
         text = f"{v:.{digits}g}"
         return f"{float(text):.0f}" if "e+" in text and abs(float(text)) < 1e6 else text
     return str(x)
+
+
+def percent(share: float) -> str:
+    """A share (0..1) in whole per cent, as a reader writes it: ``"38%"``; a share that is neither 0 nor 1 never
+    reads as either (``"<1%"``, ``">99%"``), so a rare event is not said to be absent."""
+    text = f"{share:.0%}"
+    if 0 < share and text == "0%":
+        return "<1%"
+    if share < 1 and text == "100%":
+        return ">99%"
+    return text
 
 
 def value_range(low: Any, high: Any, spec: str = "g") -> str:

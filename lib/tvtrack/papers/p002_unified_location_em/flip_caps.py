@@ -15,6 +15,7 @@ Units: shares of trials (per cent in the words).
 
 from __future__ import annotations
 
+from tvtrack.numbers import percent
 from tvtrack.projection import claim_groups
 
 from . import study
@@ -110,7 +111,7 @@ def _caps_words(counts: list, cap: int) -> str:
 
 def _span(shares: list) -> str:
     lo, hi = min(shares), max(shares)
-    return f"{lo:.0%}" if f"{lo:.0%}" == f"{hi:.0%}" else f"{lo:.0%} to {hi:.0%}"
+    return percent(lo) if percent(lo) == percent(hi) else f"{percent(lo)} to {percent(hi)}"
 
 
 def flip_caps_sentence(caps: dict, cap: int) -> str:
@@ -124,7 +125,7 @@ def flip_caps_sentence(caps: dict, cap: int) -> str:
         if at_default:
             bits.append(
                 "at the default (first replicate: "
-                + ", ".join(f"{name} in {share:.0%} of its trials" for name, share in at_default.items())
+                + ", ".join(f"{name} in {percent(share)} of its trials" for name, share in at_default.items())
                 + ")"
             )
         flips = c["flips"]

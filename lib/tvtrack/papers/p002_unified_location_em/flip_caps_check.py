@@ -26,6 +26,7 @@ from dataclasses import replace
 
 from tvtrack.jobs import cpu_seconds
 from tvtrack.labels import part_judgements
+from tvtrack.numbers import percent
 from tvtrack.pooling import pool
 from tvtrack.projection import claim_groups
 from tvtrack.verdicts import is_decisive
@@ -207,7 +208,9 @@ def _part(p: str) -> str:
 
 def _still(counts: dict) -> str:
     """``, the ULA still at the larger cap in 3% of its trials``: the algorithms some of whose trials reach it."""
-    return "".join(f", {n} still at the larger cap in {s:.0%} of its trials" for n, s in capped_shares(counts).items())
+    return "".join(
+        f", {n} still at the larger cap in {percent(s)} of its trials" for n, s in capped_shares(counts).items()
+    )
 
 
 def _default_words(d: dict) -> str:
