@@ -176,6 +176,8 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     skip += [m.span(1) for m in re.finditer(r"\d\s*(\[[^\]]*\])", text)]  # an interval after its value
     skip += [m.span() for m in re.finditer(r"\((?:at most|at least) [^)]*\)", text)]
     skip += [m.span(1) for m in re.finditer(r"between (-?[\d.e+-]+) and ", text)]  # a range: its end has the unit
+    # the size of the claim's own unit, in the unit it is measured in ("Its unit, the smallest ... RMS, is 7.62 elements")
+    skip += [m.span(1) for m in re.finditer(r"[Ii]ts unit, [^.]*?, is (-?\d+(?:\.\d+)?) [a-z]+", text)]
     said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
     after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{said}|{_COUNTS})"
     tokens = r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])"
@@ -232,6 +234,11 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
     tag = copy.deepcopy(DEPENDS)
     tag["robustness"]["parts"]["claim"]["flips"][0]["text"] = "slow wander, the earlier world"
     assert any("the project's own terms" in f for f in sentence_faults(tag, keys)), sentence_faults(tag, keys)
+    defined = copy.deepcopy(DEPENDS)  # the size of the claim's unit may be given in its own unit, no other number
+    assert tvtrack.value_words.real_unit(_shown_rule(defined))  # the fixture's numbers owe a unit
+    defined["caveat"] = "Its unit, the smallest error of the sweep, is 7.62 elements; 3.5 elsewhere."
+    found = " ".join(sentence_faults(defined, keys))
+    assert "'7.62'" not in found and "'3.5'" in found, found
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
     share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
