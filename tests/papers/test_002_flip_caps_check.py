@@ -268,3 +268,43 @@ def test_the_metrics_carry_both_verdicts_and_the_value():
     m = fcc.larger_cap_metrics(_out("undecided"))
     assert m["flip_caps/C002-11/flip 1/d = 3 sigma (paper x4)/verdicts"] == ["reproduced", "undecided", "gone"]
     assert m["flip_caps/larger_cap"] == 1_000_000
+
+
+def test_the_seeds_are_the_replicates_the_explorer_pools_for_the_claim():
+    """``_seeds`` against :meth:`tvtrack.conditions.Run.replicates` on hand-built runs: a sized run that did not ask
+    for the claim, one that holds no value of it, and a screened first value are all left out."""
+    cid = "C002-11"
+    run = Run({**DEFAULT, **COARSE}, 1, "joint", {cid: "v1"})
+    run.sized += [
+        Run({**DEFAULT, **COARSE}, 2, "condition sizing", {cid: "v2"}),
+        Run({**DEFAULT, **COARSE}, 3, "condition sizing", {cid: "v3"}, claims=frozenset({"C002-10"})),
+        Run({**DEFAULT, **COARSE}, 4, "condition sizing", {"C002-10": "w"}, claims=frozenset({cid})),
+        Run({**DEFAULT, **COARSE}, 5, "condition sizing", {cid: "v5"}, claims=frozenset({cid})),
+    ]
+    seed_of = {"v1": 1, "v2": 2, "v3": 3, "v5": 5}
+    assert fcc._seeds(run, cid) == [seed_of[v] for v in run.replicates(cid)] == [1, 2, 5]
+    run.screened = frozenset({cid})
+    assert fcc._seeds(run, cid) == [seed_of[v] for v in run.replicates(cid)] == [2, 5]
+
+
+def test_a_flip_is_found_among_the_conditions_never_the_replicates():
+    reps = [Run(DEFAULT, 1, "replicate", {"C002-11": "r"})]
+    cond = Run({**DEFAULT, **COARSE}, 1, "joint", {"C002-11": "c"})
+    ex = _Exploration(reps, [cond])
+    assert fcc._run_of(ex, "C002-11", COARSE) is cond
+    with pytest.raises(KeyError, match="C002-11: no run of the condition"):
+        fcc._run_of(ex, "C002-11", {})  # the default's replicates are not a condition
+
+
+def test_the_conclusion_names_every_default_that_moves():
+    out = {"claims": {}, "cap": 5000, "larger cap": 10**6}
+    for cid in ("C002-10", "C002-14"):
+        d = {"changed": {}, "parts": ["claim"], "seeds": [1], "before": {"claim": "reproduced"}}
+        out["claims"][cid] = {"default": {**d, "verdicts": {"claim": "undecided"}}, "flips": [], "reference": {}}
+    d = {"changed": {}, "parts": ["claim"], "seeds": [1], "before": {"claim": "reproduced"}}
+    out["claims"]["C002-4"] = {"default": {**d, "verdicts": {"claim": "reproduced"}}, "flips": [], "reference": {}}
+    line = fcc.larger_cap_conclusion(out)
+    assert (
+        "moves for C002-10 (its verdict reproduced -> undecided), C002-14 (its verdict reproduced -> undecided)" in line
+    )
+    assert "C002-4" not in line  # its verdict is the same at both caps
