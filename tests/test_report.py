@@ -162,7 +162,8 @@ def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs
         "reproduced: epoch = mid."
     ) in text
     assert (
-        "- **Hold** (label in brackets, and the kind of change that flips it): 010: C010-1 (robust)." in text
+        "- **Hold** (label in brackets, the kind of change that flips it, and the claim's caveat where it has one): "
+        "010: C010-1 (robust)." in text
     )  # a claim that holds: named, no sentence
     assert "- **010 C010-1**" not in text
     assert not re.search(r"20\d\d-\d\d-\d\d", text)  # no date: an unchanged result leaves git status clean
@@ -573,9 +574,10 @@ def test_the_first_screen_names_the_claims_that_hold_hold_in_part_or_give_nothin
         "004_laser": (None, None),
     }
     assert holding_lines(runs) == [
-        "- **Hold** (label in brackets, and the kind of change that flips it): 001: C001-7 (depends: a reading; a world too); 003: "
-        "C003-1 (provisional).",
-        "- **Hold in part** (label in brackets, and the kind of change that flips it): 001: C001-4 (depends: a reading; a world too).",
+        "- **Hold** (label in brackets, the kind of change that flips it, and the claim's caveat where it has one): 001: "
+        "C001-7 (depends: a reading; a world too); 003: C003-1 (provisional).",
+        "- **Hold in part** (label in brackets, the kind of change that flips it, and which parts hold): 001: C001-4 "
+        "(depends: a reading; a world too).",
         "- **Not checkable**: 001: C001-6.",  # a reader asks which claims give nothing to measure, too
     ]
     assert holding_lines({"001_maneuver": (None, {"claims": [DEPENDS]})}) == []  # nothing holds: no line

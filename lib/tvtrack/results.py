@@ -45,6 +45,7 @@ from .paragraphs import label_words, paper_paragraph, results_summary
 from .numbers import format_measured
 from .figure_checks import figure_problems
 from .run_words import share_counts
+from .part_lines import coverage_words, exploration_lines, hold_note, parts_held
 from .parameters import cell_literals  # re-exported: the pipeline reads a notebook's parameters cell with it
 from .wording import (
     FLIP_SHORT,
@@ -77,6 +78,10 @@ __all__ = [
     "mixed_kinds",
     "label_basis",
     "label_words",
+    "coverage_words",
+    "exploration_lines",
+    "hold_note",
+    "parts_held",
     "results_summary",
     "paper_paragraph",
     "at_profile",
@@ -215,7 +220,7 @@ class Claim:
 
     def _repr_markdown_(self) -> str:
         record = to_jsonable(self.__dict__)
-        label = shown_label(record)
+        label = label_words(self.verdict, shown_label(record))  # "robust in its decided parts only" where undecided
         return f"**{self.id}: {self.verdict}, {label}**. {md_escape(claim_summary(record))}"
 
 

@@ -510,10 +510,12 @@ def _flip_lead(side: str, n: int) -> str:
 
 def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
     """Why a claim is ``unexplored``: nothing was varied for it, none of its explored configurations was decided,
-    fewer were decided than a share needs, or no world beyond the paper was among them (its first part so labelled says which)."""
+    fewer were decided than a share needs, or no world beyond the paper was among them (its part so labelled with
+    the fewest decided configurations says which, named where several are)."""
     if shown_label(claim) != "unexplored" or claim.get("verdict") == "undecided":  # undecided: its runs come first
         return ""
-    part = next((p for p in parts.values() if isinstance(p, Mapping) and p.get("label") == "unexplored"), {})
+    weak = [(n, p) for n, p in parts.items() if isinstance(p, Mapping) and p.get("label") == "unexplored"]
+    name, part = min(weak, key=lambda w: int((w[1].get("share") or {}).get("decided") or 0), default=(None, {}))
     share = part.get("share") or {}
     design = int(share.get("design") or 0)
     if not design:
@@ -523,8 +525,9 @@ def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
         return f"Beyond the paper's default, {which} explored for it left it undecided, so nothing shows how far it extends."
     if share.get("decided_needed"):
         decided = int(share.get("agree") or 0) + int(share.get("flip") or 0)
+        whose = f" (its part {part_name(name)})" if len(weak) > 1 else ""
         return (
-            f"Beyond the paper's default, only {decided} of the {design} changes explored for it decided it and "
+            f"Beyond the paper's default, only {decided} of the {design} changes explored for it{whose} decided it and "
             f"{int(share.get('undecided') or 0)} left it undecided; {share['decided_needed']} decided ones are needed "
             "to say how far it extends, so nothing shows that yet."
         )

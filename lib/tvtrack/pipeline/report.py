@@ -31,12 +31,15 @@ from ..results import (
     at_profile,
     claim_flips,
     claim_summary,
+    coverage_words,
     flip_with_kind,
     format_measured,
+    hold_note,
     label_basis,
     label_words,
     md_escape,
     paper_paragraph,
+    parts_held,
     results_summary,
 )
 from .audit import audit_markdown, audit_runs
@@ -269,9 +272,11 @@ def papers_table(runs: dict[str, tuple[dict | None, dict | None]]) -> str:
 
 def holding_lines(runs: dict) -> list[str]:
     """Which claims hold, which hold in part and which give nothing to measure, by paper, each with its label where
-    it has one and what the label rests on (:func:`tvtrack.flip_words.label_basis`; one bullet per verdict)."""
+    it has one and what the label rests on (:func:`tvtrack.flip_words.label_basis`; one bullet per verdict); a
+    claim that holds with its caveat and any flip that runs which lost lock carry (:func:`.part_lines.hold_note`),
+    one that holds in part with which parts hold and which do not (:func:`.part_lines.parts_held`)."""
     out = []
-    for verdict, lead in (("reproduced", "Hold"), ("partly", "Hold in part"), ("not checkable", "Not checkable")):
+    for verdict, lead, more in _HOLDING:
         bits = []
         for name, (_, data) in runs.items():
             cs = [c for c in (data or {}).get("claims", []) if c["verdict"] == verdict]
@@ -280,19 +285,28 @@ def holding_lines(runs: dict) -> list[str]:
                 bits.append(f"{name.split('_')[0]}: {', '.join(ids)}")
         if bits:
             brackets = (
-                "" if verdict == "not checkable" else " (label in brackets, and the kind of change that flips it)"
+                "" if verdict == "not checkable" else f" (label in brackets, the kind of change that flips it{more})"
             )
             out.append(f"- **{lead}**{brackets}: " + "; ".join(bits) + ".")
     return out
 
 
+_HOLDING = (
+    ("reproduced", "Hold", ", and the claim's caveat where it has one"),
+    ("partly", "Hold in part", ", and which parts hold"),
+    ("not checkable", "Not checkable", ""),
+)
+
+
 def _label_brackets(claim: dict) -> str:
-    """`` (depends: a reading)``: a claim's label and what it rests on; `` (robust)``; ``""`` without a label."""
+    """`` (depends: a reading)``: a claim's label and what it rests on, then what a reader of it must also know (a
+    held claim's caveat, which parts of a partly held one hold); `` (robust)``; ``""`` without either."""
     label = robustness_label(claim)
-    if label == NO_LABEL:
-        return ""
     basis = label_basis(claim) if label in ("depends", "limited") else ""
-    return f" ({label}: {basis})" if basis else f" ({label})"
+    bits = [] if label == NO_LABEL else [f"{label}: {basis}" if basis else label]
+    note = {"reproduced": hold_note, "partly": parts_held}.get(claim["verdict"], lambda c: "")(claim)
+    bits += [md_escape(note)] if note else []
+    return f" ({' — '.join(bits)})" if bits else ""  # the dash: the label's basis ends, the note begins
 
 
 def _in_short(runs: dict, shown: str) -> list[str]:
@@ -332,7 +346,7 @@ def plain_coverage(c: dict) -> str:
         :func:`coverage_text` with every register entry's key replaced by its title (empty when nothing is
         covered).
     """
-    text = coverage_text(c)
+    text = coverage_words({**(c.get("robustness") or {}), "coverage": coverage_text(c)}, c.get("verdict"))
     for e in (c.get("robustness") or {}).get("register") or []:
         if isinstance(e, dict) and e.get("title") and e.get("name"):
             text = re.sub(rf"\b{re.escape(str(e['name']))}\b", str(e["title"]), text)
