@@ -122,8 +122,9 @@ def test_the_exploration_lines_give_every_part_its_counts_flips_and_moving_entri
             "missed": _part("undecided", label="-", runs_to_decide={"text": "about 12 replicates decide it"}),
         },
     }
-    text = exploration_lines(_Exploration({"C001-1": record}))
-    lines = text.split("\n")
+    text = exploration_lines(_Exploration({"C001-1": record}), _Exploration({"C001-2": record}))
+    assert text.startswith("Each claim part over every configuration explored for it") and "- **C001-2**:" in text
+    lines = text.split("\n")[2:]
     assert lines[0] == "- **C001-1**: depends over 48 distinct configurations; x 3 independent replicates"
     assert lines[1] == (
         "  - **C001-1 (median)**: reproduced, depends; 40 agree, 2 flip and 6 stay undecided of 48 explored "

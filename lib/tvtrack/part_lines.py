@@ -147,8 +147,20 @@ def record_lines(cid: str, record: Mapping, verdict: str | None = None) -> list[
     return lines
 
 
-def exploration_lines(exploration: Any, claim_ids: list[str] | None = None) -> str:
-    """Every explored claim (``claim_ids``, default all the exploration's) part by part, as Markdown: agree / flip /
-    undecided over every explored configuration, the flips by name and the entries that move each part most."""
-    ids = list(claim_ids) if claim_ids is not None else list(exploration.rules)
-    return "\n".join(line for cid in ids for line in record_lines(cid, exploration.record(cid)))
+LEAD = (
+    "Each claim part over every configuration explored for it (one at a time, joint samples, pinned conditions): its "
+    "verdict and label, how many agree, flip and stay undecided, every flip by name with its kind, and the register "
+    "entries that move its value most (their share of its variation over the one-at-a-time values)."
+)
+""":func:`exploration_lines`' first paragraph: what each line says."""
+
+
+def exploration_lines(*explorations: Any, claim_ids: list[str] | None = None) -> str:
+    """Every claim of ``explorations`` (``claim_ids``, default all of each one's) part by part, as Markdown after
+    :data:`LEAD`: agree / flip / undecided over every explored configuration, the flips by name and the entries
+    that move each part most."""
+    lines = [LEAD, ""]
+    for ex in explorations:
+        ids = [c for c in ex.rules if claim_ids is None or c in claim_ids]
+        lines += [line for cid in ids for line in record_lines(cid, ex.record(cid))]
+    return "\n".join(lines)
