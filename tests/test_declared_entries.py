@@ -252,6 +252,10 @@ def _p004():
     # the camera (read noise, saturation, energy centre) at the frame rate, not the paths or the spot's size
     unused["C004-5"] |= set(WORLD)
     unused["C004-8"] |= set(WORLD) - {"frame rate", "read noise", "saturation", "energy centre"}
+    # the scene's world is calibrated at the horizon read (operating.OPERATING_READINGS): it reads the horizon for
+    # every claim; a claim that does not declare it gets the default's, so its world is the one-frame world
+    for cid in ("C004-4", "C004-5", "C004-8"):
+        unused[cid] |= {"horizon"}
     depends = {cid: [*names, *sorted(unused[cid] - set(names))] for cid, names in DEPENDS.items()}
     return [(functools.partial(study.measure.__wrapped__, size=size), REGISTER, depends, list(DEPENDS))]
 

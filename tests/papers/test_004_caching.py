@@ -84,7 +84,8 @@ def test_scenes_from_worker_processes_stay_cached_and_give_the_same_numbers(monk
 def test_groups_sharing_a_scene_find_it_rendered_once_and_give_the_numbers_of_one_process(monkeypatch, tmp_path):
     """Two scenes, each read at two horizons: four groups (a scene and one run of the methods each) over two
     workers. Each scene is rendered once, before the groups run (two missing: side by side; one shared by two
-    groups: in the parent), and every value is that of one process."""
+    groups: in the parent), and every value is that of one process. A horizon with a table row is calibrated
+    there (``operating``): its world is another scene, unless the bandwidth is set by hand."""
     log = tmp_path / "renders"
     real = study.study_run
 
@@ -94,8 +95,10 @@ def test_groups_sharing_a_scene_find_it_rendered_once_and_give_the_numbers_of_on
         return real(*args, **kwargs)
 
     for configs, renders in (
-        ([dict(DEFAULT, jitter=j, horizon=h) for j in (0.0, 1.0) for h in (1, 10)], 2),
-        ([dict(DEFAULT, horizon=h) for h in (1, 10)], 1),
+        ([dict(DEFAULT, jitter=j, horizon=h) for j in (0.0, 1.0) for h in (1, 2)], 2),
+        ([dict(DEFAULT, horizon=h) for h in (1, 2)], 1),  # 2 frames: no table row, the default's world
+        ([dict(DEFAULT, horizon=h) for h in (1, 10)], 2),  # 10 frames: the world calibrated there, its own scene
+        ([dict(DEFAULT, bandwidth=8.0, horizon=h) for h in (1, 10)], 1),  # a bandwidth set by hand: one scene
     ):
         log.write_text("")
         seeds, asked = [5] * len(configs), [CLAIMS] * len(configs)

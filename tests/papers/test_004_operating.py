@@ -33,6 +33,8 @@ def test_every_world_value_is_recalibrated_or_marked_as_leaving_the_operating_po
         for v in e.alternatives:
             assert ((name, v) in WORLD_FACTORS) != (v in e.off_operating_point), (name, v)
             assert v not in e.off_operating_point or "paper's 1-2 px" in e.phrase(v)
+    for v in reg["horizon"].alternatives:  # a reading of where the paper's error applies: calibrated there too
+        assert ("horizon", v) in WORLD_FACTORS and not reg["horizon"].off_operating_point
     for v in reg["bandwidth"].off_operating_point:  # the record says it in plain words
         assert "paper's 1-2 px" in reg["bandwidth"].phrase(v)
 
@@ -68,6 +70,8 @@ SINGLE_FACTORS = {
     ("exposure", "interlaced, frame integration"): 3.546,
     ("spot size", 0.6): 2.6469,
     ("vibration", 1.0): 1.5081,
+    ("horizon", 3): 1.0062,
+    ("horizon", 10): 0.2913,
     (BAND_POSITION, 1.0): 2.2146,
     (BAND_POSITION, 2.0): 3.7392,
 }
@@ -206,7 +210,12 @@ def test_a_joint_world_is_judged_by_its_error_where_the_secant_step_ends(monkeyp
 
 @pytest.mark.parametrize(
     "config, at_default",
-    [({"roll-off": "f^-6"}, (0.0, BAND_PX[0])), ({"jitter": 1.0}, (BAND_PX[1], 9.0))],
+    [
+        ({"roll-off": "f^-6"}, (0.0, BAND_PX[0])),
+        ({"jitter": 1.0}, (BAND_PX[1], 9.0)),
+        ({"horizon": 3}, (3.0, 9.0)),  # the paper's 1-2 px is its error at its own horizon: calibrated there
+        ({"horizon": 10}, (5.0, 12.0)),
+    ],
 )
 def test_recalibrated_worlds_keep_the_papers_filter_in_its_band(config, at_default):
     """On other paths than the table's: at the default world's factor these worlds put the paper's filter outside
@@ -287,7 +296,8 @@ def test_the_notebook_counts_the_joint_worlds_left_outside_the_band(monkeypatch)
     ex = SimpleNamespace(
         runs=[
             run(lost),
-            run({**lost, "horizon": 2}, "combination"),  # the same world again
+            run({**lost, "network lags": 10}, "combination"),  # the same world again
+            run({"jitter": 4.0, "horizon": 3}),  # a world with the horizon read otherwise: joint (calibrated there)
             run(kept),
             run({**lost, "bandwidth": 8.0}),  # set by hand: the register marks it
             run({"jitter": 4.0}, "single"),
@@ -296,8 +306,10 @@ def test_the_notebook_counts_the_joint_worlds_left_outside_the_band(monkeypatch)
     )
     text = findings.operating_sentence(build(), ex)
     assert (
-        "The exploration's configurations hold 2 distinct joint worlds (two or more of these worlds changed together: "
-        "2 among its joint samples, 1 among the sub-combinations its subset search measured inside flipping ones; one "
-        "met in two stages is counted in each), and 1 of them still put the paper's filter outside its 1-2 px"
+        "The exploration's configurations hold 3 distinct joint worlds (two or more of these worlds, or one with the "
+        "horizon read otherwise, changed together: 3 among its joint samples, 1 among the sub-combinations its subset "
+        "search measured inside flipping ones; one met in two stages is counted in each), and 2 of them still put the "
+        "paper's filter outside its 1-2 px"
     ) in text
-    assert len(seen) == 2
+    assert "(18 world values and 2 other horizons:" in text
+    assert len(seen) == 3

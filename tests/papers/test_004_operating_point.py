@@ -48,8 +48,14 @@ def test_the_table_product_of_a_configuration():
     # a value with no row (a sweep's) keeps the default's factor and counts no row, the band position's too
     assert op.table_factors({"jitter": 2.0}) == (3.0, (("jitter", 2.0),), 0)
     assert op.table_factors({op.BAND_POSITION: 1.25}) == (3.0, (("error in the band", 1.25),), 0)
-    # the bandwidth is the knob, not a world value of the key; entries outside the world are not in it
-    assert op.table_factors({"bandwidth": 8.0, "horizon": 3}) == (3.0, (), 0)
+    # the bandwidth is the knob, not a world value of the key; entries outside the world are not in it, but the
+    # horizon is: the paper's 1-2 px is its filter's error at the paper's (unstated) horizon
+    assert op.table_factors({"bandwidth": 8.0, "network lags": 10}) == (3.0, (), 0)
+    assert op.table_factors({"bandwidth": 8.0, "horizon": 3}) == (pytest.approx(3.0 * 0.3354), (("horizon", 3),), 1)
+    got, world, rows = op.table_factors({"amplitude": 2.0, "horizon": 10})
+    assert got == pytest.approx(3.0 * 0.6037 * 0.0971, rel=1e-15) and rows == 2  # a joint world: corrected
+    assert world == (("amplitude", 2.0), ("horizon", 10))
+    assert op.bandwidth_for({"bandwidth": 8.0, "horizon": 3}) == 8.0  # set by hand: used as it is
 
 
 def test_a_number_is_the_bandwidth_and_a_single_world_its_table_row():

@@ -167,3 +167,15 @@ def test_the_findings_lines_show_the_label_a_reader_sees():
 
     assert "**reproduced**, provisional." in text(provisional=True)
     assert "**reproduced**, unexplored." in text(provisional=False)
+
+
+def test_c004_6_caveat_says_how_degrades_is_read_and_whether_the_error_worsens_over_the_run():
+    """The rule judges "degrades" as erring more than with the floor; the caveat says so and, from the two halves
+    of the scored frames, whether the no-floor error also worsens over the run (the record: 4.44 -> 4.97 px)."""
+    from tvtrack.papers.p004_laser_spot_prediction import plots
+
+    flat = plots.c004_6_caveat({"no floor": [4.44, 4.97], "floor (cross-validated)": [1.5, 1.45]})
+    assert "judged as erring more than the filter with the floor" in flat
+    assert "stays at about one level" in flat and "4.44 px" in flat and "does not worsen over the run" in flat
+    grows = plots.c004_6_caveat({"no floor": [2.0, 5.0], "floor (cross-validated)": [1.5, 1.45]})
+    assert "grows over the frames" in grows and "it also worsens over the run" in grows

@@ -62,3 +62,22 @@ def test_a_moved_scintillation_default_is_explored_and_joins_the_values():
     with pytest.raises(ValueError, match="scintillation_sigma_ln"):
         check_consistency({**base, "explore_entries": ["horizon"], "scintillation_sigma_ln": 1.2})
     check_consistency({**base, "explore_entries": [], "scintillation_sigma_ln": 1.2})
+
+
+def test_overlapping_intervals_are_not_called_no_change(monkeypatch):
+    """The table's sentence says "grows" or "shrinks" only where the two levels' 95 % intervals are disjoint; where
+    they overlap it says the change is not shown, and that a change of the measured size stays possible (overlap of
+    two unpaired intervals is no evidence of no change)."""
+    from tvtrack.estimate import Estimate
+    from tvtrack.papers.p004_laser_spot_prediction import findings, side_studies
+
+    est = lambda v, lo, hi: Estimate(v, (hi - lo) / 4, lo, hi, 15, method="t")  # noqa: E731
+    values = {
+        findings.CENTROID: {0.3: est(0.04, 0.039, 0.041), 0.8: est(0.06, 0.058, 0.062)},  # disjoint: grows
+        "C004-2": {0.3: est(1.438, 1.167, 1.879), 0.8: est(1.343, 1.187, 1.557)},  # the record's: overlapping
+    }
+    monkeypatch.setattr(side_studies, "single_values", lambda ex, cid, entry: values[cid])
+    text = findings.scintillation_table(None)
+    assert "the centroid error grows (x1.50)" in text
+    assert "the prediction error is not shown to change (x0.93; the intervals overlap, which leaves" in text
+    assert "does not change" not in text

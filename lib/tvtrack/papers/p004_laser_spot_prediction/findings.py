@@ -340,10 +340,11 @@ def scintillation_table(exploration, entry: str = "scintillation") -> str:
             return "grows"
         if a.ci_low > b.ci_high:
             return "shrinks"
-        return "does not change measurably"
+        return "is not shown to change"
 
     def overlap(a: Estimate, b: Estimate) -> str:
-        return "; the intervals overlap" if a.ci_high >= b.ci_low and a.ci_low <= b.ci_high else ""
+        both = a.ci_high >= b.ci_low and a.ci_low <= b.ci_high
+        return "; the intervals overlap, which leaves a change of that size possible" if both else ""
 
     c_ratio, p_ratio = centroid[hi].value / centroid[lo].value, prediction[hi].value / prediction[lo].value
     return "\n".join(rows) + (
@@ -410,12 +411,15 @@ def operating_sentence(register, exploration=None) -> str:
     """How the register's worlds keep the paper's operating point (:mod:`.operating`): how many world values are
     re-calibrated, the factor range, the values marked as leaving it (their plain phrases) and, given the
     ``exploration``, how many of the joint worlds it drew no bandwidth brings to the band (counted beside too)."""
-    from .operating import DEFAULT_BANDWIDTH, WORLD_FACTORS
+    from .operating import DEFAULT_BANDWIDTH, OPERATING_READINGS, WORLD_FACTORS
 
     off = [register[n].phrase(v) for n in register.names for v in register[n].off_operating_point]
     lo, hi = (DEFAULT_BANDWIDTH * f(WORLD_FACTORS.values()) for f in (min, max))
+    read = sum(n in OPERATING_READINGS for n, _ in WORLD_FACTORS)
     return (
-        f"Every other world of the register is re-calibrated the same way ({len(WORLD_FACTORS)} values: the "
+        f"Every other world of the register is re-calibrated the same way, and so is the world under every other "
+        f"reading of the horizon, since the paper's 1-2 px is its error at its own horizon ({len(WORLD_FACTORS) - read} "
+        f"world values and {read} other horizons: the "
         f"bandwidth that keeps the paper's filter at the band's middle runs from {lo:.2g} to {hi:.2g} across them); "
         f"{len(off)} leave the paper's operating point and are marked so: " + "; ".join(off) + ". A configuration "
         "that changes two or more of these worlds at once is corrected on the calibration's own paths to the same "
@@ -425,7 +429,7 @@ def operating_sentence(register, exploration=None) -> str:
 
 
 def _joint_worlds_sentence(exploration) -> str:
-    """How many distinct joint worlds (two or more tabled world values) the exploration's conditions drew, and how
+    """How many distinct joint worlds (two or more tabled values, the horizon's among them) the exploration's conditions drew, and how
     many of them the correction leaves outside the paper's band (:func:`.study.resolve_operating_point`)."""
     from .operating import CALIBRATED, JOINT_TOL, table_factors
     from .study import resolve_operating_point
@@ -443,8 +447,8 @@ def _joint_worlds_sentence(exploration) -> str:
         f"{found['combination']} among the sub-combinations its subset search measured inside flipping ones",
     ] + ([f"{found['pinned']} among the pinned known flips"] if found["pinned"] else [])
     return (
-        f"The exploration's configurations hold {len(worlds)} distinct joint worlds (two or more of these worlds "
-        f"changed together: {', '.join(where)}; one met in two stages is counted in each), and {lost} of them "
+        f"The exploration's configurations hold {len(worlds)} distinct joint worlds (two or more of these worlds, "
+        f"or one with the horizon read otherwise, changed together: {', '.join(where)}; one met in two stages is counted in each), and {lost} of them "
         f"still put the paper's filter outside its 1-2 px once corrected (by more than the correction's "
         f"{100 * JOINT_TOL:g} % tolerance, at the measured bandwidth nearest the band position); their "
         "configurations are counted beside the labels too."

@@ -6,8 +6,8 @@ every baseline (each tuned by cross-validation over paths, :mod:`.prediction_stu
 configuration's horizon, and the optimal predictor of the generator's own model. :func:`claim_values`
 reduces a run to what each claim's rule reads; :func:`measure` is the explorer's measurement function
 and :func:`measure_batch` its batched form, which shares a rendered scene between configurations that
-differ only in the horizon, the networks' lags or a statistic (common random numbers: every stream is
-drawn from ``numpy.random.SeedSequence(seed)`` whatever the configuration).
+differ only in the networks' lags or a statistic, or in the horizon at a bandwidth set by hand (a calibrated
+world is calibrated at its horizon; common random numbers: every stream is from ``SeedSequence(seed)``).
 
 The configuration is a dict with every entry of :data:`.register.REGISTER` (names in :data:`ENTRIES`).
 Sizes (paths, frames, grids) are a :class:`StudySize`, fixed for a notebook run. The world a run draws (generator,
@@ -559,8 +559,8 @@ def table_paths_rms(config: dict, n_paths: int, seed: int = 2005, size=None) -> 
 
 
 def resolve_operating_point(config: dict) -> str | None:
-    """Correct the wander's bandwidth of a joint world (two or more tabled world values changed) to the paper's
-    operating point before its scene is drawn (:func:`.operating.joint_factor` on :func:`table_paths_rms`); a
+    """Correct the wander's bandwidth of a joint world (two or more tabled world values changed, or a world value
+    and the horizon) to the paper's operating point before its scene is drawn (:func:`.operating.joint_factor` on :func:`table_paths_rms`); a
     single world keeps its table row. Idempotent: each world combination is corrected once in a process.
 
     Returns why the world is outside the paper's operating point (the explorer's ``operating_point``): a joint
