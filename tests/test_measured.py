@@ -298,6 +298,21 @@ def test_show_estimate_gives_value_interval_unit_and_a_widening_note():
     assert show_estimate(_est(1.0, -1.0, 2.0, None)) == "1 [-1, 2]"
 
 
+def test_a_pool_widened_to_its_replicates_spread_is_not_said_to_reach_its_nominal_coverage():
+    """A pool of replicates that disagree is widened to Student's t over their values (``tvtrack.pooling``): that is
+    no calibration to the nominal coverage, and the note says what was done."""
+    spread = "pooled over 3 independent replicates that disagree beyond their own intervals (agreement test p = 0.01)"
+    pooled = _est(1.0, 0.5, 2.0, spread + ": widened to Student's t over their values")
+    text = show_estimate(pooled)
+    assert "nominal coverage" not in text
+    assert text == "1 [0.5, 2] (interval widened to the replicates' spread, since they disagree)"
+    both = calibrated(_est(1.0, -1.0, 2.0, SHORT))
+    both = _est(both.value, both.ci_low, both.ci_high, both.method + "; " + pooled.method)
+    assert show_estimate(both).endswith(
+        "(interval widened to its nominal coverage and to the replicates' spread, since they disagree)"
+    )
+
+
 def test_show_estimate_gives_the_bare_value_for_a_point_or_an_undefined_interval():
     assert show_estimate(Estimate.exact(2.5), "px") == "2.5 px"
     assert show_estimate(Estimate.exact(2.5)) == "2.5"

@@ -173,14 +173,22 @@ def show_estimate(e: Estimate, unit: str = "") -> str:
     -------
     str
         The value and its interval (:func:`interval_of`) with :func:`short_number`, and a note when the interval
-        was widened to its nominal coverage.
+        was widened to its nominal coverage, or to the spread of replicates that disagree.
     """
     a, b = interval_of(e)
     u = f" {unit}" if unit else ""
     if math.isnan(a) or math.isnan(b) or a == b == e.value:
         return f"{short_number(e.value)}{u}"
-    widened = " (interval widened to its nominal coverage)" if "widened" in (e.method or "") else ""
+    m = e.method or ""
+    how = [w for w, tag in ((WIDE_NOMINAL, "; widened x"), (WIDE_SPREAD, "widened to Student's t")) if tag in m]
+    widened = f" (interval widened {' and '.join(how)})" if how else ""
     return f"{short_number(e.value)} [{short_number(a)}, {short_number(b)}]{u}{widened}"
+
+
+#: :func:`show_estimate`'s note for an interval :func:`tvtrack.coverage.widen_to_nominal` widened.
+WIDE_NOMINAL = "to its nominal coverage"
+#: Its note for a pool of replicates that disagree beyond their own intervals (:mod:`tvtrack.pooling`).
+WIDE_SPREAD = "to the replicates' spread, since they disagree"
 
 
 def _zero_count(e: Estimate) -> bool:

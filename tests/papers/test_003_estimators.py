@@ -207,13 +207,25 @@ def test_a_paired_share_difference_is_t_on_the_runs_or_the_zero_event_bound_with
     bnd = 1 - 0.05 ** (1 / 6)
     same = est.share_difference(a, a)
     assert (same.value, same.ci_low, same.ci_high) == (0.0, pytest.approx(-bnd), pytest.approx(bnd))
-    assert same.method == "no discordant runs: one-sided 95 % bound"
+    assert same.method == "every run the same difference: the zero-events bound on the others, one-sided 95 %"
+    # every run +1: the runs not +1 are zero events (share <= bnd), and the worst case puts them all at -1, so the
+    # difference is only certified >= 1 - 2 bnd
     every = est.share_difference(np.ones(6, bool), np.zeros(6, bool))
-    assert (every.value, every.ci_low, every.ci_high) == (1.0, pytest.approx(1 - bnd), 1.0)
+    assert (every.value, every.ci_low, every.ci_high) == (1.0, pytest.approx(1 - 2 * bnd), 1.0)
     none = est.share_difference(np.zeros(6, bool), np.ones(6, bool))  # every run lost lock in b only
-    assert (none.value, none.ci_low, none.ci_high) == (-1.0, -1.0, pytest.approx(-1 + bnd))  # a share's floor
-    one = est.share_difference(np.ones(1, bool), np.zeros(1, bool))  # one run: the bound of one run, 0.95
-    assert (one.value, one.ci_low, one.ci_high, one.n) == (1.0, pytest.approx(0.05), 1.0, 1)
+    assert (none.value, none.ci_low, none.ci_high) == (-1.0, -1.0, pytest.approx(-1 + 2 * bnd))  # a share's floor
+    one = est.share_difference(np.ones(1, bool), np.zeros(1, bool))  # one run: 1 - 2 x 0.95
+    assert (one.value, one.ci_low, one.ci_high, one.n) == (1.0, pytest.approx(-0.9), 1.0, 1)
+
+
+@pytest.mark.parametrize("n", [1, 3, 6, 30])
+def test_the_all_discordant_bound_covers_the_worst_case_it_cannot_tell_apart(n):
+    """Runs are +1 with probability 1 - b and -1 with probability b (b = 1 - 0.05^(1/n)): every run is +1 with
+    probability exactly 0.05, and the true difference is 1 - 2b. A 95 % interval from that outcome must reach it."""
+    b = 1 - 0.05 ** (1 / n)
+    assert (1 - b) ** n == pytest.approx(0.05)
+    got = est.share_difference(np.ones(n, bool), np.zeros(n, bool))
+    assert got.ci_low <= 1 - 2 * b + 1e-12 <= got.ci_high
 
 
 @pytest.mark.parametrize(

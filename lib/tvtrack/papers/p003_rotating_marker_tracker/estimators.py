@@ -258,18 +258,23 @@ def extend_grid(
 
 def share_difference(a, b) -> Estimate:
     """Paired difference of two loss shares on the same runs (Student t on per-run differences; all-equal runs:
-    the zero-events bound on discordant runs). Both shares lie in [0, 1], so the difference and its interval lie in
-    [-1, 1]: where every run differs by +1 (or -1) the bound moves the open end only (a single run included)."""
+    the zero-events bound). Both shares lie in [0, 1], so the difference and its interval lie in [-1, 1].
+
+    Where every run has the same difference ``d0``, the runs that differ from it are zero events, so their share
+    ``q`` is at most the zero-events bound ``b``. With no discordant run (``d0 = 0``) the two discordant shares sum
+    to ``q``, so the difference lies in ``[-b, b]``; where every run differs by +1 (or -1) the shares of 0 and of
+    -1 sum to ``q``, and the worst case puts all of it at -1: the difference is at least ``1 - 2b`` (the open end
+    moves only; a single run included)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     d = a - b
     if np.all(d == d[0]):
-        bnd = zero_events_bound(d.size)
+        reach = zero_events_bound(d.size) * (1.0 + abs(d[0]))  # b with no discordant run, 2b where all are
         return interval_estimate(
             d[0],
-            max(d[0] - bnd, -1.0),
-            min(d[0] + bnd, 1.0),
+            max(d[0] - reach, -1.0),
+            min(d[0] + reach, 1.0),
             d.size,
-            "no discordant runs: one-sided 95 % bound",
+            "every run the same difference: the zero-events bound on the others, one-sided 95 %",
         )
     m = mean_ci(d)
     return interval_estimate(
