@@ -70,8 +70,9 @@ CFG = {**DEFAULT, "window_n": 10, "k_bound2": 30}
 
 
 def _null(seed, T0, fps, kb2=30, n=10, arm_k=50, onset=125, sigma=1.5, noise="white Gaussian"):
-    """The no-manoeuvre runs of channel x written out: 10 el/frame at 25 Hz, T0 frames, child stream 4."""
-    truth0 = 10.0 * (25.0 / fps) * np.arange(T0)
+    """The no-manoeuvre runs of channel x written out: 10 el/frame at every frame rate ``fps`` (the paper states it
+    per frame), T0 frames, child stream 4."""
+    truth0 = 10.0 * np.arange(T0)
     z0 = prefix_stable_measurements(truth0, noise, 6, child(seed, 4), sigma)
     G0 = gain_schedule(1, kb2, T0)
     v0 = scheduled_filter(z0, G0)[..., 1]
@@ -125,7 +126,7 @@ def test_detection_hands_each_claim_its_runs_lengths_arming_and_streams(claims, 
     assert rng3.random() == child(11, 3).random()
 
 
-def test_a_long_null_run_sets_the_length_and_the_step_is_read_at_the_frame_rate(claims):
+def test_a_long_null_run_sets_the_length_and_the_step_is_per_frame_at_the_frame_rate(claims):
     cfg = {**CFG, "alternative": "step", "roc_delay_s": 0.5, "step_dv": 1.0, "frame_rate_hz": 50.0}
     MEASURE(cfg, 3, sizes(8.0))
     sc = config_scenario({**DEFAULT, **cfg})
@@ -134,8 +135,8 @@ def test_a_long_null_run_sets_the_length_and_the_step_is_read_at_the_frame_rate(
     measurements(sc.truth[:, :600, 0], "white Gaussian", 3, rng, 1.5)
     Tr = 250 + 25 + 1  # 0.5 s at 50 Hz after the onset
     t = np.arange(Tr)
-    # 10 and -6 el/frame at 25 Hz are 5 and -3 at 50 Hz; the 1 el/frame step likewise 0.5, away from the manoeuvre
-    step = np.stack([5.0 * t + 0.5 * np.maximum(t - 250, 0), -3.0 * t - 0.5 * np.maximum(t - 250, 0)])
+    # 10 and -6 el/frame and the 1 el/frame step, per frame at 50 Hz as at 25 Hz, the step away from the manoeuvre
+    step = np.stack([10.0 * t + 1.0 * np.maximum(t - 250, 0), -6.0 * t - 1.0 * np.maximum(t - 250, 0)])
     np.testing.assert_array_equal(claims["C001-2"][3], measurements(step, "white Gaussian", 3, rng, 1.5))
     np.testing.assert_array_equal(claims["C001-2"][9][0], step)
     v0, G0, null = _null(3, 400, 50.0, onset=250)  # 8 s of null runs, longer than the alternative's 276 frames

@@ -3,7 +3,7 @@ fields their descriptions name, by the amounts the paper's numbers give, and not
 
 The fields are those the study's runs hand on: the scenario (:func:`scenario.config_scenario`: 25 frames a second,
 25 s, the manoeuvre at 5 s, the loss from 12 s to 22 s, the motion of the paper card's simulation paragraph kept
-fixed in elements per second), the scheme's settings (:func:`scenario.run_scheme`: the bounds, window, threshold,
+per frame at every frame rate), the scheme's settings (:func:`scenario.run_scheme`: the bounds, window, threshold,
 arming and restart), the measurement model and run sizes of :func:`study.tradeoff_runs` and the span its comparators
 are tuned for, and the readings of sigma_S of :func:`study.sigma_s_readings`. The expected values are the card's:
 its numbers (k_b2 = 50, n = 25, alpha = 1e-3, sigma_v = 0.0061, sigma_S^2 12.3 times the independence value, lag-1
@@ -131,16 +131,16 @@ def _exact_at(count: int, n: int, kb: int) -> float:
 
 
 def _card_truth(fps=25.0, ax=0.2, ay=-0.2, accel_s=None) -> np.ndarray:
-    """True (x, v, a) (2, T, 3) of the card's motion: x0 = 0, 10 (and -6) elements/frame at 25 Hz, an acceleration
-    of ``ax`` (``ay``) elements/frame^2 at 25 Hz from 5 s (for ``accel_s`` seconds, then uniform motion), the whole
-    motion fixed in elements per second and read at ``fps``."""
+    """True (x, v, a) (2, T, 3) of the paper's motion: x0 = 0, 10 (and -6) elements/frame, an acceleration of ``ax``
+    (``ay``) elements/frame^2 from 5 s (for ``accel_s`` seconds, then uniform motion), the motion per frame at every
+    frame rate ``fps`` (the paper states it per frame) and the times in seconds."""
     t = np.arange(int(round(25 * fps))) / fps
     d = np.clip(t - 5.0, 0, None)
     dc = d if accel_s is None else np.minimum(d, accel_s)
     accelerating = (t >= 5.0) & ((d < accel_s) if accel_s is not None else True)
     out = []
     for v0, a in ((10.0, ax), (-6.0, ay)):
-        V, A = v0 * 25, a * 625  # elements/s, elements/s^2
+        V, A = v0 * fps, a * fps**2  # elements/s, elements/s^2
         x = V * t + 0.5 * A * dc**2 + A * dc * (d - dc)
         out.append(np.stack([x, (V + A * dc) / fps, np.where(accelerating, A, 0.0) / fps**2], axis=-1))
     return np.stack(out)
@@ -429,17 +429,17 @@ def test_the_scenario_defaults_are_the_cards():
     short = scn.scenario(10.0, duration_s=3.0, maneuver_s=1.0, loss_s=1.5, reappear_s=2.5, motion=((1.0, 0.5),))
     assert (short.fps, short.T, short.onset, short.f_loss, short.f_back) == (10.0, 30, 10, 15, 25)
     assert short.truth.shape == (1, 30, 3)
-    # 1 el/frame and 0.5 el/frame^2 at 25 Hz are 25 el/s and 312.5 el/s^2: at 10 Hz 2.5 el/frame, 3.125 el/frame^2
-    assert short.truth[0, 12].tolist() == pytest.approx([30.0 + 0.5 * 3.125 * 4, 2.5 + 3.125 * 2, 3.125])
+    # 1 el/frame and 0.5 el/frame^2 stay per frame at 10 Hz (the paper's motion is per frame); the onset at 1 s is frame 10
+    assert short.truth[0, 12].tolist() == pytest.approx([12.0 + 0.5 * 0.5 * 4, 1.0 + 0.5 * 2, 0.5])
     # an acceleration lasting one frame (0.1 s): at the onset only
     one = scn.scenario(10.0, duration_s=3.0, maneuver_s=1.0, motion=((1.0, 0.5),), accel_duration_s=0.1)
-    assert np.allclose(one.truth[0, 9:12], [[22.5, 2.5, 0.0], [25.0, 2.5, 3.125], [27.5 + 3.125 / 2, 5.625, 0.0]])
-    # an acceleration lasting 0.4 s (4 frames) from frame 10: then uniform at 2.5 + 4 * 3.125 el/frame
+    assert np.allclose(one.truth[0, 9:12], [[9.0, 1.0, 0.0], [10.0, 1.0, 0.5], [11.0 + 0.5 / 2, 1.5, 0.0]])
+    # an acceleration lasting 0.4 s (4 frames) from frame 10: then uniform at 1 + 4 * 0.5 el/frame
     ended = scn.scenario(10.0, duration_s=3.0, maneuver_s=1.0, motion=((1.0, 0.5),), accel_duration_s=0.4)
-    assert ended.truth[0, 13].tolist() == pytest.approx([32.5 + 0.5 * 3.125 * 9, 2.5 + 3 * 3.125, 3.125])
-    assert ended.truth[0, 14].tolist() == pytest.approx([35.0 + 0.5 * 3.125 * 16, 2.5 + 4 * 3.125, 0.0])
-    assert ended.truth[0, 20].tolist() == pytest.approx([50.0 + 25.0 + 12.5 * 6, 15.0, 0.0])
-    assert ended.truth[0, 9].tolist() == pytest.approx([22.5, 2.5, 0.0])
+    assert ended.truth[0, 13].tolist() == pytest.approx([13.0 + 0.5 * 0.5 * 9, 1.0 + 3 * 0.5, 0.5])
+    assert ended.truth[0, 14].tolist() == pytest.approx([14.0 + 0.5 * 0.5 * 16, 1.0 + 4 * 0.5, 0.0])
+    assert ended.truth[0, 20].tolist() == pytest.approx([20.0 + 0.5 * (0.5 * 16 + 4 * 6), 3.0, 0.0])
+    assert ended.truth[0, 9].tolist() == pytest.approx([9.0, 1.0, 0.0])
     two = scn.config_scenario({**DEFAULT, "manoeuvre": "2 s acceleration"})  # uniform motion before the onset, exactly
     f = np.arange(125.0)
     assert np.array_equal(

@@ -120,13 +120,19 @@ ENTRIES = (
     ),
     Entry(
         "frame_rate_hz",
-        "regime",
+        "unreported setting",
         25.0,
         (25.0, 50.0),
-        "not stated; TV frame (25 Hz) or field (50 Hz) rate; motion fixed in elements/s",
+        "the paper states its motion per frame (10 el/frame, an acceleration of 0.2 el/frame²) and its times in "
+        "seconds (onset 5 s, detection 5.5 s, loss 12-22 s), and Fig. 4's bound in frames; the frame rate that "
+        "turns the seconds into frames is never printed: TV frame (25 Hz) or field (50 Hz) rate, the per-frame "
+        "motion the same at both",
         "adversarial",
-        title="camera frame rate (Hz) at a fixed motion in elements per second",
-        phrases={25.0: "25 frames per second (TV frame rate)", 50.0: "50 frames per second (TV field rate)"},
+        title="camera frame rate (Hz), the paper's per-frame motion kept and its times in seconds",
+        phrases={
+            25.0: "25 frames per second (TV frame rate)",
+            50.0: "50 frames per second (TV field rate; the same motion per frame, every time twice the frames)",
+        },
     ),
     Entry(
         "noise",
@@ -412,7 +418,7 @@ ENTRIES = (
         1.0,
         (0.5, 1.0, 2.0),
         "the velocity step of C001-2's step alternative (elements/frame): not in the paper; 1 el/frame is the "
-        "velocity the paper's manoeuvre adds in 0.2 s; half and twice it",
+        "velocity the paper's manoeuvre adds in 5 frames (0.2 s at 25 Hz); half and twice it",
         title="size of the velocity step in C001-2's step alternative (elements/frame)",
         phrases={
             0.5: "velocity step of 0.5 element/frame",
@@ -426,12 +432,13 @@ ENTRIES = (
         "el/frame²",
         tuple(ACCEL_UNITS),
         "'acceleration 0.2 raster elements per frame': per frame² (this project's default), or 0.2 el/frame of "
-        "velocity gained per second, the paper giving every time in seconds (0.008 el/frame² at 25 Hz)",
+        "velocity gained per second, the paper giving every time in seconds (0.2/f el/frame² at f frames per "
+        "second: 0.008 at 25 Hz)",
         "adversarial",
         title="unit of the paper's 'acceleration 0.2 raster elements per frame'",
         phrases={
             "el/frame²": "acceleration of 0.2 element per frame² (this project's default reading)",
-            "el/frame per s": "acceleration of 0.2 element/frame gained per second (25 times smaller)",
+            "el/frame per s": "acceleration of 0.2 element/frame gained per second (25 times smaller at 25 Hz)",
         },
     ),
     Entry(

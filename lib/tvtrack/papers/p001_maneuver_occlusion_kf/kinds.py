@@ -26,7 +26,9 @@ KINDS = {
     ),
     "frame_rate_hz": (
         "unreported setting",
-        "an unreported setting: the paper's TV system's frame rate is never printed",
+        "an unreported setting: the paper's TV system's frame rate is never printed; its motion is stated per "
+        "frame ('10 raster elements per frame', 'acceleration 0.2 raster elements per frame') and kept so at every "
+        "frame rate, only its times in seconds become frames",
     ),
     "noise": ("model", "a world beyond the paper: it simulated Gaussian noise of 1 element RMS"),
     "alternative": ("reading", "a reading of hypotheses (5), UMP for a step, against the paper's ramp"),

@@ -1,8 +1,10 @@
 """The scenario of paper 001 (Fisenko et al. 2008) and what every study reads: the motion, the measurement-error
 models, the detector's thresholds and arming, the spans and the scheme run under a configuration of the register.
 
-Units: positions in raster elements, velocities in elements/frame, accelerations in elements/frame²; the motion is
-fixed in elements/s (the paper's values at 25 Hz), so another frame rate rescales the per-frame values.
+Units: positions in raster elements, velocities in elements/frame, accelerations in elements/frame². The paper
+states its motion per frame (10 elements per frame, 0.2 elements per frame²) and its times in seconds (the onset at
+5 s, the loss from 12 to 22 s); its frame rate is never printed. So the motion is kept per frame at every frame rate
+and only the times are converted to frames.
 """
 
 from __future__ import annotations
@@ -32,6 +34,8 @@ __all__ = [
     "MANOEUVRES",
     "CHANNEL_Y",
     "ACCEL_UNITS",
+    "accel_factor",
+    "uniform_truth",
     "COMPENSATION_COMPARATORS",
     "RAISED2_GRID",
     "UMP_COMPARATORS",
@@ -56,11 +60,13 @@ __all__ = [
 ]
 
 
-#: The paper's motion is stated per frame; it is read at this frame rate (Hz) and kept fixed in elements/s.
+#: The register's default frame rate (Hz), a TV frame rate; the paper's is never printed. It sets no motion: the
+#: paper's motion is per frame at every frame rate.
 FPS_REF = 25.0
 
 
-#: (initial velocity el/frame, acceleration el/frame²) at 25 Hz of the channels x (the paper's) and y (not stated).
+#: (initial velocity el/frame, acceleration el/frame²) of the channels x (the paper's) and y (not stated), at every
+#: frame rate.
 MOTION = ((10.0, 0.2), (-6.0, -0.2))
 
 
@@ -90,15 +96,29 @@ TUNING_SPANS = RMS_SPANS + ("last frame before the loss",)
 MANOEUVRES = {"constant acceleration": None, "2 s acceleration": 2.0}
 
 
-#: The second channel's (initial velocity el/frame, acceleration el/frame²) at 25 Hz: not stated (one channel was
+#: The second channel's (initial velocity el/frame, acceleration el/frame²) at every frame rate: not stated (one channel was
 #: simulated); the paper's magnitude, or a turn mostly in x that gives y a quarter of it.
 CHANNEL_Y = {"v -6, a -0.2": (-6.0, -0.2), "v -6, a -0.05": (-6.0, -0.05)}
 
 
 #: The unit of the paper's "acceleration 0.2 raster elements per frame": el/frame² (this project's default), or a
-#: velocity change of 0.2 el/frame per second (the paper's times are in seconds): the factor on the accelerations of
-#: ``MOTION``.
-ACCEL_UNITS = {"el/frame²": 1.0, "el/frame per s": 1.0 / FPS_REF}
+#: velocity change of 0.2 el/frame per second (the paper's times are in seconds): the power of the frame interval
+#: 1/f (s) on the accelerations of ``MOTION`` (:func:`accel_factor`; 1/25 at 25 Hz, 1/50 at 50 Hz).
+ACCEL_UNITS = {"el/frame²": 0, "el/frame per s": 1}
+
+
+def accel_factor(unit: str, frame_rate_hz: float) -> float:
+    """The factor on the paper's 0.2 that gives the acceleration in el/frame² under the reading ``unit`` of
+    :data:`ACCEL_UNITS` at ``frame_rate_hz``: 1 for el/frame², 1/f for 0.2 el/frame gained per second."""
+    if unit not in ACCEL_UNITS:
+        raise ValueError(f"acceleration unit {unit!r}; it must be one of {tuple(ACCEL_UNITS)}")
+    return float(frame_rate_hz) ** -ACCEL_UNITS[unit]
+
+
+def uniform_truth(T: int) -> np.ndarray:
+    """The positions (T,) of the paper's uniform motion before the manoeuvre, 10 elements per frame from 0 (the
+    no-manoeuvre runs), at every frame rate."""
+    return MOTION[0][0] * np.arange(T, dtype=float)
 
 
 #: C001-4's "faster compensation" comparator: the scheme's TRACK2 filter never switching (the default), or the same
@@ -178,19 +198,19 @@ def scenario(
     accel_duration_s: float | None = None,
 ) -> Scenario:
     """Uniform motion, constant acceleration from ``maneuver_s`` (for ``accel_duration_s``, then uniform motion
-    again; None: to the end), lost from ``loss_s`` to ``reappear_s``."""
+    again; None: to the end), lost from ``loss_s`` to ``reappear_s``. ``motion`` is per frame (el/frame, el/frame²)
+    at every frame rate; the times in seconds are converted to frames at ``frame_rate_hz``."""
     fps = float(frame_rate_hz)
     T = int(round(duration_s * fps))
     onset = int(round(maneuver_s * fps))
     f_loss, f_back = int(round(loss_s * fps)), int(round(reappear_s * fps))
     f = np.arange(T)
-    scale = FPS_REF / fps
-    truth = np.stack([manoeuvre_truth(v0 * scale, a * scale**2, onset, T) for v0, a in motion])
+    truth = np.stack([manoeuvre_truth(v0, a, onset, T) for v0, a in motion])
     if accel_duration_s is not None:  # the acceleration stops after D frames: x, v continue uniformly
         D = int(round(accel_duration_s * fps))
         d = np.clip(f - onset, 0, None)
         dc = np.minimum(d, D)
-        acc = np.array([a * scale**2 for _, a in motion])[:, None]
+        acc = np.array([a for _, a in motion])[:, None]
         truth[..., 0] = truth[..., 0] - 0.5 * acc * d**2 + acc * (0.5 * dc**2 + D * (d - dc))
         truth[..., 1] = truth[..., 1] - acc * d + acc * dc
         truth[..., 2] = np.where((f >= onset) & (d < D), acc, 0.0)
@@ -200,7 +220,7 @@ def scenario(
 def config_scenario(config: dict) -> Scenario:
     """The scenario of a configuration: its frame rate, its manoeuvre (``MANOEUVRES``; default constant) and the
     second channel's motion (``CHANNEL_Y``; default this project's) and the acceleration's unit (``ACCEL_UNITS``)."""
-    u = ACCEL_UNITS[config.get("accel_unit", "el/frame²")]
+    u = accel_factor(config.get("accel_unit", "el/frame²"), config["frame_rate_hz"])
     return scenario(
         config["frame_rate_hz"],
         motion=tuple((v0, u * a) for v0, a in (MOTION[0], CHANNEL_Y[config.get("channel_y", "v -6, a -0.2")])),

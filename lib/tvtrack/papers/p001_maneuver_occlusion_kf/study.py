@@ -36,7 +36,6 @@ from .maneuver_detector import (
 from .track_modes import TrackModeConfig, run_track_modes
 from .sizes import declared
 from .scenario import (
-    FPS_REF,
     MOTION,
     THRESHOLD_READINGS,
     UMP_COMPARATORS,
@@ -49,6 +48,7 @@ from .scenario import (
     cadence_threshold,
     with_defaults,
     run_scheme,
+    uniform_truth,
 )
 from .comparators import comparator_positions, comparator_tuning
 
@@ -65,7 +65,6 @@ __all__ = [
     "sigma_s_readings",
     "measure_tradeoff",
     "detector_benchmark",
-    "FPS_REF",
     "MOTION",
     "THRESHOLD_READINGS",
     "UMP_COMPARATORS",
@@ -136,18 +135,18 @@ def _per_alpha(e: Estimate, alpha: float) -> Estimate:
 
 
 def _step_runs(config: dict, sc: Scenario, Tr: int, n_runs: int, rng: np.random.Generator, sigma: float):
-    """Measurements (n_runs, 2, Tr) of C001-2's step alternative: a velocity step of ``step_dv`` elements/frame (at
-    25 Hz) at the onset, both channels, away from the manoeuvre's sign."""
+    """Measurements (n_runs, 2, Tr) of C001-2's step alternative: a velocity step of ``step_dv`` elements/frame at
+    the onset, both channels, away from the manoeuvre's sign."""
     return measurements(_step_truth(config, sc, Tr), config["noise"], n_runs, rng, sigma)
 
 
 def _step_truth(config: dict, sc: Scenario, Tr: int) -> np.ndarray:
     """Noise-free positions (2, Tr) of C001-2's step alternative, elements: uniform motion, then a velocity step
-    of ``step_dv`` elements/frame (at 25 Hz) at the onset, away from the manoeuvre's sign."""
-    scale = FPS_REF / sc.fps
+    of ``step_dv`` elements/frame at the onset, away from the manoeuvre's sign (per frame at every frame rate, as
+    the paper's motion)."""
     t = np.arange(Tr)
-    dv = float(config["step_dv"]) * scale
-    return np.stack([v0 * scale * t + np.sign(a) * dv * np.clip(t - sc.onset, 0, None) for v0, a in MOTION])
+    dv = float(config["step_dv"])
+    return np.stack([v0 * t + np.sign(a) * dv * np.clip(t - sc.onset, 0, None) for v0, a in MOTION])
 
 
 def _ump_comparator_statistics(name: str, v_null, v_alt, G, n: int, sigma: float):
@@ -190,7 +189,7 @@ def measure_detection(config: dict, seed: int, sizes: dict, claims=None) -> dict
     if "C001-2" in asked:  # the alternative's runs end roc_delay_s after the onset
         Tr = sc.onset + int(round(float(config["roc_delay_s"]) * sc.fps)) + 1
     T0 = max(T3, Tr) if "C001-2" in asked else T3
-    truth0 = MOTION[0][0] * FPS_REF / sc.fps * np.arange(T0)
+    truth0 = uniform_truth(T0)
     z0 = prefix_stable_measurements(truth0, config["noise"], sizes["n_fa_runs"], _child_rng(seed, 4), sigma)
     G0 = gain_schedule(1, kb2, T0)
     v0_hat = scheduled_filter(z0, G0)[..., 1]
@@ -316,7 +315,7 @@ def c3_closed_form_check(config: dict, seed: int, sizes: dict) -> dict:
     arm_k, _ = arming_count(config["arming"], kb2, n, sc.onset)
     rng = np.random.default_rng(seed)
     T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), arm_k + 1)
-    z0 = measurements(MOTION[0][0] * FPS_REF / sc.fps * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
+    z0 = measurements(uniform_truth(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
     G0 = gain_schedule(1, kb2, T0)
     S0 = window_statistic(scheduled_filter(z0, G0)[..., 1], n)
     f0 = np.arange(T0)
@@ -466,9 +465,8 @@ def detector_benchmark(config: dict, seed: int, sizes: dict, windows=(10, 25, 50
     rng = np.random.default_rng(seed)
     Tl = sc.f_loss
     T0 = max(int(round(sizes["fa_duration_s"] * sc.fps)), Tl)  # the null runs at least as long as the alternative's
-    scale = FPS_REF / sc.fps
     z = measurements(sc.truth[:, :Tl, 0], config["noise"], sizes["n_trials"], rng, sigma)
-    z0 = measurements(MOTION[0][0] * scale * np.arange(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
+    z0 = measurements(uniform_truth(T0), config["noise"], sizes["n_fa_runs"], rng, sigma)
     G = gain_schedule(1, kb2, max(Tl, T0))
     s_alt, s_null = scheduled_filter(z, G[:Tl]), scheduled_filter(z0, G[:T0])
     u_alt = normalised_innovations(z, s_alt, G[:Tl], sigma)

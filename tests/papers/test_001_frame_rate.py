@@ -1,0 +1,48 @@
+"""The frame rate is an unreported setting of the paper's own experiment: the paper states its motion per frame
+("10 элементов растра за кадр", "ускорением 0,2 элемента растра за кадр") and its times in seconds (the onset at
+5 s, the loss at 12 s, the return at 22 s), so at any frame rate the motion stays 10 el/frame and 0.2 el/frame² and
+only the seconds become frames."""
+
+import numpy as np
+import pytest
+
+from tvtrack.papers.p001_maneuver_occlusion_kf import scenario as scn
+from tvtrack.papers.p001_maneuver_occlusion_kf import study
+from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
+
+REG = build_register()
+
+
+@pytest.mark.parametrize("fps", [25.0, 50.0])
+def test_the_paper_s_per_frame_motion_holds_at_every_frame_rate(fps):
+    sc = scn.config_scenario({**REG.default(), "frame_rate_hz": fps})
+    assert (sc.onset, sc.f_loss, sc.f_back, sc.T) == (5 * fps, 12 * fps, 22 * fps, 25 * fps)
+    x, v, a = sc.truth[0, :, 0], sc.truth[0, :, 1], sc.truth[0, :, 2]
+    assert np.allclose(v[: sc.onset], 10.0) and np.allclose(np.diff(x[: sc.onset + 1]), 10.0)  # 10 el/frame
+    assert np.allclose(a[sc.onset :], 0.2) and np.allclose(a[: sc.onset], 0.0)  # 0.2 el/frame²
+    assert v[sc.f_loss] == pytest.approx(10.0 + 0.2 * (sc.f_loss - sc.onset))
+    assert np.allclose(sc.truth[1, : sc.onset, 1], -6.0)  # the second channel per frame too
+
+
+@pytest.mark.parametrize("fps", [25.0, 50.0])
+def test_the_per_second_acceleration_reading_is_0_2_over_the_frame_rate(fps):
+    sc = scn.config_scenario({**REG.default(), "frame_rate_hz": fps, "accel_unit": "el/frame per s"})
+    assert sc.truth[0, sc.onset, 2] == pytest.approx(0.2 / fps)  # 0.2 el/frame gained in fps frames
+    # one second after the onset the velocity has grown by 0.2 el/frame
+    assert sc.truth[0, sc.onset + int(fps), 1] - sc.truth[0, sc.onset, 1] == pytest.approx(0.2)
+
+
+def test_the_step_alternative_and_the_null_runs_are_per_frame_at_50_hz():
+    sc = scn.config_scenario({**REG.default(), "frame_rate_hz": 50.0})
+    step = study._step_truth({"step_dv": 1.0}, sc, sc.onset + 10)
+    assert np.allclose(np.diff(step[0, : sc.onset + 1]), 10.0) and np.allclose(np.diff(step[0, sc.onset + 1 :]), 11.0)
+    assert np.allclose(np.diff(step[1, sc.onset + 1 :]), -7.0)  # away from the second channel's -0.2
+    assert np.allclose(np.diff(scn.uniform_truth(40)), 10.0)
+
+
+def test_the_entry_is_filed_and_worded_as_an_unreported_setting():
+    e = REG["frame_rate_hz"]
+    assert e.kind == "unreported setting"
+    words = " ".join([e.title, e.why, *map(str, e.phrases.values())]).lower()
+    assert "elements per second" not in words and "elements/s" not in words and "fixed motion" not in words
+    assert "per frame" in words and "never printed" in words
