@@ -21,9 +21,11 @@ CASES = [
 
 
 def _fed(rule, config, measured):
-    """What the measurement returns under ``config``: C000-1's value tagged with its reading."""
+    """What the measurement returns under ``config``: the value tagged with each reading its rule is chosen by
+    (C000-3: its contrast, then its signal-noise scale)."""
     if isinstance(rule, vd.ByReading):
-        return vd.ByReading.tag(config[rule.entry], measured)
+        value = config[rule.entry]
+        return vd.ByReading.tag(value, _fed(rule.for_value(value), config, measured))
     return measured
 
 
@@ -32,6 +34,10 @@ def test_every_value_of_every_entry_can_reach_both_verdicts_under_its_rule(name,
     config = {**REGISTER.default(), name: value}
     rule = RULES[claim]
     in_force = vd.for_config(rule, config)
+    if isinstance(in_force, vd.NotCheckable):  # C000-4 counted in operations: true by construction
+        assert claim == "C000-4" and config["C000-4 cost measure"] == "operation count"
+        assert rule.decide(_fed(rule, config, 2.0)) == "not checkable"
+        return
     for want in ("reproduced", "not reproduced"):
         m = vd.synthetic(in_force, want)
         assert m is not None and rule.decide(_fed(rule, config, m)) == want, (name, value, claim, want)

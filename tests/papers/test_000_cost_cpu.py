@@ -25,8 +25,9 @@ def test_one_trial_and_a_batch_time_the_same_arithmetic(where):
     """One tracked object over n_trials x n_steps samples does the batch's work: its CPU ratio agrees with the
     batch's within timing noise (interpreted, one trial gave 0.4-0.65 of the batch's ratio)."""
     cfg = {**CPU, "v2 noise at": where}
-    one = study.measure_cost({**cfg, "C000-4 batch": "one trial"}, 1, n_trials=200, n_steps=200)["C000-4"]
+    one = study.measure_cost({**cfg, "C000-4 batch": "one trial"}, 1, n_trials=200, n_steps=200)["C000-4"]["measured"]
     batch = study.measure_cost({**cfg, "C000-4 batch": "all trials"}, 1, n_trials=200, n_steps=200)["C000-4"]
+    batch = batch["measured"]
     assert 0.7 < one.value / batch.value < 1.4
     if where == "predicted estimate":  # variant 1's 2 x 2 algebra (43 operations and a sqrt per step) costs more
         assert one.value > 1.0 and batch.value > 1.0
@@ -48,7 +49,7 @@ def test_without_compiled_steps_the_cpu_reading_is_not_a_number(monkeypatch):
     monkeypatch.setattr(study.jit, "enabled", lambda: False)
     e = study.cost_ratio(10, 20, 1)
     assert math.isnan(e.value) and vd.is_undecided(e)
-    assert RULES["C000-4"].decide(e) == "undecided"
+    assert RULES["C000-4"].decide(vd.ByReading.tag("CPU time", e)) == "undecided"
 
 
 @needs_numba
@@ -57,7 +58,9 @@ def test_the_cpu_ratio_carries_the_interval_of_its_repeated_timings():
     the two variants alternating) with the Student t interval of their log ratios, so that C000-4's rule decides it
     from an interval. Before, it was the least of 5 repeats, a bare number the rule read as exact (the record's
     0.8217 with its interval [0.8217, 0.8217], n = 1): one noisy timing could flip the claim."""
-    e = study.measure_cost({**CPU, "v2 noise at": "updated estimate"}, 2, n_trials=100, n_steps=100)["C000-4"]
+    tagged = study.measure_cost({**CPU, "v2 noise at": "updated estimate"}, 2, n_trials=100, n_steps=100)["C000-4"]
+    assert tagged["reading"] == "CPU time"
+    e = tagged["measured"]
     assert e.n == 11 and e.ci_low < e.value < e.ci_high and e.method.startswith("geometric mean of 11")
     assert not vd.is_undecided(e) or e.ci_low < 1.0 < e.ci_high  # decided only where the interval leaves 1
     few = study.cost_ratio(100, 100, 2, repeats=3)

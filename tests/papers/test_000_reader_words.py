@@ -135,7 +135,53 @@ def test_c6_figure_draws_each_entry_alone_and_every_flip_in_plain_words():
     assert REGISTER.describe({"G22": "euler"}) in labels
     assert REGISTER.describe({"G22": "matched", "psi_A": 5.0}) in labels  # the flipping joint sample
     assert REGISTER.describe({"sigma_sh": "unit bandwidth", "psi_A": 100.0}) not in labels
-    assert left == "1 joint sample of the register"
+    assert left == "Not drawn: 1 joint sample of the register agreeing with the default's verdict."
+
+
+def test_c6_caption_counts_the_undecided_conditions_as_undecided_not_as_agreeing():
+    """The record counts a condition left with fewer replicates than the default needed (by the sizing budget) as
+    undecided, whatever its own pooled value reads: the paper-profile caption said "none of them changing the
+    verdict: 27 joint samples ..., 197 combinations", while the record's share of the claim had all 197 combinations
+    undecided (195 of them short by the sizing budget) and 10 of the 27 joint samples undecided. The caption says how
+    many agree and how many are undecided, and of those how many the budget left short."""
+    from tvtrack.papers.p000_dissector_ekf.findings import drawn_conditions
+    from tvtrack.verdicts import InBand
+
+    ex = _Ex()
+    short = {"undersized": {"claim": "not reproduced"}, "left_by_budget": 2}
+    ex.conditions += [
+        {**ex.conditions[3], "changed": {"psi_A": 5.0, "G22": "euler"}, "kind": "combination", **short},
+        {**ex.conditions[3], "changed": {"psi_A": 5.0, "G22": "matched"}, "kind": "combination", **short},
+        {**ex.conditions[3], "changed": {"psi_A": 2.0, "G22": "euler"}, "kind": "joint", **short},
+        {**ex.conditions[3], "changed": {"psi_A": 2.0, "G22": "paper"}, "kind": "joint", "verdict": "undecided"},
+    ]
+    rows, left = drawn_conditions(ex, "C000-6", InBand("ratio", 20.0, None))
+    assert len(rows) == 5  # the default, two entries alone, the pinned pair, the flipping joint sample
+    assert left == (
+        "Not drawn: 1 joint sample of the register agreeing with the default's verdict; undecided (neither agreeing "
+        "nor flipping): 2 combinations searched inside flipping joint samples (2 of them left smaller than the "
+        "default needed by the sizing budget), 2 joint samples of the register (1 of them left smaller than the "
+        "default needed by the sizing budget)."
+    )
+
+
+def test_conclusions_count_configurations_as_configurations_and_runs_as_runs():
+    """A joint sample of the register is one configuration, measured once per group of claims that read what it
+    changes: the paper-profile conclusions said "35 one-at-a-time and 227 joint configurations" where the record
+    held 32 joint configurations measured in 227 runs."""
+    from types import SimpleNamespace
+
+    from tvtrack.papers.p000_dissector_ekf.findings import conclusions
+
+    def run(stage, changed):
+        return SimpleNamespace(stage=stage, changed=lambda default, c=changed: dict(c))
+
+    runs = [run("single", {"G22": "euler"}), run("single", {"psi_A": 50.0})]
+    runs += [run("joint", {"G22": "euler", "psi_A": 5.0})] * 3 + [run("joint", {"G22": "matched", "psi_A": 2.0})] * 4
+    ex = SimpleNamespace(settings={"replicates": 3, "joint_configurations": 2}, runs=runs, register=REGISTER)
+    text = conclusions([_claim(None)], ex)
+    assert "2 one-at-a-time configurations and 2 joint configurations (measured in 7 runs" in text
+    assert "7 joint configurations" not in text
 
 
 def test_c6_list_of_flips_says_what_it_counts():

@@ -26,8 +26,8 @@ def test_accounting_compares_the_ignoring_filter_with_variant_2_on_the_same_runs
     """Each part of C000-5 is the paired ratio ignoring / variant 2 at its contrast; planting 'the reading is
     ignored' (Fig. 3's ratio to sigma_x^2* under both readings) fails here."""
     c5, _ = study._c5_c7(ACCOUNTING, 4, SIZES)
-    assert set(c5["measured"]) == {"P=0.25", "P=0.5", "P=0.9"}
-    for p in (0.25, 0.5, 0.9):
+    assert set(c5["measured"]) == {"P=0.25", "P=0.9"}  # P = 0.5: in neither of the paper's strict halves
+    for p in (0.25, 0.9):
         a = study.steady_runs(ACCOUNTING, 4, SIZES, 20.0, p, "ignoring")
         b = study.steady_runs(ACCOUNTING, 4, SIZES, 20.0, p, "v2")
         assert not np.allclose(a, b)
@@ -35,7 +35,7 @@ def test_accounting_compares_the_ignoring_filter_with_variant_2_on_the_same_runs
 
 
 def test_accounting_gains_little_below_half_and_less_than_twice_at_0_9():
-    """Measured over the runs in lock: 1.00 and 1.03 at P = 0.25, 0.5; 1.5 [1.48, 1.61] at P = 0.9, below the
+    """Measured over the runs in lock: 1.00 at P = 0.25 (P = 0.5 is in neither half); 1.5 [1.48, 1.61] at P = 0.9, below the
     factor 2 the default reading's sigma_x^2 / sigma_x^2* clears (2.2): under this reading C000-5's P = 0.9 part is
     not reproduced. Over all 120 runs one (switched on just past its pulse) loses lock under a filter of each
     ratio and leaves the default undecided."""
@@ -46,10 +46,10 @@ def test_accounting_gains_little_below_half_and_less_than_twice_at_0_9():
         accounting, c7_acc = study._c5_c7(ACCOUNTING, 4, SIZES)
     assert max(lost for lost, _ in counts) == 1
     got = {k: v.value for k, v in accounting["measured"].items()}
-    assert got["P=0.25"] < 1.02 and got["P=0.5"] < 1.1
+    assert got["P=0.25"] < 1.02 and "P=0.5" not in got
     assert 1.3 < got["P=0.9"] < 2.0
     assert default["measured"]["P=0.9"].value > 2.0
-    assert rule.judge(accounting).verdict == "partly"  # P = 0.25 and 0.5 reproduced, P = 0.9 not
+    assert rule.judge(accounting).verdict == "partly"  # P = 0.25 reproduced, P = 0.9 not
     assert rule.judge(default).verdict == "reproduced"
     # C000-7 reads Fig. 3's ratio under every reading of C000-5
     assert [r.value for r in c7_acc["trend"]] == [r.value for r in c7["trend"]]

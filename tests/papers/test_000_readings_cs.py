@@ -53,3 +53,30 @@ def test_under_the_literal_scale_variant_1_is_several_times_worse_and_c000_3_fai
     rule = claim_rules(SIZES)["C000-3"]
     assert rule.judge(study._c3(LITERAL, 2, SIZES)).verdict == "not reproduced"
     assert rule.judge(study._c3(DEFAULT, 2, SIZES)).verdict != "not reproduced"  # partly at this size
+
+
+def test_under_the_literal_scale_c000_3_judges_p_0_where_the_variants_are_two_filters():
+    """Eq. (6) as printed gives variant 1 the signal-noise term sqrt(A S) X2 whatever the contrast; at P = 0 the data
+    (eq. (2): N0 P/(1-P) S = 0) hold no signal noise, yet variant 1 still models one, so the two variants are two
+    filters and «примерно одинаковую оценку потенциальной точности» is a comparison there too. Only with c_s = N0
+    P/(1-P), where the term vanishes at P = 0, is the ratio 1 by construction (not checkable). At the register's
+    contrast 0 (Fig. 2 read at P = 0) the literal scale measures the Fig. 2 parts as well."""
+    from tvtrack import verdicts as vd
+
+    rule = claim_rules(SIZES)["C000-3"]
+    for contrast in (0.0, 0.5):
+        literal = vd.for_config(rule, {**LITERAL, "contrast": contrast})
+        assert isinstance(literal.parts["P=0"], vd.InBand)
+        assert (literal.parts["P=0"].low, literal.parts["P=0"].high) == (0.8, 1.25)
+        assert "psi_A=5" in literal.parts
+        consistent = vd.for_config(rule, {**DEFAULT, "contrast": contrast})
+        assert isinstance(consistent.parts["P=0"], vd.NotCheckable)
+        assert ("psi_A=5" in consistent.parts) == (contrast != 0.0)
+    got = study._c3({**LITERAL, "contrast": 0.0}, 2, SIZES)
+    assert got["reading"] == 0.0 and got["measured"]["reading"] == study.CS_LITERAL
+    parts = got["measured"]["measured"]
+    assert set(parts) == {"P=0", "P=0.5", "P=0.9", "psi_A=5"}
+    assert parts["P=0"].ci_low > 1.25  # variant 1 models a signal noise the data lack: worse, not 1 by construction
+    assert rule.judge(got).why.count("(P=0) not reproduced") == 1
+    same = study._c3({**DEFAULT, "contrast": 0.0}, 2, SIZES)["measured"]["measured"]
+    assert set(same) == {"P=0", "P=0.5", "P=0.9"} and same["P=0"].value == 1.0

@@ -78,17 +78,27 @@ PINS = {
         ),
     },
     "C000-3": {
-        # at P = 0 the two variants are one filter: not checkable, and Fig. 2 read at P = 0 has no parts
-        "contrast=* / P=0": Unchecked("same potential accuracy", "at P = 0 the two variants are one filter"),
-        "contrast=* / P=0.*": SAME,
-        "contrast=*default* / psi_A=*": SAME,
+        # with c_s = N0 P/(1-P) the two variants are one filter at P = 0: not checkable, and Fig. 2 read at P = 0 has
+        # no parts; eq. (6) as printed (c_s = A) keeps variant 1's signal-noise term at P = 0: two filters, judged
+        "contrast=* / signal-noise scale=*default* / P=0": Unchecked(
+            "same potential accuracy", "at P = 0 the two variants are one filter"
+        ),
+        "contrast=* / signal-noise scale=c_s = A, as printed / P=0": SAME,
+        "contrast=* / signal-noise scale=* / P=0.*": SAME,
+        "contrast=* / signal-noise scale=* / psi_A=*": SAME,
     },
     "C000-4": {
-        "": Order("variant 1 needs more computation", "cost v1 / cost v2 > 1", (1.5, 4.0), (0.67, 0.25), "(ratio)")
+        # counted operations of this project's own equations are fixed before any run: not checkable; CPU time is
+        "C000-4 cost measure=CPU time": Order(
+            "variant 1 needs more computation", "cost v1 / cost v2 > 1", (1.5, 4.0), (0.67, 0.25), "(ratio)"
+        ),
+        "C000-4 cost measure=*default*": Unchecked(
+            "variant 1 needs more computation", "an operation count of the project's own equations"
+        ),
     },
     "C000-5": {
+        # «при контрастах ТСО P < 0,5 ... Однако при контрасте P > 0,5»: both halves strict, P = 0.5 in neither
         "substantially determines=* / P=0.25": LOW_P,
-        "substantially determines=* / P=0.5": LOW_P,
         "substantially determines=* / P=0.7": HIGH_P,
         "substantially determines=* / P=0.9": HIGH_P,
     },
@@ -140,7 +150,7 @@ def test_the_rules_follow_the_run_sizes():
     from tvtrack.papers.p000_dissector_ekf.study import Sizes
 
     rules = claim_rules(Sizes(contrast_grid=(0.0, 0.3, 0.8), psi_grid=(7.0, 20.0), dt_points=((30.0, 0.2),)))
-    assert list(rules["C000-3"].default.parts) == ["P=0", "P=0.3", "P=0.8", "psi_A=7", "psi_A=20"]
+    assert list(rules["C000-3"].default.default.parts) == ["P=0", "P=0.3", "P=0.8", "psi_A=7", "psi_A=20"]
     assert list(rules["C000-8"].parts) == ["variant 1 at psi_A=30, P=0.2", "variant 2 at psi_A=30, P=0.2"]
 
 
@@ -160,7 +170,8 @@ def test_c000_3_measures_each_configuration_once_and_nothing_true_by_constructio
     assert list(at_zero.parts) == ["P=0", "P=0.5", "P=0.9"]
     assert isinstance(at_zero.parts["P=0"], NotCheckable)
     one = {"P=0": None, "P=0.5": est(1.0), "P=0.9": est(1.0), "psi_A=5": est(1.0), "psi_A=50": est(1.0)}
-    assert rule.judge({"reading": 0.0, "measured": one}).why.count("psi_A=") == 0
+    tagged = {"reading": 0.0, "measured": {"reading": "c_s = N0 P/(1-P)", "measured": one}}
+    assert rule.judge(tagged).why.count("psi_A=") == 0
 
 
 def test_c000_5_reads_a_ratio_far_below_one_as_a_substantial_effect():
@@ -178,3 +189,22 @@ def test_c000_5_reads_a_ratio_far_below_one_as_a_substantial_effect():
 
 def test_every_rule_of_000_decides_as_the_paper_says():
     assert not problems("p000_dissector_ekf", PINS), "\n".join(problems("p000_dissector_ekf", PINS))
+
+
+def test_c000_5_judges_no_part_at_the_boundary_p_05():
+    """«при контрастах ТСО P < 0,5 учет нестационарной составляющей шума диссектора не оказывает существенного
+    влияния на точность ... Однако при контрасте P > 0,5 нестационарная составляющая сигнала уже существенно
+    определяет точность»: both inequalities are strict, so the paper asserts neither half at P = 0.5. Under every
+    reading of the claim no part of its rule sits at P = 0.5; the contrasts below it are judged by the "not
+    substantially" band, those above by "at least 2"."""
+    from tvtrack.papers.p000_dissector_ekf import readings
+    from tvtrack.papers.p000_dissector_ekf.claims import claim_rules
+    from tvtrack.papers.p000_dissector_ekf.study import Sizes
+    from tvtrack.verdicts import for_config
+
+    rule = claim_rules(Sizes(contrast_grid=(0.0, 0.25, 0.5, 0.7, 0.9)))["C000-5"]
+    for value in readings.DETERMINES_READINGS:
+        parts = for_config(rule, {"substantially determines": value}).parts
+        assert "P=0.5" not in parts
+        assert (parts["P=0.25"].low, parts["P=0.25"].high) == (1 / 1.3, 1.3)
+        assert parts["P=0.9"].low == 2.0

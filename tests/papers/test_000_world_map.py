@@ -265,3 +265,15 @@ def test_the_message_and_the_signal_noise_scale_of_a_configuration():
     assert study.cfg_message({}) == GaussMarkovMessage(0.1, 0.15)
     assert study._cs(DEFAULT) == "consistent" and study._cs({}) == "consistent"
     assert study._cs({"signal-noise scale": "c_s = A, as printed"}) == "literal"
+
+
+def test_a_start_anywhere_in_the_micro_raster_is_a_world_beyond_the_paper():
+    """«адекватной моделью сообщения является стационарный марковский гауссов процесс» (eq. (3)): the message is
+    stationary, so the object starts from its own law N(0, sigma_1^2); «наличие изображения ТСО в пределах
+    микрорастра» motivates the filters' D11(0) = 0.2, not the truth's start. A uniform start over the micro-raster is
+    not the paper's model: a world beyond it, not a reading of its text."""
+    from tvtrack.papers.p000_dissector_ekf.register import REGISTER
+
+    entry = REGISTER["initial position"]
+    assert entry.default == "stationary N(0, sigma_1^2)"
+    assert entry.side == "world"

@@ -16,22 +16,34 @@ C000-5's "does not substantially affect the accuracy" (Conclusions: «не ок�
 точность») is two-sided too: an effect is substantial either way, so a ratio to sigma_x^2* below ``1 / 1.3`` is as
 substantial as one above ``1.3`` (:data:`NOT_SUBSTANTIAL`, symmetric on the ratio's log scale).
 
-C000-3 judges no comparison at P = 0: there, with c_s = N0 P/(1-P), the variants are one filter and the ratio is 1
-by construction. Its P = 0 part is not checkable, and at the register's "contrast" = 0 (Fig. 2 read at P = 0) its
-Fig. 2 parts are not measured (:class:`tvtrack.verdicts.ByReading` on "contrast": that value's rule has the Fig. 3
-parts only). The Fig. 2 point psi_A = 20 at the default contrast P = 0.5 is Fig. 3's P = 0.5 point at the default
-psi_A = 20, one measurement: it is the part "P=0.5" only.
+C000-3 judges no comparison where it is true by construction: at P = 0 with c_s = N0 P/(1-P) (this project's
+reading of eq. (6)) variant 1's signal-noise term vanishes, the variants are one filter and the ratio is 1. There its
+P = 0 part is not checkable, and at the register's "contrast" = 0 (Fig. 2 read at P = 0) its Fig. 2 parts are not
+measured (:class:`tvtrack.verdicts.ByReading` on "contrast": that value's rule has the Fig. 3 parts only). Under
+eq. (6) as printed (register "signal-noise scale" = c_s = A) variant 1 still models a signal noise of intensity A S at
+P = 0, which the data do not hold: the variants are two filters, so the P = 0 part and, at "contrast" = 0, the Fig. 2
+parts are measured and judged like every other (a second :class:`~tvtrack.verdicts.ByReading`, on "signal-noise
+scale", inside each contrast's rule). The Fig. 2 point psi_A = 20 at the default contrast P = 0.5 is Fig. 3's P = 0.5
+point at the default psi_A = 20, one measurement: it is the part "P=0.5" only.
+
+C000-5's two halves are strict («при контрастах ТСО P < 0,5 ... Однако при контрасте P > 0,5»): the boundary P = 0.5
+is asserted by neither, so no part of its rule is at P = 0.5.
+
+C000-4's "needs more computation" has two readings (register "C000-4 cost measure"). Counted in arithmetic operations
+per step, the value is a count of this project's own writing of the paper's equations: the same on every run and
+fixed before any run, so that reading is not checkable. The CPU time of the compiled steps is measured, with an
+interval, and judged ("variant 1's work per step > variant 2's").
 """
 
 from __future__ import annotations
 
 from ... import verdicts as vd
 from ...verdicts import AllOf, InBand, Monotone, NotCheckable, Ordering, Rule
-from .readings import AT_09, C2_EVERY, ENSEMBLE_MEAN, EVERY_ABOVE, LATE_SHARE
+from .readings import AT_09, C2_EVERY, CS_LITERAL, ENSEMBLE_MEAN, EVERY_ABOVE, LATE_SHARE
 from .register import REGISTER
 from .sizes import Sizes
 
-__all__ = ["CLAIMS", "RULES", "NOT_SUBSTANTIAL", "claim_rules", "cost_rule", "fig2_points"]
+__all__ = ["CLAIMS", "RULES", "NOT_SUBSTANTIAL", "COST_READINGS", "claim_rules", "cost_rule", "fig2_points"]
 
 #: C000-5's "not substantially" as a band on the ratio to sigma_x^2*: within a factor 1.3 either way.
 NOT_SUBSTANTIAL = (1 / 1.3, 1.3)
@@ -96,15 +108,15 @@ def _convergence(acquire_by: float) -> vd.ByReading:
 
 def _contrast_threshold(grid_p) -> vd.ByReading:
     """C000-5's rule, per reading of "for P > 0.5 it substantially determines": within a factor 1.3 either way
-    (:data:`NOT_SUBSTANTIAL`: "does not substantially affect" is two-sided) at every Fig. 3 contrast in (0, 0.5]; at
+    (:data:`NOT_SUBSTANTIAL`: "does not substantially affect" is two-sided) at every Fig. 3 contrast in (0, 0.5); at
     least 2 at P = 0.9 (the default), or at every Fig. 3 contrast above 0.5 (the adversarial reading "at every
-    P > 0.5": the paper's threshold is P = 0.5, not 0.9)."""
+    P > 0.5": the paper's threshold is P = 0.5, not 0.9). Both halves are strict, so P = 0.5 is in neither."""
 
     def ratio(p):  # the reading "C000-5 comparison" puts the filter ignoring the noise over variant 2 instead
         return f"error variance with the signal noise / with background noise only (sigma_x^2*) at P = {p:g}"
 
     low, high = NOT_SUBSTANTIAL
-    below = {f"P={p:g}": InBand(ratio(p), low, high, unit="(ratio)") for p in grid_p if 0 < p <= 0.5}
+    below = {f"P={p:g}": InBand(ratio(p), low, high, unit="(ratio)") for p in grid_p if 0 < p < 0.5}
 
     def rule(above):
         return AllOf({**below, **{f"P={p:g}": InBand(ratio(p), 2.0, unit="(ratio)") for p in above}})
@@ -135,9 +147,19 @@ def fig2_points(grid_p, grid_psi) -> list[float]:
     return [p for p in grid_psi if not (p == PSI_DEFAULT and CONTRAST_DEFAULT in grid_p)]
 
 
+class _ByReadings(vd.ByReading):
+    """A :class:`~tvtrack.verdicts.ByReading` whose rules may be ByReadings on other entries (C000-3: "contrast",
+    then "signal-noise scale"): the rule in force at a configuration is followed down to the one that judges."""
+
+    def for_config(self, config):
+        return vd.for_config(self.for_value(config.get(self.entry)), config)
+
+
 def _same_accuracy(grid_p, grid_psi) -> vd.ByReading:
-    """C000-3's rule: variant 1 / variant 2 within [0.8, 1.25] at every Fig. 3 contrast but P = 0 and at every Fig. 2
-    SNR (:func:`fig2_points`); at the register's contrast = 0 the Fig. 2 parts are left out (the same filter twice)."""
+    """C000-3's rule: variant 1 / variant 2 within [0.8, 1.25] at every Fig. 3 contrast and at every Fig. 2 SNR
+    (:func:`fig2_points`), by "contrast" and then by "signal-noise scale": with c_s = N0 P/(1-P) (the default) the
+    P = 0 part is not checkable and at the register's contrast = 0 the Fig. 2 parts are left out (the same filter
+    twice); with c_s = A (eq. (6) as printed) variant 1 models a signal noise at P = 0 too, so every part is judged."""
     identity = NotCheckable(
         "at P = 0 both variants are the same filter (c_s = N0 P/(1-P) = 0: variant 1's signal-noise state is not "
         "observed): the ratio is 1 by construction, at every psi_A"
@@ -146,9 +168,15 @@ def _same_accuracy(grid_p, grid_psi) -> vd.ByReading:
     def part(k):
         return InBand(f"error variance of variant 1 / of variant 2 at {k}", 0.8, 1.25, "(ratio)")
 
-    fig3 = {f"P={p:g}": identity if p == 0 else part(f"P={p:g}") for p in grid_p}
+    fig3 = {f"P={p:g}": part(f"P={p:g}") for p in grid_p}
+    same = {k: identity if k == "P=0" else r for k, r in fig3.items()}
     fig2 = {f"psi_A={p:g}": part(f"psi_A={p:g}") for p in fig2_points(grid_p, grid_psi)}
-    return vd.ByReading("contrast", {0.0: AllOf(fig3)}, AllOf({**fig3, **fig2}))
+    literal = AllOf({**fig3, **fig2})  # eq. (6) as printed: two filters at every contrast
+
+    def by_scale(consistent: Rule) -> vd.ByReading:
+        return _ByReadings("signal-noise scale", {CS_LITERAL: literal}, consistent)
+
+    return _ByReadings("contrast", {0.0: by_scale(AllOf(same))}, by_scale(AllOf({**same, **fig2})))
 
 
 def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
@@ -205,10 +233,21 @@ def claim_rules(sizes: Sizes | None = None) -> dict[str, Rule]:
     }
 
 
+#: The readings of C000-4's "needs more computation" (register entry "C000-4 cost measure").
+COST_READINGS = ("operation count", "CPU time")
+
+
 def cost_rule() -> Rule:
-    """C000-4: variant 1 needs more arithmetic per filter step than variant 2 (the ratio of operation counts, or of
-    CPU time under the register's other reading)."""
-    return Ordering("variant 1's work per step", "variant 2's", ">", "ratio", unit="(ratio)")
+    """C000-4, per reading of "needs more computation": the CPU time per step of the compiled filters, variant 1
+    over variant 2, above 1 (measured, with the interval of repeated paired timings); the operation count per step
+    is not checkable (the notebook shows it)."""
+    counted = NotCheckable(
+        "counted in arithmetic operations per step, the work is a count of this project's own writing of the "
+        "paper's equations (variant 1's two-state covariance against variant 2's one): fixed before any run and "
+        "the same on every run, so no run can find otherwise"
+    )
+    timed = Ordering("variant 1's work per step", "variant 2's", ">", "ratio", unit="(ratio)")
+    return vd.ByReading("C000-4 cost measure", {COST_READINGS[1]: timed}, counted)
 
 
 RULES = claim_rules()

@@ -56,9 +56,8 @@ def conclusions(claims, ex) -> str:
         + "; labels "
         + ", ".join(f"{n} {lab}" for lab, n in labels.most_common())
         + ".",
-        f"The exploration ran {ex.settings['replicates']} independent replicates, "
-        f"{sum(r.stage == 'single' for r in ex.runs)} one-at-a-time and {sum(r.stage == 'joint' for r in ex.runs)} "
-        f"joint configurations over {len(ex.register)} register entries"
+        f"The exploration ran {ex.settings['replicates']} independent replicates, {_configurations(ex)} over "
+        f"{len(ex.register)} register entries"
         + (f" (added while trying to flip a label: {', '.join(adversarial)})." if adversarial else "."),
         "",
     ]
@@ -70,6 +69,22 @@ def conclusions(claims, ex) -> str:
         where = f": {'; '.join(shown)}" if shown else ""
         lines.append(f"- **{c.id}** {c.verdict}, {shown_label(c)}{where}.{_lost_default(c)}")
     return "\n".join(lines)
+
+
+def _configurations(ex) -> str:
+    """``"35 one-at-a-time configurations and 32 joint configurations (measured in 227 runs: ...)"``: configurations
+    counted as configurations (a one-at-a-time one is one run; a joint sample of the register is measured once per
+    group of claims that read its changes, so its runs are counted apart)."""
+    default = ex.register.default()
+    singles = {tuple(sorted(map(str, r.changed(default).items()))) for r in ex.runs if r.stage == "single"}
+    joint = int(ex.settings.get("joint_configurations") or 0)
+    runs = sum(r.stage == "joint" for r in ex.runs)
+    said = f"{len(singles)} one-at-a-time configurations and {joint} joint configuration{'s' * (joint != 1)}"
+    return said + (
+        f" (measured in {runs} runs: each joint configuration once per group of claims that read what it changes)"
+        if runs
+        else ""
+    )
 
 
 def _lost_flip(claim, where: str) -> str:
@@ -140,18 +155,33 @@ def _counted(counts: Counter) -> str:
 def drawn_conditions(ex, claim_id: str, rule) -> tuple[list, str]:
     """The rows a figure of one claim over its exploration draws, in the register's plain words: the default
     (pooled replicates), every entry changed alone, every pinned joint condition and every other condition whose
-    verdict is decided and differs from the default's (each flip); and, for the caption, what is left out, counted
-    by kind (``""`` where nothing is)."""
+    verdict is decided and differs from the default's (each flip); and, for the caption, a sentence on what is left
+    out (``""`` where nothing is): the conditions that agree with the default's verdict and those undecided, each
+    counted by kind, with how many of the undecided the sizing budget left smaller than the default needed. A
+    condition's verdict is the record's (:meth:`tvtrack.explore.Exploration.record`): one with fewer replicates than
+    the default needed is undecided, whatever its own value reads."""
     rule = rule.default if isinstance(rule, ByReading) else rule
     verdict = rule.decide(_measured(ex.measured(claim_id)))
-    rows, left = [("the default (replicates pooled)", ex.measured(claim_id))], Counter()
+    rows = [("the default (replicates pooled)", ex.measured(claim_id))]
+    agree, open_, short = Counter(), Counter(), Counter()
     for c in ex.record(claim_id)["conditions"]:
-        flips = c.get("verdict") not in (None, "undecided", verdict)
-        if c["kind"] in ("single", "pinned") or flips:
+        v = "undecided" if c.get("undersized") else c.get("verdict")
+        if c["kind"] in ("single", "pinned") or v not in (None, "undecided", verdict):
             rows.append((ex.register.describe(c["changed"]), c["measured"]))
+        elif v == verdict:
+            agree[c["kind"]] += 1
         else:
-            left[c["kind"]] += 1
-    return rows, _counted(left)
+            open_[c["kind"]] += 1
+            short[c["kind"]] += 1 if c.get("left_by_budget") else 0
+    said = [f"{_counted(agree)} agreeing with the default's verdict"] if agree else []
+    if open_:
+        each = [
+            f"{_counted(Counter({k: n}))}"
+            + (f" ({short[k]} of them left smaller than the default needed by the sizing budget)" if short[k] else "")
+            for k, n in open_.items()
+        ]
+        said.append(f"undecided (neither agreeing nor flipping): {', '.join(each)}")
+    return rows, (f"Not drawn: {'; '.join(said)}." if said else "")
 
 
 def conditions_above(ex, claim_id: str, rule, line: str) -> str:

@@ -19,7 +19,12 @@ KINDS = {
     "signal-noise scale": ("reading", "a reading of eq. (6)'s printed sqrt(A S) against eq. (2)'s N0 P/(1-P) S"),
     "v2 noise at": ("reading", "a reading of eq. (9)'s 'at the estimate'"),
     "initial estimate": ("reading", "a reading of which of Fig. 1's curves (solid or dashed) the claim is about"),
-    "initial position": ("reading", "a reading of 'the image is within the micro-raster'"),
+    "initial position": (
+        "regime",
+        "a world beyond the paper: eq. (3) makes the message stationary, so the object starts from its own law "
+        "N(0, sigma_1^2); 'the image is within the micro-raster' motivates the filters' D11(0) = 0.2, not the truth's "
+        "start",
+    ),
     "convergence criterion": ("reading", "a reading of 'converge fairly quickly' (Conclusions)"),
     "lock threshold": ("reading", "a reading of what 'converged' requires of one run"),
     "C000-6 filter": ("reading", "a reading of the sentence whose opening is lost at a page break"),

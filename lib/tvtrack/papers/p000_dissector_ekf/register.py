@@ -118,12 +118,12 @@ _ENTRIES = [
     ),
     Entry(
         "initial position",
-        "reading",
+        "regime",
         "stationary N(0, sigma_1^2)",
         ("stationary N(0, sigma_1^2)", "uniform in the micro-raster"),
         origin="adversarial",
-        why="'the image is within the micro-raster' (the paper's motivation of D11(0) = 0.2): the message's own law, "
-        "or anywhere in the raster with equal probability",
+        why="the object's start: the message's own stationary law (eq. (3)), or an object anywhere in the raster with "
+        "equal probability, which the paper's message model does not produce",
     ),
     Entry(
         "convergence criterion",
@@ -276,7 +276,7 @@ _ENTRIES = [
         "sentence's subject is 'accounting for' the component and its paragraph opens with 'the results of the "
         "study of the algorithms' efficiency', so a reviewer compares a filter that ignores the signal noise with "
         "variant 2, which accounts for it, on the same data, in both halves (the same thresholds: within a factor "
-        "1.3 either way at P <= 0.5, at least 2 above)",
+        "1.3 either way below P = 0.5, at least 2 above)",
     ),
     Entry(
         "statistic",

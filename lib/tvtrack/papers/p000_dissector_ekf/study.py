@@ -24,7 +24,7 @@ from ...estimate import Estimate
 from ...montecarlo import mean_square_ci, quantile_ci, ratio_ci, rms_ci
 from ...counts import proportion_ci
 from .sizes import Sizes
-from .claims import fig2_points
+from .claims import COST_READINGS, fig2_points
 from .cost import operation_ratio, run_steps_variant1, run_steps_variant2
 from .cpu_time import paired_time_ratio
 from .lock_loss import keep, keep_pair
@@ -354,7 +354,9 @@ def _c2(cfg, seed, sizes):
 def _c3(cfg, seed, sizes):
     """C000-3: v1 / v2 steady variance over the Fig. 3 contrasts (at psi_A) and the Fig. 2 SNRs (at P; the point
     that is Fig. 3's P = 0.5 at the default psi_A is left to Fig. 3, :func:`.claims.fig2_points`), tagged with the
-    "contrast" it was measured at: at P = 0 the Fig. 2 parts are the same filter twice and are not measured."""
+    "contrast" it was measured at and then with the "signal-noise scale": at P = 0 with c_s = N0 P/(1-P) the Fig. 2
+    parts are the same filter twice and are not measured; with c_s = A (eq. (6) as printed) variant 1 still models a
+    signal noise at P = 0, so they are."""
     field = "d_steady" if cfg.get("C000-3 accuracy", "Monte Carlo error") == "filters' own D11" else "steady"
 
     def runs(psi, p, filt):
@@ -364,24 +366,26 @@ def _c3(cfg, seed, sizes):
     for p in sizes.contrast_grid:
         psi = psi_at(cfg["psi_A"], p, cfg["contrast convention"])
         parts[f"P={p:g}"] = _ratio(runs(psi, p, "v1"), runs(psi, p, "v2"), cfg["statistic"])
-    if cfg["contrast"] != 0:
+    scale = cfg.get("signal-noise scale", CS_CONSISTENT)
+    if cfg["contrast"] != 0 or scale == CS_LITERAL:
         for psi in fig2_points(sizes.contrast_grid, sizes.psi_grid):
             parts[f"psi_A={psi:g}"] = _ratio(
                 runs(psi, cfg["contrast"], "v1"), runs(psi, cfg["contrast"], "v2"), cfg["statistic"]
             )
-    return ByReading.tag(cfg["contrast"], parts)
+    return ByReading.tag(cfg["contrast"], ByReading.tag(scale, parts))
 
 
 def _c5_c7(cfg, seed, sizes):
     """C000-5 (tagged with its reading of "substantially determines") and C000-7 from the ratios to sigma_x^2*
     (C000-5's from the filter ignoring the signal noise over variant 2 under its reading "C000-5 comparison" =
     :data:`ACCOUNTING`)."""
-    ratios = [ratio_to_star(cfg, seed, sizes, p) for p in sizes.contrast_grid]
+    grid = sizes.contrast_grid
+    ratios = [ratio_to_star(cfg, seed, sizes, p) for p in grid]
     r9 = ratios[list(sizes.contrast_grid).index(0.9)]
     c5_ratios = ratios  # C000-5's reading of what it compares; C000-7 reads Fig. 3's ratio under every reading
     if cfg.get("C000-5 comparison", NOISE_EFFECT) == ACCOUNTING:
-        c5_ratios = [_ratio_to_accounting(cfg, seed, sizes, p) if p > 0 else None for p in sizes.contrast_grid]
-    c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, c5_ratios) if 0 < p <= 0.5}
+        c5_ratios = [_ratio_to_accounting(cfg, seed, sizes, p) if p not in (0, 0.5) else None for p in grid]
+    c5 = {f"P={p:g}": r for p, r in zip(sizes.contrast_grid, c5_ratios) if 0 < p < 0.5}  # strict: not P = 0.5
     above = (
         [0.9] if cfg.get("substantially determines", AT_09) == AT_09 else [p for p in sizes.contrast_grid if p > 0.5]
     )
@@ -540,22 +544,24 @@ def measure(config: dict, seed: int, sizes: Sizes = Sizes(), claims: frozenset |
 
 
 def measure_cost(config: dict, seed: int, n_trials: int, n_steps: int = 200) -> dict:
-    """C000-4 at ``config``: arithmetic operations per filter step of variant 1 over variant 2
-    (:func:`.cost.operation_ratio`, deterministic; the default reading ``"C000-4 cost measure" = "operation
-    count"``), or the CPU-time ratio :func:`cost_ratio` of the compiled steps over ``n_trials`` runs of ``n_steps``
-    samples (``"C000-4 batch" = "all trials"``) or over one run of ``n_trials * n_steps`` samples (the same work);
-    variant 2 re-evaluates eq. (9)'s noise at the updated estimate when ``"v2 noise at"`` says so.
+    """C000-4 at ``config``, tagged with its "C000-4 cost measure" (:meth:`tvtrack.verdicts.ByReading.tag`): the
+    arithmetic operations per filter step of variant 1 over variant 2 (:func:`.cost.operation_ratio`; the default
+    reading, shown, not judged: :func:`.claims.cost_rule`), or the CPU-time ratio :func:`cost_ratio` of the compiled
+    steps over ``n_trials`` runs of ``n_steps`` samples (``"C000-4 batch" = "all trials"``) or over one run of
+    ``n_trials * n_steps`` samples; variant 2 re-evaluates eq. (9)'s noise at the update when ``"v2 noise at"`` says.
 
     Returns
     -------
-    dict  {"C000-4": variant 1 / variant 2: the exact operation-count ratio (float), or the CPU-time ratio with the
-    interval of its repeated paired timings (:class:`~tvtrack.estimate.Estimate`; NaN without compiled steps)}
+    dict  {"C000-4": tag(reading, variant 1 / variant 2: the exact operation-count ratio (float), or the CPU-time
+    ratio with the interval of its repeated paired timings (:class:`~tvtrack.estimate.Estimate`; NaN uncompiled))}
     """
     iterations = 1 if config["v2 noise at"] == "updated estimate" else 0
-    if config.get("C000-4 cost measure", "operation count") == "operation count":
-        return {"C000-4": operation_ratio(iterations)}
+    reading = config.get("C000-4 cost measure", COST_READINGS[0])
+    if reading == COST_READINGS[0]:
+        return {"C000-4": ByReading.tag(reading, operation_ratio(iterations))}
     one = config["C000-4 batch"] == "one trial"
-    return {"C000-4": cost_ratio(n_trials, n_steps, seed, noise_iterations=iterations, one_trial=one)}
+    ratio = cost_ratio(n_trials, n_steps, seed, noise_iterations=iterations, one_trial=one)
+    return {"C000-4": ByReading.tag(reading, ratio)}
 
 
 def cost_ratio(
