@@ -135,3 +135,27 @@ def test_the_exploration_lines_give_every_part_its_counts_flips_and_moving_entri
         "  - **C001-1 (missed)**: undecided, no label (undecided at the default: nothing to flip); about 12 "
         "replicates decide it."
     )
+
+
+def test_a_claim_no_configuration_flips_says_how_many_stayed_undecided():
+    from tvtrack.part_lines import unflipped_words
+
+    def share(undecided):
+        return {"agree": 49 - undecided, "flip": 0, "undecided": undecided, "design": 49}
+
+    two = _claim(
+        "C002-8",
+        "reproduced",
+        {"worse": _part("reproduced", share=share(35)), "better": _part("reproduced", share=share(44))},
+    )
+    assert unflipped_words(two) == (
+        "no explored configuration flips it (worse: 35 of the 49 explored for it stayed undecided; better: 44 of the "
+        "49 explored for it stayed undecided)"
+    )
+    one = _claim("C002-7", "undecided", {"fine": _part("reproduced", share=share(7)), "coarse": _part("undecided")})
+    assert unflipped_words(one) == (
+        "no explored configuration flips it (fine: 7 of the 49 explored for it stayed undecided; coarse: undecided at "
+        "the default, so nothing to flip)"
+    )
+    none = _claim("C002-6", "undecided", {"claim": _part("undecided", label="-")})
+    assert unflipped_words(none) == "nothing to flip: undecided at the default"

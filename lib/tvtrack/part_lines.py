@@ -15,7 +15,15 @@ from typing import Any, Mapping
 from .run_words import lost_basis, part_name, plain_text, share_counts
 from .wording import PROVISIONAL, at_profile, claim_fields, claim_flips, side_words
 
-__all__ = ["parts_held", "hold_note", "coverage_words", "part_line", "record_lines", "exploration_lines"]
+__all__ = [
+    "parts_held",
+    "hold_note",
+    "unflipped_words",
+    "coverage_words",
+    "part_line",
+    "record_lines",
+    "exploration_lines",
+]
 
 _PART_VERBS = (
     ("reproduced", "holds for"),
@@ -78,6 +86,27 @@ def hold_note(claim: Any) -> str:
             f"{lost.get('in_lock_verdict')}"
         )
     return "; ".join(bits)
+
+
+def unflipped_words(claim: Any) -> str:
+    """A claim no explored configuration flips, and how many of those explored for each part stayed undecided
+    (``"no explored configuration flips it (40 of the 43 explored for it stayed undecided)"``): not flipped is not
+    shown to hold where most stayed undecided."""
+    parts = _parts(claim)
+    said = []
+    for n, p in parts.items():
+        share, name = p.get("share") or {}, "" if len(parts) == 1 else f"{part_name(n)}: "
+        if share.get("design"):
+            said.append(
+                f"{name}{int(share.get('undecided') or 0)} of the {share['design']} explored for it stayed undecided"
+            )
+        elif p.get("verdict") == "undecided":
+            said.append(f"{name}undecided at the default, so nothing to flip")
+    if parts and all(
+        p.get("verdict") == "undecided" and not (p.get("share") or {}).get("design") for p in parts.values()
+    ):
+        return "nothing to flip: undecided at the default"
+    return "no explored configuration flips it" + (f" ({'; '.join(said)})" if said else "")
 
 
 def coverage_words(record: Mapping, verdict: str | None = None) -> str:

@@ -207,6 +207,36 @@ def test_the_recording_reports_its_errors_in_sigma_with_the_pixel_size():
 
 
 def test_the_gain_figure_says_it_draws_the_first_replicate():
-    cell = _source("n_rep = len(ex.replicates())")
+    cell = _source('n_rep = len(ex.record("C002-11")["replicates"])')
     assert "Drawn from the first replicate at the register default" in cell
     assert "Pooled over the {n_rep} replicates (the figure draws the first alone)" in cell
+
+
+def test_the_headline_caveat_gives_the_other_comparisons_where_they_point_the_other_way():
+    part = "d = 1 sigma (paper x4.5)"
+    rows = {
+        "published, velocity free (replicates pooled)": {part: _e(0.74, 0.58, 0.95)},
+        "with the designation as a prior (one replicate)": {part: _e(1.42, 1.14, 1.76)},
+        "the designated velocity given to both (one replicate)": {part: _e(1.4, 0.97, 2.06)},
+        "not run": None,
+    }
+    text = extras.headline_caveat(rows, [part])
+    assert text == (
+        "At d = 1 sigma which algorithm is more accurate depends on what the ULA is given: with the designation as a "
+        "prior (one replicate): 1.42 [1.14, 1.76], above 1: the ULA more accurate; the designated velocity given to "
+        "both (one replicate): 1.4 [0.97, 2.06], not distinguishable from 1"
+    )
+    same = {k: {part: _e(0.7, 0.6, 0.9)} for k in ("a", "b")}
+    assert extras.headline_caveat(same, [part]) == ""  # one direction: nothing to add to the claim's sentence
+
+
+def test_the_notebook_words_its_counts_labels_and_comparisons_from_the_record():
+    assert "(*{esc(e.name)}*)" not in _source("esc = lambda t")  # the register table: titles, no code names
+    c11 = _source('MAP, KNOWN = {"ULA"')
+    assert "extras.headline_caveat(rows" in c11  # the caveat travels with the claim into every summary
+    conclusions = _source("verdicts = {c.id: c.verdict")
+    assert "no explored condition flips it" not in conclusions and "unflipped_words(c)" in conclusions
+    assert "label_words(c.verdict, shown_label(c))" in conclusions  # "robust in its decided parts only"
+    assert "on the same scenes" not in conclusions and "in one replicate of that condition" in conclusions
+    assert "{REGISTER[a].title}: alone" in _source("display(Markdown(ex.summary()))")
+    assert _source("display(Markdown(exploration_lines(ex)))")  # each part's agree / flip / undecided

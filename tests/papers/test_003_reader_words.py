@@ -222,3 +222,20 @@ def test_fig2_caption_names_panels_by_place_and_the_bound_figure_keeps_an_interv
     left = fig.axes[0].get_xlim()[0]
     plt.close(fig)
     assert left > 0 and "drawn to the axis' left edge" in caption
+
+
+def test_the_exploration_is_described_as_it_runs():
+    """One-at-a-time conditions run on the default's replicate seeds; an unprinted setting makes ``depends`` too;
+    the shares are over every explored configuration, listed part by part."""
+    import json
+    from pathlib import Path
+
+    nb = Path(__file__).resolve().parents[2] / "notebooks" / "003_rotating_marker_tracker.ipynb"
+    cells = ["".join(c["source"]) for c in json.loads(nb.read_text())["cells"]]
+    register = next(c for c in cells if c.startswith("## 2. What the paper left unstated"))
+    assert "first\nreplicate's draws" not in register and "default's\nreplicate seeds" in register
+    assert "never\nprinted flips decisively is labelled depends" in register and "`depends`" not in register
+    assert "(kind reading, statistic or comparator)" not in register
+    verdicts = next(c for c in cells if c.startswith("## 10. Verdicts"))
+    assert "share of\njoint configurations" not in verdicts and "all the configurations explored for it" in verdicts
+    assert any("exploration_lines(ex_t, ex_i)" in c for c in cells)
