@@ -38,7 +38,7 @@ def test_c001_9_is_the_worst_start_within_the_field():
     sz = dict(defaults=REG.default(), prediction_rms=7.6)
     m = spherical.measure_spherical({}, 0, sz)["C001-9"]
     assert m["2.107°/s (10 el/frame)"] == pytest.approx(fast["deviation_el"])
-    lin4 = spherical.measure_spherical({"extrapolation": "linear", "horizon": "4 s filter memory"}, 0, sz)["C001-9"]
+    lin4 = spherical.measure_spherical({"extrapolation": "linear", "horizon": "k_b3 filter memory"}, 0, sz)["C001-9"]
     assert lin4["0.5°/s (0.02°/frame)"] == pytest.approx(2.954, abs=0.01)  # > 1 tolerance: not reproduced
     # every start's deviation is at most the field's worst (the worst is a maximum over the starts within)
     for s in np.arange(-20.0, 20.5, 2.5):

@@ -46,3 +46,41 @@ def test_the_entry_is_filed_and_worded_as_an_unreported_setting():
     words = " ".join([e.title, e.why, *map(str, e.phrases.values())]).lower()
     assert "elements per second" not in words and "elements/s" not in words and "fixed motion" not in words
     assert "per frame" in words and "never printed" in words
+
+
+# ----------------------------------------------------------------------------------- C001-9 at the frame rate
+
+
+def test_c001_9_reads_the_paper_s_per_frame_rates_at_the_frame_rate():
+    """The paper's rates are 10 el/frame (6°/712 an element) and 0.02°/frame: 2.107°/s and 0.5°/s at 25 Hz, twice
+    that at 50 Hz; C001-9 declares the frame rate it reads."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import DEPENDS
+
+    assert "frame_rate_hz" in DEPENDS["C001-9"] and "k_bound3" in DEPENDS["C001-9"]
+    at25 = list(spherical.paper_rates(25.0).values())
+    assert at25 == pytest.approx([10 * 25 * 6 / 712, 0.02 * 25]) and at25[0] == pytest.approx(2.107, abs=1e-3)
+    assert list(spherical.paper_rates(50.0).values()) == pytest.approx([10 * 50 * 6 / 712, 0.02 * 50])
+    sz = {"defaults": REG.default(), "prediction_rms": 7.6}
+    slow = "0.5°/s (0.02°/frame)"
+    m25 = spherical.measure_spherical({}, 0, sz)["C001-9"][slow]
+    m50 = spherical.measure_spherical({"frame_rate_hz": 50.0}, 0, sz)["C001-9"][slow]
+    assert m25 == pytest.approx(spherical.field_deviation(0.5, 10.0, "quadratic")["deviation_el"])
+    assert m50 == pytest.approx(spherical.field_deviation(1.0, 10.0, "quadratic")["deviation_el"]) and m50 > m25
+
+
+def test_c001_9_s_filter_memory_is_k_b3_frames_at_the_frame_rate():
+    """The filter-memory horizon is k_b3 frames: 100 frames are 4 s at 25 Hz, 2 s at 50 Hz; 200 frames 8 s."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf import spherical
+
+    cfg = {**REG.default(), "horizon": "k_b3 filter memory"}
+    assert spherical.horizon_seconds(cfg) == pytest.approx(4.0)
+    assert spherical.horizon_seconds({**cfg, "frame_rate_hz": 50.0}) == pytest.approx(2.0)
+    assert spherical.horizon_seconds({**cfg, "k_bound3": 200}) == pytest.approx(8.0)
+    assert spherical.horizon_seconds(REG.default()) == 10.0
+    sz = {"defaults": REG.default(), "prediction_rms": 7.6}
+    # in frames the deviation is the same at both rates: 2 s at 1°/s is 4 s at 0.5°/s
+    lin = {"horizon": "k_b3 filter memory", "extrapolation": "linear"}
+    m25 = spherical.measure_spherical(lin, 0, sz)["C001-9"]["0.5°/s (0.02°/frame)"]
+    m50 = spherical.measure_spherical(lin | {"frame_rate_hz": 50.0}, 0, sz)["C001-9"]["0.5°/s (0.02°/frame)"]
+    assert m25 == pytest.approx(2.954, abs=0.01) and m50 == pytest.approx(m25)

@@ -401,7 +401,7 @@ def c9(monkeypatch):
 
 
 def test_c001_9_reads_each_rate_in_tolerances_and_the_share_of_geometries_within(c9):
-    cfg = {**DEFAULT, "tolerance": "1 element", "extrapolation": "linear", "horizon": "4 s filter memory"}
+    cfg = {**DEFAULT, "tolerance": "1 element", "extrapolation": "linear", "horizon": "k_b3 filter memory"}
     cfg["targets"] = "20-100 km, 50-250 m/s"
     got = spherical.measure_spherical(cfg, 0, {"defaults": DEFAULT, "prediction_rms": 2.0})["C001-9"]
     rates = list(spherical.PAPER_RATES.values())

@@ -284,7 +284,7 @@ def test_adversarial_regimes_reach_the_measurements():
     assert weak > paper
     sz = SIZES | {"prediction_rms": 4.0}
     assert (
-        spherical.measure_spherical({"horizon": "4 s filter memory"}, 0, sz)["C001-9"]["geometries"]
+        spherical.measure_spherical({"horizon": "k_b3 filter memory"}, 0, sz)["C001-9"]["geometries"]
         > spherical.measure_spherical({}, 0, sz)["C001-9"]["geometries"]
     )
     assert spherical.measure_spherical({"targets": "50-100 km, 100-300 m/s"}, 0, sz)["C001-9"]["geometries"] == 1.0

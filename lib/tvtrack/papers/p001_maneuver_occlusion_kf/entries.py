@@ -461,12 +461,12 @@ ENTRIES = (
         "10 s loss",
         tuple(HORIZONS),
         "C001-9: 'accuracy acceptable for prediction' over the 10 s loss, or over the span the 3rd-order filter "
-        "fits a polynomial to (its memory, k_b3 = 100 frames = 4 s)",
+        "fits a polynomial to (its memory, k_b3 frames: 100 frames are 4 s at 25 Hz)",
         "adversarial",
         title="time over which the angle must stay predictable (C001-9)",
         phrases={
             "10 s loss": "predictable over the 10 s loss",
-            "4 s filter memory": "predictable over the 4 s the 3rd-order filter remembers",
+            "k_b3 filter memory": "predictable over the k_b3 frames the 3rd-order filter remembers",
         },
     ),
     Entry(

@@ -108,7 +108,8 @@ DEPENDS = {
         "window_n",
         "loss_length_s",
     ],
-    "C001-9": ["extrapolation", "tolerance", "targets", "horizon"],
+    # the paper's rates are per frame (deg/s at the frame rate); the filter-memory horizon is k_b3 frames
+    "C001-9": ["extrapolation", "tolerance", "targets", "horizon", "frame_rate_hz", "k_bound3"],
 }
 
 #: Settings of the notebook the measurements read that are not register entries: run sizes (how many runs,

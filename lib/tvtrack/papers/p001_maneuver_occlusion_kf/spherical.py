@@ -12,9 +12,12 @@ from .scenario import FPS_REF, with_defaults
 
 __all__ = [
     "HORIZONS",
+    "horizon_seconds",
     "spherical_deviations",
     "TARGET_SETS",
+    "PAPER_RATES_PER_FRAME",
     "PAPER_RATES",
+    "paper_rates",
     "paper_rate_deviation",
     "start_deviation",
     "field_deviation",
@@ -22,8 +25,18 @@ __all__ = [
 ]
 
 
-#: C001-9's extrapolation horizon, s: the scenario's 10 s loss, or the 3rd-order filter's memory (k_b3 = 100 frames).
-HORIZONS = {"10 s loss": 10.0, "4 s filter memory": 4.0}
+#: C001-9's extrapolation horizon: the scenario's 10 s loss (seconds), or the 3rd-order filter's memory, its gain
+#: bound k_b3 in frames (the register's 100 frames are 4 s at 25 Hz, 2 s at 50 Hz): the unit each is counted in.
+HORIZONS = {"10 s loss": "s", "k_b3 filter memory": "frames"}
+
+
+def horizon_seconds(config: dict) -> float:
+    """C001-9's horizon in seconds under a complete configuration: 10 s for ``"10 s loss"``; ``k_bound3`` frames at
+    ``frame_rate_hz`` for ``"k_b3 filter memory"``."""
+    name = config.get("horizon", "10 s loss")
+    if name not in HORIZONS:
+        raise ValueError(f"horizon {name!r}; it must be one of {tuple(HORIZONS)}")
+    return 10.0 if name == "10 s loss" else float(config["k_bound3"]) / float(config["frame_rate_hz"])
 
 
 def spherical_deviations(
@@ -70,11 +83,21 @@ TARGET_SETS = {
 }
 
 
-#: The paper's two angular rates, deg/s: 10 elements/frame and 0.02°/frame at 25 Hz (C001-10's two figures).
-PAPER_RATES = {
-    "2.107°/s (10 el/frame)": 10.0 * FPS_REF * 6.0 / 712,
-    "0.5°/s (0.02°/frame)": 0.02 * FPS_REF,
+#: The paper's two angular rates as it states them, per frame (deg/frame): 10 elements/frame (6°/712 an element) and
+#: 0.02°/frame (C001-10's two figures). The names give them in deg/s at the register's default 25 Hz.
+PAPER_RATES_PER_FRAME = {
+    "2.107°/s (10 el/frame)": 10.0 * 6.0 / 712,
+    "0.5°/s (0.02°/frame)": 0.02,
 }
+
+
+def paper_rates(frame_rate_hz: float) -> dict:
+    """The paper's two rates in deg/s at ``frame_rate_hz`` (its per-frame rates times the frame rate)."""
+    return {name: r * float(frame_rate_hz) for name, r in PAPER_RATES_PER_FRAME.items()}
+
+
+#: The paper's two rates, deg/s, at the register's default frame rate (the parts' names).
+PAPER_RATES = paper_rates(FPS_REF)
 
 
 def paper_rate_deviation(rate_deg_s: float, horizon_s: float = 10.0, extrapolation: str = "quadratic") -> dict:
@@ -142,15 +165,17 @@ def measure_spherical(config: dict, seed: int, sizes: dict, claims=None) -> dict
     not only the crossing point), then over the register's grid of geometries the fraction within
     ±20° whose extrapolation stays within the tolerance (``extrapolation``: quadratic/linear; ``tolerance``:
     "1 element" or "prediction RMS at k_b3"; ``targets``: a key of :data:`TARGET_SETS`; ``horizon``: a key of
-    :data:`HORIZONS`; NaN when no geometry stays within ±20°); ``{}`` when ``claims`` does not ask for C001-9."""
+    :data:`HORIZONS`, with ``k_bound3`` and ``frame_rate_hz`` (:func:`horizon_seconds`); NaN when no geometry stays
+    within ±20°); the paper's rates are per frame, so in deg/s they are read at ``frame_rate_hz``
+    (:func:`paper_rates`); ``{}`` when ``claims`` does not ask for C001-9."""
     if claims is not None and "C001-9" not in claims:
         return {}
     config = with_defaults(config, sizes)
-    H = HORIZONS[config.get("horizon", "10 s loss")]
+    H = horizon_seconds(config)
     tol = 1.0 if config["tolerance"] == "1 element" else float(sizes["prediction_rms"])
     parts = {
         name: field_deviation(rate, H, config["extrapolation"])["deviation_el"] / tol
-        for name, rate in PAPER_RATES.items()
+        for name, rate in paper_rates(config["frame_rate_hz"]).items()
     }
     rows = spherical_deviations(*TARGET_SETS[config["targets"]], horizon_s=H)
     inside = rows[rows[:, 4] > 0]
