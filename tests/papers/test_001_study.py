@@ -167,7 +167,27 @@ def test_curve_agreement_and_its_word():
     assert a["p_mean"] == 1.0 and a["p_var"] > 0.5
     mc["mean"] = np.array([2.0, 3.0])
     assert curves.curve_agreement(cur, mc, 1000)["p_mean"] < 1e-6
-    assert curves.agreement_word(0.2) == "agree with" and curves.agreement_word(0.01) == "differ from"
+    assert curves.agreement_word(0.2) == "are not shown to differ from" and curves.agreement_word(0.01) == "differ from"
+
+
+def test_a_test_that_does_not_reject_is_not_worded_as_agreement():
+    """Fig. 4's Monte Carlo check at p = 0.06: a chi-square test at 5 % does not reject, which says the means are not
+    shown to differ, never that they agree; the words come from the p-value."""
+    assert "agree" not in curves.agreement_word(0.06) and curves.agreement_word(0.06) == "are not shown to differ from"
+    assert (
+        curves.chi2_words(0.06)
+        == "χ² p = 0.06 ≥ 0.05: not rejected at the 5 % level, which is not evidence of agreement"
+    )
+    assert curves.chi2_words(0.0017) == "χ² p = 0.0017 < 0.05: rejected at the 5 % level"
+    assert curves.agreement_word(0.049) == "differ from" and curves.agreement_word(0.05) != "differ from"
+    from pathlib import Path
+
+    import nbformat
+
+    nb = nbformat.read(Path(__file__).parents[2] / "notebooks" / "001_maneuver_occlusion_kf.ipynb", as_version=4)
+    cell = next(c.source for c in nb.cells if "curve_agreement(" in c.source)
+    assert "agree with" not in cell and "χ² p =" not in cell and "(p = " not in cell  # no words typed by hand
+    assert cell.count("curve_study.chi2_words(agree[") == 2 and cell.count("curve_study.agreement_word(agree[") == 2
 
 
 def test_curve_parts_on_a_constructed_curve():

@@ -34,6 +34,7 @@ __all__ = [
     "fig4_monte_carlo",
     "curve_agreement",
     "agreement_word",
+    "chi2_words",
     "smallest_rms_words",
     "C8_UNITS",
     "unbiased_prediction_bound",
@@ -219,8 +220,18 @@ def curve_agreement(curves: dict, mc: dict, n: int) -> dict:
 
 
 def agreement_word(p: float, level: float = 0.05) -> str:
-    """The word a test at ``level`` allows: "agree with" when p >= level, "differ from" otherwise."""
-    return "agree with" if p >= level else "differ from"
+    """The words a test at ``level`` allows: "differ from" when it rejects (p < level); otherwise only "are not
+    shown to differ from", since a test that does not reject is no evidence of agreement."""
+    return "are not shown to differ from" if p >= level else "differ from"
+
+
+def chi2_words(p: float, level: float = 0.05) -> str:
+    """What a chi-square test at ``level`` shows, from its p-value: ``"χ² p = 0.06 ≥ 0.05: not rejected at the 5 %
+    level, which is not evidence of agreement"`` or ``"χ² p = 0.01 < 0.05: rejected at the 5 % level"``."""
+    head = f"χ² p = {p:.2g}"
+    if p < level:
+        return f"{head} < {level:g}: rejected at the {100 * level:g} % level"
+    return f"{head} ≥ {level:g}: not rejected at the {100 * level:g} % level, which is not evidence of agreement"
 
 
 def unbiased_prediction_bound(sc: Scenario, f_first: int, f_last: int, f_pred: int, sigma_eps: float = 1.0) -> float:
