@@ -11,7 +11,7 @@ completes a configuration that names only the entries of one exploration (bind `
 ``functools.partial``, which stays picklable).
 
 Units: positions in raster elements, velocities in elements/frame, accelerations in elements/frame²; the motion is
-fixed in elements/s (the paper's values at 25 Hz), so another frame rate rescales the per-frame values.
+the paper's per frame at every frame rate, and only its times in seconds become frames (:mod:`.scenario`).
 """
 
 from __future__ import annotations
