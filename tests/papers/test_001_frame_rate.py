@@ -84,3 +84,24 @@ def test_c001_9_s_filter_memory_is_k_b3_frames_at_the_frame_rate():
     m25 = spherical.measure_spherical(lin, 0, sz)["C001-9"]["0.5°/s (0.02°/frame)"]
     m50 = spherical.measure_spherical(lin | {"frame_rate_hz": 50.0}, 0, sz)["C001-9"]["0.5°/s (0.02°/frame)"]
     assert m25 == pytest.approx(2.954, abs=0.01) and m50 == pytest.approx(m25)
+
+
+def test_fig4_grid_spans_the_same_seconds_at_every_frame_rate_so_the_optimum_is_not_cut_off():
+    """The bound is counted in frames, but the grid's range is this project's: at 50 frames/s the reference grid
+    (20-200 frames) ends before the switch-to-loss gap of 325 frames, and curve 3 would sit lowest on its edge for
+    want of points. Stretched with the frame rate, the optimum is interior and at the same time as at 25 frames/s
+    (100 frames at 25, 200 at 50: 4 s)."""
+    from tvtrack.papers.p001_maneuver_occlusion_kf import curves
+    from tvtrack.papers.p001_maneuver_occlusion_kf.register import build_register
+
+    d = build_register().default()
+    grid = [20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130, 140, 160, 200]
+    sizes = dict(defaults=d, sigma_eps=1.0, kb3_grid=grid)
+    assert curves.kb3_grid(d, sizes) == grid
+    at = {}
+    for fps in (25.0, 50.0):
+        cur = curves.fig4_curves({"frame_rate_hz": fps}, sizes)
+        assert list(cur["kb3"]) == [round(k * fps / 25.0) for k in grid]
+        assert curves.c8_parts(cur)["interior minimum"] > 0
+        at[fps] = cur["kb3"][cur["sum"].argmin()] / fps
+    assert at[50.0] == pytest.approx(at[25.0])

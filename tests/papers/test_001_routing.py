@@ -410,11 +410,13 @@ def test_c001_9_reads_each_rate_in_tolerances_and_the_share_of_geometries_within
     assert got == {**{k: 10.0 * r for k, r in spherical.PAPER_RATES.items()}, "geometries": 2 / 3}
     cfg |= {"tolerance": "prediction RMS at k_b3", "extrapolation": "quadratic"}
     cfg.pop("horizon")  # the 10 s loss where the configuration names no horizon
-    got = spherical.measure_spherical(cfg, 0, {"prediction_rms": 2.0})["C001-9"]
+    got = spherical.measure_spherical(cfg, 0, {"defaults": DEFAULT, "prediction_rms": 2.0})["C001-9"]
     assert c9["field"][-1] == (rates[-1], 10.0, "quadratic") and c9["grid"][1] == 10.0
     assert got == {**{k: 5.0 * r for k, r in spherical.PAPER_RATES.items()}, "geometries": 1 / 3}
-    assert spherical.measure_spherical(cfg, 0, {"prediction_rms": 2.0}, claims=["C001-8"]) == {}
-    assert list(spherical.measure_spherical(cfg, 0, {"prediction_rms": 2.0}, claims=["C001-9"])) == ["C001-9"]
+    assert spherical.measure_spherical(cfg, 0, {"defaults": DEFAULT, "prediction_rms": 2.0}, claims=["C001-8"]) == {}
+    assert list(
+        spherical.measure_spherical(cfg, 0, {"defaults": DEFAULT, "prediction_rms": 2.0}, claims=["C001-9"])
+    ) == ["C001-9"]
 
 
 def test_c001_9_with_no_geometry_inside_the_field_is_nan(c9, monkeypatch):

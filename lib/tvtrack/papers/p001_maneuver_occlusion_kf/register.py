@@ -134,10 +134,10 @@ FIXED_BY_PAPER = {
 #: ... and the project's grids, which the paper does not fix: each in the unit the paper's line decides, with that
 #: line. A grid sets where a curve is sampled, not a reading (its points are the curves' own).
 PROJECT_GRIDS = {
-    "kb3_grid": "the project's grid of the 3rd-order gain bound, in frames (20-200): the paper's Fig. 4 "
-    "axis is 'the number of the frame at which the lower bound of the filter's coefficients is set' (Fig. 4 text), "
-    "so the bound is counted in frames whatever the frame rate; the axis' range is not in the text (the figure "
-    "itself is lost)",
+    "kb3_grid": "the project's grid of the 3rd-order gain bound, in frames (20-200 at 25 frames/s): the paper's "
+    "Fig. 4 axis is 'the number of the frame at which the lower bound of the filter's coefficients is set' (Fig. 4 "
+    "text), so the bound is counted in frames; the axis' range is not in the text (the figure itself is lost), so "
+    "the grid is stretched with the frame rate to span the same seconds of the scenario",
     "loss_grid_s": "the project's grid of loss times for C001-7, in seconds, from just after the detection (5.5 s) "
     "to the scenario's loss at 12 s: the paper states the detection 'at the 5.5th second' and the loss 'at the "
     "12th' (simulation paragraph) and sweeps no loss time",
