@@ -89,15 +89,17 @@ def test_an_undecided_claim_card_says_its_label_covers_its_decided_parts_only():
     assert claim._repr_markdown_().startswith("**C002-7: undecided, robust in its decided parts only**.")
 
 
-def test_a_claim_not_checkable_has_no_label_because_nothing_is_measured():
+def test_a_claim_not_checkable_has_no_label_because_the_default_has_no_verdict_to_flip():
     from tvtrack.labels import _coverage
     from tvtrack.part_lines import coverage_words
 
     old = "no label (no part decided at the default: nothing to flip) over 49 distinct configurations"
-    assert coverage_words({"coverage": old}, "not checkable").startswith("no label (not checkable: nothing measured)")
+    assert coverage_words({"coverage": old}, "not checkable").startswith(
+        "no label (not checkable at the default: no verdict to flip)"
+    )
     assert coverage_words({"coverage": old}, "undecided") == old
     text = _coverage("-", {"claim": {"label": "-", "verdict": "not checkable"}}, [], [1, 2, 3], [], False, 0, False)
-    assert text.startswith("no label (not checkable: nothing measured) over 0 distinct")
+    assert text.startswith("no label (not checkable at the default: no verdict to flip) over 0 distinct")
 
 
 class _Exploration:

@@ -523,9 +523,9 @@ def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, pro
     extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
     extra += [f"{len(off)} outside the paper's operating point, counted beside the label"] if off else []
     small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""
-    if label == NO_PART_LABEL:  # a claim not checkable has nothing measured, so nothing decided either
+    if label == NO_PART_LABEL:  # not checkable at the default: no verdict there for a condition to flip
         nothing = {p.get("verdict") for p in parts.values()} == {"not checkable"}
-        why = "not checkable: nothing measured" if nothing else ""
+        why = "not checkable at the default: no verdict to flip" if nothing else ""
         label, which = f"no label ({why or 'no part decided at the default: nothing to flip'})", ""
     return (
         f"{label}{which} over {n_explored} distinct configurations ({len(single)} one at a time over "

@@ -111,12 +111,14 @@ def unflipped_words(claim: Any) -> str:
 
 def coverage_words(record: Mapping, verdict: str | None = None) -> str:
     """A record's ``coverage`` line as a reader needs it: a claim that is not checkable (``verdict``, or every part
-    of the record) carries no label because nothing is measured, not because no part was decided."""
+    of the record) carries no label because the default has no verdict to flip (conditions under other readings may
+    still be measured), not because no part was decided."""
     text = str(record.get("coverage") or "")
     verdicts = {p.get("verdict") for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)}
     if verdict == "not checkable" or verdicts == {"not checkable"}:
         text = text.replace(
-            "no label (no part decided at the default: nothing to flip)", "no label (not checkable: nothing measured)"
+            "no label (no part decided at the default: nothing to flip)",
+            "no label (not checkable at the default: no verdict to flip)",
         )
     return text
 
@@ -126,7 +128,7 @@ def _label_words(part: Mapping) -> str:
     if label not in ("-", "—"):
         return label
     if part.get("verdict") == "not checkable":
-        return "no label (not checkable: nothing measured)"
+        return "no label (not checkable at the default: no verdict to flip)"
     return "no label (undecided at the default: nothing to flip)"
 
 

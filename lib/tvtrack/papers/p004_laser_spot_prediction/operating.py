@@ -15,7 +15,7 @@ to ``"calibrated"``, which :func:`bandwidth_for` resolves to the factor at which
 (Brent's method, 1 % in the factor) divided by the default world's root, both on the same paths (seed 2005, 15
 paths x 500 frames, common random numbers: the seed's own error in the root cancels in the ratio); the factor
 applied is :data:`DEFAULT_BANDWIDTH` x that ratio. :data:`TARGET_FACTORS` does the same for the band's ends (the
-default world at 1.0 and 2.0 px). :func:`.calibration.world_table` recomputes both (21 root finds, about 30 CPU
+default world at 1.0 and 2.0 px). :func:`.calibration.world_table` recomputes both (23 root finds, about 30 CPU
 minutes on a loaded core: so the table is kept, not recomputed per run; the explorer pays nothing for it); a test
 checks three rows on other paths. A value with no row (a default moved by a sweep) keeps the default's factor.
 

@@ -52,7 +52,7 @@ ROWS = (
         "every corner frequency x this (today's 0.02, 0.1, 0.5 Hz at 1); the paper gives no turbulence strength, range "
         "or wind speed, so the wander time scale (beam size over cross-wind speed) is unknown within an order of magnitude. 'calibrated' "
         "re-calibrates every world (the factor at which the paper's filter errs the entry "
-        "'error in the band' one frame ahead on 15 paths; 3 in the default world, the calibration's root "
+        "'error in the band' at the horizon read on 15 paths; 3 in the default world, the calibration's root "
         "on the shipped paths, rounded). 1 (corners 0.02, 0.1, 0.5 Hz: the "
         "filter errs 0.33 px) and 8 (fastest corner 4 Hz: 3.9 px) are the knob itself set by hand: worlds that "
         "leave the paper's operating point, kept to show what the claims do outside it",
