@@ -98,6 +98,8 @@ def test_a_claim_not_checkable_has_no_label_because_the_default_has_no_verdict_t
         "no label (not checkable at the default: no verdict to flip)"
     )
     assert coverage_words({"coverage": old}, "undecided") == old
+    said = "no label (not checkable: nothing measured) over 1 distinct configurations"  # records of an older wording
+    assert coverage_words({"coverage": said}, "not checkable").startswith("no label (not checkable at the default:")
     text = _coverage("-", {"claim": {"label": "-", "verdict": "not checkable"}}, [], [1, 2, 3], [], False, 0, False)
     assert text.startswith("no label (not checkable at the default: no verdict to flip) over 0 distinct")
 

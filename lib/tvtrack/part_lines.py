@@ -116,10 +116,8 @@ def coverage_words(record: Mapping, verdict: str | None = None) -> str:
     text = str(record.get("coverage") or "")
     verdicts = {p.get("verdict") for p in (record.get("parts") or {}).values() if isinstance(p, Mapping)}
     if verdict == "not checkable" or verdicts == {"not checkable"}:
-        text = text.replace(
-            "no label (no part decided at the default: nothing to flip)",
-            "no label (not checkable at the default: no verdict to flip)",
-        )
+        for older in ("no part decided at the default: nothing to flip", "not checkable: nothing measured"):
+            text = text.replace(f"no label ({older})", "no label (not checkable at the default: no verdict to flip)")
     return text
 
 
