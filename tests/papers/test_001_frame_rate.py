@@ -78,6 +78,8 @@ def test_c001_9_s_filter_memory_is_k_b3_frames_at_the_frame_rate():
     assert spherical.horizon_seconds({**cfg, "frame_rate_hz": 50.0}) == pytest.approx(2.0)
     assert spherical.horizon_seconds({**cfg, "k_bound3": 200}) == pytest.approx(8.0)
     assert spherical.horizon_seconds(REG.default()) == 10.0
+    with pytest.raises(ValueError, match=r"horizon '4 s'; it must be one of \('10 s loss', 'k_b3 filter memory'\)"):
+        spherical.horizon_seconds({**cfg, "horizon": "4 s"})
     sz = {"defaults": REG.default(), "prediction_rms": 7.6}
     # in frames the deviation is the same at both rates: 2 s at 1°/s is 4 s at 0.5°/s
     lin = {"horizon": "k_b3 filter memory", "extrapolation": "linear"}

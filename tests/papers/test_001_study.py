@@ -371,3 +371,14 @@ def test_acceleration_unit_reading_scales_the_manoeuvre():
     a = curves.measure_curves({}, 0, sz)["C001-7"]
     b = curves.measure_curves({"accel_unit": "el/frame per s"}, 0, sz)["C001-7"]
     np.testing.assert_allclose(b["dominates early"], a["dominates early"] / 25, rtol=1e-4)
+
+
+def test_fig4_monte_carlo_runs_the_curves_grid_at_another_frame_rate():
+    """At 50 frames/s Fig. 4's curves run the grid stretched to the same seconds (kb3_grid); the Monte Carlo check
+    must run the same gain bounds, or it compares each curve point with another bound's runs."""
+    cfg = {"restart": "A", "frame_rate_hz": 50.0}
+    cur = curves.fig4_curves(cfg, SIZES)
+    assert list(cur["kb3"]) == [40, 100, 200, 400]
+    mc = curves.fig4_monte_carlo(cfg, SIZES, np.random.default_rng(9))
+    a = curves.curve_agreement(cur, mc, SIZES["n_fig4_trials"])
+    assert a["p_mean"] > 1e-3 and a["p_var"] > 1e-3

@@ -206,13 +206,14 @@ measure_curves = as_declared(("C001-7", "C001-8"), declared)(measure_curves)
 
 
 def fig4_monte_carlo(config: dict, sizes: dict, rng: np.random.Generator) -> dict:
-    """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3; mean, SD and SE of the prediction error."""
+    """Independent Monte Carlo check of Fig. 4: fresh runs per k_b3 of :func:`kb3_grid` (the curves' own grid at
+    the configuration's frame rate); mean, SD and SE of the prediction error."""
     config = with_defaults(config, sizes)
     sc = config_scenario(config)
     fl, fb = occlusion_frames(config["occlusion"], sc, config.get("loss_length_s", 10.0))
     vis = (sc.frames < fl) | (sc.frames >= fb)
     out = {"mean": [], "sd": [], "se": []}
-    for kb in sizes["kb3_grid"]:
+    for kb in kb3_grid(config, sizes):
         z = measurements(sc.truth[0, :, 0], "white Gaussian", sizes["n_fig4_trials"], rng, sizes["sigma_eps"])
         o = forced_output(sc, config, sizes, kb, vis, z=z, covariance=False)
         e = predict_ahead(o.x[:, fb - 1], 1) - sc.truth[0, fb, 0]

@@ -34,7 +34,7 @@ HORIZONS = {"10 s loss": "s", "k_b3 filter memory": "frames"}
 def horizon_seconds(config: dict) -> float:
     """C001-9's horizon in seconds under a complete configuration: 10 s for ``"10 s loss"``; ``k_bound3`` frames at
     ``frame_rate_hz`` for ``"k_b3 filter memory"``."""
-    name = config.get("horizon", "10 s loss")
+    name = config["horizon"]
     if name not in HORIZONS:
         raise ValueError(f"horizon {name!r}; it must be one of {tuple(HORIZONS)}")
     return 10.0 if name == "10 s loss" else float(config["k_bound3"]) / float(config["frame_rate_hz"])
