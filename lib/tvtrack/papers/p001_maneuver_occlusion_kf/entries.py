@@ -23,7 +23,7 @@ from .scenario import (
     THRESHOLD_READINGS,
     UMP_COMPARATORS,
 )
-from .spherical import HORIZONS, TARGET_SETS
+from .spherical_sets import HORIZONS, TARGET_SETS
 from .tradeoff import RMS_STATISTICS
 
 __all__ = ["ENTRIES"]

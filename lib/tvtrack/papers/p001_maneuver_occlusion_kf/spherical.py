@@ -10,6 +10,7 @@ import numpy as np
 
 from .curves import prediction_error
 from .scenario import FPS_REF, config_scenario, with_defaults
+from .spherical_sets import HORIZONS, TARGET_SETS
 
 __all__ = [
     "HORIZONS",
@@ -24,11 +25,6 @@ __all__ = [
     "field_deviation",
     "measure_spherical",
 ]
-
-
-#: C001-9's extrapolation horizon: the scenario's 10 s loss (seconds), or the 3rd-order filter's memory, its gain
-#: bound k_b3 in frames (the register's 100 frames are 4 s at 25 Hz, 2 s at 50 Hz): the unit each is counted in.
-HORIZONS = {"10 s loss": "s", "k_b3 filter memory": "frames"}
 
 
 def horizon_seconds(config: dict) -> float:
@@ -74,14 +70,6 @@ def spherical_deviations(
             dev.append(worst)
         rows.append((R, V, np.degrees(h), np.degrees(e0), float(inside), *dev))
     return np.array(rows)
-
-
-#: The target sets of C001-9: ranges m, speeds m/s, headings deg, initial elevations deg.
-TARGET_SETS = {
-    "2-20 km, 100-300 m/s": ((2e3, 5e3, 10e3, 20e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
-    "20-100 km, 50-250 m/s": ((20e3, 50e3, 100e3), (50.0, 250.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
-    "50-100 km, 100-300 m/s": ((50e3, 70e3, 100e3), (100.0, 300.0), (90.0, 45.0), (0.0, 10.0, 15.0)),
-}
 
 
 #: The paper's two angular rates as it states them, per frame (deg/frame): 10 elements/frame (6°/712 an element) and
