@@ -163,3 +163,106 @@ def test_a_claim_no_configuration_flips_says_how_many_stayed_undecided():
     )
     none = _claim("C002-6", "undecided", {"claim": _part("undecided", label="-")})
     assert unflipped_words(none) == "nothing to flip: undecided at the default"
+
+
+OFF = {"agree": 1, "flip": 2, "undecided": 0}
+OFF_FLIPS = [{"changed": {"rate": 5}, "verdict": "not reproduced", "text": "a camera at 5 frames/s"}]
+
+
+def test_a_part_flipped_only_outside_the_operating_point_names_those_flips_and_is_not_said_unflipped():
+    from tvtrack.part_lines import part_line, unflipped_words
+
+    share = SHARE | {"agree": 42, "flip": 0, "off_operating_point": OFF}
+    part = _part("reproduced", label="robust", share=share, off_operating_point=OFF | {"flips": OFF_FLIPS})
+    line = part_line("C001-1", part)
+    assert "no explored configuration flips it" not in line  # 2 of them flip, outside the operating point
+    assert "no configuration at the paper's operating point flips it" in line
+    assert (
+        "outside the paper's operating point (counted beside the label) flipped by: not reproduced when a camera at 5"
+        in line
+    )
+    words = unflipped_words(_claim("C001-1", "reproduced", {"claim": part}))
+    assert words.startswith("no configuration at the paper's operating point flips it (")
+    assert (
+        "while outside the paper's operating point, counted beside the label, it reads not reproduced when a" in words
+    )
+
+
+def test_a_part_whose_counted_flips_have_no_name_is_not_said_unflipped():
+    from tvtrack.part_lines import part_line, unflipped_words
+
+    line = part_line("C001-1", _part("reproduced", share=SHARE))  # 2 flip in the share, none named
+    assert "no explored configuration flips it" not in line
+    assert "its 2 flips are not named in the record" in line
+    words = unflipped_words(_claim("C001-1", "reproduced", {"claim": _part("reproduced", share=SHARE)}))
+    assert words.startswith("no named configuration flips it (") and ", 2 flips but are not named" in words
+
+
+def test_unflipped_words_say_nothing_to_flip_for_a_claim_not_checkable_or_never_explored():
+    from tvtrack.part_lines import unflipped_words
+
+    nc = _claim("C002-1", "not checkable", {"claim": _part("not checkable", label="-")})
+    assert unflipped_words(nc) == "nothing to flip: not checkable at the default"
+    mixed = {"a": _part("not checkable", label="-"), "b": _part("undecided", label="-")}
+    assert unflipped_words(_claim("C002-2", "undecided", mixed)) == "nothing to flip: no part decided at the default"
+    empty = {"agree": 0, "flip": 0, "undecided": 0, "design": 0, "decided": 0}
+    bare = _claim("C002-3", "reproduced", {"claim": _part("reproduced", label="unexplored", share=empty)})
+    assert unflipped_words(bare) == "no configuration was explored for it"
+    norecord = _claim("C002-4", "reproduced", {})
+    norecord.pop("robustness")
+    assert unflipped_words(norecord) == "no configuration was explored for it"
+
+
+def test_an_older_share_without_flips_says_its_count_is_of_the_decided_configurations_only():
+    from tvtrack.part_lines import part_line
+
+    line = part_line("C001-1", _part("reproduced", share={"agree": 5, "decided": 8}))
+    assert "5 of the 8 decided configurations agree (this older record does not count the undecided ones)" in line
+    assert "its 3 flips are not named in the record" in line  # 8 decided, 5 agree
+    assert "of None" not in part_line("C001-1", _part("reproduced", share={"agree": 5, "design": 8}))
+
+
+def test_a_part_that_holds_in_part_is_named_among_the_parts_held():
+    from tvtrack.part_lines import parts_held
+
+    parts = {"a": _part("reproduced"), "b": _part("partly"), "c": _part("not reproduced")}
+    assert parts_held(_claim("C001-5", "partly", parts)) == "holds for “a”; holds in part for “b”; fails for “c”"
+
+
+def test_a_held_claim_with_several_flips_does_not_call_the_carried_one_its_flip():
+    from tvtrack.part_lines import hold_note
+
+    lost = {"lost": 5, "runs": 600, "in_lock_verdict": "reproduced", "carried": True}
+    world = FLIP | {"side": "world", "text": "a weaving target", "lost_runs": lost}
+    c = _claim("C001-6", "reproduced", {"claim": _part("reproduced", label="limited", flips=[FLIP, world])})
+    assert hold_note(c).startswith("one of its 2 flips, under a weaving target, rests on the 5 of the 600 runs")
+
+
+def test_a_flip_whose_smaller_subsets_stayed_undecided_is_not_shown_as_isolated():
+    from tvtrack.part_lines import part_line
+
+    joint = FLIP | {"text": "a detection counts within 0.25 s and a weaving target", "kind": "joint"}
+    joint |= {"side": "unattributed", "undecided_subsets": ["a weaving target"]}
+    line = part_line("C001-1", _part("reproduced", flips=[joint], share=SHARE))
+    assert "and a weaving target (a combination of changes (none of them flips the claim alone); the smallest " in line
+    assert "found: a weaving target stays undecided)" in line
+
+
+def test_a_claim_holding_in_part_with_an_undecided_part_is_robust_in_its_decided_parts_only():
+    from tvtrack.pipeline.report import holding_lines
+
+    parts = {"fine": _part("reproduced", label="robust"), "coarse": _part("not reproduced", label="robust")}
+    parts["rise"] = _part("undecided", label="-")
+    c = _claim("C001-8", "partly", parts)
+    c["robustness"]["label"] = "robust"
+    line = holding_lines({"001_maneuver": (None, {"claims": [c]})})[0]
+    assert (
+        "C001-8 (robust in its decided parts only — holds for “fine”; fails for “coarse”; undecided for “rise”)" in line
+    )
+
+
+def test_an_older_record_with_a_list_of_parts_says_which_parts_hold():
+    from tvtrack.part_lines import parts_held
+
+    c = _claim("C001-9", "partly", [{"name": "a", "verdict": "reproduced"}, {"name": "b", "verdict": "not reproduced"}])
+    assert parts_held(c) == "holds for “a”; fails for “b”"

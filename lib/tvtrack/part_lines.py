@@ -27,6 +27,7 @@ __all__ = [
 
 _PART_VERBS = (
     ("reproduced", "holds for"),
+    ("partly", "holds in part for"),
     ("not reproduced", "fails for"),
     ("undecided", "undecided for"),
     ("not checkable", "not checkable for"),
@@ -43,6 +44,8 @@ def _and(items: list[str]) -> str:
 
 def _parts(claim: Mapping) -> dict[str, Mapping]:
     parts = (claim_fields(claim).get("robustness") or {}).get("parts") or {}
+    if isinstance(parts, list):  # an older record's list of parts, each with its name
+        parts = {p.get("name", str(i)): p for i, p in enumerate(parts) if isinstance(p, Mapping)}
     return {str(n): p for n, p in parts.items() if isinstance(p, Mapping)}
 
 
@@ -77,7 +80,7 @@ def hold_note(claim: Any) -> str:
     carried = [f for f in flips if (f.get("lost_runs") or {}).get("carried")]
     for f in carried:
         lost = f["lost_runs"]
-        which = "its only flip" if len(flips) == 1 else "its flip"
+        which = "its only flip" if len(flips) == 1 else f"one of its {len(flips)} flips"
         reps = lost.get("replicates")
         over = f" of {reps} replicate{'s' * (reps != 1)}" if reps else ""
         bits.append(
@@ -88,25 +91,66 @@ def hold_note(claim: Any) -> str:
     return "; ".join(bits)
 
 
+def _off_flips(part: Mapping) -> list[Mapping]:
+    """The part's flips outside the paper's operating point (counted beside its label, never in it)."""
+    return [f for f in (part.get("off_operating_point") or {}).get("flips") or [] if isinstance(f, Mapping)]
+
+
+def _off_words(flips: list[Mapping]) -> str:
+    """``"not reproduced when a camera at 5 frames/s (why)"``: flips outside the operating point, joined."""
+    return "; ".join(
+        f"{f.get('verdict')} when {plain_text(str(f.get('text') or ''))}"
+        + (f" ({plain_text(str(f['why']))})" if f.get("why") else "")
+        for f in flips
+    )
+
+
+def _unnamed(share: Mapping) -> int:
+    """The share's count of flips, for a part that names none (a flip the attribution did not keep, or an older
+    record's: one without ``flip`` counts its decided configurations that disagree as ``decided - agree``)."""
+    if "flip" not in share and share.get("decided") is not None:
+        return max(int(share["decided"]) - int(share.get("agree") or 0), 0)
+    return int(share.get("flip") or 0)
+
+
 def unflipped_words(claim: Any) -> str:
-    """A claim no explored configuration flips, and how many of those explored for each part stayed undecided
+    """A claim none of whose parts has a named flip, and how many of those explored for each part stayed undecided
     (``"no explored configuration flips it (40 of the 43 explored for it stayed undecided)"``): not flipped is not
-    shown to hold where most stayed undecided."""
+    shown to hold where most stayed undecided. A flip outside the paper's operating point (counted beside the label)
+    or one the share counts without a name is said; a claim with no decided part, or none explored, has nothing
+    explored that could flip it."""
     parts = _parts(claim)
-    said = []
+    decided = {n: p for n, p in parts.items() if p.get("verdict") in ("reproduced", "not reproduced", "partly")}
+    if not decided:
+        verdicts = {p.get("verdict") for p in parts.values()}
+        if verdicts == {"not checkable"}:
+            return "nothing to flip: not checkable at the default"
+        if verdicts == {"undecided"}:
+            return "nothing to flip: undecided at the default"
+        return "nothing to flip: no part decided at the default" if parts else "no configuration was explored for it"
+    if not any((p.get("share") or {}).get("design") for p in decided.values()):
+        return "no configuration was explored for it"
+    said, off_any, unnamed_any = [], False, False
     for n, p in parts.items():
         share, name = p.get("share") or {}, "" if len(parts) == 1 else f"{part_name(n)}: "
         if share.get("design"):
-            said.append(
-                f"{name}{int(share.get('undecided') or 0)} of the {share['design']} explored for it stayed undecided"
-            )
+            bit = f"{int(share.get('undecided') or 0)} of the {share['design']} explored for it stayed undecided"
+            if _unnamed(share) and not p.get("flips"):
+                k = _unnamed(share)
+                bit += f", {k} flip{'s' * (k != 1)} but {'is' if k == 1 else 'are'} not named in the record"
+                unnamed_any = True
+            if _off_flips(p):
+                bit += f", while outside the paper's operating point, counted beside the label, it reads {_off_words(_off_flips(p))}"
+                off_any = True
+            said.append(name + bit)
         elif p.get("verdict") == "undecided":
             said.append(f"{name}undecided at the default, so nothing to flip")
-    if parts and all(
-        p.get("verdict") == "undecided" and not (p.get("share") or {}).get("design") for p in parts.values()
-    ):
-        return "nothing to flip: undecided at the default"
-    return "no explored configuration flips it" + (f" ({'; '.join(said)})" if said else "")
+        elif n in decided:
+            said.append(f"{name}no configuration explored for it")
+    lead = "no explored configuration flips it"
+    lead = "no configuration at the paper's operating point flips it" if off_any else lead
+    lead = "no named configuration flips it" if unnamed_any else lead
+    return lead + (f" ({'; '.join(said)})" if said else "")
 
 
 def coverage_words(record: Mapping, verdict: str | None = None) -> str:
@@ -130,6 +174,43 @@ def _label_words(part: Mapping) -> str:
     return "no label (undecided at the default: nothing to flip)"
 
 
+def _open_words(flip: Mapping) -> str:
+    """``"; the smallest found: ... stays undecided"`` for a flip whose smaller subsets stayed undecided (it is the
+    smallest subset found to flip the part, not shown to be the smallest that does); else empty."""
+    open_ = [plain_text(str(t)) for t in flip.get("undecided_subsets") or ()]
+    return (
+        f"; the smallest found: {'; '.join(open_)} {'stays' if len(open_) == 1 else 'stay'} undecided" if open_ else ""
+    )
+
+
+def _flip_words(part: Mapping, share: Mapping, counted: bool) -> str:
+    """``"; flipped by: ..."``: a part's named flips with their kinds, then those outside the paper's operating
+    point (counted beside the label); where it names none, what its counts say (never "no explored configuration
+    flips it" beside a count of flips, or of flips outside the operating point)."""
+    sides = side_words()
+    flips = [f for f in part.get("flips") or [] if isinstance(f, Mapping)]
+    off = _off_flips(part)
+    text = ""
+    if flips:
+        text += "; flipped by: " + "; ".join(
+            f"{f.get('verdict')} when {plain_text(str(f.get('text') or ''))} "
+            f"({sides.get(f.get('side'), f.get('side'))}{_open_words(f)})"
+            for f in flips
+        )
+    elif counted and _unnamed(share):
+        k = _unnamed(share)
+        text += f"; {'its flip is' if k == 1 else f'its {k} flips are'} not named in the record"
+    elif counted:
+        text += (
+            "; no configuration at the paper's operating point flips it"
+            if off
+            else "; no explored configuration flips it"
+        )
+    if off:
+        text += f"; outside the paper's operating point (counted beside the label) flipped by: {_off_words(off)}"
+    return text
+
+
 def part_line(head: str, part: Mapping) -> str:
     """One part as a Markdown bullet: its verdict and label; how many of every explored configuration agree, flip
     and stay undecided (with the share agreeing, 95 %); every flip in plain words with its kind; the runs
@@ -142,15 +223,7 @@ def part_line(head: str, part: Mapping) -> str:
         if share.get("ci_low") is not None and share.get("ci_high") is not None:
             text += f" (share agreeing {share['ci_low']:.2f}-{share['ci_high']:.2f}, 95 %)"
         text += f"; {beside}" if beside else ""
-    sides = side_words()
-    flips = [f for f in part.get("flips") or [] if isinstance(f, Mapping)]
-    if flips:
-        text += "; flipped by: " + "; ".join(
-            f"{f.get('verdict')} when {plain_text(str(f.get('text') or ''))} ({sides.get(f.get('side'), f.get('side'))})"
-            for f in flips
-        )
-    elif counts:
-        text += "; no explored configuration flips it"
+    text += _flip_words(part, share, bool(counts))
     if (part.get("runs_to_decide") or {}).get("text"):
         text += f"; {part['runs_to_decide']['text']}"
     moves = [

@@ -124,12 +124,17 @@ def not_checkable_reason(claim: Mapping) -> str:
 
 def share_counts(share: Mapping) -> str:
     """``"41 agree, 3 flip and 6 stay undecided of 50 explored configurations"``: the share over every explored
-    configuration, never of the decided ones only (a record without ``flip``: agree of decided, as it counted);
-    empty without a share."""
+    configuration, never of the decided ones only (an older record without ``flip``: agree of decided, as it
+    counted, said as such; one without ``decided`` either: agree of its design); empty without a share."""
     if not share or share.get("design", share.get("decided")) in (None, 0):
         return ""
     if "flip" not in share:
-        return f"{share.get('agree')} of {share.get('decided')} explored configurations agree"
+        if share.get("decided") is None:
+            return f"{share.get('agree')} of {share['design']} explored configurations agree"
+        return (
+            f"{share.get('agree')} of the {share['decided']} decided configurations agree (this older record does "
+            "not count the undecided ones)"
+        )
     agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
     design = int(share.get("design", agree + flip + undecided))
     left = int(share.get("left_by_budget") or 0)

@@ -303,7 +303,9 @@ def _label_brackets(claim: dict) -> str:
     held claim's caveat, which parts of a partly held one hold); `` (robust)``; ``""`` without either."""
     label = robustness_label(claim)
     basis = label_basis(claim) if label in ("depends", "limited") else ""
-    bits = [] if label == NO_LABEL else [f"{label}: {basis}" if basis else label]
+    undecided = any(v == "undecided" for _, v, _ in part_labels(claim))  # an undecided part: the label not over it
+    shown = label_words("undecided", label) if undecided else label
+    bits = [] if label == NO_LABEL else [f"{shown}: {basis}" if basis else shown]
     note = {"reproduced": hold_note, "partly": parts_held}.get(claim["verdict"], lambda c: "")(claim)
     bits += [md_escape(note)] if note else []
     return f" ({' — '.join(bits)})" if bits else ""  # the dash: the label's basis ends, the note begins
