@@ -266,3 +266,20 @@ def test_an_older_record_with_a_list_of_parts_says_which_parts_hold():
 
     c = _claim("C001-9", "partly", [{"name": "a", "verdict": "reproduced"}, {"name": "b", "verdict": "not reproduced"}])
     assert parts_held(c) == "holds for “a”; fails for “b”"
+
+
+def test_a_provisional_record_never_reads_robust_in_its_coverage_line():
+    """A design too small to label (C000-8 at the paper profile) is shown provisional: its coverage line must not
+    go on to call it robust ("provisional: robust over 8 ...")."""
+    from tvtrack.part_lines import record_lines
+
+    record = {
+        "label": "robust",
+        "provisional": True,
+        "coverage": "robust over 8 distinct configurations (6 one at a time over 3 register entries, 2 joint "
+        "samples); x 6 independent replicates; provisional: 8 distinct configurations are too few for a share",
+        "parts": {"claim": _part("reproduced", label="robust", share=SHARE | {"flip": 0, "agree": 42})},
+    }
+    head, line = record_lines("C000-8", record)
+    assert head.startswith("- **C000-8**: provisional over 8 distinct configurations (")
+    assert "robust" not in head and "robust" not in line and "provisional" in line

@@ -241,9 +241,11 @@ def record_lines(cid: str, record: Mapping, verdict: str | None = None) -> list[
     the record as a reader sees it (a provisional design's parts read :data:`tvtrack.wording.PROVISIONAL`)."""
     shown = at_profile([{"robustness": dict(record)}], "paper")[0]["robustness"]
     parts = {str(n): p for n, p in (shown.get("parts") or {}).items() if isinstance(p, Mapping)}
-    label = PROVISIONAL if shown.get("provisional") and shown.get("label") in ("robust", "unexplored") else None
     cover = coverage_words(shown, verdict)
-    lines = [f"- **{cid}**: {label + ': ' if label else ''}{cover}"]
+    word = str(shown.get("label") or "")
+    if shown.get("provisional") and word in ("robust", "unexplored"):  # the record's label word is not shown
+        cover = PROVISIONAL + (cover[len(word) :] if cover.startswith(word) else f": {cover}")
+    lines = [f"- **{cid}**: {cover}"]
     for name, part in parts.items():
         lines.append("  " + part_line(cid if len(parts) == 1 else f"{cid} ({part_name(name)})", part))
     return lines
