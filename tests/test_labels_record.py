@@ -108,7 +108,7 @@ def test_the_coverage_sentence_counts_each_kind_and_names_the_weakest_parts():
     text = labels._coverage("limited", parts, conds, [1, 2, 3], [WORLD] * 5, False, 5, True)
     assert text == (
         "limited (weakest parts: p1, p3) over 5 distinct configurations (2 one at a time over 5 register entries, "
-        "3 joint samples, 1 pinned known flips, 4 sub-combinations of flipping joint configurations); "
+        "3 joint samples, 1 pinned known flip, 4 sub-combinations of flipping joint configurations); "
         "x 3 independent replicates; provisional: 5 distinct configurations are too few for a share"
     )
     one = labels._coverage("robust", {"claim": {"label": "robust"}}, conds[:2], [1], [WORLD] * 2, True, 2, False)

@@ -519,7 +519,7 @@ def _coverage(label, parts, conds, reps, entries, deterministic, n_explored, pro
     reps_text = "deterministic (no random draw)" if deterministic else f"{len(reps)} independent replicates"
     weak = [n for n, p in parts.items() if p["label"] == label]
     which = "" if len(parts) == 1 or not weak else f" (weakest part{'s' if len(weak) > 1 else ''}: {', '.join(weak)})"
-    extra = [f"{len(pinned)} pinned known flips"] if pinned else []
+    extra = [f"{len(pinned)} pinned known flip{'s' * (len(pinned) != 1)}"] if pinned else []
     extra += [f"{len(combos)} sub-combinations of flipping joint configurations"] if combos else []
     extra += [f"{len(off)} outside the paper's operating point, counted beside the label"] if off else []
     small = f"; provisional: {n_explored} distinct configurations are too few for a share" if provisional else ""

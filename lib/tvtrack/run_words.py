@@ -138,7 +138,8 @@ def share_counts(share: Mapping) -> str:
     agree, flip, undecided = int(share["agree"]), int(share["flip"]), int(share.get("undecided", 0))
     design = int(share.get("design", agree + flip + undecided))
     left = int(share.get("left_by_budget") or 0)
-    why = f" ({left} of them lean towards agreement but were given fewer runs than the default: a cap limits the runs"
+    lean = "leans towards agreement but was" if left == 1 else "lean towards agreement but were"
+    why = f" ({left} of them {lean} given fewer runs than the default: a cap limits the runs"
     why += " spent confirming agreement)"
     return (
         f"{agree} agree{'s' * (agree == 1)}, {flip} flip{'s' * (flip == 1)} and {undecided} "
