@@ -222,9 +222,10 @@ def test_the_headline_caveat_gives_the_other_comparisons_where_they_point_the_ot
     }
     text = extras.headline_caveat(rows, [part])
     assert text == (
-        "At d = 1 sigma which algorithm is more accurate depends on what the ULA is given: with the designation as a "
-        "prior (one replicate): 1.42 [1.14, 1.76], above 1: the ULA more accurate; the designated velocity given to "
-        "both (one replicate): 1.4 [0.97, 2.06], not distinguishable from 1"
+        "At d = 1 sigma (paper x4.5) which algorithm is more accurate depends on what the ULA is given: with the "
+        "designation as a prior (one replicate): 1.42 [1.14, 1.76] variance ratio, above 1: the ULA more accurate; "
+        "the designated velocity given to both (one replicate): 1.4 [0.97, 2.06] variance ratio, not distinguishable "
+        "from 1"
     )
     same = {k: {part: _e(0.7, 0.6, 0.9)} for k in ("a", "b")}
     assert extras.headline_caveat(same, [part]) == ""  # one direction: nothing to add to the claim's sentence

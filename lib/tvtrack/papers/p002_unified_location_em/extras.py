@@ -248,17 +248,16 @@ def headline_comparisons(rows: dict, part: str, band: tuple, fmt=None) -> str:
     )
 
 
-def headline_caveat(rows: dict, parts: list, fmt=None) -> str:
+def headline_caveat(rows: dict, parts: list, fmt=None, unit: str = "variance ratio") -> str:
     """C002-11's caveat, from the numbers: at each part (of ``parts``) where the comparisons the run made point
     opposite ways (:func:`headline_comparisons`' "depends on what the ULA is given"), the ULA's other givens with
-    their rho and direction (the claim's sentence reads the first comparison only); ``""`` where none does."""
+    their rho in ``unit`` and its direction (the claim's sentence reads the first comparison only); ``""`` where
+    none does."""
     fmt = fmt or (lambda e: f"{e.value:.3g} [{e.ci_low:.3g}, {e.ci_high:.3g}]")
     said = []
     for part in parts:
         made = [(name, m[part]) for name, m in rows.items() if m and part in m]
         if {"above", "below"} <= {word(e) for _, e in made}:
-            others = "; ".join(f"{name}: {fmt(e)}, {who_wins(e)}" for name, e in made[1:])
-            said.append(
-                f"At {part.split(' (')[0]} which algorithm is more accurate depends on what the ULA is given: {others}"
-            )
+            others = "; ".join(f"{name}: {fmt(e)} {unit}, {who_wins(e)}" for name, e in made[1:])
+            said.append(f"At {part} which algorithm is more accurate depends on what the ULA is given: {others}")
     return ". ".join(said)

@@ -252,7 +252,7 @@ def c004_6_caveat(halves: dict) -> str:
     (a0, a1), trend = halves["no floor"], floor_trend(halves)
     return (
         "'Degrades' is judged as erring more than the filter with the floor; on the shipped paths the error without "
-        f"a floor {trend} ({a0:.2f} px over the first half of the scored frames, {a1:.2f} over the second), so "
+        f"a floor {trend} ({a0:.2f} px over the first half of the scored frames, {a1:.2f} px over the second), so "
         + ("it also worsens over the run." if a1 / a0 > 1.25 else "it does not worsen over the run.")
     )
 
