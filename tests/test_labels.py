@@ -37,6 +37,18 @@ def test_a_straddling_interval_is_undecided_with_the_runs_that_would_decide_it()
     assert not math.isfinite(runs_to_decide(Estimate(0.5, 0.05, 0.4, 0.6, 100, method="t"), (-0.5, 0.5)))
 
 
+def test_a_pool_on_the_log_scale_is_projected_on_the_log_scale():
+    """A ratio pooled on the log scale shrinks about its log: 1.5 [1.2, 2.1] against "at least 2" leaves the edge at
+    (ln(2.1/1.5) / ln(2/1.5))^2 = 1.37 times the runs (1.44 on the linear scale); a linear pool stays linear."""
+    log_pool = Estimate(
+        1.5, 0.2, 1.2, 2.1, 18, method="pooled over 3 independent replicates (equal weights, log scale)"
+    )
+    assert runs_to_decide(log_pool, (2.0,)) == pytest.approx((math.log(2.1 / 1.5) / math.log(2.0 / 1.5)) ** 2)
+    linear = Estimate(1.5, 0.2, 1.2, 2.1, 18, method="pooled over 3 independent replicates (equal weights)")
+    assert runs_to_decide(linear, (2.0,)) == pytest.approx((0.6 / 0.5) ** 2)
+    assert runs_to_decide(log_pool, (1.3,)) == pytest.approx((math.log(1.5 / 1.2) / math.log(1.5 / 1.3)) ** 2)
+
+
 def test_zero_events_are_sized_to_certify_the_limit():
     # 0 losses in 24 runs certify p <= 0.117: undecided against 0.1; 29 runs of zero events certify it
     rule = InBand("share of runs that lost lock", high=0.1)

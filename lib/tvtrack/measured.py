@@ -204,7 +204,8 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
 
     An interval's half-width shrinks as ``1/sqrt(n)``: an edge at distance ``d`` from the point, with the
     half-width ``h`` on that side, leaves the interval at about ``(h / d)^2`` times the runs (a projection: the
-    explorer re-judges after every added replicate). Zero events in ``n`` runs certify
+    explorer re-judges after every added replicate), with ``d`` and ``h`` on the log scale for a pool made there
+    (:func:`tvtrack.pooling.pool`: its interval shrinks about the log of its value). Zero events in ``n`` runs certify
     ``p <= 1 - alpha^(1/n)``: an upper edge ``L`` is certified at ``n = ln(alpha) / ln(1 - L)`` runs of zero
     events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
     point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
@@ -225,6 +226,8 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
                 return math.inf
             need.append(math.log(alpha) / math.log(1.0 - p))
         return max(need) / e.n
+    if "log scale" in (e.method or "") and min(a, v, *inside) > 0.0:  # a pool on the log scale shrinks there
+        a, b, v, inside = math.log(a), math.log(b), math.log(v), [math.log(c) for c in inside]
     factors = []
     for c in inside:
         d = abs(v - c)
