@@ -5,6 +5,7 @@ by Student's t over their values), for :mod:`tvtrack.explore`."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -19,19 +20,6 @@ __all__ = ["pool"]
 
 def _z(conf: float) -> float:
     return float(scipy.stats.norm.ppf(0.5 + conf / 2))
-
-
-def _crit(conf: float, df: float) -> float:
-    """The two-sided critical value at ``conf`` of Student's t with ``df`` degrees of freedom (the normal's where
-    ``df`` is infinite or below 1)."""
-    if not (math.isfinite(df) and df >= 1.0):
-        return _z(conf)
-    return float(scipy.stats.t.ppf(0.5 + conf / 2, df))
-
-
-def _dof(e: Estimate) -> float:
-    """The degrees of freedom behind one replicate's interval: ``n - 1`` for its ``n`` runs (infinite for one)."""
-    return float(e.n - 1) if e.n >= 2 else math.inf
 
 
 def _is_count(e: Estimate) -> bool:
@@ -113,12 +101,11 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
             f"pooled over {k} replicates: some intervals undefined",
             extrap,
         )
-    dof = np.array([_dof(e) for e in es], float)
     if np.all(lo > 0) and np.all(vals > 0):  # positive quantities on the log scale
-        m, a, b, se, how = _combine(np.log(vals), np.log(lo), np.log(hi), conf, ", log scale", dof)
+        m, a, b, se, how = _combine(np.log(vals), np.log(lo), np.log(hi), conf, ", log scale")
         a, b = max(math.exp(a), float(lo.min())), min(math.exp(b), float(hi.max()))  # within the hull, as below
         return Estimate(float(math.exp(m)), float(math.exp(m) * se), a, b, n, conf, how, extrap)
-    m, a, b, se, how = _combine(vals, lo, hi, conf, "", dof)
+    m, a, b, se, how = _combine(vals, lo, hi, conf, "")
     # never beyond every replicate's interval (a share difference's pooled interval stays within [-1, 1]): the truth
     # lies outside the hull only when it lies outside every replicate's interval
     a, b = max(a, float(lo.min())), min(b, float(hi.max()))
@@ -130,30 +117,26 @@ def _pool_estimates(es: list[Estimate]) -> Estimate:
 AGREEMENT_LEVEL = 0.05
 
 
-def _combine(vals: np.ndarray, lo: np.ndarray, hi: np.ndarray, conf: float, scale: str, dof: np.ndarray) -> tuple:
+def _combine(vals: np.ndarray, lo: np.ndarray, hi: np.ndarray, conf: float, scale: str) -> tuple:
     """``(value, low, high, stderr, method)`` of equal-weight replicates on one scale.
 
-    Each replicate's standard error is read from its interval with the critical value of the runs behind it
-    (Student's t with ``dof`` degrees of freedom, its ``n - 1``: a replicate's interval of few runs is wider than
-    ``1.96`` standard errors, and reading it with the normal's quantile would carry that small-sample widening
-    into the pool, which then covers more than it says, 0.99 for three replicates of six runs). The standard errors
-    combine into the pooled one, whose interval takes Student's t on the Welch-Satterthwaite degrees of freedom
-    (``sum(n - 1)`` for equal replicates). The replicates must also agree with each other: Cochran's Q of their
-    values about the pooled one, each weighed by its own standard error, against chi-square with ``k - 1`` degrees
-    of freedom. Where they disagree at :data:`AGREEMENT_LEVEL` (a rare event, such as a run that loses lock, moved
-    one replicate's value far beyond what the others' intervals, which never saw one, allow), the interval is
-    widened to Student's t over the replicates' values, which needs no replicate's interval to be right."""
-    k = len(vals)
-    se_i = (hi - lo) / (2 * np.array([_crit(conf, d) for d in dof]))
+    The standard errors read from the replicates' intervals combine into the pooled one. The replicates must also
+    agree with each other: Cochran's Q of their values about the pooled one, each weighed by its own standard
+    error, against chi-square with ``k - 1`` degrees of freedom. Where they disagree at :data:`AGREEMENT_LEVEL` (a
+    rare event, such as a run that loses lock, moved one replicate's value far beyond what the others' intervals,
+    which never saw one, allow), the interval is widened to Student's t over the replicates' values, which needs no
+    replicate's interval to be right."""
+    k, z = len(vals), _z(conf)
+    se_i = (hi - lo) / (2 * z)
     m = float(vals.mean())
     se = math.sqrt(float(np.sum(se_i**2))) / k
-    df = _welch_dof(se_i, dof)
-    q_pool = _crit(conf, df)
-    p = _agreement_p(vals, se_i, dof)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = float(np.sum(np.where(vals == m, 0.0, ((vals - m) / se_i) ** 2)))
+    p = float(scipy.stats.chi2.sf(q, k - 1)) if math.isfinite(q) else 0.0
     if p >= AGREEMENT_LEVEL:
-        return m, m - q_pool * se, m + q_pool * se, se, f"pooled over {k} independent replicates (equal weights{scale})"
+        return m, m - z * se, m + z * se, se, f"pooled over {k} independent replicates (equal weights{scale})"
     spread = float(vals.std(ddof=1)) / math.sqrt(k)
-    half = max(q_pool * se, float(scipy.stats.t.ppf(0.5 + conf / 2, k - 1)) * spread)
+    half = max(z * se, float(scipy.stats.t.ppf(0.5 + conf / 2, k - 1)) * spread)
     return (
         m,
         m - half,
@@ -166,42 +149,17 @@ def _combine(vals: np.ndarray, lo: np.ndarray, hi: np.ndarray, conf: float, scal
     )
 
 
-def _agreement_p(vals: np.ndarray, se_i: np.ndarray, dof: np.ndarray) -> float:
-    """The p-value of the replicates' agreement with their pooled value: Cochran's Q of the values about their
-    equal-weight mean, each weighed by its own standard error, with Welch's (1951) small-sample correction for
-    standard errors ``se_i`` that are themselves estimated on ``dof`` degrees of freedom: ``Q / (k - 1) / (1 +
-    2 (k - 2) h / (k^2 - 1))`` against F with ``k - 1`` and ``(k^2 - 1) / (3 h)`` degrees of freedom, ``h =
-    sum((1 - w_i / W)^2 / dof_i)``, ``w_i = 1 / se_i^2``. Where every ``dof_i`` is infinite this is Q against
-    chi-square with ``k - 1``; against chi-square, standard errors from six runs each made three replicates of
-    one normal mean "disagree" in 13 % of experiments instead of 5 %. A zero standard error disagrees unless its
-    value is the replicates' mean."""
-    zero = se_i == 0.0  # a zero-width interval off the replicates' mean disagrees; on it, it tests nothing
-    if np.any(vals[zero] != vals.mean()):
-        return 0.0
-    vals, se_i, dof = vals[~zero], se_i[~zero], dof[~zero]
-    k = len(vals)
-    if k < 2:
-        return 1.0
-    w = 1.0 / se_i**2
-    chi = float(np.sum(w * (vals - vals.mean()) ** 2))  # about the pooled (equal-weight) value
-    if not math.isfinite(chi):
-        return 0.0
-    h = float(np.sum((1.0 - w / np.sum(w)) ** 2 / dof))
-    if h == 0.0:
-        return float(scipy.stats.chi2.sf(chi, k - 1))
-    f = chi / (k - 1) / (1.0 + 2.0 * (k - 2) / (k * k - 1) * h)
-    return float(scipy.stats.f.sf(f, k - 1, (k * k - 1) / (3.0 * h)))
+def _unmeasured_kept(es: list[Estimate], pooled: Estimate) -> Estimate:
+    """``pooled``, its method saying "coverage unmeasured" where a replicate's does (an interval of fewer runs than
+    its helper's coverage was measured at): a pool of such intervals has no measured coverage either, and stays
+    undecided (:func:`tvtrack.measured.is_undecided`) as each of them is."""
+    from .coverage import stated_coverage
 
-
-def _welch_dof(se_i: np.ndarray, dof: np.ndarray) -> float:
-    """Welch-Satterthwaite degrees of freedom of the equal-weight mean's variance ``sum(se_i^2) / k^2``:
-    ``(sum se_i^2)^2 / sum(se_i^4 / dof_i)`` (``sum(dof_i)`` for equal standard errors; infinite where every
-    replicate's is)."""
-    v = se_i**2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        den = float(np.sum(np.where(v > 0, v**2 / dof, 0.0)))
-    total = float(np.sum(v))
-    return total**2 / den if den > 0 else math.inf
+    short = [e for e in es if math.isnan(stated_coverage(e))]
+    if not short or math.isnan(stated_coverage(pooled)):
+        return pooled
+    n = min(e.n for e in short)
+    return replace(pooled, method=f"{pooled.method}; coverage unmeasured (replicates of {n} runs)")
 
 
 def _is_estimate_like(x: Any) -> bool:
@@ -232,7 +190,7 @@ def pool(measured: Sequence[Any]) -> Any:
     first = ms[0]
     if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
         es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
-        return _pool_estimates(es)
+        return _unmeasured_kept(es, _pool_estimates(es))
     if lost_runs(first) is not None and all(lost_runs(m) is not None for m in ms):  # counts add up
         return {
             "value": pool([m["value"] for m in ms]),
