@@ -283,3 +283,26 @@ def test_a_provisional_record_never_reads_robust_in_its_coverage_line():
     head, line = record_lines("C000-8", record)
     assert head.startswith("- **C000-8**: provisional over 8 distinct configurations (")
     assert "robust" not in head and "robust" not in line and "provisional" in line
+
+
+def test_an_older_record_with_a_list_of_parts_lists_its_flips():
+    """``claim_flips`` read ``parts`` as a mapping only: an older record's list of parts raised AttributeError."""
+    from tvtrack.wording import claim_flips
+
+    c = _claim("C001-9", "partly", [{"name": "a", "verdict": "reproduced", "flips": [FLIP]}, {"name": "b"}])
+    assert [(f["text"], f["part"]) for f in claim_flips(c)] == [(FLIP["text"], "a")]
+    assert [f["part"] for f in claim_flips(c, "a")] == ["a"] and claim_flips(c, "b") == []
+
+
+def test_a_flip_through_two_parts_keeps_the_lost_runs_that_only_one_copy_carries():
+    """The same flip through two parts is said once; the lost-runs note on the second part's copy was dropped with
+    the copy, so the flip read as resting on runs in lock."""
+    from tvtrack.wording import claim_flips
+
+    lost = {"lost": 5, "runs": 600, "in_lock_verdict": "reproduced", "carried": True}
+    parts = {
+        "first": _part("reproduced", flips=[FLIP]),
+        "second": _part("reproduced", flips=[FLIP | {"lost_runs": lost}]),
+    }
+    flips = claim_flips(_claim("C001-6", "reproduced", parts))
+    assert len(flips) == 1 and flips[0]["lost_runs"] == lost and flips[0]["part"] == "first"

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from .run_words import lost_basis, part_name, plain_text, share_counts
+from .run_words import lost_basis, part_name, parts_by_name, plain_text, share_counts
 from .wording import PROVISIONAL, at_profile, claim_fields, claim_flips, side_words
 
 __all__ = [
@@ -43,10 +43,7 @@ def _and(items: list[str]) -> str:
 
 
 def _parts(claim: Mapping) -> dict[str, Mapping]:
-    parts = (claim_fields(claim).get("robustness") or {}).get("parts") or {}
-    if isinstance(parts, list):  # an older record's list of parts, each with its name
-        parts = {p.get("name", str(i)): p for i, p in enumerate(parts) if isinstance(p, Mapping)}
-    return {str(n): p for n, p in parts.items() if isinstance(p, Mapping)}
+    return parts_by_name(claim_fields(claim).get("robustness") or {})
 
 
 def parts_held(claim: Any) -> str:

@@ -172,3 +172,12 @@ def _beside(counts: Mapping | None, what: str) -> str:
         f"; of {n} {what.format(s='s' * (n != 1))}, {flip} flip{'s' * (flip == 1)}, {agree} agree{'s' * (agree == 1)} "
         f"and {undecided} stay{'s' * (undecided == 1)} undecided"
     )
+
+
+def parts_by_name(record: Mapping) -> dict[str, Mapping]:
+    """A claim record's ``robustness`` parts by name (``{}`` where it has none); an older record's list of parts, each
+    with its ``name``, read as the same mapping."""
+    parts = (record or {}).get("parts") or {}
+    if isinstance(parts, list):
+        parts = {p.get("name", str(i)): p for i, p in enumerate(parts) if isinstance(p, Mapping)}
+    return {str(n): p for n, p in parts.items() if isinstance(p, Mapping)}

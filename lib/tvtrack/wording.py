@@ -22,7 +22,7 @@ from typing import Any, Mapping
 from .register import leaves_operating_point
 from .numbers import finite, number, setting
 from .run_words import lock_sentence, lost_basis, lost_lead, not_checkable_reason, part_name, plain_text
-from .run_words import runs_sentence, share_counts, slowest_part, thin_share
+from .run_words import parts_by_name, runs_sentence, share_counts, slowest_part, thin_share
 from .value_words import rule_in_force, value_clause
 
 __all__ = [
@@ -320,7 +320,7 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     verdict differs from the claim's."""
     claim = claim_fields(claim)
     record = claim.get("robustness") or {}
-    parts = record.get("parts") or {}
+    parts = parts_by_name(record)
     names = [part] if part else list(parts)
     flips = [{**f, "part": n} for n in names for f in ((parts.get(n) or {}).get("flips") or [])]
     if not flips and not any("flips" in (parts.get(n) or {}) for n in names):
@@ -328,7 +328,10 @@ def claim_flips(claim: Mapping, part: str | None = None) -> list[dict]:
     out, seen = [], set()
     for f in sorted(flips, key=flip_strength):
         text = str(f.get("text") or describe(f.get("changed") or {}, record))
-        if text not in seen:
+        if text in seen:  # the same flip through another part: what its copy carries is kept
+            kept = next(o for o in out if o["text"] == text)
+            kept.update({k: f[k] for k in ("lost_runs", "undecided_subsets") if f.get(k) and not kept.get(k)})
+        else:
             seen.add(text)
             out.append(
                 {
