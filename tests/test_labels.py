@@ -783,6 +783,22 @@ def test_a_flip_of_one_part_of_several_is_never_carried_on_the_whole_claim_s_ver
     assert rec["parts"]["a"]["flips"][0]["lost_runs"]["carried"] is True
 
 
+def test_a_flip_of_one_part_is_said_with_that_part_s_verdicts_in_lock():
+    """The note on a flip of part ``a`` quoted the whole claim's verdict over the runs in lock, which part ``b``
+    may set: the part's own verdicts are kept where the row gives them, and the report's note says the part's."""
+    from tvtrack.lost_labels import mark_lost_runs
+    from tvtrack.part_lines import hold_note
+
+    flip = {"changed": {"noise": "high"}, "verdict": "not reproduced", "text": "high noise", "side": "world"}
+    row = {"changed": {"noise": "high"}, "lost": 3, "runs": 600, "verdict": "partly", "in_lock_verdict": "partly"}
+    row |= {"parts": {"a": "not reproduced", "b": "reproduced"}, "in_lock_parts": {"a": "reproduced", "b": "partly"}}
+    rec = mark_lost_runs({"parts": {"a": {"flips": [dict(flip)]}, "b": {"flips": []}}}, [row], "reproduced")
+    lost = rec["parts"]["a"]["flips"][0]["lost_runs"]
+    assert (lost["verdict"], lost["in_lock_verdict"], lost["carried"]) == ("not reproduced", "reproduced", True)
+    claim = {"id": "C000-9", "verdict": "reproduced", "robustness": rec}
+    assert hold_note(claim).endswith("over the runs in lock alone it is reproduced")
+
+
 def test_the_ranking_counts_no_round_off_far_inside_the_band_and_pairs_each_condition_with_its_replicates():
     """C004-4's shape: a relative deviation of 1e-13 against a bound of 1e-9 moves by round-off only under every
     entry, and nothing is ranked. C002-1's shape: conditions on the first replicate's seed alone are compared with

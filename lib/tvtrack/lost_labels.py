@@ -51,6 +51,13 @@ def _carried(row: Mapping, name: str, flip: Mapping, n_parts: int) -> bool:
     return every == flip.get("verdict") and kept != every
 
 
+def _part_verdicts(row: Mapping, name: str) -> dict:
+    """Part ``name``'s own verdicts over every run and over the runs in lock, where the row gives them (a flip of
+    one part is said with its part's, not the whole claim's); ``{}`` where it gives the whole claim's only."""
+    every, kept = (row.get("parts") or {}).get(name), (row.get("in_lock_parts") or {}).get(name)
+    return {"verdict": every, "in_lock_verdict": kept} if every is not None and kept is not None else {}
+
+
 def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
     """Mark a claim's record with a paper's own count of the runs that lost lock, at the default and under
     named flips: where the rows' draws read the verdict over every run and another over the runs in lock, those
@@ -76,7 +83,7 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
         ``record``: at the default ``lost_share``, ``in_lock_verdict`` (on the row's draws) and
         ``decided_by_lost_runs`` (those draws give ``verdict`` over every run and another over the runs in lock);
         each flip of a part whose changes a row names gains ``lost_runs`` ({lost, runs, verdict, in_lock_verdict,
-        carried}): ``carried`` where the part reads the flip's verdict over every run of the row and another over
+        carried}; the verdicts the part's own where the row gives them): ``carried`` where the part reads the flip's verdict over every run of the row and another over
         its runs in lock (never from the whole claim's verdicts for a claim of several parts).
     """
     parts = record.get("parts") or {}
@@ -103,5 +110,9 @@ def mark_lost_runs(record: dict, rows: Sequence[Mapping], verdict: str) -> dict:
         for name, part in parts.items():
             for f in part.get("flips") or ():
                 if dict(f.get("changed") or {}) == dict(row["changed"]):
-                    f["lost_runs"] = {**info, "carried": _carried(row, name, f, len(parts))}
+                    f["lost_runs"] = {
+                        **info,
+                        **_part_verdicts(row, name),
+                        "carried": _carried(row, name, f, len(parts)),
+                    }
     return record
