@@ -941,3 +941,16 @@ def test_a_part_without_random_draws_is_robust_on_one_decided_configuration():
     reps = [{"seed": s, "measured": exact} for s in (1, 2, 3)]
     rec = label_parts(BAND, exact, reps, conds, [e], deterministic=True)
     assert rec["parts"]["claim"]["share"]["agree"] == 1 and rec["label"] == "robust"
+
+
+def test_an_edge_within_a_resolution_allowance_is_never_decided_by_more_runs():
+    """Of an interval with a resolution allowance only the sampling part shrinks. 2.45 [2, 3] with sampling
+    [2.3, 2.6]: an edge at 2.2 or 2.8 lies within the allowance (2 to 2.3 below, 2.6 to 3 above), and no number of
+    runs decides it; with sampling [2.3, 2.9] (allowance 0.1 above) the edge at 2.8 is left when the 0.45 of
+    sampling half-width above shrinks to 0.25: (0.45 / 0.25)^2 times the runs."""
+    e = Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "pooled", False, 2.3, 2.6)
+    assert not math.isfinite(runs_to_decide(e, (2.2,))) and not math.isfinite(runs_to_decide(e, (2.8,)))
+    f = Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "pooled", False, 2.3, 2.9)
+    assert runs_to_decide(f, (2.8,)) == pytest.approx(((0.55 - 0.1) / (0.35 - 0.1)) ** 2)
+    plain = Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "pooled")  # no allowance: the whole half-width shrinks
+    assert runs_to_decide(plain, (2.8,)) == pytest.approx((0.55 / 0.35) ** 2)

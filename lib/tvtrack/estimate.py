@@ -31,6 +31,11 @@ class Estimate:
     extrapolated : bool
         The value comes from extrapolating a fit beyond the data (e.g. a logistic tail): it is shown
         but never decides a verdict (:func:`tvtrack.verdicts.is_undecided`).
+    sampling_low, sampling_high : float
+        Where the interval adds a resolution allowance to its sampling error (a threshold read off a grid known to
+        half a grid step, a time known to half a frame): the interval of the sampling error alone (NaN, the
+        default, where there is no allowance). Pooling replicates shrinks the sampling error, not the allowance
+        (:func:`tvtrack.pooling.pool`).
     """
 
     value: float
@@ -41,9 +46,20 @@ class Estimate:
     confidence: float = 0.95
     method: str = ""
     extrapolated: bool = False
+    sampling_low: float = float("nan")
+    sampling_high: float = float("nan")
+
+    @property
+    def has_allowance(self) -> bool:
+        """Whether the interval holds a resolution allowance beside its sampling error (``sampling_low`` and
+        ``sampling_high`` given)."""
+        return bool(np.isfinite(self.sampling_low) and np.isfinite(self.sampling_high))
 
     def to_dict(self) -> dict:
-        return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in asdict(self).items()}
+        d = {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in asdict(self).items()}
+        if not self.has_allowance:  # the sampling interval is written only where there is an allowance
+            del d["sampling_low"], d["sampling_high"]
+        return d
 
     @classmethod
     def exact(cls, value: float, method: str = "exact") -> "Estimate":

@@ -63,6 +63,7 @@ def as_estimate(measured: Any) -> Estimate:
         fields = {
             k: measured[k]
             for k in ("value", "stderr", "ci_low", "ci_high", "n", "confidence", "method", "extrapolated")
+            + ("sampling_low", "sampling_high")
             if k in measured
         }
         fields = {
@@ -205,7 +206,9 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     An interval's half-width shrinks as ``1/sqrt(n)``: an edge at distance ``d`` from the point, with the
     half-width ``h`` on that side, leaves the interval at about ``(h / d)^2`` times the runs (a projection: the
     explorer re-judges after every added replicate), with ``d`` and ``h`` on the log scale for a pool made there
-    (:func:`tvtrack.pooling.pool`: its interval shrinks about the log of its value). Zero events in ``n`` runs certify
+    (:func:`tvtrack.pooling.pool`: its interval shrinks about the log of its value); of an interval that holds a
+    resolution allowance ``a`` on that side (``Estimate.sampling_low``/``sampling_high``) only the sampling part
+    shrinks: ``((h - a) / (d - a))^2``, and an edge within the allowance is never left (``inf``). Zero events in ``n`` runs certify
     ``p <= 1 - alpha^(1/n)``: an upper edge ``L`` is certified at ``n = ln(alpha) / ln(1 - L)`` runs of zero
     events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
     point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
@@ -226,15 +229,18 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
                 return math.inf
             need.append(math.log(alpha) / math.log(1.0 - p))
         return max(need) / e.n
-    if "log scale" in (e.method or "") and min(a, v, *inside) > 0.0:  # a pool on the log scale shrinks there
-        a, b, v, inside = math.log(a), math.log(b), math.log(v), [math.log(c) for c in inside]
+    sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
+    if "log scale" in (e.method or "") and min(a, v, sa, *inside) > 0.0:  # a pool on the log scale shrinks there
+        a, b, v, sa, sb = (math.log(x) for x in (a, b, v, sa, sb))
+        inside = [math.log(c) for c in inside]
     factors = []
     for c in inside:
         d = abs(v - c)
         h = (b - v) if c > v else (v - a)
-        if d == 0.0:
+        allowance = (b - sb) if c > v else (sa - a)  # a resolution allowance: no number of runs shrinks it
+        if d <= allowance or d == 0.0:
             return math.inf
-        factors.append((h / d) ** 2)
+        factors.append(((h - allowance) / (d - allowance)) ** 2)
     return max(factors)
 
 

@@ -118,6 +118,8 @@ def _frame_resolution(e: Estimate, fps: float) -> Estimate:
         e.n,
         e.confidence,
         f"{e.method}, widened by half a frame each side (time resolution)",
+        sampling_low=e.ci_low,  # the order statistics' interval: pooling shrinks it, not the half frame
+        sampling_high=e.ci_high,
     )
 
 

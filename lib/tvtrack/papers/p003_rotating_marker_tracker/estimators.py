@@ -32,7 +32,7 @@ __all__ = [
 ]
 
 
-def interval_estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
+def interval_estimate(value, lo, hi, n, method, extrapolated=False, sampling=None) -> Estimate:
     """An estimate known by its value and 95 % interval only (no standard error).
 
     Parameters
@@ -45,13 +45,19 @@ def interval_estimate(value, lo, hi, n, method, extrapolated=False) -> Estimate:
         How the interval was obtained.
     extrapolated : bool
         Whether the value lies beyond the measured grid.
+    sampling : (float, float), optional
+        The interval of the sampling error alone, where ``[lo, hi]`` adds a resolution allowance to it (half a grid
+        step: :attr:`tvtrack.estimate.Estimate.sampling_low`).
 
     Returns
     -------
     Estimate
         At 95 % confidence, ``stderr`` NaN.
     """
-    return Estimate(float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, bool(extrapolated))
+    s_lo, s_hi = (float("nan"), float("nan")) if sampling is None else map(float, sampling)
+    return Estimate(
+        float(value), float("nan"), float(lo), float(hi), int(n), 0.95, method, bool(extrapolated), s_lo, s_hi
+    )
 
 
 def loss_share(events) -> Estimate:
@@ -127,6 +133,7 @@ def threshold(lost, sirs) -> Estimate:
         tau.size,
         "geometric mean of per-run breaking SIRs (grid-censored), t interval + half a grid step",
         extrapolated=bool(cens.any()),
+        sampling=(np.exp(m.ci_low), np.exp(m.ci_high)),
     )
 
 
@@ -210,6 +217,7 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
         ta.size,
         "paired ratio of geometric-mean thresholds, t interval + half a grid step",
         extrapolated=bool(ca.any() or cb.any()),
+        sampling=(np.exp(m.ci_low), np.exp(m.ci_high)),
     )
 
 
