@@ -11,6 +11,7 @@ with loss indicators given as 0/1 numbers as well as truth values.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -44,9 +45,25 @@ def fields(e):
 
 def test_an_interval_estimate_has_no_standard_error_and_95_percent():
     e = est.interval_estimate(np.float64(2.5), 1, 4, np.int64(7), "how", extrapolated=np.bool_(True))
-    assert fields(e)[:1] + fields(e)[2:] == (2.5, 1, 4, 7, 0.95, "how", True) and np.isnan(e.stderr)
+    assert fields(e)[:1] + fields(e)[2:8] == (2.5, 1, 4, 7, 0.95, "how", True) and np.isnan(e.stderr)
     assert type(e.value) is float and type(e.n) is int and type(e.extrapolated) is bool
-    assert est.interval_estimate(1, 0, 2, 3, "m").extrapolated is False
+    assert est.interval_estimate(1, 0, 2, 3, "m").extrapolated is False and not e.has_allowance
+    s = est.interval_estimate(2.5, 1, 4, 7, "grid", sampling=(np.float64(2.0), 3))
+    assert (s.sampling_low, s.sampling_high) == (2.0, 3.0) and type(s.sampling_high) is float and s.has_allowance
+
+
+def test_a_threshold_carries_its_t_interval_as_its_sampling_interval_and_the_half_step_beside_it():
+    """Six runs that broke at grid steps 2, 2, 3, 3, 3 and 4 of a grid of step 1.5: the threshold's sampling
+    interval is exp of the t interval of their log thresholds, and its interval that widened by half a step."""
+    sirs = 1.5 ** np.arange(8)
+    steps = np.array([2, 2, 3, 3, 3, 4])
+    lost = np.arange(8)[:, None] < steps[None, :]
+    tau = np.log(sirs[steps]) - np.log(1.5) / 2  # each run half a step below the first SIR it kept lock at
+    m, h = tau.mean(), math.log(1.5) / 2
+    half = stats.t.ppf(0.975, 5) * tau.std(ddof=1) / math.sqrt(6)
+    e = est.threshold(lost, sirs)
+    assert (e.sampling_low, e.sampling_high) == pytest.approx((math.exp(m - half), math.exp(m + half)))
+    assert (e.ci_low, e.ci_high) == pytest.approx((math.exp(m - half - h), math.exp(m + half + h)))
 
 
 def test_a_loss_share_is_the_count_with_clopper_pearson_and_the_zero_event_bounds():
@@ -276,7 +293,7 @@ def test_a_trend_in_lock_reads_each_point_on_its_runs_in_lock_and_says_why_it_is
     got = est.grid_in_lock(lost, ripple, control, (2.0, 5.0, 10.0), (10.0, 2.0))
     assert got["read"] == [2.0] and len(got["trend"]) == 2  # one point in lock: two points not read
     for e in got["trend"]:
-        assert fields(e)[4:] == (n, 0.95, "fewer than two grid points keep lock", False) and type(e.n) is int
+        assert fields(e)[4:8] == (n, 0.95, "fewer than two grid points keep lock", False) and type(e.n) is int
         assert all(np.isnan(fields(e)[:4]))
     assert np.isnan(got["pair"].value) and got["pair"].method == "the tracker lost lock at one of the two bandwidths"
     assert all(np.isnan(fields(got["pair"])[:4])) and fields(got["pair"])[4:6] == (n, 0.95)

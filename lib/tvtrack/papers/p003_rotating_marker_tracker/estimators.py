@@ -318,6 +318,8 @@ def fold_distance(ratio: Estimate, reference: float) -> Estimate:
         ci_low=k if lo < k < hi else ends[0],
         ci_high=ends[1],
         method=ratio.method + f"; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|",
+        sampling_low=float("nan"),  # a ratio's resolution allowance does not map end by end through the fold
+        sampling_high=float("nan"),
     )
 
 
