@@ -954,3 +954,7 @@ def test_an_edge_within_a_resolution_allowance_is_never_decided_by_more_runs():
     assert runs_to_decide(f, (2.8,)) == pytest.approx(((0.55 - 0.1) / (0.35 - 0.1)) ** 2)
     plain = Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "pooled")  # no allowance: the whole half-width shrinks
     assert runs_to_decide(plain, (2.8,)) == pytest.approx((0.55 / 0.35) ** 2)
+    # each side its own allowance: 0.05 below (sampling from 2.05), 0.4 above; an edge at the sampling end stays
+    g = Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "pooled", False, 2.05, 2.6)
+    assert runs_to_decide(g, (2.2,)) == pytest.approx(((0.45 - 0.05) / (0.25 - 0.05)) ** 2)
+    assert not math.isfinite(runs_to_decide(Estimate(2.45, 0.1, 2.0, 3.0, 18, 0.95, "p", False, 2.25, 2.6), (2.2,)))

@@ -443,3 +443,38 @@ def test_the_allowance_is_added_to_the_pooled_sampling_interval_on_each_side():
     assert (p.sampling_low, p.sampling_high) == pytest.approx((-half, half))
     assert p.to_dict()["sampling_low"] == pytest.approx(-half)
     assert "sampling_low" not in reps[0].__class__(1.0, 0.1, 0.8, 1.2, 10).to_dict()  # no allowance: not written
+
+
+def test_a_positive_allowance_pool_is_made_on_the_log_scale_with_the_replicates_fields():
+    """Closed form on the log scale: three positive replicates (values 2, 2.2 and 2.4 with sampling intervals
+    ±0.1 and allowances of 0.2 below and 0.3 above in log units), one of them extrapolated: the log sampling
+    intervals pool as any interval, the allowances are added back in log units, and the pool keeps the replicates'
+    runs, confidence and extrapolation."""
+    z = scipy.stats.norm.ppf(0.95)
+    vals = [2.0, 2.2, 2.4]
+    reps = [
+        Estimate(
+            v, 0.05, v * math.exp(-0.3), v * math.exp(0.4), 6, 0.9, "t + half a grid step", i == 1,
+            v * math.exp(-0.1), v * math.exp(0.1),
+        )
+        for i, v in enumerate(vals)
+    ]  # fmt: skip
+    p = pool(reps)
+    m = np.mean(np.log(vals))
+    se = math.sqrt(3 * (0.2 / (2 * z)) ** 2) / 3
+    assert p.value == pytest.approx(math.exp(m)) and p.stderr == pytest.approx(math.exp(m) * se)
+    assert (p.ci_low, p.ci_high) == pytest.approx((math.exp(m - z * se - 0.2), math.exp(m + z * se + 0.3)))
+    assert (p.sampling_low, p.sampling_high) == pytest.approx((math.exp(m - z * se), math.exp(m + z * se)))
+    assert (p.n, p.confidence, p.extrapolated) == (18, 0.9, True)
+    assert p.method == (
+        "pooled over 3 independent replicates (equal weights, log scale); the replicates' resolution allowance added back"
+    )
+
+
+def test_an_estimate_with_an_allowance_reads_back_from_its_record():
+    from tvtrack.measured import as_estimate
+
+    e = Estimate(2.45, math.nan, 2.0, 3.0, 6, 0.95, "grid", False, 2.3, 2.6)
+    back = as_estimate(e.to_dict())
+    assert (back.sampling_low, back.sampling_high) == (2.3, 2.6) and back.has_allowance
+    assert not as_estimate(Estimate(1.0, 0.1, 0.8, 1.2, 10).to_dict()).has_allowance
