@@ -42,6 +42,11 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 # networks) several times slower. Each worker gets cores // workers, as `tvtrack reproduce` gives its kernels; a
 # value the caller set stands. numba keeps its threads: a test compares its kernel on one thread and on all.
 BLAS_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+# numba runs 001's parallel loops on GNU OpenMP threads here (``numba.threading_layer()`` is "omp"), whose idle
+# threads spin between loops by default; beside a second test worker that spinning is CPU the other worker needs
+# (tests/papers/test_001_cost.py on loaded cores: 42-51 user CPU s spinning, 39 passive). Results do not depend on
+# it (the kernels' outputs are the same on any thread count, tested); a value the caller set stands.
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
 def pytest_configure(config):
