@@ -178,9 +178,13 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     skip += [m.span(1) for m in re.finditer(r"between (-?[\d.e+-]+) and ", text)]  # a range: its end has the unit
     # the size of the claim's own unit, in the unit it is measured in ("Its unit, the smallest ... RMS, is 7.62 elements")
     skip += [m.span(1) for m in re.finditer(r"[Ii]ts unit, [^.]*?, is (-?\d+(?:\.\d+)?) [a-z]+", text)]
+    if "ratio" in unit:  # a ratio's parity, the pure number it is compared with ("not distinguishable from 1")
+        skip += [m.span(1) for m in re.finditer(r"(?:distinguishable from|above|below) (1)(?!\w|\.\d)", text)]
     said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
     after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{said}|{_COUNTS})"
-    tokens = r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])"
+    tokens = (
+        r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?!\w|\.\d)"  # a sentence's full stop ends a number
+    )
     bare = []
     for m in re.finditer(tokens, text):
         if any(a <= m.start() < b for a, b in skip):
@@ -239,6 +243,12 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
     defined["caveat"] = "Its unit, the smallest error of the sweep, is 7.62 elements; 3.5 elsewhere."
     found = " ".join(sentence_faults(defined, keys))
     assert "'7.62'" not in found and "'3.5'" in found, found
+    parity = copy.deepcopy(DEPENDS)  # a ratio compared with 1 (equal sizes) owes no unit there; any other number does
+    parity["rule"]["unit"] = "variance ratio"
+    parity["caveat"] = "Given the velocity: 1.4 [0.97, 2.1] variance ratio, not distinguishable from 1."
+    assert not any("'1'" in f for f in sentence_faults(parity, keys)), sentence_faults(parity, keys)
+    parity["caveat"] = "Given the velocity: 1.4 [0.97, 2.1] variance ratio, not distinguishable from 2."
+    assert any("'2'" in f for f in sentence_faults(parity, keys)), sentence_faults(parity, keys)
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
     share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
