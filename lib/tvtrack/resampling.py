@@ -10,7 +10,14 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 
 from .estimate import Estimate
 
-__all__ = ["expanded_alpha", "studentized_mean_interval", "expanded_percentile_ratio", "grouped_bootstrap"]
+__all__ = [
+    "expanded_alpha",
+    "studentized_mean_interval",
+    "expanded_percentile_ratio",
+    "means_replicates",
+    "bca_levels",
+    "grouped_bootstrap",
+]
 
 
 def expanded_alpha(alpha: float, n: int) -> float:
@@ -142,6 +149,46 @@ def expanded_percentile_ratio(
         return lo, hi, np.nanstd(boot, axis=1, ddof=1)
 
 
+def bca_levels(boot: np.ndarray, value: float, jack: np.ndarray, confidence: float) -> np.ndarray:
+    """The two quantile levels of the BCa interval (Efron & Tibshirani 1993, eqs. 14.9-14.15): the bias correction
+    ``z0`` from the share of finite replicates ``boot`` below ``value``, the acceleration from the leave-one-out
+    (or leave-one-cluster-out) values ``jack``."""
+    z0 = scipy.stats.norm.ppf(
+        np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size, 1 / boot.size, 1 - 1 / boot.size)
+    )
+    d = jack.mean() - jack
+    acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
+    z = scipy.stats.norm.ppf([(1 - confidence) / 2, (1 + confidence) / 2])
+    return scipy.stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
+
+
+def means_replicates(samples, statistic, n_resamples: int, rng: np.random.Generator) -> np.ndarray:
+    """Bootstrap replicates (B,) of ``statistic(*means)``, where each mean is a sample's column means (..., k) over
+    one resample of its rows: the rows (runs) are resampled jointly across the samples (paired), and a resample's
+    means are its counts ``W`` (B, n) times the sample, ``W @ x / n``, so no resampled copy of the rows is made.
+
+    Parameters
+    ----------
+    samples : sequence of numpy.ndarray
+        Each (n, k_i): one row per independent run, the same runs in every sample.
+    statistic : callable
+        ``statistic(*means)``, each mean (b, k_i), returns (b,).
+    n_resamples : int
+        Bootstrap resamples B.
+    rng : numpy.random.Generator
+        The seeded generator the resamples are drawn from.
+    """
+    n = samples[0].shape[0]
+    idx = rng.integers(0, n, size=(n_resamples, n))
+    out = np.empty(n_resamples)
+    for sl in _blocks(n_resamples, n):
+        W = _resample_weights(idx[sl], n) / n
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out[sl] = statistic(*(W @ x for x in samples))
+    out[~np.isfinite(out)] = np.nan
+    return out
+
+
 def _cluster_members(groups: np.ndarray) -> list[np.ndarray]:
     """Indices of the trials of each cluster (in order of first appearance of the labels)."""
     _, first, inverse = np.unique(groups, return_index=True, return_inverse=True)
@@ -253,13 +300,7 @@ def grouped_bootstrap(
             raise ValueError("bootstrap_ci: BCa with clusters needs paired samples; use 'expanded percentile'")
         leave_one_out = np.array([[k for k in range(C) if k != i] for i in range(C)])
         jack = _cluster_statistics(data, statistic, members, [leave_one_out] * len(data))
-        z0 = scipy.stats.norm.ppf(
-            np.clip((np.sum(boot < value) + 0.5 * np.sum(boot == value)) / boot.size, 1 / boot.size, 1 - 1 / boot.size)
-        )
-        d = jack.mean() - jack
-        acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
-        z = scipy.stats.norm.ppf([a / 2, 1 - a / 2])
-        probs = scipy.stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
+        probs = bca_levels(boot, value, jack, confidence)
     else:
         raise ValueError(f"bootstrap_ci: method {method!r} must be 'BCa', 'percentile' or 'expanded percentile'")
     lo, hi = np.quantile(boot, probs) if boot.size >= 0.9 * n_resamples else (np.nan, np.nan)

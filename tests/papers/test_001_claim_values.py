@@ -12,6 +12,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 
 import numpy as np
+import scipy.stats
 import pytest
 
 from tvtrack.estimate import Estimate
@@ -176,12 +177,13 @@ def test_a_paired_functional_ratio_is_the_first_filters_functional_over_the_seco
     got = tradeoff.paired_functional_ratio(a, b, "random", np.random.default_rng(0), n_boot=200)
     assert got.value == pytest.approx(f(a) / f(b), rel=1e-12)
     assert got.ci_low < got.value < got.ci_high and got.n == 30 and got.confidence == 0.95
-    w = np.random.default_rng(0).multinomial(30, np.full(30, 1 / 30), size=200).astype(float)
-    var = lambda x: np.mean(w @ x**2 / 30 - (w @ x / 30) ** 2, axis=1)  # noqa: E731  per resample, over columns
-    boot = var(a) / var(b)
-    assert (got.ci_low, got.ci_high) == pytest.approx(tuple(np.quantile(boot, [0.025, 0.975])), rel=1e-12)
+    # written out: 200 resamples of the runs (rows), the same rows for both filters, each functional recomputed
+    picks = np.random.default_rng(0).integers(0, 30, size=(200, 30))
+    boot = np.array([f(a[i]) / f(b[i]) for i in picks])
+    tail = scipy.stats.norm.cdf(np.sqrt(30 / 29) * scipy.stats.t.ppf(0.025, 29))  # expanded percentile at 30 runs
+    assert (got.ci_low, got.ci_high) == pytest.approx(tuple(np.quantile(boot, [tail, 1 - tail])), rel=1e-12)
     assert got.stderr == pytest.approx(np.std(boot, ddof=1), rel=1e-12)
-    assert got.method == "paired percentile bootstrap over 30 runs (200 resamples)"
+    assert got.method == "expanded percentile bootstrap over 30 runs (200 resamples, paired)"
 
 
 @pytest.fixture

@@ -10,8 +10,9 @@ minimised the RMS (СКО) error", two errors the paper keeps apart (Fig. 4's cu
   (at the last frame before the loss). Each ``min RMS vs <comparator>`` part is the comparator's value over the
   scheme's.
 
-Every ratio is of functionals of the per-frame mean and second moment over runs, so its interval is a paired
-percentile bootstrap over runs (multinomial weights, the same resampled runs for both filters).
+Every ratio is of functionals of the per-frame mean and second moment over runs, so its interval is the core's
+paired bootstrap of column means over runs (:func:`tvtrack.montecarlo.means_bootstrap`: the same resampled runs for
+both filters).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import functools
 import numpy as np
 
 from ...estimate import Estimate
+from ...montecarlo import means_bootstrap
 from .comparators import comparator_tuning, comparator_positions, compensation_comparator
 from .scenario import (
     COMPARATORS,
@@ -65,8 +67,9 @@ def error_functional(m1, m2, kind: str) -> np.ndarray:
 
 
 def paired_functional_ratio(err_a, err_b, kind: str, rng: np.random.Generator, n_boot: int = N_BOOT) -> Estimate:
-    """``f(err_a) / f(err_b)`` for the functional ``kind`` of :func:`error_functional`, with a paired percentile
-    bootstrap over runs.
+    """``f(err_a) / f(err_b)`` for the functional ``kind`` of :func:`error_functional`, with the core's paired
+    bootstrap over runs (:func:`tvtrack.montecarlo.means_bootstrap`: each functional reads the column means of the
+    errors and of their squares).
 
     Parameters
     ----------
@@ -74,26 +77,11 @@ def paired_functional_ratio(err_a, err_b, kind: str, rng: np.random.Generator, n
         Position errors (elements) of two filters on the same runs; columns are the frames x channels judged.
     """
     a, b = np.asarray(err_a, float), np.asarray(err_b, float)
-    runs = a.shape[0]
 
-    def f(x, w=None):
-        if w is None:
-            return error_functional(x.mean(0), (x**2).mean(0), kind)
-        return error_functional(w @ x / runs, w @ x**2 / runs, kind)
+    def ratio(m1a, m2a, m1b, m2b):
+        return error_functional(m1a, m2a, kind) / error_functional(m1b, m2b, kind)
 
-    value = float(f(a) / f(b))
-    w = rng.multinomial(runs, np.full(runs, 1.0 / runs), size=n_boot).astype(float)
-    boot = f(a, w) / f(b, w)
-    lo, hi = np.quantile(boot, [0.025, 0.975])
-    return Estimate(
-        value,
-        float(np.std(boot, ddof=1)),
-        float(lo),
-        float(hi),
-        runs,
-        0.95,
-        f"paired percentile bootstrap over {runs} runs ({n_boot} resamples)",
-    )
+    return means_bootstrap([a, a**2, b, b**2], ratio, rng=rng, n_resamples=n_boot)
 
 
 def _columns(err, frames) -> np.ndarray:
