@@ -158,7 +158,8 @@ def bca_levels(boot: np.ndarray, value: float, jack: np.ndarray, confidence: flo
     )
     d = jack.mean() - jack
     acc = np.sum(d**3) / (6 * np.sum(d**2) ** 1.5) if np.sum(d**2) > 0 else 0.0
-    z = scipy.stats.norm.ppf([(1 - confidence) / 2, (1 + confidence) / 2])
+    a = 1 - confidence
+    z = scipy.stats.norm.ppf([a / 2, 1 - a / 2])
     return scipy.stats.norm.cdf(z0 + (z0 + z) / (1 - acc * (z0 + z)))
 
 
