@@ -477,3 +477,64 @@ def test_the_bootstrap_of_column_means_covers_001s_dynamic_error_ratio_at_its_si
         e = means_bootstrap([a, a**2, b, b**2], _bias_ratio, rng=rng, n_resamples=400)
         hits.append(e.ci_low <= (0.8 / 0.6) ** 2 <= e.ci_high)
     assert 0.92 <= np.mean(hits) <= 0.98, np.mean(hits)
+
+
+def test_the_bca_of_column_means_is_scipys_bca_on_the_same_draws():
+    """``means_bootstrap(method="BCa")`` of a statistic of means that no rescaling leaves alone (a variance ratio,
+    ``(mean(a²) - mean(a)²) / (mean(b²) - mean(b)²)``) is scipy's paired BCa on the same resamples: its bias
+    correction, its leave-one-run-out acceleration and its levels."""
+    from tvtrack.montecarlo import means_bootstrap
+
+    rng = np.random.default_rng(8)
+    a = rng.gamma(2.0, 1.5, size=25)
+    b = 0.6 * a + rng.exponential(1.0, size=25)
+
+    def var_ratio(m1a, m2a, m1b, m2b):
+        return (m2a[..., 0] - m1a[..., 0] ** 2) / (m2b[..., 0] - m1b[..., 0] ** 2)
+
+    got = means_bootstrap([a, a**2, b, b**2], var_ratio, rng=np.random.default_rng(3), n_resamples=999, method="BCa")
+    res = stats.bootstrap(
+        (a, a**2, b, b**2),
+        lambda p, q, r, s, axis: (q.mean(axis) - p.mean(axis) ** 2) / (s.mean(axis) - r.mean(axis) ** 2),
+        paired=True, vectorized=True, axis=-1, n_resamples=999, method="BCa", rng=np.random.default_rng(3),
+    )  # fmt: skip
+    assert (got.ci_low, got.ci_high) == pytest.approx(
+        (res.confidence_interval.low, res.confidence_interval.high), rel=1e-10
+    )
+    assert got.value == pytest.approx(np.var(a) / np.var(b), rel=1e-12)
+
+
+def test_the_bootstrap_of_column_means_at_its_edges():
+    """Two runs are enough; one sample is enough; a statistic that is not finite gives no interval; without a
+    generator the fixed bootstrap stream is used, so a summary is a pure function of its data."""
+    from tvtrack.montecarlo import BOOTSTRAP_SEED, means_bootstrap
+
+    two = means_bootstrap([np.array([1.0, 3.0])], lambda m: m[..., 0], n_resamples=50)
+    assert two.n == 2 and two.value == 2.0 and 1.0 <= two.ci_low <= two.ci_high <= 3.0
+    x = np.random.default_rng(1).normal(size=(12, 3))
+    alone = means_bootstrap([x], lambda m: m.sum(axis=-1), n_resamples=200)
+    again = means_bootstrap([x], lambda m: m.sum(axis=-1), rng=np.random.default_rng(BOOTSTRAP_SEED), n_resamples=200)
+    assert alone == again and alone.value == pytest.approx(x.mean(0).sum(), rel=1e-12)
+    inf = means_bootstrap([np.zeros((5, 2))], lambda m: 1.0 / m[..., 0])
+    assert np.isinf(inf.value) and np.isnan([inf.stderr, inf.ci_low, inf.ci_high]).all()
+    assert (inf.n, inf.confidence, inf.method) == (5, 0.95, "none (statistic not finite)")
+
+
+def test_the_bca_levels_closed_forms():
+    """``bca_levels``: no bias and no skew read the percentile levels; every replicate above the value clips the
+    bias correction at one replicate; a constant jackknife has no acceleration; a skewed one moves both levels."""
+    from scipy.stats import norm
+
+    from tvtrack.resampling import bca_levels
+
+    boot = np.arange(1.0, 101.0)  # 50 of 100 below 50.5: z0 = 0
+    flat = np.full(7, 2.0)
+    assert bca_levels(boot, 50.5, flat, 0.95) == pytest.approx([0.025, 0.975], abs=1e-12)
+    assert bca_levels(boot, 0.0, flat, 0.9) == pytest.approx(norm.cdf(2 * norm.ppf(0.01) + norm.ppf([0.05, 0.95])))
+    assert bca_levels(boot, 100.5, flat, 0.9) == pytest.approx(norm.cdf(2 * norm.ppf(0.99) + norm.ppf([0.05, 0.95])))
+    tie = np.array([1.0, 2.0, 2.0, 3.0])  # one below, two equal: (1 + 0.5 x 2) / 4
+    assert bca_levels(tie, 2.0, flat, 0.9) == pytest.approx(norm.cdf(2 * norm.ppf(0.5) + norm.ppf([0.05, 0.95])))
+    jack = np.array([0.0, 0.0, 0.0, 3.0])  # d = 0.75 - jack: sum d^3 = 3 x 0.421875 - 15.1875, sum d^2 = 6.75
+    acc = (3 * 0.75**3 - 2.25**3) / (6 * 6.75**1.5)
+    z = norm.ppf([0.05, 0.95])
+    assert bca_levels(boot, 50.5, jack, 0.9) == pytest.approx(norm.cdf(z / (1 - acc * z)), rel=1e-12)
