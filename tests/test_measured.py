@@ -327,8 +327,35 @@ def test_decide_note_gives_the_factor_or_says_none_decides():
     assert decide_note(4.0) == "about 4 times the runs are projected to decide it"
     assert decide_note(28.433) == "about 28 times the runs are projected to decide it"
     assert decide_note(1.26) == "about 1.3 times the runs are projected to decide it"
-    no = "no number of runs is projected to decide it (the point sits on the edge)"
+    no = "no number of runs is projected to decide it"
     assert decide_note(math.inf) == no and decide_note(NAN) == no
+    assert decide_note(math.inf, "the point sits on the edge") == no + " (the point sits on the edge)"
+    assert decide_note(2.0, "the point sits on the edge") == "about 2 times the runs are projected to decide it"
+
+
+def test_an_envelope_of_certified_bounds_is_never_projected_to_decide_and_says_why():
+    """The pool of replicates some of which are certified bounds is their envelope: more replicates only widen it,
+    so no number of runs decides an edge it straddles (it was projected from its width as if it shrank)."""
+    from tvtrack.estimate import Estimate
+    from tvtrack.measured import is_envelope, why_no_runs
+    from tvtrack.pooling import pool
+
+    bound = Estimate(0.0, math.nan, 0.0, 0.095, 30, 0.95, "zero events: one-sided bound")
+    other = Estimate(1.4, 0.3, 0.9, 1.9, 30, 0.95, "t interval")
+    env = pool([bound, other])
+    assert is_envelope(env) and (env.ci_low, env.ci_high) == (0.0, 1.9)
+    assert runs_to_decide(env, (1.0,)) == math.inf
+    assert (
+        why_no_runs(env, (1.0,))
+        == "an envelope of the replicates' certified bounds, which more replicates do not narrow"
+    )
+    plain = Estimate(1.4, 0.3, 0.9, 1.9, 30, 0.95, "t interval")
+    assert not is_envelope(plain) and runs_to_decide(plain, (1.0,)) == pytest.approx((0.5 / 0.4) ** 2)
+    assert why_no_runs(plain, (1.4,)) == "the point sits on the edge"
+    assert why_no_runs(Estimate(NAN, NAN, NAN, NAN, 0, 0.95, "none"), (1.0,)) == "the interval is undefined"
+    grid = Estimate(2.4, 0.1, 2.0, 3.0, 18, 0.95, "pooled; allowance", sampling_low=2.3, sampling_high=2.5)
+    assert runs_to_decide(grid, (2.6,)) == math.inf
+    assert why_no_runs(grid, (2.6,)).startswith("the edge lies within the resolution of the grid")
 
 
 def test_a_difference_is_widened_on_the_linear_scale_and_may_reach_zero():

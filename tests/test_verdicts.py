@@ -184,3 +184,24 @@ def test_an_identity_inside_a_composite_claim_takes_no_label():
     assert rec["parts"]["identity"]["label"] == "-" and rec["parts"]["x"]["label"] == "robust"
     assert rec["label"] == "robust" and "weakest part: x" in rec["coverage"]  # every combination of one entry
     assert rule.decide({"identity": 1.0, "x": est(3.0, 4.0)}) == "not reproduced"
+
+
+def test_an_undecided_trend_or_ordering_read_on_an_envelope_projects_no_runs_and_says_why():
+    """An end or a comparison that is an envelope of certified bounds never narrows: the judgement projects no runs
+    (it read 5.3e+04 times the runs from the envelope's width) and says why."""
+    import math
+
+    from tvtrack.verdicts import Monotone, Ordering
+
+    env = Estimate(1.0, 0.5, 0.0, 1.9, 30, method="envelope of 5 independent replicates' intervals (some are ...)")
+    plain = Estimate(1.0, 0.5, 0.0, 1.9, 30, method="t interval")
+    j = Ordering("decoy", "stationary", ">", measure="ratio").judge(
+        Estimate(1.004, 0.5, 0.0, 1.9, 30, method=env.method)
+    )
+    assert j.runs_factor == math.inf and j.why.endswith(
+        "no number of runs is projected to decide it (an envelope of the replicates' certified bounds, which more "
+        "replicates do not narrow)"
+    ), j.why
+    mono = Monotone("g", "x", "increasing")
+    assert mono.judge([env, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t")]).runs_factor == math.inf
+    assert math.isfinite(mono.judge([plain, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t")]).runs_factor)

@@ -22,6 +22,8 @@ __all__ = [
     "short_number",
     "show_estimate",
     "decide_note",
+    "is_envelope",
+    "why_no_runs",
 ]
 
 
@@ -211,14 +213,15 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     shrinks: ``((h - a) / (d - a))^2``, and an edge within the allowance is never left (``inf``). Zero events in ``n`` runs certify
     ``p <= 1 - alpha^(1/n)``: an upper edge ``L`` is certified at ``n = ln(alpha) / ln(1 - L)`` runs of zero
     events (29 for ``L = 0.1`` at 95 %), and all events likewise for a lower edge. Returns ``inf`` when the
-    point sits on an edge or the interval is undefined, ``1.0`` when nothing is straddled.
+    point sits on an edge, the interval is undefined or is an envelope of certified bounds (:func:`is_envelope`:
+    more replicates only widen it), ``1.0`` when nothing is straddled.
     """
     a, b = interval_of(e)
     v = e.value
     inside = [c for c in edges if c is not None and math.isfinite(c) and a < c < b]
     if not inside:
         return 1.0
-    if any(math.isnan(x) for x in (a, b, v)):
+    if any(math.isnan(x) for x in (a, b, v)) or is_envelope(e):
         return math.inf
     if _zero_count(e):
         alpha = 1.0 - e.confidence
@@ -244,19 +247,40 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     return max(factors)
 
 
-def decide_note(factor: float) -> str:
+def is_envelope(e: Estimate) -> bool:
+    """Whether ``e`` is the envelope of replicates' intervals that :func:`tvtrack.pooling.pool` makes where some are
+    certified one-sided bounds: its ends are the widest replicate's, so adding replicates never narrows it."""
+    return str(getattr(e, "method", "") or "").startswith("envelope of")
+
+
+def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
+    """Why :func:`runs_to_decide` projects no number of runs for ``e`` against the straddled ``edges``: the words
+    :func:`decide_note` puts in brackets."""
+    a, b = interval_of(e)
+    if any(math.isnan(x) for x in (a, b, e.value)):
+        return "the interval is undefined"
+    if is_envelope(e):
+        return "an envelope of the replicates' certified bounds, which more replicates do not narrow"
+    if any(c is not None and c == e.value for c in edges):
+        return "the point sits on the edge"
+    return "the edge lies within the resolution of the grid it is read on, which more runs do not shrink"
+
+
+def decide_note(factor: float, why: str = "") -> str:
     """The words of a verdict that a straddled band edge leaves undecided.
 
     Parameters
     ----------
     factor : float
         The multiple of the runs projected to decide it (:func:`runs_to_decide`; ``inf`` when none would).
+    why : str
+        Why none would, where ``factor`` is not finite (:func:`why_no_runs`); said in brackets.
 
     Returns
     -------
     str
-        ``"about F times the runs are projected to decide it"``, or that no number of runs is.
+        ``"about F times the runs are projected to decide it"``, or that no number of runs is, and why.
     """
     if not math.isfinite(factor):
-        return "no number of runs is projected to decide it (the point sits on the edge)"
+        return "no number of runs is projected to decide it" + (f" ({why})" if why else "")
     return f"about {factor:.2g} times the runs are projected to decide it"

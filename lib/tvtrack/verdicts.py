@@ -35,6 +35,8 @@ from .estimate import Estimate
 from .run_words import part_name
 from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated, is_undecided, runs_to_decide
     decide_note,
+    is_envelope,
+    why_no_runs,
     short_number,
     interval_of,
     show_estimate,
@@ -206,9 +208,10 @@ class InBand(Rule):
                 + (": better than the paper's number, but not the paper's number" if better else ""),
             )
         f = runs_to_decide(e, (self.low, self.high))
+        why = why_no_runs(e, (self.low, self.high))
         return Judgement(
             "undecided",
-            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): {decide_note(f)}",
+            f"{self.quantity} = {m} straddles a bound of the band ({self._band()}): {decide_note(f, why)}",
             False,
             f,
         )
@@ -313,9 +316,8 @@ class Ordering(Rule):
         if other_side:
             return Judgement("not reproduced", f"{m}: the opposite ordering holds")
         f = runs_to_decide(e, (r,))
-        return Judgement(
-            "undecided", f"{m} contains {short_number(r)}: no measurable difference yet; {decide_note(f)}", False, f
-        )
+        note = decide_note(f, why_no_runs(e, (r,)))
+        return Judgement("undecided", f"{m} contains {short_number(r)}: no measurable difference yet; {note}", False, f)
 
 
 @dataclass(frozen=True)
@@ -385,7 +387,10 @@ class Monotone(Rule):
         return s if self.direction == "increasing" else -s
 
     def _ends_factor(self, e0: Estimate, e1: Estimate) -> float:
-        """Runs projected to separate the end intervals: ``((h0 + h1) / |v1 - v0|)^2``."""
+        """Runs projected to separate the end intervals: ``((h0 + h1) / |v1 - v0|)^2`` (none where an end is an
+        envelope of certified bounds, :func:`tvtrack.measured.is_envelope`, which more replicates do not narrow)."""
+        if is_envelope(e0) or is_envelope(e1):
+            return math.inf
         a0, b0 = interval_of(e0)
         a1, b1 = interval_of(e1)
         d = abs(e1.value - e0.value) - self.tolerance
