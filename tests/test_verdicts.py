@@ -205,3 +205,23 @@ def test_an_undecided_trend_or_ordering_read_on_an_envelope_projects_no_runs_and
     mono = Monotone("g", "x", "increasing")
     assert mono.judge([env, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t")]).runs_factor == math.inf
     assert math.isfinite(mono.judge([plain, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t")]).runs_factor)
+
+
+def test_an_undecided_band_and_trend_say_why_no_runs_decide_them_and_the_trend_projects_from_its_ends():
+    import math
+
+    from tvtrack.verdicts import InBand, Monotone
+
+    env = Estimate(1.0, 0.5, 0.4, 1.9, 30, method="envelope of 3 independent replicates' intervals (some are ...)")
+    j = InBand("share", 0.0, 1.5).judge(env)
+    assert j.runs_factor == math.inf and j.why.endswith(
+        "no number of runs is projected to decide it (an envelope of the replicates' certified bounds, which more "
+        "replicates do not narrow)"
+    ), j.why
+    mono = Monotone("g", "x", "increasing")
+    first = Estimate(1.0, 0.5, 0.2, 1.8, 30, method="t")
+    assert mono.judge([first, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t"), env]).runs_factor == math.inf
+    # three points, nothing separated: ((h_first + h_last) / |v_last - v_first|)^2 from the ends, not the middle
+    last = Estimate(1.6, 0.5, 1.0, 2.4, 30, method="t")
+    f = mono.judge([first, Estimate(5.0, 5.0, -4.0, 14.0, 30, method="t"), last]).runs_factor
+    assert f == pytest.approx(((0.8 + 0.7) / 0.6) ** 2)
