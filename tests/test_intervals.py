@@ -515,6 +515,10 @@ def test_the_bootstrap_of_column_means_at_its_edges():
     alone = means_bootstrap([x], lambda m: m.sum(axis=-1), n_resamples=200)
     again = means_bootstrap([x], lambda m: m.sum(axis=-1), rng=np.random.default_rng(BOOTSTRAP_SEED), n_resamples=200)
     assert alone == again and alone.value == pytest.approx(x.mean(0).sum(), rel=1e-12)
+    # undefined on many resamples (every resample of the runs whose denominator is 0 but one): no interval
+    rare = np.array([[1.0], [0.0], [0.0], [0.0], [0.0], [0.0]])
+    few = means_bootstrap([np.ones((6, 1)), rare], lambda m, d: m[..., 0] / d[..., 0], n_resamples=200)
+    assert few.value == 6.0 and np.isnan([few.ci_low, few.ci_high]).all(), few
     inf = means_bootstrap([np.zeros((5, 2))], lambda m: 1.0 / m[..., 0])
     assert np.isinf(inf.value) and np.isnan([inf.stderr, inf.ci_low, inf.ci_high]).all()
     assert (inf.n, inf.confidence, inf.method) == (5, 0.95, "none (statistic not finite)")

@@ -424,12 +424,13 @@ def means_bootstrap(
     if method == "BCa":
         with np.errstate(divide="ignore", invalid="ignore"):  # each run left out: (sum - row) / (n - 1)
             jack = statistic(*((x.sum(axis=0) - x) / (n - 1) for x in data))
-        finite = boot[np.isfinite(boot)]
-        levels = bca_levels(finite, value, jack, confidence)
+        levels = bca_levels(boot[np.isfinite(boot)], value, jack, confidence)
     else:
         a2 = expanded_alpha(1 - confidence, n) / 2
         levels = [a2, 1 - a2]
-    lo, hi = np.nanquantile(boot, levels)
+    finite = np.isfinite(boot)
+    # a statistic undefined on many resamples (a denominator often 0) has no interval, as in the cluster bootstrap
+    lo, hi = np.nanquantile(boot, levels) if finite.sum() >= 0.9 * n_resamples else (np.nan, np.nan)
     return Estimate(
         value,
         float(np.nanstd(boot, ddof=1)),
