@@ -515,13 +515,34 @@ def test_the_bootstrap_of_column_means_at_its_edges():
     alone = means_bootstrap([x], lambda m: m.sum(axis=-1), n_resamples=200)
     again = means_bootstrap([x], lambda m: m.sum(axis=-1), rng=np.random.default_rng(BOOTSTRAP_SEED), n_resamples=200)
     assert alone == again and alone.value == pytest.approx(x.mean(0).sum(), rel=1e-12)
-    # undefined on many resamples (every resample of the runs whose denominator is 0 but one): no interval
+    # undefined (0 / 0) on many resamples, those without the one run that is not 0: no interval
     rare = np.array([[1.0], [0.0], [0.0], [0.0], [0.0], [0.0]])
-    few = means_bootstrap([np.ones((6, 1)), rare], lambda m, d: m[..., 0] / d[..., 0], n_resamples=200)
-    assert few.value == 6.0 and np.isnan([few.ci_low, few.ci_high]).all(), few
+    few = means_bootstrap([rare, rare], lambda m, d: m[..., 0] / d[..., 0], n_resamples=200)
+    assert few.value == 1.0 and np.isnan([few.ci_low, few.ci_high]).all(), few
+    # unbounded on some resamples (3 events in 60 runs, one in 20 resamples without any): the upper end is infinite,
+    # not the largest finite replicate
+    events = np.zeros((60, 1))
+    events[:3] = 1.0
+    rate = means_bootstrap([np.ones((60, 1)), events], lambda m, d: m[..., 0] / d[..., 0], n_resamples=400)
+    assert rate.value == 20.0 and np.isfinite(rate.ci_low) and rate.ci_high == np.inf, rate
+    one = np.zeros((60, 1))
+    one[0] = 1.0  # one event: the run that holds it, left out, leaves the ratio unbounded, so BCa has no acceleration
+    bca = means_bootstrap([np.ones((60, 1)), one], lambda m, d: m[..., 0] / d[..., 0], method="BCa")
+    assert bca.value == 60.0 and np.isnan([bca.ci_low, bca.ci_high]).all(), bca
     inf = means_bootstrap([np.zeros((5, 2))], lambda m: 1.0 / m[..., 0])
     assert np.isinf(inf.value) and np.isnan([inf.stderr, inf.ci_low, inf.ci_high]).all()
     assert (inf.n, inf.confidence, inf.method) == (5, 0.95, "none (statistic not finite)")
+
+
+def test_order_quantiles_read_numpys_quantiles_and_an_infinite_neighbour():
+    from tvtrack.resampling import order_quantiles
+
+    x = np.random.default_rng(2).normal(size=101)
+    assert np.array_equal(order_quantiles(x, [0.025, 0.5, 0.975]), np.quantile(x, [0.025, 0.5, 0.975]))
+    y = np.r_[np.arange(10.0), np.inf, -np.inf]  # sorted: -inf, 0 ... 9, inf; positions 11 x level
+    got = order_quantiles(y, [0.0, 0.05, 0.5, 0.95, 1.0])
+    assert got[0] == -np.inf and got[1] == -np.inf and got[2] == pytest.approx(4.5)
+    assert got[3] == np.inf and got[4] == np.inf
 
 
 def test_the_bca_levels_closed_forms():

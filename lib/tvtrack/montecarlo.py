@@ -33,6 +33,7 @@ from .resampling import (
     bca_levels,
     grouped_bootstrap,
     means_replicates,
+    order_quantiles,
     studentized_mean_interval,
 )
 
@@ -421,19 +422,22 @@ def means_bootstrap(
         return Estimate(value, float("nan"), float("nan"), float("nan"), n, confidence, "none (statistic not finite)")
     rng = np.random.default_rng(BOOTSTRAP_SEED) if rng is None else rng
     boot = means_replicates(data, statistic, n_resamples, rng)
+    defined = boot[~np.isnan(boot)]  # an unbounded replicate (x / 0) is kept: it may make an end infinite
+    levels = [expanded_alpha(1 - confidence, n) / 2, 1 - expanded_alpha(1 - confidence, n) / 2]
     if method == "BCa":
         with np.errstate(divide="ignore", invalid="ignore"):  # each run left out: (sum - row) / (n - 1)
             jack = statistic(*((x.sum(axis=0) - x) / (n - 1) for x in data))
-        levels = bca_levels(boot[np.isfinite(boot)], value, jack, confidence)
+        levels = bca_levels(defined, value, jack, confidence) if np.isfinite(jack).all() else [np.nan, np.nan]
+    # a statistic undefined on many resamples (0 / 0 often) has no interval, as in the cluster bootstrap; nor has BCa
+    # where a run left out leaves it undefined or unbounded
+    if defined.size >= 0.9 * n_resamples and np.isfinite(levels).all():
+        lo, hi = order_quantiles(defined, levels)
     else:
-        a2 = expanded_alpha(1 - confidence, n) / 2
-        levels = [a2, 1 - a2]
-    finite = np.isfinite(boot)
-    # a statistic undefined on many resamples (a denominator often 0) has no interval, as in the cluster bootstrap
-    lo, hi = np.nanquantile(boot, levels) if finite.sum() >= 0.9 * n_resamples else (np.nan, np.nan)
+        lo, hi = np.nan, np.nan
+    finite = defined[np.isfinite(defined)]
     return Estimate(
         value,
-        float(np.nanstd(boot, ddof=1)),
+        float(np.std(finite, ddof=1)) if finite.size > 1 else float("nan"),
         float(lo),
         float(hi),
         n,

@@ -15,6 +15,7 @@ __all__ = [
     "studentized_mean_interval",
     "expanded_percentile_ratio",
     "means_replicates",
+    "order_quantiles",
     "bca_levels",
     "grouped_bootstrap",
 ]
@@ -164,7 +165,7 @@ def bca_levels(boot: np.ndarray, value: float, jack: np.ndarray, confidence: flo
 
 
 def means_replicates(samples, statistic, n_resamples: int, rng: np.random.Generator) -> np.ndarray:
-    """Bootstrap replicates (B,) of ``statistic(*means)``, where each mean is a sample's column means (..., k) over
+    """Bootstrap replicates (B,) of ``statistic(*means)`` (NaN where it is undefined, ``inf`` where it is unbounded), where each mean is a sample's column means (..., k) over
     one resample of its rows: the rows (runs) are resampled jointly across the samples (paired), and a resample's
     means are its counts ``W`` (B, n) times the sample, ``W @ x / n``, so no resampled copy of the rows is made.
 
@@ -182,12 +183,24 @@ def means_replicates(samples, statistic, n_resamples: int, rng: np.random.Genera
     n = samples[0].shape[0]
     idx = rng.integers(0, n, size=(n_resamples, n))
     out = np.empty(n_resamples)
-    for sl in _blocks(n_resamples, n):
+    for sl in _blocks(n_resamples, n + sum(x.shape[1] for x in samples)):  # W and every W @ x of a block
         W = _resample_weights(idx[sl], n) / n
         with np.errstate(divide="ignore", invalid="ignore"):
             out[sl] = statistic(*(W @ x for x in samples))
-    out[~np.isfinite(out)] = np.nan
     return out
+
+
+def order_quantiles(values: np.ndarray, levels) -> np.ndarray:
+    """Quantiles at ``levels`` of ``values`` that may hold ``-inf`` or ``inf`` (no NaN), read between order statistics
+    as ``numpy.quantile``'s linear rule does: a level whose neighbouring order statistics reach an infinite value is
+    that infinity (a ratio whose denominator is 0 in some resamples has an unbounded end there)."""
+    v = np.sort(np.asarray(values, dtype=float))
+    pos = np.asarray(levels, dtype=float) * (v.size - 1)
+    lo, hi = v[np.floor(pos).astype(int)], v[np.ceil(pos).astype(int)]
+    with np.errstate(invalid="ignore"):
+        out = np.quantile(v, levels)  # finite neighbours: numpy's own numbers, bit for bit
+    out = np.where(hi == np.inf, np.inf, out)
+    return np.where(lo == -np.inf, -np.inf, out)
 
 
 def _cluster_members(groups: np.ndarray) -> list[np.ndarray]:
