@@ -220,7 +220,17 @@ def test_an_undecided_band_and_trend_say_why_no_runs_decide_them_and_the_trend_p
     ), j.why
     mono = Monotone("g", "x", "increasing")
     first = Estimate(1.0, 0.5, 0.2, 1.8, 30, method="t")
-    assert mono.judge([first, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t"), env]).runs_factor == math.inf
+    j = mono.judge([first, Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t"), env])
+    assert j.runs_factor == math.inf and j.why.endswith(
+        "no number of runs is projected to decide it (an end is an envelope of the replicates' certified bounds, "
+        "which more replicates do not narrow))"
+    ), j.why
+    flat = mono.judge([first, Estimate(1.0, 0.5, 0.3, 1.7, 30, method="t")])
+    assert (
+        flat.runs_factor == math.inf and "(the ends' values are not apart by more than the flat tolerance)" in flat.why
+    )
+    wide = mono.judge([first, Estimate(1.5, 0.5, 0.5, math.inf, 30, method="t")])
+    assert wide.runs_factor == math.inf and "(an end's interval is unbounded)" in wide.why
     # three points, nothing separated: ((h_first + h_last) / |v_last - v_first|)^2 from the ends, not the middle
     last = Estimate(1.6, 0.5, 1.0, 2.4, 30, method="t")
     f = mono.judge([first, Estimate(5.0, 5.0, -4.0, 14.0, 30, method="t"), last]).runs_factor

@@ -429,7 +429,20 @@ class Monotone(Rule):
         if ends == 1:
             return Judgement("reproduced", m)
         f = self._ends_factor(keep[0], keep[-1])
-        return Judgement("undecided", m + f" (no measurable trend yet; {decide_note(f)})", False, f)
+        return Judgement(
+            "undecided",
+            m + f" (no measurable trend yet; {decide_note(f, self._ends_why(*keep[:: len(keep) - 1]))})",
+            False,
+            f,
+        )
+
+    def _ends_why(self, e0: Estimate, e1: Estimate) -> str:
+        """Why no runs are projected to separate the ends (:meth:`_ends_factor` is ``inf``)."""
+        if is_envelope(e0) or is_envelope(e1):
+            return "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow"
+        if abs(e1.value - e0.value) <= self.tolerance:
+            return "the ends' values are not apart by more than the flat tolerance"
+        return "an end's interval is unbounded"
 
 
 @dataclass(frozen=True)
