@@ -353,6 +353,10 @@ def test_an_envelope_of_certified_bounds_is_never_projected_to_decide_and_says_w
     assert not is_envelope(plain) and runs_to_decide(plain, (1.0,)) == pytest.approx((0.5 / 0.4) ** 2)
     assert why_no_runs(plain, (1.4,)) == "the point sits on the edge"
     assert why_no_runs(Estimate(NAN, NAN, NAN, NAN, 0, 0.95, "none"), (1.0,)) == "the interval is undefined"
+    unbounded = Estimate(1.2, 0.3, 0.8, math.inf, 30, 0.95, "bootstrap")  # it read "about 4 times the runs"
+    assert runs_to_decide(unbounded, (1.0, 2.0)) == math.inf == runs_to_decide(unbounded, (2.0,))
+    assert why_no_runs(unbounded, (2.0,)) == "the interval is unbounded on a side it straddles an edge"
+    assert runs_to_decide(unbounded, (1.0,)) == pytest.approx((0.4 / 0.2) ** 2)  # the bounded side still projects
     grid = Estimate(2.4, 0.1, 2.0, 3.0, 18, 0.95, "pooled; allowance", sampling_low=2.3, sampling_high=2.5)
     assert runs_to_decide(grid, (2.6,)) == math.inf
     assert why_no_runs(grid, (2.6,)).startswith("the edge lies within the resolution of the grid")

@@ -240,6 +240,8 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
     for c in inside:
         d = abs(v - c)
         h = (b - v) if c > v else (v - a)
+        if not math.isfinite(h):  # an unbounded side: no projection from its width
+            return math.inf
         allowance = (b - sb) if c > v else (sa - a)  # a resolution allowance: no number of runs shrinks it
         if d <= allowance or d == 0.0:
             return math.inf
@@ -263,7 +265,11 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
         return "an envelope of the replicates' certified bounds, which more replicates do not narrow"
     if any(c is not None and c == e.value for c in edges):
         return "the point sits on the edge"
-    return "the edge lies within the resolution of the grid it is read on, which more runs do not shrink"
+    if not (math.isfinite(a) and math.isfinite(b)):
+        return "the interval is unbounded on a side it straddles an edge"
+    if getattr(e, "has_allowance", False):
+        return "the edge lies within the resolution of the grid it is read on, which more runs do not shrink"
+    return ""
 
 
 def decide_note(factor: float, why: str = "") -> str:
