@@ -61,7 +61,7 @@ _COUNTS = (
 
 
 #: a quantity the sentence quotes in a unit of its own (C004-6's caveat: the filters' RMS errors in px beside a ratio)
-_OTHER_UNITS = r"(?:px|pixels?|s|ms|el|elements?|Hz|°|deg|km|m/s|rev/s|dB)(?![\w/])"
+_OTHER_UNITS = r"(?:px|pixels?|s|ms|el|elements?|Hz|°|deg|km|m/s|rev/s|dB)(?=[\s,;:)]|\.(?!\w)|$)"
 
 
 def _strings(x) -> list[str]:
@@ -183,9 +183,9 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     # the size of the claim's own unit, in the unit it is measured in ("Its unit, the smallest ... RMS, is 7.62 elements")
     skip += [m.span(1) for m in re.finditer(r"[Ii]ts unit, [^.]*?, is (-?\d+(?:\.\d+)?) [a-z]+", text)]
     if "ratio" in unit:  # a ratio's parity, the pure number it is compared with ("not distinguishable from 1")
-        skip += [m.span(1) for m in re.finditer(r"(?:distinguishable from|above|below) (1)(?!\w|\.\d)", text)]
+        skip += [m.span(1) for m in re.finditer(r"(?:distinguishable from|above|below) (1)(?!\w|\.\d)(?!\s*\[)", text)]
     said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
-    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?\(?(?:{said}|{_COUNTS}|{_OTHER_UNITS})"
+    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?(?:\(?(?:{said}|{_COUNTS})|{_OTHER_UNITS})"
     tokens = (
         r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?!\w|\.\d)"  # a sentence's full stop ends a number
     )
@@ -260,6 +260,17 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
     assert not any("4.4" in f or "4.97" in f for f in sentence_faults(quoted, keys)), sentence_faults(quoted, keys)
     quoted["caveat"] = "The error stays at one level (4.44 px over the first half of the frames, 4.97 over the second)."
     assert any("'4.97'" in f for f in sentence_faults(quoted, keys)), sentence_faults(quoted, keys)
+    for slip in (
+        "The ratio is 1.4 (s.e. 0.2).",
+        "It is 1.4 s-shaped.",
+        "It is 1.4 pixel-wise.",
+        "It is below 1 [0.6, 0.9].",
+    ):
+        quoted["caveat"] = slip  # a unit's letters inside another word, or a measured 1 with its interval, owe the unit
+        assert any("'1.4'" in f or "'1'" in f for f in sentence_faults(quoted, keys)), (
+            slip,
+            sentence_faults(quoted, keys),
+        )
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
     share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
