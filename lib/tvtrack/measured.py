@@ -22,6 +22,7 @@ __all__ = [
     "short_number",
     "show_estimate",
     "decide_note",
+    "ends_to_decide",
     "is_envelope",
     "why_no_runs",
 ]
@@ -270,6 +271,25 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
     if getattr(e, "has_allowance", False):
         return "the edge lies within the resolution of the grid it is read on, which more runs do not shrink"
     return ""
+
+
+def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[float, str]:
+    """Runs projected to separate a trend's end intervals, ``((h0 + h1) / (|v1 - v0| - tolerance))^2`` with ``h`` each
+    interval's half-width (at least 1), and where no number of runs would, why: an end is an envelope of certified
+    bounds (:func:`is_envelope`), the ends are not apart beyond ``tolerance``, or an end is unbounded."""
+    if is_envelope(e0) or is_envelope(e1):
+        return (
+            math.inf,
+            "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow",
+        )
+    (a0, b0), (a1, b1) = interval_of(e0), interval_of(e1)
+    d = abs(e1.value - e0.value) - tolerance
+    h = (b0 - a0) / 2 + (b1 - a1) / 2
+    if not d > 0:
+        return math.inf, "the ends' values are not apart by more than the flat tolerance"
+    if not math.isfinite(h):
+        return math.inf, "an end's interval is unbounded"
+    return max((h / d) ** 2, 1.0), ""
 
 
 def decide_note(factor: float, why: str = "") -> str:

@@ -35,7 +35,7 @@ from .estimate import Estimate
 from .run_words import part_name
 from .measured import (  # re-exported: tvtrack.verdicts.as_estimate, calibrated, is_undecided, runs_to_decide
     decide_note,
-    is_envelope,
+    ends_to_decide,
     why_no_runs,
     short_number,
     interval_of,
@@ -387,17 +387,8 @@ class Monotone(Rule):
         return s if self.direction == "increasing" else -s
 
     def _ends_factor(self, e0: Estimate, e1: Estimate) -> float:
-        """Runs projected to separate the end intervals: ``((h0 + h1) / |v1 - v0|)^2`` (none where an end is an
-        envelope of certified bounds, :func:`tvtrack.measured.is_envelope`, which more replicates do not narrow)."""
-        if is_envelope(e0) or is_envelope(e1):
-            return math.inf
-        a0, b0 = interval_of(e0)
-        a1, b1 = interval_of(e1)
-        d = abs(e1.value - e0.value) - self.tolerance
-        h = (b0 - a0) / 2 + (b1 - a1) / 2
-        if not (d > 0 and math.isfinite(h)):
-            return math.inf
-        return max((h / d) ** 2, 1.0)
+        """Runs projected to separate the end intervals (:func:`tvtrack.measured.ends_to_decide`)."""
+        return ends_to_decide(e0, e1, self.tolerance)[0]
 
     def judge(self, measured: Sequence):
         es = [calibrated(m) for m in measured]
@@ -428,21 +419,8 @@ class Monotone(Rule):
             return Judgement("not reproduced", m + " (measurably not monotone)")
         if ends == 1:
             return Judgement("reproduced", m)
-        f = self._ends_factor(keep[0], keep[-1])
-        return Judgement(
-            "undecided",
-            m + f" (no measurable trend yet; {decide_note(f, self._ends_why(*keep[:: len(keep) - 1]))})",
-            False,
-            f,
-        )
-
-    def _ends_why(self, e0: Estimate, e1: Estimate) -> str:
-        """Why no runs are projected to separate the ends (:meth:`_ends_factor` is ``inf``)."""
-        if is_envelope(e0) or is_envelope(e1):
-            return "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow"
-        if abs(e1.value - e0.value) <= self.tolerance:
-            return "the ends' values are not apart by more than the flat tolerance"
-        return "an end's interval is unbounded"
+        f, why = ends_to_decide(keep[0], keep[-1], self.tolerance)
+        return Judgement("undecided", m + f" (no measurable trend yet; {decide_note(f, why)})", False, f)
 
 
 @dataclass(frozen=True)
