@@ -60,8 +60,23 @@ _COUNTS = (
 )
 
 
-#: a quantity the sentence quotes in a unit of its own (C004-6's caveat: the filters' RMS errors in px beside a ratio)
-_OTHER_UNITS = r"(?:px|pixels?|s|ms|el|elements?|Hz|°|deg|km|m/s|rev/s|dB)(?=[\s,;:)]|\.(?!\w)|$)"
+#: units a sentence may quote a quantity in beside the claim's own (C004-6's caveat: the filters' RMS errors in px
+#: beside a ratio), each accepted only where the record's own words use it (:func:`_other_units`)
+_KNOWN_UNITS = ("px", "pixels?", "s", "ms", "el", "elements?", "Hz", "°", "deg", "km", "m/s", "rev/s", "dB")
+#: the end of a unit: a space, a separator, a closing bracket, a sentence's full stop or the end
+_UNIT_END = r"(?=[\s,;:)]|\.(?!\w)|$)"
+#: what a number glued to letters may be without owing anything: an ordinal ("2nd", "95th") or an exponent
+_GLUED_FREE = re.compile(r"(?:st|nd|rd|th)\b|e[+-]?\d")
+
+
+def _other_units(record: dict) -> str:
+    """The alternation of :data:`_KNOWN_UNITS` that the record's own words (its rules, statement, value and
+    register; :func:`_sources`, without the caveat the sentence copies) use as a unit after a number or as a word:
+    a sentence may quote a number in one of those, never in a unit the record has nowhere (an "el" claim's value
+    said in "px" is a wrong unit)."""
+    words = json.dumps({k: v for k, v in _sources(record).items() if k != "caveat"}, ensure_ascii=False)
+    found = [u for u in _KNOWN_UNITS if re.search(rf"(?<![\w/])(?:{u})(?![\w/])|\d\s*(?:{u})(?![A-Za-z])", words)]
+    return rf"(?:{'|'.join(found)}){_UNIT_END}" if found else r"(?!)"
 
 
 def _strings(x) -> list[str]:
@@ -185,13 +200,18 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     if "ratio" in unit:  # a ratio's parity, the pure number it is compared with ("not distinguishable from 1")
         skip += [m.span(1) for m in re.finditer(r"(?:distinguishable from|above|below) (1)(?!\w|\.\d)(?!\s*\[)", text)]
     said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
-    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?(?:\(?(?:{said}|{_COUNTS})|{_OTHER_UNITS})"
-    tokens = (
-        r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?!\w|\.\d)"  # a sentence's full stop ends a number
+    after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?(?:\(?(?:{said}|{_COUNTS})|{_other_units(record)})"
+    tokens = (  # a sentence's full stop ends a number; a number glued to letters ("1.4x") is read with them
+        r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?P<glued>[^\W\d_]\w*)?(?!\w|\.\d)"
     )
     bare = []
     for m in re.finditer(tokens, text):
         if any(a <= m.start() < b for a, b in skip):
+            continue
+        glued = m.group("glued")
+        if glued:  # the letters glued on are its unit: the claim's own, or one the record uses, or an ordinal
+            if not (_GLUED_FREE.match(glued) or re.fullmatch(rf"(?:{said}|{_other_units(record)})", glued)):
+                bare.append(f"{m.group()!r} (a number glued to {glued!r}) before {text[m.end() : m.end() + 30]!r}")
             continue
         if not re.match(after, text[m.end() :]):
             bare.append(f"{m.group()!r} before {text[m.end() : m.end() + 30]!r}")
@@ -253,10 +273,13 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
     assert not any("'1'" in f for f in sentence_faults(parity, keys)), sentence_faults(parity, keys)
     parity["caveat"] = "Given the velocity: 1.4 [0.97, 2.1] variance ratio, not distinguishable from 2."
     assert any("'2'" in f for f in sentence_faults(parity, keys)), sentence_faults(parity, keys)
-    quoted = copy.deepcopy(DEPENDS)  # a number in a unit of its own carries it; a bare one beside it does not
+    quoted = copy.deepcopy(DEPENDS)  # a number in a unit the record uses carries it; a bare one beside it does not
     quoted["caveat"] = (
         "The error stays at one level (4.44 px over the first half of the frames, 4.97 px over the second)."
     )
+    found = sentence_faults(quoted, keys)  # the record's own words have no "px": a unit it never uses is a slip
+    assert any("'4.44'" in f for f in found) and any("'4.97'" in f for f in found), found
+    quoted["note"] = "the two windows overlap; the tracking error is a few px"
     assert not any("4.4" in f or "4.97" in f for f in sentence_faults(quoted, keys)), sentence_faults(quoted, keys)
     quoted["caveat"] = "The error stays at one level (4.44 px over the first half of the frames, 4.97 over the second)."
     assert any("'4.97'" in f for f in sentence_faults(quoted, keys)), sentence_faults(quoted, keys)
@@ -265,12 +288,16 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
         "It is 1.4 s-shaped.",
         "It is 1.4 pixel-wise.",
         "It is below 1 [0.6, 0.9].",
+        "The ratio is 1.4x the default's.",  # a number glued to letters is read with them
+        "The ratio is 1.4pxl.",
     ):
         quoted["caveat"] = slip  # a unit's letters inside another word, or a measured 1 with its interval, owe the unit
-        assert any("'1.4'" in f or "'1'" in f for f in sentence_faults(quoted, keys)), (
+        assert any("'1.4" in f or "'1'" in f for f in sentence_faults(quoted, keys)), (
             slip,
             sentence_faults(quoted, keys),
         )
+    quoted["caveat"] = "The 2nd-order filter's error is 4.44px over the first half."  # glued: a unit or an ordinal
+    assert sentence_faults(quoted, keys) == [], sentence_faults(quoted, keys)
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
     share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
