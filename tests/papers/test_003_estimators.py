@@ -135,6 +135,7 @@ def test_a_threshold_ratio_pairs_the_runs_and_is_extrapolated_where_either_curve
     got = est.threshold_ratio(np.array(a).astype(int), np.array(b).astype(int), GRID)
     # each curve's runs are read to within half a step: their ratio to within a whole step (2 H)
     assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), np.exp(lo - 2 * H), np.exp(hi + 2 * H)))
+    assert (got.sampling_low, got.sampling_high) == pytest.approx((np.exp(lo), np.exp(hi)))  # the step beside it
     assert got.extrapolated is False and got.n == 4
     assert got.method == "paired ratio of geometric-mean thresholds, t interval + a grid step"
     both = runs(".....", "LLLLL", "LL...", "L....")  # censored at both ends: no bound either way
@@ -259,9 +260,12 @@ def test_the_all_discordant_bound_covers_the_worst_case_it_cannot_tell_apart(n):
     ],
 )
 def test_a_fold_distance_is_the_ratio_or_k_squared_over_it_with_the_interval_mapped_end_by_end(q, lo, hi, k, want):
-    got = est.fold_distance(Estimate(q, 0.1, lo, hi, 9, 0.95, "ratio"), k)
+    ratio = Estimate(q, 0.1, lo, hi, 9, 0.95, "ratio", sampling_low=lo * 1.1, sampling_high=hi / 1.1)
+    got = est.fold_distance(ratio, k)
     assert (got.value, got.ci_low, got.ci_high) == pytest.approx(want)
     assert (got.stderr, got.n) == (0.1, 9)
+    # a ratio's resolution allowance does not map through the fold: the fold carries no sampling interval
+    assert math.isnan(got.sampling_low) and math.isnan(got.sampling_high)
     assert got.method == f"ratio; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|"
 
 
