@@ -75,7 +75,7 @@ def _other_units(record: dict) -> str:
     a sentence may quote a number in one of those, never in a unit the record has nowhere (an "el" claim's value
     said in "px" is a wrong unit)."""
     words = json.dumps({k: v for k, v in _sources(record).items() if k != "caveat"}, ensure_ascii=False)
-    found = [u for u in _KNOWN_UNITS if re.search(rf"(?<![\w/])(?:{u})(?![\w/])|\d\s*(?:{u})(?![A-Za-z])", words)]
+    found = [u for u in _KNOWN_UNITS if re.search(rf"(?<![\w/'’])(?:{u})(?![\w/])|\d\s*(?:{u})(?![A-Za-z])", words)]
     return rf"(?:{'|'.join(found)}){_UNIT_END}" if found else r"(?!)"
 
 
@@ -200,9 +200,11 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     if "ratio" in unit:  # a ratio's parity, the pure number it is compared with ("not distinguishable from 1")
         skip += [m.span(1) for m in re.finditer(r"(?:distinguishable from|above|below) (1)(?!\w|\.\d)(?!\s*\[)", text)]
     said = re.escape(unit) + (f"|{re.escape(unit).replace('el', 'elements?', 1)}" if unit.startswith("el") else "")
+    said = rf"(?:{said})(?![\w/])"  # the claim's unit as a whole word ("0.77 pxl" or "px/frame" owe it still)
     after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?(?:\(?(?:{said}|{_COUNTS})|{_other_units(record)})"
-    tokens = (  # a sentence's full stop ends a number; a number glued to letters ("1.4x") is read with them
-        r"\[[^\]]*\]|(?<![\w.\[,^-])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?P<glued>[^\W\d_]\w*)?(?!\w|\.\d)"
+    tokens = (  # a sentence's full stop ends a number; a number glued to letters ("1.4x", "2.4el/s") is read with
+        # them, and one after a multiplication sign ("x1.4") with the sign
+        r"\[[^\]]*\]|(?<![\w.\[,^-])(?:[x×](?=\d))?-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?P<glued>[^\W\d_][\w/]*)?(?!\w|\.\d)"
     )
     bare = []
     for m in re.finditer(tokens, text):
@@ -290,14 +292,24 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
         "It is below 1 [0.6, 0.9].",
         "The ratio is 1.4x the default's.",  # a number glued to letters is read with them
         "The ratio is 1.4pxl.",
+        "The ratio is 1.4px/s.",  # glued to a unit the record uses, then more: not that unit
+        "The ratio rises x1.4 over the default.",  # after a multiplication sign
+        "The ratio is 1.4 s.",  # "s" only in the record's possessives ("the paper's"), never as a unit
     ):
         quoted["caveat"] = slip  # a unit's letters inside another word, or a measured 1 with its interval, owe the unit
-        assert any("'1.4" in f or "'1'" in f for f in sentence_faults(quoted, keys)), (
+        assert any("1.4'" in f or "'1'" in f or "1.4px" in f or "1.4x" in f for f in sentence_faults(quoted, keys)), (
             slip,
             sentence_faults(quoted, keys),
         )
     quoted["caveat"] = "The 2nd-order filter's error is 4.44px over the first half."  # glued: a unit or an ordinal
     assert sentence_faults(quoted, keys) == [], sentence_faults(quoted, keys)
+    own = copy.deepcopy(DEPENDS)  # the claim's own unit counts only as a whole word
+    own["rule"]["unit"] = "px"
+    for slip in ("It is 0.77 pxl wide.", "It is 0.77 px/frame."):
+        own["caveat"] = slip
+        assert any("'0.77'" in f for f in sentence_faults(own, keys)), (slip, sentence_faults(own, keys))
+    own["caveat"] = "It is 0.77 px wide (0.8 px, 0.9px)."
+    assert sentence_faults(own, keys) == [], sentence_faults(own, keys)
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
     share["measured"] = {"value": 0.0233, "ci_low": 0.0178, "ci_high": 0.0358}
