@@ -33,6 +33,22 @@ def runs(*rows, ints=False):
     return L.astype(int).tolist() if ints else L
 
 
+def half_steps(*rows, bound=""):
+    """Half the log width of the grid step each run (a string as :func:`runs`) is read in, counted by hand: a run
+    lost at its first k SIRs broke between SIRs k-1 and k (kept lock at the bottom: the first step; lost at the top:
+    the last); 0 for a run whose side ``bound`` says is a bound ("bottom": kept lock at the bottom, "top": lost at
+    the top)."""
+    out = []
+    for r in rows:
+        k = len(r) - len(r.lstrip("L"))
+        if (bound == "bottom" and r[0] == ".") or (bound == "top" and r[-1] == "L"):
+            out.append(0.0)
+        else:
+            k = min(max(k, 1), len(r) - 1)
+            out.append((LS[k] - LS[k - 1]) / 2)
+    return np.array(out)
+
+
 def t_interval(x):
     x = np.asarray(x, float)
     m, se = x.mean(), x.std(ddof=1) / np.sqrt(x.size)
@@ -133,11 +149,13 @@ def test_a_threshold_ratio_pairs_the_runs_and_is_extrapolated_where_either_curve
     tb, _ = est.log_thresholds(b, GRID)
     m, lo, hi = t_interval(ta - tb)
     got = est.threshold_ratio(np.array(a).astype(int), np.array(b).astype(int), GRID)
-    # each curve's runs are read to within half a step: their ratio to within a whole step (2 H)
-    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), np.exp(lo - 2 * H), np.exp(hi + 2 * H)))
-    assert (got.sampling_low, got.sampling_high) == pytest.approx((np.exp(lo), np.exp(hi)))  # the step beside it
+    # each curve's runs are read to within half their own step: the ratio to within the mean of the two halves' sum
+    h = np.mean(half_steps("LL...", "L....", "LLL..", "LLLL.") + half_steps("L....", "L....", "LL...", "LLL.."))
+    assert h == pytest.approx((2 * np.log(1.5) + 5 * np.log(2) + np.log(2.5)) / 8)  # a: 1.5 2 2 2.5; b: 2 2 1.5 2
+    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), np.exp(lo - h), np.exp(hi + h)))
+    assert (got.sampling_low, got.sampling_high) == pytest.approx((np.exp(lo), np.exp(hi)))  # the steps beside it
     assert got.extrapolated is False and got.n == 4
-    assert got.method == "paired ratio of geometric-mean thresholds, t interval + a grid step"
+    assert got.method == "paired ratio of geometric-mean thresholds, t interval + the runs' grid steps"
     both = runs(".....", "LLLLL", "LL...", "L....")  # censored at both ends: no bound either way
     assert est.threshold_ratio(both, b, GRID).extrapolated is True
     assert est.threshold_ratio(a, both, GRID).extrapolated is True
@@ -166,14 +184,17 @@ def _bounded(a, b, lower):
 def test_a_ratio_whose_censoring_certifies_a_side_is_a_bound(a, b, counts):
     got = est.threshold_ratio(runs(*a, ints=True), runs(*b, ints=True), GRID)
     m, lo, hi = _bounded(runs(*a), runs(*b), lower=False)
-    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), 0.0, np.exp(hi + 2 * H)))
+    h = np.mean(half_steps(*a, bound="bottom") + half_steps(*b, bound="top"))  # a bound at an edge reads no error
+    assert 0 < h < 2 * H
+    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), 0.0, np.exp(hi + h)))
     assert got.method == (
         f"upper bound: {counts[0]} run(s) of the first curve kept lock at the grid's bottom, {counts[1]} of the second "
-        "lost it at its top; paired t bound + a grid step"
+        "lost it at its top; paired t bound + the runs' grid steps"
     )
     got = est.threshold_ratio(runs(*b, ints=True), runs(*a, ints=True), GRID)  # the mirror: a lower bound
     m, lo, hi = _bounded(runs(*b), runs(*a), lower=True)
-    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), np.exp(lo - 2 * H), np.inf))
+    h = np.mean(half_steps(*b, bound="top") + half_steps(*a, bound="bottom"))
+    assert (got.value, got.ci_low, got.ci_high) == pytest.approx((np.exp(m), np.exp(lo - h), np.inf))
     assert got.method.startswith(
         f"lower bound: {counts[1]} run(s) of the first curve lost lock at the grid's top, {counts[0]} of the second"
     )
@@ -322,8 +343,8 @@ def _lost(thresholds, sirs):
 
 def test_a_threshold_ratio_covers_paired_runs_that_break_within_one_step_wherever_they_sit_in_it():
     """Six runs of each curve breaking at one place within the same grid step read the same midpoint, so the ratio
-    reads 1 whatever their true ratio, up to a whole step away: its allowance is a step, not half of one (with
-    half, the pair high and low in the step below was missed)."""
+    reads 1 whatever their true ratio, up to a whole step away: its allowance is that step, not half of the widest
+    (with half, the pair high and low in the step was missed); and it is that step, not the widest one."""
     sirs = np.array(SIR_GRID)
     ls = np.log(sirs)
     for i in range(sirs.size - 1):
@@ -333,6 +354,7 @@ def test_a_threshold_ratio_covers_paired_runs_that_break_within_one_step_whereve
             got = est.threshold_ratio(_lost([ta] * 6, sirs), _lost([tb] * 6, sirs), sirs)
             assert got.value == pytest.approx(1.0) and not got.extrapolated
             assert got.ci_low <= ta / tb <= got.ci_high, (i, fa, fb, got.ci_low, ta / tb, got.ci_high)
+            assert (got.ci_low, got.ci_high) == pytest.approx((np.exp(-step), np.exp(step)))  # this step, no wider
 
 
 def test_a_threshold_ratio_of_six_paired_runs_covers_at_least_as_stated_where_runs_scatter_less_than_a_step():

@@ -4,7 +4,7 @@ adaptive grid extension, fold distances and C003-10's compensation ratio.
 Every estimate reads direct counts, never a fitted tail: the probability of loss at a grid SIR is a count with its
 Clopper-Pearson interval (zero events: the one-sided bound they certify); a threshold is the geometric mean of the
 per-run breaking SIRs, with a Student-t interval widened by half the grid step (the ratio of two such thresholds, by
-a whole step: each is read off the grid to within half of one).
+half of each run's step in each curve: each is read off the grid to within half of its step).
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ def interval_estimate(value, lo, hi, n, method, extrapolated=False, sampling=Non
         Whether the value lies beyond the measured grid.
     sampling : (float, float), optional
         The interval of the sampling error alone, where ``[lo, hi]`` adds a resolution allowance to it (half a grid
-        step for a threshold, a whole one for a ratio of two: :attr:`tvtrack.estimate.Estimate.sampling_low`).
+        step for a threshold, up to a whole one for a ratio of two: :attr:`tvtrack.estimate.Estimate.sampling_low`).
 
     Returns
     -------
@@ -100,15 +100,20 @@ def log_thresholds(lost, sirs) -> tuple[np.ndarray, np.ndarray]:
     censored : ndarray of bool, shape (n,)
         Runs that broke outside the grid (lost at its top, or kept lock at its bottom).
     """
+    tau, censored, _ = _readings(lost, sirs)
+    return tau, censored
+
+
+def _readings(lost, sirs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`log_thresholds` and each run's step: the width on the log scale of the grid step it is read in (its
+    log threshold lies within half of it of the truth)."""
     L = np.asarray(lost, bool)
     ls = np.log(np.asarray(sirs, float))
     steps = np.diff(ls)
     k = L[:-1].sum(axis=0)  # grid steps climbed (index of the first kept SIR)
     upper = ls[0] + (L[:-1] * steps[:, None]).sum(axis=0)
     below = np.where(k > 0, steps[np.maximum(k - 1, 0)], steps[0])
-    tau = upper - below / 2
-    censored = L[-1] | ~L[0]
-    return tau, censored
+    return upper - below / 2, L[-1] | ~L[0], below
 
 
 def _half_step(sirs) -> float:
@@ -169,13 +174,21 @@ def threshold_bound(lost, sirs) -> Estimate:
     )
 
 
+def _paired_allowance(width_a, width_b) -> float:
+    """How far the mean of paired log-threshold differences read off a grid can lie from the truth: the mean over
+    the runs of half of each curve's step (``width_a``, ``width_b``: per run, 0 where a run is a bound)."""
+    return float(np.mean(np.asarray(width_a, float) + np.asarray(width_b, float)) / 2)
+
+
 def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
     """Ratio of the geometric-mean thresholds of two curves run on the same draws (paired per run).
 
-    ``exp(mean(tau_a - tau_b))`` with the paired t interval widened by the largest grid step on each side: each
-    curve's run is read off the grid to within half a step, and the two errors need not cancel (a run of ``a`` high
-    in its step and one of ``b`` low in the same step differ by up to a whole step where their midpoints agree: with
-    half a step, six paired runs breaking within one step covered the true ratio in 0.77 of experiments);
+    ``exp(mean(tau_a - tau_b))`` with the paired t interval widened on each side by the mean over the runs of half
+    the step each curve's run is read in, summed over the two curves: each run is read off the grid to within half
+    its step, and the two errors need not cancel (a run of ``a`` high in its step and one of ``b`` low in the same
+    step differ by up to a whole step where their midpoints agree: with half the widest step, six paired runs
+    breaking within one step covered the true ratio in 0.77 of experiments); a run placed at the grid's edge as a
+    bound (below) reads no error on the side it bounds and adds nothing;
     ``extrapolated`` when a run of either curve broke outside the grid -- except where the censoring certifies a
     bound: when the runs of ``a`` broke outside the grid only below it and those of ``b`` only above it, each
     censored run's log threshold is at most (``a``) or at least (``b``) the grid's edge, so the ratio is bounded
@@ -185,13 +198,13 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
     breaks lock at every grid SIR).
     """
     La, Lb = np.asarray(lost_a, bool), np.asarray(lost_b, bool)
-    ta, ca = log_thresholds(La, sirs)
-    tb, cb = log_thresholds(Lb, sirs)
-    h = 2 * _half_step(sirs)  # the two curves' reading errors add: a whole step
+    ta, ca, wa = _readings(La, sirs)
+    tb, cb, wb = _readings(Lb, sirs)
     steps = np.diff(np.log(np.asarray(sirs, float)))
     if (ca.any() or cb.any()) and not La[-1].any() and Lb[0].all():
         ub = np.where(~La[0], ta + steps[0] / 2, ta)  # a: kept lock at the bottom, threshold below it
         lb = np.where(Lb[-1], tb + steps[-1] / 2, tb)  # b: lost at the top, threshold above it
+        h = _paired_allowance(np.where(~La[0], 0.0, wa), np.where(Lb[-1], 0.0, wb))  # edges bound: no error
         m = mean_ci(ub - lb)
         return interval_estimate(
             np.exp(m.value),
@@ -199,11 +212,12 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
             np.exp(m.ci_high + h),
             ta.size,
             f"upper bound: {int((~La[0]).sum())} run(s) of the first curve kept lock at the grid's bottom, "
-            f"{int(Lb[-1].sum())} of the second lost it at its top; paired t bound + a grid step",
+            f"{int(Lb[-1].sum())} of the second lost it at its top; paired t bound + the runs' grid steps",
         )
     if (ca.any() or cb.any()) and La[0].all() and not Lb[-1].any():  # the mirror case: a lower bound
         lb = np.where(La[-1], ta + steps[-1] / 2, ta)  # a: lost at the top, threshold above it
         ub = np.where(~Lb[0], tb + steps[0] / 2, tb)  # b: kept lock at the bottom, threshold below it
+        h = _paired_allowance(np.where(La[-1], 0.0, wa), np.where(~Lb[0], 0.0, wb))
         m = mean_ci(lb - ub)
         return interval_estimate(
             np.exp(m.value),
@@ -211,15 +225,16 @@ def threshold_ratio(lost_a, lost_b, sirs) -> Estimate:
             np.inf,
             ta.size,
             f"lower bound: {int(La[-1].sum())} run(s) of the first curve lost lock at the grid's top, "
-            f"{int((~Lb[0]).sum())} of the second kept it at its bottom; paired t bound + a grid step",
+            f"{int((~Lb[0]).sum())} of the second kept it at its bottom; paired t bound + the runs' grid steps",
         )
+    h = _paired_allowance(wa, wb)
     m = mean_ci(ta - tb)
     return interval_estimate(
         np.exp(m.value),
         np.exp(m.ci_low - h),
         np.exp(m.ci_high + h),
         ta.size,
-        "paired ratio of geometric-mean thresholds, t interval + a grid step",
+        "paired ratio of geometric-mean thresholds, t interval + the runs' grid steps",
         extrapolated=bool(ca.any() or cb.any()),
         sampling=(np.exp(m.ci_low), np.exp(m.ci_high)),
     )

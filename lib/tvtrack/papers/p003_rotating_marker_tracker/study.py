@@ -15,7 +15,7 @@ Every verdict reads direct counts, never a fitted tail: the probability of loss 
 Clopper-Pearson interval (zero events: the one-sided bound they certify); a threshold is the geometric mean of the
 per-run breaking SIRs (each run is interval-censored between the last grid SIR where it lost lock and the first
 where it kept it), with a Student-t interval widened by half the grid step (a ratio of two thresholds on the same
-runs by a whole step), and it is flagged ``extrapolated`` (undecided) when a run breaks outside the grid.
+runs by up to a whole step: half of each run's step in each curve), and it is flagged ``extrapolated`` (undecided) when a run breaks outside the grid.
 """
 
 from __future__ import annotations
