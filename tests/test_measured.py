@@ -4,6 +4,7 @@ its words. Every expected number is worked out by hand here, never by calling th
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -15,6 +16,7 @@ from tvtrack.measured import (
     as_estimate,
     calibrated,
     decide_note,
+    fold_about,
     interval_of,
     is_undecided,
     lost_runs,
@@ -374,3 +376,51 @@ def test_a_difference_is_widened_on_the_linear_scale_and_may_reach_zero():
     assert ratio.ci_low > 0 and ratio.ci_low == pytest.approx(0.04 * (0.004 / 0.04) ** f)
     assert diff.ci_low == pytest.approx(0.04 - f * 0.036) and diff.ci_low < 0
     assert diff.ci_high == pytest.approx(0.04 + f * 0.048) and "widened x1.209 to 95%" in diff.method
+
+
+# --------------------------------------------------------------------------- a ratio's fold distance either way
+
+
+@pytest.mark.parametrize(
+    "q, lo, hi, k, want",
+    [
+        (2.0, 1.5, 3.0, 1.0, (2.0, 1.5, 3.0)),  # above the reference: itself
+        (0.5, 0.25, 0.8, 1.0, (2.0, 1.25, 4.0)),  # below it: k^2 / q, the ends swapped
+        (1.2, 0.5, 2.5, 1.0, (1.2, 1.0, 2.5)),  # straddling k: from k
+        (0.9, 0.6, 1.3, 1.0, (1 / 0.9, 1.0, 1 / 0.6)),  # straddling k from below: from k, to the farther end's fold
+        (0.3, 0.0, 0.5, 1.0, (1 / 0.3, 2.0, np.inf)),  # a bound [0, b]: at least fold(b)
+        (0.0, 0.0, 0.5, 1.0, (2.0, 2.0, np.inf)),  # an infinite value reads its interval's near end
+        (1.0, 0.8, 1.6, 2.0, (4.0, 2.5, 5.0)),  # about k = 2
+    ],
+)
+def test_a_fold_distance_is_the_ratio_or_k_squared_over_it_with_the_interval_mapped_end_by_end(q, lo, hi, k, want):
+    ratio = Estimate(q, 0.1, lo, hi, 9, 0.95, "ratio", sampling_low=lo * 1.1, sampling_high=hi / 1.1)
+    got = fold_about(ratio, k)
+    assert (got.value, got.ci_low, got.ci_high) == pytest.approx(want)
+    assert got.n == 9 and got.signed == ratio and got.fold_reference == k  # the signed ratio kept, for pooling
+    # a ratio's resolution allowance does not map through the fold: the fold carries no sampling interval
+    assert math.isnan(got.sampling_low) and math.isnan(got.sampling_high)
+    assert got.method.startswith(f"ratio; fold distance from {k:g} either way, max(q, {k * k:g}/q)")
+    assert f"q = {q:.4g} [{lo:.4g}, {hi:.4g}]" in got.method
+
+
+def test_a_fold_distance_keeps_the_ratios_error_above_the_reference_and_inverts_it_by_the_delta_method_below():
+    assert fold_about(Estimate(1.5, 0.2, 1.2, 1.9, 40, 0.95, "t")).stderr == 0.2
+    assert fold_about(Estimate(0.4, 0.05, 0.3, 0.55, 40, 0.95, "t")).stderr == pytest.approx(0.05 / 0.4**2)
+    assert fold_about(Estimate(1.0, 0.1, 0.8, 1.6, 40, 0.95, "t"), 2.0).stderr == pytest.approx(0.1 * 4.0)  # (k/q)^2
+    flagged = fold_about(Estimate(0.4, 0.05, 0.3, 0.55, 40, 0.95, "t", True))
+    assert (
+        flagged.extrapolated is True and fold_about(Estimate(0.4, 0.05, 0.3, 0.55, 40, 0.95, "t")).extrapolated is False
+    )
+    undefined = fold_about(Estimate(0.4, 0.05, float("nan"), 0.55, 40, 0.95, "t"))
+    assert math.isnan(undefined.ci_low) and is_undecided(undefined) and undefined.signed.value == 0.4
+
+
+def test_a_fold_distance_is_written_with_its_signed_ratio_and_read_back_whole():
+    ratio = Estimate(0.5, 0.05, 0.4, 0.625, 40, 0.95, "t", sampling_low=0.45, sampling_high=0.6)
+    got = fold_about(ratio)
+    d = got.to_dict()
+    assert d["signed"] == ratio.to_dict() and d["fold_reference"] == 1.0
+    assert as_estimate(d) == got and as_estimate(json.loads(json.dumps(d))) == got
+    plain = Estimate(2.0, 0.1, 1.8, 2.2, 40).to_dict()
+    assert "signed" not in plain and "fold_reference" not in plain and as_estimate(plain).signed is None

@@ -36,6 +36,13 @@ class Estimate:
         half a grid step, a time known to half a frame): the interval of the sampling error alone (NaN, the
         default, where there is no allowance). Pooling replicates shrinks the sampling error, not the allowance
         (:func:`tvtrack.pooling.pool`).
+    signed : Estimate or None
+        Where the estimate is a ratio's fold distance from ``fold_reference`` either way
+        (:func:`tvtrack.measured.fold_about`): the signed ratio it was folded from (None, the default, elsewhere).
+        Replicates pool their signed ratios and fold the pool: folding first would count each replicate's scatter
+        about the reference as distance from it.
+    fold_reference : float
+        The ratio of no change a fold distance is measured from (NaN where ``signed`` is None).
     """
 
     value: float
@@ -48,6 +55,8 @@ class Estimate:
     extrapolated: bool = False
     sampling_low: float = float("nan")
     sampling_high: float = float("nan")
+    signed: Estimate | None = None
+    fold_reference: float = float("nan")
 
     @property
     def has_allowance(self) -> bool:
@@ -59,6 +68,10 @@ class Estimate:
         d = {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in asdict(self).items()}
         if not self.has_allowance:  # the sampling interval is written only where there is an allowance
             del d["sampling_low"], d["sampling_high"]
+        if self.signed is None:  # the signed ratio is written only where the estimate is its fold distance
+            del d["signed"], d["fold_reference"]
+        else:
+            d["signed"] = self.signed.to_dict()
         return d
 
     @classmethod

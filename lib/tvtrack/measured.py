@@ -25,6 +25,7 @@ __all__ = [
     "ends_to_decide",
     "is_envelope",
     "why_no_runs",
+    "fold_about",
 ]
 
 
@@ -73,11 +74,64 @@ def as_estimate(measured: Any) -> Estimate:
             k: (float("nan") if v is None and k not in ("method", "extrapolated") else v) for k, v in fields.items()
         }
         fields["extrapolated"] = bool(fields.get("extrapolated") or False)
+        if measured.get("signed") is not None:  # a fold distance keeps the signed ratio it was folded from
+            fields["signed"] = as_estimate(measured["signed"])
+            fields["fold_reference"] = float(measured["fold_reference"])
         return Estimate(**{"stderr": float("nan"), "n": 1, **fields})
     if isinstance(measured, (int, float)) or hasattr(measured, "__float__"):
         v = float(measured)
         return Estimate(v, 0.0, v, v, 1, 0.95, "exact")
     raise TypeError(f"cannot read a measured value from {type(measured).__name__}: {measured!r}")
+
+
+def fold_about(ratio: Any, reference: float = 1.0) -> Estimate:
+    """A positive ratio's fold distance from ``reference`` either way, ``k max(q / k, k / q)`` (``q`` itself for
+    ``q >= k``, ``k^2 / q`` below it): a two-sided rule ("depends on", "about k") is one band on one number.
+
+    The interval maps end by end; one that holds ``k`` starts at ``k`` (no measurable distance); a bound ``[0, b]``
+    certifies a distance of at least ``fold(b)``; an infinite value (``q = 0``) reads its interval's near end. The
+    standard error is the ratio's above ``k`` and ``k^2 / q^2`` times it below (the delta method). A ratio's
+    resolution allowance does not map end by end through the fold: the result has no sampling interval.
+
+    The result keeps the signed ratio (``signed``, ``fold_reference``): replicates pool the signed ratios and fold
+    the pool (:func:`tvtrack.pooling.pool`). Folded first, a ratio of no change scattering either side of ``k``
+    would pool as a distance from it.
+
+    Parameters
+    ----------
+    ratio : Estimate, its dict or a number
+        The signed ratio (positive), with its interval.
+    reference : float
+        The ratio of no change (``1`` for a dependence whose direction is not stated).
+    """
+    e, k = as_estimate(ratio), float(reference)
+    q, a, b = e.value, e.ci_low, e.ci_high
+
+    def fold(r: float) -> float:
+        return r if r >= k else (k * k / r if r > 0 else math.inf)
+
+    method = (
+        f"{e.method}; fold distance from {k:g} either way, max(q, {k * k:g}/q), of the signed ratio "
+        f"q = {q:.4g} [{a:.4g}, {b:.4g}]"
+    )
+    nan = math.nan
+    if math.isnan(q) or math.isnan(a) or math.isnan(b):
+        return Estimate(nan, nan, nan, nan, e.n, e.confidence, method, e.extrapolated, signed=e, fold_reference=k)
+    low, high = sorted((fold(a), fold(b)))
+    value = fold(q)
+    stderr = e.stderr if q >= k else (e.stderr * (k / q) ** 2 if q > 0 else nan)
+    return Estimate(
+        value if math.isfinite(value) else low,
+        stderr,
+        k if a < k < b else low,
+        high,
+        e.n,
+        e.confidence,
+        method,
+        e.extrapolated,
+        signed=e,
+        fold_reference=k,
+    )
 
 
 def _is_exact(e: Estimate) -> bool:

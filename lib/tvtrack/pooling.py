@@ -1,6 +1,6 @@
 """Pooling a claim's measured values over independent replicates (equal weights; counts as counts; certified
 bounds to their envelope; positive quantities on the log scale; replicates that disagree beyond their own intervals
-by Student's t over their values), for :mod:`tvtrack.explore`."""
+by Student's t over their values; a fold distance by its signed ratio, folded after), for :mod:`tvtrack.explore`."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import scipy  # scipy.stats is imported at its first use (scipy loads submodules
 
 from .estimate import Estimate
 from .measured import lost_runs
-from .measured import calibrated
+from .measured import calibrated, fold_about
 
 __all__ = ["pool"]
 
@@ -196,6 +196,17 @@ def _unmeasured_kept(es: list[Estimate], pooled: Estimate) -> Estimate:
     return replace(pooled, method=f"{pooled.method}; coverage unmeasured (replicates of {n} runs)")
 
 
+def _folded_after_pooling(es: list[Estimate]) -> Estimate | None:
+    """Fold distances (:func:`tvtrack.measured.fold_about`) about one reference: their signed ratios pooled, the
+    pool folded; None where a replicate is no fold distance. Folded first, replicates of a ratio of no change that
+    scatter either side of the reference each read a distance from it, and their pool a dependence that is not
+    there."""
+    ks = {e.fold_reference for e in es}
+    if any(e.signed is None for e in es) or len(ks) != 1:
+        return None
+    return fold_about(pool([e.signed for e in es]), ks.pop())
+
+
 def _is_estimate_like(x: Any) -> bool:
     return isinstance(x, Estimate) or (isinstance(x, Mapping) and "value" in x and "ci_low" in x)
 
@@ -224,7 +235,8 @@ def pool(measured: Sequence[Any]) -> Any:
     first = ms[0]
     if _is_estimate_like(first) or isinstance(first, (int, float, np.number)):
         es = [calibrated(m) for m in ms]  # each replicate's interval at its nominal coverage before pooling
-        return _unmeasured_kept(es, _pool_estimates(es))
+        refolded = _folded_after_pooling(es)
+        return refolded if refolded is not None else _unmeasured_kept(es, _pool_estimates(es))
     if lost_runs(first) is not None and all(lost_runs(m) is not None for m in ms):  # counts add up
         return {
             "value": pool([m["value"] for m in ms]),

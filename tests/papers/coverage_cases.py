@@ -6,7 +6,9 @@ threshold ratio on the notebook's SIR grid, per-run log thresholds scattered nor
 Student-t(3) tails, the place in the grid at random (seeded, 4,000 experiments a row; experiments with a run broken
 outside the grid are left out, and with them the bounds censoring certifies); the paired share difference's exact
 coverage over every outcome of six (and eighteen) runs whose difference is -1, 0 or +1, its lowest over a grid of
-probabilities 0.01 apart; and the t interval over three values of four laws (100,000 experiments each).
+probabilities 0.01 apart; the t interval over three values of four laws (100,000 experiments each); and a pooled
+fold distance from 1 (C002-13, C003-11's ``bandwidth``) of replicates of a log-normal ratio, folded before or after
+the pool (2,000 experiments a row).
 ``tests/papers/test_003_estimators.py`` re-measures the ratio's rows that failed before its allowance was a step.
 """
 
@@ -15,7 +17,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy import stats
 
+from tvtrack.estimate import Estimate
+from tvtrack.measured import fold_about
+from tvtrack.pooling import pool
+from tvtrack.verdicts import InBand
 from tvtrack.papers.p003_rotating_marker_tracker.curves import SIR_GRID
 from tvtrack.papers.p003_rotating_marker_tracker.estimators import share_difference, threshold, threshold_ratio
 
@@ -99,6 +106,28 @@ def worst_share(n: int, step: float) -> tuple[float, float, float]:
     return min((share_coverage(pm, pp, n), pm, pp) for pm in grid for pp in grid if pm + pp <= 1.0 + 1e-12)
 
 
+def fold_rates(true: float, runs: int, replicates: int, r: int = 2000, seed: int = 2) -> dict:
+    """Pooled fold distances of ``replicates`` log-normal ratios about ``true`` (``runs`` each, log spread 0.5, t
+    interval on the log scale), folded before the pool (each replicate's signed ratio dropped) and after it: the
+    share of pooled intervals holding the true fold, and of pools a rule "at least 1.1" reads as reproduced."""
+    rng, t = np.random.default_rng(seed), stats.t.ppf(0.975, runs - 1)
+    rule, truth = InBand("fold", low=1.1), max(true, 1.0 / true)
+    hits = {"before": [0, 0], "after": [0, 0]}
+    for _ in range(r):
+        x = rng.normal(math.log(true), 0.5, (replicates, runs))
+        m, h = x.mean(axis=1), t * x.std(axis=1, ddof=1) / math.sqrt(runs)
+        folded = [
+            fold_about(Estimate(math.exp(a), math.nan, math.exp(a - b), math.exp(a + b), runs)) for a, b in zip(m, h)
+        ]
+        before = pool(
+            [Estimate(*(getattr(f, k) for k in ("value", "stderr", "ci_low", "ci_high", "n"))) for f in folded]
+        )
+        for key, e in (("before", before), ("after", pool(folded))):
+            hits[key][0] += e.ci_low <= truth <= e.ci_high
+            hits[key][1] += rule.decide(e) == "reproduced"
+    return {k: (c / r, y / r) for k, (c, y) in hits.items()}
+
+
 if __name__ == "__main__":
     for kind in ("normal", "skewed", "t3"):
         for s in (0.02, 0.1, 0.2, 0.4):
@@ -112,3 +141,11 @@ if __name__ == "__main__":
             f"share difference, {n} runs: lowest exact coverage %.3f at P(-1) = %.2f, P(+1) = %.2f"
             % worst_share(n, step)
         )
+    for true, runs in ((1.0, 40), (1.1, 6)):
+        for k in (3, 5):
+            got = fold_rates(true, runs, k)
+            print(
+                f"fold distance, true ratio {true}, {runs} runs, {k} replicates: covers %.3f / %.3f, "
+                "reads >= 1.1 %.1f %% / %.1f %% (folded before / after the pool)"
+                % (got["before"][0], got["after"][0], 100 * got["before"][1], 100 * got["after"][1])
+            )

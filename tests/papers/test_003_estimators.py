@@ -17,7 +17,6 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from tvtrack.estimate import Estimate
 from tvtrack.montecarlo import ratio_ci
 from tvtrack.papers.p003_rotating_marker_tracker import estimators as est
 from tvtrack.papers.p003_rotating_marker_tracker.curves import SIR_GRID
@@ -267,27 +266,6 @@ def test_the_all_discordant_bound_covers_the_worst_case_it_cannot_tell_apart(n):
     assert (1 - b) ** n == pytest.approx(0.05)
     got = est.share_difference(np.ones(n, bool), np.zeros(n, bool))
     assert got.ci_low <= 1 - 2 * b + 1e-12 <= got.ci_high
-
-
-@pytest.mark.parametrize(
-    "q, lo, hi, k, want",
-    [
-        (2.0, 1.5, 3.0, 1.0, (2.0, 1.5, 3.0)),  # above the reference: itself
-        (0.5, 0.25, 0.8, 1.0, (2.0, 1.25, 4.0)),  # below it: k^2 / q, the ends swapped
-        (1.2, 0.5, 2.5, 1.0, (1.2, 1.0, 2.5)),  # straddling k: from k
-        (0.3, 0.0, 0.5, 1.0, (1 / 0.3, 2.0, np.inf)),  # a bound [0, b]: at least fold(b)
-        (0.0, 0.0, 0.5, 1.0, (2.0, 2.0, np.inf)),  # an infinite value reads its interval's near end
-        (1.0, 0.8, 1.6, 2.0, (4.0, 2.5, 5.0)),  # about k = 2
-    ],
-)
-def test_a_fold_distance_is_the_ratio_or_k_squared_over_it_with_the_interval_mapped_end_by_end(q, lo, hi, k, want):
-    ratio = Estimate(q, 0.1, lo, hi, 9, 0.95, "ratio", sampling_low=lo * 1.1, sampling_high=hi / 1.1)
-    got = est.fold_distance(ratio, k)
-    assert (got.value, got.ci_low, got.ci_high) == pytest.approx(want)
-    assert (got.stderr, got.n) == (0.1, 9)
-    # a ratio's resolution allowance does not map through the fold: the fold carries no sampling interval
-    assert math.isnan(got.sampling_low) and math.isnan(got.sampling_high)
-    assert got.method == f"ratio; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|"
 
 
 def test_the_compensation_factor_is_kappa_times_the_compensated_threshold_over_the_uncompensated():

@@ -9,6 +9,7 @@ from scipy import stats
 
 from tvtrack.explore import pool
 from tvtrack.montecarlo import Estimate, zero_events_bound
+from tvtrack.measured import fold_about
 from tvtrack.papers.p003_rotating_marker_tracker import beyond, estimators, study
 from tvtrack.papers.p003_rotating_marker_tracker.register import DEPENDS, INTERFERENCE, REGISTER, TRACKING
 from tvtrack.papers.p003_rotating_marker_tracker.scene import run_scenario, state_errors
@@ -455,11 +456,11 @@ def test_c003_2_near_control_sits_one_hertz_above_the_rotation(monkeypatch, rota
 
 def test_fold_distance_is_two_sided_about_its_reference():
     e = Estimate(0.5, float("nan"), 0.4, 0.625, 6, 0.95, "t")
-    f = estimators.fold_distance(e, 1.0)
+    f = fold_about(e, 1.0)
     assert (f.value, f.ci_low, f.ci_high) == pytest.approx((2.0, 1.6, 2.5))
-    up = estimators.fold_distance(Estimate(2.0, float("nan"), 1.6, 2.5, 6, 0.95, "t"), 1.0)
+    up = fold_about(Estimate(2.0, float("nan"), 1.6, 2.5, 6, 0.95, "t"), 1.0)
     assert (up.value, up.ci_low, up.ci_high) == pytest.approx((2.0, 1.6, 2.5))
-    straddle = estimators.fold_distance(Estimate(1.1, float("nan"), 0.5, 1.5, 6, 0.95, "t"), 1.0)
+    straddle = fold_about(Estimate(1.1, float("nan"), 0.5, 1.5, 6, 0.95, "t"), 1.0)
     assert (straddle.ci_low, straddle.ci_high) == pytest.approx((1.0, 2.0))
     rule = InBand("fold change", low=1.25)
     assert rule.decide(f) == rule.decide(up) == "reproduced"

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tvtrack.estimate import Estimate
-from tvtrack.measured import calibrated
+from tvtrack.measured import calibrated, fold_about
 from tvtrack.montecarlo import ratio_ci
 from .readings import (
     COORDINATE6,
@@ -427,28 +427,11 @@ def fold_change(ratio: Estimate) -> Estimate:
     """A positive ratio's fold change from 1 either way, ``max(q, 1 / q)``: a dependence whose direction is not
     stated (C002-13) is one number that grows with the dependence whichever way it runs.
 
-    The interval is the ratio's after :func:`tvtrack.measured.calibrated` (widened where its coverage falls short),
-    mapped end by end; one that holds 1 starts at 1 (no measurable dependence). The method keeps the signed ratio.
+    The ratio's interval after :func:`tvtrack.measured.calibrated` (widened where its coverage falls short), folded
+    by :func:`tvtrack.measured.fold_about`: mapped end by end, from 1 where it holds 1 (no measurable dependence);
+    the estimate keeps the signed ratio, which replicates pool before they fold.
     """
-    e = calibrated(ratio)
-    q, a, b = e.value, e.ci_low, e.ci_high
-    if not np.isfinite([q, a, b]).all():
-        return e
-
-    def fold(r):
-        return r if r >= 1.0 else (1.0 / r if r > 0 else np.inf)
-
-    ends = sorted((fold(a), fold(b)))
-    return Estimate(
-        float(fold(q)),
-        float(e.stderr if q >= 1.0 else e.stderr / q**2),  # delta method for 1 / q
-        1.0 if a < 1.0 < b else float(ends[0]),
-        float(ends[1]),
-        e.n,
-        e.confidence,
-        f"{e.method}; fold change from 1 either way, max(q, 1/q), of the signed ratio q = {q:.4g} [{a:.4g}, {b:.4g}]",
-        e.extrapolated,
-    )
+    return fold_about(calibrated(ratio), 1.0)
 
 
 def _c13(x: _Ctx):

@@ -7,10 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from tvtrack.measured import fold_about
+
 from .draws import stream_rng
 from .estimators import (
     compensation_factor,
-    fold_distance,
     loss_share,
     threshold_bound,
     threshold_ratio,
@@ -102,7 +103,7 @@ def interference_claims(config: dict, base: Scenario, curves: dict, capt, xc: di
             "dynamics": loss_share(curves["gate", 1.5][-1]),
             "selection": threshold_ratio(curves["gate", 5.0], r5, sirs),
             # l. 192 says the errors depend substantially on the bandwidths, not which way: two-sided (fold distance)
-            "bandwidth": fold_distance(bw_ratio, 1.0),
+            "bandwidth": fold_about(bw_ratio, 1.0),
         },
         "C003-12": lambda: {
             "one": threshold_ratio(xc["static", 1], xc["rotating", 1], xsirs),

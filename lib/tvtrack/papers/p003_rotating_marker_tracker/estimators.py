@@ -9,7 +9,6 @@ half of each run's step in each curve: each is read off the grid to within half 
 
 from __future__ import annotations
 
-from dataclasses import replace
 
 import numpy as np
 
@@ -24,7 +23,6 @@ __all__ = [
     "threshold_bound",
     "threshold_ratio",
     "extend_grid",
-    "fold_distance",
     "LOCK_LIMIT",
     "grid_in_lock",
     "interval_estimate",
@@ -306,39 +304,6 @@ def share_difference(a, b) -> Estimate:
     m = mean_ci(d)
     return interval_estimate(
         m.value, max(m.ci_low, -1.0), min(m.ci_high, 1.0), d.size, "paired t on per-run differences"
-    )
-
-
-def fold_distance(ratio: Estimate, reference: float) -> Estimate:
-    """A ratio's fold distance from ``reference``, either direction: ``k exp|log(q / k)|`` (``q`` itself for
-    ``q >= k``, ``k^2 / q`` below it), so a two-sided rule ("depends on", "about k") is one band on one number.
-
-    The interval maps end by end; an interval straddling ``k`` starts at ``k`` (no measurable distance), and a
-    bound ``[0, b]`` certifies a distance of at least ``fold(b)``.
-
-    Parameters
-    ----------
-    ratio : Estimate
-        A ratio (positive), with its 95 % interval.
-    reference : float
-        The ratio of no change (``1`` for C003-11's bandwidth part).
-    """
-    k = float(reference)
-
-    def fold(q):
-        return q if q >= k else (k * k / q if q > 0 else np.inf)
-
-    lo, hi = ratio.ci_low, ratio.ci_high
-    ends = sorted((fold(lo), fold(hi)))
-    value = fold(ratio.value)
-    return replace(
-        ratio,
-        value=value if np.isfinite(value) else ends[0],
-        ci_low=k if lo < k < hi else ends[0],
-        ci_high=ends[1],
-        method=ratio.method + f"; fold distance from {k:g} either way, {k:g} exp|log(q / {k:g})|",
-        sampling_low=float("nan"),  # a ratio's resolution allowance does not map end by end through the fold
-        sampling_high=float("nan"),
     )
 
 

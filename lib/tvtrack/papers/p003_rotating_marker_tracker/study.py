@@ -559,7 +559,7 @@ measure_interference = as_declared(I_CLAIMS, _declared)(measure_interference)
 def _bandwidth_ratio(base: Scenario, n: int, seed: int, k0: int) -> Estimate:
     """C003-11: mean-square marker miss (frames from ``k0``, no interferers) with the wider loop of
     :data:`BANDWIDTH_PAIR` over the narrower, paired on the Fig. 1 draws (stream 1), with its direction (the rule reads
-    its fold distance, :func:`.estimators.fold_distance`)."""
+    its fold distance, :func:`tvtrack.measured.fold_about`)."""
     return _bandwidth_outcome(
         run_scenario(*_bandwidth_runs(base, n, seed), keep_full=False, **_bandwidth_kw(base, n))[2], n, k0
     )
