@@ -55,18 +55,21 @@ _WRITER = "".join(
 )
 _WORDS = re.compile(r"[A-Za-z]+")
 _COUNTS = (
-    r"times|%|of \d|explored configurations|independent replicates|replicates?,|parts? hold|other changes?|points?|"
+    r"times|% of\b|of \d|explored configurations|independent replicates|replicates?,|parts? hold|other changes?|points?|"
     r"runs|this run allows|agree|flips?\b|stay undecided|fails?\b|undecided\b|of (?:its|their) \d|steps?\b|fall\b|rises?\b"
 )
 
 
 #: units a sentence may quote a quantity in beside the claim's own (C004-6's caveat: the filters' RMS errors in px
 #: beside a ratio), each accepted only where the record's own words use it (:func:`_other_units`)
-_KNOWN_UNITS = ("px", "pixels?", "s", "ms", "el", "elements?", "Hz", "°", "deg", "km", "m/s", "rev/s", "dB")
+_KNOWN_UNITS = ("px", "pixels?", "s", "ms", "el", "elements?", "Hz", "°", "deg", "km", "m/s", "rev/s", "dB", "%")
 #: the end of a unit: a space, a separator, a closing bracket, a sentence's full stop or the end
 _UNIT_END = r"(?=[\s,;:)]|\.(?!\w)|$)"
-#: what a number glued to letters may be without owing anything: an ordinal ("2nd", "95th") or an exponent
-_GLUED_FREE = re.compile(r"(?:st|nd|rd|th)\b|e[+-]?\d")
+#: what a number glued to letters may be without owing anything: an ordinal ("2nd", "95th"), an exponent or a
+#: dimension ("3D")
+_GLUED_FREE = re.compile(r"(?:st|nd|rd|th|D)\b|e[+-]?\d")
+#: a product of sizes ("128x128"): read as one number, which owes its unit after its last factor
+_PRODUCT = r"(?:[x×]\d+(?:\.\d+)?)+"
 
 
 def _other_units(record: dict) -> str:
@@ -75,6 +78,7 @@ def _other_units(record: dict) -> str:
     a sentence may quote a number in one of those, never in a unit the record has nowhere (an "el" claim's value
     said in "px" is a wrong unit)."""
     words = json.dumps({k: v for k, v in _sources(record).items() if k != "caveat"}, ensure_ascii=False)
+    words = re.sub(r"\b95 % (?:interval|confidence)", "", words)  # every rule's interval: no "%" quantity
     found = [u for u in _KNOWN_UNITS if re.search(rf"(?<![\w/'’])(?:{u})(?![\w/])|\d\s*(?:{u})(?![A-Za-z])", words)]
     return rf"(?:{'|'.join(found)}){_UNIT_END}" if found else r"(?!)"
 
@@ -204,7 +208,8 @@ def _bare_numbers(text: str, plain: list[str], record: dict, unit: str) -> list[
     after = rf"\s*(?:\[[^\]]*\]\s*)?(?:\((?:at most|at least) [^)]*\)\s*)?(?:\(?(?:{said}|{_COUNTS})|{_other_units(record)})"
     tokens = (  # a sentence's full stop ends a number; a number glued to letters ("1.4x", "2.4el/s") is read with
         # them, and one after a multiplication sign ("x1.4") with the sign
-        r"\[[^\]]*\]|(?<![\w.\[,^-])(?:[x×](?=\d))?-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?P<glued>[^\W\d_][\w/]*)?(?!\w|\.\d)"
+        r"\[[^\]]*\]|(?<![\w.\[,^-])(?:[x×](?=\d))?-?\d+(?:\.\d+)?(?:e[+-]?\d+)?"
+        rf"(?:{_PRODUCT}(?!\w|\.\d)|(?P<glued>[^\W\d_][\w/]*))?(?!\w|\.\d)"
     )
     bare = []
     for m in re.finditer(tokens, text):
@@ -309,6 +314,19 @@ def test_the_checker_catches_a_cut_word_a_register_key_and_a_missing_unit(keys, 
         own["caveat"] = slip
         assert any("'0.77'" in f for f in sentence_faults(own, keys)), (slip, sentence_faults(own, keys))
     own["caveat"] = "It is 0.77 px wide (0.8 px, 0.9px)."
+    assert sentence_faults(own, keys) == [], sentence_faults(own, keys)
+    # a dimension, a product of sizes with its unit after the last factor, a share of something named: no unit owed
+    own["caveat"] = "On the 3D scene's 128x128 px frames, 4 % of the runs drift."
+    assert sentence_faults(own, keys) == [], sentence_faults(own, keys)
+    for slip, token in (
+        ("On the 128x128 frames it drifts.", "'128x128'"),  # a product owes its unit too
+        ("It drifts by 2.7 % a frame.", "'2.7'"),  # "%" is a unit the record never uses, not a share of anything
+        ("It drifts by 2.7% a frame.", "'2.7'"),
+    ):
+        own["caveat"] = slip
+        assert any(token in f for f in sentence_faults(own, keys)), (slip, sentence_faults(own, keys))
+    own["note"] = "the drift is about 3 % of the frame"  # ... unless the record quotes a quantity in per cent
+    own["caveat"] = "It drifts by 2.7 % a frame."
     assert sentence_faults(own, keys) == [], sentence_faults(own, keys)
     share = copy.deepcopy(DEPENDS)  # a fraction the paper gives in per cent owes "%" after each number ...
     share["rule"].update(low=0.01, high=0.03, unit="")
