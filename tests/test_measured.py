@@ -16,6 +16,7 @@ from tvtrack.measured import (
     as_estimate,
     calibrated,
     decide_note,
+    ends_to_decide,
     fold_about,
     interval_of,
     is_undecided,
@@ -424,3 +425,23 @@ def test_a_fold_distance_is_written_with_its_signed_ratio_and_read_back_whole():
     assert as_estimate(d) == got and as_estimate(json.loads(json.dumps(d))) == got
     plain = Estimate(2.0, 0.1, 1.8, 2.2, 40).to_dict()
     assert "signed" not in plain and "fold_reference" not in plain and as_estimate(plain).signed is None
+
+
+# --------------------------------------------------------------------------- a trend's ends with a resolution allowance
+
+
+def test_the_runs_to_separate_a_trends_ends_shrink_only_their_sampling_parts():
+    """Two thresholds read on a grid (half a step, 0.1, each side beyond their sampling intervals): of the gap 0.3
+    between their values the facing allowances take 0.2, which no number of runs shrinks, so the sampling parts
+    (0.1 a side) must fit in the 0.1 left: ((0.4 - 0.2) / (0.3 - 0.2))^2 = 4 times the runs, not (0.4 / 0.3)^2."""
+    e0 = Estimate(1.0, 0.05, 0.8, 1.2, 18, 0.95, "t; allowance", sampling_low=0.9, sampling_high=1.1)
+    e1 = Estimate(1.3, 0.05, 1.1, 1.5, 18, 0.95, "t; allowance", sampling_low=1.2, sampling_high=1.4)
+    assert ends_to_decide(e0, e1) == (pytest.approx(4.0), "")
+    assert ends_to_decide(e1, e0) == (pytest.approx(4.0), "")  # a decreasing trend faces the other sides
+    plain = [Estimate(e.value, 0.05, e.ci_low, e.ci_high, 18, 0.95, "t") for e in (e0, e1)]
+    assert ends_to_decide(*plain) == (pytest.approx((0.4 / 0.3) ** 2), "")
+    one_sided = Estimate(1.3, 0.05, 1.1, 1.5, 18, 0.95, "t; allowance", sampling_low=1.1, sampling_high=1.4)
+    assert ends_to_decide(e0, one_sided)[0] == pytest.approx(((0.4 - 0.1) / (0.3 - 0.1)) ** 2)  # e1's far side: none
+    near = Estimate(1.2, 0.05, 1.0, 1.4, 18, 0.95, "t; allowance", sampling_low=1.1, sampling_high=1.3)
+    f, why = ends_to_decide(e0, near)  # 0.2 apart: within the two allowances, never separated by more runs
+    assert f == math.inf and "resolution of the grid" in why

@@ -328,9 +328,12 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
 
 
 def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[float, str]:
-    """Runs projected to separate a trend's end intervals, ``((h0 + h1) / (|v1 - v0| - tolerance))^2`` with ``h`` each
-    interval's half-width (at least 1), and where no number of runs would, why: an end is an envelope of certified
-    bounds (:func:`is_envelope`), the ends are not apart beyond ``tolerance``, or an end is unbounded."""
+    """Runs projected to separate a trend's end intervals, ``((h0 + h1 - a) / (|v1 - v0| - tolerance - a))^2`` with
+    ``h`` each interval's half-width and ``a`` the resolution allowances on the two facing sides (the first end's
+    side towards the last and the last's towards the first; ``Estimate.sampling_low``/``sampling_high``, 0 where
+    none), at least 1; and where no number of runs would, why: an end is an envelope of certified bounds
+    (:func:`is_envelope`), the ends are not apart beyond ``tolerance``, or beyond their allowances (which no number
+    of runs shrinks, as in :func:`runs_to_decide`), or an end is unbounded."""
     if is_envelope(e0) or is_envelope(e1):
         return (
             math.inf,
@@ -343,7 +346,22 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
         return math.inf, "the ends' values are not apart by more than the flat tolerance"
     if not math.isfinite(h):
         return math.inf, "an end's interval is unbounded"
-    return max((h / d) ** 2, 1.0), ""
+    up = e1.value >= e0.value
+    allowance = _allowance(e0, "high" if up else "low") + _allowance(e1, "low" if up else "high")
+    if not d > allowance:
+        return (
+            math.inf,
+            "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
+        )
+    return max(((h - allowance) / (d - allowance)) ** 2, 1.0), ""
+
+
+def _allowance(e: Estimate, side: str) -> float:
+    """The resolution allowance of ``e``'s interval on ``side`` ("low" or "high"): how far the interval reaches
+    beyond its sampling interval there (0 without an allowance)."""
+    if not getattr(e, "has_allowance", False):
+        return 0.0
+    return (e.sampling_low - e.ci_low) if side == "low" else (e.ci_high - e.sampling_high)
 
 
 def decide_note(factor: float, why: str = "") -> str:
