@@ -146,6 +146,19 @@ def test_verdict_summary_counts_labels_per_verdict():
     )
 
 
+def test_an_undecided_claims_label_is_its_decided_parts_in_the_counts_and_the_table(tmp_path):
+    """An undecided claim labelled by its decided parts is never plain "robust": the verdict counts and the
+    per-notebook table say so, as its line on the first screen does."""
+    claims = [_claim("C1-1", "undecided", _robust("undecided")), _claim("C1-2", "undecided", _robust("undecided"))]
+    assert verdict_summary(claims[:1]).endswith("1 undecided (1 robust in its decided parts only) · 0 not checkable")
+    assert "2 undecided (2 robust in their decided parts only)" in verdict_summary(claims)
+    root = tmp_path / "runs"
+    _synthetic_run(root, "010_new", claims[:1])
+    text = write_report(root, tmp_path / "R.md", notebooks=["010_new"]).read_text()
+    assert "| C1-1 | A claim. | **undecided** | robust in its decided parts only |" in text
+    assert "| **undecided** | robust |" not in text
+
+
 def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs, tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text(f"intro\n{README_BEGIN}\nhand-written\n{README_END}\nrest\n")

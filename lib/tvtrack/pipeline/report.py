@@ -31,6 +31,7 @@ from ..results import (
     at_profile,
     claim_flips,
     claim_summary,
+    claims_table,
     coverage_words,
     flip_with_kind,
     format_measured,
@@ -114,12 +115,19 @@ def verdict_summary(claims: list[dict]) -> str:
         if verdict == "undecided" and not these:
             continue
         labels = Counter(robustness_label(c) for c in these)
-        detail = [f"{labels[label]} {label}" for label in ALL_LABELS if labels[label]]
+        detail = [_counted_label(labels[label], verdict, label) for label in ALL_LABELS if labels[label]]
         if verdict != "not checkable":
             bare = _unlabelled(these)
             detail += [f"{n} {what}" for n, what in zip(bare, ("no part decided", "no record")) if n]
         parts.append(f"{len(these)} {verdict}" + (f" ({', '.join(detail)})" if detail else ""))
     return " · ".join(parts)
+
+
+def _counted_label(n: int, verdict: str, label: str) -> str:
+    """``"2 robust in their decided parts only"``: ``n`` claims of ``verdict`` with ``label``, the label as each
+    claim's line says it (:func:`tvtrack.paragraphs.label_words`: an undecided claim's label is its decided parts')."""
+    words = label_words(verdict, label)
+    return f"{n} {words.replace(' its decided parts', ' their decided parts') if n > 1 else words}"
 
 
 def _unlabelled(claims: list[dict]) -> tuple[int, int]:
@@ -502,13 +510,7 @@ def write_report(
             "",
             verdict_summary(data["claims"]),
             "",
-            "| claim | the paper says | verdict | label | measured against the paper, and on what it turns |",
-            "| --- | --- | --- | --- | --- |",
-        ]
-        lines += [
-            f"| {c['id']} | {_cell(c['statement'])} | **{c['verdict']}** | {_cell(robustness_label(c))} | "
-            f"{_cell(claim_summary(c))} |"
-            for c in data["claims"]
+            claims_table(data["claims"]),  # the label as the claim's line says it ("... in its decided parts only")
         ]
         lines += ["", "<details><summary>Rules, decisions, coverage, every flip and notes</summary>", ""]
         lines += [_details(c) for c in data["claims"]]
