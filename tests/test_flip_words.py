@@ -206,7 +206,8 @@ def test_what_would_turn_a_claim_falls_back_to_the_strongest_change_that_turns_t
     claim = _labelled("C9-4", {"a": h, "b": f, "c": h}, conds, _entries("r2", "w1", "w2", "w3"))
     assert claim["verdict"] == "partly"
     assert turns_on_sentence(claim) == (
-        "C9-4 does not hold under a world beyond the paper: w1 moved (1 other explored change changes its verdict too)."
+        "C9-4 does not hold under a world beyond the paper: w1 moved (1 other smallest change flips it too; its verdict "
+        "changes in 2 of 5 explored configurations)."
     )
 
 
@@ -237,9 +238,28 @@ def test_a_mixed_flip_is_said_with_each_changes_own_kind_in_both_paragraph_sente
     ]
     both = "two changes together: r1 moved (a reading of the paper's text) and w1 moved (a world beyond the paper)"
     assert turns_on_sentence(_labelled("C9-5", {"a": h, "b": h}, held, entries)) == (
-        f"C9-5 holds only in part under {both} (2 other explored changes change its verdict too)."
+        f"C9-5 holds only in part under {both} (2 other smallest changes flip it too; its verdict changes in 3 of 5 "
+        "explored configurations)."
     )
     failed = [{**c, "measured": {"a": f if c["measured"]["a"] is h else h, "b": f}} for c in held[:3]]
     failed[2]["measured"] = {"a": h, "b": h}
     claim = _labelled("C9-6", {"a": f, "b": f}, failed, entries)
     assert why_not_clause(claim).endswith(f"; it holds under {both}")
+
+
+def test_the_configurations_that_change_a_claims_verdict_are_counted_once_over_the_design():
+    """Of the design's distinct configurations (a pinned known flip that repeats a joint sample counts once; the
+    subset search's sub-combinations are not the design), those whose whole verdict is decided and differs."""
+    from tvtrack.flip_words import whole_flips
+
+    rows = [
+        {"changed": {"r1": 1}, "kind": "single", "verdict": "not reproduced"},
+        {"changed": {"w1": 1}, "kind": "single", "verdict": "reproduced"},
+        {"changed": {"w2": 1}, "kind": "single", "verdict": "undecided"},  # not decided: no change counted
+        {"changed": {"r1": 1, "w1": 1}, "kind": "joint", "verdict": "partly"},
+        {"changed": {"w1": 1, "r1": 1}, "kind": "pinned", "verdict": "partly"},  # the same configuration again
+        {"changed": {"w2": 1, "r1": 1}, "kind": "combination", "verdict": "not reproduced"},  # naming a flip only
+    ]
+    claim = {"verdict": "reproduced", "robustness": {"conditions": rows}}
+    assert whole_flips(claim) == (2, 4)
+    assert whole_flips({"verdict": "reproduced", "robustness": None}) == (0, 0)

@@ -293,8 +293,8 @@ def test_the_papers_paragraph_says_what_would_turn_a_claim_that_holds():
     quiet = _claim("C9-7", {"a": HOLDS}, [{"changed": {"w1": 1}, "kind": "single", "measured": {"a": HOLDS}}], [w1])
     paragraph, _ = paper_paragraph({"claims": [held, quiet]})
     assert (
-        "C9-6 does not hold under a reading of the paper's text: r1 read the other way (1 other explored change "
-        "changes its verdict too)." in paragraph
+        "C9-6 does not hold under a reading of the paper's text: r1 read the other way (1 other smallest change "
+        "flips it too; its verdict changes in 2 of 2 explored configurations)." in paragraph
     ), paragraph
     assert "C9-7 does not hold" not in paragraph  # nothing explored flips it
 
@@ -317,7 +317,10 @@ def test_the_papers_paragraph_names_a_change_that_turns_the_whole_claim_and_coun
     claim = _claim("C9-9", {"a": HOLDS, "b": FAILS, "c": HOLDS}, conds, [r1, r2, w1])
     assert claim["verdict"] == "partly"
     paragraph, _ = paper_paragraph({"claims": [claim]})
-    assert "C9-9 holds under a world beyond the paper: a quieter world." in paragraph, paragraph
+    assert (
+        "C9-9 holds under a world beyond the paper: a quieter world (its verdict changes in 1 of 3 explored "
+        "configurations)." in paragraph
+    ), paragraph
 
 
 def test_the_papers_paragraph_says_when_only_runs_that_lost_lock_carry_the_flip_of_a_claim_that_holds():
@@ -335,7 +338,7 @@ def test_the_papers_paragraph_says_when_only_runs_that_lost_lock_carry_the_flip_
     paragraph, _ = paper_paragraph({"claims": [claim]})
     assert (
         "C9-8 does not hold under a reading of the paper's text: r1 moved, but in one replicate only through the 5 "
-        "of its 600 runs that lost lock there."
+        "of its 600 runs that lost lock there (its verdict changes in 1 of 1 explored configurations)."
     ) in paragraph, paragraph
 
 

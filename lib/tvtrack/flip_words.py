@@ -198,8 +198,9 @@ _DECIDED = ("reproduced", "partly", "not reproduced")
 def turns_on_sentence(c: Mapping) -> str:
     """What would change a claim that holds (or holds in part), in one sentence: of the flips under which the whole
     claim's verdict is decided and differs from its own, the strongest (:func:`tvtrack.wording.summary_strength`: the
-    flip the claim's summary names wherever that one changes the whole verdict), with that verdict, whether only runs that lost lock carry it, and how many other changes
-    change the whole verdict too; ``""`` where no explored change does (a flip of a part only is not counted)."""
+    flip the claim's summary names wherever that one changes the whole verdict), with that verdict, whether only runs that lost lock carry it, how many other smallest changes
+    (named flips) change the whole verdict too, and in how many of the design's explored configurations it changes
+    (:func:`whole_flips`); ``""`` where no explored change does (a flip of a part only is not counted)."""
 
     def whole(f: Mapping) -> str | None:
         return claim_verdict_at(c, f.get("changed") or {}) or f.get("verdict")
@@ -212,8 +213,22 @@ def turns_on_sentence(c: Mapping) -> str:
     how = {"reproduced": "holds", "partly": "holds only in part", "not reproduced": "does not hold"}[whole(f)]
     more = len(texts) - 1
     others = (
-        f" ({more} other explored change{'s' if more > 1 else ''} change{'s' if more == 1 else ''} its verdict too)"
-        if more
-        else ""
+        f"{more} other smallest change{'s' if more > 1 else ''} flip{'s' if more == 1 else ''} it too; " if more else ""
     )
-    return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{_lost_clause(f)}{others}."
+    flipped, explored = whole_flips(c)
+    counted = f" ({others}its verdict changes in {flipped} of {explored} explored configurations)" if explored else ""
+    return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{_lost_clause(f)}{counted}."
+
+
+def whole_flips(c: Mapping) -> tuple[int, int]:
+    """``(flipped, explored)``: of the distinct configurations a claim's design explored (one at a time, joint
+    samples, pinned known flips; not the sub-combinations the subset search measured to name a flip), how many
+    decide the whole claim's verdict otherwise than the default does, and how many there are."""
+    rows = [r for r in (c.get("robustness") or {}).get("conditions") or () if r.get("kind") != "combination"]
+    verdicts: dict = {}
+    for r in rows:
+        key = tuple(sorted((str(k), repr(v)) for k, v in (r.get("changed") or {}).items()))
+        verdicts.setdefault(key, r.get("verdict"))
+    default = c.get("verdict")
+    flipped = sum(v in _DECIDED and v != default for v in verdicts.values())
+    return flipped, len(verdicts)
