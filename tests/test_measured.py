@@ -445,3 +445,31 @@ def test_the_runs_to_separate_a_trends_ends_shrink_only_their_sampling_parts():
     near = Estimate(1.2, 0.05, 1.0, 1.4, 18, 0.95, "t; allowance", sampling_low=1.1, sampling_high=1.3)
     f, why = ends_to_decide(e0, near)  # 0.2 apart: within the two allowances, never separated by more runs
     assert f == math.inf and "resolution of the grid" in why
+
+
+def test_a_fold_distance_about_another_reference_reads_back_about_it_and_a_reference_must_be_positive():
+    got = fold_about(Estimate(1.0, 0.1, 0.8, 1.6, 40, 0.95, "t"), 2.0)
+    back = as_estimate(json.loads(json.dumps(got.to_dict())))
+    assert back.fold_reference == 2.0 and back == got
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="parameter 'reference'"):
+            fold_about(Estimate(1.0, 0.1, 0.8, 1.6, 40, 0.95, "t"), bad)
+
+
+def test_a_fold_distance_widens_its_ratio_to_its_nominal_coverage_before_it_folds():
+    """A ratio whose helper covers 0.90 at its size is widened first: folded after, a widened end could cross the
+    reference (a fold distance below 1)."""
+    ratio = Estimate(0.9, 0.05, 0.75, 1.2, 5, 0.95, "t; coverage 0.90 at n = 5")
+    got = fold_about(ratio)
+    assert got.signed == calibrated(ratio) and got.ci_low == 1.0
+    assert got.ci_high == pytest.approx(max(1 / calibrated(ratio).ci_low, calibrated(ratio).ci_high))
+
+
+@pytest.mark.parametrize("stated", ["coverage 0.9 at n = 5", "coverage 0.90 at n = 5", "coverage 0.900 at n = 5"])
+def test_an_interval_widened_to_its_nominal_coverage_is_not_widened_again(stated):
+    """However many digits the helper stated its coverage with, a widened interval is at its nominal coverage: a
+    second reading (a rule's, after a fold that widened first) leaves it as it is."""
+    once = calibrated(Estimate(0.9, 0.05, 0.75, 1.2, 5, 0.95, f"t; {stated}"))
+    assert "widened x" in once.method and calibrated(once) == once
+    folded = fold_about(Estimate(0.9, 0.05, 0.75, 1.2, 5, 0.95, f"t; {stated}"))
+    assert calibrated(folded) == folded

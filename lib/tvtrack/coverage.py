@@ -112,6 +112,8 @@ def stated_coverage(estimate) -> float:
     method = getattr(estimate, "method", "") or ""
     if "coverage unmeasured" in method:
         return float("nan")
+    if re.search(r"; widened x\d+\.\d+ to ", method):  # widened to its nominal coverage (whatever the digits said)
+        return float(estimate.confidence)
     m = re.search(r"(?<!measured )coverage (\d\.\d+)", method)
     return float(m.group(1)) if m else float(estimate.confidence)
 

@@ -97,7 +97,8 @@ def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
     """ "; a setting too" ("; a world too") where a flip of that kind other than the one named changes the whole
     verdict: one change alone, else "; settings with other changes too" ("; worlds together too"); where none of
     that kind changes it but one turns a part so that the decided claim reads undecided there, "; a world leaves it
-    undecided" (more runs there would tell whether it flips)."""
+    undecided" (more runs there would tell whether it flips); where one of that kind flips a part only, "; a world,
+    in a part only" (the label counts a part's flip; the first screen's count of what flips verdicts does not)."""
     if shown == kind:
         return ""
     moving = [f for f in flips if f.get("side") == kind and moves_verdict(claim, f)]
@@ -107,7 +108,9 @@ def _also(claim: Mapping, flips: list, kind: str, shown: str) -> str:
         opened = claim.get("verdict") != "undecided" and any(  # a part's flip that leaves the whole claim open
             f.get("side") == kind and claim_verdict_at(claim, f.get("changed") or {}) == "undecided" for f in flips
         )
-        return f"; a {kind} leaves it undecided" if opened else ""
+        if opened:
+            return f"; a {kind} leaves it undecided"
+        return f"; a {kind}, in a part only" if any(f.get("side") == kind for f in flips) else ""
     if any(len(f.get("changed") or {}) <= 1 for f in moving):
         return f"; a {kind} too"
     return "; worlds together too" if kind == "world" else "; a setting with other changes too"

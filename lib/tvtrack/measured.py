@@ -93,9 +93,11 @@ def fold_about(ratio: Any, reference: float = 1.0) -> Estimate:
     standard error is the ratio's above ``k`` and ``k^2 / q^2`` times it below (the delta method). A ratio's
     resolution allowance does not map end by end through the fold: the result has no sampling interval.
 
-    The result keeps the signed ratio (``signed``, ``fold_reference``): replicates pool the signed ratios and fold
-    the pool (:func:`tvtrack.pooling.pool`). Folded first, a ratio of no change scattering either side of ``k``
-    would pool as a distance from it.
+    The ratio is first widened to its nominal coverage where its helper falls short (:func:`calibrated`). The result
+    keeps that signed ratio (``signed``, ``fold_reference``): replicates pool the signed ratios and fold the pool
+    (:func:`tvtrack.pooling.pool`). Folded first, a ratio of no change scattering either side of ``k`` would pool as
+    a distance from it. A change to a fold distance belongs on its signed ratio, folded again: the pool reads only
+    ``signed``.
 
     Parameters
     ----------
@@ -104,7 +106,10 @@ def fold_about(ratio: Any, reference: float = 1.0) -> Estimate:
     reference : float
         The ratio of no change (``1`` for a dependence whose direction is not stated).
     """
-    e, k = as_estimate(ratio), float(reference)
+    k = float(reference)
+    if not (math.isfinite(k) and k > 0):
+        raise ValueError(f"fold_about: parameter 'reference' = {reference!r}: a positive ratio of no change")
+    e = calibrated(ratio)  # widened where its helper falls short, before the fold (after it, an end could cross k)
     q, a, b = e.value, e.ci_low, e.ci_high
 
     def fold(r: float) -> float:

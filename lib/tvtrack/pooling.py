@@ -198,12 +198,18 @@ def _unmeasured_kept(es: list[Estimate], pooled: Estimate) -> Estimate:
 
 def _folded_after_pooling(es: list[Estimate]) -> Estimate | None:
     """Fold distances (:func:`tvtrack.measured.fold_about`) about one reference: their signed ratios pooled, the
-    pool folded; None where a replicate is no fold distance. Folded first, replicates of a ratio of no change that
-    scatter either side of the reference each read a distance from it, and their pool a dependence that is not
-    there."""
-    ks = {e.fold_reference for e in es}
-    if any(e.signed is None for e in es) or len(ks) != 1:
+    pool folded; None where no replicate is one (a pool of some with other estimates, or about different
+    references, is refused). Folded first, replicates of a ratio of no change that scatter either side of the
+    reference each read a distance from it, and their pool a dependence that is not there."""
+    folded = [e.signed is not None for e in es]
+    if not any(folded):
         return None
+    ks = {e.fold_reference for e in es if e.signed is not None}
+    if not all(folded) or len(ks) != 1:  # a fold's pool needs every replicate's signed ratio, about one reference
+        raise ValueError(
+            f"pool: fold distances pool only with fold distances about the same reference, got {len(es)} replicates "
+            f"of which {sum(folded)} fold distances about {sorted(ks)}"
+        )
     return fold_about(pool([e.signed for e in es]), ks.pop())
 
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tvtrack.estimate import Estimate
-from tvtrack.measured import calibrated, fold_about
+from tvtrack.measured import fold_about
 from tvtrack.montecarlo import ratio_ci
 from .readings import (
     COORDINATE6,
@@ -427,11 +427,11 @@ def fold_change(ratio: Estimate) -> Estimate:
     """A positive ratio's fold change from 1 either way, ``max(q, 1 / q)``: a dependence whose direction is not
     stated (C002-13) is one number that grows with the dependence whichever way it runs.
 
-    The ratio's interval after :func:`tvtrack.measured.calibrated` (widened where its coverage falls short), folded
-    by :func:`tvtrack.measured.fold_about`: mapped end by end, from 1 where it holds 1 (no measurable dependence);
-    the estimate keeps the signed ratio, which replicates pool before they fold.
+    The ratio's interval widened where its coverage falls short and folded by :func:`tvtrack.measured.fold_about`:
+    mapped end by end, from 1 where it holds 1 (no measurable dependence); the estimate keeps the signed ratio,
+    which replicates pool before they fold.
     """
-    return fold_about(calibrated(ratio), 1.0)
+    return fold_about(ratio, 1.0)
 
 
 def _c13(x: _Ctx):
