@@ -76,12 +76,13 @@ def test_a_setting_with_a_reading_also_flipping_a_claim_a_reading_flips_is_a_set
 
 
 def test_an_undecided_claim_a_world_leaves_undecided_is_not_said_to_be_left_undecided():
-    """Where the claim reads undecided already, a world that leaves it undecided changes nothing a reader needs:
-    the bracket names the reading alone. The same world beside a decided claim whose parts it opens is named."""
+    """Where the claim reads undecided already, a world that leaves it undecided is not said to leave it so: the
+    bracket names the world by the part it flips. The same world beside a decided claim whose parts it opens is
+    named as leaving it undecided."""
     reading, world = ("r", "reading", {"r": 1}), ("w", "world", {"w": 1})
     open_there = [{"changed": {"w": 1}, "verdict": "undecided"}]
     claim = _claim(reading, world, verdict="undecided", parts=2, conditions=open_there)
-    assert label_basis(claim) == "a reading"
+    assert label_basis(claim) == "a reading; a world, in a part only"
     # decided at the default, undecided under the world whatever its open part turns out: "leaves it undecided"
     row = {"changed": {"w": 1}, "verdict": "undecided", "parts": {"claim": "undecided", "p1": "reproduced"}}
     decided = _claim(reading, world, verdict="reproduced", parts=2, conditions=[row])
@@ -263,3 +264,12 @@ def test_the_configurations_that_change_a_claims_verdict_are_counted_once_over_t
     claim = {"verdict": "reproduced", "robustness": {"conditions": rows}}
     assert whole_flips(claim) == (2, 4)
     assert whole_flips({"verdict": "reproduced", "robustness": None}) == (0, 0)
+
+
+def test_a_kind_that_flips_only_a_part_is_named_in_the_bracket_as_the_label_counts_it():
+    """The label counts a part's flip ("changes the verdict, or a part's"): beside a reading that flips the whole
+    claim, a world and a setting that each flip only a part are named, each "in a part only"."""
+    reading, world, setting = ("r", "reading", {"r": 1}), ("w", "world", {"w": 1}), ("s", "setting", {"s": 1})
+    held = [{"changed": {"w": 1}, "verdict": "reproduced"}, {"changed": {"s": 1}, "verdict": "reproduced"}]
+    claim = _claim(reading, world, setting, verdict="reproduced", parts=2, conditions=held)
+    assert label_basis(claim) == "a reading; a setting, in a part only; a world, in a part only"
