@@ -413,8 +413,12 @@ def test_a_fold_distance_keeps_the_ratios_error_above_the_reference_and_inverts_
     assert (
         flagged.extrapolated is True and fold_about(Estimate(0.4, 0.05, 0.3, 0.55, 40, 0.95, "t")).extrapolated is False
     )
-    undefined = fold_about(Estimate(0.4, 0.05, float("nan"), 0.55, 40, 0.95, "t"))
-    assert math.isnan(undefined.ci_low) and is_undecided(undefined) and undefined.signed.value == 0.4
+    ratio = Estimate(0.4, 0.05, float("nan"), 0.55, 40, 0.9, "t", True)
+    undefined = fold_about(ratio, 2.0)  # an undefined end: nothing to fold, every field but the numbers kept
+    assert all(math.isnan(x) for x in (undefined.value, undefined.stderr, undefined.ci_low, undefined.ci_high))
+    assert (undefined.n, undefined.confidence, undefined.extrapolated) == (40, 0.9, True)
+    assert undefined.signed == ratio and undefined.fold_reference == 2.0 and is_undecided(undefined)
+    assert undefined.method.startswith("t; fold distance from 2 either way")
 
 
 def test_a_fold_distance_is_written_with_its_signed_ratio_and_read_back_whole():
