@@ -477,3 +477,20 @@ def test_an_interval_widened_to_its_nominal_coverage_is_not_widened_again(stated
     assert "widened x" in once.method and calibrated(once) == once
     folded = fold_about(Estimate(0.9, 0.05, 0.75, 1.2, 5, 0.95, f"t; {stated}"))
     assert calibrated(folded) == folded
+
+
+def test_an_open_end_written_to_a_record_reads_back_open():
+    """JSON has no infinity: a bound's open end is written as null with its sign named beside it, and read back as
+    the infinity it was (read as NaN, a certified bound re-judged from its record would read undecided)."""
+    from tvtrack.results import to_jsonable
+
+    bound = Estimate(2.0, 0.5, 1.5, math.inf, 6, 0.95, "bound")
+    written = json.loads(json.dumps(to_jsonable({"part": bound, "rows": [{"measured": bound.to_dict()}]})))
+    assert written["part"]["ci_high"] is None and written["part"]["infinite"] == {"ci_high": "+inf"}
+    for d in (written["part"], written["rows"][0]["measured"]):
+        back = as_estimate(d)
+        assert (back.value, back.ci_low, back.ci_high) == (2.0, 1.5, math.inf)
+    below = as_estimate(json.loads(json.dumps(to_jsonable(Estimate(-math.inf, 0.1, -math.inf, 1.0, 6)))))
+    assert (below.value, below.ci_low, below.ci_high) == (-math.inf, -math.inf, 1.0)
+    finite = to_jsonable(Estimate(2.0, 0.5, 1.5, 2.5, 6))
+    assert "infinite" not in finite and math.isnan(as_estimate({**finite, "ci_high": None}).ci_high)

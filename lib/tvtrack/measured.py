@@ -73,6 +73,9 @@ def as_estimate(measured: Any) -> Estimate:
         fields = {
             k: (float("nan") if v is None and k not in ("method", "extrapolated") else v) for k, v in fields.items()
         }
+        for k, sign in (measured.get("infinite") or {}).items():  # an open end JSON wrote as null
+            if k in fields:
+                fields[k] = math.inf if sign == "+inf" else -math.inf
         fields["extrapolated"] = bool(fields.get("extrapolated") or False)
         if measured.get("signed") is not None:  # a fold distance keeps the signed ratio it was folded from
             fields["signed"] = as_estimate(measured["signed"])

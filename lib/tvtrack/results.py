@@ -107,13 +107,22 @@ _CLAIM_ID = re.compile(r"^C\d{3}-[0-9A-Za-z.]+$")
 _VERSIONED_PACKAGES = ("numpy", "scipy", "matplotlib", "rerun-sdk", "papermill", "scikit-learn")
 
 
+#: an estimate's numbers that may be infinite (a bound's open end): JSON has no infinity
+_INFINITE_FIELDS = ("value", "stderr", "ci_low", "ci_high", "sampling_low", "sampling_high")
+
+
 def to_jsonable(value: Any) -> Any:
     """Convert numpy scalars/arrays, Estimates, Paths and non-finite floats to JSON values
-    (NaN and infinities become ``null``)."""
+    (NaN and infinities become ``null``; an estimate's infinite numbers are named beside them, ``"infinite":
+    {"ci_high": "+inf"}``, so that :func:`tvtrack.measured.as_estimate` reads an open end back as one)."""
     if isinstance(value, Estimate):
         return to_jsonable(value.to_dict())
     if isinstance(value, dict):
-        return {str(k): to_jsonable(v) for k, v in value.items()}
+        out = {str(k): to_jsonable(v) for k, v in value.items()}
+        if "value" in value and "ci_low" in value and "ci_high" in value:
+            inf = {k: "+inf" if value[k] > 0 else "-inf" for k in _INFINITE_FIELDS if _is_infinite(value.get(k))}
+            out.update({"infinite": inf} if inf else {})
+        return out
     if isinstance(value, (list, tuple)):
         return [to_jsonable(v) for v in value]
     if isinstance(value, np.ndarray):
@@ -128,6 +137,10 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, Path):
         return str(value)
     return value
+
+
+def _is_infinite(x: Any) -> bool:
+    return isinstance(x, (float, np.floating)) and bool(np.isinf(x))
 
 
 def claims_table(claims: list) -> str:
