@@ -306,3 +306,18 @@ def test_a_flip_through_two_parts_keeps_the_lost_runs_that_only_one_copy_carries
     }
     flips = claim_flips(_claim("C001-6", "reproduced", parts))
     assert len(flips) == 1 and flips[0]["lost_runs"] == lost and flips[0]["part"] == "first"
+
+
+def test_a_part_some_explored_configurations_do_not_measure_says_how_many():
+    """C000-3's psi_A parts do not exist under a contrast of 0 (its reading there reads other parts): their shares
+    are over the configurations that measure them, and the line says how many of the claim's do not."""
+    from tvtrack.part_lines import part_line, record_lines
+
+    fewer = {**SHARE, "agree": 34, "design": 42, "decided": 36}
+    record = {
+        "label": "depends",
+        "parts": {"a": _part("reproduced", share=SHARE), "b": _part("reproduced", share=fewer)},
+    }
+    a, b = record_lines("C9-1", record)[1:]
+    assert "6 of 48 explored configurations do not measure this part" in b and "do not measure" not in a
+    assert "do not measure" not in part_line("C9-1", _part("reproduced", share=SHARE))  # no claim to compare with

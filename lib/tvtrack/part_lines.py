@@ -208,15 +208,18 @@ def _flip_words(part: Mapping, share: Mapping, counted: bool) -> str:
     return text
 
 
-def part_line(head: str, part: Mapping) -> str:
+def part_line(head: str, part: Mapping, explored: int = 0) -> str:
     """One part as a Markdown bullet: its verdict and label; how many of every explored configuration agree, flip
-    and stay undecided (with the share agreeing, 95 %); every flip in plain words with its kind; the runs
+    and stay undecided (with the share agreeing, 95 %), and how many of the claim's ``explored`` configurations do
+    not measure the part (a reading there leaves it out); every flip in plain words with its kind; the runs
     projected to decide an undecided part; the entries that move its value most (their share of its variation)."""
     text = f"- **{head}**: {part.get('verdict')}, {_label_words(part)}"
     share = part.get("share") or {}
     counts, _, beside = share_counts(share).partition("; ")  # the share, then what is counted beside it
     if counts:
         text += f"; {counts}"
+        left = explored - int(share.get("design") or 0)
+        text += f" ({left} of {explored} explored configurations do not measure this part)" if left > 0 else ""
         if share.get("ci_low") is not None and share.get("ci_high") is not None:
             text += f" (share agreeing {share['ci_low']:.2f}-{share['ci_high']:.2f}, 95 %)"
         text += f"; {beside}" if beside else ""
@@ -243,8 +246,9 @@ def record_lines(cid: str, record: Mapping, verdict: str | None = None) -> list[
     if shown.get("provisional") and word in ("robust", "unexplored"):  # the record's label word is not shown
         cover = PROVISIONAL + (cover[len(word) :] if cover.startswith(word) else f": {cover}")
     lines = [f"- **{cid}**: {cover}"]
+    explored = max((int((p.get("share") or {}).get("design") or 0) for p in parts.values()), default=0)
     for name, part in parts.items():
-        lines.append("  " + part_line(cid if len(parts) == 1 else f"{cid} ({part_name(name)})", part))
+        lines.append("  " + part_line(cid if len(parts) == 1 else f"{cid} ({part_name(name)})", part, explored))
     return lines
 
 
