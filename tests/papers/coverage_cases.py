@@ -21,6 +21,7 @@ from scipy import stats
 
 from tvtrack.estimate import Estimate
 from tvtrack.measured import fold_about
+from tvtrack.montecarlo import ratio_ci
 from tvtrack.pooling import pool
 from tvtrack.verdicts import InBand
 from tvtrack.papers.p003_rotating_marker_tracker.curves import SIR_GRID
@@ -128,6 +129,25 @@ def fold_rates(true: float, runs: int, replicates: int, r: int = 2000, seed: int
     return {k: (c / r, y / r) for k, (c, y) in hits.items()}
 
 
+def fold_rates_unpaired(true: float, replicates: int, runs: int = 10, r: int = 1000, seed: int = 7) -> dict:
+    """:func:`fold_rates` with C002-13's interval: the unpaired ratio of two means of ``runs`` exponential runs
+    each (:func:`tvtrack.montecarlo.ratio_ci`, skewed), folded before or after the pool."""
+    rng, rule, truth = np.random.default_rng(seed), InBand("fold", low=1.1), max(true, 1.0 / true)
+    hits = {"before": [0, 0], "after": [0, 0]}
+    for _ in range(r):
+        folded = [
+            fold_about(ratio_ci(rng.exponential(true, runs), rng.exponential(1.0, runs), paired=False, rng=rng))
+            for _ in range(replicates)
+        ]
+        before = pool(
+            [Estimate(*(getattr(f, k) for k in ("value", "stderr", "ci_low", "ci_high", "n"))) for f in folded]
+        )
+        for key, e in (("before", before), ("after", pool(folded))):
+            hits[key][0] += e.ci_low <= truth <= e.ci_high
+            hits[key][1] += rule.decide(e) == "reproduced"
+    return {k: (c / r, y / r) for k, (c, y) in hits.items()}
+
+
 if __name__ == "__main__":
     for kind in ("normal", "skewed", "t3"):
         for s in (0.02, 0.1, 0.2, 0.4):
@@ -149,3 +169,10 @@ if __name__ == "__main__":
                 "reads >= 1.1 %.1f %% / %.1f %% (folded before / after the pool)"
                 % (got["before"][0], got["after"][0], 100 * got["before"][1], 100 * got["after"][1])
             )
+    for k in (3, 5):
+        got = fold_rates_unpaired(1.0, k)
+        print(
+            f"fold distance, unpaired exponential runs (10 a side, true ratio 1), {k} replicates: covers %.3f / %.3f, "
+            "reads >= 1.1 %.1f %% / %.1f %% (folded before / after the pool)"
+            % (got["before"][0], got["after"][0], 100 * got["before"][1], 100 * got["after"][1])
+        )
