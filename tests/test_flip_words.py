@@ -261,8 +261,9 @@ def test_the_configurations_that_change_a_claims_verdict_are_counted_once_over_t
         {"changed": {"w1": 1, "r1": 1}, "kind": "pinned", "verdict": "partly"},  # the same configuration again
         {"changed": {"w2": 1, "r1": 1}, "kind": "combination", "verdict": "not reproduced"},  # naming a flip only
     ]
+    rows.append({"changed": {"r1": 2}, "kind": "single", "verdict": "reproduced"})  # the same entry, another value
     claim = {"verdict": "reproduced", "robustness": {"conditions": rows}}
-    assert whole_flips(claim) == (2, 4)
+    assert whole_flips(claim) == (2, 5)
     assert whole_flips({"verdict": "reproduced", "robustness": None}) == (0, 0)
 
 
@@ -273,3 +274,22 @@ def test_a_kind_that_flips_only_a_part_is_named_in_the_bracket_as_the_label_coun
     held = [{"changed": {"w": 1}, "verdict": "reproduced"}, {"changed": {"s": 1}, "verdict": "reproduced"}]
     claim = _claim(reading, world, setting, verdict="reproduced", parts=2, conditions=held)
     assert label_basis(claim) == "a reading; a setting, in a part only; a world, in a part only"
+
+
+def test_a_flip_the_design_has_no_row_for_turns_the_claim_by_its_own_verdict_and_counts_no_configuration():
+    """A named flip whose configuration the record's rows do not hold (an older record) turns the whole claim by the
+    flip's own verdict, and the sentence counts no configurations it has none of."""
+    from tvtrack.flip_words import turns_on_sentence
+
+    claim = _claim(("r moved", "reading", {"r": 1}))
+    claim["robustness"]["register"] = []
+    assert turns_on_sentence(claim) == "C9-1 does not hold under a reading of the paper's text: r moved."
+
+
+def test_two_changes_whose_smaller_part_stays_undecided_are_said_to_be_perhaps_fewer():
+    flip = {"text": "r and s", "side": "reading", "changed": {"r": 1, "r2": 1}, "verdict": "not reproduced"}
+    claim = _claim()
+    claim["robustness"]["parts"]["claim"]["flips"] = [{**flip, "undecided_subsets": [{"r": 1}]}]
+    assert label_basis(claim) == "two readings together (or fewer: a smaller part of them stays undecided)"
+    claim["robustness"]["parts"]["claim"]["flips"] = [flip]
+    assert label_basis(claim) == "two readings together"

@@ -494,3 +494,15 @@ def test_an_open_end_written_to_a_record_reads_back_open():
     assert (below.value, below.ci_low, below.ci_high) == (-math.inf, -math.inf, 1.0)
     finite = to_jsonable(Estimate(2.0, 0.5, 1.5, 2.5, 6))
     assert "infinite" not in finite and math.isnan(as_estimate({**finite, "ci_high": None}).ci_high)
+
+
+def test_a_trends_facing_allowances_are_the_first_ends_side_towards_the_last_and_the_last_ends_towards_the_first():
+    """Allowances that differ on every side: the lower end's upper allowance (0.1) and the higher end's lower one
+    (0.12) face each other, whichever end comes first; the far sides (0.05, 0.15) take nothing off the gap."""
+    low, high = (
+        Estimate(1.0, 0.05, 0.8, 1.2, 18, 0.95, "t; allowance", sampling_low=0.85, sampling_high=1.1),
+        Estimate(1.4, 0.05, 1.1, 1.6, 18, 0.95, "t; allowance", sampling_low=1.22, sampling_high=1.45),
+    )
+    h = (1.2 - 0.8) / 2 + (1.6 - 1.1) / 2
+    assert ends_to_decide(low, high)[0] == pytest.approx(((h - 0.22) / (0.4 - 0.22)) ** 2)
+    assert ends_to_decide(high, low)[0] == pytest.approx(((h - 0.22) / (0.4 - 0.22)) ** 2)

@@ -367,7 +367,7 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
 def _allowance(e: Estimate, side: str) -> float:
     """The resolution allowance of ``e``'s interval on ``side`` ("low" or "high"): how far the interval reaches
     beyond its sampling interval there (0 without an allowance)."""
-    if not getattr(e, "has_allowance", False):
+    if not e.has_allowance:
         return 0.0
     return (e.sampling_low - e.ci_low) if side == "low" else (e.ci_high - e.sampling_high)
 
