@@ -503,6 +503,67 @@ def test_a_trends_facing_allowances_are_the_first_ends_side_towards_the_last_and
         Estimate(1.0, 0.05, 0.8, 1.2, 18, 0.95, "t; allowance", sampling_low=0.85, sampling_high=1.1),
         Estimate(1.4, 0.05, 1.1, 1.6, 18, 0.95, "t; allowance", sampling_low=1.22, sampling_high=1.45),
     )
-    h = (1.2 - 0.8) / 2 + (1.6 - 1.1) / 2
-    assert ends_to_decide(low, high)[0] == pytest.approx(((h - 0.22) / (0.4 - 0.22)) ** 2)
-    assert ends_to_decide(high, low)[0] == pytest.approx(((h - 0.22) / (0.4 - 0.22)) ** 2)
+    s = (1.1 - 1.0) + (1.4 - 1.22)  # the facing sampling parts: the lower end's upward, the higher end's downward
+    assert ends_to_decide(low, high)[0] == pytest.approx((s / (0.4 - 0.22)) ** 2)  # 2.42, not the mean half-widths'
+    assert ends_to_decide(high, low)[0] == pytest.approx((s / (0.4 - 0.22)) ** 2)
+
+
+def test_a_trends_ends_that_already_touch_beyond_their_allowances_need_no_more_runs():
+    """Wide allowances on the facing sides and narrow sampling parts: the intervals [0.95, 1.5] and [1.5, 2.05]
+    touch, so the runs already there separate them (a factor of 1), whatever the far sides hold."""
+    e0 = Estimate(1.0, 0.05, 0.95, 1.5, 18, 0.95, "t; allowance", sampling_low=0.95, sampling_high=1.05)
+    e1 = Estimate(2.0, 0.05, 1.5, 2.05, 18, 0.95, "t; allowance", sampling_low=1.95, sampling_high=2.05)
+    assert ends_to_decide(e0, e1) == (pytest.approx(1.0), "")
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 0.05])
+@pytest.mark.parametrize("up", [True, False])
+def test_at_the_projected_runs_a_trends_facing_ends_lie_just_the_tolerance_apart(up, tolerance):
+    """The projection's meaning: shrink each end's sampling parts by 1/sqrt(f) about its value, keep its
+    allowances, and the facing ends of the two intervals are then exactly ``tolerance`` apart."""
+    from dataclasses import replace
+
+    e0 = Estimate(1.0, 0.05, 0.7, 1.25, 18, 0.95, "t; allowance", sampling_low=0.8, sampling_high=1.18)
+    e1 = Estimate(1.5, 0.05, 1.12, 1.9, 18, 0.95, "t; allowance", sampling_low=1.2, sampling_high=1.75)
+    first, last = (e0, e1) if up else (e1, e0)
+    f, why = ends_to_decide(first, last, tolerance)
+    assert why == "" and f > 1.0
+
+    def shrunk(e):
+        lo, hi = e.value - (e.value - e.sampling_low) / f**0.5, e.value + (e.sampling_high - e.value) / f**0.5
+        return replace(e, ci_low=lo - (e.sampling_low - e.ci_low), ci_high=hi + (e.ci_high - e.sampling_high))
+
+    assert shrunk(e1).ci_low - shrunk(e0).ci_high == pytest.approx(tolerance)
+
+
+@pytest.mark.parametrize("difference", [False, True])
+def test_an_interval_widened_to_its_coverage_widens_its_sampling_part_alike(difference):
+    """Widened to nominal coverage, an interval with a resolution allowance stretches its sampling interval by the
+    same map: the widening is sampling error that more runs shrink, not resolution (left as it was, the whole
+    widening would be read as allowance, and the runs projected to decide would grow with it)."""
+    e = Estimate(
+        2.0, 0.1, 1.5, 2.6, 5, 0.95, "t; allowance; coverage 0.90 at n = 5", sampling_low=1.7, sampling_high=2.4
+    )
+    w = calibrated(e, difference=difference)
+    f = float(w.method.split("widened x")[1].split(" ")[0])
+    assert f > 1.0 and w.has_allowance
+    if difference:
+        stretched = [2.0 + f * (x - 2.0) for x in (1.5, 2.6, 1.7, 2.4)]
+    else:
+        stretched = [2.0 * (x / 2.0) ** f for x in (1.5, 2.6, 1.7, 2.4)]
+    got = [w.ci_low, w.ci_high, w.sampling_low, w.sampling_high]
+    assert got == pytest.approx(stretched, rel=2e-3)  # f is read back at three decimals
+    assert runs_to_decide(w, (2.5,)) == pytest.approx(
+        ((w.sampling_high - 2.0) / ((2.5 - 2.0) - (w.ci_high - w.sampling_high))) ** 2
+    )
+
+
+def test_a_marker_word_other_than_plus_or_minus_inf_reads_no_infinity():
+    """Only the two words :func:`tvtrack.results.to_jsonable` writes mark an open end; another leaves the null as NaN
+    (undecided), never the infinity of the other sign."""
+    for word in ("inf", "+Inf", "", None):
+        back = as_estimate({"value": 2.0, "ci_low": 1.5, "ci_high": None, "n": 6, "infinite": {"ci_high": word}})
+        assert math.isnan(back.ci_high)
+    assert (
+        as_estimate({"value": 2.0, "ci_low": None, "ci_high": 3.0, "infinite": {"ci_low": "-inf"}}).ci_low == -math.inf
+    )

@@ -229,9 +229,11 @@ def test_an_undecided_band_and_trend_say_why_no_runs_decide_them_and_the_trend_p
     assert (
         flat.runs_factor == math.inf and "(the ends' values are not apart by more than the flat tolerance)" in flat.why
     )
-    wide = mono.judge([first, Estimate(1.5, 0.5, 0.5, math.inf, 30, method="t")])
-    assert wide.runs_factor == math.inf and "(an end's interval is unbounded)" in wide.why
-    # three points, nothing separated: ((h_first + h_last) / |v_last - v_first|)^2 from the ends, not the middle
+    wide = mono.judge([Estimate(1.0, 0.5, 0.2, math.inf, 30, method="t"), Estimate(1.5, 0.5, 0.5, 2.5, 30, method="t")])
+    assert wide.runs_factor == math.inf and "(an end's interval is unbounded)" in wide.why  # open towards the last
+    away = mono.judge([first, Estimate(1.5, 0.5, 0.5, math.inf, 30, method="t")])  # open away from the first
+    assert away.runs_factor == pytest.approx(((1.8 - 1.0 + 1.5 - 0.5) / (1.5 - 1.0)) ** 2)
+    # three points, nothing separated: ((r_first + r_last) / |v_last - v_first|)^2 from the ends' facing reaches
     last = Estimate(1.6, 0.5, 1.0, 2.4, 30, method="t")
     f = mono.judge([first, Estimate(5.0, 5.0, -4.0, 14.0, 30, method="t"), last]).runs_factor
-    assert f == pytest.approx(((0.8 + 0.7) / 0.6) ** 2)
+    assert f == pytest.approx(((0.8 + 0.6) / 0.6) ** 2)

@@ -48,7 +48,8 @@ def test_all_of_the_largest_runs_factor_of_its_open_parts():
 
 @pytest.mark.parametrize("tolerance", [0.0, 0.5])
 def test_monotone_projects_the_runs_that_separate_its_ends(tolerance):
-    """((h0 + h1) / (|v1 - v0| - tolerance))^2, h the half-widths: ends 1 +- 1 and 2.5 +- 0.5 overlap."""
+    """((r0 + r1) / (|v1 - v0| - tolerance))^2, r the facing reaches (the first end's up, the last's down): ends
+    1 +- 1 and 2.5 +- 0.5 overlap."""
     rule = Monotone("g", "x", tolerance=tolerance)
     j = rule.judge([est(0.0, 2.0), est(2.0, 3.0)])
     assert j.verdict == "undecided" and not j.settled
@@ -57,10 +58,12 @@ def test_monotone_projects_the_runs_that_separate_its_ends(tolerance):
 
 def test_monotone_runs_factor_is_at_least_one_and_infinite_without_a_trend():
     rule = Monotone("g", "x")
-    assert rule._ends_factor(est(0.0, 1.0), est(0.8, 2.0, value=10.0)) == 1.0  # h / d < 1: runs enough
+    assert rule._ends_factor(est(0.0, 1.0), est(1.2, 2.2)) == 1.0  # (0.5 + 0.5) / 1.2 < 1: runs enough
     assert rule._ends_factor(est(0.0, 2.0), est(0.0, 2.0)) == math.inf  # no difference: no number of runs
     assert Monotone("g", "x", tolerance=3.0)._ends_factor(est(0.0, 2.0), est(1.0, 3.0)) == math.inf
-    assert rule._ends_factor(Estimate(1.0, 0.1, -math.inf, 3.0, 100), est(1.5, 2.5)) == math.inf
+    assert rule._ends_factor(Estimate(1.0, 0.1, -1.0, math.inf, 100), est(1.5, 2.5)) == math.inf  # open towards
+    far = rule._ends_factor(Estimate(1.0, 0.1, -math.inf, 3.0, 100), est(1.5, 2.5))  # open away: its facing reach
+    assert far == pytest.approx(((3.0 - 1.0 + 2.0 - 1.5) / (2.0 - 1.0)) ** 2)
     assert rule._ends_factor(est(0.0, 0.1), est(10.0, 10.1)) == 1.0
 
 

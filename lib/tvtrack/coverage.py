@@ -142,15 +142,20 @@ def widen_to_nominal(estimate: Estimate, difference: bool = False) -> Estimate:
         return estimate  # unmeasured coverage cannot be calibrated: the flag stays False
     # scipy.stats.norm.ppf's own function (special.ndtri), without the per-call checks: the same numbers
     f = scipy.special.ndtri(0.5 + estimate.confidence / 2) / scipy.special.ndtri(0.5 + stated / 2)
-    v, lo, hi = estimate.value, estimate.ci_low, estimate.ci_high
-    if lo > 0 and v > 0 and not difference:
-        lo, hi = v * (lo / v) ** f, v * (hi / v) ** f
-    else:
-        lo, hi = v - f * (v - lo), v + f * (hi - v)
+    v = estimate.value
+    log = estimate.ci_low > 0 and v > 0 and not difference
+
+    def stretch(x: float) -> float:
+        return float(v * (x / v) ** f if log else v + f * (x - v))
+
+    sampling = {}
+    if estimate.has_allowance:  # the sampling interval stretched alike: only what it held shrinks with more runs
+        sampling = {"sampling_low": stretch(estimate.sampling_low), "sampling_high": stretch(estimate.sampling_high)}
     return replace(
         estimate,
-        ci_low=float(lo),
-        ci_high=float(hi),
+        ci_low=stretch(estimate.ci_low),
+        ci_high=stretch(estimate.ci_high),
+        **sampling,
         method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
             f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"
         ),

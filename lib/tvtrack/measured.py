@@ -23,6 +23,7 @@ __all__ = [
     "show_estimate",
     "decide_note",
     "ends_to_decide",
+    "record_end",
     "is_envelope",
     "why_no_runs",
     "fold_about",
@@ -56,6 +57,16 @@ def lost_runs(measured: Any) -> dict | None:
     return None
 
 
+#: The words :func:`tvtrack.results.to_jsonable` writes beside a null for an infinite end, and what they read back as.
+_OPEN_ENDS = {"+inf": math.inf, "-inf": -math.inf}
+
+
+def record_end(d: Mapping, key: str) -> Any:
+    """An interval end (``key``: ``"ci_low"``, ``"ci_high"``) of an estimate as a record holds it: the infinity
+    its ``infinite`` marker names where JSON wrote null (:func:`tvtrack.results.to_jsonable`), else what is there."""
+    return _OPEN_ENDS.get((d.get("infinite") or {}).get(key), d.get(key))
+
+
 def as_estimate(measured: Any) -> Estimate:
     """An :class:`Estimate` from an estimate, an estimate dict or a plain number (a number is
     exact: a deterministic computation, its interval the point itself)."""
@@ -74,8 +85,8 @@ def as_estimate(measured: Any) -> Estimate:
             k: (float("nan") if v is None and k not in ("method", "extrapolated") else v) for k, v in fields.items()
         }
         for k, sign in (measured.get("infinite") or {}).items():  # an open end JSON wrote as null
-            if k in fields:
-                fields[k] = math.inf if sign == "+inf" else -math.inf
+            if k in fields and sign in _OPEN_ENDS:  # another word is no marker: the null stays NaN
+                fields[k] = _OPEN_ENDS[sign]
         fields["extrapolated"] = bool(fields.get("extrapolated") or False)
         if measured.get("signed") is not None:  # a fold distance keeps the signed ratio it was folded from
             fields["signed"] = as_estimate(measured["signed"])
@@ -336,32 +347,44 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
 
 
 def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[float, str]:
-    """Runs projected to separate a trend's end intervals, ``((h0 + h1 - a) / (|v1 - v0| - tolerance - a))^2`` with
-    ``h`` each interval's half-width and ``a`` the resolution allowances on the two facing sides (the first end's
-    side towards the last and the last's towards the first; ``Estimate.sampling_low``/``sampling_high``, 0 where
-    none), at least 1; and where no number of runs would, why: an end is an envelope of certified bounds
-    (:func:`is_envelope`), the ends are not apart beyond ``tolerance``, or beyond their allowances (which no number
-    of runs shrinks, as in :func:`runs_to_decide`), or an end is unbounded."""
+    """Runs projected to separate a trend's end intervals, ``(s / (|v1 - v0| - tolerance - a))^2``, at least 1.
+
+    On the two facing sides (the first end's side towards the last and the last's towards the first) ``s`` is
+    the sum of the sampling parts, from each value to its sampling interval's end (``Estimate.sampling_low`` /
+    ``sampling_high``; the interval's end where there is no allowance), which shrink as ``1/sqrt(n)``, and ``a``
+    the sum of the resolution allowances beyond them, which no number of runs shrinks (as in
+    :func:`runs_to_decide`): at that multiple the facing ends are ``tolerance`` apart. Where no number of runs
+    would, why: an end is an envelope of certified bounds (:func:`is_envelope`), the ends are not apart beyond
+    ``tolerance``, or beyond their allowances, or an end is unbounded."""
     if is_envelope(e0) or is_envelope(e1):
         return (
             math.inf,
             "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow",
         )
-    (a0, b0), (a1, b1) = interval_of(e0), interval_of(e1)
     d = abs(e1.value - e0.value) - tolerance
-    h = (b0 - a0) / 2 + (b1 - a1) / 2
     if not d > 0:
         return math.inf, "the ends' values are not apart by more than the flat tolerance"
-    if not math.isfinite(h):
-        return math.inf, "an end's interval is unbounded"
     up = e1.value >= e0.value
-    allowance = _allowance(e0, "high" if up else "low") + _allowance(e1, "low" if up else "high")
+    first, last = ("high", "low") if up else ("low", "high")
+    s = _sampling_reach(e0, first) + _sampling_reach(e1, last)
+    if not math.isfinite(s):
+        return math.inf, "an end's interval is unbounded"
+    allowance = _allowance(e0, first) + _allowance(e1, last)
     if not d > allowance:
         return (
             math.inf,
             "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
         )
-    return max(((h - allowance) / (d - allowance)) ** 2, 1.0), ""
+    return max((s / (d - allowance)) ** 2, 1.0), ""
+
+
+def _sampling_reach(e: Estimate, side: str) -> float:
+    """How far ``e``'s sampling interval reaches from its value on ``side`` ("low" or "high"): the part of the
+    interval that more runs shrink (the whole side where there is no resolution allowance)."""
+    a, b = interval_of(e)
+    if e.has_allowance:
+        a, b = e.sampling_low, e.sampling_high
+    return (e.value - a) if side == "low" else (b - e.value)
 
 
 def _allowance(e: Estimate, side: str) -> float:
