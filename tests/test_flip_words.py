@@ -293,3 +293,26 @@ def test_two_changes_whose_smaller_part_stays_undecided_are_said_to_be_perhaps_f
     assert label_basis(claim) == "two readings together (or fewer: a smaller part of them stays undecided)"
     claim["robustness"]["parts"]["claim"]["flips"] = [flip]
     assert label_basis(claim) == "two readings together"
+
+
+def test_the_configurations_counted_as_changing_a_verdict_are_those_the_label_counts_at_the_defaults_size():
+    """A configuration given fewer runs than the default needed changes nothing (its parts read undecided, whatever
+    its own verdict was); one outside the paper's operating point is counted beside the label, in neither number; a
+    pinned known flip is not one of the design's configurations; a configuration whose whole verdict is undecided
+    but whose decided part already rules out the default's verdict changes it."""
+    from tvtrack.flip_words import whole_flips
+
+    parts = {"a": {"verdict": "reproduced"}, "b": {"verdict": "reproduced"}}
+    rows = [
+        {"changed": {"r1": 1}, "kind": "single", "verdict": "not reproduced", "parts": {"a": "not reproduced", "b": "not reproduced"}},
+        {"changed": {"r2": 1}, "kind": "single", "verdict": "not reproduced", "parts": {"a": "undecided", "b": "undecided"},
+         "undersized": {"a": "not reproduced", "b": "not reproduced"}},
+        {"changed": {"w9": 1}, "kind": "single", "verdict": "not reproduced", "parts": {"a": "not reproduced", "b": "not reproduced"},
+         "off_operating_point": True},
+        {"changed": {"s1": 1}, "kind": "pinned", "verdict": "not reproduced", "parts": {"a": "not reproduced", "b": "not reproduced"}},
+        {"changed": {"w1": 1}, "kind": "single", "verdict": "undecided", "parts": {"a": "not reproduced", "b": "undecided"}},
+        {"changed": {"w2": 1}, "kind": "single", "verdict": "undecided", "parts": {"a": "reproduced", "b": "undecided"}},
+        {"changed": {"w3": 1}, "kind": "joint", "verdict": "reproduced", "parts": {"a": "reproduced", "b": "reproduced"}},
+    ]  # fmt: skip
+    claim = {"verdict": "reproduced", "robustness": {"conditions": rows, "parts": parts}}
+    assert whole_flips(claim) == (2, 5)  # r1 and w1 change it, of r1, r2, w1, w2 and w3

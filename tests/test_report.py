@@ -159,6 +159,28 @@ def test_an_undecided_claims_label_is_its_decided_parts_in_the_counts_and_the_ta
     assert "| **undecided** | robust |" not in text
 
 
+def test_a_claim_that_holds_in_part_with_a_part_undecided_is_labelled_by_its_decided_parts_everywhere(tmp_path):
+    """Its line, the verdict counts, the per-notebook table, the first screen and the site all scope a robust label
+    to the decided parts where one part is still undecided, as they do for an undecided claim."""
+    from tvtrack.pipeline.report import _label_brackets, first_screen, first_screen_list
+    from tvtrack.results import claims_table, label_verdict, results_summary
+
+    parts = {n: {"verdict": v, "label": lab} for n, v, lab in [("a", "reproduced", "robust"),
+             ("b", "not reproduced", "robust"), ("c", "undecided", "-")]}  # fmt: skip
+    claim = _claim("C1-1", "partly", {**_robust("partly"), "parts": parts})
+    assert (
+        label_verdict(claim) == "undecided" and label_verdict(_claim("C1-2", "partly", _robust("partly"))) == "partly"
+    )
+    assert _label_brackets(claim).startswith(" (robust in its decided parts only")
+    assert "1 partly (1 robust in its decided parts only)" in verdict_summary([claim])
+    both = [claim, _claim("C1-2", "partly", _robust("partly"))]
+    assert "2 partly (1 robust, 1 robust in its decided parts only)" in verdict_summary(both)
+    assert "| **partly** | robust in its decided parts only |" in claims_table([claim])
+    assert "1 of them (C1-1) with a part undecided, labelled by its decided parts only" in results_summary(both)
+    rows = first_screen({"009_t": (None, {"claims": [{**claim, "verdict": "not reproduced"}]})})  # listed there
+    assert "(not reproduced, robust in its decided parts only" in first_screen_list(rows)
+
+
 def test_readme_block_generated_with_the_first_screen_and_no_date(synthetic_runs, tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text(f"intro\n{README_BEGIN}\nhand-written\n{README_END}\nrest\n")

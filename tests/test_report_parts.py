@@ -321,3 +321,28 @@ def test_a_part_some_explored_configurations_do_not_measure_says_how_many():
     a, b = record_lines("C9-1", record)[1:]
     assert "6 of 48 explored configurations do not measure this part" in b and "do not measure" not in a
     assert "do not measure" not in part_line("C9-1", _part("reproduced", share=SHARE))  # no claim to compare with
+
+
+def test_every_part_some_configurations_do_not_measure_is_counted_against_the_claims_explored_configurations():
+    """Six configurations explored at the operating point (a pinned flip, a searched combination and one outside
+    the point are not among them): a part four of them measure misses two, one five measure misses one, however
+    many the widest part's share counts."""
+    from tvtrack.part_lines import record_lines
+
+    rows = [{"changed": {f"e{i}": 1}, "kind": "single"} for i in range(5)] + [
+        {"changed": {"e0": 1, "e1": 1}, "kind": "joint"}
+    ]
+    rows += [{"changed": {"e9": 1}, "kind": "pinned"}, {"changed": {"e0": 2}, "kind": "combination"}]
+    rows += [{"changed": {"e8": 1}, "kind": "single", "off_operating_point": True}]
+    four, five = (
+        {"agree": n, "flip": 0, "undecided": 0, "design": n, "decided": n, "ci_low": 0.4, "ci_high": 1.0}
+        for n in (4, 5)
+    )
+    record = {
+        "label": "robust",
+        "conditions": rows,
+        "parts": {"a": _part("reproduced", share=four), "b": _part("reproduced", share=five)},
+    }
+    a, b = record_lines("C9-1", record)[1:]
+    assert "(2 of 6 explored configurations do not measure this part)" in a
+    assert "(1 of 6 explored configurations does not measure this part)" in b

@@ -118,3 +118,28 @@ def test_an_interval_spanning_decades_is_clipped_with_an_arrow_not_flattening_th
     assert len(arrows) == 1 and len(arrows[0].get_offsets()) == 1
     assert "1 interval run off the scale (arrows)" in caption
     plt.close(fig)
+
+
+def test_an_open_end_a_record_wrote_as_null_is_drawn_off_the_scale_not_closed_at_the_value():
+    """A certified bound's open end, written as null with its ``infinite`` marker, is read back as infinite: its
+    row's point keeps it and the curve draws it off the scale (an arrow); the forest plot's item reaches the edge."""
+    from tvtrack.pipeline.figures import _estimate
+
+    rec = _wide_record()
+    rec["robustness"]["conditions"][1]["measured"] = {"value": 345.0, "ci_low": 300.0, "ci_high": None,
+                                                      "infinite": {"ci_high": "+inf"}}  # fmt: skip
+    points = [
+        r["point"] for r in specification_rows(rec) if r["changed"] == rec["robustness"]["conditions"][1]["changed"]
+    ]
+    assert points == [(345.0, 300.0, float("inf"))]
+    fig, caption = specification_curve(rec)
+    arrows = [c for c in fig.axes[0].collections if c.get_label() == "interval runs off the scale"]
+    assert len(arrows) == 1 and "1 interval run off the scale (arrows)" in caption
+    plt.close(fig)
+    assert _estimate({"value": 2.0, "ci_low": 1.5, "ci_high": None, "infinite": {"ci_high": "+inf"}}) == (
+        2.0,
+        1.5,
+        float("inf"),
+    )
+    assert _estimate({"value": 2.0, "ci_low": 1.5, "ci_high": None}) == (2.0, 1.5, 2.0)  # no marker: as before
+    assert _estimate({"value": 2.0, "ci_low": None, "ci_high": 3.0, "infinite": {"ci_low": "inf"}}) == (2.0, 2.0, 3.0)

@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from typing import Mapping
 
+from .run_words import explored_rows
 from .value_words import rule_in_force, value_clause
 from .wording import (
     claim_flips,
     claim_verdict_at,
+    differs_whatever_is_open,
     kinds_of_changes,
     main_part,
     moves_verdict,
@@ -224,14 +226,18 @@ def turns_on_sentence(c: Mapping) -> str:
 
 
 def whole_flips(c: Mapping) -> tuple[int, int]:
-    """``(flipped, explored)``: of the distinct configurations a claim's design explored (one at a time, joint
-    samples, pinned known flips; not the sub-combinations the subset search measured to name a flip), how many
-    decide the whole claim's verdict otherwise than the default does, and how many there are."""
-    rows = [r for r in (c.get("robustness") or {}).get("conditions") or () if r.get("kind") != "combination"]
-    verdicts: dict = {}
-    for r in rows:
-        key = tuple(sorted((str(k), repr(v)) for k, v in (r.get("changed") or {}).items()))
-        verdicts.setdefault(key, r.get("verdict"))
-    default = c.get("verdict")
-    flipped = sum(v in _DECIDED and v != default for v in verdicts.values())
-    return flipped, len(verdicts)
+    """``(flipped, explored)``: of the distinct configurations the claim's design explored at the paper's operating
+    point (:func:`tvtrack.run_words.explored_rows`: the set its label's coverage counts), how many change the whole
+    claim's verdict whatever its parts left undecided turn out to be
+    (:func:`tvtrack.wording.differs_whatever_is_open`), at a size the default's sizing asks for (an undersized
+    configuration changes nothing), and how many there are."""
+    rows = explored_rows(c.get("robustness") or {})
+    default = ((c.get("robustness") or {}).get("parts") or {}).keys()
+
+    def changes(r: Mapping) -> bool:
+        parts = r.get("parts")
+        known = isinstance(parts, Mapping) and bool(default) and set(parts) == set(default)  # open parts to try
+        decided = r.get("verdict") in _DECIDED and c.get("verdict") in _DECIDED
+        return "undersized" not in r and (decided or known) and differs_whatever_is_open(c, r)
+
+    return sum(map(changes, rows)), len(rows)

@@ -28,7 +28,7 @@ from .wording import (
 from .flip_words import flip_kinds, turns_on_sentence, why_not_clause
 from .run_words import not_checkable_reason, thin_share
 
-__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "label_words"]
+__all__ = ["results_summary", "turns_on", "paper_paragraph", "limitations", "label_words", "label_verdict"]
 
 
 def _plural(n: int, word: str) -> str:
@@ -261,6 +261,15 @@ def _surviving_split(claims: list[Mapping]) -> str:
 _PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of an undecided one, its decided parts
 
 
+def label_verdict(claim: Mapping) -> str:
+    """The verdict a claim's label is scoped by (:func:`label_words`): ``undecided`` where the claim or any of its
+    parts is undecided (its label then speaks for its decided parts only), else the claim's verdict."""
+    parts = (claim.get("robustness") or {}).get("parts") or {}
+    parts = parts.values() if isinstance(parts, Mapping) else parts
+    open_ = any(isinstance(p, Mapping) and p.get("verdict") == "undecided" for p in parts)
+    return "undecided" if open_ else str(claim.get("verdict"))
+
+
 def label_words(verdict: str, label: str) -> str:
     """A claim's label as its line shows it: ``"robust in its decided parts only"`` for an undecided verdict
     labelled robust or limited (the label speaks for the parts the default decides; a change may still move the
@@ -282,12 +291,15 @@ def _sure_sentence(
     part, or has no record, carries no label and is counted so); ``with_world`` of the ``depends`` ones turn only
     on a reading or setting together with a world (:func:`depends_only_with_a_world`), and a world alone also
     changes ``also_world`` of them (:func:`depends_also_on_a_world`); ``partial`` names the undecided claims among
-    those that survive, labelled by their decided parts only (:func:`label_words`), and ``thin`` the robust ones
+    those that survive (a claim that holds in part with a part undecided as ``(id, "open")``), labelled by their
+    decided parts only (:func:`label_words`), and ``thin`` the robust ones
     most of whose explored configurations stayed undecided (:func:`tvtrack.run_words.thin_share`); ``split`` says
     the surviving verdicts by verdict (:func:`_surviving_split`) and ``both`` names the ``with_world`` claims that a
     world alone also flips (counted in both groups, and said so)."""
     sure = labels["robust"] + labels["limited"]
-    part = f"; {len(partial)} of them{_ids(list(partial))} undecided, labelled by " if partial else ""
+    ids = [i if isinstance(i, str) else i[0] for i in partial]  # (id, "open"): it holds in part, a part undecided
+    how = "undecided" if all(isinstance(i, str) for i in partial) else "with a part undecided"
+    part = f"; {len(partial)} of them{_ids(ids)} {how}, labelled by " if partial else ""
     part += f"{'its' if len(partial) == 1 else 'their'} decided parts only" if partial else ""
     part += f"; for {len(thin)}{_ids(list(thin))} most explored configurations stayed undecided" if thin else ""
     notes = [f"for {also_world} of them worlds beyond the paper (one or several), with no reading or setting changed, "
@@ -379,7 +391,8 @@ def results_summary(claims: list[Mapping], profile: str = "paper") -> str:
             "robust."
         )
     else:
-        partial = [c["id"] for c in claims if label_words(str(c.get("verdict")), shown_label(c)) != shown_label(c)]
+        scoped = [c for c in claims if label_words(label_verdict(c), shown_label(c)) != shown_label(c)]
+        partial = [c["id"] if c.get("verdict") == "undecided" else (c["id"], "open") for c in scoped]
         with_world, also_world = _only_with_a_world_ids(claims), _also_world_ids(claims)
         thin = [c["id"] for c in claims if shown_label(c) == "robust" and _thin(c)]
         both = [i for i in with_world if i in also_world]

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from .run_words import lost_basis, part_name, parts_by_name, plain_text, share_counts
+from .run_words import explored_rows, lost_basis, part_name, parts_by_name, plain_text, share_counts
 from .wording import PROVISIONAL, at_profile, claim_fields, claim_flips, side_words
 
 __all__ = [
@@ -219,7 +219,8 @@ def part_line(head: str, part: Mapping, explored: int = 0) -> str:
     if counts:
         text += f"; {counts}"
         left = explored - int(share.get("design") or 0)
-        text += f" ({left} of {explored} explored configurations do not measure this part)" if left > 0 else ""
+        verb = "does" if left == 1 else "do"
+        text += f" ({left} of {explored} explored configurations {verb} not measure this part)" if left > 0 else ""
         if share.get("ci_low") is not None and share.get("ci_high") is not None:
             text += f" (share agreeing {share['ci_low']:.2f}-{share['ci_high']:.2f}, 95 %)"
         text += f"; {beside}" if beside else ""
@@ -246,7 +247,8 @@ def record_lines(cid: str, record: Mapping, verdict: str | None = None) -> list[
     if shown.get("provisional") and word in ("robust", "unexplored"):  # the record's label word is not shown
         cover = PROVISIONAL + (cover[len(word) :] if cover.startswith(word) else f": {cover}")
     lines = [f"- **{cid}**: {cover}"]
-    explored = max((int((p.get("share") or {}).get("design") or 0) for p in parts.values()), default=0)
+    designs = (int((p.get("share") or {}).get("design") or 0) for p in parts.values())
+    explored = len(explored_rows(shown)) or max(designs, default=0)  # a record without its rows: the widest share
     for name, part in parts.items():
         lines.append("  " + part_line(cid if len(parts) == 1 else f"{cid} ({part_name(name)})", part, explored))
     return lines

@@ -100,21 +100,22 @@ def _spec_point(measured, part: str | None, rule: dict) -> tuple[float, float, f
     """``(value, low, high)`` of a configuration's measured value (or its part's); ``None`` for a vector."""
     import math
 
+    from .measured import record_end
     from .value_words import rule_in_force
 
     rule, measured = rule_in_force(rule, measured)
     if part is not None and rule.get("kind") == "all_of":
         measured = measured.get(part) if isinstance(measured, dict) else None
     if isinstance(measured, dict) and "value" in measured:
-        v, lo, hi = measured.get("value"), measured.get("ci_low"), measured.get("ci_high")
+        v, lo, hi = measured.get("value"), record_end(measured, "ci_low"), record_end(measured, "ci_high")
     elif isinstance(measured, (int, float)) and not isinstance(measured, bool):
         v = lo = hi = measured
     else:
         return None
     if v is None or not math.isfinite(float(v)):
         return None
-    lo = v if lo is None or not math.isfinite(float(lo)) else lo
-    hi = v if hi is None or not math.isfinite(float(hi)) else hi
+    lo = v if lo is None or math.isnan(float(lo)) else lo  # an open end stays infinite: drawn off the scale
+    hi = v if hi is None or math.isnan(float(hi)) else hi
     return float(v), float(lo), float(hi)
 
 

@@ -39,9 +39,10 @@ from .estimate import Estimate
 from .labels import NO_PART_LABEL, Robustness
 from .lost_labels import mark_lost_runs
 from .markdown import md_escape
+from .measured import record_end
 from .verdicts import LABELS, VERDICTS, Rule
 from .flip_words import flip_with_kind, label_basis, mixed_kinds
-from .paragraphs import label_words, paper_paragraph, results_summary
+from .paragraphs import label_verdict, label_words, paper_paragraph, results_summary
 from .numbers import format_measured
 from .figure_checks import figure_problems
 from .run_words import share_counts
@@ -78,6 +79,8 @@ __all__ = [
     "mixed_kinds",
     "label_basis",
     "label_words",
+    "label_verdict",
+    "record_end",
     "coverage_words",
     "exploration_lines",
     "hold_note",
@@ -157,7 +160,7 @@ def claims_table(claims: list) -> str:
         c = to_jsonable(c if isinstance(c, dict) else c.__dict__)
         st = " ".join(str(c["statement"]).split())  # whole: a cut statement misleads
         rows.append(
-            f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(label_words(c['verdict'], shown_label(c)))} | "
+            f"| {c['id']} | {md_escape(st)} | **{c['verdict']}** | {md_escape(label_words(label_verdict(c), shown_label(c)))} | "
             f"{md_escape(claim_summary(c))} |"
         )
     return "\n".join(rows)
@@ -233,7 +236,7 @@ class Claim:
 
     def _repr_markdown_(self) -> str:
         record = to_jsonable(self.__dict__)
-        label = label_words(self.verdict, shown_label(record))  # "robust in its decided parts only" where undecided
+        label = label_words(label_verdict(record), shown_label(record))  # "robust in its decided parts only"
         return f"**{self.id}: {self.verdict}, {label}**. {md_escape(claim_summary(record))}"
 
 

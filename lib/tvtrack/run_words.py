@@ -20,6 +20,7 @@ __all__ = [
     "plain_text",
     "not_checkable_reason",
     "share_counts",
+    "explored_rows",
 ]
 
 
@@ -120,6 +121,21 @@ def not_checkable_reason(claim: Mapping) -> str:
         firsts.append(first)
     reason = max(firsts, key=len) or "nothing measurable"
     return reason[:1].lower() + reason[1:] if reason[1:2].islower() else reason  # after a colon: "In this" -> "in this"
+
+
+def explored_rows(robustness: Mapping) -> list[Mapping]:
+    """The distinct configurations a claim's design explored at the paper's operating point, as its record's
+    condition rows: one at a time and the joint samples, each configuration once (the set the label's coverage
+    counts; not the pinned known flips nor the combinations searched to name a flip, nor a configuration outside
+    the operating point, which is counted beside the label)."""
+    out, seen = [], set()
+    for r in (robustness or {}).get("conditions") or ():
+        key = tuple(sorted((str(k), repr(v)) for k, v in (r.get("changed") or {}).items()))
+        explored = r.get("kind", "single") in ("single", "joint") and not r.get("off_operating_point")
+        if explored and key and key not in seen:
+            seen.add(key)
+            out.append(r)
+    return out
 
 
 def share_counts(share: Mapping) -> str:

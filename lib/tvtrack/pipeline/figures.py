@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from ..plotting import VERDICT_COLOURS
-from ..results import shown_label
+from ..results import record_end, shown_label
 from ..verdicts import LABELS, VERDICTS, is_decisive
 
 __all__ = [
@@ -109,7 +109,7 @@ def register_names(claim: dict) -> list[str]:
 def _estimate(value: Any) -> tuple[float, float, float] | None:
     """``(value, low, high)`` of an Estimate-like dict or a plain number; ``None`` otherwise."""
     if isinstance(value, dict) and "value" in value:
-        v, lo, hi = value.get("value"), value.get("ci_low"), value.get("ci_high")
+        v, lo, hi = value.get("value"), record_end(value, "ci_low"), record_end(value, "ci_high")
     elif isinstance(value, (int, float)) and not isinstance(value, bool):
         v = lo = hi = value
     else:

@@ -37,6 +37,7 @@ from ..results import (
     format_measured,
     hold_note,
     label_basis,
+    label_verdict,
     label_words,
     md_escape,
     paper_paragraph,
@@ -45,18 +46,8 @@ from ..results import (
 )
 from .audit import audit_markdown, audit_runs
 from .outputs import replace_text
-from .figures import (
-    ALL_LABELS,
-    ALL_VERDICTS,
-    NO_LABEL,
-    coverage_text,
-    forest_items,
-    forest_plot,
-    part_labels,
-    robustness_label,
-    robustness_picture,
-    robustness_where,
-)
+from .figures import ALL_LABELS, ALL_VERDICTS, NO_LABEL, coverage_text, forest_items, forest_plot, part_labels
+from .figures import robustness_label, robustness_picture, robustness_where
 from .paths import PAPER_PROFILE, REPO_ROOT, reproduce_dir as _reproduce_dir
 from .preflight import UsageError
 from .runfiles import load_results, load_run
@@ -114,8 +105,13 @@ def verdict_summary(claims: list[dict]) -> str:
         these = [c for c in claims if c["verdict"] == verdict]
         if verdict == "undecided" and not these:
             continue
-        labels = Counter(robustness_label(c) for c in these)
-        detail = [_counted_label(labels[label], verdict, label) for label in ALL_LABELS if labels[label]]
+        labels = Counter((robustness_label(c), label_verdict(c)) for c in these)  # a part undecided: its scope
+        keys = sorted(
+            (k for k in labels if k[0] in ALL_LABELS), key=lambda k: (ALL_LABELS.index(k[0]), k[1] == "undecided")
+        )
+        detail = [
+            _counted_label(labels[k], k[1], k[0]) for k in keys
+        ]  # the label over every part before its scoped one
         if verdict != "not checkable":
             bare = _unlabelled(these)
             detail += [f"{n} {what}" for n, what in zip(bare, ("no part decided", "no record")) if n]
@@ -194,6 +190,7 @@ def first_screen(runs: dict[str, tuple[dict | None, dict | None]]) -> list[dict]
                         "measured": format_measured(c["measured"], c.get("rule")),
                         "verdict": c["verdict"],
                         "label": label,
+                        "label_verdict": label_verdict(c),
                         "where": robustness_where(c),
                         "summary": claim_summary(c),
                         "basis": label_basis(c) if label in ("depends", "limited") else "",
@@ -214,7 +211,7 @@ def first_screen_list(rows: list[dict], verdicts: tuple[str, ...] | None = None)
     if not rows:
         return "Every checkable claim reproduces or holds in part."
     return "\n".join(
-        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r['verdict'], r['label'])}"
+        f"- **{r['paper'][:3]} {r['id']}** ({r['verdict']}, {label_words(r.get('label_verdict', r['verdict']), r['label'])}"
         f"{': ' + r['basis'] if r.get('basis') else ''}) "
         f"*{md_escape(_whole(r['statement']))}* "
         f"{md_escape(r['summary'])}"
@@ -311,8 +308,7 @@ def _label_brackets(claim: dict) -> str:
     held claim's caveat, which parts of a partly held one hold); `` (robust)``; ``""`` without either."""
     label = robustness_label(claim)
     basis = label_basis(claim) if label in ("depends", "limited") else ""
-    undecided = any(v == "undecided" for _, v, _ in part_labels(claim))  # an undecided part: the label not over it
-    shown = label_words("undecided", label) if undecided else label
+    shown = label_words(label_verdict(claim), label)  # an undecided part: the label not over it
     bits = [] if label == NO_LABEL else [f"{shown}: {basis}" if basis else shown]
     note = {"reproduced": hold_note, "partly": parts_held}.get(claim["verdict"], lambda c: "")(claim)
     bits += [md_escape(note)] if note else []
