@@ -107,6 +107,15 @@ def worst_share(n: int, step: float) -> tuple[float, float, float]:
     return min((share_coverage(pm, pp, n), pm, pp) for pm in grid for pp in grid if pm + pp <= 1.0 + 1e-12)
 
 
+def _tally(hits: dict, folded: list, truth: float, rule) -> None:
+    """Add one experiment to ``hits``: the replicates' fold distances pooled with their signed ratios dropped (folded
+    before the pool) and as they are (the pool folded after), each pool's interval holding ``truth`` and its verdict."""
+    before = pool([Estimate(*(getattr(f, k) for k in ("value", "stderr", "ci_low", "ci_high", "n"))) for f in folded])
+    for key, e in (("before", before), ("after", pool(folded))):
+        hits[key][0] += e.ci_low <= truth <= e.ci_high
+        hits[key][1] += rule.decide(e) == "reproduced"
+
+
 def fold_rates(true: float, runs: int, replicates: int, r: int = 2000, seed: int = 2) -> dict:
     """Pooled fold distances of ``replicates`` log-normal ratios about ``true`` (``runs`` each, log spread 0.5, t
     interval on the log scale), folded before the pool (each replicate's signed ratio dropped) and after it: the
@@ -120,12 +129,7 @@ def fold_rates(true: float, runs: int, replicates: int, r: int = 2000, seed: int
         folded = [
             fold_about(Estimate(math.exp(a), math.nan, math.exp(a - b), math.exp(a + b), runs)) for a, b in zip(m, h)
         ]
-        before = pool(
-            [Estimate(*(getattr(f, k) for k in ("value", "stderr", "ci_low", "ci_high", "n"))) for f in folded]
-        )
-        for key, e in (("before", before), ("after", pool(folded))):
-            hits[key][0] += e.ci_low <= truth <= e.ci_high
-            hits[key][1] += rule.decide(e) == "reproduced"
+        _tally(hits, folded, truth, rule)
     return {k: (c / r, y / r) for k, (c, y) in hits.items()}
 
 
@@ -139,12 +143,7 @@ def fold_rates_unpaired(true: float, replicates: int, runs: int = 10, r: int = 1
             fold_about(ratio_ci(rng.exponential(true, runs), rng.exponential(1.0, runs), paired=False, rng=rng))
             for _ in range(replicates)
         ]
-        before = pool(
-            [Estimate(*(getattr(f, k) for k in ("value", "stderr", "ci_low", "ci_high", "n"))) for f in folded]
-        )
-        for key, e in (("before", before), ("after", pool(folded))):
-            hits[key][0] += e.ci_low <= truth <= e.ci_high
-            hits[key][1] += rule.decide(e) == "reproduced"
+        _tally(hits, folded, truth, rule)
     return {k: (c / r, y / r) for k, (c, y) in hits.items()}
 
 
