@@ -567,3 +567,10 @@ def test_a_marker_word_other_than_plus_or_minus_inf_reads_no_infinity():
     assert (
         as_estimate({"value": 2.0, "ci_low": None, "ci_high": 3.0, "infinite": {"ci_low": "-inf"}}).ci_low == -math.inf
     )
+    from tvtrack.measured import record_end
+
+    marked = {"value": 2.0, "ci_low": None, "ci_high": None, "infinite": {"ci_low": "-inf", "ci_high": "+inf"}}
+    assert (record_end(marked, "ci_low"), record_end(marked, "ci_high")) == (-math.inf, math.inf)
+    assert record_end({"ci_low": 1.5, "infinite": {"ci_high": "+inf"}}, "ci_low") == 1.5  # the other end's marker
+    assert record_end({"ci_high": None, "infinite": {"ci_high": "inf"}}, "ci_high") is None  # not a marker word
+    assert record_end({"ci_high": 3.0}, "ci_high") == 3.0 and record_end({"infinite": None}, "ci_high") is None
