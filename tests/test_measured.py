@@ -537,10 +537,10 @@ def test_at_the_projected_runs_a_trends_facing_ends_lie_just_the_tolerance_apart
 
 
 @pytest.mark.parametrize("difference", [False, True])
-def test_an_interval_widened_to_its_coverage_widens_its_sampling_part_alike(difference):
-    """Widened to nominal coverage, an interval with a resolution allowance stretches its sampling interval by the
-    same map: the widening is sampling error that more runs shrink, not resolution (left as it was, the whole
-    widening would be read as allowance, and the runs projected to decide would grow with it)."""
+def test_an_interval_widened_to_its_coverage_widens_its_sampling_part_and_keeps_its_allowances(difference):
+    """Widened to nominal coverage, an interval with a resolution allowance stretches its sampling interval (the
+    helper's stated coverage is its own) and adds each side's allowance back unchanged: stretched with it, the
+    allowance no number of runs shrinks would grow, and the runs projected to decide with it (to never)."""
     e = Estimate(
         2.0, 0.1, 1.5, 2.6, 5, 0.95, "t; allowance; coverage 0.90 at n = 5", sampling_low=1.7, sampling_high=2.4
     )
@@ -548,14 +548,15 @@ def test_an_interval_widened_to_its_coverage_widens_its_sampling_part_alike(diff
     f = float(w.method.split("widened x")[1].split(" ")[0])
     assert f > 1.0 and w.has_allowance
     if difference:
-        stretched = [2.0 + f * (x - 2.0) for x in (1.5, 2.6, 1.7, 2.4)]
+        lo, hi = (2.0 + f * (x - 2.0) for x in (1.7, 2.4))
     else:
-        stretched = [2.0 * (x / 2.0) ** f for x in (1.5, 2.6, 1.7, 2.4)]
-    got = [w.ci_low, w.ci_high, w.sampling_low, w.sampling_high]
-    assert got == pytest.approx(stretched, rel=2e-3)  # f is read back at three decimals
-    assert runs_to_decide(w, (2.5,)) == pytest.approx(
-        ((w.sampling_high - 2.0) / ((2.5 - 2.0) - (w.ci_high - w.sampling_high))) ** 2
-    )
+        lo, hi = (2.0 * (x / 2.0) ** f for x in (1.7, 2.4))
+    got = [w.sampling_low, w.sampling_high, w.sampling_low - w.ci_low, w.ci_high - w.sampling_high]
+    assert got == pytest.approx([lo, hi, 0.2, 0.2], rel=2e-3)  # f is read back at three decimals
+    assert runs_to_decide(w, (2.5,)) == pytest.approx(((w.sampling_high - 2.0) / (2.5 - 2.0 - 0.2)) ** 2)
+    plain = calibrated(Estimate(2.0, 0.1, 1.5, 2.6, 5, 0.95, "t; coverage 0.90 at n = 5"), difference=difference)
+    whole = 2.0 + f * 0.6 if difference else 2.0 * 1.3**f  # without an allowance the whole side stretches
+    assert not plain.has_allowance and plain.ci_high == pytest.approx(whole, rel=2e-3)
 
 
 def test_a_marker_word_other_than_plus_or_minus_inf_reads_no_infinity():

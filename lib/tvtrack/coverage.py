@@ -133,7 +133,9 @@ def widen_to_nominal(estimate: Estimate, difference: bool = False) -> Estimate:
 
     Each side is stretched about the value by ``z_{(1+confidence)/2} / z_{(1+stated)/2}`` (on the log
     scale when the interval is positive, where the skewed helpers' intervals are closer to symmetric; on
-    the linear scale for a ``difference``, whose interval may reach 0 and beyond);
+    the linear scale for a ``difference``, whose interval may reach 0 and beyond); of an interval that holds a
+    resolution allowance beside its sampling interval, the sampling interval is stretched (the helper's stated
+    coverage is its own) and each side's allowance added back as it was;
     an interval that covers already is returned unchanged. A calibration by the measured coverage on
     skewed samples (:data:`COVERAGE`), not an exact interval: heavy tails stay below nominal.
     """
@@ -148,14 +150,14 @@ def widen_to_nominal(estimate: Estimate, difference: bool = False) -> Estimate:
     def stretch(x: float) -> float:
         return float(v * (x / v) ** f if log else v + f * (x - v))
 
-    sampling = {}
-    if estimate.has_allowance:  # the sampling interval stretched alike: only what it held shrinks with more runs
-        sampling = {"sampling_low": stretch(estimate.sampling_low), "sampling_high": stretch(estimate.sampling_high)}
+    ends = {"ci_low": stretch(estimate.ci_low), "ci_high": stretch(estimate.ci_high)}
+    if estimate.has_allowance:  # the helper's coverage is its sampling interval's: that is widened, each side's
+        lo, hi = stretch(estimate.sampling_low), stretch(estimate.sampling_high)  # resolution allowance kept
+        ends = {"ci_low": lo - (estimate.sampling_low - estimate.ci_low), "sampling_low": lo}
+        ends |= {"ci_high": hi + (estimate.ci_high - estimate.sampling_high), "sampling_high": hi}
     return replace(
         estimate,
-        ci_low=stretch(estimate.ci_low),
-        ci_high=stretch(estimate.ci_high),
-        **sampling,
+        **ends,
         method=f"{estimate.method}; widened x{f:.3f} to {estimate.confidence:.0%}".replace(
             f"coverage {stated:.3f}", f"measured coverage {stated:.3f}"
         ),
