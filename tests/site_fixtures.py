@@ -195,10 +195,12 @@ def built_site(runs_dir):
     return build_site(runs_dir).parent
 
 
-def make_explored_runs(root):
+def make_explored_runs(root, claims=None):
     """``root/reproduce/001_explored``: one run whose claims carry the explorer's record (shares, flips by phrase,
-    runs to decide, a smoke-size design, a long deterministic vector; :mod:`record_fixtures`)."""
+    runs to decide, a smoke-size design, a long deterministic vector; :mod:`record_fixtures`), or ``claims``."""
     from record_fixtures import CLAIMS
+
+    CLAIMS = CLAIMS if claims is None else claims  # noqa: N806 - the fixture's own list, or the caller's
 
     run = root / "reproduce" / "001_explored"
     run.mkdir(parents=True)

@@ -263,8 +263,8 @@ def test_the_configurations_that_change_a_claims_verdict_are_counted_once_over_t
     ]
     rows.append({"changed": {"r1": 2}, "kind": "single", "verdict": "reproduced"})  # the same entry, another value
     claim = {"verdict": "reproduced", "robustness": {"conditions": rows}}
-    assert whole_flips(claim) == (2, 5)
-    assert whole_flips({"verdict": "reproduced", "robustness": None}) == (0, 0)
+    assert whole_flips(claim) == (2, 5, 0)
+    assert whole_flips({"verdict": "reproduced", "robustness": None}) == (0, 0, 0)
 
 
 def test_a_kind_that_flips_only_a_part_is_named_in_the_bracket_as_the_label_counts_it():
@@ -299,7 +299,8 @@ def test_the_configurations_counted_as_changing_a_verdict_are_those_the_label_co
     """A configuration given fewer runs than the default needed changes nothing (its parts read undecided, whatever
     its own verdict was); one outside the paper's operating point is counted beside the label, in neither number; a
     pinned known flip is not one of the design's configurations; a configuration whose whole verdict is undecided
-    but whose decided part already rules out the default's verdict changes it."""
+    but whose decided part already rules out the default's verdict is counted apart, as one that cannot leave it as
+    it is."""
     from tvtrack.flip_words import whole_flips
 
     parts = {"a": {"verdict": "reproduced"}, "b": {"verdict": "reproduced"}}
@@ -315,4 +316,25 @@ def test_the_configurations_counted_as_changing_a_verdict_are_those_the_label_co
         {"changed": {"w3": 1}, "kind": "joint", "verdict": "reproduced", "parts": {"a": "reproduced", "b": "reproduced"}},
     ]  # fmt: skip
     claim = {"verdict": "reproduced", "robustness": {"conditions": rows, "parts": parts}}
-    assert whole_flips(claim) == (2, 5)  # r1 and w1 change it, of r1, r2, w1, w2 and w3
+    assert whole_flips(claim) == (1, 5, 1)  # r1 changes it and w1 cannot leave it as it is, of r1, r2, w1, w2, w3
+
+
+def test_a_configuration_left_undecided_that_cannot_keep_the_verdict_is_counted_apart_in_the_sentence():
+    """A world that fails one part and leaves the other open does not decide the whole claim otherwise (its curve
+    shows it undecided) but cannot leave it as it is: the sentence counts it apart, and the bracket names its kind."""
+    from tvtrack.flip_words import turns_on_sentence, whole_flips
+    from tvtrack.montecarlo import Estimate
+
+    h, f = Estimate.exact(0.0), Estimate.exact(3.0)
+    open_ = Estimate(0.45, 0.05, 0.3, 0.6, 50, method="t")
+    conds = [
+        {"changed": {"r1": 1}, "kind": "single", "measured": {"a": f, "b": f}},
+        {"changed": {"w1": 1}, "kind": "single", "measured": {"a": f, "b": open_}},
+        {"changed": {"w2": 1}, "kind": "single", "measured": {"a": h, "b": h}},
+    ]
+    claim = _labelled("C9-7", {"a": h, "b": h}, conds, _entries("r1", "w1", "w2"))
+    assert whole_flips(claim) == (1, 3, 1) and label_basis(claim) == "a reading; a world too"
+    assert turns_on_sentence(claim).endswith(
+        "(its verdict changes in 1 of 3 explored configurations, and in 1 more it is undecided but cannot come out as "
+        "at the default)."
+    )

@@ -87,6 +87,10 @@ def test_an_undecided_claim_card_says_its_label_covers_its_decided_parts_only():
     claim = Claim.__new__(Claim)
     claim.__dict__.update(claim_fields(record))
     assert claim._repr_markdown_().startswith("**C002-7: undecided, robust in its decided parts only**.")
+    parts |= {"failed": _part("not reproduced", label="robust")}  # holds in part, one part still open
+    claim.__dict__.update(claim_fields(_claim("C002-7", "partly", parts) | {"robustness": record["robustness"]}))
+    claim.robustness["parts"] = parts
+    assert claim._repr_markdown_().startswith("**C002-7: partly, robust in its decided parts only**.")
 
 
 def test_a_claim_not_checkable_has_no_label_because_the_default_has_no_verdict_to_flip():

@@ -319,3 +319,30 @@ def test_each_paper_card_says_what_holds_what_does_not_and_why_then_its_limitati
     assert "it holds under a reading of the paper&#39;s text: sigma read as the SD of the raw velocity" in card
     assert "<strong>Limitations.</strong> C001-6 is not checkable: the recording of the real aircraft" in card
     assert "1 claim comes from a design too small to label: none is called robust." in card
+
+
+def test_a_claim_holding_in_part_with_a_part_undecided_shows_its_label_scoped_on_the_site(tmp_path):
+    """The ledger row and the claim's page say "in its decided parts only" beside a robust label of a claim that
+    holds in part while one part is undecided, as the report's line does."""
+    import copy
+
+    from record_fixtures import DEPENDS
+    from site_fixtures import make_explored_runs
+
+    from tvtrack.pipeline.site import build_site
+
+    claim = copy.deepcopy(DEPENDS)
+    claim.update(id="C001-9", verdict="partly")
+    rob = claim["robustness"]
+    rob.update(label="robust", provisional=False)
+    held = rob["parts"]["claim"] | {"verdict": "reproduced", "label": "robust", "flips": []}
+    rob["parts"] = {
+        "held": held,
+        "failed": held | {"verdict": "not reproduced"},
+        "open": held | {"verdict": "undecided", "label": "-"},
+    }
+    site = build_site(make_explored_runs(tmp_path, [claim])).parent
+    ledger = (site / "ledger.html").read_text()
+    page = next((site / "claims").rglob("C001-9.html")).read_text()
+    for text in (ledger, page):
+        assert "in its decided parts only" in text

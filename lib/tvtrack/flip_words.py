@@ -204,8 +204,8 @@ def turns_on_sentence(c: Mapping) -> str:
     """What would change a claim that holds (or holds in part), in one sentence: of the flips under which the whole
     claim's verdict is decided and differs from its own, the strongest (:func:`tvtrack.wording.summary_strength`: the
     flip the claim's summary names wherever that one changes the whole verdict), with that verdict, whether only runs that lost lock carry it, how many other smallest changes
-    (named flips) change the whole verdict too, and in how many of the design's explored configurations it changes
-    (:func:`whole_flips`); ``""`` where no explored change does (a flip of a part only is not counted)."""
+    (named flips) change the whole verdict too, and in how many of the design's explored configurations it changes, or
+    is left undecided but cannot come out as at the default (:func:`whole_flips`); ``""`` where no explored change does (a flip of a part only is not counted)."""
 
     def whole(f: Mapping) -> str | None:
         return claim_verdict_at(c, f.get("changed") or {}) or f.get("verdict")
@@ -220,24 +220,27 @@ def turns_on_sentence(c: Mapping) -> str:
     others = (
         f"{more} other smallest change{'s' if more > 1 else ''} flip{'s' if more == 1 else ''} it too; " if more else ""
     )
-    flipped, explored = whole_flips(c)
-    counted = f" ({others}its verdict changes in {flipped} of {explored} explored configurations)" if explored else ""
+    flipped, explored, open_ = whole_flips(c)
+    more = f", and in {open_} more it is undecided but cannot come out as at the default" if open_ else ""
+    counted = f" ({others}its verdict changes in {flipped} of {explored} explored configurations{more})"
+    counted = counted if explored else ""
     return f"{c['id']} {how} under {under_words(f, c.get('robustness') or {})}{_lost_clause(f)}{counted}."
 
 
-def whole_flips(c: Mapping) -> tuple[int, int]:
-    """``(flipped, explored)``: of the distinct configurations the claim's design explored at the paper's operating
-    point (:func:`tvtrack.run_words.explored_rows`: the set its label's coverage counts), how many change the whole
-    claim's verdict whatever its parts left undecided turn out to be
-    (:func:`tvtrack.wording.differs_whatever_is_open`), at a size the default's sizing asks for (an undersized
-    configuration changes nothing), and how many there are."""
-    rows = explored_rows(c.get("robustness") or {})
+def whole_flips(c: Mapping) -> tuple[int, int, int]:
+    """``(changed, explored, open)``: of the distinct configurations the claim's design explored at the paper's
+    operating point (:func:`tvtrack.run_words.explored_rows`: the set its label's coverage counts), how many decide the
+    whole claim's verdict otherwise than the default does, how many there are, and how many more leave it undecided
+    though it cannot come out as at the default whatever its undecided parts turn out
+    (:func:`tvtrack.wording.differs_whatever_is_open`); at a size the default's sizing asks for (an undersized
+    configuration changes nothing)."""
+    rows = [r for r in explored_rows(c.get("robustness") or {}) if "undersized" not in r]
     default = ((c.get("robustness") or {}).get("parts") or {}).keys()
 
-    def changes(r: Mapping) -> bool:
-        parts = r.get("parts")
-        known = isinstance(parts, Mapping) and bool(default) and set(parts) == set(default)  # open parts to try
-        decided = r.get("verdict") in _DECIDED and c.get("verdict") in _DECIDED
-        return "undersized" not in r and (decided or known) and differs_whatever_is_open(c, r)
+    def known(r: Mapping) -> bool:  # the row's parts and the default's: the open ones can be tried
+        return isinstance(r.get("parts"), Mapping) and bool(default) and set(r["parts"]) == set(default)
 
-    return sum(map(changes, rows)), len(rows)
+    decided = [r for r in rows if r.get("verdict") in _DECIDED and c.get("verdict") in _DECIDED]
+    changed = sum(r["verdict"] != c.get("verdict") for r in decided)
+    open_ = sum(r not in decided and known(r) and differs_whatever_is_open(c, r) for r in rows)
+    return changed, len(explored_rows(c.get("robustness") or {})), open_

@@ -264,6 +264,7 @@ _PARTIAL_SCOPE = ("robust", "limited")  # labels that say the verdict holds: of 
 def label_verdict(claim: Mapping) -> str:
     """The verdict a claim's label is scoped by (:func:`label_words`): ``undecided`` where the claim or any of its
     parts is undecided (its label then speaks for its decided parts only), else the claim's verdict."""
+    claim = claim_fields(claim)  # a Claim object or its record
     parts = (claim.get("robustness") or {}).get("parts") or {}
     parts = parts.values() if isinstance(parts, Mapping) else parts
     open_ = any(isinstance(p, Mapping) and p.get("verdict") == "undecided" for p in parts)

@@ -237,7 +237,7 @@ def test_the_notebook_words_its_counts_labels_and_comparisons_from_the_record():
     assert "extras.headline_caveat(rows" in c11  # the caveat travels with the claim into every summary
     conclusions = _source("verdicts = {c.id: c.verdict")
     assert "no explored condition flips it" not in conclusions and "unflipped_words(c)" in conclusions
-    assert "label_words(c.verdict, shown_label(c))" in conclusions  # "robust in its decided parts only"
+    assert "label_words(label_verdict(c), shown_label(c))" in conclusions  # "robust in its decided parts only"
     assert "on the same scenes" not in conclusions and "in one replicate of that condition" in conclusions
     assert "{REGISTER[a].title}: alone" in _source("display(Markdown(ex.summary()))")
     assert _source("display(Markdown(exploration_lines(ex)))")  # each part's agree / flip / undecided
