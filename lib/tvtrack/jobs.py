@@ -131,16 +131,38 @@ def _limit_blas(threads: int) -> None:
         threadpool_limits(limits=threads)
 
 
+def _exit_with_parent(poll_s: float = 1.0) -> None:
+    """End this process when the one that started it has ended: a forked worker whose kernel was stopped (Ctrl-C, a
+    kernel killed after its grace period) would otherwise wait on its task queue for ever. A daemon thread checks the
+    parent's pid every ``poll_s`` seconds."""
+    import threading
+
+    parent = os.getppid()
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(poll_s)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="tvtrack-parent-watch", daemon=True).start()
+
+
+def _start_worker(threads: int) -> None:
+    """:func:`fork_pool`'s initializer: a worker that ends with its parent, with at most ``threads`` BLAS threads."""
+    _exit_with_parent()
+    _limit_blas(threads)
+
+
 def fork_pool(workers: int):
     """A ``ProcessPoolExecutor`` of ``workers`` forked processes (they inherit the caller's caches), each limited to
-    :func:`blas_share` BLAS threads, for a measurement that spreads a batch over processes. Results do not depend
-    on the limit (each process computes whole configurations)."""
+    :func:`blas_share` BLAS threads and ending with the process that started it, for a measurement that spreads a
+    batch over processes. Results do not depend on the limit (each process computes whole configurations)."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
     return ProcessPoolExecutor(
         workers,
         mp_context=multiprocessing.get_context("fork"),
-        initializer=_limit_blas,
+        initializer=_start_worker,
         initargs=(blas_share(workers),),
     )
