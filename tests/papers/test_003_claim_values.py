@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 
 from tvtrack.estimate import Estimate
+from tvtrack.measured import fold_about
 from tvtrack.montecarlo import mean_ci, ratio_ci, rms_ci
 from tvtrack.papers.p003_rotating_marker_tracker import curves as cv
 from tvtrack.papers.p003_rotating_marker_tracker import study
 from tvtrack.papers.p003_rotating_marker_tracker.estimators import (
     compensation_factor,
-    fold_distance,
     loss_share,
     share_difference,
     threshold_bound,
@@ -115,7 +115,7 @@ def test_c003_11_reads_the_narrow_gate_at_the_top_sir_the_wide_gates_ratio_and_t
     assert got["dynamics"].value == pytest.approx(0.3)  # three runs of the 1.5 D gate lost even at SIR 6.75
     equal(got["selection"], threshold_ratio(CURVES["gate", 5.0], CURVES["rotating", 5], SIRS))
     assert got["selection"].value < 1
-    equal(got["bandwidth"], fold_distance(BW, 1.0))
+    equal(got["bandwidth"], fold_about(BW, 1.0))
     assert got["bandwidth"].value == pytest.approx(2.0)  # 0.5 is a factor 2 from 1
 
 
