@@ -575,3 +575,41 @@ def test_a_marker_word_other_than_plus_or_minus_inf_reads_no_infinity():
     assert record_end({"ci_low": 1.5, "infinite": {"ci_high": "+inf"}}, "ci_low") == 1.5  # the other end's marker
     assert record_end({"ci_high": None, "infinite": {"ci_high": "inf"}}, "ci_high") is None  # not a marker word
     assert record_end({"ci_high": 3.0}, "ci_high") == 3.0 and record_end({"infinite": None}, "ci_high") is None
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 0.02])
+@pytest.mark.parametrize("up", [True, False])
+def test_a_trends_log_scale_ends_shrink_and_keep_their_allowances_on_the_log_scale(up, tolerance):
+    """Two pools made on the log scale (003's thresholds): their sampling parts shrink about the log of their
+    values and their allowances are factors. Shrunk so by 1/sqrt(f) at the projected f, the facing ends lie just
+    ``tolerance`` apart. Read on the linear scale, the first end's upper allowance (1.5 of its 3.0) would put the
+    facing ends at 2.5 and 2.45, never apart; as the factor it is (2), they reach 2.0 and 2.45."""
+    from dataclasses import replace
+
+    e0 = Estimate(1.0, 0.1, 0.8, 3.0, 18, 0.95, "t, log scale; allowance", sampling_low=0.9, sampling_high=1.5)
+    e1 = Estimate(2.5, 0.1, 2.35, 3.0, 18, 0.95, "t, log scale; allowance", sampling_low=2.4, sampling_high=2.8)
+    first, last = (e0, e1) if up else (e1, e0)
+    f, why = ends_to_decide(first, last, tolerance)
+    assert why == "" and 1.0 < f < math.inf
+
+    def shrunk(e):
+        lo = e.value * (e.sampling_low / e.value) ** f**-0.5 * (e.ci_low / e.sampling_low)
+        hi = e.value * (e.sampling_high / e.value) ** f**-0.5 * (e.ci_high / e.sampling_high)
+        return replace(e, ci_low=lo, ci_high=hi)
+
+    assert shrunk(e1).ci_low - shrunk(e0).ci_high == pytest.approx(tolerance, abs=1e-9)
+    linear = [replace(e, method="t; allowance") for e in (first, last)]
+    never, why = ends_to_decide(*linear, tolerance)
+    assert never == math.inf and "resolution of the grid" in why
+
+
+def test_a_trends_log_scale_ends_within_their_allowance_factors_are_never_separated():
+    """On the log scale the allowances are factors: ends whose values lie within them stay unseparated however
+    many runs are added, and a value that is not positive is read on the linear scale."""
+    e0 = Estimate(1.0, 0.1, 0.8, 2.4, 18, 0.95, "t, log scale; allowance", sampling_low=0.9, sampling_high=1.2)
+    e1 = Estimate(2.0, 0.1, 1.5, 2.6, 18, 0.95, "t, log scale; allowance", sampling_low=1.8, sampling_high=2.2)
+    f, why = ends_to_decide(e0, e1)  # at f -> inf: 1.0 x 2 = 2.0 against 2.0 x 1.5 / 1.8 = 1.67
+    assert f == math.inf and "resolution of the grid" in why
+    below_zero = Estimate(-0.2, 0.1, -0.5, 0.3, 18, 0.95, "t, log scale")
+    plain = Estimate(0.5, 0.1, 0.1, 0.9, 18, 0.95, "t")
+    assert ends_to_decide(below_zero, plain) == (pytest.approx((0.9 / 0.7) ** 2), "")

@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping, Sequence
 
+from scipy.optimize import brentq
+
 from .estimate import Estimate
 
 __all__ = [
@@ -307,7 +309,7 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
             need.append(math.log(alpha) / math.log(1.0 - p))
         return max(need) / e.n
     sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
-    if "log scale" in (e.method or "") and min(a, v, sa, *inside) > 0.0:  # a pool on the log scale shrinks there
+    if _on_log_scale(e) and min(inside) > 0.0:  # a pool on the log scale shrinks there
         a, b, v, sa, sb = (math.log(x) for x in (a, b, v, sa, sb))
         inside = [math.log(c) for c in inside]
     factors = []
@@ -347,35 +349,64 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
 
 
 def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[float, str]:
-    """Runs projected to separate a trend's end intervals, ``(s / (|v1 - v0| - tolerance - a))^2``, at least 1.
+    """Runs projected to separate a trend's end intervals by more than ``tolerance``, at least 1.
 
-    On the two facing sides (the first end's side towards the last and the last's towards the first) ``s`` is
-    the sum of the sampling parts, from each value to its sampling interval's end (``Estimate.sampling_low`` /
-    ``sampling_high``; the interval's end where there is no allowance), which shrink as ``1/sqrt(n)``, and ``a``
-    the sum of the resolution allowances beyond them, which no number of runs shrinks (as in
-    :func:`runs_to_decide`): at that multiple the facing ends are ``tolerance`` apart. Where no number of runs
-    would, why: an end is an envelope of certified bounds (:func:`is_envelope`), the ends are not apart beyond
+    On the two facing sides (the first end's side towards the last and the last's towards the first) each end's
+    sampling part, from its value to its sampling interval's end (``Estimate.sampling_low`` / ``sampling_high``;
+    the interval's end where there is no allowance), shrinks as ``1/sqrt(n)`` and its resolution allowance beyond
+    it stays (as in :func:`runs_to_decide`), on the log scale for a pool made there (:func:`tvtrack.pooling.pool`:
+    its interval and its allowance are multiplicative). The projection is the multiple ``f`` at which the facing
+    ends are ``tolerance`` apart; on the linear scale ``f = (s / (|v1 - v0| - tolerance - a))^2`` with ``s`` the
+    sum of the facing sampling parts and ``a`` of the facing allowances. Where no number of runs would separate
+    them, why: an end is an envelope of certified bounds (:func:`is_envelope`), the ends are not apart beyond
     ``tolerance``, or beyond their allowances, or an end is unbounded."""
     if is_envelope(e0) or is_envelope(e1):
         return (
             math.inf,
             "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow",
         )
-    d = abs(e1.value - e0.value) - tolerance
-    if not d > 0:
+    if not abs(e1.value - e0.value) - tolerance > 0:
         return math.inf, "the ends' values are not apart by more than the flat tolerance"
     up = e1.value >= e0.value
-    first, last = ("high", "low") if up else ("low", "high")
-    s = _sampling_reach(e0, first) + _sampling_reach(e1, last)
-    if not math.isfinite(s):
+    facing = ((e0, "high"), (e1, "low")) if up else ((e0, "low"), (e1, "high"))
+    if not all(math.isfinite(_sampling_reach(e, side)) for e, side in facing):
         return math.inf, "an end's interval is unbounded"
-    allowance = _allowance(e0, first) + _allowance(e1, last)
-    if not d > allowance:
+
+    def gap(t: float) -> float:
+        """How far the facing ends lie apart beyond ``tolerance`` at ``1 / t^2`` times the runs."""
+        (x0, x1) = (_end_at(e, side, t) for e, side in facing)
+        return (x1 - x0 if up else x0 - x1) - tolerance
+
+    if not gap(0.0) > 0:
         return (
             math.inf,
             "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
         )
-    return max((s / (d - allowance)) ** 2, 1.0), ""
+    if gap(1.0) >= 0:
+        return 1.0, ""
+    t = brentq(gap, 0.0, 1.0, xtol=1e-15, rtol=1e-13)  # gap falls as t grows: one root in (0, 1)
+    return max(1.0 / t**2, 1.0), ""
+
+
+def _on_log_scale(e: Estimate) -> bool:
+    """Whether ``e`` is a pool made on the log scale (:func:`tvtrack.pooling.pool`) with a positive lower end, so
+    that its interval shrinks about the log of its value."""
+    a = interval_of(e)[0]
+    sa = e.sampling_low if getattr(e, "has_allowance", False) else a
+    return "log scale" in (e.method or "") and min(a, e.value, sa) > 0.0
+
+
+def _end_at(e: Estimate, side: str, t: float) -> float:
+    """Where ``e``'s interval ends on ``side`` ("low" or "high") once its sampling part is ``t`` times as wide
+    (``t = 1/sqrt(f)`` at ``f`` times the runs), its resolution allowance kept; on the log scale for a log-scale
+    pool (:func:`_on_log_scale`)."""
+    a, b = interval_of(e)
+    sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
+    s, c = (sa, a) if side == "low" else (sb, b)
+    if _on_log_scale(e):
+        v, s, c = math.log(e.value), math.log(s), math.log(c)
+        return math.exp(v + t * (s - v) + (c - s))
+    return e.value + t * (s - e.value) + (c - s)
 
 
 def _sampling_reach(e: Estimate, side: str) -> float:
@@ -385,14 +416,6 @@ def _sampling_reach(e: Estimate, side: str) -> float:
     if e.has_allowance:
         a, b = e.sampling_low, e.sampling_high
     return (e.value - a) if side == "low" else (b - e.value)
-
-
-def _allowance(e: Estimate, side: str) -> float:
-    """The resolution allowance of ``e``'s interval on ``side`` ("low" or "high"): how far the interval reaches
-    beyond its sampling interval there (0 without an allowance)."""
-    if not e.has_allowance:
-        return 0.0
-    return (e.sampling_low - e.ci_low) if side == "low" else (e.ci_high - e.sampling_high)
 
 
 def decide_note(factor: float, why: str = "") -> str:
