@@ -120,14 +120,17 @@ def test_notebook_tooling_is_imported_without_the_iri_parsers_and_still_validate
     assert out.stdout.strip() == "refused", out.stderr
 
 
-def test_the_core_imports_without_scipy_stats():
+def test_the_core_imports_without_scipy_stats_or_optimize():
     """scipy.stats (0.4 s to import) loads at the first interval that needs it (a quantile's order statistics here;
-    the Student-t mean interval calls scipy.special alone), not when a notebook's import cell or the preflight that
-    checks its parameters imports the core."""
+    the Student-t mean interval calls scipy.special alone), and scipy.optimize (about 1 s, with scipy.linalg) at the
+    first trend whose runs to decide are solved for, not when a notebook's import cell, the preflight that checks
+    its parameters or a command that reads a record imports the core."""
     code = (
         "import sys\n"
         "import tvtrack.results, tvtrack.labels, tvtrack.verdicts, tvtrack.explore, tvtrack.montecarlo\n"
+        "import tvtrack.pipeline.cli\n"
         "assert 'scipy.stats' not in sys.modules, 'imported with the core'\n"
+        "assert 'scipy.optimize' not in sys.modules, 'scipy.optimize imported with the core'\n"
         "import numpy as np\n"
         "print(tvtrack.montecarlo.quantile_ci(np.random.default_rng(0).normal(size=10), 0.5).ci_high > -5)\n"
         "assert 'scipy.stats' in sys.modules\n"

@@ -8,8 +8,6 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping, Sequence
 
-from scipy.optimize import brentq
-
 from .estimate import Estimate
 
 __all__ = [
@@ -384,6 +382,8 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
         )
     if gap(1.0) >= 0:
         return 1.0, ""
+    from scipy.optimize import brentq  # here: scipy.optimize costs every process that reads a record a second
+
     t = brentq(gap, 0.0, 1.0, xtol=1e-15, rtol=1e-13)  # gap falls as t grows: one root in (0, 1)
     return max(1.0 / t**2, 1.0), ""
 
