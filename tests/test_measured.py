@@ -27,6 +27,7 @@ from tvtrack.measured import (
     why_undecided,
     with_lost_runs,
 )
+from tvtrack.verdicts import Monotone
 
 NAN = float("nan")
 SHORT = "Student t; coverage 0.882 at n = 5 (skewed samples; heavy tails 0.815)"  # below the 0.93 floor
@@ -613,3 +614,53 @@ def test_a_trends_log_scale_ends_within_their_allowance_factors_are_never_separa
     below_zero = Estimate(-0.2, 0.1, -0.5, 0.3, 18, 0.95, "t, log scale")
     plain = Estimate(0.5, 0.1, 0.1, 0.9, 18, 0.95, "t")
     assert ends_to_decide(below_zero, plain) == (pytest.approx((0.9 / 0.7) ** 2), "")
+
+
+def test_ends_apart_by_a_rounding_margin_beyond_the_tolerance_give_a_huge_factor_not_an_error():
+    """Ends 0.2 and 0.1 + 0.2 with a tolerance of 0.1 are 2.8e-17 apart beyond it in floating point: the factor is
+    of the order of ((0.5 + 0.5) / 2.8e-17)^2, far beyond any practical number of runs (a root finder on the
+    sampling scale itself returned 0 there and divided by it), and the trend reads undecided."""
+    e0 = Estimate(0.2, 0.1, -0.3, 0.7, 30, 0.95, "t")
+    e1 = Estimate(0.1 + 0.2, 0.1, -0.2, 0.8, 30, 0.95, "t")
+    f, why = ends_to_decide(e0, e1, 0.1)
+    assert why == "" and 1e32 < f < 1e34
+    j = Monotone("q", "x", tolerance=0.1).judge([e0, e1])
+    assert j.verdict == "undecided" and j.runs_factor == pytest.approx(f)
+
+
+def test_log_scale_ends_a_rounding_step_apart_never_read_a_grid_they_were_not_read_on():
+    """Two log-scale pools without allowances whose values are one floating-point step apart: no grid is involved,
+    so the reason no practical number of runs separates them is never the grid's resolution; a factor, where one is
+    given, is huge."""
+    for v0 in (1.0, 2.719609804902451):
+        v1 = float(np.nextafter(v0, 10.0))
+        e0 = Estimate(
+            v0, 0.1, v0 / 2, v0 * 2, 30, 0.95, "pooled over 3 independent replicates (equal weights, log scale)"
+        )
+        e1 = Estimate(
+            v1, 0.1, v1 / 2, v1 * 2, 30, 0.95, "pooled over 3 independent replicates (equal weights, log scale)"
+        )
+        f, why = ends_to_decide(e0, e1)
+        assert "grid" not in why and f > 1e30
+        assert Monotone("q", "x").judge([e0, e1]).verdict == "undecided"
+
+
+def test_a_trend_end_of_zero_events_is_projected_by_the_bound_its_runs_certify():
+    """A share of zero events in 30 runs ([0, 0.095], the one-sided bound) certifies p <= 0.05 at ln(0.05) /
+    ln(0.95) = 58.4 runs of zero events: the trend's ends projection towards an exact 0.05 is that, as
+    runs_to_decide's for a band edge at 0.05, not a sampling part shrinking as 1/sqrt(n); all events likewise."""
+    b = 1 - 0.05 ** (1 / 30)
+    none = Estimate(0.0, math.nan, 0.0, b, 30, 0.95, "count over 3 replicates: 0 of 30, one-sided bound")
+    edge = runs_to_decide(none, [0.05])
+    assert edge == pytest.approx(math.log(0.05) / math.log(0.95) / 30)
+    assert ends_to_decide(none, Estimate.exact(0.05)) == (pytest.approx(edge, rel=1e-9), "")
+    every = Estimate(1.0, math.nan, 1 - b, 1.0, 30, 0.95, "count over 3 replicates: 30 of 30, one-sided bound")
+    assert ends_to_decide(every, Estimate.exact(0.95)) == (pytest.approx(edge, rel=1e-9), "")
+
+
+def test_a_trends_end_open_towards_the_other_is_unbounded_whatever_its_sampling_part():
+    """An end whose interval is open towards the other end never separates from it, and the reason says so even
+    where its sampling part is finite."""
+    e0 = Estimate(1.0, 0.1, 0.8, math.inf, 30, 0.95, "t; allowance", sampling_low=0.9, sampling_high=1.1)
+    e1 = Estimate(3.0, 0.1, 2.8, 3.2, 30, 0.95, "t")
+    assert ends_to_decide(e0, e1) == (math.inf, "an end's interval is unbounded")

@@ -367,7 +367,7 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
         return math.inf, "the ends' values are not apart by more than the flat tolerance"
     up = e1.value >= e0.value
     facing = ((e0, "high"), (e1, "low")) if up else ((e0, "low"), (e1, "high"))
-    if not all(math.isfinite(_sampling_reach(e, side)) for e, side in facing):
+    if not all(math.isfinite(_sampling_reach(e, side) + _end_at(e, side, 1.0)) for e, side in facing):
         return math.inf, "an end's interval is unbounded"
 
     def gap(t: float) -> float:
@@ -376,16 +376,30 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
         return (x1 - x0 if up else x0 - x1) - tolerance
 
     if not gap(0.0) > 0:
-        return (
-            math.inf,
-            "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
-        )
+        if any(_end_at(e, side, 0.0) != e.value for e, side in facing):
+            return (
+                math.inf,
+                "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
+            )
+        return math.inf, "the ends' values are not apart by more than the flat tolerance"
     if gap(1.0) >= 0:
         return 1.0, ""
+    return _solve_factor(gap), ""
+
+
+def _solve_factor(gap) -> float:
+    """The multiple ``f = 1 / t^2`` of the runs at which ``gap(t)``, positive at ``t = 0`` and negative at ``t = 1``
+    and falling between, is 0; solved for ``log t``, so that a root far below 1 (ends apart by a rounding margin)
+    keeps its relative precision."""
     from scipy.optimize import brentq  # here: scipy.optimize costs every process that reads a record a second
 
-    t = brentq(gap, 0.0, 1.0, xtol=1e-15, rtol=1e-13)  # gap falls as t grows: one root in (0, 1)
-    return max(1.0 / t**2, 1.0), ""
+    low = -1.0
+    while not gap(math.exp(low)) > 0:
+        low *= 2.0
+        if low < -700.0:  # the ends are apart by less than a rounding step beyond the tolerance
+            return math.inf
+    u = brentq(lambda u: gap(math.exp(u)), low, 0.0, xtol=1e-13, rtol=1e-13)
+    return max(math.exp(-2.0 * u), 1.0)
 
 
 def _on_log_scale(e: Estimate) -> bool:
@@ -398,14 +412,18 @@ def _on_log_scale(e: Estimate) -> bool:
 
 def _end_at(e: Estimate, side: str, t: float) -> float:
     """Where ``e``'s interval ends on ``side`` ("low" or "high") once its sampling part is ``t`` times as wide
-    (``t = 1/sqrt(f)`` at ``f`` times the runs), its resolution allowance kept; on the log scale for a log-scale
-    pool (:func:`_on_log_scale`)."""
+    (``t = 1/sqrt(f)`` at ``f`` times the runs), its resolution allowance kept: on the log scale for a log-scale
+    pool (:func:`_on_log_scale`); a rate of zero (or all) events by the bound they certify, ``1 - alpha^(1/n)``
+    at ``n`` runs, as :func:`runs_to_decide` projects it."""
     a, b = interval_of(e)
+    if _zero_count(e) and (side == "high") == (e.value == 0.0):
+        alpha = 1.0 - e.confidence
+        bound = -math.expm1(t * t * math.log(alpha) / e.n)  # 1 - alpha^(t^2 / n): the certified rate at n / t^2
+        return bound if e.value == 0.0 else 1.0 - bound
     sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
     s, c = (sa, a) if side == "low" else (sb, b)
     if _on_log_scale(e):
-        v, s, c = math.log(e.value), math.log(s), math.log(c)
-        return math.exp(v + t * (s - v) + (c - s))
+        return e.value * (s / e.value) ** t * (c / s)
     return e.value + t * (s - e.value) + (c - s)
 
 
