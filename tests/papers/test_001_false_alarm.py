@@ -161,3 +161,18 @@ def test_two_sided_rate_is_never_below_the_null_rate_under_any_mean_shift(model)
     assert all(a.value >= null.value * (1 - 1e-12) for a in alt)
     if model == "white Gaussian":
         assert null.value == pytest.approx(ALPHA, rel=1e-9)
+
+
+def test_the_kept_sigma_s_is_the_one_computed_and_a_caller_cannot_change_it():
+    """sigma_S(t) is kept per gain schedule, window and noise: a second call gives the same numbers as the first
+    (and as a schedule passed as a non-contiguous view), another noise RMS scales it (sigma_S is linear in it), and
+    writing into a returned array leaves the kept one as it was."""
+    first = scheduled_statistic_std(G0, N, 1.0)
+    first[2 * N - 1 :] = -1.0
+    again = scheduled_statistic_std(G0, N, 1.0)
+    assert np.all(again[2 * N - 1 :] > 0)
+    wide = np.repeat(G0, 2, axis=1)[:, ::2]  # the same gains, strided
+    np.testing.assert_array_equal(scheduled_statistic_std(wide, N, 1.0), again)
+    np.testing.assert_allclose(scheduled_statistic_std(G0, N, 2.5), 2.5 * again, rtol=1e-12)
+    H = statistic_impulse_response(G0, N)
+    np.testing.assert_allclose(again[2 * N - 1 :], np.sqrt(np.sum(H[:, 2 * N - 1 :] ** 2, axis=0)), rtol=1e-10)

@@ -22,6 +22,8 @@ Under no manoeuvre ``S ~ N(0, sigma_S^2)`` and ``c(alpha) = sigma_S Phi^{-1}(1 -
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy import stats
 
@@ -194,11 +196,23 @@ def scheduled_statistic_std(gains, n: int, sigma_eps: float) -> np.ndarray:
     -------
     ndarray, shape (T,)
         NaN for ``t < 2n-1``.
+
+    Notes
+    -----
+    The result is a function of the gains, ``n`` and ``sigma_eps`` alone and is kept for the last 128 of them: an
+    exploration asks for the same schedule at every replicate and condition of a configuration.
     """
     n = _check_window(n)
-    G = np.asarray(gains, dtype=float)
+    G = np.ascontiguousarray(gains, dtype=float)
     if G.ndim != 2 or G.shape[1] < 2:
         raise ValueError(f"parameter 'gains' has shape {G.shape}; it must be (T, order+1) with order >= 1")
+    return _scheduled_std(G.tobytes(), G.shape, n, float(sigma_eps)).copy()
+
+
+@functools.lru_cache(maxsize=128)
+def _scheduled_std(buf: bytes, shape: tuple, n: int, sigma_eps: float) -> np.ndarray:
+    """:func:`scheduled_statistic_std` of the gains held in ``buf`` (float64, ``shape``)."""
+    G = np.frombuffer(buf, dtype=float).reshape(shape)
     T, d = G.shape
     out = np.full(T, np.nan)
     if T < 2 * n:
