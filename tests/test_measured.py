@@ -664,3 +664,55 @@ def test_a_trends_end_open_towards_the_other_is_unbounded_whatever_its_sampling_
     e0 = Estimate(1.0, 0.1, 0.8, math.inf, 30, 0.95, "t; allowance", sampling_low=0.9, sampling_high=1.1)
     e1 = Estimate(3.0, 0.1, 2.8, 3.2, 30, 0.95, "t")
     assert ends_to_decide(e0, e1) == (math.inf, "an end's interval is unbounded")
+
+
+@pytest.mark.parametrize("second", [1.05, 1.25])
+def test_trend_ends_not_apart_beyond_the_tolerance_say_so_even_with_allowances(second):
+    """Values 1.0 and 1.05 (or exactly 1.25) against a flat tolerance of 0.25: no number of runs separates them by
+    more than it, and the reason is the tolerance, not the grid their allowances come from."""
+    e0 = Estimate(1.0, 0.05, 0.8, 1.2, 18, 0.95, "t; allowance", sampling_low=0.9, sampling_high=1.1)
+    e1 = Estimate(
+        second,
+        0.05,
+        second - 0.2,
+        second + 0.2,
+        18,
+        0.95,
+        "t; allowance",
+        sampling_low=second - 0.1,
+        sampling_high=second + 0.1,
+    )
+    for pair in ((e0, e1), (e1, e0)):
+        assert ends_to_decide(*pair, 0.25) == (
+            math.inf,
+            "the ends' values are not apart by more than the flat tolerance",
+        )
+
+
+@pytest.mark.parametrize("lowest", [0.0, -0.1])
+def test_an_interval_reaching_zero_is_projected_on_the_linear_scale_whatever_its_method_says(lowest):
+    """A pool whose method says "log scale" but whose interval reaches 0 or below (its allowance below a positive
+    sampling interval) has no log to shrink about: its runs to decide, for a trend's end and for a band edge, are
+    the linear ones."""
+    e0 = Estimate(0.5, 0.05, lowest, 0.7, 18, 0.95, "t, log scale; allowance", sampling_low=0.05, sampling_high=0.6)
+    e1 = Estimate(1.0, 0.05, 0.55, 1.2, 18, 0.95, "t; allowance", sampling_low=0.7, sampling_high=1.1)
+    s, d = (0.6 - 0.5) + (1.0 - 0.7), 0.5 - 0.1 - 0.15  # the facing sampling parts; the gap less the allowances
+    f, why = ends_to_decide(e0, e1)
+    linear = [
+        Estimate(
+            e.value,
+            0.05,
+            e.ci_low,
+            e.ci_high,
+            18,
+            0.95,
+            "t; allowance",
+            sampling_low=e.sampling_low,
+            sampling_high=e.sampling_high,
+        )
+        for e in (e0, e1)
+    ]
+    assert why == "" and f == pytest.approx((s / d) ** 2) and f == pytest.approx(ends_to_decide(*linear)[0])
+    assert ends_to_decide(e1, e0)[0] == pytest.approx(f)  # a decreasing trend on the same ends
+    below = 0.05 - lowest  # the allowance below the sampling interval
+    assert runs_to_decide(e0, [0.3]) == pytest.approx(((0.5 - lowest - below) / (0.2 - below)) ** 2)  # linear

@@ -306,8 +306,8 @@ def runs_to_decide(e: Estimate, edges: Sequence[float]) -> float:
                 return math.inf
             need.append(math.log(alpha) / math.log(1.0 - p))
         return max(need) / e.n
-    sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
-    if _on_log_scale(e) and min(inside) > 0.0:  # a pool on the log scale shrinks there
+    sa, sb = _sampling_ends(e)
+    if _on_log_scale(e):  # a pool on the log scale shrinks there (every edge inside is then positive)
         a, b, v, sa, sb = (math.log(x) for x in (a, b, v, sa, sb))
         inside = [math.log(c) for c in inside]
     factors = []
@@ -341,7 +341,7 @@ def why_no_runs(e: Estimate, edges: Sequence[float]) -> str:
         return "the point sits on the edge"
     if not (math.isfinite(a) and math.isfinite(b)):
         return "the interval is unbounded on a side it straddles an edge"
-    if getattr(e, "has_allowance", False):
+    if e.has_allowance:
         return "the edge lies within the resolution of the grid it is read on, which more runs do not shrink"
     return ""
 
@@ -363,11 +363,9 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
             math.inf,
             "an end is an envelope of the replicates' certified bounds, which more replicates do not narrow",
         )
-    if not abs(e1.value - e0.value) - tolerance > 0:
-        return math.inf, "the ends' values are not apart by more than the flat tolerance"
     up = e1.value >= e0.value
     facing = ((e0, "high"), (e1, "low")) if up else ((e0, "low"), (e1, "high"))
-    if not all(math.isfinite(_sampling_reach(e, side) + _end_at(e, side, 1.0)) for e, side in facing):
+    if not all(math.isfinite(x) for e, side in facing for x in _side(e, side)):
         return math.inf, "an end's interval is unbounded"
 
     def gap(t: float) -> float:
@@ -375,8 +373,8 @@ def ends_to_decide(e0: Estimate, e1: Estimate, tolerance: float = 0.0) -> tuple[
         (x0, x1) = (_end_at(e, side, t) for e, side in facing)
         return (x1 - x0 if up else x0 - x1) - tolerance
 
-    if not gap(0.0) > 0:
-        if any(_end_at(e, side, 0.0) != e.value for e, side in facing):
+    if not gap(0.0) > 0:  # at any number of runs the facing ends are the values, moved by their allowances
+        if abs(e1.value - e0.value) - tolerance > 0:
             return (
                 math.inf,
                 "the ends lie within the resolution of the grid they are read on, which more runs do not shrink",
@@ -402,12 +400,21 @@ def _solve_factor(gap) -> float:
     return max(math.exp(-2.0 * u), 1.0)
 
 
+def _sampling_ends(e: Estimate) -> tuple[float, float]:
+    """``e``'s sampling interval, the part that more runs shrink: without a resolution allowance its interval."""
+    return (e.sampling_low, e.sampling_high) if e.has_allowance else interval_of(e)
+
+
+def _side(e: Estimate, side: str) -> tuple[float, float]:
+    """``(sampling end, interval end)`` of ``e`` on ``side`` ("low" or "high")."""
+    (sa, sb), (a, b) = _sampling_ends(e), interval_of(e)
+    return (sa, a) if side == "low" else (sb, b)
+
+
 def _on_log_scale(e: Estimate) -> bool:
-    """Whether ``e`` is a pool made on the log scale (:func:`tvtrack.pooling.pool`) with a positive lower end, so
-    that its interval shrinks about the log of its value."""
-    a = interval_of(e)[0]
-    sa = e.sampling_low if getattr(e, "has_allowance", False) else a
-    return "log scale" in (e.method or "") and min(a, e.value, sa) > 0.0
+    """Whether ``e`` is a pool made on the log scale (:func:`tvtrack.pooling.pool`), its interval positive (its
+    sampling interval and value, within it, are then too), so that it shrinks about the log of its value."""
+    return "log scale" in e.method and interval_of(e)[0] > 0.0
 
 
 def _end_at(e: Estimate, side: str, t: float) -> float:
@@ -415,25 +422,13 @@ def _end_at(e: Estimate, side: str, t: float) -> float:
     (``t = 1/sqrt(f)`` at ``f`` times the runs), its resolution allowance kept: on the log scale for a log-scale
     pool (:func:`_on_log_scale`); a rate of zero (or all) events by the bound they certify, ``1 - alpha^(1/n)``
     at ``n`` runs, as :func:`runs_to_decide` projects it."""
-    a, b = interval_of(e)
     if _zero_count(e) and (side == "high") == (e.value == 0.0):
-        alpha = 1.0 - e.confidence
-        bound = -math.expm1(t * t * math.log(alpha) / e.n)  # 1 - alpha^(t^2 / n): the certified rate at n / t^2
+        bound = -math.expm1(t * t * math.log(1.0 - e.confidence) / e.n)  # 1 - alpha^(t^2 / n): the rate at n / t^2
         return bound if e.value == 0.0 else 1.0 - bound
-    sa, sb = (e.sampling_low, e.sampling_high) if getattr(e, "has_allowance", False) else (a, b)
-    s, c = (sa, a) if side == "low" else (sb, b)
+    s, c = _side(e, side)
     if _on_log_scale(e):
         return e.value * (s / e.value) ** t * (c / s)
     return e.value + t * (s - e.value) + (c - s)
-
-
-def _sampling_reach(e: Estimate, side: str) -> float:
-    """How far ``e``'s sampling interval reaches from its value on ``side`` ("low" or "high"): the part of the
-    interval that more runs shrink (the whole side where there is no resolution allowance)."""
-    a, b = interval_of(e)
-    if e.has_allowance:
-        a, b = e.sampling_low, e.sampling_high
-    return (e.value - a) if side == "low" else (b - e.value)
 
 
 def decide_note(factor: float, why: str = "") -> str:
