@@ -716,3 +716,13 @@ def test_an_interval_reaching_zero_is_projected_on_the_linear_scale_whatever_its
     assert ends_to_decide(e1, e0)[0] == pytest.approx(f)  # a decreasing trend on the same ends
     below = 0.05 - lowest  # the allowance below the sampling interval
     assert runs_to_decide(e0, [0.3]) == pytest.approx(((0.5 - lowest - below) / (0.2 - below)) ** 2)  # linear
+
+
+def test_a_value_that_is_not_an_estimate_is_no_envelope():
+    """A part measured as a plain number, a list of points or nothing is not an envelope of certified bounds (only
+    a pool's method names one), and asking never fails."""
+    from tvtrack.measured import is_envelope
+
+    for value in (2.0, [Estimate(1.0, 0.1, 0.8, 1.2, 10)], None, {"value": 1.0}):
+        assert is_envelope(value) is False
+    assert is_envelope(Estimate(1.0, 0.1, 0.8, 1.2, 10, 0.95, "envelope of 3 replicates' intervals")) is True
