@@ -726,3 +726,13 @@ def test_a_value_that_is_not_an_estimate_is_no_envelope():
     for value in (2.0, [Estimate(1.0, 0.1, 0.8, 1.2, 10)], None, {"value": 1.0}):
         assert is_envelope(value) is False
     assert is_envelope(Estimate(1.0, 0.1, 0.8, 1.2, 10, 0.95, "envelope of 3 replicates' intervals")) is True
+
+
+def test_a_record_whose_method_is_null_projects_its_runs_on_the_linear_scale():
+    """A record may hold ``"method": null``: read back, its runs to decide a band edge or a trend are the linear
+    ones, and reading it never fails."""
+    e = as_estimate({"value": 1.0, "ci_low": 0.6, "ci_high": 1.4, "n": 20, "method": None})
+    assert e.method is None
+    assert runs_to_decide(e, [1.2]) == pytest.approx((0.4 / 0.2) ** 2)
+    assert ends_to_decide(e, Estimate.exact(1.6)) == (1.0, "")  # already apart
+    assert ends_to_decide(e, Estimate.exact(1.3))[0] == pytest.approx((0.4 / 0.3) ** 2)

@@ -414,7 +414,7 @@ def _side(e: Estimate, side: str) -> tuple[float, float]:
 def _on_log_scale(e: Estimate) -> bool:
     """Whether ``e`` is a pool made on the log scale (:func:`tvtrack.pooling.pool`), its interval positive (its
     sampling interval and value, within it, are then too), so that it shrinks about the log of its value."""
-    return "log scale" in e.method and interval_of(e)[0] > 0.0
+    return "log scale" in (e.method or "") and interval_of(e)[0] > 0.0  # a record's method may be null
 
 
 def _end_at(e: Estimate, side: str, t: float) -> float:
