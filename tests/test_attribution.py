@@ -15,7 +15,7 @@ from tvtrack.register import Entry
 
 NO = "not reproduced"
 YES = "reproduced"
-MIXED = "readings or unreported settings changed together with worlds, and no subset of them flips it alone"
+MIXED = "readings or unreported settings changed together with worlds; no subset of them was found to flip it"
 
 ENTRIES = {
     "r1": Entry("r1", "reading", 0, (0, 1, 2), "test reading", title="first reading", phrases={2: "r1 read as two"}),
@@ -234,7 +234,9 @@ def test_a_joint_beyond_the_searched_size_is_unattributed_with_its_count_after_t
     assert _names(flips) == [("joint", "world", {"w1": 2, "w2": 2}), ("joint", "unattributed", big)]
     assert "note" not in flips[0]
     assert (
-        flips[1]["note"] == "5 entries changed together and no subset of up to 3 of them flips it alone: unattributed"
+        flips[1]["note"]
+        == "5 entries changed together and no subset of up to 3 of them, at the paper's operating point, was found to "
+        "flip it: unattributed"
     )
     # searched up to four: the five entries are their own smallest subset (mixed sides: the mixed note)
     wider = attribute(YES, rows, ENTRIES, max_subset=4)
@@ -250,7 +252,9 @@ def test_at_pairs_only_a_triple_of_readings_is_unattributed_after_a_pair_of_worl
         ("joint", "unattributed", {"r1": 1, "r2": 1, "r3": 1}),
     ]
     assert (
-        flips[1]["note"] == "3 entries changed together and no subset of up to 1 of them flips it alone: unattributed"
+        flips[1]["note"]
+        == "3 entries changed together and no subset of up to 1 of them, at the paper's operating point, was found to "
+        "flip it: unattributed"
     )
 
 

@@ -137,12 +137,14 @@ def test_a_flip_smaller_than_the_default_needed_is_found():
 def test_a_label_stronger_than_its_flips_is_found(label, words):
     claim = _claim()
     claim["robustness"]["parts"]["claim"]["label"] = label
+    claim["robustness"]["parts"]["claim"]["share"]["unchanged"] = 0  # every configuration reached it: decided 5
     assert audit_claim(claim) == [f"C9-1: {words}"]
 
 
 def test_the_audit_reads_finished_runs_and_writes_its_section():
     good, bad = _claim(), copy.deepcopy(_claim())
     bad["robustness"]["parts"]["claim"]["label"] = "robust"
+    bad["robustness"]["parts"]["claim"]["share"]["unchanged"] = 0
     runs = {"a": ({}, {"claims": [good]}), "b": ({}, {"claims": [bad]}), "c": ({"status": "failed"}, None)}
     problems = audit_runs(runs)
     assert problems == {"a": [], "b": ["C9-1: labelled robust with 2 flip(s)"]}
@@ -385,7 +387,7 @@ def test_a_robust_part_decided_in_fewer_configurations_than_a_share_needs_is_fou
     claim = _claim()
     part = claim["robustness"]["parts"]["claim"]
     part["label"], part["flips"] = "robust", []
-    part["share"].update(agree=3, flip=0, undecided=3, design=6, decided=3)
+    part["share"].update(agree=3, flip=0, undecided=3, design=6, decided=3, unchanged=0)
     words = "C9-1: labelled robust, but only 3 of its 6 explored configurations decided it (a share needs {})"
     assert words.format(4) in audit_claim(claim)
     part["share"].update(agree=6, undecided=0, decided=6)
@@ -400,12 +402,30 @@ def test_a_robust_part_decided_in_fewer_configurations_than_a_share_needs_is_fou
     assert "C9-1: labelled robust without a share of explored configurations" in audit_claim(claim)
 
 
-def test_a_deterministic_robust_part_needs_one_decided_configuration():
+def test_a_deterministic_robust_part_needs_as_many_decided_configurations_as_a_share():
+    """No random draw spares a design its configurations: a deterministic part labelled robust on one decided
+    configuration of six explored, where a share needs four, is found; on four it is not."""
     claim = _claim()
     claim["robustness"]["deterministic"] = True
     part = claim["robustness"]["parts"]["claim"]
     part["label"], part["flips"] = "robust", []
-    part["share"].update(agree=0, flip=0, undecided=6, design=6, decided=0)
-    assert "C9-1: labelled robust, but no explored configuration decided it" in audit_claim(claim)
-    part["share"].update(agree=1, undecided=5, decided=1)
+    part["share"].update(agree=1, flip=0, undecided=5, design=6, decided=1, unchanged=0)
+    assert "C9-1: labelled robust, but only 1 of its 6 explored configurations decided it (a share needs 4)" in (
+        audit_claim(claim)
+    )
+    part["share"].update(agree=4, undecided=2, decided=4)
+    assert not any("labelled robust" in p for p in audit_claim(claim))
+
+
+def test_configurations_that_never_reached_a_robust_part_are_not_counted_as_deciding_it():
+    """Six agreeing configurations of which three left the part's value as the default's (``unchanged``: they never
+    reached it) decide it in three, fewer than the four a share needs: a record calling it robust is found."""
+    claim = _claim()
+    part = claim["robustness"]["parts"]["claim"]
+    part["label"], part["flips"] = "robust", []
+    part["share"].update(agree=6, flip=0, undecided=0, design=6, decided=6, unchanged=3)
+    assert "C9-1: labelled robust, but only 3 of its 6 explored configurations decided it (a share needs 4)" in (
+        audit_claim(claim)
+    )
+    part["share"]["unchanged"] = 2
     assert not any("labelled robust" in p for p in audit_claim(claim))

@@ -445,7 +445,7 @@ def test_an_unreported_setting_flip_depends_a_mixed_joint_flip_is_unattributed_o
     assert both["parts"]["claim"]["flips"][0]["side"] == "setting" and both["label"] == "depends"
     mixed = rec({"sigma": "smoothed", "motion": "weave"})  # a reading with a world, no subset measured alone
     assert mixed["parts"]["claim"]["flips"][0]["side"] == "unattributed" and mixed["label"] == "depends"
-    assert "no subset of them flips it alone" in mixed["parts"]["claim"]["flips"][0]["note"]
+    assert "no subset of them was found to flip it" in mixed["parts"]["claim"]["flips"][0]["note"]
     world = rec({"motion": "weave"})
     assert world["label"] == "limited" and world["parts"]["claim"]["flips"][0]["side"] == "world"
 
@@ -928,9 +928,10 @@ def test_a_configuration_that_decided_the_other_way_on_the_defaults_own_draws_co
     assert label_parts(BAND, inside, reps, conds, [e], needed=1)["parts"]["claim"]["label"] == "unexplored"
 
 
-def test_a_part_without_random_draws_is_robust_on_one_decided_configuration():
-    """A deterministic claim needs no share: one configuration that decided and agreed makes it robust, whatever the
-    others (two reachable here, one left undecided)."""
+def test_a_part_without_random_draws_needs_as_many_decided_configurations_as_a_share():
+    """A deterministic claim has no replicate noise, but its configurations are still a sample of its register's:
+    one configuration that decided and agreed, of the two it explores (one left undecided), leaves it unexplored, as a
+    random one (robust only on as many decided configurations as a share needs, ``docs/verdicts.md``)."""
     e = Entry("w", "regime", 0, (0, 1, 2), "a world")
     exact = Estimate.exact(0.0)
     straddles = Estimate(0.5, 0.5, -0.5, 1.5, 100, method="Student t")
@@ -940,7 +941,8 @@ def test_a_part_without_random_draws_is_robust_on_one_decided_configuration():
     ]
     reps = [{"seed": s, "measured": exact} for s in (1, 2, 3)]
     rec = label_parts(BAND, exact, reps, conds, [e], deterministic=True)
-    assert rec["parts"]["claim"]["share"]["agree"] == 1 and rec["label"] == "robust"
+    assert rec["parts"]["claim"]["share"]["agree"] == 1 and rec["label"] == "unexplored"
+    assert rec["parts"]["claim"]["share"]["decided_needed"] == 2  # the two configurations besides the default
 
 
 def test_an_edge_within_a_resolution_allowance_is_never_decided_by_more_runs():

@@ -248,7 +248,10 @@ def test_a_flip_whose_smaller_subsets_stayed_undecided_is_not_shown_as_isolated(
     joint = FLIP | {"text": "a detection counts within 0.25 s and a weaving target", "kind": "joint"}
     joint |= {"side": "unattributed", "undecided_subsets": ["a weaving target"]}
     line = part_line("C001-1", _part("reproduced", flips=[joint], share=SHARE))
-    assert "and a weaving target (a combination of changes (none of them flips the claim alone); the smallest " in line
+    assert (
+        "and a weaving target (a combination of changes that no smaller set of them was found to flip; the smallest "
+        in line
+    )
     assert "found: a weaving target stays undecided)" in line
 
 

@@ -163,7 +163,9 @@ def attribute(
         f = {"changed": dict(r["changed"]), "side": side, "kind": kind, "verdict": r["verdict"]}
         f.update({"text": phrase(r["changed"], entries), "runs": r.get("runs", 1)})
         if side == "unattributed" and not note:
-            note = "readings or unreported settings changed together with worlds, and no subset of them flips it alone"
+            note = (
+                "readings or unreported settings changed together with worlds; no subset of them was found to flip it"
+            )
         out.append({**f, "note": note} if note else f)
 
     for r in sorted(singles, key=lambda r: order[flip_side(r["changed"], entries)]):
@@ -180,8 +182,8 @@ def attribute(
             later += [(smallest, c, "combination", "") for c in subs if len(c["changed"]) == smallest]
         elif len(j["changed"]) > max_subset + 1:  # every smaller subset of one entry more was searched
             note = (
-                f"{len(j['changed'])} entries changed together and no subset of up to {max_subset} of them flips it "
-                "alone: unattributed"
+                f"{len(j['changed'])} entries changed together and no subset of up to {max_subset} of them, at the "
+                "paper's operating point, was found to flip it: unattributed"
             )
             later.append((len(j["changed"]) + 100, j, "joint", note))  # after every named combination
         else:

@@ -160,10 +160,22 @@ def flip_with_kind(flip: Mapping, record: Mapping) -> str:
     """
     sides = side_words()
     mixed = mixed_kinds(flip, record)
-    if mixed:
-        alone = " (none of them flips the claim alone)" if flip.get("side") == "unattributed" else ""
-        return f"{mixed}, together{alone}"
+    if mixed or flip.get("side") == "unattributed":
+        return f"{mixed or flip['text']}, together{alone_words(flip)}"
     return f"{flip['text']} ({sides.get(flip['side'], sides['world'])})"
+
+
+def alone_words(flip: Mapping) -> str:
+    """How far a flip no smaller subset isolates is shown not to flip the claim in part: ``" (none of them flips the
+    claim alone)"`` where every smaller subset measured was decided, else how many stayed undecided (one of them
+    could still flip it alone); ``""`` for a flip that is not of that kind."""
+    if flip.get("side") != "unattributed":
+        return ""
+    k = len(flip.get("undecided_subsets") or ())
+    if not k:
+        return " (none of them flips the claim alone)"
+    sets = "one smaller set of them stays" if k == 1 else f"{_COUNT.get(k, k)} smaller sets of them stay"
+    return f" (none of them is shown to flip the claim alone: {sets} undecided)"
 
 
 def why_not_clause(c: Mapping) -> str:

@@ -287,7 +287,8 @@ def label_parts(
         "max_replicates": design.get("max_replicates"),
         "max_subset": int(design.get("max_subset", MAX_SUBSET)),
         "unranked": _rule_selectors(rule),
-        "need_decided": 1 if deterministic else max(need, 1),
+        "need_decided": max(need, 1),  # no random draw spares a design its configurations
+        "reachable": reachable,
     }
     part_out, where = {}, []
     pairs = part_pairs(rule, measured)
@@ -377,12 +378,10 @@ def _label_part(name: str, prule: Rule, pair: tuple | None, ctx: Mapping) -> dic
         part_share["unchanged"] = sum(1 for c in ex_rows if c["verdict"] == j.verdict) - sum(
             1 for c in live if c["verdict"] == j.verdict
         )
-    decided = int((part_share or {}).get("agree") or 0) + int((part_share or {}).get("flip") or 0)
-    if label == "robust" and decided < ctx["need_decided"]:
-        # too few explored configurations decided the part (as many as a share needs): most of the design is open
-        label = "unexplored"
-        if part_share is not None:
-            part_share["decided_needed"] = ctx["need_decided"]
+    ps, same = part_share or {}, int((part_share or {}).get("unchanged") or 0)  # same: never reached the part
+    decided = int(ps.get("agree") or 0) + int(ps.get("flip") or 0) - same  # as many as a share, of those reachable
+    if label == "robust" and decided < (need := min(ctx["need_decided"], max(ctx["reachable"] - same, 1))):
+        label, ps["decided_needed"] = "unexplored", need  # fewer than a share needs: most of the design is open
     pwhere += [f"{f['verdict']} when {f['text']}{_open_subsets(f)}" for f in flips]
     off = beside_operating_point(every, j.verdict) if is_decisive(j.verdict) else None
     if off and part_share:  # counted beside the share, as the pinned ones are

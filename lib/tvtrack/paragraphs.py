@@ -159,7 +159,7 @@ _TURN_WORDS = {
     "other settings)",
     "world": "a world beyond the paper (alone or with other worlds)",
     "unattributed": "a combination that no smaller subset explains (a reading or setting with a world, or more "
-    "changes than the search tried; none of them flips the claim alone)",
+    "changes than the search tried; no smaller set of them was found to flip it)",
 }
 
 

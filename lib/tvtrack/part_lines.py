@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
+from .flip_words import flip_with_kind, mixed_kinds
 from .run_words import explored_rows, lost_basis, part_name, parts_by_name, plain_text, share_counts
 from .wording import PROVISIONAL, at_profile, claim_fields, claim_flips, side_words
 
@@ -180,7 +181,7 @@ def _open_words(flip: Mapping) -> str:
     )
 
 
-def _flip_words(part: Mapping, share: Mapping, counted: bool) -> str:
+def _flip_words(part: Mapping, share: Mapping, counted: bool, record: Mapping | None = None) -> str:
     """``"; flipped by: ..."``: a part's named flips with their kinds, then those outside the paper's operating
     point (counted beside the label); where it names none, what its counts say (never "no explored configuration
     flips it" beside a count of flips, or of flips outside the operating point)."""
@@ -190,7 +191,9 @@ def _flip_words(part: Mapping, share: Mapping, counted: bool) -> str:
     text = ""
     if flips:
         text += "; flipped by: " + "; ".join(
-            f"{f.get('verdict')} when {plain_text(str(f.get('text') or ''))} "
+            f"{f.get('verdict')} when {plain_text(flip_with_kind(f, record))}{_open_words(f)}"
+            if record is not None and (mixed_kinds(f, record) or f.get("side") == "unattributed")
+            else f"{f.get('verdict')} when {plain_text(str(f.get('text') or ''))} "
             f"({sides.get(f.get('side'), f.get('side'))}{_open_words(f)})"
             for f in flips
         )
@@ -208,7 +211,7 @@ def _flip_words(part: Mapping, share: Mapping, counted: bool) -> str:
     return text
 
 
-def part_line(head: str, part: Mapping, explored: int = 0) -> str:
+def part_line(head: str, part: Mapping, explored: int = 0, record: Mapping | None = None) -> str:
     """One part as a Markdown bullet: its verdict and label; how many of every explored configuration agree, flip
     and stay undecided (with the share agreeing, 95 %), and how many of the claim's ``explored`` configurations do
     not measure the part (a reading there leaves it out); every flip in plain words with its kind; the runs
@@ -224,7 +227,7 @@ def part_line(head: str, part: Mapping, explored: int = 0) -> str:
         if share.get("ci_low") is not None and share.get("ci_high") is not None:
             text += f" (share agreeing {share['ci_low']:.2f}-{share['ci_high']:.2f}, 95 %)"
         text += f"; {beside}" if beside else ""
-    text += _flip_words(part, share, bool(counts))
+    text += _flip_words(part, share, bool(counts), record)  # with the record, a mix names each change's kind
     if (part.get("runs_to_decide") or {}).get("text"):
         text += f"; {part['runs_to_decide']['text']}"
     moves = [
@@ -250,7 +253,8 @@ def record_lines(cid: str, record: Mapping, verdict: str | None = None) -> list[
     designs = (int((p.get("share") or {}).get("design") or 0) for p in parts.values())
     explored = len(explored_rows(shown)) or max(designs, default=0)  # a record without its rows: the widest share
     for name, part in parts.items():
-        lines.append("  " + part_line(cid if len(parts) == 1 else f"{cid} ({part_name(name)})", part, explored))
+        head = cid if len(parts) == 1 else f"{cid} ({part_name(name)})"
+        lines.append("  " + part_line(head, part, explored, shown))
     return lines
 
 

@@ -95,7 +95,7 @@ _SIDE_WORDS = {
     "reading": "a reading of the paper's text",
     "setting": "a setting of the paper's own experiment that the paper never printed",
     "world": "a world beyond the paper",
-    "unattributed": "a combination of changes (none of them flips the claim alone)",
+    "unattributed": "a combination of changes that no smaller set of them was found to flip",
 }
 _WORLD_KINDS = ("regime", "operating point", "model", "scale")
 
@@ -508,7 +508,7 @@ def _flip_lead(side: str, n: int) -> str:
     return {
         "reading": f"Under {w} other readings of the paper's text together",
         "setting": f"Under {w} changes together",
-    }.get(side, f"Under {w} changes together (none of them flips it alone)")
+    }.get(side, f"Under {w} changes together (no smaller set of them was found to flip it)")
 
 
 def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:

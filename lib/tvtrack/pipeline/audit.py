@@ -140,17 +140,19 @@ def _reachable(rb: Mapping, off: Mapping[str, Sequence]) -> int:
 def _robust_problems(where: str, part: Mapping, rb: Mapping, off: Mapping[str, Sequence]) -> list[str]:
     """A ``robust`` part must rest on a share whose design, and whose decided configurations, each number at least
     what a share needs: 32 (a record's ``design["min_share_design"]`` where it states another), or every reachable
-    configuration where there are fewer; 1 decided for a record without random draws."""
+    configuration where there are fewer, with or without random draws; a configuration that left the part's value
+    as the default's (``share["unchanged"]``, :mod:`tvtrack.reach`) never reached it and is not counted."""
     if part.get("label") != "robust":
         return []
     share = part.get("share")
     if not share:
         return [f"{where}: labelled robust without a share of explored configurations"]
-    decided, design = int(share.get("agree") or 0) + int(share.get("flip") or 0), int(share.get("design") or 0)
-    need = min(int((rb.get("design") or {}).get("min_share_design", _SHARE_DESIGN)), _reachable(rb, off))
-    if rb.get("deterministic"):
-        return [] if decided >= 1 else [f"{where}: labelled robust, but no explored configuration decided it"]
+    same, design = int(share.get("unchanged") or 0), int(share.get("design") or 0)
+    decided = int(share.get("agree") or 0) + int(share.get("flip") or 0) - same
+    reachable = _reachable(rb, off)
+    need = min(int((rb.get("design") or {}).get("min_share_design", _SHARE_DESIGN)), reachable)
     out = [f"{where}: labelled robust over {design} explored configurations (a share needs {need})"] * (design < need)
+    need = min(need, max(reachable - same, 1))  # of the configurations that can reach the part
     if decided < need:
         out.append(
             f"{where}: labelled robust, but only {decided} of its {design} explored configurations decided it "
