@@ -109,3 +109,23 @@ def test_an_unattributed_flip_whose_single_change_stayed_undecided_is_not_said_t
     }
     text = flip_with_kind(flip, {"register": REGISTER})
     assert "none of them flips the claim alone" not in text
+
+
+def test_a_claims_sentence_says_a_combination_is_only_not_shown_to_flip_alone_where_a_smaller_set_stayed_open():
+    """The claim's sentence for a combination no smaller subset isolates says "none of them flips it alone" only
+    where every smaller set measured was decided; with one left undecided it says none is shown to."""
+    from tvtrack.wording import _flip_sentence
+
+    flip = {
+        "changed": {"w": 1, "r": 1},
+        "side": "unattributed",
+        "kind": "joint",
+        "verdict": "not reproduced",
+        "text": "the other world and the other reading",
+    }
+    claim = {"verdict": "reproduced", "robustness": {"register": REGISTER}}
+    assert "Under two changes together (none of them flips it alone) it is not reproduced" in _flip_sentence(
+        flip, claim
+    )
+    open_ = _flip_sentence({**flip, "undecided_subsets": ["the other reading"]}, claim)
+    assert "Under two changes together (none of them is shown to flip it alone) it is not reproduced" in open_

@@ -454,7 +454,7 @@ def _flip_sentence(flip: Mapping, claim: Mapping | None = None, n_parts: int = 1
     changed = flip.get("changed") or {}
     if len(changed) > 1 and side != "reading":  # a mix: each change with its kind, so the reader sees which is which
         text = kinds_of_changes(changed, (claim or {}).get("robustness") or {}) or text
-    return f"{_flip_lead(side, len(changed))} {to}: {text}.{carried}"
+    return f"{_flip_lead(side, len(changed), not flip.get('undecided_subsets'))} {to}: {text}.{carried}"
 
 
 _COUNT_WORDS = {2: "two", 3: "three", 4: "four", 5: "five"}
@@ -496,7 +496,7 @@ def kinds_of_changes(changed: Mapping, record: Mapping) -> str:
     return " and ".join(bits) if len(bits) < 3 else ", ".join(bits[:-1]) + " and " + bits[-1]
 
 
-def _flip_lead(side: str, n: int) -> str:
+def _flip_lead(side: str, n: int, shown: bool = True) -> str:
     """How a flip that is not a world is introduced: its kind and, for a combination, how many changes it takes
     (a combination is a setting where one of its entries is; :func:`tvtrack.attribution.flip_side`)."""
     if n <= 1:
@@ -508,7 +508,7 @@ def _flip_lead(side: str, n: int) -> str:
     return {
         "reading": f"Under {w} other readings of the paper's text together",
         "setting": f"Under {w} changes together",
-    }.get(side, f"Under {w} changes together (no smaller set of them was found to flip it)")
+    }.get(side, f"Under {w} changes together (none of them {'flips' if shown else 'is shown to flip'} it alone)")
 
 
 def _unexplored_sentence(claim: Mapping, parts: Mapping) -> str:
