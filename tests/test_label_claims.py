@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from tvtrack.estimate import Estimate
 from tvtrack.labels import Condition, Robustness, label_parts
 from tvtrack.pooling import pool
@@ -129,3 +131,74 @@ def test_a_claims_sentence_says_a_combination_is_only_not_shown_to_flip_alone_wh
     )
     open_ = _flip_sentence({**flip, "undecided_subsets": ["the other reading"]}, claim)
     assert "Under two changes together (none of them is shown to flip it alone) it is not reproduced" in open_
+
+
+@pytest.mark.parametrize(
+    ("k", "words"),
+    [
+        (0, " (none of them flips the claim alone)"),
+        (1, " (none of them is shown to flip the claim alone: one smaller set of them stays undecided)"),
+        (2, " (none of them is shown to flip the claim alone: two smaller sets of them stay undecided)"),
+        (7, " (none of them is shown to flip the claim alone: 7 smaller sets of them stay undecided)"),
+    ],
+)
+def test_a_combination_says_how_many_of_its_smaller_sets_stayed_undecided(k, words):
+    """A flip no smaller subset isolates: "none of them flips the claim alone" only where every smaller set was
+    decided, else how many stayed undecided; one kind of change or several, the same words."""
+    from tvtrack.flip_words import alone_words, flip_with_kind
+
+    subsets = [f"set {i}" for i in range(k)]
+    flip = {"changed": {"r": 1, "s": 1, "w": 1}, "side": "unattributed", "text": "a, b and c"}
+    flip |= {"undecided_subsets": subsets} if subsets else {}
+    assert alone_words(flip) == words
+    one_kind = {**flip, "changed": {"r": 1}, "text": "a and b"}  # a register that holds one kind only
+    assert flip_with_kind(one_kind, {"register": REGISTER}) == "a and b, together" + words
+    assert alone_words({**flip, "side": "setting"}) == ""
+
+
+def _one_world(values: int):
+    return Entry("w", "regime", 0, tuple(range(values)), "a world")
+
+
+@pytest.mark.parametrize(
+    ("values", "unchanged", "label"), [(2, 0, "robust"), (3, 1, "robust"), (6, 1, "robust"), (6, 2, "unexplored")]
+)
+def test_a_small_register_needs_every_configuration_that_can_reach_the_part(values, unchanged, label):
+    """With fewer reachable configurations than a share's 32, a part is robust when every one that can reach it
+    decided it: one world of ``values`` values (``values - 1`` configurations), ``unchanged`` of which leave the
+    part's value as the default's; each of the others agrees. One configuration is enough where it is the only one;
+    of five with one unchanged, the four that reach it are; with two unchanged, three reach it and one of them is
+    undecided here, so it is not."""
+    reps = [_est(0.5), _est(0.51), _est(0.49)]
+    conds, moved = [], values - 1 - unchanged
+    for i in range(1, values):
+        if i <= unchanged:
+            m = pool(reps)  # the default's value on its own random numbers: never reached the part
+        elif unchanged == 2 and i == values - 1:
+            m = Estimate(0.99, 0.05, 0.9, 1.08, 100, 0.95, "normal")  # straddles the band's upper edge
+        else:
+            m = _est(0.3 + 0.01 * i)
+        conds.append({"changed": {"w": i}, "kind": "single", "measured": m, "runs": 3})
+    out = label_parts(
+        RULE,
+        pool(reps),
+        [{"seed": s, "measured": m} for s, m in enumerate(reps)],
+        conds,
+        [_one_world(values)],
+        needed=3,
+    )
+    part = out["parts"]["claim"]
+    assert part["share"]["unchanged"] == unchanged and moved >= 1
+    assert part["label"] == label
+
+
+def test_a_claim_not_checkable_at_the_default_says_so_in_its_coverage():
+    """A claim whose every part is not checkable has no label, and its coverage line says why (no verdict to flip),
+    not that no part was decided; a claim with a part undecided says the latter."""
+    from tvtrack.verdicts import NotCheckable
+
+    nc = label_parts(NotCheckable("no data"), 1.0, [{"seed": 0, "measured": 1.0}], [], [])
+    assert nc["coverage"].startswith("no label (not checkable at the default: no verdict to flip) over 0 distinct")
+    wide = Estimate(1.0, 0.5, 0.2, 1.8, 100, 0.95, "normal")  # straddles the band's upper edge: undecided
+    open_ = label_parts(RULE, wide, [{"seed": s, "measured": wide} for s in range(3)], [], [], needed=3)
+    assert open_["coverage"].startswith("no label (no part decided at the default: nothing to flip) over 0 distinct")
