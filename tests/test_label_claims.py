@@ -66,21 +66,20 @@ REGISTER = [
 ]
 
 
+def _flip(changed: dict, side: str, **more) -> dict:
+    """A named flip to ``not reproduced`` of the entries ``changed`` on ``side``, in the register above's words."""
+    words = {"r": "the other reading", "s": "the other setting", "w": "the other world"}
+    text = " and ".join(words[k] for k in changed)
+    return {"changed": changed, "side": side, "kind": "joint", "verdict": "not reproduced", "text": text, **more}
+
+
 def test_a_part_line_names_each_kind_of_a_reading_and_a_setting_flipping_together():
-    """Every notebook's exploration section (part_lines.record_lines / part_line) files a flip of a reading and an
-    unreported setting together under "(a setting of the paper's own experiment that the paper never printed)",
-    while docs/verdicts.md says the report never names a flip that mixes kinds by one kind for all (003's C003-1
-    x_r: "8 rev/s varied by 15 % at 1 Hz and the noise-equivalent bandwidth (...)" is a setting and a reading)."""
+    """A notebook's exploration lines (part_lines.record_lines) name each change's own kind where a flip mixes a
+    reading and an unreported setting, never the setting's alone for both (docs/verdicts.md; 003's C003-1 x_r: "8
+    rev/s varied by 15 % at 1 Hz and the noise-equivalent bandwidth (...)" is a setting and a reading)."""
     from tvtrack.part_lines import record_lines
 
-    flip = {
-        "changed": {"r": 1, "s": 1},
-        "side": "setting",
-        "kind": "combination",
-        "verdict": "not reproduced",
-        "text": "the other reading and the other setting",
-        "runs": 3,
-    }
+    flip = _flip({"r": 1, "s": 1}, "setting", kind="combination", runs=3)
     share = {"agree": 40, "flip": 1, "undecided": 0, "design": 41, "decided": 41, "ci_low": 0.8, "ci_high": 1.0}
     record = {
         "label": "depends",
@@ -94,21 +93,13 @@ def test_a_part_line_names_each_kind_of_a_reading_and_a_setting_flipping_togethe
 
 
 def test_an_unattributed_flip_whose_single_change_stayed_undecided_is_not_said_to_flip_nowhere_alone():
-    """A flip that mixes a reading with a world is listed with "(none of them flips the claim alone)" even where
-    one of its changes alone stayed undecided (its record's undecided_subsets): 002's C002-5, "a Poisson number
-    of target photons (a world) and objects 1 sigma apart (a reading)", while "objects 1 sigma apart" alone ran 1
-    of the 4 replicates the default needed; 004's C004-3b RBF part, where "networks fed the centres as measured"
-    alone straddles. Nothing showed that the reading does not flip it alone."""
+    """A flip that mixes a reading with a world, one of whose changes alone stayed undecided (its record's
+    undecided_subsets), is not said to be one none of whose changes flips the claim alone: nothing showed that
+    (002's C002-5, "a Poisson number of target photons and objects 1 sigma apart", where the reading alone ran 1 of
+    the 4 replicates the default needed; 004's C004-3b RBF part)."""
     from tvtrack.flip_words import flip_with_kind
 
-    flip = {
-        "changed": {"w": 1, "r": 1},
-        "side": "unattributed",
-        "kind": "joint",
-        "verdict": "not reproduced",
-        "text": "the other world and the other reading",
-        "undecided_subsets": ["the other reading"],
-    }
+    flip = _flip({"w": 1, "r": 1}, "unattributed", undecided_subsets=["the other reading"])
     text = flip_with_kind(flip, {"register": REGISTER})
     assert "none of them flips the claim alone" not in text
 
@@ -118,13 +109,7 @@ def test_a_claims_sentence_says_a_combination_is_only_not_shown_to_flip_alone_wh
     where every smaller set measured was decided; with one left undecided it says none is shown to."""
     from tvtrack.wording import _flip_sentence
 
-    flip = {
-        "changed": {"w": 1, "r": 1},
-        "side": "unattributed",
-        "kind": "joint",
-        "verdict": "not reproduced",
-        "text": "the other world and the other reading",
-    }
+    flip = _flip({"w": 1, "r": 1}, "unattributed")
     claim = {"verdict": "reproduced", "robustness": {"register": REGISTER}}
     assert "Under two changes together (none of them flips it alone) it is not reproduced" in _flip_sentence(
         flip, claim
