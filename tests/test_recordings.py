@@ -1,3 +1,4 @@
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -68,6 +69,54 @@ def test_off_mode_writes_nothing(tmp_path):
     assert not any(tmp_path.iterdir())
     with pytest.raises(ValueError, match="rerun_mode"):
         Recorder(tmp_path, "web")
+
+
+def test_a_layout_given_as_a_callable_is_built_only_when_the_recording_is_written(tmp_path):
+    calls = []
+
+    def layout():
+        calls.append(1)
+        return image_and_series_blueprint("camera", ["errors"])
+
+    assert Recorder(tmp_path / "off", "off", blueprint=layout).close() is None and calls == []
+    rec = Recorder(tmp_path, "file", "tvtrack-test", blueprint=layout)
+    rec.set_frame(0)
+    rec.points("camera/truth", [[1, 2]])
+    assert rec.close() == tmp_path / "recording.rrd" and calls == [1]
+    # the layout is in the file: its blueprint stream is there as with a Blueprint passed directly
+    (tmp_path / "direct").mkdir()
+    direct = Recorder(tmp_path / "direct", "file", "tvtrack-test", blueprint=layout())
+    direct.set_frame(0)
+    direct.points("camera/truth", [[1, 2]])
+    direct.close()
+    columns = _layout_columns(tmp_path / "recording.rrd")
+    assert columns == _layout_columns(tmp_path / "direct" / "recording.rrd")
+    assert columns.count("ViewBlueprint:class_identifier") == 2  # the image view and the one series view
+
+
+def _layout_columns(path) -> list:
+    """The layout columns of a recording file's blueprint store (one per view, container and panel setting), sorted."""
+    out = subprocess.run([rerun_cli(), "rrd", "print", "-v", str(path)], capture_output=True, text=True, check=True)
+    return sorted(re.findall(r"@(\w+Blueprint:\w+)", out.stdout))
+
+
+def test_a_sweep_run_that_records_nothing_never_imports_rerun(tmp_path):
+    """A run with ``rerun_mode="off"`` (every run of a sweep by default) pays nothing for the layout it discards:
+    the fixture notebook's code cells, as they stand, executed in a fresh interpreter with the recording off."""
+    fixture = Path(__file__).parent / "fixtures" / "fixture_centroid.ipynb"
+    code = (
+        "import json, sys\n"
+        f"cells = [c for c in json.load(open({str(fixture)!r}))['cells'] if c['cell_type'] == 'code']\n"
+        "ns = {}\n"
+        "exec(''.join(cells[0]['source']), ns)\n"
+        f"ns.update(n_trials=2, n_frames=2, rerun_mode='off', output_dir={str(tmp_path)!r})\n"
+        "for cell in cells[1:]:\n"
+        "    exec(''.join(cell['source']), ns)\n"
+        "assert ns['results'].recording is None\n"
+        "print(sorted(m for m in sys.modules if m == 'rerun' or m.startswith('rerun.')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=tmp_path)
+    assert out.stdout.strip().splitlines()[-1] == "[]"
 
 
 def test_ellipse_outline_lies_on_the_mahalanobis_contour():

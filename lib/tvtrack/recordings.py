@@ -19,7 +19,7 @@ import importlib
 import re
 import uuid
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -142,8 +142,9 @@ class Recorder:
     application_id : str
         Rerun application id, e.g. ``"tvtrack-004_laser_spot_prediction"`` (other characters
         are replaced by ``-``).
-    blueprint : rerun.blueprint.Blueprint, optional
-        Default layout the viewer opens on.
+    blueprint : rerun.blueprint.Blueprint or callable, optional
+        Default layout the viewer opens on; a callable (no arguments) giving it is called only when the
+        recording is written, so a run with ``mode="off"`` never imports rerun to build a layout it discards.
     frame_interval_s : float, optional
         If given, :meth:`set_frame` also sets the ``time`` line to ``frame * frame_interval_s``.
     """
@@ -153,7 +154,7 @@ class Recorder:
         output_dir,
         mode: str = "file",
         application_id: str = "tvtrack",
-        blueprint: rrb.Blueprint | None = None,
+        blueprint: rrb.Blueprint | Callable[[], rrb.Blueprint] | None = None,
         frame_interval_s: float | None = None,
     ):
         if mode not in ("file", "off", "notebook"):
@@ -169,7 +170,7 @@ class Recorder:
         app = re.sub(r"[^A-Za-z0-9_-]+", "-", application_id)
         self._app = app
         self._rec = rr.RecordingStream(app, recording_id=uuid.uuid4())
-        self._rec.save(self.path, default_blueprint=blueprint)
+        self._rec.save(self.path, default_blueprint=blueprint() if callable(blueprint) else blueprint)
 
     @property
     def enabled(self) -> bool:

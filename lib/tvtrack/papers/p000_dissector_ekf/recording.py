@@ -10,7 +10,17 @@ from .ekf import run_variant2, variant2_filter
 from .model import DissectorScan, samples_from_pulse
 from .study import D11_0, MESSAGE
 
-__all__ = ["record_trial", "to_view"]
+__all__ = ["blueprint", "record_trial", "to_view"]
+
+
+def blueprint():
+    """The scan view on the left; the coordinate, the noise intensity and the error on the right."""
+    return image_and_series_blueprint(
+        "scan",
+        ("track", "noise", "errors"),
+        image_name="Scan: samples vs phase",
+        series_names=("Coordinate (T)", "Noise intensity N/N0", "Error (T)"),
+    )
 
 
 def to_view(phase, value):
@@ -28,12 +38,7 @@ def record_trial(output_dir, mode: str, scan: DissectorScan, x, pulse, xi, n_sca
         output_dir,
         mode,
         "tvtrack-000_dissector_ekf",
-        blueprint=image_and_series_blueprint(
-            "scan",
-            ("track", "noise", "errors"),
-            image_name="Scan: samples vs phase",
-            series_names=("Coordinate (T)", "Noise intensity N/N0", "Error (T)"),
-        ),
+        blueprint=blueprint,
         frame_interval_s=scan.dt,
     )
     n_rec = min(n_scans * int(round(1.0 / scan.dt)), x.size - 1)

@@ -18,22 +18,26 @@ from .em_steps import pixel_entries
 from .model import designate, draw_truth, frame_times, mixture_weights, noise_per_pixel, scene_geometry, simulate_counts
 from .two_stage import em_marks, fit_lines, propagate
 
-__all__ = ["BLUEPRINT", "count_image", "record_trial"]
+__all__ = ["blueprint", "count_image", "record_trial"]
 
-BLUEPRINT = image_and_series_blueprint(
-    "camera",
-    ("errors", ("em/loglik", "em/theta")),
-    image_name="Counts (log), truth, designation, estimates",
-    series_names=(
-        "position error per frame (px)",
-        ("EM log-likelihood (time line 'iteration')", "EM parameters, px (time line 'iteration')"),
-    ),
-    image_share=0.6,
-    more_images=(
-        ("responsibility/first_iteration", "lambda_1, first EM step"),
-        ("responsibility/last_iteration", "lambda_1, converged"),
-    ),
-)
+
+def blueprint():
+    """The viewer's layout: the count image with truth, designation and estimates; the errors and the EM's trace;
+    the responsibilities of the first and the converged EM step."""
+    return image_and_series_blueprint(
+        "camera",
+        ("errors", ("em/loglik", "em/theta")),
+        image_name="Counts (log), truth, designation, estimates",
+        series_names=(
+            "position error per frame (px)",
+            ("EM log-likelihood (time line 'iteration')", "EM parameters, px (time line 'iteration')"),
+        ),
+        image_share=0.6,
+        more_images=(
+            ("responsibility/first_iteration", "lambda_1, first EM step"),
+            ("responsibility/last_iteration", "lambda_1, converged"),
+        ),
+    )
 
 
 def count_image(frame) -> np.ndarray:
@@ -74,7 +78,7 @@ def record_trial(
     perm_m = match_labels(fit_lines(marks, times, desig).theta, truth, times)[0][0]
     err_u = np.linalg.norm(est_xy[:, perm_u] - truth_xy, axis=-1)
     err_m = np.linalg.norm(marks.xy[0][:, perm_m] - truth_xy, axis=-1)
-    rec = Recorder(output_dir, mode, "tvtrack-002_unified_location_em", blueprint=BLUEPRINT)
+    rec = Recorder(output_dir, mode, "tvtrack-002_unified_location_em", blueprint=blueprint)
     c_t, c_e, c_d, c_m = (rgb(colour(r)) for r in ("truth", "estimate", "prediction", "measurement"))
     rec.lines("camera/ula_trajectory", [est_xy[:, j] for j in range(2)], colors=[c_e], radii=0.03)
     rec.lines("camera/true_trajectory", [truth_xy[:, j] for j in range(2)], colors=[c_t], radii=0.02)
